@@ -1,0 +1,301 @@
+"""The robot: an immutable description of a serial arm and its kinematics.
+
+A :class:`Robot` holds a DH table (standard or modified), joint limits and the
+base and tool transforms. It has no state: ``robot.fk(q)`` is a pure function
+of ``q``. All batch computations take ``q`` of shape ``(..., n)``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from kinematica.dh import (
+    Convention,
+    DHChain,
+    Joint,
+    Prismatic,
+    Revolute,
+    check_convention,
+    convert_table,
+    link_matrix,
+)
+from kinematica.errors import DimensionError, KinematicaError
+
+__all__ = ["Robot"]
+
+FloatArray = NDArray[np.float64]
+
+#: Tolerance on a base/tool rotation part being orthonormal with det +1.
+FRAME_TOL = 1e-9
+
+
+def _check_frame(T: ArrayLike | None, what: str) -> FloatArray:
+    if T is None:
+        return np.eye(4)
+    M = np.array(T, dtype=float)
+    if M.shape != (4, 4):
+        raise DimensionError(f"{what} must be a 4x4 homogeneous transform, got shape {M.shape}")
+    if not np.all(np.isfinite(M)):
+        raise DimensionError(f"{what} holds NaN or inf")
+    if not np.allclose(M[3], [0.0, 0.0, 0.0, 1.0], atol=FRAME_TOL):
+        raise DimensionError(f"{what} last row must be [0, 0, 0, 1], got {M[3].tolist()}")
+    R = M[:3, :3]
+    err = float(np.abs(R.T @ R - np.eye(3)).max())
+    if err > FRAME_TOL or np.linalg.det(R) < 0:
+        raise DimensionError(f"{what} rotation part is not a proper rotation (|RᵀR - I| = {err:.1e})")
+    M[3] = [0.0, 0.0, 0.0, 1.0]
+    return M
+
+
+@dataclass(frozen=True, eq=False)
+class Robot:
+    """A serial manipulator described by its DH table.
+
+    Build one with :meth:`from_dh` or :func:`kinematica.load`.
+
+    Attributes:
+        links: The DH rows, base to tip (:class:`Revolute` / :class:`Prismatic`).
+        convention: ``"standard"`` (Paul, distal) or ``"modified"`` (Craig, proximal).
+        name: A display name.
+        base: ``(4, 4)`` pose of DH frame 0 in the world (base) frame.
+        tool: ``(4, 4)`` pose of the tool in the last DH frame.
+        description: Free text (source of the model, notes).
+    """
+
+    links: tuple[Joint, ...]
+    convention: Convention = "standard"
+    name: str = "robot"
+    base: FloatArray = field(default_factory=lambda: np.eye(4))
+    tool: FloatArray = field(default_factory=lambda: np.eye(4))
+    description: str | None = None
+    _chain: DHChain = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        links = tuple(self.links)
+        if not links:
+            raise KinematicaError("a robot needs at least one joint")
+        for i, link in enumerate(links, start=1):
+            if not isinstance(link, Revolute | Prismatic):
+                raise KinematicaError(
+                    f"joint {i}: expected kinematica.Revolute or kinematica.Prismatic, "
+                    f"got {type(link).__name__}"
+                )
+        object.__setattr__(self, "links", links)
+        object.__setattr__(self, "convention", check_convention(self.convention))
+        base = _check_frame(self.base, "base")
+        tool = _check_frame(self.tool, "tool")
+        base.flags.writeable = False
+        tool.flags.writeable = False
+        object.__setattr__(self, "base", base)
+        object.__setattr__(self, "tool", tool)
+        object.__setattr__(
+            self, "_chain", DHChain.from_joints(links, self.convention, base, tool)
+        )
+
+    @classmethod
+    def from_dh(
+        cls,
+        rows: Iterable[Joint],
+        *,
+        convention: str = "standard",
+        name: str = "robot",
+        base: ArrayLike | None = None,
+        tool: ArrayLike | None = None,
+        description: str | None = None,
+    ) -> Robot:
+        """A robot from its DH rows.
+
+        Args:
+            rows: ``Revolute(d=, a=, alpha=, offset=, qlim=)`` and
+                ``Prismatic(theta=, a=, alpha=, offset=, qlim=)`` rows, base to tip.
+            convention: ``"standard"`` or ``"modified"`` (aliases accepted).
+            name: Display name.
+            base: ``(4, 4)`` pose of frame 0 in the world frame; identity if ``None``.
+            tool: ``(4, 4)`` pose of the tool in frame n; identity if ``None``.
+            description: Free text.
+
+        Returns:
+            The robot.
+        """
+        return cls(
+            links=tuple(rows),
+            convention=check_convention(convention),
+            name=name,
+            base=_check_frame(base, "base"),
+            tool=_check_frame(tool, "tool"),
+            description=description,
+        )
+
+    # ---------------------------------------------------------------- structure
+    @property
+    def dof(self) -> int:
+        """Number of joints n."""
+        return len(self.links)
+
+    @property
+    def joint_types(self) -> str:
+        """One letter per joint, e.g. ``"RRPRRR"``."""
+        return "".join(link.type for link in self.links)
+
+    @property
+    def is_prismatic(self) -> NDArray[np.bool_]:
+        """``(n,)`` True where the joint is prismatic."""
+        return self._chain.prismatic.copy()
+
+    @property
+    def qlim(self) -> FloatArray:
+        """``(n, 2)`` joint limits; ``(-π, π)`` for free revolute joints, ±inf for free prismatic."""
+        rows = []
+        for link in self.links:
+            if link.qlim is not None:
+                rows.append(link.qlim)
+            elif isinstance(link, Revolute):
+                rows.append((-math.pi, math.pi))
+            else:
+                rows.append((-math.inf, math.inf))
+        return np.array(rows, dtype=float)
+
+    @property
+    def has_limits(self) -> NDArray[np.bool_]:
+        """``(n,)`` True where the joint has limits of its own (not the default)."""
+        return np.array([link.qlim is not None for link in self.links], dtype=bool)
+
+    def dh_table(self, q: ArrayLike | None = None) -> FloatArray:
+        """The DH parameters ``theta, d, a, alpha`` of every row at ``q``.
+
+        Args:
+            q: ``(n,)`` joint values; zeros if ``None``.
+
+        Returns:
+            ``(n, 4)`` rows (rad, m), in the robot's own convention.
+        """
+        qq = np.zeros(self.dof) if q is None else self.check_q(q)
+        if qq.ndim != 1:
+            raise DimensionError(f"dh_table takes one configuration (n,), got shape {qq.shape}")
+        rows = []
+        for link, qi in zip(self.links, qq, strict=True):
+            if isinstance(link, Revolute):
+                rows.append((qi + link.offset, link.d, link.a, link.alpha))
+            else:
+                rows.append((link.theta, qi + link.offset, link.a, link.alpha))
+        return np.array(rows, dtype=float)
+
+    # --------------------------------------------------------------- kinematics
+    def check_q(self, q: ArrayLike, name: str = "q") -> FloatArray:
+        """Validate joint values: shape ``(..., n)``, finite numbers.
+
+        Raises:
+            DimensionError: On a wrong last dimension, non-numbers, NaN or inf.
+        """
+        try:
+            qa = np.asarray(q, dtype=float)
+        except (TypeError, ValueError) as exc:
+            raise DimensionError(f"{name} must be numbers, got {q!r}") from exc
+        if qa.ndim == 0 or qa.shape[-1] != self.dof:
+            found = "a scalar" if qa.ndim == 0 else f"{qa.shape[-1]} (shape {qa.shape})"
+            raise DimensionError(
+                f"{name} must hold {self.dof} joint values for {self.name} "
+                f"({self.joint_types}), got {found}"
+            )
+        if not np.all(np.isfinite(qa)):
+            bad = np.argwhere(~np.isfinite(qa))[0]
+            raise DimensionError(f"{name} holds NaN or inf at index {tuple(int(i) for i in bad)}")
+        return qa
+
+    def _single_q(self, q: ArrayLike) -> list[float] | None:
+        """``q`` as a list of finite floats when it is one configuration, else None.
+
+        The single-configuration fast path: checking a short list in Python costs
+        far less than numpy's per-call overhead.
+        """
+        if isinstance(q, np.ndarray):
+            if q.shape != (self.dof,) or q.dtype.kind not in "fiu":
+                return None
+            values = q.tolist()
+        elif isinstance(q, list | tuple) and len(q) == self.dof:
+            values = list(q)
+        else:
+            return None
+        if all(type(v) is float or type(v) is int for v in values) and all(
+            math.isfinite(v) for v in values
+        ):
+            return [float(v) for v in values]
+        return None
+
+    def fk(self, q: ArrayLike, all_frames: bool = False) -> FloatArray:
+        """Forward kinematics: the tool pose in the base frame.
+
+        Args:
+            q: ``(..., n)`` joint values (rad for revolute, m for prismatic joints).
+            all_frames: Return every frame ``0T0 (base), 0T1, ..., 0Tn (with tool)``.
+
+        Returns:
+            ``(..., 4, 4)`` pose ``T = base · 0A1 · ... · (n-1)An · tool``, or
+            ``(..., n+1, 4, 4)`` with ``all_frames``.
+        """
+        if not all_frames:
+            single = self._single_q(q)
+            if single is not None:
+                return self._chain.fk_single(single)
+        qa = self.check_q(q)
+        flat = qa.reshape(-1, self.dof)
+        out = self._chain.fk_batch(flat, all_frames)
+        return out.reshape(*qa.shape[:-1], *out.shape[1:])
+
+    def link_matrices(self, q: ArrayLike) -> FloatArray:
+        """The link matrices ``i-1Ai`` of the DH table (no base, no tool).
+
+        Args:
+            q: ``(..., n)`` joint values.
+
+        Returns:
+            ``(..., n, 4, 4)``; their product is ``base⁻¹ · T · tool⁻¹``.
+        """
+        qa = self.check_q(q)
+        prismatic = self._chain.prismatic
+        theta0 = np.array([link.theta for link in self.links])
+        d0 = np.array([link.d for link in self.links])
+        a = np.array([link.a for link in self.links])
+        alpha = np.array([link.alpha for link in self.links])
+        theta = np.where(prismatic, theta0, qa + theta0)
+        d = np.where(prismatic, qa + d0, d0)
+        return link_matrix(theta, d, np.broadcast_to(a, theta.shape), alpha, self.convention)
+
+    # ------------------------------------------------------------ derived models
+    def to_convention(self, convention: str) -> Robot:
+        """The same robot written in another DH convention.
+
+        Base and tool absorb the regrouped ``a``/``alpha`` so that ``fk(q)`` is
+        unchanged for every ``q`` (the intermediate frames move, as seed 001 says).
+        """
+        target = check_convention(convention)
+        rows, base, tool = convert_table(self.links, self.convention, target, self.base, self.tool)
+        return dataclasses.replace(self, links=rows, convention=target, base=base, tool=tool)
+
+    def with_tool(self, tool: ArrayLike | None) -> Robot:
+        """The same robot with another tool transform (``(4, 4)`` or ``None``)."""
+        return dataclasses.replace(self, tool=_check_frame(tool, "tool"))
+
+    def with_base(self, base: ArrayLike | None) -> Robot:
+        """The same robot with another base transform (``(4, 4)`` or ``None``)."""
+        return dataclasses.replace(self, base=_check_frame(base, "base"))
+
+    def with_limits(self, qlim: ArrayLike | Sequence[tuple[float, float] | None]) -> Robot:
+        """The same robot with other joint limits (``(n, 2)``; ``None`` rows free)."""
+        rows = list(qlim)  # type: ignore[arg-type]
+        if len(rows) != self.dof:
+            raise DimensionError(f"qlim must have {self.dof} rows, got {len(rows)}")
+        links = tuple(
+            dataclasses.replace(link, qlim=None if lim is None else tuple(lim))
+            for link, lim in zip(self.links, rows, strict=True)
+        )
+        return dataclasses.replace(self, links=links)
+
+    def __repr__(self) -> str:
+        return f"Robot({self.name!r}, {self.joint_types}, convention={self.convention!r})"

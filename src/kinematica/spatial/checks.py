@@ -1,0 +1,144 @@
+"""Validation of rotations and homogeneous transforms at the public boundary.
+
+Every public function of :mod:`kinematica.spatial` turns its array arguments
+into float arrays through :func:`as_batch_array`, which checks the trailing
+shape and finiteness and names the offending batch element. The stricter
+:func:`check_rotation` and :func:`check_transform` also check that a matrix
+really is a rotation (orthonormal, det +1) or a rigid transform.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from kinematica.errors import DimensionError
+
+__all__ = [
+    "ORTHONORMAL_TOL",
+    "as_batch_array",
+    "check_rotation",
+    "check_transform",
+]
+
+FloatArray = NDArray[np.float64]
+
+# Largest accepted max|RᵀR − I| (and deviation of the last row of a transform
+# from [0, 0, 0, 1]). Matrices computed by forward kinematics are orthonormal to
+# ~1e-15; 1e-6 still accepts matrices written out with about seven significant
+# digits, while catching scaled, sheared, transposed-by-mistake or mistyped ones.
+ORTHONORMAL_TOL = 1e-6
+
+
+def _where(name: str, index: tuple[int, ...]) -> str:
+    """``"T"`` for an unbatched array, ``"T[2, 0]"`` for a batch element."""
+    return f"{name}[{', '.join(str(i) for i in index)}]" if index else name
+
+
+def _first(mask: NDArray[np.bool_]) -> tuple[int, ...]:
+    """Batch index of the first ``True`` in ``mask`` (which has at least one)."""
+    return tuple(int(i) for i in np.argwhere(mask)[0]) if mask.ndim else ()
+
+
+def first_bad(name: str, mask: NDArray[np.bool_]) -> str:
+    """Name of the first batch element flagged in ``mask``, e.g. ``"q[3]"``."""
+    return _where(name, _first(mask))
+
+
+def as_batch_array(x: ArrayLike, name: str, tail: tuple[int, ...]) -> FloatArray:
+    """Convert ``x`` to a float array of shape ``(..., *tail)`` with finite entries.
+
+    Args:
+        x: The array-like to check.
+        name: Its name in messages, e.g. ``"T"`` or ``"angles"``.
+        tail: The required trailing shape, e.g. ``(4, 4)``; ``()`` for scalars.
+
+    Returns:
+        ``x`` as a float64 array (not copied when it already is one).
+
+    Raises:
+        DimensionError: ``x`` is not numeric, has the wrong trailing shape, or
+            holds NaN or inf (the message names the first bad batch element).
+    """
+    try:
+        a = np.asarray(x, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise DimensionError(f"{name} must be an array of numbers: {exc}") from None
+    if a.ndim < len(tail) or a.shape[a.ndim - len(tail) :] != tail:
+        expected = ", ".join(["..."] + [str(n) for n in tail])
+        raise DimensionError(f"{name} must have shape ({expected}), got {a.shape}")
+    finite = np.isfinite(a)
+    if not finite.all():
+        bad = ~finite.reshape(*a.shape[: a.ndim - len(tail)], -1).all(axis=-1)
+        raise DimensionError(f"{first_bad(name, bad)} contains NaN or inf")
+    return a
+
+
+def _check_orthonormal(R: FloatArray, name: str, tol: float) -> None:
+    """Raise unless every ``(..., 3, 3)`` block of ``R`` is a rotation within ``tol``."""
+    gram = np.swapaxes(R, -1, -2) @ R
+    err = np.abs(gram - np.eye(3)).max(axis=(-1, -2))
+    bad = err > tol
+    if bad.any():
+        i = _first(bad)
+        raise DimensionError(
+            f"{_where(name, i)} rotation is not orthonormal: "
+            f"max |RᵀR − I| = {err[i]:.1e} (tolerance {tol:.0e})"
+        )
+    det = np.linalg.det(R)
+    bad = det < 0.0
+    if bad.any():
+        i = _first(bad)
+        raise DimensionError(
+            f"{_where(name, i)} rotation has det = {det[i]:+.3f}, expected +1 "
+            "(it is a reflection, not a rotation)"
+        )
+
+
+def check_rotation(R: ArrayLike, name: str = "R", tol: float = ORTHONORMAL_TOL) -> FloatArray:
+    """Validate a batch of rotation matrices.
+
+    Args:
+        R: Rotations, shape ``(..., 3, 3)``.
+        name: Name used in error messages.
+        tol: Largest accepted ``max|RᵀR − I|``.
+
+    Returns:
+        ``R`` as a float64 array of shape ``(..., 3, 3)``.
+
+    Raises:
+        DimensionError: Wrong shape, NaN/inf, not orthonormal within ``tol``, or
+            det −1; the message names the first offending batch element.
+    """
+    Ra = as_batch_array(R, name, (3, 3))
+    _check_orthonormal(Ra, name, tol)
+    return Ra
+
+
+def check_transform(T: ArrayLike, name: str = "T", tol: float = ORTHONORMAL_TOL) -> FloatArray:
+    """Validate a batch of homogeneous (rigid-body) transforms.
+
+    Args:
+        T: Transforms, shape ``(..., 4, 4)``; translations in metres.
+        name: Name used in error messages.
+        tol: Largest accepted ``max|RᵀR − I|`` of the rotation block, and largest
+            accepted deviation of the last row from ``[0, 0, 0, 1]``.
+
+    Returns:
+        ``T`` as a float64 array of shape ``(..., 4, 4)``.
+
+    Raises:
+        DimensionError: Wrong shape, NaN/inf, a last row other than
+            ``[0, 0, 0, 1]``, or a rotation block that is not a rotation; the
+            message names the first offending batch element.
+    """
+    Ta = as_batch_array(T, name, (4, 4))
+    row_err = np.abs(Ta[..., 3, :] - [0.0, 0.0, 0.0, 1.0]).max(axis=-1)
+    bad = row_err > tol
+    if bad.any():
+        i = _first(bad)
+        raise DimensionError(
+            f"{_where(name, i)} last row must be [0, 0, 0, 1], got {Ta[(*i, 3)].tolist()}"
+        )
+    _check_orthonormal(Ta[..., :3, :3], name, tol)
+    return Ta
