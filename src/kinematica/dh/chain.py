@@ -174,7 +174,27 @@ class DHChain:
             out[:, 0] = self.base
         return out
 
-    def _block(self, q: FloatArray, out: FloatArray, all_frames: bool) -> None:
+    def joint_frames(self, q: FloatArray) -> FloatArray:
+        """Frames whose z axis is each joint's axis, and the tool pose.
+
+        Args:
+            q: ``(B, n)`` joint values.
+
+        Returns:
+            ``(B, n+1, 4, 4)``: entry ``i < n`` is a frame whose z axis lies on
+            joint ``i+1``'s axis (standard: DH frame i; modified: frame i+1 before
+            its joint moves it); entry ``n`` is the tool pose. Used for Jacobians.
+        """
+        B = q.shape[0]
+        out = np.empty((B, self.dof + 1, 4, 4))
+        for b0 in range(0, B, BLOCK):
+            b1 = min(B, b0 + BLOCK)
+            self._block(q[b0:b1], out[b0:b1], False, joints=True)
+        return out
+
+    def _block(
+        self, q: FloatArray, out: FloatArray, all_frames: bool, joints: bool = False
+    ) -> None:
         n = self.dof
         qt = q.T  # (n, b): one contiguous row per joint after the arithmetic below
         theta = np.where(self.prismatic[:, None], self.theta[:, None], qt + self.theta[:, None])
@@ -182,6 +202,8 @@ class DHChain:
         S = self.start
         X, Y, Z, P = S[:3, 0:1], S[:3, 1:2], S[:3, 2:3], S[:3, 3:4]  # (3, 1) broadcast
         for i in range(n):
+            if joints:
+                _store(out[:, i], X, Y, Z, P)
             if self.prismatic[i]:
                 c, s = _snap(float(ct[i, 0])), _snap(float(st[i, 0]))
                 X1, W = _rotate_const(X, Y, c, s)
@@ -200,7 +222,7 @@ class DHChain:
             Y, Z = _twist(W, Z, float(self.ca[i]), float(self.sa[i]))
             if all_frames and not self.frames_mid and i < n - 1:
                 _store(out[:, i + 1], X, Y, Z, P)
-        target = out[:, n] if all_frames else out
+        target = out[:, n] if all_frames or joints else out
         if not self._end_identity:
             E = self.end
             X, Y, Z, P = (

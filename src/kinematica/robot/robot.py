@@ -11,6 +11,8 @@ import dataclasses
 import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
+from typing import Literal
+from numbers import Real
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -26,6 +28,7 @@ from kinematica.dh import (
     link_matrix,
 )
 from kinematica.errors import DimensionError, KinematicaError
+from kinematica.robot.jacobian import jacobian
 
 __all__ = ["Robot"]
 
@@ -220,13 +223,12 @@ class Robot:
             values = q.tolist()
         elif isinstance(q, list | tuple) and len(q) == self.dof:
             values = list(q)
+            if not all(isinstance(v, Real) and not isinstance(v, bool) for v in values):
+                return None
         else:
             return None
-        if all(type(v) is float or type(v) is int for v in values) and all(
-            math.isfinite(v) for v in values
-        ):
-            return [float(v) for v in values]
-        return None
+        floats = [float(v) for v in values]
+        return floats if all(math.isfinite(v) for v in floats) else None
 
     def fk(self, q: ArrayLike, all_frames: bool = False) -> FloatArray:
         """Forward kinematics: the tool pose in the base frame.
@@ -266,6 +268,25 @@ class Robot:
         theta = np.where(prismatic, theta0, qa + theta0)
         d = np.where(prismatic, qa + d0, d0)
         return link_matrix(theta, d, np.broadcast_to(a, theta.shape), alpha, self.convention)
+
+    def jacobian(self, q: ArrayLike, frame: Literal["base", "tool"] = "base") -> FloatArray:
+        """Geometric Jacobian ``(..., 6, n)`` of the tool; see :func:`jacobian`."""
+        return jacobian(self, q, frame)
+
+    def joint_axes(self, q: ArrayLike | None = None) -> tuple[FloatArray, FloatArray]:
+        """Each joint's axis as a line in the base frame.
+
+        Args:
+            q: ``(..., n)`` joint values; zeros if ``None``.
+
+        Returns:
+            ``(directions, points)``, each ``(..., n, 3)``: unit axis directions
+            and one point on each axis (metres, base frame).
+        """
+        qa = np.zeros(self.dof) if q is None else self.check_q(q)
+        F = self._chain.joint_frames(qa.reshape(-1, self.dof))[:, : self.dof]
+        shape = (*qa.shape[:-1], self.dof, 3)
+        return F[..., :3, 2].reshape(shape), F[..., :3, 3].reshape(shape)
 
     # ------------------------------------------------------------ derived models
     def to_convention(self, convention: str) -> Robot:
