@@ -1,5 +1,28 @@
 """SE(3)/SO(3) maths: rotations, homogeneous transforms, Euler angles, quaternions."""
 
+from kinematica.spatial.axis_angle import (
+    axis_angle_from_matrix,
+    matrix_from_axis_angle,
+    matrix_from_rotvec,
+    rotation_angle,
+    rotvec_from_matrix,
+)
+from kinematica.spatial.checks import ORTHONORMAL_TOL, check_rotation, check_transform
+from kinematica.spatial.euler import (
+    GIMBAL_LOCK_TOL,
+    EulerSequenceError,
+    euler_from_matrix,
+    gimbal_locked,
+    matrix_from_euler,
+)
+from kinematica.spatial.pose import from_pose, se3_error, to_pose
+from kinematica.spatial.quaternion import (
+    matrix_from_quat,
+    quat_conjugate,
+    quat_from_matrix,
+    quat_multiply,
+    quat_slerp,
+)
 from kinematica.spatial.transform import (
     compose,
     inv_transform,
@@ -11,11 +34,32 @@ from kinematica.spatial.transform import (
 )
 
 __all__ = [
+    "GIMBAL_LOCK_TOL",
+    "ORTHONORMAL_TOL",
+    "EulerSequenceError",
+    "axis_angle_from_matrix",
+    "check_rotation",
+    "check_transform",
     "compose",
+    "euler_from_matrix",
+    "from_pose",
+    "gimbal_locked",
     "inv_transform",
     "make_transform",
+    "matrix_from_axis_angle",
+    "matrix_from_euler",
+    "matrix_from_quat",
+    "matrix_from_rotvec",
+    "quat_conjugate",
+    "quat_from_matrix",
+    "quat_multiply",
+    "quat_slerp",
+    "rotation_angle",
+    "rotvec_from_matrix",
     "rotx",
     "roty",
     "rotz",
+    "se3_error",
+    "to_pose",
     "transl",
 ]

@@ -69,7 +69,7 @@ def as_batch_array(x: ArrayLike, name: str, tail: tuple[int, ...]) -> FloatArray
         raise DimensionError(f"{name} must have shape ({expected}), got {a.shape}")
     finite = np.isfinite(a)
     if not finite.all():
-        bad = ~finite.reshape(*a.shape[: a.ndim - len(tail)], -1).all(axis=-1)
+        bad = np.asarray(~finite.reshape(*a.shape[: a.ndim - len(tail)], -1).all(axis=-1))
         raise DimensionError(f"{first_bad(name, bad)} contains NaN or inf")
     return a
 

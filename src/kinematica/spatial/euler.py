@@ -177,11 +177,11 @@ def euler_from_matrix(R: ArrayLike, seq: str = "ZYZ", degrees: bool = False) -> 
     third_sign = 1 if symmetric else sign
     near_zero, near_pi = _locked(middle)
 
-    # Regular case: the extrinsic form's first and third angle; they land in
-    # the reversed places for an intrinsic sequence.
-    outer = half_sum - half_diff
-    inner = third_sign * (half_sum + half_diff)
-    first, third = (outer, inner) if extrinsic else (inner, outer)
+    # Regular case: the first and third angle of the extrinsic form; they land
+    # in the reversed places for an intrinsic sequence.
+    ext_first = half_sum - half_diff
+    ext_third = third_sign * (half_sum + half_diff)
+    first, third = (ext_first, ext_third) if extrinsic else (ext_third, ext_first)
 
     # Gimbal lock: the third returned angle is 0 and the first carries the
     # whole rotation about the aligned axes, which is the sum of the two when
