@@ -1,5 +1,18 @@
-"""kinematica: kinematics of serial robot manipulators."""
+"""kinematica: kinematics of serial robot manipulators.
 
+Describe an arm by its Denavit-Hartenberg table (standard or modified), compute
+every frame of its forward kinematics, and every inverse-kinematics solution
+with an honest status::
+
+    import kinematica as km
+
+    robot = km.load("puma560")
+    T = robot.fk([0, 0.5, -0.3, 0, 0.4, 0])
+    pose = km.to_pose(T, euler="ZYZ")
+    res = robot.ik(T)
+"""
+
+from kinematica.dh import Prismatic, Revolute, link_matrix
 from kinematica.errors import (
     DimensionError,
     KinematicaError,
@@ -7,14 +20,85 @@ from kinematica.errors import (
     UnknownRobotError,
     UnreachableError,
 )
+from kinematica.io import ExpressionError, builtin_names, read_robot_file, write_robot_file
+from kinematica.robot import Robot, Structure, classify, load, robot_from_spec, spec_from_robot
+from kinematica.spatial import (
+    EulerSequenceError,
+    axis_angle_from_matrix,
+    check_rotation,
+    check_transform,
+    compose,
+    euler_from_matrix,
+    from_pose,
+    gimbal_locked,
+    inv_transform,
+    make_transform,
+    matrix_from_axis_angle,
+    matrix_from_euler,
+    matrix_from_quat,
+    matrix_from_rotvec,
+    quat_conjugate,
+    quat_from_matrix,
+    quat_multiply,
+    quat_slerp,
+    rotation_angle,
+    rotvec_from_matrix,
+    rotx,
+    roty,
+    rotz,
+    se3_error,
+    to_pose,
+    transl,
+    wrap_angle,
+)
 
 __version__ = "0.1.0"
 
 __all__ = [
     "DimensionError",
+    "EulerSequenceError",
+    "ExpressionError",
     "KinematicaError",
+    "Prismatic",
+    "Revolute",
+    "Robot",
     "RobotFileError",
+    "Structure",
     "UnknownRobotError",
     "UnreachableError",
     "__version__",
+    "axis_angle_from_matrix",
+    "builtin_names",
+    "check_rotation",
+    "check_transform",
+    "classify",
+    "compose",
+    "euler_from_matrix",
+    "from_pose",
+    "gimbal_locked",
+    "inv_transform",
+    "link_matrix",
+    "load",
+    "make_transform",
+    "matrix_from_axis_angle",
+    "matrix_from_euler",
+    "matrix_from_quat",
+    "matrix_from_rotvec",
+    "quat_conjugate",
+    "quat_from_matrix",
+    "quat_multiply",
+    "quat_slerp",
+    "read_robot_file",
+    "robot_from_spec",
+    "rotation_angle",
+    "rotvec_from_matrix",
+    "rotx",
+    "roty",
+    "rotz",
+    "se3_error",
+    "spec_from_robot",
+    "to_pose",
+    "transl",
+    "wrap_angle",
+    "write_robot_file",
 ]

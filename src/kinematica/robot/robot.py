@@ -11,7 +11,7 @@ import dataclasses
 import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 from numbers import Real
 
 import numpy as np
@@ -29,6 +29,9 @@ from kinematica.dh import (
 )
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.robot.jacobian import jacobian
+
+if TYPE_CHECKING:
+    from kinematica.ik.result import IKBatchResult, IKResult
 
 __all__ = ["Robot"]
 
@@ -51,7 +54,9 @@ def _check_frame(T: ArrayLike | None, what: str) -> FloatArray:
     R = M[:3, :3]
     err = float(np.abs(R.T @ R - np.eye(3)).max())
     if err > FRAME_TOL or np.linalg.det(R) < 0:
-        raise DimensionError(f"{what} rotation part is not a proper rotation (|RᵀR - I| = {err:.1e})")
+        raise DimensionError(
+            f"{what} rotation part is not a proper rotation (|RᵀR - I| = {err:.1e})"
+        )
     M[3] = [0.0, 0.0, 0.0, 1.0]
     return M
 
@@ -97,9 +102,7 @@ class Robot:
         tool.flags.writeable = False
         object.__setattr__(self, "base", base)
         object.__setattr__(self, "tool", tool)
-        object.__setattr__(
-            self, "_chain", DHChain.from_joints(links, self.convention, base, tool)
-        )
+        object.__setattr__(self, "_chain", DHChain.from_joints(links, self.convention, base, tool))
 
     @classmethod
     def from_dh(
@@ -287,6 +290,29 @@ class Robot:
         F = self._chain.joint_frames(qa.reshape(-1, self.dof))[:, : self.dof]
         shape = (*qa.shape[:-1], self.dof, 3)
         return F[..., :3, 2].reshape(shape), F[..., :3, 3].reshape(shape)
+
+    def ik(
+        self,
+        target: ArrayLike,
+        *,
+        method: Literal["auto", "analytic", "numeric"] = "auto",
+        respect_limits: bool = True,
+        q0: ArrayLike | None = None,
+        mask: ArrayLike | None = None,
+        seed: int | np.random.Generator | None = None,
+    ) -> IKResult | IKBatchResult:
+        """Every IK solution of a target; see :func:`kinematica.ik.solve_ik`.
+
+        A pose ``(4, 4)`` or position ``(3,)`` gives an ``IKResult``; batches
+        ``(N, 4, 4)`` / ``(N, 3)`` give an ``IKBatchResult``. (The one upward
+        reference of this layer: a thin method over the ``ik`` layer, imported
+        when called.)
+        """
+        from kinematica.ik.solve import solve_ik
+
+        return solve_ik(
+            self, target, method=method, respect_limits=respect_limits, q0=q0, mask=mask, seed=seed
+        )
 
     # ------------------------------------------------------------ derived models
     def to_convention(self, convention: str) -> Robot:

@@ -140,11 +140,7 @@ def classify(robot: Robot) -> Structure:
             kind, summary = "anthropomorphic-3R", "3R anthropomorphic (shoulder axes meet)"
         else:
             kind, summary = "elbow-3R", "3R elbow arm with shoulder offset"
-    elif (
-        n == 4
-        and types == "RRPR"
-        and _all_parallel(h, range(4))
-    ):
+    elif n == 4 and types == "RRPR" and _all_parallel(h, range(4)):
         kind, summary = "scara", "SCARA (RRPR, all axes parallel)"
     elif n == 6 and types == "RRRRRR" and wrist is not None:
         kind, summary = "spherical-wrist-6R", "6R, spherical wrist"

@@ -1,5 +1,6 @@
 """SE(3)/SO(3) maths: rotations, homogeneous transforms, Euler angles, quaternions."""
 
+from kinematica.spatial.angles import wrap_angle
 from kinematica.spatial.axis_angle import (
     axis_angle_from_matrix,
     matrix_from_axis_angle,
@@ -62,4 +63,5 @@ __all__ = [
     "se3_error",
     "to_pose",
     "transl",
+    "wrap_angle",
 ]

@@ -38,6 +38,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.errors import KinematicaError
+from kinematica.spatial.angles import wrap_angle
 from kinematica.spatial.checks import as_batch_array
 from kinematica.spatial.quaternion import quat_from_matrix
 from kinematica.spatial.transform import rotx, roty, rotz
@@ -86,11 +87,6 @@ def _parse(seq: str) -> tuple[tuple[int, int, int], bool]:
         )
     i, j, k = (_AXIS_INDEX[c] for c in seq.lower())
     return (i, j, k), seq.islower()
-
-
-def _wrap(angle: FloatArray) -> FloatArray:
-    """Wrap to (−π, π]; ``+ 0.0`` turns a signed zero −0.0 into 0.0."""
-    return np.pi - np.mod(np.pi - angle, 2.0 * np.pi) + 0.0
 
 
 def matrix_from_euler(angles: ArrayLike, seq: str = "ZYZ", degrees: bool = False) -> FloatArray:
@@ -194,7 +190,7 @@ def euler_from_matrix(R: ArrayLike, seq: str = "ZYZ", degrees: bool = False) -> 
     third = np.where(locked, 0.0, third)
 
     second = middle if symmetric else middle - np.pi / 2.0
-    angles = np.stack([_wrap(first), second, _wrap(third)], axis=-1)
+    angles = np.stack([wrap_angle(first), second, wrap_angle(third)], axis=-1)
     return np.rad2deg(angles) if degrees else angles
 
 

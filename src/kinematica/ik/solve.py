@@ -1,0 +1,164 @@
+"""``robot.ik``: choose a solver, run it on a batch of targets, check the answers."""
+
+from __future__ import annotations
+
+import weakref
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from kinematica.errors import DimensionError, KinematicaError
+from kinematica.ik.analytic import find_solver
+from kinematica.ik.candidates import AnalyticSolver
+from kinematica.ik.finalize import Tolerance, finalize
+from kinematica.ik.numeric import solve_numeric
+from kinematica.ik.result import IKBatchResult, IKResult
+from kinematica.robot import Robot
+from kinematica.spatial import check_transform
+
+__all__ = ["Method", "solve_ik"]
+
+FloatArray = NDArray[np.float64]
+Method = Literal["auto", "analytic", "numeric"]
+
+# Closed-form solvers are built once per robot (a Robot is immutable, so the
+# solver is a pure function of it); the cache forgets a robot when it dies.
+_SOLVERS: weakref.WeakKeyDictionary[Robot, dict[bool, AnalyticSolver | None]] = (
+    weakref.WeakKeyDictionary()
+)
+
+
+def _solver(robot: Robot, position_only: bool) -> AnalyticSolver | None:
+    per_robot = _SOLVERS.setdefault(robot, {})
+    if position_only not in per_robot:
+        per_robot[position_only] = find_solver(robot, position_only=position_only)
+    return per_robot[position_only]
+
+
+def _parse_targets(target: ArrayLike) -> tuple[FloatArray, bool, bool]:
+    """Return ``(targets (N, 4, 4) or (N, 3), single, position_only)``."""
+    try:
+        arr = np.asarray(target, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise DimensionError(f"target must be numbers, got {target!r}") from exc
+    if arr.shape == (3,) or (arr.ndim == 2 and arr.shape[-1] == 3):
+        if not np.all(np.isfinite(arr)):
+            raise DimensionError("target position holds NaN or inf")
+        return arr.reshape(-1, 3), arr.ndim == 1, True
+    if arr.ndim in (2, 3) and arr.shape[-2:] == (4, 4):
+        T = check_transform(arr, name="target")
+        return T.reshape(-1, 4, 4), arr.ndim == 2, False
+    raise DimensionError(
+        "target must be a pose (4, 4), a position (3,), or batches (N, 4, 4) / (N, 3); "
+        f"got shape {arr.shape}"
+    )
+
+
+def _parse_mask(mask: ArrayLike | None) -> FloatArray | None:
+    if mask is None:
+        return None
+    m = np.asarray(mask, dtype=float)
+    if m.shape != (6,) or not np.all(np.isfinite(m)) or np.any(m < 0):
+        raise DimensionError(
+            "mask must be 6 non-negative weights for x, y, z, rx, ry, rz; "
+            f"got {np.asarray(mask).tolist()}"
+        )
+    return None if np.all(m == 1.0) else m
+
+
+def solve_ik(
+    robot: Robot,
+    target: ArrayLike,
+    *,
+    method: Method = "auto",
+    respect_limits: bool = True,
+    q0: ArrayLike | None = None,
+    mask: ArrayLike | None = None,
+    seed: int | np.random.Generator | None = None,
+    tol: Tolerance | None = None,
+) -> IKResult | IKBatchResult:
+    """Every inverse-kinematics solution of a target, or an honest status.
+
+    Args:
+        robot: The robot.
+        target: A pose ``(4, 4)`` (tool in the base frame), a position ``(3,)``
+            (tool origin; orientation free), or batches ``(N, 4, 4)`` / ``(N, 3)``.
+        method: ``"auto"`` (closed form when the structure allows, else
+            numeric), ``"analytic"`` or ``"numeric"``.
+        respect_limits: Keep solutions outside the joint limits apart
+            (``out_of_limits``) rather than among ``solutions``.
+        q0: ``(n,)`` or ``(N, n)``: the numeric initial guess, and the
+            configuration solutions are sorted by distance to.
+        mask: ``(6,)`` weights of the error components x, y, z, rx, ry, rz
+            (numeric only); e.g. ``[1, 1, 1, 0, 0, 1]``.
+        seed: Seed of the numeric restarts.
+        tol: Acceptance tolerances (default 1e-10 m and 1e-10 rad).
+
+    Returns:
+        An :class:`IKResult` for one target, an :class:`IKBatchResult` for a batch.
+
+    Raises:
+        DimensionError: On malformed targets, ``q0`` or ``mask``.
+        KinematicaError: ``method="analytic"`` for a structure with no closed form.
+    """
+    if method not in ("auto", "analytic", "numeric"):
+        raise KinematicaError(f"method must be 'auto', 'analytic' or 'numeric', got {method!r}")
+    targets, single, position_only = _parse_targets(target)
+    m = _parse_mask(mask)
+    q0a = None if q0 is None else robot.check_q(q0, name="q0")
+    if q0a is not None and q0a.ndim == 2 and q0a.shape[0] != targets.shape[0]:
+        raise DimensionError(f"q0 has {q0a.shape[0]} rows for {targets.shape[0]} targets")
+    if q0a is not None and q0a.ndim > 2:
+        raise DimensionError(f"q0 must be (n,) or (N, n), got shape {q0a.shape}")
+
+    solver = None
+    if method != "numeric" and m is None:
+        solver = _solver(robot, position_only)
+        if solver is None and not position_only and robot.dof < 6:
+            # A reduced arm: solve the position in closed form, check the whole pose.
+            solver = _solver(robot, True)
+    if method == "analytic" and solver is None:
+        from kinematica.robot.structure import classify
+
+        why = "a mask was given" if m is not None else f"structure: {classify(robot).summary}"
+        raise KinematicaError(f"no closed-form solver for {robot.name} ({why}); use method='numeric'")
+
+    if solver is not None:
+        solver_targets = targets[:, :3, 3] if solver.position_only and not position_only else targets
+        cand = solver.solve(solver_targets)
+        result = finalize(
+            robot,
+            targets,
+            cand,
+            method=f"analytic:{solver.name}",
+            complete=True,
+            respect_limits=respect_limits,
+            q0=q0a,
+            tol=tol,
+        )
+    else:
+        tol_ = tol or Tolerance()
+        cand = solve_numeric(
+            robot,
+            targets,
+            q0=q0a,
+            mask=m,
+            seed=seed,
+            tol_position=tol_.position,
+            tol_angle=tol_.rotation,
+            respect_limits=respect_limits,
+            position_only=position_only,
+        )
+        result = finalize(
+            robot,
+            targets,
+            cand,
+            method="numeric:lm",
+            complete=False,
+            respect_limits=respect_limits,
+            q0=q0a,
+            mask=m,
+            tol=tol,
+        )
+    return result[0] if single else result
