@@ -1,0 +1,173 @@
+"""The neutral description of a robot that the io layer hands upwards.
+
+A :class:`RobotSpec` is what a robot file says, checked and converted to SI
+units (radians, metres), with the original expression text kept alongside so a
+later layer (symbolic derivations, file writers) can show the table as written.
+The robot layer turns a spec into a ``Robot``; nothing here computes kinematics
+beyond building the 4x4 matrix of a base or tool placement.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Literal
+
+import numpy as np
+
+from kinematica.errors import RobotFileError
+
+__all__ = ["Convention", "FrameSpec", "JointKind", "JointSpec", "RobotSpec"]
+
+JointKind = Literal["R", "P"]
+Convention = Literal["standard", "modified"]
+
+
+def _default_units() -> dict[str, str]:
+    return {"angle": "deg", "length": "m"}
+
+
+@dataclass(frozen=True)
+class JointSpec:
+    """One row of a DH table, in radians and metres.
+
+    For a revolute joint (``kind="R"``) the joint angle is ``q + theta``; for a
+    prismatic joint (``kind="P"``) the offset along z is ``q + d``. In the
+    modified (Craig) convention ``a`` and ``alpha`` are a(i-1) and alpha(i-1),
+    as Craig tables are written row by row.
+
+    Attributes:
+        kind: ``"R"`` (revolute) or ``"P"`` (prismatic).
+        theta: Rotation about z, rad (the constant offset for ``"R"``).
+        d: Offset along z, m (the constant offset for ``"P"``).
+        a: Link length along x, m.
+        alpha: Link twist about x, rad.
+        qlim: ``(lower, upper)`` joint limits in rad (R) or m (P), or ``None``.
+        name: Optional joint name.
+        expr: The text of ``theta``, ``d``, ``a`` and ``alpha`` as written in
+            the file, in the file's units (empty when built in code). Not part
+            of equality: two joints are equal when their numbers are.
+    """
+
+    kind: JointKind
+    theta: float
+    d: float
+    a: float
+    alpha: float
+    qlim: tuple[float, float] | None = None
+    name: str | None = None
+    expr: Mapping[str, str] = field(default_factory=dict, compare=False)
+
+    def __post_init__(self) -> None:
+        if self.kind not in ("R", "P"):
+            raise RobotFileError(f"joint kind must be 'R' or 'P', found {self.kind!r}")
+        values = (self.theta, self.d, self.a, self.alpha, *(self.qlim or ()))
+        if not all(math.isfinite(v) for v in values):
+            raise RobotFileError(f"joint values must be finite numbers, found {values}")
+        if self.qlim is not None and not self.qlim[0] < self.qlim[1]:
+            raise RobotFileError(f"joint limits need lower < upper, found {self.qlim}")
+
+
+@dataclass(frozen=True)
+class FrameSpec:
+    """A fixed placement (base or tool), in metres and radians.
+
+    Either ``rpy`` or ``matrix`` is given, not both. ``rpy`` is URDF's
+    fixed-axis roll-pitch-yaw: ``R = Rz(yaw) @ Ry(pitch) @ Rx(roll)``. When
+    ``matrix`` is given, ``xyz`` is set to its translation column.
+
+    Attributes:
+        xyz: Translation, m.
+        rpy: ``(roll, pitch, yaw)``, rad, or ``None``.
+        matrix: The 4x4 homogeneous matrix as nested tuples (m), or ``None``.
+    """
+
+    xyz: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    rpy: tuple[float, float, float] | None = None
+    matrix: tuple[tuple[float, ...], ...] | None = None
+
+    def __post_init__(self) -> None:
+        if self.matrix is None:
+            return
+        if self.rpy is not None:
+            raise RobotFileError("a frame takes either rpy or matrix, not both")
+        rows = tuple(tuple(float(v) for v in row) for row in self.matrix)
+        if len(rows) != 4 or any(len(row) != 4 for row in rows):
+            raise RobotFileError(f"a frame matrix must be 4x4, found {self.matrix}")
+        translation = (rows[0][3], rows[1][3], rows[2][3])
+        if self.xyz != (0.0, 0.0, 0.0) and tuple(self.xyz) != translation:
+            raise RobotFileError(
+                f"xyz {self.xyz} disagrees with the matrix translation {translation}"
+            )
+        object.__setattr__(self, "matrix", rows)
+        object.__setattr__(self, "xyz", translation)
+
+    def as_matrix(self) -> np.ndarray:
+        """The placement as a 4x4 homogeneous transform, shape ``(4, 4)``."""
+        if self.matrix is not None:
+            return np.array(self.matrix, dtype=float)
+        T = np.eye(4)
+        if self.rpy is not None:
+            r, p, y = self.rpy
+            cr, sr = math.cos(r), math.sin(r)
+            cp, sp = math.cos(p), math.sin(p)
+            cy, sy = math.cos(y), math.sin(y)
+            T[:3, :3] = [
+                [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                [-sp, cp * sr, cp * cr],
+            ]
+        T[:3, 3] = self.xyz
+        return T
+
+
+@dataclass(frozen=True)
+class RobotSpec:
+    """A whole robot description: DH table, placements and provenance.
+
+    Two specs compare equal when they describe the same robot: the numbers
+    (SI), joint kinds and limits, placements, names and texts. How it was
+    written down (``expr`` texts, ``parameters``, ``units``) and where it was
+    read from (``source``) take no part: the same arm written in YAML, JSON or
+    TOML gives equal specs, and so does a spec written out and read back.
+
+    Attributes:
+        name: Robot name.
+        convention: ``"standard"`` (Paul, distal) or ``"modified"`` (Craig,
+            proximal).
+        joints: One :class:`JointSpec` per joint, base to tip.
+        base: Placement of DH frame 0 in the world, or ``None`` (identity).
+        tool: Placement of the tool in the last DH frame, or ``None``.
+        parameters: Named values used by the expressions, in file units.
+        source: Where the spec was read from: a path or ``"builtin:NAME"``.
+        description: Free text.
+        units: ``{"angle": "deg" | "rad", "length": "m" | "mm"}``: the units
+            of ``expr`` texts and ``parameters``.
+        reference: Where the numbers come from (book, paper, datasheet): the
+            file's ``source`` key.
+    """
+
+    name: str
+    convention: Convention
+    joints: tuple[JointSpec, ...]
+    base: FrameSpec | None = None
+    tool: FrameSpec | None = None
+    parameters: Mapping[str, float] = field(default_factory=dict, compare=False)
+    source: str | None = field(default=None, compare=False)
+    description: str | None = None
+    units: Mapping[str, str] = field(default_factory=_default_units, compare=False)
+    reference: str | None = None
+
+    def __post_init__(self) -> None:
+        if self.convention not in ("standard", "modified"):
+            raise RobotFileError(
+                f"convention must be 'standard' or 'modified', found {self.convention!r}"
+            )
+        if not self.joints:
+            raise RobotFileError("a robot needs at least one joint")
+
+    @property
+    def dof(self) -> int:
+        """Number of joints."""
+        return len(self.joints)
