@@ -28,7 +28,15 @@ def test_every_name_in_all_exists() -> None:
 
 
 def test_design_names_are_public() -> None:
-    for name in ("load", "Robot", "Revolute", "Prismatic", "to_pose", "from_pose", "KinematicaError"):
+    for name in (
+        "load",
+        "Robot",
+        "Revolute",
+        "Prismatic",
+        "to_pose",
+        "from_pose",
+        "KinematicaError",
+    ):
         assert name in km.__all__
 
 
@@ -38,7 +46,11 @@ def _imports(path: Path) -> list[tuple[str, bool]]:
     found = []
     top = set(map(id, tree.body))
     for node in ast.walk(tree):
-        if isinstance(node, ast.ImportFrom) and node.module and node.module.startswith("kinematica."):
+        if (
+            isinstance(node, ast.ImportFrom)
+            and node.module
+            and node.module.startswith("kinematica.")
+        ):
             found.append((node.module.split(".")[1], id(node) in top))
     return found
 

@@ -63,10 +63,14 @@ def test_fk_json_matches_library(capsys: pytest.CaptureFixture[str]) -> None:
 
 def test_fk_radians_and_euler_sequence(capsys: pytest.CaptureFixture[str]) -> None:
     q = [0.1, -0.2, 0.3]
-    code, out, _ = run(capsys, "fk", "planar-3r", "--q", *map(str, q), "--rad", "--euler", "xyz", "--json")
+    code, out, _ = run(
+        capsys, "fk", "planar-3r", "--q", *map(str, q), "--rad", "--euler", "xyz", "--json"
+    )
     assert code == 0
     T = km.load("planar-3r").fk(q)
-    np.testing.assert_allclose(json.loads(out)["euler"]["angles"], km.euler_from_matrix(T[:3, :3], "xyz"), atol=1e-12)
+    np.testing.assert_allclose(
+        json.loads(out)["euler"]["angles"], km.euler_from_matrix(T[:3, :3], "xyz"), atol=1e-12
+    )
 
 
 def test_fk_text_output(capsys: pytest.CaptureFixture[str]) -> None:
