@@ -1,0 +1,89 @@
+"""Timing helpers shared by the benchmark scripts: median per call, best of N, a table."""
+
+from __future__ import annotations
+
+import os
+import platform
+import statistics
+import sys
+import time
+from collections.abc import Callable, Sequence
+
+import numpy as np
+
+
+def per_call(fn: Callable[[], object], calls: int = 20_000, repeats: int = 25) -> float:
+    """Median seconds per call of ``fn()`` over ``repeats`` loops of ``calls // repeats`` calls."""
+    fn()  # warm up
+    k = max(1, calls // repeats)
+    samples = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        for _ in range(k):
+            fn()
+        samples.append((time.perf_counter() - t0) / k)
+    return statistics.median(samples)
+
+
+def best_of(fn: Callable[[], object], repeats: int = 3) -> float:
+    """Shortest wall time (s) of ``repeats`` calls of ``fn()``."""
+    times = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return min(times)
+
+
+def median_of(fn: Callable[[], object], repeats: int = 15) -> float:
+    """Median wall time (s) of ``repeats`` calls of ``fn()``, after one warm-up call."""
+    fn()
+    times = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times)
+
+
+def cores() -> tuple[int, int]:
+    """(cores this process may run on, logical cores of the machine)."""
+    try:
+        usable = len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        usable = os.cpu_count() or 1
+    return usable, os.cpu_count() or 1
+
+
+def header(title: str) -> str:
+    usable, total = cores()
+    return (
+        f"{title}\n"
+        f"Python {sys.version.split()[0]}, numpy {np.__version__}, "
+        f"{platform.system()} {platform.machine()}; "
+        f"cores: {usable} usable of {total}; the timed code is single-threaded "
+        "(numpy ufuncs, Python loops)"
+    )
+
+
+def table(rows: Sequence[Sequence[str]], head: Sequence[str]) -> str:
+    """Rows of strings as a fixed-width text table: first column left, others right."""
+    widths = [max(len(r[i]) for r in [head, *rows]) for i in range(len(head))]
+
+    def line(r: Sequence[str]) -> str:
+        cells = [r[0].ljust(widths[0])] + [
+            c.rjust(w) for c, w in zip(r[1:], widths[1:], strict=True)
+        ]
+        return "  " + "  ".join(cells).rstrip()
+
+    rule = "  " + "  ".join("-" * w for w in widths)
+    return "\n".join([line(head), rule, *(line(r) for r in rows)])
+
+
+def fmt_time(seconds: float) -> str:
+    """A duration with a unit that keeps 3-4 significant digits."""
+    if seconds < 1e-3:
+        return f"{seconds * 1e6:.2f} µs"
+    if seconds < 1.0:
+        return f"{seconds * 1e3:.2f} ms"
+    return f"{seconds:.2f} s"
