@@ -525,22 +525,12 @@ def test_joint_values_that_are_not_numbers(puma: Robot, q: object, match: str) -
         puma.jacobian(q)  # type: ignore[arg-type]
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="Robot.check_q converts with np.asarray(q, dtype=float): numeric strings "
-    "are parsed as numbers instead of rejected (robot.py, check_q)",
-)
 def test_numeric_strings_are_not_joint_values(puma: Robot) -> None:
     with pytest.raises(DimensionError, match="q must be numbers"):
         puma.fk(["0", "0.1", "0.2", "0.3", "0.4", "0.5"])
 
 
 @pytest.mark.filterwarnings("ignore::numpy.exceptions.ComplexWarning")
-@pytest.mark.xfail(
-    strict=True,
-    reason="Robot.check_q casts complex joint values to float, silently dropping the "
-    "imaginary part with only a ComplexWarning (robot.py, check_q)",
-)
 def test_complex_joint_values_are_rejected(puma: Robot) -> None:
     with pytest.raises(DimensionError, match="q must be"):
         puma.fk(np.array([0, 0.1, 0.2, 0.3, 0.4, 0.5 + 1j]))
@@ -569,11 +559,6 @@ def test_bad_base_and_tool(which: str, value: np.ndarray, match: str) -> None:
         robot.with_base(value) if which == "base" else robot.with_tool(value)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="robot.py _check_frame calls np.array(T, dtype=float) unguarded: a base/tool "
-    "that is not numbers raises a bare ValueError naming neither base nor tool",
-)
 @pytest.mark.parametrize("which", ["base", "tool"])
 def test_base_or_tool_that_is_not_numbers(which: str) -> None:
     with pytest.raises(KinematicaError, match=which):

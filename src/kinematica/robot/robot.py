@@ -44,7 +44,10 @@ FRAME_TOL = 1e-9
 def _check_frame(T: ArrayLike | None, what: str) -> FloatArray:
     if T is None:
         return np.eye(4)
-    M = np.array(T, dtype=float)
+    raw = np.asarray(T)
+    if raw.dtype.kind not in "iuf":
+        raise DimensionError(f"{what} must be a 4x4 matrix of real numbers, got {T!r}")
+    M = np.array(raw, dtype=float)
     if M.shape != (4, 4):
         raise DimensionError(f"{what} must be a 4x4 homogeneous transform, got shape {M.shape}")
     if not np.all(np.isfinite(M)):
@@ -200,9 +203,12 @@ class Robot:
             DimensionError: On a wrong last dimension, non-numbers, NaN or inf.
         """
         try:
-            qa = np.asarray(q, dtype=float)
+            raw = np.asarray(q)
         except (TypeError, ValueError) as exc:
             raise DimensionError(f"{name} must be numbers, got {q!r}") from exc
+        if raw.dtype.kind not in "iuf":
+            raise DimensionError(f"{name} must be numbers (real, finite), got {q!r}")
+        qa = raw.astype(float, copy=False)
         if qa.ndim == 0 or qa.shape[-1] != self.dof:
             found = "a scalar" if qa.ndim == 0 else f"{qa.shape[-1]} (shape {qa.shape})"
             raise DimensionError(
