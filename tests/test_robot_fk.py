@@ -515,7 +515,7 @@ def test_non_finite_joint_values(puma: Robot, bad: float) -> None:
         ([1, 2, 3, 4, 5, "x"], r"q must be numbers, got \[1, 2, 3, 4, 5, 'x'\]"),
         ([[0.0] * 6, [0.0] * 5], "q must be numbers"),  # ragged
         ({"q1": 0.0}, "q must be numbers"),
-        ([None] * 6, r"NaN or inf at index \(0,\)"),  # numpy reads None as NaN
+        ([None] * 6, "q must be numbers"),
     ],
 )
 def test_joint_values_that_are_not_numbers(puma: Robot, q: object, match: str) -> None:

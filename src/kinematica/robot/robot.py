@@ -207,7 +207,7 @@ class Robot:
         except (TypeError, ValueError) as exc:
             raise DimensionError(f"{name} must be numbers, got {q!r}") from exc
         if raw.dtype.kind not in "iuf":
-            raise DimensionError(f"{name} must be numbers (real, finite), got {q!r}")
+            raise DimensionError(f"{name} must be numbers, got {q!r}")
         qa = raw.astype(float, copy=False)
         if qa.ndim == 0 or qa.shape[-1] != self.dof:
             found = "a scalar" if qa.ndim == 0 else f"{qa.shape[-1]} (shape {qa.shape})"
