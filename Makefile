@@ -24,6 +24,8 @@ test: lint
 	$(BIN)/pytest
 
 bench: $(STAMP)
+	@$(BIN)/python -m pip install --quiet -e '.[bench]' 2>/dev/null \
+	  || echo "bench: peers (pin, roboticstoolbox-python, eaik) not installable here; benchmarks skip them"
 	$(BIN)/python benchmarks/fk.py
 	@if [ -f benchmarks/ik.py ]; then $(BIN)/python benchmarks/ik.py; fi
 
