@@ -1,0 +1,307 @@
+"""The Levenberg-Marquardt search of numeric IK for one target, on Python floats.
+
+The same algorithm, step for step, as a row of
+:func:`kinematica.ik.numeric_batch.search_batch` (restarts run one after
+another): the forward kinematics, Jacobian, pose error and projection run on
+Python floats, where numpy's per-call cost (a microsecond per operation on
+tiny arrays) would dominate; only the small damped normal equations go to
+numpy.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import NDArray
+
+from kinematica.ik.numeric_batch import (
+    LAMBDA_DOWN,
+    LAMBDA_INIT,
+    LAMBDA_MAX,
+    LAMBDA_MIN,
+    LAMBDA_UP,
+    SCALE_FLOOR,
+    STALL_FACTOR,
+    STALL_WINDOW,
+    LMProblem,
+    Sampler,
+    SearchResult,
+)
+
+__all__ = ["search_single"]
+
+FloatArray = NDArray[np.float64]
+
+TWO_PI = 2.0 * math.pi
+
+Axis = tuple[float, float, float, float, float, float]
+
+
+class _Kernel:
+    """One problem's data as Python floats, and the scalar steps on it."""
+
+    def __init__(self, problem: LMProblem) -> None:
+        chain = problem.chain
+        self.links = list(
+            zip(
+                chain.prismatic.tolist(),
+                chain.theta.tolist(),
+                chain.d.tolist(),
+                chain.a.tolist(),
+                chain.ca.tolist(),
+                chain.sa.tolist(),
+                strict=True,
+            )
+        )
+        self.start = chain.start[:3].tolist()
+        self.end = None if np.array_equal(chain.end, np.eye(4)) else chain.end[:3].tolist()
+        self.revolute = (~problem.prismatic).tolist()
+        self.rows = problem.rows.tolist()
+        self.weight = problem.weight.tolist()
+        self.check = problem.check.tolist()
+        self.is_position = problem.is_position.tolist()
+        self.orientation = problem.orientation
+        self.wrap_base = problem.wrap_base.tolist()
+        self.lower = problem.lower.tolist()
+        self.upper = problem.upper.tolist()
+        self.tol_position = problem.tol_position
+        self.tol_angle = problem.tol_angle
+        self.wide = len(self.rows) <= len(self.links)
+
+    def project(self, q: list[float]) -> list[float]:
+        """Wrap revolute angles into their window and clamp (see ``LMProblem.project``)."""
+        out = []
+        for qi, rev, base, lo, hi in zip(
+            q, self.revolute, self.wrap_base, self.lower, self.upper, strict=True
+        ):
+            if rev:
+                qi = base + (qi - base) % TWO_PI
+            if qi > hi:
+                qi = lo if rev and qi - hi > lo + TWO_PI - qi else hi
+            out.append(lo if qi < lo else qi)
+        return out
+
+    def evaluate(
+        self, q: list[float], p_t: list[float], R_t: list[list[float]] | None
+    ) -> tuple[list[float], list[list[float]]]:
+        """Counted errors ``(m,)`` (unweighted) and weighted Jacobian rows ``(m, n)``."""
+        (x0, y0, z0, p0), (x1, y1, z1, p1), (x2, y2, z2, p2) = self.start
+        cos, sin = math.cos, math.sin
+        axes: list[Axis] = []
+        for qi, (prismatic, th, di, ai, ca, sa) in zip(q, self.links, strict=True):
+            axes.append((z0, z1, z2, p0, p1, p2))
+            if prismatic:
+                di = di + qi
+            else:
+                th = th + qi
+            c, s = cos(th), sin(th)
+            x0, x1, x2, w0, w1, w2 = (
+                c * x0 + s * y0,
+                c * x1 + s * y1,
+                c * x2 + s * y2,
+                c * y0 - s * x0,
+                c * y1 - s * x1,
+                c * y2 - s * x2,
+            )
+            p0 += di * z0 + ai * x0
+            p1 += di * z1 + ai * x1
+            p2 += di * z2 + ai * x2
+            y0, y1, y2, z0, z1, z2 = (
+                ca * w0 + sa * z0,
+                ca * w1 + sa * z1,
+                ca * w2 + sa * z2,
+                ca * z0 - sa * w0,
+                ca * z1 - sa * w1,
+                ca * z2 - sa * w2,
+            )
+        if self.end is not None:
+            (e00, e01, e02, e03), (e10, e11, e12, e13), (e20, e21, e22, e23) = self.end
+            p0 += e03 * x0 + e13 * y0 + e23 * z0
+            p1 += e03 * x1 + e13 * y1 + e23 * z1
+            p2 += e03 * x2 + e13 * y2 + e23 * z2
+            x0, y0, z0 = (
+                e00 * x0 + e10 * y0 + e20 * z0,
+                e01 * x0 + e11 * y0 + e21 * z0,
+                e02 * x0 + e12 * y0 + e22 * z0,
+            )
+            x1, y1, z1 = (
+                e00 * x1 + e10 * y1 + e20 * z1,
+                e01 * x1 + e11 * y1 + e21 * z1,
+                e02 * x1 + e12 * y1 + e22 * z1,
+            )
+            x2, y2, z2 = (
+                e00 * x2 + e10 * y2 + e20 * z2,
+                e01 * x2 + e11 * y2 + e21 * z2,
+                e02 * x2 + e12 * y2 + e22 * z2,
+            )
+
+        # Geometric Jacobian columns: [z × (p − o); z] (revolute), [z; 0] (prismatic).
+        cols: list[tuple[float, float, float, float, float, float]] = []
+        for rev, (a0, a1, a2, o0, o1, o2) in zip(self.revolute, axes, strict=True):
+            if rev:
+                d0, d1, d2 = p0 - o0, p1 - o1, p2 - o2
+                cols.append((a1 * d2 - a2 * d1, a2 * d0 - a0 * d2, a0 * d1 - a1 * d0, a0, a1, a2))
+            else:
+                cols.append((a0, a1, a2, 0.0, 0.0, 0.0))
+        J = [[w * col[r] for col in cols] for r, w in zip(self.rows, self.weight, strict=True)]
+
+        e = [p_t[0] - p0, p_t[1] - p1, p_t[2] - p2, 0.0, 0.0, 0.0]
+        if R_t is not None and self.orientation:
+            # M = R_t · Rᵀ, R's rows being (x_i, y_i, z_i).
+            rows_c = ((x0, y0, z0), (x1, y1, z1), (x2, y2, z2))
+            M = [[ti[0] * c[0] + ti[1] * c[1] + ti[2] * c[2] for c in rows_c] for ti in R_t]
+            e[3:] = _rotvec(M)
+        return [e[r] for r in self.rows], J
+
+    def score(self, err: list[float]) -> float:
+        """Worst scaled error norm relative to its tolerance (≤ 1: converged)."""
+        pos = rot = 0.0
+        for v, c, is_pos in zip(err, self.check, self.is_position, strict=True):
+            if is_pos:
+                pos += (v * c) ** 2
+            else:
+                rot += (v * c) ** 2
+        return max(math.sqrt(pos) / self.tol_position, math.sqrt(rot) / self.tol_angle)
+
+    def attempt(
+        self, q0: list[float], p_t: list[float], R_t: list[list[float]] | None, max_steps: int
+    ) -> tuple[list[float], bool, int, list[float]]:
+        """One LM attempt from ``q0``, exactly as a row of ``search_batch`` runs.
+
+        Returns:
+            ``(q, converged, evaluations, error)``.
+        """
+        tol_p, tol_a = self.tol_position, self.tol_angle
+        q = self.project(q0)
+        err, J = self.evaluate(q, p_t, R_t)
+        E = E_ref = self.energy(err)
+        lam = LAMBDA_INIT
+        k = 0
+        while True:
+            pos = rot = 0.0
+            for v, c, is_pos in zip(err, self.check, self.is_position, strict=True):
+                if is_pos:
+                    pos += (v * c) ** 2
+                else:
+                    rot += (v * c) ** 2
+            if math.sqrt(pos) <= tol_p and math.sqrt(rot) <= tol_a:
+                return q, True, k + 1, err
+            window = k > 0 and k % STALL_WINDOW == 0
+            if (window and STALL_FACTOR * E_ref < E) or lam > LAMBDA_MAX or k >= max_steps:
+                return q, False, k + 1, err
+            if window:
+                E_ref = E
+            dq = self.step(J, err, lam, q)
+            q_new = self.project([qi + di for qi, di in zip(q, dq, strict=True)])
+            err_new, J_new = self.evaluate(q_new, p_t, R_t)
+            E_new = self.energy(err_new)
+            if E_new < E:
+                q, err, J, E = q_new, err_new, J_new, E_new
+                lam = max(lam * LAMBDA_DOWN, LAMBDA_MIN)
+            else:
+                lam *= LAMBDA_UP
+            k += 1
+
+    def energy(self, err: list[float]) -> float:
+        """``½ Σ w e²``."""
+        return 0.5 * sum((v * w) ** 2 for v, w in zip(err, self.weight, strict=True))
+
+    def step(
+        self, J: list[list[float]], err: list[float], lam: float, q: list[float]
+    ) -> list[float]:
+        """One damped least-squares step, blocking joints pushing against a limit."""
+        Jw = np.array(J)
+        ew = np.array([v * w for v, w in zip(err, self.weight, strict=True)])
+        dq = self._solve(Jw, ew, lam)
+        blocked = [
+            (qi <= lo and di < 0.0) or (qi >= hi and di > 0.0)
+            for qi, di, lo, hi in zip(q, dq, self.lower, self.upper, strict=True)
+        ]
+        if any(blocked):
+            Jw[:, blocked] = 0.0
+            dq = self._solve(Jw, ew, lam)
+        return dq
+
+    def _solve(self, Jw: FloatArray, ew: FloatArray, lam: float) -> list[float]:
+        Jt = Jw.T
+        A = Jw @ Jt if self.wide else Jt @ Jw
+        k = A.shape[0]
+        scale = float(A.trace()) / k
+        A.flat[:: k + 1] += lam * (scale if scale > SCALE_FLOOR else 1.0)
+        rhs = ew if self.wide else Jt @ ew
+        try:
+            x = np.linalg.solve(A, rhs)
+        except np.linalg.LinAlgError:  # pragma: no cover - the damping keeps A definite
+            x = np.linalg.pinv(A) @ rhs
+        return (Jt @ x).tolist() if self.wide else x.tolist()
+
+
+def _rotvec(M: list[list[float]]) -> list[float]:
+    """Rotation vector of a rotation matrix (see ``numeric_batch._rotvec``)."""
+    v0 = 0.5 * (M[2][1] - M[1][2])
+    v1 = 0.5 * (M[0][2] - M[2][0])
+    v2 = 0.5 * (M[1][0] - M[0][1])
+    sin = math.sqrt(v0 * v0 + v1 * v1 + v2 * v2)
+    cos = 0.5 * (M[0][0] + M[1][1] + M[2][2] - 1.0)
+    angle = math.atan2(sin, cos)
+    if cos >= 0.0:
+        ratio = angle / sin if sin > 0.0 else 1.0
+        return [v0 * ratio, v1 * ratio, v2 * ratio]
+    # Near π: the axis from the column of the symmetric part with the largest
+    # diagonal, (M + Mᵀ)/2 − cos θ I = (1 − cos θ) n nᵀ; its sign follows v.
+    S = [[0.5 * (M[i][j] + M[j][i]) - (cos if i == j else 0.0) for j in range(3)] for i in range(3)]
+    col = max(range(3), key=lambda i: S[i][i])
+    n = [S[0][col], S[1][col], S[2][col]]
+    norm = math.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2])
+    if n[0] * v0 + n[1] * v1 + n[2] * v2 < 0.0:
+        norm = -norm
+    return [n[0] / norm * angle, n[1] / norm * angle, n[2] / norm * angle]
+
+
+def search_single(
+    problem: LMProblem,
+    p_target: FloatArray,
+    R_target: FloatArray | None,
+    start: FloatArray,
+    restarts: int,
+    sample: Sampler,
+) -> SearchResult:
+    """Search one target: attempts one after another, restarting failed ones.
+
+    Args:
+        problem: The problem.
+        p_target: ``(3,)`` target position (base frame, m).
+        R_target: ``(3, 3)`` target rotation, or None for a position target.
+        start: ``(n,)`` first guess.
+        restarts: Random restarts allowed.
+        sample: Draws restart configurations.
+
+    Returns:
+        The result, as a batch of one.
+    """
+    kernel = _Kernel(problem)
+    p_t = p_target.tolist()
+    R_t = None if R_target is None else R_target.tolist()
+    best_q = kernel.project(start.tolist())
+    best_score = math.inf
+    iterations = attempts = 0
+    ok = False
+    guess = best_q
+    for attempt in range(restarts + 1):
+        if attempt:
+            guess = sample(1)[0].tolist()
+        attempts += 1
+        q, ok, steps, err = kernel.attempt(guess, p_t, R_t, problem.max_iterations)
+        iterations += steps
+        s = kernel.score(err)
+        if ok or s < best_score:
+            best_q, best_score = q, s
+        if ok:
+            break
+    return SearchResult(
+        q=np.array([best_q]),
+        converged=np.array([ok]),
+        iterations=np.array([iterations], dtype=np.int64),
+        attempts=np.array([attempts], dtype=np.int64),
+    )
