@@ -63,8 +63,15 @@ class AnalyticSolver(Protocol):
             origin), False if it solves full poses ``(N, 4, 4)``.
     """
 
-    name: str
-    position_only: bool
+    @property
+    def name(self) -> str:
+        """Short name, e.g. ``"spherical-wrist"``."""
+        ...
+
+    @property
+    def position_only(self) -> bool:
+        """True if the solver takes positions ``(N, 3)`` rather than poses."""
+        ...
 
     def solve(self, targets: FloatArray) -> Candidates:
         """Every branch's solution for each target.
