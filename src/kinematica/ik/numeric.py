@@ -1,37 +1,40 @@
 """Numeric inverse kinematics on any serial chain, batched across targets.
 
-Algorithm: Levenberg-Marquardt (damped least squares) on the pose error
+Levenberg-Marquardt (damped least squares) on the pose error
 ``e = (Δp, Δω)`` in the base frame, ``Δp = p_target − p`` in metres and ``Δω``
 the rotation vector of ``R_target · Rᵀ`` in radians, with the geometric
 base-frame Jacobian ``J``. Each step solves
-``(JᵀWJ + λ s I) Δq = JᵀW e`` (in its ``m × m`` form when the arm is
-redundant), ``W`` the mask weights, ``s`` the mean diagonal of ``JᵀWJ``:
+``(JᵀWJ + λ s I) Δq = JᵀW e``, in its ``m × m`` form ``Δq = Jᵀ(JJᵀ + λ s I)⁻¹e``
+when the arm is redundant; ``W`` holds the mask weights and ``s`` the mean
+diagonal of the normal matrix, so ``λ`` is dimensionless.
 
-* a step that lowers ``½ eᵀWe`` is accepted and ``λ`` shrinks tenfold, so the
-  last steps are Gauss-Newton steps and converge quadratically to the 1e-10
-  tolerances; a step that does not is rejected and ``λ`` grows tenfold;
-* joint limits by projection: revolute angles are wrapped into a 2π window
+* A step that lowers ``½ eᵀWe`` is accepted and ``λ`` shrinks tenfold, so the
+  last steps are Gauss-Newton steps, which converge quadratically to the
+  1e-10 tolerances; a step that does not is rejected and ``λ`` grows fivefold.
+* With only some rotation components counted, ``Δω`` need not vanish at a
+  solution and its rows use the exact derivative ``−J_r⁻¹(Δω) J_ω``.
+* Joint limits by projection: revolute angles are wrapped into a 2π window
   starting at the lower limit and clamped to the nearer limit around the
-  circle, prismatic joints are clipped; a joint on a limit whose step points
-  outwards is blocked (its column removed) and the step recomputed, so the
-  step always matches its model;
-* an attempt stops when it converges, when ``λ`` exceeds
-  :data:`~kinematica.ik.numeric_batch.LAMBDA_MAX`, when the error norm has not
-  halved over :data:`~kinematica.ik.numeric_batch.STALL_WINDOW` steps (a local
-  minimum), or after ``max_iterations`` steps;
-* targets that failed get seeded random restarts, uniform within the limits
-  (prismatic joints without limits: within ±:data:`PRISMATIC_SPAN` of zero or
-  :data:`PRISMATIC_SPAN` · 2 from their one finite limit); only the failed
-  targets restart.
+  circle; prismatic joints are clipped. A joint on a limit that the
+  steepest-descent direction pushes outwards is blocked (its column zeroed)
+  before the step, so the step matches its model.
+* An attempt stops when it converges, when ``λ`` exceeds ``LAMBDA_MAX``, when
+  the error norm has not halved over ``STALL_WINDOW`` steps (a local minimum),
+  or after ``max_iterations`` steps (constants in
+  :mod:`~kinematica.ik.numeric_problem`).
+* A target whose attempt failed restarts from a random configuration, uniform
+  within the limits (a prismatic joint without limits: ±:data:`PRISMATIC_SPAN`
+  of zero, or ``2·PRISMATIC_SPAN`` from its one limit); the restarts come from
+  ``seed``, so results are reproducible.
 
-All targets iterate together as arrays; one target runs on Python floats
-(:mod:`kinematica.ik.numeric_single`) where numpy's per-call cost would
-dominate. A slot is filled only when forward kinematics, recomputed at the end,
-puts the tool within the tolerances of the target (and the joints within
-their limits when ``respect_limits``); a failed search is never reported as a
-solution, nor as a proof that the target is unreachable, except when the
-target lies beyond the arm's reach (a bound from the DH lengths), where the
-search is skipped and ``gap`` says by how much.
+Targets iterate together as arrays (:mod:`~kinematica.ik.numeric_batch`); a
+single target runs on Python floats (:mod:`~kinematica.ik.numeric_single`),
+where numpy's per-call cost would dominate. Either way a slot is filled only
+when the robot's own forward kinematics, at the end, puts the tool within
+the tolerances (and the joints within their limits when ``respect_limits``).
+A failed search is not a proof that the target is unreachable, except for a
+target beyond the arm's reach (a bound from the DH lengths): that one is not
+searched, and ``gap`` says by how much it is out of reach.
 """
 
 from __future__ import annotations
@@ -42,13 +45,14 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica.dh import DHChain, Prismatic
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.candidates import Candidates
-from kinematica.ik.numeric_batch import LMProblem, search_batch
-from kinematica.ik.numeric_single import search_single
+from kinematica.ik.numeric_batch import search_batch
+from kinematica.ik.numeric_model import pose_error
+from kinematica.ik.numeric_problem import PRISMATIC_SPAN, Setup, compile_setup
+from kinematica.ik.numeric_single import residuals_single, search_single
 from kinematica.robot import Robot
-from kinematica.spatial import check_transform, rotvec_from_matrix, wrap_angle
+from kinematica.spatial import check_transform, wrap_angle
 
 __all__ = [
     "DEFAULT_MAX_ITERATIONS",
@@ -66,16 +70,14 @@ IntArray = NDArray[np.int64]
 #: Steps per attempt. A converging attempt rarely needs more than 30; most
 #: failing ones are stopped earlier by the stall test.
 DEFAULT_MAX_ITERATIONS = 60
-#: Restarts (from random configurations) for targets whose attempts failed.
-DEFAULT_RESTARTS = 40
+#: Restarts (from random configurations) for a target whose attempts failed.
+#: Most targets need none; the hardest reachable ones seen (near the limits of
+#: a 7-DOF arm, one pose in a few hundred) have 2-5 % of random starts
+#: succeeding, and one in a few thousand used more than 100. An unreachable
+#: target inside the reach bound costs them all.
+DEFAULT_RESTARTS = 200
 #: Seed of the restarts when none is given: results are reproducible.
 DEFAULT_SEED = 0
-#: Half-width (m) of the range restarts sample for a prismatic joint with no
-#: limits; with one finite limit, the range is 2·PRISMATIC_SPAN from it.
-PRISMATIC_SPAN = 1.0
-#: A revolute range at least this wide (rad) is a full turn: wrapped, never clamped.
-FULL_TURN = 2.0 * math.pi - 1e-12
-
 #: The one label of the numeric solver's single candidate slot.
 LABEL = "numeric"
 
@@ -123,8 +125,9 @@ def solve_numeric(
         targets: ``(N, 4, 4)`` tool poses in the base frame (a single ``(4, 4)``
             is a batch of 1); with ``position_only``, ``(N, 3)`` tool positions
             (poses are accepted and their rotation ignored).
-        q0: ``(n,)`` or ``(N, n)`` initial guess; default the middle of the
-            joint limits (0 for joints without limits).
+        q0: ``(n,)`` or ``(N, n)`` initial guess (projected into the limits
+            when ``respect_limits``); default the middle of the joint limits
+            (0 for joints without limits).
         mask: ``(6,)`` non-negative weights of the error components
             ``x, y, z, rx, ry, rz`` (base frame; a 0 frees that component).
             ``rx, ry, rz`` are components of the rotation vector of
@@ -133,9 +136,11 @@ def solve_numeric(
             :data:`DEFAULT_SEED`, so results are reproducible.
         tol_position: Converged when the position error is within this (m)...
         tol_angle: ... and the rotation error within this (rad); both as
-            norms of the counted components, each scaled by ``max(w, 1)``.
+            norms of the counted components, each scaled by ``max(w, 1)``
+            (so both the plain and the weighted errors are within them). The
+            search reaches ~1e-15; much below 1e-13 it may not converge.
         max_iterations: LM steps per attempt.
-        restarts: Random restarts for targets whose attempts failed.
+        restarts: Random restarts allowed per target whose attempts failed.
         respect_limits: Keep the joints within ``robot.qlim``; otherwise only
             wrap revolute angles to (−π, π].
         position_only: Solve for the tool origin only: the mask is
@@ -192,43 +197,49 @@ def solve_numeric_detailed(
     N, n = p_t.shape[0], robot.dof
     weights = _parse_mask(mask, position_only)
     _check_settings(tol_position, tol_angle, max_iterations, restarts)
-    problem = _problem(robot, weights, respect_limits, tol_position, tol_angle, max_iterations)
-    box_lo, box_hi = _sample_box(robot, problem, respect_limits)
-    start = _initial_guess(robot, q0, N, box_lo, box_hi)
-    rng = np.random.default_rng(DEFAULT_SEED if seed is None else seed)
+    setup = compile_setup(
+        robot, weights, respect_limits, float(tol_position), float(tol_angle), int(max_iterations)
+    )
+    problem = setup.problem
+    start = _initial_guess(robot, q0, N, setup.middle)
 
-    gap = _reach_gap(robot, problem, p_t)
-    searched = np.flatnonzero(~(gap > tol_position))
+    # Targets beyond the arm's reach are not searched: the bound proves them unreachable.
+    offset = (p_t - setup.base_origin) * setup.counted_position
+    gap = np.sqrt(np.einsum("ni,ni->n", offset, offset)) - setup.reach
+    searched = np.flatnonzero(~(gap > problem.tol_position))
     q_best = np.full((N, n), np.nan)
     iterations = np.zeros(N, dtype=np.int64)
     attempts = np.zeros(N, dtype=np.int64)
     if searched.size:
+        rngs: list[np.random.Generator] = []
 
         def sample(count: int) -> FloatArray:
-            return rng.uniform(box_lo, box_hi, size=(count, n))
+            if not rngs:  # created on first use: most single solves need none
+                rngs.append(np.random.default_rng(DEFAULT_SEED if seed is None else seed))
+            return rngs[0].uniform(setup.sample_lo, setup.sample_hi, size=(count, n))
 
         R_s = None if R_t is None else R_t[searched]
         if searched.size == 1:
             i = int(searched[0])
-            res = search_single(
-                problem, p_t[i], None if R_s is None else R_s[0], start[i], restarts, sample
-            )
+            R_i = None if R_s is None else R_s[0]
+            res = search_single(problem, p_t[i], R_i, start[i], restarts, sample)
         else:
             res = search_batch(problem, p_t[searched], R_s, start[searched], restarts, sample)
         q_best[searched] = res.q
         iterations[searched] = res.iterations
         attempts[searched] = res.attempts
 
-    solved, pos, ang = _verify(robot, problem, q_best, p_t, R_t, respect_limits)
+    solved, pos, ang = _verify(robot, setup, q_best, p_t, R_t)
     q_out = np.where(solved[:, None], q_best, np.nan)
     if not respect_limits:
-        q_out[:, ~problem.prismatic] = wrap_angle(q_out[:, ~problem.prismatic])
+        revolute = ~problem.prismatic
+        q_out[:, revolute] = wrap_angle(q_out[:, revolute])
     cand = Candidates(
         q=q_out[:, None, :],
         labels=(LABEL,),
         singular=np.zeros(N, dtype=bool),
         free=np.zeros((N, n), dtype=bool),
-        gap=np.where(solved, np.nan, np.where(gap > tol_position, gap, 0.0)),
+        gap=np.where(solved, np.nan, np.where(gap > problem.tol_position, gap, 0.0)),
     )
     return NumericDetails(cand, iterations, attempts, pos, ang)
 
@@ -279,57 +290,11 @@ def _check_settings(tol_position: float, tol_angle: float, iters: int, restarts:
         raise KinematicaError(f"restarts must be an integer >= 0, got {restarts!r}")
 
 
-def _problem(
-    robot: Robot,
-    weights: FloatArray,
-    respect_limits: bool,
-    tol_position: float,
-    tol_angle: float,
-    max_iterations: int,
-) -> LMProblem:
-    prismatic = robot.is_prismatic
-    lo, hi = robot.qlim.T
-    full_turn = ~prismatic & (hi - lo >= FULL_TURN)
-    free = full_turn | (not respect_limits)
-    rows = np.flatnonzero(weights > 0)
-    return LMProblem(
-        chain=DHChain.from_joints(robot.links, robot.convention, robot.base, robot.tool),
-        rows=rows,
-        weight=np.sqrt(weights[rows]),
-        check=np.maximum(weights[rows], 1.0),
-        is_position=rows < 3,
-        wrap_base=np.where(prismatic | (not respect_limits), -math.pi, lo),
-        lower=np.where(free, -np.inf, lo),
-        upper=np.where(free, np.inf, hi),
-        tol_position=float(tol_position),
-        tol_angle=float(tol_angle),
-        max_iterations=int(max_iterations),
-    )
-
-
-def _sample_box(
-    robot: Robot, problem: LMProblem, respect_limits: bool
-) -> tuple[FloatArray, FloatArray]:
-    """``(n,)`` lower and upper ends of the range restarts sample uniformly."""
-    lo, hi = robot.qlim.T
-    revolute = ~problem.prismatic
-    if not respect_limits:
-        lo = np.where(revolute, -math.pi, lo)
-        hi = np.where(revolute, math.pi, hi)
-    hi = np.where(revolute, np.minimum(hi, lo + 2.0 * math.pi), hi)
-    span = PRISMATIC_SPAN
-    lo_f = np.where(np.isfinite(lo), lo, np.where(np.isfinite(hi), hi - 2 * span, -span))
-    hi_f = np.where(np.isfinite(hi), hi, np.where(np.isfinite(lo), lo + 2 * span, span))
-    return lo_f, hi_f
-
-
-def _initial_guess(
-    robot: Robot, q0: ArrayLike | None, N: int, box_lo: FloatArray, box_hi: FloatArray
-) -> FloatArray:
+def _initial_guess(robot: Robot, q0: ArrayLike | None, N: int, middle: FloatArray) -> FloatArray:
     """``(N, n)`` first guesses: ``q0`` broadcast, or the middle of the sample box."""
     n = robot.dof
     if q0 is None:
-        return np.broadcast_to(0.5 * (box_lo + box_hi), (N, n))
+        return np.broadcast_to(middle, (N, n))
     q = robot.check_q(q0, name="q0")
     if q.ndim == 1:
         return np.broadcast_to(q, (N, n))
@@ -338,35 +303,13 @@ def _initial_guess(
     return q
 
 
-def _reach_gap(robot: Robot, problem: LMProblem, p_t: FloatArray) -> FloatArray:
-    """``(N,)`` counted distance of each target beyond the arm's reach (m); ≤ 0 inside.
-
-    The tool origin is never farther from the base origin than the sum of the
-    translations of the chain: ``|a|`` and ``|d|`` of every row (``d`` over its
-    limits for prismatic joints) and the tool offset. Masked components only
-    shorten the distance, so the bound holds for them too.
-    """
-    reach = float(np.linalg.norm(robot.tool[:3, 3]))
-    for link, lo, hi in zip(robot.links, problem.lower, problem.upper, strict=True):
-        reach += abs(link.a)
-        if isinstance(link, Prismatic):
-            reach += max(abs(link.offset + lo), abs(link.offset + hi))
-        else:
-            reach += abs(link.d)
-    counted = np.zeros(3)
-    counted[problem.rows[problem.is_position]] = 1.0
-    offset = (p_t - robot.base[:3, 3]) * counted
-    return np.sqrt(np.einsum("ni,ni->n", offset, offset)) - reach
-
-
 # ------------------------------------------------------------------ check
 def _verify(
     robot: Robot,
-    problem: LMProblem,
+    setup: Setup,
     q: FloatArray,
     p_t: FloatArray,
     R_t: FloatArray | None,
-    respect_limits: bool,
 ) -> tuple[NDArray[np.bool_], FloatArray, FloatArray]:
     """Judge configurations by the robot's own forward kinematics.
 
@@ -374,25 +317,28 @@ def _verify(
         ``(solved, position_error, angle_error)``, each ``(N,)``: the counted
         residuals scaled as in the convergence test (NaN where ``q`` is NaN),
         and whether they are within the tolerances, with the joints within
-        the limits when ``respect_limits``.
+        the limits when the set-up respects them.
     """
+    problem = setup.problem
     N = q.shape[0]
     pos = np.full(N, np.nan)
     ang = np.full(N, np.nan)
     have = np.flatnonzero(np.all(np.isfinite(q), axis=1))
-    if have.size:
-        qh = q[have]
-        T = robot.fk(qh[0])[None] if have.size == 1 else robot.fk(qh)
-        e = np.zeros((have.size, 6))
-        e[:, :3] = p_t[have] - T[:, :3, 3]
-        if R_t is not None and problem.orientation:
-            e[:, 3:] = rotvec_from_matrix(R_t[have] @ np.swapaxes(T[:, :3, :3], 1, 2))
-        sq = (e[:, problem.rows] * problem.check) ** 2
-        pos[have] = np.sqrt(sq[:, problem.is_position].sum(axis=1))
-        ang[have] = np.sqrt(sq[:, ~problem.is_position].sum(axis=1))
+    if have.size == 1:
+        i = int(have[0])
+        T = robot.fk(q[i])
+        pos[i], ang[i] = residuals_single(problem, T, p_t[i], None if R_t is None else R_t[i])
+    elif have.size:
+        T = robot.fk(q[have])
+        X, Y, Z, P = (np.ascontiguousarray(T[:, :3, j].T) for j in range(4))
+        R_h = None if R_t is None else np.ascontiguousarray(R_t[have].transpose(1, 2, 0))
+        err = pose_error(problem, X, Y, Z, P, np.ascontiguousarray(p_t[have].T), R_h)
+        sq = (err * problem.check[:, None]) ** 2
+        pos[have] = np.sqrt(sq[problem.is_position].sum(axis=0))
+        ang[have] = np.sqrt(sq[~problem.is_position].sum(axis=0))
     with np.errstate(invalid="ignore"):
         solved = (pos <= problem.tol_position) & (ang <= problem.tol_angle)
-    if respect_limits:
-        lo, hi = robot.qlim.T
+    if setup.respect_limits:
+        lo, hi = setup.limits.T
         solved &= np.all((q >= lo) & (q <= hi), axis=1)
     return solved, pos, ang

@@ -1,21 +1,24 @@
 """The Levenberg-Marquardt search of numeric IK for one target, on Python floats.
 
 The same algorithm, step for step, as a row of
-:func:`kinematica.ik.numeric_batch.search_batch` (restarts run one after
-another): the forward kinematics, Jacobian, pose error and projection run on
-Python floats, where numpy's per-call cost (a microsecond per operation on
-tiny arrays) would dominate; only the small damped normal equations go to
-numpy.
+:func:`kinematica.ik.numeric_batch.search_batch` (the same constants and tests
+in the same order; restarts run one after another): the forward kinematics,
+Jacobian, pose error and projection run on Python floats, where numpy's
+per-call cost (a microsecond per operation on tiny arrays) would dominate;
+only the small damped normal equations go to numpy.
 """
 
 from __future__ import annotations
 
 import math
+import weakref
+from collections.abc import Sequence
 
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica.ik.numeric_batch import (
+from kinematica.ik.numeric_model import SERIES_ANGLE
+from kinematica.ik.numeric_problem import (
     LAMBDA_DOWN,
     LAMBDA_INIT,
     LAMBDA_MAX,
@@ -24,16 +27,19 @@ from kinematica.ik.numeric_batch import (
     SCALE_FLOOR,
     STALL_FACTOR,
     STALL_WINDOW,
+    TWO_PI,
     LMProblem,
     Sampler,
     SearchResult,
 )
 
-__all__ = ["search_single"]
+__all__ = ["kernel_of", "residuals_single", "search_single"]
 
 FloatArray = NDArray[np.float64]
 
-TWO_PI = 2.0 * math.pi
+# The Python-float copy of a problem, built once per problem (problems are
+# immutable and cached per robot by ``kinematica.ik.numeric``).
+_KERNELS: weakref.WeakKeyDictionary[LMProblem, _Kernel] = weakref.WeakKeyDictionary()
 
 Axis = tuple[float, float, float, float, float, float]
 
@@ -59,15 +65,21 @@ class _Kernel:
         self.revolute = (~problem.prismatic).tolist()
         self.rows = problem.rows.tolist()
         self.weight = problem.weight.tolist()
+        self.weighted = problem.weighted
+        self.all_rows = self.rows == [0, 1, 2, 3, 4, 5]
         self.check = problem.check.tolist()
         self.is_position = problem.is_position.tolist()
         self.orientation = problem.orientation
+        self.exact = problem.exact
         self.wrap_base = problem.wrap_base.tolist()
         self.lower = problem.lower.tolist()
         self.upper = problem.upper.tolist()
+        self.clamped = problem.clamped
         self.tol_position = problem.tol_position
         self.tol_angle = problem.tol_angle
+        self.max_steps = problem.max_iterations
         self.wide = len(self.rows) <= len(self.links)
+        self.eye = np.eye(len(self.rows) if self.wide else len(self.links))
 
     def project(self, q: list[float]) -> list[float]:
         """Wrap revolute angles into their window and clamp (see ``LMProblem.project``)."""
@@ -82,9 +94,29 @@ class _Kernel:
             out.append(lo if qi < lo else qi)
         return out
 
+    def error6(
+        self, T: list[list[float]], p_t: list[float], R_t: list[list[float]] | None
+    ) -> list[float]:
+        """All six error components ``(Δp, Δω)`` of a tool pose ``T`` (rows of 4x4)."""
+        (x0, y0, z0, p0), (x1, y1, z1, p1), (x2, y2, z2, p2) = T[0], T[1], T[2]
+        e = [p_t[0] - p0, p_t[1] - p1, p_t[2] - p2, 0.0, 0.0, 0.0]
+        if R_t is not None and self.orientation:
+            # M = R_t · Rᵀ, R's rows being (x_i, y_i, z_i).
+            rows_c = ((x0, y0, z0), (x1, y1, z1), (x2, y2, z2))
+            M = [[ti[0] * c[0] + ti[1] * c[1] + ti[2] * c[2] for c in rows_c] for ti in R_t]
+            e[3:] = _rotvec(M)
+        return e
+
+    def error(
+        self, T: list[list[float]], p_t: list[float], R_t: list[list[float]] | None
+    ) -> list[float]:
+        """Counted error components (unweighted) of a tool pose ``T`` (rows of 4x4)."""
+        e = self.error6(T, p_t, R_t)
+        return e if self.all_rows else [e[r] for r in self.rows]
+
     def evaluate(
         self, q: list[float], p_t: list[float], R_t: list[list[float]] | None
-    ) -> tuple[list[float], list[list[float]]]:
+    ) -> tuple[list[float], list[Sequence[float]]]:
         """Counted errors ``(m,)`` (unweighted) and weighted Jacobian rows ``(m, n)``."""
         (x0, y0, z0, p0), (x1, y1, z1, p1), (x2, y2, z2, p2) = self.start
         cos, sin = math.cos, math.sin
@@ -144,58 +176,72 @@ class _Kernel:
                 cols.append((a1 * d2 - a2 * d1, a2 * d0 - a0 * d2, a0 * d1 - a1 * d0, a0, a1, a2))
             else:
                 cols.append((a0, a1, a2, 0.0, 0.0, 0.0))
-        J = [[w * col[r] for col in cols] for r, w in zip(self.rows, self.weight, strict=True)]
+        T = [[x0, y0, z0, p0], [x1, y1, z1, p1], [x2, y2, z2, p2]]
+        e = self.error6(T, p_t, R_t)
+        if self.exact and R_t is not None:
+            # Only some rotation components count: their rows are J_r⁻¹(Δω) J_ω.
+            (a00, a01, a02), (a10, a11, a12), (a20, a21, a22) = _inverse_right_jacobian(e[3:])
+            cols = [
+                (
+                    c0,
+                    c1,
+                    c2,
+                    a00 * w0 + a01 * w1 + a02 * w2,
+                    a10 * w0 + a11 * w1 + a12 * w2,
+                    a20 * w0 + a21 * w1 + a22 * w2,
+                )
+                for c0, c1, c2, w0, w1, w2 in cols
+            ]
+        J: list[Sequence[float]] = list(zip(*cols, strict=True))
+        if not self.all_rows:
+            J = [J[r] for r in self.rows]
+            e = [e[r] for r in self.rows]
+        if self.weighted:
+            J = [[w * v for v in row] for row, w in zip(J, self.weight, strict=True)]
+        return e, J
 
-        e = [p_t[0] - p0, p_t[1] - p1, p_t[2] - p2, 0.0, 0.0, 0.0]
-        if R_t is not None and self.orientation:
-            # M = R_t · Rᵀ, R's rows being (x_i, y_i, z_i).
-            rows_c = ((x0, y0, z0), (x1, y1, z1), (x2, y2, z2))
-            M = [[ti[0] * c[0] + ti[1] * c[1] + ti[2] * c[2] for c in rows_c] for ti in R_t]
-            e[3:] = _rotvec(M)
-        return [e[r] for r in self.rows], J
-
-    def score(self, err: list[float]) -> float:
-        """Worst scaled error norm relative to its tolerance (≤ 1: converged)."""
+    def residuals(self, err: list[float]) -> tuple[float, float]:
+        """Position and rotation norms of ``err``, each component scaled by ``check``."""
         pos = rot = 0.0
         for v, c, is_pos in zip(err, self.check, self.is_position, strict=True):
             if is_pos:
                 pos += (v * c) ** 2
             else:
                 rot += (v * c) ** 2
-        return max(math.sqrt(pos) / self.tol_position, math.sqrt(rot) / self.tol_angle)
+        return math.sqrt(pos), math.sqrt(rot)
+
+    def score(self, err: list[float]) -> float:
+        """Worst scaled error norm relative to its tolerance (≤ 1: converged)."""
+        pos, rot = self.residuals(err)
+        return max(pos / self.tol_position, rot / self.tol_angle)
 
     def attempt(
-        self, q0: list[float], p_t: list[float], R_t: list[list[float]] | None, max_steps: int
+        self, q0: list[float], p_t: list[float], R_t: list[list[float]] | None
     ) -> tuple[list[float], bool, int, list[float]]:
         """One LM attempt from ``q0``, exactly as a row of ``search_batch`` runs.
 
         Returns:
             ``(q, converged, evaluations, error)``.
         """
-        tol_p, tol_a = self.tol_position, self.tol_angle
+        tol_p, tol_a, weight = self.tol_position, self.tol_angle, self.weight
         q = self.project(q0)
         err, J = self.evaluate(q, p_t, R_t)
-        E = E_ref = self.energy(err)
+        E = E_ref = 0.5 * sum((v * w) ** 2 for v, w in zip(err, weight, strict=True))
         lam = LAMBDA_INIT
         k = 0
         while True:
-            pos = rot = 0.0
-            for v, c, is_pos in zip(err, self.check, self.is_position, strict=True):
-                if is_pos:
-                    pos += (v * c) ** 2
-                else:
-                    rot += (v * c) ** 2
-            if math.sqrt(pos) <= tol_p and math.sqrt(rot) <= tol_a:
+            pos, rot = self.residuals(err)
+            if pos <= tol_p and rot <= tol_a:
                 return q, True, k + 1, err
             window = k > 0 and k % STALL_WINDOW == 0
-            if (window and STALL_FACTOR * E_ref < E) or lam > LAMBDA_MAX or k >= max_steps:
+            if (window and STALL_FACTOR * E_ref < E) or lam > LAMBDA_MAX or k >= self.max_steps:
                 return q, False, k + 1, err
             if window:
                 E_ref = E
             dq = self.step(J, err, lam, q)
             q_new = self.project([qi + di for qi, di in zip(q, dq, strict=True)])
             err_new, J_new = self.evaluate(q_new, p_t, R_t)
-            E_new = self.energy(err_new)
+            E_new = 0.5 * sum((v * w) ** 2 for v, w in zip(err_new, weight, strict=True))
             if E_new < E:
                 q, err, J, E = q_new, err_new, J_new, E_new
                 lam = max(lam * LAMBDA_DOWN, LAMBDA_MIN)
@@ -203,38 +249,53 @@ class _Kernel:
                 lam *= LAMBDA_UP
             k += 1
 
-    def energy(self, err: list[float]) -> float:
-        """``½ Σ w e²``."""
-        return 0.5 * sum((v * w) ** 2 for v, w in zip(err, self.weight, strict=True))
-
     def step(
-        self, J: list[list[float]], err: list[float], lam: float, q: list[float]
+        self, J: list[Sequence[float]], err: list[float], lam: float, q: list[float]
     ) -> list[float]:
-        """One damped least-squares step, blocking joints pushing against a limit."""
-        Jw = np.array(J)
-        ew = np.array([v * w for v, w in zip(err, self.weight, strict=True)])
-        dq = self._solve(Jw, ew, lam)
-        blocked = [
-            (qi <= lo and di < 0.0) or (qi >= hi and di > 0.0)
-            for qi, di, lo, hi in zip(q, dq, self.lower, self.upper, strict=True)
-        ]
-        if any(blocked):
-            Jw[:, blocked] = 0.0
-            dq = self._solve(Jw, ew, lam)
-        return dq
+        """One damped least-squares step, with the binding joints blocked.
 
-    def _solve(self, Jw: FloatArray, ew: FloatArray, lam: float) -> list[float]:
+        Joints held at a limit they would leave outwards are blocked, as in
+        ``numeric_batch._step``; the normal equations are those of
+        ``numeric_batch._damped_solve``.
+        """
+        ew = [v * w for v, w in zip(err, self.weight, strict=True)]
+        Jw = np.array(J)
+        if self.clamped:
+            blocked = [False] * len(q)
+            for i, (qi, lo, hi) in enumerate(zip(q, self.lower, self.upper, strict=True)):
+                if qi <= lo or qi >= hi:
+                    g = sum(row[i] * e for row, e in zip(J, ew, strict=True))
+                    blocked[i] = (qi <= lo and g < 0.0) or (qi >= hi and g > 0.0)
+            if any(blocked):
+                Jw[:, blocked] = 0.0
         Jt = Jw.T
         A = Jw @ Jt if self.wide else Jt @ Jw
-        k = A.shape[0]
-        scale = float(A.trace()) / k
-        A.flat[:: k + 1] += lam * (scale if scale > SCALE_FLOOR else 1.0)
-        rhs = ew if self.wide else Jt @ ew
+        scale = float(A.trace()) / A.shape[0]
+        A += (lam * (scale if scale > SCALE_FLOOR else 1.0)) * self.eye
+        rhs = np.array(ew) if self.wide else Jt @ np.array(ew)
         try:
             x = np.linalg.solve(A, rhs)
         except np.linalg.LinAlgError:  # pragma: no cover - the damping keeps A definite
             x = np.linalg.pinv(A) @ rhs
-        return (Jt @ x).tolist() if self.wide else x.tolist()
+        return (x @ Jw).tolist() if self.wide else x.tolist()
+
+
+def _inverse_right_jacobian(phi: list[float]) -> list[list[float]]:
+    """``J_r⁻¹(φ)`` of SO(3) (see ``numeric_batch._inverse_right_jacobian``)."""
+    x, y, z = phi
+    th2 = x * x + y * y + z * z
+    half = 0.5 * math.sqrt(th2)
+    if half < 0.5 * SERIES_ANGLE:
+        alpha, c = 1.0 - th2 / 12.0, 1.0 / 12.0 + th2 / 720.0
+    else:
+        alpha = half / math.tan(half)
+        c = (1.0 - alpha) / th2
+    hx, hy, hz = 0.5 * x, 0.5 * y, 0.5 * z
+    return [
+        [alpha + c * x * x, c * x * y - hz, c * x * z + hy],
+        [c * y * x + hz, alpha + c * y * y, c * y * z - hx],
+        [c * z * x - hy, c * z * y + hx, alpha + c * z * z],
+    ]
 
 
 def _rotvec(M: list[list[float]]) -> list[float]:
@@ -280,7 +341,7 @@ def search_single(
     Returns:
         The result, as a batch of one.
     """
-    kernel = _Kernel(problem)
+    kernel = kernel_of(problem)
     p_t = p_target.tolist()
     R_t = None if R_target is None else R_target.tolist()
     best_q = kernel.project(start.tolist())
@@ -292,7 +353,7 @@ def search_single(
         if attempt:
             guess = sample(1)[0].tolist()
         attempts += 1
-        q, ok, steps, err = kernel.attempt(guess, p_t, R_t, problem.max_iterations)
+        q, ok, steps, err = kernel.attempt(guess, p_t, R_t)
         iterations += steps
         s = kernel.score(err)
         if ok or s < best_score:
@@ -305,3 +366,20 @@ def search_single(
         iterations=np.array([iterations], dtype=np.int64),
         attempts=np.array([attempts], dtype=np.int64),
     )
+
+
+def kernel_of(problem: LMProblem) -> _Kernel:
+    """The problem's Python-float kernel, built once."""
+    kernel = _KERNELS.get(problem)
+    if kernel is None:
+        kernel = _KERNELS[problem] = _Kernel(problem)
+    return kernel
+
+
+def residuals_single(
+    problem: LMProblem, T: FloatArray, p_target: FloatArray, R_target: FloatArray | None
+) -> tuple[float, float]:
+    """Scaled position and rotation residuals of one tool pose ``T (4, 4)``."""
+    kernel = kernel_of(problem)
+    R_t = None if R_target is None else R_target.tolist()
+    return kernel.residuals(kernel.error(T[:3].tolist(), p_target.tolist(), R_t))
