@@ -16,6 +16,9 @@ import pytest
 from kinematica.dh import Prismatic, Revolute
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.numeric import solve_numeric, solve_numeric_detailed
+from kinematica.ik.numeric_model import evaluate
+from kinematica.ik.numeric_problem import LMProblem, compile_setup
+from kinematica.ik.numeric_single import kernel_of
 from kinematica.robot import Robot
 from kinematica.spatial import rotation_angle, se3_error
 
@@ -367,3 +370,64 @@ def test_bad_input_is_named() -> None:
         solve_numeric(robot, T, restarts=-1)
     with pytest.raises(KinematicaError, match="max_iterations"):
         solve_numeric(robot, T, max_iterations=0)
+
+
+def test_base_and_tool_transforms_and_both_conventions() -> None:
+    c, s = math.cos(0.4), math.sin(0.4)
+    base = np.array([[c, -s, 0, 0.3], [s, c, 0, -0.2], [0, 0, 1, 0.1], [0, 0, 0, 1.0]])
+    tool = np.eye(4)
+    tool[:3, 3] = [0.02, 0.0, 0.15]
+    for robot in (stanford().with_base(base).with_tool(tool), stanford().to_convention("modified")):
+        targets = robot.fk(random_q(robot, 30, seed=18))
+        cand = solve_numeric(robot, targets)
+        ok = solved(cand.q)
+        assert ok.mean() >= 0.96
+        assert_reaches(robot, cand.q[ok, 0], targets[ok])
+
+
+def test_empty_batch() -> None:
+    robot = iiwa14()
+    cand = solve_numeric(robot, np.zeros((0, 4, 4)))
+    assert cand.q.shape == (0, 1, 7)
+
+
+# ----------------------------------------------- the kernels' own model
+def _problem(robot: Robot, mask) -> LMProblem:
+    weights = np.asarray(mask, dtype=float)
+    return compile_setup(robot, weights, True, TOL, TOL, 60).problem
+
+
+@pytest.mark.parametrize(
+    "mask", [[1, 1, 1, 1, 1, 0], [0, 1, 0, 1, 0, 0], [2, 1, 1, 0, 0.5, 0.5]], ids=str
+)
+def test_error_jacobian_matches_finite_differences(mask) -> None:
+    # With only some rotation components counted the rows are the exact
+    # derivative -J_r⁻¹(Δω) J_ω of the error, also far from the target.
+    robot = stanford()
+    problem = _problem(robot, mask)
+    q = random_q(robot, 1, seed=19)[0]
+    T = robot.fk(random_q(robot, 1, seed=20)[0])
+    pt, Rt = T[:3, 3, None], T[:3, :3, None]
+    _, J = evaluate(problem, q[:, None], pt, Rt)
+    w = np.sqrt(np.asarray(mask, dtype=float)[np.asarray(mask) > 0])
+    h = 1e-6
+    for i in range(robot.dof):
+        dq = np.zeros(robot.dof)
+        dq[i] = h
+        up = evaluate(problem, (q + dq)[:, None], pt, Rt)[0]
+        down = evaluate(problem, (q - dq)[:, None], pt, Rt)[0]
+        np.testing.assert_allclose(-(up - down)[:, 0] / (2 * h) * w, J[:, i, 0], atol=1e-7)
+
+
+@pytest.mark.parametrize("mask", [[1] * 6, [1, 1, 1, 1, 1, 0], [1, 1, 1, 0, 0, 0]], ids=str)
+def test_scalar_and_batched_models_agree(mask) -> None:
+    for robot in (panda(), stanford()):
+        problem = _problem(robot, mask)
+        q = random_q(robot, 4, seed=21)
+        T = robot.fk(random_q(robot, 4, seed=22))
+        err, J = evaluate(problem, q.T, T[:, :3, 3].T, T[:, :3, :3].transpose(1, 2, 0))
+        kernel = kernel_of(problem)
+        for r in range(4):
+            e1, J1 = kernel.evaluate(q[r].tolist(), T[r, :3, 3].tolist(), T[r, :3, :3].tolist())
+            np.testing.assert_allclose(e1, err[:, r], atol=1e-13)
+            np.testing.assert_allclose(np.array(J1), J[:, :, r], atol=1e-13)

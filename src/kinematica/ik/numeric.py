@@ -88,7 +88,8 @@ class NumericDetails:
 
     Attributes:
         candidates: The candidates (one slot, ``q`` of shape ``(N, 1, n)``).
-        iterations: ``(N,)`` LM steps taken, over all attempts.
+        iterations: ``(N,)`` evaluations of the error and Jacobian spent on the
+            target (one per attempt plus one per LM step), over all attempts.
         attempts: ``(N,)`` attempts made (1 + restarts used; 0 when the target
             is beyond the arm's reach and was not searched).
         position_error: ``(N,)`` position residual (m) of the returned or, on

@@ -117,9 +117,9 @@ def _damped_solve(J: FloatArray, e: FloatArray, lam: FloatArray) -> FloatArray:
         A = np.einsum("ikr,ijr->kjr", J, J)
         rhs = np.einsum("ikr,ir->kr", J, e)
     k = A.shape[0]
-    diag = np.einsum("iir->ir", A)  # a writable view of the diagonals
-    scale = diag.sum(axis=0) / k
-    diag += lam * np.where(scale > SCALE_FLOOR, scale, 1.0)
+    diag = np.arange(k)
+    scale = A[diag, diag].sum(axis=0) / k
+    A[diag, diag] += lam * np.where(scale > SCALE_FLOOR, scale, 1.0)
     if R >= CHOLESKY_ROWS:
         x = _cholesky_solve(A, rhs)
     else:

@@ -70,6 +70,11 @@ STALL_FACTOR = 0.25
 #: Mean diagonal below which the normal matrix is treated as zero (every
 #: column blocked, or a fresh row): its damping is then taken as absolute.
 SCALE_FLOOR = 1e-300
+#: Half-width (m) of the range restarts sample for a prismatic joint with no
+#: limits; with one finite limit, the range is 2·PRISMATIC_SPAN from it.
+PRISMATIC_SPAN = 1.0
+#: A revolute range at least this wide (rad) is a full turn: wrapped, never clamped.
+FULL_TURN = 2.0 * math.pi - 1e-12
 
 
 @dataclass(frozen=True, eq=False)
@@ -186,21 +191,6 @@ class SearchResult:
     attempts: IntArray
 
 
-#: Half-width (m) of the range restarts sample for a prismatic joint with no
-#: limits; with one finite limit, the range is 2·PRISMATIC_SPAN from it.
-PRISMATIC_SPAN = 1.0
-#: A revolute range at least this wide (rad) is a full turn: wrapped, never clamped.
-FULL_TURN = 2.0 * math.pi - 1e-12
-
-# Compiled set-ups per robot (a Robot is immutable, so a set-up is a pure
-# function of it and the settings): compiling costs as much as a few LM steps,
-# which matters for single solves. The cache forgets a robot when it dies.
-_SETUPS: weakref.WeakKeyDictionary[Robot, dict[tuple[object, ...], Setup]] = (
-    weakref.WeakKeyDictionary()
-)
-_SETUPS_PER_ROBOT = 8
-
-
 @dataclass(frozen=True, eq=False)
 class Setup:
     """What a call needs about the robot and its settings, compiled once.
@@ -226,6 +216,15 @@ class Setup:
     reach: float
     base_origin: FloatArray
     counted_position: FloatArray
+
+
+# Compiled set-ups per robot (a Robot is immutable, so a set-up is a pure
+# function of it and the settings): compiling costs as much as a few LM steps,
+# which matters for single solves. The cache forgets a robot when it dies.
+_SETUPS: weakref.WeakKeyDictionary[Robot, dict[tuple[object, ...], Setup]] = (
+    weakref.WeakKeyDictionary()
+)
+_SETUPS_PER_ROBOT = 8
 
 
 def compile_setup(

@@ -2,10 +2,9 @@
 
 The same algorithm, step for step, as a row of
 :func:`kinematica.ik.numeric_batch.search_batch` (the same constants and tests
-in the same order; restarts run one after another): the forward kinematics,
-Jacobian, pose error and projection run on Python floats, where numpy's
-per-call cost (a microsecond per operation on tiny arrays) would dominate;
-only the small damped normal equations go to numpy.
+in the same order; restarts run one after another), all on Python floats:
+for one target numpy's per-call cost (about a microsecond per operation on
+tiny arrays) would dominate, down to the 6x6 damped normal equations.
 """
 
 from __future__ import annotations
@@ -13,6 +12,7 @@ from __future__ import annotations
 import math
 import weakref
 from collections.abc import Sequence
+from operator import mul
 
 import numpy as np
 from numpy.typing import NDArray
@@ -79,7 +79,6 @@ class _Kernel:
         self.tol_angle = problem.tol_angle
         self.max_steps = problem.max_iterations
         self.wide = len(self.rows) <= len(self.links)
-        self.eye = np.eye(len(self.rows) if self.wide else len(self.links))
 
     def project(self, q: list[float]) -> list[float]:
         """Wrap revolute angles into their window and clamp (see ``LMProblem.project``)."""
@@ -256,28 +255,69 @@ class _Kernel:
 
         Joints held at a limit they would leave outwards are blocked, as in
         ``numeric_batch._step``; the normal equations are those of
-        ``numeric_batch._damped_solve``.
+        ``numeric_batch._damped_solve``, solved by Cholesky on Python floats
+        (for a 6x6 system this beats a numpy call's overhead).
         """
         ew = [v * w for v, w in zip(err, self.weight, strict=True)]
-        Jw = np.array(J)
         if self.clamped:
-            blocked = [False] * len(q)
+            blocked = set()
             for i, (qi, lo, hi) in enumerate(zip(q, self.lower, self.upper, strict=True)):
                 if qi <= lo or qi >= hi:
                     g = sum(row[i] * e for row, e in zip(J, ew, strict=True))
-                    blocked[i] = (qi <= lo and g < 0.0) or (qi >= hi and g > 0.0)
-            if any(blocked):
-                Jw[:, blocked] = 0.0
-        Jt = Jw.T
-        A = Jw @ Jt if self.wide else Jt @ Jw
-        scale = float(A.trace()) / A.shape[0]
-        A += (lam * (scale if scale > SCALE_FLOOR else 1.0)) * self.eye
-        rhs = np.array(ew) if self.wide else Jt @ np.array(ew)
-        try:
-            x = np.linalg.solve(A, rhs)
-        except np.linalg.LinAlgError:  # pragma: no cover - the damping keeps A definite
-            x = np.linalg.pinv(A) @ rhs
-        return (x @ Jw).tolist() if self.wide else x.tolist()
+                    if (qi <= lo and g < 0.0) or (qi >= hi and g > 0.0):
+                        blocked.add(i)
+            if blocked:
+                J = [[0.0 if i in blocked else v for i, v in enumerate(row)] for row in J]
+        if self.wide:  # (J Jᵀ + λ s I) x = e, dq = Jᵀ x
+            x = _damped_cholesky(J, ew, lam)
+            return [sum(map(mul, col, x)) for col in zip(*J, strict=True)]
+        cols = list(zip(*J, strict=True))  # (JᵀJ + λ s I) dq = Jᵀ e
+        return _damped_cholesky(cols, [sum(map(mul, col, ew)) for col in cols], lam)
+
+
+def _damped_cholesky(G: Sequence[Sequence[float]], b: list[float], lam: float) -> list[float]:
+    """Solve ``(G Gᵀ + λ s I) x = b`` by Cholesky, ``s`` the mean diagonal of ``G Gᵀ``.
+
+    A pivot that round-off drives to zero or below is floored as in
+    ``numeric_batch._cholesky_solve``: the step is then huge and rejected.
+    """
+    k = len(G)
+    L = [[0.0] * k for _ in range(k)]
+    trace = 0.0
+    for i, gi in enumerate(G):
+        Li = L[i]
+        for j in range(i):
+            Li[j] = sum(map(mul, gi, G[j]))
+        Li[i] = d = sum(map(mul, gi, gi))
+        trace += d
+    scale = trace / k
+    damping = lam * (scale if scale > SCALE_FLOOR else 1.0)
+    for j in range(k):
+        Lj = L[j]
+        t = Lj[j] + damping
+        for p in range(j):
+            t -= Lj[p] * Lj[p]
+        Lj[j] = d = math.sqrt(t if t > SCALE_FLOOR else SCALE_FLOOR)
+        for i in range(j + 1, k):
+            Li = L[i]
+            t = Li[j]
+            for p in range(j):
+                t -= Li[p] * Lj[p]
+            Li[j] = t / d
+    y = [0.0] * k
+    for i in range(k):
+        Li = L[i]
+        t = b[i]
+        for p in range(i):
+            t -= Li[p] * y[p]
+        y[i] = t / Li[i]
+    x = [0.0] * k
+    for i in range(k - 1, -1, -1):
+        t = y[i]
+        for p in range(i + 1, k):
+            t -= L[p][i] * x[p]
+        x[i] = t / L[i][i]
+    return x
 
 
 def _inverse_right_jacobian(phi: list[float]) -> list[list[float]]:
@@ -286,7 +326,8 @@ def _inverse_right_jacobian(phi: list[float]) -> list[list[float]]:
     th2 = x * x + y * y + z * z
     half = 0.5 * math.sqrt(th2)
     if half < 0.5 * SERIES_ANGLE:
-        alpha, c = 1.0 - th2 / 12.0, 1.0 / 12.0 + th2 / 720.0
+        alpha = 1.0 - th2 / 12.0 - th2 * th2 / 720.0
+        c = 1.0 / 12.0 + th2 / 720.0 + th2 * th2 / 30240.0
     else:
         alpha = half / math.tan(half)
         c = (1.0 - alpha) / th2
