@@ -16,8 +16,18 @@ from kinematica.cli.main import main
 from kinematica.ik.result import IKBatchResult, IKResult
 
 TOL = 1e-10
-ANALYTIC = ["puma560", "ur5", "irb120", "kr6", "stanford", "arm6-dh", "scara", "planar-3r"]
-POSITION_ANALYTIC = ["anthropomorphic-3r", "rrr-geometric", "planar-pr", "planar-prr"]
+ANALYTIC = [
+    "puma560",
+    "ur5",
+    "irb120",
+    "kr6",
+    "stanford",
+    "arm6-dh",
+    "scara",
+    "planar-3r",
+    "planar-prr",
+]
+POSITION_ANALYTIC = ["anthropomorphic-3r", "rrr-geometric", "planar-pr"]
 
 
 def random_q(robot: km.Robot, rng: np.random.Generator, size: int) -> np.ndarray:

@@ -203,8 +203,9 @@ def finalize(
     osol[opad] = np.nan
     obr[opad] = ""
 
-    # Status, honestly: "unreachable" only when the candidates were complete
-    # and none came close; a near miss that would not converge is "not_found".
+    # Status, honestly: "unreachable" only when the candidates were complete and
+    # none came close, or the solver proved the target out of reach (gap > 0); a
+    # near miss that would not converge, or a failed search, is "not_found".
     close = np.any(valid & (np.maximum(pos, rot) < POLISH_LIMIT), axis=1)
     none_left = (count == 0) & (ocount == 0)
     status = np.where(
@@ -213,7 +214,7 @@ def finalize(
         np.where(
             ocount > 0,
             "out_of_limits",
-            np.where(complete & ~close, "unreachable", "not_found"),
+            np.where((complete & ~close) | (cand.gap > 0), "unreachable", "not_found"),
         ),
     )
     unsolved_err = np.where(valid & ~solved, np.maximum(pos, 0), np.inf)
