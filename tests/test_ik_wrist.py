@@ -419,6 +419,29 @@ def test_factories_refuse_other_arms() -> None:
     assert make_spherical_wrist_solver(Robot.from_dh(rows[:5])) is None
 
 
+@pytest.mark.parametrize(("shoulder", "joint3"), [*GEOMETRIES, ("puma", "")])
+def test_one_pose_path_equals_the_batch(shoulder: str, joint3: str) -> None:
+    """A single pose runs on Python floats (closed-form geometries): same answers."""
+    rng = np.random.default_rng(22)
+    robot = PUMA if shoulder == "puma" else random_wrist_arm(rng, shoulder, joint3)
+    solver = solver_of(robot)
+    assert (solver.single is None) == (shoulder == "general" and joint3 != "R23")
+    q0 = random_q(robot, rng, 40)
+    q0[:8, 4] = 0.0  # the PUMA's wrist singularity (a regular pose on the others)
+    T = robot.fk(q0)
+    T[-4:, :3, 3] += 5.0  # out of reach
+    batch = solver.solve(T)
+    for i in range(len(T)):
+        one = solver.solve(T[i : i + 1])
+        assert np.array_equal(np.isnan(one.q), np.isnan(batch.q[i : i + 1]))
+        d = joint_distance(robot, np.nan_to_num(one.q[0]), np.nan_to_num(batch.q[i]))
+        assert d.max() < 1e-9  # both exact; ill-conditioned joints differ by round-off
+        assert one.singular[0] == batch.singular[i] and (one.free[0] == batch.free[i]).all()
+        np.testing.assert_array_equal(one.gap, batch.gap[i : i + 1])
+        assert one.labels == batch.labels
+        solve_checked(robot, T[i : i + 1])
+
+
 def test_shapes_and_bad_input() -> None:
     solver = solver_of(PUMA)
     empty = solver.solve(np.zeros((0, 4, 4)))

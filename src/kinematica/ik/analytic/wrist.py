@@ -36,6 +36,7 @@ from kinematica.errors import DimensionError
 from kinematica.ik.analytic.poe import Screws
 from kinematica.ik.analytic.position import GEOMETRY_TOL, WristCentrePosition
 from kinematica.ik.analytic.subproblems import TRIG_TOL
+from kinematica.ik.analytic.wrist_single import SinglePose
 from kinematica.ik.candidates import Candidates
 from kinematica.robot import Robot
 from kinematica.robot.structure import classify
@@ -212,6 +213,7 @@ class SphericalWristSolver:
     leftover: FloatArray  # (3, 2): Mᵀ [h6, x6] (rotation part of M)
     K123: FloatArray  # (2, 3|2, 3, 3) cross-product matrices of revolute axes 1-3, squares
     F: FloatArray  # (3, 3) the wrist frame (columns h4, ea, eb)
+    single: SinglePose | None = None  # one pose on Python floats
     position_only: bool = False
 
     @property
@@ -232,6 +234,8 @@ class SphericalWristSolver:
         if T.ndim != 3 or T.shape[1:] != (4, 4):
             raise DimensionError(f"targets must have shape (N, 4, 4), got {T.shape}")
         N = len(T)
+        if N == 1 and self.single is not None:
+            return self.single.solve(T[0])
         Rt = T[:, :3, :3]
         with np.errstate(invalid="ignore", divide="ignore"):
             ct = Rt @ self.c_tool + T[:, :3, 3]
@@ -308,6 +312,7 @@ def _build(robot: Robot, kind: str, types: str) -> SphericalWristSolver | None:
     K123 = _cross_matrices(h[: 2 if prismatic3 else 3])
 
     labels = tuple(f"{pos}, wrist {w}" for pos in position.labels for w in ("no-flip", "flip"))
+    leftover = M[:3, :3].T @ np.stack([wrist.h6, wrist.x6], axis=1)
     name = "spherical-wrist" if not prismatic3 else "rrp-spherical-wrist"
     return SphericalWristSolver(
         name=name,
@@ -315,9 +320,10 @@ def _build(robot: Robot, kind: str, types: str) -> SphericalWristSolver | None:
         position=position,
         wrist=wrist,
         c_tool=c_tool,
-        leftover=M[:3, :3].T @ np.stack([wrist.h6, wrist.x6], axis=1),
+        leftover=leftover,
         K123=K123,
         F=wrist.F,
+        single=SinglePose.build(position, wrist, labels, c_tool, leftover, K123, NEAR_SINGULAR_TOL),
     )
 
 
