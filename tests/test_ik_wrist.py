@@ -241,6 +241,27 @@ def test_complete_against_multistart_search(shoulder: str, joint3: str) -> None:
         assert (d.min(axis=1) < 1e-6).all(), "the search found a solution we miss"
 
 
+def test_nearly_parallel_shoulder_axes_stay_exact() -> None:
+    """Axes 1 and 2 at 0.7° (skew): the elimination divides by sin α, and near
+    double roots of F lose digits that the final Newton step of the full
+    position equation restores (a regression case found by a random search)."""
+    rows = [
+        Revolute(d=-0.39964551701430384, a=-0.23494747622759055, alpha=-0.0122188743799172),
+        Revolute(d=-0.11579349535390293, alpha=-PI / 2, offset=-0.917807287996447),
+        Revolute(d=-0.22004128595761935, a=-0.20509321793326424, offset=1.3617449446662127),
+        Revolute(d=0.4087406157764789, alpha=0.44392020442861435, offset=-0.5425571608907469),
+        Revolute(alpha=2.8464679704414912, offset=-PI / 2),
+        Revolute(d=0.15652726621762514, alpha=-0.3451884803825527, offset=-1.5476061685567883),
+    ]
+    robot = Robot.from_dh(rows, name="nearly parallel shoulder")
+    q0 = np.array([[-2.63290526, -1.25548875, -2.16983424, 2.16527726, 2.13149496, 0.27287491]])
+    assert solver_of(robot).position.kind == "general"
+    assert_found(robot, solve_checked(robot, robot.fk(q0)), q0)
+    rng = np.random.default_rng(23)
+    q0 = random_q(robot, rng, 300)
+    assert_found(robot, solve_checked(robot, robot.fk(q0)), q0)
+
+
 def centre_jacobian_det(robot: Robot, c_tool: FloatArray, q: FloatArray) -> FloatArray:
     """det of d(wrist centre)/d(q1, q2, q3), from the robot's own Jacobian."""
     T, J = robot.fk(q), robot.jacobian(q)
@@ -278,8 +299,10 @@ def test_targets_on_the_workspace_fold(shoulder: str, joint3: str) -> None:
         lo, hi = np.where(same, mid, lo), np.where(same, hi, mid)
     assert np.abs(centre_jacobian_det(robot, c_tool, q)).max() < 1e-9
     cand = solve_checked(robot, robot.fk(q))  # every candidate exact
-    # the original is found to within the sqrt(ulp) a double root allows
-    assert_found(robot, cand, q, 1e-5)
+    # the original is found, to within what a double root allows: along the
+    # fold the pose moves only to second order, so exact solutions (1e-12)
+    # can differ from it by ~sqrt(1e-12 / curvature)
+    assert_found(robot, cand, q, 1e-4)
 
 
 def test_singular_wrist_returns_a_representative() -> None:

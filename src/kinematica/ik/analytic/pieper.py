@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica.ik.analytic.subproblems import cross, solve_quartic
+from kinematica.ik.analytic.subproblems import cross, rowmul, solve_quartic
 
 if TYPE_CHECKING:
     from kinematica.ik.analytic.position import WristCentrePosition
@@ -36,6 +36,7 @@ __all__ = [
     "ACCEPT_TOL",
     "IMAG_TOL",
     "NEWTON_STEPS",
+    "POLISH_FROM",
     "fourier_matrix",
     "polish_position",
     "revolute_roots",
@@ -54,7 +55,11 @@ IMAG_TOL = 1e-6
 #: (times the arm's size) from the target was complex and is dropped.
 ACCEPT_TOL = 1e-8
 #: Newton steps on ``F`` for each quartic root.
-NEWTON_STEPS = 3
+NEWTON_STEPS = 2
+#: Candidates whose point misses the target by more than this (times the
+#: arm's size; a measure of the residual of ``F``) get a Newton step of the
+#: full position equation.
+POLISH_FROM = 1e-14
 #: Newton steps on ``F`` longer than this (rad or m) are noise and are skipped.
 MAX_NEWTON_STEP = 1e-4
 #: ``F`` is identically 0 (a self-motion of joints 1-3) when its leading
@@ -159,18 +164,18 @@ def revolute_roots(F: FloatArray) -> tuple[FloatArray, BoolArray]:
     """
     quart = (F @ _QUARTIC_MAP).reshape(-1, 8, 5)
     k = np.argmax(np.abs(quart[:, :, 0]), axis=1)
-    coeffs = np.take_along_axis(quart, k[:, None, None], axis=1)[:, 0]
+    coeffs = quart[np.arange(len(k)), k]
     selfmotion = np.abs(coeffs[:, 0]) <= SELF_MOTION_TOL * np.abs(F).sum(axis=1)
     coeffs[selfmotion] = [1.0, 0.0, 0.0, 0.0, -1.0]  # placeholder, replaced below
     t = solve_quartic(coeffs)
     real = np.abs(t.imag) <= IMAG_TOL * (1.0 + np.abs(t))
     q = _SHIFTS[k][:, None] + 2.0 * np.arctan(np.where(real, t.real, np.nan))
+    # Newton on F = f0 + Re(A e^{iq} + B e^{2iq}), A = f1 - i f2, B = f3 - i f4
+    f0, A, B = F[:, :1], F[:, 1:2] - 1j * F[:, 2:3], F[:, 3:4] - 1j * F[:, 4:5]
     for _ in range(NEWTON_STEPS):
-        c1, s1 = np.cos(q), np.sin(q)
-        c2, s2 = c1 * c1 - s1 * s1, 2 * s1 * c1
-        f = F[:, :1] + F[:, 1:2] * c1 + F[:, 2:3] * s1 + F[:, 3:4] * c2 + F[:, 4:5] * s2
-        df = -F[:, 1:2] * s1 + F[:, 2:3] * c1 - 2 * F[:, 3:4] * s2 + 2 * F[:, 4:5] * c2
-        q = q - _bounded(f, df)
+        e = np.exp(1j * q)
+        Ae, Be2 = A * e, B * (e * e)
+        q = q - _bounded(f0 + (Ae + Be2).real, -(Ae + 2.0 * Be2).imag)
     q = np.sort(np.arctan2(np.sin(q), np.cos(q)), axis=1)
     return np.where(selfmotion[:, None], _SHIFTS[::2], q), selfmotion
 
@@ -221,7 +226,7 @@ def slide_roots(coeffs: FloatArray) -> FloatArray:
 def _turn(k: FloatArray, c: FloatArray, s: FloatArray, v: FloatArray) -> FloatArray:
     """Rodrigues: ``v (..., 3)`` turned about the unit axis ``k (3,)`` by (cos, sin) ``(...)``."""
     c, s = c[..., None], s[..., None]
-    return v * c + cross(k, v) * s + k * ((v @ k)[..., None] * (1.0 - c))
+    return v * c + cross(k, v) * s + k * (rowmul(v, k[:, None]) * (1.0 - c))
 
 
 def _residual(

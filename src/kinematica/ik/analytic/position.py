@@ -40,7 +40,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.ik.analytic import pieper
-from kinematica.ik.analytic.subproblems import TRIG_TOL
+from kinematica.ik.analytic.subproblems import TRIG_TOL, rowmul
 
 __all__ = ["PositionSolutions", "WristCentrePosition"]
 
@@ -63,14 +63,11 @@ class PositionSolutions:
         q: ``(N, 4, 3)``, NaN where a branch has no real solution.
         singular: ``(N,)`` True where q1 or q2 is free (point on axis 1 or 2).
         free: ``(N, 3)`` which of q1..q3 are free.
-        gap: ``(N,)`` lower bound of the distance of the target point from the
-            points the arm can reach (0 inside the bound or when unknown).
     """
 
     q: FloatArray
     singular: BoolArray
     free: BoolArray
-    gap: FloatArray
 
 
 def _foot_points(
@@ -96,14 +93,13 @@ class WristCentrePosition:
         labels: ``(4,)`` names of the four position branches.
         h1, h2: Unit directions of axes 1, 2.
         p1, p2: Points on axes 1, 2 (feet of their common normal when skew).
-        e1, e2: Orthonormal basis of the plane normal to ``h2``, ``e1 × e2 = h2``.
         a: Distance of axes 1 and 2; ``ca``, ``g``: ``h1ᵀh2`` and ``h1ᵀe2``.
         U: ``(3, 3)`` ``u(q3) = U0 + U1 cos q3 + U2 sin q3`` (revolute) or
             ``U0 + q3 U1`` (slide, ``U2 = 0``).
         coef: ``(3, 4)`` the same basis mapped to ``[u1, u2, H, L]``.
         scale: A length of the arm's size (m), for tolerances.
-        umin, umax: Range of ``|u|`` (``umax`` = inf for a slide).
-        Hrange: Range of ``H``.
+        shell: ``(r_lo, r_hi, z_lo, z_hi)``: bounds of ``|x - p1|`` and, with
+            axes 1 and 2 parallel, of ``h1ᵀ(x - p1)`` (else ±inf); see :meth:`gap`.
         frame1: ``(3, 3)`` columns ``h1, a1, b1``, right-handed.
         p1f: ``p1`` in those coordinates.
         xframe: ``(4, 2)`` components along ``a1, b1`` of ``h2, e1, e2, p2 - p1``.
@@ -124,17 +120,13 @@ class WristCentrePosition:
     h2: FloatArray
     p1: FloatArray
     p2: FloatArray
-    e1: FloatArray
-    e2: FloatArray
     a: float
     ca: float
     g: float
     U: FloatArray
     coef: FloatArray
     scale: float
-    umin: float
-    umax: float
-    Hrange: tuple[float, float]
+    shell: tuple[float, float, float, float]
     frame1: FloatArray
     p1f: FloatArray
     xframe: FloatArray
@@ -183,8 +175,6 @@ class WristCentrePosition:
         if prismatic:
             U = np.array([c - p2, h3, np.zeros(3)])
             parallel23 = False
-            if float(np.linalg.norm(np.cross(h3, h2))) < GEOMETRY_TOL and kind != "general":
-                return None  # the slide is along axis 2: no reach along it
         else:
             r = c - p3
             rpar = (r @ h3) * h3
@@ -209,6 +199,10 @@ class WristCentrePosition:
             Hrange = (coef[0, 2] - rH, coef[0, 2] + rH)
         coef[:, 3] = L
         g = float(h1 @ e2)
+        # |x - p1| = |δ + R2 u| lies in [max(0, umin - a, a - umax), a + umax]; with
+        # axes 1 and 2 parallel h1ᵀ(x - p1) = cα H lies in cα [Hmin, Hmax]
+        zlo, zhi = sorted(ca * v for v in Hrange) if kind == "parallel" else (-math.inf, math.inf)
+        shell = (max(0.0, umin - a, a - umax), a + umax, zlo, zhi)
         fourier = np.zeros((5, 5))
         if kind == "general" and not prismatic:
             fourier = pieper.fourier_matrix(a, sa, ca, np.array(L), coef[:, 2])
@@ -232,8 +226,8 @@ class WristCentrePosition:
             root_signs[0 if elbow_sign > 0 else 1] *= -1.0
         labels = _labels(kind, prismatic, parallel23)
         return cls(
-            kind, prismatic, parallel23, labels, h1, h2, p1, p2, e1, e2, a, ca, g, U, coef,
-            scale, umin, umax, Hrange, frame1, p1 @ frame1, xframe, elbow_sign, root_signs,
+            kind, prismatic, parallel23, labels, h1, h2, p1, p2, a, ca, g, U, coef,
+            scale, shell, frame1, p1 @ frame1, xframe, elbow_sign, root_signs,
             _trig_rows(coef[1:, 2 if kind == "parallel" else 3], prismatic), fourier,
         )  # fmt: skip
 
@@ -245,8 +239,8 @@ class WristCentrePosition:
             ct: ``(N, 3)`` target points, base frame.
 
         Returns:
-            The four branches per target (see :attr:`labels`); ``gap`` is left
-            unset (zeros): ask :meth:`gap` for the targets that need it.
+            The four branches per target (see :attr:`labels`); :meth:`gap`
+            bounds the distance of the targets that have none.
         """
         N = len(ct)
         dz = ct @ self.frame1 - self.p1f  # along h1, a1, b1 (from p1)
@@ -280,10 +274,13 @@ class WristCentrePosition:
         # normal to axis 1; joint 1 turns it onto d (SP1)
         Y = np.empty((*shape, 3))
         Y[..., 0], Y[..., 1], Y[..., 2] = H, v1, v2
-        x = Y @ self.xframe[:3] + self.xframe[3]
+        x = rowmul(Y, self.xframe[:3]) + self.xframe[3]
         q[..., 0] = np.arctan2(dz[:, 2], dz[:, 1])[:, None, None] - np.arctan2(x[..., 1], x[..., 0])
         if self.kind == "general" and not self.parallel23:
-            q = pieper.polish_position(self, q[:, 0], ct - self.p1)[:, None]
+            # the elimination loses accuracy near double roots: polish those
+            rows = np.nonzero((miss > pieper.POLISH_FROM * self.scale).any(axis=(1, 2)))[0]
+            if len(rows):
+                q[rows, 0] = pieper.polish_position(self, q[rows, 0], ct[rows] - self.p1)
         if self.parallel23 and self.kind == "general":  # elbow up first in each pair
             swap = (self.elbow_sign * v1[..., :1] > 0)[..., None]
             q = np.where(swap, q[:, :, ::-1], q)
@@ -293,10 +290,8 @@ class WristCentrePosition:
         free[:, 1] = (uperp2 < tol2).any(axis=(1, 2))
         if selfmotion is not None:
             free |= selfmotion[:, None]
-        return PositionSolutions(
-            q=q.reshape(N, 4, 3), singular=free[:, 0] | free[:, 1] | free[:, 2], free=free,
-            gap=np.zeros(N),
-        )  # fmt: skip
+        singular = free[:, 0] | free[:, 1] | free[:, 2]
+        return PositionSolutions(q=q.reshape(N, 4, 3), singular=singular, free=free)
 
     # ---------------------------------------------------------------- helpers
     def _values(self, b: FloatArray) -> FloatArray:
@@ -353,27 +348,22 @@ class WristCentrePosition:
             q3 = q3[:, None, :]
             cs = np.empty((*q3.shape, 2))
             cs[..., 0], cs[..., 1] = np.cos(q3), np.sin(q3)
-            return q3, cs @ c[1:] + c[0], selfmotion
-        return np.arctan2(cs[..., 1], cs[..., 0]), cs @ c[1:] + c[0], None
+            return q3, rowmul(cs, c[1:]) + c[0], selfmotion
+        return np.arctan2(cs[..., 1], cs[..., 0]), rowmul(cs, c[1:]) + c[0], None
 
     def gap(self, ct: FloatArray) -> FloatArray:
         """Lower bound of the distance of points ``ct (N, 3)`` to those reachable.
 
-        Every reachable point is at a distance from ``p1`` between
-        ``max(0, umin - a, a - umax)`` and ``a + umax`` (triangle inequality on
-        ``x - p1 = δ + R2 u``); with axes 1 and 2 parallel its height ``ζ``
-        also lies in ``cα · [Hmin, Hmax]``. The distance to that shell (and
-        slab) bounds the distance to the reachable set from below.
+        Every reachable point lies in the shell ``r_lo <= |x - p1| <= r_hi``
+        (triangle inequality on ``x - p1 = δ + R2 u`` with ``umin <= |u| <=
+        umax``) and, with axes 1 and 2 parallel, in the slab of heights
+        ``z_lo <= h1ᵀ(x - p1) <= z_hi``. The distance to shell and slab bounds
+        the distance to the reachable set from below (0 inside them).
         """
         d = ct - self.p1
-        zeta = d @ self.h1
-        r = np.linalg.norm(d, axis=-1)
-        lo = max(0.0, self.umin - self.a, self.a - self.umax)
-        gap = np.maximum(np.maximum(r - (self.a + self.umax), lo - r), 0.0)
-        if self.kind == "parallel":
-            zlo, zhi = sorted(self.ca * v for v in self.Hrange)
-            gap = np.maximum(gap, np.maximum(zeta - zhi, zlo - zeta))
-        return gap
+        r, z = np.linalg.norm(d, axis=-1), d @ self.h1
+        r_lo, r_hi, z_lo, z_hi = self.shell
+        return np.maximum.reduce([r - r_hi, r_lo - r, z - z_hi, z_lo - z, np.zeros_like(r)])
 
 
 #: The ± of the two roots of a pair along the last slot axis, and of the

@@ -17,11 +17,18 @@ meet at any angles:
   is SP2 about ``h4`` and ``h5``: two solutions, "no-flip" and "flip";
 * q6 is SP1 about ``h6`` after undoing q4 and q5.
 
+"No-flip" bends the wrist the way it is bent at q = 0 (or, when q = 0 is
+itself singular, the way q5 > 0 bends it from there): on the PUMA, sin q5 > 0.
 Wrist singularity (axes 4 and 6 aligned, ``w = ±h4``): only ``q4 ± q6`` is
 determined. The "no-flip" slot returns the representative with ``q4 = 0``, the
-"flip" slot is NaN, the target is flagged singular with q4 and q6 free.
+"flip" slot is NaN, the target is flagged singular with q4 and q6 free. Near it
+q6 is computed after q4 and q5 so that it absorbs their round-off.
 
 Branch slots: ``4 position × 2 wrist``; label ``k`` is ``2 * position + wrist``.
+All candidates are exact to round-off (≤ 1e-12 in the tests); none is wrapped
+or filtered beyond NaN for branches without a real solution. One pose at a time
+runs on Python floats (:mod:`~kinematica.ik.analytic.wrist_single`) for the
+closed-form geometries.
 """
 
 from __future__ import annotations
@@ -35,7 +42,7 @@ from numpy.typing import NDArray
 from kinematica.errors import DimensionError
 from kinematica.ik.analytic.poe import Screws
 from kinematica.ik.analytic.position import GEOMETRY_TOL, WristCentrePosition
-from kinematica.ik.analytic.subproblems import TRIG_TOL
+from kinematica.ik.analytic.subproblems import TRIG_TOL, rowmul
 from kinematica.ik.analytic.wrist_single import SinglePose
 from kinematica.ik.candidates import Candidates
 from kinematica.robot import Robot
@@ -122,16 +129,16 @@ class _Wrist:
         )
 
     def solve(self, V: FloatArray) -> tuple[FloatArray, BoolArray]:
-        """(q4, q5, q6) for leftover rotations ``R``, given ``V = Fᵀ R [h6, x6]``.
+        """(q4, q5, q6) for leftover rotations ``R``, given ``R h6`` and ``R x6`` in F.
 
         Args:
-            V: ``(..., 3, 2)``: ``w = R h6`` and ``y = R x6`` in frame F.
+            V: ``(..., 2, 3)``: rows ``w = R h6`` and ``y = R x6`` in frame F.
 
         Returns:
             ``q (..., 2, 3)`` (no-flip, flip; NaN where the wrist cannot make
             the rotation) and ``singular (...)``.
         """
-        w4, wa, wb = V[..., 0, 0], V[..., 1, 0], V[..., 2, 0]
+        w4, wa, wb = V[..., 0, 0], V[..., 0, 1], V[..., 0, 2]
         off2 = wa * wa + wb * wb  # |w × h4|², exact (no 1 - cos² cancellation)
         # c = R5 h6 = R4ᵀ w = α h4 + β h5 + γ (h4 × h5) = (w4, β s45, γ s45) in F
         beta = self.beta[0] - self.beta[1] * w4
@@ -150,7 +157,7 @@ class _Wrist:
         # q6 turns R_remᵀ h4 onto c' = R5ᵀ h4 about h6. In the frame (h6, x6, y6),
         # R_remᵀ h4 = (w4, y · h4, (w × y) · h4) as R_rem maps (h6, x6, y6) to (w, y, w × y);
         # c' = α' h6 + β' h5 + γ' (h6 × h5) with h6ᵀc' = w4, h5ᵀc' = h5ᵀh4, γ' ∝ -γ.
-        y0, wy = V[..., 0, 1, None], (wa * V[..., 2, 1] - wb * V[..., 1, 1])[..., None]
+        y0, wy = V[..., 1, 0, None], (wa * V[..., 1, 2] - wb * V[..., 1, 1])[..., None]
         bp = (self.beta[2] - self.beta[3] * w4)[..., None]
         gp = gam * self.beta[4]
         m = self.q6_dirs
@@ -172,7 +179,7 @@ class _Wrist:
         the no-flip family; the flip slot is the same family and is NaN.
 
         Args:
-            V: ``(k, 3, 2)`` as for :meth:`solve`.
+            V: ``(k, 2, 3)`` as for :meth:`solve`.
             q: ``(k, 2, 3)`` the regular solutions.
             singular: ``(k,)`` rows to replace by the representative.
 
@@ -181,13 +188,13 @@ class _Wrist:
         """
         q = q.copy()
         if singular.any():
-            w = V[singular, :, 0]  # c = w: q5 turns h6 onto w about h5
+            w = V[singular, 0]  # c = w: q5 turns h6 onto w about h5
             P = w @ self.q5_dirs
             q[singular, 0] = [0.0, 0.0, 0.0]
             q[singular, 0, 1] = np.arctan2(P[:, 0], P[:, 1] - self.k56**2)
             q[singular, 1] = np.nan
         R = _rot(self.K45, q[..., :2])  # (k, 2, 2, 3, 3)
-        z = V[:, None, None, :, 1] @ (R[..., 0, :, :] @ R[..., 1, :, :])  # (k, 2, 1, 3)
+        z = V[:, None, None, 1, :] @ (R[..., 0, :, :] @ R[..., 1, :, :])  # (k, 2, 1, 3)
         Z = z[..., 0, :] @ self.x6_dirs  # z · (h6 × x6), z · x6
         q[..., 2] = np.arctan2(Z[..., 0], Z[..., 1])
         return q
@@ -211,7 +218,7 @@ class SphericalWristSolver:
     wrist: _Wrist
     c_tool: FloatArray  # wrist centre in the tool frame at q = 0: M⁻¹ c
     leftover: FloatArray  # (3, 2): Mᵀ [h6, x6] (rotation part of M)
-    K123: FloatArray  # (2, 3|2, 3, 3) cross-product matrices of revolute axes 1-3, squares
+    Kt: FloatArray  # (3|2, 3, 6) [[k]×ᵀ, [k]×²ᵀ] of the revolute axes among 1-3 (on rows)
     F: FloatArray  # (3, 3) the wrist frame (columns h4, ea, eb)
     single: SinglePose | None = None  # one pose on Python floats
     position_only: bool = False
@@ -219,7 +226,7 @@ class SphericalWristSolver:
     @property
     def nrot(self) -> int:
         """Number of revolute joints among joints 1-3 (3, or 2 for RRP)."""
-        return self.K123.shape[1]
+        return len(self.Kt)
 
     def solve(self, targets: FloatArray) -> Candidates:
         """Every branch's solution for each target pose.
@@ -238,18 +245,17 @@ class SphericalWristSolver:
             return self.single.solve(T[0])
         Rt = T[:, :3, :3]
         with np.errstate(invalid="ignore", divide="ignore"):
-            ct = Rt @ self.c_tool + T[:, :3, 3]
+            ct = (Rt.reshape(-1, 3) @ self.c_tool).reshape(N, 3) + T[:, :3, 3]
             pos = self.position.solve(ct)
-            # leftover rotation R4 R5 R6 = R3ᵀ R2ᵀ R1ᵀ Rt Mᵀ, applied to h6 and x6:
-            # undo joints 1-3 one by one (Rodrigues on the two vectors)
-            V = (Rt @ self.leftover)[:, None]  # (N, 1, 3, 2)
+            # leftover rotation R4 R5 R6 = R3ᵀ R2ᵀ R1ᵀ Rt Mᵀ, applied to h6 and x6 (as
+            # rows): undo joints 1-3 one by one (Rodrigues), then into the wrist frame
+            V = (Rt.reshape(-1, 3) @ self.leftover).reshape(N, 1, 3, 2).swapaxes(-1, -2)
             qr = pos.q[..., : self.nrot, None, None]
             sq, cq1 = np.sin(qr), 1.0 - np.cos(qr)
             for j in range(self.nrot):
-                KV = self.K123[0, j] @ V
-                V = V - sq[:, :, j] * KV + cq1[:, :, j] * (self.K123[0, j] @ KV)
-            V = self.F.T @ V  # (N, 4, 3, 2) in the wrist frame
-            qw, wsing = self.wrist.solve(V)  # (N, 4, 2, 3), (N, 4)
+                KV = rowmul(V, self.Kt[j])  # [k]× v and [k]×² v, as rows
+                V = V - sq[:, :, j] * KV[..., :3] + cq1[:, :, j] * KV[..., 3:]
+            qw, wsing = self.wrist.solve(rowmul(V, self.F))  # (N, 4, 2, 3), (N, 4)
         branches = np.empty((N, 4, 2, 6))
         branches[..., 3:] = qw  # all NaN wherever the position or the wrist has no solution
         branches[..., :3] = pos.q[:, :, None, :] + 0.0 * qw[..., 2:]  # ... so the whole branch
@@ -310,7 +316,6 @@ def _build(robot: Robot, kind: str, types: str) -> SphericalWristSolver | None:
     M = screws.home
     c_tool = M[:3, :3].T @ (c - M[:3, 3])
     K123 = _cross_matrices(h[: 2 if prismatic3 else 3])
-
     labels = tuple(f"{pos}, wrist {w}" for pos in position.labels for w in ("no-flip", "flip"))
     leftover = M[:3, :3].T @ np.stack([wrist.h6, wrist.x6], axis=1)
     name = "spherical-wrist" if not prismatic3 else "rrp-spherical-wrist"
@@ -321,9 +326,11 @@ def _build(robot: Robot, kind: str, types: str) -> SphericalWristSolver | None:
         wrist=wrist,
         c_tool=c_tool,
         leftover=leftover,
-        K123=K123,
+        Kt=np.concatenate([K123[0].swapaxes(1, 2), K123[1].swapaxes(1, 2)], axis=2),
         F=wrist.F,
-        single=SinglePose.build(position, wrist, labels, c_tool, leftover, K123, NEAR_SINGULAR_TOL),
+        single=SinglePose.build(
+            position, wrist, labels, c_tool, leftover, h[: len(K123[0])], NEAR_SINGULAR_TOL
+        ),
     )
 
 

@@ -88,7 +88,7 @@ class SinglePose:
         labels: tuple[str, ...],
         c_tool: FloatArray,
         leftover: FloatArray,
-        K123: FloatArray,
+        axes: FloatArray,
         near_tol: float,
     ) -> SinglePose | None:
         """The single-pose path, or None for the quartic geometries.
@@ -99,12 +99,11 @@ class SinglePose:
             labels: Branch names.
             c_tool: Wrist centre in the tool frame at q = 0.
             leftover: ``(3, 2)`` ``Mᵀ [h6, x6]``.
-            K123: Cross-product matrices of the revolute joints among 1-3.
+            axes: ``(2|3, 3)`` unit axes of the revolute joints among 1-3.
             near_tol: The wrist's near-singular tolerance (sine).
         """
         if P.kind == "general" and not P.parallel23:
             return None
-        axes = tuple(_t(np.array([K[2, 1], K[0, 2], K[1, 0]])) for K in K123[0])
         wrist = (
             float(W.beta[0]),
             float(W.beta[1]),
@@ -137,7 +136,7 @@ class SinglePose:
             tol2=(SINGULAR_TOL * P.scale) ** 2,
             c_tool=_t(c_tool),
             leftover=_t(leftover.T),
-            axes=axes,
+            axes=_t(axes),
             Ft=_t(W.F.T),
             wrist=wrist,
             near2=near_tol**2,
@@ -306,8 +305,8 @@ class SinglePose:
         singular = on1 or on2
         wrist_singular = False
         if near:  # rare: the batched code's near-singular treatment
-            V = np.swapaxes(np.array([self._leftover(branches[k], W0) for k in near]), 1, 2)
-            qw, sing = self.wrist_solver.solve(V)  # V: (k, 3, 2)
+            V = np.array([self._leftover(branches[k], W0) for k in near])  # (k, 2, 3)
+            qw, sing = self.wrist_solver.solve(V)
             for i, k in enumerate(near):
                 for j in range(2):
                     row = np.concatenate([branches[k], qw[i, j]])
