@@ -202,7 +202,9 @@ def test_analytic_on_unsupported_structure_is_an_error() -> None:
         km.load("panda").ik(np.eye(4), method="analytic")
 
 
-@pytest.mark.parametrize("target", [np.zeros((2, 3, 3)), np.zeros(5), np.full((4, 4), np.nan), "pose"])
+@pytest.mark.parametrize(
+    "target", [np.zeros((2, 3, 3)), np.zeros(5), np.full((4, 4), np.nan), "pose"]
+)
 def test_bad_targets(target: object) -> None:
     with pytest.raises(km.KinematicaError):
         km.load("puma560").ik(target)  # type: ignore[arg-type]

@@ -15,7 +15,7 @@ from kinematica.errors import DimensionError
 from kinematica.ik.result import IKResult
 from kinematica.io import builtin_names
 from kinematica.robot import Robot, classify, load
-from kinematica.spatial import euler_from_matrix, from_pose, gimbal_locked, to_pose
+from kinematica.spatial import euler_from_matrix, from_pose, gimbal_locked
 
 __all__ = ["fk", "ik", "robots", "show"]
 
@@ -84,7 +84,7 @@ def _dh_rows(robot: Robot, deg: bool) -> list[tuple[str, ...]]:
             return name
         return f"{name} - {offset.lstrip('-')}" if offset.startswith("-") else f"{name} + {offset}"
 
-    rows = []
+    rows: list[tuple[str, ...]] = []
     limits = robot.qlim
     for i, (link, lim) in enumerate(zip(robot.links, limits, strict=True), start=1):
         if link.type == "R":

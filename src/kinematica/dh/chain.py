@@ -270,9 +270,7 @@ class DHChain:
                 ca * z1 - sa * w1,
                 ca * z2 - sa * w2,
             )
-        T = np.array(
-            [[x0, y0, z0, p0], [x1, y1, z1, p1], [x2, y2, z2, p2], [0.0, 0.0, 0.0, 1.0]]
-        )
+        T = np.array([[x0, y0, z0, p0], [x1, y1, z1, p1], [x2, y2, z2, p2], [0.0, 0.0, 0.0, 1.0]])
         if not self._end_identity:
             T = T @ self.end
         return T

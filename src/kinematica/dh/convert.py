@@ -64,6 +64,7 @@ def convert_table(
         a_0, alpha_0 = pairs[0]
         base = base @ rx_tx(alpha_0, a_0)
     new = tuple(
-        dataclasses.replace(j, a=a, alpha=alpha) for j, (a, alpha) in zip(rows, shifted, strict=True)
+        dataclasses.replace(j, a=a, alpha=alpha)
+        for j, (a, alpha) in zip(rows, shifted, strict=True)
     )
     return new, base, tool

@@ -41,7 +41,9 @@ def link_matrix(
         ``(..., 4, 4)`` transform of frame i in frame i-1 (the four inputs broadcast).
     """
     conv = check_convention(convention)
-    th, dd, aa, al = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (theta, d, a, alpha)))
+    th, dd, aa, al = np.broadcast_arrays(
+        *(np.asarray(v, dtype=float) for v in (theta, d, a, alpha))
+    )
     ct, st, ca, sa = np.cos(th), np.sin(th), np.cos(al), np.sin(al)
     A = np.zeros((*th.shape, 4, 4))
     A[..., 3, 3] = 1.0

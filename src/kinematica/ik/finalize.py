@@ -85,7 +85,9 @@ def _polish(
     return q
 
 
-def _shift_into_limits(q: FloatArray, lo: FloatArray, hi: FloatArray, rev: FloatArray) -> FloatArray:
+def _shift_into_limits(
+    q: FloatArray, lo: FloatArray, hi: FloatArray, rev: NDArray[np.bool_]
+) -> FloatArray:
     """Move revolute angles by ±2π into their limit window where that helps."""
     two_pi = 2.0 * np.pi
     up = rev & (q < lo - LIMIT_TOL) & (q + two_pi <= hi + LIMIT_TOL)
@@ -224,13 +226,13 @@ def finalize(
     gap = np.where((status == "unreachable") & none_left, cand.gap, np.nan)
     free = cand.free & (status == "singular")[:, None]
     return IKBatchResult(
-        solutions=sol,
+        solutions=sol.astype(np.float64),
         count=count,
         status=status.astype(str),
         method=method,
-        residuals=resid,
+        residuals=resid.astype(np.float64),
         branches=br.astype(str),
-        out_of_limits=osol,
+        out_of_limits=osol.astype(np.float64),
         out_of_limits_count=ocount,
         out_of_limits_branches=obr.astype(str),
         free=free,

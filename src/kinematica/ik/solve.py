@@ -122,10 +122,14 @@ def solve_ik(
         from kinematica.robot.structure import classify
 
         why = "a mask was given" if m is not None else f"structure: {classify(robot).summary}"
-        raise KinematicaError(f"no closed-form solver for {robot.name} ({why}); use method='numeric'")
+        raise KinematicaError(
+            f"no closed-form solver for {robot.name} ({why}); use method='numeric'"
+        )
 
     if solver is not None:
-        solver_targets = targets[:, :3, 3] if solver.position_only and not position_only else targets
+        solver_targets = (
+            targets[:, :3, 3] if solver.position_only and not position_only else targets
+        )
         cand = solver.solve(solver_targets)
         result = finalize(
             robot,

@@ -11,8 +11,8 @@ import dataclasses
 import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Literal
 from numbers import Real
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -159,7 +159,7 @@ class Robot:
 
     @property
     def qlim(self) -> FloatArray:
-        """``(n, 2)`` joint limits; ``(-π, π)`` for free revolute joints, ±inf for free prismatic."""
+        """``(n, 2)`` joint limits: ``(-π, π)`` for free revolute joints, ±inf for prismatic."""
         rows = []
         for link in self.links:
             if link.qlim is not None:
@@ -339,13 +339,20 @@ class Robot:
         """The same robot with another base transform (``(4, 4)`` or ``None``)."""
         return dataclasses.replace(self, base=_check_frame(base, "base"))
 
-    def with_limits(self, qlim: ArrayLike | Sequence[tuple[float, float] | None]) -> Robot:
+    def with_limits(self, qlim: Sequence[Sequence[float] | None] | FloatArray) -> Robot:
         """The same robot with other joint limits (``(n, 2)``; ``None`` rows free)."""
-        rows = list(qlim)  # type: ignore[arg-type]
+        rows = list(qlim)
         if len(rows) != self.dof:
             raise DimensionError(f"qlim must have {self.dof} rows, got {len(rows)}")
+
+        def pair(lim: Sequence[float] | FloatArray | None) -> tuple[float, float] | None:
+            if lim is None:
+                return None
+            lo, hi = (float(v) for v in lim)
+            return (lo, hi)
+
         links = tuple(
-            dataclasses.replace(link, qlim=None if lim is None else tuple(lim))
+            dataclasses.replace(link, qlim=pair(lim))
             for link, lim in zip(self.links, rows, strict=True)
         )
         return dataclasses.replace(self, links=links)

@@ -68,7 +68,7 @@ def common_point(h: FloatArray, p: FloatArray) -> FloatArray | None:
         b += P @ pi
     if np.linalg.matrix_rank(A, tol=1e-9) < 3:
         return None
-    c = np.linalg.solve(A, b)
+    c: FloatArray = np.linalg.solve(A, b).astype(np.float64)
     for hi, pi in zip(h, p, strict=True):
         d = c - pi
         if np.linalg.norm(d - np.dot(d, hi) * hi) > MEET_TOL:
