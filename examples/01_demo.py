@@ -30,7 +30,7 @@ def main() -> None:
         cells = [theta, fmt(row[1]), fmt(row[2]), f"{np.degrees(row[3]):g}°"]
         print(f"   {i}   " + "".join(f"{c:>12}" for c in cells))
 
-    q_deg = np.array([30.0, 20.0, -40.0, 10.0, 60.0, -20.0])
+    q_deg = np.array([30.0, 40.0, -30.0, 10.0, 60.0, -20.0])
     q = np.radians(q_deg)
     section(f"2. Forward kinematics at q = {q_deg.tolist()} degrees")
     for i, A in enumerate(robot.link_matrices(q), start=1):
@@ -54,10 +54,19 @@ def main() -> None:
     found = any(np.allclose(km.wrap_angle(s - q), 0, atol=1e-9) for s in res.solutions)
     print(f"\nThe configuration we started from is among them: {found}")
 
-    section("4. An honest answer when there is none")
+    section("4. Infinitely many solutions: the wrist centre on axis 1")
+    # With l2 = l3 and q3 = -2 q2 the wrist centre lies on the first axis: any q1
+    # works (the shoulder singularity). kinematica says so and names the free joint.
+    T_sing = robot.fk(np.radians([30.0, 20.0, -40.0, 10.0, 60.0, -20.0]))
+    res = robot.ik(T_sing)
+    print(f"status: {res.status}; free joints: {[f'q{i + 1}' for i in res.free_joints]}")
+    print(f"{res.message}")
+
+    section("5. An honest answer when there is none")
     far = T.copy()
     far[:3, 3] *= 10
     print(f"10x further away: {robot.ik(far).message}")
+    print(f"status: {robot.ik(far).status} (the command line exits with code 1)")
 
 
 if __name__ == "__main__":
