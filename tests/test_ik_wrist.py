@@ -428,6 +428,19 @@ def test_puma_labels_mean_what_they_say() -> None:
     assert (no_flip == (slot % 2 == 0)).all()
 
 
+@pytest.mark.parametrize(("shoulder", "joint3"), GEOMETRIES)
+def test_no_flip_is_the_wrist_bend_of_the_home_pose(shoulder: str, joint3: str) -> None:
+    rng = np.random.default_rng(24)
+    for _ in range(3):
+        robot = random_wrist_arm(rng, shoulder, joint3)
+        q0 = np.zeros((1, 6))
+        q0[0, 3:] = rng.uniform(-0.05, 0.05, 3)  # near home: the wrist bent as at q = 0
+        q = solve_checked(robot, robot.fk(q0))[0]
+        slot = np.nanargmin(joint_distance(robot, q, q0[0]))
+        assert joint_distance(robot, q[slot], q0[0]) < 1e-9
+        assert "no-flip" in solver_of(robot).labels[slot] and slot % 2 == 0
+
+
 def test_factories_refuse_other_arms() -> None:
     ur5 = robot_from_rows(reference_arm("ik_reference.json", "ur5"), "ur5")
     assert make_spherical_wrist_solver(ur5) is None

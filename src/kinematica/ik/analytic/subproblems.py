@@ -341,9 +341,10 @@ def solve_quartic(coeffs: ArrayLike) -> NDArray[np.complex128]:
     r = e - b4 * d + b42 * c - 3.0 * b42 * b42
     m = np.maximum(_largest_cubic_root(p, 0.25 * p * p - r, -0.125 * q * q), 0.0)
     s = np.sqrt(2.0 * m)
-    # w = q / (2 s) (from the factorisation); where s is ~0 use w² = m² + m p + p²/4 - r
+    # w = q / (2 s) (from the factorisation); where s is ~0 (relative to the
+    # scaled roots, O(1)) the quotient is 0/0 and w² = m² + m p + p²/4 - r instead
     w_small = np.copysign(np.sqrt(np.maximum(m * m + m * p + 0.25 * p * p - r, 0.0)), q)
-    big = s > 1e-8 * (1.0 + np.sqrt(np.abs(p)))
+    big = s > _SMALL_S * (1.0 + np.sqrt(np.abs(p)))
     w = np.where(big, 0.5 * q / (s + ~big), w_small)
     # y² - s y + (p/2 + m + w) = 0 and y² + s y + (p/2 + m - w) = 0
     S = s[..., None] * _PM
@@ -376,4 +377,6 @@ def _companion_roots(k: FloatArray) -> NDArray[np.complex128]:
 
 
 _ROOT_POWERS = 1.0 / np.arange(1.0, 5.0)
+#: Below this ``s = sqrt(2m)`` (roots scaled to O(1)), ``w = q / 2s`` is 0/0.
+_SMALL_S = 1e-8
 _PM = np.array([1.0, -1.0])

@@ -107,10 +107,12 @@ class _Wrist:
         y6 = np.cross(h6, x6)
         k56 = float(h5 @ h6)
         s56 = math.sqrt(1.0 - k56 * k56)
-        # "no-flip" bends the wrist as at q = 0, or as q5 > 0 from there when
-        # q = 0 is itself singular: (h4 × h5)ᵀ R5(ε) h6 ≈ -ε sin²(α45) (h4ᵀh6).
+        # "no-flip" bends the wrist as at q = 0 (the sign of γ there), or as
+        # q5 > 0 bends it from there when γ = 0 at q = 0 (h6 in the plane of
+        # h4 and h5, e.g. aligned with h4): (h4 × h5)ᵀ R5(ε) h6 ≈ ε (k45 k56 - h4ᵀh6)
         home = float(np.cross(h4, h5) @ h6)
-        flip_sign = math.copysign(1.0, home if abs(home) > 1e-9 else -float(h4 @ h6))
+        bend = k45 * k56 - float(h4 @ h6)
+        flip_sign = math.copysign(1.0, home if abs(home) > GEOMETRY_TOL else bend)
         return cls(
             F=F,
             k45=k45,
@@ -345,7 +347,7 @@ def _positions_wrist_centre(robot: Robot, c: FloatArray) -> bool:
     r = T[:, :3, :3] @ c_tool  # wrist centre relative to the tool origin
     Jc = J[:, :3, :3] + np.cross(J[:, 3:, :3], r[:, :, None], axis=1)
     s = np.linalg.svd(Jc, compute_uv=False)
-    return bool(np.any(s[:, -1] > _RANK_TOL * np.maximum(s[:, 0], 1e-300)))
+    return bool(np.any(s[:, -1] > _RANK_TOL * s[:, 0]))
 
 
 def make_spherical_wrist_solver(robot: Robot) -> SphericalWristSolver | None:
