@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Literal
@@ -11,7 +12,7 @@ from numpy.typing import NDArray
 
 from kinematica.errors import UnreachableError
 
-__all__ = ["IKBatchResult", "IKResult", "Status"]
+__all__ = ["IKBatchResult", "IKResult", "Status", "status_message"]
 
 FloatArray = NDArray[np.float64]
 
@@ -19,6 +20,54 @@ Status = Literal["ok", "unreachable", "singular", "out_of_limits", "not_found"]
 
 #: Statuses for which ``solutions`` is not empty.
 SOLVED: frozenset[str] = frozenset({"ok", "singular"})
+
+
+def status_message(
+    status: str,
+    *,
+    method: str,
+    count: int,
+    out_of_limits: int,
+    free: tuple[int, ...],
+    gap: float,
+    nearest: tuple[float, float],
+) -> str:
+    """One sentence for people about an IK outcome.
+
+    Args:
+        status: The status.
+        method: The method name.
+        count: Solutions within limits.
+        out_of_limits: Solutions outside the limits.
+        free: 0-based indices of the free joints (singular case).
+        gap: Distance outside the reach (m), NaN if unknown.
+        nearest: Position (m) and rotation (rad) error of the closest
+            candidate that was not a solution, NaN if none.
+    """
+    plural = "s" if count != 1 else ""
+    if status == "ok":
+        extra = f"; {out_of_limits} more outside the joint limits" if out_of_limits else ""
+        return f"{count} solution{plural} ({method}){extra}"
+    if status == "singular":
+        names = ", ".join(f"q{v + 1}" for v in free)
+        return (
+            f"singular: infinitely many solutions ({names or 'some joints'} free); "
+            f"{count} representative{plural} given"
+        )
+    if status == "out_of_limits":
+        s = "s" if out_of_limits != 1 else ""
+        return f"{out_of_limits} solution{s} exist, none within the joint limits"
+    if status == "unreachable":
+        if math.isfinite(gap) and gap > 0:
+            return f"unreachable: the target is at least {gap:.6g} m outside the reach"
+        pos, rot = nearest
+        if math.isfinite(pos):
+            return (
+                "unreachable: no configuration reaches this pose "
+                f"(closest candidate off by {pos:.3g} m, {rot:.3g} rad)"
+            )
+        return "unreachable: the closed form has no real solution for this target"
+    return "not found: the numeric search did not converge (the target may still be reachable)"
 
 
 @dataclass(frozen=True)
@@ -141,32 +190,15 @@ class IKBatchResult:
 
     def message(self, i: int) -> str:
         """One sentence saying what happened to target ``i``."""
-        status, k = str(self.status[i]), int(self.count[i])
-        j = int(self.out_of_limits_count[i])
-        plural = "s" if k != 1 else ""
-        if status == "ok":
-            extra = f"; {j} more outside the joint limits" if j else ""
-            return f"{k} solution{plural} ({self.method}){extra}"
-        if status == "singular":
-            free = ", ".join(f"q{v + 1}" for v in np.flatnonzero(self.free[i]))
-            return (
-                f"singular: infinitely many solutions ({free or 'some joints'} free); "
-                f"{k} representative{plural} given"
-            )
-        if status == "out_of_limits":
-            return f"{j} solution{'s' if j != 1 else ''} exist, none within the joint limits"
-        if status == "unreachable":
-            gap = float(self.gap[i])
-            if np.isfinite(gap) and gap > 0:
-                return f"unreachable: the target is at least {gap:.6g} m outside the reach"
-            pos, rot = self.nearest_error[i]
-            if np.isfinite(pos):
-                return (
-                    "unreachable: no configuration reaches this pose "
-                    f"(closest candidate off by {pos:.3g} m, {rot:.3g} rad)"
-                )
-            return "unreachable: the closed form has no real solution for this target"
-        return "not found: the numeric search did not converge (the target may still be reachable)"
+        return status_message(
+            str(self.status[i]),
+            method=self.method,
+            count=int(self.count[i]),
+            out_of_limits=int(self.out_of_limits_count[i]),
+            free=tuple(int(v) for v in np.flatnonzero(self.free[i])),
+            gap=float(self.gap[i]),
+            nearest=(float(self.nearest_error[i, 0]), float(self.nearest_error[i, 1])),
+        )
 
     def __iter__(self) -> Iterator[IKResult]:
         return (self[i] for i in range(len(self)))

@@ -12,6 +12,7 @@ from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.analytic import find_solver
 from kinematica.ik.candidates import AnalyticSolver
 from kinematica.ik.finalize import Tolerance, finalize
+from kinematica.ik.finalize_one import finalize_one
 from kinematica.ik.numeric import solve_numeric
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.robot import Robot
@@ -126,11 +127,25 @@ def solve_ik(
             f"no closed-form solver for {robot.name} ({why}); use method='numeric'"
         )
 
+    tol = tol or Tolerance()
     if solver is not None:
         solver_targets = (
             targets[:, :3, 3] if solver.position_only and not position_only else targets
         )
         cand = solver.solve(solver_targets)
+        if single:
+            one = finalize_one(
+                robot,
+                targets[0],
+                cand,
+                method=f"analytic:{solver.name}",
+                complete=True,
+                respect_limits=respect_limits,
+                q0=None if q0a is None else q0a.reshape(-1, robot.dof)[0],
+                tol=tol,
+            )
+            if one is not None:
+                return one
         result = finalize(
             robot,
             targets,
@@ -142,15 +157,14 @@ def solve_ik(
             tol=tol,
         )
     else:
-        tol_ = tol or Tolerance()
         cand = solve_numeric(
             robot,
             targets,
             q0=q0a,
             mask=m,
             seed=seed,
-            tol_position=tol_.position,
-            tol_angle=tol_.rotation,
+            tol_position=tol.position,
+            tol_angle=tol.rotation,
             respect_limits=respect_limits,
             position_only=position_only,
         )
