@@ -86,12 +86,14 @@ class DHChain:
     base: FloatArray
     _end_identity: bool = field(init=False, repr=False)
     _start_rows: list[list[float]] = field(init=False, repr=False)
+    _end_rows: list[list[float]] = field(init=False, repr=False)
     _links: list[tuple[bool, float, float, float, float, float]] = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         # Python-float copies for the single-configuration path.
         object.__setattr__(self, "_end_identity", bool(np.array_equal(self.end, np.eye(4))))
         object.__setattr__(self, "_start_rows", self.start[:3].tolist())
+        object.__setattr__(self, "_end_rows", self.end[:3].tolist())
         links = zip(
             self.prismatic.tolist(),
             self.theta.tolist(),
@@ -243,9 +245,29 @@ class DHChain:
         Returns:
             ``(4, 4)`` tool pose in the base frame.
         """
+        rows = self.pose_rows(q)
+        rows.append([0.0, 0.0, 0.0, 1.0])
+        return np.array(rows)
+
+    def pose_rows(
+        self, q: Sequence[float], axes: list[tuple[float, ...]] | None = None
+    ) -> list[list[float]]:
+        """The tool pose of one configuration as three rows of Python floats.
+
+        Args:
+            q: ``(n,)`` joint values.
+            axes: If a list, each joint's axis is appended to it as
+                ``(zx, zy, zz, ox, oy, oz)``: direction and a point on it (base
+                frame), for Jacobians.
+
+        Returns:
+            The top three rows ``[[r00, r01, r02, px], ...]`` of ``T``.
+        """
         (x0, y0, z0, p0), (x1, y1, z1, p1), (x2, y2, z2, p2) = self._start_rows
         cos, sin = math.cos, math.sin
         for qi, (prismatic, th, di, ai, ca, sa) in zip(q, self._links, strict=True):
+            if axes is not None:
+                axes.append((z0, z1, z2, p0, p1, p2))
             if prismatic:
                 di = di + qi
             else:
@@ -270,10 +292,17 @@ class DHChain:
                 ca * z1 - sa * w1,
                 ca * z2 - sa * w2,
             )
-        T = np.array([[x0, y0, z0, p0], [x1, y1, z1, p1], [x2, y2, z2, p2], [0.0, 0.0, 0.0, 1.0]])
-        if not self._end_identity:
-            T = T @ self.end
-        return T
+        T = [[x0, y0, z0, p0], [x1, y1, z1, p1], [x2, y2, z2, p2]]
+        if self._end_identity:
+            return T
+        E = self._end_rows
+        return [
+            [
+                r[0] * E[0][j] + r[1] * E[1][j] + r[2] * E[2][j] + (r[3] if j == 3 else 0.0)
+                for j in range(4)
+            ]
+            for r in T
+        ]
 
 
 def _rotate_const(

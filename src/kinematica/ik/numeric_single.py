@@ -41,7 +41,6 @@ FloatArray = NDArray[np.float64]
 # immutable and cached per robot by ``kinematica.ik.numeric``).
 _KERNELS: weakref.WeakKeyDictionary[LMProblem, _Kernel] = weakref.WeakKeyDictionary()
 
-Axis = tuple[float, float, float, float, float, float]
 
 
 class _Kernel:
@@ -49,19 +48,8 @@ class _Kernel:
 
     def __init__(self, problem: LMProblem) -> None:
         chain = problem.chain
-        self.links = list(
-            zip(
-                chain.prismatic.tolist(),
-                chain.theta.tolist(),
-                chain.d.tolist(),
-                chain.a.tolist(),
-                chain.ca.tolist(),
-                chain.sa.tolist(),
-                strict=True,
-            )
-        )
-        self.start = chain.start[:3].tolist()
-        self.end = None if np.array_equal(chain.end, np.eye(4)) else chain.end[:3].tolist()
+        self.chain = chain
+        self.n = chain.dof
         self.revolute = (~problem.prismatic).tolist()
         self.rows = problem.rows.tolist()
         self.weight = problem.weight.tolist()
@@ -78,7 +66,7 @@ class _Kernel:
         self.tol_position = problem.tol_position
         self.tol_angle = problem.tol_angle
         self.max_steps = problem.max_iterations
-        self.wide = len(self.rows) <= len(self.links)
+        self.wide = len(self.rows) <= self.n
 
     def project(self, q: list[float]) -> list[float]:
         """Wrap revolute angles into their window and clamp (see ``LMProblem.project``)."""
@@ -117,55 +105,9 @@ class _Kernel:
         self, q: list[float], p_t: list[float], R_t: list[list[float]] | None
     ) -> tuple[list[float], list[Sequence[float]]]:
         """Counted errors ``(m,)`` (unweighted) and weighted Jacobian rows ``(m, n)``."""
-        (x0, y0, z0, p0), (x1, y1, z1, p1), (x2, y2, z2, p2) = self.start
-        cos, sin = math.cos, math.sin
-        axes: list[Axis] = []
-        for qi, (prismatic, th, di, ai, ca, sa) in zip(q, self.links, strict=True):
-            axes.append((z0, z1, z2, p0, p1, p2))
-            if prismatic:
-                di = di + qi
-            else:
-                th = th + qi
-            c, s = cos(th), sin(th)
-            x0, x1, x2, w0, w1, w2 = (
-                c * x0 + s * y0,
-                c * x1 + s * y1,
-                c * x2 + s * y2,
-                c * y0 - s * x0,
-                c * y1 - s * x1,
-                c * y2 - s * x2,
-            )
-            p0 += di * z0 + ai * x0
-            p1 += di * z1 + ai * x1
-            p2 += di * z2 + ai * x2
-            y0, y1, y2, z0, z1, z2 = (
-                ca * w0 + sa * z0,
-                ca * w1 + sa * z1,
-                ca * w2 + sa * z2,
-                ca * z0 - sa * w0,
-                ca * z1 - sa * w1,
-                ca * z2 - sa * w2,
-            )
-        if self.end is not None:
-            (e00, e01, e02, e03), (e10, e11, e12, e13), (e20, e21, e22, e23) = self.end
-            p0 += e03 * x0 + e13 * y0 + e23 * z0
-            p1 += e03 * x1 + e13 * y1 + e23 * z1
-            p2 += e03 * x2 + e13 * y2 + e23 * z2
-            x0, y0, z0 = (
-                e00 * x0 + e10 * y0 + e20 * z0,
-                e01 * x0 + e11 * y0 + e21 * z0,
-                e02 * x0 + e12 * y0 + e22 * z0,
-            )
-            x1, y1, z1 = (
-                e00 * x1 + e10 * y1 + e20 * z1,
-                e01 * x1 + e11 * y1 + e21 * z1,
-                e02 * x1 + e12 * y1 + e22 * z1,
-            )
-            x2, y2, z2 = (
-                e00 * x2 + e10 * y2 + e20 * z2,
-                e01 * x2 + e11 * y2 + e21 * z2,
-                e02 * x2 + e12 * y2 + e22 * z2,
-            )
+        axes: list[tuple[float, ...]] = []
+        T = self.chain.pose_rows(q, axes)
+        p0, p1, p2 = T[0][3], T[1][3], T[2][3]
 
         # Geometric Jacobian columns: [z × (p − o); z] (revolute), [z; 0] (prismatic).
         cols: list[tuple[float, float, float, float, float, float]] = []
@@ -175,7 +117,6 @@ class _Kernel:
                 cols.append((a1 * d2 - a2 * d1, a2 * d0 - a0 * d2, a0 * d1 - a1 * d0, a0, a1, a2))
             else:
                 cols.append((a0, a1, a2, 0.0, 0.0, 0.0))
-        T = [[x0, y0, z0, p0], [x1, y1, z1, p1], [x2, y2, z2, p2]]
         e = self.error6(T, p_t, R_t)
         if self.exact and R_t is not None:
             # Only some rotation components count: their rows are J_r⁻¹(Δω) J_ω.
