@@ -1,0 +1,512 @@
+"""Inverse kinematics: closed-form speed and exactness against EAIK, then numeric IK.
+
+Run with ``make bench`` (or ``.venv/bin/python benchmarks/ik.py``; ``--poses``,
+``--singles``, ``--seed`` change the sample). For five 6R arms with a closed
+form (PUMA 560, UR5, ABB IRB 120, KUKA KR 6 and an arbitrary spherical-wrist
+arm whose first three axes are skew) it draws random reachable poses (forward
+kinematics of configurations uniform within the joint limits, seeded) and
+prints:
+
+* time per pose: one pose at a time (median over ``--singles`` poses, each
+  call timed on its own) and batched (one call on all ``--poses`` poses, best
+  of 3), for the public ``robot.ik`` (solve, check by FK, deduplicate, limits)
+  and for the raw closed-form ``solver.solve`` it calls first;
+* solutions per pose: mean and histogram of counts, within the limits
+  (what ``robot.ik`` returns as ``solutions``) and in all (plus
+  ``out_of_limits``); the share of poses whose every returned solution our
+  own FK puts within 1e-10 m and 1e-10 rad of the target (angle of
+  ``R_targetᵀ R``), the worst residual, and the share of poses among whose
+  solutions is the configuration that made the pose (modulo 2π).
+
+When ``import eaik`` works (EAIK, C++ subproblem decomposition), the same poses
+go to its ``DhRobot.IK`` (one pose) and ``IK_batched`` (one worker thread), and
+its answers are judged the same way by our FK: exact ones, least-squares ones
+(its ``is_LS`` flag), duplicates modulo 2π, and any exact EAIK solution that
+``robot.ik`` does not return (each such pose is printed: that is a bug of ours).
+
+Last, ``benchmarks/ik_numeric.py``'s report (numeric IK on two 7-DOF arms,
+success judged by our FK at 1e-10) is run once from here, so that ``make
+bench`` prints it too. No assertions.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import statistics
+import sys
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import ik_numeric
+from _common import best_of, fmt_time, header, table
+
+import kinematica as km
+from kinematica.dh import Revolute
+from kinematica.ik.analytic import find_solver
+from kinematica.ik.result import IKBatchResult
+from kinematica.robot import Robot
+from kinematica.spatial import inv_transform, rotation_angle, wrap_angle
+
+#: A solution is exact when our FK puts the tool this close to the target (m and rad).
+TOL = 1e-10
+#: Two solutions closer than this in every joint (rad, modulo 2π) are the same,
+#: as ``robot.ik`` deduplicates.
+SAME_TOL = 1e-7
+#: An EAIK solution is among ours when one of ours is this close in every joint.
+MATCH_TOL = 1e-6
+#: Most solutions a 6R arm has at a non-singular pose: the histogram's last column.
+MAX_COUNT = 8
+#: Targets of the issue, per pose: closed form batched and single.
+TARGET_BATCHED, TARGET_SINGLE = 4e-6, 100e-6
+#: Poses described, per arm and kind, where EAIK's exact solutions and ours differ.
+SHOW_POSES = 3
+
+GENERAL_ROWS = [  # theta offset, d, a, alpha: 'general-spherical-wrist' of ik_reference.json
+    (0.0, 0.3, 0.12, 1.1),
+    (0.0, 0.1, 0.45, -0.7),
+    (0.0, -0.15, -0.08, 2.0),
+    (0.0, 0.35, 0.0, math.pi / 2),
+    (0.0, 0.0, 0.0, -math.pi / 2),
+    (0.0, 0.1, 0.0, 0.0),
+]
+
+
+def arms() -> list[Robot]:
+    general = Robot.from_dh(
+        [Revolute(offset=th, d=d, a=a, alpha=al) for th, d, a, al in GENERAL_ROWS],
+        name="general spherical wrist",
+    )
+    return [*(km.load(name) for name in ("puma560", "ur5", "irb120", "kr6")), general]
+
+
+# ---------------------------------------------------------------------- judging
+def residuals(robot: Robot, q: np.ndarray, T: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Position (m), rotation (rad) errors ``(N, m)`` of ``q (N, m, n)`` vs ``T (N, 4, 4)``.
+
+    NaN rows of ``q`` (no solution in that slot) get ``inf``.
+    """
+    N, m, n = q.shape
+    real = np.all(np.isfinite(q), axis=-1)
+    F = robot.fk(np.where(real[..., None], q, 0.0).reshape(-1, n)).reshape(N, m, 4, 4)
+    pos = np.linalg.norm(F[..., :3, 3] - T[:, None, :3, 3], axis=-1)
+    rot = rotation_angle(F[..., :3, :3], np.broadcast_to(T[:, None, :3, :3], F[..., :3, :3].shape))
+    return np.where(real, pos, np.inf), np.where(real, rot, np.inf)
+
+
+def same_joints(a: np.ndarray, b: np.ndarray, tol: float) -> np.ndarray:
+    """``(N, ma, mb)`` True where ``a (N, ma, n)`` and ``b (N, mb, n)`` agree modulo 2π."""
+    d = wrap_angle(a[:, :, None, :] - b[:, None, :, :])
+    return np.all(np.abs(d) < tol, axis=-1)
+
+
+def repeats_earlier(q: np.ndarray, keep: np.ndarray) -> np.ndarray:
+    """``(N, m)`` True where a kept slot of ``q (N, m, n)`` repeats an earlier kept slot."""
+    m = q.shape[1]
+    earlier = np.tril(np.ones((m, m), dtype=bool), k=-1)
+    return keep & np.any(same_joints(q, q, SAME_TOL) & earlier & keep[:, None, :], axis=-1)
+
+
+def histogram(counts: np.ndarray) -> list[str]:
+    """Poses with 0, 1, ..., MAX_COUNT solutions (the last column: that many or more)."""
+    h = np.bincount(np.minimum(counts, MAX_COUNT), minlength=MAX_COUNT + 1)
+    return [f"{v:,}" if v else "." for v in h]
+
+
+def pad(rows: list[np.ndarray], n: int) -> np.ndarray:
+    """Stack ``(k_i, n)`` arrays into ``(N, max k, n)``, NaN-padded."""
+    m = max([len(r) for r in rows] + [1])
+    out = np.full((len(rows), m, n), np.nan)
+    for i, r in enumerate(rows):
+        out[i, : len(r)] = r
+    return out
+
+
+@dataclass
+class Judged:
+    """What our FK says of the solutions a solver returned for N poses."""
+
+    label: str
+    count: np.ndarray  # (N,) solutions counted
+    all_exact: float  # share of poses whose every returned solution is exact
+    worst: tuple[float, float]  # largest position (m) and rotation (rad) residual
+    found: float | None  # share of poses whose generating q is among the solutions
+
+    def row(self) -> list[str]:
+        worst = (
+            "-" if not np.isfinite(self.worst[0]) else f"{self.worst[0]:.0e} / {self.worst[1]:.0e}"
+        )
+        return [
+            self.label,
+            f"{self.count.mean():.2f}",
+            *histogram(self.count),
+            f"{100 * self.all_exact:.2f} %",
+            worst,
+            "-" if self.found is None else f"{100 * self.found:.2f} %",
+        ]
+
+
+def judge(
+    label: str, robot: Robot, q: np.ndarray, T: np.ndarray, q_gen: np.ndarray | None
+) -> Judged:
+    """Judge solutions ``q (N, m, n)`` (NaN-padded) of ``T (N, 4, 4)`` by our FK."""
+    real = np.all(np.isfinite(q), axis=-1)
+    pos, rot = residuals(robot, q, T)
+    exact = real & (pos <= TOL) & (rot <= TOL)
+    worst = (float(pos[real].max()), float(rot[real].max())) if real.any() else (math.inf, math.inf)
+    found = None
+    if q_gen is not None:
+        found = float(np.any(same_joints(q, q_gen[:, None, :], MATCH_TOL)[:, :, 0], axis=1).mean())
+    return Judged(
+        label, real.sum(axis=1), float(np.all(exact | ~real, axis=1).mean()), worst, found
+    )
+
+
+def every_solution(res: IKBatchResult) -> np.ndarray:
+    """``(N, k, n)``: the solutions within the limits, then those outside them."""
+    return np.concatenate([res.solutions, res.out_of_limits], axis=1)
+
+
+# ------------------------------------------------------------------------- EAIK
+@dataclass
+class Eaik:
+    """EAIK's model of a robot, and how to turn poses and answers into ours."""
+
+    version: str
+    model: Any
+    offsets: np.ndarray  # (n,) DH theta offsets, not part of EAIK's DH
+    base_inv: np.ndarray
+    tool_inv: np.ndarray
+
+    def poses(self, T: np.ndarray) -> np.ndarray:
+        """Our targets ``(N, 4, 4)`` in EAIK's frames (no base, no tool)."""
+        return self.base_inv @ T @ self.tool_inv
+
+    def joints(self, theta: np.ndarray) -> np.ndarray:
+        """EAIK's joint angles (DH theta) as our joint values, wrapped."""
+        return wrap_angle(theta - self.offsets)
+
+
+def eaik_version() -> str | None:
+    """``"EAIK x.y.z"`` if EAIK imports, else None."""
+    try:
+        import eaik.IK_DH  # noqa: F401
+    except ImportError:
+        return None
+    from importlib.metadata import version
+
+    return f"EAIK {version('eaik')}"
+
+
+def eaik_model(robot: Robot, name: str) -> Eaik | str:
+    """EAIK's ``DhRobot`` of the arm, or why there is none."""
+    from eaik.IK_DH import DhRobot
+
+    if robot.convention != "standard" or robot.is_prismatic.any():
+        return f"EAIK: {robot.name} is not a standard-DH all-revolute arm, skipped"
+    L = robot.links
+    model = DhRobot(
+        np.array([j.alpha for j in L]), np.array([j.a for j in L]), np.array([j.d for j in L])
+    )
+    if not model.hasKnownDecomposition():
+        return f"EAIK: no decomposition known for {robot.name}, skipped"
+    e = Eaik(
+        name,
+        model,
+        np.array([j.offset for j in L]),
+        inv_transform(robot.base),
+        inv_transform(robot.tool),
+    )
+    q = np.random.default_rng(1).uniform(*robot.qlim.T, size=(5, robot.dof))
+    gap = max(
+        np.abs(robot.base @ model.fwdKin(qi + e.offsets) @ robot.tool - robot.fk(qi)).max()
+        for qi in q
+    )
+    if gap > 1e-12:
+        return f"EAIK: its FK of {robot.name} differs from ours by {gap:.1e}, skipped"
+    return e
+
+
+# ---------------------------------------------------------------------- timing
+def median_per_pose(fn: Callable[[np.ndarray], object], poses: np.ndarray) -> float:
+    """Median wall time (s) of ``fn(T)`` over the poses, each call timed on its own."""
+    fn(poses[0])
+    times = []
+    for T in poses:
+        t0 = time.perf_counter()
+        fn(T)
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times)
+
+
+@dataclass
+class Report:
+    """Everything measured on one arm."""
+
+    arm: str
+    times: list[tuple[str, float, float]]  # (call, single s, batched s per pose)
+    judged: list[Judged]
+    eaik: list[str] | None = None  # a row of the EAIK table
+    notes: list[str] = field(default_factory=list)
+
+
+def bench_arm(robot: Robot, n_poses: int, n_singles: int, seed: int, eaik: str | None) -> Report:
+    """Time and judge kinematica, and EAIK (``eaik``: its name) unless None, on one arm."""
+    solver = find_solver(robot, position_only=False)
+    if solver is None:
+        raise SystemExit(f"{robot.name}: no closed-form solver, nothing to benchmark")
+    lo, hi = robot.qlim.T
+    q_gen = np.random.default_rng(seed).uniform(lo, hi, (n_poses, robot.dof))
+    T = robot.fk(q_gen)
+    few = T[:n_singles]
+
+    rep = Report(
+        robot.name,
+        [
+            (
+                "kinematica robot.ik",
+                median_per_pose(robot.ik, few),
+                best_of(lambda: robot.ik(T), 3) / n_poses,
+            ),
+            (
+                f"kinematica solver.solve (raw, {solver.name})",
+                median_per_pose(lambda t: solver.solve(t[None]), few),
+                best_of(lambda: solver.solve(T), 3) / n_poses,
+            ),
+        ],
+        [],
+    )
+    res = robot.ik(T)
+    if not isinstance(res, IKBatchResult):
+        raise TypeError(f"robot.ik of a batch gave {type(res).__name__}")
+    ours = every_solution(res)
+    raw = solver.solve(T).q
+    rep.judged += [
+        judge("robot.ik: solutions (within limits)", robot, res.solutions, T, q_gen),
+        judge("robot.ik: + out_of_limits", robot, ours, T, q_gen),
+        judge("solver.solve: real candidates (raw)", robot, raw, T, q_gen),
+    ]
+    statuses = dict(zip(*np.unique(res.status, return_counts=True), strict=True))
+    if set(statuses) != {"ok"}:
+        rep.notes.append(
+            "robot.ik statuses: " + ", ".join(f"{k} {v:,}" for k, v in statuses.items())
+        )
+
+    if eaik is not None:
+        e = eaik_model(robot, eaik)
+        if isinstance(e, str):
+            rep.notes.append(e)
+        else:
+            bench_eaik(rep, robot, e, T, q_gen, ours, n_singles)
+    return rep
+
+
+def bench_eaik(
+    rep: Report,
+    robot: Robot,
+    e: Eaik,
+    T: np.ndarray,
+    q_gen: np.ndarray,
+    ours: np.ndarray,
+    n_singles: int,
+) -> None:
+    """Time EAIK on the poses ``T`` and judge its answers against ``ours`` (every solution)."""
+    n_poses = len(T)
+    Te = e.poses(T)  # converted outside the timed calls
+    pose_list = list(Te)
+    rep.times.append(
+        (
+            f"{e.version} IK / IK_batched (1 thread)",
+            median_per_pose(e.model.IK, Te[:n_singles]),
+            best_of(lambda: e.model.IK_batched(pose_list, 1), 3) / n_poses,
+        )
+    )
+    sols = e.model.IK_batched(pose_list, 1)
+    qe = pad([e.joints(np.asarray(s.Q).reshape(-1, robot.dof)) for s in sols], robot.dof)
+    ls = pad([np.asarray(s.is_LS, dtype=float).reshape(-1, 1) for s in sols], 1)[..., 0] == 1
+    real = np.all(np.isfinite(qe), axis=-1)
+    pos, rot = residuals(robot, qe, T)
+    exact = real & (pos <= TOL) & (rot <= TOL)
+    # The exact answers alone (at most a few per pose, where EAIK may give 30 answers).
+    qx = pad([qe[i][exact[i]] for i in range(n_poses)], robot.dof)
+    dup = repeats_earlier(qx, np.all(np.isfinite(qx), axis=-1))
+    distinct = np.where(dup[..., None], np.nan, qx)
+    rep.judged += [
+        judge(f"{e.version}: every answer", robot, qe, T, q_gen),
+        judge(f"{e.version}: exact, distinct", robot, distinct, T, q_gen),
+    ]
+
+    # Set against set, modulo 2π: EAIK's exact solutions we lack (our bug), and
+    # ours without an exact EAIK twin (EAIK's miss, or an answer of it just above 1e-10).
+    ours_real = np.all(np.isfinite(ours), axis=-1)
+    distinct_real = np.all(np.isfinite(distinct), axis=-1)
+    missed = distinct_real & ~np.any(same_joints(distinct, ours, MATCH_TOL), axis=-1)
+    extra = ours_real & ~np.any(same_joints(ours, qx, MATCH_TOL), axis=-1)
+
+    def count(mask: np.ndarray) -> str:
+        return f"{int(mask.sum()):,} / {int(mask.any(axis=1).sum()):,}"
+
+    rep.eaik = [
+        robot.name,
+        f"{real.sum(axis=1).mean():.2f}",
+        f"{int(real.sum()):,}",
+        f"{int(exact.sum()):,}",
+        f"{int(dup.sum()):,}",
+        f"{int((real & ls).sum()):,}",
+        f"{int((exact & ls).sum()):,}",
+        f"{int((real & ~ls & ~exact).sum()):,}",
+        count(missed),
+        count(extra),
+    ]
+    for i in np.flatnonzero(missed.any(axis=1))[:SHOW_POSES]:
+        rep.notes.append(
+            f"BUG: pose {i} has exact EAIK solutions robot.ik does not return: "
+            f"{distinct[i][missed[i]].tolist()}\n    q that made it {q_gen[i].tolist()}\n"
+            f"    T = {T[i].tolist()}\n    robot.ik: {ours[i][ours_real[i]].tolist()}"
+        )
+    for i in np.flatnonzero(extra.any(axis=1))[:SHOW_POSES]:
+        for q in ours[i][extra[i]]:
+            near = np.abs(wrap_angle(qe[i] - q)).max(axis=-1)
+            k = int(np.nanargmin(near))
+            rep.notes.append(
+                f"pose {i}: robot.ik's {np.round(q, 6).tolist()} has no exact EAIK twin; EAIK's "
+                f"nearest answer is {near[k]:.0e} rad away, its residual {pos[i, k]:.1e} m / "
+                f"{rot[i, k]:.1e} rad (is_LS {bool(ls[i, k])})"
+            )
+
+
+# ------------------------------------------------------------------------ main
+def grouped(reports: list[Report], rows_of: Callable[[Report], list[list[str]]]) -> list[list[str]]:
+    """One heading row per arm, then its rows indented."""
+    out = []
+    for rep in reports:
+        rows = rows_of(rep)
+        out.append([rep.arm] + [""] * (len(rows[0]) - 1))
+        out += [["  " + r[0], *r[1:]] for r in rows]
+    return out
+
+
+def time_rows(rep: Report) -> list[list[str]]:
+    ref = next((t for t in rep.times if t[0].startswith("EAIK")), None)
+
+    def vs(t: float, r: float | None) -> str:
+        return "-" if r is None else f"{t / r:.2f}x"
+
+    return [
+        [
+            call,
+            fmt_time(single),
+            fmt_time(batched),
+            vs(single, ref and ref[1]),
+            vs(batched, ref and ref[2]),
+        ]
+        for call, single, batched in rep.times
+    ]
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--poses", type=int, default=10_000, help="poses per arm (10,000)")
+    parser.add_argument("--singles", type=int, default=1_000, help="poses timed one by one (1,000)")
+    parser.add_argument("--seed", type=int, default=0, help="seed of the poses (0)")
+    args = parser.parse_args()
+
+    print(header("kinematica inverse-kinematics benchmark"))
+    wall0, cpu0 = time.perf_counter(), time.process_time()
+    print(
+        f"Closed form: {args.poses:,} random reachable poses per arm (FK of q uniform within the "
+        f"limits, seed {args.seed}).\nsingle = median over {args.singles:,} poses, each call "
+        f"timed on its own; batched = one call on all {args.poses:,} (best of 3), per pose."
+    )
+    eaik = eaik_version()
+    if eaik is None:
+        print("EAIK is not importable (pip install eaik): its rows are skipped.")
+    reports = [bench_arm(robot, args.poses, args.singles, args.seed, eaik) for robot in arms()]
+
+    head = ["", "single", "batched/pose"]
+    if eaik is None:
+        print("\n  time per pose")
+        rows = [r[:3] for r in grouped(reports, time_rows)]
+    else:
+        print("\n  time per pose ('vs EAIK' = time / EAIK's time: above 1, EAIK is faster)")
+        head += ["single vs EAIK", "batched vs EAIK"]
+        rows = grouped(reports, time_rows)
+    print(table(rows, head))
+
+    print(
+        f"\n  solutions per pose: mean and histogram of counts (poses with 0, 1, ... {MAX_COUNT}+);"
+        f" 'all exact' = poses whose every solution our FK\n  puts within {TOL:g} m and "
+        f"{TOL:g} rad of the target; worst residual (m / rad); 'q found' = poses among whose "
+        "solutions\n  is the q that made the pose (modulo 2π)"
+    )
+    counts = [*(str(k) for k in range(MAX_COUNT)), f"{MAX_COUNT}+"]
+    head = ["", "mean", *counts, "all exact", "worst", "q found"]
+    print(table(grouped(reports, lambda r: [j.row() for j in r.judged]), head))
+
+    eaik_rows = [r.eaik for r in reports if r.eaik is not None]
+    if eaik_rows:
+        print(
+            "\n  EAIK's answers judged by our FK at 1e-10: duplicates = exact answers repeating "
+            "another modulo 2π; is_LS = flagged\n  least-squares (approximate); 'EAIK exact, not "
+            "in robot.ik' and 'robot.ik, no exact EAIK twin' count solutions / poses"
+        )
+        head = [
+            "",
+            "per pose",
+            "answers",
+            "exact",
+            "duplicates",
+            "is_LS",
+            "is_LS exact",
+            "unflagged inexact",
+            "EAIK exact, not in robot.ik",
+            "robot.ik, no exact EAIK twin",
+        ]
+        print(table(eaik_rows, head))
+
+    notes = [f"  {r.arm}: {n}" for r in reports for n in r.notes]
+    if notes:
+        print("\n" + "\n".join(dict.fromkeys(notes)))
+
+    print(
+        f"\n  issue targets for robot.ik: batched <= {fmt_time(TARGET_BATCHED)} per pose, "
+        f"single <= {fmt_time(TARGET_SINGLE)}"
+    )
+
+    def against(t: float, target: float) -> str:
+        return "met" if t <= target else f"{t / target:.1f}x the target"
+
+    rows = [
+        [r.arm, fmt_time(b), against(b, TARGET_BATCHED), fmt_time(s), against(s, TARGET_SINGLE)]
+        for r in reports
+        for call, s, b in r.times[:1]
+    ]
+    print(table(rows, ["", "batched/pose", "", "single", ""]))
+
+    print(
+        "\nNumeric IK: benchmarks/ik_numeric.py, run from here (issue targets on the Panda: "
+        "success >= 99.9 % at 1e-10,\nsingle median <= 0.5 ms, batched <= 50 µs per target).\n"
+    )
+    argv = sys.argv
+    sys.argv = [ik_numeric.__file__]  # its own defaults, not our options
+    try:
+        ik_numeric.main()
+    finally:
+        sys.argv = argv
+
+    wall, cpu = time.perf_counter() - wall0, time.process_time() - cpu0
+    print(
+        f"\ncores used: CPU time / wall time over the whole run = {cpu:.1f} s / {wall:.1f} s"
+        f" = {cpu / wall:.2f}"
+    )
+
+
+if __name__ == "__main__":
+    main()
