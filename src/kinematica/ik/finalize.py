@@ -100,19 +100,28 @@ def _joint_diff(a: FloatArray, b: FloatArray, rev: NDArray[np.bool_]) -> FloatAr
     return np.where(rev, wrap_angle(d), d)
 
 
-def _compact(
-    keep: NDArray[np.bool_], key: FloatArray, *arrays: NDArray[np.generic]
-) -> tuple[NDArray[np.int64], list[NDArray[np.generic]]]:
-    """Move kept slots first (ordered by ``key``) in each ``(N, m, ...)`` array."""
+def _order(keep: NDArray[np.bool_], key: FloatArray) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+    """Slot order putting kept slots first, sorted by ``key``; and the counts."""
     order = np.argsort(np.where(keep, key, np.inf), axis=1, kind="stable")
-    count = keep.sum(axis=1)
+    return order, keep.sum(axis=1).astype(np.int64)
+
+
+def _gather(values: FloatArray, order: NDArray[np.int64], count: NDArray[np.int64]) -> FloatArray:
+    """``values (N, m, d)`` reordered by ``order``, cut to the largest count, NaN-padded."""
     k = int(count.max(initial=0))
-    out = []
-    for arr in arrays:
-        idx = order.reshape(order.shape + (1,) * (arr.ndim - 2))
-        taken = np.take_along_axis(arr, idx, axis=1)[:, :k]
-        out.append(taken)
-    return count.astype(np.int64), out
+    out = np.take_along_axis(values, order[:, :k, None], axis=1)
+    out[np.arange(k)[None, :] >= count[:, None]] = np.nan
+    return out
+
+
+def _labels(
+    labels: tuple[str, ...], order: NDArray[np.int64], count: NDArray[np.int64]
+) -> NDArray[np.str_]:
+    """Branch labels of the reordered slots, ``""`` where padded."""
+    k = int(count.max(initial=0))
+    out = np.asarray(labels, dtype=str)[order[:, :k]]
+    out[np.arange(k)[None, :] >= count[:, None]] = ""
+    return out
 
 
 def finalize(
@@ -169,18 +178,20 @@ def finalize(
         pos[rows, slots], rot[rows, slots] = p_err, r_err
     solved = valid & (pos <= tol.position) & (rot <= tol.rotation)
 
+    # Duplicates (modulo 2π): a slot repeating an earlier solved slot is dropped.
+    # Angles are in (−π, π] here, so a difference d wraps to min(|d|, 2π − |d|).
+    later, earlier = np.tril_indices(m, k=-1)  # every pair (i < j) once
+    diff = np.abs(q[:, later] - q[:, earlier])  # (N, pairs, n)
+    diff = np.where(rev, np.minimum(diff, 2.0 * np.pi - diff), diff)
+    same = np.all(diff < DEDUP_TOL, axis=-1) & solved[:, earlier]
+    dup = np.zeros((N, m, m), dtype=bool)
+    dup[:, later, earlier] = same
+    solved &= ~dup.any(axis=-1)
+
     qlim = robot.qlim
     lo, hi = qlim[:, 0], qlim[:, 1]
     if respect_limits:
         q = np.where(solved[..., None], _shift_into_limits(q, lo, hi, rev), q)
-
-    # Duplicates (modulo 2π): a slot repeating an earlier solved slot is dropped.
-    diff = _joint_diff(q[:, :, None, :], q[:, None, :, :], rev)
-    same = np.all(np.abs(diff) < DEDUP_TOL, axis=-1)  # (N, m, m)
-    earlier = np.tril(np.ones((m, m), dtype=bool), k=-1)  # [j, i]: i < j
-    dup = np.any(same & earlier & solved[:, None, :], axis=-1)
-    solved &= ~dup
-
     inside = np.all((q >= lo - LIMIT_TOL) & (q <= hi + LIMIT_TOL), axis=-1)
     if not respect_limits:
         inside = np.ones_like(inside)
@@ -192,18 +203,15 @@ def finalize(
         q0b = np.broadcast_to(np.asarray(q0, dtype=float), (N, n))
         key = np.linalg.norm(_joint_diff(q, q0b[:, None, :], rev), axis=-1)
         key = np.where(np.isfinite(key), key, np.inf)
-    labels = np.broadcast_to(np.array(cand.labels, dtype=object), (N, m))
     res = np.stack([pos, rot], axis=-1)
-    count, (sol, resid, br) = _compact(keep_in, key, q, res, labels)
-    ocount, (osol, obr) = _compact(keep_out, key, q, labels)
-    k = sol.shape[1]
-    pad = np.arange(k)[None, :] >= count[:, None]
-    sol[pad] = np.nan
-    resid[pad] = np.nan
-    br[pad] = ""
-    opad = np.arange(osol.shape[1])[None, :] >= ocount[:, None]
-    osol[opad] = np.nan
-    obr[opad] = ""
+    order, count = _order(keep_in, key)
+    oorder, ocount = _order(keep_out, key)
+    sol, resid, br = (
+        _gather(q, order, count),
+        _gather(res, order, count),
+        _labels(cand.labels, order, count),
+    )
+    osol, obr = _gather(q, oorder, ocount), _labels(cand.labels, oorder, ocount)
 
     # Status, honestly: "unreachable" only when the candidates were complete and
     # none came close, or the solver proved the target out of reach (gap > 0); a
@@ -226,15 +234,15 @@ def finalize(
     gap = np.where((status == "unreachable") & none_left, cand.gap, np.nan)
     free = cand.free & (status == "singular")[:, None]
     return IKBatchResult(
-        solutions=sol.astype(np.float64),
+        solutions=sol,
         count=count,
         status=status.astype(str),
         method=method,
-        residuals=resid.astype(np.float64),
-        branches=br.astype(str),
-        out_of_limits=osol.astype(np.float64),
+        residuals=resid,
+        branches=br,
+        out_of_limits=osol,
         out_of_limits_count=ocount,
-        out_of_limits_branches=obr.astype(str),
+        out_of_limits_branches=obr,
         free=free,
         gap=gap,
         nearest_error=nearest,
