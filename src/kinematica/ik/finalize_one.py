@@ -85,8 +85,9 @@ def finalize_one(
     for q_raw, label in zip(cand.q[0].tolist(), cand.labels, strict=True):
         if math.isnan(sum(q_raw)):
             continue
-        q = [_wrap(v) if r else v for v, r in zip(q_raw, rev, strict=True)]
-        T = robot._chain.fk_single(q).tolist()
+        q = [math.remainder(v, TWO_PI) if r else v for v, r in zip(q_raw, rev, strict=True)]
+        q = [math.pi if v == -math.pi else v + 0.0 for v in q]  # (−π, π], no −0.0
+        T = robot._chain.pose_rows(q)
         pos = math.dist((T[0][3], T[1][3], T[2][3]), p_t)
         rot = _rotation_angle(T, Tt) if pose else 0.0
         if pos > tol.position or rot > tol.rotation:
@@ -119,8 +120,9 @@ def finalize_one(
             )
 
         kept.sort(key=dist)
-    good = [k for k in kept if not respect_limits or inside(k[0])]
-    bad = [k for k in kept if respect_limits and not inside(k[0])]
+    within = [not respect_limits or inside(k[0]) for k in kept]
+    good = [k for k, w in zip(kept, within, strict=True) if w]
+    bad = [k for k, w in zip(kept, within, strict=True) if not w]
     singular = bool(cand.singular[0])
     gap = float(cand.gap[0])
     if good:
