@@ -223,3 +223,22 @@ def test_cli_ik_json_and_exit_codes(capsys: pytest.CaptureFixture[str]) -> None:
     out = capsys.readouterr().out
     assert code == 1
     assert "not found" in out or "unreachable" in out
+
+
+def test_batch_with_bad_rows_reports_them_and_solves_the_rest() -> None:
+    puma = km.load("puma560")
+    rng = np.random.default_rng(2)
+    Ts = puma.fk(random_q(puma, rng, 5))
+    Ts[1, 0, 3] = np.nan
+    Ts[3, :3, :3] *= 2.0  # scaled: not a rotation
+    many = puma.ik(Ts)
+    assert list(many.status[[1, 3]]) == ["invalid", "invalid"]
+    assert many.count[1] == many.count[3] == 0
+    assert "row 1" in many[1].message and "NaN" in many[1].message
+    assert "row 3" in many[3].message and "orthonormal" in many[3].message
+    for i in (0, 2, 4):
+        assert many.status[i] in ("ok", "singular")
+        assert_solutions_reach(puma, many[i], Ts[i])
+    positions = np.array([[0.3, 0.2, 0.5], [np.inf, 0.0, 0.0]])
+    res = km.load("anthropomorphic-3r").ik(positions)
+    assert list(res.status) == ["ok", "invalid"]

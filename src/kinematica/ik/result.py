@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
-from dataclasses import dataclass
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass, field
 from typing import Literal
 
 import numpy as np
@@ -16,7 +16,7 @@ __all__ = ["IKBatchResult", "IKResult", "Status", "status_message"]
 
 FloatArray = NDArray[np.float64]
 
-Status = Literal["ok", "unreachable", "singular", "out_of_limits", "not_found"]
+Status = Literal["ok", "unreachable", "singular", "out_of_limits", "not_found", "invalid"]
 
 #: Statuses for which ``solutions`` is not empty.
 SOLVED: frozenset[str] = frozenset({"ok", "singular"})
@@ -84,7 +84,8 @@ class IKResult:
             ``"out_of_limits"`` (solutions exist, none within limits: see
             ``out_of_limits``); ``"unreachable"`` (provably no solution:
             ``gap`` says how far); ``"not_found"`` (a numeric search did not
-            converge: the target may still be reachable).
+            converge: the target may still be reachable); ``"invalid"`` (in a
+            batch, a malformed target: the message says what is wrong).
         method: How it was solved, e.g. ``"analytic:spherical-wrist"``, ``"numeric:lm"``.
         residuals: ``(k, 2)`` per solution: position error (m), rotation error (rad).
         branches: ``(k,)`` branch label of each solution (e.g. ``"elbow up"``).
@@ -153,6 +154,8 @@ class IKBatchResult:
         gap: ``(N,)`` distance outside the reach for unreachable targets (m), else NaN.
         nearest_error: ``(N, 2)`` smallest position (m) and rotation (rad)
             residual among candidates that were not solutions, NaN if none.
+        errors: Row -> what is wrong with that row's target, for the rows whose
+            status is ``"invalid"`` (malformed targets in a batch).
     """
 
     solutions: FloatArray
@@ -167,6 +170,7 @@ class IKBatchResult:
     free: NDArray[np.bool_]
     gap: FloatArray
     nearest_error: FloatArray
+    errors: Mapping[int, str] = field(default_factory=dict)
 
     def __len__(self) -> int:
         return int(self.count.shape[0])
@@ -190,6 +194,8 @@ class IKBatchResult:
 
     def message(self, i: int) -> str:
         """One sentence saying what happened to target ``i``."""
+        if i in self.errors:
+            return f"invalid target: {self.errors[i]}"
         return status_message(
             str(self.status[i]),
             method=self.method,

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import weakref
 from typing import Literal
 
@@ -16,7 +17,7 @@ from kinematica.ik.finalize_one import finalize_one
 from kinematica.ik.numeric import solve_numeric
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.robot import Robot
-from kinematica.spatial import check_transform
+from kinematica.spatial import ORTHONORMAL_TOL, check_transform
 
 __all__ = ["Method", "solve_ik"]
 
@@ -37,22 +38,82 @@ def _solver(robot: Robot, position_only: bool) -> AnalyticSolver | None:
     return per_robot[position_only]
 
 
-def _parse_targets(target: ArrayLike) -> tuple[FloatArray, bool, bool]:
-    """Return ``(targets (N, 4, 4) or (N, 3), single, position_only)``."""
+def _parse_targets(target: ArrayLike) -> tuple[FloatArray, bool, bool, dict[int, str]]:
+    """Return ``(targets (N, 4, 4) or (N, 3), single, position_only, bad rows)``.
+
+    A single malformed target raises. In a batch, malformed rows are reported
+    (row -> what is wrong) and replaced by a harmless placeholder, so that the
+    other rows are still solved.
+    """
     try:
         arr = np.asarray(target, dtype=float)
     except (TypeError, ValueError) as exc:
         raise DimensionError(f"target must be numbers, got {target!r}") from exc
     if arr.shape == (3,) or (arr.ndim == 2 and arr.shape[-1] == 3):
-        if not np.all(np.isfinite(arr)):
-            raise DimensionError("target position holds NaN or inf")
-        return arr.reshape(-1, 3), arr.ndim == 1, True
-    if arr.ndim in (2, 3) and arr.shape[-2:] == (4, 4):
-        T = check_transform(arr, name="target")
-        return T.reshape(-1, 4, 4), arr.ndim == 2, False
+        if arr.ndim == 1:
+            if not np.all(np.isfinite(arr)):
+                raise DimensionError("target position holds NaN or inf")
+            return arr.reshape(1, 3), True, True, {}
+        bad_rows = np.flatnonzero(~np.all(np.isfinite(arr), axis=-1))
+        problems = {int(i): f"target row {i}: position holds NaN or inf" for i in bad_rows}
+        arr = arr.copy()
+        arr[bad_rows] = 0.0
+        return arr, False, True, problems
+    if arr.shape == (4, 4):
+        return check_transform(arr, name="target")[None], True, False, {}
+    if arr.ndim == 3 and arr.shape[-2:] == (4, 4):
+        try:
+            return check_transform(arr, name="target"), False, False, {}
+        except DimensionError:
+            pass  # some rows are malformed: find them all, say what is wrong with each
+        problems = {}
+        for i in _malformed_rows(arr):
+            try:
+                check_transform(arr[i], name=f"target row {i}")
+            except DimensionError as exc:
+                problems[int(i)] = str(exc)
+        if problems:
+            arr = arr.copy()
+            arr[list(problems)] = np.eye(4)
+        return arr, False, False, problems
     raise DimensionError(
         "target must be a pose (4, 4), a position (3,), or batches (N, 4, 4) / (N, 3); "
         f"got shape {arr.shape}"
+    )
+
+
+def _malformed_rows(T: FloatArray) -> NDArray[np.intp]:
+    """Indices of the ``(N, 4, 4)`` rows that are not rigid transforms."""
+    finite = np.all(np.isfinite(T), axis=(-1, -2))
+    Tf = np.where(finite[:, None, None], T, np.eye(4))
+    R = Tf[:, :3, :3]
+    gram = np.abs(np.swapaxes(R, -1, -2) @ R - np.eye(3)).max(axis=(-1, -2))
+    last = np.abs(Tf[:, 3] - [0.0, 0.0, 0.0, 1.0]).max(axis=-1)
+    ok = finite & (gram <= ORTHONORMAL_TOL) & (last <= ORTHONORMAL_TOL)
+    ok &= np.linalg.det(R) > 0
+    return np.flatnonzero(~ok)
+
+
+def _mark_invalid(result: IKBatchResult, problems: dict[int, str]) -> IKBatchResult:
+    """Blank the rows whose targets were malformed and say why."""
+    if not problems:
+        return result
+    rows = list(problems)
+    count, ocount = result.count.copy(), result.out_of_limits_count.copy()
+    status = result.status.astype(object)
+    sol, osol = result.solutions.copy(), result.out_of_limits.copy()
+    count[rows] = ocount[rows] = 0
+    status[rows] = "invalid"
+    sol[rows] = np.nan
+    osol[rows] = np.nan
+    return dataclasses.replace(
+        result,
+        solutions=sol,
+        count=count,
+        status=status.astype(str),
+        out_of_limits=osol,
+        out_of_limits_count=ocount,
+        errors=problems,
     )
 
 
@@ -81,6 +142,10 @@ def solve_ik(
 ) -> IKResult | IKBatchResult:
     """Every inverse-kinematics solution of a target, or an honest status.
 
+    In a batch, a malformed target (NaN, not a rigid transform) does not stop
+    the others: its row gets the status ``"invalid"`` and a message saying what
+    is wrong with it.
+
     Args:
         robot: The robot.
         target: A pose ``(4, 4)`` (tool in the base frame), a position ``(3,)``
@@ -105,7 +170,7 @@ def solve_ik(
     """
     if method not in ("auto", "analytic", "numeric"):
         raise KinematicaError(f"method must be 'auto', 'analytic' or 'numeric', got {method!r}")
-    targets, single, position_only = _parse_targets(target)
+    targets, single, position_only, problems = _parse_targets(target)
     m = _parse_mask(mask)
     q0a = None if q0 is None else robot.check_q(q0, name="q0")
     if q0a is not None and q0a.ndim == 2 and q0a.shape[0] != targets.shape[0]:
@@ -179,4 +244,4 @@ def solve_ik(
             mask=m,
             tol=tol,
         )
-    return result[0] if single else result
+    return result[0] if single else _mark_invalid(result, problems)
