@@ -57,7 +57,7 @@ def test_fk_json_matches_library(capsys: pytest.CaptureFixture[str]) -> None:
     np.testing.assert_allclose(data["T"], T, atol=1e-15)
     np.testing.assert_allclose(data["position"], T[:3, 3], atol=1e-15)
     eul = km.euler_from_matrix(T[:3, :3], "ZYZ", degrees=True)
-    np.testing.assert_allclose(data["euler"]["angles"], eul, atol=1e-12)
+    np.testing.assert_allclose(data["euler"], eul, atol=1e-12)
     assert len(data["frames"]) == 7
 
 
@@ -69,7 +69,7 @@ def test_fk_radians_and_euler_sequence(capsys: pytest.CaptureFixture[str]) -> No
     assert code == 0
     T = km.load("planar-3r").fk(q)
     np.testing.assert_allclose(
-        json.loads(out)["euler"]["angles"], km.euler_from_matrix(T[:3, :3], "xyz"), atol=1e-12
+        json.loads(out)["euler"], km.euler_from_matrix(T[:3, :3], "xyz"), atol=1e-12
     )
 
 

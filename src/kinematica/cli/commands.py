@@ -161,7 +161,9 @@ def fk(args: argparse.Namespace) -> int:
             "units": {"angle": _angle_unit(args), "length": "m"},
             "T": _clean(T),
             "position": _clean(pos),
-            "euler": {"sequence": args.euler, "angles": _clean(eul), "gimbal_lock": locked},
+            "euler": _clean(eul),
+            "euler_sequence": args.euler,
+            "gimbal_lock": locked,
         }
         if frames is not None:
             out["frames"] = _clean(frames)
