@@ -136,9 +136,15 @@ def show(args: argparse.Namespace) -> int:
             _dh_rows(robot, deg),
         )
     )
+    unit = "rad" if args.rad else "deg"
     for what, T in (("base", robot.base), ("tool", robot.tool)):
         if not np.array_equal(T, np.eye(4)):
-            print(f"\n{what}:\n{matrix(T)}")
+            pos, eul, _ = _pose_parts(T, args)
+            print(
+                f"\n{what}: xyz = {', '.join(fmt(v) for v in pos)} m, "
+                f"euler {args.euler} = {', '.join(fmt(v, 4) for v in eul)} {unit}"
+            )
+            print(matrix(T))
     return 0
 
 

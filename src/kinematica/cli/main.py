@@ -27,16 +27,15 @@ class _Parser(argparse.ArgumentParser):
         self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message} (see --help)\n")
 
 
-def _common(p: argparse.ArgumentParser, *, euler: bool = True) -> None:
+def _common(p: argparse.ArgumentParser) -> None:
     p.add_argument("--json", action="store_true", help="machine-readable output (stable keys)")
-    if euler:
-        p.add_argument(
-            "--euler",
-            default="ZYZ",
-            metavar="SEQ",
-            help="Euler sequence, scipy naming: upper case intrinsic (ZYZ, XYZ...), "
-            "lower case extrinsic (zyz, xyz...); default ZYZ",
-        )
+    p.add_argument(
+        "--euler",
+        default="ZYZ",
+        metavar="SEQ",
+        help="Euler sequence, scipy naming: upper case intrinsic (ZYZ, XYZ...), "
+        "lower case extrinsic (zyz, xyz...); default ZYZ",
+    )
     p.add_argument("--rad", action="store_true", help="angles in radians (default degrees)")
 
 
@@ -51,12 +50,12 @@ def build_parser() -> argparse.ArgumentParser:
     sub.required = True
 
     p = sub.add_parser("robots", help="list the built-in robot models")
-    p.add_argument("--json", action="store_true", help="machine-readable output")
+    _common(p)  # --euler/--rad accepted on every command; this one prints no angles
     p.set_defaults(run=commands.robots)
 
     p = sub.add_parser("show", help="DH table, limits and structure of a robot")
     p.add_argument("robot", metavar="ROBOT", help="built-in name or robot file")
-    _common(p, euler=False)
+    _common(p)
     p.set_defaults(run=commands.show)
 
     p = sub.add_parser("fk", help="forward kinematics: T, position and Euler angles")
