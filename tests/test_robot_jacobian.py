@@ -18,7 +18,7 @@ from helpers import (
 from hypothesis import given
 
 from kinematica.dh import Prismatic, Revolute
-from kinematica.errors import DimensionError, KinematicaError
+from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning
 from kinematica.robot import Robot
 
 BATCHES = [(), (1,), (3, 2)]
@@ -188,3 +188,13 @@ def test_jacobian_bad_input() -> None:
         robot.jacobian([0.0, math.nan, 0.0, 0.0])
     with pytest.raises(DimensionError, match="must hold 4 joint values"):
         robot.joint_axes(np.zeros((2, 5)))
+
+
+def test_jacobian_batch_with_a_bad_row_returns_the_rest() -> None:
+    robot = MIXED.build()
+    q = np.zeros((3, 4))
+    q[1, 2] = math.inf
+    with pytest.warns(KinematicaWarning, match="1 row"):
+        J = robot.jacobian(q)
+    assert np.all(np.isnan(J[1])) and np.all(np.isfinite(J[[0, 2]]))
+    np.testing.assert_array_equal(J[0], robot.jacobian(np.zeros(4)))

@@ -16,6 +16,7 @@ from kinematica.dh import Prismatic, Revolute, link_matrix
 from kinematica.errors import (
     DimensionError,
     KinematicaError,
+    KinematicaWarning,
     RobotFileError,
     UnknownRobotError,
     UnreachableError,
@@ -59,6 +60,7 @@ __all__ = [
     "EulerSequenceError",
     "ExpressionError",
     "KinematicaError",
+    "KinematicaWarning",
     "Prismatic",
     "Revolute",
     "Robot",

@@ -10,6 +10,7 @@ from __future__ import annotations
 __all__ = [
     "DimensionError",
     "KinematicaError",
+    "KinematicaWarning",
     "RobotFileError",
     "UnknownRobotError",
     "UnreachableError",
@@ -60,3 +61,7 @@ class UnknownRobotError(KinematicaError, LookupError):
 
 class UnreachableError(KinematicaError):
     """A target pose cannot be reached by the robot."""
+
+
+class KinematicaWarning(UserWarning):
+    """Something was computed, but part of the input was unusable (e.g. NaN rows)."""

@@ -42,7 +42,6 @@ FloatArray = NDArray[np.float64]
 _KERNELS: weakref.WeakKeyDictionary[LMProblem, _Kernel] = weakref.WeakKeyDictionary()
 
 
-
 class _Kernel:
     """One problem's data as Python floats, and the scalar steps on it."""
 

@@ -36,7 +36,7 @@ def jacobian(robot: Robot, q: ArrayLike, frame: Literal["base", "tool"] = "base"
     """
     if frame not in ("base", "tool"):
         raise KinematicaError(f"frame must be 'base' or 'tool', got {frame!r}")
-    qa = robot.check_q(q)
+    qa, bad = robot._batch(q)
     n = robot.dof
     flat = qa.reshape(-1, n)
     F = robot._chain.joint_frames(flat)  # (B, n+1, 4, 4)
@@ -52,4 +52,7 @@ def jacobian(robot: Robot, q: ArrayLike, frame: Literal["base", "tool"] = "base"
         Rt = np.swapaxes(F[:, n, :3, :3], 1, 2)
         J[:, :3, :] = Rt @ J[:, :3, :]
         J[:, 3:, :] = Rt @ J[:, 3:, :]
-    return J.reshape(*qa.shape[:-1], 6, n)
+    out = J.reshape(*qa.shape[:-1], 6, n)
+    if bad is not None:
+        out[bad] = np.nan  # rows of q holding NaN/inf (a warning named them)
+    return out

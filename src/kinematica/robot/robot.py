@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from numbers import Real
@@ -27,7 +28,7 @@ from kinematica.dh import (
     convert_table,
     link_matrix,
 )
-from kinematica.errors import DimensionError, KinematicaError
+from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning
 from kinematica.robot.jacobian import jacobian
 
 if TYPE_CHECKING:
@@ -196,11 +197,19 @@ class Robot:
         return np.array(rows, dtype=float)
 
     # --------------------------------------------------------------- kinematics
-    def check_q(self, q: ArrayLike, name: str = "q") -> FloatArray:
-        """Validate joint values: shape ``(..., n)``, finite numbers.
+    def check_q(self, q: ArrayLike, name: str = "q", *, bad_rows: bool = False) -> FloatArray:
+        """Validate joint values: shape ``(..., n)``, finite real numbers.
+
+        Args:
+            q: ``(..., n)`` joint values.
+            name: Name used in messages.
+            bad_rows: For a batch, let rows holding NaN/inf through with a
+                :class:`KinematicaWarning` naming them (their results are NaN)
+                instead of raising.
 
         Raises:
-            DimensionError: On a wrong last dimension, non-numbers, NaN or inf.
+            DimensionError: On a wrong last dimension, non-numbers, NaN or inf
+                in a single configuration (or in a batch without ``bad_rows``).
         """
         try:
             raw = np.asarray(q)
@@ -215,10 +224,28 @@ class Robot:
                 f"{name} must hold {self.dof} joint values for {self.name} "
                 f"({self.joint_types}), got {found}"
             )
-        if not np.all(np.isfinite(qa)):
-            bad = np.argwhere(~np.isfinite(qa))[0]
+        finite = np.isfinite(qa)
+        if not finite.all():
+            if bad_rows and qa.ndim >= 2:
+                rows = [tuple(int(i) for i in r) for r in np.argwhere(~finite.all(axis=-1))]
+                shown = ", ".join(map(str, rows[:5])) + (" ..." if len(rows) > 5 else "")
+                warnings.warn(
+                    f"{name}: {len(rows)} row(s) hold NaN or inf, their results are NaN: {shown}",
+                    KinematicaWarning,
+                    stacklevel=4,
+                )
+                return qa
+            bad = np.argwhere(~finite)[0]
             raise DimensionError(f"{name} holds NaN or inf at index {tuple(int(i) for i in bad)}")
         return qa
+
+    def _batch(self, q: ArrayLike) -> tuple[FloatArray, NDArray[np.bool_] | None]:
+        """Validated ``q`` with unusable rows zeroed, and the mask of those rows."""
+        qa = self.check_q(q, bad_rows=True)
+        bad = ~np.all(np.isfinite(qa), axis=-1)
+        if not bad.any():
+            return qa, None
+        return np.where(bad[..., None], 0.0, qa), bad
 
     def _single_q(self, q: ArrayLike) -> list[float] | None:
         """``q`` as a list of finite floats when it is one configuration, else None.
@@ -246,6 +273,10 @@ class Robot:
             q: ``(..., n)`` joint values (rad for revolute, m for prismatic joints).
             all_frames: Return every frame ``0T0 (base), 0T1, ..., 0Tn (with tool)``.
 
+        A batch whose rows hold NaN/inf still returns the other rows; those
+        rows come out NaN, with a :class:`KinematicaWarning` naming them. A
+        single configuration with NaN/inf raises :class:`DimensionError`.
+
         Returns:
             ``(..., 4, 4)`` pose ``T = base · 0A1 · ... · (n-1)An · tool``, or
             ``(..., n+1, 4, 4)`` with ``all_frames``.
@@ -254,10 +285,13 @@ class Robot:
             single = self._single_q(q)
             if single is not None:
                 return self._chain.fk_single(single)
-        qa = self.check_q(q)
+        qa, bad = self._batch(q)
         flat = qa.reshape(-1, self.dof)
         out = self._chain.fk_batch(flat, all_frames)
-        return out.reshape(*qa.shape[:-1], *out.shape[1:])
+        out = out.reshape(*qa.shape[:-1], *out.shape[1:])
+        if bad is not None:
+            out[bad] = np.nan
+        return out
 
     def link_matrices(self, q: ArrayLike) -> FloatArray:
         """The link matrices ``i-1Ai`` of the DH table (no base, no tool).
@@ -268,7 +302,7 @@ class Robot:
         Returns:
             ``(..., n, 4, 4)``; their product is ``base⁻¹ · T · tool⁻¹``.
         """
-        qa = self.check_q(q)
+        qa, bad = self._batch(q)
         prismatic = self._chain.prismatic
         theta0 = np.array([link.theta for link in self.links])
         d0 = np.array([link.d for link in self.links])
@@ -276,7 +310,10 @@ class Robot:
         alpha = np.array([link.alpha for link in self.links])
         theta = np.where(prismatic, theta0, qa + theta0)
         d = np.where(prismatic, qa + d0, d0)
-        return link_matrix(theta, d, np.broadcast_to(a, theta.shape), alpha, self.convention)
+        A = link_matrix(theta, d, np.broadcast_to(a, theta.shape), alpha, self.convention)
+        if bad is not None:
+            A[bad] = np.nan
+        return A
 
     def jacobian(self, q: ArrayLike, frame: Literal["base", "tool"] = "base") -> FloatArray:
         """Geometric Jacobian ``(..., 6, n)`` of the tool; see :func:`jacobian`."""
