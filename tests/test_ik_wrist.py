@@ -21,6 +21,7 @@ from test_ik_small import dls_solutions, joint_distance
 
 from kinematica.dh import Prismatic, Revolute
 from kinematica.errors import DimensionError
+from kinematica.ik.analytic import pieper, pieper_single
 from kinematica.ik.analytic.poe import Screws
 from kinematica.ik.analytic.wrist import (
     SphericalWristSolver,
@@ -260,6 +261,8 @@ def test_nearly_parallel_shoulder_axes_stay_exact() -> None:
     rng = np.random.default_rng(23)
     q0 = random_q(robot, rng, 300)
     assert_found(robot, solve_checked(robot, robot.fk(q0)), q0)
+    # one pose at a time: the same Newton step of the position (the batched one)
+    assert_one_pose_equals_batch(robot, robot.fk(q0[:30]))
 
 
 def centre_jacobian_det(robot: Robot, c_tool: FloatArray, q: FloatArray) -> FloatArray:
@@ -269,15 +272,11 @@ def centre_jacobian_det(robot: Robot, c_tool: FloatArray, q: FloatArray) -> Floa
     return np.linalg.det(J[..., :3, :3] + np.cross(J[..., 3:, :3], r[..., :, None], axis=-2))
 
 
-@pytest.mark.parametrize(
-    ("shoulder", "joint3"), [("meet", "R23"), ("general", "R"), ("general", "P")]
-)
-def test_targets_on_the_workspace_fold(shoulder: str, joint3: str) -> None:
-    """Targets where two position branches merge (a double root): still exact."""
-    rng = np.random.default_rng(21)
-    robot = random_wrist_arm(rng, shoulder, joint3)
+def fold_configurations(robot: Robot, rng: np.random.Generator, n: int = 30) -> FloatArray:
+    """Configurations where two position branches merge (det of the centre's Jacobian 0)."""
     c_tool = solver_of(robot).c_tool
-    q = np.repeat(random_q(robot, rng, 30), 2, axis=0)
+    joint3 = "P" if robot.is_prismatic[2] else "R"
+    q = np.repeat(random_q(robot, rng, n), 2, axis=0)
     span = 1.5 if joint3 == "P" else PI
     grid = np.linspace(-span, span, 361)
     scan = np.repeat(q[:, None, :], len(grid), axis=1)
@@ -288,7 +287,7 @@ def test_targets_on_the_workspace_fold(shoulder: str, joint3: str) -> None:
         flips = np.nonzero(np.sign(row[:-1]) != np.sign(row[1:]))[0]
         if len(flips) > i % 2:
             brackets.append((i, flips[i % 2]))
-    assert len(brackets) >= 20
+    assert len(brackets) >= 2 * n // 3
     rows, k = np.array(brackets).T
     q, lo, hi = q[rows], grid[k], grid[k + 1]
     for _ in range(55):  # bisection on det = 0 in q3, all rows at once
@@ -298,6 +297,17 @@ def test_targets_on_the_workspace_fold(shoulder: str, joint3: str) -> None:
         same = np.sign(centre_jacobian_det(robot, c_tool, q)) == s_lo
         lo, hi = np.where(same, mid, lo), np.where(same, hi, mid)
     assert np.abs(centre_jacobian_det(robot, c_tool, q)).max() < 1e-9
+    return q
+
+
+@pytest.mark.parametrize(
+    ("shoulder", "joint3"), [("meet", "R23"), ("general", "R"), ("general", "P")]
+)
+def test_targets_on_the_workspace_fold(shoulder: str, joint3: str) -> None:
+    """Targets where two position branches merge (a double root): still exact."""
+    rng = np.random.default_rng(21)
+    robot = random_wrist_arm(rng, shoulder, joint3)
+    q = fold_configurations(robot, rng)
     cand = solve_checked(robot, robot.fk(q))  # every candidate exact
     # the original is found, to within what a double root allows: along the
     # fold the pose moves only to second order, so exact solutions (1e-12)
@@ -455,27 +465,86 @@ def test_factories_refuse_other_arms() -> None:
     assert make_spherical_wrist_solver(Robot.from_dh(rows[:5])) is None
 
 
+def assert_one_pose_equals_batch(robot: Robot, T: FloatArray, tol: float = 1e-9) -> float:
+    """Each pose alone (the Python-float path) gives the batch's candidates; max residual.
+
+    Both are exact (residual <= EXACT); ``tol`` bounds their joint distance,
+    which round-off sets (ill-conditioned joints, or double roots: see below).
+    """
+    solver = solver_of(robot)
+    assert solver.single is not None
+    batch = solver.solve(T)
+    worst = 0.0
+    for i in range(len(T)):
+        one = solver.solve(T[i : i + 1])
+        assert np.array_equal(np.isnan(one.q), np.isnan(batch.q[i : i + 1])), i
+        d = joint_distance(robot, np.nan_to_num(one.q[0]), np.nan_to_num(batch.q[i]))
+        assert d.max() < tol
+        assert one.singular[0] == batch.singular[i] and (one.free[0] == batch.free[i]).all()
+        np.testing.assert_array_equal(one.gap, batch.gap[i : i + 1])
+        assert one.labels == batch.labels
+        real = ~np.isnan(one.q[0, :, 0])
+        reached = robot.fk(one.q[0, real])
+        assert_transform_close(reached, np.broadcast_to(T[i], reached.shape), EXACT)
+        worst = max(worst, float(np.abs(reached - T[i]).max(initial=0.0)))
+    return worst
+
+
 @pytest.mark.parametrize(("shoulder", "joint3"), [*GEOMETRIES, ("puma", "")])
 def test_one_pose_path_equals_the_batch(shoulder: str, joint3: str) -> None:
-    """A single pose runs on Python floats (closed-form geometries): same answers."""
+    """A single pose runs on Python floats (every geometry): same answers."""
     rng = np.random.default_rng(22)
     robot = PUMA if shoulder == "puma" else random_wrist_arm(rng, shoulder, joint3)
-    solver = solver_of(robot)
-    assert (solver.single is None) == (shoulder == "general" and joint3 != "R23")
     q0 = random_q(robot, rng, 40)
     q0[:8, 4] = 0.0  # the PUMA's wrist singularity (a regular pose on the others)
     T = robot.fk(q0)
     T[-4:, :3, 3] += 5.0  # out of reach
-    batch = solver.solve(T)
-    for i in range(len(T)):
-        one = solver.solve(T[i : i + 1])
-        assert np.array_equal(np.isnan(one.q), np.isnan(batch.q[i : i + 1]))
-        d = joint_distance(robot, np.nan_to_num(one.q[0]), np.nan_to_num(batch.q[i]))
-        assert d.max() < 1e-9  # both exact; ill-conditioned joints differ by round-off
-        assert one.singular[0] == batch.singular[i] and (one.free[0] == batch.free[i]).all()
-        np.testing.assert_array_equal(one.gap, batch.gap[i : i + 1])
-        assert one.labels == batch.labels
-        solve_checked(robot, T[i : i + 1])
+    assert_one_pose_equals_batch(robot, T)
+
+
+@pytest.mark.parametrize("joint3", ["R", "P"])
+def test_one_pose_quartic_on_random_general_arms(joint3: str) -> None:
+    """Pieper's quartic on floats: many skew-shoulder arms (both DH conventions,
+    random base and tool), generic poses and poses on the workspace fold."""
+    rng = np.random.default_rng(25)
+    conventions = set()
+    for _ in range(8):
+        robot = random_wrist_arm(rng, "general", joint3)
+        conventions.add(robot.convention)
+        assert solver_of(robot).position.kind == "general"
+        assert_one_pose_equals_batch(robot, robot.fk(random_q(robot, rng, 12)))
+    assert conventions == {"standard", "modified"}
+    # on the fold the roots are double: the quartic's closed form (one pose) and
+    # the companion matrix (a small batch) split them differently by ~sqrt(ulp),
+    # and every candidate within ~sqrt(1e-12 / curvature) is exact (as above)
+    robot = random_wrist_arm(rng, "general", joint3)
+    assert_one_pose_equals_batch(robot, robot.fk(fold_configurations(robot, rng, 12)), 1e-5)
+
+
+def test_one_pose_quartic_on_the_eaik_reference() -> None:
+    name = "general-spherical-wrist"
+    arm = reference_arm("ik_reference.json", name)
+    robot = robot_from_rows(arm, name)
+    T = np.array([s["T"] for s in arm["samples"]])
+    assert assert_one_pose_equals_batch(robot, T) <= EXACT
+    solver = solver_of(robot)
+    for Ti, sample in zip(T, arm["samples"], strict=True):
+        ours = np.array(distinct(robot, solver.solve(Ti[None]).q[0]))
+        theirs = np.array(sample["solutions"])
+        assert len(ours) == len(theirs)
+        d = joint_distance(robot, ours[:, None, :], theirs[None, :, :])
+        assert (d.min(axis=0) < 1e-9).all() and (d.min(axis=1) < 1e-9).all()
+
+
+def test_one_pose_self_motion_of_the_shoulder() -> None:
+    """F ≡ 0 (every q3 reaches the target): same representatives and free flags."""
+    robot = random_wrist_arm(np.random.default_rng(26), "general", "R")
+    solver = solver_of(robot)
+    assert solver.single is not None
+    F = [0.0] * 5
+    q, selfmotion = pieper_single.revolute_roots(F)
+    qb, sb = pieper.revolute_roots(np.zeros((1, 5)))
+    assert selfmotion and sb[0] and np.array_equal(q, qb[0])
 
 
 def test_shapes_and_bad_input() -> None:
@@ -486,3 +555,21 @@ def test_shapes_and_bad_input() -> None:
     assert one.q.shape == (1, 8, 6) and one.gap.shape == (1,)
     with pytest.raises(DimensionError, match=r"\(N, 4, 4\)"):
         solver.solve(np.eye(4))
+
+
+def test_one_pose_quartic_roots(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Ferrari on floats: the roots of quartics with known roots, close or spread
+    over eight orders (those fail the backward-error check: companion matrix)."""
+    rng = np.random.default_rng(27)
+    fallbacks = []
+    companion = pieper_single._companion_roots
+    monkeypatch.setattr(
+        pieper_single, "_companion_roots", lambda k: fallbacks.append(1) or companion(k)
+    )
+    for spread in (0.0, 1.0, 4.0):
+        roots = rng.normal(size=(50, 4)) * 10.0 ** rng.uniform(-spread, spread, (50, 4))
+        for r in roots:
+            k = np.poly(r) * rng.uniform(0.1, 10.0)
+            got = np.sort_complex(np.array(pieper_single.quartic_roots(tuple(k.tolist()))))
+            assert np.abs(got - np.sort_complex(r + 0j)).max() < 1e-9 * (1.0 + np.abs(r).max())
+    assert 0 < len(fallbacks) < 100

@@ -27,8 +27,7 @@ q6 is computed after q4 and q5 so that it absorbs their round-off.
 Branch slots: ``4 position × 2 wrist``; label ``k`` is ``2 * position + wrist``.
 All candidates are exact to round-off (≤ 1e-12 in the tests); none is wrapped
 or filtered beyond NaN for branches without a real solution. One pose at a time
-runs on Python floats (:mod:`~kinematica.ik.analytic.wrist_single`) for the
-closed-form geometries.
+runs on Python floats (:mod:`~kinematica.ik.analytic.wrist_single`).
 """
 
 from __future__ import annotations

@@ -4,10 +4,11 @@ Through :meth:`SphericalWristSolver.solve` one pose costs some 150 numpy calls o
 arrays of 4 to 8 numbers, each a fraction of a microsecond of overhead; the
 same arithmetic on Python floats is about three times faster (as ``robot.fk``
 does for one configuration). This module repeats that computation step by
-step, for the closed-form geometries (axes 1 and 2 meeting or parallel, or
-skew with axes 2 and 3 parallel); the quartic case and rare corners (a wrist
-near its singularity, a target out of reach) go to the batched code. The
-tests hold the two paths to the same candidates.
+step, for every geometry: closed forms when axes 1 and 2 meet or are
+parallel, or are skew with axes 2 and 3 parallel; Pieper's quartic otherwise
+(:mod:`~kinematica.ik.analytic.pieper_single`). Rare corners (a wrist near
+its singularity, a target out of reach) go to the batched code. The tests
+hold the two paths to the same candidates.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from kinematica.ik.analytic.pieper_single import quartic_position
 from kinematica.ik.analytic.position import SINGULAR_TOL
 from kinematica.ik.analytic.subproblems import TRIG_TOL
 from kinematica.ik.candidates import Candidates
@@ -79,6 +81,11 @@ class SinglePose:
     Ft: Tup
     wrist: Tup
     near2: float
+    quartic: bool  # axes 1, 2 skew, axis 3 not parallel to axis 2
+    scale: float
+    fourier: Tup  # (5, 5) as ``WristCentrePosition._fourier``
+    polish: Tup  # h1, h2, p2 - p1, U0, U1, U2 (``pieper.polish_position``)
+    polish_p1: Tup
 
     @classmethod
     def build(
@@ -90,8 +97,8 @@ class SinglePose:
         leftover: FloatArray,
         axes: FloatArray,
         near_tol: float,
-    ) -> SinglePose | None:
-        """The single-pose path, or None for the quartic geometries.
+    ) -> SinglePose:
+        """The single-pose path.
 
         Args:
             P: Position geometry.
@@ -102,8 +109,6 @@ class SinglePose:
             axes: ``(2|3, 3)`` unit axes of the revolute joints among 1-3.
             near_tol: The wrist's near-singular tolerance (sine).
         """
-        if P.kind == "general" and not P.parallel23:
-            return None
         wrist = (
             float(W.beta[0]),
             float(W.beta[1]),
@@ -140,6 +145,11 @@ class SinglePose:
             Ft=_t(W.F.T),
             wrist=wrist,
             near2=near_tol**2,
+            quartic=P.kind == "general" and not P.parallel23,
+            scale=P.scale,
+            fourier=_t(P._fourier),
+            polish=(_t(P.h1), _t(P.h2), _t(P.p2 - P.p1), *_t(P.U)),
+            polish_p1=_t(P.p1),
         )
 
     # ----------------------------------------------------------------- position
@@ -160,10 +170,14 @@ class SinglePose:
         c3, s3 = rhs * ac + s * as_, rhs * bc + s * bs
         return math.atan2(s3, c3), c3, s3
 
-    def _position(self, ct: list[float]) -> tuple[list[Tup], bool, bool]:
-        """The 4 position branches (NaN-filled), and the q1, q2 singular flags."""
+    def _position(self, ct: list[float]) -> tuple[list[Tup], bool, bool, bool]:
+        """The 4 position branches (NaN-filled), the q1, q2 free flags and self-motion."""
         F, p = self.frame1, self.p1f
         dz = [ct[0] * F[0][j] + ct[1] * F[1][j] + ct[2] * F[2][j] - p[j] for j in range(3)]
+        on1 = dz[1] ** 2 + dz[2] ** 2 < self.tol2
+        if self.quartic:
+            out, on2, selfmotion = quartic_position(self, ct, dz)
+            return out, on1, on2, selfmotion
         zeta, dd = dz[0], dz[0] ** 2 + dz[1] ** 2 + dz[2] ** 2
         phi = math.atan2(dz[2], dz[1])
         a, ca, g, c = self.a, self.ca, self.g, self.coef
@@ -212,7 +226,7 @@ class SinglePose:
             if self.kind == "general" and self.elbow_sign * pair[0][3] > 0:
                 pair.reverse()  # elbow up first
             out += [p3[:3] for p3 in pair]
-        return out, dz[1] ** 2 + dz[2] ** 2 < self.tol2, on2
+        return out, on1, on2, False
 
     # -------------------------------------------------------------------- wrist
     def _leftover(self, q: Tup, W0: list[Vec]) -> list[Vec]:
@@ -279,7 +293,8 @@ class SinglePose:
         R = [row[:3] for row in M[:3]]
         c = self.c_tool
         ct = [R[i][0] * c[0] + R[i][1] * c[1] + R[i][2] * c[2] + M[i][3] for i in range(3)]
-        branches, on1, on2 = self._position(ct)
+        branches, on1, on2, selfmotion = self._position(ct)
+        on1, on2 = on1 or selfmotion, on2 or selfmotion
         W0 = [
             (
                 R[0][0] * v[0] + R[0][1] * v[1] + R[0][2] * v[2],
@@ -315,7 +330,7 @@ class SinglePose:
         gap = np.full(1, np.nan)
         if np.isnan(qa[0, :, 0]).all():
             gap = self.position.gap(np.array([ct]))
-        free = np.array([[on1, on2, False, wrist_singular, False, wrist_singular]])
+        free = np.array([[on1, on2, selfmotion, wrist_singular, False, wrist_singular]])
         return Candidates(
             q=qa,
             labels=self.labels,
