@@ -10,6 +10,7 @@ polishing, a mask) it hands back to the batched path by returning ``None``.
 from __future__ import annotations
 
 import math
+import weakref
 
 import numpy as np
 from numpy.typing import NDArray
@@ -51,6 +52,22 @@ def _same(q: list[float], other: list[float], rev: list[bool]) -> bool:
     return True
 
 
+# Per-robot constants of this path, as Python lists (a Robot is immutable).
+_LIMITS: weakref.WeakKeyDictionary[
+    Robot, tuple[list[bool], list[float], list[float], list[int]]
+] = weakref.WeakKeyDictionary()
+
+
+def _limits(robot: Robot) -> tuple[list[bool], list[float], list[float], list[int]]:
+    """``(revolute?, lower, upper, revolute joints whose window leaves (−π, π])``."""
+    if robot not in _LIMITS:
+        rev = (~robot.is_prismatic).tolist()
+        lo, hi = robot.qlim.T.tolist()
+        shiftable = [i for i, r in enumerate(rev) if r and (lo[i] < -math.pi or hi[i] > math.pi)]
+        _LIMITS[robot] = (rev, lo, hi, shiftable)
+    return _LIMITS[robot]
+
+
 def finalize_one(
     robot: Robot,
     target: FloatArray,
@@ -74,8 +91,7 @@ def finalize_one(
         q0: ``(n,)`` configuration to sort by, or None.
         tol: Acceptance tolerances.
     """
-    rev = (~robot.is_prismatic).tolist()
-    lo, hi = robot.qlim.T.tolist()
+    rev, lo, hi, shiftable = _limits(robot)
     pose = target.shape == (4, 4)
     Tt = target.tolist()
     p_t = [Tt[0][3], Tt[1][3], Tt[2][3]] if pose else Tt
@@ -85,8 +101,7 @@ def finalize_one(
     for q_raw, label in zip(cand.q[0].tolist(), cand.labels, strict=True):
         if math.isnan(sum(q_raw)):
             continue
-        q = [math.remainder(v, TWO_PI) if r else v for v, r in zip(q_raw, rev, strict=True)]
-        q = [math.pi if v == -math.pi else v + 0.0 for v in q]  # (−π, π], no −0.0
+        q = [_wrap(v) if r else v for v, r in zip(q_raw, rev, strict=True)]
         T = robot._chain.pose_rows(q)
         pos = math.dist((T[0][3], T[1][3], T[2][3]), p_t)
         rot = _rotation_angle(T, Tt) if pose else 0.0
@@ -97,10 +112,10 @@ def finalize_one(
                 nearest, nearest_norm = (pos, rot), max(pos, rot)
             continue
         if respect_limits:
-            for i, r in enumerate(rev):
-                if r and q[i] < lo[i] - LIMIT_TOL and q[i] + TWO_PI <= hi[i] + LIMIT_TOL:
+            for i in shiftable:  # revolute joints whose limit window leaves (−π, π]
+                if q[i] < lo[i] - LIMIT_TOL and q[i] + TWO_PI <= hi[i] + LIMIT_TOL:
                     q[i] += TWO_PI
-                elif r and q[i] > hi[i] + LIMIT_TOL and q[i] - TWO_PI >= lo[i] - LIMIT_TOL:
+                elif q[i] > hi[i] + LIMIT_TOL and q[i] - TWO_PI >= lo[i] - LIMIT_TOL:
                     q[i] -= TWO_PI
         if not any(_same(q, other[0], rev) for other in kept):
             kept.append((q, label, pos, rot))

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 import weakref
 from typing import Literal
 
@@ -60,7 +61,9 @@ def _parse_targets(target: ArrayLike) -> tuple[FloatArray, bool, bool, dict[int,
         arr[bad_rows] = 0.0
         return arr, False, True, problems
     if arr.shape == (4, 4):
-        return check_transform(arr, name="target")[None], True, False, {}
+        if not _rigid(arr.tolist()):
+            check_transform(arr, name="target")  # raises, saying what is wrong
+        return arr[None], True, False, {}
     if arr.ndim == 3 and arr.shape[-2:] == (4, 4):
         try:
             return check_transform(arr, name="target"), False, False, {}
@@ -80,6 +83,27 @@ def _parse_targets(target: ArrayLike) -> tuple[FloatArray, bool, bool, dict[int,
         "target must be a pose (4, 4), a position (3,), or batches (N, 4, 4) / (N, 3); "
         f"got shape {arr.shape}"
     )
+
+
+def _rigid(T: list[list[float]]) -> bool:
+    """One 4x4 pose (as lists) is a rigid transform, checked on floats (fast path)."""
+    if not all(math.isfinite(v) for row in T for v in row):
+        return False
+    if max(abs(a - b) for a, b in zip(T[3], (0.0, 0.0, 0.0, 1.0), strict=True)) > ORTHONORMAL_TOL:
+        return False
+    cols = [[T[0][j], T[1][j], T[2][j]] for j in range(3)]
+    for i in range(3):
+        for j in range(i, 3):
+            dot = sum(a * b for a, b in zip(cols[i], cols[j], strict=True))
+            if abs(dot - (1.0 if i == j else 0.0)) > ORTHONORMAL_TOL:
+                return False
+    x, y, z = cols
+    det = (
+        x[0] * (y[1] * z[2] - y[2] * z[1])
+        - y[0] * (x[1] * z[2] - x[2] * z[1])
+        + z[0] * (x[1] * y[2] - x[2] * y[1])
+    )
+    return det > 0.0
 
 
 def _malformed_rows(T: FloatArray) -> NDArray[np.intp]:
