@@ -17,7 +17,7 @@ from kinematica.ik.finalize import Tolerance, finalize
 from kinematica.ik.finalize_one import finalize_one
 from kinematica.ik.numeric import solve_numeric
 from kinematica.ik.result import IKBatchResult, IKResult
-from kinematica.robot import Robot
+from kinematica.robot import Robot, classify
 from kinematica.spatial import ORTHONORMAL_TOL, check_transform
 
 __all__ = ["Method", "solve_ik"]
@@ -209,8 +209,6 @@ def solve_ik(
             # A reduced arm: solve the position in closed form, check the whole pose.
             solver = _solver(robot, True)
     if method == "analytic" and solver is None:
-        from kinematica.robot.structure import classify
-
         why = "a mask was given" if m is not None else f"structure: {classify(robot).summary}"
         raise KinematicaError(
             f"no closed-form solver for {robot.name} ({why}); use method='numeric'"
