@@ -19,7 +19,7 @@ from kinematica.ik.numeric import solve_numeric, solve_numeric_detailed
 from kinematica.ik.numeric_model import evaluate
 from kinematica.ik.numeric_problem import LMProblem, compile_setup
 from kinematica.ik.numeric_single import kernel_of
-from kinematica.robot import Robot
+from kinematica.robot import Robot, load
 from kinematica.spatial import rotation_angle, se3_error
 
 TOL = 1e-10
@@ -28,41 +28,13 @@ PI = math.pi
 
 # ------------------------------------------------------------------ robots
 def panda() -> Robot:
-    """Franka Panda, modified DH (a, d, alpha) with its limits and flange."""
-    rows = [
-        (0.0, 0.333, 0.0),
-        (0.0, 0.0, -PI / 2),
-        (0.0, 0.316, PI / 2),
-        (0.0825, 0.0, PI / 2),
-        (-0.0825, 0.384, -PI / 2),
-        (0.0, 0.0, PI / 2),
-        (0.088, 0.0, PI / 2),
-    ]
-    limits = [
-        (-2.8973, 2.8973),
-        (-1.7628, 1.7628),
-        (-2.8973, 2.8973),
-        (-3.0718, -0.0698),
-        (-2.8973, 2.8973),
-        (-0.0175, 3.7525),
-        (-2.8973, 2.8973),
-    ]
-    tool = np.eye(4)
-    tool[2, 3] = 0.107
-    joints = [
-        Revolute(a=a, d=d, alpha=alpha, qlim=lim)
-        for (a, d, alpha), lim in zip(rows, limits, strict=True)
-    ]
-    return Robot.from_dh(joints, convention="modified", tool=tool, name="panda")
+    """The built-in Franka Panda (modified DH, Franka's limits, flange as tool)."""
+    return load("panda")
 
 
 def iiwa14() -> Robot:
-    """KUKA LBR iiwa 14, standard DH, with its limits."""
-    d = [0.36, 0.0, 0.42, 0.0, 0.4, 0.0, 0.126]
-    alpha = [-PI / 2, PI / 2, PI / 2, -PI / 2, -PI / 2, PI / 2, 0.0]
-    limits = np.deg2rad([170, 120, 170, 120, 170, 120, 175])
-    joints = [Revolute(d=d[i], alpha=alpha[i], qlim=(-limits[i], limits[i])) for i in range(7)]
-    return Robot.from_dh(joints, convention="standard", name="iiwa14")
+    """The built-in KUKA LBR iiwa 14 (standard DH, with its limits)."""
+    return load("iiwa14")
 
 
 def puma() -> Robot:
