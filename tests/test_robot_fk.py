@@ -7,6 +7,7 @@ matrices per link) and formulas derived by hand from the seeds.
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -26,6 +27,7 @@ from helpers import (
 )
 from hypothesis import given
 
+import kinematica as km
 from kinematica.dh import Prismatic, Revolute
 from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning
 from kinematica.robot import Robot
@@ -579,3 +581,18 @@ def test_bad_robot_descriptions() -> None:
         Robot.from_dh([Revolute(), (0.0, 0.0, 0.0, 0.0)])  # type: ignore[list-item]
     with pytest.raises(KinematicaError, match="unknown DH convention 'sideways'"):
         Robot.from_dh([Revolute()], convention="sideways")
+
+
+@pytest.mark.parametrize("name", ["puma560", "stanford", "panda", "scara"])
+@pytest.mark.parametrize("suffix", [".json", ".toml", ".yaml"])
+def test_robot_written_to_a_file_loads_back_identical(
+    name: str, suffix: str, tmp_path: Path
+) -> None:
+    robot = km.load(name)
+    path = tmp_path / f"arm{suffix}"
+    km.write_robot_file(km.spec_from_robot(robot), path)
+    again = km.load(path)
+    q = np.random.default_rng(4).uniform(-1, 1, (20, robot.dof))
+    np.testing.assert_array_equal(again.fk(q), robot.fk(q))
+    np.testing.assert_array_equal(again.qlim, robot.qlim)
+    assert again.convention == robot.convention and again.joint_types == robot.joint_types

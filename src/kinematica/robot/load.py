@@ -5,6 +5,9 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+import numpy as np
+from numpy.typing import NDArray
+
 from kinematica.dh import Joint, Prismatic, Revolute
 from kinematica.errors import UnknownRobotError
 from kinematica.io import (
@@ -19,6 +22,8 @@ from kinematica.io import (
 from kinematica.robot.robot import Robot
 
 __all__ = ["load", "robot_from_spec", "spec_from_robot"]
+
+FloatArray = NDArray[np.float64]
 
 
 def _joint(spec: JointSpec) -> Joint:
@@ -52,40 +57,23 @@ def robot_from_spec(spec: RobotSpec) -> Robot:
 
 def spec_from_robot(robot: Robot) -> RobotSpec:
     """The description of a robot, for writing it to a file."""
-    joints = []
-    for link in robot.links:
-        if isinstance(link, Revolute):
-            joints.append(
-                JointSpec(
-                    kind="R",
-                    theta=link.offset,
-                    d=link.d,
-                    a=link.a,
-                    alpha=link.alpha,
-                    qlim=link.qlim,
-                    name=link.name,
-                )
-            )
-        else:
-            joints.append(
-                JointSpec(
-                    kind="P",
-                    theta=link.theta,
-                    d=link.offset,
-                    a=link.a,
-                    alpha=link.alpha,
-                    qlim=link.qlim,
-                    name=link.name,
-                )
-            )
+    joints = [
+        JointSpec(
+            kind=link.type,
+            theta=link.theta,  # the offset of a revolute joint
+            d=link.d,  # the offset of a prismatic joint
+            a=link.a,
+            alpha=link.alpha,
+            qlim=link.qlim,
+            name=link.name,
+        )
+        for link in robot.links
+    ]
 
-    def frame(T: object) -> FrameSpec | None:
-        import numpy as np
-
-        M = np.asarray(T, dtype=float)
-        if np.array_equal(M, np.eye(4)):
+    def frame(T: FloatArray) -> FrameSpec | None:
+        if np.array_equal(T, np.eye(4)):
             return None
-        return FrameSpec(matrix=tuple(tuple(float(v) for v in row) for row in M))
+        return FrameSpec(matrix=tuple(tuple(float(v) for v in row) for row in T))
 
     return RobotSpec(
         name=robot.name,
