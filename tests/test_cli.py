@@ -117,3 +117,10 @@ def test_console_script_runs_without_traceback() -> None:
     assert proc.returncode == 2
     assert "Traceback" not in proc.stderr
     assert "6 values" in proc.stderr
+
+
+def test_negative_numbers_in_e_notation(capsys: pytest.CaptureFixture[str]) -> None:
+    # argparse alone would read "-1e-05" as an option.
+    code, out, err = run(capsys, "fk", "planar-3r", "--q", "-1e-05", "-2.5E+1", "-.5", "--json")
+    assert code == 0, err
+    assert json.loads(out)["q"] == [-1e-05, -25.0, -0.5]
