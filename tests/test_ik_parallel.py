@@ -20,6 +20,7 @@ from test_ik_small import dls_solutions, joint_distance, random_arm
 
 from kinematica.dh import Prismatic, Revolute
 from kinematica.ik.analytic.parallel import LABELS, make_three_parallel_solver
+from kinematica.ik.analytic.parallel_general import GENERAL_LABELS, GeneralThreeParallelSolver
 from kinematica.robot import Robot, classify
 
 FloatArray = NDArray[np.float64]
@@ -283,8 +284,101 @@ def test_factory_refuses_other_arms() -> None:
         ]
     )
     assert make_three_parallel_solver(puma) is None
-    rows = list(UR5_ROWS)
-    rows[4] = Revolute(d=0.09465, a=0.05, alpha=-PI / 2)  # axes 5 and 6 no longer meet
-    assert classify(Robot.from_dh(rows)).kind == "three-parallel-6R"
-    assert make_three_parallel_solver(Robot.from_dh(rows)) is None
     assert make_three_parallel_solver(Robot.from_dh([Revolute(), Prismatic()])) is None
+
+
+# ------------------------------------------------- axes 5 and 6 apart (a5 != 0)
+UR5_A5_ROWS = [*UR5_ROWS[:4], Revolute(d=0.09465, a=0.05, alpha=-PI / 2), UR5_ROWS[5]]
+
+
+def random_general(rng: np.random.Generator, modified: bool) -> Robot:
+    """A random arm with axes 2, 3, 4 parallel and axes 5, 6 apart (a5 != 0 or a tilted a4/d5)."""
+    u = rng.uniform
+    rows = [
+        Revolute(d=u(0.05, 0.4), a=u(-0.1, 0.1), alpha=twist(rng), offset=u(-PI, PI)),
+        Revolute(d=u(-0.2, 0.2), a=u(0.2, 0.6) * rng.choice([-1, 1]), alpha=rng.choice([0, PI])),
+        Revolute(d=u(-0.2, 0.2), a=u(0.2, 0.6) * rng.choice([-1, 1]), alpha=rng.choice([0, PI])),
+        Revolute(d=u(-0.2, 0.2), a=u(-0.1, 0.1), alpha=twist(rng), offset=u(-PI, PI)),
+        Revolute(
+            d=u(-0.2, 0.2),
+            a=u(0.03, 0.15) * rng.choice([-1, 1]),
+            alpha=twist(rng),
+            offset=u(-PI, PI),
+        ),
+        Revolute(d=u(-0.2, 0.2), a=u(-0.1, 0.1), alpha=u(-PI, PI), offset=u(-PI, PI)),
+    ]
+    base = transform_from(rng.normal(size=4), rng.uniform(-0.5, 0.5, 3))
+    tool = transform_from(rng.normal(size=4), rng.uniform(-0.2, 0.2, 3))
+    robot = Robot.from_dh(rows, base=base, tool=tool)
+    if modified:
+        robot = robot.to_convention("modified")
+    assert classify(robot).kind == "three-parallel-6R"
+    return robot
+
+
+def solve_general(robot: Robot, T: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Candidates ``(N, 8, 6)`` of the general solver; every real one exact. Also the pose error."""
+    solver = make_three_parallel_solver(robot)
+    assert isinstance(solver, GeneralThreeParallelSolver)
+    cand = solver.solve(T)
+    q = cand.q
+    assert q.shape == (len(T), 8, 6) and cand.labels == GENERAL_LABELS
+    nan = np.isnan(q)
+    assert (nan.any(axis=2) == nan.all(axis=2)).all(), "a branch is partly NaN"
+    real = ~nan.any(axis=2)
+    reached = robot.fk(np.where(real[..., None], q, 0.0))
+    want = np.broadcast_to(T[:, None], reached.shape)
+    assert_transform_close(reached[real], want[real], 1e-10)
+    return q, np.abs(reached[real] - want[real]).max(initial=0.0)
+
+
+@pytest.mark.parametrize("modified", [False, True])
+def test_axes_5_6_apart_round_trip(modified: bool) -> None:
+    rng = np.random.default_rng(50 + modified)
+    robots = [Robot.from_dh(UR5_A5_ROWS)] + [random_general(rng, modified) for _ in range(8)]
+    if modified:
+        robots[0] = robots[0].to_convention("modified")
+    worst = 0.0
+    for robot in robots:
+        q = rng.uniform(-PI, PI, (300, 6))
+        cand, err = solve_general(robot, robot.fk(q))
+        worst = max(worst, err)
+        assert found(q, cand).all()
+        counts = (~np.isnan(cand).any(axis=2)).sum(axis=1)
+        assert set(counts.tolist()) <= {2, 4, 6, 8}
+    assert worst <= EXACT
+
+
+def test_axes_5_6_apart_complete_against_multistart_search() -> None:
+    rng = np.random.default_rng(51)
+    robots = [Robot.from_dh(UR5_A5_ROWS), random_general(rng, False), random_general(rng, True)]
+    for robot in robots:
+        for q in rng.uniform(-PI, PI, (2, 6)):
+            T = robot.fk(q)
+            cand = solve_general(robot, T[None])[0][0]
+            ours = cand[~np.isnan(cand).any(axis=1)]
+            theirs = dls_solutions(robot, T, rng)
+            assert len(theirs) >= 1
+            for s in theirs:
+                assert joint_distance(robot, ours, s).min() < 1e-6, f"missed {s}"
+
+
+def test_axes_5_6_apart_through_robot_ik() -> None:
+    robot = Robot.from_dh(UR5_A5_ROWS)
+    q = np.array([0.3, -1.1, 1.4, -0.2, 0.8, 0.5])
+    result = robot.ik(robot.fk(q))
+    assert result.method == "analytic:three-parallel-6R"
+
+
+def test_axes_5_6_apart_wrist_aligned_is_singular_with_q6_free() -> None:
+    rng = np.random.default_rng(52)
+    robot = Robot.from_dh(UR5_A5_ROWS)
+    q = rng.uniform(-PI, PI, (50, 6))
+    q[:, 4] = rng.choice([0.0, PI], 50)  # axis 6 parallel to axes 2-4
+    T = robot.fk(q)
+    cand, _ = solve_general(robot, T)
+    got = make_three_parallel_solver(robot).solve(T)  # type: ignore[union-attr]
+    real = ~np.isnan(cand).any(axis=2)
+    assert real.any(axis=1).all()
+    assert got.singular.all()
+    assert (got.free[:, [1, 2, 3, 5]]).all() and not got.free[:, [0, 4]].any()

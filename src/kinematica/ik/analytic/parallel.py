@@ -17,8 +17,10 @@ Rotations about axes parallel to ``k`` keep heights along ``k``, and ``E5``,
 
 Up to 8 solutions, exact, for any link values, offsets, twists α1, α4, α5,
 base, tool and DH convention, as long as axes 5 and 6 meet (all UR-type arms
-built: UR3/5/10/16, e-series, and their clones). A branch without a real root
-is NaN; nothing is approximated.
+built: UR3/5/10/16, e-series, and their clones); arms whose axes 5 and 6 do
+not meet get the general solver of :mod:`kinematica.ik.analytic.parallel_general`
+(IK-Geo subproblem 6, a quartic). A branch without a real root is NaN;
+nothing is approximated.
 
 Branch labels, ``k1`` being the current direction of axis 2 and all vectors
 current joint axes:
@@ -54,6 +56,10 @@ from kinematica.ik.analytic.arm3r import (
     common_normal,
     height_angles,
     height_angles_one,
+)
+from kinematica.ik.analytic.parallel_general import (
+    GeneralThreeParallelSolver,
+    make_general_solver,
 )
 from kinematica.ik.analytic.planar import (
     REACH_TOL,
@@ -348,17 +354,20 @@ class ThreeParallelSolver:
         return np.maximum(np.maximum(gap1, far), 0.0)
 
 
-def make_three_parallel_solver(robot: Robot) -> ThreeParallelSolver | None:
+def make_three_parallel_solver(
+    robot: Robot,
+) -> ThreeParallelSolver | GeneralThreeParallelSolver | None:
     """The closed-form solver of a UR-type 6R arm, or ``None``.
 
     Args:
         robot: Any robot.
 
     Returns:
-        A solver when ``classify(robot).kind == "three-parallel-6R"``, axes 5
-        and 6 meet, axis 1 and axis 5 are not parallel to axes 2-4, axis 6 is
-        not parallel to axis 5 and no link of the 2R triangle is degenerate;
-        else ``None``.
+        A solver when ``classify(robot).kind == "three-parallel-6R"``, axis 1
+        and axis 5 are not parallel to axes 2-4, axis 6 is not parallel to
+        axis 5 and no link of the 2R triangle is degenerate; else ``None``.
+        When axes 5 and 6 meet it is this module's solver, otherwise the
+        general one of :mod:`kinematica.ik.analytic.parallel_general`.
     """
     if classify(robot).kind != "three-parallel-6R":
         return None
@@ -373,7 +382,7 @@ def make_three_parallel_solver(robot: Robot) -> ThreeParallelSolver | None:
     if parallel(h[0], k) or parallel(h[4], k) or parallel(h[5], h[4]):
         return None
     if line_distance(h[4], p[4], h[5], p[5]) > MEET_TOL:
-        return None
+        return make_general_solver(h, p, M, k)
     c = common_normal(h[4], p[4], h[5], p[5])[0]
     plane = Plane.normal_to(k)
     arm = TwoLink(complex(plane.c(p[2] - p[1])), complex(plane.c(p[3] - p[2])))
