@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from kinematica.dh.convert import rx_tx
 from kinematica.dh.joints import Convention, Joint, Prismatic, check_convention
 
 __all__ = ["DHChain"]
@@ -49,11 +50,6 @@ def _snap(v: float) -> float:
     if abs(abs(v) - 1.0) < SNAP_TOL:
         return math.copysign(1.0, v)
     return v
-
-
-def _rx_tx(alpha: float, a: float) -> FloatArray:
-    ca, sa = _snap(math.cos(alpha)), _snap(math.sin(alpha))
-    return np.array([[1.0, 0, 0, a], [0, ca, -sa, 0], [0, sa, ca, 0], [0, 0, 0, 1.0]])
 
 
 @dataclass(frozen=True, eq=False)
@@ -133,7 +129,7 @@ class DHChain:
         else:
             a = np.append(a_row[1:], 0.0)
             alpha = np.append(alpha_row[1:], 0.0)
-            start = np.asarray(base, dtype=float) @ _rx_tx(float(alpha_row[0]), float(a_row[0]))
+            start = np.asarray(base, dtype=float) @ rx_tx(float(alpha_row[0]), float(a_row[0]))
         ca = np.array([_snap(math.cos(v)) for v in alpha], dtype=float).reshape(n)
         sa = np.array([_snap(math.sin(v)) for v in alpha], dtype=float).reshape(n)
         return cls(
