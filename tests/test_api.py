@@ -17,7 +17,11 @@ LAYER = {
     "dh": 2,
     "robot": 3,
     "ik": 4,
-    "cli": 6,
+    "motion": 6,
+    "design": 6,
+    "viz": 7,
+    "symbolic": 7,
+    "cli": 8,
 }
 
 

@@ -13,12 +13,15 @@ import sys
 from collections.abc import Sequence
 from typing import Any, NoReturn
 
-from kinematica.cli import commands
+from kinematica.cli import kinematics
 from kinematica.errors import KinematicaError
 
 __all__ = ["main"]
 
 EXIT_OK, EXIT_NO_ANSWER, EXIT_BAD_INPUT = 0, 1, 2
+
+#: The modules of subcommands, each with ``register(subparsers)``, in help order.
+COMMAND_MODULES = (kinematics,)
 
 
 # argparse reads "-1e-05" as an option, not a negative number (its own pattern
@@ -37,18 +40,6 @@ class _Parser(argparse.ArgumentParser):
         self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message} (see --help)\n")
 
 
-def _common(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--json", action="store_true", help="machine-readable output (stable keys)")
-    p.add_argument(
-        "--euler",
-        default="ZYZ",
-        metavar="SEQ",
-        help="Euler sequence, scipy naming: upper case intrinsic (ZYZ, XYZ...), "
-        "lower case extrinsic (zyz, xyz...); default ZYZ",
-    )
-    p.add_argument("--rad", action="store_true", help="angles in radians (default degrees)")
-
-
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of every subcommand."""
     parser = _Parser(
@@ -59,71 +50,8 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub.required = True
 
-    p = sub.add_parser("robots", help="list the built-in robot models")
-    _common(p)  # --euler/--rad accepted on every command; this one prints no angles
-    p.set_defaults(run=commands.robots)
-
-    p = sub.add_parser("show", help="DH table, limits and structure of a robot")
-    p.add_argument("robot", metavar="ROBOT", help="built-in name or robot file")
-    _common(p)
-    p.set_defaults(run=commands.show)
-
-    p = sub.add_parser("fk", help="forward kinematics: T, position and Euler angles")
-    p.add_argument("robot", metavar="ROBOT", help="built-in name or robot file")
-    p.add_argument(
-        "--q",
-        nargs="+",
-        type=float,
-        required=True,
-        metavar="Q",
-        help="joint values: degrees for revolute joints (or radians with "
-        "--rad), metres for prismatic joints",
-    )
-    p.add_argument("--frames", action="store_true", help="print every frame 0Ti")
-    _common(p)
-    p.set_defaults(run=commands.fk)
-
-    p = sub.add_parser("ik", help="inverse kinematics: every solution, one row each")
-    p.add_argument("robot", metavar="ROBOT", help="built-in name or robot file")
-    target = p.add_mutually_exclusive_group(required=True)
-    target.add_argument(
-        "--pose",
-        nargs=6,
-        type=float,
-        metavar=("X", "Y", "Z", "A", "B", "G"),
-        help="position (m) and three Euler angles (see --euler)",
-    )
-    target.add_argument(
-        "--matrix", nargs=16, type=float, metavar="M", help="the 4x4 pose, 16 numbers row by row"
-    )
-    target.add_argument(
-        "--position",
-        nargs=3,
-        type=float,
-        metavar=("X", "Y", "Z"),
-        help="position only (m): orientation left free",
-    )
-    p.add_argument(
-        "--method",
-        choices=("auto", "analytic", "numeric"),
-        default="auto",
-        help="closed form when the structure allows (auto), or force one",
-    )
-    p.add_argument(
-        "--q0",
-        nargs="+",
-        type=float,
-        metavar="Q",
-        help="initial guess / sort solutions by distance to it (units as --q)",
-    )
-    p.add_argument(
-        "--ignore-limits",
-        action="store_true",
-        help="list solutions outside the joint limits among the others",
-    )
-    p.add_argument("--seed", type=int, default=0, help="seed of numeric restarts (default 0)")
-    _common(p)
-    p.set_defaults(run=commands.ik)
+    for module in COMMAND_MODULES:
+        module.register(sub)
     return parser
 
 

@@ -1,9 +1,8 @@
-"""The subcommands: each parses its arguments into library calls and prints."""
+"""Subcommands ``robots``, ``show``, ``fk`` and ``ik``: the robot and its kinematics."""
 
 from __future__ import annotations
 
 import argparse
-import json
 import math
 from typing import Any
 
@@ -11,47 +10,15 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.cli.format import fmt, matrix, table
-from kinematica.errors import DimensionError
+from kinematica.cli.options import add_common, add_robot, angle_unit, clean, dump, q_in, q_out
 from kinematica.ik.result import IKResult
 from kinematica.io import builtin_names
 from kinematica.robot import Robot, classify, load
 from kinematica.spatial import euler_from_matrix, from_pose, gimbal_locked
 
-__all__ = ["fk", "ik", "robots", "show"]
+__all__ = ["fk", "ik", "register", "robots", "show"]
 
 FloatArray = NDArray[np.float64]
-
-
-def _angle_unit(args: argparse.Namespace) -> str:
-    return "rad" if getattr(args, "rad", False) else "deg"
-
-
-def _q_in(robot: Robot, values: list[float], args: argparse.Namespace, name: str) -> FloatArray:
-    """Joint values from the command line (deg or rad; metres for prismatic) to SI."""
-    q = np.array(values, dtype=float)
-    if q.shape != (robot.dof,):
-        raise DimensionError(
-            f"--{name} needs {robot.dof} values for {robot.name} ({robot.joint_types}), "
-            f"got {q.size}"
-        )
-    if not np.all(np.isfinite(q)):
-        raise DimensionError(f"--{name} holds NaN or inf: {values}")
-    if not args.rad:
-        q = np.where(robot.is_prismatic, q, np.deg2rad(q))
-    return q
-
-
-def _q_out(robot: Robot, q: FloatArray, args: argparse.Namespace) -> FloatArray:
-    return q if args.rad else np.where(robot.is_prismatic, q, np.rad2deg(q))
-
-
-def _dump(data: dict[str, Any]) -> None:
-    print(json.dumps(data, indent=2, allow_nan=False))
-
-
-def _clean(a: FloatArray) -> Any:
-    """Array to nested lists, tiny values as 0 (JSON output)."""
-    return np.where(np.abs(a) < 5e-16, 0.0, a).tolist()
 
 
 def robots(args: argparse.Namespace) -> int:
@@ -61,7 +28,7 @@ def robots(args: argparse.Namespace) -> int:
         robot = load(name)
         rows.append((name, robot.name, robot.joint_types, classify(robot).summary))
     if args.json:
-        _dump(
+        dump(
             {
                 "robots": [
                     dict(zip(("id", "name", "joints", "structure"), r, strict=True)) for r in rows
@@ -104,20 +71,20 @@ def show(args: argparse.Namespace) -> int:
     structure = classify(robot)
     deg = not args.rad
     if args.json:
-        _dump(
+        dump(
             {
                 "robot": robot.name,
                 "convention": robot.convention,
                 "joints": robot.joint_types,
                 "structure": {"kind": structure.kind, "summary": structure.summary},
-                "units": {"angle": _angle_unit(args), "length": "m"},
+                "units": {"angle": angle_unit(args), "length": "m"},
                 "dh": [
                     dict(zip(("theta", "d", "a", "alpha"), r, strict=True))
-                    for r in _clean(robot.dh_table())
+                    for r in clean(robot.dh_table())
                 ],
-                "qlim": _clean(_q_out(robot, robot.qlim.T, args).T),
-                "base": _clean(robot.base),
-                "tool": _clean(robot.tool),
+                "qlim": clean(q_out(robot, robot.qlim.T, args).T),
+                "base": clean(robot.base),
+                "tool": clean(robot.tool),
                 "description": robot.description,
             }
         )
@@ -156,7 +123,7 @@ def _pose_parts(T: FloatArray, args: argparse.Namespace) -> tuple[FloatArray, Fl
 def fk(args: argparse.Namespace) -> int:
     """``kinematica fk ROBOT --q ...``: T, position and Euler angles."""
     robot = load(args.robot)
-    q = _q_in(robot, args.q, args, "q")
+    q = q_in(robot, args.q, args, "q")
     T = robot.fk(q)
     pos, eul, locked = _pose_parts(T, args)
     frames = robot.fk(q, all_frames=True) if args.frames else None
@@ -164,16 +131,16 @@ def fk(args: argparse.Namespace) -> int:
         out: dict[str, Any] = {
             "robot": robot.name,
             "q": list(args.q),
-            "units": {"angle": _angle_unit(args), "length": "m"},
-            "T": _clean(T),
-            "position": _clean(pos),
-            "euler": _clean(eul),
+            "units": {"angle": angle_unit(args), "length": "m"},
+            "T": clean(T),
+            "position": clean(pos),
+            "euler": clean(eul),
             "euler_sequence": args.euler,
             "gimbal_lock": locked,
         }
         if frames is not None:
-            out["frames"] = _clean(frames)
-        _dump(out)
+            out["frames"] = clean(frames)
+        dump(out)
         return 0
     unit = "rad" if args.rad else "deg"
     print(f"{robot.name}, q = [{', '.join(fmt(v, 6) for v in args.q)}]")
@@ -202,27 +169,27 @@ def ik(args: argparse.Namespace) -> int:
     """``kinematica ik ROBOT --pose ...``: every solution, one row each."""
     robot = load(args.robot)
     target = _target(args)
-    q0 = None if args.q0 is None else _q_in(robot, args.q0, args, "q0")
+    q0 = None if args.q0 is None else q_in(robot, args.q0, args, "q0")
     res = robot.ik(
         target, method=args.method, respect_limits=not args.ignore_limits, q0=q0, seed=args.seed
     )
     assert isinstance(res, IKResult)
     solved = res.success
     if args.json:
-        _dump(
+        dump(
             {
                 "robot": robot.name,
                 "status": res.status,
                 "method": res.method,
                 "message": res.message,
-                "units": {"angle": _angle_unit(args), "length": "m"},
-                "solutions": _clean(_q_out(robot, res.solutions, args)),
+                "units": {"angle": angle_unit(args), "length": "m"},
+                "solutions": clean(q_out(robot, res.solutions, args)),
                 "branches": list(res.branches),
                 "residuals": {
-                    "position_m": _clean(res.residuals[:, 0]),
-                    "rotation_rad": _clean(res.residuals[:, 1]),
+                    "position_m": clean(res.residuals[:, 0]),
+                    "rotation_rad": clean(res.residuals[:, 1]),
                 },
-                "out_of_limits": _clean(_q_out(robot, res.out_of_limits, args)),
+                "out_of_limits": clean(q_out(robot, res.out_of_limits, args)),
                 "out_of_limits_branches": list(res.out_of_limits_branches),
                 "free_joints": [f"q{i + 1}" for i in res.free_joints],
                 "gap_m": res.gap,
@@ -236,7 +203,7 @@ def ik(args: argparse.Namespace) -> int:
         sol: FloatArray, branches: tuple[str, ...], resid: FloatArray | None
     ) -> list[tuple[str, ...]]:
         out = []
-        for k, (q, b) in enumerate(zip(_q_out(robot, sol, args), branches, strict=True), start=1):
+        for k, (q, b) in enumerate(zip(q_out(robot, sol, args), branches, strict=True), start=1):
             err = "" if resid is None else f"{resid[k - 1, 0]:.1e}, {resid[k - 1, 1]:.1e}"
             out.append((str(k), *(fmt(v, 4) for v in q), b, err))
         return out
@@ -252,3 +219,72 @@ def ik(args: argparse.Namespace) -> int:
             )
         )
     return 0 if solved else 1
+
+
+def register(sub: Any) -> None:
+    """Add ``robots``, ``show``, ``fk`` and ``ik`` to the subparsers ``sub``."""
+    p = sub.add_parser("robots", help="list the built-in robot models")
+    add_common(p)  # --euler/--rad accepted on every command; this one prints no angles
+    p.set_defaults(run=robots)
+
+    p = sub.add_parser("show", help="DH table, limits and structure of a robot")
+    add_robot(p)
+    add_common(p)
+    p.set_defaults(run=show)
+
+    p = sub.add_parser("fk", help="forward kinematics: T, position and Euler angles")
+    add_robot(p)
+    p.add_argument(
+        "--q",
+        nargs="+",
+        type=float,
+        required=True,
+        metavar="Q",
+        help="joint values: degrees for revolute joints (or radians with "
+        "--rad), metres for prismatic joints",
+    )
+    p.add_argument("--frames", action="store_true", help="print every frame 0Ti")
+    add_common(p)
+    p.set_defaults(run=fk)
+
+    p = sub.add_parser("ik", help="inverse kinematics: every solution, one row each")
+    add_robot(p)
+    target = p.add_mutually_exclusive_group(required=True)
+    target.add_argument(
+        "--pose",
+        nargs=6,
+        type=float,
+        metavar=("X", "Y", "Z", "A", "B", "G"),
+        help="position (m) and three Euler angles (see --euler)",
+    )
+    target.add_argument(
+        "--matrix", nargs=16, type=float, metavar="M", help="the 4x4 pose, 16 numbers row by row"
+    )
+    target.add_argument(
+        "--position",
+        nargs=3,
+        type=float,
+        metavar=("X", "Y", "Z"),
+        help="position only (m): orientation left free",
+    )
+    p.add_argument(
+        "--method",
+        choices=("auto", "analytic", "numeric"),
+        default="auto",
+        help="closed form when the structure allows (auto), or force one",
+    )
+    p.add_argument(
+        "--q0",
+        nargs="+",
+        type=float,
+        metavar="Q",
+        help="initial guess / sort solutions by distance to it (units as --q)",
+    )
+    p.add_argument(
+        "--ignore-limits",
+        action="store_true",
+        help="list solutions outside the joint limits among the others",
+    )
+    p.add_argument("--seed", type=int, default=0, help="seed of numeric restarts (default 0)")
+    add_common(p)
+    p.set_defaults(run=ik)
