@@ -34,6 +34,7 @@ from kinematica.dh import (
     link_matrix,
 )
 from kinematica.errors import KinematicaError
+from kinematica.kernels import fk as kfk
 
 CONVENTIONS = ["standard", "modified"]
 BATCHES = [(), (1,), (3, 2)]
@@ -319,10 +320,10 @@ def test_chain_kernels_equal_reference_product(spec: RobotSpec, seed: int) -> No
     chain = _chain(spec)
     q = random_q(spec, np.random.default_rng(seed), (5,))
     expected = np.array([spec.ref_frames(qi) for qi in q])
-    assert_transform_close(chain.fk_batch(q), expected[:, -1], atol=1e-12)
-    assert_transform_close(chain.fk_batch(q, all_frames=True), expected, atol=1e-12)
+    assert_transform_close(kfk(chain, q)[0], expected[:, -1], atol=1e-12)
+    assert_transform_close(kfk(chain, q, True)[0], expected, atol=1e-12)
     for qi, Ti in zip(q, expected[:, -1], strict=True):
-        assert_transform_close(chain.fk_single(qi.tolist()), Ti, atol=1e-12)
+        assert_transform_close(kfk(chain, qi)[0], Ti, atol=1e-12)
 
 
 def test_chain_batches_larger_than_one_block() -> None:
@@ -333,7 +334,7 @@ def test_chain_batches_larger_than_one_block() -> None:
     )
     chain = _chain(spec)
     q = random_q(spec, np.random.default_rng(7), (2500,))
-    T = chain.fk_batch(q)
+    T = kfk(chain, q)[0]
     for k in (0, 1023, 1024, 2047, 2048, 2499):
         assert_transform_close(T[k], spec.ref_fk(q[k]), atol=1e-14, err_msg=f"row {k}")
 
@@ -364,9 +365,9 @@ def test_special_twists_equal_reference_product(convention: str) -> None:
         chain = _chain(spec)
         q = random_q(spec, rng, (10,))
         expected = np.array([spec.ref_frames(qi) for qi in q])
-        assert_transform_close(chain.fk_batch(q, all_frames=True), expected, atol=1e-15)
+        assert_transform_close(kfk(chain, q, True)[0], expected, atol=1e-15)
         for qi, Ti in zip(q, expected[:, -1], strict=True):
-            assert_transform_close(chain.fk_single(qi.tolist()), Ti, atol=1e-15)
+            assert_transform_close(kfk(chain, qi)[0], Ti, atol=1e-15)
 
 
 @pytest.mark.parametrize("convention", CONVENTIONS)
@@ -389,6 +390,6 @@ def test_snapping_near_special_twists_is_harmless(
     chain = _chain(spec)
     q = random_q(spec, np.random.default_rng(9), (10,))
     expected = np.array([spec.ref_frames(qi) for qi in q])
-    assert_transform_close(chain.fk_batch(q, all_frames=True), expected, atol=1e-14)
+    assert_transform_close(kfk(chain, q, True)[0], expected, atol=1e-14)
     for qi, Ti in zip(q, expected[:, -1], strict=True):
-        assert_transform_close(chain.fk_single(qi.tolist()), Ti, atol=1e-14)
+        assert_transform_close(kfk(chain, qi)[0], Ti, atol=1e-14)

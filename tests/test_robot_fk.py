@@ -85,7 +85,7 @@ FIXED = {"puma": PUMA, "panda": PANDA, "mixed": MIXED, "mixed_mdh": MIXED_MDH}
 
 #: A transform whose rotation part is off orthonormal by 1e-6.
 SKEWED = rot_z(0.3)
-SKEWED[0, 1] += 1e-6
+SKEWED[0, 1] += 3e-6  # max|RᵀR - I| = 3e-6: beyond ORTHONORMAL_TOL (1e-6)
 
 
 def seed000_arm(l1: float, l2: float, l3: float, l4: float) -> Robot:
@@ -550,11 +550,11 @@ def test_complex_joint_values_are_rejected(puma: Robot) -> None:
         (np.eye(3), r"must be a 4x4 homogeneous transform, got shape \(3, 3\)"),
         (np.eye(4)[:3], r"must be a 4x4 homogeneous transform, got shape \(3, 4\)"),
         (np.zeros((2, 4, 4)), r"must be a 4x4 homogeneous transform, got shape \(2, 4, 4\)"),
-        (np.diag([1.0, 1.0, -1.0, 1.0]), "rotation part is not a proper rotation"),
-        (np.diag([2.0, 1.0, 1.0, 1.0]), "rotation part is not a proper rotation"),
-        (SKEWED, "rotation part is not a proper rotation"),
+        (np.diag([1.0, 1.0, -1.0, 1.0]), r"rotation has det = -1.000, expected \+1"),
+        (np.diag([2.0, 1.0, 1.0, 1.0]), "rotation is not orthonormal"),
+        (SKEWED, "rotation is not orthonormal"),
         (np.diag([1.0, 1.0, 1.0, 2.0]), r"last row must be \[0, 0, 0, 1\]"),
-        (np.full((4, 4), np.nan), "holds NaN or inf"),
+        (np.full((4, 4), np.nan), "contains NaN or inf"),
     ],
 )
 def test_bad_base_and_tool(which: str, value: np.ndarray, match: str) -> None:
@@ -596,3 +596,31 @@ def test_robot_written_to_a_file_loads_back_identical(
     np.testing.assert_array_equal(again.fk(q), robot.fk(q))
     np.testing.assert_array_equal(again.qlim, robot.qlim)
     assert again.convention == robot.convention and again.joint_types == robot.joint_types
+
+
+def test_base_and_tool_written_with_seven_digits_are_accepted_and_made_rigid() -> None:
+    # max|RᵀR - I| = 3e-7, inside ORTHONORMAL_TOL (1e-6): the same tolerance as a
+    # robot file's; the robot keeps the nearest rotation, exactly rigid.
+    R = rot_z(0.3)
+    R[0, 1] += 3e-7
+    for which in ("base", "tool"):
+        robot = Robot.from_dh([Revolute(a=0.3), Prismatic(alpha=0.2)], **{which: R})
+        M = getattr(robot, which)
+        assert np.abs(M[:3, :3].T @ M[:3, :3] - np.eye(3)).max() < 1e-15
+        assert np.abs(M - R).max() < 1e-6
+        T = robot.fk([0.4, 0.1])
+        assert np.abs(T[:3, :3].T @ T[:3, :3] - np.eye(3)).max() < 1e-15
+
+
+def test_base_orthonormal_to_roundoff_is_kept_bit_for_bit() -> None:
+    # ROUNDOFF_TOL (1e-14): a rotation computed in double precision is kept as
+    # given; one 1e-12 off orthonormal (written with 12 digits) is projected.
+    exact = rot_z(0.3) @ rot_x(1.1)
+    assert 0 < np.abs(exact[:3, :3].T @ exact[:3, :3] - np.eye(3)).max() < 1e-15
+    robot = Robot.from_dh([Revolute(a=0.3)], base=exact)
+    np.testing.assert_array_equal(robot.base, exact)
+    off = exact.copy()
+    off[0, 0] += 1e-12
+    robot = Robot.from_dh([Revolute(a=0.3)], base=off)
+    assert not np.array_equal(robot.base, off)
+    assert np.abs(robot.base[:3, :3].T @ robot.base[:3, :3] - np.eye(3)).max() < 1e-15

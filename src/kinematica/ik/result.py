@@ -5,72 +5,20 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import Literal
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.errors import UnreachableError
+from kinematica.ik.status import IKStatus, status_message
 
-__all__ = ["IKBatchResult", "IKResult", "Status", "status_message"]
+__all__ = ["IKBatchResult", "IKResult"]
 
 FloatArray = NDArray[np.float64]
 
-Status = Literal["ok", "unreachable", "singular", "out_of_limits", "not_found", "invalid"]
 
-#: Statuses for which ``solutions`` is not empty.
-SOLVED: frozenset[str] = frozenset({"ok", "singular"})
-
-
-def status_message(
-    status: str,
-    *,
-    method: str,
-    count: int,
-    out_of_limits: int,
-    free: tuple[int, ...],
-    gap: float,
-    nearest: tuple[float, float],
-) -> str:
-    """One sentence for people about an IK outcome.
-
-    Args:
-        status: The status.
-        method: The method name.
-        count: Solutions within limits.
-        out_of_limits: Solutions outside the limits.
-        free: 0-based indices of the free joints (singular case).
-        gap: Distance outside the reach (m), NaN if unknown.
-        nearest: Position (m) and rotation (rad) error of the closest
-            candidate that was not a solution, NaN if none.
-    """
-    plural = "s" if count != 1 else ""
-    if status == "ok":
-        extra = f"; {out_of_limits} more outside the joint limits" if out_of_limits else ""
-        return f"{count} solution{plural} ({method}){extra}"
-    if status == "singular":
-        names = ", ".join(f"q{v + 1}" for v in free)
-        return (
-            f"singular: infinitely many solutions ({names or 'some joints'} free); "
-            f"{count} representative{plural} given"
-        )
-    if status == "out_of_limits":
-        s = "s" if out_of_limits != 1 else ""
-        return f"{out_of_limits} solution{s} exist, none within the joint limits"
-    if status == "unreachable":
-        if math.isfinite(gap) and gap > 0:
-            return f"unreachable: the target is at least {gap:.6g} m outside the reach"
-        pos, rot = nearest
-        if math.isfinite(pos):
-            return (
-                "unreachable: no configuration reaches this pose "
-                f"(closest candidate off by {pos:.3g} m, {rot:.3g} rad)"
-            )
-        return "unreachable: the closed form has no real solution for this target"
-    return "not found: the numeric search did not converge (the target may still be reachable)"
-
-
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class IKResult:
     """All inverse-kinematics solutions of one target.
 
@@ -79,13 +27,9 @@ class IKResult:
             kinematics; within the joint limits when limits were respected.
             Revolute angles wrapped to (−π, π] (or into the limit window).
             Sorted by distance to ``q0`` when one was given.
-        status: ``"ok"``; ``"singular"`` (infinitely many solutions: the
-            rows are representatives, ``free_joints`` names the free ones);
-            ``"out_of_limits"`` (solutions exist, none within limits: see
-            ``out_of_limits``); ``"unreachable"`` (provably no solution:
-            ``gap`` says how far); ``"not_found"`` (a numeric search did not
-            converge: the target may still be reachable); ``"invalid"`` (in a
-            batch, a malformed target: the message says what is wrong).
+        status: An :class:`IKStatus` (compares equal to ``"ok"``,
+            ``"singular"``, ``"out_of_limits"``, ``"unreachable"``,
+            ``"not_found"``, ``"invalid"``).
         method: How it was solved, e.g. ``"analytic:spherical-wrist"``, ``"numeric:lm"``.
         residuals: ``(k, 2)`` per solution: position error (m), rotation error (rad).
         branches: ``(k,)`` branch label of each solution (e.g. ``"elbow up"``).
@@ -93,12 +37,16 @@ class IKResult:
         out_of_limits_branches: ``(j,)`` their branch labels.
         free_joints: 0-based indices of the joints left free in a singular case.
         gap: For ``"unreachable"``, a lower bound of the distance between the
-            target and the reachable set (m), when the solver knows one.
-        message: One sentence for people.
+            target and the reachable set (m), when one is known; else None.
+        nearest_error: Position (m) and rotation (rad) error of the closest
+            candidate that was not a solution (NaN if none).
+        notes: Remarks on how the target was read or solved (a rotation
+            projected onto SO(3), a target near a singular set...).
+        complete: True when the method gives every solution (a closed form).
     """
 
     solutions: FloatArray
-    status: Status
+    status: IKStatus
     method: str
     residuals: FloatArray
     branches: tuple[str, ...]
@@ -106,7 +54,24 @@ class IKResult:
     out_of_limits_branches: tuple[str, ...]
     free_joints: tuple[int, ...] = ()
     gap: float | None = None
-    message: str = ""
+    nearest_error: tuple[float, float] = (math.nan, math.nan)
+    notes: tuple[str, ...] = ()
+    complete: bool = True
+
+    @cached_property
+    def message(self) -> str:
+        """One sentence (and the notes) saying what happened."""
+        text = status_message(
+            self.status,
+            method=self.method,
+            count=self.count,
+            out_of_limits=int(self.out_of_limits.shape[0]),
+            free=self.free_joints,
+            gap=math.nan if self.gap is None else self.gap,
+            nearest=self.nearest_error,
+            complete=self.complete,
+        )
+        return "; ".join((text, *self.notes))
 
     @property
     def count(self) -> int:
@@ -126,7 +91,7 @@ class IKResult:
             UnreachableError: When there is no solution (the message says why).
         """
         if not self.success:
-            raise UnreachableError(self.message or f"no IK solution ({self.status})")
+            raise UnreachableError(self.message)
         return self.solutions[0]
 
     def __len__(self) -> int:
@@ -136,26 +101,32 @@ class IKResult:
         return iter(self.solutions)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class IKBatchResult:
-    """IK results for N targets, as arrays (index it for one :class:`IKResult`).
+    """IK results for a batch of targets of any shape ``(...)``, as arrays.
+
+    Index it with a batch index (``res[i]``, ``res[i, j]``) for one
+    :class:`IKResult`; iterating yields one per target in C order.
 
     Attributes:
-        solutions: ``(N, k, n)`` solutions, NaN-padded (see :class:`IKResult`).
-        count: ``(N,)`` number of solutions per target.
-        status: ``(N,)`` status per target.
+        solutions: ``(..., k, n)`` solutions, NaN-padded (see :class:`IKResult`).
+        count: ``(...)`` number of solutions per target.
+        status: ``(...)`` status per target (strings, see :class:`IKStatus`).
         method: How they were solved.
-        residuals: ``(N, k, 2)`` position (m) and rotation (rad) errors, NaN-padded.
-        branches: ``(N, k)`` branch labels, ``""`` where padded.
-        out_of_limits: ``(N, j, n)`` solutions outside the joint limits, NaN-padded.
-        out_of_limits_count: ``(N,)``.
-        out_of_limits_branches: ``(N, j)``.
-        free: ``(N, n)`` True for joints left free in a singular case.
-        gap: ``(N,)`` distance outside the reach for unreachable targets (m), else NaN.
-        nearest_error: ``(N, 2)`` smallest position (m) and rotation (rad)
+        residuals: ``(..., k, 2)`` position (m) and rotation (rad) errors, NaN-padded.
+        branches: ``(..., k)`` branch labels, ``""`` where padded.
+        out_of_limits: ``(..., j, n)`` solutions outside the joint limits, NaN-padded.
+        out_of_limits_count: ``(...)``.
+        out_of_limits_branches: ``(..., j)``.
+        free: ``(..., n)`` True for joints left free in a singular case.
+        gap: ``(...)`` distance outside the reach for unreachable targets (m), else NaN.
+        nearest_error: ``(..., 2)`` smallest position (m) and rotation (rad)
             residual among candidates that were not solutions, NaN if none.
-        errors: Row -> what is wrong with that row's target, for the rows whose
-            status is ``"invalid"`` (malformed targets in a batch).
+        errors: Batch index -> what is wrong with that target, for the
+            targets whose status is ``"invalid"``.
+        notes: Batch index -> remarks on that target (e.g. its rotation was
+            projected onto SO(3)).
+        complete: True when the method gives every solution (a closed form).
     """
 
     solutions: FloatArray
@@ -170,41 +141,61 @@ class IKBatchResult:
     free: NDArray[np.bool_]
     gap: FloatArray
     nearest_error: FloatArray
-    errors: Mapping[int, str] = field(default_factory=dict)
+    errors: Mapping[tuple[int, ...], str] = field(default_factory=dict)
+    notes: Mapping[tuple[int, ...], tuple[str, ...]] = field(default_factory=dict)
+    complete: bool = True
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        """The batch shape ``(...)``."""
+        return tuple(self.count.shape)
+
+    @property
+    def size(self) -> int:
+        """The number of targets."""
+        return int(self.count.size)
 
     def __len__(self) -> int:
-        return int(self.count.shape[0])
+        return self.shape[0] if self.shape else 1
 
-    def __getitem__(self, i: int) -> IKResult:
-        k = int(self.count[i])
-        j = int(self.out_of_limits_count[i])
-        gap = float(self.gap[i])
+    def _index(self, i: int | tuple[int, ...]) -> tuple[int, ...]:
+        idx = (i,) if isinstance(i, int | np.integer) else tuple(i)
+        if len(idx) != len(self.shape):
+            raise IndexError(
+                f"a batch of shape {self.shape} takes {len(self.shape)} indices, got {len(idx)}"
+            )
+        return tuple(int(v) % s for v, s in zip(idx, self.shape, strict=True))
+
+    def __getitem__(self, i: int | tuple[int, ...]) -> IKResult:
+        idx = self._index(i)
+        k = int(self.count[idx])
+        j = int(self.out_of_limits_count[idx])
+        gap = float(self.gap[idx])
+        notes = self.notes.get(idx, ())
+        if idx in self.errors:
+            notes = (self.errors[idx], *notes)
         return IKResult(
-            solutions=self.solutions[i, :k].copy(),
-            status=str(self.status[i]),  # type: ignore[arg-type]
+            solutions=self.solutions[idx][:k].copy(),
+            status=IKStatus(str(self.status[idx])),
             method=self.method,
-            residuals=self.residuals[i, :k].copy(),
-            branches=tuple(str(b) for b in self.branches[i, :k]),
-            out_of_limits=self.out_of_limits[i, :j].copy(),
-            out_of_limits_branches=tuple(str(b) for b in self.out_of_limits_branches[i, :j]),
-            free_joints=tuple(int(v) for v in np.flatnonzero(self.free[i])),
-            gap=None if np.isnan(gap) else gap,
-            message=self.message(i),
+            residuals=self.residuals[idx][:k].copy(),
+            branches=tuple(str(b) for b in self.branches[idx][:k]),
+            out_of_limits=self.out_of_limits[idx][:j].copy(),
+            out_of_limits_branches=tuple(str(b) for b in self.out_of_limits_branches[idx][:j]),
+            free_joints=tuple(int(v) for v in np.flatnonzero(self.free[idx])),
+            gap=None if math.isnan(gap) else gap,
+            nearest_error=(float(self.nearest_error[idx][0]), float(self.nearest_error[idx][1])),
+            notes=notes,
+            complete=self.complete,
         )
 
-    def message(self, i: int) -> str:
-        """One sentence saying what happened to target ``i``."""
-        if i in self.errors:
-            return f"invalid target: {self.errors[i]}"
-        return status_message(
-            str(self.status[i]),
-            method=self.method,
-            count=int(self.count[i]),
-            out_of_limits=int(self.out_of_limits_count[i]),
-            free=tuple(int(v) for v in np.flatnonzero(self.free[i])),
-            gap=float(self.gap[i]),
-            nearest=(float(self.nearest_error[i, 0]), float(self.nearest_error[i, 1])),
-        )
+    @cached_property
+    def message(self) -> NDArray[np.str_]:
+        """``(...)`` one sentence per target, as :attr:`IKResult.message`."""
+        out = np.empty(self.shape, dtype=object)
+        for idx in np.ndindex(*self.shape):
+            out[idx] = self[idx].message
+        return out.astype(str)
 
     def __iter__(self) -> Iterator[IKResult]:
-        return (self[i] for i in range(len(self)))
+        return (self[idx] for idx in np.ndindex(*self.shape))

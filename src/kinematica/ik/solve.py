@@ -1,8 +1,14 @@
-"""``robot.ik``: choose a solver, run it on a batch of targets, check the answers."""
+"""``robot.ik``: choose a solver, run its kernel on the targets, check the answers.
+
+One path for one target and for a batch of any shape: a closed-form solver's
+kernel (or the numeric search) proposes candidates, the check kernel of
+:mod:`kinematica.kernels.ik_check` judges them by forward kinematics, and the
+outcome is wrapped in an :class:`IKResult` (one target) or an
+:class:`IKBatchResult` (a batch).
+"""
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import weakref
 from typing import Literal
@@ -10,151 +16,104 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from kinematica.dh import DHChain
 from kinematica.errors import DimensionError, KinematicaError
-from kinematica.ik.analytic import find_solver
-from kinematica.ik.candidates import AnalyticSolver
-from kinematica.ik.finalize import Tolerance, finalize
-from kinematica.ik.finalize_one import finalize_one
-from kinematica.ik.numeric import solve_numeric
+from kinematica.ik.analytic import SOLVERS
+from kinematica.ik.numeric import LABEL, check_seed, numeric_setup
+from kinematica.ik.registry import ClosedForm, TargetKind, describe
 from kinematica.ik.result import IKBatchResult, IKResult
-from kinematica.robot import Robot, classify
-from kinematica.spatial import ORTHONORMAL_TOL, check_transform
+from kinematica.ik.status import STATUS_NAMES, IKStatus
+from kinematica.ik.structure import features
+from kinematica.ik.targets import Targets, Tolerance, parse_mask, parse_targets, parse_tolerance
+from kinematica.kernels import set_workers
+from kinematica.kernels.ik_check import (
+    INFO_FREE,
+    INFO_GAP,
+    META_COUNT,
+    META_GAP,
+    META_NEAREST_POSITION,
+    META_NEAREST_ROTATION,
+    META_OUT_COUNT,
+    META_SIZE,
+    META_STATUS,
+    OPT_COMPLETE,
+    OPT_HAS_Q0,
+    OPT_RESPECT_LIMITS,
+    OPT_SIZE,
+    OPT_TOL_POSITION,
+    OPT_TOL_ROTATION,
+    STATUS_INVALID,
+    check_batch,
+    check_target,
+    info_size,
+)
+from kinematica.kernels.lm import STAT_GAP, STAT_SIZE, lm_batch, lm_target
 
-__all__ = ["Method", "solve_ik"]
+__all__ = ["Method", "closed_form", "solve_ik", "structure_of"]
 
 FloatArray = NDArray[np.float64]
 Method = Literal["auto", "analytic", "numeric"]
 
-# Closed-form solvers are built once per robot (a Robot is immutable, so the
-# solver is a pure function of it); the cache forgets a robot when it dies.
-_SOLVERS: weakref.WeakKeyDictionary[Robot, dict[bool, AnalyticSolver | None]] = (
+_POSE = np.ones(6)
+_POSITION = np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0])
+
+# Closed-form solvers are built once per chain (a chain is immutable, so the
+# solver is a pure function of it); the cache forgets a chain when it dies.
+_SOLVERS: weakref.WeakKeyDictionary[DHChain, dict[str, ClosedForm | None]] = (
     weakref.WeakKeyDictionary()
 )
 
 
-def _solver(robot: Robot, position_only: bool) -> AnalyticSolver | None:
-    per_robot = _SOLVERS.setdefault(robot, {})
-    if position_only not in per_robot:
-        per_robot[position_only] = find_solver(robot, position_only=position_only)
-    return per_robot[position_only]
+def structure_of(chain: DHChain) -> tuple[str, str]:
+    """``(kind, summary)`` of a chain's structure (see :func:`describe`)."""
+    return describe(features(chain), SOLVERS)
 
 
-def _parse_targets(target: ArrayLike) -> tuple[FloatArray, bool, bool, dict[int, str]]:
-    """Return ``(targets (N, 4, 4) or (N, 3), single, position_only, bad rows)``.
+def closed_form(chain: DHChain, target: TargetKind) -> ClosedForm | None:
+    """The closed-form solver of a chain for pose or position targets, if there is one.
 
-    A single malformed target raises. In a batch, malformed rows are reported
-    (row -> what is wrong) and replaced by a harmless placeholder, so that the
-    other rows are still solved.
+    A reduced arm (fewer than 6 joints) without a pose solver takes its
+    position solver for poses: the whole pose is then checked.
     """
-    try:
-        arr = np.asarray(target, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise DimensionError(f"target must be numbers, got {target!r}") from exc
-    if arr.shape == (3,) or (arr.ndim == 2 and arr.shape[-1] == 3):
-        if arr.ndim == 1:
-            if not np.all(np.isfinite(arr)):
-                raise DimensionError("target position holds NaN or inf")
-            return arr.reshape(1, 3), True, True, {}
-        bad_rows = np.flatnonzero(~np.all(np.isfinite(arr), axis=-1))
-        problems = {int(i): f"target row {i}: position holds NaN or inf" for i in bad_rows}
-        arr = arr.copy()
-        arr[bad_rows] = 0.0
-        return arr, False, True, problems
-    if arr.shape == (4, 4):
-        if not _rigid(arr.tolist()):
-            check_transform(arr, name="target")  # raises, saying what is wrong
-        return arr[None], True, False, {}
-    if arr.ndim == 3 and arr.shape[-2:] == (4, 4):
-        try:
-            return check_transform(arr, name="target"), False, False, {}
-        except DimensionError:
-            pass  # some rows are malformed: find them all, say what is wrong with each
-        problems = {}
-        for i in _malformed_rows(arr):
-            try:
-                check_transform(arr[i], name=f"target row {i}")
-            except DimensionError as exc:
-                problems[int(i)] = str(exc)
-        if problems:
-            arr = arr.copy()
-            arr[list(problems)] = np.eye(4)
-        return arr, False, False, problems
-    raise DimensionError(
-        "target must be a pose (4, 4), a position (3,), or batches (N, 4, 4) / (N, 3); "
-        f"got shape {arr.shape}"
-    )
+    per_chain = _SOLVERS.setdefault(chain, {})
+    if target not in per_chain:
+        found = None
+        f = features(chain)
+        for spec in SOLVERS:
+            if spec.handles(f):
+                found = spec.build(chain, f, target)
+                if found is not None:
+                    break
+        if found is None and target == "pose" and chain.dof < 6:
+            found = closed_form(chain, "position")
+        per_chain[target] = found
+    return per_chain[target]
 
 
-def _rigid(T: list[list[float]]) -> bool:
-    """One 4x4 pose (as lists) is a rigid transform, checked on floats (fast path)."""
-    if not all(math.isfinite(v) for row in T for v in row):
-        return False
-    if max(abs(a - b) for a, b in zip(T[3], (0.0, 0.0, 0.0, 1.0), strict=True)) > ORTHONORMAL_TOL:
-        return False
-    cols = [[T[0][j], T[1][j], T[2][j]] for j in range(3)]
-    for i in range(3):
-        for j in range(i, 3):
-            dot = sum(a * b for a, b in zip(cols[i], cols[j], strict=True))
-            if abs(dot - (1.0 if i == j else 0.0)) > ORTHONORMAL_TOL:
-                return False
-    x, y, z = cols
-    det = (
-        x[0] * (y[1] * z[2] - y[2] * z[1])
-        - y[0] * (x[1] * z[2] - x[2] * z[1])
-        + z[0] * (x[1] * y[2] - x[2] * y[1])
-    )
-    return det > 0.0
-
-
-def _malformed_rows(T: FloatArray) -> NDArray[np.intp]:
-    """Indices of the ``(N, 4, 4)`` rows that are not rigid transforms."""
-    finite = np.all(np.isfinite(T), axis=(-1, -2))
-    Tf = np.where(finite[:, None, None], T, np.eye(4))
-    R = Tf[:, :3, :3]
-    gram = np.abs(np.swapaxes(R, -1, -2) @ R - np.eye(3)).max(axis=(-1, -2))
-    last = np.abs(Tf[:, 3] - [0.0, 0.0, 0.0, 1.0]).max(axis=-1)
-    ok = finite & (gram <= ORTHONORMAL_TOL) & (last <= ORTHONORMAL_TOL)
-    ok &= np.linalg.det(R) > 0
-    return np.flatnonzero(~ok)
-
-
-def _mark_invalid(result: IKBatchResult, problems: dict[int, str]) -> IKBatchResult:
-    """Blank the rows whose targets were malformed and say why."""
-    if not problems:
-        return result
-    rows = list(problems)
-    count, ocount = result.count.copy(), result.out_of_limits_count.copy()
-    status = result.status.astype(object)
-    sol, osol = result.solutions.copy(), result.out_of_limits.copy()
-    count[rows] = ocount[rows] = 0
-    status[rows] = "invalid"
-    sol[rows] = np.nan
-    osol[rows] = np.nan
-    return dataclasses.replace(
-        result,
-        solutions=sol,
-        count=count,
-        status=status.astype(str),
-        out_of_limits=osol,
-        out_of_limits_count=ocount,
-        errors=problems,
-    )
-
-
-def _parse_mask(mask: ArrayLike | None) -> FloatArray | None:
-    if mask is None:
+def _q0(chain: DHChain, q0: ArrayLike | None, targets: Targets) -> FloatArray | None:
+    """``(N, n)`` q0 per target, or None."""
+    if q0 is None:
         return None
-    m = np.asarray(mask, dtype=float)
-    if m.shape != (6,) or not np.all(np.isfinite(m)) or np.any(m < 0):
+    try:
+        q = np.asarray(q0, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise DimensionError(f"q0 must be numbers, got {q0!r}") from exc
+    n = chain.dof
+    if q.ndim == 0 or q.shape[-1] != n:
+        raise DimensionError(f"q0 must hold {n} joint values, got shape {q.shape}")
+    if not np.all(np.isfinite(q)):
+        raise DimensionError("q0 holds NaN or inf")
+    try:
+        full = np.broadcast_to(q, (*targets.shape, n))
+    except ValueError:
         raise DimensionError(
-            "mask must be 6 non-negative weights for x, y, z, rx, ry, rz; "
-            f"got {np.asarray(mask).tolist()}"
-        )
-    return None if np.all(m == 1.0) else m
+            f"q0 of shape {q.shape} does not match targets of batch shape {targets.shape}"
+        ) from None
+    return np.ascontiguousarray(full.reshape(-1, n))
 
 
 def solve_ik(
-    robot: Robot,
+    chain: DHChain,
     target: ArrayLike,
     *,
     method: Method = "auto",
@@ -162,108 +121,197 @@ def solve_ik(
     q0: ArrayLike | None = None,
     mask: ArrayLike | None = None,
     seed: int | np.random.Generator | None = None,
-    tol: Tolerance | None = None,
+    tol: float | tuple[float, float] | Tolerance | None = None,
+    workers: int | None = None,
 ) -> IKResult | IKBatchResult:
     """Every inverse-kinematics solution of a target, or an honest status.
 
-    In a batch, a malformed target (NaN, not a rigid transform) does not stop
-    the others: its row gets the status ``"invalid"`` and a message saying what
-    is wrong with it.
-
-    Args:
-        robot: The robot.
-        target: A pose ``(4, 4)`` (tool in the base frame), a position ``(3,)``
-            (tool origin; orientation free), or batches ``(N, 4, 4)`` / ``(N, 3)``.
-        method: ``"auto"`` (closed form when the structure allows, else
-            numeric), ``"analytic"`` or ``"numeric"``.
-        respect_limits: Keep solutions outside the joint limits apart
-            (``out_of_limits``) rather than among ``solutions``.
-        q0: ``(n,)`` or ``(N, n)``: the numeric initial guess, and the
-            configuration solutions are sorted by distance to.
-        mask: ``(6,)`` weights of the error components x, y, z, rx, ry, rz
-            (numeric only); e.g. ``[1, 1, 1, 0, 0, 1]``.
-        seed: Seed of the numeric restarts.
-        tol: Acceptance tolerances (default 1e-10 m and 1e-10 rad).
-
-    Returns:
-        An :class:`IKResult` for one target, an :class:`IKBatchResult` for a batch.
-
-    Raises:
-        DimensionError: On malformed targets, ``q0`` or ``mask``.
-        KinematicaError: ``method="analytic"`` for a structure with no closed form.
+    See :meth:`kinematica.Robot.ik` for the arguments and what comes back.
     """
     if method not in ("auto", "analytic", "numeric"):
         raise KinematicaError(f"method must be 'auto', 'analytic' or 'numeric', got {method!r}")
-    targets, single, position_only, problems = _parse_targets(target)
-    m = _parse_mask(mask)
-    q0a = None if q0 is None else robot.check_q(q0, name="q0")
-    if q0a is not None and q0a.ndim == 2 and q0a.shape[0] != targets.shape[0]:
-        raise DimensionError(f"q0 has {q0a.shape[0]} rows for {targets.shape[0]} targets")
-    if q0a is not None and q0a.ndim > 2:
-        raise DimensionError(f"q0 must be (n,) or (N, n), got shape {q0a.shape}")
-
-    solver = None
-    if method != "numeric" and m is None:
-        solver = _solver(robot, position_only)
-        if solver is None and not position_only and robot.dof < 6:
-            # A reduced arm: solve the position in closed form, check the whole pose.
-            solver = _solver(robot, True)
-    if method == "analytic" and solver is None:
-        why = "a mask was given" if m is not None else f"structure: {classify(robot).summary}"
-        raise KinematicaError(
-            f"no closed-form solver for {robot.name} ({why}); use method='numeric'"
-        )
-
-    tol = tol or Tolerance()
-    if solver is not None:
-        solver_targets = (
-            targets[:, :3, 3] if solver.position_only and not position_only else targets
-        )
-        cand = solver.solve(solver_targets)
-        if single:
-            one = finalize_one(
-                robot,
-                targets[0],
-                cand,
-                method=f"analytic:{solver.name}",
-                complete=True,
-                respect_limits=respect_limits,
-                q0=None if q0a is None else q0a.reshape(-1, robot.dof)[0],
-                tol=tol,
-            )
-            if one is not None:
-                return one
-        result = finalize(
-            robot,
-            targets,
-            cand,
-            method=f"analytic:{solver.name}",
-            complete=True,
-            respect_limits=respect_limits,
-            q0=q0a,
-            tol=tol,
-        )
+    targets = parse_targets(target)
+    m = parse_mask(mask)
+    tolerance = parse_tolerance(tol)
+    seed = check_seed(seed)
+    q0s = _q0(chain, q0, targets)
+    kind: TargetKind = "position" if targets.position else "pose"
+    w = _POSITION if targets.position else _POSE
+    if m is not None:
+        w = m * w
+    closed = None if method == "numeric" or m is not None else closed_form(chain, kind)
+    if method == "analytic" and closed is None:
+        why = "a mask was given" if m is not None else f"structure: {structure_of(chain)[1]}"
+        raise KinematicaError(f"no closed-form solver for this arm ({why}); use the numeric method")
+    N = targets.poses.shape[0]
+    if closed is not None:
+        Q, info = _closed_candidates(closed, targets, chain.dof, workers)
+        labels, name = closed.labels, f"analytic:{closed.name}"
     else:
-        cand = solve_numeric(
-            robot,
-            targets,
-            q0=q0a,
-            mask=m,
-            seed=seed,
-            tol_position=tol.position,
-            tol_angle=tol.rotation,
-            respect_limits=respect_limits,
-            position_only=position_only,
-        )
-        result = finalize(
-            robot,
-            targets,
-            cand,
-            method="numeric:lm",
-            complete=False,
-            respect_limits=respect_limits,
-            q0=q0a,
-            mask=m,
-            tol=tol,
-        )
-    return result[0] if single else _mark_invalid(result, problems)
+        Q, info = _numeric_candidates(chain, targets, w, tolerance, respect_limits, seed, q0s, workers)
+        labels, name = (LABEL,), "numeric:lm"
+    opts = np.empty(OPT_SIZE)
+    opts[OPT_TOL_POSITION] = tolerance.position
+    opts[OPT_TOL_ROTATION] = tolerance.rotation
+    opts[OPT_RESPECT_LIMITS] = float(respect_limits)
+    opts[OPT_COMPLETE] = float(closed is not None)
+    opts[OPT_HAS_Q0] = float(q0s is not None)
+    slots = Q.shape[1]
+    q0_rows = q0s if q0s is not None else np.zeros((N, chain.dof))
+    out_q = np.empty((N, slots, chain.dof))
+    out_slot = np.empty((N, slots), dtype=np.int64)
+    out_res = np.empty((N, slots, 2))
+    meta = np.zeros((N, META_SIZE))
+    if targets.single:
+        check_target(
+            chain.links, chain.ends, chain.qlim, targets.poses[0], Q[0], info[0], w,
+            q0_rows[0], opts, out_q[0], out_slot[0], out_res[0], meta[0],
+        )  # fmt: skip
+        return _one(out_q[0], out_slot[0], out_res[0], meta[0], info[0], labels, name, closed, targets)
+    for i in targets.invalid:
+        meta[i, META_STATUS] = STATUS_INVALID
+    set_workers(workers)
+    check_batch(
+        chain.links, chain.ends, chain.qlim, targets.poses, Q, info, w, q0_rows, opts,
+        out_q, out_slot, out_res, meta,
+    )  # fmt: skip
+    return _many(out_q, out_slot, out_res, meta, info, labels, name, closed, targets)
+
+
+def _closed_candidates(
+    closed: ClosedForm, targets: Targets, n: int, workers: int | None
+) -> tuple[FloatArray, FloatArray]:
+    """Candidates ``(N, m, n)`` and solver info ``(N, k)`` of a closed form."""
+    if closed.legacy is not None:
+        return closed.legacy(targets.poses)
+    N = targets.poses.shape[0]
+    Q = np.empty((N, closed.slots, n))
+    info = np.zeros((N, info_size(n)))
+    if N == 1:
+        closed.solve_one(closed.params, targets.poses[0], Q[0], info[0])
+    else:
+        set_workers(workers)
+        closed.solve_batch(closed.params, targets.poses, Q, info)
+    return Q, info
+
+
+def _numeric_candidates(
+    chain: DHChain,
+    targets: Targets,
+    w: FloatArray,
+    tolerance: Tolerance,
+    respect_limits: bool,
+    seed: int | np.random.Generator | None,
+    q0s: FloatArray | None,
+    workers: int | None,
+) -> tuple[FloatArray, FloatArray]:
+    """The numeric search's one candidate per target ``(N, 1, n)``, and its info."""
+    setup = numeric_setup(
+        chain,
+        respect_limits=respect_limits,
+        tol_position=tolerance.position,
+        tol_rotation=tolerance.rotation,
+        seed=seed,
+    )
+    N, n = targets.poses.shape[0], chain.dof
+    start = q0s if q0s is not None else np.broadcast_to(setup.middle, (N, n))
+    start = np.ascontiguousarray(start)
+    Q = np.empty((N, 1, n))
+    stats = np.empty((N, STAT_SIZE))
+    args = (chain.links, chain.ends, setup.bounds, w, setup.settings)
+    if N == 1:
+        lm_target(*args, targets.poses[0], start[0], setup.samples, Q[0, 0], stats[0])
+    else:
+        set_workers(workers)
+        lm_batch(*args, targets.poses, start, setup.samples, Q[:, 0], stats)
+    info = np.zeros((N, info_size(n)))
+    info[:, INFO_GAP] = stats[:, STAT_GAP]
+    return Q, info
+
+
+def _one(
+    out_q: FloatArray,
+    out_slot: NDArray[np.int64],
+    out_res: FloatArray,
+    meta: FloatArray,
+    info: FloatArray,
+    labels: tuple[str, ...],
+    method: str,
+    closed: ClosedForm | None,
+    targets: Targets,
+) -> IKResult:
+    count, out_count = int(meta[META_COUNT]), int(meta[META_OUT_COUNT])
+    status = STATUS_NAMES[int(meta[META_STATUS])]
+    gap = float(meta[META_GAP])
+    end = count + out_count
+    return IKResult(
+        solutions=out_q[:count].copy(),
+        status=status,
+        method=method,
+        residuals=out_res[:count].copy(),
+        branches=tuple(labels[j] for j in out_slot[:count]),
+        out_of_limits=out_q[count:end].copy(),
+        out_of_limits_branches=tuple(labels[j] for j in out_slot[count:end]),
+        free_joints=_free(info) if status == IKStatus.SINGULAR else (),
+        gap=None if math.isnan(gap) else gap,
+        nearest_error=(float(meta[META_NEAREST_POSITION]), float(meta[META_NEAREST_ROTATION])),
+        notes=targets.notes.get(0, ()),
+        complete=closed is not None,
+    )
+
+
+def _free(info: FloatArray) -> tuple[int, ...]:
+    return tuple(int(i) for i in np.flatnonzero(info[INFO_FREE:]))
+
+
+def _many(
+    out_q: FloatArray,
+    out_slot: NDArray[np.int64],
+    out_res: FloatArray,
+    meta: FloatArray,
+    info: FloatArray,
+    labels: tuple[str, ...],
+    method: str,
+    closed: ClosedForm | None,
+    targets: Targets,
+) -> IKBatchResult:
+    N, m, n = out_q.shape
+    shape = targets.shape
+    count = meta[:, META_COUNT].astype(np.int64)
+    out_count = meta[:, META_OUT_COUNT].astype(np.int64)
+    k = int(count.max(initial=0))
+    j = int(out_count.max(initial=0))
+    rows = np.arange(m)
+    names = np.array([*labels, ""], dtype=str)  # slot -1 -> ""
+    inside = rows[None, :k] < count[:, None]
+    solutions = np.where(inside[..., None], out_q[:, :k], np.nan)
+    residuals = np.where(inside[..., None], out_res[:, :k], np.nan)
+    branches = np.where(inside, names[out_slot[:, :k]], "")
+    idx = np.minimum(count[:, None] + rows[None, :j], m - 1)
+    outside = rows[None, :j] < out_count[:, None]
+    o_q = np.where(outside[..., None], np.take_along_axis(out_q, idx[..., None], axis=1), np.nan)
+    o_slot = np.take_along_axis(out_slot, idx, axis=1)
+    o_branches = np.where(outside, names[o_slot], "")
+    codes = meta[:, META_STATUS].astype(np.int64)
+    status = np.array([str(STATUS_NAMES[c]) for c in range(6)], dtype=str)[codes]
+    free = (info[:, INFO_FREE:] != 0.0) & (status == str(IKStatus.SINGULAR))[:, None]
+    unravel = (lambda i: tuple(int(v) for v in np.unravel_index(i, shape))) if shape else (
+        lambda i: ()
+    )
+    return IKBatchResult(
+        solutions=solutions.reshape(*shape, k, n),
+        count=count.reshape(shape),
+        status=status.reshape(shape),
+        method=method,
+        residuals=residuals.reshape(*shape, k, 2),
+        branches=branches.reshape(*shape, k),
+        out_of_limits=o_q.reshape(*shape, j, n),
+        out_of_limits_count=out_count.reshape(shape),
+        out_of_limits_branches=o_branches.reshape(*shape, j),
+        free=free.reshape(*shape, n),
+        gap=meta[:, META_GAP].reshape(shape),
+        nearest_error=meta[:, [META_NEAREST_POSITION, META_NEAREST_ROTATION]].reshape(*shape, 2),
+        errors={unravel(i): msg for i, msg in targets.invalid.items()},
+        notes={unravel(i): note for i, note in targets.notes.items()},
+        complete=closed is not None,
+    )

@@ -12,8 +12,7 @@ import math
 import warnings
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from numbers import Real
-from typing import TYPE_CHECKING, Literal
+from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -29,38 +28,45 @@ from kinematica.dh import (
     link_matrix,
 )
 from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning
-from kinematica.robot.jacobian import jacobian
+from kinematica.ik import IKBatchResult, IKResult, Tolerance, solve_ik
+from kinematica.kernels import fk as kernel_fk
+from kinematica.kernels import jacobian as kernel_jacobian
+from kinematica.kernels import joint_axes as kernel_joint_axes
+from kinematica.spatial import check_transform, orthonormalize
 
-if TYPE_CHECKING:
-    from kinematica.ik.result import IKBatchResult, IKResult
 
 __all__ = ["Robot"]
 
 FloatArray = NDArray[np.float64]
 
-#: Tolerance on a base/tool rotation part being orthonormal with det +1.
-FRAME_TOL = 1e-9
+
+def _short(value: object, limit: int = 60) -> str:
+    """``repr(value)``, cut to ``limit`` characters for messages."""
+    text = repr(value)
+    return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
 def _check_frame(T: ArrayLike | None, what: str) -> FloatArray:
+    """A base or tool transform, checked as every transform is, then made exactly rigid.
+
+    A rotation written with a few digits (orthonormal to ``ORTHONORMAL_TOL``) is
+    accepted and replaced by the nearest rotation, so that forward kinematics
+    stays rigid to round-off; one orthonormal to round-off is kept as given.
+    """
     if T is None:
         return np.eye(4)
-    raw = np.asarray(T)
-    if raw.dtype.kind not in "iuf":
-        raise DimensionError(f"{what} must be a 4x4 matrix of real numbers, got {T!r}")
-    M = np.array(raw, dtype=float)
-    if M.shape != (4, 4):
-        raise DimensionError(f"{what} must be a 4x4 homogeneous transform, got shape {M.shape}")
-    if not np.all(np.isfinite(M)):
-        raise DimensionError(f"{what} holds NaN or inf")
-    if not np.allclose(M[3], [0.0, 0.0, 0.0, 1.0], atol=FRAME_TOL):
-        raise DimensionError(f"{what} last row must be [0, 0, 0, 1], got {M[3].tolist()}")
-    R = M[:3, :3]
-    err = float(np.abs(R.T @ R - np.eye(3)).max())
-    if err > FRAME_TOL or np.linalg.det(R) < 0:
+    try:
+        raw = np.asarray(T)
+    except (TypeError, ValueError) as exc:
         raise DimensionError(
-            f"{what} rotation part is not a proper rotation (|RᵀR - I| = {err:.1e})"
-        )
+            f"{what} must be a 4x4 matrix of real numbers, got {_short(T)}"
+        ) from exc
+    if raw.dtype.kind not in "iuf":
+        raise DimensionError(f"{what} must be a 4x4 matrix of real numbers, got {_short(T)}")
+    if raw.shape != (4, 4):
+        raise DimensionError(f"{what} must be a 4x4 homogeneous transform, got shape {raw.shape}")
+    M = np.array(check_transform(raw, name=what), dtype=float)
+    M[:3, :3] = orthonormalize(M[:3, :3])[0]
     M[3] = [0.0, 0.0, 0.0, 1.0]
     return M
 
@@ -78,6 +84,7 @@ class Robot:
         base: ``(4, 4)`` pose of DH frame 0 in the world (base) frame.
         tool: ``(4, 4)`` pose of the tool in the last DH frame.
         description: Free text (source of the model, notes).
+        chain: The table compiled into the arrays the kernels walk (derived).
     """
 
     links: tuple[Joint, ...]
@@ -86,7 +93,7 @@ class Robot:
     base: FloatArray = field(default_factory=lambda: np.eye(4))
     tool: FloatArray = field(default_factory=lambda: np.eye(4))
     description: str | None = None
-    _chain: DHChain = field(init=False, repr=False)
+    chain: DHChain = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         links = tuple(self.links)
@@ -106,7 +113,7 @@ class Robot:
         tool.flags.writeable = False
         object.__setattr__(self, "base", base)
         object.__setattr__(self, "tool", tool)
-        object.__setattr__(self, "_chain", DHChain.from_joints(links, self.convention, base, tool))
+        object.__setattr__(self, "chain", DHChain.from_joints(links, self.convention, base, tool))
 
     @classmethod
     def from_dh(
@@ -156,20 +163,12 @@ class Robot:
     @property
     def is_prismatic(self) -> NDArray[np.bool_]:
         """``(n,)`` True where the joint is prismatic."""
-        return self._chain.prismatic.copy()
+        return self.chain.prismatic.copy()
 
     @property
     def qlim(self) -> FloatArray:
         """``(n, 2)`` joint limits: ``(-π, π)`` for free revolute joints, ±inf for prismatic."""
-        rows = []
-        for link in self.links:
-            if link.qlim is not None:
-                rows.append(link.qlim)
-            elif isinstance(link, Revolute):
-                rows.append((-math.pi, math.pi))
-            else:
-                rows.append((-math.inf, math.inf))
-        return np.array(rows, dtype=float)
+        return self.chain.qlim.copy()
 
     @property
     def has_limits(self) -> NDArray[np.bool_]:
@@ -197,100 +196,91 @@ class Robot:
         return np.array(rows, dtype=float)
 
     # --------------------------------------------------------------- kinematics
-    def check_q(self, q: ArrayLike, name: str = "q", *, bad_rows: bool = False) -> FloatArray:
-        """Validate joint values: shape ``(..., n)``, finite real numbers.
+    def check_q(self, q: ArrayLike, name: str = "q") -> FloatArray:
+        """Validate joint values: shape ``(..., n)``, real numbers (NaN/inf pass).
 
         Args:
             q: ``(..., n)`` joint values.
             name: Name used in messages.
-            bad_rows: For a batch, let rows holding NaN/inf through with a
-                :class:`KinematicaWarning` naming them (their results are NaN)
-                instead of raising.
+
+        Returns:
+            ``q`` as a float array.
 
         Raises:
-            DimensionError: On a wrong last dimension, non-numbers, NaN or inf
-                in a single configuration (or in a batch without ``bad_rows``).
+            DimensionError: On a wrong last dimension or values that are not
+                real numbers.
         """
         try:
             raw = np.asarray(q)
         except (TypeError, ValueError) as exc:
             raise DimensionError(f"{name} must be numbers, got {q!r}") from exc
         if raw.dtype.kind not in "iuf":
-            raise DimensionError(f"{name} must be numbers, got {q!r}")
-        qa = raw.astype(float, copy=False)
-        if qa.ndim == 0 or qa.shape[-1] != self.dof:
-            found = "a scalar" if qa.ndim == 0 else f"{qa.shape[-1]} (shape {qa.shape})"
+            raise DimensionError(f"{name} must be numbers, got {_short(q)}")
+        if raw.ndim == 0 or raw.shape[-1] != self.dof:
+            found = "a scalar" if raw.ndim == 0 else f"{raw.shape[-1]} (shape {raw.shape})"
             raise DimensionError(
                 f"{name} must hold {self.dof} joint values for {self.name} "
                 f"({self.joint_types}), got {found}"
             )
-        finite = np.isfinite(qa)
-        if not finite.all():
-            if bad_rows and qa.ndim >= 2:
-                rows = [tuple(int(i) for i in r) for r in np.argwhere(~finite.all(axis=-1))]
-                shown = ", ".join(map(str, rows[:5])) + (" ..." if len(rows) > 5 else "")
-                warnings.warn(
-                    f"{name}: {len(rows)} row(s) hold NaN or inf, their results are NaN: {shown}",
-                    KinematicaWarning,
-                    stacklevel=4,
-                )
-                return qa
-            bad = np.argwhere(~finite)[0]
-            raise DimensionError(f"{name} holds NaN or inf at index {tuple(int(i) for i in bad)}")
-        return qa
+        return raw.astype(np.float64, copy=False)
 
-    def _batch(self, q: ArrayLike) -> tuple[FloatArray, NDArray[np.bool_] | None]:
-        """Validated ``q`` with unusable rows zeroed, and the mask of those rows."""
-        qa = self.check_q(q, bad_rows=True)
-        bad = ~np.all(np.isfinite(qa), axis=-1)
-        if not bad.any():
-            return qa, None
-        return np.where(bad[..., None], 0.0, qa), bad
+    def _report(self, qa: FloatArray, name: str, bad: int, outside: int) -> None:
+        """Raise or warn about configurations holding NaN/inf or beyond the limits."""
+        if bad and qa.ndim == 1:
+            index = int(np.flatnonzero(~np.isfinite(qa))[0])
+            raise DimensionError(f"{name} holds NaN or inf at index ({index},)")
+        if bad:
+            rows = [tuple(int(i) for i in r) for r in np.argwhere(~np.isfinite(qa).all(axis=-1))]
+            shown = ", ".join(map(str, rows[:5])) + (" ..." if len(rows) > 5 else "")
+            warnings.warn(
+                f"{name}: {len(rows)} row(s) hold NaN or inf, their results are NaN: {shown}",
+                KinematicaWarning,
+                stacklevel=3,
+            )
+        if outside:
+            warnings.warn(self._limits_message(qa, name), KinematicaWarning, stacklevel=3)
 
-    def _single_q(self, q: ArrayLike) -> list[float] | None:
-        """``q`` as a list of finite floats when it is one configuration, else None.
+    def _limits_message(self, qa: FloatArray, name: str) -> str:
+        """Which joints of which configurations lie beyond their own limits."""
+        own = self.has_limits
+        lo, hi = self.qlim[:, 0], self.qlim[:, 1]
+        beyond = own & ((qa < lo) | (qa > hi))
+        first = tuple(int(i) for i in np.argwhere(beyond)[0])
+        j = first[-1]
+        where = f" in row {first[:-1]}" if qa.ndim > 1 else ""
+        unit = "m" if self.links[j].type == "P" else "rad"
+        count = int(beyond.any(axis=-1).sum()) if qa.ndim > 1 else 1
+        more = f" ({count} configurations outside the limits)" if count > 1 else ""
+        return (
+            f"{name}: joint {j + 1} = {qa[first]:.6g} {unit}{where} is outside its limits "
+            f"[{lo[j]:.6g}, {hi[j]:.6g}] {unit}{more}"
+        )
 
-        The single-configuration fast path: checking a short list in Python costs
-        far less than numpy's per-call overhead.
-        """
-        if isinstance(q, np.ndarray):
-            if q.shape != (self.dof,) or q.dtype.kind not in "fiu":
-                return None
-            values = q.tolist()
-        elif isinstance(q, list | tuple) and len(q) == self.dof:
-            values = list(q)
-            if not all(isinstance(v, Real) and not isinstance(v, bool) for v in values):
-                return None
-        else:
-            return None
-        floats = [float(v) for v in values]
-        return floats if all(math.isfinite(v) for v in floats) else None
-
-    def fk(self, q: ArrayLike, all_frames: bool = False) -> FloatArray:
+    def fk(
+        self, q: ArrayLike, all_frames: bool = False, *, workers: int | None = None
+    ) -> FloatArray:
         """Forward kinematics: the tool pose in the base frame.
 
         Args:
             q: ``(..., n)`` joint values (rad for revolute, m for prismatic joints).
             all_frames: Return every frame ``0T0 (base), 0T1, ..., 0Tn (with tool)``.
+            workers: Threads for a batch (None: the library default, see
+                :func:`kinematica.kernels.resolve_workers`).
 
         A batch whose rows hold NaN/inf still returns the other rows; those
         rows come out NaN, with a :class:`KinematicaWarning` naming them. A
-        single configuration with NaN/inf raises :class:`DimensionError`.
+        single configuration with NaN/inf raises :class:`DimensionError`. A
+        configuration beyond a joint's own limits is computed, with a
+        :class:`KinematicaWarning` naming the joint and the limit.
 
         Returns:
             ``(..., 4, 4)`` pose ``T = base · 0A1 · ... · (n-1)An · tool``, or
             ``(..., n+1, 4, 4)`` with ``all_frames``.
         """
-        if not all_frames:
-            single = self._single_q(q)
-            if single is not None:
-                return self._chain.fk_single(single)
-        qa, bad = self._batch(q)
-        flat = qa.reshape(-1, self.dof)
-        out = self._chain.fk_batch(flat, all_frames)
-        out = out.reshape(*qa.shape[:-1], *out.shape[1:])
-        if bad is not None:
-            out[bad] = np.nan
+        qa = self.check_q(q)
+        out, bad, outside = kernel_fk(self.chain, qa, all_frames, workers)
+        if bad or outside:
+            self._report(qa, "q", bad, outside)
         return out
 
     def link_matrices(self, q: ArrayLike) -> FloatArray:
@@ -302,8 +292,12 @@ class Robot:
         Returns:
             ``(..., n, 4, 4)``; their product is ``base⁻¹ · T · tool⁻¹``.
         """
-        qa, bad = self._batch(q)
-        prismatic = self._chain.prismatic
+        qa = self.check_q(q)
+        bad = ~np.all(np.isfinite(qa), axis=-1)
+        if bad.any():
+            self._report(qa, "q", int(bad.sum()), 0)
+            qa = np.where(bad[..., None], 0.0, qa)
+        prismatic = self.chain.prismatic
         theta0 = np.array([link.theta for link in self.links])
         d0 = np.array([link.d for link in self.links])
         a = np.array([link.a for link in self.links])
@@ -311,13 +305,41 @@ class Robot:
         theta = np.where(prismatic, theta0, qa + theta0)
         d = np.where(prismatic, qa + d0, d0)
         A = link_matrix(theta, d, np.broadcast_to(a, theta.shape), alpha, self.convention)
-        if bad is not None:
+        if bad.any():
             A[bad] = np.nan
         return A
 
-    def jacobian(self, q: ArrayLike, frame: Literal["base", "tool"] = "base") -> FloatArray:
-        """Geometric Jacobian ``(..., 6, n)`` of the tool; see :func:`jacobian`."""
-        return jacobian(self, q, frame)
+    def jacobian(
+        self,
+        q: ArrayLike,
+        frame: Literal["base", "tool"] = "base",
+        *,
+        workers: int | None = None,
+    ) -> FloatArray:
+        """Geometric Jacobian of the tool.
+
+        Rows 0-2 map joint rates to the linear velocity of the tool origin, rows
+        3-5 to the angular velocity, both expressed in the base frame
+        (``frame="base"``) or in the tool frame (``frame="tool"``). Column i is
+        ``[z × (p - o); z]`` for a revolute joint with axis ``z`` through ``o``,
+        ``[z; 0]`` for a prismatic one.
+
+        Args:
+            q: ``(..., n)`` joint values.
+            frame: ``"base"`` or ``"tool"``.
+            workers: Threads for a batch (None: the library default).
+
+        Returns:
+            ``(..., 6, n)`` (m/rad or m/m in the top rows, rad/rad below); rows
+            of a batch holding NaN/inf come out NaN, with a warning.
+        """
+        if frame not in ("base", "tool"):
+            raise KinematicaError(f"frame must be 'base' or 'tool', got {frame!r}")
+        qa = self.check_q(q)
+        J, bad = kernel_jacobian(self.chain, qa, frame == "tool", workers)
+        if bad:
+            self._report(qa, "q", bad, 0)
+        return J
 
     def joint_axes(self, q: ArrayLike | None = None) -> tuple[FloatArray, FloatArray]:
         """Each joint's axis as a line in the base frame.
@@ -330,9 +352,10 @@ class Robot:
             and one point on each axis (metres, base frame).
         """
         qa = np.zeros(self.dof) if q is None else self.check_q(q)
-        F = self._chain.joint_frames(qa.reshape(-1, self.dof))[:, : self.dof]
-        shape = (*qa.shape[:-1], self.dof, 3)
-        return F[..., :3, 2].reshape(shape), F[..., :3, 3].reshape(shape)
+        if qa.ndim == 1 and not np.all(np.isfinite(qa)):
+            self._report(qa, "q", 1, 0)
+        axes = kernel_joint_axes(self.chain, qa)
+        return axes[..., :3], axes[..., 3:]
 
     def ik(
         self,
@@ -343,18 +366,45 @@ class Robot:
         q0: ArrayLike | None = None,
         mask: ArrayLike | None = None,
         seed: int | np.random.Generator | None = None,
+        tol: float | tuple[float, float] | Tolerance | None = None,
+        workers: int | None = None,
     ) -> IKResult | IKBatchResult:
-        """Every IK solution of a target; see :func:`kinematica.ik.solve_ik`.
+        """Every inverse-kinematics solution of a target, or an honest status.
 
-        A pose ``(4, 4)`` or position ``(3,)`` gives an ``IKResult``; batches
-        ``(N, 4, 4)`` / ``(N, 3)`` give an ``IKBatchResult``. (The one upward
-        reference of this layer: a thin method over the ``ik`` layer, imported
-        when called.)
+        Args:
+            target: A pose ``(4, 4)`` (tool in the base frame), a position
+                ``(3,)`` (tool origin; orientation free), or batches of any
+                shape ``(..., 4, 4)`` / ``(..., 3)``. A rotation orthonormal
+                to within ``PROJECTION_TOL`` (1e-4) is projected onto SO(3),
+                with a note in the result.
+            method: ``"auto"`` (closed form when the structure allows, else
+                numeric), ``"analytic"`` or ``"numeric"``.
+            respect_limits: Keep solutions outside the joint limits apart
+                (``out_of_limits``) rather than among ``solutions``.
+            q0: ``(n,)`` or ``(..., n)``: the numeric initial guess, and the
+                configuration solutions are sorted by distance to.
+            mask: ``(6,)`` weights of the error components x, y, z, rx, ry, rz
+                (numeric only); e.g. ``[1, 1, 1, 0, 0, 1]``.
+            seed: Seed of the numeric restarts (a whole number or a Generator).
+            tol: Acceptance tolerance: one number for both, or a pair
+                (position m, rotation rad); default 1e-10 m and 1e-10 rad.
+            workers: Threads for a batch (None: the library default).
+
+        Returns:
+            An :class:`IKResult` for one target, an :class:`IKBatchResult`
+            (arrays with the targets' batch shape) for a batch. In a batch, a
+            malformed target gets the status ``"invalid"``; the others are solved.
         """
-        from kinematica.ik.solve import solve_ik
-
         return solve_ik(
-            self, target, method=method, respect_limits=respect_limits, q0=q0, mask=mask, seed=seed
+            self.chain,
+            target,
+            method=method,
+            respect_limits=respect_limits,
+            q0=q0,
+            mask=mask,
+            seed=seed,
+            tol=tol,
+            workers=workers,
         )
 
     # ------------------------------------------------------------ derived models

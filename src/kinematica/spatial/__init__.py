@@ -8,7 +8,15 @@ from kinematica.spatial.axis_angle import (
     rotation_angle,
     rotvec_from_matrix,
 )
-from kinematica.spatial.checks import ORTHONORMAL_TOL, check_rotation, check_transform
+from kinematica.spatial.checks import (
+    ORTHONORMAL_TOL,
+    ROUNDOFF_TOL,
+    check_rotation,
+    check_transform,
+    nearest_rotation,
+    orthonormality_error,
+    orthonormalize,
+)
 from kinematica.spatial.euler import (
     GIMBAL_LOCK_TOL,
     EulerSequenceError,
@@ -37,10 +45,14 @@ from kinematica.spatial.transform import (
 __all__ = [
     "GIMBAL_LOCK_TOL",
     "ORTHONORMAL_TOL",
+    "ROUNDOFF_TOL",
     "EulerSequenceError",
     "axis_angle_from_matrix",
     "check_rotation",
     "check_transform",
+    "nearest_rotation",
+    "orthonormality_error",
+    "orthonormalize",
     "compose",
     "euler_from_matrix",
     "from_pose",

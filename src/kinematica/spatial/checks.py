@@ -19,6 +19,9 @@ __all__ = [
     "as_batch_array",
     "check_rotation",
     "check_transform",
+    "nearest_rotation",
+    "orthonormality_error",
+    "orthonormalize",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -28,6 +31,12 @@ FloatArray = NDArray[np.float64]
 # ~1e-15; 1e-6 still accepts matrices written out with about seven significant
 # digits, while catching scaled, sheared, transposed-by-mistake or mistyped ones.
 ORTHONORMAL_TOL = 1e-6
+
+#: max|RᵀR − I| of a rotation computed in double precision (a product of a few
+#: rotations is orthonormal to ~1e-15): up to this a matrix is a rotation as it
+#: stands; beyond it, it was written with few digits and
+#: :func:`orthonormalize` replaces it by the nearest rotation.
+ROUNDOFF_TOL = 1e-14
 
 
 def _where(name: str, index: tuple[int, ...]) -> str:
@@ -142,3 +151,53 @@ def check_transform(T: ArrayLike, name: str = "T", tol: float = ORTHONORMAL_TOL)
         )
     _check_orthonormal(Ta[..., :3, :3], name, tol)
     return Ta
+
+
+def nearest_rotation(R: ArrayLike) -> FloatArray:
+    """The rotation nearest to each ``(..., 3, 3)`` matrix (Frobenius norm).
+
+    ``U Vᵀ`` from the SVD ``R = U Σ Vᵀ``, with the sign of the last singular
+    direction flipped where needed so that the determinant is +1: the
+    orthogonal Procrustes solution. A rotation comes back unchanged to
+    round-off; one written with a few digits comes back exactly orthonormal.
+
+    Args:
+        R: ``(..., 3, 3)`` matrices (nearly rotations).
+
+    Returns:
+        ``(..., 3, 3)`` rotations.
+    """
+    Ra = np.asarray(R, dtype=np.float64)
+    U, _, Vt = np.linalg.svd(Ra)
+    d = np.sign(np.linalg.det(U @ Vt))
+    d = np.where(d == 0.0, 1.0, d)
+    U = U.copy()
+    U[..., :, 2] *= d[..., None]
+    out: FloatArray = U @ Vt
+    return out
+
+
+def orthonormality_error(R: ArrayLike) -> FloatArray:
+    """``max|RᵀR − I|`` of each ``(..., 3, 3)`` matrix: ``(...)``."""
+    Ra = np.asarray(R, dtype=np.float64)
+    gram = np.swapaxes(Ra, -1, -2) @ Ra
+    err: FloatArray = np.abs(gram - np.eye(3)).max(axis=(-1, -2))
+    return err
+
+
+def orthonormalize(R: ArrayLike) -> tuple[FloatArray, FloatArray]:
+    """Rotations as given where orthonormal to round-off, else the nearest rotation.
+
+    Args:
+        R: ``(..., 3, 3)`` matrices, rotations to within a few digits.
+
+    Returns:
+        ``(rotations, projected)``: ``(..., 3, 3)`` and ``(...)`` bool, True
+        where the matrix was farther than ``ROUNDOFF_TOL`` from orthonormal
+        and was replaced by :func:`nearest_rotation`.
+    """
+    Ra = np.array(R, dtype=np.float64)
+    projected = orthonormality_error(Ra) > ROUNDOFF_TOL
+    if projected.any():
+        Ra[projected] = nearest_rotation(Ra[projected])
+    return Ra, projected

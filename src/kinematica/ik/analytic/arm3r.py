@@ -44,7 +44,8 @@ from kinematica.ik.analytic.planar import (
 )
 from kinematica.ik.candidates import Candidates
 from kinematica.robot.robot import Robot
-from kinematica.robot.structure import PARALLEL_TOL, classify
+from kinematica.ik.structure import PARALLEL_TOL
+from kinematica.robot.structure import classify
 
 __all__ = [
     "AxisHeight",

@@ -1,0 +1,114 @@
+"""The statuses of an IK answer, and the sentence each one gives people."""
+
+from __future__ import annotations
+
+import math
+from enum import StrEnum
+
+from kinematica.kernels.ik_check import (
+    STATUS_INVALID,
+    STATUS_NOT_FOUND,
+    STATUS_OK,
+    STATUS_OUT_OF_LIMITS,
+    STATUS_SINGULAR,
+    STATUS_UNREACHABLE,
+)
+
+__all__ = ["SOLVED", "STATUS_NAMES", "IKStatus", "status_message"]
+
+
+class IKStatus(StrEnum):
+    """What an IK answer is. Each compares equal to its string, e.g. ``"ok"``.
+
+    Attributes:
+        OK: Every solution found (a closed form), or one found (numeric).
+        SINGULAR: Infinitely many solutions; the rows are representatives and
+            ``free_joints`` names the joints left free.
+        OUT_OF_LIMITS: Solutions exist, none within the joint limits.
+        UNREACHABLE: Provably no solution: the target is beyond a proven bound
+            (``gap`` says how far), or a closed form has no real root where it
+            is well conditioned.
+        NOT_FOUND: A numeric search did not converge, or a closed form near a
+            singular set found no solution to tolerance: the target may still
+            be reachable.
+        INVALID: In a batch, a malformed target (its message says what is wrong).
+    """
+
+    OK = "ok"
+    SINGULAR = "singular"
+    OUT_OF_LIMITS = "out_of_limits"
+    UNREACHABLE = "unreachable"
+    NOT_FOUND = "not_found"
+    INVALID = "invalid"
+
+
+#: Status of each kernel status code.
+STATUS_NAMES: dict[int, IKStatus] = {
+    STATUS_OK: IKStatus.OK,
+    STATUS_SINGULAR: IKStatus.SINGULAR,
+    STATUS_OUT_OF_LIMITS: IKStatus.OUT_OF_LIMITS,
+    STATUS_UNREACHABLE: IKStatus.UNREACHABLE,
+    STATUS_NOT_FOUND: IKStatus.NOT_FOUND,
+    STATUS_INVALID: IKStatus.INVALID,
+}
+
+#: Statuses for which ``solutions`` is not empty.
+SOLVED: frozenset[str] = frozenset({IKStatus.OK, IKStatus.SINGULAR})
+
+
+def status_message(
+    status: str,
+    *,
+    method: str,
+    count: int,
+    out_of_limits: int,
+    free: tuple[int, ...],
+    gap: float,
+    nearest: tuple[float, float],
+    complete: bool,
+) -> str:
+    """One sentence for people about an IK outcome.
+
+    Args:
+        status: The status.
+        method: The method name, e.g. ``"analytic:spherical-wrist"``.
+        count: Solutions within limits.
+        out_of_limits: Solutions outside the limits.
+        free: 0-based indices of the free joints (singular case).
+        gap: Distance outside the reach (m), NaN if unknown.
+        nearest: Position (m) and rotation (rad) error of the closest
+            candidate that was not a solution, NaN if none.
+        complete: The method gives every solution (a closed form).
+    """
+    plural = "s" if count != 1 else ""
+    if status == IKStatus.OK:
+        extra = f"; {out_of_limits} more outside the joint limits" if out_of_limits else ""
+        return f"{count} solution{plural} ({method}){extra}"
+    if status == IKStatus.SINGULAR:
+        names = ", ".join(f"q{v + 1}" for v in free)
+        return (
+            f"singular: infinitely many solutions ({names or 'some joints'} free); "
+            f"{count} representative{plural} given"
+        )
+    if status == IKStatus.OUT_OF_LIMITS:
+        s = "s" if out_of_limits != 1 else ""
+        return f"{out_of_limits} solution{s} exist, none within the joint limits"
+    pos, rot = nearest
+    if status == IKStatus.UNREACHABLE:
+        if math.isfinite(gap) and gap > 0:
+            return f"unreachable: the target is at least {gap:.6g} m outside the reach"
+        if math.isfinite(pos):
+            return (
+                "unreachable: no configuration reaches this pose "
+                f"(closest candidate off by {pos:.3g} m, {rot:.3g} rad)"
+            )
+        return "unreachable: the closed form has no real solution for this target"
+    if status == IKStatus.INVALID:
+        return "invalid target"
+    if complete:
+        miss = f" (closest off by {pos:.3g} m, {rot:.3g} rad)" if math.isfinite(pos) else ""
+        return (
+            "not found: no solution to tolerance near a singular set or a workspace "
+            f"boundary{miss}; the target may be reachable within a looser tolerance"
+        )
+    return "not found: the numeric search did not converge (the target may still be reachable)"

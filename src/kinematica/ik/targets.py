@@ -1,0 +1,207 @@
+"""What ``robot.ik`` is asked: targets of any batch shape, masks, q0 and tolerances.
+
+Validated once here at the public boundary. In a batch, a malformed target
+does not stop the others: it is reported (flat index -> what is wrong) and
+replaced by a harmless placeholder, its result marked ``invalid``. A rotation
+written with a few digits (orthonormal to ``PROJECTION_TOL``) is replaced by
+the nearest rotation, with a note saying so.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from kinematica.errors import DimensionError, KinematicaError
+from kinematica.spatial import ROUNDOFF_TOL, nearest_rotation, orthonormality_error
+
+__all__ = [
+    "POSITION_TOL",
+    "PROJECTION_TOL",
+    "ROTATION_TOL",
+    "Targets",
+    "Tolerance",
+    "parse_mask",
+    "parse_targets",
+    "parse_tolerance",
+]
+
+FloatArray = NDArray[np.float64]
+
+#: A solution must put the tool within this distance of the target (metres)...
+POSITION_TOL = 1e-10
+#: ... and within this rotation angle of the target orientation (radians).
+ROTATION_TOL = 1e-10
+#: A target rotation orthonormal to within this (max |RᵀR − I|, and the last
+#: row within this of [0, 0, 0, 1]) is accepted: one printed with 6 digits is
+#: orthonormal to ~1e-6. It is replaced by the nearest rotation (with a note)
+#: when farther than round-off from orthonormal; beyond it, it is an error.
+PROJECTION_TOL = 1e-4
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """Acceptance tolerances of a solution: position (m) and rotation (rad)."""
+
+    position: float = POSITION_TOL
+    rotation: float = ROTATION_TOL
+
+
+@dataclass(frozen=True)
+class Targets:
+    """Targets, flattened for the kernels.
+
+    Attributes:
+        poses: ``(N, 4, 4)`` C-contiguous; a position target is a pose with an
+            identity rotation (ignored through the weights); malformed rows
+            are identities.
+        shape: The batch shape ``(...)``; ``()`` for one target.
+        position: True for position targets ``(..., 3)``.
+        invalid: Flat index -> what is wrong with that target.
+        notes: Flat index -> remarks (a rotation projected onto SO(3)).
+    """
+
+    poses: FloatArray
+    shape: tuple[int, ...]
+    position: bool
+    invalid: dict[int, str] = field(default_factory=dict)
+    notes: dict[int, tuple[str, ...]] = field(default_factory=dict)
+
+    @property
+    def single(self) -> bool:
+        """True for one target (shape ``()``)."""
+        return self.shape == ()
+
+
+def _where(shape: tuple[int, ...], flat: int) -> str:
+    if not shape:
+        return "target"
+    return f"target {tuple(int(v) for v in np.unravel_index(flat, shape))}"
+
+
+def parse_targets(target: ArrayLike) -> Targets:
+    """Read poses ``(..., 4, 4)`` or positions ``(..., 3)``.
+
+    Raises:
+        DimensionError: Non-numbers, an ambiguous or wrong shape, or a single
+            target that is malformed (a batch marks such rows instead).
+    """
+    try:
+        raw = np.asarray(target)
+    except (TypeError, ValueError) as exc:
+        raise DimensionError(f"target must be numbers, got {type(target).__name__}") from exc
+    if raw.dtype.kind not in "iuf":
+        raise DimensionError(
+            f"target must be real numbers (a 4x4 pose or a position), got dtype {raw.dtype}"
+        )
+    arr = raw.astype(np.float64)
+    if arr.shape == (3, 3):
+        raise DimensionError(
+            "a (3, 3) target is ambiguous: a rotation alone is not a target (give a "
+            "4x4 pose), and three positions must be given as shape (3, 1, 3)"
+        )
+    if arr.ndim >= 2 and arr.shape[-2:] == (4, 4):
+        return _poses(arr)
+    if arr.ndim >= 1 and arr.shape[-1] == 3:
+        return _positions(arr)
+    raise DimensionError(
+        "target must be a pose (4, 4), a position (3,), or batches (..., 4, 4) / (..., 3); "
+        f"got shape {arr.shape}"
+    )
+
+
+def _positions(arr: FloatArray) -> Targets:
+    shape = arr.shape[:-1]
+    flat = arr.reshape(-1, 3)
+    poses = np.zeros((flat.shape[0], 4, 4))
+    poses[:, 0, 0] = poses[:, 1, 1] = poses[:, 2, 2] = poses[:, 3, 3] = 1.0
+    bad = np.flatnonzero(~np.all(np.isfinite(flat), axis=-1))
+    if bad.size and not shape:
+        raise DimensionError("target position holds NaN or inf")
+    invalid = {int(i): f"{_where(shape, int(i))}: position holds NaN or inf" for i in bad}
+    poses[:, :3, 3] = np.where(np.isfinite(flat), flat, 0.0)
+    return Targets(poses, shape, True, invalid)
+
+
+def _poses(arr: FloatArray) -> Targets:
+    shape = arr.shape[:-2]
+    poses = np.ascontiguousarray(arr.reshape(-1, 4, 4)).copy()
+    finite = np.all(np.isfinite(poses), axis=(-1, -2))
+    safe = np.where(finite[:, None, None], poses, np.eye(4))
+    R = safe[:, :3, :3]
+    ortho = orthonormality_error(R)
+    last = np.abs(safe[:, 3] - [0.0, 0.0, 0.0, 1.0]).max(axis=-1)
+    det = np.linalg.det(R)
+    invalid: dict[int, str] = {}
+    notes: dict[int, tuple[str, ...]] = {}
+    for i in np.flatnonzero(~finite | (ortho > ROUNDOFF_TOL) | (last > 0.0) | (det <= 0.0)):
+        i = int(i)
+        where = _where(shape, i)
+        if not finite[i]:
+            invalid[i] = f"{where} holds NaN or inf"
+        elif last[i] > PROJECTION_TOL:
+            invalid[i] = f"{where}: last row must be [0, 0, 0, 1], got {poses[i, 3].tolist()}"
+        elif ortho[i] > PROJECTION_TOL:
+            invalid[i] = (
+                f"{where}: rotation is not orthonormal: max |RᵀR − I| = {ortho[i]:.1e} "
+                f"(accepted up to {PROJECTION_TOL:.0e})"
+            )
+        elif det[i] <= 0.0:
+            invalid[i] = f"{where}: rotation has det = {det[i]:+.3f}, expected +1 (a reflection)"
+        else:
+            poses[i, 3] = [0.0, 0.0, 0.0, 1.0]
+            if ortho[i] > ROUNDOFF_TOL:
+                poses[i, :3, :3] = nearest_rotation(poses[i, :3, :3])
+                notes[i] = (
+                    f"target rotation projected onto SO(3) (it was orthonormal to "
+                    f"{ortho[i]:.1e} only)",
+                )
+    if invalid and not shape:
+        raise DimensionError(invalid[0])
+    for i in invalid:
+        poses[i] = np.eye(4)
+    return Targets(poses, shape, False, invalid, notes)
+
+
+def parse_mask(mask: ArrayLike | None) -> FloatArray | None:
+    """``(6,)`` non-negative weights of x, y, z, rx, ry, rz, or None for the whole pose."""
+    if mask is None:
+        return None
+    try:
+        m = np.asarray(mask, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise DimensionError(f"mask must be 6 numbers, got {mask!r}") from exc
+    if m.shape != (6,) or not np.all(np.isfinite(m)) or np.any(m < 0):
+        raise DimensionError(
+            "mask must be 6 non-negative weights for x, y, z, rx, ry, rz; "
+            f"got {np.asarray(mask).tolist()}"
+        )
+    if not np.any(m > 0):
+        raise DimensionError("mask selects no error component: every weight is 0")
+    return None if np.all(m == 1.0) else m
+
+
+def parse_tolerance(tol: float | tuple[float, float] | Tolerance | None) -> Tolerance:
+    """A :class:`Tolerance` from one number (both), a pair (m, rad) or a Tolerance."""
+    if tol is None:
+        return Tolerance()
+    if isinstance(tol, Tolerance):
+        values = (tol.position, tol.rotation)
+    elif isinstance(tol, int | float | np.floating | np.integer) and not isinstance(tol, bool):
+        values = (float(tol), float(tol))
+    else:
+        try:
+            values = tuple(float(v) for v in tol)  # type: ignore[union-attr]
+        except (TypeError, ValueError):
+            values = ()
+        if len(values) != 2:
+            raise KinematicaError(
+                f"tol must be a number or a pair (position m, rotation rad), got {tol!r}"
+            )
+    for name, v in zip(("position", "rotation"), values, strict=True):
+        if not (math.isfinite(v) and v > 0):
+            raise KinematicaError(f"tol ({name}) must be a positive number, got {v!r}")
+    return Tolerance(values[0], values[1])

@@ -1,0 +1,328 @@
+"""From raw IK candidates to checked, distinct, limit-aware solutions: one target.
+
+Every candidate a solver proposes is judged here by forward kinematics against
+the target, never by the solver's own word. Candidates a little off (round-off
+near a double root) get a few Gauss-Newton steps first and count only if they
+then meet the tolerances. Solutions are wrapped to (-π, π] (or moved by 2π
+into their limit window), duplicates modulo 2π dropped, split by the joint
+limits, sorted (by distance to ``q0`` when given, else in the solver's slot
+order), and the target gets an honest status.
+
+Solvers hand over, per target: candidates ``Q (m, n)`` (NaN rows: no real
+solution on that branch) and ``info`` (``INFO_*`` slots): whether the solutions
+form a continuum (``singular``, with the free joints), whether the target is
+near a singular set where a closed form loses solutions to round-off
+(``near``), and a lower bound of the distance to the reachable set (``gap``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from kinematica.kernels._numba import batch_kernel, kernel
+from kinematica.kernels.fk import LINK_PRISMATIC, block_trig, walk
+from kinematica.kernels.jacobian import columns
+from kinematica.kernels.linalg import damped_least_squares
+from kinematica.kernels.so3 import angle_between, pose_error, wrap
+
+__all__ = [
+    "DEDUP_TOL",
+    "INFO_FREE",
+    "INFO_GAP",
+    "INFO_NEAR",
+    "INFO_SINGULAR",
+    "LIMIT_TOL",
+    "META_COUNT",
+    "META_GAP",
+    "META_NEAREST_POSITION",
+    "META_NEAREST_ROTATION",
+    "META_OUT_COUNT",
+    "META_SIZE",
+    "META_STATUS",
+    "OPT_COMPLETE",
+    "OPT_HAS_Q0",
+    "OPT_RESPECT_LIMITS",
+    "OPT_SIZE",
+    "OPT_TOL_POSITION",
+    "OPT_TOL_ROTATION",
+    "POLISH_DAMPING",
+    "POLISH_LIMIT",
+    "POLISH_STEPS",
+    "STATUS_INVALID",
+    "STATUS_NOT_FOUND",
+    "STATUS_OK",
+    "STATUS_OUT_OF_LIMITS",
+    "STATUS_SINGULAR",
+    "STATUS_UNREACHABLE",
+    "check_batch",
+    "check_target",
+    "info_size",
+]
+
+#: Candidates whose residual is below this (m or rad) but above the tolerance
+#: are polished by Gauss-Newton steps before being judged.
+POLISH_LIMIT = 1e-5
+#: Gauss-Newton steps for polishing: quadratic convergence from 1e-5 needs 2-3.
+POLISH_STEPS = 4
+#: Relative damping of the polishing steps (as the numeric solver's smallest):
+#: negligible next to any singular value that matters, it keeps the normal
+#: equations solvable at a double root, where the Jacobian loses rank.
+POLISH_DAMPING = 1e-12
+#: Two solutions closer than this in every joint (rad or m, angles modulo 2π)
+#: are the same solution.
+DEDUP_TOL = 1e-7
+#: Slack on joint limits for values computed by floating point (rad or m).
+LIMIT_TOL = 1e-12
+
+# What a solver reports per target, besides its candidates (``info``).
+INFO_SINGULAR = 0  # 1.0: infinitely many solutions; candidates are representatives
+INFO_NEAR = 1  # 1.0: near a singular set, solutions may be lost to round-off
+INFO_GAP = 2  # lower bound of the distance to the reachable set (m), NaN: unknown
+INFO_FREE = 3  # n slots from here: 1.0 for the joints left free (singular)
+
+# Options of a check (``opts``).
+OPT_TOL_POSITION, OPT_TOL_ROTATION, OPT_RESPECT_LIMITS, OPT_COMPLETE, OPT_HAS_Q0 = range(5)
+OPT_SIZE = 5
+
+# What a check reports per target (``meta``).
+META_STATUS, META_COUNT, META_OUT_COUNT, META_GAP = range(4)
+META_NEAREST_POSITION, META_NEAREST_ROTATION = 4, 5
+META_SIZE = 6
+
+# Status codes (the ik layer names them).
+STATUS_OK, STATUS_SINGULAR, STATUS_OUT_OF_LIMITS = 0, 1, 2
+STATUS_UNREACHABLE, STATUS_NOT_FOUND, STATUS_INVALID = 3, 4, 5
+
+_TWO_PI = 2.0 * math.pi
+
+
+def info_size(n: int) -> int:
+    """Length of a solver's ``info`` row for an arm of ``n`` joints."""
+    return INFO_FREE + n
+
+
+@kernel
+def _residual(links, ends, q, T, w, C, S, pose, e):  # type: ignore[no-untyped-def]
+    """Position (m) and rotation (rad) error of ``q`` against ``T``, weighted by ``w (6,)``.
+
+    Unweighted, the rotation error is the angle of ``Rtᵀ R`` (exact near 0);
+    with weights, the norms of the weighted error components.
+    """
+    n = links.shape[0]
+    block_trig(links, q.reshape((1, n)), 0, 1, C, S)
+    walk(links, ends, False, C, S, 0, q, pose, np.empty((0, 4, 4)), np.empty((0, 6)))
+    plain = w[0] == 1.0 and w[1] == 1.0 and w[2] == 1.0
+    if plain and w[3] == 1.0 and w[4] == 1.0 and w[5] == 1.0:
+        dx, dy, dz = T[0, 3] - pose[0, 3], T[1, 3] - pose[1, 3], T[2, 3] - pose[2, 3]
+        return math.sqrt(dx * dx + dy * dy + dz * dz), angle_between(pose, T)
+    pose_error(pose, T, e)
+    p2 = r2 = 0.0
+    for k in range(3):
+        p2 += (w[k] * e[k]) ** 2
+        r2 += (w[k + 3] * e[k + 3]) ** 2
+    return math.sqrt(p2), math.sqrt(r2)
+
+
+@kernel
+def _polish(links, ends, q, T, w, C, S, pose, axes, J6, Jr, e, er, dq, G, b, x, L):  # type: ignore[no-untyped-def]
+    """``POLISH_STEPS`` Gauss-Newton steps on ``q`` towards ``T`` (weighted rows only)."""
+    n = links.shape[0]
+    r = 0
+    for k in range(6):
+        if w[k] > 0.0:
+            r += 1
+    for _ in range(POLISH_STEPS):
+        block_trig(links, q.reshape((1, n)), 0, 1, C, S)
+        walk(links, ends, False, C, S, 0, q, pose, np.empty((0, 4, 4)), axes)
+        columns(links, axes, pose, False, J6)
+        pose_error(pose, T, e)
+        row = 0
+        for k in range(6):
+            if w[k] > 0.0:
+                er[row] = w[k] * e[k]
+                for j in range(n):
+                    Jr[row, j] = w[k] * J6[k, j]
+                row += 1
+        damped_least_squares(Jr[:r], er[:r], POLISH_DAMPING, dq, G[:, :r], b, x, L)
+        for j in range(n):
+            q[j] += dq[j]
+            if links[j, LINK_PRISMATIC] == 0.0:
+                q[j] = wrap(q[j])
+
+
+@kernel
+def _same(links, a, b):  # type: ignore[no-untyped-def]
+    """True when ``a`` and ``b`` agree within ``DEDUP_TOL`` in every joint (angles mod 2π)."""
+    for j in range(links.shape[0]):
+        d = a[j] - b[j]
+        if links[j, LINK_PRISMATIC] == 0.0:
+            d = abs(d)
+            d = min(d, _TWO_PI - d) if d <= _TWO_PI else abs(wrap(d))
+        if abs(d) >= DEDUP_TOL:
+            return False
+    return True
+
+
+@kernel
+def check_target(links, ends, qlim, T, Q, info, w, q0, opts, out_q, out_slot, out_res, meta):  # type: ignore[no-untyped-def]
+    """Check the candidates ``Q (m, n)`` of one target ``T (4, 4)``.
+
+    Args:
+        links, ends: The chain (see :mod:`kinematica.kernels.fk`).
+        qlim: ``(n, 2)`` joint limits.
+        T: ``(4, 4)`` target pose (base frame); for a position target, its
+            rotation is ignored through ``w``.
+        Q: ``(m, n)`` candidates, NaN rows for branches without a solution.
+        info: ``(INFO_FREE + n,)`` what the solver knows (``INFO_*``).
+        w: ``(6,)`` weights of the error components x, y, z, rx, ry, rz
+            (all 1: the whole pose; ``1, 1, 1, 0, 0, 0``: the position).
+        q0: ``(n,)`` configuration to sort by (when ``OPT_HAS_Q0``).
+        opts: ``(OPT_SIZE,)`` tolerances (m, rad) and flags (``OPT_*``).
+        out_q: ``(m, n)`` out: solutions within the limits, sorted, then those
+            outside, sorted; NaN after.
+        out_slot: ``(m,)`` out: the candidate slot of each row (for its branch
+            label), -1 after.
+        out_res: ``(m, 2)`` out: position (m) and rotation (rad) residuals.
+        meta: ``(META_SIZE,)`` out: status code, counts, gap, nearest miss.
+    """
+    m, n = Q.shape
+    tol_p, tol_r = opts[OPT_TOL_POSITION], opts[OPT_TOL_ROTATION]
+    respect = opts[OPT_RESPECT_LIMITS] != 0.0
+    C = np.empty((n, 1))
+    S = np.empty((n, 1))
+    pose = np.empty((4, 4))
+    axes = np.empty((n, 6))
+    J6 = np.empty((6, n))
+    Jr = np.empty((6, n))
+    e = np.empty(6)
+    er = np.empty(6)
+    dq = np.empty(n)
+    big = max(n, 6)
+    G = np.empty((n, 6))
+    b = np.empty(big)
+    x = np.empty(big)
+    L = np.empty((big, big))
+    qs = np.empty((m, n))
+    res = np.empty((m, 2))
+    state = np.zeros(m, dtype=np.int64)  # 0 no, 1 solution within limits, 2 outside
+    key = np.empty(m)
+    close = False
+    near_p = near_r = math.nan
+    near_score = math.inf
+    for j in range(m):
+        q = qs[j]
+        valid = True
+        for k in range(n):
+            v = Q[j, k]
+            valid &= np.isfinite(v)
+            q[k] = wrap(v) if links[k, LINK_PRISMATIC] == 0.0 else v
+        if not valid:
+            continue
+        p_err, r_err = _residual(links, ends, q, T, w, C, S, pose, e)
+        ok = p_err <= tol_p and r_err <= tol_r
+        if not ok and max(p_err, r_err) < POLISH_LIMIT:
+            _polish(links, ends, q, T, w, C, S, pose, axes, J6, Jr, e, er, dq, G, b, x, L)
+            p_err, r_err = _residual(links, ends, q, T, w, C, S, pose, e)
+            ok = p_err <= tol_p and r_err <= tol_r
+        close |= max(p_err, r_err) < POLISH_LIMIT
+        if not ok:
+            score = max(p_err / tol_p, r_err / tol_r)
+            if score < near_score:
+                near_score, near_p, near_r = score, p_err, r_err
+            continue
+        if respect:
+            for k in range(n):
+                if links[k, LINK_PRISMATIC] != 0.0:
+                    continue
+                lo, hi = qlim[k, 0], qlim[k, 1]
+                if q[k] < lo - LIMIT_TOL and q[k] + _TWO_PI <= hi + LIMIT_TOL:
+                    q[k] += _TWO_PI
+                elif q[k] > hi + LIMIT_TOL and q[k] - _TWO_PI >= lo - LIMIT_TOL:
+                    q[k] -= _TWO_PI
+        duplicate = False
+        for i in range(j):
+            if state[i] != 0 and _same(links, q, qs[i]):
+                duplicate = True
+                break
+        if duplicate:
+            continue
+        inside = True
+        if respect:
+            for k in range(n):
+                inside &= qlim[k, 0] - LIMIT_TOL <= q[k] <= qlim[k, 1] + LIMIT_TOL
+        state[j] = 1 if inside else 2
+        res[j, 0], res[j, 1] = p_err, r_err
+        if opts[OPT_HAS_Q0] != 0.0:
+            d2 = 0.0
+            for k in range(n):
+                d = q[k] - q0[k]
+                if links[k, LINK_PRISMATIC] == 0.0:
+                    d = wrap(d)
+                d2 += d * d
+            key[j] = math.sqrt(d2)
+        else:
+            key[j] = j
+    # Within the limits first, then outside; each sorted by key (insertion sort: m is small).
+    row = 0
+    counts = np.zeros(3, dtype=np.int64)
+    for group in (1, 2):
+        first = row
+        for j in range(m):
+            if state[j] != group:
+                continue
+            pos = row
+            while pos > first and key[out_slot[pos - 1]] > key[j]:
+                out_slot[pos] = out_slot[pos - 1]
+                pos -= 1
+            out_slot[pos] = j
+            row += 1
+        counts[group] = row - first
+    for r in range(m):
+        if r < row:
+            j = out_slot[r]
+            out_q[r, :] = qs[j]
+            out_res[r, 0], out_res[r, 1] = res[j, 0], res[j, 1]
+        else:
+            out_slot[r] = -1
+            out_q[r, :] = np.nan
+            out_res[r, :] = np.nan
+    count, out_count = counts[1], counts[2]
+    gap = info[INFO_GAP]
+    if count > 0:
+        status = STATUS_SINGULAR if info[INFO_SINGULAR] != 0.0 else STATUS_OK
+    elif out_count > 0:
+        status = STATUS_OUT_OF_LIMITS
+    elif gap > tol_p:
+        status = STATUS_UNREACHABLE
+    elif opts[OPT_COMPLETE] != 0.0 and not close and info[INFO_NEAR] == 0.0:
+        status = STATUS_UNREACHABLE
+    else:
+        status = STATUS_NOT_FOUND
+    meta[META_STATUS] = status
+    meta[META_COUNT] = count
+    meta[META_OUT_COUNT] = out_count
+    meta[META_GAP] = gap if status == STATUS_UNREACHABLE else math.nan
+    meta[META_NEAREST_POSITION] = near_p
+    meta[META_NEAREST_ROTATION] = near_r
+
+
+@batch_kernel
+def check_batch(links, ends, qlim, T, Q, info, w, q0, opts, out_q, out_slot, out_res, meta):  # type: ignore[no-untyped-def]
+    """:func:`check_target` for targets ``T (N, 4, 4)`` in parallel (arrays gain an ``N`` axis).
+
+    ``q0`` is ``(N, n)``; a row of ``meta`` whose status is already
+    ``STATUS_INVALID`` (a malformed target) is left as it is.
+    """
+    for i in numba.prange(T.shape[0]):
+        if meta[i, META_STATUS] == STATUS_INVALID:
+            out_q[i, :, :] = np.nan
+            out_slot[i, :] = -1
+            out_res[i, :, :] = np.nan
+            continue
+        check_target(
+            links, ends, qlim, T[i], Q[i], info[i], w, q0[i], opts,
+            out_q[i], out_slot[i], out_res[i], meta[i],
+        )  # fmt: skip

@@ -1,0 +1,87 @@
+"""The geometric Jacobian of the tool, from the joint axes of one chain walk.
+
+Rows 0-2 map joint rates to the linear velocity of the tool origin, rows 3-5
+to the angular velocity. Column i is ``[z × (p - o); z]`` for a revolute joint
+with axis ``z`` through ``o``, ``[z; 0]`` for a prismatic one, ``p`` the tool
+origin; all in the base frame, or rotated into the tool frame on request.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from kinematica.kernels._numba import batch_kernel, kernel
+from kinematica.kernels.fk import BLOCK, LINK_PRISMATIC, block_trig, finite, walk
+
+__all__ = ["columns", "jacobian_batch", "jacobian_one"]
+
+
+@kernel
+def columns(links, axes, pose, tool_frame, J):  # type: ignore[no-untyped-def]
+    """Fill ``J (6, n)`` from the joint ``axes (n, 6)`` and the tool ``pose (4, 4)``."""
+    n = links.shape[0]
+    px, py, pz = pose[0, 3], pose[1, 3], pose[2, 3]
+    for i in range(n):
+        zx, zy, zz = axes[i, 0], axes[i, 1], axes[i, 2]
+        if links[i, LINK_PRISMATIC] != 0.0:
+            vx, vy, vz, wx, wy, wz = zx, zy, zz, 0.0, 0.0, 0.0
+        else:
+            dx, dy, dz = px - axes[i, 3], py - axes[i, 4], pz - axes[i, 5]
+            vx, vy, vz = zy * dz - zz * dy, zz * dx - zx * dz, zx * dy - zy * dx
+            wx, wy, wz = zx, zy, zz
+        if tool_frame:  # Rᵀ v, Rᵀ ω: the columns of R are the tool's axes
+            vx, vy, vz = (
+                pose[0, 0] * vx + pose[1, 0] * vy + pose[2, 0] * vz,
+                pose[0, 1] * vx + pose[1, 1] * vy + pose[2, 1] * vz,
+                pose[0, 2] * vx + pose[1, 2] * vy + pose[2, 2] * vz,
+            )
+            wx, wy, wz = (
+                pose[0, 0] * wx + pose[1, 0] * wy + pose[2, 0] * wz,
+                pose[0, 1] * wx + pose[1, 1] * wy + pose[2, 1] * wz,
+                pose[0, 2] * wx + pose[1, 2] * wy + pose[2, 2] * wz,
+            )
+        J[0, i], J[1, i], J[2, i], J[3, i], J[4, i], J[5, i] = vx, vy, vz, wx, wy, wz
+
+
+@kernel
+def jacobian_one(links, ends, q, tool_frame, J):  # type: ignore[no-untyped-def]
+    """``J (6, n)`` at one configuration ``q (n,)``; False when ``q`` is not finite."""
+    if not finite(q):
+        return False
+    n = links.shape[0]
+    C = np.empty((n, 1))
+    S = np.empty((n, 1))
+    axes = np.empty((n, 6))
+    pose = np.empty((4, 4))
+    block_trig(links, q.reshape((1, n)), 0, 1, C, S)
+    walk(links, ends, False, C, S, 0, q, pose, np.empty((0, 4, 4)), axes)
+    columns(links, axes, pose, tool_frame, J)
+    return True
+
+
+@batch_kernel
+def jacobian_batch(links, ends, Q, tool_frame, J):  # type: ignore[no-untyped-def]
+    """``J (B, 6, n)`` of a batch ``Q (B, n)``; rows holding NaN/inf come out NaN.
+
+    Returns:
+        The number of rows of ``Q`` holding NaN or inf.
+    """
+    B, n = Q.shape
+    nblocks = (B + BLOCK - 1) // BLOCK
+    bad = 0
+    for blk in numba.prange(nblocks):
+        b0 = blk * BLOCK
+        b1 = min(B, b0 + BLOCK)
+        C = np.empty((n, BLOCK))
+        S = np.empty((n, BLOCK))
+        axes = np.empty((n, 6))
+        pose = np.empty((4, 4))
+        block_trig(links, Q, b0, b1, C, S)
+        for b in range(b0, b1):
+            walk(links, ends, False, C, S, b - b0, Q[b], pose, np.empty((0, 4, 4)), axes)
+            columns(links, axes, pose, tool_frame, J[b])
+            if not finite(Q[b]):
+                bad += 1
+                J[b, :, :] = np.nan
+    return bad
