@@ -203,7 +203,8 @@ def test_analytic_on_unsupported_structure_is_an_error() -> None:
 
 
 @pytest.mark.parametrize(
-    "target", [np.zeros((2, 3, 3)), np.zeros(5), np.full((4, 4), np.nan), "pose"]
+    "target",
+    [np.zeros((2, 3, 5)), np.zeros(5), np.full((4, 4), np.nan), "pose", np.eye(3), np.eye(4) * 1j],
 )
 def test_bad_targets(target: object) -> None:
     with pytest.raises(km.KinematicaError):

@@ -163,8 +163,10 @@ def _compile(
     sample_hi = np.where(
         np.isfinite(s_hi), s_hi, np.where(np.isfinite(s_lo), s_lo + 2 * span, span)
     )
-    rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(
-        DEFAULT_SEED if seed is None else seed
+    rng = (
+        seed
+        if isinstance(seed, np.random.Generator)
+        else np.random.default_rng(DEFAULT_SEED if seed is None else seed)
     )
     samples = rng.uniform(sample_lo, sample_hi, size=(restarts, chain.dof))
     # The tool origin is never farther from the start frame's origin than the

@@ -148,7 +148,9 @@ def solve_ik(
         Q, info = _closed_candidates(closed, targets, chain.dof, workers)
         labels, name = closed.labels, f"analytic:{closed.name}"
     else:
-        Q, info = _numeric_candidates(chain, targets, w, tolerance, respect_limits, seed, q0s, workers)
+        Q, info = _numeric_candidates(
+            chain, targets, w, tolerance, respect_limits, seed, q0s, workers
+        )
         labels, name = (LABEL,), "numeric:lm"
     opts = np.empty(OPT_SIZE)
     opts[OPT_TOL_POSITION] = tolerance.position
@@ -167,7 +169,9 @@ def solve_ik(
             chain.links, chain.ends, chain.qlim, targets.poses[0], Q[0], info[0], w,
             q0_rows[0], opts, out_q[0], out_slot[0], out_res[0], meta[0],
         )  # fmt: skip
-        return _one(out_q[0], out_slot[0], out_res[0], meta[0], info[0], labels, name, closed, targets)
+        return _one(
+            out_q[0], out_slot[0], out_res[0], meta[0], info[0], labels, name, closed, targets
+        )
     for i in targets.invalid:
         meta[i, META_STATUS] = STATUS_INVALID
     set_workers(workers)
@@ -275,7 +279,7 @@ def _many(
     closed: ClosedForm | None,
     targets: Targets,
 ) -> IKBatchResult:
-    N, m, n = out_q.shape
+    _N, m, n = out_q.shape
     shape = targets.shape
     count = meta[:, META_COUNT].astype(np.int64)
     out_count = meta[:, META_OUT_COUNT].astype(np.int64)
@@ -295,8 +299,8 @@ def _many(
     codes = meta[:, META_STATUS].astype(np.int64)
     status = np.array([str(STATUS_NAMES[c]) for c in range(6)], dtype=str)[codes]
     free = (info[:, INFO_FREE:] != 0.0) & (status == str(IKStatus.SINGULAR))[:, None]
-    unravel = (lambda i: tuple(int(v) for v in np.unravel_index(i, shape))) if shape else (
-        lambda i: ()
+    unravel = (
+        (lambda i: tuple(int(v) for v in np.unravel_index(i, shape))) if shape else (lambda i: ())
     )
     return IKBatchResult(
         solutions=solutions.reshape(*shape, k, n),

@@ -79,6 +79,8 @@ class Targets:
 def _where(shape: tuple[int, ...], flat: int) -> str:
     if not shape:
         return "target"
+    if len(shape) == 1:
+        return f"target row {flat}"
     return f"target {tuple(int(v) for v in np.unravel_index(flat, shape))}"
 
 
@@ -137,8 +139,8 @@ def _poses(arr: FloatArray) -> Targets:
     det = np.linalg.det(R)
     invalid: dict[int, str] = {}
     notes: dict[int, tuple[str, ...]] = {}
-    for i in np.flatnonzero(~finite | (ortho > ROUNDOFF_TOL) | (last > 0.0) | (det <= 0.0)):
-        i = int(i)
+    flagged = np.flatnonzero(~finite | (ortho > ROUNDOFF_TOL) | (last > 0.0) | (det <= 0.0))
+    for i in flagged.tolist():
         where = _where(shape, i)
         if not finite[i]:
             invalid[i] = f"{where} holds NaN or inf"
@@ -188,6 +190,7 @@ def parse_tolerance(tol: float | tuple[float, float] | Tolerance | None) -> Tole
     """A :class:`Tolerance` from one number (both), a pair (m, rad) or a Tolerance."""
     if tol is None:
         return Tolerance()
+    values: tuple[float, ...]
     if isinstance(tol, Tolerance):
         values = (tol.position, tol.rotation)
     elif isinstance(tol, int | float | np.floating | np.integer) and not isinstance(tol, bool):

@@ -15,10 +15,27 @@ from collections.abc import Callable
 from typing import Any, TypeVar
 
 import numba
+import numpy as np
+from numpy.typing import NDArray
 
-__all__ = ["WORKERS_ENV", "batch_kernel", "kernel", "resolve_workers", "set_workers"]
+__all__ = [
+    "WORKERS_ENV",
+    "Array",
+    "ComplexArray",
+    "IntArray",
+    "batch_kernel",
+    "inline_kernel",
+    "kernel",
+    "resolve_workers",
+    "set_workers",
+]
 
 F = TypeVar("F", bound=Callable[..., Any])
+
+#: Type hints of kernel arguments (numba reads none of them).
+Array = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+ComplexArray = NDArray[np.complex128]
 
 #: Environment variable holding the library-wide default number of threads of
 #: a batch (all cores when unset).
@@ -27,17 +44,17 @@ WORKERS_ENV = "KINEMATICA_WORKERS"
 
 def kernel(fn: F) -> F:
     """Compile ``fn`` as a scalar kernel (one configuration or one target)."""
-    return numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")(fn)  # type: ignore[no-any-return]
+    return numba.njit(cache=True, nogil=True, error_model="numpy")(fn)  # type: ignore[return-value]
 
 
 def inline_kernel(fn: F) -> F:
     """Compile ``fn`` as a small kernel inlined into its callers (tight loops)."""
-    return numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")(fn)  # type: ignore[no-any-return]
+    return numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")(fn)  # type: ignore[return-value]
 
 
 def batch_kernel(fn: F) -> F:
     """Compile ``fn`` as a batch kernel: its ``numba.prange`` loops run in threads."""
-    return numba.njit(cache=True, nogil=True, error_model="numpy", parallel=True)(fn)  # type: ignore[no-any-return]
+    return numba.njit(cache=True, nogil=True, error_model="numpy", parallel=True)(fn)  # type: ignore[return-value]
 
 
 def resolve_workers(workers: int | None) -> int:
@@ -54,7 +71,7 @@ def resolve_workers(workers: int | None) -> int:
         ValueError: When ``workers`` (or the environment variable) is not a
             positive whole number.
     """
-    limit = int(numba.config.NUMBA_NUM_THREADS)
+    limit = int(numba.config.NUMBA_NUM_THREADS)  # type: ignore[attr-defined]
     if workers is None:
         text = os.environ.get(WORKERS_ENV, "").strip()
         if not text:
@@ -62,7 +79,9 @@ def resolve_workers(workers: int | None) -> int:
         try:
             workers = int(text)
         except ValueError:
-            raise ValueError(f"{WORKERS_ENV} must be a whole number of threads, got {text!r}")
+            raise ValueError(
+                f"{WORKERS_ENV} must be a whole number of threads, got {text!r}"
+            ) from None
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
         raise ValueError(f"workers must be a positive whole number, got {workers!r}")
     return min(workers, limit)

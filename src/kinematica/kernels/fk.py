@@ -25,7 +25,8 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from kinematica.kernels._numba import batch_kernel, inline_kernel, kernel
+from kinematica.kernels._numba import Array, batch_kernel, kernel
+from kinematica.kernels.arrays import copy2
 from kinematica.kernels.trig import REDUCTION_LIMIT, sincos, sincos_reduced
 
 __all__ = [
@@ -50,8 +51,8 @@ __all__ = [
     "finite",
     "fk_batch",
     "fk_one",
-    "inside_limits",
     "fk_pose",
+    "inside_limits",
     "walk",
 ]
 
@@ -81,7 +82,7 @@ BLOCK = 256
 
 
 @kernel
-def block_trig(links, Q, b0, b1, C, S):  # type: ignore[no-untyped-def]
+def block_trig(links: Array, Q: Array, b0: int, b1: int, C: Array, S: Array) -> None:
     """Cosine and sine of every joint angle of configurations ``Q[b0:b1]``.
 
     Each joint's angles are first gathered into a contiguous row (``C[j]``
@@ -90,9 +91,11 @@ def block_trig(links, Q, b0, b1, C, S):  # type: ignore[no-untyped-def]
     Args:
         links: ``(n, 10)`` the chain.
         Q: ``(B, n)`` joint values.
-        b0, b1: The block's rows.
-        C, S: ``(n, >= b1 - b0)`` out: ``C[j, k] = cos θj`` of row ``b0 + k``
+        b0: The block's first row.
+        b1: The row after the block's last.
+        C: ``(n, >= b1 - b0)`` out: ``C[j, k] = cos θj`` of row ``b0 + k``
             (the constant θ of a prismatic joint).
+        S: ``(n, >= b1 - b0)`` out: the sines.
     """
     n = links.shape[0]
     m = b1 - b0
@@ -115,87 +118,109 @@ def block_trig(links, Q, b0, b1, C, S):  # type: ignore[no-untyped-def]
                 Sj[k], Cj[k] = sincos(Cj[k])
 
 
-@inline_kernel
-def _store(F, xx, xy, xz, yx, yy, yz, zx, zy, zz, px, py, pz):  # type: ignore[no-untyped-def]
-    F[0, 0], F[1, 0], F[2, 0], F[3, 0] = xx, xy, xz, 0.0
-    F[0, 1], F[1, 1], F[2, 1], F[3, 1] = yx, yy, yz, 0.0
-    F[0, 2], F[1, 2], F[2, 2], F[3, 2] = zx, zy, zz, 0.0
-    F[0, 3], F[1, 3], F[2, 3], F[3, 3] = px, py, pz, 1.0
+@kernel
+def _store(F: Array, X: Array, Y: Array, Z: Array, P: Array) -> None:
+    """Write the frame with columns ``X, Y, Z, P`` (each ``(3,)``) into ``F (4, 4)``."""
+    for r in range(3):
+        F[r, 0] = X[r]
+        F[r, 1] = Y[r]
+        F[r, 2] = Z[r]
+        F[r, 3] = P[r]
+        F[3, r] = 0.0
+    F[3, 3] = 1.0
 
 
 @kernel
-def walk(links, ends, frames_mid, C, S, k, q, pose, frames, axes):  # type: ignore[no-untyped-def]
+def walk(
+    links: Array,
+    ends: Array,
+    frames_mid: bool,
+    C: Array,
+    S: Array,
+    k: int,
+    q: Array,
+    pose: Array,
+    frames: Array,
+    axes: Array,
+    work: Array,
+) -> None:
     """Walk the chain at one configuration.
 
     Args:
-        links: ``(n, 8)`` the chain; ``ends``: ``(3, 4, 4)`` start, tool, base.
+        links: ``(n, 10)`` the chain.
+        ends: ``(3, 4, 4)`` start, tool, base.
         frames_mid: True for the modified convention, where frame i sits after
             ``Rot(z)·Tras(z)`` of joint i rather than after the whole factor.
-        C, S: ``(n, m)`` joint cosines and sines (:func:`block_trig`); column ``k``.
+        C: ``(n, m)`` joint cosines (:func:`block_trig`).
+        S: ``(n, m)`` joint sines.
+        k: The column of ``C`` and ``S`` holding this configuration.
         q: ``(n,)`` joint values (the slide of prismatic joints is read here).
         pose: ``(4, 4)`` out: tool pose in the base frame.
         frames: ``(n + 1, 4, 4)`` out, or shape ``(0, 4, 4)`` for none: every
             frame ``0T0 (base), 0T1, ..., 0Tn (with tool)``.
         axes: ``(n, 6)`` out, or shape ``(0, 6)`` for none: each joint's axis
             as a unit direction and a point on it (base frame).
+        work: ``(6, 3)`` scratch space.
     """
+    # Plain statements, no tuple assignments: numba compiles them several
+    # times faster. The running frame's columns are X, Y, Z, P; N and W the
+    # new x and the rotated y of the current joint.
     n = links.shape[0]
+    X = work[0]
+    Y = work[1]
+    Z = work[2]
+    P = work[3]
+    N = work[4]
+    W = work[5]
     s0 = ends[START]
-    xx, xy, xz = s0[0, 0], s0[1, 0], s0[2, 0]
-    yx, yy, yz = s0[0, 1], s0[1, 1], s0[2, 1]
-    zx, zy, zz = s0[0, 2], s0[1, 2], s0[2, 2]
-    px, py, pz = s0[0, 3], s0[1, 3], s0[2, 3]
+    for r in range(3):
+        X[r] = s0[r, 0]
+        Y[r] = s0[r, 1]
+        Z[r] = s0[r, 2]
+        P[r] = s0[r, 3]
     want_frames = frames.shape[0] > 0
     want_axes = axes.shape[0] > 0
     for i in range(n):
         if want_axes:
-            axes[i, 0], axes[i, 1], axes[i, 2] = zx, zy, zz
-            axes[i, 3], axes[i, 4], axes[i, 5] = px, py, pz
-        c, s = C[i, k], S[i, k]
+            for r in range(3):
+                axes[i, r] = Z[r]
+                axes[i, 3 + r] = P[r]
+        c = C[i, k]
+        s = S[i, k]
         d = links[i, LINK_D]
         if links[i, LINK_PRISMATIC] != 0.0:
             d += q[i]
-        nx, ny, nz = c * xx + s * yx, c * xy + s * yy, c * xz + s * yz
-        wx, wy, wz = c * yx - s * xx, c * yy - s * xy, c * yz - s * xz
-        px, py, pz = px + d * zx, py + d * zy, pz + d * zz
+        for r in range(3):
+            N[r] = c * X[r] + s * Y[r]
+            W[r] = c * Y[r] - s * X[r]
+            P[r] += d * Z[r]
         if want_frames and frames_mid and i < n - 1:
-            _store(frames[i + 1], nx, ny, nz, wx, wy, wz, zx, zy, zz, px, py, pz)
-        a, ca, sa = links[i, LINK_A], links[i, LINK_CA], links[i, LINK_SA]
-        px, py, pz = px + a * nx, py + a * ny, pz + a * nz
-        xx, xy, xz = nx, ny, nz
-        yx, yy, yz, zx, zy, zz = (
-            ca * wx + sa * zx,
-            ca * wy + sa * zy,
-            ca * wz + sa * zz,
-            ca * zx - sa * wx,
-            ca * zy - sa * wy,
-            ca * zz - sa * wz,
-        )
+            _store(frames[i + 1], N, W, Z, P)
+        a = links[i, LINK_A]
+        ca = links[i, LINK_CA]
+        sa = links[i, LINK_SA]
+        for r in range(3):
+            P[r] += a * N[r]
+            X[r] = N[r]
+            Y[r] = ca * W[r] + sa * Z[r]
+            Z[r] = ca * Z[r] - sa * W[r]
         if want_frames and not frames_mid and i < n - 1:
-            _store(frames[i + 1], xx, xy, xz, yx, yy, yz, zx, zy, zz, px, py, pz)
+            _store(frames[i + 1], X, Y, Z, P)
     E = ends[TOOL]
-    _store(
-        pose,
-        xx * E[0, 0] + yx * E[1, 0] + zx * E[2, 0],
-        xy * E[0, 0] + yy * E[1, 0] + zy * E[2, 0],
-        xz * E[0, 0] + yz * E[1, 0] + zz * E[2, 0],
-        xx * E[0, 1] + yx * E[1, 1] + zx * E[2, 1],
-        xy * E[0, 1] + yy * E[1, 1] + zy * E[2, 1],
-        xz * E[0, 1] + yz * E[1, 1] + zz * E[2, 1],
-        xx * E[0, 2] + yx * E[1, 2] + zx * E[2, 2],
-        xy * E[0, 2] + yy * E[1, 2] + zy * E[2, 2],
-        xz * E[0, 2] + yz * E[1, 2] + zz * E[2, 2],
-        px + xx * E[0, 3] + yx * E[1, 3] + zx * E[2, 3],
-        py + xy * E[0, 3] + yy * E[1, 3] + zy * E[2, 3],
-        pz + xz * E[0, 3] + yz * E[1, 3] + zz * E[2, 3],
-    )
+    for r in range(3):
+        pose[r, 0] = X[r] * E[0, 0] + Y[r] * E[1, 0] + Z[r] * E[2, 0]
+        pose[r, 1] = X[r] * E[0, 1] + Y[r] * E[1, 1] + Z[r] * E[2, 1]
+        pose[r, 2] = X[r] * E[0, 2] + Y[r] * E[1, 2] + Z[r] * E[2, 2]
+        pose[r, 3] = P[r] + X[r] * E[0, 3] + Y[r] * E[1, 3] + Z[r] * E[2, 3]
+        pose[3, r] = 0.0
+    pose[3, 3] = 1.0
     if want_frames:
-        frames[0, :, :] = ends[BASE]
-        frames[n, :, :] = pose
+        copy2(frames[0], ends[BASE])
+        copy2(frames[n], pose)
 
 
 @kernel
-def finite(q):  # type: ignore[no-untyped-def]
+def finite(q: Array) -> bool:
     """True when every value of ``q`` is finite."""
     ok = True
     for v in q:
@@ -204,7 +229,7 @@ def finite(q):  # type: ignore[no-untyped-def]
 
 
 @kernel
-def inside_limits(links, q):  # type: ignore[no-untyped-def]
+def inside_limits(links: Array, q: Array) -> bool:
     """True when ``q`` is within every joint's own limits."""
     ok = True
     for i in range(links.shape[0]):
@@ -213,7 +238,9 @@ def inside_limits(links, q):  # type: ignore[no-untyped-def]
 
 
 @kernel
-def fk_one(links, ends, frames_mid, q, pose, frames, axes):  # type: ignore[no-untyped-def]
+def fk_one(
+    links: Array, ends: Array, frames_mid: bool, q: Array, pose: Array, frames: Array, axes: Array
+) -> int:
     """One configuration: see :func:`walk`.
 
     Returns:
@@ -226,22 +253,26 @@ def fk_one(links, ends, frames_mid, q, pose, frames, axes):  # type: ignore[no-u
     C = np.empty((n, 1))
     S = np.empty((n, 1))
     block_trig(links, q.reshape((1, n)), 0, 1, C, S)
-    walk(links, ends, frames_mid, C, S, 0, q, pose, frames, axes)
+    walk(links, ends, frames_mid, C, S, 0, q, pose, frames, axes, np.empty((6, 3)))
     return FK_OK if inside_limits(links, q) else FK_OUTSIDE_LIMITS
 
 
 @kernel
-def fk_pose(links, ends, q, pose):  # type: ignore[no-untyped-def]
+def fk_pose(links: Array, ends: Array, q: Array, pose: Array) -> int:
     """:func:`fk_one` for the tool pose alone (fewer arguments: a cheaper call)."""
     return fk_one(links, ends, False, q, pose, np.empty((0, 4, 4)), np.empty((0, 6)))
 
 
 @batch_kernel
-def fk_batch(links, ends, frames_mid, Q, poses, frames, axes):  # type: ignore[no-untyped-def]
+def fk_batch(
+    links: Array, ends: Array, frames_mid: bool, Q: Array, poses: Array, frames: Array, axes: Array
+) -> tuple[int, int]:
     """A batch ``Q (B, n)`` in parallel blocks; rows holding NaN/inf come out NaN.
 
     Args:
-        links, ends, frames_mid: The chain (see :func:`walk`).
+        links: ``(n, 10)`` the chain (see :func:`walk`).
+        ends: ``(3, 4, 4)`` start, tool, base.
+        frames_mid: True for the modified convention.
         Q: ``(B, n)`` joint values.
         poses: ``(B, 4, 4)`` out.
         frames: ``(B, n + 1, 4, 4)`` out, or shape ``(0, 0, 4, 4)`` for none.
@@ -262,11 +293,12 @@ def fk_batch(links, ends, frames_mid, Q, poses, frames, axes):  # type: ignore[n
         b1 = min(B, b0 + BLOCK)
         C = np.empty((n, BLOCK))
         S = np.empty((n, BLOCK))
+        work = np.empty((6, 3))
         block_trig(links, Q, b0, b1, C, S)
         for b in range(b0, b1):
             F = frames[b] if frames.shape[0] > 0 else no_frames
             A = axes[b] if axes.shape[0] > 0 else no_axes
-            walk(links, ends, frames_mid, C, S, b - b0, Q[b], poses[b], F, A)
+            walk(links, ends, frames_mid, C, S, b - b0, Q[b], poses[b], F, A, work)
             if not finite(Q[b]):
                 bad += 1
                 poses[b, :, :] = np.nan

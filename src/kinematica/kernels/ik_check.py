@@ -22,7 +22,8 @@ import math
 import numba
 import numpy as np
 
-from kinematica.kernels._numba import batch_kernel, kernel
+from kinematica.kernels._numba import Array, IntArray, batch_kernel, kernel
+from kinematica.kernels.arrays import copy1
 from kinematica.kernels.fk import LINK_PRISMATIC, block_trig, walk
 from kinematica.kernels.jacobian import columns
 from kinematica.kernels.linalg import damped_least_squares
@@ -105,7 +106,18 @@ def info_size(n: int) -> int:
 
 
 @kernel
-def _residual(links, ends, q, T, w, C, S, pose, e):  # type: ignore[no-untyped-def]
+def _residual(
+    links: Array,
+    ends: Array,
+    q: Array,
+    T: Array,
+    w: Array,
+    C: Array,
+    S: Array,
+    pose: Array,
+    e: Array,
+    work: Array,
+) -> tuple[float, float]:
     """Position (m) and rotation (rad) error of ``q`` against ``T``, weighted by ``w (6,)``.
 
     Unweighted, the rotation error is the angle of ``Rtᵀ R`` (exact near 0);
@@ -113,7 +125,7 @@ def _residual(links, ends, q, T, w, C, S, pose, e):  # type: ignore[no-untyped-d
     """
     n = links.shape[0]
     block_trig(links, q.reshape((1, n)), 0, 1, C, S)
-    walk(links, ends, False, C, S, 0, q, pose, np.empty((0, 4, 4)), np.empty((0, 6)))
+    walk(links, ends, False, C, S, 0, q, pose, np.empty((0, 4, 4)), np.empty((0, 6)), work)
     plain = w[0] == 1.0 and w[1] == 1.0 and w[2] == 1.0
     if plain and w[3] == 1.0 and w[4] == 1.0 and w[5] == 1.0:
         dx, dy, dz = T[0, 3] - pose[0, 3], T[1, 3] - pose[1, 3], T[2, 3] - pose[2, 3]
@@ -127,7 +139,27 @@ def _residual(links, ends, q, T, w, C, S, pose, e):  # type: ignore[no-untyped-d
 
 
 @kernel
-def _polish(links, ends, q, T, w, C, S, pose, axes, J6, Jr, e, er, dq, G, b, x, L):  # type: ignore[no-untyped-def]
+def _polish(
+    links: Array,
+    ends: Array,
+    q: Array,
+    T: Array,
+    w: Array,
+    C: Array,
+    S: Array,
+    pose: Array,
+    axes: Array,
+    J6: Array,
+    Jr: Array,
+    e: Array,
+    er: Array,
+    dq: Array,
+    G: Array,
+    b: Array,
+    x: Array,
+    L: Array,
+    work: Array,
+) -> None:
     """``POLISH_STEPS`` Gauss-Newton steps on ``q`` towards ``T`` (weighted rows only)."""
     n = links.shape[0]
     r = 0
@@ -136,7 +168,7 @@ def _polish(links, ends, q, T, w, C, S, pose, axes, J6, Jr, e, er, dq, G, b, x, 
             r += 1
     for _ in range(POLISH_STEPS):
         block_trig(links, q.reshape((1, n)), 0, 1, C, S)
-        walk(links, ends, False, C, S, 0, q, pose, np.empty((0, 4, 4)), axes)
+        walk(links, ends, False, C, S, 0, q, pose, np.empty((0, 4, 4)), axes, work)
         columns(links, axes, pose, False, J6)
         pose_error(pose, T, e)
         row = 0
@@ -154,7 +186,7 @@ def _polish(links, ends, q, T, w, C, S, pose, axes, J6, Jr, e, er, dq, G, b, x, 
 
 
 @kernel
-def _same(links, a, b):  # type: ignore[no-untyped-def]
+def _same(links: Array, a: Array, b: Array) -> bool:
     """True when ``a`` and ``b`` agree within ``DEDUP_TOL`` in every joint (angles mod 2π)."""
     for j in range(links.shape[0]):
         d = a[j] - b[j]
@@ -167,11 +199,26 @@ def _same(links, a, b):  # type: ignore[no-untyped-def]
 
 
 @kernel
-def check_target(links, ends, qlim, T, Q, info, w, q0, opts, out_q, out_slot, out_res, meta):  # type: ignore[no-untyped-def]
+def check_target(
+    links: Array,
+    ends: Array,
+    qlim: Array,
+    T: Array,
+    Q: Array,
+    info: Array,
+    w: Array,
+    q0: Array,
+    opts: Array,
+    out_q: Array,
+    out_slot: IntArray,
+    out_res: Array,
+    meta: Array,
+) -> None:
     """Check the candidates ``Q (m, n)`` of one target ``T (4, 4)``.
 
     Args:
-        links, ends: The chain (see :mod:`kinematica.kernels.fk`).
+        links: ``(n, 10)`` the chain (see :mod:`kinematica.kernels.fk`).
+        ends: ``(3, 4, 4)`` its start, tool and base.
         qlim: ``(n, 2)`` joint limits.
         T: ``(4, 4)`` target pose (base frame); for a position target, its
             rotation is ignored through ``w``.
@@ -205,6 +252,7 @@ def check_target(links, ends, qlim, T, Q, info, w, q0, opts, out_q, out_slot, ou
     b = np.empty(big)
     x = np.empty(big)
     L = np.empty((big, big))
+    work = np.empty((6, 3))
     qs = np.empty((m, n))
     res = np.empty((m, 2))
     state = np.zeros(m, dtype=np.int64)  # 0 no, 1 solution within limits, 2 outside
@@ -221,11 +269,11 @@ def check_target(links, ends, qlim, T, Q, info, w, q0, opts, out_q, out_slot, ou
             q[k] = wrap(v) if links[k, LINK_PRISMATIC] == 0.0 else v
         if not valid:
             continue
-        p_err, r_err = _residual(links, ends, q, T, w, C, S, pose, e)
+        p_err, r_err = _residual(links, ends, q, T, w, C, S, pose, e, work)
         ok = p_err <= tol_p and r_err <= tol_r
         if not ok and max(p_err, r_err) < POLISH_LIMIT:
-            _polish(links, ends, q, T, w, C, S, pose, axes, J6, Jr, e, er, dq, G, b, x, L)
-            p_err, r_err = _residual(links, ends, q, T, w, C, S, pose, e)
+            _polish(links, ends, q, T, w, C, S, pose, axes, J6, Jr, e, er, dq, G, b, x, L, work)
+            p_err, r_err = _residual(links, ends, q, T, w, C, S, pose, e, work)
             ok = p_err <= tol_p and r_err <= tol_r
         close |= max(p_err, r_err) < POLISH_LIMIT
         if not ok:
@@ -283,7 +331,7 @@ def check_target(links, ends, qlim, T, Q, info, w, q0, opts, out_q, out_slot, ou
     for r in range(m):
         if r < row:
             j = out_slot[r]
-            out_q[r, :] = qs[j]
+            copy1(out_q[r], qs[j])
             out_res[r, 0], out_res[r, 1] = res[j, 0], res[j, 1]
         else:
             out_slot[r] = -1
@@ -295,9 +343,7 @@ def check_target(links, ends, qlim, T, Q, info, w, q0, opts, out_q, out_slot, ou
         status = STATUS_SINGULAR if info[INFO_SINGULAR] != 0.0 else STATUS_OK
     elif out_count > 0:
         status = STATUS_OUT_OF_LIMITS
-    elif gap > tol_p:
-        status = STATUS_UNREACHABLE
-    elif opts[OPT_COMPLETE] != 0.0 and not close and info[INFO_NEAR] == 0.0:
+    elif gap > tol_p or (opts[OPT_COMPLETE] != 0.0 and not close and info[INFO_NEAR] == 0.0):
         status = STATUS_UNREACHABLE
     else:
         status = STATUS_NOT_FOUND
@@ -310,7 +356,21 @@ def check_target(links, ends, qlim, T, Q, info, w, q0, opts, out_q, out_slot, ou
 
 
 @batch_kernel
-def check_batch(links, ends, qlim, T, Q, info, w, q0, opts, out_q, out_slot, out_res, meta):  # type: ignore[no-untyped-def]
+def check_batch(
+    links: Array,
+    ends: Array,
+    qlim: Array,
+    T: Array,
+    Q: Array,
+    info: Array,
+    w: Array,
+    q0: Array,
+    opts: Array,
+    out_q: Array,
+    out_slot: IntArray,
+    out_res: Array,
+    meta: Array,
+) -> None:
     """:func:`check_target` for targets ``T (N, 4, 4)`` in parallel (arrays gain an ``N`` axis).
 
     ``q0`` is ``(N, n)``; a row of ``meta`` whose status is already

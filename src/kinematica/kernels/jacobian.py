@@ -11,14 +11,14 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from kinematica.kernels._numba import batch_kernel, kernel
+from kinematica.kernels._numba import Array, batch_kernel, kernel
 from kinematica.kernels.fk import BLOCK, LINK_PRISMATIC, block_trig, finite, walk
 
 __all__ = ["columns", "jacobian_batch", "jacobian_one"]
 
 
 @kernel
-def columns(links, axes, pose, tool_frame, J):  # type: ignore[no-untyped-def]
+def columns(links: Array, axes: Array, pose: Array, tool_frame: bool, J: Array) -> None:
     """Fill ``J (6, n)`` from the joint ``axes (n, 6)`` and the tool ``pose (4, 4)``."""
     n = links.shape[0]
     px, py, pz = pose[0, 3], pose[1, 3], pose[2, 3]
@@ -45,7 +45,7 @@ def columns(links, axes, pose, tool_frame, J):  # type: ignore[no-untyped-def]
 
 
 @kernel
-def jacobian_one(links, ends, q, tool_frame, J):  # type: ignore[no-untyped-def]
+def jacobian_one(links: Array, ends: Array, q: Array, tool_frame: bool, J: Array) -> bool:
     """``J (6, n)`` at one configuration ``q (n,)``; False when ``q`` is not finite."""
     if not finite(q):
         return False
@@ -54,14 +54,15 @@ def jacobian_one(links, ends, q, tool_frame, J):  # type: ignore[no-untyped-def]
     S = np.empty((n, 1))
     axes = np.empty((n, 6))
     pose = np.empty((4, 4))
+    work = np.empty((6, 3))
     block_trig(links, q.reshape((1, n)), 0, 1, C, S)
-    walk(links, ends, False, C, S, 0, q, pose, np.empty((0, 4, 4)), axes)
+    walk(links, ends, False, C, S, 0, q, pose, np.empty((0, 4, 4)), axes, work)
     columns(links, axes, pose, tool_frame, J)
     return True
 
 
 @batch_kernel
-def jacobian_batch(links, ends, Q, tool_frame, J):  # type: ignore[no-untyped-def]
+def jacobian_batch(links: Array, ends: Array, Q: Array, tool_frame: bool, J: Array) -> int:
     """``J (B, 6, n)`` of a batch ``Q (B, n)``; rows holding NaN/inf come out NaN.
 
     Returns:
@@ -77,9 +78,10 @@ def jacobian_batch(links, ends, Q, tool_frame, J):  # type: ignore[no-untyped-de
         S = np.empty((n, BLOCK))
         axes = np.empty((n, 6))
         pose = np.empty((4, 4))
+        work = np.empty((6, 3))
         block_trig(links, Q, b0, b1, C, S)
         for b in range(b0, b1):
-            walk(links, ends, False, C, S, b - b0, Q[b], pose, np.empty((0, 4, 4)), axes)
+            walk(links, ends, False, C, S, b - b0, Q[b], pose, np.empty((0, 4, 4)), axes, work)
             columns(links, axes, pose, tool_frame, J[b])
             if not finite(Q[b]):
                 bad += 1

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from kinematica.kernels._numba import kernel
+from kinematica.kernels._numba import Array, kernel
 
 __all__ = ["SCALE_FLOOR", "damped_least_squares"]
 
@@ -22,7 +22,7 @@ SCALE_FLOOR = 1e-300
 
 
 @kernel
-def _cholesky_solve(G, b, lam, x, L):  # type: ignore[no-untyped-def]
+def _cholesky_solve(G: Array, b: Array, lam: float, x: Array, L: Array) -> None:
     """Solve ``(G Gᵀ + λ s I) x = b`` for ``G (k, m)``; ``L (k, k)`` is work space."""
     k = G.shape[0]
     m = G.shape[1]
@@ -60,7 +60,9 @@ def _cholesky_solve(G, b, lam, x, L):  # type: ignore[no-untyped-def]
 
 
 @kernel
-def damped_least_squares(J, e, lam, dq, G, b, x, L):  # type: ignore[no-untyped-def]
+def damped_least_squares(
+    J: Array, e: Array, lam: float, dq: Array, G: Array, b: Array, x: Array, L: Array
+) -> None:
     """``dq (n,)`` minimising ``|J dq − e|² + λ s |dq|²`` for ``J (r, n)``, ``e (r,)``.
 
     ``s`` is the mean diagonal of the normal matrix, so ``λ`` is relative.
@@ -68,10 +70,13 @@ def damped_least_squares(J, e, lam, dq, G, b, x, L):  # type: ignore[no-untyped-
     ``(J Jᵀ + λ s I) x = e``; otherwise ``(JᵀJ + λ s I) dq = Jᵀ e``.
 
     Args:
-        J, e, lam: The problem.
+        J: ``(r, n)`` the Jacobian (rows already weighted).
+        e: ``(r,)`` the error.
+        lam: Damping relative to the mean diagonal of the normal matrix.
         dq: ``(n,)`` out.
         G: ``(n, r)`` work space (``Jᵀ``), used when ``r > n``.
-        b, x: ``(max(r, n),)`` work space.
+        b: ``(max(r, n),)`` work space.
+        x: ``(max(r, n),)`` work space.
         L: ``(max(r, n), max(r, n))`` work space.
     """
     r, n = J.shape

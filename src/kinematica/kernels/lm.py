@@ -31,7 +31,8 @@ import math
 import numba
 import numpy as np
 
-from kinematica.kernels._numba import batch_kernel, kernel
+from kinematica.kernels._numba import Array, IntArray, batch_kernel, kernel
+from kinematica.kernels.arrays import copy1, copy2
 from kinematica.kernels.fk import LINK_PRISMATIC, block_trig, walk
 from kinematica.kernels.jacobian import columns
 from kinematica.kernels.linalg import damped_least_squares
@@ -96,7 +97,7 @@ STAT_SIZE = 4
 
 
 @kernel
-def _project(links, bounds, q):  # type: ignore[no-untyped-def]
+def _project(links: Array, bounds: Array, q: Array) -> None:
     """Wrap revolute angles into their window, then clamp into the bounds (in place)."""
     for i in range(links.shape[0]):
         lo, hi = bounds[i, BOUND_LO], bounds[i, BOUND_HI]
@@ -111,11 +112,29 @@ def _project(links, bounds, q):  # type: ignore[no-untyped-def]
 
 
 @kernel
-def _evaluate(links, ends, q, T, rows, sw, exact, C, S, pose, axes, J6, A, e6, err, J):  # type: ignore[no-untyped-def]
+def _evaluate(
+    links: Array,
+    ends: Array,
+    q: Array,
+    T: Array,
+    rows: IntArray,
+    sw: Array,
+    exact: bool,
+    C: Array,
+    S: Array,
+    pose: Array,
+    axes: Array,
+    J6: Array,
+    A: Array,
+    e6: Array,
+    err: Array,
+    J: Array,
+    work: Array,
+) -> None:
     """Counted errors ``err (r,)`` (unweighted) and weighted Jacobian rows ``J (r, n)``."""
     n = links.shape[0]
     block_trig(links, q.reshape((1, n)), 0, 1, C, S)
-    walk(links, ends, False, C, S, 0, q, pose, np.empty((0, 4, 4)), axes)
+    walk(links, ends, False, C, S, 0, q, pose, np.empty((0, 4, 4)), axes, work)
     columns(links, axes, pose, False, J6)
     pose_error(pose, T, e6)
     if exact:  # only some rotation components count: rows J_r⁻¹(Δω) J_ω
@@ -132,7 +151,7 @@ def _evaluate(links, ends, q, T, rows, sw, exact, C, S, pose, axes, J6, A, e6, e
 
 
 @kernel
-def _norms(rows, scale, err):  # type: ignore[no-untyped-def]
+def _norms(rows: IntArray, scale: Array, err: Array) -> tuple[float, float]:
     """Position and rotation norms of ``err``, each component scaled by ``scale``."""
     p2 = r2 = 0.0
     for r in range(rows.shape[0]):
@@ -145,7 +164,7 @@ def _norms(rows, scale, err):  # type: ignore[no-untyped-def]
 
 
 @kernel
-def _energy(sw, err):  # type: ignore[no-untyped-def]
+def _energy(sw: Array, err: Array) -> float:
     t = 0.0
     for r in range(err.shape[0]):
         t += (err[r] * sw[r]) ** 2
@@ -153,11 +172,23 @@ def _energy(sw, err):  # type: ignore[no-untyped-def]
 
 
 @kernel
-def lm_target(links, ends, bounds, w, settings, T, start, samples, q_out, stats):  # type: ignore[no-untyped-def]
+def lm_target(
+    links: Array,
+    ends: Array,
+    bounds: Array,
+    w: Array,
+    settings: Array,
+    T: Array,
+    start: Array,
+    samples: Array,
+    q_out: Array,
+    stats: Array,
+) -> None:
     """Search one target: attempts one after another, restarting failed ones.
 
     Args:
-        links, ends: The chain.
+        links: ``(n, 10)`` the chain (see :mod:`kinematica.kernels.fk`).
+        ends: ``(3, 4, 4)`` its start, tool and base.
         bounds: ``(n, 3)`` per joint: start of the 2π window, lower and upper clamp.
         w: ``(6,)`` weights of the error components (0: not counted).
         settings: ``(SET_SIZE,)`` tolerances (m, rad), steps per attempt, the
@@ -226,19 +257,20 @@ def lm_target(links, ends, bounds, w, settings, T, start, samples, q_out, stats)
     x = np.empty(big)
     L = np.empty((big, big))
     dq = np.empty(n)
+    work = np.empty((6, 3))
     q = np.empty(n)
     q_new = np.empty(n)
     best_score = math.inf
     iterations = 0
     attempts = 0
     converged = False
-    q_out[:] = start
+    copy1(q_out, start)
     _project(links, bounds, q_out)
     for attempt in range(samples.shape[0] + 1):
-        q[:] = start if attempt == 0 else samples[attempt - 1]
+        copy1(q, start if attempt == 0 else samples[attempt - 1])
         _project(links, bounds, q)
         attempts += 1
-        _evaluate(links, ends, q, T, rows, sw, exact, C, S, pose, axes, J6, A, e6, err, J)
+        _evaluate(links, ends, q, T, rows, sw, exact, C, S, pose, axes, J6, A, e6, err, J, work)
         E = E_ref = _energy(sw, err)
         lam = LAMBDA_INIT
         k = 0
@@ -255,7 +287,7 @@ def lm_target(links, ends, bounds, w, settings, T, start, samples, q_out, stats)
             # One damped step, with the joints held at a bound they would leave blocked.
             for r in range(count):
                 ew[r] = err[r] * sw[r]
-            Jb[:, :] = J
+            copy2(Jb, J)
             if clamped:
                 for i in range(n):
                     if q[i] <= bounds[i, BOUND_LO] or q[i] >= bounds[i, BOUND_HI]:
@@ -270,12 +302,30 @@ def lm_target(links, ends, bounds, w, settings, T, start, samples, q_out, stats)
             for i in range(n):
                 q_new[i] = q[i] + dq[i]
             _project(links, bounds, q_new)
-            _evaluate(links, ends, q_new, T, rows, sw, exact, C, S, pose, axes, J6, A, e6, err_new, J_new)
+            _evaluate(
+                links,
+                ends,
+                q_new,
+                T,
+                rows,
+                sw,
+                exact,
+                C,
+                S,
+                pose,
+                axes,
+                J6,
+                A,
+                e6,
+                err_new,
+                J_new,
+                work,
+            )
             E_new = _energy(sw, err_new)
             if E_new < E:
-                q[:] = q_new
-                err[:] = err_new
-                J[:, :] = J_new
+                copy1(q, q_new)
+                copy1(err, err_new)
+                copy2(J, J_new)
                 E = E_new
                 lam = max(lam * LAMBDA_DOWN, LAMBDA_MIN)
             else:
@@ -286,7 +336,7 @@ def lm_target(links, ends, bounds, w, settings, T, start, samples, q_out, stats)
         score = max(pos / tol_p, rot / tol_r)
         if converged or score < best_score:
             best_score = score
-            q_out[:] = q
+            copy1(q_out, q)
         if converged:
             break
     stats[STAT_CONVERGED] = 1.0 if converged else 0.0
@@ -295,7 +345,18 @@ def lm_target(links, ends, bounds, w, settings, T, start, samples, q_out, stats)
 
 
 @batch_kernel
-def lm_batch(links, ends, bounds, w, settings, T, start, samples, q_out, stats):  # type: ignore[no-untyped-def]
+def lm_batch(
+    links: Array,
+    ends: Array,
+    bounds: Array,
+    w: Array,
+    settings: Array,
+    T: Array,
+    start: Array,
+    samples: Array,
+    q_out: Array,
+    stats: Array,
+) -> None:
     """:func:`lm_target` for targets ``T (N, 4, 4)``, ``start (N, n)`` in parallel."""
     for i in numba.prange(T.shape[0]):
         lm_target(links, ends, bounds, w, settings, T[i], start[i], samples, q_out[i], stats[i])

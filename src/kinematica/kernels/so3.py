@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 
-from kinematica.kernels._numba import kernel
+from kinematica.kernels._numba import Array, kernel
 
 __all__ = [
     "SERIES_ANGLE",
@@ -28,7 +28,7 @@ _TWO_PI = 2.0 * math.pi
 
 
 @kernel
-def wrap(v):  # type: ignore[no-untyped-def]
+def wrap(v: float) -> float:
     """An angle (rad) in (-π, π], unchanged when it already is."""
     if -math.pi < v <= math.pi:
         return v
@@ -37,7 +37,17 @@ def wrap(v):  # type: ignore[no-untyped-def]
 
 
 @kernel
-def rotvec(m00, m01, m02, m10, m11, m12, m20, m21, m22):  # type: ignore[no-untyped-def]
+def rotvec(
+    m00: float,
+    m01: float,
+    m02: float,
+    m10: float,
+    m11: float,
+    m12: float,
+    m20: float,
+    m21: float,
+    m22: float,
+) -> tuple[float, float, float]:
     """Rotation vector ``(x, y, z)`` (rad) of a rotation matrix given by its entries.
 
     ``atan2`` of the sine and cosine of the angle: exact near 0; near π the
@@ -69,7 +79,7 @@ def rotvec(m00, m01, m02, m10, m11, m12, m20, m21, m22):  # type: ignore[no-unty
 
 
 @kernel
-def angle_between(T, Tt):  # type: ignore[no-untyped-def]
+def angle_between(T: Array, Tt: Array) -> float:
     """Angle (rad) of ``Rtᵀ R`` for the rotation parts of ``T`` and ``Tt`` (exact near 0)."""
     tr = vx = vy = vz = 0.0
     for i in range(3):
@@ -83,13 +93,13 @@ def angle_between(T, Tt):  # type: ignore[no-untyped-def]
 
 
 @kernel
-def _rows(A, i, B, j):  # type: ignore[no-untyped-def]
+def _rows(A: Array, i: int, B: Array, j: int) -> float:
     """Row i of A's rotation part dotted with row j of B's: ``(A Bᵀ)[i, j]``."""
     return A[i, 0] * B[j, 0] + A[i, 1] * B[j, 1] + A[i, 2] * B[j, 2]
 
 
 @kernel
-def pose_error(T, Tt, e):  # type: ignore[no-untyped-def]
+def pose_error(T: Array, Tt: Array, e: Array) -> None:
     """``e (6,)``: ``p_t − p`` (m), then the rotation vector of ``R_t Rᵀ`` (rad), base frame."""
     e[0] = Tt[0, 3] - T[0, 3]
     e[1] = Tt[1, 3] - T[1, 3]
@@ -108,7 +118,7 @@ def pose_error(T, Tt, e):  # type: ignore[no-untyped-def]
 
 
 @kernel
-def inverse_right_jacobian(x, y, z, A):  # type: ignore[no-untyped-def]
+def inverse_right_jacobian(x: float, y: float, z: float, A: Array) -> None:
     """``A (3, 3) = J_r⁻¹(φ)`` of SO(3) at the rotation vector ``φ = (x, y, z)``."""
     th2 = x * x + y * y + z * z
     half = 0.5 * math.sqrt(th2)

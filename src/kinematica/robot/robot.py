@@ -8,7 +8,6 @@ of ``q``. All batch computations take ``q`` of shape ``(..., n)``.
 from __future__ import annotations
 
 import dataclasses
-import math
 import warnings
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
@@ -33,7 +32,6 @@ from kinematica.kernels import fk as kernel_fk
 from kinematica.kernels import jacobian as kernel_jacobian
 from kinematica.kernels import joint_axes as kernel_joint_axes
 from kinematica.spatial import check_transform, orthonormalize
-
 
 __all__ = ["Robot"]
 

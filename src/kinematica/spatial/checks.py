@@ -185,7 +185,7 @@ def orthonormality_error(R: ArrayLike) -> FloatArray:
     return err
 
 
-def orthonormalize(R: ArrayLike) -> tuple[FloatArray, FloatArray]:
+def orthonormalize(R: ArrayLike) -> tuple[FloatArray, NDArray[np.bool_]]:
     """Rotations as given where orthonormal to round-off, else the nearest rotation.
 
     Args:

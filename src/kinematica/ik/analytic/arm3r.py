@@ -43,8 +43,8 @@ from kinematica.ik.analytic.planar import (
     targets_array,
 )
 from kinematica.ik.candidates import Candidates
-from kinematica.robot.robot import Robot
 from kinematica.ik.structure import PARALLEL_TOL
+from kinematica.robot.robot import Robot
 from kinematica.robot.structure import classify
 
 __all__ = [

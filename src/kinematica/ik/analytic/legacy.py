@@ -29,7 +29,7 @@ FloatArray = NDArray[np.float64]
 def _robot(chain: DHChain) -> Any:
     from kinematica.robot import Robot  # transitional upward import
 
-    rows = []
+    rows: list[Revolute | Prismatic] = []
     for row in chain.links:
         kind, theta, d, a = row[0], row[1], row[2], row[3]
         alpha = math.atan2(row[5], row[4])
@@ -94,14 +94,18 @@ def _f(types: str, test: Callable[[Features], bool]) -> Callable[[Features], boo
 
 
 LEGACY_SPECS: tuple[SolverSpec, ...] = (
-    SolverSpec("planar-2R", "2R planar", _f("RR", lambda f: f.is_parallel(0, 1)), _builder("planar")),
+    SolverSpec(
+        "planar-2R", "2R planar", _f("RR", lambda f: f.is_parallel(0, 1)), _builder("planar")
+    ),
     SolverSpec(
         "planar-PR",
         "PR planar (prismatic then revolute)",
         _f("PR", lambda f: f.is_perpendicular(0, 1)),
         _builder("planar"),
     ),
-    SolverSpec("planar-3R", "3R planar", _f("RRR", lambda f: f.all_parallel(range(3))), _builder("planar")),
+    SolverSpec(
+        "planar-3R", "3R planar", _f("RRR", lambda f: f.all_parallel(range(3))), _builder("planar")
+    ),
     SolverSpec(
         "planar-PRR",
         "PRR planar (prismatic then two parallel revolute)",
@@ -120,7 +124,12 @@ LEGACY_SPECS: tuple[SolverSpec, ...] = (
         _f("RRR", lambda f: f.is_parallel(1, 2) and f.is_perpendicular(0, 1) and not f.meet(0, 1)),
         _builder("arm3r"),
     ),
-    SolverSpec("scara", "SCARA (RRPR, all axes parallel)", _f("RRPR", lambda f: f.all_parallel(range(4))), _builder("planar")),
+    SolverSpec(
+        "scara",
+        "SCARA (RRPR, all axes parallel)",
+        _f("RRPR", lambda f: f.all_parallel(range(4))),
+        _builder("planar"),
+    ),
     SolverSpec(
         "spherical-wrist-6R",
         "6R, spherical wrist",

@@ -72,8 +72,8 @@ from kinematica.ik.analytic.planar import (
     two_link_one,
 )
 from kinematica.ik.candidates import Candidates
-from kinematica.robot.robot import Robot
 from kinematica.ik.structure import MEET_TOL, PARALLEL_TOL, line_distance
+from kinematica.robot.robot import Robot
 from kinematica.robot.structure import classify
 
 __all__ = ["LABELS", "ThreeParallelSolver", "make_three_parallel_solver"]
