@@ -68,14 +68,13 @@ def _builder(
     factory_name: str,
 ) -> Callable[[DHChain, Features, TargetKind], ClosedForm | None]:
     def build(chain: DHChain, features: Features, target: TargetKind) -> ClosedForm | None:
-        from kinematica.ik.analytic import arm3r, parallel, planar, wrist
+        from kinematica.ik.analytic import arm3r, planar, wrist
 
         factories = {
             "planar": planar.make_planar_solver,
             "arm3r": arm3r.make_arm3r_solver,
             "wrist": wrist.make_spherical_wrist_solver,
             "rrp": wrist.make_rrp_wrist_solver,
-            "parallel": parallel.make_three_parallel_solver,
         }
         solver = factories[factory_name](_robot(chain))
         if solver is None:
@@ -141,11 +140,5 @@ LEGACY_SPECS: tuple[SolverSpec, ...] = (
         "RRP + spherical wrist (Stanford type)",
         _f("RRPRRR", lambda f: f.wrist_center is not None),
         _builder("rrp"),
-    ),
-    SolverSpec(
-        "three-parallel-6R",
-        "6R, three parallel axes (2-3-4), UR type",
-        _f("RRRRRR", lambda f: {(1, 2), (2, 3)} <= set(f.parallel)),
-        _builder("parallel"),
     ),
 )
