@@ -12,4 +12,6 @@ from kinematica.ik.registry import SolverSpec
 
 __all__ = ["SOLVERS"]
 
-SOLVERS: tuple[SolverSpec, ...] = (*LEGACY_SPECS, parallel.SPEC)
+# Three-parallel first: an arm with axes 2-3-4 parallel and a spherical wrist
+# (axes 4, 5, 6 meeting: d5 = a5 = 0) is a UR-type arm, whose solver handles it whole.
+SOLVERS: tuple[SolverSpec, ...] = (parallel.SPEC, *LEGACY_SPECS)

@@ -55,9 +55,6 @@ LABELS = tuple(
 #: Labels where axes 5 and 6 do not meet: the j-th (q1, q5) pair by q1.
 GENERAL_LABELS = tuple(f"root {j}, elbow {e}" for j in range(1, 5) for e in ("up", "down"))
 
-#: Relative slack added to the reach bound against the round-off of its sum.
-_BOUND_SLACK = 1e-12
-
 
 def _unit(v: FloatArray) -> FloatArray:
     return np.asarray(v / np.linalg.norm(v), dtype=float)
@@ -113,9 +110,8 @@ def pack(chain: DHChain, features: Features) -> tuple[FloatArray, int] | None:
     def plane(x: FloatArray) -> FloatArray:
         return np.array([x @ e1, x @ e2])
 
-    A, B = plane(p[2] - p[1]), plane(p[3] - p[2])
-    span = float(np.linalg.norm(A) + np.linalg.norm(B))
-    if min(np.linalg.norm(A), np.linalg.norm(B)) <= layout.CONTINUUM_TOL * span:
+    zA, zB = (complex(*plane(x)) for x in (p[2] - p[1], p[3] - p[2]))
+    if min(abs(zA), abs(zB)) <= layout.CONTINUUM_TOL * (abs(zA) + abs(zB)):
         return None
     if lines_parallel(h5, h6):
         if line_distance(h5, p[4], h6, p[5]) < MEET_TOL:
@@ -151,7 +147,6 @@ def pack(chain: DHChain, features: Features) -> tuple[FloatArray, int] | None:
         nxt = _project(a, h[i], p[i])
         bound += float(np.linalg.norm(nxt - a))
         a = nxt
-    bound *= 1.0 + _BOUND_SLACK
     M, _, _ = fk(chain, np.zeros(6))
     kpar = (h1 @ k) * h1
     vectors = [
@@ -161,7 +156,7 @@ def pack(chain: DHChain, features: Features) -> tuple[FloatArray, int] | None:
     scalars = [
         mode, *eq1, *eq2, *minv,
         2.0 * math.sin(0.5 * (alpha - beta)) ** 2, 2.0 * math.cos(0.5 * (alpha + beta)) ** 2,
-        *A, *B, *plane(np.cross(h1, k)),
+        *np.abs([zA, zB]), *np.angle([zA, zB]), *plane(np.cross(h1, k)),
         math.copysign(1.0, h[2] @ k), math.copysign(1.0, h[3] @ k),
         bound, abs(h1 @ k) + float(np.linalg.norm(k - kpar)), bound,
         _middle(*chain.qlim[0]), _middle(*chain.qlim[1]),

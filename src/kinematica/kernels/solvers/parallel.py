@@ -49,7 +49,6 @@ from kinematica.kernels.solvers.parallel_pairs import (
     PAIR_FREE_Q1,
     PAIR_FREE_Q15,
     PAIR_NONE,
-    PAIR_UNSURE,
     V_A6,
     V_E1,
     V_E2,
@@ -73,14 +72,10 @@ from kinematica.kernels.solvers.parallel_pairs import (
     pairs,
 )
 
-__all__ = ["NEAR_ALIGN", "SLOTS", "solve", "solve_batch"]
+__all__ = ["SLOTS", "solve", "solve_batch"]
 
 #: Candidate slots: four pairs (q1, q5) times two elbows.
 SLOTS = 8
-#: An unconverged quartic root (merging roots) whose axis 6 is within this
-#: sine of ``k`` takes the aligned wrist's q6 (subproblem 1 is meaningless
-#: there); the check's polishing finishes it.
-NEAR_ALIGN = 1e-4
 
 # Rows of the scratch array of a target.
 _K1, _A, _B, _Y, _V, _U, _Z, _G, _X6, _W6, _Z0, _Z1, _Z2 = range(13)
@@ -175,9 +170,7 @@ def _free_q6(
     _plane(V, W[_Y], z2)
     r0 = math.hypot(z0[0], z0[1])
     rad = 0.5 * (math.hypot(z1[0], z1[1]) + math.hypot(z2[0], z2[1]))
-    a = math.hypot(params[P_ARM], params[P_ARM + 1])
-    b = math.hypot(params[P_ARM + 2], params[P_ARM + 3])
-    want = min(max(max(a, b), abs(r0 - rad)), r0 + rad)
+    want = min(max(max(params[P_ARM], params[P_ARM + 1]), abs(r0 - rad)), r0 + rad)
     # |Z0|² + rad² + 2 cos q6 Z0·Z1 - 2 sin q6 Z0·Z2 = want²
     out = W[_Y]
     trig_linear(
@@ -203,14 +196,10 @@ def _triangle(params: Array, tx: Array, out: Array) -> int:
         ``out[1]`` NaN) and ``_NEAR`` (missed by less than ``NEAR_TOL``: the
         least-squares elbow). ``out (2, 2)``: (q2, ψ) elbow up, elbow down.
     """
-    ar = params[P_ARM]
-    ai = params[P_ARM + 1]
-    br = params[P_ARM + 2]
-    bi = params[P_ARM + 3]
-    a = math.hypot(ar, ai)
-    b = math.hypot(br, bi)
-    arg_a = math.atan2(ai, ar)
-    arg_b = math.atan2(bi, br)
+    a = params[P_ARM]
+    b = params[P_ARM + 1]
+    arg_a = params[P_ARM + 2]
+    arg_b = params[P_ARM + 3]
     span = a + b
     d = abs(a - b)
     n = math.hypot(tx[0], tx[1])
@@ -228,18 +217,16 @@ def _triangle(params: Array, tx: Array, out: Array) -> int:
         flags = _NEAR
     omc = max((span - n) * (span + n) / (2.0 * a * b), 0.0)  # 1 - cos γ
     opc = max((n - d) * (n + d) / (2.0 * a * b), 0.0)  # 1 + cos γ
-    gamma = math.atan2(math.sqrt(omc * opc), 0.5 * (opc - omc))
+    sg = math.sqrt(omc * opc)  # sin γ >= 0
+    gamma = math.atan2(sg, 0.5 * (opc - omc))
     arg_t = math.atan2(tx[1], tx[0])
-    near_side = (a - b) + b * opc  # a + b cos γ
-    q2 = arg_t - arg_a - math.atan2(b * math.sin(gamma), near_side)
-    # "up": cross(t, elbow) · (t · zup) > 0, elbow = e^{i q2} A
-    ex = math.cos(q2) * ar - math.sin(q2) * ai
-    ey = math.sin(q2) * ar + math.cos(q2) * ai
-    up = (tx[0] * ey - tx[1] * ex) * (tx[0] * params[P_ZUP] + tx[1] * params[P_ZUP + 1]) > 0.0
-    first = 0 if up else 1
-    out[first, 0] = q2
+    turn = math.atan2(b * sg, (a - b) + b * opc)  # arg(A + e^{iψ} B) - arg A; a + b cos γ
+    # With γ >= 0 the elbow e^{i q2} A is clockwise of t about k: "up" (on
+    # the side of h1 × k from the line axis 2 -> axis 4) when t·zup < 0.
+    first = 0 if tx[0] * params[P_ZUP] + tx[1] * params[P_ZUP + 1] < 0.0 else 1
+    out[first, 0] = arg_t - arg_a - turn
     out[first, 1] = gamma + arg_a - arg_b
-    out[1 - first, 0] = arg_t - arg_a + math.atan2(b * math.sin(gamma), near_side)
+    out[1 - first, 0] = arg_t - arg_a + turn
     out[1 - first, 1] = -gamma + arg_a - arg_b
     return flags
 
@@ -250,23 +237,30 @@ def _finish(
     V: Array,
     RG: Array,
     tG: Array,
-    q1: float,
-    q5: float,
+    pair: Array,
     kind: int,
     Q: Array,
     slot: int,
     info: Array,
     W: Array,
+    t: Array,
+    elbows: Array,
 ) -> int:
-    """The solutions of one pair ``(q1, q5)`` into ``Q[slot]`` (up) and ``Q[slot + 1]``.
+    """The solutions of one pair into ``Q[slot]`` (elbow up) and ``Q[slot + 1]``.
+
+    ``pair (6,)``: q1, q5 and their cosines and sines.
+
+    ``W (13, 3)``, ``t (2,)`` and ``elbows (2, 2)`` are scratch space.
 
     Returns:
         How many candidates were written (0, 1 or 2).
     """
-    c1 = math.cos(q1)
-    s1 = math.sin(q1)
-    c5 = math.cos(q5)
-    s5 = math.sin(q5)
+    q1 = pair[0]
+    q5 = pair[1]
+    c1 = pair[2]
+    s1 = pair[3]
+    c5 = pair[4]
+    s5 = pair[5]
     h5 = V[V_H5]
     h6 = V[V_H6]
     k1 = W[_K1]
@@ -283,9 +277,8 @@ def _finish(
     rotate(h5, c5, -s5, y, v)
     for r in range(3):
         v[r] += V[V_P5, r] - V[V_P6, r]
-    tilt = math.sqrt(cross2(a, h6))
-    aligned = tilt <= CONTINUUM_TOL
-    if aligned or (kind == PAIR_UNSURE and tilt <= NEAR_ALIGN):
+    aligned = cross2(a, h6) <= CONTINUUM_TOL * CONTINUUM_TOL  # axis 6 along k
+    if aligned:
         q6 = _free_q6(params, V, RG, tG, c1, s1, v, W)
     else:
         q6 = -subproblem1(a, b, h6)
@@ -302,9 +295,7 @@ def _finish(
     x = W[_U]
     for r in range(3):
         x[r] = V[V_P6, r] + y[r]
-    t = np.empty(2)
     _moved(V, RG, tG, c1, s1, x, t, W)
-    elbows = np.empty((2, 2))
     flags = _triangle(params, t, elbows)
     if flags < 0:
         return 0
@@ -392,14 +383,18 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
         - math.hypot(params[P_EQ2], params[P_EQ2 + 1])
     )
     gap = max(gap, miss / params[P_LIP], 0.0)
-    pq = np.empty((4, 2))
+    pq = np.empty((4, 6))
     kinds = np.empty(4, dtype=np.int64)
+    elbows = np.empty((3, 2))  # two elbows (q2, ψ), then the point t
     count = 0
     if miss <= NEAR_TOL * size:
         pairs(params, V, x6, w6, pq, kinds, info)
         for j in range(4):
             if kinds[j] != PAIR_NONE:
-                count += _finish(params, V, RG, tG, pq[j, 0], pq[j, 1], kinds[j], Q, 2 * j, info, W)
+                count += _finish(
+                    params, V, RG, tG, pq[j], kinds[j], Q, 2 * j, info, W,
+                    elbows[2], elbows[:2],
+                )  # fmt: skip
     if count == 0:
         info[INFO_GAP] = gap
         for j in range(INFO_FREE, info.shape[0]):

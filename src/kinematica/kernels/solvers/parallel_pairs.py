@@ -36,14 +36,13 @@ import numpy as np
 
 from kinematica.kernels._numba import Array, IntArray, kernel
 from kinematica.kernels.geometry import TRIG_TOL, trig_linear
-from kinematica.kernels.ik_check import INFO_NEAR
+from kinematica.kernels.ik_check import DEDUP_TOL, INFO_NEAR
 from kinematica.kernels.polynomial import quartic_roots
 from kinematica.kernels.so3 import wrap
 
 __all__ = [
     "CONTINUUM_TOL",
-    "IDENTICAL_TOL",
-    "MERGED_TOL",
+    "DOUBLE_ROOT_TOL",
     "MODE_GENERAL",
     "MODE_MEET",
     "MODE_PARALLEL",
@@ -54,10 +53,7 @@ __all__ = [
     "PAIR_FREE_Q15",
     "PAIR_NONE",
     "PAIR_ROOT",
-    "PAIR_UNSURE",
     "P_SIZE",
-    "ROOT_IMAG",
-    "ROOT_TOL",
     "pairs",
 ]
 
@@ -91,7 +87,7 @@ P_EQ2 = P_EQ1 + 3  # D2, E2, F2: right side of (2), F2 including k·(p5 - p1)
 P_MINV = P_EQ2 + 3  # 2x2 row-major inverse of [[D1, E1], [D2, E2]] (MODE_GENERAL)
 P_WLO = P_MINV + 4  # 1 - |D1, E1| - F1, exactly (1 - the largest k·R5 h6)
 P_WHI = P_WLO + 1  # 1 - |D1, E1| + F1, exactly (1 + the smallest k·R5 h6)
-P_ARM = P_WHI + 1  # plane coordinates of p3 - p2 (A) and p4 - p3 (B): 4 numbers
+P_ARM = P_WHI + 1  # |A|, |B|, arg A, arg B: A, B plane coordinates of p3 - p2, p4 - p3
 P_ZUP = P_ARM + 4  # plane coordinates of h1 × k ("elbow up" side)
 P_SIGN3 = P_ZUP + 2  # h3·k = ±1
 P_SIGN4 = P_SIGN3 + 1  # h4·k = ±1
@@ -104,8 +100,8 @@ P_SIZE = P_Q2REP + 1
 
 MODE_MEET, MODE_PARALLEL, MODE_GENERAL = 0, 1, 2
 # What a pair is (``kinds``): none, a root, a root whose q1 is free (a
-# continuum), q1 and q5 free (the quartic vanishes), an unconverged near-root.
-PAIR_NONE, PAIR_ROOT, PAIR_FREE_Q1, PAIR_FREE_Q15, PAIR_UNSURE = 0, 1, 2, 3, 4
+# continuum), q1 and q5 free (the quartic vanishes).
+PAIR_NONE, PAIR_ROOT, PAIR_FREE_Q1, PAIR_FREE_Q15 = 0, 1, 2, 3
 
 #: A point within this fraction of the arm's size from an axis, or two unit
 #: vectors within this sine of parallel, is on it: the solutions form a
@@ -116,23 +112,26 @@ CONTINUUM_TOL = 1e-12
 #: An equation missing a root by at most this (relative to the arm's size,
 #: or absolute for unit vectors) may be a double root moved by round-off or a
 #: target within tolerance of the workspace boundary: its least-squares angle
-#: is proposed (the check decides by FK) and the target is marked near.
+#: is proposed (the check decides by FK) and the target is marked near. Two
+#: merging quartic roots split into a complex pair ``a ± bi`` with ``b`` about
+#: the square root of such a miss: roots with ``|b| <= sqrt(NEAR_TOL) (1 + |t|)``
+#: are polished as real, and kept when they then meet (1) and (2) to
+#: ``TRIG_TOL`` (a root) or ``NEAR_TOL`` (near).
 NEAR_TOL = 1e-6
-#: A quartic root with ``|Im t| <= ROOT_IMAG (1 + |t|)`` is tried as real (two
-#: merging roots split into a complex pair by round-off).
-ROOT_IMAG = 1e-4
+#: The two roots of ``a cos θ + b sin θ = c`` (q1, or q5 when axes 5 and 6
+#: are parallel) whose discriminant ``r² - c²`` is within this fraction of
+#: ``r²`` are one double root: round-off of the target (~1e-16) splits a
+#: double root into two roots about 1e-8 apart, which the other joints
+#: amplify past the check's deduplication.
+DOUBLE_ROOT_TOL = 1e-14
 #: Newton steps at most polishing a quartic root on equations (1) and (2):
 #: quadratic convergence takes 2-3, but at a double root (the wrist aligned)
 #: it is linear, halving the error per step from the quartic's ~1e-8.
-NEWTON_STEPS = 40
-#: A polished root is converged when ``|f1| + |f2| / size`` is below this.
-ROOT_TOL = 1e-12
-#: Two polished roots closer than this (rad, q1 and q5 summed) are one root.
-MERGED_TOL = 1e-9
-#: ``|P x|² - 1`` below this (relative) at every sample: every q1 solves.
-IDENTICAL_TOL = 1e-12
+NEWTON_STEPS = 50
 
-_SAMPLES = 8
+_H = math.sqrt(0.5)
+_COS8 = (1.0, _H, 0.0, -_H, -1.0, -_H, 0.0, _H)  # cos(m π/4); sin is cos((m + 6) π/4)
+_ROOT_IMAG = math.sqrt(NEAR_TOL)
 
 
 @kernel
@@ -176,8 +175,8 @@ def _wrist(params: Array, d: float, m2: float, out: Array) -> int:
     ``1 ∓ d`` (``= m2 / (1 ± d)``) and the exact constants ``P_WLO``/``P_WHI``.
 
     Returns:
-        1 (``out``: "no-flip" φ + δ, "flip" φ - δ), 0 (near: the double
-        root twice), -1 (no root).
+        1 (``out (2, 3)``: q5, cos q5, sin q5 of "no-flip" φ + δ, then "flip"
+        φ - δ), 0 (near: the double root twice), -1 (no root).
     """
     D1 = params[P_EQ1]
     E1 = params[P_EQ1 + 1]
@@ -196,11 +195,55 @@ def _wrist(params: Array, d: float, m2: float, out: Array) -> int:
     hi = max(hi, 0.0)
     cd = 0.5 * (hi - lo)
     sd = math.sqrt(lo * hi)
-    cf = D1 / rho
-    sf = E1 / rho
-    out[0] = math.atan2(sf * cd + cf * sd, cf * cd - sf * sd)
-    out[1] = math.atan2(sf * cd - cf * sd, cf * cd + sf * sd)
+    norm = math.hypot(cd, sd)
+    cf = D1 / (rho * norm)
+    sf = E1 / (rho * norm)
+    for i in range(2):
+        sd_i = sd if i == 0 else -sd
+        c5 = cf * cd - sf * sd_i
+        s5 = sf * cd + cf * sd_i
+        out[i, 0] = math.atan2(s5, c5)
+        out[i, 1] = c5
+        out[i, 2] = s5
     return code
+
+
+@kernel
+def _store(pq: Array, kinds: IntArray, m: int, q1: float, q5: float, kind: int) -> None:
+    """Pair ``m``: ``pq[m] = (q1, q5, cos q1, sin q1, cos q5, sin q5)`` and its kind."""
+    pq[m, 0] = q1
+    pq[m, 1] = q5
+    pq[m, 2] = math.cos(q1)
+    pq[m, 3] = math.sin(q1)
+    pq[m, 4] = math.cos(q5)
+    pq[m, 5] = math.sin(q5)
+    kinds[m] = kind
+
+
+@kernel
+def _roots(a: float, b: float, c: float, size: float, out: Array, info: Array) -> bool:
+    """The two θ of ``a cos θ + b sin θ = c`` into ``out``: the rising root, then the falling.
+
+    A double root within ``DOUBLE_ROOT_TOL`` is one angle, twice; a root
+    missed by less than ``NEAR_TOL`` (of ``size``) gives the least-squares
+    angle twice and marks the target near (``info``).
+
+    Returns:
+        False when there is no root (``out`` unchanged).
+    """
+    r2 = a * a + b * b
+    if trig_linear(a, b, c, out) <= 0:
+        if abs(c) - math.sqrt(r2) > NEAR_TOL * size:
+            return False
+        info[INFO_NEAR] = 1.0
+    elif r2 - c * c <= DOUBLE_ROOT_TOL * r2:
+        out[0] = math.atan2(b * c, a * c)
+        out[1] = out[0]
+    else:
+        rise = out[1]  # a cos + b sin = r cos(θ - φ): rising at φ - δ
+        out[1] = out[0]
+        out[0] = rise
+    return True
 
 
 @kernel
@@ -211,9 +254,8 @@ def _first(
 
     Returns:
         ``PAIR_ROOT`` (``out``: the root where the left side rises, then the
-        one where it falls), ``PAIR_FREE_Q1`` (every q1: ``out`` holds
-        ``rep``, then NaN), ``PAIR_NONE``. A root missed by less than
-        ``NEAR_TOL`` gives its least-squares angle twice and marks the target near.
+        one where it falls; see :func:`_roots`), ``PAIR_FREE_Q1`` (every q1:
+        ``out`` holds ``rep``, then NaN), ``PAIR_NONE``.
     """
     if math.hypot(a, b) <= CONTINUUM_TOL * size:
         if abs(rhs) <= CONTINUUM_TOL * size:
@@ -221,14 +263,7 @@ def _first(
             out[1] = np.nan
             return PAIR_FREE_Q1
         return PAIR_NONE
-    if trig_linear(a, b, rhs, out) == 0:
-        if abs(rhs) - math.hypot(a, b) > NEAR_TOL * size:
-            return PAIR_NONE
-        info[INFO_NEAR] = 1.0
-    rise = out[1]  # a cos + b sin = r cos(θ - φ): rising at φ - δ
-    out[1] = out[0]
-    out[0] = rise
-    return PAIR_ROOT
+    return PAIR_ROOT if _roots(a, b, rhs, size, out, info) else PAIR_NONE
 
 
 @kernel
@@ -238,7 +273,7 @@ def _pairs_meet(
     """Axes 5 and 6 meet: q1 from (2) ("shoulder right", "left"), q5 from (1) ("no-flip", "flip")."""
     size = params[P_SCALE]
     q1s = np.empty(2)
-    q5s = np.empty(2)
+    w = np.empty((2, 3))
     k1 = np.empty(3)
     kind = _first(L[1, 0], L[1, 1], params[P_EQ2 + 2] - L[1, 2], size, params[P_Q1REP], q1s, info)
     if kind == PAIR_NONE:
@@ -247,16 +282,23 @@ def _pairs_meet(
         q1 = q1s[i]
         if np.isnan(q1):
             continue
-        axis2_now(V, math.cos(q1), math.sin(q1), k1)
-        code = _wrist(params, dot(k1, x6), cross2(k1, x6), q5s)
+        c1 = math.cos(q1)
+        s1 = math.sin(q1)
+        axis2_now(V, c1, s1, k1)
+        code = _wrist(params, dot(k1, x6), cross2(k1, x6), w)
         if code < 0:
             continue
         if code == 0:
             info[INFO_NEAR] = 1.0
         for j in range(2):
-            pq[2 * i + j, 0] = q1
-            pq[2 * i + j, 1] = q5s[j]
-            kinds[2 * i + j] = kind
+            m = 2 * i + j
+            pq[m, 0] = q1
+            pq[m, 1] = w[j, 0]
+            pq[m, 2] = c1
+            pq[m, 3] = s1
+            pq[m, 4] = w[j, 1]
+            pq[m, 5] = w[j, 2]
+            kinds[m] = kind
 
 
 @kernel
@@ -277,22 +319,23 @@ def _pairs_parallel(
         if np.isnan(q1):
             continue
         lhs = L[1, 0] * math.cos(q1) + L[1, 1] * math.sin(q1) + L[1, 2] - params[P_EQ2 + 2]
-        if trig_linear(D2, E2, lhs, q5s) == 0:
-            if abs(lhs) - math.hypot(D2, E2) > NEAR_TOL * size:
-                continue
-            info[INFO_NEAR] = 1.0
+        if not _roots(D2, E2, lhs, size, q5s, info):
+            continue
         for j in range(2):
-            pq[2 * i + j, 0] = q1
-            pq[2 * i + j, 1] = q5s[j]
-            kinds[2 * i + j] = kind
+            _store(pq, kinds, 2 * i + j, q1, q5s[j], kind)
 
 
 @kernel
 def _newton(params: Array, V: Array, x6: Array, L: Array, q: Array, k1: Array) -> float:
-    """Newton steps on (1) and (2) from ``q = (q1, q5)`` (in place); the final residual.
+    """Newton steps on (1) and (2) from ``q = (q1, q5)`` (in place); the residual.
 
-    (1) is evaluated as :func:`_unit_gap`: its error stays at round-off of
-    its (small) terms near the aligned wrist, where the two roots merge.
+    Steps stop when they no longer shrink (round-off reached, or no root
+    nearby). (1) is evaluated as :func:`_unit_gap`: its error stays at
+    round-off of its (small) terms near the aligned wrist, where two roots
+    merge, so the roots are resolved however close they are.
+
+    Returns:
+        ``|f1| + |f2| / size`` at ``q`` (before the last, rejected step).
     """
     D1 = params[P_EQ1]
     E1 = params[P_EQ1 + 1]
@@ -301,7 +344,8 @@ def _newton(params: Array, V: Array, x6: Array, L: Array, q: Array, k1: Array) -
     size = params[P_SCALE]
     rv = np.empty(3)
     res = math.inf
-    for step in range(NEWTON_STEPS + 1):
+    last = math.inf
+    for _ in range(NEWTON_STEPS):
         c1 = math.cos(q[0])
         s1 = math.sin(q[0])
         c5 = math.cos(q[1])
@@ -314,8 +358,6 @@ def _newton(params: Array, V: Array, x6: Array, L: Array, q: Array, k1: Array) -
         f1 = _unit_gap(d, cross2(k1, x6), e, cross2(V[V_K], rv))
         f2 = L[1, 0] * c1 + L[1, 1] * s1 + L[1, 2] - (D2 * c5 + E2 * s5 + params[P_EQ2 + 2])
         res = abs(f1) + abs(f2) / size
-        if step == NEWTON_STEPS or res <= 0.0:
-            break
         j11 = L[0, 1] * c1 - L[0, 0] * s1
         j12 = D1 * s5 - E1 * c5
         j21 = L[1, 1] * c1 - L[1, 0] * s1
@@ -325,10 +367,12 @@ def _newton(params: Array, V: Array, x6: Array, L: Array, q: Array, k1: Array) -
             break
         d1 = (f1 * j22 - f2 * j12) / det
         d5 = (j11 * f2 - j21 * f1) / det
+        step = abs(d1) + abs(d5)
+        if not step < last:  # no longer contracting: round-off (or no root here)
+            break
+        last = step
         q[0] -= d1
         q[1] -= d5
-        if abs(d1) + abs(d5) <= 1e-16:
-            break
     return res
 
 
@@ -350,22 +394,21 @@ def _pairs_general(
     for i in range(2):
         for j in range(3):
             size += P[i, j] * P[i, j]
-    for m in range(_SAMPLES):
-        th = 2.0 * math.pi * m / _SAMPLES
-        u = P[0, 0] * math.cos(th) + P[0, 1] * math.sin(th) + P[0, 2]
-        v = P[1, 0] * math.cos(th) + P[1, 1] * math.sin(th) + P[1, 2]
+    for m in range(8):
+        c = _COS8[m]
+        sn = _COS8[(m + 6) % 8]
+        u = P[0, 0] * c + P[0, 1] * sn + P[0, 2]
+        v = P[1, 0] * c + P[1, 1] * sn + P[1, 2]
         f = abs(u * u + v * v - 1.0)
         if f > worst:
             worst = f
-            far = th
-    if worst <= IDENTICAL_TOL * size:  # every q1 solves: four representatives
+            far = 0.25 * math.pi * m
+    if worst <= CONTINUUM_TOL * size:  # every q1 solves: four representatives
         for m in range(4):
             q1 = params[P_Q1REP] + 0.5 * math.pi * m
             u = P[0, 0] * math.cos(q1) + P[0, 1] * math.sin(q1) + P[0, 2]
             v = P[1, 0] * math.cos(q1) + P[1, 1] * math.sin(q1) + P[1, 2]
-            pq[m, 0] = wrap(q1)
-            pq[m, 1] = math.atan2(v, u)
-            kinds[m] = PAIR_FREE_Q15
+            _store(pq, kinds, m, wrap(q1), math.atan2(v, u), PAIR_FREE_Q15)
         return
     phi0 = far - math.pi
     cp = math.cos(phi0)
@@ -391,7 +434,7 @@ def _pairs_general(
     k1 = np.empty(3)
     for m in range(4):
         t = roots[m]
-        if not abs(t.imag) <= ROOT_IMAG * (1.0 + abs(t)):
+        if not abs(t.imag) <= _ROOT_IMAG * (1.0 + abs(t)):
             continue
         # a merging pair a ± bi: start from a + b and a - b, on either side
         q1 = phi0 + 2.0 * math.atan(t.real + t.imag)
@@ -401,20 +444,18 @@ def _pairs_general(
         seeds[m, 1] = math.atan2(
             P[1, 0] * c1 + P[1, 1] * s1 + P[1, 2], P[0, 0] * c1 + P[0, 1] * s1 + P[0, 2]
         )
-        if t.imag != 0.0:
-            info[INFO_NEAR] = 1.0
-        _polish(params, V, x6, L, seeds[m], pq[m], kinds, m, info, k1)
+        _polish(params, V, x6, L, seeds[m], pq, kinds, m, info, k1)
     # Two seeds of a merging pair may polish to one root; the other then lies
     # across their midpoint (the sum of a near-double root is well conditioned).
     for j in range(4):
         for i in range(j):
             if kinds[i] == PAIR_NONE or kinds[j] == PAIR_NONE:
                 continue
-            if abs(wrap(pq[i, 0] - pq[j, 0])) + abs(wrap(pq[i, 1] - pq[j, 1])) > MERGED_TOL:
+            if max(abs(wrap(pq[i, 0] - pq[j, 0])), abs(wrap(pq[i, 1] - pq[j, 1]))) >= DEDUP_TOL:
                 continue
             for c in range(2):
                 seeds[j, c] = pq[i, c] + wrap(seeds[i, c] - pq[i, c]) + wrap(seeds[j, c] - pq[i, c])
-            _polish(params, V, x6, L, seeds[j], pq[j], kinds, j, info, k1)
+            _polish(params, V, x6, L, seeds[j], pq, kinds, j, info, k1)
 
 
 @kernel
@@ -424,21 +465,27 @@ def _polish(
     x6: Array,
     L: Array,
     seed: Array,
-    out: Array,
+    pq: Array,
     kinds: IntArray,
     m: int,
     info: Array,
     k1: Array,
 ) -> None:
-    """Newton from ``seed (2,)`` into ``out (2,)`` (wrapped) and ``kinds[m]``."""
-    out[0] = seed[0]
-    out[1] = seed[1]
-    converged = _newton(params, V, x6, L, out, k1) <= ROOT_TOL
-    if not converged:
-        info[INFO_NEAR] = 1.0
-    out[0] = wrap(out[0])
-    out[1] = wrap(out[1])
-    kinds[m] = PAIR_ROOT if converged else PAIR_UNSURE
+    """Newton from ``seed (2,)`` into pair ``m`` of ``pq``/``kinds``.
+
+    A root meets (1) and (2) to ``TRIG_TOL``; one that meets them to
+    ``NEAR_TOL`` only is proposed too, and the target marked near.
+    """
+    q = pq[m, :2]
+    q[0] = seed[0]
+    q[1] = seed[1]
+    res = _newton(params, V, x6, L, q, k1)
+    kind = PAIR_NONE
+    if res <= NEAR_TOL:
+        kind = PAIR_ROOT
+        if res > TRIG_TOL:
+            info[INFO_NEAR] = 1.0
+    _store(pq, kinds, m, wrap(q[0]), wrap(q[1]), kind)
 
 
 @kernel
@@ -450,7 +497,7 @@ def _sort(pq: Array, kinds: IntArray) -> None:
             kinds[j - 1] == PAIR_NONE and kinds[j] != PAIR_NONE
             or kinds[j] != PAIR_NONE and pq[j, 0] < pq[j - 1, 0]
         ):
-            for c in range(2):
+            for c in range(6):
                 tmp = pq[j, c]
                 pq[j, c] = pq[j - 1, c]
                 pq[j - 1, c] = tmp
@@ -471,7 +518,7 @@ def pairs(
         V: ``(NV, 3)`` its vectors (a view of ``params``).
         x6: ``(3,)`` ``R_G h6``: axis 6's direction in the target.
         w6: ``(3,)`` ``G(p6) - p1``.
-        pq: ``(4, 2)`` out: ``(q1, q5)`` per pair (``MODE_MEET``: slot
+        pq: ``(4, 6)`` out: ``q1, q5, cos q1, sin q1, cos q5, sin q5`` per pair (``MODE_MEET``: slot
             ``2 shoulder + wrist``; otherwise by increasing q1).
         kinds: ``(4,)`` out: ``PAIR_*`` of each slot.
         info: The target's ``info`` row (``INFO_NEAR`` is set here).
