@@ -201,7 +201,10 @@ def test_complete_against_multistart_search(mode: str) -> None:
 def test_classification_and_declined_arms() -> None:
     for robot in (UR5, UR5_A5, UR5_P56):
         s = classify(robot)
-        assert (s.kind, s.summary) == ("three-parallel-6R", "6R, three parallel axes (2-3-4), UR type")
+        assert (s.kind, s.summary) == (
+            "three-parallel-6R",
+            "6R, three parallel axes (2-3-4), UR type",
+        )
     rows = UR5_ROWS
     # axes 5 and 6 on one line: q5 and q6 only add up; the numeric solver takes it
     same_line = Robot.from_dh([*rows[:4], Revolute(d=0.09465), Revolute(d=0.0823)])
@@ -215,4 +218,3 @@ def test_classification_and_declined_arms() -> None:
     puma = km.load("puma560")
     assert classify(puma).kind != "three-parallel-6R"
     assert classify(Robot.from_dh([Revolute(), Prismatic()])).kind != "three-parallel-6R"
-

@@ -35,7 +35,7 @@ from kinematica.dh import Revolute
 from kinematica.ik.analytic.parallel import pack
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.structure import features
-from kinematica.kernels.solvers.parallel_pairs import P_SCALE
+from kinematica.kernels.solvers.parallel_layout import P_SCALE
 from kinematica.robot import Robot
 
 FloatArray = NDArray[np.float64]
@@ -83,7 +83,7 @@ def size_of(robot: Robot) -> float:
 
 # ------------------------------------------------------------ the aligned wrist
 def test_wrist_aligned_is_singular_with_q6_free() -> None:
-    """q5 = 0 or π on the UR5 (and with a5 != 0): axis 6 parallel to axes 2-4, q6 turns with q2-q4."""
+    """q5 = 0 or π on the UR5 (also with a5 != 0): axis 6 along axes 2-4, q6 turns with q2-q4."""
     rng = np.random.default_rng(40)
     for robot in (UR5, UR5_A5):
         q = rng.uniform(-PI, PI, (30, 6))
@@ -192,7 +192,7 @@ def test_stretched_and_folded_elbow_are_double_roots() -> None:
             assert 1 <= len(branch) <= 2
             assert np.abs(np.angle(np.exp(1j * (branch - branch[0])))).max() < 1e-4
             for off in OFF:
-                qo = q[i] + [0, 0, off, 0, 0, 0]
+                qo = q[i] + np.array([0, 0, off, 0, 0, 0])
                 assert_honest(UR5, qo, one(UR5, UR5.fk(qo)))
 
 
@@ -256,7 +256,7 @@ def test_shoulder_double_root_is_one_solution() -> None:
         assert np.ptp(np.angle(np.exp(1j * (res.solutions[:, 0] - q[0])))) < 1e-7
         assert joint_gap(res.solutions, q) < 1e-7
         for off in OFF:
-            qo = q + [0, off, 0, 0, 0, 0]
+            qo = q + np.array([0, off, 0, 0, 0, 0])
             assert_honest(UR5, qo, one(UR5, UR5.fk(qo)))
 
 

@@ -39,7 +39,7 @@ from kinematica.ik.registry import ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import MEET_TOL, Features, line_distance, lines_parallel
 from kinematica.kernels import fk
 from kinematica.kernels.solvers import parallel as kernel
-from kinematica.kernels.solvers import parallel_pairs as layout
+from kinematica.kernels.solvers import parallel_layout as layout
 
 __all__ = ["GENERAL_LABELS", "LABELS", "SPEC", "build", "pack"]
 

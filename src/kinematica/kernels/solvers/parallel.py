@@ -33,7 +33,7 @@ from kinematica.kernels._numba import Array, batch_kernel, kernel
 from kinematica.kernels.geometry import TRIG_TOL, rotate, subproblem1, trig_linear
 from kinematica.kernels.ik_check import INFO_FREE, INFO_GAP, INFO_NEAR, INFO_SINGULAR
 from kinematica.kernels.so3 import wrap
-from kinematica.kernels.solvers.parallel_pairs import (
+from kinematica.kernels.solvers.parallel_layout import (
     CONTINUUM_TOL,
     NEAR_TOL,
     NV,
@@ -69,8 +69,8 @@ from kinematica.kernels.solvers.parallel_pairs import (
     V_TM,
     cross2,
     dot,
-    pairs,
 )
+from kinematica.kernels.solvers.parallel_pairs import pairs
 
 __all__ = ["SLOTS", "solve", "solve_batch"]
 
@@ -88,19 +88,18 @@ def _goal(V: Array, T: Array, RG: Array, tG: Array) -> None:
     """``G = T M⁻¹``: ``R_G = R_T R_Mᵀ``, ``t_G = t_T - R_G t_M``."""
     for i in range(3):
         for j in range(3):
-            RG[i, j] = T[i, 0] * V[V_RM + j, 0] + T[i, 1] * V[V_RM + j, 1] + T[i, 2] * V[V_RM + j, 2]
+            RG[i, j] = (
+                T[i, 0] * V[V_RM + j, 0] + T[i, 1] * V[V_RM + j, 1] + T[i, 2] * V[V_RM + j, 2]
+            )
     for i in range(3):
         tG[i] = T[i, 3] - (RG[i, 0] * V[V_TM, 0] + RG[i, 1] * V[V_TM, 1] + RG[i, 2] * V[V_TM, 2])
 
 
 @kernel
-def _apply(R: Array, v: Array, out: Array, transpose: bool) -> None:
-    """``out = R v`` (or ``Rᵀ v``) for ``R (3, 3)``."""
+def _apply(R: Array, v: Array, out: Array) -> None:
+    """``out = R v`` for ``R (3, 3)``."""
     for i in range(3):
-        if transpose:
-            out[i] = R[0, i] * v[0] + R[1, i] * v[1] + R[2, i] * v[2]
-        else:
-            out[i] = R[i, 0] * v[0] + R[i, 1] * v[1] + R[i, 2] * v[2]
+        out[i] = R[i, 0] * v[0] + R[i, 1] * v[1] + R[i, 2] * v[2]
 
 
 @kernel
@@ -128,7 +127,7 @@ def _moved(
 ) -> None:
     """``out = E1⁻¹(G(x)) - p2`` in plane coordinates (2,)."""
     g = W[_G]
-    _apply(RG, x, g, False)
+    _apply(RG, x, g)
     for r in range(3):
         g[r] += tG[r] - V[V_P1, r]
     rotate(V[V_H1], c1, -s1, g, W[_Z])
@@ -159,13 +158,13 @@ def _free_q6(
     _moved(V, RG, tG, c1, s1, x, z0, W)
     for r in range(3):
         x[r] = v[r] - along * h6[r]
-    _apply(RG, x, W[_G], False)
+    _apply(RG, x, W[_G])
     rotate(V[V_H1], c1, -s1, W[_G], W[_Y])
     _plane(V, W[_Y], z1)
     x[0] = h6[1] * v[2] - h6[2] * v[1]
     x[1] = h6[2] * v[0] - h6[0] * v[2]
     x[2] = h6[0] * v[1] - h6[1] * v[0]
-    _apply(RG, x, W[_G], False)
+    _apply(RG, x, W[_G])
     rotate(V[V_H1], c1, -s1, W[_G], W[_Y])
     _plane(V, W[_Y], z2)
     r0 = math.hypot(z0[0], z0[1])
@@ -267,7 +266,8 @@ def _finish(
     a = W[_A]
     b = W[_B]
     rotate(V[V_H1], c1, s1, V[V_K], k1)
-    _apply(RG, k1, b, True)  # R_Gᵀ k1
+    for i in range(3):  # R_Gᵀ k1
+        b[i] = RG[0, i] * k1[0] + RG[1, i] * k1[1] + RG[2, i] * k1[2]
     rotate(h5, c5, -s5, V[V_K], a)  # R5ᵀ k
     # v = E5⁻¹(p4) - p6 = p5 - p6 + R5ᵀ (p4 - p5)
     y = W[_Y]
@@ -278,16 +278,13 @@ def _finish(
     for r in range(3):
         v[r] += V[V_P5, r] - V[V_P6, r]
     aligned = cross2(a, h6) <= CONTINUUM_TOL * CONTINUUM_TOL  # axis 6 along k
-    if aligned:
-        q6 = _free_q6(params, V, RG, tG, c1, s1, v, W)
-    else:
-        q6 = -subproblem1(a, b, h6)
+    q6 = _free_q6(params, V, RG, tG, c1, s1, v, W) if aligned else -subproblem1(a, b, h6)
     c6 = math.cos(q6)
     s6 = math.sin(q6)
     # θ234: R234 e1 = R1ᵀ R_G R6ᵀ R5ᵀ e1
     rotate(h5, c5, -s5, V[V_E1], y)
     rotate(h6, c6, -s6, y, W[_Z])
-    _apply(RG, W[_Z], W[_G], False)
+    _apply(RG, W[_Z], W[_G])
     rotate(V[V_H1], c1, -s1, W[_G], y)
     th234 = math.atan2(dot(V[V_E2], y), dot(V[V_E1], y))
     # axis 4: E1⁻¹ G E6⁻¹ (p6 + v) - p2 = E1⁻¹ G (p6 + R6ᵀ v) - p2
@@ -326,11 +323,12 @@ def _finish(
     if flags & _FOLD:
         free[1] = 1.0
         free[3] = 1.0
-    if kind == PAIR_FREE_Q1 or kind == PAIR_FREE_Q15:
+    free_q1 = kind >= PAIR_FREE_Q1  # PAIR_FREE_Q1 or PAIR_FREE_Q15
+    if free_q1:
         free[0] = 1.0
         if kind == PAIR_FREE_Q15:
             free[4] = 1.0
-    if aligned or flags & _FOLD or kind == PAIR_FREE_Q1 or kind == PAIR_FREE_Q15:
+    if aligned or flags & _FOLD or free_q1:
         info[INFO_SINGULAR] = 1.0
     return count
 
@@ -340,7 +338,7 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
     """Every solution of one target: candidates ``Q (8, 6)`` and ``info``.
 
     Args:
-        params: ``(P_SIZE,)`` the arm (see :mod:`.parallel_pairs`).
+        params: ``(P_SIZE,)`` the arm (see :mod:`.parallel_layout`).
         T: ``(4, 4)`` target tool pose (base frame, m).
         Q: ``(8, 6)`` out: candidates (rad), NaN rows where a branch has none.
         info: ``(INFO_FREE + 6,)`` out, zero on entry (see
@@ -363,7 +361,7 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
     # |G(a6) - p1s| beyond the reach bound proves the target out of reach
     # (and keeps huge targets out of the maths: no overflow).
     x = W[_Z]
-    _apply(RG, V[V_A6], x, False)
+    _apply(RG, V[V_A6], x)
     for r in range(3):
         x[r] += tG[r] - V[V_P1S, r]
     gap = _norm(x) - params[P_BOUND]
@@ -372,8 +370,8 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
         return
     x6 = W[_X6]
     w6 = W[_W6]
-    _apply(RG, V[V_H6], x6, False)
-    _apply(RG, V[V_P6], w6, False)
+    _apply(RG, V[V_H6], x6)
+    _apply(RG, V[V_P6], w6)
     for r in range(3):
         w6[r] += tG[r] - V[V_P1, r]
     # (2) cannot hold when its sides' ranges do not meet: a proven gap too.
