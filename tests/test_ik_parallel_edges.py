@@ -489,3 +489,20 @@ def arm_and_q(draw: st.DrawFn) -> tuple[Robot, FloatArray]:
 def test_property_fk_targets_are_solved_honestly(case: tuple[Robot, FloatArray]) -> None:
     robot, q = case
     assert_honest(robot, q, one(robot, robot.fk(q)))
+
+
+@pytest.mark.parametrize("shape", [(), (1,), (3, 2)])
+def test_batch_shapes(shape: tuple[int, ...]) -> None:
+    rng = np.random.default_rng(49)
+    q = rng.uniform(-PI, PI, (*shape, 6))
+    res = UR5_A5.ik(UR5_A5.fk(q), respect_limits=False)
+    if shape == ():
+        assert isinstance(res, IKResult)
+        assert joint_gap(res.solutions, q) < 1e-9
+        return
+    assert isinstance(res, IKBatchResult)
+    assert res.status.shape == shape and res.solutions.shape[: len(shape)] == shape
+    for idx in np.ndindex(*shape):
+        single = one(UR5_A5, UR5_A5.fk(q[idx]))
+        np.testing.assert_array_equal(res[idx].solutions, single.solutions)
+        assert joint_gap(single.solutions, q[idx]) < 1e-9
