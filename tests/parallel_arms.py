@@ -136,6 +136,19 @@ def assert_honest(robot: Robot, q: FloatArray, res: IKResult) -> None:
 
 
 def assert_honest_batch(robot: Robot, q: FloatArray, many: IKBatchResult) -> None:
-    """:func:`assert_honest` for every target of a batch."""
-    for i in range(len(q)):
-        assert_honest(robot, q[i], many[i])
+    """:func:`assert_honest` for every target ``robot.fk(q (N, 6))`` of a batch, at once."""
+    T = robot.fk(q)
+    assert set(many.status.tolist()) <= {"ok", "singular"}, many.message[
+        ~np.isin(many.status, ["ok", "singular"])
+    ]
+    real = ~np.isnan(many.solutions[..., 0])
+    reached = robot.fk(np.where(real[..., None], many.solutions, 0.0))
+    want = np.broadcast_to(T[:, None], reached.shape)
+    assert_transform_close(reached[real], want[real], atol=TOL)
+    assert many.free[many.status == "singular"].any(axis=-1).all()
+    smin = np.linalg.svd(robot.jacobian(q), compute_uv=False)[:, -1]
+    tol = np.maximum(FOUND_FLOOR, FOUND_SCALE / np.maximum(smin, 1e-300))
+    d = np.abs(np.angle(np.exp(1j * (many.solutions - q[:, None, :])))).max(axis=-1)
+    gap = np.where(real, d, np.inf).min(axis=1)
+    ok = many.status == "ok"
+    assert (gap[ok] <= tol[ok]).all(), q[ok][gap[ok] > tol[ok]].tolist()
