@@ -35,7 +35,7 @@ from kinematica.dh import Revolute
 from kinematica.ik.analytic.parallel import pack
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.structure import features
-from kinematica.kernels.solvers.parallel_layout import P_SCALE
+from kinematica.kernels.solvers.parallel_layout import P_EQ1, P_SCALE, V_P6
 from kinematica.robot import Robot
 
 FloatArray = NDArray[np.float64]
@@ -340,6 +340,54 @@ def test_wrist_point_on_axis_1_is_singular_with_q1_free() -> None:
         assert res.status == status, (distance, res.message)
         assert (0 in res.free_joints) == (status == "singular")
         assert_reaches(robot, res, T)
+
+
+def test_quartic_vanishing_is_singular_with_q1_free() -> None:
+    """Axes 5 and 6 apart, axis 6 along axis 1 through it: (1) and (2) hold for every q1.
+
+    Both left sides ``k1·y`` are constant in q1 when ``y`` lies along axis 1
+    (here ``k ⊥ h1``: zero), so every q1 solves, with the q5 making
+    ``k·R5 h6 = 0`` if that q5 also puts p6 at axis 1's height: the offset d4
+    (along k) is chosen for it.
+    """
+
+    def arm(d4: float) -> Robot:
+        return Robot.from_dh(
+            [
+                Revolute(d=0.1, alpha=PI / 2),
+                Revolute(a=0.4),
+                Revolute(a=0.3),
+                Revolute(d=d4, alpha=1.2),
+                Revolute(d=0.1, a=0.05, alpha=-0.9),
+                Revolute(d=0.08),
+            ]
+        )
+
+    packed = pack(arm(0.0).chain, features(arm(0.0).chain))
+    assert packed is not None and packed[1] == 2  # axes 5 and 6 apart: the quartic
+    D1, E1, F1, D2, E2, F2 = packed[0][P_EQ1 : P_EQ1 + 6]
+    q5 = math.atan2(E1, D1) + math.acos(-F1 / math.hypot(D1, E1))  # k·R5 h6 = 0
+    robot = arm(-(D2 * math.cos(q5) + E2 * math.sin(q5) + F2))
+    packed = pack(robot.chain, features(robot.chain))
+    assert packed is not None
+    M, h6, p6 = robot.fk(np.zeros(6)), robot.joint_axes()[0][5], packed[0][3 * V_P6 : 3 * V_P6 + 3]
+
+    def off_axis_1(v: FloatArray) -> FloatArray:  # axis 6 and p6 off the base z axis
+        T = robot.fk(np.array([0.3, *v[:3], q5, v[3]]))
+        R = T[:3, :3] @ M[:3, :3].T  # G = T M⁻¹
+        return np.array([*(R @ h6)[:2], *(R @ (p6 - M[:3, 3]) + T[:3, 3])[:2]])
+
+    v = np.array([1.0, -1.0, 0.5, 0.2])
+    for _ in range(40):  # Newton (finite differences) on the four conditions
+        J = np.stack(
+            [(off_axis_1(v + 1e-7 * e) - off_axis_1(v - 1e-7 * e)) / 2e-7 for e in np.eye(4)], 1
+        )
+        v -= np.linalg.lstsq(J, off_axis_1(v), rcond=None)[0]
+    assert np.abs(off_axis_1(v)).max() < 1e-13
+    q = np.array([0.3, *v[:3], q5, v[3]])
+    res = one(robot, robot.fk(q))
+    assert res.status == "singular" and res.free_joints[0] == 0 and 4 not in res.free_joints
+    assert_reaches(robot, res, robot.fk(q))
 
 
 # ----------------------------------------------------- issue 13, item 4 (UR type)

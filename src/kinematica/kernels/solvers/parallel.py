@@ -16,7 +16,10 @@ them and names the free joints; the candidates are representatives):
   turns with q2, q3, q4 (axes 2, 3, 4, 6 all parallel). The representative q6
   puts axis 4 at mid-reach of the triangle;
 * axis 4 on axis 2 with equal links (the folded elbow): q2 turns with q4;
-* the wrist point on axis 1 with no shoulder offset: q1 turns (with the rest).
+* equations (1) and (2) independent of q1 (with axes 5 and 6 meeting: the
+  wrist point on axis 1 and no shoulder offset; apart: axis 6 along axis 1
+  through it, and the offsets such that q5 can meet both): q1 turns, the
+  other joints following it.
 
 Elbow labels: "up" when the elbow (axis 3) lies on the side of the line
 axis 2 -> axis 4 toward which ``h1`` points.
@@ -47,7 +50,6 @@ from kinematica.kernels.solvers.parallel_layout import (
     P_SIGN4,
     P_ZUP,
     PAIR_FREE_Q1,
-    PAIR_FREE_Q15,
     PAIR_NONE,
     V_A6,
     V_E1,
@@ -323,11 +325,9 @@ def _finish(
     if flags & _FOLD:
         free[1] = 1.0
         free[3] = 1.0
-    free_q1 = kind >= PAIR_FREE_Q1  # PAIR_FREE_Q1 or PAIR_FREE_Q15
+    free_q1 = kind == PAIR_FREE_Q1
     if free_q1:
         free[0] = 1.0
-        if kind == PAIR_FREE_Q15:
-            free[4] = 1.0
     if aligned or flags & _FOLD or free_q1:
         info[INFO_SINGULAR] = 1.0
     return count

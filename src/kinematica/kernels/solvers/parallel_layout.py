@@ -22,7 +22,6 @@ __all__ = [
     "NEAR_TOL",
     "NV",
     "PAIR_FREE_Q1",
-    "PAIR_FREE_Q15",
     "PAIR_NONE",
     "PAIR_ROOT",
     "P_SIZE",
@@ -74,9 +73,9 @@ P_Q2REP = P_Q1REP + 1  # q2 given when q2 is free
 P_SIZE = P_Q2REP + 1
 
 MODE_MEET, MODE_PARALLEL, MODE_GENERAL = 0, 1, 2
-# What a pair is (``kinds``): none, a root, a root whose q1 is free (a
-# continuum), q1 and q5 free (the quartic vanishes).
-PAIR_NONE, PAIR_ROOT, PAIR_FREE_Q1, PAIR_FREE_Q15 = 0, 1, 2, 3
+# What a pair is (``kinds``): none, a root, or a representative of a
+# continuum in which q1 turns freely (the other joints following it).
+PAIR_NONE, PAIR_ROOT, PAIR_FREE_Q1 = 0, 1, 2
 
 #: A point within this fraction of the arm's size from an axis, or two unit
 #: vectors within this sine of parallel, is on it: the solutions form a

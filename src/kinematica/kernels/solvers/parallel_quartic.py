@@ -33,7 +33,7 @@ from kinematica.kernels.solvers.parallel_layout import (
     P_MINV,
     P_Q1REP,
     P_SCALE,
-    PAIR_FREE_Q15,
+    PAIR_FREE_Q1,
     PAIR_NONE,
     PAIR_ROOT,
     V_H5XH6,
@@ -145,13 +145,12 @@ def pairs_general(
         if f > worst:
             worst = f
             far = 0.25 * math.pi * m
-    if worst <= CONTINUUM_TOL * size:  # every q1 solves: four representatives
-        for m in range(4):
-            q1 = params[P_Q1REP] + 0.5 * math.pi * m
-            u = P[0, 0] * math.cos(q1) + P[0, 1] * math.sin(q1) + P[0, 2]
-            v = P[1, 0] * math.cos(q1) + P[1, 1] * math.sin(q1) + P[1, 2]
-            store_pair(pq, m, wrap(q1), math.atan2(v, u))
-            kinds[m] = PAIR_FREE_Q15
+    if worst <= CONTINUUM_TOL * size:  # every q1 solves, each with one q5
+        q1 = params[P_Q1REP]
+        u = P[0, 0] * math.cos(q1) + P[0, 1] * math.sin(q1) + P[0, 2]
+        v = P[1, 0] * math.cos(q1) + P[1, 1] * math.sin(q1) + P[1, 2]
+        store_pair(pq, 0, q1, math.atan2(v, u))
+        kinds[0] = PAIR_FREE_Q1
         return
     phi0 = far - math.pi
     cp = math.cos(phi0)
