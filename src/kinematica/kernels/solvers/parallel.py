@@ -105,18 +105,6 @@ def _apply(R: Array, v: Array, out: Array) -> None:
 
 
 @kernel
-def _norm(x: Array) -> float:
-    """``|x|`` of a ``(3,)`` vector without overflow, however large its entries."""
-    big = max(abs(x[0]), abs(x[1]), abs(x[2]))
-    if big == 0.0 or not np.isfinite(big):
-        return big
-    a = x[0] / big
-    b = x[1] / big
-    c = x[2] / big
-    return big * math.sqrt(a * a + b * b + c * c)
-
-
-@kernel
 def _plane(V: Array, x: Array, out: Array) -> None:
     """``out (2,)``: the coordinates of ``x`` across ``k`` (along e1, e2)."""
     out[0] = dot(V[V_E1], x)
@@ -364,7 +352,7 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
     _apply(RG, V[V_A6], x)
     for r in range(3):
         x[r] += tG[r] - V[V_P1S, r]
-    gap = _norm(x) - params[P_BOUND]
+    gap = math.hypot(math.hypot(x[0], x[1]), x[2]) - params[P_BOUND]  # no overflow
     if gap > NEAR_TOL * size:
         info[INFO_GAP] = gap
         return
