@@ -79,7 +79,7 @@ def _joint(
     convert = {"theta": angle, "d": length, "a": length, "alpha": angle}
     row: dict[str, Any] = {}
     for key, value in values.items():
-        if use_text and key in joint.expr:
+        if use_text and _has_text(joint):
             row[key] = _text_value(joint.expr[key])
         else:
             row[key] = _cell(i, key, joint, value, convert[key])
@@ -118,7 +118,11 @@ def _build(spec: RobotSpec, units: Mapping[str, str], use_text: bool) -> dict[st
         data["source"] = spec.reference
     data["units"] = {"angle": units["angle"], "length": units["length"]}
     if use_text and spec.parameters:
-        data["parameters"] = {k: _number(v) for k, v in spec.parameters.items()}
+        texts = spec.parameter_texts
+        data["parameters"] = {
+            k: _text_value(texts[k]) if k in texts else _number(v)
+            for k, v in spec.parameters.items()
+        }
     data["joints"] = [
         _joint(i, j, angle, length, use_text) for i, j in enumerate(spec.joints, start=1)
     ]
@@ -129,13 +133,23 @@ def _build(spec: RobotSpec, units: Mapping[str, str], use_text: bool) -> dict[st
     return data
 
 
-def _identical(a: RobotSpec, b: RobotSpec) -> bool:
-    """Equal, and written the same way (texts, units, parameters)."""
+def _has_text(joint: JointSpec) -> bool:
+    """Whether the joint keeps the text of each of its four DH cells."""
+    return set(joint.expr) >= {"theta", "d", "a", "alpha"}
+
+
+def _identical(again: RobotSpec, spec: RobotSpec) -> bool:
+    """Equal, and written the same way (units, parameters, every text ``spec`` keeps)."""
     return (
-        a == b
-        and dict(a.units) == dict(b.units)
-        and dict(a.parameters) == dict(b.parameters)
-        and all(dict(x.expr) == dict(y.expr) for x, y in zip(a.joints, b.joints, strict=True))
+        again == spec
+        and dict(again.units) == dict(spec.units)
+        and dict(again.parameters) == dict(spec.parameters)
+        and all(again.parameter_texts.get(k) == t for k, t in spec.parameter_texts.items())
+        and all(
+            dict(x.expr) == dict(y.expr)
+            for x, y in zip(again.joints, spec.joints, strict=True)
+            if _has_text(y)
+        )
     )
 
 
@@ -143,8 +157,9 @@ def dump_robot_dict(spec: RobotSpec) -> dict[str, Any]:
     """The robot-file data (plain dicts, lists, numbers, strings) of ``spec``.
 
     Reading the result with :func:`parse_robot_dict` gives a spec equal to
-    ``spec``; for a spec read from a file, also with the same expression
-    texts, units and parameters.
+    ``spec``; for a spec read from a file, also with the same units,
+    parameters and expression texts (of every joint that keeps its texts: a
+    joint changed in code is written as numbers, in the file's units).
 
     Args:
         spec: The robot description.
@@ -153,8 +168,8 @@ def dump_robot_dict(spec: RobotSpec) -> dict[str, Any]:
         A mapping with the robot-file keys, ready for JSON, TOML or YAML.
     """
     units = {"angle": spec.units.get("angle", "deg"), "length": spec.units.get("length", "m")}
-    complete = all(set(j.expr) >= {"theta", "d", "a", "alpha"} for j in spec.joints)
-    for use_text in (True, False) if complete else (False,):
+    texts = any(_has_text(j) for j in spec.joints)
+    for use_text in (True, False) if texts else (False,):
         try:
             data = _build(spec, units, use_text)
             again = parse_robot_dict(data)

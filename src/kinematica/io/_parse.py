@@ -9,6 +9,7 @@ from __future__ import annotations
 import difflib
 import math
 import re
+import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import PurePath
@@ -16,7 +17,8 @@ from typing import Any, Final, Literal
 
 import numpy as np
 
-from kinematica.errors import RobotFileError
+from kinematica.errors import KinematicaWarning, RobotFileError, located
+from kinematica.io import plausible
 from kinematica.io.expr import Affine, Expression, ExpressionError, is_joint_variable
 from kinematica.io.expr import parse_expression as _parse_expression
 from kinematica.io.spec import Convention, FrameSpec, JointKind, JointSpec, RobotSpec
@@ -68,6 +70,12 @@ DEFAULT_UNITS: Final = {"angle": "deg", "length": "m"}
 
 #: Radians per degree; a value ``v`` written in degrees is ``v * DEG`` radians.
 DEG: Final = math.pi / 180.0
+#: Most joints a robot file may have. Serial arms have up to a dozen, snake
+#: robots a few dozen; a file with thousands is an error (and slow to check).
+MAX_JOINTS: Final = 100
+#: Most named parameters a robot file may have.
+MAX_PARAMETERS: Final = 1000
+
 #: Largest deviation tolerated in a frame matrix: max |R^T R - I| and the
 #: bottom row's distance from (0, 0, 0, 1). Eight significant digits pass.
 MATRIX_TOL: Final = 1e-6
@@ -117,12 +125,33 @@ class _Reader:
     angle_unit: str = "deg"
     length_unit: str = "m"
     parameters: dict[str, float] = field(default_factory=dict)
+    parameter_texts: dict[str, str] = field(default_factory=dict)
     pi_parameters: set[str] = field(default_factory=set)
 
     def error(
         self, message: str, *, joint: int | None = None, key: str | None = None
     ) -> RobotFileError:
         return RobotFileError(message, path=self.path, joint=joint, key=key)
+
+    def warn(self, message: str | None, *, joint: int | None = None, key: str) -> None:
+        """Warn (KinematicaWarning) that a value is implausible for its unit, if it is."""
+        if message is None:
+            return
+        if key == "limits" or key.endswith(".rpy") or key in ("theta", "alpha"):
+            advice = "set units.angle: deg" if self.angle_unit == "rad" else ""
+        else:
+            advice = "set units.length: mm" if self.length_unit == "m" else ""
+        if advice and "is it in" in message:
+            message += f"; {advice} if the file is in those units"
+        text = located(message, path=self.path, joint=joint, key=key)
+        warnings.warn(text, KinematicaWarning, stacklevel=3)
+
+    def check_angle(self, written: float, key: str, joint: int | None = None) -> None:
+        """Warn about a constant angle ``written`` in file units, if implausible."""
+        if self.angle_unit == "deg":
+            self.warn(plausible.check_degrees(written), joint=joint, key=key)
+        else:
+            self.warn(plausible.check_angle(written), joint=joint, key=key)
 
     # --- generic checks ---------------------------------------------------
 
@@ -240,6 +269,11 @@ class _Reader:
         if raw is None:
             return
         params = self.mapping(raw, "a mapping of names to numbers", key="parameters")
+        if len(params) > MAX_PARAMETERS:
+            raise self.error(
+                f"{len(params)} parameters; at most {MAX_PARAMETERS} are accepted",
+                key="parameters",
+            )
         for name, value in params.items():
             key = f"parameters.{name}"
             if not _PARAMETER_NAME.fullmatch(name) or name == "pi" or is_joint_variable(name):
@@ -258,6 +292,7 @@ class _Reader:
                 raise self.error(
                     f"{exc} (a parameter may use only pi and the parameters above it)", key=key
                 ) from exc
+            self.parameter_texts[name] = expr.text
             if expr.names & ({"pi"} | self.pi_parameters):
                 self.pi_parameters.add(name)
 
@@ -333,6 +368,7 @@ class _Reader:
                     **where,
                 )
             qlim = (lo, hi)
+        self.check_joint(forms, kind, qlim, data.get("limits"), i)
         angle, length = self.to_si("angle"), self.to_si("length")
         return JointSpec(
             kind=kind,
@@ -344,6 +380,31 @@ class _Reader:
             name=self.text(data.get("name"), "name", **where),
             expr=texts,
         )
+
+    def check_joint(
+        self,
+        forms: Mapping[str, Affine],
+        kind: JointKind,
+        qlim: tuple[float, float] | None,
+        raw_limits: object,
+        i: int,
+    ) -> None:
+        """Warn about values implausible for the file's units (degrees as radians...)."""
+        for key in ("theta", "alpha"):
+            self.check_angle(forms[key].const, key, i)
+        to_m = self.to_si("length")
+        for key in ("d", "a"):
+            self.warn(plausible.check_length(to_m(forms[key].const), self.length_unit), joint=i, key=key)
+        if qlim is None or kind != "R" or not isinstance(raw_limits, list | tuple):
+            return
+        for lim in qlim:
+            if self.angle_unit == "deg":
+                message = plausible.check_degrees(math.degrees(lim))
+            else:
+                message = plausible.check_limit(lim)
+            if message is not None:
+                self.warn(message, joint=i, key="limits")
+                return
 
     def joint_type(self, raw: object, kind: JointKind, key: str, **where: Any) -> None:
         if raw is None:
@@ -377,6 +438,9 @@ class _Reader:
         if "rpy" not in data:
             return FrameSpec(xyz=(x, y, z))
         roll, pitch, yaw = self.numbers(data["rpy"], ("angle",) * 3, f"{which}.rpy")
+        for angle in (roll, pitch, yaw):
+            written = math.degrees(angle) if self.angle_unit == "deg" else angle
+            self.check_angle(written, f"{which}.rpy")
         return FrameSpec(xyz=(x, y, z), rpy=(roll, pitch, yaw))
 
     def matrix(
@@ -459,6 +523,10 @@ def parse_robot_dict(data: object, *, source: str | None = None) -> RobotSpec:
         raise r.error(f"expected a list of joints, found {describe(rows)}", key="joints")
     if not rows:
         raise r.error("expected at least one joint, found an empty list", key="joints")
+    if len(rows) > MAX_JOINTS:
+        raise r.error(
+            f"{len(rows)} joints; at most {MAX_JOINTS} are accepted", key="joints"
+        )
     joints = tuple(r.joint(row, i) for i, row in enumerate(rows, start=1))
 
     return RobotSpec(
@@ -468,6 +536,7 @@ def parse_robot_dict(data: object, *, source: str | None = None) -> RobotSpec:
         base=r.frame(top.get("base"), "base"),
         tool=r.frame(top.get("tool"), "tool"),
         parameters=dict(r.parameters),
+        parameter_texts=dict(r.parameter_texts),
         source=source,
         description=r.text(top.get("description"), "description"),
         units={"angle": r.angle_unit, "length": r.length_unit},

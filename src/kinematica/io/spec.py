@@ -128,9 +128,10 @@ class RobotSpec:
 
     Two specs compare equal when they describe the same robot: the numbers
     (SI), joint kinds and limits, placements, names and texts. How it was
-    written down (``expr`` texts, ``parameters``, ``units``) and where it was
-    read from (``source``) take no part: the same arm written in YAML, JSON or
-    TOML gives equal specs, and so does a spec written out and read back.
+    written down (``expr`` texts, ``parameters``, ``parameter_texts``,
+    ``units``) and where it was read from (``source``) take no part: the same
+    arm written in YAML, JSON or TOML gives equal specs, and so does a spec
+    written out and read back.
 
     Attributes:
         name: Robot name.
@@ -146,6 +147,8 @@ class RobotSpec:
             of ``expr`` texts and ``parameters``.
         reference: Where the numbers come from (book, paper, datasheet): the
             file's ``source`` key.
+        parameter_texts: Each parameter as written (``"l1 + 0.1"``), in file
+            units; a parameter without a text is written as its number.
     """
 
     name: str
@@ -158,6 +161,7 @@ class RobotSpec:
     description: str | None = None
     units: Mapping[str, str] = field(default_factory=_default_units, compare=False)
     reference: str | None = None
+    parameter_texts: Mapping[str, str] = field(default_factory=dict, compare=False)
 
     def __post_init__(self) -> None:
         if self.convention not in ("standard", "modified"):
