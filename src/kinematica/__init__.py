@@ -14,6 +14,7 @@ with an honest status::
 
 from kinematica.dh import Prismatic, Revolute, link_matrix
 from kinematica.errors import (
+    ArgumentError,
     DimensionError,
     KinematicaError,
     KinematicaWarning,
@@ -21,8 +22,16 @@ from kinematica.errors import (
     UnknownRobotError,
     UnreachableError,
 )
-from kinematica.io import ExpressionError, builtin_names, read_robot_file, write_robot_file
-from kinematica.robot import Robot, Structure, classify, load, robot_from_spec, spec_from_robot
+from kinematica.io import ExpressionError, builtin_names, read_robot_file
+from kinematica.robot import (
+    Robot,
+    Structure,
+    classify,
+    load,
+    robot_from_spec,
+    spec_from_robot,
+    write_robot_file,
+)
 from kinematica.spatial import (
     EulerSequenceError,
     axis_angle_from_matrix,
@@ -56,6 +65,7 @@ from kinematica.spatial import (
 __version__ = "0.1.0"
 
 __all__ = [
+    "ArgumentError",
     "DimensionError",
     "EulerSequenceError",
     "ExpressionError",

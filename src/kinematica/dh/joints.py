@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass
@@ -109,11 +109,11 @@ def _limits(owner: str, qlim: object) -> tuple[float, float] | None:
     if qlim is None:
         return None
     expected = f"{owner}: joint limits must be two numbers lo < hi (or None)"
-    if isinstance(qlim, str | bytes):
+    if isinstance(qlim, str | bytes) or not isinstance(qlim, Iterable):
         raise ArgumentError(f"{expected}, got {qlim!r}")
     try:
-        pair = tuple(qlim)  # type: ignore[call-overload]
-    except TypeError as exc:
+        pair = tuple(qlim)
+    except TypeError as exc:  # e.g. a 0-d array
         raise ArgumentError(f"{expected}, got {qlim!r}") from exc
     if len(pair) != 2:
         raise ArgumentError(f"{expected}, got {len(pair)} values: {qlim!r}")

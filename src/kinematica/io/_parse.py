@@ -394,7 +394,8 @@ class _Reader:
             self.check_angle(forms[key].const, key, i)
         to_m = self.to_si("length")
         for key in ("d", "a"):
-            self.warn(plausible.check_length(to_m(forms[key].const), self.length_unit), joint=i, key=key)
+            message = plausible.check_length(to_m(forms[key].const), self.length_unit)
+            self.warn(message, joint=i, key=key)
         if qlim is None or kind != "R" or not isinstance(raw_limits, list | tuple):
             return
         for lim in qlim:
@@ -524,9 +525,7 @@ def parse_robot_dict(data: object, *, source: str | None = None) -> RobotSpec:
     if not rows:
         raise r.error("expected at least one joint, found an empty list", key="joints")
     if len(rows) > MAX_JOINTS:
-        raise r.error(
-            f"{len(rows)} joints; at most {MAX_JOINTS} are accepted", key="joints"
-        )
+        raise r.error(f"{len(rows)} joints; at most {MAX_JOINTS} are accepted", key="joints")
     joints = tuple(r.joint(row, i) for i, row in enumerate(rows, start=1))
 
     return RobotSpec(

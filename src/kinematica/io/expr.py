@@ -357,8 +357,8 @@ class Expression:
             operand = self._eval(node.operand, params)
             return -operand if node.op == "-" else operand
         form = self._eval(node.first, params)
-        for op, operand, pos in node.rest:
-            form = self._apply(op, form, self._eval(operand, params), pos)
+        for op, child, pos in node.rest:
+            form = self._apply(op, form, self._eval(child, params), pos)
         return form
 
     def _apply(self, op: str, left: Affine, right: Affine, pos: int) -> Affine:

@@ -32,7 +32,10 @@ from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning
 from kinematica.robot.jacobian import jacobian
 
 if TYPE_CHECKING:
+    import os
+
     from kinematica.ik.result import IKBatchResult, IKResult
+    from kinematica.io import RobotSpec
 
 __all__ = ["Robot"]
 
@@ -78,6 +81,9 @@ class Robot:
         base: ``(4, 4)`` pose of DH frame 0 in the world (base) frame.
         tool: ``(4, 4)`` pose of the tool in the last DH frame.
         description: Free text (source of the model, notes).
+        source_spec: The description the robot was read from (robot file or
+            built-in model), or ``None``; :meth:`save` writes it back as it
+            was written, for every part that still describes this robot.
     """
 
     links: tuple[Joint, ...]
@@ -87,6 +93,7 @@ class Robot:
     tool: FloatArray = field(default_factory=lambda: np.eye(4))
     description: str | None = None
     _chain: DHChain = field(init=False, repr=False)
+    source_spec: RobotSpec | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         links = tuple(self.links)
@@ -396,3 +403,9 @@ class Robot:
 
     def __repr__(self) -> str:
         return f"Robot({self.name!r}, {self.joint_types}, convention={self.convention!r})"
+
+    def save(self, path: str | os.PathLike[str]) -> None:
+        """Write this robot as a robot file; see :func:`kinematica.write_robot_file`."""
+        from kinematica.robot.load import write_robot_file
+
+        write_robot_file(self, path)
