@@ -21,7 +21,7 @@ from kinematica.io.spec import FrameSpec, JointSpec, RobotSpec
 
 __all__ = ["dump_robot_dict", "toml_dumps"]
 
-_NUMBER_TEXT = re.compile(r"-?[0-9]+(\.[0-9]+)?", re.ASCII)
+_NUMBER_TEXT = re.compile(r"-?[0-9]+(\.[0-9]+)?([eE][-+]?[0-9]+)?", re.ASCII)
 _ULP_STEPS = 4  # neighbours of the naive conversion tried, each side
 
 
@@ -49,8 +49,8 @@ def _number(c: float | None) -> int | float:
 def _text_value(text: str) -> int | float | str:
     """A cell's text as written: numbers stay numbers when that is lossless."""
     if _NUMBER_TEXT.fullmatch(text):
-        number: int | float = int(text) if "." not in text else float(text)
-        if str(number) == text:
+        number: int | float = int(text) if text.lstrip("-").isdigit() else float(text)
+        if repr(number) == text:
             return number
     return text
 
