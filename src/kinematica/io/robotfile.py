@@ -72,10 +72,10 @@ __all__ = [
 #: File extensions read and written by this module.
 ROBOT_FILE_SUFFIXES = (".yaml", ".yml", ".json", ".toml")
 
-#: Largest robot file read, in bytes. A DH table with limits and comments is a
-#: few kilobytes; anything near this size is not a robot file, and checking it
-#: would take long (YAML is read at a few MB per second).
-MAX_FILE_SIZE = 1_000_000
+#: Largest robot file read, in bytes (256 KiB). A DH table with limits and
+#: comments is a few kilobytes; anything near this size is not a robot file,
+#: and reading it would take long (YAML is read at about 1 MB per second).
+MAX_FILE_SIZE = 262_144
 
 _BOM = "\ufeff"
 
@@ -105,7 +105,8 @@ _YAML_MERGE = "tag:yaml.org,2002:merge"
 def _load_yaml(text: str) -> object:
     yaml = _import_yaml()
 
-    safe_loader: Any = yaml.SafeLoader
+    # libyaml's parser when PyYAML has it (about 5x faster), else the pure-Python one.
+    safe_loader: Any = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
     class UniqueKeyLoader(safe_loader):
         """SafeLoader refusing duplicate keys, with merge keys (``<<: *anchor``).
@@ -298,7 +299,7 @@ def _path(path: object) -> Path:
 
 
 def _too_large(size: int, what: str) -> str:
-    return f"the file is {size:,} {what}; robot files of at most {MAX_FILE_SIZE:,} are read"
+    return f"the file is {size:,} {what}; robot files of at most {MAX_FILE_SIZE:,} bytes are read"
 
 
 def _kind(mode: int) -> str | None:
