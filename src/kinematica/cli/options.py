@@ -1,8 +1,9 @@
 """What every subcommand shares: common options, units, checked numbers, JSON output.
 
 Each topic of the command line lives in its own module (``kinematics``, ...)
-with a ``register(sub)`` function adding its subcommands; :mod:`main` lists
-those modules. The helpers here are the only code they share.
+with a ``register(sub)`` function adding its subcommands;
+:mod:`kinematica.cli.main` lists those modules. The helpers here are the only
+code they share.
 
 Units: the command line speaks degrees (``--rad`` for radians) and the robot
 file's length unit (``--units m|mm`` to choose): a robot file in millimetres
