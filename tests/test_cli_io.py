@@ -462,3 +462,28 @@ def test_readme_round_trip_is_true(capsys: pytest.CaptureFixture[str]) -> None:
     data = strict_json(out)
     q = np.array([10, 20, 30, 40, 50, 60])
     assert np.abs(np.array(data["solutions"]) - q).max(axis=1).min() < 1e-6
+
+
+def test_the_readme_names_the_builtin_robots_in_millimetres(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    in_mm = set()
+    for name in km.builtin_names():
+        code, out, _ = run(capsys, "show", name, "--json")
+        assert code == 0
+        if strict_json(out)["units"]["length"] == "mm":
+            in_mm.add(name)
+    assert in_mm == {"irb120", "kr6"}  # as the README's "Command line" section says
+    assert "for `irb120`, `kr6` and any file with" in (ROOT / "README.md").read_text()
+
+
+def test_the_all_extra_lists_every_optional_dependency() -> None:
+    import tomllib
+
+    extras = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"][
+        "optional-dependencies"
+    ]
+    optional = {dep for name, deps in extras.items() if name not in ("all", "test", "bench")
+                for dep in deps}  # fmt: skip
+    assert optional <= set(extras["all"])
+    assert set(extras["all"]) <= set(extras["test"])  # CI runs the tests of every part
