@@ -64,9 +64,14 @@ def robot_from_spec(spec: RobotSpec) -> Robot:
     return dataclasses.replace(robot, source_spec=spec)
 
 
-def _frame(T: FloatArray, written: FrameSpec | None) -> FrameSpec | None:
-    """The spec of a base/tool transform: as written when it still is ``T``."""
-    if written is not None and np.array_equal(written.as_matrix(), T):
+def _frame(T: FloatArray, written: FrameSpec | None, T_written: FloatArray) -> FrameSpec | None:
+    """The spec of a base/tool transform ``T``: as written when it still is ``T``.
+
+    ``T_written`` is the transform the robot made of ``written`` when it was
+    built (which may differ from ``written.as_matrix()`` by the projection of
+    a rotation written with few digits onto the nearest rotation).
+    """
+    if np.array_equal(T, T_written):
         return written
     if np.array_equal(T, np.eye(4)):
         return None
@@ -95,6 +100,7 @@ def spec_from_robot(robot: Robot) -> RobotSpec:
         raise ArgumentError(f"expected a Robot, got {type(robot).__name__}")
     written = robot.source_spec
     same_table = written is not None and written.convention == robot.convention
+    identity = np.eye(4)
     joints = []
     for i, link in enumerate(robot.links):
         joint = JointSpec(
@@ -116,17 +122,18 @@ def spec_from_robot(robot: Robot) -> RobotSpec:
             name=robot.name,
             convention=robot.convention,
             joints=tuple(joints),
-            base=_frame(robot.base, None),
-            tool=_frame(robot.tool, None),
+            base=_frame(robot.base, None, identity),
+            tool=_frame(robot.tool, None, identity),
             description=robot.description,
             units={"angle": "rad", "length": "m"},
         )
+    as_written = robot_from_spec(written)  # base and tool as the robot made them
     return RobotSpec(
         name=robot.name,
         convention=robot.convention,
         joints=tuple(joints),
-        base=_frame(robot.base, written.base),
-        tool=_frame(robot.tool, written.tool),
+        base=_frame(robot.base, written.base, as_written.base),
+        tool=_frame(robot.tool, written.tool, as_written.tool),
         parameters=written.parameters,
         source=written.source,
         description=robot.description,
