@@ -487,3 +487,15 @@ def test_the_all_extra_lists_every_optional_dependency() -> None:
                 for dep in deps}  # fmt: skip
     assert optional <= set(extras["all"])
     assert set(extras["all"]) <= set(extras["test"])  # CI runs the tests of every part
+
+
+def test_a_terminal_that_cannot_show_degrees_gets_escapes() -> None:
+    if not SCRIPT.exists():  # pragma: no cover - the venv always has it
+        pytest.skip("the kinematica console script is not installed next to this python")
+    env = dict(os.environ, PYTHONIOENCODING="ascii")
+    proc = subprocess.run(
+        [str(SCRIPT), "show", "puma560"], capture_output=True, text=True, env=env, timeout=60,
+        check=False,
+    )  # fmt: skip
+    assert proc.returncode == 0 and proc.stderr == ""
+    assert "90\\xb0" in proc.stdout  # 90° as an escape, not a crash

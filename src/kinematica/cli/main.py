@@ -118,6 +118,17 @@ def _warnings_as_lines(stream: TextIO, args: argparse.Namespace) -> Iterator[Non
         yield
 
 
+def _printable_everywhere() -> None:
+    """Characters the terminal cannot show (°, —, π on an ASCII terminal) print as escapes."""
+    for stream in (sys.stdout, sys.stderr):
+        reconfigure = getattr(stream, "reconfigure", None)
+        if reconfigure is not None:
+            try:
+                reconfigure(errors="backslashreplace")
+            except (ValueError, OSError):  # pragma: no cover - a stream that refuses
+                pass
+
+
 def _quiet_stdout() -> None:
     """After a broken pipe, send what is left of stdout nowhere (no error at exit)."""
     try:
@@ -133,6 +144,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     Args:
         argv: Arguments without the program name; ``sys.argv[1:]`` if None.
     """
+    _printable_everywhere()
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
