@@ -11,6 +11,7 @@ noise at the command line and print nothing.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import re
 import sys
@@ -123,19 +124,15 @@ def _printable_everywhere() -> None:
     for stream in (sys.stdout, sys.stderr):
         reconfigure = getattr(stream, "reconfigure", None)
         if reconfigure is not None:
-            try:
+            with contextlib.suppress(ValueError, OSError):  # a stream that refuses
                 reconfigure(errors="backslashreplace")
-            except (ValueError, OSError):  # pragma: no cover - a stream that refuses
-                pass
 
 
 def _quiet_stdout() -> None:
     """After a broken pipe, send what is left of stdout nowhere (no error at exit)."""
-    try:
+    with contextlib.suppress(OSError, ValueError, AttributeError):  # not a real file (pytest)
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
-    except (OSError, ValueError, AttributeError):  # not a real file (e.g. under pytest)
-        pass
 
 
 def main(argv: Sequence[str] | None = None) -> int:
