@@ -56,9 +56,13 @@ def as_float_array(x: ArrayLike, name: str, tail: tuple[int, ...] = ()) -> Float
         DimensionError: ``x`` is not numeric, or has the wrong trailing shape.
     """
     try:
-        a = np.asarray(x, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
+        raw = np.asarray(x)
+    except (TypeError, ValueError) as exc:  # ragged nested lists, say
         raise DimensionError(f"{name} must be an array of numbers: {exc}") from None
+    if raw.dtype.kind not in "biuf":  # None, text, objects, complex numbers
+        shown = repr(x) if len(repr(x)) <= 60 else repr(x)[:57] + "..."
+        raise DimensionError(f"{name} must be an array of numbers, got {shown}")
+    a = raw.astype(np.float64, copy=False)
     if a.ndim < len(tail) or a.shape[a.ndim - len(tail) :] != tail:
         expected = ", ".join(["..."] + [str(n) for n in tail])
         raise DimensionError(f"{name} must have shape ({expected}), got {a.shape}")
