@@ -53,15 +53,15 @@ def robot_from_spec(spec: RobotSpec) -> Robot:
         raise ArgumentError(f"expected a RobotSpec, got {type(spec).__name__}")
     with values_checked():  # the file reader has warned, naming file, joint and key
         joints = [_joint(j) for j in spec.joints]
-    robot = Robot.from_dh(
-        joints,
+    return Robot(  # the dataclass validates links, convention, base and tool
+        links=tuple(joints),
         convention=spec.convention,
         name=spec.name,
-        base=None if spec.base is None else spec.base.as_matrix(),
-        tool=None if spec.tool is None else spec.tool.as_matrix(),
+        base=np.eye(4) if spec.base is None else spec.base.as_matrix(),
+        tool=np.eye(4) if spec.tool is None else spec.tool.as_matrix(),
         description=spec.description,
+        source_spec=spec,
     )
-    return dataclasses.replace(robot, source_spec=spec)
 
 
 def _frame(T: FloatArray, written: FrameSpec | None, T_written: FloatArray) -> FrameSpec | None:
