@@ -22,7 +22,16 @@ from kinematica.errors import (
     UnreachableError,
 )
 from kinematica.io import ExpressionError, builtin_names, read_robot_file, write_robot_file
-from kinematica.robot import Robot, Structure, classify, load, robot_from_spec, spec_from_robot
+from kinematica.robot import (
+    DHExtraction,
+    Robot,
+    Structure,
+    classify,
+    load,
+    robot_from_spec,
+    spec_from_robot,
+    urdf_to_dh,
+)
 from kinematica.spatial import (
     EulerSequenceError,
     axis_angle_from_matrix,
@@ -56,6 +65,7 @@ from kinematica.spatial import (
 __version__ = "0.1.0"
 
 __all__ = [
+    "DHExtraction",
     "DimensionError",
     "EulerSequenceError",
     "ExpressionError",
@@ -101,6 +111,7 @@ __all__ = [
     "spec_from_robot",
     "to_pose",
     "transl",
+    "urdf_to_dh",
     "wrap_angle",
     "write_robot_file",
 ]

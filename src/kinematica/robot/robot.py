@@ -32,7 +32,10 @@ from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning
 from kinematica.robot.jacobian import jacobian
 
 if TYPE_CHECKING:
+    import os
+
     from kinematica.ik.result import IKBatchResult, IKResult
+    from kinematica.robot.urdf import DHExtraction
 
 __all__ = ["Robot"]
 
@@ -396,3 +399,24 @@ class Robot:
 
     def __repr__(self) -> str:
         return f"Robot({self.name!r}, {self.joint_types}, convention={self.convention!r})"
+
+    # ---------------------------------------------------------------- URDF, DH rules
+    def to_dh(self, convention: str = "standard") -> DHExtraction:
+        """The DH table read off this robot's joint axes by the rules of seed 000.
+
+        In the robot's own convention it gives back the same rows; in the
+        other, the frames the rules place. See :func:`kinematica.urdf_to_dh`.
+
+        Returns:
+            A ``DHExtraction``: ``.robot``, ``.rules`` (which rule placed each
+            frame), ``.fk_error``.
+        """
+        from kinematica.robot.urdf import to_dh
+
+        return to_dh(self, convention)
+
+    def to_urdf(self, path: str | os.PathLike[str] | None = None) -> str:
+        """The robot as URDF text (each link frame a DH frame), written to ``path`` if given."""
+        from kinematica.robot.urdf import to_urdf
+
+        return to_urdf(self, path)
