@@ -32,12 +32,17 @@ __all__ = [
 FloatArray = NDArray[np.float64]
 
 #: Two axis directions are parallel when the sine of their angle is at most this;
-#: a direction is perpendicular to another when the cosine is at most this.
-#: Parallel axes get the seed's parallel-axes rule, whose frames are off the true
-#: (far away) common normal by at most this angle.
-EXTRACT_ANGLE_TOL = 1e-10
-#: Two lines meet, and a point is on a line, when their distance is at most this (m).
-EXTRACT_LENGTH_TOL = 1e-10
+#: a direction is normal to another when the cosine is at most this. Parallel
+#: axes get the seed's parallel-axes rule; when they are not exactly parallel
+#: their true common normal is far away (at about offset / angle), and the
+#: frames placed by the rule are off it by at most this angle. Near 1e-8 the
+#: two errors cross: the far normal costs round-off of about 1e-16 · offset /
+#: angle, the parallel rule about angle · arm length.
+EXTRACT_ANGLE_TOL = 1e-8
+#: Two lines meet, and a point is on a line, when their distance is at most this
+#: (m). Meeting axes are placed exactly either way (only the sense of x may
+#: change); coinciding axes within this distance lose that offset.
+EXTRACT_LENGTH_TOL = 1e-12
 
 PairKind = Literal["skew", "intersecting", "parallel", "collinear"]
 
