@@ -222,7 +222,27 @@ def _pair(g: ChainGeometry, a: int, frame: int, on_b: bool) -> tuple[FloatArray,
         )
     if flipped:
         text += f", as the frame of {_joint_label(g, k_on)} has it"
+    if _obeys_rules(on, A if on_b else B):
+        # The joint's own frame is already this DH frame, to round-off: keep it whole (the
+        # computed normal of nearly parallel axes is known only to about 1e-16 / angle).
+        return frame_from(on.frame[:3, 0], z, on.frame[:3, 3]), FrameRule(frame, pair.kind, text)
     return frame_from(x, z, origin), FrameRule(frame, pair.kind, text)
+
+
+def _obeys_rules(joint: AxisFrame, other: AxisFrame) -> bool:
+    """True when the joint's own frame has its x line on the common normal, to round-off.
+
+    That is: x normal to the joint's axis and to the other axis, and meeting the
+    other axis (the frame's origin is on the joint's axis), as rules 6-7 place
+    the DH frame on the joint's axis.
+    """
+    x, o = joint.frame[:3, 0], joint.frame[:3, 3]
+    h, p = other.direction, other.frame[:3, 3]
+    if abs(float(x @ joint.direction)) > ROUND_OFF_TOL or abs(float(x @ h)) > ROUND_OFF_TOL:
+        return False
+    scale = max(1.0, float(np.abs(o).max()), float(np.abs(p).max()))
+    off = float((p - o) @ np.cross(x, h))  # distance of the lines (x ⊥ h: |x × h| = 1)
+    return abs(off) <= ROUND_OFF_TOL * scale
 
 
 def _candidates(

@@ -112,7 +112,13 @@ def line_pair(hA: FloatArray, pA: FloatArray, hB: FloatArray, pB: FloatArray) ->
 
 
 def frame_from(x: FloatArray, z: FloatArray, origin: FloatArray) -> FloatArray:
-    """The ``(4, 4)`` frame with unit axes ``x`` ⊥ ``z`` and ``y = z × x``."""
+    """The ``(4, 4)`` frame with unit z ``z``, x along ``x`` made normal to it, ``y = z × x``.
+
+    ``x`` is projected on the plane normal to ``z`` once more and normalised, so
+    the frame is orthonormal to round-off even when ``x`` came from a projection
+    that lost digits (a direction nearly along ``z``).
+    """
+    x = _unit(x - float(x @ z) * z)
     F = np.eye(4)
     F[:3, 0], F[:3, 1], F[:3, 2], F[:3, 3] = x, np.cross(z, x), z, origin
     return F
