@@ -101,6 +101,15 @@ def reference_chain(text: str, base: str | None = None, tip: str | None = None) 
     return ReferenceChain(tuple(reversed(path)), start, tip)
 
 
+def link_poses(chain: ReferenceChain) -> dict[str, FloatArray]:
+    """Pose of every link of the chain at q = 0, in the base link frame."""
+    poses, T = {chain.base: np.eye(4)}, np.eye(4)
+    for j in chain.joints:
+        T = T @ _origin(j)  # the joint's motion is the identity at q = 0
+        poses[j.find("child").get("link")] = T
+    return poses
+
+
 def reference_file(name: str, base: str | None = None, tip: str | None = None) -> ReferenceChain:
     return reference_chain((URDF_DIR / name).read_text(), base, tip)
 
