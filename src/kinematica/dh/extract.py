@@ -54,6 +54,7 @@ from kinematica.dh.joints import Convention, Joint, JointType, Prismatic, Revolu
 from kinematica.dh.lines import (
     EXTRACT_ANGLE_TOL,
     EXTRACT_LENGTH_TOL,
+    cross3,
     frame_from,
     frame_normal_to_axis,
     frame_on_axis,
@@ -241,7 +242,7 @@ def _obeys_rules(joint: AxisFrame, other: AxisFrame) -> bool:
     if abs(float(x @ joint.direction)) > ROUND_OFF_TOL or abs(float(x @ h)) > ROUND_OFF_TOL:
         return False
     scale = max(1.0, float(np.abs(o).max()), float(np.abs(p).max()))
-    off = float((p - o) @ np.cross(x, h))  # distance of the lines (x ⊥ h: |x × h| = 1)
+    off = float((p - o) @ cross3(x, h))  # distance of the lines (x ⊥ h: |x × h| = 1)
     return abs(off) <= ROUND_OFF_TOL * scale
 
 
@@ -339,11 +340,11 @@ def _row(F0: FloatArray, F1: FloatArray, convention: Convention) -> tuple[float,
     step = o1 - o0
     if convention == "standard":  # Rot(z, θ) Tras(z, d) Tras(x, a) Rot(x, α)
         theta = math.atan2(float(x1 @ y0), float(x1 @ x0))
-        alpha = math.atan2(float(z1 @ np.cross(x1, z0)), float(z1 @ z0))
+        alpha = math.atan2(float(z1 @ cross3(x1, z0)), float(z1 @ z0))
         return theta, float(step @ z0), float(step @ x1), alpha
     # Rot(x, α) Tras(x, a) Rot(z, θ) Tras(z, d), α and a being α(i-1), a(i-1)
     alpha = math.atan2(-float(z1 @ y0), float(z1 @ z0))
-    theta = math.atan2(float(x1 @ np.cross(z1, x0)), float(x1 @ x0))
+    theta = math.atan2(float(x1 @ cross3(z1, x0)), float(x1 @ x0))
     return theta, float(step @ z1), float(step @ x0), alpha
 
 
@@ -370,12 +371,12 @@ def _fk_error(
         prismatic[:, None], h * q[..., None], p - np.einsum("...ij,...j->...i", R, p)
     )
     E[..., 3, 3] = 1.0
-    worst = 0.0
-    for s in range(_CHECK_SAMPLES):
-        T_dh = np.linalg.multi_dot([base, *A[s], tool])
-        T_ref = np.linalg.multi_dot([*E[s], g.tip]) if n > 1 else E[s, 0] @ g.tip
-        worst = max(worst, float(np.abs(T_dh - T_ref).max()))
-    return worst
+    T_dh = np.broadcast_to(base, (_CHECK_SAMPLES, 4, 4))
+    T_ref = np.broadcast_to(np.eye(4), (_CHECK_SAMPLES, 4, 4))
+    for k in range(n):  # batched 4x4 products over the samples
+        T_dh = T_dh @ A[:, k]
+        T_ref = T_ref @ E[:, k]
+    return float(np.abs(T_dh @ tool - T_ref @ g.tip).max())
 
 
 def _tidy_length(v: float) -> float:
