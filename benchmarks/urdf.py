@@ -19,6 +19,7 @@ from __future__ import annotations
 import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
+from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
@@ -31,6 +32,23 @@ DATA = Path(__file__).resolve().parents[1] / "tests" / "data" / "urdf"
 FILES = [("kuka_kr16_2.urdf", None), ("franka_panda.urdf", "panda_hand_tcp")]
 
 
+def _times(path: Path, tip: str | None, pinocchio: Any) -> dict[str, float]:
+    data = path.read_bytes()
+    robot = km.load(path, tip=tip)
+    times = {
+        "xml.etree parse (unprotected)": median_of(lambda: ET.fromstring(data)),
+        "read_urdf (defusedxml, checks)": median_of(lambda: read_urdf(path)),
+        "km.load (read + DH extraction)": median_of(lambda: km.load(path, tip=tip)),
+        'robot.to_dh("modified")': median_of(lambda: robot.to_dh("modified")),
+        "robot.to_urdf()": median_of(robot.to_urdf),
+    }
+    if pinocchio is not None:
+        times["Pinocchio buildModelFromUrdf"] = median_of(
+            lambda: pinocchio.buildModelFromUrdf(str(path))
+        )
+    return times
+
+
 def main() -> None:
     print(header("URDF in and out (median of 15 calls)"))
     try:
@@ -40,20 +58,7 @@ def main() -> None:
         print("Pinocchio not installed: its column is skipped")
     rows = []
     for name, tip in FILES:
-        path = DATA / name
-        data = path.read_bytes()
-        robot = km.load(path, tip=tip)
-        times = {
-            "xml.etree parse (unprotected)": median_of(lambda: ET.fromstring(data)),
-            "read_urdf (defusedxml, checks)": median_of(lambda: read_urdf(path)),
-            "km.load (read + DH extraction)": median_of(lambda: km.load(path, tip=tip)),
-            'robot.to_dh("modified")': median_of(lambda: robot.to_dh("modified")),
-            "robot.to_urdf()": median_of(robot.to_urdf),
-        }
-        if pinocchio is not None:
-            times["Pinocchio buildModelFromUrdf"] = median_of(
-                lambda: pinocchio.buildModelFromUrdf(str(path))
-            )
+        times = _times(DATA / name, tip, pinocchio)
         base = times["km.load (read + DH extraction)"]
         for what, t in times.items():
             rows.append((f"{name}: {what}", fmt_time(t), f"{t / base:.2f}x"))
