@@ -137,8 +137,25 @@ def test_seed_arm_rules_by_frame():
         "frame",
     ]
     assert "x2 from axis 2 to axis 3" in ext.rules[2].text
+    assert [link.name for link in ext.robot.links] == [
+        link.name for link in km.load("arm6-dh").links
+    ]
     assert "S0:" in str(ext.rules[0])
     assert ext.report().count("\n") == 7
+
+
+def test_craig_first_and_last_frames_when_the_description_has_none():
+    # One joint about x: no frame of the description has its x normal to the axis
+    # through joint 1, so S0 = S1 (Craig), and S1 is built at the joint.
+    text = """<robot name="x"><link name="b"/><link name="t"/>
+      <joint name="j" type="continuous"><parent link="b"/><child link="t"/>
+        <origin xyz="0 0 0.2" rpy="0 0 0.3"/><axis xyz="1 0 0"/></joint></robot>"""
+    ext = km.urdf_to_dh(parse_urdf(text), convention="modified")
+    assert [r.rule for r in ext.rules] == ["craig", "craig"]
+    np.testing.assert_allclose(ext.robot.dh_table(), np.zeros((1, 4)), atol=1e-15)
+    assert_transform_close(ext.robot.base, ext.frames[1], atol=1e-15)
+    std = km.urdf_to_dh(parse_urdf(text))
+    assert [r.rule for r in std.rules] == ["rule 5", "rule 9"]
 
 
 def test_puma_urdf_table_by_hand():

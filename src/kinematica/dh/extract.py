@@ -144,9 +144,11 @@ class FrameRule:
 
     Attributes:
         frame: The frame index, 0..n.
-        rule: A short key: ``"frame"`` (an existing frame kept), ``"rule 5"``,
-            ``"craig"``, ``"skew"``, ``"intersecting"``, ``"parallel"``,
-            ``"collinear"``, ``"rule 9"``.
+        rule: A short key: ``"frame"`` (a frame of the description kept),
+            ``"rule 5"`` (S_0 built on axis 1), ``"skew"``, ``"intersecting"``,
+            ``"parallel"``, ``"collinear"`` (how axes i, i+1 lie: rules 6-7),
+            ``"rule 9"`` (S_n built at the tip), ``"craig"`` (the modified
+            convention's S_0 = S_1, or S_n built at joint n).
         text: One sentence saying how the frame was placed.
     """
 
@@ -321,7 +323,7 @@ def _modified_frames(g: ChainGeometry) -> tuple[list[FloatArray], list[FrameRule
         x = perpendicular_hint(jn.frame, jn.direction)
         F = frame_from(x, jn.direction, jn.frame[:3, 3])
         text = f"origin at {_joint_label(g, n)}, x{n} from its frame (free in Craig's rules)"
-        rules.append(FrameRule(n, "rule 5", text))
+        rules.append(FrameRule(n, "craig", text))
     frames.append(F)
     found = _candidates(g.before, j1, _joint_label(g, 1), frame_normal_to_axis)
     if found is not None:

@@ -10,6 +10,7 @@ extracting the table again gives the same rows.
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -243,7 +244,12 @@ def to_dh(robot: Robot, convention: str = "standard") -> DHExtraction:
     same FK. See :func:`kinematica.dh.extract_dh`.
     """
     chain = chain_from_robot(robot)
-    return dh_from_chain(chain, convention, name=robot.name, description=robot.description)
+    ext = dh_from_chain(chain, convention, name=robot.name, description=robot.description)
+    links = tuple(
+        dataclasses.replace(new, name=old.name)  # the robot's own names, even repeated ones
+        for new, old in zip(ext.robot.links, robot.links, strict=True)
+    )
+    return dataclasses.replace(ext, robot=dataclasses.replace(ext.robot, links=links), source=None)
 
 
 def to_urdf(robot: Robot, path: str | os.PathLike[str] | None = None) -> str:
