@@ -1,16 +1,9 @@
 """Denavit-Hartenberg rows, link matrices, conversion between conventions, extraction."""
 
+from kinematica.dh.axes import AxisFrame, ChainGeometry, ExtractedTable, FrameRule, NamedFrame
 from kinematica.dh.chain import DHChain
 from kinematica.dh.convert import convert_table
-from kinematica.dh.extract import (
-    FK_CHECK_TOL,
-    AxisFrame,
-    ChainGeometry,
-    ExtractedTable,
-    FrameRule,
-    NamedFrame,
-    extract_dh,
-)
+from kinematica.dh.extract import FK_CHECK_TOL, extract_dh
 from kinematica.dh.joints import (
     Convention,
     Joint,
