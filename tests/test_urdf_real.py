@@ -135,3 +135,30 @@ def test_show_prints_the_extracted_table_of_a_urdf(tmp_path):
     # a1 = 0.26 (shoulder offset), a2 = 0.68, a3 = 0.035, d4 = 0.67 along -z3: the KR 16's lengths
     for cell in ("0.26", "0.68", "0.035", "-0.67", "[-185°, 185°]"):
         assert cell in out
+
+
+def test_every_command_takes_base_and_tip_for_a_urdf(tmp_path):
+    ur5 = str(URDF_DIR / "ur5_robot.urdf")
+
+    def run(*args: str) -> subprocess.CompletedProcess[str]:
+        return subprocess.run(
+            [sys.executable, "-m", "kinematica.cli.main", *args],
+            capture_output=True,
+            text=True,
+            cwd=tmp_path,
+            check=False,
+        )
+
+    ambiguous = run("show", ur5)
+    assert ambiguous.returncode == 2
+    assert "'ee_link', 'tool0'" in ambiguous.stderr
+    assert run("show", ur5, "--tip", "tool0", "--base", "base_link").returncode == 0
+    q = [0, -60, 80, 10, 20, 30]
+    proc = run("fk", ur5, "--tip", "tool0", "--json", "--q", *map(str, q))
+    assert proc.returncode == 0, proc.stderr
+    T = np.array(json.loads(proc.stdout)["T"])
+    ref = reference_file("ur5_robot.urdf", None, "tool0")
+    assert_transform_close(T, ref.fk(np.radians(q)), atol=1e-12)
+    proc = run("ik", ur5, "--tip", "tool0", "--matrix", *map(str, T.ravel()), "--json")
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout)["method"] == "analytic:three-parallel-6R"

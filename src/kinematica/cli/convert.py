@@ -7,11 +7,11 @@ import dataclasses
 from pathlib import Path
 from typing import Any
 
-from kinematica.cli.options import add_common, add_robot, dump
+from kinematica.cli.options import add_common, add_robot, dump, robot_from_args
 from kinematica.dh import FrameRule
 from kinematica.errors import RobotFileError
 from kinematica.io import URDF_SUFFIXES, dumps_robot_file
-from kinematica.robot import Robot, load, spec_from_robot, urdf_to_dh
+from kinematica.robot import Robot, spec_from_robot, urdf_to_dh
 
 __all__ = ["FORMATS", "convert", "register"]
 
@@ -28,7 +28,7 @@ def _extract(args: argparse.Namespace, convention: str) -> tuple[Robot, tuple[Fr
     if _is_urdf(args.robot):
         ext = urdf_to_dh(args.robot, base=args.base, tip=args.tip, convention=convention)
     else:
-        ext = load(args.robot, base=args.base, tip=args.tip).to_dh(convention)
+        ext = robot_from_args(args).to_dh(convention)
     return ext.robot, ext.rules
 
 
@@ -47,11 +47,11 @@ def convert(args: argparse.Namespace) -> int:
     rules: tuple[FrameRule, ...] = ()
     suffix = Path(args.output).suffix if args.output else ".yaml"
     if args.to == "urdf":
-        robot = load(args.robot, base=args.base, tip=args.tip)
+        robot = robot_from_args(args)
         text = robot.to_urdf()
     else:
         if args.to == "yaml":
-            robot = load(args.robot, base=args.base, tip=args.tip)
+            robot = robot_from_args(args)
         else:
             robot, rules = _extract(args, args.to.removeprefix("dh-"))
         text = _robot_file(robot, suffix, args.rad, rules)
@@ -103,7 +103,5 @@ def register(sub: Any) -> None:
         help="write to FILE instead of printing; for robot files its suffix picks the "
         "format (.yaml, .yml, .json, .toml)",
     )
-    p.add_argument("--base", metavar="LINK", help="URDF only: base link of the chain")
-    p.add_argument("--tip", metavar="LINK", help="URDF only: tip link of the chain")
     add_common(p)
     p.set_defaults(run=convert)

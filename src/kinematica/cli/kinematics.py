@@ -10,7 +10,16 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.cli.format import fmt, matrix, table
-from kinematica.cli.options import add_common, add_robot, angle_unit, clean, dump, q_in, q_out
+from kinematica.cli.options import (
+    add_common,
+    add_robot,
+    angle_unit,
+    clean,
+    dump,
+    q_in,
+    q_out,
+    robot_from_args,
+)
 from kinematica.ik.result import IKResult
 from kinematica.io import builtin_names
 from kinematica.robot import Robot, classify, load
@@ -67,7 +76,7 @@ def _dh_rows(robot: Robot, deg: bool) -> list[tuple[str, ...]]:
 
 def show(args: argparse.Namespace) -> int:
     """``kinematica show ROBOT``: DH table, limits, structure."""
-    robot = load(args.robot)
+    robot = robot_from_args(args)
     structure = classify(robot)
     deg = not args.rad
     if args.json:
@@ -122,7 +131,7 @@ def _pose_parts(T: FloatArray, args: argparse.Namespace) -> tuple[FloatArray, Fl
 
 def fk(args: argparse.Namespace) -> int:
     """``kinematica fk ROBOT --q ...``: T, position and Euler angles."""
-    robot = load(args.robot)
+    robot = robot_from_args(args)
     q = q_in(robot, args.q, args, "q")
     T = robot.fk(q)
     pos, eul, locked = _pose_parts(T, args)
@@ -167,7 +176,7 @@ def _target(args: argparse.Namespace) -> FloatArray:
 
 def ik(args: argparse.Namespace) -> int:
     """``kinematica ik ROBOT --pose ...``: every solution, one row each."""
-    robot = load(args.robot)
+    robot = robot_from_args(args)
     target = _target(args)
     q0 = None if args.q0 is None else q_in(robot, args.q0, args, "q0")
     res = robot.ik(

@@ -15,9 +15,18 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.errors import DimensionError
-from kinematica.robot import Robot
+from kinematica.robot import Robot, load
 
-__all__ = ["add_common", "add_robot", "angle_unit", "clean", "dump", "q_in", "q_out"]
+__all__ = [
+    "add_common",
+    "add_robot",
+    "angle_unit",
+    "clean",
+    "dump",
+    "q_in",
+    "q_out",
+    "robot_from_args",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -36,8 +45,15 @@ def add_common(p: argparse.ArgumentParser) -> None:
 
 
 def add_robot(p: argparse.ArgumentParser) -> None:
-    """The positional ``ROBOT`` argument: a built-in name or a robot file."""
-    p.add_argument("robot", metavar="ROBOT", help="built-in name or robot file")
+    """The positional ``ROBOT`` (built-in name, robot file or URDF) and ``--base``/``--tip``."""
+    p.add_argument("robot", metavar="ROBOT", help="built-in name, robot file or URDF")
+    p.add_argument("--base", metavar="LINK", help="URDF only: base link of the chain")
+    p.add_argument("--tip", metavar="LINK", help="URDF only: tip link of the chain")
+
+
+def robot_from_args(args: argparse.Namespace) -> Robot:
+    """The robot named by ``ROBOT`` (and, for a URDF, ``--base``/``--tip``)."""
+    return load(args.robot, base=args.base, tip=args.tip)
 
 
 def angle_unit(args: argparse.Namespace) -> str:
