@@ -245,11 +245,19 @@ def to_dh(robot: Robot, convention: str = "standard") -> DHExtraction:
     """
     chain = chain_from_robot(robot)
     ext = dh_from_chain(chain, convention, name=robot.name, description=robot.description)
-    links = tuple(
-        dataclasses.replace(new, name=old.name)  # the robot's own names, even repeated ones
-        for new, old in zip(ext.robot.links, robot.links, strict=True)
+    out = ext.robot
+    named = Robot.from_dh(
+        [  # the robot's own joint names, even repeated or missing ones
+            dataclasses.replace(new, name=old.name)
+            for new, old in zip(out.links, robot.links, strict=True)
+        ],
+        convention=out.convention,
+        name=out.name,
+        base=out.base,
+        tool=out.tool,
+        description=out.description,
     )
-    return dataclasses.replace(ext, robot=dataclasses.replace(ext.robot, links=links), source=None)
+    return dataclasses.replace(ext, robot=named, source=None)
 
 
 def to_urdf(robot: Robot, path: str | os.PathLike[str] | None = None) -> str:
