@@ -28,7 +28,7 @@ from kinematica.dh.extract import ROUND_OFF_TOL
 from kinematica.io import parse_urdf
 
 # Random joint values may lie beyond a joint's limits on purpose: FK is defined there.
-pytestmark = pytest.mark.filterwarnings("ignore:q: joint .* outside its limits")
+pytestmark = pytest.mark.filterwarnings("ignore:q. joint .* outside its limits")
 
 #: Random chains: FK of the extracted table equals the URDF's to this (m), the
 #: coinciding-axes rule dropping offsets up to EXTRACT_LENGTH_TOL included.

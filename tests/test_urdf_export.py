@@ -21,7 +21,7 @@ import kinematica as km
 from kinematica.io import rpy_from_matrix
 
 # Random joint values may lie beyond a joint's limits on purpose: FK is defined there.
-pytestmark = pytest.mark.filterwarnings("ignore:q: joint .* outside its limits")
+pytestmark = pytest.mark.filterwarnings("ignore:q. joint .* outside its limits")
 
 
 # ------------------------------------------------------------------ roll-pitch-yaw

@@ -23,7 +23,7 @@ import kinematica as km
 URDF_FK_ATOL = 1e-12
 
 # Random joint values may lie beyond a joint's limits on purpose: FK is defined there.
-pytestmark = pytest.mark.filterwarnings("ignore:q: joint .* outside its limits")
+pytestmark = pytest.mark.filterwarnings("ignore:q. joint .* outside its limits")
 
 PINOCCHIO = json.loads((URDF_DIR / "pinocchio_fk.json").read_text())
 CASES = [(c["file"], c["base"], c["tip"]) for c in PINOCCHIO["cases"]]
