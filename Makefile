@@ -31,6 +31,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/fk.py
 	@if [ -f benchmarks/ik.py ]; then $(BIN)/python benchmarks/ik.py; fi
 	$(BIN)/python benchmarks/robot_files.py
+	$(BIN)/python benchmarks/urdf.py
 
 clean:
 	rm -rf $(VENV) build dist .pytest_cache .mypy_cache .ruff_cache

@@ -24,12 +24,14 @@ from kinematica.errors import (
 )
 from kinematica.io import ExpressionError, builtin_names, read_robot_file
 from kinematica.robot import (
+    DHExtraction,
     Robot,
     Structure,
     classify,
     load,
     robot_from_spec,
     spec_from_robot,
+    urdf_to_dh,
     write_robot_file,
 )
 from kinematica.spatial import (
@@ -66,6 +68,7 @@ __version__ = "0.1.0"
 
 __all__ = [
     "ArgumentError",
+    "DHExtraction",
     "DimensionError",
     "EulerSequenceError",
     "ExpressionError",
@@ -111,6 +114,7 @@ __all__ = [
     "spec_from_robot",
     "to_pose",
     "transl",
+    "urdf_to_dh",
     "wrap_angle",
     "write_robot_file",
 ]

@@ -22,6 +22,7 @@ from kinematica.cli.options import (
     lengths_out,
     q_in,
     q_out,
+    robot_from_args,
     transform_in,
     transform_out,
     units,
@@ -82,7 +83,7 @@ def _dh_rows(robot: Robot, args: argparse.Namespace) -> list[tuple[str, ...]]:
 
 def show(args: argparse.Namespace) -> int:
     """``kinematica show ROBOT``: DH table, limits, structure."""
-    robot = load(args.robot)
+    robot = robot_from_args(args)
     structure = classify(robot)
     if args.json:
         dh = robot.dh_table()  # theta, d, a, alpha at q = 0, in rad and m
@@ -142,7 +143,7 @@ def _pose_parts(T: FloatArray, args: argparse.Namespace) -> tuple[FloatArray, Fl
 
 def fk(args: argparse.Namespace) -> int:
     """``kinematica fk ROBOT --q ...``: T, position and Euler angles."""
-    robot = load(args.robot)
+    robot = robot_from_args(args)
     q = q_in(robot, args.q, args, "q")
     T = transform_out(robot.fk(q), robot, args)
     pos, eul, locked = _pose_parts(T, args)
@@ -195,7 +196,7 @@ def _target(robot: Robot, args: argparse.Namespace) -> FloatArray:
 
 def ik(args: argparse.Namespace) -> int:
     """``kinematica ik ROBOT --pose ...``: every solution, one row each."""
-    robot = load(args.robot)
+    robot = robot_from_args(args)
     target = _target(robot, args)
     q0 = None if args.q0 is None else q_in(robot, args.q0, args, "q0")
     res = robot.ik(

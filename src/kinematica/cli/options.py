@@ -25,7 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from kinematica.cli.format import DEFAULT_PRECISION
 from kinematica.errors import DimensionError
-from kinematica.robot import Robot
+from kinematica.robot import Robot, load
 
 __all__ = [
     "PER_METRE",
@@ -41,6 +41,7 @@ __all__ = [
     "lengths_out",
     "q_in",
     "q_out",
+    "robot_from_args",
     "transform_in",
     "transform_out",
     "units",
@@ -96,8 +97,15 @@ def add_precision(p: argparse.ArgumentParser) -> None:
 
 
 def add_robot(p: argparse.ArgumentParser) -> None:
-    """The positional ``ROBOT`` argument: a built-in name or a robot file."""
-    p.add_argument("robot", metavar="ROBOT", help="built-in name or robot file")
+    """The positional ``ROBOT`` (built-in name, robot file or URDF) and ``--base``/``--tip``."""
+    p.add_argument("robot", metavar="ROBOT", help="built-in name, robot file or URDF")
+    p.add_argument("--base", metavar="LINK", help="URDF only: base link of the chain")
+    p.add_argument("--tip", metavar="LINK", help="URDF only: tip link of the chain")
+
+
+def robot_from_args(args: argparse.Namespace) -> Robot:
+    """The robot named by ``ROBOT`` (and, for a URDF, ``--base``/``--tip``)."""
+    return load(args.robot, base=args.base, tip=args.tip)
 
 
 def angle_unit(args: argparse.Namespace) -> str:

@@ -63,6 +63,7 @@ __all__ = [
     "MAX_FILE_SIZE",
     "ROBOT_FILE_SUFFIXES",
     "dump_robot_dict",
+    "dumps_robot_file",
     "load_robot_text",
     "parse_robot_dict",
     "read_robot_file",
@@ -348,6 +349,30 @@ def _reason(exc: Exception) -> str:
     return str(exc.strerror) if isinstance(exc, OSError) and exc.strerror else str(exc)
 
 
+def dumps_robot_file(spec: RobotSpec, suffix: str = ".yaml") -> str:
+    """The text of ``spec`` as a robot file in the format named by ``suffix``.
+
+    Args:
+        spec: The robot description.
+        suffix: ``".yaml"``/``".yml"`` (needs PyYAML), ``".json"`` or ``".toml"``.
+
+    Raises:
+        RobotFileError: unknown suffix.
+        KinematicaError: YAML and PyYAML is not installed.
+    """
+    key = suffix.lower()
+    if key not in _LOADERS:
+        raise RobotFileError(
+            f"unknown file type {suffix!r}: expected {', '.join(ROBOT_FILE_SUFFIXES)}"
+        )
+    data = dump_robot_dict(spec)
+    if key == ".json":
+        return json.dumps(data, indent=2, ensure_ascii=False) + "\n"
+    if key == ".toml":
+        return toml_dumps(data)
+    return _yaml_dumps(data)
+
+
 def write_robot_file(spec: RobotSpec, path: str | os.PathLike[str]) -> None:
     """Write ``spec`` as a robot file; the extension picks the format.
 
@@ -379,13 +404,7 @@ def write_robot_file(spec: RobotSpec, path: str | os.PathLike[str]) -> None:
         kind = None
     if kind is not None:
         raise RobotFileError(f"is {kind}, not a robot file: not written", path=str(p))
-    data = dump_robot_dict(spec)
-    if suffix == ".json":
-        text = json.dumps(data, indent=2, ensure_ascii=False) + "\n"
-    elif suffix == ".toml":
-        text = toml_dumps(data)
-    else:
-        text = _yaml_dumps(data)
+    text = dumps_robot_file(spec, suffix)
     try:
         p.write_text(text, encoding="utf-8")
     except (OSError, ValueError) as exc:

@@ -11,13 +11,13 @@ from numpy.typing import NDArray
 
 from kinematica.dh import Joint, Prismatic, Revolute
 from kinematica.dh.joints import values_checked
-from kinematica.errors import ArgumentError, UnknownRobotError
+from kinematica.errors import ArgumentError, KinematicaError, UnknownRobotError
 from kinematica.io import (
     ROBOT_FILE_SUFFIXES,
+    URDF_SUFFIXES,
     FrameSpec,
     JointSpec,
     RobotSpec,
-    builtin_names,
     read_builtin,
     read_robot_file,
 )
@@ -168,20 +168,36 @@ def write_robot_file(robot: Robot | RobotSpec, path: str | os.PathLike[str]) -> 
     write_spec_file(spec, path)
 
 
-def load(name_or_path: str | os.PathLike[str]) -> Robot:
-    """Load a built-in model by name, or a robot file by path.
+def load(
+    name_or_path: str | os.PathLike[str],
+    *,
+    base: str | None = None,
+    tip: str | None = None,
+    convention: str | None = None,
+) -> Robot:
+    """Load a built-in model by name, a robot file or a URDF by path.
 
     Args:
-        name_or_path: A built-in name (see ``kinematica robots``) or a path to a
-            ``.yaml``/``.yml``/``.json``/``.toml`` robot file.
+        name_or_path: A built-in name (see ``kinematica robots``), a path to a
+            ``.yaml``/``.yml``/``.json``/``.toml`` robot file, or a ``.urdf``
+            file (``.xacro`` too, expanded with the ``xacro`` package).
+        base: URDF only: the base link of the chain (default the root link).
+        tip: URDF only: the tip link (default the single leaf at the end of
+            movable joints; the error lists the leaves when there are several).
+        convention: URDF only: the DH convention of the extracted table,
+            ``"standard"`` (default) or ``"modified"``; see
+            :func:`kinematica.urdf_to_dh` for the rules and what they chose.
 
     Returns:
-        The robot.
+        The robot. A URDF's robot has the URDF's forward kinematics, its joint
+        names and limits (continuous joints get none).
 
     Raises:
         UnknownRobotError: Neither a built-in name nor an existing file.
         RobotFileError: The file is malformed (the message says where).
         ArgumentError: ``name_or_path`` is not text or a path.
+        KinematicaError: ``base``, ``tip`` or ``convention`` for a robot that is
+            not a URDF.
     """
     if not isinstance(name_or_path, str | os.PathLike):
         raise ArgumentError(
@@ -196,10 +212,19 @@ def load(name_or_path: str | os.PathLike[str]) -> Robot:
         exists = path.exists()
     except OSError:  # e.g. a name too long for the file system: not a file
         exists = False
+    if path.name.lower().endswith(URDF_SUFFIXES):
+        from kinematica.robot.urdf import robot_from_urdf
+
+        if not exists:
+            raise UnknownRobotError(f"{text}: no such URDF file")
+        return robot_from_urdf(path, base=base, tip=tip, convention=convention or "standard")
+    given = [k for k, v in (("base", base), ("tip", tip), ("convention", convention)) if v]
+    if given:
+        raise KinematicaError(
+            f"{', '.join(given)}: only for URDF files (.urdf, .xacro), and {text!r} is not one"
+        )
     if path.suffix.lower() in ROBOT_FILE_SUFFIXES or exists or os.sep in text:
         if not exists:
             raise UnknownRobotError(f"{text}: no such robot file")
         return robot_from_spec(read_robot_file(path))
-    if text in builtin_names() or text.lower() in builtin_names():
-        return robot_from_spec(read_builtin(text))
     return robot_from_spec(read_builtin(text))  # raises UnknownRobotError with suggestions

@@ -36,6 +36,7 @@ if TYPE_CHECKING:
 
     from kinematica.ik.result import IKBatchResult, IKResult
     from kinematica.io import RobotSpec
+    from kinematica.robot.urdf import DHExtraction
 
 __all__ = ["Robot"]
 
@@ -409,3 +410,24 @@ class Robot:
         from kinematica.robot.load import write_robot_file
 
         write_robot_file(self, path)
+
+    # ---------------------------------------------------------------- URDF, DH rules
+    def to_dh(self, convention: str = "standard") -> DHExtraction:
+        """The DH table read off this robot's joint axes by the rules of seed 000.
+
+        In the robot's own convention it gives back the same rows; in the
+        other, the frames the rules place. See :func:`kinematica.urdf_to_dh`.
+
+        Returns:
+            A ``DHExtraction``: ``.robot``, ``.rules`` (which rule placed each
+            frame), ``.fk_error``.
+        """
+        from kinematica.robot.urdf import to_dh
+
+        return to_dh(self, convention)
+
+    def to_urdf(self, path: str | os.PathLike[str] | None = None) -> str:
+        """The robot as URDF text (each link frame a DH frame), written to ``path`` if given."""
+        from kinematica.robot.urdf import to_urdf
+
+        return to_urdf(self, path)
