@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 
 import kinematica as km
-from kinematica.cli import kinematics
+from kinematica.cli import options
 from kinematica.cli.format import DEFAULT_PRECISION, num, plain
 from kinematica.cli.main import cli_words, main
 
@@ -382,10 +382,10 @@ def test_warnings_filters_are_restored(capsys: pytest.CaptureFixture[str]) -> No
 def test_an_internal_error_is_one_line_with_exit_2(
     capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    def broken(name: str) -> km.Robot:
+    def broken(name: str, **kwargs: object) -> km.Robot:
         raise ZeroDivisionError("float division by zero")
 
-    monkeypatch.setattr(kinematics, "load", broken)
+    monkeypatch.setattr(options, "load", broken)
     code, out, err = run(capsys, "fk", "puma560", "--q", *["0"] * 6)
     assert code == 2 and out == ""
     line = one_line(err)
