@@ -22,6 +22,14 @@ from kinematica.errors import (
     UnreachableError,
 )
 from kinematica.io import ExpressionError, builtin_names, read_robot_file, write_robot_file
+from kinematica.motion import (
+    analytic_jacobian,
+    cartesian_path,
+    condition_number,
+    joint_trajectory,
+    manipulability,
+    workspace,
+)
 from kinematica.robot import Robot, Structure, classify, load, robot_from_spec, spec_from_robot
 from kinematica.spatial import (
     EulerSequenceError,
@@ -69,19 +77,24 @@ __all__ = [
     "UnknownRobotError",
     "UnreachableError",
     "__version__",
+    "analytic_jacobian",
     "axis_angle_from_matrix",
     "builtin_names",
+    "cartesian_path",
     "check_rotation",
     "check_transform",
     "classify",
     "compose",
+    "condition_number",
     "euler_from_matrix",
     "from_pose",
     "gimbal_locked",
     "inv_transform",
+    "joint_trajectory",
     "link_matrix",
     "load",
     "make_transform",
+    "manipulability",
     "matrix_from_axis_angle",
     "matrix_from_euler",
     "matrix_from_quat",
@@ -101,6 +114,7 @@ __all__ = [
     "spec_from_robot",
     "to_pose",
     "transl",
+    "workspace",
     "wrap_angle",
     "write_robot_file",
 ]

@@ -1,5 +1,15 @@
-"""Motion: velocity kinematics, named singularities, workspace, trajectories."""
+"""Motion: velocity kinematics, named singularities, workspace, trajectories.
 
+Layer 6: built on the robot and ik layers (public API only); numpy only.
+"""
+
+from kinematica.motion.cartesian import (
+    MAX_JOINT_STEP,
+    CartesianPath,
+    PathEvent,
+    cartesian_path,
+)
+from kinematica.motion.export import read_csv, write_csv, write_json
 from kinematica.motion.sampling import random_q
 from kinematica.motion.singularities import (
     ELBOW_TOL,
@@ -9,17 +19,32 @@ from kinematica.motion.singularities import (
     Singularity,
     singularities,
 )
+from kinematica.motion.trajectory import JointTrajectory, joint_trajectory, time_scaling
 from kinematica.motion.velocity import analytic_jacobian, condition_number, manipulability
+from kinematica.motion.workspace import Workspace, WorkspaceSlice, workspace
 
 __all__ = [
     "ELBOW_TOL",
+    "MAX_JOINT_STEP",
     "RANK_TOL",
     "SHOULDER_TOL",
     "WRIST_TOL",
+    "CartesianPath",
+    "JointTrajectory",
+    "PathEvent",
     "Singularity",
+    "Workspace",
+    "WorkspaceSlice",
     "analytic_jacobian",
+    "cartesian_path",
     "condition_number",
+    "joint_trajectory",
     "manipulability",
     "random_q",
+    "read_csv",
     "singularities",
+    "time_scaling",
+    "workspace",
+    "write_csv",
+    "write_json",
 ]

@@ -71,5 +71,3 @@ def generic_rank_samples(robot: Robot, count: int = 8) -> FloatArray:
     u = rng.random((count, robot.dof))
     out: FloatArray = box[:, 0] + u * (box[:, 1] - box[:, 0])
     return out
-
-

@@ -53,7 +53,7 @@ def _singular_values(robot: Robot, q: ArrayLike, axes: Axes) -> FloatArray:
     """``(..., min(m, n))`` singular values of the selected rows of ``J(q)``, descending."""
     rows = task_rows(axes)
     J = robot.jacobian(q)[..., rows, :]
-    out: FloatArray = np.linalg.svd(J, compute_uv=False)
+    out: FloatArray = np.asarray(np.linalg.svd(J, compute_uv=False), dtype=np.float64)
     return out
 
 

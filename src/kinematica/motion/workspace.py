@@ -184,8 +184,7 @@ class Workspace:
         if not 0 <= k < self.occupancy.shape[w]:
             lo, hi = self.bounds[:, w]
             raise KinematicaError(
-                f"at={coord:g} m is outside the workspace along {'xyz'[w]} "
-                f"([{lo:.4g}, {hi:.4g}] m)"
+                f"at={coord:g} m is outside the workspace along {'xyz'[w]} ([{lo:.4g}, {hi:.4g}] m)"
             )
         occ = np.take(self.occupancy, k, axis=w)
         man = np.take(self.manipulability_map, k, axis=w)
