@@ -17,6 +17,7 @@ from kinematica.motion.singularities import (
     SHOULDER_TOL,
     WRIST_TOL,
     Singularity,
+    jacobian_rank,
     singularities,
 )
 from kinematica.motion.trajectory import JointTrajectory, joint_trajectory, time_scaling
@@ -38,6 +39,7 @@ __all__ = [
     "analytic_jacobian",
     "cartesian_path",
     "condition_number",
+    "jacobian_rank",
     "joint_trajectory",
     "manipulability",
     "random_q",

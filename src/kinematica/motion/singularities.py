@@ -58,6 +58,7 @@ __all__ = [
     "SHOULDER_TOL",
     "WRIST_TOL",
     "Singularity",
+    "jacobian_rank",
     "singularities",
 ]
 
@@ -180,6 +181,11 @@ def _plan(robot: Robot) -> _Plan:
     plan = _Plan(rows, rank, wrist, s_axis, elbow_point, shoulder_point)
     _PLANS[robot] = plan
     return plan
+
+
+def task_plan_rows(robot: Robot) -> tuple[int, ...]:
+    """The Jacobian rows judged for ``robot`` (see the module docstring)."""
+    return _plan(robot).rows
 
 
 def _unit(v: FloatArray) -> FloatArray:
@@ -336,3 +342,23 @@ def singularities(robot: Robot, q: ArrayLike, detail: bool = False) -> Any:
     for i, r in enumerate(results):
         arr[i] = r
     return arr.reshape(qa.shape[:-1]).tolist()
+
+
+def jacobian_rank(robot: Robot, q: ArrayLike) -> Any:
+    """Rank of the arm's task Jacobian at ``q`` (singular values above RANK_TOL·σmax).
+
+    Args:
+        robot: The robot.
+        q: ``(..., n)`` joint values.
+
+    Returns:
+        ``(rank, generic)``: the rank, an int (or ``(...)`` int array for a
+        batch), and the generic rank of the same rows (its value at regular
+        configurations). The rows are the position rows for arms whose whole
+        mobility shows in the tool position, all six otherwise.
+    """
+    plan = _plan(robot)
+    J = robot.jacobian(q)[..., plan.rows, :]
+    s = np.linalg.svd(J, compute_uv=False)
+    rank = np.sum(s > RANK_TOL * s[..., :1], axis=-1)
+    return (int(rank) if rank.ndim == 0 else rank), plan.rank

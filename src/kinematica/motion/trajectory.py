@@ -161,10 +161,9 @@ def _hermite(
     basis = _QUINTIC if profile == "quintic" else _CUBIC
     s = np.clip(t / T, 0.0, 1.0)
     B: FloatArray = np.stack([npoly.polyval(s, c) for c in basis], axis=-1)
-    dB: FloatArray = np.stack([npoly.polyval(s, npoly.polyder(c)) for c in basis], axis=-1) / T
-    ddB: FloatArray = (
-        np.stack([npoly.polyval(s, npoly.polyder(c, 2)) for c in basis], axis=-1) / T**2
-    )
+    dB: FloatArray = np.stack([npoly.polyval(s, npoly.polyder(c)) for c in basis], axis=-1)
+    ddB: FloatArray = np.stack([npoly.polyval(s, npoly.polyder(c, 2)) for c in basis], axis=-1)
+    dB, ddB = dB / T, ddB / (T * T)
     if bc is None:  # a unit rest-to-rest move: the last basis function alone
         return B, dB, B[:, -1:], dB[:, -1:], ddB[:, -1:]
     W: FloatArray = np.stack(bc)  # (k, n) weights

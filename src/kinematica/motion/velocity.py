@@ -26,7 +26,9 @@ FloatArray = NDArray[np.float64]
 
 #: Which rows of the Jacobian a measure uses: all six, the translational
 #: (``vx, vy, vz``) or the rotational (``ωx, ωy, ωz``) ones, or explicit indices.
-Axes = Literal["all", "trans", "rot"] | Sequence[int]
+#: ``"task"``: the rows :func:`kinematica.motion.singularities` judges (position rows
+#: for arms whose whole mobility shows in the tool position, else all six).
+Axes = Literal["all", "trans", "rot", "task"] | Sequence[int]
 
 _ROWS = {"all": (0, 1, 2, 3, 4, 5), "trans": (0, 1, 2), "rot": (3, 4, 5)}
 
@@ -40,7 +42,7 @@ def task_rows(axes: Axes) -> tuple[int, ...]:
     if isinstance(axes, str):
         if axes not in _ROWS:
             raise KinematicaError(
-                f"axes must be 'all', 'trans', 'rot' or row indices 0-5, got {axes!r}"
+                f"axes must be 'all', 'trans', 'rot', 'task' or row indices 0-5, got {axes!r}"
             )
         return _ROWS[axes]
     rows = tuple(int(r) for r in axes)
@@ -51,7 +53,12 @@ def task_rows(axes: Axes) -> tuple[int, ...]:
 
 def _singular_values(robot: Robot, q: ArrayLike, axes: Axes) -> FloatArray:
     """``(..., min(m, n))`` singular values of the selected rows of ``J(q)``, descending."""
-    rows = task_rows(axes)
+    if isinstance(axes, str) and axes == "task":
+        from kinematica.motion.singularities import task_plan_rows
+
+        rows = task_plan_rows(robot)
+    else:
+        rows = task_rows(axes)
     J = robot.jacobian(q)[..., rows, :]
     out: FloatArray = np.asarray(np.linalg.svd(J, compute_uv=False), dtype=np.float64)
     return out
@@ -76,7 +83,8 @@ def manipulability(robot: Robot, q: ArrayLike, axes: Axes = "all") -> FloatArray
     Args:
         robot: The robot.
         q: ``(..., n)`` joint values (rad, m).
-        axes: ``"all"`` (default), ``"trans"``, ``"rot"`` or row indices.
+        axes: ``"all"`` (default), ``"trans"``, ``"rot"``, ``"task"`` (the
+            rows the singularity test judges) or row indices.
 
     Returns:
         ``(...)`` manipulability, >= 0.

@@ -253,7 +253,8 @@ def workspace(
         seed: Seed or ``numpy.random.Generator`` (reproducible).
         voxel: Voxel side (m); by default about six samples per voxel.
         manipulability: Also compute each sample's manipulability
-            (:func:`kinematica.motion.manipulability`, all rows) and its map.
+            (:func:`kinematica.motion.manipulability` with ``axes="task"``:
+            position rows for 3R/2R positioning arms, all six otherwise) and its map.
         progress: Called with the number of samples done after each chunk
             (the command line hangs a progress bar on it).
 
@@ -277,7 +278,7 @@ def workspace(
         q = random_q(robot, stop - start, seed=rng)
         points[start:stop] = robot.fk(q)[:, :3, 3]
         if w is not None:
-            w[start:stop] = _manipulability(robot, q)
+            w[start:stop] = _manipulability(robot, q, axes="task")
         if progress is not None:
             progress(stop - start)
 
