@@ -150,8 +150,9 @@ class _Geometry:
 class _Follower:
     """Nearest-solution continuation of one robot along one path."""
 
-    def __init__(self, robot: Robot, geometry: _Geometry) -> None:
+    def __init__(self, robot: Robot, geometry: _Geometry, position_only: bool) -> None:
         self.robot = robot
+        self.position_only = position_only
         self.geo = geometry
         self.revolute = ~robot.is_prismatic
         self.limited = robot.has_limits
@@ -163,7 +164,8 @@ class _Follower:
     def solve(self, s: float, q_prev: FloatArray | None) -> tuple[str, FloatArray | None, str]:
         """``(status, q, detail)``: status ``ok``, ``unreachable`` or ``joint_limit``."""
         T = self.geo(np.array(s))
-        res = self.robot.ik(T, q0=q_prev, respect_limits=True)
+        target = T[:3, 3] if self.position_only else T
+        res = self.robot.ik(target, q0=q_prev, respect_limits=True)
         assert isinstance(res, IKResult)  # one target, one result
         within, outside = res.solutions, res.out_of_limits
         if within.shape[0] == 0 and outside.shape[0] == 0:
@@ -239,6 +241,7 @@ def cartesian_path(
     q0: ArrayLike | None = None,
     via: ArrayLike | None = None,
     s: ArrayLike | None = None,
+    position_only: bool | None = None,
 ) -> CartesianPath:
     """Follow a straight line (or an arc through ``via``) from ``T0`` to ``T1``.
 
@@ -253,6 +256,10 @@ def cartesian_path(
             through; a straight line if ``None``.
         s: ``(m,)`` increasing path parameters in [0, 1] instead of ``steps``
             uniform ones (e.g. a time scaling ``s(t)``).
+        position_only: Follow the tool position only (the orientation in
+            ``poses`` is then not imposed). By default, True for arms whose
+            whole mobility is positional (3R anthropomorphic, planar 2R: the
+            rows :func:`singularities` judges are the position rows).
 
     Returns:
         The :class:`CartesianPath`, with its ``events``.
@@ -280,7 +287,9 @@ def cartesian_path(
             raise KinematicaError("s must hold >= 2 non-decreasing values within [0, 1]")
     q_start = None if q0 is None else robot.check_q(q0, "q0")
     geo = _Geometry(A, B, None if via is None else np.asarray(via))
-    follow = _Follower(robot, geo)
+    if position_only is None:
+        position_only = _plan(robot).rows == (0, 1, 2)
+    follow = _Follower(robot, geo, bool(position_only))
     poses = geo(ss)
     m, n = ss.size, robot.dof
     q = np.full((m, n), np.nan)

@@ -43,7 +43,7 @@ FloatArray = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]
 
 #: Configurations processed at a time (bounds the temporary memory).
-CHUNK = 65_536
+CHUNK = 32_768
 #: Largest voxel grid; a finer ``voxel`` is coarsened to fit.
 MAX_CELLS = 1 << 22
 #: A workspace thinner than this (m) along an axis is planar (or lower-dimensional).
