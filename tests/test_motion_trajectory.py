@@ -42,7 +42,9 @@ def test_quintic_rest_to_rest_exact_ends_and_reference() -> None:
     assert np.array_equal(q[0], Q0) and np.array_equal(q[-1], Q1)
     assert np.abs(qd[[0, -1]]).max() < 1e-12 and np.abs(qdd[[0, -1]]).max() < 1e-12
     z = np.zeros(4)
-    coef = poly_reference(T, [(0, 0, Q0), (1, 0, z), (2, 0, z), (0, T, Q1), (1, T, z), (2, T, z)], 5)
+    coef = poly_reference(
+        T, [(0, 0, Q0), (1, 0, z), (2, 0, z), (0, T, Q1), (1, T, z), (2, T, z)], 5
+    )
     for order, got in enumerate((q, qd, qdd)):
         assert np.allclose(got, evaluate(coef, t, order), atol=1e-12)
 
@@ -52,7 +54,9 @@ def test_quintic_and_cubic_with_boundary_velocities() -> None:
     v0, v1 = np.array([0.1, 0.0, -0.2, 0.3]), np.array([0.0, 0.4, 0.0, -0.1])
     a0, a1 = np.array([0.5, 0.0, 0.0, -0.2]), np.array([0.0, -0.3, 0.1, 0.0])
     t, q, qd, qdd = joint_trajectory(Q0, Q1, T, "quintic", qd0=v0, qd1=v1, qdd0=a0, qdd1=a1)
-    coef = poly_reference(T, [(0, 0, Q0), (1, 0, v0), (2, 0, a0), (0, T, Q1), (1, T, v1), (2, T, a1)], 5)
+    coef = poly_reference(
+        T, [(0, 0, Q0), (1, 0, v0), (2, 0, a0), (0, T, Q1), (1, T, v1), (2, T, a1)], 5
+    )
     for order, got in enumerate((q, qd, qdd)):
         assert np.allclose(got, evaluate(coef, t, order), atol=1e-12)
     assert np.allclose(qd[0], v0, atol=1e-14) and np.allclose(qd[-1], v1, atol=1e-14)
@@ -68,7 +72,7 @@ def test_quintic_and_cubic_with_boundary_velocities() -> None:
 @pytest.mark.parametrize("profile", ["quintic", "cubic"])
 def test_shortest_duration_from_limits_touches_a_limit(profile: str) -> None:
     vmax, amax = np.array([1.0, 2.0, 1.0, 1.5]), np.array([3.0, 3.0, 3.0, 3.0])
-    t, _, qd, qdd = joint_trajectory(Q0, Q1, None, profile, dt=1e-4, vmax=vmax, amax=amax)
+    _, _, qd, qdd = joint_trajectory(Q0, Q1, None, profile, dt=1e-4, vmax=vmax, amax=amax)
     ratio = max((np.abs(qd) / vmax).max(), (np.abs(qdd) / amax).max())
     assert 0.999 < ratio <= 1.0 + 1e-9
 
@@ -91,7 +95,7 @@ def test_trapezoid_respects_vmax_amax_and_cruises() -> None:
 
 def test_trapezoid_triangle_when_vmax_is_not_reached() -> None:
     vmax, amax = 10.0, 2.0
-    t, _, qd, qdd = joint_trajectory(Q0, Q1, None, "trapezoid", dt=1e-4, vmax=vmax, amax=amax)
+    t, _, qd, _ = joint_trajectory(Q0, Q1, None, "trapezoid", dt=1e-4, vmax=vmax, amax=amax)
     d = np.abs(Q1 - Q0).max()
     assert np.isclose(t[-1], 2 * np.sqrt(d / amax))  # hand formula of the triangle
     assert np.isclose(np.abs(qd).max(), np.sqrt(amax * d), rtol=1e-3)  # peak below vmax
@@ -99,7 +103,7 @@ def test_trapezoid_triangle_when_vmax_is_not_reached() -> None:
 
 
 def test_trapezoid_with_a_duration() -> None:
-    t, q, qd, qdd = joint_trajectory(Q0, Q1, 3.0, "trapezoid", amax=2.0)
+    t, _, _, qdd = joint_trajectory(Q0, Q1, 3.0, "trapezoid", amax=2.0)
     assert t[-1] == 3.0 and np.abs(qdd).max() <= 2.0 * (1 + 1e-12)
     with pytest.raises(km.KinematicaError, match="too short for amax"):
         joint_trajectory(Q0, Q1, 0.5, "trapezoid", amax=2.0)
@@ -113,7 +117,7 @@ def test_time_scaling_is_zero_to_one() -> None:
 
 
 def test_still_trajectory() -> None:
-    t, q, qd, _ = joint_trajectory(Q0, Q0, 1.0, "trapezoid")
+    _, q, qd, _ = joint_trajectory(Q0, Q0, 1.0, "trapezoid")
     assert np.all(q == Q0) and np.all(qd == 0)
 
 

@@ -6,12 +6,12 @@ import math
 
 import numpy as np
 import pytest
+from helpers import PROPERTY, RobotSpec, random_q, robot_specs, seeds
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
 import kinematica as km
 from kinematica.spatial import GIMBAL_LOCK_TOL
-from helpers import PROPERTY, RobotSpec, random_q, robot_specs, seeds
 
 H = 1e-6
 

@@ -57,9 +57,7 @@ def test_manipulability_map_holds_the_largest_sample_per_voxel() -> None:
 def _q(robot: km.Robot, n: int, seed: int) -> np.ndarray:
     """The same draws as km.workspace (one generator, chunk by chunk)."""
     rng = np.random.default_rng(seed)
-    return np.concatenate(
-        [robot.random_q(min(CHUNK, n - s), seed=rng) for s in range(0, n, CHUNK)]
-    )
+    return np.concatenate([robot.random_q(min(CHUNK, n - s), seed=rng) for s in range(0, n, CHUNK)])
 
 
 def test_points_are_forward_kinematics_of_samples_within_limits() -> None:
@@ -106,7 +104,7 @@ def test_random_q_within_limits_and_shapes() -> None:
 
 def test_prismatic_joint_without_limits_is_an_error() -> None:
     arm = km.Robot.from_dh([km.Revolute(a=0.3), km.Prismatic()])
-    with pytest.raises(km.KinematicaError, match="joint 2 .* prismatic without limits"):
+    with pytest.raises(km.KinematicaError, match=r"joint 2 .* prismatic without limits"):
         arm.random_q(3)
     with pytest.raises(km.KinematicaError, match="joint 2"):
         km.workspace(arm, samples=10)
