@@ -9,10 +9,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from helpers import PROPERTY, RobotSpec, random_q, robot_specs, seeds
+from hypothesis import given
 from scipy.optimize import brentq
 
 import kinematica as km
-from kinematica.motion import ELBOW_TOL, RANK_TOL, SHOULDER_TOL, WRIST_TOL
+from kinematica.motion import ELBOW_TOL, RANK_TOL, SHOULDER_TOL, WRIST_TOL, jacobian_rank
 
 L2, L3 = 0.4, 0.3  # anthropomorphic-3r (seed 002)
 BASE = np.array([0.3, -0.7, 0.9, 0.5, 0.8, -0.4])
@@ -207,3 +209,24 @@ def test_batch_shapes(batch: tuple[int, ...]) -> None:
 def test_bad_input() -> None:
     with pytest.raises(km.DimensionError, match="6 joint values"):
         km.load("puma560").singularities([0.0, 1.0])
+
+
+@PROPERTY
+@given(spec=robot_specs(max_dof=7), seed=seeds)
+def test_random_robots_lost_directions_are_lost(spec: RobotSpec, seed: int) -> None:
+    """On any robot, each reported direction u has uᵀ J ≈ 0 on the judged rows, and a
+    configuration with no report has full generic rank."""
+    robot = spec.build()
+    q = random_q(spec, np.random.default_rng(seed))
+    rank, generic = jacobian_rank(robot, q)
+    found = robot.singularities(q, detail=True)
+    J = robot.jacobian(q)
+    smax = np.linalg.svd(J, compute_uv=False)[0]
+    for s in found:
+        assert s.name in ("wrist", "elbow", "shoulder", "rank")
+        assert np.isclose(np.linalg.norm(s.direction), 1.0)
+        assert np.abs(s.direction @ J).max() <= 1e-5 * max(1.0, smax)
+    if not found:
+        assert rank == generic
+    if rank < generic:
+        assert len(found) >= generic - rank

@@ -38,6 +38,7 @@ changes.
 
 from __future__ import annotations
 
+import dataclasses
 import weakref
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -76,6 +77,8 @@ SHOULDER_TOL = 1e-6
 #: than the named tolerances produce near their boundary (σ there is ~1e-6 of
 #: σmax), so a configuration just outside a named band is not called "rank".
 RANK_TOL = 1e-8
+
+_TOLS = {"wrist": WRIST_TOL, "elbow": ELBOW_TOL, "shoulder": SHOULDER_TOL}
 
 #: Elbow kinds: arms whose shoulder/elbow axes are a consecutive parallel pair.
 _ELBOW_KINDS = {
@@ -123,6 +126,7 @@ class _Plan:
     shoulder_axis: int | None  # the first of the parallel shoulder/elbow pair
     elbow_point: tuple[str, int]  # ("axis", i) | ("wrist", -1) | ("tool", -1)
     shoulder_point: tuple[str, int] | None  # ("wrist"|"meet"|"tool", i)
+    enabled: frozenset[str] = frozenset({"wrist", "elbow", "shoulder"})
 
 
 _PLANS: weakref.WeakKeyDictionary[Robot, _Plan] = weakref.WeakKeyDictionary()
@@ -179,6 +183,14 @@ def _plan(robot: Robot) -> _Plan:
             else:
                 shoulder_point = ("tool", -1)
     plan = _Plan(rows, rank, wrist, s_axis, elbow_point, shoulder_point)
+    # A name whose test holds at generic configurations describes degenerate
+    # geometry (e.g. coincident axes), not a singularity: it is not used.
+    degenerate = {
+        name
+        for name, measure, _ in _named(robot, plan, generic_rank_samples(robot))
+        if np.any(measure < _TOLS[name])
+    }
+    plan = dataclasses.replace(plan, enabled=plan.enabled - degenerate)
     _PLANS[robot] = plan
     return plan
 
@@ -244,10 +256,7 @@ def _named(robot: Robot, plan: _Plan, q: FloatArray) -> list[tuple[str, FloatArr
             normal = _unit(np.cross(h[:, 0], h[:, 1]))
             dist = np.abs(np.sum((w - p[:, 0]) * normal, axis=-1))
             out.append(("shoulder", dist, _covector(h[:, 1], w, tool)))
-    return out
-
-
-_TOLS = {"wrist": WRIST_TOL, "elbow": ELBOW_TOL, "shoulder": SHOULDER_TOL}
+    return [item for item in out if item[0] in plan.enabled]
 
 
 def _assign(
