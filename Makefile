@@ -32,6 +32,7 @@ bench: $(STAMP)
 	@if [ -f benchmarks/ik.py ]; then $(BIN)/python benchmarks/ik.py; fi
 	$(BIN)/python benchmarks/robot_files.py
 	$(BIN)/python benchmarks/urdf.py
+	$(BIN)/python benchmarks/motion.py
 
 clean:
 	rm -rf $(VENV) build dist .pytest_cache .mypy_cache .ruff_cache

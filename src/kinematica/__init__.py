@@ -23,6 +23,14 @@ from kinematica.errors import (
     UnreachableError,
 )
 from kinematica.io import ExpressionError, builtin_names, read_robot_file
+from kinematica.motion import (
+    analytic_jacobian,
+    cartesian_path,
+    condition_number,
+    joint_trajectory,
+    manipulability,
+    workspace,
+)
 from kinematica.robot import (
     DHExtraction,
     Robot,
@@ -82,19 +90,24 @@ __all__ = [
     "UnknownRobotError",
     "UnreachableError",
     "__version__",
+    "analytic_jacobian",
     "axis_angle_from_matrix",
     "builtin_names",
+    "cartesian_path",
     "check_rotation",
     "check_transform",
     "classify",
     "compose",
+    "condition_number",
     "euler_from_matrix",
     "from_pose",
     "gimbal_locked",
     "inv_transform",
+    "joint_trajectory",
     "link_matrix",
     "load",
     "make_transform",
+    "manipulability",
     "matrix_from_axis_angle",
     "matrix_from_euler",
     "matrix_from_quat",
@@ -115,6 +128,7 @@ __all__ = [
     "to_pose",
     "transl",
     "urdf_to_dh",
+    "workspace",
     "wrap_angle",
     "write_robot_file",
 ]

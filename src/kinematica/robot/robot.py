@@ -13,7 +13,7 @@ import warnings
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from numbers import Real
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -323,8 +323,24 @@ class Robot:
             A[bad] = np.nan
         return A
 
-    def jacobian(self, q: ArrayLike, frame: Literal["base", "tool"] = "base") -> FloatArray:
-        """Geometric Jacobian ``(..., 6, n)`` of the tool; see :func:`jacobian`."""
+    def jacobian(
+        self, q: ArrayLike, frame: Literal["base", "tool"] = "base", euler: str | None = None
+    ) -> FloatArray:
+        """Geometric Jacobian ``(..., 6, n)`` of the tool; see :func:`jacobian`.
+
+        With ``euler`` (e.g. ``"ZYZ"``): the analytic Jacobian of the pose
+        ``(x, y, z, a, b, c)`` instead, base frame only; NaN rotation rows in
+        gimbal lock. See :func:`kinematica.motion.analytic_jacobian`.
+        """
+        if euler is not None:
+            if frame != "base":
+                raise KinematicaError(
+                    "euler= gives the analytic Jacobian of the pose in the base frame; "
+                    f"frame={frame!r} does not apply to it"
+                )
+            from kinematica.motion.velocity import analytic_jacobian
+
+            return analytic_jacobian(self, q, euler)
         return jacobian(self, q, frame)
 
     def joint_axes(self, q: ArrayLike | None = None) -> tuple[FloatArray, FloatArray]:
@@ -431,3 +447,25 @@ class Robot:
         from kinematica.robot.urdf import to_urdf
 
         return to_urdf(self, path)
+
+    # ------------------------------------------- motion (thin, over kinematica.motion)
+    def singularities(self, q: ArrayLike, detail: bool = False) -> Any:
+        """Names of the singularities at ``q`` (``[]`` when regular).
+
+        See :func:`kinematica.motion.singularities` (imported when called:
+        the motion layer sits above this one).
+        """
+        from kinematica.motion.singularities import singularities
+
+        return singularities(self, q, detail=detail)
+
+    def random_q(
+        self, n: int | tuple[int, ...] = 1, seed: int | np.random.Generator | None = None
+    ) -> FloatArray:
+        """``(n, dof)`` configurations drawn uniformly within the joint limits.
+
+        See :func:`kinematica.motion.random_q`.
+        """
+        from kinematica.motion.sampling import random_q
+
+        return random_q(self, n, seed=seed)
