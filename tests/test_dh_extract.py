@@ -32,7 +32,7 @@ pytestmark = pytest.mark.filterwarnings("ignore:q. joint .* outside its limits")
 
 #: Random chains: FK of the extracted table equals the URDF's to this (m), the
 #: coinciding-axes rule dropping offsets up to EXTRACT_LENGTH_TOL included.
-CHAIN_ATOL = 1e-11
+CHAIN_ATOL = 1e-10  # the bar: extracted tables reproduce FK to 1e-10
 
 
 def _wrapped(a: np.ndarray) -> np.ndarray:
