@@ -164,10 +164,13 @@ def animate(
     # Every frame shows its own time, so no two frames are identical (a GIF
     # writer would merge identical neighbours and change the frame count).
     decimals = max(2, math.ceil(math.log10(max(rate, 1.0))) + 1)
-    with writer.saving(fig, str(out), dpi):
-        for k in range(len(times)):
-            drawing.update(at(k))
-            stamp = f"t = {times[k]:.{decimals}f} s" if t is not None else f"sample {k + 1}"
-            title.set_text(f"{robot.name}   {stamp}")
-            writer.grab_frame()
+    try:
+        with writer.saving(fig, str(out), dpi):
+            for k in range(len(times)):
+                drawing.update(at(k))
+                stamp = f"t = {times[k]:.{decimals}f} s" if t is not None else f"sample {k + 1}"
+                title.set_text(f"{robot.name}   {stamp}")
+                writer.grab_frame()
+    except OSError as exc:
+        raise VizError(f"{out}: cannot write the animation ({exc.strerror or exc})") from exc
     return Animation(path=out, frames=len(times), fps=float(rate), size=size)

@@ -203,7 +203,10 @@ def save_figure(fig: Any, path: str | os.PathLike[str]) -> Path:
         )
     if not out.parent.is_dir():
         raise VizError(f"{out}: the folder {out.parent} does not exist")
-    fig.savefig(out, dpi=fig.dpi)
+    try:
+        fig.savefig(out, dpi=fig.dpi)
+    except OSError as exc:
+        raise VizError(f"{out}: cannot write the picture ({exc.strerror or exc})") from exc
     return out
 
 
@@ -245,15 +248,25 @@ def save_solutions(
     respect_limits: bool = True,
     frames: bool = False,
     labels: bool = False,
+    size: tuple[int, int] | None = None,
     dpi: float = 100.0,
-) -> tuple[Path, int]:
-    """:func:`plot_solutions` into a file; returns the path and the number of solutions."""
-    matplotlib_figure = figure(100, 100, dpi, pyplot_managed=False)
-    fig = plot_solutions(
-        robot, T, respect_limits=respect_limits, frames=frames, labels=labels,
-        fig=matplotlib_figure,
-    )
+) -> tuple[Path, int, tuple[int, int]]:
+    """:func:`plot_solutions` into a file, without pyplot.
+
+    Args:
+        robot, T, respect_limits, frames, labels: As :func:`plot_solutions`.
+        path: Output file (PNG, SVG, PDF...).
+        size: ``(width, height)`` in pixels; about 330 x 320 per panel if ``None``.
+        dpi: Dots per inch.
+
+    Returns:
+        The path, the number of solutions drawn, and the picture's size in pixels.
+    """
+    fig = figure(100, 100, dpi, pyplot_managed=False)
+    plot_solutions(robot, T, respect_limits=respect_limits, frames=frames, labels=labels, fig=fig)
     k = len(fig.axes)
     cols = min(k, SOLUTION_COLUMNS)
-    fig.set_size_inches(330 * cols / dpi, (320 * math.ceil(k / cols) + 50) / dpi)
-    return save_figure(fig, path), k
+    if size is None:
+        size = (330 * cols, 320 * math.ceil(k / cols) + 50)
+    fig.set_size_inches(size[0] / dpi, size[1] / dpi)
+    return save_figure(fig, path), k, size
