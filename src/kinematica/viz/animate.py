@@ -160,16 +160,17 @@ def animate(
     equal_limits(ax, extent_points(poses, robot_scale(robot)), plane)
     label_axes(ax, plane)
     tight_single(fig, plane is None)
-    title = ax.set_title("", fontsize=10)
-    # Every frame shows its own time, so no two frames are identical (a GIF
-    # writer would merge identical neighbours and change the frame count).
+    ax.set_title(robot.name, fontsize=10)
+    stamp_text = fig.text(0.01, 0.01, "", fontsize=9, ha="left", va="bottom", gid="time")
+    # Every frame shows its own time in the bottom-left corner, so no two
+    # frames are identical (pillow merges identical neighbours in a GIF).
     decimals = max(2, math.ceil(math.log10(max(rate, 1.0))) + 1)
     try:
         with writer.saving(fig, str(out), dpi):
             for k in range(len(times)):
                 drawing.update(at(k))
                 stamp = f"t = {times[k]:.{decimals}f} s" if t is not None else f"sample {k + 1}"
-                title.set_text(f"{robot.name}   {stamp}")
+                stamp_text.set_text(stamp)
                 writer.grab_frame()
     except OSError as exc:
         raise VizError(f"{out}: cannot write the animation ({exc.strerror or exc})") from exc
