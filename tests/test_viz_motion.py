@@ -14,11 +14,11 @@ from helpers import JointSpec, RobotSpec
 import kinematica as km
 
 pytest.importorskip("matplotlib")
-from matplotlib.figure import Figure  # noqa: E402
-from PIL import Image  # noqa: E402
+from matplotlib.figure import Figure
+from PIL import Image
 
-from kinematica import viz  # noqa: E402
-from kinematica.viz.animate import DEFAULT_FPS, animation_samples  # noqa: E402
+from kinematica import viz
+from kinematica.viz.animate import DEFAULT_FPS, animation_samples
 
 
 def _gid(ax: object, gid: str) -> object:
@@ -116,7 +116,10 @@ def test_csv_round_trip(tmp_path: Path) -> None:
         ("q1,q2\n0,1\n", "line 1: the header must be t,q1"),
         ("t,q1,q2\n", "not followed by any sample"),
         ("t,q1,q2\n0,1,2\n0.1,1\n", "line 3: expected 3 values"),
-        ("t,q1,q2\n0,1,2\n# note\n0.1,1,abc\n", "line 4, column q2: expected a finite number, found 'abc'"),
+        (
+            "t,q1,q2\n0,1,2\n# note\n0.1,1,abc\n",
+            "line 4, column q2: expected a finite number, found 'abc'",
+        ),
         ("t,q1,q2\n0,1,2\n0.1,1,nan\n", "line 3, column q2"),
         ("t,q1,q2\n0,1,2\n0.1,1,2\n0.1,1,2\n", "line 4: time must increase"),
         ("t,q1\n0,1\n", "1 joint column"),
@@ -138,7 +141,7 @@ def test_csv_missing_file(tmp_path: Path) -> None:
 def test_samples_one_frame_per_row_in_real_time() -> None:
     t = np.array([0.0, 0.5, 1.0, 2.0])
     q = np.zeros((4, 2))
-    times, qs, rate = animation_samples(t, q, None, None, timed=True)
+    times, _, rate = animation_samples(t, q, None, None, timed=True)
     np.testing.assert_array_equal(times, t)
     assert rate == pytest.approx(3 / 2.0)
     assert animation_samples(t, q, None, None, timed=False)[2] == DEFAULT_FPS
@@ -156,7 +159,7 @@ def test_samples_resampled_at_fps_by_interpolation() -> None:
 def test_samples_capped_keeping_first_and_last() -> None:
     t = np.linspace(0, 9.9, 100)
     q = t[:, None]
-    times, qs, rate = animation_samples(t, q, None, 10, timed=True)
+    times, _, rate = animation_samples(t, q, None, 10, timed=True)
     assert len(times) == 10 and times[0] == 0 and times[-1] == t[-1]
     assert rate == pytest.approx(9 / 9.9)  # same duration
     with pytest.raises(viz.VizError, match="fps"):
@@ -186,7 +189,7 @@ def test_planar_gif_and_bad_output(tmp_path: Path) -> None:
     anim = viz.animate(robot, q, tmp_path / "p.gif", size=(160, 160))
     with Image.open(anim.path) as im:
         assert im.n_frames == 4
-    with pytest.raises(viz.VizError, match="use .gif or .mp4"):
+    with pytest.raises(viz.VizError, match=r"use \.gif or \.mp4"):
         viz.animate(robot, q, tmp_path / "p.avi")
     with pytest.raises(viz.VizError, match="does not exist"):
         viz.animate(robot, q, tmp_path / "no" / "p.gif")
@@ -201,9 +204,22 @@ def test_mp4_frame_count(tmp_path: Path) -> None:
     probe = shutil.which("ffprobe")
     if probe:
         out = subprocess.run(
-            [probe, "-v", "error", "-count_frames", "-select_streams", "v:0", "-show_entries",
-             "stream=nb_read_frames,width,height", "-of", "csv=p=0", str(anim.path)],
-            capture_output=True, text=True, check=True,
+            [
+                probe,
+                "-v",
+                "error",
+                "-count_frames",
+                "-select_streams",
+                "v:0",
+                "-show_entries",
+                "stream=nb_read_frames,width,height",
+                "-of",
+                "csv=p=0",
+                str(anim.path),
+            ],
+            capture_output=True,
+            text=True,
+            check=True,
         ).stdout.strip()
         assert out == "202,160,7"
     else:  # pragma: no cover

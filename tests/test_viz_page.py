@@ -94,8 +94,13 @@ def random_spec(rng: np.random.Generator) -> RobotSpec:
     joints = []
     for _ in range(int(rng.integers(1, 8))):
         kind = "P" if rng.random() < 0.3 else "R"
-        angle = lambda: float(rng.choice(special)) if rng.random() < 0.4 else float(rng.uniform(-3, 3))  # noqa: E731
-        length = lambda: 0.0 if rng.random() < 0.3 else float(rng.uniform(-0.6, 0.6))  # noqa: E731
+
+        def angle() -> float:
+            return float(rng.choice(special)) if rng.random() < 0.4 else float(rng.uniform(-3, 3))
+
+        def length() -> float:
+            return 0.0 if rng.random() < 0.3 else float(rng.uniform(-0.6, 0.6))
+
         lim = None
         if rng.random() < 0.4:
             lo = float(rng.uniform(-2, 0))
@@ -126,14 +131,22 @@ def random_spec(rng: np.random.Generator) -> RobotSpec:
 
 # ----------------------------------------------------------- without a browser
 def test_page_embeds_the_table_and_escapes_names() -> None:
-    robot = km.Robot.from_dh([km.Revolute(a=0.3), km.Prismatic(qlim=(0, 0.2))], name="</script><b>x")
+    robot = km.Robot.from_dh(
+        [km.Revolute(a=0.3), km.Prismatic(qlim=(0, 0.2))], name="</script><b>x"
+    )
     text = viz.page_html(robot)
     assert "</script><b>" not in text
     start = text.index('id="robot-data">') + len('id="robot-data">')
     data = json.loads(text[start : text.index("</script>", start)])
     assert data["name"] == "</script><b>x"
     assert data["joints"][1] == {
-        "type": "P", "theta": 0.0, "d": 0.0, "a": 0.0, "alpha": 0.0, "qlim": [0.0, 0.2], "name": None
+        "type": "P",
+        "theta": 0.0,
+        "d": 0.0,
+        "a": 0.0,
+        "alpha": 0.0,
+        "qlim": [0.0, 0.2],
+        "name": None,
     }
     assert data["plane"] is None and not data["serve"]  # the slide moves along the z axis
     assert "http://" not in text and "https://" not in text  # nothing fetched at view time
@@ -198,7 +211,8 @@ def test_server_answers_ik_and_rejects_bad_requests() -> None:
         assert (status, res["status"], res["solutions"]) == (200, "unreachable", [])
         assert _post(server.url, b"{nope")[1]["error"].startswith("the request is not JSON")
         assert _post(server.url, b'{"T": [1, 2]}') == (
-            400, {"error": "the target must be a finite 4x4 pose or 3 coordinates, got shape (2,)"}
+            400,
+            {"error": "the target must be a finite 4x4 pose or 3 coordinates, got shape (2,)"},
         )
         assert _post(server.url, b'{"x": 1}')[0] == 400
 
@@ -217,7 +231,7 @@ def test_random_robots_random_q(page: Any, tmp_path: Path) -> None:
                 page.goto(url + hash_of(robot, q))  # a fresh load
             else:
                 page.evaluate(f"window.location.hash = {json.dumps(hash_of(robot, q))}")
-                page.wait_for_function(f"document.getElementById('q1-value') !== null")
+                page.wait_for_function("document.getElementById('q1-value') !== null")
             np.testing.assert_allclose(shown_T(page), spec.ref_fk(q), atol=PAGE_ATOL, rtol=0)
             np.testing.assert_allclose(shown_T(page), robot.fk(q), atol=PAGE_ATOL, rtol=0)
 
@@ -261,12 +275,16 @@ def test_pose_matches_euler_from_matrix(page: Any, tmp_path: Path) -> None:
         xyz = [float(v) for v in lines[0].split(":")[1].split(",")]
         angles = [float(v) for v in lines[1].split(":")[1].split(",")]
         np.testing.assert_allclose(xyz, T[:3, 3], atol=1e-6)
-        np.testing.assert_allclose(angles, km.euler_from_matrix(T[:3, :3], seq, degrees=True), atol=1e-4)
+        np.testing.assert_allclose(
+            angles, km.euler_from_matrix(T[:3, :3], seq, degrees=True), atol=1e-4
+        )
     # gimbal lock: the third angle is 0, as in kinematica (and scipy)
     page.evaluate("window.kinematica.setQ([0, 0, 0, 0, 0, 0])")
     page.select_option("#euler", "ZYZ")
     angles = [float(v) for v in page.inner_text("#pose").splitlines()[1].split(":")[1].split(",")]
-    np.testing.assert_allclose(angles, km.euler_from_matrix(robot.fk(np.zeros(6))[:3, :3], "ZYZ", degrees=True), atol=1e-4)
+    np.testing.assert_allclose(
+        angles, km.euler_from_matrix(robot.fk(np.zeros(6))[:3, :3], "ZYZ", degrees=True), atol=1e-4
+    )
 
 
 @needs_browser
@@ -298,7 +316,9 @@ def test_bad_hash_is_reported_on_the_page(page: Any, tmp_path: Path) -> None:
 
 
 @needs_browser
-def test_served_page_drags_the_target_and_steps_through_solutions(page: Any, tmp_path: Path) -> None:
+def test_served_page_drags_the_target_and_steps_through_solutions(
+    page: Any, tmp_path: Path
+) -> None:
     robot = km.load("puma560").with_limits([None] * 6)  # all 8 solutions
     q0 = np.array([0.2, -0.5, 0.3, 0.4, 0.8, -0.1])
     with viz.serve(robot, q=q0) as server:
@@ -309,7 +329,9 @@ def test_served_page_drags_the_target_and_steps_through_solutions(page: Any, tmp
         page.mouse.down()
         page.mouse.move(x + 15, y - 10, steps=4)
         page.mouse.up()
-        page.wait_for_function("document.getElementById('solution').textContent.startsWith('solution 1 of')")
+        page.wait_for_function(
+            "document.getElementById('solution').textContent.startsWith('solution 1 of')"
+        )
         target = np.array(page.evaluate("window.kinematica.target()")).reshape(4, 4)
         assert np.linalg.norm(target[:3, 3] - robot.fk(q0)[:3, 3]) > 1e-3  # it moved
         np.testing.assert_allclose(target[:3, :3], robot.fk(q0)[:3, :3], atol=1e-12)
@@ -317,12 +339,14 @@ def test_served_page_drags_the_target_and_steps_through_solutions(page: Any, tmp
         assert count == 8
         assert page.inner_text("#solution").startswith(f"solution 1 of {count}")
         seen = set()
-        for k in range(count):
+        for _ in range(count):
             np.testing.assert_allclose(shown_T(page), target, atol=PAGE_ATOL)
             seen.add(tuple(np.round(page.evaluate("window.kinematica.q()"), 9)))
             page.click("#next")
         assert len(seen) == count
         page.screenshot(path=str(tmp_path / "served.png"))
         page.evaluate("window.kinematica.setTarget([[1,0,0,5],[0,1,0,0],[0,0,1,0],[0,0,0,1]])")
-        page.wait_for_function("document.getElementById('ik-status').textContent.startsWith('unreachable')")
+        page.wait_for_function(
+            "document.getElementById('ik-status').textContent.startsWith('unreachable')"
+        )
         assert page.inner_text("#solution") == "no solution"

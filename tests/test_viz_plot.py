@@ -12,17 +12,17 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers import PROPERTY, RobotSpec, random_q, robot_specs, seeds
 from hypothesis import given
 
 import kinematica as km
-from helpers import PROPERTY, RobotSpec, random_q, robot_specs, seeds
 
 pytest.importorskip("matplotlib")
-from matplotlib.figure import Figure  # noqa: E402
-from PIL import Image  # noqa: E402
+from matplotlib.figure import Figure
+from PIL import Image
 
-from kinematica import viz  # noqa: E402
-from kinematica.viz.geometry import ARROW, PLANAR_TOL  # noqa: E402
+from kinematica import viz
+from kinematica.viz.geometry import ARROW, PLANAR_TOL
 
 
 def _axes3d() -> object:
@@ -215,13 +215,15 @@ def test_bad_input() -> None:
         viz.plot(robot, np.zeros(5), ax=_axes3d())
     with pytest.raises(viz.VizError, match="not a planar arm"):
         viz.plot(robot, np.zeros(6), ax=Figure().add_subplot())
-    with pytest.raises(viz.VizError, match="type '.txt'"):
+    with pytest.raises(viz.VizError, match=r"type '\.txt'"):
         viz.save_plot(robot, np.zeros(6), "/tmp/never-written.txt")
 
 
 @pytest.mark.parametrize("size", [(320, 240), (801, 599)])
 def test_png_has_the_requested_size(tmp_path: Path, size: tuple[int, int]) -> None:
-    out = viz.save_plot(km.load("stanford"), [0.2, 0.4, 0.3, 0.1, 0.5, 0.2], tmp_path / "a.png", size=size)
+    out = viz.save_plot(
+        km.load("stanford"), [0.2, 0.4, 0.3, 0.1, 0.5, 0.2], tmp_path / "a.png", size=size
+    )
     with Image.open(out) as im:
         assert im.format == "PNG"
         assert im.size == size
@@ -262,7 +264,9 @@ def test_solutions_unreachable_and_bad_target(tmp_path: Path) -> None:
         viz.plot_solutions(puma, far, fig=Figure())
     with pytest.raises(km.DimensionError, match="one target"):
         viz.plot_solutions(puma, np.zeros((2, 4, 4)))
-    out, k, size = viz.save_solutions(puma, puma.fk([0.2, -0.5, 0.3, 0.4, 0.8, -0.1]), tmp_path / "s.png")
+    out, k, size = viz.save_solutions(
+        puma, puma.fk([0.2, -0.5, 0.3, 0.4, 0.8, -0.1]), tmp_path / "s.png"
+    )
     with Image.open(out) as im:
         assert im.size == size == (330 * 2, 320 + 50)  # 2 solutions within the limits
     assert k == 2
@@ -274,7 +278,7 @@ def test_arm_pose_batches(shape: tuple[int, ...]) -> None:
     q = np.random.default_rng(1).uniform(-1, 1, (*shape, 6))
     pose = viz.arm_pose(robot, q)
     assert pose.origins.shape == (*shape, 7, 3)
-    assert pose.frames.shape == pose.tool[..., None, :, :].shape[:-3] + (7, 4, 4)
+    assert pose.frames.shape == (*shape, 7, 4, 4)
     np.testing.assert_allclose(pose.tool, robot.fk(q))
     h, p = robot.joint_axes(q)
     np.testing.assert_allclose(pose.joints[..., :3, 2], h, atol=1e-12)

@@ -67,6 +67,7 @@ def plot(args: argparse.Namespace) -> int:
             return 1
         out.update(solutions=count)
     else:
+        assert q is not None  # checked above: no target means --q was given
         size = _size(args) or (800, 700)
         path = viz.save_plot(
             robot,
@@ -164,10 +165,10 @@ def view(args: argparse.Namespace) -> int:
 def _picture_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--frames", action="store_true", help="draw the DH frames S0..Sn and the tool")
     p.add_argument("--no-labels", action="store_true", help="do not name the frames")
+    p.add_argument("--size", nargs=2, type=int, metavar=("W", "H"), help="picture size in pixels")
     p.add_argument(
-        "--size", nargs=2, type=int, metavar=("W", "H"), help="picture size in pixels"
+        "--dpi", type=float, default=100.0, help="dots per inch (text size; default 100)"
     )
-    p.add_argument("--dpi", type=float, default=100.0, help="dots per inch (text size; default 100)")
 
 
 def register(sub: Any) -> None:
@@ -205,7 +206,9 @@ def register(sub: Any) -> None:
     p.add_argument(
         "--ignore-limits", action="store_true", help="with --solutions: outside the limits too"
     )
-    p.add_argument("-o", "--output", default="arm.png", help="PNG, SVG or PDF file (default arm.png)")
+    p.add_argument(
+        "-o", "--output", default="arm.png", help="PNG, SVG or PDF file (default arm.png)"
+    )
     _picture_options(p)
     add_common(p)
     p.set_defaults(run=plot)
@@ -219,7 +222,9 @@ def register(sub: Any) -> None:
         help="CSV file: header t,q1,...,qn; time (s), joint values (rad, m)",
     )
     p.add_argument("-o", "--output", default="arm.gif", help=".gif or .mp4 (default arm.gif)")
-    p.add_argument("--fps", type=float, help="resample at this frame rate (default: one frame a row)")
+    p.add_argument(
+        "--fps", type=float, help="resample at this frame rate (default: one frame a row)"
+    )
     p.add_argument(
         "--max-frames", type=int, default=300, help="keep at most this many frames (0: all)"
     )
@@ -233,12 +238,9 @@ def register(sub: Any) -> None:
     p.add_argument(
         "--q", nargs="+", type=float, metavar="Q", help="start configuration (units as for fk)"
     )
-    p.add_argument(
-        "--serve", action="store_true", help="serve the page with a draggable IK target"
-    )
+    p.add_argument("--serve", action="store_true", help="serve the page with a draggable IK target")
     p.add_argument("--host", default="127.0.0.1", help="address to serve on (default 127.0.0.1)")
     p.add_argument("--port", type=int, default=0, help="port to serve on (default: a free one)")
     p.add_argument("--open", action="store_true", help="open the page in the web browser")
     add_common(p)
     p.set_defaults(run=view)
-

@@ -33,9 +33,7 @@ def matplotlib() -> Any:
     try:
         import matplotlib as mpl
     except ImportError as exc:  # pragma: no cover - the test extra installs it
-        raise VizError(
-            "pictures need matplotlib: pip install 'kinematica[viz]'"
-        ) from exc
+        raise VizError("pictures need matplotlib: pip install 'kinematica[viz]'") from exc
     return mpl
 
 

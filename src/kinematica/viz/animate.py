@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import math
 import os
+import subprocess
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -138,13 +140,17 @@ def animate(
     matplotlib()
     from matplotlib import animation
 
+    rate_arg: dict[str, Any] = {"fps": rate}  # matplotlib's stubs say int; any rate works
+    writer: Any
     if suffix == ".mp4":
         if not mp4_available():
             raise VizError(f"{out}: writing MP4 needs ffmpeg, which is not installed; write a .gif")
-        writer = animation.FFMpegWriter(fps=rate, codec="libx264", extra_args=["-pix_fmt", "yuv420p"])
+        writer = animation.FFMpegWriter(
+            codec="libx264", extra_args=["-pix_fmt", "yuv420p"], **rate_arg
+        )
         size = (size[0] + size[0] % 2, size[1] + size[1] % 2)  # yuv420p needs even sizes
     else:
-        writer = animation.PillowWriter(fps=rate)
+        writer = animation.PillowWriter(**rate_arg)
     fig = figure(*size, dpi, pyplot_managed=False)
     plane = drawing_plane(robot)
     ax = new_axes(fig, plane is None)
@@ -172,6 +178,6 @@ def animate(
                 stamp = f"t = {times[k]:.{decimals}f} s" if t is not None else f"sample {k + 1}"
                 stamp_text.set_text(stamp)
                 writer.grab_frame()
-    except OSError as exc:
+    except (OSError, subprocess.CalledProcessError) as exc:
         raise VizError(f"{out}: cannot write the animation ({exc.strerror or exc})") from exc
     return Animation(path=out, frames=len(times), fps=float(rate), size=size)

@@ -207,8 +207,14 @@ class ArmDrawing:
                 w = np.array([-u[1], u[0]])
                 c = self._project(o)
                 faces.append(
-                    np.array([c + 2 * r * u + r * w, c - 2 * r * u + r * w,
-                              c - 2 * r * u - r * w, c + 2 * r * u - r * w])
+                    np.array(
+                        [
+                            c + 2 * r * u + r * w,
+                            c - 2 * r * u + r * w,
+                            c - 2 * r * u - r * w,
+                            c + 2 * r * u - r * w,
+                        ]
+                    )
                 )
             else:  # the axis is normal to the plane: a disc
                 ang = np.linspace(0.0, 2.0 * np.pi, 24, endpoint=False)
@@ -252,8 +258,8 @@ class ArmDrawing:
             glyph.extend(dot[k : k + 2] for k in range(16))
         else:
             d = 0.7 * r / np.sqrt(2.0)
-            glyph.append(np.array([c + [-d, -d], c + [d, d]]))
-            glyph.append(np.array([c + [-d, d], c + [d, -d]]))
+            glyph.append(c + np.array([[-d, -d], [d, d]]))
+            glyph.append(c + np.array([[-d, d], [d, -d]]))
         return glyph
 
     def _lines(self, segs: list[FloatArray], colors: list[str], lw: float, gid: str) -> Any:
@@ -305,8 +311,13 @@ class ArmDrawing:
 
             c = self._project(o)
             coll = Rectangle(
-                (c[0] - s, c[1] - s / 2), 2 * s, s / 2,
-                facecolor=BASE_COLOR, edgecolor="#555555", hatch="///", alpha=self.alpha,
+                (c[0] - s, c[1] - s / 2),
+                2 * s,
+                s / 2,
+                facecolor=BASE_COLOR,
+                edgecolor="#555555",
+                hatch="///",
+                alpha=self.alpha,
             )
             self.ax.add_patch(coll)
         coll.set_gid("base")

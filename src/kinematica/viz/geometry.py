@@ -142,8 +142,8 @@ def cylinder(frame: FloatArray, radius: float, height: float, segments: int = 12
     """
     ang = np.linspace(0.0, 2.0 * np.pi, segments, endpoint=False)
     ring = np.stack([radius * np.cos(ang), radius * np.sin(ang), np.zeros(segments)], axis=1)
-    bottom = ring - [0.0, 0.0, height / 2.0]
-    top = ring + [0.0, 0.0, height / 2.0]
+    half = np.array([0.0, 0.0, height / 2.0])
+    bottom, top = ring - half, ring + half
     faces = np.empty((segments + 2, segments, 3))
     nxt = np.roll(np.arange(segments), -1)
     quads = np.stack([bottom, bottom[nxt], top[nxt], top], axis=1)  # (segments, 4, 3)

@@ -109,7 +109,9 @@ def page_data(
     else:
         q0 = robot.check_q(q)
         if q0.ndim != 1:
-            raise DimensionError(f"the page starts at one configuration ({robot.dof},), got {q0.shape}")
+            raise DimensionError(
+                f"the page starts at one configuration ({robot.dof},), got {q0.shape}"
+            )
     table = robot.dh_table()
     joints = []
     for link, row, lim, limited in zip(robot.links, table, qlim, robot.has_limits, strict=True):

@@ -11,6 +11,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.errors import DimensionError, UnreachableError
+from kinematica.ik.result import IKResult
 from kinematica.robot import Robot
 from kinematica.viz._mpl import VizError, equal_limits, figure, is_3d, new_axes
 from kinematica.viz.arm import ArmDrawing, extent_points
@@ -165,8 +166,9 @@ def plot_solutions(
             f"got shape {target.shape}"
         )
     res = robot.ik(target, respect_limits=respect_limits)
-    sols = np.asarray(getattr(res, "solutions", np.empty((0, robot.dof))))
-    if sols.ndim != 2 or sols.shape[0] == 0:
+    assert isinstance(res, IKResult)  # one target gives one result
+    sols = res.solutions
+    if sols.shape[0] == 0:
         raise UnreachableError(f"{robot.name}: no solution to draw ({res.status}): {res.message}")
     k = sols.shape[0]
     cols = min(k, SOLUTION_COLUMNS)
@@ -254,8 +256,12 @@ def save_solutions(
     """:func:`plot_solutions` into a file, without pyplot.
 
     Args:
-        robot, T, respect_limits, frames, labels: As :func:`plot_solutions`.
+        robot: The robot.
+        T: ``(4, 4)`` target pose or ``(3,)`` position (m, world frame).
         path: Output file (PNG, SVG, PDF...).
+        respect_limits: Only solutions within the joint limits.
+        frames: Draw the DH frames.
+        labels: Name the frames.
         size: ``(width, height)`` in pixels; about 330 x 320 per panel if ``None``.
         dpi: Dots per inch.
 

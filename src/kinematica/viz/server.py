@@ -71,7 +71,7 @@ def _handler(robot: Robot, page: bytes) -> type[BaseHTTPRequestHandler]:
     class Handler(BaseHTTPRequestHandler):
         server_version = "kinematica"
 
-        def log_message(self, format: str, *args: Any) -> None:  # noqa: A002
+        def log_message(self, format: str, *args: Any) -> None:
             """Quiet: no line per request on stderr."""
 
         def _send(self, status: int, body: bytes, kind: str) -> None:
@@ -125,8 +125,8 @@ class PageServer:
         self._httpd = ThreadingHTTPServer((host, port), _handler(robot, page.encode("utf-8")))
         self._httpd.daemon_threads = True
         self._thread: threading.Thread | None = None
-        name, bound = self._httpd.server_address[:2]
-        self.url = f"http://{name}:{bound}/"
+        bound = self._httpd.server_address[1]
+        self.url = f"http://{host}:{bound}/"
 
     def start(self) -> PageServer:
         """Serve in a background thread; returns ``self``."""

@@ -21,7 +21,9 @@ FloatArray = NDArray[np.float64]
 PATH_COLOR = "#e377c2"
 
 
-def check_trajectory(robot: Robot, t: ArrayLike | None, q: ArrayLike) -> tuple[FloatArray, FloatArray]:
+def check_trajectory(
+    robot: Robot, t: ArrayLike | None, q: ArrayLike
+) -> tuple[FloatArray, FloatArray]:
     """``t`` ``(T,)`` strictly increasing (``0, 1, ...`` if ``None``) and ``q`` ``(T, n)``."""
     qa = robot.check_q(q)
     if qa.ndim != 2 or qa.shape[0] < 1:

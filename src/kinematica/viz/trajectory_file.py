@@ -60,7 +60,8 @@ def read_trajectory(
     names = [cell.strip() for cell in header]
     if names[0].lower() != "t" or len(names) < 2:
         raise TrajectoryFileError(
-            f"{p}, line {line}: the header must be t,q1,...,qn (time first), found {','.join(names)}"
+            f"{p}, line {line}: the header must be t,q1,...,qn (time first), "
+            f"found {','.join(names)}"
         )
     n = len(names) - 1
     if dof is not None and n != dof:

@@ -66,7 +66,7 @@
       const slider = $("q" + (i + 1)), number = $("q" + (i + 1) + "-value");
       const v = state.q[i] / factor[i];
       if (slider !== source) slider.value = String(v);
-      if (number !== source) number.value = String(Number(v.toFixed(6)));
+      if (number !== source) number.value = String(Number(v.toFixed(4)));
     }
   }
 
