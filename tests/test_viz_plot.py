@@ -238,7 +238,9 @@ def test_solutions_each_reach_the_target_and_name_their_branch() -> None:
     res = puma.ik(T, respect_limits=False)
     assert len(fig.axes) == res.count == 8
     titles = [ax.get_title() for ax in fig.axes]
-    assert titles == [f"{k}: {b}" for k, b in enumerate(res.branches, start=1)]
+    assert [t.replace("\n", " ") for t in titles] == [
+        f"{k}: {b}" for k, b in enumerate(res.branches, start=1)
+    ]
     limits = {(ax.get_xlim(), ax.get_ylim(), ax.get_zlim()) for ax in fig.axes}
     assert len(limits) == 1  # one common scale
     for ax in fig.axes:

@@ -167,6 +167,7 @@ def animate(
     label_axes(ax, plane)
     tight_single(fig, plane is None)
     ax.set_title(robot.name, fontsize=10)
+    ax.tick_params(labelsize=7)
     stamp_text = fig.text(0.01, 0.01, "", fontsize=9, ha="left", va="bottom", gid="time")
     # Every frame shows its own time in the bottom-left corner, so no two
     # frames are identical (pillow merges identical neighbours in a GIF).

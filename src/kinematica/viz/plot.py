@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import os
+import textwrap
 from pathlib import Path
 from typing import Any
 
@@ -190,7 +191,9 @@ def plot_solutions(
         equal_limits(ax, all_pts, plane)
         label_axes(ax, plane)
         branch = res.branches[i] if i < len(res.branches) and res.branches[i] else "solution"
-        ax.set_title(f"{i + 1}: {branch}" + (f" ({free} free)" if free else ""), fontsize=9)
+        title = f"{i + 1}: {branch}" + (f" ({free} free)" if free else "")
+        ax.set_title(textwrap.fill(title, 34), fontsize=9)
+        ax.tick_params(labelsize=7)
     fig.suptitle(f"{robot.name}: {k} solution{'s' if k > 1 else ''} ({res.method})", fontsize=11)
     return fig
 
@@ -237,7 +240,7 @@ def save_plot(
 def tight_single(fig: Any, three_d: bool) -> None:
     """Let one Axes fill its figure (3-D axes carry wide margins by default)."""
     if three_d:
-        fig.subplots_adjust(left=0.0, right=0.96, bottom=0.02, top=0.95)
+        fig.subplots_adjust(left=0.0, right=0.96, bottom=0.03, top=0.92)
     else:
         fig.subplots_adjust(left=0.1, right=0.97, bottom=0.08, top=0.94)
 
