@@ -26,6 +26,8 @@ from helpers import JointSpec, RobotSpec, transform_from
 
 import kinematica as km
 from kinematica import viz
+from kinematica.spatial import GIMBAL_LOCK_TOL
+from kinematica.viz.server import MAX_REQUEST_BYTES
 
 #: What the page shows: 7 decimals, so at most 5e-8 from the exact value.
 PAGE_ATOL = 1e-6
@@ -215,6 +217,8 @@ def test_server_answers_ik_and_rejects_bad_requests() -> None:
             {"error": "the target must be a finite 4x4 pose or 3 coordinates, got shape (2,)"},
         )
         assert _post(server.url, b'{"x": 1}')[0] == 400
+        big = b'{"T": "' + b"x" * MAX_REQUEST_BYTES + b'"}'
+        assert _post(server.url, big) == (400, {"error": "missing or oversized request body"})
 
 
 # --------------------------------------------------------------- in Chromium
@@ -285,6 +289,25 @@ def test_pose_matches_euler_from_matrix(page: Any, tmp_path: Path) -> None:
     np.testing.assert_allclose(
         angles, km.euler_from_matrix(robot.fk(np.zeros(6))[:3, :3], "ZYZ", degrees=True), atol=1e-4
     )
+
+
+@needs_browser
+@pytest.mark.parametrize("middle", [GIMBAL_LOCK_TOL / 100, GIMBAL_LOCK_TOL * 100])
+@pytest.mark.parametrize("seq", ["ZYZ", "xyx", "XYZ", "zyx"])
+def test_euler_near_gimbal_lock_as_kinematica(
+    page: Any, tmp_path: Path, middle: float, seq: str
+) -> None:
+    # the second angle just inside / outside the lock band, on both sides of GIMBAL_LOCK_TOL
+    lock = 0.0 if seq[0].lower() == seq[2].lower() else math.pi / 2
+    angles = np.array([0.7, lock - middle, -0.4])
+    R = km.matrix_from_euler(angles, seq)
+    T = np.eye(4)
+    T[:3, :3] = R
+    page.goto(viz.write_page(km.load("planar-3r"), tmp_path / "e.html").as_uri())
+    got = page.evaluate(f"window.kinematica.euler({json.dumps(T.ravel().tolist())}, '{seq}')")
+    np.testing.assert_allclose(got, km.euler_from_matrix(R, seq), atol=1e-9)
+    locked = middle < GIMBAL_LOCK_TOL
+    assert (got[2] == 0.0) == locked
 
 
 @needs_browser

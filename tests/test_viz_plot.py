@@ -130,6 +130,15 @@ def test_labels_name_every_frame_once() -> None:
     assert not any(t.get_text().startswith("S") for t in ax.texts)
 
 
+@pytest.mark.parametrize(("d", "merged"), [(1e-9, True), (1e-3, False)])
+def test_coincident_frames_share_a_label(d: float, merged: bool) -> None:
+    # S1 and S2 are d apart along z; the arm is 1 + d long (SAME_PLACE = 1e-6 of it)
+    robot = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(d=d)])
+    ax = viz.plot(robot, [0.3, 0.2], ax=_axes3d())
+    texts = sorted(t.get_text() for t in ax.texts)
+    assert texts == (["S0", "S1, S2"] if merged else ["S0", "S1", "S2"])
+
+
 def test_tool_frame_drawn_apart_at_fk() -> None:
     robot = km.load("arm6-dh").with_tool(km.transl(0.0, 0.02, 0.05))
     q = np.radians([30, 40, -30, 10, 60, -20])

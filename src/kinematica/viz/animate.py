@@ -180,5 +180,6 @@ def animate(
                 stamp_text.set_text(stamp)
                 writer.grab_frame()
     except (OSError, subprocess.CalledProcessError) as exc:
-        raise VizError(f"{out}: cannot write the animation ({exc.strerror or exc})") from exc
+        reason = getattr(exc, "strerror", None) or exc
+        raise VizError(f"{out}: cannot write the animation ({reason})") from exc
     return Animation(path=out, frames=len(times), fps=float(rate), size=size)

@@ -37,6 +37,8 @@ LINK_COLOR = "#333333"
 REVOLUTE_COLOR = "#f0a030"
 PRISMATIC_COLOR = "#4a90d9"
 BASE_COLOR = "#9a9a9a"
+#: Frame origins closer than this fraction of the robot's size share one label ("S4, S5").
+SAME_PLACE = 1e-6
 #: Below this fraction of the arrow length, a frame axis seen in a 2-D view is
 #: drawn as a dot (pointing at the viewer) or a cross (away from the viewer).
 OUT_OF_PLANE = 0.3
@@ -61,7 +63,7 @@ def _coincident(points: FloatArray, scale: float) -> list[list[int]]:
     groups: list[list[int]] = []
     for i, p in enumerate(points):
         for group in groups:
-            if np.linalg.norm(points[group[0]] - p) < 1e-6 * scale:
+            if np.linalg.norm(points[group[0]] - p) < SAME_PLACE * scale:
                 group.append(i)
                 break
         else:
