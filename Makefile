@@ -33,6 +33,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/robot_files.py
 	$(BIN)/python benchmarks/urdf.py
 	$(BIN)/python benchmarks/motion.py
+	$(BIN)/python benchmarks/viz.py
 
 clean:
 	rm -rf $(VENV) build dist .pytest_cache .mypy_cache .ruff_cache
