@@ -50,7 +50,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.dh.axes import AxisFrame, ChainGeometry, ExtractedTable, FrameRule, NamedFrame
-from kinematica.dh.joints import Convention, Joint, Prismatic, Revolute, check_convention
+from kinematica.dh.joints import (
+    Convention,
+    Joint,
+    Prismatic,
+    Revolute,
+    check_convention,
+    values_checked,
+)
 from kinematica.dh.lines import (
     EXTRACT_ANGLE_TOL,
     EXTRACT_LENGTH_TOL,
@@ -325,14 +332,18 @@ def extract_dh(geometry: ChainGeometry, convention: str = "standard") -> Extract
         theta, d, a, alpha = _row(frames[k - 1], frames[k], conv)
         theta, alpha = _tidy_angle(theta), _tidy_angle(alpha)
         d, a = _tidy_length(d), _tidy_length(a)
-        if joint.kind == "R":
-            rows.append(
-                Revolute(d=d, a=a, alpha=alpha, offset=theta, qlim=joint.qlim, name=joint.name)
-            )
-        else:
-            rows.append(
-                Prismatic(theta=theta, a=a, alpha=alpha, offset=d, qlim=joint.qlim, name=joint.name)
-            )
+        # Derived values: the plausibility warnings are for values people type.
+        with values_checked():
+            if joint.kind == "R":
+                rows.append(
+                    Revolute(d=d, a=a, alpha=alpha, offset=theta, qlim=joint.qlim, name=joint.name)
+                )
+            else:
+                rows.append(
+                    Prismatic(
+                        theta=theta, a=a, alpha=alpha, offset=d, qlim=joint.qlim, name=joint.name
+                    )
+                )
     base = _snap(frames[0])
     Sn = frames[-1]
     tool = np.eye(4)
