@@ -16,6 +16,7 @@ from kinematica.io.robotfile import (
     write_robot_file,
 )
 from kinematica.io.spec import FrameSpec, JointSpec, RobotSpec
+from kinematica.io.template import with_parameters
 
 __all__ = [
     "ROBOT_FILE_SUFFIXES",
@@ -34,5 +35,6 @@ __all__ = [
     "parse_robot_dict",
     "read_builtin",
     "read_robot_file",
+    "with_parameters",
     "write_robot_file",
 ]

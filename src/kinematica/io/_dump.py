@@ -108,6 +108,14 @@ def _frame(
     return out
 
 
+def _parameter(spec: RobotSpec, name: str, value: float) -> int | float | dict[str, Any]:
+    """A parameter as written: a number, or ``{value, min, max}`` when it has bounds."""
+    if name not in spec.parameter_bounds:
+        return _number(value)
+    lo, hi = spec.parameter_bounds[name]
+    return {"value": _number(value), "min": _number(lo), "max": _number(hi)}
+
+
 def _build(spec: RobotSpec, units: Mapping[str, str], use_text: bool) -> dict[str, Any]:
     angle = angle_to_si(units["angle"])
     length = length_to_si(units["length"])
@@ -118,7 +126,7 @@ def _build(spec: RobotSpec, units: Mapping[str, str], use_text: bool) -> dict[st
         data["source"] = spec.reference
     data["units"] = {"angle": units["angle"], "length": units["length"]}
     if use_text and spec.parameters:
-        data["parameters"] = {k: _number(v) for k, v in spec.parameters.items()}
+        data["parameters"] = {k: _parameter(spec, k, v) for k, v in spec.parameters.items()}
     data["joints"] = [
         _joint(i, j, angle, length, use_text) for i, j in enumerate(spec.joints, start=1)
     ]
