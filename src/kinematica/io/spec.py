@@ -164,9 +164,7 @@ class RobotSpec:
     description: str | None = None
     units: Mapping[str, str] = field(default_factory=_default_units, compare=False)
     reference: str | None = None
-    parameter_bounds: Mapping[str, tuple[float, float]] = field(
-        default_factory=dict, compare=False
-    )
+    parameter_bounds: Mapping[str, tuple[float, float]] = field(default_factory=dict, compare=False)
     document: Mapping[str, Any] | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
