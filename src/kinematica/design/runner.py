@@ -37,6 +37,9 @@ Key = tuple[float, ...]
 #: ``None`` (this process), ``"local"``, a scheduler address, or a ``distributed.Client``.
 Scheduler = Any
 
+#: How long to wait for an existing Dask scheduler to answer.
+CONNECT_TIMEOUT = "10s"
+
 _NEEDS_DASK = (
     "scheduler={!r} needs dask.distributed: pip install 'kinematica[dask]' "
     "(or pip install 'dask[distributed]')"
@@ -186,7 +189,7 @@ class Runner:
                 self._client = Client(self._cluster)
             else:
                 try:
-                    self._client = Client(scheduler, timeout="10s")
+                    self._client = Client(scheduler, timeout=CONNECT_TIMEOUT)
                 except (OSError, TimeoutError, ValueError) as exc:
                     raise KinematicaError(
                         f"cannot reach the Dask scheduler at {scheduler!r}: {exc}"
