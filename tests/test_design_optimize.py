@@ -262,3 +262,16 @@ def test_progress_bar_counts_every_evaluation(
     assert "design: 100%" in err and f"{len(res.history)}/20" in err
     optimize(sum_one, Task.ring(0.6, 4), budget=20, seed=0, progress=False)
     assert capsys.readouterr().err == ""
+
+
+def test_heavy_dependencies_are_imported_only_when_used() -> None:
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, kinematica, kinematica.design, kinematica.design.report, kinematica.cli.main\n"
+        "heavy = ('scipy', 'dask', 'distributed', 'matplotlib', 'tqdm')\n"
+        "print([m for m in heavy if m in sys.modules])"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"

@@ -199,8 +199,8 @@ def measure_task(robot: Robot, task: Task) -> TaskMeasures:
     if reached.any() and k_max > 0:
         sol = result.solutions  # (N, k, n), NaN-padded
         valid = np.all(np.isfinite(sol), axis=-1)
-        q = np.where(valid[..., None], sol, 0.0)
-        s = task_singular_values(robot, q, rows, rank)  # (N, k, r)
+        s = np.zeros((*valid.shape, rank))  # (N, k, r), the SVDs of real solutions only
+        s[valid] = task_singular_values(robot, sol[valid], rows, rank)
         smallest = s[..., -1] if rank > 0 else np.zeros(valid.shape)
         with np.errstate(divide="ignore", invalid="ignore"):
             kappa = np.where(smallest > 0.0, s[..., 0] / smallest, np.inf)
