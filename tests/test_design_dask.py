@@ -164,7 +164,7 @@ def test_killed_subprocess_resumes_on_a_cluster(
     script = textwrap.dedent(
         f"""
         from kinematica.design import optimize
-        optimize({str(path)!r}, {str(poses)!r}, {OBJECTIVE!r}, budget={BUDGET * 4},
+        optimize({str(path)!r}, {str(poses)!r}, {OBJECTIVE!r}, budget={BUDGET * 2},
                  seed={SEED}, checkpoint={str(ck)!r})
         """
     )
@@ -180,14 +180,14 @@ def test_killed_subprocess_resumes_on_a_cluster(
         proc.wait()
     assert proc.returncode == -signal.SIGKILL
     done = len(_lines(ck)) - 1
-    assert 10 <= done < BUDGET * 4
+    assert 10 <= done < BUDGET * 2
     task = Task(np.load(poses), name=str(poses))
-    uninterrupted = optimize(path, task, OBJECTIVE, budget=BUDGET * 4, seed=SEED)
+    uninterrupted = optimize(path, task, OBJECTIVE, budget=BUDGET * 2, seed=SEED)
     resumed = optimize(
         path,
         task,
         OBJECTIVE,
-        budget=BUDGET * 4,
+        budget=BUDGET * 2,
         seed=SEED,
         checkpoint=ck,
         scheduler=cluster.scheduler_address,

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 from helpers import PROPERTY, RobotSpec, random_q, robot_specs, seeds
 from hypothesis import given
+from hypothesis import strategies as st
 
 import kinematica as km
 from kinematica.design import Task, generic_rank, measure_task, task_singular_values, total_length
@@ -184,3 +185,40 @@ def test_best_branch_is_taken_per_target() -> None:
         assert math.isclose(found.manipulability[i], dets.max(), rel_tol=1e-9)
         conds = np.linalg.cond(puma.jacobian(sols))
         assert math.isclose(found.condition[i], conds.min(), rel_tol=1e-9)
+
+
+@given(
+    l1=st.floats(0.05, 1.0),
+    l2=st.sampled_from([None, 1e-10]) | st.floats(0.05, 1.0),
+    where=st.sampled_from(["inside", "stretched", "folded", "outside", "inner hole"]),
+    t=st.floats(0.01, 0.99),
+    convention=st.sampled_from(["standard", "modified"]),
+)
+@PROPERTY
+def test_random_2r_designs_on_rings_by_hand(
+    l1: float, l2: float | None, where: str, t: float, convention: str
+) -> None:
+    # l2 None: equal links; 1e-10: l2 = l1 + 1e-10 (degenerate, nearly equal)
+    l2 = l1 if l2 is None else (l1 + l2 if l2 == 1e-10 else l2)
+    lo, hi = abs(l1 - l2), l1 + l2
+    r = {
+        "inside": lo + max(t * (hi - lo), 1e-6),
+        "stretched": hi,
+        "folded": max(lo, 1e-6),
+        "outside": hi * (1.01 + t),
+        "inner hole": lo * t,
+    }[where]
+    robot = planar_2r(l1, l2).to_convention(convention)
+    if where == "inner hole" and r < 1e-6:
+        return  # targets at the base itself: not a ring
+    found = measure_task(robot, Task.ring(r, 5))
+    reachable = lo - 1e-12 <= r <= hi + 1e-12
+    assert bool(found.reached.all()) == reachable and bool(found.reached.any()) == reachable
+    if not reachable:
+        assert found.violation >= 1.0
+        return
+    c2 = np.clip((r * r - l1 * l1 - l2 * l2) / (2 * l1 * l2), -1.0, 1.0)
+    w = l1 * l2 * math.sqrt(1.0 - c2 * c2)
+    # at the boundary the arm is singular: w = 0 up to the IK's 1e-10 m tolerance
+    np.testing.assert_allclose(found.manipulability, w, rtol=1e-6, atol=1e-4 * l1 * l2)
+    assert found.violation == 0.0

@@ -234,6 +234,10 @@ def test_bad_objectives(sum_one: Path, objective: object, match: str) -> None:
         ({"workers": 2, "scheduler": "tcp://127.0.0.1:1"}, "use scheduler='local'"),
         ({"scheduler": 42}, "scheduler must be None, 'local', an address"),
         ({"objective": ["total_length", "min_manipulability"], "front_size": 1}, "front_size"),
+        (
+            {"objective": ["total_length", "min_manipulability"], "budget": 34},
+            "a Pareto front of 7 subproblems needs a budget of at least 35 evaluations, got 34",
+        ),
     ],
 )
 def test_bad_run_settings(sum_one: Path, kwargs: dict[str, object], match: str) -> None:
@@ -275,3 +279,14 @@ def test_heavy_dependencies_are_imported_only_when_used() -> None:
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
+
+
+def test_candidates_a_rounding_outside_the_bounds_are_clipped(sum_one: Path) -> None:
+    from kinematica.design.runner import Runner
+
+    tmpl = load_template(sum_one)
+    with Runner(tmpl, Task.ring(0.6, 4)) as runner:
+        over, under = np.nextafter(0.9, 1.0), np.nextafter(0.1, 0.0)
+        evs = runner.evaluate(np.array([[over], [under], [0.9]]))
+    assert [ev.params["l1"] for ev in evs] == [0.9, 0.1, 0.9]
+    assert runner.evaluated == 2  # the clipped 0.9 and the plain 0.9 are one candidate

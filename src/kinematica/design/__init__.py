@@ -31,7 +31,8 @@ from kinematica.design.measures import (
 from kinematica.design.objectives import MEASURES, Measure, Objective
 from kinematica.design.optimize import optimize
 from kinematica.design.result import DesignResult
-from kinematica.design.task import Task, TaskError, as_task, load_task
+from kinematica.design.task import Task, TaskError
+from kinematica.design.taskfile import as_task, load_task
 from kinematica.design.template import DesignTemplate, load_template
 
 __all__ = [

@@ -31,7 +31,8 @@ from kinematica.design.evaluate import Evaluation
 from kinematica.design.objectives import Objective
 from kinematica.design.result import DesignResult
 from kinematica.design.runner import Runner, Scheduler
-from kinematica.design.task import Task, as_task
+from kinematica.design.task import Task
+from kinematica.design.taskfile import as_task
 from kinematica.design.template import DesignTemplate, load_template
 from kinematica.errors import KinematicaError
 from kinematica.io import RobotSpec
@@ -174,6 +175,11 @@ def _pareto(
     if isinstance(front_size, bool) or not isinstance(front_size, int) or front_size < 2:
         raise KinematicaError(f"front_size must be a whole number >= 2, got {front_size!r}")
     share = budget // front_size
+    if share < MIN_POPULATION:
+        raise KinematicaError(
+            f"a Pareto front of {front_size} subproblems needs a budget of at least "
+            f"{front_size * MIN_POPULATION} evaluations, got {budget}"
+        )
     seeds = [int(s.generate_state(1)[0]) for s in np.random.SeedSequence(seed).spawn(front_size)]
     ends = []
     for k, name in enumerate(objective.names):

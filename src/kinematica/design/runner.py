@@ -212,8 +212,13 @@ class Runner:
             self._checkpoint.append(ev)
 
     def evaluate(self, X: FloatArray) -> list[Evaluation]:
-        """Evaluate the candidates ``X`` ``(S, p)``; results in the same order."""
-        keys = [tuple(float(v) for v in row) for row in np.asarray(X, dtype=float)]
+        """Evaluate the candidates ``X`` ``(S, p)``; results in the same order.
+
+        Candidates are clipped into the template's bounds first: the optimiser's
+        scaling of a unit cube back to the bounds may overshoot by a rounding.
+        """
+        inside = np.clip(np.asarray(X, dtype=float), self.template.lower, self.template.upper)
+        keys = [tuple(float(v) for v in row) for row in inside]
         todo: list[Key] = []
         for key in keys:
             if key in self.cache:
