@@ -30,6 +30,7 @@ bench: $(STAMP)
 	done
 	$(BIN)/python benchmarks/fk.py
 	@if [ -f benchmarks/ik.py ]; then $(BIN)/python benchmarks/ik.py; fi
+	@if [ -f benchmarks/design.py ]; then $(BIN)/python benchmarks/design.py; fi
 
 clean:
 	rm -rf $(VENV) build dist .pytest_cache .mypy_cache .ruff_cache
