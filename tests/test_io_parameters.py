@@ -110,6 +110,18 @@ def test_bad_values_to_set(values: dict[str, Any], match: str) -> None:
         with_parameters(spec, values)
 
 
+def test_a_file_without_parameters_has_none_to_set() -> None:
+    data = _template()
+    del data["parameters"]
+    data["joints"] = [{"theta": "q1", "d": 0, "a": 1, "alpha": 0}]
+    data["tool"] = None
+    with pytest.raises(
+        RobotFileError, match="no parameter 'l1' to set; the file's parameters: none"
+    ):
+        with_parameters(parse_robot_dict(data), {"l1": 1})
+    assert with_parameters(parse_robot_dict(data), {}) == parse_robot_dict(data)
+
+
 def test_values_at_the_bounds_are_accepted() -> None:
     spec = parse_robot_dict(_template())
     assert with_parameters(spec, {"l1": 100}).joints[1].a == 0.1

@@ -242,9 +242,11 @@ class _Reader:
                 self.length_unit = unit
 
     def read_parameters(self, raw: object) -> None:
-        if raw is None:
+        if raw is None and not self.overrides:
             return
-        params = self.mapping(raw, "a mapping of names to numbers", key="parameters")
+        params = self.mapping(
+            {} if raw is None else raw, "a mapping of names to numbers", key="parameters"
+        )
         for name, value in params.items():
             key = f"parameters.{name}"
             if not _PARAMETER_NAME.fullmatch(name) or name == "pi" or is_joint_variable(name):
