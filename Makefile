@@ -34,6 +34,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/urdf.py
 	$(BIN)/python benchmarks/motion.py
 	$(BIN)/python benchmarks/viz.py
+	$(BIN)/python benchmarks/design.py
 
 clean:
 	rm -rf $(VENV) build dist .pytest_cache .mypy_cache .ruff_cache

@@ -18,6 +18,7 @@ from kinematica.io.robotfile import (
     write_robot_file,
 )
 from kinematica.io.spec import FrameSpec, JointSpec, RobotSpec
+from kinematica.io.template import with_parameters
 from kinematica.io.urdf import URDF_MAX_BYTES, URDF_SUFFIXES, parse_urdf, read_urdf
 from kinematica.io.urdf_model import UrdfChain, UrdfJoint, UrdfModel
 from kinematica.io.urdf_write import rpy_from_matrix, urdf_text
@@ -49,5 +50,6 @@ __all__ = [
     "read_urdf",
     "rpy_from_matrix",
     "urdf_text",
+    "with_parameters",
     "write_robot_file",
 ]

@@ -108,6 +108,20 @@ def _frame(
     return out
 
 
+def _parameter(spec: RobotSpec, name: str, value: float) -> int | float | str | dict[str, Any]:
+    """A parameter as written: bounded, its text, or its number.
+
+    ``{value, min, max}`` when it has bounds, else its text (``"l1 + 0.1"``)
+    when it has one, else its number.
+    """
+    if name not in spec.parameter_bounds:
+        if name in spec.parameter_texts:
+            return _text_value(spec.parameter_texts[name])
+        return _number(value)
+    lo, hi = spec.parameter_bounds[name]
+    return {"value": _number(value), "min": _number(lo), "max": _number(hi)}
+
+
 def _build(spec: RobotSpec, units: Mapping[str, str], use_text: bool) -> dict[str, Any]:
     angle = angle_to_si(units["angle"])
     length = length_to_si(units["length"])
@@ -118,11 +132,7 @@ def _build(spec: RobotSpec, units: Mapping[str, str], use_text: bool) -> dict[st
         data["source"] = spec.reference
     data["units"] = {"angle": units["angle"], "length": units["length"]}
     if use_text and spec.parameters:
-        texts = spec.parameter_texts
-        data["parameters"] = {
-            k: _text_value(texts[k]) if k in texts else _number(v)
-            for k, v in spec.parameters.items()
-        }
+        data["parameters"] = {k: _parameter(spec, k, v) for k, v in spec.parameters.items()}
     data["joints"] = [
         _joint(i, j, angle, length, use_text) for i, j in enumerate(spec.joints, start=1)
     ]

@@ -23,7 +23,9 @@ Keys:
   They apply to every number in the file: DH cells, parameters, limits, base
   and tool. Degrees become radians and millimetres metres on reading.
 - ``parameters``: name -> number or expression of numbers, ``pi`` and the
-  parameters above it, in file units.
+  parameters above it, in file units; or ``{value: v, min: lo, max: hi}``, a
+  design variable of a design template (bounds in ``RobotSpec.parameter_bounds``,
+  the robot built at ``v``, midpoint if left out; see :mod:`kinematica.design`).
 - ``joints`` (required, non-empty): one mapping per joint with ``theta``,
   ``d``, ``a``, ``alpha`` (numbers or expressions), and optionally
   ``limits: [lower, upper]`` (angle units for a revolute joint, length units

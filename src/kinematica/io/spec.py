@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 
@@ -149,6 +149,12 @@ class RobotSpec:
             file's ``source`` key.
         parameter_texts: Each parameter as written (``"l1 + 0.1"``), in file
             units; a parameter without a text is written as its number.
+        parameter_bounds: ``name -> (min, max)`` (file units) of the bounded
+            parameters ``l1: {value: 0.3, min: 0.1, max: 0.9}`` of a design
+            template; ``parameters`` holds their values.
+        document: The file's content as read (plain data), so that
+            :func:`kinematica.io.with_parameters` can rebuild the spec with
+            other parameter values; ``None`` for a spec built in code.
     """
 
     name: str
@@ -162,6 +168,8 @@ class RobotSpec:
     units: Mapping[str, str] = field(default_factory=_default_units, compare=False)
     reference: str | None = None
     parameter_texts: Mapping[str, str] = field(default_factory=dict, compare=False)
+    parameter_bounds: Mapping[str, tuple[float, float]] = field(default_factory=dict, compare=False)
+    document: Mapping[str, Any] | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         if self.convention not in ("standard", "modified"):
