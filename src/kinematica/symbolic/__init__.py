@@ -39,6 +39,7 @@ from kinematica.symbolic.model import (
     symbolic_robot,
 )
 from kinematica.symbolic.notation import short, tidy
+from kinematica.symbolic.report import report
 
 __all__ = [
     "ANGLE_SNAP_TOL",
@@ -54,6 +55,7 @@ __all__ = [
     "link_matrices",
     "orientation",
     "position",
+    "report",
     "short",
     "symbolic_robot",
     "tidy",

@@ -95,7 +95,7 @@ class InverseDerivation:
         return int(np.prod([len(a.branches) for a in self.plan]))
 
 
-class _Fail(Exception):
+class _OutOfPatternError(Exception):
     """The robot's geometry is outside the textbook pattern of its class."""
 
 
@@ -147,7 +147,7 @@ def _origin() -> sp.Matrix:
 def _lin(expr: sp.Expr, q: sp.Symbol) -> Linear:
     eq = linear_cs(expr, q)
     if eq is None:
-        raise _Fail(f"{expr} is not linear in cos({q}), sin({q})")
+        raise _OutOfPatternError(f"{expr} is not linear in cos({q}), sin({q})")
     return eq
 
 
@@ -192,7 +192,9 @@ def _wrist_point(ctx: _Ctx, k: int, p: sp.Matrix, R: sp.Matrix, name: str) -> sp
     return pw
 
 
-def _shoulder_q1(ctx: _Ctx, p1: sp.Matrix, W: sp.Matrix) -> tuple[sp.Expr, sp.Expr, sp.Expr, sp.Expr]:
+def _shoulder_q1(
+    ctx: _Ctx, p1: sp.Matrix, W: sp.Matrix
+) -> tuple[sp.Expr, sp.Expr, sp.Expr, sp.Expr]:
     """q1 of an arm whose axis 2 is normal to axis 1 (seed 002: two solutions).
 
     ``W`` is the point in the frame turned by q1 (q1-free). Returns the
@@ -203,12 +205,12 @@ def _shoulder_q1(ctx: _Ctx, p1: sp.Matrix, W: sp.Matrix) -> tuple[sp.Expr, sp.Ex
     C = _prod(ctx.chain[i1 + 1 : i2])
     u2, o2 = tidy(C[:3, 2]), tidy(C[:3, 3])
     if u2.free_symbols & set(ctx.model.q) or u2[2] != 0:
-        raise _Fail("axis 2 is not normal to axis 1")
+        raise _OutOfPatternError("axis 2 is not normal to axis 1")
     beta = sp.atan2(u2[1], u2[0])
     perp = sp.Matrix([-sp.sin(beta), sp.cos(beta), 0])
     e = tidy(sp.expand((u2.T * W)[0]))
     if e.free_symbols & set(ctx.model.q):
-        raise _Fail("the offset along axis 2 depends on the joints")
+        raise _OutOfPatternError("the offset along axis 2 depends on the joints")
     r_expr = tidy(sp.expand((perp.T * W)[0]))
     x, y, z = p1
     r = sp.Symbol("r", real=True)
@@ -225,9 +227,7 @@ def _shoulder_q1(ctx: _Ctx, p1: sp.Matrix, W: sp.Matrix) -> tuple[sp.Expr, sp.Ex
     return r_expr - r_a, W[2] - o2[2], r - r_a, z - o2[2]
 
 
-def _planar_pair(
-    ctx: _Ctx, a: int, b: int, U: sp.Expr, V: sp.Expr, u: sp.Expr, v: sp.Expr
-) -> None:
+def _planar_pair(ctx: _Ctx, a: int, b: int, U: sp.Expr, V: sp.Expr, u: sp.Expr, v: sp.Expr) -> None:
     """Shoulder ``a`` and elbow ``b`` of a planar 2R: ``(U, V)(qa, qb) = (u, v)``.
 
     ``(U, V)`` are measured from a point on axis a, so ``U² + V²`` depends on qb only.
@@ -243,7 +243,7 @@ def _planar_pair(
     ctx.assign(qb, *branches)
     pair = solve_pair(_lin(U, qa), _lin(V, qa), u, v)
     if pair is None:
-        raise _Fail("the shoulder equations do not fix the shoulder angle")
+        raise _OutOfPatternError("the shoulder equations do not fix the shoulder angle")
     cos_q, sin_q = pair
     ctx.step(
         "ik.shoulder",
@@ -272,7 +272,7 @@ def _prismatic(ctx: _Ctx, k: int, P: sp.Matrix, p: sp.Matrix) -> None:
     qk = ctx.q(k)
     u = tidy(P.diff(qk))
     if u.free_symbols & set(ctx.model.q) or u == sp.zeros(3, 1):
-        raise _Fail("the prismatic axis turns")
+        raise _OutOfPatternError("the prismatic axis turns")
     norm2 = tidy(sp.expand((u.T * u)[0]))
     rhs = tidy(sp.expand((u.T * (p - P.xreplace({qk: 0})))[0] / norm2))
     ctx.step("ik.prismatic", (qk, rhs), q=qk, u=u.T)
@@ -285,7 +285,7 @@ def _in_plane(ctx: _Ctx, P: sp.Matrix, p: sp.Matrix, a: int, b: int) -> None:
     P1 = tidy(J.inv()[:3, :3] * P + J.inv()[:3, 3])
     p1 = _frame1(ctx, p)
     if P1[2].free_symbols & {ctx.q(a), ctx.q(b)}:
-        raise _Fail("the arm leaves its plane")
+        raise _OutOfPatternError("the arm leaves its plane")
     ctx.step("ik.plane", (P1[2], p1[2]))
     _planar_pair(ctx, a, b, P1[0], P1[1], p1[0], p1[1])
 
@@ -297,7 +297,7 @@ def _prismatic_revolute(ctx: _Ctx, P: sp.Matrix, p: sp.Matrix) -> None:
     w = tidy(_prod(ctx.chain[: ctx.rotz[2]])[:3, 2])
     n = tidy(w.cross(u))
     if n == sp.zeros(3, 1) or (n.free_symbols | u.free_symbols) & set(ctx.model.q):
-        raise _Fail("not a planar PR pair")
+        raise _OutOfPatternError("not a planar PR pair")
     lhs = tidy(sp.expand((n.T * P)[0]))
     value = tidy(sp.expand((n.T * p)[0]))
     eq = _lin(lhs, q2)
@@ -321,7 +321,7 @@ def _wrist_angles(ctx: _Ctx, R: sp.Matrix) -> None:
     wrist = {q4, q5, q6}
     cells = [(i, j) for i in range(3) for j in range(3) if Mw[i, j].free_symbols & wrist == {q5}]
     if not cells:
-        raise _Fail("no entry of R36 depends on q5 alone")
+        raise _OutOfPatternError("no entry of R36 depends on q5 alone")
     i, j = cells[0]
     eq5 = _lin(Mw[i, j], q5)
     branches = solve_single(eq5, m[i, j])
@@ -333,7 +333,7 @@ def _wrist_angles(ctx: _Ctx, R: sp.Matrix) -> None:
         e1, e2 = (Mw[c] for c in cells2)
         pair = solve_pair(_lin(e1, q), _lin(e2, q), m[cells2[0]], m[cells2[1]])
         if pair is None:
-            raise _Fail(f"{q} is not fixed by R36")
+            raise _OutOfPatternError(f"{q} is not fixed by R36")
         cos_q, sin_q = pair
         ctx.step(
             "ik.wrist.angle",
@@ -389,11 +389,13 @@ def _build(ctx: _Ctx, kind: str) -> bool:
         _prismatic(ctx, 3, Pw, pw)
         _last_angle(ctx, 4, R)
         return True
-    raise _Fail(f"no textbook derivation for the class {kind!r}")
+    raise _OutOfPatternError(f"no textbook derivation for the class {kind!r}")
 
 
 # ------------------------------------------------------------------ check
-def _evaluate(plan: Sequence[Assign], env: Mapping[sp.Symbol, float]) -> list[dict[sp.Symbol, float]]:
+def _evaluate(
+    plan: Sequence[Assign], env: Mapping[sp.Symbol, float]
+) -> list[dict[sp.Symbol, float]]:
     fns: list[list[tuple[Callable[..., Any], list[sp.Symbol]]]] = []
     for a in plan:
         row = []
@@ -455,7 +457,7 @@ def derive_inverse(model: SymbolicRobot) -> InverseDerivation | None:
     ctx = _context(model)
     try:
         pose = _build(ctx, kind)
-    except (_Fail, ValueError, ZeroDivisionError):
+    except (_OutOfPatternError, ValueError, ZeroDivisionError):
         return None
     if not _check(ctx, ctx.plan, pose):
         return None

@@ -17,9 +17,9 @@ from __future__ import annotations
 
 import os
 import re
-from functools import cache
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from functools import cache
 from pathlib import Path
 from typing import Final, Literal
 
@@ -64,7 +64,6 @@ ENTRY_SNAP_TOL: Final = 1e-12
 MAX_DENOMINATOR: Final = 12
 
 _JOINT = re.compile(r"q([0-9]+)")
-
 
 
 @cache
