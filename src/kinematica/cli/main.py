@@ -13,7 +13,7 @@ import sys
 from collections.abc import Sequence
 from typing import Any, NoReturn
 
-from kinematica.cli import kinematics
+from kinematica.cli import derive, kinematics
 from kinematica.errors import KinematicaError
 
 __all__ = ["main"]
@@ -21,7 +21,7 @@ __all__ = ["main"]
 EXIT_OK, EXIT_NO_ANSWER, EXIT_BAD_INPUT = 0, 1, 2
 
 #: The modules of subcommands, each with ``register(subparsers)``, in help order.
-COMMAND_MODULES = (kinematics,)
+COMMAND_MODULES = (kinematics, derive)
 
 
 # argparse reads "-1e-05" as an option, not a negative number (its own pattern

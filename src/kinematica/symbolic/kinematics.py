@@ -140,13 +140,24 @@ def frames(robot: RobotLike) -> list[sp.Matrix]:
         n+1 ``(4, 4)`` sympy matrices in textbook form (m, rad).
     """
     model = symbolic_robot(robot)
+    base, tool = sp.Matrix(model.base), sp.Matrix(model.tool)
+    out = [base]
+    P = sp.eye(4)
+    for k, A in enumerate(link_matrices(model), start=1):
+        P = tidy(P * A)
+        # A constant base or tool only combines entries linearly: nothing to fold.
+        T = base * P * tool if k == model.dof else base * P
+        out.append(P if T == P else tidy(T, fold=False))
+    return out
+
+
+def _product_frames(model: SymbolicRobot) -> list[sp.Matrix]:
+    """``frames`` without simplification: the plain products."""
     T = sp.Matrix(model.base)
     out = [T]
     for k, A in enumerate(link_matrices(model), start=1):
-        T = tidy(T * A)
-        if k == model.dof:
-            T = tidy(T * sp.Matrix(model.tool))
-        out.append(T)
+        T = T * A
+        out.append(T * sp.Matrix(model.tool) if k == model.dof else T)
     return out
 
 
@@ -190,6 +201,7 @@ def lambdify(
     *,
     all_frames: bool = False,
     values: Mapping[str, float] | None = None,
+    simplify: bool = True,
 ) -> Callable[[ArrayLike], FloatArray]:
     """A numeric function of q computed from the symbolic T.
 
@@ -197,13 +209,18 @@ def lambdify(
         robot: A ``Robot``, built-in name, robot-file path or ``SymbolicRobot``.
         all_frames: Return every frame ``0T0 ... 0Tn`` as :func:`frames` does.
         values: Parameter values (m, rad) in place of the file's, by name.
+        simplify: Compile the textbook form of :func:`frames` (``True``) or the
+            plain product of the link matrices (``False``: much faster to build
+            for long chains of general numeric rows; the same function).
 
     Returns:
         ``f(q)``: ``q`` of shape ``(..., n)`` (rad, m) gives ``(..., 4, 4)``
         (or ``(..., n+1, 4, 4)``), equal to ``robot.fk(q)``.
     """
     model = symbolic_robot(robot)
-    mats = frames(model) if all_frames else [fk(model)]
+    mats = _product_frames(model) if simplify is False else frames(model)
+    if not all_frames:
+        mats = mats[-1:]
     entries = [substitute(model, sp.Matrix(M), values) for M in mats]
     flat = [e for M in entries for e in M]
     leftover = set().union(*(e.free_symbols for e in flat)) - set(model.q)

@@ -56,9 +56,9 @@ def _collect(expr: sp.Expr) -> sp.Expr:
     return sp.Add(*terms)
 
 
-def _tidy_scalar(expr: sp.Expr) -> sp.Expr:
+def _tidy_scalar(expr: sp.Expr, fold: bool = True) -> sp.Expr:
     e = sp.expand(sp.sympify(expr))
-    if not e.has(sp.sin, sp.cos):
+    if not fold or not e.has(sp.sin, sp.cos):
         return _collect(e)
     # TR10i folds c_i c_j - s_i s_j into cos(q_i + q_j) and the like; twice,
     # so that a sum of three (c234) is reached from c23 c4 - s23 s4.
@@ -70,20 +70,24 @@ def _tidy_scalar(expr: sp.Expr) -> sp.Expr:
     return _collect(e)
 
 
-def tidy(expr: _E) -> _E:
+def tidy(expr: _E, fold: bool = True) -> _E:
     """The textbook form of an expression or of every entry of a matrix.
 
     Args:
         expr: A sympy expression or matrix, polynomial in sines and cosines of
             the joint symbols.
+        fold: Fold products of sines and cosines into sums of angles. A linear
+            combination of entries already folded (a constant base or tool
+            times a chain of link matrices) needs no folding: ``False`` saves
+            the (costly) search.
 
     Returns:
         The same value, with sums of joint angles folded and terms collected
         by the base-most joint.
     """
     if isinstance(expr, sp.MatrixBase):
-        return expr.applyfunc(_tidy_scalar)
-    return _tidy_scalar(expr)
+        return expr.applyfunc(lambda e: _tidy_scalar(e, fold))
+    return _tidy_scalar(expr, fold)
 
 
 def _short_name(f: sp.Expr) -> sp.Symbol | None:
