@@ -87,9 +87,7 @@ def test_arm6_dh_at_zero_seed_000() -> None:
     # stands straight up, p = (0, 0, l1 + l2 + l3 + l4), x6 = -y0, y6 = +x0.
     l1, l2, l3, l4 = sym("l1", "l2", "l3", "l4")
     T = symbolic.fk("arm6-dh").xreplace({q: 0 for q in sym(*(f"q{i}" for i in range(1, 7)))})
-    expected = sp.Matrix(
-        [[0, 1, 0, 0], [-1, 0, 0, 0], [0, 0, 1, l1 + l2 + l3 + l4], [0, 0, 0, 1]]
-    )
+    expected = sp.Matrix([[0, 1, 0, 0], [-1, 0, 0, 0], [0, 0, 1, l1 + l2 + l3 + l4], [0, 0, 0, 1]])
     assert sp.simplify(T - expected) == sp.zeros(4, 4)
 
 
@@ -106,8 +104,18 @@ def test_link_factors_standard_order_and_product() -> None:
     theta, alpha, d, a = q2 + sp.pi / 2, 0, 0, l2
     seed = sp.Matrix(
         [
-            [sp.cos(theta), -sp.cos(alpha) * sp.sin(theta), sp.sin(alpha) * sp.sin(theta), a * sp.cos(theta)],
-            [sp.sin(theta), sp.cos(alpha) * sp.cos(theta), -sp.sin(alpha) * sp.cos(theta), a * sp.sin(theta)],
+            [
+                sp.cos(theta),
+                -sp.cos(alpha) * sp.sin(theta),
+                sp.sin(alpha) * sp.sin(theta),
+                a * sp.cos(theta),
+            ],
+            [
+                sp.sin(theta),
+                sp.cos(alpha) * sp.cos(theta),
+                -sp.sin(alpha) * sp.cos(theta),
+                a * sp.sin(theta),
+            ],
             [0, sp.sin(alpha), sp.cos(alpha), d],
             [0, 0, 0, 1],
         ]
@@ -126,7 +134,12 @@ def test_link_factors_modified_order() -> None:
     assert Tx[0, 3] == sp.Float(0.2)
     assert Rz[0, 0] == sp.cos(q1)
     assert Tz[2, 3] == sp.Float(0.3)
-    assert [f.kind + f.axis for f in symbolic.factors(robot, 1)] == ["Rotx", "Trasx", "Rotz", "Trasz"]
+    assert [f.kind + f.axis for f in symbolic.factors(robot, 1)] == [
+        "Rotx",
+        "Trasx",
+        "Rotz",
+        "Trasz",
+    ]
 
 
 @pytest.mark.parametrize("row", [0, 4, -1, 1.0, True])
