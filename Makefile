@@ -30,6 +30,7 @@ bench: $(STAMP)
 	done
 	$(BIN)/python benchmarks/fk.py
 	@if [ -f benchmarks/ik.py ]; then $(BIN)/python benchmarks/ik.py; fi
+	$(BIN)/python benchmarks/symbolic.py
 
 clean:
 	rm -rf $(VENV) build dist .pytest_cache .mypy_cache .ruff_cache

@@ -14,9 +14,9 @@ from hypothesis import strategies as st
 import kinematica as km
 
 sp = pytest.importorskip("sympy")
-from kinematica import symbolic  # noqa: E402
-
 from helpers import assert_transform_close, random_q, robot_specs  # noqa: E402
+
+from kinematica import symbolic  # noqa: E402
 
 #: lambdify must equal robot.fk to this (the issue's figure).
 LAMBDIFY_TOL = 1e-12

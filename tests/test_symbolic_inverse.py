@@ -141,7 +141,7 @@ def test_coefficient_tolerance_both_sides() -> None:
 def test_linear_cs_and_single_solution_forms() -> None:
     q, a, b, v = sp.symbols("q a b v", real=True)
     eq = trig.linear_cs(a * sp.cos(q + sp.pi / 2) + b + sp.sin(q) ** 2 + sp.cos(q) ** 2, q)
-    assert eq is not None and eq.A == 0 and eq.B == -a and eq.K == b + 1
+    assert eq is not None and eq.A == 0 and -a == eq.B and b + 1 == eq.K
     s = trig.solve_single(trig.Linear(sp.Integer(0), a, sp.Integer(0)), v)
     assert s == [sp.asin(v / a), sp.pi - sp.asin(v / a)]  # seed 000: q2 = asin(y/l2), pi - asin
     assert trig.linear_cs(sp.cos(q) * sp.sin(q), q) is None

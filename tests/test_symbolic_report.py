@@ -177,6 +177,12 @@ def test_cli_derive_stdout_file_json(capsys: pytest.CaptureFixture[str], tmp_pat
 def test_cli_derive_bad_input(
     capsys: pytest.CaptureFixture[str], argv: list[str], message: str
 ) -> None:
-    code, out, err = run(capsys, *argv)
+    code, _, err = run(capsys, *argv)
     assert code == 2 and message in err
     assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
+
+
+def test_committed_arm6_report_is_current() -> None:
+    # README: docs/arm6-dh.md is `kinematica derive arm6-dh -o docs/arm6-dh.md`.
+    committed = Path(__file__).resolve().parents[1] / "docs" / "arm6-dh.md"
+    assert committed.read_text(encoding="utf-8") == symbolic.report("arm6-dh")

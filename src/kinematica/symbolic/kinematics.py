@@ -184,8 +184,19 @@ def orientation(robot: RobotLike) -> sp.Matrix:
     return sp.Matrix(fk(robot)[:3, :3])
 
 
-def substitute(model: SymbolicRobot, expr: sp.MatrixBase, values: Mapping[str, float] | None):  # type: ignore[no-untyped-def]
-    """``expr`` with the parameter symbols replaced by their values (m, rad)."""
+def substitute(
+    model: SymbolicRobot, expr: sp.MatrixBase, values: Mapping[str, float] | None = None
+) -> sp.MatrixBase:
+    """``expr`` with the parameter symbols replaced by their values (m, rad).
+
+    Args:
+        model: The symbolic robot (its ``values`` are the defaults).
+        expr: A sympy matrix.
+        values: Values in place of the defaults, by parameter name.
+
+    Raises:
+        SymbolicError: a name that is not a parameter of the robot.
+    """
     mapping: dict[sp.Symbol, float] = dict(model.values)
     for name, value in (values or {}).items():
         matches = [s for s in mapping if s.name == name]

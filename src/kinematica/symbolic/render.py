@@ -162,7 +162,8 @@ def _html_parts(parts: Sequence[Any]) -> str:
 
 
 def _html(blocks: Sequence[Block], lang: str) -> str:
-    title = "".join(p if isinstance(p, str) else str(p) for p in blocks[0].parts) if blocks else ""
+    first = blocks[0] if blocks else None
+    title = "".join(map(str, first.parts)) if isinstance(first, Heading) else ""
     body: list[str] = []
     word = html.escape(phrase("or", lang))
     for b in blocks:
