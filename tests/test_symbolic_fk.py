@@ -23,7 +23,8 @@ LAMBDIFY_TOL = 1e-12
 
 
 def sym(*names: str) -> list[sp.Symbol]:
-    return [sp.Symbol(n, real=True) for n in names]
+    # Plain symbols, as anyone would write them: the derivation's symbols are too.
+    return list(sp.symbols(names))
 
 
 def is_zero(expr: sp.Expr) -> bool:

@@ -131,7 +131,7 @@ def test_check_tolerance_both_sides() -> None:
 
 
 def test_coefficient_tolerance_both_sides() -> None:
-    q = sp.Symbol("q", real=True)
+    q = sp.Symbol("q")
     tiny = trig.COEFF_TOL * 1e-2
     assert trig.linear_cs(2 * sp.cos(q) + tiny * sp.cos(q) ** 2 * sp.sin(q), q) is not None
     big = trig.COEFF_TOL * 1e2
@@ -139,7 +139,7 @@ def test_coefficient_tolerance_both_sides() -> None:
 
 
 def test_linear_cs_and_single_solution_forms() -> None:
-    q, a, b, v = sp.symbols("q a b v", real=True)
+    q, a, b, v = sp.symbols("q a b v")
     eq = trig.linear_cs(a * sp.cos(q + sp.pi / 2) + b + sp.sin(q) ** 2 + sp.cos(q) ** 2, q)
     assert eq is not None and eq.A == 0 and -a == eq.B and b + 1 == eq.K
     s = trig.solve_single(trig.Linear(sp.Integer(0), a, sp.Integer(0)), v)

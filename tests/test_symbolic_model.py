@@ -17,14 +17,14 @@ from kinematica.symbolic import model as sm  # noqa: E402
 
 def test_builtin_keeps_parameters_and_exact_degrees() -> None:
     m = symbolic.symbolic_robot("arm6-dh")
-    q2, l1, l2 = (sp.Symbol(n, real=True) for n in ("q2", "l1", "l2"))
+    q2, l1, l2 = (sp.Symbol(n) for n in ("q2", "l1", "l2"))
     assert m.rows[0].d == l1 and m.rows[0].alpha == sp.pi / 2
     assert m.rows[1].theta == q2 + sp.pi / 2  # "q2 + 90" -> pi/2, never 1.5708
     assert m.rows[1].a == l2
     assert m.rows[2].alpha == -sp.pi / 2
     assert {s.name for s in m.values} == {"l1", "l2", "l3", "l4"}
     assert m.values[l1] == pytest.approx(0.5)
-    assert m.q == tuple(sp.Symbol(f"q{i}", real=True) for i in range(1, 7))
+    assert m.q == tuple(sp.Symbol(f"q{i}") for i in range(1, 7))
 
 
 def test_robot_keeps_numbers_and_snaps_angles() -> None:
@@ -82,7 +82,7 @@ def test_file_in_millimetres_and_parameter_expressions(tmp_path: Path) -> None:
         '            {"theta": "q3 - 22.5", "d": 0, "a": "L", "alpha": 0}]}'
     )
     m = symbolic.symbolic_robot(path)
-    L, half, q2, q3 = (sp.Symbol(n, real=True) for n in ("L", "half", "q2", "q3"))
+    L, half, q2, q3 = (sp.Symbol(n) for n in ("L", "half", "q2", "q3"))
     assert m.rows[0].d == sp.Float(0.29)  # 290 mm, in metres
     assert m.rows[0].a == L / 2  # 0.5*L keeps its symbol; L means metres
     assert m.rows[1].d == q2 + half

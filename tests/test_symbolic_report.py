@@ -83,8 +83,8 @@ def test_geometric_method_seed_000_example_2_form() -> None:
     # Seed 000: y = r cos q1, z = r sin q1, r = l2 cos q2 + l3 cos(q2 + q3).
     g = derive_geometric(symbolic.symbolic_robot("rrr-geometric"))
     assert g is not None
-    r, h = sp.symbols("r h", real=True)
-    q1 = sp.Symbol("q1", real=True)
+    r, h = sp.symbols("r h")
+    q1 = sp.Symbol("q1")
     assert list(g.position) == [h, r * sp.cos(q1), r * sp.sin(q1)]
 
 

@@ -121,7 +121,7 @@ def _arm_plane(model: SymbolicRobot) -> GeometricDerivation | None:
     e = tidy(sp.expand((u2.T * W)[0]))
     r_expr = tidy(sp.expand((perp.T * W)[0]))
     h_expr = W[2]
-    r, h = sp.symbols("r h", real=True)
+    r, h = sp.symbols("r h")
     J = _prefix(mats, i1)
     theta1 = model.rows[0].theta
     local = e * u2 + r * perp + h * sp.Matrix([0, 0, 1])

@@ -28,6 +28,7 @@ from typing import Any, Final
 
 import numpy as np
 import sympy as sp
+from sympy.polys.polyerrors import BasePolynomialError
 
 from kinematica.robot import classify
 from kinematica.symbolic.kinematics import factors
@@ -42,12 +43,12 @@ CHECK_TOL: Final = 1e-9
 #: Random configurations a derivation is checked on.
 CHECK_POSES: Final = 6
 
-PX, PY, PZ = sp.symbols("p_x p_y p_z", real=True)
+PX, PY, PZ = sp.symbols("p_x p_y p_z")
 
 
 def target_symbols() -> tuple[sp.Matrix, sp.Matrix]:
     """The target ``p = (p_x, p_y, p_z)`` and ``R = [r11 ... r33]`` (world frame)."""
-    R = sp.Matrix(3, 3, lambda i, j: sp.Symbol(f"r{i + 1}{j + 1}", real=True))
+    R = sp.Matrix(3, 3, lambda i, j: sp.Symbol(f"r{i + 1}{j + 1}"))
     return sp.Matrix([PX, PY, PZ]), R
 
 
@@ -163,7 +164,7 @@ def _frame1(ctx: _Ctx, p: sp.Matrix) -> sp.Matrix:
         return p
     Ji = tidy(J.inv())
     new = tidy(Ji[:3, :3] * p + Ji[:3, 3])
-    prime = sp.Matrix(sp.symbols("x' y' z'", real=True))
+    prime = sp.Matrix(sp.symbols("x' y' z'"))
     ctx.step("ik.frame1", *zip(prime, new, strict=True))
     for s, e in zip(prime, new, strict=True):
         ctx.assign(s, e)
@@ -184,7 +185,7 @@ def _wrist_point(ctx: _Ctx, k: int, p: sp.Matrix, R: sp.Matrix, name: str) -> sp
     K = _prod(ctx.chain[ctx.rotz[k] + 1 :])
     later = {ctx.q(j): 0 for j in range(k + 1, ctx.model.dof + 1)}
     w = tidy((-K[:3, :3].T * K[:3, 3]).xreplace(later))  # the point lies on those axes
-    pw = sp.Matrix(sp.symbols(f"{name}_x {name}_y {name}_z", real=True))
+    pw = sp.Matrix(sp.symbols(f"{name}_x {name}_y {name}_z"))
     rhs = tidy(p + R * w)
     ctx.step("ik.wrist_point", *zip(pw, rhs, strict=True), w=w.T, k=k)
     for s, e in zip(pw, rhs, strict=True):
@@ -213,7 +214,7 @@ def _shoulder_q1(
         raise _OutOfPatternError("the offset along axis 2 depends on the joints")
     r_expr = tidy(sp.expand((perp.T * W)[0]))
     x, y, z = p1
-    r = sp.Symbol("r", real=True)
+    r = sp.Symbol("r")
     radial = sp.sqrt(tidy(sp.expand(x**2 + y**2 - e**2)))
     shift = sp.simplify(beta + sp.pi / 2 + ctx.offset(1))
     q1 = sp.atan2(y, x) + sp.atan2(e, r) - shift
@@ -312,7 +313,7 @@ def _wrist_angles(ctx: _Ctx, R: sp.Matrix) -> None:
     i4 = ctx.rotz[4]
     C = _prod(ctx.chain[:i4])
     Mw = tidy(_prod(ctx.chain[i4:])[:3, :3])
-    m = sp.Matrix(3, 3, lambda i, j: sp.Symbol(f"m{i + 1}{j + 1}", real=True))
+    m = sp.Matrix(3, 3, lambda i, j: sp.Symbol(f"m{i + 1}{j + 1}"))
     target = C[:3, :3].T * R
     ctx.step("ik.wrist.R36", (sp.Symbol("M"), sp.Symbol("R03^T R")), (m, Mw))
     for i, j in itertools.product(range(3), range(3)):
@@ -457,7 +458,10 @@ def derive_inverse(model: SymbolicRobot) -> InverseDerivation | None:
     ctx = _context(model)
     try:
         pose = _build(ctx, kind)
-    except (_OutOfPatternError, ValueError, ZeroDivisionError):
+    # Any of these means the geometry is outside the textbook pattern (sympy's
+    # polynomial tools raise their own errors on a non-polynomial entry): no
+    # derivation is shown, and robot.ik still solves the arm.
+    except (_OutOfPatternError, ArithmeticError, ValueError, TypeError, BasePolynomialError):
         return None
     if not _check(ctx, ctx.plan, pose):
         return None

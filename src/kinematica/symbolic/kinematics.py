@@ -27,6 +27,7 @@ from kinematica.symbolic.model import (
     SymbolicError,
     SymbolicRobot,
     SymbolicRow,
+    numeric_model,
     rot,
     symbolic_robot,
     trans,
@@ -228,7 +229,7 @@ def lambdify(
         ``f(q)``: ``q`` of shape ``(..., n)`` (rad, m) gives ``(..., 4, 4)``
         (or ``(..., n+1, 4, 4)``), equal to ``robot.fk(q)``.
     """
-    model = symbolic_robot(robot)
+    model = numeric_model(robot)
     mats = _product_frames(model) if simplify is False else frames(model)
     if not all_frames:
         mats = mats[-1:]
@@ -242,7 +243,10 @@ def lambdify(
     n, k = model.dof, len(mats)
 
     def evaluate(q: ArrayLike) -> FloatArray:
-        qa = np.asarray(q, dtype=float)
+        try:
+            qa = np.asarray(q, dtype=float)
+        except (TypeError, ValueError) as exc:
+            raise DimensionError(f"q must be numbers, got {q!r}") from exc
         if qa.ndim == 0 or qa.shape[-1] != n:
             raise DimensionError(
                 f"q must hold {n} joint values for {model.name}, got shape {qa.shape}"

@@ -49,6 +49,7 @@ __all__ = [
     "exact_matrix",
     "exact_number",
     "joint_symbols",
+    "numeric_model",
     "symbolic_robot",
 ]
 
@@ -147,7 +148,7 @@ RobotLike = Robot | SymbolicRobot | str | os.PathLike[str]
 
 def joint_symbols(n: int) -> tuple[sp.Symbol, ...]:
     """The joint symbols ``q1 ... qn`` (real)."""
-    return tuple(sp.Symbol(f"q{i}", real=True) for i in range(1, n + 1))
+    return tuple(sp.Symbol(f"q{i}") for i in range(1, n + 1))
 
 
 def joint_index(symbol: sp.Basic) -> int | None:
@@ -228,31 +229,52 @@ def trans(axis: str, distance: sp.Expr) -> sp.Matrix:
 
 
 # ------------------------------------------------------------------ from a Robot
-def _from_robot(robot: Robot) -> SymbolicRobot:
+def _from_robot(robot: Robot, snap: bool = True) -> SymbolicRobot:
+    """The robot's numbers as sympy; ``snap=False`` keeps every angle as its float."""
+    angle = exact_angle if snap else exact_number
     rows = []
     for link, q in zip(robot.links, joint_symbols(robot.dof), strict=True):
-        a, alpha = exact_number(link.a), exact_angle(link.alpha)
+        a, alpha = exact_number(link.a), angle(link.alpha)
         if link.type == "R":
-            theta, d = q + exact_angle(link.offset), exact_number(link.d)
+            theta, d = q + angle(link.offset), exact_number(link.d)
         else:
-            theta, d = exact_angle(link.theta), q + exact_number(link.offset)
+            theta, d = angle(link.theta), q + exact_number(link.offset)
         rows.append(SymbolicRow(link.type, q, theta, d, a, alpha))
+
+    def frame(T: FloatArray) -> sp.ImmutableMatrix:
+        if snap:
+            return exact_matrix(T)
+        return sp.ImmutableMatrix(4, 4, [exact_number(v) for v in np.asarray(T).flat])
+
     return SymbolicRobot(
         name=robot.name,
         convention=robot.convention,
         rows=tuple(rows),
-        base=exact_matrix(robot.base),
-        tool=exact_matrix(robot.tool),
+        base=frame(robot.base),
+        tool=frame(robot.tool),
         values={},
         robot=robot,
     )
 
 
+def numeric_model(robot: RobotLike) -> SymbolicRobot:
+    """The model :func:`~kinematica.symbolic.lambdify` compiles.
+
+    From a ``Robot``, angles are not snapped to multiples of pi/12: a twist of
+    ``pi/2 + 1e-13`` stays what ``robot.fk`` uses, so the compiled function
+    equals it to rounding (snapping moves the tool by the angle error times
+    the arm's reach). Other sources as :func:`symbolic_robot`.
+    """
+    if isinstance(robot, Robot):
+        return _from_robot(robot, snap=False)
+    return symbolic_robot(robot)
+
+
 # -------------------------------------------------------------- from a RobotSpec
-def _file_number(value: float, angle: bool) -> sp.Expr:
+def _file_number(value: float) -> sp.Expr:
     """A number written in a file: exact when it is a short rational."""
     exact = sp.Rational(repr(float(value)))
-    if exact.q <= MAX_DENOMINATOR or (angle and exact.q <= 10):
+    if exact.q <= MAX_DENOMINATOR:
         return exact
     return sp.Float(value)
 
@@ -266,7 +288,7 @@ def _tidy_constant(c: sp.Expr, angle: bool) -> sp.Expr:
         if ratio is not None and ratio.is_Rational and ratio.q <= 180 * 10:
             return ratio * sp.pi
         return exact_angle(float(c))
-    if c.is_Rational and c.q > MAX_DENOMINATOR:
+    if c.is_Rational and not c.is_Integer:  # a length reads best as a decimal: 0.5, 0.29
         return sp.Float(float(c))
     return c
 
@@ -278,7 +300,7 @@ class _CellBuilder:
         self.spec = spec
         self.deg = spec.units.get("angle", "rad") == "deg"
         self.mm = spec.units.get("length", "m") == "mm"
-        self.symbols = {name: sp.Symbol(name, real=True) for name in spec.parameters}
+        self.symbols = {name: sp.Symbol(name) for name in spec.parameters}
         self.kinds = self._parameter_kinds()
         self.values: dict[sp.Symbol, float] = {}
 
@@ -299,7 +321,7 @@ class _CellBuilder:
         angle = key in ("theta", "alpha")
         f = self.factor(angle)
         text = joint.expr.get(key)
-        q = sp.Symbol(f"q{i}", real=True)
+        q = sp.Symbol(f"q{i}")
         if text is None:  # a spec built in code: numbers only
             value = getattr(joint, key)
             const = exact_angle(value) if angle else exact_number(value)
@@ -314,11 +336,10 @@ class _CellBuilder:
             # A parameter symbol stands for its SI value; one used in angles and
             # lengths of a file in non-SI units has no single SI value: its
             # number is used instead.
-            unit = self.factor(True) if angle else self.factor(False)
             if len(self.kinds.get(n, ())) > 1 and (self.deg or self.mm):
                 return sp.Rational(repr(float(self.spec.parameters[n])))
             symbol = self.symbols[n]
-            self.values[symbol] = float(self.spec.parameters[n]) * float(unit)
+            self.values[symbol] = float(self.spec.parameters[n]) * float(f)
             return symbol / f
 
         def binary(op: str, left: sp.Expr, right: sp.Expr) -> sp.Expr:
@@ -331,7 +352,7 @@ class _CellBuilder:
             return left / right
 
         raw = parse_expression(text).fold(
-            number=lambda v: _file_number(v, angle),
+            number=_file_number,
             name=name,
             unary=lambda op, x: -x if op == "-" else x,
             binary=binary,
@@ -357,7 +378,7 @@ def _from_spec(spec: RobotSpec) -> SymbolicRobot:
         rows.append(
             SymbolicRow(
                 joint.kind,
-                sp.Symbol(f"q{i}", real=True),
+                sp.Symbol(f"q{i}"),
                 cells["theta"],
                 cells["d"],
                 cells["a"],

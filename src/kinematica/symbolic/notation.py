@@ -103,7 +103,7 @@ def _short_name(f: sp.Expr) -> sp.Symbol | None:
     indices.sort()
     sep = "," if any(i > 9 for i in indices) else ""
     letter = "c" if isinstance(f, sp.cos) else "s"
-    return sp.Symbol(letter + sep.join(map(str, indices)), real=True)
+    return sp.Symbol(letter + sep.join(map(str, indices)))
 
 
 def short(expr: _E) -> _E:
