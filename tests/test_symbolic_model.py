@@ -120,3 +120,17 @@ def test_bad_file_says_where(tmp_path: Path) -> None:
     path.write_text("convention: standard\njoints:\n  - {theta: q1, d: 0, a: 0, alfa: 0}\n")
     with pytest.raises(km.RobotFileError, match="joint 1"):
         symbolic.report(path)
+
+
+def test_near_exact_twist_snaps_in_report_but_not_in_lambdify() -> None:
+    # alpha = pi/2 + 5e-13 with a 2 m lever: shown as pi/2, compiled as it is.
+    robot = km.Robot.from_dh(
+        [km.Revolute(alpha=math.pi / 2 + 5e-13), km.Revolute(d=2.0, a=2.0)],
+        base=np.array([[1, 0, 0, 0], [0, 0, -1, 0], [0, 1 + 4e-13, 0, 0], [0, 0, 0, 1.0]]),
+    )
+    assert symbolic.symbolic_robot(robot).rows[0].alpha == sp.pi / 2
+    q = np.array([[0.3, 1.2], [-2.0, 0.4]])
+    exact = robot.fk(q)
+    np.testing.assert_allclose(symbolic.lambdify(robot)(q), exact, rtol=0, atol=1e-14)
+    snapped = sp.lambdify(symbolic.symbolic_robot(robot).q, symbolic.fk(robot), "numpy")
+    assert np.abs(snapped(*q[0]) - exact[0]).max() > 1e-13  # what snapping alone would give

@@ -229,9 +229,18 @@ def trans(axis: str, distance: sp.Expr) -> sp.Matrix:
 
 
 # ------------------------------------------------------------------ from a Robot
+def _exact_plus_residual(x: float) -> sp.Expr:
+    """``k*pi/12 + (x - k*pi/12)``: exact where x is, the float's residue kept otherwise."""
+    exact = exact_angle(x)
+    if isinstance(exact, sp.Float):
+        return exact
+    residual = float(x) - float(exact)
+    return exact if residual == 0.0 else exact + sp.Float(residual)
+
+
 def _from_robot(robot: Robot, snap: bool = True) -> SymbolicRobot:
-    """The robot's numbers as sympy; ``snap=False`` keeps every angle as its float."""
-    angle = exact_angle if snap else exact_number
+    """The robot's numbers as sympy; ``snap=False`` keeps what snapping would drop."""
+    angle = exact_angle if snap else _exact_plus_residual
     rows = []
     for link, q in zip(robot.links, joint_symbols(robot.dof), strict=True):
         a, alpha = exact_number(link.a), angle(link.alpha)
@@ -242,9 +251,18 @@ def _from_robot(robot: Robot, snap: bool = True) -> SymbolicRobot:
         rows.append(SymbolicRow(link.type, q, theta, d, a, alpha))
 
     def frame(T: FloatArray) -> sp.ImmutableMatrix:
+        M = exact_matrix(T)
         if snap:
-            return exact_matrix(T)
-        return sp.ImmutableMatrix(4, 4, [exact_number(v) for v in np.asarray(T).flat])
+            return M
+        # Entries off their exact value by a residue keep it (see numeric_model).
+        return sp.ImmutableMatrix(
+            4,
+            4,
+            [
+                e if float(e) == v else exact_number(v)
+                for e, v in zip(M, np.asarray(T).flat, strict=True)
+            ],
+        )
 
     return SymbolicRobot(
         name=robot.name,
@@ -260,10 +278,12 @@ def _from_robot(robot: Robot, snap: bool = True) -> SymbolicRobot:
 def numeric_model(robot: RobotLike) -> SymbolicRobot:
     """The model :func:`~kinematica.symbolic.lambdify` compiles.
 
-    From a ``Robot``, angles are not snapped to multiples of pi/12: a twist of
-    ``pi/2 + 1e-13`` stays what ``robot.fk`` uses, so the compiled function
-    equals it to rounding (snapping moves the tool by the angle error times
-    the arm's reach). Other sources as :func:`symbolic_robot`.
+    From a ``Robot``, an angle near a multiple of pi/12 keeps its residue: a
+    twist of ``pi/2 + 1e-13`` is ``pi/2 + 1.0e-13``, what ``robot.fk`` uses, so
+    the compiled function equals it to rounding (snapping alone would move the
+    tool by the angle error times the arm's reach). Angles that are exact
+    floats (``np.pi / 2``) stay exact, and cheap. Other sources as
+    :func:`symbolic_robot`.
     """
     if isinstance(robot, Robot):
         return _from_robot(robot, snap=False)
