@@ -134,3 +134,14 @@ def test_near_exact_twist_snaps_in_report_but_not_in_lambdify() -> None:
     np.testing.assert_allclose(symbolic.lambdify(robot)(q), exact, rtol=0, atol=1e-14)
     snapped = sp.lambdify(symbolic.symbolic_robot(robot).q, symbolic.fk(robot), "numpy")
     assert np.abs(snapped(*q[0]) - exact[0]).max() > 1e-13  # what snapping alone would give
+
+
+def test_expression_fold_rebuilds_the_tree() -> None:
+    expr = km.io.parse_expression("-(q2 + 90) * 2 / l1 - .5")
+    text = expr.fold(
+        number=lambda v: f"{v:g}",
+        name=str,
+        unary=lambda op, x: f"({op}{x})",
+        binary=lambda op, a, b: f"({a} {op} {b})",
+    )
+    assert text == "((((-(q2 + 90)) * 2) / l1) - 0.5)"
