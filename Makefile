@@ -35,6 +35,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/motion.py
 	$(BIN)/python benchmarks/viz.py
 	$(BIN)/python benchmarks/design.py
+	$(BIN)/python benchmarks/symbolic.py
 
 clean:
 	rm -rf $(VENV) build dist .pytest_cache .mypy_cache .ruff_cache

@@ -27,7 +27,7 @@ import math
 import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Final
+from typing import Final, TypeVar
 
 from kinematica.errors import ArgumentError, KinematicaError
 
@@ -41,6 +41,8 @@ __all__ = [
     "is_joint_variable",
     "parse_expression",
 ]
+
+_T = TypeVar("_T")
 
 #: Deepest nesting of parentheses and unary signs accepted, so that hostile
 #: input fails with an ExpressionError and never with a RecursionError.
@@ -393,6 +395,40 @@ class Expression:
             node.pos,
             f"known names: {known}; joint variables are q1, q2, ...",
         )
+
+    def fold(
+        self,
+        number: Callable[[float], _T],
+        name: Callable[[str], _T],
+        unary: Callable[[str, _T], _T],
+        binary: Callable[[str, _T, _T], _T],
+    ) -> _T:
+        """Rebuild the expression bottom-up with the given constructors.
+
+        A later layer turns the parsed tree into its own objects this way (the
+        symbolic layer builds sympy expressions from it, never from raw text).
+
+        Args:
+            number: Called with each number's value.
+            name: Called with each name (joint variables, ``pi``, parameters).
+            unary: Called with ``"+"`` or ``"-"`` and the folded operand.
+            binary: Called with ``"+"``, ``"-"``, ``"*"`` or ``"/"`` and the
+                folded left and right operands.
+
+        Returns:
+            What the constructors build for the whole expression.
+        """
+
+        def walk(node: _Node) -> _T:
+            if isinstance(node, _Number):
+                return number(node.value)
+            if isinstance(node, _Name):
+                return name(node.name)
+            if isinstance(node, _Unary):
+                return unary(node.op, walk(node.operand))
+            return binary(node.op, walk(node.left), walk(node.right))
+
+        return walk(self._root)
 
 
 def parse_expression(text: str) -> Expression:
