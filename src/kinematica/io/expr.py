@@ -426,7 +426,11 @@ class Expression:
                 return name(node.name)
             if isinstance(node, _Unary):
                 return unary(node.op, walk(node.operand))
-            return binary(node.op, walk(node.left), walk(node.right))
+            # a chain a op1 b op2 c ... of one precedence level folds from the left
+            acc = walk(node.first)
+            for op, operand, _ in node.rest:
+                acc = binary(op, acc, walk(operand))
+            return acc
 
         return walk(self._root)
 
