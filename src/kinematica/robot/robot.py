@@ -11,7 +11,7 @@ import dataclasses
 import warnings
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -32,6 +32,12 @@ from kinematica.kernels import fk as kernel_fk
 from kinematica.kernels import jacobian as kernel_jacobian
 from kinematica.kernels import joint_axes as kernel_joint_axes
 from kinematica.spatial import check_transform, orthonormalize
+
+if TYPE_CHECKING:
+    import os
+
+    from kinematica.io import RobotSpec
+    from kinematica.robot.urdf import DHExtraction
 
 __all__ = ["Robot"]
 
@@ -83,6 +89,9 @@ class Robot:
         tool: ``(4, 4)`` pose of the tool in the last DH frame.
         description: Free text (source of the model, notes).
         chain: The table compiled into the arrays the kernels walk (derived).
+        source_spec: The description the robot was read from (robot file or
+            built-in model), or ``None``; :meth:`save` writes it back as it
+            was written, for every part that still describes this robot.
     """
 
     links: tuple[Joint, ...]
@@ -92,6 +101,7 @@ class Robot:
     tool: FloatArray = field(default_factory=lambda: np.eye(4))
     description: str | None = None
     chain: DHChain = field(init=False, repr=False)
+    source_spec: RobotSpec | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         links = tuple(self.links)
@@ -311,10 +321,11 @@ class Robot:
         self,
         q: ArrayLike,
         frame: Literal["base", "tool"] = "base",
+        euler: str | None = None,
         *,
         workers: int | None = None,
     ) -> FloatArray:
-        """Geometric Jacobian of the tool.
+        """Geometric Jacobian of the tool, or the analytic Jacobian of its pose.
 
         Rows 0-2 map joint rates to the linear velocity of the tool origin, rows
         3-5 to the angular velocity, both expressed in the base frame
@@ -322,9 +333,14 @@ class Robot:
         ``[z × (p - o); z]`` for a revolute joint with axis ``z`` through ``o``,
         ``[z; 0]`` for a prismatic one.
 
+        With ``euler`` (e.g. ``"ZYZ"``): the analytic Jacobian of the pose
+        ``(x, y, z, a, b, c)`` instead, base frame only; NaN rotation rows in
+        gimbal lock. See :func:`kinematica.motion.analytic_jacobian`.
+
         Args:
             q: ``(..., n)`` joint values.
             frame: ``"base"`` or ``"tool"``.
+            euler: An Euler sequence for the analytic Jacobian, or None.
             workers: Threads for a batch (None: the library default).
 
         Returns:
@@ -333,6 +349,15 @@ class Robot:
         """
         if frame not in ("base", "tool"):
             raise KinematicaError(f"frame must be 'base' or 'tool', got {frame!r}")
+        if euler is not None:
+            if frame != "base":
+                raise KinematicaError(
+                    "euler= gives the analytic Jacobian of the pose in the base frame; "
+                    f"frame={frame!r} does not apply to it"
+                )
+            from kinematica.motion.velocity import analytic_jacobian
+
+            return analytic_jacobian(self, q, euler)
         qa = self.check_q(q)
         J, bad = kernel_jacobian(self.chain, qa, frame == "tool", workers)
         if bad:
@@ -444,3 +469,52 @@ class Robot:
 
     def __repr__(self) -> str:
         return f"Robot({self.name!r}, {self.joint_types}, convention={self.convention!r})"
+
+    def save(self, path: str | os.PathLike[str]) -> None:
+        """Write this robot as a robot file; see :func:`kinematica.write_robot_file`."""
+        from kinematica.robot.load import write_robot_file
+
+        write_robot_file(self, path)
+
+    # ---------------------------------------------------------------- URDF, DH rules
+    def to_dh(self, convention: str = "standard") -> DHExtraction:
+        """The DH table read off this robot's joint axes by the rules of seed 000.
+
+        In the robot's own convention it gives back the same rows; in the
+        other, the frames the rules place. See :func:`kinematica.urdf_to_dh`.
+
+        Returns:
+            A ``DHExtraction``: ``.robot``, ``.rules`` (which rule placed each
+            frame), ``.fk_error``.
+        """
+        from kinematica.robot.urdf import to_dh
+
+        return to_dh(self, convention)
+
+    def to_urdf(self, path: str | os.PathLike[str] | None = None) -> str:
+        """The robot as URDF text (each link frame a DH frame), written to ``path`` if given."""
+        from kinematica.robot.urdf import to_urdf
+
+        return to_urdf(self, path)
+
+    # ------------------------------------------- motion (thin, over kinematica.motion)
+    def singularities(self, q: ArrayLike, detail: bool = False) -> Any:
+        """Names of the singularities at ``q`` (``[]`` when regular).
+
+        See :func:`kinematica.motion.singularities` (imported when called:
+        the motion layer sits above this one).
+        """
+        from kinematica.motion.singularities import singularities
+
+        return singularities(self, q, detail=detail)
+
+    def random_q(
+        self, n: int | tuple[int, ...] = 1, seed: int | np.random.Generator | None = None
+    ) -> FloatArray:
+        """``(n, dof)`` configurations drawn uniformly within the joint limits.
+
+        See :func:`kinematica.motion.random_q`.
+        """
+        from kinematica.motion.sampling import random_q
+
+        return random_q(self, n, seed=seed)
