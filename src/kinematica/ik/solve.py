@@ -142,7 +142,7 @@ def solve_ik(
     closed = None if method == "numeric" or m is not None else closed_form(chain, kind)
     if method == "analytic" and closed is None:
         why = "a mask was given" if m is not None else f"structure: {structure_of(chain)[1]}"
-        raise KinematicaError(f"no closed-form solver for this arm ({why}); use the numeric method")
+        raise KinematicaError(f"no closed-form solver for this arm ({why}); use method='numeric'")
     N = targets.poses.shape[0]
     if closed is not None:
         Q, info = _closed_candidates(closed, targets, chain.dof, workers)

@@ -145,14 +145,14 @@ def _poses(arr: FloatArray) -> Targets:
         if not finite[i]:
             invalid[i] = f"{where} holds NaN or inf"
         elif last[i] > PROJECTION_TOL:
-            invalid[i] = f"{where}: last row must be [0, 0, 0, 1], got {poses[i, 3].tolist()}"
+            invalid[i] = f"{where} last row must be [0, 0, 0, 1], got {poses[i, 3].tolist()}"
         elif ortho[i] > PROJECTION_TOL:
             invalid[i] = (
-                f"{where}: rotation is not orthonormal: max |RᵀR − I| = {ortho[i]:.1e} "
+                f"{where} rotation is not orthonormal: max |RᵀR − I| = {ortho[i]:.1e} "
                 f"(accepted up to {PROJECTION_TOL:.0e})"
             )
         elif det[i] <= 0.0:
-            invalid[i] = f"{where}: rotation has det = {det[i]:+.3f}, expected +1 (a reflection)"
+            invalid[i] = f"{where} rotation has det = {det[i]:+.3f}, expected +1 (a reflection)"
         else:
             poses[i, 3] = [0.0, 0.0, 0.0, 1.0]
             if ortho[i] > ROUNDOFF_TOL:

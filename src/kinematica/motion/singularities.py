@@ -46,9 +46,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from kinematica.ik.structure import MEET_TOL, line_distance, lines_parallel
 from kinematica.motion.sampling import generic_rank_samples
 from kinematica.robot import classify
-from kinematica.robot.structure import axes_intersect, lines_parallel
 
 if TYPE_CHECKING:
     from kinematica.robot import Robot
@@ -178,7 +178,9 @@ def _plan(robot: Robot) -> _Plan:
             if st.wrist_center is not None:
                 shoulder_point = ("wrist", -1)
             elif st.kind == "three-parallel-6R":
-                if axes_intersect(h[n - 2], p[n - 2], h[n - 1], p[n - 1]):
+                if not lines_parallel(h[n - 2], h[n - 1]) and (
+                    line_distance(h[n - 2], p[n - 2], h[n - 1], p[n - 1]) < MEET_TOL
+                ):
                     shoulder_point = ("meet", n - 2)
             else:
                 shoulder_point = ("tool", -1)

@@ -22,14 +22,17 @@ reproduce them is not returned.
 from __future__ import annotations
 
 import itertools
+import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Final
 
 import numpy as np
 import sympy as sp
+from numpy.typing import NDArray
 from sympy.polys.polyerrors import BasePolynomialError
 
+from kinematica.errors import KinematicaWarning
 from kinematica.robot import classify
 from kinematica.symbolic.kinematics import factors
 from kinematica.symbolic.model import SymbolicRobot
@@ -416,12 +419,27 @@ def _evaluate(
 
 
 def _check(ctx: _Ctx, plan: Sequence[Assign], pose: bool, seed: int = 0) -> bool:
-    model, robot = ctx.model, ctx.model.robot
-    p, R = target_symbols()
+    robot = ctx.model.robot
     rng = np.random.default_rng(seed)
     lim = robot.qlim
     lo = np.where(robot.is_prismatic, np.maximum(lim[:, 0], -1.0), -np.pi)
     hi = np.where(robot.is_prismatic, np.minimum(lim[:, 1], 1.0), np.pi)
+    with warnings.catch_warnings():
+        # derived solutions may lie beyond the joint limits: that is not the question here
+        warnings.simplefilter("ignore", KinematicaWarning)
+        return _check_poses(ctx, plan, pose, rng, lo, hi)
+
+
+def _check_poses(
+    ctx: _Ctx,
+    plan: Sequence[Assign],
+    pose: bool,
+    rng: np.random.Generator,
+    lo: NDArray[np.float64],
+    hi: NDArray[np.float64],
+) -> bool:
+    model, robot = ctx.model, ctx.model.robot
+    p, R = target_symbols()
     for _ in range(CHECK_POSES):
         q = rng.uniform(lo, hi)
         T0 = T = robot.fk(q)
