@@ -1,6 +1,9 @@
 """Motion: velocity kinematics, named singularities, workspace, trajectories.
 
-Layer 6: built on the robot and ik layers (public API only); numpy only.
+Layer 6: built on the robot and ik layers (public API only); numpy only. The
+velocity kinematics, the named singularities and the sampling of joint space
+live in the robot layer (``Robot.jacobian(euler=)``, ``Robot.singularities``,
+``Robot.random_q`` are thin methods over them) and are re-exported here.
 """
 
 from kinematica.motion.cartesian import (
@@ -10,8 +13,10 @@ from kinematica.motion.cartesian import (
     cartesian_path,
 )
 from kinematica.motion.export import read_csv, write_csv, write_json
-from kinematica.motion.sampling import random_q
-from kinematica.motion.singularities import (
+from kinematica.motion.trajectory import JointTrajectory, joint_trajectory, time_scaling
+from kinematica.motion.workspace import Workspace, WorkspaceSlice, workspace
+from kinematica.robot.sampling import random_q
+from kinematica.robot.singularities import (
     ELBOW_TOL,
     RANK_TOL,
     SHOULDER_TOL,
@@ -20,9 +25,7 @@ from kinematica.motion.singularities import (
     jacobian_rank,
     singularities,
 )
-from kinematica.motion.trajectory import JointTrajectory, joint_trajectory, time_scaling
-from kinematica.motion.velocity import analytic_jacobian, condition_number, manipulability
-from kinematica.motion.workspace import Workspace, WorkspaceSlice, workspace
+from kinematica.robot.velocity import analytic_jacobian, condition_number, manipulability
 
 __all__ = [
     "ELBOW_TOL",

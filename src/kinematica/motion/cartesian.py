@@ -30,7 +30,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.result import IKResult
-from kinematica.motion.singularities import _plan, singularities
+from kinematica.robot.singularities import singularities, singularity_plan
 from kinematica.spatial import (
     check_transform,
     make_transform,
@@ -157,7 +157,7 @@ class _Follower:
         self.revolute = ~robot.is_prismatic
         self.limited = robot.has_limits
         self.qlim = robot.qlim
-        plan = _plan(robot)
+        plan = singularity_plan(robot)
         self.rows = plan.rows
         self.square = len(plan.rows) == robot.dof and plan.rank == robot.dof
 
@@ -288,7 +288,7 @@ def cartesian_path(
     q_start = None if q0 is None else robot.check_q(q0, "q0")
     geo = _Geometry(A, B, None if via is None else np.asarray(via))
     if position_only is None:
-        position_only = _plan(robot).rows == (0, 1, 2)
+        position_only = singularity_plan(robot).rows == (0, 1, 2)
     follow = _Follower(robot, geo, bool(position_only))
     poses = geo(ss)
     m, n = ss.size, robot.dof

@@ -31,8 +31,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.errors import KinematicaError
-from kinematica.motion.sampling import Seed, random_q
-from kinematica.motion.velocity import manipulability as _manipulability
+from kinematica.robot.sampling import Seed, random_q
+from kinematica.robot.velocity import manipulability as _manipulability
 
 if TYPE_CHECKING:
     from kinematica.robot import Robot

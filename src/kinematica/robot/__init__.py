@@ -1,9 +1,10 @@
 """The Robot: DH table, limits, base and tool; forward kinematics and Jacobians; URDF."""
 
+from kinematica.robot.dh_rules import DHExtraction
 from kinematica.robot.load import load, robot_from_spec, spec_from_robot, write_robot_file
 from kinematica.robot.robot import Robot
 from kinematica.robot.structure import Structure, classify
-from kinematica.robot.urdf import DHExtraction, urdf_to_dh
+from kinematica.robot.urdf import urdf_to_dh
 
 __all__ = [
     "DHExtraction",

@@ -31,48 +31,19 @@ from kinematica.ik import IKBatchResult, IKResult, Tolerance, solve_ik
 from kinematica.kernels import fk as kernel_fk
 from kinematica.kernels import jacobian as kernel_jacobian
 from kinematica.kernels import joint_axes as kernel_joint_axes
-from kinematica.spatial import check_transform, orthonormalize
+from kinematica.robot.dh_rules import to_dh, to_urdf
+from kinematica.robot.frames import rigid_frame, short
+from kinematica.robot.save import write_robot_file
 
 if TYPE_CHECKING:
     import os
 
     from kinematica.io import RobotSpec
-    from kinematica.robot.urdf import DHExtraction
+    from kinematica.robot.dh_rules import DHExtraction
 
 __all__ = ["Robot"]
 
 FloatArray = NDArray[np.float64]
-
-
-def _short(value: object, limit: int = 60) -> str:
-    """``repr(value)``, cut to ``limit`` characters for messages."""
-    text = repr(value)
-    return text if len(text) <= limit else text[: limit - 3] + "..."
-
-
-def _check_frame(T: ArrayLike | None, what: str) -> FloatArray:
-    """A base or tool transform, checked as every transform is, then made exactly rigid.
-
-    A rotation written with a few digits (orthonormal to ``ORTHONORMAL_TOL``) is
-    accepted and replaced by the nearest rotation, so that forward kinematics
-    stays rigid to round-off; one orthonormal to round-off is kept as given.
-    """
-    if T is None:
-        return np.eye(4)
-    try:
-        raw = np.asarray(T)
-    except (TypeError, ValueError) as exc:
-        raise DimensionError(
-            f"{what} must be a 4x4 matrix of real numbers, got {_short(T)}"
-        ) from exc
-    if raw.dtype.kind not in "iuf":
-        raise DimensionError(f"{what} must be a 4x4 matrix of real numbers, got {_short(T)}")
-    if raw.shape != (4, 4):
-        raise DimensionError(f"{what} must be a 4x4 homogeneous transform, got shape {raw.shape}")
-    M = np.array(check_transform(raw, name=what), dtype=float)
-    M[:3, :3] = orthonormalize(M[:3, :3])[0]
-    M[3] = [0.0, 0.0, 0.0, 1.0]
-    return M
 
 
 @dataclass(frozen=True, eq=False)
@@ -115,8 +86,8 @@ class Robot:
                 )
         object.__setattr__(self, "links", links)
         object.__setattr__(self, "convention", check_convention(self.convention))
-        base = _check_frame(self.base, "base")
-        tool = _check_frame(self.tool, "tool")
+        base = rigid_frame(self.base, "base")
+        tool = rigid_frame(self.tool, "tool")
         base.flags.writeable = False
         tool.flags.writeable = False
         object.__setattr__(self, "base", base)
@@ -152,8 +123,8 @@ class Robot:
             links=tuple(rows),
             convention=check_convention(convention),
             name=name,
-            base=_check_frame(base, "base"),
-            tool=_check_frame(tool, "tool"),
+            base=rigid_frame(base, "base"),
+            tool=rigid_frame(tool, "tool"),
             description=description,
         )
 
@@ -223,7 +194,7 @@ class Robot:
         except (TypeError, ValueError) as exc:
             raise DimensionError(f"{name} must be numbers, got {q!r}") from exc
         if raw.dtype.kind not in "iuf":
-            raise DimensionError(f"{name} must be numbers, got {_short(q)}")
+            raise DimensionError(f"{name} must be numbers, got {short(q)}")
         if raw.ndim == 0 or raw.shape[-1] != self.dof:
             found = "a scalar" if raw.ndim == 0 else f"{raw.shape[-1]} (shape {raw.shape})"
             raise DimensionError(
@@ -335,7 +306,7 @@ class Robot:
 
         With ``euler`` (e.g. ``"ZYZ"``): the analytic Jacobian of the pose
         ``(x, y, z, a, b, c)`` instead, base frame only; NaN rotation rows in
-        gimbal lock. See :func:`kinematica.motion.analytic_jacobian`.
+        gimbal lock. See :func:`kinematica.robot.velocity.analytic_jacobian`.
 
         Args:
             q: ``(..., n)`` joint values.
@@ -355,7 +326,7 @@ class Robot:
                     "euler= gives the analytic Jacobian of the pose in the base frame; "
                     f"frame={frame!r} does not apply to it"
                 )
-            from kinematica.motion.velocity import analytic_jacobian
+            from kinematica.robot.velocity import analytic_jacobian
 
             return analytic_jacobian(self, q, euler)
         qa = self.check_q(q)
@@ -443,11 +414,11 @@ class Robot:
 
     def with_tool(self, tool: ArrayLike | None) -> Robot:
         """The same robot with another tool transform (``(4, 4)`` or ``None``)."""
-        return dataclasses.replace(self, tool=_check_frame(tool, "tool"))
+        return dataclasses.replace(self, tool=rigid_frame(tool, "tool"))
 
     def with_base(self, base: ArrayLike | None) -> Robot:
         """The same robot with another base transform (``(4, 4)`` or ``None``)."""
-        return dataclasses.replace(self, base=_check_frame(base, "base"))
+        return dataclasses.replace(self, base=rigid_frame(base, "base"))
 
     def with_limits(self, qlim: Sequence[Sequence[float] | None] | FloatArray) -> Robot:
         """The same robot with other joint limits (``(n, 2)``; ``None`` rows free)."""
@@ -472,8 +443,6 @@ class Robot:
 
     def save(self, path: str | os.PathLike[str]) -> None:
         """Write this robot as a robot file; see :func:`kinematica.write_robot_file`."""
-        from kinematica.robot.load import write_robot_file
-
         write_robot_file(self, path)
 
     # ---------------------------------------------------------------- URDF, DH rules
@@ -487,24 +456,19 @@ class Robot:
             A ``DHExtraction``: ``.robot``, ``.rules`` (which rule placed each
             frame), ``.fk_error``.
         """
-        from kinematica.robot.urdf import to_dh
-
         return to_dh(self, convention)
 
     def to_urdf(self, path: str | os.PathLike[str] | None = None) -> str:
         """The robot as URDF text (each link frame a DH frame), written to ``path`` if given."""
-        from kinematica.robot.urdf import to_urdf
-
         return to_urdf(self, path)
 
     # ------------------------------------------- motion (thin, over kinematica.motion)
     def singularities(self, q: ArrayLike, detail: bool = False) -> Any:
         """Names of the singularities at ``q`` (``[]`` when regular).
 
-        See :func:`kinematica.motion.singularities` (imported when called:
-        the motion layer sits above this one).
+        See :func:`kinematica.robot.singularities.singularities`.
         """
-        from kinematica.motion.singularities import singularities
+        from kinematica.robot.singularities import singularities
 
         return singularities(self, q, detail=detail)
 
@@ -513,8 +477,8 @@ class Robot:
     ) -> FloatArray:
         """``(n, dof)`` configurations drawn uniformly within the joint limits.
 
-        See :func:`kinematica.motion.random_q`.
+        See :func:`kinematica.robot.sampling.random_q`.
         """
-        from kinematica.motion.sampling import random_q
+        from kinematica.robot.sampling import random_q
 
         return random_q(self, n, seed=seed)

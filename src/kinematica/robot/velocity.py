@@ -26,7 +26,7 @@ FloatArray = NDArray[np.float64]
 
 #: Which rows of the Jacobian a measure uses: all six, the translational
 #: (``vx, vy, vz``) or the rotational (``ωx, ωy, ωz``) ones, or explicit indices.
-#: ``"task"``: the rows :func:`kinematica.motion.singularities` judges (position rows
+#: ``"task"``: the rows :func:`kinematica.robot.singularities.singularities` judges (position rows
 #: for arms whose whole mobility shows in the tool position, else all six).
 Axes = Literal["all", "trans", "rot", "task"] | Sequence[int]
 
@@ -54,7 +54,7 @@ def task_rows(axes: Axes) -> tuple[int, ...]:
 def _singular_values(robot: Robot, q: ArrayLike, axes: Axes) -> FloatArray:
     """``(..., min(m, n))`` singular values of the selected rows of ``J(q)``, descending."""
     if isinstance(axes, str) and axes == "task":
-        from kinematica.motion.singularities import task_plan_rows
+        from kinematica.robot.singularities import task_plan_rows
 
         rows = task_plan_rows(robot)
     else:

@@ -47,8 +47,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.ik.structure import MEET_TOL, line_distance, lines_parallel
-from kinematica.motion.sampling import generic_rank_samples
-from kinematica.robot import classify
+from kinematica.robot.sampling import generic_rank_samples
+from kinematica.robot.structure import classify
 
 if TYPE_CHECKING:
     from kinematica.robot import Robot
@@ -59,8 +59,11 @@ __all__ = [
     "SHOULDER_TOL",
     "WRIST_TOL",
     "Singularity",
+    "SingularityPlan",
     "jacobian_rank",
     "singularities",
+    "singularity_plan",
+    "task_plan_rows",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -117,7 +120,7 @@ class Singularity:
 
 
 @dataclass(frozen=True)
-class _Plan:
+class SingularityPlan:
     """What to test on one robot, read once from its structure."""
 
     rows: tuple[int, ...]  # Jacobian rows judged
@@ -129,7 +132,7 @@ class _Plan:
     enabled: frozenset[str] = frozenset({"wrist", "elbow", "shoulder"})
 
 
-_PLANS: weakref.WeakKeyDictionary[Robot, _Plan] = weakref.WeakKeyDictionary()
+_PLANS: weakref.WeakKeyDictionary[Robot, SingularityPlan] = weakref.WeakKeyDictionary()
 
 
 def _generic_rank(J: FloatArray) -> int:
@@ -137,7 +140,8 @@ def _generic_rank(J: FloatArray) -> int:
     return int(np.max(np.sum(s > RANK_TOL * s[:, :1], axis=1)))
 
 
-def _plan(robot: Robot) -> _Plan:
+def singularity_plan(robot: Robot) -> SingularityPlan:
+    """What to test on ``robot`` (its Jacobian rows, wrist, shoulder, elbow), cached."""
     if robot in _PLANS:
         return _PLANS[robot]
     st = classify(robot)
@@ -184,7 +188,7 @@ def _plan(robot: Robot) -> _Plan:
                     shoulder_point = ("meet", n - 2)
             else:
                 shoulder_point = ("tool", -1)
-    plan = _Plan(rows, rank, wrist, s_axis, elbow_point, shoulder_point)
+    plan = SingularityPlan(rows, rank, wrist, s_axis, elbow_point, shoulder_point)
     # A name whose test holds at generic configurations describes degenerate
     # geometry (e.g. coincident axes), not a singularity: it is not used.
     degenerate = {
@@ -199,7 +203,7 @@ def _plan(robot: Robot) -> _Plan:
 
 def task_plan_rows(robot: Robot) -> tuple[int, ...]:
     """The Jacobian rows judged for ``robot`` (see the module docstring)."""
-    return _plan(robot).rows
+    return singularity_plan(robot).rows
 
 
 def _unit(v: FloatArray) -> FloatArray:
@@ -235,7 +239,9 @@ def _covector(d: FloatArray, at: FloatArray, tool: FloatArray) -> FloatArray:
     return np.concatenate([d, np.cross(at - tool, d)], axis=-1)
 
 
-def _named(robot: Robot, plan: _Plan, q: FloatArray) -> list[tuple[str, FloatArray, FloatArray]]:
+def _named(
+    robot: Robot, plan: SingularityPlan, q: FloatArray
+) -> list[tuple[str, FloatArray, FloatArray]]:
     """Per name: ``(name, flagged (B,), geometric covector (B, 6))``, plus measures."""
     h, p = robot.joint_axes(q)
     tool = robot.fk(q)[:, :3, 3]
@@ -322,7 +328,7 @@ def singularities(robot: Robot, q: ArrayLike, detail: bool = False) -> Any:
     """
     qa = robot.check_q(q)
     flat = qa.reshape(-1, robot.dof)
-    plan = _plan(robot)
+    plan = singularity_plan(robot)
     J = robot.jacobian(flat)[:, plan.rows, :]
     U, S, _ = np.linalg.svd(J)
     ratio = S / np.where(S[:, :1] > 0, S[:, :1], 1.0)
@@ -368,7 +374,7 @@ def jacobian_rank(robot: Robot, q: ArrayLike) -> Any:
         configurations). The rows are the position rows for arms whose whole
         mobility shows in the tool position, all six otherwise.
     """
-    plan = _plan(robot)
+    plan = singularity_plan(robot)
     J = robot.jacobian(q)[..., plan.rows, :]
     s = np.linalg.svd(J, compute_uv=False)
     rank = np.sum(s > RANK_TOL * s[..., :1], axis=-1)
