@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 from typing import Any
 
 import numpy as np
@@ -11,6 +12,7 @@ from numpy.typing import NDArray
 
 from kinematica.cli.format import fmt, matrix, num, plain, table
 from kinematica.cli.options import (
+    PER_METRE,
     add_common,
     add_precision,
     add_robot,
@@ -27,6 +29,7 @@ from kinematica.cli.options import (
     transform_out,
     units,
 )
+from kinematica.errors import ArgumentError
 from kinematica.ik.result import IKResult
 from kinematica.io import builtin_names
 from kinematica.robot import Robot, classify, load
@@ -199,11 +202,19 @@ def ik(args: argparse.Namespace) -> int:
     robot = robot_from_args(args)
     target = _target(robot, args)
     q0 = None if args.q0 is None else q_in(robot, args.q0, args, "q0")
+    tol = _tolerance(robot, args)
     res = robot.ik(
-        target, method=args.method, respect_limits=not args.ignore_limits, q0=q0, seed=args.seed
+        target,
+        method=args.method,
+        respect_limits=not args.ignore_limits,
+        q0=q0,
+        seed=args.seed,
+        tol=tol,
     )
     assert isinstance(res, IKResult)
     solved = res.success
+    for note in res.notes:  # e.g. a rotation projected onto SO(3): said on stderr too
+        print(f"kinematica: note: {plain(note)}", file=sys.stderr)
     if args.json:
         dump(
             {
@@ -222,6 +233,10 @@ def ik(args: argparse.Namespace) -> int:
                 "out_of_limits_branches": list(res.out_of_limits_branches),
                 "free_joints": [f"q{i + 1}" for i in res.free_joints],
                 "gap_m": res.gap,
+                "notes": list(res.notes),
+                "tolerance": (
+                    None if tol is None else {"position_m": tol[0], "rotation_rad": tol[1]}
+                ),
             }
         )
         return 0 if solved else 1
@@ -250,6 +265,19 @@ def ik(args: argparse.Namespace) -> int:
             )
         )
     return 0 if solved else 1
+
+
+def _tolerance(robot: Robot, args: argparse.Namespace) -> tuple[float, float] | None:
+    """``--tol P [R]`` in SI: P in the length unit, R in the angle unit (R = P when left out)."""
+    if args.tol is None:
+        return None
+    if len(args.tol) > 2:
+        raise ArgumentError(f"--tol takes 1 or 2 numbers (position, rotation), got {len(args.tol)}")
+    position = float(args.tol[0]) / PER_METRE[length_unit(robot, args)]
+    if len(args.tol) == 1:
+        return position, position
+    rotation = float(args.tol[1]) if args.rad else math.radians(float(args.tol[1]))
+    return position, rotation
 
 
 def _seed(text: str) -> int:
@@ -332,6 +360,15 @@ def register(sub: Any) -> None:
         help="list solutions outside the joint limits among the others",
     )
     p.add_argument("--seed", type=_seed, default=0, help="seed of numeric restarts (default 0)")
+    p.add_argument(
+        "--tol",
+        nargs="+",
+        type=float,
+        metavar="TOL",
+        help="acceptance tolerance: position in the length unit, then rotation in the angle "
+        "unit; one number: the position, and its value in metres as radians for the "
+        "rotation; default 1e-10 m and 1e-10 rad",
+    )
     add_precision(p)
     add_common(p)
     p.set_defaults(run=ik)

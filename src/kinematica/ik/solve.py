@@ -31,6 +31,7 @@ from kinematica.kernels.ik_check import (
     INFO_GAP,
     META_COUNT,
     META_GAP,
+    META_NEAR,
     META_NEAREST_POSITION,
     META_NEAREST_ROTATION,
     META_OUT_COUNT,
@@ -261,6 +262,7 @@ def _one(
         nearest_error=(float(meta[META_NEAREST_POSITION]), float(meta[META_NEAREST_ROTATION])),
         notes=targets.notes.get(0, ()),
         complete=closed is not None,
+        near_singular=bool(meta[META_NEAR]),
     )
 
 
@@ -318,4 +320,5 @@ def _many(
         errors={unravel(i): msg for i, msg in targets.invalid.items()},
         notes={unravel(i): note for i, note in targets.notes.items()},
         complete=closed is not None,
+        near_singular=(meta[:, META_NEAR] != 0.0).reshape(shape),
     )
