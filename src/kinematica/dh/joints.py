@@ -24,6 +24,7 @@ import numpy as np
 
 from kinematica.errors import ArgumentError, KinematicaError, KinematicaWarning
 from kinematica.io import plausible
+from kinematica.io.spec import CONVENTION_ALIASES, Convention, convention_names
 
 __all__ = [
     "Convention",
@@ -35,19 +36,7 @@ __all__ = [
     "values_checked",
 ]
 
-Convention = Literal["standard", "modified"]
 JointType = Literal["R", "P"]
-
-_CONVENTION_ALIASES: dict[str, Convention] = {
-    "standard": "standard",
-    "dh": "standard",
-    "paul": "standard",
-    "distal": "standard",
-    "modified": "modified",
-    "mdh": "modified",
-    "craig": "modified",
-    "proximal": "modified",
-}
 
 
 def check_convention(convention: str) -> Convention:
@@ -61,12 +50,11 @@ def check_convention(convention: str) -> Convention:
         KinematicaError: If the name is not a known convention.
     """
     key = str(convention).strip().lower()
-    if key not in _CONVENTION_ALIASES:
+    if key not in CONVENTION_ALIASES:
         raise KinematicaError(
-            f"unknown DH convention {convention!r}: expected 'standard' (Paul, distal) "
-            "or 'modified' (Craig, proximal)"
+            f"unknown DH convention {convention!r}: expected {convention_names()}"
         )
-    return _CONVENTION_ALIASES[key]
+    return CONVENTION_ALIASES[key]
 
 
 # Inside `values_checked()`, joints skip the plausibility warnings.

@@ -22,7 +22,14 @@ from kinematica.errors import KinematicaWarning, RobotFileError, located
 from kinematica.io import plausible
 from kinematica.io.expr import Affine, Expression, ExpressionError, is_joint_variable
 from kinematica.io.expr import parse_expression as _parse_expression
-from kinematica.io.spec import Convention, FrameSpec, JointKind, JointSpec, RobotSpec
+from kinematica.io.spec import (
+    CONVENTION_ALIASES,
+    FrameSpec,
+    JointKind,
+    JointSpec,
+    RobotSpec,
+    convention_names,
+)
 
 TOP_KEYS: Final = (
     "name",
@@ -42,15 +49,6 @@ UNIT_KEYS: Final = ("angle", "length")
 #: Keys of a bounded parameter, ``l1: {value: 0.3, min: 0.1, max: 0.9}`` (design templates).
 BOUND_KEYS: Final = ("value", "min", "max")
 
-CONVENTIONS: Final[dict[str, Convention]] = {
-    "standard": "standard",
-    "dh": "standard",
-    "paul": "standard",
-    "distal": "standard",
-    "modified": "modified",
-    "craig": "modified",
-    "proximal": "modified",
-}
 JOINT_TYPES: Final[dict[str, JointKind]] = {
     "r": "R",
     "revolute": "R",
@@ -589,11 +587,10 @@ def parse_robot_dict(
             "courses) or modified (Craig/proximal)"
         )
     word = top["convention"]
-    convention = CONVENTIONS.get(word.strip().lower()) if isinstance(word, str) else None
+    convention = CONVENTION_ALIASES.get(word.strip().lower()) if isinstance(word, str) else None
     if convention is None:
         raise r.error(
-            f"expected standard (also dh, paul, distal) or modified (also craig, proximal), "
-            f"found {describe(word)}",
+            f"expected {convention_names()}, found {describe(word)}",
             key="convention",
         )
 

@@ -18,10 +18,40 @@ import numpy as np
 
 from kinematica.errors import RobotFileError
 
-__all__ = ["Convention", "FrameSpec", "JointKind", "JointSpec", "RobotSpec"]
+__all__ = [
+    "CONVENTION_ALIASES",
+    "Convention",
+    "FrameSpec",
+    "JointKind",
+    "JointSpec",
+    "RobotSpec",
+    "convention_names",
+]
 
 JointKind = Literal["R", "P"]
 Convention = Literal["standard", "modified"]
+
+#: Every name a DH convention goes by (lower case) -> its canonical name. The one
+#: table of aliases: robot files and ``Robot.from_dh`` read conventions through it.
+CONVENTION_ALIASES: dict[str, Convention] = {
+    "standard": "standard",
+    "dh": "standard",
+    "paul": "standard",
+    "distal": "standard",
+    "modified": "modified",
+    "mdh": "modified",
+    "craig": "modified",
+    "proximal": "modified",
+}
+
+
+def convention_names() -> str:
+    """The aliases, for messages: ``"standard (also dh, paul, distal) or modified (...)"``."""
+    parts = []
+    for canonical in ("standard", "modified"):
+        others = [k for k, v in CONVENTION_ALIASES.items() if v == canonical and k != canonical]
+        parts.append(f"{canonical} (also {', '.join(others)})")
+    return " or ".join(parts)
 
 
 def _default_units() -> dict[str, str]:
