@@ -37,7 +37,7 @@ def _robot_file(robot: Robot, suffix: str, rad: bool, rules: tuple[FrameRule, ..
     spec = dataclasses.replace(spec_from_robot(robot), units=units)
     text = dumps_robot_file(spec, suffix)
     if rules and suffix.lower() in (".yaml", ".yml", ".toml"):
-        head = [f"# {robot.convention} DH frames placed by the rules (seed 000):"]
+        head = [f"# {robot.convention} DH frames placed by the Denavit-Hartenberg rules:"]
         text = "\n".join([*head, *(f"#   {r}" for r in rules)]) + "\n" + text
     return text
 

@@ -1,4 +1,4 @@
-"""Robot design: link lengths for a task (seed 000's "dimensiones óptimas").
+"""Robot design: link lengths for a task ("dimensiones óptimas de los eslabones").
 
 A *design template* is a robot file whose parameters carry bounds
 (``l1: {value: 0.3, min: 0.1, max: 0.9}``; others may be expressions of them,

@@ -1,4 +1,4 @@
-"""A DH table read off the joint axes of any serial chain, by the rules of seed 000.
+"""A DH table read off the joint axes of any serial chain, by the Denavit-Hartenberg rules.
 
 Input: each joint's axis as a line in space at q = 0 (direction, and the joint's
 own frame, whose origin is on the axis), the tip pose at q = 0, and the named
@@ -9,7 +9,7 @@ and base and tool transforms for whatever DH cannot express. The table
 reproduces the chain's forward kinematics for every q: two chains with the
 same joint lines and the same home pose have the same FK.
 
-Frames, standard convention (seed 000, rules 4-9): ``S_(k-1)`` has z along
+Frames, standard convention (the DH method's rules 4-9): ``S_(k-1)`` has z along
 joint k's axis, in the sense of the joint's positive motion.
 
 - ``S_0`` (rule 5: anywhere on axis 1): the nearest frame of the description
@@ -248,7 +248,7 @@ def _modified_frames(g: ChainGeometry) -> tuple[list[FloatArray], list[FrameRule
 
 
 def _row(F0: FloatArray, F1: FloatArray, convention: Convention) -> tuple[float, ...]:
-    """``(theta, d, a, alpha)`` between consecutive frames (seed 000, rules 10-13)."""
+    """``(theta, d, a, alpha)`` between consecutive frames (the DH method's rules 10-13)."""
     x0, y0, z0, o0 = F0[:3, 0], F0[:3, 1], F0[:3, 2], F0[:3, 3]
     x1, z1, o1 = F1[:3, 0], F1[:3, 2], F1[:3, 3]
     step = o1 - o0

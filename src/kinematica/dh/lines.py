@@ -1,6 +1,6 @@
 """Joint axes as lines in space, and the DH frames that can sit on them.
 
-The geometry under the DH rules of seed 000: the common normal of two axes
+The geometry under the Denavit-Hartenberg rules: the common normal of two axes
 (rules 6 and 7), and the "closest valid DH frame" to a frame a description
 already has (a URDF link or joint frame), so that a table extracted from a
 description keeps its frames wherever they already obey the rules.

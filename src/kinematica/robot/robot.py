@@ -406,7 +406,7 @@ class Robot:
         """The same robot written in another DH convention.
 
         Base and tool absorb the regrouped ``a``/``alpha`` so that ``fk(q)`` is
-        unchanged for every ``q`` (the intermediate frames move, as seed 001 says).
+        unchanged for every ``q`` (the intermediate frames move; the end pose does not).
         """
         target = check_convention(convention)
         rows, base, tool = convert_table(self.links, self.convention, target, self.base, self.tool)
@@ -447,7 +447,7 @@ class Robot:
 
     # ---------------------------------------------------------------- URDF, DH rules
     def to_dh(self, convention: str = "standard") -> DHExtraction:
-        """The DH table read off this robot's joint axes by the rules of seed 000.
+        """The DH table read off this robot's joint axes by the Denavit-Hartenberg rules.
 
         In the robot's own convention it gives back the same rows; in the
         other, the frames the rules place. See :func:`kinematica.urdf_to_dh`.
