@@ -146,9 +146,9 @@ def _poses(raw: np.ndarray) -> Targets:
     if poses.shape[0] == 1:
         pose_defects(poses[0], defects[0])
         one = defects[0].tolist()  # one target: plain floats beat numpy's per-call cost
-        if one[DEFECT_FINITE] and one[DEFECT_ORTHO] <= ROUNDOFF_TOL:
-            if one[DEFECT_LAST_ROW] == 0.0 and one[DEFECT_DET] > 0.0:
-                return Targets(poses, shape, False)
+        rigid = one[DEFECT_FINITE] and one[DEFECT_ORTHO] <= ROUNDOFF_TOL
+        if rigid and one[DEFECT_LAST_ROW] == 0.0 and one[DEFECT_DET] > 0.0:
+            return Targets(poses, shape, False)
     else:
         pose_defects_batch(poses, defects)
     finite = defects[:, DEFECT_FINITE] != 0.0
