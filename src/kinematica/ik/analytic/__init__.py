@@ -6,9 +6,10 @@ in the order they are tried.
 
 from __future__ import annotations
 
+from kinematica.ik.analytic import elbow_arms, planar_arms
 from kinematica.ik.analytic.legacy import LEGACY_SPECS
 from kinematica.ik.registry import SolverSpec
 
 __all__ = ["SOLVERS"]
 
-SOLVERS: tuple[SolverSpec, ...] = (*LEGACY_SPECS,)
+SOLVERS: tuple[SolverSpec, ...] = (*planar_arms.SPECS, *elbow_arms.SPECS, *LEGACY_SPECS)
