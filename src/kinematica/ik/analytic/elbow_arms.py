@@ -53,6 +53,7 @@ from kinematica.kernels.solvers.elbow_arms import (
     P_S3,
     P_SCALE,
     P_SIZE,
+    P_SLACK,
     P_UP,
 )
 
@@ -119,7 +120,7 @@ def build(chain: DHChain, features: Features, target: TargetKind) -> ClosedForm 
     params[P_K : P_K + 3] = k
     params[P_E1 : P_E1 + 3] = e1
     params[P_E2 : P_E2 + 3] = e2
-    params[P_HK : P_HK + 3] = hk / np.linalg.norm(hk)
+    params[P_HK : P_HK + 3] = hk
     params[P_P2 : P_P2 + 3] = p[1]
     params[P_A : P_A + 2] = a
     params[P_B : P_B + 2] = b
@@ -134,6 +135,10 @@ def build(chain: DHChain, features: Features, target: TargetKind) -> ClosedForm 
     params[P_RMIN] = float(np.hypot(dh, abs(dr - rho3)))
     params[P_RMAX] = float(np.hypot(dh, dr + rho3))
     params[P_SCALE] = float(np.linalg.norm(a) + np.linalg.norm(b)) + abs(height) + offset
+    # Axis 3 is parallel to axis 2 within the classification's tolerance: a turn
+    # about it moves the tool (within `length`) by at most 2 δ length off the ideal.
+    length = float(sum(np.linalg.norm(np.diff(np.vstack([p, x]), axis=0), axis=1)))
+    params[P_SLACK] = 2.0 * float(np.linalg.norm(np.cross(h[2], k))) * length
     params.flags.writeable = False
     return ClosedForm(
         name=kind,

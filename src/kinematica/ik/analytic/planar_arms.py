@@ -39,8 +39,10 @@ from kinematica.kernels.solvers.planar_arms import (
     P_E1,
     P_E2,
     P_K,
+    P_LENGTH,
     P_LIFT,
     P_LIFT_SIGN,
+    P_LIFT_TILT,
     P_NREV,
     P_ORIGIN,
     P_POSE,
@@ -52,7 +54,9 @@ from kinematica.kernels.solvers.planar_arms import (
     P_RMIN,
     P_SIGN,
     P_SIZE,
+    P_SLACK,
     P_SLIDE,
+    P_SLIDE_TILT,
     P_SWAP,
     P_TIP,
     P_TOOL,
@@ -156,6 +160,17 @@ def build(chain: DHChain, features: Features, target: TargetKind) -> ClosedForm 
     params[P_RMAX] = reach
     params[P_RMIN] = max(0.0, 2.0 * max(lengths) - reach)
     params[P_QLIM : P_QLIM + 2 * chain.dof] = chain.qlim.ravel()
+    # How far from the ideal arm this one is (its axes parallel to k within the
+    # classification's tolerance): a turn about an axis tilted by δ moves every
+    # point within `length` of it by at most 2 δ length more or less.
+    length = float(sum(np.linalg.norm(np.diff(np.vstack([p, t_M]), axis=0), axis=1)))
+    tilts = [float(np.linalg.norm(np.cross(h[j], k))) for j in rev]
+    params[P_LENGTH] = length
+    params[P_SLACK] = 2.0 * sum(tilts) * length
+    if slide >= 0:
+        params[P_SLIDE_TILT] = abs(float(h[slide] @ k))
+    if lift >= 0:
+        params[P_LIFT_TILT] = float(np.linalg.norm(np.cross(h[lift], k)))
     params.flags.writeable = False
     return ClosedForm(
         name=kind,

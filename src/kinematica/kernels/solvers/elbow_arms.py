@@ -37,7 +37,7 @@ import numpy as np
 
 from kinematica.kernels._numba import Array, batch_kernel, kernel
 from kinematica.kernels.geometry import rotate, subproblem1, trig_linear
-from kinematica.kernels.ik_check import INFO_FREE, INFO_GAP, INFO_SINGULAR
+from kinematica.kernels.ik_check import INFO_FREE, INFO_GAP, INFO_NEAR, INFO_SINGULAR
 from kinematica.kernels.solvers.planar_arms import SINGULAR_TOL, turn, two_link
 
 __all__ = [
@@ -62,6 +62,7 @@ __all__ = [
     "P_S3",
     "P_SCALE",
     "P_SIZE",
+    "P_SLACK",
     "P_UP",
     "solve",
     "solve_batch",
@@ -74,7 +75,7 @@ P_P1 = 4  # (3,) a point on axis 1 (m)
 P_K = 7  # (3,) axes 2 and 3 direction k (unit)
 P_E1 = 10  # (3,) basis e1 of the plane normal to k
 P_E2 = 13  # (3,) e2 = k × e1
-P_HK = 16  # (3,) h1 × k (unit: the axes are perpendicular)
+P_HK = 16  # (3,) h1 × k
 P_P2 = 19  # (3,) a point on axis 2 (m)
 P_A = 22  # (2,) link 2, axis 2 to axis 3 at q = 0, plane coordinates (m)
 P_B = 24  # (2,) link 3, axis 3 to the tool origin at q = 0, plane coordinates (m)
@@ -89,7 +90,8 @@ P_OFFSET = 40  # length of that common normal (m)
 P_RMIN = 41  # least distance of the tool origin from the normal's foot on axis 2 (m)
 P_RMAX = 42  # largest such distance (m)
 P_SCALE = 43  # size of the arm (m): the scale of SINGULAR_TOL
-P_SIZE = 44
+P_SLACK = 44  # how far axis 3's tilt off k may put the tool from the ideal arm's (m)
+P_SIZE = 45
 
 
 @kernel
@@ -231,6 +233,9 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
     r = math.hypot(math.hypot(dx, dy), dz)
     a = params[P_OFFSET]
     gap = max(miss, r - a - params[P_RMAX], params[P_RMIN] - a - r, 0.0)
+    if params[P_SLACK] > SINGULAR_TOL * params[P_SCALE]:  # axes 2 and 3 not exactly parallel
+        info[INFO_NEAR] = 1.0
+        gap -= params[P_SLACK]
     info[INFO_GAP] = gap if gap > SINGULAR_TOL * params[P_SCALE] else np.nan  # beyond round-off
 
 

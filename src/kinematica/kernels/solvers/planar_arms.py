@@ -42,7 +42,13 @@ import numba
 import numpy as np
 
 from kinematica.kernels._numba import Array, batch_kernel, kernel
-from kinematica.kernels.ik_check import INFO_FREE, INFO_GAP, INFO_SINGULAR, LIMIT_TOL
+from kinematica.kernels.ik_check import (
+    INFO_FREE,
+    INFO_GAP,
+    INFO_NEAR,
+    INFO_SINGULAR,
+    LIMIT_TOL,
+)
 from kinematica.kernels.so3 import wrap
 
 __all__ = [
@@ -51,8 +57,10 @@ __all__ = [
     "P_E1",
     "P_E2",
     "P_K",
+    "P_LENGTH",
     "P_LIFT",
     "P_LIFT_SIGN",
+    "P_LIFT_TILT",
     "P_NREV",
     "P_ORIGIN",
     "P_POSE",
@@ -64,7 +72,9 @@ __all__ = [
     "P_RMIN",
     "P_SIGN",
     "P_SIZE",
+    "P_SLACK",
     "P_SLIDE",
+    "P_SLIDE_TILT",
     "P_SWAP",
     "P_TIP",
     "P_TOOL",
@@ -87,7 +97,7 @@ SINGULAR_TOL = 1e-12
 #: Representative turns of a free last joint tried, from the middle of its
 #: range outwards (each with both signs), until a candidate is within the
 #: joint limits (position targets of the 3R, PRR and SCARA arms).
-FREE_SAMPLES = 17
+FREE_SAMPLES = 33
 
 # Parameters (a flat array packed by kinematica.ik.analytic.planar_arms).
 P_POSE = 0  # 1.0: pose targets, 0.0: position targets (tool origin)
@@ -112,7 +122,11 @@ P_REACH = 43  # sum of the in-plane link lengths (m): the scale of SINGULAR_TOL
 P_RMIN = 44  # least distance of the tool origin from the first revolute axis (m)
 P_RMAX = 45  # largest distance from that axis (or across the slide's line) (m)
 P_QLIM = 46  # (4, 2) joint limits (rad or m; ±inf where there are none)
-P_SIZE = 54
+P_SLACK = 54  # how far the arm's revolute axes may put the tool from the ideal arm's (m)
+P_SLIDE_TILT = 55  # |k · slide direction|: the slide's tilt out of the plane (sine)
+P_LIFT_TILT = 56  # |k × lift direction|: the SCARA slide's tilt off k (sine)
+P_LENGTH = 57  # sum of the distances between consecutive axes and to the tool (m)
+P_SIZE = 58
 
 _TWO_PI = 2.0 * math.pi
 
@@ -370,10 +384,10 @@ def _inside(params: Array, q: Array) -> bool:
 
 @kernel
 def _fraction(i: int) -> float:
-    """The i-th sample of (0, 1), from the middle outwards: 0.5, 0.5 ± 1/18, 0.5 ± 2/18, ..."""
+    """The i-th of ``FREE_SAMPLES`` samples of [0, 1], from the middle outwards to both ends."""
     j = (i + 1) // 2
     side = 1.0 if i % 2 == 1 else -1.0
-    return 0.5 + side * j / (FREE_SAMPLES + 1)
+    return 0.5 + side * j / (FREE_SAMPLES - 1)
 
 
 @kernel
@@ -387,6 +401,65 @@ def _window_rep(params: Array, j: int) -> float:
 
 
 @kernel
+def _slide_length(
+    params: Array, along: float, across: float, a: float, z: float, fwd: bool
+) -> float:
+    """The length ``ℓ`` that puts the slide mid-way in its limits on one branch, or -1.
+
+    On the forward (backward) branch the slide is ``along ∓ √(ℓ² − across²)``
+    for ``ℓ`` in ``[a, z]``; -1 when no such slide is within the limits.
+    """
+    j = int(params[P_SLIDE])
+    r_lo = math.sqrt(max((a - across) * (a + across), 0.0))
+    r_hi = math.sqrt(max((z - across) * (z + across), 0.0))
+    lo = params[P_QLIM + 2 * j]
+    hi = params[P_QLIM + 2 * j + 1]
+    if fwd:  # s = along - r: r = along - s in [along - hi, along - lo]
+        r0 = max(r_lo, along - hi)
+        r1 = min(r_hi, along - lo)
+    else:  # s = along + r
+        r0 = max(r_lo, lo - along)
+        r1 = min(r_hi, hi - along)
+    if r0 > r1:
+        return -1.0
+    r = 0.5 * (r0 + r1) if math.isfinite(r0 + r1) else min(max(0.5 * (r_lo + r_hi), r0), r1)
+    return math.hypot(r, across)
+
+
+@kernel
+def _free_turn(place: Array, ell: float, below: bool) -> float:
+    """The last joint's turn (rad) that makes the last two links span ``ℓ``.
+
+    ``below``: the angle from link ``b`` to link ``c`` is <= 0 (else >= 0).
+    """
+    Lb = place[3]
+    Lc = place[4]
+    shortest = abs(Lb - Lc)
+    longest = Lb + Lc
+    S = max((longest - ell) * (longest + ell), 0.0)
+    C = max((ell - shortest) * (ell + shortest), 0.0)
+    psi = 2.0 * math.atan2(math.sqrt(S), math.sqrt(C))
+    return (-psi if below else psi) - place[5]
+
+
+@kernel
+def _free_try(params: Array, place: Array, d: float, br: Array, tri: Array, Q: Array) -> bool:
+    """Candidates with the free last joint turned by ``d``; True on a fold continuum."""
+    last = int(params[P_NREV]) - 1
+    lx = params[P_AXIS + 2 * last]
+    ly = params[P_AXIS + 2 * last + 1]
+    cx = params[P_TIP] - lx
+    cy = params[P_TIP + 1] - ly
+    c = math.cos(d)
+    s = math.sin(d)
+    fold = _reach(
+        params, last, place[0], place[1], lx + c * cx - s * cy, ly + s * cx + c * cy, br, tri
+    )
+    _emit(params, br, last, d, False, place[2], Q)
+    return fold
+
+
+@kernel
 def _free_last(
     params: Array, x: float, y: float, dz: float, br: Array, tri: Array, Q: Array, info: Array
 ) -> bool:
@@ -394,18 +467,20 @@ def _free_last(
 
     The last two links, ``b`` (to the last axis) and ``c`` (from it to the
     tool origin), span any length ``ℓ`` in ``[|Lb − Lc|, Lb + Lc]``; the joints
-    before reach the target (``x, y``) with ``ℓ`` in some range. Representative
-    lengths are tried from the middle of both ranges outwards (``FREE_SAMPLES``,
-    each with both signs of the angle between ``b`` and ``c``) until a candidate
-    is within the joint limits; else the middle one stays. A tool origin on
-    the last axis (``Lc = 0``) leaves that joint wholly free: 0, or the middle
-    of its limits.
+    before reach the target (``x, y``) with ``ℓ`` in some range. The
+    representative is the first of these lengths (each with both signs of the
+    angle between ``b`` and ``c``) that puts a candidate within the joint
+    limits, else the first: after a slide, the lengths that put it mid-way in
+    its limits on either branch; then ``FREE_SAMPLES`` lengths from the middle
+    of the range outwards. A tool origin on the last axis (``Lc = 0``) leaves
+    that joint wholly free: 0, or the middle of its limits.
 
     Returns:
         True on the fold continuum of the remaining triangle.
     """
     last = int(params[P_NREV]) - 1
     jl = int(params[P_REV + last])
+    slide = params[P_SLIDE] >= 0.0
     lx = params[P_AXIS + 2 * last]
     ly = params[P_AXIS + 2 * last + 1]
     bx = lx - params[P_AXIS + 2 * last - 2]
@@ -414,7 +489,8 @@ def _free_last(
     cy = params[P_TIP + 1] - ly
     rx = x - params[P_AXIS]
     ry = y - params[P_AXIS + 1]
-    if params[P_SLIDE] >= 0.0:  # ℓ at least the distance across the slide
+    along = rx * params[P_U] + ry * params[P_U + 1]
+    if slide:  # ℓ at least the distance across the slide
         lo = abs(ry * params[P_U] - rx * params[P_U + 1])
         hi = math.inf
     else:  # the 2R triangle before it: |r - L1| <= ℓ <= r + L1
@@ -435,26 +511,32 @@ def _free_last(
     if wholly or z - a > tol:
         info[INFO_SINGULAR] = 1.0
         info[INFO_FREE + jl] = 1.0
-    psi_bc = turn(bx, by, cx, cy)
-    tries = 1 if wholly else (2 * FREE_SAMPLES if a <= z else 2)
-    fold = False
-    for attempt in range(tries + 1):
-        k = 0 if attempt == tries else attempt  # after the last: back to the first
-        if wholly:
-            d = params[P_SIGN + last] * _window_rep(params, jl)
+    place = np.empty(6)  # the target, its height, the last two links, and their angle
+    place[0] = x
+    place[1] = y
+    place[2] = dz
+    place[3] = Lb
+    place[4] = Lc
+    place[5] = turn(bx, by, cx, cy)
+    if wholly:  # the other joints do not depend on it
+        return _free_try(params, place, _window_rep(params, jl) * params[P_SIGN + last], br, tri, Q)
+    if a > z:  # out of reach: the nearest length
+        return _free_try(
+            params, place, _free_turn(place, min(max(a, shortest), longest), False), br, tri, Q
+        )
+    first = 2 if slide else 0  # lengths from the slide's limits first
+    for t in range(first + FREE_SAMPLES):
+        if t < first:
+            ell = _slide_length(params, along, lo, a, z, t == 0)
+            if ell < 0.0:
+                continue
         else:
-            ell = a + _fraction(k // 2) * (z - a) if a <= z else min(max(a, shortest), longest)
-            S = max((longest - ell) * (longest + ell), 0.0)
-            C = max((ell - shortest) * (ell + shortest), 0.0)
-            psi = 2.0 * math.atan2(math.sqrt(S), math.sqrt(C))
-            d = (psi if k % 2 == 0 else -psi) - psi_bc
-        c = math.cos(d)
-        s = math.sin(d)
-        fold = _reach(params, last, x, y, lx + c * cx - s * cy, ly + s * cx + c * cy, br, tri)
-        _emit(params, br, last, d, False, dz, Q)
-        if attempt == tries or _inside(params, Q[0]) or _inside(params, Q[1]):
-            break
-    return fold
+            ell = a + _fraction(t - first) * (z - a)
+        for side in range(2):
+            fold = _free_try(params, place, _free_turn(place, ell, side == 1), br, tri, Q)
+            if _inside(params, Q[0]) or _inside(params, Q[1]):
+                return fold
+    return _free_try(params, place, _free_turn(place, 0.5 * (a + z), False), br, tri, Q)
 
 
 @kernel
@@ -488,7 +570,17 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
         T[1, 3] - params[P_TOOL + 1],
         T[2, 3] - params[P_TOOL + 2],
     )
+    # The arm's axes are parallel (or normal) to k within the classification's
+    # tolerance: the ideal arm solved here may put the tool up to `slack` away
+    # from the real one. Beyond round-off, a gap shrinks by it and a miss is no proof.
+    slack = params[P_SLACK] + params[P_SLIDE_TILT] * (
+        math.hypot(math.hypot(ox, oy), oz) + params[P_LENGTH]
+    )
+    slack += params[P_LIFT_TILT] * (abs(dz) + params[P_LENGTH])
     gap = _gap(params, x, y, dz)
+    if slack > SINGULAR_TOL * params[P_REACH]:
+        info[INFO_NEAR] = 1.0
+        gap -= slack
     info[INFO_GAP] = gap if gap > SINGULAR_TOL * params[P_REACH] else np.nan  # beyond round-off
     if pose:  # the orientation: the total turn, and where the last revolute axis goes
         phi = math.atan2(_rotated_dot(params, P_E2, T, P_RE1), _rotated_dot(params, P_E1, T, P_RE1))
@@ -522,6 +614,27 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
     if fold:
         info[INFO_SINGULAR] = 1.0
         info[INFO_FREE + int(params[P_REV])] = 1.0
+    if info[INFO_NEAR] != 0.0:
+        _snap_slides(params, Q, slack)
+
+
+@kernel
+def _snap_slides(params: Array, Q: Array, slack: float) -> None:
+    """Slides that the ideal arm puts beyond a limit by less than ``slack`` (m) go onto it.
+
+    The real arm's slide is uncertain by that much; the check judges the result.
+    """
+    for j in (int(params[P_SLIDE]), int(params[P_LIFT])):
+        if j < 0:
+            continue
+        lo = params[P_QLIM + 2 * j]
+        hi = params[P_QLIM + 2 * j + 1]
+        for row in range(Q.shape[0]):
+            v = Q[row, j]
+            if lo - slack <= v < lo:
+                Q[row, j] = lo
+            elif hi < v <= hi + slack:
+                Q[row, j] = hi
 
 
 @batch_kernel
