@@ -26,7 +26,7 @@ from kinematica.dh import Prismatic, Revolute
 from kinematica.ik import IKBatchResult, IKResult, closed_form
 from kinematica.ik.analytic.planar_arms import LENGTH_TOL
 from kinematica.kernels.ik_check import INFO_FREE, INFO_GAP, INFO_SINGULAR
-from kinematica.kernels.solvers.planar_arms import SINGULAR_TOL
+from kinematica.kernels.solvers.triangle import SINGULAR_TOL
 from kinematica.robot import Robot, classify
 
 FloatArray = NDArray[np.float64]
@@ -646,3 +646,63 @@ def test_kernel_reports_gap_only_outside_the_reach() -> None:
     far[:3, 3] *= 10
     _, _, info = kernel_candidates(robot, far[None])
     assert info[0, INFO_GAP] == pytest.approx(np.linalg.norm(far[:3, 3]) - 0.9, abs=1e-12)
+
+
+@pytest.mark.parametrize("kind", ["planar-3R", "elbow-3R"])
+def test_axes_parallel_within_tolerance_make_misses_no_proof(kind: str) -> None:
+    """The kernels solve the ideal arm; a real one off by more than round-off gets slack.
+
+    Axis 3 twisted 1e-15 rad off parallel is round-off (0.1x the threshold at
+    this size): gaps are exact. Twisted 1e-10 (within the classification's
+    1e-9), the ideal arm may put the tool up to ~2e-10 m away: ``INFO_NEAR``
+    is set and the gap shrinks by it, so a target just off the ideal reach is
+    no longer proven unreachable.
+    """
+    from kinematica.kernels.ik_check import INFO_NEAR
+
+    def arm(twist: float) -> Robot:
+        if kind == "planar-3R":
+            rows = [Revolute(a=0.4), Revolute(a=0.3, alpha=twist), Revolute(a=0.2)]
+        else:
+            rows = [
+                Revolute(d=0.3, a=0.1, alpha=PI / 2),
+                Revolute(a=0.4, alpha=twist),
+                Revolute(a=0.3),
+            ]
+        robot = Robot.from_dh(rows)
+        assert classify(robot).kind == kind
+        return robot
+
+    for twist, near in ((1e-15, 0.0), (1e-10, 1.0)):
+        robot = arm(twist)
+        T = robot.fk(np.zeros(3))  # stretched: the reach's edge
+        beyond = T.copy()
+        _, p = robot.joint_axes()
+        out = (T[:3, 3] - p[1]) / np.linalg.norm(T[:3, 3] - p[1])
+        beyond[:3, 3] += 1e-9 * out  # 1e-9 m beyond the ideal reach
+        _, _, info = kernel_candidates(robot, np.stack([T, beyond]))
+        assert (info[:, INFO_NEAR] == near).all()
+        gap = info[1, INFO_GAP]
+        if near:
+            assert math.isnan(gap) or gap < 1e-9 - 1e-10
+        else:
+            assert gap == pytest.approx(1e-9, abs=1e-12)
+        assert robot.ik(T).status == "ok"
+
+
+def test_gap_below_round_off_is_not_reported() -> None:
+    """SINGULAR_TOL of the reach is the kernels' round-off: a smaller gap is no gap.
+
+    A tilted pose at the reach's edge is unreachable by its rotation; 0.1x the
+    floor beyond the reach reports no distance, 100x reports it.
+    """
+    robot = Robot.from_dh([Revolute(a=0.6), Revolute(a=0.4), Revolute(a=0.2)])  # reach 1.2 m
+    T = robot.fk(np.zeros(3))
+    T[:3, :3] = Rotation.from_rotvec([0.0, 0.01, 0.0]).as_matrix()  # tilted out of the plane
+    for factor, reported in ((0.1, False), (100.0, True)):
+        target = T.copy()
+        target[0, 3] += factor * SINGULAR_TOL * 1.2
+        _, _, info = kernel_candidates(robot, target[None])
+        assert math.isnan(info[0, INFO_GAP]) != reported
+        res = robot.ik(target)
+        assert res.status == "unreachable" and (res.gap is not None) == reported

@@ -34,7 +34,7 @@ from kinematica.ik.registry import ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
 from kinematica.kernels import fk
 from kinematica.kernels.solvers import planar_arms as kernel
-from kinematica.kernels.solvers.planar_arms import (
+from kinematica.kernels.solvers.planar_params import (
     P_AXIS,
     P_E1,
     P_E2,

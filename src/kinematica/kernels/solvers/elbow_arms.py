@@ -10,7 +10,7 @@ heights along ``k`` and compose into one turn ``φ = d2 + d3`` about ``k``.
   ``A cos θ + B sin θ = e`` in ``θ = −q1`` (two roots, seed 002's
   ``q1 = atan2(py, px)`` and ``q1 + π``); then the arm's plane holds a 2R
   triangle (two roots each, seed 002's ``cos q3 = (r² − a2² − a3²)/(2 a2 a3)``),
-  solved as in :func:`kinematica.kernels.solvers.planar_arms.two_link`. Up to
+  solved as in :func:`kinematica.kernels.solvers.triangle.two_link`. Up to
   four solutions. A target on axis 1 with the tool's height 0 leaves q1 free
   (``singular``: representatives at q1 = 0 and π); on the shoulder with
   equal links, q2 is free.
@@ -38,7 +38,7 @@ import numpy as np
 from kinematica.kernels._numba import Array, batch_kernel, kernel
 from kinematica.kernels.geometry import rotate, subproblem1, trig_linear
 from kinematica.kernels.ik_check import INFO_FREE, INFO_GAP, INFO_NEAR, INFO_SINGULAR
-from kinematica.kernels.solvers.planar_arms import SINGULAR_TOL, turn, two_link
+from kinematica.kernels.solvers.triangle import SINGULAR_TOL, turn, two_link
 
 __all__ = [
     "P_A",
