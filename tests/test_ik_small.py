@@ -403,7 +403,7 @@ def _side(h: FloatArray, a: FloatArray, b: FloatArray) -> FloatArray:
 def test_labels_planar_2r_elbow_up_is_left_of_the_reach_line(position: bool) -> None:
     rng = np.random.default_rng(3)
     robot = random_arm("planar-2R", rng)
-    q = random_q(robot, rng, 200)
+    q = random_q(robot, rng, 60)
     res = robot.ik(target_of(robot, q, position), respect_limits=False)
     p = robot.fk(q)[:, :3, 3]
     for i in range(len(q)):
@@ -418,7 +418,7 @@ def test_labels_planar_2r_elbow_up_is_left_of_the_reach_line(position: bool) -> 
 def test_labels_3r_shoulder_and_elbow(kind: str, position: bool) -> None:
     rng = np.random.default_rng(4)
     for robot in (seed_anthropomorphic(), random_arm(kind, rng), random_arm(kind, rng)):
-        q = random_q(robot, rng, 100)
+        q = random_q(robot, rng, 30)
         res = robot.ik(target_of(robot, q, position), respect_limits=False)
         p = robot.fk(q)[:, :3, 3]
         for i in range(len(q)):

@@ -38,7 +38,7 @@ TINY = 1e-10
 #: Perturbations of folded and stretched configurations (rad).
 NUDGES = (0.0, 1e-8, -1e-8, 1e-10, -1e-10, 1e-12, -1e-12)
 
-PROPERTY = settings(max_examples=25, deadline=None, database=None, derandomize=True)
+PROPERTY = settings(max_examples=20, deadline=None, database=None, derandomize=True)
 
 
 # ------------------------------------------------------------------ the arms
