@@ -706,3 +706,23 @@ def test_gap_below_round_off_is_not_reported() -> None:
         assert math.isnan(info[0, INFO_GAP]) != reported
         res = robot.ik(target)
         assert res.status == "unreachable" and (res.gap is not None) == reported
+
+
+def test_double_root_is_one_solution() -> None:
+    """Stretched arms (and 1e-12 rad from it): the two branches merge into one solution."""
+    planar = Robot.from_dh([Revolute(a=0.5), Revolute(a=0.3)])
+    arm = seed_anthropomorphic()
+    pr = seed_pr_arm()
+    for robot, q in (
+        (planar, [0.4, 0.0]),
+        (planar, [0.4, 1e-12]),
+        (arm, [0.4, 0.3, 0.0]),
+        (arm, [0.4, 0.3, -1e-12]),
+        (pr, [0.1, PI / 2]),  # the link across the slide: s = along ± 0
+    ):
+        p = robot.fk(q)[:3, 3]
+        res = robot.ik(p)
+        assert res.status == "ok", res.message
+        per_shoulder = 2 if robot is arm else 1  # the 3R arm: two shoulders, one elbow each
+        assert res.count == per_shoulder
+        assert joint_distance(robot, res.solutions, np.array(q)).min() < 1e-7
