@@ -8,9 +8,9 @@ configurations uniform within the joint limits, seeded), one thread
 (``workers=1``), it prints:
 
 * ``robot.ik`` (kernel, check by FK, dedupe, limits): one target per call
-  (median over ``--singles`` calls, each timed on its own) and batched (one
-  call on all ``--poses`` targets, best of 3), per target; the bare kernel
-  (``solve_one`` / ``solve_batch``) the same way;
+  (a loop of ``--singles`` calls) and batched (one call on all ``--poses``
+  targets), CPU time per target, best of 3; the bare kernel (``solve_one`` /
+  ``solve_batch``) the same way;
 * the statuses, and the share of targets whose every solution our FK puts
   within 1e-10 m / 1e-10 rad and among whose solutions is the configuration
   that made the target (modulo 2π; for a continuum, ``singular``, the joints
@@ -19,14 +19,13 @@ configurations uniform within the joint limits, seeded), one thread
   EAIK's ``IK`` / ``IK_batched`` (one thread) on the same poses where EAIK has
   the arm (its 3R arms, standard DH, all revolute), judged by our FK.
 
-CPU time is shared on the development machine: the figures are best-of or
-medians of many calls, and vary from run to run. No assertions.
+The development machine is shared: figures are CPU time (``time.process_time``,
+best of 3), which other processes disturb less than wall time. No assertions.
 """
 
 from __future__ import annotations
 
 import argparse
-import statistics
 import sys
 import time
 from collections.abc import Callable
@@ -37,7 +36,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _common import best_of, fmt_time, header, table
+from _common import fmt_time, header, table
 
 import kinematica as km
 from kinematica.ik import IKBatchResult, closed_form
@@ -60,15 +59,27 @@ def arms() -> list[Robot]:
     return [two_r, *(km.load(name) for name in names)]
 
 
-def median_per_call(fn: Callable[[np.ndarray], object], targets: np.ndarray) -> float:
-    """Median wall time (s) of ``fn(t)`` over the targets, each call timed on its own."""
+def cpu_per_call(fn: Callable[[np.ndarray], object], targets: np.ndarray) -> float:
+    """CPU seconds per call of ``fn(t)``, one call per target (best of 3 loops)."""
     fn(targets[0])
-    times = []
-    for t in targets:
-        t0 = time.perf_counter()
-        fn(t)
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times)
+    best = float("inf")
+    for _ in range(3):
+        t0 = time.process_time()
+        for t in targets:
+            fn(t)
+        best = min(best, time.process_time() - t0)
+    return best / len(targets)
+
+
+def cpu_batch(fn: Callable[[], object], n: int) -> float:
+    """CPU seconds per target of one batch call ``fn()`` on ``n`` targets (best of 3)."""
+    fn()
+    best = float("inf")
+    for _ in range(3):
+        t0 = time.process_time()
+        fn()
+        best = min(best, time.process_time() - t0)
+    return best / n
 
 
 def judge(robot: Robot, res: IKBatchResult, targets: np.ndarray, q: np.ndarray) -> list[str]:
@@ -115,8 +126,8 @@ def eaik_rows(robot: Robot, T: np.ndarray, q: np.ndarray, singles: int) -> list[
     offsets = np.array([j.offset for j in L])
     Te = inv_transform(robot.base) @ T @ inv_transform(robot.tool)
     poses = list(Te)
-    single = median_per_call(model.IK, Te[:singles])
-    batched = best_of(lambda: model.IK_batched(poses, 1), 3) / len(poses)
+    single = cpu_per_call(model.IK, Te[:singles])
+    batched = cpu_batch(lambda: model.IK_batched(poses, 1), len(poses))
     sols = model.IK_batched(poses, 1)
     exact = found = 0
     for i, s in enumerate(sols):
@@ -156,10 +167,10 @@ def bench_targets(
         closed.solve_batch(closed.params, poses, Q, info)
 
     set_workers(1)
-    kernel_single = median_per_call(one, poses[:singles])
-    kernel_batched = best_of(batch, 3) / len(poses)
-    ik_single = median_per_call(lambda t: robot.ik(t, workers=1), targets[:singles])
-    ik_batched = best_of(lambda: robot.ik(targets, workers=1), 3) / len(targets)
+    kernel_single = cpu_per_call(one, poses[:singles])
+    kernel_batched = cpu_batch(batch, len(poses))
+    ik_single = cpu_per_call(lambda t: robot.ik(t, workers=1), targets[:singles])
+    ik_batched = cpu_batch(lambda: robot.ik(targets, workers=1), len(targets))
     return ik_single, ik_batched, kernel_single, kernel_batched
 
 
@@ -177,7 +188,7 @@ def main() -> None:
         lo, hi = np.nan_to_num(robot.qlim, posinf=1.0, neginf=-1.0).T
         q = np.random.default_rng(args.seed).uniform(lo, hi, (args.poses, robot.dof))
         T = robot.fk(q)
-        fk_one = median_per_call(robot.fk, q[: args.singles])
+        fk_one = cpu_per_call(robot.fk, q[: args.singles])
         for kind in ("pose", "position"):
             targets = T if kind == "pose" else np.ascontiguousarray(T[:, :3, 3])
             times = bench_targets(robot, kind, targets, args.singles)
@@ -193,7 +204,7 @@ def main() -> None:
                 if e is not None:
                     eaik.append([robot.name, fmt_time(times[0]), fmt_time(times[1]), *e])
     print(
-        f"\n  time per target, one thread; robot.ik = kernel + check + dedupe + limits "
+        f"\n  CPU time per target, one thread; robot.ik = kernel + check + dedupe + limits "
         f"(targets: single <= {fmt_time(TARGET_SINGLE)}, batched <= {fmt_time(TARGET_BATCHED)})"
     )
     head = ["", "robot.ik single", "batched", "kernel single", "batched", "fk one call"]
