@@ -26,7 +26,7 @@ from kinematica.dh import Prismatic, Revolute
 from kinematica.ik import IKBatchResult, IKResult, closed_form
 from kinematica.ik.analytic.planar_arms import LENGTH_TOL
 from kinematica.kernels.ik_check import INFO_FREE, INFO_GAP, INFO_SINGULAR
-from kinematica.kernels.solvers.triangle import SINGULAR_TOL
+from kinematica.kernels.solvers.triangle import MERGE_TOL, SINGULAR_TOL
 from kinematica.robot import Robot, classify
 
 FloatArray = NDArray[np.float64]
@@ -652,49 +652,52 @@ def test_kernel_reports_gap_only_outside_the_reach() -> None:
 def test_axes_parallel_within_tolerance_make_misses_no_proof(kind: str) -> None:
     """The kernels solve the ideal arm; a real one off by more than round-off gets slack.
 
-    Axis 3 twisted 1e-15 rad off parallel is round-off (0.1x the threshold at
-    this size): gaps are exact. Twisted 1e-10 (within the classification's
-    1e-9), the ideal arm may put the tool up to ~2e-10 m away: ``INFO_NEAR``
-    is set and the gap shrinks by it, so a target just off the ideal reach is
-    no longer proven unreachable.
+    Axis 3 twisted 1e-15 rad off parallel is round-off (below the threshold
+    at this size): gaps are exact. Twisted 1e-10 (within the classification's
+    1e-9), the ideal arm may put the tool up to ~2e-10 m away: the gap
+    shrinks by that (a target 1e-9 m off the ideal reach is no longer proven
+    that far), and the ideal arm's continua get ``INFO_NEAR`` (a miss there
+    is no proof). Generic targets get neither.
     """
     from kinematica.kernels.ik_check import INFO_NEAR
 
     def arm(twist: float) -> Robot:
-        if kind == "planar-3R":
+        if kind == "planar-3R":  # position targets: the last joint free (a continuum)
             rows = [Revolute(a=0.4), Revolute(a=0.3, alpha=twist), Revolute(a=0.2)]
-        else:
-            rows = [
-                Revolute(d=0.3, a=0.1, alpha=PI / 2),
-                Revolute(a=0.4, alpha=twist),
-                Revolute(a=0.3),
-            ]
+        else:  # equal links folded: q2 free (a continuum)
+            rows = [Revolute(d=0.3, a=0.1, alpha=PI / 2), Revolute(a=0.4, alpha=twist)]
+            rows.append(Revolute(a=0.4))
         robot = Robot.from_dh(rows)
         assert classify(robot).kind == kind
         return robot
 
-    for twist, near in ((1e-15, 0.0), (1e-10, 1.0)):
+    for twist, tilted in ((1e-15, False), (1e-10, True)):
         robot = arm(twist)
         T = robot.fk(np.zeros(3))  # stretched: the reach's edge
-        beyond = T.copy()
         _, p = robot.joint_axes()
-        out = (T[:3, 3] - p[1]) / np.linalg.norm(T[:3, 3] - p[1])
-        beyond[:3, 3] += 1e-9 * out  # 1e-9 m beyond the ideal reach
-        _, _, info = kernel_candidates(robot, np.stack([T, beyond]))
-        assert (info[:, INFO_NEAR] == near).all()
-        gap = info[1, INFO_GAP]
-        if near:
+        beyond = T.copy()
+        beyond[:3, 3] += 1e-9 * (T[:3, 3] - p[1]) / np.linalg.norm(T[:3, 3] - p[1])
+        generic = robot.fk([0.3, 0.9, -0.7])
+        folded = [0.3, 0.9, PI]  # the elbow arm's continuum; the planar one's is any position
+        continuum = (generic if kind == "planar-3R" else robot.fk(folded))[:3, 3]
+        _, _, info = kernel_candidates(robot, np.stack([beyond, generic]))
+        gap = info[0, INFO_GAP]
+        if tilted:
             assert math.isnan(gap) or gap < 1e-9 - 1e-10
         else:
             assert gap == pytest.approx(1e-9, abs=1e-12)
-        assert robot.ik(T).status == "ok"
+        assert info[1, INFO_NEAR] == 0.0
+        _, _, info = kernel_candidates(robot, continuum[None])
+        assert info[0, INFO_SINGULAR] == 1.0 and info[0, INFO_NEAR] == float(tilted)
+        assert robot.ik(generic).status == "ok"
 
 
 def test_gap_below_round_off_is_not_reported() -> None:
     """SINGULAR_TOL of the reach is the kernels' round-off: a smaller gap is no gap.
 
-    A tilted pose at the reach's edge is unreachable by its rotation; 0.1x the
-    floor beyond the reach reports no distance, 100x reports it.
+    A pose tilted out of the plane, at the reach's edge, cannot be reached:
+    0.1x the floor beyond the reach reports no distance (at the edge, where
+    branches merge, that is no proof: ``not_found``), 100x reports it.
     """
     robot = Robot.from_dh([Revolute(a=0.6), Revolute(a=0.4), Revolute(a=0.2)])  # reach 1.2 m
     T = robot.fk(np.zeros(3))
@@ -705,7 +708,23 @@ def test_gap_below_round_off_is_not_reported() -> None:
         _, _, info = kernel_candidates(robot, target[None])
         assert math.isnan(info[0, INFO_GAP]) != reported
         res = robot.ik(target)
-        assert res.status == "unreachable" and (res.gap is not None) == reported
+        assert res.status == ("unreachable" if reported else "not_found")
+        assert (res.gap is not None) == reported
+
+
+def test_merging_branches_are_said_so() -> None:
+    """MERGE_TOL, both sides: 0.1x from stretched the branches merge (a note says so), 10x not."""
+    robot = Robot.from_dh([Revolute(a=0.5), Revolute(a=0.3)])
+    for factor, near in ((0.1, True), (10.0, False)):
+        q = np.array([0.4, factor * MERGE_TOL])
+        res = robot.ik(robot.fk(q)[:3, 3])
+        assert res.status == "ok" and res.near_singular == near
+        assert ("round-off" in res.message) == near
+        assert joint_distance(robot, res.solutions, q).min() < 1e-7
+    pr = seed_pr_arm()  # the link across the slide
+    for factor, near in ((0.1, True), (10.0, False)):
+        res = pr.ik(pr.fk([0.1, PI / 2 - factor * MERGE_TOL])[:3, 3])
+        assert res.status == "ok" and res.near_singular == near
 
 
 def test_double_root_is_one_solution() -> None:

@@ -25,7 +25,10 @@ Out of reach the candidates are least-squares ones (the height equation's
 nearest root, the triangle stretched or folded towards the target) and
 ``gap`` is a proven lower bound of the distance to the reachable positions:
 the height equation's miss, and the tool's distance from the foot of the
-common normal of axes 1 and 2 against the range it can take.
+common normal of axes 1 and 2 against the range it can take. ``INFO_NEAR``
+marks targets where two roots merge (``MERGE_TOL``), or q1 is uncertain
+(the target that close to axis 1), and continua of an arm whose axes 2 and 3
+are parallel within tolerance only (``P_SLACK``; the gap shrinks by it).
 """
 
 from __future__ import annotations
@@ -38,7 +41,14 @@ import numpy as np
 from kinematica.kernels._numba import Array, batch_kernel, kernel
 from kinematica.kernels.geometry import rotate, subproblem1, trig_linear
 from kinematica.kernels.ik_check import INFO_FREE, INFO_GAP, INFO_NEAR, INFO_SINGULAR
-from kinematica.kernels.solvers.triangle import SINGULAR_TOL, turn, two_link
+from kinematica.kernels.solvers.triangle import (
+    FOLD,
+    MERGE_TOL,
+    NEAR,
+    SINGULAR_TOL,
+    turn,
+    two_link,
+)
 
 __all__ = [
     "P_A",
@@ -155,16 +165,21 @@ def _position(params: Array, v: Array, abe: Array, Q: Array, info: Array) -> Non
             info[INFO_FREE] = 1.0
     else:  # least-squares roots when out of reach
         trig_linear(A / rho, B / rho, e / rho, roots)
+        c = e / rho  # the roots merge where |c| -> 1; q1 is uncertain where rho -> 0
+        if (1.0 - c) * (1.0 + c) < MERGE_TOL * MERGE_TOL or rho < MERGE_TOL * params[P_SCALE]:
+            info[INFO_NEAR] = 1.0
     sigma0 = _place(params, roots[0], v, u, t)
     sigma1 = _place(params, roots[1], v, u, t)
     first = 0 if sigma0 >= sigma1 else 1  # the shoulder-right root
     for shoulder in range(2):
         theta = roots[first] if shoulder == 0 else roots[1 - first]
         _place(params, theta, v, u, t)
-        fold = two_link(params[P_A], params[P_A + 1], params[P_B], params[P_B + 1], t[0], t[1], br)
-        if fold:
+        code = two_link(params[P_A], params[P_A + 1], params[P_B], params[P_B + 1], t[0], t[1], br)
+        if code == FOLD:
             info[INFO_SINGULAR] = 1.0
             info[INFO_FREE + 1] = 1.0
+        elif code == NEAR:
+            info[INFO_NEAR] = 1.0
         up_first = _elbow_up_first(params, t)
         for row in range(2):
             elbow = row if up_first else 1 - row
@@ -214,7 +229,8 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
         Q: ``(4, 3)`` out: slots shoulder right/left x elbow up/down; NaN
             rows where a branch has no candidate.
         info: ``(INFO_FREE + 3,)`` out (zero on entry): ``INFO_SINGULAR`` and
-            the free joints on a continuum, ``INFO_GAP``.
+            the free joints on a continuum, ``INFO_NEAR`` where branches merge
+            (``MERGE_TOL``), ``INFO_GAP``.
     """
     Q[:, :] = np.nan
     v = np.empty(3)
@@ -234,8 +250,9 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
     a = params[P_OFFSET]
     gap = max(miss, r - a - params[P_RMAX], params[P_RMIN] - a - r, 0.0)
     if params[P_SLACK] > SINGULAR_TOL * params[P_SCALE]:  # axes 2 and 3 not exactly parallel
-        info[INFO_NEAR] = 1.0
         gap -= params[P_SLACK]
+        if info[INFO_SINGULAR] != 0.0:  # a continuum of the ideal arm: a miss is no proof
+            info[INFO_NEAR] = 1.0
     info[INFO_GAP] = gap if gap > SINGULAR_TOL * params[P_SCALE] else np.nan  # beyond round-off
 
 

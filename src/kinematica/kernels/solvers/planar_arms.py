@@ -37,9 +37,11 @@ finite candidates and its gap.
 An arm is of its class when its axes are parallel (or normal) within the
 classification's tolerance; the kernel solves the ideal arm. When the real
 one differs from it by more than round-off (``P_SLACK``: its axes' tilts
-times the arm's size), the gap shrinks by that much and ``INFO_NEAR`` tells
-the check that a miss is no proof; slides put beyond a limit by less than it
-go onto the limit.
+times the arm's size), the gap shrinks by that much, the ideal arm's
+continua (which the real one may not have) get ``INFO_NEAR`` (a miss there
+is no proof), and slides put beyond a limit by less than it go onto the
+limit. ``INFO_NEAR`` also marks targets where two branches merge
+(``MERGE_TOL``).
 """
 
 from __future__ import annotations
@@ -78,7 +80,7 @@ from kinematica.kernels.solvers.planar_params import (
     P_WRIST,
 )
 from kinematica.kernels.solvers.planar_place import emit, place
-from kinematica.kernels.solvers.triangle import SINGULAR_TOL
+from kinematica.kernels.solvers.triangle import FOLD, NEAR, SINGULAR_TOL
 
 __all__ = ["solve", "solve_batch"]
 
@@ -170,14 +172,14 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
     )
     # The arm's axes are parallel (or normal) to k within the classification's
     # tolerance: the ideal arm solved here may put the tool up to `slack` away
-    # from the real one. Beyond round-off, a gap shrinks by it and a miss is no proof.
+    # from the real one. Beyond round-off, a gap shrinks by it.
     slack = params[P_SLACK] + params[P_SLIDE_TILT] * (
         math.hypot(math.hypot(ox, oy), oz) + params[P_LENGTH]
     )
     slack += params[P_LIFT_TILT] * (abs(dz) + params[P_LENGTH])
     gap = _gap(params, x, y, dz)
-    if slack > SINGULAR_TOL * params[P_REACH]:
-        info[INFO_NEAR] = 1.0
+    approximate = slack > SINGULAR_TOL * params[P_REACH]
+    if approximate:
         gap -= slack
     info[INFO_GAP] = gap if gap > SINGULAR_TOL * params[P_REACH] else np.nan  # beyond round-off
     if pose:  # the orientation: the total turn, and where the last revolute axis goes
@@ -191,7 +193,7 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
                 oy += w
             else:
                 oz += w
-        fold = place(
+        code = place(
             params,
             last,
             _dot(params, P_E1, ox, oy, oz),
@@ -202,17 +204,21 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
             tri,
         )
         emit(params, br, last, phi, True, dz, Q)
-        if fold:  # the last joint turns with the first
+        if code == FOLD:  # the last joint turns with the first
             info[INFO_FREE + int(params[P_REV + last])] = 1.0
     elif nrev + (1 if params[P_SLIDE] >= 0.0 else 0) == 3:
-        fold = free_last(params, x, y, dz, br, tri, Q, info)
+        code = free_last(params, x, y, dz, br, tri, Q, info)
     else:
-        fold = place(params, nrev, x, y, params[P_TIP], params[P_TIP + 1], br, tri)
+        code = place(params, nrev, x, y, params[P_TIP], params[P_TIP + 1], br, tri)
         emit(params, br, nrev, 0.0, False, dz, Q)
-    if fold:
+    if code == FOLD:
         info[INFO_SINGULAR] = 1.0
         info[INFO_FREE + int(params[P_REV])] = 1.0
-    if info[INFO_NEAR] != 0.0:
+    # Merging branches, or a continuum of the ideal arm that the real one may
+    # not have (its axes parallel within tolerance only): a miss is no proof.
+    if code == NEAR or (approximate and info[INFO_SINGULAR] != 0.0):
+        info[INFO_NEAR] = 1.0
+    if approximate:
         _snap_slides(params, Q, slack)
 
 

@@ -96,8 +96,8 @@ def _free_turn(ctx: Array, ell: float, below: bool) -> float:
 
 
 @kernel
-def _free_try(params: Array, ctx: Array, d: float, br: Array, tri: Array, Q: Array) -> bool:
-    """Candidates with the free last joint turned by ``d``; True on a fold continuum."""
+def _free_try(params: Array, ctx: Array, d: float, br: Array, tri: Array, Q: Array) -> int:
+    """Candidates with the free last joint turned by ``d``; what :func:`place` says."""
     last = int(params[P_NREV]) - 1
     lx = params[P_AXIS + 2 * last]
     ly = params[P_AXIS + 2 * last + 1]
@@ -105,15 +105,15 @@ def _free_try(params: Array, ctx: Array, d: float, br: Array, tri: Array, Q: Arr
     cy = params[P_TIP + 1] - ly
     c = math.cos(d)
     s = math.sin(d)
-    fold = place(params, last, ctx[0], ctx[1], lx + c * cx - s * cy, ly + s * cx + c * cy, br, tri)
+    code = place(params, last, ctx[0], ctx[1], lx + c * cx - s * cy, ly + s * cx + c * cy, br, tri)
     emit(params, br, last, d, False, ctx[2], Q)
-    return fold
+    return code
 
 
 @kernel
 def free_last(
     params: Array, x: float, y: float, dz: float, br: Array, tri: Array, Q: Array, info: Array
-) -> bool:
+) -> int:
     """Position targets of an arm with a third joint in the plane: its last revolute joint is free.
 
     The last two links, ``b`` (to the last axis) and ``c`` (from it to the
@@ -127,7 +127,8 @@ def free_last(
     that joint wholly free: 0, or the middle of its limits.
 
     Returns:
-        True on the fold continuum of the remaining triangle.
+        What :func:`place` says of the remaining triangle (``FOLD``, ``NEAR``
+        or ``REGULAR``).
     """
     last = int(params[P_NREV]) - 1
     jl = int(params[P_REV + last])
@@ -184,7 +185,7 @@ def free_last(
         else:
             ell = a + _fraction(t - first) * (z - a)
         for side in range(2):
-            fold = _free_try(params, ctx, _free_turn(ctx, ell, side == 1), br, tri, Q)
+            code = _free_try(params, ctx, _free_turn(ctx, ell, side == 1), br, tri, Q)
             if within_limits(params, Q[0]) or within_limits(params, Q[1]):
-                return fold
+                return code
     return _free_try(params, ctx, _free_turn(ctx, 0.5 * (a + z), False), br, tri, Q)

@@ -26,7 +26,7 @@ from kinematica.kernels.solvers.planar_params import (
     P_TIP,
     P_U,
 )
-from kinematica.kernels.solvers.triangle import slide_link, turn, two_link
+from kinematica.kernels.solvers.triangle import NEAR, REGULAR, slide_link, turn, two_link
 
 __all__ = ["TURNS", "branch_count", "emit", "place", "slot_of", "within_limits"]
 
@@ -75,7 +75,7 @@ def place(
     y0y: float,
     br: Array,
     tri: Array,
-) -> bool:
+) -> int:
     """Place the point at ``y0`` (q = 0) on ``t`` with the slide and ``used`` revolute joints.
 
     Args:
@@ -90,12 +90,12 @@ def place(
         tri: ``(2, 2)`` scratch space.
 
     Returns:
-        True on the fold continuum of a triangle (see :func:`two_link`).
+        ``FOLD``, ``NEAR`` (branches merging) or ``REGULAR`` (see :func:`two_link`).
     """
     ax = params[P_AXIS]
     ay = params[P_AXIS + 1]
     if params[P_SLIDE] < 0.0 and used == 2:
-        fold = two_link(
+        code = two_link(
             params[P_AXIS + 2] - ax,
             params[P_AXIS + 3] - ay,
             y0x - params[P_AXIS + 2],
@@ -109,17 +109,18 @@ def place(
             src = 1 - row if swap else row
             br[row, TURNS] = tri[src, 0]
             br[row, TURNS + 1] = tri[src, 1]
-        return fold
+        return code
     if params[P_SLIDE] >= 0.0 and used == 1:
-        slide_link(params[P_U], params[P_U + 1], y0x - ax, y0y - ay, tx - ax, ty - ay, tri)
+        near = slide_link(params[P_U], params[P_U + 1], y0x - ax, y0y - ay, tx - ax, ty - ay, tri)
         for row in range(2):
             br[row, 0] = tri[row, 0]
             br[row, TURNS] = tri[row, 1]
+        return NEAR if near else REGULAR
     elif used == 1:  # one link
         br[0, TURNS] = turn(y0x - ax, y0y - ay, tx - ax, ty - ay)
     else:  # the slide alone
         br[0, 0] = (tx - y0x) * params[P_U] + (ty - y0y) * params[P_U + 1]
-    return False
+    return REGULAR
 
 
 @kernel

@@ -18,7 +18,7 @@ import math
 
 from kinematica.kernels._numba import Array, kernel
 
-__all__ = ["SINGULAR_TOL", "slide_link", "turn", "two_link"]
+__all__ = ["FOLD", "MERGE_TOL", "NEAR", "REGULAR", "SINGULAR_TOL", "slide_link", "turn", "two_link"]
 
 #: Round-off of the small arms' geometry, relative to the arm's reach. A target
 #: this close to the first axis of a folded triangle whose links differ by at
@@ -27,6 +27,14 @@ __all__ = ["SINGULAR_TOL", "slide_link", "turn", "two_link"]
 #: target) from an isolated solution, and a gap from round-off (a smaller
 #: one is not reported).
 SINGULAR_TOL = 1e-12
+#: Two branches whose angles are within twice this (rad) of each other are
+#: merging: as close as the check's ``DEDUP_TOL``, where round-off of the
+#: target moves them by as much, and both may be given as one. The same
+#: relative distance from the first axis makes the first turn that uncertain.
+MERGE_TOL = 1e-7
+
+# What :func:`two_link` says of a target.
+REGULAR, NEAR, FOLD = 0, 1, 2
 
 
 @kernel
@@ -39,7 +47,7 @@ def turn(ax: float, ay: float, bx: float, by: float) -> float:
 
 
 @kernel
-def two_link(ax: float, ay: float, bx: float, by: float, tx: float, ty: float, out: Array) -> bool:
+def two_link(ax: float, ay: float, bx: float, by: float, tx: float, ty: float, out: Array) -> int:
     """The 2R triangle: turns ``d1, d2`` with ``Rot(d1) (a + Rot(d2) b) = t``.
 
     Args:
@@ -55,8 +63,11 @@ def two_link(ax: float, ay: float, bx: float, by: float, tx: float, ty: float, o
             ``t``, its least-squares configuration.
 
     Returns:
-        True on the fold continuum: ``t`` on the first axis with equal links
-        (within ``SINGULAR_TOL`` of the reach), where every ``d1`` solves.
+        ``FOLD`` on the fold continuum: ``t`` on the first axis with equal
+        links (within ``SINGULAR_TOL`` of the reach), where every ``d1``
+        solves; ``NEAR`` when the branches merge (ψ within ``MERGE_TOL`` of 0
+        or π, at or beyond the reach's edges) or ``t`` is within
+        ``MERGE_TOL`` of the reach from the first axis; else ``REGULAR``.
     """
     L1 = math.hypot(ax, ay)
     L2 = math.hypot(bx, by)
@@ -86,18 +97,25 @@ def two_link(ax: float, ay: float, bx: float, by: float, tx: float, ty: float, o
         out[row, 0] = turn(vx, sg * vy, tx, ty) - a0
         out[row, 1] = sg * psi - psi0
     tol = SINGULAR_TOL * far
-    return r <= tol and near <= tol
+    if r <= tol and near <= tol:
+        return FOLD
+    merge = MERGE_TOL * MERGE_TOL * L1 * L2  # 4 L1 L2 sin²(MERGE_TOL / 2)
+    return NEAR if min(S, C) < merge or r < MERGE_TOL * far else REGULAR
 
 
 @kernel
 def slide_link(
     ux: float, uy: float, bx: float, by: float, tx: float, ty: float, out: Array
-) -> None:
+) -> bool:
     """A slide then a link: ``s, d`` with ``s u + Rot(d) b = t`` (``t`` from the axis at s = 0).
 
     ``out (2, 2)``: rows "link forward" (``s`` the smaller root: the link
     points along ``+u``) and "link backward"; columns ``s`` (m), ``d`` (rad).
     Beyond reach, both rows hold the link across the slide towards ``t``.
+
+    Returns:
+        True when the branches merge: the link within ``MERGE_TOL`` of across
+        the slide (or beyond reach).
     """
     L = math.hypot(bx, by)
     along = tx * ux + ty * uy
@@ -107,3 +125,4 @@ def slide_link(
         s = along - root if row == 0 else along + root
         out[row, 0] = s
         out[row, 1] = turn(bx, by, tx - s * ux, ty - s * uy)
+    return root < MERGE_TOL * L
