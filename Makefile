@@ -37,6 +37,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/viz.py
 	$(BIN)/python benchmarks/design.py
 	$(BIN)/python benchmarks/symbolic.py
+	$(BIN)/python benchmarks/ik_small.py
 
 clean:
 	rm -rf $(VENV) build dist .pytest_cache .mypy_cache .ruff_cache

@@ -6,7 +6,7 @@ in the order they are tried.
 
 from __future__ import annotations
 
-from kinematica.ik.analytic import parallel
+from kinematica.ik.analytic import elbow_arms, parallel, planar_arms
 from kinematica.ik.analytic.legacy import LEGACY_SPECS
 from kinematica.ik.registry import SolverSpec
 
@@ -14,4 +14,9 @@ __all__ = ["SOLVERS"]
 
 # Three-parallel first: an arm with axes 2-3-4 parallel and a spherical wrist
 # (axes 4, 5, 6 meeting: d5 = a5 = 0) is a UR-type arm, whose solver handles it whole.
-SOLVERS: tuple[SolverSpec, ...] = (parallel.SPEC, *LEGACY_SPECS)
+SOLVERS: tuple[SolverSpec, ...] = (
+    parallel.SPEC,
+    *planar_arms.SPECS,
+    *elbow_arms.SPECS,
+    *LEGACY_SPECS,
+)

@@ -68,11 +68,9 @@ def _builder(
     factory_name: str,
 ) -> Callable[[DHChain, Features, TargetKind], ClosedForm | None]:
     def build(chain: DHChain, features: Features, target: TargetKind) -> ClosedForm | None:
-        from kinematica.ik.analytic import arm3r, planar, wrist
+        from kinematica.ik.analytic import wrist
 
         factories = {
-            "planar": planar.make_planar_solver,
-            "arm3r": arm3r.make_arm3r_solver,
             "wrist": wrist.make_spherical_wrist_solver,
             "rrp": wrist.make_rrp_wrist_solver,
         }
@@ -93,42 +91,6 @@ def _f(types: str, test: Callable[[Features], bool]) -> Callable[[Features], boo
 
 
 LEGACY_SPECS: tuple[SolverSpec, ...] = (
-    SolverSpec(
-        "planar-2R", "2R planar", _f("RR", lambda f: f.is_parallel(0, 1)), _builder("planar")
-    ),
-    SolverSpec(
-        "planar-PR",
-        "PR planar (prismatic then revolute)",
-        _f("PR", lambda f: f.is_perpendicular(0, 1)),
-        _builder("planar"),
-    ),
-    SolverSpec(
-        "planar-3R", "3R planar", _f("RRR", lambda f: f.all_parallel(range(3))), _builder("planar")
-    ),
-    SolverSpec(
-        "planar-PRR",
-        "PRR planar (prismatic then two parallel revolute)",
-        _f("PRR", lambda f: f.is_parallel(1, 2) and f.is_perpendicular(0, 1)),
-        _builder("planar"),
-    ),
-    SolverSpec(
-        "anthropomorphic-3R",
-        "3R anthropomorphic (shoulder axes meet)",
-        _f("RRR", lambda f: f.is_parallel(1, 2) and f.is_perpendicular(0, 1) and f.meet(0, 1)),
-        _builder("arm3r"),
-    ),
-    SolverSpec(
-        "elbow-3R",
-        "3R elbow arm with shoulder offset",
-        _f("RRR", lambda f: f.is_parallel(1, 2) and f.is_perpendicular(0, 1) and not f.meet(0, 1)),
-        _builder("arm3r"),
-    ),
-    SolverSpec(
-        "scara",
-        "SCARA (RRPR, all axes parallel)",
-        _f("RRPR", lambda f: f.all_parallel(range(4))),
-        _builder("planar"),
-    ),
     SolverSpec(
         "spherical-wrist-6R",
         "6R, spherical wrist",
