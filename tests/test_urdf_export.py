@@ -133,7 +133,8 @@ def test_convert_urdf_to_dh_robot_files(tmp_path, convention):
     src = URDF_DIR / "kuka_kr16_2.urdf"
     proc = run(tmp_path, str(src), "--to", f"dh-{convention}")
     assert proc.returncode == 0, proc.stderr
-    assert proc.stdout.startswith(f"# {convention} DH frames placed by the Denavit-Hartenberg rules")
+    head = f"# {convention} DH frames placed by the Denavit-Hartenberg rules"
+    assert proc.stdout.startswith(head)
     data = yaml.safe_load(proc.stdout)
     assert data["convention"] == convention
     assert len(data["joints"]) == 6
