@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
@@ -130,7 +131,7 @@ class DHChain:
             qlim=_readonly(qlim),
         )
 
-    @property
+    @cached_property
     def dof(self) -> int:
         """Number of joints."""
         return int(self.links.shape[0])

@@ -60,6 +60,11 @@ class ClosedForm:
         """Number of candidate slots m."""
         return len(self.labels)
 
+    @property
+    def method(self) -> str:
+        """The method name results carry: ``"analytic:<name>"``."""
+        return f"analytic:{self.name}"
+
 
 @dataclass(frozen=True)
 class SolverSpec:

@@ -6,14 +6,25 @@ import math
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.errors import UnreachableError
-from kinematica.ik.status import IKStatus, status_message
+from kinematica.ik.status import STATUS_NAMES, IKStatus, status_message
+from kinematica.kernels.ik_check import (
+    META_COUNT,
+    META_GAP,
+    META_NEAR,
+    META_NEAREST_POSITION,
+    META_NEAREST_ROTATION,
+    META_OUT_COUNT,
+    META_STATUS,
+    STATUS_SINGULAR,
+)
 
-__all__ = ["NEAR_NOTE", "IKBatchResult", "IKResult"]
+__all__ = ["NEAR_NOTE", "CheckOutput", "IKBatchResult", "IKResult", "result_of"]
 
 FloatArray = NDArray[np.float64]
 
@@ -121,7 +132,8 @@ class IKBatchResult:
     """IK results for a batch of targets of any shape ``(...)``, as arrays.
 
     Index it with a batch index (``res[i]``, ``res[i, j]``) for one
-    :class:`IKResult`; iterating yields one per target in C order.
+    :class:`IKResult`; iterating yields one per target in C order. The arrays
+    below are derived from the check kernel's output on first access.
 
     Attributes:
         solutions: ``(..., k, n)`` solutions, NaN-padded (see :class:`IKResult`).
@@ -137,44 +149,126 @@ class IKBatchResult:
         gap: ``(...)`` distance outside the reach for unreachable targets (m), else NaN.
         nearest_error: ``(..., 2)`` smallest position (m) and rotation (rad)
             residual among candidates that were not solutions, NaN if none.
+        near_singular: ``(...)`` see :attr:`IKResult.near_singular`.
+        message: ``(...)`` one sentence per target, as :attr:`IKResult.message`.
         errors: Batch index -> what is wrong with that target, for the
             targets whose status is ``"invalid"``.
         notes: Batch index -> remarks on that target (e.g. its rotation was
             projected onto SO(3)).
         complete: True when the method gives every solution (a closed form).
-        near_singular: ``(...)`` see :attr:`IKResult.near_singular`.
     """
 
-    solutions: FloatArray
-    count: NDArray[np.int64]
-    status: NDArray[np.str_]
+    raw: CheckOutput = field(repr=False)
     method: str
-    residuals: FloatArray
-    branches: NDArray[np.str_]
-    out_of_limits: FloatArray
-    out_of_limits_count: NDArray[np.int64]
-    out_of_limits_branches: NDArray[np.str_]
-    free: NDArray[np.bool_]
-    gap: FloatArray
-    nearest_error: FloatArray
+    labels: tuple[str, ...] = field(repr=False)
+    shape: tuple[int, ...]
     errors: Mapping[tuple[int, ...], str] = field(default_factory=dict)
     notes: Mapping[tuple[int, ...], tuple[str, ...]] = field(default_factory=dict)
     complete: bool = True
-    near_singular: NDArray[np.bool_] | None = None
-
-    @property
-    def shape(self) -> tuple[int, ...]:
-        """The batch shape ``(...)``."""
-        return tuple(self.count.shape)
 
     @property
     def size(self) -> int:
         """The number of targets."""
-        return int(self.count.size)
+        return int(self.raw.meta.shape[0])
 
     def __len__(self) -> int:
         return self.shape[0] if self.shape else 1
 
+    # -------------------------------------------------------------- the arrays
+    def _shaped(self, a: NDArray[Any]) -> NDArray[Any]:
+        return a.reshape(*self.shape, *a.shape[1:])
+
+    @cached_property
+    def _counts(self) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+        meta = self.raw.meta
+        return meta[:, META_COUNT].astype(np.int64), meta[:, META_OUT_COUNT].astype(np.int64)
+
+    @cached_property
+    def count(self) -> NDArray[np.int64]:
+        """``(...)`` number of solutions per target."""
+        return self._shaped(self._counts[0])
+
+    @cached_property
+    def out_of_limits_count(self) -> NDArray[np.int64]:
+        """``(...)`` number of solutions outside the joint limits per target."""
+        return self._shaped(self._counts[1])
+
+    def _rows(self, first: bool) -> tuple[NDArray[np.intp], NDArray[np.bool_]]:
+        """Slot index and mask of the solutions within (``first``) or outside the limits."""
+        count, out = self._counts
+        m = self.raw.slot.shape[1]
+        k = int((count if first else out).max(initial=0))
+        cols = np.arange(k)[None, :]
+        idx = cols if first else np.minimum(count[:, None] + cols, m - 1)
+        mask = cols < (count if first else out)[:, None]
+        return np.broadcast_to(idx, mask.shape), mask
+
+    def _gather(self, values: NDArray[Any], first: bool, fill: Any) -> NDArray[Any]:
+        idx, mask = self._rows(first)
+        got = np.take_along_axis(values, idx.reshape(*idx.shape, *([1] * (values.ndim - 2))), 1)
+        mask = mask.reshape(*mask.shape, *([1] * (values.ndim - 2)))
+        return self._shaped(np.where(mask, got, fill))
+
+    def _names(self, first: bool) -> NDArray[np.str_]:
+        names = np.array([*self.labels, ""], dtype=str)  # slot -1 -> ""
+        idx, mask = self._rows(first)
+        slots = np.take_along_axis(self.raw.slot, idx, 1)
+        return self._shaped(np.where(mask, names[slots], ""))
+
+    @cached_property
+    def solutions(self) -> FloatArray:
+        """``(..., k, n)`` solutions within the limits, NaN-padded."""
+        return self._gather(self.raw.q, True, np.nan)
+
+    @cached_property
+    def residuals(self) -> FloatArray:
+        """``(..., k, 2)`` their position (m) and rotation (rad) errors, NaN-padded."""
+        return self._gather(self.raw.res, True, np.nan)
+
+    @cached_property
+    def branches(self) -> NDArray[np.str_]:
+        """``(..., k)`` their branch labels, ``""`` where padded."""
+        return self._names(True)
+
+    @cached_property
+    def out_of_limits(self) -> FloatArray:
+        """``(..., j, n)`` solutions outside the joint limits, NaN-padded."""
+        return self._gather(self.raw.q, False, np.nan)
+
+    @cached_property
+    def out_of_limits_branches(self) -> NDArray[np.str_]:
+        """``(..., j)`` their branch labels."""
+        return self._names(False)
+
+    @cached_property
+    def status(self) -> NDArray[np.str_]:
+        """``(...)`` status per target (strings)."""
+        names = np.array([str(STATUS_NAMES[c]) for c in sorted(STATUS_NAMES)], dtype=str)
+        return self._shaped(names[self.raw.meta[:, META_STATUS].astype(np.int64)])
+
+    @cached_property
+    def free(self) -> NDArray[np.bool_]:
+        """``(..., n)`` True for the joints left free, where the status is singular."""
+        singular = self.raw.meta[:, META_STATUS] == STATUS_SINGULAR
+        return self._shaped((self.raw.free != 0.0) & singular[:, None])
+
+    @cached_property
+    def gap(self) -> FloatArray:
+        """``(...)`` distance outside the reach for unreachable targets (m), else NaN."""
+        return self._shaped(self.raw.meta[:, META_GAP].copy())
+
+    @cached_property
+    def nearest_error(self) -> FloatArray:
+        """``(..., 2)`` the closest miss among candidates that were not solutions."""
+        meta = self.raw.meta
+        return self._shaped(meta[:, [META_NEAREST_POSITION, META_NEAREST_ROTATION]])
+
+    @cached_property
+    def near_singular(self) -> NDArray[np.bool_]:
+        """``(...)`` True where the target is within round-off of a singular set."""
+        return self._shaped(self.raw.meta[:, META_NEAR] != 0.0)
+
+    # -------------------------------------------------------------- one target
     def _index(self, i: int | tuple[int, ...]) -> tuple[int, ...]:
         idx = (i,) if isinstance(i, int | np.integer) else tuple(i)
         if len(idx) != len(self.shape):
@@ -185,29 +279,15 @@ class IKBatchResult:
 
     def __getitem__(self, i: int | tuple[int, ...]) -> IKResult:
         idx = self._index(i)
-        k = int(self.count[idx])
-        j = int(self.out_of_limits_count[idx])
-        gap = float(self.gap[idx])
+        flat = int(np.ravel_multi_index(idx, self.shape)) if self.shape else 0
         notes = self.notes.get(idx, ())
         if idx in self.errors:
             notes = (self.errors[idx], *notes)
-        return IKResult(
-            solutions=self.solutions[idx][:k].copy(),
-            status=IKStatus(str(self.status[idx])),
-            method=self.method,
-            residuals=self.residuals[idx][:k].copy(),
-            branches=tuple(str(b) for b in self.branches[idx][:k]),
-            out_of_limits=self.out_of_limits[idx][:j].copy(),
-            out_of_limits_branches=tuple(str(b) for b in self.out_of_limits_branches[idx][:j]),
-            free_joints=tuple(int(v) for v in np.flatnonzero(self.free[idx])),
-            gap=None if math.isnan(gap) else gap,
-            nearest_error=(float(self.nearest_error[idx][0]), float(self.nearest_error[idx][1])),
-            notes=notes,
-            complete=self.complete,
-            near_singular=bool(self.near_singular[idx])
-            if self.near_singular is not None
-            else False,
-        )
+        raw = self.raw
+        return result_of(
+            raw.q[flat], raw.slot[flat], raw.res[flat], raw.meta[flat], raw.free[flat],
+            self.labels, self.method, self.complete, notes,
+        )  # fmt: skip
 
     @cached_property
     def message(self) -> NDArray[np.str_]:
@@ -219,3 +299,76 @@ class IKBatchResult:
 
     def __iter__(self) -> Iterator[IKResult]:
         return (self[idx] for idx in np.ndindex(*self.shape))
+
+
+@dataclass(frozen=True, eq=False)
+class CheckOutput:
+    """What the check kernel wrote for N targets (see :mod:`kinematica.kernels.ik_check`).
+
+    Attributes:
+        q: ``(N, m, n)`` solutions within the limits, then those outside, NaN after.
+        slot: ``(N, m)`` the candidate slot of each row (its branch), -1 after.
+        res: ``(N, m, 2)`` position and rotation residuals.
+        meta: ``(N, META_SIZE)`` status, counts, gap, nearest miss, near flag.
+        free: ``(N, n)`` the solver's free-joint flags.
+    """
+
+    q: FloatArray
+    slot: NDArray[np.int64]
+    res: FloatArray
+    meta: FloatArray
+    free: FloatArray
+
+
+def result_of(
+    q: FloatArray,
+    slot: NDArray[np.int64],
+    residuals: FloatArray,
+    meta_row: FloatArray,
+    free_flags: FloatArray,
+    labels: tuple[str, ...],
+    method: str,
+    complete: bool,
+    notes: tuple[str, ...],
+) -> IKResult:
+    """The :class:`IKResult` of one target from what the check kernel wrote for it.
+
+    Args:
+        q: ``(m, n)`` the checked solutions (within the limits first).
+        slot: ``(m,)`` their candidate slots (branch labels).
+        residuals: ``(m, 2)`` their residuals.
+        meta_row: ``(META_SIZE,)`` status, counts, gap, nearest miss, near flag.
+        free_flags: ``(n,)`` the solver's free-joint flags.
+        labels: The solver's branch labels.
+        method: The method name.
+        complete: The method gives every solution.
+        notes: Remarks on the target.
+
+    Built without the frozen dataclass's ``__init__`` (a dozen guarded
+    attribute writes): the one-target path of ``robot.ik`` runs through here.
+    """
+    meta = meta_row.tolist()
+    count, out = int(meta[META_COUNT]), int(meta[META_OUT_COUNT])
+    status = STATUS_NAMES[int(meta[META_STATUS])]
+    slots = slot[: count + out].tolist()
+    gap = meta[META_GAP]
+    free: tuple[int, ...] = ()
+    if status == IKStatus.SINGULAR:
+        free = tuple(j for j, v in enumerate(free_flags.tolist()) if v != 0.0)
+    res = IKResult.__new__(IKResult)
+    res.__dict__.update(
+        solutions=q[:count],
+        status=status,
+        method=method,
+        residuals=residuals[:count],
+        branches=tuple(labels[j] for j in slots[:count]),
+        out_of_limits=q[count : count + out],
+        out_of_limits_branches=tuple(labels[j] for j in slots[count:]),
+        free_joints=free,
+        gap=None if math.isnan(gap) else gap,
+        nearest_error=(meta[META_NEAREST_POSITION], meta[META_NEAREST_ROTATION]),
+        notes=notes,
+        complete=complete,
+        near_singular=meta[META_NEAR] != 0.0,
+    )
+    return res

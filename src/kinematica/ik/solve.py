@@ -9,7 +9,6 @@ outcome is wrapped in an :class:`IKResult` (one target) or an
 
 from __future__ import annotations
 
-import math
 import weakref
 from typing import Literal
 
@@ -21,20 +20,13 @@ from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.analytic import SOLVERS
 from kinematica.ik.numeric import LABEL, check_seed, numeric_setup
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
-from kinematica.ik.result import IKBatchResult, IKResult
-from kinematica.ik.status import STATUS_NAMES, IKStatus
+from kinematica.ik.result import CheckOutput, IKBatchResult, IKResult, result_of
 from kinematica.ik.structure import features
 from kinematica.ik.targets import Targets, Tolerance, parse_mask, parse_targets, parse_tolerance
 from kinematica.kernels import set_workers
 from kinematica.kernels.ik_check import (
     INFO_FREE,
     INFO_GAP,
-    META_COUNT,
-    META_GAP,
-    META_NEAR,
-    META_NEAREST_POSITION,
-    META_NEAREST_ROTATION,
-    META_OUT_COUNT,
     META_SIZE,
     META_STATUS,
     OPT_COMPLETE,
@@ -144,6 +136,10 @@ def solve_ik(
     if method == "analytic" and closed is None:
         why = "a mask was given" if m is not None else f"structure: {structure_of(chain)[1]}"
         raise KinematicaError(f"no closed-form solver for this arm ({why}); use method='numeric'")
+    complete = closed is not None
+    opts = _options(tolerance, respect_limits, complete, q0s is not None)
+    if targets.single and closed is not None and closed.legacy is None:
+        return _one_closed(chain, closed, targets, w, opts, q0s)
     N = targets.poses.shape[0]
     if closed is not None:
         Q, info = _closed_candidates(closed, targets, chain.dof, workers)
@@ -153,26 +149,22 @@ def solve_ik(
             chain, targets, w, tolerance, respect_limits, seed, q0s, workers
         )
         labels, name = (LABEL,), "numeric:lm"
-    opts = np.empty(OPT_SIZE)
-    opts[OPT_TOL_POSITION] = tolerance.position
-    opts[OPT_TOL_ROTATION] = tolerance.rotation
-    opts[OPT_RESPECT_LIMITS] = float(respect_limits)
-    opts[OPT_COMPLETE] = float(closed is not None)
-    opts[OPT_HAS_Q0] = float(q0s is not None)
-    slots = Q.shape[1]
-    q0_rows = q0s if q0s is not None else np.zeros((N, chain.dof))
-    out_q = np.empty((N, slots, chain.dof))
+    slots, n = Q.shape[1], chain.dof
+    q0_rows = q0s if q0s is not None else np.zeros((N, n))
+    out_q = np.empty((N, slots, n))
     out_slot = np.empty((N, slots), dtype=np.int64)
     out_res = np.empty((N, slots, 2))
     meta = np.zeros((N, META_SIZE))
+    raw = CheckOutput(out_q, out_slot, out_res, meta, info[:, INFO_FREE:])
     if targets.single:
         check_target(
             chain.links, chain.ends, chain.qlim, targets.poses[0], Q[0], info[0], w,
             q0_rows[0], opts, out_q[0], out_slot[0], out_res[0], meta[0],
         )  # fmt: skip
-        return _one(
-            out_q[0], out_slot[0], out_res[0], meta[0], info[0], labels, name, closed, targets
-        )
+        return result_of(
+            out_q[0], out_slot[0], out_res[0], meta[0], info[0, INFO_FREE:],
+            labels, name, complete, targets.notes.get(0, ()),
+        )  # fmt: skip
     for i in targets.invalid:
         meta[i, META_STATUS] = STATUS_INVALID
     set_workers(workers)
@@ -180,7 +172,71 @@ def solve_ik(
         chain.links, chain.ends, chain.qlim, targets.poses, Q, info, w, q0_rows, opts,
         out_q, out_slot, out_res, meta,
     )  # fmt: skip
-    return _many(out_q, out_slot, out_res, meta, info, labels, name, closed, targets)
+    shape = targets.shape
+
+    def where(i: int) -> tuple[int, ...]:
+        return tuple(int(v) for v in np.unravel_index(i, shape))
+
+    return IKBatchResult(
+        raw=raw,
+        method=name,
+        labels=labels,
+        shape=shape,
+        errors={where(i): msg for i, msg in targets.invalid.items()},
+        notes={where(i): note for i, note in targets.notes.items()},
+        complete=complete,
+    )
+
+
+# The option arrays of the check kernel, one per combination of settings seen.
+_OPTIONS: dict[tuple[float, float, bool, bool, bool], FloatArray] = {}
+
+
+def _options(
+    tolerance: Tolerance, respect_limits: bool, complete: bool, has_q0: bool
+) -> FloatArray:
+    """The check kernel's ``opts`` for these settings (built once, then reused)."""
+    key = (tolerance.position, tolerance.rotation, bool(respect_limits), complete, has_q0)
+    opts = _OPTIONS.get(key)
+    if opts is None:
+        opts = np.empty(OPT_SIZE)
+        opts[OPT_TOL_POSITION] = tolerance.position
+        opts[OPT_TOL_ROTATION] = tolerance.rotation
+        opts[OPT_RESPECT_LIMITS] = float(respect_limits)
+        opts[OPT_COMPLETE] = float(complete)
+        opts[OPT_HAS_Q0] = float(has_q0)
+        if len(_OPTIONS) < 64:
+            _OPTIONS[key] = opts
+    return opts
+
+
+def _one_closed(
+    chain: DHChain,
+    closed: ClosedForm,
+    targets: Targets,
+    w: FloatArray,
+    opts: FloatArray,
+    q0s: FloatArray | None,
+) -> IKResult:
+    """One target, one closed form: the solver kernel, the check kernel, the result."""
+    n, m = chain.dof, closed.slots
+    T = targets.poses[0]
+    Q = np.empty((m, n))
+    info = np.zeros(INFO_FREE + n)
+    closed.solve_one(closed.params, T, Q, info)
+    out_q = np.empty((m, n))
+    out_slot = np.empty(m, dtype=np.int64)
+    out_res = np.empty((m, 2))
+    meta = np.empty(META_SIZE)
+    q0 = np.zeros(n) if q0s is None else q0s[0]
+    check_target(
+        chain.links, chain.ends, chain.qlim, T, Q, info, w, q0, opts, out_q, out_slot, out_res, meta
+    )
+    notes = targets.notes.get(0, ()) if targets.notes else ()
+    return result_of(
+        out_q, out_slot, out_res, meta, info[INFO_FREE:],
+        closed.labels, closed.method, True, notes,
+    )  # fmt: skip
 
 
 def _closed_candidates(
@@ -232,93 +288,3 @@ def _numeric_candidates(
     info = np.zeros((N, info_size(n)))
     info[:, INFO_GAP] = stats[:, STAT_GAP]
     return Q, info
-
-
-def _one(
-    out_q: FloatArray,
-    out_slot: NDArray[np.int64],
-    out_res: FloatArray,
-    meta: FloatArray,
-    info: FloatArray,
-    labels: tuple[str, ...],
-    method: str,
-    closed: ClosedForm | None,
-    targets: Targets,
-) -> IKResult:
-    count, out_count = int(meta[META_COUNT]), int(meta[META_OUT_COUNT])
-    status = STATUS_NAMES[int(meta[META_STATUS])]
-    gap = float(meta[META_GAP])
-    end = count + out_count
-    return IKResult(
-        solutions=out_q[:count].copy(),
-        status=status,
-        method=method,
-        residuals=out_res[:count].copy(),
-        branches=tuple(labels[j] for j in out_slot[:count]),
-        out_of_limits=out_q[count:end].copy(),
-        out_of_limits_branches=tuple(labels[j] for j in out_slot[count:end]),
-        free_joints=_free(info) if status == IKStatus.SINGULAR else (),
-        gap=None if math.isnan(gap) else gap,
-        nearest_error=(float(meta[META_NEAREST_POSITION]), float(meta[META_NEAREST_ROTATION])),
-        notes=targets.notes.get(0, ()),
-        complete=closed is not None,
-        near_singular=bool(meta[META_NEAR]),
-    )
-
-
-def _free(info: FloatArray) -> tuple[int, ...]:
-    return tuple(int(i) for i in np.flatnonzero(info[INFO_FREE:]))
-
-
-def _many(
-    out_q: FloatArray,
-    out_slot: NDArray[np.int64],
-    out_res: FloatArray,
-    meta: FloatArray,
-    info: FloatArray,
-    labels: tuple[str, ...],
-    method: str,
-    closed: ClosedForm | None,
-    targets: Targets,
-) -> IKBatchResult:
-    _N, m, n = out_q.shape
-    shape = targets.shape
-    count = meta[:, META_COUNT].astype(np.int64)
-    out_count = meta[:, META_OUT_COUNT].astype(np.int64)
-    k = int(count.max(initial=0))
-    j = int(out_count.max(initial=0))
-    rows = np.arange(m)
-    names = np.array([*labels, ""], dtype=str)  # slot -1 -> ""
-    inside = rows[None, :k] < count[:, None]
-    solutions = np.where(inside[..., None], out_q[:, :k], np.nan)
-    residuals = np.where(inside[..., None], out_res[:, :k], np.nan)
-    branches = np.where(inside, names[out_slot[:, :k]], "")
-    idx = np.minimum(count[:, None] + rows[None, :j], m - 1)
-    outside = rows[None, :j] < out_count[:, None]
-    o_q = np.where(outside[..., None], np.take_along_axis(out_q, idx[..., None], axis=1), np.nan)
-    o_slot = np.take_along_axis(out_slot, idx, axis=1)
-    o_branches = np.where(outside, names[o_slot], "")
-    codes = meta[:, META_STATUS].astype(np.int64)
-    status = np.array([str(STATUS_NAMES[c]) for c in range(6)], dtype=str)[codes]
-    free = (info[:, INFO_FREE:] != 0.0) & (status == str(IKStatus.SINGULAR))[:, None]
-    unravel = (
-        (lambda i: tuple(int(v) for v in np.unravel_index(i, shape))) if shape else (lambda i: ())
-    )
-    return IKBatchResult(
-        solutions=solutions.reshape(*shape, k, n),
-        count=count.reshape(shape),
-        status=status.reshape(shape),
-        method=method,
-        residuals=residuals.reshape(*shape, k, 2),
-        branches=branches.reshape(*shape, k),
-        out_of_limits=o_q.reshape(*shape, j, n),
-        out_of_limits_count=out_count.reshape(shape),
-        out_of_limits_branches=o_branches.reshape(*shape, j),
-        free=free.reshape(*shape, n),
-        gap=meta[:, META_GAP].reshape(shape),
-        nearest_error=meta[:, [META_NEAREST_POSITION, META_NEAREST_ROTATION]].reshape(*shape, 2),
-        errors={unravel(i): msg for i, msg in targets.invalid.items()},
-        notes={unravel(i): note for i, note in targets.notes.items()},
-        complete=closed is not None,
-        near_singular=(meta[:, META_NEAR] != 0.0).reshape(shape),
-    )
