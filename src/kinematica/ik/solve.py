@@ -85,7 +85,8 @@ def closed_form(chain: DHChain, target: TargetKind) -> ClosedForm | None:
                 if found is not None:
                     break
         if found is None and target == "pose" and chain.dof < 6:
-            found = closed_form(chain, "position")
+            position = closed_form(chain, "position")
+            found = position if position is not None and not position.partial else None
         per_chain[target] = found
     return per_chain[target]
 

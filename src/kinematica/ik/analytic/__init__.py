@@ -6,9 +6,14 @@ in the order they are tried.
 
 from __future__ import annotations
 
+from kinematica.ik.analytic import arm_position, spherical_wrist
 from kinematica.ik.analytic.legacy import LEGACY_SPECS
 from kinematica.ik.registry import SolverSpec
 
 __all__ = ["SOLVERS"]
 
-SOLVERS: tuple[SolverSpec, ...] = (*LEGACY_SPECS,)
+SOLVERS: tuple[SolverSpec, ...] = (
+    *spherical_wrist.SPECS,
+    *LEGACY_SPECS,
+    arm_position.SPEC,  # position targets of any longer arm: tried last
+)

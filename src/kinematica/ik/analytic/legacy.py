@@ -68,13 +68,11 @@ def _builder(
     factory_name: str,
 ) -> Callable[[DHChain, Features, TargetKind], ClosedForm | None]:
     def build(chain: DHChain, features: Features, target: TargetKind) -> ClosedForm | None:
-        from kinematica.ik.analytic import arm3r, parallel, planar, wrist
+        from kinematica.ik.analytic import arm3r, parallel, planar
 
         factories = {
             "planar": planar.make_planar_solver,
             "arm3r": arm3r.make_arm3r_solver,
-            "wrist": wrist.make_spherical_wrist_solver,
-            "rrp": wrist.make_rrp_wrist_solver,
             "parallel": parallel.make_three_parallel_solver,
         }
         solver = factories[factory_name](_robot(chain))
@@ -129,18 +127,6 @@ LEGACY_SPECS: tuple[SolverSpec, ...] = (
         "SCARA (RRPR, all axes parallel)",
         _f("RRPR", lambda f: f.all_parallel(range(4))),
         _builder("planar"),
-    ),
-    SolverSpec(
-        "spherical-wrist-6R",
-        "6R, spherical wrist",
-        _f("RRRRRR", lambda f: f.wrist_center is not None),
-        _builder("wrist"),
-    ),
-    SolverSpec(
-        "rrp-spherical-wrist",
-        "RRP + spherical wrist (Stanford type)",
-        _f("RRPRRR", lambda f: f.wrist_center is not None),
-        _builder("rrp"),
     ),
     SolverSpec(
         "three-parallel-6R",

@@ -1,24 +1,18 @@
-"""Geometric subproblems of closed-form IK, and the roots they lead to.
+"""Geometric subproblems of closed-form IK (numpy), and the roots they lead to.
 
-The subproblems are those of Paden and Kahan, numbered as in IK-Geo (Elias and
-Wen, "IK-Geo: Unified robot inverse kinematics using subproblem
-decomposition", 2022). Every rotation axis passes through the origin and is a
-unit vector; ``R(k, θ)`` is the rotation by ``θ`` about ``k`` (right hand)::
+TRANSITIONAL: what the numpy solvers still being ported to kernels use
+(:mod:`kinematica.kernels.geometry` and :mod:`kinematica.kernels.polynomial`
+hold the kernel versions). The subproblems are those of Paden and Kahan,
+numbered as in IK-Geo (Elias and Wen, "IK-Geo: Unified robot inverse
+kinematics using subproblem decomposition", 2022). Every rotation axis passes
+through the origin and is a unit vector; ``R(k, θ)`` is the rotation by ``θ``
+about ``k`` (right hand)::
 
     SP1  R(k, θ) p1 = p2                      one θ
-    SP2  R(k1, θ1) p1 = R(k2, θ2) p2          up to two (θ1, θ2)
-    SP3  |R(k, θ) p1 - p2| = d                up to two θ
-    SP4  hᵀ R(k, θ) p = d                     up to two θ
 
-SP3 and SP4 reduce to :func:`solve_trig_linear` (``a cos θ + b sin θ = c``).
 :func:`solve_quartic` finds the four complex roots of a batch of quartics, as
 closed-form solvers whose elimination ends in a degree-4 polynomial need.
-
-Everything broadcasts over leading batch axes and is pure numpy. Two-solution
-functions return ``(..., 2)`` angles and an ``exact`` flag: where no exact
-solution exists the angles hold a least-squares (SP1, SP3, SP4) or closest
-(SP2) answer, duplicated in both slots, and ``exact`` is False. The caller
-decides whether to keep it.
+Everything broadcasts over leading batch axes and is pure numpy.
 """
 
 from __future__ import annotations
@@ -29,27 +23,14 @@ from numpy.typing import ArrayLike, NDArray
 __all__ = [
     "COMPANION_BELOW",
     "QUARTIC_CHECK",
-    "TRIG_TOL",
     "cross",
-    "rotate",
     "rotation_matrix",
-    "rowmul",
     "solve_quartic",
-    "solve_trig_linear",
     "subproblem1",
-    "subproblem2",
-    "subproblem3",
-    "subproblem4",
 ]
 
 FloatArray = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]
-
-#: ``a cos θ + b sin θ = c`` with ``|c|`` above ``hypot(a, b)`` by at most this
-#: fraction is taken as touching (one double root) rather than unreachable: a
-#: target on the boundary of the reachable set, computed by forward kinematics,
-#: lands a few ulps on either side of it.
-TRIG_TOL = 1e-10
 
 #: Batches of fewer quartics than this go straight to the companion-matrix
 #: eigenvalues: numpy's per-call cost makes the closed form slower there.
@@ -90,33 +71,6 @@ def cross(u: ArrayLike, v: ArrayLike) -> FloatArray:
     return out
 
 
-def rowmul(A: FloatArray, B: FloatArray) -> FloatArray:
-    """``A @ B`` for ``A (..., k)`` and a matrix ``B (k, m)``, as one matrix product.
-
-    ``A @ B`` with a batch of rows goes through numpy's stacked-matmul loop,
-    one tiny product per row (15x slower for 10⁴ rows); reshaping to one
-    ``(rows, k)`` matrix hands the whole batch to BLAS at once.
-    """
-    A = np.ascontiguousarray(A)
-    return (A.reshape(-1, A.shape[-1]) @ B).reshape(*A.shape[:-1], B.shape[-1])
-
-
-def rotate(k: ArrayLike, theta: ArrayLike, v: ArrayLike) -> FloatArray:
-    """Rotate vectors about a unit axis through the origin (Rodrigues).
-
-    Args:
-        k: ``(..., 3)`` unit axis.
-        theta: ``(...)`` angle (rad).
-        v: ``(..., 3)`` vectors.
-
-    Returns:
-        ``(..., 3)`` ``R(k, θ) v``.
-    """
-    k, v, t = _f(k), _f(v), _f(theta)[..., None]
-    c, s = np.cos(t), np.sin(t)
-    return v * c + cross(k, v) * s + k * (_dot(k, v)[..., None] * (1.0 - c))
-
-
 def rotation_matrix(k: ArrayLike, theta: ArrayLike) -> FloatArray:
     """Rotation matrices about a unit axis (Rodrigues).
 
@@ -155,135 +109,6 @@ def subproblem1(p1: ArrayLike, p2: ArrayLike, k: ArrayLike) -> FloatArray:
     p1, p2, k = _f(p1), _f(p2), _f(k)
     a = p1 - _dot(k, p1)[..., None] * k
     return np.arctan2(_dot(k, cross(a, p2)), _dot(a, p2))
-
-
-def solve_trig_linear(
-    a: ArrayLike, b: ArrayLike, c: ArrayLike, tol: float = TRIG_TOL
-) -> tuple[FloatArray, BoolArray]:
-    """The angles ``θ`` with ``a cos θ + b sin θ = c``.
-
-    With ``r = hypot(a, b)`` and ``s = sqrt(r² - c²)`` the two solutions are
-    ``θ = atan2(b c ± a s, a c ∓ b s)`` (no ``acos``, so no loss of accuracy
-    away from the double root). Slot 0 takes the upper signs. When ``|c| > r``
-    (beyond ``tol``) there is no solution: both slots hold the least-squares
-    angle ``atan2(b c, a c)`` and ``exact`` is False. When ``a = b = 0`` every
-    angle solves ``c = 0`` and none solves ``c ≠ 0``: both slots hold 0 and
-    ``exact`` says whether ``c`` is 0.
-
-    Args:
-        a: ``(...)`` coefficient of ``cos θ``.
-        b: ``(...)`` coefficient of ``sin θ``.
-        c: ``(...)`` right-hand side.
-        tol: Relative slack on ``|c| <= r``.
-
-    Returns:
-        ``(theta (..., 2), exact (...))``.
-    """
-    a, b, c = np.broadcast_arrays(_f(a), _f(b), _f(c))
-    r2 = a * a + b * b
-    disc = r2 - c * c
-    exact = disc >= -2.0 * tol * r2
-    s = np.sqrt(np.maximum(disc, 0.0))
-    bs, as_ = b * s, a * s
-    bc, ac = b * c, a * c
-    theta = np.stack([np.arctan2(bc + as_, ac - bs), np.arctan2(bc - as_, ac + bs)], axis=-1)
-    degenerate = r2 == 0.0
-    if np.any(degenerate):
-        theta[degenerate] = 0.0
-        exact = np.where(degenerate, c == 0.0, exact)
-    return theta, exact
-
-
-def subproblem2(
-    p1: ArrayLike, p2: ArrayLike, k1: ArrayLike, k2: ArrayLike
-) -> tuple[FloatArray, FloatArray, BoolArray]:
-    """SP2: the angles with ``R(k1, θ1) p1 = R(k2, θ2) p2``.
-
-    The common vector ``v = R(k1, θ1) p1 = R(k2, θ2) p2`` has ``k1ᵀv = k1ᵀp1``,
-    ``k2ᵀv = k2ᵀp2`` and ``|v| = |p1|``, so ``v = α k1 + β k2 ± γ (k1 × k2)``;
-    slot 0 takes ``γ >= 0``. Then ``θ1`` turns ``p1`` onto ``v`` about ``k1``
-    and ``θ2`` turns ``p2`` onto ``v`` about ``k2`` (two SP1). ``γ²`` is computed
-    from the part of ``p1`` off ``k1`` (no cancellation when ``v`` nears ``k1``).
-    Needs ``k1`` not parallel to ``k2``.
-
-    Args:
-        p1: ``(..., 3)``.
-        p2: ``(..., 3)``, with ``|p2| = |p1|`` for an exact solution.
-        k1: ``(..., 3)`` unit axis.
-        k2: ``(..., 3)`` unit axis, not parallel to ``k1``.
-
-    Returns:
-        ``(theta1 (..., 2), theta2 (..., 2), exact (...))``; without an exact
-        solution ``γ`` is taken as 0 (the closest common vector in the plane
-        of the axes).
-    """
-    p1, p2, k1, k2 = _f(p1), _f(p2), _f(k1), _f(k2)
-    k12 = _dot(k1, k2)
-    n = cross(k1, k2)
-    nn = 1.0 - k12 * k12  # |k1 × k2|²
-    a1, a2 = _dot(k1, p1), _dot(k2, p2)
-    beta = (a2 - k12 * a1) / nn
-    alpha = a1 - k12 * beta
-    # |v - (k1ᵀv) k1|² = |p1 - (k1ᵀp1) k1|² = β² |k1×k2|² + γ² |k1×k2|²
-    off1 = p1 - a1[..., None] * k1
-    g2 = _dot(off1, off1) / nn - beta * beta
-    exact = g2 >= -2.0 * TRIG_TOL * (_dot(p1, p1) / nn)
-    g = np.sqrt(np.maximum(g2, 0.0))[..., None]
-    base = alpha[..., None] * k1 + beta[..., None] * k2
-    v = np.stack([base + g * n, base - g * n], axis=-2)  # (..., 2, 3)
-    kk1, kk2 = k1[..., None, :], k2[..., None, :]
-    theta1 = subproblem1(p1[..., None, :], v, kk1)
-    theta2 = subproblem1(p2[..., None, :], v, kk2)
-    return theta1, theta2, exact
-
-
-def subproblem3(
-    p1: ArrayLike, p2: ArrayLike, k: ArrayLike, d: ArrayLike
-) -> tuple[FloatArray, BoolArray]:
-    """SP3: the angles with ``|R(k, θ) p1 - p2| = d``.
-
-    Expanding the square gives ``a cos θ + b sin θ = c`` with the parts of
-    ``p1`` and ``p2`` off the axis; see :func:`solve_trig_linear` for slots.
-
-    Args:
-        p1: ``(..., 3)`` vector to rotate.
-        p2: ``(..., 3)`` fixed point.
-        k: ``(..., 3)`` unit axis.
-        d: ``(...)`` distance (>= 0).
-
-    Returns:
-        ``(theta (..., 2), exact (...))``.
-    """
-    p1, p2, k, d = _f(p1), _f(p2), _f(k), _f(d)
-    k1, k2 = _dot(k, p1), _dot(k, p2)
-    u = p1 - k1[..., None] * k
-    v = p2 - k2[..., None] * k
-    # |R p1 - p2|² = |p1|² + |p2|² - 2 (k1 k2 + uᵀv cos θ + kᵀ(u × v) sin θ)
-    rhs = (_dot(p1, p1) + _dot(p2, p2) - d * d) / 2.0 - k1 * k2
-    return solve_trig_linear(_dot(u, v), _dot(k, cross(u, v)), rhs)
-
-
-def subproblem4(
-    h: ArrayLike, p: ArrayLike, k: ArrayLike, d: ArrayLike
-) -> tuple[FloatArray, BoolArray]:
-    """SP4: the angles with ``hᵀ R(k, θ) p = d``.
-
-    ``R p = (kᵀp) k + cos θ u + sin θ (k × u)`` with ``u`` the part of ``p``
-    off the axis; see :func:`solve_trig_linear` for slots.
-
-    Args:
-        h: ``(..., 3)`` direction (any length).
-        p: ``(..., 3)`` vector to rotate.
-        k: ``(..., 3)`` unit axis.
-        d: ``(...)`` value to reach.
-
-    Returns:
-        ``(theta (..., 2), exact (...))``.
-    """
-    h, p, k, d = _f(h), _f(p), _f(k), _f(d)
-    kp = _dot(k, p)
-    u = p - kp[..., None] * k
-    return solve_trig_linear(_dot(h, u), _dot(h, cross(k, u)), d - kp * _dot(h, k))
 
 
 def _largest_cubic_root(A: FloatArray, B: FloatArray, C: FloatArray) -> FloatArray:

@@ -1,0 +1,246 @@
+"""Closed-form IK of arms with a spherical wrist: 6R, and RRP (Stanford type).
+
+The last three axes meet at the wrist centre ``c``, which only joints 1-3 move
+(the seeds' "hipótesis de la muñeca esférica"). In product-of-exponentials
+form (``T(q) = e1 e2 ... e6 M`` with the axes at q = 0) the target wrist
+centre is the point fixed in the tool frame that sits at ``c`` at q = 0::
+
+    c_t = T_target · M⁻¹ · c
+
+and joints 1-3 put ``c`` there (:mod:`~kinematica.kernels.solvers.arm_point`: up
+to four branches). The wrist then supplies the rotation left over,
+``R4 R5 R6 = (R1 R2 R3)ᵀ · R_target · R_Mᵀ`` (the seeds' ``R36 = (R03)ᵀ R06``),
+about wrist axes meeting at any angles:
+
+* ``w = R4 R5 R6 h6`` (the target's axis 6, turned back by joints 1-3): the
+  vector ``c' = R4ᵀ w = R5 h6`` has ``h4ᵀc' = h4ᵀw``, ``h5ᵀc' = h5ᵀh6`` and unit
+  length, so ``c' = α h4 + β h5 ± γ (h4 × h5)`` (SP2): "no-flip" and "flip";
+* q4 turns ``c'`` onto ``w`` about ``h4``, q5 turns ``h6`` onto ``c'`` about ``h5``
+  (SP1 each), and q6 turns ``x6`` onto ``R5ᵀ R4ᵀ R x6`` about ``h6``: computed
+  last, it absorbs the round-off of q4 and q5 (near the wrist singularity q4
+  is ill-determined, their combination is not).
+
+"No-flip" bends the wrist the way it is bent at q = 0 (or, when q = 0 is
+itself singular, the way q5 > 0 bends it from there): on the PUMA, sin q5 > 0.
+Slots: ``4 position × 2 wrist``, slot ``2 k + w``.
+
+At the edges (each a continuum, flagged ``singular`` with its free joints):
+
+* wrist singular (``w`` within ``WRIST_SINGULAR_TOL`` of ``±h4``: axes 4 and 6
+  aligned): only ``q4 ± q6`` is determined; the no-flip slot holds the
+  representative with ``q4 = 0``, the flip slot (the same family) is NaN;
+* wrist centre on axis 1 (q1 free) or on axis 2 (q2 free): the first two
+  position slots turn the free joint so that the arm faces the tool (axis 4
+  turned towards the target's axis 6: the wrist is least bent), the last two
+  hold it at 0 (where the shoulder branches merge, as they do at these
+  points for shoulders in closed form, that is one representative of each).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from kinematica.kernels._numba import Array, kernel
+from kinematica.kernels.geometry import rotate, subproblem1
+from kinematica.kernels.ik_check import INFO_FREE, INFO_GAP, INFO_NEAR, INFO_SINGULAR
+from kinematica.kernels.solvers.arm_base import (
+    A_H1,
+    A_H2,
+    A_H3,
+    A_PRISMATIC,
+    A_SIZE,
+    NEAR_TOL,
+    ST_FREE,
+    ST_GAP,
+    ST_NEAR,
+    clamped_root,
+)
+
+__all__ = ["WRIST_SINGULAR_TOL", "W_SIZE", "pose", "wrist_centre"]
+
+#: The wrist is singular (axes 4 and 6 aligned) when the sine of the angle
+#: between ``h4`` and ``w`` is below this: the representative ``q4 = 0`` then
+#: reproduces the rotation to about twice this (far below 1e-10 rad).
+WRIST_SINGULAR_TOL = 1e-12
+
+# Parameter offsets after the arm part and the mode (vectors at q = 0, base frame).
+W_CTOOL = A_SIZE + 1  # (3,) wrist centre in the tool frame (M⁻¹ c)
+W_LH = A_SIZE + 4  # (3,) R_Mᵀ h6: the target's axis 6 is R_target times this
+W_LX = A_SIZE + 7  # (3,) R_Mᵀ x6
+W_H4 = A_SIZE + 10  # (3,) wrist axes, and x6: a unit vector normal to h6
+W_H5 = A_SIZE + 13
+W_H6 = A_SIZE + 16
+W_X6 = A_SIZE + 19
+W_Y6 = A_SIZE + 22  # (3,) h6 × x6
+W_EA = A_SIZE + 25  # (3,) unit part of h5 normal to h4; eb = h4 × ea
+W_EB = A_SIZE + 28
+W_K45 = A_SIZE + 31  # h4ᵀh5
+W_S45 = A_SIZE + 32  # |h4 × h5|
+W_K56 = A_SIZE + 33  # h5ᵀh6
+W_N56 = A_SIZE + 34  # (3,) h5 × h6 in the frame (h4, ea, eb)
+W_H6F = A_SIZE + 37  # (3,) h6 in that frame
+W_FLIP = A_SIZE + 40  # sign of γ on the no-flip branch
+W_SIZE = A_SIZE + 41
+
+
+@kernel
+def _dot(params: Array, o: int, v: Array) -> float:
+    """``params[o:o+3] · v``."""
+    return params[o] * v[0] + params[o + 1] * v[1] + params[o + 2] * v[2]
+
+
+@kernel
+def _undo(params: Array, q: Array, v: Array, out: Array, tmp: Array) -> None:
+    """``out = R3ᵀ R2ᵀ R1ᵀ v``: joints 1-3 (q ``(3,)``) turned back (a slide turns nothing)."""
+    rotate(params[A_H1 : A_H1 + 3], math.cos(q[0]), -math.sin(q[0]), v, tmp)
+    rotate(params[A_H2 : A_H2 + 3], math.cos(q[1]), -math.sin(q[1]), tmp, out)
+    if params[A_PRISMATIC] == 0.0:
+        rotate(params[A_H3 : A_H3 + 3], math.cos(q[2]), -math.sin(q[2]), out, tmp)
+        for i in range(3):
+            out[i] = tmp[i]
+
+
+@kernel
+def _q6(params: Array, q4: float, q5: float, y: Array, tmp: Array, z: Array) -> float:
+    """q6 turning ``x6`` onto ``z = R5ᵀ R4ᵀ y`` about ``h6`` (absorbs q4's, q5's round-off)."""
+    rotate(params[W_H4 : W_H4 + 3], math.cos(q4), -math.sin(q4), y, tmp)
+    rotate(params[W_H5 : W_H5 + 3], math.cos(q5), -math.sin(q5), tmp, z)
+    return math.atan2(_dot(params, W_Y6, z), _dot(params, W_X6, z))
+
+
+@kernel
+def _wrist(params: Array, w: Array, y: Array, out: Array, st: Array) -> bool:
+    """(q4, q5, q6) of no-flip and flip into ``out (2, 3)``; True when singular.
+
+    Args:
+        params: The solver's parameters.
+        w: ``(3,)`` the target's axis 6 with joints 1-3 turned back.
+        y: ``(3,)`` its ``x6`` likewise.
+        out: ``(2, 3)`` out, NaN rows where the wrist cannot make the rotation.
+        st: Arm state; ``ST_NEAR`` is raised near the wrist singularity or fold.
+    """
+    tmp = np.empty(3)
+    z = np.empty(3)
+    w4 = _dot(params, W_H4, w)
+    wa = _dot(params, W_EA, w)
+    wb = _dot(params, W_EB, w)
+    off2 = wa * wa + wb * wb  # |w × h4|², exact (no 1 - cos² cancellation)
+    k56 = params[W_K56]
+    if off2 < NEAR_TOL * NEAR_TOL:
+        st[ST_NEAR] = 1.0
+    if off2 < WRIST_SINGULAR_TOL * WRIST_SINGULAR_TOL:
+        # q4 free: c' = w; q5 turns h6 onto w about h5; q6 absorbs the rest
+        cw = w4 * params[W_N56] + wa * params[W_N56 + 1] + wb * params[W_N56 + 2]
+        ch = w4 * params[W_H6F] + wa * params[W_H6F + 1] + wb * params[W_H6F + 2]
+        q5 = math.atan2(cw, ch - k56 * k56)
+        out[0, 0] = 0.0
+        out[0, 1] = q5
+        out[0, 2] = _q6(params, 0.0, q5, y, tmp, z)
+        out[1, :] = math.nan
+        return True
+    s45 = params[W_S45]
+    inv = 1.0 / (s45 * s45)
+    beta = (k56 - params[W_K45] * w4) * inv
+    gam0 = clamped_root(off2 * inv - beta * beta, inv, st)
+    ca = beta * s45
+    for j in range(2):
+        cb = gam0 * s45 * (params[W_FLIP] if j == 0 else -params[W_FLIP])
+        # q4 turns c' onto w about h4 (the parts off h4 in the frame ea, eb)
+        q4 = math.atan2(ca * wb - cb * wa, ca * wa + cb * wb)
+        # q5 turns h6 onto c' = (w4, ca, cb) about h5
+        cw = w4 * params[W_N56] + ca * params[W_N56 + 1] + cb * params[W_N56 + 2]
+        ch = w4 * params[W_H6F] + ca * params[W_H6F + 1] + cb * params[W_H6F + 2]
+        q5 = math.atan2(cw, ch - k56 * k56)
+        out[j, 0] = q4
+        out[j, 1] = q5
+        out[j, 2] = _q6(params, q4, q5, y, tmp, z)
+    return False
+
+
+@kernel
+def _face(params: Array, q: Array, W0: Array, free1: bool, free2: bool, tmp: Array) -> None:
+    """Set a free q2, then a free q1, so that axis 4 turns towards the target's axis 6."""
+    k = np.empty(3)
+    t = np.empty(3)
+    for i in range(3):
+        k[i] = params[W_H4 + i]
+    if params[A_PRISMATIC] == 0.0:
+        rotate(params[A_H3 : A_H3 + 3], math.cos(q[2]), math.sin(q[2]), k, tmp)
+        for i in range(3):
+            k[i] = tmp[i]
+    h1 = params[A_H1 : A_H1 + 3]
+    h2 = params[A_H2 : A_H2 + 3]
+    if free2:  # axis 4 after joint 3, turned about axis 2 towards R1ᵀ h6_target
+        rotate(h1, math.cos(q[0]), -math.sin(q[0]), W0, t)
+        q[1] = subproblem1(k, t, h2)
+    rotate(h2, math.cos(q[1]), math.sin(q[1]), k, tmp)
+    if free1:
+        q[0] = subproblem1(tmp, W0, h1)
+
+
+@kernel
+def wrist_centre(params: Array, T: Array, ct: Array) -> None:
+    """``ct (3,)``: the target wrist centre ``T M⁻¹ c`` of a pose ``T (4, 4)``."""
+    for i in range(3):
+        ct[i] = T[i, 3]
+        for j in range(3):
+            ct[i] += T[i, j] * params[W_CTOOL + j]
+
+
+@kernel
+def pose(params: Array, T: Array, Q3: Array, st: Array, Q: Array, info: Array) -> None:
+    """Candidates for one pose, given the wrist-centre placements.
+
+    Args:
+        params: ``(W_SIZE,)`` the arm part, the mode, then the wrist's.
+        T: ``(4, 4)`` target tool pose (base frame).
+        Q3: ``(4, 3)`` where joints 1-3 put the wrist centre (see
+            :func:`~kinematica.kernels.solvers.arm_point.place`).
+        st: What ``place`` reported.
+        Q: ``(8, 6)`` out: slot ``2 k + w`` (position branch k, wrist no-flip
+            or flip), NaN rows where the branch has no real solution.
+        info: ``(INFO_FREE + 6,)`` out (zero on entry): see
+            :mod:`kinematica.kernels.ik_check`.
+    """
+    W0 = np.empty(3)  # the target's axis 6 and x6
+    Y0 = np.empty(3)
+    for i in range(3):
+        W0[i] = 0.0
+        Y0[i] = 0.0
+        for j in range(3):
+            W0[i] += T[i, j] * params[W_LH + j]
+            Y0[i] += T[i, j] * params[W_LX + j]
+    q = np.empty(3)
+    w = np.empty(3)
+    y = np.empty(3)
+    tmp = np.empty(3)
+    qw = np.empty((2, 3))
+    real = False
+    wrist_singular = False
+    free1 = st[ST_FREE] != 0.0
+    free2 = st[ST_FREE + 1] != 0.0
+    for k in range(4):
+        for i in range(3):
+            q[i] = Q3[k, i]
+        if k < 2 and (free1 or free2) and not math.isnan(q[0]):
+            _face(params, q, W0, free1, free2, tmp)
+        _undo(params, q, W0, w, tmp)
+        _undo(params, q, Y0, y, tmp)
+        wrist_singular |= _wrist(params, w, y, qw, st) and not math.isnan(q[0])
+        for j in range(2):
+            row = Q[2 * k + j]
+            ok = not math.isnan(q[0] + qw[j, 0] + qw[j, 1] + qw[j, 2])
+            real |= ok
+            for i in range(6):
+                row[i] = (q[i] if i < 3 else qw[j, i - 3]) if ok else math.nan
+    for i in range(3):
+        info[INFO_FREE + i] = st[ST_FREE + i]
+    if wrist_singular:
+        info[INFO_FREE + 3] = 1.0
+        info[INFO_FREE + 5] = 1.0
+    singular = wrist_singular or st[ST_FREE] + st[ST_FREE + 1] + st[ST_FREE + 2] != 0.0
+    info[INFO_SINGULAR] = 1.0 if singular else 0.0
+    info[INFO_NEAR] = st[ST_NEAR]
+    info[INFO_GAP] = math.nan if real else st[ST_GAP]
