@@ -16,8 +16,8 @@ so ``F`` is a trigonometric polynomial of degree 2: a quartic in
 π/4) that makes its leading coefficient ``F(θ + π)`` largest, so that every
 root is finite and well scaled. For a slide ``L`` is quadratic and ``H`` linear
 in q3: a quartic in q3. The roots (:func:`~kinematica.kernels.polynomial.quartic_roots`)
-are polished by Newton steps on ``F``, accepted when the point they place
-misses the target by at most ``ACCEPT_TOL`` (times the arm's size); the
+are polished by Newton steps on ``F``, handed on when the point they place
+misses the target by at most ``NEAR_TOL`` (times the arm's size); the
 error the elimination amplifies near double roots is removed by the check's
 Gauss-Newton polishing (:mod:`kinematica.kernels.ik_check`), which works on
 the whole arm.
@@ -49,7 +49,6 @@ from kinematica.kernels.solvers.arm_base import (
 )
 
 __all__ = [
-    "ACCEPT_TOL",
     "IMAG_TOL",
     "MAX_NEWTON_STEP",
     "NEWTON_STEPS",
@@ -61,9 +60,6 @@ __all__ = [
 #: polished: a double root (target on the workspace boundary) splits into a
 #: complex pair of size ~sqrt(ulp).
 IMAG_TOL = 1e-6
-#: After polishing, a quartic root that leaves the point farther than this
-#: (times the arm's size) from the target was complex and is dropped.
-ACCEPT_TOL = 1e-8
 #: Newton steps on ``F`` for each quartic root.
 NEWTON_STEPS = 2
 #: Newton steps on ``F`` longer than this (rad or m) are round-off at a double
@@ -96,24 +92,37 @@ def _sort4(q: Array) -> None:
 
 
 @kernel
-def _real(t: complex) -> float:
-    """``t.real`` where ``t`` counts as real (``IMAG_TOL``), else NaN."""
-    return t.real if abs(t.imag) <= IMAG_TOL * (1.0 + abs(t)) else math.nan
+def _real(t: complex, st: Array) -> float:
+    """``t.real`` where ``t`` counts as real (``IMAG_TOL``), else NaN.
+
+    A root dropped with ``|Im t| <= sqrt(NEAR_TOL) (1 + |t|)`` is a double root
+    split by a target just past a fold (by about ``Im²``): ``st[ST_NEAR]`` is raised.
+    """
+    size = 1.0 + abs(t)
+    if abs(t.imag) <= IMAG_TOL * size:
+        return t.real
+    if abs(t.imag) <= math.sqrt(NEAR_TOL) * size:
+        st[ST_NEAR] = 1.0
+    return math.nan
 
 
 @kernel
-def trig_roots(F: Array, q: Array) -> bool:
+def trig_roots(F: Array, size: float, q: Array, st: Array) -> bool:
     """The real roots of ``F0 + F1 cos q + F2 sin q + F3 cos 2q + F4 sin 2q`` in ``q (4,)``.
 
+    Args:
+        F: ``(5,)`` the coefficients.
+        size: The magnitude of the terms they were computed from: ``F`` within
+            ``SELF_MOTION_TOL`` of it at every sample is 0 to round-off.
+        q: ``(4,)`` out.
+        st: Arm state (``ST_NEAR`` raised for a root just off the real axis).
+
     Returns:
-        True for ``F ≡ 0`` (every q is a root: ``q`` holds 0, ±π/2, π).
+        True for ``F ≡ 0`` (every q is a root: ``q`` holds -π/2, 0, π/2, π).
         Otherwise the roots in (-π, π], sorted, NaN-padded.
     """
     best = -1.0
     kbest = 0
-    total = 0.0
-    for i in range(5):
-        total += abs(F[i])
     for k in range(8):
         th = k * _QUARTER + math.pi
         val = F[0] + F[1] * math.cos(th) + F[2] * math.sin(th)
@@ -121,7 +130,7 @@ def trig_roots(F: Array, q: Array) -> bool:
         if abs(val) > best:
             best = abs(val)
             kbest = k
-    if not best > SELF_MOTION_TOL * total:
+    if not best > SELF_MOTION_TOL * size:
         for i in range(4):
             q[i] = (i - 1) * 0.5 * math.pi if i < 3 else math.pi
         return True
@@ -144,7 +153,7 @@ def trig_roots(F: Array, q: Array) -> bool:
     roots = np.empty(4, dtype=np.complex128)
     quartic_roots(coef, roots)
     for i in range(4):
-        x = th + 2.0 * math.atan(_real(roots[i]))
+        x = th + 2.0 * math.atan(_real(roots[i], st))
         for _ in range(NEWTON_STEPS):
             cx = math.cos(x)
             sx = math.sin(x)
@@ -159,12 +168,15 @@ def trig_roots(F: Array, q: Array) -> bool:
 
 
 @kernel
-def slide_roots(k: Array, q: Array) -> None:
-    """The real roots of the quartic ``k (5,)`` (highest power first) in ``q (4,)``, sorted."""
+def slide_roots(k: Array, q: Array, st: Array) -> None:
+    """The real roots of the quartic ``k (5,)`` (highest power first) in ``q (4,)``, sorted.
+
+    ``st[ST_NEAR]`` is raised for a root just off the real axis (see :func:`trig_roots`).
+    """
     roots = np.empty(4, dtype=np.complex128)
     quartic_roots(k, roots)
     for i in range(4):
-        x = _real(roots[i])
+        x = _real(roots[i], st)
         for _ in range(NEWTON_STEPS):
             f = 0.0
             df = 0.0
@@ -177,7 +189,7 @@ def slide_roots(k: Array, q: Array) -> None:
 
 
 @kernel
-def _q3_roots(params: Array, zeta: float, dd: float, q: Array) -> bool:
+def _q3_roots(params: Array, zeta: float, dd: float, q: Array, st: Array) -> bool:
     """Pieper's roots q3 ``(4,)`` for a target; True for a self-motion."""
     a = params[A_A]
     ca = params[A_CA]
@@ -199,12 +211,15 @@ def _q3_roots(params: Array, zeta: float, dd: float, q: Array) -> bool:
         k[2] = sa2 * (x1 * x1 - 2.0 * x0) + 4.0 * a2 * y1 * y1 - 4.0 * a2 * sa2 * (1.0 - H1 * H1)
         k[3] = 2.0 * sa2 * x1 * x0 + 8.0 * a2 * y1 * y0 - 4.0 * a2 * sa2 * (L1 - 2.0 * H1 * H0)
         k[4] = sa2 * x0 * x0 + 4.0 * a2 * y0 * y0 - 4.0 * a2 * sa2 * (L0 - H0 * H0)
-        slide_roots(k, q)
+        slide_roots(k, q, st)
         return False
     X0 = dd - a * a - L0
     Y0 = zeta - ca * H0
+    Xs = dd + a * a + abs(L0)  # the sizes X0 and Y0 were computed at
+    Ys = abs(zeta) + abs(ca * H0)
     inv = 1.0 / params[A_SCALE] ** 4
     F = np.empty(5)
+    size = 0.0
     for j in range(5):
         o = A_FOURIER + j
         F[j] = (
@@ -214,7 +229,14 @@ def _q3_roots(params: Array, zeta: float, dd: float, q: Array) -> bool:
             + Y0 * params[o + 15]
             + params[o + 20]
         ) * inv
-    return trig_roots(F, q)
+        size += (
+            Xs * Xs * abs(params[o])
+            + Xs * abs(params[o + 5])
+            + Ys * Ys * abs(params[o + 10])
+            + Ys * abs(params[o + 15])
+            + abs(params[o + 20])
+        ) * inv
+    return trig_roots(F, size, q, st)
 
 
 @kernel
@@ -234,7 +256,7 @@ def general_position(params: Array, dz: Array, dd: float, st: Array, Q3: Array) 
     g = params[A_G]
     scale = params[A_SCALE]
     roots = np.empty(4)
-    if _q3_roots(params, zeta, dd, roots):
+    if _q3_roots(params, zeta, dd, roots, st):
         st[ST_FREE + 2] = 1.0
     vals = np.empty(4)
     for k in range(4):
@@ -243,8 +265,6 @@ def general_position(params: Array, dz: Array, dd: float, st: Array, Q3: Array) 
         v1 = (dd - a * a - vals[3]) * (0.5 / a)
         v2 = (zeta - ca * vals[2]) / g
         miss = abs(math.hypot(v1, v2) - math.hypot(vals[0], vals[1]))
-        if miss > ACCEPT_TOL * scale:
-            if miss <= NEAR_TOL * scale:
-                st[ST_NEAR] = 1.0  # a nearly real root: a fold the closed form cannot settle
+        if miss > NEAR_TOL * scale:  # a complex root taken for real: drop it
             q3 = math.nan
         slot(params, k, q3, v1, v2, vals, dz, st, Q3)
