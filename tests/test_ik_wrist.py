@@ -21,7 +21,6 @@ from ik_search import dls_solutions, joint_distance, random_q
 from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 
-import kinematica as km
 from kinematica.dh import Prismatic, Revolute
 from kinematica.ik import ClosedForm, IKBatchResult, IKResult, closed_form
 from kinematica.ik.analytic.arm_point import arm_geometry

@@ -127,11 +127,11 @@ def arm_geometry(
     else:
         f1, f2 = _foot_points(h1, p1, h2, p2)
         a = float(np.linalg.norm(f2 - f1))
-        if a < GEOMETRY_TOL * scale:
-            kind, p1 = arm_base.KIND_MEET, (f1 + f2) / 2
-            p2, a = p1, 0.0
+        if a < GEOMETRY_TOL * scale:  # they meet, or all but (an offset of 1e-10)
+            kind, p1, p2 = arm_base.KIND_MEET, f1, f2
             e2 = (h1 - ca * h2) / sa
             e1 = np.cross(e2, h2)
+            a = float((f2 - f1) @ e1)  # signed: f2 - f1 is along h1 × h2, so along e1
         else:
             kind, p1, p2 = arm_base.KIND_GENERAL, f1, f2
             e1 = (f2 - f1) / a
@@ -162,13 +162,23 @@ def arm_geometry(
         rH = math.hypot(coef[1, 2], coef[2, 2])
         Hrange = (coef[0, 2] - rH, coef[0, 2] + rH)
     coef[:, 3] = L
+    b3 = float(U[0] @ h3)
+    m3 = float(np.linalg.norm(U[0] - b3 * h3))  # distance of axis 3 from p2
+    if prismatic:
+        q3_form = [b3, m3, 0.0, 0.0, 0.0]
+    else:
+        n3 = float(np.linalg.norm(U[1]))
+        if m3 < GEOMETRY_TOL * scale and (kind == arm_base.KIND_MEET or parallel23):
+            return None  # axis 3 through p2: |u| does not depend on q3
+        beta = math.atan2(float(U[0] @ U[2]), float(U[0] @ U[1]))
+        q3_form = [beta, m3, n3, math.hypot(b3, m3 - n3), math.hypot(b3, m3 + n3)]
     g = float(h1 @ e2)
     # |x - p1| = |δ + R2 u| lies in [max(0, umin - a, a - umax), a + umax]; with
     # axes 1 and 2 parallel h1ᵀ(x - p1) = cα H lies in cα [Hmin, Hmax]
     zlo, zhi = (
         sorted(ca * v for v in Hrange) if kind == arm_base.KIND_PARALLEL else (-math.inf, math.inf)
     )
-    shell = (max(0.0, umin - a, a - umax), a + umax, zlo, zhi)
+    shell = (max(0.0, umin - abs(a), abs(a) - umax), abs(a) + umax, zlo, zhi)
     a1 = unit_normal(h1)
     frame1 = np.stack([h1, a1, np.cross(h1, a1)], axis=1)
     xframe = np.stack([h2, e1, e2, p2 - p1]) @ frame1[:, 1:]
@@ -211,6 +221,7 @@ def arm_geometry(
         B.A_H3: h3,
         B.A_P21: p2 - p1,
         B.A_U: U,
+        B.A_Q3: np.array(q3_form),
     }
     for o, v in blocks.items():
         flat = np.ravel(v)

@@ -29,6 +29,7 @@ __all__ = [
     "A_P21",
     "A_PAR23",
     "A_PRISMATIC",
+    "A_Q3",
     "A_ROOTS",
     "A_SA",
     "A_SCALE",
@@ -36,6 +37,7 @@ __all__ = [
     "A_SIZE",
     "A_U",
     "A_XFRAME",
+    "DOUBLE_ROOT_TOL",
     "HUGE_REACH",
     "KIND_GENERAL",
     "KIND_MEET",
@@ -60,6 +62,11 @@ SINGULAR_TOL = 1e-12
 #: (its candidate goes to the check); within it of 0, or a target within it
 #: (relative) of axis 1 or 2, flags the target as near a singular set.
 NEAR_TOL = 1e-6
+#: A radicand within this fraction of its scale of 0 (either side) is a double
+#: root: its two roots, within about 1e-7 (rad or relative) of each other, are
+#: one solution (as the check's dedupe would have them), not two split by
+#: round-off and pulled further apart by ill-conditioned joints.
+DOUBLE_ROOT_TOL = 1e-14
 #: Targets farther than this (metres) from axis 1's foot point are beyond any
 #: arm: no squares are taken of their coordinates (1e154² overflows).
 HUGE_REACH = 1e100
@@ -89,7 +96,10 @@ A_H2 = 77
 A_H3 = 80
 A_P21 = 83  # (3,) p2 - p1
 A_U = 86  # (3, 3) u(q3) = U0 + U1 cos q3 + U2 sin q3 (or U0 + q3 U1)
-A_SIZE = 95
+# |u(q3)| in half-angle form (revolute): with m = |U0⊥| (U0 off axis 3), n = |U1|,
+# |u|² = Dmin² + 4mn cos²ψ = Dmax² - 4mn sin²ψ, ψ = (q3 - β)/2; a slide: b = U0ᵀh3, m.
+A_Q3 = 95  # (5,) β, m, n, Dmin, Dmax (revolute); b, m (slide)
+A_SIZE = 100
 
 # What :func:`place` reports besides the candidates (``st``).
 ST_FREE = 0  # (3,) 1.0 for q1, q2, q3 left free (a continuum)
@@ -100,16 +110,36 @@ ST_SIZE = 6
 
 
 @kernel
-def clamped_root(x: float, size: float, st: Array) -> float:
-    """``sqrt(x)``; 0 for ``-NEAR_TOL size <= x < 0`` (a double root); NaN below.
+def clamped_root(diff: float, size: float, other: float, scale: float, st: Array) -> float:
+    """``sqrt(diff · other)``, clamped where ``diff`` (a fold's signed distance) is ~0.
 
-    Flags ``st[ST_NEAR]`` when ``|x| <= NEAR_TOL size``.
+    A radicand is written as a signed difference ``diff`` (it vanishes at a
+    fold, where two roots merge) times positive factors ``other``. ``diff``
+    within ``DOUBLE_ROOT_TOL · (size + scale)`` of 0 is round-off: a double
+    root (0 comes back). A negative ``diff`` down to ``-(NEAR_TOL · size +
+    DOUBLE_ROOT_TOL · scale)`` gives ``sqrt(|diff| · other)``: the target is
+    just past the fold as computed, but the arm's true roots (round-off, an
+    axis offset of 1e-10 the closed form neglects) may lie on either side, so
+    both mirrored candidates go to the check, which polishes them onto the
+    true roots or rejects them. Below, NaN. Within that of 0,
+    ``st[ST_NEAR]`` is raised.
+
+    Args:
+        diff: The difference (e.g. of two lengths).
+        size: Its scale (e.g. their sum).
+        other: The other factors (>= 0; negative: NaN, another factor failed).
+        scale: The arm's size (lengths) or 1: the round-off where ``size`` is ~0.
+        st: Arm state.
     """
-    if abs(x) <= NEAR_TOL * size:
+    roundoff = DOUBLE_ROOT_TOL * scale
+    near = NEAR_TOL * size + roundoff
+    if abs(diff) <= near:
         st[ST_NEAR] = 1.0
-    if x >= 0.0:
-        return math.sqrt(x)
-    return 0.0 if x >= -NEAR_TOL * size else math.nan
+        if abs(diff) <= DOUBLE_ROOT_TOL * size + roundoff:
+            return 0.0
+    if other < 0.0 or diff < -near:
+        return math.nan
+    return math.sqrt(abs(diff) * other)
 
 
 @kernel

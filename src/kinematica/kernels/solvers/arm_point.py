@@ -59,10 +59,11 @@ from kinematica.kernels.solvers.arm_base import (
     A_P1,
     A_PAR23,
     A_PRISMATIC,
+    A_Q3,
     A_ROOTS,
-    A_SA,
     A_SCALE,
     A_SHELL,
+    DOUBLE_ROOT_TOL,
     HUGE_REACH,
     KIND_MEET,
     KIND_PARALLEL,
@@ -92,6 +93,9 @@ def _q3_pair(params: Array, a: float, b: float, rhs: float, st: Array, out: Arra
     if abs(disc) <= NEAR_TOL * r2:
         st[ST_NEAR] = 1.0
     found = trig_linear(a, b, rhs, out)
+    if found > 0 and abs(disc) <= DOUBLE_ROOT_TOL * r2:  # one double root
+        out[0] = math.atan2(b * rhs, a * rhs)
+        out[1] = out[0]
     # found < 0: a = b = 0, q3 moves nothing here (the builder excludes it)
     if found < 0 or (found == 0 and disc < -NEAR_TOL * r2):
         out[0] = math.nan
@@ -99,35 +103,105 @@ def _q3_pair(params: Array, a: float, b: float, rhs: float, st: Array, out: Arra
 
 
 @kernel
-def _meet(params: Array, dz: Array, dd: float, st: Array, Q3: Array) -> None:
-    """Axes 1 and 2 meet: ``L(q3) = |d|²``, then the shoulder sign of ``v1``."""
-    o = A_COEF
+def _q3_distance(params: Array, D: float, st: Array, out: Array) -> None:
+    """The two q3 with ``|u(q3)| = D`` into ``out (2,)`` (upper root first), NaN when none.
+
+    Half-angle form (see ``A_Q3``): ``cos²ψ = (D² - Dmin²)/4mn`` and
+    ``sin²ψ = (Dmax² - D²)/4mn``, each a product of differences of lengths, so
+    that a point folded back onto axis 2 (``Dmin = 0``: equal link lengths) or
+    stretched out is placed to round-off. A slide: ``q3 = -b ± sqrt(D² - m²)``.
+    """
+    o = A_Q3
+    scale = params[A_SCALE]
+    if params[A_PRISMATIC] != 0.0:
+        m = params[o + 1]
+        s = clamped_root(D - m, D + m, D + m, scale, st)
+        out[0] = s - params[o]
+        out[1] = -s - params[o]
+        return
+    lo = params[o + 3]
+    hi = params[o + 4]
+    c = clamped_root(D - lo, D + lo, D + lo, scale, st)  # 2 sqrt(mn) cos ψ
+    s = clamped_root(hi - D, hi + D, hi + D, scale, st)  # 2 sqrt(mn) sin ψ
+    psi = math.atan2(s, c)
+    out[0] = params[o] + 2.0 * psi
+    out[1] = params[o] - 2.0 * psi
+
+
+@kernel
+def _shoulder_v(
+    params: Array, zeta: float, rho: float, H: float, sign: float, st: Array, v: Array
+) -> None:
+    """``v = [v1, v2]`` at the height ``H = h2ᵀu``: ``g v2 = ζ - cα H``, ``a + v1 = ±√(ρ² - m²)``.
+
+    ``m = (H - cα ζ)/g`` is the part of the target's distance from axis 1 that
+    the shoulder cannot turn away; ``sign`` picks the shoulder branch.
+    """
+    g = params[A_G]
+    ca = params[A_CA]
+    m = abs((H - ca * zeta) / g)
+    scale = params[A_SCALE]
+    v[0] = -params[A_A] + sign * clamped_root(rho - m, rho + m, rho + m, scale, st)
+    v[1] = (zeta - ca * H) / g
+
+
+@kernel
+def _closed(params: Array, dz: Array, dd: float, st: Array, Q3: Array) -> None:
+    """Axes 1 and 2 meet (``a`` ~ 0), or are skew with axes 2 ∥ 3 (``H`` ~ constant).
+
+    Then ``|u(q3)|² = |d|² - a² - 2a v1`` (meet: ``|d|²``) gives q3, and
+    ``(v1, v2)`` follow from ``H(q3)``; with ``H`` constant they come first and
+    ``|u|² = v1² + v2² + H²``. One more pass with ``H`` and ``v1`` at the found
+    q3 settles the small coupling of nearly meeting axes (an offset of 1e-10)
+    or nearly parallel axes 2 and 3.
+    """
     zeta = dz[0]
     rho = st[ST_RHO]
-    ca = params[A_CA]
-    sa = params[A_SA]
-    g = params[A_G]
+    a = params[A_A]
+    meet = params[A_KIND] == KIND_MEET
     vals = np.empty(4)
     roots = np.empty(2)
-    prismatic = params[A_PRISMATIC] != 0.0
-    if prismatic:  # L0 + L1 q + q² = |d|²
-        half = 0.5 * params[o + 7]
-        rad = half * half - params[o + 3] + dd
-        s = clamped_root(rad, max(dd, half * half), st)
-        roots[0] = s - half
-        roots[1] = -s - half
-    else:
-        _q3_pair(params, params[o + 7], params[o + 11], dd - params[o + 3], st, roots)
+    v = np.empty(2)
     for A in range(2):
         sign = 1.0 if A == 0 else -1.0
         for B in range(2):
-            q3 = roots[0] if params[A_ROOTS + 2 * A + B] > 0.0 else roots[1]
-            values(params, q3, math.cos(q3), math.sin(q3), vals)
-            H = vals[2]
-            k = abs(ca * zeta - H) / sa
-            v1 = sign * clamped_root((rho - k) * (rho + k), (rho + k) * (rho + k), st)
-            v2 = (zeta - ca * H) / g
-            slot(params, 2 * A + B, q3, v1, v2, vals, dz, st, Q3)
+            if meet:
+                D = math.hypot(zeta, rho)
+            else:
+                _shoulder_v(params, zeta, rho, params[A_COEF + 2], sign, st, v)
+                D = math.sqrt(v[0] * v[0] + v[1] * v[1] + params[A_COEF + 2] ** 2)
+            for _ in range(2):
+                _q3_distance(params, D, st, roots)
+                if meet:
+                    q3 = roots[0] if params[A_ROOTS + 2 * A + B] > 0.0 else roots[1]
+                else:  # elbow up first: the second root is "up" where elbow_sign · v1 > 0
+                    first = 1 if params[A_ELBOW] * v[0] > 0.0 else 0
+                    q3 = roots[first] if B == 0 else roots[1 - first]
+                values(params, q3, math.cos(q3), math.sin(q3), vals)
+                _shoulder_v(params, zeta, rho, vals[2], sign, st, v)
+                if meet:
+                    D = math.sqrt(max(dd - a * a - 2.0 * a * v[0], 0.0))
+                else:
+                    D = math.sqrt(v[0] * v[0] + v[1] * v[1] + vals[2] * vals[2])
+            slot(params, 2 * A + B, q3, v[0], v[1], vals, dz, st, Q3)
+
+
+@kernel
+def _circles(r1: float, r2: float, a: float, scale: float, st: Array) -> float:
+    """``2a`` times the height where circles of radii r1, r2 with centres ``a`` apart cross.
+
+    Heron's form ``sqrt((r1+r2+a)(r1+r2-a)(a+r2-r1)(a+r1-r2))``: the factor
+    nearest 0 is the fold (the circles touch), the others are positive.
+    """
+    f2 = r1 + r2 - a
+    f3 = a + r2 - r1
+    f4 = a + r1 - r2
+    other = r1 + r2 + a
+    if abs(f2) <= abs(f3) and abs(f2) <= abs(f4):
+        return clamped_root(f2, other, other * f3 * f4, scale, st)
+    if abs(f3) <= abs(f4):
+        return clamped_root(f3, other, other * f2 * f4, scale, st)
+    return clamped_root(f4, other, other * f2 * f3, scale, st)
 
 
 @kernel
@@ -138,6 +212,7 @@ def _parallel(params: Array, dz: Array, st: Array, Q3: Array) -> None:
     a = params[A_A]
     vals = np.empty(4)
     roots = np.empty(2)
+    scale = params[A_SCALE]
     rhs = params[A_CA] * dz[0] - params[o + 2]
     if params[A_PRISMATIC] != 0.0:
         roots[0] = rhs / params[o + 6]
@@ -151,37 +226,7 @@ def _parallel(params: Array, dz: Array, st: Array, Q3: Array) -> None:
             values(params, q3, math.cos(q3), math.sin(q3), vals)
             up = math.sqrt(vals[0] * vals[0] + vals[1] * vals[1])
             v1 = (rho - up) * (rho + up) / (2.0 * a) - 0.5 * a
-            rad = (rho + up + a) * (rho + up - a) * (a + up - rho) * (a + rho - up)
-            size = (rho + up + a) ** 4
-            v2 = sign * clamped_root(rad, size, st) / (2.0 * a)
-            slot(params, 2 * A + B, q3, v1, v2, vals, dz, st, Q3)
-
-
-@kernel
-def _general23(params: Array, dz: Array, dd: float, st: Array, Q3: Array) -> None:
-    """Skew axes 1, 2 and axes 2 ∥ 3: ``H`` is constant, so ``v2`` and ``a + v1`` are known."""
-    o = A_COEF
-    zeta = dz[0]
-    rho = st[ST_RHO]
-    a = params[A_A]
-    ca = params[A_CA]
-    g = params[A_G]
-    H0 = params[o + 2]
-    v2 = (zeta - ca * H0) / g
-    m = abs(H0 - ca * zeta) / g
-    s = clamped_root((rho - m) * (rho + m), (rho + m) * (rho + m), st)
-    vals = np.empty(4)
-    roots = np.empty(2)
-    for A in range(2):
-        sign = 1.0 if A == 0 else -1.0
-        v1 = -a + sign * s  # shoulder front (A = 0) or back
-        L = dd + a * a - 2.0 * a * (a + v1)
-        _q3_pair(params, params[o + 7], params[o + 11], L - params[o + 3], st, roots)
-        # elbow up first: the second root is "up" where elbow_sign · v1 > 0
-        first = 1 if params[A_ELBOW] * v1 > 0.0 else 0
-        for B in range(2):
-            q3 = roots[first] if B == 0 else roots[1 - first]
-            values(params, q3, math.cos(q3), math.sin(q3), vals)
+            v2 = sign * _circles(rho, up, a, scale, st) / (2.0 * a)
             slot(params, 2 * A + B, q3, v1, v2, vals, dz, st, Q3)
 
 
@@ -234,11 +279,9 @@ def place(params: Array, ct: Array, Q3: Array, st: Array) -> None:
     if rho < NEAR_TOL * scale:
         st[ST_NEAR] = 1.0
     kind = params[A_KIND]
-    if kind == KIND_MEET:
-        _meet(params, dz, dd, st, Q3)
-    elif kind == KIND_PARALLEL:
+    if kind == KIND_PARALLEL:
         _parallel(params, dz, st, Q3)
-    elif params[A_PAR23] != 0.0:
-        _general23(params, dz, dd, st, Q3)
+    elif kind == KIND_MEET or params[A_PAR23] != 0.0:
+        _closed(params, dz, dd, st, Q3)
     else:
         general_position(params, dz, dd, st, Q3)

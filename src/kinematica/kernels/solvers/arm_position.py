@@ -53,4 +53,5 @@ def position(params: Array, Q3: Array, st: Array, Q: Array, info: Array) -> None
     for j in range(n):
         info[INFO_FREE + j] = st[ST_FREE + j] if j < 3 else 1.0
     info[INFO_NEAR] = 1.0 if st[ST_NEAR] != 0.0 or (not real and reach > 0.0) else 0.0
-    info[INFO_GAP] = math.nan if real else max(0.0, st[ST_GAP] - reach)
+    gap = max(0.0, st[ST_GAP] - reach)
+    info[INFO_GAP] = gap if not real or gap > 0.0 else math.nan

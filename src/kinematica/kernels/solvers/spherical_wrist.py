@@ -143,7 +143,8 @@ def _wrist(params: Array, w: Array, y: Array, out: Array, st: Array) -> bool:
     s45 = params[W_S45]
     inv = 1.0 / (s45 * s45)
     beta = (k56 - params[W_K45] * w4) * inv
-    gam0 = clamped_root(off2 * inv - beta * beta, inv, st)
+    off = math.sqrt(off2) / s45  # γ² = off² - β²
+    gam0 = clamped_root(off - abs(beta), off + abs(beta), off + abs(beta), 1.0, st)
     ca = beta * s45
     for j in range(2):
         cb = gam0 * s45 * (params[W_FLIP] if j == 0 else -params[W_FLIP])
@@ -243,4 +244,5 @@ def pose(params: Array, T: Array, Q3: Array, st: Array, Q: Array, info: Array) -
     singular = wrist_singular or st[ST_FREE] + st[ST_FREE + 1] + st[ST_FREE + 2] != 0.0
     info[INFO_SINGULAR] = 1.0 if singular else 0.0
     info[INFO_NEAR] = st[ST_NEAR]
-    info[INFO_GAP] = math.nan if real else st[ST_GAP]
+    # a target outside the shell has no solution, whatever a clamped double root says
+    info[INFO_GAP] = st[ST_GAP] if not real or st[ST_GAP] > 0.0 else math.nan
