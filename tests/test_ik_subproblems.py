@@ -1,4 +1,7 @@
-"""Geometric subproblems (Paden-Kahan / IK-Geo) and the batched quartic solver.
+"""Geometric subproblems (Paden-Kahan / IK-Geo) and the batched quartic solver (numpy).
+
+What the numpy solvers still being ported use; the kernel versions are
+tested in ``test_kernels_geometry.py``.
 
 Every instance is built from a known answer: pick the angles, rotate, and ask
 the subproblem to find them again. Rotations come from scipy's ``Rotation``
@@ -18,14 +21,9 @@ from scipy.spatial.transform import Rotation
 
 from kinematica.ik.analytic.subproblems import (
     cross,
-    rotate,
     rotation_matrix,
     solve_quartic,
-    solve_trig_linear,
     subproblem1,
-    subproblem2,
-    subproblem3,
-    subproblem4,
 )
 
 FloatArray = NDArray[np.float64]
@@ -51,11 +49,10 @@ def angle_diff(a: FloatArray, b: FloatArray) -> FloatArray:
 
 
 @pytest.mark.parametrize("batch", BATCHES)
-def test_rotate_and_rotation_matrix_match_scipy(batch: tuple[int, ...]) -> None:
+def test_rotation_matrix_matches_scipy(batch: tuple[int, ...]) -> None:
     rng = np.random.default_rng(1)
     k, v, t = unit(rng, batch), rng.normal(size=(*batch, 3)), rng.uniform(-4, 4, batch)
     expected = rot(k, t, v)
-    np.testing.assert_allclose(rotate(k, t, v), expected, atol=1e-14)
     R = rotation_matrix(k, t)
     assert R.shape == (*batch, 3, 3)
     np.testing.assert_allclose((R @ v[..., None])[..., 0], expected, atol=1e-14)
@@ -78,85 +75,6 @@ def test_subproblem1_least_squares_when_inconsistent() -> None:
     grid = np.linspace(-math.pi, math.pi, 200001)
     dist = np.linalg.norm(rot(np.broadcast_to(k, (len(grid), 3)), grid, p1) - p2, axis=-1)
     assert angle_diff(theta, grid[np.argmin(dist)]) < 1e-4
-
-
-@pytest.mark.parametrize("batch", BATCHES)
-def test_subproblem2_finds_the_constructed_pair(batch: tuple[int, ...]) -> None:
-    rng = np.random.default_rng(4)
-    k1, k2, p2 = unit(rng, batch), unit(rng, batch), rng.normal(size=(*batch, 3))
-    t1, t2 = rng.uniform(-math.pi, math.pi, (2, *batch))
-    p1 = rot(k1, -t1, rot(k2, t2, p2))  # so that R(k1, t1) p1 = R(k2, t2) p2
-    th1, th2, exact = subproblem2(p1, p2, k1, k2)
-    assert th1.shape == th2.shape == (*batch, 2) and exact.shape == batch
-    assert exact.all()
-    hit = (angle_diff(th1, t1[..., None]) < 1e-9) & (angle_diff(th2, t2[..., None]) < 1e-9)
-    assert hit.any(axis=-1).all()
-    for j in range(2):  # both solutions solve the equation
-        lhs = rot(k1, th1[..., j], p1)
-        rhs = rot(k2, th2[..., j], p2)
-        np.testing.assert_allclose(lhs, rhs, atol=1e-12)
-
-
-def test_subproblem2_without_solution() -> None:
-    # R(k1, θ1) k1 = k1 always, and R(k2, θ2) k2 = k2: no θ makes them equal
-    k1, k2 = np.array([0.0, 0.0, 1.0]), np.array([0.0, 1.0, 0.0])
-    _, _, exact = subproblem2(k1, k2, k1, k2)
-    assert not exact
-
-
-@pytest.mark.parametrize("batch", BATCHES)
-def test_subproblem3_distance(batch: tuple[int, ...]) -> None:
-    rng = np.random.default_rng(5)
-    k, p1, p2 = unit(rng, batch), rng.normal(size=(*batch, 3)), rng.normal(size=(*batch, 3))
-    t = rng.uniform(-math.pi, math.pi, batch)
-    d = np.linalg.norm(rot(k, t, p1) - p2, axis=-1)
-    theta, exact = subproblem3(p1, p2, k, d)
-    assert exact.all() and theta.shape == (*batch, 2)
-    assert (angle_diff(theta, t[..., None]) < 1e-9).any(axis=-1).all()
-    for j in range(2):
-        got = np.linalg.norm(rot(k, theta[..., j], p1) - p2, axis=-1)
-        np.testing.assert_allclose(got, d, atol=1e-12)
-
-
-def test_subproblem3_too_far_is_least_squares() -> None:
-    rng = np.random.default_rng(6)
-    k, p1, p2 = unit(rng, ()), rng.normal(size=3), rng.normal(size=3)
-    d = np.linalg.norm(p1) + np.linalg.norm(p2) + 1.0  # beyond any distance
-    theta, exact = subproblem3(p1, p2, k, d)
-    assert not exact
-    grid = np.linspace(-math.pi, math.pi, 200001)
-    dist = np.linalg.norm(rot(np.broadcast_to(k, (len(grid), 3)), grid, p1) - p2, axis=-1)
-    assert (angle_diff(theta, grid[np.argmax(dist)]) < 1e-4).all()
-
-
-@pytest.mark.parametrize("batch", BATCHES)
-def test_subproblem4_projection(batch: tuple[int, ...]) -> None:
-    rng = np.random.default_rng(7)
-    h, k, p = rng.normal(size=(*batch, 3)), unit(rng, batch), rng.normal(size=(*batch, 3))
-    t = rng.uniform(-math.pi, math.pi, batch)
-    d = np.sum(h * rot(k, t, p), axis=-1)
-    theta, exact = subproblem4(h, p, k, d)
-    assert exact.all()
-    assert (angle_diff(theta, t[..., None]) < 1e-9).any(axis=-1).all()
-    for j in range(2):
-        np.testing.assert_allclose(np.sum(h * rot(k, theta[..., j], p), axis=-1), d, atol=1e-12)
-
-
-def test_subproblem4_out_of_range() -> None:
-    h, k, p = np.array([1.0, 0, 0]), np.array([0, 0, 1.0]), np.array([1.0, 0, 0])
-    _, exact = subproblem4(h, p, k, 1.5)  # hᵀ R p = cos θ never reaches 1.5
-    assert not exact
-
-
-def test_trig_linear_slots_tangent_and_degenerate() -> None:
-    # 3 cos θ + 4 sin θ = c: two roots, one double root at c = 5, none beyond
-    theta, exact = solve_trig_linear(3.0, 4.0, np.array([2.0, 5.0, 6.0]))
-    assert exact.tolist() == [True, True, False]
-    np.testing.assert_allclose(3 * np.cos(theta[0]) + 4 * np.sin(theta[0]), 2.0, atol=1e-14)
-    assert abs(theta[0, 0] - theta[0, 1]) > 0.1
-    np.testing.assert_allclose(theta[1], math.atan2(4, 3), atol=1e-7)
-    theta, exact = solve_trig_linear(0.0, 0.0, np.array([0.0, 1.0]))
-    assert exact.tolist() == [True, False]
 
 
 def poly_from_roots(roots: NDArray[np.complex128]) -> FloatArray:

@@ -24,6 +24,7 @@ from kinematica.kernels.solvers import arm_base
 
 __all__ = [
     "GEOMETRY_TOL",
+    "PROBES",
     "RANK_TOL",
     "ArmGeometry",
     "arm_geometry",
@@ -36,12 +37,12 @@ FloatArray = NDArray[np.float64]
 #: Two axes are parallel when the sine of their angle is below this; lines
 #: meet when their distance is below this times the arm's size.
 GEOMETRY_TOL = 1e-9
-#: Joints 1-3 place the point when, at one of :data:`_PROBES`, the smallest
+#: Joints 1-3 place the point when, at one of :data:`PROBES`, the smallest
 #: singular value of the point's 3 x 3 Jacobian exceeds this times the largest.
 RANK_TOL = 1e-6
 #: Configurations of joints 1-3 at which that rank is tested (fixed, so that
 #: the decision depends on the geometry alone).
-_PROBES = np.array([[0.3, -0.7, 1.1], [-1.3, 0.4, -0.6], [2.1, 1.7, 0.2]])
+PROBES = np.array([[0.3, -0.7, 1.1], [-1.3, 0.4, -0.6], [2.1, 1.7, 0.2]])
 
 
 @dataclass(frozen=True, eq=False)
@@ -68,8 +69,8 @@ def places_point(chain: DHChain, c_tool: FloatArray) -> bool:
         chain: The arm.
         c_tool: ``(3,)`` the point in the tool frame when joints 4..n are at 0.
     """
-    q = np.zeros((len(_PROBES), chain.dof))
-    q[:, :3] = _PROBES
+    q = np.zeros((len(PROBES), chain.dof))
+    q[:, :3] = PROBES
     T, _, _ = fk(chain, q)
     J, _ = jacobian(chain, q)  # linear velocity of the tool origin, then ω
     r = T[:, :3, :3] @ c_tool  # the point relative to the tool origin
@@ -84,7 +85,7 @@ def _foot_points(
     """Feet of the common normal of two non-parallel lines."""
     w, b = p1 - p2, float(h1 @ h2)
     d1, e = float(h1 @ w), float(h2 @ w)
-    den = 1.0 - b * b
+    den = float(np.sum(np.cross(h1, h2) ** 2))  # 1 - b², without its cancellation
     return p1 + (b * e - d1) / den * h1, p2 + (e - b * d1) / den * h2
 
 
