@@ -300,8 +300,9 @@ def test_nearly_parallel_shoulder_axes_stay_exact() -> None:
     solve_checked(robot, robot.fk(q0), 1e-11)  # every candidate exact before polishing
     res = robot.ik(robot.fk(q0), respect_limits=False)
     assert (res.status == "ok").all()
-    # q1 and q2 nearly redundant: joint errors are the pose's over sin α (~80)
-    assert_found(robot, res.solutions, q0, 1e-8)
+    # q1 and q2 nearly redundant: joint errors are the pose's (~1e-12) over
+    # sin α and the arm's conditioning; within the check's duplicate threshold
+    assert_found(robot, res.solutions, q0, 1e-7)
 
 
 def centre_jacobian_det(robot: Robot, c_tool: FloatArray, q: FloatArray) -> FloatArray:
