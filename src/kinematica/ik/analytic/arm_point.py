@@ -195,6 +195,11 @@ def arm_geometry(
     root_signs = np.array([[1.0, -1.0], [1.0, -1.0]])
     if kind == arm_base.KIND_MEET and parallel23:
         root_signs[0 if elbow_sign > 0 else 1] *= -1.0
+    # a second pass where the closed form neglects a small coupling: axes 1, 2
+    # meeting but for an offset, or axes 2, 3 parallel but for a twist
+    refine = (kind == arm_base.KIND_MEET and a != 0.0) or (
+        parallel23 and abs(coef[1, 2]) + abs(coef[2, 2]) > arm_base.DOUBLE_ROOT_TOL * scale
+    )
     fourier = np.zeros((5, 5))
     if kind == arm_base.KIND_GENERAL and not prismatic:
         fourier = _fourier_matrix(a, sa, ca, np.array(L), coef[:, 2])
@@ -223,6 +228,7 @@ def arm_geometry(
         B.A_P21: p2 - p1,
         B.A_U: U,
         B.A_Q3: np.array(q3_form),
+        B.A_REFINE: float(refine),
     }
     for o, v in blocks.items():
         flat = np.ravel(v)

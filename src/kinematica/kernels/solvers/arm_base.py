@@ -30,6 +30,7 @@ __all__ = [
     "A_PAR23",
     "A_PRISMATIC",
     "A_Q3",
+    "A_REFINE",
     "A_ROOTS",
     "A_SA",
     "A_SCALE",
@@ -91,7 +92,7 @@ A_ROOTS = 40  # (2, 2) sign of the q3 root of each slot (meet)
 A_SCALE = 44  # a length of the arm's size (m), for tolerances
 A_SHELL = 45  # (4,) r_lo, r_hi (bounds of |x - p1|), z_lo, z_hi (of h1ᵀ(x - p1))
 A_FOURIER = 49  # (5, 5) [X0², X0, Y0², Y0, 1] -> Fourier coefficients of Pieper's F
-A_H1 = 74  # (3,) axis directions
+A_H1 = 74  # (3,) axis directions h1, h2, h3, one after another
 A_H2 = 77
 A_H3 = 80
 A_P21 = 83  # (3,) p2 - p1
@@ -99,7 +100,8 @@ A_U = 86  # (3, 3) u(q3) = U0 + U1 cos q3 + U2 sin q3 (or U0 + q3 U1)
 # |u(q3)| in half-angle form (revolute): with m = |U0⊥| (U0 off axis 3), n = |U1|,
 # |u|² = Dmin² + 4mn cos²ψ = Dmax² - 4mn sin²ψ, ψ = (q3 - β)/2; a slide: b = U0ᵀh3, m.
 A_Q3 = 95  # (5,) β, m, n, Dmin, Dmax (revolute); b, m (slide)
-A_SIZE = 100
+A_REFINE = 100  # 1.0: a second pass settles nearly meeting axes 1, 2 or nearly parallel 2, 3
+A_SIZE = 101
 
 # What :func:`place` reports besides the candidates (``st``).
 ST_FREE = 0  # (3,) 1.0 for q1, q2, q3 left free (a continuum)

@@ -60,6 +60,7 @@ from kinematica.kernels.solvers.arm_base import (
     A_PAR23,
     A_PRISMATIC,
     A_Q3,
+    A_REFINE,
     A_ROOTS,
     A_SCALE,
     A_SHELL,
@@ -159,19 +160,27 @@ def _closed(params: Array, dz: Array, dd: float, st: Array, Q3: Array) -> None:
     rho = st[ST_RHO]
     a = params[A_A]
     meet = params[A_KIND] == KIND_MEET
-    vals = np.empty(4)
-    roots = np.empty(2)
-    v = np.empty(2)
+    passes = 2 if params[A_REFINE] != 0.0 else 1
+    work = np.empty(10)  # scratch, one allocation
+    vals = work[0:4]
+    roots = work[4:6]
+    at_d = work[6:8]  # meet: the roots of |u| = |d|, shared by every slot
+    v = work[8:10]
+    D = math.hypot(zeta, rho)
+    if meet:
+        _q3_distance(params, D, st, at_d)
     for A in range(2):
         sign = 1.0 if A == 0 else -1.0
         for B in range(2):
-            if meet:
-                D = math.hypot(zeta, rho)
-            else:
+            if not meet:
                 _shoulder_v(params, zeta, rho, params[A_COEF + 2], sign, st, v)
                 D = math.sqrt(v[0] * v[0] + v[1] * v[1] + params[A_COEF + 2] ** 2)
-            for _ in range(2):
-                _q3_distance(params, D, st, roots)
+            for it in range(passes):
+                if meet and it == 0:
+                    roots[0] = at_d[0]
+                    roots[1] = at_d[1]
+                else:
+                    _q3_distance(params, D, st, roots)
                 if meet:
                     q3 = roots[0] if params[A_ROOTS + 2 * A + B] > 0.0 else roots[1]
                 else:  # elbow up first: the second root is "up" where elbow_sign · v1 > 0
@@ -210,8 +219,9 @@ def _parallel(params: Array, dz: Array, st: Array, Q3: Array) -> None:
     o = A_COEF
     rho = st[ST_RHO]
     a = params[A_A]
-    vals = np.empty(4)
-    roots = np.empty(2)
+    work = np.empty(6)  # scratch, one allocation
+    vals = work[0:4]
+    roots = work[4:6]
     scale = params[A_SCALE]
     rhs = params[A_CA] * dz[0] - params[o + 2]
     if params[A_PRISMATIC] != 0.0:

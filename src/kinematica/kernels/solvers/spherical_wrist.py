@@ -92,26 +92,41 @@ def _dot(params: Array, o: int, v: Array) -> float:
 
 
 @kernel
-def _undo(params: Array, q: Array, v: Array, out: Array, tmp: Array) -> None:
-    """``out = R3ᵀ R2ᵀ R1ᵀ v``: joints 1-3 (q ``(3,)``) turned back (a slide turns nothing)."""
-    rotate(params[A_H1 : A_H1 + 3], math.cos(q[0]), -math.sin(q[0]), v, tmp)
-    rotate(params[A_H2 : A_H2 + 3], math.cos(q[1]), -math.sin(q[1]), tmp, out)
-    if params[A_PRISMATIC] == 0.0:
-        rotate(params[A_H3 : A_H3 + 3], math.cos(q[2]), -math.sin(q[2]), out, tmp)
+def _undo(params: Array, q: Array, W0: Array, Y0: Array, w: Array, y: Array, tmp: Array) -> None:
+    """``w, y = R3ᵀ R2ᵀ R1ᵀ (W0, Y0)``: joints 1-3 (``q (3,)``) turned back (a slide: 1, 2)."""
+    for j in range(2 if params[A_PRISMATIC] != 0.0 else 3):
+        k = params[A_H1 + 3 * j : A_H1 + 3 * j + 3]  # h1, h2, h3 lie one after another
+        c = math.cos(q[j])
+        s = -math.sin(q[j])
+        rotate(k, c, s, W0 if j == 0 else w, tmp)
         for i in range(3):
-            out[i] = tmp[i]
+            w[i] = tmp[i]
+        rotate(k, c, s, Y0 if j == 0 else y, tmp)
+        for i in range(3):
+            y[i] = tmp[i]
 
 
 @kernel
-def _q6(params: Array, q4: float, q5: float, y: Array, tmp: Array, z: Array) -> float:
-    """q6 turning ``x6`` onto ``z = R5ᵀ R4ᵀ y`` about ``h6`` (absorbs q4's, q5's round-off)."""
-    rotate(params[W_H4 : W_H4 + 3], math.cos(q4), -math.sin(q4), y, tmp)
-    rotate(params[W_H5 : W_H5 + 3], math.cos(q5), -math.sin(q5), tmp, z)
+def _q6(params: Array, y4: float, x4: float, y5: float, x5: float, y: Array, tmp: Array) -> float:
+    """q6 turning ``x6`` onto ``z = R5ᵀ R4ᵀ y`` about ``h6`` (absorbs q4's, q5's round-off).
+
+    ``q4 = atan2(y4, x4)``, ``q5 = atan2(y5, x5)``: their cosines and sines
+    come from those arguments, not from the angles.
+    """
+    r4 = math.hypot(x4, y4)
+    r5 = math.hypot(x5, y5)
+    c4 = x4 / r4 if r4 > 0.0 else 1.0
+    s4 = y4 / r4 if r4 > 0.0 else 0.0
+    c5 = x5 / r5 if r5 > 0.0 else 1.0
+    s5 = y5 / r5 if r5 > 0.0 else 0.0
+    z = tmp[3:6]
+    rotate(params[W_H4 : W_H4 + 3], c4, -s4, y, tmp[0:3])
+    rotate(params[W_H5 : W_H5 + 3], c5, -s5, tmp[0:3], z)
     return math.atan2(_dot(params, W_Y6, z), _dot(params, W_X6, z))
 
 
 @kernel
-def _wrist(params: Array, w: Array, y: Array, out: Array, st: Array) -> bool:
+def _wrist(params: Array, w: Array, y: Array, out: Array, st: Array, tmp: Array) -> bool:
     """(q4, q5, q6) of no-flip and flip into ``out (2, 3)``; True when singular.
 
     Args:
@@ -120,9 +135,8 @@ def _wrist(params: Array, w: Array, y: Array, out: Array, st: Array) -> bool:
         y: ``(3,)`` its ``x6`` likewise.
         out: ``(2, 3)`` out, NaN rows where the wrist cannot make the rotation.
         st: Arm state; ``ST_NEAR`` is raised near the wrist singularity or fold.
+        tmp: ``(6,)`` scratch.
     """
-    tmp = np.empty(3)
-    z = np.empty(3)
     w4 = _dot(params, W_H4, w)
     wa = _dot(params, W_EA, w)
     wb = _dot(params, W_EB, w)
@@ -133,11 +147,10 @@ def _wrist(params: Array, w: Array, y: Array, out: Array, st: Array) -> bool:
     if off2 < WRIST_SINGULAR_TOL * WRIST_SINGULAR_TOL:
         # q4 free: c' = w; q5 turns h6 onto w about h5; q6 absorbs the rest
         cw = w4 * params[W_N56] + wa * params[W_N56 + 1] + wb * params[W_N56 + 2]
-        ch = w4 * params[W_H6F] + wa * params[W_H6F + 1] + wb * params[W_H6F + 2]
-        q5 = math.atan2(cw, ch - k56 * k56)
+        ch = w4 * params[W_H6F] + wa * params[W_H6F + 1] + wb * params[W_H6F + 2] - k56 * k56
         out[0, 0] = 0.0
-        out[0, 1] = q5
-        out[0, 2] = _q6(params, 0.0, q5, y, tmp, z)
+        out[0, 1] = math.atan2(cw, ch)
+        out[0, 2] = _q6(params, 0.0, 1.0, cw, ch, y, tmp)
         out[1, :] = math.nan
         return True
     s45 = params[W_S45]
@@ -149,14 +162,14 @@ def _wrist(params: Array, w: Array, y: Array, out: Array, st: Array) -> bool:
     for j in range(2):
         cb = gam0 * s45 * (params[W_FLIP] if j == 0 else -params[W_FLIP])
         # q4 turns c' onto w about h4 (the parts off h4 in the frame ea, eb)
-        q4 = math.atan2(ca * wb - cb * wa, ca * wa + cb * wb)
+        y4 = ca * wb - cb * wa
+        x4 = ca * wa + cb * wb
         # q5 turns h6 onto c' = (w4, ca, cb) about h5
         cw = w4 * params[W_N56] + ca * params[W_N56 + 1] + cb * params[W_N56 + 2]
-        ch = w4 * params[W_H6F] + ca * params[W_H6F + 1] + cb * params[W_H6F + 2]
-        q5 = math.atan2(cw, ch - k56 * k56)
-        out[j, 0] = q4
-        out[j, 1] = q5
-        out[j, 2] = _q6(params, q4, q5, y, tmp, z)
+        ch = w4 * params[W_H6F] + ca * params[W_H6F + 1] + cb * params[W_H6F + 2] - k56 * k56
+        out[j, 0] = math.atan2(y4, x4)
+        out[j, 1] = math.atan2(cw, ch)
+        out[j, 2] = _q6(params, y4, x4, cw, ch, y, tmp)
     return False
 
 
@@ -205,18 +218,19 @@ def pose(params: Array, T: Array, Q3: Array, st: Array, Q: Array, info: Array) -
         info: ``(INFO_FREE + 6,)`` out (zero on entry): see
             :mod:`kinematica.kernels.ik_check`.
     """
-    W0 = np.empty(3)  # the target's axis 6 and x6
-    Y0 = np.empty(3)
+    work = np.empty(21)  # scratch, one allocation
+    W0 = work[0:3]  # the target's axis 6 and x6
+    Y0 = work[3:6]
+    q = work[6:9]
+    w = work[9:12]
+    y = work[12:15]
+    tmp = work[15:21]
     for i in range(3):
         W0[i] = 0.0
         Y0[i] = 0.0
         for j in range(3):
             W0[i] += T[i, j] * params[W_LH + j]
             Y0[i] += T[i, j] * params[W_LX + j]
-    q = np.empty(3)
-    w = np.empty(3)
-    y = np.empty(3)
-    tmp = np.empty(3)
     qw = np.empty((2, 3))
     real = False
     wrist_singular = False
@@ -227,9 +241,8 @@ def pose(params: Array, T: Array, Q3: Array, st: Array, Q: Array, info: Array) -
             q[i] = Q3[k, i]
         if k < 2 and (free1 or free2) and not math.isnan(q[0]):
             _face(params, q, W0, free1, free2, tmp)
-        _undo(params, q, W0, w, tmp)
-        _undo(params, q, Y0, y, tmp)
-        wrist_singular |= _wrist(params, w, y, qw, st) and not math.isnan(q[0])
+        _undo(params, q, W0, Y0, w, y, tmp)
+        wrist_singular |= _wrist(params, w, y, qw, st, tmp) and not math.isnan(q[0])
         for j in range(2):
             row = Q[2 * k + j]
             ok = not math.isnan(q[0] + qw[j, 0] + qw[j, 1] + qw[j, 2])
