@@ -479,3 +479,20 @@ def test_huge_reach_switches_to_the_coordinate_gap(coordinate: float, early: boo
     assert res.status == "unreachable" and res.gap is not None
     expected = x if early else math.sqrt(3.0) * x
     assert res.gap == pytest.approx(expected, rel=1e-9)
+
+
+def test_a_singular_wrist_family_within_the_limits_is_not_out_of_limits() -> None:
+    """q4 + q6 = 1.7 with both limited to ±1: the representative q4 = 0 would be
+    outside; the family's member (1.0, 0.7) is not."""
+    tight = PUMA.with_limits([None, None, None, (-1.0, 1.0), None, (-1.0, 1.0)])
+    q = np.array([0.3, -0.6, 0.2, 0.8, 0.0, 0.9])
+    T = tight.fk(q)
+    res = tight.ik(T)
+    assert res.status == "singular" and res.free_joints == (3, 5)
+    arm = np.abs(np.angle(np.exp(1j * (res.solutions[:, :3] - q[:3])))).max(axis=1) < 1e-9
+    rep = res.solutions[arm]  # the position branch of q
+    assert len(rep) == 1 and rep[0, 3] + rep[0, 5] == pytest.approx(1.7, abs=1e-9)
+    assert (np.abs(rep[0, 3:]) <= 1.0 + 1e-12).all()
+    wide = PUMA.ik(T)  # without those limits the representative keeps q4 = 0
+    arm = np.abs(np.angle(np.exp(1j * (wide.solutions[:, :3] - q[:3])))).max(axis=1) < 1e-9
+    assert arm.sum() == 1 and wide.solutions[arm][0, 3] == 0.0

@@ -106,6 +106,8 @@ def build(chain: DHChain, f: Features, target: TargetKind) -> ClosedForm | None:
     params[wrist_kernel.W_CTOOL : wrist_kernel.W_CTOOL + 3] = c_tool
     if not wrist_params(params, h[3], h[4], h[5], M[:3, :3]):
         return None
+    lim = wrist_kernel.W_LIMITS
+    params[lim : lim + 4] = [*chain.qlim[3], *chain.qlim[5]]
     params.flags.writeable = False
     labels = tuple(f"{pos}, wrist {w}" for pos in arm.labels for w in ("no-flip", "flip"))
     return ClosedForm(

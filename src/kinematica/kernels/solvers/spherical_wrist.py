@@ -45,6 +45,7 @@ import numpy as np
 from kinematica.kernels._numba import Array, kernel
 from kinematica.kernels.geometry import rotate, subproblem1
 from kinematica.kernels.ik_check import INFO_FREE, INFO_GAP, INFO_NEAR, INFO_SINGULAR
+from kinematica.kernels.so3 import wrap
 from kinematica.kernels.solvers.arm_base import (
     A_H1,
     A_H2,
@@ -65,6 +66,8 @@ __all__ = ["WRIST_SINGULAR_TOL", "W_SIZE", "pose", "wrist_centre"]
 #: reproduces the rotation to about twice this (far below 1e-10 rad).
 WRIST_SINGULAR_TOL = 1e-12
 
+_TWO_PI = 2.0 * math.pi
+
 # Parameter offsets after the arm part and the mode (vectors at q = 0, base frame).
 W_CTOOL = A_SIZE + 1  # (3,) wrist centre in the tool frame (M⁻¹ c)
 W_LH = A_SIZE + 4  # (3,) R_Mᵀ h6: the target's axis 6 is R_target times this
@@ -82,7 +85,8 @@ W_K56 = A_SIZE + 33  # h5ᵀh6
 W_N56 = A_SIZE + 34  # (3,) h5 × h6 in the frame (h4, ea, eb)
 W_H6F = A_SIZE + 37  # (3,) h6 in that frame
 W_FLIP = A_SIZE + 40  # sign of γ on the no-flip branch
-W_SIZE = A_SIZE + 41
+W_LIMITS = A_SIZE + 41  # (4,) limits of q4, then of q6 (rad): where representatives go
+W_SIZE = A_SIZE + 45
 
 
 @kernel
@@ -126,6 +130,31 @@ def _q6(params: Array, y4: float, x4: float, y5: float, x5: float, y: Array, tmp
 
 
 @kernel
+def _within_limits(params: Array, w4: float, out: Array) -> None:
+    """Move the singular wrist's representative ``out[0]`` along its family into the limits.
+
+    With ``w = ±h4`` (``w4 = ±1``) turning q4 by t turns q6 by ``-t w4``: the
+    family is ``(t, q5, q6 - t w4)``. When ``q4 = 0`` puts q6 outside its
+    limits, t is chosen to put q6 mid-window, then kept within q4's limits, so
+    that a family with members within the limits is not reported out of them.
+    """
+    lo4 = params[W_LIMITS]
+    hi4 = params[W_LIMITS + 1]
+    lo6 = params[W_LIMITS + 2]
+    hi6 = params[W_LIMITS + 3]
+    q6 = out[0, 2]
+    inside = lo6 <= q6 <= hi6 or lo6 <= q6 + _TWO_PI <= hi6 or lo6 <= q6 - _TWO_PI <= hi6
+    if inside or not (math.isfinite(lo6) and math.isfinite(hi6)):
+        return
+    sign = 1.0 if w4 > 0.0 else -1.0
+    t = sign * wrap(q6 - 0.5 * (lo6 + hi6))
+    if math.isfinite(lo4) and math.isfinite(hi4):
+        t = min(max(t, lo4), hi4)
+    out[0, 0] = t
+    out[0, 2] = q6 - sign * t
+
+
+@kernel
 def _wrist(params: Array, w: Array, y: Array, out: Array, st: Array, tmp: Array) -> bool:
     """(q4, q5, q6) of no-flip and flip into ``out (2, 3)``; True when singular.
 
@@ -152,6 +181,7 @@ def _wrist(params: Array, w: Array, y: Array, out: Array, st: Array, tmp: Array)
         out[0, 1] = math.atan2(cw, ch)
         out[0, 2] = _q6(params, 0.0, 1.0, cw, ch, y, tmp)
         out[1, :] = math.nan
+        _within_limits(params, w4, out)
         return True
     s45 = params[W_S45]
     inv = 1.0 / (s45 * s45)
