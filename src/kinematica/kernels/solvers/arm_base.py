@@ -59,14 +59,15 @@ __all__ = [
 #: free; within it of axis 2, q2. Far below the default position tolerance
 #: (1e-10 m): any representative of the free joint then reaches the target.
 SINGULAR_TOL = 1e-12
-#: A radicand negative by at most this fraction of its scale is a double root
-#: (its candidate goes to the check); within it of 0, or a target within it
-#: (relative) of axis 1 or 2, flags the target as near a singular set.
+#: A fold's signed distance (see :func:`clamped_root`) past 0 by at most this
+#: fraction of its scale still gives candidates (mirrored) for the check;
+#: within it of 0, or a target within it (relative) of axis 1 or 2, flags the
+#: target as near a singular set or fold (no real candidate is then no proof).
 NEAR_TOL = 1e-6
-#: A radicand within this fraction of its scale of 0 (either side) is a double
-#: root: its two roots, within about 1e-7 (rad or relative) of each other, are
-#: one solution (as the check's dedupe would have them), not two split by
-#: round-off and pulled further apart by ill-conditioned joints.
+#: A fold's signed distance within this fraction of its scale (and of the
+#: arm's size) of 0 is round-off: a double root, one solution (as the check's
+#: dedupe would have it), not two split by round-off and pulled further apart
+#: by ill-conditioned joints.
 DOUBLE_ROOT_TOL = 1e-14
 #: Targets farther than this (metres) from axis 1's foot point are beyond any
 #: arm: no squares are taken of their coordinates (1e154² overflows).
@@ -83,7 +84,7 @@ A_P1 = 3  # (3,) foot point of axis 1 (base frame)
 A_FRAME1 = 6  # (3, 3) columns h1, a1, b1 (a frame of axis 1)
 A_XFRAME = 15  # (4, 2) components along a1, b1 of h2, e1, e2, p2 - p1
 A_COEF = 23  # (3, 4) u1, u2, H, L on the basis (1, cos q3, sin q3) or (1, q3, q3²)
-A_A = 35  # distance of axes 1 and 2
+A_A = 35  # distance of axes 1 and 2, along e1 (signed, ~0 when they meet)
 A_CA = 36  # cos α = h1ᵀh2
 A_SA = 37  # sin α = |h1 × h2|
 A_G = 38  # g = h1ᵀe2
@@ -103,7 +104,7 @@ A_Q3 = 95  # (5,) β, m, n, Dmin, Dmax (revolute); b, m (slide)
 A_REFINE = 100  # 1.0: a second pass settles nearly meeting axes 1, 2 or nearly parallel 2, 3
 A_SIZE = 101
 
-# What :func:`place` reports besides the candidates (``st``).
+# What ``arm_point.place`` reports besides the candidates (``st``).
 ST_FREE = 0  # (3,) 1.0 for q1, q2, q3 left free (a continuum)
 ST_NEAR = 3  # 1.0: near a singular set or a fold
 ST_GAP = 4  # lower bound of the distance of the target to the reachable points (m)

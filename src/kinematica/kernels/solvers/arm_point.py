@@ -15,29 +15,32 @@ of ``u`` to ``(v1, v2)``; with ``H = h2ᵀu``, ``L = |u|²``, ``cα = h1ᵀh2``,
 
 Three shoulders, decided once per arm (:mod:`kinematica.ik.analytic.arm_point`):
 
-* meet (``a = 0``: PUMA, Stanford): ``L(q3) = |d|²`` gives q3 (two roots:
-  SP3, or a quadratic for a slide), ``v2`` follows and
-  ``v1 = ±sqrt(ρ² - k²)``, ``k = (cα ζ - H)/sin α`` (the shoulder sign);
+* meet (``a`` = 0, or within 1e-9 of it: PUMA, Stanford): ``|u(q3)| = |d|``
+  gives q3 (two roots, in half-angle form), ``v2`` follows and
+  ``a + v1 = ±sqrt(ρ² - m²)``, ``m = (H - cα ζ)/g`` (the shoulder sign);
 * parallel: ``H(q3) = cα ζ`` gives q3 (SP4, or linear for a slide); the point
   is where the circles of radius ``ρ`` about axis 1 and ``|u⊥|`` about axis 2
   cross: ``v1 = (ρ² - |u⊥|²)/2a - a/2``, ``v2 = ±sqrt(...)/2a`` (Heron's form);
-* skew (general): with axes 2 and 3 parallel ``H`` is constant, ``v2``
-  follows and ``a + v1 = ±sqrt(ρ² - m²)``, ``m = (H - cα ζ)/g`` (shoulder
-  front, back), then q3 from ``L``; otherwise Pieper's quartic
+* skew (general): with axes 2 and 3 parallel ``H`` is constant, so ``v2``
+  and ``a + v1 = ±sqrt(ρ² - m²)`` (shoulder front, back) come first, then q3
+  from ``|u|² = v1² + v2² + H²``; otherwise Pieper's quartic
   (:mod:`kinematica.kernels.solvers.arm_quartic`).
 
 Then ``q2 = atan2(u1 v2 - u2 v1, u1 v1 + u2 v2)`` and q1 turns the point onto
-the target about axis 1. Every radicand is written as a product of
-differences of accurate lengths (``ρ`` from the target's coordinates, never
-``|d|² - ζ²``), so that a point a few nanometres from an axis is placed to
-round-off, not to the square root of it.
+the target about axis 1. Every radicand is a product of a signed difference
+of accurate lengths (``ρ`` from the target's coordinates, never
+``|d|² - ζ²``; ``|u| - Dmin``, never ``|u|² - Dmin²`` near 0) and positive
+factors, so that a point a few nanometres from an axis, or an arm folded
+back onto its shoulder, is placed to round-off, not to the square root of it
+(:func:`~kinematica.kernels.solvers.arm_base.clamped_root`).
 
 At the edges: a point on axis 1 (``ρ`` below ``SINGULAR_TOL`` times the arm's
 size) leaves q1 free, one on axis 2 leaves q2 free (the kernel gives 0 and
-flags the joint); a radicand negative by at most ``NEAR_TOL`` of its scale is a
-double root (its candidate is handed to the check) and flags the target as
-near a fold; so does a target within ``NEAR_TOL`` (relative) of axis 1 or 2.
-Targets beyond the reach get a proven gap before any square is taken.
+flags the joint); a fold's signed distance within round-off
+(``DOUBLE_ROOT_TOL``) is a double root, one just past it (``NEAR_TOL``) gives
+mirrored candidates for the check and flags the target as near a fold; so
+does a target within ``NEAR_TOL`` (relative) of axis 1 or 2. Targets beyond
+the reach get a proven gap before any square is taken.
 """
 
 from __future__ import annotations
