@@ -19,6 +19,7 @@ lint: $(STAMP)
 	$(BIN)/ruff check src tests benchmarks examples
 	$(BIN)/ruff format --check src tests benchmarks examples
 	$(BIN)/mypy
+	$(BIN)/lint-imports
 
 test: lint
 	$(BIN)/pytest
@@ -30,6 +31,13 @@ bench: $(STAMP)
 	done
 	$(BIN)/python benchmarks/fk.py
 	@if [ -f benchmarks/ik.py ]; then $(BIN)/python benchmarks/ik.py; fi
+	$(BIN)/python benchmarks/robot_files.py
+	$(BIN)/python benchmarks/urdf.py
+	$(BIN)/python benchmarks/motion.py
+	$(BIN)/python benchmarks/viz.py
+	$(BIN)/python benchmarks/design.py
+	$(BIN)/python benchmarks/symbolic.py
+	$(BIN)/python benchmarks/ik_small.py
 
 clean:
 	rm -rf $(VENV) build dist .pytest_cache .mypy_cache .ruff_cache

@@ -1,16 +1,18 @@
 """Inverse kinematics: closed-form speed and exactness against EAIK, then numeric IK.
 
 Run with ``make bench`` (or ``.venv/bin/python benchmarks/ik.py``; ``--poses``,
-``--singles``, ``--seed`` change the sample). For five 6R arms with a closed
-form (PUMA 560, UR5, ABB IRB 120, KUKA KR 6 and an arbitrary spherical-wrist
-arm whose first three axes are skew) it draws random reachable poses (forward
+``--singles``, ``--seed`` change the sample). For six 6R arms with a closed
+form (PUMA 560, UR5, ABB IRB 120, KUKA KR 6, an arbitrary spherical-wrist
+arm whose first three axes are skew, and the UR5 with a5 = 5 cm: axes 5 and 6
+apart, the quartic) it draws random reachable poses (forward
 kinematics of configurations uniform within the joint limits, seeded) and
 prints:
 
 * time per pose: one pose at a time (median over ``--singles`` poses, each
-  call timed on its own) and batched (one call on all ``--poses`` poses, best
-  of 3), for the public ``robot.ik`` (solve, check by FK, deduplicate, limits)
-  and for the raw closed-form ``solver.solve`` it calls first;
+  call timed on its own) and batched on one thread (one call on all
+  ``--poses`` poses, best of 3), for the public ``robot.ik`` (solve, check by
+  FK, deduplicate, limits) and for the raw closed-form kernel it calls first
+  (its candidates, before the check);
 * solutions per pose: mean and histogram of counts, within the limits
   (what ``robot.ik`` returns as ``solutions``) and in all (plus
   ``out_of_limits``); the share of poses whose every returned solution our
@@ -36,6 +38,7 @@ import math
 import statistics
 import sys
 import time
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -49,8 +52,11 @@ from _common import best_of, fmt_time, header, table
 
 import kinematica as km
 from kinematica.dh import Revolute
-from kinematica.ik import ClosedForm, closed_form
+from kinematica.errors import KinematicaWarning
+from kinematica.ik.registry import ClosedForm
 from kinematica.ik.result import IKBatchResult
+from kinematica.ik.solve import closed_form
+from kinematica.kernels import set_workers
 from kinematica.kernels.ik_check import info_size
 from kinematica.robot import Robot
 from kinematica.spatial import inv_transform, rotation_angle, wrap_angle
@@ -64,7 +70,7 @@ SAME_TOL = 1e-7
 MATCH_TOL = 1e-6
 #: Most solutions a 6R arm has at a non-singular pose: the histogram's last column.
 MAX_COUNT = 8
-#: Targets of the issue, per pose: closed form batched and single.
+#: Targets of the issue, per pose: closed form batched (one core) and single.
 TARGET_BATCHED, TARGET_SINGLE = 3e-6, 15e-6
 #: Poses described, per arm and kind, where EAIK's exact solutions and ours differ.
 SHOW_POSES = 3
@@ -84,7 +90,23 @@ def arms() -> list[Robot]:
         [Revolute(offset=th, d=d, a=a, alpha=al) for th, d, a, al in GENERAL_ROWS],
         name="general spherical wrist",
     )
-    return [*(km.load(name) for name in ("puma560", "ur5", "irb120", "kr6")), general]
+    ur5 = km.load("ur5")
+    rows = list(ur5.links)
+    rows[4] = Revolute(d=rows[4].d, a=0.05, alpha=rows[4].alpha, offset=rows[4].offset)
+    ur5_a5 = Robot.from_dh(rows, name="UR5, a5 = 5 cm", base=ur5.base, tool=ur5.tool)
+    ur5_a5 = ur5_a5.with_limits(ur5.qlim)
+    return [*(km.load(name) for name in ("puma560", "ur5", "irb120", "kr6")), general, ur5_a5]
+
+
+def raw(closed: ClosedForm, n: int, T: np.ndarray) -> np.ndarray:
+    """The closed form's candidates ``(N, m, n)`` for poses ``T (N, 4, 4)``, before the check."""
+    Q = np.empty((len(T), closed.slots, n))
+    info = np.zeros((len(T), info_size(n)))
+    if len(T) == 1:
+        closed.solve_one(closed.params, T[0], Q[0], info[0])
+    else:
+        closed.solve_batch(closed.params, T, Q, info)
+    return Q
 
 
 # ---------------------------------------------------------------------- judging
@@ -95,7 +117,9 @@ def residuals(robot: Robot, q: np.ndarray, T: np.ndarray) -> tuple[np.ndarray, n
     """
     N, m, n = q.shape
     real = np.all(np.isfinite(q), axis=-1)
-    F = robot.fk(np.where(real[..., None], q, 0.0).reshape(-1, n)).reshape(N, m, 4, 4)
+    with warnings.catch_warnings():  # solutions outside the limits are judged too
+        warnings.simplefilter("ignore", KinematicaWarning)
+        F = robot.fk(np.where(real[..., None], q, 0.0).reshape(-1, n)).reshape(N, m, 4, 4)
     pos = np.linalg.norm(F[..., :3, 3] - T[:, None, :3, 3], axis=-1)
     rot = rotation_angle(F[..., :3, :3], np.broadcast_to(T[:, None, :3, :3], F[..., :3, :3].shape))
     return np.where(real, pos, np.inf), np.where(real, rot, np.inf)
@@ -257,24 +281,8 @@ class Report:
     notes: list[str] = field(default_factory=list)
 
 
-def raw_solve(solver: ClosedForm, T: np.ndarray, n: int) -> np.ndarray:
-    """The closed form's candidates ``(N, m, n)`` for poses ``T (N, 4, 4)`` (no check)."""
-    if solver.legacy is not None:
-        return solver.legacy(T)[0]
-    Q = np.empty((len(T), solver.slots, n))
-    info = np.zeros((len(T), info_size(n)))
-    if len(T) == 1:
-        solver.solve_one(solver.params, T[0], Q[0], info[0])
-    else:
-        solver.solve_batch(solver.params, T, Q, info)
-    return Q
-
-
 def bench_arm(robot: Robot, n_poses: int, n_singles: int, seed: int, eaik: str | None) -> Report:
-    """Time and judge kinematica, and EAIK (``eaik``: its name) unless None, on one arm.
-
-    Batches run on one thread (``workers=1``), as EAIK's ``IK_batched(..., 1)``.
-    """
+    """Time and judge kinematica, and EAIK (``eaik``: its name) unless None, on one arm."""
     solver = closed_form(robot.chain, "pose")
     if solver is None:
         raise SystemExit(f"{robot.name}: no closed-form solver, nothing to benchmark")
@@ -283,6 +291,7 @@ def bench_arm(robot: Robot, n_poses: int, n_singles: int, seed: int, eaik: str |
     T = robot.fk(q_gen)
     few = T[:n_singles]
     n = robot.dof
+    set_workers(1)
 
     rep = Report(
         robot.name,
@@ -293,9 +302,9 @@ def bench_arm(robot: Robot, n_poses: int, n_singles: int, seed: int, eaik: str |
                 best_of(lambda: robot.ik(T, workers=1), 3) / n_poses,
             ),
             (
-                f"kinematica raw kernel ({solver.name}, no check)",
-                median_per_pose(lambda t: raw_solve(solver, t[None], n), few),
-                best_of(lambda: raw_solve(solver, T, n), 3) / n_poses,
+                f"kinematica closed-form kernel (raw, {solver.name})",
+                median_per_pose(lambda t: raw(solver, n, t[None]), few),
+                best_of(lambda: raw(solver, n, T), 3) / n_poses,
             ),
         ],
         [],
@@ -304,11 +313,10 @@ def bench_arm(robot: Robot, n_poses: int, n_singles: int, seed: int, eaik: str |
     if not isinstance(res, IKBatchResult):
         raise TypeError(f"robot.ik of a batch gave {type(res).__name__}")
     ours = every_solution(res)
-    raw = raw_solve(solver, T, n)
     rep.judged += [
         judge("robot.ik: solutions (within limits)", robot, res.solutions, T, q_gen),
         judge("robot.ik: + out_of_limits", robot, ours, T, q_gen),
-        judge("raw kernel: real candidates", robot, raw, T, q_gen),
+        judge("kernel: real candidates (raw)", robot, raw(solver, n, T), T, q_gen),
     ]
     statuses = dict(zip(*np.unique(res.status, return_counts=True), strict=True))
     if set(statuses) != {"ok"}:
@@ -513,7 +521,7 @@ def main() -> None:
     )
     try:
         import ik_numeric
-    except ImportError as exc:  # the numeric solver's own benchmark, if it runs here
+    except ImportError as exc:  # the report needs what its own script imports
         print(f"benchmarks/ik_numeric.py does not import ({exc}): skipped")
     else:
         argv = sys.argv

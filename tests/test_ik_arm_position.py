@@ -27,7 +27,7 @@ from kinematica.robot import Robot
 
 PI = math.pi
 DATA = Path(__file__).parent / "data" / "reference"
-ARMS = ["puma560", "irb120", "kr6", "arm6-dh", "stanford", "ur5", "scara"]
+ARMS = ["puma560", "irb120", "kr6", "arm6-dh", "stanford", "ur5"]
 
 
 def seven_dof() -> Robot:

@@ -12,13 +12,13 @@ import math
 
 import numpy as np
 import pytest
+from kinematica.ik.numeric_model import evaluate
+from kinematica.ik.numeric_problem import LMProblem, compile_setup
+from kinematica.ik.numeric_single import kernel_of
 
 from kinematica.dh import Prismatic, Revolute
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.numeric import solve_numeric, solve_numeric_detailed
-from kinematica.ik.numeric_model import evaluate
-from kinematica.ik.numeric_problem import LMProblem, compile_setup
-from kinematica.ik.numeric_single import kernel_of
 from kinematica.robot import Robot, load
 from kinematica.spatial import rotation_angle, se3_error
 

@@ -1,26 +1,32 @@
 """Closed-form IK of the small arms: planar 2R/3R/PR/PRR, SCARA, 3R anthropomorphic/elbow.
 
 Independent references: the seeds' hand formulas (000: the PR arm's q2A/q2B,
-002: the anthropomorphic arm's algebra), forward kinematics of every candidate,
-and a multi-start damped-least-squares search written here on the robot's
-Jacobian (completeness). Random arms draw lengths, offsets, twists, base and
-tool, in both DH conventions.
+002: the anthropomorphic arm's algebra), forward kinematics of every
+candidate, geometric definitions of the branch labels, and a multi-start
+damped-least-squares search written here on the robot's Jacobian
+(completeness). Random arms draw lengths, offsets, twists, base and tool, in
+both DH conventions. The property tests over degenerate arms are in
+``test_ik_small_properties.py``.
 """
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
 import pytest
-from helpers import assert_transform_close, transform_from
+from helpers import transform_from
 from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 
+import kinematica as km
+from kinematica.cli.main import main
 from kinematica.dh import Prismatic, Revolute
-from kinematica.errors import DimensionError
-from kinematica.ik.analytic.arm3r import make_arm3r_solver
-from kinematica.ik.analytic.planar import make_planar_solver
+from kinematica.ik import IKBatchResult, IKResult, closed_form
+from kinematica.ik.analytic.planar_arms import LENGTH_TOL
+from kinematica.kernels.ik_check import INFO_FREE, INFO_GAP, INFO_SINGULAR
+from kinematica.kernels.solvers.triangle import MERGE_TOL, SINGULAR_TOL
 from kinematica.robot import Robot, classify
 
 FloatArray = NDArray[np.float64]
@@ -28,6 +34,29 @@ PI = math.pi
 
 #: A candidate is "exact" when forward kinematics reproduces the target to this.
 EXACT = 1e-12
+#: robot.ik's default acceptance tolerance (m and rad).
+TOL = 1e-10
+
+KINDS = (
+    "planar-2R",
+    "planar-3R",
+    "planar-PR",
+    "planar-PRR",
+    "scara",
+    "anthropomorphic-3R",
+    "elbow-3R",
+)
+SUMMARIES = {
+    "planar-2R": "2R planar",
+    "planar-PR": "PR planar (prismatic then revolute)",
+    "planar-3R": "3R planar",
+    "planar-PRR": "PRR planar (prismatic then two parallel revolute)",
+    "scara": "SCARA (RRPR, all axes parallel)",
+    "anthropomorphic-3R": "3R anthropomorphic (shoulder axes meet)",
+    "elbow-3R": "3R elbow arm with shoulder offset",
+}
+#: Kinds whose position targets leave the last joint free (a continuum).
+FREE_LAST = ("planar-3R", "planar-PRR", "scara")
 
 
 # ------------------------------------------------------------------- helpers
@@ -97,28 +126,54 @@ def joint_distance(robot: Robot, q1: FloatArray, q2: FloatArray) -> FloatArray:
     return np.asarray(d.max(axis=-1))
 
 
-def target_of(robot: Robot, q: FloatArray, position_only: bool) -> FloatArray:
+def as_poses(targets: FloatArray) -> FloatArray:
+    """Position targets ``(N, 3)`` as poses with identity rotation; poses unchanged."""
+    if targets.shape[-1] == 3:
+        T = np.broadcast_to(np.eye(4), (*targets.shape[:-1], 4, 4)).copy()
+        T[..., :3, 3] = targets
+        return T
+    return targets
+
+
+def kernel_candidates(
+    robot: Robot, targets: FloatArray
+) -> tuple[tuple[str, ...], FloatArray, FloatArray]:
+    """The raw kernel's labels, candidates ``(N, m, n)`` and info ``(N, k)`` (no check)."""
+    kind = "position" if targets.shape[-1] == 3 else "pose"
+    closed = closed_form(robot.chain, kind)
+    assert closed is not None
+    T = np.ascontiguousarray(as_poses(targets))
+    Q = np.empty((len(T), closed.slots, robot.dof))
+    info = np.zeros((len(T), INFO_FREE + robot.dof))
+    closed.solve_batch(closed.params, T, Q, info)
+    return closed.labels, Q, info
+
+
+def reached(robot: Robot, q: FloatArray, target: FloatArray) -> FloatArray:
+    """Position (m) and rotation (rad) errors ``(..., 2)`` of ``q (..., n)`` for ``target``."""
     T = robot.fk(q)
-    return T[..., :3, 3] if position_only else T
+    want = as_poses(target)
+    pos = np.linalg.norm(T[..., :3, 3] - want[..., :3, 3], axis=-1)
+    if target.shape[-1] == 3:
+        return np.stack([pos, 0 * pos], axis=-1)
+    rot = km.rotation_angle(
+        T[..., :3, :3], np.broadcast_to(want[..., :3, :3], T[..., :3, :3].shape)
+    )
+    return np.stack([pos, rot], axis=-1)
 
 
-def check_candidates(robot: Robot, solver: object, targets: FloatArray) -> FloatArray:
-    """Solve; assert every real candidate is exact; return the candidates ``(N, m, n)``."""
-    cand = solver.solve(targets)  # type: ignore[attr-defined]
-    position_only = solver.position_only  # type: ignore[attr-defined]
-    q = cand.q
-    assert q.shape[:2] == (len(targets), len(cand.labels))
-    real = ~np.isnan(q).any(axis=2)
-    assert not (np.isnan(q).any(axis=2) & ~np.isnan(q).all(axis=2)).any(), "partly NaN branch"
-    reached = target_of(robot, np.where(real[..., None], q, 0.0), position_only)
-    want = np.broadcast_to(targets[:, None], reached.shape)
-    if position_only:
-        err = np.abs(reached - want).max(axis=-1)
-        assert err[real].max(initial=0.0) <= EXACT
-    else:
-        assert_transform_close(reached[real], want[real], atol=EXACT)
-    assert np.isnan(cand.gap[real.any(axis=1)]).all()
-    return q
+def exact_candidates(robot: Robot, targets: FloatArray) -> FloatArray:
+    """The kernel's exact candidates (NaN for the others); a branch is real in full or not.
+
+    Out of reach a branch holds its least-squares configuration, which the
+    check rejects: only the exact ones are kept here.
+    """
+    _, Q, _ = kernel_candidates(robot, targets)
+    real = ~np.isnan(Q).any(axis=2)
+    assert not (np.isnan(Q).any(axis=2) & ~np.isnan(Q).all(axis=2)).any(), "partly NaN branch"
+    err = reached(robot, np.where(real[..., None], Q, 0.0), targets[:, None])
+    exact = real & (err.max(axis=-1) <= EXACT)
+    return np.where(exact[..., None], Q, np.nan)
 
 
 def dls_solutions(
@@ -164,99 +219,99 @@ def dls_solutions(
     return np.array(found).reshape(-1, robot.dof)
 
 
+def target_of(robot: Robot, q: FloatArray, position: bool) -> FloatArray:
+    T = robot.fk(q)
+    return T[..., :3, 3] if position else T
+
+
 # ------------------------------------------------------------------- classes
-KINDS = (
-    "planar-2R",
-    "planar-3R",
-    "planar-PR",
-    "planar-PRR",
-    "scara",
-    "anthropomorphic-3R",
-    "elbow-3R",
-)
-
-
-def solver_for(robot: Robot) -> object:
-    solver = make_planar_solver(robot) or make_arm3r_solver(robot)
-    assert solver is not None
-    return solver
+@pytest.mark.parametrize("kind", KINDS)
+def test_classification_kind_summary_and_labels(kind: str) -> None:
+    robot = random_arm(kind, np.random.default_rng(7))
+    structure = classify(robot)
+    assert (structure.kind, structure.summary) == (kind, SUMMARIES[kind])
+    for target in ("pose", "position"):
+        closed = closed_form(robot.chain, target)  # type: ignore[arg-type]
+        assert closed is not None and closed.name == kind
+        assert closed.slots == (4 if kind.endswith("-3R") and "planar" not in kind else 2)
 
 
 @pytest.mark.parametrize("kind", KINDS)
-def test_round_trip_random_arms(kind: str) -> None:
-    rng = np.random.default_rng(KINDS.index(kind))
-    for _ in range(6):
+@pytest.mark.parametrize("position", [False, True])
+def test_round_trip_random_arms(kind: str, position: bool) -> None:
+    rng = np.random.default_rng(KINDS.index(kind) + 10 * position)
+    for _ in range(4):
         robot = random_arm(kind, rng)
-        solver = solver_for(robot)
-        assert solver.name == kind  # type: ignore[attr-defined]
-        q = random_q(robot, rng, 300)
-        targets = target_of(robot, q, solver.position_only)  # type: ignore[attr-defined]
-        cand = check_candidates(robot, solver, targets)
+        q = random_q(robot, rng, 200)
+        targets = target_of(robot, q, position)
+        cand = exact_candidates(robot, targets)
+        res = robot.ik(targets, respect_limits=False)
+        assert isinstance(res, IKBatchResult)
+        want = "singular" if position and kind in FREE_LAST else "ok"
+        assert (res.status == want).all(), set(res.status)
+        err = reached(robot, np.nan_to_num(res.solutions), targets[:, None])
+        assert (err[res.count[:, None] > np.arange(res.solutions.shape[1])] <= TOL).all()
+        if position and kind in FREE_LAST:  # the last joint free: representatives
+            assert res.free[:, -1].all() and not res.free[:, :-1].any()
+            continue
         dist = joint_distance(robot, cand, q[:, None, :])
         assert (np.nan_to_num(dist, nan=np.inf).min(axis=1) < 1e-8).all(), "original q not found"
-
-
-@pytest.mark.parametrize(
-    ("kind", "position_only", "branches"),
-    [
-        ("planar-2R", True, 2),
-        ("planar-3R", False, 2),
-        ("planar-PR", True, 2),
-        ("planar-PRR", False, 2),
-        ("scara", False, 2),
-        ("anthropomorphic-3R", True, 4),
-        ("elbow-3R", True, 4),
-    ],
-)
-def test_solver_kind_and_shapes(kind: str, position_only: bool, branches: int) -> None:
-    rng = np.random.default_rng(7)
-    robot = random_arm(kind, rng)
-    solver = solver_for(robot)
-    assert solver.position_only is position_only  # type: ignore[attr-defined]
-    q = random_q(robot, rng, 3)
-    for N in (1, 3):
-        cand = solver.solve(target_of(robot, q[:N], position_only))  # type: ignore[attr-defined]
-        assert cand.q.shape == (N, branches, robot.dof)
-        assert len(cand.labels) == branches
-        assert cand.singular.shape == (N,) and cand.free.shape == (N, robot.dof)
-        assert cand.gap.shape == (N,)
-    with pytest.raises(DimensionError):
-        solver.solve(np.zeros((2, 4) if position_only else (2, 3)))  # type: ignore[attr-defined]
+        dist = joint_distance(robot, res.solutions, q[:, None, :])
+        assert (np.nan_to_num(dist, nan=np.inf).min(axis=1) < 1e-8).all()
 
 
 @pytest.mark.parametrize("kind", KINDS)
 def test_complete_against_multistart_search(kind: str) -> None:
     rng = np.random.default_rng(1000 + KINDS.index(kind))
     robot = random_arm(kind, rng)
-    solver = solver_for(robot)
-    for q in random_q(robot, rng, 2):
-        target = target_of(robot, q, solver.position_only)  # type: ignore[attr-defined]
-        cand = check_candidates(robot, solver, target[None])[0]
-        ours = cand[~np.isnan(cand).any(axis=1)]
-        theirs = dls_solutions(robot, target, rng)
-        assert len(theirs) >= 1
-        for s in theirs:
-            assert joint_distance(robot, ours, s).min() < 1e-6, f"missed {s}"
-        assert len(theirs) <= len(ours)
+    for position in (False, True):
+        if position and kind in FREE_LAST:
+            continue
+        for q in random_q(robot, rng, 1):
+            target = target_of(robot, q, position)
+            res = robot.ik(target, respect_limits=False)
+            assert res.status == "ok"
+            theirs = dls_solutions(robot, target, rng, starts=60)
+            assert len(theirs) >= 1
+            for s in theirs:
+                assert joint_distance(robot, res.solutions, s).min() < 1e-6, f"missed {s}"
+            assert len(theirs) == res.count
 
 
-def test_factories_refuse_other_structures() -> None:
-    puma = Robot.from_dh(
-        [
-            Revolute(alpha=PI / 2),
-            Revolute(a=0.4318),
-            Revolute(d=0.15005, a=0.0203, alpha=-PI / 2),
-            Revolute(d=0.4318, alpha=PI / 2),
-            Revolute(alpha=-PI / 2),
-            Revolute(),
-        ]
-    )
-    assert make_planar_solver(puma) is None
-    assert make_arm3r_solver(puma) is None
+@pytest.mark.parametrize("shape", [(), (1,), (3, 2)])
+@pytest.mark.parametrize("kind", ["planar-2R", "scara", "elbow-3R"])
+def test_batch_shapes(kind: str, shape: tuple[int, ...]) -> None:
+    rng = np.random.default_rng(8)
+    robot = random_arm(kind, rng)
+    q = random_q(robot, rng, max(1, math.prod(shape))).reshape(*shape, robot.dof)
+    for position in (False, True):
+        res = robot.ik(target_of(robot, q, position), respect_limits=False)
+        if shape == ():
+            assert isinstance(res, IKResult) and res.status in ("ok", "singular")
+        else:
+            assert isinstance(res, IKBatchResult) and res.shape == shape
+            assert res.solutions.shape[:-2] == shape and res.free.shape == (*shape, robot.dof)
+
+
+def test_other_structures_and_degenerate_links_fall_back() -> None:
+    puma = km.load("puma560")
+    assert classify(puma).kind not in KINDS
     skew_3r = Robot.from_dh([Revolute(alpha=1.0), Revolute(a=0.5, alpha=0.3), Revolute(a=0.4)])
-    assert make_arm3r_solver(skew_3r) is None
-    # a planar 2R whose tool sits on axis 2 is degenerate (q2 moves nothing)
-    assert make_planar_solver(Robot.from_dh([Revolute(a=0.5), Revolute()])) is None
+    assert classify(skew_3r).kind == "general"
+    # A planar 2R whose tool sits on axis 2 (q2 moves nothing), or within LENGTH_TOL of it:
+    # no closed form, the numeric method answers; just beyond LENGTH_TOL the closed form does.
+    for a2, method in (
+        (0.0, "numeric"),
+        (LENGTH_TOL / 10, "numeric"),
+        (LENGTH_TOL * 10, "analytic"),
+    ):
+        arm = Robot.from_dh([Revolute(a=0.5), Revolute(a=a2)])
+        assert classify(arm).kind == "planar-2R"
+        target = arm.fk([0.3, 0.4])[:3, 3]
+        res = arm.ik(target, seed=0)
+        assert res.method.startswith(method) and res.status in ("ok", "singular"), res.message
+    with pytest.raises(km.KinematicaError, match="numeric"):
+        Robot.from_dh([Revolute(a=0.5), Revolute()]).ik(np.zeros(3), method="analytic")
 
 
 # ------------------------------------------------------- seeds' hand formulas
@@ -276,8 +331,7 @@ def seed_pr_arm() -> Robot:
 
 def test_seed_pr_arm_matches_the_slide() -> None:
     robot = seed_pr_arm()
-    rng = np.random.default_rng(0)
-    q = random_q(robot, rng, 50)
+    q = random_q(robot, np.random.default_rng(0), 50)
     p = robot.fk(q)[:, :3, 3]
     np.testing.assert_allclose(p[:, 0], q[:, 0] + L1 + L2 * np.cos(q[:, 1]), atol=1e-15)
     np.testing.assert_allclose(p[:, 1], L2 * np.sin(q[:, 1]), atol=1e-15)
@@ -286,12 +340,11 @@ def test_seed_pr_arm_matches_the_slide() -> None:
 
 def test_seed_pr_two_solutions_are_q2a_q2b() -> None:
     robot = seed_pr_arm()
-    solver = make_planar_solver(robot)
-    assert solver is not None and solver.labels == ("link forward", "link backward")
     rng = np.random.default_rng(1)
     x = rng.uniform(-1.0, 1.0, 200)
     y = rng.uniform(-L2, L2, 200)
-    cand = check_candidates(robot, solver, np.stack([x, y, 0 * x], axis=1))
+    labels, cand, _ = kernel_candidates(robot, np.stack([x, y, 0 * x], axis=1))
+    assert labels == ("link forward", "link backward")
     q2a = np.arcsin(y / L2)
     q2b = PI - np.arcsin(y / L2)
     q1a = x - L1 - L2 * np.cos(q2a)
@@ -300,6 +353,12 @@ def test_seed_pr_two_solutions_are_q2a_q2b() -> None:
     np.testing.assert_allclose(cand[:, 1, 0], q1b, atol=1e-14)
     assert joint_distance(robot, cand[:, 0], np.stack([q1a, q2a], 1)).max() < 1e-14
     assert joint_distance(robot, cand[:, 1], np.stack([q1b, q2b], 1)).max() < 1e-14
+    # A pose fixes q2 (the link's direction): one solution, on its branch.
+    for qa in ([0.1, 0.4], [0.2, PI - 0.4]):
+        res = robot.ik(robot.fk(qa))
+        assert res.status == "ok" and res.count == 1
+        assert joint_distance(robot, res.solutions[0], np.array(qa)) < 1e-12
+        assert res.branches == (("link forward",) if qa[1] < PI / 2 else ("link backward",))
 
 
 D1, A2, A3 = 0.4, 0.35, 0.3  # seed 002's L1, L2, L3
@@ -312,11 +371,9 @@ def seed_anthropomorphic() -> Robot:
 
 def test_seed_anthropomorphic_four_solutions_are_the_seed_algebra() -> None:
     robot = seed_anthropomorphic()
-    solver = make_arm3r_solver(robot)
-    assert solver is not None and solver.name == "anthropomorphic-3R"
     rng = np.random.default_rng(2)
     p = robot.fk(random_q(robot, rng, 300))[:, :3, 3]
-    cand = check_candidates(robot, solver, p)
+    labels, cand, _ = kernel_candidates(robot, p)
     px, py, pz = p.T
     for slot, (shoulder, elbow) in enumerate([(0, 1), (0, -1), (1, 1), (1, -1)]):
         # seed 002: q1 = atan2(py, px) and q1 + π ("two solutions for q1")
@@ -331,8 +388,10 @@ def test_seed_anthropomorphic_four_solutions_are_the_seed_algebra() -> None:
         s2 = (z * (A2 + A3 * c3) - r * A3 * s3) / den  # the seed's sin(q2)
         c2 = (r * (A2 + A3 * c3) + z * A3 * s3) / den  # from its first equation
         want = np.stack([q1, np.arctan2(s2, c2), q3], axis=1)
-        assert joint_distance(robot, cand[:, slot], want).max() < 1e-9, solver.labels[slot]
-    assert solver.labels[0] == "shoulder right, elbow up"
+        assert joint_distance(robot, cand[:, slot], want).max() < 1e-9, labels[slot]
+    assert labels[0] == "shoulder right, elbow up"
+    res = robot.ik(p[0])
+    assert res.status == "ok" and res.count == 4  # seed 002: two q1 times two q3
 
 
 def _side(h: FloatArray, a: FloatArray, b: FloatArray) -> FloatArray:
@@ -340,120 +399,349 @@ def _side(h: FloatArray, a: FloatArray, b: FloatArray) -> FloatArray:
     return np.einsum("ij,ij->i", h, np.cross(a, b))
 
 
-def test_labels_planar_2r_elbow_up_is_left_of_the_reach_line() -> None:
+@pytest.mark.parametrize("position", [True, False])
+def test_labels_planar_2r_elbow_up_is_left_of_the_reach_line(position: bool) -> None:
     rng = np.random.default_rng(3)
     robot = random_arm("planar-2R", rng)
-    solver = solver_for(robot)
-    q = random_q(robot, rng, 200)
+    q = random_q(robot, rng, 60)
+    res = robot.ik(target_of(robot, q, position), respect_limits=False)
     p = robot.fk(q)[:, :3, 3]
-    cand = check_candidates(robot, solver, p)
-    for slot, sign in ((0, 1.0), (1, -1.0)):  # elbow up: elbow to the left (about +h1)
-        h, pts = robot.joint_axes(cand[:, slot])
-        h1, s, e = h[:, 0], pts[:, 0], pts[:, 1]
-        assert (sign * _side(h1, p - s, e - s) >= -1e-12).all()
+    for i in range(len(q)):
+        for sol, label in zip(res[i].solutions, res[i].branches, strict=True):
+            h, pts = robot.joint_axes(sol)
+            sign = 1.0 if label == "elbow up" else -1.0  # elbow up: to the left, about +h1
+            assert sign * _side(h[:1], p[i : i + 1] - pts[:1], pts[1:2] - pts[:1])[0] >= -1e-12
 
 
 @pytest.mark.parametrize("kind", ["anthropomorphic-3R", "elbow-3R"])
-def test_labels_3r_shoulder_and_elbow(kind: str) -> None:
+@pytest.mark.parametrize("position", [True, False])
+def test_labels_3r_shoulder_and_elbow(kind: str, position: bool) -> None:
     rng = np.random.default_rng(4)
     for robot in (seed_anthropomorphic(), random_arm(kind, rng), random_arm(kind, rng)):
-        solver = make_arm3r_solver(robot)
-        assert solver is not None
-        p = robot.fk(random_q(robot, rng, 300))[:, :3, 3]
-        cand = check_candidates(robot, solver, p)
-        for slot, label in enumerate(solver.labels):
-            q = cand[:, slot]
-            real = ~np.isnan(q).any(axis=1)
-            h, pts = robot.joint_axes(q[real])
-            h1, k1, w = h[:, 0], h[:, 1], p[real]
-            sigma = np.einsum("ij,ij->i", w - pts[:, 0], np.cross(h1, k1))
-            assert ((sigma >= -1e-12) if "right" in label else (sigma <= 1e-12)).all(), label
+        q = random_q(robot, rng, 30)
+        res = robot.ik(target_of(robot, q, position), respect_limits=False)
+        p = robot.fk(q)[:, :3, 3]
+        for i in range(len(q)):
+            for sol, label in zip(res[i].solutions, res[i].branches, strict=True):
+                (h1, k1, _), (s1, s, e) = robot.joint_axes(sol)
+                w = p[i]
+                sigma = (w - s1) @ np.cross(h1, k1)
+                assert (sigma >= -1e-12) if "right" in label else (sigma <= 1e-12), label
 
-            def across(x: FloatArray, k1: FloatArray = k1) -> FloatArray:
-                return x - np.einsum("ij,ij->i", x, k1)[:, None] * k1
+                def across(x: FloatArray, k1: FloatArray = k1) -> FloatArray:
+                    return x - (x @ k1) * k1
 
-            s, e = pts[:, 1], pts[:, 2]  # points on axes 2 and 3
-            n = np.cross(k1, across(w - s))  # left normal of the shoulder-wrist line
-            up = np.einsum("ij,ij->i", across(e - s), n) * np.einsum("ij,ij->i", h1, n)
-            assert ((up >= -1e-12) if "up" in label else (up <= 1e-12)).all(), label
+                n = np.cross(k1, across(w - s))  # left normal of the shoulder-wrist line
+                up = (across(e - s) @ n) * (h1 @ n)
+                assert (up >= -1e-12) if "up" in label else (up <= 1e-12), label
+
+
+def test_scara_right_handed_has_positive_elbow_turn() -> None:
+    scara = Robot.from_dh([Revolute(d=0.4, a=0.3), Revolute(a=0.25), Prismatic(), Revolute()])
+    T = scara.fk(np.array([[0.2, 0.7, 0.1, 0.0], [0.2, -0.7, 0.1, 0.0]]))
+    labels, cand, _ = kernel_candidates(scara, T)
+    assert labels == ("right-handed", "left-handed")
+    assert (np.sin(cand[:, 0, 1]) > 0).all() and (np.sin(cand[:, 1, 1]) < 0).all()
 
 
 # ------------------------------------------------------------ special targets
 def test_planar_2r_singular_at_the_base_and_unreachable() -> None:
     robot = Robot.from_dh([Revolute(a=0.5), Revolute(a=0.5, offset=0.2)])
-    solver = make_planar_solver(robot)
-    assert solver is not None
-    far = np.array([[1.3, 0.0, 0.0], [0.0, 0.0, 0.0], [0.3, 0.4, 0.25]])
-    cand = solver.solve(far)
-    assert np.isnan(cand.q[0]).all() and cand.gap[0] == pytest.approx(0.3, abs=1e-15)
-    assert cand.singular[1] and cand.free[1].tolist() == [True, False]
-    assert np.isnan(cand.q[2]).all() and cand.gap[2] == pytest.approx(0.25, abs=1e-15)
-    check_candidates(robot, solver, far[1:2])
+    res = robot.ik(np.array([[1.3, 0.0, 0.0], [0.0, 0.0, 0.0], [0.3, 0.4, 0.25], [0.3, 0.4, 0]]))
+    assert list(res.status) == ["unreachable", "singular", "unreachable", "ok"]
+    assert res.gap[0] == pytest.approx(0.3, abs=1e-15)  # beyond the reach
+    assert res.gap[2] == pytest.approx(0.25, abs=1e-15)  # off the plane
+    assert res.free[1].tolist() == [True, False]
+    assert "at least 0.3 m outside the reach" in res[0].message
     unequal = Robot.from_dh([Revolute(a=0.5), Revolute(a=0.3)])
-    inner = make_planar_solver(unequal).solve(np.array([[0.1, 0.0, 0.0], [0.3, 0.5, 0.0]]))  # type: ignore[union-attr]
-    assert np.isnan(inner.q[0]).all() and inner.gap[0] == pytest.approx(0.1, abs=1e-15)
-    assert not np.isnan(inner.q[1]).any() and np.isnan(inner.gap[1])
+    res = unequal.ik(np.array([[0.1, 0.0, 0.0], [0.3, 0.5, 0.0]]))
+    assert list(res.status) == ["unreachable", "ok"]
+    assert res.gap[0] == pytest.approx(0.1, abs=1e-15)  # inside the hole
 
 
-def test_planar_pose_solvers_refuse_tilted_and_off_plane_targets() -> None:
+def test_folded_equal_2r_near_the_base() -> None:
+    """The report: l1 = l2 = 0.5, targets 1e-9 m from the base gave not_found for 3 of 7."""
+    robot = Robot.from_dh([Revolute(a=0.5), Revolute(a=0.5)])
+    angles = np.linspace(-PI, PI, 7, endpoint=False) + 0.1
+    for r in (1e-7, 1e-9, 1e-11):
+        targets = r * np.stack([np.cos(angles), np.sin(angles), 0 * angles], axis=1)
+        res = robot.ik(targets)
+        assert (res.status == "ok").all() and (res.count == 2).all(), res.message
+        for i in range(len(targets)):
+            err = reached(robot, res[i].solutions, targets[i])
+            assert (err <= 1e-15).all()
+            # the two solutions: elbow folded by π ∓ 2r/L, the arm turned by π
+            q2 = np.sort(np.abs(km.wrap_angle(res[i].solutions[:, 1])))
+            np.testing.assert_allclose(q2, PI - 2 * r, rtol=0, atol=1e-15 + 1e-7 * r)
+    # On the base itself (within SINGULAR_TOL of the reach): q1 free.
+    for r in (0.0, 0.1 * SINGULAR_TOL):
+        res = robot.ik(np.array([r, 0.0, 0.0]))
+        assert res.status == "singular" and res.free_joints == (0,), res.message
+    # Just outside SINGULAR_TOL (100x): two solutions, not a continuum.
+    res = robot.ik(np.array([100 * SINGULAR_TOL, 0.0, 0.0]))
+    assert res.status == "ok" and res.count == 2
+
+
+def test_pose_targets_fix_the_fold_of_reduced_arms() -> None:
+    """A pose fixes q1 of a folded 2R (the position alone does not): one solution."""
+    robot = Robot.from_dh([Revolute(a=0.5), Revolute(a=0.5)])
+    for q in ([0.7, PI], [-2.0, PI - 1e-9], [1.0, 0.0], [0.3, 1e-10]):
+        res = robot.ik(robot.fk(q))
+        assert res.status == "ok" and res.count == 1, res.message
+        assert joint_distance(robot, res.solutions[0], np.array(q)) < 1e-7
+
+
+@pytest.mark.parametrize("kind", ["planar-3R", "planar-PRR", "scara"])
+def test_planar_pose_targets_tilted_or_off_the_plane(kind: str) -> None:
     rng = np.random.default_rng(5)
-    for kind in ("planar-3R", "planar-PRR", "scara"):
-        robot = random_arm(kind, rng)
-        solver = solver_for(robot)
-        T = robot.fk(random_q(robot, rng, 1))[0]
-        h, _ = robot.joint_axes()
-        k = h[1]
-        tilt = Rotation.from_rotvec(0.01 * np.cross(k, [0.3, 0.5, 0.7]) / 0.5).as_matrix()
-        tilted = T.copy()
-        tilted[:3, :3] = tilt @ T[:3, :3]
-        cand = solver.solve(tilted[None])  # type: ignore[attr-defined]
-        assert np.isnan(cand.q).all() and 0 < cand.gap[0] < 0.05
-        if kind != "scara":  # the SCARA's slide reaches any height
-            lifted = T.copy()
-            lifted[:3, 3] += 0.2 * k
-            cand = solver.solve(lifted[None])  # type: ignore[attr-defined]
-            assert np.isnan(cand.q).all() and cand.gap[0] >= 0.2 - 1e-12
+    robot = random_arm(kind, rng)
+    T = robot.fk(random_q(robot, rng, 1))[0]
+    h, _ = robot.joint_axes()
+    k = h[1]
+    tilt = Rotation.from_rotvec(0.01 * np.cross(k, [0.3, 0.5, 0.7]) / 0.5).as_matrix()
+    tilted = T.copy()
+    tilted[:3, :3] = tilt @ T[:3, :3]
+    res = robot.ik(tilted, respect_limits=False)
+    # A rotation is no distance in metres: the closest candidate says how far.
+    assert res.status == "unreachable" and res.gap is None
+    assert 0.005 < res.nearest_error[1] < 0.05 and "m outside" not in res.message
+    if kind != "scara":  # the SCARA's slide reaches any height
+        lifted = T.copy()
+        lifted[:3, 3] += 0.2 * k
+        res = robot.ik(lifted, respect_limits=False)
+        assert res.status == "unreachable" and res.gap == pytest.approx(0.2, abs=1e-12)
+
+
+def test_scara_pose_message_is_in_radians_not_metres(capsys: pytest.CaptureFixture[str]) -> None:
+    """The report: ``ik scara --pose 0.3 0.2 0.1 0 0 0`` said "3.14159 m outside the reach"."""
+    code = main(
+        ["ik", "scara", "--pose", "0.3", "0.2", "0.1", "0", "0", "0", "--method", "analytic"]
+    )
+    out = capsys.readouterr().out
+    assert code == 1 and "unreachable" in out
+    assert "m outside" not in out and "3.14 rad" in out
 
 
 def test_planar_pr_unreachable_gap() -> None:
-    solver = make_planar_solver(seed_pr_arm())
-    assert solver is not None
-    cand = solver.solve(np.array([[0.2, L2 + 0.1, 0.0]]))
-    assert np.isnan(cand.q).all() and cand.gap[0] == pytest.approx(0.1, abs=1e-15)
+    res = seed_pr_arm().ik(np.array([0.2, L2 + 0.1, 0.0]))
+    assert res.status == "unreachable" and res.gap == pytest.approx(0.1, abs=1e-15)
 
 
 def test_3r_singular_on_axis_1_and_unreachable() -> None:
     robot = seed_anthropomorphic()
-    solver = make_arm3r_solver(robot)
-    assert solver is not None
-    on_axis = np.array([[0.0, 0.0, D1 + 0.5], [0.0, 0.0, D1 + 2.0], [1.0, 1.0, 1.0]])
-    cand = solver.solve(on_axis)
-    assert cand.singular[0] and cand.free[0].tolist() == [True, False, False]
-    check_candidates(robot, solver, on_axis[:1])
+    on_axis = np.array([[0.0, 0.0, D1 + 0.5], [0.0, 0.0, D1 + 2.0], [1.0, 1.0, 1.0], [0, 0.2, D1]])
+    res = robot.ik(on_axis)
+    assert list(res.status) == ["singular", "unreachable", "unreachable", "ok"]
+    assert res.free[0].tolist() == [True, False, False]
+    assert (reached(robot, res[0].solutions, on_axis[0]) <= EXACT).all()
     # beyond reach: the tool lies on a sphere shell about the shoulder (axes 1, 2 meet)
-    assert np.isnan(cand.q[1:]).all()
-    assert cand.gap[1] == pytest.approx(2.0 - (A2 + A3), abs=1e-12)
+    assert res.gap[1] == pytest.approx(2.0 - (A2 + A3), abs=1e-12)
     d = np.linalg.norm(on_axis[2] - [0, 0, D1])
-    assert cand.gap[2] == pytest.approx(d - (A2 + A3), abs=1e-12)
+    assert res.gap[2] == pytest.approx(d - (A2 + A3), abs=1e-12)
+    # SINGULAR_TOL, both sides: 0.1x from the axis is on it, 100x is not (four solutions).
+    for r, status in ((0.1, "singular"), (100.0, "ok")):
+        off = on_axis[0] + [r * SINGULAR_TOL * (A2 + A3 + D1), 0.0, 0.0]
+        assert robot.ik(off).status == status
 
 
-def test_scara_and_3r_planar_singular() -> None:
+@pytest.mark.parametrize("name", ["anthropomorphic-3r", "rrr-geometric"])
+def test_tool_on_axis_1_pose_is_solved_position_is_singular(name: str) -> None:
+    """Issue 13 item 3: with the tool on axis 1 the orientation fixes q1."""
+    robot = km.load(name)
+    for q in ([0.3, PI / 2, 0.0], [-2.1, PI / 2, 0.0], [0.3, -PI / 2, 0.0]):
+        T = robot.fk(q)
+        res = robot.ik(T)
+        assert res.status == "ok" and res.count == 1, res.message
+        assert joint_distance(robot, res.solutions[0], np.array(q)) < 1e-9
+        res = robot.ik(T[:3, 3])
+        assert res.status == "singular" and 0 in res.free_joints, res.message
+        assert (reached(robot, res.solutions, T[:3, 3]) <= TOL).all()
+
+
+def test_scara_and_3r_planar_fold_is_singular() -> None:
     scara = Robot.from_dh(
         [Revolute(d=0.4, a=0.3), Revolute(a=0.3, alpha=PI), Prismatic(), Revolute(d=0.1)]
     )
-    solver = make_planar_solver(scara)
-    assert solver is not None and solver.labels == ("right-handed", "left-handed")
     T = scara.fk([0.3, PI, 0.05, 0.2])  # the wrist folded back onto axis 1
-    cand = check_candidates(scara, solver, T[None])
-    assert cand.shape == (1, 2, 4)
-    got = solver.solve(T[None])
-    assert got.singular[0] and got.free[0].tolist() == [True, False, False, True]
+    res = scara.ik(T)
+    assert res.status == "singular" and res.free_joints == (0, 3)
+    assert (reached(scara, res.solutions, T) <= TOL).all()
+    planar = Robot.from_dh([Revolute(a=0.4), Revolute(a=0.4), Revolute(a=0.2)])
+    T = planar.fk([1.0, PI, 0.5])
+    res = planar.ik(T)
+    assert res.status == "singular" and res.free_joints == (0, 2)
 
 
-def test_scara_right_handed_has_positive_elbow_turn() -> None:
-    scara = Robot.from_dh([Revolute(d=0.4, a=0.3), Revolute(a=0.25), Prismatic(), Revolute()])
-    solver = make_planar_solver(scara)
-    assert solver is not None
-    T = scara.fk(np.array([[0.2, 0.7, 0.1, 0.0], [0.2, -0.7, 0.1, 0.0]]))
-    cand = check_candidates(scara, solver, T)
-    assert (np.sin(cand[:, 0, 1]) > 0).all() and (np.sin(cand[:, 1, 1]) < 0).all()
+def test_position_targets_leave_the_last_joint_free(capsys: pytest.CaptureFixture[str]) -> None:
+    """Issue 7 item 3: SCARA positions: q1, q2 by the triangle, q3 by the height, q4 free."""
+    scara = km.load("scara")
+    q = np.radians([30.0, -60.0, 0.0, 45.0])
+    q[2] = 0.1
+    res = scara.ik(scara.fk(q)[:3, 3])
+    assert res.status == "singular" and res.free_joints == (3,) and res.count == 2
+    assert res.branches == ("right-handed", "left-handed")
+    d = res.solutions[:, :3] - q[:3]  # q4 aside
+    d[:, :2] = km.wrap_angle(d[:, :2])
+    assert np.abs(d).max(axis=1).min() < 1e-12
+    code = main(
+        ["ik", "scara", "--position", "0.3", "0.2", "0.3", "--method", "analytic", "--json"]
+    )
+    data = json.loads(capsys.readouterr().out)
+    assert code == 0 and data["status"] == "singular" and data["free_joints"] == ["q4"]
+    for name in ("planar-3r", "planar-prr"):
+        robot = km.load(name)
+        lo, hi = np.nan_to_num(robot.qlim, posinf=1.0, neginf=-1.0).T
+        qs = np.random.default_rng(3).uniform(lo, hi, (20, robot.dof))
+        res = robot.ik(robot.fk(qs)[:, :3, 3])
+        assert (res.status == "singular").all() and res.free[:, -1].all()
+        assert not res.free[:, :-1].any()
+
+
+def test_free_last_representatives_respect_the_limits() -> None:
+    """A PRR whose slide allows one narrow window: the middle representative misses it."""
+    free = Robot.from_dh(
+        [Prismatic(alpha=PI / 2), Revolute(a=0.5, offset=PI / 2), Revolute(a=0.4)], name="PRR"
+    )
+    p = free.fk([0.0, 0.3, 0.9])[:3, 3]
+    base = free.ik(p, respect_limits=False)
+    assert base.status == "singular"
+    slide = base.solutions[:, 0]
+    # limits that exclude the unconstrained representatives but keep q1 = 0 (the generating q)
+    window = (-0.02, 0.02)
+    assert not ((slide > window[0]) & (slide < window[1])).any()
+    tight = free.with_limits([window, None, None])
+    res = tight.ik(p)
+    assert res.status == "singular", res.message
+    assert ((res.solutions[:, 0] >= window[0]) & (res.solutions[:, 0] <= window[1])).all()
+    assert (reached(tight, res.solutions, p) <= TOL).all()
+
+
+@pytest.mark.parametrize("name", ["scara", "planar-pr", "anthropomorphic-3r", "planar-3r"])
+def test_huge_targets_are_unreachable_with_their_gap(name: str) -> None:
+    robot = km.load(name)
+    for x in (1.4e154, 1e300):
+        T = np.eye(4)
+        T[:3, 3] = [x, 0.5 * x, -x]
+        for target in (T, T[:3, 3]):
+            one = robot.ik(target)
+            many = robot.ik(target[None])
+            assert one.status == many.status[0] == "unreachable"
+            assert one.gap is not None and one.gap > 0.1 * x
+            assert one.message == many[0].message
+
+
+def test_huge_target_json_is_valid(capsys: pytest.CaptureFixture[str]) -> None:
+    code = main(["ik", "anthropomorphic-3r", "--position", "1e300", "0", "0", "--json"])
+    data = json.loads(capsys.readouterr().out)
+    assert code == 1 and data["status"] == "unreachable" and data["gap_m"] == 1e300
+
+
+def test_kernel_reports_gap_only_outside_the_reach() -> None:
+    robot = km.load("planar-3r")
+    T = robot.fk([0.2, 0.3, 0.4])
+    _, _, info = kernel_candidates(robot, T[None])
+    assert np.isnan(info[0, INFO_GAP]) or info[0, INFO_GAP] < 1e-15
+    assert info[0, INFO_SINGULAR] == 0.0
+    far = T.copy()
+    far[:3, 3] *= 10
+    _, _, info = kernel_candidates(robot, far[None])
+    assert info[0, INFO_GAP] == pytest.approx(np.linalg.norm(far[:3, 3]) - 0.9, abs=1e-12)
+
+
+@pytest.mark.parametrize("kind", ["planar-3R", "elbow-3R"])
+def test_axes_parallel_within_tolerance_make_misses_no_proof(kind: str) -> None:
+    """The kernels solve the ideal arm; a real one off by more than round-off gets slack.
+
+    Axis 3 twisted 1e-15 rad off parallel is round-off (below the threshold
+    at this size): gaps are exact. Twisted 1e-10 (within the classification's
+    1e-9), the ideal arm may put the tool up to ~2e-10 m away: the gap
+    shrinks by that (a target 1e-9 m off the ideal reach is no longer proven
+    that far), and the ideal arm's continua get ``INFO_NEAR`` (a miss there
+    is no proof). Generic targets get neither.
+    """
+    from kinematica.kernels.ik_check import INFO_NEAR
+
+    def arm(twist: float) -> Robot:
+        if kind == "planar-3R":  # position targets: the last joint free (a continuum)
+            rows = [Revolute(a=0.4), Revolute(a=0.3, alpha=twist), Revolute(a=0.2)]
+        else:  # equal links folded: q2 free (a continuum)
+            rows = [Revolute(d=0.3, a=0.1, alpha=PI / 2), Revolute(a=0.4, alpha=twist)]
+            rows.append(Revolute(a=0.4))
+        robot = Robot.from_dh(rows)
+        assert classify(robot).kind == kind
+        return robot
+
+    for twist, tilted in ((1e-15, False), (1e-10, True)):
+        robot = arm(twist)
+        T = robot.fk(np.zeros(3))  # stretched: the reach's edge
+        _, p = robot.joint_axes()
+        beyond = T.copy()
+        beyond[:3, 3] += 1e-9 * (T[:3, 3] - p[1]) / np.linalg.norm(T[:3, 3] - p[1])
+        generic = robot.fk([0.3, 0.9, -0.7])
+        folded = [0.3, 0.9, PI]  # the elbow arm's continuum; the planar one's is any position
+        continuum = (generic if kind == "planar-3R" else robot.fk(folded))[:3, 3]
+        _, _, info = kernel_candidates(robot, np.stack([beyond, generic]))
+        gap = info[0, INFO_GAP]
+        if tilted:
+            assert math.isnan(gap) or gap < 1e-9 - 1e-10
+        else:
+            assert gap == pytest.approx(1e-9, abs=1e-12)
+        assert info[1, INFO_NEAR] == 0.0
+        _, _, info = kernel_candidates(robot, continuum[None])
+        assert info[0, INFO_SINGULAR] == 1.0 and info[0, INFO_NEAR] == float(tilted)
+        assert robot.ik(generic).status == "ok"
+
+
+def test_gap_below_round_off_is_not_reported() -> None:
+    """SINGULAR_TOL of the reach is the kernels' round-off: a smaller gap is no gap.
+
+    A pose tilted out of the plane, at the reach's edge, cannot be reached:
+    0.1x the floor beyond the reach reports no distance (at the edge, where
+    branches merge, that is no proof: ``not_found``), 100x reports it.
+    """
+    robot = Robot.from_dh([Revolute(a=0.6), Revolute(a=0.4), Revolute(a=0.2)])  # reach 1.2 m
+    T = robot.fk(np.zeros(3))
+    T[:3, :3] = Rotation.from_rotvec([0.0, 0.01, 0.0]).as_matrix()  # tilted out of the plane
+    for factor, reported in ((0.1, False), (100.0, True)):
+        target = T.copy()
+        target[0, 3] += factor * SINGULAR_TOL * 1.2
+        _, _, info = kernel_candidates(robot, target[None])
+        assert math.isnan(info[0, INFO_GAP]) != reported
+        res = robot.ik(target)
+        assert res.status == ("unreachable" if reported else "not_found")
+        assert (res.gap is not None) == reported
+
+
+def test_merging_branches_are_said_so() -> None:
+    """MERGE_TOL, both sides: 0.1x from stretched the branches merge (a note says so), 10x not."""
+    robot = Robot.from_dh([Revolute(a=0.5), Revolute(a=0.3)])
+    for factor, near in ((0.1, True), (10.0, False)):
+        q = np.array([0.4, factor * MERGE_TOL])
+        res = robot.ik(robot.fk(q)[:3, 3])
+        assert res.status == "ok" and res.near_singular == near
+        assert ("round-off" in res.message) == near
+        assert joint_distance(robot, res.solutions, q).min() < 1e-7
+    pr = seed_pr_arm()  # the link across the slide
+    for factor, near in ((0.1, True), (10.0, False)):
+        res = pr.ik(pr.fk([0.1, PI / 2 - factor * MERGE_TOL])[:3, 3])
+        assert res.status == "ok" and res.near_singular == near
+
+
+def test_double_root_is_one_solution() -> None:
+    """Stretched arms (and 1e-12 rad from it): the two branches merge into one solution."""
+    planar = Robot.from_dh([Revolute(a=0.5), Revolute(a=0.3)])
+    arm = seed_anthropomorphic()
+    pr = seed_pr_arm()
+    for robot, q in (
+        (planar, [0.4, 0.0]),
+        (planar, [0.4, 1e-12]),
+        (arm, [0.4, 0.3, 0.0]),
+        (arm, [0.4, 0.3, -1e-12]),
+        (pr, [0.1, PI / 2]),  # the link across the slide: s = along ± 0
+    ):
+        p = robot.fk(q)[:3, 3]
+        res = robot.ik(p)
+        assert res.status == "ok", res.message
+        per_shoulder = 2 if robot is arm else 1  # the 3R arm: two shoulders, one elbow each
+        assert res.count == per_shoulder
+        assert joint_distance(robot, res.solutions, np.array(q)).min() < 1e-7

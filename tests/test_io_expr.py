@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from kinematica.errors import KinematicaError
+from kinematica.errors import ArgumentError, KinematicaError
 from kinematica.io.expr import (
     MAX_DEPTH,
     Affine,
@@ -176,8 +176,8 @@ def test_nesting_up_to_the_limit_is_fine() -> None:
     assert evaluate("(" * depth + "q1" + ")" * depth).coeffs == {"q1": 1.0}
 
 
-def test_non_string_input_is_a_type_error() -> None:
-    with pytest.raises(TypeError):
+def test_non_string_input_is_an_argument_error() -> None:
+    with pytest.raises(ArgumentError, match="must be text, got int"):
         parse_expression(90)  # type: ignore[arg-type]
 
 

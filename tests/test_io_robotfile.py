@@ -14,7 +14,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from kinematica.errors import KinematicaError, RobotFileError
+from kinematica.errors import KinematicaError, KinematicaWarning, RobotFileError
 from kinematica.io import (
     FrameSpec,
     JointSpec,
@@ -179,6 +179,7 @@ def test_unit_aliases_and_expressions_everywhere() -> None:
     assert spec.base == FrameSpec(xyz=(0.1, 0.0, 0.0))
 
 
+@pytest.mark.filterwarnings("ignore::kinematica.errors.KinematicaWarning")  # checked below
 def test_pi_is_fine_in_lengths_and_in_radian_files() -> None:
     data = _seed_arm()
     data["joints"][0]["d"] = "pi*0.1"
@@ -187,7 +188,9 @@ def test_pi_is_fine_in_lengths_and_in_radian_files() -> None:
     data["units"] = {"angle": "rad"}
     data["joints"][0]["alpha"] = "pi/2"
     data["joints"][0]["limits"] = ["-pi", "pi"]
-    spec = parse_robot_dict(data)
+    # The other joints' twists (-90, 90) are now radians, and implausible.
+    with pytest.warns(KinematicaWarning, match="joint 3, key 'alpha': -90 rad is more than"):
+        spec = parse_robot_dict(data)
     assert spec.joints[0].alpha == math.pi / 2
     assert spec.joints[0].qlim == (-math.pi, math.pi)
 
@@ -750,6 +753,7 @@ def _joints(draw: st.DrawFn) -> JointSpec:
     return JointSpec(kind, draw(_angle), draw(_length), draw(_length), draw(_angle), qlim, name)
 
 
+@pytest.mark.filterwarnings("ignore::kinematica.errors.KinematicaWarning")  # random angles
 @settings(max_examples=60, deadline=None)
 @given(
     joints=st.lists(_joints(), min_size=1, max_size=7),

@@ -14,6 +14,7 @@ with an honest status::
 
 from kinematica.dh import Prismatic, Revolute, link_matrix
 from kinematica.errors import (
+    ArgumentError,
     DimensionError,
     KinematicaError,
     KinematicaWarning,
@@ -21,8 +22,26 @@ from kinematica.errors import (
     UnknownRobotError,
     UnreachableError,
 )
-from kinematica.io import ExpressionError, builtin_names, read_robot_file, write_robot_file
-from kinematica.robot import Robot, Structure, classify, load, robot_from_spec, spec_from_robot
+from kinematica.io import ExpressionError, builtin_names, read_robot_file
+from kinematica.motion import (
+    analytic_jacobian,
+    cartesian_path,
+    condition_number,
+    joint_trajectory,
+    manipulability,
+    workspace,
+)
+from kinematica.robot import (
+    DHExtraction,
+    Robot,
+    Structure,
+    classify,
+    load,
+    robot_from_spec,
+    spec_from_robot,
+    urdf_to_dh,
+    write_robot_file,
+)
 from kinematica.spatial import (
     EulerSequenceError,
     axis_angle_from_matrix,
@@ -56,6 +75,8 @@ from kinematica.spatial import (
 __version__ = "0.1.0"
 
 __all__ = [
+    "ArgumentError",
+    "DHExtraction",
     "DimensionError",
     "EulerSequenceError",
     "ExpressionError",
@@ -69,19 +90,24 @@ __all__ = [
     "UnknownRobotError",
     "UnreachableError",
     "__version__",
+    "analytic_jacobian",
     "axis_angle_from_matrix",
     "builtin_names",
+    "cartesian_path",
     "check_rotation",
     "check_transform",
     "classify",
     "compose",
+    "condition_number",
     "euler_from_matrix",
     "from_pose",
     "gimbal_locked",
     "inv_transform",
+    "joint_trajectory",
     "link_matrix",
     "load",
     "make_transform",
+    "manipulability",
     "matrix_from_axis_angle",
     "matrix_from_euler",
     "matrix_from_quat",
@@ -101,6 +127,8 @@ __all__ = [
     "spec_from_robot",
     "to_pose",
     "transl",
+    "urdf_to_dh",
+    "workspace",
     "wrap_angle",
     "write_robot_file",
 ]

@@ -8,17 +8,49 @@ what was expected and what was found, and where: file, joint, key.
 from __future__ import annotations
 
 __all__ = [
+    "ArgumentError",
     "DimensionError",
     "KinematicaError",
     "KinematicaWarning",
     "RobotFileError",
     "UnknownRobotError",
     "UnreachableError",
+    "located",
 ]
+
+
+def located(
+    message: str, *, path: str | None = None, joint: int | None = None, key: str | None = None
+) -> str:
+    """``message`` prefixed with where it applies: ``"arm.yaml, joint 2, key 'alpha': ..."``.
+
+    Args:
+        message: What is wrong.
+        path: The file, or ``None``.
+        joint: The 1-based joint number, or ``None``.
+        key: The key, or ``None``.
+    """
+    where = []
+    if path is not None:
+        where.append(str(path))
+    if joint is not None:
+        where.append(f"joint {joint}")
+    if key is not None:
+        where.append(f"key '{key}'")
+    return f"{', '.join(where)}: {message}" if where else message
 
 
 class KinematicaError(Exception):
     """Base class of every error raised on purpose by kinematica."""
+
+
+class ArgumentError(KinematicaError, ValueError):
+    """A function was called with an argument of the wrong type or value.
+
+    For example ``Revolute(d=None)``, ``Revolute(qlim=(1, 2, 3))`` or
+    ``load(None)``. It is a ``ValueError`` too, as NumPy and SciPy raise for
+    bad arguments.
+    """
 
 
 class DimensionError(KinematicaError, ValueError):
@@ -45,14 +77,7 @@ class RobotFileError(KinematicaError, ValueError):
         self.path = path
         self.joint = joint
         self.key = key
-        where = []
-        if path is not None:
-            where.append(str(path))
-        if joint is not None:
-            where.append(f"joint {joint}")
-        if key is not None:
-            where.append(f"key '{key}'")
-        super().__init__(f"{', '.join(where)}: {message}" if where else message)
+        super().__init__(located(message, path=path, joint=joint, key=key))
 
 
 class UnknownRobotError(KinematicaError, LookupError):
@@ -64,4 +89,8 @@ class UnreachableError(KinematicaError):
 
 
 class KinematicaWarning(UserWarning):
-    """Something was computed, but part of the input was unusable (e.g. NaN rows)."""
+    """Something was computed, but part of the input looks wrong.
+
+    For example rows of a batch holding NaN (their results are NaN), or a
+    value implausible for its unit (``alpha: 90`` in a file in radians).
+    """

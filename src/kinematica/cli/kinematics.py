@@ -4,13 +4,32 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica.cli.format import fmt, matrix, table
-from kinematica.cli.options import add_common, add_robot, angle_unit, clean, dump, q_in, q_out
+from kinematica.cli.format import fmt, matrix, num, plain, table
+from kinematica.cli.options import (
+    PER_METRE,
+    add_common,
+    add_precision,
+    add_robot,
+    clean,
+    dump,
+    finite,
+    length_unit,
+    lengths_in,
+    lengths_out,
+    q_in,
+    q_out,
+    robot_from_args,
+    transform_in,
+    transform_out,
+    units,
+)
+from kinematica.errors import ArgumentError
 from kinematica.ik.result import IKResult
 from kinematica.io import builtin_names
 from kinematica.robot import Robot, classify, load
@@ -26,25 +45,25 @@ def robots(args: argparse.Namespace) -> int:
     rows = []
     for name in builtin_names():
         robot = load(name)
-        rows.append((name, robot.name, robot.joint_types, classify(robot).summary))
+        rows.append((name, plain(robot.name), robot.joint_types, classify(robot).summary))
     if args.json:
-        dump(
-            {
-                "robots": [
-                    dict(zip(("id", "name", "joints", "structure"), r, strict=True)) for r in rows
-                ]
-            }
-        )
+        keys = ("id", "name", "joints", "structure")
+        dump({"robots": [dict(zip(keys, r, strict=True)) for r in rows]})
     else:
         print(table(("ROBOT", "NAME", "JOINTS", "STRUCTURE"), rows, indent=""))
     return 0
 
 
-def _dh_rows(robot: Robot, deg: bool) -> list[tuple[str, ...]]:
+def _dh_rows(robot: Robot, args: argparse.Namespace) -> list[tuple[str, ...]]:
+    deg = not args.rad
     unit = "°" if deg else ""
+    metres = length_unit(robot, args)
 
     def ang(v: float) -> str:
         return fmt(math.degrees(v) if deg else v, 4) + unit
+
+    def length(v: float, digits: int = 6) -> str:
+        return fmt(float(lengths_out(v, robot, args)), digits)
 
     def var(name: str, offset: str) -> str:
         if offset in ("0", "0°"):
@@ -55,36 +74,39 @@ def _dh_rows(robot: Robot, deg: bool) -> list[tuple[str, ...]]:
     limits = robot.qlim
     for i, (link, lim) in enumerate(zip(robot.links, limits, strict=True), start=1):
         if link.type == "R":
-            theta, d = var(f"q{i}", ang(link.offset)), fmt(link.d, 6)
+            theta, d = var(f"q{i}", ang(link.offset)), length(link.d)
             lim_text = f"[{ang(lim[0])}, {ang(lim[1])}]"
         else:
-            theta, d = ang(link.theta), var(f"q{i}", fmt(link.offset, 6))
-            lim_text = f"[{fmt(lim[0], 4)}, {fmt(lim[1], 4)}] m"
+            theta, d = ang(link.theta), var(f"q{i}", length(link.offset))
+            lim_text = f"[{length(lim[0], 4)}, {length(lim[1], 4)}] {metres}"
         free = "" if robot.has_limits[i - 1] else " (free)"
-        rows.append((str(i), link.type, theta, d, fmt(link.a, 6), ang(link.alpha), lim_text + free))
+        rows.append((str(i), link.type, theta, d, length(link.a), ang(link.alpha), lim_text + free))
     return rows
 
 
 def show(args: argparse.Namespace) -> int:
     """``kinematica show ROBOT``: DH table, limits, structure."""
-    robot = load(args.robot)
+    robot = robot_from_args(args)
     structure = classify(robot)
-    deg = not args.rad
     if args.json:
+        dh = robot.dh_table()  # theta, d, a, alpha at q = 0, in rad and m
+        angles = dh[:, [0, 3]] if args.rad else np.rad2deg(dh[:, [0, 3]])
+        lengths = lengths_out(dh[:, [1, 2]], robot, args)
+        table_out = np.column_stack([angles[:, 0], lengths[:, 0], lengths[:, 1], angles[:, 1]])
         dump(
             {
                 "robot": robot.name,
                 "convention": robot.convention,
                 "joints": robot.joint_types,
                 "structure": {"kind": structure.kind, "summary": structure.summary},
-                "units": {"angle": angle_unit(args), "length": "m"},
+                "units": units(robot, args),
                 "dh": [
                     dict(zip(("theta", "d", "a", "alpha"), r, strict=True))
-                    for r in clean(robot.dh_table())
+                    for r in clean(table_out)
                 ],
                 "qlim": clean(q_out(robot, robot.qlim.T, args).T),
-                "base": clean(robot.base),
-                "tool": clean(robot.tool),
+                "base": clean(transform_out(robot.base, robot, args)),
+                "tool": clean(transform_out(robot.tool, robot, args)),
                 "description": robot.description,
             }
         )
@@ -92,26 +114,28 @@ def show(args: argparse.Namespace) -> int:
     a_name, alpha_name = (
         ("a(i-1)", "alpha(i-1)") if robot.convention == "modified" else ("a", "alpha")
     )
-    print(f"{robot.name}: {structure.summary}")
+    metres = length_unit(robot, args)
+    print(f"{plain(robot.name)}: {structure.summary}")
     print(f"{robot.dof} joints ({robot.joint_types}), {robot.convention} DH convention")
     if robot.description:
-        print(robot.description.strip())
+        print(plain(robot.description.strip()))
     print()
     print(
         table(
-            ("i", "type", "theta", "d (m)", f"{a_name} (m)", alpha_name, "limits"),
-            _dh_rows(robot, deg),
+            ("i", "type", "theta", f"d ({metres})", f"{a_name} ({metres})", alpha_name, "limits"),
+            _dh_rows(robot, args),
         )
     )
     unit = "rad" if args.rad else "deg"
     for what, T in (("base", robot.base), ("tool", robot.tool)):
         if not np.array_equal(T, np.eye(4)):
-            pos, eul, _ = _pose_parts(T, args)
+            T_out = transform_out(T, robot, args)
+            pos, eul, _ = _pose_parts(T_out, args)
             print(
-                f"\n{what}: xyz = {', '.join(fmt(v) for v in pos)} m, "
+                f"\n{what}: xyz = {', '.join(fmt(v) for v in pos)} {metres}, "
                 f"euler {args.euler} = {', '.join(fmt(v, 4) for v in eul)} {unit}"
             )
-            print(matrix(T))
+            print(matrix(T_out))
     return 0
 
 
@@ -122,16 +146,16 @@ def _pose_parts(T: FloatArray, args: argparse.Namespace) -> tuple[FloatArray, Fl
 
 def fk(args: argparse.Namespace) -> int:
     """``kinematica fk ROBOT --q ...``: T, position and Euler angles."""
-    robot = load(args.robot)
+    robot = robot_from_args(args)
     q = q_in(robot, args.q, args, "q")
-    T = robot.fk(q)
+    T = transform_out(robot.fk(q), robot, args)
     pos, eul, locked = _pose_parts(T, args)
-    frames = robot.fk(q, all_frames=True) if args.frames else None
+    frames = transform_out(robot.fk(q, all_frames=True), robot, args) if args.frames else None
     if args.json:
         out: dict[str, Any] = {
             "robot": robot.name,
             "q": list(args.q),
-            "units": {"angle": angle_unit(args), "length": "m"},
+            "units": units(robot, args),
             "T": clean(T),
             "position": clean(pos),
             "euler": clean(eul),
@@ -142,39 +166,55 @@ def fk(args: argparse.Namespace) -> int:
             out["frames"] = clean(frames)
         dump(out)
         return 0
-    unit = "rad" if args.rad else "deg"
-    print(f"{robot.name}, q = [{', '.join(fmt(v, 6) for v in args.q)}]")
+    unit, metres, digits = ("rad" if args.rad else "deg"), length_unit(robot, args), args.precision
+    print(f"{plain(robot.name)}, q = [{', '.join(num(v, digits) for v in args.q)}]")
+    print(f"units: {unit} for angles, {metres} for lengths")
     if frames is not None:
         for i, F in enumerate(frames):
             label = (
                 "0T0 (base)" if i == 0 else f"0T{i}" + (" (with tool)" if i == robot.dof else "")
             )
-            print(f"\n{label}:\n{matrix(F)}")
-    print(f"\nT:\n{matrix(T)}")
-    print(f"\nposition (m):  x = {fmt(pos[0])}  y = {fmt(pos[1])}  z = {fmt(pos[2])}")
+            print(f"\n{label}:\n{matrix(F, precision=digits)}")
+    print(f"\nT:\n{matrix(T, precision=digits)}")
+    xyz = "  ".join(f"{c} = {num(v, digits)}" for c, v in zip("xyz", pos, strict=True))
+    print(f"\nposition ({metres}):  {xyz}")
     note = "  (gimbal lock: third angle set to 0)" if locked else ""
-    print(f"euler {args.euler} ({unit}):  " + "  ".join(fmt(v, 6) for v in eul) + note)
+    print(f"euler {args.euler} ({unit}):  " + "  ".join(num(v, digits) for v in eul) + note)
     return 0
 
 
-def _target(args: argparse.Namespace) -> FloatArray:
+def _target(robot: Robot, args: argparse.Namespace) -> FloatArray:
+    """The target in metres; library messages about it name the option it came from."""
     if args.position is not None:
-        return np.array(args.position, dtype=float)
+        args.aliases = {"target position": "--position", "target": "--position"}
+        return lengths_in(finite(args.position, "--position"), robot, args)
     if args.matrix is not None:
-        return np.array(args.matrix, dtype=float).reshape(4, 4)
-    return from_pose(np.array(args.pose, dtype=float), euler=args.euler, degrees=not args.rad)
+        args.aliases = {"target": "--matrix"}
+        return transform_in(finite(args.matrix, "--matrix").reshape(4, 4), robot, args)
+    args.aliases = {"target": "--pose"}
+    pose = finite(args.pose, "--pose")
+    pose[:3] = lengths_in(pose[:3], robot, args)
+    return from_pose(pose, euler=args.euler, degrees=not args.rad)
 
 
 def ik(args: argparse.Namespace) -> int:
     """``kinematica ik ROBOT --pose ...``: every solution, one row each."""
-    robot = load(args.robot)
-    target = _target(args)
+    robot = robot_from_args(args)
+    target = _target(robot, args)
     q0 = None if args.q0 is None else q_in(robot, args.q0, args, "q0")
+    tol = _tolerance(robot, args)
     res = robot.ik(
-        target, method=args.method, respect_limits=not args.ignore_limits, q0=q0, seed=args.seed
+        target,
+        method=args.method,
+        respect_limits=not args.ignore_limits,
+        q0=q0,
+        seed=args.seed,
+        tol=tol,
     )
     assert isinstance(res, IKResult)
     solved = res.success
+    for note in res.notes:  # e.g. a rotation projected onto SO(3): said on stderr too
+        print(f"kinematica: note: {plain(note)}", file=sys.stderr)
     if args.json:
         dump(
             {
@@ -182,7 +222,7 @@ def ik(args: argparse.Namespace) -> int:
                 "status": res.status,
                 "method": res.method,
                 "message": res.message,
-                "units": {"angle": angle_unit(args), "length": "m"},
+                "units": units(robot, args),
                 "solutions": clean(q_out(robot, res.solutions, args)),
                 "branches": list(res.branches),
                 "residuals": {
@@ -193,10 +233,16 @@ def ik(args: argparse.Namespace) -> int:
                 "out_of_limits_branches": list(res.out_of_limits_branches),
                 "free_joints": [f"q{i + 1}" for i in res.free_joints],
                 "gap_m": res.gap,
+                "notes": list(res.notes),
+                "tolerance": (
+                    None if tol is None else {"position_m": tol[0], "rotation_rad": tol[1]}
+                ),
             }
         )
         return 0 if solved else 1
-    print(f"{robot.name}: {res.status} — {res.message}")
+    print(f"{plain(robot.name)}: {res.status} — {plain(res.message)}")
+    unit, metres = ("rad" if args.rad else "deg"), length_unit(robot, args)
+    print(f"units: {unit} for angles, {metres} for lengths")
     header = ("#", *(f"q{i}" for i in range(1, robot.dof + 1)), "branch", "error (m, rad)")
 
     def rows(
@@ -205,7 +251,7 @@ def ik(args: argparse.Namespace) -> int:
         out = []
         for k, (q, b) in enumerate(zip(q_out(robot, sol, args), branches, strict=True), start=1):
             err = "" if resid is None else f"{resid[k - 1, 0]:.1e}, {resid[k - 1, 1]:.1e}"
-            out.append((str(k), *(fmt(v, 4) for v in q), b, err))
+            out.append((str(k), *(num(v, args.precision) for v in q), plain(b), err))
         return out
 
     if solved:
@@ -219,6 +265,29 @@ def ik(args: argparse.Namespace) -> int:
             )
         )
     return 0 if solved else 1
+
+
+def _tolerance(robot: Robot, args: argparse.Namespace) -> tuple[float, float] | None:
+    """``--tol P [R]`` in SI: P in the length unit, R in the angle unit (R = P when left out)."""
+    if args.tol is None:
+        return None
+    if len(args.tol) > 2:
+        raise ArgumentError(f"--tol takes 1 or 2 numbers (position, rotation), got {len(args.tol)}")
+    position = float(args.tol[0]) / PER_METRE[length_unit(robot, args)]
+    if len(args.tol) == 1:
+        return position, position
+    rotation = float(args.tol[1]) if args.rad else math.radians(float(args.tol[1]))
+    return position, rotation
+
+
+def _seed(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = -1
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"expected a whole number >= 0, got {text!r}")
+    return value
 
 
 def register(sub: Any) -> None:
@@ -241,9 +310,10 @@ def register(sub: Any) -> None:
         required=True,
         metavar="Q",
         help="joint values: degrees for revolute joints (or radians with "
-        "--rad), metres for prismatic joints",
+        "--rad), the length unit (see --units) for prismatic joints",
     )
     p.add_argument("--frames", action="store_true", help="print every frame 0Ti")
+    add_precision(p)
     add_common(p)
     p.set_defaults(run=fk)
 
@@ -255,17 +325,21 @@ def register(sub: Any) -> None:
         nargs=6,
         type=float,
         metavar=("X", "Y", "Z", "A", "B", "G"),
-        help="position (m) and three Euler angles (see --euler)",
+        help="position (length unit, see --units) and three Euler angles (see --euler)",
     )
     target.add_argument(
-        "--matrix", nargs=16, type=float, metavar="M", help="the 4x4 pose, 16 numbers row by row"
+        "--matrix",
+        nargs=16,
+        type=float,
+        metavar="M",
+        help="the 4x4 pose, 16 numbers row by row (translation in the length unit)",
     )
     target.add_argument(
         "--position",
         nargs=3,
         type=float,
         metavar=("X", "Y", "Z"),
-        help="position only (m): orientation left free",
+        help="position only (length unit): orientation left free",
     )
     p.add_argument(
         "--method",
@@ -285,6 +359,16 @@ def register(sub: Any) -> None:
         action="store_true",
         help="list solutions outside the joint limits among the others",
     )
-    p.add_argument("--seed", type=int, default=0, help="seed of numeric restarts (default 0)")
+    p.add_argument("--seed", type=_seed, default=0, help="seed of numeric restarts (default 0)")
+    p.add_argument(
+        "--tol",
+        nargs="+",
+        type=float,
+        metavar="TOL",
+        help="acceptance tolerance: position in the length unit, then rotation in the angle "
+        "unit; one number: the position, and its value in metres as radians for the "
+        "rotation; default 1e-10 m and 1e-10 rad",
+    )
+    add_precision(p)
     add_common(p)
     p.set_defaults(run=ik)

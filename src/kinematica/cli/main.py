@@ -2,31 +2,69 @@
 
 Exit codes: 0 success; 1 the question has no answer (IK unreachable, every
 solution outside the limits, not found); 2 bad input or usage, reported in one
-line on stderr without a traceback.
+line on stderr without a traceback. Warnings of the library (a value
+implausible for its unit, say) print as one line each on stderr,
+``kinematica: warning: ...``; numpy's floating-point RuntimeWarnings are
+noise at the command line and print nothing.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
+import os
 import re
 import sys
-from collections.abc import Sequence
-from typing import Any, NoReturn
+import warnings
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
+from typing import Any, NoReturn, TextIO
 
-from kinematica.cli import kinematics
+import numpy as np
+
+from kinematica import __version__
+from kinematica.cli import convert, derive, design, kinematics, motion, viz
+from kinematica.cli.format import plain
 from kinematica.errors import KinematicaError
 
 __all__ = ["main"]
 
 EXIT_OK, EXIT_NO_ANSWER, EXIT_BAD_INPUT = 0, 1, 2
+EXIT_INTERRUPTED = 130  # 128 + SIGINT, as shells report Ctrl-C
 
 #: The modules of subcommands, each with ``register(subparsers)``, in help order.
-COMMAND_MODULES = (kinematics,)
+COMMAND_MODULES = (kinematics, motion, viz, derive, convert, design)
+
+#: Where to report an internal error (a bug: every bad input has its own message).
+REPORT = "please report it to the kinematica developers, with the command line"
+
+# argparse reads "-1e-05" or "-inf" as an option, not a negative number (its own
+# pattern has no exponent); joint values and matrices printed by programs often
+# hold one, and "-inf" must reach the check that names the option.
+_NEGATIVE_NUMBER = re.compile(
+    r"^-(?:(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|inf(?:inity)?|nan)$", re.IGNORECASE
+)
+
+# Library messages speak Python (``use method='numeric'``); the command line
+# speaks options. Keyword arguments with a command-line twin are rewritten.
+_KEYWORD = re.compile(r"\b(method|tol|seed|q0|precision|euler|units)=(['\"]?)([^'\"\s,;)]+)\2")
+_FLAGS = {"respect_limits=False": "--ignore-limits", "degrees=False": "--rad"}
 
 
-# argparse reads "-1e-05" as an option, not a negative number (its own pattern
-# has no exponent); joint values and matrices printed by programs often use one.
-_NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+def cli_words(message: str, aliases: dict[str, str] | None = None) -> str:
+    """A library message in command-line words, on one line, safe to print.
+
+    Args:
+        message: The message of an error or warning.
+        aliases: Words to replace at the start of the message, e.g.
+            ``{"target": "--matrix"}``.
+    """
+    text = _KEYWORD.sub(lambda m: f"--{m.group(1).replace('_', '-')} {m.group(3)}", message)
+    for python, option in _FLAGS.items():
+        text = text.replace(python, option)
+    for word, option in (aliases or {}).items():
+        text = re.sub(rf"^{re.escape(word)}\b", option, text)
+    return plain(text)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -37,7 +75,7 @@ class _Parser(argparse.ArgumentParser):
         self._negative_number_matcher = _NEGATIVE_NUMBER
 
     def error(self, message: str) -> NoReturn:
-        self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message} (see --help)\n")
+        self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {plain(message)} (see --help)\n")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -47,6 +85,7 @@ def build_parser() -> argparse.ArgumentParser:
         description="Kinematics of serial robot manipulators: DH tables, forward "
         "kinematics, every inverse-kinematics solution.",
     )
+    parser.add_argument("--version", action="version", version=f"kinematica {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub.required = True
 
@@ -55,21 +94,71 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _aliases(args: argparse.Namespace) -> dict[str, str]:
+    """Words of library messages a command renames (``args.aliases``, set as it runs)."""
+    aliases = getattr(args, "aliases", None)
+    return aliases if isinstance(aliases, dict) else {}
+
+
+@contextmanager
+def _warnings_as_lines(stream: TextIO, args: argparse.Namespace) -> Iterator[None]:
+    """Print each library warning once, as one line; silence floating-point noise."""
+    shown: set[str] = set()
+
+    def show(message: Warning | str, category: type[Warning], *_: Any, **__: Any) -> None:
+        if not issubclass(category, UserWarning):  # RuntimeWarning, DeprecationWarning...
+            return
+        line = f"kinematica: warning: {cli_words(str(message), _aliases(args))}"
+        if line not in shown:
+            shown.add(line)
+            print(line, file=stream)
+
+    with warnings.catch_warnings(), np.errstate(all="ignore"):
+        warnings.simplefilter("always")
+        warnings.showwarning = show
+        yield
+
+
+def _printable_everywhere() -> None:
+    """Characters the terminal cannot show (°, —, π on an ASCII terminal) print as escapes."""
+    for stream in (sys.stdout, sys.stderr):
+        reconfigure = getattr(stream, "reconfigure", None)
+        if reconfigure is not None:
+            with contextlib.suppress(ValueError, OSError):  # a stream that refuses
+                reconfigure(errors="backslashreplace")
+
+
+def _quiet_stdout() -> None:
+    """After a broken pipe, send what is left of stdout nowhere (no error at exit)."""
+    with contextlib.suppress(OSError, ValueError, AttributeError):  # not a real file (pytest)
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit code.
 
     Args:
         argv: Arguments without the program name; ``sys.argv[1:]`` if None.
     """
+    _printable_everywhere()
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
-        return int(args.run(args))
+        with _warnings_as_lines(sys.stderr, args):
+            return int(args.run(args))
     except KinematicaError as exc:
-        print(f"kinematica: error: {exc}", file=sys.stderr)
+        print(f"kinematica: error: {cli_words(str(exc), _aliases(args))}", file=sys.stderr)
         return EXIT_BAD_INPUT
     except BrokenPipeError:  # e.g. `kinematica robots | head -1`
+        _quiet_stdout()
         return EXIT_OK
+    except KeyboardInterrupt:  # Ctrl-C: the shell's convention, no traceback
+        return EXIT_INTERRUPTED
+    except Exception as exc:  # the last resort: a bug, reported in one line, no traceback
+        what = plain(f"{type(exc).__name__}: {exc}")
+        print(f"kinematica: internal error: {what}; {REPORT}", file=sys.stderr)
+        return EXIT_BAD_INPUT
 
 
 if __name__ == "__main__":  # pragma: no cover

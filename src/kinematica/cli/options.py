@@ -1,29 +1,60 @@
-"""What every subcommand shares: common options, unit conversion, JSON output.
+"""What every subcommand shares: common options, units, checked numbers, JSON output.
 
 Each topic of the command line lives in its own module (``kinematics``, ...)
-with a ``register(sub)`` function adding its subcommands; :mod:`main` lists
-those modules. The helpers here are the only code they share.
+with a ``register(sub)`` function adding its subcommands;
+:mod:`kinematica.cli.main` lists those modules. The helpers here are the only
+code they share.
+
+Units: the command line speaks degrees (``--rad`` for radians) and the robot
+file's length unit (``--units m|mm`` to choose): a robot file in millimetres
+reads and prints millimetres. The library underneath always works in radians
+and metres; :func:`q_in`, :func:`lengths_in` and their ``_out`` twins convert
+at the edge, and every output says which units it uses.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
-from typing import Any
+import math
+from collections.abc import Sequence
+from typing import Any, Final
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
+from kinematica.cli.format import DEFAULT_PRECISION
 from kinematica.errors import DimensionError
-from kinematica.robot import Robot
+from kinematica.robot import Robot, load
 
-__all__ = ["add_common", "add_robot", "angle_unit", "clean", "dump", "q_in", "q_out"]
+__all__ = [
+    "PER_METRE",
+    "add_common",
+    "add_precision",
+    "add_robot",
+    "angle_unit",
+    "clean",
+    "dump",
+    "finite",
+    "length_unit",
+    "lengths_in",
+    "lengths_out",
+    "q_in",
+    "q_out",
+    "robot_from_args",
+    "transform_in",
+    "transform_out",
+    "units",
+]
 
 FloatArray = NDArray[np.float64]
 
+#: Units of length the command line speaks, and how many of each make a metre.
+PER_METRE: Final = {"m": 1.0, "mm": 1000.0}
+
 
 def add_common(p: argparse.ArgumentParser) -> None:
-    """The options every command takes: ``--json``, ``--euler``, ``--rad``."""
+    """The options every command takes: ``--json``, ``--euler``, ``--rad``, ``--units``."""
     p.add_argument("--json", action="store_true", help="machine-readable output (stable keys)")
     p.add_argument(
         "--euler",
@@ -33,11 +64,48 @@ def add_common(p: argparse.ArgumentParser) -> None:
         "lower case extrinsic (zyz, xyz...); default ZYZ",
     )
     p.add_argument("--rad", action="store_true", help="angles in radians (default degrees)")
+    p.add_argument(
+        "--units",
+        choices=tuple(PER_METRE),
+        default=None,
+        help="unit of lengths in and out (default: the robot file's, metres for most "
+        "built-in robots)",
+    )
+
+
+def _precision(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if not 1 <= value <= 17:
+        raise argparse.ArgumentTypeError(f"expected a whole number from 1 to 17, got {text!r}")
+    return value
+
+
+def add_precision(p: argparse.ArgumentParser) -> None:
+    """``--precision N``: significant digits of the text output (JSON is always full)."""
+    p.add_argument(
+        "--precision",
+        type=_precision,
+        default=DEFAULT_PRECISION,
+        metavar="N",
+        help=f"significant digits of numbers in the text output (default "
+        f"{DEFAULT_PRECISION}, enough to paste T back into ik --matrix); --json "
+        "always prints every digit",
+    )
 
 
 def add_robot(p: argparse.ArgumentParser) -> None:
-    """The positional ``ROBOT`` argument: a built-in name or a robot file."""
-    p.add_argument("robot", metavar="ROBOT", help="built-in name or robot file")
+    """The positional ``ROBOT`` (built-in name, robot file or URDF) and ``--base``/``--tip``."""
+    p.add_argument("robot", metavar="ROBOT", help="built-in name, robot file or URDF")
+    p.add_argument("--base", metavar="LINK", help="URDF only: base link of the chain")
+    p.add_argument("--tip", metavar="LINK", help="URDF only: tip link of the chain")
+
+
+def robot_from_args(args: argparse.Namespace) -> Robot:
+    """The robot named by ``ROBOT`` (and, for a URDF, ``--base``/``--tip``)."""
+    return load(args.robot, base=args.base, tip=args.tip)
 
 
 def angle_unit(args: argparse.Namespace) -> str:
@@ -45,41 +113,111 @@ def angle_unit(args: argparse.Namespace) -> str:
     return "rad" if getattr(args, "rad", False) else "deg"
 
 
+def length_unit(robot: Robot, args: argparse.Namespace) -> str:
+    """``"m"`` or ``"mm"``: ``--units``, else the robot file's length unit, else metres."""
+    chosen = getattr(args, "units", None)
+    if chosen is not None:
+        return str(chosen)
+    spec = robot.source_spec
+    unit = None if spec is None else spec.units.get("length")
+    return unit if unit in PER_METRE else "m"
+
+
+def units(robot: Robot, args: argparse.Namespace) -> dict[str, str]:
+    """The ``units`` of a JSON output: ``{"angle": "deg", "length": "mm"}``."""
+    return {"angle": angle_unit(args), "length": length_unit(robot, args)}
+
+
+def finite(values: Sequence[float], option: str) -> FloatArray:
+    """The numbers of option ``option`` (e.g. ``"--pose"``), all finite, as an array.
+
+    Raises:
+        DimensionError: a value is NaN or infinite; the message names the option.
+    """
+    a = np.array(values, dtype=float)
+    bad = [i for i, v in enumerate(a.ravel().tolist()) if not math.isfinite(v)]
+    if bad:
+        shown = ", ".join(f"{a.ravel()[i]:g} (value {i + 1})" for i in bad[:3])
+        raise DimensionError(f"{option} needs finite numbers, got {shown}")
+    return a
+
+
+def lengths_in(values: ArrayLike, robot: Robot, args: argparse.Namespace) -> FloatArray:
+    """Lengths typed on the command line (file or ``--units`` unit) to metres."""
+    return np.asarray(values, dtype=float) / PER_METRE[length_unit(robot, args)]
+
+
+def lengths_out(values: ArrayLike, robot: Robot, args: argparse.Namespace) -> FloatArray:
+    """Lengths in metres to the command line's unit."""
+    return np.asarray(values, dtype=float) * PER_METRE[length_unit(robot, args)]
+
+
+def transform_in(T: ArrayLike, robot: Robot, args: argparse.Namespace) -> FloatArray:
+    """``(..., 4, 4)`` transforms typed in the command line's length unit, to metres."""
+    out = np.array(T, dtype=float)
+    out[..., :3, 3] = lengths_in(out[..., :3, 3], robot, args)
+    return out
+
+
+def transform_out(T: ArrayLike, robot: Robot, args: argparse.Namespace) -> FloatArray:
+    """``(..., 4, 4)`` transforms in metres, translation in the command line's unit."""
+    out = np.array(T, dtype=float)
+    out[..., :3, 3] = lengths_out(out[..., :3, 3], robot, args)
+    return out
+
+
 def q_in(robot: Robot, values: list[float], args: argparse.Namespace, name: str) -> FloatArray:
-    """Joint values from the command line (deg or rad; metres for prismatic) to SI.
+    """Joint values from the command line to SI (rad for revolute, m for prismatic).
 
     Args:
         robot: The robot the values are for.
-        values: The numbers as typed.
-        args: The parsed arguments (``--rad``).
+        values: The numbers as typed: degrees (radians with ``--rad``) for
+            revolute joints, the length unit for prismatic joints.
+        args: The parsed arguments (``--rad``, ``--units``).
         name: The option's name, for messages (``"q"`` for ``--q``).
 
     Returns:
         ``(n,)`` joint values in rad and m.
+
+    Raises:
+        DimensionError: wrong count, or a value is NaN or infinite.
     """
-    q = np.array(values, dtype=float)
+    q = finite(values, f"--{name}")
     if q.shape != (robot.dof,):
         raise DimensionError(
             f"--{name} needs {robot.dof} values for {robot.name} ({robot.joint_types}), "
             f"got {q.size}"
         )
-    if not np.all(np.isfinite(q)):
-        raise DimensionError(f"--{name} holds NaN or inf: {values}")
-    if not args.rad:
-        q = np.where(robot.is_prismatic, q, np.deg2rad(q))
-    return q
+    angles = q if args.rad else np.deg2rad(q)
+    return np.where(robot.is_prismatic, lengths_in(q, robot, args), angles)
 
 
 def q_out(robot: Robot, q: FloatArray, args: argparse.Namespace) -> FloatArray:
     """Joint values ``(..., n)`` in SI to the command line's units."""
-    return q if args.rad else np.where(robot.is_prismatic, q, np.rad2deg(q))
+    angles = q if args.rad else np.rad2deg(q)
+    return np.where(robot.is_prismatic, lengths_out(q, robot, args), angles)
+
+
+def _jsonable(data: Any) -> Any:
+    """``data`` with arrays as lists and every non-finite number as ``None``."""
+    if isinstance(data, dict):
+        return {str(k): _jsonable(v) for k, v in data.items()}
+    if isinstance(data, list | tuple):
+        return [_jsonable(v) for v in data]
+    if isinstance(data, np.ndarray):
+        return _jsonable(data.tolist())
+    if isinstance(data, np.generic):
+        return _jsonable(data.item())
+    if isinstance(data, float) and not math.isfinite(data):
+        return None
+    return data
 
 
 def dump(data: dict[str, Any]) -> None:
-    """Print ``data`` as JSON."""
-    print(json.dumps(data, indent=2, allow_nan=False))
+    """Print ``data`` as JSON: valid JSON always, ``null`` for NaN and infinities."""
+    print(json.dumps(_jsonable(data), indent=2, allow_nan=False))
 
 
-def clean(a: FloatArray) -> Any:
-    """Array to nested lists, tiny values as 0 (JSON output)."""
-    return np.where(np.abs(a) < 5e-16, 0.0, a).tolist()
+def clean(a: ArrayLike) -> Any:
+    """An array as nested lists of floats for JSON, every digit kept; NaN/inf as ``None``."""
+    return _jsonable(np.asarray(a, dtype=float).tolist())

@@ -1,7 +1,9 @@
-"""Denavit-Hartenberg rows, link matrices and conversion between conventions."""
+"""Denavit-Hartenberg rows, link matrices, conversion between conventions, extraction."""
 
+from kinematica.dh.axes import AxisFrame, ChainGeometry, ExtractedTable, FrameRule, NamedFrame
 from kinematica.dh.chain import DHChain
 from kinematica.dh.convert import convert_table
+from kinematica.dh.extract import FK_CHECK_TOL, extract_dh
 from kinematica.dh.joints import (
     Convention,
     Joint,
@@ -10,16 +12,28 @@ from kinematica.dh.joints import (
     Revolute,
     check_convention,
 )
+from kinematica.dh.lines import EXTRACT_ANGLE_TOL, EXTRACT_LENGTH_TOL, LinePair, line_pair
 from kinematica.dh.link import link_matrix
 
 __all__ = [
+    "EXTRACT_ANGLE_TOL",
+    "EXTRACT_LENGTH_TOL",
+    "FK_CHECK_TOL",
+    "AxisFrame",
+    "ChainGeometry",
     "Convention",
     "DHChain",
+    "ExtractedTable",
+    "FrameRule",
     "Joint",
     "JointType",
+    "LinePair",
+    "NamedFrame",
     "Prismatic",
     "Revolute",
     "check_convention",
     "convert_table",
+    "extract_dh",
+    "line_pair",
     "link_matrix",
 ]

@@ -13,26 +13,30 @@ a_i, alpha_i``; in the modified (Craig, proximal) convention it holds
 from __future__ import annotations
 
 import math
+import warnings
+from collections.abc import Iterable, Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass
 from typing import Literal
 
-from kinematica.errors import KinematicaError
+import numpy as np
 
-__all__ = ["Convention", "Joint", "JointType", "Prismatic", "Revolute", "check_convention"]
+from kinematica.errors import ArgumentError, KinematicaError, KinematicaWarning
+from kinematica.io import plausible
+from kinematica.io.spec import CONVENTION_ALIASES, Convention, convention_names
 
-Convention = Literal["standard", "modified"]
+__all__ = [
+    "Convention",
+    "Joint",
+    "JointType",
+    "Prismatic",
+    "Revolute",
+    "check_convention",
+    "values_checked",
+]
+
 JointType = Literal["R", "P"]
-
-_CONVENTION_ALIASES: dict[str, Convention] = {
-    "standard": "standard",
-    "dh": "standard",
-    "paul": "standard",
-    "distal": "standard",
-    "modified": "modified",
-    "mdh": "modified",
-    "craig": "modified",
-    "proximal": "modified",
-}
 
 
 def check_convention(convention: str) -> Convention:
@@ -46,28 +50,90 @@ def check_convention(convention: str) -> Convention:
         KinematicaError: If the name is not a known convention.
     """
     key = str(convention).strip().lower()
-    if key not in _CONVENTION_ALIASES:
+    if key not in CONVENTION_ALIASES:
         raise KinematicaError(
-            f"unknown DH convention {convention!r}: expected 'standard' (Paul, distal) "
-            "or 'modified' (Craig, proximal)"
+            f"unknown DH convention {convention!r}: expected {convention_names()}"
         )
-    return _CONVENTION_ALIASES[key]
+    return CONVENTION_ALIASES[key]
 
 
-def _finite(name: str, value: float) -> float:
-    v = float(value)
-    if not math.isfinite(v):
-        raise KinematicaError(f"DH parameter {name} must be a finite number, got {value!r}")
+# Inside `values_checked()`, joints skip the plausibility warnings.
+_CHECKED: ContextVar[bool] = ContextVar("kinematica_dh_values_checked", default=False)
+
+
+@contextmanager
+def values_checked() -> Iterator[None]:
+    """Build joints without warning about implausible values.
+
+    For joints built from a robot file, whose reader has already warned with
+    the file, joint and key (see :mod:`kinematica.io.plausible`).
+    """
+    token = _CHECKED.set(True)
+    try:
+        yield
+    finally:
+        _CHECKED.reset(token)
+
+
+def _number(owner: str, name: str, value: object) -> float:
+    """``value`` as a float, or an ArgumentError naming ``owner`` and ``name``."""
+    if isinstance(value, bool | str | bytes | complex | np.complexfloating) or value is None:
+        raise ArgumentError(f"{owner}: {name} must be a real number, got {value!r}")
+    try:
+        v = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError) as exc:
+        raise ArgumentError(f"{owner}: {name} must be a real number, got {value!r}") from exc
     return v
 
 
-def _limits(qlim: tuple[float, float] | None) -> tuple[float, float] | None:
+def _finite(owner: str, name: str, value: object) -> float:
+    v = _number(owner, f"DH parameter {name}", value)
+    if not math.isfinite(v):
+        raise ArgumentError(f"{owner}: DH parameter {name} must be a finite number, got {value!r}")
+    return v
+
+
+def _limits(owner: str, qlim: object) -> tuple[float, float] | None:
     if qlim is None:
         return None
-    lo, hi = (float(v) for v in qlim)
+    expected = f"{owner}: joint limits must be two numbers lo < hi (or None)"
+    if isinstance(qlim, str | bytes) or not isinstance(qlim, Iterable):
+        raise ArgumentError(f"{expected}, got {qlim!r}")
+    try:
+        pair = tuple(qlim)
+    except TypeError as exc:  # e.g. a 0-d array
+        raise ArgumentError(f"{expected}, got {qlim!r}") from exc
+    if len(pair) != 2:
+        raise ArgumentError(f"{expected}, got {len(pair)} values: {qlim!r}")
+    lo, hi = (_number(owner, "each joint limit", v) for v in pair)
     if math.isnan(lo) or math.isnan(hi) or not lo < hi:
-        raise KinematicaError(f"joint limits must be two numbers lo < hi, got {qlim!r}")
+        raise ArgumentError(f"{expected}, got {qlim!r}")
     return (lo, hi)
+
+
+def _check(joint: Revolute | Prismatic, angles: tuple[str, ...], lengths: tuple[str, ...]) -> None:
+    """Validate a joint's fields in place, and warn about implausible values."""
+    kind = type(joint).__name__
+    if joint.name is not None and not isinstance(joint.name, str):
+        raise ArgumentError(f"{kind}: name must be text or None, got {joint.name!r}")
+    owner = kind if joint.name is None else f"{kind} {joint.name!r}"
+    for key in (*angles, *lengths):
+        object.__setattr__(joint, key, _finite(owner, key, getattr(joint, key)))
+    object.__setattr__(joint, "qlim", _limits(owner, joint.qlim))
+    if _CHECKED.get():
+        return
+    found = [(key, plausible.check_angle(getattr(joint, key))) for key in angles]
+    found += [(key, plausible.check_length(getattr(joint, key))) for key in lengths]
+    if isinstance(joint, Revolute) and joint.qlim is not None:
+        found += [("qlim", plausible.check_limit(max(joint.qlim, key=abs)))]
+    for key, message in found:
+        if message is not None:
+            # stacklevel: _check <- __post_init__ <- __init__ <- the caller.
+            warnings.warn(
+                f"{owner}: {key}={getattr(joint, key)!r}: {message}",
+                KinematicaWarning,
+                stacklevel=4,
+            )
 
 
 @dataclass(frozen=True)
@@ -92,9 +158,7 @@ class Revolute:
     name: str | None = None
 
     def __post_init__(self) -> None:
-        for key in ("d", "a", "alpha", "offset"):
-            object.__setattr__(self, key, _finite(key, getattr(self, key)))
-        object.__setattr__(self, "qlim", _limits(self.qlim))
+        _check(self, angles=("alpha", "offset"), lengths=("d", "a"))
 
     @property
     def type(self) -> JointType:
@@ -128,9 +192,7 @@ class Prismatic:
     name: str | None = None
 
     def __post_init__(self) -> None:
-        for key in ("theta", "a", "alpha", "offset"):
-            object.__setattr__(self, key, _finite(key, getattr(self, key)))
-        object.__setattr__(self, "qlim", _limits(self.qlim))
+        _check(self, angles=("theta", "alpha"), lengths=("a", "offset"))
 
     @property
     def type(self) -> JointType:

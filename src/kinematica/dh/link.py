@@ -1,10 +1,10 @@
 """The DH link matrix ``i-1Ai`` of both conventions, batched.
 
-Standard (Paul, seed 000 rule 14 and seed 003)::
+Standard (Paul, distal: Rot(z)·Tras(z)·Tras(x)·Rot(x), in that order)::
 
     i-1Ai = Rot(z, θi) · Tras(z, di) · Tras(x, ai) · Rot(x, αi)
 
-Modified (Craig, seed 001)::
+Modified (Craig, proximal: Rot(x)·Tras(x)·Rot(z)·Tras(z))::
 
     i-1Ai = Rot(x, α(i-1)) · Tras(x, a(i-1)) · Rot(z, θi) · Tras(z, di)
 """

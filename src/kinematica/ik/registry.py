@@ -45,8 +45,6 @@ class ClosedForm:
             target of a reduced arm its candidates are checked on the whole pose).
         partial: True when its candidates are representatives with some joints
             held at 0 (position targets of longer arms): never a pose solver.
-        legacy: A transitional batched solver ``targets (N, 4, 4) -> (Q, info)``
-            used instead of the kernels while a solver is being ported.
     """
 
     name: str
@@ -56,7 +54,6 @@ class ClosedForm:
     solve_batch: Any
     position_only: bool = False
     partial: bool = False
-    legacy: Callable[[FloatArray], tuple[FloatArray, FloatArray]] | None = None
 
     @property
     def slots(self) -> int:

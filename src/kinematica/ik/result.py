@@ -13,9 +13,15 @@ from numpy.typing import NDArray
 from kinematica.errors import UnreachableError
 from kinematica.ik.status import IKStatus, status_message
 
-__all__ = ["IKBatchResult", "IKResult"]
+__all__ = ["NEAR_NOTE", "IKBatchResult", "IKResult"]
 
 FloatArray = NDArray[np.float64]
+
+#: Said of solutions found for a target within round-off of a singular set.
+NEAR_NOTE = (
+    "the target is within round-off of a singular set, where solutions merge: "
+    "solutions that merge there are given once"
+)
 
 
 @dataclass(frozen=True, eq=False)
@@ -43,6 +49,10 @@ class IKResult:
         notes: Remarks on how the target was read or solved (a rotation
             projected onto SO(3), a target near a singular set...).
         complete: True when the method gives every solution (a closed form).
+        near_singular: True when the target lies within round-off of a singular
+            set or a workspace boundary, where closed-form solutions merge (the
+            solutions given reach the target; some that merge there may be
+            reported as one).
     """
 
     solutions: FloatArray
@@ -57,6 +67,7 @@ class IKResult:
     nearest_error: tuple[float, float] = (math.nan, math.nan)
     notes: tuple[str, ...] = ()
     complete: bool = True
+    near_singular: bool = False
 
     @cached_property
     def message(self) -> str:
@@ -70,8 +81,12 @@ class IKResult:
             gap=math.nan if self.gap is None else self.gap,
             nearest=self.nearest_error,
             complete=self.complete,
+            near=self.near_singular,
         )
-        return "; ".join((text, *self.notes))
+        notes = self.notes
+        if self.near_singular and self.status in (IKStatus.OK, IKStatus.SINGULAR):
+            notes = (*notes, NEAR_NOTE)
+        return "; ".join((text, *notes))
 
     @property
     def count(self) -> int:
@@ -127,6 +142,7 @@ class IKBatchResult:
         notes: Batch index -> remarks on that target (e.g. its rotation was
             projected onto SO(3)).
         complete: True when the method gives every solution (a closed form).
+        near_singular: ``(...)`` see :attr:`IKResult.near_singular`.
     """
 
     solutions: FloatArray
@@ -144,6 +160,7 @@ class IKBatchResult:
     errors: Mapping[tuple[int, ...], str] = field(default_factory=dict)
     notes: Mapping[tuple[int, ...], tuple[str, ...]] = field(default_factory=dict)
     complete: bool = True
+    near_singular: NDArray[np.bool_] | None = None
 
     @property
     def shape(self) -> tuple[int, ...]:
@@ -187,6 +204,9 @@ class IKBatchResult:
             nearest_error=(float(self.nearest_error[idx][0]), float(self.nearest_error[idx][1])),
             notes=notes,
             complete=self.complete,
+            near_singular=bool(self.near_singular[idx])
+            if self.near_singular is not None
+            else False,
         )
 
     @cached_property

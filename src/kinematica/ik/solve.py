@@ -31,6 +31,7 @@ from kinematica.kernels.ik_check import (
     INFO_GAP,
     META_COUNT,
     META_GAP,
+    META_NEAR,
     META_NEAREST_POSITION,
     META_NEAREST_ROTATION,
     META_OUT_COUNT,
@@ -143,7 +144,7 @@ def solve_ik(
     closed = None if method == "numeric" or m is not None else closed_form(chain, kind)
     if method == "analytic" and closed is None:
         why = "a mask was given" if m is not None else f"structure: {structure_of(chain)[1]}"
-        raise KinematicaError(f"no closed-form solver for this arm ({why}); use the numeric method")
+        raise KinematicaError(f"no closed-form solver for this arm ({why}); use method='numeric'")
     N = targets.poses.shape[0]
     if closed is not None:
         Q, info = _closed_candidates(closed, targets, chain.dof, workers)
@@ -187,8 +188,6 @@ def _closed_candidates(
     closed: ClosedForm, targets: Targets, n: int, workers: int | None
 ) -> tuple[FloatArray, FloatArray]:
     """Candidates ``(N, m, n)`` and solver info ``(N, k)`` of a closed form."""
-    if closed.legacy is not None:
-        return closed.legacy(targets.poses)
     N = targets.poses.shape[0]
     Q = np.empty((N, closed.slots, n))
     info = np.zeros((N, info_size(n)))
@@ -262,6 +261,7 @@ def _one(
         nearest_error=(float(meta[META_NEAREST_POSITION]), float(meta[META_NEAREST_ROTATION])),
         notes=targets.notes.get(0, ()),
         complete=closed is not None,
+        near_singular=bool(meta[META_NEAR]),
     )
 
 
@@ -319,4 +319,5 @@ def _many(
         errors={unravel(i): msg for i, msg in targets.invalid.items()},
         notes={unravel(i): note for i, note in targets.notes.items()},
         complete=closed is not None,
+        near_singular=(meta[:, META_NEAR] != 0.0).reshape(shape),
     )

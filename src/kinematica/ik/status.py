@@ -66,6 +66,7 @@ def status_message(
     gap: float,
     nearest: tuple[float, float],
     complete: bool,
+    near: bool = False,
 ) -> str:
     """One sentence for people about an IK outcome.
 
@@ -79,6 +80,8 @@ def status_message(
         nearest: Position (m) and rotation (rad) error of the closest
             candidate that was not a solution, NaN if none.
         complete: The method gives every solution (a closed form).
+        near: The target is within round-off of a singular set (the closed
+            form's solutions there may merge or be lost to round-off).
     """
     plural = "s" if count != 1 else ""
     if status == IKStatus.OK:
@@ -107,8 +110,14 @@ def status_message(
         return "invalid target"
     if complete:
         miss = f" (closest off by {pos:.3g} m, {rot:.3g} rad)" if math.isfinite(pos) else ""
+        if near:
+            return (
+                "not found: the target is within round-off of a singular set or a workspace "
+                f"boundary, where closed-form solutions merge, and none meets the tolerance"
+                f"{miss}; a looser tol may accept one"
+            )
         return (
-            "not found: no solution to tolerance near a singular set or a workspace "
-            f"boundary{miss}; the target may be reachable within a looser tolerance"
+            f"not found: no configuration reaches this target within the tolerance{miss}: "
+            "it is not exactly reachable; a looser tol accepts the closest if that is enough"
         )
     return "not found: the numeric search did not converge (the target may still be reachable)"

@@ -16,7 +16,16 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.errors import DimensionError, KinematicaError
-from kinematica.spatial import ROUNDOFF_TOL, nearest_rotation, orthonormality_error
+from kinematica.kernels.targets import (
+    DEFECT_DET,
+    DEFECT_FINITE,
+    DEFECT_LAST_ROW,
+    DEFECT_ORTHO,
+    DEFECT_SIZE,
+    pose_defects,
+    pose_defects_batch,
+)
+from kinematica.spatial import ROUNDOFF_TOL, nearest_rotation
 
 __all__ = [
     "POSITION_TOL",
@@ -91,27 +100,29 @@ def parse_targets(target: ArrayLike) -> Targets:
         DimensionError: Non-numbers, an ambiguous or wrong shape, or a single
             target that is malformed (a batch marks such rows instead).
     """
-    try:
-        raw = np.asarray(target)
-    except (TypeError, ValueError) as exc:
-        raise DimensionError(f"target must be numbers, got {type(target).__name__}") from exc
-    if raw.dtype.kind not in "iuf":
-        raise DimensionError(
-            f"target must be real numbers (a 4x4 pose or a position), got dtype {raw.dtype}"
-        )
-    arr = raw.astype(np.float64)
-    if arr.shape == (3, 3):
+    if isinstance(target, np.ndarray) and target.shape == (4, 4) and target.dtype == np.float64:
+        raw: np.ndarray = target  # the common case: one pose, no conversion
+    else:
+        try:
+            raw = np.asarray(target)
+        except (TypeError, ValueError) as exc:
+            raise DimensionError(f"target must be numbers, got {type(target).__name__}") from exc
+        if raw.dtype.kind not in "iuf":
+            raise DimensionError(
+                f"target must be real numbers (a 4x4 pose or a position), got dtype {raw.dtype}"
+            )
+    if raw.shape == (3, 3):
         raise DimensionError(
             "a (3, 3) target is ambiguous: a rotation alone is not a target (give a "
             "4x4 pose), and three positions must be given as shape (3, 1, 3)"
         )
-    if arr.ndim >= 2 and arr.shape[-2:] == (4, 4):
-        return _poses(arr)
-    if arr.ndim >= 1 and arr.shape[-1] == 3:
-        return _positions(arr)
+    if raw.ndim >= 2 and raw.shape[-2:] == (4, 4):
+        return _poses(raw)
+    if raw.ndim >= 1 and raw.shape[-1] == 3:
+        return _positions(raw.astype(np.float64))
     raise DimensionError(
         "target must be a pose (4, 4), a position (3,), or batches (..., 4, 4) / (..., 3); "
-        f"got shape {arr.shape}"
+        f"got shape {raw.shape}"
     )
 
 
@@ -128,31 +139,38 @@ def _positions(arr: FloatArray) -> Targets:
     return Targets(poses, shape, True, invalid)
 
 
-def _poses(arr: FloatArray) -> Targets:
-    shape = arr.shape[:-2]
-    poses = np.ascontiguousarray(arr.reshape(-1, 4, 4)).copy()
-    finite = np.all(np.isfinite(poses), axis=(-1, -2))
-    safe = np.where(finite[:, None, None], poses, np.eye(4))
-    R = safe[:, :3, :3]
-    ortho = orthonormality_error(R)
-    last = np.abs(safe[:, 3] - [0.0, 0.0, 0.0, 1.0]).max(axis=-1)
-    det = np.linalg.det(R)
+def _poses(raw: np.ndarray) -> Targets:
+    shape = raw.shape[:-2]
+    poses = np.array(raw.reshape(-1, 4, 4), dtype=np.float64, order="C")  # a copy
+    defects = np.empty((poses.shape[0], DEFECT_SIZE))
+    if poses.shape[0] == 1:
+        pose_defects(poses[0], defects[0])
+        one = defects[0].tolist()  # one target: plain floats beat numpy's per-call cost
+        rigid = one[DEFECT_FINITE] and one[DEFECT_ORTHO] <= ROUNDOFF_TOL
+        if rigid and one[DEFECT_LAST_ROW] == 0.0 and one[DEFECT_DET] > 0.0:
+            return Targets(poses, shape, False)
+    else:
+        pose_defects_batch(poses, defects)
+    finite = defects[:, DEFECT_FINITE] != 0.0
+    last, ortho, det = defects[:, DEFECT_LAST_ROW], defects[:, DEFECT_ORTHO], defects[:, DEFECT_DET]
+    clean = finite & (ortho <= ROUNDOFF_TOL) & (last == 0.0) & (det > 0.0)
+    if clean.all():
+        return Targets(poses, shape, False)
     invalid: dict[int, str] = {}
     notes: dict[int, tuple[str, ...]] = {}
-    flagged = np.flatnonzero(~finite | (ortho > ROUNDOFF_TOL) | (last > 0.0) | (det <= 0.0))
-    for i in flagged.tolist():
+    for i in np.flatnonzero(~clean).tolist():
         where = _where(shape, i)
         if not finite[i]:
             invalid[i] = f"{where} holds NaN or inf"
         elif last[i] > PROJECTION_TOL:
-            invalid[i] = f"{where}: last row must be [0, 0, 0, 1], got {poses[i, 3].tolist()}"
+            invalid[i] = f"{where} last row must be [0, 0, 0, 1], got {poses[i, 3].tolist()}"
         elif ortho[i] > PROJECTION_TOL:
             invalid[i] = (
-                f"{where}: rotation is not orthonormal: max |RᵀR − I| = {ortho[i]:.1e} "
+                f"{where} rotation is not orthonormal: max |RᵀR − I| = {ortho[i]:.1e} "
                 f"(accepted up to {PROJECTION_TOL:.0e})"
             )
         elif det[i] <= 0.0:
-            invalid[i] = f"{where}: rotation has det = {det[i]:+.3f}, expected +1 (a reflection)"
+            invalid[i] = f"{where} rotation has det = {det[i]:+.3f}, expected +1 (a reflection)"
         else:
             poses[i, 3] = [0.0, 0.0, 0.0, 1.0]
             if ortho[i] > ROUNDOFF_TOL:

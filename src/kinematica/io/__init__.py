@@ -1,8 +1,9 @@
 """Robot descriptions in and out: robot files, built-in models, expressions.
 
 The bottom layer of kinematica: it imports only :mod:`kinematica.errors`, the
-standard library and numpy, and hands a neutral :class:`RobotSpec` to the
-robot layer above.
+standard library and numpy (and defusedxml, lazily, to read URDF), and hands
+neutral descriptions to the layers above: a :class:`RobotSpec` (a DH table)
+or a :class:`UrdfModel` (links and joints of a URDF).
 """
 
 from kinematica.io.builtin import builtin_names, builtin_path, read_builtin
@@ -10,29 +11,45 @@ from kinematica.io.expr import Affine, Expression, ExpressionError, evaluate, pa
 from kinematica.io.robotfile import (
     ROBOT_FILE_SUFFIXES,
     dump_robot_dict,
+    dumps_robot_file,
     load_robot_text,
     parse_robot_dict,
     read_robot_file,
     write_robot_file,
 )
 from kinematica.io.spec import FrameSpec, JointSpec, RobotSpec
+from kinematica.io.template import with_parameters
+from kinematica.io.urdf import URDF_MAX_BYTES, URDF_SUFFIXES, parse_urdf, read_urdf
+from kinematica.io.urdf_model import UrdfChain, UrdfJoint, UrdfModel
+from kinematica.io.urdf_write import rpy_from_matrix, urdf_text
 
 __all__ = [
     "ROBOT_FILE_SUFFIXES",
+    "URDF_MAX_BYTES",
+    "URDF_SUFFIXES",
     "Affine",
     "Expression",
     "ExpressionError",
     "FrameSpec",
     "JointSpec",
     "RobotSpec",
+    "UrdfChain",
+    "UrdfJoint",
+    "UrdfModel",
     "builtin_names",
     "builtin_path",
     "dump_robot_dict",
+    "dumps_robot_file",
     "evaluate",
     "load_robot_text",
     "parse_expression",
     "parse_robot_dict",
+    "parse_urdf",
     "read_builtin",
     "read_robot_file",
+    "read_urdf",
+    "rpy_from_matrix",
+    "urdf_text",
+    "with_parameters",
     "write_robot_file",
 ]

@@ -21,7 +21,7 @@ from kinematica.io.spec import FrameSpec, JointSpec, RobotSpec
 
 __all__ = ["dump_robot_dict", "toml_dumps"]
 
-_NUMBER_TEXT = re.compile(r"-?[0-9]+(\.[0-9]+)?", re.ASCII)
+_NUMBER_TEXT = re.compile(r"-?[0-9]+(\.[0-9]+)?([eE][-+]?[0-9]+)?", re.ASCII)
 _ULP_STEPS = 4  # neighbours of the naive conversion tried, each side
 
 
@@ -49,8 +49,8 @@ def _number(c: float | None) -> int | float:
 def _text_value(text: str) -> int | float | str:
     """A cell's text as written: numbers stay numbers when that is lossless."""
     if _NUMBER_TEXT.fullmatch(text):
-        number: int | float = int(text) if "." not in text else float(text)
-        if str(number) == text:
+        number: int | float = int(text) if text.lstrip("-").isdigit() else float(text)
+        if repr(number) == text:
             return number
     return text
 
@@ -79,7 +79,7 @@ def _joint(
     convert = {"theta": angle, "d": length, "a": length, "alpha": angle}
     row: dict[str, Any] = {}
     for key, value in values.items():
-        if use_text and key in joint.expr:
+        if use_text and _has_text(joint):
             row[key] = _text_value(joint.expr[key])
         else:
             row[key] = _cell(i, key, joint, value, convert[key])
@@ -108,6 +108,20 @@ def _frame(
     return out
 
 
+def _parameter(spec: RobotSpec, name: str, value: float) -> int | float | str | dict[str, Any]:
+    """A parameter as written: bounded, its text, or its number.
+
+    ``{value, min, max}`` when it has bounds, else its text (``"l1 + 0.1"``)
+    when it has one, else its number.
+    """
+    if name not in spec.parameter_bounds:
+        if name in spec.parameter_texts:
+            return _text_value(spec.parameter_texts[name])
+        return _number(value)
+    lo, hi = spec.parameter_bounds[name]
+    return {"value": _number(value), "min": _number(lo), "max": _number(hi)}
+
+
 def _build(spec: RobotSpec, units: Mapping[str, str], use_text: bool) -> dict[str, Any]:
     angle = angle_to_si(units["angle"])
     length = length_to_si(units["length"])
@@ -118,7 +132,7 @@ def _build(spec: RobotSpec, units: Mapping[str, str], use_text: bool) -> dict[st
         data["source"] = spec.reference
     data["units"] = {"angle": units["angle"], "length": units["length"]}
     if use_text and spec.parameters:
-        data["parameters"] = {k: _number(v) for k, v in spec.parameters.items()}
+        data["parameters"] = {k: _parameter(spec, k, v) for k, v in spec.parameters.items()}
     data["joints"] = [
         _joint(i, j, angle, length, use_text) for i, j in enumerate(spec.joints, start=1)
     ]
@@ -129,13 +143,23 @@ def _build(spec: RobotSpec, units: Mapping[str, str], use_text: bool) -> dict[st
     return data
 
 
-def _identical(a: RobotSpec, b: RobotSpec) -> bool:
-    """Equal, and written the same way (texts, units, parameters)."""
+def _has_text(joint: JointSpec) -> bool:
+    """Whether the joint keeps the text of each of its four DH cells."""
+    return set(joint.expr) >= {"theta", "d", "a", "alpha"}
+
+
+def _identical(again: RobotSpec, spec: RobotSpec) -> bool:
+    """Equal, and written the same way (units, parameters, every text ``spec`` keeps)."""
     return (
-        a == b
-        and dict(a.units) == dict(b.units)
-        and dict(a.parameters) == dict(b.parameters)
-        and all(dict(x.expr) == dict(y.expr) for x, y in zip(a.joints, b.joints, strict=True))
+        again == spec
+        and dict(again.units) == dict(spec.units)
+        and dict(again.parameters) == dict(spec.parameters)
+        and all(again.parameter_texts.get(k) == t for k, t in spec.parameter_texts.items())
+        and all(
+            dict(x.expr) == dict(y.expr)
+            for x, y in zip(again.joints, spec.joints, strict=True)
+            if _has_text(y)
+        )
     )
 
 
@@ -143,8 +167,9 @@ def dump_robot_dict(spec: RobotSpec) -> dict[str, Any]:
     """The robot-file data (plain dicts, lists, numbers, strings) of ``spec``.
 
     Reading the result with :func:`parse_robot_dict` gives a spec equal to
-    ``spec``; for a spec read from a file, also with the same expression
-    texts, units and parameters.
+    ``spec``; for a spec read from a file, also with the same units,
+    parameters and expression texts (of every joint that keeps its texts: a
+    joint changed in code is written as numbers, in the file's units).
 
     Args:
         spec: The robot description.
@@ -153,8 +178,8 @@ def dump_robot_dict(spec: RobotSpec) -> dict[str, Any]:
         A mapping with the robot-file keys, ready for JSON, TOML or YAML.
     """
     units = {"angle": spec.units.get("angle", "deg"), "length": spec.units.get("length", "m")}
-    complete = all(set(j.expr) >= {"theta", "d", "a", "alpha"} for j in spec.joints)
-    for use_text in (True, False) if complete else (False,):
+    texts = any(_has_text(j) for j in spec.joints)
+    for use_text in (True, False) if texts else (False,):
         try:
             data = _build(spec, units, use_text)
             again = parse_robot_dict(data)

@@ -6,9 +6,11 @@ Every problem raises :class:`RobotFileError` naming the file, the joint number
 
 from __future__ import annotations
 
+import copy
 import difflib
 import math
 import re
+import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import PurePath
@@ -16,10 +18,18 @@ from typing import Any, Final, Literal
 
 import numpy as np
 
-from kinematica.errors import RobotFileError
+from kinematica.errors import KinematicaWarning, RobotFileError, located
+from kinematica.io import plausible
 from kinematica.io.expr import Affine, Expression, ExpressionError, is_joint_variable
 from kinematica.io.expr import parse_expression as _parse_expression
-from kinematica.io.spec import Convention, FrameSpec, JointKind, JointSpec, RobotSpec
+from kinematica.io.spec import (
+    CONVENTION_ALIASES,
+    FrameSpec,
+    JointKind,
+    JointSpec,
+    RobotSpec,
+    convention_names,
+)
 
 TOP_KEYS: Final = (
     "name",
@@ -36,16 +46,9 @@ JOINT_KEYS: Final = ("theta", "d", "a", "alpha", "limits", "name", "type")
 DH_KEYS: Final = ("theta", "d", "a", "alpha")
 FRAME_KEYS: Final = ("xyz", "rpy", "matrix")
 UNIT_KEYS: Final = ("angle", "length")
+#: Keys of a bounded parameter, ``l1: {value: 0.3, min: 0.1, max: 0.9}`` (design templates).
+BOUND_KEYS: Final = ("value", "min", "max")
 
-CONVENTIONS: Final[dict[str, Convention]] = {
-    "standard": "standard",
-    "dh": "standard",
-    "paul": "standard",
-    "distal": "standard",
-    "modified": "modified",
-    "craig": "modified",
-    "proximal": "modified",
-}
 JOINT_TYPES: Final[dict[str, JointKind]] = {
     "r": "R",
     "revolute": "R",
@@ -68,6 +71,12 @@ DEFAULT_UNITS: Final = {"angle": "deg", "length": "m"}
 
 #: Radians per degree; a value ``v`` written in degrees is ``v * DEG`` radians.
 DEG: Final = math.pi / 180.0
+#: Most joints a robot file may have. Serial arms have up to a dozen, snake
+#: robots a few dozen; a file with thousands is an error (and slow to check).
+MAX_JOINTS: Final = 100
+#: Most named parameters a robot file may have.
+MAX_PARAMETERS: Final = 1000
+
 #: Largest deviation tolerated in a frame matrix: max |R^T R - I| and the
 #: bottom row's distance from (0, 0, 0, 1). Eight significant digits pass.
 MATRIX_TOL: Final = 1e-6
@@ -117,12 +126,35 @@ class _Reader:
     angle_unit: str = "deg"
     length_unit: str = "m"
     parameters: dict[str, float] = field(default_factory=dict)
+    parameter_texts: dict[str, str] = field(default_factory=dict)
     pi_parameters: set[str] = field(default_factory=set)
+    bounds: dict[str, tuple[float, float]] = field(default_factory=dict)
+    overrides: Mapping[str, float] = field(default_factory=dict)
 
     def error(
         self, message: str, *, joint: int | None = None, key: str | None = None
     ) -> RobotFileError:
         return RobotFileError(message, path=self.path, joint=joint, key=key)
+
+    def warn(self, message: str | None, *, joint: int | None = None, key: str) -> None:
+        """Warn (KinematicaWarning) that a value is implausible for its unit, if it is."""
+        if message is None:
+            return
+        if key == "limits" or key.endswith(".rpy") or key in ("theta", "alpha"):
+            advice = "set units.angle: deg" if self.angle_unit == "rad" else ""
+        else:
+            advice = "set units.length: mm" if self.length_unit == "m" else ""
+        if advice and "is it in" in message:
+            message += f"; {advice} if the file is in those units"
+        text = located(message, path=self.path, joint=joint, key=key)
+        warnings.warn(text, KinematicaWarning, stacklevel=3)
+
+    def check_angle(self, written: float, key: str, joint: int | None = None) -> None:
+        """Warn about a constant angle ``written`` in file units, if implausible."""
+        if self.angle_unit == "deg":
+            self.warn(plausible.check_degrees(written), joint=joint, key=key)
+        else:
+            self.warn(plausible.check_angle(written), joint=joint, key=key)
 
     # --- generic checks ---------------------------------------------------
 
@@ -237,9 +269,16 @@ class _Reader:
                 self.length_unit = unit
 
     def read_parameters(self, raw: object) -> None:
-        if raw is None:
+        if raw is None and not self.overrides:
             return
-        params = self.mapping(raw, "a mapping of names to numbers", key="parameters")
+        params = self.mapping(
+            {} if raw is None else raw, "a mapping of names to numbers", key="parameters"
+        )
+        if len(params) > MAX_PARAMETERS:
+            raise self.error(
+                f"{len(params)} parameters; at most {MAX_PARAMETERS} are accepted",
+                key="parameters",
+            )
         for name, value in params.items():
             key = f"parameters.{name}"
             if not _PARAMETER_NAME.fullmatch(name) or name == "pi" or is_joint_variable(name):
@@ -248,18 +287,88 @@ class _Reader:
                     "pi and the joint variables q1, q2, ...",
                     key=key,
                 )
+            if isinstance(value, Mapping):
+                self.parameters[name] = self.bounded_parameter(name, value, key)
+                continue
             expr = self.expression(value, key)
-            if expr.variables:
-                found = ", ".join(sorted(expr.variables))
-                raise self.error(f"parameters cannot use joint variables, found {found}", key=key)
-            try:
-                self.parameters[name] = expr.evaluate(self.parameters).const
-            except ExpressionError as exc:
-                raise self.error(
-                    f"{exc} (a parameter may use only pi and the parameters above it)", key=key
-                ) from exc
+            self.parameters[name] = self.constant(expr, key)
+            self.parameter_texts[name] = expr.text
             if expr.names & ({"pi"} | self.pi_parameters):
                 self.pi_parameters.add(name)
+            if name in self.overrides:
+                if expr.names - {"pi"}:
+                    raise self.error(
+                        f"cannot set {name}: it is the expression {expr.text!r} of other "
+                        "parameters; set those instead",
+                        key=key,
+                    )
+                self.parameters[name] = self.override(name, key)
+        unknown = sorted(set(self.overrides) - set(params))
+        if unknown:
+            raise self.error(
+                f"no parameter {unknown[0]!r}{_suggest(unknown[0], list(params))} to set; "
+                f"the file's parameters: {', '.join(params) or 'none'}",
+                key="parameters",
+            )
+
+    def constant(self, expr: Expression, key: str) -> float:
+        """The value of a parameter's expression (no joint variables)."""
+        if expr.variables:
+            found = ", ".join(sorted(expr.variables))
+            raise self.error(f"parameters cannot use joint variables, found {found}", key=key)
+        try:
+            return expr.evaluate(self.parameters).const
+        except ExpressionError as exc:
+            raise self.error(
+                f"{exc} (a parameter may use only pi and the parameters above it)", key=key
+            ) from exc
+
+    def bounded_parameter(self, name: str, raw: Mapping[str, Any], key: str) -> float:
+        """A design variable ``{value: v, min: lo, max: hi}``; returns its value.
+
+        ``value`` may be left out (the midpoint is used). The bounds are kept in
+        :attr:`bounds`; an override replaces ``value`` and must lie within them.
+        """
+        self.mapping(raw, "a number, an expression or {value, min, max}", key=key)
+        self.check_keys(raw, BOUND_KEYS, f"{key}.")
+        missing = [k for k in ("min", "max") if k not in raw]
+        if missing:
+            raise self.error(
+                f"a bounded parameter needs min and max (missing {', '.join(missing)}), "
+                "e.g. {value: 0.3, min: 0.1, max: 0.9}",
+                key=key,
+            )
+        found: dict[str, float] = {}
+        for k in BOUND_KEYS:
+            if k in raw:
+                expr = self.expression(raw[k], f"{key}.{k}")
+                found[k] = self.constant(expr, f"{key}.{k}")
+                if expr.names & ({"pi"} | self.pi_parameters):
+                    self.pi_parameters.add(name)
+        lo, hi = found["min"], found["max"]
+        if not lo < hi:
+            raise self.error(f"expected min < max, found min {lo:g} and max {hi:g}", key=key)
+        value = found.get("value", 0.5 * (lo + hi))
+        if not lo <= value <= hi:
+            raise self.error(
+                f"value {value:g} is outside [min, max] = [{lo:g}, {hi:g}]", key=f"{key}.value"
+            )
+        self.bounds[name] = (lo, hi)
+        return self.override(name, key) if name in self.overrides else value
+
+    def override(self, name: str, key: str) -> float:
+        """The value set for ``name`` by the caller (``parse_robot_dict(parameters=)``)."""
+        raw = self.overrides[name]
+        if isinstance(raw, bool) or not isinstance(raw, int | float | np.floating | np.integer):
+            raise self.error(f"the value set for {name} must be a number, found {raw!r}", key=key)
+        value = float(raw)
+        lo, hi = self.bounds.get(name, (-math.inf, math.inf))
+        if not lo <= value <= hi:  # also rejects NaN
+            raise self.error(
+                f"the value set for {name}, {value:g}, is outside its bounds [{lo:g}, {hi:g}]",
+                key=key,
+            )
+        return value
 
     def joint(self, raw: object, i: int) -> JointSpec:
         where: dict[str, Any] = {"joint": i}
@@ -333,6 +442,7 @@ class _Reader:
                     **where,
                 )
             qlim = (lo, hi)
+        self.check_joint(forms, kind, qlim, data.get("limits"), i)
         angle, length = self.to_si("angle"), self.to_si("length")
         return JointSpec(
             kind=kind,
@@ -344,6 +454,32 @@ class _Reader:
             name=self.text(data.get("name"), "name", **where),
             expr=texts,
         )
+
+    def check_joint(
+        self,
+        forms: Mapping[str, Affine],
+        kind: JointKind,
+        qlim: tuple[float, float] | None,
+        raw_limits: object,
+        i: int,
+    ) -> None:
+        """Warn about values implausible for the file's units (degrees as radians...)."""
+        for key in ("theta", "alpha"):
+            self.check_angle(forms[key].const, key, i)
+        to_m = self.to_si("length")
+        for key in ("d", "a"):
+            message = plausible.check_length(to_m(forms[key].const), self.length_unit)
+            self.warn(message, joint=i, key=key)
+        if qlim is None or kind != "R" or not isinstance(raw_limits, list | tuple):
+            return
+        for lim in qlim:
+            if self.angle_unit == "deg":
+                message = plausible.check_degrees(math.degrees(lim))
+            else:
+                message = plausible.check_limit(lim)
+            if message is not None:
+                self.warn(message, joint=i, key="limits")
+                return
 
     def joint_type(self, raw: object, kind: JointKind, key: str, **where: Any) -> None:
         if raw is None:
@@ -377,6 +513,9 @@ class _Reader:
         if "rpy" not in data:
             return FrameSpec(xyz=(x, y, z))
         roll, pitch, yaw = self.numbers(data["rpy"], ("angle",) * 3, f"{which}.rpy")
+        for angle in (roll, pitch, yaw):
+            written = math.degrees(angle) if self.angle_unit == "deg" else angle
+            self.check_angle(written, f"{which}.rpy")
         return FrameSpec(xyz=(x, y, z), rpy=(roll, pitch, yaw))
 
     def matrix(
@@ -411,7 +550,9 @@ def _default_name(source: str | None) -> str:
     return PurePath(source).stem or "robot"
 
 
-def parse_robot_dict(data: object, *, source: str | None = None) -> RobotSpec:
+def parse_robot_dict(
+    data: object, *, source: str | None = None, parameters: Mapping[str, float] | None = None
+) -> RobotSpec:
     """Check already-loaded robot-file data and build its :class:`RobotSpec`.
 
     Args:
@@ -419,6 +560,11 @@ def parse_robot_dict(data: object, *, source: str | None = None) -> RobotSpec:
             mapping with the keys described in :mod:`kinematica.io.robotfile`.
         source: Where the data came from (a path, or ``"builtin:NAME"``);
             named in error messages and kept in ``RobotSpec.source``.
+        parameters: Values (file units) replacing those of the named
+            parameters before anything else is evaluated, so expressions that
+            use them (``l2: 1 - l1``, DH cells, limits, base, tool) follow. Only
+            parameters that use no other parameter can be set, and a bounded
+            parameter only within its ``[min, max]``.
 
     Returns:
         The robot description in radians and metres.
@@ -427,7 +573,7 @@ def parse_robot_dict(data: object, *, source: str | None = None) -> RobotSpec:
         RobotFileError: naming the file, joint, key, what was expected and
             what was found.
     """
-    r = _Reader(source)
+    r = _Reader(source, overrides=dict(parameters or {}))
     top = r.mapping(data, f"a mapping with the keys {', '.join(TOP_KEYS)}")
     r.check_keys(top, TOP_KEYS)
 
@@ -441,11 +587,10 @@ def parse_robot_dict(data: object, *, source: str | None = None) -> RobotSpec:
             "courses) or modified (Craig/proximal)"
         )
     word = top["convention"]
-    convention = CONVENTIONS.get(word.strip().lower()) if isinstance(word, str) else None
+    convention = CONVENTION_ALIASES.get(word.strip().lower()) if isinstance(word, str) else None
     if convention is None:
         raise r.error(
-            f"expected standard (also dh, paul, distal) or modified (also craig, proximal), "
-            f"found {describe(word)}",
+            f"expected {convention_names()}, found {describe(word)}",
             key="convention",
         )
 
@@ -459,6 +604,8 @@ def parse_robot_dict(data: object, *, source: str | None = None) -> RobotSpec:
         raise r.error(f"expected a list of joints, found {describe(rows)}", key="joints")
     if not rows:
         raise r.error("expected at least one joint, found an empty list", key="joints")
+    if len(rows) > MAX_JOINTS:
+        raise r.error(f"{len(rows)} joints; at most {MAX_JOINTS} are accepted", key="joints")
     joints = tuple(r.joint(row, i) for i, row in enumerate(rows, start=1))
 
     return RobotSpec(
@@ -468,8 +615,19 @@ def parse_robot_dict(data: object, *, source: str | None = None) -> RobotSpec:
         base=r.frame(top.get("base"), "base"),
         tool=r.frame(top.get("tool"), "tool"),
         parameters=dict(r.parameters),
+        parameter_texts=dict(r.parameter_texts),
         source=source,
         description=r.text(top.get("description"), "description"),
         units={"angle": r.angle_unit, "length": r.length_unit},
         reference=r.text(top.get("source"), "source"),
+        parameter_bounds=dict(r.bounds),
+        document=_document(r, top),
     )
+
+
+def _document(r: _Reader, top: Mapping[str, Any]) -> dict[str, Any]:
+    """A private copy of the checked file data, kept so the spec can be rebuilt."""
+    try:
+        return copy.deepcopy(dict(top))
+    except RecursionError as exc:
+        raise r.error("the file is nested too deeply") from exc

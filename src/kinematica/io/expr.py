@@ -25,13 +25,15 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Final
+from typing import Final, TypeVar
 
-from kinematica.errors import KinematicaError
+from kinematica.errors import ArgumentError, KinematicaError
 
 __all__ = [
+    "MAX_DEPTH",
+    "MAX_LENGTH",
     "Affine",
     "Expression",
     "ExpressionError",
@@ -40,9 +42,19 @@ __all__ = [
     "parse_expression",
 ]
 
+_T = TypeVar("_T")
+
 #: Deepest nesting of parentheses and unary signs accepted, so that hostile
 #: input fails with an ExpressionError and never with a RecursionError.
 MAX_DEPTH: Final = 64
+#: Longest expression accepted, in characters. A DH cell is a few dozen
+#: characters (``l1 + l2/2 - 0.0125``); this bounds the work one cell can ask for.
+MAX_LENGTH: Final = 1000
+
+#: Longest expression quoted whole in an error message; longer ones are cut.
+_SHOWN: Final = 80
+#: Most known names listed in an "unknown name" message.
+_NAMES_SHOWN: Final = 20
 
 _JOINT_VARIABLE = re.compile(r"q[0-9]+", re.ASCII)
 _TOKEN = re.compile(
@@ -84,7 +96,8 @@ class ExpressionError(KinematicaError, ValueError):
         self.position = position
         where = f" at column {position + 1}" if position is not None else ""
         advice = f"; {hint}" if hint else ""
-        super().__init__(f"{reason}{where} in {text!r}{advice}")
+        shown = repr(text) if len(text) <= _SHOWN else repr(text[: _SHOWN - 3]) + "..."
+        super().__init__(f"{reason}{where} in {shown}{advice}")
 
     @property
     def column(self) -> int | None:
@@ -145,6 +158,9 @@ class Affine:
 
 
 # --- syntax tree -------------------------------------------------------------
+# Sums and products are n-ary (one node for ``a + b - c + ...``), so a long
+# expression makes a wide tree, not a deep one: recursion depth is bounded by
+# the nesting of parentheses and signs (MAX_DEPTH), never by the length.
 
 
 @dataclass(frozen=True)
@@ -167,14 +183,14 @@ class _Unary:
 
 
 @dataclass(frozen=True)
-class _Binary:
-    op: str
-    left: _Node
-    right: _Node
-    pos: int
+class _Chain:
+    """``first op1 x1 op2 x2 ...`` with the operators of one precedence level."""
+
+    first: _Node
+    rest: tuple[tuple[str, _Node, int], ...]  # (operator, operand, position)
 
 
-_Node = _Number | _Name | _Unary | _Binary
+_Node = _Number | _Name | _Unary | _Chain
 
 
 @dataclass(frozen=True)
@@ -234,21 +250,20 @@ class _Parser:
         if self.depth > MAX_DEPTH:
             raise ExpressionError(f"nested deeper than {MAX_DEPTH} levels", self.text, tok.pos)
 
-    def expr(self) -> _Node:
-        node = self.term()
-        while self.tok.text in ("+", "-"):
+    def chain(self, ops: tuple[str, str], operand: Callable[[], _Node]) -> _Node:
+        first = operand()
+        rest: list[tuple[str, _Node, int]] = []
+        while self.tok.text in ops:
             op = self.tok
             self.i += 1
-            node = _Binary(op.text, node, self.term(), op.pos)
-        return node
+            rest.append((op.text, operand(), op.pos))
+        return _Chain(first, tuple(rest)) if rest else first
+
+    def expr(self) -> _Node:
+        return self.chain(("+", "-"), self.term)
 
     def term(self) -> _Node:
-        node = self.unary()
-        while self.tok.text in ("*", "/"):
-            op = self.tok
-            self.i += 1
-            node = _Binary(op.text, node, self.unary(), op.pos)
-        return node
+        return self.chain(("*", "/"), self.unary)
 
     def unary(self) -> _Node:
         tok = self.tok
@@ -288,8 +303,11 @@ def _names(node: _Node) -> set[str]:
         return {node.name}
     if isinstance(node, _Unary):
         return _names(node.operand)
-    if isinstance(node, _Binary):
-        return _names(node.left) | _names(node.right)
+    if isinstance(node, _Chain):
+        found = _names(node.first)
+        for _, operand, _ in node.rest:
+            found |= _names(operand)
+        return found
     return set()
 
 
@@ -340,21 +358,25 @@ class Expression:
         if isinstance(node, _Unary):
             operand = self._eval(node.operand, params)
             return -operand if node.op == "-" else operand
-        left = self._eval(node.left, params)
-        right = self._eval(node.right, params)
-        if node.op == "+":
+        form = self._eval(node.first, params)
+        for op, child, pos in node.rest:
+            form = self._apply(op, form, self._eval(child, params), pos)
+        return form
+
+    def _apply(self, op: str, left: Affine, right: Affine, pos: int) -> Affine:
+        if op == "+":
             return left + right
-        if node.op == "-":
+        if op == "-":
             return left - right
-        if node.op == "*":
+        if op == "*":
             if not left.is_constant and not right.is_constant:
                 both = left + right
-                raise _not_linear(both, "product of two variable terms", self.text, node.pos)
+                raise _not_linear(both, "product of two variable terms", self.text, pos)
             return right.scaled(left.const) if left.is_constant else left.scaled(right.const)
         if not right.is_constant:
-            raise _not_linear(right, "division by a variable term", self.text, node.pos)
+            raise _not_linear(right, "division by a variable term", self.text, pos)
         if right.const == 0.0:
-            raise ExpressionError("division by zero", self.text, node.pos)
+            raise ExpressionError("division by zero", self.text, pos)
         return left.divided(right.const)
 
     def _lookup(self, node: _Name, params: Mapping[str, float]) -> Affine:
@@ -365,7 +387,8 @@ class Expression:
             return Affine(float(params[name]))
         if name == "pi":
             return Affine(math.pi)
-        known = ", ".join(sorted({*params, "pi"}))
+        names = sorted({*params, "pi"})
+        known = ", ".join(names[:_NAMES_SHOWN]) + (", ..." if len(names) > _NAMES_SHOWN else "")
         raise ExpressionError(
             f"unknown name {name!r}",
             self.text,
@@ -373,15 +396,61 @@ class Expression:
             f"known names: {known}; joint variables are q1, q2, ...",
         )
 
+    def fold(
+        self,
+        number: Callable[[float], _T],
+        name: Callable[[str], _T],
+        unary: Callable[[str, _T], _T],
+        binary: Callable[[str, _T, _T], _T],
+    ) -> _T:
+        """Rebuild the expression bottom-up with the given constructors.
+
+        A later layer turns the parsed tree into its own objects this way (the
+        symbolic layer builds sympy expressions from it, never from raw text).
+
+        Args:
+            number: Called with each number's value.
+            name: Called with each name (joint variables, ``pi``, parameters).
+            unary: Called with ``"+"`` or ``"-"`` and the folded operand.
+            binary: Called with ``"+"``, ``"-"``, ``"*"`` or ``"/"`` and the
+                folded left and right operands.
+
+        Returns:
+            What the constructors build for the whole expression.
+        """
+
+        def walk(node: _Node) -> _T:
+            if isinstance(node, _Number):
+                return number(node.value)
+            if isinstance(node, _Name):
+                return name(node.name)
+            if isinstance(node, _Unary):
+                return unary(node.op, walk(node.operand))
+            # a chain a op1 b op2 c ... of one precedence level folds from the left
+            acc = walk(node.first)
+            for op, operand, _ in node.rest:
+                acc = binary(op, acc, walk(operand))
+            return acc
+
+        return walk(self._root)
+
 
 def parse_expression(text: str) -> Expression:
     """Parse ``text`` into an :class:`Expression` (no evaluation yet).
 
     Raises:
-        ExpressionError: the text is not a well-formed expression.
+        ExpressionError: the text is not a well-formed expression, is nested
+            deeper than :data:`MAX_DEPTH` or longer than :data:`MAX_LENGTH`.
+        ArgumentError: ``text`` is not a string.
     """
     if not isinstance(text, str):
-        raise TypeError(f"expected a string, got {type(text).__name__}")
+        raise ArgumentError(f"an expression must be text, got {type(text).__name__}")
+    if len(text) > MAX_LENGTH:
+        raise ExpressionError(
+            f"the expression is {len(text)} characters long; at most {MAX_LENGTH} are accepted",
+            text,
+            None,
+        )
     root = _Parser(text).parse()
     return Expression(text, frozenset(_names(root)), root)
 

@@ -23,7 +23,9 @@ Keys:
   They apply to every number in the file: DH cells, parameters, limits, base
   and tool. Degrees become radians and millimetres metres on reading.
 - ``parameters``: name -> number or expression of numbers, ``pi`` and the
-  parameters above it, in file units.
+  parameters above it, in file units; or ``{value: v, min: lo, max: hi}``, a
+  design variable of a design template (bounds in ``RobotSpec.parameter_bounds``,
+  the robot built at ``v``, midpoint if left out; see :mod:`kinematica.design`).
 - ``joints`` (required, non-empty): one mapping per joint with ``theta``,
   ``d``, ``a``, ``alpha`` (numbers or expressions), and optionally
   ``limits: [lower, upper]`` (angle units for a revolute joint, length units
@@ -48,19 +50,22 @@ from __future__ import annotations
 
 import json
 import os
+import stat
 import tomllib
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from kinematica.errors import KinematicaError, RobotFileError
+from kinematica.errors import ArgumentError, KinematicaError, RobotFileError
 from kinematica.io._dump import dump_robot_dict, toml_dumps
 from kinematica.io._parse import parse_robot_dict
 from kinematica.io.spec import RobotSpec
 
 __all__ = [
+    "MAX_FILE_SIZE",
     "ROBOT_FILE_SUFFIXES",
     "dump_robot_dict",
+    "dumps_robot_file",
     "load_robot_text",
     "parse_robot_dict",
     "read_robot_file",
@@ -69,6 +74,13 @@ __all__ = [
 
 #: File extensions read and written by this module.
 ROBOT_FILE_SUFFIXES = (".yaml", ".yml", ".json", ".toml")
+
+#: Largest robot file read, in bytes (256 KiB). A DH table with limits and
+#: comments is a few kilobytes; anything near this size is not a robot file,
+#: and reading it would take long (YAML is read at about 1 MB per second).
+MAX_FILE_SIZE = 262_144
+
+_BOM = "\ufeff"
 
 _YAML_MISSING = (
     "reading and writing YAML robot files needs PyYAML: pip install pyyaml "
@@ -90,15 +102,37 @@ def _import_yaml() -> Any:
     return yaml
 
 
+_YAML_MERGE = "tag:yaml.org,2002:merge"
+
+
 def _load_yaml(text: str) -> object:
     yaml = _import_yaml()
 
-    safe_loader: Any = yaml.SafeLoader
+    # libyaml's parser when PyYAML has it (about 5x faster), else the pure-Python one.
+    safe_loader: Any = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
     class UniqueKeyLoader(safe_loader):
+        """SafeLoader refusing duplicate keys, with merge keys (``<<: *anchor``).
+
+        Merging puts the merged pairs in front of a mapping's own pairs (which
+        override them); only the own pairs are checked for duplicates.
+        """
+
+        def __init__(self, stream: str) -> None:
+            super().__init__(stream)
+            self.merged: dict[int, int] = {}  # id(node) -> number of merged pairs in front
+
+        def flatten_mapping(self, node: Any) -> None:
+            own = sum(1 for key_node, _ in node.value if key_node.tag != _YAML_MERGE)
+            super().flatten_mapping(node)
+            if len(node.value) > own:  # the first flattening of a node that merges
+                self.merged[id(node)] = len(node.value) - own
+
         def construct_mapping(self, node: Any, deep: bool = False) -> Any:
+            if isinstance(node, yaml.MappingNode):
+                self.flatten_mapping(node)
             seen = set()
-            for key_node, _ in node.value:
+            for key_node, _ in node.value[self.merged.get(id(node), 0) :]:
                 key = self.construct_object(key_node, deep=deep)
                 try:
                     duplicate = key in seen
@@ -195,20 +229,28 @@ def load_robot_text(text: str, suffix: str, *, source: str | None = None) -> Rob
     """Parse robot-file text in the format named by ``suffix``.
 
     Args:
-        text: The file's content.
+        text: The file's content (a leading UTF-8 byte-order mark is ignored).
         suffix: ``".yaml"``, ``".yml"``, ``".json"`` or ``".toml"``.
         source: Where the text came from, for messages and ``RobotSpec.source``.
 
     Raises:
-        RobotFileError: the text is not valid in its format, or not a valid
-            robot description.
+        RobotFileError: the text is longer than :data:`MAX_FILE_SIZE`, not
+            valid in its format, or not a valid robot description.
     """
+    if not isinstance(text, str) or not isinstance(suffix, str):
+        raise ArgumentError(
+            f"load_robot_text takes text and a suffix, got {type(text).__name__} "
+            f"and {type(suffix).__name__}"
+        )
     loader = _LOADERS.get(suffix.lower())
     if loader is None:
         raise RobotFileError(
             f"unknown file type {suffix!r}: expected {', '.join(ROBOT_FILE_SUFFIXES)}",
             path=source,
         )
+    if len(text) > MAX_FILE_SIZE:
+        raise RobotFileError(_too_large(len(text), "characters"), path=source)
+    text = text.removeprefix(_BOM)
     try:
         data = loader(text)
     except _DuplicateKeyError as exc:
@@ -235,25 +277,102 @@ def read_robot_file(path: str | os.PathLike[str]) -> RobotSpec:
         The robot description in radians and metres, with ``source`` the path.
 
     Raises:
-        RobotFileError: the file is missing, unreadable, not valid in its
-            format, or not a valid robot description.
+        RobotFileError: the file is missing, unreadable, not a regular file
+            (a directory, a FIFO, a device), larger than
+            :data:`MAX_FILE_SIZE`, not valid in its format, or not a valid
+            robot description.
+        ArgumentError: ``path`` is not a path.
         KinematicaError: a YAML file and PyYAML is not installed.
     """
-    p = Path(path)
+    p = _path(path)
     suffix = _suffix(p)
     try:
-        text = p.read_text(encoding="utf-8")
-    except FileNotFoundError as exc:
-        raise RobotFileError("file not found", path=str(p)) from exc
-    except IsADirectoryError as exc:
-        raise RobotFileError("is a directory, not a robot file", path=str(p)) from exc
+        text = _read_bytes(p).decode("utf-8")
     except UnicodeDecodeError as exc:
         raise RobotFileError(
             f"not UTF-8 text (bad byte at position {exc.start})", path=str(p)
         ) from exc
-    except OSError as exc:
-        raise RobotFileError(f"cannot read the file: {exc.strerror or exc}", path=str(p)) from exc
     return load_robot_text(text, suffix, source=str(p))
+
+
+def _path(path: object) -> Path:
+    if not isinstance(path, str | os.PathLike):
+        raise ArgumentError(f"expected a path (text or pathlib.Path), got {type(path).__name__}")
+    return Path(path)
+
+
+def _too_large(size: int, what: str) -> str:
+    return f"the file is {size:,} {what}; robot files of at most {MAX_FILE_SIZE:,} bytes are read"
+
+
+def _kind(mode: int) -> str | None:
+    """What a file that is not a regular file is, or ``None`` for a regular file."""
+    if stat.S_ISREG(mode):
+        return None
+    if stat.S_ISDIR(mode):
+        return "a directory"
+    if stat.S_ISFIFO(mode):
+        return "a named pipe (FIFO)"
+    if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
+        return "a device"
+    if stat.S_ISSOCK(mode):
+        return "a socket"
+    return "a special file"
+
+
+def _read_bytes(p: Path) -> bytes:
+    """The bytes of a regular file of at most MAX_FILE_SIZE bytes.
+
+    Type and size are checked before the file is opened: opening a FIFO would
+    wait for a writer, and reading ``/dev/zero`` would never end.
+    """
+    try:
+        info = p.stat()
+    except FileNotFoundError as exc:
+        raise RobotFileError("file not found", path=str(p)) from exc
+    except (OSError, ValueError) as exc:  # ValueError: a NUL byte in the path
+        raise RobotFileError(f"cannot read the file: {_reason(exc)}", path=str(p)) from exc
+    kind = _kind(info.st_mode)
+    if kind is not None:
+        raise RobotFileError(f"is {kind}, not a robot file", path=str(p))
+    if info.st_size > MAX_FILE_SIZE:
+        raise RobotFileError(_too_large(info.st_size, "bytes"), path=str(p))
+    try:
+        with p.open("rb") as f:
+            data = f.read(MAX_FILE_SIZE + 1)  # the file may have grown since stat
+    except OSError as exc:
+        raise RobotFileError(f"cannot read the file: {_reason(exc)}", path=str(p)) from exc
+    if len(data) > MAX_FILE_SIZE:
+        raise RobotFileError(_too_large(len(data), "bytes or more"), path=str(p))
+    return data.removeprefix(_BOM.encode("utf-8"))
+
+
+def _reason(exc: Exception) -> str:
+    return str(exc.strerror) if isinstance(exc, OSError) and exc.strerror else str(exc)
+
+
+def dumps_robot_file(spec: RobotSpec, suffix: str = ".yaml") -> str:
+    """The text of ``spec`` as a robot file in the format named by ``suffix``.
+
+    Args:
+        spec: The robot description.
+        suffix: ``".yaml"``/``".yml"`` (needs PyYAML), ``".json"`` or ``".toml"``.
+
+    Raises:
+        RobotFileError: unknown suffix.
+        KinematicaError: YAML and PyYAML is not installed.
+    """
+    key = suffix.lower()
+    if key not in _LOADERS:
+        raise RobotFileError(
+            f"unknown file type {suffix!r}: expected {', '.join(ROBOT_FILE_SUFFIXES)}"
+        )
+    data = dump_robot_dict(spec)
+    if key == ".json":
+        return json.dumps(data, indent=2, ensure_ascii=False) + "\n"
+    if key == ".toml":
+        return toml_dumps(data)
+    return _yaml_dumps(data)
 
 
 def write_robot_file(spec: RobotSpec, path: str | os.PathLike[str]) -> None:
@@ -268,19 +387,27 @@ def write_robot_file(spec: RobotSpec, path: str | os.PathLike[str]) -> None:
             PyYAML). An existing file is replaced.
 
     Raises:
-        RobotFileError: unknown extension, or the file cannot be written.
+        RobotFileError: unknown extension, ``path`` is not a regular file, or
+            the file cannot be written.
+        ArgumentError: ``spec`` is not a :class:`RobotSpec` (a ``Robot`` is
+            saved by :meth:`kinematica.Robot.save`).
         KinematicaError: a YAML file and PyYAML is not installed.
     """
-    p = Path(path)
+    if not isinstance(spec, RobotSpec):
+        raise ArgumentError(
+            f"expected a RobotSpec, got {type(spec).__name__}; to save a Robot, call "
+            "robot.save(path) or kinematica.write_robot_file(robot, path)"
+        )
+    p = _path(path)
     suffix = _suffix(p)
-    data = dump_robot_dict(spec)
-    if suffix == ".json":
-        text = json.dumps(data, indent=2, ensure_ascii=False) + "\n"
-    elif suffix == ".toml":
-        text = toml_dumps(data)
-    else:
-        text = _yaml_dumps(data)
+    try:
+        kind = _kind(p.stat().st_mode)
+    except OSError:  # missing (it will be created), or unreadable (open says why)
+        kind = None
+    if kind is not None:
+        raise RobotFileError(f"is {kind}, not a robot file: not written", path=str(p))
+    text = dumps_robot_file(spec, suffix)
     try:
         p.write_text(text, encoding="utf-8")
-    except OSError as exc:
-        raise RobotFileError(f"cannot write the file: {exc.strerror or exc}", path=str(p)) from exc
+    except (OSError, ValueError) as exc:
+        raise RobotFileError(f"cannot write the file: {_reason(exc)}", path=str(p)) from exc

@@ -12,16 +12,46 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 
 from kinematica.errors import RobotFileError
 
-__all__ = ["Convention", "FrameSpec", "JointKind", "JointSpec", "RobotSpec"]
+__all__ = [
+    "CONVENTION_ALIASES",
+    "Convention",
+    "FrameSpec",
+    "JointKind",
+    "JointSpec",
+    "RobotSpec",
+    "convention_names",
+]
 
 JointKind = Literal["R", "P"]
 Convention = Literal["standard", "modified"]
+
+#: Every name a DH convention goes by (lower case) -> its canonical name. The one
+#: table of aliases: robot files and ``Robot.from_dh`` read conventions through it.
+CONVENTION_ALIASES: dict[str, Convention] = {
+    "standard": "standard",
+    "dh": "standard",
+    "paul": "standard",
+    "distal": "standard",
+    "modified": "modified",
+    "mdh": "modified",
+    "craig": "modified",
+    "proximal": "modified",
+}
+
+
+def convention_names() -> str:
+    """The aliases, for messages: ``"standard (also dh, paul, distal) or modified (...)"``."""
+    parts = []
+    for canonical in ("standard", "modified"):
+        others = [k for k, v in CONVENTION_ALIASES.items() if v == canonical and k != canonical]
+        parts.append(f"{canonical} (also {', '.join(others)})")
+    return " or ".join(parts)
 
 
 def _default_units() -> dict[str, str]:
@@ -128,9 +158,10 @@ class RobotSpec:
 
     Two specs compare equal when they describe the same robot: the numbers
     (SI), joint kinds and limits, placements, names and texts. How it was
-    written down (``expr`` texts, ``parameters``, ``units``) and where it was
-    read from (``source``) take no part: the same arm written in YAML, JSON or
-    TOML gives equal specs, and so does a spec written out and read back.
+    written down (``expr`` texts, ``parameters``, ``parameter_texts``,
+    ``units``) and where it was read from (``source``) take no part: the same
+    arm written in YAML, JSON or TOML gives equal specs, and so does a spec
+    written out and read back.
 
     Attributes:
         name: Robot name.
@@ -146,6 +177,14 @@ class RobotSpec:
             of ``expr`` texts and ``parameters``.
         reference: Where the numbers come from (book, paper, datasheet): the
             file's ``source`` key.
+        parameter_texts: Each parameter as written (``"l1 + 0.1"``), in file
+            units; a parameter without a text is written as its number.
+        parameter_bounds: ``name -> (min, max)`` (file units) of the bounded
+            parameters ``l1: {value: 0.3, min: 0.1, max: 0.9}`` of a design
+            template; ``parameters`` holds their values.
+        document: The file's content as read (plain data), so that
+            :func:`kinematica.io.with_parameters` can rebuild the spec with
+            other parameter values; ``None`` for a spec built in code.
     """
 
     name: str
@@ -158,6 +197,9 @@ class RobotSpec:
     description: str | None = None
     units: Mapping[str, str] = field(default_factory=_default_units, compare=False)
     reference: str | None = None
+    parameter_texts: Mapping[str, str] = field(default_factory=dict, compare=False)
+    parameter_bounds: Mapping[str, tuple[float, float]] = field(default_factory=dict, compare=False)
+    document: Mapping[str, Any] | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         if self.convention not in ("standard", "modified"):

@@ -39,16 +39,21 @@ def subproblem1(p1: Array, p2: Array, k: Array) -> float:
     """SP1: the angle ``θ`` with ``R(k, θ) p1 = p2`` (closest when not exact).
 
     If ``p1`` or ``p2`` lies on the axis every angle is as good and 0 comes
-    back (``atan2(0, 0)``).
+    back (``atan2(0, 0)``). Both vectors are projected across ``k`` first:
+    near the axis their parts along it would swamp the small cross parts.
     """
     kp = k[0] * p1[0] + k[1] * p1[1] + k[2] * p1[2]
     a0 = p1[0] - kp * k[0]
     a1 = p1[1] - kp * k[1]
     a2 = p1[2] - kp * k[2]
-    x = a1 * p2[2] - a2 * p2[1]
-    y = a2 * p2[0] - a0 * p2[2]
-    z = a0 * p2[1] - a1 * p2[0]
-    return math.atan2(k[0] * x + k[1] * y + k[2] * z, a0 * p2[0] + a1 * p2[1] + a2 * p2[2])
+    kq = k[0] * p2[0] + k[1] * p2[1] + k[2] * p2[2]
+    b0 = p2[0] - kq * k[0]
+    b1 = p2[1] - kq * k[1]
+    b2 = p2[2] - kq * k[2]
+    x = a1 * b2 - a2 * b1
+    y = a2 * b0 - a0 * b2
+    z = a0 * b1 - a1 * b0
+    return math.atan2(k[0] * x + k[1] * y + k[2] * z, a0 * b0 + a1 * b1 + a2 * b2)
 
 
 @kernel

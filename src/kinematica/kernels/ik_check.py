@@ -38,6 +38,7 @@ __all__ = [
     "LIMIT_TOL",
     "META_COUNT",
     "META_GAP",
+    "META_NEAR",
     "META_NEAREST_POSITION",
     "META_NEAREST_ROTATION",
     "META_OUT_COUNT",
@@ -90,8 +91,8 @@ OPT_SIZE = 5
 
 # What a check reports per target (``meta``).
 META_STATUS, META_COUNT, META_OUT_COUNT, META_GAP = range(4)
-META_NEAREST_POSITION, META_NEAREST_ROTATION = 4, 5
-META_SIZE = 6
+META_NEAREST_POSITION, META_NEAREST_ROTATION, META_NEAR = 4, 5, 6
+META_SIZE = 7
 
 # Status codes (the ik layer names them).
 STATUS_OK, STATUS_SINGULAR, STATUS_OUT_OF_LIMITS = 0, 1, 2
@@ -353,6 +354,7 @@ def check_target(
     meta[META_GAP] = gap if status == STATUS_UNREACHABLE else math.nan
     meta[META_NEAREST_POSITION] = near_p
     meta[META_NEAREST_ROTATION] = near_r
+    meta[META_NEAR] = info[INFO_NEAR]
 
 
 @batch_kernel

@@ -11,7 +11,7 @@ import dataclasses
 import warnings
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -31,42 +31,19 @@ from kinematica.ik import IKBatchResult, IKResult, Tolerance, solve_ik
 from kinematica.kernels import fk as kernel_fk
 from kinematica.kernels import jacobian as kernel_jacobian
 from kinematica.kernels import joint_axes as kernel_joint_axes
-from kinematica.spatial import check_transform, orthonormalize
+from kinematica.robot.dh_rules import to_dh, to_urdf
+from kinematica.robot.frames import rigid_frame, short
+from kinematica.robot.save import write_robot_file
+
+if TYPE_CHECKING:
+    import os
+
+    from kinematica.io import RobotSpec
+    from kinematica.robot.dh_rules import DHExtraction
 
 __all__ = ["Robot"]
 
 FloatArray = NDArray[np.float64]
-
-
-def _short(value: object, limit: int = 60) -> str:
-    """``repr(value)``, cut to ``limit`` characters for messages."""
-    text = repr(value)
-    return text if len(text) <= limit else text[: limit - 3] + "..."
-
-
-def _check_frame(T: ArrayLike | None, what: str) -> FloatArray:
-    """A base or tool transform, checked as every transform is, then made exactly rigid.
-
-    A rotation written with a few digits (orthonormal to ``ORTHONORMAL_TOL``) is
-    accepted and replaced by the nearest rotation, so that forward kinematics
-    stays rigid to round-off; one orthonormal to round-off is kept as given.
-    """
-    if T is None:
-        return np.eye(4)
-    try:
-        raw = np.asarray(T)
-    except (TypeError, ValueError) as exc:
-        raise DimensionError(
-            f"{what} must be a 4x4 matrix of real numbers, got {_short(T)}"
-        ) from exc
-    if raw.dtype.kind not in "iuf":
-        raise DimensionError(f"{what} must be a 4x4 matrix of real numbers, got {_short(T)}")
-    if raw.shape != (4, 4):
-        raise DimensionError(f"{what} must be a 4x4 homogeneous transform, got shape {raw.shape}")
-    M = np.array(check_transform(raw, name=what), dtype=float)
-    M[:3, :3] = orthonormalize(M[:3, :3])[0]
-    M[3] = [0.0, 0.0, 0.0, 1.0]
-    return M
 
 
 @dataclass(frozen=True, eq=False)
@@ -83,6 +60,9 @@ class Robot:
         tool: ``(4, 4)`` pose of the tool in the last DH frame.
         description: Free text (source of the model, notes).
         chain: The table compiled into the arrays the kernels walk (derived).
+        source_spec: The description the robot was read from (robot file or
+            built-in model), or ``None``; :meth:`save` writes it back as it
+            was written, for every part that still describes this robot.
     """
 
     links: tuple[Joint, ...]
@@ -92,6 +72,7 @@ class Robot:
     tool: FloatArray = field(default_factory=lambda: np.eye(4))
     description: str | None = None
     chain: DHChain = field(init=False, repr=False)
+    source_spec: RobotSpec | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         links = tuple(self.links)
@@ -105,8 +86,8 @@ class Robot:
                 )
         object.__setattr__(self, "links", links)
         object.__setattr__(self, "convention", check_convention(self.convention))
-        base = _check_frame(self.base, "base")
-        tool = _check_frame(self.tool, "tool")
+        base = rigid_frame(self.base, "base")
+        tool = rigid_frame(self.tool, "tool")
         base.flags.writeable = False
         tool.flags.writeable = False
         object.__setattr__(self, "base", base)
@@ -142,8 +123,8 @@ class Robot:
             links=tuple(rows),
             convention=check_convention(convention),
             name=name,
-            base=_check_frame(base, "base"),
-            tool=_check_frame(tool, "tool"),
+            base=rigid_frame(base, "base"),
+            tool=rigid_frame(tool, "tool"),
             description=description,
         )
 
@@ -213,7 +194,7 @@ class Robot:
         except (TypeError, ValueError) as exc:
             raise DimensionError(f"{name} must be numbers, got {q!r}") from exc
         if raw.dtype.kind not in "iuf":
-            raise DimensionError(f"{name} must be numbers, got {_short(q)}")
+            raise DimensionError(f"{name} must be numbers, got {short(q)}")
         if raw.ndim == 0 or raw.shape[-1] != self.dof:
             found = "a scalar" if raw.ndim == 0 else f"{raw.shape[-1]} (shape {raw.shape})"
             raise DimensionError(
@@ -311,10 +292,11 @@ class Robot:
         self,
         q: ArrayLike,
         frame: Literal["base", "tool"] = "base",
+        euler: str | None = None,
         *,
         workers: int | None = None,
     ) -> FloatArray:
-        """Geometric Jacobian of the tool.
+        """Geometric Jacobian of the tool, or the analytic Jacobian of its pose.
 
         Rows 0-2 map joint rates to the linear velocity of the tool origin, rows
         3-5 to the angular velocity, both expressed in the base frame
@@ -322,9 +304,14 @@ class Robot:
         ``[z × (p - o); z]`` for a revolute joint with axis ``z`` through ``o``,
         ``[z; 0]`` for a prismatic one.
 
+        With ``euler`` (e.g. ``"ZYZ"``): the analytic Jacobian of the pose
+        ``(x, y, z, a, b, c)`` instead, base frame only; NaN rotation rows in
+        gimbal lock. See :func:`kinematica.robot.velocity.analytic_jacobian`.
+
         Args:
             q: ``(..., n)`` joint values.
             frame: ``"base"`` or ``"tool"``.
+            euler: An Euler sequence for the analytic Jacobian, or None.
             workers: Threads for a batch (None: the library default).
 
         Returns:
@@ -333,6 +320,15 @@ class Robot:
         """
         if frame not in ("base", "tool"):
             raise KinematicaError(f"frame must be 'base' or 'tool', got {frame!r}")
+        if euler is not None:
+            if frame != "base":
+                raise KinematicaError(
+                    "euler= gives the analytic Jacobian of the pose in the base frame; "
+                    f"frame={frame!r} does not apply to it"
+                )
+            from kinematica.robot.velocity import analytic_jacobian
+
+            return analytic_jacobian(self, q, euler)
         qa = self.check_q(q)
         J, bad = kernel_jacobian(self.chain, qa, frame == "tool", workers)
         if bad:
@@ -410,7 +406,7 @@ class Robot:
         """The same robot written in another DH convention.
 
         Base and tool absorb the regrouped ``a``/``alpha`` so that ``fk(q)`` is
-        unchanged for every ``q`` (the intermediate frames move, as seed 001 says).
+        unchanged for every ``q`` (the intermediate frames move; the end pose does not).
         """
         target = check_convention(convention)
         rows, base, tool = convert_table(self.links, self.convention, target, self.base, self.tool)
@@ -418,11 +414,11 @@ class Robot:
 
     def with_tool(self, tool: ArrayLike | None) -> Robot:
         """The same robot with another tool transform (``(4, 4)`` or ``None``)."""
-        return dataclasses.replace(self, tool=_check_frame(tool, "tool"))
+        return dataclasses.replace(self, tool=rigid_frame(tool, "tool"))
 
     def with_base(self, base: ArrayLike | None) -> Robot:
         """The same robot with another base transform (``(4, 4)`` or ``None``)."""
-        return dataclasses.replace(self, base=_check_frame(base, "base"))
+        return dataclasses.replace(self, base=rigid_frame(base, "base"))
 
     def with_limits(self, qlim: Sequence[Sequence[float] | None] | FloatArray) -> Robot:
         """The same robot with other joint limits (``(n, 2)``; ``None`` rows free)."""
@@ -444,3 +440,45 @@ class Robot:
 
     def __repr__(self) -> str:
         return f"Robot({self.name!r}, {self.joint_types}, convention={self.convention!r})"
+
+    def save(self, path: str | os.PathLike[str]) -> None:
+        """Write this robot as a robot file; see :func:`kinematica.write_robot_file`."""
+        write_robot_file(self, path)
+
+    # ---------------------------------------------------------------- URDF, DH rules
+    def to_dh(self, convention: str = "standard") -> DHExtraction:
+        """The DH table read off this robot's joint axes by the Denavit-Hartenberg rules.
+
+        In the robot's own convention it gives back the same rows; in the
+        other, the frames the rules place. See :func:`kinematica.urdf_to_dh`.
+
+        Returns:
+            A ``DHExtraction``: ``.robot``, ``.rules`` (which rule placed each
+            frame), ``.fk_error``.
+        """
+        return to_dh(self, convention)
+
+    def to_urdf(self, path: str | os.PathLike[str] | None = None) -> str:
+        """The robot as URDF text (each link frame a DH frame), written to ``path`` if given."""
+        return to_urdf(self, path)
+
+    # ------------------------------------------- motion (thin, over kinematica.motion)
+    def singularities(self, q: ArrayLike, detail: bool = False) -> Any:
+        """Names of the singularities at ``q`` (``[]`` when regular).
+
+        See :func:`kinematica.robot.singularities.singularities`.
+        """
+        from kinematica.robot.singularities import singularities
+
+        return singularities(self, q, detail=detail)
+
+    def random_q(
+        self, n: int | tuple[int, ...] = 1, seed: int | np.random.Generator | None = None
+    ) -> FloatArray:
+        """``(n, dof)`` configurations drawn uniformly within the joint limits.
+
+        See :func:`kinematica.robot.sampling.random_q`.
+        """
+        from kinematica.robot.sampling import random_q
+
+        return random_q(self, n, seed=seed)

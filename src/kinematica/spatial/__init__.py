@@ -24,6 +24,7 @@ from kinematica.spatial.euler import (
     gimbal_locked,
     matrix_from_euler,
 )
+from kinematica.spatial.euler_rates import euler_rate_matrix, euler_rate_singular
 from kinematica.spatial.pose import from_pose, se3_error, to_pose
 from kinematica.spatial.quaternion import (
     matrix_from_quat,
@@ -52,6 +53,8 @@ __all__ = [
     "check_transform",
     "compose",
     "euler_from_matrix",
+    "euler_rate_matrix",
+    "euler_rate_singular",
     "from_pose",
     "gimbal_locked",
     "inv_transform",

@@ -17,6 +17,7 @@ from kinematica.errors import DimensionError
 __all__ = [
     "ORTHONORMAL_TOL",
     "as_batch_array",
+    "as_float_array",
     "check_rotation",
     "check_transform",
     "nearest_rotation",
@@ -54,6 +55,29 @@ def first_bad(name: str, mask: NDArray[np.bool_]) -> str:
     return _where(name, _first(mask))
 
 
+def as_float_array(x: ArrayLike, name: str, tail: tuple[int, ...] = ()) -> FloatArray:
+    """Convert ``x`` to a float array of shape ``(..., *tail)``; NaN and inf pass through.
+
+    For the elementary operations (rotations about an axis, products of
+    transforms), where a NaN in is a NaN out, as in numpy.
+
+    Raises:
+        DimensionError: ``x`` is not numeric, or has the wrong trailing shape.
+    """
+    try:
+        raw = np.asarray(x)
+    except (TypeError, ValueError) as exc:  # ragged nested lists, say
+        raise DimensionError(f"{name} must be an array of numbers: {exc}") from None
+    if raw.dtype.kind not in "biuf":  # None, text, objects, complex numbers
+        shown = repr(x) if len(repr(x)) <= 60 else repr(x)[:57] + "..."
+        raise DimensionError(f"{name} must be an array of numbers, got {shown}")
+    a = raw.astype(np.float64, copy=False)
+    if a.ndim < len(tail) or a.shape[a.ndim - len(tail) :] != tail:
+        expected = ", ".join(["..."] + [str(n) for n in tail])
+        raise DimensionError(f"{name} must have shape ({expected}), got {a.shape}")
+    return a
+
+
 def as_batch_array(x: ArrayLike, name: str, tail: tuple[int, ...]) -> FloatArray:
     """Convert ``x`` to a float array of shape ``(..., *tail)`` with finite entries.
 
@@ -69,13 +93,7 @@ def as_batch_array(x: ArrayLike, name: str, tail: tuple[int, ...]) -> FloatArray
         DimensionError: ``x`` is not numeric, has the wrong trailing shape, or
             holds NaN or inf (the message names the first bad batch element).
     """
-    try:
-        a = np.asarray(x, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise DimensionError(f"{name} must be an array of numbers: {exc}") from None
-    if a.ndim < len(tail) or a.shape[a.ndim - len(tail) :] != tail:
-        expected = ", ".join(["..."] + [str(n) for n in tail])
-        raise DimensionError(f"{name} must have shape ({expected}), got {a.shape}")
+    a = as_float_array(x, name, tail)
     finite = np.isfinite(a)
     if not finite.all():
         bad = np.asarray(~finite.reshape(*a.shape[: a.ndim - len(tail)], -1).all(axis=-1))

@@ -10,6 +10,9 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from kinematica.errors import DimensionError
+from kinematica.spatial.checks import as_float_array
+
 __all__ = [
     "compose",
     "inv_transform",
@@ -25,7 +28,7 @@ FloatArray = NDArray[np.float64]
 
 def _elementary(angle: ArrayLike, axis: int) -> FloatArray:
     """Rotation by ``angle`` about coordinate axis ``axis`` (0=x, 1=y, 2=z)."""
-    t = np.asarray(angle, dtype=float)
+    t = as_float_array(angle, "angle")
     c, s = np.cos(t), np.sin(t)
     R = np.zeros((*t.shape, 3, 3))
     i, j = (axis + 1) % 3, (axis + 2) % 3
@@ -62,9 +65,14 @@ def make_transform(R: ArrayLike | None = None, p: ArrayLike | None = None) -> Fl
     Returns:
         ``(..., 4, 4)`` transform, batch shape broadcast from ``R`` and ``p``.
     """
-    Ra = np.eye(3) if R is None else np.asarray(R, dtype=float)
-    pa = np.zeros(3) if p is None else np.asarray(p, dtype=float)
-    batch = np.broadcast_shapes(Ra.shape[:-2], pa.shape[:-1])
+    Ra = np.eye(3) if R is None else as_float_array(R, "R", (3, 3))
+    pa = np.zeros(3) if p is None else as_float_array(p, "p", (3,))
+    try:
+        batch = np.broadcast_shapes(Ra.shape[:-2], pa.shape[:-1])
+    except ValueError as exc:
+        raise DimensionError(
+            f"the batch shapes of R {Ra.shape} and p {pa.shape} do not broadcast"
+        ) from exc
     T = np.zeros((*batch, 4, 4))
     T[..., :3, :3] = Ra
     T[..., :3, 3] = pa
@@ -74,16 +82,21 @@ def make_transform(R: ArrayLike | None = None, p: ArrayLike | None = None) -> Fl
 
 def transl(x: ArrayLike, y: ArrayLike = 0.0, z: ArrayLike = 0.0) -> FloatArray:
     """Pure translation ``Tras(x, y, z)``: ``(...,)`` each -> ``(..., 4, 4)``."""
-    p = np.stack(np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, y, z))), -1)
+    xyz = (as_float_array(v, name) for v, name in ((x, "x"), (y, "y"), (z, "z")))
+    try:
+        p = np.stack(np.broadcast_arrays(*xyz), -1)
+    except ValueError as exc:
+        raise DimensionError(f"x, y and z do not broadcast: {exc}") from exc
     return make_transform(None, p)
 
 
 def inv_transform(T: ArrayLike) -> FloatArray:
     """Inverse of a homogeneous transform, ``[Rᵀ, -Rᵀ p]``: ``(..., 4, 4)``.
 
-    The rotation part is transposed rather than inverted numerically (seed 001).
+    The rotation part is transposed rather than inverted numerically: exact for
+    a rotation, and cheaper.
     """
-    Ta = np.asarray(T, dtype=float)
+    Ta = as_float_array(T, "T", (4, 4))
     Rt = np.swapaxes(Ta[..., :3, :3], -1, -2)
     return make_transform(Rt, -np.einsum("...ij,...j->...i", Rt, Ta[..., :3, 3]))
 
@@ -92,7 +105,11 @@ def compose(*transforms: ArrayLike) -> FloatArray:
     """Product ``T1 · T2 · ... · Tk`` of transforms, broadcasting batch shapes."""
     if not transforms:
         return np.eye(4)
-    out = np.asarray(transforms[0], dtype=float)
-    for T in transforms[1:]:
-        out = out @ np.asarray(T, dtype=float)
+    out = as_float_array(transforms[0], "transform 1", (4, 4))
+    for i, T in enumerate(transforms[1:], start=2):
+        Ta = as_float_array(T, f"transform {i}", (4, 4))
+        try:
+            out = out @ Ta
+        except ValueError as exc:
+            raise DimensionError(f"transform {i}: batch shapes do not broadcast: {exc}") from exc
     return out

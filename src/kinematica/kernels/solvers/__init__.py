@@ -1,6 +1,8 @@
-"""Closed-form IK solvers as kernels: one module per family, ``solve`` and ``solve_batch``.
+"""Closed-form IK solver kernels: one module per family of arms.
 
-Each solver fills, per target, candidate rows ``Q (m, n)`` (NaN rows: no real
-solution on that branch) and its ``info`` row; the check kernel of
-:mod:`kinematica.kernels.ik_check` judges them.
+Each module has a scalar kernel ``solve(params, T, Q, info)`` over one target
+and ``solve_batch`` running it in a parallel loop; ``params`` is a flat array
+packed once per arm by the family's builder in :mod:`kinematica.ik.analytic`
+(its offsets are the module's ``P_*`` constants). What ``Q`` and ``info``
+hold is described in :mod:`kinematica.kernels.ik_check`.
 """

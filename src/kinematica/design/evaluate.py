@@ -1,0 +1,73 @@
+"""One candidate design on the task: the pure function every worker runs.
+
+:func:`evaluate_design` builds the robot at the candidate's parameter values,
+solves IK for the whole task batch and returns an :class:`Evaluation`: every
+measure of :data:`~kinematica.design.objectives.MEASURES`, whatever the
+objective, so that a checkpoint serves any later run on the same template and
+task. It depends on nothing but its arguments (the numeric IK seed is fixed),
+so a candidate gets the very same numbers in this process, on any Dask worker,
+and when read back from a checkpoint.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from kinematica.design.measures import measure_task, total_length
+from kinematica.design.task import Task
+from kinematica.design.template import DesignTemplate
+
+__all__ = ["Evaluation", "evaluate_design"]
+
+
+@dataclass(frozen=True)
+class Evaluation:
+    """A candidate design and how it does on the task.
+
+    Attributes:
+        params: The design variables, ``name -> value`` (template file units).
+        measures: ``min_manipulability``, ``mean_manipulability``,
+            ``worst_condition``, ``singularity_clearance`` (over the reached
+            targets; NaN if none), ``total_length`` (m) and ``reached`` (share
+            of the targets reached within the joint limits).
+        violation: Share of the targets not reached plus their mean distance
+            outside the reach (m, where known); 0 for a feasible design.
+    """
+
+    params: Mapping[str, float]
+    measures: Mapping[str, float]
+    violation: float
+
+    @property
+    def feasible(self) -> bool:
+        """Every target is reached within the joint limits."""
+        return self.violation == 0.0
+
+    @property
+    def x(self) -> tuple[float, ...]:
+        """The design variables as a tuple, in template order."""
+        return tuple(self.params.values())
+
+
+def evaluate_design(template: DesignTemplate, task: Task, x: ArrayLike) -> Evaluation:
+    """Measure the design ``x`` of ``template`` on ``task``.
+
+    Args:
+        template: The design template.
+        task: The targets, in the robot's base frame.
+        x: ``(p,)`` values of the design variables (``template.names`` order,
+            file units), within their bounds.
+
+    Returns:
+        The evaluation.
+    """
+    params = template.params(np.asarray(x, dtype=float))
+    robot = template.robot_at(params)
+    found = measure_task(robot, task)
+    measures = found.summary()
+    measures["total_length"] = total_length(robot)
+    return Evaluation(params=params, measures=measures, violation=found.violation)

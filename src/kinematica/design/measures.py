@@ -1,0 +1,214 @@
+"""How well a robot does a task: reach, manipulability, conditioning, clearance.
+
+For every target the robot's IK (``robot.ik`` on the whole task batch: closed
+form where the arm's structure allows, numeric otherwise; joint limits
+respected) gives its solutions. At each solution the *task Jacobian* is the
+rows of the geometric Jacobian (base frame) that the task constrains: the three
+position rows for position targets, all six for poses. With ``σ1 ≥ σ2 ≥ ...``
+its singular values and ``r`` the arm's *generic rank* for those rows (the
+largest rank over its configurations: 2 for a planar arm's position rows, so
+that the plane's normal, where the arm never moves, does not make every
+measure zero):
+
+- manipulability ``w = σ1·σ2···σr`` (Yoshikawa's ``sqrt(det(J Jᵀ))`` for a
+  full-rank square case), m^r for position rows;
+- condition number ``κ = σ1 / σr`` (1 is isotropic; ``inf`` at a singularity);
+- singularity clearance ``σr``, the smallest of the r singular values (how far
+  the Jacobian is from losing rank, in the 2-norm).
+
+A target's value is that of its best solution (the arm may choose its branch):
+the largest ``w``, the smallest ``κ``, the largest ``σr``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Final, Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from kinematica.design.task import Task
+from kinematica.errors import KinematicaError
+from kinematica.ik.result import IKBatchResult
+from kinematica.robot import Robot
+
+__all__ = [
+    "IK_SEED",
+    "RANK_TOL",
+    "TaskMeasures",
+    "generic_rank",
+    "measure_task",
+    "task_singular_values",
+    "total_length",
+]
+
+FloatArray = NDArray[np.float64]
+Rows = Literal["position", "pose"]
+
+#: A singular value counts towards the generic rank when it exceeds
+#: ``RANK_TOL`` times the largest one (relative; units of the rows mix m and rad).
+RANK_TOL: Final = 1e-9
+#: Configurations drawn (within the limits, seeded) to find the generic rank.
+RANK_SAMPLES: Final = 12
+#: Seed of the numeric IK restarts, fixed so that a candidate's measures are a
+#: pure function of the design (the same on every worker and in checkpoints).
+IK_SEED: Final = 0
+#: Half-width (m) of the range sampled for a prismatic joint without limits.
+_FREE_STROKE: Final = 1.0
+
+
+def _rows(robot: Robot, q: ArrayLike, rows: Rows) -> FloatArray:
+    if rows not in ("position", "pose"):
+        raise KinematicaError(f"rows must be 'position' or 'pose', got {rows!r}")
+    J = robot.jacobian(q)
+    return J[..., :3, :] if rows == "position" else J
+
+
+def generic_rank(robot: Robot, rows: Rows = "position") -> int:
+    """The largest rank of the task Jacobian over the robot's configurations.
+
+    Estimated at :data:`RANK_SAMPLES` configurations drawn uniformly within
+    the joint limits (a fixed seed): a rank reached at one random
+    configuration is reached almost everywhere.
+
+    Args:
+        robot: The robot.
+        rows: ``"position"`` (3 rows) or ``"pose"`` (6 rows).
+
+    Returns:
+        ``r``, at most ``min(3 or 6, n)``.
+    """
+    lim = robot.qlim.copy()
+    lim[~np.isfinite(lim[:, 0]), 0] = -_FREE_STROKE
+    lim[~np.isfinite(lim[:, 1]), 1] = _FREE_STROKE
+    q = np.random.default_rng(0).uniform(lim[:, 0], lim[:, 1], (RANK_SAMPLES, robot.dof))
+    s = np.linalg.svd(_rows(robot, q, rows), compute_uv=False)
+    top = s[:, :1]
+    return int(np.max(np.sum(s > RANK_TOL * top, axis=-1), initial=0))
+
+
+def task_singular_values(
+    robot: Robot, q: ArrayLike, rows: Rows = "position", rank: int | None = None
+) -> FloatArray:
+    """The ``r`` largest singular values of the task Jacobian, largest first.
+
+    Args:
+        robot: The robot.
+        q: ``(..., n)`` configurations (rad, m).
+        rows: ``"position"``: the linear-velocity rows (m/rad, m/m);
+            ``"pose"``: all six (angular rows in rad/rad).
+        rank: ``r``; the robot's :func:`generic_rank` if ``None``.
+
+    Returns:
+        ``(..., r)`` singular values. Their product is the manipulability,
+        ``σ1/σr`` the condition number, ``σr`` the clearance.
+    """
+    r = generic_rank(robot, rows) if rank is None else rank
+    s = np.linalg.svd(_rows(robot, q, rows), compute_uv=False)
+    return np.asarray(s[..., :r], dtype=np.float64)
+
+
+def total_length(robot: Robot) -> float:
+    """The sum of the DH table's constant lengths, and the tool offset (m).
+
+    ``Σ|a_i|`` over every joint, ``Σ|d_i|`` over revolute joints, ``|d|``
+    offsets of prismatic joints, and the length of the tool's translation: a
+    proxy of the arm's mass and cost. The base placement is not a link.
+    """
+    total = 0.0
+    for link in robot.links:
+        constant_d = link.d if link.type == "R" else link.offset
+        total += abs(link.a) + abs(constant_d)
+    return total + float(np.linalg.norm(robot.tool[:3, 3]))
+
+
+@dataclass(frozen=True)
+class TaskMeasures:
+    """A robot on a task, target by target (NaN where a target is not reached).
+
+    Attributes:
+        reached: ``(N,)`` True where IK found a solution within the joint limits.
+        manipulability: ``(N,)`` best manipulability over the target's solutions.
+        condition: ``(N,)`` best (smallest) condition number.
+        clearance: ``(N,)`` best (largest) smallest singular value.
+        gap: ``(N,)`` distance (m) outside the reach of an unreachable target
+            when the solver knows it, else 0.
+        rank: The generic rank ``r`` used.
+    """
+
+    reached: NDArray[np.bool_]
+    manipulability: FloatArray
+    condition: FloatArray
+    clearance: FloatArray
+    gap: FloatArray
+    rank: int
+
+    @property
+    def violation(self) -> float:
+        """The share of targets not reached, plus their mean gap (m): 0 when feasible."""
+        return float(np.mean(~self.reached) + np.mean(self.gap))
+
+    def summary(self) -> dict[str, float]:
+        """The task-level values (over the reached targets; NaN if none).
+
+        Returns:
+            ``min_manipulability``, ``mean_manipulability``, ``worst_condition``,
+            ``singularity_clearance``, and ``reached`` (share of targets).
+        """
+        ok = self.reached
+        if not ok.any():
+            nan = math.nan
+            return {
+                "min_manipulability": nan,
+                "mean_manipulability": nan,
+                "worst_condition": nan,
+                "singularity_clearance": nan,
+                "reached": 0.0,
+            }
+        return {
+            "min_manipulability": float(np.min(self.manipulability[ok])),
+            "mean_manipulability": float(np.mean(self.manipulability[ok])),
+            "worst_condition": float(np.max(self.condition[ok])),
+            "singularity_clearance": float(np.min(self.clearance[ok])),
+            "reached": float(np.mean(ok)),
+        }
+
+
+def measure_task(robot: Robot, task: Task) -> TaskMeasures:
+    """Solve IK for every target of ``task`` and measure each reached one.
+
+    Args:
+        robot: The robot.
+        task: Positions or poses in the robot's base frame.
+
+    Returns:
+        The per-target measures (see the module docs).
+    """
+    result = robot.ik(task.targets, seed=IK_SEED)
+    assert isinstance(result, IKBatchResult)
+    rows: Rows = task.kind
+    n_targets, k_max = result.solutions.shape[:2]
+    rank = generic_rank(robot, rows)
+    reached = result.count > 0
+    shape = (n_targets,)
+    manip = np.full(shape, np.nan)
+    cond = np.full(shape, np.nan)
+    clear = np.full(shape, np.nan)
+    if reached.any() and k_max > 0:
+        sol = result.solutions  # (N, k, n), NaN-padded
+        valid = np.all(np.isfinite(sol), axis=-1)
+        s = np.zeros((*valid.shape, rank))  # (N, k, r), the SVDs of real solutions only
+        s[valid] = task_singular_values(robot, sol[valid], rows, rank)
+        smallest = s[..., -1] if rank > 0 else np.zeros(valid.shape)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            kappa = np.where(smallest > 0.0, s[..., 0] / smallest, np.inf)
+        w = np.prod(s, axis=-1) if rank > 0 else np.zeros(valid.shape)
+        manip = np.max(np.where(valid, w, -np.inf), axis=1)
+        cond = np.min(np.where(valid, kappa, np.inf), axis=1)
+        clear = np.max(np.where(valid, smallest, -np.inf), axis=1)
+        for a in (manip, cond, clear):
+            a[~reached] = np.nan
+    gap = np.where(reached | ~np.isfinite(result.gap), 0.0, result.gap)
+    return TaskMeasures(reached, manip, cond, clear, np.maximum(gap, 0.0), rank)

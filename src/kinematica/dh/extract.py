@@ -1,0 +1,371 @@
+"""A DH table read off the joint axes of any serial chain, by the Denavit-Hartenberg rules.
+
+Input: each joint's axis as a line in space at q = 0 (direction, and the joint's
+own frame, whose origin is on the axis), the tip pose at q = 0, and the named
+frames the description has before joint 1 and after joint n (a URDF's link
+frames). Output: DH rows in the standard (Paul, distal) or modified (Craig,
+proximal) convention, with joint offsets so that q = 0 is the same posture,
+and base and tool transforms for whatever DH cannot express. The table
+reproduces the chain's forward kinematics for every q: two chains with the
+same joint lines and the same home pose have the same FK.
+
+Frames, standard convention (the DH method's rules 4-9): ``S_(k-1)`` has z along
+joint k's axis, in the sense of the joint's positive motion.
+
+- ``S_0`` (rule 5: anywhere on axis 1): the nearest frame of the description
+  before joint 1 whose z is axis 1 and whose origin is on it, else the joint-1
+  frame if it is such a frame, else origin at joint 1 with x from its frame.
+- ``S_k``, k = 1..n-1 (rules 6-7): skew axes: x along the common normal, origin
+  at its foot on axis k+1; axes that meet: origin at the intersection,
+  x = ±z_(k-1) × z_k; parallel axes: origin at joint k+1 (the joint's own
+  origin on its axis), x normal to both axes; coinciding axes: origin at joint
+  k+1, x from joint k+1's frame. Where the sense of x is free, it follows
+  joint k+1's own frame when that frame's x has a component along the normal
+  (so a table exported and read back keeps the signs of its a's and α's);
+  otherwise the normal from axis k to axis k+1, or z_(k-1) × z_k.
+- ``S_n`` (rule 9): the nearest frame after joint n whose x is normal to axis
+  n and meets it (a valid last DH frame, e.g. a flange or tool frame), else
+  origin at the tip with z_n = z_(n-1) and x_n from axis n towards the tip (or
+  from the tip frame when the tip is on axis n).
+
+Modified convention (Craig): ``S_k`` has z along joint k's axis; ``S_k``'s x
+lies on the common normal to axis k+1 with the origin at its foot on axis k
+(same cases and choices, the joint of a parallel pair being joint k); ``S_n``
+is joint n's frame made valid (origin at joint n, x from its frame); ``S_0``
+is the nearest frame before joint 1 whose x is normal to axis 1 and meets it,
+else the joint-1 frame if it is one, else ``S_1`` itself (Craig: a_0 = α_0 =
+0, S_0 coincides with S_1 at q1 = 0).
+
+Rules 10-13 then read θ, d, a, α between consecutive frames; ``base = S_0`` and
+``tool = S_n⁻¹ · tip``. Every decision is reported as a :class:`FrameRule`.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Callable
+
+import numpy as np
+from numpy.typing import NDArray
+
+from kinematica.dh.axes import AxisFrame, ChainGeometry, ExtractedTable, FrameRule, NamedFrame
+from kinematica.dh.joints import (
+    Convention,
+    Joint,
+    Prismatic,
+    Revolute,
+    check_convention,
+    values_checked,
+)
+from kinematica.dh.lines import (
+    EXTRACT_ANGLE_TOL,
+    EXTRACT_LENGTH_TOL,
+    cross3,
+    frame_from,
+    frame_normal_to_axis,
+    frame_on_axis,
+    line_pair,
+    perpendicular_hint,
+)
+from kinematica.dh.link import link_matrix
+from kinematica.errors import KinematicaWarning
+from kinematica.spatial import matrix_from_axis_angle
+
+__all__ = [
+    "FK_CHECK_TOL",
+    "ROUND_OFF_TOL",
+    "AxisFrame",
+    "ChainGeometry",
+    "ExtractedTable",
+    "FrameRule",
+    "NamedFrame",
+    "extract_dh",
+]
+
+FloatArray = NDArray[np.float64]
+
+#: A KinematicaWarning is raised when the extracted table reproduces the chain's
+#: forward kinematics worse than this (largest entry of T, m or unitless): only
+#: nearly parallel consecutive axes, whose true common normal is far away, cause it.
+FK_CHECK_TOL = 1e-9
+#: Round-off of the frame arithmetic: a DH length this close to a 12-decimal
+#: number, an angle this close to a multiple of 45°, and a base or tool entry
+#: this close to 0, 1 or -1 are set to that value (FK moves by about this much).
+ROUND_OFF_TOL = 1e-15
+_CHECK_SAMPLES = 6  # configurations the FK check compares (q = 0 and random ones)
+
+
+def _joint_label(g: ChainGeometry, k: int) -> str:
+    name = g.joints[k - 1].name
+    return f"joint {k} ({name!r})" if name else f"joint {k}"
+
+
+def _pair(g: ChainGeometry, a: int, frame: int, on_b: bool) -> tuple[FloatArray, FrameRule]:
+    """The frame on axis ``a+1`` (``on_b``) or ``a`` by the common normal of axes a, a+1."""
+    A, B = g.joints[a - 1], g.joints[a]
+    pair = line_pair(A.direction, A.frame[:3, 3], B.direction, B.frame[:3, 3])
+    on = B if on_b else A
+    k_on = a + 1 if on_b else a
+    z = on.direction
+    origin = pair.foot_b if on_b else pair.foot_a
+    axes = f"axes {a} and {a + 1}"
+    if pair.normal is None:
+        x = perpendicular_hint(on.frame, z)
+        text = (
+            f"{axes} coincide: origin at {_joint_label(g, k_on)}, x{frame} from its frame "
+            "(normal to the axis)"
+        )
+        return frame_from(x, z, origin), FrameRule(frame, "collinear", text)
+    x = pair.normal
+    flipped = float(on.frame[:3, 0] @ x) < -EXTRACT_ANGLE_TOL
+    if flipped:
+        x = -x
+    if pair.kind == "parallel":
+        x = x - float(x @ z) * z
+        x = x / np.linalg.norm(x)
+    if pair.kind == "intersecting":
+        za, zb = (frame - 1, frame) if on_b else (frame, frame + 1)
+        sense = f"-(z{za} × z{zb})" if flipped else f"z{za} × z{zb}"
+        text = f"{axes} meet: origin at the intersection, x{frame} = {sense} (rule 6)"
+    else:
+        where = f"at {_joint_label(g, k_on)}" if pair.kind == "parallel" else f"on axis {k_on}"
+        towards = f"from axis {a + 1} to axis {a}" if flipped else f"from axis {a} to axis {a + 1}"
+        text = (
+            f"{axes} are {pair.kind}: x{frame} on a common normal, origin {where} "
+            f"(rules 6-7), x{frame} {towards}"
+        )
+    if flipped:
+        text += f", as the frame of {_joint_label(g, k_on)} has it"
+    if _obeys_rules(on, A if on_b else B):
+        # The joint's own frame is already this DH frame, to round-off: keep it whole (the
+        # computed normal of nearly parallel axes is known only to about 1e-16 / angle).
+        return frame_from(on.frame[:3, 0], z, on.frame[:3, 3]), FrameRule(frame, pair.kind, text)
+    return frame_from(x, z, origin), FrameRule(frame, pair.kind, text)
+
+
+def _obeys_rules(joint: AxisFrame, other: AxisFrame) -> bool:
+    """True when the joint's own frame has its x line on the common normal, to round-off.
+
+    That is: x normal to the joint's axis and to the other axis, and meeting the
+    other axis (the frame's origin is on the joint's axis), as rules 6-7 place
+    the DH frame on the joint's axis.
+    """
+    x, o = joint.frame[:3, 0], joint.frame[:3, 3]
+    h, p = other.direction, other.frame[:3, 3]
+    if abs(float(x @ joint.direction)) > ROUND_OFF_TOL or abs(float(x @ h)) > ROUND_OFF_TOL:
+        return False
+    scale = max(1.0, float(np.abs(o).max()), float(np.abs(p).max()))
+    off = float((p - o) @ cross3(x, h))  # distance of the lines (x ⊥ h: |x × h| = 1)
+    return abs(off) <= ROUND_OFF_TOL * scale
+
+
+def _candidates(
+    named: tuple[NamedFrame, ...],
+    joint: AxisFrame,
+    label: str,
+    make: Callable[[FloatArray, FloatArray, FloatArray], FloatArray | None],
+) -> tuple[FloatArray, str] | None:
+    """The first named frame (then the joint's own frame) that ``make`` accepts."""
+    h, p = joint.direction, joint.frame[:3, 3]
+    for f in named:
+        F = make(f.pose, h, p)
+        if F is not None:
+            return F, f"link {f.name!r}"
+    F = make(joint.frame, h, p)
+    return None if F is None else (F, f"the frame of {label}")
+
+
+def _standard_frames(g: ChainGeometry) -> tuple[list[FloatArray], list[FrameRule]]:
+    n = len(g.joints)
+    j1, jn = g.joints[0], g.joints[-1]
+    frames: list[FloatArray] = []
+    rules: list[FrameRule] = []
+    found = _candidates(g.before, j1, _joint_label(g, 1), frame_on_axis)
+    if found is not None:
+        frames.append(found[0])
+        rules.append(FrameRule(0, "frame", f"{found[1]} kept (its z is axis 1, its origin on it)"))
+    else:
+        x = perpendicular_hint(j1.frame, j1.direction)
+        frames.append(frame_from(x, j1.direction, j1.frame[:3, 3]))
+        rules.append(
+            FrameRule(0, "rule 5", f"origin at {_joint_label(g, 1)} on axis 1, x0 from its frame")
+        )
+    for k in range(1, n):
+        S, rule = _pair(g, k, k, on_b=True)
+        frames.append(S)
+        rules.append(rule)
+    h, p = jn.direction, jn.frame[:3, 3]
+    last = next(
+        ((F, f.name) for f in g.after if (F := frame_normal_to_axis(f.pose, h, p)) is not None),
+        None,
+    )
+    if last is not None:
+        frames.append(last[0])
+        text = f"link {last[1]!r} kept (its x is normal to axis {n} and meets it: rule 9)"
+        rules.append(FrameRule(n, "frame", text))
+        return frames, rules
+    tip_o = g.tip[:3, 3]
+    foot = p + float((tip_o - p) @ h) * h
+    off = tip_o - foot
+    dist = float(np.linalg.norm(off))
+    if dist > EXTRACT_LENGTH_TOL:
+        x, how = off / dist, f"x{n} from axis {n} towards the tip"
+    else:
+        x, how = perpendicular_hint(g.tip, h), f"the tip is on axis {n}, x{n} from the tip frame"
+        tip_o = foot
+    frames.append(frame_from(x, h, tip_o))
+    rules.append(FrameRule(n, "rule 9", f"origin at the tip, z{n} = z{n - 1}, {how}"))
+    return frames, rules
+
+
+def _modified_frames(g: ChainGeometry) -> tuple[list[FloatArray], list[FrameRule]]:
+    n = len(g.joints)
+    j1, jn = g.joints[0], g.joints[-1]
+    frames: list[FloatArray] = []
+    rules: list[FrameRule] = []
+    for k in range(1, n):
+        S, rule = _pair(g, k, k, on_b=False)
+        frames.append(S)
+        rules.append(rule)
+    F = frame_on_axis(jn.frame, jn.direction, jn.frame[:3, 3])
+    if F is not None:
+        rules.append(FrameRule(n, "frame", f"the frame of {_joint_label(g, n)} kept"))
+    else:
+        x = perpendicular_hint(jn.frame, jn.direction)
+        F = frame_from(x, jn.direction, jn.frame[:3, 3])
+        text = f"origin at {_joint_label(g, n)}, x{n} from its frame (free in Craig's rules)"
+        rules.append(FrameRule(n, "craig", text))
+    frames.append(F)
+    found = _candidates(g.before, j1, _joint_label(g, 1), frame_normal_to_axis)
+    if found is not None:
+        first = found[0]
+        rule0 = FrameRule(0, "frame", f"{found[1]} kept (its x is normal to axis 1 and meets it)")
+    else:
+        first = frames[0]
+        rule0 = FrameRule(0, "craig", "S0 is S1 at q1 = 0 (Craig: a0 = alpha0 = 0)")
+    return [first, *frames], [rule0, *rules]
+
+
+def _row(F0: FloatArray, F1: FloatArray, convention: Convention) -> tuple[float, ...]:
+    """``(theta, d, a, alpha)`` between consecutive frames (the DH method's rules 10-13)."""
+    x0, y0, z0, o0 = F0[:3, 0], F0[:3, 1], F0[:3, 2], F0[:3, 3]
+    x1, z1, o1 = F1[:3, 0], F1[:3, 2], F1[:3, 3]
+    step = o1 - o0
+    if convention == "standard":  # Rot(z, θ) Tras(z, d) Tras(x, a) Rot(x, α)
+        theta = math.atan2(float(x1 @ y0), float(x1 @ x0))
+        alpha = math.atan2(float(z1 @ cross3(x1, z0)), float(z1 @ z0))
+        return theta, float(step @ z0), float(step @ x1), alpha
+    # Rot(x, α) Tras(x, a) Rot(z, θ) Tras(z, d), α and a being α(i-1), a(i-1)
+    alpha = math.atan2(-float(z1 @ y0), float(z1 @ z0))
+    theta = math.atan2(float(x1 @ cross3(z1, x0)), float(x1 @ x0))
+    return theta, float(step @ z1), float(step @ x0), alpha
+
+
+def _fk_error(
+    g: ChainGeometry, rows: tuple[Joint, ...], conv: Convention, base: FloatArray, tool: FloatArray
+) -> float:
+    """Largest entry difference between the table's FK and the chain's (product of exponentials)."""
+    n = len(g.joints)
+    rng = np.random.default_rng(0)
+    prismatic = np.array([j.kind == "P" for j in g.joints])
+    q = rng.uniform(-math.pi, math.pi, (_CHECK_SAMPLES, n))
+    q[0] = 0.0
+    h = np.array([j.direction for j in g.joints])
+    p = np.array([j.frame[:3, 3] for j in g.joints])
+    theta = np.where(prismatic, [r.theta for r in rows], q + [r.theta for r in rows])
+    d = np.where(prismatic, q + [r.d for r in rows], [r.d for r in rows])
+    a = np.broadcast_to([r.a for r in rows], q.shape)
+    alpha = np.broadcast_to([r.alpha for r in rows], q.shape)
+    A = link_matrix(theta, d, a, alpha, conv)
+    R = matrix_from_axis_angle(np.broadcast_to(h, (*q.shape, 3)), np.where(prismatic, 0.0, q))
+    E = np.zeros((*q.shape, 4, 4))
+    E[..., :3, :3] = R
+    E[..., :3, 3] = np.where(
+        prismatic[:, None], h * q[..., None], p - np.einsum("...ij,...j->...i", R, p)
+    )
+    E[..., 3, 3] = 1.0
+    T_dh = np.broadcast_to(base, (_CHECK_SAMPLES, 4, 4))
+    T_ref = np.broadcast_to(np.eye(4), (_CHECK_SAMPLES, 4, 4))
+    for k in range(n):  # batched 4x4 products over the samples
+        T_dh = T_dh @ A[:, k]
+        T_ref = T_ref @ E[:, k]
+    return float(np.abs(T_dh @ tool - T_ref @ g.tip).max())
+
+
+def _tidy_length(v: float) -> float:
+    r = round(v, 12)
+    return r + 0.0 if abs(r - v) <= ROUND_OFF_TOL else v
+
+
+def _tidy_angle(v: float) -> float:
+    k = round(v / (math.pi / 4))
+    r = k * (math.pi / 4)
+    if abs(r - v) > ROUND_OFF_TOL:
+        return v
+    return math.pi if k == -4 else r + 0.0  # wrapped to (-π, π]
+
+
+def _snap(T: FloatArray) -> FloatArray:
+    """``T`` with entries within :data:`ROUND_OFF_TOL` of 0, 1 or -1 set to them."""
+    near = np.clip(np.round(T), -1.0, 1.0)
+    return np.where(np.abs(T - near) <= ROUND_OFF_TOL, near, T)
+
+
+def extract_dh(geometry: ChainGeometry, convention: str = "standard") -> ExtractedTable:
+    """The DH table of a serial chain, by the rules (see the module docstring).
+
+    Args:
+        geometry: The chain's joint axes, tip and named frames at q = 0.
+        convention: ``"standard"`` or ``"modified"`` (aliases accepted).
+
+    Returns:
+        Rows, base, tool, the rule that placed each frame and the measured FK
+        agreement. A :class:`~kinematica.errors.KinematicaWarning` is raised
+        when that agreement is worse than :data:`FK_CHECK_TOL`.
+    """
+    conv = check_convention(convention)
+    build = _standard_frames if conv == "standard" else _modified_frames
+    frames, rules = build(geometry)
+    rows: list[Joint] = []
+    for k, joint in enumerate(geometry.joints, start=1):
+        theta, d, a, alpha = _row(frames[k - 1], frames[k], conv)
+        theta, alpha = _tidy_angle(theta), _tidy_angle(alpha)
+        d, a = _tidy_length(d), _tidy_length(a)
+        # Derived values: the plausibility warnings are for values people type.
+        with values_checked():
+            if joint.kind == "R":
+                rows.append(
+                    Revolute(d=d, a=a, alpha=alpha, offset=theta, qlim=joint.qlim, name=joint.name)
+                )
+            else:
+                rows.append(
+                    Prismatic(
+                        theta=theta, a=a, alpha=alpha, offset=d, qlim=joint.qlim, name=joint.name
+                    )
+                )
+    base = _snap(frames[0])
+    Sn = frames[-1]
+    tool = np.eye(4)
+    tool[:3, :3] = Sn[:3, :3].T @ geometry.tip[:3, :3]
+    tool[:3, 3] = Sn[:3, :3].T @ (geometry.tip[:3, 3] - Sn[:3, 3])
+    tool = _snap(tool)
+    table = tuple(rows)
+    error = _fk_error(geometry, table, conv, base, tool)
+    if error > FK_CHECK_TOL:
+        warnings.warn(
+            f"the extracted {conv} DH table reproduces the chain's forward kinematics only to "
+            f"{error:.1e} (consecutive axes nearly parallel: DH cannot place their common "
+            "normal accurately)",
+            KinematicaWarning,
+            stacklevel=2,
+        )
+    return ExtractedTable(
+        rows=table,
+        convention=conv,
+        base=base,
+        tool=tool,
+        rules=tuple(rules),
+        fk_error=error,
+        frames=np.array(frames),
+    )

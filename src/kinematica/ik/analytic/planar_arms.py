@@ -1,0 +1,216 @@
+"""Planar 2R, 3R, PR and PRR arms and the SCARA: their closed form, built once per arm.
+
+Everything is read from the joint axes at q = 0 and the tool pose ``M =
+fk(0)``, so any base, tool, offsets and DH convention are handled alike; the
+kernel is :mod:`kinematica.kernels.solvers.planar_arms`.
+
+Branch labels (angles about ``k``, the first revolute axis's direction, seen
+from the side it points to: positive turns are counter-clockwise):
+
+* planar 2R and 3R: ``"elbow up"``, ``"elbow down"``. Elbow up: the elbow lies
+  to the left of the line from the shoulder (axis 1) to the wrist (the tool
+  origin of a 2R arm, axis 3 of a 3R arm), i.e. link 2 is turned clockwise
+  from link 1 (relative angle ψ in [-π, 0]); drawn with the target to the
+  right of the shoulder, the elbow is above the line.
+* SCARA: ``"right-handed"`` (ψ in [0, π]: the elbow to the right of the
+  shoulder-wrist line, as a right arm seen from above) and ``"left-handed"``.
+* planar PR and PRR: ``"link forward"`` (the revolute link points along the
+  slide direction, seed 000's ``q2A = asin(y/l2)``) and ``"link backward"``
+  (``q2B = π - asin(y/l2)``).
+
+For position targets of the 3R, PRR and SCARA arms the last revolute joint is
+free and the labels describe the representatives.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import NDArray
+
+from kinematica.dh import DHChain
+from kinematica.ik.registry import ClosedForm, SolverSpec, TargetKind
+from kinematica.ik.structure import Features
+from kinematica.kernels import fk
+from kinematica.kernels.solvers import planar_arms as kernel
+from kinematica.kernels.solvers.planar_params import (
+    P_AXIS,
+    P_E1,
+    P_E2,
+    P_K,
+    P_LENGTH,
+    P_LIFT,
+    P_LIFT_SIGN,
+    P_LIFT_TILT,
+    P_NREV,
+    P_ORIGIN,
+    P_POSE,
+    P_QLIM,
+    P_RE1,
+    P_REACH,
+    P_REV,
+    P_RMAX,
+    P_RMIN,
+    P_SIGN,
+    P_SIZE,
+    P_SLACK,
+    P_SLIDE,
+    P_SLIDE_TILT,
+    P_SWAP,
+    P_TIP,
+    P_TOOL,
+    P_U,
+    P_WRIST,
+)
+
+__all__ = ["LABELS", "LENGTH_TOL", "SPECS", "build", "plane_basis"]
+
+FloatArray = NDArray[np.float64]
+
+#: A link shorter than this (m) in the plane makes the arm degenerate (a joint
+#: that moves nothing, or two coinciding axes): no closed form is built and
+#: the numeric method takes the arm.
+LENGTH_TOL = 1e-9
+
+#: Branch labels of the candidate slots, per kind.
+LABELS: dict[str, tuple[str, str]] = {
+    "planar-2R": ("elbow up", "elbow down"),
+    "planar-3R": ("elbow up", "elbow down"),
+    "scara": ("right-handed", "left-handed"),
+    "planar-PR": ("link forward", "link backward"),
+    "planar-PRR": ("link forward", "link backward"),
+}
+
+
+def plane_basis(k: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """A unit basis ``e1, e2 = k × e1`` of the plane normal to the unit vector ``k``."""
+    e1 = np.cross(k, np.eye(3)[int(np.argmin(np.abs(k)))])
+    e1 /= np.linalg.norm(e1)
+    return e1, np.cross(k, e1)
+
+
+def _sign(v: float) -> float:
+    return 1.0 if v > 0.0 else -1.0
+
+
+def _kind_of(features: Features) -> str | None:
+    for spec in SPECS:
+        if spec.handles(features):
+            return spec.kind
+    return None
+
+
+def build(chain: DHChain, features: Features, target: TargetKind) -> ClosedForm | None:
+    """The closed form of a planar arm or a SCARA, or None for degenerate links.
+
+    Args:
+        chain: The arm.
+        features: Its joint axes at q = 0 (one of the planar kinds or SCARA).
+        target: ``"pose"`` or ``"position"`` targets.
+    """
+    kind = _kind_of(features)
+    if kind is None:
+        return None
+    types = features.joint_types
+    h, p = features.directions, features.points
+    M = fk(chain, np.zeros(chain.dof))[0]
+    R_M, t_M = M[:3, :3], M[:3, 3]
+    rev = [i for i, t in enumerate(types) if t == "R"]
+    slide = 0 if types[0] == "P" else -1
+    lift = types.index("P") if kind == "scara" else -1
+    k = h[rev[0]] / np.linalg.norm(h[rev[0]])
+    e1, e2 = plane_basis(k)
+    origin = p[rev[0]]
+
+    def plane(x: FloatArray) -> FloatArray:
+        return np.array([(x - origin) @ e1, (x - origin) @ e2])
+
+    axis = np.array([plane(p[j]) for j in rev])
+    tip = plane(t_M)
+    links = [*np.diff(axis, axis=0), tip - axis[-1]]  # in-plane links after the first axis
+    lengths = [float(np.linalg.norm(v)) for v in links]
+    needed = lengths if kind in ("planar-2R", "planar-PR") else lengths[:-1]
+    if min(needed, default=math.inf) <= LENGTH_TOL:
+        return None
+    params = np.zeros(P_SIZE)
+    params[P_POSE] = float(target == "pose")
+    params[P_SWAP] = float(kind == "scara")
+    params[P_SLIDE] = slide
+    params[P_LIFT] = lift
+    if lift >= 0:
+        params[P_LIFT_SIGN] = _sign(float(h[lift] @ k))
+    params[P_NREV] = len(rev)
+    params[P_REV : P_REV + len(rev)] = rev
+    params[P_SIGN : P_SIGN + len(rev)] = [_sign(float(h[j] @ k)) for j in rev]
+    params[P_K : P_K + 3] = k
+    params[P_E1 : P_E1 + 3] = e1
+    params[P_E2 : P_E2 + 3] = e2
+    params[P_ORIGIN : P_ORIGIN + 3] = origin
+    params[P_TOOL : P_TOOL + 3] = t_M
+    params[P_RE1 : P_RE1 + 3] = R_M.T @ e1
+    params[P_WRIST : P_WRIST + 3] = R_M.T @ (p[rev[-1]] - t_M)
+    params[P_AXIS : P_AXIS + 2 * len(rev)] = axis.ravel()
+    params[P_TIP : P_TIP + 2] = tip
+    if slide >= 0:
+        u = np.array([h[0] @ e1, h[0] @ e2])
+        params[P_U : P_U + 2] = u / np.linalg.norm(u)
+    reach = sum(lengths)
+    params[P_REACH] = reach
+    params[P_RMAX] = reach
+    params[P_RMIN] = max(0.0, 2.0 * max(lengths) - reach)
+    params[P_QLIM : P_QLIM + 2 * chain.dof] = chain.qlim.ravel()
+    # How far from the ideal arm this one is (its axes parallel to k within the
+    # classification's tolerance): a turn about an axis tilted by δ moves every
+    # point within `length` of it by at most 2 δ length more or less.
+    length = float(sum(np.linalg.norm(np.diff(np.vstack([p, t_M]), axis=0), axis=1)))
+    tilts = [float(np.linalg.norm(np.cross(h[j], k))) for j in rev]
+    params[P_LENGTH] = length
+    params[P_SLACK] = 2.0 * sum(tilts) * length
+    if slide >= 0:
+        params[P_SLIDE_TILT] = abs(float(h[slide] @ k))
+    if lift >= 0:
+        params[P_LIFT_TILT] = float(np.linalg.norm(np.cross(h[lift], k)))
+    params.flags.writeable = False
+    return ClosedForm(
+        name=kind,
+        labels=LABELS[kind],
+        params=params,
+        solve_one=kernel.solve,
+        solve_batch=kernel.solve_batch,
+        position_only=target == "position",
+    )
+
+
+SPECS: tuple[SolverSpec, ...] = (
+    SolverSpec(
+        "planar-2R",
+        "2R planar",
+        lambda f: f.joint_types == "RR" and f.is_parallel(0, 1),
+        build,
+    ),
+    SolverSpec(
+        "planar-PR",
+        "PR planar (prismatic then revolute)",
+        lambda f: f.joint_types == "PR" and f.is_perpendicular(0, 1),
+        build,
+    ),
+    SolverSpec(
+        "planar-3R",
+        "3R planar",
+        lambda f: f.joint_types == "RRR" and f.all_parallel(range(3)),
+        build,
+    ),
+    SolverSpec(
+        "planar-PRR",
+        "PRR planar (prismatic then two parallel revolute)",
+        lambda f: f.joint_types == "PRR" and f.is_parallel(1, 2) and f.is_perpendicular(0, 1),
+        build,
+    ),
+    SolverSpec(
+        "scara",
+        "SCARA (RRPR, all axes parallel)",
+        lambda f: f.joint_types == "RRPR" and f.all_parallel(range(4)),
+        build,
+    ),
+)

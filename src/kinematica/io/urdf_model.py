@@ -1,0 +1,267 @@
+"""The kinematic part of a URDF as plain data: links, joints, one serial chain.
+
+:class:`UrdfModel` is what :mod:`kinematica.io.urdf` reads from a file, checked
+as a tree (every joint's links exist, one root, no link with two parents, no
+loop). :meth:`UrdfModel.chain` picks the serial chain from a base link to a tip
+link and checks that every joint on it is one kinematica can model: revolute,
+continuous, prismatic or fixed, and not a mimic joint. Nothing here computes
+kinematics; the origins are kept as :class:`~kinematica.io.spec.FrameSpec`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+from kinematica.errors import RobotFileError
+from kinematica.io.spec import FrameSpec
+
+__all__ = ["JOINT_TYPES", "MOVABLE_TYPES", "UrdfChain", "UrdfJoint", "UrdfModel"]
+
+#: Joint types of the URDF specification.
+JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
+#: The 1-DOF joint types a serial chain may hold (besides ``fixed``).
+MOVABLE_TYPES = ("revolute", "continuous", "prismatic")
+
+_SHOWN = 8  # names listed in a message before "..."
+
+
+def _names(names: Sequence[str]) -> str:
+    shown = ", ".join(repr(n) for n in names[:_SHOWN])
+    return shown + (f", ... ({len(names)} in all)" if len(names) > _SHOWN else "")
+
+
+@dataclass(frozen=True)
+class UrdfJoint:
+    """One ``<joint>`` of a URDF.
+
+    Attributes:
+        name: The joint's name.
+        type: One of :data:`JOINT_TYPES`.
+        parent: Name of the parent link.
+        child: Name of the child link.
+        origin: Pose of the joint frame in the parent link frame (m, rad);
+            the child link frame is the joint frame moved by the joint.
+        axis: Unit axis of rotation or translation, in the joint frame.
+        limits: ``(lower, upper)`` in rad (revolute) or m (prismatic), or
+            ``None`` (continuous joints, or no limits given).
+        mimic: Name of the joint this one mimics, or ``None``.
+    """
+
+    name: str
+    type: str
+    parent: str
+    child: str
+    origin: FrameSpec = field(default_factory=FrameSpec)
+    axis: tuple[float, float, float] = (1.0, 0.0, 0.0)
+    limits: tuple[float, float] | None = None
+    mimic: str | None = None
+
+    @property
+    def movable(self) -> bool:
+        """True for revolute, continuous and prismatic joints."""
+        return self.type in MOVABLE_TYPES
+
+    @property
+    def kind(self) -> str:
+        """``"R"`` (revolute, continuous), ``"P"`` (prismatic) or ``""`` (others)."""
+        return {"revolute": "R", "continuous": "R", "prismatic": "P"}.get(self.type, "")
+
+
+@dataclass(frozen=True)
+class UrdfChain:
+    """A serial chain of a URDF, from a base link to a tip link.
+
+    Attributes:
+        name: The robot's name.
+        base: Name of the base link (the world frame of the chain).
+        tip: Name of the tip link.
+        joints: The joints from ``base`` to ``tip`` in order, fixed ones
+            included; each joint's parent is the previous joint's child.
+        source: The file it was read from, or ``None``.
+    """
+
+    name: str
+    base: str
+    tip: str
+    joints: tuple[UrdfJoint, ...]
+    source: str | None = None
+
+    @property
+    def movable(self) -> tuple[UrdfJoint, ...]:
+        """The revolute, continuous and prismatic joints, base to tip."""
+        return tuple(j for j in self.joints if j.movable)
+
+
+@dataclass(frozen=True)
+class UrdfModel:
+    """The links and joints of a URDF, checked to form one tree.
+
+    Attributes:
+        name: The ``<robot name=...>``.
+        links: Link names, in file order.
+        joints: Joints, in file order.
+        source: The file it was read from, or ``None``.
+
+    Raises:
+        RobotFileError: A joint names a link that does not exist, a link is
+            the child of two joints, the joints form a loop, or there is more
+            than one root link (or none).
+    """
+
+    name: str
+    links: tuple[str, ...]
+    joints: tuple[UrdfJoint, ...]
+    source: str | None = None
+    _parent_joint: dict[str, UrdfJoint] = field(init=False, repr=False, compare=False)
+
+    def _error(self, message: str) -> RobotFileError:
+        return RobotFileError(message, path=self.source)
+
+    def __post_init__(self) -> None:
+        links = set(self.links)
+        parent_joint: dict[str, UrdfJoint] = {}
+        for j in self.joints:
+            for role, link in (("parent", j.parent), ("child", j.child)):
+                if link not in links:
+                    raise self._error(
+                        f"joint {j.name!r}: its {role} link {link!r} is not defined "
+                        f'(no <link name="{link}">)'
+                    )
+            if j.parent == j.child:
+                raise self._error(
+                    f"joint {j.name!r} joins link {j.child!r} to itself: a URDF has no loops"
+                )
+            if j.child in parent_joint:
+                other = parent_joint[j.child].name
+                raise self._error(
+                    f"link {j.child!r} is the child of two joints ({other!r} and {j.name!r}): "
+                    "a URDF is a tree and has no loops"
+                )
+            parent_joint[j.child] = j
+        roots = [name for name in self.links if name not in parent_joint]
+        if len(roots) > 1:
+            raise self._error(
+                f"{len(roots)} root links (links that are no joint's child): {_names(roots)}; "
+                "a URDF is one tree with one root"
+            )
+        if not roots:
+            raise self._error(f"the joints form a loop: {self._loop(parent_joint)}")
+        object.__setattr__(self, "_parent_joint", parent_joint)
+
+    @staticmethod
+    def _loop(parent_joint: dict[str, UrdfJoint]) -> str:
+        link = next(iter(parent_joint))
+        seen: list[str] = []
+        while link not in seen:
+            seen.append(link)
+            link = parent_joint[link].parent
+        cycle = [*seen[seen.index(link) :], link]
+        return " <- ".join(repr(n) for n in cycle) + " (every link has a parent joint)"
+
+    @property
+    def root(self) -> str:
+        """The root link: the one link that is no joint's child."""
+        return next(name for name in self.links if name not in self._parent_joint)
+
+    def _children(self) -> dict[str, list[UrdfJoint]]:
+        children: dict[str, list[UrdfJoint]] = {name: [] for name in self.links}
+        for j in self.joints:
+            children[j.parent].append(j)
+        return children
+
+    def _path(self, base: str, tip: str) -> tuple[UrdfJoint, ...] | None:
+        """The joints from ``base`` down to ``tip``, or None if tip is not below base."""
+        parent_joint = self._parent_joint
+        path: list[UrdfJoint] = []
+        link = tip
+        while link != base:
+            if link not in parent_joint:
+                return None
+            joint = parent_joint[link]
+            path.append(joint)
+            link = joint.parent
+        return tuple(reversed(path))
+
+    def _check_link(self, link: str, what: str) -> None:
+        if not isinstance(link, str) or link not in self.links:
+            raise self._error(f"{what}: no link named {link!r}; links: {_names(self.links)}")
+
+    def leaves(self, base: str | None = None) -> tuple[str, ...]:
+        """Links below ``base`` (default: the root) that have no child joint."""
+        start = self.root if base is None else base
+        self._check_link(start, "base")
+        children = self._children()
+        out, stack = [], [start]
+        while stack:
+            link = stack.pop()
+            below = children[link]
+            if not below and link != start:
+                out.append(link)
+            stack.extend(j.child for j in reversed(below))
+        return tuple(out)
+
+    def chain(self, base: str | None = None, tip: str | None = None) -> UrdfChain:
+        """The serial chain from link ``base`` to link ``tip``.
+
+        Args:
+            base: The base link; default the root link.
+            tip: The tip link; default the single leaf below ``base`` reached
+                through at least one movable joint (leaves hanging from the
+                base by fixed joints only, such as ROS-Industrial's ``base``
+                frame, are not candidates). With several candidates the error
+                lists them.
+
+        Returns:
+            The chain.
+
+        Raises:
+            RobotFileError: unknown link names, ``tip`` not below ``base``, no
+                single default tip, no movable joint on the chain, or a joint on
+                it that is floating, planar or a mimic joint.
+        """
+        start = self.root if base is None else base
+        self._check_link(start, "base")
+        if tip is None:
+            tip = self._default_tip(start)
+        self._check_link(tip, "tip")
+        path = self._path(start, tip)
+        if path is None:
+            raise self._error(
+                f"tip link {tip!r} is not below base link {start!r}; "
+                f"leaves below {start!r}: {_names(self.leaves(start))}"
+            )
+        for j in path:
+            if j.type in ("floating", "planar"):
+                dof = "6 DOF" if j.type == "floating" else "3 DOF"
+                raise self._error(
+                    f"joint {j.name!r} is {j.type} ({dof}): kinematica models serial chains "
+                    "of 1-DOF joints; choose a base link below it (base= / --base)"
+                )
+            if j.mimic is not None:
+                raise self._error(
+                    f"joint {j.name!r} mimics joint {j.mimic!r}: mimic joints are not supported "
+                    "on the chain; choose a tip link before it (tip= / --tip)"
+                )
+        if not any(j.movable for j in path):
+            raise self._error(f"no movable joint between links {start!r} and {tip!r}")
+        return UrdfChain(name=self.name, base=start, tip=tip, joints=path, source=self.source)
+
+    def _default_tip(self, base: str) -> str:
+        children = self._children()
+        candidates: list[str] = []
+        stack: list[tuple[str, bool]] = [(base, False)]
+        while stack:
+            link, moved = stack.pop()
+            below = children[link]
+            if not below and link != base and moved:
+                candidates.append(link)
+            stack.extend((j.child, moved or j.movable) for j in reversed(below))
+        if len(candidates) == 1:
+            return candidates[0]
+        if not candidates:
+            raise self._error(f"no movable joint below link {base!r}")
+        raise self._error(
+            f"{len(candidates)} leaf links below {base!r} end a chain with movable joints: "
+            f"{_names(candidates)}; choose one as the tip (tip= / --tip)"
+        )

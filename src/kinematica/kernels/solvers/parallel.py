@@ -1,0 +1,395 @@
+"""Three-parallel 6R arms (UR type), second half: every solution of one target.
+
+For each pair ``(q1, q5)`` of :mod:`kinematica.kernels.solvers.parallel_pairs`:
+
+* q6 by subproblem 1: ``R(h6, -q6) R5ᵀ k = R_Gᵀ k1`` (``R1ᵀ R_G = R234 R5 R6``
+  and ``R234`` keeps ``k``);
+* θ234, the angle of ``R234 = R1ᵀ R_G R6ᵀ R5ᵀ`` about ``k``;
+* ``H = E1⁻¹ G E6⁻¹ E5⁻¹ = E2 E3 E4`` takes axis 4 (``p4``) where the planar
+  triangle axis 2 -> axis 3 -> axis 4 must put it: q2 and q3 (two elbows),
+  then ``q4 = σ4 (θ234 - q2 - σ3 q3)``.
+
+Up to 8 solutions. Singular sets, all continua of solutions (``info`` marks
+them and names the free joints; the candidates are representatives):
+
+* the wrist aligned, axis 6 along ``k`` (sine below ``CONTINUUM_TOL``): q6
+  turns with q2, q3, q4 (axes 2, 3, 4, 6 all parallel). The representative q6
+  puts axis 4 at mid-reach of the triangle;
+* axis 4 on axis 2 with equal links (the folded elbow): q2 turns with q4;
+* equations (1) and (2) independent of q1 (with axes 5 and 6 meeting: the
+  wrist point on axis 1 and no shoulder offset; apart: axis 6 along axis 1
+  through it, and the offsets such that q5 can meet both): q1 turns, the
+  other joints following it.
+
+Elbow labels: "up" when the elbow (axis 3) lies on the side of the line
+axis 2 -> axis 4 toward which ``h1`` points.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from kinematica.kernels._numba import Array, batch_kernel, kernel
+from kinematica.kernels.geometry import TRIG_TOL, rotate, subproblem1, trig_linear
+from kinematica.kernels.ik_check import INFO_FREE, INFO_GAP, INFO_NEAR, INFO_SINGULAR
+from kinematica.kernels.so3 import wrap
+from kinematica.kernels.solvers.parallel_layout import (
+    CONTINUUM_TOL,
+    NEAR_TOL,
+    NV,
+    P_ARM,
+    P_BOUND,
+    P_EQ2,
+    P_LIP,
+    P_Q2REP,
+    P_SCALE,
+    P_SIGN3,
+    P_SIGN4,
+    P_ZUP,
+    PAIR_FREE_Q1,
+    PAIR_NONE,
+    V_A6,
+    V_E1,
+    V_E2,
+    V_H1,
+    V_H5,
+    V_H6,
+    V_HK,
+    V_K,
+    V_KPAR,
+    V_KPERP,
+    V_P1,
+    V_P1S,
+    V_P2,
+    V_P4,
+    V_P5,
+    V_P6,
+    V_RM,
+    V_TM,
+    cross2,
+    dot,
+)
+from kinematica.kernels.solvers.parallel_pairs import pairs
+
+__all__ = ["SLOTS", "solve", "solve_batch"]
+
+#: Candidate slots: four pairs (q1, q5) times two elbows.
+SLOTS = 8
+
+# Rows of the scratch array of a target.
+_K1, _A, _B, _Y, _V, _U, _Z, _G, _X6, _W6, _Z0, _Z1, _Z2 = range(13)
+# What the triangle reports.
+_FOLD, _NEAR = 1, 2
+
+
+@kernel
+def _goal(V: Array, T: Array, RG: Array, tG: Array) -> None:
+    """``G = T M⁻¹``: ``R_G = R_T R_Mᵀ``, ``t_G = t_T - R_G t_M``."""
+    for i in range(3):
+        for j in range(3):
+            RG[i, j] = (
+                T[i, 0] * V[V_RM + j, 0] + T[i, 1] * V[V_RM + j, 1] + T[i, 2] * V[V_RM + j, 2]
+            )
+    for i in range(3):
+        tG[i] = T[i, 3] - (RG[i, 0] * V[V_TM, 0] + RG[i, 1] * V[V_TM, 1] + RG[i, 2] * V[V_TM, 2])
+
+
+@kernel
+def _apply(R: Array, v: Array, out: Array) -> None:
+    """``out = R v`` for ``R (3, 3)``."""
+    for i in range(3):
+        out[i] = R[i, 0] * v[0] + R[i, 1] * v[1] + R[i, 2] * v[2]
+
+
+@kernel
+def _plane(V: Array, x: Array, out: Array) -> None:
+    """``out (2,)``: the coordinates of ``x`` across ``k`` (along e1, e2)."""
+    out[0] = dot(V[V_E1], x)
+    out[1] = dot(V[V_E2], x)
+
+
+@kernel
+def _moved(
+    V: Array, RG: Array, tG: Array, c1: float, s1: float, x: Array, out: Array, W: Array
+) -> None:
+    """``out = E1⁻¹(G(x)) - p2`` in plane coordinates (2,)."""
+    g = W[_G]
+    _apply(RG, x, g)
+    for r in range(3):
+        g[r] += tG[r] - V[V_P1, r]
+    rotate(V[V_H1], c1, -s1, g, W[_Z])
+    for r in range(3):
+        g[r] = W[_Z, r] + V[V_P1, r] - V[V_P2, r]
+    _plane(V, g, out)
+
+
+@kernel
+def _free_q6(
+    params: Array, V: Array, RG: Array, tG: Array, c1: float, s1: float, v: Array, W: Array
+) -> float:
+    """The representative q6 of an aligned wrist: axis 4 at mid-reach of the triangle.
+
+    With axis 6 along ``k``, axis 4 (``E1⁻¹ G (p6 + R(h6, -q6) v) - p2``, ``v =
+    E5⁻¹(p4) - p6``) runs on the circle ``Z0 + cos q6 Z1 - sin q6 Z2`` of radius
+    ``|v across h6|``: take the point at distance ``max(|A|, |B|)`` from axis 2
+    (clamped to the circle's range).
+    """
+    h6 = V[V_H6]
+    along = dot(h6, v)
+    x = W[_U]
+    z0 = W[_Z0]
+    z1 = W[_Z1]
+    z2 = W[_Z2]
+    for r in range(3):
+        x[r] = V[V_P6, r] + along * h6[r]
+    _moved(V, RG, tG, c1, s1, x, z0, W)
+    for r in range(3):
+        x[r] = v[r] - along * h6[r]
+    _apply(RG, x, W[_G])
+    rotate(V[V_H1], c1, -s1, W[_G], W[_Y])
+    _plane(V, W[_Y], z1)
+    x[0] = h6[1] * v[2] - h6[2] * v[1]
+    x[1] = h6[2] * v[0] - h6[0] * v[2]
+    x[2] = h6[0] * v[1] - h6[1] * v[0]
+    _apply(RG, x, W[_G])
+    rotate(V[V_H1], c1, -s1, W[_G], W[_Y])
+    _plane(V, W[_Y], z2)
+    r0 = math.hypot(z0[0], z0[1])
+    rad = 0.5 * (math.hypot(z1[0], z1[1]) + math.hypot(z2[0], z2[1]))
+    want = min(max(max(params[P_ARM], params[P_ARM + 1]), abs(r0 - rad)), r0 + rad)
+    # |Z0|² + rad² + 2 cos q6 Z0·Z1 - 2 sin q6 Z0·Z2 = want²
+    out = W[_Y]
+    trig_linear(
+        2.0 * (z0[0] * z1[0] + z0[1] * z1[1]),
+        -2.0 * (z0[0] * z2[0] + z0[1] * z2[1]),
+        want * want - r0 * r0 - rad * rad,
+        out,
+    )
+    return out[0]
+
+
+@kernel
+def _triangle(params: Array, tx: Array, out: Array) -> int:
+    """q2 and ψ = σ3 q3 putting axis 4 at ``tx (2,)`` (plane, from axis 2): two elbows.
+
+    ``tx = e^{i q2} (A + e^{iψ} B)``; with ``γ = ψ + arg B - arg A``,
+    ``1 ∓ cos γ`` are formed as products of sums and differences of lengths
+    (exact at the folded and stretched elbow).
+
+    Returns:
+        -1 (no solution; ``out`` unchanged), else flags: ``_FOLD`` (axis 4 on
+        axis 2 with equal links: q2 free, ``out[0]`` a representative and
+        ``out[1]`` NaN) and ``_NEAR`` (missed by less than ``NEAR_TOL``: the
+        least-squares elbow). ``out (2, 2)``: (q2, ψ) elbow up, elbow down.
+    """
+    a = params[P_ARM]
+    b = params[P_ARM + 1]
+    arg_a = params[P_ARM + 2]
+    arg_b = params[P_ARM + 3]
+    span = a + b
+    d = abs(a - b)
+    n = math.hypot(tx[0], tx[1])
+    if n <= CONTINUUM_TOL * span and d <= CONTINUUM_TOL * span:
+        out[0, 0] = params[P_Q2REP]
+        out[0, 1] = wrap(math.pi + arg_a - arg_b)
+        out[1, 0] = np.nan
+        out[1, 1] = np.nan
+        return _FOLD
+    miss = max(n - span, d - n)
+    flags = 0
+    if miss > TRIG_TOL * span:
+        if miss > NEAR_TOL * span:
+            return -1
+        flags = _NEAR
+    omc = max((span - n) * (span + n) / (2.0 * a * b), 0.0)  # 1 - cos γ
+    opc = max((n - d) * (n + d) / (2.0 * a * b), 0.0)  # 1 + cos γ
+    sg = math.sqrt(omc * opc)  # sin γ >= 0
+    gamma = math.atan2(sg, 0.5 * (opc - omc))
+    arg_t = math.atan2(tx[1], tx[0])
+    turn = math.atan2(b * sg, (a - b) + b * opc)  # arg(A + e^{iψ} B) - arg A; a + b cos γ
+    # With γ >= 0 the elbow e^{i q2} A is clockwise of t about k: "up" (on
+    # the side of h1 × k from the line axis 2 -> axis 4) when t·zup < 0.
+    first = 0 if tx[0] * params[P_ZUP] + tx[1] * params[P_ZUP + 1] < 0.0 else 1
+    out[first, 0] = arg_t - arg_a - turn
+    out[first, 1] = gamma + arg_a - arg_b
+    out[1 - first, 0] = arg_t - arg_a + turn
+    out[1 - first, 1] = -gamma + arg_a - arg_b
+    return flags
+
+
+@kernel
+def _finish(
+    params: Array,
+    V: Array,
+    RG: Array,
+    tG: Array,
+    pair: Array,
+    kind: int,
+    Q: Array,
+    slot: int,
+    info: Array,
+    W: Array,
+    t: Array,
+    elbows: Array,
+) -> int:
+    """The solutions of one pair into ``Q[slot]`` (elbow up) and ``Q[slot + 1]``.
+
+    ``pair (6,)``: q1, q5 and their cosines and sines.
+
+    ``W (13, 3)``, ``t (2,)`` and ``elbows (2, 2)`` are scratch space.
+
+    Returns:
+        How many candidates were written (0, 1 or 2).
+    """
+    q1 = pair[0]
+    q5 = pair[1]
+    c1 = pair[2]
+    s1 = pair[3]
+    c5 = pair[4]
+    s5 = pair[5]
+    h5 = V[V_H5]
+    h6 = V[V_H6]
+    k1 = W[_K1]
+    a = W[_A]
+    b = W[_B]
+    rotate(V[V_H1], c1, s1, V[V_K], k1)
+    for i in range(3):  # R_Gᵀ k1
+        b[i] = RG[0, i] * k1[0] + RG[1, i] * k1[1] + RG[2, i] * k1[2]
+    rotate(h5, c5, -s5, V[V_K], a)  # R5ᵀ k
+    # v = E5⁻¹(p4) - p6 = p5 - p6 + R5ᵀ (p4 - p5)
+    y = W[_Y]
+    for r in range(3):
+        y[r] = V[V_P4, r] - V[V_P5, r]
+    v = W[_V]
+    rotate(h5, c5, -s5, y, v)
+    for r in range(3):
+        v[r] += V[V_P5, r] - V[V_P6, r]
+    aligned = cross2(a, h6) <= CONTINUUM_TOL * CONTINUUM_TOL  # axis 6 along k
+    q6 = _free_q6(params, V, RG, tG, c1, s1, v, W) if aligned else -subproblem1(a, b, h6)
+    c6 = math.cos(q6)
+    s6 = math.sin(q6)
+    # θ234: R234 e1 = R1ᵀ R_G R6ᵀ R5ᵀ e1
+    rotate(h5, c5, -s5, V[V_E1], y)
+    rotate(h6, c6, -s6, y, W[_Z])
+    _apply(RG, W[_Z], W[_G])
+    rotate(V[V_H1], c1, -s1, W[_G], y)
+    th234 = math.atan2(dot(V[V_E2], y), dot(V[V_E1], y))
+    # axis 4: E1⁻¹ G E6⁻¹ (p6 + v) - p2 = E1⁻¹ G (p6 + R6ᵀ v) - p2
+    rotate(h6, c6, -s6, v, y)
+    x = W[_U]
+    for r in range(3):
+        x[r] = V[V_P6, r] + y[r]
+    _moved(V, RG, tG, c1, s1, x, t, W)
+    flags = _triangle(params, t, elbows)
+    if flags < 0:
+        return 0
+    sign3 = params[P_SIGN3]
+    sign4 = params[P_SIGN4]
+    count = 0
+    for e in range(2):
+        q2 = elbows[e, 0]
+        psi = elbows[e, 1]
+        if np.isnan(q2):
+            continue
+        row = Q[slot + e]
+        row[0] = q1
+        row[1] = q2
+        row[2] = sign3 * psi
+        row[3] = sign4 * (th234 - q2 - psi)
+        row[4] = q5
+        row[5] = q6
+        count += 1
+    if flags & _NEAR:
+        info[INFO_NEAR] = 1.0
+    free = info[INFO_FREE:]
+    if aligned:
+        free[1] = 1.0
+        free[2] = 1.0
+        free[3] = 1.0
+        free[5] = 1.0
+    if flags & _FOLD:
+        free[1] = 1.0
+        free[3] = 1.0
+    free_q1 = kind == PAIR_FREE_Q1
+    if free_q1:
+        free[0] = 1.0
+    if aligned or flags & _FOLD or free_q1:
+        info[INFO_SINGULAR] = 1.0
+    return count
+
+
+@kernel
+def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
+    """Every solution of one target: candidates ``Q (8, 6)`` and ``info``.
+
+    Args:
+        params: ``(P_SIZE,)`` the arm (see :mod:`.parallel_layout`).
+        T: ``(4, 4)`` target tool pose (base frame, m).
+        Q: ``(8, 6)`` out: candidates (rad), NaN rows where a branch has none.
+        info: ``(INFO_FREE + 6,)`` out, zero on entry (see
+            :mod:`kinematica.kernels.ik_check`).
+    """
+    Q[:, :] = np.nan
+    info[INFO_GAP] = np.nan
+    ok = True
+    for i in range(3):
+        for j in range(4):
+            ok &= np.isfinite(T[i, j])
+    if not ok:
+        return
+    V = params[: 3 * NV].reshape((NV, 3))
+    W = np.empty((13, 3))
+    RG = np.empty((3, 3))
+    tG = np.empty(3)
+    _goal(V, T, RG, tG)
+    size = params[P_SCALE]
+    # |G(a6) - p1s| beyond the reach bound proves the target out of reach
+    # (and keeps huge targets out of the maths: no overflow).
+    x = W[_Z]
+    _apply(RG, V[V_A6], x)
+    for r in range(3):
+        x[r] += tG[r] - V[V_P1S, r]
+    gap = math.hypot(math.hypot(x[0], x[1]), x[2]) - params[P_BOUND]  # no overflow
+    if gap > NEAR_TOL * size:
+        info[INFO_GAP] = gap
+        return
+    x6 = W[_X6]
+    w6 = W[_W6]
+    _apply(RG, V[V_H6], x6)
+    _apply(RG, V[V_P6], w6)
+    for r in range(3):
+        w6[r] += tG[r] - V[V_P1, r]
+    # (2) cannot hold when its sides' ranges do not meet: a proven gap too.
+    miss = (
+        abs(params[P_EQ2 + 2] - dot(V[V_KPAR], w6))
+        - math.sqrt(dot(V[V_KPERP], w6) ** 2 + dot(V[V_HK], w6) ** 2)
+        - math.hypot(params[P_EQ2], params[P_EQ2 + 1])
+    )
+    gap = max(gap, miss / params[P_LIP], 0.0)
+    pq = np.empty((4, 6))
+    kinds = np.empty(4, dtype=np.int64)
+    elbows = np.empty((3, 2))  # two elbows (q2, ψ), then the point t
+    count = 0
+    if miss <= NEAR_TOL * size:
+        pairs(params, V, x6, w6, pq, kinds, info)
+        for j in range(4):
+            if kinds[j] != PAIR_NONE:
+                count += _finish(
+                    params, V, RG, tG, pq[j], kinds[j], Q, 2 * j, info, W,
+                    elbows[2], elbows[:2],
+                )  # fmt: skip
+    if count == 0:
+        info[INFO_GAP] = gap
+        for j in range(INFO_FREE, info.shape[0]):
+            info[j] = 0.0
+        info[INFO_SINGULAR] = 0.0
+
+
+@batch_kernel
+def solve_batch(params: Array, T: Array, Q: Array, info: Array) -> None:
+    """:func:`solve` for targets ``T (N, 4, 4)`` in parallel: ``Q (N, 8, 6)``, ``info (N, k)``."""
+    for i in numba.prange(T.shape[0]):
+        solve(params, T[i], Q[i], info[i])

@@ -1,0 +1,261 @@
+"""Three-parallel 6R arms (UR type), first half: the pairs ``(q1, q5)`` of one target.
+
+Written as a product of exponentials ``G = T·M⁻¹ = E1(q1)···E6(q6)`` (``M`` the
+tool pose at q = 0, ``Ei`` the rotation by ``qi`` about joint i's axis, unit
+``hi`` through ``pi`` at q = 0), with ``k`` the direction of axes 2, 3, 4:
+``E2 E3 E4`` is a planar motion about ``k`` (it keeps heights along ``k``),
+``E6`` fixes ``p6`` and ``E5`` fixes ``p5``. So, with ``k1 = R1 k`` (axis 2 now)::
+
+    (1)  k1 · R_G h6        = k · R5 h6                            (orientation)
+    (2)  k1 · (G(p6) - p1)  = k · (p5 - p1) + k · R5 (p6 - p5)     (height)
+
+both ``a cos q1 + b sin q1 + c = D cos q5 + E sin q5 + F``. With ``p5``, ``p6``
+the feet of the common normal of axes 5 and 6, ``[[D1, E1], [D2, E2]]`` is
+singular exactly when the axes meet (row 2 is zero: UR type, ``MODE_MEET``) or
+are parallel (row 1 is zero, ``MODE_PARALLEL``): then one equation holds q1
+alone and the other gives q5 (two and two). Otherwise (``MODE_GENERAL``)
+``(cos q5, sin q5) = P (cos q1, sin q1, 1)`` and ``|P x|² = 1`` is a quartic
+in ``tan((q1 - φ0) / 2)`` (IK-Geo's subproblem 6), whose roots are polished by
+Newton steps on (1) and (2) (:mod:`.parallel_quartic`).
+
+Near the aligned wrist (axis 6 parallel to ``k``) both sides of (1) sit at an
+extremum and ``1 - k·u`` for unit ``u`` loses every digit to cancellation; it
+is formed as ``|k × u|² / (1 + k·u)`` instead, which keeps q5 accurate to
+round-off however close to alignment the target is.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from kinematica.kernels._numba import Array, IntArray, kernel
+from kinematica.kernels.geometry import TRIG_TOL, trig_linear
+from kinematica.kernels.ik_check import INFO_NEAR
+from kinematica.kernels.solvers.parallel_layout import (
+    CONTINUUM_TOL,
+    DOUBLE_ROOT_TOL,
+    MODE_MEET,
+    MODE_PARALLEL,
+    NEAR_TOL,
+    P_EQ1,
+    P_EQ2,
+    P_MODE,
+    P_Q1REP,
+    P_SCALE,
+    P_WHI,
+    P_WLO,
+    PAIR_FREE_Q1,
+    PAIR_NONE,
+    PAIR_ROOT,
+    V_HK,
+    V_KPAR,
+    V_KPERP,
+    axis2_now,
+    cross2,
+    dot,
+    store_pair,
+)
+from kinematica.kernels.solvers.parallel_quartic import pairs_general
+
+__all__ = ["pairs"]
+
+
+@kernel
+def _wrist(params: Array, d: float, m2: float, out: Array) -> int:
+    """q5 from (1) when axes 5 and 6 meet: ``k·R5 h6 = d``, ``m2 = |k1 × R_G h6|²``.
+
+    ``q5 = φ ± δ`` with ``cos δ = (d - F1) / ρ``; ``1 ∓ cos δ`` is formed from
+    ``1 ∓ d`` (``= m2 / (1 ± d)``) and the exact constants ``P_WLO``/``P_WHI``.
+
+    Returns:
+        1 (``out (2, 3)``: q5, cos q5, sin q5 of "no-flip" φ + δ, then "flip"
+        φ - δ), 0 (near: the double root twice), -1 (no root).
+    """
+    D1 = params[P_EQ1]
+    E1 = params[P_EQ1 + 1]
+    rho = math.hypot(D1, E1)
+    omd = m2 / (1.0 + d) if d > 0.0 else 1.0 - d
+    opd = m2 / (1.0 - d) if d < 0.0 else 1.0 + d
+    lo = (omd - params[P_WLO]) / rho  # 1 - cos δ
+    hi = (opd - params[P_WHI]) / rho  # 1 + cos δ
+    code = 1
+    worst = min(lo, hi) * rho
+    if worst < -TRIG_TOL:
+        if worst < -NEAR_TOL:
+            return -1
+        code = 0
+    lo = max(lo, 0.0)
+    hi = max(hi, 0.0)
+    cd = 0.5 * (hi - lo)
+    sd = math.sqrt(lo * hi)
+    norm = math.hypot(cd, sd)
+    cf = D1 / (rho * norm)
+    sf = E1 / (rho * norm)
+    for i in range(2):
+        sd_i = sd if i == 0 else -sd
+        c5 = cf * cd - sf * sd_i
+        s5 = sf * cd + cf * sd_i
+        out[i, 0] = math.atan2(s5, c5)
+        out[i, 1] = c5
+        out[i, 2] = s5
+    return code
+
+
+@kernel
+def _roots(a: float, b: float, c: float, size: float, out: Array, info: Array) -> bool:
+    """The two θ of ``a cos θ + b sin θ = c`` into ``out``: the rising root, then the falling.
+
+    A double root within ``DOUBLE_ROOT_TOL`` is one angle, twice; a root
+    missed by less than ``NEAR_TOL`` (of ``size``) gives the least-squares
+    angle twice and marks the target near (``info``).
+
+    Returns:
+        False when there is no root (``out`` unchanged).
+    """
+    r2 = a * a + b * b
+    if trig_linear(a, b, c, out) <= 0:
+        if abs(c) - math.sqrt(r2) > NEAR_TOL * size:
+            return False
+        info[INFO_NEAR] = 1.0
+    elif r2 - c * c <= DOUBLE_ROOT_TOL * r2:
+        out[0] = math.atan2(b * c, a * c)
+        out[1] = out[0]
+    else:
+        rise = out[1]  # a cos + b sin = r cos(θ - φ): rising at φ - δ
+        out[1] = out[0]
+        out[0] = rise
+    return True
+
+
+@kernel
+def _first(a: float, b: float, rhs: float, size: float, rep: float, out: Array, info: Array) -> int:
+    """The q1 of ``a cos q1 + b sin q1 = rhs`` (``size``: the equation's scale).
+
+    Returns:
+        ``PAIR_ROOT`` (``out``: the root where the left side rises, then the
+        one where it falls; see :func:`_roots`), ``PAIR_FREE_Q1`` (every q1:
+        ``out`` holds ``rep``, then NaN), ``PAIR_NONE``.
+    """
+    if math.hypot(a, b) <= CONTINUUM_TOL * size:
+        if abs(rhs) <= CONTINUUM_TOL * size:
+            out[0] = rep
+            out[1] = np.nan
+            return PAIR_FREE_Q1
+        return PAIR_NONE
+    return PAIR_ROOT if _roots(a, b, rhs, size, out, info) else PAIR_NONE
+
+
+@kernel
+def _pairs_meet(
+    params: Array, V: Array, x6: Array, L: Array, pq: Array, kinds: IntArray, info: Array
+) -> None:
+    """Axes 5 and 6 meet: q1 from (2) (shoulder right, left), q5 from (1) (no-flip, flip)."""
+    size = params[P_SCALE]
+    q1s = np.empty(2)
+    w = np.empty((2, 3))
+    k1 = np.empty(3)
+    kind = _first(L[1, 0], L[1, 1], params[P_EQ2 + 2] - L[1, 2], size, params[P_Q1REP], q1s, info)
+    if kind == PAIR_NONE:
+        return
+    for i in range(2):
+        q1 = q1s[i]
+        if np.isnan(q1):
+            continue
+        c1 = math.cos(q1)
+        s1 = math.sin(q1)
+        axis2_now(V, c1, s1, k1)
+        code = _wrist(params, dot(k1, x6), cross2(k1, x6), w)
+        if code < 0:
+            continue
+        if code == 0:
+            info[INFO_NEAR] = 1.0
+        for j in range(2):
+            m = 2 * i + j
+            pq[m, 0] = q1
+            pq[m, 1] = w[j, 0]
+            pq[m, 2] = c1
+            pq[m, 3] = s1
+            pq[m, 4] = w[j, 1]
+            pq[m, 5] = w[j, 2]
+            kinds[m] = kind
+
+
+@kernel
+def _pairs_parallel(params: Array, L: Array, pq: Array, kinds: IntArray, info: Array) -> None:
+    """Axes 5 and 6 parallel: q1 from (1), then q5 from (2)."""
+    q1s = np.empty(2)
+    q5s = np.empty(2)
+    kind = _first(L[0, 0], L[0, 1], params[P_EQ1 + 2] - L[0, 2], 1.0, params[P_Q1REP], q1s, info)
+    if kind == PAIR_NONE:
+        return
+    D2 = params[P_EQ2]
+    E2 = params[P_EQ2 + 1]
+    size = params[P_SCALE]
+    for i in range(2):
+        q1 = q1s[i]
+        if np.isnan(q1):
+            continue
+        lhs = L[1, 0] * math.cos(q1) + L[1, 1] * math.sin(q1) + L[1, 2] - params[P_EQ2 + 2]
+        if not _roots(D2, E2, lhs, size, q5s, info):
+            continue
+        for j in range(2):
+            store_pair(pq, 2 * i + j, q1, q5s[j])
+            kinds[2 * i + j] = kind
+
+
+@kernel
+def _sort(pq: Array, kinds: IntArray) -> None:
+    """Order the pairs by q1 (found ones first): the "root j" labels."""
+    for i in range(1, 4):
+        j = i
+        while (
+            j > 0
+            and kinds[j] != PAIR_NONE
+            and (kinds[j - 1] == PAIR_NONE or pq[j, 0] < pq[j - 1, 0])
+        ):
+            for c in range(6):
+                tmp = pq[j, c]
+                pq[j, c] = pq[j - 1, c]
+                pq[j - 1, c] = tmp
+            kk = kinds[j]
+            kinds[j] = kinds[j - 1]
+            kinds[j - 1] = kk
+            j -= 1
+
+
+@kernel
+def pairs(
+    params: Array, V: Array, x6: Array, w6: Array, pq: Array, kinds: IntArray, info: Array
+) -> None:
+    """Every ``(q1, q5)`` of a target, by the arm's mode.
+
+    Args:
+        params: The arm (``P_SIZE``,).
+        V: ``(NV, 3)`` its vectors (a view of ``params``).
+        x6: ``(3,)`` ``R_G h6``: axis 6's direction in the target.
+        w6: ``(3,)`` ``G(p6) - p1``.
+        pq: ``(4, 6)`` out: ``q1, q5, cos q1, sin q1, cos q5, sin q5`` per pair (``MODE_MEET``: slot
+            ``2 shoulder + wrist``; otherwise by increasing q1).
+        kinds: ``(4,)`` out: ``PAIR_*`` of each slot.
+        info: The target's ``info`` row (``INFO_NEAR`` is set here).
+    """
+    L = np.empty((2, 3))  # a, b, c of (1) and (2): k1·y = a cos q1 + b sin q1 + c
+    L[0, 0] = dot(V[V_KPERP], x6)
+    L[0, 1] = dot(V[V_HK], x6)
+    L[0, 2] = dot(V[V_KPAR], x6)
+    L[1, 0] = dot(V[V_KPERP], w6)
+    L[1, 1] = dot(V[V_HK], w6)
+    L[1, 2] = dot(V[V_KPAR], w6)
+    for i in range(4):
+        kinds[i] = PAIR_NONE
+    mode = params[P_MODE]
+    if mode == MODE_MEET:
+        _pairs_meet(params, V, x6, L, pq, kinds, info)
+        return
+    if mode == MODE_PARALLEL:
+        _pairs_parallel(params, L, pq, kinds, info)
+    else:
+        pairs_general(params, V, x6, L, pq, kinds, info)
+    _sort(pq, kinds)

@@ -1,0 +1,230 @@
+"""Three-parallel 6R arms whose axes 5 and 6 are apart: the pairs ``(q1, q5)`` of a quartic.
+
+With ``(cos q5, sin q5) = P (cos q1, sin q1, 1)`` (equations (1) and (2) of
+:mod:`.parallel_pairs`, solved for the wrist's side), ``|P x|² = 1`` is a
+quartic in ``t = tan((q1 - φ0) / 2)`` (IK-Geo's subproblem 6), with ``φ0``
+putting ``t = ∞`` where ``|P x|² - 1`` is largest (a leading coefficient far
+from 0). Each root is polished by Newton steps on (1) and (2) themselves.
+
+Near the aligned wrist (axis 6 along ``k``) both sides of (1) sit at an
+extremum and two roots merge: ``1 - k·u`` for unit ``u`` loses every digit to
+cancellation, so (1) is evaluated as ``|k × u|² / (1 + k·u)`` instead, which
+resolves the two roots however close they are; two seeds that polish to one
+root send the second across their midpoint (the sum of a near-double root is
+well conditioned).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from kinematica.kernels._numba import Array, IntArray, kernel
+from kinematica.kernels.geometry import TRIG_TOL
+from kinematica.kernels.ik_check import DEDUP_TOL, INFO_NEAR
+from kinematica.kernels.polynomial import quartic_roots
+from kinematica.kernels.so3 import wrap
+from kinematica.kernels.solvers.parallel_layout import (
+    CONTINUUM_TOL,
+    NEAR_TOL,
+    P_EQ1,
+    P_EQ2,
+    P_MINV,
+    P_Q1REP,
+    P_SCALE,
+    PAIR_FREE_Q1,
+    PAIR_NONE,
+    PAIR_ROOT,
+    V_H5XH6,
+    V_H6PAR,
+    V_H6PERP,
+    V_K,
+    axis2_now,
+    cross2,
+    dot,
+    store_pair,
+)
+
+__all__ = ["NEWTON_STEPS", "pairs_general"]
+
+#: Newton steps at most polishing a quartic root on equations (1) and (2):
+#: quadratic convergence takes 2-3, but at a double root (the wrist aligned)
+#: it is linear, halving the error per step from the quartic's ~1e-8.
+NEWTON_STEPS = 50
+
+# cos and sin of m π/4, m = 0..7: where |P x|² - 1 is sampled
+_SAMPLES = np.array([[math.cos(m * math.pi / 4), math.sin(m * math.pi / 4)] for m in range(8)])
+_ROOT_IMAG = math.sqrt(NEAR_TOL)
+
+
+@kernel
+def _unit_gap(d: float, m2: float, e: float, n2: float) -> float:
+    """``d - e`` for ``d = k·u``, ``e = k·v`` (unit u, v), ``m2 = |k × u|²``, ``n2 = |k × v|²``.
+
+    ``1 ∓ d = m2 / (1 ± d)``: exact however close u and v are to ``±k``.
+    """
+    if d + e >= 0.0:
+        return n2 / (1.0 + e) - m2 / (1.0 + d)
+    return m2 / (1.0 - d) - n2 / (1.0 - e)
+
+
+@kernel
+def _newton(params: Array, V: Array, x6: Array, L: Array, q: Array, k1: Array) -> float:
+    """Newton steps on (1) and (2) from ``q = (q1, q5)`` (in place); the residual.
+
+    Steps stop when they no longer shrink (round-off reached, or no root
+    nearby). (1) is evaluated as :func:`_unit_gap`: its error stays at
+    round-off of its (small) terms near the aligned wrist, where two roots
+    merge, so the roots are resolved however close they are.
+
+    Returns:
+        ``|f1| + |f2| / size`` at ``q`` (before the last, rejected step).
+    """
+    D1 = params[P_EQ1]
+    E1 = params[P_EQ1 + 1]
+    D2 = params[P_EQ2]
+    E2 = params[P_EQ2 + 1]
+    size = params[P_SCALE]
+    rv = np.empty(3)
+    res = math.inf
+    last = math.inf
+    for _ in range(NEWTON_STEPS):
+        c1 = math.cos(q[0])
+        s1 = math.sin(q[0])
+        c5 = math.cos(q[1])
+        s5 = math.sin(q[1])
+        axis2_now(V, c1, s1, k1)
+        for r in range(3):
+            rv[r] = V[V_H6PAR, r] + c5 * V[V_H6PERP, r] + s5 * V[V_H5XH6, r]  # R5 h6
+        d = dot(k1, x6)
+        e = dot(V[V_K], rv)
+        f1 = _unit_gap(d, cross2(k1, x6), e, cross2(V[V_K], rv))
+        f2 = L[1, 0] * c1 + L[1, 1] * s1 + L[1, 2] - (D2 * c5 + E2 * s5 + params[P_EQ2 + 2])
+        res = abs(f1) + abs(f2) / size
+        j11 = L[0, 1] * c1 - L[0, 0] * s1
+        j12 = D1 * s5 - E1 * c5
+        j21 = L[1, 1] * c1 - L[1, 0] * s1
+        j22 = D2 * s5 - E2 * c5
+        det = j11 * j22 - j12 * j21
+        if det == 0.0 or not np.isfinite(det):
+            break
+        d1 = (f1 * j22 - f2 * j12) / det
+        d5 = (j11 * f2 - j21 * f1) / det
+        step = abs(d1) + abs(d5)
+        if not step < last:  # no longer contracting: round-off (or no root here)
+            break
+        last = step
+        q[0] -= d1
+        q[1] -= d5
+    return res
+
+
+@kernel
+def pairs_general(
+    params: Array, V: Array, x6: Array, L: Array, pq: Array, kinds: IntArray, info: Array
+) -> None:
+    """Axes 5 and 6 apart: the quartic of subproblem 6, its roots polished by Newton."""
+    P = np.empty((2, 3))
+    for i in range(2):
+        for j in range(3):
+            P[i, j] = params[P_MINV + 2 * i] * L[0, j] + params[P_MINV + 2 * i + 1] * L[1, j]
+    P[0, 2] -= params[P_MINV] * params[P_EQ1 + 2] + params[P_MINV + 1] * params[P_EQ2 + 2]
+    P[1, 2] -= params[P_MINV + 2] * params[P_EQ1 + 2] + params[P_MINV + 3] * params[P_EQ2 + 2]
+    # φ0 puts t = ∞ where |P x|² - 1 is largest: the leading coefficient is then large.
+    worst = -1.0
+    far = 0.0
+    size = 1.0
+    for i in range(2):
+        for j in range(3):
+            size += P[i, j] * P[i, j]
+    for m in range(8):
+        u = P[0, 0] * _SAMPLES[m, 0] + P[0, 1] * _SAMPLES[m, 1] + P[0, 2]
+        v = P[1, 0] * _SAMPLES[m, 0] + P[1, 1] * _SAMPLES[m, 1] + P[1, 2]
+        f = abs(u * u + v * v - 1.0)
+        if f > worst:
+            worst = f
+            far = 0.25 * math.pi * m
+    if worst <= CONTINUUM_TOL * size:  # every q1 solves, each with one q5
+        q1 = params[P_Q1REP]
+        u = P[0, 0] * math.cos(q1) + P[0, 1] * math.sin(q1) + P[0, 2]
+        v = P[1, 0] * math.cos(q1) + P[1, 1] * math.sin(q1) + P[1, 2]
+        store_pair(pq, 0, q1, math.atan2(v, u))
+        kinds[0] = PAIR_FREE_Q1
+        return
+    phi0 = far - math.pi
+    cp = math.cos(phi0)
+    sp = math.sin(phi0)
+    u0 = np.empty(2)
+    u1 = np.empty(2)
+    u2 = np.empty(2)
+    for i in range(2):
+        r0 = P[i, 0] * cp + P[i, 1] * sp
+        r1 = P[i, 1] * cp - P[i, 0] * sp
+        u0[i] = r0 + P[i, 2]
+        u1[i] = 2.0 * r1
+        u2[i] = P[i, 2] - r0
+    coef = np.empty(5)
+    coef[0] = u2[0] * u2[0] + u2[1] * u2[1] - 1.0
+    coef[1] = 2.0 * (u1[0] * u2[0] + u1[1] * u2[1])
+    coef[2] = u1[0] * u1[0] + u1[1] * u1[1] + 2.0 * (u0[0] * u2[0] + u0[1] * u2[1]) - 2.0
+    coef[3] = 2.0 * (u0[0] * u1[0] + u0[1] * u1[1])
+    coef[4] = u0[0] * u0[0] + u0[1] * u0[1] - 1.0
+    roots = np.empty(4, dtype=np.complex128)
+    quartic_roots(coef, roots)
+    seeds = np.empty((4, 2))
+    k1 = np.empty(3)
+    for m in range(4):
+        t = roots[m]
+        if not abs(t.imag) <= _ROOT_IMAG * (1.0 + abs(t)):
+            continue
+        # a merging pair a ± bi: start from a + b and a - b, on either side
+        q1 = phi0 + 2.0 * math.atan(t.real + t.imag)
+        c1 = math.cos(q1)
+        s1 = math.sin(q1)
+        seeds[m, 0] = q1
+        seeds[m, 1] = math.atan2(
+            P[1, 0] * c1 + P[1, 1] * s1 + P[1, 2], P[0, 0] * c1 + P[0, 1] * s1 + P[0, 2]
+        )
+        _polish(params, V, x6, L, seeds[m], pq, kinds, m, info, k1)
+    # Two seeds of a merging pair may polish to one root; the other then lies
+    # across their midpoint (the sum of a near-double root is well conditioned).
+    for j in range(4):
+        for i in range(j):
+            if kinds[i] == PAIR_NONE or kinds[j] == PAIR_NONE:
+                continue
+            if max(abs(wrap(pq[i, 0] - pq[j, 0])), abs(wrap(pq[i, 1] - pq[j, 1]))) >= DEDUP_TOL:
+                continue
+            for c in range(2):
+                seeds[j, c] = pq[i, c] + wrap(seeds[i, c] - pq[i, c]) + wrap(seeds[j, c] - pq[i, c])
+            _polish(params, V, x6, L, seeds[j], pq, kinds, j, info, k1)
+
+
+@kernel
+def _polish(
+    params: Array,
+    V: Array,
+    x6: Array,
+    L: Array,
+    seed: Array,
+    pq: Array,
+    kinds: IntArray,
+    m: int,
+    info: Array,
+    k1: Array,
+) -> None:
+    """Newton from ``seed (2,)`` into pair ``m`` of ``pq``/``kinds``.
+
+    A root meets (1) and (2) to ``TRIG_TOL``; one that meets them to
+    ``NEAR_TOL`` only is proposed too, and the target marked near.
+    """
+    q = pq[m, :2]
+    q[0] = seed[0]
+    q[1] = seed[1]
+    res = _newton(params, V, x6, L, q, k1)
+    kinds[m] = PAIR_NONE
+    if res <= NEAR_TOL:
+        kinds[m] = PAIR_ROOT
+        if res > TRIG_TOL:
+            info[INFO_NEAR] = 1.0
+    store_pair(pq, m, wrap(q[0]), wrap(q[1]))

@@ -1,0 +1,55 @@
+"""Motion: velocity kinematics, named singularities, workspace, trajectories.
+
+Layer 6: built on the robot and ik layers (public API only); numpy only. The
+velocity kinematics, the named singularities and the sampling of joint space
+live in the robot layer (``Robot.jacobian(euler=)``, ``Robot.singularities``,
+``Robot.random_q`` are thin methods over them) and are re-exported here.
+"""
+
+from kinematica.motion.cartesian import (
+    MAX_JOINT_STEP,
+    CartesianPath,
+    PathEvent,
+    cartesian_path,
+)
+from kinematica.motion.export import read_csv, write_csv, write_json
+from kinematica.motion.trajectory import JointTrajectory, joint_trajectory, time_scaling
+from kinematica.motion.workspace import Workspace, WorkspaceSlice, workspace
+from kinematica.robot.sampling import random_q
+from kinematica.robot.singularities import (
+    ELBOW_TOL,
+    RANK_TOL,
+    SHOULDER_TOL,
+    WRIST_TOL,
+    Singularity,
+    jacobian_rank,
+    singularities,
+)
+from kinematica.robot.velocity import analytic_jacobian, condition_number, manipulability
+
+__all__ = [
+    "ELBOW_TOL",
+    "MAX_JOINT_STEP",
+    "RANK_TOL",
+    "SHOULDER_TOL",
+    "WRIST_TOL",
+    "CartesianPath",
+    "JointTrajectory",
+    "PathEvent",
+    "Singularity",
+    "Workspace",
+    "WorkspaceSlice",
+    "analytic_jacobian",
+    "cartesian_path",
+    "condition_number",
+    "jacobian_rank",
+    "joint_trajectory",
+    "manipulability",
+    "random_q",
+    "read_csv",
+    "singularities",
+    "time_scaling",
+    "workspace",
+    "write_csv",
+    "write_json",
+]

@@ -1,0 +1,70 @@
+"""The one picture the motion layer draws: a workspace slice as a map.
+
+matplotlib is an optional dependency (extra ``viz``), imported only here,
+when a picture is asked for.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from kinematica.errors import KinematicaError
+from kinematica.motion.workspace import WorkspaceSlice
+
+__all__ = ["MissingDependencyError", "plot_workspace_slice", "require_matplotlib"]
+
+
+class MissingDependencyError(KinematicaError, ImportError):
+    """An optional dependency needed for this feature is not installed."""
+
+
+def require_matplotlib() -> Any:
+    """``matplotlib.pyplot`` on the non-interactive Agg backend.
+
+    Raises:
+        MissingDependencyError: matplotlib is not installed.
+    """
+    try:
+        import matplotlib
+    except ImportError as exc:
+        raise MissingDependencyError(
+            "drawing a picture needs matplotlib: pip install 'kinematica[viz]'"
+        ) from exc
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def plot_workspace_slice(sl: WorkspaceSlice, path: str | Path, title: str = "") -> Path:
+    """Save a workspace slice as a picture: reachable pixels coloured by manipulability.
+
+    Args:
+        sl: The slice (:meth:`kinematica.motion.Workspace.slice`).
+        path: Output file; the format follows the extension (``.png``, ``.svg``, ...).
+        title: Title line (the plane and the area are added).
+
+    Returns:
+        The path written.
+    """
+    plt = require_matplotlib()
+    u, v = sl.plane[0], sl.plane[1]
+    w = ({"x", "y", "z"} - {u, v}).pop()
+    fig, ax = plt.subplots(figsize=(6.4, 5.6), dpi=110)
+    reach = np.where(sl.occupancy, 1.0, np.nan)
+    ax.imshow(reach.T, origin="lower", extent=sl.extent, cmap="Greys", vmin=0.0, vmax=3.0)
+    if np.isfinite(sl.manipulability).any():
+        im = ax.imshow(sl.manipulability.T, origin="lower", extent=sl.extent, cmap="viridis")
+        fig.colorbar(im, ax=ax, label="manipulability (largest in each pixel)")
+    ax.set_xlabel(f"{u} (m)")
+    ax.set_ylabel(f"{v} (m)")
+    ax.set_aspect("equal")
+    head = f"{title}\n" if title else ""
+    ax.set_title(f"{head}{u}{v} slice at {w} = {sl.at:.3f} m, area {sl.area:.4g} m²")
+    out = Path(path)
+    fig.savefig(out, bbox_inches="tight")
+    plt.close(fig)
+    return out

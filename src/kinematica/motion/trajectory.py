@@ -1,0 +1,313 @@
+"""Joint-space trajectories: quintic, cubic and trapezoidal profiles, synchronised.
+
+All joints start and stop together. Quintic and cubic profiles are Hermite
+polynomials in normalised time ``s = t / T``, written in their basis so that
+the boundary values come out exactly (the basis polynomials are exactly 0 or
+1 at ``s = 0`` and ``s = 1``): position, velocity (and acceleration for the
+quintic) at both ends, zero unless given. The trapezoid moves every joint
+along the straight joint-space line ``q0 + (q1 - q0)·s(t)`` with one
+trapezoidal (or, when the cruise speed is not reached, triangular) speed
+profile ``s(t)``, scaled by the most limited joint, so each joint respects its
+``vmax`` and ``amax``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Literal, NamedTuple
+
+import numpy as np
+from numpy.polynomial import polynomial as npoly
+from numpy.typing import ArrayLike, NDArray
+
+from kinematica.errors import DimensionError, KinematicaError
+
+__all__ = ["JointTrajectory", "Profile", "joint_trajectory", "time_scaling"]
+
+FloatArray = NDArray[np.float64]
+Profile = Literal["quintic", "cubic", "trapezoid"]
+
+#: Default sample spacing (s).
+DEFAULT_DT = 0.01
+
+# Hermite bases, coefficients in s (lowest power first). Weights: quintic
+# (p0, T·v0, T²·a0, T²·a1, T·v1, p1); cubic (p0, T·v0, T·v1, p1).
+_QUINTIC = np.array(
+    [
+        [1, 0, 0, -10, 15, -6],
+        [0, 1, 0, -6, 8, -3],
+        [0, 0, 0.5, -1.5, 1.5, -0.5],
+        [0, 0, 0, 0.5, -1, 0.5],
+        [0, 0, 0, -4, 7, -3],
+        [0, 0, 0, 10, -15, 6],
+    ],
+    dtype=float,
+)
+_CUBIC = np.array([[1, 0, -3, 2], [0, 1, -2, 1], [0, 0, -1, 1], [0, 0, 3, -2]], dtype=float)
+# Peak |ds/dt|·T and |d²s/dt²|·T² of the rest-to-rest profiles.
+_PEAKS = {"quintic": (15.0 / 8.0, 10.0 / math.sqrt(3.0)), "cubic": (1.5, 6.0)}
+
+
+class JointTrajectory(NamedTuple):
+    """Samples of a joint trajectory (unpacks as ``t, q, qd, qdd``).
+
+    Attributes:
+        t: ``(m,)`` times (s), from 0 to the duration.
+        q: ``(m, n)`` joint values (rad, m).
+        qd: ``(m, n)`` joint velocities (rad/s, m/s).
+        qdd: ``(m, n)`` joint accelerations (rad/s², m/s²).
+    """
+
+    t: FloatArray
+    q: FloatArray
+    qd: FloatArray
+    qdd: FloatArray
+
+
+def _vector(x: ArrayLike | None, n: int, name: str, positive: bool = False) -> FloatArray:
+    if x is None:
+        return np.zeros(n)
+    a = np.asarray(x, dtype=float)
+    if a.ndim == 0:
+        a = np.full(n, float(a))
+    if a.shape != (n,):
+        raise DimensionError(f"{name} must be a number or {n} values, got shape {a.shape}")
+    if not np.all(np.isfinite(a)):
+        raise DimensionError(f"{name} holds NaN or inf")
+    if positive and np.any(a <= 0):
+        j = int(np.flatnonzero(a <= 0)[0]) + 1
+        raise KinematicaError(f"{name} must be positive, got {a[j - 1]:g} for joint {j}")
+    return a
+
+
+def _trapezoid_params(
+    duration: float | None, V: float | None, A: float | None
+) -> tuple[float, float, float]:
+    """``(T, V, A)`` of a rest-to-rest trapezoid on s from 0 to 1."""
+    if duration is None:
+        if V is None or A is None:
+            raise KinematicaError("a trapezoid needs a duration, or both vmax and amax")
+        if V * V / A >= 1.0:  # cruise speed not reached: triangle
+            ta = math.sqrt(1.0 / A)
+            return 2.0 * ta, A * ta, A
+        return 1.0 / V + V / A, V, A
+    T = duration
+    if A is not None:
+        disc = A * A * T * T - 4.0 * A
+        if disc < 0.0:
+            raise KinematicaError(
+                f"duration {T:g} s is too short for amax: at least {2.0 / math.sqrt(A):.6g} s"
+            )
+        Vt = (A * T - math.sqrt(disc)) / 2.0
+        if V is not None and Vt > V * (1.0 + 1e-12):
+            raise KinematicaError(
+                f"duration {T:g} s is too short for vmax and amax: at least "
+                f"{_trapezoid_params(None, V, A)[0]:.6g} s"
+            )
+        return T, Vt, A
+    Vt = 1.5 / T if V is None else V
+    if not 1.0 / Vt <= T <= 2.0 / Vt:
+        raise KinematicaError(
+            f"duration {T:g} s does not fit vmax: between {1.0 / Vt:.6g} and {2.0 / Vt:.6g} s"
+        )
+    ta = T - 1.0 / Vt
+    return T, Vt, Vt / ta
+
+
+def time_scaling(
+    profile: Profile, t: ArrayLike, duration: float, vmax: float | None = None
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """A rest-to-rest path parameter ``s(t)`` from 0 to 1 and its derivatives.
+
+    Args:
+        profile: ``"quintic"``, ``"cubic"`` or ``"trapezoid"``.
+        t: ``(m,)`` times (s) in ``[0, duration]``.
+        duration: T (s).
+        vmax: Trapezoid cruise speed of ``s`` (1/s); 1.5/T by default.
+
+    Returns:
+        ``(s, ds/dt, d²s/dt²)``, each ``(m,)``.
+    """
+    ta = np.asarray(t, dtype=float)
+    if profile == "trapezoid":
+        T, V, A = _trapezoid_params(duration, vmax, None)
+        return _trapezoid(ta, T, V, A)
+    _, _, s, sd, sdd = _hermite(profile, ta, duration, 1, None)
+    return s[:, 0], sd[:, 0], sdd[:, 0]
+
+
+def _trapezoid(
+    t: FloatArray, T: float, V: float, A: float
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    tb = V / A  # blend time
+    u = T - t
+    s = np.where(
+        t < tb, 0.5 * A * t * t, np.where(u < tb, 1.0 - 0.5 * A * u * u, V * t - 0.5 * V * tb)
+    )
+    sd = np.where(t < tb, A * t, np.where(u < tb, A * u, V))
+    sdd = np.where(t < tb, A, np.where(u < tb, -A, 0.0))
+    s = np.where(t >= T, 1.0, s)
+    return s, sd, sdd
+
+
+def _hermite(
+    profile: str,
+    t: FloatArray,
+    T: float,
+    n: int,
+    bc: tuple[FloatArray, ...] | None,
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Basis values (and derivatives) at ``t``; with ``bc`` the combined joint samples."""
+    basis = _QUINTIC if profile == "quintic" else _CUBIC
+    s = np.clip(t / T, 0.0, 1.0)
+    B: FloatArray = np.stack([npoly.polyval(s, c) for c in basis], axis=-1)
+    dB: FloatArray = np.stack([npoly.polyval(s, npoly.polyder(c)) for c in basis], axis=-1)
+    ddB: FloatArray = np.stack([npoly.polyval(s, npoly.polyder(c, 2)) for c in basis], axis=-1)
+    dB, ddB = dB / T, ddB / (T * T)
+    if bc is None:  # a unit rest-to-rest move: the last basis function alone
+        return B, dB, B[:, -1:], dB[:, -1:], ddB[:, -1:]
+    W: FloatArray = np.stack(bc)  # (k, n) weights
+    return B, dB, B @ W, dB @ W, ddB @ W
+
+
+def joint_trajectory(
+    q0: ArrayLike,
+    q1: ArrayLike,
+    duration: float | None = None,
+    profile: Profile = "quintic",
+    dt: float = DEFAULT_DT,
+    vmax: ArrayLike | None = None,
+    amax: ArrayLike | None = None,
+    *,
+    qd0: ArrayLike | None = None,
+    qd1: ArrayLike | None = None,
+    qdd0: ArrayLike | None = None,
+    qdd1: ArrayLike | None = None,
+) -> JointTrajectory:
+    """A synchronised joint trajectory from ``q0`` to ``q1``.
+
+    Args:
+        q0: ``(n,)`` start joint values (rad, m).
+        q1: ``(n,)`` end joint values.
+        duration: T (s). If ``None``, the shortest duration that keeps every
+            joint within ``vmax`` and ``amax`` (rest to rest; at least one of
+            them is then needed, both for the trapezoid).
+        profile: ``"quintic"`` (zero or given velocity and acceleration at
+            both ends), ``"cubic"`` (velocity at both ends) or ``"trapezoid"``
+            (rest to rest, constant acceleration ``±amax``, cruise at ``vmax``
+            or a triangle when ``vmax`` is not reached).
+        dt: Largest sample spacing (s); samples are uniform, the last at T.
+        vmax: Speed limit per joint (scalar or ``(n,)``; rad/s, m/s).
+        amax: Acceleration limit per joint (rad/s², m/s²).
+        qd0: ``(n,)`` start velocity (quintic, cubic); zero by default.
+        qd1: ``(n,)`` end velocity.
+        qdd0: ``(n,)`` start acceleration (quintic).
+        qdd1: ``(n,)`` end acceleration (quintic).
+
+    Returns:
+        :class:`JointTrajectory` ``(t, q, qd, qdd)``.
+
+    Raises:
+        DimensionError: Shapes differ, NaN or inf.
+        KinematicaError: Unknown profile, bad duration/dt/limits, or a given
+            duration too short for the limits.
+    """
+    if profile not in ("quintic", "cubic", "trapezoid"):
+        raise KinematicaError(f"profile must be 'quintic', 'cubic' or 'trapezoid', got {profile!r}")
+    a = np.asarray(q0, dtype=float)
+    if a.ndim != 1 or a.size == 0:
+        raise DimensionError(f"q0 must be one configuration (n,), got shape {a.shape}")
+    n = a.size
+    a = _vector(a, n, "q0")
+    b = _vector(q1, n, "q1")
+    if duration is not None and not (math.isfinite(duration) and duration > 0):
+        raise KinematicaError(f"duration must be a positive number of seconds, got {duration!r}")
+    if not (math.isfinite(dt) and dt > 0):
+        raise KinematicaError(f"dt must be a positive number of seconds, got {dt!r}")
+    vm = None if vmax is None else _vector(vmax, n, "vmax", positive=True)
+    am = None if amax is None else _vector(amax, n, "amax", positive=True)
+    delta = np.abs(b - a)
+    moving = delta > 0
+    # Limits of the path parameter s in [0, 1], set by the most limited joint.
+    Vs = float(np.min(vm[moving] / delta[moving])) if vm is not None and moving.any() else None
+    As = float(np.min(am[moving] / delta[moving])) if am is not None and moving.any() else None
+
+    if profile == "trapezoid":
+        if any(x is not None for x in (qd0, qd1, qdd0, qdd1)):
+            raise KinematicaError("the trapezoid profile is rest to rest: drop qd0/qd1/qdd0/qdd1")
+        if not moving.any():
+            T = duration or 0.0
+            return _still(np.zeros(1) if T == 0 else _times(T, dt), a, b)
+        T, V, A = _trapezoid_params(duration, Vs, As)
+        t = _times(T, dt)
+        s, sd, sdd = _trapezoid(t, T, V, A)
+        d = b - a
+        q = (1.0 - s)[:, None] * a + s[:, None] * b
+        return JointTrajectory(t, q, sd[:, None] * d, sdd[:, None] * d)
+
+    v0, v1 = _vector(qd0, n, "qd0"), _vector(qd1, n, "qd1")
+    if profile == "cubic" and (qdd0 is not None or qdd1 is not None):
+        raise KinematicaError("the cubic profile sets velocities only: use 'quintic' for qdd0/qdd1")
+    acc0, acc1 = _vector(qdd0, n, "qdd0"), _vector(qdd1, n, "qdd1")
+    if duration is None:
+        if np.any(v0) or np.any(v1) or np.any(acc0) or np.any(acc1):
+            raise KinematicaError("give a duration when boundary velocities are not zero")
+        if Vs is None and As is None:
+            raise KinematicaError("give a duration, or vmax and/or amax to derive it")
+        kv, ka = _PEAKS[profile]
+        T = max(kv / Vs if Vs else 0.0, math.sqrt(ka / As) if As else 0.0)
+        if T == 0.0:
+            return _still(np.zeros(1), a, b)
+    else:
+        T = float(duration)
+    t = _times(T, dt)
+    bc: tuple[FloatArray, ...]
+    if profile == "quintic":
+        bc = (a, T * v0, T * T * acc0, T * T * acc1, T * v1, b)
+    else:
+        bc = (a, T * v0, T * v1, b)
+    _, _, q, qd, qdd = _hermite(profile, t, T, n, bc)
+    q[0], q[-1] = a, b  # the basis gives them to round-off; make them exact
+    if duration is not None:
+        _check_limits(profile, T, bc, vm, am)
+    return JointTrajectory(t, q, qd, qdd)
+
+
+def _check_limits(
+    profile: str,
+    T: float,
+    bc: tuple[FloatArray, ...],
+    vm: FloatArray | None,
+    am: FloatArray | None,
+) -> None:
+    """Raise when a given duration makes some joint exceed its limits."""
+    if vm is None and am is None:
+        return
+    dense = np.linspace(0.0, T, 2001)
+    _, _, _, qd, qdd = _hermite(profile, dense, T, bc[0].size, bc)
+    for lim, val, what in ((vm, qd, "vmax"), (am, qdd, "amax")):
+        if lim is None:
+            continue
+        peak = np.abs(val).max(axis=0)
+        over = peak > lim * (1.0 + 1e-9)
+        if over.any():
+            j = int(np.flatnonzero(over)[0])
+            raise KinematicaError(
+                f"duration {T:g} s is too short: joint {j + 1} would reach "
+                f"{peak[j]:.6g} > {what} {lim[j]:g}"
+            )
+
+
+def _times(T: float, dt: float) -> FloatArray:
+    m = max(2, math.ceil(T / dt - 1e-9) + 1)
+    t = np.linspace(0.0, T, m)
+    t[-1] = T
+    return t
+
+
+def _still(t: FloatArray, a: FloatArray, b: FloatArray) -> JointTrajectory:
+    """A trajectory that does not move (q0 == q1)."""
+    q = np.broadcast_to(a, (t.size, a.size)).copy()
+    q[-1] = b
+    z = np.zeros_like(q)
+    return JointTrajectory(t, q, z, z.copy())

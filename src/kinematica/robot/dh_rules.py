@@ -1,0 +1,243 @@
+"""DH tables read off joint axes by the DH rules, and robots written as URDF chains.
+
+A :class:`~kinematica.Robot` stays a DH robot. A serial chain (from a URDF, or
+a robot written as one) has its joint axes placed in space at q = 0 and a DH
+table extracted by the rules of the DH method (:func:`kinematica.dh.extract_dh`),
+with base and tool transforms for what DH cannot say; the robot's forward
+kinematics equals the chain's. The way out writes each DH frame as a URDF link,
+so that extracting the table again gives the same rows. Nothing here imports
+the Robot class: the caller passes its constructor (no import cycle).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+from numpy.typing import NDArray
+
+from kinematica.dh import (
+    AxisFrame,
+    ChainGeometry,
+    FrameRule,
+    NamedFrame,
+    extract_dh,
+)
+from kinematica.errors import RobotFileError
+from kinematica.io import FrameSpec, UrdfChain, UrdfJoint, urdf_text
+
+if TYPE_CHECKING:
+    from kinematica.robot.robot import Robot
+
+__all__ = [
+    "DHExtraction",
+    "chain_from_robot",
+    "dh_from_chain",
+    "geometry_from_chain",
+    "to_dh",
+    "to_urdf",
+]
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class DHExtraction:
+    """A DH robot extracted from a chain's joint axes, and how.
+
+    Attributes:
+        robot: The DH robot; its FK equals the chain's.
+        rules: For each DH frame ``S_0..S_n``, the rule that placed it
+            (:class:`~kinematica.dh.FrameRule`: ``.frame``, ``.rule``, ``.text``).
+        fk_error: Largest difference of any entry of T between the robot's
+            FK and the chain's, measured at q = 0 and random q.
+        frames: ``(n+1, 4, 4)`` the DH frames ``S_0..S_n`` at q = 0, in the
+            chain's base frame.
+        source: What the chain was read from (``"arm.urdf: base_link -> tool0"``).
+    """
+
+    robot: Robot
+    rules: tuple[FrameRule, ...]
+    fk_error: float
+    frames: FloatArray = field(repr=False)
+    source: str | None = None
+
+    def report(self) -> str:
+        """The rules, one line per frame."""
+        head = f"{self.robot.convention} DH frames of {self.robot.name}"
+        if self.source:
+            head += f" ({self.source})"
+        return "\n".join([head + ":", *(f"  {r}" for r in self.rules)])
+
+
+def geometry_from_chain(chain: UrdfChain) -> ChainGeometry:
+    """The joint axes, tip pose and named frames of a chain at q = 0, base-link frame.
+
+    Fixed joints are folded into the next origin; the link frames before the
+    first movable joint and after the last one are kept by name (candidates
+    for DH frames 0 and n).
+    """
+    pose = np.eye(4)
+    before = [NamedFrame(chain.base, pose)]
+    after: list[NamedFrame] = []
+    joints: list[AxisFrame] = []
+    for j in chain.joints:
+        pose = pose @ j.origin.as_matrix()  # the child frame at q = 0 is the joint frame
+        if j.movable:
+            axis = pose[:3, :3] @ np.array(j.axis, dtype=float)
+            joints.append(
+                AxisFrame(
+                    kind="R" if j.kind == "R" else "P",
+                    direction=axis / np.linalg.norm(axis),
+                    frame=pose,
+                    name=j.name,
+                    qlim=j.limits,
+                )
+            )
+            after = []
+        elif joints:
+            after.append(NamedFrame(j.child, pose))
+        else:
+            before.append(NamedFrame(j.child, pose))
+    return ChainGeometry(
+        joints=tuple(joints), tip=pose, before=tuple(reversed(before)), after=tuple(after)
+    )
+
+
+def dh_from_chain(
+    chain: UrdfChain,
+    convention: str = "standard",
+    *,
+    make: Callable[..., Robot],
+    name: str | None = None,
+    description: str | None = None,
+) -> DHExtraction:
+    """The DH robot of a URDF chain, by the DH rules (frames placed on the joint axes).
+
+    Args:
+        chain: The serial chain.
+        convention: ``"standard"`` or ``"modified"``.
+        make: Builds the robot from the rows (``Robot.from_dh``).
+        name: The robot's name; default the chain's.
+        description: Free text for the robot.
+
+    Returns:
+        The robot, its frames and the rule behind each.
+    """
+    table = extract_dh(geometry_from_chain(chain), convention)
+    robot = make(
+        table.rows,
+        convention=table.convention,
+        name=name or chain.name,
+        base=table.base,
+        tool=table.tool,
+        description=description,
+    )
+    where = f"{chain.source}: " if chain.source else ""
+    return DHExtraction(
+        robot=robot,
+        rules=table.rules,
+        fk_error=table.fk_error,
+        frames=table.frames,
+        source=f"{where}{chain.base} -> {chain.tip}",
+    )
+
+
+def _frame(T: FloatArray) -> FrameSpec:
+    return FrameSpec(matrix=tuple(tuple(float(v) for v in row) for row in T))
+
+
+def _joint_names(robot: Robot) -> list[str]:
+    names = [link.name for link in robot.links]
+    if all(names) and len(set(names)) == len(names):
+        return [str(n) for n in names]
+    return [f"joint{i}" for i in range(1, robot.dof + 1)]
+
+
+def chain_from_robot(robot: Robot) -> UrdfChain:
+    """The robot as a URDF chain whose link frames are its DH frames.
+
+    Links ``base_link`` (the world), ``link0`` (DH frame 0, when the base is
+    not the identity), ``link1..linkn``, ``flange`` (standard convention, DH
+    frame n, when the tool is not the identity) and ``tool0``. Every joint
+    turns or slides about its frame's z axis. Extracting DH from this chain in
+    the robot's own convention gives back its rows.
+    """
+    n = robot.dof
+    A0 = robot.link_matrices(np.zeros(n))
+    standard = robot.convention == "standard"
+    names = _joint_names(robot)
+    joints: list[UrdfJoint] = []
+    parent = "base_link"
+    if not np.array_equal(robot.base, np.eye(4)):
+        joints.append(UrdfJoint("base_link-link0", "fixed", parent, "link0", _frame(robot.base)))
+        parent = "link0"
+    for i, link in enumerate(robot.links):
+        origin = (np.eye(4) if i == 0 else A0[i - 1]) if standard else A0[i]
+        jtype = "prismatic" if link.type == "P" else "revolute"
+        child = f"link{i + 1}"
+        joints.append(
+            UrdfJoint(names[i], jtype, parent, child, _frame(origin), (0.0, 0.0, 1.0), link.qlim)
+        )
+        parent = child
+    has_tool = not np.array_equal(robot.tool, np.eye(4))
+    if standard and has_tool:
+        joints.append(UrdfJoint(f"{parent}-flange", "fixed", parent, "flange", _frame(A0[-1])))
+        parent = "flange"
+    last = robot.tool if has_tool or not standard else A0[-1]
+    joints.append(UrdfJoint(f"{parent}-tool0", "fixed", parent, "tool0", _frame(last)))
+    return UrdfChain(name=robot.name, base="base_link", tip="tool0", joints=tuple(joints))
+
+
+def to_dh(robot: Robot, convention: str = "standard") -> DHExtraction:
+    """Extract the DH table of a robot's joint axes again, by the rules.
+
+    In the robot's own convention this gives back its rows (angles wrapped to
+    (-π, π]); in the other convention, a table placed by the rules with the
+    same FK. See :func:`kinematica.dh.extract_dh`.
+    """
+    chain = chain_from_robot(robot)
+    make = type(robot).from_dh
+    ext = dh_from_chain(
+        chain, convention, make=make, name=robot.name, description=robot.description
+    )
+    out = ext.robot
+    named = make(
+        [  # the robot's own joint names, even repeated or missing ones
+            dataclasses.replace(new, name=old.name)
+            for new, old in zip(out.links, robot.links, strict=True)
+        ],
+        convention=out.convention,
+        name=out.name,
+        base=out.base,
+        tool=out.tool,
+        description=out.description,
+    )
+    return dataclasses.replace(ext, robot=named, source=None)
+
+
+def to_urdf(robot: Robot, path: str | os.PathLike[str] | None = None) -> str:
+    """The robot as URDF text (links without geometry), saved to ``path`` if given.
+
+    Raises:
+        RobotFileError: ``path`` cannot be written.
+    """
+    text = urdf_text(
+        chain_from_robot(robot),
+        comment=f"{robot.name}: written by kinematica from its {robot.convention} DH table; "
+        "each link frame is a DH frame. Kinematics only (effort and velocity unknown: 0).",
+    )
+    if path is not None:
+        p = Path(path)
+        try:
+            p.write_text(text, encoding="utf-8")
+        except OSError as exc:
+            raise RobotFileError(
+                f"cannot write the file: {exc.strerror or exc}", path=str(p)
+            ) from exc
+    return text

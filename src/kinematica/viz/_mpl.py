@@ -1,0 +1,114 @@
+"""matplotlib, imported when a picture is drawn: backend choice, figures, equal axes.
+
+Nothing here runs at import time. :func:`pyplot` picks the headless ``Agg``
+backend when there is no display (and no backend was chosen by the user), so
+pictures can be written on a server or in CI.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from kinematica.errors import KinematicaError
+
+__all__ = ["VizError", "equal_limits", "figure", "is_3d", "matplotlib", "new_axes", "pyplot"]
+
+FloatArray = NDArray[np.float64]
+
+#: Extra room around the drawn points, as a fraction of the largest extent.
+MARGIN = 0.08
+
+
+class VizError(KinematicaError):
+    """A picture cannot be drawn or written as asked (missing extra, bad format...)."""
+
+
+def matplotlib() -> Any:
+    """The ``matplotlib`` module, or a :class:`VizError` saying how to install it."""
+    try:
+        import matplotlib as mpl
+    except ImportError as exc:  # pragma: no cover - the test extra installs it
+        raise VizError("pictures need matplotlib: pip install 'kinematica[viz]'") from exc
+    return mpl
+
+
+def _headless() -> bool:
+    if sys.platform in ("darwin", "win32"):
+        return False
+    return not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+
+
+def pyplot() -> Any:
+    """``matplotlib.pyplot``, on the Agg backend when there is no display."""
+    mpl = matplotlib()
+    if "matplotlib.pyplot" not in sys.modules and not os.environ.get("MPLBACKEND") and _headless():
+        mpl.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def figure(width_px: int, height_px: int, dpi: float, *, pyplot_managed: bool) -> Any:
+    """A new Figure of ``width_px`` x ``height_px`` pixels.
+
+    Args:
+        width_px: Width in pixels (``figsize * dpi``).
+        height_px: Height in pixels.
+        dpi: Dots per inch.
+        pyplot_managed: Create it through pyplot (so ``plt.show()`` displays
+            it), or as a bare Figure that is only saved (command line, files).
+    """
+    if width_px < 16 or height_px < 16:
+        raise VizError(f"a picture needs at least 16 x 16 pixels, got {width_px} x {height_px}")
+    size = (width_px / dpi, height_px / dpi)
+    if pyplot_managed:
+        return pyplot().figure(figsize=size, dpi=dpi)
+    matplotlib()
+    from matplotlib.figure import Figure
+
+    return Figure(figsize=size, dpi=dpi)
+
+
+def new_axes(fig: Any, three_d: bool, *args: Any) -> Any:
+    """Add an Axes (3-D or 2-D) to ``fig``; ``args`` as ``add_subplot`` takes them."""
+    if three_d:
+        import mpl_toolkits.mplot3d  # noqa: F401  (registers the 3d projection)
+
+        return fig.add_subplot(*(args or (1, 1, 1)), projection="3d")
+    return fig.add_subplot(*(args or (1, 1, 1)))
+
+
+def is_3d(ax: Any) -> bool:
+    """True for an ``Axes3D``."""
+    return getattr(ax, "name", "") == "3d"
+
+
+def equal_limits(ax: Any, points: FloatArray, plane: tuple[int, int] | None = None) -> None:
+    """Equal scaling on every axis: a cube (3-D) or square (2-D) around ``points``.
+
+    Args:
+        ax: The Axes.
+        points: ``(N, 3)`` points that must be visible (metres, world frame).
+        plane: For a 2-D Axes, the two world coordinates shown (e.g. ``(0, 1)``).
+    """
+    pts = np.asarray(points, dtype=float).reshape(-1, 3)
+    pts = pts[np.all(np.isfinite(pts), axis=1)]
+    if pts.size == 0:
+        pts = np.zeros((1, 3))
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    centre = (lo + hi) / 2.0
+    cols = list(plane) if plane is not None else [0, 1, 2]
+    half = float(np.max(hi[cols] - lo[cols])) / 2.0
+    half = half * (1.0 + 2.0 * MARGIN) if half > 0 else 0.5
+    setters = (ax.set_xlim, ax.set_ylim, getattr(ax, "set_zlim", None))
+    for setter, col in zip(setters, cols, strict=False):
+        setter(centre[col] - half, centre[col] + half)
+    if is_3d(ax):
+        ax.set_box_aspect((1.0, 1.0, 1.0))
+    else:
+        ax.set_aspect("equal", adjustable="box")

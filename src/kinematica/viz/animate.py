@@ -1,0 +1,185 @@
+"""Animations of a trajectory: GIF through pillow, MP4 where ffmpeg is installed."""
+
+from __future__ import annotations
+
+import math
+import os
+import subprocess
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from kinematica.robot import Robot
+from kinematica.viz._mpl import VizError, equal_limits, figure, matplotlib, new_axes
+from kinematica.viz.arm import ArmDrawing, extent_points
+from kinematica.viz.geometry import ArmPose, arm_pose, drawing_plane, robot_scale
+from kinematica.viz.plot import label_axes, tight_single
+from kinematica.viz.trajectory import PATH_COLOR, check_trajectory
+
+__all__ = ["ANIMATION_SUFFIXES", "Animation", "animate", "animation_samples", "mp4_available"]
+
+FloatArray = NDArray[np.float64]
+
+#: File types an animation can be written as.
+ANIMATION_SUFFIXES = (".gif", ".mp4")
+#: Frames per second when the trajectory has no times.
+DEFAULT_FPS = 20.0
+#: At most this many frames unless asked otherwise (a GIF of thousands of frames
+#: takes minutes to draw and megabytes to store).
+MAX_FRAMES = 300
+
+
+@dataclass(frozen=True)
+class Animation:
+    """A written animation.
+
+    Attributes:
+        path: The file.
+        frames: Number of frames in it.
+        fps: Frames per second it plays at.
+        size: ``(width, height)`` in pixels.
+    """
+
+    path: Path
+    frames: int
+    fps: float
+    size: tuple[int, int]
+
+
+def mp4_available() -> bool:
+    """True when matplotlib finds an ``ffmpeg`` executable to write MP4 files."""
+    matplotlib()
+    from matplotlib import animation
+
+    return bool(animation.writers.is_available("ffmpeg"))
+
+
+def animation_samples(
+    t: FloatArray, q: FloatArray, fps: float | None, max_frames: int | None, timed: bool
+) -> tuple[FloatArray, FloatArray, float]:
+    """The times, configurations and frame rate of the frames to draw.
+
+    Without ``fps`` every sample is one frame, played in real time when
+    ``timed`` (frame rate ``(T - 1) / duration``) or at :data:`DEFAULT_FPS`.
+    With ``fps`` (and times) the trajectory is resampled at that rate by
+    linear interpolation, in real time. Then at most ``max_frames`` evenly
+    spread frames are kept (first and last included), the rate scaled so the
+    duration stays the same.
+    """
+    duration = float(t[-1] - t[0])
+    if fps is not None and (not math.isfinite(fps) or fps <= 0):
+        raise VizError(f"fps must be a positive number, got {fps}")
+    if fps is not None and timed and len(t) > 1:
+        count = math.floor(duration * fps + 1e-9) + 1
+        times = t[0] + np.arange(count) / fps
+        qs = np.stack([np.interp(times, t, q[:, j]) for j in range(q.shape[1])], axis=-1)
+        rate = fps
+    else:
+        times, qs = t, q
+        rate = fps or ((len(t) - 1) / duration if timed and duration > 0 else DEFAULT_FPS)
+    if max_frames is not None:
+        if max_frames < 1:
+            raise VizError(f"max_frames must be at least 1, got {max_frames}")
+        if len(times) > max_frames:
+            keep = np.unique(np.round(np.linspace(0, len(times) - 1, max_frames)).astype(int))
+            rate = rate * (len(keep) - 1) / (len(times) - 1) if len(keep) > 1 else rate
+            times, qs = times[keep], qs[keep]
+    return times, qs, rate
+
+
+def animate(
+    robot: Robot,
+    q: ArrayLike,
+    path: str | os.PathLike[str],
+    *,
+    t: ArrayLike | None = None,
+    fps: float | None = None,
+    frames: bool = True,
+    labels: bool = False,
+    size: tuple[int, int] = (640, 560),
+    dpi: float = 100.0,
+    max_frames: int | None = MAX_FRAMES,
+) -> Animation:
+    """Write an animation of the arm following a trajectory.
+
+    Args:
+        robot: The robot.
+        q: ``(T, n)`` joint values (rad, m), one row per sample.
+        path: Output file: ``.gif`` (pillow, always) or ``.mp4`` (needs ffmpeg).
+        t: ``(T,)`` times (s), strictly increasing; without them the samples
+            play at :data:`DEFAULT_FPS`.
+        fps: Resample at this many frames per second of ``t`` (linear
+            interpolation); ``None`` draws one frame per sample.
+        frames: Draw the DH frames.
+        labels: Name the frames.
+        size: ``(width, height)`` of the animation in pixels.
+        dpi: Dots per inch (text size relative to the picture).
+        max_frames: Keep at most this many frames, evenly spread (``None``: all).
+
+    Returns:
+        The :class:`Animation` written. The tool path is drawn faintly
+        (``gid="tool-path"``) and the time shown in the title of every frame.
+
+    Raises:
+        VizError: Unknown file type, MP4 without ffmpeg, bad ``fps``/``size``.
+        DimensionError: ``q`` or ``t`` of the wrong shape.
+    """
+    out = Path(path)
+    suffix = out.suffix.lower()
+    if suffix not in ANIMATION_SUFFIXES:
+        raise VizError(
+            f"{out}: cannot write an animation of type {suffix or '(none)'!r}; use .gif or .mp4"
+        )
+    if not out.parent.is_dir():
+        raise VizError(f"{out}: the folder {out.parent} does not exist")
+    ta, qa = check_trajectory(robot, t, q)
+    times, qs, rate = animation_samples(ta, qa, fps, max_frames, t is not None)
+    matplotlib()
+    from matplotlib import animation
+
+    rate_arg: dict[str, Any] = {"fps": rate}  # matplotlib's stubs say int; any rate works
+    writer: Any
+    if suffix == ".mp4":
+        if not mp4_available():
+            raise VizError(f"{out}: writing MP4 needs ffmpeg, which is not installed; write a .gif")
+        writer = animation.FFMpegWriter(
+            codec="libx264", extra_args=["-pix_fmt", "yuv420p"], **rate_arg
+        )
+        size = (size[0] + size[0] % 2, size[1] + size[1] % 2)  # yuv420p needs even sizes
+    else:
+        writer = animation.PillowWriter(**rate_arg)
+    fig = figure(*size, dpi, pyplot_managed=False)
+    plane = drawing_plane(robot)
+    ax = new_axes(fig, plane is None)
+    poses = arm_pose(robot, qs)
+    path_pts = arm_pose(robot, qa).tool[:, :3, 3]
+    shown = path_pts if plane is None else path_pts[:, list(plane)]
+    ax.plot(*shown.T, color=PATH_COLOR, lw=1.2, alpha=0.6, gid="tool-path")
+
+    def at(k: int) -> ArmPose:
+        return ArmPose(poses.origins[k], poses.frames[k], poses.tool[k], poses.joints[k])
+
+    drawing = ArmDrawing(ax, robot, at(0), plane=plane, frames=frames, labels=labels)
+    equal_limits(ax, extent_points(poses, robot_scale(robot)), plane)
+    label_axes(ax, plane)
+    tight_single(fig, plane is None)
+    ax.set_title(robot.name, fontsize=10)
+    ax.tick_params(labelsize=7)
+    stamp_text = fig.text(0.01, 0.01, "", fontsize=9, ha="left", va="bottom", gid="time")
+    # Every frame shows its own time in the bottom-left corner, so no two
+    # frames are identical (pillow merges identical neighbours in a GIF).
+    decimals = max(2, math.ceil(math.log10(max(rate, 1.0))) + 1)
+    try:
+        with writer.saving(fig, str(out), dpi):
+            for k in range(len(times)):
+                drawing.update(at(k))
+                stamp = f"t = {times[k]:.{decimals}f} s" if t is not None else f"sample {k + 1}"
+                stamp_text.set_text(stamp)
+                writer.grab_frame()
+    except (OSError, subprocess.CalledProcessError) as exc:
+        reason = getattr(exc, "strerror", None) or exc
+        raise VizError(f"{out}: cannot write the animation ({reason})") from exc
+    return Animation(path=out, frames=len(times), fps=float(rate), size=size)

@@ -1,0 +1,281 @@
+"""Static pictures of the arm: one configuration, or every IK solution of a pose."""
+
+from __future__ import annotations
+
+import math
+import os
+import textwrap
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from kinematica.errors import DimensionError, UnreachableError
+from kinematica.ik.result import IKResult
+from kinematica.robot import Robot
+from kinematica.viz._mpl import VizError, equal_limits, figure, is_3d, new_axes
+from kinematica.viz.arm import ArmDrawing, extent_points
+from kinematica.viz.geometry import ArmPose, arm_pose, drawing_plane, robot_scale
+
+__all__ = ["IMAGE_SUFFIXES", "plot", "plot_solutions", "save_figure", "save_plot", "save_solutions"]
+
+FloatArray = NDArray[np.float64]
+
+#: File types a static picture can be written as (matplotlib's Agg, SVG and PDF writers).
+IMAGE_SUFFIXES = (".png", ".svg", ".pdf", ".jpg", ".jpeg")
+#: Most solution panels side by side in :func:`plot_solutions`.
+SOLUTION_COLUMNS = 4
+
+
+def one_q(robot: Robot, q: ArrayLike) -> FloatArray:
+    """``q`` checked as one configuration ``(n,)``."""
+    qa = robot.check_q(q)
+    if qa.ndim != 1:
+        raise DimensionError(
+            f"a picture shows one configuration: q must have shape ({robot.dof},), "
+            f"got shape {qa.shape}"
+        )
+    return qa
+
+
+def axes_plane(robot: Robot, ax: Any) -> tuple[int, int] | None:
+    """The plane a 2-D Axes shows ``robot`` in; ``None`` for a 3-D Axes."""
+    if is_3d(ax):
+        return None
+    plane = drawing_plane(robot)
+    if plane is None:
+        raise VizError(
+            f"{robot.name} is not a planar arm (its joint axes are not all parallel to one "
+            "world axis): draw it on a 3-D Axes (projection='3d') or pass ax=None"
+        )
+    return plane
+
+
+def label_axes(ax: Any, plane: tuple[int, int] | None) -> None:
+    """Name the world coordinates on the axes (metres)."""
+    names = ("x (m)", "y (m)", "z (m)")
+    if plane is None:
+        ax.set_xlabel(names[0])
+        ax.set_ylabel(names[1])
+        ax.set_zlabel(names[2])
+    else:
+        ax.set_xlabel(names[plane[0]])
+        ax.set_ylabel(names[plane[1]])
+        ax.grid(True, lw=0.4, alpha=0.5)
+
+
+def plot(
+    robot: Robot,
+    q: ArrayLike,
+    ax: Any = None,
+    frames: bool = True,
+    labels: bool = True,
+) -> Any:
+    """Draw the arm at ``q``: links, joints, the DH frames S0..Sn, tool and base.
+
+    The links are one line (``gid="links"``) through the frame origins of
+    ``robot.fk(q, all_frames=True)``: S0 (the base), S1, ..., S(n-1) and the
+    tool. Revolute joints are cylinders along their axis (discs in 2-D),
+    prismatic joints boxes; each frame has x, y, z arrows in red, green, blue
+    labelled S0..Sn as on the slides, the tool frame is drawn apart when the
+    robot has a tool transform, and a grey plate marks the base (with the
+    world frame W when the base transform is not the identity). A planar arm
+    (every joint axis parallel to, or for prismatic joints normal to, one
+    world axis) is drawn in 2-D in that plane; the axes are always equally
+    scaled.
+
+    Args:
+        robot: The robot.
+        q: ``(n,)`` joint values (rad, m).
+        ax: An Axes to draw on: 3-D, or 2-D for a planar arm. A new figure
+            (through pyplot) when ``None``.
+        frames: Draw the frames.
+        labels: Name the frames.
+
+    Returns:
+        The Axes.
+
+    Raises:
+        DimensionError: ``q`` is not one configuration of ``robot``.
+        VizError: A 2-D ``ax`` for an arm that is not planar; matplotlib missing.
+    """
+    qa = one_q(robot, q)
+    if ax is None:
+        plane = drawing_plane(robot)
+        fig = figure(640, 560, 100, pyplot_managed=True)
+        ax = new_axes(fig, plane is None)
+    else:
+        plane = axes_plane(robot, ax)
+    draw_arm(ax, robot, arm_pose(robot, qa), plane, frames=frames, labels=labels)
+    return ax
+
+
+def draw_arm(
+    ax: Any,
+    robot: Robot,
+    pose: ArmPose,
+    plane: tuple[int, int] | None,
+    *,
+    frames: bool,
+    labels: bool,
+    extra: FloatArray | None = None,
+) -> ArmDrawing:
+    """Draw one arm, then scale the axes equally around it (and ``extra`` points)."""
+    drawing = ArmDrawing(ax, robot, pose, plane=plane, frames=frames, labels=labels)
+    pts = extent_points(pose, drawing.scale)
+    if extra is not None:
+        pts = np.concatenate([pts, np.asarray(extra, dtype=float).reshape(-1, 3)])
+    equal_limits(ax, pts, plane)
+    label_axes(ax, plane)
+    return drawing
+
+
+def plot_solutions(
+    robot: Robot,
+    T: ArrayLike,
+    *,
+    respect_limits: bool = True,
+    frames: bool = False,
+    labels: bool = False,
+    fig: Any = None,
+) -> Any:
+    """Every IK solution of one target, side by side, each titled with its branch.
+
+    Args:
+        robot: The robot.
+        T: ``(4, 4)`` target pose, or ``(3,)`` position (orientation free),
+            world frame, metres.
+        respect_limits: Only solutions within the joint limits (as ``robot.ik``).
+        frames: Draw the DH frames in every panel.
+        labels: Name the frames.
+        fig: A Figure to draw on (empty); a new one through pyplot if ``None``.
+
+    Returns:
+        The Figure: one panel per solution, with a common scale, the target
+        marked (``gid="target"``), each titled "k: <branch>".
+
+    Raises:
+        UnreachableError: The target has no solution to draw (the message
+            gives the IK status and why).
+        DimensionError: ``T`` is not one pose or position.
+    """
+    target = np.asarray(T, dtype=float)
+    if target.shape not in ((4, 4), (3,)):
+        raise DimensionError(
+            f"plot_solutions takes one target: a (4, 4) pose or a (3,) position, "
+            f"got shape {target.shape}"
+        )
+    res = robot.ik(target, respect_limits=respect_limits)
+    assert isinstance(res, IKResult)  # one target gives one result
+    sols = res.solutions
+    if sols.shape[0] == 0:
+        raise UnreachableError(f"{robot.name}: no solution to draw ({res.status}): {res.message}")
+    k = sols.shape[0]
+    cols = min(k, SOLUTION_COLUMNS)
+    rows = math.ceil(k / cols)
+    if fig is None:
+        fig = figure(330 * cols, 320 * rows + 50, 100, pyplot_managed=True)
+    plane = drawing_plane(robot)
+    poses = arm_pose(robot, sols)
+    point = target[:3, 3] if target.shape == (4, 4) else target
+    scale = robot_scale(robot)
+    all_pts = np.concatenate([extent_points(poses, scale), point[None]])
+    free = ", ".join(f"q{i + 1}" for i in res.free_joints)
+    for i in range(k):
+        ax = new_axes(fig, plane is None, rows, cols, i + 1)
+        one = ArmPose(poses.origins[i], poses.frames[i], poses.tool[i], poses.joints[i])
+        ArmDrawing(ax, robot, one, plane=plane, frames=frames, labels=labels)
+        shown = point if plane is None else point[list(plane)]
+        ax.plot(*[[v] for v in shown], marker="*", ms=11, color="#e377c2", ls="", gid="target")
+        equal_limits(ax, all_pts, plane)
+        label_axes(ax, plane)
+        branch = res.branches[i] if i < len(res.branches) and res.branches[i] else "solution"
+        title = f"{i + 1}: {branch}" + (f" ({free} free)" if free else "")
+        ax.set_title(textwrap.fill(title, 34), fontsize=9)
+        ax.tick_params(labelsize=7)
+    fig.suptitle(f"{robot.name}: {k} solution{'s' if k > 1 else ''} ({res.method})", fontsize=11)
+    return fig
+
+
+def save_figure(fig: Any, path: str | os.PathLike[str]) -> Path:
+    """Write ``fig`` at its own pixel size; the file type follows the suffix."""
+    out = Path(path)
+    if out.suffix.lower() not in IMAGE_SUFFIXES:
+        raise VizError(
+            f"{out}: cannot write a picture of type {out.suffix or '(none)'!r}; "
+            f"use one of {', '.join(IMAGE_SUFFIXES)}"
+        )
+    if not out.parent.is_dir():
+        raise VizError(f"{out}: the folder {out.parent} does not exist")
+    try:
+        fig.savefig(out, dpi=fig.dpi)
+    except OSError as exc:
+        raise VizError(f"{out}: cannot write the picture ({exc.strerror or exc})") from exc
+    return out
+
+
+def save_plot(
+    robot: Robot,
+    q: ArrayLike,
+    path: str | os.PathLike[str],
+    *,
+    frames: bool = True,
+    labels: bool = True,
+    size: tuple[int, int] = (800, 700),
+    dpi: float = 100.0,
+    title: str | None = None,
+) -> Path:
+    """:func:`plot` into a file of ``size`` pixels (PNG, SVG, PDF...), without pyplot."""
+    qa = one_q(robot, q)
+    fig = figure(*size, dpi, pyplot_managed=False)
+    plane = drawing_plane(robot)
+    ax = new_axes(fig, plane is None)
+    draw_arm(ax, robot, arm_pose(robot, qa), plane, frames=frames, labels=labels)
+    ax.set_title(title if title is not None else robot.name, fontsize=10)
+    tight_single(fig, plane is None)
+    return save_figure(fig, path)
+
+
+def tight_single(fig: Any, three_d: bool) -> None:
+    """Let one Axes fill its figure (3-D axes carry wide margins by default)."""
+    if three_d:
+        fig.subplots_adjust(left=0.0, right=0.96, bottom=0.03, top=0.92)
+    else:
+        fig.subplots_adjust(left=0.1, right=0.97, bottom=0.08, top=0.94)
+
+
+def save_solutions(
+    robot: Robot,
+    T: ArrayLike,
+    path: str | os.PathLike[str],
+    *,
+    respect_limits: bool = True,
+    frames: bool = False,
+    labels: bool = False,
+    size: tuple[int, int] | None = None,
+    dpi: float = 100.0,
+) -> tuple[Path, int, tuple[int, int]]:
+    """:func:`plot_solutions` into a file, without pyplot.
+
+    Args:
+        robot: The robot.
+        T: ``(4, 4)`` target pose or ``(3,)`` position (m, world frame).
+        path: Output file (PNG, SVG, PDF...).
+        respect_limits: Only solutions within the joint limits.
+        frames: Draw the DH frames.
+        labels: Name the frames.
+        size: ``(width, height)`` in pixels; about 330 x 320 per panel if ``None``.
+        dpi: Dots per inch.
+
+    Returns:
+        The path, the number of solutions drawn, and the picture's size in pixels.
+    """
+    fig = figure(100, 100, dpi, pyplot_managed=False)
+    plot_solutions(robot, T, respect_limits=respect_limits, frames=frames, labels=labels, fig=fig)
+    k = len(fig.axes)
+    cols = min(k, SOLUTION_COLUMNS)
+    if size is None:
+        size = (330 * cols, 320 * math.ceil(k / cols) + 50)
+    fig.set_size_inches(size[0] / dpi, size[1] / dpi)
+    return save_figure(fig, path), k, size

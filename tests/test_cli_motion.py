@@ -1,0 +1,199 @@
+"""The jacobian, workspace and trajectory commands: output against the library, exit codes."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import kinematica as km
+from kinematica.cli.main import main
+
+
+def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
+    try:
+        code = main(list(argv))
+    except SystemExit as exc:
+        code = int(exc.code or 0)
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_jacobian_text_names_the_wrist(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, _ = run(capsys, "jacobian", "puma560", "--q", "10", "20", "30", "40", "0", "60")
+    assert code == 0
+    assert "rank 5 (regular: 6)" in out and "singularity: wrist" in out
+
+
+def test_jacobian_json_matches_the_library(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, _ = run(
+        capsys,
+        "jacobian",
+        "ur5",
+        "--q",
+        "10",
+        "20",
+        "30",
+        "40",
+        "50",
+        "60",
+        "--json",
+        "--frame",
+        "tool",
+        "--analytic",
+    )
+    assert code == 0
+    data = json.loads(out)
+    ur5 = km.load("ur5")
+    q = np.radians([10, 20, 30, 40, 50, 60])
+    assert np.allclose(data["jacobian"], ur5.jacobian(q, frame="tool"))
+    assert np.allclose(data["analytic"]["jacobian"], ur5.jacobian(q, euler="ZYZ"))
+    assert data["rank"] == 6 and data["singularities"] == []
+    assert np.isclose(data["manipulability"], km.manipulability(ur5, q))
+
+
+def test_jacobian_bad_q_is_one_line(capsys: pytest.CaptureFixture[str]) -> None:
+    code, _, err = run(capsys, "jacobian", "puma560", "--q", "1", "2")
+    assert code == 2 and err.count("\n") == 1 and "6 values" in err
+
+
+def test_workspace_json_area_of_planar_3r(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, _ = run(capsys, "workspace", "planar-3r", "--samples", "50000", "--json")
+    assert code == 0
+    data = json.loads(out)
+    assert data["planar"] and abs(data["area"] / (np.pi * 0.81) - 1) < 0.02
+    assert data["slice"]["plane"] == "xy"
+
+
+def test_workspace_map_png(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    pytest.importorskip("matplotlib")
+    png = tmp_path / "map.png"
+    code, out, _ = run(
+        capsys,
+        "workspace",
+        "anthropomorphic-3r",
+        "--samples",
+        "20000",
+        "--plane",
+        "xz",
+        "-o",
+        str(png),
+    )
+    assert code == 0 and "map written" in out and "volume" in out
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_workspace_bad_input(capsys: pytest.CaptureFixture[str]) -> None:
+    code, _, err = run(capsys, "workspace", "planar-3r", "--samples", "0")
+    assert code == 2 and "samples" in err and "Traceback" not in err
+    code, _, err = run(capsys, "workspace", "planar-3r", "--samples", "100", "--at", "9")
+    assert code == 2 and "outside the workspace" in err
+
+
+def test_trajectory_csv(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    csv = tmp_path / "path.csv"
+    code, out, _ = run(
+        capsys,
+        "trajectory",
+        "puma560",
+        "--from",
+        "0",
+        "0",
+        "0",
+        "0",
+        "30",
+        "0",
+        "--to",
+        "30",
+        "-20",
+        "10",
+        "20",
+        "40",
+        "10",
+        "--duration",
+        "1",
+        "-o",
+        str(csv),
+    )
+    assert code == 0 and "written to" in out
+    t, q = km.motion.read_csv(csv)
+    assert t[0] == 0 and t[-1] == 1.0
+    assert np.allclose(q[0], np.radians([0, 0, 0, 0, 30, 0]))
+    assert np.allclose(q[-1], np.radians([30, -20, 10, 20, 40, 10]))
+
+
+def test_trajectory_cartesian_json(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, _ = run(
+        capsys,
+        "trajectory",
+        "puma560",
+        "--from",
+        "10",
+        "-20",
+        "10",
+        "20",
+        "40",
+        "10",
+        "--to",
+        "30",
+        "-20",
+        "10",
+        "20",
+        "40",
+        "10",
+        "--cartesian",
+        "--json",
+    )
+    assert code == 0
+    data = json.loads(out)
+    assert data["events"] == [] and data["duration"] == 2.0
+    puma = km.load("puma560")
+    q = np.radians(np.array(data["q"]))
+    p = puma.fk(q)[:, :3, 3]
+    a, b = p[0], p[-1]
+    # every sample on the straight line between the end positions
+    cross = np.cross(p - a, b - a)
+    assert np.abs(cross).max() < 1e-9
+
+
+def test_trajectory_cartesian_through_a_singularity_reports_it(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    code, out, _ = run(
+        capsys,
+        "trajectory",
+        "puma560",
+        "--from",
+        "0",
+        "-30",
+        "20",
+        "30",
+        "10",
+        "0",
+        "--to",
+        "0",
+        "-30",
+        "20",
+        "30",
+        "-10",
+        "0",
+        "--cartesian",
+    )
+    assert "event: singularity" in out and code in (0, 1)
+
+
+def test_trajectory_bad_output_extension(capsys: pytest.CaptureFixture[str]) -> None:
+    code, _, err = run(
+        capsys,
+        "trajectory",
+        "puma560",
+        "--from",
+        *["0"] * 6,
+        "--to",
+        *["1"] * 6,
+        "-o",
+        "x.txt",
+    )
+    assert code == 2 and ".csv or .json" in err

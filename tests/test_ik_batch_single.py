@@ -1,0 +1,66 @@
+"""One path for one target and for a batch: the answers are identical.
+
+For every built-in arm (each closed-form class and the numeric solver) a batch
+of targets of every kind — reachable, beyond the joint limits, singular,
+unreachable, malformed — is solved at once and target by target; status,
+method, solutions, branches, residuals and message agree exactly.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import kinematica as km
+
+
+def targets_of(robot: km.Robot, rng: np.random.Generator) -> np.ndarray:
+    n = robot.dof
+    lo, hi = robot.qlim[:, 0], robot.qlim[:, 1]
+    lo = np.where(np.isfinite(lo), lo, -1.0)
+    hi = np.where(np.isfinite(hi), hi, 1.0)
+    inside = rng.uniform(lo, hi, (4, n))
+    span = hi - lo
+    outside = inside[:1] + np.where(robot.has_limits, span * 0.6, 0.0)  # past a limit
+    home = np.zeros((1, n))  # often singular (wrist or elbow in line)
+    with np.testing.suppress_warnings() as sup:
+        sup.filter(km.KinematicaWarning)
+        T = robot.fk(np.concatenate([inside, outside, home]))
+    far = T[:1].copy()
+    far[0, :3, 3] += 50.0  # beyond any reach
+    bad = T[:1].copy()
+    bad[0, 0, 3] = np.nan  # malformed: only in the batch
+    return np.concatenate([T, far, bad])
+
+
+@pytest.mark.parametrize("name", km.builtin_names())
+def test_batch_and_single_agree(name: str) -> None:
+    robot = km.load(name)
+    T = targets_of(robot, np.random.default_rng(7))
+    many = robot.ik(T, seed=0)
+    assert many.shape == (len(T),)
+    assert many.status[-1] == "invalid"
+    for i in range(len(T) - 1):
+        one = robot.ik(T[i], seed=0)
+        row = many[i]
+        assert one.status == row.status == many.status[i]
+        assert one.method == row.method
+        assert one.branches == row.branches
+        assert one.free_joints == row.free_joints
+        np.testing.assert_array_equal(one.solutions, row.solutions)
+        np.testing.assert_array_equal(one.residuals, row.residuals)
+        np.testing.assert_array_equal(one.out_of_limits, row.out_of_limits)
+        assert one.message == row.message == many.message[i]
+
+
+def test_batch_shape_is_kept() -> None:
+    puma = km.load("puma560")
+    rng = np.random.default_rng(1)
+    q = rng.uniform(-1.0, 1.0, (2, 3, 6))
+    many = puma.ik(puma.fk(q))
+    assert many.shape == (2, 3) and many.count.shape == (2, 3)
+    flat = puma.ik(puma.fk(q.reshape(6, 6)))
+    np.testing.assert_array_equal(many.count.ravel(), flat.count)
+    for (i, j), k in zip(np.ndindex(2, 3), range(6), strict=True):
+        np.testing.assert_array_equal(many[i, j].solutions, flat[k].solutions)
+        assert many.message[i, j] == flat.message[k]

@@ -1,0 +1,123 @@
+"""Workspace sampling: volume and area against closed forms, slices, memory, random_q."""
+
+from __future__ import annotations
+
+import tracemalloc
+
+import numpy as np
+import pytest
+
+import kinematica as km
+from kinematica.motion.workspace import CHUNK, MAX_CELLS
+
+# anthropomorphic-3r: shoulder at height L1 = 0.5, links L2 = 0.4, L3 = 0.3, no limits:
+# a spherical shell of radii |L2 - L3| and L2 + L3 about the shoulder.
+SHELL = 4.0 / 3.0 * np.pi * (0.7**3 - 0.1**3)
+# planar-3r: l = 0.4, 0.3, 0.2 -> a disc of radius 0.9 (inner radius max(0, 0.4 - 0.5) = 0).
+DISC = np.pi * 0.9**2
+
+
+def test_3r_shell_volume_within_2_percent() -> None:
+    ws = km.workspace(km.load("anthropomorphic-3r"), samples=400_000, seed=0, manipulability=False)
+    assert abs(ws.volume / SHELL - 1.0) < 0.02
+    r = np.linalg.norm(ws.points - [0.0, 0.0, 0.5], axis=1)
+    assert r.min() >= 0.1 - 1e-12 and r.max() <= 0.7 + 1e-12
+    # the slice through the shoulder is an annulus
+    sl = ws.slice("xz", at=0.0)
+    assert abs(sl.area / (np.pi * (0.7**2 - 0.1**2)) - 1.0) < 0.03
+
+
+def test_planar_3r_area_within_2_percent() -> None:
+    ws = km.workspace(km.load("planar-3r"), samples=100_000, seed=1)
+    assert ws.planar and ws.volume == 0.0
+    assert ws.area is not None and abs(ws.area / DISC - 1.0) < 0.02
+    assert abs(ws.slice("xy").area / DISC - 1.0) < 0.02
+
+
+def test_planar_2r_annulus_with_a_given_voxel() -> None:
+    arm = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=0.3)])
+    ws = km.workspace(arm, samples=200_000, seed=2, voxel=0.005, manipulability=False)
+    assert ws.voxel == 0.005
+    assert ws.area is not None and abs(ws.area / (np.pi * (0.8**2 - 0.2**2)) - 1.0) < 0.02
+
+
+def test_manipulability_map_holds_the_largest_sample_per_voxel() -> None:
+    arm = km.load("anthropomorphic-3r")
+    ws = km.workspace(arm, samples=20_000, seed=3, voxel=0.1)
+    assert ws.manipulability is not None
+    assert np.allclose(ws.manipulability, km.manipulability(arm, _q(arm, 20_000, 3), axes="task"))
+    occupied = ws.occupancy
+    assert np.isfinite(ws.manipulability_map[occupied]).all()
+    assert np.isnan(ws.manipulability_map[~occupied]).all()
+    idx = np.floor((ws.points - ws.origin) / ws.voxel).astype(int)
+    k = int(np.argmax(ws.manipulability))
+    assert ws.manipulability_map[tuple(idx[k])] == ws.manipulability[k]
+
+
+def _q(robot: km.Robot, n: int, seed: int) -> np.ndarray:
+    """The same draws as km.workspace (one generator, chunk by chunk)."""
+    rng = np.random.default_rng(seed)
+    return np.concatenate([robot.random_q(min(CHUNK, n - s), seed=rng) for s in range(0, n, CHUNK)])
+
+
+def test_points_are_forward_kinematics_of_samples_within_limits() -> None:
+    puma = km.load("puma560")
+    ws = km.workspace(puma, samples=1000, seed=4, manipulability=False)
+    q = _q(puma, 1000, 4)
+    assert np.all((q >= puma.qlim[:, 0]) & (q <= puma.qlim[:, 1]))
+    assert np.allclose(ws.points, puma.fk(q)[:, :3, 3])
+    assert np.allclose(ws.bounds, [ws.points.min(axis=0), ws.points.max(axis=0)])
+
+
+def test_memory_grows_by_32_bytes_per_sample() -> None:
+    """Structural bound: points (24 B) + manipulability (8 B) per sample, plus one chunk
+    and one grid of at most MAX_CELLS cells. Measured at two sizes, the slope and the
+    fixed part extrapolate 10 million samples to under 500 MB."""
+    puma = km.load("puma560")
+
+    def peak(n: int) -> int:
+        tracemalloc.start()
+        km.workspace(puma, samples=n, seed=0, voxel=0.05)
+        size = tracemalloc.get_traced_memory()[1]
+        tracemalloc.stop()
+        return size
+
+    small, large = peak(CHUNK), peak(3 * CHUNK)
+    slope = (large - small) / (2 * CHUNK)
+    fixed = small - slope * CHUNK
+    assert slope < 40
+    assert slope * 10_000_000 + fixed + MAX_CELLS * 10 < 500e6
+
+
+def test_random_q_within_limits_and_shapes() -> None:
+    puma = km.load("puma560")
+    q = puma.random_q(5000, seed=0)
+    assert q.shape == (5000, 6)
+    assert np.all((q >= puma.qlim[:, 0]) & (q <= puma.qlim[:, 1]))
+    assert np.array_equal(q, puma.random_q(5000, seed=0))
+    # each joint covers its range (uniform: min/max near the limits)
+    span = (q.max(axis=0) - q.min(axis=0)) / (puma.qlim[:, 1] - puma.qlim[:, 0])
+    assert np.all(span > 0.99)
+    for shape in [(1,), (3, 2)]:
+        assert puma.random_q(shape, seed=1).shape == (*shape, 6)
+
+
+def test_prismatic_joint_without_limits_is_an_error() -> None:
+    arm = km.Robot.from_dh([km.Revolute(a=0.3), km.Prismatic()])
+    with pytest.raises(km.KinematicaError, match=r"joint 2 .* prismatic without limits"):
+        arm.random_q(3)
+    with pytest.raises(km.KinematicaError, match="joint 2"):
+        km.workspace(arm, samples=10)
+
+
+def test_bad_arguments() -> None:
+    arm = km.load("planar-3r")
+    with pytest.raises(km.KinematicaError, match="samples"):
+        km.workspace(arm, samples=0)
+    with pytest.raises(km.KinematicaError, match="voxel"):
+        km.workspace(arm, samples=10, voxel=-1.0)
+    ws = km.workspace(arm, samples=1000, seed=0)
+    with pytest.raises(km.KinematicaError, match="plane"):
+        ws.slice("xw")
+    with pytest.raises(km.KinematicaError, match="outside the workspace"):
+        ws.slice("xz", at=5.0)
