@@ -35,6 +35,7 @@ from kinematica.kernels.solvers.arm_base import (
     A_SCALE,
     DOUBLE_ROOT_TOL,
     HUGE_REACH,
+    NEAR_SET_TOL,
     NEAR_TOL,
     SINGULAR_TOL,
 )
@@ -433,10 +434,11 @@ def test_singular_tol_decides_when_q1_is_free(factor: float, free: bool) -> None
 
 
 @pytest.mark.parametrize(("factor", "near"), [(0.5, True), (2.0, False)])
-def test_near_tol_flags_targets_near_axis_1(factor: float, near: bool) -> None:
+def test_near_set_tol_flags_targets_near_axis_1(factor: float, near: bool) -> None:
+    """A target ``factor`` · NEAR_SET_TOL · size off axis 1 is flagged near it, or not."""
     T = ARM6.fk(np.radians([30, 20, -40, 10, 60, -20]))
     scale = solver(ARM6).params[A_SCALE]
-    shifted = moved_target(T, np.array([factor * NEAR_TOL * scale, 0.0, 0.0]))
+    shifted = moved_target(T, np.array([factor * NEAR_SET_TOL * scale, 0.0, 0.0]))
     assert (kernel_info(ARM6, shifted[None])[0, INFO_NEAR] != 0.0) == near
     assert ARM6.ik(shifted).status == "ok"
 

@@ -43,6 +43,7 @@ __all__ = [
     "KIND_GENERAL",
     "KIND_MEET",
     "KIND_PARALLEL",
+    "NEAR_SET_TOL",
     "NEAR_TOL",
     "SINGULAR_TOL",
     "ST_FREE",
@@ -60,10 +61,14 @@ __all__ = [
 #: (1e-10 m): any representative of the free joint then reaches the target.
 SINGULAR_TOL = 1e-12
 #: A fold's signed distance (see :func:`clamped_root`) past 0 by at most this
-#: fraction of its scale still gives candidates (mirrored) for the check;
-#: within it of 0, or a target within it (relative) of axis 1 or 2, flags the
-#: target as near a singular set or fold (no real candidate is then no proof).
+#: fraction of its scale still gives candidates (mirrored) for the check, and
+#: flags the target as near a fold (no real candidate is then no proof).
 NEAR_TOL = 1e-6
+#: A target within this distance (times the arm's size) of axis 1 or of axis
+#: 2, or a wrist within this sine of aligning axes 4 and 6, is near a singular
+#: set: the joint that turns about it is then determined only to round-off
+#: over this (1e-7, the check's duplicate threshold), and the target is flagged.
+NEAR_SET_TOL = 1e-9
 #: A fold's signed distance within this fraction of its scale (and of the
 #: arm's size) of 0 is round-off: a double root, one solution (as the check's
 #: dedupe would have it), not two split by round-off and pulled further apart
@@ -124,8 +129,8 @@ def clamped_root(diff: float, size: float, other: float, scale: float, st: Array
     just past the fold as computed, but the arm's true roots (round-off, an
     axis offset of 1e-10 the closed form neglects) may lie on either side, so
     both mirrored candidates go to the check, which polishes them onto the
-    true roots or rejects them. Below, NaN. Within that of 0,
-    ``st[ST_NEAR]`` is raised.
+    true roots or rejects them. Below, NaN. A double root and a target past
+    the fold raise ``st[ST_NEAR]``.
 
     Args:
         diff: The difference (e.g. of two lengths).
@@ -135,12 +140,14 @@ def clamped_root(diff: float, size: float, other: float, scale: float, st: Array
         st: Arm state.
     """
     roundoff = DOUBLE_ROOT_TOL * scale
-    near = NEAR_TOL * size + roundoff
-    if abs(diff) <= near:
+    if abs(diff) <= DOUBLE_ROOT_TOL * size + roundoff:
         st[ST_NEAR] = 1.0
-        if abs(diff) <= DOUBLE_ROOT_TOL * size + roundoff:
-            return 0.0
-    if other < 0.0 or diff < -near:
+        return 0.0
+    if diff < 0.0:
+        if diff < -(NEAR_TOL * size + roundoff):
+            return math.nan
+        st[ST_NEAR] = 1.0
+    if other < 0.0:
         return math.nan
     return math.sqrt(abs(diff) * other)
 
@@ -180,7 +187,7 @@ def slot(
     scale = params[A_SCALE]
     tiny = SINGULAR_TOL * scale
     up2 = u1 * u1 + u2 * u2
-    if up2 < (NEAR_TOL * scale) ** 2:
+    if up2 < (NEAR_SET_TOL * scale) ** 2:
         st[ST_NEAR] = 1.0
     if up2 < tiny * tiny:
         q2 = 0.0

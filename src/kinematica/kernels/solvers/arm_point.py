@@ -38,8 +38,8 @@ At the edges: a point on axis 1 (``ρ`` below ``SINGULAR_TOL`` times the arm's
 size) leaves q1 free, one on axis 2 leaves q2 free (the kernel gives 0 and
 flags the joint); a fold's signed distance within round-off
 (``DOUBLE_ROOT_TOL``) is a double root, one just past it (``NEAR_TOL``) gives
-mirrored candidates for the check and flags the target as near a fold; so
-does a target within ``NEAR_TOL`` (relative) of axis 1 or 2. Targets beyond
+mirrored candidates for the check; both flag the target as near a fold, as
+does a target within ``NEAR_SET_TOL`` (relative) of axis 1 or 2. Targets beyond
 the reach get a proven gap before any square is taken.
 """
 
@@ -71,6 +71,7 @@ from kinematica.kernels.solvers.arm_base import (
     HUGE_REACH,
     KIND_MEET,
     KIND_PARALLEL,
+    NEAR_SET_TOL,
     NEAR_TOL,
     ST_GAP,
     ST_NEAR,
@@ -94,7 +95,7 @@ def _q3_pair(params: Array, a: float, b: float, rhs: float, st: Array, out: Arra
     """
     r2 = a * a + b * b
     disc = r2 - rhs * rhs
-    if abs(disc) <= NEAR_TOL * r2:
+    if abs(disc) <= DOUBLE_ROOT_TOL * r2 or -NEAR_TOL * r2 <= disc < 0.0:
         st[ST_NEAR] = 1.0
     found = trig_linear(a, b, rhs, out)
     if found > 0 and abs(disc) <= DOUBLE_ROOT_TOL * r2:  # one double root
@@ -289,7 +290,7 @@ def place(params: Array, ct: Array, Q3: Array, st: Array) -> None:
     dd = dz[0] * dz[0] + rho * rho
     st[ST_GAP] = shell_gap(params, math.sqrt(dd), dz[0])
     scale = params[A_SCALE]
-    if rho < NEAR_TOL * scale:
+    if rho < NEAR_SET_TOL * scale:
         st[ST_NEAR] = 1.0
     kind = params[A_KIND]
     if kind == KIND_PARALLEL:

@@ -52,7 +52,7 @@ from kinematica.kernels.solvers.arm_base import (
     A_H3,
     A_PRISMATIC,
     A_SIZE,
-    NEAR_TOL,
+    NEAR_SET_TOL,
     ST_FREE,
     ST_GAP,
     ST_NEAR,
@@ -171,7 +171,7 @@ def _wrist(params: Array, w: Array, y: Array, out: Array, st: Array, tmp: Array)
     wb = _dot(params, W_EB, w)
     off2 = wa * wa + wb * wb  # |w × h4|², exact (no 1 - cos² cancellation)
     k56 = params[W_K56]
-    if off2 < NEAR_TOL * NEAR_TOL:
+    if off2 < NEAR_SET_TOL * NEAR_SET_TOL:
         st[ST_NEAR] = 1.0
     if off2 < WRIST_SINGULAR_TOL * WRIST_SINGULAR_TOL:
         # q4 free: c' = w; q5 turns h6 onto w about h5; q6 absorbs the rest
