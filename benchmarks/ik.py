@@ -100,8 +100,6 @@ def arms() -> list[Robot]:
 
 def raw(closed: ClosedForm, n: int, T: np.ndarray) -> np.ndarray:
     """The closed form's candidates ``(N, m, n)`` for poses ``T (N, 4, 4)``, before the check."""
-    if closed.legacy is not None:
-        return closed.legacy(T)[0]
     Q = np.empty((len(T), closed.slots, n))
     info = np.zeros((len(T), info_size(n)))
     if len(T) == 1:

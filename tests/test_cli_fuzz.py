@@ -230,17 +230,6 @@ ARG_CASES: list[tuple[str, ...]] = [
     ("ik", "iiwa14", "--pose", "0.5", "0", "0.5", "0", "180", "0", "--units", "m", "--json"),
 ]
 
-#: Cases that fail today for a cause outside the command line (the IK solvers,
-#: issue 13 item 6); they still exit 2 with one line, through the safety net.
-KNOWN_SOLVER_BUGS = {
-    ("ik", "puma560", "--pose", "1e300", "0", "0", "0", "0", "0", "--json"),
-    ("ik", "puma560", "--pose", "1.4e154", "0", "0", "0", "0", "0"),
-    ("ik", "irb120", "--pose", "1e300", "1e300", "1e300", "0", "0", "0", "--json"),
-    ("ik", "stanford", "--pose", "1e300", "0", "0", "0", "0", "0", "--json"),
-    ("ik", "puma560", "--matrix", *FAR, "--json"),
-}
-
-
 # --- the checks --------------------------------------------------------------------------
 
 
@@ -296,14 +285,8 @@ def _ids(cases: list[tuple[str, ...]]) -> list[str]:
     return [" ".join(c)[:60].encode("unicode_escape").decode() or "(nothing)" for c in cases]
 
 
-def _marks(argv: tuple[str, ...]) -> Any:
-    if argv in KNOWN_SOLVER_BUGS:
-        return pytest.param(argv, marks=pytest.mark.xfail(reason="overflow in an IK solver"))
-    return argv
-
-
 @pytest.mark.skipif(not hasattr(signal, "SIGALRM"), reason="needs SIGALRM")
-@pytest.mark.parametrize("argv", [_marks(a) for a in ARG_CASES], ids=_ids(ARG_CASES))
+@pytest.mark.parametrize("argv", ARG_CASES, ids=_ids(ARG_CASES))
 def test_hostile_arguments(capsys: pytest.CaptureFixture[str], argv: tuple[str, ...]) -> None:
     run_in_process(capsys, argv)
 

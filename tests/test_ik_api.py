@@ -192,8 +192,12 @@ def test_numeric_method_and_masks() -> None:
     res = puma.ik(T, method="numeric", seed=0)
     assert res.status == "ok" and res.method == "numeric:lm"
     assert_solutions_reach(puma, res, T)
-    res = puma.ik(T[:3, 3], seed=0)  # position only on a 6R arm: numeric
-    assert res.status == "ok"
+    res = puma.ik(T[:3, 3], seed=0)  # position only: the arm solutions, wrist free
+    assert res.status == "singular" and res.method == "analytic:arm-position"
+    assert res.free_joints == (3, 4, 5)
+    assert_solutions_reach(puma, res, T[:3, 3])
+    res = puma.ik(T[:3, 3], method="numeric", seed=0)  # one solution, numerically
+    assert res.status == "ok" and res.method == "numeric:lm"
     assert_solutions_reach(puma, res, T[:3, 3])
 
 

@@ -8,6 +8,8 @@ method, solutions, branches, residuals and message agree exactly.
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -23,8 +25,8 @@ def targets_of(robot: km.Robot, rng: np.random.Generator) -> np.ndarray:
     span = hi - lo
     outside = inside[:1] + np.where(robot.has_limits, span * 0.6, 0.0)  # past a limit
     home = np.zeros((1, n))  # often singular (wrist or elbow in line)
-    with np.testing.suppress_warnings() as sup:
-        sup.filter(km.KinematicaWarning)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", km.KinematicaWarning)
         T = robot.fk(np.concatenate([inside, outside, home]))
     far = T[:1].copy()
     far[0, :3, 3] += 50.0  # beyond any reach

@@ -43,8 +43,8 @@ class ClosedForm:
         solve_batch: Kernel ``(params, T (N, 4, 4), Q (N, m, n), info (N, k)) -> None``.
         position_only: True when it places the tool origin only (for a pose
             target of a reduced arm its candidates are checked on the whole pose).
-        legacy: A transitional batched solver ``targets (N, 4, 4) -> (Q, info)``
-            used instead of the kernels while a solver is being ported.
+        partial: True when its candidates are representatives with some joints
+            held at 0 (position targets of longer arms): never a pose solver.
     """
 
     name: str
@@ -53,7 +53,7 @@ class ClosedForm:
     solve_one: Any
     solve_batch: Any
     position_only: bool = False
-    legacy: Callable[[FloatArray], tuple[FloatArray, FloatArray]] | None = None
+    partial: bool = False
 
     @property
     def slots(self) -> int:
@@ -75,18 +75,21 @@ class SolverSpec:
         summary: One line for people, e.g. ``"6R, spherical wrist"``.
         handles: True for the features of arms of this structure.
         build: ``(chain, features, target kind) -> ClosedForm | None``.
+        describes: False for a solver of some targets of arms of many
+            structures (it names no structure: :func:`describe` passes it by).
     """
 
     kind: str
     summary: str
     handles: Callable[[Features], bool]
     build: Callable[[DHChain, Features, TargetKind], ClosedForm | None]
+    describes: bool = True
 
 
 def describe(features: Features, specs: tuple[SolverSpec, ...]) -> tuple[str, str]:
     """``(kind, summary)`` of an arm: the first spec that handles it, else a general one."""
     for spec in specs:
-        if spec.handles(features):
+        if spec.describes and spec.handles(features):
             return spec.kind, spec.summary
     n, types = features.dof, features.joint_types
     summary = f"{n} joints ({types})"

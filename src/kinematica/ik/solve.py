@@ -78,7 +78,8 @@ def closed_form(chain: DHChain, target: TargetKind) -> ClosedForm | None:
                 if found is not None:
                     break
         if found is None and target == "pose" and chain.dof < 6:
-            found = closed_form(chain, "position")
+            position = closed_form(chain, "position")
+            found = position if position is not None and not position.partial else None
         per_chain[target] = found
     return per_chain[target]
 
@@ -243,8 +244,6 @@ def _closed_candidates(
     closed: ClosedForm, targets: Targets, n: int, workers: int | None
 ) -> tuple[FloatArray, FloatArray]:
     """Candidates ``(N, m, n)`` and solver info ``(N, k)`` of a closed form."""
-    if closed.legacy is not None:
-        return closed.legacy(targets.poses)
     N = targets.poses.shape[0]
     Q = np.empty((N, closed.slots, n))
     info = np.zeros((N, info_size(n)))

@@ -1,0 +1,294 @@
+"""Where the first three joints put a point: the geometry, computed once per arm.
+
+Joints 1 and 2 are revolute (lines ``(h1, p1)``, ``(h2, p2)`` at q = 0); joint 3
+is revolute or prismatic. A point ``c`` fixed after joint 3 (a wrist centre, or
+the tool origin with the later joints at 0) must reach a target. This module
+reads the geometry from the joint axes and packs it into the parameters of the
+kernel :mod:`kinematica.kernels.solvers.arm_point` (see there for the maths):
+which of three shoulders it is (axes 1 and 2 meet, are parallel, or are skew),
+the motion ``u(q3)`` of the point as seen from axis 2, its expression on a
+frame of axis 2, the bounds of the reachable shell, and the branch labels.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from kinematica.dh import DHChain
+from kinematica.kernels import fk, jacobian
+from kinematica.kernels.solvers import arm_base
+
+__all__ = [
+    "GEOMETRY_TOL",
+    "PROBES",
+    "RANK_TOL",
+    "ArmGeometry",
+    "arm_geometry",
+    "places_point",
+    "unit_normal",
+]
+
+FloatArray = NDArray[np.float64]
+
+#: Two axes are parallel when the sine of their angle is below this; lines
+#: meet when their distance is below this times the arm's size.
+GEOMETRY_TOL = 1e-9
+#: Joints 1-3 place the point when, at one of :data:`PROBES`, the smallest
+#: singular value of the point's 3 x 3 Jacobian exceeds this times the largest.
+RANK_TOL = 1e-6
+#: Configurations of joints 1-3 at which that rank is tested (fixed, so that
+#: the decision depends on the geometry alone).
+PROBES = np.array([[0.3, -0.7, 1.1], [-1.3, 0.4, -0.6], [2.1, 1.7, 0.2]])
+
+
+@dataclass(frozen=True, eq=False)
+class ArmGeometry:
+    """The packed parameters of the arm part, and the names of its four slots.
+
+    Attributes:
+        params: ``(A_SIZE,)`` the kernel's parameters (read-only).
+        labels: ``(4,)`` names of the position branches (slots).
+        kind: ``"meet"``, ``"parallel"`` or ``"general"`` (axes 1 and 2).
+        parallel23: True when axes 2 and 3 are parallel (revolute joint 3).
+    """
+
+    params: FloatArray
+    labels: tuple[str, ...]
+    kind: str
+    parallel23: bool
+
+
+def places_point(chain: DHChain, c_tool: FloatArray) -> bool:
+    """True when joints 1-3 move a point in three independent directions.
+
+    Args:
+        chain: The arm.
+        c_tool: ``(3,)`` the point in the tool frame when joints 4..n are at 0.
+    """
+    q = np.zeros((len(PROBES), chain.dof))
+    q[:, :3] = PROBES
+    T, _, _ = fk(chain, q)
+    J, _ = jacobian(chain, q)  # linear velocity of the tool origin, then ω
+    r = T[:, :3, :3] @ c_tool  # the point relative to the tool origin
+    Jc = J[:, :3, :3] + np.cross(J[:, 3:, :3], r[:, :, None], axis=1)
+    s = np.linalg.svd(Jc, compute_uv=False)
+    return bool(np.any(s[:, -1] > RANK_TOL * s[:, 0]))
+
+
+def _foot_points(
+    h1: FloatArray, p1: FloatArray, h2: FloatArray, p2: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """Feet of the common normal of two non-parallel lines."""
+    w, b = p1 - p2, float(h1 @ h2)
+    d1, e = float(h1 @ w), float(h2 @ w)
+    den = float(np.sum(np.cross(h1, h2) ** 2))  # 1 - b², without its cancellation
+    return p1 + (b * e - d1) / den * h1, p2 + (e - b * d1) / den * h2
+
+
+def unit_normal(h: FloatArray) -> FloatArray:
+    """A unit vector normal to the unit vector ``h``."""
+    n = np.cross(h, [1.0, 0.0, 0.0])
+    if np.linalg.norm(n) < 0.5:
+        n = np.cross(h, [0.0, 1.0, 0.0])
+    return n / np.linalg.norm(n)
+
+
+def arm_geometry(
+    h: FloatArray, p: FloatArray, prismatic: bool, c: FloatArray
+) -> ArmGeometry | None:
+    """The packed geometry of joints 1-3 placing ``c``, or None when they cannot.
+
+    Args:
+        h: ``(3, 3)`` unit directions of joints 1..3 at q = 0 (base frame).
+        p: ``(3, 3)`` a point on each axis.
+        prismatic: Joint 3 slides (joints 1 and 2 are revolute).
+        c: ``(3,)`` the point at q = 0.
+
+    Returns:
+        None when axes 1 and 2 coincide, the point lies on axis 3, or three
+        parallel axes keep the point in a plane.
+    """
+    h1, h2, h3 = (np.asarray(v, float) / np.linalg.norm(v) for v in h)
+    p1, p2, p3 = (np.asarray(v, float) for v in p)
+    c = np.asarray(c, float)
+    scale = 1.0 + float(np.linalg.norm(c - p1) + np.linalg.norm(p2 - p1))
+    ca, sa = float(h1 @ h2), float(np.linalg.norm(np.cross(h1, h2)))
+    if sa < GEOMETRY_TOL:
+        delta = (p2 - p1) - ((p2 - p1) @ h1) * h1
+        a = float(np.linalg.norm(delta))
+        if a < GEOMETRY_TOL * scale:
+            return None  # axes 1 and 2 coincide
+        kind, p2 = arm_base.KIND_PARALLEL, p1 + delta
+        e1 = delta / a
+        e2 = np.cross(h2, e1)
+    else:
+        f1, f2 = _foot_points(h1, p1, h2, p2)
+        a = float(np.linalg.norm(f2 - f1))
+        if a < GEOMETRY_TOL * scale:  # they meet, or all but (an offset of 1e-10)
+            kind, p1, p2 = arm_base.KIND_MEET, f1, f2
+            e2 = (h1 - ca * h2) / sa
+            e1 = np.cross(e2, h2)
+            a = float((f2 - f1) @ e1)  # signed: f2 - f1 is along h1 × h2, so along e1
+        else:
+            kind, p1, p2 = arm_base.KIND_GENERAL, f1, f2
+            e1 = (f2 - f1) / a
+            e2 = np.cross(h2, e1)
+    if prismatic:
+        U = np.array([c - p2, h3, np.zeros(3)])
+        parallel23 = False
+    else:
+        r = c - p3
+        rpar = (r @ h3) * h3
+        U = np.array([p3 - p2 + rpar, r - rpar, np.cross(h3, r - rpar)])
+        if float(np.linalg.norm(U[1])) < GEOMETRY_TOL * scale:
+            return None  # the point is on axis 3
+        parallel23 = float(np.linalg.norm(np.cross(h3, h2))) < GEOMETRY_TOL
+        if kind == arm_base.KIND_PARALLEL and parallel23:
+            return None  # three parallel axes: the point moves in a plane
+    coef = U @ np.stack([e1, e2, h2, np.zeros(3)], axis=1)  # u1, u2, H, L
+    if prismatic:
+        L = [float(U[0] @ U[0]), 2 * float(U[0] @ U[1]), 1.0]
+        umin = float(np.linalg.norm(U[0] - (U[0] @ h3) * h3))
+        umax = math.inf
+        Hq = float(h2 @ h3)
+        Hrange = (-math.inf, math.inf) if abs(Hq) > 0 else (coef[0, 2], coef[0, 2])
+    else:
+        L = [float(U[0] @ U[0] + U[1] @ U[1]), 2 * float(U[0] @ U[1]), 2 * float(U[0] @ U[2])]
+        rL = math.hypot(L[1], L[2])
+        umin, umax = math.sqrt(max(L[0] - rL, 0.0)), math.sqrt(L[0] + rL)
+        rH = math.hypot(coef[1, 2], coef[2, 2])
+        Hrange = (coef[0, 2] - rH, coef[0, 2] + rH)
+    coef[:, 3] = L
+    b3 = float(U[0] @ h3)
+    m3 = float(np.linalg.norm(U[0] - b3 * h3))  # distance of axis 3 from p2
+    if prismatic:
+        q3_form = [b3, m3, 0.0, 0.0, 0.0]
+    else:
+        n3 = float(np.linalg.norm(U[1]))
+        if m3 < GEOMETRY_TOL * scale and (kind == arm_base.KIND_MEET or parallel23):
+            return None  # axis 3 through p2: |u| does not depend on q3
+        beta = math.atan2(float(U[0] @ U[2]), float(U[0] @ U[1]))
+        q3_form = [beta, m3, n3, math.hypot(b3, m3 - n3), math.hypot(b3, m3 + n3)]
+    g = float(h1 @ e2)
+    # |x - p1| = |δ + R2 u| lies in [max(0, umin - a, a - umax), a + umax]; with
+    # axes 1 and 2 parallel h1ᵀ(x - p1) = cα H lies in cα [Hmin, Hmax]
+    zlo, zhi = (
+        sorted(ca * v for v in Hrange) if kind == arm_base.KIND_PARALLEL else (-math.inf, math.inf)
+    )
+    shell = (max(0.0, umin - abs(a), abs(a) - umax), abs(a) + umax, zlo, zhi)
+    a1 = unit_normal(h1)
+    frame1 = np.stack([h1, a1, np.cross(h1, a1)], axis=1)
+    xframe = np.stack([h2, e1, e2, p2 - p1]) @ frame1[:, 1:]
+    # Elbow up: the elbow lies on the side of the shoulder-wrist line that
+    # axis 1 points to: sign(h1ᵀ(h2 × R2 u)) s_e > 0 with s_e = uᵀ((e0 - p2) × h2)
+    # (e0: the point of axis 3 nearest p2), Lee's ELBOW indicator read
+    # geometrically. The first factor is sign(g v1); with axes 2 ∥ 3,
+    # s_e = (h2ᵀh3 / 2) dL/dq3, which is -s (resp. +s) times that on the
+    # first (second) root of a pair. So the second root is "up" exactly when
+    # g v1 (h2ᵀh3) > 0.
+    elbow_sign = g * float(np.sign(h2 @ h3))
+    # axes 1 and 2 meet: sign(g v1) is the shoulder sign (g > 0), so the order is fixed
+    root_signs = np.array([[1.0, -1.0], [1.0, -1.0]])
+    if kind == arm_base.KIND_MEET and parallel23:
+        root_signs[0 if elbow_sign > 0 else 1] *= -1.0
+    # a second pass where the closed form neglects a small coupling: axes 1, 2
+    # meeting but for an offset, or axes 2, 3 parallel but for a twist
+    refine = (kind == arm_base.KIND_MEET and a != 0.0) or (
+        parallel23 and abs(coef[1, 2]) + abs(coef[2, 2]) > arm_base.DOUBLE_ROOT_TOL * scale
+    )
+    fourier = np.zeros((5, 5))
+    if kind == arm_base.KIND_GENERAL and not prismatic:
+        fourier = _fourier_matrix(a, sa, ca, np.array(L), coef[:, 2])
+    B = arm_base
+    params = np.zeros(B.A_SIZE)
+    blocks = {
+        B.A_KIND: kind,
+        B.A_PRISMATIC: float(prismatic),
+        B.A_PAR23: float(parallel23),
+        B.A_P1: p1,
+        B.A_FRAME1: frame1,
+        B.A_XFRAME: xframe,
+        B.A_COEF: coef,
+        B.A_A: a,
+        B.A_CA: ca,
+        B.A_SA: sa,
+        B.A_G: g,
+        B.A_ELBOW: elbow_sign,
+        B.A_ROOTS: root_signs,
+        B.A_SCALE: scale,
+        B.A_SHELL: np.array(shell),
+        B.A_FOURIER: fourier,
+        B.A_H1: h1,
+        B.A_H2: h2,
+        B.A_H3: h3,
+        B.A_P21: p2 - p1,
+        B.A_U: U,
+        B.A_Q3: np.array(q3_form),
+        B.A_REFINE: float(refine),
+    }
+    for o, v in blocks.items():
+        flat = np.ravel(v)
+        params[o : o + flat.size] = flat
+    params.flags.writeable = False
+    names = {B.KIND_MEET: "meet", B.KIND_PARALLEL: "parallel", B.KIND_GENERAL: "general"}
+    return ArmGeometry(params, _labels(kind, prismatic, parallel23), names[kind], parallel23)
+
+
+def _trig_square(x0: float, xc: float, xs: float) -> FloatArray:
+    """Fourier coefficients ``[g0, a1, b1, a2, b2]`` of ``(x0 + xc cos + xs sin)²``."""
+    return np.array(
+        [
+            x0 * x0 + (xc * xc + xs * xs) / 2,
+            2 * x0 * xc,
+            2 * x0 * xs,
+            (xc * xc - xs * xs) / 2,
+            xc * xs,
+        ]
+    )
+
+
+def _fourier_matrix(a: float, sa: float, ca: float, L: FloatArray, H: FloatArray) -> FloatArray:
+    """``(5, 5)``: rows turn ``[X0², X0, Y0², Y0, 1]`` into the Fourier coefficients of F.
+
+    ``F(q3) = sin²α X² + 4a² Y² - 4a² sin²α (L - H²)`` (Pieper's elimination,
+    see :mod:`kinematica.kernels.solvers.arm_quartic`) with
+    ``X = X0 - L1 cos - L2 sin`` (``X0 = |d|² - a² - L0``) and
+    ``Y = Y0 - cα (H1 cos + H2 sin)`` (``Y0 = ζ - cα H0``).
+    """
+    sa2, a2 = sa * sa, a * a
+    F = np.zeros((5, 5))
+    F[0, 0] = sa2
+    F[1, 1:3] = -2 * sa2 * L[1:]
+    F[2, 0] = 4 * a2
+    F[3, 1:3] = -8 * a2 * ca * H[1:]
+    F[4] = (
+        sa2 * _trig_square(0.0, -L[1], -L[2])
+        + 4 * a2 * _trig_square(0.0, -ca * H[1], -ca * H[2])
+        - 4 * a2 * sa2 * (np.array([L[0], L[1], L[2], 0.0, 0.0]) - _trig_square(*H))
+    )
+    return F
+
+
+def _labels(kind: float, prismatic: bool, parallel23: bool) -> tuple[str, ...]:
+    if kind == arm_base.KIND_MEET and parallel23:
+        return (
+            "shoulder right, elbow up",
+            "shoulder right, elbow down",
+            "shoulder left, elbow up",
+            "shoulder left, elbow down",
+        )
+    if kind == arm_base.KIND_GENERAL and parallel23:
+        return (
+            "shoulder front, elbow up",
+            "shoulder front, elbow down",
+            "shoulder back, elbow up",
+            "shoulder back, elbow down",
+        )
+    if kind == arm_base.KIND_MEET:
+        second = ("slide out", "slide in") if prismatic else ("elbow branch 1", "elbow branch 2")
+        return tuple(f"shoulder {s}, {e}" for s in ("right", "left") for e in second)
+    return tuple(f"position {k}" for k in range(1, 5))

@@ -1,0 +1,291 @@
+"""Closed-form IK of arms with a spherical wrist: 6R, and RRP (Stanford type).
+
+The last three axes meet at the wrist centre ``c``, which only joints 1-3 move
+(the seeds' "hipótesis de la muñeca esférica"). In product-of-exponentials
+form (``T(q) = e1 e2 ... e6 M`` with the axes at q = 0) the target wrist
+centre is the point fixed in the tool frame that sits at ``c`` at q = 0::
+
+    c_t = T_target · M⁻¹ · c
+
+and joints 1-3 put ``c`` there (:mod:`~kinematica.kernels.solvers.arm_point`: up
+to four branches). The wrist then supplies the rotation left over,
+``R4 R5 R6 = (R1 R2 R3)ᵀ · R_target · R_Mᵀ`` (the seeds' ``R36 = (R03)ᵀ R06``),
+about wrist axes meeting at any angles:
+
+* ``w = R4 R5 R6 h6`` (the target's axis 6, turned back by joints 1-3): the
+  vector ``c' = R4ᵀ w = R5 h6`` has ``h4ᵀc' = h4ᵀw``, ``h5ᵀc' = h5ᵀh6`` and unit
+  length, so ``c' = α h4 + β h5 ± γ (h4 × h5)`` (SP2): "no-flip" and "flip";
+* q4 turns ``c'`` onto ``w`` about ``h4``, q5 turns ``h6`` onto ``c'`` about ``h5``
+  (SP1 each), and q6 turns ``x6`` onto ``R5ᵀ R4ᵀ R x6`` about ``h6``: computed
+  last, it absorbs the round-off of q4 and q5 (near the wrist singularity q4
+  is ill-determined, their combination is not).
+
+"No-flip" bends the wrist the way it is bent at q = 0 (or, when q = 0 is
+itself singular, the way q5 > 0 bends it from there): on the PUMA, sin q5 > 0.
+Slots: ``4 position × 2 wrist``, slot ``2 k + w``.
+
+At the edges (each a continuum, flagged ``singular`` with its free joints):
+
+* wrist singular (``w`` within ``WRIST_SINGULAR_TOL`` of ``±h4``: axes 4 and 6
+  aligned): only ``q4 ± q6`` is determined; the no-flip slot holds the
+  representative with ``q4 = 0``, the flip slot (the same family) is NaN;
+* wrist centre on axis 1 (q1 free) or on axis 2 (q2 free): the first two
+  position slots turn the free joint so that the arm faces the tool (axis 4
+  turned towards the target's axis 6: the wrist is least bent), the last two
+  hold it at 0 (where the shoulder branches merge, as they do at these
+  points for shoulders in closed form, that is one representative of each).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from kinematica.kernels._numba import Array, kernel
+from kinematica.kernels.geometry import rotate, subproblem1
+from kinematica.kernels.ik_check import INFO_FREE, INFO_GAP, INFO_NEAR, INFO_SINGULAR
+from kinematica.kernels.so3 import wrap
+from kinematica.kernels.solvers.arm_base import (
+    A_H1,
+    A_H2,
+    A_H3,
+    A_PRISMATIC,
+    A_SIZE,
+    NEAR_SET_TOL,
+    ST_FREE,
+    ST_GAP,
+    ST_NEAR,
+    clamped_root,
+)
+
+__all__ = ["WRIST_SINGULAR_TOL", "W_SIZE", "pose", "wrist_centre"]
+
+#: The wrist is singular (axes 4 and 6 aligned) when the sine of the angle
+#: between ``h4`` and ``w`` is below this: the representative ``q4 = 0`` then
+#: reproduces the rotation to about twice this (far below 1e-10 rad).
+WRIST_SINGULAR_TOL = 1e-12
+
+_TWO_PI = 2.0 * math.pi
+
+# Parameter offsets after the arm part and the mode (vectors at q = 0, base frame).
+W_CTOOL = A_SIZE + 1  # (3,) wrist centre in the tool frame (M⁻¹ c)
+W_LH = A_SIZE + 4  # (3,) R_Mᵀ h6: the target's axis 6 is R_target times this
+W_LX = A_SIZE + 7  # (3,) R_Mᵀ x6
+W_H4 = A_SIZE + 10  # (3,) wrist axes, and x6: a unit vector normal to h6
+W_H5 = A_SIZE + 13
+W_H6 = A_SIZE + 16
+W_X6 = A_SIZE + 19
+W_Y6 = A_SIZE + 22  # (3,) h6 × x6
+W_EA = A_SIZE + 25  # (3,) unit part of h5 normal to h4; eb = h4 × ea
+W_EB = A_SIZE + 28
+W_K45 = A_SIZE + 31  # h4ᵀh5
+W_S45 = A_SIZE + 32  # |h4 × h5|
+W_K56 = A_SIZE + 33  # h5ᵀh6
+W_N56 = A_SIZE + 34  # (3,) h5 × h6 in the frame (h4, ea, eb)
+W_H6F = A_SIZE + 37  # (3,) h6 in that frame
+W_FLIP = A_SIZE + 40  # sign of γ on the no-flip branch
+W_LIMITS = A_SIZE + 41  # (4,) limits of q4, then of q6 (rad): where representatives go
+W_SIZE = A_SIZE + 45
+
+
+@kernel
+def _dot(params: Array, o: int, v: Array) -> float:
+    """``params[o:o+3] · v``."""
+    return params[o] * v[0] + params[o + 1] * v[1] + params[o + 2] * v[2]
+
+
+@kernel
+def _undo(params: Array, q: Array, W0: Array, Y0: Array, w: Array, y: Array, tmp: Array) -> None:
+    """``w, y = R3ᵀ R2ᵀ R1ᵀ (W0, Y0)``: joints 1-3 (``q (3,)``) turned back (a slide: 1, 2)."""
+    for j in range(2 if params[A_PRISMATIC] != 0.0 else 3):
+        k = params[A_H1 + 3 * j : A_H1 + 3 * j + 3]  # h1, h2, h3 lie one after another
+        c = math.cos(q[j])
+        s = -math.sin(q[j])
+        rotate(k, c, s, W0 if j == 0 else w, tmp)
+        for i in range(3):
+            w[i] = tmp[i]
+        rotate(k, c, s, Y0 if j == 0 else y, tmp)
+        for i in range(3):
+            y[i] = tmp[i]
+
+
+@kernel
+def _q6(params: Array, y4: float, x4: float, y5: float, x5: float, y: Array, tmp: Array) -> float:
+    """q6 turning ``x6`` onto ``z = R5ᵀ R4ᵀ y`` about ``h6`` (absorbs q4's, q5's round-off).
+
+    ``q4 = atan2(y4, x4)``, ``q5 = atan2(y5, x5)``: their cosines and sines
+    come from those arguments, not from the angles.
+    """
+    r4 = math.hypot(x4, y4)
+    r5 = math.hypot(x5, y5)
+    c4 = x4 / r4 if r4 > 0.0 else 1.0
+    s4 = y4 / r4 if r4 > 0.0 else 0.0
+    c5 = x5 / r5 if r5 > 0.0 else 1.0
+    s5 = y5 / r5 if r5 > 0.0 else 0.0
+    z = tmp[3:6]
+    rotate(params[W_H4 : W_H4 + 3], c4, -s4, y, tmp[0:3])
+    rotate(params[W_H5 : W_H5 + 3], c5, -s5, tmp[0:3], z)
+    return math.atan2(_dot(params, W_Y6, z), _dot(params, W_X6, z))
+
+
+@kernel
+def _within_limits(params: Array, w4: float, out: Array) -> None:
+    """Move the singular wrist's representative ``out[0]`` along its family into the limits.
+
+    With ``w = ±h4`` (``w4 = ±1``) turning q4 by t turns q6 by ``-t w4``: the
+    family is ``(t, q5, q6 - t w4)``. When ``q4 = 0`` puts q6 outside its
+    limits, t is chosen to put q6 mid-window, then kept within q4's limits, so
+    that a family with members within the limits is not reported out of them.
+    """
+    lo4 = params[W_LIMITS]
+    hi4 = params[W_LIMITS + 1]
+    lo6 = params[W_LIMITS + 2]
+    hi6 = params[W_LIMITS + 3]
+    q6 = out[0, 2]
+    inside = lo6 <= q6 <= hi6 or lo6 <= q6 + _TWO_PI <= hi6 or lo6 <= q6 - _TWO_PI <= hi6
+    if inside or not (math.isfinite(lo6) and math.isfinite(hi6)):
+        return
+    sign = 1.0 if w4 > 0.0 else -1.0
+    t = sign * wrap(q6 - 0.5 * (lo6 + hi6))
+    if math.isfinite(lo4) and math.isfinite(hi4):
+        t = min(max(t, lo4), hi4)
+    out[0, 0] = t
+    out[0, 2] = q6 - sign * t
+
+
+@kernel
+def _wrist(params: Array, w: Array, y: Array, out: Array, st: Array, tmp: Array) -> bool:
+    """(q4, q5, q6) of no-flip and flip into ``out (2, 3)``; True when singular.
+
+    Args:
+        params: The solver's parameters.
+        w: ``(3,)`` the target's axis 6 with joints 1-3 turned back.
+        y: ``(3,)`` its ``x6`` likewise.
+        out: ``(2, 3)`` out, NaN rows where the wrist cannot make the rotation.
+        st: Arm state; ``ST_NEAR`` is raised near the wrist singularity or fold.
+        tmp: ``(6,)`` scratch.
+    """
+    w4 = _dot(params, W_H4, w)
+    wa = _dot(params, W_EA, w)
+    wb = _dot(params, W_EB, w)
+    off2 = wa * wa + wb * wb  # |w × h4|², exact (no 1 - cos² cancellation)
+    k56 = params[W_K56]
+    if off2 < NEAR_SET_TOL * NEAR_SET_TOL:
+        st[ST_NEAR] = 1.0
+    if off2 < WRIST_SINGULAR_TOL * WRIST_SINGULAR_TOL:
+        # q4 free: c' = w; q5 turns h6 onto w about h5; q6 absorbs the rest
+        cw = w4 * params[W_N56] + wa * params[W_N56 + 1] + wb * params[W_N56 + 2]
+        ch = w4 * params[W_H6F] + wa * params[W_H6F + 1] + wb * params[W_H6F + 2] - k56 * k56
+        out[0, 0] = 0.0
+        out[0, 1] = math.atan2(cw, ch)
+        out[0, 2] = _q6(params, 0.0, 1.0, cw, ch, y, tmp)
+        out[1, :] = math.nan
+        _within_limits(params, w4, out)
+        return True
+    s45 = params[W_S45]
+    inv = 1.0 / (s45 * s45)
+    beta = (k56 - params[W_K45] * w4) * inv
+    off = math.sqrt(off2) / s45  # γ² = off² - β²
+    gam0 = clamped_root(off - abs(beta), off + abs(beta), off + abs(beta), 1.0, st)
+    ca = beta * s45
+    for j in range(2):
+        cb = gam0 * s45 * (params[W_FLIP] if j == 0 else -params[W_FLIP])
+        # q4 turns c' onto w about h4 (the parts off h4 in the frame ea, eb)
+        y4 = ca * wb - cb * wa
+        x4 = ca * wa + cb * wb
+        # q5 turns h6 onto c' = (w4, ca, cb) about h5
+        cw = w4 * params[W_N56] + ca * params[W_N56 + 1] + cb * params[W_N56 + 2]
+        ch = w4 * params[W_H6F] + ca * params[W_H6F + 1] + cb * params[W_H6F + 2] - k56 * k56
+        out[j, 0] = math.atan2(y4, x4)
+        out[j, 1] = math.atan2(cw, ch)
+        out[j, 2] = _q6(params, y4, x4, cw, ch, y, tmp)
+    return False
+
+
+@kernel
+def _face(params: Array, q: Array, W0: Array, free1: bool, free2: bool, tmp: Array) -> None:
+    """Set a free q2, then a free q1, so that axis 4 turns towards the target's axis 6."""
+    k = np.empty(3)
+    t = np.empty(3)
+    for i in range(3):
+        k[i] = params[W_H4 + i]
+    if params[A_PRISMATIC] == 0.0:
+        rotate(params[A_H3 : A_H3 + 3], math.cos(q[2]), math.sin(q[2]), k, tmp)
+        for i in range(3):
+            k[i] = tmp[i]
+    h1 = params[A_H1 : A_H1 + 3]
+    h2 = params[A_H2 : A_H2 + 3]
+    if free2:  # axis 4 after joint 3, turned about axis 2 towards R1ᵀ h6_target
+        rotate(h1, math.cos(q[0]), -math.sin(q[0]), W0, t)
+        q[1] = subproblem1(k, t, h2)
+    rotate(h2, math.cos(q[1]), math.sin(q[1]), k, tmp)
+    if free1:
+        q[0] = subproblem1(tmp, W0, h1)
+
+
+@kernel
+def wrist_centre(params: Array, T: Array, ct: Array) -> None:
+    """``ct (3,)``: the target wrist centre ``T M⁻¹ c`` of a pose ``T (4, 4)``."""
+    for i in range(3):
+        ct[i] = T[i, 3]
+        for j in range(3):
+            ct[i] += T[i, j] * params[W_CTOOL + j]
+
+
+@kernel
+def pose(params: Array, T: Array, Q3: Array, st: Array, Q: Array, info: Array) -> None:
+    """Candidates for one pose, given the wrist-centre placements.
+
+    Args:
+        params: ``(W_SIZE,)`` the arm part, the mode, then the wrist's.
+        T: ``(4, 4)`` target tool pose (base frame).
+        Q3: ``(4, 3)`` where joints 1-3 put the wrist centre (see
+            :func:`~kinematica.kernels.solvers.arm_point.place`).
+        st: What ``place`` reported.
+        Q: ``(8, 6)`` out: slot ``2 k + w`` (position branch k, wrist no-flip
+            or flip), NaN rows where the branch has no real solution.
+        info: ``(INFO_FREE + 6,)`` out (zero on entry): see
+            :mod:`kinematica.kernels.ik_check`.
+    """
+    work = np.empty(21)  # scratch, one allocation
+    W0 = work[0:3]  # the target's axis 6 and x6
+    Y0 = work[3:6]
+    q = work[6:9]
+    w = work[9:12]
+    y = work[12:15]
+    tmp = work[15:21]
+    for i in range(3):
+        W0[i] = 0.0
+        Y0[i] = 0.0
+        for j in range(3):
+            W0[i] += T[i, j] * params[W_LH + j]
+            Y0[i] += T[i, j] * params[W_LX + j]
+    qw = np.empty((2, 3))
+    real = False
+    wrist_singular = False
+    free1 = st[ST_FREE] != 0.0
+    free2 = st[ST_FREE + 1] != 0.0
+    for k in range(4):
+        for i in range(3):
+            q[i] = Q3[k, i]
+        if k < 2 and (free1 or free2) and not math.isnan(q[0]):
+            _face(params, q, W0, free1, free2, tmp)
+        _undo(params, q, W0, Y0, w, y, tmp)
+        wrist_singular |= _wrist(params, w, y, qw, st, tmp) and not math.isnan(q[0])
+        for j in range(2):
+            row = Q[2 * k + j]
+            ok = not math.isnan(q[0] + qw[j, 0] + qw[j, 1] + qw[j, 2])
+            real |= ok
+            for i in range(6):
+                row[i] = (q[i] if i < 3 else qw[j, i - 3]) if ok else math.nan
+    for i in range(3):
+        info[INFO_FREE + i] = st[ST_FREE + i]
+    if wrist_singular:
+        info[INFO_FREE + 3] = 1.0
+        info[INFO_FREE + 5] = 1.0
+    singular = wrist_singular or st[ST_FREE] + st[ST_FREE + 1] + st[ST_FREE + 2] != 0.0
+    info[INFO_SINGULAR] = 1.0 if singular else 0.0
+    info[INFO_NEAR] = st[ST_NEAR]
+    # a target outside the shell has no solution, whatever a clamped double root says
+    info[INFO_GAP] = st[ST_GAP] if not real or st[ST_GAP] > 0.0 else math.nan

@@ -1,0 +1,75 @@
+"""Independent references for IK tests: joint distances, and a multi-start search.
+
+The search knows nothing of the closed forms: damped least squares from many
+random starts on the robot's own FK and Jacobian (numpy, scipy's rotation
+vector), then Gauss-Newton steps; every converged start is a solution. It is
+the completeness reference of the closed-form tests.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.spatial.transform import Rotation
+
+from kinematica.robot import Robot
+
+FloatArray = NDArray[np.float64]
+
+
+def joint_distance(robot: Robot, q1: FloatArray, q2: FloatArray) -> FloatArray:
+    """Largest joint difference (angles modulo 2π), broadcast over leading axes."""
+    d = np.asarray(q1, dtype=float) - np.asarray(q2, dtype=float)
+    d = np.where(robot.is_prismatic, d, np.angle(np.exp(1j * d)))
+    return np.abs(d).max(axis=-1)
+
+
+def random_q(robot: Robot, rng: np.random.Generator, n: int) -> FloatArray:
+    """``(n, dof)``: angles in (-π, π), slides in (-0.5, 0.8) m (limits ignored)."""
+    q = rng.uniform(-math.pi, math.pi, (n, robot.dof))
+    return np.where(robot.is_prismatic, rng.uniform(-0.5, 0.8, (n, robot.dof)), q)
+
+
+def dls_solutions(
+    robot: Robot, target: FloatArray, rng: np.random.Generator, starts: int = 200
+) -> FloatArray:
+    """Every distinct solution a multi-start damped-least-squares search finds.
+
+    Args:
+        robot: The robot.
+        target: ``(3,)`` position or ``(4, 4)`` pose of the tool.
+        rng: Random starts.
+        starts: Number of random starts.
+
+    Returns:
+        ``(k, n)`` distinct solutions (revolute joints wrapped to (-π, π]).
+    """
+    position_only = target.shape == (3,)
+    q = random_q(robot, rng, starts)
+
+    def error(q: FloatArray) -> FloatArray:
+        T = robot.fk(q, workers=1)  # small batches: threads cost more than they give
+        e = target[:3] - T[:, :3, 3] if position_only else target[:3, 3] - T[:, :3, 3]
+        if position_only:
+            return e
+        rot = Rotation.from_matrix(target[:3, :3] @ np.swapaxes(T[:, :3, :3], 1, 2))
+        return np.concatenate([e, rot.as_rotvec()], axis=1)
+
+    for it in range(300):
+        e = error(q)
+        J = robot.jacobian(q, workers=1)[:, : e.shape[1]]
+        if it < 200:  # damped least squares, then Gauss-Newton steps to polish
+            Jt = np.swapaxes(J, 1, 2)
+            step = Jt @ np.linalg.solve(J @ Jt + 1e-4 * np.eye(e.shape[1]), e[..., None])
+        else:
+            step = np.linalg.pinv(J) @ e[..., None]
+        q = q + step[..., 0]
+    done = np.abs(error(q)).max(axis=1) < 1e-10
+    found: list[FloatArray] = []
+    for qi in q[done]:
+        qi = np.where(robot.is_prismatic, qi, np.angle(np.exp(1j * qi)))
+        if all(joint_distance(robot, qi, f) > 1e-6 for f in found):
+            found.append(qi)
+    return np.array(found).reshape(-1, robot.dof)

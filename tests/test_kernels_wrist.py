@@ -1,0 +1,190 @@
+"""The spherical-wrist kernels' building blocks, and their tolerances on both sides.
+
+Each named tolerance of :mod:`kinematica.kernels.solvers` and of the builder
+is pinned by a case just inside and one just outside it; the references are
+polynomials and geometries built here with known roots and known rank.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from kinematica.dh import Revolute
+from kinematica.ik.analytic.arm_point import (
+    GEOMETRY_TOL,
+    PROBES,
+    RANK_TOL,
+    arm_geometry,
+    places_point,
+)
+from kinematica.kernels.solvers import arm_quartic
+from kinematica.kernels.solvers.arm_base import (
+    DOUBLE_ROOT_TOL,
+    NEAR_TOL,
+    ST_NEAR,
+    ST_SIZE,
+    clamped_root,
+)
+from kinematica.kernels.solvers.arm_quartic import (
+    IMAG_TOL,
+    MAX_NEWTON_STEP,
+    SELF_MOTION_TOL,
+    slide_roots,
+    trig_roots,
+)
+from kinematica.robot import Robot
+
+PI = math.pi
+
+
+def state() -> np.ndarray:
+    return np.zeros(ST_SIZE)
+
+
+# ------------------------------------------------------------- clamped roots
+@pytest.mark.parametrize(("factor", "double"), [(0.5, True), (2.0, False)])
+def test_double_root_tol(factor: float, double: bool) -> None:
+    """A fold's signed distance within DOUBLE_ROOT_TOL of its size is round-off: one root."""
+    size = 3.0
+    diff = factor * DOUBLE_ROOT_TOL * (size + 1.0)
+    root = clamped_root(diff, size, 2.0, 1.0, state())
+    assert (root == 0.0) == double
+    if not double:
+        assert root == pytest.approx(math.sqrt(diff * 2.0))
+
+
+@pytest.mark.parametrize(("factor", "candidate"), [(0.5, True), (2.0, False)])
+def test_near_tol_keeps_mirrored_roots_just_past_a_fold(factor: float, candidate: bool) -> None:
+    size = 3.0
+    diff = -factor * NEAR_TOL * size
+    st = state()
+    root = clamped_root(diff, size, 2.0, 1.0, st)
+    assert math.isfinite(root) == candidate
+    assert (st[ST_NEAR] != 0.0) == candidate
+    if candidate:
+        assert root == pytest.approx(math.sqrt(-diff * 2.0))
+
+
+def test_clamped_root_of_another_failed_factor_is_nan() -> None:
+    assert math.isnan(clamped_root(1.0, 2.0, -1.0, 1.0, state()))
+    assert clamped_root(4.0, 4.0, 4.0, 1.0, state()) == 4.0
+
+
+# ----------------------------------------------------------------- quartics
+def test_trig_roots_are_those_of_the_trigonometric_polynomial() -> None:
+    rng = np.random.default_rng(51)
+    for _ in range(200):
+        F = rng.normal(size=5)
+        q = np.empty(4)
+        assert not trig_roots(F, np.abs(F).sum(), q, state())
+        real = q[~np.isnan(q)]
+        grid = np.linspace(-PI, PI, 20001)
+        f = F[0] + F[1] * np.cos(grid) + F[2] * np.sin(grid)
+        f += F[3] * np.cos(2 * grid) + F[4] * np.sin(2 * grid)
+        sign_changes = int(np.sum(np.sign(f[:-1]) != np.sign(f[1:])))
+        assert len(real) == sign_changes  # generic: simple roots only
+        for x in real:
+            val = F[0] + F[1] * math.cos(x) + F[2] * math.sin(x)
+            val += F[3] * math.cos(2 * x) + F[4] * math.sin(2 * x)
+            assert abs(val) < 1e-12 * np.abs(F).sum()
+        assert (np.diff(real) > 0).all() and (np.abs(real) <= PI).all()
+
+
+@pytest.mark.parametrize(("factor", "self_motion"), [(0.5, True), (2.0, False)])
+def test_self_motion_tol(factor: float, self_motion: bool) -> None:
+    """F that is 0 to round-off of the terms it came from: every q3 is a root."""
+    F = np.array([factor * SELF_MOTION_TOL, 0.0, 0.0, 0.0, 0.0])
+    q = np.empty(4)
+    assert trig_roots(F, 1.0, q, state()) == self_motion
+    if self_motion:
+        np.testing.assert_allclose(q, [-PI / 2, 0.0, PI / 2, PI])
+    else:
+        assert np.isnan(q).all()  # a nonzero constant has no root
+
+
+@pytest.mark.parametrize(("factor", "real"), [(0.5, True), (2.0, False)])
+def test_imag_tol(factor: float, real: bool) -> None:
+    """A complex pair this close to the real axis is a double root split by round-off."""
+    eps = factor * IMAG_TOL * (1.0 + 0.5)
+    k = np.real(np.poly([0.5 + 1j * eps, 0.5 - 1j * eps, -2.0, 3.0]))
+    q = np.empty(4)
+    st = state()
+    slide_roots(k, q, st)
+    found = q[~np.isnan(q)]
+    assert len(found) == (4 if real else 2)
+    assert (st[ST_NEAR] == 0.0) == real  # dropped, yet near the real axis: near a fold
+    np.testing.assert_allclose(found[[0, -1]], [-2.0, 3.0], atol=1e-12)
+
+
+@pytest.mark.parametrize(("factor", "taken"), [(0.5, True), (2.0, False)])
+def test_max_newton_step(factor: float, taken: bool) -> None:
+    """Newton steps on F longer than MAX_NEWTON_STEP are round-off at a double root."""
+    step = factor * MAX_NEWTON_STEP
+    assert (arm_quartic._bounded(step * 3.0, 3.0) == pytest.approx(step)) == taken
+    assert (arm_quartic._bounded(step * 3.0, 3.0) == 0.0) != taken
+
+
+# ---------------------------------------------------------------- the builder
+def shoulder(alpha1: float, a1: float) -> str:
+    """The builder's shoulder kind of a PUMA-like arm with twist α1 and offset a1."""
+    rows = [
+        Revolute(d=0.4, a=a1, alpha=alpha1),
+        Revolute(a=0.4, alpha=0.7),
+        Revolute(d=0.1, a=0.05, alpha=PI / 2),
+    ]
+    robot = Robot.from_dh([*rows, Revolute(d=0.4)], name="arm")
+    h, p = robot.joint_axes()
+    c = robot.fk(np.zeros(4))[:3, 3]
+    arm = arm_geometry(h[:3], p[:3], False, c)
+    assert arm is not None
+    return arm.kind
+
+
+@pytest.mark.parametrize(("factor", "kind"), [(0.5, "parallel"), (2.0, "general")])
+def test_geometry_tol_parallel_shoulder(factor: float, kind: str) -> None:
+    assert shoulder(factor * GEOMETRY_TOL, 0.2) == kind
+
+
+@pytest.mark.parametrize(("factor", "kind"), [(0.5, "meet"), (2.0, "general")])
+def test_geometry_tol_meeting_shoulder(factor: float, kind: str) -> None:
+    rows = [Revolute(d=0.4, alpha=PI / 2), Revolute(a=0.4, alpha=0.7), Revolute(d=0.1)]
+    probe = Robot.from_dh([*rows, Revolute(d=0.4)], name="probe")
+    _, p = probe.joint_axes()
+    c = probe.fk(np.zeros(4))[:3, 3]
+    scale = 1.0 + float(np.linalg.norm(c - p[0]) + np.linalg.norm(p[1] - p[0]))
+    assert shoulder(PI / 2, factor * GEOMETRY_TOL * scale) == kind
+
+
+def rank_ratio(robot: Robot) -> float:
+    """Best σmin/σmax over the builder's probes of d(tool origin)/d(q1..q3), by differences."""
+    best = 0.0
+    for probe in PROBES:
+        q = np.zeros(robot.dof)
+        q[:3] = probe
+        cols = []
+        for j in range(3):
+            dq = np.zeros(robot.dof)
+            dq[j] = 1e-6
+            cols.append((robot.fk(q + dq)[:3, 3] - robot.fk(q - dq)[:3, 3]) / 2e-6)
+        s = np.linalg.svd(np.stack(cols, axis=1), compute_uv=False)
+        best = max(best, s[-1] / s[0])
+    return best
+
+
+def arm_with_point_near_axis_3(eps: float) -> Robot:
+    """Joint 3 moves the tool origin on a circle of radius eps (its axis almost through it)."""
+    rows = [Revolute(d=0.4, alpha=PI / 2), Revolute(a=0.4), Revolute(a=eps)]
+    return Robot.from_dh([*rows, Revolute(d=0.3)], name="point near axis 3")
+
+
+@pytest.mark.parametrize(("factor", "usable"), [(0.5, False), (2.0, True)])
+def test_rank_tol(factor: float, usable: bool) -> None:
+    # the ratio is linear in eps: aim it at factor · RANK_TOL
+    r1 = rank_ratio(arm_with_point_near_axis_3(1e-4))
+    eps = 1e-4 * factor * RANK_TOL / r1
+    robot = arm_with_point_near_axis_3(eps)
+    assert rank_ratio(robot) == pytest.approx(factor * RANK_TOL, rel=0.05)
+    assert places_point(robot.chain, np.zeros(3)) == usable
