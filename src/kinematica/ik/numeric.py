@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.dh import DHChain
-from kinematica.errors import KinematicaError
+from kinematica.errors import ArgumentError
 from kinematica.kernels.fk import LINK_A, LINK_D, LINK_PRISMATIC, START, TOOL
 from kinematica.kernels.lm import (
     BOUND_HI,
@@ -93,14 +93,17 @@ _SETUPS_PER_CHAIN = 8
 def check_seed(seed: object) -> int | np.random.Generator | None:
     """The ``seed`` argument, validated: None, a whole number >= 0, or a Generator.
 
+    Called before anything is solved, whether or not restarts will be needed,
+    so a bad seed is an error on every call.
+
     Raises:
-        KinematicaError: Anything else (say what was given).
+        ArgumentError: Anything else (say what was given).
     """
     if seed is None or isinstance(seed, np.random.Generator):
         return seed
     if isinstance(seed, int | np.integer) and not isinstance(seed, bool) and seed >= 0:
         return int(seed)
-    raise KinematicaError(f"seed must be a whole number >= 0 or a numpy Generator, got {seed!r}")
+    raise ArgumentError(f"seed must be a whole number >= 0 or a numpy Generator, got {seed!r}")
 
 
 def numeric_setup(

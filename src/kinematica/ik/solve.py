@@ -43,6 +43,8 @@ from kinematica.kernels.ik_check import (
     OPT_TOL_POSITION,
     OPT_TOL_ROTATION,
     STATUS_INVALID,
+    STATUS_NOT_FOUND,
+    STATUS_OUT_OF_LIMITS,
     check_batch,
     check_target,
     info_size,
@@ -169,6 +171,8 @@ def solve_ik(
             chain.links, chain.ends, chain.qlim, targets.poses[0], Q[0], info[0], w,
             q0_rows[0], opts, out_q[0], out_slot[0], out_res[0], meta[0],
         )  # fmt: skip
+        if closed is None:
+            _unproven(meta)
         return _one(
             out_q[0], out_slot[0], out_res[0], meta[0], info[0], labels, name, closed, targets
         )
@@ -179,6 +183,8 @@ def solve_ik(
         chain.links, chain.ends, chain.qlim, targets.poses, Q, info, w, q0_rows, opts,
         out_q, out_slot, out_res, meta,
     )  # fmt: skip
+    if closed is None:
+        _unproven(meta)
     return _many(out_q, out_slot, out_res, meta, info, labels, name, closed, targets)
 
 
@@ -231,6 +237,17 @@ def _numeric_candidates(
     info = np.zeros((N, info_size(n)))
     info[:, INFO_GAP] = stats[:, STAT_GAP]
     return Q, info
+
+
+def _unproven(meta: FloatArray) -> None:
+    """A search's statuses: ``out_of_limits`` is a proof it cannot give.
+
+    The search stays within the limits; a candidate the check's polishing
+    carried just past one does not show that no solution lies within them:
+    such a target is ``not_found`` (the candidate is still listed).
+    """
+    status = meta[..., META_STATUS]
+    status[status == STATUS_OUT_OF_LIMITS] = STATUS_NOT_FOUND
 
 
 def _one(
