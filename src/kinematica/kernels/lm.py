@@ -49,9 +49,9 @@ import numba
 import numpy as np
 
 from kinematica.kernels._numba import Array, IntArray, batch_kernel, inline_kernel, kernel
-from kinematica.kernels.arrays import copy1
+from kinematica.kernels.arrays import copy1, copy2
 from kinematica.kernels.fk import LINK_PRISMATIC, block_trig, walk
-from kinematica.kernels.ik_check import POLISH_LIMIT, POLISH_STEPS
+from kinematica.kernels.ik_check import POLISH_DAMPING, POLISH_LIMIT, POLISH_STEPS
 from kinematica.kernels.jacobian import columns
 from kinematica.kernels.linalg import damped_least_squares
 from kinematica.kernels.so3 import inverse_right_jacobian, pose_error
@@ -92,13 +92,14 @@ LAMBDA_INIT = 1.0
 LAMBDA_DOWN = 0.1
 #: ... and after a rejected one (towards short gradient steps).
 LAMBDA_UP = 5.0
-#: Smallest relative damping, below the round-off of the normal matrix: the
-#: last steps are Gauss-Newton steps, which converge along directions whose
-#: singular value is 1e-8 of the largest (an arm with nearly parallel axes).
-#: Where round-off leaves a pivot of the Cholesky factor at or below zero, the
-#: pivot is floored (see :mod:`kinematica.kernels.linalg`): the step is huge,
-#: the error grows, and the step is rejected (λ then grows).
-LAMBDA_MIN = 1e-18
+#: Smallest relative damping, far below the round-off of the normal matrix:
+#: the last steps are Gauss-Newton steps, which converge along directions
+#: whose singular value is down to 1e-9 of the largest (two prismatic axes
+#: 1e-9 rad from parallel; at 1e-18 such an arm is no longer solved). Where
+#: round-off leaves a Cholesky pivot at or below zero, the pivot is floored
+#: (see :mod:`kinematica.kernels.linalg`): the step is huge, the error grows,
+#: and the step is rejected (λ then grows).
+LAMBDA_MIN = 1e-21
 #: Damping at which an attempt has stalled: even tiny gradient steps no longer
 #: reduce the error (a local minimum, or the error is at round-off level).
 LAMBDA_MAX = 1e8
@@ -326,6 +327,41 @@ def _bound_scaling(bounds: Array, q: Array, J: Array, ew: Array, Jb: Array, d: A
 
 
 @kernel
+def _active_step(
+    bounds: Array,
+    q: Array,
+    J: Array,
+    ew: Array,
+    damping: float,
+    Jb: Array,
+    dq: Array,
+    G: Array,
+    b: Array,
+    x: Array,
+    L: Array,
+) -> None:
+    """A Gauss-Newton step ``dq`` holding the joints on a bound that it would carry out.
+
+    Solved again without each such joint until no held joint would leave
+    (an active set); ``damping`` is relative, as in :func:`damped_least_squares`.
+    """
+    n = q.shape[0]
+    copy2(Jb, J)
+    for _ in range(n + 1):
+        damped_least_squares(Jb, ew, damping, dq, G, b, x, L)
+        held = False
+        for i in range(n):
+            if (q[i] <= bounds[i, BOUND_LO] and dq[i] < 0.0) or (
+                q[i] >= bounds[i, BOUND_HI] and dq[i] > 0.0
+            ):
+                for r in range(J.shape[0]):
+                    Jb[r, i] = 0.0
+                held = True
+        if not held:
+            return
+
+
+@kernel
 def lm_target(
     links: Array,
     ends: Array,
@@ -459,33 +495,37 @@ def lm_target(
             k += 1
         if not converged and max(pos, rot) < POLISH_LIMIT:
             # A near miss: Gauss-Newton steps taken whatever they do to the
-            # error (across a fold the first one may raise it), then the best.
+            # error (across a fold the first one may raise it), then the best;
+            # undamped first, then damped as the check's polishing is.
             copy1(q_best, q)
             copy1(err_best, err)
             E_low = E
-            for _ in range(POLISH_STEPS):
-                for r in range(count):
-                    ew[r] = err[r] * sw[r]
-                _bound_scaling(bounds, q, J, ew, Jb, d)
-                damped_least_squares(Jb, ew, LAMBDA_MIN, dq, G, b, x, L)
-                for i in range(n):
-                    q[i] += d[i] * dq[i]
-                _project(links, bounds, q)
-                _error(links, ends, q, T, rows, C, S, pose, frames, axes, e6, err, work)
-                _jacobian(links, axes, pose, e6, rows, sw, exact, J6, A, J)
-                evaluations += 1
-                pos, rot = _norms(rows, scale, err)
-                if pos <= tol_p and rot <= tol_r:
-                    converged = True
+            for damping in (LAMBDA_MIN, POLISH_DAMPING):
+                for _ in range(POLISH_STEPS):
+                    for r in range(count):
+                        ew[r] = err[r] * sw[r]
+                    _active_step(bounds, q, J, ew, damping, Jb, dq, G, b, x, L)
+                    for i in range(n):
+                        q[i] += dq[i]
+                    _project(links, bounds, q)
+                    _error(links, ends, q, T, rows, C, S, pose, frames, axes, e6, err, work)
+                    _jacobian(links, axes, pose, e6, rows, sw, exact, J6, A, J)
+                    evaluations += 1
+                    pos, rot = _norms(rows, scale, err)
+                    if pos <= tol_p and rot <= tol_r:
+                        converged = True
+                        break
+                    E_new = _energy(sw, err)
+                    if E_new < E_low:
+                        copy1(q_best, q)
+                        copy1(err_best, err)
+                        E_low = E_new
+                if converged:
                     break
-                E_new = _energy(sw, err)
-                if E_new < E_low:
-                    copy1(q_best, q)
-                    copy1(err_best, err)
-                    E_low = E_new
-            if not converged:
                 copy1(q, q_best)
                 copy1(err, err_best)
+                _error(links, ends, q, T, rows, C, S, pose, frames, axes, e6, err, work)
+                _jacobian(links, axes, pose, e6, rows, sw, exact, J6, A, J)
         pos, rot = _norms(rows, scale, err)
         score = max(pos / tol_p, rot / tol_r)
         if converged or score < best_score:
