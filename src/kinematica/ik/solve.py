@@ -224,16 +224,16 @@ def _numeric_candidates(
         seed=seed,
     )
     N, n = targets.poses.shape[0], chain.dof
-    start = q0s if q0s is not None else np.broadcast_to(setup.middle, (N, n))
-    start = np.ascontiguousarray(start)
     Q = np.empty((N, 1, n))
     stats = np.empty((N, STAT_SIZE))
     args = (chain.links, chain.ends, setup.bounds, w, setup.settings)
     if N == 1:
-        lm_target(*args, targets.poses[0], start[0], setup.samples, Q[0, 0], stats[0])
+        start = setup.middle if q0s is None else q0s[0]
+        lm_target(*args, targets.poses[0], start, setup.samples, Q[0, 0], stats[0])
     else:
+        starts = np.broadcast_to(setup.middle, (N, n)) if q0s is None else q0s
         set_workers(workers)
-        lm_batch(*args, targets.poses, start, setup.samples, Q[:, 0], stats)
+        lm_batch(*args, targets.poses, np.ascontiguousarray(starts), setup.samples, Q[:, 0], stats)
     info = np.zeros((N, info_size(n)))
     info[:, INFO_GAP] = stats[:, STAT_GAP]
     return Q, info
