@@ -25,7 +25,8 @@ from kinematica.dh import Prismatic, Revolute
 from kinematica.errors import ArgumentError, DimensionError, KinematicaError
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.kernels.ik_check import LIMIT_TOL
-from kinematica.kernels.lm import LAMBDA_MIN, lm_rows
+from kinematica.kernels.lm import LAMBDA_MIN
+from kinematica.kernels.lm_model import lm_rows
 from kinematica.robot import Robot, load
 from kinematica.spatial import rotation_angle, se3_error
 

@@ -20,9 +20,6 @@ from kinematica.dh import DHChain
 from kinematica.errors import ArgumentError
 from kinematica.kernels.fk import LINK_A, LINK_D, LINK_PRISMATIC, START, TOOL
 from kinematica.kernels.lm import (
-    BOUND_HI,
-    BOUND_LO,
-    BOUND_WRAP,
     SET_BASE,
     SET_MAX_STEPS,
     SET_REACH,
@@ -30,6 +27,7 @@ from kinematica.kernels.lm import (
     SET_TOL_POSITION,
     SET_TOL_ROTATION,
 )
+from kinematica.kernels.lm_bounds import BOUND_HI, BOUND_LO, BOUND_WRAP
 
 __all__ = [
     "DEFAULT_MAX_ITERATIONS",
