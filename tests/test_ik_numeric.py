@@ -212,6 +212,28 @@ def test_target_beyond_reach_is_unreachable_with_a_proven_gap() -> None:
     assert "closed form" not in message
 
 
+@pytest.mark.parametrize(
+    ("beyond", "weight", "status"),
+    [
+        (0.5 * TOL, 1.0, "ok"),  # within the tolerance of the stretched arm
+        (1.5 * TOL, 1.0, "unreachable"),  # past it: proven
+        (1.5 * TOL, 0.5, "ok"),  # weighted by 0.5 the miss is 0.75 TOL: accepted
+        (2.5 * TOL, 0.5, "unreachable"),
+    ],
+)
+def test_the_reach_proof_holds_the_weighted_tolerance(beyond, weight, status) -> None:
+    # The 2R arm's reach bound (1.7 m) is its true reach: a target just past
+    # it is unreachable exactly when the weighted miss exceeds the tolerance.
+    robot = planar2r()
+    target = np.array([1.7 + beyond, 0.0, 0.0])
+    res = numeric(robot, target, mask=[weight] * 3 + [0.0] * 3)
+    assert res.status == status, res.message
+    if status == "unreachable":
+        assert res.gap == pytest.approx(beyond, abs=1e-15)
+    else:
+        assert res.residuals[0, 0] <= TOL  # weighted, as the check measures it
+
+
 def test_unreachable_within_the_bound_is_not_found_not_proven() -> None:
     # The 2R arm cannot reach within 0.3 m of its base; the crude bound cannot tell.
     robot = planar2r()
@@ -478,6 +500,14 @@ def test_seed_is_checked_up_front(seed) -> None:
         with pytest.raises(ArgumentError, match="seed") as info:
             call()
         assert isinstance(info.value, ValueError)
+
+
+@pytest.mark.parametrize("workers", [0, -1, 1.5, "two"], ids=repr)
+def test_workers_are_checked_up_front(workers) -> None:
+    robot = iiwa14()
+    T = robot.fk(random_q(robot, 1, seed=17)[0])
+    with pytest.raises(ArgumentError, match="workers"):
+        numeric(robot, T, workers=workers)  # one target: no thread is started
 
 
 def test_base_and_tool_transforms_and_both_conventions() -> None:

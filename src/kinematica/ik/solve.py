@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.dh import DHChain
-from kinematica.errors import DimensionError, KinematicaError
+from kinematica.errors import ArgumentError, DimensionError, KinematicaError
 from kinematica.ik.analytic import SOLVERS
 from kinematica.ik.numeric import LABEL, check_seed, numeric_setup
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
@@ -25,7 +25,7 @@ from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.status import STATUS_NAMES, IKStatus
 from kinematica.ik.structure import features
 from kinematica.ik.targets import Targets, Tolerance, parse_mask, parse_targets, parse_tolerance
-from kinematica.kernels import set_workers
+from kinematica.kernels import resolve_workers, set_workers
 from kinematica.kernels.ik_check import (
     INFO_FREE,
     INFO_GAP,
@@ -92,6 +92,14 @@ def closed_form(chain: DHChain, target: TargetKind) -> ClosedForm | None:
     return per_chain[target]
 
 
+def _check_workers(workers: int | None) -> None:
+    """``workers`` validated up front, whether or not a batch will use it."""
+    try:
+        resolve_workers(workers)
+    except ValueError as exc:
+        raise ArgumentError(str(exc)) from None
+
+
 def _q0(chain: DHChain, q0: ArrayLike | None, targets: Targets) -> FloatArray | None:
     """``(N, n)`` q0 per target, or None."""
     if q0 is None:
@@ -136,6 +144,7 @@ def solve_ik(
     m = parse_mask(mask)
     tolerance = parse_tolerance(tol)
     seed = check_seed(seed)
+    _check_workers(workers)
     q0s = _q0(chain, q0, targets)
     kind: TargetKind = "position" if targets.position else "pose"
     w = _POSITION if targets.position else _POSE
