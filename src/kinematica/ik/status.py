@@ -102,7 +102,10 @@ def status_message(
         if not complete:  # a search proves nothing but a gap
             return "unreachable: the target is out of reach"
         if math.isfinite(pos):
-            return f"unreachable: no configuration reaches this pose{miss}"
+            return (
+                "unreachable: no configuration reaches this pose "
+                f"(closest candidate off by {pos:.3g} m, {rot:.3g} rad)"
+            )
         return "unreachable: the closed form has no real solution for this target"
     if status == IKStatus.INVALID:
         return "invalid target"
