@@ -17,12 +17,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.dh import DHChain
-from kinematica.errors import KinematicaError
+from kinematica.errors import ArgumentError
 from kinematica.kernels.fk import LINK_A, LINK_D, LINK_PRISMATIC, START, TOOL
 from kinematica.kernels.lm import (
-    BOUND_HI,
-    BOUND_LO,
-    BOUND_WRAP,
     SET_BASE,
     SET_MAX_STEPS,
     SET_REACH,
@@ -30,6 +27,7 @@ from kinematica.kernels.lm import (
     SET_TOL_POSITION,
     SET_TOL_ROTATION,
 )
+from kinematica.kernels.lm_bounds import BOUND_HI, BOUND_LO, BOUND_WRAP
 
 __all__ = [
     "DEFAULT_MAX_ITERATIONS",
@@ -93,14 +91,17 @@ _SETUPS_PER_CHAIN = 8
 def check_seed(seed: object) -> int | np.random.Generator | None:
     """The ``seed`` argument, validated: None, a whole number >= 0, or a Generator.
 
+    Called before anything is solved, whether or not restarts will be needed,
+    so a bad seed is an error on every call.
+
     Raises:
-        KinematicaError: Anything else (say what was given).
+        ArgumentError: Anything else (say what was given).
     """
     if seed is None or isinstance(seed, np.random.Generator):
         return seed
     if isinstance(seed, int | np.integer) and not isinstance(seed, bool) and seed >= 0:
         return int(seed)
-    raise KinematicaError(f"seed must be a whole number >= 0 or a numpy Generator, got {seed!r}")
+    raise ArgumentError(f"seed must be a whole number >= 0 or a numpy Generator, got {seed!r}")
 
 
 def numeric_setup(

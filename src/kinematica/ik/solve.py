@@ -16,14 +16,14 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.dh import DHChain
-from kinematica.errors import DimensionError, KinematicaError
+from kinematica.errors import ArgumentError, DimensionError, KinematicaError
 from kinematica.ik.analytic import SOLVERS
 from kinematica.ik.numeric import LABEL, check_seed, numeric_setup
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
 from kinematica.ik.result import CheckOutput, IKBatchResult, IKResult, result_of
 from kinematica.ik.structure import features
 from kinematica.ik.targets import Targets, Tolerance, parse_mask, parse_targets, parse_tolerance
-from kinematica.kernels import set_workers
+from kinematica.kernels import resolve_workers, set_workers
 from kinematica.kernels.ik_check import (
     INFO_FREE,
     INFO_GAP,
@@ -36,6 +36,8 @@ from kinematica.kernels.ik_check import (
     OPT_TOL_POSITION,
     OPT_TOL_ROTATION,
     STATUS_INVALID,
+    STATUS_NOT_FOUND,
+    STATUS_OUT_OF_LIMITS,
     check_batch,
     check_target,
     info_size,
@@ -84,6 +86,14 @@ def closed_form(chain: DHChain, target: TargetKind) -> ClosedForm | None:
     return per_chain[target]
 
 
+def _check_workers(workers: int | None) -> None:
+    """``workers`` validated up front, whether or not a batch will use it."""
+    try:
+        resolve_workers(workers)
+    except ValueError as exc:
+        raise ArgumentError(str(exc)) from None
+
+
 def _q0(chain: DHChain, q0: ArrayLike | None, targets: Targets) -> FloatArray | None:
     """``(N, n)`` q0 per target, or None."""
     if q0 is None:
@@ -128,6 +138,7 @@ def solve_ik(
     m = parse_mask(mask)
     tolerance = parse_tolerance(tol)
     seed = check_seed(seed)
+    _check_workers(workers)
     q0s = _q0(chain, q0, targets)
     kind: TargetKind = "position" if targets.position else "pose"
     w = _POSITION if targets.position else _POSE
@@ -139,7 +150,7 @@ def solve_ik(
         raise KinematicaError(f"no closed-form solver for this arm ({why}); use method='numeric'")
     complete = closed is not None
     opts = _options(tolerance, respect_limits, complete, q0s is not None)
-    if targets.single and closed is not None and closed.legacy is None:
+    if targets.single and closed is not None:
         return _one_closed(chain, closed, targets, w, opts, q0s)
     N = targets.poses.shape[0]
     if closed is not None:
@@ -162,6 +173,8 @@ def solve_ik(
             chain.links, chain.ends, chain.qlim, targets.poses[0], Q[0], info[0], w,
             q0_rows[0], opts, out_q[0], out_slot[0], out_res[0], meta[0],
         )  # fmt: skip
+        if closed is None:
+            _unproven(meta)
         return result_of(
             out_q[0], out_slot[0], out_res[0], meta[0], info[0, INFO_FREE:],
             labels, name, complete, targets.notes.get(0, ()),
@@ -173,6 +186,8 @@ def solve_ik(
         chain.links, chain.ends, chain.qlim, targets.poses, Q, info, w, q0_rows, opts,
         out_q, out_slot, out_res, meta,
     )  # fmt: skip
+    if closed is None:
+        _unproven(meta)
     shape = targets.shape
 
     def where(i: int) -> tuple[int, ...]:
@@ -274,16 +289,27 @@ def _numeric_candidates(
         seed=seed,
     )
     N, n = targets.poses.shape[0], chain.dof
-    start = q0s if q0s is not None else np.broadcast_to(setup.middle, (N, n))
-    start = np.ascontiguousarray(start)
     Q = np.empty((N, 1, n))
     stats = np.empty((N, STAT_SIZE))
     args = (chain.links, chain.ends, setup.bounds, w, setup.settings)
     if N == 1:
-        lm_target(*args, targets.poses[0], start[0], setup.samples, Q[0, 0], stats[0])
+        start = setup.middle if q0s is None else q0s[0]
+        lm_target(*args, targets.poses[0], start, setup.samples, Q[0, 0], stats[0])
     else:
+        starts = np.broadcast_to(setup.middle, (N, n)) if q0s is None else q0s
         set_workers(workers)
-        lm_batch(*args, targets.poses, start, setup.samples, Q[:, 0], stats)
+        lm_batch(*args, targets.poses, np.ascontiguousarray(starts), setup.samples, Q[:, 0], stats)
     info = np.zeros((N, info_size(n)))
     info[:, INFO_GAP] = stats[:, STAT_GAP]
     return Q, info
+
+
+def _unproven(meta: FloatArray) -> None:
+    """A search's statuses: ``out_of_limits`` is a proof it cannot give.
+
+    The search stays within the limits; a candidate the check's polishing
+    carried just past one does not show that no solution lies within them:
+    such a target is ``not_found`` (the candidate is still listed).
+    """
+    status = meta[..., META_STATUS]
+    status[status == STATUS_OUT_OF_LIMITS] = STATUS_NOT_FOUND

@@ -28,9 +28,9 @@ class IKStatus(StrEnum):
         UNREACHABLE: Provably no solution: the target is beyond a proven bound
             (``gap`` says how far), or a closed form has no real root where it
             is well conditioned.
-        NOT_FOUND: A numeric search did not converge, or a closed form near a
-            singular set found no solution to tolerance: the target may still
-            be reachable.
+        NOT_FOUND: A numeric search did not converge (or found solutions
+            only just outside the limits), or a closed form near a singular set
+            found no solution to tolerance: the target may still be reachable.
         INVALID: In a batch, a malformed target (its message says what is wrong).
     """
 
@@ -76,7 +76,8 @@ def status_message(
         count: Solutions within limits.
         out_of_limits: Solutions outside the limits.
         free: 0-based indices of the free joints (singular case).
-        gap: Distance outside the reach (m), NaN if unknown.
+        gap: Distance outside the reach (m), NaN if unknown, inf when it
+            overflows.
         nearest: Position (m) and rotation (rad) error of the closest
             candidate that was not a solution, NaN if none.
         complete: The method gives every solution (a closed form).
@@ -97,9 +98,12 @@ def status_message(
         s = "s" if out_of_limits != 1 else ""
         return f"{out_of_limits} solution{s} exist, none within the joint limits"
     pos, rot = nearest
+    miss = f" (closest off by {pos:.3g} m, {rot:.3g} rad)" if math.isfinite(pos) else ""
     if status == IKStatus.UNREACHABLE:
-        if math.isfinite(gap) and gap > 0:
-            return f"unreachable: the target is at least {gap:.6g} m outside the reach"
+        if gap > 0.0:
+            return _beyond(gap)
+        if not complete:  # a search proves nothing but a gap
+            return "unreachable: the target is out of reach"
         if math.isfinite(pos):
             return (
                 "unreachable: no configuration reaches this pose "
@@ -109,7 +113,6 @@ def status_message(
     if status == IKStatus.INVALID:
         return "invalid target"
     if complete:
-        miss = f" (closest off by {pos:.3g} m, {rot:.3g} rad)" if math.isfinite(pos) else ""
         if near:
             return (
                 "not found: the target is within round-off of a singular set or a workspace "
@@ -120,4 +123,23 @@ def status_message(
             f"not found: no configuration reaches this target within the tolerance{miss}: "
             "it is not exactly reachable; a looser tol accepts the closest if that is enough"
         )
-    return "not found: the numeric search did not converge (the target may still be reachable)"
+    if out_of_limits:
+        s = "s" if out_of_limits != 1 else ""
+        return (
+            f"not found: the numeric search found {out_of_limits} solution{s} just outside "
+            "the joint limits and none within them; one may still exist within them"
+        )
+    return (
+        f"not found: the numeric search did not converge{miss}; the target may still "
+        "be reachable (another initial guess or seed may find it)"
+    )
+
+
+def _beyond(gap: float) -> str:
+    """The message of a target proven out of reach by ``gap`` (m, > 0, maybe inf)."""
+    if math.isinf(gap):
+        return (
+            "unreachable: the target is farther outside the reach than a float can hold "
+            "(its distance overflows)"
+        )
+    return f"unreachable: the target is at least {gap:.6g} m outside the reach"
