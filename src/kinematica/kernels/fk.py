@@ -119,14 +119,37 @@ def block_trig(links: Array, Q: Array, b0: int, b1: int, C: Array, S: Array) -> 
 
 
 @kernel
-def _store(F: Array, X: Array, Y: Array, Z: Array, P: Array) -> None:
-    """Write the frame with columns ``X, Y, Z, P`` (each ``(3,)``) into ``F (4, 4)``."""
-    for r in range(3):
-        F[r, 0] = X[r]
-        F[r, 1] = Y[r]
-        F[r, 2] = Z[r]
-        F[r, 3] = P[r]
-        F[3, r] = 0.0
+def _store(
+    F: Array,
+    x0: float,
+    x1: float,
+    x2: float,
+    y0: float,
+    y1: float,
+    y2: float,
+    z0: float,
+    z1: float,
+    z2: float,
+    p0: float,
+    p1: float,
+    p2: float,
+) -> None:
+    """Write the frame with columns ``x, y, z, p`` into ``F (4, 4)``."""
+    F[0, 0] = x0
+    F[1, 0] = x1
+    F[2, 0] = x2
+    F[0, 1] = y0
+    F[1, 1] = y1
+    F[2, 1] = y2
+    F[0, 2] = z0
+    F[1, 2] = z1
+    F[2, 2] = z2
+    F[0, 3] = p0
+    F[1, 3] = p1
+    F[2, 3] = p2
+    F[3, 0] = 0.0
+    F[3, 1] = 0.0
+    F[3, 2] = 0.0
     F[3, 3] = 1.0
 
 
@@ -160,60 +183,89 @@ def walk(
             frame ``0T0 (base), 0T1, ..., 0Tn (with tool)``.
         axes: ``(n, 6)`` out, or shape ``(0, 6)`` for none: each joint's axis
             as a unit direction and a point on it (base frame).
-        work: ``(6, 3)`` scratch space.
+        work: Unused (the running frame lives in local variables); kept so
+            that the IK kernels calling :func:`walk` need not change.
     """
-    # Plain statements, no tuple assignments: numba compiles them several
-    # times faster. The running frame's columns are X, Y, Z, P; N and W the
-    # new x and the rotated y of the current joint.
+    # The running frame's columns are the scalars x, y, z, p (three each), not
+    # rows of a scratch array: numba cannot tell a scratch array from the
+    # outputs (they might alias), so every store to pose/frames/axes would
+    # force it to reload the frame from memory; in locals it stays in
+    # registers, and a batch runs twice as fast. n and w are the new x and the
+    # rotated y of the current joint. Plain statements, no tuple assignments:
+    # numba compiles them several times faster.
     n = links.shape[0]
-    X = work[0]
-    Y = work[1]
-    Z = work[2]
-    P = work[3]
-    N = work[4]
-    W = work[5]
     s0 = ends[START]
-    for r in range(3):
-        X[r] = s0[r, 0]
-        Y[r] = s0[r, 1]
-        Z[r] = s0[r, 2]
-        P[r] = s0[r, 3]
+    x0 = s0[0, 0]
+    x1 = s0[1, 0]
+    x2 = s0[2, 0]
+    y0 = s0[0, 1]
+    y1 = s0[1, 1]
+    y2 = s0[2, 1]
+    z0 = s0[0, 2]
+    z1 = s0[1, 2]
+    z2 = s0[2, 2]
+    p0 = s0[0, 3]
+    p1 = s0[1, 3]
+    p2 = s0[2, 3]
     want_frames = frames.shape[0] > 0
     want_axes = axes.shape[0] > 0
     for i in range(n):
         if want_axes:
-            for r in range(3):
-                axes[i, r] = Z[r]
-                axes[i, 3 + r] = P[r]
+            axes[i, 0] = z0
+            axes[i, 1] = z1
+            axes[i, 2] = z2
+            axes[i, 3] = p0
+            axes[i, 4] = p1
+            axes[i, 5] = p2
         c = C[i, k]
         s = S[i, k]
         d = links[i, LINK_D]
         if links[i, LINK_PRISMATIC] != 0.0:
             d += q[i]
-        for r in range(3):
-            N[r] = c * X[r] + s * Y[r]
-            W[r] = c * Y[r] - s * X[r]
-            P[r] += d * Z[r]
+        n0 = c * x0 + s * y0
+        n1 = c * x1 + s * y1
+        n2 = c * x2 + s * y2
+        w0 = c * y0 - s * x0
+        w1 = c * y1 - s * x1
+        w2 = c * y2 - s * x2
+        p0 += d * z0
+        p1 += d * z1
+        p2 += d * z2
         if want_frames and frames_mid and i < n - 1:
-            _store(frames[i + 1], N, W, Z, P)
+            _store(frames[i + 1], n0, n1, n2, w0, w1, w2, z0, z1, z2, p0, p1, p2)
         a = links[i, LINK_A]
         ca = links[i, LINK_CA]
         sa = links[i, LINK_SA]
-        for r in range(3):
-            P[r] += a * N[r]
-            X[r] = N[r]
-            Y[r] = ca * W[r] + sa * Z[r]
-            Z[r] = ca * Z[r] - sa * W[r]
+        p0 += a * n0
+        p1 += a * n1
+        p2 += a * n2
+        x0 = n0
+        x1 = n1
+        x2 = n2
+        y0 = ca * w0 + sa * z0
+        y1 = ca * w1 + sa * z1
+        y2 = ca * w2 + sa * z2
+        z0 = ca * z0 - sa * w0
+        z1 = ca * z1 - sa * w1
+        z2 = ca * z2 - sa * w2
         if want_frames and not frames_mid and i < n - 1:
-            _store(frames[i + 1], X, Y, Z, P)
+            _store(frames[i + 1], x0, x1, x2, y0, y1, y2, z0, z1, z2, p0, p1, p2)
     E = ends[TOOL]
-    for r in range(3):
-        pose[r, 0] = X[r] * E[0, 0] + Y[r] * E[1, 0] + Z[r] * E[2, 0]
-        pose[r, 1] = X[r] * E[0, 1] + Y[r] * E[1, 1] + Z[r] * E[2, 1]
-        pose[r, 2] = X[r] * E[0, 2] + Y[r] * E[1, 2] + Z[r] * E[2, 2]
-        pose[r, 3] = P[r] + X[r] * E[0, 3] + Y[r] * E[1, 3] + Z[r] * E[2, 3]
-        pose[3, r] = 0.0
-    pose[3, 3] = 1.0
+    _store(
+        pose,
+        x0 * E[0, 0] + y0 * E[1, 0] + z0 * E[2, 0],
+        x1 * E[0, 0] + y1 * E[1, 0] + z1 * E[2, 0],
+        x2 * E[0, 0] + y2 * E[1, 0] + z2 * E[2, 0],
+        x0 * E[0, 1] + y0 * E[1, 1] + z0 * E[2, 1],
+        x1 * E[0, 1] + y1 * E[1, 1] + z1 * E[2, 1],
+        x2 * E[0, 1] + y2 * E[1, 1] + z2 * E[2, 1],
+        x0 * E[0, 2] + y0 * E[1, 2] + z0 * E[2, 2],
+        x1 * E[0, 2] + y1 * E[1, 2] + z1 * E[2, 2],
+        x2 * E[0, 2] + y2 * E[1, 2] + z2 * E[2, 2],
+        p0 + x0 * E[0, 3] + y0 * E[1, 3] + z0 * E[2, 3],
+        p1 + x1 * E[0, 3] + y1 * E[1, 3] + z1 * E[2, 3],
+        p2 + x2 * E[0, 3] + y2 * E[1, 3] + z2 * E[2, 3],
+    )
     if want_frames:
         copy2(frames[0], ends[BASE])
         copy2(frames[n], pose)
@@ -253,7 +305,7 @@ def fk_one(
     C = np.empty((n, 1))
     S = np.empty((n, 1))
     block_trig(links, q.reshape((1, n)), 0, 1, C, S)
-    walk(links, ends, frames_mid, C, S, 0, q, pose, frames, axes, np.empty((6, 3)))
+    walk(links, ends, frames_mid, C, S, 0, q, pose, frames, axes, np.empty((0, 3)))
     return FK_OK if inside_limits(links, q) else FK_OUTSIDE_LIMITS
 
 
@@ -288,17 +340,17 @@ def fk_batch(
     outside = 0
     no_frames = np.empty((0, 4, 4))
     no_axes = np.empty((0, 6))
+    no_work = np.empty((0, 3))
     for blk in numba.prange(nblocks):
         b0 = blk * BLOCK
         b1 = min(B, b0 + BLOCK)
         C = np.empty((n, BLOCK))
         S = np.empty((n, BLOCK))
-        work = np.empty((6, 3))
         block_trig(links, Q, b0, b1, C, S)
         for b in range(b0, b1):
             F = frames[b] if frames.shape[0] > 0 else no_frames
             A = axes[b] if axes.shape[0] > 0 else no_axes
-            walk(links, ends, frames_mid, C, S, b - b0, Q[b], poses[b], F, A, work)
+            walk(links, ends, frames_mid, C, S, b - b0, Q[b], poses[b], F, A, no_work)
             if not finite(Q[b]):
                 bad += 1
                 poses[b, :, :] = np.nan

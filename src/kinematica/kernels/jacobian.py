@@ -54,9 +54,8 @@ def jacobian_one(links: Array, ends: Array, q: Array, tool_frame: bool, J: Array
     S = np.empty((n, 1))
     axes = np.empty((n, 6))
     pose = np.empty((4, 4))
-    work = np.empty((6, 3))
     block_trig(links, q.reshape((1, n)), 0, 1, C, S)
-    walk(links, ends, False, C, S, 0, q, pose, np.empty((0, 4, 4)), axes, work)
+    walk(links, ends, False, C, S, 0, q, pose, np.empty((0, 4, 4)), axes, np.empty((0, 3)))
     columns(links, axes, pose, tool_frame, J)
     return True
 
@@ -71,6 +70,8 @@ def jacobian_batch(links: Array, ends: Array, Q: Array, tool_frame: bool, J: Arr
     B, n = Q.shape
     nblocks = (B + BLOCK - 1) // BLOCK
     bad = 0
+    no_frames = np.empty((0, 4, 4))
+    no_work = np.empty((0, 3))
     for blk in numba.prange(nblocks):
         b0 = blk * BLOCK
         b1 = min(B, b0 + BLOCK)
@@ -78,10 +79,9 @@ def jacobian_batch(links: Array, ends: Array, Q: Array, tool_frame: bool, J: Arr
         S = np.empty((n, BLOCK))
         axes = np.empty((n, 6))
         pose = np.empty((4, 4))
-        work = np.empty((6, 3))
         block_trig(links, Q, b0, b1, C, S)
         for b in range(b0, b1):
-            walk(links, ends, False, C, S, b - b0, Q[b], pose, np.empty((0, 4, 4)), axes, work)
+            walk(links, ends, False, C, S, b - b0, Q[b], pose, no_frames, axes, no_work)
             columns(links, axes, pose, tool_frame, J[b])
             if not finite(Q[b]):
                 bad += 1
