@@ -25,7 +25,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from kinematica.kernels._numba import Array, batch_kernel, kernel
+from kinematica.kernels._numba import Array, batch_kernel, inline_kernel, kernel
 from kinematica.kernels.arrays import copy2
 from kinematica.kernels.trig import REDUCTION_LIMIT, sincos, sincos_reduced
 
@@ -118,7 +118,7 @@ def block_trig(links: Array, Q: Array, b0: int, b1: int, C: Array, S: Array) -> 
                 Sj[k], Cj[k] = sincos(Cj[k])
 
 
-@kernel
+@inline_kernel
 def _store(
     F: Array,
     x0: float,
@@ -153,7 +153,7 @@ def _store(
     F[3, 3] = 1.0
 
 
-@kernel
+@inline_kernel
 def walk(
     links: Array,
     ends: Array,
@@ -271,7 +271,7 @@ def walk(
         copy2(frames[n], pose)
 
 
-@kernel
+@inline_kernel
 def finite(q: Array) -> bool:
     """True when every value of ``q`` is finite."""
     ok = True
@@ -280,7 +280,7 @@ def finite(q: Array) -> bool:
     return ok
 
 
-@kernel
+@inline_kernel
 def inside_limits(links: Array, q: Array) -> bool:
     """True when ``q`` is within every joint's own limits."""
     ok = True

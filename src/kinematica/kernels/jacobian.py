@@ -11,13 +11,13 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from kinematica.kernels._numba import Array, batch_kernel, kernel
+from kinematica.kernels._numba import Array, batch_kernel, inline_kernel, kernel
 from kinematica.kernels.fk import BLOCK, LINK_PRISMATIC, block_trig, finite, walk
 
 __all__ = ["columns", "jacobian_batch", "jacobian_one"]
 
 
-@kernel
+@inline_kernel
 def columns(links: Array, axes: Array, pose: Array, tool_frame: bool, J: Array) -> None:
     """Fill ``J (6, n)`` from the joint ``axes (n, 6)`` and the tool ``pose (4, 4)``."""
     n = links.shape[0]
