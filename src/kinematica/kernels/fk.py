@@ -52,6 +52,7 @@ __all__ = [
     "fk_batch",
     "fk_one",
     "fk_pose",
+    "fk_rows",
     "inside_limits",
     "walk",
 ]
@@ -110,10 +111,11 @@ def block_trig(links: Array, Q: Array, b0: int, b1: int, C: Array, S: Array) -> 
         for k in range(m):
             Cj[k] = Q[b0 + k, j] + th
             biggest = max(biggest, abs(Cj[k]))
-        if biggest <= REDUCTION_LIMIT:
+        if m > 1 and biggest <= REDUCTION_LIMIT:
             for k in range(m):  # vectorised: no calls, no branches
                 Sj[k], Cj[k] = sincos_reduced(Cj[k])
-        else:  # rare: angles beyond the reduction's range (or NaN)
+        else:  # one configuration (nothing to vectorise), or angles beyond
+            # the reduction's range (or NaN): one at a time
             for k in range(m):
                 Sj[k], Cj[k] = sincos(Cj[k])
 
@@ -290,29 +292,106 @@ def inside_limits(links: Array, q: Array) -> bool:
 
 
 @kernel
+def fk_rows(
+    links: Array,
+    ends: Array,
+    frames_mid: bool,
+    Q: Array,
+    b0: int,
+    b1: int,
+    poses: Array,
+    frames: Array,
+    axes: Array,
+) -> tuple[int, int]:
+    """Rows ``b0:b1`` of a batch, in one thread: a block of :func:`fk_batch`.
+
+    Args: as :func:`fk_batch`, with the first and the last-plus-one row.
+
+    Returns:
+        ``(bad, outside)`` of these rows, as :func:`fk_batch`.
+    """
+    n = links.shape[0]
+    C = np.empty((n, b1 - b0))
+    S = np.empty((n, b1 - b0))
+    no_frames = np.empty((0, 4, 4))
+    no_axes = np.empty((0, 6))
+    no_work = np.empty((0, 3))
+    bad = 0
+    outside = 0
+    block_trig(links, Q, b0, b1, C, S)
+    for b in range(b0, b1):
+        F = frames[b] if frames.shape[0] > 0 else no_frames
+        A = axes[b] if axes.shape[0] > 0 else no_axes
+        walk(links, ends, frames_mid, C, S, b - b0, Q[b], poses[b], F, A, no_work)
+        if not finite(Q[b]):
+            bad += 1
+            poses[b, :, :] = np.nan
+            if frames.shape[0] > 0:
+                frames[b, :, :, :] = np.nan
+            if axes.shape[0] > 0:
+                axes[b, :, :] = np.nan
+        elif not inside_limits(links, Q[b]):
+            outside += 1
+    return bad, outside
+
+
+@kernel
 def fk_one(
     links: Array, ends: Array, frames_mid: bool, q: Array, pose: Array, frames: Array, axes: Array
 ) -> int:
-    """One configuration: see :func:`walk`.
+    """One configuration, as a batch of one (:func:`fk_rows`).
+
+    Args:
+        links: ``(n, 10)`` the chain (see :func:`walk`).
+        ends: ``(3, 4, 4)`` start, tool, base.
+        frames_mid: True for the modified convention.
+        q: ``(n,)`` joint values.
+        pose: ``(4, 4)`` out.
+        frames: ``(n + 1, 4, 4)`` out, or shape ``(0, 4, 4)`` for none.
+        axes: ``(n, 6)`` out, or shape ``(0, 6)`` for none.
 
     Returns:
-        ``FK_OK``; ``FK_NOT_FINITE`` (nothing computed) when ``q`` holds NaN or
-        inf; ``FK_OUTSIDE_LIMITS`` (computed) when a joint is beyond its limits.
+        ``FK_OK``; ``FK_NOT_FINITE`` (all NaN) when ``q`` holds NaN or inf;
+        ``FK_OUTSIDE_LIMITS`` (computed) when a joint is beyond its limits.
     """
-    if not finite(q):
-        return FK_NOT_FINITE
+    # np.int64, not the literals 0 and 1: numba would compile fk_rows once more
+    # for literal arguments (seconds), rather than share the batch's build.
+    # A shape-(0, ...) frames/axes array reshaped to a batch of one is a batch
+    # of one empty array: fk_rows then records nothing.
     n = links.shape[0]
-    C = np.empty((n, 1))
-    S = np.empty((n, 1))
-    block_trig(links, q.reshape((1, n)), 0, 1, C, S)
-    walk(links, ends, frames_mid, C, S, 0, q, pose, frames, axes, np.empty((0, 3)))
-    return FK_OK if inside_limits(links, q) else FK_OUTSIDE_LIMITS
+    bad, outside = fk_rows(
+        links,
+        ends,
+        frames_mid,
+        q.reshape((1, n)),
+        np.int64(0),
+        np.int64(1),
+        pose.reshape((1, 4, 4)),
+        frames.reshape((1, frames.shape[0], 4, 4)),
+        axes.reshape((1, axes.shape[0], 6)),
+    )
+    if bad:
+        return FK_NOT_FINITE
+    return FK_OUTSIDE_LIMITS if outside else FK_OK
 
 
 @kernel
 def fk_pose(links: Array, ends: Array, q: Array, pose: Array) -> int:
     """:func:`fk_one` for the tool pose alone (fewer arguments: a cheaper call)."""
-    return fk_one(links, ends, False, q, pose, np.empty((0, 4, 4)), np.empty((0, 6)))
+    bad, outside = fk_rows(
+        links,
+        ends,
+        np.bool_(False),
+        q.reshape((1, links.shape[0])),
+        np.int64(0),
+        np.int64(1),
+        pose.reshape((1, 4, 4)),
+        np.empty((0, 0, 4, 4)),
+        np.empty((0, 0, 6)),
+    )
+    if bad:
+        return FK_NOT_FINITE
+    return FK_OUTSIDE_LIMITS if outside else FK_OK
 
 
 @batch_kernel
@@ -334,30 +413,17 @@ def fk_batch(
         ``(bad, outside)``: the numbers of rows of ``Q`` holding NaN or inf,
         and of rows beyond some joint's limits.
     """
-    B, n = Q.shape
+    # The loop body is one call: numba compiles a parallel loop's body
+    # slowly, and fk_rows is compiled once for single calls and batches.
+    B = Q.shape[0]
     nblocks = (B + BLOCK - 1) // BLOCK
     bad = 0
     outside = 0
-    no_frames = np.empty((0, 4, 4))
-    no_axes = np.empty((0, 6))
-    no_work = np.empty((0, 3))
     for blk in numba.prange(nblocks):
         b0 = blk * BLOCK
-        b1 = min(B, b0 + BLOCK)
-        C = np.empty((n, BLOCK))
-        S = np.empty((n, BLOCK))
-        block_trig(links, Q, b0, b1, C, S)
-        for b in range(b0, b1):
-            F = frames[b] if frames.shape[0] > 0 else no_frames
-            A = axes[b] if axes.shape[0] > 0 else no_axes
-            walk(links, ends, frames_mid, C, S, b - b0, Q[b], poses[b], F, A, no_work)
-            if not finite(Q[b]):
-                bad += 1
-                poses[b, :, :] = np.nan
-                if frames.shape[0] > 0:
-                    frames[b, :, :, :] = np.nan
-                if axes.shape[0] > 0:
-                    axes[b, :, :] = np.nan
-            elif not inside_limits(links, Q[b]):
-                outside += 1
+        rows_bad, rows_outside = fk_rows(
+            links, ends, frames_mid, Q, b0, min(B, b0 + BLOCK), poses, frames, axes
+        )
+        bad += rows_bad
+        outside += rows_outside
     return bad, outside

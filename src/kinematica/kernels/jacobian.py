@@ -14,7 +14,7 @@ import numpy as np
 from kinematica.kernels._numba import Array, batch_kernel, inline_kernel, kernel
 from kinematica.kernels.fk import BLOCK, LINK_PRISMATIC, block_trig, finite, walk
 
-__all__ = ["columns", "jacobian_batch", "jacobian_one"]
+__all__ = ["columns", "jacobian_batch", "jacobian_one", "jacobian_rows"]
 
 
 @inline_kernel
@@ -45,19 +45,42 @@ def columns(links: Array, axes: Array, pose: Array, tool_frame: bool, J: Array) 
 
 
 @kernel
-def jacobian_one(links: Array, ends: Array, q: Array, tool_frame: bool, J: Array) -> bool:
-    """``J (6, n)`` at one configuration ``q (n,)``; False when ``q`` is not finite."""
-    if not finite(q):
-        return False
+def jacobian_rows(
+    links: Array, ends: Array, Q: Array, b0: int, b1: int, tool_frame: bool, J: Array
+) -> int:
+    """Rows ``b0:b1`` of a batch, in one thread: a block of :func:`jacobian_batch`.
+
+    Returns:
+        The number of these rows holding NaN or inf (their ``J`` is NaN).
+    """
     n = links.shape[0]
-    C = np.empty((n, 1))
-    S = np.empty((n, 1))
+    C = np.empty((n, b1 - b0))
+    S = np.empty((n, b1 - b0))
     axes = np.empty((n, 6))
     pose = np.empty((4, 4))
-    block_trig(links, q.reshape((1, n)), 0, 1, C, S)
-    walk(links, ends, False, C, S, 0, q, pose, np.empty((0, 4, 4)), axes, np.empty((0, 3)))
-    columns(links, axes, pose, tool_frame, J)
-    return True
+    no_frames = np.empty((0, 4, 4))
+    no_work = np.empty((0, 3))
+    bad = 0
+    block_trig(links, Q, b0, b1, C, S)
+    for b in range(b0, b1):
+        walk(links, ends, False, C, S, b - b0, Q[b], pose, no_frames, axes, no_work)
+        columns(links, axes, pose, tool_frame, J[b])
+        if not finite(Q[b]):
+            bad += 1
+            J[b, :, :] = np.nan
+    return bad
+
+
+@kernel
+def jacobian_one(links: Array, ends: Array, q: Array, tool_frame: bool, J: Array) -> bool:
+    """``J (6, n)`` at one configuration ``q (n,)``; False (and NaN) when ``q`` is not finite."""
+    # A batch of one; np.int64 rather than literals: see kinematica.kernels.fk.fk_one.
+    n = links.shape[0]
+    rows = q.reshape((1, n))
+    return (
+        jacobian_rows(links, ends, rows, np.int64(0), np.int64(1), tool_frame, J.reshape((1, 6, n)))
+        == 0
+    )
 
 
 @batch_kernel
@@ -67,23 +90,10 @@ def jacobian_batch(links: Array, ends: Array, Q: Array, tool_frame: bool, J: Arr
     Returns:
         The number of rows of ``Q`` holding NaN or inf.
     """
-    B, n = Q.shape
+    B = Q.shape[0]
     nblocks = (B + BLOCK - 1) // BLOCK
     bad = 0
-    no_frames = np.empty((0, 4, 4))
-    no_work = np.empty((0, 3))
     for blk in numba.prange(nblocks):
         b0 = blk * BLOCK
-        b1 = min(B, b0 + BLOCK)
-        C = np.empty((n, BLOCK))
-        S = np.empty((n, BLOCK))
-        axes = np.empty((n, 6))
-        pose = np.empty((4, 4))
-        block_trig(links, Q, b0, b1, C, S)
-        for b in range(b0, b1):
-            walk(links, ends, False, C, S, b - b0, Q[b], pose, no_frames, axes, no_work)
-            columns(links, axes, pose, tool_frame, J[b])
-            if not finite(Q[b]):
-                bad += 1
-                J[b, :, :] = np.nan
+        bad += jacobian_rows(links, ends, Q, b0, min(B, b0 + BLOCK), tool_frame, J)
     return bad
