@@ -381,7 +381,13 @@ def fk_rows(
 
 @kernel
 def fk_one(
-    links: Array, ends: Array, frames_mid: bool, q: Array, pose: Array, frames: Array, axes: Array
+    links: Array,
+    ends: Array,
+    frames_mid: bool,
+    q: Array,
+    pose: Array,
+    frames: Array,
+    axes: Array,
 ) -> int:
     """One configuration, as a batch of one (:func:`fk_rows`).
 
@@ -401,7 +407,8 @@ def fk_one(
     # np.int64, not the literals 0 and 1: numba would compile fk_rows once more
     # for literal arguments (seconds), rather than share the batch's build.
     # x[None]: a batch of one, as a view numba makes for free (not reshape).
-    first, last = np.int64(0), np.int64(1)
+    first: int = np.int64(0)  # type: ignore[assignment]
+    last: int = np.int64(1)  # type: ignore[assignment]
     bad, outside = fk_rows(links, ends, frames_mid, q[None], first, last, pose[None], frames, axes)
     if bad:
         return FK_NOT_FINITE
@@ -411,7 +418,8 @@ def fk_one(
 @kernel
 def fk_pose(links: Array, ends: Array, q: Array, pose: Array) -> int:
     """:func:`fk_one` for the tool pose alone (fewer arguments: a cheaper call)."""
-    return fk_one(links, ends, np.bool_(False), q, pose, np.empty((0, 4, 4)), np.empty((0, 6)))
+    no_frames, no_axes = np.empty((0, 4, 4)), np.empty((0, 6))
+    return fk_one(links, ends, np.bool_(False), q, pose, no_frames, no_axes)  # type: ignore[arg-type]
 
 
 @batch_kernel

@@ -65,7 +65,13 @@ def columns(links: Array, axes: Array, pose: Array, tool_frame: bool, J: Array) 
 
 @kernel
 def jacobian_rows(
-    links: Array, ends: Array, Q: Array, b0: int, b1: int, tool_frame: bool, J: Array
+    links: Array,
+    ends: Array,
+    Q: Array,
+    b0: int,
+    b1: int,
+    tool_frame: bool,
+    J: Array,
 ) -> int:
     """Rows ``b0:b1`` of a batch, in one thread: a block of :func:`jacobian_batch`.
 
@@ -94,7 +100,8 @@ def jacobian_rows(
 def jacobian_one(links: Array, ends: Array, q: Array, tool_frame: bool, J: Array) -> bool:
     """``J (6, n)`` at one configuration ``q (n,)``; False (and NaN) when ``q`` is not finite."""
     # A batch of one; see kinematica.kernels.fk.fk_one for np.int64 and x[None].
-    first, last = np.int64(0), np.int64(1)
+    first: int = np.int64(0)  # type: ignore[assignment]
+    last: int = np.int64(1)  # type: ignore[assignment]
     return jacobian_rows(links, ends, q[None], first, last, tool_frame, J[None]) == 0
 
 
