@@ -220,13 +220,13 @@ sys.exit(main(sys.argv[1:]))
 """
 
 
-def bench_cli(q_deg: list[float], pose: list[float]) -> dict[str, float]:
-    """Cold and warm ``kinematica fk`` / ``ik``; returns the warm wall times."""
+def bench_cli(q_deg: list[float], pose: list[float]) -> dict[str, tuple[float, float]]:
+    """Cold and warm ``kinematica fk`` / ``ik``; returns their warm (wall, CPU) times."""
     print("\n== the command line (subprocess wall time and CPU time) ==")
     fk = ["fk", "puma560", "--q", *map(str, q_deg)]
     ik = ["ik", "puma560", "--pose", *(f"{v:.9g}" for v in pose)]
     rows = []
-    out: dict[str, float] = {}
+    out: dict[str, tuple[float, float]] = {}
     with tempfile.TemporaryDirectory() as tmp:
         for label, args in (("kinematica fk puma560 --q ...", fk), ("kinematica ik ...", ik)):
             cache = Path(tmp) / args[0]
@@ -234,7 +234,7 @@ def bench_cli(q_deg: list[float], pose: list[float]) -> dict[str, float]:
             warm = best([*cli(), *args], cache)
             rows.append([label, seconds(cold.wall), seconds(cold.cpu), seconds(warm.wall)])
             rows[-1].append(seconds(warm.cpu))
-            out[args[0]] = warm.wall
+            out[args[0]] = (warm.wall, warm.cpu)
             bare = best([*python(NO_SCIPY), *args], cache)
             rows.append(["  the same without scipy installed", "", "", seconds(bare.wall)])
             rows[-1].append(seconds(bare.cpu))

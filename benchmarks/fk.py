@@ -50,6 +50,7 @@ from _fk_peers import (
     pinocchio,
     robotics_toolbox,
 )
+from _startup import seconds
 
 import kinematica as km
 from kinematica.robot import Robot
@@ -298,7 +299,7 @@ def verdict(ok: bool) -> str:
     return "met" if ok else "NOT met"
 
 
-def summary(figs: dict[str, Figures], cli_fk: float | None) -> None:
+def summary(figs: dict[str, Figures], cli_fk: tuple[float, float] | None) -> None:
     print("\n== issue 6 targets (best wall; CPU time in brackets) ==")
     rows = []
     for name, f in figs.items():
@@ -336,9 +337,9 @@ def summary(figs: dict[str, Figures], cli_fk: float | None) -> None:
             ],
         ]
     if cli_fk is not None:
-        rows.append(
-            ["warm `kinematica fk` <= 0.4 s", f"{cli_fk:.2f} s", verdict(cli_fk <= TARGET_CLI)]
-        )
+        wall, cpu = cli_fk
+        measured = f"{seconds(wall)} [{seconds(cpu)}]"
+        rows.append(["warm `kinematica fk` <= 0.4 s", measured, verdict(min(cli_fk) <= TARGET_CLI)])
     print(table(rows, ["", "measured", ""]))
     print("  (a target counts as met when the best wall time or the CPU time meets it:")
     print("  on a loaded machine the wall clock includes waiting for a core)")
@@ -368,7 +369,7 @@ def main() -> None:
     wall, cpu = time.perf_counter() - wall0, time.process_time() - cpu0
     print(f"\n(speed part: CPU {cpu:.0f} s / wall {wall:.0f} s = {cpu / wall:.2f} cores used;")
     print(f" numba's threading layer: {numba.threading_layer()})")
-    cli_fk = None
+    cli_fk: tuple[float, float] | None = None
     if not args.no_startup:
         _startup.bench_import()
         _startup.bench_compile()
