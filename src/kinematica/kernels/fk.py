@@ -8,16 +8,17 @@ regrouped product (see :mod:`kinematica.dh.chain`)::
 
     T = start · Π_i [Rot(z, θi) · Tras(z, di) · Tras(x, ai*) · Rot(x, αi*)] · tool
 
-and :func:`walk` applies each factor to the running frame's columns ``x, y, z,
-p`` directly, with no 4x4 product: ``x' = c x + s y``, ``w = c y - s x``,
+and :func:`walk_row` applies each factor to the running frame's columns ``x,
+y, z, p`` directly, with no 4x4 product: ``x' = c x + s y``, ``w = c y - s x``,
 ``p += d z + a x'``, ``y' = cα w + sα z``, ``z' = cα z - sα w``. It records, on
 request, every frame and every joint axis (as a line: direction and point),
-which is all the Jacobian and the IK checks need.
+which is all the Jacobian and the IK checks need (:func:`walk` is the same
+walk for one configuration held in its own arrays).
 
 Joint trigonometry is computed apart (:func:`block_trig`), for one
 configuration or for a block of them at once: a loop over a block vectorises.
-A batch runs blocks in parallel threads; a single configuration is a block of
-one. There is no other FK in kinematica.
+A batch runs blocks (:func:`fk_rows`) in parallel threads; a single
+configuration is a block of one. There is no other FK in kinematica.
 """
 
 from __future__ import annotations
