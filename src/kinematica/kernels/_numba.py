@@ -51,7 +51,7 @@ WORKERS_ENV = "KINEMATICA_WORKERS"
 
 @functools.cache
 def sources_fingerprint() -> str:
-    """A hash of every source file of :mod:`kinematica.kernels` (read once)."""
+    """A hash of every source file of :mod:`kinematica.kernels` (read once, at import)."""
     root = Path(__file__).parent
     digest = hashlib.sha256()
     for path in sorted(root.rglob("*.py")):
@@ -78,6 +78,7 @@ class _KernelCache(FunctionCache):
 
 def _compile(fn: Callable[..., Any], **options: Any) -> Any:
     """``numba.njit(**options)(fn)``, cached on disk by :class:`_KernelCache`."""
+    sources_fingerprint()  # read as the kernels are defined: the sources this process runs
     dispatcher = numba.njit(nogil=True, error_model="numpy", **options)(fn)
     dispatcher._cache = _KernelCache(fn)  # what cache=True does, with our key
     return dispatcher
