@@ -26,6 +26,16 @@ _NO_FRAMES_B = np.empty((0, 0, 4, 4))
 _NO_AXES_B = np.empty((0, 0, 6))
 
 
+def _contiguous(q: FloatArray) -> FloatArray:
+    """``q (n,)`` as the one array type the single-call kernels are compiled for.
+
+    A strided or read-only array is another type to numba: passed as it is, it
+    would cost a compilation of its own (seconds) for the same result.
+    """
+    flags = q.flags
+    return q if flags.c_contiguous and flags.writeable else q.copy()
+
+
 def _flat(chain: DHChain, q: FloatArray) -> FloatArray:
     return np.ascontiguousarray(q.reshape(-1, chain.dof), dtype=np.float64)
 
@@ -47,18 +57,19 @@ def fk(
         are NaN; for one configuration ``T`` is then undefined); the number
         beyond some joint's own limits (computed all the same).
     """
-    n = chain.dof
-    if q.ndim == 1:
+    if q.ndim == 1:  # the single-call path: every attribute look-up here counts
+        q = _contiguous(q)
         pose = np.empty((4, 4))
         if all_frames:
-            frames = np.empty((n + 1, 4, 4))
+            frames = np.empty((q.shape[0] + 1, 4, 4))
             code = fk_one(chain.links, chain.ends, chain.frames_mid, q, pose, frames, _NO_AXES)
+            pose = frames
         else:
             code = fk_pose(chain.links, chain.ends, q, pose)
-        return (frames if all_frames else pose), code == FK_NOT_FINITE, code == FK_OUTSIDE_LIMITS
+        return pose, code == FK_NOT_FINITE, code == FK_OUTSIDE_LIMITS
     flat = _flat(chain, q)
     poses = np.empty((flat.shape[0], 4, 4))
-    frames = np.empty((flat.shape[0], n + 1, 4, 4)) if all_frames else _NO_FRAMES_B
+    frames = np.empty((flat.shape[0], chain.dof + 1, 4, 4)) if all_frames else _NO_FRAMES_B
     set_workers(workers)
     bad, outside = fk_batch(
         chain.links, chain.ends, chain.frames_mid, flat, poses, frames, _NO_AXES_B
@@ -84,11 +95,12 @@ def jacobian(
     Returns:
         ``(J, bad)`` as for :func:`fk`.
     """
-    n = chain.dof
     if q.ndim == 1:
-        J = np.empty((6, n))
+        q = _contiguous(q)
+        J = np.empty((6, q.shape[0]))
         ok = jacobian_one(chain.links, chain.ends, q, tool_frame, J)
         return J, int(not ok)
+    n = chain.dof
     flat = _flat(chain, q)
     Jb = np.empty((flat.shape[0], 6, n))
     set_workers(workers)

@@ -8,16 +8,17 @@ regrouped product (see :mod:`kinematica.dh.chain`)::
 
     T = start · Π_i [Rot(z, θi) · Tras(z, di) · Tras(x, ai*) · Rot(x, αi*)] · tool
 
-and :func:`walk` applies each factor to the running frame's columns ``x, y, z,
-p`` directly, with no 4x4 product: ``x' = c x + s y``, ``w = c y - s x``,
+and :func:`walk_row` applies each factor to the running frame's columns ``x,
+y, z, p`` directly, with no 4x4 product: ``x' = c x + s y``, ``w = c y - s x``,
 ``p += d z + a x'``, ``y' = cα w + sα z``, ``z' = cα z - sα w``. It records, on
 request, every frame and every joint axis (as a line: direction and point),
-which is all the Jacobian and the IK checks need.
+which is all the Jacobian and the IK checks need (:func:`walk` is the same
+walk for one configuration held in its own arrays).
 
 Joint trigonometry is computed apart (:func:`block_trig`), for one
 configuration or for a block of them at once: a loop over a block vectorises.
-A batch runs blocks in parallel threads; a single configuration is a block of
-one. There is no other FK in kinematica.
+A batch runs blocks (:func:`fk_rows`) in parallel threads; a single
+configuration is a block of one. There is no other FK in kinematica.
 """
 
 from __future__ import annotations
@@ -25,8 +26,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from kinematica.kernels._numba import Array, batch_kernel, kernel
-from kinematica.kernels.arrays import copy2
+from kinematica.kernels._numba import Array, batch_kernel, inline_kernel, kernel
 from kinematica.kernels.trig import REDUCTION_LIMIT, sincos, sincos_reduced
 
 __all__ = [
@@ -48,12 +48,13 @@ __all__ = [
     "START",
     "TOOL",
     "block_trig",
-    "finite",
+    "check_row",
     "fk_batch",
     "fk_one",
     "fk_pose",
-    "inside_limits",
+    "fk_rows",
     "walk",
+    "walk_row",
 ]
 
 # Columns of ``links``: joint type (1.0 prismatic), constant θ and d, the
@@ -97,40 +98,191 @@ def block_trig(links: Array, Q: Array, b0: int, b1: int, C: Array, S: Array) -> 
             (the constant θ of a prismatic joint).
         S: ``(n, >= b1 - b0)`` out: the sines.
     """
+    # Indices, never views such as C[j]: a view costs two atomic reference
+    # count updates, which took half the time of a single call.
     n = links.shape[0]
     m = b1 - b0
     for j in range(n):
-        Cj, Sj = C[j], S[j]
         if links[j, LINK_PRISMATIC] != 0.0:
-            Cj[:m] = links[j, LINK_CT]
-            Sj[:m] = links[j, LINK_ST]
+            for k in range(m):
+                C[j, k] = links[j, LINK_CT]
+                S[j, k] = links[j, LINK_ST]
             continue
         th = links[j, LINK_THETA]
         biggest = 0.0
         for k in range(m):
-            Cj[k] = Q[b0 + k, j] + th
-            biggest = max(biggest, abs(Cj[k]))
-        if biggest <= REDUCTION_LIMIT:
+            C[j, k] = Q[b0 + k, j] + th
+            biggest = max(biggest, abs(C[j, k]))
+        if m > 1 and biggest <= REDUCTION_LIMIT:
             for k in range(m):  # vectorised: no calls, no branches
-                Sj[k], Cj[k] = sincos_reduced(Cj[k])
-        else:  # rare: angles beyond the reduction's range (or NaN)
+                S[j, k], C[j, k] = sincos_reduced(C[j, k])
+        else:  # one configuration (nothing to vectorise), or angles beyond
+            # the reduction's range (or NaN): one at a time
             for k in range(m):
-                Sj[k], Cj[k] = sincos(Cj[k])
+                S[j, k], C[j, k] = sincos(C[j, k])
 
 
-@kernel
-def _store(F: Array, X: Array, Y: Array, Z: Array, P: Array) -> None:
-    """Write the frame with columns ``X, Y, Z, P`` (each ``(3,)``) into ``F (4, 4)``."""
-    for r in range(3):
-        F[r, 0] = X[r]
-        F[r, 1] = Y[r]
-        F[r, 2] = Z[r]
-        F[r, 3] = P[r]
-        F[3, r] = 0.0
-    F[3, 3] = 1.0
+@inline_kernel
+def _store(
+    T: Array,
+    o: int,
+    x0: float,
+    x1: float,
+    x2: float,
+    y0: float,
+    y1: float,
+    y2: float,
+    z0: float,
+    z1: float,
+    z2: float,
+    p0: float,
+    p1: float,
+    p2: float,
+) -> None:
+    """Write the frame with columns ``x, y, z, p`` into ``T[o]`` (``T (m, 4, 4)``)."""
+    T[o, 0, 0] = x0
+    T[o, 1, 0] = x1
+    T[o, 2, 0] = x2
+    T[o, 0, 1] = y0
+    T[o, 1, 1] = y1
+    T[o, 2, 1] = y2
+    T[o, 0, 2] = z0
+    T[o, 1, 2] = z1
+    T[o, 2, 2] = z2
+    T[o, 0, 3] = p0
+    T[o, 1, 3] = p1
+    T[o, 2, 3] = p2
+    T[o, 3, 0] = 0.0
+    T[o, 3, 1] = 0.0
+    T[o, 3, 2] = 0.0
+    T[o, 3, 3] = 1.0
 
 
-@kernel
+@inline_kernel
+def walk_row(
+    links: Array,
+    ends: Array,
+    frames_mid: bool,
+    C: Array,
+    S: Array,
+    k: int,
+    Q: Array,
+    b: int,
+    poses: Array,
+    o: int,
+    frames: Array,
+    axes: Array,
+) -> None:
+    """Walk the chain at configuration ``Q[b]``; write output slot ``o``.
+
+    Args:
+        links: ``(n, 10)`` the chain.
+        ends: ``(3, 4, 4)`` start, tool, base.
+        frames_mid: True for the modified convention, where frame i sits after
+            ``Rot(z)·Tras(z)`` of joint i rather than after the whole factor.
+        C: ``(n, m)`` joint cosines (:func:`block_trig`).
+        S: ``(n, m)`` joint sines.
+        k: The column of ``C`` and ``S`` holding this configuration.
+        Q: ``(B, n)`` joint values (the slide of prismatic joints is read here).
+        b: The row of ``Q``.
+        poses: ``(M, 4, 4)`` out: ``poses[o]`` is the tool pose in the base frame.
+        o: The output slot.
+        frames: ``(M (n + 1), 4, 4)`` out, or an empty array for none:
+            ``frames[o (n + 1) + i]`` is frame i of ``0T0 (base), 0T1, ...,
+            0Tn (with tool)``.
+        axes: ``(M n, 6)`` out, or an empty array for none: ``axes[o n + i]``
+            is joint i's axis as a unit direction and a point on it (base frame).
+    """
+    # The running frame's columns are the scalars x, y, z, p (three each), not
+    # rows of a scratch array: numba cannot tell a scratch array from the
+    # outputs (they might alias), so every store to poses/frames/axes would
+    # force it to reload the frame from memory; in locals it stays in
+    # registers. n and w are the new x and the rotated y of the current joint.
+    # Outputs are indexed, never sliced into views (see block_trig), and
+    # stacked flat (frames, axes) so that one store routine serves them all.
+    # Plain statements, no tuple assignments: numba compiles them several
+    # times faster.
+    n = links.shape[0]
+    x0 = ends[START, 0, 0]
+    x1 = ends[START, 1, 0]
+    x2 = ends[START, 2, 0]
+    y0 = ends[START, 0, 1]
+    y1 = ends[START, 1, 1]
+    y2 = ends[START, 2, 1]
+    z0 = ends[START, 0, 2]
+    z1 = ends[START, 1, 2]
+    z2 = ends[START, 2, 2]
+    p0 = ends[START, 0, 3]
+    p1 = ends[START, 1, 3]
+    p2 = ends[START, 2, 3]
+    want_frames = frames.size > 0
+    want_axes = axes.size > 0
+    first = o * (n + 1)
+    for i in range(n):
+        if want_axes:
+            axes[o * n + i, 0] = z0
+            axes[o * n + i, 1] = z1
+            axes[o * n + i, 2] = z2
+            axes[o * n + i, 3] = p0
+            axes[o * n + i, 4] = p1
+            axes[o * n + i, 5] = p2
+        c = C[i, k]
+        s = S[i, k]
+        d = links[i, LINK_D]
+        if links[i, LINK_PRISMATIC] != 0.0:
+            d += Q[b, i]
+        n0 = c * x0 + s * y0
+        n1 = c * x1 + s * y1
+        n2 = c * x2 + s * y2
+        w0 = c * y0 - s * x0
+        w1 = c * y1 - s * x1
+        w2 = c * y2 - s * x2
+        p0 += d * z0
+        p1 += d * z1
+        p2 += d * z2
+        if want_frames and frames_mid and i < n - 1:
+            _store(frames, first + i + 1, n0, n1, n2, w0, w1, w2, z0, z1, z2, p0, p1, p2)
+        a = links[i, LINK_A]
+        ca = links[i, LINK_CA]
+        sa = links[i, LINK_SA]
+        p0 += a * n0
+        p1 += a * n1
+        p2 += a * n2
+        x0 = n0
+        x1 = n1
+        x2 = n2
+        y0 = ca * w0 + sa * z0
+        y1 = ca * w1 + sa * z1
+        y2 = ca * w2 + sa * z2
+        z0 = ca * z0 - sa * w0
+        z1 = ca * z1 - sa * w1
+        z2 = ca * z2 - sa * w2
+        if want_frames and not frames_mid and i < n - 1:
+            _store(frames, first + i + 1, x0, x1, x2, y0, y1, y2, z0, z1, z2, p0, p1, p2)
+    _store(
+        poses,
+        o,
+        x0 * ends[TOOL, 0, 0] + y0 * ends[TOOL, 1, 0] + z0 * ends[TOOL, 2, 0],
+        x1 * ends[TOOL, 0, 0] + y1 * ends[TOOL, 1, 0] + z1 * ends[TOOL, 2, 0],
+        x2 * ends[TOOL, 0, 0] + y2 * ends[TOOL, 1, 0] + z2 * ends[TOOL, 2, 0],
+        x0 * ends[TOOL, 0, 1] + y0 * ends[TOOL, 1, 1] + z0 * ends[TOOL, 2, 1],
+        x1 * ends[TOOL, 0, 1] + y1 * ends[TOOL, 1, 1] + z1 * ends[TOOL, 2, 1],
+        x2 * ends[TOOL, 0, 1] + y2 * ends[TOOL, 1, 1] + z2 * ends[TOOL, 2, 1],
+        x0 * ends[TOOL, 0, 2] + y0 * ends[TOOL, 1, 2] + z0 * ends[TOOL, 2, 2],
+        x1 * ends[TOOL, 0, 2] + y1 * ends[TOOL, 1, 2] + z1 * ends[TOOL, 2, 2],
+        x2 * ends[TOOL, 0, 2] + y2 * ends[TOOL, 1, 2] + z2 * ends[TOOL, 2, 2],
+        p0 + x0 * ends[TOOL, 0, 3] + y0 * ends[TOOL, 1, 3] + z0 * ends[TOOL, 2, 3],
+        p1 + x1 * ends[TOOL, 0, 3] + y1 * ends[TOOL, 1, 3] + z1 * ends[TOOL, 2, 3],
+        p2 + x2 * ends[TOOL, 0, 3] + y2 * ends[TOOL, 1, 3] + z2 * ends[TOOL, 2, 3],
+    )
+    if want_frames:
+        for r in range(4):
+            for c in range(4):
+                frames[first, r, c] = ends[BASE, r, c]
+                frames[first + n, r, c] = poses[o, r, c]
+
+
+@inline_kernel
 def walk(
     links: Array,
     ends: Array,
@@ -144,123 +296,131 @@ def walk(
     axes: Array,
     work: Array,
 ) -> None:
-    """Walk the chain at one configuration.
+    """:func:`walk_row` for one configuration ``q (n,)``, its outputs unstacked.
 
     Args:
         links: ``(n, 10)`` the chain.
         ends: ``(3, 4, 4)`` start, tool, base.
-        frames_mid: True for the modified convention, where frame i sits after
-            ``Rot(z)·Tras(z)`` of joint i rather than after the whole factor.
+        frames_mid: True for the modified convention.
         C: ``(n, m)`` joint cosines (:func:`block_trig`).
         S: ``(n, m)`` joint sines.
         k: The column of ``C`` and ``S`` holding this configuration.
-        q: ``(n,)`` joint values (the slide of prismatic joints is read here).
+        q: ``(n,)`` joint values.
         pose: ``(4, 4)`` out: tool pose in the base frame.
-        frames: ``(n + 1, 4, 4)`` out, or shape ``(0, 4, 4)`` for none: every
-            frame ``0T0 (base), 0T1, ..., 0Tn (with tool)``.
-        axes: ``(n, 6)`` out, or shape ``(0, 6)`` for none: each joint's axis
-            as a unit direction and a point on it (base frame).
-        work: ``(6, 3)`` scratch space.
+        frames: ``(n + 1, 4, 4)`` out, or shape ``(0, 4, 4)`` for none.
+        axes: ``(n, 6)`` out, or shape ``(0, 6)`` for none.
+        work: Unused (kept so that the IK kernels calling :func:`walk` need
+            not change; to be dropped with them).
     """
-    # Plain statements, no tuple assignments: numba compiles them several
-    # times faster. The running frame's columns are X, Y, Z, P; N and W the
-    # new x and the rotated y of the current joint.
-    n = links.shape[0]
-    X = work[0]
-    Y = work[1]
-    Z = work[2]
-    P = work[3]
-    N = work[4]
-    W = work[5]
-    s0 = ends[START]
-    for r in range(3):
-        X[r] = s0[r, 0]
-        Y[r] = s0[r, 1]
-        Z[r] = s0[r, 2]
-        P[r] = s0[r, 3]
-    want_frames = frames.shape[0] > 0
-    want_axes = axes.shape[0] > 0
-    for i in range(n):
-        if want_axes:
-            for r in range(3):
-                axes[i, r] = Z[r]
-                axes[i, 3 + r] = P[r]
-        c = C[i, k]
-        s = S[i, k]
-        d = links[i, LINK_D]
-        if links[i, LINK_PRISMATIC] != 0.0:
-            d += q[i]
-        for r in range(3):
-            N[r] = c * X[r] + s * Y[r]
-            W[r] = c * Y[r] - s * X[r]
-            P[r] += d * Z[r]
-        if want_frames and frames_mid and i < n - 1:
-            _store(frames[i + 1], N, W, Z, P)
-        a = links[i, LINK_A]
-        ca = links[i, LINK_CA]
-        sa = links[i, LINK_SA]
-        for r in range(3):
-            P[r] += a * N[r]
-            X[r] = N[r]
-            Y[r] = ca * W[r] + sa * Z[r]
-            Z[r] = ca * Z[r] - sa * W[r]
-        if want_frames and not frames_mid and i < n - 1:
-            _store(frames[i + 1], X, Y, Z, P)
-    E = ends[TOOL]
-    for r in range(3):
-        pose[r, 0] = X[r] * E[0, 0] + Y[r] * E[1, 0] + Z[r] * E[2, 0]
-        pose[r, 1] = X[r] * E[0, 1] + Y[r] * E[1, 1] + Z[r] * E[2, 1]
-        pose[r, 2] = X[r] * E[0, 2] + Y[r] * E[1, 2] + Z[r] * E[2, 2]
-        pose[r, 3] = P[r] + X[r] * E[0, 3] + Y[r] * E[1, 3] + Z[r] * E[2, 3]
-        pose[3, r] = 0.0
-    pose[3, 3] = 1.0
-    if want_frames:
-        copy2(frames[0], ends[BASE])
-        copy2(frames[n], pose)
+    # x[None]: a batch of one as a view numba makes for free (not reshape).
+    walk_row(links, ends, frames_mid, C, S, k, q[None], 0, pose[None], 0, frames, axes)
 
 
-@kernel
-def finite(q: Array) -> bool:
-    """True when every value of ``q`` is finite."""
-    ok = True
-    for v in q:
-        ok &= np.isfinite(v)
-    return ok
-
-
-@kernel
-def inside_limits(links: Array, q: Array) -> bool:
-    """True when ``q`` is within every joint's own limits."""
-    ok = True
+@inline_kernel
+def check_row(links: Array, Q: Array, b: int) -> int:
+    """``FK_OK``, ``FK_NOT_FINITE`` or ``FK_OUTSIDE_LIMITS`` for configuration ``Q[b]``."""
+    finite = True
+    inside = True
     for i in range(links.shape[0]):
-        ok &= links[i, LINK_LO] <= q[i] <= links[i, LINK_HI]
-    return ok
+        v = Q[b, i]
+        finite &= np.isfinite(v)
+        inside &= links[i, LINK_LO] <= v <= links[i, LINK_HI]
+    if not finite:
+        return FK_NOT_FINITE
+    return FK_OK if inside else FK_OUTSIDE_LIMITS
+
+
+@kernel
+def fk_rows(
+    links: Array,
+    ends: Array,
+    frames_mid: bool,
+    Q: Array,
+    b0: int,
+    b1: int,
+    poses: Array,
+    frames: Array,
+    axes: Array,
+) -> tuple[int, int]:
+    """Rows ``b0:b1`` of a batch, in one thread: a block of :func:`fk_batch`.
+
+    Args:
+        links: ``(n, 10)`` the chain (see :func:`walk_row`).
+        ends: ``(3, 4, 4)`` start, tool, base.
+        frames_mid: True for the modified convention.
+        Q: ``(B, n)`` joint values.
+        b0: The first row.
+        b1: The row after the last.
+        poses: ``(B, 4, 4)`` out.
+        frames: ``(B (n + 1), 4, 4)`` out (every frame of row b from
+            ``b (n + 1)`` on), or an empty array for none.
+        axes: ``(B n, 6)`` out (row b's from ``b n`` on), or an empty array.
+
+    Returns:
+        ``(bad, outside)`` of these rows, as :func:`fk_batch`.
+    """
+    n = links.shape[0]
+    C = np.empty((n, b1 - b0))
+    S = np.empty((n, b1 - b0))
+    bad = 0
+    outside = 0
+    block_trig(links, Q, b0, b1, C, S)
+    for b in range(b0, b1):
+        walk_row(links, ends, frames_mid, C, S, b - b0, Q, b, poses, b, frames, axes)
+        code = check_row(links, Q, b)
+        if code == FK_NOT_FINITE:
+            bad += 1
+            poses[b, :, :] = np.nan
+            if frames.size > 0:
+                frames[b * (n + 1) : (b + 1) * (n + 1), :, :] = np.nan
+            if axes.size > 0:
+                axes[b * n : (b + 1) * n, :] = np.nan
+        elif code == FK_OUTSIDE_LIMITS:
+            outside += 1
+    return bad, outside
 
 
 @kernel
 def fk_one(
-    links: Array, ends: Array, frames_mid: bool, q: Array, pose: Array, frames: Array, axes: Array
+    links: Array,
+    ends: Array,
+    frames_mid: bool,
+    q: Array,
+    pose: Array,
+    frames: Array,
+    axes: Array,
 ) -> int:
-    """One configuration: see :func:`walk`.
+    """One configuration, as a batch of one (:func:`fk_rows`).
+
+    Args:
+        links: ``(n, 10)`` the chain (see :func:`walk_row`).
+        ends: ``(3, 4, 4)`` start, tool, base.
+        frames_mid: True for the modified convention.
+        q: ``(n,)`` joint values.
+        pose: ``(4, 4)`` out.
+        frames: ``(n + 1, 4, 4)`` out, or shape ``(0, 4, 4)`` for none.
+        axes: ``(n, 6)`` out, or shape ``(0, 6)`` for none.
 
     Returns:
-        ``FK_OK``; ``FK_NOT_FINITE`` (nothing computed) when ``q`` holds NaN or
-        inf; ``FK_OUTSIDE_LIMITS`` (computed) when a joint is beyond its limits.
+        ``FK_OK``; ``FK_NOT_FINITE`` (all NaN) when ``q`` holds NaN or inf;
+        ``FK_OUTSIDE_LIMITS`` (computed) when a joint is beyond its limits.
     """
-    if not finite(q):
+    # np.int64, not the literals 0 and 1: numba would compile fk_rows once more
+    # for literal arguments (seconds), rather than share the batch's build.
+    # x[None]: a batch of one, as a view numba makes for free (not reshape).
+    first: int = np.int64(0)  # type: ignore[assignment]
+    last: int = np.int64(1)  # type: ignore[assignment]
+    bad, outside = fk_rows(links, ends, frames_mid, q[None], first, last, pose[None], frames, axes)
+    if bad:
         return FK_NOT_FINITE
-    n = links.shape[0]
-    C = np.empty((n, 1))
-    S = np.empty((n, 1))
-    block_trig(links, q.reshape((1, n)), 0, 1, C, S)
-    walk(links, ends, frames_mid, C, S, 0, q, pose, frames, axes, np.empty((6, 3)))
-    return FK_OK if inside_limits(links, q) else FK_OUTSIDE_LIMITS
+    return FK_OUTSIDE_LIMITS if outside else FK_OK
 
 
 @kernel
 def fk_pose(links: Array, ends: Array, q: Array, pose: Array) -> int:
     """:func:`fk_one` for the tool pose alone (fewer arguments: a cheaper call)."""
-    return fk_one(links, ends, False, q, pose, np.empty((0, 4, 4)), np.empty((0, 6)))
+    no_frames, no_axes = np.empty((0, 4, 4)), np.empty((0, 6))
+    return fk_one(links, ends, np.bool_(False), q, pose, no_frames, no_axes)  # type: ignore[arg-type]
 
 
 @batch_kernel
@@ -270,7 +430,7 @@ def fk_batch(
     """A batch ``Q (B, n)`` in parallel blocks; rows holding NaN/inf come out NaN.
 
     Args:
-        links: ``(n, 10)`` the chain (see :func:`walk`).
+        links: ``(n, 10)`` the chain (see :func:`walk_row`).
         ends: ``(3, 4, 4)`` start, tool, base.
         frames_mid: True for the modified convention.
         Q: ``(B, n)`` joint values.
@@ -282,30 +442,19 @@ def fk_batch(
         ``(bad, outside)``: the numbers of rows of ``Q`` holding NaN or inf,
         and of rows beyond some joint's limits.
     """
+    # The loop body is one call: numba compiles a parallel loop's body
+    # slowly, and fk_rows is compiled once for single calls and batches.
     B, n = Q.shape
+    frame_stack = frames.reshape((frames.shape[0] * (n + 1), 4, 4))
+    axis_stack = axes.reshape((axes.shape[0] * n, 6))
     nblocks = (B + BLOCK - 1) // BLOCK
     bad = 0
     outside = 0
-    no_frames = np.empty((0, 4, 4))
-    no_axes = np.empty((0, 6))
     for blk in numba.prange(nblocks):
         b0 = blk * BLOCK
-        b1 = min(B, b0 + BLOCK)
-        C = np.empty((n, BLOCK))
-        S = np.empty((n, BLOCK))
-        work = np.empty((6, 3))
-        block_trig(links, Q, b0, b1, C, S)
-        for b in range(b0, b1):
-            F = frames[b] if frames.shape[0] > 0 else no_frames
-            A = axes[b] if axes.shape[0] > 0 else no_axes
-            walk(links, ends, frames_mid, C, S, b - b0, Q[b], poses[b], F, A, work)
-            if not finite(Q[b]):
-                bad += 1
-                poses[b, :, :] = np.nan
-                if frames.shape[0] > 0:
-                    frames[b, :, :, :] = np.nan
-                if axes.shape[0] > 0:
-                    axes[b, :, :] = np.nan
-            elif not inside_limits(links, Q[b]):
-                outside += 1
+        rows_bad, rows_outside = fk_rows(
+            links, ends, frames_mid, Q, b0, min(B, b0 + BLOCK), poses, frame_stack, axis_stack
+        )
+        bad += rows_bad
+        outside += rows_outside
     return bad, outside

@@ -44,6 +44,7 @@ if TYPE_CHECKING:
 __all__ = ["Robot"]
 
 FloatArray = NDArray[np.float64]
+_FLOAT64 = np.dtype(np.float64)
 
 
 @dataclass(frozen=True, eq=False)
@@ -189,6 +190,8 @@ class Robot:
             DimensionError: On a wrong last dimension or values that are not
                 real numbers.
         """
+        if type(q) is np.ndarray and q.dtype is _FLOAT64 and q.ndim and q.shape[-1] == self.dof:
+            return q  # already what the slow path below would return: a cheap single call
         try:
             raw = np.asarray(q)
         except (TypeError, ValueError) as exc:
