@@ -1,6 +1,6 @@
 """Exact conversion of a DH table between the standard and modified conventions.
 
-Seed 001: "las matrices de transformación intermedias varían, pero el resultado
+The lecture notes: "las matrices de transformación intermedias varían, pero el resultado
 final es el mismo". Because ``Tras(x, a)`` and ``Rot(x, α)`` commute, a standard
 table regroups into a modified one by moving each row's ``(a, α)`` to the next
 row; the last row's pair goes into the tool, and the first modified row's pair

@@ -34,7 +34,7 @@ FloatArray = NDArray[np.float64]
 
 #: Two axis directions are parallel when the sine of their angle is at most this;
 #: a direction is normal to another when the cosine is at most this. Parallel
-#: axes get the seed's parallel-axes rule; when they are not exactly parallel
+#: axes get the DH rule for parallel axes; when they are not exactly parallel
 #: their true common normal is far away (at about offset / angle), and the
 #: frames placed by the rule are off it by at most this angle. Near 1e-8 the
 #: two errors cross: the far normal costs round-off of about 1e-16 · offset /

@@ -9,7 +9,7 @@ direction, ψ the angle of link 3 relative to link 2 about ``k1``):
 
 * ``"shoulder right"``: σ >= 0, the target lies on the ``h1 × k1`` side of
   axis 1. For an arm whose axes 1 and 2 meet this is Lee and Ziegler's right
-  arm (a positive joint-2 rotation raises the wrist along h1); for seed 002's
+  arm (a positive joint-2 rotation raises the wrist along h1); for the lecture notes'
   arm, ``q1 = atan2(py, px)``. ``"shoulder left"``: σ <= 0.
 * ``"elbow up"``: in the arm's plane, the elbow (axis 3) lies on the side of
   the line from the shoulder (axis 2) to the target toward which ``h1``

@@ -15,7 +15,7 @@ from the side it points to: positive turns are counter-clockwise):
 * SCARA: ``"right-handed"`` (ψ in [0, π]: the elbow to the right of the
   shoulder-wrist line, as a right arm seen from above) and ``"left-handed"``.
 * planar PR and PRR: ``"link forward"`` (the revolute link points along the
-  slide direction, seed 000's ``q2A = asin(y/l2)``) and ``"link backward"``
+  slide direction, the lecture notes' ``q2A = asin(y/l2)``) and ``"link backward"``
   (``q2B = π - asin(y/l2)``).
 
 For position targets of the 3R, PRR and SCARA arms the last revolute joint is

@@ -2,7 +2,7 @@
 
 The tool origin with joints 4..n at 0 is a point fixed after joint 3; the arm
 part (:func:`~kinematica.kernels.solvers.arm_point.place`) puts it on the
-target, up to four ways (the seeds' decoupling: shoulder × elbow). Joints 4..n
+target, up to four ways (the decoupling of the lecture notes: shoulder × elbow). Joints 4..n
 stay free, so every target's solutions form a continuum: the candidates are
 its representatives with those joints at 0, the target is ``singular`` and
 joints 4..n are named free.

@@ -7,9 +7,9 @@ heights along ``k`` and compose into one turn ``φ = d2 + d3`` about ``k``.
 
 * Position targets (the tool origin ``p``): ``k · Rot(h1, −q1)(p − p1)``
   must equal the tool's height ``k · (x − p1)``, an equation
-  ``A cos θ + B sin θ = e`` in ``θ = −q1`` (two roots, seed 002's
+  ``A cos θ + B sin θ = e`` in ``θ = −q1`` (two roots, as in the lecture notes'
   ``q1 = atan2(py, px)`` and ``q1 + π``); then the arm's plane holds a 2R
-  triangle (two roots each, seed 002's ``cos q3 = (r² − a2² − a3²)/(2 a2 a3)``),
+  triangle (two roots each, the lecture notes' ``cos q3 = (r² − a2² − a3²)/(2 a2 a3)``),
   solved as in :func:`kinematica.kernels.solvers.triangle.two_link`. Up to
   four solutions. A target on axis 1 with the tool's height 0 leaves q1 free
   (``singular``: representatives at q1 = 0 and π); on the shoulder with

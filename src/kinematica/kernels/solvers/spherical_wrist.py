@@ -1,7 +1,7 @@
 """Closed-form IK of arms with a spherical wrist: 6R, and RRP (Stanford type).
 
 The last three axes meet at the wrist centre ``c``, which only joints 1-3 move
-(the seeds' "hipótesis de la muñeca esférica"). In product-of-exponentials
+(the lecture notes' "hipótesis de la muñeca esférica"). In product-of-exponentials
 form (``T(q) = e1 e2 ... e6 M`` with the axes at q = 0) the target wrist
 centre is the point fixed in the tool frame that sits at ``c`` at q = 0::
 
@@ -9,7 +9,7 @@ centre is the point fixed in the tool frame that sits at ``c`` at q = 0::
 
 and joints 1-3 put ``c`` there (:mod:`~kinematica.kernels.solvers.arm_point`: up
 to four branches). The wrist then supplies the rotation left over,
-``R4 R5 R6 = (R1 R2 R3)ᵀ · R_target · R_Mᵀ`` (the seeds' ``R36 = (R03)ᵀ R06``),
+``R4 R5 R6 = (R1 R2 R3)ᵀ · R_target · R_Mᵀ`` (the lecture notes' ``R36 = (R03)ᵀ R06``),
 about wrist axes meeting at any angles:
 
 * ``w = R4 R5 R6 h6`` (the target's axis 6, turned back by joints 1-3): the
