@@ -118,15 +118,19 @@ def _residual(
     pose: Array,
     e: Array,
     work: Array,
+    no_frames: Array,
+    no_axes: Array,
 ) -> tuple[float, float]:
     """Position (m) and rotation (rad) error of ``q`` against ``T``, weighted by ``w (6,)``.
 
     Unweighted, the rotation error is the angle of ``Rtᵀ R`` (exact near 0);
-    with weights, the norms of the weighted error components.
+    with weights, the norms of the weighted error components. ``no_frames``
+    ``(0, 4, 4)`` and ``no_axes`` ``(0, 6)``: empty arrays, allocated once by
+    the caller (an allocation per candidate cost a tenth of the check).
     """
     n = links.shape[0]
     block_trig(links, q.reshape((1, n)), 0, 1, C, S)
-    walk(links, ends, False, C, S, 0, q, pose, np.empty((0, 4, 4)), np.empty((0, 6)), work)
+    walk(links, ends, False, C, S, 0, q, pose, no_frames, no_axes, work)
     plain = w[0] == 1.0 and w[1] == 1.0 and w[2] == 1.0
     if plain and w[3] == 1.0 and w[4] == 1.0 and w[5] == 1.0:
         dx, dy, dz = T[0, 3] - pose[0, 3], T[1, 3] - pose[1, 3], T[2, 3] - pose[2, 3]
@@ -149,27 +153,33 @@ def _polish(
     C: Array,
     S: Array,
     pose: Array,
-    axes: Array,
-    J6: Array,
-    Jr: Array,
     e: Array,
-    er: Array,
-    dq: Array,
-    G: Array,
-    b: Array,
-    x: Array,
-    L: Array,
     work: Array,
+    no_frames: Array,
 ) -> None:
-    """``POLISH_STEPS`` Gauss-Newton steps on ``q`` towards ``T`` (weighted rows only)."""
+    """``POLISH_STEPS`` Gauss-Newton steps on ``q`` towards ``T`` (weighted rows only).
+
+    Its buffers are allocated here: few candidates are polished, and
+    allocating them for every target cost a tenth of the check.
+    """
     n = links.shape[0]
+    axes = np.empty((n, 6))
+    J6 = np.empty((6, n))
+    Jr = np.empty((6, n))
+    er = np.empty(6)
+    dq = np.empty(n)
+    big = max(n, 6)
+    G = np.empty((n, 6))
+    b = np.empty(big)
+    x = np.empty(big)
+    L = np.empty((big, big))
     r = 0
     for k in range(6):
         if w[k] > 0.0:
             r += 1
     for _ in range(POLISH_STEPS):
         block_trig(links, q.reshape((1, n)), 0, 1, C, S)
-        walk(links, ends, False, C, S, 0, q, pose, np.empty((0, 4, 4)), axes, work)
+        walk(links, ends, False, C, S, 0, q, pose, no_frames, axes, work)
         columns(links, axes, pose, False, J6)
         pose_error(pose, T, e)
         row = 0
@@ -242,18 +252,10 @@ def check_target(
     C = np.empty((n, 1))
     S = np.empty((n, 1))
     pose = np.empty((4, 4))
-    axes = np.empty((n, 6))
-    J6 = np.empty((6, n))
-    Jr = np.empty((6, n))
     e = np.empty(6)
-    er = np.empty(6)
-    dq = np.empty(n)
-    big = max(n, 6)
-    G = np.empty((n, 6))
-    b = np.empty(big)
-    x = np.empty(big)
-    L = np.empty((big, big))
     work = np.empty((6, 3))
+    no_frames = np.empty((0, 4, 4))
+    no_axes = np.empty((0, 6))
     qs = np.empty((m, n))
     res = np.empty((m, 2))
     state = np.zeros(m, dtype=np.int64)  # 0 no, 1 solution within limits, 2 outside
@@ -270,11 +272,11 @@ def check_target(
             q[k] = wrap(v) if links[k, LINK_PRISMATIC] == 0.0 else v
         if not valid:
             continue
-        p_err, r_err = _residual(links, ends, q, T, w, C, S, pose, e, work)
+        p_err, r_err = _residual(links, ends, q, T, w, C, S, pose, e, work, no_frames, no_axes)
         ok = p_err <= tol_p and r_err <= tol_r
         if not ok and max(p_err, r_err) < POLISH_LIMIT:
-            _polish(links, ends, q, T, w, C, S, pose, axes, J6, Jr, e, er, dq, G, b, x, L, work)
-            p_err, r_err = _residual(links, ends, q, T, w, C, S, pose, e, work)
+            _polish(links, ends, q, T, w, C, S, pose, e, work, no_frames)
+            p_err, r_err = _residual(links, ends, q, T, w, C, S, pose, e, work, no_frames, no_axes)
             ok = p_err <= tol_p and r_err <= tol_r
         close |= max(p_err, r_err) < POLISH_LIMIT
         if not ok:
