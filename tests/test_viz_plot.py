@@ -322,3 +322,19 @@ def test_importing_kinematica_leaves_matplotlib_alone() -> None:
     code = "import kinematica, kinematica.viz, sys; print('matplotlib' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_joint_polygons_share_one_vertex_count() -> None:
+    """Boxes (prismatic) and cylinders (revolute) reach matplotlib padded to one length.
+
+    matplotlib pads ragged 3-D polygons with uninitialised memory and autoscales
+    over the padding: the Stanford arm's axis limits were then sometimes ±1e308.
+    """
+    ax = viz.plot(km.load("stanford"), [0.2, 0.4, 0.5, 0.1, 0.5, 0.2], ax=_axes3d())
+    joints = _artist(ax, "joints")
+    faces = np.asarray(joints._faces)  # type: ignore[attr-defined]
+    assert faces.shape == (6 + 14 * 5, 12, 3)  # one box, five cylinders
+    assert not np.any(joints._invalid_vertices)  # type: ignore[attr-defined]
+    assert np.all(np.isfinite(faces)) and np.abs(faces).max() < 5.0
+    for lim in (ax.get_xlim(), ax.get_ylim(), ax.get_zlim()):  # type: ignore[attr-defined]
+        assert np.all(np.isfinite(lim)) and max(abs(v) for v in lim) < 5.0

@@ -168,7 +168,7 @@ class ArmDrawing:
             xy = self._project(pts)
             line.set_data(xy[:, 0], xy[:, 1])
 
-    def _collection(self, faces: list[FloatArray], gid: str) -> Any:
+    def _collection(self, faces: list[FloatArray] | FloatArray, gid: str) -> Any:
         colors = [PRISMATIC_COLOR if p else REVOLUTE_COLOR for p in self.prismatic]
         per_face = [c for c, f in zip(colors, self._face_counts(), strict=True) for _ in range(f)]
         if self.plane is None:
@@ -194,7 +194,7 @@ class ArmDrawing:
             return [1] * self.robot.dof
         return [6 if p else 14 for p in self.prismatic]
 
-    def _joint_faces(self, pose: ArmPose) -> list[FloatArray]:
+    def _joint_faces(self, pose: ArmPose) -> list[FloatArray] | FloatArray:
         r = JOINT_RADIUS * self.scale
         faces: list[FloatArray] = []
         for frame, prismatic in zip(pose.joints, self.prismatic, strict=True):
@@ -222,7 +222,7 @@ class ArmDrawing:
                 ang = np.linspace(0.0, 2.0 * np.pi, 24, endpoint=False)
                 c = self._project(frame[:3, 3])
                 faces.append(c + 1.2 * r * np.stack([np.cos(ang), np.sin(ang)], axis=1))
-        return faces
+        return faces if self.plane is not None else _padded(faces)
 
     def _frame_lines(self, frames: FloatArray) -> tuple[list[FloatArray], list[str]]:
         length = ARROW * self.scale
@@ -331,3 +331,20 @@ class ArmDrawing:
         self.ax.plot(*ends.T, color=BASE_COLOR, lw=1.0, ls=":", alpha=self.alpha, gid="base-link")
         if self.show_labels:
             self._text(np.zeros(3), "W", "label-W", 1)
+
+
+def _padded(faces: list[FloatArray]) -> FloatArray:
+    """3-D polygons ``(F, V, 3)`` of one vertex count: shorter ones repeat their last corner.
+
+    matplotlib's ``Poly3DCollection`` pads polygons of unequal length with
+    uninitialised memory and its autoscaling reads the padding (matplotlib
+    3.11): a box (4 corners) beside a cylinder's faces (12) then put random
+    numbers, sometimes ±1e308, into the axis limits. A repeated corner draws
+    nothing.
+    """
+    size = max(len(f) for f in faces)
+    out = np.empty((len(faces), size, 3))
+    for i, f in enumerate(faces):
+        out[i, : len(f)] = f
+        out[i, len(f) :] = f[-1]
+    return out
