@@ -241,6 +241,12 @@ def test_batch_with_bad_rows_reports_them_and_solves_the_rest() -> None:
     assert many.count[1] == many.count[3] == 0
     assert "row 1" in many[1].message and "NaN" in many[1].message
     assert "row 3" in many[3].message and "orthonormal" in many[3].message
+    for i in (1, 3):  # a malformed row has no numbers, only its message
+        assert np.isnan(many.gap[i]) and np.all(np.isnan(many.nearest_error[i]))
+        assert many[i].gap is None and not many.near_singular[i]
+    numeric = km.load("panda").ik(np.stack([np.eye(4), np.full((4, 4), np.nan)]), seed=0)
+    assert numeric.status[1] == "invalid" and np.isnan(numeric.gap[1])
+    assert np.all(np.isnan(numeric.nearest_error[1]))
     for i in (0, 2, 4):
         assert many.status[i] in ("ok", "singular")
         assert_solutions_reach(puma, many[i], Ts[i])

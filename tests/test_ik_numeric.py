@@ -608,6 +608,9 @@ def test_error_jacobian_matches_finite_differences(mask) -> None:
 
 # ------------------------------------------ random arms, degenerate geometry
 SPECIAL = (0.0, PI / 2, -PI / 2, PI, -PI)
+#: A Jacobian whose smallest singular value is below this fraction of its
+#: largest is singular (the issue's "1e-6 away from a singular set").
+RANK_TOL = 1e-6
 #: Configurations this far off a special value (a folded or stretched arm,
 #: aligned axes) are drawn as often as the special values themselves.
 NUDGES = (0.0, 1e-8, -1e-9, 1e-10, -1e-11, 1e-12)
@@ -691,6 +694,12 @@ def assert_reference_reaches(spec: RobotSpec, res: IKResult, target: np.ndarray)
 @settings(max_examples=400)
 @given(st.data())
 def test_targets_made_by_fk_are_always_found(data: st.DataObject) -> None:
+    """Found, unless the configuration is singular; then ``not_found``, never ``unreachable``.
+
+    At a configuration where the Jacobian loses rank (within ``RANK_TOL``,
+    relative) the search converges only linearly and may stop a little over
+    the tolerance: ``not_found`` (it proves nothing) is then the honest answer.
+    """
     spec = data.draw(degenerate_arms())
     robot = spec.build()
     q = configuration(data.draw, spec)
@@ -698,4 +707,9 @@ def test_targets_made_by_fk_are_always_found(data: st.DataObject) -> None:
     for target in (T, T[:3, 3]):
         res = numeric(robot, target)
         assert isinstance(res, IKResult)
+        if res.status == "not_found":
+            J = robot.jacobian(q)[: 6 if target.shape == (4, 4) else 3]
+            sigma = np.linalg.svd(J, compute_uv=False)
+            assert sigma[-1] <= RANK_TOL * sigma[0], res.message
+            continue
         assert_reference_reaches(spec, res, target)

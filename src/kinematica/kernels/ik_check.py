@@ -381,10 +381,16 @@ def check_batch(
     ``STATUS_INVALID`` (a malformed target) is left as it is.
     """
     for i in numba.prange(T.shape[0]):
-        if meta[i, META_STATUS] == STATUS_INVALID:
+        if meta[i, META_STATUS] == STATUS_INVALID:  # no numbers for a malformed target
             out_q[i, :, :] = np.nan
             out_slot[i, :] = -1
             out_res[i, :, :] = np.nan
+            meta[i, META_COUNT] = 0.0
+            meta[i, META_OUT_COUNT] = 0.0
+            meta[i, META_GAP] = math.nan
+            meta[i, META_NEAREST_POSITION] = math.nan
+            meta[i, META_NEAREST_ROTATION] = math.nan
+            meta[i, META_NEAR] = 0.0
             continue
         check_target(
             links, ends, qlim, T[i], Q[i], info[i], w, q0[i], opts,

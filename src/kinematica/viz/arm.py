@@ -182,7 +182,11 @@ class ArmDrawing:
             from matplotlib.collections import PolyCollection
 
             coll = PolyCollection(
-                faces, facecolors=per_face, edgecolors="#222222", linewidths=0.8, alpha=self.alpha
+                list(faces),
+                facecolors=per_face,
+                edgecolors="#222222",
+                linewidths=0.8,
+                alpha=self.alpha,
             )
             coll.set_zorder(3)
             self.ax.add_collection(coll)
