@@ -353,17 +353,17 @@ def result_of(
     slots = slot[: count + out].tolist()
     gap = meta[META_GAP]
     free: tuple[int, ...] = ()
-    if status == IKStatus.SINGULAR:
-        free = tuple(j for j, v in enumerate(free_flags.tolist()) if v != 0.0)
+    if status is IKStatus.SINGULAR:
+        free = tuple([j for j, v in enumerate(free_flags.tolist()) if v != 0.0])
     res = IKResult.__new__(IKResult)
     res.__dict__.update(
         solutions=q[:count],
         status=status,
         method=method,
         residuals=residuals[:count],
-        branches=tuple(labels[j] for j in slots[:count]),
+        branches=tuple([labels[j] for j in slots[:count]]),
         out_of_limits=q[count : count + out],
-        out_of_limits_branches=tuple(labels[j] for j in slots[count:]),
+        out_of_limits_branches=tuple([labels[j] for j in slots[count:]]) if out else (),
         free_joints=free,
         gap=None if math.isnan(gap) else gap,
         nearest_error=(meta[META_NEAREST_POSITION], meta[META_NEAREST_ROTATION]),

@@ -138,7 +138,8 @@ def solve_ik(
     m = parse_mask(mask)
     tolerance = parse_tolerance(tol)
     seed = check_seed(seed)
-    _check_workers(workers)
+    if workers is not None or not targets.single:  # one target starts no thread
+        _check_workers(workers)
     q0s = _q0(chain, q0, targets)
     kind: TargetKind = "position" if targets.position else "pose"
     w = _POSITION if targets.position else _POSE
@@ -226,6 +227,20 @@ def _options(
     return opts
 
 
+_ZEROS: dict[int, FloatArray] = {}
+
+
+def _zeros(n: int) -> FloatArray:
+    """A ``(n,)`` zero vector made once per size: the check kernel never writes ``q0``.
+
+    (Not flagged read-only: numba would compile the check kernel once more for it.)
+    """
+    z = _ZEROS.get(n)
+    if z is None:
+        z = _ZEROS[n] = np.zeros(n)
+    return z
+
+
 def _one_closed(
     chain: DHChain,
     closed: ClosedForm,
@@ -244,7 +259,7 @@ def _one_closed(
     out_slot = np.empty(m, dtype=np.int64)
     out_res = np.empty((m, 2))
     meta = np.empty(META_SIZE)
-    q0 = np.zeros(n) if q0s is None else q0s[0]
+    q0 = _zeros(n) if q0s is None else q0s[0]
     check_target(
         chain.links, chain.ends, chain.qlim, T, Q, info, w, q0, opts, out_q, out_slot, out_res, meta
     )

@@ -10,7 +10,10 @@ the nearest rotation, with a note saying so.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from collections.abc import Mapping
+from dataclasses import dataclass
+from types import MappingProxyType
+from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -39,6 +42,8 @@ __all__ = [
 ]
 
 FloatArray = NDArray[np.float64]
+#: No remarks: an empty, read-only mapping shared by every clean batch.
+_NONE: Mapping[int, Any] = MappingProxyType({})
 
 #: A solution must put the tool within this distance of the target (metres)...
 POSITION_TOL = 1e-10
@@ -59,9 +64,11 @@ class Tolerance:
     rotation: float = ROTATION_TOL
 
 
-@dataclass(frozen=True)
-class Targets:
+class Targets(NamedTuple):
     """Targets, flattened for the kernels.
+
+    A named tuple, not a dataclass: ``robot.ik`` of one pose builds one on
+    every call, and a frozen dataclass took a microsecond of it.
 
     Attributes:
         poses: ``(N, 4, 4)`` C-contiguous; a position target is a pose with an
@@ -76,8 +83,8 @@ class Targets:
     poses: FloatArray
     shape: tuple[int, ...]
     position: bool
-    invalid: dict[int, str] = field(default_factory=dict)
-    notes: dict[int, tuple[str, ...]] = field(default_factory=dict)
+    invalid: Mapping[int, str] = _NONE
+    notes: Mapping[int, tuple[str, ...]] = _NONE
 
     @property
     def single(self) -> bool:
@@ -141,14 +148,19 @@ def _positions(arr: FloatArray) -> Targets:
 
 def _poses(raw: np.ndarray) -> Targets:
     shape = raw.shape[:-2]
-    poses = np.array(raw.reshape(-1, 4, 4), dtype=np.float64, order="C")  # a copy
-    defects = np.empty((poses.shape[0], DEFECT_SIZE))
-    if poses.shape[0] == 1:
-        pose_defects(poses[0], defects[0])
-        one = defects[0].tolist()  # one target: plain floats beat numpy's per-call cost
+    if not shape and raw.dtype == np.float64:  # one pose: the cheapest copy, one kernel call
+        poses = raw[None].copy()
+        out = np.empty(DEFECT_SIZE)
+        pose_defects(poses[0], out)
+        one = out.tolist()  # plain floats beat numpy's per-call cost
         rigid = one[DEFECT_FINITE] and one[DEFECT_ORTHO] <= ROUNDOFF_TOL
         if rigid and one[DEFECT_LAST_ROW] == 0.0 and one[DEFECT_DET] > 0.0:
             return Targets(poses, shape, False)
+    else:
+        poses = np.array(raw.reshape(-1, 4, 4), dtype=np.float64, order="C")  # a copy
+    defects = np.empty((poses.shape[0], DEFECT_SIZE))
+    if poses.shape[0] == 1:
+        pose_defects(poses[0], defects[0])
     else:
         pose_defects_batch(poses, defects)
     finite = defects[:, DEFECT_FINITE] != 0.0
@@ -204,10 +216,13 @@ def parse_mask(mask: ArrayLike | None) -> FloatArray | None:
     return None if np.all(m == 1.0) else m
 
 
+_DEFAULT_TOLERANCE = Tolerance()
+
+
 def parse_tolerance(tol: float | tuple[float, float] | Tolerance | None) -> Tolerance:
     """A :class:`Tolerance` from one number (both), a pair (m, rad) or a Tolerance."""
     if tol is None:
-        return Tolerance()
+        return _DEFAULT_TOLERANCE
     values: tuple[float, ...]
     if isinstance(tol, Tolerance):
         values = (tol.position, tol.rotation)
