@@ -115,6 +115,7 @@ def _residual(
     w: Array,
     C: Array,
     S: Array,
+    k: int,
     pose: Array,
     e: Array,
     work: Array,
@@ -123,14 +124,14 @@ def _residual(
 ) -> tuple[float, float]:
     """Position (m) and rotation (rad) error of ``q`` against ``T``, weighted by ``w (6,)``.
 
-    Unweighted, the rotation error is the angle of ``Rtᵀ R`` (exact near 0);
-    with weights, the norms of the weighted error components. ``no_frames``
-    ``(0, 4, 4)`` and ``no_axes`` ``(0, 6)``: empty arrays, allocated once by
-    the caller (an allocation per candidate cost a tenth of the check).
+    ``C[:, k]`` and ``S[:, k]`` hold the cosines and sines of ``q``'s joint
+    angles (:func:`~kinematica.kernels.fk.block_trig`). Unweighted, the
+    rotation error is the angle of ``Rtᵀ R`` (exact near 0); with weights, the
+    norms of the weighted error components. ``no_frames`` ``(0, 4, 4)`` and
+    ``no_axes`` ``(0, 6)``: empty arrays, allocated once by the caller (an
+    allocation per candidate cost a tenth of the check).
     """
-    n = links.shape[0]
-    block_trig(links, q.reshape((1, n)), 0, 1, C, S)
-    walk(links, ends, False, C, S, 0, q, pose, no_frames, no_axes, work)
+    walk(links, ends, False, C, S, k, q, pose, no_frames, no_axes, work)
     plain = w[0] == 1.0 and w[1] == 1.0 and w[2] == 1.0
     if plain and w[3] == 1.0 and w[4] == 1.0 and w[5] == 1.0:
         dx, dy, dz = T[0, 3] - pose[0, 3], T[1, 3] - pose[1, 3], T[2, 3] - pose[2, 3]
@@ -249,8 +250,10 @@ def check_target(
     m, n = Q.shape
     tol_p, tol_r = opts[OPT_TOL_POSITION], opts[OPT_TOL_ROTATION]
     respect = opts[OPT_RESPECT_LIMITS] != 0.0
-    C = np.empty((n, 1))
-    S = np.empty((n, 1))
+    C = np.empty((n, m))  # every candidate's cosines and sines, in one vectorised pass
+    S = np.empty((n, m))
+    C1 = np.empty((n, 1))  # a polished candidate's
+    S1 = np.empty((n, 1))
     pose = np.empty((4, 4))
     e = np.empty(6)
     work = np.empty((6, 3))
@@ -264,19 +267,25 @@ def check_target(
     near_p = near_r = math.nan
     near_score = math.inf
     for j in range(m):
+        for k in range(n):
+            v = Q[j, k]
+            qs[j, k] = wrap(v) if links[k, LINK_PRISMATIC] == 0.0 else v
+    block_trig(links, qs, 0, m, C, S)
+    for j in range(m):
         q = qs[j]
         valid = True
         for k in range(n):
-            v = Q[j, k]
-            valid &= np.isfinite(v)
-            q[k] = wrap(v) if links[k, LINK_PRISMATIC] == 0.0 else v
+            valid &= np.isfinite(q[k])
         if not valid:
             continue
-        p_err, r_err = _residual(links, ends, q, T, w, C, S, pose, e, work, no_frames, no_axes)
+        p_err, r_err = _residual(links, ends, q, T, w, C, S, j, pose, e, work, no_frames, no_axes)
         ok = p_err <= tol_p and r_err <= tol_r
         if not ok and max(p_err, r_err) < POLISH_LIMIT:
-            _polish(links, ends, q, T, w, C, S, pose, e, work, no_frames)
-            p_err, r_err = _residual(links, ends, q, T, w, C, S, pose, e, work, no_frames, no_axes)
+            _polish(links, ends, q, T, w, C1, S1, pose, e, work, no_frames)
+            block_trig(links, q.reshape((1, n)), 0, 1, C1, S1)
+            p_err, r_err = _residual(
+                links, ends, q, T, w, C1, S1, 0, pose, e, work, no_frames, no_axes
+            )
             ok = p_err <= tol_p and r_err <= tol_r
         close |= max(p_err, r_err) < POLISH_LIMIT
         if not ok:
