@@ -387,7 +387,7 @@ def check_batch(
     """:func:`check_target` for targets ``T (N, 4, 4)`` in parallel (arrays gain an ``N`` axis).
 
     ``q0`` is ``(N, n)``; a row of ``meta`` whose status is already
-    ``STATUS_INVALID`` (a malformed target) is left as it is.
+    ``STATUS_INVALID`` (a malformed target) stays invalid, its numbers NaN.
     """
     for i in numba.prange(T.shape[0]):
         if meta[i, META_STATUS] == STATUS_INVALID:  # no numbers for a malformed target
