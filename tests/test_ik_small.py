@@ -17,6 +17,7 @@ import math
 import numpy as np
 import pytest
 from helpers import transform_from
+from ik_search import dls_solutions, joint_distance, random_q
 from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 
@@ -114,18 +115,6 @@ def random_arm(kind: str, rng: np.random.Generator) -> Robot:
     return robot
 
 
-def random_q(robot: Robot, rng: np.random.Generator, n: int) -> FloatArray:
-    q = rng.uniform(-PI, PI, (n, robot.dof))
-    return np.where(robot.is_prismatic, rng.uniform(-0.5, 0.5, (n, robot.dof)), q)
-
-
-def joint_distance(robot: Robot, q1: FloatArray, q2: FloatArray) -> FloatArray:
-    """Largest joint difference, revolute joints compared modulo 2π."""
-    d = q1 - q2
-    d = np.where(robot.is_prismatic, np.abs(d), np.abs(np.angle(np.exp(1j * d))))
-    return np.asarray(d.max(axis=-1))
-
-
 def as_poses(targets: FloatArray) -> FloatArray:
     """Position targets ``(N, 3)`` as poses with identity rotation; poses unchanged."""
     if targets.shape[-1] == 3:
@@ -174,49 +163,6 @@ def exact_candidates(robot: Robot, targets: FloatArray) -> FloatArray:
     err = reached(robot, np.where(real[..., None], Q, 0.0), targets[:, None])
     exact = real & (err.max(axis=-1) <= EXACT)
     return np.where(exact[..., None], Q, np.nan)
-
-
-def dls_solutions(
-    robot: Robot, target: FloatArray, rng: np.random.Generator, starts: int = 200
-) -> FloatArray:
-    """Every distinct solution a multi-start damped-least-squares search finds.
-
-    Args:
-        robot: The robot.
-        target: ``(3,)`` position or ``(4, 4)`` pose of the tool.
-        rng: Random starts.
-        starts: Number of random starts.
-
-    Returns:
-        ``(k, n)`` distinct solutions (revolute joints wrapped to (-π, π]).
-    """
-    position_only = target.shape == (3,)
-    q = random_q(robot, rng, starts)
-
-    def error(q: FloatArray) -> FloatArray:
-        T = robot.fk(q)
-        e = target[:3] - T[:, :3, 3] if position_only else target[:3, 3] - T[:, :3, 3]
-        if position_only:
-            return e
-        rot = Rotation.from_matrix(target[:3, :3] @ np.swapaxes(T[:, :3, :3], 1, 2))
-        return np.concatenate([e, rot.as_rotvec()], axis=1)
-
-    for it in range(300):
-        e = error(q)
-        J = robot.jacobian(q)[:, : e.shape[1]]
-        if it < 200:  # damped least squares, then Gauss-Newton steps to polish
-            Jt = np.swapaxes(J, 1, 2)
-            step = Jt @ np.linalg.solve(J @ Jt + 1e-4 * np.eye(e.shape[1]), e[..., None])
-        else:
-            step = np.linalg.pinv(J) @ e[..., None]
-        q = q + step[..., 0]
-    done = np.abs(error(q)).max(axis=1) < 1e-10
-    found: list[FloatArray] = []
-    for qi in q[done]:
-        qi = np.where(robot.is_prismatic, qi, np.angle(np.exp(1j * qi)))
-        if all(joint_distance(robot, qi, f) > 1e-6 for f in found):
-            found.append(qi)
-    return np.array(found).reshape(-1, robot.dof)
 
 
 def target_of(robot: Robot, q: FloatArray, position: bool) -> FloatArray:
