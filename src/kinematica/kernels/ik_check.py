@@ -99,6 +99,8 @@ STATUS_OK, STATUS_SINGULAR, STATUS_OUT_OF_LIMITS = 0, 1, 2
 STATUS_UNREACHABLE, STATUS_NOT_FOUND, STATUS_INVALID = 3, 4, 5
 
 _TWO_PI = 2.0 * math.pi
+#: Targets per block of a batch: each block makes its work arrays once.
+CHECK_BLOCK = 64
 
 
 def info_size(n: int) -> int:
@@ -248,21 +250,72 @@ def check_target(
         meta: ``(META_SIZE,)`` out: status code, counts, gap, nearest miss.
     """
     m, n = Q.shape
+    C, S, C1, S1, pose, e, work, no_frames, no_axes, qs, res, state, key = _scratch(m, n)
+    _check(
+        links, ends, qlim, T, Q, info, w, q0, opts, out_q, out_slot, out_res, meta,
+        C, S, C1, S1, pose, e, work, no_frames, no_axes, qs, res, state, key,
+    )  # fmt: skip
+
+
+@kernel
+def _scratch(
+    m: int, n: int
+) -> tuple[
+    Array, Array, Array, Array, Array, Array, Array, Array, Array, Array, Array, IntArray, Array
+]:
+    """The work arrays of :func:`_check` for ``m`` candidates of ``n`` joints."""
+    return (
+        np.empty((n, m)),  # C, S: every candidate's cosines and sines, in one vectorised pass
+        np.empty((n, m)),
+        np.empty((n, 1)),  # C1, S1: a polished candidate's
+        np.empty((n, 1)),
+        np.empty((4, 4)),  # pose
+        np.empty(6),  # e
+        np.empty((6, 3)),  # work
+        np.empty((0, 4, 4)),  # no_frames
+        np.empty((0, 6)),  # no_axes
+        np.empty((m, n)),  # qs: the wrapped candidates
+        np.empty((m, 2)),  # res: their residuals
+        np.empty(m, dtype=np.int64),  # state: 0 no, 1 solution within limits, 2 outside
+        np.empty(m),  # key: sort key
+    )
+
+
+@kernel
+def _check(
+    links: Array,
+    ends: Array,
+    qlim: Array,
+    T: Array,
+    Q: Array,
+    info: Array,
+    w: Array,
+    q0: Array,
+    opts: Array,
+    out_q: Array,
+    out_slot: IntArray,
+    out_res: Array,
+    meta: Array,
+    C: Array,
+    S: Array,
+    C1: Array,
+    S1: Array,
+    pose: Array,
+    e: Array,
+    work: Array,
+    no_frames: Array,
+    no_axes: Array,
+    qs: Array,
+    res: Array,
+    state: IntArray,
+    key: Array,
+) -> None:
+    """:func:`check_target` with its work arrays given (:func:`_scratch`): a batch reuses them."""
+    m, n = Q.shape
     tol_p, tol_r = opts[OPT_TOL_POSITION], opts[OPT_TOL_ROTATION]
     respect = opts[OPT_RESPECT_LIMITS] != 0.0
-    C = np.empty((n, m))  # every candidate's cosines and sines, in one vectorised pass
-    S = np.empty((n, m))
-    C1 = np.empty((n, 1))  # a polished candidate's
-    S1 = np.empty((n, 1))
-    pose = np.empty((4, 4))
-    e = np.empty(6)
-    work = np.empty((6, 3))
-    no_frames = np.empty((0, 4, 4))
-    no_axes = np.empty((0, 6))
-    qs = np.empty((m, n))
-    res = np.empty((m, 2))
-    state = np.zeros(m, dtype=np.int64)  # 0 no, 1 solution within limits, 2 outside
-    key = np.empty(m)
+    for j in range(m):
+        state[j] = 0
     close = False
     near_p = near_r = math.nan
     near_score = math.inf
@@ -327,7 +380,7 @@ def check_target(
             key[j] = j
     # Within the limits first, then outside; each sorted by key (insertion sort: m is small).
     row = 0
-    counts = np.zeros(3, dtype=np.int64)
+    count = 0
     for group in (1, 2):
         first = row
         for j in range(m):
@@ -339,7 +392,8 @@ def check_target(
                 pos -= 1
             out_slot[pos] = j
             row += 1
-        counts[group] = row - first
+        if group == 1:
+            count = row
     for r in range(m):
         if r < row:
             j = out_slot[r]
@@ -349,7 +403,7 @@ def check_target(
             out_slot[r] = -1
             out_q[r, :] = np.nan
             out_res[r, :] = np.nan
-    count, out_count = counts[1], counts[2]
+    out_count = row - count
     gap = info[INFO_GAP]
     if count > 0:
         status = STATUS_SINGULAR if info[INFO_SINGULAR] != 0.0 else STATUS_OK
@@ -389,19 +443,25 @@ def check_batch(
     ``q0`` is ``(N, n)``; a row of ``meta`` whose status is already
     ``STATUS_INVALID`` (a malformed target) stays invalid, its numbers NaN.
     """
-    for i in numba.prange(T.shape[0]):
-        if meta[i, META_STATUS] == STATUS_INVALID:  # no numbers for a malformed target
-            out_q[i, :, :] = np.nan
-            out_slot[i, :] = -1
-            out_res[i, :, :] = np.nan
-            meta[i, META_COUNT] = 0.0
-            meta[i, META_OUT_COUNT] = 0.0
-            meta[i, META_GAP] = math.nan
-            meta[i, META_NEAREST_POSITION] = math.nan
-            meta[i, META_NEAREST_ROTATION] = math.nan
-            meta[i, META_NEAR] = 0.0
-            continue
-        check_target(
-            links, ends, qlim, T[i], Q[i], info[i], w, q0[i], opts,
-            out_q[i], out_slot[i], out_res[i], meta[i],
-        )  # fmt: skip
+    N = T.shape[0]
+    m, n = Q.shape[1], Q.shape[2]
+    nblocks = (N + CHECK_BLOCK - 1) // CHECK_BLOCK
+    for blk in numba.prange(nblocks):  # work arrays made once per block, not per target
+        C, S, C1, S1, pose, e, work, no_frames, no_axes, qs, res, state, key = _scratch(m, n)
+        for i in range(blk * CHECK_BLOCK, min(N, (blk + 1) * CHECK_BLOCK)):
+            if meta[i, META_STATUS] == STATUS_INVALID:  # no numbers for a malformed target
+                out_q[i, :, :] = np.nan
+                out_slot[i, :] = -1
+                out_res[i, :, :] = np.nan
+                meta[i, META_COUNT] = 0.0
+                meta[i, META_OUT_COUNT] = 0.0
+                meta[i, META_GAP] = math.nan
+                meta[i, META_NEAREST_POSITION] = math.nan
+                meta[i, META_NEAREST_ROTATION] = math.nan
+                meta[i, META_NEAR] = 0.0
+                continue
+            _check(
+                links, ends, qlim, T[i], Q[i], info[i], w, q0[i], opts,
+                out_q[i], out_slot[i], out_res[i], meta[i],
+                C, S, C1, S1, pose, e, work, no_frames, no_axes, qs, res, state, key,
+            )  # fmt: skip
