@@ -1,0 +1,185 @@
+"""Named tolerances not pinned elsewhere, each tested on both sides of its value.
+
+Every case is placed a factor 10 below or above the value the constant's
+documentation states, written here as a literal: a test that read the constant
+itself would move with it, and could not notice it changed a thousandfold. The
+constants here are compared with a quantity the test controls exactly (a
+distance, a sine, an angle), so a factor of 10 leaves a wide margin for round-off.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import kinematica as km
+from kinematica.motion import cartesian_path
+
+# The documented values (m, rad, or a sine/cosine), one per constant.
+POSITION_TOL = 1e-10  # ik/targets.py
+ROTATION_TOL = 1e-10  # ik/targets.py
+PARALLEL_TOL = 1e-9  # ik/structure.py
+MEET_TOL = 1e-9  # ik/structure.py
+PERP_TOL = 1e-9  # ik/structure.py
+IDENTITY_ANGLE_TOL = 10.0 * np.finfo(np.float64).eps  # spatial/axis_angle.py
+COLLINEAR_TOL = 1e-9  # motion/cartesian.py
+
+#: A case a factor 10 inside a tolerance, and one a factor 10 outside it.
+FACTORS = [(0.1, True), (10.0, False)]
+
+Q_2R = [0.4, 1.1]
+
+
+def two_link() -> km.Robot:
+    return km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=1.0)])
+
+
+def pose(R: np.ndarray) -> np.ndarray:
+    T = np.eye(4)
+    T[:3, :3] = R
+    return T
+
+
+# --- ik/targets.py: default acceptance tolerances -----------------------------
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_position_tol_is_the_default_position_acceptance(factor: float, inside: bool) -> None:
+    """POSITION_TOL: a solution must put the tool within it of the target (m).
+
+    A planar 2R arm cannot move its tool out of its plane: a target lifted by
+    ``e`` along z is missed by exactly ``e`` by its closest configuration. Below
+    the default tolerance that configuration is a solution, above it is not.
+    """
+    robot = two_link()
+    T = robot.fk(Q_2R).copy()
+    e = factor * POSITION_TOL
+    T[2, 3] += e
+    res = robot.ik(T)
+    if inside:
+        assert res.success
+        assert res.residuals[:, 0] == pytest.approx(e, rel=1e-3)
+    else:
+        assert not res.success and len(res.solutions) == 0
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_rotation_tol_is_the_default_rotation_acceptance(factor: float, inside: bool) -> None:
+    """ROTATION_TOL: a solution must orient the tool within it of the target (rad).
+
+    A planar 2R arm only turns its tool about z: a target tilted by ``e`` about
+    the tool's x axis is missed by exactly the angle ``e``.
+    """
+    robot = two_link()
+    e = factor * ROTATION_TOL
+    T = robot.fk(Q_2R) @ pose(km.rotx(e))
+    res = robot.ik(T)
+    if inside:
+        assert res.success
+        assert res.residuals[:, 1] == pytest.approx(e, rel=1e-3)
+    else:
+        assert not res.success and len(res.solutions) == 0
+
+
+# --- ik/structure.py: features of the joint axes ------------------------------
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_parallel_tol_is_the_sine_of_the_angle_between_axes(factor: float, inside: bool) -> None:
+    """PARALLEL_TOL: two axes are parallel when the sine of their angle is below it.
+
+    A twist ``alpha`` between two joints tilts the second axis by ``alpha``.
+    """
+    robot = km.Robot.from_dh([km.Revolute(a=1.0, alpha=factor * PARALLEL_TOL), km.Revolute(a=1.0)])
+    assert km.classify(robot).parallel == (((0, 1),) if inside else ())
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_meet_tol_is_the_distance_of_axes_that_meet(factor: float, inside: bool) -> None:
+    """MEET_TOL: two (non-parallel) axes meet when they pass closer than it (m).
+
+    Perpendicular axes (twist 90°) a link length ``a`` apart are ``a`` apart.
+    """
+    a = factor * MEET_TOL
+    robot = km.Robot.from_dh([km.Revolute(a=a, alpha=math.pi / 2), km.Revolute(a=1.0)])
+    s = km.classify(robot)
+    assert s.parallel == ()
+    assert s.intersecting == (((0, 1),) if inside else ())
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_meet_tol_decides_the_wrist_center(factor: float, inside: bool) -> None:
+    """MEET_TOL also bounds how far each of the last three axes may pass from
+    their common point (the wrist center).
+
+    Axes 0 and 1 meet at the base origin; axis 2 (twisted 60°, all three
+    orthogonal to x) passes ``d`` from it along x. The least-squares point lies
+    d/3 along x, so the axes pass d/3, d/3 and 2d/3 from it: all within the
+    tolerance when d is a factor 10 below it, none when d is 10 times above it.
+    """
+    d = factor * MEET_TOL
+    robot = km.Robot.from_dh(
+        [km.Revolute(alpha=-math.pi / 2), km.Revolute(a=d, alpha=math.pi / 3), km.Revolute()]
+    )
+    wc = km.classify(robot).wrist_center
+    assert (wc is not None) == inside
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_perp_tol_is_the_cosine_of_the_angle_between_axes(factor: float, inside: bool) -> None:
+    """PERP_TOL: two axes are perpendicular when |cos| of their angle is below it.
+
+    A twist of 90° + ``e`` leaves the axes at cosine ``-sin(e)`` ~ ``e``.
+    """
+    e = factor * PERP_TOL
+    robot = km.Robot.from_dh([km.Revolute(a=1.0, alpha=math.pi / 2 + e), km.Revolute(a=1.0)])
+    f = km.classify(robot).features
+    assert abs(float(f.directions[0] @ f.directions[1])) == pytest.approx(e, rel=1e-3)
+    assert f.is_perpendicular(0, 1) is inside
+
+
+# --- spatial/axis_angle.py ----------------------------------------------------
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_identity_angle_tol_gives_the_conventional_axis(factor: float, inside: bool) -> None:
+    """IDENTITY_ANGLE_TOL: below this angle the axis of R is round-off, and
+    axis_angle_from_matrix returns the z axis by convention.
+
+    A rotation about x by a tiny angle ``e`` has the exact skew part
+    ``sin e`` ~ ``e``, so its angle is recovered; its axis is x above the
+    tolerance and z (the convention) below it.
+    """
+    e = factor * IDENTITY_ANGLE_TOL
+    axis, angle = km.axis_angle_from_matrix(km.matrix_from_axis_angle([1.0, 0.0, 0.0], e))
+    assert float(angle) == pytest.approx(e, rel=1e-6)
+    expected = [0.0, 0.0, 1.0] if inside else [1.0, 0.0, 0.0]
+    assert np.array_equal(axis, expected)
+
+
+# --- motion/cartesian.py ------------------------------------------------------
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_collinear_tol_rejects_a_via_on_the_line(factor: float, inside: bool) -> None:
+    """COLLINEAR_TOL: three points closer than it (m) to one line define no circle.
+
+    The ends are 0.1 m apart along x and via is halfway, lifted by ``h`` along
+    y: |u × v| = 0.1 h (below 1 m², so the tolerance is not scaled). Lifted by
+    less than COLLINEAR_TOL / 0.1 it is an error; by more, an arc through via.
+    """
+    puma = km.load("puma560")
+    q = np.array([0.2, -0.5, 0.3, 0.4, 0.9, -0.1])
+    T0 = puma.fk(q)
+    T1 = T0.copy()
+    T1[:3, 3] += [0.1, 0.0, 0.0]
+    h = factor * COLLINEAR_TOL / 0.1
+    via = T0[:3, 3] + [0.05, h, 0.0]
+    if inside:
+        with pytest.raises(km.KinematicaError, match="via lies on the line"):
+            cartesian_path(puma, T0, T1, steps=4, q0=q, via=via)
+    else:
+        path = cartesian_path(puma, T0, T1, steps=4, q0=q, via=via)
+        assert np.allclose(path.poses[-1], T1, atol=1e-9)
