@@ -15,6 +15,8 @@ import numpy as np
 import pytest
 
 import kinematica as km
+from kinematica.kernels.solvers.arm_base import ST_NEAR, ST_SIZE, clamped_root
+from kinematica.kernels.solvers.arm_quartic import trig_roots
 from kinematica.motion import cartesian_path
 
 # The documented values (m, rad, or a sine/cosine), one per constant.
@@ -183,3 +185,66 @@ def test_collinear_tol_rejects_a_via_on_the_line(factor: float, inside: bool) ->
     else:
         path = cartesian_path(puma, T0, T1, steps=4, q0=q, via=via)
         assert np.allclose(path.poses[-1], T1, atol=1e-9)
+
+
+# --- kernels/solvers/arm_quartic.py -------------------------------------------
+
+SELF_MOTION_TOL = 1e-14  # kernels/solvers/arm_quartic.py
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_self_motion_tol_is_relative_round_off_of_the_quartic(factor: float, inside: bool) -> None:
+    """SELF_MOTION_TOL: the trigonometric polynomial F of q3 is identically 0
+    (joints 1-3 have a self-motion, every q3 is a root) when its coefficients
+    are below this fraction of the size of the terms they were computed from.
+
+    A constant F = c with terms of size 3: a self-motion when c < 3 · 1e-14,
+    else a nonzero constant with no root.
+    """
+    size = 3.0
+    F = np.array([factor * SELF_MOTION_TOL * size, 0.0, 0.0, 0.0, 0.0])
+    q = np.empty(4)
+    assert trig_roots(F, size, q, np.zeros(ST_SIZE)) == inside
+    if inside:
+        np.testing.assert_allclose(q, [-math.pi / 2, 0.0, math.pi / 2, math.pi])
+    else:
+        assert np.isnan(q).all()
+
+
+# --- kernels/solvers/arm_base.py: the arm's radicands and singular sets --------
+
+ARM_DOUBLE_ROOT_TOL = 1e-14  # arm_base.DOUBLE_ROOT_TOL
+ARM_NEAR_TOL = 1e-6  # arm_base.NEAR_TOL
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_arm_double_root_tol_is_round_off_of_a_fold(factor: float, inside: bool) -> None:
+    """arm_base.DOUBLE_ROOT_TOL: a fold's signed distance within it of (size +
+    arm scale) is round-off, a double root (0 comes back); beyond, sqrt(diff · other).
+    """
+    size, other, scale = 3.0, 2.0, 1.0
+    diff = factor * ARM_DOUBLE_ROOT_TOL * (size + scale)
+    st = np.zeros(ST_SIZE)
+    root = clamped_root(diff, size, other, scale, st)
+    if inside:
+        assert root == 0.0 and st[ST_NEAR] != 0.0
+    else:
+        assert root == pytest.approx(math.sqrt(diff * other), rel=1e-12)
+        assert st[ST_NEAR] == 0.0
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_arm_near_tol_keeps_roots_just_past_a_fold(factor: float, inside: bool) -> None:
+    """arm_base.NEAR_TOL: a target past a fold by less than this (relative to
+    the fold's size) still gives the mirrored candidates sqrt(|diff| · other)
+    for the check to judge, and raises ST_NEAR; farther past, NaN.
+    """
+    size, other, scale = 3.0, 2.0, 1.0
+    diff = -factor * ARM_NEAR_TOL * size
+    st = np.zeros(ST_SIZE)
+    root = clamped_root(diff, size, other, scale, st)
+    if inside:
+        assert root == pytest.approx(math.sqrt(-diff * other), rel=1e-12)
+        assert st[ST_NEAR] != 0.0
+    else:
+        assert math.isnan(root) and st[ST_NEAR] == 0.0
