@@ -15,7 +15,9 @@ import numpy as np
 import pytest
 
 import kinematica as km
-from kinematica.kernels.solvers.arm_base import ST_NEAR, ST_SIZE, clamped_root
+import test_ik_wrist_edges as wrist_edges
+from kinematica.kernels.ik_check import INFO_NEAR
+from kinematica.kernels.solvers.arm_base import A_SCALE, ST_NEAR, ST_SIZE, clamped_root
 from kinematica.kernels.solvers.arm_quartic import trig_roots
 from kinematica.motion import cartesian_path
 
@@ -248,3 +250,110 @@ def test_arm_near_tol_keeps_roots_just_past_a_fold(factor: float, inside: bool) 
         assert st[ST_NEAR] != 0.0
     else:
         assert math.isnan(root) and st[ST_NEAR] == 0.0
+
+
+ARM_SINGULAR_TOL = 1e-12  # arm_base.SINGULAR_TOL
+NEAR_SET_TOL = 1e-9  # arm_base.NEAR_SET_TOL
+WRIST_SINGULAR_TOL = 1e-12  # spherical_wrist.WRIST_SINGULAR_TOL
+#: The README's singular pose of arm6-dh: its wrist centre on axis 1.
+ARM6_SINGULAR_Q = np.radians([30, 20, -40, 10, 60, -20])
+
+
+@pytest.mark.parametrize(("factor", "inside"), [(0.5, True), (2.0, False)])
+def test_arm_singular_tol_frees_q1_on_axis_1(factor: float, inside: bool) -> None:
+    """arm_base.SINGULAR_TOL: a wrist centre within it (times the arm's size)
+    of axis 1 is on the singular set: q1 is free (status "singular").
+    """
+    arm6 = km.load("arm6-dh")
+    T = arm6.fk(ARM6_SINGULAR_Q)
+    scale = wrist_edges.solver(arm6).params[A_SCALE]
+    res = arm6.ik(wrist_edges.moved_target(T, np.array([factor * ARM_SINGULAR_TOL * scale, 0, 0])))
+    assert (res.status == "singular") == inside
+    assert (0 in res.free_joints) == inside
+
+
+@pytest.mark.parametrize(("factor", "inside"), [(0.5, True), (2.0, False)])
+def test_near_set_tol_flags_a_wrist_centre_near_axis_1(factor: float, inside: bool) -> None:
+    """arm_base.NEAR_SET_TOL: a wrist centre within it (times the arm's size) of
+    axis 1, yet off the singular set, is flagged near it (INFO_NEAR); solved.
+    """
+    arm6 = km.load("arm6-dh")
+    T = arm6.fk(ARM6_SINGULAR_Q)
+    scale = wrist_edges.solver(arm6).params[A_SCALE]
+    shifted = wrist_edges.moved_target(T, np.array([factor * NEAR_SET_TOL * scale, 0.0, 0.0]))
+    assert (wrist_edges.kernel_info(arm6, shifted[None])[0, INFO_NEAR] != 0.0) == inside
+    assert arm6.ik(shifted).status == "ok"
+
+
+@pytest.mark.parametrize(("factor", "inside"), [(0.5, True), (2.0, False)])
+def test_wrist_singular_tol_is_the_sine_of_q5(factor: float, inside: bool) -> None:
+    """spherical_wrist.WRIST_SINGULAR_TOL: axes 4 and 6 are aligned (q4 + q6
+    free) when the sine of the angle between them, q5 on a PUMA, is below it.
+    """
+    puma = km.load("puma560")
+    q = np.array([0.3, -0.6, 0.2, 0.5, factor * WRIST_SINGULAR_TOL, -0.4])
+    res = puma.ik(puma.fk(q), respect_limits=False)
+    assert (res.status == "singular") == inside
+    assert (res.free_joints == (3, 5)) == inside
+
+
+# --- robot/singularities.py: named singular configurations ---------------------
+
+WRIST_TOL = 1e-6  # robot/singularities.py
+ELBOW_TOL = 1e-6  # robot/singularities.py
+SHOULDER_TOL = 1e-6  # robot/singularities.py
+RANK_TOL = 1e-8  # robot/singularities.py
+L2, L3 = 0.4, 0.3  # the link lengths of the built-in anthropomorphic-3r
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_wrist_tol_is_the_sine_between_axes_4_and_6(factor: float, inside: bool) -> None:
+    """WRIST_TOL: the wrist is singular when the sine of the angle between axes
+    4 and 6 is below it; on a PUMA that sine is |sin q5|.
+    """
+    puma = km.load("puma560")
+    q = np.array([0.3, -0.7, 0.9, 0.5, factor * WRIST_TOL, -0.4])
+    assert puma.singularities(q) == (["wrist"] if inside else [])
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_elbow_tol_is_the_rate_of_the_reach(factor: float, inside: bool) -> None:
+    """ELBOW_TOL: the elbow is singular when the distance r of the wrist from
+    the shoulder changes with q3 slower than this (m/rad).
+
+    r(q3)² = L2² + L3² + 2 L2 L3 cos q3, so |dr/dq3| = L2 L3 sin q3 / r: q3 is
+    solved for a given rate by fixed-point iteration.
+    """
+    rate = factor * ELBOW_TOL
+    q3 = rate * (L2 + L3) / (L2 * L3)
+    for _ in range(5):
+        r = math.sqrt(L2**2 + L3**2 + 2 * L2 * L3 * math.cos(q3))
+        q3 = math.asin(rate * r / (L2 * L3))
+    arm = km.load("anthropomorphic-3r")
+    assert arm.singularities(np.array([0.3, 0.5, q3])) == (["elbow"] if inside else [])
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_shoulder_tol_is_the_distance_from_axis_1(factor: float, inside: bool) -> None:
+    """SHOULDER_TOL: the shoulder is singular when the wrist centre is closer
+    than this (m) to axis 1: L2 cos q2 + L3 cos(q2 + q3) = dist.
+    """
+    dist, q2 = factor * SHOULDER_TOL, 1.2
+    q = np.array([0.3, q2, math.acos((dist - L2 * math.cos(q2)) / L3) - q2])
+    arm = km.load("anthropomorphic-3r")
+    assert arm.singularities(q) == (["shoulder"] if inside else [])
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_rank_tol_is_the_relative_singular_value(factor: float, inside: bool) -> None:
+    """RANK_TOL: a singular value of the Jacobian below it times the largest one
+    is lost ("rank" on an arm with no named singularities).
+
+    A revolute joint then a prismatic one along the radius: the singular
+    values of the position rows are 1 (the slide) and the extension q2 (m, the
+    turn), so their ratio is q2.
+    """
+    arm = km.Robot.from_dh([km.Revolute(alpha=-math.pi / 2), km.Prismatic(qlim=(0.0, 1.0))])
+    s = np.linalg.svd(arm.jacobian([0.2, 0.5])[:3], compute_uv=False)
+    assert s == pytest.approx([1.0, 0.5])
+    assert arm.singularities([0.2, factor * RANK_TOL]) == (["rank"] if inside else [])
