@@ -16,6 +16,9 @@ import pytest
 
 import kinematica as km
 import test_ik_wrist_edges as wrist_edges
+import test_kernels_wrist as kernels_wrist
+from kinematica.dh import Revolute
+from kinematica.ik.analytic.arm_point import places_point
 from kinematica.kernels.ik_check import INFO_NEAR
 from kinematica.kernels.solvers.arm_base import A_SCALE, ST_NEAR, ST_SIZE, clamped_root
 from kinematica.kernels.solvers.arm_quartic import trig_roots
@@ -357,3 +360,42 @@ def test_rank_tol_is_the_relative_singular_value(factor: float, inside: bool) ->
     s = np.linalg.svd(arm.jacobian([0.2, 0.5])[:3], compute_uv=False)
     assert s == pytest.approx([1.0, 0.5])
     assert arm.singularities([0.2, factor * RANK_TOL]) == (["rank"] if inside else [])
+
+
+# --- ik/analytic/arm_point.py: the closed-form builder's arm geometry ----------
+
+GEOMETRY_TOL = 1e-9  # ik/analytic/arm_point.py
+ARM_RANK_TOL = 1e-6  # ik/analytic/arm_point.py RANK_TOL
+
+
+@pytest.mark.parametrize(("factor", "kind"), [(0.5, "parallel"), (2.0, "general")])
+def test_geometry_tol_parallel_shoulder(factor: float, kind: str) -> None:
+    """GEOMETRY_TOL: axes 1 and 2 twisted by less than it (rad) are parallel."""
+    assert kernels_wrist.shoulder(factor * GEOMETRY_TOL, 0.2) == kind
+
+
+@pytest.mark.parametrize(("factor", "kind"), [(0.5, "meet"), (2.0, "general")])
+def test_geometry_tol_meeting_shoulder(factor: float, kind: str) -> None:
+    """GEOMETRY_TOL: axes 1 and 2 offset by less than it (relative to the sizes
+    the builder compares, 1 + |c - p1| + |p2 - p1|) meet.
+    """
+    rows = [Revolute(d=0.4, alpha=math.pi / 2), Revolute(a=0.4, alpha=0.7), Revolute(d=0.1)]
+    probe = km.Robot.from_dh([*rows, Revolute(d=0.4)], name="probe")
+    _, p = probe.joint_axes()
+    c = probe.fk(np.zeros(4))[:3, 3]
+    scale = 1.0 + float(np.linalg.norm(c - p[0]) + np.linalg.norm(p[1] - p[0]))
+    assert kernels_wrist.shoulder(math.pi / 2, factor * GEOMETRY_TOL * scale) == kind
+
+
+@pytest.mark.parametrize(("factor", "usable"), [(0.5, False), (2.0, True)])
+def test_arm_rank_tol_needs_joints_1_to_3_to_place_the_point(factor: float, usable: bool) -> None:
+    """arm_point.RANK_TOL: joints 1-3 place the tool point when the best ratio
+    σmin/σmax of d(point)/d(q1..q3) over the builder's probes is above it.
+
+    Joint 3 moves the point on a circle of radius eps: the ratio is linear in
+    eps, so eps is scaled to put it at ``factor`` · RANK_TOL.
+    """
+    r1 = kernels_wrist.rank_ratio(kernels_wrist.arm_with_point_near_axis_3(1e-4))
+    robot = kernels_wrist.arm_with_point_near_axis_3(1e-4 * factor * ARM_RANK_TOL / r1)
+    assert kernels_wrist.rank_ratio(robot) == pytest.approx(factor * ARM_RANK_TOL, rel=0.05)
+    assert places_point(robot.chain, np.zeros(3)) == usable
