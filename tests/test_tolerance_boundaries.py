@@ -10,11 +10,13 @@ distance, a sine, an angle), so a factor of 10 leaves a wide margin for round-of
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
 
 import kinematica as km
+import test_dh_extract as dh_extract
 import test_ik_wrist_edges as wrist_edges
 import test_kernels_wrist as kernels_wrist
 from kinematica.dh import Revolute
@@ -22,6 +24,7 @@ from kinematica.ik.analytic.arm_point import places_point
 from kinematica.kernels.ik_check import INFO_NEAR
 from kinematica.kernels.solvers.arm_base import A_SCALE, ST_NEAR, ST_SIZE, clamped_root
 from kinematica.kernels.solvers.arm_quartic import trig_roots
+from kinematica.io import parse_urdf
 from kinematica.motion import cartesian_path
 
 # The documented values (m, rad, or a sine/cosine), one per constant.
@@ -399,3 +402,67 @@ def test_arm_rank_tol_needs_joints_1_to_3_to_place_the_point(factor: float, usab
     robot = kernels_wrist.arm_with_point_near_axis_3(1e-4 * factor * ARM_RANK_TOL / r1)
     assert kernels_wrist.rank_ratio(robot) == pytest.approx(factor * ARM_RANK_TOL, rel=0.05)
     assert places_point(robot.chain, np.zeros(3)) == usable
+
+
+# --- dh/lines.py and dh/extract.py: DH tables from URDF -------------------------
+
+EXTRACT_ANGLE_TOL = 1e-8  # dh/lines.py
+EXTRACT_LENGTH_TOL = 1e-12  # dh/lines.py
+FK_CHECK_TOL = 1e-9  # dh/extract.py
+ROUND_OFF_TOL = 1e-15  # dh/extract.py
+
+
+@pytest.mark.parametrize("convention", ["standard", "modified"])
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_extract_angle_tol_decides_parallel_axes(
+    factor: float, inside: bool, convention: str
+) -> None:
+    """EXTRACT_ANGLE_TOL: two joint axes at an angle (rad, its sine) below it are
+    parallel; axis 2 tilted by more, 0.5 m from axis 1, meets it far away.
+    """
+    urdf = dh_extract._two_joints("0.5 0 0", f"0 {factor * EXTRACT_ANGLE_TOL!r} 0")
+    assert dh_extract._rule(urdf, convention) == ("parallel" if inside else "intersecting")
+
+
+@pytest.mark.parametrize("convention", ["standard", "modified"])
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_extract_length_tol_decides_meeting_and_coinciding_axes(
+    factor: float, inside: bool, convention: str
+) -> None:
+    """EXTRACT_LENGTH_TOL: axes closer than it (m) meet, or coincide when parallel."""
+    delta = factor * EXTRACT_LENGTH_TOL
+    crossing = dh_extract._two_joints(f"{delta!r} 0 0.3", f"{math.pi / 2!r} 0 0")
+    assert dh_extract._rule(crossing, convention) == ("intersecting" if inside else "skew")
+    beside = dh_extract._two_joints(f"{delta!r} 0 0.3", "0 0 0")
+    assert dh_extract._rule(beside, convention) == ("collinear" if inside else "parallel")
+
+
+@pytest.mark.parametrize(("factor", "inside"), [(0.5, True), (2.0, False)])
+def test_fk_check_tol_warns_beyond_it(factor: float, inside: bool) -> None:
+    """FK_CHECK_TOL: an extracted table whose FK is farther than it (m) from the
+    chain's is reported with a warning.
+
+    Axis 2 tilted by delta (below EXTRACT_ANGLE_TOL = 1e-8 for both factors) is
+    taken as parallel: with the tip 1 m up axis 2, the table is off by delta.
+    """
+    delta = factor * FK_CHECK_TOL
+    urdf = parse_urdf(dh_extract._two_joints("0.5 0 0", f"0 {delta!r} 0"))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ex = km.urdf_to_dh(urdf)
+    assert ex.fk_error == pytest.approx(delta, rel=0.3)
+    warned = any("reproduces the chain's forward kinematics" in str(w.message) for w in caught)
+    assert warned is not inside
+
+
+@pytest.mark.parametrize(("factor", "inside"), [(0.5, True), (20.0, False)])
+def test_round_off_tol_tidies_lengths_and_angles(factor: float, inside: bool) -> None:
+    """ROUND_OFF_TOL: a length or angle within it of a round value (0.3 m, π/2)
+    is taken as that value; farther, as given.
+    """
+    extra = factor * ROUND_OFF_TOL
+    a1 = float(dh_extract._table(dh_extract._two_joints(f"{0.3 + extra!r} 0 0", "0 0 0"))[0, 2])
+    assert (a1 == 0.3) is inside
+    rpy = f"{math.pi / 2 + extra!r} 0 0"
+    alpha1 = float(dh_extract._table(dh_extract._two_joints("0 0 0.3", rpy))[0, 3])
+    assert (alpha1 == math.pi / 2) is inside
