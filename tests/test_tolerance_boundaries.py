@@ -466,3 +466,42 @@ def test_round_off_tol_tidies_lengths_and_angles(factor: float, inside: bool) ->
     rpy = f"{math.pi / 2 + extra!r} 0 0"
     alpha1 = float(dh_extract._table(dh_extract._two_joints("0 0 0.3", rpy))[0, 3])
     assert (alpha1 == math.pi / 2) is inside
+
+
+# --- motion/workspace.py and viz/geometry.py: planar arms -----------------------
+
+WORKSPACE_PLANAR_TOL = 1e-9  # motion/workspace.py PLANAR_TOL
+VIZ_PLANAR_TOL = 1e-9  # viz/geometry.py PLANAR_TOL
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_workspace_planar_tol_is_a_thickness(factor: float, inside: bool) -> None:
+    """motion/workspace.PLANAR_TOL: a workspace thinner than it (m) along an axis
+    is planar (an area, no volume).
+
+    A planar 2R arm on a z slide of travel t: the sampled points span at most
+    t in z (and nearly all of it, with 2000 samples drawn uniformly).
+    """
+    t = factor * WORKSPACE_PLANAR_TOL
+    arm = km.Robot.from_dh(
+        [km.Revolute(a=0.4), km.Revolute(a=0.3), km.Prismatic(qlim=(0.0, t))], name="2R on a slide"
+    )
+    ws = km.workspace(arm, samples=2000, seed=3, manipulability=False)
+    thickness = float(np.ptp(ws.points[:, 2]))
+    assert 0.9 * t <= thickness <= t * (1 + 1e-9) + 1e-15
+    assert ws.planar is inside
+    assert (ws.area is not None) is inside and (ws.volume == 0.0) is inside
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_viz_planar_tol_decides_the_2d_view(factor: float, inside: bool) -> None:
+    """viz/geometry.PLANAR_TOL: an arm is drawn in 2-D when its revolute axes
+    are parallel to a world axis within it (the sine of the angle): a 2R arm
+    whose second axis is tilted by alpha is drawn in the x-y plane, or in 3-D.
+    """
+    pytest.importorskip("matplotlib")
+    from kinematica import viz
+
+    alpha = factor * VIZ_PLANAR_TOL
+    arm = km.Robot.from_dh([km.Revolute(a=0.4, alpha=alpha), km.Revolute(a=0.3)])
+    assert viz.drawing_plane(arm) == ((0, 1) if inside else None)
