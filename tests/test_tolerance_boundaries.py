@@ -14,17 +14,17 @@ import warnings
 
 import numpy as np
 import pytest
-
-import kinematica as km
 import test_dh_extract as dh_extract
 import test_ik_wrist_edges as wrist_edges
 import test_kernels_wrist as kernels_wrist
+
+import kinematica as km
 from kinematica.dh import Revolute
 from kinematica.ik.analytic.arm_point import places_point
+from kinematica.io import parse_urdf
 from kinematica.kernels.ik_check import INFO_NEAR
 from kinematica.kernels.solvers.arm_base import A_SCALE, ST_NEAR, ST_SIZE, clamped_root
 from kinematica.kernels.solvers.arm_quartic import trig_roots
-from kinematica.io import parse_urdf
 from kinematica.motion import cartesian_path
 
 # The documented values (m, rad, or a sine/cosine), one per constant.
