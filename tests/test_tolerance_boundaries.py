@@ -23,6 +23,7 @@ from kinematica.dh import Revolute
 from kinematica.ik.analytic.arm_point import places_point
 from kinematica.io import parse_urdf
 from kinematica.kernels.ik_check import INFO_NEAR
+from kinematica.kernels.solvers import parallel_pairs
 from kinematica.kernels.solvers.arm_base import A_SCALE, ST_NEAR, ST_SIZE, clamped_root
 from kinematica.kernels.solvers.arm_quartic import trig_roots
 from kinematica.motion import cartesian_path
@@ -551,3 +552,27 @@ def test_length_tol_is_a_link_that_moves_nothing(factor: float, inside: bool) ->
     res = arm.ik(arm.fk([0.3, 0.4])[:3, 3], seed=0)
     assert res.status in ("ok", "singular")
     assert res.method.startswith("numeric" if inside else "analytic")
+
+
+# --- kernels/solvers/parallel_layout.py: the three-parallel arms -----------------
+
+PARALLEL_DOUBLE_ROOT_TOL = 1e-14  # parallel_layout.DOUBLE_ROOT_TOL
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_parallel_double_root_tol_merges_two_angles(factor: float, inside: bool) -> None:
+    """parallel_layout.DOUBLE_ROOT_TOL: the two θ of a cos θ + b sin θ = c are
+    one double root when r² - c² is below it times r² (r = hypot(a, b)).
+
+    Tested on the kernel: through robot.ik the check's deduplication (1e-7)
+    merges roots ~sqrt(1e-15) apart as well, and hides the constant.
+    """
+    a, b = 3.0, 4.0
+    r2 = a * a + b * b
+    c = math.sqrt(r2 * (1.0 - factor * PARALLEL_DOUBLE_ROOT_TOL))
+    out, info = np.full(2, np.nan), np.zeros(INFO_NEAR + 1)
+    assert parallel_pairs._roots(a, b, c, 5.0, out, info)
+    assert info[INFO_NEAR] == 0.0
+    assert bool(out[0] == out[1]) is inside
+    for theta in out:
+        assert a * math.cos(theta) + b * math.sin(theta) == pytest.approx(c, rel=1e-12)
