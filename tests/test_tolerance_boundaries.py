@@ -22,6 +22,7 @@ import kinematica as km
 from kinematica.dh import Revolute
 from kinematica.ik.analytic.arm_point import places_point
 from kinematica.io import parse_urdf
+from kinematica.kernels.geometry import trig_linear
 from kinematica.kernels.ik_check import INFO_NEAR
 from kinematica.kernels.solvers import parallel_pairs
 from kinematica.kernels.solvers.arm_base import A_SCALE, ST_NEAR, ST_SIZE, clamped_root
@@ -576,3 +577,21 @@ def test_parallel_double_root_tol_merges_two_angles(factor: float, inside: bool)
     assert bool(out[0] == out[1]) is inside
     for theta in out:
         assert a * math.cos(theta) + b * math.sin(theta) == pytest.approx(c, rel=1e-12)
+
+
+# --- kernels/geometry.py ----------------------------------------------------------
+
+TRIG_TOL = 1e-10  # kernels/geometry.py
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_trig_tol_takes_a_near_miss_as_a_double_root(factor: float, inside: bool) -> None:
+    """TRIG_TOL: a cos θ + b sin θ = c with |c| above r = hypot(a, b) by at most
+    this (relative, r² - c² >= -2 TRIG_TOL r²) is a double root (1), beyond it
+    no solution (0); ``out`` holds the least-squares angle atan2(b, a) either way.
+    """
+    a, b, r = 3.0, 4.0, 5.0
+    c = r * math.sqrt(1.0 + 2.0 * factor * TRIG_TOL)  # r² - c² = -2 factor TRIG_TOL r²
+    out = np.empty(2)
+    assert trig_linear(a, b, c, out) == (1 if inside else 0)
+    np.testing.assert_allclose(out, math.atan2(b, a), atol=1e-12)
