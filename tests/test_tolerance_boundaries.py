@@ -549,6 +549,20 @@ def test_merge_tol_says_branches_merge(factor: float, inside: bool) -> None:
 
 
 @pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_merge_tol_near_the_first_axis(factor: float, inside: bool) -> None:
+    """triangle.MERGE_TOL, its second use: a target within it (relative to the
+    reach) of the first axis of a 2R arm with equal links makes the first turn
+    uncertain: near_singular. Its two solutions differ by π in q1, so the
+    check's deduplication plays no part (unlike a merge at the stretched arm,
+    where the angle ψ is round-off below ~1e-8 and cannot be placed inside).
+    """
+    robot = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=0.5)])
+    res = robot.ik(np.array([factor * MERGE_TOL * 1.0, 0.0, 0.0]))  # the reach is 1 m
+    assert res.status == "ok" and len(res.solutions) == 2
+    assert res.near_singular is inside
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
 def test_length_tol_is_a_link_that_moves_nothing(factor: float, inside: bool) -> None:
     """planar_arms.LENGTH_TOL: a planar 2R whose tool is within it (m) of axis 2
     (q2 moves nothing) has no closed form; the numeric method answers.
