@@ -1,0 +1,616 @@
+"""Named tolerances not pinned elsewhere, each tested on both sides of its value.
+
+Every case is placed a factor 10 below or above the value the constant's
+documentation states, written here as a literal: a test that read the constant
+itself would move with it, and could not notice it changed a thousandfold. The
+constants here are compared with a quantity the test controls exactly (a
+distance, a sine, an angle), so a factor of 10 leaves a wide margin for round-off.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+import test_dh_extract as dh_extract
+import test_ik_small as ik_small
+import test_ik_wrist_edges as wrist_edges
+import test_kernels_wrist as kernels_wrist
+
+import kinematica as km
+from kinematica.dh import Revolute
+from kinematica.ik.analytic.arm_point import places_point
+from kinematica.io import parse_urdf
+from kinematica.kernels.geometry import trig_linear
+from kinematica.kernels.ik_check import INFO_NEAR
+from kinematica.kernels.solvers import parallel_pairs
+from kinematica.kernels.solvers.arm_base import A_SCALE, ST_NEAR, ST_SIZE, clamped_root
+from kinematica.kernels.solvers.arm_quartic import trig_roots
+from kinematica.motion import cartesian_path
+
+# The documented values (m, rad, or a sine/cosine), one per constant.
+POSITION_TOL = 1e-10  # ik/targets.py
+ROTATION_TOL = 1e-10  # ik/targets.py
+PARALLEL_TOL = 1e-9  # ik/structure.py
+MEET_TOL = 1e-9  # ik/structure.py
+PERP_TOL = 1e-9  # ik/structure.py
+IDENTITY_ANGLE_TOL = 10.0 * np.finfo(np.float64).eps  # spatial/axis_angle.py
+COLLINEAR_TOL = 1e-9  # motion/cartesian.py
+
+#: A case a factor 10 inside a tolerance, and one a factor 10 outside it.
+FACTORS = [(0.1, True), (10.0, False)]
+
+Q_2R = [0.4, 1.1]
+
+
+def two_link() -> km.Robot:
+    return km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=1.0)])
+
+
+def pose(R: np.ndarray) -> np.ndarray:
+    T = np.eye(4)
+    T[:3, :3] = R
+    return T
+
+
+# --- ik/targets.py: default acceptance tolerances -----------------------------
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_position_tol_is_the_default_position_acceptance(factor: float, inside: bool) -> None:
+    """POSITION_TOL: a solution must put the tool within it of the target (m).
+
+    A planar 2R arm cannot move its tool out of its plane: a target lifted by
+    ``e`` along z is missed by exactly ``e`` by its closest configuration. Below
+    the default tolerance that configuration is a solution, above it is not.
+    """
+    robot = two_link()
+    T = robot.fk(Q_2R).copy()
+    e = factor * POSITION_TOL
+    T[2, 3] += e
+    res = robot.ik(T)
+    if inside:
+        assert res.success
+        assert res.residuals[:, 0] == pytest.approx(e, rel=1e-3)
+    else:
+        assert not res.success and len(res.solutions) == 0
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_rotation_tol_is_the_default_rotation_acceptance(factor: float, inside: bool) -> None:
+    """ROTATION_TOL: a solution must orient the tool within it of the target (rad).
+
+    A planar 2R arm only turns its tool about z: a target tilted by ``e`` about
+    the tool's x axis is missed by exactly the angle ``e``.
+    """
+    robot = two_link()
+    e = factor * ROTATION_TOL
+    T = robot.fk(Q_2R) @ pose(km.rotx(e))
+    res = robot.ik(T)
+    if inside:
+        assert res.success
+        assert res.residuals[:, 1] == pytest.approx(e, rel=1e-3)
+    else:
+        assert not res.success and len(res.solutions) == 0
+
+
+# --- ik/structure.py: features of the joint axes ------------------------------
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_parallel_tol_is_the_sine_of_the_angle_between_axes(factor: float, inside: bool) -> None:
+    """PARALLEL_TOL: two axes are parallel when the sine of their angle is below it.
+
+    A twist ``alpha`` between two joints tilts the second axis by ``alpha``.
+    """
+    robot = km.Robot.from_dh([km.Revolute(a=1.0, alpha=factor * PARALLEL_TOL), km.Revolute(a=1.0)])
+    assert km.classify(robot).parallel == (((0, 1),) if inside else ())
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_meet_tol_is_the_distance_of_axes_that_meet(factor: float, inside: bool) -> None:
+    """MEET_TOL: two (non-parallel) axes meet when they pass closer than it (m).
+
+    Perpendicular axes (twist 90°) a link length ``a`` apart are ``a`` apart.
+    """
+    a = factor * MEET_TOL
+    robot = km.Robot.from_dh([km.Revolute(a=a, alpha=math.pi / 2), km.Revolute(a=1.0)])
+    s = km.classify(robot)
+    assert s.parallel == ()
+    assert s.intersecting == (((0, 1),) if inside else ())
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_meet_tol_decides_the_wrist_center(factor: float, inside: bool) -> None:
+    """MEET_TOL also bounds how far each of the last three axes may pass from
+    their common point (the wrist center).
+
+    Axes 0 and 1 meet at the base origin; axis 2 (twisted 60°, all three
+    orthogonal to x) passes ``d`` from it along x. The least-squares point lies
+    d/3 along x, so the axes pass d/3, d/3 and 2d/3 from it: all within the
+    tolerance when d is a factor 10 below it, none when d is 10 times above it.
+    """
+    d = factor * MEET_TOL
+    robot = km.Robot.from_dh(
+        [km.Revolute(alpha=-math.pi / 2), km.Revolute(a=d, alpha=math.pi / 3), km.Revolute()]
+    )
+    wc = km.classify(robot).wrist_center
+    assert (wc is not None) == inside
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_perp_tol_is_the_cosine_of_the_angle_between_axes(factor: float, inside: bool) -> None:
+    """PERP_TOL: two axes are perpendicular when |cos| of their angle is below it.
+
+    A twist of 90° + ``e`` leaves the axes at cosine ``-sin(e)`` ~ ``e``.
+    """
+    e = factor * PERP_TOL
+    robot = km.Robot.from_dh([km.Revolute(a=1.0, alpha=math.pi / 2 + e), km.Revolute(a=1.0)])
+    f = km.classify(robot).features
+    assert abs(float(f.directions[0] @ f.directions[1])) == pytest.approx(e, rel=1e-3)
+    assert f.is_perpendicular(0, 1) is inside
+
+
+# --- spatial/axis_angle.py ----------------------------------------------------
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_identity_angle_tol_gives_the_conventional_axis(factor: float, inside: bool) -> None:
+    """IDENTITY_ANGLE_TOL: below this angle the axis of R is round-off, and
+    axis_angle_from_matrix returns the z axis by convention.
+
+    A rotation about x by a tiny angle ``e`` has the exact skew part
+    ``sin e`` ~ ``e``, so its angle is recovered; its axis is x above the
+    tolerance and z (the convention) below it.
+    """
+    e = factor * IDENTITY_ANGLE_TOL
+    axis, angle = km.axis_angle_from_matrix(km.matrix_from_axis_angle([1.0, 0.0, 0.0], e))
+    assert float(angle) == pytest.approx(e, rel=1e-6)
+    expected = [0.0, 0.0, 1.0] if inside else [1.0, 0.0, 0.0]
+    assert np.array_equal(axis, expected)
+
+
+# --- motion/cartesian.py ------------------------------------------------------
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_collinear_tol_rejects_a_via_on_the_line(factor: float, inside: bool) -> None:
+    """COLLINEAR_TOL: three points closer than it (m) to one line define no circle.
+
+    The ends are 0.1 m apart along x and via is halfway, lifted by ``h`` along
+    y: |u × v| = 0.1 h (below 1 m², so the tolerance is not scaled). Lifted by
+    less than COLLINEAR_TOL / 0.1 it is an error; by more, an arc through via.
+    """
+    puma = km.load("puma560")
+    q = np.array([0.2, -0.5, 0.3, 0.4, 0.9, -0.1])
+    T0 = puma.fk(q)
+    T1 = T0.copy()
+    T1[:3, 3] += [0.1, 0.0, 0.0]
+    h = factor * COLLINEAR_TOL / 0.1
+    via = T0[:3, 3] + [0.05, h, 0.0]
+    if inside:
+        with pytest.raises(km.KinematicaError, match="via lies on the line"):
+            cartesian_path(puma, T0, T1, steps=4, q0=q, via=via)
+    else:
+        path = cartesian_path(puma, T0, T1, steps=4, q0=q, via=via)
+        assert np.allclose(path.poses[-1], T1, atol=1e-9)
+
+
+# --- kernels/solvers/arm_quartic.py -------------------------------------------
+
+SELF_MOTION_TOL = 1e-14  # kernels/solvers/arm_quartic.py
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_self_motion_tol_is_relative_round_off_of_the_quartic(factor: float, inside: bool) -> None:
+    """SELF_MOTION_TOL: the trigonometric polynomial F of q3 is identically 0
+    (joints 1-3 have a self-motion, every q3 is a root) when its coefficients
+    are below this fraction of the size of the terms they were computed from.
+
+    A constant F = c with terms of size 3: a self-motion when c < 3 · 1e-14,
+    else a nonzero constant with no root.
+    """
+    size = 3.0
+    F = np.array([factor * SELF_MOTION_TOL * size, 0.0, 0.0, 0.0, 0.0])
+    q = np.empty(4)
+    assert trig_roots(F, size, q, np.zeros(ST_SIZE)) == inside
+    if inside:
+        np.testing.assert_allclose(q, [-math.pi / 2, 0.0, math.pi / 2, math.pi])
+    else:
+        assert np.isnan(q).all()
+
+
+# --- kernels/solvers/arm_base.py: the arm's radicands and singular sets --------
+
+ARM_DOUBLE_ROOT_TOL = 1e-14  # arm_base.DOUBLE_ROOT_TOL
+ARM_NEAR_TOL = 1e-6  # arm_base.NEAR_TOL
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_arm_double_root_tol_is_round_off_of_a_fold(factor: float, inside: bool) -> None:
+    """arm_base.DOUBLE_ROOT_TOL: a fold's signed distance within it of (size +
+    arm scale) is round-off, a double root (0 comes back); beyond, sqrt(diff · other).
+    """
+    size, other, scale = 3.0, 2.0, 1.0
+    diff = factor * ARM_DOUBLE_ROOT_TOL * (size + scale)
+    st = np.zeros(ST_SIZE)
+    root = clamped_root(diff, size, other, scale, st)
+    if inside:
+        assert root == 0.0 and st[ST_NEAR] != 0.0
+    else:
+        assert root == pytest.approx(math.sqrt(diff * other), rel=1e-12)
+        assert st[ST_NEAR] == 0.0
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_arm_near_tol_keeps_roots_just_past_a_fold(factor: float, inside: bool) -> None:
+    """arm_base.NEAR_TOL: a target past a fold by less than this (relative to
+    the fold's size) still gives the mirrored candidates sqrt(|diff| · other)
+    for the check to judge, and raises ST_NEAR; farther past, NaN.
+    """
+    size, other, scale = 3.0, 2.0, 1.0
+    diff = -factor * ARM_NEAR_TOL * size
+    st = np.zeros(ST_SIZE)
+    root = clamped_root(diff, size, other, scale, st)
+    if inside:
+        assert root == pytest.approx(math.sqrt(-diff * other), rel=1e-12)
+        assert st[ST_NEAR] != 0.0
+    else:
+        assert math.isnan(root) and st[ST_NEAR] == 0.0
+
+
+ARM_SINGULAR_TOL = 1e-12  # arm_base.SINGULAR_TOL
+NEAR_SET_TOL = 1e-9  # arm_base.NEAR_SET_TOL
+WRIST_SINGULAR_TOL = 1e-12  # spherical_wrist.WRIST_SINGULAR_TOL
+#: The README's singular pose of arm6-dh: its wrist centre on axis 1.
+ARM6_SINGULAR_Q = np.radians([30, 20, -40, 10, 60, -20])
+
+
+@pytest.mark.parametrize(("factor", "inside"), [(0.5, True), (2.0, False)])
+def test_arm_singular_tol_frees_q1_on_axis_1(factor: float, inside: bool) -> None:
+    """arm_base.SINGULAR_TOL: a wrist centre within it (times the arm's size)
+    of axis 1 is on the singular set: q1 is free (status "singular").
+    """
+    arm6 = km.load("arm6-dh")
+    T = arm6.fk(ARM6_SINGULAR_Q)
+    scale = wrist_edges.solver(arm6).params[A_SCALE]
+    res = arm6.ik(wrist_edges.moved_target(T, np.array([factor * ARM_SINGULAR_TOL * scale, 0, 0])))
+    assert (res.status == "singular") == inside
+    assert (0 in res.free_joints) == inside
+
+
+@pytest.mark.parametrize(("factor", "inside"), [(0.5, True), (2.0, False)])
+def test_near_set_tol_flags_a_wrist_centre_near_axis_1(factor: float, inside: bool) -> None:
+    """arm_base.NEAR_SET_TOL: a wrist centre within it (times the arm's size) of
+    axis 1, yet off the singular set, is flagged near it (INFO_NEAR); solved.
+    """
+    arm6 = km.load("arm6-dh")
+    T = arm6.fk(ARM6_SINGULAR_Q)
+    scale = wrist_edges.solver(arm6).params[A_SCALE]
+    shifted = wrist_edges.moved_target(T, np.array([factor * NEAR_SET_TOL * scale, 0.0, 0.0]))
+    assert (wrist_edges.kernel_info(arm6, shifted[None])[0, INFO_NEAR] != 0.0) == inside
+    assert arm6.ik(shifted).status == "ok"
+
+
+@pytest.mark.parametrize(("factor", "inside"), [(0.5, True), (2.0, False)])
+def test_wrist_singular_tol_is_the_sine_of_q5(factor: float, inside: bool) -> None:
+    """spherical_wrist.WRIST_SINGULAR_TOL: axes 4 and 6 are aligned (q4 + q6
+    free) when the sine of the angle between them, q5 on a PUMA, is below it.
+    """
+    puma = km.load("puma560")
+    q = np.array([0.3, -0.6, 0.2, 0.5, factor * WRIST_SINGULAR_TOL, -0.4])
+    res = puma.ik(puma.fk(q), respect_limits=False)
+    assert (res.status == "singular") == inside
+    assert (res.free_joints == (3, 5)) == inside
+
+
+# --- robot/singularities.py: named singular configurations ---------------------
+
+WRIST_TOL = 1e-6  # robot/singularities.py
+ELBOW_TOL = 1e-6  # robot/singularities.py
+SHOULDER_TOL = 1e-6  # robot/singularities.py
+RANK_TOL = 1e-8  # robot/singularities.py
+L2, L3 = 0.4, 0.3  # the link lengths of the built-in anthropomorphic-3r
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_wrist_tol_is_the_sine_between_axes_4_and_6(factor: float, inside: bool) -> None:
+    """WRIST_TOL: the wrist is singular when the sine of the angle between axes
+    4 and 6 is below it; on a PUMA that sine is |sin q5|.
+    """
+    puma = km.load("puma560")
+    q = np.array([0.3, -0.7, 0.9, 0.5, factor * WRIST_TOL, -0.4])
+    assert puma.singularities(q) == (["wrist"] if inside else [])
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_elbow_tol_is_the_rate_of_the_reach(factor: float, inside: bool) -> None:
+    """ELBOW_TOL: the elbow is singular when the distance r of the wrist from
+    the shoulder changes with q3 slower than this (m/rad).
+
+    r(q3)² = L2² + L3² + 2 L2 L3 cos q3, so |dr/dq3| = L2 L3 sin q3 / r: q3 is
+    solved for a given rate by fixed-point iteration.
+    """
+    rate = factor * ELBOW_TOL
+    q3 = rate * (L2 + L3) / (L2 * L3)
+    for _ in range(5):
+        r = math.sqrt(L2**2 + L3**2 + 2 * L2 * L3 * math.cos(q3))
+        q3 = math.asin(rate * r / (L2 * L3))
+    arm = km.load("anthropomorphic-3r")
+    assert arm.singularities(np.array([0.3, 0.5, q3])) == (["elbow"] if inside else [])
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_shoulder_tol_is_the_distance_from_axis_1(factor: float, inside: bool) -> None:
+    """SHOULDER_TOL: the shoulder is singular when the wrist centre is closer
+    than this (m) to axis 1: L2 cos q2 + L3 cos(q2 + q3) = dist.
+    """
+    dist, q2 = factor * SHOULDER_TOL, 1.2
+    q = np.array([0.3, q2, math.acos((dist - L2 * math.cos(q2)) / L3) - q2])
+    arm = km.load("anthropomorphic-3r")
+    assert arm.singularities(q) == (["shoulder"] if inside else [])
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_rank_tol_is_the_relative_singular_value(factor: float, inside: bool) -> None:
+    """RANK_TOL: a singular value of the Jacobian below it times the largest one
+    is lost ("rank" on an arm with no named singularities).
+
+    A revolute joint then a prismatic one along the radius: the singular
+    values of the position rows are 1 (the slide) and the extension q2 (m, the
+    turn), so their ratio is q2.
+    """
+    arm = km.Robot.from_dh([km.Revolute(alpha=-math.pi / 2), km.Prismatic(qlim=(0.0, 1.0))])
+    s = np.linalg.svd(arm.jacobian([0.2, 0.5])[:3], compute_uv=False)
+    assert s == pytest.approx([1.0, 0.5])
+    assert arm.singularities([0.2, factor * RANK_TOL]) == (["rank"] if inside else [])
+
+
+# --- ik/analytic/arm_point.py: the closed-form builder's arm geometry ----------
+
+GEOMETRY_TOL = 1e-9  # ik/analytic/arm_point.py
+ARM_RANK_TOL = 1e-6  # ik/analytic/arm_point.py RANK_TOL
+
+
+@pytest.mark.parametrize(("factor", "kind"), [(0.5, "parallel"), (2.0, "general")])
+def test_geometry_tol_parallel_shoulder(factor: float, kind: str) -> None:
+    """GEOMETRY_TOL: axes 1 and 2 twisted by less than it (rad) are parallel."""
+    assert kernels_wrist.shoulder(factor * GEOMETRY_TOL, 0.2) == kind
+
+
+@pytest.mark.parametrize(("factor", "kind"), [(0.5, "meet"), (2.0, "general")])
+def test_geometry_tol_meeting_shoulder(factor: float, kind: str) -> None:
+    """GEOMETRY_TOL: axes 1 and 2 offset by less than it (relative to the sizes
+    the builder compares, 1 + |c - p1| + |p2 - p1|) meet.
+    """
+    rows = [Revolute(d=0.4, alpha=math.pi / 2), Revolute(a=0.4, alpha=0.7), Revolute(d=0.1)]
+    probe = km.Robot.from_dh([*rows, Revolute(d=0.4)], name="probe")
+    _, p = probe.joint_axes()
+    c = probe.fk(np.zeros(4))[:3, 3]
+    scale = 1.0 + float(np.linalg.norm(c - p[0]) + np.linalg.norm(p[1] - p[0]))
+    assert kernels_wrist.shoulder(math.pi / 2, factor * GEOMETRY_TOL * scale) == kind
+
+
+@pytest.mark.parametrize(("factor", "usable"), [(0.5, False), (2.0, True)])
+def test_arm_rank_tol_needs_joints_1_to_3_to_place_the_point(factor: float, usable: bool) -> None:
+    """arm_point.RANK_TOL: joints 1-3 place the tool point when the best ratio
+    σmin/σmax of d(point)/d(q1..q3) over the builder's probes is above it.
+
+    Joint 3 moves the point on a circle of radius eps: the ratio is linear in
+    eps, so eps is scaled to put it at ``factor`` · RANK_TOL.
+    """
+    r1 = kernels_wrist.rank_ratio(kernels_wrist.arm_with_point_near_axis_3(1e-4))
+    robot = kernels_wrist.arm_with_point_near_axis_3(1e-4 * factor * ARM_RANK_TOL / r1)
+    assert kernels_wrist.rank_ratio(robot) == pytest.approx(factor * ARM_RANK_TOL, rel=0.05)
+    assert places_point(robot.chain, np.zeros(3)) == usable
+
+
+# --- dh/lines.py and dh/extract.py: DH tables from URDF -------------------------
+
+EXTRACT_ANGLE_TOL = 1e-8  # dh/lines.py
+EXTRACT_LENGTH_TOL = 1e-12  # dh/lines.py
+FK_CHECK_TOL = 1e-9  # dh/extract.py
+ROUND_OFF_TOL = 1e-15  # dh/extract.py
+
+
+@pytest.mark.parametrize("convention", ["standard", "modified"])
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_extract_angle_tol_decides_parallel_axes(
+    factor: float, inside: bool, convention: str
+) -> None:
+    """EXTRACT_ANGLE_TOL: two joint axes at an angle (rad, its sine) below it are
+    parallel; axis 2 tilted by more, 0.5 m from axis 1, meets it far away.
+    """
+    urdf = dh_extract._two_joints("0.5 0 0", f"0 {factor * EXTRACT_ANGLE_TOL!r} 0")
+    assert dh_extract._rule(urdf, convention) == ("parallel" if inside else "intersecting")
+
+
+@pytest.mark.parametrize("convention", ["standard", "modified"])
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_extract_length_tol_decides_meeting_and_coinciding_axes(
+    factor: float, inside: bool, convention: str
+) -> None:
+    """EXTRACT_LENGTH_TOL: axes closer than it (m) meet, or coincide when parallel."""
+    delta = factor * EXTRACT_LENGTH_TOL
+    crossing = dh_extract._two_joints(f"{delta!r} 0 0.3", f"{math.pi / 2!r} 0 0")
+    assert dh_extract._rule(crossing, convention) == ("intersecting" if inside else "skew")
+    beside = dh_extract._two_joints(f"{delta!r} 0 0.3", "0 0 0")
+    assert dh_extract._rule(beside, convention) == ("collinear" if inside else "parallel")
+
+
+@pytest.mark.parametrize(("factor", "inside"), [(0.5, True), (2.0, False)])
+def test_fk_check_tol_warns_beyond_it(factor: float, inside: bool) -> None:
+    """FK_CHECK_TOL: an extracted table whose FK is farther than it (m) from the
+    chain's is reported with a warning.
+
+    Axis 2 tilted by delta (below EXTRACT_ANGLE_TOL = 1e-8 for both factors) is
+    taken as parallel: with the tip 1 m up axis 2, the table is off by delta.
+    """
+    delta = factor * FK_CHECK_TOL
+    urdf = parse_urdf(dh_extract._two_joints("0.5 0 0", f"0 {delta!r} 0"))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ex = km.urdf_to_dh(urdf)
+    assert ex.fk_error == pytest.approx(delta, rel=0.3)
+    warned = any("reproduces the chain's forward kinematics" in str(w.message) for w in caught)
+    assert warned is not inside
+
+
+@pytest.mark.parametrize(("factor", "inside"), [(0.5, True), (20.0, False)])
+def test_round_off_tol_tidies_lengths_and_angles(factor: float, inside: bool) -> None:
+    """ROUND_OFF_TOL: a length or angle within it of a round value (0.3 m, π/2)
+    is taken as that value; farther, as given.
+    """
+    extra = factor * ROUND_OFF_TOL
+    a1 = float(dh_extract._table(dh_extract._two_joints(f"{0.3 + extra!r} 0 0", "0 0 0"))[0, 2])
+    assert (a1 == 0.3) is inside
+    rpy = f"{math.pi / 2 + extra!r} 0 0"
+    alpha1 = float(dh_extract._table(dh_extract._two_joints("0 0 0.3", rpy))[0, 3])
+    assert (alpha1 == math.pi / 2) is inside
+
+
+# --- motion/workspace.py and viz/geometry.py: planar arms -----------------------
+
+WORKSPACE_PLANAR_TOL = 1e-9  # motion/workspace.py PLANAR_TOL
+VIZ_PLANAR_TOL = 1e-9  # viz/geometry.py PLANAR_TOL
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_workspace_planar_tol_is_a_thickness(factor: float, inside: bool) -> None:
+    """motion/workspace.PLANAR_TOL: a workspace thinner than it (m) along an axis
+    is planar (an area, no volume).
+
+    A planar 2R arm on a z slide of travel t: the sampled points span at most
+    t in z (and nearly all of it, with 2000 samples drawn uniformly).
+    """
+    t = factor * WORKSPACE_PLANAR_TOL
+    arm = km.Robot.from_dh(
+        [km.Revolute(a=0.4), km.Revolute(a=0.3), km.Prismatic(qlim=(0.0, t))], name="2R on a slide"
+    )
+    ws = km.workspace(arm, samples=2000, seed=3, manipulability=False)
+    thickness = float(np.ptp(ws.points[:, 2]))
+    assert 0.9 * t <= thickness <= t * (1 + 1e-9) + 1e-15
+    assert ws.planar is inside
+    assert (ws.area is not None) is inside and (ws.volume == 0.0) is inside
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_viz_planar_tol_decides_the_2d_view(factor: float, inside: bool) -> None:
+    """viz/geometry.PLANAR_TOL: an arm is drawn in 2-D when its revolute axes
+    are parallel to a world axis within it (the sine of the angle): a 2R arm
+    whose second axis is tilted by alpha is drawn in the x-y plane, or in 3-D.
+    """
+    pytest.importorskip("matplotlib")
+    from kinematica import viz
+
+    alpha = factor * VIZ_PLANAR_TOL
+    arm = km.Robot.from_dh([km.Revolute(a=0.4, alpha=alpha), km.Revolute(a=0.3)])
+    assert viz.drawing_plane(arm) == ((0, 1) if inside else None)
+
+
+# --- kernels/solvers/triangle.py and ik/analytic/planar_arms.py: small arms -----
+
+TRIANGLE_SINGULAR_TOL = 1e-12  # triangle.SINGULAR_TOL (relative to the reach)
+MERGE_TOL = 1e-7  # triangle.MERGE_TOL (rad)
+LENGTH_TOL = 1e-9  # planar_arms.LENGTH_TOL (m)
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_triangle_singular_tol_is_the_fold_continuum(factor: float, inside: bool) -> None:
+    """triangle.SINGULAR_TOL: a target this close (relative to the reach) to the
+    first axis of a folded 2R arm with equal links is on the fold: every turn
+    of joint 1 reaches it (status "singular", q1 free); farther, two solutions.
+    """
+    robot = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=0.5)])
+    r = factor * TRIANGLE_SINGULAR_TOL * 1.0  # the reach is 1 m
+    res = robot.ik(np.array([r, 0.0, 0.0]))
+    if inside:
+        assert res.status == "singular" and res.free_joints == (0,)
+    else:
+        assert res.status == "ok" and len(res.solutions) == 2
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_merge_tol_says_branches_merge(factor: float, inside: bool) -> None:
+    """triangle.MERGE_TOL: branches within it (rad) of each other are merging:
+    the result is near_singular.
+
+    The PR arm of test_ik_small (x = q1 + l1 + l2 cos q2, y = l2 sin q2): at
+    q2 = π/2 - e its two branches are 2e apart in q2. (On a 2R arm stretched
+    by e the two solutions are also within the check's DEDUP_TOL of each
+    other, which flags them near by itself and hides MERGE_TOL.)
+    """
+    pr = ik_small.seed_pr_arm()
+    res = pr.ik(pr.fk([0.1, math.pi / 2 - factor * MERGE_TOL])[:3, 3])
+    assert res.status == "ok"
+    assert res.near_singular is inside
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_merge_tol_near_the_first_axis(factor: float, inside: bool) -> None:
+    """triangle.MERGE_TOL, its second use: a target within it (relative to the
+    reach) of the first axis of a 2R arm with equal links makes the first turn
+    uncertain: near_singular. Its two solutions differ by π in q1, so the
+    check's deduplication plays no part (unlike a merge at the stretched arm,
+    where the angle ψ is round-off below ~1e-8 and cannot be placed inside).
+    """
+    robot = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=0.5)])
+    res = robot.ik(np.array([factor * MERGE_TOL * 1.0, 0.0, 0.0]))  # the reach is 1 m
+    assert res.status == "ok" and len(res.solutions) == 2
+    assert res.near_singular is inside
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_length_tol_is_a_link_that_moves_nothing(factor: float, inside: bool) -> None:
+    """planar_arms.LENGTH_TOL: a planar 2R whose tool is within it (m) of axis 2
+    (q2 moves nothing) has no closed form; the numeric method answers.
+    """
+    arm = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=factor * LENGTH_TOL)])
+    assert km.classify(arm).kind == "planar-2R"
+    res = arm.ik(arm.fk([0.3, 0.4])[:3, 3], seed=0)
+    assert res.status in ("ok", "singular")
+    assert res.method.startswith("numeric" if inside else "analytic")
+
+
+# --- kernels/solvers/parallel_layout.py: the three-parallel arms -----------------
+
+PARALLEL_DOUBLE_ROOT_TOL = 1e-14  # parallel_layout.DOUBLE_ROOT_TOL
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_parallel_double_root_tol_merges_two_angles(factor: float, inside: bool) -> None:
+    """parallel_layout.DOUBLE_ROOT_TOL: the two θ of a cos θ + b sin θ = c are
+    one double root when r² - c² is below it times r² (r = hypot(a, b)).
+
+    Tested on the kernel: through robot.ik the check's deduplication (1e-7)
+    merges roots ~sqrt(1e-15) apart as well, and hides the constant.
+    """
+    a, b = 3.0, 4.0
+    r2 = a * a + b * b
+    c = math.sqrt(r2 * (1.0 - factor * PARALLEL_DOUBLE_ROOT_TOL))
+    out, info = np.full(2, np.nan), np.zeros(INFO_NEAR + 1)
+    assert parallel_pairs._roots(a, b, c, 5.0, out, info)
+    assert info[INFO_NEAR] == 0.0
+    assert bool(out[0] == out[1]) is inside
+    for theta in out:
+        assert a * math.cos(theta) + b * math.sin(theta) == pytest.approx(c, rel=1e-12)
+
+
+# --- kernels/geometry.py ----------------------------------------------------------
+
+TRIG_TOL = 1e-10  # kernels/geometry.py
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_trig_tol_takes_a_near_miss_as_a_double_root(factor: float, inside: bool) -> None:
+    """TRIG_TOL: a cos θ + b sin θ = c with |c| above r = hypot(a, b) by at most
+    this (relative, r² - c² >= -2 TRIG_TOL r²) is a double root (1), beyond it
+    no solution (0); ``out`` holds the least-squares angle atan2(b, a) either way.
+    """
+    a, b, r = 3.0, 4.0, 5.0
+    c = r * math.sqrt(1.0 + 2.0 * factor * TRIG_TOL)  # r² - c² = -2 factor TRIG_TOL r²
+    out = np.empty(2)
+    assert trig_linear(a, b, c, out) == (1 if inside else 0)
+    np.testing.assert_allclose(out, math.atan2(b, a), atol=1e-12)
