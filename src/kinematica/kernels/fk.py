@@ -294,7 +294,6 @@ def walk(
     pose: Array,
     frames: Array,
     axes: Array,
-    work: Array,
 ) -> None:
     """:func:`walk_row` for one configuration ``q (n,)``, its outputs unstacked.
 
@@ -309,8 +308,6 @@ def walk(
         pose: ``(4, 4)`` out: tool pose in the base frame.
         frames: ``(n + 1, 4, 4)`` out, or shape ``(0, 4, 4)`` for none.
         axes: ``(n, 6)`` out, or shape ``(0, 6)`` for none.
-        work: Unused (kept so that the IK kernels calling :func:`walk` need
-            not change; to be dropped with them).
     """
     # x[None]: a batch of one as a view numba makes for free (not reshape).
     walk_row(links, ends, frames_mid, C, S, k, q[None], 0, pose[None], 0, frames, axes)

@@ -120,7 +120,6 @@ def _residual(
     k: int,
     pose: Array,
     e: Array,
-    work: Array,
     no_frames: Array,
     no_axes: Array,
 ) -> tuple[float, float]:
@@ -133,7 +132,7 @@ def _residual(
     ``no_axes`` ``(0, 6)``: empty arrays, allocated once by the caller (an
     allocation per candidate cost a tenth of the check).
     """
-    walk(links, ends, False, C, S, k, q, pose, no_frames, no_axes, work)
+    walk(links, ends, False, C, S, k, q, pose, no_frames, no_axes)
     plain = w[0] == 1.0 and w[1] == 1.0 and w[2] == 1.0
     if plain and w[3] == 1.0 and w[4] == 1.0 and w[5] == 1.0:
         dx, dy, dz = T[0, 3] - pose[0, 3], T[1, 3] - pose[1, 3], T[2, 3] - pose[2, 3]
@@ -157,7 +156,6 @@ def _polish(
     S: Array,
     pose: Array,
     e: Array,
-    work: Array,
     no_frames: Array,
 ) -> None:
     """``POLISH_STEPS`` Gauss-Newton steps on ``q`` towards ``T`` (weighted rows only).
@@ -182,7 +180,7 @@ def _polish(
             r += 1
     for _ in range(POLISH_STEPS):
         block_trig(links, q.reshape((1, n)), 0, 1, C, S)
-        walk(links, ends, False, C, S, 0, q, pose, no_frames, axes, work)
+        walk(links, ends, False, C, S, 0, q, pose, no_frames, axes)
         columns(links, axes, pose, False, J6)
         pose_error(pose, T, e)
         row = 0
@@ -250,19 +248,17 @@ def check_target(
         meta: ``(META_SIZE,)`` out: status code, counts, gap, nearest miss.
     """
     m, n = Q.shape
-    C, S, C1, S1, pose, e, work, no_frames, no_axes, qs, res, state, key = _scratch(m, n)
+    C, S, C1, S1, pose, e, no_frames, no_axes, qs, res, state, key = _scratch(m, n)
     _check(
         links, ends, qlim, T, Q, info, w, q0, opts, out_q, out_slot, out_res, meta,
-        C, S, C1, S1, pose, e, work, no_frames, no_axes, qs, res, state, key,
+        C, S, C1, S1, pose, e, no_frames, no_axes, qs, res, state, key,
     )  # fmt: skip
 
 
 @kernel
 def _scratch(
     m: int, n: int
-) -> tuple[
-    Array, Array, Array, Array, Array, Array, Array, Array, Array, Array, Array, IntArray, Array
-]:
+) -> tuple[Array, Array, Array, Array, Array, Array, Array, Array, Array, Array, IntArray, Array]:
     """The work arrays of :func:`_check` for ``m`` candidates of ``n`` joints."""
     return (
         np.empty((n, m)),  # C, S: every candidate's cosines and sines, in one vectorised pass
@@ -271,7 +267,6 @@ def _scratch(
         np.empty((n, 1)),
         np.empty((4, 4)),  # pose
         np.empty(6),  # e
-        np.empty((6, 3)),  # work
         np.empty((0, 4, 4)),  # no_frames
         np.empty((0, 6)),  # no_axes
         np.empty((m, n)),  # qs: the wrapped candidates
@@ -302,7 +297,6 @@ def _check(
     S1: Array,
     pose: Array,
     e: Array,
-    work: Array,
     no_frames: Array,
     no_axes: Array,
     qs: Array,
@@ -331,14 +325,12 @@ def _check(
             valid &= np.isfinite(q[k])
         if not valid:
             continue
-        p_err, r_err = _residual(links, ends, q, T, w, C, S, j, pose, e, work, no_frames, no_axes)
+        p_err, r_err = _residual(links, ends, q, T, w, C, S, j, pose, e, no_frames, no_axes)
         ok = p_err <= tol_p and r_err <= tol_r
         if not ok and max(p_err, r_err) < POLISH_LIMIT:
-            _polish(links, ends, q, T, w, C1, S1, pose, e, work, no_frames)
+            _polish(links, ends, q, T, w, C1, S1, pose, e, no_frames)
             block_trig(links, q.reshape((1, n)), 0, 1, C1, S1)
-            p_err, r_err = _residual(
-                links, ends, q, T, w, C1, S1, 0, pose, e, work, no_frames, no_axes
-            )
+            p_err, r_err = _residual(links, ends, q, T, w, C1, S1, 0, pose, e, no_frames, no_axes)
             ok = p_err <= tol_p and r_err <= tol_r
         close |= max(p_err, r_err) < POLISH_LIMIT
         if not ok:
@@ -447,7 +439,7 @@ def check_batch(
     m, n = Q.shape[1], Q.shape[2]
     nblocks = (N + CHECK_BLOCK - 1) // CHECK_BLOCK
     for blk in numba.prange(nblocks):  # work arrays made once per block, not per target
-        C, S, C1, S1, pose, e, work, no_frames, no_axes, qs, res, state, key = _scratch(m, n)
+        C, S, C1, S1, pose, e, no_frames, no_axes, qs, res, state, key = _scratch(m, n)
         for i in range(blk * CHECK_BLOCK, min(N, (blk + 1) * CHECK_BLOCK)):
             if meta[i, META_STATUS] == STATUS_INVALID:  # no numbers for a malformed target
                 out_q[i, :, :] = np.nan
@@ -463,5 +455,5 @@ def check_batch(
             _check(
                 links, ends, qlim, T[i], Q[i], info[i], w, q0[i], opts,
                 out_q[i], out_slot[i], out_res[i], meta[i],
-                C, S, C1, S1, pose, e, work, no_frames, no_axes, qs, res, state, key,
+                C, S, C1, S1, pose, e, no_frames, no_axes, qs, res, state, key,
             )  # fmt: skip

@@ -153,7 +153,6 @@ def _end_game(
     e6: Array,
     J6: Array,
     A: Array,
-    work: Array,
     q_best: Array,
 ) -> int:
     """Gauss-Newton steps from a near miss ``q`` (its ``err`` and rows ``J``), in place.
@@ -178,7 +177,7 @@ def _end_game(
             for i in range(n):
                 q[i] += dq[i]
             project(links, bounds, q)
-            pose_errors(links, ends, q, T, rows, C, S, pose, frames, axes, e6, err, work)
+            pose_errors(links, ends, q, T, rows, C, S, pose, frames, axes, e6, err)
             jacobian_rows(links, axes, pose, e6, rows, sw, exact, J6, A, J)
             evaluations += 1
             pos, rot = norms(rows, scale, err)
@@ -189,7 +188,7 @@ def _end_game(
                 copy1(q_best, q)
                 E_low = E_new
         copy1(q, q_best)
-        pose_errors(links, ends, q, T, rows, C, S, pose, frames, axes, e6, err, work)
+        pose_errors(links, ends, q, T, rows, C, S, pose, frames, axes, e6, err)
         jacobian_rows(links, axes, pose, e6, rows, sw, exact, J6, A, J)
         evaluations += 1
     return evaluations
@@ -263,7 +262,6 @@ def lm_target(
     J6 = np.empty((6, n))
     A = np.empty((3, 3))
     e6 = np.empty(6)
-    work = np.empty((6, 3))
     err = np.empty(count)
     err_new = np.empty(count)
     ew = np.empty(count)
@@ -288,7 +286,7 @@ def lm_target(
         copy1(q, start if attempt == 0 else samples[attempt - 1])
         project(links, bounds, q)
         attempts += 1
-        pose_errors(links, ends, q, T, rows, C, S, pose, frames, axes, e6, err, work)
+        pose_errors(links, ends, q, T, rows, C, S, pose, frames, axes, e6, err)
         jacobian_rows(links, axes, pose, e6, rows, sw, exact, J6, A, J)
         evaluations += 1
         E = energy(sw, err)
@@ -313,7 +311,7 @@ def lm_target(
             for i in range(n):
                 q_new[i] = q[i] + d[i] * dq[i]
             project(links, bounds, q_new)
-            pose_errors(links, ends, q_new, T, rows, C, S, pose, frames, axes, e6, err_new, work)
+            pose_errors(links, ends, q_new, T, rows, C, S, pose, frames, axes, e6, err_new)
             evaluations += 1
             E_new = energy(sw, err_new)
             if E_new < E:
@@ -328,7 +326,7 @@ def lm_target(
         if not converged and max(pos, rot) < POLISH_LIMIT:
             evaluations += _end_game(
                 links, ends, bounds, T, rows, sw, scale, exact, tol_p, tol_r, q, err, J,
-                ew, Jb, dq, G, b, x, L, C, S, pose, frames, axes, e6, J6, A, work,
+                ew, Jb, dq, G, b, x, L, C, S, pose, frames, axes, e6, J6, A,
                 q_new,
             )  # fmt: skip
             pos, rot = norms(rows, scale, err)

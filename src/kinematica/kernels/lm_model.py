@@ -60,12 +60,11 @@ def pose_errors(
     axes: Array,
     e6: Array,
     err: Array,
-    work: Array,
 ) -> None:
     """Pose at ``q``, its joint axes, the full error ``e6 (6,)`` and the counted ``err (r,)``."""
     n = links.shape[0]
     block_trig(links, q.reshape((1, n)), 0, 1, C, S)
-    walk(links, ends, False, C, S, 0, q, pose, frames, axes, work)
+    walk(links, ends, False, C, S, 0, q, pose, frames, axes)
     pose_error(pose, T, e6)
     for r in range(rows.shape[0]):
         err[r] = e6[rows[r]]
@@ -158,6 +157,6 @@ def lm_rows(links: Array, ends: Array, w: Array, q: Array, T: Array, err: Array,
     C = np.empty((n, 1))
     S = np.empty((n, 1))
     frames = np.empty((0, 4, 4))
-    pose_errors(links, ends, q, T, rows, C, S, pose, frames, axes, e6, err[:r], np.empty((6, 3)))
+    pose_errors(links, ends, q, T, rows, C, S, pose, frames, axes, e6, err[:r])
     jacobian_rows(links, axes, pose, e6, rows, sw, exact, np.empty((6, n)), np.empty((3, 3)), J[:r])
     return r
