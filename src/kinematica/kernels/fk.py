@@ -86,40 +86,45 @@ BLOCK = 256
 def block_trig(links: Array, Q: Array, b0: int, b1: int, C: Array, S: Array) -> None:
     """Cosine and sine of every joint angle of configurations ``Q[b0:b1]``.
 
-    Each joint's angles are first gathered into a contiguous row (``C[j]``
-    serves as that buffer), so that the sine-cosine loop over them vectorises.
+    The angles are first gathered into ``C`` (joint by joint), then one flat
+    sine-cosine loop runs over all of them: it vectorises, and even a block
+    of 8 candidates of a 6-joint arm is 48 angles, enough for the vector
+    loop (8 alone would all fall to its scalar remainder).
 
     Args:
         links: ``(n, 10)`` the chain.
         Q: ``(B, n)`` joint values.
         b0: The block's first row.
         b1: The row after the block's last.
-        C: ``(n, >= b1 - b0)`` out: ``C[j, k] = cos θj`` of row ``b0 + k``
-            (the constant θ of a prismatic joint).
-        S: ``(n, >= b1 - b0)`` out: the sines.
+        C: ``(n, b1 - b0)`` C-contiguous, out: ``C[j, k] = cos θj`` of row
+            ``b0 + k`` (the constant θ of a prismatic joint).
+        S: ``(n, b1 - b0)`` C-contiguous, out: the sines.
     """
     # Indices, never views such as C[j]: a view costs two atomic reference
     # count updates, which took half the time of a single call.
     n = links.shape[0]
     m = b1 - b0
+    biggest = 0.0
+    for j in range(n):
+        th = links[j, LINK_THETA]
+        slide = links[j, LINK_PRISMATIC] != 0.0
+        for k in range(m):
+            v = 0.0 if slide else Q[b0 + k, j] + th
+            C[j, k] = v
+            biggest = max(biggest, abs(v))
+    flat_c = C.reshape(n * m)
+    flat_s = S.reshape(n * m)
+    if biggest <= REDUCTION_LIMIT:
+        for t in range(n * m):  # vectorised: no calls, no branches
+            flat_s[t], flat_c[t] = sincos_reduced(flat_c[t])
+    else:  # angles beyond the reduction's range (or NaN): one at a time
+        for t in range(n * m):
+            flat_s[t], flat_c[t] = sincos(flat_c[t])
     for j in range(n):
         if links[j, LINK_PRISMATIC] != 0.0:
             for k in range(m):
                 C[j, k] = links[j, LINK_CT]
                 S[j, k] = links[j, LINK_ST]
-            continue
-        th = links[j, LINK_THETA]
-        biggest = 0.0
-        for k in range(m):
-            C[j, k] = Q[b0 + k, j] + th
-            biggest = max(biggest, abs(C[j, k]))
-        if m > 1 and biggest <= REDUCTION_LIMIT:
-            for k in range(m):  # vectorised: no calls, no branches
-                S[j, k], C[j, k] = sincos_reduced(C[j, k])
-        else:  # one configuration (nothing to vectorise), or angles beyond
-            # the reduction's range (or NaN): one at a time
-            for k in range(m):
-                S[j, k], C[j, k] = sincos(C[j, k])
 
 
 @inline_kernel

@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import math
 
-from kinematica.kernels._numba import Array, kernel
+from kinematica.kernels._numba import Array, inline_kernel, kernel
 
-__all__ = ["TRIG_TOL", "rotate", "subproblem1", "trig_linear"]
+__all__ = ["TRIG_TOL", "rotate", "subproblem1", "trig_linear", "turn"]
 
 #: ``a cos θ + b sin θ = c`` with ``|c|`` above ``hypot(a, b)`` by at most this
 #: fraction is taken as touching (one double root) rather than unreachable: a
@@ -21,17 +21,27 @@ __all__ = ["TRIG_TOL", "rotate", "subproblem1", "trig_linear"]
 TRIG_TOL = 1e-10
 
 
+@inline_kernel
+def turn(
+    kx: float, ky: float, kz: float, c: float, s: float, vx: float, vy: float, vz: float
+) -> tuple[float, float, float]:
+    """``R(k, θ) v`` (Rodrigues) for a unit axis ``k``, ``c = cos θ``, ``s = sin θ``.
+
+    Scalars in and out: a hot loop keeps them in registers (an array view per
+    call costs two atomic reference-count updates).
+    """
+    t = (1.0 - c) * (kx * vx + ky * vy + kz * vz)
+    return (
+        c * vx + s * (ky * vz - kz * vy) + t * kx,
+        c * vy + s * (kz * vx - kx * vz) + t * ky,
+        c * vz + s * (kx * vy - ky * vx) + t * kz,
+    )
+
+
 @kernel
 def rotate(k: Array, c: float, s: float, v: Array, out: Array) -> None:
-    """``out = R(k, θ) v`` (Rodrigues) for a unit axis ``k (3,)``, ``c = cos θ``, ``s = sin θ``."""
-    kv = k[0] * v[0] + k[1] * v[1] + k[2] * v[2]
-    x = k[1] * v[2] - k[2] * v[1]
-    y = k[2] * v[0] - k[0] * v[2]
-    z = k[0] * v[1] - k[1] * v[0]
-    t = (1.0 - c) * kv
-    out[0] = c * v[0] + s * x + t * k[0]
-    out[1] = c * v[1] + s * y + t * k[1]
-    out[2] = c * v[2] + s * z + t * k[2]
+    """``out = R(k, θ) v`` (:func:`turn`) for ``k (3,)``, ``v (3,)``, ``out (3,)``."""
+    out[0], out[1], out[2] = turn(k[0], k[1], k[2], c, s, v[0], v[1], v[2])
 
 
 @kernel

@@ -22,7 +22,7 @@ import math
 import numba
 import numpy as np
 
-from kinematica.kernels._numba import Array, IntArray, batch_kernel, kernel
+from kinematica.kernels._numba import Array, IntArray, batch_kernel, inline_kernel, kernel
 from kinematica.kernels.arrays import copy1
 from kinematica.kernels.fk import LINK_PRISMATIC, block_trig, walk
 from kinematica.kernels.jacobian import columns
@@ -108,7 +108,7 @@ def info_size(n: int) -> int:
     return INFO_FREE + n
 
 
-@kernel
+@inline_kernel
 def _residual(
     links: Array,
     ends: Array,
@@ -198,10 +198,14 @@ def _polish(
 
 
 @kernel
-def _same(links: Array, a: Array, b: Array) -> bool:
-    """True when ``a`` and ``b`` agree within ``DEDUP_TOL`` in every joint (angles mod 2π)."""
+def _same(links: Array, qs: Array, a: int, b: int) -> bool:
+    """True when rows ``a`` and ``b`` of ``qs`` agree within ``DEDUP_TOL`` in every joint.
+
+    Angles compare modulo 2π. (Rows by index, not as views: a view per pair
+    costs two atomic reference-count updates.)
+    """
     for j in range(links.shape[0]):
-        d = a[j] - b[j]
+        d = qs[a, j] - qs[b, j]
         if links[j, LINK_PRISMATIC] == 0.0:
             d = abs(d)
             d = min(d, _TWO_PI - d) if d <= _TWO_PI else abs(wrap(d))
@@ -349,7 +353,7 @@ def _check(
                     q[k] -= _TWO_PI
         duplicate = False
         for i in range(j):
-            if state[i] != 0 and _same(links, q, qs[i]):
+            if state[i] != 0 and _same(links, qs, j, i):
                 duplicate = True
                 break
         if duplicate:

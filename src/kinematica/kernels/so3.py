@@ -9,9 +9,10 @@ from __future__ import annotations
 
 import math
 
-from kinematica.kernels._numba import Array, kernel
+from kinematica.kernels._numba import Array, inline_kernel, kernel
 
 __all__ = [
+    "ATAN_LINEAR",
     "SERIES_ANGLE",
     "angle_between",
     "inverse_right_jacobian",
@@ -23,6 +24,10 @@ __all__ = [
 #: Below this rotation angle (rad) ``θ/2 · cot(θ/2)`` is evaluated by its
 #: series: the closed form loses digits to cancellation there.
 SERIES_ANGLE = 1e-2
+#: ``atan x`` rounds to ``x`` for ``|x|`` below this (``x - atan x ≈ x³/3`` is
+#: under half an ulp of ``x`` up to about 1.8e-8): the angle between two
+#: nearly equal rotations is then one division, not an ``atan2``.
+ATAN_LINEAR = 1e-8
 
 _TWO_PI = 2.0 * math.pi
 
@@ -32,8 +37,13 @@ def wrap(v: float) -> float:
     """An angle (rad) in (-π, π], unchanged when it already is."""
     if -math.pi < v <= math.pi:
         return v
-    w = (v + math.pi) % _TWO_PI  # in [0, 2π)
-    return math.pi if w == 0.0 else w - math.pi
+    if math.pi < v <= 3.0 * math.pi:  # one turn off (the usual case): no fmod call
+        w = v - _TWO_PI
+    elif -3.0 * math.pi < v <= -math.pi:
+        w = v + _TWO_PI
+    else:
+        w = (v + math.pi) % _TWO_PI - math.pi  # in [-π, π)
+    return math.pi if w <= -math.pi else w  # NaN (from NaN or inf) stays NaN
 
 
 @kernel
@@ -78,9 +88,13 @@ def rotvec(
     return n0 * k, n1 * k, n2 * k
 
 
-@kernel
+@inline_kernel
 def angle_between(T: Array, Tt: Array) -> float:
-    """Angle (rad) of ``Rtᵀ R`` for the rotation parts of ``T`` and ``Tt`` (exact near 0)."""
+    """Angle (rad) of ``Rtᵀ R`` for the rotation parts of ``T`` and ``Tt`` (exact near 0).
+
+    ``atan2`` of its sine and cosine, or their ratio where that is the same
+    to the last bit (``ATAN_LINEAR``).
+    """
     tr = vx = vy = vz = 0.0
     for i in range(3):
         r0, r1, r2 = T[i, 0], T[i, 1], T[i, 2]
@@ -89,7 +103,11 @@ def angle_between(T: Array, Tt: Array) -> float:
         vx += t2 * r1 - t1 * r2
         vy += t0 * r2 - t2 * r0
         vz += t1 * r0 - t0 * r1
-    return math.atan2(0.5 * math.sqrt(vx * vx + vy * vy + vz * vz), 0.5 * (tr - 1.0))
+    sin = 0.5 * math.sqrt(vx * vx + vy * vy + vz * vz)
+    cos = 0.5 * (tr - 1.0)
+    if cos > 0.0 and sin <= ATAN_LINEAR * cos:  # the checks' usual case: a tiny error
+        return sin / cos
+    return math.atan2(sin, cos)
 
 
 @kernel

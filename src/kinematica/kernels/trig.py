@@ -6,9 +6,11 @@ math library. This is the classical scheme of fdlibm instead: reduce the
 angle by multiples of π/2 (Cody-Waite, π/2 split in three parts so that
 ``n · P1`` is exact), then the minimax polynomials of ``__kernel_sin`` and
 ``__kernel_cos`` on [-π/4, π/4], then a branch-free choice of sign and
-quadrant. The results are within 1 ulp of the C library's for
-``|x| <= REDUCTION_LIMIT`` (the tests compare them on millions of angles);
-beyond it :func:`sincos` falls back to the C library. Branch-free, a loop over
+quadrant. The results are within 1 ulp of the C library's for ``|x| < 10``
+(joint angles) and within 2 ulps up to ``REDUCTION_LIMIT`` (the reduced
+angle's rounding tail, which fdlibm carries on, is dropped);
+``tests/test_kernels_scalar.py`` compares them on millions of angles. Beyond
+the limit :func:`sincos` falls back to the C library. Branch-free, a loop over
 angles compiles to AVX2 code (about 1.5 ns for both).
 """
 
@@ -26,9 +28,10 @@ __all__ = ["REDUCTION_LIMIT", "sincos", "sincos_reduced"]
 REDUCTION_LIMIT = 1.0e6
 
 _TWO_OVER_PI = 6.36619772367581382433e-01
-# π/2 = P1 + P2 + P3; P1 has 33 significant bits, so n · P1 is exact for n < 2**20.
+# π/2 = P1 + P2 + P3 (fdlibm's pio2_1, pio2_2, pio2_2t); P1 and P2 have 33
+# significant bits, so n · P1 and n · P2 are exact for n < 2**20.
 _P1 = 1.57079632673412561417e00
-_P2 = 6.07710050650619224932e-11
+_P2 = 6.07710050630396597660e-11
 _P3 = 2.02226624879595063154e-21
 # fdlibm's __kernel_sin and __kernel_cos coefficients.
 _S1, _S2, _S3 = -1.66666666666666324348e-01, 8.33333333332248946124e-03, -1.98412698298579493134e-04

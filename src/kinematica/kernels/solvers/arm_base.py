@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 
 from kinematica.kernels._numba import Array, kernel
+from kinematica.kernels.trig import sincos
 
 __all__ = [
     "A_A",
@@ -46,6 +47,7 @@ __all__ = [
     "NEAR_SET_TOL",
     "NEAR_TOL",
     "SINGULAR_TOL",
+    "ST_AZIMUTH",
     "ST_FREE",
     "ST_GAP",
     "ST_NEAR",
@@ -114,7 +116,8 @@ ST_FREE = 0  # (3,) 1.0 for q1, q2, q3 left free (a continuum)
 ST_NEAR = 3  # 1.0: near a singular set or a fold
 ST_GAP = 4  # lower bound of the distance of the target to the reachable points (m)
 ST_RHO = 5  # distance of the target from axis 1 (m)
-ST_SIZE = 6
+ST_AZIMUTH = 6  # the target's angle about axis 1 (rad), from the first axis of its frame
+ST_SIZE = 7
 
 
 @kernel
@@ -153,13 +156,14 @@ def clamped_root(diff: float, size: float, other: float, scale: float, st: Array
 
 
 @kernel
-def values(params: Array, q3: float, c3: float, s3: float, vals: Array) -> None:
-    """``vals = [u1, u2, H, L]`` at q3 (``c3, s3`` its cosine and sine; a slide uses q3)."""
+def values(params: Array, q3: float, vals: Array) -> None:
+    """``vals = [u1, u2, H, L]`` at q3 (rad; a slide's q3 in m)."""
     o = A_COEF
     if params[A_PRISMATIC] != 0.0:
         for j in range(4):
             vals[j] = params[o + j] + q3 * (params[o + 4 + j] + q3 * params[o + 8 + j])
     else:
+        s3, c3 = sincos(q3)
         for j in range(4):
             vals[j] = params[o + j] + c3 * params[o + 4 + j] + s3 * params[o + 8 + j]
 
@@ -172,7 +176,6 @@ def slot(
     v1: float,
     v2: float,
     vals: Array,
-    dz: Array,
     st: Array,
     Q3: Array,
 ) -> None:
@@ -201,7 +204,7 @@ def slot(
         o = A_XFRAME
         xa = H * params[o] + v1 * params[o + 2] + v2 * params[o + 4] + params[o + 6]
         xb = H * params[o + 1] + v1 * params[o + 3] + v2 * params[o + 5] + params[o + 7]
-        q1 = math.atan2(dz[2], dz[1]) - math.atan2(xb, xa)
+        q1 = st[ST_AZIMUTH] - math.atan2(xb, xa)
         if q1 <= -math.pi:
             q1 += 2.0 * math.pi
         elif q1 > math.pi:

@@ -73,6 +73,7 @@ from kinematica.kernels.solvers.arm_base import (
     KIND_PARALLEL,
     NEAR_SET_TOL,
     NEAR_TOL,
+    ST_AZIMUTH,
     ST_GAP,
     ST_NEAR,
     ST_RHO,
@@ -151,7 +152,7 @@ def _shoulder_v(
 
 
 @kernel
-def _closed(params: Array, dz: Array, dd: float, st: Array, Q3: Array) -> None:
+def _closed(params: Array, zeta: float, dd: float, st: Array, Q3: Array) -> None:
     """Axes 1 and 2 meet (``a`` ~ 0), or are skew with axes 2 ∥ 3 (``H`` ~ constant).
 
     Then ``|u(q3)|² = |d|² - a² - 2a v1`` (meet: ``|d|²``) gives q3, and
@@ -160,7 +161,6 @@ def _closed(params: Array, dz: Array, dd: float, st: Array, Q3: Array) -> None:
     q3 settles the small coupling of nearly meeting axes (an offset of 1e-10)
     or nearly parallel axes 2 and 3.
     """
-    zeta = dz[0]
     rho = st[ST_RHO]
     a = params[A_A]
     meet = params[A_KIND] == KIND_MEET
@@ -190,13 +190,13 @@ def _closed(params: Array, dz: Array, dd: float, st: Array, Q3: Array) -> None:
                 else:  # elbow up first: the second root is "up" where elbow_sign · v1 > 0
                     first = 1 if params[A_ELBOW] * v[0] > 0.0 else 0
                     q3 = roots[first] if B == 0 else roots[1 - first]
-                values(params, q3, math.cos(q3), math.sin(q3), vals)
+                values(params, q3, vals)
                 _shoulder_v(params, zeta, rho, vals[2], sign, st, v)
                 if meet:
                     D = math.sqrt(max(dd - a * a - 2.0 * a * v[0], 0.0))
                 else:
                     D = math.sqrt(v[0] * v[0] + v[1] * v[1] + vals[2] * vals[2])
-            slot(params, 2 * A + B, q3, v[0], v[1], vals, dz, st, Q3)
+            slot(params, 2 * A + B, q3, v[0], v[1], vals, st, Q3)
 
 
 @kernel
@@ -218,7 +218,7 @@ def _circles(r1: float, r2: float, a: float, scale: float, st: Array) -> float:
 
 
 @kernel
-def _parallel(params: Array, dz: Array, st: Array, Q3: Array) -> None:
+def _parallel(params: Array, zeta: float, st: Array, Q3: Array) -> None:
     """Axes 1 and 2 parallel: ``H(q3) = cα ζ``, then two circles in the plane of axis 1."""
     o = A_COEF
     rho = st[ST_RHO]
@@ -227,7 +227,7 @@ def _parallel(params: Array, dz: Array, st: Array, Q3: Array) -> None:
     vals = work[0:4]
     roots = work[4:6]
     scale = params[A_SCALE]
-    rhs = params[A_CA] * dz[0] - params[o + 2]
+    rhs = params[A_CA] * zeta - params[o + 2]
     if params[A_PRISMATIC] != 0.0:
         roots[0] = rhs / params[o + 6]
         roots[1] = math.nan
@@ -237,11 +237,11 @@ def _parallel(params: Array, dz: Array, st: Array, Q3: Array) -> None:
         sign = 1.0 if A == 0 else -1.0
         for B in range(2):
             q3 = roots[B]
-            values(params, q3, math.cos(q3), math.sin(q3), vals)
+            values(params, q3, vals)
             up = math.sqrt(vals[0] * vals[0] + vals[1] * vals[1])
             v1 = (rho - up) * (rho + up) / (2.0 * a) - 0.5 * a
             v2 = sign * _circles(rho, up, a, scale, st) / (2.0 * a)
-            slot(params, 2 * A + B, q3, v1, v2, vals, dz, st, Q3)
+            slot(params, 2 * A + B, q3, v1, v2, vals, st, Q3)
 
 
 @kernel
@@ -271,31 +271,32 @@ def place(params: Array, ct: Array, Q3: Array, st: Array) -> None:
     for i in range(ST_SIZE):
         st[i] = 0.0
     Q3[:, :] = math.nan
-    dz = np.empty(3)
-    big = 0.0
-    for j in range(3):
-        dj = 0.0
-        for i in range(3):
-            dj += (ct[i] - params[A_P1 + i]) * params[A_FRAME1 + 3 * i + j]
-        dz[j] = dj
-        big = max(big, abs(dj))
+    zeta = da = db = 0.0  # ct - p1 along h1, a1, b1
+    for i in range(3):
+        di = ct[i] - params[A_P1 + i]
+        zeta += di * params[A_FRAME1 + 3 * i]
+        da += di * params[A_FRAME1 + 3 * i + 1]
+        db += di * params[A_FRAME1 + 3 * i + 2]
+    big = max(abs(zeta), abs(da), abs(db))
     if not big < HUGE_REACH:  # NaN, or beyond any arm: no squares of it
         st[ST_GAP] = big - params[A_SHELL + 1] if big >= HUGE_REACH else math.nan
         st[ST_RHO] = math.nan
+        st[ST_AZIMUTH] = math.nan
         if not st[ST_GAP] > 0.0:
             st[ST_NEAR] = 1.0  # unbounded reach (a slide): no proof either way
         return
-    rho = math.hypot(dz[1], dz[2])
+    rho = math.hypot(da, db)
     st[ST_RHO] = rho
-    dd = dz[0] * dz[0] + rho * rho
-    st[ST_GAP] = shell_gap(params, math.sqrt(dd), dz[0])
+    st[ST_AZIMUTH] = math.atan2(db, da)
+    dd = zeta * zeta + rho * rho
+    st[ST_GAP] = shell_gap(params, math.sqrt(dd), zeta)
     scale = params[A_SCALE]
     if rho < NEAR_SET_TOL * scale:
         st[ST_NEAR] = 1.0
     kind = params[A_KIND]
     if kind == KIND_PARALLEL:
-        _parallel(params, dz, st, Q3)
+        _parallel(params, zeta, st, Q3)
     elif kind == KIND_MEET or params[A_PAR23] != 0.0:
-        _closed(params, dz, dd, st, Q3)
+        _closed(params, zeta, dd, st, Q3)
     else:
-        general_position(params, dz, dd, st, Q3)
+        general_position(params, zeta, dd, st, Q3)

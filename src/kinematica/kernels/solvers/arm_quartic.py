@@ -240,17 +240,16 @@ def _q3_roots(params: Array, zeta: float, dd: float, q: Array, st: Array) -> boo
 
 
 @kernel
-def general_position(params: Array, dz: Array, dd: float, st: Array, Q3: Array) -> None:
+def general_position(params: Array, zeta: float, dd: float, st: Array, Q3: Array) -> None:
     """Skew axes 1, 2, axis 3 not parallel to axis 2: Pieper's roots, one slot each.
 
     Args:
         params: The arm part (see :mod:`kinematica.kernels.solvers.arm_base`).
-        dz: ``(3,)`` it along ``h1, a1, b1`` from ``p1``.
+        zeta: ``h1ᵀ(ct - p1)``: the target point's height along axis 1 (m).
         dd: ``|ct - p1|²``.
         st: What :func:`~kinematica.kernels.solvers.arm_point.place` reports.
         Q3: ``(4, 3)`` out: a slot per root, ascending q3, NaN-padded.
     """
-    zeta = dz[0]
     a = params[A_A]
     ca = params[A_CA]
     g = params[A_G]
@@ -261,10 +260,10 @@ def general_position(params: Array, dz: Array, dd: float, st: Array, Q3: Array) 
     vals = np.empty(4)
     for k in range(4):
         q3 = roots[k]
-        values(params, q3, math.cos(q3), math.sin(q3), vals)
+        values(params, q3, vals)
         v1 = (dd - a * a - vals[3]) * (0.5 / a)
         v2 = (zeta - ca * vals[2]) / g
         miss = abs(math.hypot(v1, v2) - math.hypot(vals[0], vals[1]))
         if miss > NEAR_TOL * scale:  # a complex root taken for real: drop it
             q3 = math.nan
-        slot(params, k, q3, v1, v2, vals, dz, st, Q3)
+        slot(params, k, q3, v1, v2, vals, st, Q3)

@@ -22,10 +22,29 @@ from kinematica.kernels.solvers.arm_point import place
 from kinematica.kernels.solvers.arm_position import position
 from kinematica.kernels.solvers.spherical_wrist import pose, wrist_centre
 
-__all__ = ["MODE_POSE", "MODE_POSITION", "P_MODE", "solve", "solve_batch"]
+__all__ = ["MODE_POSE", "MODE_POSITION", "P_MODE", "SOLVE_BLOCK", "solve", "solve_batch"]
 
 P_MODE = A_SIZE  # which solver: MODE_POSE or MODE_POSITION
 MODE_POSE, MODE_POSITION = 0.0, 1.0
+
+
+#: Targets per block of a batch: each block makes its work arrays once.
+SOLVE_BLOCK = 64
+
+
+@kernel
+def _solve(params: Array, T: Array, Q: Array, info: Array, ct: Array, Q3: Array, st: Array) -> None:
+    """:func:`solve` with its work arrays given: ``ct (3,)``, ``Q3 (4, 3)``, ``st (ST_SIZE,)``."""
+    if params[P_MODE] == MODE_POSE:
+        wrist_centre(params, T, ct)
+    else:
+        for i in range(3):
+            ct[i] = T[i, 3]
+    place(params, ct, Q3, st)
+    if params[P_MODE] == MODE_POSE:
+        pose(params, T, Q3, st, Q, info)
+    else:
+        position(params, Q3, st, Q, info)
 
 
 @kernel
@@ -36,23 +55,14 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
     ``n = 6``) and :func:`~kinematica.kernels.solvers.arm_position.position`
     (``m = 4``; only the translation of ``T`` is read).
     """
-    ct = np.empty(3)
-    if params[P_MODE] == MODE_POSE:
-        wrist_centre(params, T, ct)
-    else:
-        for i in range(3):
-            ct[i] = T[i, 3]
-    Q3 = np.empty((4, 3))
-    st = np.empty(ST_SIZE)
-    place(params, ct, Q3, st)
-    if params[P_MODE] == MODE_POSE:
-        pose(params, T, Q3, st, Q, info)
-    else:
-        position(params, Q3, st, Q, info)
+    _solve(params, T, Q, info, np.empty(3), np.empty((4, 3)), np.empty(ST_SIZE))
 
 
 @batch_kernel
 def solve_batch(params: Array, T: Array, Q: Array, info: Array) -> None:
     """:func:`solve` for targets ``T (N, 4, 4)`` in parallel (``Q``, ``info``: an ``N`` axis)."""
-    for i in numba.prange(T.shape[0]):
-        solve(params, T[i], Q[i], info[i])
+    N = T.shape[0]
+    for blk in numba.prange((N + SOLVE_BLOCK - 1) // SOLVE_BLOCK):
+        ct, Q3, st = np.empty(3), np.empty((4, 3)), np.empty(ST_SIZE)  # once per block
+        for i in range(blk * SOLVE_BLOCK, min(N, (blk + 1) * SOLVE_BLOCK)):
+            _solve(params, T[i], Q[i], info[i], ct, Q3, st)

@@ -32,7 +32,7 @@ import math
 import numba
 import numpy as np
 
-from kinematica.kernels._numba import Array, batch_kernel, kernel
+from kinematica.kernels._numba import Array, IntArray, batch_kernel, kernel
 from kinematica.kernels.geometry import TRIG_TOL, rotate, subproblem1, trig_linear
 from kinematica.kernels.ik_check import INFO_FREE, INFO_GAP, INFO_NEAR, INFO_SINGULAR
 from kinematica.kernels.so3 import wrap
@@ -73,8 +73,9 @@ from kinematica.kernels.solvers.parallel_layout import (
     dot,
 )
 from kinematica.kernels.solvers.parallel_pairs import pairs
+from kinematica.kernels.trig import sincos
 
-__all__ = ["SLOTS", "solve", "solve_batch"]
+__all__ = ["SLOTS", "SOLVE_BLOCK", "solve", "solve_batch"]
 
 #: Candidate slots: four pairs (q1, q5) times two elbows.
 SLOTS = 8
@@ -269,8 +270,7 @@ def _finish(
         v[r] += V[V_P5, r] - V[V_P6, r]
     aligned = cross2(a, h6) <= CONTINUUM_TOL * CONTINUUM_TOL  # axis 6 along k
     q6 = _free_q6(params, V, RG, tG, c1, s1, v, W) if aligned else -subproblem1(a, b, h6)
-    c6 = math.cos(q6)
-    s6 = math.sin(q6)
+    s6, c6 = sincos(q6)
     # θ234: R234 e1 = R1ᵀ R_G R6ᵀ R5ᵀ e1
     rotate(h5, c5, -s5, V[V_E1], y)
     rotate(h6, c6, -s6, y, W[_Z])
@@ -321,6 +321,23 @@ def _finish(
     return count
 
 
+#: Targets per block of a batch: each block makes its work arrays once.
+SOLVE_BLOCK = 64
+
+
+@kernel
+def _scratch() -> tuple[Array, Array, Array, Array, IntArray, Array]:
+    """The work arrays of :func:`_solve`: ``W``, ``RG``, ``tG``, pairs, their kinds, elbows."""
+    return (
+        np.empty((13, 3)),
+        np.empty((3, 3)),
+        np.empty(3),
+        np.empty((4, 6)),
+        np.empty(4, dtype=np.int64),
+        np.empty((3, 2)),  # two elbows (q2, ψ), then the point t
+    )
+
+
 @kernel
 def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
     """Every solution of one target: candidates ``Q (8, 6)`` and ``info``.
@@ -332,6 +349,24 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
         info: ``(INFO_FREE + 6,)`` out, zero on entry (see
             :mod:`kinematica.kernels.ik_check`).
     """
+    W, RG, tG, pq, kinds, elbows = _scratch()
+    _solve(params, T, Q, info, W, RG, tG, pq, kinds, elbows)
+
+
+@kernel
+def _solve(
+    params: Array,
+    T: Array,
+    Q: Array,
+    info: Array,
+    W: Array,
+    RG: Array,
+    tG: Array,
+    pq: Array,
+    kinds: IntArray,
+    elbows: Array,
+) -> None:
+    """:func:`solve` with its work arrays given (:func:`_scratch`): a batch reuses them."""
     Q[:, :] = np.nan
     info[INFO_GAP] = np.nan
     ok = True
@@ -341,9 +376,6 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
     if not ok:
         return
     V = params[: 3 * NV].reshape((NV, 3))
-    W = np.empty((13, 3))
-    RG = np.empty((3, 3))
-    tG = np.empty(3)
     _goal(V, T, RG, tG)
     size = params[P_SCALE]
     # |G(a6) - p1s| beyond the reach bound proves the target out of reach
@@ -369,9 +401,6 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
         - math.hypot(params[P_EQ2], params[P_EQ2 + 1])
     )
     gap = max(gap, miss / params[P_LIP], 0.0)
-    pq = np.empty((4, 6))
-    kinds = np.empty(4, dtype=np.int64)
-    elbows = np.empty((3, 2))  # two elbows (q2, ψ), then the point t
     count = 0
     if miss <= NEAR_TOL * size:
         pairs(params, V, x6, w6, pq, kinds, info)
@@ -391,5 +420,8 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
 @batch_kernel
 def solve_batch(params: Array, T: Array, Q: Array, info: Array) -> None:
     """:func:`solve` for targets ``T (N, 4, 4)`` in parallel: ``Q (N, 8, 6)``, ``info (N, k)``."""
-    for i in numba.prange(T.shape[0]):
-        solve(params, T[i], Q[i], info[i])
+    N = T.shape[0]
+    for blk in numba.prange((N + SOLVE_BLOCK - 1) // SOLVE_BLOCK):
+        W, RG, tG, pq, kinds, elbows = _scratch()  # once per block
+        for i in range(blk * SOLVE_BLOCK, min(N, (blk + 1) * SOLVE_BLOCK)):
+            _solve(params, T[i], Q[i], info[i], W, RG, tG, pq, kinds, elbows)

@@ -9,9 +9,8 @@ described in :mod:`.parallel_pairs` (the pairs ``(q1, q5)``),
 
 from __future__ import annotations
 
-import math
-
 from kinematica.kernels._numba import Array, kernel
+from kinematica.kernels.trig import sincos
 
 __all__ = [
     "CONTINUUM_TOL",
@@ -127,7 +126,5 @@ def store_pair(pq: Array, m: int, q1: float, q5: float) -> None:
     """Pair ``m``: ``pq[m] = (q1, q5, cos q1, sin q1, cos q5, sin q5)``."""
     pq[m, 0] = q1
     pq[m, 1] = q5
-    pq[m, 2] = math.cos(q1)
-    pq[m, 3] = math.sin(q1)
-    pq[m, 4] = math.cos(q5)
-    pq[m, 5] = math.sin(q5)
+    pq[m, 3], pq[m, 2] = sincos(q1)
+    pq[m, 5], pq[m, 4] = sincos(q5)

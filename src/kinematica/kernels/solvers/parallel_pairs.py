@@ -58,6 +58,7 @@ from kinematica.kernels.solvers.parallel_layout import (
     store_pair,
 )
 from kinematica.kernels.solvers.parallel_quartic import pairs_general
+from kinematica.kernels.trig import sincos
 
 __all__ = ["pairs"]
 
@@ -163,8 +164,7 @@ def _pairs_meet(
         q1 = q1s[i]
         if np.isnan(q1):
             continue
-        c1 = math.cos(q1)
-        s1 = math.sin(q1)
+        s1, c1 = sincos(q1)
         axis2_now(V, c1, s1, k1)
         code = _wrist(params, dot(k1, x6), cross2(k1, x6), w)
         if code < 0:
@@ -197,7 +197,8 @@ def _pairs_parallel(params: Array, L: Array, pq: Array, kinds: IntArray, info: A
         q1 = q1s[i]
         if np.isnan(q1):
             continue
-        lhs = L[1, 0] * math.cos(q1) + L[1, 1] * math.sin(q1) + L[1, 2] - params[P_EQ2 + 2]
+        s1, c1 = sincos(q1)
+        lhs = L[1, 0] * c1 + L[1, 1] * s1 + L[1, 2] - params[P_EQ2 + 2]
         if not _roots(D2, E2, lhs, size, q5s, info):
             continue
         for j in range(2):

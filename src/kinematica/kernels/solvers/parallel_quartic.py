@@ -45,6 +45,7 @@ from kinematica.kernels.solvers.parallel_layout import (
     dot,
     store_pair,
 )
+from kinematica.kernels.trig import sincos
 
 __all__ = ["NEWTON_STEPS", "pairs_general"]
 
@@ -90,10 +91,8 @@ def _newton(params: Array, V: Array, x6: Array, L: Array, q: Array, k1: Array) -
     res = math.inf
     last = math.inf
     for _ in range(NEWTON_STEPS):
-        c1 = math.cos(q[0])
-        s1 = math.sin(q[0])
-        c5 = math.cos(q[1])
-        s5 = math.sin(q[1])
+        s1, c1 = sincos(q[0])
+        s5, c5 = sincos(q[1])
         axis2_now(V, c1, s1, k1)
         for r in range(3):
             rv[r] = V[V_H6PAR, r] + c5 * V[V_H6PERP, r] + s5 * V[V_H5XH6, r]  # R5 h6
@@ -153,8 +152,7 @@ def pairs_general(
         kinds[0] = PAIR_FREE_Q1
         return
     phi0 = far - math.pi
-    cp = math.cos(phi0)
-    sp = math.sin(phi0)
+    sp, cp = sincos(phi0)
     u0 = np.empty(2)
     u1 = np.empty(2)
     u2 = np.empty(2)
@@ -180,8 +178,7 @@ def pairs_general(
             continue
         # a merging pair a ± bi: start from a + b and a - b, on either side
         q1 = phi0 + 2.0 * math.atan(t.real + t.imag)
-        c1 = math.cos(q1)
-        s1 = math.sin(q1)
+        s1, c1 = sincos(q1)
         seeds[m, 0] = q1
         seeds[m, 1] = math.atan2(
             P[1, 0] * c1 + P[1, 1] * s1 + P[1, 2], P[0, 0] * c1 + P[0, 1] * s1 + P[0, 2]

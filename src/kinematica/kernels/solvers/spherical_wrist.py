@@ -42,8 +42,8 @@ import math
 
 import numpy as np
 
-from kinematica.kernels._numba import Array, kernel
-from kinematica.kernels.geometry import rotate, subproblem1
+from kinematica.kernels._numba import Array, inline_kernel, kernel
+from kinematica.kernels.geometry import rotate, subproblem1, turn
 from kinematica.kernels.ik_check import INFO_FREE, INFO_GAP, INFO_NEAR, INFO_SINGULAR
 from kinematica.kernels.so3 import wrap
 from kinematica.kernels.solvers.arm_base import (
@@ -58,6 +58,7 @@ from kinematica.kernels.solvers.arm_base import (
     ST_NEAR,
     clamped_root,
 )
+from kinematica.kernels.trig import sincos
 
 __all__ = ["WRIST_SINGULAR_TOL", "W_SIZE", "pose", "wrist_centre"]
 
@@ -89,82 +90,98 @@ W_LIMITS = A_SIZE + 41  # (4,) limits of q4, then of q6 (rad): where representat
 W_SIZE = A_SIZE + 45
 
 
-@kernel
-def _dot(params: Array, o: int, v: Array) -> float:
+@inline_kernel
+def _vec(params: Array, o: int) -> tuple[float, float, float]:
+    """``params[o:o+3]`` as three scalars (no view: see :func:`~.geometry.turn`)."""
+    return params[o], params[o + 1], params[o + 2]
+
+
+@inline_kernel
+def _dot(params: Array, o: int, v: tuple[float, float, float]) -> float:
     """``params[o:o+3] · v``."""
     return params[o] * v[0] + params[o + 1] * v[1] + params[o + 2] * v[2]
 
 
 @kernel
-def _undo(params: Array, q: Array, W0: Array, Y0: Array, w: Array, y: Array, tmp: Array) -> None:
-    """``w, y = R3ᵀ R2ᵀ R1ᵀ (W0, Y0)``: joints 1-3 (``q (3,)``) turned back (a slide: 1, 2)."""
+def _undo(
+    params: Array, Q3: Array, k: int, w: tuple[float, float, float], y: tuple[float, float, float]
+) -> tuple[float, float, float, float, float, float]:
+    """``R3ᵀ R2ᵀ R1ᵀ (w, y)``: joints 1-3 of slot ``k`` of ``Q3`` turned back (a slide: 1, 2)."""
+    wx, wy, wz = w
+    yx, yy, yz = y
     for j in range(2 if params[A_PRISMATIC] != 0.0 else 3):
-        k = params[A_H1 + 3 * j : A_H1 + 3 * j + 3]  # h1, h2, h3 lie one after another
-        c = math.cos(q[j])
-        s = -math.sin(q[j])
-        rotate(k, c, s, W0 if j == 0 else w, tmp)
-        for i in range(3):
-            w[i] = tmp[i]
-        rotate(k, c, s, Y0 if j == 0 else y, tmp)
-        for i in range(3):
-            y[i] = tmp[i]
+        kx, ky, kz = _vec(params, A_H1 + 3 * j)  # h1, h2, h3 lie one after another
+        s, c = sincos(Q3[k, j])
+        wx, wy, wz = turn(kx, ky, kz, c, -s, wx, wy, wz)
+        yx, yy, yz = turn(kx, ky, kz, c, -s, yx, yy, yz)
+    return wx, wy, wz, yx, yy, yz
 
 
 @kernel
-def _q6(params: Array, y4: float, x4: float, y5: float, x5: float, y: Array, tmp: Array) -> float:
+def _q6(
+    params: Array, y4: float, x4: float, y5: float, x5: float, y: tuple[float, float, float]
+) -> float:
     """q6 turning ``x6`` onto ``z = R5ᵀ R4ᵀ y`` about ``h6`` (absorbs q4's, q5's round-off).
 
     ``q4 = atan2(y4, x4)``, ``q5 = atan2(y5, x5)``: their cosines and sines
-    come from those arguments, not from the angles.
+    come from those arguments, not from the angles. (The arguments are of the
+    order of 1 and, off the wrist singularity, above ``WRIST_SINGULAR_TOL``:
+    ``sqrt`` of the sum of squares neither overflows nor underflows.)
     """
-    r4 = math.hypot(x4, y4)
-    r5 = math.hypot(x5, y5)
+    r4 = math.sqrt(x4 * x4 + y4 * y4)
+    r5 = math.sqrt(x5 * x5 + y5 * y5)
     c4 = x4 / r4 if r4 > 0.0 else 1.0
     s4 = y4 / r4 if r4 > 0.0 else 0.0
     c5 = x5 / r5 if r5 > 0.0 else 1.0
     s5 = y5 / r5 if r5 > 0.0 else 0.0
-    z = tmp[3:6]
-    rotate(params[W_H4 : W_H4 + 3], c4, -s4, y, tmp[0:3])
-    rotate(params[W_H5 : W_H5 + 3], c5, -s5, tmp[0:3], z)
+    h4x, h4y, h4z = _vec(params, W_H4)
+    h5x, h5y, h5z = _vec(params, W_H5)
+    z = turn(h4x, h4y, h4z, c4, -s4, y[0], y[1], y[2])
+    z = turn(h5x, h5y, h5z, c5, -s5, z[0], z[1], z[2])
     return math.atan2(_dot(params, W_Y6, z), _dot(params, W_X6, z))
 
 
 @kernel
-def _within_limits(params: Array, w4: float, out: Array) -> None:
-    """Move the singular wrist's representative ``out[0]`` along its family into the limits.
+def _within_limits(params: Array, w4: float, q6: float) -> tuple[float, float]:
+    """The singular wrist's representative ``(0, q5, q6)`` moved along its family into the limits.
 
     With ``w = ±h4`` (``w4 = ±1``) turning q4 by t turns q6 by ``-t w4``: the
     family is ``(t, q5, q6 - t w4)``. When ``q4 = 0`` puts q6 outside its
     limits, t is chosen to put q6 mid-window, then kept within q4's limits, so
     that a family with members within the limits is not reported out of them.
+
+    Returns:
+        ``(q4, q6)``.
     """
     lo4 = params[W_LIMITS]
     hi4 = params[W_LIMITS + 1]
     lo6 = params[W_LIMITS + 2]
     hi6 = params[W_LIMITS + 3]
-    q6 = out[0, 2]
     inside = lo6 <= q6 <= hi6 or lo6 <= q6 + _TWO_PI <= hi6 or lo6 <= q6 - _TWO_PI <= hi6
     if inside or not (math.isfinite(lo6) and math.isfinite(hi6)):
-        return
+        return 0.0, q6
     sign = 1.0 if w4 > 0.0 else -1.0
     t = sign * wrap(q6 - 0.5 * (lo6 + hi6))
     if math.isfinite(lo4) and math.isfinite(hi4):
         t = min(max(t, lo4), hi4)
-    out[0, 0] = t
-    out[0, 2] = q6 - sign * t
+    return t, q6 - sign * t
 
 
 @kernel
-def _wrist(params: Array, w: Array, y: Array, out: Array, st: Array, tmp: Array) -> bool:
-    """(q4, q5, q6) of no-flip and flip into ``out (2, 3)``; True when singular.
+def _wrist(
+    params: Array, w: tuple[float, float, float], y: tuple[float, float, float], st: Array
+) -> tuple[float, float, float, float, float, float, bool]:
+    """(q4, q5, q6) of no-flip, then of flip, and whether the wrist is singular.
 
     Args:
         params: The solver's parameters.
-        w: ``(3,)`` the target's axis 6 with joints 1-3 turned back.
-        y: ``(3,)`` its ``x6`` likewise.
-        out: ``(2, 3)`` out, NaN rows where the wrist cannot make the rotation.
+        w: The target's axis 6 with joints 1-3 turned back.
+        y: Its ``x6`` likewise.
         st: Arm state; ``ST_NEAR`` is raised near the wrist singularity or fold.
-        tmp: ``(6,)`` scratch.
+
+    Returns:
+        Six angles (rad), NaN where the wrist cannot make the rotation (a
+        singular wrist: the flip, the same family, is NaN), then the flag.
     """
     w4 = _dot(params, W_H4, w)
     wa = _dot(params, W_EA, w)
@@ -177,51 +194,71 @@ def _wrist(params: Array, w: Array, y: Array, out: Array, st: Array, tmp: Array)
         # q4 free: c' = w; q5 turns h6 onto w about h5; q6 absorbs the rest
         cw = w4 * params[W_N56] + wa * params[W_N56 + 1] + wb * params[W_N56 + 2]
         ch = w4 * params[W_H6F] + wa * params[W_H6F + 1] + wb * params[W_H6F + 2] - k56 * k56
-        out[0, 0] = 0.0
-        out[0, 1] = math.atan2(cw, ch)
-        out[0, 2] = _q6(params, 0.0, 1.0, cw, ch, y, tmp)
-        out[1, :] = math.nan
-        _within_limits(params, w4, out)
-        return True
+        q4, q6 = _within_limits(params, w4, _q6(params, 0.0, 1.0, cw, ch, y))
+        return q4, math.atan2(cw, ch), q6, math.nan, math.nan, math.nan, True
     s45 = params[W_S45]
-    inv = 1.0 / (s45 * s45)
-    beta = (k56 - params[W_K45] * w4) * inv
+    beta = (k56 - params[W_K45] * w4) / (s45 * s45)
     off = math.sqrt(off2) / s45  # γ² = off² - β²
     gam0 = clamped_root(off - abs(beta), off + abs(beta), off + abs(beta), 1.0, st)
     ca = beta * s45
-    for j in range(2):
-        cb = gam0 * s45 * (params[W_FLIP] if j == 0 else -params[W_FLIP])
-        # q4 turns c' onto w about h4 (the parts off h4 in the frame ea, eb)
-        y4 = ca * wb - cb * wa
-        x4 = ca * wa + cb * wb
-        # q5 turns h6 onto c' = (w4, ca, cb) about h5
-        cw = w4 * params[W_N56] + ca * params[W_N56 + 1] + cb * params[W_N56 + 2]
-        ch = w4 * params[W_H6F] + ca * params[W_H6F + 1] + cb * params[W_H6F + 2] - k56 * k56
-        out[j, 0] = math.atan2(y4, x4)
-        out[j, 1] = math.atan2(cw, ch)
-        out[j, 2] = _q6(params, y4, x4, cw, ch, y, tmp)
-    return False
+    cb = gam0 * s45 * params[W_FLIP]
+    n4, n5, n6 = _branch(params, w4, wa, wb, ca, cb, y)
+    f4, f5, f6 = _branch(params, w4, wa, wb, ca, -cb, y)
+    return n4, n5, n6, f4, f5, f6, False
+
+
+@inline_kernel
+def _branch(
+    params: Array,
+    w4: float,
+    wa: float,
+    wb: float,
+    ca: float,
+    cb: float,
+    y: tuple[float, float, float],
+) -> tuple[float, float, float]:
+    """(q4, q5, q6) putting ``c' = (w4, ca, cb)`` (frame ``h4, ea, eb``) where it must go.
+
+    q4 turns ``c'`` onto ``w`` about h4 (their parts off h4, in the frame
+    ``ea, eb``); q5 turns h6 onto ``c'`` about h5; q6 absorbs the rest.
+    """
+    y4 = ca * wb - cb * wa
+    x4 = ca * wa + cb * wb
+    k56 = params[W_K56]
+    cw = w4 * params[W_N56] + ca * params[W_N56 + 1] + cb * params[W_N56 + 2]
+    ch = w4 * params[W_H6F] + ca * params[W_H6F + 1] + cb * params[W_H6F + 2] - k56 * k56
+    return math.atan2(y4, x4), math.atan2(cw, ch), _q6(params, y4, x4, cw, ch, y)
 
 
 @kernel
-def _face(params: Array, q: Array, W0: Array, free1: bool, free2: bool, tmp: Array) -> None:
-    """Set a free q2, then a free q1, so that axis 4 turns towards the target's axis 6."""
-    k = np.empty(3)
-    t = np.empty(3)
+def _face(params: Array, Q3: Array, k: int, W0: tuple[float, float, float], st: Array) -> None:
+    """Set a free q2, then a free q1, of slot ``k``: axis 4 turned towards the target's axis 6.
+
+    (Only at a wrist centre on axis 1 or 2: rare, so plain arrays here.)
+    """
+    kv = np.empty(3)  # axis 4 as joints 3, then 2 turn it
+    tmp = np.empty(3)
+    h1 = np.empty(3)
+    h2 = np.empty(3)
+    w0 = np.empty(3)
     for i in range(3):
-        k[i] = params[W_H4 + i]
+        kv[i] = params[W_H4 + i]
+        h1[i] = params[A_H1 + i]
+        h2[i] = params[A_H2 + i]
+        w0[i] = W0[i]
     if params[A_PRISMATIC] == 0.0:
-        rotate(params[A_H3 : A_H3 + 3], math.cos(q[2]), math.sin(q[2]), k, tmp)
+        s3, c3 = sincos(Q3[k, 2])
+        rotate(params[A_H3 : A_H3 + 3], c3, s3, kv, tmp)
         for i in range(3):
-            k[i] = tmp[i]
-    h1 = params[A_H1 : A_H1 + 3]
-    h2 = params[A_H2 : A_H2 + 3]
-    if free2:  # axis 4 after joint 3, turned about axis 2 towards R1ᵀ h6_target
-        rotate(h1, math.cos(q[0]), -math.sin(q[0]), W0, t)
-        q[1] = subproblem1(k, t, h2)
-    rotate(h2, math.cos(q[1]), math.sin(q[1]), k, tmp)
-    if free1:
-        q[0] = subproblem1(tmp, W0, h1)
+            kv[i] = tmp[i]
+    if st[ST_FREE + 1] != 0.0:  # turned about axis 2 towards R1ᵀ h6_target
+        s1, c1 = sincos(Q3[k, 0])
+        rotate(h1, c1, -s1, w0, tmp)
+        Q3[k, 1] = subproblem1(kv, tmp, h2)
+    s2, c2 = sincos(Q3[k, 1])
+    rotate(h2, c2, s2, kv, tmp)
+    if st[ST_FREE] != 0.0:
+        Q3[k, 0] = subproblem1(tmp, w0, h1)
 
 
 @kernel
@@ -248,37 +285,42 @@ def pose(params: Array, T: Array, Q3: Array, st: Array, Q: Array, info: Array) -
         info: ``(INFO_FREE + 6,)`` out (zero on entry): see
             :mod:`kinematica.kernels.ik_check`.
     """
-    work = np.empty(21)  # scratch, one allocation
-    W0 = work[0:3]  # the target's axis 6 and x6
-    Y0 = work[3:6]
-    q = work[6:9]
-    w = work[9:12]
-    y = work[12:15]
-    tmp = work[15:21]
-    for i in range(3):
-        W0[i] = 0.0
-        Y0[i] = 0.0
-        for j in range(3):
-            W0[i] += T[i, j] * params[W_LH + j]
-            Y0[i] += T[i, j] * params[W_LX + j]
-    qw = np.empty((2, 3))
+    W0 = (
+        _dot(params, W_LH, (T[0, 0], T[0, 1], T[0, 2])),
+        _dot(params, W_LH, (T[1, 0], T[1, 1], T[1, 2])),
+        _dot(params, W_LH, (T[2, 0], T[2, 1], T[2, 2])),
+    )  # the target's axis 6
+    Y0 = (
+        _dot(params, W_LX, (T[0, 0], T[0, 1], T[0, 2])),
+        _dot(params, W_LX, (T[1, 0], T[1, 1], T[1, 2])),
+        _dot(params, W_LX, (T[2, 0], T[2, 1], T[2, 2])),
+    )  # and its x6
     real = False
     wrist_singular = False
-    free1 = st[ST_FREE] != 0.0
-    free2 = st[ST_FREE + 1] != 0.0
+    free = st[ST_FREE] != 0.0 or st[ST_FREE + 1] != 0.0
     for k in range(4):
-        for i in range(3):
-            q[i] = Q3[k, i]
-        if k < 2 and (free1 or free2) and not math.isnan(q[0]):
-            _face(params, q, W0, free1, free2, tmp)
-        _undo(params, q, W0, Y0, w, y, tmp)
-        wrist_singular |= _wrist(params, w, y, qw, st, tmp) and not math.isnan(q[0])
+        if math.isnan(Q3[k, 0]):  # no placement: both wrist rows NaN
+            for r in range(2 * k, 2 * k + 2):
+                for i in range(6):
+                    Q[r, i] = math.nan
+            continue
+        if k < 2 and free:
+            _face(params, Q3, k, W0, st)
+        wx, wy, wz, yx, yy, yz = _undo(params, Q3, k, W0, Y0)
+        a4, a5, a6, b4, b5, b6, singular = _wrist(params, (wx, wy, wz), (yx, yy, yz), st)
+        wrist_singular |= singular
         for j in range(2):
-            row = Q[2 * k + j]
-            ok = not math.isnan(q[0] + qw[j, 0] + qw[j, 1] + qw[j, 2])
+            r = 2 * k + j
+            q4 = a4 if j == 0 else b4
+            q5 = a5 if j == 0 else b5
+            q6 = a6 if j == 0 else b6
+            ok = not math.isnan(q4 + q5 + q6)
             real |= ok
-            for i in range(6):
-                row[i] = (q[i] if i < 3 else qw[j, i - 3]) if ok else math.nan
+            for i in range(3):
+                Q[r, i] = Q3[k, i] if ok else math.nan
+            Q[r, 3] = q4 if ok else math.nan
+            Q[r, 4] = q5 if ok else math.nan
+            Q[r, 5] = q6 if ok else math.nan
     for i in range(3):
         info[INFO_FREE + i] = st[ST_FREE + i]
     if wrist_singular:
