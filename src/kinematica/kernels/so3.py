@@ -41,9 +41,11 @@ def wrap(v: float) -> float:
         w = v - _TWO_PI
     elif -3.0 * math.pi < v <= -math.pi:
         w = v + _TWO_PI
-    else:
+    elif math.isfinite(v):
         w = (v + math.pi) % _TWO_PI - math.pi  # in [-π, π)
-    return math.pi if w <= -math.pi else w  # NaN (from NaN or inf) stays NaN
+    else:  # NaN (a branch without a solution) or inf: no fmod call
+        return math.nan
+    return math.pi if w <= -math.pi else w
 
 
 @kernel

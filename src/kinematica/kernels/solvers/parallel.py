@@ -192,7 +192,7 @@ def _triangle(params: Array, tx: Array, out: Array) -> int:
     arg_b = params[P_ARM + 3]
     span = a + b
     d = abs(a - b)
-    n = math.hypot(tx[0], tx[1])
+    n = math.sqrt(tx[0] * tx[0] + tx[1] * tx[1])  # within reach (the gap check): no overflow
     if n <= CONTINUUM_TOL * span and d <= CONTINUUM_TOL * span:
         out[0, 0] = params[P_Q2REP]
         out[0, 1] = wrap(math.pi + arg_a - arg_b)
@@ -350,12 +350,13 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
             :mod:`kinematica.kernels.ik_check`).
     """
     W, RG, tG, pq, kinds, elbows = _scratch()
-    _solve(params, T, Q, info, W, RG, tG, pq, kinds, elbows)
+    _solve(params, params[: 3 * NV].reshape((NV, 3)), T, Q, info, W, RG, tG, pq, kinds, elbows)
 
 
 @kernel
 def _solve(
     params: Array,
+    V: Array,
     T: Array,
     Q: Array,
     info: Array,
@@ -366,7 +367,10 @@ def _solve(
     kinds: IntArray,
     elbows: Array,
 ) -> None:
-    """:func:`solve` with its work arrays given (:func:`_scratch`): a batch reuses them."""
+    """:func:`solve` with the vectors ``V (NV, 3)`` of ``params`` and its work arrays given.
+
+    (:func:`_scratch`: a batch makes them once per block.)
+    """
     Q[:, :] = np.nan
     info[INFO_GAP] = np.nan
     ok = True
@@ -375,7 +379,6 @@ def _solve(
             ok &= np.isfinite(T[i, j])
     if not ok:
         return
-    V = params[: 3 * NV].reshape((NV, 3))
     _goal(V, T, RG, tG)
     size = params[P_SCALE]
     # |G(a6) - p1s| beyond the reach bound proves the target out of reach
@@ -398,7 +401,7 @@ def _solve(
     miss = (
         abs(params[P_EQ2 + 2] - dot(V[V_KPAR], w6))
         - math.sqrt(dot(V[V_KPERP], w6) ** 2 + dot(V[V_HK], w6) ** 2)
-        - math.hypot(params[P_EQ2], params[P_EQ2 + 1])
+        - math.sqrt(params[P_EQ2] ** 2 + params[P_EQ2 + 1] ** 2)
     )
     gap = max(gap, miss / params[P_LIP], 0.0)
     count = 0
@@ -421,7 +424,8 @@ def _solve(
 def solve_batch(params: Array, T: Array, Q: Array, info: Array) -> None:
     """:func:`solve` for targets ``T (N, 4, 4)`` in parallel: ``Q (N, 8, 6)``, ``info (N, k)``."""
     N = T.shape[0]
+    V = params[: 3 * NV].reshape((NV, 3))
     for blk in numba.prange((N + SOLVE_BLOCK - 1) // SOLVE_BLOCK):
         W, RG, tG, pq, kinds, elbows = _scratch()  # once per block
         for i in range(blk * SOLVE_BLOCK, min(N, (blk + 1) * SOLVE_BLOCK)):
-            _solve(params, T[i], Q[i], info[i], W, RG, tG, pq, kinds, elbows)
+            _solve(params, V, T[i], Q[i], info[i], W, RG, tG, pq, kinds, elbows)

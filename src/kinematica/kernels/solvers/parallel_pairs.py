@@ -76,7 +76,7 @@ def _wrist(params: Array, d: float, m2: float, out: Array) -> int:
     """
     D1 = params[P_EQ1]
     E1 = params[P_EQ1 + 1]
-    rho = math.hypot(D1, E1)
+    rho = math.sqrt(D1 * D1 + E1 * E1)  # lengths of the arm: no overflow (nor below)
     omd = m2 / (1.0 + d) if d > 0.0 else 1.0 - d
     opd = m2 / (1.0 - d) if d < 0.0 else 1.0 + d
     lo = (omd - params[P_WLO]) / rho  # 1 - cos δ
@@ -91,7 +91,7 @@ def _wrist(params: Array, d: float, m2: float, out: Array) -> int:
     hi = max(hi, 0.0)
     cd = 0.5 * (hi - lo)
     sd = math.sqrt(lo * hi)
-    norm = math.hypot(cd, sd)
+    norm = math.sqrt(cd * cd + sd * sd)  # both within [0, 2]
     cf = D1 / (rho * norm)
     sf = E1 / (rho * norm)
     for i in range(2):
@@ -139,7 +139,7 @@ def _first(a: float, b: float, rhs: float, size: float, rep: float, out: Array, 
         one where it falls; see :func:`_roots`), ``PAIR_FREE_Q1`` (every q1:
         ``out`` holds ``rep``, then NaN), ``PAIR_NONE``.
     """
-    if math.hypot(a, b) <= CONTINUUM_TOL * size:
+    if math.sqrt(a * a + b * b) <= CONTINUUM_TOL * size:  # bounded by the reach check
         if abs(rhs) <= CONTINUUM_TOL * size:
             out[0] = rep
             out[1] = np.nan
