@@ -87,18 +87,20 @@ def _newton(params: Array, V: Array, x6: Array, L: Array, q: Array, k1: Array) -
     D2 = params[P_EQ2]
     E2 = params[P_EQ2 + 1]
     size = params[P_SCALE]
-    rv = np.empty(3)
     res = math.inf
     last = math.inf
     for _ in range(NEWTON_STEPS):
         s1, c1 = sincos(q[0])
         s5, c5 = sincos(q[1])
         axis2_now(V, c1, s1, k1)
-        for r in range(3):
-            rv[r] = V[V_H6PAR, r] + c5 * V[V_H6PERP, r] + s5 * V[V_H5XH6, r]  # R5 h6
+        r0 = V[V_H6PAR, 0] + c5 * V[V_H6PERP, 0] + s5 * V[V_H5XH6, 0]  # R5 h6
+        r1 = V[V_H6PAR, 1] + c5 * V[V_H6PERP, 1] + s5 * V[V_H5XH6, 1]
+        r2 = V[V_H6PAR, 2] + c5 * V[V_H6PERP, 2] + s5 * V[V_H5XH6, 2]
+        k0, ky, kz = V[V_K, 0], V[V_K, 1], V[V_K, 2]
+        e = k0 * r0 + ky * r1 + kz * r2
+        n2 = (ky * r2 - kz * r1) ** 2 + (kz * r0 - k0 * r2) ** 2 + (k0 * r1 - ky * r0) ** 2
         d = dot(k1, x6)
-        e = dot(V[V_K], rv)
-        f1 = _unit_gap(d, cross2(k1, x6), e, cross2(V[V_K], rv))
+        f1 = _unit_gap(d, cross2(k1, x6), e, n2)
         f2 = L[1, 0] * c1 + L[1, 1] * s1 + L[1, 2] - (D2 * c5 + E2 * s5 + params[P_EQ2 + 2])
         res = abs(f1) + abs(f2) / size
         j11 = L[0, 1] * c1 - L[0, 0] * s1
@@ -153,21 +155,18 @@ def pairs_general(
         return
     phi0 = far - math.pi
     sp, cp = sincos(phi0)
-    u0 = np.empty(2)
-    u1 = np.empty(2)
-    u2 = np.empty(2)
-    for i in range(2):
-        r0 = P[i, 0] * cp + P[i, 1] * sp
-        r1 = P[i, 1] * cp - P[i, 0] * sp
-        u0[i] = r0 + P[i, 2]
-        u1[i] = 2.0 * r1
-        u2[i] = P[i, 2] - r0
+    # rows i = 0, 1 of P x at q1 = φ0 + 2 atan t, times (1 + t²): u0 + u1 t + u2 t²
+    a0 = P[0, 0] * cp + P[0, 1] * sp
+    b0 = P[1, 0] * cp + P[1, 1] * sp
+    u00, u01 = a0 + P[0, 2], b0 + P[1, 2]
+    u10, u11 = 2.0 * (P[0, 1] * cp - P[0, 0] * sp), 2.0 * (P[1, 1] * cp - P[1, 0] * sp)
+    u20, u21 = P[0, 2] - a0, P[1, 2] - b0
     coef = np.empty(5)
-    coef[0] = u2[0] * u2[0] + u2[1] * u2[1] - 1.0
-    coef[1] = 2.0 * (u1[0] * u2[0] + u1[1] * u2[1])
-    coef[2] = u1[0] * u1[0] + u1[1] * u1[1] + 2.0 * (u0[0] * u2[0] + u0[1] * u2[1]) - 2.0
-    coef[3] = 2.0 * (u0[0] * u1[0] + u0[1] * u1[1])
-    coef[4] = u0[0] * u0[0] + u0[1] * u0[1] - 1.0
+    coef[0] = u20 * u20 + u21 * u21 - 1.0
+    coef[1] = 2.0 * (u10 * u20 + u11 * u21)
+    coef[2] = u10 * u10 + u11 * u11 + 2.0 * (u00 * u20 + u01 * u21) - 2.0
+    coef[3] = 2.0 * (u00 * u10 + u01 * u11)
+    coef[4] = u00 * u00 + u01 * u01 - 1.0
     roots = np.empty(4, dtype=np.complex128)
     quartic_roots(coef, roots)
     seeds = np.empty((4, 2))
