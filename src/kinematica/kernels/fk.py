@@ -112,14 +112,18 @@ def block_trig(links: Array, Q: Array, b0: int, b1: int, C: Array, S: Array) -> 
             v = 0.0 if slide else Q[b0 + k, j] + th
             C[j, k] = v
             biggest = max(biggest, abs(v))
-    flat_c = C.reshape(n * m)
-    flat_s = S.reshape(n * m)
-    if biggest <= REDUCTION_LIMIT:
+    if m == 1:  # one configuration: nothing to vectorise, no reshape to pay for
+        for j in range(n):
+            S[j, 0], C[j, 0] = sincos(C[j, 0])
+    elif biggest <= REDUCTION_LIMIT:
+        flat_c = C.reshape(n * m)
+        flat_s = S.reshape(n * m)
         for t in range(n * m):  # vectorised: no calls, no branches
             flat_s[t], flat_c[t] = sincos_reduced(flat_c[t])
-    else:  # angles beyond the reduction's range (or NaN): one at a time
-        for t in range(n * m):
-            flat_s[t], flat_c[t] = sincos(flat_c[t])
+    else:  # angles beyond the reduction's range: one at a time
+        for j in range(n):
+            for k in range(m):
+                S[j, k], C[j, k] = sincos(C[j, k])
     for j in range(n):
         if links[j, LINK_PRISMATIC] != 0.0:
             for k in range(m):
