@@ -66,3 +66,34 @@ def test_batch_shape_is_kept() -> None:
     for (i, j), k in zip(np.ndindex(2, 3), range(6), strict=True):
         np.testing.assert_array_equal(many[i, j].solutions, flat[k].solutions)
         assert many.message[i, j] == flat.message[k]
+
+
+def _ur5_a5() -> km.Robot:
+    """The UR5 with a5 = 5 cm: axes 5 and 6 apart (the quartic)."""
+    ur5 = km.load("ur5")
+    rows = list(ur5.links)
+    rows[4] = km.Revolute(d=rows[4].d, a=0.05, alpha=rows[4].alpha, offset=rows[4].offset)
+    return km.Robot.from_dh(rows, base=ur5.base, tool=ur5.tool).with_limits(ur5.qlim)
+
+
+@pytest.mark.parametrize("arm", ["puma560", "ur5", "stanford", "ur5-a5", "puma560-position"])
+def test_batch_across_blocks_agrees_with_single(arm: str) -> None:
+    # Batches reuse work arrays within blocks of 64 targets: 200 targets of
+    # every kind, shuffled, so that blocks hold reachable targets after
+    # unreachable, singular and malformed ones.
+    robot = _ur5_a5() if arm == "ur5-a5" else km.load(arm.split("-")[0])
+    rng = np.random.default_rng(11)
+    T = np.concatenate([targets_of(robot, rng) for _ in range(25)])
+    T = T[rng.permutation(len(T))]
+    if arm.endswith("position"):
+        T = T[:, :3, 3]
+    many = robot.ik(T)
+    for i in range(len(T)):
+        if many.status[i] == "invalid":
+            continue
+        one = robot.ik(T[i])
+        assert one.status == many.status[i]
+        assert one.branches == many[i].branches
+        np.testing.assert_array_equal(one.solutions, many[i].solutions)
+        np.testing.assert_array_equal(one.out_of_limits, many[i].out_of_limits)
+        assert one.message == many.message[i]

@@ -100,8 +100,8 @@ def block_trig(links: Array, Q: Array, b0: int, b1: int, C: Array, S: Array) -> 
             ``b0 + k`` (the constant θ of a prismatic joint).
         S: ``(n, b1 - b0)`` C-contiguous, out: the sines.
     """
-    # Indices, never views such as C[j]: a view costs two atomic reference
-    # count updates, which took half the time of a single call.
+    # Indices, never row views such as C[j] in the loops: a view costs two
+    # atomic reference count updates, which took half the time of a single call.
     n = links.shape[0]
     m = b1 - b0
     biggest = 0.0
@@ -111,7 +111,8 @@ def block_trig(links: Array, Q: Array, b0: int, b1: int, C: Array, S: Array) -> 
         for k in range(m):
             v = 0.0 if slide else Q[b0 + k, j] + th
             C[j, k] = v
-            biggest = max(biggest, abs(v))
+            if abs(v) > biggest:  # NaN (a branch without a solution) is left to
+                biggest = abs(v)  # the polynomial, which keeps it NaN
     if m == 1:  # one configuration: nothing to vectorise, no reshape to pay for
         for j in range(n):
             S[j, 0], C[j, 0] = sincos(C[j, 0])
@@ -120,7 +121,7 @@ def block_trig(links: Array, Q: Array, b0: int, b1: int, C: Array, S: Array) -> 
         flat_s = S.reshape(n * m)
         for t in range(n * m):  # vectorised: no calls, no branches
             flat_s[t], flat_c[t] = sincos_reduced(flat_c[t])
-    else:  # angles beyond the reduction's range: one at a time
+    else:  # angles beyond the reduction's range (or inf): one at a time
         for j in range(n):
             for k in range(m):
                 S[j, k], C[j, k] = sincos(C[j, k])

@@ -59,6 +59,7 @@ __all__ = [
     "STATUS_OUT_OF_LIMITS",
     "STATUS_SINGULAR",
     "STATUS_UNREACHABLE",
+    "TARGET_BLOCK",
     "check_batch",
     "check_target",
     "info_size",
@@ -99,8 +100,9 @@ STATUS_OK, STATUS_SINGULAR, STATUS_OUT_OF_LIMITS = 0, 1, 2
 STATUS_UNREACHABLE, STATUS_NOT_FOUND, STATUS_INVALID = 3, 4, 5
 
 _TWO_PI = 2.0 * math.pi
-#: Targets per block of a batch: each block makes its work arrays once.
-CHECK_BLOCK = 64
+#: Targets per block of a batch (the check's, and the solvers' that make work
+#: arrays): each block makes its work arrays once.
+TARGET_BLOCK = 64
 
 
 def info_size(n: int) -> int:
@@ -441,10 +443,10 @@ def check_batch(
     """
     N = T.shape[0]
     m, n = Q.shape[1], Q.shape[2]
-    nblocks = (N + CHECK_BLOCK - 1) // CHECK_BLOCK
+    nblocks = (N + TARGET_BLOCK - 1) // TARGET_BLOCK
     for blk in numba.prange(nblocks):  # work arrays made once per block, not per target
         C, S, C1, S1, pose, e, no_frames, no_axes, qs, res, state, key = _scratch(m, n)
-        for i in range(blk * CHECK_BLOCK, min(N, (blk + 1) * CHECK_BLOCK)):
+        for i in range(blk * TARGET_BLOCK, min(N, (blk + 1) * TARGET_BLOCK)):
             if meta[i, META_STATUS] == STATUS_INVALID:  # no numbers for a malformed target
                 out_q[i, :, :] = np.nan
                 out_slot[i, :] = -1

@@ -17,19 +17,16 @@ import numba
 import numpy as np
 
 from kinematica.kernels._numba import Array, batch_kernel, kernel
+from kinematica.kernels.ik_check import TARGET_BLOCK
 from kinematica.kernels.solvers.arm_base import A_SIZE, ST_SIZE
 from kinematica.kernels.solvers.arm_point import place
 from kinematica.kernels.solvers.arm_position import position
 from kinematica.kernels.solvers.spherical_wrist import pose, wrist_centre
 
-__all__ = ["MODE_POSE", "MODE_POSITION", "P_MODE", "SOLVE_BLOCK", "solve", "solve_batch"]
+__all__ = ["MODE_POSE", "MODE_POSITION", "P_MODE", "solve", "solve_batch"]
 
 P_MODE = A_SIZE  # which solver: MODE_POSE or MODE_POSITION
 MODE_POSE, MODE_POSITION = 0.0, 1.0
-
-
-#: Targets per block of a batch: each block makes its work arrays once.
-SOLVE_BLOCK = 64
 
 
 @kernel
@@ -62,7 +59,7 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
 def solve_batch(params: Array, T: Array, Q: Array, info: Array) -> None:
     """:func:`solve` for targets ``T (N, 4, 4)`` in parallel (``Q``, ``info``: an ``N`` axis)."""
     N = T.shape[0]
-    for blk in numba.prange((N + SOLVE_BLOCK - 1) // SOLVE_BLOCK):
+    for blk in numba.prange((N + TARGET_BLOCK - 1) // TARGET_BLOCK):
         ct, Q3, st = np.empty(3), np.empty((4, 3)), np.empty(ST_SIZE)  # once per block
-        for i in range(blk * SOLVE_BLOCK, min(N, (blk + 1) * SOLVE_BLOCK)):
+        for i in range(blk * TARGET_BLOCK, min(N, (blk + 1) * TARGET_BLOCK)):
             _solve(params, T[i], Q[i], info[i], ct, Q3, st)

@@ -34,7 +34,13 @@ import numpy as np
 
 from kinematica.kernels._numba import Array, IntArray, batch_kernel, kernel
 from kinematica.kernels.geometry import TRIG_TOL, rotate, subproblem1, trig_linear
-from kinematica.kernels.ik_check import INFO_FREE, INFO_GAP, INFO_NEAR, INFO_SINGULAR
+from kinematica.kernels.ik_check import (
+    INFO_FREE,
+    INFO_GAP,
+    INFO_NEAR,
+    INFO_SINGULAR,
+    TARGET_BLOCK,
+)
 from kinematica.kernels.so3 import wrap
 from kinematica.kernels.solvers.parallel_layout import (
     CONTINUUM_TOL,
@@ -75,7 +81,7 @@ from kinematica.kernels.solvers.parallel_layout import (
 from kinematica.kernels.solvers.parallel_pairs import pairs
 from kinematica.kernels.trig import sincos
 
-__all__ = ["SLOTS", "SOLVE_BLOCK", "solve", "solve_batch"]
+__all__ = ["SLOTS", "solve", "solve_batch"]
 
 #: Candidate slots: four pairs (q1, q5) times two elbows.
 SLOTS = 8
@@ -321,10 +327,6 @@ def _finish(
     return count
 
 
-#: Targets per block of a batch: each block makes its work arrays once.
-SOLVE_BLOCK = 64
-
-
 @kernel
 def _scratch() -> tuple[Array, Array, Array, Array, IntArray, Array]:
     """The work arrays of :func:`_solve`: ``W``, ``RG``, ``tG``, pairs, their kinds, elbows."""
@@ -425,7 +427,7 @@ def solve_batch(params: Array, T: Array, Q: Array, info: Array) -> None:
     """:func:`solve` for targets ``T (N, 4, 4)`` in parallel: ``Q (N, 8, 6)``, ``info (N, k)``."""
     N = T.shape[0]
     V = params[: 3 * NV].reshape((NV, 3))
-    for blk in numba.prange((N + SOLVE_BLOCK - 1) // SOLVE_BLOCK):
+    for blk in numba.prange((N + TARGET_BLOCK - 1) // TARGET_BLOCK):
         W, RG, tG, pq, kinds, elbows = _scratch()  # once per block
-        for i in range(blk * SOLVE_BLOCK, min(N, (blk + 1) * SOLVE_BLOCK)):
+        for i in range(blk * TARGET_BLOCK, min(N, (blk + 1) * TARGET_BLOCK)):
             _solve(params, V, T[i], Q[i], info[i], W, RG, tG, pq, kinds, elbows)
