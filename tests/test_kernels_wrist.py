@@ -12,6 +12,7 @@ import math
 import numpy as np
 import pytest
 
+from kinematica import load
 from kinematica.dh import Revolute
 from kinematica.ik.analytic.arm_point import (
     GEOMETRY_TOL,
@@ -20,6 +21,8 @@ from kinematica.ik.analytic.arm_point import (
     arm_geometry,
     places_point,
 )
+from kinematica.ik.solve import closed_form
+from kinematica.kernels.ik_check import info_size
 from kinematica.kernels.solvers import arm_quartic
 from kinematica.kernels.solvers.arm_base import (
     DOUBLE_ROOT_TOL,
@@ -35,6 +38,7 @@ from kinematica.kernels.solvers.arm_quartic import (
     slide_roots,
     trig_roots,
 )
+from kinematica.kernels.solvers.spherical_wrist import W_TWIN
 from kinematica.robot import Robot
 
 PI = math.pi
@@ -188,3 +192,61 @@ def test_rank_tol(factor: float, usable: bool) -> None:
     robot = arm_with_point_near_axis_3(eps)
     assert rank_ratio(robot) == pytest.approx(factor * RANK_TOL, rel=0.05)
     assert places_point(robot.chain, np.zeros(3)) == usable
+
+
+# --- the flip as the no-flip's twin (q4 + π, -q5, q6 + π) -----------------------
+
+#: TWIN_TOL's documented value (kernels/solvers/spherical_wrist.py), as a literal.
+TWIN_TOL_VALUE = 1e-13
+
+
+def puma_with_twisted_wrist(eps: float) -> Robot:
+    """The PUMA 560 with α4 off its right angle by ``eps``: ``h4ᵀh5 ≈ eps`` at q = 0."""
+    puma = load("puma560")
+    rows = list(puma.links)
+    r = rows[3]
+    rows[3] = Revolute(d=r.d, a=r.a, alpha=r.alpha + eps, offset=r.offset)
+    return Robot.from_dh(rows, base=puma.base, tool=puma.tool)
+
+
+def twin_flag(robot: Robot) -> float:
+    closed = closed_form(robot.chain, "pose")
+    assert closed is not None and closed.name == "spherical-wrist"
+    return float(closed.params[W_TWIN])
+
+
+@pytest.mark.parametrize(("factor", "twin"), [(0.1, 1.0), (10.0, 0.0)])
+def test_twin_tol_decides_the_flip_by_identity(factor: float, twin: float) -> None:
+    robot = puma_with_twisted_wrist(factor * TWIN_TOL_VALUE)
+    assert twin_flag(robot) == twin
+    # either way every solution is exact by FK (the identity errs by ~eps)
+    rng = np.random.default_rng(3)
+    T = robot.fk(rng.uniform(-2.0, 2.0, (50, 6)))
+    res = robot.ik(T, respect_limits=False)
+    assert np.all(res.count == 8)
+    for i in range(len(T)):
+        F = robot.fk(res[i].solutions)
+        assert np.max(np.abs(F - T[i])) < 1e-12
+
+
+def test_the_twin_flip_is_the_solved_flip() -> None:
+    # The same kernel with the identity switched off solves the flip's own
+    # angles: both give the same eight candidates (modulo 2π), to round-off.
+    for name in ("puma560", "irb120", "kr6", "stanford"):
+        robot = load(name)
+        closed = closed_form(robot.chain, "pose")
+        assert closed is not None and closed.params[W_TWIN] == 1.0
+        solved = closed.params.copy()
+        solved[W_TWIN] = 0.0
+        rng = np.random.default_rng(5)
+        lo = np.where(np.isfinite(robot.qlim[:, 0]), robot.qlim[:, 0], -1.0)
+        hi = np.where(np.isfinite(robot.qlim[:, 1]), robot.qlim[:, 1], 1.0)
+        T = robot.fk(rng.uniform(lo, hi, (200, 6)))
+        Q1, Q2 = np.empty((200, 8, 6)), np.empty((200, 8, 6))
+        i1, i2 = np.zeros((200, info_size(6))), np.zeros((200, info_size(6)))
+        closed.solve_batch(closed.params, T, Q1, i1)
+        closed.solve_batch(solved, T, Q2, i2)
+        assert np.array_equal(np.isnan(Q1), np.isnan(Q2))
+        d = np.abs(np.remainder(np.nan_to_num(Q1 - Q2) + PI, 2 * PI) - PI)
+        assert d.max() < 1e-9, name
+        np.testing.assert_array_equal(i1, i2)

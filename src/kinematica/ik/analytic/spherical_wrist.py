@@ -78,6 +78,8 @@ def wrist_params(
     params[wrist_kernel.W_S45] = s45
     params[wrist_kernel.W_K56] = k56
     params[wrist_kernel.W_FLIP] = math.copysign(1.0, home if abs(home) > GEOMETRY_TOL else bend)
+    twin = max(abs(k45), abs(k56), float(np.linalg.norm(np.cross(h4, h6))))
+    params[wrist_kernel.W_TWIN] = 1.0 if twin <= wrist_kernel.TWIN_TOL else 0.0
     return True
 
 

@@ -20,6 +20,10 @@ about wrist axes meeting at any angles:
   last, it absorbs the round-off of q4 and q5 (near the wrist singularity q4
   is ill-determined, their combination is not).
 
+When ``h5 ⟂ h4`` and ``h6 ∥ h4`` at q = 0 (the usual wrist, within
+``TWIN_TOL``), ``R(h4, π) R(h5, -q5) R(h4, π) = R(h5, q5)`` makes the flip
+``(q4 + π, -q5, q6 + π)``: no second set of angles to solve for.
+
 "No-flip" bends the wrist the way it is bent at q = 0 (or, when q = 0 is
 itself singular, the way q5 > 0 bends it from there): on the PUMA, sin q5 > 0.
 Slots: ``4 position × 2 wrist``, slot ``2 k + w``.
@@ -60,8 +64,13 @@ from kinematica.kernels.solvers.arm_base import (
 )
 from kinematica.kernels.trig import sincos
 
-__all__ = ["WRIST_SINGULAR_TOL", "W_SIZE", "pose", "wrist_centre"]
+__all__ = ["TWIN_TOL", "WRIST_SINGULAR_TOL", "W_SIZE", "W_TWIN", "pose", "wrist_centre"]
 
+#: The wrist's flip is the no-flip's twin ``(q4 + π, -q5, q6 + π)`` when
+#: ``h4ᵀh5``, ``h5ᵀh6`` and ``|h4 × h6|`` at q = 0 are all below this: the
+#: identity then holds to about this (far below 1e-10), where the flip's own
+#: solution would cost three more ``atan2``.
+TWIN_TOL = 1e-13
 #: The wrist is singular (axes 4 and 6 aligned) when the sine of the angle
 #: between ``h4`` and ``w`` is below this: the representative ``q4 = 0`` then
 #: reproduces the rotation to about twice this (far below 1e-10 rad).
@@ -87,7 +96,8 @@ W_N56 = A_SIZE + 34  # (3,) h5 × h6 in the frame (h4, ea, eb)
 W_H6F = A_SIZE + 37  # (3,) h6 in that frame
 W_FLIP = A_SIZE + 40  # sign of γ on the no-flip branch
 W_LIMITS = A_SIZE + 41  # (4,) limits of q4, then of q6 (rad): where representatives go
-W_SIZE = A_SIZE + 45
+W_TWIN = A_SIZE + 45  # 1.0: h5 ⟂ h4 and h6 ∥ h4 at q = 0, flip = (q4 + π, -q5, q6 + π)
+W_SIZE = A_SIZE + 46
 
 
 @inline_kernel
@@ -203,6 +213,8 @@ def _wrist(
     ca = beta * s45
     cb = gam0 * s45 * params[W_FLIP]
     n4, n5, n6 = _branch(params, w4, wa, wb, ca, cb, y)
+    if params[W_TWIN] != 0.0:  # R(h4, π) R(h5, -q5) R(h4, π) = R(h5, q5): the flip for free
+        return n4, n5, n6, wrap(n4 + math.pi), -n5, wrap(n6 + math.pi), False
     f4, f5, f6 = _branch(params, w4, wa, wb, ca, -cb, y)
     return n4, n5, n6, f4, f5, f6, False
 
