@@ -113,15 +113,13 @@ def block_trig(links: Array, Q: Array, b0: int, b1: int, C: Array, S: Array) -> 
             C[j, k] = v
             if abs(v) > biggest:  # NaN (a branch without a solution) is left to
                 biggest = abs(v)  # the polynomial, which keeps it NaN
-    if m == 1:  # one configuration: nothing to vectorise, no reshape to pay for
-        for j in range(n):
-            S[j, 0], C[j, 0] = sincos(C[j, 0])
-    elif biggest <= REDUCTION_LIMIT:
+    if m > 1 and biggest <= REDUCTION_LIMIT:
         flat_c = C.reshape(n * m)
         flat_s = S.reshape(n * m)
         for t in range(n * m):  # vectorised: no calls, no branches
             flat_s[t], flat_c[t] = sincos_reduced(flat_c[t])
-    else:  # angles beyond the reduction's range (or inf): one at a time
+    else:  # one configuration (nothing to vectorise, no reshape to pay for),
+        # or angles beyond the reduction's range (or inf): one at a time
         for j in range(n):
             for k in range(m):
                 S[j, k], C[j, k] = sincos(C[j, k])
