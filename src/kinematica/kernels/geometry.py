@@ -12,7 +12,20 @@ import math
 
 from kinematica.kernels._numba import Array, inline_kernel, kernel
 
-__all__ = ["TRIG_TOL", "rotate", "subproblem1", "trig_linear", "turn"]
+__all__ = [
+    "TRIG_TOL",
+    "Vec3",
+    "add3",
+    "rot",
+    "rotate",
+    "sub3",
+    "subproblem1",
+    "trig_linear",
+    "turn",
+]
+
+#: A 3-vector held as three scalars (a kernel keeps them in registers).
+Vec3 = tuple[float, float, float]
 
 #: ``a cos θ + b sin θ = c`` with ``|c|`` above ``hypot(a, b)`` by at most this
 #: fraction is taken as touching (one double root) rather than unreachable: a
@@ -38,6 +51,24 @@ def turn(
     )
 
 
+@inline_kernel
+def rot(k: Vec3, c: float, s: float, v: Vec3) -> Vec3:
+    """``R(k, θ) v`` (:func:`turn`) for a unit axis ``k``, ``c = cos θ``, ``s = sin θ``."""
+    return turn(k[0], k[1], k[2], c, s, v[0], v[1], v[2])
+
+
+@inline_kernel
+def add3(u: Vec3, v: Vec3) -> Vec3:
+    """``u + v``."""
+    return u[0] + v[0], u[1] + v[1], u[2] + v[2]
+
+
+@inline_kernel
+def sub3(u: Vec3, v: Vec3) -> Vec3:
+    """``u - v``."""
+    return u[0] - v[0], u[1] - v[1], u[2] - v[2]
+
+
 @kernel
 def rotate(k: Array, c: float, s: float, v: Array, out: Array) -> None:
     """``out = R(k, θ) v`` (:func:`turn`) for ``k (3,)``, ``v (3,)``, ``out (3,)``."""
@@ -45,8 +76,10 @@ def rotate(k: Array, c: float, s: float, v: Array, out: Array) -> None:
 
 
 @kernel
-def subproblem1(p1: Array, p2: Array, k: Array) -> float:
+def subproblem1(p1: Array | Vec3, p2: Array | Vec3, k: Array | Vec3) -> float:
     """SP1: the angle ``θ`` with ``R(k, θ) p1 = p2`` (closest when not exact).
+
+    The vectors are ``(3,)`` arrays or :data:`Vec3` tuples.
 
     If ``p1`` or ``p2`` lies on the axis every angle is as good and 0 comes
     back (``atan2(0, 0)``). Both vectors are projected across ``k`` first:

@@ -32,8 +32,23 @@ import math
 import numba
 import numpy as np
 
-from kinematica.kernels._numba import Array, IntArray, batch_kernel, kernel
-from kinematica.kernels.geometry import TRIG_TOL, rotate, subproblem1, trig_linear
+from kinematica.kernels._numba import (
+    Array,
+    ComplexArray,
+    IntArray,
+    batch_kernel,
+    inline_kernel,
+    kernel,
+)
+from kinematica.kernels.geometry import (
+    TRIG_TOL,
+    Vec3,
+    add3,
+    rot,
+    sub3,
+    subproblem1,
+    trig_linear,
+)
 from kinematica.kernels.ik_check import (
     INFO_FREE,
     INFO_GAP,
@@ -77,6 +92,7 @@ from kinematica.kernels.solvers.parallel_layout import (
     V_TM,
     cross2,
     dot,
+    row,
 )
 from kinematica.kernels.solvers.parallel_pairs import pairs
 from kinematica.kernels.trig import sincos
@@ -86,8 +102,6 @@ __all__ = ["SLOTS", "solve", "solve_batch"]
 #: Candidate slots: four pairs (q1, q5) times two elbows.
 SLOTS = 8
 
-# Rows of the scratch array of a target.
-_K1, _A, _B, _Y, _V, _U, _Z, _G, _X6, _W6, _Z0, _Z1, _Z2 = range(13)
 # What the triangle reports.
 _FOLD, _NEAR = 1, 2
 
@@ -104,71 +118,58 @@ def _goal(V: Array, T: Array, RG: Array, tG: Array) -> None:
         tG[i] = T[i, 3] - (RG[i, 0] * V[V_TM, 0] + RG[i, 1] * V[V_TM, 1] + RG[i, 2] * V[V_TM, 2])
 
 
-@kernel
-def _apply(R: Array, v: Array, out: Array) -> None:
-    """``out = R v`` for ``R (3, 3)``."""
-    for i in range(3):
-        out[i] = R[i, 0] * v[0] + R[i, 1] * v[1] + R[i, 2] * v[2]
+@inline_kernel
+def _apply(R: Array, v: Vec3) -> Vec3:
+    """``R v`` for ``R (3, 3)``."""
+    return (
+        R[0, 0] * v[0] + R[0, 1] * v[1] + R[0, 2] * v[2],
+        R[1, 0] * v[0] + R[1, 1] * v[1] + R[1, 2] * v[2],
+        R[2, 0] * v[0] + R[2, 1] * v[1] + R[2, 2] * v[2],
+    )
+
+
+@inline_kernel
+def _plane(V: Array, x: Vec3) -> tuple[float, float]:
+    """The coordinates of ``x`` across ``k`` (along e1, e2)."""
+    return dot(row(V, V_E1), x), dot(row(V, V_E2), x)
 
 
 @kernel
-def _plane(V: Array, x: Array, out: Array) -> None:
-    """``out (2,)``: the coordinates of ``x`` across ``k`` (along e1, e2)."""
-    out[0] = dot(V[V_E1], x)
-    out[1] = dot(V[V_E2], x)
+def _back(V: Array, RG: Array, c1: float, s1: float, x: Vec3) -> Vec3:
+    """``R1ᵀ R_G x``: a direction of the target seen from link 1."""
+    return rot(row(V, V_H1), c1, -s1, _apply(RG, x))
 
 
 @kernel
-def _moved(
-    V: Array, RG: Array, tG: Array, c1: float, s1: float, x: Array, out: Array, W: Array
-) -> None:
-    """``out = E1⁻¹(G(x)) - p2`` in plane coordinates (2,)."""
-    g = W[_G]
-    _apply(RG, x, g)
-    for r in range(3):
-        g[r] += tG[r] - V[V_P1, r]
-    rotate(V[V_H1], c1, -s1, g, W[_Z])
-    for r in range(3):
-        g[r] = W[_Z, r] + V[V_P1, r] - V[V_P2, r]
-    _plane(V, g, out)
+def _moved(V: Array, RG: Array, tG: Array, c1: float, s1: float, x: Vec3) -> tuple[float, float]:
+    """``E1⁻¹(G(x)) - p2`` in plane coordinates."""
+    p1 = row(V, V_P1)
+    g = add3(_apply(RG, x), (tG[0] - p1[0], tG[1] - p1[1], tG[2] - p1[2]))
+    return _plane(V, add3(rot(row(V, V_H1), c1, -s1, g), sub3(p1, row(V, V_P2))))
 
 
 @kernel
 def _free_q6(
-    params: Array, V: Array, RG: Array, tG: Array, c1: float, s1: float, v: Array, W: Array
+    params: Array, V: Array, RG: Array, tG: Array, c1: float, s1: float, v: Vec3, out: Array
 ) -> float:
     """The representative q6 of an aligned wrist: axis 4 at mid-reach of the triangle.
 
     With axis 6 along ``k``, axis 4 (``E1⁻¹ G (p6 + R(h6, -q6) v) - p2``, ``v =
     E5⁻¹(p4) - p6``) runs on the circle ``Z0 + cos q6 Z1 - sin q6 Z2`` of radius
     ``|v across h6|``: take the point at distance ``max(|A|, |B|)`` from axis 2
-    (clamped to the circle's range).
+    (clamped to the circle's range). ``out (2,)`` is scratch space.
     """
-    h6 = V[V_H6]
+    h6 = row(V, V_H6)
     along = dot(h6, v)
-    x = W[_U]
-    z0 = W[_Z0]
-    z1 = W[_Z1]
-    z2 = W[_Z2]
-    for r in range(3):
-        x[r] = V[V_P6, r] + along * h6[r]
-    _moved(V, RG, tG, c1, s1, x, z0, W)
-    for r in range(3):
-        x[r] = v[r] - along * h6[r]
-    _apply(RG, x, W[_G])
-    rotate(V[V_H1], c1, -s1, W[_G], W[_Y])
-    _plane(V, W[_Y], z1)
-    x[0] = h6[1] * v[2] - h6[2] * v[1]
-    x[1] = h6[2] * v[0] - h6[0] * v[2]
-    x[2] = h6[0] * v[1] - h6[1] * v[0]
-    _apply(RG, x, W[_G])
-    rotate(V[V_H1], c1, -s1, W[_G], W[_Y])
-    _plane(V, W[_Y], z2)
+    on = (along * h6[0], along * h6[1], along * h6[2])
+    z0 = _moved(V, RG, tG, c1, s1, add3(row(V, V_P6), on))
+    z1 = _plane(V, _back(V, RG, c1, s1, sub3(v, on)))
+    across = (h6[1] * v[2] - h6[2] * v[1], h6[2] * v[0] - h6[0] * v[2], h6[0] * v[1] - h6[1] * v[0])
+    z2 = _plane(V, _back(V, RG, c1, s1, across))
     r0 = math.hypot(z0[0], z0[1])
     rad = 0.5 * (math.hypot(z1[0], z1[1]) + math.hypot(z2[0], z2[1]))
     want = min(max(max(params[P_ARM], params[P_ARM + 1]), abs(r0 - rad)), r0 + rad)
     # |Z0|² + rad² + 2 cos q6 Z0·Z1 - 2 sin q6 Z0·Z2 = want²
-    out = W[_Y]
     trig_linear(
         2.0 * (z0[0] * z1[0] + z0[1] * z1[1]),
         -2.0 * (z0[0] * z2[0] + z0[1] * z2[1]),
@@ -179,8 +180,8 @@ def _free_q6(
 
 
 @kernel
-def _triangle(params: Array, tx: Array, out: Array) -> int:
-    """q2 and ψ = σ3 q3 putting axis 4 at ``tx (2,)`` (plane, from axis 2): two elbows.
+def _triangle(params: Array, tx: tuple[float, float], out: Array) -> int:
+    """q2 and ψ = σ3 q3 putting axis 4 at ``tx`` (plane, from axis 2): two elbows.
 
     ``tx = e^{i q2} (A + e^{iψ} B)``; with ``γ = ψ + arg B - arg A``,
     ``1 ∓ cos γ`` are formed as products of sums and differences of lengths
@@ -233,62 +234,49 @@ def _finish(
     V: Array,
     RG: Array,
     tG: Array,
-    pair: Array,
-    kind: int,
+    pq: Array,
+    kinds: IntArray,
+    j: int,
     Q: Array,
-    slot: int,
     info: Array,
-    W: Array,
-    t: Array,
     elbows: Array,
+    aux: Array,
 ) -> int:
-    """The solutions of one pair into ``Q[slot]`` (elbow up) and ``Q[slot + 1]``.
+    """The solutions of pair ``j`` into ``Q[2 j]`` (elbow up) and ``Q[2 j + 1]``.
 
-    ``pair (6,)``: q1, q5 and their cosines and sines.
-
-    ``W (13, 3)``, ``t (2,)`` and ``elbows (2, 2)`` are scratch space.
+    ``pq[j]``: q1, q5 and their cosines and sines; ``elbows (2, 2)`` and
+    ``aux (2,)`` are scratch space.
 
     Returns:
         How many candidates were written (0, 1 or 2).
     """
-    q1 = pair[0]
-    q5 = pair[1]
-    c1 = pair[2]
-    s1 = pair[3]
-    c5 = pair[4]
-    s5 = pair[5]
-    h5 = V[V_H5]
-    h6 = V[V_H6]
-    k1 = W[_K1]
-    a = W[_A]
-    b = W[_B]
-    rotate(V[V_H1], c1, s1, V[V_K], k1)
-    for i in range(3):  # R_Gᵀ k1
-        b[i] = RG[0, i] * k1[0] + RG[1, i] * k1[1] + RG[2, i] * k1[2]
-    rotate(h5, c5, -s5, V[V_K], a)  # R5ᵀ k
+    q1 = pq[j, 0]
+    q5 = pq[j, 1]
+    c1 = pq[j, 2]
+    s1 = pq[j, 3]
+    c5 = pq[j, 4]
+    s5 = pq[j, 5]
+    h5 = row(V, V_H5)
+    h6 = row(V, V_H6)
+    k = row(V, V_K)
+    k1 = rot(row(V, V_H1), c1, s1, k)
+    b = (  # R_Gᵀ k1
+        RG[0, 0] * k1[0] + RG[1, 0] * k1[1] + RG[2, 0] * k1[2],
+        RG[0, 1] * k1[0] + RG[1, 1] * k1[1] + RG[2, 1] * k1[2],
+        RG[0, 2] * k1[0] + RG[1, 2] * k1[1] + RG[2, 2] * k1[2],
+    )
+    a = rot(h5, c5, -s5, k)  # R5ᵀ k
     # v = E5⁻¹(p4) - p6 = p5 - p6 + R5ᵀ (p4 - p5)
-    y = W[_Y]
-    for r in range(3):
-        y[r] = V[V_P4, r] - V[V_P5, r]
-    v = W[_V]
-    rotate(h5, c5, -s5, y, v)
-    for r in range(3):
-        v[r] += V[V_P5, r] - V[V_P6, r]
+    p5 = row(V, V_P5)
+    v = add3(rot(h5, c5, -s5, sub3(row(V, V_P4), p5)), sub3(p5, row(V, V_P6)))
     aligned = cross2(a, h6) <= CONTINUUM_TOL * CONTINUUM_TOL  # axis 6 along k
-    q6 = _free_q6(params, V, RG, tG, c1, s1, v, W) if aligned else -subproblem1(a, b, h6)
+    q6 = _free_q6(params, V, RG, tG, c1, s1, v, aux) if aligned else -subproblem1(a, b, h6)
     s6, c6 = sincos(q6)
     # θ234: R234 e1 = R1ᵀ R_G R6ᵀ R5ᵀ e1
-    rotate(h5, c5, -s5, V[V_E1], y)
-    rotate(h6, c6, -s6, y, W[_Z])
-    _apply(RG, W[_Z], W[_G])
-    rotate(V[V_H1], c1, -s1, W[_G], y)
-    th234 = math.atan2(dot(V[V_E2], y), dot(V[V_E1], y))
+    y = _back(V, RG, c1, s1, rot(h6, c6, -s6, rot(h5, c5, -s5, row(V, V_E1))))
+    th234 = math.atan2(dot(row(V, V_E2), y), dot(row(V, V_E1), y))
     # axis 4: E1⁻¹ G E6⁻¹ (p6 + v) - p2 = E1⁻¹ G (p6 + R6ᵀ v) - p2
-    rotate(h6, c6, -s6, v, y)
-    x = W[_U]
-    for r in range(3):
-        x[r] = V[V_P6, r] + y[r]
-    _moved(V, RG, tG, c1, s1, x, t, W)
+    t = _moved(V, RG, tG, c1, s1, add3(row(V, V_P6), rot(h6, c6, -s6, v)))
     flags = _triangle(params, t, elbows)
     if flags < 0:
         return 0
@@ -300,43 +288,47 @@ def _finish(
         psi = elbows[e, 1]
         if np.isnan(q2):
             continue
-        row = Q[slot + e]
-        row[0] = q1
-        row[1] = q2
-        row[2] = sign3 * psi
-        row[3] = sign4 * (th234 - q2 - psi)
-        row[4] = q5
-        row[5] = q6
+        r = 2 * j + e
+        Q[r, 0] = q1
+        Q[r, 1] = q2
+        Q[r, 2] = sign3 * psi
+        Q[r, 3] = sign4 * (th234 - q2 - psi)
+        Q[r, 4] = q5
+        Q[r, 5] = q6
         count += 1
     if flags & _NEAR:
         info[INFO_NEAR] = 1.0
-    free = info[INFO_FREE:]
     if aligned:
-        free[1] = 1.0
-        free[2] = 1.0
-        free[3] = 1.0
-        free[5] = 1.0
+        for joint in (1, 2, 3, 5):
+            info[INFO_FREE + joint] = 1.0
     if flags & _FOLD:
-        free[1] = 1.0
-        free[3] = 1.0
-    free_q1 = kind == PAIR_FREE_Q1
+        info[INFO_FREE + 1] = 1.0
+        info[INFO_FREE + 3] = 1.0
+    free_q1 = kinds[j] == PAIR_FREE_Q1
     if free_q1:
-        free[0] = 1.0
+        info[INFO_FREE] = 1.0
     if aligned or flags & _FOLD or free_q1:
         info[INFO_SINGULAR] = 1.0
     return count
 
 
 @kernel
-def _scratch() -> tuple[Array, Array, Array, Array, IntArray, Array]:
-    """The work arrays of :func:`_solve`: ``W``, ``RG``, ``tG``, pairs, their kinds, elbows."""
+def _scratch() -> tuple[Array, Array, Array, IntArray, Array, Array, ComplexArray]:
+    """The work arrays of :func:`_solve`.
+
+    ``RG (3, 3)``, ``tG (3,)``; the pairs ``pq (4, 8)`` (q1, q5, their cosines
+    and sines, then a quartic root's seed) and their ``kinds (4,)``; the two
+    elbows ``(2, 2)``; ``aux (5,)``: a quartic's coefficients or the angles of
+    ``a cos θ + b sin θ = c``; the quartic's roots ``(4,)``.
+    """
     return (
-        np.empty((13, 3)),
         np.empty((3, 3)),
         np.empty(3),
-        np.empty((4, 6)),
+        np.empty((4, 8)),
         np.empty(4, dtype=np.int64),
-        np.empty((3, 2)),  # two elbows (q2, ψ), then the point t
+        np.empty((2, 2)),
+        np.empty(5),
+        np.empty(4, dtype=np.complex128),
     )
 
 
@@ -351,8 +343,9 @@ def solve(params: Array, T: Array, Q: Array, info: Array) -> None:
         info: ``(INFO_FREE + 6,)`` out, zero on entry (see
             :mod:`kinematica.kernels.ik_check`).
     """
-    W, RG, tG, pq, kinds, elbows = _scratch()
-    _solve(params, params[: 3 * NV].reshape((NV, 3)), T, Q, info, W, RG, tG, pq, kinds, elbows)
+    RG, tG, pq, kinds, elbows, aux, roots = _scratch()
+    V = params[: 3 * NV].reshape((NV, 3))
+    _solve(params, V, T, Q, info, RG, tG, pq, kinds, elbows, aux, roots)
 
 
 @kernel
@@ -362,12 +355,13 @@ def _solve(
     T: Array,
     Q: Array,
     info: Array,
-    W: Array,
     RG: Array,
     tG: Array,
     pq: Array,
     kinds: IntArray,
     elbows: Array,
+    aux: Array,
+    roots: ComplexArray,
 ) -> None:
     """:func:`solve` with the vectors ``V (NV, 3)`` of ``params`` and its work arrays given.
 
@@ -385,36 +379,28 @@ def _solve(
     size = params[P_SCALE]
     # |G(a6) - p1s| beyond the reach bound proves the target out of reach
     # (and keeps huge targets out of the maths: no overflow).
-    x = W[_Z]
-    _apply(RG, V[V_A6], x)
-    for r in range(3):
-        x[r] += tG[r] - V[V_P1S, r]
+    p1s = row(V, V_P1S)
+    x = add3(_apply(RG, row(V, V_A6)), (tG[0] - p1s[0], tG[1] - p1s[1], tG[2] - p1s[2]))
     gap = math.hypot(math.hypot(x[0], x[1]), x[2]) - params[P_BOUND]  # no overflow
     if gap > NEAR_TOL * size:
         info[INFO_GAP] = gap
         return
-    x6 = W[_X6]
-    w6 = W[_W6]
-    _apply(RG, V[V_H6], x6)
-    _apply(RG, V[V_P6], w6)
-    for r in range(3):
-        w6[r] += tG[r] - V[V_P1, r]
+    p1 = row(V, V_P1)
+    x6 = _apply(RG, row(V, V_H6))
+    w6 = add3(_apply(RG, row(V, V_P6)), (tG[0] - p1[0], tG[1] - p1[1], tG[2] - p1[2]))
     # (2) cannot hold when its sides' ranges do not meet: a proven gap too.
     miss = (
-        abs(params[P_EQ2 + 2] - dot(V[V_KPAR], w6))
-        - math.sqrt(dot(V[V_KPERP], w6) ** 2 + dot(V[V_HK], w6) ** 2)
+        abs(params[P_EQ2 + 2] - dot(row(V, V_KPAR), w6))
+        - math.sqrt(dot(row(V, V_KPERP), w6) ** 2 + dot(row(V, V_HK), w6) ** 2)
         - math.sqrt(params[P_EQ2] ** 2 + params[P_EQ2 + 1] ** 2)
     )
     gap = max(gap, miss / params[P_LIP], 0.0)
     count = 0
     if miss <= NEAR_TOL * size:
-        pairs(params, V, x6, w6, pq, kinds, info)
+        pairs(params, V, x6, w6, pq, kinds, info, aux, roots)
         for j in range(4):
             if kinds[j] != PAIR_NONE:
-                count += _finish(
-                    params, V, RG, tG, pq[j], kinds[j], Q, 2 * j, info, W,
-                    elbows[2], elbows[:2],
-                )  # fmt: skip
+                count += _finish(params, V, RG, tG, pq, kinds, j, Q, info, elbows, aux)
     if count == 0:
         info[INFO_GAP] = gap
         for j in range(INFO_FREE, info.shape[0]):
@@ -428,6 +414,6 @@ def solve_batch(params: Array, T: Array, Q: Array, info: Array) -> None:
     N = T.shape[0]
     V = params[: 3 * NV].reshape((NV, 3))
     for blk in numba.prange((N + TARGET_BLOCK - 1) // TARGET_BLOCK):
-        W, RG, tG, pq, kinds, elbows = _scratch()  # once per block
+        RG, tG, pq, kinds, elbows, aux, roots = _scratch()  # once per block
         for i in range(blk * TARGET_BLOCK, min(N, (blk + 1) * TARGET_BLOCK)):
-            _solve(params, V, T[i], Q[i], info[i], W, RG, tG, pq, kinds, elbows)
+            _solve(params, V, T[i], Q[i], info[i], RG, tG, pq, kinds, elbows, aux, roots)

@@ -9,7 +9,8 @@ described in :mod:`.parallel_pairs` (the pairs ``(q1, q5)``),
 
 from __future__ import annotations
 
-from kinematica.kernels._numba import Array, kernel
+from kinematica.kernels._numba import Array, inline_kernel, kernel
+from kinematica.kernels.geometry import Vec3
 from kinematica.kernels.trig import sincos
 
 __all__ = [
@@ -27,6 +28,7 @@ __all__ = [
     "axis2_now",
     "cross2",
     "dot",
+    "row",
     "store_pair",
 ]
 
@@ -99,26 +101,35 @@ NEAR_TOL = 1e-6
 DOUBLE_ROOT_TOL = 1e-14
 
 
-@kernel
-def dot(u: Array, v: Array) -> float:
-    """``u · v`` for ``(3,)`` vectors."""
+@inline_kernel
+def row(V: Array, i: int) -> Vec3:
+    """Row ``i`` of ``V (NV, 3)`` as three scalars (no view: no reference counting)."""
+    return V[i, 0], V[i, 1], V[i, 2]
+
+
+@inline_kernel
+def dot(u: Vec3, v: Vec3) -> float:
+    """``u · v``."""
     return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
 
 
-@kernel
-def cross2(u: Array, v: Array) -> float:
-    """``|u × v|²`` for ``(3,)`` vectors (exact near parallel, unlike ``1 - (u·v)²``)."""
+@inline_kernel
+def cross2(u: Vec3, v: Vec3) -> float:
+    """``|u × v|²`` (exact near parallel, unlike ``1 - (u·v)²``)."""
     x = u[1] * v[2] - u[2] * v[1]
     y = u[2] * v[0] - u[0] * v[2]
     z = u[0] * v[1] - u[1] * v[0]
     return x * x + y * y + z * z
 
 
-@kernel
-def axis2_now(V: Array, c1: float, s1: float, out: Array) -> None:
-    """``out = k1 = R1 k``, the direction of axis 2 after joint 1 turns by q1."""
-    for r in range(3):
-        out[r] = V[V_KPAR, r] + c1 * V[V_KPERP, r] + s1 * V[V_HK, r]
+@inline_kernel
+def axis2_now(V: Array, c1: float, s1: float) -> Vec3:
+    """``k1 = R1 k``, the direction of axis 2 after joint 1 turns by q1."""
+    return (
+        V[V_KPAR, 0] + c1 * V[V_KPERP, 0] + s1 * V[V_HK, 0],
+        V[V_KPAR, 1] + c1 * V[V_KPERP, 1] + s1 * V[V_HK, 1],
+        V[V_KPAR, 2] + c1 * V[V_KPERP, 2] + s1 * V[V_HK, 2],
+    )
 
 
 @kernel

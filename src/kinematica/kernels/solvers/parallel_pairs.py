@@ -30,8 +30,8 @@ import math
 
 import numpy as np
 
-from kinematica.kernels._numba import Array, IntArray, kernel
-from kinematica.kernels.geometry import TRIG_TOL, trig_linear
+from kinematica.kernels._numba import Array, ComplexArray, IntArray, kernel
+from kinematica.kernels.geometry import TRIG_TOL, Vec3, trig_linear
 from kinematica.kernels.ik_check import INFO_NEAR
 from kinematica.kernels.solvers.parallel_layout import (
     CONTINUUM_TOL,
@@ -55,6 +55,7 @@ from kinematica.kernels.solvers.parallel_layout import (
     axis2_now,
     cross2,
     dot,
+    row,
     store_pair,
 )
 from kinematica.kernels.solvers.parallel_quartic import pairs_general
@@ -64,15 +65,16 @@ __all__ = ["pairs"]
 
 
 @kernel
-def _wrist(params: Array, d: float, m2: float, out: Array) -> int:
+def _wrist(params: Array, d: float, m2: float, pq: Array, m: int) -> int:
     """q5 from (1) when axes 5 and 6 meet: ``k·R5 h6 = d``, ``m2 = |k1 × R_G h6|²``.
 
     ``q5 = φ ± δ`` with ``cos δ = (d - F1) / ρ``; ``1 ∓ cos δ`` is formed from
     ``1 ∓ d`` (``= m2 / (1 ± d)``) and the exact constants ``P_WLO``/``P_WHI``.
 
     Returns:
-        1 (``out (2, 3)``: q5, cos q5, sin q5 of "no-flip" φ + δ, then "flip"
-        φ - δ), 0 (near: the double root twice), -1 (no root).
+        1 (q5, cos q5, sin q5 of "no-flip" φ + δ into pair ``m`` of ``pq``,
+        of "flip" φ - δ into pair ``m + 1``), 0 (near: the double root
+        twice), -1 (no root; ``pq`` unchanged).
     """
     D1 = params[P_EQ1]
     E1 = params[P_EQ1 + 1]
@@ -98,9 +100,9 @@ def _wrist(params: Array, d: float, m2: float, out: Array) -> int:
         sd_i = sd if i == 0 else -sd
         c5 = cf * cd - sf * sd_i
         s5 = sf * cd + cf * sd_i
-        out[i, 0] = math.atan2(s5, c5)
-        out[i, 1] = c5
-        out[i, 2] = s5
+        pq[m + i, 1] = math.atan2(s5, c5)
+        pq[m + i, 4] = c5
+        pq[m + i, 5] = s5
     return code
 
 
@@ -150,14 +152,21 @@ def _first(a: float, b: float, rhs: float, size: float, rep: float, out: Array, 
 
 @kernel
 def _pairs_meet(
-    params: Array, V: Array, x6: Array, L: Array, pq: Array, kinds: IntArray, info: Array
+    params: Array,
+    V: Array,
+    x6: Vec3,
+    L2: Vec3,
+    pq: Array,
+    kinds: IntArray,
+    info: Array,
+    q1s: Array,
 ) -> None:
-    """Axes 5 and 6 meet: q1 from (2) (shoulder right, left), q5 from (1) (no-flip, flip)."""
+    """Axes 5 and 6 meet: q1 from (2) (shoulder right, left), q5 from (1) (no-flip, flip).
+
+    ``q1s (2,)`` is scratch space.
+    """
     size = params[P_SCALE]
-    q1s = np.empty(2)
-    w = np.empty((2, 3))
-    k1 = np.empty(3)
-    kind = _first(L[1, 0], L[1, 1], params[P_EQ2 + 2] - L[1, 2], size, params[P_Q1REP], q1s, info)
+    kind = _first(L2[0], L2[1], params[P_EQ2 + 2] - L2[2], size, params[P_Q1REP], q1s, info)
     if kind == PAIR_NONE:
         return
     for i in range(2):
@@ -165,29 +174,27 @@ def _pairs_meet(
         if np.isnan(q1):
             continue
         s1, c1 = sincos(q1)
-        axis2_now(V, c1, s1, k1)
-        code = _wrist(params, dot(k1, x6), cross2(k1, x6), w)
+        k1 = axis2_now(V, c1, s1)
+        code = _wrist(params, dot(k1, x6), cross2(k1, x6), pq, 2 * i)
         if code < 0:
             continue
         if code == 0:
             info[INFO_NEAR] = 1.0
-        for j in range(2):
-            m = 2 * i + j
+        for m in range(2 * i, 2 * i + 2):
             pq[m, 0] = q1
-            pq[m, 1] = w[j, 0]
             pq[m, 2] = c1
             pq[m, 3] = s1
-            pq[m, 4] = w[j, 1]
-            pq[m, 5] = w[j, 2]
             kinds[m] = kind
 
 
 @kernel
-def _pairs_parallel(params: Array, L: Array, pq: Array, kinds: IntArray, info: Array) -> None:
+def _pairs_parallel(
+    params: Array, L1: Vec3, L2: Vec3, pq: Array, kinds: IntArray, info: Array
+) -> None:
     """Axes 5 and 6 parallel: q1 from (1), then q5 from (2)."""
     q1s = np.empty(2)
     q5s = np.empty(2)
-    kind = _first(L[0, 0], L[0, 1], params[P_EQ1 + 2] - L[0, 2], 1.0, params[P_Q1REP], q1s, info)
+    kind = _first(L1[0], L1[1], params[P_EQ1 + 2] - L1[2], 1.0, params[P_Q1REP], q1s, info)
     if kind == PAIR_NONE:
         return
     D2 = params[P_EQ2]
@@ -198,7 +205,7 @@ def _pairs_parallel(params: Array, L: Array, pq: Array, kinds: IntArray, info: A
         if np.isnan(q1):
             continue
         s1, c1 = sincos(q1)
-        lhs = L[1, 0] * c1 + L[1, 1] * s1 + L[1, 2] - params[P_EQ2 + 2]
+        lhs = L2[0] * c1 + L2[1] * s1 + L2[2] - params[P_EQ2 + 2]
         if not _roots(D2, E2, lhs, size, q5s, info):
             continue
         for j in range(2):
@@ -228,35 +235,41 @@ def _sort(pq: Array, kinds: IntArray) -> None:
 
 @kernel
 def pairs(
-    params: Array, V: Array, x6: Array, w6: Array, pq: Array, kinds: IntArray, info: Array
+    params: Array,
+    V: Array,
+    x6: Vec3,
+    w6: Vec3,
+    pq: Array,
+    kinds: IntArray,
+    info: Array,
+    aux: Array,
+    roots: ComplexArray,
 ) -> None:
     """Every ``(q1, q5)`` of a target, by the arm's mode.
 
     Args:
         params: The arm (``P_SIZE``,).
         V: ``(NV, 3)`` its vectors (a view of ``params``).
-        x6: ``(3,)`` ``R_G h6``: axis 6's direction in the target.
-        w6: ``(3,)`` ``G(p6) - p1``.
-        pq: ``(4, 6)`` out: ``q1, q5, cos q1, sin q1, cos q5, sin q5`` per pair (``MODE_MEET``: slot
-            ``2 shoulder + wrist``; otherwise by increasing q1).
+        x6: ``R_G h6``: axis 6's direction in the target.
+        w6: ``G(p6) - p1``.
+        pq: ``(4, 8)`` out: ``q1, q5, cos q1, sin q1, cos q5, sin q5`` per pair (``MODE_MEET``:
+            slot ``2 shoulder + wrist``; otherwise by increasing q1); columns 6, 7 scratch.
         kinds: ``(4,)`` out: ``PAIR_*`` of each slot.
         info: The target's ``info`` row (``INFO_NEAR`` is set here).
+        aux: ``(5,)`` scratch space.
+        roots: ``(4,)`` scratch space (a quartic's roots).
     """
-    L = np.empty((2, 3))  # a, b, c of (1) and (2): k1·y = a cos q1 + b sin q1 + c
-    L[0, 0] = dot(V[V_KPERP], x6)
-    L[0, 1] = dot(V[V_HK], x6)
-    L[0, 2] = dot(V[V_KPAR], x6)
-    L[1, 0] = dot(V[V_KPERP], w6)
-    L[1, 1] = dot(V[V_HK], w6)
-    L[1, 2] = dot(V[V_KPAR], w6)
+    # a, b, c of (1) and (2): k1·y = a cos q1 + b sin q1 + c
+    L1 = (dot(row(V, V_KPERP), x6), dot(row(V, V_HK), x6), dot(row(V, V_KPAR), x6))
+    L2 = (dot(row(V, V_KPERP), w6), dot(row(V, V_HK), w6), dot(row(V, V_KPAR), w6))
     for i in range(4):
         kinds[i] = PAIR_NONE
     mode = params[P_MODE]
     if mode == MODE_MEET:
-        _pairs_meet(params, V, x6, L, pq, kinds, info)
+        _pairs_meet(params, V, x6, L2, pq, kinds, info, aux)
         return
     if mode == MODE_PARALLEL:
-        _pairs_parallel(params, L, pq, kinds, info)
+        _pairs_parallel(params, L1, L2, pq, kinds, info)
     else:
-        pairs_general(params, V, x6, L, pq, kinds, info)
+        pairs_general(params, V, x6, L1, L2, pq, kinds, info, aux, roots)
     _sort(pq, kinds)

@@ -20,8 +20,8 @@ import math
 
 import numpy as np
 
-from kinematica.kernels._numba import Array, IntArray, kernel
-from kinematica.kernels.geometry import TRIG_TOL
+from kinematica.kernels._numba import Array, ComplexArray, IntArray, kernel
+from kinematica.kernels.geometry import TRIG_TOL, Vec3
 from kinematica.kernels.ik_check import DEDUP_TOL, INFO_NEAR
 from kinematica.kernels.polynomial import quartic_roots
 from kinematica.kernels.so3 import wrap
@@ -43,6 +43,7 @@ from kinematica.kernels.solvers.parallel_layout import (
     axis2_now,
     cross2,
     dot,
+    row,
     store_pair,
 )
 from kinematica.kernels.trig import sincos
@@ -71,8 +72,10 @@ def _unit_gap(d: float, m2: float, e: float, n2: float) -> float:
 
 
 @kernel
-def _newton(params: Array, V: Array, x6: Array, L: Array, q: Array, k1: Array) -> float:
-    """Newton steps on (1) and (2) from ``q = (q1, q5)`` (in place); the residual.
+def _newton(
+    params: Array, V: Array, x6: Vec3, L1: Vec3, L2: Vec3, q1: float, q5: float
+) -> tuple[float, float, float]:
+    """Newton steps on (1) and (2) from ``(q1, q5)``.
 
     Steps stop when they no longer shrink (round-off reached, or no root
     nearby). (1) is evaluated as :func:`_unit_gap`: its error stays at
@@ -80,32 +83,35 @@ def _newton(params: Array, V: Array, x6: Array, L: Array, q: Array, k1: Array) -
     merge, so the roots are resolved however close they are.
 
     Returns:
-        ``|f1| + |f2| / size`` at ``q`` (before the last, rejected step).
+        The last ``q1``, ``q5``, and ``|f1| + |f2| / size`` there (before the
+        last, rejected step).
     """
     D1 = params[P_EQ1]
     E1 = params[P_EQ1 + 1]
     D2 = params[P_EQ2]
     E2 = params[P_EQ2 + 1]
     size = params[P_SCALE]
+    h6par = row(V, V_H6PAR)
+    h6perp = row(V, V_H6PERP)
+    h5xh6 = row(V, V_H5XH6)
+    k = row(V, V_K)
     res = math.inf
     last = math.inf
     for _ in range(NEWTON_STEPS):
-        s1, c1 = sincos(q[0])
-        s5, c5 = sincos(q[1])
-        axis2_now(V, c1, s1, k1)
-        r0 = V[V_H6PAR, 0] + c5 * V[V_H6PERP, 0] + s5 * V[V_H5XH6, 0]  # R5 h6
-        r1 = V[V_H6PAR, 1] + c5 * V[V_H6PERP, 1] + s5 * V[V_H5XH6, 1]
-        r2 = V[V_H6PAR, 2] + c5 * V[V_H6PERP, 2] + s5 * V[V_H5XH6, 2]
-        k0, ky, kz = V[V_K, 0], V[V_K, 1], V[V_K, 2]
-        e = k0 * r0 + ky * r1 + kz * r2
-        n2 = (ky * r2 - kz * r1) ** 2 + (kz * r0 - k0 * r2) ** 2 + (k0 * r1 - ky * r0) ** 2
-        d = dot(k1, x6)
-        f1 = _unit_gap(d, cross2(k1, x6), e, n2)
-        f2 = L[1, 0] * c1 + L[1, 1] * s1 + L[1, 2] - (D2 * c5 + E2 * s5 + params[P_EQ2 + 2])
+        s1, c1 = sincos(q1)
+        s5, c5 = sincos(q5)
+        k1 = axis2_now(V, c1, s1)
+        r = (  # R5 h6
+            h6par[0] + c5 * h6perp[0] + s5 * h5xh6[0],
+            h6par[1] + c5 * h6perp[1] + s5 * h5xh6[1],
+            h6par[2] + c5 * h6perp[2] + s5 * h5xh6[2],
+        )
+        f1 = _unit_gap(dot(k1, x6), cross2(k1, x6), dot(k, r), cross2(k, r))
+        f2 = L2[0] * c1 + L2[1] * s1 + L2[2] - (D2 * c5 + E2 * s5 + params[P_EQ2 + 2])
         res = abs(f1) + abs(f2) / size
-        j11 = L[0, 1] * c1 - L[0, 0] * s1
+        j11 = L1[1] * c1 - L1[0] * s1
         j12 = D1 * s5 - E1 * c5
-        j21 = L[1, 1] * c1 - L[1, 0] * s1
+        j21 = L2[1] * c1 - L2[0] * s1
         j22 = D2 * s5 - E2 * c5
         det = j11 * j22 - j12 * j21
         if det == 0.0 or not np.isfinite(det):
@@ -116,61 +122,72 @@ def _newton(params: Array, V: Array, x6: Array, L: Array, q: Array, k1: Array) -
         if not step < last:  # no longer contracting: round-off (or no root here)
             break
         last = step
-        q[0] -= d1
-        q[1] -= d5
-    return res
+        q1 -= d1
+        q5 -= d5
+    return q1, q5, res
 
 
 @kernel
 def pairs_general(
-    params: Array, V: Array, x6: Array, L: Array, pq: Array, kinds: IntArray, info: Array
+    params: Array,
+    V: Array,
+    x6: Vec3,
+    L1: Vec3,
+    L2: Vec3,
+    pq: Array,
+    kinds: IntArray,
+    info: Array,
+    coef: Array,
+    roots: ComplexArray,
 ) -> None:
-    """Axes 5 and 6 apart: the quartic of subproblem 6, its roots polished by Newton."""
-    P = np.empty((2, 3))
-    for i in range(2):
-        for j in range(3):
-            P[i, j] = params[P_MINV + 2 * i] * L[0, j] + params[P_MINV + 2 * i + 1] * L[1, j]
-    P[0, 2] -= params[P_MINV] * params[P_EQ1 + 2] + params[P_MINV + 1] * params[P_EQ2 + 2]
-    P[1, 2] -= params[P_MINV + 2] * params[P_EQ1 + 2] + params[P_MINV + 3] * params[P_EQ2 + 2]
+    """Axes 5 and 6 apart: the quartic of subproblem 6, its roots polished by Newton.
+
+    ``(1)`` and ``(2)`` read ``k1·y = a cos q1 + b sin q1 + c`` with ``L1``,
+    ``L2 = (a, b, c)``; ``coef (5,)`` and ``roots (4,)`` are scratch space, and
+    so are columns 6, 7 of ``pq`` (the seeds of the roots).
+    """
+    m0 = params[P_MINV]
+    m1 = params[P_MINV + 1]
+    m2 = params[P_MINV + 2]
+    m3 = params[P_MINV + 3]
+    P00 = m0 * L1[0] + m1 * L2[0]
+    P01 = m0 * L1[1] + m1 * L2[1]
+    P02 = m0 * L1[2] + m1 * L2[2] - (m0 * params[P_EQ1 + 2] + m1 * params[P_EQ2 + 2])
+    P10 = m2 * L1[0] + m3 * L2[0]
+    P11 = m2 * L1[1] + m3 * L2[1]
+    P12 = m2 * L1[2] + m3 * L2[2] - (m2 * params[P_EQ1 + 2] + m3 * params[P_EQ2 + 2])
     # φ0 puts t = ∞ where |P x|² - 1 is largest: the leading coefficient is then large.
     worst = -1.0
     far = 0.0
-    size = 1.0
-    for i in range(2):
-        for j in range(3):
-            size += P[i, j] * P[i, j]
+    size = 1.0 + P00 * P00 + P01 * P01 + P02 * P02 + P10 * P10 + P11 * P11 + P12 * P12
     for m in range(8):
-        u = P[0, 0] * _SAMPLES[m, 0] + P[0, 1] * _SAMPLES[m, 1] + P[0, 2]
-        v = P[1, 0] * _SAMPLES[m, 0] + P[1, 1] * _SAMPLES[m, 1] + P[1, 2]
+        u = P00 * _SAMPLES[m, 0] + P01 * _SAMPLES[m, 1] + P02
+        v = P10 * _SAMPLES[m, 0] + P11 * _SAMPLES[m, 1] + P12
         f = abs(u * u + v * v - 1.0)
         if f > worst:
             worst = f
             far = 0.25 * math.pi * m
     if worst <= CONTINUUM_TOL * size:  # every q1 solves, each with one q5
         q1 = params[P_Q1REP]
-        u = P[0, 0] * math.cos(q1) + P[0, 1] * math.sin(q1) + P[0, 2]
-        v = P[1, 0] * math.cos(q1) + P[1, 1] * math.sin(q1) + P[1, 2]
+        u = P00 * math.cos(q1) + P01 * math.sin(q1) + P02
+        v = P10 * math.cos(q1) + P11 * math.sin(q1) + P12
         store_pair(pq, 0, q1, math.atan2(v, u))
         kinds[0] = PAIR_FREE_Q1
         return
     phi0 = far - math.pi
     sp, cp = sincos(phi0)
     # rows i = 0, 1 of P x at q1 = φ0 + 2 atan t, times (1 + t²): u0 + u1 t + u2 t²
-    a0 = P[0, 0] * cp + P[0, 1] * sp
-    b0 = P[1, 0] * cp + P[1, 1] * sp
-    u00, u01 = a0 + P[0, 2], b0 + P[1, 2]
-    u10, u11 = 2.0 * (P[0, 1] * cp - P[0, 0] * sp), 2.0 * (P[1, 1] * cp - P[1, 0] * sp)
-    u20, u21 = P[0, 2] - a0, P[1, 2] - b0
-    coef = np.empty(5)
+    a0 = P00 * cp + P01 * sp
+    b0 = P10 * cp + P11 * sp
+    u00, u01 = a0 + P02, b0 + P12
+    u10, u11 = 2.0 * (P01 * cp - P00 * sp), 2.0 * (P11 * cp - P10 * sp)
+    u20, u21 = P02 - a0, P12 - b0
     coef[0] = u20 * u20 + u21 * u21 - 1.0
     coef[1] = 2.0 * (u10 * u20 + u11 * u21)
     coef[2] = u10 * u10 + u11 * u11 + 2.0 * (u00 * u20 + u01 * u21) - 2.0
     coef[3] = 2.0 * (u00 * u10 + u01 * u11)
     coef[4] = u00 * u00 + u01 * u01 - 1.0
-    roots = np.empty(4, dtype=np.complex128)
     quartic_roots(coef, roots)
-    seeds = np.empty((4, 2))
-    k1 = np.empty(3)
     for m in range(4):
         t = roots[m]
         if not abs(t.imag) <= _ROOT_IMAG * (1.0 + abs(t)):
@@ -178,11 +195,9 @@ def pairs_general(
         # a merging pair a ± bi: start from a + b and a - b, on either side
         q1 = phi0 + 2.0 * math.atan(t.real + t.imag)
         s1, c1 = sincos(q1)
-        seeds[m, 0] = q1
-        seeds[m, 1] = math.atan2(
-            P[1, 0] * c1 + P[1, 1] * s1 + P[1, 2], P[0, 0] * c1 + P[0, 1] * s1 + P[0, 2]
-        )
-        _polish(params, V, x6, L, seeds[m], pq, kinds, m, info, k1)
+        pq[m, 6] = q1
+        pq[m, 7] = math.atan2(P10 * c1 + P11 * s1 + P12, P00 * c1 + P01 * s1 + P02)
+        _polish(params, V, x6, L1, L2, pq, kinds, m, info)
     # Two seeds of a merging pair may polish to one root; the other then lies
     # across their midpoint (the sum of a near-double root is well conditioned).
     for j in range(4):
@@ -192,35 +207,33 @@ def pairs_general(
             if max(abs(wrap(pq[i, 0] - pq[j, 0])), abs(wrap(pq[i, 1] - pq[j, 1]))) >= DEDUP_TOL:
                 continue
             for c in range(2):
-                seeds[j, c] = pq[i, c] + wrap(seeds[i, c] - pq[i, c]) + wrap(seeds[j, c] - pq[i, c])
-            _polish(params, V, x6, L, seeds[j], pq, kinds, j, info, k1)
+                pq[j, 6 + c] = (
+                    pq[i, c] + wrap(pq[i, 6 + c] - pq[i, c]) + wrap(pq[j, 6 + c] - pq[i, c])
+                )
+            _polish(params, V, x6, L1, L2, pq, kinds, j, info)
 
 
 @kernel
 def _polish(
     params: Array,
     V: Array,
-    x6: Array,
-    L: Array,
-    seed: Array,
+    x6: Vec3,
+    L1: Vec3,
+    L2: Vec3,
     pq: Array,
     kinds: IntArray,
     m: int,
     info: Array,
-    k1: Array,
 ) -> None:
-    """Newton from ``seed (2,)`` into pair ``m`` of ``pq``/``kinds``.
+    """Newton from the seed ``pq[m, 6:8]`` into pair ``m`` of ``pq``/``kinds``.
 
     A root meets (1) and (2) to ``TRIG_TOL``; one that meets them to
     ``NEAR_TOL`` only is proposed too, and the target marked near.
     """
-    q = pq[m, :2]
-    q[0] = seed[0]
-    q[1] = seed[1]
-    res = _newton(params, V, x6, L, q, k1)
+    q1, q5, res = _newton(params, V, x6, L1, L2, pq[m, 6], pq[m, 7])
     kinds[m] = PAIR_NONE
     if res <= NEAR_TOL:
         kinds[m] = PAIR_ROOT
         if res > TRIG_TOL:
             info[INFO_NEAR] = 1.0
-    store_pair(pq, m, wrap(q[0]), wrap(q[1]))
+    store_pair(pq, m, wrap(q1), wrap(q5))
