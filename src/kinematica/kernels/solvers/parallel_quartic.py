@@ -48,12 +48,18 @@ from kinematica.kernels.solvers.parallel_layout import (
 )
 from kinematica.kernels.trig import sincos
 
-__all__ = ["NEWTON_STEPS", "pairs_general"]
+__all__ = ["NEWTON_QUIET", "NEWTON_STEPS", "pairs_general"]
 
 #: Newton steps at most polishing a quartic root on equations (1) and (2):
 #: quadratic convergence takes 2-3, but at a double root (the wrist aligned)
 #: it is linear, halving the error per step from the quartic's ~1e-8.
 NEWTON_STEPS = 50
+#: A Newton step of at most this (``|Δq1| + |Δq5|``, rad) is the last: the
+#: error it leaves is about its square while convergence is quadratic, about
+#: its size while it is linear (merging roots), both far below the 1e-10 the
+#: check asks. Without it each root took one more step, to find that steps
+#: had stopped shrinking (two sine-cosine pairs per root).
+NEWTON_QUIET = 1e-14
 
 # cos and sin of m π/4, m = 0..7: where |P x|² - 1 is sampled
 _SAMPLES = np.array([[math.cos(m * math.pi / 4), math.sin(m * math.pi / 4)] for m in range(8)])
@@ -74,17 +80,18 @@ def _unit_gap(d: float, m2: float, e: float, n2: float) -> float:
 @kernel
 def _newton(
     params: Array, V: Array, x6: Vec3, L1: Vec3, L2: Vec3, q1: float, q5: float
-) -> tuple[float, float, float]:
+) -> tuple[float, float, float, int]:
     """Newton steps on (1) and (2) from ``(q1, q5)``.
 
-    Steps stop when they no longer shrink (round-off reached, or no root
-    nearby). (1) is evaluated as :func:`_unit_gap`: its error stays at
-    round-off of its (small) terms near the aligned wrist, where two roots
-    merge, so the roots are resolved however close they are.
+    Steps stop after one of at most ``NEWTON_QUIET``, or when they no longer
+    shrink (round-off reached, or no root nearby). (1) is evaluated as
+    :func:`_unit_gap`: its error stays at round-off of its (small) terms near
+    the aligned wrist, where two roots merge, so the roots are resolved
+    however close they are.
 
     Returns:
-        The last ``q1``, ``q5``, and ``|f1| + |f2| / size`` there (before the
-        last, rejected step).
+        The last ``q1``, ``q5``; ``|f1| + |f2| / size`` where the last step
+        was computed; how many times (1) and (2) were evaluated.
     """
     D1 = params[P_EQ1]
     E1 = params[P_EQ1 + 1]
@@ -97,7 +104,9 @@ def _newton(
     k = row(V, V_K)
     res = math.inf
     last = math.inf
+    evaluations = 0
     for _ in range(NEWTON_STEPS):
+        evaluations += 1
         s1, c1 = sincos(q1)
         s5, c5 = sincos(q5)
         k1 = axis2_now(V, c1, s1)
@@ -124,7 +133,9 @@ def _newton(
         last = step
         q1 -= d1
         q5 -= d5
-    return q1, q5, res
+        if step <= NEWTON_QUIET:
+            break
+    return q1, q5, res, evaluations
 
 
 @kernel
@@ -230,7 +241,7 @@ def _polish(
     A root meets (1) and (2) to ``TRIG_TOL``; one that meets them to
     ``NEAR_TOL`` only is proposed too, and the target marked near.
     """
-    q1, q5, res = _newton(params, V, x6, L1, L2, pq[m, 6], pq[m, 7])
+    q1, q5, res, _ = _newton(params, V, x6, L1, L2, pq[m, 6], pq[m, 7])
     kinds[m] = PAIR_NONE
     if res <= NEAR_TOL:
         kinds[m] = PAIR_ROOT
