@@ -80,7 +80,7 @@ def _unit_gap(d: float, m2: float, e: float, n2: float) -> float:
 @kernel
 def _newton(
     params: Array, V: Array, x6: Vec3, L1: Vec3, L2: Vec3, q1: float, q5: float
-) -> tuple[float, float, float, int]:
+) -> tuple[float, float, float, int, float, float, float, float]:
     """Newton steps on (1) and (2) from ``(q1, q5)``.
 
     Steps stop after one of at most ``NEWTON_QUIET``, or when they no longer
@@ -91,7 +91,10 @@ def _newton(
 
     Returns:
         The last ``q1``, ``q5``; ``|f1| + |f2| / size`` where the last step
-        was computed; how many times (1) and (2) were evaluated.
+        was computed; how many times (1) and (2) were evaluated; cos q1,
+        sin q1, cos q5, sin q5 (after a step of at most ``NEWTON_QUIET``,
+        the last ones turned by it to first order: exact, and no sine-cosine
+        pairs to evaluate again).
     """
     D1 = params[P_EQ1]
     E1 = params[P_EQ1 + 1]
@@ -105,10 +108,13 @@ def _newton(
     res = math.inf
     last = math.inf
     evaluations = 0
+    moved = False
+    c1 = s1 = c5 = s5 = math.nan
     for _ in range(NEWTON_STEPS):
         evaluations += 1
         s1, c1 = sincos(q1)
         s5, c5 = sincos(q5)
+        moved = False
         k1 = axis2_now(V, c1, s1)
         r = (  # R5 h6
             h6par[0] + c5 * h6perp[0] + s5 * h5xh6[0],
@@ -133,9 +139,16 @@ def _newton(
         last = step
         q1 -= d1
         q5 -= d5
-        if step <= NEWTON_QUIET:
+        moved = True
+        if step <= NEWTON_QUIET:  # to first order, exactly (d² < 1e-28)
+            c1, s1 = c1 + s1 * d1, s1 - c1 * d1
+            c5, s5 = c5 + s5 * d5, s5 - c5 * d5
+            moved = False
             break
-    return q1, q5, res, evaluations
+    if moved:  # NEWTON_STEPS used up
+        s1, c1 = sincos(q1)
+        s5, c5 = sincos(q5)
+    return q1, q5, res, evaluations, c1, s1, c5, s5
 
 
 @kernel
@@ -201,7 +214,8 @@ def pairs_general(
     quartic_roots(coef, roots)
     for m in range(4):
         t = roots[m]
-        if not abs(t.imag) <= _ROOT_IMAG * (1.0 + abs(t)):
+        size_t = math.sqrt(t.real * t.real + t.imag * t.imag)  # roots are O(1): no overflow
+        if not abs(t.imag) <= _ROOT_IMAG * (1.0 + size_t):
             continue
         # a merging pair a ± bi: start from a + b and a - b, on either side
         q1 = phi0 + 2.0 * math.atan(t.real + t.imag)
@@ -241,10 +255,15 @@ def _polish(
     A root meets (1) and (2) to ``TRIG_TOL``; one that meets them to
     ``NEAR_TOL`` only is proposed too, and the target marked near.
     """
-    q1, q5, res, _ = _newton(params, V, x6, L1, L2, pq[m, 6], pq[m, 7])
+    q1, q5, res, _, c1, s1, c5, s5 = _newton(params, V, x6, L1, L2, pq[m, 6], pq[m, 7])
     kinds[m] = PAIR_NONE
     if res <= NEAR_TOL:
         kinds[m] = PAIR_ROOT
         if res > TRIG_TOL:
             info[INFO_NEAR] = 1.0
-    store_pair(pq, m, wrap(q1), wrap(q5))
+    pq[m, 0] = wrap(q1)
+    pq[m, 1] = wrap(q5)
+    pq[m, 2] = c1
+    pq[m, 3] = s1
+    pq[m, 4] = c5
+    pq[m, 5] = s5
