@@ -362,26 +362,29 @@ def _check(
             if score < near_score:
                 near_score, near_p, near_r = score, p_err, r_err
             continue
+        # An angle outside its limits whose turn ±2π is inside is taken there;
+        # then within its limits or not (one pass over the joints).
+        inside = True
         if respect:
             for k in range(n):
-                if links[k, LINK_PRISMATIC] != 0.0:
-                    continue
-                lo, hi, v = qlim[k, 0], qlim[k, 1], qs[j, k]
-                if v < lo - LIMIT_TOL and v + _TWO_PI <= hi + LIMIT_TOL:
-                    qs[j, k] = v + _TWO_PI
-                elif v > hi + LIMIT_TOL and v - _TWO_PI >= lo - LIMIT_TOL:
-                    qs[j, k] = v - _TWO_PI
-        duplicate = False
+                lo = qlim[k, 0] - LIMIT_TOL
+                hi = qlim[k, 1] + LIMIT_TOL
+                v = qs[j, k]
+                if links[k, LINK_PRISMATIC] == 0.0:
+                    if v < lo and v + _TWO_PI <= hi:
+                        v += _TWO_PI
+                        qs[j, k] = v
+                    elif v > hi and v - _TWO_PI >= lo:
+                        v -= _TWO_PI
+                        qs[j, k] = v
+                inside &= lo <= v <= hi
+        duplicate = False  # (modulo 2π: the turn above changes nothing here)
         for i in range(j):
             if state[i] != 0 and _same(links, qs, j, i):
                 duplicate = True
                 break
         if duplicate:
             continue
-        inside = True
-        if respect:
-            for k in range(n):
-                inside &= qlim[k, 0] - LIMIT_TOL <= qs[j, k] <= qlim[k, 1] + LIMIT_TOL
         state[j] = 1 if inside else 2
         res[j, 0], res[j, 1] = p_err, r_err
         if opts[OPT_HAS_Q0] != 0.0:
