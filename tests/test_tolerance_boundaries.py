@@ -26,6 +26,7 @@ from kinematica.ik.analytic.arm_point import places_point
 from kinematica.ik.analytic.parallel import pack
 from kinematica.ik.structure import features
 from kinematica.io import parse_urdf
+from kinematica.kernels import polynomial
 from kinematica.kernels.geometry import trig_linear
 from kinematica.kernels.ik_check import INFO_NEAR
 from kinematica.kernels.solvers import parallel_pairs, parallel_quartic
@@ -672,3 +673,25 @@ def test_newton_quiet_makes_a_small_step_the_last(factor: float, inside: bool) -
         (s5, math.sin(a5)),
     ):
         assert abs(got - want) <= 4e-16  # a few ulps
+
+
+# --- kernels/polynomial.py: Ferrari's roots, checked ------------------------------
+
+QUARTIC_CHECK = 1e-12  # polynomial.QUARTIC_CHECK
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_quartic_check_accepts_a_backward_error_below_it(factor: float, inside: bool) -> None:
+    """polynomial.QUARTIC_CHECK: a root whose backward error ``|P(x)| / Σ|k_i||x|^i``
+    is ``factor * QUARTIC_CHECK`` passes the check below the constant and sends
+    the quartic to the Aberth-Ehrlich iterations above it.
+    """
+    exact = np.array([1.0, 2.0, -0.5, 3.0])
+    k = np.poly(exact)  # highest power first
+    r = exact[1]
+    slope = abs(np.polyval(np.polyder(k), r))
+    bound = float(np.polyval(np.abs(k), r))
+    roots = exact.astype(np.complex128)
+    roots[1] += factor * QUARTIC_CHECK * bound / slope  # |P(x)| ≈ slope · shift
+    assert polynomial._backward_ok(k, roots) is inside
+    assert polynomial._backward_ok(k, exact.astype(np.complex128))

@@ -62,13 +62,13 @@ def _backward_ok(k: Array, roots: ComplexArray) -> bool:
     """True when every root's backward error is within ``QUARTIC_CHECK``."""
     for i in range(4):
         x = roots[i]
-        size = abs(x)
+        size = math.sqrt(x.real * x.real + x.imag * x.imag)  # |x|² overflows where x⁴ has
         value = complex(k[0])
         bound = abs(k[0])
         for j in range(1, 5):
             value = value * x + k[j]
             bound = bound * size + abs(k[j])
-        if not abs(value) <= QUARTIC_CHECK * bound:
+        if not value.real * value.real + value.imag * value.imag <= (QUARTIC_CHECK * bound) ** 2:
             return False
     return True
 
@@ -128,9 +128,8 @@ def quartic_roots(k: Array, roots: ComplexArray) -> None:
     k0 = k[0]
     # x = λ z with λ the largest |k_i / k_0|^(1/i) (Fujiwara's bound without
     # its factor 2): the roots z are O(1) however large the x are.
-    lam = 0.0
-    for i in range(1, 5):
-        lam = max(lam, abs(k[i] / k0) ** (1.0 / i))
+    r1, r2, r3, r4 = abs(k[1] / k0), abs(k[2] / k0), abs(k[3] / k0), abs(k[4] / k0)
+    lam = max(r1, math.sqrt(r2), np.cbrt(r3), math.sqrt(math.sqrt(r4)))  # no pow calls
     if lam == 0.0:
         lam = 1.0
     inv = 1.0 / lam
