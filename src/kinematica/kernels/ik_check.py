@@ -133,9 +133,8 @@ def _residual(
     rotation error is the angle of ``Rtᵀ R`` (exact near 0); with weights, the
     norms of the weighted error components. ``poses (1, 4, 4)`` receives the
     pose and ``pose`` is ``poses[0]``; ``no_frames`` ``(0, 4, 4)`` and
-    ``no_axes`` ``(0, 6)`` are empty. All are made once by the caller: an
-    allocation per candidate cost a tenth of the check, and a view (``Q[b]``,
-    ``poses[0]``) two atomic reference-count updates.
+    ``no_axes`` ``(0, 6)`` are empty. All are made once by the caller (an
+    allocation per candidate cost a tenth of the check).
     """
     walk_row(links, ends, False, C, S, k, Q, b, poses, 0, no_frames, no_axes)
     plain = w[0] == 1.0 and w[1] == 1.0 and w[2] == 1.0
