@@ -344,17 +344,21 @@ def _check(
             valid &= np.isfinite(qs[j, k])
         if not valid:
             continue
-        p_err, r_err = _residual(
-            links, ends, qs, j, T, w, C, S, j, poses, pose, e, no_frames, no_axes
-        )
-        ok = p_err <= tol_p and r_err <= tol_r
-        if not ok and max(p_err, r_err) < POLISH_LIMIT:
-            _polish(links, ends, qs[j], T, w, C1, S1, pose, e, no_frames)
-            block_trig(links, qs, j, j + 1, C1, S1)
+        # The residual, and again after polishing a near miss: one call site
+        # (each site inlines the whole FK walk, seconds of compilation).
+        Cj, Sj, col = C, S, j
+        p_err = r_err = math.inf
+        ok = False
+        for attempt in range(2):
             p_err, r_err = _residual(
-                links, ends, qs, j, T, w, C1, S1, 0, poses, pose, e, no_frames, no_axes
+                links, ends, qs, j, T, w, Cj, Sj, col, poses, pose, e, no_frames, no_axes
             )
             ok = p_err <= tol_p and r_err <= tol_r
+            if ok or attempt == 1 or not max(p_err, r_err) < POLISH_LIMIT:
+                break
+            _polish(links, ends, qs[j], T, w, C1, S1, pose, e, no_frames)
+            block_trig(links, qs, j, j + 1, C1, S1)
+            Cj, Sj, col = C1, S1, 0
         close |= max(p_err, r_err) < POLISH_LIMIT
         if not ok:
             score = max(p_err / tol_p, r_err / tol_r)
