@@ -23,7 +23,7 @@ import numba
 import numpy as np
 
 from kinematica.kernels._numba import Array, IntArray, batch_kernel, inline_kernel, kernel
-from kinematica.kernels.fk import LINK_PRISMATIC, block_trig, walk, walk_row
+from kinematica.kernels.fk import LINK_PRISMATIC, block_trig, fk_one, walk_row
 from kinematica.kernels.jacobian import columns
 from kinematica.kernels.linalg import damped_least_squares
 from kinematica.kernels.so3 import angle_between, pose_error, wrap
@@ -156,8 +156,6 @@ def _polish(
     q: Array,
     T: Array,
     w: Array,
-    C: Array,
-    S: Array,
     pose: Array,
     e: Array,
     no_frames: Array,
@@ -183,8 +181,9 @@ def _polish(
         if w[k] > 0.0:
             r += 1
     for _ in range(POLISH_STEPS):
-        block_trig(links, q.reshape((1, n)), 0, 1, C, S)
-        walk(links, ends, False, C, S, 0, q, pose, no_frames, axes)
+        # the FK kernel of robot.fk, called, not the walk inlined: the polish
+        # is rare, and inlining the walk here cost seconds of compilation
+        fk_one(links, ends, np.bool_(False), q, pose, no_frames, axes)  # type: ignore[arg-type]
         columns(links, axes, pose, False, J6)
         pose_error(pose, T, e)
         row = 0
@@ -258,14 +257,15 @@ def check_target(
     meta[META_STATUS] = STATUS_OK  # not STATUS_INVALID: a target to check
     m, n = Q.shape
     # A batch of one, with the types check_batch passes (else numba compiles
-    # the block a second time): reshape keeps arrays C-contiguous (x[None]
-    # would not), and the bounds are run-time integers (literals 0, 1 are not).
-    one = T.reshape((1, 4, 4)).shape[0]
+    # the block a second time, seconds): reshape keeps arrays C-contiguous
+    # (x[None] would not), and np.int64 bounds are not the literals 0 and 1.
+    first: int = np.int64(0)  # type: ignore[assignment]
+    last: int = np.int64(1)  # type: ignore[assignment]
     _check_block(
         links, ends, qlim, T.reshape((1, 4, 4)), Q.reshape((1, m, n)),
         info.reshape((1, info.size)), w, q0.reshape((1, n)), opts,
         out_q.reshape((1, m, n)), out_slot.reshape((1, m)), out_res.reshape((1, m, 2)),
-        meta.reshape((1, META_SIZE)), one - 1, one,
+        meta.reshape((1, META_SIZE)), first, last,
     )  # fmt: skip
 
 
@@ -356,7 +356,7 @@ def _check(
             ok = p_err <= tol_p and r_err <= tol_r
             if ok or attempt == 1 or not max(p_err, r_err) < POLISH_LIMIT:
                 break
-            _polish(links, ends, qs[j], T, w, C1, S1, pose, e, no_frames)
+            _polish(links, ends, qs[j], T, w, pose, e, no_frames)
             block_trig(links, qs, j, j + 1, C1, S1)
             Cj, Sj, col = C1, S1, 0
         close |= max(p_err, r_err) < POLISH_LIMIT
