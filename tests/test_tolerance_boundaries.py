@@ -640,8 +640,8 @@ def test_newton_quiet_makes_a_small_step_the_last(factor: float, inside: bool) -
     """parallel_quartic.NEWTON_QUIET: Newton on equations (1) and (2) started
     ``factor * NEWTON_QUIET`` (rad) from a root takes that step and stops when
     it is below the constant (one evaluation), and evaluates once more above
-    it. Either way it lands on the root to round-off, with the cosines and
-    sines of where it lands.
+    it. Either way it lands on the root (the q5 and q1 that made the target)
+    to round-off, with the cosines and sines of where it lands.
 
     (1) and (2) are set up here from the module's equations: ``G = T M⁻¹``,
     ``x6 = R_G h6``, ``w6 = G(p6) - p1``, sides ``(k⊥·y, (h1 × k)·y, k∥·y)``.
@@ -659,11 +659,12 @@ def test_newton_quiet_makes_a_small_step_the_last(factor: float, inside: bool) -
     x6t = tuple(float(v) for v in x6)
     q1, q5, res, *_ = parallel_quartic._newton(params, V, x6t, L1, L2, 0.4 + 1e-3, 0.9 - 1e-3)
     assert res < 1e-14
+    assert abs(q1 - 0.4) < 1e-15 and abs(q5 - 0.9) < 1e-15  # the q that made T
     a1, a5, _, evaluations, c1, s1, c5, s5 = parallel_quartic._newton(
         params, V, x6t, L1, L2, q1, q5 + factor * NEWTON_QUIET
     )
     assert evaluations == (1 if inside else 2)
-    assert abs(a1 - q1) < 1e-15 and abs(a5 - q5) < 1e-15
+    assert abs(a1 - 0.4) < 1e-15 and abs(a5 - 0.9) < 1e-15
     # the cosines and sines returned are those of the angles returned (turned
     # by the last step to first order when it was that small)
     for got, want in (
