@@ -41,7 +41,16 @@ def located(
 
 
 class KinematicaError(Exception):
-    """Base class of every error raised on purpose by kinematica."""
+    """Base class of every error raised on purpose by kinematica.
+
+    Attributes:
+        arg: The name of the argument the error is about (e.g. ``"tol"``), or
+            ``None``: the command line names its own option for it.
+    """
+
+    def __init__(self, message: str = "", *, arg: str | None = None) -> None:
+        self.arg = arg
+        super().__init__(message)
 
 
 class ArgumentError(KinematicaError, ValueError):

@@ -1,7 +1,6 @@
 """Denavit-Hartenberg rows, link matrices, conversion between conventions, extraction."""
 
 from kinematica.dh.axes import AxisFrame, ChainGeometry, ExtractedTable, FrameRule, NamedFrame
-from kinematica.dh.chain import DHChain
 from kinematica.dh.convert import convert_table
 from kinematica.dh.extract import FK_CHECK_TOL, extract_dh
 from kinematica.dh.joints import (
@@ -22,7 +21,6 @@ __all__ = [
     "AxisFrame",
     "ChainGeometry",
     "Convention",
-    "DHChain",
     "ExtractedTable",
     "FrameRule",
     "Joint",

@@ -1,9 +1,9 @@
-"""Numeric IK on any serial chain: the set-up of the Levenberg-Marquardt kernel.
+"""Numeric IK on any serial chain: the set-up of the core's Levenberg-Marquardt search.
 
-The search itself is :mod:`kinematica.kernels.lm` (one target; a batch runs
-it in parallel). This module prepares what it needs, once per arm and
-settings: each joint's wrap window and clamps, the reach bound, and the
-restart configurations drawn from the seed (the same for every target of a
+The search itself is the core's (``cpp/include/kinematica/lm.hpp``: one target; a
+batch runs it in the core's threads). This module prepares what it needs, once
+per arm and settings: each joint's wrap window and clamps, the reach bound, and
+the restart configurations drawn from the seed (the same for every target of a
 batch, so a target gets the same answer alone or in a batch).
 """
 
@@ -16,18 +16,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica.dh import DHChain
+from kinematica import _core
+from kinematica.core import Chain
 from kinematica.errors import ArgumentError
-from kinematica.kernels.fk import LINK_A, LINK_D, LINK_PRISMATIC, START, TOOL
-from kinematica.kernels.lm import (
-    SET_BASE,
-    SET_MAX_STEPS,
-    SET_REACH,
-    SET_SIZE,
-    SET_TOL_POSITION,
-    SET_TOL_ROTATION,
-)
-from kinematica.kernels.lm_bounds import BOUND_HI, BOUND_LO, BOUND_WRAP
 
 __all__ = [
     "DEFAULT_MAX_ITERATIONS",
@@ -39,6 +30,7 @@ __all__ = [
     "NumericSetup",
     "check_seed",
     "numeric_setup",
+    "reach_bound",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -65,24 +57,25 @@ LABEL = "numeric"
 
 @dataclass(frozen=True, eq=False)
 class NumericSetup:
-    """What the LM kernel needs for one arm and settings.
+    """The core's search for one arm and settings, and what it was made from.
 
     Attributes:
+        solver: The core's solver (:class:`kinematica._core.NumericSolver`).
         bounds: ``(n, 3)`` per joint: start of its 2π wrap window, lower and
             upper clamp (±inf where none).
-        settings: ``(SET_SIZE,)`` tolerances, steps per attempt, reach bound
-            (m) and base origin.
+        reach: Bound on the distance of the tool origin from the base origin (m).
         samples: ``(R, n)`` restart configurations, uniform within the limits.
         middle: ``(n,)`` the default first guess, the middle of the sampled box.
     """
 
+    solver: _core.NumericSolver
     bounds: FloatArray
-    settings: FloatArray
+    reach: float
     samples: FloatArray
     middle: FloatArray
 
 
-_SETUPS: weakref.WeakKeyDictionary[DHChain, dict[tuple[object, ...], NumericSetup]] = (
+_SETUPS: weakref.WeakKeyDictionary[Chain, dict[tuple[object, ...], NumericSetup]] = (
     weakref.WeakKeyDictionary()
 )
 _SETUPS_PER_CHAIN = 8
@@ -105,26 +98,29 @@ def check_seed(seed: object) -> int | np.random.Generator | None:
 
 
 def numeric_setup(
-    chain: DHChain,
+    chain: Chain,
     *,
     respect_limits: bool,
     tol_position: float,
     tol_rotation: float,
     seed: int | np.random.Generator | None,
+    weights: FloatArray,
     restarts: int = DEFAULT_RESTARTS,
     max_iterations: int = DEFAULT_MAX_ITERATIONS,
 ) -> NumericSetup:
     """The set-up, from the cache when this chain has seen these settings.
 
-    A Generator ``seed`` is drawn from (so it is never cached).
+    A Generator ``seed`` is drawn from (so it is never cached). ``weights``
+    ``(6,)`` weigh the error components x, y, z, rx, ry, rz (0: not counted).
     """
-    key = (respect_limits, tol_position, tol_rotation, seed, restarts, max_iterations)
+    w = tuple(float(v) for v in weights)
+    key = (respect_limits, tol_position, tol_rotation, seed, restarts, max_iterations, w)
     cacheable = not isinstance(seed, np.random.Generator)
     per_chain = _SETUPS.setdefault(chain, {})
     if cacheable and key in per_chain:
         return per_chain[key]
     setup = _compile(
-        chain, respect_limits, tol_position, tol_rotation, seed, restarts, max_iterations
+        chain, respect_limits, tol_position, tol_rotation, seed, restarts, max_iterations, w
     )
     if cacheable:
         if len(per_chain) >= _SETUPS_PER_CHAIN:
@@ -133,24 +129,39 @@ def numeric_setup(
     return setup
 
 
+def reach_bound(chain: Chain, lo: FloatArray, hi: FloatArray) -> float:
+    """A bound (m) on the distance of the tool origin from the start frame's origin.
+
+    The tool origin is never farther than the sum of the chain's translations: each
+    joint part's ``|tx| + |ty| + |tz|`` (a DH row's ``|a| + |d|``; a slide's ``tz``
+    over its bounds ``lo``, ``hi``) and the tool offset. Leaving position
+    components out only shortens a distance, so the bound holds under any mask.
+    """
+    reach = float(np.linalg.norm(chain.tool[:3, 3]))
+    for t, slide, b_lo, b_hi in zip(chain.translations, chain.prismatic, lo, hi, strict=True):
+        reach += abs(t[0]) + abs(t[1])
+        reach += max(abs(t[2] + b_lo), abs(t[2] + b_hi)) if slide else abs(t[2])
+    return reach
+
+
 def _compile(
-    chain: DHChain,
+    chain: Chain,
     respect_limits: bool,
     tol_position: float,
     tol_rotation: float,
     seed: int | np.random.Generator | None,
     restarts: int,
     max_iterations: int,
+    weights: tuple[float, ...],
 ) -> NumericSetup:
-    links = chain.links
-    prismatic = links[:, LINK_PRISMATIC] != 0.0
+    prismatic = chain.prismatic
     revolute = ~prismatic
     lo, hi = chain.qlim[:, 0], chain.qlim[:, 1]
     free = (revolute & (hi - lo >= FULL_TURN)) | (not respect_limits)
     bounds = np.empty((chain.dof, 3))
-    bounds[:, BOUND_WRAP] = np.where(prismatic | (not respect_limits), -math.pi, lo)
-    bounds[:, BOUND_LO] = np.where(free, -np.inf, lo)
-    bounds[:, BOUND_HI] = np.where(free, np.inf, hi)
+    bounds[:, 0] = np.where(prismatic | (not respect_limits), -math.pi, lo)  # wrap window start
+    bounds[:, 1] = np.where(free, -np.inf, lo)  # clamps
+    bounds[:, 2] = np.where(free, np.inf, hi)
     # Restarts sample each joint's limits (revolute: one turn at most; all of
     # it when the limits are ignored); a prismatic joint without limits
     # ±PRISMATIC_SPAN, with one limit 2·PRISMATIC_SPAN from it.
@@ -170,23 +181,12 @@ def _compile(
         else np.random.default_rng(DEFAULT_SEED if seed is None else seed)
     )
     samples = rng.uniform(sample_lo, sample_hi, size=(restarts, chain.dof))
-    # The tool origin is never farther from the start frame's origin than the
-    # sum of the chain's translations: |a| and |d| of every row (d over its
-    # bounds for a prismatic joint) and the tool offset. Leaving position
-    # components out only shortens a distance, so the bound holds under any mask.
-    reach = float(np.linalg.norm(chain.ends[TOOL][:3, 3]))
-    for row, b_lo, b_hi in zip(links, bounds[:, BOUND_LO], bounds[:, BOUND_HI], strict=True):
-        reach += abs(row[LINK_A])
-        if row[LINK_PRISMATIC]:
-            reach += max(abs(row[LINK_D] + b_lo), abs(row[LINK_D] + b_hi))
-        else:
-            reach += abs(row[LINK_D])
-    settings = np.empty(SET_SIZE)
-    settings[SET_TOL_POSITION] = tol_position
-    settings[SET_TOL_ROTATION] = tol_rotation
-    settings[SET_MAX_STEPS] = max_iterations
-    settings[SET_REACH] = reach
-    settings[SET_BASE : SET_BASE + 3] = chain.ends[START][:3, 3]
-    for a in (bounds, settings, samples):
+    reach = reach_bound(chain, bounds[:, 1], bounds[:, 2])
+    middle = 0.5 * (sample_lo + sample_hi)
+    solver = _core.NumericSolver(
+        bounds, tol_position, tol_rotation, max_iterations, reach, chain.start[:3, 3].copy(),
+        list(weights), np.ascontiguousarray(samples), np.ascontiguousarray(middle),
+    )  # fmt: skip
+    for a in (bounds, samples, middle):
         a.flags.writeable = False
-    return NumericSetup(bounds, settings, samples, 0.5 * (sample_lo + sample_hi))
+    return NumericSetup(solver, bounds, reach, samples, middle)

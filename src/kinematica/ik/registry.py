@@ -1,16 +1,14 @@
-"""Closed-form solvers: which structure each handles, and how it is built.
+"""Closed-form solvers: which structure each handles, how it is built, arms to test it on.
 
-A closed-form solver is a kernel over one target (and the same kernel in a
-parallel loop for a batch) with its parameters, computed once per arm from
-the geometry of its joint axes (:class:`Features`). Each solver module
-declares a :class:`SolverSpec`: the structure it handles (a ``kind`` and a
-one-line ``summary`` for people), a predicate on the features, and a builder
-that returns a :class:`ClosedForm` (or ``None`` when a finer test fails).
-
-Adding a solver: write its kernel (``solve(params, T, Q, info)``, see
-:mod:`kinematica.kernels.ik_check` for ``Q`` and ``info``) and a batch loop
-over it, a builder packing its parameters, a ``SolverSpec``, and add the spec
-to :data:`SOLVERS`.
+A closed-form solver is one C++ header (its ``Params`` struct with named fields and
+``solve``, under ``cpp/include/kinematica/solvers/``) plus one Python module under
+:mod:`kinematica.ik.analytic` declaring a :class:`SolverSpec`: the structure it
+handles (a ``kind`` and one-line summaries in English and Spanish), a predicate on
+the arm's :class:`Features`, a builder that fills the ``Params`` from the geometry
+of the joint axes (a :class:`ClosedForm`, or ``None`` when a finer test fails), and
+``sample_arm``, a generator of arms of the family (degenerate ones on request) that
+the conformance tests solve. :data:`kinematica.ik.analytic.SOLVERS` lists the specs
+in the order they are tried; nothing else names solver kinds.
 """
 
 from __future__ import annotations
@@ -22,10 +20,11 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica.dh import DHChain
+from kinematica.core import Chain
+from kinematica.dh.joints import Convention, Joint
 from kinematica.ik.structure import Features
 
-__all__ = ["ClosedForm", "SolverSpec", "TargetKind", "describe"]
+__all__ = ["ArmSample", "ClosedForm", "SolverSpec", "TargetKind", "describe"]
 
 FloatArray = NDArray[np.float64]
 TargetKind = Literal["pose", "position"]
@@ -38,9 +37,8 @@ class ClosedForm:
     Attributes:
         name: Short name; results say ``method="analytic:<name>"``.
         labels: ``(m,)`` branch names of the candidate slots.
-        params: The kernel's parameters (a flat float array).
-        solve_one: Kernel ``(params, T (4, 4), Q (m, n), info) -> None``.
-        solve_batch: Kernel ``(params, T (N, 4, 4), Q (N, m, n), info (N, k)) -> None``.
+        params: The family's C++ ``Params`` (from :mod:`kinematica._core`), filled
+            for this arm: its ``ik``, ``ik_batch`` and ``candidates`` solve targets.
         position_only: True when it places the tool origin only (for a pose
             target of a reduced arm its candidates are checked on the whole pose).
         partial: True when its candidates are representatives with some joints
@@ -49,9 +47,7 @@ class ClosedForm:
 
     name: str
     labels: tuple[str, ...]
-    params: FloatArray
-    solve_one: Any
-    solve_batch: Any
+    params: Any
     position_only: bool = False
     partial: bool = False
 
@@ -66,23 +62,50 @@ class ClosedForm:
         return f"analytic:{self.name}"
 
 
+@dataclass(frozen=True, eq=False)
+class ArmSample:
+    """An arm of a solver's family, as a DH table (what ``sample_arm`` gives).
+
+    Attributes:
+        links: The DH rows, base to tip.
+        convention: ``"standard"`` or ``"modified"``.
+        base: ``(4, 4)`` pose of frame 0, or ``None`` (identity).
+        tool: ``(4, 4)`` tool in frame n, or ``None`` (identity).
+        note: What is special about it (``""`` for a generic arm).
+    """
+
+    links: tuple[Joint, ...]
+    convention: Convention = "standard"
+    base: FloatArray | None = None
+    tool: FloatArray | None = None
+    note: str = ""
+
+
 @dataclass(frozen=True)
 class SolverSpec:
-    """The structure a closed-form solver handles, and its builder.
+    """The structure a closed-form solver handles, its builder, and arms of its family.
 
     Attributes:
         kind: Machine-readable structure, e.g. ``"spherical-wrist-6R"``.
         summary: One line for people, e.g. ``"6R, spherical wrist"``.
+        summary_es: The same line in Spanish (derivation reports).
         handles: True for the features of arms of this structure.
         build: ``(chain, features, target kind) -> ClosedForm | None``.
+        sample_arm: ``(rng, degenerate) -> ArmSample``: a random arm this spec
+            handles; with ``degenerate``, one of the family's edge geometries
+            (equal links, offsets of 1e-10, axes parallel within 1e-9, ...).
+        targets: The target kinds it solves (``"pose"``, ``"position"``).
         describes: False for a solver of some targets of arms of many
             structures (it names no structure: :func:`describe` passes it by).
     """
 
     kind: str
     summary: str
+    summary_es: str
     handles: Callable[[Features], bool]
-    build: Callable[[DHChain, Features, TargetKind], ClosedForm | None]
+    build: Callable[[Chain, Features, TargetKind], ClosedForm | None]
+    sample_arm: Callable[[np.random.Generator, bool], ArmSample]
+    targets: tuple[TargetKind, ...] = ("pose",)
     describes: bool = True
 
 

@@ -13,16 +13,6 @@ from numpy.typing import NDArray
 
 from kinematica.errors import UnreachableError
 from kinematica.ik.status import STATUS_NAMES, IKStatus, status_message
-from kinematica.kernels.ik_check import (
-    META_COUNT,
-    META_GAP,
-    META_NEAR,
-    META_NEAREST_POSITION,
-    META_NEAREST_ROTATION,
-    META_OUT_COUNT,
-    META_STATUS,
-    STATUS_SINGULAR,
-)
 
 __all__ = ["NEAR_NOTE", "CheckOutput", "IKBatchResult", "IKResult", "result_of"]
 
@@ -169,7 +159,7 @@ class IKBatchResult:
     @property
     def size(self) -> int:
         """The number of targets."""
-        return int(self.raw.meta.shape[0])
+        return int(self.raw.status.shape[0])
 
     def __len__(self) -> int:
         return self.shape[0] if self.shape else 1
@@ -180,8 +170,7 @@ class IKBatchResult:
 
     @cached_property
     def _counts(self) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
-        meta = self.raw.meta
-        return meta[:, META_COUNT].astype(np.int64), meta[:, META_OUT_COUNT].astype(np.int64)
+        return self.raw.count, self.raw.out_count
 
     @cached_property
     def count(self) -> NDArray[np.int64]:
@@ -244,29 +233,28 @@ class IKBatchResult:
     def status(self) -> NDArray[np.str_]:
         """``(...)`` status per target (strings)."""
         names = np.array([str(STATUS_NAMES[c]) for c in sorted(STATUS_NAMES)], dtype=str)
-        return self._shaped(names[self.raw.meta[:, META_STATUS].astype(np.int64)])
+        return self._shaped(names[self.raw.status])
 
     @cached_property
     def free(self) -> NDArray[np.bool_]:
         """``(..., n)`` True for the joints left free, where the status is singular."""
-        singular = self.raw.meta[:, META_STATUS] == STATUS_SINGULAR
-        return self._shaped((self.raw.free != 0.0) & singular[:, None])
+        singular = self.raw.status == _SINGULAR
+        return self._shaped(self.raw.free & singular[:, None])
 
     @cached_property
     def gap(self) -> FloatArray:
         """``(...)`` distance outside the reach for unreachable targets (m), else NaN."""
-        return self._shaped(self.raw.meta[:, META_GAP].copy())
+        return self._shaped(self.raw.gap.copy())
 
     @cached_property
     def nearest_error(self) -> FloatArray:
         """``(..., 2)`` the closest miss among candidates that were not solutions."""
-        meta = self.raw.meta
-        return self._shaped(meta[:, [META_NEAREST_POSITION, META_NEAREST_ROTATION]])
+        return self._shaped(self.raw.nearest.copy())
 
     @cached_property
     def near_singular(self) -> NDArray[np.bool_]:
         """``(...)`` True where the target is within round-off of a singular set."""
-        return self._shaped(self.raw.meta[:, META_NEAR] != 0.0)
+        return self._shaped(self.raw.near.copy())
 
     # -------------------------------------------------------------- one target
     def _index(self, i: int | tuple[int, ...]) -> tuple[int, ...]:
@@ -284,10 +272,16 @@ class IKBatchResult:
         if idx in self.errors:
             notes = (self.errors[idx], *notes)
         raw = self.raw
-        return result_of(
-            raw.q[flat], raw.slot[flat], raw.res[flat], raw.meta[flat], raw.free[flat],
-            self.labels, self.method, self.complete, notes,
+        count, out = int(raw.count[flat]), int(raw.out_count[flat])
+        free = sum(1 << j for j, v in enumerate(raw.free[flat].tolist()) if v)
+        report = (
+            int(raw.status[flat]), count, out, float(raw.gap[flat]),
+            float(raw.nearest[flat, 0]), float(raw.nearest[flat, 1]), bool(raw.near[flat]), free,
         )  # fmt: skip
+        slots = raw.slot[flat, : count + out].tolist()
+        return result_of(
+            raw.q[flat], raw.res[flat], slots, report, self.labels, self.method, self.complete, notes
+        )
 
     @cached_property
     def message(self) -> NDArray[np.str_]:
@@ -303,42 +297,55 @@ class IKBatchResult:
 
 @dataclass(frozen=True, eq=False)
 class CheckOutput:
-    """What the check kernel wrote for N targets (see :mod:`kinematica.kernels.ik_check`).
+    """What the core's check wrote for N targets (``ik_batch`` of a solver).
 
     Attributes:
         q: ``(N, m, n)`` solutions within the limits, then those outside, NaN after.
         slot: ``(N, m)`` the candidate slot of each row (its branch), -1 after.
         res: ``(N, m, 2)`` position and rotation residuals.
-        meta: ``(N, META_SIZE)`` status, counts, gap, nearest miss, near flag.
-        free: ``(N, n)`` the solver's free-joint flags.
+        status: ``(N,)`` status codes (:data:`~kinematica.ik.status.STATUS_NAMES`).
+        count: ``(N,)`` solutions within the limits.
+        out_count: ``(N,)`` solutions outside them.
+        gap: ``(N,)`` the proven gap of unreachable targets (m), else NaN.
+        nearest: ``(N, 2)`` the closest miss among the candidates (m, rad).
+        near: ``(N,)`` the solver's near-singular flag.
+        free: ``(N, n)`` the solver's free joints.
     """
 
     q: FloatArray
     slot: NDArray[np.int64]
     res: FloatArray
-    meta: FloatArray
-    free: FloatArray
+    status: NDArray[np.int64]
+    count: NDArray[np.int64]
+    out_count: NDArray[np.int64]
+    gap: FloatArray
+    nearest: FloatArray
+    near: NDArray[np.bool_]
+    free: NDArray[np.bool_]
+
+
+#: The core's code of the singular status.
+_SINGULAR = next(code for code, name in STATUS_NAMES.items() if name is IKStatus.SINGULAR)
 
 
 def result_of(
     q: FloatArray,
-    slot: NDArray[np.int64],
     residuals: FloatArray,
-    meta_row: FloatArray,
-    free_flags: FloatArray,
+    slots: list[int],
+    report: tuple[int, int, int, float, float, float, bool, int],
     labels: tuple[str, ...],
     method: str,
     complete: bool,
     notes: tuple[str, ...],
 ) -> IKResult:
-    """The :class:`IKResult` of one target from what the check kernel wrote for it.
+    """The :class:`IKResult` of one target from what the core's check wrote for it.
 
     Args:
         q: ``(m, n)`` the checked solutions (within the limits first).
-        slot: ``(m,)`` their candidate slots (branch labels).
         residuals: ``(m, 2)`` their residuals.
-        meta_row: ``(META_SIZE,)`` status, counts, gap, nearest miss, near flag.
-        free_flags: ``(n,)`` the solver's free-joint flags.
+        slots: The candidate slot (branch label) of each solution row.
+        report: ``(status, count, out_count, gap, nearest position, nearest
+            rotation, near, free mask)`` as the core gives it.
         labels: The solver's branch labels.
         method: The method name.
         complete: The method gives every solution.
@@ -347,14 +354,11 @@ def result_of(
     Built without the frozen dataclass's ``__init__`` (a dozen guarded
     attribute writes): the one-target path of ``robot.ik`` runs through here.
     """
-    meta = meta_row.tolist()
-    count, out = int(meta[META_COUNT]), int(meta[META_OUT_COUNT])
-    status = STATUS_NAMES[int(meta[META_STATUS])]
-    slots = slot[: count + out].tolist()
-    gap = meta[META_GAP]
+    code, count, out, gap, near_p, near_r, near, free_mask = report
+    status = STATUS_NAMES[code]
     free: tuple[int, ...] = ()
-    if status is IKStatus.SINGULAR:
-        free = tuple([j for j, v in enumerate(free_flags.tolist()) if v != 0.0])
+    if status is IKStatus.SINGULAR and free_mask:
+        free = tuple([j for j in range(q.shape[1]) if (free_mask >> j) & 1])
     res = IKResult.__new__(IKResult)
     res.__dict__.update(
         solutions=q[:count],
@@ -366,9 +370,9 @@ def result_of(
         out_of_limits_branches=tuple([labels[j] for j in slots[count:]]) if out else (),
         free_joints=free,
         gap=None if math.isnan(gap) else gap,
-        nearest_error=(meta[META_NEAREST_POSITION], meta[META_NEAREST_ROTATION]),
+        nearest_error=(near_p, near_r),
         notes=notes,
         complete=complete,
-        near_singular=meta[META_NEAR] != 0.0,
+        near_singular=near,
     )
     return res

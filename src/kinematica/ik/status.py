@@ -5,14 +5,7 @@ from __future__ import annotations
 import math
 from enum import StrEnum
 
-from kinematica.kernels.ik_check import (
-    STATUS_INVALID,
-    STATUS_NOT_FOUND,
-    STATUS_OK,
-    STATUS_OUT_OF_LIMITS,
-    STATUS_SINGULAR,
-    STATUS_UNREACHABLE,
-)
+from kinematica import _core
 
 __all__ = ["SOLVED", "STATUS_NAMES", "IKStatus", "status_message"]
 
@@ -42,15 +35,8 @@ class IKStatus(StrEnum):
     INVALID = "invalid"
 
 
-#: Status of each kernel status code.
-STATUS_NAMES: dict[int, IKStatus] = {
-    STATUS_OK: IKStatus.OK,
-    STATUS_SINGULAR: IKStatus.SINGULAR,
-    STATUS_OUT_OF_LIMITS: IKStatus.OUT_OF_LIMITS,
-    STATUS_UNREACHABLE: IKStatus.UNREACHABLE,
-    STATUS_NOT_FOUND: IKStatus.NOT_FOUND,
-    STATUS_INVALID: IKStatus.INVALID,
-}
+#: Status of each of the core's status codes (``kinematica._core.STATUS``).
+STATUS_NAMES: dict[int, IKStatus] = {code: IKStatus(name) for name, code in _core.STATUS.items()}
 
 #: Statuses for which ``solutions`` is not empty.
 SOLVED: frozenset[str] = frozenset({IKStatus.OK, IKStatus.SINGULAR})

@@ -14,8 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica.dh import DHChain
-from kinematica.kernels import joint_axes
+from kinematica.core import Chain
 
 __all__ = [
     "MEET_TOL",
@@ -125,9 +124,9 @@ class Features:
         return not self.is_parallel(i, j) and line_distance(h[i], p[i], h[j], p[j]) < MEET_TOL
 
 
-def features(chain: DHChain) -> Features:
+def features(chain: Chain) -> Features:
     """The features of a chain's joint axes at q = 0."""
-    axes = joint_axes(chain, np.zeros(chain.dof))
+    axes = chain.joint_axes(np.zeros(chain.dof))
     h, p = axes[:, :3].copy(), axes[:, 3:].copy()
     n = chain.dof
     types = "".join("P" if v else "R" for v in chain.prismatic)

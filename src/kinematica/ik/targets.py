@@ -18,16 +18,8 @@ from typing import Any, NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from kinematica import _core
 from kinematica.errors import DimensionError, KinematicaError
-from kinematica.kernels.targets import (
-    DEFECT_DET,
-    DEFECT_FINITE,
-    DEFECT_LAST_ROW,
-    DEFECT_ORTHO,
-    DEFECT_SIZE,
-    pose_defects,
-    pose_defects_batch,
-)
 from kinematica.spatial import ROUNDOFF_TOL, nearest_rotation
 
 __all__ = [
@@ -148,23 +140,14 @@ def _positions(arr: FloatArray) -> Targets:
 
 def _poses(raw: np.ndarray) -> Targets:
     shape = raw.shape[:-2]
-    if not shape and raw.dtype == np.float64:  # one pose: the cheapest copy, one kernel call
+    if not shape and raw.dtype == np.float64:  # one pose: the cheapest copy, one core call
         poses = raw[None].copy()
-        out = np.empty(DEFECT_SIZE)
-        pose_defects(poses[0], out)
-        one = out.tolist()  # plain floats beat numpy's per-call cost
-        rigid = one[DEFECT_FINITE] and one[DEFECT_ORTHO] <= ROUNDOFF_TOL
-        if rigid and one[DEFECT_LAST_ROW] == 0.0 and one[DEFECT_DET] > 0.0:
+        finite1, last1, ortho1, det1 = _core.pose_defects(poses[0])
+        if finite1 and ortho1 <= ROUNDOFF_TOL and last1 == 0.0 and det1 > 0.0:
             return Targets(poses, shape, False)
     else:
         poses = np.array(raw.reshape(-1, 4, 4), dtype=np.float64, order="C")  # a copy
-    defects = np.empty((poses.shape[0], DEFECT_SIZE))
-    if poses.shape[0] == 1:
-        pose_defects(poses[0], defects[0])
-    else:
-        pose_defects_batch(poses, defects)
-    finite = defects[:, DEFECT_FINITE] != 0.0
-    last, ortho, det = defects[:, DEFECT_LAST_ROW], defects[:, DEFECT_ORTHO], defects[:, DEFECT_DET]
+    finite, last, ortho, det = _core.pose_defects_batch(poses)
     clean = finite & (ortho <= ROUNDOFF_TOL) & (last == 0.0) & (det > 0.0)
     if clean.all():
         return Targets(poses, shape, False)

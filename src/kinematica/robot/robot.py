@@ -16,9 +16,9 @@ from typing import TYPE_CHECKING, Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from kinematica.core import Chain
 from kinematica.dh import (
     Convention,
-    DHChain,
     Joint,
     Prismatic,
     Revolute,
@@ -28,9 +28,6 @@ from kinematica.dh import (
 )
 from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning
 from kinematica.ik import IKBatchResult, IKResult, Tolerance, solve_ik
-from kinematica.kernels import fk as kernel_fk
-from kinematica.kernels import jacobian as kernel_jacobian
-from kinematica.kernels import joint_axes as kernel_joint_axes
 from kinematica.robot.dh_rules import to_dh, to_urdf
 from kinematica.robot.frames import rigid_frame, short
 from kinematica.robot.save import write_robot_file
@@ -60,7 +57,7 @@ class Robot:
         base: ``(4, 4)`` pose of DH frame 0 in the world (base) frame.
         tool: ``(4, 4)`` pose of the tool in the last DH frame.
         description: Free text (source of the model, notes).
-        chain: The table compiled into the arrays the kernels walk (derived).
+        chain: The table compiled for the core (derived).
         source_spec: The description the robot was read from (robot file or
             built-in model), or ``None``; :meth:`save` writes it back as it
             was written, for every part that still describes this robot.
@@ -72,7 +69,7 @@ class Robot:
     base: FloatArray = field(default_factory=lambda: np.eye(4))
     tool: FloatArray = field(default_factory=lambda: np.eye(4))
     description: str | None = None
-    chain: DHChain = field(init=False, repr=False)
+    chain: Chain = field(init=False, repr=False)
     source_spec: RobotSpec | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -93,7 +90,7 @@ class Robot:
         tool.flags.writeable = False
         object.__setattr__(self, "base", base)
         object.__setattr__(self, "tool", tool)
-        object.__setattr__(self, "chain", DHChain.from_joints(links, self.convention, base, tool))
+        object.__setattr__(self, "chain", Chain.from_dh(links, self.convention, base, tool))
 
     @classmethod
     def from_dh(
@@ -247,7 +244,7 @@ class Robot:
             q: ``(..., n)`` joint values (rad for revolute, m for prismatic joints).
             all_frames: Return every frame ``0T0 (base), 0T1, ..., 0Tn (with tool)``.
             workers: Threads for a batch (None: the library default, see
-                :func:`kinematica.kernels.resolve_workers`).
+                :func:`kinematica.core.resolve_workers`).
 
         A batch whose rows hold NaN/inf still returns the other rows; those
         rows come out NaN, with a :class:`KinematicaWarning` naming them. A
@@ -260,7 +257,7 @@ class Robot:
             ``(..., n+1, 4, 4)`` with ``all_frames``.
         """
         qa = self.check_q(q)
-        out, bad, outside = kernel_fk(self.chain, qa, all_frames, workers)
+        out, bad, outside = self.chain.fk(qa, all_frames, workers)
         if bad or outside:
             self._report(qa, "q", bad, outside)
         return out
@@ -333,7 +330,7 @@ class Robot:
 
             return analytic_jacobian(self, q, euler)
         qa = self.check_q(q)
-        J, bad = kernel_jacobian(self.chain, qa, frame == "tool", workers)
+        J, bad = self.chain.jacobian(qa, frame == "tool", workers)
         if bad:
             self._report(qa, "q", bad, 0)
         return J
@@ -351,7 +348,7 @@ class Robot:
         qa = np.zeros(self.dof) if q is None else self.check_q(q)
         if qa.ndim == 1 and not np.all(np.isfinite(qa)):
             self._report(qa, "q", 1, 0)
-        axes = kernel_joint_axes(self.chain, qa)
+        axes = self.chain.joint_axes(qa)
         return axes[..., :3], axes[..., 3:]
 
     def ik(

@@ -1,0 +1,143 @@
+// Building a Chain: from a DH table, and from general transforms (URDF joints).
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include "chain.hpp"
+
+namespace km {
+
+namespace detail {
+
+inline double snap(double v) {
+    if (std::fabs(v) < SNAP_TOL) return 0.0;
+    if (std::fabs(std::fabs(v) - 1.0) < SNAP_TOL) return std::copysign(1.0, v);
+    return v;
+}
+
+inline Pose rot_x(double c, double s) {
+    Pose P;
+    P.y = {0.0, c, s};
+    P.z = {0.0, -s, c};
+    return P;
+}
+
+inline Pose rot_z(double c, double s) {
+    Pose P;
+    P.x = {c, s, 0.0};
+    P.y = {-s, c, 0.0};
+    return P;
+}
+
+inline Pose trans(const Vec3& t) {
+    Pose P;
+    P.p = t;
+    return P;
+}
+
+inline void set_limits(Joint& J, double lo, double hi) {
+    J.lo = lo;
+    J.hi = hi;
+    const bool own = std::isfinite(lo) || std::isfinite(hi) || J.prismatic;
+    J.qlo = own ? lo : -PI;
+    J.qhi = own ? hi : PI;
+}
+
+//! R = Rz(θ) Rx(α) Rz(δ) (ZXZ angles), accurate as a product however small sin α is.
+//!
+//! θ + δ (or θ − δ where cos α < 0) comes from the 2x2 block, exact to round-off; θ from
+//! the third column, whose error ε / sin α is then taken back by δ: the product is off by
+//! about ε sin α.
+inline void zxz(const Pose& R, double& theta, double& ca, double& sa, double& delta) {
+    // entries R[i][j]: row i, column j
+    const double r00 = R.x.x, r10 = R.x.y, r01 = R.y.x, r11 = R.y.y;
+    const double r02 = R.z.x, r12 = R.z.y, r22 = R.z.z;
+    const double s = std::hypot(r02, r12);
+    const double len = std::hypot(s, r22);
+    ca = r22 / len;
+    sa = s / len;
+    theta = s > 0.0 ? std::atan2(r02, -r12) : 0.0;
+    if (r22 >= 0.0) {
+        const double sum = std::atan2(r10 - r01, r00 + r11);
+        delta = sum - theta;
+    } else {
+        const double diff = std::atan2(r10 + r01, r00 - r11);
+        delta = theta - diff;
+    }
+}
+
+}  // namespace detail
+
+inline Chain Chain::from_dh(int n, const bool* prismatic, const double* theta, const double* d,
+                            const double* a, const double* alpha, const double* lo,
+                            const double* hi, bool modified, const Pose& base, const Pose& tool) {
+    Chain ch;
+    ch.joints_.resize(static_cast<size_t>(n));
+    ch.base_ = base;
+    ch.tool_ = tool;
+    ch.frames_ = modified ? FrameAt::middle : FrameAt::after;
+    ch.start_ = base;
+    if (modified && n > 0) {
+        const Pose first = detail::rot_x(detail::snap(std::cos(alpha[0])), detail::snap(std::sin(alpha[0]))) *
+                           detail::trans({a[0], 0.0, 0.0});
+        ch.start_ = base * first;
+    }
+    for (int i = 0; i < n; ++i) {
+        Joint& J = ch.joints_[static_cast<size_t>(i)];
+        const int row = modified ? i + 1 : i;
+        const double ai = row < n ? a[row] : 0.0;
+        const double al = row < n ? alpha[row] : 0.0;
+        J.prismatic = prismatic[i];
+        J.theta = theta[i];
+        J.ct = detail::snap(std::cos(theta[i]));
+        J.st = detail::snap(std::sin(theta[i]));
+        J.t = {ai, 0.0, d[i]};
+        J.ca = detail::snap(std::cos(al));
+        J.sa = detail::snap(std::sin(al));
+        detail::set_limits(J, lo[i], hi[i]);
+    }
+    return ch;
+}
+
+inline Chain Chain::from_transforms(int n, const Pose& start, const Pose* between,
+                                    const Pose& tool, const Pose* frame_offset,
+                                    const bool* prismatic, const double* lo, const double* hi,
+                                    const Pose& base) {
+    Chain ch;
+    ch.joints_.resize(static_cast<size_t>(n));
+    ch.base_ = base;
+    ch.start_ = start;
+    ch.frames_ = FrameAt::custom;
+    // carry: the rotation about z the compiled frames are turned by from the true ones
+    // (compiled = true · carry); it commutes with every joint's motion.
+    Pose carry{};
+    for (int i = 0; i < n; ++i) {
+        Joint& J = ch.joints_[static_cast<size_t>(i)];
+        J.prismatic = prismatic[i];
+        detail::set_limits(J, lo[i], hi[i]);
+        const Pose carry_inv = inverse(carry);
+        Pose next_carry = carry;  // after the last joint, the tool takes the carry
+        if (i < n - 1) {
+            // the fixed part after joint i, in the compiled frame: E = carry⁻¹ F = P_i Rz(δ)
+            const Pose E = carry_inv * between[i];
+            double th, ca, sa, delta;
+            detail::zxz(E, th, ca, sa, delta);
+            J.theta = th;
+            J.ct = std::cos(th);
+            J.st = std::sin(th);
+            J.t = detail::rot_z(J.ct, -J.st).rotate(E.p);  // Rz(-θ) p: Rz(q) Trans(p) Rz(θ) = Rz(q + θ) Trans(t)
+            J.ca = ca;
+            J.sa = sa;
+            next_carry = detail::rot_z(std::cos(delta), -std::sin(delta));  // Rz(-δ)
+        }
+        // frame i = (right after M_i) · offset = middle_i · Tz(-t_z) Rz(-θ) carry⁻¹ offset
+        J.frame = detail::trans({0.0, 0.0, -J.t.z}) * detail::rot_z(J.ct, -J.st) * carry_inv *
+                  frame_offset[i];
+        carry = next_carry;
+    }
+    ch.tool_ = inverse(carry) * tool;
+    return ch;
+}
+
+}  // namespace km

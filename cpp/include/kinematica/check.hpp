@@ -1,0 +1,287 @@
+// From raw IK candidates to checked, distinct, limit-aware solutions: one target.
+//
+// Every candidate a solver proposes is judged here by forward kinematics against the
+// target, never by the solver's own word. Candidates a little off (round-off near a
+// double root) get a few Gauss-Newton steps first and count only if they then meet the
+// tolerances. Solutions are wrapped to (-π, π] (or moved by 2π into their limit window),
+// duplicates modulo 2π dropped, split by the joint limits, sorted (by distance to q0 when
+// given, else in the solver's slot order), and the target gets an honest status.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include "chain.hpp"
+#include "ik_types.hpp"
+#include "jacobian.hpp"
+#include "linalg.hpp"
+#include "so3.hpp"
+
+namespace km {
+
+//! Candidates whose residual is below this (m or rad) but above the tolerance are
+//! polished by Gauss-Newton steps before being judged.
+constexpr double POLISH_LIMIT = 1e-5;
+//! Gauss-Newton steps for polishing: quadratic convergence from 1e-5 needs 2-3.
+constexpr int POLISH_STEPS = 4;
+//! Relative damping of the polishing steps (as the numeric solver's smallest): negligible
+//! next to any singular value that matters, it keeps the normal equations solvable at a
+//! double root, where the Jacobian loses rank.
+constexpr double POLISH_DAMPING = 1e-12;
+//! Two solutions closer than this in every joint (rad or m, angles modulo 2π) are one.
+constexpr double DEDUP_TOL = 1e-7;
+//! Slack on joint limits for values computed by floating point (rad or m).
+constexpr double LIMIT_TOL = 1e-12;
+
+//! Scratch of checks of up to m candidates of an n-joint chain: made once per thread.
+struct CheckWork {
+    int m = 0, n = 0;
+    std::vector<double> qs, angle, c, s, res, key, J, Jr, dq, c1, s1;
+    std::vector<int> state;
+
+    CheckWork(int m_, int n_)
+        : m(m_), n(n_), qs(static_cast<size_t>(m_ * n_)), angle(qs.size()), c(qs.size()),
+          s(qs.size()), res(static_cast<size_t>(2 * m_)), key(static_cast<size_t>(m_)),
+          J(static_cast<size_t>(6 * n_)), Jr(J.size()), dq(static_cast<size_t>(n_)),
+          c1(dq.size()), s1(dq.size()), state(static_cast<size_t>(m_)) {}
+};
+
+//! Where the check writes one target's outcome: rows within the limits first, sorted,
+//! then those outside, sorted; NaN (slot -1) after.
+struct CheckOut {
+    double* q;    //!< (m, n)
+    int* slot;    //!< (m,) the candidate slot of each row (its branch label)
+    double* res;  //!< (m, 2) position (m) and rotation (rad) residuals
+};
+
+namespace detail {
+
+//! Position (m) and rotation (rad) error of q against T, weighted by w.
+//!
+//! Unweighted, the rotation error is the angle of Rtᵀ R (exact near 0); with weights,
+//! the norms of the weighted error components.
+KM_HD inline void residual(const ChainView& ch, const double* q, const double* c,
+                           const double* s, int stride, const Pose& T, const double* w,
+                           double& p_err, double& r_err) {
+    const Pose P = walk(ch, q, c, s, NoRecord{}, stride);
+    const bool plain = w[0] == 1.0 && w[1] == 1.0 && w[2] == 1.0 && w[3] == 1.0 &&
+                       w[4] == 1.0 && w[5] == 1.0;
+    if (plain) {
+        const double dx = T.p.x - P.p.x, dy = T.p.y - P.p.y, dz = T.p.z - P.p.z;
+        p_err = std::sqrt(dx * dx + dy * dy + dz * dz);
+        r_err = angle_between(P, T);
+        return;
+    }
+    const Twist e = pose_error(P, T);
+    double p2 = 0.0, r2 = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        p2 += (w[i] * e.e[i]) * (w[i] * e.e[i]);
+        r2 += (w[i + 3] * e.e[i + 3]) * (w[i + 3] * e.e[i + 3]);
+    }
+    p_err = std::sqrt(p2);
+    r_err = std::sqrt(r2);
+}
+
+//! POLISH_STEPS Gauss-Newton steps on q towards T (weighted rows only).
+KM_HD inline void polish(const ChainView& ch, double* q, const Pose& T, const double* w,
+                         CheckWork& work) {
+    const int n = ch.n;
+    double* c = work.c1.data();
+    double* s = work.s1.data();
+    double* J = work.J.data();
+    double* Jr = work.Jr.data();
+    double* dq = work.dq.data();
+    double er[6];
+    for (int step = 0; step < POLISH_STEPS; ++step) {
+        joint_trig(ch, q, c, s);
+        const Pose P = jacobian(ch, q, c, s, false, J);
+        const Twist e = pose_error(P, T);
+        int r = 0;
+        for (int k = 0; k < 6; ++k) {
+            if (w[k] > 0.0) {
+                er[r] = w[k] * e.e[k];
+                for (int j = 0; j < n; ++j) Jr[r * n + j] = w[k] * J[k * n + j];
+                ++r;
+            }
+        }
+        damped_least_squares(Jr, r, n, er, POLISH_DAMPING, dq);
+        for (int j = 0; j < n; ++j) {
+            q[j] += dq[j];
+            if (!ch.joint[j].prismatic) q[j] = wrap(q[j]);
+        }
+    }
+}
+
+//! True when rows a and b agree within DEDUP_TOL in every joint (angles modulo 2π).
+KM_HD inline bool same(const ChainView& ch, const double* qa, const double* qb) {
+    for (int j = 0; j < ch.n; ++j) {
+        double d = qa[j] - qb[j];
+        if (!ch.joint[j].prismatic) {
+            d = std::fabs(d);
+            d = d <= TWO_PI ? std::fmin(d, TWO_PI - d) : std::fabs(wrap(d));
+        }
+        if (!(std::fabs(d) < DEDUP_TOL)) return false;
+    }
+    return true;
+}
+
+}  // namespace detail
+
+//! Check the m candidates Q (m x n, row-major; NaN rows: no solution on that branch) of
+//! one target T against the chain; q0 (n) sorts the solutions when given (else nullptr).
+KM_HD inline CheckReport check(const ChainView& ch, const Pose& T, const double* Q, int m,
+                               const SolverInfo& info, const CheckOptions& opts,
+                               const double* q0, CheckWork& work, const CheckOut& out) {
+    const int n = ch.n;
+    const double tol_p = opts.tol_position, tol_r = opts.tol_rotation;
+    double* qs = work.qs.data();
+    double* res = work.res.data();
+    double* key = work.key.data();
+    int* state = work.state.data();
+    bool close = false;
+    double near_p = NaN, near_r = NaN, near_score = INF;
+    for (int j = 0; j < m; ++j) {
+        state[j] = 0;
+        for (int k = 0; k < n; ++k) {
+            const double v = Q[j * n + k];
+            qs[j * n + k] = ch.joint[k].prismatic ? v : wrap(v);
+        }
+    }
+    joint_trig_rows(ch, qs, m, work.angle.data(), work.c.data(), work.s.data());
+    for (int j = 0; j < m; ++j) {
+        double* qj = qs + j * n;
+        bool valid = true;
+        for (int k = 0; k < n; ++k) valid = valid && std::isfinite(qj[k]);
+        if (!valid) continue;
+        const double* cj = work.c.data() + j;  // joint by joint: stride m
+        const double* sj = work.s.data() + j;
+        int stride = m;
+        double p_err = INF, r_err = INF;
+        bool ok = false;
+        for (int attempt = 0; attempt < 2; ++attempt) {
+            detail::residual(ch, qj, cj, sj, stride, T, opts.weights, p_err, r_err);
+            ok = p_err <= tol_p && r_err <= tol_r;
+            if (ok || attempt == 1 || !(std::fmax(p_err, r_err) < POLISH_LIMIT)) break;
+            detail::polish(ch, qj, T, opts.weights, work);
+            joint_trig(ch, qj, work.c1.data(), work.s1.data());
+            cj = work.c1.data();
+            sj = work.s1.data();
+            stride = 1;
+        }
+        close = close || std::fmax(p_err, r_err) < POLISH_LIMIT;
+        if (!ok) {
+            const double score = std::fmax(p_err / tol_p, r_err / tol_r);
+            if (score < near_score) {
+                near_score = score;
+                near_p = p_err;
+                near_r = r_err;
+            }
+            continue;
+        }
+        // An angle outside its limits whose turn ±2π is inside is taken there; then
+        // within its limits or not (one pass over the joints).
+        bool inside = true;
+        if (opts.respect_limits) {
+            for (int k = 0; k < n; ++k) {
+                const double lo = ch.joint[k].qlo - LIMIT_TOL;
+                const double hi = ch.joint[k].qhi + LIMIT_TOL;
+                double v = qj[k];
+                if (!ch.joint[k].prismatic) {
+                    if (v < lo && v + TWO_PI <= hi) {
+                        v += TWO_PI;
+                        qj[k] = v;
+                    } else if (v > hi && v - TWO_PI >= lo) {
+                        v -= TWO_PI;
+                        qj[k] = v;
+                    }
+                }
+                inside = inside && lo <= v && v <= hi;
+            }
+        }
+        bool duplicate = false;  // (modulo 2π: the turn above changes nothing here)
+        for (int i = 0; i < j; ++i) {
+            if (state[i] != 0 && detail::same(ch, qj, qs + i * n)) {
+                duplicate = true;
+                break;
+            }
+        }
+        if (duplicate) continue;
+        state[j] = inside ? 1 : 2;
+        res[2 * j] = p_err;
+        res[2 * j + 1] = r_err;
+        if (q0 != nullptr) {
+            double d2 = 0.0;
+            for (int k = 0; k < n; ++k) {
+                double d = qj[k] - q0[k];
+                if (!ch.joint[k].prismatic) d = wrap(d);
+                d2 += d * d;
+            }
+            key[j] = std::sqrt(d2);
+        } else {
+            key[j] = j;
+        }
+    }
+    // Within the limits first, then outside; each sorted by key (insertion sort: m is small).
+    int row = 0, count = 0;
+    for (int group = 1; group <= 2; ++group) {
+        const int first = row;
+        for (int j = 0; j < m; ++j) {
+            if (state[j] != group) continue;
+            int pos = row;
+            while (pos > first && key[out.slot[pos - 1]] > key[j]) {
+                out.slot[pos] = out.slot[pos - 1];
+                --pos;
+            }
+            out.slot[pos] = j;
+            ++row;
+        }
+        if (group == 1) count = row;
+    }
+    for (int r = 0; r < m; ++r) {
+        if (r < row) {
+            const int j = out.slot[r];
+            for (int k = 0; k < n; ++k) out.q[r * n + k] = qs[j * n + k];
+            out.res[2 * r] = res[2 * j];
+            out.res[2 * r + 1] = res[2 * j + 1];
+        } else {
+            out.slot[r] = -1;
+            for (int k = 0; k < n; ++k) out.q[r * n + k] = NaN;
+            out.res[2 * r] = NaN;
+            out.res[2 * r + 1] = NaN;
+        }
+    }
+    CheckReport rep;
+    rep.count = count;
+    rep.out_count = row - count;
+    const double gap = info.gap;
+    if (count > 0) {
+        rep.status = info.singular ? Status::singular : Status::ok;
+    } else if (rep.out_count > 0) {
+        // a search stays within the limits: a candidate the polish carried just past one
+        // does not show that no solution lies within them
+        rep.status = opts.complete ? Status::out_of_limits : Status::not_found;
+    } else if (gap > tol_p || (opts.complete && !close && !info.near)) {
+        rep.status = Status::unreachable;
+    } else {
+        rep.status = Status::not_found;
+    }
+    rep.gap = rep.status == Status::unreachable ? gap : NaN;
+    rep.nearest_position = near_p;
+    rep.nearest_rotation = near_r;
+    rep.near = info.near;
+    rep.free = info.free;
+    return rep;
+}
+
+//! A malformed target's outcome: no numbers.
+KM_HD inline CheckReport invalid_target(int m, int n, const CheckOut& out) {
+    for (int r = 0; r < m; ++r) {
+        out.slot[r] = -1;
+        for (int k = 0; k < n; ++k) out.q[r * n + k] = NaN;
+        out.res[2 * r] = NaN;
+        out.res[2 * r + 1] = NaN;
+    }
+    return CheckReport{};
+}
+
+}  // namespace km

@@ -1,0 +1,52 @@
+// What an IK solver hands the shared check for one target, and what the check reports.
+#pragma once
+
+#include <cstdint>
+
+#include "config.hpp"
+
+namespace km {
+
+//! What a solver knows of one target besides its candidates.
+struct SolverInfo {
+    bool singular = false;  //!< the solutions form a continuum; candidates are representatives
+    bool near = false;      //!< near a singular set, where a closed form may lose solutions to round-off
+    double gap = NaN;       //!< a lower bound of the distance to the reachable set (m); NaN: unknown
+    std::uint32_t free = 0; //!< bit j: joint j is free (in a continuum)
+
+    KM_HD void set_free(int j) { free |= (std::uint32_t{1} << j); }
+    KM_HD bool is_free(int j) const { return ((free >> j) & 1U) != 0; }
+};
+
+//! The status of an IK answer (the ik layer names them).
+enum class Status : int {
+    ok = 0,             //!< every solution (closed form), or one (numeric)
+    singular = 1,       //!< infinitely many: the rows are representatives
+    out_of_limits = 2,  //!< solutions exist, none within the joint limits
+    unreachable = 3,    //!< provably no solution
+    not_found = 4,      //!< none found: the target may still be reachable
+    invalid = 5,        //!< a malformed target in a batch
+};
+
+//! How candidates are judged.
+struct CheckOptions {
+    double tol_position = 1e-10;  //!< m
+    double tol_rotation = 1e-10;  //!< rad
+    bool respect_limits = true;   //!< solutions outside the limits are listed apart
+    bool complete = false;        //!< the solver gives every solution (a closed form)
+    double weights[6] = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};  //!< of x, y, z, rx, ry, rz (0: ignored)
+};
+
+//! What the check says of one target.
+struct CheckReport {
+    Status status = Status::invalid;
+    int count = 0;                    //!< solutions within the limits
+    int out_count = 0;                //!< solutions outside them
+    double gap = NaN;                 //!< for unreachable: the solver's proven gap (m), else NaN
+    double nearest_position = NaN;    //!< the closest candidate that was no solution (m) ...
+    double nearest_rotation = NaN;    //!< ... and its rotation error (rad)
+    bool near = false;                //!< the solver's near flag
+    std::uint32_t free = 0;           //!< the solver's free joints (bit j: joint j)
+};
+
+}  // namespace km

@@ -1,0 +1,329 @@
+// The chain: construction, forward kinematics, Jacobians and joint axes, one configuration
+// or a batch.
+#include <nanobind/stl/vector.h>
+
+#include <atomic>
+#include <vector>
+
+#include "casters.hpp"
+#include "common.hpp"
+#include "kinematica/chain.hpp"
+#include "kinematica/jacobian.hpp"
+#include "pool.hpp"
+
+namespace kmpy {
+
+namespace {
+
+using km::Chain;
+using km::ChainView;
+using km::Pose;
+using km::QState;
+
+//! Records every frame into rows of a (n + 1, 4, 4) array.
+struct FramesInto {
+    static constexpr bool frames = true;
+    static constexpr bool axes = false;
+    double* out;
+    void frame(int i, const Pose& F) { F.to_rows(out + 16 * i); }
+    void axis(int, const km::Vec3&, const km::Vec3&) {}
+};
+
+//! Records every joint axis into rows of a (n, 6) array.
+struct AxesInto {
+    static constexpr bool frames = false;
+    static constexpr bool axes = true;
+    double* out;
+    void frame(int, const Pose&) {}
+    void axis(int i, const km::Vec3& z, const km::Vec3& p) {
+        double* r = out + 6 * i;
+        r[0] = z.x; r[1] = z.y; r[2] = z.z;
+        r[3] = p.x; r[4] = p.y; r[5] = p.z;
+    }
+};
+
+void fill_nan(double* p, npy_intp count) {
+    for (npy_intp i = 0; i < count; ++i) p[i] = km::NaN;
+}
+
+//! What the blocks of a batch count.
+struct Counts {
+    std::atomic<long> bad{0}, outside{0};
+};
+
+//! Scratch of one block's joint trigonometry: on the stack for the usual sizes.
+//! (Storage only: the trigonometry is computed in the multiversioned block functions.)
+class BlockTrig {
+public:
+    BlockTrig(int n, long m) : size_(static_cast<size_t>(m * n)) {
+        base_ = stack_;
+        if (3 * size_ > sizeof(stack_) / sizeof(double)) {
+            heap_.resize(3 * size_);
+            base_ = heap_.data();
+        }
+    }
+    double* c() { return base_; }
+    double* s() { return base_ + size_; }
+    double* angle() { return base_ + 2 * size_; }
+
+private:
+    size_t size_;
+    double stack_[3 * FK_BLOCK * 8];
+    std::vector<double> heap_;
+    double* base_;
+};
+
+//! FK of rows [b0, b1) of Q into poses (and frames, when given).
+KM_CLONES void fk_block(const ChainView& ch, const double* Q, long b0, long b1, double* poses,
+                        double* frames, Counts& counts) {
+    const int n = ch.n;
+    BlockTrig trig(n, b1 - b0);
+    km::joint_trig_rows(ch, Q + b0 * n, static_cast<int>(b1 - b0), trig.angle(), trig.c(), trig.s());
+    long bad = 0, outside = 0;
+    for (long b = b0; b < b1; ++b) {
+        const double* q = Q + b * n;
+        const double* c = trig.c() + (b - b0) * n;
+        const double* s = trig.s() + (b - b0) * n;
+        Pose T;
+        if (frames != nullptr) {
+            T = km::walk(ch, q, c, s, FramesInto{frames + b * 16 * (n + 1)});
+        } else {
+            T = km::walk(ch, q, c, s);
+        }
+        T.to_rows(poses + 16 * b);
+        const QState st = km::q_state(ch, q);
+        if (st == QState::not_finite) {
+            ++bad;
+            fill_nan(poses + 16 * b, 16);
+            if (frames != nullptr) fill_nan(frames + b * 16 * (n + 1), 16 * (n + 1));
+        } else if (st == QState::outside_limits) {
+            ++outside;
+        }
+    }
+    counts.bad += bad;
+    counts.outside += outside;
+}
+
+//! Jacobians of rows [b0, b1) of Q.
+KM_CLONES void jacobian_block(const ChainView& ch, const double* Q, long b0, long b1,
+                              bool tool_frame, double* J, Counts& counts) {
+    const int n = ch.n;
+    BlockTrig trig(n, b1 - b0);
+    km::joint_trig_rows(ch, Q + b0 * n, static_cast<int>(b1 - b0), trig.angle(), trig.c(), trig.s());
+    long bad = 0;
+    for (long b = b0; b < b1; ++b) {
+        const double* q = Q + b * n;
+        double* Jb = J + b * 6 * n;
+        km::jacobian(ch, q, trig.c() + (b - b0) * n, trig.s() + (b - b0) * n, tool_frame, Jb);
+        if (km::q_state(ch, q) == QState::not_finite) {
+            ++bad;
+            fill_nan(Jb, 6 * n);
+        }
+    }
+    counts.bad += bad;
+}
+
+In check_q(const Chain& chain, nb::handle q) {
+    In in = in_f64(q, "q", 1, {chain.dof()});
+    return in;
+}
+
+In check_batch(const Chain& chain, nb::handle Q) { return in_f64(Q, "Q", 2, {-1, chain.dof()}); }
+
+int blocks_of(long rows, long block) { return static_cast<int>((rows + block - 1) / block); }
+
+nb::tuple fk_one(const Chain& chain, nb::handle q) {
+    const In in = check_q(chain, q);
+    const ChainView ch = chain.view();
+    const int n = ch.n;
+    double c[64], s[64];
+    std::vector<double> big_c, big_s;
+    double* cp = c;
+    double* sp = s;
+    if (n > 64) {
+        big_c.resize(static_cast<size_t>(n));
+        big_s.resize(static_cast<size_t>(n));
+        cp = big_c.data();
+        sp = big_s.data();
+    }
+    double* out;
+    nb::object T = new_f64({4, 4}, out);
+    const QState st = km::q_state(ch, in.data);
+    km::fk(ch, in.data, cp, sp).to_rows(out);
+    if (st == QState::not_finite) fill_nan(out, 16);
+    return nb::make_tuple(T, static_cast<int>(st));
+}
+
+nb::tuple fk_frames_one(const Chain& chain, nb::handle q) {
+    const In in = check_q(chain, q);
+    const ChainView ch = chain.view();
+    const int n = ch.n;
+    std::vector<double> c(static_cast<size_t>(n)), s(c.size());
+    double* out;
+    nb::object F = new_f64({n + 1, 4, 4}, out);
+    km::joint_trig(ch, in.data, c.data(), s.data());
+    km::walk(ch, in.data, c.data(), s.data(), FramesInto{out});
+    const QState st = km::q_state(ch, in.data);
+    if (st == QState::not_finite) fill_nan(out, 16 * (n + 1));
+    return nb::make_tuple(F, static_cast<int>(st));
+}
+
+nb::tuple fk_many(const Chain& chain, nb::handle Qh, bool all_frames, int workers) {
+    const In Q = check_batch(chain, Qh);
+    const ChainView ch = chain.view();
+    const int n = ch.n;
+    const npy_intp B = Q.dim[0];
+    double* poses;
+    nb::object P = new_f64({B, 4, 4}, poses);
+    double* frames = nullptr;
+    nb::object F;
+    if (all_frames) F = new_f64({B, n + 1, 4, 4}, frames);
+    Counts counts;
+    {
+        nb::gil_scoped_release release;
+        parallel_for(blocks_of(B, FK_BLOCK), workers, [&](int blk) {
+            const long b0 = static_cast<long>(blk) * FK_BLOCK;
+            const long b1 = b0 + FK_BLOCK < B ? b0 + FK_BLOCK : B;
+            fk_block(ch, Q.data, b0, b1, poses, frames, counts);
+        });
+    }
+    return nb::make_tuple(all_frames ? F : P, counts.bad.load(), counts.outside.load());
+}
+
+nb::tuple jacobian_one(const Chain& chain, nb::handle q, bool tool_frame) {
+    const In in = check_q(chain, q);
+    const ChainView ch = chain.view();
+    const int n = ch.n;
+    std::vector<double> c(static_cast<size_t>(n)), s(c.size());
+    double* out;
+    nb::object J = new_f64({6, n}, out);
+    km::joint_trig(ch, in.data, c.data(), s.data());
+    km::jacobian(ch, in.data, c.data(), s.data(), tool_frame, out);
+    const QState st = km::q_state(ch, in.data);
+    if (st == QState::not_finite) fill_nan(out, 6 * n);
+    return nb::make_tuple(J, static_cast<int>(st));
+}
+
+nb::tuple jacobian_many(const Chain& chain, nb::handle Qh, bool tool_frame, int workers) {
+    const In Q = check_batch(chain, Qh);
+    const ChainView ch = chain.view();
+    const int n = ch.n;
+    const npy_intp B = Q.dim[0];
+    double* out;
+    nb::object J = new_f64({B, 6, n}, out);
+    Counts counts;
+    {
+        nb::gil_scoped_release release;
+        parallel_for(blocks_of(B, FK_BLOCK), workers, [&](int blk) {
+            const long b0 = static_cast<long>(blk) * FK_BLOCK;
+            const long b1 = b0 + FK_BLOCK < B ? b0 + FK_BLOCK : B;
+            jacobian_block(ch, Q.data, b0, b1, tool_frame, out, counts);
+        });
+    }
+    return nb::make_tuple(J, counts.bad.load());
+}
+
+nb::object joint_axes(const Chain& chain, nb::handle Qh) {
+    const In Q = check_batch(chain, Qh);
+    const ChainView ch = chain.view();
+    const int n = ch.n;
+    const npy_intp B = Q.dim[0];
+    double* out;
+    nb::object A = new_f64({B, n, 6}, out);
+    std::vector<double> c(static_cast<size_t>(n)), s(c.size());
+    for (npy_intp b = 0; b < B; ++b) {
+        const double* q = Q.data + b * n;
+        km::joint_trig(ch, q, c.data(), s.data());
+        km::walk(ch, q, c.data(), s.data(), AxesInto{out + b * 6 * n});
+        if (km::q_state(ch, q) == QState::not_finite) fill_nan(out + b * 6 * n, 6 * n);
+    }
+    return A;
+}
+
+Chain from_dh(nb::handle prismatic, nb::handle theta, nb::handle d, nb::handle a, nb::handle alpha,
+              nb::handle lo, nb::handle hi, bool modified, const Pose& base, const Pose& tool) {
+    const In th = in_f64(theta, "theta", 1);
+    const npy_intp n = th.dim[0];
+    if (n < 1) throw nb::value_error("a chain needs at least one joint");
+    const npy_bool* pr = in_flags(prismatic, "prismatic", n);
+    if (pr == nullptr) throw nb::type_error("prismatic must be a bool array");
+    const In dd = in_f64(d, "d", 1, {n}), aa = in_f64(a, "a", 1, {n}), al = in_f64(alpha, "alpha", 1, {n});
+    const In l = in_f64(lo, "lo", 1, {n}), h = in_f64(hi, "hi", 1, {n});
+    std::vector<char> p(static_cast<size_t>(n));
+    for (npy_intp i = 0; i < n; ++i) p[static_cast<size_t>(i)] = pr[i] != 0;
+    return Chain::from_dh(static_cast<int>(n), reinterpret_cast<const bool*>(p.data()), th.data,
+                          dd.data, aa.data, al.data, l.data, h.data, modified, base, tool);
+}
+
+Chain from_transforms(const Pose& start, nb::handle between, const Pose& tool, nb::handle offsets,
+                      nb::handle prismatic, nb::handle lo, nb::handle hi, const Pose& base) {
+    const In off = in_f64(offsets, "frame_offsets", 3, {-1, 4, 4});
+    const npy_intp n = off.dim[0];
+    if (n < 1) throw nb::value_error("a chain needs at least one joint");
+    const In btw = in_f64(between, "between", 3, {n - 1, 4, 4});
+    const npy_bool* pr = in_flags(prismatic, "prismatic", n);
+    if (pr == nullptr) throw nb::type_error("prismatic must be a bool array");
+    const In l = in_f64(lo, "lo", 1, {n}), h = in_f64(hi, "hi", 1, {n});
+    std::vector<Pose> B(static_cast<size_t>(n > 1 ? n - 1 : 0)), O(static_cast<size_t>(n));
+    for (npy_intp i = 0; i + 1 < n; ++i) B[static_cast<size_t>(i)] = Pose::from_rows(btw.data + 16 * i);
+    for (npy_intp i = 0; i < n; ++i) O[static_cast<size_t>(i)] = Pose::from_rows(off.data + 16 * i);
+    std::vector<char> p(static_cast<size_t>(n));
+    for (npy_intp i = 0; i < n; ++i) p[static_cast<size_t>(i)] = pr[i] != 0;
+    return Chain::from_transforms(static_cast<int>(n), start, B.data(), tool, O.data(),
+                                  reinterpret_cast<const bool*>(p.data()), l.data, h.data, base);
+}
+
+}  // namespace
+
+void bind_chain(nb::module_& m) {
+    nb::class_<Chain>(m, "Chain", "A serial chain compiled for the core (see chain.hpp).")
+        .def_static("from_dh", &from_dh, nb::arg("prismatic"), nb::arg("theta"), nb::arg("d"),
+                    nb::arg("a"), nb::arg("alpha"), nb::arg("lo"), nb::arg("hi"),
+                    nb::arg("modified"), nb::arg("base"), nb::arg("tool"),
+                    "A DH table (rows of both conventions) with base and tool.")
+        .def_static("from_transforms", &from_transforms, nb::arg("start"), nb::arg("between"),
+                    nb::arg("tool"), nb::arg("frame_offsets"), nb::arg("prismatic"),
+                    nb::arg("lo"), nb::arg("hi"), nb::arg("base"),
+                    "General transforms: T = start · Π_i [M_i(q_i) · between_i] · tool.")
+        .def_prop_ro("dof", &Chain::dof)
+        .def_prop_ro("prismatic", [](const Chain& c) {
+            std::vector<bool> v;
+            for (const auto& j : c.joints()) v.push_back(j.prismatic);
+            return v;
+        })
+        .def_prop_ro("qlim", [](const Chain& c) {
+            double* out;
+            nb::object a = new_f64({c.dof(), 2}, out);
+            for (int i = 0; i < c.dof(); ++i) {
+                out[2 * i] = c.joints()[static_cast<size_t>(i)].qlo;
+                out[2 * i + 1] = c.joints()[static_cast<size_t>(i)].qhi;
+            }
+            return a;
+        }, "(n, 2) the limits solutions are held to: own, else (-π, π) revolute, ±inf prismatic.")
+        .def_prop_ro("translations", [](const Chain& c) {
+            double* out;
+            nb::object a = new_f64({c.dof(), 3}, out);
+            for (int i = 0; i < c.dof(); ++i) {
+                const km::Vec3& t = c.joints()[static_cast<size_t>(i)].t;
+                out[3 * i] = t.x;
+                out[3 * i + 1] = t.y;
+                out[3 * i + 2] = t.z;
+            }
+            return a;
+        }, "(n, 3) the translation of each joint's fixed part, in its frame (m); a DH row's (a, 0, d).")
+        .def_prop_ro("start", [](const Chain& c) { return c.view().start; })
+        .def_prop_ro("tool", [](const Chain& c) { return c.view().tool; })
+        .def_prop_ro("base", [](const Chain& c) { return c.view().base; })
+        .def("fk", &fk_one, nb::arg("q"), "(T (4, 4), state) of q (n,); state 1: NaN/inf, 2: outside own limits.")
+        .def("fk_frames", &fk_frames_one, nb::arg("q"), "(frames (n + 1, 4, 4), state) of q (n,).")
+        .def("fk_batch", &fk_many, nb::arg("Q"), nb::arg("all_frames"), nb::arg("workers"),
+             "(poses (B, 4, 4) or frames (B, n + 1, 4, 4), bad, outside) of Q (B, n).")
+        .def("jacobian", &jacobian_one, nb::arg("q"), nb::arg("tool_frame"),
+             "(J (6, n), state) of q (n,).")
+        .def("jacobian_batch", &jacobian_many, nb::arg("Q"), nb::arg("tool_frame"),
+             nb::arg("workers"), "(J (B, 6, n), bad) of Q (B, n).")
+        .def("joint_axes", &joint_axes, nb::arg("Q"),
+             "(B, n, 6): each joint's axis direction, then a point on it (base frame).");
+}
+
+}  // namespace kmpy

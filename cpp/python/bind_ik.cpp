@@ -1,0 +1,127 @@
+// The shared check's options and statuses, the numeric solver, target defects, and the
+// named tolerances of the check and the search.
+#include <nanobind/stl/array.h>
+
+#include <array>
+#include <vector>
+
+#include "casters.hpp"
+#include "common.hpp"
+#include "kinematica/check.hpp"
+#include "kinematica/lm.hpp"
+#include "kinematica/numeric.hpp"
+#include "kinematica/pose_check.hpp"
+#include "solver_binding.hpp"
+
+namespace kmpy {
+
+namespace {
+
+km::NumericSolver make_numeric(nb::handle bounds, double tol_position, double tol_rotation,
+                               int max_steps, double reach, const km::Vec3& base,
+                               const std::array<double, 6>& weights, nb::handle samples,
+                               nb::handle middle) {
+    const In b = in_f64(bounds, "bounds", 2, {-1, 3});
+    const npy_intp n = b.dim[0];
+    if (n < 1) throw nb::value_error("bounds must have a row per joint");
+    const In s = in_f64(samples, "samples", 2, {-1, n});
+    const In mid = in_f64(middle, "middle", 1, {n});
+    if (max_steps < 0) throw nb::value_error("max_steps must be >= 0");
+    km::NumericSolver solver;
+    solver.n = static_cast<int>(n);
+    for (npy_intp i = 0; i < n; ++i) {
+        solver.bounds.push_back({b.data[3 * i], b.data[3 * i + 1], b.data[3 * i + 2]});
+    }
+    solver.settings.tol_position = tol_position;
+    solver.settings.tol_rotation = tol_rotation;
+    solver.settings.max_steps = max_steps;
+    solver.settings.reach = reach;
+    solver.settings.base = base;
+    for (int k = 0; k < 6; ++k) solver.weights[k] = weights[static_cast<size_t>(k)];
+    solver.samples.assign(s.data, s.data + s.size());
+    solver.middle.assign(mid.data, mid.data + n);
+    return solver;
+}
+
+nb::tuple defects_one(nb::handle T) {
+    const In in = in_f64(T, "T", 2, {4, 4});
+    const km::PoseDefects d = km::pose_defects(in.data);
+    return nb::make_tuple(d.finite, d.last_row, d.ortho, d.det);
+}
+
+nb::tuple defects_many(nb::handle T) {
+    const In in = in_f64(T, "T", 3, {-1, 4, 4});
+    const npy_intp N = in.dim[0];
+    npy_bool* finite;
+    double *last, *ortho, *det;
+    nb::object F = new_array({N}, finite, NPY_BOOL);
+    nb::object L = new_f64({N}, last), O = new_f64({N}, ortho), D = new_f64({N}, det);
+    for (npy_intp i = 0; i < N; ++i) {
+        const km::PoseDefects d = km::pose_defects(in.data + 16 * i);
+        finite[i] = d.finite;
+        last[i] = d.last_row;
+        ortho[i] = d.ortho;
+        det[i] = d.det;
+    }
+    return nb::make_tuple(F, L, O, D);
+}
+
+}  // namespace
+
+void bind_ik(nb::module_& m) {
+    nb::class_<km::CheckOptions>(m, "CheckOptions", "How the shared check judges candidates.")
+        .def(nb::init<>())
+        .def_rw("tol_position", &km::CheckOptions::tol_position, "m")
+        .def_rw("tol_rotation", &km::CheckOptions::tol_rotation, "rad")
+        .def_rw("respect_limits", &km::CheckOptions::respect_limits)
+        .def_rw("complete", &km::CheckOptions::complete, "the solver gives every solution")
+        .def_prop_rw(
+            "weights",
+            [](const km::CheckOptions& o) {
+                return std::array<double, 6>{o.weights[0], o.weights[1], o.weights[2],
+                                             o.weights[3], o.weights[4], o.weights[5]};
+            },
+            [](km::CheckOptions& o, const std::array<double, 6>& w) {
+                for (int k = 0; k < 6; ++k) o.weights[k] = w[static_cast<size_t>(k)];
+            },
+            "of x, y, z, rx, ry, rz (0: not counted)");
+
+    nb::class_<km::NumericSolver> numeric(m, "NumericSolver",
+                                          "Levenberg-Marquardt with restarts (lm.hpp).");
+    numeric.def(nb::new_(&make_numeric), nb::arg("bounds"), nb::arg("tol_position"),
+                nb::arg("tol_rotation"), nb::arg("max_steps"), nb::arg("reach"), nb::arg("base"),
+                nb::arg("weights"), nb::arg("samples"), nb::arg("middle"));
+    numeric.def_prop_ro("restarts", &km::NumericSolver::restarts);
+    add_ik_methods(numeric, [](const km::NumericSolver& s) -> const km::NumericSolver& { return s; });
+
+    m.def("pose_defects", &defects_one, nb::arg("T"),
+          "(finite, max |last row - [0,0,0,1]|, max |RᵀR - I|, det R) of T (4, 4).");
+    m.def("pose_defects_batch", &defects_many, nb::arg("T"),
+          "The defects of T (N, 4, 4), as four (N,) arrays.");
+
+    nb::dict status;
+    status["ok"] = static_cast<int>(km::Status::ok);
+    status["singular"] = static_cast<int>(km::Status::singular);
+    status["out_of_limits"] = static_cast<int>(km::Status::out_of_limits);
+    status["unreachable"] = static_cast<int>(km::Status::unreachable);
+    status["not_found"] = static_cast<int>(km::Status::not_found);
+    status["invalid"] = static_cast<int>(km::Status::invalid);
+    m.attr("STATUS") = status;
+
+    m.attr("POLISH_LIMIT") = km::POLISH_LIMIT;
+    m.attr("POLISH_STEPS") = km::POLISH_STEPS;
+    m.attr("POLISH_DAMPING") = km::POLISH_DAMPING;
+    m.attr("DEDUP_TOL") = km::DEDUP_TOL;
+    m.attr("LIMIT_TOL") = km::LIMIT_TOL;
+    m.attr("LAMBDA_INIT") = km::LAMBDA_INIT;
+    m.attr("LAMBDA_DOWN") = km::LAMBDA_DOWN;
+    m.attr("LAMBDA_UP") = km::LAMBDA_UP;
+    m.attr("LAMBDA_MIN") = km::LAMBDA_MIN;
+    m.attr("LAMBDA_MAX") = km::LAMBDA_MAX;
+    m.attr("STALL_WINDOW") = km::STALL_WINDOW;
+    m.attr("STALL_FACTOR") = km::STALL_FACTOR;
+    m.attr("BOUND_SCALE") = km::BOUND_SCALE;
+    m.attr("SCALE_FLOOR") = km::SCALE_FLOOR;
+}
+
+}  // namespace kmpy

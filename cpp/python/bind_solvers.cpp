@@ -1,0 +1,19 @@
+// The closed-form solver families, each bound in its own file (bind_<family>.cpp) into a
+// submodule of kinematica._core named after it.
+#include "common.hpp"
+
+namespace kmpy {
+
+void bind_planar(nb::module_& m);
+void bind_elbow(nb::module_& m);
+void bind_decoupled(nb::module_& m);
+void bind_parallel(nb::module_& m);
+
+void bind_solvers(nb::module_& m) {
+    bind_planar(m);
+    bind_elbow(m);
+    bind_decoupled(m);
+    bind_parallel(m);
+}
+
+}  // namespace kmpy

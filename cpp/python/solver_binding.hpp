@@ -1,0 +1,203 @@
+// Binding an IK solver: single targets, batches, and its raw candidates (for tests).
+//
+// bind_solver<Solver>(cls) adds to a solver's nanobind class:
+//   ik(chain, T, options, q0)                   one target: (q, res, slots, report...)
+//   ik_batch(chain, T, options, q0, invalid, workers)   N targets: a dict of arrays
+//   candidates(chain, T, q0)                    the solver's raw candidates and info
+// where Solver satisfies ik.hpp's solver interface (ClosedForm<Params> for closed forms).
+#pragma once
+
+#include <nanobind/nanobind.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "casters.hpp"
+#include "common.hpp"
+#include "kinematica/chain.hpp"
+#include "kinematica/ik.hpp"
+#include "numpy_io.hpp"
+#include "pool.hpp"
+
+namespace kmpy {
+
+//! The work arrays of single calls with one solver type: made once per thread (and again
+//! only when an arm of other dimensions comes).
+template <class Solver>
+km::IKWork<Solver>& thread_work(const Solver& s, int n) {
+    thread_local std::unique_ptr<km::IKWork<Solver>> work;
+    if (!work || work->check.m != s.slots() || work->check.n != n) {
+        work = std::make_unique<km::IKWork<Solver>>(s, n);
+    }
+    return *work;
+}
+
+//! The report of one target as a tuple: (status, count, out_count, gap, nearest position,
+//! nearest rotation, near, free mask).
+inline nb::tuple report_tuple(const km::CheckReport& r) {
+    return nb::make_tuple(static_cast<int>(r.status), r.count, r.out_count, r.gap,
+                          r.nearest_position, r.nearest_rotation, r.near,
+                          static_cast<unsigned long>(r.free));
+}
+
+inline km::Pose target_pose(nb::handle T) {
+    const In in = in_f64(T, "T", 2, {4, 4});
+    return km::Pose::from_rows(in.data);
+}
+
+inline const double* optional_q0(nb::handle q0, int n) {
+    if (q0.is_none()) return nullptr;
+    return in_f64(q0, "q0", 1, {n}).data;
+}
+
+//! A solver built for n joints takes chains of n joints only.
+template <class Solver>
+void check_dims(const Solver& s, const km::Chain& chain) {
+    if (s.dof() != chain.dof()) {
+        throw nb::value_error(("this solver takes a chain of " + std::to_string(s.dof()) +
+                               " joints, got " + std::to_string(chain.dof()))
+                                  .c_str());
+    }
+}
+
+//! (q (m, n), res (m, 2), slots (count + out_count,), report...) for one target.
+template <class Solver>
+nb::tuple ik_one(const Solver& s, const km::Chain& chain, nb::handle T,
+                 const km::CheckOptions& opts, nb::handle q0) {
+    check_dims(s, chain);
+    const km::ChainView ch = chain.view();
+    const int n = ch.n, m = s.slots();
+    const km::Pose P = target_pose(T);
+    const double* q0p = optional_q0(q0, n);
+    double* q;
+    double* res;
+    nb::object Qa = new_f64({m, n}, q);
+    nb::object Ra = new_f64({m, 2}, res);
+    int slots[km::MAX_SLOTS];
+    std::vector<int> big_slots;
+    int* slot = slots;
+    if (m > km::MAX_SLOTS) {
+        big_slots.resize(static_cast<size_t>(m));
+        slot = big_slots.data();
+    }
+    km::IKWork<Solver>& work = thread_work(s, n);
+    const km::CheckReport rep = km::solve_ik(s, ch, P, opts, q0p, work, km::CheckOut{q, slot, res});
+    nb::list order;
+    for (int r = 0; r < rep.count + rep.out_count; ++r) order.append(slot[r]);
+    return nb::make_tuple(Qa, Ra, order, report_tuple(rep));
+}
+
+//! A batch of N targets: a dict of arrays q (N, m, n), slot (N, m), res (N, m, 2),
+//! status (N,), count (N,), out_count (N,), gap (N,), nearest (N, 2), near (N,),
+//! free (N, n).
+template <class Solver>
+nb::dict ik_many(const Solver& s, const km::Chain& chain, nb::handle Th,
+                 const km::CheckOptions& opts, nb::handle q0h, nb::handle invalidh, int workers) {
+    check_dims(s, chain);
+    const km::ChainView ch = chain.view();
+    const int n = ch.n, m = s.slots();
+    const In T = in_f64(Th, "T", 3, {-1, 4, 4});
+    const npy_intp N = T.dim[0];
+    const double* q0 = nullptr;
+    if (!q0h.is_none()) q0 = in_f64(q0h, "q0", 2, {N, n}).data;
+    const npy_bool* invalid = in_flags(invalidh, "invalid", N);
+    double *q, *res, *gap, *nearest;
+    npy_int64 *slot, *status, *count, *out_count;
+    npy_bool *near, *freeb;
+    nb::dict out;
+    out["q"] = new_f64({N, m, n}, q);
+    out["slot"] = new_i64({N, m}, slot);
+    out["res"] = new_f64({N, m, 2}, res);
+    out["status"] = new_i64({N}, status);
+    out["count"] = new_i64({N}, count);
+    out["out_count"] = new_i64({N}, out_count);
+    out["gap"] = new_f64({N}, gap);
+    out["nearest"] = new_f64({N, 2}, nearest);
+    out["near"] = new_array({N}, near, NPY_BOOL);
+    out["free"] = new_array({N, n}, freeb, NPY_BOOL);
+    {
+        nb::gil_scoped_release release;
+        const int blocks = static_cast<int>((N + TARGET_BLOCK - 1) / TARGET_BLOCK);
+        parallel_for(blocks, workers, [&](int blk) {
+            km::IKWork<Solver> work(s, n);  // once per block
+            std::vector<int> slots(static_cast<size_t>(m));
+            const npy_intp i1 = (blk + 1) * static_cast<npy_intp>(TARGET_BLOCK) < N
+                                    ? (blk + 1) * static_cast<npy_intp>(TARGET_BLOCK)
+                                    : N;
+            for (npy_intp i = blk * static_cast<npy_intp>(TARGET_BLOCK); i < i1; ++i) {
+                const km::CheckOut o{q + i * m * n, slots.data(), res + i * m * 2};
+                km::CheckReport rep;
+                if (invalid != nullptr && invalid[i]) {
+                    rep = km::invalid_target(m, n, o);
+                } else {
+                    const km::Pose P = km::Pose::from_rows(T.data + 16 * i);
+                    rep = km::solve_ik(s, ch, P, opts, q0 != nullptr ? q0 + i * n : nullptr, work, o);
+                }
+                for (int r = 0; r < m; ++r) slot[i * m + r] = slots[static_cast<size_t>(r)];
+                status[i] = static_cast<npy_int64>(rep.status);
+                count[i] = rep.count;
+                out_count[i] = rep.out_count;
+                gap[i] = rep.gap;
+                nearest[2 * i] = rep.nearest_position;
+                nearest[2 * i + 1] = rep.nearest_rotation;
+                near[i] = rep.near;
+                for (int j = 0; j < n; ++j) freeb[i * n + j] = ((rep.free >> j) & 1U) != 0;
+            }
+        });
+    }
+    return out;
+}
+
+//! (Q (m, n), singular, near, gap, free mask): the solver's raw candidates of one target.
+template <class Solver>
+nb::tuple candidates(const Solver& s, const km::Chain& chain, nb::handle T, nb::handle q0) {
+    check_dims(s, chain);
+    const km::ChainView ch = chain.view();
+    const int n = ch.n, m = s.slots();
+    const km::Pose P = target_pose(T);
+    const double* q0p = optional_q0(q0, n);
+    double* Q;
+    nb::object Qa = new_f64({m, n}, Q);
+    km::IKWork<Solver>& work = thread_work(s, n);
+    km::SolverInfo info;
+    s.solve(ch, P, q0p, Q, info, work.solver);
+    return nb::make_tuple(Qa, info.singular, info.near, info.gap, static_cast<unsigned long>(info.free));
+}
+
+//! ik, ik_batch and candidates on a solver class; `get` turns the bound object into a
+//! Solver (a closed form's Params into ClosedForm<Params>).
+template <class Bound, class Get>
+void add_ik_methods(nb::class_<Bound>& cls, Get get) {
+    cls.def("ik",
+            [get](const Bound& b, const km::Chain& chain, nb::handle T, const km::CheckOptions& o,
+                  nb::handle q0) { return ik_one(get(b), chain, T, o, q0); },
+            nb::arg("chain"), nb::arg("T"), nb::arg("options"), nb::arg("q0").none(),
+            "Every solution of one target T (4, 4): (q, res, slots, report).");
+    cls.def("ik_batch",
+            [get](const Bound& b, const km::Chain& chain, nb::handle T, const km::CheckOptions& o,
+                  nb::handle q0, nb::handle invalid, int workers) {
+                return ik_many(get(b), chain, T, o, q0, invalid, workers);
+            },
+            nb::arg("chain"), nb::arg("T"), nb::arg("options"), nb::arg("q0").none(),
+            nb::arg("invalid").none(), nb::arg("workers"),
+            "Every solution of each target T (N, 4, 4): a dict of arrays.");
+    cls.def("candidates",
+            [get](const Bound& b, const km::Chain& chain, nb::handle T, nb::handle q0) {
+                return candidates(get(b), chain, T, q0);
+            },
+            nb::arg("chain"), nb::arg("T"), nb::arg("q0").none() = nb::none(),
+            "The raw candidates (m, n) of one target and what the solver says of it.");
+    cls.def_prop_ro("slots", [get](const Bound& b) { return get(b).slots(); });
+}
+
+//! A closed form's Params class with its IK methods.
+template <class Params>
+nb::class_<Params> bind_closed_form(nb::module_& m, const char* name, const char* doc) {
+    nb::class_<Params> cls(m, name, doc);
+    cls.def(nb::init<>());
+    add_ik_methods(cls, [](const Params& p) { return km::ClosedForm<Params>{p}; });
+    return cls;
+}
+
+}  // namespace kmpy

@@ -1,0 +1,204 @@
+"""A chain compiled for the core, and its forward kinematics, Jacobians and joint axes.
+
+The core's chain is general: each joint is a fixed transform followed by a
+rotation about, or a translation along, its z axis. A DH table of either
+convention compiles to it exactly (:meth:`Chain.from_dh`), and so do the joints
+of a URDF (:meth:`Chain.from_transforms`): the same walk serves both. The
+entry points take joint values already validated as floats of shape ``(..., n)``
+(the robot layer checks and explains bad input), flatten any batch shape, call
+the core once, and restore the batch shape.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+from numpy.typing import NDArray
+
+from kinematica import _core
+from kinematica.core.workers import resolve_workers
+from kinematica.dh.joints import Convention, Joint, Prismatic, check_convention
+
+__all__ = ["Chain"]
+
+FloatArray = NDArray[np.float64]
+BoolArray = NDArray[np.bool_]
+
+#: What the core says of one configuration (kinematica._core.Chain.fk).
+_NOT_FINITE, _OUTSIDE_LIMITS = 1, 2
+
+
+def _readonly(a: NDArray[np.generic]) -> NDArray[np.generic]:
+    a.flags.writeable = False
+    return a
+
+
+@dataclass(frozen=True, eq=False)
+class Chain:
+    """A serial chain compiled for the core.
+
+    Attributes:
+        core: The compiled chain (:class:`kinematica._core.Chain`).
+        prismatic: ``(n,)`` True for prismatic joints.
+        own_limits: ``(n, 2)`` each joint's own limits (rad or m), ``±inf`` where
+            it has none.
+        start: ``(4, 4)`` the transform before the first joint's motion (base frame).
+        tool: ``(4, 4)`` the transform after the last joint's part.
+        translations: ``(n, 3)`` the translation of each joint's fixed part in its
+            own frame (m): a DH row's ``(a, 0, d)`` (see ``cpp/include/kinematica/chain.hpp``).
+    """
+
+    core: _core.Chain
+    prismatic: BoolArray
+    own_limits: FloatArray
+    start: FloatArray
+    tool: FloatArray
+    translations: FloatArray
+
+    @classmethod
+    def from_dh(
+        cls,
+        joints: Sequence[Joint],
+        convention: Convention,
+        base: FloatArray,
+        tool: FloatArray,
+    ) -> Chain:
+        """Compile a DH table with its base and tool transforms.
+
+        Args:
+            joints: The rows, base to tip.
+            convention: ``"standard"`` or ``"modified"``.
+            base: ``(4, 4)`` pose of frame 0 in the world (base) frame.
+            tool: ``(4, 4)`` pose of the tool in frame n.
+        """
+        conv = check_convention(convention)
+        prismatic = np.array([isinstance(j, Prismatic) for j in joints], dtype=bool)
+        lims = np.array(
+            [j.qlim if j.qlim is not None else (-math.inf, math.inf) for j in joints], dtype=float
+        ).reshape(len(joints), 2)
+        core = _core.Chain.from_dh(
+            prismatic,
+            np.array([j.theta for j in joints], dtype=float),
+            np.array([j.d for j in joints], dtype=float),
+            np.array([j.a for j in joints], dtype=float),
+            np.array([j.alpha for j in joints], dtype=float),
+            np.ascontiguousarray(lims[:, 0]),
+            np.ascontiguousarray(lims[:, 1]),
+            conv == "modified",
+            np.asarray(base, dtype=float),
+            np.asarray(tool, dtype=float),
+        )
+        return cls._of(core, prismatic, lims)
+
+    @classmethod
+    def from_transforms(
+        cls,
+        start: FloatArray,
+        between: FloatArray,
+        tool: FloatArray,
+        frame_offsets: FloatArray,
+        prismatic: BoolArray,
+        own_limits: FloatArray,
+        base: FloatArray,
+    ) -> Chain:
+        """Compile a chain of general transforms (the joints of a URDF).
+
+        Args:
+            start: ``(4, 4)`` the transform before the first joint's motion, in the
+                base frame.
+            between: ``(n - 1, 4, 4)`` the fixed transforms between motions.
+            tool: ``(4, 4)`` the transform after the last motion.
+            frame_offsets: ``(n, 4, 4)``: frame i of ``fk(all_frames=True)`` is
+                the frame right after motion i times ``frame_offsets[i]``.
+            prismatic: ``(n,)`` True for joints that slide along their z axis.
+            own_limits: ``(n, 2)`` the joints' limits (``±inf`` where none).
+            base: ``(4, 4)`` frame 0 of ``fk(all_frames=True)``.
+        """
+        prism = np.ascontiguousarray(prismatic, dtype=bool)
+        lims = np.array(own_limits, dtype=float).reshape(len(prism), 2)
+        core = _core.Chain.from_transforms(
+            np.asarray(start, dtype=float),
+            np.ascontiguousarray(between, dtype=float),
+            np.asarray(tool, dtype=float),
+            np.ascontiguousarray(frame_offsets, dtype=float),
+            prism,
+            np.ascontiguousarray(lims[:, 0]),
+            np.ascontiguousarray(lims[:, 1]),
+            np.asarray(base, dtype=float),
+        )
+        return cls._of(core, prism, lims)
+
+    @classmethod
+    def _of(cls, core: _core.Chain, prismatic: BoolArray, lims: FloatArray) -> Chain:
+        return cls(
+            core=core,
+            prismatic=_readonly(prismatic.copy()),  # type: ignore[arg-type]
+            own_limits=_readonly(lims.copy()),  # type: ignore[arg-type]
+            start=_readonly(np.asarray(core.start)),  # type: ignore[arg-type]
+            tool=_readonly(np.asarray(core.tool)),  # type: ignore[arg-type]
+            translations=_readonly(np.asarray(core.translations)),  # type: ignore[arg-type]
+        )
+
+    @cached_property
+    def dof(self) -> int:
+        """Number of joints n."""
+        return int(self.prismatic.shape[0])
+
+    @cached_property
+    def qlim(self) -> FloatArray:
+        """``(n, 2)`` limits solutions are held to: own, else ``(-π, π)`` revolute, ±inf prismatic."""
+        return _readonly(np.asarray(self.core.qlim))  # type: ignore[return-value]
+
+    # ------------------------------------------------------------ kinematics
+    def fk(
+        self, q: FloatArray, all_frames: bool = False, workers: int | None = None
+    ) -> tuple[FloatArray, int, int]:
+        """Tool poses (or every frame) of configurations ``q``.
+
+        Args:
+            q: ``(..., n)`` float joint values (rad, m).
+            all_frames: Every frame ``0T0 (base), 0T1, ..., 0Tn (with tool)``.
+            workers: Threads for a batch (None: the library default).
+
+        Returns:
+            ``(T, bad, outside)``: ``(..., 4, 4)`` poses or ``(..., n+1, 4, 4)``
+            frames; the number of configurations holding NaN/inf (their results
+            are NaN); the number beyond some joint's own limits (computed all the same).
+        """
+        if q.ndim == 1:  # the single-call path: every attribute look-up here counts
+            if q.dtype != np.float64 or not q.flags.c_contiguous:
+                q = np.ascontiguousarray(q, dtype=np.float64)
+            T, state = self.core.fk_frames(q) if all_frames else self.core.fk(q)
+            return T, int(state == _NOT_FINITE), int(state == _OUTSIDE_LIMITS)
+        flat = self._flat(q)
+        out, bad, outside = self.core.fk_batch(flat, all_frames, resolve_workers(workers))
+        return out.reshape(*q.shape[:-1], *out.shape[1:]), int(bad), int(outside)
+
+    def jacobian(
+        self, q: FloatArray, tool_frame: bool = False, workers: int | None = None
+    ) -> tuple[FloatArray, int]:
+        """Geometric Jacobians ``(..., 6, n)`` of configurations ``q (..., n)``.
+
+        Returns:
+            ``(J, bad)`` as for :meth:`fk`.
+        """
+        if q.ndim == 1:
+            if q.dtype != np.float64 or not q.flags.c_contiguous:
+                q = np.ascontiguousarray(q, dtype=np.float64)
+            J, state = self.core.jacobian(q, tool_frame)
+            return J, int(state == _NOT_FINITE)
+        flat = self._flat(q)
+        J, bad = self.core.jacobian_batch(flat, tool_frame, resolve_workers(workers))
+        return J.reshape(*q.shape[:-1], 6, self.dof), int(bad)
+
+    def joint_axes(self, q: FloatArray) -> FloatArray:
+        """Each joint's axis as a line: ``(..., n, 6)`` unit direction, then a point (base frame)."""
+        axes = self.core.joint_axes(self._flat(q))
+        return axes.reshape(*q.shape[:-1], self.dof, 6)
+
+    def _flat(self, q: FloatArray) -> FloatArray:
+        return np.ascontiguousarray(q.reshape(-1, self.dof), dtype=np.float64)
