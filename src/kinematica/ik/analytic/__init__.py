@@ -6,8 +6,12 @@ in the order they are tried.
 
 from __future__ import annotations
 
+from kinematica.ik.analytic import arm_position, spherical_wrist
 from kinematica.ik.registry import SolverSpec
 
 __all__ = ["SOLVERS"]
 
-SOLVERS: tuple[SolverSpec, ...] = ()
+SOLVERS: tuple[SolverSpec, ...] = (
+    *spherical_wrist.SPECS,
+    arm_position.SPEC,  # position targets of any longer arm: tried last
+)
