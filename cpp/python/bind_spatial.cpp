@@ -8,15 +8,15 @@ namespace kmpy {
 
 namespace {
 
-nb::object wrap_many(nb::handle a) {
+F64 wrap_many(F64 a) {
     const In in = in_f64(a, "angle", 1);
     double* out;
-    nb::object r = new_f64({in.dim[0]}, out);
+    F64 r = new_f64({in.dim[0]}, out);
     for (npy_intp i = 0; i < in.dim[0]; ++i) out[i] = km::wrap(in.data[i]);
     return r;
 }
 
-nb::tuple so3_log(nb::handle R) {
+nb::tuple so3_log(F64 R) {
     const In in = in_f64(R, "R", 3, {-1, 3, 3});
     const npy_intp N = in.dim[0];
     double *v, *angle;
@@ -36,11 +36,11 @@ km::Pose rotation_pose(const double* m) {
     return km::Pose::from_rows(T);
 }
 
-nb::object angles_between(nb::handle Ra, nb::handle Rb) {
+F64 angles_between(F64 Ra, F64 Rb) {
     const In a = in_f64(Ra, "R_a", 3, {-1, 3, 3});
     const In b = in_f64(Rb, "R_b", 3, {a.dim[0], 3, 3});
     double* out;
-    nb::object r = new_f64({a.dim[0]}, out);
+    F64 r = new_f64({a.dim[0]}, out);
     for (npy_intp i = 0; i < a.dim[0]; ++i) {
         // the angle of R_aᵀ R_b: angle_between(T, Tt) is that of Rtᵀ R
         out[i] = km::angle_between(rotation_pose(b.data + 9 * i), rotation_pose(a.data + 9 * i));
@@ -48,11 +48,11 @@ nb::object angles_between(nb::handle Ra, nb::handle Rb) {
     return r;
 }
 
-nb::object pose_errors(nb::handle Tc, nb::handle Tt) {
+F64 pose_errors(F64 Tc, F64 Tt) {
     const In c = in_f64(Tc, "T_current", 3, {-1, 4, 4});
     const In t = in_f64(Tt, "T_target", 3, {c.dim[0], 4, 4});
     double* out;
-    nb::object r = new_f64({c.dim[0], 6}, out);
+    F64 r = new_f64({c.dim[0], 6}, out);
     for (npy_intp i = 0; i < c.dim[0]; ++i) {
         const km::Twist e = km::pose_error(km::Pose::from_rows(c.data + 16 * i), km::Pose::from_rows(t.data + 16 * i));
         for (int k = 0; k < 6; ++k) out[6 * i + k] = e.e[k];

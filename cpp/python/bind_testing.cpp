@@ -34,7 +34,7 @@ nb::tuple sincos_reduced_of(double x) {
     return nb::make_tuple(s, c);
 }
 
-nb::tuple sincos_many(nb::handle x) {
+nb::tuple sincos_many(F64 x) {
     const In in = in_f64(x, "x", 1);
     double *s, *c;
     nb::object S = new_f64({in.dim[0]}, s), C = new_f64({in.dim[0]}, c);
@@ -55,7 +55,7 @@ std::array<std::complex<double>, 4> quartic_of(const std::array<double, 5>& k) {
 }
 
 //! The numeric search's model at q: counted errors e (r,) and rows J (r, n).
-nb::tuple lm_rows(const km::Chain& chain, const std::array<double, 6>& w, nb::handle qh,
+nb::tuple lm_rows(const km::Chain& chain, const std::array<double, 6>& w, F64 qh,
                   const km::Pose& T) {
     const int n = chain.dof();
     const In q = in_f64(qh, "q", 1, {n});
@@ -74,13 +74,13 @@ nb::tuple lm_rows(const km::Chain& chain, const std::array<double, 6>& w, nb::ha
     return nb::make_tuple(E, Ja);
 }
 
-nb::object dls(nb::handle Jh, nb::handle eh, double lam) {
+F64 dls(F64 Jh, F64 eh, double lam) {
     const In J = in_f64(Jh, "J", 2);
     const npy_intp r = J.dim[0], n = J.dim[1];
     if (r < 1 || r > 6 || n < 1) throw nb::value_error("J must have 1 to 6 rows and a column");
     const In e = in_f64(eh, "e", 1, {r});
     double* dq;
-    nb::object out = new_f64({n}, dq);
+    F64 out = new_f64({n}, dq);
     km::damped_least_squares(J.data, static_cast<int>(r), static_cast<int>(n), e.data, lam, dq);
     return out;
 }

@@ -19,7 +19,7 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica import _core
+import kinematica._core as _core
 from kinematica.core.workers import resolve_workers
 from kinematica.dh.joints import Convention, Joint, Prismatic, check_convention
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica import _core
+import kinematica._core as _core
 from kinematica.spatial.checks import as_float_array
 
 __all__ = ["wrap_angle"]

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica import _core
+import kinematica._core as _core
 from kinematica.errors import DimensionError
 from kinematica.spatial.checks import as_batch_array, first_bad
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica import _core
+import kinematica._core as _core
 from kinematica.spatial.checks import as_batch_array, check_transform
 from kinematica.spatial.euler import euler_from_matrix, matrix_from_euler
 from kinematica.spatial.transform import make_transform
