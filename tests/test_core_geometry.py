@@ -15,9 +15,9 @@ import pytest
 from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 
-FloatArray = NDArray[np.float64]
-
 from kinematica._core import internals
+
+FloatArray = NDArray[np.float64]
 
 TRIG_TOL = internals.TRIG_TOL
 subproblem1 = internals.subproblem1
@@ -30,6 +30,7 @@ def trig_linear(a: float, b: float, c: float, out: FloatArray) -> int:
 
 def quartic_roots(k: FloatArray, roots: NDArray[np.complex128]) -> None:
     roots[:] = internals.quartic_roots(np.asarray(k, dtype=float).tolist())
+
 
 def unit(rng: np.random.Generator) -> FloatArray:
     v = rng.normal(size=3)

@@ -14,9 +14,9 @@ import math
 
 import numpy as np
 import pytest
+from kinematica._core import internals
 
 import kinematica as km
-from kinematica._core import internals
 
 #: Documented values (trig.hpp, so3.hpp).
 REDUCTION_LIMIT = 1.0e6

@@ -25,6 +25,7 @@ from helpers import (
 )
 from hypothesis import given
 
+from kinematica.core import Chain
 from kinematica.dh import (
     Prismatic,
     Revolute,
@@ -33,7 +34,6 @@ from kinematica.dh import (
     link_matrix,
 )
 from kinematica.errors import KinematicaError
-from kinematica.core import Chain
 
 CONVENTIONS = ["standard", "modified"]
 BATCHES = [(), (1,), (3, 2)]

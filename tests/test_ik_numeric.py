@@ -19,13 +19,13 @@ import pytest
 from helpers import JointSpec, RobotSpec, transforms
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from kinematica._core import LAMBDA_MIN, LIMIT_TOL
+from kinematica._core.internals import lm_rows
 
 from kinematica.cli.main import main
 from kinematica.dh import Prismatic, Revolute
 from kinematica.errors import ArgumentError, DimensionError, KinematicaError
 from kinematica.ik.result import IKBatchResult, IKResult
-from kinematica._core import LAMBDA_MIN, LIMIT_TOL
-from kinematica._core.internals import lm_rows
 from kinematica.robot import Robot, load
 from kinematica.spatial import rotation_angle, se3_error
 

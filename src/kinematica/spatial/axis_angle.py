@@ -31,6 +31,7 @@ FloatArray = NDArray[np.float64]
 # noise; axis_angle_from_matrix then returns the z axis by convention.
 IDENTITY_ANGLE_TOL = 10.0 * np.finfo(np.float64).eps
 
+
 def _skew(v: FloatArray) -> FloatArray:
     """Cross-product matrix ``[v]×`` of ``(..., 3)`` vectors: ``(..., 3, 3)``."""
     x, y, z = v[..., 0], v[..., 1], v[..., 2]
