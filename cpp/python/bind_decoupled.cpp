@@ -44,9 +44,9 @@ void read_fixed(nb::handle h, const char* name, std::initializer_list<npy_intp> 
 }
 
 //! A new float64 array of `shape` holding data.
-nb::object write_fixed(std::initializer_list<npy_intp> shape, const double* data) {
+F64 write_fixed(std::initializer_list<npy_intp> shape, const double* data) {
     double* out;
-    nb::object a = new_f64(shape, out);
+    F64 a = new_f64(shape, out);
     npy_intp size = 1;
     for (const npy_intp d : shape) size *= d;
     for (npy_intp k = 0; k < size; ++k) out[k] = data[k];
@@ -59,7 +59,7 @@ void vector_prop(nb::class_<C>& cls, const char* name, double (C::*member)[N], c
     constexpr npy_intp n = static_cast<npy_intp>(N);
     cls.def_prop_rw(
         name, [member](const C& c) { return write_fixed({n}, c.*member); },
-        [member, name](C& c, nb::handle h) { read_fixed(h, name, {n}, c.*member); }, doc);
+        [member, name](C& c, F64 h) { read_fixed(h, name, {n}, c.*member); }, doc);
 }
 
 //! A read-write property of a member double[R][K]: a (R, K) array out and in.
@@ -69,7 +69,7 @@ void matrix_prop(nb::class_<C>& cls, const char* name, double (C::*member)[R][K]
     constexpr npy_intp r = static_cast<npy_intp>(R), k = static_cast<npy_intp>(K);
     cls.def_prop_rw(
         name, [member](const C& c) { return write_fixed({r, k}, &(c.*member)[0][0]); },
-        [member, name](C& c, nb::handle h) {
+        [member, name](C& c, F64 h) {
             double tmp[R * K];  // the member is written only once the shape is right
             read_fixed(h, name, {r, k}, tmp);
             for (size_t i = 0; i < R * K; ++i) (c.*member)[i / K][i % K] = tmp[i];
@@ -84,13 +84,13 @@ nb::tuple place(const kd::ArmPoint& arm, const km::Vec3& ct) {
     arm.place(ct, Q3, st);
     nb::object Q = write_fixed({4, 3}, &Q3[0][0]);
     npy_bool* f;
-    nb::object F = new_array({3}, f, NPY_BOOL);
+    Bools F = new_bools({3}, f);
     for (int i = 0; i < 3; ++i) f[i] = st.free[i];
     return nb::make_tuple(Q, F, st.near, st.gap, st.rho, st.azimuth);
 }
 
 //! (self_motion, q (4,), near): the real roots of the trigonometric polynomial F (5,).
-nb::tuple trig_roots(nb::handle Fh, double size) {
+nb::tuple trig_roots(F64 Fh, double size) {
     double F[5];
     read_fixed(Fh, "F", {5}, F);
     double q[4];
@@ -100,7 +100,7 @@ nb::tuple trig_roots(nb::handle Fh, double size) {
 }
 
 //! (q (4,), near): the real roots of the quartic k (5,), highest power first.
-nb::tuple slide_roots(nb::handle kh) {
+nb::tuple slide_roots(F64 kh) {
     double k[5];
     read_fixed(kh, "k", {5}, k);
     double q[4];
@@ -161,11 +161,11 @@ void bind_decoupled(nb::module_& m) {
         "upper_root",
         [](const kd::ArmPoint& p) {
             npy_bool* b;
-            nb::object a = new_array({2, 2}, b, NPY_BOOL);
+            Bools a = new_bools({2, 2}, b);
             for (int i = 0; i < 4; ++i) b[i] = p.upper_root[i / 2][i % 2];
             return a;
         },
-        [](kd::ArmPoint& p, nb::handle h) {
+        [](kd::ArmPoint& p, Bools h) {
             double v[4];
             read_fixed(h, "upper_root", {2, 2}, v);
             for (int i = 0; i < 4; ++i) p.upper_root[i / 2][i % 2] = v[i] != 0.0;

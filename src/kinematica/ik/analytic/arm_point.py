@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica import _core
+import kinematica._core as _core
 from kinematica.core import Chain
 
 __all__ = [

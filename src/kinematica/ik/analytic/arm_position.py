@@ -14,11 +14,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from kinematica import _core
+import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.dh.joints import Prismatic, Revolute
 from kinematica.ik.analytic.arm_point import arm_geometry, places_point, random_transform
-from kinematica.ik.analytic.spherical_wrist import random_wrist_rows
+from kinematica.ik.analytic.spherical_wrist import GEOMETRIES, random_wrist_rows
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
 
@@ -84,8 +84,8 @@ def sample_arm(rng: np.random.Generator, degenerate: bool) -> ArmSample:
     a shoulder whose axes meet but for 1e-10.
     """
     edge = str(rng.choice(["wrist centre", "offset 1e-10"])) if degenerate else ""
-    shoulder = "meet" if edge == "offset 1e-10" else str(rng.choice(["meet", "parallel", "general"]))
-    rows = random_wrist_rows(rng, shoulder, str(rng.choice(["R23", "R", "P"])))
+    pairs = [g for g in GEOMETRIES if edge != "offset 1e-10" or g[0] == "meet"]
+    rows = random_wrist_rows(rng, *pairs[int(rng.integers(len(pairs)))])
     tool = random_transform(rng, 0.2)
     note = ""
     if edge == "wrist centre":  # the flange at the wrist centre: no later joint moves it

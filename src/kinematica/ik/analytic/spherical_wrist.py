@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica import _core
+import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.dh.joints import Prismatic, Revolute
 from kinematica.ik.analytic.arm_point import (
@@ -28,7 +28,7 @@ from kinematica.ik.analytic.arm_point import (
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
 
-__all__ = ["SPECS", "build", "wrist_params"]
+__all__ = ["GEOMETRIES", "SPECS", "build", "random_wrist_rows", "wrist_params"]
 
 FloatArray = NDArray[np.float64]
 PI = math.pi
@@ -129,6 +129,20 @@ def _tiny(rng: np.random.Generator) -> float:
     return 1e-10 * _sign(rng)
 
 
+#: The shoulders (axes 1, 2) and joints 3 of the family: every pair but three parallel
+#: axes (a parallel shoulder with axes 2 ∥ 3 keeps the wrist centre in a plane).
+GEOMETRIES: tuple[tuple[str, str], ...] = (
+    ("meet", "R23"),
+    ("meet", "R"),
+    ("meet", "P"),
+    ("parallel", "R"),
+    ("parallel", "P"),
+    ("general", "R23"),
+    ("general", "R"),
+    ("general", "P"),
+)
+
+
 def random_wrist_rows(
     rng: np.random.Generator, shoulder: str, joint3: str
 ) -> list[Revolute | Prismatic]:
@@ -182,7 +196,9 @@ def _edge_6r(rng: np.random.Generator) -> tuple[list[Revolute | Prismatic], str]
         rows = random_wrist_rows(rng, "parallel", "R")
         first = rows[0]
         assert isinstance(first, Revolute)
-        rows[0] = Revolute(d=first.d, a=first.a, alpha=first.alpha + _tiny(rng), offset=first.offset)
+        rows[0] = Revolute(
+            d=first.d, a=first.a, alpha=first.alpha + _tiny(rng), offset=first.offset
+        )
         return rows, "axes 1 and 2 parallel but for 1e-10"
     upper = u(0.2, 0.6)
     fore = upper if edge == "equal links" else u(0.2, 0.6)
@@ -198,7 +214,7 @@ def _edge_6r(rng: np.random.Generator) -> tuple[list[Revolute | Prismatic], str]
         nudge["alpha4"] = _tiny(rng)
     right = PI / 2
     offsets = [float(rng.choice([0.0, PI / 2, -PI / 2, u(-PI, PI)])) for _ in range(6)]
-    rows: list[Revolute | Prismatic] = [
+    arm: list[Revolute | Prismatic] = [
         Revolute(d=u(0.2, 0.6), a=nudge["a1"], alpha=_sign(rng) * right, offset=offsets[0]),
         Revolute(d=nudge["d2"], a=upper, alpha=nudge["alpha2"], offset=offsets[1]),
         Revolute(d=nudge["d3"], a=nudge["a3"], alpha=_sign(rng) * right, offset=offsets[2]),
@@ -206,7 +222,7 @@ def _edge_6r(rng: np.random.Generator) -> tuple[list[Revolute | Prismatic], str]
         Revolute(alpha=_sign(rng) * right, offset=offsets[4]),
         Revolute(d=u(0.0, 0.2), offset=offsets[5]),
     ]
-    return rows, edge
+    return arm, edge
 
 
 def _edge_rrp(rng: np.random.Generator) -> tuple[list[Revolute | Prismatic], str]:
@@ -215,9 +231,10 @@ def _edge_rrp(rng: np.random.Generator) -> tuple[list[Revolute | Prismatic], str
     joint2 = {"d": rng.uniform(0.0, 0.3), "a": 0.0, "alpha": PI / 2, "offset": 0.0}
     if where != "none":
         joint2[where] += _tiny(rng)
+    second = Revolute(d=joint2["d"], a=joint2["a"], alpha=joint2["alpha"], offset=joint2["offset"])
     rows: list[Revolute | Prismatic] = [
         Revolute(d=rng.uniform(0.2, 0.6), alpha=-PI / 2, offset=rng.uniform(-PI, PI)),
-        Revolute(**joint2),
+        second,
         Prismatic(theta=-PI / 2, a=float(rng.choice([0.0, rng.uniform(-0.1, 0.1)]))),
         Revolute(alpha=-PI / 2),
         Revolute(alpha=PI / 2),
@@ -233,8 +250,8 @@ def _sample(joint3: tuple[str, ...]) -> Any:
         if degenerate:
             rows, note = _edge_rrp(rng) if joint3 == ("P",) else _edge_6r(rng)
         else:
-            shoulder = str(rng.choice(["meet", "parallel", "general"]))
-            kind = str(rng.choice(list(joint3)))
+            pairs = [g for g in GEOMETRIES if g[1] in joint3]
+            shoulder, kind = pairs[int(rng.integers(len(pairs)))]
             rows, note = random_wrist_rows(rng, shoulder, kind), ""
         return ArmSample(
             links=tuple(rows),
