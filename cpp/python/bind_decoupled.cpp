@@ -43,13 +43,19 @@ void read_fixed(nb::handle h, const char* name, std::initializer_list<npy_intp> 
     for (npy_intp k = 0; k < size; ++k) out[k] = src[k];
 }
 
-//! A new float64 array of `shape` holding data.
-F64 write_fixed(std::initializer_list<npy_intp> shape, const double* data) {
+//! A new (n,) float64 array holding data.
+F64 write_vector(npy_intp n, const double* data) {
     double* out;
-    F64 a = new_f64(shape, out);
-    npy_intp size = 1;
-    for (const npy_intp d : shape) size *= d;
-    for (npy_intp k = 0; k < size; ++k) out[k] = data[k];
+    F64 a = new_f64({n}, out);
+    for (npy_intp k = 0; k < n; ++k) out[k] = data[k];
+    return a;
+}
+
+//! A new (r, c) float64 array holding data (row-major).
+F64 write_matrix(npy_intp r, npy_intp c, const double* data) {
+    double* out;
+    F64 a = new_f64({r, c}, out);
+    for (npy_intp k = 0; k < r * c; ++k) out[k] = data[k];
     return a;
 }
 
@@ -58,7 +64,7 @@ template <class C, size_t N>
 void vector_prop(nb::class_<C>& cls, const char* name, double (C::*member)[N], const char* doc) {
     constexpr npy_intp n = static_cast<npy_intp>(N);
     cls.def_prop_rw(
-        name, [member](const C& c) { return write_fixed({n}, c.*member); },
+        name, [member](const C& c) { return write_vector(n, c.*member); },
         [member, name](C& c, F64 h) { read_fixed(h, name, {n}, c.*member); }, doc);
 }
 
@@ -68,7 +74,7 @@ void matrix_prop(nb::class_<C>& cls, const char* name, double (C::*member)[R][K]
                  const char* doc) {
     constexpr npy_intp r = static_cast<npy_intp>(R), k = static_cast<npy_intp>(K);
     cls.def_prop_rw(
-        name, [member](const C& c) { return write_fixed({r, k}, &(c.*member)[0][0]); },
+        name, [member](const C& c) { return write_matrix(r, k, &(c.*member)[0][0]); },
         [member, name](C& c, F64 h) {
             double tmp[R * K];  // the member is written only once the shape is right
             read_fixed(h, name, {r, k}, tmp);
@@ -82,7 +88,7 @@ nb::tuple place(const kd::ArmPoint& arm, const km::Vec3& ct) {
     double Q3[4][3];
     kd::ArmState st;
     arm.place(ct, Q3, st);
-    nb::object Q = write_fixed({4, 3}, &Q3[0][0]);
+    F64 Q = write_matrix(4, 3, &Q3[0][0]);
     npy_bool* f;
     Bools F = new_bools({3}, f);
     for (int i = 0; i < 3; ++i) f[i] = st.free[i];
@@ -96,7 +102,7 @@ nb::tuple trig_roots(F64 Fh, double size) {
     double q[4];
     bool near = false;
     const bool self_motion = kd::trig_roots(F, size, q, near);
-    return nb::make_tuple(self_motion, write_fixed({4}, q), near);
+    return nb::make_tuple(self_motion, write_vector(4, q), near);
 }
 
 //! (q (4,), near): the real roots of the quartic k (5,), highest power first.
@@ -106,7 +112,7 @@ nb::tuple slide_roots(F64 kh) {
     double q[4];
     bool near = false;
     kd::slide_roots(k, q, near);
-    return nb::make_tuple(write_fixed({4}, q), near);
+    return nb::make_tuple(write_vector(4, q), near);
 }
 
 }  // namespace

@@ -31,8 +31,8 @@ struct ArmPositionParams {
     double reach = 0.0;  //!< bound (m) on how far joints 4..n move the tool origin from the point
     int n = 4;           //!< the chain's joints (4 .. MAX_POSITION_DOF)
 
-    int slots() const { return 4; }
-    int dof() const { return n; }
+    KM_HD int slots() const { return 4; }
+    KM_HD int dof() const { return n; }
 
     //! Candidates for the position of T (its rotation is not read) into Q (4 x n): one
     //! slot per arm branch, joints 4..n at 0.

@@ -84,8 +84,8 @@ struct SphericalWristParams {
     //! h5 ⟂ h4 and h6 ∥ h4 at q = 0: flip = (q4 + π, -q5, q6 + π).
     bool twin = false;
 
-    int slots() const { return 8; }
-    int dof() const { return 6; }
+    KM_HD int slots() const { return 8; }
+    KM_HD int dof() const { return 6; }
 
     //! The target wrist centre T M⁻¹ c of a pose T.
     KM_HD Vec3 wrist_centre(const Pose& T) const {
