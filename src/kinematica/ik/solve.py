@@ -146,7 +146,7 @@ def solve_ik(
     if method == "analytic" and closed is None:
         why = "a mask was given" if m is not None else f"structure: {structure_of(chain)[1]}"
         raise KinematicaError(
-            f"no closed-form solver for this arm ({why}); use method='numeric'", arg="method"
+            f"no closed-form solver for this arm ({why})", arg="method", hint=("method", "numeric")
         )
     solver: Any
     if closed is not None:

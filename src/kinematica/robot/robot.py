@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 import warnings
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Literal
 
@@ -43,6 +43,8 @@ __all__ = ["Robot"]
 
 FloatArray = NDArray[np.float64]
 _FLOAT64 = np.dtype(np.float64)
+#: What the core says of one configuration (kinematica._core.Chain.fk).
+_NOT_FINITE, _OUTSIDE_LIMITS = 1, 2
 
 
 @dataclass(frozen=True, eq=False)
@@ -77,6 +79,13 @@ class Robot:
     chain: Chain = field(init=False, repr=False)
     source_spec: RobotSpec | None = field(default=None, compare=False, repr=False)
     transforms: ChainTransforms | None = field(default=None, compare=False, repr=False)
+    _single: tuple[int] = field(init=False, repr=False, compare=False)
+    _fk_one: Callable[[FloatArray], tuple[FloatArray, int]] = field(
+        init=False, repr=False, compare=False
+    )
+    _jacobian_one: Callable[[FloatArray, bool], tuple[FloatArray, int]] = field(
+        init=False, repr=False, compare=False
+    )
 
     def __post_init__(self) -> None:
         links = tuple(self.links)
@@ -106,6 +115,10 @@ class Robot:
                 )
             chain = self.transforms.compile(links, base, tool)
         object.__setattr__(self, "chain", chain)
+        # the single-call path of fk and jacobian: the core's entry points, looked up once
+        object.__setattr__(self, "_single", (len(links),))
+        object.__setattr__(self, "_fk_one", chain.core.fk)
+        object.__setattr__(self, "_jacobian_one", chain.core.jacobian)
 
     @classmethod
     def from_dh(
@@ -271,6 +284,15 @@ class Robot:
             ``(..., 4, 4)`` pose ``T = base · 0A1 · ... · (n-1)An · tool``, or
             ``(..., n+1, 4, 4)`` with ``all_frames``.
         """
+        if type(q) is np.ndarray and q.dtype is _FLOAT64 and q.shape == self._single:
+            try:  # one configuration, already what the core reads: one call
+                T, state = self._fk_one(q) if not all_frames else self.chain.core.fk_frames(q)
+            except ValueError:  # not contiguous: the general path copies it
+                pass
+            else:
+                if state:
+                    self._report(q, "q", state == _NOT_FINITE, state == _OUTSIDE_LIMITS)
+                return T  # type: ignore[no-any-return]
         qa = self.check_q(q)
         out, bad, outside = self.chain.fk(qa, all_frames, workers)
         if bad or outside:
@@ -334,16 +356,26 @@ class Robot:
             of a batch holding NaN/inf come out NaN, with a warning.
         """
         if frame not in ("base", "tool"):
-            raise KinematicaError(f"frame must be 'base' or 'tool', got {frame!r}")
+            raise KinematicaError(f"frame must be 'base' or 'tool', got {frame!r}", arg="frame")
         if euler is not None:
             if frame != "base":
                 raise KinematicaError(
-                    "euler= gives the analytic Jacobian of the pose in the base frame; "
-                    f"frame={frame!r} does not apply to it"
+                    "euler gives the analytic Jacobian of the pose in the base frame; "
+                    f"the {frame} frame does not apply to it",
+                    arg="euler",
                 )
             from kinematica.robot.velocity import analytic_jacobian
 
             return analytic_jacobian(self, q, euler)
+        if type(q) is np.ndarray and q.dtype is _FLOAT64 and q.shape == self._single:
+            try:
+                J, state = self._jacobian_one(q, frame == "tool")
+            except ValueError:  # not contiguous: the general path copies it
+                pass
+            else:
+                if state == _NOT_FINITE:
+                    self._report(q, "q", 1, 0)
+                return J  # type: ignore[no-any-return]
         qa = self.check_q(q)
         J, bad = self.chain.jacobian(qa, frame == "tool", workers)
         if bad:
