@@ -164,7 +164,7 @@ def test_cli_words(message: str, expected: str) -> None:
     ("error", "expected"),
     [
         (
-            KinematicaError("no closed-form solver", arg="method", hint=("method", "numeric")),
+            KinematicaError("no closed-form solver", arg="method", suggest=("method", "numeric")),
             "no closed-form solver; use --method numeric",
         ),
         (
@@ -180,7 +180,7 @@ def test_cli_words(message: str, expected: str) -> None:
     ],
 )
 def test_errors_in_command_line_words(error: KinematicaError, expected: str) -> None:
-    # from the error's fields (arg, hint), not from its text
+    # from the error's fields (arg, suggest), not from its text
     assert cli_error(error, {"target": "--pose"}) == expected
     assert "=" not in cli_error(error, {"target": "--pose"})
 

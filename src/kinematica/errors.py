@@ -47,21 +47,21 @@ class KinematicaError(Exception):
     (the command line) say the same in its own words, with no parsing of the text.
 
     Attributes:
-        message: What is wrong, without the hint; when ``arg`` is given it begins
+        message: What is wrong, without the suggestion; when ``arg`` is given it begins
             with that argument's name (``"tol must be a positive number"``).
         arg: The argument the error is about (``"tol"``, ``"q0"``, ``"target"``),
             or ``None``.
-        hint: ``(argument, value)`` that would help, or ``None``: ``str(error)``
-            ends with ``"; use method='numeric'"``.
+        suggest: ``(argument, value)`` that would help, or ``None``: ``str(error)``
+            then ends with ``"; use method='numeric'"``.
     """
 
     def __init__(
-        self, message: str = "", *, arg: str | None = None, hint: tuple[str, object] | None = None
+        self, message: str = "", *, arg: str | None = None, suggest: tuple[str, object] | None = None
     ) -> None:
         self.message = message
         self.arg = arg
-        self.hint = hint
-        text = message if hint is None else f"{message}; use {hint[0]}={hint[1]!r}"
+        self.suggest = suggest
+        text = message if suggest is None else f"{message}; use {suggest[0]}={suggest[1]!r}"
         super().__init__(text)
 
 

@@ -75,16 +75,16 @@ def cli_words(message: str, aliases: dict[str, str] | None = None) -> str:
 
 
 def cli_error(exc: KinematicaError, aliases: dict[str, str] | None = None) -> str:
-    """An error in command-line words: the option it is about, and its hint as an option.
+    """An error in command-line words: the option it is about, and its suggestion as one.
 
-    Read from the error's structured fields (``arg``, ``hint``), not its text.
+    Read from the error's structured fields (``arg``, ``suggest``), not its text.
     """
     words = dict(aliases or {})
     if exc.arg is not None and exc.arg not in words and exc.arg in _OPTIONS:
         words[exc.arg] = _OPTIONS[exc.arg]
     text = cli_words(exc.message, words)
-    if exc.hint is not None:
-        name, value = exc.hint
+    if exc.suggest is not None:
+        name, value = exc.suggest
         text += f"; use {_OPTIONS.get(name, '--' + name.replace('_', '-'))} {plain(str(value))}"
     return text
 

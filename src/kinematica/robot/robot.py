@@ -27,7 +27,7 @@ from kinematica.dh import (
     link_matrix,
 )
 from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning
-from kinematica.ik import IKBatchResult, IKResult, Tolerance, solve_ik
+from kinematica.ik import IKBatchResult, IKOptions, IKResult, Tolerance, solve_ik
 from kinematica.robot.dh_rules import to_dh, to_urdf
 from kinematica.robot.frames import rigid_frame, short
 from kinematica.robot.save import write_robot_file
@@ -292,7 +292,7 @@ class Robot:
             else:
                 if state:
                     self._report(q, "q", state == _NOT_FINITE, state == _OUTSIDE_LIMITS)
-                return T  # type: ignore[no-any-return]
+                return T
         qa = self.check_q(q)
         out, bad, outside = self.chain.fk(qa, all_frames, workers)
         if bad or outside:
@@ -375,7 +375,7 @@ class Robot:
             else:
                 if state == _NOT_FINITE:
                     self._report(q, "q", 1, 0)
-                return J  # type: ignore[no-any-return]
+                return J
         qa = self.check_q(q)
         J, bad = self.chain.jacobian(qa, frame == "tool", workers)
         if bad:
@@ -409,6 +409,7 @@ class Robot:
         seed: int | np.random.Generator | None = None,
         tol: float | tuple[float, float] | Tolerance | None = None,
         workers: int | None = None,
+        options: IKOptions | None = None,
     ) -> IKResult | IKBatchResult:
         """Every inverse-kinematics solution of a target, or an honest status.
 
@@ -430,23 +431,26 @@ class Robot:
             tol: Acceptance tolerance: one number for both, or a pair
                 (position m, rotation rad); default 1e-10 m and 1e-10 rad.
             workers: Threads for a batch (None: the library default).
+            options: All of the above as one :class:`~kinematica.ik.IKOptions`
+                (then give none of them as keywords).
 
         Returns:
             An :class:`IKResult` for one target, an :class:`IKBatchResult`
             (arrays with the targets' batch shape) for a batch. In a batch, a
             malformed target gets the status ``"invalid"``; the others are solved.
         """
-        return solve_ik(
-            self.chain,
-            target,
-            method=method,
-            respect_limits=respect_limits,
-            q0=q0,
-            mask=mask,
-            seed=seed,
-            tol=tol,
-            workers=workers,
-        )
+        if options is None:
+            options = IKOptions(method, tol, respect_limits, q0, mask, seed, workers)
+        elif not (
+            method == "auto"
+            and respect_limits is True
+            and all(v is None for v in (tol, q0, mask, seed, workers))
+        ):
+            raise KinematicaError(
+                "give the IK settings either as options= or as keywords, not both",
+                arg="options",
+            )
+        return solve_ik(self.chain, target, options)
 
     # ------------------------------------------------------------ derived models
     def to_convention(self, convention: str) -> Robot:
