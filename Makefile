@@ -50,7 +50,7 @@ sanitize:
 	$(SAN_VENV)/bin/python -m pip install --quiet --upgrade pip
 	$(SAN_VENV)/bin/python -m pip install --quiet -e '.[test]' \
 	  --config-settings=cmake.define.KM_SANITIZE=ON --config-settings=build-dir=build/sanitize
-	$(SAN_ENV) $(SAN_VENV)/bin/pytest -q -p no:cacheprovider $(sort $(SAN_TESTS))
+	$(SAN_ENV) $(SAN_VENV)/bin/pytest -q -p no:cacheprovider -p no:warnings $(sort $(SAN_TESTS))
 
 bench: $(CORE_STAMP)
 	@for peer in pin roboticstoolbox-python eaik; do \
