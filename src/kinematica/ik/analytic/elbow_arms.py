@@ -1,8 +1,9 @@
 """3R elbow arms, anthropomorphic or with a shoulder offset: their closed form, built once per arm.
 
 Axis 1 perpendicular to axes 2 and 3, which are parallel; the solver is
-``cpp/include/kinematica/solvers/elbow.hpp`` (:class:`kinematica._core.elbow.ElbowParams`). Everything is read from the joint
-axes at q = 0 and ``M = fk(0)``: any base, tool, offsets and DH convention.
+``cpp/include/kinematica/solvers/elbow.hpp`` (:class:`kinematica._core.elbow.ElbowParams`).
+Everything is read from the joint axes at q = 0 and ``M = fk(0)``: any base, tool,
+offsets and DH convention.
 
 Branch labels (``σ = (p − p1)·(h1 × k1)`` with ``k1`` the current axis-2
 direction, ψ the angle of link 3 relative to link 2 about ``k1``):
