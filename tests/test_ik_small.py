@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import dataclass
 
 import numpy as np
 import pytest
@@ -25,13 +26,14 @@ import kinematica as km
 from kinematica.cli.main import main
 from kinematica.dh import Prismatic, Revolute
 from kinematica.ik import IKBatchResult, IKResult, closed_form
+from kinematica import _core
 from kinematica.ik.analytic.planar_arms import LENGTH_TOL
-from kinematica.kernels.ik_check import INFO_FREE, INFO_GAP, INFO_SINGULAR
-from kinematica.kernels.solvers.triangle import MERGE_TOL, SINGULAR_TOL
 from kinematica.robot import Robot, classify
 
 FloatArray = NDArray[np.float64]
 PI = math.pi
+SINGULAR_TOL: float = _core.planar.SINGULAR_TOL
+MERGE_TOL: float = _core.planar.MERGE_TOL
 
 #: A candidate is "exact" when forward kinematics reproduces the target to this.
 EXACT = 1e-12
@@ -124,17 +126,33 @@ def as_poses(targets: FloatArray) -> FloatArray:
     return targets
 
 
+@dataclass(frozen=True)
+class Info:
+    """What the closed form says of each target besides its candidates (``(N,)`` arrays)."""
+
+    singular: NDArray[np.bool_]
+    near: NDArray[np.bool_]
+    gap: FloatArray  # NaN: none beyond round-off
+    free: NDArray[np.bool_]  # (N, n)
+
+
 def kernel_candidates(
     robot: Robot, targets: FloatArray
-) -> tuple[tuple[str, ...], FloatArray, FloatArray]:
-    """The raw kernel's labels, candidates ``(N, m, n)`` and info ``(N, k)`` (no check)."""
+) -> tuple[tuple[str, ...], FloatArray, Info]:
+    """The closed form's labels, raw candidates ``(N, m, n)`` and what it says (no check)."""
     kind = "position" if targets.shape[-1] == 3 else "pose"
     closed = closed_form(robot.chain, kind)
     assert closed is not None
     T = np.ascontiguousarray(as_poses(targets))
-    Q = np.empty((len(T), closed.slots, robot.dof))
-    info = np.zeros((len(T), INFO_FREE + robot.dof))
-    closed.solve_batch(closed.params, T, Q, info)
+    out = [closed.params.candidates(robot.chain.core, t) for t in T]
+    Q = np.array([o[0] for o in out]).reshape(len(T), closed.slots, robot.dof)
+    free = np.array([[(o[4] >> j) & 1 for j in range(robot.dof)] for o in out], dtype=bool)
+    info = Info(
+        singular=np.array([o[1] for o in out], dtype=bool),
+        near=np.array([o[2] for o in out], dtype=bool),
+        gap=np.array([o[3] for o in out], dtype=float),
+        free=free.reshape(len(T), robot.dof),
+    )
     return closed.labels, Q, info
 
 
@@ -152,7 +170,7 @@ def reached(robot: Robot, q: FloatArray, target: FloatArray) -> FloatArray:
 
 
 def exact_candidates(robot: Robot, targets: FloatArray) -> FloatArray:
-    """The kernel's exact candidates (NaN for the others); a branch is real in full or not.
+    """The closed form's exact candidates (NaN for the others); a branch is real in full or not.
 
     Out of reach a branch holds its least-squares configuration, which the
     check rejects: only the exact ones are kept here.
@@ -582,31 +600,29 @@ def test_huge_target_json_is_valid(capsys: pytest.CaptureFixture[str]) -> None:
     assert code == 1 and data["status"] == "unreachable" and data["gap_m"] == 1e300
 
 
-def test_kernel_reports_gap_only_outside_the_reach() -> None:
+def test_closed_form_reports_gap_only_outside_the_reach() -> None:
     robot = km.load("planar-3r")
     T = robot.fk([0.2, 0.3, 0.4])
     _, _, info = kernel_candidates(robot, T[None])
-    assert np.isnan(info[0, INFO_GAP]) or info[0, INFO_GAP] < 1e-15
-    assert info[0, INFO_SINGULAR] == 0.0
+    assert np.isnan(info.gap[0]) or info.gap[0] < 1e-15
+    assert not info.singular[0]
     far = T.copy()
     far[:3, 3] *= 10
     _, _, info = kernel_candidates(robot, far[None])
-    assert info[0, INFO_GAP] == pytest.approx(np.linalg.norm(far[:3, 3]) - 0.9, abs=1e-12)
+    assert info.gap[0] == pytest.approx(np.linalg.norm(far[:3, 3]) - 0.9, abs=1e-12)
 
 
 @pytest.mark.parametrize("kind", ["planar-3R", "elbow-3R"])
 def test_axes_parallel_within_tolerance_make_misses_no_proof(kind: str) -> None:
-    """The kernels solve the ideal arm; a real one off by more than round-off gets slack.
+    """The closed forms solve the ideal arm; a real one off by more than round-off gets slack.
 
     Axis 3 twisted 1e-15 rad off parallel is round-off (below the threshold
     at this size): gaps are exact. Twisted 1e-10 (within the classification's
     1e-9), the ideal arm may put the tool up to ~2e-10 m away: the gap
     shrinks by that (a target 1e-9 m off the ideal reach is no longer proven
-    that far), and the ideal arm's continua get ``INFO_NEAR`` (a miss there
+    that far), and the ideal arm's continua are ``near`` (a miss there
     is no proof). Generic targets get neither.
     """
-    from kinematica.kernels.ik_check import INFO_NEAR
-
     def arm(twist: float) -> Robot:
         if kind == "planar-3R":  # position targets: the last joint free (a continuum)
             rows = [Revolute(a=0.4), Revolute(a=0.3, alpha=twist), Revolute(a=0.2)]
@@ -627,19 +643,19 @@ def test_axes_parallel_within_tolerance_make_misses_no_proof(kind: str) -> None:
         folded = [0.3, 0.9, PI]  # the elbow arm's continuum; the planar one's is any position
         continuum = (generic if kind == "planar-3R" else robot.fk(folded))[:3, 3]
         _, _, info = kernel_candidates(robot, np.stack([beyond, generic]))
-        gap = info[0, INFO_GAP]
+        gap = info.gap[0]
         if tilted:
             assert math.isnan(gap) or gap < 1e-9 - 1e-10
         else:
             assert gap == pytest.approx(1e-9, abs=1e-12)
-        assert info[1, INFO_NEAR] == 0.0
+        assert not info.near[1]
         _, _, info = kernel_candidates(robot, continuum[None])
-        assert info[0, INFO_SINGULAR] == 1.0 and info[0, INFO_NEAR] == float(tilted)
+        assert info.singular[0] and info.near[0] == tilted
         assert robot.ik(generic).status == "ok"
 
 
 def test_gap_below_round_off_is_not_reported() -> None:
-    """SINGULAR_TOL of the reach is the kernels' round-off: a smaller gap is no gap.
+    """SINGULAR_TOL of the reach is the closed forms' round-off: a smaller gap is no gap.
 
     A pose tilted out of the plane, at the reach's edge, cannot be reached:
     0.1x the floor beyond the reach reports no distance (at the edge, where
@@ -652,7 +668,7 @@ def test_gap_below_round_off_is_not_reported() -> None:
         target = T.copy()
         target[0, 3] += factor * SINGULAR_TOL * 1.2
         _, _, info = kernel_candidates(robot, target[None])
-        assert math.isnan(info[0, INFO_GAP]) != reported
+        assert math.isnan(info.gap[0]) != reported
         res = robot.ik(target)
         assert res.status == ("unreachable" if reported else "not_found")
         assert (res.gap is not None) == reported

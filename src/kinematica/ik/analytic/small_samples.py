@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.dh.convert import convert_table
-from kinematica.dh.joints import Joint, Prismatic, Revolute
+from kinematica.dh.joints import Convention, Joint, Prismatic, Revolute
 from kinematica.ik.registry import ArmSample
 
 __all__ = ["DEGENERACIES", "FREE_LAST", "TINY", "sample", "sampler"]
@@ -136,7 +136,7 @@ def sample(kind: str, rng: np.random.Generator, degenerate: bool) -> ArmSample:
     # Equal links need the tool origin on the last DH frame's origin (the tool then only
     # turns the frame), as does a tool on the last axis.
     tool = _frame(rng, translation=not (equal or on_axis))
-    convention = "modified" if rng.random() < 0.5 else "standard"
+    convention: Convention = "modified" if rng.random() < 0.5 else "standard"
     links, base, tool = convert_table(rows, "standard", convention, base, tool)
     return ArmSample(links, convention, base, tool, note=case)
 
