@@ -623,6 +623,7 @@ def test_axes_parallel_within_tolerance_make_misses_no_proof(kind: str) -> None:
     that far), and the ideal arm's continua are ``near`` (a miss there
     is no proof). Generic targets get neither.
     """
+
     def arm(twist: float) -> Robot:
         if kind == "planar-3R":  # position targets: the last joint free (a continuum)
             rows = [Revolute(a=0.4), Revolute(a=0.3, alpha=twist), Revolute(a=0.2)]
