@@ -23,10 +23,10 @@ from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 
 import kinematica as km
+from kinematica import _core
 from kinematica.cli.main import main
 from kinematica.dh import Prismatic, Revolute
 from kinematica.ik import IKBatchResult, IKResult, closed_form
-from kinematica import _core
 from kinematica.ik.analytic.planar_arms import LENGTH_TOL
 from kinematica.robot import Robot, classify
 
