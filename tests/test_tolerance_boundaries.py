@@ -18,6 +18,13 @@ import pytest
 import test_dh_extract as dh_extract
 import test_ik_wrist_edges as wrist_edges
 import test_kernels_wrist as kernels_wrist
+
+import kinematica as km
+from kinematica.dh import Revolute
+from kinematica.ik.analytic.arm_point import places_point
+from kinematica.ik.analytic.parallel import pack
+from kinematica.ik.structure import features
+from kinematica.io import parse_urdf
 from kinematica.kernels import polynomial
 from kinematica.kernels.geometry import trig_linear
 from kinematica.kernels.ik_check import INFO_NEAR
@@ -34,13 +41,6 @@ from kinematica.kernels.solvers.parallel_layout import (
     V_P1,
     V_P6,
 )
-
-import kinematica as km
-from kinematica.dh import Revolute
-from kinematica.ik.analytic.arm_point import places_point
-from kinematica.ik.analytic.parallel import pack
-from kinematica.ik.structure import features
-from kinematica.io import parse_urdf
 from kinematica.motion import cartesian_path
 
 # The documented values (m, rad, or a sine/cosine), one per constant.
