@@ -708,3 +708,31 @@ def test_double_root_is_one_solution() -> None:
         per_shoulder = 2 if robot is arm else 1  # the 3R arm: two shoulders, one elbow each
         assert res.count == per_shoulder
         assert joint_distance(robot, res.solutions, np.array(q)).min() < 1e-7
+
+
+@pytest.mark.parametrize("kind", KINDS)
+@pytest.mark.parametrize("degenerate", [False, True])
+def test_sample_arm_gives_arms_of_the_family(kind: str, degenerate: bool) -> None:
+    """Each spec's sample_arm draws arms its spec handles, built and solved by its closed form."""
+    from kinematica.ik.analytic import SOLVERS
+    from kinematica.ik.structure import features
+
+    spec = next(s for s in SOLVERS if s.kind == kind)
+    assert set(spec.targets) == {"pose", "position"}
+    rng = np.random.default_rng(50 + KINDS.index(kind) + 100 * degenerate)
+    for _ in range(6):
+        sample = spec.sample_arm(rng, degenerate)
+        assert (sample.note != "") is degenerate
+        robot = Robot.from_dh(
+            sample.links, convention=sample.convention, base=sample.base, tool=sample.tool
+        )
+        assert spec.handles(features(robot.chain)) and classify(robot).kind == kind
+        q = random_q(robot, rng, 5)
+        for position in (False, True):
+            closed = closed_form(robot.chain, "position" if position else "pose")
+            assert closed is not None and closed.name == kind
+            targets = target_of(robot, q, position)
+            res = robot.ik(targets, respect_limits=False)
+            assert np.isin(res.status, ["ok", "singular"]).all(), set(res.status)
+            err = reached(robot, np.nan_to_num(res.solutions), targets[:, None])
+            assert (err[res.count[:, None] > np.arange(res.solutions.shape[1])] <= TOL).all()
