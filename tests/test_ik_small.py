@@ -136,7 +136,7 @@ class Info:
     free: NDArray[np.bool_]  # (N, n)
 
 
-def kernel_candidates(
+def raw_candidates(
     robot: Robot, targets: FloatArray
 ) -> tuple[tuple[str, ...], FloatArray, Info]:
     """The closed form's labels, raw candidates ``(N, m, n)`` and what it says (no check)."""
@@ -175,7 +175,7 @@ def exact_candidates(robot: Robot, targets: FloatArray) -> FloatArray:
     Out of reach a branch holds its least-squares configuration, which the
     check rejects: only the exact ones are kept here.
     """
-    _, Q, _ = kernel_candidates(robot, targets)
+    _, Q, _ = raw_candidates(robot, targets)
     real = ~np.isnan(Q).any(axis=2)
     assert not (np.isnan(Q).any(axis=2) & ~np.isnan(Q).all(axis=2)).any(), "partly NaN branch"
     err = reached(robot, np.where(real[..., None], Q, 0.0), targets[:, None])
@@ -307,7 +307,7 @@ def test_seed_pr_two_solutions_are_q2a_q2b() -> None:
     rng = np.random.default_rng(1)
     x = rng.uniform(-1.0, 1.0, 200)
     y = rng.uniform(-L2, L2, 200)
-    labels, cand, _ = kernel_candidates(robot, np.stack([x, y, 0 * x], axis=1))
+    labels, cand, _ = raw_candidates(robot, np.stack([x, y, 0 * x], axis=1))
     assert labels == ("link forward", "link backward")
     q2a = np.arcsin(y / L2)
     q2b = PI - np.arcsin(y / L2)
@@ -337,7 +337,7 @@ def test_seed_anthropomorphic_four_solutions_are_the_seed_algebra() -> None:
     robot = seed_anthropomorphic()
     rng = np.random.default_rng(2)
     p = robot.fk(random_q(robot, rng, 300))[:, :3, 3]
-    labels, cand, _ = kernel_candidates(robot, p)
+    labels, cand, _ = raw_candidates(robot, p)
     px, py, pz = p.T
     for slot, (shoulder, elbow) in enumerate([(0, 1), (0, -1), (1, 1), (1, -1)]):
         # seed 002: q1 = atan2(py, px) and q1 + π ("two solutions for q1")
@@ -403,7 +403,7 @@ def test_labels_3r_shoulder_and_elbow(kind: str, position: bool) -> None:
 def test_scara_right_handed_has_positive_elbow_turn() -> None:
     scara = Robot.from_dh([Revolute(d=0.4, a=0.3), Revolute(a=0.25), Prismatic(), Revolute()])
     T = scara.fk(np.array([[0.2, 0.7, 0.1, 0.0], [0.2, -0.7, 0.1, 0.0]]))
-    labels, cand, _ = kernel_candidates(scara, T)
+    labels, cand, _ = raw_candidates(scara, T)
     assert labels == ("right-handed", "left-handed")
     assert (np.sin(cand[:, 0, 1]) > 0).all() and (np.sin(cand[:, 1, 1]) < 0).all()
 
@@ -603,12 +603,12 @@ def test_huge_target_json_is_valid(capsys: pytest.CaptureFixture[str]) -> None:
 def test_closed_form_reports_gap_only_outside_the_reach() -> None:
     robot = km.load("planar-3r")
     T = robot.fk([0.2, 0.3, 0.4])
-    _, _, info = kernel_candidates(robot, T[None])
+    _, _, info = raw_candidates(robot, T[None])
     assert np.isnan(info.gap[0]) or info.gap[0] < 1e-15
     assert not info.singular[0]
     far = T.copy()
     far[:3, 3] *= 10
-    _, _, info = kernel_candidates(robot, far[None])
+    _, _, info = raw_candidates(robot, far[None])
     assert info.gap[0] == pytest.approx(np.linalg.norm(far[:3, 3]) - 0.9, abs=1e-12)
 
 
@@ -643,14 +643,14 @@ def test_axes_parallel_within_tolerance_make_misses_no_proof(kind: str) -> None:
         generic = robot.fk([0.3, 0.9, -0.7])
         folded = [0.3, 0.9, PI]  # the elbow arm's continuum; the planar one's is any position
         continuum = (generic if kind == "planar-3R" else robot.fk(folded))[:3, 3]
-        _, _, info = kernel_candidates(robot, np.stack([beyond, generic]))
+        _, _, info = raw_candidates(robot, np.stack([beyond, generic]))
         gap = info.gap[0]
         if tilted:
             assert math.isnan(gap) or gap < 1e-9 - 1e-10
         else:
             assert gap == pytest.approx(1e-9, abs=1e-12)
         assert not info.near[1]
-        _, _, info = kernel_candidates(robot, continuum[None])
+        _, _, info = raw_candidates(robot, continuum[None])
         assert info.singular[0] and info.near[0] == tilted
         assert robot.ik(generic).status == "ok"
 
@@ -668,7 +668,7 @@ def test_gap_below_round_off_is_not_reported() -> None:
     for factor, reported in ((0.1, False), (100.0, True)):
         target = T.copy()
         target[0, 3] += factor * SINGULAR_TOL * 1.2
-        _, _, info = kernel_candidates(robot, target[None])
+        _, _, info = raw_candidates(robot, target[None])
         assert math.isnan(info.gap[0]) != reported
         res = robot.ik(target)
         assert res.status == ("unreachable" if reported else "not_found")

@@ -63,8 +63,8 @@ struct ElbowParams {
     double scale = 0.0;   //!< size of the arm (m): the scale of SINGULAR_TOL
     double slack = 0.0;   //!< how far axis 3's tilt off k may put the tool from the ideal arm's (m)
 
-    int slots() const { return 4; }
-    int dof() const { return 3; }
+    KM_HD int slots() const { return 4; }
+    KM_HD int dof() const { return 3; }
     //! Candidates of one target: slots shoulder right/left x elbow up/down.
     //!
     //! T: target pose of the tool (base frame); for position targets only its origin is

@@ -86,13 +86,13 @@ struct PlanarParams {
     double lift_tilt = 0.0;   //!< |k × lift direction|: the SCARA slide's tilt off k (sine)
     double length = 0.0;  //!< sum of the distances between consecutive axes and to the tool (m)
 
-    int slots() const { return 2; }
-    int dof() const { return n; }
+    KM_HD int slots() const { return 2; }
+    KM_HD int dof() const { return n; }
     //! What makes these fields no arm the solver can index safely, or nullptr.
     //!
     //! The joint indices must lie within the n joints (Q has n columns); the revolute
     //! count selects rows of axis, rev and sign.
-    const char* invalid() const {
+    KM_HD const char* invalid() const {
         if (n < 1 || n > MAX_JOINTS) return "n must be 1 to 4";
         if (nrev < 1 || nrev > MAX_REV) return "nrev must be 1 to 3";
         if (slide < -1 || slide >= n) return "slide must be -1 or a joint index below n";
