@@ -136,9 +136,7 @@ class Info:
     free: NDArray[np.bool_]  # (N, n)
 
 
-def raw_candidates(
-    robot: Robot, targets: FloatArray
-) -> tuple[tuple[str, ...], FloatArray, Info]:
+def raw_candidates(robot: Robot, targets: FloatArray) -> tuple[tuple[str, ...], FloatArray, Info]:
     """The closed form's labels, raw candidates ``(N, m, n)`` and what it says (no check)."""
     kind = "position" if targets.shape[-1] == 3 else "pose"
     closed = closed_form(robot.chain, kind)

@@ -2,6 +2,12 @@
 //
 // PlanarParams with its fields and IK methods, the triangle's tolerances, and its
 // subproblems (turn, two_link, slide_link) as plain functions for the tolerance tests.
+#include <nanobind/stl/optional.h>
+#include <nanobind/stl/string.h>
+
+#include <optional>
+#include <string>
+
 #include "common.hpp"
 #include "kinematica/solvers/planar.hpp"
 #include "small_fields.hpp"
@@ -13,9 +19,9 @@ namespace {
 
 using km::PlanarParams;
 
-nb::object pairs2(const double (&out)[2][2]) {
+F64 pairs2(const double (&out)[2][2]) {
     double* d;
-    nb::object a = new_f64({2, 2}, d);
+    F64 a = new_f64({2, 2}, d);
     for (int i = 0; i < 2; ++i) {
         d[2 * i] = out[i][0];
         d[2 * i + 1] = out[i][1];
@@ -94,17 +100,17 @@ void bind_planar(nb::module_& m) {
                 "sum of the distances between consecutive axes and to the tool (m)");
     cls.def_prop_rw(
         "rev", [](const PlanarParams& p) { return small::get_ints(p.rev); },
-        [](PlanarParams& p, nb::handle v) { small::set_ints(p.rev, v, "rev", 0, J - 1); },
+        [](PlanarParams& p, I64 v) { small::set_ints(p.rev, v, "rev", 0, J - 1); },
         "(3,) the revolute joints' indices, base to tip (unused entries 0)");
     KM_SMALL_VEC(cls, PlanarParams, sign, "(3,) k . (each revolute axis direction): +1 or -1");
     KM_SMALL_PAIRS(cls, PlanarParams, axis, "(3, 2) the revolute axis points at q = 0, plane (m)");
     KM_SMALL_VEC(cls, PlanarParams, tip, "(2,) the tool origin at q = 0, plane coordinates (m)");
     KM_SMALL_VEC(cls, PlanarParams, u, "(2,) the slide direction across k, plane (unit)");
     KM_SMALL_PAIRS(cls, PlanarParams, qlim, "(4, 2) joint limits (rad or m; +-inf: none)");
-    cls.def("invalid", [](const PlanarParams& p) -> nb::object {
+    cls.def("invalid", [](const PlanarParams& p) -> std::optional<std::string> {
         const char* why = p.invalid();
-        if (why == nullptr) return nb::none();
-        return nb::str(why);
+        if (why == nullptr) return std::nullopt;
+        return std::string(why);
     }, "What makes the fields no arm the solver can index safely, or None.");
 
     sub.attr("SINGULAR_TOL") = km::triangle::SINGULAR_TOL;

@@ -35,9 +35,9 @@ inline PyArrayObject* exact_array(nb::handle src, const char* name, int typenum,
 
 //! A (k,) float field.
 template <int K>
-nb::object get_vec(const double (&v)[K]) {
+F64 get_vec(const double (&v)[K]) {
     double* out;
-    nb::object a = new_f64({K}, out);
+    F64 a = new_f64({K}, out);
     for (int i = 0; i < K; ++i) out[i] = v[i];
     return a;
 }
@@ -52,9 +52,9 @@ void set_vec(double (&v)[K], nb::handle src, const char* name) {
 
 //! A (k, 2) float field.
 template <int K>
-nb::object get_pairs(const double (&v)[K][2]) {
+F64 get_pairs(const double (&v)[K][2]) {
     double* out;
-    nb::object a = new_f64({K, 2}, out);
+    F64 a = new_f64({K, 2}, out);
     for (int i = 0; i < K; ++i) {
         out[2 * i] = v[i][0];
         out[2 * i + 1] = v[i][1];
@@ -75,9 +75,9 @@ void set_pairs(double (&v)[K][2], nb::handle src, const char* name) {
 
 //! A (k,) int field (int64 on the Python side).
 template <int K>
-nb::object get_ints(const int (&v)[K]) {
+I64 get_ints(const int (&v)[K]) {
     npy_int64* out;
-    nb::object a = new_i64({K}, out);
+    I64 a = new_i64({K}, out);
     for (int i = 0; i < K; ++i) out[i] = v[i];
     return a;
 }
@@ -104,8 +104,8 @@ void set_ints(int (&v)[K], nb::handle src, const char* name, int lo, int hi) {
 #define KM_SMALL_VEC(cls, C, F, doc)                                                           \
     cls.def_prop_rw(                                                                          \
         #F, [](const C& p) { return ::kmpy::small::get_vec(p.F); },                           \
-        [](C& p, nanobind::handle v) { ::kmpy::small::set_vec(p.F, v, #F); }, doc)
+        [](C& p, ::kmpy::F64 v) { ::kmpy::small::set_vec(p.F, v, #F); }, doc)
 #define KM_SMALL_PAIRS(cls, C, F, doc)                                                         \
     cls.def_prop_rw(                                                                          \
         #F, [](const C& p) { return ::kmpy::small::get_pairs(p.F); },                         \
-        [](C& p, nanobind::handle v) { ::kmpy::small::set_pairs(p.F, v, #F); }, doc)
+        [](C& p, ::kmpy::F64 v) { ::kmpy::small::set_pairs(p.F, v, #F); }, doc)

@@ -114,8 +114,8 @@ def build(chain: Chain, features: Features, target: TargetKind) -> ClosedForm | 
     if lift >= 0:
         params.lift_sign = _sign(float(h[lift] @ k))
     params.nrev = len(rev)
-    params.rev = [*rev, 0, 0][:3]  # the fixed arrays' unused entries: 0
-    params.sign = [*(_sign(float(h[j] @ k)) for j in rev), 0.0, 0.0][:3]
+    params.rev = np.array([*rev, 0, 0][:3])  # the fixed arrays' unused entries: 0
+    params.sign = np.array([*(_sign(float(h[j] @ k)) for j in rev), 0.0, 0.0][:3])
     params.k = k
     params.e1 = e1
     params.e2 = e2
