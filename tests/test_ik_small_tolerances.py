@@ -230,3 +230,23 @@ def test_elbow_singular_tol_frees_q1_on_axis_1(factor: float, inside: bool) -> N
     res = robot.ik(p)
     assert (res.status == "singular") is inside
     assert (0 in res.free_joints) is inside
+
+
+@pytest.mark.parametrize(("factor", "free"), [(0.1, False), (10.0, True)])
+def test_singular_tol_tells_a_free_last_joint_from_one_solution(factor: float, free: bool) -> None:
+    """SINGULAR_TOL, its third use: a position target of a planar 3R arm frees the last
+    joint when a range of its turns wider than SINGULAR_TOL (times the reach) reaches it;
+    closer to the stretched reach than that, the arm has one configuration.
+    """
+    robot = km.Robot.from_dh([km.Revolute(a=0.4), km.Revolute(a=0.3), km.Revolute(a=0.2)])
+    reach = 0.9
+    r = reach - factor * TRIANGLE_SINGULAR_TOL * reach  # the free range of lengths: reach - r
+    closed = closed_form(robot.chain, "position")
+    assert closed is not None
+    T = np.eye(4)
+    T[0, 3] = r
+    _, singular, _, gap, free_mask = closed.params.candidates(robot.chain.core, T)
+    assert singular is free and bool(free_mask & 0b100) is free
+    assert math.isnan(gap)
+    res = robot.ik(T[:3, 3])
+    assert res.status == ("singular" if free else "ok"), res.message
