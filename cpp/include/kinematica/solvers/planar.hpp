@@ -34,6 +34,10 @@
 // shrinks by that much, the ideal arm's continua (which the real one may not have) are
 // near (a miss there is no proof), and slides put beyond a limit by less than it go onto
 // the limit. near also marks targets where two branches merge (MERGE_TOL).
+//
+// Maxima and minima are std::max / std::min nested left to right, in the order the
+// formulas name their terms: each keeps its first argument unless the second is strictly
+// greater (smaller), so what a NaN term gives depends on that order, which is fixed.
 #pragma once
 
 #include <algorithm>
