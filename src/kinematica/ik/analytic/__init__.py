@@ -6,8 +6,12 @@ in the order they are tried.
 
 from __future__ import annotations
 
+from kinematica.ik.analytic import elbow_arms, planar_arms
 from kinematica.ik.registry import SolverSpec
 
 __all__ = ["SOLVERS"]
 
-SOLVERS: tuple[SolverSpec, ...] = ()
+SOLVERS: tuple[SolverSpec, ...] = (
+    *planar_arms.SPECS,
+    *elbow_arms.SPECS,
+)
