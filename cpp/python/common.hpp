@@ -8,11 +8,11 @@ namespace kmpy {
 
 namespace nb = nanobind;
 
-// Batch loops are compiled twice on x86-64, for AVX2 and for the baseline, and the
+// Batch loops are compiled three times on x86-64, for AVX-512, AVX2 and the baseline, and the
 // loader picks one (no -march=native needed): the joint trigonometry of a block then
-// runs as 4-wide SIMD. The results are the same bits either way (no FMA contraction).
+// runs as 8- or 4-wide SIMD. The results are the same bits either way (no FMA contraction).
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(KM_NO_CLONES)
-#define KM_CLONES __attribute__((target_clones("avx2", "default")))
+#define KM_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define KM_CLONES
 #endif
