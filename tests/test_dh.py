@@ -25,8 +25,8 @@ from helpers import (
 )
 from hypothesis import given
 
+from kinematica.core import Chain
 from kinematica.dh import (
-    DHChain,
     Prismatic,
     Revolute,
     check_convention,
@@ -34,7 +34,6 @@ from kinematica.dh import (
     link_matrix,
 )
 from kinematica.errors import KinematicaError
-from kinematica.kernels import fk as kfk
 
 CONVENTIONS = ["standard", "modified"]
 BATCHES = [(), (1,), (3, 2)]
@@ -308,10 +307,14 @@ def test_convert_table_same_convention_is_identity() -> None:
     assert_transform_close(t, tool, atol=0)
 
 
-# ----------------------------------------------------------------------- DHChain
-def _chain(spec: RobotSpec) -> DHChain:
+# ------------------------------------------------------------- the compiled chain
+def _chain(spec: RobotSpec) -> Chain:
     joints, base, tool = _table(spec)
-    return DHChain.from_joints(joints, spec.convention, base, tool)  # type: ignore[arg-type]
+    return Chain.from_dh(joints, spec.convention, base, tool)  # type: ignore[arg-type]
+
+
+def kfk(chain: Chain, q: np.ndarray, all_frames: bool = False) -> tuple[np.ndarray, int, int]:
+    return chain.fk(q, all_frames)
 
 
 @PROPERTY

@@ -19,14 +19,13 @@ import pytest
 from helpers import JointSpec, RobotSpec, transforms
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from kinematica._core import LAMBDA_MIN, LIMIT_TOL
+from kinematica._core.internals import lm_rows
 
 from kinematica.cli.main import main
 from kinematica.dh import Prismatic, Revolute
 from kinematica.errors import ArgumentError, DimensionError, KinematicaError
 from kinematica.ik.result import IKBatchResult, IKResult
-from kinematica.kernels.ik_check import LIMIT_TOL
-from kinematica.kernels.lm import LAMBDA_MIN
-from kinematica.kernels.lm_model import lm_rows
 from kinematica.robot import Robot, load
 from kinematica.spatial import rotation_angle, se3_error
 
@@ -592,8 +591,8 @@ def test_error_jacobian_matches_finite_differences(mask) -> None:
     counted = np.flatnonzero(w > 0)
     q = random_q(robot, 1, seed=19)[0]
     T = robot.fk(random_q(robot, 1, seed=20)[0])
-    err, J = np.empty(6), np.empty((6, robot.dof))
-    r = lm_rows(chain.links, chain.ends, w, q, T, err, J)
+    err, J = lm_rows(chain.core, w.tolist(), q, T)
+    r = err.shape[0]
     assert r == counted.size
     np.testing.assert_allclose(err[:r], se3_error(robot.fk(q), T)[counted], atol=1e-13)
     h = 1e-6

@@ -57,11 +57,17 @@ def test_fk_equals_pinocchio(case):
             assert_transform_close(ext.robot.fk(sample["q"]), sample["T"], atol=URDF_FK_ATOL)
 
 
+#: Files whose axes are parallel only to round-off of their numbers (π written with
+#: 10 digits): a DH table describes them to about the angle by which they miss.
+APPROXIMATE_DH = {"lynxmotion_al5d.urdf": 1e-9}
+
+
 @pytest.mark.parametrize(("name", "base", "tip"), CASES, ids=IDS)
 def test_extracted_table_alone_reproduces_fk(name, base, tip):
     # The DH rows, base and tool, rebuilt from the printed numbers alone.
     ext = km.urdf_to_dh(URDF_DIR / name, base=base, tip=tip)
-    assert ext.fk_error < 1e-13
+    expected = APPROXIMATE_DH.get(name, 1e-13)
+    assert ext.fk_error < expected
     r = ext.robot
     rebuilt = km.Robot.from_dh(
         [
@@ -75,7 +81,7 @@ def test_extracted_table_alone_reproduces_fk(name, base, tip):
     )
     ref = reference_file(name, base, tip)
     q = random_joint_values(ref, np.random.default_rng(3), (20,))
-    assert_transform_close(rebuilt.fk(q), ref.fk_batch(q), atol=1e-10)
+    assert_transform_close(rebuilt.fk(q), ref.fk_batch(q), atol=max(1e-10, 10 * expected))
     assert len(ext.rules) == r.dof + 1
     assert [rule.frame for rule in ext.rules] == list(range(r.dof + 1))
 

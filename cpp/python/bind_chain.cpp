@@ -123,16 +123,16 @@ KM_CLONES void jacobian_block(const ChainView& ch, const double* Q, long b0, lon
     counts.bad += bad;
 }
 
-In check_q(const Chain& chain, nb::handle q) {
+In check_q(const Chain& chain, F64 q) {
     In in = in_f64(q, "q", 1, {chain.dof()});
     return in;
 }
 
-In check_batch(const Chain& chain, nb::handle Q) { return in_f64(Q, "Q", 2, {-1, chain.dof()}); }
+In check_batch(const Chain& chain, F64 Q) { return in_f64(Q, "Q", 2, {-1, chain.dof()}); }
 
 int blocks_of(long rows, long block) { return static_cast<int>((rows + block - 1) / block); }
 
-nb::tuple fk_one(const Chain& chain, nb::handle q) {
+nb::tuple fk_one(const Chain& chain, F64 q) {
     const In in = check_q(chain, q);
     const ChainView ch = chain.view();
     const int n = ch.n;
@@ -154,7 +154,7 @@ nb::tuple fk_one(const Chain& chain, nb::handle q) {
     return nb::make_tuple(T, static_cast<int>(st));
 }
 
-nb::tuple fk_frames_one(const Chain& chain, nb::handle q) {
+nb::tuple fk_frames_one(const Chain& chain, F64 q) {
     const In in = check_q(chain, q);
     const ChainView ch = chain.view();
     const int n = ch.n;
@@ -168,7 +168,7 @@ nb::tuple fk_frames_one(const Chain& chain, nb::handle q) {
     return nb::make_tuple(F, static_cast<int>(st));
 }
 
-nb::tuple fk_many(const Chain& chain, nb::handle Qh, bool all_frames, int workers) {
+nb::tuple fk_many(const Chain& chain, F64 Qh, bool all_frames, int workers) {
     const In Q = check_batch(chain, Qh);
     const ChainView ch = chain.view();
     const int n = ch.n;
@@ -190,7 +190,7 @@ nb::tuple fk_many(const Chain& chain, nb::handle Qh, bool all_frames, int worker
     return nb::make_tuple(all_frames ? F : P, counts.bad.load(), counts.outside.load());
 }
 
-nb::tuple jacobian_one(const Chain& chain, nb::handle q, bool tool_frame) {
+nb::tuple jacobian_one(const Chain& chain, F64 q, bool tool_frame) {
     const In in = check_q(chain, q);
     const ChainView ch = chain.view();
     const int n = ch.n;
@@ -204,7 +204,7 @@ nb::tuple jacobian_one(const Chain& chain, nb::handle q, bool tool_frame) {
     return nb::make_tuple(J, static_cast<int>(st));
 }
 
-nb::tuple jacobian_many(const Chain& chain, nb::handle Qh, bool tool_frame, int workers) {
+nb::tuple jacobian_many(const Chain& chain, F64 Qh, bool tool_frame, int workers) {
     const In Q = check_batch(chain, Qh);
     const ChainView ch = chain.view();
     const int n = ch.n;
@@ -223,13 +223,13 @@ nb::tuple jacobian_many(const Chain& chain, nb::handle Qh, bool tool_frame, int 
     return nb::make_tuple(J, counts.bad.load());
 }
 
-nb::object joint_axes(const Chain& chain, nb::handle Qh) {
+F64 joint_axes(const Chain& chain, F64 Qh) {
     const In Q = check_batch(chain, Qh);
     const ChainView ch = chain.view();
     const int n = ch.n;
     const npy_intp B = Q.dim[0];
     double* out;
-    nb::object A = new_f64({B, n, 6}, out);
+    F64 A = new_f64({B, n, 6}, out);
     std::vector<double> c(static_cast<size_t>(n)), s(c.size());
     for (npy_intp b = 0; b < B; ++b) {
         const double* q = Q.data + b * n;
@@ -240,8 +240,8 @@ nb::object joint_axes(const Chain& chain, nb::handle Qh) {
     return A;
 }
 
-Chain from_dh(nb::handle prismatic, nb::handle theta, nb::handle d, nb::handle a, nb::handle alpha,
-              nb::handle lo, nb::handle hi, bool modified, const Pose& base, const Pose& tool) {
+Chain from_dh(Bools prismatic, F64 theta, F64 d, F64 a, F64 alpha,
+              F64 lo, F64 hi, bool modified, const Pose& base, const Pose& tool) {
     const In th = in_f64(theta, "theta", 1);
     const npy_intp n = th.dim[0];
     if (n < 1) throw nb::value_error("a chain needs at least one joint");
@@ -255,8 +255,8 @@ Chain from_dh(nb::handle prismatic, nb::handle theta, nb::handle d, nb::handle a
                           dd.data, aa.data, al.data, l.data, h.data, modified, base, tool);
 }
 
-Chain from_transforms(const Pose& start, nb::handle between, const Pose& tool, nb::handle offsets,
-                      nb::handle prismatic, nb::handle lo, nb::handle hi, const Pose& base) {
+Chain from_transforms(const Pose& start, F64 between, const Pose& tool, F64 offsets,
+                      Bools prismatic, F64 lo, F64 hi, const Pose& base) {
     const In off = in_f64(offsets, "frame_offsets", 3, {-1, 4, 4});
     const npy_intp n = off.dim[0];
     if (n < 1) throw nb::value_error("a chain needs at least one joint");
@@ -293,7 +293,7 @@ void bind_chain(nb::module_& m) {
         })
         .def_prop_ro("qlim", [](const Chain& c) {
             double* out;
-            nb::object a = new_f64({c.dof(), 2}, out);
+            F64 a = new_f64({c.dof(), 2}, out);
             for (int i = 0; i < c.dof(); ++i) {
                 out[2 * i] = c.joints()[static_cast<size_t>(i)].qlo;
                 out[2 * i + 1] = c.joints()[static_cast<size_t>(i)].qhi;
@@ -302,7 +302,7 @@ void bind_chain(nb::module_& m) {
         }, "(n, 2) the limits solutions are held to: own, else (-π, π) revolute, ±inf prismatic.")
         .def_prop_ro("translations", [](const Chain& c) {
             double* out;
-            nb::object a = new_f64({c.dof(), 3}, out);
+            F64 a = new_f64({c.dof(), 3}, out);
             for (int i = 0; i < c.dof(); ++i) {
                 const km::Vec3& t = c.joints()[static_cast<size_t>(i)].t;
                 out[3 * i] = t.x;

@@ -17,10 +17,10 @@ namespace kmpy {
 
 namespace {
 
-km::NumericSolver make_numeric(nb::handle bounds, double tol_position, double tol_rotation,
+km::NumericSolver make_numeric(F64 bounds, double tol_position, double tol_rotation,
                                int max_steps, double reach, const km::Vec3& base,
-                               const std::array<double, 6>& weights, nb::handle samples,
-                               nb::handle middle) {
+                               const std::array<double, 6>& weights, F64 samples,
+                               F64 middle) {
     const In b = in_f64(bounds, "bounds", 2, {-1, 3});
     const npy_intp n = b.dim[0];
     if (n < 1) throw nb::value_error("bounds must have a row per joint");
@@ -43,13 +43,13 @@ km::NumericSolver make_numeric(nb::handle bounds, double tol_position, double to
     return solver;
 }
 
-nb::tuple defects_one(nb::handle T) {
+nb::tuple defects_one(F64 T) {
     const In in = in_f64(T, "T", 2, {4, 4});
     const km::PoseDefects d = km::pose_defects(in.data);
     return nb::make_tuple(d.finite, d.last_row, d.ortho, d.det);
 }
 
-nb::tuple defects_many(nb::handle T) {
+nb::tuple defects_many(F64 T) {
     const In in = in_f64(T, "T", 3, {-1, 4, 4});
     const npy_intp N = in.dim[0];
     npy_bool* finite;

@@ -23,6 +23,23 @@ namespace kmpy {
 
 namespace nb = nanobind;
 
+//! Every object is let through to the checks below (which say what is wrong).
+inline bool any_object(PyObject*) { return true; }
+
+//! Arrays across the binding, named for the type stubs; the checks are in_f64 & co.
+class F64 : public nb::object {
+public:
+    NB_OBJECT_DEFAULT(F64, nb::object, "numpy.typing.NDArray[numpy.float64]", any_object)
+};
+class I64 : public nb::object {
+public:
+    NB_OBJECT_DEFAULT(I64, nb::object, "numpy.typing.NDArray[numpy.int64]", any_object)
+};
+class Bools : public nb::object {
+public:
+    NB_OBJECT_DEFAULT(Bools, nb::object, "numpy.typing.NDArray[numpy.bool_]", any_object)
+};
+
 //! A checked float64 input array: C-contiguous, aligned, of the given rank.
 struct In {
     const double* data = nullptr;
@@ -90,12 +107,16 @@ inline nb::object new_array(std::initializer_list<npy_intp> dims, T*& data, int 
     return nb::steal(r);
 }
 
-inline nb::object new_f64(std::initializer_list<npy_intp> dims, double*& data) {
-    return new_array(dims, data, NPY_DOUBLE);
+inline F64 new_f64(std::initializer_list<npy_intp> dims, double*& data) {
+    return nb::borrow<F64>(new_array(dims, data, NPY_DOUBLE));
 }
 
-inline nb::object new_i64(std::initializer_list<npy_intp> dims, npy_int64*& data) {
-    return new_array(dims, data, NPY_INT64);
+inline I64 new_i64(std::initializer_list<npy_intp> dims, npy_int64*& data) {
+    return nb::borrow<I64>(new_array(dims, data, NPY_INT64));
+}
+
+inline Bools new_bools(std::initializer_list<npy_intp> dims, npy_bool*& data) {
+    return nb::borrow<Bools>(new_array(dims, data, NPY_BOOL));
 }
 
 }  // namespace kmpy

@@ -41,7 +41,7 @@ inline nb::tuple report_tuple(const km::CheckReport& r) {
                           static_cast<unsigned long>(r.free));
 }
 
-inline km::Pose target_pose(nb::handle T) {
+inline km::Pose target_pose(F64 T) {
     const In in = in_f64(T, "T", 2, {4, 4});
     return km::Pose::from_rows(in.data);
 }
@@ -63,7 +63,7 @@ void check_dims(const Solver& s, const km::Chain& chain) {
 
 //! (q (m, n), res (m, 2), slots (count + out_count,), report...) for one target.
 template <class Solver>
-nb::tuple ik_one(const Solver& s, const km::Chain& chain, nb::handle T,
+nb::tuple ik_one(const Solver& s, const km::Chain& chain, F64 T,
                  const km::CheckOptions& opts, nb::handle q0) {
     check_dims(s, chain);
     const km::ChainView ch = chain.view();
@@ -92,7 +92,7 @@ nb::tuple ik_one(const Solver& s, const km::Chain& chain, nb::handle T,
 //! status (N,), count (N,), out_count (N,), gap (N,), nearest (N, 2), near (N,),
 //! free (N, n).
 template <class Solver>
-nb::dict ik_many(const Solver& s, const km::Chain& chain, nb::handle Th,
+nb::dict ik_many(const Solver& s, const km::Chain& chain, F64 Th,
                  const km::CheckOptions& opts, nb::handle q0h, nb::handle invalidh, int workers) {
     check_dims(s, chain);
     const km::ChainView ch = chain.view();
@@ -151,7 +151,7 @@ nb::dict ik_many(const Solver& s, const km::Chain& chain, nb::handle Th,
 
 //! (Q (m, n), singular, near, gap, free mask): the solver's raw candidates of one target.
 template <class Solver>
-nb::tuple candidates(const Solver& s, const km::Chain& chain, nb::handle T, nb::handle q0) {
+nb::tuple candidates(const Solver& s, const km::Chain& chain, F64 T, nb::handle q0) {
     check_dims(s, chain);
     const km::ChainView ch = chain.view();
     const int n = ch.n, m = s.slots();
@@ -170,12 +170,12 @@ nb::tuple candidates(const Solver& s, const km::Chain& chain, nb::handle T, nb::
 template <class Bound, class Get>
 void add_ik_methods(nb::class_<Bound>& cls, Get get) {
     cls.def("ik",
-            [get](const Bound& b, const km::Chain& chain, nb::handle T, const km::CheckOptions& o,
+            [get](const Bound& b, const km::Chain& chain, F64 T, const km::CheckOptions& o,
                   nb::handle q0) { return ik_one(get(b), chain, T, o, q0); },
             nb::arg("chain"), nb::arg("T"), nb::arg("options"), nb::arg("q0").none(),
             "Every solution of one target T (4, 4): (q, res, slots, report).");
     cls.def("ik_batch",
-            [get](const Bound& b, const km::Chain& chain, nb::handle T, const km::CheckOptions& o,
+            [get](const Bound& b, const km::Chain& chain, F64 T, const km::CheckOptions& o,
                   nb::handle q0, nb::handle invalid, int workers) {
                 return ik_many(get(b), chain, T, o, q0, invalid, workers);
             },
@@ -183,7 +183,7 @@ void add_ik_methods(nb::class_<Bound>& cls, Get get) {
             nb::arg("invalid").none(), nb::arg("workers"),
             "Every solution of each target T (N, 4, 4): a dict of arrays.");
     cls.def("candidates",
-            [get](const Bound& b, const km::Chain& chain, nb::handle T, nb::handle q0) {
+            [get](const Bound& b, const km::Chain& chain, F64 T, nb::handle q0) {
                 return candidates(get(b), chain, T, q0);
             },
             nb::arg("chain"), nb::arg("T"), nb::arg("q0").none() = nb::none(),

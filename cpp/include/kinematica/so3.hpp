@@ -45,19 +45,20 @@ KM_HD inline double wrap(double v) {
     return w <= -PI ? PI : w;
 }
 
-//! Rotation vector (rad) of a rotation matrix given by its rows.
+//! Rotation vector (rad) of a rotation matrix given by its rows; `angle` gets its norm.
 //!
 //! atan2 of the sine and cosine of the angle: exact near 0; near π the axis comes from
 //! the column of the symmetric part with the largest diagonal,
-//! (M + Mᵀ)/2 − cos θ I = (1 − cos θ) n nᵀ, its sign from the skew part.
+//! (M + Mᵀ)/2 − cos θ I = (1 − cos θ) n nᵀ, its sign from the skew part (at exactly π,
+//! where the skew part vanishes, the column's own sign).
 KM_HD inline Vec3 rotvec(double m00, double m01, double m02, double m10, double m11,
-                         double m12, double m20, double m21, double m22) {
+                         double m12, double m20, double m21, double m22, double& angle) {
     const double v0 = 0.5 * (m21 - m12);
     const double v1 = 0.5 * (m02 - m20);
     const double v2 = 0.5 * (m10 - m01);
     const double sin = std::sqrt(v0 * v0 + v1 * v1 + v2 * v2);
     const double cos = 0.5 * (m00 + m11 + m22 - 1.0);
-    const double angle = std::atan2(sin, cos);
+    angle = std::atan2(sin, cos);
     if (cos >= 0.0) {
         const double ratio = sin > 0.0 ? angle / sin : 1.0;
         return {v0 * ratio, v1 * ratio, v2 * ratio};
@@ -102,8 +103,9 @@ struct Twist {
 KM_HD inline Twist pose_error(const Pose& T, const Pose& Tt) {
     // (Rt Rᵀ)[i, j] = row i of Rt · row j of R
     auto rr = [&](int i, int j) { return dot(Tt.row(i), T.row(j)); };
+    double angle;
     const Vec3 w = rotvec(rr(0, 0), rr(0, 1), rr(0, 2), rr(1, 0), rr(1, 1), rr(1, 2), rr(2, 0),
-                          rr(2, 1), rr(2, 2));
+                          rr(2, 1), rr(2, 2), angle);
     return {{Tt.p.x - T.p.x, Tt.p.y - T.p.y, Tt.p.z - T.p.z, w.x, w.y, w.z}};
 }
 

@@ -19,7 +19,7 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica import _core
+import kinematica._core as _core
 from kinematica.core.workers import resolve_workers
 from kinematica.dh.joints import Convention, Joint, Prismatic, check_convention
 
@@ -150,7 +150,11 @@ class Chain:
 
     @cached_property
     def qlim(self) -> FloatArray:
-        """``(n, 2)`` limits solutions are held to: own, else ``(-π, π)`` revolute, ±inf prismatic."""
+        """``(n, 2)`` limits solutions are held to.
+
+        A joint's own limits, else ``(-π, π)`` for a revolute joint and ±inf for a
+        prismatic one.
+        """
         return _readonly(np.asarray(self.core.qlim))  # type: ignore[return-value]
 
     # ------------------------------------------------------------ kinematics
@@ -196,7 +200,10 @@ class Chain:
         return J.reshape(*q.shape[:-1], 6, self.dof), int(bad)
 
     def joint_axes(self, q: FloatArray) -> FloatArray:
-        """Each joint's axis as a line: ``(..., n, 6)`` unit direction, then a point (base frame)."""
+        """Each joint's axis as a line: ``(..., n, 6)`` unit direction, then a point.
+
+        In the base frame (m).
+        """
         axes = self.core.joint_axes(self._flat(q))
         return axes.reshape(*q.shape[:-1], self.dof, 6)
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import os
 
-from kinematica import _core
+import kinematica._core as _core
 from kinematica.errors import ArgumentError
 
 __all__ = ["WORKERS_ENV", "resolve_workers"]

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica import _core
+import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.errors import ArgumentError
 

@@ -280,7 +280,14 @@ class IKBatchResult:
         )  # fmt: skip
         slots = raw.slot[flat, : count + out].tolist()
         return result_of(
-            raw.q[flat], raw.res[flat], slots, report, self.labels, self.method, self.complete, notes
+            raw.q[flat],
+            raw.res[flat],
+            slots,
+            report,
+            self.labels,
+            self.method,
+            self.complete,
+            notes,
         )
 
     @cached_property

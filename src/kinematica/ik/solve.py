@@ -15,7 +15,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica import _core
+import kinematica._core as _core
 from kinematica.core import Chain, resolve_workers
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.analytic import SOLVERS
@@ -30,8 +30,8 @@ __all__ = ["Method", "closed_form", "solve_ik", "structure_of"]
 FloatArray = NDArray[np.float64]
 Method = Literal["auto", "analytic", "numeric"]
 
-_POSE = (1.0, 1.0, 1.0, 1.0, 1.0, 1.0)
-_POSITION = (1.0, 1.0, 1.0, 0.0, 0.0, 0.0)
+_POSE: tuple[float, ...] = (1.0, 1.0, 1.0, 1.0, 1.0, 1.0)
+_POSITION: tuple[float, ...] = (1.0, 1.0, 1.0, 0.0, 0.0, 0.0)
 
 # Closed-form solvers are built once per chain (a chain is immutable, so the
 # solver is a pure function of it); the cache forgets a chain when it dies.

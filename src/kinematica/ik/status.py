@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from enum import StrEnum
 
-from kinematica import _core
+import kinematica._core as _core
 
 __all__ = ["SOLVED", "STATUS_NAMES", "IKStatus", "status_message"]
 

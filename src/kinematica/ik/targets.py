@@ -18,7 +18,7 @@ from typing import Any, NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica import _core
+import kinematica._core as _core
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.spatial import ROUNDOFF_TOL, nearest_rotation
 

@@ -31,6 +31,7 @@ from kinematica.ik import IKBatchResult, IKResult, Tolerance, solve_ik
 from kinematica.robot.dh_rules import to_dh, to_urdf
 from kinematica.robot.frames import rigid_frame, short
 from kinematica.robot.save import write_robot_file
+from kinematica.robot.transforms import ChainTransforms, dh_frames
 
 if TYPE_CHECKING:
     import os
@@ -61,6 +62,10 @@ class Robot:
         source_spec: The description the robot was read from (robot file or
             built-in model), or ``None``; :meth:`save` writes it back as it
             was written, for every part that still describes this robot.
+        transforms: For a robot read from a URDF, the file's own transforms
+            (:class:`~kinematica.robot.transforms.ChainTransforms`): FK, Jacobians
+            and IK use them, exactly, and the DH rows describe the robot (to the
+            extraction's reported accuracy). ``None`` for a DH robot.
     """
 
     links: tuple[Joint, ...]
@@ -71,6 +76,7 @@ class Robot:
     description: str | None = None
     chain: Chain = field(init=False, repr=False)
     source_spec: RobotSpec | None = field(default=None, compare=False, repr=False)
+    transforms: ChainTransforms | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         links = tuple(self.links)
@@ -90,7 +96,16 @@ class Robot:
         tool.flags.writeable = False
         object.__setattr__(self, "base", base)
         object.__setattr__(self, "tool", tool)
-        object.__setattr__(self, "chain", Chain.from_dh(links, self.convention, base, tool))
+        if self.transforms is None:
+            chain = Chain.from_dh(links, self.convention, base, tool)
+        else:
+            if self.transforms.frame_offsets.shape[0] != len(links):
+                raise KinematicaError(
+                    f"transforms describe {self.transforms.frame_offsets.shape[0]} joints, "
+                    f"the DH table {len(links)}"
+                )
+            chain = self.transforms.compile(links, base, tool)
+        object.__setattr__(self, "chain", chain)
 
     @classmethod
     def from_dh(
@@ -410,7 +425,14 @@ class Robot:
         """
         target = check_convention(convention)
         rows, base, tool = convert_table(self.links, self.convention, target, self.base, self.tool)
-        return dataclasses.replace(self, links=rows, convention=target, base=base, tool=tool)
+        transforms = self.transforms
+        if transforms is not None:  # the same chain, seen from the new DH frames 0 and n
+            transforms = transforms.rebased(
+                (self.base, self.tool), (base, tool), dh_frames(rows, target)
+            )
+        return dataclasses.replace(
+            self, links=rows, convention=target, base=base, tool=tool, transforms=transforms
+        )
 
     def with_tool(self, tool: ArrayLike | None) -> Robot:
         """The same robot with another tool transform (``(4, 4)`` or ``None``)."""

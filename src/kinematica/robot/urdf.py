@@ -1,19 +1,67 @@
 """URDF in: a Robot from any serial chain of a URDF file.
 
-The chain's joint axes get DH frames by the rules (:mod:`kinematica.robot.dh_rules`);
-the robot's forward kinematics equals the URDF's.
+The chain's joint axes get DH frames by the rules (:mod:`kinematica.robot.dh_rules`):
+that table describes the robot. Its kinematics are the file's own transforms
+(:class:`~kinematica.robot.transforms.ChainTransforms`), so its FK equals the
+URDF's to round-off whatever its axes (nearly parallel ones included).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import os
 
+import numpy as np
+from numpy.typing import NDArray
+
 from kinematica.dh import check_convention
-from kinematica.io import UrdfModel, read_urdf
+from kinematica.io import UrdfChain, UrdfModel, read_urdf
 from kinematica.robot.dh_rules import DHExtraction, dh_from_chain
 from kinematica.robot.robot import Robot
+from kinematica.robot.transforms import ChainTransforms, align_z
+from kinematica.spatial import inv_transform
 
-__all__ = ["robot_from_urdf", "urdf_to_dh"]
+__all__ = ["chain_transforms", "robot_from_urdf", "urdf_to_dh"]
+
+FloatArray = NDArray[np.float64]
+
+
+def chain_transforms(chain: UrdfChain, frames: FloatArray) -> ChainTransforms:
+    """The chain's own transforms, relative to its DH frames ``frames`` (n+1, 4, 4) at q = 0.
+
+    Between consecutive movable joints the origins (fixed joints included) are
+    multiplied as the file gives them; each joint's frame is turned so that its
+    axis is z (:func:`~kinematica.robot.transforms.align_z`), the turn undone in
+    the next transform. Frames are in the chain's base link frame.
+    """
+    local = np.eye(4)  # from the frame after the last motion (or the base link) on
+    rel: list[FloatArray] = []
+    align: list[FloatArray] = []
+    for j in chain.joints:
+        local = local @ j.origin.as_matrix()
+        if j.movable:
+            axis = np.array(j.axis, dtype=float)
+            R = np.eye(4)
+            R[:3, :3] = align_z(axis / np.linalg.norm(axis))
+            rel.append(local)
+            align.append(R)
+            local = np.eye(4)
+    n = len(rel)
+    first = rel[0] @ align[0]  # joint 1's frame in the base link frame
+    between = np.array([align[i].T @ rel[i + 1] @ align[i + 1] for i in range(n - 1)])
+    between = between.reshape(n - 1, 4, 4)
+    tip_from_last = align[-1].T @ local  # the tip link from the frame after the last motion
+    S0, Sn = frames[0], frames[-1]
+    start = inv_transform(S0) @ first
+    motion = np.empty((n, 4, 4))  # the frames joints move in at q = 0, base link frame
+    motion[0] = first
+    for i in range(1, n):
+        motion[i] = motion[i - 1] @ between[i - 1]
+    offsets = np.array([inv_transform(F) @ S for F, S in zip(motion, frames[1:], strict=True)])
+    # end · tool = tip_from_last with tool = Sn⁻¹ tip: end = tip_from_last tip⁻¹ Sn
+    tip = motion[-1] @ tip_from_last
+    end = tip_from_last @ inv_transform(tip) @ Sn
+    return ChainTransforms(start, between, end, offsets)
 
 
 def urdf_to_dh(
@@ -34,8 +82,10 @@ def urdf_to_dh(
         convention: ``"standard"`` or ``"modified"``.
 
     Returns:
-        The :class:`DHExtraction`: ``.robot`` (FK equal to the URDF's),
-        ``.rules`` (which rule placed each frame), ``.fk_error``.
+        The :class:`DHExtraction`: ``.robot`` (its DH table the extracted one,
+        its FK the URDF's own transforms, exactly), ``.rules`` (which rule
+        placed each frame), ``.fk_error`` (how well the DH table alone
+        reproduces the URDF's FK).
 
     Raises:
         RobotFileError: the file cannot be read, is hostile or malformed, or
@@ -46,12 +96,14 @@ def urdf_to_dh(
     model = urdf if isinstance(urdf, UrdfModel) else read_urdf(urdf)
     chain = model.chain(base, tip)
     source = f"URDF {chain.source}" if chain.source else "URDF"
-    return dh_from_chain(
+    ext = dh_from_chain(
         chain,
         convention,
         make=Robot.from_dh,
         description=f"{source}, chain {chain.base} -> {chain.tip}",
     )
+    exact = dataclasses.replace(ext.robot, transforms=chain_transforms(chain, ext.frames))
+    return dataclasses.replace(ext, robot=exact)
 
 
 def robot_from_urdf(

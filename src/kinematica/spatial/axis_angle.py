@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+import kinematica._core as _core
 from kinematica.errors import DimensionError
 from kinematica.spatial.checks import as_batch_array, first_bad
 
@@ -30,11 +31,6 @@ FloatArray = NDArray[np.float64]
 # noise; axis_angle_from_matrix then returns the z axis by convention.
 IDENTITY_ANGLE_TOL = 10.0 * np.finfo(np.float64).eps
 
-# Above π/2 (cos θ < 0) the axis is taken from the symmetric part of R, whose
-# error ~eps/(1 − cos θ) stays below eps up to and at π; the skew part's error
-# ~eps/sin θ grows without bound toward π. At π/2 the two are equally good.
-_SYMMETRIC_AXIS_COS = 0.0
-
 
 def _skew(v: FloatArray) -> FloatArray:
     """Cross-product matrix ``[v]×`` of ``(..., 3)`` vectors: ``(..., 3, 3)``."""
@@ -50,46 +46,24 @@ def _skew(v: FloatArray) -> FloatArray:
     )
 
 
-def _angle_parts(R: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """``(v, |v|, cos θ, θ)`` of rotations ``R``: ``v = sin θ · n`` from the skew part."""
-    v = 0.5 * np.stack(
-        [R[..., 2, 1] - R[..., 1, 2], R[..., 0, 2] - R[..., 2, 0], R[..., 1, 0] - R[..., 0, 1]],
-        axis=-1,
-    )
-    sin = np.linalg.norm(v, axis=-1)
-    cos = 0.5 * (np.trace(R, axis1=-2, axis2=-1) - 1.0)
-    # atan2 needs no clipping of cos to [-1, 1]: round-off beyond it is harmless.
-    return v, sin, cos, np.arctan2(sin, cos)
-
-
 def _log(R: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """``(axis, angle, rotvec)`` of rotations ``R``, every branch chosen deliberately."""
-    Ra = as_batch_array(R, "R", (3, 3))
-    v, sin, cos, angle = _angle_parts(Ra)
+    """``(axis, angle, rotvec)`` of rotations ``R`` (the core's SO(3) log).
 
-    # Regular branch (θ <= π/2): axis = v/|v|; rotvec = v·θ/sin θ, with θ/sin θ
-    # -> 1 as θ -> 0, so the rotation vector stays exact down to θ = 0.
-    ratio = np.divide(angle, sin, out=np.ones_like(angle), where=sin > 0.0)
-    rotvec = v * ratio[..., None]
-    # Near 0 the direction of v is noise: use the z axis by convention. (Where
-    # sin θ = 0 but θ = π the near-π branch below supplies the axis.)
-    axis = v / np.where(sin > 0.0, sin, 1.0)[..., None]
+    ``θ = atan2(|v|, (tr R − 1)/2)`` with ``v`` the vector of the skew part: exact
+    near 0; above π/2 the axis comes from the symmetric part,
+    ``(R + Rᵀ)/2 − cos θ I = (1 − cos θ) n nᵀ``, whose error stays below eps up to and
+    at π (the skew part's ~eps/sin θ grows without bound toward π). Below
+    :data:`IDENTITY_ANGLE_TOL` the axis is the z axis by convention.
+    """
+    Ra = as_batch_array(R, "R", (3, 3))
+    flat = np.ascontiguousarray(Ra.reshape(-1, 3, 3))
+    rv, angle = _core.so3_log(flat)
+    rotvec = rv.reshape(*Ra.shape[:-2], 3)
+    angle = angle.reshape(Ra.shape[:-2])
+    norm = np.linalg.norm(rotvec, axis=-1, keepdims=True)
+    axis = np.divide(rotvec, norm, out=np.zeros_like(rotvec), where=norm > 0.0)
     tiny = angle < IDENTITY_ANGLE_TOL
     axis = np.where(tiny[..., None], np.array([0.0, 0.0, 1.0]), axis)
-
-    # Near-π branch (θ > π/2): (R + Rᵀ)/2 − cos θ I = (1 − cos θ) n nᵀ. Its
-    # column with the largest diagonal is the best-conditioned multiple of n.
-    # The sign of n follows v where sin θ > 0; at θ = π exactly both signs give
-    # the same rotation and the column's own sign (n_i > 0) is kept.
-    near_pi = cos < _SYMMETRIC_AXIS_COS
-    if near_pi.any():
-        S = 0.5 * (Ra + np.swapaxes(Ra, -1, -2)) - cos[..., None, None] * np.eye(3)
-        col = np.argmax(np.diagonal(S, axis1=-2, axis2=-1), axis=-1)
-        n = np.take_along_axis(S, col[..., None, None], axis=-1)[..., 0]
-        n = n / np.linalg.norm(n, axis=-1, keepdims=True)
-        n = np.where(np.sum(n * v, axis=-1, keepdims=True) < 0.0, -n, n)
-        axis = np.where(near_pi[..., None], n, axis)
-        rotvec = np.where(near_pi[..., None], n * angle[..., None], rotvec)
     return axis, angle, rotvec
 
 
@@ -192,8 +166,9 @@ def rotation_angle(R_a: ArrayLike, R_b: ArrayLike, degrees: bool = False) -> Flo
     """Geodesic distance between rotations: the angle of ``R_aᵀ R_b``.
 
     Computed as ``atan2(|v|, (tr M − 1)/2)`` with ``M = R_aᵀ R_b`` and ``v``
-    the vector of its skew part, so it resolves angles down to round-off
-    (~1e-16 rad), where ``arccos((tr M − 1)/2)`` alone bottoms out near 1e-8.
+    the vector of its skew part (by the core, as the IK check does), so it
+    resolves angles down to round-off (~1e-16 rad), where
+    ``arccos((tr M − 1)/2)`` alone bottoms out near 1e-8.
 
     Args:
         R_a: Rotation matrices, shape ``(..., 3, 3)``.
@@ -208,5 +183,9 @@ def rotation_angle(R_a: ArrayLike, R_b: ArrayLike, degrees: bool = False) -> Flo
     """
     A = as_batch_array(R_a, "R_a", (3, 3))
     B = as_batch_array(R_b, "R_b", (3, 3))
-    angle = _angle_parts(np.swapaxes(A, -1, -2) @ B)[3]
+    A, B = np.broadcast_arrays(A, B)
+    shape = A.shape[:-2]
+    angle = _core.rotation_angles(
+        np.ascontiguousarray(A.reshape(-1, 3, 3)), np.ascontiguousarray(B.reshape(-1, 3, 3))
+    ).reshape(shape)
     return np.rad2deg(angle) if degrees else angle

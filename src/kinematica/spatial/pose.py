@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica.spatial.axis_angle import rotvec_from_matrix
+import kinematica._core as _core
 from kinematica.spatial.checks import as_batch_array, check_transform
 from kinematica.spatial.euler import euler_from_matrix, matrix_from_euler
 from kinematica.spatial.transform import make_transform
@@ -79,7 +79,8 @@ def se3_error(T_current: ArrayLike, T_target: ArrayLike) -> FloatArray:
     Jacobian ``J`` is, so a Newton/Levenberg-Marquardt step solves
     ``J Δq ≈ (Δp, Δω)``. For small errors ``Δω`` is the angular velocity that
     closes the gap in unit time. It is exactly zero when the poses agree and
-    stays accurate to round-off for tiny errors and for errors near π.
+    stays accurate to round-off for tiny errors and for errors near π. (The
+    core's pose error: the one the IK check and the numeric search use.)
 
     Args:
         T_current: Current transforms, shape ``(..., 4, 4)``.
@@ -93,7 +94,9 @@ def se3_error(T_current: ArrayLike, T_target: ArrayLike) -> FloatArray:
     """
     Tc = as_batch_array(T_current, "T_current", (4, 4))
     Tt = as_batch_array(T_target, "T_target", (4, 4))
-    dp = Tt[..., :3, 3] - Tc[..., :3, 3]
-    dw = rotvec_from_matrix(Tt[..., :3, :3] @ np.swapaxes(Tc[..., :3, :3], -1, -2))
-    dp, dw = np.broadcast_arrays(dp, dw)
-    return np.concatenate([dp, dw], axis=-1)
+    Tc, Tt = np.broadcast_arrays(Tc, Tt)
+    shape = Tc.shape[:-2]
+    e = _core.pose_errors(
+        np.ascontiguousarray(Tc.reshape(-1, 4, 4)), np.ascontiguousarray(Tt.reshape(-1, 4, 4))
+    )
+    return e.reshape(*shape, 6)

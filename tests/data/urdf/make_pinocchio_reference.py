@@ -36,6 +36,7 @@ CASES = [
     ("franka_panda.urdf", None, "panda_hand_tcp"),
     ("kinova_j2s6s200.urdf", "j2s6s200_link_base", "j2s6s200_end_effector"),
     ("ufactory_xarm7.urdf", None, "link_eef"),
+    ("lynxmotion_al5d.urdf", None, "link4"),
 ]
 SAMPLES = 6  # q = 0 and 5 random configurations
 

@@ -1,4 +1,4 @@
-"""The geometry kernels the closed forms are built of: rotations, SP1, ``a cos + b sin = c``,
+"""The core's geometry the closed forms are built of: rotations, SP1, ``a cos + b sin = c``,
 and the quartic's roots.
 
 Every instance is built from a known answer (scipy's ``Rotation`` for the
@@ -15,10 +15,21 @@ import pytest
 from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 
-from kinematica.kernels.geometry import TRIG_TOL, rotate, subproblem1, trig_linear
-from kinematica.kernels.polynomial import quartic_roots
+from kinematica._core import internals
 
 FloatArray = NDArray[np.float64]
+
+TRIG_TOL = internals.TRIG_TOL
+subproblem1 = internals.subproblem1
+
+
+def trig_linear(a: float, b: float, c: float, out: FloatArray) -> int:
+    code, out[0], out[1] = internals.trig_linear(a, b, c)
+    return int(code)
+
+
+def quartic_roots(k: FloatArray, roots: NDArray[np.complex128]) -> None:
+    roots[:] = internals.quartic_roots(np.asarray(k, dtype=float).tolist())
 
 
 def unit(rng: np.random.Generator) -> FloatArray:
@@ -32,10 +43,9 @@ def angle_diff(a: float, b: float) -> float:
 
 def test_rotate_matches_scipy() -> None:
     rng = np.random.default_rng(61)
-    out = np.empty(3)
     for _ in range(200):
         k, v, t = unit(rng), rng.normal(size=3), rng.uniform(-4, 4)
-        rotate(k, math.cos(t), math.sin(t), v, out)
+        out = internals.rotate_about(k, math.cos(t), math.sin(t), v)
         np.testing.assert_allclose(out, Rotation.from_rotvec(k * t).apply(v), atol=1e-14)
 
 

@@ -1,0 +1,76 @@
+// What kinematica.spatial computes through the core: wrap, the SO(3) log, the angle
+// between rotations, the pose error (one source each, shared with the solvers).
+#include "casters.hpp"
+#include "common.hpp"
+#include "kinematica/so3.hpp"
+
+namespace kmpy {
+
+namespace {
+
+F64 wrap_many(F64 a) {
+    const In in = in_f64(a, "angle", 1);
+    double* out;
+    F64 r = new_f64({in.dim[0]}, out);
+    for (npy_intp i = 0; i < in.dim[0]; ++i) out[i] = km::wrap(in.data[i]);
+    return r;
+}
+
+nb::tuple so3_log(F64 R) {
+    const In in = in_f64(R, "R", 3, {-1, 3, 3});
+    const npy_intp N = in.dim[0];
+    double *v, *angle;
+    nb::object V = new_f64({N, 3}, v), A = new_f64({N}, angle);
+    for (npy_intp i = 0; i < N; ++i) {
+        const double* m = in.data + 9 * i;
+        const km::Vec3 w = km::rotvec(m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8], angle[i]);
+        v[3 * i] = w.x;
+        v[3 * i + 1] = w.y;
+        v[3 * i + 2] = w.z;
+    }
+    return nb::make_tuple(V, A);
+}
+
+km::Pose rotation_pose(const double* m) {
+    const double T[12] = {m[0], m[1], m[2], 0.0, m[3], m[4], m[5], 0.0, m[6], m[7], m[8], 0.0};
+    return km::Pose::from_rows(T);
+}
+
+F64 angles_between(F64 Ra, F64 Rb) {
+    const In a = in_f64(Ra, "R_a", 3, {-1, 3, 3});
+    const In b = in_f64(Rb, "R_b", 3, {a.dim[0], 3, 3});
+    double* out;
+    F64 r = new_f64({a.dim[0]}, out);
+    for (npy_intp i = 0; i < a.dim[0]; ++i) {
+        // the angle of R_aᵀ R_b: angle_between(T, Tt) is that of Rtᵀ R
+        out[i] = km::angle_between(rotation_pose(b.data + 9 * i), rotation_pose(a.data + 9 * i));
+    }
+    return r;
+}
+
+F64 pose_errors(F64 Tc, F64 Tt) {
+    const In c = in_f64(Tc, "T_current", 3, {-1, 4, 4});
+    const In t = in_f64(Tt, "T_target", 3, {c.dim[0], 4, 4});
+    double* out;
+    F64 r = new_f64({c.dim[0], 6}, out);
+    for (npy_intp i = 0; i < c.dim[0]; ++i) {
+        const km::Twist e = km::pose_error(km::Pose::from_rows(c.data + 16 * i), km::Pose::from_rows(t.data + 16 * i));
+        for (int k = 0; k < 6; ++k) out[6 * i + k] = e.e[k];
+    }
+    return r;
+}
+
+}  // namespace
+
+void bind_spatial(nb::module_& m) {
+    m.def("wrap", &wrap_many, nb::arg("angle"), "Angles (N,) wrapped to (-π, π].");
+    m.def("so3_log", &so3_log, nb::arg("R"), "(rotation vectors (N, 3), angles (N,)) of R (N, 3, 3).");
+    m.def("rotation_angles", &angles_between, nb::arg("R_a"), nb::arg("R_b"),
+          "The angle (N,) of R_aᵀ R_b for R_a, R_b (N, 3, 3).");
+    m.def("pose_errors", &pose_errors, nb::arg("T_current"), nb::arg("T_target"),
+          "(N, 6): p_target − p_current, then the rotation vector of R_target R_currentᵀ.");
+    m.attr("SERIES_ANGLE") = km::SERIES_ANGLE;
+    m.attr("ATAN_LINEAR") = km::ATAN_LINEAR;
+}
+
+}  // namespace kmpy

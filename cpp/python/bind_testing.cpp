@@ -1,0 +1,119 @@
+// The core's scalar internals, bound one value at a time for the tests that pin them
+// (against the C library, their definitions, and each named tolerance from both sides).
+// Submodule kinematica._core.internals: not part of the library's API.
+#include <nanobind/stl/array.h>
+#include <nanobind/stl/complex.h>
+
+#include <array>
+#include <complex>
+#include <vector>
+
+#include "casters.hpp"
+#include "common.hpp"
+#include "kinematica/chain.hpp"
+#include "kinematica/geometry.hpp"
+#include "kinematica/linalg.hpp"
+#include "kinematica/lm.hpp"
+#include "kinematica/polynomial.hpp"
+#include "kinematica/so3.hpp"
+#include "kinematica/trig.hpp"
+
+namespace kmpy {
+
+namespace {
+
+nb::tuple sincos_of(double x) {
+    double s, c;
+    km::sincos(x, s, c);
+    return nb::make_tuple(s, c);
+}
+
+nb::tuple sincos_reduced_of(double x) {
+    double s, c;
+    km::sincos_reduced(x, s, c);
+    return nb::make_tuple(s, c);
+}
+
+nb::tuple sincos_many(F64 x) {
+    const In in = in_f64(x, "x", 1);
+    double *s, *c;
+    nb::object S = new_f64({in.dim[0]}, s), C = new_f64({in.dim[0]}, c);
+    km::sincos_block(in.data, s, c, static_cast<int>(in.dim[0]));
+    return nb::make_tuple(S, C);
+}
+
+nb::tuple trig_linear_of(double a, double b, double c) {
+    double out[2];
+    const km::TrigRoots r = km::trig_linear(a, b, c, out);
+    return nb::make_tuple(static_cast<int>(r), out[0], out[1]);
+}
+
+std::array<std::complex<double>, 4> quartic_of(const std::array<double, 5>& k) {
+    std::array<std::complex<double>, 4> roots;
+    km::quartic_roots(k.data(), roots.data());
+    return roots;
+}
+
+//! The numeric search's model at q: counted errors e (r,) and rows J (r, n).
+nb::tuple lm_rows(const km::Chain& chain, const std::array<double, 6>& w, F64 qh,
+                  const km::Pose& T) {
+    const int n = chain.dof();
+    const In q = in_f64(qh, "q", 1, {n});
+    const km::ChainView ch = chain.view();
+    const km::lm::Rows rows(w.data());
+    km::LMWork work(n);
+    double err[6];
+    km::lm::pose_errors(ch, q.data, T, rows, work, err);
+    km::lm::jacobian_rows(ch, rows, work);
+    double *e, *J;
+    nb::object E = new_f64({rows.count}, e), Ja = new_f64({rows.count, n}, J);
+    for (int r = 0; r < rows.count; ++r) {
+        e[r] = err[r];
+        for (int j = 0; j < n; ++j) J[r * n + j] = work.J[static_cast<size_t>(r * n + j)];
+    }
+    return nb::make_tuple(E, Ja);
+}
+
+F64 dls(F64 Jh, F64 eh, double lam) {
+    const In J = in_f64(Jh, "J", 2);
+    const npy_intp r = J.dim[0], n = J.dim[1];
+    if (r < 1 || r > 6 || n < 1) throw nb::value_error("J must have 1 to 6 rows and a column");
+    const In e = in_f64(eh, "e", 1, {r});
+    double* dq;
+    F64 out = new_f64({n}, dq);
+    km::damped_least_squares(J.data, static_cast<int>(r), static_cast<int>(n), e.data, lam, dq);
+    return out;
+}
+
+}  // namespace
+
+void bind_testing(nb::module_& m) {
+    nb::module_ t = m.def_submodule("internals", "The core's scalar internals, for tests.");
+    t.def("sincos", &sincos_of, nb::arg("x"), "(sin x, cos x) as the core computes them.");
+    t.def("sincos_reduced", &sincos_reduced_of, nb::arg("x"), "The branch-free reduction alone.");
+    t.def("sincos_block", &sincos_many, nb::arg("x"), "sincos of every angle of x (N,): (s, c).");
+    t.def("wrap", [](double v) { return km::wrap(v); }, nb::arg("v"));
+    t.def("floor_mod", [](double a, double b) { return km::floor_mod(a, b); }, nb::arg("a"), nb::arg("b"));
+    t.def("angle_between", [](const km::Pose& T, const km::Pose& Tt) { return km::angle_between(T, Tt); },
+          nb::arg("T"), nb::arg("Tt"), "The angle of Rtᵀ R.");
+    t.def("rotate_about", [](const km::Vec3& k, double c, double s, const km::Vec3& v) {
+              return km::rotate_about(k, c, s, v);
+          }, nb::arg("k"), nb::arg("c"), nb::arg("s"), nb::arg("v"));
+    t.def("subproblem1", [](const km::Vec3& p1, const km::Vec3& p2, const km::Vec3& k) {
+              return km::subproblem1(p1, p2, k);
+          }, nb::arg("p1"), nb::arg("p2"), nb::arg("k"));
+    t.def("trig_linear", &trig_linear_of, nb::arg("a"), nb::arg("b"), nb::arg("c"),
+          "(code, θ1, θ2) of a cos θ + b sin θ = c: code 1 two roots, 0 none, -1 a = b = 0.");
+    t.def("quartic_roots", &quartic_of, nb::arg("k"), "The four roots of k[0] x⁴ + ... + k[4].");
+    t.def("largest_cubic_root", &km::largest_cubic_root, nb::arg("A"), nb::arg("B"), nb::arg("C"));
+    t.def("lm_rows", &lm_rows, nb::arg("chain"), nb::arg("weights"), nb::arg("q"), nb::arg("T"),
+          "The search's model at q: (counted errors (r,), their weighted Jacobian rows (r, n)).");
+    t.def("damped_least_squares", &dls, nb::arg("J"), nb::arg("e"), nb::arg("lam"));
+    t.attr("REDUCTION_LIMIT") = km::REDUCTION_LIMIT;
+    t.attr("TRIG_TOL") = km::TRIG_TOL;
+    t.attr("QUARTIC_CHECK") = km::QUARTIC_CHECK;
+    t.attr("ABERTH_STEPS") = km::ABERTH_STEPS;
+    t.attr("SNAP_TOL") = km::SNAP_TOL;
+}
+
+}  // namespace kmpy
