@@ -35,7 +35,6 @@ from kinematica.dh import Revolute
 from kinematica.ik.analytic.parallel import pack
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.structure import features
-from kinematica.kernels.solvers.parallel_layout import P_EQ1, P_SCALE, V_P6
 from kinematica.robot import Robot
 
 FloatArray = NDArray[np.float64]
@@ -78,7 +77,7 @@ def size_of(robot: Robot) -> float:
     """The arm's size as the solver measures it (its reach bound, m)."""
     packed = pack(robot.chain, features(robot.chain))
     assert packed is not None
-    return float(packed[0][P_SCALE])
+    return float(packed[0].scale)
 
 
 # ------------------------------------------------------------ the aligned wrist
@@ -365,12 +364,13 @@ def test_quartic_vanishing_is_singular_with_q1_free() -> None:
 
     packed = pack(arm(0.0).chain, features(arm(0.0).chain))
     assert packed is not None and packed[1] == 2  # axes 5 and 6 apart: the quartic
-    D1, E1, F1, D2, E2, F2 = packed[0][P_EQ1 : P_EQ1 + 6]
+    P = packed[0]
+    D1, E1, F1, D2, E2, F2 = P.D1, P.E1, P.F1, P.D2, P.E2, P.F2
     q5 = math.atan2(E1, D1) + math.acos(-F1 / math.hypot(D1, E1))  # k·R5 h6 = 0
     robot = arm(-(D2 * math.cos(q5) + E2 * math.sin(q5) + F2))
     packed = pack(robot.chain, features(robot.chain))
     assert packed is not None
-    M, h6, p6 = robot.fk(np.zeros(6)), robot.joint_axes()[0][5], packed[0][3 * V_P6 : 3 * V_P6 + 3]
+    M, h6, p6 = robot.fk(np.zeros(6)), robot.joint_axes()[0][5], packed[0].p6
 
     def off_axis_1(v: FloatArray) -> FloatArray:  # axis 6 and p6 off the base z axis
         T = robot.fk(np.array([0.3, *v[:3], q5, v[3]]))

@@ -27,11 +27,11 @@ void read_fixed(nb::handle h, const char* name, double* out, Py_ssize_t count) {
     }
 }
 
-nb::object array_of(const double* v, int count) {
+F64 array_of(const double* v, int count) {
     double* data;
     nb::object a = new_f64({count}, data);
     for (int i = 0; i < count; ++i) data[i] = v[i];
-    return a;
+    return nb::borrow<F64>(a);
 }
 
 void require_finite(double v, const char* name) {
@@ -76,7 +76,7 @@ km::parallel::Sides sides_of(nb::handle h, const char* name) {
 }
 
 //! (q1, q5, res, evaluations, c1, s1, c5, s5) of Newton on (1) and (2) from (q1, q5).
-nb::tuple newton_of(const ParallelParams& P, const km::Vec3& x6, nb::handle L1h, nb::handle L2h,
+nb::tuple newton_of(const ParallelParams& P, const km::Vec3& x6, F64 L1h, F64 L2h,
                     double q1, double q5) {
     require_finite(x6.x, "x6");
     require_finite(x6.y, "x6");
@@ -133,7 +133,7 @@ void bind_parallel(nb::module_& m) {
         .def_rw("F2", &ParallelParams::F2, "equation (2)'s right side, F2 with k·(p5 - p1)")
         .def_prop_rw(
             "minv", [](const ParallelParams& p) { return array_of(p.minv, 4); },
-            [](ParallelParams& p, nb::handle v) { read_fixed(v, "minv", p.minv, 4); },
+            [](ParallelParams& p, F64 v) { read_fixed(v, "minv", p.minv, 4); },
             "(4,) row-major inverse of [[D1, E1], [D2, E2]] (Mode.general)")
         .def_rw("wlo", &ParallelParams::wlo, "1 - |D1, E1| - F1, exactly")
         .def_rw("whi", &ParallelParams::whi, "1 - |D1, E1| + F1, exactly")
@@ -143,7 +143,7 @@ void bind_parallel(nb::module_& m) {
         .def_rw("arg_b", &ParallelParams::arg_b, "arg B (rad)")
         .def_prop_rw(
             "zup", [](const ParallelParams& p) { return array_of(p.zup, 2); },
-            [](ParallelParams& p, nb::handle v) { read_fixed(v, "zup", p.zup, 2); },
+            [](ParallelParams& p, F64 v) { read_fixed(v, "zup", p.zup, 2); },
             "(2,) plane coordinates of h1 × k (the elbow-up side)")
         .def_rw("sign3", &ParallelParams::sign3, "h3·k = ±1")
         .def_rw("sign4", &ParallelParams::sign4, "h4·k = ±1")

@@ -153,9 +153,9 @@ KM_HD inline CheckReport check(const ChainView& ch, const Pose& T, const double*
         bool valid = true;
         for (int k = 0; k < n; ++k) valid = valid && std::isfinite(qj[k]);
         if (!valid) continue;
-        const double* cj = work.c.data() + j;  // joint by joint: stride m
-        const double* sj = work.s.data() + j;
-        int stride = m;
+        const double* cj = work.c.data() + j * n;  // joint_trig_rows: candidate j's row
+        const double* sj = work.s.data() + j * n;
+        int stride = 1;
         double p_err = INF, r_err = INF;
         bool ok = false;
         for (int attempt = 0; attempt < 2; ++attempt) {
