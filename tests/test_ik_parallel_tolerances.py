@@ -17,9 +17,11 @@ import numpy as np
 import parallel_arms
 import pytest
 
-from kinematica._core import parallel
+from kinematica import _core
 from kinematica.ik.analytic.parallel import pack
 from kinematica.ik.structure import features
+
+parallel = _core.parallel
 
 # The documented values, one per constant (cpp/include/kinematica/solvers/parallel_*.hpp).
 CONTINUUM_TOL = 1e-12
