@@ -42,7 +42,7 @@ from kinematica.dh.joints import Convention, Revolute
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import MEET_TOL, Features, line_distance, lines_parallel
 
-__all__ = ["GENERAL_LABELS", "LABELS", "SPEC", "build", "pack", "sample_arm"]
+__all__ = ["DEGENERATE", "GENERAL_LABELS", "LABELS", "SPEC", "build", "pack", "sample_arm"]
 
 FloatArray = NDArray[np.float64]
 
