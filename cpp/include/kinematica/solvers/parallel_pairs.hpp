@@ -38,8 +38,8 @@ enum class WristRoots : int { none = -1, near = 0, two = 1 };
 //!
 //! q5 = φ ± δ with cos δ = (d - F1) / ρ; 1 ∓ cos δ is formed from 1 ∓ d
 //! (= m2 / (1 ± d)) and the exact constants wlo, whi. Writes q5, cos q5, sin q5 of
-//! "no-flip" φ + δ into pairs m and of "flip" φ - δ into pair m + 1 (not for none:
-//! they are then unchanged); near: the double root twice.
+//! "no-flip" φ + δ into pair[0] and of "flip" φ - δ into pair[1] (none: no root, both
+//! unchanged; near: missed by less than NEAR_TOL, the double root twice).
 KM_HD inline WristRoots wrist(const ParallelParams& P, double d, double m2, Pair* pair) {
     const double D1 = P.D1, E1 = P.E1;
     const double rho = std::sqrt(D1 * D1 + E1 * E1);  // lengths of the arm: no overflow (nor below)

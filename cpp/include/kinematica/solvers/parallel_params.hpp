@@ -69,7 +69,8 @@ struct ParallelParams {
     //! Candidate slots: four pairs (q1, q5) times two elbows.
     KM_HD int slots() const { return 8; }
     KM_HD int dof() const { return 6; }
-    //! Every solution of one target T (base frame): candidates Q (8, 6) and info.
+    //! Every solution of one target T (base frame): candidates Q (8, 6, row-major; NaN
+    //! rows: no real solution on that branch) and info. Defined in parallel.hpp.
     KM_HD void solve(const Pose& T, double* Q, SolverInfo& info) const;
 };
 
