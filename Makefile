@@ -3,19 +3,29 @@ PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
+# The compiled core: its sources, and the stamp of the build installed from them.
+CORE_SOURCES := CMakeLists.txt $(shell find cpp -name '*.hpp' -o -name '*.cpp' 2>/dev/null)
+CORE_STAMP   := $(VENV)/.core-built
+# The development build turns compiler warnings into errors (-Wall -Wextra, clean).
+CORE_FLAGS   := --config-settings=cmake.define.KM_WERROR=ON
 
-.PHONY: demo test lint bench clean
+.PHONY: demo test lint bench sanitize clean
 
 $(STAMP): pyproject.toml
 	test -d $(VENV) || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[test]'
-	touch $(STAMP)
+	$(BIN)/python -m pip install --quiet $(CORE_FLAGS) -e '.[test]'
+	touch $(STAMP) $(CORE_STAMP)
 
-demo: $(STAMP)
+# An edit of the core rebuilds it (incrementally, in build/) and reinstalls it.
+$(CORE_STAMP): $(STAMP) $(CORE_SOURCES)
+	$(BIN)/python -m pip install --quiet --no-deps $(CORE_FLAGS) -e .
+	touch $(CORE_STAMP)
+
+demo: $(CORE_STAMP)
 	$(BIN)/python examples/01_demo.py
 
-lint: $(STAMP)
+lint: $(CORE_STAMP)
 	$(BIN)/ruff check src tests benchmarks examples
 	$(BIN)/ruff format --check src tests benchmarks examples
 	$(BIN)/mypy
@@ -24,7 +34,25 @@ lint: $(STAMP)
 test: lint
 	$(BIN)/pytest -n 2
 
-bench: $(STAMP)
+# The core built with AddressSanitizer and UndefinedBehaviorSanitizer (in its own venv
+# and build folder), running the FK, IK and numeric tests: any invalid memory access or
+# undefined behaviour aborts the run. Not part of `make test` (it takes minutes more).
+SAN_VENV := .venv-sanitize
+SAN_ENV  := ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 \
+            UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+            LD_PRELOAD="$$(gcc -print-file-name=libasan.so) $$(gcc -print-file-name=libubsan.so)"
+SAN_TESTS := tests/test_robot_fk.py tests/test_robot_jacobian.py tests/test_dh.py \
+             tests/test_core_scalar.py tests/test_core_geometry.py tests/test_urdf_exact.py \
+             tests/test_ik_numeric.py $(wildcard tests/test_ik_*.py)
+
+sanitize:
+	test -d $(SAN_VENV) || $(PYTHON) -m venv $(SAN_VENV)
+	$(SAN_VENV)/bin/python -m pip install --quiet --upgrade pip
+	$(SAN_VENV)/bin/python -m pip install --quiet -e '.[test]' \
+	  --config-settings=cmake.define.KM_SANITIZE=ON --config-settings=build-dir=build/sanitize
+	$(SAN_ENV) $(SAN_VENV)/bin/pytest -q -p no:cacheprovider -p no:warnings $(sort $(SAN_TESTS))
+
+bench: $(CORE_STAMP)
 	@for peer in pin roboticstoolbox-python eaik; do \
 	  $(BIN)/python -m pip install --quiet $$peer >/dev/null 2>&1 \
 	    || echo "bench: $$peer not installable here; the benchmarks skip it"; \
@@ -40,4 +68,4 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/ik_small.py
 
 clean:
-	rm -rf $(VENV) build dist .pytest_cache .mypy_cache .ruff_cache
+	rm -rf $(VENV) $(SAN_VENV) build dist .pytest_cache .mypy_cache .ruff_cache

@@ -23,7 +23,8 @@ import pytest
 import kinematica as km
 from kinematica.cli import options
 from kinematica.cli.format import DEFAULT_PRECISION, num, plain
-from kinematica.cli.main import cli_words, main
+from kinematica.cli.main import cli_error, cli_words, main
+from kinematica.errors import KinematicaError
 
 ROOT = Path(__file__).resolve().parents[1]
 SCRIPT = Path(sys.executable).with_name("kinematica")
@@ -149,15 +150,39 @@ def test_messages_speak_options_not_python(capsys: pytest.CaptureFixture[str]) -
 @pytest.mark.parametrize(
     ("message", "expected"),
     [
-        ("no closed form; use method='numeric'", "no closed form; use --method numeric"),
-        ("pass tol=1e-6 or seed=3", "pass --tol 1e-6 or --seed 3"),
-        ("or respect_limits=False", "or --ignore-limits"),
         ("target holds NaN", "--pose holds NaN"),
+        ("target: bad", "--pose: bad"),
+        ("targets are fine", "targets are fine"),  # a word, not the argument
         ("a\nb\x1b[2J", "a\\nb\\x1b[2J"),
     ],
 )
 def test_cli_words(message: str, expected: str) -> None:
     assert cli_words(message, {"target": "--pose"}) == expected
+
+
+@pytest.mark.parametrize(
+    ("error", "expected"),
+    [
+        (
+            KinematicaError("no closed-form solver", arg="method", suggest=("method", "numeric")),
+            "no closed-form solver; use --method numeric",
+        ),
+        (
+            KinematicaError("tol (position) must be positive", arg="tol"),
+            "--tol (position) must be positive",
+        ),
+        (
+            KinematicaError("seed must be a whole number", arg="seed"),
+            "--seed must be a whole number",
+        ),
+        (KinematicaError("target holds NaN or inf", arg="target"), "--pose holds NaN or inf"),
+        (KinematicaError("plain words, no argument"), "plain words, no argument"),
+    ],
+)
+def test_errors_in_command_line_words(error: KinematicaError, expected: str) -> None:
+    # from the error's fields (arg, suggest), not from its text
+    assert cli_error(error, {"target": "--pose"}) == expected
+    assert "=" not in cli_error(error, {"target": "--pose"})
 
 
 @pytest.mark.parametrize(

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import dataclass
 
 import numpy as np
 import pytest
@@ -22,16 +23,17 @@ from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 
 import kinematica as km
+from kinematica import _core
 from kinematica.cli.main import main
 from kinematica.dh import Prismatic, Revolute
 from kinematica.ik import IKBatchResult, IKResult, closed_form
 from kinematica.ik.analytic.planar_arms import LENGTH_TOL
-from kinematica.kernels.ik_check import INFO_FREE, INFO_GAP, INFO_SINGULAR
-from kinematica.kernels.solvers.triangle import MERGE_TOL, SINGULAR_TOL
 from kinematica.robot import Robot, classify
 
 FloatArray = NDArray[np.float64]
 PI = math.pi
+SINGULAR_TOL: float = _core.planar.SINGULAR_TOL
+MERGE_TOL: float = _core.planar.MERGE_TOL
 
 #: A candidate is "exact" when forward kinematics reproduces the target to this.
 EXACT = 1e-12
@@ -124,17 +126,31 @@ def as_poses(targets: FloatArray) -> FloatArray:
     return targets
 
 
-def kernel_candidates(
-    robot: Robot, targets: FloatArray
-) -> tuple[tuple[str, ...], FloatArray, FloatArray]:
-    """The raw kernel's labels, candidates ``(N, m, n)`` and info ``(N, k)`` (no check)."""
+@dataclass(frozen=True)
+class Info:
+    """What the closed form says of each target besides its candidates (``(N,)`` arrays)."""
+
+    singular: NDArray[np.bool_]
+    near: NDArray[np.bool_]
+    gap: FloatArray  # NaN: none beyond round-off
+    free: NDArray[np.bool_]  # (N, n)
+
+
+def raw_candidates(robot: Robot, targets: FloatArray) -> tuple[tuple[str, ...], FloatArray, Info]:
+    """The closed form's labels, raw candidates ``(N, m, n)`` and what it says (no check)."""
     kind = "position" if targets.shape[-1] == 3 else "pose"
     closed = closed_form(robot.chain, kind)
     assert closed is not None
     T = np.ascontiguousarray(as_poses(targets))
-    Q = np.empty((len(T), closed.slots, robot.dof))
-    info = np.zeros((len(T), INFO_FREE + robot.dof))
-    closed.solve_batch(closed.params, T, Q, info)
+    out = [closed.params.candidates(robot.chain.core, t) for t in T]
+    Q = np.array([o[0] for o in out]).reshape(len(T), closed.slots, robot.dof)
+    free = np.array([[(o[4] >> j) & 1 for j in range(robot.dof)] for o in out], dtype=bool)
+    info = Info(
+        singular=np.array([o[1] for o in out], dtype=bool),
+        near=np.array([o[2] for o in out], dtype=bool),
+        gap=np.array([o[3] for o in out], dtype=float),
+        free=free.reshape(len(T), robot.dof),
+    )
     return closed.labels, Q, info
 
 
@@ -152,12 +168,12 @@ def reached(robot: Robot, q: FloatArray, target: FloatArray) -> FloatArray:
 
 
 def exact_candidates(robot: Robot, targets: FloatArray) -> FloatArray:
-    """The kernel's exact candidates (NaN for the others); a branch is real in full or not.
+    """The closed form's exact candidates (NaN for the others); a branch is real in full or not.
 
     Out of reach a branch holds its least-squares configuration, which the
     check rejects: only the exact ones are kept here.
     """
-    _, Q, _ = kernel_candidates(robot, targets)
+    _, Q, _ = raw_candidates(robot, targets)
     real = ~np.isnan(Q).any(axis=2)
     assert not (np.isnan(Q).any(axis=2) & ~np.isnan(Q).all(axis=2)).any(), "partly NaN branch"
     err = reached(robot, np.where(real[..., None], Q, 0.0), targets[:, None])
@@ -289,7 +305,7 @@ def test_seed_pr_two_solutions_are_q2a_q2b() -> None:
     rng = np.random.default_rng(1)
     x = rng.uniform(-1.0, 1.0, 200)
     y = rng.uniform(-L2, L2, 200)
-    labels, cand, _ = kernel_candidates(robot, np.stack([x, y, 0 * x], axis=1))
+    labels, cand, _ = raw_candidates(robot, np.stack([x, y, 0 * x], axis=1))
     assert labels == ("link forward", "link backward")
     q2a = np.arcsin(y / L2)
     q2b = PI - np.arcsin(y / L2)
@@ -319,7 +335,7 @@ def test_seed_anthropomorphic_four_solutions_are_the_seed_algebra() -> None:
     robot = seed_anthropomorphic()
     rng = np.random.default_rng(2)
     p = robot.fk(random_q(robot, rng, 300))[:, :3, 3]
-    labels, cand, _ = kernel_candidates(robot, p)
+    labels, cand, _ = raw_candidates(robot, p)
     px, py, pz = p.T
     for slot, (shoulder, elbow) in enumerate([(0, 1), (0, -1), (1, 1), (1, -1)]):
         # seed 002: q1 = atan2(py, px) and q1 + π ("two solutions for q1")
@@ -385,7 +401,7 @@ def test_labels_3r_shoulder_and_elbow(kind: str, position: bool) -> None:
 def test_scara_right_handed_has_positive_elbow_turn() -> None:
     scara = Robot.from_dh([Revolute(d=0.4, a=0.3), Revolute(a=0.25), Prismatic(), Revolute()])
     T = scara.fk(np.array([[0.2, 0.7, 0.1, 0.0], [0.2, -0.7, 0.1, 0.0]]))
-    labels, cand, _ = kernel_candidates(scara, T)
+    labels, cand, _ = raw_candidates(scara, T)
     assert labels == ("right-handed", "left-handed")
     assert (np.sin(cand[:, 0, 1]) > 0).all() and (np.sin(cand[:, 1, 1]) < 0).all()
 
@@ -582,30 +598,29 @@ def test_huge_target_json_is_valid(capsys: pytest.CaptureFixture[str]) -> None:
     assert code == 1 and data["status"] == "unreachable" and data["gap_m"] == 1e300
 
 
-def test_kernel_reports_gap_only_outside_the_reach() -> None:
+def test_closed_form_reports_gap_only_outside_the_reach() -> None:
     robot = km.load("planar-3r")
     T = robot.fk([0.2, 0.3, 0.4])
-    _, _, info = kernel_candidates(robot, T[None])
-    assert np.isnan(info[0, INFO_GAP]) or info[0, INFO_GAP] < 1e-15
-    assert info[0, INFO_SINGULAR] == 0.0
+    _, _, info = raw_candidates(robot, T[None])
+    assert np.isnan(info.gap[0]) or info.gap[0] < 1e-15
+    assert not info.singular[0]
     far = T.copy()
     far[:3, 3] *= 10
-    _, _, info = kernel_candidates(robot, far[None])
-    assert info[0, INFO_GAP] == pytest.approx(np.linalg.norm(far[:3, 3]) - 0.9, abs=1e-12)
+    _, _, info = raw_candidates(robot, far[None])
+    assert info.gap[0] == pytest.approx(np.linalg.norm(far[:3, 3]) - 0.9, abs=1e-12)
 
 
 @pytest.mark.parametrize("kind", ["planar-3R", "elbow-3R"])
 def test_axes_parallel_within_tolerance_make_misses_no_proof(kind: str) -> None:
-    """The kernels solve the ideal arm; a real one off by more than round-off gets slack.
+    """The closed forms solve the ideal arm; a real one off by more than round-off gets slack.
 
     Axis 3 twisted 1e-15 rad off parallel is round-off (below the threshold
     at this size): gaps are exact. Twisted 1e-10 (within the classification's
     1e-9), the ideal arm may put the tool up to ~2e-10 m away: the gap
     shrinks by that (a target 1e-9 m off the ideal reach is no longer proven
-    that far), and the ideal arm's continua get ``INFO_NEAR`` (a miss there
+    that far), and the ideal arm's continua are ``near`` (a miss there
     is no proof). Generic targets get neither.
     """
-    from kinematica.kernels.ik_check import INFO_NEAR
 
     def arm(twist: float) -> Robot:
         if kind == "planar-3R":  # position targets: the last joint free (a continuum)
@@ -626,20 +641,20 @@ def test_axes_parallel_within_tolerance_make_misses_no_proof(kind: str) -> None:
         generic = robot.fk([0.3, 0.9, -0.7])
         folded = [0.3, 0.9, PI]  # the elbow arm's continuum; the planar one's is any position
         continuum = (generic if kind == "planar-3R" else robot.fk(folded))[:3, 3]
-        _, _, info = kernel_candidates(robot, np.stack([beyond, generic]))
-        gap = info[0, INFO_GAP]
+        _, _, info = raw_candidates(robot, np.stack([beyond, generic]))
+        gap = info.gap[0]
         if tilted:
             assert math.isnan(gap) or gap < 1e-9 - 1e-10
         else:
             assert gap == pytest.approx(1e-9, abs=1e-12)
-        assert info[1, INFO_NEAR] == 0.0
-        _, _, info = kernel_candidates(robot, continuum[None])
-        assert info[0, INFO_SINGULAR] == 1.0 and info[0, INFO_NEAR] == float(tilted)
+        assert not info.near[1]
+        _, _, info = raw_candidates(robot, continuum[None])
+        assert info.singular[0] and info.near[0] == tilted
         assert robot.ik(generic).status == "ok"
 
 
 def test_gap_below_round_off_is_not_reported() -> None:
-    """SINGULAR_TOL of the reach is the kernels' round-off: a smaller gap is no gap.
+    """SINGULAR_TOL of the reach is the closed forms' round-off: a smaller gap is no gap.
 
     A pose tilted out of the plane, at the reach's edge, cannot be reached:
     0.1x the floor beyond the reach reports no distance (at the edge, where
@@ -651,8 +666,8 @@ def test_gap_below_round_off_is_not_reported() -> None:
     for factor, reported in ((0.1, False), (100.0, True)):
         target = T.copy()
         target[0, 3] += factor * SINGULAR_TOL * 1.2
-        _, _, info = kernel_candidates(robot, target[None])
-        assert math.isnan(info[0, INFO_GAP]) != reported
+        _, _, info = raw_candidates(robot, target[None])
+        assert math.isnan(info.gap[0]) != reported
         res = robot.ik(target)
         assert res.status == ("unreachable" if reported else "not_found")
         assert (res.gap is not None) == reported
@@ -691,3 +706,31 @@ def test_double_root_is_one_solution() -> None:
         per_shoulder = 2 if robot is arm else 1  # the 3R arm: two shoulders, one elbow each
         assert res.count == per_shoulder
         assert joint_distance(robot, res.solutions, np.array(q)).min() < 1e-7
+
+
+@pytest.mark.parametrize("kind", KINDS)
+@pytest.mark.parametrize("degenerate", [False, True])
+def test_sample_arm_gives_arms_of_the_family(kind: str, degenerate: bool) -> None:
+    """Each spec's sample_arm draws arms its spec handles, built and solved by its closed form."""
+    from kinematica.ik.analytic import SOLVERS
+    from kinematica.ik.structure import features
+
+    spec = next(s for s in SOLVERS if s.kind == kind)
+    assert set(spec.targets) == {"pose", "position"}
+    rng = np.random.default_rng(50 + KINDS.index(kind) + 100 * degenerate)
+    for _ in range(6):
+        sample = spec.sample_arm(rng, degenerate)
+        assert (sample.note != "") is degenerate
+        robot = Robot.from_dh(
+            sample.links, convention=sample.convention, base=sample.base, tool=sample.tool
+        )
+        assert spec.handles(features(robot.chain)) and classify(robot).kind == kind
+        q = random_q(robot, rng, 5)
+        for position in (False, True):
+            closed = closed_form(robot.chain, "position" if position else "pose")
+            assert closed is not None and closed.name == kind
+            targets = target_of(robot, q, position)
+            res = robot.ik(targets, respect_limits=False)
+            assert np.isin(res.status, ["ok", "singular"]).all(), set(res.status)
+            err = reached(robot, np.nan_to_num(res.solutions), targets[:, None])
+            assert (err[res.count[:, None] > np.arange(res.solutions.shape[1])] <= TOL).all()

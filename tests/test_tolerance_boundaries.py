@@ -15,7 +15,6 @@ import warnings
 import numpy as np
 import pytest
 import test_dh_extract as dh_extract
-import test_ik_small as ik_small
 import test_ik_wrist_edges as wrist_edges
 import test_kernels_wrist as kernels_wrist
 
@@ -510,68 +509,28 @@ def test_viz_planar_tol_decides_the_2d_view(factor: float, inside: bool) -> None
     assert viz.drawing_plane(arm) == ((0, 1) if inside else None)
 
 
-# --- kernels/solvers/triangle.py and ik/analytic/planar_arms.py: small arms -----
+# --- kernels/solvers/parallel_layout.py: the three-parallel arms -----------------
 
-TRIANGLE_SINGULAR_TOL = 1e-12  # triangle.SINGULAR_TOL (relative to the reach)
-MERGE_TOL = 1e-7  # triangle.MERGE_TOL (rad)
-LENGTH_TOL = 1e-9  # planar_arms.LENGTH_TOL (m)
+PARALLEL_DOUBLE_ROOT_TOL = 1e-14  # parallel_layout.DOUBLE_ROOT_TOL
 
 
 @pytest.mark.parametrize(("factor", "inside"), FACTORS)
-def test_triangle_singular_tol_is_the_fold_continuum(factor: float, inside: bool) -> None:
-    """triangle.SINGULAR_TOL: a target this close (relative to the reach) to the
-    first axis of a folded 2R arm with equal links is on the fold: every turn
-    of joint 1 reaches it (status "singular", q1 free); farther, two solutions.
+def test_parallel_double_root_tol_merges_two_angles(factor: float, inside: bool) -> None:
+    """parallel_layout.DOUBLE_ROOT_TOL: the two θ of a cos θ + b sin θ = c are
+    one double root when r² - c² is below it times r² (r = hypot(a, b)).
+
+    Tested on the kernel: through robot.ik the check's deduplication (1e-7)
+    merges roots ~sqrt(1e-15) apart as well, and hides the constant.
     """
-    robot = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=0.5)])
-    r = factor * TRIANGLE_SINGULAR_TOL * 1.0  # the reach is 1 m
-    res = robot.ik(np.array([r, 0.0, 0.0]))
-    if inside:
-        assert res.status == "singular" and res.free_joints == (0,)
-    else:
-        assert res.status == "ok" and len(res.solutions) == 2
-
-
-@pytest.mark.parametrize(("factor", "inside"), FACTORS)
-def test_merge_tol_says_branches_merge(factor: float, inside: bool) -> None:
-    """triangle.MERGE_TOL: branches within it (rad) of each other are merging:
-    the result is near_singular.
-
-    The PR arm of test_ik_small (x = q1 + l1 + l2 cos q2, y = l2 sin q2): at
-    q2 = π/2 - e its two branches are 2e apart in q2. (On a 2R arm stretched
-    by e the two solutions are also within the check's DEDUP_TOL of each
-    other, which flags them near by itself and hides MERGE_TOL.)
-    """
-    pr = ik_small.seed_pr_arm()
-    res = pr.ik(pr.fk([0.1, math.pi / 2 - factor * MERGE_TOL])[:3, 3])
-    assert res.status == "ok"
-    assert res.near_singular is inside
-
-
-@pytest.mark.parametrize(("factor", "inside"), FACTORS)
-def test_merge_tol_near_the_first_axis(factor: float, inside: bool) -> None:
-    """triangle.MERGE_TOL, its second use: a target within it (relative to the
-    reach) of the first axis of a 2R arm with equal links makes the first turn
-    uncertain: near_singular. Its two solutions differ by π in q1, so the
-    check's deduplication plays no part (unlike a merge at the stretched arm,
-    where the angle ψ is round-off below ~1e-8 and cannot be placed inside).
-    """
-    robot = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=0.5)])
-    res = robot.ik(np.array([factor * MERGE_TOL * 1.0, 0.0, 0.0]))  # the reach is 1 m
-    assert res.status == "ok" and len(res.solutions) == 2
-    assert res.near_singular is inside
-
-
-@pytest.mark.parametrize(("factor", "inside"), FACTORS)
-def test_length_tol_is_a_link_that_moves_nothing(factor: float, inside: bool) -> None:
-    """planar_arms.LENGTH_TOL: a planar 2R whose tool is within it (m) of axis 2
-    (q2 moves nothing) has no closed form; the numeric method answers.
-    """
-    arm = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=factor * LENGTH_TOL)])
-    assert km.classify(arm).kind == "planar-2R"
-    res = arm.ik(arm.fk([0.3, 0.4])[:3, 3], seed=0)
-    assert res.status in ("ok", "singular")
-    assert res.method.startswith("numeric" if inside else "analytic")
+    a, b = 3.0, 4.0
+    r2 = a * a + b * b
+    c = math.sqrt(r2 * (1.0 - factor * PARALLEL_DOUBLE_ROOT_TOL))
+    out, info = np.full(2, np.nan), np.zeros(INFO_NEAR + 1)
+    assert parallel_pairs._roots(a, b, c, 5.0, out, info)
+    assert info[INFO_NEAR] == 0.0
+    assert bool(out[0] == out[1]) is inside
+    for theta in out:
+        assert a * math.cos(theta) + b * math.sin(theta) == pytest.approx(c, rel=1e-12)
 
 
 # --- kernels/geometry.py ----------------------------------------------------------

@@ -11,6 +11,8 @@
 
 #include <memory>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "casters.hpp"
@@ -191,12 +193,28 @@ void add_ik_methods(nb::class_<Bound>& cls, Get get) {
     cls.def_prop_ro("slots", [get](const Bound& b) { return get(b).slots(); });
 }
 
+//! Params with `const char* invalid() const` (nullptr when fine) say so before each call.
+template <class P, class = void>
+struct has_invalid : std::false_type {};
+template <class P>
+struct has_invalid<P, std::void_t<decltype(std::declval<const P&>().invalid())>>
+    : std::true_type {};
+
+//! p, after its own check (if it has one): a ValueError, not a bad index in the core.
+template <class Params>
+const Params& checked(const Params& p) {
+    if constexpr (has_invalid<Params>::value) {
+        if (const char* why = p.invalid()) throw nb::value_error(why);
+    }
+    return p;
+}
+
 //! A closed form's Params class with its IK methods.
 template <class Params>
 nb::class_<Params> bind_closed_form(nb::module_& m, const char* name, const char* doc) {
     nb::class_<Params> cls(m, name, doc);
     cls.def(nb::init<>());
-    add_ik_methods(cls, [](const Params& p) { return km::ClosedForm<Params>{p}; });
+    add_ik_methods(cls, [](const Params& p) { return km::ClosedForm<Params>{checked(p)}; });
     return cls;
 }
 

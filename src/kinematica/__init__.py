@@ -12,6 +12,9 @@ with an honest status::
     res = robot.ik(T)
 """
 
+import importlib
+from typing import TYPE_CHECKING, Any
+
 from kinematica.dh import Prismatic, Revolute, link_matrix
 from kinematica.errors import (
     ArgumentError,
@@ -23,14 +26,6 @@ from kinematica.errors import (
     UnreachableError,
 )
 from kinematica.io import ExpressionError, builtin_names, read_robot_file
-from kinematica.motion import (
-    analytic_jacobian,
-    cartesian_path,
-    condition_number,
-    joint_trajectory,
-    manipulability,
-    workspace,
-)
 from kinematica.robot import (
     DHExtraction,
     Robot,
@@ -72,7 +67,45 @@ from kinematica.spatial import (
     wrap_angle,
 )
 
+if TYPE_CHECKING:  # imported on first use (below): `import kinematica` stays light
+    from kinematica.motion import (
+        analytic_jacobian,
+        cartesian_path,
+        condition_number,
+        joint_trajectory,
+        manipulability,
+        workspace,
+    )
+
 __version__ = "0.1.0"
+
+#: Public names imported on first use, and the module each comes from.
+_LAZY = {
+    name: "kinematica.motion"
+    for name in (
+        "analytic_jacobian",
+        "cartesian_path",
+        "condition_number",
+        "joint_trajectory",
+        "manipulability",
+        "workspace",
+    )
+}
+
+
+def __getattr__(name: str) -> Any:
+    """The motion names, imported when first asked for (PEP 562)."""
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'kinematica' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))
+
 
 __all__ = [
     "ArgumentError",

@@ -43,14 +43,26 @@ def located(
 class KinematicaError(Exception):
     """Base class of every error raised on purpose by kinematica.
 
+    The message speaks of the Python API; the structured fields let another face
+    (the command line) say the same in its own words, with no parsing of the text.
+
     Attributes:
-        arg: The name of the argument the error is about (e.g. ``"tol"``), or
-            ``None``: the command line names its own option for it.
+        message: What is wrong, without the suggestion; when ``arg`` is given it begins
+            with that argument's name (``"tol must be a positive number"``).
+        arg: The argument the error is about (``"tol"``, ``"q0"``, ``"target"``),
+            or ``None``.
+        suggest: ``(argument, value)`` that would help, or ``None``: ``str(error)``
+            then ends with ``"; use method='numeric'"``.
     """
 
-    def __init__(self, message: str = "", *, arg: str | None = None) -> None:
+    def __init__(
+        self, message: str = "", *, arg: str | None = None, suggest: tuple[str, object] | None = None
+    ) -> None:
+        self.message = message
         self.arg = arg
-        super().__init__(message)
+        self.suggest = suggest
+        text = message if suggest is None else f"{message}; use {suggest[0]}={suggest[1]!r}"
+        super().__init__(text)
 
 
 class ArgumentError(KinematicaError, ValueError):

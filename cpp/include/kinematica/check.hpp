@@ -153,7 +153,7 @@ KM_HD inline CheckReport check(const ChainView& ch, const Pose& T, const double*
         bool valid = true;
         for (int k = 0; k < n; ++k) valid = valid && std::isfinite(qj[k]);
         if (!valid) continue;
-        const double* cj = work.c.data() + j * n;  // joint_trig_rows: candidate j's row
+        const double* cj = work.c.data() + j * n;  // joint_trig_rows is row-major: row j
         const double* sj = work.s.data() + j * n;
         int stride = 1;
         double p_err = INF, r_err = INF;

@@ -30,7 +30,7 @@ from kinematica.cli.options import (
     units,
 )
 from kinematica.errors import ArgumentError
-from kinematica.ik.result import IKResult
+from kinematica.ik import IKOptions, IKResult
 from kinematica.io import builtin_names
 from kinematica.robot import Robot, classify, load
 from kinematica.spatial import euler_from_matrix, from_pose, gimbal_locked
@@ -203,14 +203,10 @@ def ik(args: argparse.Namespace) -> int:
     target = _target(robot, args)
     q0 = None if args.q0 is None else q_in(robot, args.q0, args, "q0")
     tol = _tolerance(robot, args)
-    res = robot.ik(
-        target,
-        method=args.method,
-        respect_limits=not args.ignore_limits,
-        q0=q0,
-        seed=args.seed,
-        tol=tol,
+    options = IKOptions(
+        method=args.method, tol=tol, respect_limits=not args.ignore_limits, q0=q0, seed=args.seed
     )
+    res = robot.ik(target, options=options)
     assert isinstance(res, IKResult)
     solved = res.success
     for note in res.notes:  # e.g. a rotation projected onto SO(3): said on stderr too

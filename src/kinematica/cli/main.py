@@ -45,26 +45,48 @@ _NEGATIVE_NUMBER = re.compile(
     r"^-(?:(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|inf(?:inity)?|nan)$", re.IGNORECASE
 )
 
-# Library messages speak Python (``use method='numeric'``); the command line
-# speaks options. Keyword arguments with a command-line twin are rewritten.
-_KEYWORD = re.compile(r"\b(method|tol|seed|q0|precision|euler|units)=(['\"]?)([^'\"\s,;)]+)\2")
-_FLAGS = {"respect_limits=False": "--ignore-limits", "degrees=False": "--rad"}
+#: The command line's option for each argument the library's errors name (``arg=``).
+_OPTIONS = {
+    "method": "--method",
+    "tol": "--tol",
+    "seed": "--seed",
+    "q0": "--q0",
+    "precision": "--precision",
+    "euler": "--euler",
+    "units": "--units",
+    "frame": "--frame",
+}
 
 
 def cli_words(message: str, aliases: dict[str, str] | None = None) -> str:
-    """A library message in command-line words, on one line, safe to print.
+    """A library message on one line, safe to print, its first words renamed.
 
     Args:
         message: The message of an error or warning.
-        aliases: Words to replace at the start of the message, e.g.
-            ``{"target": "--matrix"}``.
+        aliases: Words to replace at the start of the message (longest first), e.g.
+            ``{"target": "--matrix"}``: what the library calls the argument that
+            came from that option.
     """
-    text = _KEYWORD.sub(lambda m: f"--{m.group(1).replace('_', '-')} {m.group(3)}", message)
-    for python, option in _FLAGS.items():
-        text = text.replace(python, option)
-    for word, option in (aliases or {}).items():
-        text = re.sub(rf"^{re.escape(word)}\b", option, text)
-    return plain(text)
+    for word in sorted(aliases or {}, key=len, reverse=True):
+        if message == word or message.startswith((f"{word} ", f"{word}:", f"{word},")):
+            message = (aliases or {})[word] + message[len(word) :]
+            break
+    return plain(message)
+
+
+def cli_error(exc: KinematicaError, aliases: dict[str, str] | None = None) -> str:
+    """An error in command-line words: the option it is about, and its suggestion as one.
+
+    Read from the error's structured fields (``arg``, ``suggest``), not its text.
+    """
+    words = dict(aliases or {})
+    if exc.arg is not None and exc.arg not in words and exc.arg in _OPTIONS:
+        words[exc.arg] = _OPTIONS[exc.arg]
+    text = cli_words(exc.message, words)
+    if exc.suggest is not None:
+        name, value = exc.suggest
+        text += f"; use {_OPTIONS.get(name, '--' + name.replace('_', '-'))} {plain(str(value))}"
+    return text
 
 
 class _Parser(argparse.ArgumentParser):
@@ -148,7 +170,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         with _warnings_as_lines(sys.stderr, args):
             return int(args.run(args))
     except KinematicaError as exc:
-        print(f"kinematica: error: {cli_words(str(exc), _aliases(args))}", file=sys.stderr)
+        print(f"kinematica: error: {cli_error(exc, _aliases(args))}", file=sys.stderr)
         return EXIT_BAD_INPUT
     except BrokenPipeError:  # e.g. `kinematica robots | head -1`
         _quiet_stdout()

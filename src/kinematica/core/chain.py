@@ -30,6 +30,7 @@ BoolArray = NDArray[np.bool_]
 
 #: What the core says of one configuration (kinematica._core.Chain.fk).
 _NOT_FINITE, _OUTSIDE_LIMITS = 1, 2
+_FLOAT64 = np.dtype(np.float64)
 
 
 def _readonly(a: NDArray[np.generic]) -> NDArray[np.generic]:
@@ -173,8 +174,8 @@ class Chain:
             frames; the number of configurations holding NaN/inf (their results
             are NaN); the number beyond some joint's own limits (computed all the same).
         """
-        if q.ndim == 1:  # the single-call path: every attribute look-up here counts
-            if q.dtype != np.float64 or not q.flags.c_contiguous:
+        if q.ndim == 1:
+            if q.dtype is not _FLOAT64 or not q.flags.c_contiguous:
                 q = np.ascontiguousarray(q, dtype=np.float64)
             T, state = self.core.fk_frames(q) if all_frames else self.core.fk(q)
             return T, int(state == _NOT_FINITE), int(state == _OUTSIDE_LIMITS)
@@ -191,7 +192,7 @@ class Chain:
             ``(J, bad)`` as for :meth:`fk`.
         """
         if q.ndim == 1:
-            if q.dtype != np.float64 or not q.flags.c_contiguous:
+            if q.dtype is not _FLOAT64 or not q.flags.c_contiguous:
                 q = np.ascontiguousarray(q, dtype=np.float64)
             J, state = self.core.jacobian(q, tool_frame)
             return J, int(state == _NOT_FINITE)

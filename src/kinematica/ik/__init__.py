@@ -1,5 +1,6 @@
 """Inverse kinematics over a compiled chain: closed forms by structure, or numeric."""
 
+from kinematica.ik.options import IKOptions, Method
 from kinematica.ik.registry import ClosedForm, SolverSpec
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.solve import closed_form, solve_ik, structure_of
@@ -14,8 +15,10 @@ __all__ = [
     "ClosedForm",
     "Features",
     "IKBatchResult",
+    "IKOptions",
     "IKResult",
     "IKStatus",
+    "Method",
     "SolverSpec",
     "Tolerance",
     "closed_form",

@@ -94,7 +94,9 @@ def check_seed(seed: object) -> int | np.random.Generator | None:
         return seed
     if isinstance(seed, int | np.integer) and not isinstance(seed, bool) and seed >= 0:
         return int(seed)
-    raise ArgumentError(f"seed must be a whole number >= 0 or a numpy Generator, got {seed!r}")
+    raise ArgumentError(
+        f"seed must be a whole number >= 0 or a numpy Generator, got {seed!r}", arg="seed"
+    )
 
 
 def numeric_setup(

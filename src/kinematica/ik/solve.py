@@ -10,7 +10,7 @@ candidate by forward kinematics; the outcome is wrapped in an :class:`IKResult`
 from __future__ import annotations
 
 import weakref
-from typing import Any, Literal
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -20,15 +20,15 @@ from kinematica.core import Chain, resolve_workers
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.analytic import SOLVERS
 from kinematica.ik.numeric import LABEL, check_seed, numeric_setup
+from kinematica.ik.options import IKOptions, Method
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
 from kinematica.ik.result import CheckOutput, IKBatchResult, IKResult, result_of
 from kinematica.ik.structure import features
 from kinematica.ik.targets import Targets, Tolerance, parse_mask, parse_targets, parse_tolerance
 
-__all__ = ["Method", "closed_form", "solve_ik", "structure_of"]
+__all__ = ["closed_form", "solve_ik", "structure_of"]
 
 FloatArray = NDArray[np.float64]
-Method = Literal["auto", "analytic", "numeric"]
 
 _POSE: tuple[float, ...] = (1.0, 1.0, 1.0, 1.0, 1.0, 1.0)
 _POSITION: tuple[float, ...] = (1.0, 1.0, 1.0, 0.0, 0.0, 0.0)
@@ -112,30 +112,21 @@ def _options(
     return opts
 
 
-def solve_ik(
-    chain: Chain,
-    target: ArrayLike,
-    *,
-    method: Method = "auto",
-    respect_limits: bool = True,
-    q0: ArrayLike | None = None,
-    mask: ArrayLike | None = None,
-    seed: int | np.random.Generator | None = None,
-    tol: float | tuple[float, float] | Tolerance | None = None,
-    workers: int | None = None,
-) -> IKResult | IKBatchResult:
+def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IKBatchResult:
     """Every inverse-kinematics solution of a target, or an honest status.
 
     See :meth:`kinematica.Robot.ik` for the arguments and what comes back.
     """
+    method: Method = options.method
+    respect_limits, q0, workers = options.respect_limits, options.q0, options.workers
     if method not in ("auto", "analytic", "numeric"):
         raise KinematicaError(
             f"method must be 'auto', 'analytic' or 'numeric', got {method!r}", arg="method"
         )
     targets = parse_targets(target)
-    m = parse_mask(mask)
-    tolerance = parse_tolerance(tol)
-    seed = check_seed(seed)
+    m = parse_mask(options.mask)
+    tolerance = parse_tolerance(options.tol)
+    seed = check_seed(options.seed)
     threads = 1 if workers is None and targets.single else resolve_workers(workers)
     q0s = _q0(chain, q0, targets)
     kind: TargetKind = "position" if targets.position else "pose"
@@ -146,7 +137,7 @@ def solve_ik(
     if method == "analytic" and closed is None:
         why = "a mask was given" if m is not None else f"structure: {structure_of(chain)[1]}"
         raise KinematicaError(
-            f"no closed-form solver for this arm ({why}); use method='numeric'", arg="method"
+            f"no closed-form solver for this arm ({why})", arg="method", suggest=("method", "numeric")
         )
     solver: Any
     if closed is not None:

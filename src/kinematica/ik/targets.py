@@ -105,15 +105,19 @@ def parse_targets(target: ArrayLike) -> Targets:
         try:
             raw = np.asarray(target)
         except (TypeError, ValueError) as exc:
-            raise DimensionError(f"target must be numbers, got {type(target).__name__}") from exc
+            raise DimensionError(
+                f"target must be numbers, got {type(target).__name__}", arg="target"
+            ) from exc
         if raw.dtype.kind not in "iuf":
             raise DimensionError(
-                f"target must be real numbers (a 4x4 pose or a position), got dtype {raw.dtype}"
+                f"target must be real numbers (a 4x4 pose or a position), got dtype {raw.dtype}",
+                arg="target",
             )
     if raw.shape == (3, 3):
         raise DimensionError(
             "a (3, 3) target is ambiguous: a rotation alone is not a target (give a "
-            "4x4 pose), and three positions must be given as shape (3, 1, 3)"
+            "4x4 pose), and three positions must be given as shape (3, 1, 3)",
+            arg="target",
         )
     if raw.ndim >= 2 and raw.shape[-2:] == (4, 4):
         return _poses(raw)
@@ -121,7 +125,8 @@ def parse_targets(target: ArrayLike) -> Targets:
         return _positions(raw.astype(np.float64))
     raise DimensionError(
         "target must be a pose (4, 4), a position (3,), or batches (..., 4, 4) / (..., 3); "
-        f"got shape {raw.shape}"
+        f"got shape {raw.shape}",
+        arg="target",
     )
 
 
@@ -132,7 +137,7 @@ def _positions(arr: FloatArray) -> Targets:
     poses[:, 0, 0] = poses[:, 1, 1] = poses[:, 2, 2] = poses[:, 3, 3] = 1.0
     bad = np.flatnonzero(~np.all(np.isfinite(flat), axis=-1))
     if bad.size and not shape:
-        raise DimensionError("target position holds NaN or inf")
+        raise DimensionError("target position holds NaN or inf", arg="target")
     invalid = {int(i): f"{_where(shape, int(i))}: position holds NaN or inf" for i in bad}
     poses[:, :3, 3] = np.where(np.isfinite(flat), flat, 0.0)
     return Targets(poses, shape, True, invalid)
@@ -175,7 +180,7 @@ def _poses(raw: np.ndarray) -> Targets:
                     f"{ortho[i]:.1e} only)",
                 )
     if invalid and not shape:
-        raise DimensionError(invalid[0])
+        raise DimensionError(invalid[0], arg="target")
     for i in invalid:
         poses[i] = np.eye(4)
     return Targets(poses, shape, False, invalid, notes)
@@ -188,14 +193,15 @@ def parse_mask(mask: ArrayLike | None) -> FloatArray | None:
     try:
         m = np.asarray(mask, dtype=float)
     except (TypeError, ValueError) as exc:
-        raise DimensionError(f"mask must be 6 numbers, got {mask!r}") from exc
+        raise DimensionError(f"mask must be 6 numbers, got {mask!r}", arg="mask") from exc
     if m.shape != (6,) or not np.all(np.isfinite(m)) or np.any(m < 0):
         raise DimensionError(
             "mask must be 6 non-negative weights for x, y, z, rx, ry, rz; "
-            f"got {np.asarray(mask).tolist()}"
+            f"got {np.asarray(mask).tolist()}",
+            arg="mask",
         )
     if not np.any(m > 0):
-        raise DimensionError("mask selects no error component: every weight is 0")
+        raise DimensionError("mask selects no error component: every weight is 0", arg="mask")
     return None if np.all(m == 1.0) else m
 
 
@@ -218,9 +224,10 @@ def parse_tolerance(tol: float | tuple[float, float] | Tolerance | None) -> Tole
             values = ()
         if len(values) != 2:
             raise KinematicaError(
-                f"tol must be a number or a pair (position m, rotation rad), got {tol!r}"
+                f"tol must be a number or a pair (position m, rotation rad), got {tol!r}",
+                arg="tol",
             )
     for name, v in zip(("position", "rotation"), values, strict=True):
         if not (math.isfinite(v) and v > 0):
-            raise KinematicaError(f"tol ({name}) must be a positive number, got {v!r}")
+            raise KinematicaError(f"tol ({name}) must be a positive number, got {v!r}", arg="tol")
     return Tolerance(values[0], values[1])

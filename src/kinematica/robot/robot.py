@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 import warnings
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Literal
 
@@ -27,7 +27,7 @@ from kinematica.dh import (
     link_matrix,
 )
 from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning
-from kinematica.ik import IKBatchResult, IKResult, Tolerance, solve_ik
+from kinematica.ik import IKBatchResult, IKOptions, IKResult, Tolerance, solve_ik
 from kinematica.robot.dh_rules import to_dh, to_urdf
 from kinematica.robot.frames import rigid_frame, short
 from kinematica.robot.save import write_robot_file
@@ -43,6 +43,8 @@ __all__ = ["Robot"]
 
 FloatArray = NDArray[np.float64]
 _FLOAT64 = np.dtype(np.float64)
+#: What the core says of one configuration (kinematica._core.Chain.fk).
+_NOT_FINITE, _OUTSIDE_LIMITS = 1, 2
 
 
 @dataclass(frozen=True, eq=False)
@@ -77,6 +79,13 @@ class Robot:
     chain: Chain = field(init=False, repr=False)
     source_spec: RobotSpec | None = field(default=None, compare=False, repr=False)
     transforms: ChainTransforms | None = field(default=None, compare=False, repr=False)
+    _single: tuple[int] = field(init=False, repr=False, compare=False)
+    _fk_one: Callable[[FloatArray], tuple[FloatArray, int]] = field(
+        init=False, repr=False, compare=False
+    )
+    _jacobian_one: Callable[[FloatArray, bool], tuple[FloatArray, int]] = field(
+        init=False, repr=False, compare=False
+    )
 
     def __post_init__(self) -> None:
         links = tuple(self.links)
@@ -106,6 +115,10 @@ class Robot:
                 )
             chain = self.transforms.compile(links, base, tool)
         object.__setattr__(self, "chain", chain)
+        # the single-call path of fk and jacobian: the core's entry points, looked up once
+        object.__setattr__(self, "_single", (len(links),))
+        object.__setattr__(self, "_fk_one", chain.core.fk)
+        object.__setattr__(self, "_jacobian_one", chain.core.jacobian)
 
     @classmethod
     def from_dh(
@@ -271,6 +284,15 @@ class Robot:
             ``(..., 4, 4)`` pose ``T = base · 0A1 · ... · (n-1)An · tool``, or
             ``(..., n+1, 4, 4)`` with ``all_frames``.
         """
+        if type(q) is np.ndarray and q.dtype is _FLOAT64 and q.shape == self._single:
+            try:  # one configuration, already what the core reads: one call
+                T, state = self._fk_one(q) if not all_frames else self.chain.core.fk_frames(q)
+            except ValueError:  # not contiguous: the general path copies it
+                pass
+            else:
+                if state:
+                    self._report(q, "q", state == _NOT_FINITE, state == _OUTSIDE_LIMITS)
+                return T
         qa = self.check_q(q)
         out, bad, outside = self.chain.fk(qa, all_frames, workers)
         if bad or outside:
@@ -334,16 +356,26 @@ class Robot:
             of a batch holding NaN/inf come out NaN, with a warning.
         """
         if frame not in ("base", "tool"):
-            raise KinematicaError(f"frame must be 'base' or 'tool', got {frame!r}")
+            raise KinematicaError(f"frame must be 'base' or 'tool', got {frame!r}", arg="frame")
         if euler is not None:
             if frame != "base":
                 raise KinematicaError(
-                    "euler= gives the analytic Jacobian of the pose in the base frame; "
-                    f"frame={frame!r} does not apply to it"
+                    "euler gives the analytic Jacobian of the pose in the base frame; "
+                    f"the {frame} frame does not apply to it",
+                    arg="euler",
                 )
             from kinematica.robot.velocity import analytic_jacobian
 
             return analytic_jacobian(self, q, euler)
+        if type(q) is np.ndarray and q.dtype is _FLOAT64 and q.shape == self._single:
+            try:
+                J, state = self._jacobian_one(q, frame == "tool")
+            except ValueError:  # not contiguous: the general path copies it
+                pass
+            else:
+                if state == _NOT_FINITE:
+                    self._report(q, "q", 1, 0)
+                return J
         qa = self.check_q(q)
         J, bad = self.chain.jacobian(qa, frame == "tool", workers)
         if bad:
@@ -377,6 +409,7 @@ class Robot:
         seed: int | np.random.Generator | None = None,
         tol: float | tuple[float, float] | Tolerance | None = None,
         workers: int | None = None,
+        options: IKOptions | None = None,
     ) -> IKResult | IKBatchResult:
         """Every inverse-kinematics solution of a target, or an honest status.
 
@@ -398,23 +431,26 @@ class Robot:
             tol: Acceptance tolerance: one number for both, or a pair
                 (position m, rotation rad); default 1e-10 m and 1e-10 rad.
             workers: Threads for a batch (None: the library default).
+            options: All of the above as one :class:`~kinematica.ik.IKOptions`
+                (then give none of them as keywords).
 
         Returns:
             An :class:`IKResult` for one target, an :class:`IKBatchResult`
             (arrays with the targets' batch shape) for a batch. In a batch, a
             malformed target gets the status ``"invalid"``; the others are solved.
         """
-        return solve_ik(
-            self.chain,
-            target,
-            method=method,
-            respect_limits=respect_limits,
-            q0=q0,
-            mask=mask,
-            seed=seed,
-            tol=tol,
-            workers=workers,
-        )
+        if options is None:
+            options = IKOptions(method, tol, respect_limits, q0, mask, seed, workers)
+        elif not (
+            method == "auto"
+            and respect_limits is True
+            and all(v is None for v in (tol, q0, mask, seed, workers))
+        ):
+            raise KinematicaError(
+                "give the IK settings either as options= or as keywords, not both",
+                arg="options",
+            )
+        return solve_ik(self.chain, target, options)
 
     # ------------------------------------------------------------ derived models
     def to_convention(self, convention: str) -> Robot:

@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.core import Chain
-from kinematica.dh import Joint, Prismatic, link_matrix
+from kinematica.dh import Convention, Joint, Prismatic, link_matrix
 from kinematica.spatial import inv_transform
 
 __all__ = ["ChainTransforms", "align_z", "dh_frames"]
@@ -90,7 +90,7 @@ class ChainTransforms:
         return type(self)(start, self.between, end, offsets)
 
 
-def dh_frames(links: Sequence[Joint], convention: str) -> FloatArray:
+def dh_frames(links: Sequence[Joint], convention: Convention) -> FloatArray:
     """``(n+1, 4, 4)`` the DH frames S0..Sn of a table at q = 0, in S0 (no base, no tool)."""
     n = len(links)
     A = link_matrix(

@@ -1,8 +1,9 @@
 """3R elbow arms, anthropomorphic or with a shoulder offset: their closed form, built once per arm.
 
-Axis 1 perpendicular to axes 2 and 3, which are parallel; the kernel is
-:mod:`kinematica.kernels.solvers.elbow_arms`. Everything is read from the joint
-axes at q = 0 and ``M = fk(0)``: any base, tool, offsets and DH convention.
+Axis 1 perpendicular to axes 2 and 3, which are parallel; the solver is
+``cpp/include/kinematica/solvers/elbow.hpp`` (:class:`kinematica._core.elbow.ElbowParams`).
+Everything is read from the joint axes at q = 0 and ``M = fk(0)``: any base, tool,
+offsets and DH convention.
 
 Branch labels (``σ = (p − p1)·(h1 × k1)`` with ``k1`` the current axis-2
 direction, ψ the angle of link 3 relative to link 2 about ``k1``):
@@ -25,37 +26,12 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica.dh import DHChain
+from kinematica import _core
+from kinematica.core import Chain
 from kinematica.ik.analytic.planar_arms import LENGTH_TOL, plane_basis
+from kinematica.ik.analytic.small_samples import sampler
 from kinematica.ik.registry import ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
-from kinematica.kernels import fk
-from kinematica.kernels.solvers import elbow_arms as kernel
-from kinematica.kernels.solvers.elbow_arms import (
-    P_A,
-    P_B,
-    P_E1,
-    P_E2,
-    P_FOOT,
-    P_H1,
-    P_HEIGHT,
-    P_HK,
-    P_K,
-    P_OFFSET,
-    P_P1,
-    P_P2,
-    P_POSE,
-    P_RE1,
-    P_RK,
-    P_RMAX,
-    P_RMIN,
-    P_S2,
-    P_S3,
-    P_SCALE,
-    P_SIZE,
-    P_SLACK,
-    P_UP,
-)
 
 __all__ = ["LABELS", "SPECS", "build", "common_normal"]
 
@@ -79,7 +55,7 @@ def common_normal(
     return p1 + t[0] * h1, p2 + t[1] * h2
 
 
-def build(chain: DHChain, features: Features, target: TargetKind) -> ClosedForm | None:
+def build(chain: Chain, features: Features, target: TargetKind) -> ClosedForm | None:
     """The closed form of a 3R elbow arm, or None when a link is degenerate.
 
     Args:
@@ -91,7 +67,7 @@ def build(chain: DHChain, features: Features, target: TargetKind) -> ClosedForm 
     if kind is None:
         return None
     h, p = features.directions, features.points
-    M = fk(chain, np.zeros(3))[0]
+    M = chain.fk(np.zeros(3))[0]
     R_M, x = M[:3, :3], M[:3, 3]
     h1 = h[0] / np.linalg.norm(h[0])
     k = h[1] / np.linalg.norm(h[1])
@@ -113,39 +89,36 @@ def build(chain: DHChain, features: Features, target: TargetKind) -> ClosedForm 
     dr = float(np.linalg.norm(foot2 - c3 - dh * k))
     offset = float(np.linalg.norm(foot2 - foot1))
     height = float(k @ (x - p[0]))
-    params = np.zeros(P_SIZE)
-    params[P_POSE] = float(target == "pose")
-    params[P_H1 : P_H1 + 3] = h1
-    params[P_P1 : P_P1 + 3] = p[0]
-    params[P_K : P_K + 3] = k
-    params[P_E1 : P_E1 + 3] = e1
-    params[P_E2 : P_E2 + 3] = e2
-    params[P_HK : P_HK + 3] = hk
-    params[P_P2 : P_P2 + 3] = p[1]
-    params[P_A : P_A + 2] = a
-    params[P_B : P_B + 2] = b
-    params[P_UP : P_UP + 2] = plane(hk)
-    params[P_S2] = 1.0  # k is axis 2's own direction
-    params[P_S3] = 1.0 if float(h[2] @ k) > 0.0 else -1.0
-    params[P_HEIGHT] = height
-    params[P_RK : P_RK + 3] = R_M.T @ k
-    params[P_RE1 : P_RE1 + 3] = R_M.T @ e1
-    params[P_FOOT : P_FOOT + 3] = foot1
-    params[P_OFFSET] = offset
-    params[P_RMIN] = float(np.hypot(dh, abs(dr - rho3)))
-    params[P_RMAX] = float(np.hypot(dh, dr + rho3))
-    params[P_SCALE] = float(np.linalg.norm(a) + np.linalg.norm(b)) + abs(height) + offset
+    params = _core.elbow.ElbowParams()
+    params.pose = target == "pose"
+    params.h1 = h1
+    params.p1 = p[0]
+    params.k = k
+    params.e1 = e1
+    params.e2 = e2
+    params.hk = hk
+    params.p2 = p[1]
+    params.a = a
+    params.b = b
+    params.up = plane(hk)
+    params.s2 = 1.0  # k is axis 2's own direction
+    params.s3 = 1.0 if float(h[2] @ k) > 0.0 else -1.0
+    params.height = height
+    params.rk = R_M.T @ k
+    params.re1 = R_M.T @ e1
+    params.foot = foot1
+    params.offset = offset
+    params.rmin = float(np.hypot(dh, abs(dr - rho3)))
+    params.rmax = float(np.hypot(dh, dr + rho3))
+    params.scale = float(np.linalg.norm(a) + np.linalg.norm(b)) + abs(height) + offset
     # Axis 3 is parallel to axis 2 within the classification's tolerance: a turn
     # about it moves the tool (within `length`) by at most 2 δ length off the ideal.
     length = float(sum(np.linalg.norm(np.diff(np.vstack([p, x]), axis=0), axis=1)))
-    params[P_SLACK] = 2.0 * float(np.linalg.norm(np.cross(h[2], k))) * length
-    params.flags.writeable = False
+    params.slack = 2.0 * float(np.linalg.norm(np.cross(h[2], k))) * length
     return ClosedForm(
         name=kind,
         labels=LABELS,
         params=params,
-        solve_one=kernel.solve,
-        solve_batch=kernel.solve_batch,
         position_only=target == "position",
     )
 
@@ -158,13 +131,19 @@ SPECS: tuple[SolverSpec, ...] = (
     SolverSpec(
         "anthropomorphic-3R",
         "3R anthropomorphic (shoulder axes meet)",
+        "brazo antropomórfico 3R (los ejes del hombro se cortan)",
         lambda f: _elbow(f) and f.meet(0, 1),
         build,
+        sampler("anthropomorphic-3R"),
+        ("pose", "position"),
     ),
     SolverSpec(
         "elbow-3R",
         "3R elbow arm with shoulder offset",
+        "brazo 3R de codo con desplazamiento en el hombro",
         lambda f: _elbow(f) and not f.meet(0, 1),
         build,
+        sampler("elbow-3R"),
+        ("pose", "position"),
     ),
 )

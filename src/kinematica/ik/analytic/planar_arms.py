@@ -2,7 +2,8 @@
 
 Everything is read from the joint axes at q = 0 and the tool pose ``M =
 fk(0)``, so any base, tool, offsets and DH convention are handled alike; the
-kernel is :mod:`kinematica.kernels.solvers.planar_arms`.
+solver is ``cpp/include/kinematica/solvers/planar.hpp``
+(:class:`kinematica._core.planar.PlanarParams`).
 
 Branch labels (angles about ``k``, the first revolute axis's direction, seen
 from the side it points to: positive turns are counter-clockwise):
@@ -29,40 +30,11 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica.dh import DHChain
+from kinematica import _core
+from kinematica.core import Chain
+from kinematica.ik.analytic.small_samples import sampler
 from kinematica.ik.registry import ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
-from kinematica.kernels import fk
-from kinematica.kernels.solvers import planar_arms as kernel
-from kinematica.kernels.solvers.planar_params import (
-    P_AXIS,
-    P_E1,
-    P_E2,
-    P_K,
-    P_LENGTH,
-    P_LIFT,
-    P_LIFT_SIGN,
-    P_LIFT_TILT,
-    P_NREV,
-    P_ORIGIN,
-    P_POSE,
-    P_QLIM,
-    P_RE1,
-    P_REACH,
-    P_REV,
-    P_RMAX,
-    P_RMIN,
-    P_SIGN,
-    P_SIZE,
-    P_SLACK,
-    P_SLIDE,
-    P_SLIDE_TILT,
-    P_SWAP,
-    P_TIP,
-    P_TOOL,
-    P_U,
-    P_WRIST,
-)
 
 __all__ = ["LABELS", "LENGTH_TOL", "SPECS", "build", "plane_basis"]
 
@@ -101,7 +73,7 @@ def _kind_of(features: Features) -> str | None:
     return None
 
 
-def build(chain: DHChain, features: Features, target: TargetKind) -> ClosedForm | None:
+def build(chain: Chain, features: Features, target: TargetKind) -> ClosedForm | None:
     """The closed form of a planar arm or a SCARA, or None for degenerate links.
 
     Args:
@@ -114,7 +86,7 @@ def build(chain: DHChain, features: Features, target: TargetKind) -> ClosedForm 
         return None
     types = features.joint_types
     h, p = features.directions, features.points
-    M = fk(chain, np.zeros(chain.dof))[0]
+    M = chain.fk(np.zeros(chain.dof))[0]
     R_M, t_M = M[:3, :3], M[:3, 3]
     rev = [i for i, t in enumerate(types) if t == "R"]
     slide = 0 if types[0] == "P" else -1
@@ -133,84 +105,99 @@ def build(chain: DHChain, features: Features, target: TargetKind) -> ClosedForm 
     needed = lengths if kind in ("planar-2R", "planar-PR") else lengths[:-1]
     if min(needed, default=math.inf) <= LENGTH_TOL:
         return None
-    params = np.zeros(P_SIZE)
-    params[P_POSE] = float(target == "pose")
-    params[P_SWAP] = float(kind == "scara")
-    params[P_SLIDE] = slide
-    params[P_LIFT] = lift
+    params = _core.planar.PlanarParams()
+    params.n = chain.dof
+    params.pose = target == "pose"
+    params.swap = kind == "scara"
+    params.slide = slide
+    params.lift = lift
     if lift >= 0:
-        params[P_LIFT_SIGN] = _sign(float(h[lift] @ k))
-    params[P_NREV] = len(rev)
-    params[P_REV : P_REV + len(rev)] = rev
-    params[P_SIGN : P_SIGN + len(rev)] = [_sign(float(h[j] @ k)) for j in rev]
-    params[P_K : P_K + 3] = k
-    params[P_E1 : P_E1 + 3] = e1
-    params[P_E2 : P_E2 + 3] = e2
-    params[P_ORIGIN : P_ORIGIN + 3] = origin
-    params[P_TOOL : P_TOOL + 3] = t_M
-    params[P_RE1 : P_RE1 + 3] = R_M.T @ e1
-    params[P_WRIST : P_WRIST + 3] = R_M.T @ (p[rev[-1]] - t_M)
-    params[P_AXIS : P_AXIS + 2 * len(rev)] = axis.ravel()
-    params[P_TIP : P_TIP + 2] = tip
+        params.lift_sign = _sign(float(h[lift] @ k))
+    params.nrev = len(rev)
+    params.rev = np.array([*rev, 0, 0][:3])  # the fixed arrays' unused entries: 0
+    params.sign = np.array([*(_sign(float(h[j] @ k)) for j in rev), 0.0, 0.0][:3])
+    params.k = k
+    params.e1 = e1
+    params.e2 = e2
+    params.origin = origin
+    params.tool = t_M
+    params.re1 = R_M.T @ e1
+    params.wrist = R_M.T @ (p[rev[-1]] - t_M)
+    params.axis = np.vstack([axis, np.zeros((3 - len(rev), 2))])
+    params.tip = tip
     if slide >= 0:
         u = np.array([h[0] @ e1, h[0] @ e2])
-        params[P_U : P_U + 2] = u / np.linalg.norm(u)
+        params.u = u / np.linalg.norm(u)
     reach = sum(lengths)
-    params[P_REACH] = reach
-    params[P_RMAX] = reach
-    params[P_RMIN] = max(0.0, 2.0 * max(lengths) - reach)
-    params[P_QLIM : P_QLIM + 2 * chain.dof] = chain.qlim.ravel()
+    params.reach = reach
+    params.rmax = reach
+    params.rmin = max(0.0, 2.0 * max(lengths) - reach)
+    params.qlim = np.vstack([chain.qlim, np.zeros((4 - chain.dof, 2))])
     # How far from the ideal arm this one is (its axes parallel to k within the
     # classification's tolerance): a turn about an axis tilted by δ moves every
     # point within `length` of it by at most 2 δ length more or less.
     length = float(sum(np.linalg.norm(np.diff(np.vstack([p, t_M]), axis=0), axis=1)))
     tilts = [float(np.linalg.norm(np.cross(h[j], k))) for j in rev]
-    params[P_LENGTH] = length
-    params[P_SLACK] = 2.0 * sum(tilts) * length
+    params.length = length
+    params.slack = 2.0 * sum(tilts) * length
     if slide >= 0:
-        params[P_SLIDE_TILT] = abs(float(h[slide] @ k))
+        params.slide_tilt = abs(float(h[slide] @ k))
     if lift >= 0:
-        params[P_LIFT_TILT] = float(np.linalg.norm(np.cross(h[lift], k)))
-    params.flags.writeable = False
+        params.lift_tilt = float(np.linalg.norm(np.cross(h[lift], k)))
     return ClosedForm(
         name=kind,
         labels=LABELS[kind],
         params=params,
-        solve_one=kernel.solve,
-        solve_batch=kernel.solve_batch,
         position_only=target == "position",
     )
 
+
+_BOTH: tuple[TargetKind, ...] = ("pose", "position")
 
 SPECS: tuple[SolverSpec, ...] = (
     SolverSpec(
         "planar-2R",
         "2R planar",
+        "brazo plano 2R",
         lambda f: f.joint_types == "RR" and f.is_parallel(0, 1),
         build,
+        sampler("planar-2R"),
+        _BOTH,
     ),
     SolverSpec(
         "planar-PR",
         "PR planar (prismatic then revolute)",
+        "brazo plano PR (prismática y rotacional)",
         lambda f: f.joint_types == "PR" and f.is_perpendicular(0, 1),
         build,
+        sampler("planar-PR"),
+        _BOTH,
     ),
     SolverSpec(
         "planar-3R",
         "3R planar",
+        "brazo plano 3R",
         lambda f: f.joint_types == "RRR" and f.all_parallel(range(3)),
         build,
+        sampler("planar-3R"),
+        _BOTH,
     ),
     SolverSpec(
         "planar-PRR",
         "PRR planar (prismatic then two parallel revolute)",
+        "brazo plano PRR (prismática y dos rotacionales paralelas)",
         lambda f: f.joint_types == "PRR" and f.is_parallel(1, 2) and f.is_perpendicular(0, 1),
         build,
+        sampler("planar-PRR"),
+        _BOTH,
     ),
     SolverSpec(
         "scara",
         "SCARA (RRPR, all axes parallel)",
+        "SCARA (RRPR, todos los ejes paralelos)",
         lambda f: f.joint_types == "RRPR" and f.all_parallel(range(4)),
         build,
+        sampler("scara"),
+        _BOTH,
     ),
 )

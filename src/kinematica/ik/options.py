@@ -1,0 +1,45 @@
+"""How ``robot.ik`` is asked to solve: one object from the command line to the core."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from kinematica.ik.targets import Tolerance
+
+__all__ = ["IKOptions", "Method"]
+
+Method = Literal["auto", "analytic", "numeric"]
+
+
+@dataclass(frozen=True, eq=False)
+class IKOptions:
+    """The settings of an IK call (see :meth:`kinematica.Robot.ik` for each one).
+
+    Attributes:
+        method: ``"auto"`` (closed form when the structure allows), ``"analytic"``
+            or ``"numeric"``.
+        tol: Acceptance tolerance: one number for both, a pair (position m,
+            rotation rad), a :class:`Tolerance`, or ``None`` (1e-10 m, 1e-10 rad).
+        respect_limits: Keep solutions outside the joint limits apart.
+        q0: ``(n,)`` or ``(..., n)``: the numeric initial guess, and the
+            configuration solutions are sorted by distance to.
+        mask: ``(6,)`` weights of x, y, z, rx, ry, rz (numeric only).
+        seed: Seed of the numeric restarts.
+        workers: Threads for a batch (None: the library default).
+    """
+
+    method: Method = "auto"
+    tol: float | tuple[float, float] | Tolerance | None = None
+    respect_limits: bool = True
+    q0: ArrayLike | None = None
+    mask: ArrayLike | None = None
+    seed: int | np.random.Generator | None = None
+    workers: int | None = None
+
+
+#: The options of a call that gives none.
+DEFAULT = IKOptions()
