@@ -12,6 +12,7 @@
 #include "common.hpp"
 #include "kinematica/solvers/parallel.hpp"
 #include "numpy_io.hpp"
+#include "small_fields.hpp"
 #include "solver_binding.hpp"
 
 namespace kmpy {
@@ -19,20 +20,6 @@ namespace kmpy {
 namespace {
 
 using km::ParallelParams;
-
-//! count numbers from a sequence or array into out; ValueError otherwise.
-void read_fixed(nb::handle h, const char* name, double* out, Py_ssize_t count) {
-    if (!detail::read_numbers(h.ptr(), out, count)) {
-        fail_value(name, "a sequence of " + std::to_string(count) + " numbers");
-    }
-}
-
-F64 array_of(const double* v, int count) {
-    double* data;
-    nb::object a = new_f64({count}, data);
-    for (int i = 0; i < count; ++i) data[i] = v[i];
-    return nb::borrow<F64>(a);
-}
 
 void require_finite(double v, const char* name) {
     if (!std::isfinite(v)) fail_value(name, "finite");
@@ -70,7 +57,7 @@ nb::tuple triangle_of(const ParallelParams& P, double u, double v) {
 
 km::parallel::Sides sides_of(nb::handle h, const char* name) {
     double v[3];
-    read_fixed(h, name, v, 3);
+    small::set_vec(v, h, name);
     for (const double x : v) require_finite(x, name);
     return {v[0], v[1], v[2]};
 }
@@ -131,20 +118,12 @@ void bind_parallel(nb::module_& m) {
         .def_rw("D2", &ParallelParams::D2)
         .def_rw("E2", &ParallelParams::E2)
         .def_rw("F2", &ParallelParams::F2, "equation (2)'s right side, F2 with k·(p5 - p1)")
-        .def_prop_rw(
-            "minv", [](const ParallelParams& p) { return array_of(p.minv, 4); },
-            [](ParallelParams& p, F64 v) { read_fixed(v, "minv", p.minv, 4); },
-            "(4,) row-major inverse of [[D1, E1], [D2, E2]] (Mode.general)")
         .def_rw("wlo", &ParallelParams::wlo, "1 - |D1, E1| - F1, exactly")
         .def_rw("whi", &ParallelParams::whi, "1 - |D1, E1| + F1, exactly")
         .def_rw("len_a", &ParallelParams::len_a, "|A| (m), A = p3 - p2 across k")
         .def_rw("len_b", &ParallelParams::len_b, "|B| (m), B = p4 - p3 across k")
         .def_rw("arg_a", &ParallelParams::arg_a, "arg A (rad)")
         .def_rw("arg_b", &ParallelParams::arg_b, "arg B (rad)")
-        .def_prop_rw(
-            "zup", [](const ParallelParams& p) { return array_of(p.zup, 2); },
-            [](ParallelParams& p, F64 v) { read_fixed(v, "zup", p.zup, 2); },
-            "(2,) plane coordinates of h1 × k (the elbow-up side)")
         .def_rw("sign3", &ParallelParams::sign3, "h3·k = ±1")
         .def_rw("sign4", &ParallelParams::sign4, "h4·k = ±1")
         .def_rw("bound", &ParallelParams::bound, "reach bound about p1s (m)")
@@ -152,6 +131,9 @@ void bind_parallel(nb::module_& m) {
         .def_rw("scale", &ParallelParams::scale, "size of the arm (m)")
         .def_rw("q1rep", &ParallelParams::q1rep, "q1 given when q1 is free (rad)")
         .def_rw("q2rep", &ParallelParams::q2rep, "q2 given when q2 is free (rad)");
+    KM_SMALL_VEC(cls, ParallelParams, minv,
+                 "(4,) row-major inverse of [[D1, E1], [D2, E2]] (Mode.general)");
+    KM_SMALL_VEC(cls, ParallelParams, zup, "(2,) plane coordinates of h1 × k (the elbow-up side)");
 
     sub.attr("SLOTS") = ParallelParams{}.slots();
     sub.attr("CONTINUUM_TOL") = km::parallel::CONTINUUM_TOL;

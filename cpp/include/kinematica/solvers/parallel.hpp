@@ -121,7 +121,8 @@ KM_HD inline Elbows triangle(const ParallelParams& P, const Plane& tx) {
     const double arg_a = P.arg_a, arg_b = P.arg_b;
     const double span = a + b;
     const double d = std::fabs(a - b);
-    const double n = std::sqrt(tx.u * tx.u + tx.v * tx.v);  // within reach (the gap check): no overflow
+    // within reach (the gap check): no overflow
+    const double n = std::sqrt(tx.u * tx.u + tx.v * tx.v);
     if (n <= CONTINUUM_TOL * span && d <= CONTINUUM_TOL * span) {
         return {TRIANGLE_FOLD, P.q2rep, wrap(PI + arg_a - arg_b), NaN, NaN};
     }
