@@ -25,13 +25,14 @@ from parallel_arms import (
     UR5_P56,
     UR5_ROWS,
     assert_honest_batch,
+    assert_reaches,
     joint_gap,
     random_arm,
 )
 
 import kinematica as km
 from kinematica.dh import Prismatic, Revolute
-from kinematica.ik.analytic.parallel import GENERAL_LABELS, LABELS, SPEC, pack
+from kinematica.ik.analytic.parallel import DEGENERATE, GENERAL_LABELS, LABELS, SPEC, pack
 from kinematica.ik.result import IKBatchResult
 from kinematica.ik.structure import features
 from kinematica.robot import Robot, classify
@@ -218,3 +219,40 @@ def test_classification_and_declined_arms() -> None:
     puma = km.load("puma560")
     assert classify(puma).kind != "three-parallel-6R"
     assert classify(Robot.from_dh([Revolute(), Prismatic()])).kind != "three-parallel-6R"
+
+
+# ------------------------------------------------------------- the spec's sample arms
+@pytest.mark.parametrize("degenerate", [False, True])
+def test_sample_arms_are_of_the_family_and_solved(degenerate: bool) -> None:
+    """SPEC.sample_arm gives arms SPEC handles and builds (each edge geometry drawn
+    at least once), whose FK targets are solved: every solution reaches the target
+    and the configuration that made it is found.
+
+    The generic arms are held to assert_honest_batch. Edge geometries the solver
+    takes as exact (axes 5 and 6 1e-10 m apart taken as meeting, parallel within
+    1e-10 rad, twists of axes 2-4 within 1e-9 rad) put the solutions of its model
+    about that far (over σ_min) from the arm's: the check polishes them onto the
+    target, and the generating q is found to 1e-6.
+    """
+    rng = np.random.default_rng(50 + degenerate)
+    notes = set()
+    for _ in range(60):
+        sample = SPEC.sample_arm(rng, degenerate)
+        notes.add(sample.note)
+        robot = Robot.from_dh(
+            sample.links, convention=sample.convention, base=sample.base, tool=sample.tool
+        )
+        f = features(robot.chain)
+        assert SPEC.handles(f), sample
+        assert SPEC.build(robot.chain, f, "pose") is not None, sample
+        q = rng.uniform(-PI, PI, (5, 6))
+        many = solve_all(robot, robot.fk(q))
+        if not degenerate:
+            assert_honest_batch(robot, q, many)
+            continue
+        assert set(many.status.tolist()) <= {"ok", "singular"}, sample
+        for i in range(5):
+            assert_reaches(robot, many[i], robot.fk(q[i]))
+            if many.status[i] == "ok":
+                assert joint_gap(many[i].solutions, q[i]) < 1e-6, (sample, q[i].tolist())
+    assert notes == (set(DEGENERATE) if degenerate else {""})

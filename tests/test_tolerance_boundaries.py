@@ -13,28 +13,14 @@ import math
 import warnings
 
 import numpy as np
-import parallel_arms
 import pytest
 import test_dh_extract as dh_extract
 
 import kinematica as km
-from kinematica.ik.analytic.parallel import pack
-from kinematica.ik.structure import features
 from kinematica.io import parse_urdf
 from kinematica.kernels import polynomial
 from kinematica.kernels.geometry import trig_linear
 from kinematica.kernels.ik_check import INFO_NEAR
-from kinematica.kernels.solvers import parallel_pairs, parallel_quartic
-from kinematica.kernels.solvers.parallel_layout import (
-    MODE_GENERAL,
-    NV,
-    V_H6,
-    V_HK,
-    V_KPAR,
-    V_KPERP,
-    V_P1,
-    V_P6,
-)
 from kinematica.motion import cartesian_path
 
 # The documented values (m, rad, or a sine/cosine), one per constant.
@@ -410,52 +396,6 @@ def test_trig_tol_takes_a_near_miss_as_a_double_root(factor: float, inside: bool
     out = np.empty(2)
     assert trig_linear(a, b, c, out) == (1 if inside else 0)
     np.testing.assert_allclose(out, math.atan2(b, a), atol=1e-12)
-
-
-# --- kernels/solvers/parallel_quartic.py: polishing the quartic's roots ----------
-
-NEWTON_QUIET = 1e-14  # parallel_quartic.NEWTON_QUIET
-
-
-@pytest.mark.parametrize(("factor", "inside"), FACTORS)
-def test_newton_quiet_makes_a_small_step_the_last(factor: float, inside: bool) -> None:
-    """parallel_quartic.NEWTON_QUIET: Newton on equations (1) and (2) started
-    ``factor * NEWTON_QUIET`` (rad) from a root takes that step and stops when
-    it is below the constant (one evaluation), and evaluates once more above
-    it. Either way it lands on the root (the q5 and q1 that made the target)
-    to round-off, with the cosines and sines of where it lands.
-
-    (1) and (2) are set up here from the module's equations: ``G = T M⁻¹``,
-    ``x6 = R_G h6``, ``w6 = G(p6) - p1``, sides ``(k⊥·y, (h1 × k)·y, k∥·y)``.
-    """
-    robot = parallel_arms.UR5_A5
-    packed = pack(robot.chain, features(robot.chain))
-    assert packed is not None and packed[1] == MODE_GENERAL
-    params = packed[0]
-    V = params[: 3 * NV].reshape(NV, 3)
-    T, M = robot.fk(np.array([0.4, -1.1, 1.3, 0.2, 0.9, -0.5])), robot.fk(np.zeros(6))
-    RG = T[:3, :3] @ M[:3, :3].T
-    x6 = RG @ V[V_H6]
-    w6 = RG @ V[V_P6] + T[:3, 3] - RG @ M[:3, 3] - V[V_P1]
-    L1, L2 = (tuple(float(V[r] @ y) for r in (V_KPERP, V_HK, V_KPAR)) for y in (x6, w6))
-    x6t = tuple(float(v) for v in x6)
-    q1, q5, res, *_ = parallel_quartic._newton(params, V, x6t, L1, L2, 0.4 + 1e-3, 0.9 - 1e-3)
-    assert res < 1e-14
-    assert abs(q1 - 0.4) < 1e-15 and abs(q5 - 0.9) < 1e-15  # the q that made T
-    a1, a5, _, evaluations, c1, s1, c5, s5 = parallel_quartic._newton(
-        params, V, x6t, L1, L2, q1, q5 + factor * NEWTON_QUIET
-    )
-    assert evaluations == (1 if inside else 2)
-    assert abs(a1 - 0.4) < 1e-15 and abs(a5 - 0.9) < 1e-15
-    # the cosines and sines returned are those of the angles returned (turned
-    # by the last step to first order when it was that small)
-    for got, want in (
-        (c1, math.cos(a1)),
-        (s1, math.sin(a1)),
-        (c5, math.cos(a5)),
-        (s5, math.sin(a5)),
-    ):
-        assert abs(got - want) <= 4e-16  # a few ulps
 
 
 # --- kernels/polynomial.py: Ferrari's roots, checked ------------------------------

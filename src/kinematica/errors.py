@@ -56,7 +56,11 @@ class KinematicaError(Exception):
     """
 
     def __init__(
-        self, message: str = "", *, arg: str | None = None, suggest: tuple[str, object] | None = None
+        self,
+        message: str = "",
+        *,
+        arg: str | None = None,
+        suggest: tuple[str, object] | None = None,
     ) -> None:
         self.message = message
         self.arg = arg

@@ -11,6 +11,8 @@
 // SIMD code (about 2 ns for both with AVX2). Within 1 ulp of the C library for |x| < 10
 // (joint angles) and 2 ulps up to REDUCTION_LIMIT (the reduced angle's rounding tail,
 // which fdlibm carries on, is dropped); beyond it sincos() falls back to the C library.
+// At a tie of the reduction (x·2/π = k + 1/2) n is rounded to even, as the C library
+// reduces, not up.
 // The results do not depend on the vector width: every step is one IEEE operation
 // (the core is built with -ffp-contract=off).
 #pragma once

@@ -109,19 +109,27 @@ class SolverSpec:
     describes: bool = True
 
 
-def describe(features: Features, specs: tuple[SolverSpec, ...]) -> tuple[str, str]:
-    """``(kind, summary)`` of an arm: the first spec that handles it, else a general one."""
+def describe(features: Features, specs: tuple[SolverSpec, ...]) -> tuple[str, str, str]:
+    """``(kind, summary, summary in Spanish)`` of an arm: the first spec that handles it.
+
+    An arm no spec describes is ``"general"``, summarised from its joint types
+    and what its axes have in common.
+    """
     for spec in specs:
         if spec.describes and spec.handles(features):
-            return spec.kind, spec.summary
+            return spec.kind, spec.summary, spec.summary_es
     n, types = features.dof, features.joint_types
-    summary = f"{n} joints ({types})"
+    summary, summary_es = f"{n} joints ({types})", f"{n} articulaciones ({types})"
     if n == 6 and types == "RRRRRR" and {(0, 1), (1, 2)} <= set(features.parallel):
         summary = "6R, three parallel axes (1-2-3)"
+        summary_es = "6R con tres ejes paralelos (1-2-3)"
     elif n > 6:
         summary += ", redundant"
+        summary_es += ", redundante"
         if features.wrist_center is not None:
             summary += ", spherical wrist"
+            summary_es += ", con muñeca esférica"
     elif features.wrist_center is not None:
         summary += ", last three axes meet (wrist)"
-    return "general", summary
+        summary_es += ", los tres últimos ejes se cortan (muñeca)"
+    return "general", summary, summary_es

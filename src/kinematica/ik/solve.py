@@ -40,8 +40,8 @@ _SOLVERS: weakref.WeakKeyDictionary[Chain, dict[str, ClosedForm | None]] = (
 )
 
 
-def structure_of(chain: Chain) -> tuple[str, str]:
-    """``(kind, summary)`` of a chain's structure (see :func:`describe`)."""
+def structure_of(chain: Chain) -> tuple[str, str, str]:
+    """``(kind, summary, summary in Spanish)`` of a chain's structure (see :func:`describe`)."""
     return describe(features(chain), SOLVERS)
 
 
@@ -137,7 +137,9 @@ def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | 
     if method == "analytic" and closed is None:
         why = "a mask was given" if m is not None else f"structure: {structure_of(chain)[1]}"
         raise KinematicaError(
-            f"no closed-form solver for this arm ({why})", arg="method", suggest=("method", "numeric")
+            f"no closed-form solver for this arm ({why})",
+            arg="method",
+            suggest=("method", "numeric"),
         )
     solver: Any
     if closed is not None:

@@ -30,11 +30,13 @@ class Structure:
             ``"rrp-spherical-wrist"``), or ``"general"``.
         summary: One line for people, e.g. ``"6R, spherical wrist"``.
         features: The geometry of the joint axes at q = 0.
+        summary_es: The line in Spanish, e.g. ``"6R con muñeca esférica"``.
     """
 
     kind: str
     summary: str
     features: Features
+    summary_es: str = ""
 
     @property
     def joint_types(self) -> str:
@@ -59,5 +61,5 @@ class Structure:
 
 def classify(robot: Robot) -> Structure:
     """Classify an arm from its joint axes at q = 0 (never from its name)."""
-    kind, summary = structure_of(robot.chain)
-    return Structure(kind=kind, summary=summary, features=features(robot.chain))
+    kind, summary, summary_es = structure_of(robot.chain)
+    return Structure(kind, summary, features(robot.chain), summary_es)

@@ -255,26 +255,6 @@ def phrase(key: str, lang: str) -> str:
     return PHRASES[key][LANGS.index(lang)]
 
 
-#: Spanish names of the structure classes (``km.classify(robot).kind``).
-_KINDS_ES: Final = {
-    "planar-2R": "brazo plano 2R",
-    "planar-3R": "brazo plano 3R",
-    "planar-PR": "brazo plano PR (prismática y rotacional)",
-    "planar-PRR": "brazo plano PRR (prismática y dos rotacionales paralelas)",
-    "scara": "SCARA (RRPR, todos los ejes paralelos)",
-    "anthropomorphic-3R": "brazo antropomórfico 3R (los ejes del hombro se cortan)",
-    "elbow-3R": "brazo 3R de codo con desplazamiento en el hombro",
-    "spherical-wrist-6R": "6R con muñeca esférica",
-    "rrp-spherical-wrist": "RRP con muñeca esférica (tipo Stanford)",
-    "three-parallel-6R": "6R con tres ejes paralelos (2-3-4), tipo UR",
-}
-
-
 def structure_summary(structure: Structure, lang: str) -> str:
-    """The one-line structure of an arm in ``lang`` (``km.classify(robot).summary`` in English)."""
-    if lang == "es":
-        name = _KINDS_ES.get(structure.kind)
-        if name is not None:
-            return name
-        return f"{len(structure.joint_types)} articulaciones ({structure.joint_types})"
-    return structure.summary
+    """The one-line structure of an arm in ``lang`` (its solver's own summaries)."""
+    return structure.summary_es if lang == "es" else structure.summary

@@ -6,12 +6,21 @@ in the order they are tried.
 
 from __future__ import annotations
 
-from kinematica.ik.analytic import arm_position, elbow_arms, planar_arms, spherical_wrist
+from kinematica.ik.analytic import (
+    arm_position,
+    elbow_arms,
+    parallel,
+    planar_arms,
+    spherical_wrist,
+)
 from kinematica.ik.registry import SolverSpec
 
 __all__ = ["SOLVERS"]
 
+# Three-parallel first: an arm with axes 2-3-4 parallel and a spherical wrist
+# (axes 4, 5, 6 meeting: d5 = a5 = 0) is a UR-type arm, whose solver handles it whole.
 SOLVERS: tuple[SolverSpec, ...] = (
+    parallel.SPEC,
     *planar_arms.SPECS,
     *elbow_arms.SPECS,
     *spherical_wrist.SPECS,
