@@ -12,8 +12,10 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import dataclass
 from pathlib import Path
 
+import kinematica._core as _core
 import numpy as np
 import pytest
 from helpers import assert_transform_close, transform_from
@@ -24,7 +26,6 @@ from scipy.spatial.transform import Rotation
 from kinematica.dh import Prismatic, Revolute
 from kinematica.ik import ClosedForm, IKBatchResult, IKResult, closed_form
 from kinematica.ik.analytic.arm_point import arm_geometry
-from kinematica.kernels.ik_check import INFO_FREE, INFO_GAP, INFO_SINGULAR
 from kinematica.robot import Robot, classify
 
 FloatArray = NDArray[np.float64]
@@ -58,13 +59,41 @@ def solver_of(robot: Robot) -> ClosedForm:
     return solver
 
 
-def raw(robot: Robot, T: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """The kernel's candidates ``(N, 8, 6)`` and info ``(N, k)`` for poses ``T (N, 4, 4)``."""
-    solver = solver_of(robot)
-    Q = np.empty((len(T), 8, 6))
-    info = np.zeros((len(T), INFO_FREE + 6))
-    solver.solve_batch(solver.params, np.ascontiguousarray(T, dtype=float), Q, info)
+@dataclass(frozen=True)
+class Info:
+    """What a solver says of each of N targets besides its candidates.
+
+    Attributes:
+        singular: ``(N,)`` the solutions form a continuum.
+        near: ``(N,)`` near a singular set or a fold.
+        gap: ``(N,)`` a proven distance to the reachable set (m), NaN: unknown.
+        free: ``(N, n)`` the joints free in the continuum.
+    """
+
+    singular: NDArray[np.bool_]
+    near: NDArray[np.bool_]
+    gap: FloatArray
+    free: NDArray[np.bool_]
+
+
+def candidates(solver: ClosedForm, robot: Robot, T: FloatArray) -> tuple[FloatArray, Info]:
+    """The solver's raw candidates ``(N, m, n)`` and its info for targets ``T (N, 4, 4)``."""
+    rows = [solver.params.candidates(robot.chain.core, np.ascontiguousarray(t)) for t in T]
+    n = robot.dof
+    Q = np.array([r[0] for r in rows]).reshape(len(T), solver.slots, n)
+    free = np.array([[(r[4] >> j) & 1 for j in range(n)] for r in rows], dtype=bool)
+    info = Info(
+        singular=np.array([r[1] for r in rows], dtype=bool),
+        near=np.array([r[2] for r in rows], dtype=bool),
+        gap=np.array([r[3] for r in rows], dtype=float),
+        free=free.reshape(len(T), n),
+    )
     return Q, info
+
+
+def raw(robot: Robot, T: FloatArray) -> tuple[FloatArray, Info]:
+    """The pose solver's candidates ``(N, 8, 6)`` and info for poses ``T (N, 4, 4)``."""
+    return candidates(solver_of(robot), robot, T)
 
 
 def solve_checked(robot: Robot, T: FloatArray, tol: float = EXACT) -> FloatArray:
@@ -75,7 +104,7 @@ def solve_checked(robot: Robot, T: FloatArray, tol: float = EXACT) -> FloatArray
     real = ~nan.any(axis=2)
     reached = robot.fk(np.where(real[..., None], q, 0.0))
     assert_transform_close(reached[real], np.broadcast_to(T[:, None], reached.shape)[real], tol)
-    assert np.isnan(info[real.any(axis=1), INFO_GAP]).all()
+    assert np.isnan(info.gap[real.any(axis=1)]).all()
     return q
 
 
@@ -363,8 +392,8 @@ def test_singular_wrist_returns_a_representative() -> None:
     T = PUMA.fk(q0)
     q = solve_checked(PUMA, T)
     _, info = raw(PUMA, T)
-    assert (info[:, INFO_SINGULAR] == 1.0).all()
-    assert (info[:, INFO_FREE:] == [0, 0, 0, 1, 0, 1]).all()
+    assert info.singular.all()
+    assert (info.free == [False, False, False, True, False, True]).all()
     # in the original's position branch (same q1..q3) the wrist is singular: the
     # representative has q4 = 0 and the "flip" slot (the same family) is NaN
     branch = np.abs(np.angle(np.exp(1j * (q[..., :3] - q0[:, None, :3])))).max(axis=2) < 1e-9
@@ -387,7 +416,7 @@ def test_singular_wrist_returns_a_representative() -> None:
 def test_regular_poses_are_not_singular() -> None:
     rng = np.random.default_rng(16)
     _, info = raw(PUMA, PUMA.fk(random_q(PUMA, rng, 50)))
-    assert not info[:, INFO_SINGULAR].any() and not info[:, INFO_FREE:].any()
+    assert not info.singular.any() and not info.free.any()
 
 
 def test_shoulder_singularity_frees_q1() -> None:
@@ -406,7 +435,7 @@ def test_shoulder_singularity_frees_q1() -> None:
     assert np.hypot(centre[0], centre[1]) < 1e-12
     solve_checked(robot, T)
     _, info = raw(robot, T)
-    assert info[0, INFO_SINGULAR] and info[0, INFO_FREE] and not info[0, INFO_FREE + 3]
+    assert info.singular[0] and info.free[0, 0] and not info.free[0, 3]
     res = robot.ik(T[0])
     assert res.status == "singular" and res.free_joints == (0,)
 
@@ -417,7 +446,7 @@ def test_unreachable_target_has_no_branch_and_a_gap() -> None:
     T[:, :3, 3] += np.array([4.0, -3.0, 2.0])
     q, info = raw(PUMA, T)
     assert np.isnan(q).all()
-    gap = info[:, INFO_GAP]
+    gap = info.gap
     # a lower bound of the distance of the wrist centre to those reachable
     samples = PUMA.fk(random_q(PUMA, rng, 20000))
     reach = samples[:, :3, 3]  # PUMA: no tool, the flange origin is the wrist centre
@@ -432,7 +461,7 @@ def test_unreachable_target_has_no_branch_and_a_gap() -> None:
     far = robot.fk(random_q(robot, rng, 3))
     far[:, :3, 3] += 10.0
     q, info = raw(robot, far)
-    assert np.isnan(q).all() and (info[:, INFO_GAP] > 0).all()
+    assert np.isnan(q).all() and (info.gap > 0).all()
 
 
 def test_orientation_the_wrist_cannot_make() -> None:
@@ -452,7 +481,7 @@ def test_orientation_the_wrist_cannot_make() -> None:
     flipped[:3, :3] = T[:3, :3] @ np.diag([1.0, -1.0, -1.0])
     flipped[:3, 3] = centre + 0.1 * flipped[:3, 2]
     q, info = raw(robot, flipped[None])
-    assert np.isnan(q).all() and info[0, INFO_GAP] == 0.0  # position fine, rotation not
+    assert np.isnan(q).all() and info.gap[0] == 0.0  # position fine, rotation not
     assert len(dls_solutions(robot, flipped, rng)) == 0
     assert robot.ik(flipped).status == "unreachable"
 
@@ -516,22 +545,31 @@ def test_builders_refuse_other_arms() -> None:
 
 
 @pytest.mark.parametrize(("shoulder", "joint3"), [*GEOMETRIES, ("puma", "")])
-def test_single_kernel_equals_the_batch(shoulder: str, joint3: str) -> None:
-    """One pose through ``solve_one`` gives what the parallel batch loop gives."""
+def test_single_call_equals_the_batch(shoulder: str, joint3: str) -> None:
+    """One pose through the solver's single call gives what its threaded batch gives."""
     rng = np.random.default_rng(22)
     robot = PUMA if shoulder == "puma" else random_wrist_arm(rng, shoulder, joint3)
-    q0 = random_q(robot, rng, 40)
+    q0 = random_q(robot, rng, 140)
     q0[:8, 4] = 0.0  # the PUMA's wrist singularity (a regular pose on the others)
     T = robot.fk(q0)
     T[-4:, :3, 3] += 5.0  # out of reach
+    T = T[rng.permutation(len(T))]  # blocks of 64 targets holding every kind
     solver = solver_of(robot)
+    opts = _core.CheckOptions()
+    opts.complete = True
+    opts.respect_limits = False
+    many = solver.params.ik_batch(robot.chain.core, T, opts, None, None, 4)
     Q, info = raw(robot, T)
     for i in range(len(T)):
-        q1 = np.empty((8, 6))
-        i1 = np.zeros(INFO_FREE + 6)
-        solver.solve_one(solver.params, T[i], q1, i1)
-        np.testing.assert_array_equal(q1, Q[i])
-        np.testing.assert_array_equal(i1, info[i])
+        q, res, slots, report = solver.params.ik(robot.chain.core, T[i], opts, None)
+        np.testing.assert_array_equal(q, many["q"][i])
+        np.testing.assert_array_equal(res, many["res"][i])
+        assert slots == [s for s in many["slot"][i].tolist() if s >= 0]
+        assert report[0] == many["status"][i] and report[1] == many["count"][i]
+        assert report[6] == many["near"][i] == info.near[i]
+        np.testing.assert_array_equal(report[3], many["gap"][i])
+        Qi, *_ = solver.params.candidates(robot.chain.core, T[i])
+        np.testing.assert_array_equal(Qi, Q[i])
 
 
 def test_general_quartic_on_the_eaik_reference_is_exact() -> None:

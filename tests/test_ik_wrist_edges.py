@@ -15,6 +15,7 @@ import dataclasses
 import math
 import warnings
 
+import kinematica._core as _core
 import numpy as np
 import pytest
 from helpers import transforms
@@ -22,28 +23,23 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from ik_search import joint_distance, random_q
 from numpy.typing import NDArray
-from test_ik_wrist import GEOMETRIES, random_wrist_arm
+from test_ik_wrist import GEOMETRIES, candidates, random_wrist_arm
 
 import kinematica as km
 from kinematica.cli.main import main
 from kinematica.dh import Prismatic, Revolute
 from kinematica.ik import ClosedForm, IKBatchResult, closed_form
-from kinematica.kernels.ik_check import INFO_FREE, INFO_NEAR
-from kinematica.kernels.solvers.arm_base import (
-    A_P1,
-    A_Q3,
-    A_SCALE,
-    DOUBLE_ROOT_TOL,
-    HUGE_REACH,
-    NEAR_SET_TOL,
-    NEAR_TOL,
-    SINGULAR_TOL,
-)
-from kinematica.kernels.solvers.spherical_wrist import WRIST_SINGULAR_TOL
 from kinematica.robot import Robot
 
 FloatArray = NDArray[np.float64]
 PI = math.pi
+D = _core.decoupled
+DOUBLE_ROOT_TOL = D.DOUBLE_ROOT_TOL
+HUGE_REACH = D.HUGE_REACH
+NEAR_SET_TOL = D.NEAR_SET_TOL
+NEAR_TOL = D.NEAR_TOL
+SINGULAR_TOL = D.SINGULAR_TOL
+WRIST_SINGULAR_TOL = D.WRIST_SINGULAR_TOL
 ARM6 = km.load("arm6-dh")
 PUMA = km.load("puma560")
 #: What the closed form takes for round-off in lengths (relative to the arm's
@@ -61,13 +57,9 @@ def solver(robot: Robot) -> ClosedForm:
     return cf
 
 
-def kernel_info(robot: Robot, T: FloatArray) -> FloatArray:
-    """The solver's ``info`` rows ``(N, k)`` for poses ``T (N, 4, 4)``."""
-    cf = solver(robot)
-    Q = np.empty((len(T), cf.slots, robot.dof))
-    info = np.zeros((len(T), INFO_FREE + robot.dof))
-    cf.solve_batch(cf.params, np.ascontiguousarray(T), Q, info)
-    return info
+def near_flags(robot: Robot, T: FloatArray) -> NDArray[np.bool_]:
+    """``(N,)`` the pose solver's near flag for poses ``T (N, 4, 4)``."""
+    return candidates(solver(robot), robot, T)[1].near
 
 
 def tolerance_at(robot: Robot, q: FloatArray) -> FloatArray:
@@ -96,7 +88,7 @@ def assert_honest(robot: Robot, q: FloatArray, strict: bool = True) -> IKBatchRe
     ok = res.status == "ok"
     found = nearest(robot, res, q) < tolerance_at(robot, q)
     if not strict:
-        found |= kernel_info(robot, T)[:, INFO_NEAR] != 0.0
+        found |= near_flags(robot, T)
     assert (found | ~ok).all(), q[~found & ok]
     singular = res.status == "singular"
     assert res.free[singular].any(axis=1).all()
@@ -428,7 +420,7 @@ def moved_target(T: FloatArray, shift: FloatArray) -> FloatArray:
 def test_singular_tol_decides_when_q1_is_free(factor: float, free: bool) -> None:
     """A target translated off the README's singular pose by ``factor`` · SINGULAR_TOL · size."""
     T = ARM6.fk(np.radians([30, 20, -40, 10, 60, -20]))
-    scale = solver(ARM6).params[A_SCALE]
+    scale = solver(ARM6).params.arm.scale
     res = ARM6.ik(moved_target(T, np.array([factor * SINGULAR_TOL * scale, 0.0, 0.0])))
     assert (res.status == "singular") == free and (0 in res.free_joints) == free
 
@@ -437,9 +429,9 @@ def test_singular_tol_decides_when_q1_is_free(factor: float, free: bool) -> None
 def test_near_set_tol_flags_targets_near_axis_1(factor: float, near: bool) -> None:
     """A target ``factor`` · NEAR_SET_TOL · size off axis 1 is flagged near it, or not."""
     T = ARM6.fk(np.radians([30, 20, -40, 10, 60, -20]))
-    scale = solver(ARM6).params[A_SCALE]
+    scale = solver(ARM6).params.arm.scale
     shifted = moved_target(T, np.array([factor * NEAR_SET_TOL * scale, 0.0, 0.0]))
-    assert (kernel_info(ARM6, shifted[None])[0, INFO_NEAR] != 0.0) == near
+    assert near_flags(ARM6, shifted[None])[0] == near
     assert ARM6.ik(shifted).status == "ok"
 
 
@@ -448,9 +440,9 @@ def test_near_tol_keeps_a_double_root_just_past_the_stretched_arm(
     factor: float, candidate: bool
 ) -> None:
     """A radicand just below 0 (by NEAR_TOL at most) is a double root for the check to judge."""
-    params = solver(PUMA).params
-    beta, _, _, _, dmax = params[A_Q3 : A_Q3 + 5]
-    p1 = params[A_P1 : A_P1 + 3]  # where axes 1 and 2 meet
+    arm = solver(PUMA).params.arm
+    beta, dmax = arm.beta, arm.dmax
+    p1 = arm.p1  # where axes 1 and 2 meet
     q = np.array([0.3, -0.6, beta, 0.5, 0.9, -0.4])  # stretched: |wrist centre - p1| = Dmax
     T = PUMA.fk(q)  # the PUMA's wrist centre is its flange origin
     assert np.linalg.norm(T[:3, 3] - p1) == pytest.approx(dmax, rel=1e-12)

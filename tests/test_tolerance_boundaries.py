@@ -15,18 +15,12 @@ import warnings
 import numpy as np
 import pytest
 import test_dh_extract as dh_extract
-import test_ik_wrist_edges as wrist_edges
-import test_kernels_wrist as kernels_wrist
 
 import kinematica as km
-from kinematica.dh import Revolute
-from kinematica.ik.analytic.arm_point import places_point
 from kinematica.io import parse_urdf
 from kinematica.kernels import polynomial
 from kinematica.kernels.geometry import trig_linear
 from kinematica.kernels.ik_check import INFO_NEAR
-from kinematica.kernels.solvers.arm_base import A_SCALE, ST_NEAR, ST_SIZE, clamped_root
-from kinematica.kernels.solvers.arm_quartic import trig_roots
 from kinematica.motion import cartesian_path
 
 # The documented values (m, rad, or a sine/cosine), one per constant.
@@ -197,114 +191,6 @@ def test_collinear_tol_rejects_a_via_on_the_line(factor: float, inside: bool) ->
         assert np.allclose(path.poses[-1], T1, atol=1e-9)
 
 
-# --- kernels/solvers/arm_quartic.py -------------------------------------------
-
-SELF_MOTION_TOL = 1e-14  # kernels/solvers/arm_quartic.py
-
-
-@pytest.mark.parametrize(("factor", "inside"), FACTORS)
-def test_self_motion_tol_is_relative_round_off_of_the_quartic(factor: float, inside: bool) -> None:
-    """SELF_MOTION_TOL: the trigonometric polynomial F of q3 is identically 0
-    (joints 1-3 have a self-motion, every q3 is a root) when its coefficients
-    are below this fraction of the size of the terms they were computed from.
-
-    A constant F = c with terms of size 3: a self-motion when c < 3 · 1e-14,
-    else a nonzero constant with no root.
-    """
-    size = 3.0
-    F = np.array([factor * SELF_MOTION_TOL * size, 0.0, 0.0, 0.0, 0.0])
-    q = np.empty(4)
-    assert trig_roots(F, size, q, np.zeros(ST_SIZE)) == inside
-    if inside:
-        np.testing.assert_allclose(q, [-math.pi / 2, 0.0, math.pi / 2, math.pi])
-    else:
-        assert np.isnan(q).all()
-
-
-# --- kernels/solvers/arm_base.py: the arm's radicands and singular sets --------
-
-ARM_DOUBLE_ROOT_TOL = 1e-14  # arm_base.DOUBLE_ROOT_TOL
-ARM_NEAR_TOL = 1e-6  # arm_base.NEAR_TOL
-
-
-@pytest.mark.parametrize(("factor", "inside"), FACTORS)
-def test_arm_double_root_tol_is_round_off_of_a_fold(factor: float, inside: bool) -> None:
-    """arm_base.DOUBLE_ROOT_TOL: a fold's signed distance within it of (size +
-    arm scale) is round-off, a double root (0 comes back); beyond, sqrt(diff · other).
-    """
-    size, other, scale = 3.0, 2.0, 1.0
-    diff = factor * ARM_DOUBLE_ROOT_TOL * (size + scale)
-    st = np.zeros(ST_SIZE)
-    root = clamped_root(diff, size, other, scale, st)
-    if inside:
-        assert root == 0.0 and st[ST_NEAR] != 0.0
-    else:
-        assert root == pytest.approx(math.sqrt(diff * other), rel=1e-12)
-        assert st[ST_NEAR] == 0.0
-
-
-@pytest.mark.parametrize(("factor", "inside"), FACTORS)
-def test_arm_near_tol_keeps_roots_just_past_a_fold(factor: float, inside: bool) -> None:
-    """arm_base.NEAR_TOL: a target past a fold by less than this (relative to
-    the fold's size) still gives the mirrored candidates sqrt(|diff| · other)
-    for the check to judge, and raises ST_NEAR; farther past, NaN.
-    """
-    size, other, scale = 3.0, 2.0, 1.0
-    diff = -factor * ARM_NEAR_TOL * size
-    st = np.zeros(ST_SIZE)
-    root = clamped_root(diff, size, other, scale, st)
-    if inside:
-        assert root == pytest.approx(math.sqrt(-diff * other), rel=1e-12)
-        assert st[ST_NEAR] != 0.0
-    else:
-        assert math.isnan(root) and st[ST_NEAR] == 0.0
-
-
-ARM_SINGULAR_TOL = 1e-12  # arm_base.SINGULAR_TOL
-NEAR_SET_TOL = 1e-9  # arm_base.NEAR_SET_TOL
-WRIST_SINGULAR_TOL = 1e-12  # spherical_wrist.WRIST_SINGULAR_TOL
-#: The README's singular pose of arm6-dh: its wrist centre on axis 1.
-ARM6_SINGULAR_Q = np.radians([30, 20, -40, 10, 60, -20])
-
-
-@pytest.mark.parametrize(("factor", "inside"), [(0.5, True), (2.0, False)])
-def test_arm_singular_tol_frees_q1_on_axis_1(factor: float, inside: bool) -> None:
-    """arm_base.SINGULAR_TOL: a wrist centre within it (times the arm's size)
-    of axis 1 is on the singular set: q1 is free (status "singular").
-    """
-    arm6 = km.load("arm6-dh")
-    T = arm6.fk(ARM6_SINGULAR_Q)
-    scale = wrist_edges.solver(arm6).params[A_SCALE]
-    res = arm6.ik(wrist_edges.moved_target(T, np.array([factor * ARM_SINGULAR_TOL * scale, 0, 0])))
-    assert (res.status == "singular") == inside
-    assert (0 in res.free_joints) == inside
-
-
-@pytest.mark.parametrize(("factor", "inside"), [(0.5, True), (2.0, False)])
-def test_near_set_tol_flags_a_wrist_centre_near_axis_1(factor: float, inside: bool) -> None:
-    """arm_base.NEAR_SET_TOL: a wrist centre within it (times the arm's size) of
-    axis 1, yet off the singular set, is flagged near it (INFO_NEAR); solved.
-    """
-    arm6 = km.load("arm6-dh")
-    T = arm6.fk(ARM6_SINGULAR_Q)
-    scale = wrist_edges.solver(arm6).params[A_SCALE]
-    shifted = wrist_edges.moved_target(T, np.array([factor * NEAR_SET_TOL * scale, 0.0, 0.0]))
-    assert (wrist_edges.kernel_info(arm6, shifted[None])[0, INFO_NEAR] != 0.0) == inside
-    assert arm6.ik(shifted).status == "ok"
-
-
-@pytest.mark.parametrize(("factor", "inside"), [(0.5, True), (2.0, False)])
-def test_wrist_singular_tol_is_the_sine_of_q5(factor: float, inside: bool) -> None:
-    """spherical_wrist.WRIST_SINGULAR_TOL: axes 4 and 6 are aligned (q4 + q6
-    free) when the sine of the angle between them, q5 on a PUMA, is below it.
-    """
-    puma = km.load("puma560")
-    q = np.array([0.3, -0.6, 0.2, 0.5, factor * WRIST_SINGULAR_TOL, -0.4])
-    res = puma.ik(puma.fk(q), respect_limits=False)
-    assert (res.status == "singular") == inside
-    assert (res.free_joints == (3, 5)) == inside
-
-
 # --- robot/singularities.py: named singular configurations ---------------------
 
 WRIST_TOL = 1e-6  # robot/singularities.py
@@ -365,45 +251,6 @@ def test_rank_tol_is_the_relative_singular_value(factor: float, inside: bool) ->
     s = np.linalg.svd(arm.jacobian([0.2, 0.5])[:3], compute_uv=False)
     assert s == pytest.approx([1.0, 0.5])
     assert arm.singularities([0.2, factor * RANK_TOL]) == (["rank"] if inside else [])
-
-
-# --- ik/analytic/arm_point.py: the closed-form builder's arm geometry ----------
-
-GEOMETRY_TOL = 1e-9  # ik/analytic/arm_point.py
-ARM_RANK_TOL = 1e-6  # ik/analytic/arm_point.py RANK_TOL
-
-
-@pytest.mark.parametrize(("factor", "kind"), [(0.5, "parallel"), (2.0, "general")])
-def test_geometry_tol_parallel_shoulder(factor: float, kind: str) -> None:
-    """GEOMETRY_TOL: axes 1 and 2 twisted by less than it (rad) are parallel."""
-    assert kernels_wrist.shoulder(factor * GEOMETRY_TOL, 0.2) == kind
-
-
-@pytest.mark.parametrize(("factor", "kind"), [(0.5, "meet"), (2.0, "general")])
-def test_geometry_tol_meeting_shoulder(factor: float, kind: str) -> None:
-    """GEOMETRY_TOL: axes 1 and 2 offset by less than it (relative to the sizes
-    the builder compares, 1 + |c - p1| + |p2 - p1|) meet.
-    """
-    rows = [Revolute(d=0.4, alpha=math.pi / 2), Revolute(a=0.4, alpha=0.7), Revolute(d=0.1)]
-    probe = km.Robot.from_dh([*rows, Revolute(d=0.4)], name="probe")
-    _, p = probe.joint_axes()
-    c = probe.fk(np.zeros(4))[:3, 3]
-    scale = 1.0 + float(np.linalg.norm(c - p[0]) + np.linalg.norm(p[1] - p[0]))
-    assert kernels_wrist.shoulder(math.pi / 2, factor * GEOMETRY_TOL * scale) == kind
-
-
-@pytest.mark.parametrize(("factor", "usable"), [(0.5, False), (2.0, True)])
-def test_arm_rank_tol_needs_joints_1_to_3_to_place_the_point(factor: float, usable: bool) -> None:
-    """arm_point.RANK_TOL: joints 1-3 place the tool point when the best ratio
-    σmin/σmax of d(point)/d(q1..q3) over the builder's probes is above it.
-
-    Joint 3 moves the point on a circle of radius eps: the ratio is linear in
-    eps, so eps is scaled to put it at ``factor`` · RANK_TOL.
-    """
-    r1 = kernels_wrist.rank_ratio(kernels_wrist.arm_with_point_near_axis_3(1e-4))
-    robot = kernels_wrist.arm_with_point_near_axis_3(1e-4 * factor * ARM_RANK_TOL / r1)
-    assert kernels_wrist.rank_ratio(robot) == pytest.approx(factor * ARM_RANK_TOL, rel=0.05)
-    assert places_point(robot.chain, np.zeros(3)) == usable
 
 
 # --- dh/lines.py and dh/extract.py: DH tables from URDF -------------------------

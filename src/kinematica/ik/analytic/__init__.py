@@ -6,7 +6,13 @@ in the order they are tried.
 
 from __future__ import annotations
 
-from kinematica.ik.analytic import elbow_arms, parallel, planar_arms
+from kinematica.ik.analytic import (
+    arm_position,
+    elbow_arms,
+    parallel,
+    planar_arms,
+    spherical_wrist,
+)
 from kinematica.ik.registry import SolverSpec
 
 __all__ = ["SOLVERS"]
@@ -17,4 +23,6 @@ SOLVERS: tuple[SolverSpec, ...] = (
     parallel.SPEC,
     *planar_arms.SPECS,
     *elbow_arms.SPECS,
+    *spherical_wrist.SPECS,
+    arm_position.SPEC,  # position targets of any longer arm: tried last
 )

@@ -3,10 +3,10 @@
 Joints 1 and 2 are revolute (lines ``(h1, p1)``, ``(h2, p2)`` at q = 0); joint 3
 is revolute or prismatic. A point ``c`` fixed after joint 3 (a wrist centre, or
 the tool origin with the later joints at 0) must reach a target. This module
-reads the geometry from the joint axes and packs it into the parameters of the
-kernel :mod:`kinematica.kernels.solvers.arm_point` (see there for the maths):
-which of three shoulders it is (axes 1 and 2 meet, are parallel, or are skew),
-the motion ``u(q3)`` of the point as seen from axis 2, its expression on a
+reads the geometry from the joint axes and fills the named fields of the core's
+``ArmPoint`` (``cpp/include/kinematica/solvers/arm_point.hpp``, see there for the
+maths): which of three shoulders it is (axes 1 and 2 meet, are parallel, or are
+skew), the motion ``u(q3)`` of the point as seen from axis 2, its expression on a
 frame of axis 2, the bounds of the reachable shell, and the branch labels.
 """
 
@@ -14,13 +14,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica.dh import DHChain
-from kinematica.kernels import fk, jacobian
-from kinematica.kernels.solvers import arm_base
+import kinematica._core as _core
+from kinematica.core import Chain
 
 __all__ = [
     "GEOMETRY_TOL",
@@ -29,10 +29,12 @@ __all__ = [
     "ArmGeometry",
     "arm_geometry",
     "places_point",
+    "random_transform",
     "unit_normal",
 ]
 
 FloatArray = NDArray[np.float64]
+_Shoulder = _core.decoupled.Shoulder
 
 #: Two axes are parallel when the sine of their angle is below this; lines
 #: meet when their distance is below this times the arm's size.
@@ -47,22 +49,22 @@ PROBES = np.array([[0.3, -0.7, 1.1], [-1.3, 0.4, -0.6], [2.1, 1.7, 0.2]])
 
 @dataclass(frozen=True, eq=False)
 class ArmGeometry:
-    """The packed parameters of the arm part, and the names of its four slots.
+    """The core's arm part, and the names of its four slots.
 
     Attributes:
-        params: ``(A_SIZE,)`` the kernel's parameters (read-only).
+        arm: The filled ``kinematica._core.decoupled.ArmPoint``.
         labels: ``(4,)`` names of the position branches (slots).
         kind: ``"meet"``, ``"parallel"`` or ``"general"`` (axes 1 and 2).
         parallel23: True when axes 2 and 3 are parallel (revolute joint 3).
     """
 
-    params: FloatArray
+    arm: Any
     labels: tuple[str, ...]
     kind: str
     parallel23: bool
 
 
-def places_point(chain: DHChain, c_tool: FloatArray) -> bool:
+def places_point(chain: Chain, c_tool: FloatArray) -> bool:
     """True when joints 1-3 move a point in three independent directions.
 
     Args:
@@ -71,12 +73,26 @@ def places_point(chain: DHChain, c_tool: FloatArray) -> bool:
     """
     q = np.zeros((len(PROBES), chain.dof))
     q[:, :3] = PROBES
-    T, _, _ = fk(chain, q)
-    J, _ = jacobian(chain, q)  # linear velocity of the tool origin, then ω
+    T, _, _ = chain.fk(q)
+    J, _ = chain.jacobian(q)  # linear velocity of the tool origin, then ω (base frame)
     r = T[:, :3, :3] @ c_tool  # the point relative to the tool origin
     Jc = J[:, :3, :3] + np.cross(J[:, 3:, :3], r[:, :, None], axis=1)
     s = np.linalg.svd(Jc, compute_uv=False)
     return bool(np.any(s[:, -1] > RANK_TOL * s[:, 0]))
+
+
+def random_transform(rng: np.random.Generator, reach: float) -> FloatArray:
+    """``(4, 4)`` a random rigid transform: uniform rotation, translation within ``reach`` (m)."""
+    q = rng.normal(size=4)
+    w, x, y, z = q / np.linalg.norm(q)
+    T = np.eye(4)
+    T[:3, :3] = [
+        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+    ]
+    T[:3, 3] = rng.uniform(-reach, reach, 3)
+    return T
 
 
 def _foot_points(
@@ -100,7 +116,7 @@ def unit_normal(h: FloatArray) -> FloatArray:
 def arm_geometry(
     h: FloatArray, p: FloatArray, prismatic: bool, c: FloatArray
 ) -> ArmGeometry | None:
-    """The packed geometry of joints 1-3 placing ``c``, or None when they cannot.
+    """The geometry of joints 1-3 placing ``c``, or None when they cannot.
 
     Args:
         h: ``(3, 3)`` unit directions of joints 1..3 at q = 0 (base frame).
@@ -122,19 +138,19 @@ def arm_geometry(
         a = float(np.linalg.norm(delta))
         if a < GEOMETRY_TOL * scale:
             return None  # axes 1 and 2 coincide
-        kind, p2 = arm_base.KIND_PARALLEL, p1 + delta
+        kind, p2 = _Shoulder.parallel, p1 + delta
         e1 = delta / a
         e2 = np.cross(h2, e1)
     else:
         f1, f2 = _foot_points(h1, p1, h2, p2)
         a = float(np.linalg.norm(f2 - f1))
         if a < GEOMETRY_TOL * scale:  # they meet, or all but (an offset of 1e-10)
-            kind, p1, p2 = arm_base.KIND_MEET, f1, f2
+            kind, p1, p2 = _Shoulder.meet, f1, f2
             e2 = (h1 - ca * h2) / sa
             e1 = np.cross(e2, h2)
             a = float((f2 - f1) @ e1)  # signed: f2 - f1 is along h1 × h2, so along e1
         else:
-            kind, p1, p2 = arm_base.KIND_GENERAL, f1, f2
+            kind, p1, p2 = _Shoulder.general, f1, f2
             e1 = (f2 - f1) / a
             e2 = np.cross(h2, e1)
     if prismatic:
@@ -147,7 +163,7 @@ def arm_geometry(
         if float(np.linalg.norm(U[1])) < GEOMETRY_TOL * scale:
             return None  # the point is on axis 3
         parallel23 = float(np.linalg.norm(np.cross(h3, h2))) < GEOMETRY_TOL
-        if kind == arm_base.KIND_PARALLEL and parallel23:
+        if kind == _Shoulder.parallel and parallel23:
             return None  # three parallel axes: the point moves in a plane
     coef = U @ np.stack([e1, e2, h2, np.zeros(3)], axis=1)  # u1, u2, H, L
     if prismatic:
@@ -165,19 +181,18 @@ def arm_geometry(
     coef[:, 3] = L
     b3 = float(U[0] @ h3)
     m3 = float(np.linalg.norm(U[0] - b3 * h3))  # distance of axis 3 from p2
-    if prismatic:
-        q3_form = [b3, m3, 0.0, 0.0, 0.0]
-    else:
+    beta = dmin = dmax = 0.0  # |u(q3)| in half-angle form (revolute joint 3)
+    if not prismatic:
         n3 = float(np.linalg.norm(U[1]))
-        if m3 < GEOMETRY_TOL * scale and (kind == arm_base.KIND_MEET or parallel23):
+        if m3 < GEOMETRY_TOL * scale and (kind == _Shoulder.meet or parallel23):
             return None  # axis 3 through p2: |u| does not depend on q3
         beta = math.atan2(float(U[0] @ U[2]), float(U[0] @ U[1]))
-        q3_form = [beta, m3, n3, math.hypot(b3, m3 - n3), math.hypot(b3, m3 + n3)]
+        dmin, dmax = math.hypot(b3, m3 - n3), math.hypot(b3, m3 + n3)
     g = float(h1 @ e2)
     # |x - p1| = |δ + R2 u| lies in [max(0, umin - a, a - umax), a + umax]; with
     # axes 1 and 2 parallel h1ᵀ(x - p1) = cα H lies in cα [Hmin, Hmax]
     zlo, zhi = (
-        sorted(ca * v for v in Hrange) if kind == arm_base.KIND_PARALLEL else (-math.inf, math.inf)
+        sorted(ca * v for v in Hrange) if kind == _Shoulder.parallel else (-math.inf, math.inf)
     )
     shell = (max(0.0, umin - abs(a), abs(a) - umax), abs(a) + umax, zlo, zhi)
     a1 = unit_normal(h1)
@@ -193,49 +208,39 @@ def arm_geometry(
     elbow_sign = g * float(np.sign(h2 @ h3))
     # axes 1 and 2 meet: sign(g v1) is the shoulder sign (g > 0), so the order is fixed
     root_signs = np.array([[1.0, -1.0], [1.0, -1.0]])
-    if kind == arm_base.KIND_MEET and parallel23:
+    if kind == _Shoulder.meet and parallel23:
         root_signs[0 if elbow_sign > 0 else 1] *= -1.0
     # a second pass where the closed form neglects a small coupling: axes 1, 2
     # meeting but for an offset, or axes 2, 3 parallel but for a twist
-    refine = (kind == arm_base.KIND_MEET and a != 0.0) or (
-        parallel23 and abs(coef[1, 2]) + abs(coef[2, 2]) > arm_base.DOUBLE_ROOT_TOL * scale
+    refine = (kind == _Shoulder.meet and a != 0.0) or (
+        parallel23 and abs(coef[1, 2]) + abs(coef[2, 2]) > _core.decoupled.DOUBLE_ROOT_TOL * scale
     )
     fourier = np.zeros((5, 5))
-    if kind == arm_base.KIND_GENERAL and not prismatic:
+    if kind == _Shoulder.general and not prismatic:
         fourier = _fourier_matrix(a, sa, ca, np.array(L), coef[:, 2])
-    B = arm_base
-    params = np.zeros(B.A_SIZE)
-    blocks = {
-        B.A_KIND: kind,
-        B.A_PRISMATIC: float(prismatic),
-        B.A_PAR23: float(parallel23),
-        B.A_P1: p1,
-        B.A_FRAME1: frame1,
-        B.A_XFRAME: xframe,
-        B.A_COEF: coef,
-        B.A_A: a,
-        B.A_CA: ca,
-        B.A_SA: sa,
-        B.A_G: g,
-        B.A_ELBOW: elbow_sign,
-        B.A_ROOTS: root_signs,
-        B.A_SCALE: scale,
-        B.A_SHELL: np.array(shell),
-        B.A_FOURIER: fourier,
-        B.A_H1: h1,
-        B.A_H2: h2,
-        B.A_H3: h3,
-        B.A_P21: p2 - p1,
-        B.A_U: U,
-        B.A_Q3: np.array(q3_form),
-        B.A_REFINE: float(refine),
-    }
-    for o, v in blocks.items():
-        flat = np.ravel(v)
-        params[o : o + flat.size] = flat
-    params.flags.writeable = False
-    names = {B.KIND_MEET: "meet", B.KIND_PARALLEL: "parallel", B.KIND_GENERAL: "general"}
-    return ArmGeometry(params, _labels(kind, prismatic, parallel23), names[kind], parallel23)
+    arm = _core.decoupled.ArmPoint()
+    arm.kind = kind
+    arm.prismatic = bool(prismatic)
+    arm.parallel23 = bool(parallel23)
+    arm.p1 = p1
+    arm.h1, arm.a1, arm.b1 = frame1.T
+    arm.h2 = h2
+    arm.h3 = h3
+    arm.xframe = xframe
+    arm.u1, arm.u2, arm.H, arm.L = coef.T
+    arm.a = a
+    arm.ca = ca
+    arm.g = g
+    arm.elbow = elbow_sign
+    arm.upper_root = root_signs > 0.0
+    arm.scale = scale
+    arm.r_lo, arm.r_hi, arm.z_lo, arm.z_hi = shell
+    arm.fourier = fourier
+    arm.beta, arm.dmin, arm.dmax = beta, dmin, dmax
+    arm.b3, arm.m3 = b3, m3
+    arm.refine = bool(refine)
+    names = {_Shoulder.meet: "meet", _Shoulder.parallel: "parallel", _Shoulder.general: "general"}
+    return ArmGeometry(arm, _labels(kind, prismatic, parallel23), names[kind], parallel23)
 
 
 def _trig_square(x0: float, xc: float, xs: float) -> FloatArray:
@@ -255,7 +260,7 @@ def _fourier_matrix(a: float, sa: float, ca: float, L: FloatArray, H: FloatArray
     """``(5, 5)``: rows turn ``[X0², X0, Y0², Y0, 1]`` into the Fourier coefficients of F.
 
     ``F(q3) = sin²α X² + 4a² Y² - 4a² sin²α (L - H²)`` (Pieper's elimination,
-    see :mod:`kinematica.kernels.solvers.arm_quartic`) with
+    see ``cpp/include/kinematica/solvers/arm_quartic.hpp``) with
     ``X = X0 - L1 cos - L2 sin`` (``X0 = |d|² - a² - L0``) and
     ``Y = Y0 - cα (H1 cos + H2 sin)`` (``Y0 = ζ - cα H0``).
     """
@@ -273,22 +278,22 @@ def _fourier_matrix(a: float, sa: float, ca: float, L: FloatArray, H: FloatArray
     return F
 
 
-def _labels(kind: float, prismatic: bool, parallel23: bool) -> tuple[str, ...]:
-    if kind == arm_base.KIND_MEET and parallel23:
+def _labels(kind: _core.decoupled.Shoulder, prismatic: bool, parallel23: bool) -> tuple[str, ...]:
+    if kind == _Shoulder.meet and parallel23:
         return (
             "shoulder right, elbow up",
             "shoulder right, elbow down",
             "shoulder left, elbow up",
             "shoulder left, elbow down",
         )
-    if kind == arm_base.KIND_GENERAL and parallel23:
+    if kind == _Shoulder.general and parallel23:
         return (
             "shoulder front, elbow up",
             "shoulder front, elbow down",
             "shoulder back, elbow up",
             "shoulder back, elbow down",
         )
-    if kind == arm_base.KIND_MEET:
+    if kind == _Shoulder.meet:
         second = ("slide out", "slide in") if prismatic else ("elbow branch 1", "elbow branch 2")
         return tuple(f"shoulder {s}, {e}" for s in ("right", "left") for e in second)
     return tuple(f"position {k}" for k in range(1, 5))

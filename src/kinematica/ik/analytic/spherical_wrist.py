@@ -1,44 +1,46 @@
-"""Spherical-wrist arms (6R, and RRP of the Stanford type): the builder of their kernel.
+"""Spherical-wrist arms (6R, and RRP of the Stanford type): the builder of their solver.
 
-The kernel (:mod:`kinematica.kernels.solvers.spherical_wrist`) places the wrist
-centre by joints 1-3 (any first three axes: meeting, parallel or skew
-shoulders; the last needs Pieper's quartic) and solves the wrist for the
-rotation left over; this module reads the geometry from the joint axes once
-per arm and packs it.
+The core's solver (``cpp/include/kinematica/solvers/spherical_wrist.hpp``) places the
+wrist centre by joints 1-3 (any first three axes: meeting, parallel or skew
+shoulders; the last needs Pieper's quartic) and solves the wrist for the rotation
+left over; this module reads the geometry from the joint axes once per arm and
+fills its ``SphericalWristParams``.
 """
 
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica.dh import DHChain
+import kinematica._core as _core
+from kinematica.core import Chain
+from kinematica.dh.joints import Prismatic, Revolute
 from kinematica.ik.analytic.arm_point import (
     GEOMETRY_TOL,
     arm_geometry,
     places_point,
+    random_transform,
     unit_normal,
 )
-from kinematica.ik.registry import ClosedForm, SolverSpec, TargetKind
+from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
-from kinematica.kernels import fk
-from kinematica.kernels.solvers import decoupled
-from kinematica.kernels.solvers import spherical_wrist as wrist_kernel
 
-__all__ = ["SPECS", "build", "wrist_params"]
+__all__ = ["GEOMETRIES", "SPECS", "build", "random_wrist_rows", "wrist_params"]
 
 FloatArray = NDArray[np.float64]
+PI = math.pi
 
 
 def wrist_params(
-    params: FloatArray, h4: FloatArray, h5: FloatArray, h6: FloatArray, R_home: FloatArray
+    params: Any, h4: FloatArray, h5: FloatArray, h6: FloatArray, R_home: FloatArray
 ) -> bool:
-    """Write the wrist's parameters into ``params (W_SIZE,)``; False for no 3-DOF wrist.
+    """Fill the wrist's fields of ``params``; False for no 3-DOF wrist.
 
     Args:
-        params: The solver's parameters, written from ``W_LH`` on.
+        params: The solver's ``SphericalWristParams``.
         h4: ``(3,)`` unit axis 4 at q = 0 (base frame); ``h5``, ``h6`` likewise.
         h5: See ``h4``.
         h6: See ``h4``.
@@ -59,31 +61,26 @@ def wrist_params(
     # e.g. aligned with h4): (h4 × h5)ᵀ R5(ε) h6 ≈ ε (k45 k56 - h4ᵀh6)
     home = float(np.cross(h4, h5) @ h6)
     bend = k45 * k56 - float(h4 @ h6)
-    vectors = {
-        wrist_kernel.W_LH: R_home.T @ h6,
-        wrist_kernel.W_LX: R_home.T @ x6,
-        wrist_kernel.W_H4: h4,
-        wrist_kernel.W_H5: h5,
-        wrist_kernel.W_H6: h6,
-        wrist_kernel.W_X6: x6,
-        wrist_kernel.W_Y6: np.cross(h6, x6),
-        wrist_kernel.W_EA: ea,
-        wrist_kernel.W_EB: eb,
-        wrist_kernel.W_N56: F @ np.cross(h5, h6),
-        wrist_kernel.W_H6F: F @ h6,
-    }
-    for o, v in vectors.items():
-        params[o : o + 3] = v
-    params[wrist_kernel.W_K45] = k45
-    params[wrist_kernel.W_S45] = s45
-    params[wrist_kernel.W_K56] = k56
-    params[wrist_kernel.W_FLIP] = math.copysign(1.0, home if abs(home) > GEOMETRY_TOL else bend)
+    params.lh = R_home.T @ h6
+    params.lx = R_home.T @ x6
+    params.h4 = h4
+    params.h5 = h5
+    params.x6 = x6
+    params.y6 = np.cross(h6, x6)
+    params.ea = ea
+    params.eb = eb
+    params.n56 = F @ np.cross(h5, h6)
+    params.h6f = F @ h6
+    params.k45 = k45
+    params.s45 = s45
+    params.k56 = k56
+    params.flip = math.copysign(1.0, home if abs(home) > GEOMETRY_TOL else bend)
     twin = max(abs(k45), abs(k56), float(np.linalg.norm(np.cross(h4, h6))))
-    params[wrist_kernel.W_TWIN] = 1.0 if twin <= wrist_kernel.TWIN_TOL else 0.0
+    params.twin = twin <= _core.decoupled.TWIN_TOL
     return True
 
 
-def build(chain: DHChain, f: Features, target: TargetKind) -> ClosedForm | None:
+def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
     """The closed form of a 6R or RRP arm whose last three axes meet, or None.
 
     None for position targets (see :mod:`kinematica.ik.analytic.arm_position`),
@@ -93,7 +90,7 @@ def build(chain: DHChain, f: Features, target: TargetKind) -> ClosedForm | None:
     if target != "pose" or f.wrist_center is None or f.dof != 6:
         return None
     h, p = f.directions, f.points
-    M, _, _ = fk(chain, np.zeros(6))
+    M = chain.fk(np.zeros(6))[0]
     c = np.asarray(f.wrist_center, dtype=float)
     c_tool = M[:3, :3].T @ (c - M[:3, 3])
     prismatic = f.joint_types[2] == "P"
@@ -102,33 +99,183 @@ def build(chain: DHChain, f: Features, target: TargetKind) -> ClosedForm | None:
     arm = arm_geometry(h[:3], p[:3], prismatic, c)
     if arm is None:
         return None
-    params = np.zeros(wrist_kernel.W_SIZE)
-    params[: arm.params.size] = arm.params
-    params[decoupled.P_MODE] = decoupled.MODE_POSE
-    params[wrist_kernel.W_CTOOL : wrist_kernel.W_CTOOL + 3] = c_tool
+    params = _core.decoupled.SphericalWristParams()
+    params.arm = arm.arm
+    params.c_tool = c_tool
     if not wrist_params(params, h[3], h[4], h[5], M[:3, :3]):
         return None
-    lim = wrist_kernel.W_LIMITS
-    params[lim : lim + 4] = [*chain.qlim[3], *chain.qlim[5]]
-    params.flags.writeable = False
+    params.q4_lo, params.q4_hi = chain.qlim[3]
+    params.q6_lo, params.q6_hi = chain.qlim[5]
     labels = tuple(f"{pos}, wrist {w}" for pos in arm.labels for w in ("no-flip", "flip"))
     return ClosedForm(
         name="rrp-spherical-wrist" if prismatic else "spherical-wrist",
         labels=labels,
         params=params,
-        solve_one=decoupled.solve,
-        solve_batch=decoupled.solve_batch,
     )
 
 
+# ------------------------------------------------------------- sample arms
+def _twist(rng: np.random.Generator) -> float:
+    """A twist well away from 0 and π, either sign."""
+    return float(rng.uniform(0.3, PI - 0.3) * rng.choice([-1.0, 1.0]))
+
+
+def _sign(rng: np.random.Generator) -> float:
+    return float(rng.choice([-1.0, 1.0]))
+
+
+def _tiny(rng: np.random.Generator) -> float:
+    """An offset of 1e-10 (m or rad), either sign: a zero of a DH table nudged."""
+    return 1e-10 * _sign(rng)
+
+
+#: The shoulders (axes 1, 2) and joints 3 of the family: every pair but three parallel
+#: axes (a parallel shoulder with axes 2 ∥ 3 keeps the wrist centre in a plane).
+GEOMETRIES: tuple[tuple[str, str], ...] = (
+    ("meet", "R23"),
+    ("meet", "R"),
+    ("meet", "P"),
+    ("parallel", "R"),
+    ("parallel", "P"),
+    ("general", "R23"),
+    ("general", "R"),
+    ("general", "P"),
+)
+
+
+def random_wrist_rows(
+    rng: np.random.Generator, shoulder: str, joint3: str
+) -> list[Revolute | Prismatic]:
+    """Standard DH rows of a random spherical-wrist arm.
+
+    Args:
+        rng: Random numbers.
+        shoulder: ``"meet"`` (axes 1, 2 meet), ``"parallel"`` or ``"general"`` (skew).
+        joint3: ``"R23"`` (revolute, axis 3 ∥ axis 2), ``"R"`` (revolute, general)
+            or ``"P"`` (a slide).
+    """
+    u = rng.uniform
+    a1 = 0.0 if shoulder == "meet" else u(0.1, 0.4) * _sign(rng)
+    alpha1 = float(rng.choice([0.0, PI])) if shoulder == "parallel" else _twist(rng)
+    alpha2 = float(rng.choice([0.0, PI])) if joint3 == "R23" else _twist(rng)
+    if joint3 == "P" and shoulder == "parallel":
+        alpha2 = u(0.3, 1.2) * _sign(rng)  # the slide must have a part along axes 1, 2
+    rows: list[Revolute | Prismatic] = [
+        Revolute(d=u(0.1, 0.5), a=a1, alpha=alpha1, offset=u(-PI, PI)),
+        Revolute(d=u(-0.2, 0.2), a=u(0.2, 0.5) * _sign(rng), alpha=alpha2, offset=u(-PI, PI)),
+    ]
+    if joint3 == "P":
+        rows.append(Prismatic(theta=u(-PI, PI), a=u(-0.1, 0.1), alpha=_twist(rng), offset=0.3))
+    else:
+        rows.append(Revolute(d=u(-0.2, 0.2), a=u(-0.2, 0.2), alpha=_twist(rng), offset=u(-PI, PI)))
+    rows += [  # a spherical wrist: a4 = a5 = d5 = 0, any twists
+        Revolute(d=u(0.2, 0.5) * _sign(rng), alpha=_twist(rng), offset=u(-PI, PI)),
+        Revolute(alpha=_twist(rng), offset=u(-PI, PI)),
+        Revolute(d=u(0.0, 0.2), a=u(-0.1, 0.1), alpha=u(-PI, PI), offset=u(-PI, PI)),
+    ]
+    return rows
+
+
+def _edge_6r(rng: np.random.Generator) -> tuple[list[Revolute | Prismatic], str]:
+    """A 6R arm on one of the family's edges, and what it is.
+
+    A PUMA-like arm (meeting shoulder, axes 2 ∥ 3, right-angle twists) with one of:
+    an upper arm as long as the forearm (the elbow folds onto the shoulder), a zero
+    of joints 1-3 nudged by 1e-10 (axes meant to meet miss by it), axes 2 and 3
+    parallel but for 1e-10 (or anti-parallel), a wrist twist 1e-10 off its right
+    angle (the flip is then solved, not twinned), or a skew shoulder whose axes are
+    parallel but for 1e-10.
+    """
+    u = rng.uniform
+    edge = str(
+        rng.choice(
+            ["equal links", "offset 1e-10", "twist 1e-10", "wrist twist 1e-10", "nearly parallel"]
+        )
+    )
+    if edge == "nearly parallel":  # axes 1 and 2 parallel but for 1e-10 (skew)
+        rows = random_wrist_rows(rng, "parallel", "R")
+        first = rows[0]
+        assert isinstance(first, Revolute)
+        rows[0] = Revolute(
+            d=first.d, a=first.a, alpha=first.alpha + _tiny(rng), offset=first.offset
+        )
+        return rows, "axes 1 and 2 parallel but for 1e-10"
+    upper = u(0.2, 0.6)
+    fore = upper if edge == "equal links" else u(0.2, 0.6)
+    nudge = dict.fromkeys(("a1", "d2", "d3", "a3", "alpha2", "alpha4"), 0.0)
+    if edge == "offset 1e-10":
+        where = str(rng.choice(["a1", "d2", "d3", "a3"]))
+        nudge[where] = _tiny(rng)
+        edge = f"{where} = 1e-10"
+    elif edge == "twist 1e-10":
+        nudge["alpha2"] = float(rng.choice([0.0, PI])) + _tiny(rng)
+        edge = "axes 2 and 3 parallel but for 1e-10"
+    elif edge == "wrist twist 1e-10":
+        nudge["alpha4"] = _tiny(rng)
+    right = PI / 2
+    offsets = [float(rng.choice([0.0, PI / 2, -PI / 2, u(-PI, PI)])) for _ in range(6)]
+    arm: list[Revolute | Prismatic] = [
+        Revolute(d=u(0.2, 0.6), a=nudge["a1"], alpha=_sign(rng) * right, offset=offsets[0]),
+        Revolute(d=nudge["d2"], a=upper, alpha=nudge["alpha2"], offset=offsets[1]),
+        Revolute(d=nudge["d3"], a=nudge["a3"], alpha=_sign(rng) * right, offset=offsets[2]),
+        Revolute(d=fore, alpha=_sign(rng) * right + nudge["alpha4"], offset=offsets[3]),
+        Revolute(alpha=_sign(rng) * right, offset=offsets[4]),
+        Revolute(d=u(0.0, 0.2), offset=offsets[5]),
+    ]
+    return arm, edge
+
+
+def _edge_rrp(rng: np.random.Generator) -> tuple[list[Revolute | Prismatic], str]:
+    """An RRP arm on one of the family's edges (Stanford type), and what it is."""
+    where = str(rng.choice(["a", "alpha", "offset", "d", "none"]))
+    joint2 = {"d": rng.uniform(0.0, 0.3), "a": 0.0, "alpha": PI / 2, "offset": 0.0}
+    if where != "none":
+        joint2[where] += _tiny(rng)
+    second = Revolute(d=joint2["d"], a=joint2["a"], alpha=joint2["alpha"], offset=joint2["offset"])
+    rows: list[Revolute | Prismatic] = [
+        Revolute(d=rng.uniform(0.2, 0.6), alpha=-PI / 2, offset=rng.uniform(-PI, PI)),
+        second,
+        Prismatic(theta=-PI / 2, a=float(rng.choice([0.0, rng.uniform(-0.1, 0.1)]))),
+        Revolute(alpha=-PI / 2),
+        Revolute(alpha=PI / 2),
+        Revolute(d=rng.uniform(0.0, 0.3)),
+    ]
+    note = "Stanford type" if where == "none" else f"Stanford type, joint 2's {where} + 1e-10"
+    return rows, note
+
+
+def _sample(joint3: tuple[str, ...]) -> Any:
+    def sample_arm(rng: np.random.Generator, degenerate: bool) -> ArmSample:
+        """A random arm of the family (an edge case with ``degenerate``)."""
+        if degenerate:
+            rows, note = _edge_rrp(rng) if joint3 == ("P",) else _edge_6r(rng)
+        else:
+            pairs = [g for g in GEOMETRIES if g[1] in joint3]
+            shoulder, kind = pairs[int(rng.integers(len(pairs)))]
+            rows, note = random_wrist_rows(rng, shoulder, kind), ""
+        return ArmSample(
+            links=tuple(rows),
+            base=random_transform(rng, 0.5),
+            tool=random_transform(rng, 0.2),
+            note=note,
+        )
+
+    return sample_arm
+
+
 def _wrist_arm(types: str) -> SolverSpec:
+    kind = "spherical-wrist-6R" if types == "RRRRRR" else "rrp-spherical-wrist"
     return SolverSpec(
-        kind="spherical-wrist-6R" if types == "RRRRRR" else "rrp-spherical-wrist",
+        kind=kind,
         summary="6R, spherical wrist"
         if types == "RRRRRR"
         else "RRP + spherical wrist (Stanford type)",
+        summary_es="6R con muñeca esférica"
+        if types == "RRRRRR"
+        else "RRP con muñeca esférica (tipo Stanford)",
         handles=lambda f: f.joint_types == types and f.wrist_center is not None,
         build=build,
+        sample_arm=_sample(("R23", "R") if types == "RRRRRR" else ("P",)),
     )
 
 

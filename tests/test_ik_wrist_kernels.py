@@ -1,19 +1,23 @@
-"""The spherical-wrist kernels' building blocks, and their tolerances on both sides.
+"""The spherical-wrist solvers' building blocks, and their tolerances on both sides.
 
-Each named tolerance of :mod:`kinematica.kernels.solvers` and of the builder
-is pinned by a case just inside and one just outside it; the references are
-polynomials and geometries built here with known roots and known rank.
+Each named tolerance of the core's decoupled family (``kinematica._core.decoupled``,
+``cpp/include/kinematica/solvers/arm_*.hpp``) and of the builder is pinned by a case
+just inside and one just outside it; the references are polynomials and geometries
+built here with known roots and known rank.
 """
 
 from __future__ import annotations
 
 import math
 
+import kinematica._core as _core
 import numpy as np
 import pytest
 
 from kinematica import load
+from kinematica.core import Chain
 from kinematica.dh import Revolute
+from kinematica.ik.analytic import arm_position, spherical_wrist
 from kinematica.ik.analytic.arm_point import (
     GEOMETRY_TOL,
     PROBES,
@@ -22,30 +26,11 @@ from kinematica.ik.analytic.arm_point import (
     places_point,
 )
 from kinematica.ik.solve import closed_form
-from kinematica.kernels.ik_check import info_size
-from kinematica.kernels.solvers import arm_quartic
-from kinematica.kernels.solvers.arm_base import (
-    DOUBLE_ROOT_TOL,
-    NEAR_TOL,
-    ST_NEAR,
-    ST_SIZE,
-    clamped_root,
-)
-from kinematica.kernels.solvers.arm_quartic import (
-    IMAG_TOL,
-    MAX_NEWTON_STEP,
-    SELF_MOTION_TOL,
-    slide_roots,
-    trig_roots,
-)
-from kinematica.kernels.solvers.spherical_wrist import W_TWIN
+from kinematica.ik.structure import features
 from kinematica.robot import Robot
 
+D = _core.decoupled
 PI = math.pi
-
-
-def state() -> np.ndarray:
-    return np.zeros(ST_SIZE)
 
 
 # ------------------------------------------------------------- clamped roots
@@ -53,9 +38,10 @@ def state() -> np.ndarray:
 def test_double_root_tol(factor: float, double: bool) -> None:
     """A fold's signed distance within DOUBLE_ROOT_TOL of its size is round-off: one root."""
     size = 3.0
-    diff = factor * DOUBLE_ROOT_TOL * (size + 1.0)
-    root = clamped_root(diff, size, 2.0, 1.0, state())
+    diff = factor * D.DOUBLE_ROOT_TOL * (size + 1.0)
+    root, near = D.clamped_root(diff, size, 2.0, 1.0)
     assert (root == 0.0) == double
+    assert near == double  # a double root is a fold
     if not double:
         assert root == pytest.approx(math.sqrt(diff * 2.0))
 
@@ -63,18 +49,17 @@ def test_double_root_tol(factor: float, double: bool) -> None:
 @pytest.mark.parametrize(("factor", "candidate"), [(0.5, True), (2.0, False)])
 def test_near_tol_keeps_mirrored_roots_just_past_a_fold(factor: float, candidate: bool) -> None:
     size = 3.0
-    diff = -factor * NEAR_TOL * size
-    st = state()
-    root = clamped_root(diff, size, 2.0, 1.0, st)
+    diff = -factor * D.NEAR_TOL * size
+    root, near = D.clamped_root(diff, size, 2.0, 1.0)
     assert math.isfinite(root) == candidate
-    assert (st[ST_NEAR] != 0.0) == candidate
+    assert near == candidate
     if candidate:
         assert root == pytest.approx(math.sqrt(-diff * 2.0))
 
 
 def test_clamped_root_of_another_failed_factor_is_nan() -> None:
-    assert math.isnan(clamped_root(1.0, 2.0, -1.0, 1.0, state()))
-    assert clamped_root(4.0, 4.0, 4.0, 1.0, state()) == 4.0
+    assert math.isnan(D.clamped_root(1.0, 2.0, -1.0, 1.0)[0])
+    assert D.clamped_root(4.0, 4.0, 4.0, 1.0) == (4.0, False)
 
 
 # ----------------------------------------------------------------- quartics
@@ -82,8 +67,8 @@ def test_trig_roots_are_those_of_the_trigonometric_polynomial() -> None:
     rng = np.random.default_rng(51)
     for _ in range(200):
         F = rng.normal(size=5)
-        q = np.empty(4)
-        assert not trig_roots(F, np.abs(F).sum(), q, state())
+        self_motion, q, _ = D.trig_roots(F, np.abs(F).sum())
+        assert not self_motion
         real = q[~np.isnan(q)]
         grid = np.linspace(-PI, PI, 20001)
         f = F[0] + F[1] * np.cos(grid) + F[2] * np.sin(grid)
@@ -100,9 +85,9 @@ def test_trig_roots_are_those_of_the_trigonometric_polynomial() -> None:
 @pytest.mark.parametrize(("factor", "self_motion"), [(0.5, True), (2.0, False)])
 def test_self_motion_tol(factor: float, self_motion: bool) -> None:
     """F that is 0 to round-off of the terms it came from: every q3 is a root."""
-    F = np.array([factor * SELF_MOTION_TOL, 0.0, 0.0, 0.0, 0.0])
-    q = np.empty(4)
-    assert trig_roots(F, 1.0, q, state()) == self_motion
+    F = np.array([factor * D.SELF_MOTION_TOL, 0.0, 0.0, 0.0, 0.0])
+    found, q, _ = D.trig_roots(F, 1.0)
+    assert found == self_motion
     if self_motion:
         np.testing.assert_allclose(q, [-PI / 2, 0.0, PI / 2, PI])
     else:
@@ -112,23 +97,21 @@ def test_self_motion_tol(factor: float, self_motion: bool) -> None:
 @pytest.mark.parametrize(("factor", "real"), [(0.5, True), (2.0, False)])
 def test_imag_tol(factor: float, real: bool) -> None:
     """A complex pair this close to the real axis is a double root split by round-off."""
-    eps = factor * IMAG_TOL * (1.0 + 0.5)
+    eps = factor * D.IMAG_TOL * (1.0 + 0.5)
     k = np.real(np.poly([0.5 + 1j * eps, 0.5 - 1j * eps, -2.0, 3.0]))
-    q = np.empty(4)
-    st = state()
-    slide_roots(k, q, st)
+    q, near = D.slide_roots(k)
     found = q[~np.isnan(q)]
     assert len(found) == (4 if real else 2)
-    assert (st[ST_NEAR] == 0.0) == real  # dropped, yet near the real axis: near a fold
+    assert near != real  # dropped, yet near the real axis: near a fold
     np.testing.assert_allclose(found[[0, -1]], [-2.0, 3.0], atol=1e-12)
 
 
 @pytest.mark.parametrize(("factor", "taken"), [(0.5, True), (2.0, False)])
 def test_max_newton_step(factor: float, taken: bool) -> None:
     """Newton steps on F longer than MAX_NEWTON_STEP are round-off at a double root."""
-    step = factor * MAX_NEWTON_STEP
-    assert (arm_quartic._bounded(step * 3.0, 3.0) == pytest.approx(step)) == taken
-    assert (arm_quartic._bounded(step * 3.0, 3.0) == 0.0) != taken
+    step = factor * D.MAX_NEWTON_STEP
+    assert (D.bounded_step(step * 3.0, 3.0) == pytest.approx(step)) == taken
+    assert (D.bounded_step(step * 3.0, 3.0) == 0.0) != taken
 
 
 # ---------------------------------------------------------------- the builder
@@ -196,7 +179,7 @@ def test_rank_tol(factor: float, usable: bool) -> None:
 
 # --- the flip as the no-flip's twin (q4 + π, -q5, q6 + π) -----------------------
 
-#: TWIN_TOL's documented value (kernels/solvers/spherical_wrist.py), as a literal.
+#: TWIN_TOL's documented value (cpp/include/kinematica/solvers/spherical_wrist.hpp), as a literal.
 TWIN_TOL_VALUE = 1e-13
 
 
@@ -209,14 +192,18 @@ def puma_with_twisted_wrist(eps: float) -> Robot:
     return Robot.from_dh(rows, base=puma.base, tool=puma.tool)
 
 
-def twin_flag(robot: Robot) -> float:
+def twin_flag(robot: Robot) -> bool:
     closed = closed_form(robot.chain, "pose")
     assert closed is not None and closed.name == "spherical-wrist"
-    return float(closed.params[W_TWIN])
+    return bool(closed.params.twin)
 
 
-@pytest.mark.parametrize(("factor", "twin"), [(0.1, 1.0), (10.0, 0.0)])
-def test_twin_tol_decides_the_flip_by_identity(factor: float, twin: float) -> None:
+def test_twin_tol_value() -> None:
+    assert D.TWIN_TOL == TWIN_TOL_VALUE
+
+
+@pytest.mark.parametrize(("factor", "twin"), [(0.1, True), (10.0, False)])
+def test_twin_tol_decides_the_flip_by_identity(factor: float, twin: bool) -> None:
     robot = puma_with_twisted_wrist(factor * TWIN_TOL_VALUE)
     assert twin_flag(robot) == twin
     # either way every solution is exact by FK (the identity errs by ~eps)
@@ -230,23 +217,75 @@ def test_twin_tol_decides_the_flip_by_identity(factor: float, twin: float) -> No
 
 
 def test_the_twin_flip_is_the_solved_flip() -> None:
-    # The same kernel with the identity switched off solves the flip's own
+    # The same solver with the identity switched off solves the flip's own
     # angles: both give the same eight candidates (modulo 2π), to round-off.
     for name in ("puma560", "irb120", "kr6", "stanford"):
         robot = load(name)
         closed = closed_form(robot.chain, "pose")
-        assert closed is not None and closed.params[W_TWIN] == 1.0
-        solved = closed.params.copy()
-        solved[W_TWIN] = 0.0
+        assert closed is not None and closed.params.twin
+        solved = spherical_wrist.build(robot.chain, features(robot.chain), "pose")
+        assert solved is not None
+        solved.params.twin = False
         rng = np.random.default_rng(5)
         lo = np.where(np.isfinite(robot.qlim[:, 0]), robot.qlim[:, 0], -1.0)
         hi = np.where(np.isfinite(robot.qlim[:, 1]), robot.qlim[:, 1], 1.0)
-        T = robot.fk(rng.uniform(lo, hi, (200, 6)))
-        Q1, Q2 = np.empty((200, 8, 6)), np.empty((200, 8, 6))
-        i1, i2 = np.zeros((200, info_size(6))), np.zeros((200, info_size(6)))
-        closed.solve_batch(closed.params, T, Q1, i1)
-        closed.solve_batch(solved, T, Q2, i2)
-        assert np.array_equal(np.isnan(Q1), np.isnan(Q2))
-        d = np.abs(np.remainder(np.nan_to_num(Q1 - Q2) + PI, 2 * PI) - PI)
-        assert d.max() < 1e-9, name
-        np.testing.assert_array_equal(i1, i2)
+        for T in robot.fk(rng.uniform(lo, hi, (200, 6))):
+            Q1, *info1 = closed.params.candidates(robot.chain.core, T)
+            Q2, *info2 = solved.params.candidates(robot.chain.core, T)
+            assert np.array_equal(np.isnan(Q1), np.isnan(Q2))
+            d = np.abs(np.remainder(np.nan_to_num(Q1 - Q2) + PI, 2 * PI) - PI)
+            assert d.max() < 1e-9, name
+            np.testing.assert_array_equal(info1, info2)
+
+
+# ------------------------------------------------------------- the binding
+def test_fixed_arrays_check_their_shape_and_keep_their_values() -> None:
+    arm = D.ArmPoint()
+    arm.H = [1.0, 2.0, 3.0]
+    arm.fourier = np.arange(25.0).reshape(5, 5)
+    for name, bad in (("H", [1.0, 2.0]), ("xframe", np.zeros((2, 4))), ("fourier", np.zeros(25))):
+        with pytest.raises(ValueError, match=f"{name} must be of shape"):
+            setattr(arm, name, bad)
+    with pytest.raises(ValueError, match="upper_root must be of shape"):
+        arm.upper_root = np.ones(3, dtype=bool)
+    with pytest.raises(TypeError):
+        arm.p1 = [1.0, 2.0]  # a Vec3 takes three numbers
+    np.testing.assert_array_equal(arm.H, [1.0, 2.0, 3.0])  # a refused value changes nothing
+    np.testing.assert_array_equal(arm.fourier, np.arange(25.0).reshape(5, 5))
+    wrist = D.SphericalWristParams()
+    wrist.arm = arm
+    wrist.arm.a = 0.25  # the member, not a copy
+    assert wrist.arm.a == 0.25 and wrist.slots == 8
+    with pytest.raises(ValueError, match="n must be between 4 and 32, got 3"):
+        D.ArmPositionParams().n = 3
+
+
+def test_solvers_take_chains_of_their_size_only() -> None:
+    puma = load("puma560")
+    closed = closed_form(puma.chain, "pose")
+    assert closed is not None
+    arm7 = Robot.from_dh([*puma.links, Revolute(d=0.1)])
+    with pytest.raises(ValueError, match="takes a chain of 6 joints, got 7"):
+        closed.params.candidates(arm7.chain.core, np.eye(4))
+    with pytest.raises(ValueError):
+        closed.params.candidates(puma.chain.core, np.eye(3))
+
+
+@pytest.mark.parametrize("degenerate", [False, True])
+def test_sample_arms_are_of_the_family(degenerate: bool) -> None:
+    rng = np.random.default_rng(61)
+    for spec in (*spherical_wrist.SPECS, arm_position.SPEC):
+        for _ in range(15):
+            s = spec.sample_arm(rng, degenerate)
+            eye = np.eye(4)
+            chain = Chain.from_dh(
+                s.links,
+                s.convention,
+                eye if s.base is None else s.base,
+                eye if s.tool is None else s.tool,
+            )
+            f = features(chain)
+            assert spec.handles(f), (spec.kind, s.note)
+            closed = spec.build(chain, f, spec.targets[0])
+            assert closed is not None, (spec.kind, s.note)
+            assert bool(s.note) == degenerate

@@ -1,0 +1,59 @@
+// Position targets of arms with more than three joints: joints 1-3 place the tool origin.
+//
+// The tool origin with joints 4..n at 0 is a point fixed after joint 3; ArmPoint
+// (arm_point.hpp) puts it on the target, up to four ways (the decoupling of the lecture
+// notes: shoulder × elbow). Joints 4..n stay free, so every target's solutions form a
+// continuum: the candidates are its representatives with those joints at 0, the target
+// is singular and joints 4..n are named free.
+//
+// A target that no branch reaches with joints 4..n at 0 may still be reached with other
+// values of them (they move the tool origin by at most `reach`, a bound from the joints'
+// translations): the gap is then the arm part's gap less that bound, and the target is
+// flagged near (no proof) unless the bound is 0 (the tool origin on every later axis: a
+// spherical wrist without tool offset).
+#pragma once
+
+#include <cmath>
+
+#include "../config.hpp"
+#include "../ik_types.hpp"
+#include "../types.hpp"
+#include "arm_point.hpp"
+
+namespace km::decoupled {
+
+//! Most joints an arm-position solver serves: its free joints are bits of SolverInfo::free.
+constexpr int MAX_POSITION_DOF = 32;
+
+//! Position targets of an arm of n > 3 joints whose joints 1-3 place the tool origin.
+struct ArmPositionParams {
+    ArmPoint arm{};      //!< joints 1-3 placing the tool origin (joints 4..n at 0)
+    double reach = 0.0;  //!< bound (m) on how far joints 4..n move the tool origin from the point
+    int n = 4;           //!< the chain's joints (4 .. MAX_POSITION_DOF)
+
+    KM_HD int slots() const { return 4; }
+    KM_HD int dof() const { return n; }
+
+    //! Candidates for the position of T (its rotation is not read) into Q (4 x n): one
+    //! slot per arm branch, joints 4..n at 0.
+    KM_HD void solve(const Pose& T, double* Q, SolverInfo& info) const {
+        double Q3[4][3];
+        ArmState st;
+        arm.place(T.p, Q3, st);
+        bool real = false;
+        for (int k = 0; k < 4; ++k) {
+            const bool ok = !std::isnan(Q3[k][0]);
+            real |= ok;
+            for (int j = 0; j < n; ++j) Q[k * n + j] = ok ? (j < 3 ? Q3[k][j] : 0.0) : NaN;
+        }
+        info.singular = true;
+        for (int j = 0; j < n; ++j) {
+            if (j >= 3 || st.free[j]) info.set_free(j);
+        }
+        info.near = st.near || (!real && reach > 0.0);
+        const double gap = py_max(0.0, st.gap - reach);
+        info.gap = !real || gap > 0.0 ? gap : NaN;
+    }
+};
+
+}  // namespace km::decoupled
