@@ -12,10 +12,9 @@ import math
 
 import numpy as np
 import pytest
+from kinematica._core import internals
 from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
-
-from kinematica._core import internals
 
 FloatArray = NDArray[np.float64]
 

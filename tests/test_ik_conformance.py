@@ -105,6 +105,8 @@ def test_solver_contract(spec: SolverSpec, kind: str, degenerate: bool) -> None:
 def test_far_targets_are_unreachable_with_a_gap(spec: SolverSpec) -> None:
     rng = np.random.default_rng(zlib.crc32(spec.kind.encode()))
     robot = _robot(spec, rng, False)
+    if np.any(robot.is_prismatic & ~np.isfinite(robot.qlim).all(axis=1)):
+        pytest.skip("a slide without limits reaches any distance: no gap to prove")
     kind = spec.targets[0]
     _, targets = _targets(robot, kind, rng)
     far = targets.copy()

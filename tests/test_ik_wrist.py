@@ -380,8 +380,10 @@ def test_targets_on_the_workspace_fold(shoulder: str, joint3: str) -> None:
     assert set(res.status.tolist()) <= {"ok", "singular"}, res.message
     # the original is found, to within what a double root allows: along the
     # fold the pose moves only to second order, so exact solutions (1e-10)
-    # can differ from it by ~sqrt(1e-10 / curvature)
-    assert_found(robot, res.solutions, q, 1e-4)
+    # can differ from it by ~sqrt(1e-10 / curvature): 3e-4 for a curvature of
+    # 1e-3 m/rad² (the flattest fold of these arms; with the numpy of the day the
+    # bisection lands one of them 1.008e-4 from its solution)
+    assert_found(robot, res.solutions, q, 3e-4)
 
 
 def test_singular_wrist_returns_a_representative() -> None:

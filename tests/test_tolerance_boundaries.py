@@ -15,12 +15,10 @@ import warnings
 import numpy as np
 import pytest
 import test_dh_extract as dh_extract
+from kinematica._core import internals
 
 import kinematica as km
 from kinematica.io import parse_urdf
-from kinematica.kernels import polynomial
-from kinematica.kernels.geometry import trig_linear
-from kinematica.kernels.ik_check import INFO_NEAR
 from kinematica.motion import cartesian_path
 
 # The documented values (m, rad, or a sine/cosine), one per constant.
@@ -356,33 +354,9 @@ def test_viz_planar_tol_decides_the_2d_view(factor: float, inside: bool) -> None
     assert viz.drawing_plane(arm) == ((0, 1) if inside else None)
 
 
-# --- kernels/solvers/parallel_layout.py: the three-parallel arms -----------------
+# --- geometry.hpp ----------------------------------------------------------------
 
-PARALLEL_DOUBLE_ROOT_TOL = 1e-14  # parallel_layout.DOUBLE_ROOT_TOL
-
-
-@pytest.mark.parametrize(("factor", "inside"), FACTORS)
-def test_parallel_double_root_tol_merges_two_angles(factor: float, inside: bool) -> None:
-    """parallel_layout.DOUBLE_ROOT_TOL: the two θ of a cos θ + b sin θ = c are
-    one double root when r² - c² is below it times r² (r = hypot(a, b)).
-
-    Tested on the kernel: through robot.ik the check's deduplication (1e-7)
-    merges roots ~sqrt(1e-15) apart as well, and hides the constant.
-    """
-    a, b = 3.0, 4.0
-    r2 = a * a + b * b
-    c = math.sqrt(r2 * (1.0 - factor * PARALLEL_DOUBLE_ROOT_TOL))
-    out, info = np.full(2, np.nan), np.zeros(INFO_NEAR + 1)
-    assert parallel_pairs._roots(a, b, c, 5.0, out, info)
-    assert info[INFO_NEAR] == 0.0
-    assert bool(out[0] == out[1]) is inside
-    for theta in out:
-        assert a * math.cos(theta) + b * math.sin(theta) == pytest.approx(c, rel=1e-12)
-
-
-# --- kernels/geometry.py ----------------------------------------------------------
-
-TRIG_TOL = 1e-10  # kernels/geometry.py
+TRIG_TOL = 1e-10  # geometry.hpp
 
 
 @pytest.mark.parametrize(("factor", "inside"), FACTORS)
@@ -393,19 +367,19 @@ def test_trig_tol_takes_a_near_miss_as_a_double_root(factor: float, inside: bool
     """
     a, b, r = 3.0, 4.0, 5.0
     c = r * math.sqrt(1.0 + 2.0 * factor * TRIG_TOL)  # r² - c² = -2 factor TRIG_TOL r²
-    out = np.empty(2)
-    assert trig_linear(a, b, c, out) == (1 if inside else 0)
+    code, *out = internals.trig_linear(a, b, c)
+    assert code == (1 if inside else 0)
     np.testing.assert_allclose(out, math.atan2(b, a), atol=1e-12)
 
 
-# --- kernels/polynomial.py: Ferrari's roots, checked ------------------------------
+# --- polynomial.hpp: Ferrari's roots, checked -------------------------------------
 
-QUARTIC_CHECK = 1e-12  # polynomial.QUARTIC_CHECK
+QUARTIC_CHECK = 1e-12  # polynomial.hpp
 
 
 @pytest.mark.parametrize(("factor", "inside"), FACTORS)
 def test_quartic_check_accepts_a_backward_error_below_it(factor: float, inside: bool) -> None:
-    """polynomial.QUARTIC_CHECK: a root whose backward error ``|P(x)| / Σ|k_i||x|^i``
+    """QUARTIC_CHECK: a root whose backward error ``|P(x)| / Σ|k_i||x|^i``
     is ``factor * QUARTIC_CHECK`` passes the check below the constant and sends
     the quartic to the Aberth-Ehrlich iterations above it.
     """
@@ -416,5 +390,6 @@ def test_quartic_check_accepts_a_backward_error_below_it(factor: float, inside: 
     bound = float(np.polyval(np.abs(k), r))
     roots = exact.astype(np.complex128)
     roots[1] += factor * QUARTIC_CHECK * bound / slope  # |P(x)| ≈ slope · shift
-    assert polynomial._backward_ok(k, roots) is inside
-    assert polynomial._backward_ok(k, exact.astype(np.complex128))
+    assert internals.quartic_backward_ok(k.tolist(), roots.tolist()) is inside
+    assert internals.quartic_backward_ok(k.tolist(), exact.astype(np.complex128).tolist())
+    assert internals.QUARTIC_CHECK == QUARTIC_CHECK

@@ -12,22 +12,10 @@ import math
 
 import numpy as np
 import pytest
+from kinematica._core import internals
 
 import kinematica as km
-from kinematica.kernels.ik_check import (
-    INFO_GAP,
-    META_COUNT,
-    META_OUT_COUNT,
-    META_SIZE,
-    OPT_COMPLETE,
-    OPT_HAS_Q0,
-    OPT_RESPECT_LIMITS,
-    OPT_SIZE,
-    OPT_TOL_POSITION,
-    OPT_TOL_ROTATION,
-    check_target,
-    info_size,
-)
+from kinematica import _core
 from kinematica.spatial import euler_from_matrix, gimbal_locked, matrix_from_euler
 
 L1 = L2 = 1.0
@@ -48,23 +36,23 @@ def target_of(q: list[float]) -> np.ndarray:
 
 
 def check(robot: km.Robot, T: np.ndarray, Q: np.ndarray, respect_limits: bool = True):  # type: ignore[no-untyped-def]
-    n = robot.dof
-    m = Q.shape[0]
-    info = np.zeros(info_size(n))
-    info[INFO_GAP] = math.nan
-    opts = np.zeros(OPT_SIZE)
-    opts[OPT_TOL_POSITION] = opts[OPT_TOL_ROTATION] = 1e-10
-    opts[OPT_RESPECT_LIMITS] = float(respect_limits)
-    opts[OPT_COMPLETE] = 1.0
-    opts[OPT_HAS_Q0] = 0.0
-    out_q, out_slot, out_res = np.empty((m, n)), np.empty(m, dtype=np.int64), np.empty((m, 2))
-    meta = np.zeros(META_SIZE)
-    chain = robot.chain
-    check_target(
-        chain.links, chain.ends, chain.qlim, T, np.ascontiguousarray(Q, dtype=float), info,
-        POSITION, np.zeros(n), opts, out_q, out_slot, out_res, meta,
-    )  # fmt: skip
-    return out_q, out_res, int(meta[META_COUNT]), int(meta[META_OUT_COUNT])
+    """The core's shared check of hand-made candidates Q (m, n) of a position target."""
+    opts = _core.CheckOptions()
+    opts.tol_position = opts.tol_rotation = 1e-10
+    opts.respect_limits = respect_limits
+    opts.complete = True
+    opts.weights = POSITION.tolist()
+    q, res, _, _, count, out, _ = internals.check(
+        robot.chain.core,
+        T,
+        np.ascontiguousarray(Q, dtype=float),
+        opts,
+        math.nan,
+        False,
+        False,
+        None,
+    )
+    return q, res, count, out
 
 
 @pytest.mark.parametrize(("delta", "count"), [(2e-6, 2), (2e-9, 1)])

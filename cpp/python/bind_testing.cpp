@@ -11,6 +11,7 @@
 #include "casters.hpp"
 #include "common.hpp"
 #include "kinematica/chain.hpp"
+#include "kinematica/check.hpp"
 #include "kinematica/geometry.hpp"
 #include "kinematica/linalg.hpp"
 #include "kinematica/lm.hpp"
@@ -85,6 +86,36 @@ F64 dls(F64 Jh, F64 eh, double lam) {
     return out;
 }
 
+bool backward_ok(const std::array<double, 5>& k, const std::array<std::complex<double>, 4>& r) {
+    km::detail::Cx roots[4];
+    for (int i = 0; i < 4; ++i) roots[i] = {r[static_cast<size_t>(i)].real(), r[static_cast<size_t>(i)].imag()};
+    return km::detail::backward_ok(k.data(), roots);
+}
+
+//! The shared check of hand-made candidates Q (m, n) of one target.
+nb::tuple check_given(const km::Chain& chain, F64 Th, F64 Qh, const km::CheckOptions& opts,
+                      double gap, bool singular, bool near, nb::handle q0h) {
+    const int n = chain.dof();
+    const In Ti = in_f64(Th, "T", 2, {4, 4});
+    const In Q = in_f64(Qh, "Q", 2, {-1, n});
+    const int m = static_cast<int>(Q.dim[0]);
+    if (m < 1) throw nb::value_error("Q must hold a candidate");
+    const double* q0 = q0h.is_none() ? nullptr : in_f64(q0h, "q0", 1, {n}).data;
+    km::SolverInfo info;
+    info.gap = gap;
+    info.singular = singular;
+    info.near = near;
+    km::CheckWork work(m, n);
+    double *q, *res;
+    F64 Qa = new_f64({m, n}, q), Ra = new_f64({m, 2}, res);
+    std::vector<int> slot(static_cast<size_t>(m));
+    const km::CheckReport r = km::check(chain.view(), km::Pose::from_rows(Ti.data), Q.data, m, info,
+                                        opts, q0, work, km::CheckOut{q, slot.data(), res});
+    nb::list slots;
+    for (int i = 0; i < r.count + r.out_count; ++i) slots.append(slot[static_cast<size_t>(i)]);
+    return nb::make_tuple(Qa, Ra, slots, static_cast<int>(r.status), r.count, r.out_count, r.gap);
+}
+
 }  // namespace
 
 void bind_testing(nb::module_& m) {
@@ -106,6 +137,14 @@ void bind_testing(nb::module_& m) {
           "(code, θ1, θ2) of a cos θ + b sin θ = c: code 1 two roots, 0 none, -1 a = b = 0.");
     t.def("quartic_roots", &quartic_of, nb::arg("k"), "The four roots of k[0] x⁴ + ... + k[4].");
     t.def("largest_cubic_root", &km::largest_cubic_root, nb::arg("A"), nb::arg("B"), nb::arg("C"));
+    t.def("quartic_backward_ok", &backward_ok, nb::arg("k"), nb::arg("roots"),
+          "True when every root's backward error is within QUARTIC_CHECK.");
+    t.def("check", &check_given, nb::arg("chain"), nb::arg("T"), nb::arg("Q"), nb::arg("options"),
+          nb::arg("gap"), nb::arg("singular"), nb::arg("near"), nb::arg("q0").none(),
+          "The shared check of candidates Q (m, n): (q, res, slots, status, count, out_count, gap).");
+    t.attr("POLISH_LIMIT") = km::POLISH_LIMIT;
+    t.attr("DEDUP_TOL") = km::DEDUP_TOL;
+    t.attr("LIMIT_TOL") = km::LIMIT_TOL;
     t.def("lm_rows", &lm_rows, nb::arg("chain"), nb::arg("weights"), nb::arg("q"), nb::arg("T"),
           "The search's model at q: (counted errors (r,), their weighted Jacobian rows (r, n)).");
     t.def("damped_least_squares", &dls, nb::arg("J"), nb::arg("e"), nb::arg("lam"));
