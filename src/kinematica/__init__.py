@@ -74,8 +74,8 @@ if TYPE_CHECKING:  # imported on first use (below): `import kinematica` stays li
         condition_number,
         joint_trajectory,
         manipulability,
-        workspace,
     )
+    from kinematica.motion.workspace import workspace
 
 __version__ = "0.1.0"
 
