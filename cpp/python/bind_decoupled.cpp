@@ -192,7 +192,8 @@ void bind_decoupled(nb::module_& m) {
 
     auto wrist = bind_closed_form<kd::SphericalWristParams>(
         sub, "SphericalWristParams",
-        "A 6R or RRP arm with a spherical wrist (spherical_wrist.hpp): 8 slots, 6 joints.");
+        "A 6R or RRP arm with a spherical wrist (spherical_wrist.hpp): 8 slots, 6 joints.",
+        "km::decoupled::SphericalWristParams", "kinematica/solvers/spherical_wrist.hpp");
     wrist.def_rw("arm", &kd::SphericalWristParams::arm, "joints 1-3 placing the wrist centre")
         .def_rw("c_tool", &kd::SphericalWristParams::c_tool, "wrist centre in the tool frame (m)")
         .def_rw("lh", &kd::SphericalWristParams::lh, "R_M^T h6")
@@ -217,7 +218,8 @@ void bind_decoupled(nb::module_& m) {
 
     auto position = bind_closed_form<kd::ArmPositionParams>(
         sub, "ArmPositionParams",
-        "Position targets of an arm of n > 3 joints (arm_position.hpp): 4 slots, n joints.");
+        "Position targets of an arm of n > 3 joints (arm_position.hpp): 4 slots, n joints.",
+        "km::decoupled::ArmPositionParams", "kinematica/solvers/arm_position.hpp");
     position.def_rw("arm", &kd::ArmPositionParams::arm, "joints 1-3 placing the tool origin")
         .def_rw("reach", &kd::ArmPositionParams::reach,
                 "bound (m) on how far joints 4..n move the tool origin")

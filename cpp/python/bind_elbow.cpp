@@ -12,7 +12,8 @@ void bind_elbow(nb::module_& m) {
     auto cls = bind_closed_form<ElbowParams>(
         sub, "ElbowParams",
         "A 3R elbow arm as its closed form reads it (solvers/elbow.hpp); plane coordinates "
-        "on e1, e2 = k x e1.");
+        "on e1, e2 = k x e1.",
+        "km::ElbowParams", "kinematica/solvers/elbow.hpp");
     cls.def_rw("pose", &ElbowParams::pose, "True: pose targets; False: position targets")
         .def_rw("h1", &ElbowParams::h1, "(3,) axis 1 direction (unit, base frame)")
         .def_rw("p1", &ElbowParams::p1, "(3,) a point on axis 1 (m)")

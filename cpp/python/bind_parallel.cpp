@@ -90,7 +90,8 @@ void bind_parallel(nb::module_& m) {
     auto cls = bind_closed_form<ParallelParams>(
         sub, "ParallelParams",
         "A UR-type arm (axes 2, 3, 4 parallel) for its closed form: vectors in the base "
-        "frame at q = 0 (m), scalars as solvers/parallel_params.hpp documents them.");
+        "frame at q = 0 (m), scalars as solvers/parallel_params.hpp documents them.",
+        "km::ParallelParams", "kinematica/solvers/parallel.hpp");
     cls.def_rw("k", &ParallelParams::k, "direction of axes 2, 3, 4")
         .def_rw("h1", &ParallelParams::h1, "axis 1 direction")
         .def_rw("p1", &ParallelParams::p1, "a point on axis 1")

@@ -65,7 +65,8 @@ void bind_planar(nb::module_& m) {
     auto cls = bind_closed_form<PlanarParams>(
         sub, "PlanarParams",
         "A planar arm or a SCARA as its closed form reads it (solvers/planar.hpp); "
-        "plane coordinates on e1, e2 = k x e1 relative to origin.");
+        "plane coordinates on e1, e2 = k x e1 relative to origin.",
+        "km::PlanarParams", "kinematica/solvers/planar.hpp");
     constexpr int J = PlanarParams::MAX_JOINTS;
     int_field<&PlanarParams::n>(cls, "n", 1, J, "joints of the arm (2 to 4)");
     int_field<&PlanarParams::slide>(cls, "slide", -1, J - 1,

@@ -211,9 +211,13 @@ const Params& checked(const Params& p) {
 
 //! A closed form's Params class with its IK methods.
 template <class Params>
-nb::class_<Params> bind_closed_form(nb::module_& m, const char* name, const char* doc) {
+nb::class_<Params> bind_closed_form(nb::module_& m, const char* name, const char* doc,
+                                    const char* cpp_type, const char* cpp_header) {
     nb::class_<Params> cls(m, name, doc);
     cls.def(nb::init<>());
+    // for code that fills the same struct in C++ (kinematica convert ROBOT --to cpp)
+    cls.attr("cpp_type") = cpp_type;
+    cls.attr("cpp_header") = cpp_header;
     add_ik_methods(cls, [](const Params& p) { return km::ClosedForm<Params>{checked(p)}; });
     return cls;
 }

@@ -14,6 +14,7 @@ struct Vec3 {
     double x = 0.0, y = 0.0, z = 0.0;
 
     KM_HD double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+    KM_HD double& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
 };
 
 KM_HD inline Vec3 operator+(const Vec3& a, const Vec3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
@@ -68,6 +69,16 @@ struct Pose {
         T[12] = 0.0; T[13] = 0.0; T[14] = 0.0; T[15] = 1.0;
     }
 };
+
+//! A matrix-like field from row-major values (for code written by `kinematica convert
+//! --to cpp`, which sees a (4, 4) field as numbers only).
+KM_HD inline void assign_rows(Pose& P, const double* rows) { P = Pose::from_rows(rows); }
+template <int R, int C>
+KM_HD inline void assign_rows(double (&a)[R][C], const double* rows) {
+    for (int i = 0; i < R; ++i) {
+        for (int j = 0; j < C; ++j) a[i][j] = rows[i * C + j];
+    }
+}
 
 //! A · B.
 KM_HD inline Pose operator*(const Pose& A, const Pose& B) {

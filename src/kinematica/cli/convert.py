@@ -1,4 +1,4 @@
-"""Subcommand ``convert``: a robot as URDF, as a DH table by the rules, or as a robot file."""
+"""Subcommand ``convert``: a robot as URDF, a DH table by the rules, a robot file, or C++."""
 
 from __future__ import annotations
 
@@ -12,11 +12,12 @@ from kinematica.dh import FrameRule
 from kinematica.errors import RobotFileError
 from kinematica.io import URDF_SUFFIXES, dumps_robot_file
 from kinematica.robot import Robot, spec_from_robot, urdf_to_dh
+from kinematica.robot.export_cpp import cpp_header
 
 __all__ = ["FORMATS", "convert", "register"]
 
 #: What ``--to`` accepts.
-FORMATS = ("urdf", "dh-standard", "dh-modified", "yaml")
+FORMATS = ("urdf", "dh-standard", "dh-modified", "yaml", "cpp")
 
 
 def _is_urdf(name: str) -> bool:
@@ -49,6 +50,9 @@ def convert(args: argparse.Namespace) -> int:
     if args.to == "urdf":
         robot = robot_from_args(args)
         text = robot.to_urdf()
+    elif args.to == "cpp":
+        robot = robot_from_args(args)
+        text = cpp_header(robot)
     else:
         if args.to == "yaml":
             robot = robot_from_args(args)
@@ -86,7 +90,8 @@ def register(sub: Any) -> None:
     """Add ``convert`` to the subparsers ``sub``."""
     p = sub.add_parser(
         "convert",
-        help="a robot as URDF, as a DH table by the rules (standard or modified), or as YAML",
+        help="a robot as URDF, as a DH table by the rules (standard or modified), as YAML, "
+        "or as a C++ header of its chain and closed-form IK solver",
     )
     add_robot(p)
     p.add_argument(
@@ -94,7 +99,8 @@ def register(sub: Any) -> None:
         required=True,
         choices=FORMATS,
         help="urdf: URDF text; dh-standard, dh-modified: the DH table read off the joint "
-        "axes by the rules, as a robot file; yaml: the robot file as it is",
+        "axes by the rules, as a robot file; yaml: the robot file as it is; cpp: a C++ "
+        "header (the core's solver filled for this robot, for a C++ program)",
     )
     p.add_argument(
         "-o",

@@ -1,0 +1,143 @@
+"""The core from C++ alone: the PUMA example of examples/cpp, and every solver family.
+
+``kinematica convert ROBOT --to cpp`` writes a header filling the core's solver for one
+arm; a C++ program built on the core's headers then gives what ``robot.ik`` gives.
+Skipped where no C++ compiler is installed.
+"""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+import sys
+import zlib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import kinematica as km
+from kinematica.ik.analytic import SOLVERS
+from kinematica.robot.export_cpp import cpp_header
+
+ROOT = Path(__file__).resolve().parents[1]
+CXX = shutil.which("c++") or shutil.which("g++") or shutil.which("clang++")
+pytestmark = [
+    pytest.mark.skipif(CXX is None, reason="no C++ compiler"),
+    pytest.mark.filterwarnings("ignore::kinematica.KinematicaWarning"),
+]
+FLAGS = ["-std=c++17", "-O1", "-Wall", "-Wextra", "-Werror", "-I", str(ROOT / "cpp" / "include")]
+
+
+def _build(source: Path, include: Path, out: Path) -> None:
+    assert CXX is not None
+    done = subprocess.run(
+        [CXX, *FLAGS, "-I", str(include), str(source), "-o", str(out)],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert done.returncode == 0, done.stderr[-3000:]
+
+
+def test_the_puma_example_gives_what_robot_ik_gives(tmp_path: Path) -> None:
+    cli = [sys.executable, "-m", "kinematica", "convert", "puma560", "--to", "cpp"]
+    subprocess.run([*cli, "-o", str(tmp_path / "puma560_ik.hpp")], check=True, capture_output=True)
+    exe = tmp_path / "puma_ik"
+    _build(ROOT / "examples" / "cpp" / "puma_ik.cpp", tmp_path, exe)
+    robot = km.load("puma560")
+    for q in ([0.1, -0.5, 0.3, 0.7, 0.4, -0.2], [1.2, 0.4, -0.9, -2.0, 1.1, 2.5]):
+        out = subprocess.run([str(exe), *map(repr, q)], capture_output=True, text=True, check=False)
+        lines = out.stdout.splitlines()
+        T = np.array([[float(v) for v in line.split()] for line in lines[1:4]])
+        np.testing.assert_allclose(T, robot.fk(np.array(q))[:3], atol=1e-9)
+        res = robot.ik(robot.fk(np.array(q)))
+        assert lines[4].startswith(
+            f"status 0, {res.count} solutions ({res.out_of_limits.shape[0]} "
+        )
+        rows = lines[5:]
+        assert [r[:44].strip() for r in rows] == list(res.branches)
+        got = np.array([[float(v) for v in r[44:].split()[:6]] for r in rows])
+        np.testing.assert_allclose(got, res.solutions, atol=1e-8)
+
+
+# A program solving one pose per argument line with every family's header (one build).
+_MAIN = """
+#include <cstdio>
+#include <vector>
+#include "kinematica/ik.hpp"
+{includes}
+
+template <class P>
+void solve(const km::Chain& chain, const P& params, const double* rows) {{
+    const km::ClosedForm<P> solver{{params}};
+    const int m = solver.slots(), n = chain.dof();
+    km::IKWork<km::ClosedForm<P>> work(solver, n);
+    km::CheckOptions options;
+    options.complete = true;
+    std::vector<double> Q(m * n), res(2 * m);
+    std::vector<int> slot(m);
+    const km::CheckOut out{{Q.data(), slot.data(), res.data()}};
+    const km::CheckReport r =
+        km::solve_ik(solver, chain.view(), km::Pose::from_rows(rows), options, nullptr, work, out);
+    std::printf("%d %d %d", static_cast<int>(r.status), r.count, r.out_count);
+    for (int k = 0; k < (r.count + r.out_count) * n; ++k) std::printf(" %.17g", Q[k]);
+    std::printf("\\n");
+}}
+
+int main() {{
+    double T[16];
+    int which;
+    while (std::scanf("%d", &which) == 1) {{
+        for (double& v : T) std::scanf("%lf", &v);
+        switch (which) {{
+{cases}
+        }}
+    }}
+}}
+"""
+
+
+def test_every_family_solves_in_cpp_as_in_python(tmp_path: Path) -> None:
+    robots = []
+    for k, spec in enumerate(SOLVERS):
+        if "pose" not in spec.targets:
+            continue
+        rng = np.random.default_rng(zlib.crc32(spec.kind.encode()))
+        arm = spec.sample_arm(rng, k % 2 == 1)
+        robot = km.Robot.from_dh(arm.links, convention=arm.convention, base=arm.base, tool=arm.tool)
+        (tmp_path / f"arm{k}.hpp").write_text(cpp_header(robot, namespace=f"arm{k}"))
+        robots.append((k, robot, rng))
+    rng = np.random.default_rng(5)
+    for k, name in enumerate(("ur5_robot.urdf", "kuka_kr16_2.urdf"), start=len(SOLVERS)):
+        robot = km.load(
+            ROOT / "tests" / "data" / "urdf" / name, tip="tool0"
+        )  # the file's transforms
+        (tmp_path / f"arm{k}.hpp").write_text(cpp_header(robot, namespace=f"arm{k}"))
+        robots.append((k, robot, rng))
+    includes = "\n".join(f'#include "arm{k}.hpp"' for k, _, _ in robots)
+    cases = "\n".join(
+        f"            case {k}: solve(arm{k}::chain(), arm{k}::solver(), T); break;"
+        for k, _, _ in robots
+    )
+    (tmp_path / "main.cpp").write_text(_MAIN.format(includes=includes, cases=cases))
+    exe = tmp_path / "families"
+    _build(tmp_path / "main.cpp", tmp_path, exe)
+    lines, expected = [], []
+    for k, robot, rng in robots:
+        lo, hi = robot.qlim[:, 0], robot.qlim[:, 1]
+        lo, hi = np.where(np.isfinite(lo), lo, -1.0), np.where(np.isfinite(hi), hi, 1.0)
+        for q in rng.uniform(lo, hi, (5, robot.dof)):
+            T = robot.fk(q)
+            lines.append(f"{k} " + " ".join(repr(float(v)) for v in T.ravel()))
+            expected.append(robot.ik(T))
+    out = subprocess.run(
+        [str(exe)], input="\n".join(lines) + "\n", capture_output=True, text=True, check=True
+    )
+    for line, res in zip(out.stdout.splitlines(), expected, strict=True):
+        status, count, outside, *values = line.split()
+        assert int(count) == res.count and int(outside) == res.out_of_limits.shape[0]
+        rows = np.array(values, dtype=float).reshape(-1, res.solutions.shape[1] if res.count else 1)
+        both = np.concatenate([res.solutions, res.out_of_limits]).reshape(rows.shape)
+        np.testing.assert_array_equal(rows, both)  # the same code: the same bits
+        assert km.ik.status.STATUS_NAMES[int(status)] == res.status
