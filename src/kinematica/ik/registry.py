@@ -24,7 +24,7 @@ from kinematica.core import Chain
 from kinematica.dh.joints import Convention, Joint
 from kinematica.ik.structure import Features
 
-__all__ = ["ArmSample", "ClosedForm", "SolverSpec", "TargetKind", "describe"]
+__all__ = ["ArmSample", "ClosedForm", "SolverSpec", "TargetKind", "describe", "describing"]
 
 FloatArray = NDArray[np.float64]
 TargetKind = Literal["pose", "position"]
@@ -97,6 +97,12 @@ class SolverSpec:
         targets: The target kinds it solves (``"pose"``, ``"position"``).
         describes: False for a solver of some targets of arms of many
             structures (it names no structure: :func:`describe` passes it by).
+        derivation: The textbook derivation :mod:`kinematica.symbolic` writes for
+            arms of this structure (its recipe's name), or ``None``.
+        geometric: The geometric method's recipe for the position (``"planar"``,
+            ``"arm-plane"``), or ``None``.
+        singular: The named singularities of the structure (``"shoulder"``,
+            ``"elbow"``, ``"wrist"``) that ``robot.singularities`` looks for.
     """
 
     kind: str
@@ -107,6 +113,17 @@ class SolverSpec:
     sample_arm: Callable[[np.random.Generator, bool], ArmSample]
     targets: tuple[TargetKind, ...] = ("pose",)
     describes: bool = True
+    derivation: str | None = None
+    geometric: str | None = None
+    singular: frozenset[str] = frozenset()
+
+
+def describing(features: Features, specs: tuple[SolverSpec, ...]) -> SolverSpec | None:
+    """The first spec that describes an arm of these features, or ``None``."""
+    for spec in specs:
+        if spec.describes and spec.handles(features):
+            return spec
+    return None
 
 
 def describe(features: Features, specs: tuple[SolverSpec, ...]) -> tuple[str, str, str]:
@@ -115,9 +132,9 @@ def describe(features: Features, specs: tuple[SolverSpec, ...]) -> tuple[str, st
     An arm no spec describes is ``"general"``, summarised from its joint types
     and what its axes have in common.
     """
-    for spec in specs:
-        if spec.describes and spec.handles(features):
-            return spec.kind, spec.summary, spec.summary_es
+    spec = describing(features, specs)
+    if spec is not None:
+        return spec.kind, spec.summary, spec.summary_es
     n, types = features.dof, features.joint_types
     summary, summary_es = f"{n} joints ({types})", f"{n} articulaciones ({types})"
     if n == 6 and types == "RRRRRR" and {(0, 1), (1, 2)} <= set(features.parallel):

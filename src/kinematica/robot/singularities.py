@@ -83,20 +83,6 @@ RANK_TOL = 1e-8
 
 _TOLS = {"wrist": WRIST_TOL, "elbow": ELBOW_TOL, "shoulder": SHOULDER_TOL}
 
-#: Elbow kinds: arms whose shoulder/elbow axes are a consecutive parallel pair.
-_ELBOW_KINDS = {
-    "spherical-wrist-6R",
-    "three-parallel-6R",
-    "anthropomorphic-3R",
-    "elbow-3R",
-    "planar-2R",
-    "planar-3R",
-    "scara",
-}
-_SHOULDER_KINDS = {"spherical-wrist-6R", "three-parallel-6R", "anthropomorphic-3R", "elbow-3R"}
-_WRIST_KINDS = {"spherical-wrist-6R", "rrp-spherical-wrist", "three-parallel-6R"}
-
-
 @dataclass(frozen=True)
 class Singularity:
     """One lost direction of the Jacobian, with its name.
@@ -152,11 +138,15 @@ def singularity_plan(robot: Robot) -> SingularityPlan:
     rows = (0, 1, 2) if rank_pos == rank_all else (0, 1, 2, 3, 4, 5)
     rank = rank_pos if rows == (0, 1, 2) else rank_all
 
-    wrist = (n - 3, n - 2, n - 1) if st.kind in _WRIST_KINDS else None
+    # which named singularities the class has: its solver's spec says (none: "general")
+    named = st.spec.singular if st.spec is not None else frozenset()
+    # axes 2, 3, 4 parallel (UR type): the elbow and shoulder points are set by the wrist
+    three_parallel = types == "RRRRRR" and {(1, 2), (2, 3)} <= set(st.parallel)
+    wrist = (n - 3, n - 2, n - 1) if "wrist" in named else None
     s_axis: int | None = None
     elbow_point: tuple[str, int] = ("tool", -1)
     shoulder_point: tuple[str, int] | None = None
-    if st.kind in _ELBOW_KINDS:
+    if "elbow" in named:
         for s in (0, 1):
             if s + 1 < n and types[s : s + 2] == "RR" and lines_parallel(h[s], h[s + 1]):
                 if s == 1 and lines_parallel(h[0], h[1]):
@@ -176,12 +166,12 @@ def singularity_plan(robot: Robot) -> SingularityPlan:
             last = j
         if last is not None:
             elbow_point = ("axis", last)
-        elif st.wrist_center is not None and st.kind != "three-parallel-6R":
+        elif st.wrist_center is not None and not three_parallel:
             elbow_point = ("wrist", -1)
-        if s_axis == 1 and types[0] == "R" and st.kind in _SHOULDER_KINDS:
+        if s_axis == 1 and types[0] == "R" and "shoulder" in named:
             if st.wrist_center is not None:
                 shoulder_point = ("wrist", -1)
-            elif st.kind == "three-parallel-6R":
+            elif three_parallel:
                 if not lines_parallel(h[n - 2], h[n - 1]) and (
                     line_distance(h[n - 2], p[n - 2], h[n - 1], p[n - 1]) < MEET_TOL
                 ):

@@ -8,7 +8,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica.ik import Features, features, structure_of
+from kinematica.ik import Features, SolverSpec, features
+from kinematica.ik.analytic import SOLVERS
+from kinematica.ik.registry import describe, describing
 
 if TYPE_CHECKING:
     from kinematica.robot.robot import Robot
@@ -31,12 +33,15 @@ class Structure:
         summary: One line for people, e.g. ``"6R, spherical wrist"``.
         features: The geometry of the joint axes at q = 0.
         summary_es: The line in Spanish, e.g. ``"6R con muñeca esférica"``.
+        spec: The closed-form solver's spec of the class (its derivation, its named
+            singularities), or ``None`` for ``"general"``.
     """
 
     kind: str
     summary: str
     features: Features
     summary_es: str = ""
+    spec: SolverSpec | None = None
 
     @property
     def joint_types(self) -> str:
@@ -61,5 +66,6 @@ class Structure:
 
 def classify(robot: Robot) -> Structure:
     """Classify an arm from its joint axes at q = 0 (never from its name)."""
-    kind, summary, summary_es = structure_of(robot.chain)
-    return Structure(kind, summary, features(robot.chain), summary_es)
+    f = features(robot.chain)
+    kind, summary, summary_es = describe(f, SOLVERS)
+    return Structure(kind, summary, f, summary_es, describing(f, SOLVERS))

@@ -135,9 +135,10 @@ def _arm_plane(model: SymbolicRobot) -> GeometricDerivation | None:
 
 def derive_geometric(model: SymbolicRobot) -> GeometricDerivation | None:
     """The position by the geometric method, for planar arms and 3R arms; else ``None``."""
-    kind = classify(model.robot).kind
-    if kind in ("planar-2R", "planar-3R", "planar-PR", "planar-PRR"):
+    spec = classify(model.robot).spec
+    recipe = spec.geometric if spec is not None else None
+    if recipe == "planar":
         return _planar(model)
-    if kind in ("anthropomorphic-3R", "elbow-3R"):
+    if recipe == "arm-plane":
         return _arm_plane(model)
     return None

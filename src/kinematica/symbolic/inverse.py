@@ -352,48 +352,51 @@ def _wrist_angles(ctx: _Ctx, R: sp.Matrix) -> None:
 
 
 # ------------------------------------------------------------- per class
-def _build(ctx: _Ctx, kind: str) -> bool:
-    """Fill ``ctx`` with the derivation of ``kind``; True when the target has an orientation."""
+def _build(ctx: _Ctx, recipe: str | None) -> bool:
+    """Fill ``ctx`` with the derivation ``recipe`` (the class's spec names it).
+
+    Returns True when the target has an orientation.
+    """
     p, R = target_symbols()
     n = ctx.model.dof
     tool_point = (len(ctx.chain), _origin())
-    if kind in ("anthropomorphic-3R", "elbow-3R"):
+    if recipe == "elbow-3R":
         end, local = tool_point
         W = _after_rotz(ctx, 1, end, local, ())
         U, V, u, v = _shoulder_q1(ctx, _frame1(ctx, p), W)
         _planar_pair(ctx, 2, 3, U, V, u, v)
         return False
-    if kind == "spherical-wrist-6R":
+    if recipe == "spherical-wrist":
         pm = _wrist_point(ctx, 5, p, R, "p_m")
         W = _after_rotz(ctx, 1, ctx.rotz[5], _origin(), (4,))
         U, V, u, v = _shoulder_q1(ctx, _frame1(ctx, pm), W)
         _planar_pair(ctx, 2, 3, U, V, u, v)
         _wrist_angles(ctx, R)
         return True
-    if kind == "planar-2R":
+    if recipe == "planar-2R":
         _in_plane(ctx, _prod(ctx.chain)[:3, 3], p, 1, 2)
         return False
-    if kind == "planar-3R":
+    if recipe == "planar-3R":
         pw = _wrist_point(ctx, 3, p, R, "p_w")
         _in_plane(ctx, _prod(ctx.chain[: ctx.rotz[3]])[:3, 3], pw, 1, 2)
         _last_angle(ctx, 3, R)
         return True
-    if kind == "planar-PR":
+    if recipe == "planar-PR":
         _prismatic_revolute(ctx, _prod(ctx.chain)[:3, 3], p)
         return False
-    if kind == "planar-PRR":
+    if recipe == "planar-PRR":
         pw = _wrist_point(ctx, 3, p, R, "p_w")
         _prismatic_revolute(ctx, _prod(ctx.chain[: ctx.rotz[3]])[:3, 3], pw)
         _last_angle(ctx, 3, R)
         return True
-    if kind == "scara" and n == 4:
+    if recipe == "scara" and n == 4:
         pw = _wrist_point(ctx, 4, p, R, "p_w")
         Pw = _prod(ctx.chain[: ctx.rotz[4]])[:3, 3]
         _in_plane(ctx, Pw.xreplace({ctx.q(3): 0}), pw, 1, 2)
         _prismatic(ctx, 3, Pw, pw)
         _last_angle(ctx, 4, R)
         return True
-    raise _OutOfPatternError(f"no textbook derivation for the class {kind!r}")
+    raise _OutOfPatternError(f"no textbook derivation {recipe!r}")
 
 
 # ------------------------------------------------------------------ check
@@ -472,10 +475,11 @@ def derive_inverse(model: SymbolicRobot) -> InverseDerivation | None:
         formulas, evaluated on random poses of the numeric robot, reproduce
         every one of them (every finite branch a solution); else ``None``.
     """
-    kind = classify(model.robot).kind
+    structure = classify(model.robot)
+    kind = structure.kind
     ctx = _context(model)
     try:
-        pose = _build(ctx, kind)
+        pose = _build(ctx, structure.spec.derivation if structure.spec else None)
     # Any of these means the geometry is outside the textbook pattern (sympy's
     # polynomial tools raise their own errors on a non-polynomial entry): no
     # derivation is shown, and robot.ik still solves the arm.

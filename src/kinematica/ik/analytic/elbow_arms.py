@@ -136,6 +136,9 @@ SPECS: tuple[SolverSpec, ...] = (
         build,
         sampler("anthropomorphic-3R"),
         ("pose", "position"),
+        derivation="elbow-3R",
+        geometric="arm-plane",
+        singular=frozenset({"shoulder", "elbow"}),
     ),
     SolverSpec(
         "elbow-3R",
@@ -145,5 +148,8 @@ SPECS: tuple[SolverSpec, ...] = (
         build,
         sampler("elbow-3R"),
         ("pose", "position"),
+        derivation="elbow-3R",
+        geometric="arm-plane",
+        singular=frozenset({"shoulder", "elbow"}),
     ),
 )

@@ -301,4 +301,5 @@ SPEC: SolverSpec = SolverSpec(
     handles=_handles,
     build=build,
     sample_arm=sample_arm,
+    singular=frozenset({"shoulder", "elbow", "wrist"}),
 )

@@ -163,6 +163,9 @@ SPECS: tuple[SolverSpec, ...] = (
         build,
         sampler("planar-2R"),
         _BOTH,
+        derivation="planar-2R",
+        geometric="planar",
+        singular=frozenset({"elbow"}),
     ),
     SolverSpec(
         "planar-PR",
@@ -172,6 +175,8 @@ SPECS: tuple[SolverSpec, ...] = (
         build,
         sampler("planar-PR"),
         _BOTH,
+        derivation="planar-PR",
+        geometric="planar",
     ),
     SolverSpec(
         "planar-3R",
@@ -181,6 +186,9 @@ SPECS: tuple[SolverSpec, ...] = (
         build,
         sampler("planar-3R"),
         _BOTH,
+        derivation="planar-3R",
+        geometric="planar",
+        singular=frozenset({"elbow"}),
     ),
     SolverSpec(
         "planar-PRR",
@@ -190,6 +198,8 @@ SPECS: tuple[SolverSpec, ...] = (
         build,
         sampler("planar-PRR"),
         _BOTH,
+        derivation="planar-PRR",
+        geometric="planar",
     ),
     SolverSpec(
         "scara",
@@ -199,5 +209,8 @@ SPECS: tuple[SolverSpec, ...] = (
         build,
         sampler("scara"),
         _BOTH,
+        derivation="scara",
+        geometric=None,
+        singular=frozenset({"elbow"}),
     ),
 )

@@ -276,6 +276,8 @@ def _wrist_arm(types: str) -> SolverSpec:
         handles=lambda f: f.joint_types == types and f.wrist_center is not None,
         build=build,
         sample_arm=_sample(("R23", "R") if types == "RRRRRR" else ("P",)),
+        derivation="spherical-wrist" if types == "RRRRRR" else None,
+        singular=frozenset({"shoulder", "elbow", "wrist"} if types == "RRRRRR" else {"wrist"}),
     )
 
 
