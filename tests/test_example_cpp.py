@@ -141,3 +141,24 @@ def test_every_family_solves_in_cpp_as_in_python(tmp_path: Path) -> None:
         both = np.concatenate([res.solutions, res.out_of_limits]).reshape(rows.shape)
         np.testing.assert_array_equal(rows, both)  # the same code: the same bits
         assert km.ik.status.STATUS_NAMES[int(status)] == res.status
+
+
+def test_the_readme_commands_build_and_run_the_example(tmp_path: Path) -> None:
+    import re
+    import shlex
+
+    text = (ROOT / "README.md").read_text()
+    block = re.search(r"## From C\+\+.*?```sh\n(.*?)```", text, flags=re.S)
+    assert block is not None
+    for line in block.group(1).strip().splitlines():
+        args = shlex.split(line)
+        if args[0].endswith("kinematica"):
+            args = [sys.executable, "-m", "kinematica", *args[1:]]
+        elif args[0] == "c++":
+            args = [
+                CXX or "c++",
+                *(str(ROOT / a) if a.startswith(("cpp/", "examples/")) else a for a in args[1:]),
+            ]
+        done = subprocess.run(args, cwd=tmp_path, capture_output=True, text=True, check=False)
+        assert done.returncode == 0, done.stderr[-2000:]
+    assert "status 0" in done.stdout
