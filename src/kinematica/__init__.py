@@ -15,7 +15,6 @@ with an honest status::
 import importlib
 from typing import TYPE_CHECKING, Any
 
-from kinematica.dh import Prismatic, Revolute, link_matrix
 from kinematica.errors import (
     ArgumentError,
     DimensionError,
@@ -25,49 +24,18 @@ from kinematica.errors import (
     UnknownRobotError,
     UnreachableError,
 )
-from kinematica.io import ExpressionError, builtin_names, read_robot_file
-from kinematica.robot import (
-    DHExtraction,
-    Robot,
-    Structure,
-    classify,
-    load,
-    robot_from_spec,
-    spec_from_robot,
-    urdf_to_dh,
-    write_robot_file,
-)
-from kinematica.spatial import (
-    EulerSequenceError,
-    axis_angle_from_matrix,
-    check_rotation,
-    check_transform,
-    compose,
-    euler_from_matrix,
-    from_pose,
-    gimbal_locked,
-    inv_transform,
-    make_transform,
-    matrix_from_axis_angle,
-    matrix_from_euler,
-    matrix_from_quat,
-    matrix_from_rotvec,
-    quat_conjugate,
-    quat_from_matrix,
-    quat_multiply,
-    quat_slerp,
-    rotation_angle,
-    rotvec_from_matrix,
-    rotx,
-    roty,
-    rotz,
-    se3_error,
-    to_pose,
-    transl,
-    wrap_angle,
-)
 
-if TYPE_CHECKING:  # imported on first use (below): `import kinematica` stays light
+if TYPE_CHECKING:  # the names below load on first use: `import kinematica` stays light
+    from kinematica.dh import (
+        Prismatic,
+        Revolute,
+        link_matrix,
+    )
+    from kinematica.io import (
+        ExpressionError,
+        builtin_names,
+        read_robot_file,
+    )
     from kinematica.motion import (
         analytic_jacobian,
         cartesian_path,
@@ -75,36 +43,137 @@ if TYPE_CHECKING:  # imported on first use (below): `import kinematica` stays li
         joint_trajectory,
         manipulability,
     )
-    from kinematica.motion.workspace import workspace
+    from kinematica.motion.workspace import (
+        workspace,
+    )
+    from kinematica.robot import (
+        DHExtraction,
+        Robot,
+        Structure,
+        classify,
+        robot_from_spec,
+        spec_from_robot,
+        urdf_to_dh,
+        write_robot_file,
+    )
+    from kinematica.robot.load import load
+    from kinematica.spatial import (
+        EulerSequenceError,
+        axis_angle_from_matrix,
+        check_rotation,
+        check_transform,
+        compose,
+        euler_from_matrix,
+        from_pose,
+        gimbal_locked,
+        inv_transform,
+        make_transform,
+        matrix_from_axis_angle,
+        matrix_from_euler,
+        matrix_from_quat,
+        matrix_from_rotvec,
+        quat_conjugate,
+        quat_from_matrix,
+        quat_multiply,
+        quat_slerp,
+        rotation_angle,
+        rotvec_from_matrix,
+        rotx,
+        roty,
+        rotz,
+        se3_error,
+        to_pose,
+        transl,
+        wrap_angle,
+    )
 
 __version__ = "0.1.0"
 
 #: Public names imported on first use, and the module each comes from.
 _LAZY = {
-    name: "kinematica.motion"
-    for name in (
-        "analytic_jacobian",
-        "cartesian_path",
-        "condition_number",
-        "joint_trajectory",
-        "manipulability",
-        "workspace",
-    )
+    "Prismatic": "kinematica.dh",
+    "Revolute": "kinematica.dh",
+    "link_matrix": "kinematica.dh",
+    "ExpressionError": "kinematica.io",
+    "builtin_names": "kinematica.io",
+    "read_robot_file": "kinematica.io",
+    "DHExtraction": "kinematica.robot",
+    "Robot": "kinematica.robot",
+    "Structure": "kinematica.robot",
+    "classify": "kinematica.robot",
+    "load": "kinematica.robot.load",
+    "robot_from_spec": "kinematica.robot",
+    "spec_from_robot": "kinematica.robot",
+    "urdf_to_dh": "kinematica.robot",
+    "write_robot_file": "kinematica.robot",
+    "EulerSequenceError": "kinematica.spatial",
+    "axis_angle_from_matrix": "kinematica.spatial",
+    "check_rotation": "kinematica.spatial",
+    "check_transform": "kinematica.spatial",
+    "compose": "kinematica.spatial",
+    "euler_from_matrix": "kinematica.spatial",
+    "from_pose": "kinematica.spatial",
+    "gimbal_locked": "kinematica.spatial",
+    "inv_transform": "kinematica.spatial",
+    "make_transform": "kinematica.spatial",
+    "matrix_from_axis_angle": "kinematica.spatial",
+    "matrix_from_euler": "kinematica.spatial",
+    "matrix_from_quat": "kinematica.spatial",
+    "matrix_from_rotvec": "kinematica.spatial",
+    "quat_conjugate": "kinematica.spatial",
+    "quat_from_matrix": "kinematica.spatial",
+    "quat_multiply": "kinematica.spatial",
+    "quat_slerp": "kinematica.spatial",
+    "rotation_angle": "kinematica.spatial",
+    "rotvec_from_matrix": "kinematica.spatial",
+    "rotx": "kinematica.spatial",
+    "roty": "kinematica.spatial",
+    "rotz": "kinematica.spatial",
+    "se3_error": "kinematica.spatial",
+    "to_pose": "kinematica.spatial",
+    "transl": "kinematica.spatial",
+    "wrap_angle": "kinematica.spatial",
+    "workspace": "kinematica.motion.workspace",
+    "analytic_jacobian": "kinematica.motion",
+    "cartesian_path": "kinematica.motion",
+    "condition_number": "kinematica.motion",
+    "joint_trajectory": "kinematica.motion",
+    "manipulability": "kinematica.motion",
 }
+#: Subpackages reachable as attributes (``km.ik``, ``km.spatial``...) before anything imported them.
+_SUBPACKAGES = frozenset(
+    {
+        "core",
+        "design",
+        "dh",
+        "errors",
+        "ik",
+        "io",
+        "motion",
+        "robot",
+        "spatial",
+        "symbolic",
+        "viz",
+        "cli",
+    }
+)
 
 
 def __getattr__(name: str) -> Any:
-    """The motion names, imported when first asked for (PEP 562)."""
+    """The public names and subpackages, imported when first asked for (PEP 562)."""
     module = _LAZY.get(name)
-    if module is None:
+    if module is not None:
+        value = getattr(importlib.import_module(module), name)
+    elif name in _SUBPACKAGES:
+        value = importlib.import_module(f"kinematica.{name}")
+    else:
         raise AttributeError(f"module 'kinematica' has no attribute {name!r}")
-    value = getattr(importlib.import_module(module), name)
     globals()[name] = value
     return value
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
+    return sorted(set(globals()) | set(_LAZY) | _SUBPACKAGES)
 
 
 __all__ = [

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -13,21 +13,10 @@ from numpy.typing import NDArray
 from kinematica.cli.format import fmt, matrix, table
 from kinematica.cli.options import add_common, add_robot, angle_unit, dump, q_in, q_out
 from kinematica.errors import KinematicaError
-from kinematica.motion import (
-    CartesianPath,
-    analytic_jacobian,
-    cartesian_path,
-    condition_number,
-    jacobian_rank,
-    joint_trajectory,
-    manipulability,
-    singularities,
-    time_scaling,
-    workspace,
-    write_csv,
-    write_json,
-)
 from kinematica.robot import Robot, load
+
+if TYPE_CHECKING:  # kinematica.motion loads when one of these commands runs
+    from kinematica.motion import CartesianPath
 
 __all__ = ["jacobian", "register", "trajectory", "workspace_cmd"]
 
@@ -57,6 +46,14 @@ def _safe(a: Any) -> Any:
 # ------------------------------------------------------------------ jacobian
 def jacobian(args: argparse.Namespace) -> int:
     """``kinematica jacobian ROBOT --q ...``: J, rank, manipulability, singularities."""
+    from kinematica.motion import (
+        analytic_jacobian,
+        condition_number,
+        jacobian_rank,
+        manipulability,
+        singularities,
+    )
+
     robot = load(args.robot)
     q = q_in(robot, args.q, args, "q")
     J = robot.jacobian(q, frame=args.frame)
@@ -111,6 +108,8 @@ def jacobian(args: argparse.Namespace) -> int:
 # ----------------------------------------------------------------- workspace
 def workspace_cmd(args: argparse.Namespace) -> int:
     """``kinematica workspace ROBOT``: bounds, volume, a slice, a map."""
+    from kinematica.motion import workspace
+
     robot = load(args.robot)
     if args.samples < 1:
         raise KinematicaError(f"--samples must be a positive integer, got {args.samples}")
@@ -189,6 +188,14 @@ def _print_events(path: CartesianPath) -> None:
 
 def trajectory(args: argparse.Namespace) -> int:
     """``kinematica trajectory ROBOT --from ... --to ...``: samples, events, a file."""
+    from kinematica.motion import (
+        cartesian_path,
+        joint_trajectory,
+        time_scaling,
+        write_csv,
+        write_json,
+    )
+
     robot = load(args.robot)
     qa = q_in(robot, args.q_from, args, "from")
     qb = q_in(robot, args.q_to, args, "to")
