@@ -563,9 +563,12 @@ def test_single_call_equals_the_batch(shoulder: str, joint3: str) -> None:
     many = solver.params.ik_batch(robot.chain.core, T, opts, None, None, 4)
     Q, info = raw(robot, T)
     for i in range(len(T)):
-        q, res, slots, report = solver.params.ik(robot.chain.core, T[i], opts, None)
-        np.testing.assert_array_equal(q, many["q"][i])
-        np.testing.assert_array_equal(res, many["res"][i])
+        q, res, outside, slots, report = solver.params.ik(robot.chain.core, T[i], opts, None)
+        k, m = report[1], report[2]
+        np.testing.assert_array_equal(q, many["q"][i][:k])
+        np.testing.assert_array_equal(outside, many["q"][i][k : k + m])
+        assert np.isnan(many["q"][i][k + m :]).all()
+        np.testing.assert_array_equal(res, many["res"][i][:k])
         assert slots == [s for s in many["slot"][i].tolist() if s >= 0]
         assert report[0] == many["status"][i] and report[1] == many["count"][i]
         assert report[6] == many["near"][i] == info.near[i]

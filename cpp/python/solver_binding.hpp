@@ -9,6 +9,7 @@
 
 #include <nanobind/nanobind.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -19,6 +20,7 @@
 #include "common.hpp"
 #include "kinematica/chain.hpp"
 #include "kinematica/ik.hpp"
+#include "kinematica/pose_check.hpp"
 #include "numpy_io.hpp"
 #include "pool.hpp"
 
@@ -63,7 +65,30 @@ void check_dims(const Solver& s, const km::Chain& chain) {
     }
 }
 
-//! (q (m, n), res (m, 2), slots (count + out_count,), report...) for one target.
+//! One target solved and checked, compiled for AVX-512, AVX2 and the baseline (the
+//! check's trigonometry of every candidate runs as SIMD on the first two).
+template <class Solver>
+KM_CLONES km::CheckReport solve_checked(const Solver& s, const km::ChainView& ch, const km::Pose& P,
+                                        const km::CheckOptions& opts, const double* q0,
+                                        km::IKWork<Solver>& work, const km::CheckOut& out) {
+    return km::solve_ik(s, ch, P, opts, q0, work, out);
+}
+
+//! Where one target's checked rows land before they are copied out: per thread.
+struct OneOut {
+    std::vector<double> q, res;
+    std::vector<int> slot;
+    void fit(int m, int n) {
+        if (static_cast<int>(slot.size()) < m || static_cast<int>(q.size()) < m * n) {
+            q.resize(static_cast<size_t>(m * n));
+            res.resize(static_cast<size_t>(2 * m));
+            slot.resize(static_cast<size_t>(m));
+        }
+    }
+};
+
+//! (solutions (count, n), their residuals (count, 2), solutions outside the limits
+//! (out_count, n), the slot of each (count + out_count,), report) for one target.
 template <class Solver>
 nb::tuple ik_one(const Solver& s, const km::Chain& chain, F64 T,
                  const km::CheckOptions& opts, nb::handle q0) {
@@ -72,22 +97,31 @@ nb::tuple ik_one(const Solver& s, const km::Chain& chain, F64 T,
     const int n = ch.n, m = s.slots();
     const km::Pose P = target_pose(T);
     const double* q0p = optional_q0(q0, n);
-    double* q;
-    double* res;
-    nb::object Qa = new_f64({m, n}, q);
-    nb::object Ra = new_f64({m, 2}, res);
-    int slots[km::MAX_SLOTS];
-    std::vector<int> big_slots;
-    int* slot = slots;
-    if (m > km::MAX_SLOTS) {
-        big_slots.resize(static_cast<size_t>(m));
-        slot = big_slots.data();
-    }
+    thread_local OneOut buf;
+    buf.fit(m, n);
     km::IKWork<Solver>& work = thread_work(s, n);
-    const km::CheckReport rep = km::solve_ik(s, ch, P, opts, q0p, work, km::CheckOut{q, slot, res});
+    const km::CheckReport rep = solve_checked(
+        s, ch, P, opts, q0p, work, km::CheckOut{buf.q.data(), buf.slot.data(), buf.res.data()});
+    const int count = rep.count, out = rep.out_count;
+    double *q, *res, *qo;
+    F64 Qa = new_f64({count, n}, q), Ra = new_f64({count, 2}, res), Oa = new_f64({out, n}, qo);
+    std::copy(buf.q.data(), buf.q.data() + count * n, q);
+    std::copy(buf.res.data(), buf.res.data() + 2 * count, res);
+    std::copy(buf.q.data() + count * n, buf.q.data() + (count + out) * n, qo);
     nb::list order;
-    for (int r = 0; r < rep.count + rep.out_count; ++r) order.append(slot[r]);
-    return nb::make_tuple(Qa, Ra, order, report_tuple(rep));
+    for (int r = 0; r < count + out; ++r) order.append(buf.slot[static_cast<size_t>(r)]);
+    return nb::make_tuple(Qa, Ra, Oa, order, report_tuple(rep));
+}
+
+//! ik_one for a target already rigid to round-off (finite, last row exact, |RᵀR - I| <=
+//! roundoff, det R > 0), else None: the caller's general path reads (and explains) it.
+template <class Solver>
+nb::object ik_rigid(const Solver& s, const km::Chain& chain, F64 T, const km::CheckOptions& opts,
+                    double roundoff) {
+    const In in = in_f64(T, "T", 2, {4, 4});
+    const km::PoseDefects d = km::pose_defects(in.data);
+    if (!(d.finite && d.last_row == 0.0 && d.ortho <= roundoff && d.det > 0.0)) return nb::none();
+    return ik_one(s, chain, T, opts, nb::none());
 }
 
 //! A batch of N targets: a dict of arrays q (N, m, n), slot (N, m), res (N, m, 2),
@@ -134,7 +168,7 @@ nb::dict ik_many(const Solver& s, const km::Chain& chain, F64 Th,
                     rep = km::invalid_target(m, n, o);
                 } else {
                     const km::Pose P = km::Pose::from_rows(T.data + 16 * i);
-                    rep = km::solve_ik(s, ch, P, opts, q0 != nullptr ? q0 + i * n : nullptr, work, o);
+                    rep = solve_checked(s, ch, P, opts, q0 != nullptr ? q0 + i * n : nullptr, work, o);
                 }
                 for (int r = 0; r < m; ++r) slot[i * m + r] = slots[static_cast<size_t>(r)];
                 status[i] = static_cast<npy_int64>(rep.status);
@@ -175,7 +209,12 @@ void add_ik_methods(nb::class_<Bound>& cls, Get get) {
             [get](const Bound& b, const km::Chain& chain, F64 T, const km::CheckOptions& o,
                   nb::handle q0) { return ik_one(get(b), chain, T, o, q0); },
             nb::arg("chain"), nb::arg("T"), nb::arg("options"), nb::arg("q0").none(),
-            "Every solution of one target T (4, 4): (q, res, slots, report).");
+            "Every solution of one target T (4, 4): (q, res, q outside, slots, report).");
+    cls.def("ik_rigid",
+            [get](const Bound& b, const km::Chain& chain, F64 T, const km::CheckOptions& o,
+                  double roundoff) { return ik_rigid(get(b), chain, T, o, roundoff); },
+            nb::arg("chain"), nb::arg("T"), nb::arg("options"), nb::arg("roundoff"),
+            "ik of a target rigid to round-off, without q0; None for any other target.");
     cls.def("ik_batch",
             [get](const Bound& b, const km::Chain& chain, F64 T, const km::CheckOptions& o,
                   nb::handle q0, nb::handle invalid, int workers) {

@@ -14,7 +14,7 @@ from numpy.typing import NDArray
 from kinematica.errors import UnreachableError
 from kinematica.ik.status import STATUS_NAMES, IKStatus, status_message
 
-__all__ = ["NEAR_NOTE", "CheckOutput", "IKBatchResult", "IKResult", "result_of"]
+__all__ = ["NEAR_NOTE", "CheckOutput", "CoreAnswer", "IKBatchResult", "IKResult", "result_of"]
 
 FloatArray = NDArray[np.float64]
 
@@ -279,16 +279,11 @@ class IKBatchResult:
             float(raw.nearest[flat, 0]), float(raw.nearest[flat, 1]), bool(raw.near[flat]), free,
         )  # fmt: skip
         slots = raw.slot[flat, : count + out].tolist()
+        q = raw.q[flat]
         return result_of(
-            raw.q[flat],
-            raw.res[flat],
-            slots,
-            report,
-            self.labels,
-            self.method,
-            self.complete,
-            notes,
-        )
+            q[:count], raw.res[flat, :count], q[count : count + out], slots, report,
+            self.labels, self.method, self.complete, notes,
+        )  # fmt: skip
 
     @cached_property
     def message(self) -> NDArray[np.str_]:
@@ -335,9 +330,21 @@ class CheckOutput:
 _SINGULAR = next(code for code, name in STATUS_NAMES.items() if name is IKStatus.SINGULAR)
 
 
+#: What the core's ``ik`` of one target gives: solutions, residuals, solutions outside
+#: the limits, the slot of each, the report (see :func:`result_of`).
+CoreAnswer = tuple[
+    FloatArray,
+    FloatArray,
+    FloatArray,
+    list[int],
+    tuple[int, int, int, float, float, float, bool, int],
+]
+
+
 def result_of(
-    q: FloatArray,
+    solutions: FloatArray,
     residuals: FloatArray,
+    outside: FloatArray,
     slots: list[int],
     report: tuple[int, int, int, float, float, float, bool, int],
     labels: tuple[str, ...],
@@ -348,9 +355,10 @@ def result_of(
     """The :class:`IKResult` of one target from what the core's check wrote for it.
 
     Args:
-        q: ``(m, n)`` the checked solutions (within the limits first).
-        residuals: ``(m, 2)`` their residuals.
-        slots: The candidate slot (branch label) of each solution row.
+        solutions: ``(count, n)`` the checked solutions within the limits.
+        residuals: ``(count, 2)`` their residuals.
+        outside: ``(out_count, n)`` the solutions outside the limits.
+        slots: The candidate slot (branch label) of each, within then outside.
         report: ``(status, count, out_count, gap, nearest position, nearest
             rotation, near, free mask)`` as the core gives it.
         labels: The solver's branch labels.
@@ -364,19 +372,19 @@ def result_of(
     code, count, out, gap, near_p, near_r, near, free_mask = report
     status = STATUS_NAMES[code]
     free: tuple[int, ...] = ()
-    if status is IKStatus.SINGULAR and free_mask:
-        free = tuple([j for j in range(q.shape[1]) if (free_mask >> j) & 1])
+    if free_mask and status is IKStatus.SINGULAR:
+        free = tuple([j for j in range(solutions.shape[1]) if (free_mask >> j) & 1])
     res = IKResult.__new__(IKResult)
     res.__dict__.update(
-        solutions=q[:count],
+        solutions=solutions,
         status=status,
         method=method,
-        residuals=residuals[:count],
+        residuals=residuals,
         branches=tuple([labels[j] for j in slots[:count]]),
-        out_of_limits=q[count : count + out],
+        out_of_limits=outside,
         out_of_limits_branches=tuple([labels[j] for j in slots[count:]]) if out else (),
         free_joints=free,
-        gap=None if math.isnan(gap) else gap,
+        gap=None if gap != gap else gap,
         nearest_error=(near_p, near_r),
         notes=notes,
         complete=complete,

@@ -10,7 +10,7 @@ candidate by forward kinematics; the outcome is wrapped in an :class:`IKResult`
 from __future__ import annotations
 
 import weakref
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -22,11 +22,11 @@ from kinematica.ik.analytic import SOLVERS
 from kinematica.ik.numeric import LABEL, check_seed, numeric_setup
 from kinematica.ik.options import IKOptions, Method
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
-from kinematica.ik.result import CheckOutput, IKBatchResult, IKResult, result_of
+from kinematica.ik.result import CheckOutput, CoreAnswer, IKBatchResult, IKResult, result_of
 from kinematica.ik.structure import features
 from kinematica.ik.targets import Targets, Tolerance, parse_mask, parse_targets, parse_tolerance
 
-__all__ = ["closed_form", "solve_ik", "structure_of"]
+__all__ = ["PoseSolver", "closed_form", "pose_solver", "solve_ik", "structure_of"]
 
 FloatArray = NDArray[np.float64]
 
@@ -112,6 +112,52 @@ def _options(
     return opts
 
 
+class PoseSolver(NamedTuple):
+    """What ``robot.ik(T)`` with every default runs for one pose (see :func:`pose_solver`).
+
+    Attributes:
+        ik_rigid: The solver's ``ik_rigid(chain, T, options, roundoff)``.
+        options: The check's options.
+        labels: The branch names of its slots.
+        method: The method name results carry.
+        complete: It gives every solution (a closed form).
+    """
+
+    ik_rigid: Any
+    options: _core.CheckOptions
+    labels: tuple[str, ...]
+    method: str
+    complete: bool
+
+
+def pose_solver(chain: Chain) -> PoseSolver:
+    """The solver ``solve_ik`` picks for one pose target with the default options.
+
+    The same choice and settings as :func:`solve_ik` makes (closed form when the
+    structure allows, else the numeric search with the default seed), ready for
+    ``robot.ik``'s one-pose path, which skips the general parsing when the
+    target is a rigid transform to round-off.
+    """
+    tolerance = parse_tolerance(None)
+    closed = closed_form(chain, "pose")
+    if closed is not None:
+        solver, labels, name = closed.params, closed.labels, closed.method
+    else:
+        setup = numeric_setup(
+            chain,
+            respect_limits=True,
+            tol_position=tolerance.position,
+            tol_rotation=tolerance.rotation,
+            seed=None,
+            weights=np.array(_POSE),
+        )
+        solver, labels, name = setup.solver, (LABEL,), "numeric:lm"
+    complete = closed is not None
+    return PoseSolver(
+        solver.ik_rigid, _options(tolerance, True, complete, _POSE), labels, name, complete
+    )
+
+
 def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IKBatchResult:
     """Every inverse-kinematics solution of a target, or an honest status.
 
@@ -157,11 +203,11 @@ def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | 
     complete = closed is not None
     opts = _options(tolerance, respect_limits, complete, w)
     if targets.single:
-        q, res, slots, report = solver.ik(
+        out: CoreAnswer = solver.ik(
             chain.core, targets.poses[0], opts, None if q0s is None else q0s[0]
         )
         notes = targets.notes.get(0, ()) if targets.notes else ()
-        return result_of(q, res, slots, report, labels, name, complete, notes)
+        return result_of(*out, labels, name, complete, notes)
     invalid = None
     if targets.invalid:
         invalid = np.zeros(targets.poses.shape[0], dtype=bool)

@@ -28,10 +28,13 @@ from kinematica.dh import (
 )
 from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning
 from kinematica.ik import IKBatchResult, IKOptions, IKResult, Tolerance, solve_ik
+from kinematica.ik.result import CoreAnswer, result_of
+from kinematica.ik.solve import PoseSolver, pose_solver
 from kinematica.robot.dh_rules import to_dh, to_urdf
 from kinematica.robot.frames import rigid_frame, short
 from kinematica.robot.save import write_robot_file
 from kinematica.robot.transforms import ChainTransforms, dh_frames
+from kinematica.spatial import ROUNDOFF_TOL
 
 if TYPE_CHECKING:
     import os
@@ -86,6 +89,7 @@ class Robot:
     _jacobian_one: Callable[[FloatArray, bool], tuple[FloatArray, int]] = field(
         init=False, repr=False, compare=False
     )
+    _pose_solver: PoseSolver | None = field(init=False, repr=False, compare=False, default=None)
 
     def __post_init__(self) -> None:
         links = tuple(self.links)
@@ -439,6 +443,27 @@ class Robot:
             (arrays with the targets' batch shape) for a batch. In a batch, a
             malformed target gets the status ``"invalid"``; the others are solved.
         """
+        if (
+            options is None
+            and type(target) is np.ndarray
+            and target.shape == (4, 4)
+            and target.dtype is _FLOAT64
+            and method == "auto"
+            and respect_limits is True
+            and tol is None
+            and q0 is None
+            and mask is None
+            and seed is None
+        ):  # one pose, every default: straight to the core (a rigid target to round-off)
+            fast = self._pose_solver
+            if fast is None:
+                fast = pose_solver(self.chain)
+                object.__setattr__(self, "_pose_solver", fast)
+            out: CoreAnswer | None = fast.ik_rigid(
+                self.chain.core, target, fast.options, ROUNDOFF_TOL
+            )
+            if out is not None:
+                return result_of(*out, fast.labels, fast.method, fast.complete, ())
         if options is None:
             options = IKOptions(method, tol, respect_limits, q0, mask, seed, workers)
         elif not (

@@ -83,6 +83,7 @@ RANK_TOL = 1e-8
 
 _TOLS = {"wrist": WRIST_TOL, "elbow": ELBOW_TOL, "shoulder": SHOULDER_TOL}
 
+
 @dataclass(frozen=True)
 class Singularity:
     """One lost direction of the Jacobian, with its name.
