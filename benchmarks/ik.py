@@ -555,10 +555,10 @@ def main() -> None:
                 r.arm,
                 fmt_time(single),
                 f"{one:.2f}x",
-                verdict(one <= TARGET_SINGLE_VS_EAIK, f"{one / TARGET_SINGLE_VS_EAIK:.1f}x"),
+                verdict(one <= TARGET_SINGLE_VS_EAIK, f"{one / TARGET_SINGLE_VS_EAIK:.2f}x"),
                 f"{fmt_time(batched)} ({fmt_time(r.steady)})",
                 f"{many:.2f}x",
-                verdict(many <= TARGET_BATCHED_VS_EAIK, f"{many / TARGET_BATCHED_VS_EAIK:.1f}x"),
+                verdict(many <= TARGET_BATCHED_VS_EAIK, f"{many / TARGET_BATCHED_VS_EAIK:.2f}x"),
             ]
         )
     head = ["", "single", "vs EAIK", "", "batched (steady)", "vs EAIK", ""]
