@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import os
 import platform
 import statistics
@@ -46,6 +47,24 @@ def median_of(fn: Callable[[], object], repeats: int = 15) -> float:
     return statistics.median(times)
 
 
+def shortest_per_item(
+    fn: Callable[[np.ndarray], object], items: Sequence[np.ndarray], passes: int = 3
+) -> float:
+    """Median over ``items`` of ``fn(item)``'s wall time (s), each call timed on its own.
+
+    Each item's time is the shortest of ``passes`` passes over all the items: a
+    neighbour's burst on a shared machine slows one pass, not all of them.
+    """
+    fn(items[0])
+    best = [math.inf] * len(items)
+    for _ in range(passes):
+        for i, item in enumerate(items):
+            t0 = time.perf_counter()
+            fn(item)
+            best[i] = min(best[i], time.perf_counter() - t0)
+    return statistics.median(best)
+
+
 def cores() -> tuple[int, int]:
     """(cores this process may run on, logical cores of the machine)."""
     try:
@@ -61,8 +80,8 @@ def header(title: str) -> str:
         f"{title}\n"
         f"Python {sys.version.split()[0]}, numpy {np.__version__}, "
         f"{platform.system()} {platform.machine()}; "
-        f"cores: {usable} usable of {total}; the timed code is single-threaded "
-        "(numpy ufuncs, Python loops)"
+        f"cores: {usable} usable of {total}; load average "
+        + ", ".join(f"{v:.1f}" for v in os.getloadavg())
     )
 
 
@@ -78,6 +97,11 @@ def table(rows: Sequence[Sequence[str]], head: Sequence[str]) -> str:
 
     rule = "  " + "  ".join("-" * w for w in widths)
     return "\n".join([line(head), rule, *(line(r) for r in rows)])
+
+
+def verdict(ok: bool, by: str = "") -> str:
+    """``"met"``, or ``"NOT met"`` and by how much (``by``)."""
+    return "met" if ok else f"NOT met ({by})" if by else "NOT met"
 
 
 def fmt_time(seconds: float) -> str:

@@ -1,17 +1,20 @@
-"""Start-up costs: ``import kinematica``, first-call compilation, the warm command line.
+"""Start-up costs: ``import kinematica``, each solver family's first ``robot.ik``, the command line.
 
-Everything here runs in subprocesses (numba's compiled code lives per process
-and on disk), timed by wall clock and by CPU time (``getrusage`` of the
-children): on a machine shared with other jobs the CPU time is the steadier
-figure. ``PYTHONDONTWRITEBYTECODE`` is removed from the children's
-environment, so that they import from ``.pyc`` files as an installed package
-does. Each numba cache used here is a fresh temporary directory
-(``NUMBA_CACHE_DIR``): "cold" is an empty cache, "warm" the same cache after
-one run.
+Run by ``benchmarks/fk.py`` (or alone: ``.venv/bin/python benchmarks/_startup.py``).
+Everything here runs in fresh subprocesses, timed by wall clock and by CPU time
+(``getrusage`` of the children): on a machine shared with other jobs the CPU
+time is the steadier figure. Bytecode: ``PYTHONDONTWRITEBYTECODE`` is removed
+from the children's environment and ``PYTHONPYCACHEPREFIX`` points at a
+temporary directory of our own, so that "first ever" means no bytecode cache at
+all (every module compiled from source, as the first run after an install that
+did not compile any) and "later" the same directory after it. Also: the size of
+the compiled core and whether numba or LLVM is installed. No assertions.
 """
 
 from __future__ import annotations
 
+import importlib.metadata
+import importlib.util
 import json
 import os
 import re
@@ -24,10 +27,20 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from _common import table
+import numpy as np
 
-#: Runs of each warm measurement (best of them is reported).
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _common import header, table, verdict
+
+import kinematica as km
+from kinematica import _core
+
+#: Runs of each warm measurement (the best of them is reported).
 RUNS = 5
+#: Issue 19's targets.
+TARGET_IMPORT_VS_NUMPY, TARGET_FIRST_IK, TARGET_CLI_VS_NUMPY = 1.5, 5e-3, 3.0
+TARGET_CORE_SIZE = 5e6
 
 
 @dataclass(frozen=True)
@@ -39,26 +52,24 @@ class Run:
     out: str
 
 
-def child(args: list[str], cache: Path | None = None) -> Run:
-    """Run ``args``; ``cache`` is its ``NUMBA_CACHE_DIR`` (None: numba's default)."""
-    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONDONTWRITEBYTECODE",)}
-    env.pop("NUMBA_CACHE_DIR", None)
-    if cache is not None:
-        env["NUMBA_CACHE_DIR"] = str(cache)
+def child(args: list[str], pycache: Path) -> Run:
+    """Run ``args`` with ``PYTHONPYCACHEPREFIX=pycache`` (bytecode written there)."""
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+    env["PYTHONPYCACHEPREFIX"] = str(pycache)
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     done = subprocess.run(args, capture_output=True, text=True, env=env, check=False)
     wall = time.perf_counter() - t0
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    if done.returncode not in (0, 1):
+    if done.returncode != 0:
         raise RuntimeError(f"{' '.join(args[:4])} ...: {done.stderr.strip()[-500:]}")
     cpu = after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime
-    return Run(wall, cpu, done.stdout)
+    return Run(wall, cpu, done.stdout + done.stderr)
 
 
-def best(args: list[str], cache: Path | None = None, runs: int = RUNS) -> Run:
+def best(args: list[str], pycache: Path, runs: int = RUNS) -> Run:
     """The shortest wall and the shortest CPU time of ``runs`` runs."""
-    done = [child(args, cache) for _ in range(runs)]
+    done = [child(args, pycache) for _ in range(runs)]
     return Run(min(r.wall for r in done), min(r.cpu for r in done), done[-1].out)
 
 
@@ -66,191 +77,203 @@ def python(code: str) -> list[str]:
     return [sys.executable, "-c", textwrap.dedent(code)]
 
 
-def seconds(t: float) -> str:
-    return f"{t:.2f} s" if t >= 0.995 else f"{t * 1e3:.0f} ms"
+def ms(t: float) -> str:
+    return f"{t:.2f} s" if t >= 0.995 else f"{t * 1e3:.1f} ms"
 
 
 # --------------------------------------------------------------------- import
-def import_breakdown(runs: int = RUNS) -> dict[str, float]:
-    """Seconds of ``import kinematica`` by owner (``-X importtime``, best self time per module)."""
+def import_breakdown(pycache: Path) -> str:
+    """``import kinematica``'s self time by owner (``-X importtime``, best of RUNS per module)."""
     best_self: dict[str, int] = {}
-    for _ in range(runs):
-        err = subprocess.run(
-            [sys.executable, "-X", "importtime", "-c", "import kinematica"],
-            capture_output=True,
-            text=True,
-            env={k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"},
-            check=True,
-        ).stderr
+    for _ in range(RUNS):
+        err = child([sys.executable, "-X", "importtime", "-c", "import kinematica"], pycache).out
         for m in re.finditer(r"import time:\s+(\d+) \|\s+\d+ \| +(\S+)", err):
             us, name = int(m.group(1)), m.group(2)
             best_self[name] = min(best_self.get(name, us), us)
-    groups = {"kinematica (ours)": 0, "numba + llvmlite": 0, "numpy": 0, "everything else": 0}
+    groups = {"kinematica (Python)": 0, "kinematica._core": 0, "numpy": 0, "everything else": 0}
     for name, us in best_self.items():
-        top = name.split(".")[0]
-        key = {
-            "kinematica": "kinematica (ours)",
-            "numba": "numba + llvmlite",
-            "llvmlite": "numba + llvmlite",
-            "numpy": "numpy",
-        }.get(top, "everything else")
-        groups[key] += us
-    ours = sorted(
-        ((us, n) for n, us in best_self.items() if n.startswith("kinematica")), reverse=True
+        if name == "kinematica._core":
+            groups["kinematica._core"] += us
+        elif name.split(".")[0] == "kinematica":
+            groups["kinematica (Python)"] += us
+        elif name.split(".")[0] == "numpy":
+            groups["numpy"] += us
+        else:
+            groups["everything else"] += us
+
+    def heaviest(mine: bool) -> str:
+        found = sorted(
+            (us, n) for n, us in best_self.items() if n.startswith(("kinematica", "numpy")) == mine
+        )
+        return ", ".join(f"{n} {us / 1e3:.1f} ms" for us, n in found[::-1][:4])
+
+    return (
+        "; ".join(f"{k} {v / 1e3:.1f} ms" for k, v in groups.items())
+        + f"\n  heaviest of numpy and ours: {heaviest(True)}\n  heaviest others: {heaviest(False)}"
     )
-    print("    heaviest of ours: " + ", ".join(f"{n} {us / 1e3:.1f} ms" for us, n in ours[:4]))
-    return {k: v / 1e6 for k, v in groups.items()}
 
 
-def bench_import() -> None:
-    print("\n== import ==")
-    rows = []
-    for label, stmt in (
-        ("python -c pass (the interpreter)", "pass"),
-        ("import numpy", "import numpy"),
-        ("import numpy, numba", "import numpy, numba"),
-        ("import kinematica", "import kinematica"),
-        ("import kinematica.cli.main (the command line)", "import kinematica.cli.main"),
-    ):
-        r = best(python(stmt), runs=RUNS + 2)
-        rows.append([label, seconds(r.wall), seconds(r.cpu)])
-    print(f"  best of {RUNS + 2} runs")
-    print(table(rows, ["", "wall", "CPU"]))
+def bench_import(pycache: Path) -> None:
+    print(f"\n== import (best of {RUNS + 2} fresh processes, bytecode cached) ==")
+    runs: dict[str, Run] = {}
+    for stmt in ("pass", "import numpy", "import kinematica", "import kinematica.cli.main"):
+        child(python(stmt), pycache)  # its bytecode
+        runs[stmt] = best(python(stmt), pycache, RUNS + 2)
+    numpy = runs["import numpy"]
+    rows = [
+        [f"python -c {stmt!r}", ms(r.wall), ms(r.cpu), f"{r.wall / numpy.wall:.2f}x"]
+        for stmt, r in runs.items()
+    ]
+    print(table(rows, ["", "wall", "CPU", "wall vs numpy"]))
     print("  -X importtime of `import kinematica`, self time by owner (best of 5 per module):")
-    parts = import_breakdown()
-    print("    " + "; ".join(f"{k} {v * 1e3:.0f} ms" for k, v in parts.items()))
+    print("  " + import_breakdown(pycache))
+    ratio = runs["import kinematica"].wall / numpy.wall
+    ratio_cpu = runs["import kinematica"].cpu / numpy.cpu
+    met = min(ratio, ratio_cpu) <= TARGET_IMPORT_VS_NUMPY
+    print(
+        f"  target: import kinematica <= {TARGET_IMPORT_VS_NUMPY:g}x import numpy: "
+        f"{ratio:.2f}x wall, {ratio_cpu:.2f}x CPU: {verdict(met)}"
+    )
 
 
-# ------------------------------------------------------------ compile, per family
-FAMILIES = """
-import json, time, warnings
+# ------------------------------------------------------ first robot.ik, per family
+#: (solver family, built-in robot, target kind): one fresh process each.
+FAMILIES = [
+    ("spherical wrist (PUMA 560)", "puma560", "pose"),
+    ("three parallel axes (UR5)", "ur5", "pose"),
+    ("RRP, spherical wrist (Stanford)", "stanford", "pose"),
+    ("planar 3R", "planar-3r", "pose"),
+    ("SCARA", "scara", "pose"),
+    ("anthropomorphic 3R", "anthropomorphic-3r", "pose"),
+    ("arm position (PUMA 560, a position target)", "puma560", "position"),
+    ("numeric (Panda)", "panda", "numeric"),
+]
+
+FIRST_IK = """
+import json, sys, time
 import numpy as np
 import kinematica as km
-warnings.simplefilter("ignore")
-rows = []
-
-def first(label, fn):
+name, kind = sys.argv[1:3]
+t0 = time.perf_counter()
+robot = km.load(name)
+q = np.clip(np.full(robot.dof, 0.3), robot.qlim[:, 0], robot.qlim[:, 1])
+T = robot.fk(q)
+target = T[:3, 3].copy() if kind == "position" else T
+method = "numeric" if kind == "numeric" else "auto"
+times = [time.perf_counter() - t0]
+for _ in range(3):
     c, w = time.process_time(), time.perf_counter()
-    fn()
-    rows.append((label, time.process_time() - c, time.perf_counter() - w))
-
-puma, panda = km.load("puma560"), km.load("panda")
-q = np.radians([10.0, 20.0, -30.0, 40.0, 50.0, 60.0])
-Q = np.tile(q, (4, 1))
-first("FK, one configuration", lambda: puma.fk(q))
-first("FK, every frame", lambda: puma.fk(q, all_frames=True))
-first("FK, batch", lambda: puma.fk(Q))
-first("Jacobian, one configuration", lambda: puma.jacobian(q))
-first("Jacobian, batch", lambda: puma.jacobian(Q))
-for name in ("puma560", "ur5", "stanford", "anthropomorphic-3r", "planar-3r", "scara"):
-    robot = km.load(name)
-    qq = np.clip(np.full(robot.dof, 0.3), robot.qlim[:, 0], robot.qlim[:, 1])
-    T = robot.fk(qq)
-    res = []
-    first(name, lambda: res.append(robot.ik(T)))
-    rows[-1] = (f"IK {name} ({res[0].method}), one pose", *rows[-1][1:])
-    first(f"IK {name}, batch", lambda: robot.ik(np.stack([T, T])))
-T7 = panda.fk(np.full(7, 0.3))
-first("numeric IK panda, one target", lambda: panda.ik(T7, method="numeric"))
-first("numeric IK panda, batch", lambda: panda.ik(np.stack([T7, T7]), method="numeric"))
-print(json.dumps(rows))
+    res = robot.ik(target, method=method)
+    times += [time.perf_counter() - w, time.process_time() - c]
+print(json.dumps([res.method, str(res.status), *times]))
 """
 
 
-def cache_size(path: Path) -> tuple[int, float]:
-    files = [p for p in path.rglob("*") if p.is_file()]
-    return len(files), sum(p.stat().st_size for p in files) / 1e6
-
-
-def bench_compile() -> None:
-    print("\n== first-call compilation, per kernel family (one process, fresh cache) ==")
-    print("  Each row is the first call of its kind in the process, in this order: what")
-    print("  it compiles (cold) or loads from the on-disk cache (warm) beyond the rows above.")
-    with tempfile.TemporaryDirectory() as tmp:
-        cache = Path(tmp)
-        cold = child(python(FAMILIES), cache)
-        warm = child(python(FAMILIES), cache)
-        rows = []
-        for (label, c_cpu, c_wall), (_, w_cpu, _) in zip(
-            json.loads(cold.out), json.loads(warm.out), strict=True
-        ):
-            rows.append([label, seconds(c_cpu), seconds(c_wall), seconds(w_cpu)])
-        print(table(rows, ["", "cold CPU", "cold wall", "warm CPU (cache load)"]))
-        files, mb = cache_size(cache)
-        print(f"  whole process: cold {seconds(cold.wall)} wall / {seconds(cold.cpu)} CPU,")
-        print(f"  warm {seconds(warm.wall)} / {seconds(warm.cpu)}; the cache holds every")
-        print(f"  kernel above: {files} files, {mb:.1f} MB")
+def bench_first_ik(pycache: Path) -> None:
+    print(
+        "\n== the first robot.ik of each solver family, in a fresh process after import "
+        f"kinematica (best of 3 processes; target {ms(TARGET_FIRST_IK)}) =="
+    )
+    rows = []
+    for label, name, kind in FAMILIES:
+        runs = [json.loads(child([*python(FIRST_IK), name, kind], pycache).out) for _ in range(3)]
+        method, status = runs[0][:2]
+        load, first, first_cpu, second, _, third, _ = (min(r[i] for r in runs) for i in range(2, 9))
+        rows.append(
+            [
+                label,
+                f"{method} ({status})",
+                ms(load),
+                ms(first),
+                ms(first_cpu),
+                f"{min(second, third) * 1e6:.0f} µs",
+                verdict(
+                    min(first, first_cpu) <= TARGET_FIRST_IK,
+                    f"{min(first, first_cpu) / TARGET_FIRST_IK:.1f}x the target",
+                ),
+            ]
+        )
+    head = ["", "method (status)", "load + fk", "first ik", "its CPU", "a later ik", ""]
+    print(table(rows, head))
 
 
 # -------------------------------------------------------------- the command line
-USED_KERNELS = """
-import contextlib, io, json, sys
-from numba.core.dispatcher import Dispatcher
-from kinematica.cli.main import main
-with contextlib.redirect_stdout(io.StringIO()):
-    main(sys.argv[1:])
-used = sorted({
-    f"{d.py_func.__module__}.{d.py_func.__name__}"
-    for name, m in list(sys.modules.items()) if name.startswith("kinematica")
-    for d in vars(m).values() if isinstance(d, Dispatcher) and d.overloads
-})
-print(json.dumps(used))
-"""
-
-FLOOR = """
-import numba
-@numba.njit(cache=True)
-def f(x):
-    return x + 1.0
-"""
-
-
 def cli() -> list[str]:
     script = Path(sys.executable).with_name("kinematica")
     return [str(script)] if script.exists() else [sys.executable, "-m", "kinematica"]
 
 
-#: Runs the command line in a process where ``import scipy`` fails, as on a
-#: core install (numpy + numba): numba imports scipy.linalg when it is there.
-NO_SCIPY = """
-import sys
-sys.modules["scipy"] = None
-from kinematica.cli.main import main
-sys.exit(main(sys.argv[1:]))
-"""
-
-
-def bench_cli(q_deg: list[float], pose: list[float]) -> dict[str, tuple[float, float]]:
-    """Cold and warm ``kinematica fk`` / ``ik``; returns their warm (wall, CPU) times."""
-    print("\n== the command line (subprocess wall time and CPU time) ==")
-    fk = ["fk", "puma560", "--q", *map(str, q_deg)]
-    ik = ["ik", "puma560", "--pose", *(f"{v:.9g}" for v in pose)]
+def bench_cli(tmp: Path) -> None:
+    puma = km.load("puma560")
+    q_deg = [0.0, 45.0, -30.0, 0.0, 20.0, 0.0]
+    pose = km.to_pose(puma.fk(np.radians(q_deg)), euler="ZYZ")
+    pose[3:] = np.degrees(pose[3:])
+    commands = {
+        "python -c 'import numpy'": python("import numpy"),
+        "kinematica fk puma560 --q ...": [*cli(), "fk", "puma560", "--q", *map(str, q_deg)],
+        "kinematica ik puma560 --pose ...": [
+            *cli(),
+            *("ik", "puma560", "--pose", *(f"{v:.9g}" for v in pose)),
+        ],
+    }
+    print(
+        "\n== the command line: first ever (an empty bytecode cache), then later runs "
+        f"(best of {RUNS}) =="
+    )
+    runs = {}
+    for i, (label, args) in enumerate(commands.items()):
+        pycache = tmp / f"cli-{i}"
+        runs[label] = (child(args, pycache), best(args, pycache))
+    np_first, np_later = runs["python -c 'import numpy'"]
     rows = []
-    out: dict[str, tuple[float, float]] = {}
+    for label, (first, later) in runs.items():
+        r1, r2 = first.wall / np_first.wall, later.wall / np_later.wall
+        ok = label.startswith("python") or max(r1, r2) <= TARGET_CLI_VS_NUMPY
+        rows.append(
+            [
+                label,
+                ms(first.wall),
+                ms(first.cpu),
+                ms(later.wall),
+                ms(later.cpu),
+                f"{r1:.2f}x",
+                f"{r2:.2f}x",
+                "" if label.startswith("python") else verdict(ok),
+            ]
+        )
+    head = ["", "first wall", "first CPU", "later wall", "later CPU", "first vs numpy's"]
+    print(table(rows, [*head, "later vs numpy's", f"<= {TARGET_CLI_VS_NUMPY:g}x"]))
+    fk_first = runs["kinematica fk puma560 --q ..."][0].wall
+    ratio = fk_first / np_later.wall
+    print(f"  (the first `kinematica fk` is {ratio:.2f}x a later `import numpy`)")
+
+
+# ------------------------------------------------------------- what is installed
+def bench_install() -> None:
+    print("\n== what is installed ==")
+    size = os.path.getsize(_core.__file__)
+    print(
+        f"  the compiled core {Path(_core.__file__).name}: {size / 1e6:.2f} MB "
+        f"(target <= {TARGET_CORE_SIZE / 1e6:g} MB: {verdict(size <= TARGET_CORE_SIZE)})"
+    )
+    found = [name for name in ("numba", "llvmlite") if importlib.util.find_spec(name)]
+    requires = importlib.metadata.requires("kinematica") or []
+    core = sorted({re.split(r"[ ;<>=!~\[]", r)[0] for r in requires if "extra ==" not in r})
+    print(
+        f"  numba / llvmlite importable: {', '.join(found) or 'neither'}; kinematica requires "
+        f"(no extra): {', '.join(core)}: {verdict(not found and 'numba' not in core)}"
+    )
+
+
+def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
-        for label, args in (("kinematica fk puma560 --q ...", fk), ("kinematica ik ...", ik)):
-            cache = Path(tmp) / args[0]
-            cold = child([*cli(), *args], cache)
-            warm = best([*cli(), *args], cache)
-            rows.append([label, seconds(cold.wall), seconds(cold.cpu), seconds(warm.wall)])
-            rows[-1].append(seconds(warm.cpu))
-            out[args[0]] = (warm.wall, warm.cpu)
-            bare = best([*python(NO_SCIPY), *args], cache)
-            rows.append(["  the same without scipy installed", "", "", seconds(bare.wall)])
-            rows[-1].append(seconds(bare.cpu))
-        module = Path(tmp) / "floor"
-        module.mkdir()
-        (module / "floor.py").write_text(textwrap.dedent(FLOOR))
-        for label, block in (("", ""), (", no scipy", "sys.modules['scipy'] = None; ")):
-            floor = python(f"import sys; {block}sys.path.insert(0, {str(module)!r})")
-            floor[-1] += "\nimport numpy, floor; floor.f(1.0)"
-            child(floor, Path(tmp) / "floor-cache")
-            r = best(floor, Path(tmp) / "floor-cache")
-            rows.append([f"floor{label}: numpy, numba, one cached trivial kernel", "", ""])
-            rows[-1] += [seconds(r.wall), seconds(r.cpu)]
-        used = json.loads(child([*python(USED_KERNELS), *fk], Path(tmp) / "fk").out)
-    print(f"  cold: empty numba cache; warm: best of {RUNS} runs after it. The floor is")
-    print("  numba's own start-up (import, then its first load of a cached kernel)")
-    print(table(rows, ["", "cold wall", "cold CPU", "warm wall", "warm CPU"]))
-    print(f"  kernels `kinematica fk` compiled or loaded: {', '.join(used)}")
-    return out
+        warm = Path(tmp) / "warm"
+        bench_import(warm)
+        bench_first_ik(warm)
+        bench_cli(Path(tmp))
+    bench_install()
+
+
+if __name__ == "__main__":
+    print(header("kinematica start-up"))
+    main()

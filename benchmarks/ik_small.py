@@ -7,10 +7,11 @@ planar 2R arm, for pose targets and position targets (forward kinematics of
 configurations uniform within the joint limits, seeded), one thread
 (``workers=1``), it prints:
 
-* ``robot.ik`` (kernel, check by FK, dedupe, limits): one target per call
+* ``robot.ik`` (solver, check by FK, dedupe, limits): one target per call
   (a loop of ``--singles`` calls) and batched (one call on all ``--poses``
-  targets), CPU time per target, best of 3; the bare kernel (``solve_one`` /
-  ``solve_batch``) the same way;
+  targets), CPU time per target, best of 3; the solver alone (the core's raw
+  candidates of one target, ``params.candidates``; it has no batched entry)
+  the same way;
 * the statuses, and the share of targets whose every solution our FK puts
   within 1e-10 m / 1e-10 rad and among whose solutions is the configuration
   that made the target (modulo 2π; for a continuum, ``singular``, the joints
@@ -40,8 +41,6 @@ from _common import fmt_time, header, table
 
 import kinematica as km
 from kinematica.ik import IKBatchResult, closed_form
-from kinematica.kernels import set_workers
-from kinematica.kernels.ik_check import info_size
 from kinematica.robot import Robot
 from kinematica.spatial import inv_transform, rotation_angle, wrap_angle
 
@@ -151,27 +150,17 @@ def eaik_rows(robot: Robot, T: np.ndarray, q: np.ndarray, singles: int) -> list[
 
 def bench_targets(
     robot: Robot, kind: str, targets: np.ndarray, singles: int
-) -> tuple[float, float, float, float] | None:
-    """Seconds per target: robot.ik single and batched, the bare kernel single and batched."""
+) -> tuple[float, float, float] | None:
+    """Seconds per target: robot.ik single and batched, the solver alone single."""
     closed = closed_form(robot.chain, kind)  # type: ignore[arg-type]
     if closed is None:
         return None
     poses = np.ascontiguousarray(targets if kind == "pose" else _as_poses(targets))
-    Q = np.empty((len(poses), closed.slots, robot.dof))
-    info = np.zeros((len(poses), info_size(robot.dof)))
-
-    def one(t: np.ndarray) -> None:
-        closed.solve_one(closed.params, t, Q[0], info[0])
-
-    def batch() -> None:
-        closed.solve_batch(closed.params, poses, Q, info)
-
-    set_workers(1)
-    kernel_single = cpu_per_call(one, poses[:singles])
-    kernel_batched = cpu_batch(batch, len(poses))
-    ik_single = cpu_per_call(lambda t: robot.ik(t, workers=1), targets[:singles])
+    core = robot.chain.core
+    solver_single = cpu_per_call(lambda t: closed.params.candidates(core, t), poses[:singles])
+    ik_single = cpu_per_call(robot.ik, targets[:singles])
     ik_batched = cpu_batch(lambda: robot.ik(targets, workers=1), len(targets))
-    return ik_single, ik_batched, kernel_single, kernel_batched
+    return ik_single, ik_batched, solver_single
 
 
 def main() -> None:
@@ -204,10 +193,10 @@ def main() -> None:
                 if e is not None:
                     eaik.append([robot.name, fmt_time(times[0]), fmt_time(times[1]), *e])
     print(
-        f"\n  CPU time per target, one thread; robot.ik = kernel + check + dedupe + limits "
+        f"\n  CPU time per target, one thread; robot.ik = solver + check + dedupe + limits "
         f"(targets: single <= {fmt_time(TARGET_SINGLE)}, batched <= {fmt_time(TARGET_BATCHED)})"
     )
-    head = ["", "robot.ik single", "batched", "kernel single", "batched", "fk one call"]
+    head = ["", "robot.ik single", "batched", "solver alone, single", "fk one call"]
     print(table(rows, head))
     print(
         f"\n  {args.poses:,} targets per row: statuses; every solution exact; its q found (a "
