@@ -105,7 +105,7 @@ private:
 constexpr double SNAP_TOL = 1e-15;
 
 //! The cosines and sines the walk needs for q (revolute: of q_i + θ_i, prismatic: θ_i's).
-KM_HD inline void joint_trig(const ChainView& ch, const double* q, double* c, double* s) {
+KM_HD KM_INLINE void joint_trig(const ChainView& ch, const double* q, double* c, double* s) {
     double angle[64];
     for (int i0 = 0; i0 < ch.n; i0 += 64) {  // chunks keep the scratch on the stack
         const int m = ch.n - i0 < 64 ? ch.n - i0 : 64;
@@ -125,7 +125,7 @@ KM_HD inline void joint_trig(const ChainView& ch, const double* q, double* c, do
 
 //! joint_trig of m configurations Q (m x n, row-major) in one pass over all their angles
 //! (it vectorises even for a few candidates of a 6-joint arm); angle: m n scratch.
-KM_HD inline void joint_trig_rows(const ChainView& ch, const double* Q, int m, double* angle,
+KM_HD KM_INLINE void joint_trig_rows(const ChainView& ch, const double* Q, int m, double* angle,
                                   double* c, double* s) {
     const int n = ch.n;
     int big = 0;  // an angle beyond the reduction's range (or inf) somewhere
@@ -168,7 +168,7 @@ struct NoRecord {
 //! rec.axis(i, z, p): joint i's axis as a unit direction and a point on it (base frame).
 //! rec.frame(i, F): 0T0 (base), 0T1, ..., 0Tn (with tool).
 template <class Record = NoRecord>
-KM_HD inline Pose walk(const ChainView& ch, const double* q, const double* c, const double* s,
+KM_HD KM_INLINE Pose walk(const ChainView& ch, const double* q, const double* c, const double* s,
                        Record&& rec = Record{}, int stride = 1) {
     using R = typename std::remove_reference<Record>::type;
     // The running frame's columns stay in locals (registers): stores to the outputs do
@@ -227,7 +227,7 @@ KM_HD inline Pose walk(const ChainView& ch, const double* q, const double* c, co
 }
 
 //! QState of configuration q against the joints' own limits.
-KM_HD inline QState q_state(const ChainView& ch, const double* q) {
+KM_HD KM_INLINE QState q_state(const ChainView& ch, const double* q) {
     bool finite = true, inside = true;
     for (int i = 0; i < ch.n; ++i) {
         const double v = q[i];
@@ -239,7 +239,7 @@ KM_HD inline QState q_state(const ChainView& ch, const double* q) {
 }
 
 //! The tool pose at q (joint_trig, then walk), with c, s scratch of n each.
-KM_HD inline Pose fk(const ChainView& ch, const double* q, double* c, double* s) {
+KM_HD KM_INLINE Pose fk(const ChainView& ch, const double* q, double* c, double* s) {
     joint_trig(ch, q, c, s);
     return walk(ch, q, c, s);
 }

@@ -10,6 +10,15 @@
 #define KM_HD
 #endif
 
+// Forces inlining where a batch loop must see the code to vectorise it: a function the
+// compiler keeps out of line would be compiled for the baseline target only, not for the
+// AVX2 / AVX-512 copies of the loop that calls it.
+#if defined(__GNUC__) || defined(__clang__)
+#define KM_INLINE inline __attribute__((always_inline))
+#else
+#define KM_INLINE inline
+#endif
+
 namespace km {
 
 //! Candidate slots one target may have (a general 6R arm has up to 16 solutions).

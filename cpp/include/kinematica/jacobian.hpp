@@ -30,7 +30,7 @@ struct AxesIntoJacobian {
 }  // namespace detail
 
 //! J (6 x n, row-major) from the axes it holds (AxesIntoJacobian) and the tool pose.
-KM_HD inline void jacobian_columns(const ChainView& ch, const Pose& T, bool tool_frame, double* J) {
+KM_HD KM_INLINE void jacobian_columns(const ChainView& ch, const Pose& T, bool tool_frame, double* J) {
     const int n = ch.n;
     for (int i = 0; i < n; ++i) {
         const Vec3 z{J[3 * n + i], J[4 * n + i], J[5 * n + i]};
@@ -58,7 +58,7 @@ KM_HD inline void jacobian_columns(const ChainView& ch, const Pose& T, bool tool
 
 //! The geometric Jacobian at q into J (6 x n, row-major); the tool pose comes back.
 //! c, s: the joint trigonometry of q (joint_trig; or joint_trig_rows with stride m).
-KM_HD inline Pose jacobian(const ChainView& ch, const double* q, const double* c,
+KM_HD KM_INLINE Pose jacobian(const ChainView& ch, const double* q, const double* c,
                            const double* s, bool tool_frame, double* J, int stride = 1) {
     const Pose T = walk(ch, q, c, s, detail::AxesIntoJacobian{J, ch.n}, stride);
     jacobian_columns(ch, T, tool_frame, J);

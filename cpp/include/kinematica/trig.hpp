@@ -45,7 +45,7 @@ constexpr double ROUND_SHIFT = 6755399441055744.0;
 }  // namespace detail
 
 //! (sin x, cos x) for |x| <= REDUCTION_LIMIT, branch-free; NaN and inf give NaN.
-KM_HD inline void sincos_reduced(double x, double& s, double& c) {
+KM_HD KM_INLINE void sincos_reduced(double x, double& s, double& c) {
     using namespace detail;
     const double t = x * TWO_OVER_PI + ROUND_SHIFT;
     const double n = t - ROUND_SHIFT;
@@ -66,7 +66,7 @@ KM_HD inline void sincos_reduced(double x, double& s, double& c) {
 }
 
 //! (sin x, cos x) for any x (the C library beyond REDUCTION_LIMIT).
-KM_HD inline void sincos(double x, double& s, double& c) {
+KM_HD KM_INLINE void sincos(double x, double& s, double& c) {
     if (std::fabs(x) <= REDUCTION_LIMIT) {
         sincos_reduced(x, s, c);
     } else {
@@ -76,7 +76,7 @@ KM_HD inline void sincos(double x, double& s, double& c) {
 }
 
 //! sincos() of count angles: one loop the compiler vectorises, then the rare large ones.
-KM_HD inline void sincos_block(const double* x, double* s, double* c, int count) {
+KM_HD KM_INLINE void sincos_block(const double* x, double* s, double* c, int count) {
     for (int t = 0; t < count; ++t) sincos_reduced(x[t], s[t], c[t]);
     for (int t = 0; t < count; ++t) {
         if (!(std::fabs(x[t]) <= REDUCTION_LIMIT)) {
