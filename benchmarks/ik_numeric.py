@@ -74,7 +74,7 @@ def core_call(robot: km.Robot) -> Any:
         tol_position=1e-10,
         tol_rotation=1e-10,
         seed=None,
-        weights=np.ones(6),
+        weights=(1.0,) * 6,
     )
     opts = _core.CheckOptions()
     opts.tol_position, opts.tol_rotation = 1e-10, 1e-10

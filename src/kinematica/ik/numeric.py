@@ -10,8 +10,12 @@ batch, so a target gets the same answer alone or in a batch).
 from __future__ import annotations
 
 import math
+import sys
 import weakref
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any, cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -55,24 +59,72 @@ FULL_TURN = 2.0 * math.pi - 1e-12
 LABEL = "numeric"
 
 
+def _is_generator(seed: object) -> bool:
+    """True for a ``numpy.random.Generator`` (without importing numpy.random: ~10 ms)."""
+    random = sys.modules.get("numpy.random")
+    return random is not None and isinstance(seed, random.Generator)
+
+
 @dataclass(frozen=True, eq=False)
 class NumericSetup:
-    """The core's search for one arm and settings, and what it was made from.
+    """The core's search for one arm and settings, and what it is made from.
+
+    The restart configurations are drawn when a target first needs them: most
+    targets are found from the first guess, and a search without restarts gives
+    them the very answer the full search gives (its first attempt is the same).
 
     Attributes:
-        solver: The core's solver (:class:`kinematica._core.NumericSolver`).
         bounds: ``(n, 3)`` per joint: start of its 2π wrap window, lower and
             upper clamp (±inf where none).
         reach: Bound on the distance of the tool origin from the base origin (m).
-        samples: ``(R, n)`` restart configurations, uniform within the limits.
         middle: ``(n,)`` the default first guess, the middle of the sampled box.
+        quick: The search from the first guess alone (no restarts).
     """
 
-    solver: _core.NumericSolver
     bounds: FloatArray
     reach: float
-    samples: FloatArray
     middle: FloatArray
+    quick: _core.NumericSolver
+    _sampler: Callable[[], FloatArray] = field(repr=False)
+    _make: Callable[[FloatArray], _core.NumericSolver] = field(repr=False)
+
+    @cached_property
+    def samples(self) -> FloatArray:
+        """``(R, n)`` restart configurations, uniform within the limits (from the seed)."""
+        samples = self._sampler()
+        samples.flags.writeable = False
+        return samples
+
+    @cached_property
+    def solver(self) -> _core.NumericSolver:
+        """The full search: the first guess, then the restarts in order."""
+        return self._make(self.samples)
+
+    def ik(self, core: _core.Chain, T: FloatArray, options: _core.CheckOptions, q0: Any) -> Any:
+        """One target: the first guess alone, the restarts only when it fails."""
+        out = self.quick.ik(core, T, options, q0)
+        return out if _settled(out) else self.solver.ik(core, T, options, q0)
+
+    def ik_rigid(
+        self, core: _core.Chain, T: FloatArray, options: _core.CheckOptions, roundoff: float
+    ) -> Any:
+        """:meth:`ik` of a target rigid to round-off, else None (see the core's ``ik_rigid``)."""
+        out = self.quick.ik_rigid(core, T, options, roundoff)
+        return out if out is None or _settled(out) else self.solver.ik(core, T, options, None)
+
+    def ik_batch(self, *args: Any) -> Any:
+        """A batch: the full search on every target (the core's ``ik_batch``)."""
+        return self.solver.ik_batch(*args)
+
+
+#: The core's code of a target the search did not find (it may need the restarts).
+_NOT_FOUND = _core.STATUS["not_found"]
+
+
+def _settled(out: Any) -> bool:
+    """True when a search without restarts has the full search's answer already."""
+    report = out[-1]
+    return bool(report[0] != _NOT_FOUND or report[3] == report[3])  # found, or a proven gap
 
 
 _SETUPS: weakref.WeakKeyDictionary[Chain, dict[tuple[object, ...], NumericSetup]] = (
@@ -90,8 +142,8 @@ def check_seed(seed: object) -> int | np.random.Generator | None:
     Raises:
         ArgumentError: Anything else (say what was given).
     """
-    if seed is None or isinstance(seed, np.random.Generator):
-        return seed
+    if seed is None or _is_generator(seed):
+        return cast("np.random.Generator | None", seed)
     if isinstance(seed, int | np.integer) and not isinstance(seed, bool) and seed >= 0:
         return int(seed)
     raise ArgumentError(
@@ -106,18 +158,18 @@ def numeric_setup(
     tol_position: float,
     tol_rotation: float,
     seed: int | np.random.Generator | None,
-    weights: FloatArray,
+    weights: tuple[float, ...],
     restarts: int = DEFAULT_RESTARTS,
     max_iterations: int = DEFAULT_MAX_ITERATIONS,
 ) -> NumericSetup:
     """The set-up, from the cache when this chain has seen these settings.
 
     A Generator ``seed`` is drawn from (so it is never cached). ``weights``
-    ``(6,)`` weigh the error components x, y, z, rx, ry, rz (0: not counted).
+    (6 floats) weigh the error components x, y, z, rx, ry, rz (0: not counted).
     """
-    w = tuple(float(v) for v in weights)
+    w = weights
     key = (respect_limits, tol_position, tol_rotation, seed, restarts, max_iterations, w)
-    cacheable = not isinstance(seed, np.random.Generator)
+    cacheable = not _is_generator(seed)
     per_chain = _SETUPS.setdefault(chain, {})
     if cacheable and key in per_chain:
         return per_chain[key]
@@ -177,18 +229,30 @@ def _compile(
     sample_hi = np.where(
         np.isfinite(s_hi), s_hi, np.where(np.isfinite(s_lo), s_lo + 2 * span, span)
     )
-    rng = (
-        seed
-        if isinstance(seed, np.random.Generator)
-        else np.random.default_rng(DEFAULT_SEED if seed is None else seed)
-    )
-    samples = rng.uniform(sample_lo, sample_hi, size=(restarts, chain.dof))
     reach = reach_bound(chain, bounds[:, 1], bounds[:, 2])
     middle = 0.5 * (sample_lo + sample_hi)
-    solver = _core.NumericSolver(
-        bounds, tol_position, tol_rotation, max_iterations, reach, chain.start[:3, 3].copy(),
-        list(weights), np.ascontiguousarray(samples), np.ascontiguousarray(middle),
-    )  # fmt: skip
-    for a in (bounds, samples, middle):
+    base = chain.start[:3, 3].copy()
+    n = chain.dof
+
+    def make(samples: FloatArray) -> _core.NumericSolver:
+        return _core.NumericSolver(
+            bounds, tol_position, tol_rotation, max_iterations, reach, base, list(weights),
+            np.ascontiguousarray(samples), np.ascontiguousarray(middle),
+        )  # fmt: skip
+
+    def sampler() -> FloatArray:
+        if isinstance(seed, int) or seed is None:
+            rng = np.random.default_rng(DEFAULT_SEED if seed is None else seed)
+        else:
+            rng = seed
+        return np.asarray(rng.uniform(sample_lo, sample_hi, size=(restarts, n)), dtype=float)
+
+    if _is_generator(seed):  # drawn now: the caller's generator is consumed in call order
+        drawn = sampler()
+
+        def sampler() -> FloatArray:
+            return drawn
+
+    for a in (bounds, middle):
         a.flags.writeable = False
-    return NumericSetup(solver, bounds, reach, samples, middle)
+    return NumericSetup(bounds, reach, middle, make(np.empty((0, n))), sampler, make)

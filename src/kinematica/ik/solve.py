@@ -149,9 +149,9 @@ def pose_solver(chain: Chain) -> PoseSolver:
             tol_position=tolerance.position,
             tol_rotation=tolerance.rotation,
             seed=None,
-            weights=np.array(_POSE),
+            weights=_POSE,
         )
-        solver, labels, name = setup.solver, (LABEL,), "numeric:lm"
+        solver, labels, name = setup, (LABEL,), "numeric:lm"
     complete = closed is not None
     return PoseSolver(
         solver.ik_rigid, _options(tolerance, True, complete, _POSE), labels, name, complete
@@ -197,9 +197,9 @@ def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | 
             tol_position=tolerance.position,
             tol_rotation=tolerance.rotation,
             seed=seed,
-            weights=np.array(w),
+            weights=w,
         )
-        solver, labels, name = setup.solver, (LABEL,), "numeric:lm"
+        solver, labels, name = setup, (LABEL,), "numeric:lm"
     complete = closed is not None
     opts = _options(tolerance, respect_limits, complete, w)
     if targets.single:

@@ -130,8 +130,18 @@ def parse_targets(target: ArrayLike) -> Targets:
     )
 
 
+_IDENTITY = np.eye(4)
+
+
 def _positions(arr: FloatArray) -> Targets:
     shape = arr.shape[:-1]
+    if not shape:  # one position: plain floats, one copy of the identity
+        x, y, z = arr.tolist()
+        if not (math.isfinite(x) and math.isfinite(y) and math.isfinite(z)):
+            raise DimensionError("target position holds NaN or inf", arg="target")
+        pose = _IDENTITY.copy()
+        pose[0, 3], pose[1, 3], pose[2, 3] = x, y, z
+        return Targets(pose[None], shape, True)
     flat = arr.reshape(-1, 3)
     poses = np.zeros((flat.shape[0], 4, 4))
     poses[:, 0, 0] = poses[:, 1, 1] = poses[:, 2, 2] = poses[:, 3, 3] = 1.0
