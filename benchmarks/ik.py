@@ -16,9 +16,9 @@ prints:
   ``robot.ik`` (solve, check by FK, deduplicate, limits) and for the solver
   alone (``params.candidates``: the core's raw candidates of one pose, before
   the check; the core has no batched entry for them);
-* where the time of one ``robot.ik`` call goes: the core's solve and check
-  (``params.ik``), reading the target (``parse_targets``), building the result
-  (``result_of``), and the rest (options, validation) by difference;
+* where the time of one ``robot.ik`` call goes: the core's check of the
+  target, solve and check (``params.ik_rigid``), building the result
+  (``result_of``), and the rest (the keyword test, dispatch) by difference;
 * solutions per pose: mean and histogram of counts, within the limits
   (what ``robot.ik`` returns as ``solutions``) and in all (plus
   ``out_of_limits``); the share of poses whose every returned solution our
@@ -61,9 +61,9 @@ from kinematica.dh import Revolute
 from kinematica.errors import KinematicaWarning
 from kinematica.ik import ClosedForm, IKBatchResult, closed_form
 from kinematica.ik.result import result_of
-from kinematica.ik.targets import parse_targets, parse_tolerance
+from kinematica.ik.targets import parse_tolerance
 from kinematica.robot import Robot
-from kinematica.spatial import inv_transform, rotation_angle, wrap_angle
+from kinematica.spatial import ROUNDOFF_TOL, inv_transform, rotation_angle, wrap_angle
 
 #: A solution is exact when our FK puts the tool this close to the target (m and rad).
 TOL = 1e-10
@@ -126,20 +126,19 @@ def parts(closed: ClosedForm, robot: Robot, poses: np.ndarray) -> list[float]:
     tol = parse_tolerance(None)
     opts.tol_position, opts.tol_rotation = tol.position, tol.rotation
     opts.respect_limits, opts.complete, opts.weights = True, True, (1.0,) * 6
-    out = [closed.params.ik(core, t, opts, None) for t in poses]
-    by_id = {id(t): o for t, o in zip(poses, out, strict=True)}
     labels, method = closed.labels, closed.method
+    out = [closed.params.ik_rigid(core, t, opts, ROUNDOFF_TOL, labels) for t in poses]
+    by_id = {id(t): o for t, o in zip(poses, out, strict=True)}
     times = [
         shortest_per_item(f, poses, SINGLE_PASSES)
         for f in (
             robot.ik,
-            lambda t: closed.params.ik(core, t, opts, None),
+            lambda t: closed.params.ik_rigid(core, t, opts, ROUNDOFF_TOL, labels),
             lambda t: closed.params.candidates(core, t),
-            parse_targets,
-            lambda t: result_of(*by_id[id(t)], labels, method, True, ()),
+            lambda t: result_of(*by_id[id(t)], method, True, ()),
         )
     ]
-    return [*times, times[0] - times[1] - times[3] - times[4]]
+    return [*times, times[0] - times[1] - times[3]]
 
 
 # ---------------------------------------------------------------------- judging
@@ -533,11 +532,11 @@ def main() -> None:
 
     print(
         "\n  where one robot.ik call's time goes (median over a quarter of the single poses): "
-        "the core's solve and check\n  (params.ik, through the binding; of it the solver alone, "
-        "params.candidates), reading the target, building\n  the result, the rest (options, "
-        "validation, dispatch) by difference"
+        "the core's reading of the\n  target, solve and check (params.ik_rigid, through the "
+        "binding; of it the solver alone, params.candidates),\n  building the result, the rest "
+        "(the keyword test, dispatch) by difference"
     )
-    head = ["", "robot.ik", "core ik", "of it: solver", "parse_targets", "result_of", "rest"]
+    head = ["", "robot.ik", "core ik", "of it: solver", "result_of", "rest"]
     print(table([[r.arm, *(fmt_time(t) for t in r.parts)] for r in reports], head))
 
     print(

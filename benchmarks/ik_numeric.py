@@ -42,7 +42,7 @@ from _common import fmt_time, header, shortest_per_item, table, verdict
 
 import kinematica as km
 from kinematica import _core
-from kinematica.ik.numeric import numeric_setup
+from kinematica.ik.numeric import LABEL, numeric_setup
 from kinematica.ik.result import IKBatchResult
 from kinematica.spatial import rotation_angle
 
@@ -80,7 +80,7 @@ def core_call(robot: km.Robot) -> Any:
     opts.tol_position, opts.tol_rotation = 1e-10, 1e-10
     opts.respect_limits, opts.complete, opts.weights = True, False, (1.0,) * 6
     core = robot.chain.core
-    return lambda T: setup.solver.ik(core, T, opts, None)
+    return lambda T: setup.solver.ik(core, T, opts, None, (LABEL,))
 
 
 def ours(robot: km.Robot, targets: np.ndarray, singles: int) -> tuple[list[str], list[float]]:

@@ -563,16 +563,21 @@ def test_single_call_equals_the_batch(shoulder: str, joint3: str) -> None:
     many = solver.params.ik_batch(robot.chain.core, T, opts, None, None, 4)
     Q, info = raw(robot, T)
     for i in range(len(T)):
-        q, res, outside, slots, report = solver.params.ik(robot.chain.core, T[i], opts, None)
-        k, m = report[1], report[2]
+        labels = tuple(str(j) for j in range(solver.params.slots))
+        q, res, outside, within, beyond, report = solver.params.ik(
+            robot.chain.core, T[i], opts, None, labels
+        )
+        k, m = len(within), len(beyond)
         np.testing.assert_array_equal(q, many["q"][i][:k])
         np.testing.assert_array_equal(outside, many["q"][i][k : k + m])
         assert np.isnan(many["q"][i][k + m :]).all()
         np.testing.assert_array_equal(res, many["res"][i][:k])
-        assert slots == [s for s in many["slot"][i].tolist() if s >= 0]
-        assert report[0] == many["status"][i] and report[1] == many["count"][i]
-        assert report[6] == many["near"][i] == info.near[i]
-        np.testing.assert_array_equal(report[3], many["gap"][i])
+        assert [int(s) for s in within + beyond] == [s for s in many["slot"][i].tolist() if s >= 0]
+        assert report[0] == many["status"][i] and k == many["count"][i]
+        assert m == many["out_count"][i]
+        assert report[4] == many["near"][i] == info.near[i]
+        gap = np.nan if report[1] is None else report[1]
+        np.testing.assert_array_equal(gap, many["gap"][i])
         Qi, *_ = solver.params.candidates(robot.chain.core, T[i])
         np.testing.assert_array_equal(Qi, Q[i])
 

@@ -1,7 +1,7 @@
 // Binding an IK solver: single targets, batches, and its raw candidates (for tests).
 //
 // bind_solver<Solver>(cls) adds to a solver's nanobind class:
-//   ik(chain, T, options, q0)                   one target: (q, res, slots, report...)
+//   ik(chain, T, options, q0, labels)           one target: (q, res, branches, report...)
 //   ik_batch(chain, T, options, q0, invalid, workers)   N targets: a dict of arrays
 //   candidates(chain, T, q0)                    the solver's raw candidates and info
 // where Solver satisfies ik.hpp's solver interface (ClosedForm<Params> for closed forms).
@@ -37,12 +37,42 @@ km::IKWork<Solver>& thread_work(const Solver& s, int n) {
     return *work;
 }
 
-//! The report of one target as a tuple: (status, count, out_count, gap, nearest position,
-//! nearest rotation, near, free mask).
-inline nb::tuple report_tuple(const km::CheckReport& r) {
-    return nb::make_tuple(static_cast<int>(r.status), r.count, r.out_count, r.gap,
-                          r.nearest_position, r.nearest_rotation, r.near,
-                          static_cast<unsigned long>(r.free));
+//! The report of one target as a tuple: (status, gap or None, nearest position, nearest
+//! rotation, near, free joints (a tuple, given with the status singular only)).
+inline nb::tuple report_tuple(const km::CheckReport& r, int n) {
+    nb::object gap = r.gap == r.gap ? nb::object(nb::float_(r.gap)) : nb::none();
+    int nfree = 0;
+    const bool singular = r.status == km::Status::singular;
+    if (singular) {
+        for (int j = 0; j < n; ++j) nfree += static_cast<int>(((r.free >> j) & 1U) != 0);
+    }
+    nb::object free = nb::steal(PyTuple_New(nfree));
+    for (int j = 0, k = 0; singular && j < n; ++j) {
+        if (((r.free >> j) & 1U) != 0) PyTuple_SET_ITEM(free.ptr(), k++, PyLong_FromLong(j));
+    }
+    return nb::make_tuple(static_cast<int>(r.status), gap, r.nearest_position,
+                          r.nearest_rotation, r.near, free);
+}
+
+//! The labels of slots[first, last) as a tuple of the label objects themselves.
+inline nb::tuple branch_tuple(nb::handle labels, const int* slots, int first, int last) {
+    nb::object t = nb::steal(PyTuple_New(last - first));
+    for (int r = first; r < last; ++r) {
+        PyObject* label = PyTuple_GET_ITEM(labels.ptr(), slots[r]);
+        Py_INCREF(label);
+        PyTuple_SET_ITEM(t.ptr(), r - first, label);
+    }
+    return nb::borrow<nb::tuple>(t);
+}
+
+//! The branch labels of a solver of m slots: a tuple of at least m.
+inline nb::handle checked_labels(nb::handle labels, int m) {
+    if (!PyTuple_Check(labels.ptr()) || PyTuple_GET_SIZE(labels.ptr()) < m) {
+        throw nb::value_error(("labels must be a tuple of the solver's " + std::to_string(m) +
+                               " branch names")
+                                  .c_str());
+    }
+    return labels;
 }
 
 inline km::Pose target_pose(F64 T) {
@@ -88,11 +118,13 @@ struct OneOut {
 };
 
 //! (solutions (count, n), their residuals (count, 2), solutions outside the limits
-//! (out_count, n), the slot of each (count + out_count,), report) for one target.
+//! (out_count, n), the branch label of each within, of each outside, report) for one
+//! target; labels: the solver's branch names, one per slot.
 template <class Solver>
 nb::tuple ik_one(const Solver& s, const km::Chain& chain, F64 T,
-                 const km::CheckOptions& opts, nb::handle q0) {
+                 const km::CheckOptions& opts, nb::handle q0, nb::handle labels) {
     check_dims(s, chain);
+    checked_labels(labels, s.slots());
     const km::ChainView ch = chain.view();
     const int n = ch.n, m = s.slots();
     const km::Pose P = target_pose(T);
@@ -108,20 +140,20 @@ nb::tuple ik_one(const Solver& s, const km::Chain& chain, F64 T,
     std::copy(buf.q.data(), buf.q.data() + count * n, q);
     std::copy(buf.res.data(), buf.res.data() + 2 * count, res);
     std::copy(buf.q.data() + count * n, buf.q.data() + (count + out) * n, qo);
-    nb::list order;
-    for (int r = 0; r < count + out; ++r) order.append(buf.slot[static_cast<size_t>(r)]);
-    return nb::make_tuple(Qa, Ra, Oa, order, report_tuple(rep));
+    const int* slot = buf.slot.data();
+    return nb::make_tuple(Qa, Ra, Oa, branch_tuple(labels, slot, 0, count),
+                          branch_tuple(labels, slot, count, count + out), report_tuple(rep, n));
 }
 
 //! ik_one for a target already rigid to round-off (finite, last row exact, |RᵀR - I| <=
 //! roundoff, det R > 0), else None: the caller's general path reads (and explains) it.
 template <class Solver>
 nb::object ik_rigid(const Solver& s, const km::Chain& chain, F64 T, const km::CheckOptions& opts,
-                    double roundoff) {
+                    double roundoff, nb::handle labels) {
     const In in = in_f64(T, "T", 2, {4, 4});
     const km::PoseDefects d = km::pose_defects(in.data);
     if (!(d.finite && d.last_row == 0.0 && d.ortho <= roundoff && d.det > 0.0)) return nb::none();
-    return ik_one(s, chain, T, opts, nb::none());
+    return ik_one(s, chain, T, opts, nb::none(), labels);
 }
 
 //! A batch of N targets: a dict of arrays q (N, m, n), slot (N, m), res (N, m, 2),
@@ -207,13 +239,18 @@ template <class Bound, class Get>
 void add_ik_methods(nb::class_<Bound>& cls, Get get) {
     cls.def("ik",
             [get](const Bound& b, const km::Chain& chain, F64 T, const km::CheckOptions& o,
-                  nb::handle q0) { return ik_one(get(b), chain, T, o, q0); },
+                  nb::handle q0, nb::handle labels) { return ik_one(get(b), chain, T, o, q0, labels); },
             nb::arg("chain"), nb::arg("T"), nb::arg("options"), nb::arg("q0").none(),
-            "Every solution of one target T (4, 4): (q, res, q outside, slots, report).");
+            nb::arg("labels"),
+            "Every solution of one target T (4, 4): (q, res, q outside, branches, branches\n"
+            "outside, report (status, gap, nearest position, nearest rotation, near, free)).");
     cls.def("ik_rigid",
             [get](const Bound& b, const km::Chain& chain, F64 T, const km::CheckOptions& o,
-                  double roundoff) { return ik_rigid(get(b), chain, T, o, roundoff); },
+                  double roundoff, nb::handle labels) {
+                return ik_rigid(get(b), chain, T, o, roundoff, labels);
+            },
             nb::arg("chain"), nb::arg("T"), nb::arg("options"), nb::arg("roundoff"),
+            nb::arg("labels"),
             "ik of a target rigid to round-off, without q0; None for any other target.");
     cls.def("ik_batch",
             [get](const Bound& b, const km::Chain& chain, F64 T, const km::CheckOptions& o,

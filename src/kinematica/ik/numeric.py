@@ -100,17 +100,31 @@ class NumericSetup:
         """The full search: the first guess, then the restarts in order."""
         return self._make(self.samples)
 
-    def ik(self, core: _core.Chain, T: FloatArray, options: _core.CheckOptions, q0: Any) -> Any:
+    def ik(
+        self,
+        core: _core.Chain,
+        T: FloatArray,
+        options: _core.CheckOptions,
+        q0: Any,
+        labels: tuple[str, ...],
+    ) -> Any:
         """One target: the first guess alone, the restarts only when it fails."""
-        out = self.quick.ik(core, T, options, q0)
-        return out if _settled(out) else self.solver.ik(core, T, options, q0)
+        out = self.quick.ik(core, T, options, q0, labels)
+        return out if _settled(out) else self.solver.ik(core, T, options, q0, labels)
 
     def ik_rigid(
-        self, core: _core.Chain, T: FloatArray, options: _core.CheckOptions, roundoff: float
+        self,
+        core: _core.Chain,
+        T: FloatArray,
+        options: _core.CheckOptions,
+        roundoff: float,
+        labels: tuple[str, ...],
     ) -> Any:
         """:meth:`ik` of a target rigid to round-off, else None (see the core's ``ik_rigid``)."""
-        out = self.quick.ik_rigid(core, T, options, roundoff)
-        return out if out is None or _settled(out) else self.solver.ik(core, T, options, None)
+        out = self.quick.ik_rigid(core, T, options, roundoff, labels)
+        if out is None or _settled(out):
+            return out
+        return self.solver.ik(core, T, options, None, labels)
 
     def ik_batch(self, *args: Any) -> Any:
         """A batch: the full search on every target (the core's ``ik_batch``)."""
@@ -124,7 +138,7 @@ _NOT_FOUND = _core.STATUS["not_found"]
 def _settled(out: Any) -> bool:
     """True when a search without restarts has the full search's answer already."""
     report = out[-1]
-    return bool(report[0] != _NOT_FOUND or report[3] == report[3])  # found, or a proven gap
+    return bool(report[0] != _NOT_FOUND or report[1] is not None)  # found, or a proven gap
 
 
 _SETUPS: weakref.WeakKeyDictionary[Chain, dict[tuple[object, ...], NumericSetup]] = (

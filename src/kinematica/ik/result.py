@@ -273,16 +273,21 @@ class IKBatchResult:
             notes = (self.errors[idx], *notes)
         raw = self.raw
         count, out = int(raw.count[flat]), int(raw.out_count[flat])
-        free = sum(1 << j for j, v in enumerate(raw.free[flat].tolist()) if v)
+        code = int(raw.status[flat])
+        free: tuple[int, ...] = ()
+        if code == _SINGULAR:
+            free = tuple(j for j, v in enumerate(raw.free[flat].tolist()) if v)
+        gap = float(raw.gap[flat])
         report = (
-            int(raw.status[flat]), count, out, float(raw.gap[flat]),
+            code, None if gap != gap else gap,
             float(raw.nearest[flat, 0]), float(raw.nearest[flat, 1]), bool(raw.near[flat]), free,
         )  # fmt: skip
-        slots = raw.slot[flat, : count + out].tolist()
+        labels = self.labels
+        branches = tuple(labels[j] for j in raw.slot[flat, : count + out].tolist())
         q = raw.q[flat]
         return result_of(
-            q[:count], raw.res[flat, :count], q[count : count + out], slots, report,
-            self.labels, self.method, self.complete, notes,
+            q[:count], raw.res[flat, :count], q[count : count + out],
+            branches[:count], branches[count:], report, self.method, self.complete, notes,
         )  # fmt: skip
 
     @cached_property
@@ -331,13 +336,15 @@ _SINGULAR = next(code for code, name in STATUS_NAMES.items() if name is IKStatus
 
 
 #: What the core's ``ik`` of one target gives: solutions, residuals, solutions outside
-#: the limits, the slot of each, the report (see :func:`result_of`).
+#: the limits, the branch of each within and of each outside, the report (see
+#: :func:`result_of`).
 CoreAnswer = tuple[
     FloatArray,
     FloatArray,
     FloatArray,
-    list[int],
-    tuple[int, int, int, float, float, float, bool, int],
+    tuple[str, ...],
+    tuple[str, ...],
+    tuple[int, float | None, float, float, bool, tuple[int, ...]],
 ]
 
 
@@ -345,9 +352,9 @@ def result_of(
     solutions: FloatArray,
     residuals: FloatArray,
     outside: FloatArray,
-    slots: list[int],
-    report: tuple[int, int, int, float, float, float, bool, int],
-    labels: tuple[str, ...],
+    branches: tuple[str, ...],
+    out_branches: tuple[str, ...],
+    report: tuple[int, float | None, float, float, bool, tuple[int, ...]],
     method: str,
     complete: bool,
     notes: tuple[str, ...],
@@ -358,10 +365,11 @@ def result_of(
         solutions: ``(count, n)`` the checked solutions within the limits.
         residuals: ``(count, 2)`` their residuals.
         outside: ``(out_count, n)`` the solutions outside the limits.
-        slots: The candidate slot (branch label) of each, within then outside.
-        report: ``(status, count, out_count, gap, nearest position, nearest
-            rotation, near, free mask)`` as the core gives it.
-        labels: The solver's branch labels.
+        branches: The branch label of each solution.
+        out_branches: The branch label of each solution outside the limits.
+        report: ``(status code, gap (None unless unreachable), nearest position,
+            nearest rotation, near, free joints (with the status singular only))``
+            as the core gives it.
         method: The method name.
         complete: The method gives every solution.
         notes: Remarks on the target.
@@ -369,22 +377,18 @@ def result_of(
     Built without the frozen dataclass's ``__init__`` (a dozen guarded
     attribute writes): the one-target path of ``robot.ik`` runs through here.
     """
-    code, count, out, gap, near_p, near_r, near, free_mask = report
-    status = STATUS_NAMES[code]
-    free: tuple[int, ...] = ()
-    if free_mask and status is IKStatus.SINGULAR:
-        free = tuple([j for j in range(solutions.shape[1]) if (free_mask >> j) & 1])
+    code, gap, near_p, near_r, near, free = report
     res = IKResult.__new__(IKResult)
     res.__dict__.update(
         solutions=solutions,
-        status=status,
+        status=STATUS_NAMES[code],
         method=method,
         residuals=residuals,
-        branches=tuple([labels[j] for j in slots[:count]]),
+        branches=branches,
         out_of_limits=outside,
-        out_of_limits_branches=tuple([labels[j] for j in slots[count:]]) if out else (),
+        out_of_limits_branches=out_branches,
         free_joints=free,
-        gap=None if gap != gap else gap,
+        gap=gap,
         nearest_error=(near_p, near_r),
         notes=notes,
         complete=complete,

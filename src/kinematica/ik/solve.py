@@ -116,7 +116,7 @@ class PoseSolver(NamedTuple):
     """What ``robot.ik(T)`` with every default runs for one pose (see :func:`pose_solver`).
 
     Attributes:
-        ik_rigid: The solver's ``ik_rigid(chain, T, options, roundoff)``.
+        ik_rigid: The solver's ``ik_rigid(chain, T, options, roundoff, labels)``.
         options: The check's options.
         labels: The branch names of its slots.
         method: The method name results carry.
@@ -204,10 +204,10 @@ def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | 
     opts = _options(tolerance, respect_limits, complete, w)
     if targets.single:
         out: CoreAnswer = solver.ik(
-            chain.core, targets.poses[0], opts, None if q0s is None else q0s[0]
+            chain.core, targets.poses[0], opts, None if q0s is None else q0s[0], labels
         )
         notes = targets.notes.get(0, ()) if targets.notes else ()
-        return result_of(*out, labels, name, complete, notes)
+        return result_of(*out, name, complete, notes)
     invalid = None
     if targets.invalid:
         invalid = np.zeros(targets.poses.shape[0], dtype=bool)

@@ -460,10 +460,10 @@ class Robot:
                 fast = pose_solver(self.chain)
                 object.__setattr__(self, "_pose_solver", fast)
             out: CoreAnswer | None = fast.ik_rigid(
-                self.chain.core, target, fast.options, ROUNDOFF_TOL
+                self.chain.core, target, fast.options, ROUNDOFF_TOL, fast.labels
             )
             if out is not None:
-                return result_of(*out, fast.labels, fast.method, fast.complete, ())
+                return result_of(*out, fast.method, fast.complete, ())
         if options is None:
             options = IKOptions(method, tol, respect_limits, q0, mask, seed, workers)
         elif not (
