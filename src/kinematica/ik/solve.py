@@ -130,16 +130,18 @@ class PoseSolver(NamedTuple):
     complete: bool
 
 
-def pose_solver(chain: Chain) -> PoseSolver:
-    """The solver ``solve_ik`` picks for one pose target with the default options.
+def pose_solver(chain: Chain, kind: TargetKind = "pose") -> PoseSolver:
+    """The solver ``solve_ik`` picks for one target of this kind with the default options.
 
     The same choice and settings as :func:`solve_ik` makes (closed form when the
     structure allows, else the numeric search with the default seed), ready for
-    ``robot.ik``'s one-pose path, which skips the general parsing when the
-    target is a rigid transform to round-off.
+    ``robot.ik``'s one-target path, which skips the general parsing when the
+    target is a rigid transform to round-off (a position: placed in the identity
+    pose, as :func:`~kinematica.ik.targets.parse_targets` places it).
     """
     tolerance = parse_tolerance(None)
-    closed = closed_form(chain, "pose")
+    w = _POSITION if kind == "position" else _POSE
+    closed = closed_form(chain, kind)
     if closed is not None:
         solver, labels, name = closed.params, closed.labels, closed.method
     else:
@@ -149,13 +151,12 @@ def pose_solver(chain: Chain) -> PoseSolver:
             tol_position=tolerance.position,
             tol_rotation=tolerance.rotation,
             seed=None,
-            weights=_POSE,
+            weights=w,
         )
         solver, labels, name = setup, (LABEL,), "numeric:lm"
     complete = closed is not None
-    return PoseSolver(
-        solver.ik_rigid, _options(tolerance, True, complete, _POSE), labels, name, complete
-    )
+    opts = _options(tolerance, True, complete, w)
+    return PoseSolver(solver.ik_rigid, opts, labels, name, complete)
 
 
 def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IKBatchResult:

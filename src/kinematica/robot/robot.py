@@ -28,6 +28,7 @@ from kinematica.dh import (
 )
 from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning
 from kinematica.ik import IKBatchResult, IKOptions, IKResult, Tolerance, solve_ik
+from kinematica.ik.registry import TargetKind
 from kinematica.ik.result import CoreAnswer, result_of
 from kinematica.ik.solve import PoseSolver, pose_solver
 from kinematica.robot.dh_rules import to_dh, to_urdf
@@ -46,6 +47,8 @@ __all__ = ["Robot"]
 
 FloatArray = NDArray[np.float64]
 _FLOAT64 = np.dtype(np.float64)
+#: Where a position target is placed (the orientation is free).
+_IDENTITY = np.eye(4)
 #: What the core says of one configuration (kinematica._core.Chain.fk).
 _NOT_FINITE, _OUTSIDE_LIMITS = 1, 2
 
@@ -89,7 +92,9 @@ class Robot:
     _jacobian_one: Callable[[FloatArray, bool], tuple[FloatArray, int]] = field(
         init=False, repr=False, compare=False
     )
-    _pose_solver: PoseSolver | None = field(init=False, repr=False, compare=False, default=None)
+    _fast_ik: dict[str, PoseSolver] = field(
+        init=False, repr=False, compare=False, default_factory=dict
+    )
 
     def __post_init__(self) -> None:
         links = tuple(self.links)
@@ -446,7 +451,6 @@ class Robot:
         if (
             options is None
             and type(target) is np.ndarray
-            and target.shape == (4, 4)
             and target.dtype is _FLOAT64
             and method == "auto"
             and respect_limits is True
@@ -454,16 +458,17 @@ class Robot:
             and q0 is None
             and mask is None
             and seed is None
-        ):  # one pose, every default: straight to the core (a rigid target to round-off)
-            fast = self._pose_solver
-            if fast is None:
-                fast = pose_solver(self.chain)
-                object.__setattr__(self, "_pose_solver", fast)
-            out: CoreAnswer | None = fast.ik_rigid(
-                self.chain.core, target, fast.options, ROUNDOFF_TOL, fast.labels
-            )
+        ):  # one target, every default: straight to the core (a rigid target to round-off)
+            if target.shape == (4, 4):
+                out = self._fast(target, "pose")
+            elif target.shape == (3,):
+                pose = _IDENTITY.copy()
+                pose[0, 3], pose[1, 3], pose[2, 3] = target.tolist()
+                out = self._fast(pose, "position")
+            else:
+                out = None
             if out is not None:
-                return result_of(*out, fast.method, fast.complete, ())
+                return out
         if options is None:
             options = IKOptions(method, tol, respect_limits, q0, mask, seed, workers)
         elif not (
@@ -476,6 +481,16 @@ class Robot:
                 arg="options",
             )
         return solve_ik(self.chain, target, options)
+
+    def _fast(self, pose: FloatArray, kind: TargetKind) -> IKResult | None:
+        """``ik`` of one rigid target with every default; None: the general path explains it."""
+        fast = self._fast_ik.get(kind)
+        if fast is None:
+            fast = self._fast_ik[kind] = pose_solver(self.chain, kind)
+        out: CoreAnswer | None = fast.ik_rigid(
+            self.chain.core, pose, fast.options, ROUNDOFF_TOL, fast.labels
+        )
+        return None if out is None else result_of(*out, fast.method, fast.complete, ())
 
     # ------------------------------------------------------------ derived models
     def to_convention(self, convention: str) -> Robot:
