@@ -230,6 +230,8 @@ class Robot:
             raw = np.asarray(q)
         except (TypeError, ValueError) as exc:
             raise DimensionError(f"{name} must be numbers, got {q!r}") from exc
+        if raw.dtype is _FLOAT64 and raw.shape == self._single:
+            return raw  # a list of n floats: the common case, checked in full
         if raw.dtype.kind not in "iuf":
             raise DimensionError(f"{name} must be numbers, got {short(q)}")
         if raw.ndim == 0 or raw.shape[-1] != self.dof:
@@ -293,16 +295,17 @@ class Robot:
             ``(..., 4, 4)`` pose ``T = base · 0A1 · ... · (n-1)An · tool``, or
             ``(..., n+1, 4, 4)`` with ``all_frames``.
         """
-        if type(q) is np.ndarray and q.dtype is _FLOAT64 and q.shape == self._single:
+        qa = q if type(q) is np.ndarray and q.dtype is _FLOAT64 else self.check_q(q)
+        if qa.shape == self._single:
             try:  # one configuration, already what the core reads: one call
-                T, state = self._fk_one(q) if not all_frames else self.chain.core.fk_frames(q)
+                T, state = self._fk_one(qa) if not all_frames else self.chain.core.fk_frames(qa)
             except ValueError:  # not contiguous: the general path copies it
                 pass
             else:
                 if state:
-                    self._report(q, "q", state == _NOT_FINITE, state == _OUTSIDE_LIMITS)
+                    self._report(qa, "q", state == _NOT_FINITE, state == _OUTSIDE_LIMITS)
                 return T
-        qa = self.check_q(q)
+        qa = self.check_q(qa)
         out, bad, outside = self.chain.fk(qa, all_frames, workers)
         if bad or outside:
             self._report(qa, "q", bad, outside)
@@ -376,16 +379,17 @@ class Robot:
             from kinematica.robot.velocity import analytic_jacobian
 
             return analytic_jacobian(self, q, euler)
-        if type(q) is np.ndarray and q.dtype is _FLOAT64 and q.shape == self._single:
+        qa = q if type(q) is np.ndarray and q.dtype is _FLOAT64 else self.check_q(q)
+        if qa.shape == self._single:
             try:
-                J, state = self._jacobian_one(q, frame == "tool")
+                J, state = self._jacobian_one(qa, frame == "tool")
             except ValueError:  # not contiguous: the general path copies it
                 pass
             else:
                 if state == _NOT_FINITE:
-                    self._report(q, "q", 1, 0)
+                    self._report(qa, "q", 1, 0)
                 return J
-        qa = self.check_q(q)
+        qa = self.check_q(qa)
         J, bad = self.chain.jacobian(qa, frame == "tool", workers)
         if bad:
             self._report(qa, "q", bad, 0)
