@@ -213,8 +213,7 @@ def test_view_serve_answers_then_stops(tmp_path: Path) -> None:
         req = urllib.request.Request(
             url + "api/ik", data=json.dumps({"T": T.tolist()}).encode(), method="POST"
         )
-        # the first IK request compiles the IK kernels when the cache is cold (seconds)
-        with urllib.request.urlopen(req, timeout=180) as r:
+        with urllib.request.urlopen(req, timeout=30) as r:
             res = json.loads(r.read())
         assert res["status"] == "ok" and len(res["solutions"]) == 2
     finally:

@@ -104,6 +104,26 @@ def test_fk_of_a_batch_equals_single_calls_beyond_the_reduction(rows: int) -> No
         assert np.array_equal(T[i], robot.fk(Q[i]))
 
 
+@pytest.mark.parametrize("name", ["puma560", "panda", "stanford"])
+def test_batches_are_the_same_with_one_worker_or_several(name: str) -> None:
+    # Blocks go to threads in any order; each row is computed by the same code either
+    # way, so the results are equal to the last bit (several blocks of each kind).
+    robot = km.load(name)
+    rng = np.random.default_rng(11)
+    lo, hi = np.maximum(robot.qlim[:, 0], -3.0), np.minimum(robot.qlim[:, 1], 3.0)
+    Q = rng.uniform(lo, hi, (1000, robot.dof))
+    for w in (2, 3):
+        assert np.array_equal(robot.fk(Q, workers=1), robot.fk(Q, workers=w))
+        assert np.array_equal(
+            robot.fk(Q, all_frames=True, workers=1), robot.fk(Q, all_frames=True, workers=w)
+        )
+        assert np.array_equal(robot.jacobian(Q, workers=1), robot.jacobian(Q, workers=w))
+    T = robot.fk(Q[:300])
+    one, many = robot.ik(T, workers=1), robot.ik(T, workers=2)
+    assert np.array_equal(one.raw.q, many.raw.q, equal_nan=True)
+    assert np.array_equal(one.raw.status, many.raw.status)
+
+
 def test_wrap_is_the_representative_in_minus_pi_pi() -> None:
     rng = np.random.default_rng(3)
     x = np.concatenate(

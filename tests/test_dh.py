@@ -1,4 +1,4 @@
-"""The dh layer: link matrices, rows, conventions, table conversion, the FK kernel.
+"""The dh layer: link matrices, rows, conventions, table conversion, the core's FK.
 
 Every expected value comes from the slides' formulas typed in here or from the
 reference product of four elementary matrices in ``helpers.py``.
@@ -319,7 +319,7 @@ def kfk(chain: Chain, q: np.ndarray, all_frames: bool = False) -> tuple[np.ndarr
 
 @PROPERTY
 @given(spec=robot_specs(), seed=seeds)
-def test_chain_kernels_equal_reference_product(spec: RobotSpec, seed: int) -> None:
+def test_core_chain_equals_reference_product(spec: RobotSpec, seed: int) -> None:
     chain = _chain(spec)
     q = random_q(spec, np.random.default_rng(seed), (5,))
     expected = np.array([spec.ref_frames(qi) for qi in q])
@@ -345,7 +345,7 @@ def test_chain_batches_larger_than_one_block() -> None:
 # ----------------------------------------------------------------- snapped twists
 @pytest.mark.parametrize("convention", CONVENTIONS)
 def test_special_twists_equal_reference_product(convention: str) -> None:
-    # Twists of 0, ±90° and 180° run through the exact branches of the kernel.
+    # Twists of 0, ±90° and 180° run through the exact branches of the core's chain.
     rng = np.random.default_rng(8)
     for alphas in [
         (0.0, math.pi / 2, -math.pi / 2, math.pi),
@@ -380,7 +380,7 @@ def test_snapping_near_special_twists_is_harmless(
     convention: str, special: float, eps: float
 ) -> None:
     # cos/sin within 1e-15 of 0 or ±1 are replaced by the exact value; for angles
-    # just off a special one the kernel must still agree with the product at 1e-14.
+    # just off a special one the core must still agree with the product at 1e-14.
     alpha = special + eps
     spec = RobotSpec(
         (

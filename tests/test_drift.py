@@ -4,7 +4,7 @@
 2. A base/tool matrix written with 7 digits: accepted by the file reader and by
    ``Robot`` alike (one tolerance), the robot keeping an exactly rigid transform.
 3. Unreachable targets: one target and the same target in a batch get the same
-   answer and the same message (one check kernel).
+   answer and the same message (one check in the core).
 """
 
 from __future__ import annotations

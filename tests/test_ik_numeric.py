@@ -575,7 +575,7 @@ def test_messages_of_a_search_never_speak_of_a_closed_form() -> None:
         assert "closed form" not in res.message, res.message
 
 
-# ----------------------------------------------- the kernel's own model
+# ------------------------------------------------- the core's own model
 @pytest.mark.parametrize(
     "mask",
     [[1, 1, 1, 0, 0, 0], [1, 1, 1, 1, 1, 0], [0, 1, 0, 1, 0, 0], [2, 1, 1, 0, 0.5, 0.5]],
@@ -583,7 +583,7 @@ def test_messages_of_a_search_never_speak_of_a_closed_form() -> None:
 )
 def test_error_jacobian_matches_finite_differences(mask) -> None:
     # The rows each LM step linearises: √w_k · ∂(−e_k)/∂q for the counted
-    # components, e from kinematica.spatial.se3_error (numpy, not the kernel).
+    # components, e from kinematica.spatial.se3_error (numpy, not the core).
     # With only some rotation components counted the rows are the exact
     # derivative -J_r⁻¹(Δω) J_ω of the error, also far from the target.
     robot = stanford()

@@ -73,7 +73,7 @@ def test_product_of_exponentials_is_the_forward_kinematics(mode: str) -> None:
 
 
 def test_builder_modes() -> None:
-    """Axes 5 and 6 meeting, parallel or apart: the kernel's mode and the labels."""
+    """Axes 5 and 6 meeting, parallel or apart: the solver's mode and the labels."""
     for robot, mode, labels in ((UR5, 0, LABELS), (UR5_P56, 1, GENERAL_LABELS)):
         chain = robot.chain
         packed = pack(chain, features(chain))

@@ -18,7 +18,7 @@ import kinematica._core as _core
 import numpy as np
 import pytest
 import test_ik_wrist_edges as wrist_edges
-import test_ik_wrist_kernels as wrist_kernels
+import test_ik_wrist_parts as wrist_parts
 
 import kinematica as km
 from kinematica.dh import Revolute
@@ -183,7 +183,7 @@ def test_max_position_dof_bounds_the_arm_position_solver(n: int, accepted: bool)
 @pytest.mark.parametrize(("factor", "kind"), [(0.5, "parallel"), (2.0, "general")])
 def test_geometry_tol_parallel_shoulder(factor: float, kind: str) -> None:
     """GEOMETRY_TOL: axes 1 and 2 twisted by less than it (rad) are parallel."""
-    assert wrist_kernels.shoulder(factor * GEOMETRY_TOL, 0.2) == kind
+    assert wrist_parts.shoulder(factor * GEOMETRY_TOL, 0.2) == kind
 
 
 @pytest.mark.parametrize(("factor", "kind"), [(0.5, "meet"), (2.0, "general")])
@@ -196,7 +196,7 @@ def test_geometry_tol_meeting_shoulder(factor: float, kind: str) -> None:
     _, p = probe.joint_axes()
     c = probe.fk(np.zeros(4))[:3, 3]
     scale = 1.0 + float(np.linalg.norm(c - p[0]) + np.linalg.norm(p[1] - p[0]))
-    assert wrist_kernels.shoulder(math.pi / 2, factor * GEOMETRY_TOL * scale) == kind
+    assert wrist_parts.shoulder(math.pi / 2, factor * GEOMETRY_TOL * scale) == kind
 
 
 @pytest.mark.parametrize(("factor", "usable"), [(0.5, False), (2.0, True)])
@@ -207,7 +207,7 @@ def test_arm_rank_tol_needs_joints_1_to_3_to_place_the_point(factor: float, usab
     Joint 3 moves the point on a circle of radius eps: the ratio is linear in
     eps, so eps is scaled to put it at ``factor`` · RANK_TOL.
     """
-    r1 = wrist_kernels.rank_ratio(wrist_kernels.arm_with_point_near_axis_3(1e-4))
-    robot = wrist_kernels.arm_with_point_near_axis_3(1e-4 * factor * ARM_RANK_TOL / r1)
-    assert wrist_kernels.rank_ratio(robot) == pytest.approx(factor * ARM_RANK_TOL, rel=0.05)
+    r1 = wrist_parts.rank_ratio(wrist_parts.arm_with_point_near_axis_3(1e-4))
+    robot = wrist_parts.arm_with_point_near_axis_3(1e-4 * factor * ARM_RANK_TOL / r1)
+    assert wrist_parts.rank_ratio(robot) == pytest.approx(factor * ARM_RANK_TOL, rel=0.05)
     assert arm_point.places_point(robot.chain, np.zeros(3)) == usable

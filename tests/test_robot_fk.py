@@ -217,7 +217,7 @@ def test_empty_batch(name: str) -> None:
 @pytest.mark.parametrize("name", FIXED)
 def test_single_configuration_forms_equal_batched_path(name: str) -> None:
     # list, tuple, (n,) float64/float32/int arrays take the fast path; each must
-    # equal the batched kernel on the same values to 1e-15.
+    # equal the batched path on the same values to 1e-15.
     spec = FIXED[name]
     robot = spec.build()
     rng = np.random.default_rng(12)

@@ -3,7 +3,7 @@
 Each test uses literal distances a factor of 5-50 inside and outside the value the
 docstring states, so that a constant changed a thousandfold fails a test. Inputs
 are built by hand (exact solutions of a planar 2R arm, perturbed on purpose) and
-go straight to the check kernel, so the solvers play no part.
+go straight to the core's check, so the solvers play no part.
 """
 
 from __future__ import annotations

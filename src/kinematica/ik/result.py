@@ -123,7 +123,7 @@ class IKBatchResult:
 
     Index it with a batch index (``res[i]``, ``res[i, j]``) for one
     :class:`IKResult`; iterating yields one per target in C order. The arrays
-    below are derived from the check kernel's output on first access.
+    below are derived from the core's check output on first access.
 
     Attributes:
         solutions: ``(..., k, n)`` solutions, NaN-padded (see :class:`IKResult`).

@@ -57,7 +57,7 @@ class Tolerance:
 
 
 class Targets(NamedTuple):
-    """Targets, flattened for the kernels.
+    """Targets, flattened for the core.
 
     A named tuple, not a dataclass: ``robot.ik`` of one pose builds one on
     every call, and a frozen dataclass took a microsecond of it.
