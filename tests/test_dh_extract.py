@@ -19,8 +19,8 @@ from urdf_helpers import (
 
 import kinematica as km
 from kinematica.dh import (
-    EXTRACT_ANGLE_TOL,
-    EXTRACT_LENGTH_TOL,
+    AXIS_ANGLE_TOL,
+    AXIS_LENGTH_TOL,
     FK_CHECK_TOL,
     line_pair,
 )
@@ -30,8 +30,9 @@ from kinematica.io import parse_urdf
 # Random joint values may lie beyond a joint's limits on purpose: FK is defined there.
 pytestmark = pytest.mark.filterwarnings("ignore:q. joint .* outside its limits")
 
-#: Random chains: FK of the extracted table equals the URDF's to this (m), the
-#: coinciding-axes rule dropping offsets up to EXTRACT_LENGTH_TOL included.
+#: Random chains: FK of the extracted table equals the URDF's to this (m) (their
+#: offsets are never within the line geometry's length tolerance, which the
+#: meeting and coinciding rules drop).
 CHAIN_ATOL = 1e-10  # the bar: extracted tables reproduce FK to 1e-10
 
 
@@ -88,7 +89,7 @@ def test_random_urdf_chains_reproduce_fk_in_both_conventions(joints, seed):
 @given(spec=robot_specs(max_dof=7), seed=seeds)
 def test_dh_robot_to_urdf_and_back_gives_the_same_table(spec, seed):
     robot = spec.build()
-    # Nearly parallel consecutive axes are taken as parallel (EXTRACT_ANGLE_TOL) or get a
+    # Nearly parallel consecutive axes are taken as parallel (AXIS_ANGLE_TOL) or get a
     # far-away normal (tested on their own below); between axes at an angle s the normal's
     # direction is only known to 1e-16 / s, which moves theta by as much (FK is unchanged).
     assume(not _nearly_parallel_axes(spec, within=1e-3))
@@ -189,20 +190,20 @@ def test_kr16_urdf_table_by_hand():
 
 def test_line_pair_by_hand():
     z, x, y = np.eye(3)[2], np.eye(3)[0], np.eye(3)[1]
-    skew = line_pair(z, np.zeros(3), x, np.array([0.0, 2.0, 5.0]))
+    skew = line_pair(z, np.zeros(3), x, np.array([0.0, 2.0, 5.0]), 1.0)
     assert skew.kind == "skew"
     np.testing.assert_allclose(skew.normal, y)
     np.testing.assert_allclose(skew.foot_a, [0, 0, 5])
     np.testing.assert_allclose(skew.foot_b, [0, 2, 5])
     assert skew.distance == pytest.approx(2.0)
-    meet = line_pair(z, np.array([0, 0, 1.0]), x, np.array([3.0, 0, 2.0]))
+    meet = line_pair(z, np.array([0, 0, 1.0]), x, np.array([3.0, 0, 2.0]), 1.0)
     assert meet.kind == "intersecting"
     np.testing.assert_allclose(meet.normal, np.cross(z, x))
     np.testing.assert_allclose(meet.foot_b, [0, 0, 2], atol=1e-15)
-    par = line_pair(z, np.zeros(3), -z, np.array([0, 3.0, 7.0]))
+    par = line_pair(z, np.zeros(3), -z, np.array([0, 3.0, 7.0]), 1.0)
     assert (par.kind, par.distance) == ("parallel", 3.0)
     np.testing.assert_allclose(par.normal, y)
-    assert line_pair(z, np.zeros(3), z, np.array([0, 0, 4.0])).kind == "collinear"
+    assert line_pair(z, np.zeros(3), z, np.array([0, 0, 4.0]), 1.0).kind == "collinear"
 
 
 # ------------------------------------------------------------------ tolerances, both sides
@@ -225,34 +226,40 @@ def _rule(text: str, convention: str = "standard") -> str:
 @pytest.mark.parametrize("convention", ["standard", "modified"])
 def test_angle_tolerance_decides_parallel_axes(convention):
     # axis 2 tilted by delta about y, 0.5 m from axis 1: parallel, or meeting far away
-    inside = _two_joints("0.5 0 0", f"0 {0.5 * EXTRACT_ANGLE_TOL!r} 0")
-    outside = _two_joints("0.5 0 0", f"0 {2 * EXTRACT_ANGLE_TOL!r} 0")
+    inside = _two_joints("0.5 0 0", f"0 {0.5 * AXIS_ANGLE_TOL!r} 0")
+    outside = _two_joints("0.5 0 0", f"0 {2 * AXIS_ANGLE_TOL!r} 0")
     assert _rule(inside, convention) == "parallel"
     assert _rule(outside, convention) == "intersecting"
 
 
 @pytest.mark.parametrize("convention", ["standard", "modified"])
 def test_length_tolerance_decides_meeting_and_coinciding_axes(convention):
-    # axis 2 along -y, passing delta away from axis 1 (z): meeting, or skew
+    # axis 2 along -y, passing delta away from axis 1 (z): meeting, or skew; the
+    # tolerance is relative to the chain's size (0.3 m to joint 2, 1 m to the tip)
+    tol = AXIS_LENGTH_TOL * (1.0 + 1.3)
+
     def crossing(delta: float) -> str:
         return _two_joints(f"{delta!r} 0 0.3", "1.5707963267948966 0 0")
 
-    assert _rule(crossing(0.5 * EXTRACT_LENGTH_TOL), convention) == "intersecting"
-    assert _rule(crossing(2 * EXTRACT_LENGTH_TOL), convention) == "skew"
+    assert _rule(crossing(0.5 * tol), convention) == "intersecting"
+    assert _rule(crossing(2 * tol), convention) == "skew"
 
     # axis 2 parallel to axis 1, delta beside it: coinciding, or parallel
     def beside(delta: float) -> str:
         return _two_joints(f"{delta!r} 0 0.3", "0 0 0")
 
-    assert _rule(beside(0.5 * EXTRACT_LENGTH_TOL), convention) == "collinear"
-    assert _rule(beside(2 * EXTRACT_LENGTH_TOL), convention) == "parallel"
+    assert _rule(beside(0.5 * tol), convention) == "collinear"
+    assert _rule(beside(2 * tol), convention) == "parallel"
 
 
 def test_fk_check_warns_only_beyond_its_tolerance():
-    # Axis 2 tilted by delta < EXTRACT_ANGLE_TOL is taken as parallel: with the tip 1 m up
-    # axis 2, the table is off by delta * 1 m.
-    def extract(delta: float) -> km.DHExtraction:
-        return km.urdf_to_dh(parse_urdf(_two_joints("0.5 0 0", f"0 {delta!r} 0")))
+    # Axis 2 tilted by half AXIS_ANGLE_TOL is taken as parallel: with the tip L up
+    # axis 2, the table is off by the tilt times L.
+    tilt = 0.5 * AXIS_ANGLE_TOL
+
+    def extract(error: float) -> km.DHExtraction:
+        tip = f"0 0 {error / tilt!r}"
+        return km.urdf_to_dh(parse_urdf(_two_joints("0.5 0 0", f"0 {tilt!r} 0", tip)))
 
     with warnings.catch_warnings():
         warnings.simplefilter("error")

@@ -26,8 +26,8 @@ import kinematica as km
 from kinematica import _core
 from kinematica.cli.main import main
 from kinematica.dh import Prismatic, Revolute
+from kinematica.dh.lines import AXIS_LENGTH_TOL
 from kinematica.ik import IKBatchResult, IKResult, closed_form
-from kinematica.ik.analytic.planar_arms import LENGTH_TOL
 from kinematica.robot import Robot, classify
 
 FloatArray = NDArray[np.float64]
@@ -260,12 +260,13 @@ def test_other_structures_and_degenerate_links_fall_back() -> None:
     assert classify(puma).kind not in KINDS
     skew_3r = Robot.from_dh([Revolute(alpha=1.0), Revolute(a=0.5, alpha=0.3), Revolute(a=0.4)])
     assert classify(skew_3r).kind == "general"
-    # A planar 2R whose tool sits on axis 2 (q2 moves nothing), or within LENGTH_TOL of it:
-    # no closed form, the numeric method answers; just beyond LENGTH_TOL the closed form does.
+    # A planar 2R whose tool sits on axis 2 (q2 moves nothing), or within the line
+    # geometry's length tolerance of it (AXIS_LENGTH_TOL · (1 + size), size 0.5 m here):
+    # no closed form, the numeric method answers; just beyond it the closed form does.
     for a2, method in (
         (0.0, "numeric"),
-        (LENGTH_TOL / 10, "numeric"),
-        (LENGTH_TOL * 10, "analytic"),
+        (AXIS_LENGTH_TOL / 10, "numeric"),
+        (AXIS_LENGTH_TOL * 10, "analytic"),
     ):
         arm = Robot.from_dh([Revolute(a=0.5), Revolute(a=a2)])
         assert classify(arm).kind == "planar-2R"

@@ -21,7 +21,7 @@ from kinematica.ik import closed_form
 
 TRIANGLE_SINGULAR_TOL = 1e-12  # triangle.hpp SINGULAR_TOL (relative to the reach)
 MERGE_TOL = 1e-7  # triangle.hpp MERGE_TOL (rad)
-LENGTH_TOL = 1e-9  # planar_arms.LENGTH_TOL (m)
+AXIS_LENGTH_TOL = 1e-9  # dh/lines.py: lines meet within it times 1 + the arm's size (m)
 FREE_SAMPLES = 33  # planar.hpp FREE_SAMPLES
 
 #: A case a factor 10 inside a tolerance, and one a factor 10 outside it.
@@ -32,7 +32,7 @@ def test_the_documented_values() -> None:
     assert _core.planar.SINGULAR_TOL == _core.elbow.SINGULAR_TOL == TRIANGLE_SINGULAR_TOL
     assert _core.planar.MERGE_TOL == _core.elbow.MERGE_TOL == MERGE_TOL
     assert _core.planar.FREE_SAMPLES == FREE_SAMPLES
-    assert km.ik.analytic.planar_arms.LENGTH_TOL == LENGTH_TOL
+    assert km.dh.lines.AXIS_LENGTH_TOL == AXIS_LENGTH_TOL
 
 
 # --- the triangle's subproblems, directly ----------------------------------------
@@ -165,11 +165,13 @@ def test_merge_tol_near_the_first_axis(factor: float, inside: bool) -> None:
 
 @pytest.mark.parametrize(("factor", "inside"), FACTORS)
 def test_length_tol_is_a_link_that_moves_nothing(factor: float, inside: bool) -> None:
-    """planar_arms.LENGTH_TOL: a planar 2R whose tool is within it (m) of axis 2
-    (q2 moves nothing) has no closed form; the numeric method answers.
+    """AXIS_LENGTH_TOL: a planar 2R whose tool is within it (times 1 + the arm's
+    size, m) of axis 2 (q2 moves nothing) has no closed form; the numeric method answers.
     """
-    arm = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=factor * LENGTH_TOL)])
+    tol = AXIS_LENGTH_TOL * (1.0 + 0.5)  # the arm's size: its 0.5 m link (and the tiny one)
+    arm = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=factor * tol)])
     assert km.classify(arm).kind == "planar-2R"
+    assert km.classify(arm).features.length_tol == pytest.approx(tol, rel=1e-8)
     res = arm.ik(arm.fk([0.3, 0.4])[:3, 3], seed=0)
     assert res.status in ("ok", "singular")
     assert res.method.startswith("numeric" if inside else "analytic")

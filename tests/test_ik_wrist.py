@@ -193,7 +193,7 @@ def shoulder_of(robot: Robot) -> tuple[str, bool]:
     f = classify(robot).features
     c = classify(robot).wrist_center
     assert c is not None
-    arm = arm_geometry(f.directions[:3], f.points[:3], f.joint_types[2] == "P", c)
+    arm = arm_geometry(f.directions[:3], f.points[:3], f.joint_types[2] == "P", c, f.size)
     assert arm is not None
     return arm.kind, arm.parallel23
 

@@ -36,7 +36,8 @@ ARM_NEAR_TOL = 1e-6  # arm_quartic.hpp NEAR_TOL
 ARM_SINGULAR_TOL = 1e-12  # arm_point.hpp SINGULAR_TOL
 NEAR_SET_TOL = 1e-9  # arm_point.hpp
 WRIST_SINGULAR_TOL = 1e-12  # spherical_wrist.hpp
-GEOMETRY_TOL = 1e-9  # ik/analytic/arm_point.py
+AXIS_ANGLE_TOL = 1e-9  # dh/lines.py (the builder's line geometry)
+AXIS_LENGTH_TOL = 1e-9  # dh/lines.py, times 1 + the arm's size
 ARM_RANK_TOL = 1e-6  # ik/analytic/arm_point.py RANK_TOL
 MAX_POSITION_DOF = 32  # arm_position.hpp
 #: The README's singular pose of arm6-dh: its wrist centre on axis 1.
@@ -51,7 +52,8 @@ def test_the_documented_values_are_the_core_s() -> None:
     assert D.NEAR_SET_TOL == NEAR_SET_TOL
     assert D.WRIST_SINGULAR_TOL == WRIST_SINGULAR_TOL
     assert D.MAX_POSITION_DOF == MAX_POSITION_DOF
-    assert arm_point.GEOMETRY_TOL == GEOMETRY_TOL
+    assert km.dh.lines.AXIS_ANGLE_TOL == AXIS_ANGLE_TOL
+    assert km.dh.lines.AXIS_LENGTH_TOL == AXIS_LENGTH_TOL
     assert arm_point.RANK_TOL == ARM_RANK_TOL
 
 
@@ -181,22 +183,19 @@ def test_max_position_dof_bounds_the_arm_position_solver(n: int, accepted: bool)
 
 
 @pytest.mark.parametrize(("factor", "kind"), [(0.5, "parallel"), (2.0, "general")])
-def test_geometry_tol_parallel_shoulder(factor: float, kind: str) -> None:
-    """GEOMETRY_TOL: axes 1 and 2 twisted by less than it (rad) are parallel."""
-    assert wrist_parts.shoulder(factor * GEOMETRY_TOL, 0.2) == kind
+def test_axis_angle_tol_parallel_shoulder(factor: float, kind: str) -> None:
+    """AXIS_ANGLE_TOL: axes 1 and 2 twisted by less than it (rad) are parallel."""
+    assert wrist_parts.shoulder(factor * AXIS_ANGLE_TOL, 0.2) == kind
 
 
 @pytest.mark.parametrize(("factor", "kind"), [(0.5, "meet"), (2.0, "general")])
-def test_geometry_tol_meeting_shoulder(factor: float, kind: str) -> None:
-    """GEOMETRY_TOL: axes 1 and 2 offset by less than it (relative to the sizes
-    the builder compares, 1 + |c - p1| + |p2 - p1|) meet.
+def test_axis_length_tol_meeting_shoulder(factor: float, kind: str) -> None:
+    """AXIS_LENGTH_TOL: axes 1 and 2 offset by less than it times 1 + the arm's
+    size (the sum of its link lengths) meet.
     """
-    rows = [Revolute(d=0.4, alpha=math.pi / 2), Revolute(a=0.4, alpha=0.7), Revolute(d=0.1)]
-    probe = km.Robot.from_dh([*rows, Revolute(d=0.4)], name="probe")
-    _, p = probe.joint_axes()
-    c = probe.fk(np.zeros(4))[:3, 3]
-    scale = 1.0 + float(np.linalg.norm(c - p[0]) + np.linalg.norm(p[1] - p[0]))
-    assert wrist_parts.shoulder(math.pi / 2, factor * GEOMETRY_TOL * scale) == kind
+    size = 0.4 + 0.4 + 0.05 + 0.1 + 0.4  # the arm of wrist_parts.shoulder, a1 aside
+    a1 = factor * AXIS_LENGTH_TOL * (1.0 + size)
+    assert wrist_parts.shoulder(math.pi / 2, a1) == kind
 
 
 @pytest.mark.parametrize(("factor", "usable"), [(0.5, False), (2.0, True)])

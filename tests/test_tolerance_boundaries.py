@@ -24,9 +24,11 @@ from kinematica.motion import cartesian_path
 # The documented values (m, rad, or a sine/cosine), one per constant.
 POSITION_TOL = 1e-10  # ik/targets.py
 ROTATION_TOL = 1e-10  # ik/targets.py
-PARALLEL_TOL = 1e-9  # ik/structure.py
-MEET_TOL = 1e-9  # ik/structure.py
-PERP_TOL = 1e-9  # ik/structure.py
+#: dh/lines.py, the one line geometry (DH extraction, classification, builders,
+#: singularities): the sine (parallel) or cosine (perpendicular) of an angle, and
+#: a distance relative to 1 + the arm's size (m).
+AXIS_ANGLE_TOL = 1e-9
+AXIS_LENGTH_TOL = 1e-9
 IDENTITY_ANGLE_TOL = 10.0 * np.finfo(np.float64).eps  # spatial/axis_angle.py
 COLLINEAR_TOL = 1e-9  # motion/cartesian.py
 
@@ -87,43 +89,57 @@ def test_rotation_tol_is_the_default_rotation_acceptance(factor: float, inside: 
         assert not res.success and len(res.solutions) == 0
 
 
-# --- ik/structure.py: features of the joint axes ------------------------------
+# --- dh/lines.py, as the classification of ik/structure.py reads it -----------
+
+
+def test_the_line_geometry_s_documented_values() -> None:
+    assert km.dh.lines.AXIS_ANGLE_TOL == AXIS_ANGLE_TOL
+    assert km.dh.lines.AXIS_LENGTH_TOL == AXIS_LENGTH_TOL
+    assert km.dh.length_tol(2.0) == pytest.approx(3.0 * AXIS_LENGTH_TOL)
 
 
 @pytest.mark.parametrize(("factor", "inside"), FACTORS)
-def test_parallel_tol_is_the_sine_of_the_angle_between_axes(factor: float, inside: bool) -> None:
-    """PARALLEL_TOL: two axes are parallel when the sine of their angle is below it.
+def test_axis_angle_tol_is_the_sine_of_the_angle_between_parallel_axes(
+    factor: float, inside: bool
+) -> None:
+    """AXIS_ANGLE_TOL: two axes are parallel when the sine of their angle is below it.
 
     A twist ``alpha`` between two joints tilts the second axis by ``alpha``.
     """
-    robot = km.Robot.from_dh([km.Revolute(a=1.0, alpha=factor * PARALLEL_TOL), km.Revolute(a=1.0)])
+    robot = km.Robot.from_dh(
+        [km.Revolute(a=1.0, alpha=factor * AXIS_ANGLE_TOL), km.Revolute(a=1.0)]
+    )
     assert km.classify(robot).parallel == (((0, 1),) if inside else ())
 
 
 @pytest.mark.parametrize(("factor", "inside"), FACTORS)
-def test_meet_tol_is_the_distance_of_axes_that_meet(factor: float, inside: bool) -> None:
-    """MEET_TOL: two (non-parallel) axes meet when they pass closer than it (m).
+def test_axis_length_tol_is_the_distance_of_axes_that_meet(factor: float, inside: bool) -> None:
+    """AXIS_LENGTH_TOL: two (non-parallel) axes meet when they pass closer than it
+    times 1 + the arm's size (m).
 
-    Perpendicular axes (twist 90°) a link length ``a`` apart are ``a`` apart.
+    Perpendicular axes (twist 90°) a link length ``a`` apart are ``a`` apart; the
+    arm's size is its 1 m link (plus ``a``).
     """
-    a = factor * MEET_TOL
+    a = factor * AXIS_LENGTH_TOL * (1.0 + 1.0)
     robot = km.Robot.from_dh([km.Revolute(a=a, alpha=math.pi / 2), km.Revolute(a=1.0)])
     s = km.classify(robot)
+    assert s.features.size == pytest.approx(1.0 + a)
     assert s.parallel == ()
     assert s.intersecting == (((0, 1),) if inside else ())
 
 
 @pytest.mark.parametrize(("factor", "inside"), FACTORS)
-def test_meet_tol_decides_the_wrist_center(factor: float, inside: bool) -> None:
-    """MEET_TOL also bounds how far each of the last three axes may pass from
+def test_axis_length_tol_decides_the_wrist_center(factor: float, inside: bool) -> None:
+    """AXIS_LENGTH_TOL also bounds how far each of the last three axes may pass from
     their common point (the wrist center).
 
     Axes 0 and 1 meet at the base origin; axis 2 (twisted 60°, all three
     orthogonal to x) passes ``d`` from it along x. The least-squares point lies
     d/3 along x, so the axes pass d/3, d/3 and 2d/3 from it: all within the
-    tolerance when d is a factor 10 below it, none when d is 10 times above it.
+    tolerance when d is a factor 10 below it, none when d is 10 times above it
+    (the arm's size is d: the tolerance is AXIS_LENGTH_TOL to 1e-8).
     """
-    d = factor * MEET_TOL
+    d = factor * AXIS_LENGTH_TOL
     robot = km.Robot.from_dh(
         [km.Revolute(alpha=-math.pi / 2), km.Revolute(a=d, alpha=math.pi / 3), km.Revolute()]
     )
@@ -132,12 +148,14 @@ def test_meet_tol_decides_the_wrist_center(factor: float, inside: bool) -> None:
 
 
 @pytest.mark.parametrize(("factor", "inside"), FACTORS)
-def test_perp_tol_is_the_cosine_of_the_angle_between_axes(factor: float, inside: bool) -> None:
-    """PERP_TOL: two axes are perpendicular when |cos| of their angle is below it.
+def test_axis_angle_tol_is_the_cosine_of_the_angle_between_perpendicular_axes(
+    factor: float, inside: bool
+) -> None:
+    """AXIS_ANGLE_TOL: two axes are perpendicular when |cos| of their angle is below it.
 
     A twist of 90° + ``e`` leaves the axes at cosine ``-sin(e)`` ~ ``e``.
     """
-    e = factor * PERP_TOL
+    e = factor * AXIS_ANGLE_TOL
     robot = km.Robot.from_dh([km.Revolute(a=1.0, alpha=math.pi / 2 + e), km.Revolute(a=1.0)])
     f = km.classify(robot).features
     assert abs(float(f.directions[0] @ f.directions[1])) == pytest.approx(e, rel=1e-3)
@@ -253,31 +271,33 @@ def test_rank_tol_is_the_relative_singular_value(factor: float, inside: bool) ->
 
 # --- dh/lines.py and dh/extract.py: DH tables from URDF -------------------------
 
-EXTRACT_ANGLE_TOL = 1e-8  # dh/lines.py
-EXTRACT_LENGTH_TOL = 1e-12  # dh/lines.py
 FK_CHECK_TOL = 1e-9  # dh/extract.py
 ROUND_OFF_TOL = 1e-15  # dh/extract.py
 
 
 @pytest.mark.parametrize("convention", ["standard", "modified"])
 @pytest.mark.parametrize(("factor", "inside"), FACTORS)
-def test_extract_angle_tol_decides_parallel_axes(
+def test_extraction_reads_parallel_axes_by_axis_angle_tol(
     factor: float, inside: bool, convention: str
 ) -> None:
-    """EXTRACT_ANGLE_TOL: two joint axes at an angle (rad, its sine) below it are
-    parallel; axis 2 tilted by more, 0.5 m from axis 1, meets it far away.
+    """AXIS_ANGLE_TOL in DH extraction: two joint axes at an angle (rad, its sine)
+    below it are parallel; axis 2 tilted by more, 0.5 m from axis 1, meets it far away.
     """
-    urdf = dh_extract._two_joints("0.5 0 0", f"0 {factor * EXTRACT_ANGLE_TOL!r} 0")
+    urdf = dh_extract._two_joints("0.5 0 0", f"0 {factor * AXIS_ANGLE_TOL!r} 0")
     assert dh_extract._rule(urdf, convention) == ("parallel" if inside else "intersecting")
 
 
 @pytest.mark.parametrize("convention", ["standard", "modified"])
 @pytest.mark.parametrize(("factor", "inside"), FACTORS)
-def test_extract_length_tol_decides_meeting_and_coinciding_axes(
+def test_extraction_reads_meeting_and_coinciding_axes_by_axis_length_tol(
     factor: float, inside: bool, convention: str
 ) -> None:
-    """EXTRACT_LENGTH_TOL: axes closer than it (m) meet, or coincide when parallel."""
-    delta = factor * EXTRACT_LENGTH_TOL
+    """AXIS_LENGTH_TOL in DH extraction: axes closer than it times 1 + the chain's
+    size (m) meet, or coincide when parallel.
+
+    The chain: joint 2 0.3 m above joint 1, the tip 1 m from joint 2 (size 1.3 m).
+    """
+    delta = factor * AXIS_LENGTH_TOL * (1.0 + 1.3)
     crossing = dh_extract._two_joints(f"{delta!r} 0 0.3", f"{math.pi / 2!r} 0 0")
     assert dh_extract._rule(crossing, convention) == ("intersecting" if inside else "skew")
     beside = dh_extract._two_joints(f"{delta!r} 0 0.3", "0 0 0")
@@ -289,15 +309,17 @@ def test_fk_check_tol_warns_beyond_it(factor: float, inside: bool) -> None:
     """FK_CHECK_TOL: an extracted table whose FK is farther than it (m) from the
     chain's is reported with a warning.
 
-    Axis 2 tilted by delta (below EXTRACT_ANGLE_TOL = 1e-8 for both factors) is
-    taken as parallel: with the tip 1 m up axis 2, the table is off by delta.
+    Axis 2 tilted by half AXIS_ANGLE_TOL is taken as parallel: with the tip L up
+    axis 2, the table is off by the tilt times L.
     """
-    delta = factor * FK_CHECK_TOL
-    urdf = parse_urdf(dh_extract._two_joints("0.5 0 0", f"0 {delta!r} 0"))
+    tilt = 0.5 * AXIS_ANGLE_TOL
+    L = factor * FK_CHECK_TOL / tilt
+    urdf = parse_urdf(dh_extract._two_joints("0.5 0 0", f"0 {tilt!r} 0", f"0 0 {L!r}"))
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         ex = km.urdf_to_dh(urdf)
-    assert ex.fk_error == pytest.approx(delta, rel=0.3)
+    assert ex.rules[1].rule == "parallel"
+    assert ex.fk_error == pytest.approx(factor * FK_CHECK_TOL, rel=0.3)
     warned = any("reproduces the chain's forward kinematics" in str(w.message) for w in caught)
     assert warned is not inside
 

@@ -11,12 +11,12 @@ from kinematica.dh.joints import (
     Revolute,
     check_convention,
 )
-from kinematica.dh.lines import EXTRACT_ANGLE_TOL, EXTRACT_LENGTH_TOL, LinePair, line_pair
+from kinematica.dh.lines import AXIS_ANGLE_TOL, AXIS_LENGTH_TOL, LinePair, length_tol, line_pair
 from kinematica.dh.link import link_matrix
 
 __all__ = [
-    "EXTRACT_ANGLE_TOL",
-    "EXTRACT_LENGTH_TOL",
+    "AXIS_ANGLE_TOL",
+    "AXIS_LENGTH_TOL",
     "FK_CHECK_TOL",
     "AxisFrame",
     "ChainGeometry",
@@ -32,6 +32,7 @@ __all__ = [
     "check_convention",
     "convert_table",
     "extract_dh",
+    "length_tol",
     "line_pair",
     "link_matrix",
 ]

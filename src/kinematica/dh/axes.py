@@ -8,6 +8,7 @@ the extraction gives back.
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -68,6 +69,16 @@ class ChainGeometry:
     def __post_init__(self) -> None:
         if not self.joints:
             raise KinematicaError("a chain needs at least one movable joint")
+
+    @property
+    def size(self) -> float:
+        """The chain's size (m): the path from joint 1 through every joint to the tip.
+
+        The scale the line geometry's length tolerance is relative to
+        (:func:`kinematica.dh.lines.length_tol`).
+        """
+        points = [j.frame[:3, 3] for j in self.joints] + [self.tip[:3, 3]]
+        return float(sum(np.linalg.norm(b - a) for a, b in itertools.pairwise(points)))
 
 
 @dataclass(frozen=True)

@@ -59,12 +59,12 @@ from kinematica.dh.joints import (
     values_checked,
 )
 from kinematica.dh.lines import (
-    EXTRACT_ANGLE_TOL,
-    EXTRACT_LENGTH_TOL,
+    AXIS_ANGLE_TOL,
     cross3,
     frame_from,
     frame_normal_to_axis,
     frame_on_axis,
+    length_tol,
     line_pair,
     perpendicular_hint,
 )
@@ -104,7 +104,7 @@ def _joint_label(g: ChainGeometry, k: int) -> str:
 def _pair(g: ChainGeometry, a: int, frame: int, on_b: bool) -> tuple[FloatArray, FrameRule]:
     """The frame on axis ``a+1`` (``on_b``) or ``a`` by the common normal of axes a, a+1."""
     A, B = g.joints[a - 1], g.joints[a]
-    pair = line_pair(A.direction, A.frame[:3, 3], B.direction, B.frame[:3, 3])
+    pair = line_pair(A.direction, A.frame[:3, 3], B.direction, B.frame[:3, 3], g.size)
     on = B if on_b else A
     k_on = a + 1 if on_b else a
     z = on.direction
@@ -118,7 +118,7 @@ def _pair(g: ChainGeometry, a: int, frame: int, on_b: bool) -> tuple[FloatArray,
         )
         return frame_from(x, z, origin), FrameRule(frame, "collinear", text)
     x = pair.normal
-    flipped = float(on.frame[:3, 0] @ x) < -EXTRACT_ANGLE_TOL
+    flipped = float(on.frame[:3, 0] @ x) < -AXIS_ANGLE_TOL
     if flipped:
         x = -x
     if pair.kind == "parallel":
@@ -164,15 +164,16 @@ def _candidates(
     named: tuple[NamedFrame, ...],
     joint: AxisFrame,
     label: str,
-    make: Callable[[FloatArray, FloatArray, FloatArray], FloatArray | None],
+    make: Callable[[FloatArray, FloatArray, FloatArray, float], FloatArray | None],
+    size: float,
 ) -> tuple[FloatArray, str] | None:
     """The first named frame (then the joint's own frame) that ``make`` accepts."""
     h, p = joint.direction, joint.frame[:3, 3]
     for f in named:
-        F = make(f.pose, h, p)
+        F = make(f.pose, h, p, size)
         if F is not None:
             return F, f"link {f.name!r}"
-    F = make(joint.frame, h, p)
+    F = make(joint.frame, h, p, size)
     return None if F is None else (F, f"the frame of {label}")
 
 
@@ -181,7 +182,7 @@ def _standard_frames(g: ChainGeometry) -> tuple[list[FloatArray], list[FrameRule
     j1, jn = g.joints[0], g.joints[-1]
     frames: list[FloatArray] = []
     rules: list[FrameRule] = []
-    found = _candidates(g.before, j1, _joint_label(g, 1), frame_on_axis)
+    found = _candidates(g.before, j1, _joint_label(g, 1), frame_on_axis, g.size)
     if found is not None:
         frames.append(found[0])
         rules.append(FrameRule(0, "frame", f"{found[1]} kept (its z is axis 1, its origin on it)"))
@@ -197,7 +198,11 @@ def _standard_frames(g: ChainGeometry) -> tuple[list[FloatArray], list[FrameRule
         rules.append(rule)
     h, p = jn.direction, jn.frame[:3, 3]
     last = next(
-        ((F, f.name) for f in g.after if (F := frame_normal_to_axis(f.pose, h, p)) is not None),
+        (
+            (F, f.name)
+            for f in g.after
+            if (F := frame_normal_to_axis(f.pose, h, p, g.size)) is not None
+        ),
         None,
     )
     if last is not None:
@@ -209,7 +214,7 @@ def _standard_frames(g: ChainGeometry) -> tuple[list[FloatArray], list[FrameRule
     foot = p + float((tip_o - p) @ h) * h
     off = tip_o - foot
     dist = float(np.linalg.norm(off))
-    if dist > EXTRACT_LENGTH_TOL:
+    if dist > length_tol(g.size):
         x, how = off / dist, f"x{n} from axis {n} towards the tip"
     else:
         x, how = perpendicular_hint(g.tip, h), f"the tip is on axis {n}, x{n} from the tip frame"
@@ -228,7 +233,7 @@ def _modified_frames(g: ChainGeometry) -> tuple[list[FloatArray], list[FrameRule
         S, rule = _pair(g, k, k, on_b=False)
         frames.append(S)
         rules.append(rule)
-    F = frame_on_axis(jn.frame, jn.direction, jn.frame[:3, 3])
+    F = frame_on_axis(jn.frame, jn.direction, jn.frame[:3, 3], g.size)
     if F is not None:
         rules.append(FrameRule(n, "frame", f"the frame of {_joint_label(g, n)} kept"))
     else:
@@ -237,7 +242,7 @@ def _modified_frames(g: ChainGeometry) -> tuple[list[FloatArray], list[FrameRule
         text = f"origin at {_joint_label(g, n)}, x{n} from its frame (free in Craig's rules)"
         rules.append(FrameRule(n, "craig", text))
     frames.append(F)
-    found = _candidates(g.before, j1, _joint_label(g, 1), frame_normal_to_axis)
+    found = _candidates(g.before, j1, _joint_label(g, 1), frame_normal_to_axis, g.size)
     if found is not None:
         first = found[0]
         rule0 = FrameRule(0, "frame", f"{found[1]} kept (its x is normal to axis 1 and meets it)")

@@ -1,5 +1,10 @@
 """Joint axes as lines in space, and the DH frames that can sit on them.
 
+The one line geometry of the package, with its one pair of tolerances: DH
+extraction, the structure classification of the IK solvers, their builders
+and the singularity analysis all ask here whether two axes are parallel,
+perpendicular, meet or coincide, so an arm is one shape to all of them.
+
 The geometry under the Denavit-Hartenberg rules: the common normal of two axes
 (rules 6 and 7), and the "closest valid DH frame" to a frame a description
 already has (a URDF link or joint frame), so that a table extracted from a
@@ -7,11 +12,13 @@ description keeps its frames wherever they already obey the rules.
 
 A line is a unit direction ``h`` and a point ``p`` on it, both ``(3,)`` in one
 frame; a frame is a ``(4, 4)`` homogeneous transform whose columns are x, y, z
-and the origin.
+and the origin. Lengths are compared relative to the arm's size (see
+:func:`length_tol`).
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Literal
 
@@ -19,31 +26,119 @@ import numpy as np
 from numpy.typing import NDArray
 
 __all__ = [
-    "EXTRACT_ANGLE_TOL",
-    "EXTRACT_LENGTH_TOL",
+    "AXIS_ANGLE_TOL",
+    "AXIS_LENGTH_TOL",
     "LinePair",
+    "common_point",
     "cross3",
     "frame_from",
     "frame_normal_to_axis",
     "frame_on_axis",
+    "length_tol",
+    "line_distance",
     "line_pair",
+    "lines_parallel",
+    "lines_perpendicular",
+    "normal_feet",
     "perpendicular_hint",
 ]
 
 FloatArray = NDArray[np.float64]
 
 #: Two axis directions are parallel when the sine of their angle is at most this;
-#: a direction is normal to another when the cosine is at most this. Parallel
-#: axes get the DH rule for parallel axes; when they are not exactly parallel
-#: their true common normal is far away (at about offset / angle), and the
-#: frames placed by the rule are off it by at most this angle. Near 1e-8 the
-#: two errors cross: the far normal costs round-off of about 1e-16 · offset /
-#: angle, the parallel rule about angle · arm length.
-EXTRACT_ANGLE_TOL = 1e-8
-#: Two lines meet, and a point is on a line, when their distance is at most this
-#: (m). Meeting axes are placed exactly either way (only the sense of x may
-#: change); coinciding axes within this distance lose that offset.
-EXTRACT_LENGTH_TOL = 1e-12
+#: perpendicular when the cosine is. A closed-form solver built for parallel axes
+#: misses an arm whose axes are off by ε by about ε times its size, which the
+#: check's polishing absorbs while ε is this small. In DH extraction, parallel
+#: axes get the rule for parallel axes (its frames off the true common normal by
+#: at most this angle); beyond it the true normal is used, far away (at about
+#: offset / angle), its round-off about 1e-16 · offset / angle: at this angle
+#: 1e-7 · offset, reported as the table's FK error.
+AXIS_ANGLE_TOL = 1e-9
+#: Two lines meet, a point is on a line, and parallel lines coincide when their
+#: distance is at most this times ``1 + size`` (size: the arm's, m; see
+#: :func:`length_tol`). Meeting axes are placed exactly either way (only the
+#: sense of x may change); coinciding axes within it lose that offset.
+AXIS_LENGTH_TOL = 1e-9
+
+
+def length_tol(size: float) -> float:
+    """The distance (m) below which lines meet, for an arm of this size (m).
+
+    ``AXIS_LENGTH_TOL · (1 + size)``: relative to the arm for arms of a metre
+    and more, ``AXIS_LENGTH_TOL`` metres for small ones (whose round-off is
+    smaller still).
+    """
+    return AXIS_LENGTH_TOL * (1.0 + size)
+
+
+def lines_parallel(hA: FloatArray, hB: FloatArray) -> bool:
+    """True when unit directions ``hA``, ``hB`` (3,) are parallel or anti-parallel."""
+    return float(np.linalg.norm(cross3(hA, hB))) <= AXIS_ANGLE_TOL
+
+
+def lines_perpendicular(hA: FloatArray, hB: FloatArray) -> bool:
+    """True when unit directions ``hA``, ``hB`` (3,) are perpendicular."""
+    return abs(float(hA @ hB)) <= AXIS_ANGLE_TOL
+
+
+def line_distance(hA: FloatArray, pA: FloatArray, hB: FloatArray, pB: FloatArray) -> float:
+    """Distance (m) between the lines ``pA + t hA`` and ``pB + s hB`` (unit directions)."""
+    n = cross3(hA, hB)
+    s = float(np.linalg.norm(n))
+    w = pB - pA
+    if s <= AXIS_ANGLE_TOL:
+        return float(np.linalg.norm(w - float(w @ hA) * hA))
+    return abs(float(w @ n)) / s
+
+
+def normal_feet(
+    hA: FloatArray, pA: FloatArray, hB: FloatArray, pB: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """Where the common normal of two non-parallel lines meets each: ``(3,), (3,)``.
+
+    ``pA + tA hA`` and ``pB + tB hB`` with ``1 - (hA·hB)²`` written as
+    ``|hA × hB|²`` (no cancellation for nearly parallel lines).
+    """
+    cross = cross3(hA, hB)
+    s2 = float(cross @ cross)
+    n = cross / math.sqrt(s2)
+    w = pB - pA
+    r = w - float(w @ n) * n
+    c = float(hA @ hB)
+    ra, rb = float(r @ hA), float(r @ hB)
+    tA = (ra - c * rb) / s2
+    tB = (c * ra - rb) / s2
+    return pA + tA * hA, pB + tB * hB
+
+
+def common_point(h: FloatArray, p: FloatArray, size: float) -> FloatArray | None:
+    """The point where all lines ``p[i] + t h[i]`` meet, or ``None``.
+
+    Args:
+        h: ``(k, 3)`` unit directions, not all parallel.
+        p: ``(k, 3)`` a point on each line.
+        size: The arm's size (m), for :func:`length_tol`.
+
+    Returns:
+        ``(3,)`` the least-squares point, if every line passes within
+        ``length_tol(size)`` of it; otherwise ``None``.
+    """
+    A = np.zeros((3, 3))
+    b = np.zeros(3)
+    for hi, pi in zip(h, p, strict=True):
+        P = np.eye(3) - np.outer(hi, hi)  # projector orthogonal to the line
+        A += P
+        b += P @ pi
+    if np.linalg.matrix_rank(A, tol=AXIS_ANGLE_TOL) < 3:
+        return None
+    c: FloatArray = np.linalg.solve(A, b).astype(np.float64)
+    tol = length_tol(size)
+    for hi, pi in zip(h, p, strict=True):
+        d = c - pi
+        if np.linalg.norm(d - np.dot(d, hi) * hi) > tol:
+            return None
+    return c
+
 
 PairKind = Literal["skew", "intersecting", "parallel", "collinear"]
 
@@ -82,7 +177,9 @@ def _unit(v: FloatArray) -> FloatArray:
     return out
 
 
-def line_pair(hA: FloatArray, pA: FloatArray, hB: FloatArray, pB: FloatArray) -> LinePair:
+def line_pair(
+    hA: FloatArray, pA: FloatArray, hB: FloatArray, pB: FloatArray, size: float
+) -> LinePair:
     """Classify two lines and find their common normal.
 
     Args:
@@ -90,31 +187,27 @@ def line_pair(hA: FloatArray, pA: FloatArray, hB: FloatArray, pB: FloatArray) ->
         pA: ``(3,)`` a point on A.
         hB: ``(3,)`` unit direction of line B.
         pB: ``(3,)`` a point on B.
+        size: The arm's size (m), for :func:`length_tol`.
 
     Returns:
         The :class:`LinePair`. Lines are parallel when ``|hA × hB| <=``
-        :data:`EXTRACT_ANGLE_TOL`, and meet (or coincide) when their distance
-        is at most :data:`EXTRACT_LENGTH_TOL`.
+        :data:`AXIS_ANGLE_TOL`, and meet (or coincide) when their distance
+        is at most ``length_tol(size)``.
     """
     cross = cross3(hA, hB)
     s = float(np.linalg.norm(cross))
     w = pB - pA
-    if s <= EXTRACT_ANGLE_TOL:
+    tol = length_tol(size)
+    if s <= AXIS_ANGLE_TOL:
         perp = w - float(w @ hA) * hA
         dist = float(np.linalg.norm(perp))
-        if dist <= EXTRACT_LENGTH_TOL:
+        if dist <= tol:
             return LinePair("collinear", None, pA, pB, dist)
         return LinePair("parallel", perp / dist, pA, pB, dist)
     n = cross / s
     signed = float(w @ n)
-    # Feet: pA + tA hA + signed n = pB + tB hB; 1 - (hA·hB)² is written s² (no cancellation).
-    r = w - signed * n
-    c = float(hA @ hB)
-    ra, rb = float(r @ hA), float(r @ hB)
-    tA = (ra - c * rb) / (s * s)
-    tB = (c * ra - rb) / (s * s)
-    foot_a, foot_b = pA + tA * hA, pB + tB * hB
-    if abs(signed) <= EXTRACT_LENGTH_TOL:
+    foot_a, foot_b = normal_feet(hA, pA, hB, pB)
+    if abs(signed) <= tol:
         return LinePair("intersecting", n, foot_a, foot_b, abs(signed))
     return LinePair("skew", n if signed > 0 else -n, foot_a, foot_b, abs(signed))
 
@@ -136,22 +229,23 @@ def perpendicular_hint(F: FloatArray, h: FloatArray) -> FloatArray:
     """A unit direction normal to ``h`` taken from frame ``F``: its x, else its y.
 
     ``F``'s x axis projected on the plane normal to ``h``; when that x lies
-    along ``h`` (within :data:`EXTRACT_ANGLE_TOL`), its y axis projected.
+    along ``h`` (within :data:`AXIS_ANGLE_TOL`), its y axis projected.
     """
     for column in (0, 1):
         v = F[:3, column] - float(F[:3, column] @ h) * h
-        if np.linalg.norm(v) > EXTRACT_ANGLE_TOL:
+        if np.linalg.norm(v) > AXIS_ANGLE_TOL:
             return _unit(v)
     raise AssertionError("a frame's x and y cannot both lie along one direction")
 
 
-def frame_on_axis(F: FloatArray, h: FloatArray, p: FloatArray) -> FloatArray | None:
+def frame_on_axis(F: FloatArray, h: FloatArray, p: FloatArray, size: float) -> FloatArray | None:
     """The frame with z along the axis ``(h, p)`` closest to ``F``, if ``F`` nearly is one.
 
     Args:
         F: ``(4, 4)`` a frame.
         h: ``(3,)`` unit axis direction.
         p: ``(3,)`` a point on the axis.
+        size: The arm's size (m), for :func:`length_tol`.
 
     Returns:
         ``None`` unless ``F``'s z points along ``+h`` and its origin lies on the
@@ -159,16 +253,18 @@ def frame_on_axis(F: FloatArray, h: FloatArray, p: FloatArray) -> FloatArray | N
         its x projected normal to ``h`` and its origin projected on the axis.
     """
     z = F[:3, 2]
-    if np.linalg.norm(cross3(z, h)) > EXTRACT_ANGLE_TOL or float(z @ h) <= 0.0:
+    if np.linalg.norm(cross3(z, h)) > AXIS_ANGLE_TOL or float(z @ h) <= 0.0:
         return None
     d = F[:3, 3] - p
     along = float(d @ h)
-    if np.linalg.norm(d - along * h) > EXTRACT_LENGTH_TOL:
+    if np.linalg.norm(d - along * h) > length_tol(size):
         return None
     return frame_from(perpendicular_hint(F, h), h, p + along * h)
 
 
-def frame_normal_to_axis(F: FloatArray, h: FloatArray, p: FloatArray) -> FloatArray | None:
+def frame_normal_to_axis(
+    F: FloatArray, h: FloatArray, p: FloatArray, size: float
+) -> FloatArray | None:
     """The frame whose x line meets the axis ``(h, p)`` at a right angle, closest to ``F``.
 
     Such a frame is a valid DH frame after the axis in the standard
@@ -179,6 +275,7 @@ def frame_normal_to_axis(F: FloatArray, h: FloatArray, p: FloatArray) -> FloatAr
         F: ``(4, 4)`` a frame.
         h: ``(3,)`` unit axis direction.
         p: ``(3,)`` a point on the axis.
+        size: The arm's size (m), for :func:`length_tol`.
 
     Returns:
         ``None`` unless ``F``'s x is normal to ``h`` and its x line meets the
@@ -186,12 +283,12 @@ def frame_normal_to_axis(F: FloatArray, h: FloatArray, p: FloatArray) -> FloatAr
         exactly.
     """
     x = F[:3, 0]
-    if abs(float(x @ h)) > EXTRACT_ANGLE_TOL:
+    if abs(float(x @ h)) > AXIS_ANGLE_TOL:
         return None
     x = _unit(x - float(x @ h) * h)
     m = cross3(h, x)  # unit: normal to the plane of the axis and the x line
     off = float((F[:3, 3] - p) @ m)
-    if abs(off) > EXTRACT_LENGTH_TOL:
+    if abs(off) > length_tol(size):
         return None
     z = _unit(F[:3, 2] - float(F[:3, 2] @ x) * x)
     return frame_from(x, z, F[:3, 3] - off * m)

@@ -46,7 +46,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica.ik.structure import MEET_TOL, line_distance, lines_parallel
+from kinematica.dh.lines import lines_parallel
 from kinematica.robot.sampling import generic_rank_samples
 from kinematica.robot.structure import classify
 
@@ -133,7 +133,7 @@ def singularity_plan(robot: Robot) -> SingularityPlan:
         return _PLANS[robot]
     st = classify(robot)
     n, types = robot.dof, robot.joint_types
-    h, p = robot.joint_axes()
+    h, _ = robot.joint_axes()
     J = robot.jacobian(generic_rank_samples(robot))
     rank_all, rank_pos = _generic_rank(J), _generic_rank(J[:, :3])
     rows = (0, 1, 2) if rank_pos == rank_all else (0, 1, 2, 3, 4, 5)
@@ -173,9 +173,7 @@ def singularity_plan(robot: Robot) -> SingularityPlan:
             if st.wrist_center is not None:
                 shoulder_point = ("wrist", -1)
             elif three_parallel:
-                if not lines_parallel(h[n - 2], h[n - 1]) and (
-                    line_distance(h[n - 2], p[n - 2], h[n - 1], p[n - 1]) < MEET_TOL
-                ):
+                if st.features.meet(n - 2, n - 1):
                     shoulder_point = ("meet", n - 2)
             else:
                 shoulder_point = ("tool", -1)

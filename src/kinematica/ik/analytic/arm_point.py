@@ -21,9 +21,9 @@ from numpy.typing import NDArray
 
 import kinematica._core as _core
 from kinematica.core import Chain
+from kinematica.dh.lines import AXIS_ANGLE_TOL, length_tol, lines_parallel, normal_feet
 
 __all__ = [
-    "GEOMETRY_TOL",
     "PROBES",
     "RANK_TOL",
     "ArmGeometry",
@@ -36,9 +36,6 @@ __all__ = [
 FloatArray = NDArray[np.float64]
 _Shoulder = _core.decoupled.Shoulder
 
-#: Two axes are parallel when the sine of their angle is below this; lines
-#: meet when their distance is below this times the arm's size.
-GEOMETRY_TOL = 1e-9
 #: Joints 1-3 place the point when, at one of :data:`PROBES`, the smallest
 #: singular value of the point's 3 x 3 Jacobian exceeds this times the largest.
 RANK_TOL = 1e-6
@@ -95,16 +92,6 @@ def random_transform(rng: np.random.Generator, reach: float) -> FloatArray:
     return T
 
 
-def _foot_points(
-    h1: FloatArray, p1: FloatArray, h2: FloatArray, p2: FloatArray
-) -> tuple[FloatArray, FloatArray]:
-    """Feet of the common normal of two non-parallel lines."""
-    w, b = p1 - p2, float(h1 @ h2)
-    d1, e = float(h1 @ w), float(h2 @ w)
-    den = float(np.sum(np.cross(h1, h2) ** 2))  # 1 - b², without its cancellation
-    return p1 + (b * e - d1) / den * h1, p2 + (e - b * d1) / den * h2
-
-
 def unit_normal(h: FloatArray) -> FloatArray:
     """A unit vector normal to the unit vector ``h``."""
     n = np.cross(h, [1.0, 0.0, 0.0])
@@ -114,7 +101,7 @@ def unit_normal(h: FloatArray) -> FloatArray:
 
 
 def arm_geometry(
-    h: FloatArray, p: FloatArray, prismatic: bool, c: FloatArray
+    h: FloatArray, p: FloatArray, prismatic: bool, c: FloatArray, size: float
 ) -> ArmGeometry | None:
     """The geometry of joints 1-3 placing ``c``, or None when they cannot.
 
@@ -123,6 +110,8 @@ def arm_geometry(
         p: ``(3, 3)`` a point on each axis.
         prismatic: Joint 3 slides (joints 1 and 2 are revolute).
         c: ``(3,)`` the point at q = 0.
+        size: The arm's size (m, :attr:`Features.size`): axes are parallel and
+            meet by :mod:`kinematica.dh.lines`' tolerances.
 
     Returns:
         None when axes 1 and 2 coincide, the point lies on axis 3, or three
@@ -131,20 +120,22 @@ def arm_geometry(
     h1, h2, h3 = (np.asarray(v, float) / np.linalg.norm(v) for v in h)
     p1, p2, p3 = (np.asarray(v, float) for v in p)
     c = np.asarray(c, float)
+    tol = length_tol(size)
+    # the lengths the solver's own tolerances scale with (its double roots, its polish)
     scale = 1.0 + float(np.linalg.norm(c - p1) + np.linalg.norm(p2 - p1))
     ca, sa = float(h1 @ h2), float(np.linalg.norm(np.cross(h1, h2)))
-    if sa < GEOMETRY_TOL:
+    if sa <= AXIS_ANGLE_TOL:
         delta = (p2 - p1) - ((p2 - p1) @ h1) * h1
         a = float(np.linalg.norm(delta))
-        if a < GEOMETRY_TOL * scale:
+        if a <= tol:
             return None  # axes 1 and 2 coincide
         kind, p2 = _Shoulder.parallel, p1 + delta
         e1 = delta / a
         e2 = np.cross(h2, e1)
     else:
-        f1, f2 = _foot_points(h1, p1, h2, p2)
+        f1, f2 = normal_feet(h1, p1, h2, p2)
         a = float(np.linalg.norm(f2 - f1))
-        if a < GEOMETRY_TOL * scale:  # they meet, or all but (an offset of 1e-10)
+        if a <= tol:  # they meet, or all but (an offset of 1e-10)
             kind, p1, p2 = _Shoulder.meet, f1, f2
             e2 = (h1 - ca * h2) / sa
             e1 = np.cross(e2, h2)
@@ -160,9 +151,9 @@ def arm_geometry(
         r = c - p3
         rpar = (r @ h3) * h3
         U = np.array([p3 - p2 + rpar, r - rpar, np.cross(h3, r - rpar)])
-        if float(np.linalg.norm(U[1])) < GEOMETRY_TOL * scale:
+        if float(np.linalg.norm(U[1])) <= tol:
             return None  # the point is on axis 3
-        parallel23 = float(np.linalg.norm(np.cross(h3, h2))) < GEOMETRY_TOL
+        parallel23 = lines_parallel(h3, h2)
         if kind == _Shoulder.parallel and parallel23:
             return None  # three parallel axes: the point moves in a plane
     coef = U @ np.stack([e1, e2, h2, np.zeros(3)], axis=1)  # u1, u2, H, L
@@ -184,7 +175,7 @@ def arm_geometry(
     beta = dmin = dmax = 0.0  # |u(q3)| in half-angle form (revolute joint 3)
     if not prismatic:
         n3 = float(np.linalg.norm(U[1]))
-        if m3 < GEOMETRY_TOL * scale and (kind == _Shoulder.meet or parallel23):
+        if m3 <= tol and (kind == _Shoulder.meet or parallel23):
             return None  # axis 3 through p2: |u| does not depend on q3
         beta = math.atan2(float(U[0] @ U[2]), float(U[0] @ U[1]))
         dmin, dmax = math.hypot(b3, m3 - n3), math.hypot(b3, m3 + n3)

@@ -55,7 +55,7 @@ def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
     if chain.dof > _core.decoupled.MAX_POSITION_DOF or not places_point(chain, np.zeros(3)):
         return None
     M = chain.fk(np.zeros(chain.dof))[0]
-    arm = arm_geometry(f.directions[:3], f.points[:3], f.joint_types[2] == "P", M[:3, 3])
+    arm = arm_geometry(f.directions[:3], f.points[:3], f.joint_types[2] == "P", M[:3, 3], f.size)
     if arm is None:
         return None
     params = _core.decoupled.ArmPositionParams()

@@ -28,12 +28,13 @@ from numpy.typing import NDArray
 
 from kinematica import _core
 from kinematica.core import Chain
-from kinematica.ik.analytic.planar_arms import LENGTH_TOL, plane_basis
+from kinematica.dh.lines import normal_feet
+from kinematica.ik.analytic.planar_arms import plane_basis
 from kinematica.ik.analytic.small_samples import sampler
 from kinematica.ik.registry import ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
 
-__all__ = ["LABELS", "SPECS", "build", "common_normal"]
+__all__ = ["LABELS", "SPECS", "build"]
 
 FloatArray = NDArray[np.float64]
 
@@ -44,15 +45,6 @@ LABELS = (
     "shoulder left, elbow up",
     "shoulder left, elbow down",
 )
-
-
-def common_normal(
-    h1: FloatArray, p1: FloatArray, h2: FloatArray, p2: FloatArray
-) -> tuple[FloatArray, FloatArray]:
-    """The feet ``(3,), (3,)`` on two non-parallel lines ``p + t h`` of their common normal."""
-    A = np.stack([h1, -h2, np.cross(h1, h2)], axis=1)
-    t = np.linalg.solve(A, p2 - p1)
-    return p1 + t[0] * h1, p2 + t[1] * h2
 
 
 def build(chain: Chain, features: Features, target: TargetKind) -> ClosedForm | None:
@@ -77,10 +69,10 @@ def build(chain: Chain, features: Features, target: TargetKind) -> ClosedForm | 
         return np.array([v @ e1, v @ e2])
 
     a, b = plane(p[2] - p[1]), plane(x - p[2])
-    if min(np.linalg.norm(a), np.linalg.norm(b)) <= LENGTH_TOL:
-        return None
+    if min(np.linalg.norm(a), np.linalg.norm(b)) <= features.length_tol:
+        return None  # a link that moves nothing, or coinciding axes: degenerate
     hk = np.cross(h1, k)
-    foot1, foot2 = common_normal(h1, p[0], k, p[1])
+    foot1, foot2 = normal_feet(h1, p[0], k, p[1])
     # The tool turns about axis 3 on a circle (centre c3, radius rho3); its
     # distance from foot2 (on axis 2, which turns about itself) spans [rmin, rmax].
     c3 = p[2] + ((x - p[2]) @ k) * k

@@ -39,8 +39,9 @@ from kinematica import _core
 from kinematica.core import Chain
 from kinematica.dh.convert import convert_table
 from kinematica.dh.joints import Convention, Revolute
+from kinematica.dh.lines import line_distance, lines_parallel, normal_feet
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
-from kinematica.ik.structure import MEET_TOL, Features, line_distance, lines_parallel
+from kinematica.ik.structure import Features
 
 __all__ = ["DEGENERATE", "GENERAL_LABELS", "LABELS", "SPEC", "build", "pack", "sample_arm"]
 
@@ -59,18 +60,6 @@ GENERAL_LABELS = tuple(f"root {j}, elbow {e}" for j in range(1, 5) for e in ("up
 
 def _unit(v: FloatArray) -> FloatArray:
     return np.asarray(v / np.linalg.norm(v), dtype=float)
-
-
-def _feet(
-    h1: FloatArray, p1: FloatArray, h2: FloatArray, p2: FloatArray
-) -> tuple[FloatArray, FloatArray]:
-    """The feet on line 1 and line 2 of their common normal (non-parallel lines)."""
-    d = p2 - p1
-    b = float(h1 @ h2)
-    den = 1.0 - b * b
-    s = (d @ h1 - b * (d @ h2)) / den
-    t = (b * (d @ h1) - d @ h2) / den
-    return p1 + s * h1, p2 + t * h2
 
 
 def _project(x: FloatArray, h: FloatArray, p: FloatArray) -> FloatArray:
@@ -115,15 +104,16 @@ def pack(
     zA, zB = (complex(*plane(x)) for x in (p[2] - p[1], p[3] - p[2]))
     if min(abs(zA), abs(zB)) <= _core.parallel.CONTINUUM_TOL * (abs(zA) + abs(zB)):
         return None
+    meet = features.length_tol
     if lines_parallel(h5, h6):
-        if line_distance(h5, p[4], h6, p[5]) < MEET_TOL:
+        if line_distance(h5, p[4], h6, p[5]) <= meet:
             return None
         mode, p5 = _core.parallel.Mode.parallel, p[4]
         p6 = _project(p5, h6, p[5])
     else:
-        p5, p6 = _feet(h5, p[4], h6, p[5])
+        p5, p6 = normal_feet(h5, p[4], h6, p[5])
         mode = _core.parallel.Mode.general
-        if np.linalg.norm(p6 - p5) < MEET_TOL:
+        if np.linalg.norm(p6 - p5) <= meet:
             mode = _core.parallel.Mode.meet
             p5 = p6 = 0.5 * (p5 + p6)
     h6par = (h5 @ h6) * h5
@@ -141,7 +131,7 @@ def pack(
         minv = np.linalg.inv(np.array([eq1[:2], eq2[:2]])).ravel()
     alpha, beta = _angle(k, h5), _angle(h6, h5)
     # reach: |G(a6) - p1s| <= the length of the chain of feet p1s, a2, ..., a6
-    p1s, a = _feet(h1, p[0], k, p[1])
+    p1s, a = normal_feet(h1, p[0], k, p[1])
     bound = float(np.linalg.norm(a - p1s))
     for i in (2, 3, 4, 5):
         nxt = _project(a, h[i], p[i])

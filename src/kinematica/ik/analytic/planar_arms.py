@@ -36,14 +36,9 @@ from kinematica.ik.analytic.small_samples import sampler
 from kinematica.ik.registry import ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
 
-__all__ = ["LABELS", "LENGTH_TOL", "SPECS", "build", "plane_basis"]
+__all__ = ["LABELS", "SPECS", "build", "plane_basis"]
 
 FloatArray = NDArray[np.float64]
-
-#: A link shorter than this (m) in the plane makes the arm degenerate (a joint
-#: that moves nothing, or two coinciding axes): no closed form is built and
-#: the numeric method takes the arm.
-LENGTH_TOL = 1e-9
 
 #: Branch labels of the candidate slots, per kind.
 LABELS: dict[str, tuple[str, str]] = {
@@ -103,7 +98,9 @@ def build(chain: Chain, features: Features, target: TargetKind) -> ClosedForm | 
     links = [*np.diff(axis, axis=0), tip - axis[-1]]  # in-plane links after the first axis
     lengths = [float(np.linalg.norm(v)) for v in links]
     needed = lengths if kind in ("planar-2R", "planar-PR") else lengths[:-1]
-    if min(needed, default=math.inf) <= LENGTH_TOL:
+    # a link within the line geometry's length tolerance makes the arm degenerate (a
+    # joint that moves nothing, or two coinciding axes): the numeric method takes it
+    if min(needed, default=math.inf) <= features.length_tol:
         return None
     params = _core.planar.PlanarParams()
     params.n = chain.dof

@@ -18,8 +18,8 @@ from numpy.typing import NDArray
 import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.dh.joints import Prismatic, Revolute
+from kinematica.dh.lines import AXIS_ANGLE_TOL, lines_parallel
 from kinematica.ik.analytic.arm_point import (
-    GEOMETRY_TOL,
     arm_geometry,
     places_point,
     random_transform,
@@ -49,7 +49,7 @@ def wrist_params(
     k45 = float(h4 @ h5)
     ea = h5 - k45 * h4
     s45 = float(np.linalg.norm(ea))
-    if s45 < GEOMETRY_TOL or np.linalg.norm(np.cross(h5, h6)) < GEOMETRY_TOL:
+    if s45 <= AXIS_ANGLE_TOL or lines_parallel(h5, h6):
         return False  # consecutive wrist axes coincide: no 3-DOF wrist
     ea = ea / s45
     eb = np.cross(h4, ea)
@@ -74,7 +74,7 @@ def wrist_params(
     params.k45 = k45
     params.s45 = s45
     params.k56 = k56
-    params.flip = math.copysign(1.0, home if abs(home) > GEOMETRY_TOL else bend)
+    params.flip = math.copysign(1.0, home if abs(home) > AXIS_ANGLE_TOL else bend)
     twin = max(abs(k45), abs(k56), float(np.linalg.norm(np.cross(h4, h6))))
     params.twin = twin <= _core.decoupled.TWIN_TOL
     return True
@@ -96,7 +96,7 @@ def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
     prismatic = f.joint_types[2] == "P"
     if not places_point(chain, c_tool):
         return None
-    arm = arm_geometry(h[:3], p[:3], prismatic, c)
+    arm = arm_geometry(h[:3], p[:3], prismatic, c, f.size)
     if arm is None:
         return None
     params = _core.decoupled.SphericalWristParams()
