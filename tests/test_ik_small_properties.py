@@ -24,8 +24,8 @@ from hypothesis import strategies as st
 from numpy.typing import NDArray
 from test_ik_small import KINDS, reached
 
-from kinematica.dh import Prismatic, Revolute
 from kinematica.ik import IKBatchResult
+from kinematica.ik.analytic.small_samples import edge_arm
 from kinematica.robot import Robot, classify
 
 FloatArray = NDArray[np.float64]
@@ -42,85 +42,18 @@ PROPERTY = settings(max_examples=20, deadline=None, database=None, derandomize=T
 
 
 # ------------------------------------------------------------------ the arms
-def _len(rng: np.random.Generator) -> float:
-    return float(rng.uniform(0.2, 1.0) * rng.choice([-1.0, 1.0]))
-
-
 def degenerate_arm(
     kind: str, rng: np.random.Generator, equal: bool, tiny: bool, tilt: bool = False
 ) -> Robot:
-    """A random arm of ``kind``: ``equal`` triangle links, 1e-10 offsets, axes tilted 1e-10.
+    """A random arm of ``kind`` from the solver specs' own sampler, on the edges asked for.
 
-    ``tiny``: link offsets and lengths ``d``, ``a`` and joint offsets that
-    would be 0 are 1e-10. ``tilt``: twists are 1e-10 off 0, ±90°, 180° (the
-    axes parallel or normal only within the classification's tolerance).
-
-    Equal links need the tool origin on the last DH frame's origin (the tool
-    then only turns), so ``equal`` arms get a tool without translation.
+    ``equal``: triangle links of equal length. ``tiny``: link offsets and lengths
+    ``d``, ``a`` and joint offsets that would be 0 are 1e-10. ``tilt``: twists are
+    1e-10 off 0, ±90°, 180° (the axes parallel or normal only within the line
+    geometry's tolerance).
     """
-    u = rng.uniform
-
-    def near(v: float, on: bool) -> float:  # a special value, or 1e-10 off it
-        return v + (TINY * rng.choice([-1.0, 1.0]) if on else 0.0)
-
-    def flip() -> float:
-        return near(float(rng.choice([0.0, PI])), tilt)
-
-    def small(lo: float, hi: float) -> float:  # a constant that is often 0 (or 1e-10)
-        return near(0.0, tiny) if rng.random() < 0.5 else float(u(lo, hi))
-
-    a1 = _len(rng)
-    a2 = a1 * rng.choice([-1.0, 1.0]) if equal else _len(rng)
-    slide_limits = (-0.3, float(u(0.0, 0.4)))
-    if kind == "planar-2R":
-        rows = [
-            Revolute(d=small(-0.3, 0.3), a=a1, alpha=flip(), offset=small(-PI, PI)),
-            Revolute(d=small(-0.3, 0.3), a=a2, alpha=u(-PI, PI), offset=small(-PI, PI)),
-        ]
-    elif kind == "planar-3R":
-        rows = [
-            Revolute(d=small(-0.3, 0.3), a=a1, alpha=flip(), offset=small(-PI, PI)),
-            Revolute(d=small(-0.3, 0.3), a=a2, alpha=flip(), offset=small(-PI, PI)),
-            Revolute(d=small(-0.3, 0.3), a=_len(rng), alpha=u(-PI, PI), offset=small(-PI, PI)),
-        ]
-    elif kind == "scara":
-        rows = [
-            Revolute(d=u(0.2, 0.5), a=a1, alpha=flip(), offset=small(-PI, PI)),
-            Revolute(d=small(-0.1, 0.1), a=a2, alpha=flip(), offset=small(-PI, PI)),
-            Prismatic(
-                theta=small(-PI, PI), alpha=flip(), offset=small(-0.2, 0.2), qlim=slide_limits
-            ),
-            Revolute(d=small(-0.1, 0.1), a=0.0 if equal else u(-0.2, 0.2), alpha=u(-PI, PI)),
-        ]
-    elif kind in ("planar-PR", "planar-PRR"):
-        rows = [
-            Prismatic(
-                theta=small(-PI, PI),
-                a=small(-0.3, 0.3),
-                alpha=near(PI / 2 * rng.choice([-1, 1]), tilt),
-                qlim=slide_limits,
-            ),
-            Revolute(d=small(-0.3, 0.3), a=a1, alpha=flip(), offset=small(-PI, PI)),
-        ]
-        if kind == "planar-PRR":
-            rows.append(Revolute(d=small(-0.2, 0.2), a=a2, alpha=u(-PI, PI)))
-    else:  # anthropomorphic-3R, elbow-3R
-        shoulder = near(0.0, tiny) if kind == "anthropomorphic-3R" else _len(rng) / 3
-        rows = [
-            Revolute(
-                d=u(0.2, 0.6),
-                a=shoulder,
-                alpha=near(PI / 2 * rng.choice([-1, 1]), tilt),
-                offset=small(-PI, PI),
-            ),
-            Revolute(d=small(-0.2, 0.2), a=a1, alpha=flip(), offset=small(-PI, PI)),
-            Revolute(d=small(-0.2, 0.2), a=a2, alpha=u(-PI, PI), offset=small(-PI, PI)),
-        ]
-    tool = transform_from(rng.normal(size=4), [0.0, 0.0, 0.0] if equal else u(-0.4, 0.4, 3))
-    base = transform_from(rng.normal(size=4), u(-0.5, 0.5, 3))
-    robot = Robot.from_dh(rows, base=base, tool=tool, name=kind)
-    if rng.random() < 0.5:
-        robot = robot.to_convention("modified")
+    arm = edge_arm(kind, rng, equal=equal, tiny=tiny, tilt=tilt)
+    robot = Robot.from_dh(arm.links, convention=arm.convention, base=arm.base, tool=arm.tool)
     assert classify(robot).kind == kind
     return robot
 

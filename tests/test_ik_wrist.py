@@ -26,6 +26,7 @@ from scipy.spatial.transform import Rotation
 from kinematica.dh import Prismatic, Revolute
 from kinematica.ik import ClosedForm, IKBatchResult, IKResult, closed_form
 from kinematica.ik.analytic.arm_point import arm_geometry
+from kinematica.ik.analytic.spherical_wrist import GEOMETRIES, random_wrist_rows
 from kinematica.robot import Robot, classify
 
 FloatArray = NDArray[np.float64]
@@ -131,17 +132,8 @@ def c_tool_of(robot: Robot) -> FloatArray:
 
 
 # ------------------------------------------------------------ random arms
-def twist(rng: np.random.Generator) -> float:
-    """A twist well away from 0 and π."""
-    return float(rng.uniform(0.3, PI - 0.3) * rng.choice([-1.0, 1.0]))
-
-
-def sign(rng: np.random.Generator) -> float:
-    return float(rng.choice([-1.0, 1.0]))
-
-
 def random_wrist_arm(rng: np.random.Generator, shoulder: str, joint3: str) -> Robot:
-    """A random spherical-wrist arm.
+    """A random spherical-wrist arm (the solver spec's rows), random base, tool and convention.
 
     Args:
         rng: Random numbers.
@@ -149,43 +141,13 @@ def random_wrist_arm(rng: np.random.Generator, shoulder: str, joint3: str) -> Ro
         joint3: ``"R23"`` (revolute, axis 3 ∥ axis 2), ``"R"`` (revolute,
             general) or ``"P"`` (slide).
     """
-    u = rng.uniform
-    a1 = 0.0 if shoulder == "meet" else u(0.1, 0.4) * sign(rng)
-    alpha1 = float(rng.choice([0.0, PI])) if shoulder == "parallel" else twist(rng)
-    alpha2 = float(rng.choice([0.0, PI])) if joint3 == "R23" else twist(rng)
-    if joint3 == "P" and shoulder == "parallel":
-        alpha2 = u(0.3, 1.2) * sign(rng)  # the slide must have a part along axes 1, 2
-    rows: list[Revolute | Prismatic] = [
-        Revolute(d=u(0.1, 0.5), a=a1, alpha=alpha1, offset=u(-PI, PI)),
-        Revolute(d=u(-0.2, 0.2), a=u(0.2, 0.5) * sign(rng), alpha=alpha2, offset=u(-PI, PI)),
-    ]
-    if joint3 == "P":
-        rows.append(Prismatic(theta=u(-PI, PI), a=u(-0.1, 0.1), alpha=twist(rng), offset=0.3))
-    else:
-        rows.append(Revolute(d=u(-0.2, 0.2), a=u(-0.2, 0.2), alpha=twist(rng), offset=u(-PI, PI)))
-    rows += [  # a spherical wrist: a4 = a5 = d5 = 0, any twists
-        Revolute(d=u(0.2, 0.5) * sign(rng), alpha=twist(rng), offset=u(-PI, PI)),
-        Revolute(alpha=twist(rng), offset=u(-PI, PI)),
-        Revolute(d=u(0.0, 0.2), a=u(-0.1, 0.1), alpha=u(-PI, PI), offset=u(-PI, PI)),
-    ]
+    rows = random_wrist_rows(rng, shoulder, joint3)
     base = transform_from(rng.normal(size=4), rng.uniform(-0.5, 0.5, 3))
     tool = transform_from(rng.normal(size=4), rng.uniform(-0.2, 0.2, 3))
     robot = Robot.from_dh(rows, base=base, tool=tool, name=f"{shoulder}-{joint3}")
     if rng.random() < 0.5:
         robot = robot.to_convention("modified")
     return robot
-
-
-GEOMETRIES = [
-    ("meet", "R23"),
-    ("meet", "R"),
-    ("meet", "P"),
-    ("parallel", "R"),
-    ("parallel", "P"),
-    ("general", "R23"),
-    ("general", "R"),
-    ("general", "P"),
-]
 
 
 def shoulder_of(robot: Robot) -> tuple[str, bool]:

@@ -142,21 +142,32 @@ def pose_solver(chain: Chain, kind: TargetKind = "pose") -> PoseSolver:
     tolerance = parse_tolerance(None)
     w = _POSITION if kind == "position" else _POSE
     closed = closed_form(chain, kind)
-    if closed is not None:
-        solver, labels, name = closed.params, closed.labels, closed.method
-    else:
-        setup = numeric_setup(
-            chain,
-            respect_limits=True,
-            tol_position=tolerance.position,
-            tol_rotation=tolerance.rotation,
-            seed=None,
-            weights=w,
-        )
-        solver, labels, name = setup, (LABEL,), "numeric:lm"
+    solver, labels, name = _solver(chain, closed, tolerance, True, None, w)
     complete = closed is not None
     opts = _options(tolerance, True, complete, w)
     return PoseSolver(solver.ik_rigid, opts, labels, name, complete)
+
+
+def _solver(
+    chain: Chain,
+    closed: ClosedForm | None,
+    tolerance: Tolerance,
+    respect_limits: bool,
+    seed: int | np.random.Generator | None,
+    weights: tuple[float, ...],
+) -> tuple[Any, tuple[str, ...], str]:
+    """``(solver, branch labels, method name)``: the closed form, else the numeric search."""
+    if closed is not None:
+        return closed.params, closed.labels, closed.method
+    setup = numeric_setup(
+        chain,
+        respect_limits=respect_limits,
+        tol_position=tolerance.position,
+        tol_rotation=tolerance.rotation,
+        seed=seed,
+        weights=weights,
+    )
+    return setup, (LABEL,), "numeric:lm"
 
 
 def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IKBatchResult:
@@ -188,19 +199,7 @@ def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | 
             arg="method",
             suggest=("method", "numeric"),
         )
-    solver: Any
-    if closed is not None:
-        solver, labels, name = closed.params, closed.labels, closed.method
-    else:
-        setup = numeric_setup(
-            chain,
-            respect_limits=respect_limits,
-            tol_position=tolerance.position,
-            tol_rotation=tolerance.rotation,
-            seed=seed,
-            weights=w,
-        )
-        solver, labels, name = setup, (LABEL,), "numeric:lm"
+    solver, labels, name = _solver(chain, closed, tolerance, respect_limits, seed, w)
     complete = closed is not None
     opts = _options(tolerance, respect_limits, complete, w)
     if targets.single:

@@ -29,7 +29,6 @@ __all__ = [
     "ArmGeometry",
     "arm_geometry",
     "places_point",
-    "random_transform",
     "unit_normal",
 ]
 
@@ -76,20 +75,6 @@ def places_point(chain: Chain, c_tool: FloatArray) -> bool:
     Jc = J[:, :3, :3] + np.cross(J[:, 3:, :3], r[:, :, None], axis=1)
     s = np.linalg.svd(Jc, compute_uv=False)
     return bool(np.any(s[:, -1] > RANK_TOL * s[:, 0]))
-
-
-def random_transform(rng: np.random.Generator, reach: float) -> FloatArray:
-    """``(4, 4)`` a random rigid transform: uniform rotation, translation within ``reach`` (m)."""
-    q = rng.normal(size=4)
-    w, x, y, z = q / np.linalg.norm(q)
-    T = np.eye(4)
-    T[:3, :3] = [
-        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
-    ]
-    T[:3, 3] = rng.uniform(-reach, reach, 3)
-    return T
 
 
 def unit_normal(h: FloatArray) -> FloatArray:

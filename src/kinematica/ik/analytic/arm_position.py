@@ -17,7 +17,8 @@ import numpy as np
 import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.dh.joints import Prismatic, Revolute
-from kinematica.ik.analytic.arm_point import arm_geometry, places_point, random_transform
+from kinematica.ik.analytic.arm_point import arm_geometry, places_point
+from kinematica.ik.analytic.sampling import random_transform
 from kinematica.ik.analytic.spherical_wrist import GEOMETRIES, random_wrist_rows
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features

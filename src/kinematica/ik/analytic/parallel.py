@@ -40,6 +40,7 @@ from kinematica.core import Chain
 from kinematica.dh.convert import convert_table
 from kinematica.dh.joints import Convention, Revolute
 from kinematica.dh.lines import line_distance, lines_parallel, normal_feet
+from kinematica.ik.analytic.sampling import random_transform
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
 
@@ -195,21 +196,6 @@ DEGENERATE = (
 )
 
 
-def _rigid(rng: np.random.Generator, reach: float) -> FloatArray:
-    """A random rigid transform ``(4, 4)``: a random rotation, the origin within ``reach`` (m)."""
-    w, x, y, z = rng.normal(size=4)
-    n = math.sqrt(w * w + x * x + y * y + z * z)
-    w, x, y, z = w / n, x / n, y / n, z / n
-    T = np.eye(4)
-    T[:3, :3] = [
-        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
-    ]
-    T[:3, 3] = rng.uniform(-reach, reach, 3)
-    return T
-
-
 def _sign(rng: np.random.Generator) -> float:
     return float(rng.choice([-1.0, 1.0]))
 
@@ -274,7 +260,7 @@ def sample_arm(rng: np.random.Generator, degenerate: bool = False) -> ArmSample:
         Revolute(d=d5, a=a5, alpha=alpha5, offset=u(-math.pi, math.pi)),
         Revolute(d=u(-0.2, 0.2), a=u(-0.1, 0.1), alpha=u(-math.pi, math.pi)),
     )
-    base, tool = _rigid(rng, 0.5), _rigid(rng, 0.2)
+    base, tool = random_transform(rng, 0.5), random_transform(rng, 0.2)
     convention: Convention = "modified" if rng.random() < 0.5 else "standard"
     links, base, tool = convert_table(rows, "standard", convention, base, tool)
     return ArmSample(links, convention, base, tool, case)

@@ -18,9 +18,10 @@ from numpy.typing import NDArray
 
 from kinematica.dh.convert import convert_table
 from kinematica.dh.joints import Convention, Joint, Prismatic, Revolute
+from kinematica.ik.analytic.sampling import random_transform
 from kinematica.ik.registry import ArmSample
 
-__all__ = ["DEGENERACIES", "FREE_LAST", "TINY", "sample", "sampler"]
+__all__ = ["DEGENERACIES", "FREE_LAST", "TINY", "edge_arm", "sample", "sampler"]
 
 FloatArray = NDArray[np.float64]
 PI = math.pi
@@ -36,22 +37,6 @@ FREE_LAST = ("planar-3R", "planar-PRR", "scara")
 DEGENERACIES = ("equal links", "tiny offsets", "tilted axes", "tool on the last axis")
 
 
-def _frame(rng: np.random.Generator, translation: bool = True) -> FloatArray:
-    """A random ``(4, 4)`` rigid transform (translation within 0.5 m, or none)."""
-    w, x, y, z = rng.normal(size=4)
-    n = math.sqrt(w * w + x * x + y * y + z * z)
-    w, x, y, z = w / n, x / n, y / n, z / n
-    T = np.eye(4)
-    T[:3, :3] = [
-        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
-    ]
-    if translation:
-        T[:3, 3] = rng.uniform(-0.5, 0.5, 3)
-    return T
-
-
 def sample(kind: str, rng: np.random.Generator, degenerate: bool) -> ArmSample:
     """A random arm of one small kind (see the module docstring).
 
@@ -64,10 +49,42 @@ def sample(kind: str, rng: np.random.Generator, degenerate: bool) -> ArmSample:
     case = str(rng.choice(DEGENERACIES)) if degenerate else ""
     if case == "tool on the last axis" and kind not in FREE_LAST:
         case = "equal links"  # elsewhere a link of length 0: no closed form
-    equal = case == "equal links"
-    tiny = case == "tiny offsets"
-    tilt = case == "tilted axes"
-    on_axis = case == "tool on the last axis"
+    return edge_arm(
+        kind,
+        rng,
+        equal=case == "equal links",
+        tiny=case == "tiny offsets",
+        tilt=case == "tilted axes",
+        on_axis=case == "tool on the last axis",
+        limited=degenerate,
+        note=case,
+    )
+
+
+def edge_arm(
+    kind: str,
+    rng: np.random.Generator,
+    *,
+    equal: bool = False,
+    tiny: bool = False,
+    tilt: bool = False,
+    on_axis: bool = False,
+    limited: bool = True,
+    note: str = "",
+) -> ArmSample:
+    """A random arm of one small kind with any of the edge cases at once.
+
+    Args:
+        kind: As for :func:`sample`.
+        rng: The random source.
+        equal: The triangle's two links of equal length (the tool then only turns).
+        tiny: Offsets and lengths that would be 0 are 1e-10 (``TINY``) instead.
+        tilt: Twists 1e-10 off 0, ±90° and 180°: axes parallel or normal only
+            within the line geometry's tolerance.
+        on_axis: The tool origin on the last axis (kinds in ``FREE_LAST``).
+        limited: A slide gets finite limits (else none).
+        note: What the arm is, for messages.
+    """
     u = rng.uniform
 
     def length() -> float:
@@ -87,7 +104,7 @@ def sample(kind: str, rng: np.random.Generator, degenerate: bool) -> ArmSample:
 
     a1 = length()
     a2 = a1 * float(rng.choice([-1.0, 1.0])) if equal else length()
-    slide_limits = (-0.3, float(u(0.0, 0.4))) if degenerate else None
+    slide_limits = (-0.3, float(u(0.0, 0.4))) if limited else None
     rows: list[Joint]
     if kind == "planar-2R":
         rows = [
@@ -132,13 +149,13 @@ def sample(kind: str, rng: np.random.Generator, degenerate: bool) -> ArmSample:
     if on_axis:  # the tool origin on the last axis: the last joint only turns the tool
         last = rows[-1]
         rows[-1] = Revolute(d=0.0, a=0.0, alpha=last.alpha, offset=last.offset)
-    base = _frame(rng)
+    base = random_transform(rng, 0.5)
     # Equal links need the tool origin on the last DH frame's origin (the tool then only
     # turns the frame), as does a tool on the last axis.
-    tool = _frame(rng, translation=not (equal or on_axis))
+    tool = random_transform(rng, None if equal or on_axis else 0.5)
     convention: Convention = "modified" if rng.random() < 0.5 else "standard"
     links, base, tool = convert_table(rows, "standard", convention, base, tool)
-    return ArmSample(links, convention, base, tool, note=case)
+    return ArmSample(links, convention, base, tool, note=note)
 
 
 def sampler(kind: str) -> Callable[[np.random.Generator, bool], ArmSample]:

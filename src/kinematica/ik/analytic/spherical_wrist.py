@@ -22,9 +22,9 @@ from kinematica.dh.lines import AXIS_ANGLE_TOL, lines_parallel
 from kinematica.ik.analytic.arm_point import (
     arm_geometry,
     places_point,
-    random_transform,
     unit_normal,
 )
+from kinematica.ik.analytic.sampling import random_transform
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
 
