@@ -75,6 +75,8 @@ void bind_ik(nb::module_& m) {
         .def_rw("tol_rotation", &km::CheckOptions::tol_rotation, "rad")
         .def_rw("respect_limits", &km::CheckOptions::respect_limits)
         .def_rw("complete", &km::CheckOptions::complete, "the solver gives every solution")
+        .def_rw("gap_slack", &km::CheckOptions::gap_slack,
+                "m: unreachable needs a proven gap beyond tol_position + this")
         .def_prop_rw(
             "weights",
             [](const km::CheckOptions& o) {

@@ -260,7 +260,7 @@ KM_HD inline CheckReport check(const ChainView& ch, const Pose& T, const double*
         // a search stays within the limits: a candidate the polish carried just past one
         // does not show that no solution lies within them
         rep.status = opts.complete ? Status::out_of_limits : Status::not_found;
-    } else if (gap > tol_p || (opts.complete && !close && !info.near)) {
+    } else if (gap > tol_p + opts.gap_slack || (opts.complete && !close && !info.near)) {
         rep.status = Status::unreachable;
     } else {
         rep.status = Status::not_found;

@@ -34,6 +34,10 @@ struct CheckOptions {
     double tol_rotation = 1e-10;  //!< rad
     bool respect_limits = true;   //!< solutions outside the limits are listed apart
     bool complete = false;        //!< the solver gives every solution (a closed form)
+    //! m the solver's proven gap may be off the real arm's: a closed form built for an
+    //! arm its family holds for only to within the line geometry's tolerance proves
+    //! "unreachable" only with a gap beyond tol_position + gap_slack
+    double gap_slack = 0.0;
     double weights[6] = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};  //!< of x, y, z, rx, ry, rz (0: ignored)
 };
 

@@ -27,6 +27,7 @@ from numpy.typing import NDArray
 
 __all__ = [
     "AXIS_ANGLE_TOL",
+    "AXIS_EXACT_TOL",
     "AXIS_LENGTH_TOL",
     "LinePair",
     "common_point",
@@ -59,6 +60,12 @@ AXIS_ANGLE_TOL = 1e-9
 #: :func:`length_tol`). Meeting axes are placed exactly either way (only the
 #: sense of x may change); coinciding axes within it lose that offset.
 AXIS_LENGTH_TOL = 1e-9
+#: A relation holds exactly, not only within the tolerances above, when its sine,
+#: cosine or distance / (1 + size) is at most this: the round-off of the frame
+#: arithmetic (a DH twist of 90° leaves a cosine of 6e-17). An arm whose axes
+#: meet one of its relations only within the tolerances is *near-degenerate*: a
+#: closed form built for the exact relation is then not the whole answer.
+AXIS_EXACT_TOL = 1e-12
 
 
 def length_tol(size: float) -> float:

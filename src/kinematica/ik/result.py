@@ -146,6 +146,9 @@ class IKBatchResult:
         notes: Batch index -> remarks on that target (e.g. its rotation was
             projected onto SO(3)).
         complete: True when the method gives every solution (a closed form).
+        methods: Batch index -> the method of a target solved by another than
+            ``method`` (a near-degenerate arm's targets the numeric search
+            answered; their results are not complete).
     """
 
     raw: CheckOutput = field(repr=False)
@@ -155,6 +158,7 @@ class IKBatchResult:
     errors: Mapping[tuple[int, ...], str] = field(default_factory=dict)
     notes: Mapping[tuple[int, ...], tuple[str, ...]] = field(default_factory=dict)
     complete: bool = True
+    methods: Mapping[tuple[int, ...], str] = field(default_factory=dict)
 
     @property
     def size(self) -> int:
@@ -287,7 +291,8 @@ class IKBatchResult:
         q = raw.q[flat]
         return result_of(
             q[:count], raw.res[flat, :count], q[count : count + out],
-            branches[:count], branches[count:], report, self.method, self.complete, notes,
+            branches[:count], branches[count:], report,
+            self.methods.get(idx, self.method), self.complete and idx not in self.methods, notes,
         )  # fmt: skip
 
     @cached_property

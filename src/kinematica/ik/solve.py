@@ -19,6 +19,13 @@ import kinematica._core as _core
 from kinematica.core import Chain, resolve_workers
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.analytic import SOLVERS
+from kinematica.ik.fallback import (
+    FALLBACK_NOTE,
+    INCOMPLETE_NOTE,
+    merge_batch,
+    needs_search,
+    slack_of,
+)
 from kinematica.ik.numeric import LABEL, check_seed, numeric_setup
 from kinematica.ik.options import IKOptions, Method
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
@@ -95,10 +102,16 @@ _OPTIONS: dict[tuple[object, ...], _core.CheckOptions] = {}
 
 
 def _options(
-    tolerance: Tolerance, respect_limits: bool, complete: bool, weights: tuple[float, ...]
+    tolerance: Tolerance,
+    respect_limits: bool,
+    complete: bool,
+    weights: tuple[float, ...],
+    gap_slack: float = 0.0,
 ) -> _core.CheckOptions:
     """The check's options for these settings (built once, then reused)."""
-    key = (tolerance.position, tolerance.rotation, bool(respect_limits), complete, weights)
+    key = (
+        tolerance.position, tolerance.rotation, bool(respect_limits), complete, weights, gap_slack
+    )  # fmt: skip
     opts = _OPTIONS.get(key)
     if opts is None:
         opts = _core.CheckOptions()
@@ -107,6 +120,7 @@ def _options(
         opts.respect_limits = bool(respect_limits)
         opts.complete = complete
         opts.weights = weights
+        opts.gap_slack = gap_slack
         if len(_OPTIONS) < 64:
             _OPTIONS[key] = opts
     return opts
@@ -121,6 +135,8 @@ class PoseSolver(NamedTuple):
         labels: The branch names of its slots.
         method: The method name results carry.
         complete: It gives every solution (a closed form).
+        direct: Its answer is the whole answer (False for a closed form on a
+            near-degenerate arm: see :mod:`kinematica.ik.fallback`).
     """
 
     ik_rigid: Any
@@ -128,6 +144,7 @@ class PoseSolver(NamedTuple):
     labels: tuple[str, ...]
     method: str
     complete: bool
+    direct: bool = True
 
 
 def pose_solver(chain: Chain, kind: TargetKind = "pose") -> PoseSolver:
@@ -145,7 +162,8 @@ def pose_solver(chain: Chain, kind: TargetKind = "pose") -> PoseSolver:
     solver, labels, name = _solver(chain, closed, tolerance, True, None, w)
     complete = closed is not None
     opts = _options(tolerance, True, complete, w)
-    return PoseSolver(solver.ik_rigid, opts, labels, name, complete)
+    direct = closed is None or slack_of(chain) == 0.0
+    return PoseSolver(solver.ik_rigid, opts, labels, name, complete, direct)
 
 
 def _solver(
@@ -200,13 +218,24 @@ def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | 
             suggest=("method", "numeric"),
         )
     solver, labels, name = _solver(chain, closed, tolerance, respect_limits, seed, w)
-    complete = closed is not None
-    opts = _options(tolerance, respect_limits, complete, w)
+    slack = slack_of(chain) if closed is not None else 0.0
+    complete = closed is not None and slack == 0.0
+    opts = _options(tolerance, respect_limits, complete, w, slack)
+
+    def search() -> tuple[Any, _core.CheckOptions]:  # a near-degenerate arm's second method
+        found = _solver(chain, None, tolerance, respect_limits, seed, w)[0]
+        return found, _options(tolerance, respect_limits, False, w)
+
     if targets.single:
-        out: CoreAnswer = solver.ik(
-            chain.core, targets.poses[0], opts, None if q0s is None else q0s[0], labels
-        )
+        q0 = None if q0s is None else q0s[0]
+        out: CoreAnswer = solver.ik(chain.core, targets.poses[0], opts, q0, labels)
         notes = targets.notes.get(0, ()) if targets.notes else ()
+        if slack:
+            if needs_search(out[-1][0]):
+                numeric, nopts = search()
+                out = numeric.ik(chain.core, targets.poses[0], nopts, q0, (LABEL,))
+                return result_of(*out, "numeric:lm", False, (*notes, FALLBACK_NOTE))
+            notes = (*notes, INCOMPLETE_NOTE)
         return result_of(*out, name, complete, notes)
     invalid = None
     if targets.invalid:
@@ -218,12 +247,31 @@ def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | 
     def where(i: int) -> tuple[int, ...]:
         return tuple(int(v) for v in np.unravel_index(i, shape))
 
+    batch_notes = {where(i): note for i, note in targets.notes.items()}
+    if slack:
+        rows = np.flatnonzero(needs_search(raw["status"]))
+        if rows.size:
+            numeric, nopts = search()
+            q0r = None if q0s is None else np.ascontiguousarray(q0s[rows])
+            poses = np.ascontiguousarray(targets.poses[rows])
+            searched = numeric.ik_batch(chain.core, poses, nopts, q0r, None, threads)
+            raw = merge_batch(raw, rows, searched)
+            labels = (*labels, LABEL)
+        searched_rows = set(rows.tolist())
+        methods = {where(i): "numeric:lm" for i in searched_rows}
+        for i in range(targets.poses.shape[0]):
+            if i in targets.invalid:
+                continue
+            idx = where(i)
+            note = FALLBACK_NOTE if i in searched_rows else INCOMPLETE_NOTE
+            batch_notes[idx] = (*batch_notes.get(idx, ()), note)
     return IKBatchResult(
         raw=CheckOutput(**raw),
         method=name,
         labels=labels,
         shape=shape,
         errors={where(i): msg for i, msg in targets.invalid.items()},
-        notes={where(i): note for i, note in targets.notes.items()},
+        notes=batch_notes,
         complete=complete,
+        methods=methods if slack else {},
     )

@@ -16,6 +16,8 @@ from numpy.typing import NDArray
 
 from kinematica.core import Chain
 from kinematica.dh.lines import (
+    AXIS_ANGLE_TOL,
+    AXIS_EXACT_TOL,
     common_point,
     length_tol,
     line_distance,
@@ -23,7 +25,7 @@ from kinematica.dh.lines import (
     lines_perpendicular,
 )
 
-__all__ = ["Features", "arm_size", "features"]
+__all__ = ["Features", "arm_size", "features", "near_degenerate_slack"]
 
 FloatArray = NDArray[np.float64]
 
@@ -52,6 +54,10 @@ class Features:
             frame), when they are revolute, not all parallel, and meet.
         size: The arm's size (m, :func:`arm_size`): lines meet within
             ``length_tol(size)``.
+        slack: 0 when every relation of two axes (parallel, perpendicular,
+            meeting) and the wrist centre holds exactly or not at all; else a
+            bound (m) on how far an arm with those relations made exact moves the
+            tool from this one's (see :func:`near_degenerate_slack`).
 
     Every relation is :mod:`kinematica.dh.lines`' (its tolerances, the same
     ones DH extraction uses).
@@ -64,6 +70,12 @@ class Features:
     intersecting: tuple[tuple[int, int], ...]
     wrist_center: FloatArray | None
     size: float
+    slack: float = 0.0
+
+    @property
+    def near_degenerate(self) -> bool:
+        """True when a relation of its axes holds only within the tolerances."""
+        return self.slack > 0.0
 
     @property
     def dof(self) -> int:
@@ -117,4 +129,47 @@ def features(chain: Chain) -> Features:
             wrist = common_point(h[-3:], p[-3:], size)
     for a in (h, p):
         a.flags.writeable = False
-    return Features(types, h, p, parallel, meet, wrist, size)
+    slack = near_degenerate_slack(h, p, size, wrist)
+    return Features(types, h, p, parallel, meet, wrist, size, slack)
+
+
+def near_degenerate_slack(
+    h: FloatArray, p: FloatArray, size: float, wrist: FloatArray | None
+) -> float:
+    """A bound (m) on how far the relations that hold only within tolerance move the tool.
+
+    Every pair of axes whose sine (parallel), cosine (perpendicular) or distance
+    (meeting, coinciding) lies between ``AXIS_EXACT_TOL`` and the line
+    geometry's tolerance, and each axis passing the wrist centre within the
+    tolerance but not exactly, is a relation a closed form takes as exact. An
+    axis tilted by ε turns the points beyond it, at most ``size`` away, by at
+    most ``2 ε size`` for any joint motion, a point off by δ moves them by δ: the
+    slack is the sum over the relations, 0 when there are none.
+
+    Args:
+        h: ``(n, 3)`` unit axis directions at q = 0.
+        p: ``(n, 3)`` a point on each axis.
+        size: The arm's size (m).
+        wrist: The wrist centre, if any.
+    """
+    exact, tol = AXIS_EXACT_TOL, length_tol(size)
+    exact_len = AXIS_EXACT_TOL * (1.0 + size)
+    slack = 0.0
+    n = len(h)
+    for i in range(n):
+        for j in range(i + 1, n):
+            sine = float(np.linalg.norm(np.cross(h[i], h[j])))
+            cosine = abs(float(h[i] @ h[j]))
+            for v in (sine, cosine):
+                if exact < v <= AXIS_ANGLE_TOL:
+                    slack += 2.0 * v * size
+            d = line_distance(h[i], p[i], h[j], p[j])
+            if exact_len < d <= tol:
+                slack += d
+    if wrist is not None:
+        for i in range(n - 3, n):
+            r = wrist - p[i]
+            d = float(np.linalg.norm(r - float(r @ h[i]) * h[i]))
+            if exact_len < d <= tol:
+                slack += d
+    return slack

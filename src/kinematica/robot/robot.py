@@ -491,6 +491,8 @@ class Robot:
         fast = self._fast_ik.get(kind)
         if fast is None:
             fast = self._fast_ik[kind] = pose_solver(self.chain, kind)
+        if not fast.direct:
+            return None
         out: CoreAnswer | None = fast.ik_rigid(
             self.chain.core, pose, fast.options, ROUNDOFF_TOL, fast.labels
         )

@@ -1,0 +1,86 @@
+"""Near-degenerate arms: a closed form's answers, completed by the numeric search.
+
+An arm whose axes are parallel, perpendicular or meeting only to within the line
+geometry's tolerances (:mod:`kinematica.dh.lines`) is solved by the closed form of
+the family it nearly belongs to, and every candidate is checked, and polished, on
+the real arm. The closed form then knows the real arm only approximately, so it
+cannot promise every solution, nor prove a target out of reach by less than the
+difference (:attr:`~kinematica.ik.structure.Features.slack`). So its results are
+marked incomplete, "unreachable" needs a gap beyond that slack, and a target
+for which no candidate survives the check goes to the numeric search, whose
+answer, whatever it is, is about the real arm.
+"""
+
+from __future__ import annotations
+
+import weakref
+from typing import Any
+
+import numpy as np
+
+import kinematica._core as _core
+from kinematica.core import Chain
+from kinematica.ik.structure import features
+
+__all__ = ["FALLBACK_NOTE", "INCOMPLETE_NOTE", "merge_batch", "needs_search", "slack_of"]
+
+#: Said of a closed form's result on a near-degenerate arm.
+INCOMPLETE_NOTE = (
+    "the arm's axes have this structure only to within the tolerances of the line "
+    "geometry: the closed form's solutions are exact for this arm, but it may not give all"
+)
+#: Said of a target the closed form found nothing for, answered by the numeric search.
+FALLBACK_NOTE = (
+    "the arm's axes have its closed form's structure only to within the tolerances of the "
+    "line geometry, and no candidate of the closed form solved this target: "
+    "the numeric search answered"
+)
+
+_NOT_FOUND = _core.STATUS["not_found"]
+_SLACKS: weakref.WeakKeyDictionary[Chain, float] = weakref.WeakKeyDictionary()
+
+
+def slack_of(chain: Chain) -> float:
+    """The chain's :attr:`~kinematica.ik.structure.Features.slack` (m), computed once."""
+    slack = _SLACKS.get(chain)
+    if slack is None:
+        slack = _SLACKS[chain] = features(chain).slack
+    return slack
+
+
+def needs_search(status: Any) -> Any:
+    """Where (``(N,)`` bools, or one bool) the closed form found nothing on the real arm."""
+    return status == _NOT_FOUND
+
+
+def merge_batch(raw: dict[str, Any], rows: Any, searched: dict[str, Any]) -> dict[str, Any]:
+    """The closed form's batch ``raw`` with rows ``rows`` replaced by the search's answers.
+
+    Args:
+        raw: The closed form's ``ik_batch`` output (arrays with ``m`` slots).
+        rows: ``(k,)`` indices of the targets the search answered.
+        searched: The numeric ``ik_batch`` output for those targets (1 slot).
+
+    Returns:
+        The arrays with one more slot, ``m``, the search's; its label follows the
+        closed form's labels.
+    """
+    N, m, n = raw["q"].shape
+    q = np.full((N, m + 1, n), np.nan)
+    q[:, :m] = raw["q"]
+    res = np.full((N, m + 1, 2), np.nan)
+    res[:, :m] = raw["res"]
+    slot = np.full((N, m + 1), -1, dtype=np.int64)
+    slot[:, :m] = raw["slot"]
+    q[rows] = np.nan
+    res[rows] = np.nan
+    slot[rows] = -1
+    q[rows, 0] = searched["q"][:, 0]
+    res[rows, 0] = searched["res"][:, 0]
+    slot[rows, 0] = np.where(searched["slot"][:, 0] >= 0, m, -1)
+    out = dict(raw, q=q, res=res, slot=slot)
+    for key in ("status", "count", "out_count", "gap", "nearest", "near", "free"):
+        merged = np.array(raw[key], copy=True)
+        merged[rows] = searched[key]
+        out[key] = merged
+    return out
