@@ -11,6 +11,7 @@ from kinematica.cli.options import add_common, add_robot, dump, robot_from_args
 from kinematica.dh import FrameRule
 from kinematica.errors import RobotFileError
 from kinematica.io import URDF_SUFFIXES, dumps_robot_file
+from kinematica.io.atomic import unchanged, write_text_atomic
 from kinematica.robot import Robot, spec_from_robot, urdf_to_dh
 from kinematica.robot.export_cpp import cpp_header
 
@@ -62,10 +63,10 @@ def convert(args: argparse.Namespace) -> int:
     if args.output:
         path = Path(args.output)
         try:
-            path.write_text(text, encoding="utf-8")
+            write_text_atomic(path, text)
         except OSError as exc:
             raise RobotFileError(
-                f"cannot write the file: {exc.strerror or exc}", path=str(path)
+                f"cannot write the file: {exc.strerror or exc}; {unchanged(path)}", path=str(path)
             ) from exc
     if args.json:
         out: dict[str, Any] = {

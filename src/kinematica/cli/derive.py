@@ -13,6 +13,7 @@ from typing import Any
 
 from kinematica.cli.options import add_common, add_robot, dump
 from kinematica.errors import KinematicaError
+from kinematica.io.atomic import unchanged, write_text_atomic
 
 __all__ = ["derive", "register"]
 
@@ -32,9 +33,11 @@ def derive(args: argparse.Namespace) -> int:
     if args.output is not None:
         path = Path(args.output)
         try:
-            path.write_text(text, encoding="utf-8")
+            write_text_atomic(path, text)
         except OSError as exc:
-            raise KinematicaError(f"cannot write {path}: {exc.strerror or exc}") from exc
+            raise KinematicaError(
+                f"cannot write {path}: {exc.strerror or exc}; {unchanged(path)}"
+            ) from exc
     if args.json:
         dump(
             {

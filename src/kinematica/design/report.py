@@ -22,6 +22,7 @@ from kinematica.design.evaluate import Evaluation, evaluate_design
 from kinematica.design.measures import TaskMeasures, measure_task
 from kinematica.design.objectives import MEASURES
 from kinematica.design.result import DesignResult
+from kinematica.io.atomic import atomic_path, write_text_atomic
 
 __all__ = ["write_log", "write_report"]
 
@@ -40,7 +41,7 @@ def write_log(result: DesignResult, path: str | os.PathLike[str]) -> Path:
     names = list(result.template.names)
     measures = [*MEASURES, "reached"]
     front = {ev.x for ev in result.front or ()}
-    with p.open("w", newline="", encoding="utf-8") as f:
+    with atomic_path(p) as tmp, tmp.open("w", newline="", encoding="utf-8") as f:
         out = csv.writer(f)
         header = ["evaluation", *names, "feasible", "violation", *measures, "objective"]
         out.writerow([*header, "front"])
@@ -103,7 +104,13 @@ def _coverage(result: DesignResult, path: Path) -> None:
             view = "top view" if row == 0 else "side view"
             ax.set_title(f"{title}: {np.mean(m.reached):.0%} reached ({view})")
     fig.suptitle(f"Task coverage: {result.task.name} ({len(result.task)} targets)")
-    fig.savefig(path, dpi=90)
+    _save(fig, path)
+
+
+def _save(fig: Any, path: Path) -> None:
+    """Write a report figure atomically (see :mod:`kinematica.io.atomic`)."""
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=90, format="png")
 
 
 def _scatter(ax: Any, x: Any, y: Any, m: TaskMeasures, vmax: float, fig: Any) -> None:
@@ -136,7 +143,7 @@ def _progress(result: DesignResult, path: Path) -> None:
         ax.set_ylabel(result.objective.describe())
         ax.legend()
     fig.suptitle("Objective progress")
-    fig.savefig(path, dpi=90)
+    _save(fig, path)
 
 
 def _front(result: DesignResult, path: Path) -> None:
@@ -162,7 +169,7 @@ def _front(result: DesignResult, path: Path) -> None:
     ax.set_ylabel(f"{b} ({MEASURES[b].sense}imise)")
     ax.legend()
     fig.suptitle("Pareto front")
-    fig.savefig(path, dpi=90)
+    _save(fig, path)
 
 
 def write_report(
@@ -256,5 +263,5 @@ def write_report(
     named = [f"- {what}: `{Path(f).name}`" for what, f in files if f is not None]
     if named:
         lines += ["## Files", "", *named, ""]
-    p.write_text("\n".join(lines), encoding="utf-8")
+    write_text_atomic(p, "\n".join(lines))
     return written

@@ -59,6 +59,7 @@ from typing import Any
 from kinematica.errors import ArgumentError, KinematicaError, RobotFileError
 from kinematica.io._dump import dump_robot_dict, toml_dumps
 from kinematica.io._parse import parse_robot_dict
+from kinematica.io.atomic import unchanged, write_text_atomic
 from kinematica.io.spec import RobotSpec
 
 __all__ = [
@@ -408,6 +409,8 @@ def write_robot_file(spec: RobotSpec, path: str | os.PathLike[str]) -> None:
         raise RobotFileError(f"is {kind}, not a robot file: not written", path=str(p))
     text = dumps_robot_file(spec, suffix)
     try:
-        p.write_text(text, encoding="utf-8")
+        write_text_atomic(p, text)
     except (OSError, ValueError) as exc:
-        raise RobotFileError(f"cannot write the file: {_reason(exc)}", path=str(p)) from exc
+        raise RobotFileError(
+            f"cannot write the file: {_reason(exc)}; {unchanged(p)}", path=str(p)
+        ) from exc

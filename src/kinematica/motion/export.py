@@ -19,6 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.errors import DimensionError, KinematicaError
+from kinematica.io.atomic import atomic_path, write_text_atomic
 
 __all__ = ["read_csv", "write_csv", "write_json"]
 
@@ -51,9 +52,10 @@ def write_csv(path: str | Path, t: ArrayLike, q: ArrayLike) -> Path:
     ta, qa = _check(t, q)
     header = ",".join(["t"] + [f"q{i}" for i in range(1, qa.shape[1] + 1)])
     out = Path(path)
-    np.savetxt(
-        out, np.column_stack([ta, qa]), delimiter=",", header=header, comments="", fmt="%.17g"
-    )
+    with atomic_path(out) as tmp:
+        np.savetxt(
+            tmp, np.column_stack([ta, qa]), delimiter=",", header=header, comments="", fmt="%.17g"
+        )
     return out
 
 
@@ -156,5 +158,5 @@ def write_json(
         for e in events
     ]
     out = Path(path)
-    out.write_text(json.dumps(data, indent=1, allow_nan=False) + "\n")
+    write_text_atomic(out, json.dumps(data, indent=1, allow_nan=False) + "\n")
     return out

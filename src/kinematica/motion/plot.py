@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 
 from kinematica.errors import KinematicaError
+from kinematica.io.atomic import atomic_path
 from kinematica.motion.workspace import WorkspaceSlice
 
 __all__ = ["MissingDependencyError", "plot_workspace_slice", "require_matplotlib"]
@@ -65,6 +66,9 @@ def plot_workspace_slice(sl: WorkspaceSlice, path: str | Path, title: str = "") 
     head = f"{title}\n" if title else ""
     ax.set_title(f"{head}{u}{v} slice at {w} = {sl.at:.3f} m, area {sl.area:.4g} m²")
     out = Path(path)
-    fig.savefig(out, bbox_inches="tight")
-    plt.close(fig)
+    try:
+        with atomic_path(out) as tmp:
+            fig.savefig(tmp, bbox_inches="tight")
+    finally:
+        plt.close(fig)
     return out

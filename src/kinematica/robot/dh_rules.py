@@ -30,6 +30,7 @@ from kinematica.dh import (
 )
 from kinematica.errors import RobotFileError
 from kinematica.io import FrameSpec, UrdfChain, UrdfJoint, urdf_text
+from kinematica.io.atomic import unchanged, write_text_atomic
 
 if TYPE_CHECKING:
     from kinematica.robot.robot import Robot
@@ -235,9 +236,9 @@ def to_urdf(robot: Robot, path: str | os.PathLike[str] | None = None) -> str:
     if path is not None:
         p = Path(path)
         try:
-            p.write_text(text, encoding="utf-8")
+            write_text_atomic(p, text)
         except OSError as exc:
             raise RobotFileError(
-                f"cannot write the file: {exc.strerror or exc}", path=str(p)
+                f"cannot write the file: {exc.strerror or exc}; {unchanged(p)}", path=str(p)
             ) from exc
     return text

@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from kinematica.io.atomic import atomic_path, unchanged
 from kinematica.robot import Robot
 from kinematica.viz._mpl import VizError, equal_limits, figure, matplotlib, new_axes
 from kinematica.viz.arm import ArmDrawing, extent_points
@@ -173,7 +174,7 @@ def animate(
     # frames are identical (pillow merges identical neighbours in a GIF).
     decimals = max(2, math.ceil(math.log10(max(rate, 1.0))) + 1)
     try:
-        with writer.saving(fig, str(out), dpi):
+        with atomic_path(out) as tmp, writer.saving(fig, str(tmp), dpi):
             for k in range(len(times)):
                 drawing.update(at(k))
                 stamp = f"t = {times[k]:.{decimals}f} s" if t is not None else f"sample {k + 1}"
@@ -181,5 +182,5 @@ def animate(
                 writer.grab_frame()
     except (OSError, subprocess.CalledProcessError) as exc:
         reason = getattr(exc, "strerror", None) or exc
-        raise VizError(f"{out}: cannot write the animation ({reason})") from exc
+        raise VizError(f"{out}: cannot write the animation ({reason}); {unchanged(out)}") from exc
     return Animation(path=out, frames=len(times), fps=float(rate), size=size)

@@ -27,6 +27,7 @@ from numpy.typing import ArrayLike
 from kinematica import __version__
 from kinematica.errors import DimensionError
 from kinematica.io import ROBOT_FILE_SUFFIXES, builtin_names, read_builtin, read_robot_file
+from kinematica.io.atomic import unchanged, write_text_atomic
 from kinematica.robot import Robot, classify
 from kinematica.spatial import euler_from_matrix
 from kinematica.viz._mpl import VizError
@@ -208,7 +209,9 @@ def write_page(
         raise VizError(f"{out}: the folder {out.parent} does not exist")
     text = page_html(robot, units=units, q=q, euler=euler)
     try:
-        out.write_text(text, encoding="utf-8")
+        write_text_atomic(out, text)
     except OSError as exc:
-        raise VizError(f"{out}: cannot write the page ({exc.strerror or exc})") from exc
+        raise VizError(
+            f"{out}: cannot write the page ({exc.strerror or exc}); {unchanged(out)}"
+        ) from exc
     return out

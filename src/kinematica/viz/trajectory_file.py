@@ -15,6 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.errors import KinematicaError
+from kinematica.io.atomic import atomic_path
 
 __all__ = ["TrajectoryFileError", "read_trajectory", "write_trajectory"]
 
@@ -108,7 +109,7 @@ def write_trajectory(path: str | os.PathLike[str], t: ArrayLike, q: ArrayLike) -
             f"{qq.shape}"
         )
     p = Path(path)
-    with p.open("w", newline="", encoding="utf-8") as fh:
+    with atomic_path(p) as tmp, tmp.open("w", newline="", encoding="utf-8") as fh:
         writer = csv.writer(fh)
         writer.writerow(["t", *(f"q{i}" for i in range(1, qq.shape[1] + 1))])
         for ti, qi in zip(tt, qq, strict=True):

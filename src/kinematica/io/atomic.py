@@ -1,0 +1,82 @@
+"""Writing a file so that a failure or a kill never leaves it empty or cut short.
+
+Every file kinematica writes (robot files, URDF, C++ headers, trajectories,
+pictures, animations, pages, reports) is written to a temporary file in the
+same folder, flushed to disk and renamed over the old one: a reader sees the
+old file or the whole new one, never a part. A write that fails (a full disk,
+a file-size limit, an exception while drawing) removes the temporary file and
+leaves the old file as it was. The standard library has the pieces
+(``tempfile.mkstemp``, ``os.fsync``, ``os.replace``) but not their combination.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import stat
+import tempfile
+from collections.abc import Iterator
+from pathlib import Path
+
+__all__ = ["atomic_path", "unchanged", "write_text_atomic"]
+
+
+@contextlib.contextmanager
+def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
+    """A temporary path beside ``path`` to write; it replaces ``path`` when the block ends.
+
+    The temporary file keeps ``path``'s suffix (``.png``, ``.gif``: writers that
+    read the format from the name see the right one). On an exception inside
+    the block, or while flushing and renaming, it is removed and the exception
+    propagates: ``path`` is untouched. A new file gets the permissions an
+    ``open(path, "w")`` would give it; a replaced one keeps its own.
+
+    Raises:
+        OSError: The folder does not exist or is not writable (nothing written).
+    """
+    p = Path(path)
+    fd, name = tempfile.mkstemp(dir=p.parent, prefix=f".{p.name}.", suffix=f".tmp{p.suffix}")
+    os.close(fd)
+    tmp = Path(name)
+    try:
+        yield tmp
+        with open(tmp, "rb+") as f:
+            os.fsync(f.fileno())
+        os.chmod(tmp, _mode(p))
+        os.replace(tmp, p)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            tmp.unlink()
+        raise
+
+
+def write_text_atomic(path: str | os.PathLike[str], text: str) -> None:
+    """Write ``text`` (UTF-8) to ``path`` atomically (see :func:`atomic_path`)."""
+    with atomic_path(path) as tmp:
+        tmp.write_text(text, encoding="utf-8")
+
+
+def unchanged(path: str | os.PathLike[str]) -> str:
+    """What a failed write left: ``"the old file is unchanged"`` or ``"nothing was written"``."""
+    return "the old file is unchanged" if Path(path).exists() else "nothing was written"
+
+
+def _mode(p: Path) -> int:
+    """The old file's permission bits, else what ``open(p, "w")`` would give a new one."""
+    try:
+        return stat.S_IMODE(p.stat().st_mode)
+    except OSError:
+        return 0o666 & ~_umask()
+
+
+def _umask() -> int:
+    """The process umask: read from /proc on Linux (setting it to read it races threads)."""
+    try:
+        for line in Path("/proc/self/status").read_text().splitlines():
+            if line.startswith("Umask:"):
+                return int(line.split()[1], 8)
+    except (OSError, ValueError, IndexError):
+        pass
+    umask = os.umask(0o022)
+    os.umask(umask)
+    return umask
