@@ -9,17 +9,19 @@ CORE_STAMP   := $(VENV)/.core-built
 # The development build turns compiler warnings into errors (-Wall -Wextra, clean).
 CORE_FLAGS   := --config-settings=cmake.define.KM_WERROR=ON
 
-.PHONY: demo test lint bench sanitize clean
+.PHONY: demo test lint docs notebook bench sanitize clean
 
 $(STAMP): pyproject.toml
 	test -d $(VENV) || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet $(CORE_FLAGS) -e '.[test]'
-	touch $(STAMP) $(CORE_STAMP)
+	touch $(STAMP)
 
-# An edit of the core rebuilds it (incrementally, in build/) and reinstalls it.
+# An edit of the core rebuilds it (incrementally, in build/) and reinstalls it; right
+# after an install of the whole package (above), which built it, there is nothing to rebuild.
 $(CORE_STAMP): $(STAMP) $(CORE_SOURCES)
-	$(BIN)/python -m pip install --quiet --no-deps $(CORE_FLAGS) -e .
+	if [ -z "$$(find $(CORE_SOURCES) -newer $(STAMP))" ]; then :; \
+	else $(BIN)/python -m pip install --quiet --no-deps $(CORE_FLAGS) -e .; fi
 	touch $(CORE_STAMP)
 
 demo: $(CORE_STAMP)
@@ -31,8 +33,20 @@ lint: $(CORE_STAMP)
 	$(BIN)/mypy
 	$(BIN)/lint-imports
 
+# The tests build the docs site too (tests/test_docs.py), with --strict.
 test: lint
 	$(BIN)/pytest -n 2
+
+# The documentation site, into site/ (open site/index.html); --strict: a broken link or
+# a missing reference entry fails the build.
+docs: $(CORE_STAMP)
+	$(BIN)/mkdocs build --strict
+
+# Run the lecture-notes notebook and store its outputs (the docs site shows them).
+notebook: $(CORE_STAMP)
+	$(BIN)/python -c "import nbformat, nbclient; p = 'examples/lecture_notes.ipynb'; \
+	nb = nbformat.read(p, as_version=4); nbclient.NotebookClient(nb, timeout=120).execute(); \
+	nbformat.write(nb, p)"
 
 # The core built with AddressSanitizer and UndefinedBehaviorSanitizer (in its own venv
 # and build folder), running the FK, IK and numeric tests: any invalid memory access or
@@ -68,4 +82,4 @@ bench: $(CORE_STAMP)
 	$(BIN)/python benchmarks/ik_small.py
 
 clean:
-	rm -rf $(VENV) $(SAN_VENV) build dist .pytest_cache .mypy_cache .ruff_cache
+	rm -rf $(VENV) $(SAN_VENV) build dist site .pytest_cache .mypy_cache .ruff_cache

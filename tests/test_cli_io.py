@@ -473,15 +473,15 @@ def test_a_fifo_robot_file_is_refused_at_once(tmp_path: Path) -> None:
 # --- the README round trip -------------------------------------------------------------------
 
 
-def test_readme_round_trip_is_true(capsys: pytest.CaptureFixture[str]) -> None:
-    text = (ROOT / "README.md").read_text()
+def test_the_command_line_page_round_trip_is_true(capsys: pytest.CaptureFixture[str]) -> None:
+    text = (ROOT / "docs" / "command-line.md").read_text()
     block = text.split("so that\nwhat `fk` prints can be pasted back into `ik`:", 1)[1]
     block = block.split("```console\n", 1)[1].split("```", 1)[0]
     fk_line, rest = block.split("\n", 1)
     shown, ik_line = rest.rsplit("$ kinematica ik", 1)
     code, out, _ = run(capsys, *fk_line.removeprefix("$ kinematica ").split())
     assert code == 0
-    assert out == shown  # the README shows exactly what fk prints
+    assert out == shown  # the page shows exactly what fk prints
     code, out, _ = run(capsys, "ik", *ik_line.split(), "--json")
     assert code == 0
     data = strict_json(out)
@@ -489,7 +489,7 @@ def test_readme_round_trip_is_true(capsys: pytest.CaptureFixture[str]) -> None:
     assert np.abs(np.array(data["solutions"]) - q).max(axis=1).min() < 1e-6
 
 
-def test_the_readme_names_the_builtin_robots_in_millimetres(
+def test_the_docs_name_the_builtin_robots_in_millimetres(
     capsys: pytest.CaptureFixture[str],
 ) -> None:
     in_mm = set()
@@ -498,8 +498,9 @@ def test_the_readme_names_the_builtin_robots_in_millimetres(
         assert code == 0
         if strict_json(out)["units"]["length"] == "mm":
             in_mm.add(name)
-    assert in_mm == {"irb120", "kr6"}  # as the README's "Command line" section says
-    assert "for `irb120`, `kr6` and any file with" in (ROOT / "README.md").read_text()
+    assert in_mm == {"irb120", "kr6"}  # as the command-line page says
+    page = (ROOT / "docs" / "command-line.md").read_text()
+    assert "for `irb120`, `kr6` and any file with" in page
 
 
 def test_the_all_extra_lists_every_optional_dependency() -> None:

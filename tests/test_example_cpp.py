@@ -143,11 +143,11 @@ def test_every_family_solves_in_cpp_as_in_python(tmp_path: Path) -> None:
         assert km.ik.status.STATUS_NAMES[int(status)] == res.status
 
 
-def test_the_readme_commands_build_and_run_the_example(tmp_path: Path) -> None:
+def test_the_docs_commands_build_and_run_the_example(tmp_path: Path) -> None:
     import re
     import shlex
 
-    text = (ROOT / "README.md").read_text()
+    text = (ROOT / "docs" / "contributing.md").read_text()
     block = re.search(r"## From C\+\+.*?```sh\n(.*?)```", text, flags=re.S)
     assert block is not None
     for line in block.group(1).strip().splitlines():

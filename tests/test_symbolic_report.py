@@ -183,6 +183,6 @@ def test_cli_derive_bad_input(
 
 
 def test_committed_arm6_report_is_current() -> None:
-    # README: docs/arm6-dh.md is `kinematica derive arm6-dh -o docs/arm6-dh.md`.
+    # docs/symbolic.md: docs/arm6-dh.md is `kinematica derive arm6-dh -o docs/arm6-dh.md`.
     committed = Path(__file__).resolve().parents[1] / "docs" / "arm6-dh.md"
     assert committed.read_text(encoding="utf-8") == symbolic.report("arm6-dh")

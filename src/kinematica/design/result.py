@@ -91,6 +91,21 @@ class DesignResult:
         """
         write_robot_file(self.best_spec, path)
 
+    def _repr_html_(self) -> str:
+        """The best design against the template: variables and measures, as HTML (Jupyter)."""
+        from kinematica.io.html_table import html_table, number
+
+        start = self.template.nominal
+        # The search starts from the template's values: its measures when it was evaluated.
+        at_start = next((ev.measures for ev in self.history if dict(ev.params) == dict(start)), {})
+        rows = [[name, number(start[name]), number(value)]
+                for name, value in self.best_params.items()]  # fmt: skip
+        rows += [[name, number(at_start[name]) if name in at_start else "", number(value)]
+                 for name, value in self.best.measures.items()]  # fmt: skip
+        evaluations = len(self.history)
+        caption = f"{self.objective.describe()} on {self.task.name}: {evaluations} evaluations"
+        return html_table(["", "template", "best"], rows, caption, (self.message,))
+
     def progress(self) -> FloatArray:
         """Best-so-far over the history, among the designs reaching every target.
 

@@ -116,6 +116,12 @@ class IKResult:
     def __iter__(self) -> Iterator[FloatArray]:
         return iter(self.solutions)
 
+    def _repr_html_(self) -> str:
+        """The solutions as an HTML table, with their branches and residuals (Jupyter)."""
+        from kinematica.ik.display import result_html
+
+        return result_html(self)
+
 
 @dataclass(frozen=True, eq=False)
 class IKBatchResult:
@@ -305,6 +311,12 @@ class IKBatchResult:
 
     def __iter__(self) -> Iterator[IKResult]:
         return (self[idx] for idx in np.ndindex(*self.shape))
+
+    def _repr_html_(self) -> str:
+        """One row per target, with its status and message, as HTML (Jupyter)."""
+        from kinematica.ik.display import batch_html
+
+        return batch_html(self)
 
 
 @dataclass(frozen=True, eq=False)

@@ -107,6 +107,16 @@ class CartesianPath:
         d = np.abs(np.diff(self.q, axis=0))
         return float(np.nanmax(d)) if np.isfinite(d).any() else float("nan")
 
+    def _repr_html_(self) -> str:
+        """A few samples' joint values and every event, as HTML (Jupyter)."""
+        from kinematica.motion.display import samples_html
+
+        k = len(self.events)
+        met = "no event" if k == 0 else f"{k} event" + ("s" if k > 1 else "")
+        caption = f"{len(self.s)} samples along the path, {met} (q in rad, m)"
+        footer = tuple(e.message for e in self.events)
+        return samples_html(self.s, self.q, time_name="s", caption=caption, footer=footer)
+
 
 class _Geometry:
     """Pose at path parameter s: position on a line or arc, orientation by slerp."""

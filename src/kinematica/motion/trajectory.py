@@ -63,6 +63,15 @@ class JointTrajectory(NamedTuple):
     qd: FloatArray
     qdd: FloatArray
 
+    def _repr_html_(self) -> str:
+        """A few samples' joint values as an HTML table (Jupyter)."""
+        from kinematica.motion.display import samples_html
+
+        m, n = self.q.shape
+        duration = float(self.t[-1]) if m else 0.0
+        caption = f"{n} joints, {m} samples over {duration:g} s (q in rad, m)"
+        return samples_html(self.t, self.q, time_name="t (s)", caption=caption)
+
 
 def _vector(x: ArrayLike | None, n: int, name: str, positive: bool = False) -> FloatArray:
     if x is None:

@@ -545,6 +545,12 @@ class Robot:
     def __repr__(self) -> str:
         return f"Robot({self.name!r}, {self.joint_types}, convention={self.convention!r})"
 
+    def _repr_html_(self) -> str:
+        """The DH table with units and limits, as HTML (Jupyter)."""
+        from kinematica.robot.display import robot_html
+
+        return robot_html(self)
+
     def save(self, path: str | os.PathLike[str]) -> None:
         """Write this robot as a robot file; see :func:`kinematica.write_robot_file`."""
         write_robot_file(self, path)

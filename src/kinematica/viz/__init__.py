@@ -16,6 +16,7 @@ picture is drawn, on the headless ``Agg`` backend when there is no display::
 from kinematica.viz._mpl import VizError
 from kinematica.viz.animate import Animation, animate, mp4_available
 from kinematica.viz.geometry import ArmPose, arm_pose, drawing_plane, robot_scale
+from kinematica.viz.notebook import PageView, page_view
 from kinematica.viz.page import page_data, page_html, robot_units, write_page
 from kinematica.viz.plot import plot, plot_solutions, save_figure, save_plot, save_solutions
 from kinematica.viz.server import PageServer, serve
@@ -27,6 +28,7 @@ __all__ = [
     "Animation",
     "ArmPose",
     "PageServer",
+    "PageView",
     "TrajectoryFileError",
     "VizError",
     "animate",
@@ -35,6 +37,7 @@ __all__ = [
     "mp4_available",
     "page_data",
     "page_html",
+    "page_view",
     "plot",
     "plot_solutions",
     "plot_trajectory",

@@ -11,7 +11,7 @@ Writes into the folder given as the first argument (default: the current one):
 * ``arm.html``        the interactive page (sliders, frames, live T), and with a
   Chromium and playwright installed, ``page.png``, a screenshot of it.
 
-The README's pictures under ``docs/`` are made by ``python examples/05_pictures.py docs``.
+The pictures of the docs site are made by ``python examples/07_pictures.py docs``.
 """
 
 from __future__ import annotations
