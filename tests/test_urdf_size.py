@@ -135,30 +135,57 @@ def test_numbers_out_of_range_name_the_file_joint_and_key(tmp_path, old, new, jo
         read_urdf(path)
 
 
-def test_length_bound_on_both_sides(tmp_path):
-    inside = km.load(write(tmp_path, broken(ORIGIN, f'xyz="{URDF_MAX_LENGTH!r} 0 0"')))
-    assert inside.fk([0.0, 0.0])[0, 3] == pytest.approx(URDF_MAX_LENGTH, rel=1e-12)
-    outside = f'xyz="{URDF_MAX_LENGTH * (1 + 1e-9)!r} 0 0"'
-    one_line_error(write(tmp_path, broken(ORIGIN, outside)), "joint 'j2'", "origin xyz", "±1e+06")
-    limit = f'lower="0" upper="{URDF_MAX_LENGTH!r}"'
-    assert km.load(write(tmp_path, broken(LIMIT, limit))).qlim[1, 1] == URDF_MAX_LENGTH
-    limit = f'lower="0" upper="{URDF_MAX_LENGTH * (1 + 1e-9)!r}"'
-    one_line_error(write(tmp_path, broken(LIMIT, limit)), "joint 'j2'", "limit upper")
+def _tool_x(robot: km.Robot) -> float:
+    return float(robot.fk([0.0, 0.0])[0, 3])
 
 
-def test_angle_bound_on_both_sides(tmp_path):
-    a = URDF_MAX_ANGLE
-    robot = km.load(write(tmp_path, broken(RPY, f'rpy="{a!r} 0 0"')))
-    # the roll turns l2's z about x: the tool, 0.05 m along it, lies at angle a in the y-z plane
-    T = robot.fk([0.0, 0.0])
-    np.testing.assert_allclose(T[1:3, 3], [-0.05 * np.sin(a), 0.3 + 0.05 * np.cos(a)], atol=1e-12)
-    one_line_error(
-        write(tmp_path, broken(RPY, f'rpy="{a * (1 + 1e-9)!r} 0 0"')), "joint 'j2'", "origin rpy"
-    )
-    limits = f'lower="{-a!r}" upper="{a!r}"'
-    assert km.load(write(tmp_path, broken(REVOLUTE_LIMIT, limits))).qlim[0, 1] == a
-    limits = f'lower="-2" upper="{a * (1 + 1e-9)!r}"'
-    one_line_error(write(tmp_path, broken(REVOLUTE_LIMIT, limits)), "joint 'j1'", "limit upper")
+def _tool_yz(robot: km.Robot) -> list[float]:
+    return robot.fk([0.0, 0.0])[1:3, 3].tolist()
+
+
+A = URDF_MAX_ANGLE
+
+
+@pytest.mark.parametrize(
+    ("old", "template", "bound", "joint", "key", "measure", "expected"),
+    [
+        # j2's origin at x = bound: the tool at x = bound
+        (ORIGIN, 'xyz="{} 0 0"', URDF_MAX_LENGTH, "j2", "origin xyz", _tool_x, URDF_MAX_LENGTH),
+        # j2's roll at the bound turns the tool's 0.05 m offset to that angle in the y-z plane
+        (
+            RPY,
+            'rpy="{} 0 0"',
+            A,
+            "j2",
+            "origin rpy",
+            _tool_yz,
+            [-0.05 * np.sin(A), 0.3 + 0.05 * np.cos(A)],
+        ),
+        (
+            LIMIT,
+            'lower="0" upper="{}"',
+            URDF_MAX_LENGTH,
+            "j2",
+            "limit upper",
+            lambda r: r.qlim[1, 1],
+            URDF_MAX_LENGTH,
+        ),
+        (
+            REVOLUTE_LIMIT,
+            'lower="-2" upper="{}"',
+            A,
+            "j1",
+            "limit upper",
+            lambda r: r.qlim[0, 1],
+            A,
+        ),
+    ],
+)
+def test_bounds_on_both_sides(tmp_path, old, template, bound, joint, key, measure, expected):
+    inside = km.load(write(tmp_path, broken(old, template.format(repr(bound)))))
+    np.testing.assert_allclose(measure(inside), expected, rtol=1e-12, atol=1e-12)
+    outside = write(tmp_path, broken(old, template.format(repr(bound * (1 + 1e-9)))))
+    one_line_error(outside, f"joint '{joint}'", key, f"±{bound:g}")
 
 
 def test_axis_scale_on_both_sides(tmp_path):

@@ -14,10 +14,16 @@ environment is empty and ``$(env ...)``, ``$(optenv ...)`` and their
 
 from __future__ import annotations
 
-import resource
 import sys
 import xml.dom.minidom
+from types import ModuleType
 from typing import Any
+
+resource: ModuleType | None
+try:
+    import resource
+except ImportError:  # not POSIX
+    resource = None
 
 _ENV_REFUSED = (
     "reads the environment variable {name!r}: refused, kinematica expands xacro without the "
@@ -65,7 +71,8 @@ def main(argv: list[str]) -> int:
     """Expand ``argv[0]``; see the module's docstring for the arguments."""
     path, xacro_dir, max_bytes, max_nodes, max_memory, allow_env = argv
     sys.path.insert(0, xacro_dir)
-    resource.setrlimit(resource.RLIMIT_AS, (int(max_memory), int(max_memory)))
+    if resource is not None:  # POSIX; elsewhere the time and node limits still hold
+        resource.setrlimit(resource.RLIMIT_AS, (int(max_memory), int(max_memory)))
     out, sys.stdout = sys.stdout, sys.stderr  # whatever xacro prints is not the URDF
     try:
         import xacro
