@@ -34,6 +34,7 @@ from numpy.typing import NDArray
 
 from kinematica.errors import KinematicaError
 from kinematica.motion.piecewise import PiecewisePolynomial
+from kinematica.motion.trajectory import DURATION_RTOL
 
 __all__ = ["blend_pieces", "blend_times"]
 
@@ -81,7 +82,7 @@ def blend_pieces(w: FloatArray, times: FloatArray, tacc: float) -> PiecewisePoly
     e = _end_share(k, tacc)
     span = np.diff(times)
     need = tacc + e
-    short = span < need * (1.0 - 1e-12)
+    short = span < need * (1.0 - DURATION_RTOL)
     if short.any():
         i = int(np.flatnonzero(short)[0])
         raise KinematicaError(

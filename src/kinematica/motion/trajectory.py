@@ -41,6 +41,8 @@ from kinematica.errors import DimensionError, KinematicaError
 
 __all__ = [
     "CUBIC_BASIS",
+    "DURATION_RTOL",
+    "LIMIT_RTOL",
     "QUINTIC_BASIS",
     "JointTrajectory",
     "Profile",
@@ -57,6 +59,11 @@ Sync = Literal["each", "shared"]
 
 #: Default sample spacing (s).
 DEFAULT_DT = 0.01
+#: Relative shortfall of a given duration (or waypoint spacing) below the
+#: shortest one accepted as round-off of the times' arithmetic.
+DURATION_RTOL = 1e-12
+#: Relative excess over ``vmax``/``amax`` accepted as round-off when checking given times.
+LIMIT_RTOL = 1e-9
 
 # Hermite bases, coefficients in s (lowest power first). Weights: quintic
 # (p0, T·v0, T²·a0, T²·a1, T·v1, p1); cubic (p0, T·v0, T·v1, p1). The splines
@@ -232,7 +239,7 @@ def _trapezoid_each(
     else:
         T = float(duration)
         own = minimum_time(D, v, am)
-        slow = own > T * (1.0 + 1e-12)
+        slow = own > T * (1.0 + DURATION_RTOL)
         if slow.any():
             j = int(np.argmax(own))
             what = "amax" if vm is None else "vmax and amax"
@@ -409,7 +416,7 @@ def _check_limits(
         if lim is None:
             continue
         peak = np.abs(val).max(axis=0)
-        over = peak > lim * (1.0 + 1e-9)
+        over = peak > lim * (1.0 + LIMIT_RTOL)
         if over.any():
             j = int(np.flatnonzero(over)[0])
             raise KinematicaError(

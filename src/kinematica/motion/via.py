@@ -43,15 +43,12 @@ from kinematica.errors import DimensionError, KinematicaError
 from kinematica.motion.blends import blend_pieces, blend_times
 from kinematica.motion.piecewise import PiecewisePolynomial
 from kinematica.motion.splines import Ends, hermite_pieces, spline_derivatives
-from kinematica.motion.trajectory import DEFAULT_DT, JointTrajectory, minimum_time
+from kinematica.motion.trajectory import DEFAULT_DT, LIMIT_RTOL, JointTrajectory, minimum_time
 
-__all__ = ["LIMIT_RTOL", "Method", "via_polynomials", "via_trajectory"]
+__all__ = ["Method", "via_polynomials", "via_trajectory"]
 
 FloatArray = NDArray[np.float64]
 Method = Literal["cubic", "quintic", "mstraj"]
-
-#: Relative excess over ``vmax``/``amax`` accepted as round-off when checking given times.
-LIMIT_RTOL = 1e-9
 
 
 def _array(x: ArrayLike | None, shape: tuple[int, ...], name: str) -> FloatArray:
