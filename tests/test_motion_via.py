@@ -216,7 +216,7 @@ def test_bad_input() -> None:
         via_trajectory(W, "cubic", TIMES[::-1])
     with pytest.raises(km.DimensionError, match="times must be 5"):
         via_trajectory(W, "cubic", TIMES[:3])
-    with pytest.raises(km.KinematicaError, match="give times, or vmax"):
+    with pytest.raises(km.KinematicaError, match="times must be given, or vmax"):
         via_trajectory(W, "cubic")
     with pytest.raises(km.KinematicaError, match="tacc"):
         via_trajectory(W, "mstraj", TIMES)

@@ -87,8 +87,7 @@ def blend_pieces(w: FloatArray, times: FloatArray, tacc: float) -> PiecewisePoly
         i = int(np.flatnonzero(short)[0])
         raise KinematicaError(
             f"waypoints {i + 1} and {i + 2} are {span[i]:.6g} s apart: blends of tacc "
-            f"{tacc:g} s need at least {need[i]:.6g} s",
-            arg="times",
+            f"{tacc:g} s need at least {need[i]:.6g} s"
         )
     v = np.diff(w, axis=0) / (span - e)[:, None]  # (k-1, n) line velocities
     # Line i passes w_i at its anchor time (τ_i, or tacc/2 for the first line).

@@ -68,7 +68,7 @@ class BlendedPolyline:
         length = np.linalg.norm(dp, axis=1) + ROTATION_LENGTH * np.linalg.norm(rot, axis=1)
         if np.any(length == 0.0):
             i = int(np.flatnonzero(length == 0.0)[0])
-            raise KinematicaError(f"poses {i + 1} and {i + 2} are equal", arg="poses")
+            raise KinematicaError(f"poses {i + 1} and {i + 2} are equal")
         share = length / length.sum()
         self.knots = np.concatenate([[0.0], np.cumsum(share)])
         self.knots[-1] = 1.0

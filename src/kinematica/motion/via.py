@@ -132,16 +132,16 @@ def via_polynomials(
         named = [name for name, x in extra.items() if x is not None]
         if named or ends != "clamped":
             raise KinematicaError(
-                f"mstraj starts and ends at rest: drop {', '.join(named) or 'ends'}", arg="method"
+                f"mstraj starts and ends at rest: drop {', '.join(named) or 'ends'}"
             )
         if tacc is None or not (math.isfinite(tacc) and tacc > 0):
             raise KinematicaError(
-                f"mstraj needs the blend time tacc > 0 (s), got {tacc!r}", arg="tacc"
+                f"tacc must be the blend time of mstraj, > 0 (s), got {tacc!r}", arg="tacc"
             )
         vm = _limit(vmax, (k - 1, n), "vmax")
         if t is None:
             if vm is None:
-                raise KinematicaError("give times, or vmax to derive them", arg="times")
+                raise KinematicaError("times must be given, or vmax to derive them", arg="times")
             t = blend_times(w, vm, tacc)
         pieces = blend_pieces(w, t, tacc)
         _check(pieces, None, am, vm, tacc)
@@ -169,7 +169,9 @@ def via_polynomials(
 
     if t is None:
         if vm is None and am is None:
-            raise KinematicaError("give times, or vmax and/or amax to derive them", arg="times")
+            raise KinematicaError(
+                "times must be given, or vmax and/or amax to derive them", arg="times"
+            )
         if np.any(start) or np.any(end) or (given is not None and np.any(given)):
             raise KinematicaError("give times when velocities or accelerations are not zero")
         inf = np.full(n, np.inf)
@@ -178,8 +180,7 @@ def via_polynomials(
         if np.any(seg <= 0):
             i = int(np.flatnonzero(seg <= 0)[0])
             raise KinematicaError(
-                f"waypoints {i + 1} and {i + 2} are equal: give times to dwell there",
-                arg="waypoints",
+                f"waypoints {i + 1} and {i + 2} are equal: give times to dwell there"
             )
         t0 = np.concatenate([[0.0], np.cumsum(seg)])
         trial = build(t0)
@@ -207,8 +208,7 @@ def _check(
             j = int(np.flatnonzero(over)[0])
             raise KinematicaError(
                 f"joint {j + 1} would reach {peak[j]:.6g} > {name} {lim[j]:g}: "
-                "lengthen the times" + (" or tacc" if name == "amax" else ""),
-                arg=name,
+                "lengthen the times" + (" or tacc" if name == "amax" else "")
             )
     if vm_segments is not None:  # mstraj: each segment's line within its own limits
         assert tacc is not None
@@ -221,8 +221,7 @@ def _check(
             i, j = (int(x[0]) for x in np.nonzero(over))
             raise KinematicaError(
                 f"segment {i + 1}, joint {j + 1} would move at {speed[i, j]:.6g} > vmax "
-                f"{vm_segments[i, j]:g}: lengthen the times",
-                arg="vmax",
+                f"{vm_segments[i, j]:g}: lengthen the times"
             )
 
 
