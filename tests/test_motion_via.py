@@ -228,3 +228,19 @@ def test_bad_input() -> None:
         via_trajectory(W, "cubic", TIMES, qdd0=[1, 1, 1])
     with pytest.raises(km.KinematicaError, match="mstraj starts and ends at rest: drop qd0"):
         via_trajectory(W, "mstraj", TIMES, tacc=0.1, qd0=[1, 1, 1])
+
+
+def test_random_splines_hit_and_join_whatever_the_spacing() -> None:
+    rng = np.random.default_rng(7)
+    for _ in range(40):
+        k = int(rng.integers(2, 12))
+        t = np.concatenate([[0.0], np.cumsum(np.exp(rng.uniform(-2, 2, k - 1)))])  # 1:50 spacing
+        y = rng.normal(size=(k, 2))
+        for method, order in (("cubic", 2), ("quintic", 4)):
+            for ends in ("clamped", "natural"):
+                p = via_polynomials(y, method, t, ends=ends)  # type: ignore[arg-type]
+                assert np.abs(p(t) - y).max() <= 1e-12
+                for r in range(order + 1):
+                    scale = max(1.0, p.peak(r).max())
+                    tol = 1e-12 if r <= 2 else 1e-6  # jerk, snap: h⁻³, h⁻⁴ round-off
+                    assert np.abs(jumps(p, r)).max(initial=0.0) <= tol * scale

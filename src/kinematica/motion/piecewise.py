@@ -13,7 +13,6 @@ from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
-from numpy.polynomial import polynomial as npoly
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.motion.trajectory import JointTrajectory, sample_times
@@ -31,6 +30,30 @@ def _times_between(knots: FloatArray, dt: float) -> FloatArray:
         seg[-1] = b
         parts.append(seg)
     return np.concatenate(parts)
+
+
+def _real_parts_of_roots(polys: FloatArray) -> FloatArray:
+    """``(N, d)`` real parts of the roots of each row's polynomial (lowest power first).
+
+    Rows are grouped by their degree (highest non-zero coefficient); each
+    group's roots are the eigenvalues of its companion matrices. Missing roots
+    (a lower degree) are NaN; complex roots give their real part, which is
+    only an extra candidate point for the caller.
+    """
+    N, d1 = polys.shape
+    out = np.full((N, d1 - 1), np.nan)
+    nonzero = polys != 0.0
+    degree = np.where(nonzero.any(axis=1), d1 - 1 - np.argmax(nonzero[:, ::-1], axis=1), 0)
+    for deg in range(1, d1):
+        rows = np.flatnonzero(degree == deg)
+        if rows.size == 0:
+            continue
+        c = polys[rows, : deg + 1]
+        comp = np.zeros((rows.size, deg, deg))
+        comp[:, 1:, :-1] = np.eye(deg - 1)
+        comp[:, :, -1] = -c[:, :deg] / c[:, deg : deg + 1]
+        out[rows, :deg] = np.real(np.linalg.eigvals(comp))
+    return out
 
 
 @dataclass(frozen=True)
@@ -92,20 +115,22 @@ class PiecewisePolynomial:
         Exact to round-off: each piece's extremes are at its ends or at the
         real roots of the next derivative within it.
         """
-        c = self._derivative(order)
+        c = self._derivative(order)  # (p, d + 1, n)
         h = np.diff(self.breaks)
-        p, _, n = c.shape
-        best = np.zeros(n)
-        for i in range(p):
-            for j in range(n):
-                poly = c[i, :, j]
-                cand = [0.0, float(h[i])]
-                dpoly = npoly.polytrim(npoly.polyder(poly), 0.0)
-                if dpoly.size > 1:
-                    r = npoly.polyroots(dpoly)
-                    cand.extend(np.clip(np.real(r), 0.0, h[i]).tolist())
-                best[j] = max(best[j], float(np.abs(npoly.polyval(np.array(cand), poly)).max()))
-        return best
+        p, d1, n = c.shape
+        polys = np.moveaxis(c, 1, -1).reshape(p * n, d1)  # one row per piece and joint
+        span = np.repeat(h, n)
+        cand = [np.zeros(p * n), span]
+        if d1 > 1:
+            dpoly = polys[:, 1:] * np.arange(1, d1)  # the next derivative
+            roots = _real_parts_of_roots(dpoly)
+            cand.extend(np.clip(np.nan_to_num(r, nan=0.0), 0.0, span) for r in roots.T)
+        x = np.stack(cand, axis=1)  # (p*n, candidates)
+        val = np.zeros_like(x)
+        for j in range(d1 - 1, -1, -1):
+            val = val * x + polys[:, j : j + 1]
+        out: FloatArray = np.abs(val).max(axis=1).reshape(p, n).max(axis=0)
+        return out
 
     def sample(self, dt: float) -> JointTrajectory:
         """Samples every ``dt`` or closer, with every knot time among them.

@@ -32,6 +32,7 @@ from kinematica.motion.trajectory import CUBIC_BASIS, QUINTIC_BASIS
 __all__ = ["Ends", "hermite_pieces", "spline_derivatives"]
 
 FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.intp]
 Ends = Literal["clamped", "natural"]
 
 # What each Hermite basis weight is: (end of the segment, derivative order);
@@ -43,10 +44,23 @@ _SLOTS = {
 _BASIS = {2: CUBIC_BASIS, 3: QUINTIC_BASIS}
 
 
+def _inverse(A: FloatArray) -> FloatArray:
+    """Inverse of a 1x1 or 2x2 block (closed form: a library call costs more than the sum)."""
+    if A.shape == (1, 1):
+        out: FloatArray = 1.0 / A
+        return out
+    a, b, c, d = A[0, 0], A[0, 1], A[1, 0], A[1, 1]
+    return np.array([[d, -b], [-c, a]]) / (a * d - b * c)
+
+
 def spline_derivatives(
     t: FloatArray, y: FloatArray, m: int, ends: Ends, start: FloatArray, end: FloatArray
 ) -> FloatArray:
     """Knot derivatives of the spline through ``(t, y)``.
+
+    The conditions at knot ``i`` involve the derivatives at knots ``i - 1``,
+    ``i`` and ``i + 1`` only: the system is block tridiagonal (blocks of
+    ``m - 1``), solved by block elimination in O(k) time and memory.
 
     Args:
         t: ``(k,)`` increasing knot times (s), k >= 2.
@@ -63,36 +77,52 @@ def spline_derivatives(
     w = m - 1
     basis, slots = _BASIS[m], _SLOTS[m]
     h = np.diff(t)
-    N = w * k
-    M = np.zeros((N, N))
-    R = np.zeros((N, n))
-    row = 0
+    # Rows of knot i: L[i] x[i-1] + D[i] x[i] + U[i] x[i+1] = R[i], x[i] its w derivatives.
+    L, D, U = np.zeros((k, w, w)), np.zeros((k, w, w)), np.zeros((k, w, w))
+    R = np.zeros((k, w, n))
+    blocks = {-1: L, 0: D, 1: U}
+    # at[r][e][j]: the r-th s-derivative of basis polynomial j at s = e (0 or 1)
+    at = [
+        [[float(npoly.polyval(e, npoly.polyder(b, r))) for b in basis] for e in (0.0, 1.0)]
+        for r in range(2 * m - 1)
+    ]
 
-    def add(seg: int, e: int, r: int, sign: float) -> None:
-        """Add ``sign`` times the r-th derivative of segment ``seg`` at its end ``e``."""
-        for b, (ew, ow) in zip(basis, slots, strict=True):
-            c = sign * float(npoly.polyval(float(e), npoly.polyder(b, r))) * h[seg] ** (ow - r)
+    def add(i: IntArray, row: int, seg: IntArray, e: int, r: int, sign: float) -> None:
+        """Add to the rows of knots ``i`` the r-th derivative of segments ``seg`` at end ``e``."""
+        if i.size == 0:  # two waypoints: no interior knot
+            return
+        for j, (ew, ow) in enumerate(slots):
+            c = sign * at[r][e][j] * h[seg] ** (ow - r)
             knot = seg + ew
             if ow == 0:
-                R[row] -= c * y[knot]
+                R[i, row] -= c[:, None] * y[knot]
             else:
-                M[row, knot * w + ow - 1] += c
+                blocks[int(knot[0] - i[0])][i, row, ow - 1] += c
 
-    for i in range(1, k - 1):
-        for r in range(m, 2 * m - 1):
-            add(i - 1, 1, r, 1.0)
-            add(i, 0, r, -1.0)
-            row += 1
-    for knot, seg, e, given in ((0, 0, 0, start), (k - 1, k - 2, 1, end)):
-        for o in range(1, m):
+    inner = np.arange(1, k - 1)
+    for row, r in enumerate(range(m, 2 * m - 1)):
+        add(inner, row, inner - 1, 1, r, 1.0)
+        add(inner, row, inner, 0, r, -1.0)
+    for i, seg, e, given in ((0, 0, 0, start), (k - 1, k - 2, 1, end)):
+        for row, o in enumerate(range(1, m)):
             if ends == "clamped":
-                M[row, knot * w + o - 1] = 1.0
-                R[row] = given[o - 1]
+                D[i, row, o - 1] = 1.0
+                R[i, row] = given[o - 1]
             else:
-                add(seg, e, m + o - 1, 1.0)
-            row += 1
-    out: FloatArray = np.linalg.solve(M, R).reshape(k, w, n)
-    return out
+                add(np.array([i]), row, np.array([seg]), e, m + o - 1, 1.0)
+    # Block elimination forward, then back substitution.
+    Up, Rp = np.zeros_like(U), np.zeros_like(R)
+    for i in range(k):
+        Di = D[i] if i == 0 else D[i] - L[i] @ Up[i - 1]
+        Ri = R[i] if i == 0 else R[i] - L[i] @ Rp[i - 1]
+        inv = _inverse(Di)
+        Up[i] = inv @ U[i]
+        Rp[i] = inv @ Ri
+    x = np.zeros((k, w, n))
+    x[-1] = Rp[-1]
+    for i in range(k - 2, -1, -1):
+        x[i] = Rp[i] - Up[i] @ x[i + 1]
+    return x
 
 
 def hermite_pieces(t: FloatArray, y: FloatArray, derivs: FloatArray) -> PiecewisePolynomial:

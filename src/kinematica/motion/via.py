@@ -176,7 +176,7 @@ def via_polynomials(
             raise KinematicaError("give times when velocities or accelerations are not zero")
         inf = np.full(n, np.inf)
         vl, al = (inf if vm is None else vm), (inf if am is None else am)
-        seg = np.array([minimum_time(d, vl, al, method).max() for d in np.diff(w, axis=0)])
+        seg = minimum_time(np.diff(w, axis=0), vl, al, method).max(axis=1)
         if np.any(seg <= 0):
             i = int(np.flatnonzero(seg <= 0)[0])
             raise KinematicaError(
