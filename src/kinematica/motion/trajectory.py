@@ -197,16 +197,16 @@ def minimum_time(
     """Each joint's own minimum time for a rest-to-rest move of ``|delta|``.
 
     Args:
-        delta: ``(n,)`` joint displacements (rad, m).
-        vmax: ``(n,)`` speed limits (> 0); ``inf`` for none.
-        amax: ``(n,)`` acceleration limits (> 0); ``inf`` for none.
+        delta: ``(..., n)`` joint displacements (rad, m).
+        vmax: Speed limits (> 0) broadcast to ``delta``; ``inf`` for none.
+        amax: Acceleration limits (> 0) broadcast to ``delta``; ``inf`` for none.
         profile: ``"trapezoid"``: ``Δ/v + v/a``, or ``2·sqrt(Δ/a)`` (a
             triangle) when ``v²/a >= Δ``; ``"quintic"`` / ``"cubic"``: the
             larger of ``kv·Δ/v`` and ``sqrt(ka·Δ/a)`` with the profile's peak
             factors (15/8 and 10/√3; 3/2 and 6).
 
     Returns:
-        ``(n,)`` times (s); 0 for a joint that does not move.
+        ``(..., n)`` times (s); 0 for a joint that does not move.
     """
     d = np.abs(np.asarray(delta, dtype=float))
     v = np.broadcast_to(np.asarray(vmax, dtype=float), d.shape)
