@@ -425,7 +425,11 @@ def register(sub: Any) -> None:
         help="between two q: quintic, cubic, trapezoid; through --via: the quintic (C4) or "
         "cubic (C2) spline through every point, or mstraj (lines with parabolic blends)",
     )
-    p.add_argument("--duration", type=float, help="seconds (default 2, or from the limits)")
+    p.add_argument(
+        "--duration",
+        type=float,
+        help="seconds (default 2, or from the limits); --via points evenly spaced in it",
+    )
     p.add_argument(
         "--times", nargs="+", type=float, metavar="T", help="waypoint times in s, from 0"
     )
