@@ -244,3 +244,18 @@ def test_random_splines_hit_and_join_whatever_the_spacing() -> None:
                     scale = max(1.0, p.peak(r).max())
                     tol = 1e-12 if r <= 2 else 1e-6  # jerk, snap: h⁻³, h⁻⁴ round-off
                     assert np.abs(jumps(p, r)).max(initial=0.0) <= tol * scale
+
+
+def test_mstraj_through_collinear_waypoints_has_no_corner() -> None:
+    a, b = np.array([0.2, -0.4, 1.0]), np.array([1.2, 0.6, -0.5])
+    W = a + np.array([0.0, 0.3, 0.7, 1.0])[:, None] * (b - a)
+    vmax, tacc = np.array([0.5, 0.8, 0.6]), 0.25
+    traj = via_trajectory(W, "mstraj", vmax=vmax, tacc=tacc, dt=1e-3)
+    s = (traj.q - a) / (b - a)  # every joint at the same fraction of the line
+    assert np.allclose(s, s[:, :1], atol=1e-12)
+    assert np.all(np.abs(traj.qd) <= vmax * (1 + 1e-12))
+    # the trapezoid of the line: cruise at the slowest joint's vmax, |Δ|/v + tacc in all
+    slow = np.argmax(np.abs(b - a) / vmax)
+    assert traj.t[-1] == pytest.approx(abs(b - a)[slow] / vmax[slow] + tacc, rel=1e-14)
+    cruise = (traj.t > tacc) & (traj.t < traj.t[-1] - tacc)
+    assert np.allclose(traj.qdd[cruise], 0.0, atol=1e-12)
