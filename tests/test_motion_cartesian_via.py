@@ -56,6 +56,9 @@ def test_corner_blend_by_hand() -> None:
         left = (geo(sk) - geo(sk - h)) / h
         right = (geo(sk + h) - geo(sk)) / h
         assert np.abs(left - right).max() < 1e-4
+    # any batch shape of s
+    for shape in ((), (1,), (3, 2)):
+        assert geo(np.full(shape, 0.3)).shape == (*shape, 4, 4)
     # no blend: every pose passed, with a corner
     sharp = BlendedPolyline(P, 0.0)
     assert np.allclose(sharp(np.array([0.0, 0.5, 1.0])), P, atol=1e-15)

@@ -16,7 +16,8 @@ orientation: ``R_i·exp(ω_in·x + (ω_out − ω_in)·(x + δ)²/(4δ))`` with 
 s_i``. Position and orientation are continuous with continuous rates
 ``d/ds``. ``δ`` is chosen so that the blend leaves each segment at most
 ``blend`` metres before the corner (exactly ``blend`` where the two segments
-move at the same rate in ``s``), and never more than half of either segment.
+move at the same rate in ``s``), and never more than half of either segment; a
+corner between two pure rotations is not blended (the blend is a length).
 The corner poses themselves are then not reached; with ``blend = 0`` every
 pose is passed exactly.
 

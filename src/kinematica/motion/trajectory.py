@@ -306,8 +306,8 @@ def joint_trajectory(
             them is then needed, both for the trapezoid).
         profile: ``"quintic"`` (zero or given velocity and acceleration at
             both ends), ``"cubic"`` (velocity at both ends) or ``"trapezoid"``
-            (rest to rest, constant acceleration ``±amax``, cruise at ``vmax``
-            or a triangle when ``vmax`` is not reached).
+            (rest to rest, constant acceleration ``±amax``, a cruise or a
+            triangle when the cruise speed is not reached; ``sync``).
         dt: Largest sample spacing (s); samples are uniform, the last at T.
         vmax: Speed limit per joint (scalar or ``(n,)``; rad/s, m/s).
         amax: Acceleration limit per joint (rad/s², m/s²).
