@@ -127,40 +127,67 @@ def via_polynomials(
     k, n = w.shape
     t = None if times is None else _times(times, k)
     am = _limit(amax, (n,), "amax")
+    ends_given = {"qd0": qd0, "qd1": qd1, "qdd0": qdd0, "qdd1": qdd1, "qd": qd, "qdd": qdd}
     if method == "mstraj":
-        extra = {"qd0": qd0, "qd1": qd1, "qdd0": qdd0, "qdd1": qdd1, "qd": qd, "qdd": qdd}
-        named = [name for name, x in extra.items() if x is not None]
+        named = [name for name, x in ends_given.items() if x is not None]
         if named or ends != "clamped":
             raise KinematicaError(
                 f"mstraj starts and ends at rest: drop {', '.join(named) or 'ends'}"
             )
-        if tacc is None or not (math.isfinite(tacc) and tacc > 0):
-            raise KinematicaError(
-                f"tacc must be the blend time of mstraj, > 0 (s), got {tacc!r}", arg="tacc"
-            )
-        vm = _limit(vmax, (k - 1, n), "vmax")
-        if t is None:
-            if vm is None:
-                raise KinematicaError("times must be given, or vmax to derive them", arg="times")
-            t = blend_times(w, vm, tacc)
-        pieces = blend_pieces(w, t, tacc)
-        _check(pieces, None, am, vm, tacc)
-        return pieces
+        return _blends(w, t, vmax, am, tacc)
     if tacc is not None:
         raise KinematicaError("tacc is the blend time of method='mstraj'", arg="tacc")
-    vm = _limit(vmax, (n,), "vmax")
+    spline: Literal["cubic", "quintic"] = "cubic" if method == "cubic" else "quintic"
+    return _spline(w, spline, t, _limit(vmax, (n,), "vmax"), am, ends, ends_given)
+
+
+def _blends(
+    w: FloatArray,
+    t: FloatArray | None,
+    vmax: ArrayLike | None,
+    am: FloatArray | None,
+    tacc: float | None,
+) -> PiecewisePolynomial:
+    """Method ``"mstraj"``: lines and parabolic blends, times from ``vmax`` if not given."""
+    k, n = w.shape
+    if tacc is None or not (math.isfinite(tacc) and tacc > 0):
+        raise KinematicaError(
+            f"tacc must be the blend time of mstraj, > 0 (s), got {tacc!r}", arg="tacc"
+        )
+    vm = _limit(vmax, (k - 1, n), "vmax")
+    if t is None:
+        if vm is None:
+            raise KinematicaError("times must be given, or vmax to derive them", arg="times")
+        t = blend_times(w, vm, tacc)
+    pieces = blend_pieces(w, t, tacc)
+    _check(pieces, None, am, vm, tacc)
+    return pieces
+
+
+def _spline(
+    w: FloatArray,
+    method: Literal["cubic", "quintic"],
+    t: FloatArray | None,
+    vm: FloatArray | None,
+    am: FloatArray | None,
+    ends: Ends,
+    bc: dict[str, ArrayLike | None],
+) -> PiecewisePolynomial:
+    """Methods ``"cubic"`` and ``"quintic"``: the spline, or given derivatives at every waypoint."""
+    k, n = w.shape
     m = 2 if method == "cubic" else 3
-    if method == "cubic" and (qdd0 is not None or qdd1 is not None or qdd is not None):
+    if method == "cubic" and any(bc[x] is not None for x in ("qdd0", "qdd1", "qdd")):
         raise KinematicaError("the cubic sets velocities only: use 'quintic' for accelerations")
-    if qdd is not None and qd is None:
+    if bc["qdd"] is not None and bc["qd"] is None:
         raise KinematicaError("qdd at the waypoints needs qd too", arg="qdd")
-    start = np.stack([_array(qd0, (n,), "qd0"), _array(qdd0, (n,), "qdd0")])[: m - 1]
-    end = np.stack([_array(qd1, (n,), "qd1"), _array(qdd1, (n,), "qdd1")])[: m - 1]
+    start = np.stack([_array(bc["qd0"], (n,), "qd0"), _array(bc["qdd0"], (n,), "qdd0")])
+    end = np.stack([_array(bc["qd1"], (n,), "qd1"), _array(bc["qdd1"], (n,), "qdd1")])
+    start, end = start[: m - 1], end[: m - 1]
     given: FloatArray | None = None
-    if qd is not None:
-        if any(x is not None for x in (qd0, qd1, qdd0, qdd1)) or ends != "clamped":
+    if bc["qd"] is not None:
+        if any(bc[x] is not None for x in ("qd0", "qd1", "qdd0", "qdd1")) or ends != "clamped":
             raise KinematicaError("qd (and qdd) give every waypoint's derivatives: drop qd0..qdd1")
-        given = np.stack([_array(qd, (k, n), "qd"), _array(qdd, (k, n), "qdd")], axis=1)
+        given = np.stack([_array(bc["qd"], (k, n), "qd"), _array(bc["qdd"], (k, n), "qdd")], 1)
         given = given[:, : m - 1]
 
     def build(tt: FloatArray) -> PiecewisePolynomial:
@@ -176,6 +203,9 @@ def via_polynomials(
             raise KinematicaError("give times when velocities or accelerations are not zero")
         inf = np.full(n, np.inf)
         vl, al = (inf if vm is None else vm), (inf if am is None else am)
+        # Each segment its slowest joint's rest-to-rest time, then one factor for all so
+        # that the spline's exact peaks just reach the tightest limit (a spline with rest
+        # or natural ends scales with its times: speeds by 1/c, accelerations by 1/c²).
         seg = minimum_time(np.diff(w, axis=0), vl, al, method).max(axis=1)
         if np.any(seg <= 0):
             i = int(np.flatnonzero(seg <= 0)[0])
