@@ -20,15 +20,29 @@ import numpy as np
 from numpy.polynomial import polynomial as npoly
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica.errors import DimensionError, KinematicaError
+from kinematica.arguments import check_choice, check_number, check_size
+from kinematica.errors import ArgumentError, DimensionError, KinematicaError
+from kinematica.spatial.checks import as_float_array
 
-__all__ = ["JointTrajectory", "Profile", "joint_trajectory", "time_scaling"]
+__all__ = [
+    "MAX_DURATION",
+    "MAX_SAMPLES",
+    "JointTrajectory",
+    "Profile",
+    "joint_trajectory",
+    "time_scaling",
+]
 
 FloatArray = NDArray[np.float64]
 Profile = Literal["quintic", "cubic", "trapezoid"]
+PROFILES: tuple[Profile, ...] = ("quintic", "cubic", "trapezoid")
 
 #: Default sample spacing (s).
 DEFAULT_DT = 0.01
+#: Longest trajectory (s), given or derived from the limits: about 30 years.
+MAX_DURATION = 1e9
+#: Most samples a trajectory has (duration / dt + 1): ~50 MB of q, qd, qdd for 6 joints.
+MAX_SAMPLES = 1_000_000
 
 # Hermite bases, coefficients in s (lowest power first). Weights: quintic
 # (p0, T·v0, T²·a0, T²·a1, T·v1, p1); cubic (p0, T·v0, T·v1, p1).
@@ -67,7 +81,7 @@ class JointTrajectory(NamedTuple):
 def _vector(x: ArrayLike | None, n: int, name: str, positive: bool = False) -> FloatArray:
     if x is None:
         return np.zeros(n)
-    a = np.asarray(x, dtype=float)
+    a = as_float_array(x, name)
     if a.ndim == 0:
         a = np.full(n, float(a))
     if a.shape != (n,):
@@ -128,7 +142,15 @@ def time_scaling(
     Returns:
         ``(s, ds/dt, d²s/dt²)``, each ``(m,)``.
     """
-    ta = np.asarray(t, dtype=float)
+    check_choice(profile, "profile", PROFILES)
+    ta = as_float_array(t, "t")
+    if ta.ndim != 1:
+        raise DimensionError(f"t must be times of shape (m,), got shape {ta.shape}")
+    duration = check_number(
+        duration, "duration", positive=True, hi=MAX_DURATION, unit="s", what="a number of seconds"
+    )
+    if vmax is not None:
+        vmax = check_number(vmax, "vmax", positive=True, unit="1/s", what="a speed")
     if profile == "trapezoid":
         T, V, A = _trapezoid_params(duration, vmax, None)
         return _trapezoid(ta, T, V, A)
@@ -212,18 +234,21 @@ def joint_trajectory(
         KinematicaError: Unknown profile, bad duration/dt/limits, or a given
             duration too short for the limits.
     """
-    if profile not in ("quintic", "cubic", "trapezoid"):
-        raise KinematicaError(f"profile must be 'quintic', 'cubic' or 'trapezoid', got {profile!r}")
-    a = np.asarray(q0, dtype=float)
+    check_choice(profile, "profile", PROFILES)
+    a = as_float_array(q0, "q0")
     if a.ndim != 1 or a.size == 0:
         raise DimensionError(f"q0 must be one configuration (n,), got shape {a.shape}")
     n = a.size
     a = _vector(a, n, "q0")
     b = _vector(q1, n, "q1")
-    if duration is not None and not (math.isfinite(duration) and duration > 0):
-        raise KinematicaError(f"duration must be a positive number of seconds, got {duration!r}")
-    if not (math.isfinite(dt) and dt > 0):
-        raise KinematicaError(f"dt must be a positive number of seconds, got {dt!r}")
+    seconds = "a number of seconds"
+    if duration is not None:
+        duration = check_number(
+            duration, "duration", positive=True, hi=MAX_DURATION, unit="s", what=seconds
+        )
+    dt = check_number(dt, "dt", positive=True, unit="s", what=seconds)
+    if duration is not None:
+        _times_check(duration, dt, "duration/dt")
     vm = None if vmax is None else _vector(vmax, n, "vmax", positive=True)
     am = None if amax is None else _vector(amax, n, "amax", positive=True)
     delta = np.abs(b - a)
@@ -239,6 +264,8 @@ def joint_trajectory(
             T = duration or 0.0
             return _still(np.zeros(1) if T == 0 else _times(T, dt), a, b)
         T, V, A = _trapezoid_params(duration, Vs, As)
+        if duration is None:
+            _derived_check(T, dt, vmax, amax)
         t = _times(T, dt)
         s, sd, sdd = _trapezoid(t, T, V, A)
         d = b - a
@@ -258,6 +285,7 @@ def joint_trajectory(
         T = max(kv / Vs if Vs else 0.0, math.sqrt(ka / As) if As else 0.0)
         if T == 0.0:
             return _still(np.zeros(1), a, b)
+        _derived_check(T, dt, vmax, amax)
     else:
         T = float(duration)
     t = _times(T, dt)
@@ -296,6 +324,25 @@ def _check_limits(
                 f"duration {T:g} s is too short: joint {j + 1} would reach "
                 f"{peak[j]:.6g} > {what} {lim[j]:g}"
             )
+
+
+def _times_check(T: float, dt: float, name: str) -> None:
+    """Refuse a duration ``T`` and spacing ``dt`` that give more than MAX_SAMPLES samples."""
+    check_size(T / dt + 1.0, MAX_SAMPLES, name, f"samples ({T:g} s every {dt!r} s)")
+
+
+def _derived_check(T: float, dt: float, vmax: object, amax: object) -> None:
+    """The duration the speed/acceleration limits need, checked like a given one."""
+    given = [k for k, v in (("vmax", vmax), ("amax", amax)) if v is not None]
+    name = "/".join(given)
+    verb = "give" if len(given) > 1 else "gives"
+    if not T <= MAX_DURATION:
+        raise ArgumentError(
+            f"{name} {verb} a duration of {T:.3g} s; at most {MAX_DURATION:g} s are made "
+            "(raise the limits)",
+            arg=name,
+        )
+    _times_check(T, dt, name)
 
 
 def _times(T: float, dt: float) -> FloatArray:

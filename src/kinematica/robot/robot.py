@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from kinematica.arguments import check_choice, check_flag
 from kinematica.core import Chain
 from kinematica.dh import (
     Convention,
@@ -295,6 +296,8 @@ class Robot:
             ``(..., 4, 4)`` pose ``T = base · 0A1 · ... · (n-1)An · tool``, or
             ``(..., n+1, 4, 4)`` with ``all_frames``.
         """
+        if all_frames is not False and all_frames is not True:
+            all_frames = check_flag(all_frames, "all_frames")
         qa = q if type(q) is np.ndarray and q.dtype is _FLOAT64 else self.check_q(q)
         if qa.shape == self._single:
             try:  # one configuration, already what the core reads: one call
@@ -367,8 +370,7 @@ class Robot:
             ``(..., 6, n)`` (m/rad or m/m in the top rows, rad/rad below); rows
             of a batch holding NaN/inf come out NaN, with a warning.
         """
-        if frame not in ("base", "tool"):
-            raise KinematicaError(f"frame must be 'base' or 'tool', got {frame!r}", arg="frame")
+        check_choice(frame, "frame", ("base", "tool"))
         if euler is not None:
             if frame != "base":
                 raise KinematicaError(
@@ -456,6 +458,7 @@ class Robot:
             options is None
             and type(target) is np.ndarray
             and target.dtype is _FLOAT64
+            and method.__class__ is str
             and method == "auto"
             and respect_limits is True
             and tol is None
@@ -475,8 +478,13 @@ class Robot:
                 return out
         if options is None:
             options = IKOptions(method, tol, respect_limits, q0, mask, seed, workers)
+        elif not isinstance(options, IKOptions):
+            raise KinematicaError(
+                f"options must be an IKOptions, got {type(options).__name__}", arg="options"
+            )
         elif not (
-            method == "auto"
+            isinstance(method, str)
+            and method == "auto"
             and respect_limits is True
             and all(v is None for v in (tol, q0, mask, seed, workers))
         ):
@@ -484,6 +492,8 @@ class Robot:
                 "give the IK settings either as options= or as keywords, not both",
                 arg="options",
             )
+        check_choice(options.method, "method", ("auto", "analytic", "numeric"))
+        check_flag(options.respect_limits, "respect_limits")
         return solve_ik(self.chain, target, options)
 
     def _fast(self, pose: FloatArray, kind: TargetKind) -> IKResult | None:
