@@ -11,9 +11,18 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.cli.format import fmt, matrix, table
-from kinematica.cli.options import add_common, add_robot, angle_unit, dump, q_in, q_out
+from kinematica.cli.options import (
+    add_common,
+    add_robot,
+    angle_unit,
+    dump,
+    finite,
+    q_in,
+    q_out,
+    robot_from_args,
+)
 from kinematica.errors import KinematicaError
-from kinematica.robot import Robot, load
+from kinematica.robot import Robot
 
 if TYPE_CHECKING:  # kinematica.motion loads when one of these commands runs
     from kinematica.motion import CartesianPath
@@ -54,7 +63,7 @@ def jacobian(args: argparse.Namespace) -> int:
         singularities,
     )
 
-    robot = load(args.robot)
+    robot = robot_from_args(args)
     q = q_in(robot, args.q, args, "q")
     J = robot.jacobian(q, frame=args.frame)
     rank, generic = jacobian_rank(robot, q)
@@ -110,9 +119,9 @@ def workspace_cmd(args: argparse.Namespace) -> int:
     """``kinematica workspace ROBOT``: bounds, volume, a slice, a map."""
     from kinematica.motion import workspace
 
-    robot = load(args.robot)
-    if args.samples < 1:
-        raise KinematicaError(f"--samples must be a positive integer, got {args.samples}")
+    robot = robot_from_args(args)
+    if args.at is not None:
+        finite([args.at], "--at")  # before sampling: the slice comes last
     bar = None
     if args.samples >= PROGRESS_FROM:
         from tqdm import tqdm
@@ -196,7 +205,7 @@ def trajectory(args: argparse.Namespace) -> int:
         write_json,
     )
 
-    robot = load(args.robot)
+    robot = robot_from_args(args)
     qa = q_in(robot, args.q_from, args, "from")
     qb = q_in(robot, args.q_to, args, "to")
     out = Path(args.output) if args.output else None
