@@ -33,6 +33,16 @@ from kinematica.motion import (
 )
 from kinematica.motion.trajectory import MAX_DURATION, MAX_SAMPLES
 from kinematica.motion.workspace import MAX_CELLS, voxel_range
+from kinematica.viz._mpl import (
+    MAX_DPI,
+    MAX_PIXELS,
+    MAX_SIDE,
+    MIN_DPI,
+    MIN_SIDE,
+    VizError,
+    check_picture,
+)
+from kinematica.viz.animate import MAX_FPS, MAX_RESAMPLED, MIN_FPS, animation_samples
 
 #: Values no argument should crash on: non-numbers, non-finite and extreme
 #: numbers, floats where counts are expected, wrong shapes.
@@ -189,7 +199,6 @@ def test_a_duration_and_dt_that_give_too_many_samples_are_refused() -> None:
         r"got 1e\+308",
     ):
         joint_trajectory(qa, qb, 1e308)
-    assert joint_trajectory(qa, qb, MAX_DURATION, dt=MAX_DURATION / 10).t[-1] == MAX_DURATION
     with pytest.raises(
         ArgumentError, match=r"^dt must be a number of seconds greater than 0 s?, got -1"
     ):
@@ -253,3 +262,53 @@ def test_manipulability_of_a_batch_with_nan_rows_is_nan_there() -> None:
         w = manipulability(arm, [[0.0, 0.5, 0.5], [0.0, math.nan, 0.0]], axes="trans")
     assert np.isnan(w[1])
     assert w[0] == pytest.approx(float(manipulability(arm, [0.0, 0.5, 0.5], axes="trans")))
+
+
+def test_the_longest_duration() -> None:
+    qa, qb = [0.0], [1.0]
+    assert joint_trajectory(qa, qb, MAX_DURATION, dt=MAX_DURATION / 10).t[-1] == MAX_DURATION
+    with pytest.raises(
+        ArgumentError, match=r"^duration must be .* at most 1e\+09 s, got 1010000000\.0"
+    ):
+        joint_trajectory(qa, qb, MAX_DURATION * 1.01, dt=MAX_DURATION / 10)
+
+
+# --- pictures and animations: their ranges, both sides of each bound ------------------------
+
+
+def test_picture_sizes_and_dpi() -> None:
+    assert check_picture((MIN_SIDE, MAX_SIDE), MIN_DPI) == ((MIN_SIDE, MAX_SIDE), MIN_DPI)
+    tallest = MAX_PIXELS // MAX_SIDE
+    assert check_picture((MAX_SIDE, tallest), MAX_DPI)[0] == (MAX_SIDE, tallest)
+    for size, match in [
+        ((MIN_SIDE - 1, 100), r"^size must be a whole number from 16 to 20,000, got 15"),
+        ((100, MAX_SIDE + 1), r"^size must be a whole number from 16 to 20,000, got 20001"),
+        ((MAX_SIDE, tallest + 1), r"^size gives 4e\+07 pixels; at most 40,000,000"),
+        ((100.0, 100), r"^size must be a whole number"),
+        ((100,), r"^size must be \(width, height\) in pixels"),
+    ]:
+        with pytest.raises(ArgumentError, match=match):
+            check_picture(size, 100.0)
+    for dpi in (MIN_DPI * 0.99, MAX_DPI * 1.01, math.nan, "100"):
+        with pytest.raises(ArgumentError, match=r"^dpi must be a number of dots per inch from 10"):
+            check_picture(None, dpi)
+
+
+def test_animation_frame_rates() -> None:
+    q = np.zeros((2, 1))
+    slow = np.array([0.0, 1.0 / MIN_FPS])  # two samples, 100 s apart
+    assert animation_samples(slow, q, MIN_FPS, None, timed=True)[2] == MIN_FPS
+    assert animation_samples(slow, q, None, None, timed=True)[2] == pytest.approx(MIN_FPS)
+    with pytest.raises(VizError, match=r"would play at 0\.0099 frames a second .* slower than"):
+        animation_samples(slow * 1.01, q, None, None, timed=True)
+    for fps in (MIN_FPS * 0.99, MAX_FPS * 1.01):
+        with pytest.raises(ArgumentError, match=r"^fps must be a number of frames a second from"):
+            animation_samples(slow, q, fps, None, timed=True)
+    assert animation_samples(slow, q, MAX_FPS, 300, timed=True)[2] == pytest.approx(
+        MAX_FPS * 299 / (100 * MAX_FPS)
+    )
+    # fps times the duration: the frames resampled, counted before any is made.
+    longest = np.array([0.0, (MAX_RESAMPLED - 1) / 100.0])
+    assert len(animation_samples(longest, q, 100.0, None, timed=True)[0]) == MAX_RESAMPLED
+    with pytest.raises(ArgumentError, match=r"^fps gives 1e\+06 frames over .* at most 1,000,000"):
+        animation_samples(longest + np.array([0.0, 0.01]), q, 100.0, None, timed=True)
