@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica.arguments import check_count, check_size
+from kinematica.arguments import check_count, check_flag, check_size
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.result import IKResult
 from kinematica.robot.singularities import singularities, singularity_plan
@@ -305,6 +305,7 @@ def cartesian_path(
     geo = _Geometry(A, B, None if via is None else np.asarray(via))
     if position_only is None:
         position_only = singularity_plan(robot).rows == (0, 1, 2)
+    position_only = check_flag(position_only, "position_only")
     follow = _Follower(robot, geo, bool(position_only))
     poses = geo(ss)
     m, n = ss.size, robot.dof

@@ -31,7 +31,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica.arguments import check_count, check_number
+from kinematica.arguments import check_count, check_flag, check_number
 from kinematica.errors import KinematicaError
 from kinematica.ik.numeric import check_seed, reach_bound
 from kinematica.robot.sampling import Seed, random_q, sampling_box
@@ -311,6 +311,7 @@ def workspace(
             unit=f"m for {robot.name}",
             what="a length",
         )
+    manipulability = check_flag(manipulability, "manipulability")
     if progress is not None and not callable(progress):
         raise KinematicaError(f"progress must be a function or None, got {progress!r}")
     points = np.empty((n, 3))

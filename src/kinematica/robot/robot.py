@@ -48,6 +48,8 @@ __all__ = ["Robot"]
 
 FloatArray = NDArray[np.float64]
 _FLOAT64 = np.dtype(np.float64)
+#: The frames a Jacobian is expressed in.
+_FRAMES = ("base", "tool")
 #: Where a position target is placed (the orientation is free).
 _IDENTITY = np.eye(4)
 #: What the core says of one configuration (kinematica._core.Chain.fk).
@@ -370,7 +372,8 @@ class Robot:
             ``(..., 6, n)`` (m/rad or m/m in the top rows, rad/rad below); rows
             of a batch holding NaN/inf come out NaN, with a warning.
         """
-        check_choice(frame, "frame", ("base", "tool"))
+        if frame.__class__ is not str or frame not in _FRAMES:  # the common case costs ~30 ns
+            check_choice(frame, "frame", _FRAMES)
         if euler is not None:
             if frame != "base":
                 raise KinematicaError(
@@ -536,19 +539,17 @@ class Robot:
 
     def with_limits(self, qlim: Sequence[Sequence[float] | None] | FloatArray) -> Robot:
         """The same robot with other joint limits (``(n, 2)``; ``None`` rows free)."""
-        rows = list(qlim)
+        try:
+            rows = list(qlim)
+        except TypeError:  # a number, None: not rows
+            raise DimensionError(
+                f"qlim must have {self.dof} rows (lo, hi) or None, got {short(qlim)}"
+            ) from None
         if len(rows) != self.dof:
             raise DimensionError(f"qlim must have {self.dof} rows, got {len(rows)}")
-
-        def pair(lim: Sequence[float] | FloatArray | None) -> tuple[float, float] | None:
-            if lim is None:
-                return None
-            lo, hi = (float(v) for v in lim)
-            return (lo, hi)
-
+        # Each joint checks its own pair (two numbers lo < hi, or None).
         links = tuple(
-            dataclasses.replace(link, qlim=pair(lim))
-            for link, lim in zip(self.links, rows, strict=True)
+            dataclasses.replace(link, qlim=lim) for link, lim in zip(self.links, rows, strict=True)
         )
         return dataclasses.replace(self, links=links)
 
