@@ -277,8 +277,10 @@ def cartesian_path(
 
     Raises:
         DimensionError: Poses that are not rigid transforms, bad shapes.
-        KinematicaError: ``steps < 2``, ``s`` not increasing within [0, 1],
-            or ``via`` collinear with the ends.
+        ArgumentError: ``steps`` not a whole number from 2 to MAX_STEPS, or
+            ``s`` longer than MAX_STEPS.
+        KinematicaError: ``s`` not increasing within [0, 1], or ``via``
+            collinear with the ends.
     """
     A, B = _as_pose(T0, "T0"), _as_pose(T1, "T1")
     if via is not None:

@@ -141,6 +141,12 @@ def time_scaling(
 
     Returns:
         ``(s, ds/dt, d²s/dt²)``, each ``(m,)``.
+
+    Raises:
+        ArgumentError: Unknown profile, ``duration`` not in (0, MAX_DURATION] s,
+            ``vmax`` not a positive number.
+        DimensionError: ``t`` not numbers of shape ``(m,)``.
+        KinematicaError: ``duration`` does not fit ``vmax`` (trapezoid).
     """
     check_choice(profile, "profile", PROFILES)
     ta = as_float_array(t, "t")
@@ -231,8 +237,12 @@ def joint_trajectory(
 
     Raises:
         DimensionError: Shapes differ, NaN or inf.
-        KinematicaError: Unknown profile, bad duration/dt/limits, or a given
-            duration too short for the limits.
+        ArgumentError: Unknown profile; ``duration`` not in (0, MAX_DURATION]
+            s; ``dt`` not > 0; more than MAX_SAMPLES samples from the duration
+            (given, or the one ``vmax``/``amax`` need) and ``dt``. Checked
+            before any sample is made.
+        KinematicaError: Limits that are not positive, or a given duration
+            too short for the limits.
     """
     check_choice(profile, "profile", PROFILES)
     a = as_float_array(q0, "q0")
