@@ -2,7 +2,8 @@
 
 Each helper raises :class:`~kinematica.errors.ArgumentError` with ``arg`` set
 and a message that begins with the argument's name and states the accepted
-range (``"dt must be a number of seconds from 1e-06 to 1e+06, got 1e-320"``),
+range (``"duration must be a number of seconds greater than 0 and at most
+1e+09 s, got 1e+308"``),
 so the command line can say the same of its option. They run before any work
 starts: a call that would sample ``1e308`` seconds, draw ``1e10`` pixels or
 read ``/dev/zero`` is refused at once rather than after memory runs out.
