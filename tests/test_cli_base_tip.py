@@ -155,16 +155,16 @@ def test_derive_uses_the_chain(capsys: pytest.CaptureFixture[str], urdf: str) ->
         ("derive", "planar-3r"),
     ],
 )
-@pytest.mark.parametrize("option", ["--base", "--tip"])
+@pytest.mark.parametrize("option", [("--base", "link"), ("--tip", "link"), ("--xacro",)])
 def test_base_and_tip_are_refused_for_a_robot_that_is_not_a_urdf(
     capsys: pytest.CaptureFixture[str],
     tmp_path: Path,
     monkeypatch: pytest.MonkeyPatch,
     argv: tuple[str, ...],
-    option: str,
+    option: tuple[str, ...],
 ) -> None:
     monkeypatch.chdir(tmp_path)  # were a file written, it would land here
-    code, out, err = run(capsys, *argv, option, "link")
+    code, out, err = run(capsys, *argv, *option)
     assert code == 2
-    assert err.count("\n") == 1 and f"{option[2:]}: only for URDF files" in err, err
+    assert err.count("\n") == 1 and f"{option[0][2:]}: only for URDF files" in err, err
     assert not out and not list(tmp_path.iterdir())

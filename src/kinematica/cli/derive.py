@@ -29,9 +29,10 @@ def derive(args: argparse.Namespace) -> int:
         raise KinematicaError(
             "kinematica derive needs sympy: pip install 'kinematica[symbolic]'"
         ) from exc
-    # By name, a robot file's named lengths stay symbols; a URDF chain cut by
-    # --base/--tip is loaded first (a URDF has numbers only either way).
-    source = robot_from_args(args) if args.base or args.tip else args.robot
+    # By name, a robot file's named lengths stay symbols; a URDF asked with its
+    # own options (--base, --tip, --xacro) is loaded first (numbers only either way).
+    urdf_options = (args.base, args.tip, args.xacro, args.xacro_env)
+    source = robot_from_args(args) if any(urdf_options) else args.robot
     text = report(source, format=args.format, lang=args.lang)
     if args.output is not None:
         path = Path(args.output)
