@@ -33,6 +33,8 @@ from kinematica.motion import (
 )
 from kinematica.motion.trajectory import MAX_DURATION, MAX_SAMPLES
 from kinematica.motion.workspace import MAX_CELLS, voxel_range
+from kinematica.motion.workspace import MAX_SAMPLES as MAX_WORKSPACE_SAMPLES
+from kinematica.robot.sampling import MAX_CONFIGURATIONS
 from kinematica.viz._mpl import (
     MAX_DPI,
     MAX_PIXELS,
@@ -321,3 +323,14 @@ def test_animation_frame_rates() -> None:
     assert len(animation_samples(longest, q, 100.0, None, timed=True)[0]) == MAX_RESAMPLED
     with pytest.raises(ArgumentError, match=r"^fps gives 1e\+06 frames over .* at most 1,000,000"):
         animation_samples(longest + np.array([0.0, 0.01]), q, 100.0, None, timed=True)
+
+
+def test_the_most_configurations_and_samples() -> None:
+    one = km.Robot.from_dh([km.Revolute(a=1.0, qlim=(-1.0, 1.0))])
+    assert random_q(one, (MAX_CONFIGURATIONS // 2, 0)).shape == (MAX_CONFIGURATIONS // 2, 0, 1)
+    with pytest.raises(ArgumentError, match=r"^n gives 1e\+07 configurations; at most 10,000,000"):
+        random_q(one, (MAX_CONFIGURATIONS // 2 + 1, 2))  # a batch shape counts all of it
+    with pytest.raises(
+        ArgumentError, match=r"^samples must be a whole number from 1 to 20,000,000"
+    ):
+        workspace(one, samples=MAX_WORKSPACE_SAMPLES + 1)
