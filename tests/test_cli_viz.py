@@ -105,7 +105,7 @@ def test_plot_unreachable_pose_exits_1(tmp_path: Path, capsys: pytest.CaptureFix
         (["plot", "puma560"], "plot needs --q"),
         (["plot", "puma560", "--q", "1", "2"], "--q needs 6 values"),
         (["plot", "puma560", "--q", "0", "0", "0", "0", "0", "0", "-o", "a.txt"], "type '.txt'"),
-        (["animate", "puma560", "--trajectory", "missing.csv"], "cannot read the trajectory file"),
+        (["animate", "puma560", "--trajectory", "missing.csv"], "missing.csv: file not found"),
         (["plot", "nosuchrobot", "--q", "0"], "nosuchrobot"),
     ],
 )

@@ -16,12 +16,14 @@ from kinematica.cli.options import (
     add_robot,
     angle_unit,
     dump,
+    finite,
     lengths_in,
     q_in,
     q_out,
+    robot_from_args,
 )
 from kinematica.errors import KinematicaError
-from kinematica.robot import Robot, load
+from kinematica.robot import Robot
 
 if TYPE_CHECKING:  # kinematica.motion loads when one of these commands runs
     from kinematica.motion import CartesianPath
@@ -63,7 +65,7 @@ def jacobian(args: argparse.Namespace) -> int:
         singularities,
     )
 
-    robot = load(args.robot)
+    robot = robot_from_args(args)
     q = q_in(robot, args.q, args, "q")
     J = robot.jacobian(q, frame=args.frame)
     rank, generic = jacobian_rank(robot, q)
@@ -119,9 +121,9 @@ def workspace_cmd(args: argparse.Namespace) -> int:
     """``kinematica workspace ROBOT``: bounds, volume, a slice, a map."""
     from kinematica.motion import workspace
 
-    robot = load(args.robot)
-    if args.samples < 1:
-        raise KinematicaError(f"--samples must be a positive integer, got {args.samples}")
+    robot = robot_from_args(args)
+    if args.at is not None:
+        finite([args.at], "--at")  # before sampling: the slice comes last
     bar = None
     if args.samples >= PROGRESS_FROM:
         from tqdm import tqdm
@@ -248,7 +250,7 @@ def trajectory(args: argparse.Namespace) -> int:
     )
 
     args.aliases = _TRAJECTORY_OPTIONS
-    robot = load(args.robot)
+    robot = robot_from_args(args)
     W, times = _waypoints(robot, args)
     qa, qb = W[0], W[-1]
     through = W.shape[0] > 2 or args.waypoints is not None or args.profile == "mstraj"

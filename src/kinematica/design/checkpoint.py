@@ -31,11 +31,14 @@ from typing import Any, Final
 from kinematica.design.evaluate import Evaluation
 from kinematica.errors import KinematicaError
 from kinematica.io.atomic import write_failed, write_text_atomic
+from kinematica.io.reading import read_limited
 
 __all__ = ["Checkpoint", "CheckpointError"]
 
 #: The first key of a checkpoint's header line.
 FORMAT: Final = "kinematica-design-checkpoint"
+#: Largest checkpoint read (256 MiB): about a million evaluations.
+MAX_BYTES = 256 * 2**20
 #: Bumped whenever what an evaluation holds, or how it is computed, changes.
 VERSION: Final = 1
 
@@ -96,11 +99,16 @@ class Checkpoint:
         self._file.seek(0, os.SEEK_END)
 
     def _read(self) -> str:
+        data = read_limited(
+            self.path,
+            MAX_BYTES,
+            "checkpoint file",
+            lambda reason: CheckpointError(f"{self.path}: {reason}"),
+            missing_ok=True,
+        )
         try:
-            return self.path.read_text(encoding="utf-8")
-        except FileNotFoundError:
-            return ""
-        except (OSError, UnicodeDecodeError) as exc:
+            return data.decode("utf-8")
+        except UnicodeDecodeError as exc:
             raise CheckpointError(f"{self.path}: cannot read the checkpoint: {exc}") from exc
 
     def _open(self) -> io.FileIO:

@@ -29,6 +29,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from kinematica.arguments import check_count, check_flag, check_size
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.result import IKResult
 from kinematica.robot.singularities import singularities, singularity_plan
@@ -40,6 +41,7 @@ from kinematica.spatial import (
     quat_slerp,
     wrap_angle,
 )
+from kinematica.spatial.checks import as_batch_array, as_float_array
 
 if TYPE_CHECKING:
     from kinematica.robot import Robot
@@ -47,6 +49,7 @@ if TYPE_CHECKING:
 __all__ = [
     "MAX_DEPTH",
     "MAX_JOINT_STEP",
+    "MAX_STEPS",
     "CartesianPath",
     "PathEvent",
     "cartesian_path",
@@ -58,6 +61,8 @@ FloatArray = NDArray[np.float64]
 
 #: Largest joint step (rad or m) between two path samples accepted without refining.
 MAX_JOINT_STEP = 0.2
+#: Most samples of a path (each is an IK solve).
+MAX_STEPS = 100_000
 #: Bisection levels when refining a segment or locating a singular crossing.
 MAX_DEPTH = 40
 #: Three points closer than this (m) to one line define no circle.
@@ -238,7 +243,7 @@ class _Follower:
 
 
 def _as_pose(T: ArrayLike, name: str) -> FloatArray:
-    out: FloatArray = check_transform(np.asarray(T, dtype=float), name=name)
+    out: FloatArray = check_transform(T, name=name)
     if out.shape != (4, 4):
         raise DimensionError(f"{name} must be one pose (4, 4), got shape {out.shape}")
     return out
@@ -277,12 +282,14 @@ def cartesian_path(
 
     Raises:
         DimensionError: Poses that are not rigid transforms, bad shapes.
-        KinematicaError: ``steps < 2``, ``s`` not increasing within [0, 1],
-            or ``via`` collinear with the ends.
+        ArgumentError: ``steps`` not a whole number from 2 to MAX_STEPS, or
+            ``s`` longer than MAX_STEPS.
+        KinematicaError: ``s`` not increasing within [0, 1], or ``via``
+            collinear with the ends.
     """
     A, B = _as_pose(T0, "T0"), _as_pose(T1, "T1")
     if via is not None:
-        v = np.asarray(via, dtype=float)
+        v = as_float_array(via, "via")
         v = _as_pose(v, "via")[:3, 3] if v.shape == (4, 4) else v
         if v.shape != (3,) or not np.all(np.isfinite(v)):
             raise DimensionError(f"via must be a point (3,) or a pose (4, 4), got {via!r}")
@@ -295,13 +302,12 @@ def cartesian_path(
 def path_samples(steps: int, s: ArrayLike | None) -> FloatArray:
     """``(m,)`` path parameters: ``steps`` uniform ones, or ``s`` checked."""
     if s is None:
-        if isinstance(steps, bool) or not isinstance(steps, int | np.integer) or steps < 2:
-            raise KinematicaError(f"steps must be an integer >= 2, got {steps!r}")
-        return np.linspace(0.0, 1.0, int(steps))
-    ss = np.asarray(s, dtype=float)
+        return np.linspace(0.0, 1.0, check_count(steps, "steps", lo=2, hi=MAX_STEPS))
+    ss = as_float_array(s, "s")
     ok = ss.ndim == 1 and ss.size >= 2 and np.all(np.isfinite(ss))
     if not ok or ss[0] < 0 or ss[-1] > 1 or np.any(np.diff(ss) < 0):
         raise KinematicaError("s must hold >= 2 non-decreasing values within [0, 1]")
+    check_size(ss.size, MAX_STEPS, "s", "samples")
     return ss
 
 
@@ -324,9 +330,16 @@ def follow(
     Returns:
         The :class:`CartesianPath`, with its ``events``.
     """
-    q_start = None if q0 is None else robot.check_q(q0, "q0")
+    q_start = None
+    if q0 is not None:
+        q_start = as_batch_array(robot.check_q(q0, "q0"), "q0", (robot.dof,))
+        if q_start.ndim != 1:
+            raise DimensionError(
+                f"q0 must be one configuration ({robot.dof},), got {q_start.shape}"
+            )
     if position_only is None:
         position_only = singularity_plan(robot).rows == (0, 1, 2)
+    position_only = check_flag(position_only, "position_only")
     follower = _Follower(robot, geometry, bool(position_only))
     poses = geometry(ss)
     m, n = ss.size, robot.dof

@@ -37,12 +37,16 @@ import numpy as np
 from numpy.polynomial import polynomial as npoly
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica.errors import DimensionError, KinematicaError
+from kinematica.arguments import check_choice, check_number, check_size
+from kinematica.errors import ArgumentError, DimensionError, KinematicaError
+from kinematica.spatial.checks import as_float_array
 
 __all__ = [
     "CUBIC_BASIS",
     "DURATION_RTOL",
     "LIMIT_RTOL",
+    "MAX_DURATION",
+    "MAX_SAMPLES",
     "QUINTIC_BASIS",
     "JointTrajectory",
     "Profile",
@@ -56,6 +60,8 @@ __all__ = [
 FloatArray = NDArray[np.float64]
 Profile = Literal["quintic", "cubic", "trapezoid"]
 Sync = Literal["each", "shared"]
+PROFILES: tuple[Profile, ...] = ("quintic", "cubic", "trapezoid")
+SYNCS: tuple[Sync, ...] = ("each", "shared")
 
 #: Default sample spacing (s).
 DEFAULT_DT = 0.01
@@ -64,6 +70,10 @@ DEFAULT_DT = 0.01
 DURATION_RTOL = 1e-12
 #: Relative excess over ``vmax``/``amax`` accepted as round-off when checking given times.
 LIMIT_RTOL = 1e-9
+#: Longest trajectory (s), given or derived from the limits: about 30 years.
+MAX_DURATION = 1e9
+#: Most samples a trajectory has (duration / dt + 1): ~50 MB of q, qd, qdd for 6 joints.
+MAX_SAMPLES = 1_000_000
 
 # Hermite bases, coefficients in s (lowest power first). Weights: quintic
 # (p0, T·v0, T²·a0, T²·a1, T·v1, p1); cubic (p0, T·v0, T·v1, p1). The splines
@@ -103,7 +113,7 @@ class JointTrajectory(NamedTuple):
 def _vector(x: ArrayLike | None, n: int, name: str, positive: bool = False) -> FloatArray:
     if x is None:
         return np.zeros(n)
-    a = np.asarray(x, dtype=float)
+    a = as_float_array(x, name)
     if a.ndim == 0:
         a = np.full(n, float(a))
     if a.shape != (n,):
@@ -163,8 +173,22 @@ def time_scaling(
 
     Returns:
         ``(s, ds/dt, d²s/dt²)``, each ``(m,)``.
+
+    Raises:
+        ArgumentError: Unknown profile, ``duration`` not in (0, MAX_DURATION] s,
+            ``vmax`` not a positive number.
+        DimensionError: ``t`` not numbers of shape ``(m,)``.
+        KinematicaError: ``duration`` does not fit ``vmax`` (trapezoid).
     """
-    ta = np.asarray(t, dtype=float)
+    check_choice(profile, "profile", PROFILES)
+    ta = as_float_array(t, "t")
+    if ta.ndim != 1:
+        raise DimensionError(f"t must be times of shape (m,), got shape {ta.shape}")
+    duration = check_number(
+        duration, "duration", positive=True, hi=MAX_DURATION, unit="s", what="a number of seconds"
+    )
+    if vmax is not None:
+        vmax = check_number(vmax, "vmax", positive=True, unit="1/s", what="a speed")
     if profile == "trapezoid":
         T, V, A = _trapezoid_params(duration, vmax, None)
         return _trapezoid(ta, T, V, A)
@@ -236,6 +260,7 @@ def _trapezoid_each(
     v = np.full(D.size, np.inf) if vm is None else vm
     if duration is None:
         T = float(minimum_time(D, v, am).max())
+        _derived_check(T, dt, vm, am)
     else:
         T = float(duration)
         own = minimum_time(D, v, am)
@@ -326,14 +351,16 @@ def joint_trajectory(
 
     Raises:
         DimensionError: Shapes differ, NaN or inf.
-        KinematicaError: Unknown profile, bad duration/dt/limits, or a given
-            duration too short for the limits.
+        ArgumentError: Unknown profile or sync; ``duration`` not in (0,
+            MAX_DURATION] s; ``dt`` not > 0; more than MAX_SAMPLES samples from
+            the duration (given, or the one ``vmax``/``amax`` need) and ``dt``.
+            Checked before any sample is made.
+        KinematicaError: Limits that are not positive, or a given duration
+            too short for the limits.
     """
-    if profile not in ("quintic", "cubic", "trapezoid"):
-        raise KinematicaError(f"profile must be 'quintic', 'cubic' or 'trapezoid', got {profile!r}")
-    if sync not in ("each", "shared"):
-        raise KinematicaError(f"sync must be 'each' or 'shared', got {sync!r}", arg="sync")
-    a = np.asarray(q0, dtype=float)
+    check_choice(profile, "profile", PROFILES)
+    check_choice(sync, "sync", SYNCS)
+    a = as_float_array(q0, "q0")
     if a.ndim == 2:
         raise DimensionError(
             f"q0 must be one configuration (n,), got shape {a.shape}; "
@@ -344,10 +371,14 @@ def joint_trajectory(
     n = a.size
     a = _vector(a, n, "q0")
     b = _vector(q1, n, "q1")
-    if duration is not None and not (math.isfinite(duration) and duration > 0):
-        raise KinematicaError(f"duration must be a positive number of seconds, got {duration!r}")
-    if not (math.isfinite(dt) and dt > 0):
-        raise KinematicaError(f"dt must be a positive number of seconds, got {dt!r}")
+    seconds = "a number of seconds"
+    if duration is not None:
+        duration = check_number(
+            duration, "duration", positive=True, hi=MAX_DURATION, unit="s", what=seconds
+        )
+    dt = check_number(dt, "dt", positive=True, unit="s", what=seconds)
+    if duration is not None:
+        _times_check(duration, dt, "duration/dt")
     vm = None if vmax is None else _vector(vmax, n, "vmax", positive=True)
     am = None if amax is None else _vector(amax, n, "amax", positive=True)
     delta = np.abs(b - a)
@@ -365,6 +396,8 @@ def joint_trajectory(
         if sync == "each" and am is not None and (duration is not None or vm is not None):
             return _trapezoid_each(a, b, duration, vm, am, dt)
         T, V, A = _trapezoid_params(duration, Vs, As)
+        if duration is None:
+            _derived_check(T, dt, vmax, amax)
         t = sample_times(T, dt)
         s, sd, sdd = _trapezoid(t, T, V, A)
         d = b - a
@@ -385,6 +418,7 @@ def joint_trajectory(
         T = float(own.max())
         if T == 0.0:
             return _still(np.zeros(1), a, b)
+        _derived_check(T, dt, vmax, amax)
     else:
         T = float(duration)
     t = sample_times(T, dt)
@@ -423,6 +457,25 @@ def _check_limits(
                 f"duration {T:g} s is too short: joint {j + 1} would reach "
                 f"{peak[j]:.6g} > {what} {lim[j]:g}"
             )
+
+
+def _times_check(T: float, dt: float, name: str) -> None:
+    """Refuse a duration ``T`` and spacing ``dt`` that give more than MAX_SAMPLES samples."""
+    check_size(T / dt + 1.0, MAX_SAMPLES, name, f"samples ({T:g} s every {dt!r} s)")
+
+
+def _derived_check(T: float, dt: float, vmax: object, amax: object) -> None:
+    """The duration the speed/acceleration limits need, checked like a given one."""
+    given = [k for k, v in (("vmax", vmax), ("amax", amax)) if v is not None]
+    name = "/".join(given)
+    verb = "give" if len(given) > 1 else "gives"
+    if not T <= MAX_DURATION:
+        raise ArgumentError(
+            f"{name} {verb} a duration of {T:.3g} s; at most {MAX_DURATION:g} s are made "
+            "(raise the limits)",
+            arg=name,
+        )
+    _times_check(T, dt, name)
 
 
 def sample_times(T: float, dt: float) -> FloatArray:

@@ -49,6 +49,7 @@ from numpy.typing import ArrayLike, NDArray
 from kinematica.dh.lines import lines_parallel
 from kinematica.robot.sampling import generic_rank_samples
 from kinematica.robot.structure import classify
+from kinematica.spatial.checks import as_batch_array
 
 if TYPE_CHECKING:
     from kinematica.robot import Robot
@@ -314,8 +315,12 @@ def singularities(robot: Robot, q: ArrayLike, detail: bool = False) -> Any:
         as ``["wrist"]`` or ``["elbow", "wrist"]`` (``"rank"`` once, however
         many unnamed directions), or with ``detail`` one :class:`Singularity`
         per lost direction. For a batch, nested lists of the batch's shape.
+
+    Raises:
+        DimensionError: ``q`` has the wrong shape, or a row holds NaN or inf
+            (the message names the first).
     """
-    qa = robot.check_q(q)
+    qa = as_batch_array(robot.check_q(q), "q", (robot.dof,))  # names cannot be NaN
     flat = qa.reshape(-1, robot.dof)
     plan = singularity_plan(robot)
     J = robot.jacobian(flat)[:, plan.rows, :]
@@ -363,8 +368,9 @@ def jacobian_rank(robot: Robot, q: ArrayLike) -> Any:
         configurations). The rows are the position rows for arms whose whole
         mobility shows in the tool position, all six otherwise.
     """
+    qa = as_batch_array(robot.check_q(q), "q", (robot.dof,))  # a rank cannot be NaN
     plan = singularity_plan(robot)
-    J = robot.jacobian(q)[..., plan.rows, :]
+    J = robot.jacobian(qa)[..., plan.rows, :]
     s = np.linalg.svd(J, compute_uv=False)
     rank = np.sum(s > RANK_TOL * s[..., :1], axis=-1)
     return (int(rank) if rank.ndim == 0 else rank), plan.rank

@@ -15,7 +15,7 @@ from kinematica.errors import DimensionError, UnreachableError
 from kinematica.ik.result import IKResult
 from kinematica.io.atomic import atomic_path, write_failed
 from kinematica.robot import Robot
-from kinematica.viz._mpl import VizError, equal_limits, figure, is_3d, new_axes
+from kinematica.viz._mpl import VizError, check_picture, equal_limits, figure, is_3d, new_axes
 from kinematica.viz.arm import ArmDrawing, extent_points
 from kinematica.viz.geometry import ArmPose, arm_pose, drawing_plane, robot_scale
 
@@ -273,6 +273,7 @@ def save_solutions(
     Returns:
         The path, the number of solutions drawn, and the picture's size in pixels.
     """
+    size, dpi = check_picture(size, dpi)  # before the IK is solved
     fig = figure(100, 100, dpi, pyplot_managed=False)
     plot_solutions(robot, T, respect_limits=respect_limits, frames=frames, labels=labels, fig=fig)
     k = len(fig.axes)
