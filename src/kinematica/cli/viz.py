@@ -130,7 +130,7 @@ def view(args: argparse.Namespace) -> int:
     from kinematica import viz
 
     robot = robot_from_args(args)
-    units = viz.robot_units(args.robot)
+    units = viz.robot_units(robot)
     q = None if args.q is None else q_in(robot, args.q, args, "q")
     written = None
     if args.output is not None or not args.serve:
