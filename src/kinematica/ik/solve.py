@@ -28,6 +28,7 @@ from kinematica.ik.fallback import (
 )
 from kinematica.ik.numeric import LABEL, check_seed, numeric_setup
 from kinematica.ik.options import IKOptions, Method
+from kinematica.ik.reach import beyond_limited_reach
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
 from kinematica.ik.result import CheckOutput, CoreAnswer, IKBatchResult, IKResult, result_of
 from kinematica.ik.structure import features
@@ -188,6 +189,32 @@ def _solver(
     return setup, (LABEL,), "numeric:lm"
 
 
+_UNREACHABLE = _core.STATUS["unreachable"]
+_ANSWERED = frozenset(_core.STATUS[k] for k in ("ok", "singular", "out_of_limits"))
+
+
+def _limited(
+    chain: Chain,
+    poses: FloatArray,
+    out: CoreAnswer,
+    respect_limits: bool,
+    tol: Tolerance,
+    weights: tuple[float, ...],
+) -> CoreAnswer:
+    """One target's answer, "unreachable" with its gap where the limited reach proves it."""
+    code, gap = out[-1][0], out[-1][1]
+    if not respect_limits or code in _ANSWERED:
+        return out
+    beyond, gaps = beyond_limited_reach(
+        chain, poses[:1], np.array([code]), np.array([np.nan if gap is None else gap]),
+        tol.position, weights,
+    )  # fmt: skip
+    if not beyond[0]:
+        return out
+    report = (_UNREACHABLE, float(gaps[0]), *out[-1][2:])
+    return (*out[:-1], report)
+
+
 def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IKBatchResult:
     """Every inverse-kinematics solution of a target, or an honest status.
 
@@ -234,8 +261,10 @@ def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | 
             if needs_search(out[-1][0]):
                 numeric, nopts = search()
                 out = numeric.ik(chain.core, targets.poses[0], nopts, q0, (LABEL,))
+                out = _limited(chain, targets.poses, out, respect_limits, tolerance, w)
                 return result_of(*out, "numeric:lm", False, (*notes, FALLBACK_NOTE))
             notes = (*notes, INCOMPLETE_NOTE)
+        out = _limited(chain, targets.poses, out, respect_limits, tolerance, w)
         return result_of(*out, name, complete, notes)
     invalid = None
     if targets.invalid:
@@ -265,6 +294,13 @@ def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | 
             idx = where(i)
             note = FALLBACK_NOTE if i in searched_rows else INCOMPLETE_NOTE
             batch_notes[idx] = (*batch_notes.get(idx, ()), note)
+    if respect_limits:
+        beyond, gaps = beyond_limited_reach(
+            chain, targets.poses, raw["status"], raw["gap"], tolerance.position, w
+        )
+        if beyond.any():
+            raw = dict(raw, status=np.where(beyond, _UNREACHABLE, raw["status"]))
+            raw["gap"] = np.where(beyond, gaps, raw["gap"])
     return IKBatchResult(
         raw=CheckOutput(**raw),
         method=name,

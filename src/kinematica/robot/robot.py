@@ -28,6 +28,7 @@ from kinematica.dh import (
 )
 from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning
 from kinematica.ik import IKBatchResult, IKOptions, IKResult, Tolerance, solve_ik
+from kinematica.ik.reach import needs_proof
 from kinematica.ik.registry import TargetKind
 from kinematica.ik.result import CoreAnswer, result_of
 from kinematica.ik.solve import PoseSolver, pose_solver
@@ -430,8 +431,8 @@ class Robot:
             target: A pose ``(4, 4)`` (tool in the base frame), a position
                 ``(3,)`` (tool origin; orientation free), or batches of any
                 shape ``(..., 4, 4)`` / ``(..., 3)``. A rotation orthonormal
-                to within ``PROJECTION_TOL`` (1e-4) is projected onto SO(3),
-                with a note in the result.
+                to within ``PROJECTION_TOL`` (2e-4: any copy with 4 decimals)
+                is projected onto SO(3), with a note in the result.
             method: ``"auto"`` (closed form when the structure allows, else
                 numeric), ``"analytic"`` or ``"numeric"``.
             respect_limits: Keep solutions outside the joint limits apart
@@ -496,7 +497,9 @@ class Robot:
         out: CoreAnswer | None = fast.ik_rigid(
             self.chain.core, pose, fast.options, ROUNDOFF_TOL, fast.labels
         )
-        return None if out is None else result_of(*out, fast.method, fast.complete, ())
+        if out is None or needs_proof(out[-1][0], out[-1][1]):
+            return None  # the general path also tries the reach within the limits
+        return result_of(*out, fast.method, fast.complete, ())
 
     # ------------------------------------------------------------ derived models
     def to_convention(self, convention: str) -> Robot:
