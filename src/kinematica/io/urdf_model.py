@@ -10,10 +10,11 @@ kinematics; the origins are kept as :class:`~kinematica.io.spec.FrameSpec`.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
-from kinematica.errors import RobotFileError
+from kinematica.errors import KinematicaWarning, RobotFileError
 from kinematica.io.spec import FrameSpec
 
 __all__ = ["JOINT_TYPES", "MOVABLE_TYPES", "UrdfChain", "UrdfJoint", "UrdfModel"]
@@ -24,6 +25,9 @@ JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "plan
 MOVABLE_TYPES = ("revolute", "continuous", "prismatic")
 
 _SHOWN = 8  # names listed in a message before "..."
+#: The flange frame of ROS-Industrial descriptions (REP-199): where a chain ends when
+#: its leaves are all frames fixed to the last moving link.
+FLANGE = "tool0"
 
 
 def _names(names: Sequence[str]) -> str:
@@ -209,8 +213,11 @@ class UrdfModel:
             tip: The tip link; default the single leaf below ``base`` reached
                 through at least one movable joint (leaves hanging from the
                 base by fixed joints only, such as ROS-Industrial's ``base``
-                frame, are not candidates). With several candidates the error
-                lists them.
+                frame, are not candidates). When several leaves all hang by
+                fixed joints off the same last moving link (a UR file's
+                ``ee_link`` and ``tool0``), ``tool0`` if that link carries one,
+                else the last moving link, with a warning saying which. Other
+                cases of several candidates are an error that lists them.
 
         Returns:
             The chain.
@@ -247,6 +254,42 @@ class UrdfModel:
             raise self._error(f"no movable joint between links {start!r} and {tip!r}")
         return UrdfChain(name=self.name, base=start, tip=tip, joints=path, source=self.source)
 
+    def _common_flange(self, leaves: list[str], children: dict[str, list[UrdfJoint]]) -> str | None:
+        """The tip when every leaf hangs by fixed joints off one last moving link, else None.
+
+        The chain is then unambiguous (the leaves are frames on one rigid body): it ends
+        at ``tool0``, the ROS-Industrial flange frame, where that body carries one, else
+        at the last moving link itself. A warning says which.
+        """
+        owners = set()
+        for leaf in leaves:
+            link = leaf
+            while link in self._parent_joint and not self._parent_joint[link].movable:
+                link = self._parent_joint[link].parent
+            owners.add(link)
+        if len(owners) != 1:
+            return None
+        (last,) = owners
+        rigid, stack = [], [last]  # the links fixed to the last moving link
+        while stack:
+            link = stack.pop()
+            rigid.append(link)
+            stack.extend(j.child for j in children[link] if not j.movable)
+        tip = FLANGE if FLANGE in rigid else last
+        why = (
+            f"the ROS-Industrial flange frame {FLANGE!r}"
+            if tip == FLANGE
+            else f"the last moving link {last!r}"
+        )
+        where = f"{self.source}: " if self.source else ""
+        warnings.warn(
+            f"{where}leaf links {_names(leaves)} all hang by fixed joints off {last!r}, the "
+            f"last moving link: the chain ends at {why}; choose another with tip= / --tip",
+            KinematicaWarning,
+            stacklevel=4,
+        )
+        return tip
+
     def _default_tip(self, base: str) -> str:
         children = self._children()
         candidates: list[str] = []
@@ -261,6 +304,9 @@ class UrdfModel:
             return candidates[0]
         if not candidates:
             raise self._error(f"no movable joint below link {base!r}")
+        flange = self._common_flange(candidates, children)
+        if flange is not None:
+            return flange
         raise self._error(
             f"{len(candidates)} leaf links below {base!r} end a chain with movable joints: "
             f"{_names(candidates)}; choose one as the tip (tip= / --tip)"
