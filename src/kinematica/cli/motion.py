@@ -215,7 +215,7 @@ def trajectory(args: argparse.Namespace) -> int:
             )
         t = joint_trajectory(qa, qb, duration, args.profile, args.dt).t
         s, _, _ = time_scaling(args.profile, t, float(t[-1]))
-        path = cartesian_path(robot, robot.fk(qa), robot.fk(qb), q0=qa, s=s)
+        path = cartesian_path(robot, robot.fk(qa), robot.fk(qb), q0=qa, s=s, q1=qb)
         q, qd, qdd = path.q, None, None
     else:
         t, q, qd, qdd = joint_trajectory(qa, qb, duration, args.profile, args.dt, vmax, amax)

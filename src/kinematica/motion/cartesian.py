@@ -13,7 +13,10 @@ samples is then inspected; nothing changes silently:
 - ``"unreachable"``: the pose has no IK solution (the path leaves the workspace);
 - ``"joint_limit"``: the continuation lies outside a joint limit;
 - ``"branch_change"``: the nearest solution is not the continuation of the
-  previous one (a joint jump that refining the segment does not shrink).
+  previous one (a joint jump that refining the segment does not shrink);
+- ``"near_singularity"``, ``"speed_jump"``, ``"end_branch"``: a passage near a
+  singular set, a joint rate that jumps, an end on another branch than ``q1``
+  (:mod:`kinematica.motion.path_checks`).
 
 A segment whose largest joint step exceeds :data:`MAX_JOINT_STEP` is refined by
 bisection until every sub-step is below it (continuous, fast motion) or the
@@ -30,6 +33,12 @@ from numpy.typing import ArrayLike, NDArray
 
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.result import IKResult
+from kinematica.motion.path_checks import (
+    RawEvent,
+    end_branch,
+    near_singular_passages,
+    speed_jumps,
+)
 from kinematica.robot.singularities import singularities, singularity_plan
 from kinematica.spatial import (
     check_transform,
@@ -60,14 +69,16 @@ class PathEvent:
     """Something met along a Cartesian path.
 
     Attributes:
-        kind: ``"singularity"``, ``"unreachable"``, ``"joint_limit"`` or
-            ``"branch_change"``.
+        kind: ``"singularity"``, ``"unreachable"``, ``"joint_limit"``,
+            ``"branch_change"``, ``"near_singularity"``, ``"speed_jump"`` or
+            ``"end_branch"``.
         index: First sample where it is met (for a crossing or a jump
             between samples ``i-1`` and ``i``: ``i``).
         stop: Last sample of a run of consecutive samples with this event.
         s: Path parameter in [0, 1] where it is met (the crossing itself
             when located between samples).
-        names: Singularity names, or the joints (``"q3"``) over their limits.
+        names: Singularity names, or the joints (``"q3"``) over their limits,
+            jumping, or differing from the end asked for.
         message: One sentence for people.
     """
 
@@ -242,6 +253,7 @@ def cartesian_path(
     via: ArrayLike | None = None,
     s: ArrayLike | None = None,
     position_only: bool | None = None,
+    q1: ArrayLike | None = None,
 ) -> CartesianPath:
     """Follow a straight line (or an arc through ``via``) from ``T0`` to ``T1``.
 
@@ -260,6 +272,9 @@ def cartesian_path(
             ``poses`` is then not imposed). By default, True for arms whose
             whole mobility is positional (3R anthropomorphic, planar 2R: the
             rows :func:`singularities` judges are the position rows).
+        q1: ``(n,)`` configuration the path is asked to end on (the IK solution
+            of ``T1`` nearest to it): an ``"end_branch"`` event says when the
+            continuation ends elsewhere (the same pose, another branch).
 
     Returns:
         The :class:`CartesianPath`, with its ``events``.
@@ -286,6 +301,7 @@ def cartesian_path(
         if not ok or ss[0] < 0 or ss[-1] > 1 or np.any(np.diff(ss) < 0):
             raise KinematicaError("s must hold >= 2 non-decreasing values within [0, 1]")
     q_start = None if q0 is None else robot.check_q(q0, "q0")
+    q_end = None if q1 is None else robot.check_q(q1, "q1")
     geo = _Geometry(A, B, None if via is None else np.asarray(via))
     if position_only is None:
         position_only = singularity_plan(robot).rows == (0, 1, 2)
@@ -311,7 +327,30 @@ def cartesian_path(
             raw.append(("singularity", i, float(si), tuple(here), ""))
         q[i] = qi
         last, last_ok = qi, True
-    return CartesianPath(ss, poses, q, _merge(raw))
+    checks = near_singular_passages(robot, ss, q) + speed_jumps(robot, ss, q)
+    if q_end is not None:
+        checks += end_branch(robot, B, q, ss, q_end, bool(position_only))
+    return CartesianPath(ss, poses, q, _with_checks(_merge(raw), checks))
+
+
+def _with_checks(events: tuple[PathEvent, ...], checks: list[RawEvent]) -> tuple[PathEvent, ...]:
+    """The events and the checks' findings, in path order.
+
+    A near-singular run that reaches a singularity of its name is told by that
+    singularity alone.
+    """
+    extra = []
+    for kind, i, stop, s, names, message in checks:
+        met = any(
+            e.kind == "singularity"
+            and set(names) <= set(e.names)
+            and i <= e.stop
+            and e.index <= stop
+            for e in events
+        )
+        if not (kind == "near_singularity" and met):
+            extra.append(PathEvent(kind, i, stop, s, names, message))
+    return tuple(sorted((*events, *extra), key=lambda e: e.index))
 
 
 def _merge(raw: list[tuple[str, int, float, tuple[str, ...], str]]) -> tuple[PathEvent, ...]:
