@@ -100,3 +100,67 @@ def test_zero_limits_read_as_no_limits_with_a_warning(tmp_path):
 def test_equal_nonzero_limits_are_still_refused():
     with pytest.raises(km.RobotFileError, match=r"lower=0\.3 >= upper=0\.3"):
         parse_urdf(PENDULUM.replace('lower="0" upper="0"', 'lower="0.3" upper="0.3"'))
+
+
+# ------------------------------------------------- item 6: the makers' DH tables
+#: UR's published standard DH parameters (Universal Robots, "DH parameters for
+#: calculations of kinematics and dynamics"): d, a (m), alpha (deg); every offset 0.
+UR_PUBLISHED = {
+    "ur5_robot.urdf": (
+        [0.089159, 0, 0, 0.10915, 0.09465, 0.0823],
+        [0, -0.425, -0.39225, 0, 0, 0],
+    ),
+    "ur10_robot.urdf": (
+        [0.1273, 0, 0, 0.163941, 0.1157, 0.0922],
+        [0, -0.612, -0.5723, 0, 0, 0],
+    ),
+}
+#: The files write π/2 with 11 digits (1.57079632679): angles are off by 5e-12.
+ANGLE_ATOL = 1e-10
+
+
+@pytest.mark.parametrize("name", sorted(UR_PUBLISHED))
+def test_ur_urdf_gives_urs_published_table(name):
+    robot, _ = load_quietly(URDF_DIR / name)  # tip tool0, base frame 'base' (UR's)
+    theta, d, a, alpha = robot.dh_table().T
+    d_ref, a_ref = UR_PUBLISHED[name]
+    np.testing.assert_allclose(d, d_ref, atol=1e-12)
+    np.testing.assert_allclose(a, a_ref, atol=1e-12)
+    np.testing.assert_allclose(alpha, np.radians([90, 0, 0, 90, -90, 0]), atol=ANGLE_ATOL)
+    np.testing.assert_allclose(theta, 0.0, atol=ANGLE_ATOL)
+    # the table with UR's base frame reproduces the file's FK (its own check)
+    ref = reference_file(name, None, "tool0")
+    rebuilt = km.Robot.from_dh(
+        [
+            km.Revolute(d=di, a=ai, alpha=al)
+            for di, ai, al in zip(d_ref, a_ref, np.radians([90, 0, 0, 90, -90, 0]), strict=True)
+        ],
+        base=robot.base,
+        tool=robot.tool,
+    )
+    q = np.random.default_rng(4).uniform(-3, 3, (10, 6))
+    assert_transform_close(rebuilt.fk(q), ref.fk_batch(q), atol=1e-9)
+
+
+def test_panda_urdf_gives_frankas_modified_table():
+    # Franka's documentation ("Robot and interface specifications", DH in Craig's
+    # convention): a, d (m), alpha (rad); the flange 0.107 along z7.
+    robot = km.load(URDF_DIR / "franka_panda.urdf", tip="panda_link8", convention="modified")
+    theta, d, a, alpha = robot.dh_table().T
+    np.testing.assert_allclose(a, [0, 0, 0, 0.0825, -0.0825, 0, 0.088], atol=1e-12)
+    np.testing.assert_allclose(d, [0.333, 0, 0.316, 0, 0.384, 0, 0], atol=1e-12)
+    half = math.pi / 2
+    np.testing.assert_allclose(alpha, [0, -half, half, half, -half, half, half], atol=ANGLE_ATOL)
+    np.testing.assert_allclose(theta, 0.0, atol=ANGLE_ATOL)
+    flange = np.eye(4)
+    flange[2, 3] = 0.107
+    assert_transform_close(robot.tool, flange, atol=1e-12)
+
+
+def test_parallel_axes_take_d_0_level_with_the_frame_before():
+    # UR5: axes 2, 3, 4 parallel; the file's joints are 0.13585 - 0.1197 = 0.01615 m
+    # apart along them, all of it in d4 (0.01615 + 0.093 = 0.10915) and none in d2, d3.
+    robot, _ = load_quietly(UR5)
+    ext = km.urdf_to_dh(UR5)
+    assert "(d2 = 0)" in ext.rules[2].text and "(d3 = 0)" in ext.rules[3].text
+    assert robot.links[3].d == pytest.approx(0.13585 - 0.1197 + 0.093, abs=1e-12)

@@ -25,6 +25,9 @@ JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "plan
 MOVABLE_TYPES = ("revolute", "continuous", "prismatic")
 
 _SHOWN = 8  # names listed in a message before "..."
+#: The maker's controller base frame of ROS-Industrial descriptions (REP-199): DH
+#: frame 0 where it lies on axis 1 (UR publishes its DH table in it).
+MAKER_BASE = "base"
 #: The flange frame of ROS-Industrial descriptions (REP-199): where a chain ends when
 #: its leaves are all frames fixed to the last moving link.
 FLANGE = "tool0"
@@ -83,6 +86,9 @@ class UrdfChain:
         joints: The joints from ``base`` to ``tip`` in order, fixed ones
             included; each joint's parent is the previous joint's child.
         source: The file it was read from, or ``None``.
+        maker_base: The fixed joints from ``base`` to ROS-Industrial's ``base``
+            link (the maker's controller base frame, REP-199) when it hangs off
+            the chain before its first movable joint; ``()`` otherwise.
     """
 
     name: str
@@ -90,6 +96,7 @@ class UrdfChain:
     tip: str
     joints: tuple[UrdfJoint, ...]
     source: str | None = None
+    maker_base: tuple[UrdfJoint, ...] = ()
 
     @property
     def movable(self) -> tuple[UrdfJoint, ...]:
@@ -252,7 +259,34 @@ class UrdfModel:
                 )
         if not any(j.movable for j in path):
             raise self._error(f"no movable joint between links {start!r} and {tip!r}")
-        return UrdfChain(name=self.name, base=start, tip=tip, joints=path, source=self.source)
+        return UrdfChain(
+            name=self.name,
+            base=start,
+            tip=tip,
+            joints=path,
+            source=self.source,
+            maker_base=self._maker_base(start, path),
+        )
+
+    def _maker_base(self, start: str, path: tuple[UrdfJoint, ...]) -> tuple[UrdfJoint, ...]:
+        """Fixed joints from ``start`` to a side link :data:`MAKER_BASE` before joint 1."""
+        before = [start]
+        for j in path:
+            if j.movable:
+                break
+            before.append(j.child)
+        if MAKER_BASE not in self.links or MAKER_BASE in before:
+            return ()
+        side: list[UrdfJoint] = []
+        link = MAKER_BASE
+        while link not in before:
+            joint = self._parent_joint.get(link)
+            if joint is None or joint.movable:
+                return ()
+            side.append(joint)
+            link = joint.parent
+        prefix = path[: before.index(link)]
+        return (*prefix, *reversed(side))
 
     def _common_flange(self, leaves: list[str], children: dict[str, list[UrdfJoint]]) -> str | None:
         """The tip when every leaf hangs by fixed joints off one last moving link, else None.
