@@ -50,3 +50,95 @@ def test_a_refusal_never_reads_as_within_its_limit():
 )
 def test_shown_above_uses_the_digits_that_show_the_excess(value, limit, text):
     assert shown_above(value, limit) == text
+
+
+# ------------------------------------------------ item 2: over-determined targets
+from kinematica.ik.printed import (  # noqa: E402
+    PRINTED_DIGITS_MAX,
+    printed_precision,
+    significant_digits,
+)
+
+ARMS = [("anthropomorphic-3r", [30.0, 40.0, -30.0]), ("planar-pr", [0.2, 30.0])]
+
+
+def printed(T: np.ndarray, digits: int) -> np.ndarray:
+    """T as ``kinematica fk --precision digits`` prints it (%g), read back."""
+    return np.array([float(f"{v:.{digits}g}") for v in T.ravel()]).reshape(4, 4)
+
+
+def config(robot: km.Robot, q: list[float]) -> np.ndarray:
+    return np.where(robot.is_prismatic, q, np.radians(q))
+
+
+@pytest.mark.parametrize(("name", "q"), ARMS)
+def test_a_pose_printed_with_5_digits_is_answered_with_the_precision_said(name, q):
+    robot = km.load(name)
+    target = printed(robot.fk(config(robot, q)), 5)
+    res = robot.ik(target)
+    assert res.status == "ok", res.message
+    assert any("5 significant digits" in n for n in res.notes), res.notes
+    # independent check: the answer's T shows the printed numbers at 5 digits
+    big = np.abs(target[:3]).max(axis=0)  # per column: position and rotation scales
+    half = 0.5 * 10.0 ** (np.floor(np.log10(np.where(big > 0, big, 1))) - 4)
+    tol = np.r_[[max(half[:3])] * 3, half[3]]
+    assert np.all(np.abs(robot.fk(res.solutions[0])[:3] - target[:3]) <= tol * (1 + 1e-9))
+    assert np.allclose(res.solutions[0], config(robot, q), atol=1e-3)
+
+
+@pytest.mark.parametrize(("name", "q"), ARMS)
+def test_the_closest_reported_is_the_answer_given(name, q):
+    robot = km.load(name)
+    target = printed(robot.fk(config(robot, q)), 5)
+    given = robot.ik(target)
+    loose = robot.ik(target, tol=1e-4)  # the issue's --tol 1e-4: the same, closest, answer
+    np.testing.assert_allclose(loose.residuals, given.residuals, rtol=1e-12)
+    exact = robot.ik(target, precision=(0.0, 0.0))  # the numbers taken as exact
+    assert exact.status == "not_found"
+    np.testing.assert_allclose(exact.nearest_error, given.residuals[0], rtol=1e-9)
+    assert f"closest off by {given.residuals[0, 0]:.3g} m" in exact.message
+
+
+def test_a_pose_off_the_arms_set_beyond_its_digits_is_not_answered():
+    robot = km.load("anthropomorphic-3r")
+    T = robot.fk(np.radians([30.0, 40.0, -30.0]))
+    T[:3, :3] = T[:3, :3] @ km.rotx(2e-3)  # an orientation the arm cannot take
+    res = robot.ik(printed(T, 5))
+    assert res.status in ("not_found", "unreachable")
+    assert not res.success
+
+
+def test_the_cli_answers_a_pasted_pose(tmp_path):
+    import json
+    import subprocess
+    import sys
+
+    cmd = [sys.executable, "-m", "kinematica.cli.main", "ik", "anthropomorphic-3r", "--json"]
+    cmd += ["--pose", "0.52123", "0.30093", "0.80921", "-60", "90", "100"]
+    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=tmp_path, check=False)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    out = json.loads(proc.stdout)
+    assert out["status"] == "ok"
+    assert any("precision its numbers carry" in n for n in out["notes"])
+
+
+def test_six_joint_arms_are_not_over_determined():
+    puma = km.load("puma560")
+    target = printed(puma.fk(np.array([0.2, -0.5, 0.3, 0.4, 0.8, -0.1])), 5)
+    res = puma.ik(target)
+    assert res.status == "ok" and not any("significant digits" in n for n in res.notes)
+
+
+@pytest.mark.parametrize(
+    ("value", "digits"), [(0.85287, 5), (-0.086824, 5), (0.5, 1), (1e-05, 1), (0.0, 0), (1.0, 1)]
+)
+def test_significant_digits(value, digits):
+    assert significant_digits(value) == digits
+
+
+def test_printed_digits_max_is_12():
+    T = np.eye(4)
+    T[0, 3] = 0.123456789012  # 12 digits: printed
+    assert printed_precision(T) == pytest.approx((5e-13, 5e-12), rel=1e-12)
+    T[0, 3] = 0.1234567890123  # 13 digits: computed
+    assert PRINTED_DIGITS_MAX == 12 and printed_precision(T) is None

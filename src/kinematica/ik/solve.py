@@ -28,6 +28,7 @@ from kinematica.ik.fallback import (
 )
 from kinematica.ik.numeric import LABEL, check_seed, numeric_setup
 from kinematica.ik.options import IKOptions, Method
+from kinematica.ik.printed import answer_overdetermined
 from kinematica.ik.reach import beyond_limited_reach
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
 from kinematica.ik.result import CheckOutput, CoreAnswer, IKBatchResult, IKResult, result_of
@@ -218,8 +219,19 @@ def _limited(
 def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IKBatchResult:
     """Every inverse-kinematics solution of a target, or an honest status.
 
-    See :meth:`kinematica.Robot.ik` for the arguments and what comes back.
+    See :meth:`kinematica.Robot.ik` for the arguments and what comes back. One pose
+    target of an arm with fewer than 6 joints is over-determined: see
+    :mod:`kinematica.ik.printed`.
     """
+    out = _solve(chain, target, options)
+    overdetermined = chain.dof < 6 and options.mask is None and np.shape(target) == (4, 4)
+    if overdetermined and isinstance(out, IKResult):
+        return answer_overdetermined(chain, target, options, out, _solve, options.precision)
+    return out
+
+
+def _solve(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IKBatchResult:
+    """:func:`solve_ik` without the over-determined targets' second look."""
     method: Method = options.method
     respect_limits, q0, workers = options.respect_limits, options.q0, options.workers
     if method not in ("auto", "analytic", "numeric"):

@@ -423,6 +423,7 @@ class Robot:
         seed: int | np.random.Generator | None = None,
         tol: float | tuple[float, float] | Tolerance | None = None,
         workers: int | None = None,
+        precision: tuple[float, float] | None = None,
         options: IKOptions | None = None,
     ) -> IKResult | IKBatchResult:
         """Every inverse-kinematics solution of a target, or an honest status.
@@ -445,6 +446,11 @@ class Robot:
             tol: Acceptance tolerance: one number for both, or a pair
                 (position m, rotation rad); default 1e-10 m and 1e-10 rad.
             workers: Threads for a batch (None: the library default).
+            precision: For a pose target of an arm with fewer than 6 joints
+                (over-determined): ``(position m, rotation entries)``, half a
+                unit in the last digit its numbers were printed with; None: read
+                from their digits. The closest configuration answers a target
+                it reproduces to that precision (a note says which was assumed).
             options: All of the above as one :class:`~kinematica.ik.IKOptions`
                 (then give none of them as keywords).
 
@@ -463,6 +469,7 @@ class Robot:
             and q0 is None
             and mask is None
             and seed is None
+            and precision is None
         ):  # one target, every default: straight to the core (a rigid target to round-off)
             if target.shape == (4, 4):
                 out = self._fast(target, "pose")
@@ -475,11 +482,11 @@ class Robot:
             if out is not None:
                 return out
         if options is None:
-            options = IKOptions(method, tol, respect_limits, q0, mask, seed, workers)
+            options = IKOptions(method, tol, respect_limits, q0, mask, seed, workers, precision)
         elif not (
             method == "auto"
             and respect_limits is True
-            and all(v is None for v in (tol, q0, mask, seed, workers))
+            and all(v is None for v in (tol, q0, mask, seed, workers, precision))
         ):
             raise KinematicaError(
                 "give the IK settings either as options= or as keywords, not both",

@@ -1,0 +1,204 @@
+"""Pose targets of arms with fewer than 6 joints: over-determined, and often printed.
+
+An arm with n < 6 joints reaches an n-dimensional set of poses; a pose target is 6
+numbers' worth of conditions. A pose computed by forward kinematics lies on that set
+to round-off, but the same pose printed with 5 digits (``kinematica fk --precision
+5``) and pasted back lies off it by about the last digit: no configuration reaches it
+to 1e-10, and the closed form's candidates, each polished by the check to its
+least-squares point, miss by a few 1e-6. Two things follow.
+
+- The answer to an over-determined target is the closest configuration (the
+  polished candidate, least squares over the whole pose): its residual is the
+  "closest off by" a failure reports, and it is the solution given when a
+  tolerance (or the precision below) accepts it, not a farther candidate that a
+  looser tolerance let through unpolished.
+- A target whose numbers carry fewer digits than a double's is read as printed:
+  N significant digits (the most any of its 12 numbers shows), so each entry is
+  known to half a unit in the N-th digit of the largest entry of its block
+  (position column, rotation block). The closest configuration answers it when
+  its T reproduces every printed entry to that precision; the note says which
+  precision was assumed. Components the arm cannot control are thereby checked
+  against its reachable set to exactly the precision the numbers carry.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Callable
+from decimal import Decimal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from kinematica.core import Chain
+from kinematica.ik.options import IKOptions
+from kinematica.ik.result import IKBatchResult, IKResult
+from kinematica.ik.status import IKStatus
+from kinematica.ik.targets import parse_tolerance
+
+__all__ = [
+    "PRINTED_DIGITS_MAX",
+    "ROUNDOFF_RESIDUAL",
+    "answer_overdetermined",
+    "half_unit",
+    "printed_digits",
+    "printed_precision",
+    "significant_digits",
+]
+
+FloatArray = NDArray[np.float64]
+Solve = Callable[[Chain, ArrayLike, IKOptions], "IKResult | IKBatchResult"]
+
+#: Numbers showing more significant digits than this were computed, not printed (a
+#: double shows up to 17): no precision is assumed for them.
+PRINTED_DIGITS_MAX = 12
+#: A solution's residual (m, rad) up to this is round-off: the target is on the set.
+ROUNDOFF_RESIDUAL = 1e-12
+#: A tolerance a hair above the closest candidate's residual accepts it alone.
+_JUST_ABOVE = 1.0 + 1e-9
+
+
+def significant_digits(value: float) -> int:
+    """Significant digits of the shortest decimal that reads back as ``value`` (0 for 0)."""
+    if value == 0.0 or not math.isfinite(value):
+        return 0
+    digits = Decimal(repr(float(value))).normalize().as_tuple().digits
+    return len(digits)
+
+
+def printed_digits(values: ArrayLike) -> int | None:
+    """The most significant digits any of ``values`` shows; None for computed numbers.
+
+    None too when all are 0 (no digit shows a precision).
+    """
+    n = max((significant_digits(float(v)) for v in np.ravel(values)), default=0)
+    return None if n == 0 or n > PRINTED_DIGITS_MAX else n
+
+
+def half_unit(values: ArrayLike, digits: int) -> float:
+    """Half a unit in the ``digits``-th significant digit of the largest of ``values``."""
+    big = float(np.abs(np.asarray(values, dtype=float)).max())
+    return 0.0 if big == 0.0 else 0.5 * 10.0 ** (math.floor(math.log10(big)) - digits + 1)
+
+
+def printed_precision(T: ArrayLike) -> tuple[float, float] | None:
+    """Half a unit in the last printed digit of a pose's position and rotation entries.
+
+    Args:
+        T: ``(4, 4)`` the target as given (before any projection onto SO(3)).
+
+    Returns:
+        ``(position, rotation)``: the precision (m; unitless) of the position
+        column and of the rotation block read as printed with N significant
+        digits, N the most any of the 12 numbers shows; None when they show more
+        than :data:`PRINTED_DIGITS_MAX` (computed numbers) or are all 0 and ±1.
+    """
+    block = np.asarray(T, dtype=float)[:3, :4]
+    n = printed_digits(block)
+    if n is None:
+        return None
+    return half_unit(block[:, 3], n), half_unit(block[:, :3], n)
+
+
+def _reproduces(chain: Chain, q: FloatArray, T: FloatArray, precision: tuple[float, float]) -> bool:
+    """True when every entry of FK(q) rounds to the printed entry of ``T`` (3 x 4 block)."""
+    diff = np.abs(chain.fk(np.asarray(q, dtype=float))[0][:3, :4] - T[:3, :4])
+    bound = np.empty((3, 4))
+    bound[:, :3], bound[:, 3] = precision[1], precision[0]
+    bound = bound * _JUST_ABOVE + ROUNDOFF_RESIDUAL * (1.0 + np.abs(T[:3, :4]))
+    return bool(np.all(diff <= bound))
+
+
+def _note(chain: Chain, precision: tuple[float, float], digits: int | None, accepted: bool) -> str:
+    p, r = precision
+    within = f"±{p:.1g} m in position, ±{r:.1g} in the rotation entries"
+    read = (
+        f"target read as printed with {digits} significant digits ({within})"
+        if digits
+        else f"target taken to the precision its numbers carry ({within})"
+    )
+    over = f"a pose is over-determined for this {chain.dof}-joint arm"
+    if accepted:
+        return (
+            f"{read}: {over}, and the closest configuration reproduces every printed number "
+            "to that precision"
+        )
+    return f"{read}: {over}, and the closest configuration does not reproduce it to that precision"
+
+
+def _unproven(res: IKResult) -> bool:
+    """An "unreachable" without a gap: no candidate within reach of polishing, nothing proven.
+
+    For an over-determined target the closest candidate may still reproduce its
+    printed numbers (one printed with 3 or 4 digits misses by more than the check
+    polishes).
+    """
+    return res.status == IKStatus.UNREACHABLE and res.gap is None
+
+
+def answer_overdetermined(
+    chain: Chain,
+    target: ArrayLike,
+    options: IKOptions,
+    first: IKResult,
+    solve: Solve,
+    precision: tuple[float, float] | None = None,
+) -> IKResult:
+    """The answer to one pose target of an arm with fewer than 6 joints (module docstring).
+
+    Args:
+        chain: The chain (``dof < 6``).
+        target: ``(4, 4)`` the pose as given.
+        options: The call's options (no mask).
+        first: What the solver answered with these options.
+        solve: The solver (``solve_ik``'s single-target path), called again with
+            other tolerances.
+        precision: ``(position m, rotation entries)`` the target's numbers carry;
+            None: read from their digits (:func:`printed_precision`).
+
+    Returns:
+        ``first`` when the target is on the arm's set (round-off residuals) or
+        nothing was close; else the closest configuration, accepted when within
+        the tolerance asked for or the target's printed precision (with a note).
+    """
+    if first.status in (IKStatus.OK, IKStatus.SINGULAR):
+        if first.count == 0 or float(first.residuals.max()) <= ROUNDOFF_RESIDUAL:
+            return first
+    elif first.status != IKStatus.NOT_FOUND and not _unproven(first):
+        return first
+    raw = np.asarray(target, dtype=float)
+    tight = first
+    if first.status in (IKStatus.OK, IKStatus.SINGULAR) or options.tol is not None:
+        # every candidate polished to its least-squares point: the closest one's miss
+        again = solve(chain, raw, dataclasses.replace(options, tol=None))
+        assert isinstance(again, IKResult)  # one target, one result
+        tight = again
+    if tight.status in (IKStatus.OK, IKStatus.SINGULAR):
+        return tight  # reached to round-off after all
+    if tight.status != IKStatus.NOT_FOUND and not _unproven(tight):
+        return first
+    p, r = tight.nearest_error
+    if not (math.isfinite(p) and math.isfinite(r)):
+        return first
+    closest = (max(p * _JUST_ABOVE, 1e-300), max(r * _JUST_ABOVE, 1e-300))
+    best = solve(chain, raw, dataclasses.replace(options, tol=closest))
+    assert isinstance(best, IKResult)
+    if best.count == 0 and best.out_of_limits.shape[0] == 0:
+        return first
+    if first.status in (IKStatus.OK, IKStatus.SINGULAR):  # a tolerance took a farther one
+        tol = parse_tolerance(options.tol)
+        p_best, r_best = best.residuals[0] if best.count else (math.inf, math.inf)
+        return best if p_best <= tol.position and r_best <= tol.rotation else first
+    digits = None
+    if precision is None:
+        precision = printed_precision(raw)
+        digits = printed_digits(raw[:3, :4])
+    if precision is None:
+        return first
+    q = best.solutions[0] if best.count else best.out_of_limits[0]
+    if not _reproduces(chain, q, raw, precision):
+        note = _note(chain, precision, digits, accepted=False)
+        return dataclasses.replace(first, notes=(*first.notes, note))
+    note = _note(chain, precision, digits, accepted=True)
+    return dataclasses.replace(best, notes=(*best.notes, note))
