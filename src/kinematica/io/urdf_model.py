@@ -15,6 +15,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 from kinematica.errors import KinematicaWarning, RobotFileError
+from kinematica.io._parse import MAX_JOINTS
 from kinematica.io.spec import FrameSpec
 
 __all__ = ["JOINT_TYPES", "MOVABLE_TYPES", "UrdfChain", "UrdfJoint", "UrdfModel"]
@@ -125,12 +126,13 @@ class UrdfModel:
     joints: tuple[UrdfJoint, ...]
     source: str | None = None
     _parent_joint: dict[str, UrdfJoint] = field(init=False, repr=False, compare=False)
+    _link_set: frozenset[str] = field(init=False, repr=False, compare=False)
 
     def _error(self, message: str) -> RobotFileError:
         return RobotFileError(message, path=self.source)
 
     def __post_init__(self) -> None:
-        links = set(self.links)
+        links = frozenset(self.links)
         parent_joint: dict[str, UrdfJoint] = {}
         for j in self.joints:
             for role, link in (("parent", j.parent), ("child", j.child)):
@@ -159,16 +161,20 @@ class UrdfModel:
         if not roots:
             raise self._error(f"the joints form a loop: {self._loop(parent_joint)}")
         object.__setattr__(self, "_parent_joint", parent_joint)
+        object.__setattr__(self, "_link_set", links)
 
     @staticmethod
     def _loop(parent_joint: dict[str, UrdfJoint]) -> str:
         link = next(iter(parent_joint))
-        seen: list[str] = []
+        seen: dict[str, int] = {}  # link -> its place on the walk (a dict: the walk may be long)
         while link not in seen:
-            seen.append(link)
+            seen[link] = len(seen)
             link = parent_joint[link].parent
-        cycle = [*seen[seen.index(link) :], link]
-        return " <- ".join(repr(n) for n in cycle) + " (every link has a parent joint)"
+        cycle = [*list(seen)[seen[link] :], link]
+        shown = " <- ".join(repr(n) for n in cycle[:_SHOWN])
+        if len(cycle) > _SHOWN:
+            shown += f" <- ... ({len(cycle) - 1} links in the loop)"
+        return shown + " (every link has a parent joint)"
 
     @property
     def root(self) -> str:
@@ -195,7 +201,7 @@ class UrdfModel:
         return tuple(reversed(path))
 
     def _check_link(self, link: str, what: str) -> None:
-        if not isinstance(link, str) or link not in self.links:
+        if not isinstance(link, str) or link not in self._link_set:
             raise self._error(f"{what}: no link named {link!r}; links: {_names(self.links)}")
 
     def leaves(self, base: str | None = None) -> tuple[str, ...]:
@@ -231,8 +237,9 @@ class UrdfModel:
 
         Raises:
             RobotFileError: unknown link names, ``tip`` not below ``base``, no
-                single default tip, no movable joint on the chain, or a joint on
-                it that is floating, planar or a mimic joint.
+                single default tip, no movable joint on the chain or more than
+                ``MAX_JOINTS`` (100), or a joint on it that is floating, planar
+                or a mimic joint.
         """
         start = self.root if base is None else base
         self._check_link(start, "base")
@@ -257,8 +264,15 @@ class UrdfModel:
                     f"joint {j.name!r} mimics joint {j.mimic!r}: mimic joints are not supported "
                     "on the chain; choose a tip link before it (tip= / --tip)"
                 )
-        if not any(j.movable for j in path):
+        movable = sum(j.movable for j in path)
+        if not movable:
             raise self._error(f"no movable joint between links {start!r} and {tip!r}")
+        if movable > MAX_JOINTS:
+            raise self._error(
+                f"the chain from link {start!r} to link {tip!r} has {movable} movable joints; "
+                f"at most {MAX_JOINTS} are accepted (as in robot files); choose a shorter chain "
+                "(base= / --base, tip= / --tip)"
+            )
         return UrdfChain(
             name=self.name,
             base=start,

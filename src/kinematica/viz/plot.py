@@ -13,7 +13,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from kinematica.errors import DimensionError, UnreachableError
 from kinematica.ik.result import IKResult
-from kinematica.io.atomic import atomic_path, unchanged
+from kinematica.io.atomic import atomic_path, write_failed
 from kinematica.robot import Robot
 from kinematica.viz._mpl import VizError, equal_limits, figure, is_3d, new_axes
 from kinematica.viz.arm import ArmDrawing, extent_points
@@ -213,9 +213,7 @@ def save_figure(fig: Any, path: str | os.PathLike[str]) -> Path:
         with atomic_path(out) as tmp:
             fig.savefig(tmp, dpi=fig.dpi)
     except OSError as exc:
-        raise VizError(
-            f"{out}: cannot write the picture ({exc.strerror or exc}); {unchanged(out)}"
-        ) from exc
+        raise VizError(write_failed(out, exc, "the picture")) from exc
     return out
 
 

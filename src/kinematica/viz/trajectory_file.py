@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.errors import KinematicaError
-from kinematica.io.atomic import atomic_path
+from kinematica.io.atomic import atomic_path, write_failed
 
 __all__ = ["TrajectoryFileError", "read_trajectory", "write_trajectory"]
 
@@ -109,9 +109,12 @@ def write_trajectory(path: str | os.PathLike[str], t: ArrayLike, q: ArrayLike) -
             f"{qq.shape}"
         )
     p = Path(path)
-    with atomic_path(p) as tmp, tmp.open("w", newline="", encoding="utf-8") as fh:
-        writer = csv.writer(fh)
-        writer.writerow(["t", *(f"q{i}" for i in range(1, qq.shape[1] + 1))])
-        for ti, qi in zip(tt, qq, strict=True):
-            writer.writerow([repr(float(ti)), *(repr(float(v)) for v in qi)])
+    try:
+        with atomic_path(p) as tmp, tmp.open("w", newline="", encoding="utf-8") as fh:
+            writer = csv.writer(fh)
+            writer.writerow(["t", *(f"q{i}" for i in range(1, qq.shape[1] + 1))])
+            for ti, qi in zip(tt, qq, strict=True):
+                writer.writerow([repr(float(ti)), *(repr(float(v)) for v in qi)])
+    except OSError as exc:
+        raise TrajectoryFileError(write_failed(p, exc, "the trajectory")) from exc
     return p
