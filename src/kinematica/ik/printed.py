@@ -162,20 +162,36 @@ def answer_overdetermined(
         nothing was close; else the closest configuration, accepted when within
         the tolerance asked for or the target's printed precision (with a note).
     """
-    if first.status in (IKStatus.OK, IKStatus.SINGULAR):
-        if first.count == 0 or float(first.residuals.max()) <= ROUNDOFF_RESIDUAL:
+    solved = first.status in (IKStatus.OK, IKStatus.SINGULAR)
+    if solved:
+        exact = first.count == 0 or float(first.residuals.max()) <= ROUNDOFF_RESIDUAL
+        if options.tol is None or exact:  # the default tolerance polished what it took
             return first
     elif first.status != IKStatus.NOT_FOUND and not _unproven(first):
         return first
     raw = np.asarray(target, dtype=float)
+    digits = None
+    if not solved and precision is None:  # computed numbers: nothing more to read
+        precision = printed_precision(raw)
+        digits = printed_digits(raw[:3, :4])
+        if precision is None:
+            return first
+    tol = parse_tolerance(options.tol)
+
+    def within_asked(res: IKResult) -> bool:
+        return res.count > 0 and bool(
+            np.all(res.residuals[:, 0] <= tol.position)
+            and np.all(res.residuals[:, 1] <= tol.rotation)
+        )
+
     tight = first
-    if first.status in (IKStatus.OK, IKStatus.SINGULAR) or options.tol is not None:
+    if options.tol is not None:
         # every candidate polished to its least-squares point: the closest one's miss
         again = solve(chain, raw, dataclasses.replace(options, tol=None))
         assert isinstance(again, IKResult)  # one target, one result
         tight = again
-    if tight.status in (IKStatus.OK, IKStatus.SINGULAR):
-        return tight  # reached to round-off after all
+    if tight.status in (IKStatus.OK, IKStatus.SINGULAR):  # reached to 1e-10 after all
+        return tight if solved and within_asked(tight) else first
     if tight.status != IKStatus.NOT_FOUND and not _unproven(tight):
         return first
     p, r = tight.nearest_error
@@ -186,16 +202,10 @@ def answer_overdetermined(
     assert isinstance(best, IKResult)
     if best.count == 0 and best.out_of_limits.shape[0] == 0:
         return first
-    if first.status in (IKStatus.OK, IKStatus.SINGULAR):  # a tolerance took a farther one
-        tol = parse_tolerance(options.tol)
-        p_best, r_best = best.residuals[0] if best.count else (math.inf, math.inf)
-        return best if p_best <= tol.position and r_best <= tol.rotation else first
-    digits = None
-    if precision is None:
-        precision = printed_precision(raw)
-        digits = printed_digits(raw[:3, :4])
-    if precision is None:
-        return first
+    if solved:  # the tolerance asked for took a farther candidate: the closest instead
+        # (when it took several, each is another branch: they stay as they are)
+        return best if first.count == 1 and within_asked(best) else first
+    assert precision is not None
     q = best.solutions[0] if best.count else best.out_of_limits[0]
     if not _reproduces(chain, q, raw, precision):
         note = _note(chain, precision, digits, accepted=False)
