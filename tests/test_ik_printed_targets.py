@@ -56,6 +56,7 @@ def test_shown_above_uses_the_digits_that_show_the_excess(value, limit, text):
 from kinematica.ik.printed import (  # noqa: E402
     PRINTED_DIGITS_MAX,
     printed_precision,
+    rounding_miss,
     significant_digits,
 )
 
@@ -78,11 +79,15 @@ def test_a_pose_printed_with_5_digits_is_answered_with_the_precision_said(name, 
     res = robot.ik(target)
     assert res.status == "ok", res.message
     assert any("5 significant digits" in n for n in res.notes), res.notes
-    # independent check: the answer's T shows the printed numbers at 5 digits
-    big = np.abs(target[:3]).max(axis=0)  # per column: position and rotation scales
-    half = 0.5 * 10.0 ** (np.floor(np.log10(np.where(big > 0, big, 1))) - 4)
-    tol = np.r_[[max(half[:3])] * 3, half[3]]
-    assert np.all(np.abs(robot.fk(res.solutions[0])[:3] - target[:3]) <= tol * (1 + 1e-9))
+    # independent check: the answer is at least as close as the configuration that made
+    # the numbers (position error and rotation angle against the projected target)
+    made = robot.fk(config(robot, q))
+    R = target[:3, :3]
+    U, _, Vt = np.linalg.svd(R)
+    R = U @ Vt
+    angle = np.arccos(np.clip((np.trace(made[:3, :3].T @ R) - 1) / 2, -1, 1))
+    by_made = np.hypot(np.linalg.norm(made[:3, 3] - target[:3, 3]), angle)
+    assert np.hypot(*res.residuals[0]) <= by_made * (1 + 1e-6)
     assert np.allclose(res.solutions[0], config(robot, q), atol=1e-3)
 
 
@@ -134,6 +139,36 @@ def test_six_joint_arms_are_not_over_determined():
 )
 def test_significant_digits(value, digits):
     assert significant_digits(value) == digits
+
+
+def test_rounding_miss_by_hand():
+    # √3 ε for a position box of half-width ε; 3ε/√2 for rotation entries off by ε
+    assert rounding_miss((1e-6, 0.0)) == pytest.approx(math.sqrt(3) * 1e-6, rel=1e-12)
+    assert rounding_miss((0.0, 1e-6)) == pytest.approx(3 / math.sqrt(2) * 1e-6, rel=1e-12)
+
+
+@pytest.mark.parametrize(("factor", "answered"), [(1.01, True), (0.99, False)])
+def test_a_miss_is_answered_up_to_the_rounding_miss(factor, answered):
+    # The closest configuration misses this 5-digit target by `miss`; a precision
+    # whose rounding can move a pose by just more (less) than that accepts (refuses) it.
+    robot = km.load("anthropomorphic-3r")
+    target = printed(robot.fk(np.radians([30.0, 40.0, -30.0])), 5)
+    miss = float(np.hypot(*robot.ik(target).residuals[0]))
+    eps = factor * miss / math.sqrt(7.5)  # rounding_miss((eps, eps)) = √7.5 · eps
+    res = robot.ik(target, precision=(eps, eps))
+    assert res.success is answered
+
+
+def test_a_rounding_past_the_reach_is_answered():
+    # Folded to q3 = -0.038°: printed with 4 digits the target lies 4e-5 m past the
+    # reach, less than rounding to 4 digits can move a pose.
+    robot = km.load("anthropomorphic-3r")
+    target = printed(robot.fk(np.radians([-21.464, 163.653, -0.038])), 4)
+    strict = robot.ik(target, precision=(0.0, 0.0))
+    assert strict.status == "unreachable" and strict.gap is not None
+    res = robot.ik(target)
+    assert res.status == "ok" and res.count == 1
+    assert any("past the reach" in n for n in res.notes)
 
 
 def test_printed_digits_max_is_12():

@@ -16,9 +16,10 @@ least-squares point, miss by a few 1e-6. Two things follow.
   N significant digits (the most any of its 12 numbers shows), so each entry is
   known to half a unit in the N-th digit of the largest entry of its block
   (position column, rotation block). The closest configuration answers it when
-  its T reproduces every printed entry to that precision; the note says which
-  precision was assumed. Components the arm cannot control are thereby checked
-  against its reachable set to exactly the precision the numbers carry.
+  it misses the target by no more than rounding to that precision can move a
+  pose the arm reaches (:func:`rounding_miss`); the note says which precision
+  was assumed. Components the arm cannot control are thereby checked against its
+  reachable set to the precision the numbers carry.
 """
 
 from __future__ import annotations
@@ -44,6 +45,7 @@ __all__ = [
     "half_unit",
     "printed_digits",
     "printed_precision",
+    "rounding_miss",
     "significant_digits",
 ]
 
@@ -101,13 +103,17 @@ def printed_precision(T: ArrayLike) -> tuple[float, float] | None:
     return half_unit(block[:, 3], n), half_unit(block[:, :3], n)
 
 
-def _reproduces(chain: Chain, q: FloatArray, T: FloatArray, precision: tuple[float, float]) -> bool:
-    """True when every entry of FK(q) rounds to the printed entry of ``T`` (3 x 4 block)."""
-    diff = np.abs(chain.fk(np.asarray(q, dtype=float))[0][:3, :4] - T[:3, :4])
-    bound = np.empty((3, 4))
-    bound[:, :3], bound[:, 3] = precision[1], precision[0]
-    bound = bound * _JUST_ABOVE + ROUNDOFF_RESIDUAL * (1.0 + np.abs(T[:3, :4]))
-    return bool(np.all(diff <= bound))
+def rounding_miss(precision: tuple[float, float]) -> float:
+    """How far (m and rad together) rounding to ``precision`` can move a pose.
+
+    Entries off by at most ε_p (position) move the position by at most √3·ε_p;
+    rotation entries off by at most ε_R, once projected onto SO(3), turn it by at
+    most ‖E‖_F/√2 <= 3ε_R/√2 (to first order: the skew part of RᵀE). So a pose
+    printed from one the arm reaches lies within ``√(3ε_p² + 4.5ε_R²)`` of it, and
+    the closest configuration (least squares over p² + r²) misses it by no more.
+    """
+    p, r = precision
+    return math.sqrt(3.0 * p * p + 4.5 * r * r)
 
 
 def _note(chain: Chain, precision: tuple[float, float], digits: int | None, accepted: bool) -> str:
@@ -121,10 +127,10 @@ def _note(chain: Chain, precision: tuple[float, float], digits: int | None, acce
     over = f"a pose is over-determined for this {chain.dof}-joint arm"
     if accepted:
         return (
-            f"{read}: {over}, and the closest configuration reproduces every printed number "
-            "to that precision"
+            f"{read}: {over}, and the closest configuration misses it by no more than rounding "
+            "to that precision can"
         )
-    return f"{read}: {over}, and the closest configuration does not reproduce it to that precision"
+    return f"{read}: {over}, and the closest configuration misses it by more than rounding can"
 
 
 def _unproven(res: IKResult) -> bool:
@@ -135,6 +141,46 @@ def _unproven(res: IKResult) -> bool:
     polishes).
     """
     return res.status == IKStatus.UNREACHABLE and res.gap is None
+
+
+def _past_the_boundary(
+    chain: Chain,
+    target: ArrayLike,
+    options: IKOptions,
+    first: IKResult,
+    solve: Solve,
+    precision: tuple[float, float] | None,
+) -> IKResult:
+    """A printed target proven out of reach by less than its rounding can account for.
+
+    Printed from a pose at the workspace boundary (arm stretched or folded), its
+    rounding may put it just outside: the closest candidate then answers it when it
+    misses by no more than the rounding can (:func:`rounding_miss`).
+    """
+    raw = np.asarray(target, dtype=float)
+    digits = None
+    if precision is None:
+        precision, digits = printed_precision(raw), printed_digits(raw[:3, :4])
+    if precision is None or first.gap is None:
+        return first
+    bound = rounding_miss(precision) * _JUST_ABOVE
+    if first.gap > bound:
+        return first
+    near = solve(chain, raw, dataclasses.replace(options, tol=(bound, bound)))
+    assert isinstance(near, IKResult)  # one target, one result
+    misses = [math.hypot(*res) for res in near.residuals]
+    if not misses or min(misses) > bound:
+        return first
+    keep = int(np.argmin(misses))
+    best = dataclasses.replace(
+        near,
+        solutions=near.solutions[keep : keep + 1],
+        residuals=near.residuals[keep : keep + 1],
+        branches=near.branches[keep : keep + 1],
+    )
+    note = _note(chain, precision, digits, accepted=True)
+    gap = f"it lies {first.gap:.3g} m past the reach, no farther than its rounding can move a pose"
+    return dataclasses.replace(best, notes=(*best.notes, f"{note}; {gap}"))
 
 
 def answer_overdetermined(
@@ -162,6 +208,8 @@ def answer_overdetermined(
         nothing was close; else the closest configuration, accepted when within
         the tolerance asked for or the target's printed precision (with a note).
     """
+    if first.status == IKStatus.UNREACHABLE and first.gap is not None:
+        return _past_the_boundary(chain, target, options, first, solve, precision)
     solved = first.status in (IKStatus.OK, IKStatus.SINGULAR)
     if solved:
         exact = first.count == 0 or float(first.residuals.max()) <= ROUNDOFF_RESIDUAL
@@ -206,8 +254,8 @@ def answer_overdetermined(
         # (when it took several, each is another branch: they stay as they are)
         return best if first.count == 1 and within_asked(best) else first
     assert precision is not None
-    q = best.solutions[0] if best.count else best.out_of_limits[0]
-    if not _reproduces(chain, q, raw, precision):
+    miss = best.residuals[0] if best.count else tight.nearest_error
+    if math.hypot(*miss) > rounding_miss(precision) * _JUST_ABOVE:
         note = _note(chain, precision, digits, accepted=False)
         return dataclasses.replace(first, notes=(*first.notes, note))
     note = _note(chain, precision, digits, accepted=True)
