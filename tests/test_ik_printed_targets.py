@@ -55,6 +55,7 @@ def test_shown_above_uses_the_digits_that_show_the_excess(value, limit, text):
 # ------------------------------------------------ item 2: over-determined targets
 from kinematica.ik.printed import (  # noqa: E402
     PRINTED_DIGITS_MAX,
+    PRINTED_DIGITS_MIN,
     printed_precision,
     rounding_miss,
     significant_digits,
@@ -171,9 +172,33 @@ def test_a_rounding_past_the_reach_is_answered():
     assert any("past the reach" in n for n in res.notes)
 
 
+@pytest.mark.parametrize(("text", "assumed"), [("0.123", True), ("0.12", False)])
+def test_printed_digits_min_is_3(text, assumed):
+    # 0.5, 1e200: numbers typed, taken as exact; three digits or more: printed
+    T = np.eye(4)
+    T[0, 3] = float(text)
+    assert PRINTED_DIGITS_MIN == 3
+    assert (printed_precision(T) is not None) is assumed
+
+
 def test_printed_digits_max_is_12():
     T = np.eye(4)
     T[0, 3] = 0.123456789012  # 12 digits: printed
     assert printed_precision(T) == pytest.approx((5e-13, 5e-12), rel=1e-12)
     T[0, 3] = 0.1234567890123  # 13 digits: computed
     assert PRINTED_DIGITS_MAX == 12 and printed_precision(T) is None
+
+
+def test_a_batch_answers_printed_targets_as_one_target_each():
+    robot = km.load("anthropomorphic-3r")
+    q = robot.random_q(12, seed=np.random.default_rng(8))
+    targets = np.stack([printed(T, 5) for T in robot.fk(q)])
+    targets[3, 0, 3] += 1.0  # one far off the arm's poses
+    many = robot.ik(targets)
+    for i in range(len(targets)):
+        one = robot.ik(targets[i])
+        assert many.status[i] == one.status
+        np.testing.assert_allclose(many[i].solutions, one.solutions, rtol=0, atol=0)
+        np.testing.assert_allclose(many[i].residuals, one.residuals, rtol=0, atol=0)
+        assert many[i].notes == one.notes
+    assert (many.status == "ok").sum() == 11

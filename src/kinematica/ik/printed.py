@@ -28,10 +28,12 @@ import dataclasses
 import math
 from collections.abc import Callable
 from decimal import Decimal
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.ik.options import IKOptions
 from kinematica.ik.result import IKBatchResult, IKResult
@@ -40,9 +42,11 @@ from kinematica.ik.targets import parse_tolerance
 
 __all__ = [
     "PRINTED_DIGITS_MAX",
+    "PRINTED_DIGITS_MIN",
     "ROUNDOFF_RESIDUAL",
     "answer_overdetermined",
     "half_unit",
+    "overdetermined_rows",
     "printed_digits",
     "printed_precision",
     "rounding_miss",
@@ -55,8 +59,13 @@ Solve = Callable[[Chain, ArrayLike, IKOptions], "IKResult | IKBatchResult"]
 #: Numbers showing more significant digits than this were computed, not printed (a
 #: double shows up to 17): no precision is assumed for them.
 PRINTED_DIGITS_MAX = 12
+#: Numbers showing fewer than this were typed (0.5, 1e200), not printed from a pose:
+#: they are taken as exact.
+PRINTED_DIGITS_MIN = 3
 #: A solution's residual (m, rad) up to this is round-off: the target is on the set.
 ROUNDOFF_RESIDUAL = 1e-12
+_NOT_FOUND = _core.STATUS["not_found"]
+_UNREACHABLE = _core.STATUS["unreachable"]
 #: A tolerance a hair above the closest candidate's residual accepts it alone.
 _JUST_ABOVE = 1.0 + 1e-9
 
@@ -70,12 +79,13 @@ def significant_digits(value: float) -> int:
 
 
 def printed_digits(values: ArrayLike) -> int | None:
-    """The most significant digits any of ``values`` shows; None for computed numbers.
+    """The most significant digits any of ``values`` shows; None unless printed.
 
-    None too when all are 0 (no digit shows a precision).
+    None for computed numbers (more than :data:`PRINTED_DIGITS_MAX`) and typed ones
+    (fewer than :data:`PRINTED_DIGITS_MIN`, all 0 included).
     """
     n = max((significant_digits(float(v)) for v in np.ravel(values)), default=0)
-    return None if n == 0 or n > PRINTED_DIGITS_MAX else n
+    return None if n < PRINTED_DIGITS_MIN or n > PRINTED_DIGITS_MAX else n
 
 
 def half_unit(values: ArrayLike, digits: int) -> float:
@@ -94,7 +104,8 @@ def printed_precision(T: ArrayLike) -> tuple[float, float] | None:
         ``(position, rotation)``: the precision (m; unitless) of the position
         column and of the rotation block read as printed with N significant
         digits, N the most any of the 12 numbers shows; None when they show more
-        than :data:`PRINTED_DIGITS_MAX` (computed numbers) or are all 0 and ±1.
+        than :data:`PRINTED_DIGITS_MAX` (computed numbers) or fewer than
+        :data:`PRINTED_DIGITS_MIN` (typed ones).
     """
     block = np.asarray(T, dtype=float)[:3, :4]
     n = printed_digits(block)
@@ -164,7 +175,7 @@ def _past_the_boundary(
     if precision is None or first.gap is None:
         return first
     bound = rounding_miss(precision) * _JUST_ABOVE
-    if first.gap > bound:
+    if not math.isfinite(bound) or first.gap > bound:
         return first
     near = solve(chain, raw, dataclasses.replace(options, tol=(bound, bound)))
     assert isinstance(near, IKResult)  # one target, one result
@@ -260,3 +271,54 @@ def answer_overdetermined(
         return dataclasses.replace(first, notes=(*first.notes, note))
     note = _note(chain, precision, digits, accepted=True)
     return dataclasses.replace(best, notes=(*best.notes, note))
+
+
+def overdetermined_rows(
+    chain: Chain,
+    target: ArrayLike,
+    options: IKOptions,
+    raw: dict[str, Any],
+    labels: tuple[str, ...],
+    q0s: FloatArray | None,
+    solve_one: Solve,
+) -> tuple[dict[str, Any], dict[int, tuple[str, ...]]]:
+    """A batch's unanswered pose targets (``dof < 6``), each answered as one target.
+
+    Args:
+        chain: The chain.
+        target: ``(..., 4, 4)`` the targets as given.
+        options: The call's options.
+        raw: The batch's check output (arrays over the N flat targets).
+        labels: The branch labels of the batch's slots.
+        q0s: ``(N, n)`` q0 per target, or None.
+        solve_one: ``solve_ik`` (one target, the over-determined look included).
+
+    Returns:
+        ``(raw, notes)``: the arrays with those rows replaced where the one-target
+        answer found solutions, and flat index -> its notes.
+    """
+    flat = np.asarray(target, dtype=float).reshape(-1, 4, 4)
+    rows = np.flatnonzero((raw["status"] == _NOT_FOUND) | (raw["status"] == _UNREACHABLE))
+    notes: dict[int, tuple[str, ...]] = {}
+    if rows.size == 0:
+        return raw, notes
+    out = {key: np.array(value, copy=True) for key, value in raw.items()}
+    for i in rows.tolist():
+        if options.precision is None and printed_precision(flat[i]) is None:
+            continue  # computed numbers: the batch's answer stands
+        q0 = None if q0s is None else q0s[i]
+        one = solve_one(chain, flat[i], dataclasses.replace(options, q0=q0, workers=None))
+        assert isinstance(one, IKResult)  # one target, one result
+        found = np.vstack([one.solutions, one.out_of_limits])
+        branches = (*one.branches, *one.out_of_limits_branches)
+        if found.shape[0] == 0 or any(b not in labels for b in branches):
+            continue
+        out["q"][i], out["res"][i], out["slot"][i] = np.nan, np.nan, -1
+        out["q"][i, : found.shape[0]] = found
+        out["res"][i, : one.count] = one.residuals
+        out["slot"][i, : found.shape[0]] = [labels.index(b) for b in branches]
+        out["status"][i] = _core.STATUS[str(one.status)]
+        out["count"][i], out["out_count"][i] = one.count, one.out_of_limits.shape[0]
+        out["gap"][i] = np.nan
+        notes[i] = one.notes
+    return out, notes

@@ -28,7 +28,7 @@ from kinematica.ik.fallback import (
 )
 from kinematica.ik.numeric import LABEL, check_seed, numeric_setup
 from kinematica.ik.options import IKOptions, Method
-from kinematica.ik.printed import answer_overdetermined
+from kinematica.ik.printed import answer_overdetermined, overdetermined_rows
 from kinematica.ik.reach import beyond_limited_reach
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
 from kinematica.ik.result import CheckOutput, CoreAnswer, IKBatchResult, IKResult, result_of
@@ -313,6 +313,10 @@ def _solve(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IK
         if beyond.any():
             raw = dict(raw, status=np.where(beyond, _UNREACHABLE, raw["status"]))
             raw["gap"] = np.where(beyond, gaps, raw["gap"])
+    if chain.dof < 6 and m is None and not targets.position:  # over-determined poses
+        raw, more = overdetermined_rows(chain, target, options, raw, labels, q0s, solve_ik)
+        for i, extra in more.items():
+            batch_notes[where(i)] = extra
     return IKBatchResult(
         raw=CheckOutput(**raw),
         method=name,
