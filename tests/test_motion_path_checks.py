@@ -142,3 +142,14 @@ def test_relative_elbow_measure_is_the_triangle_sine():
     expected = 0.4 * np.abs(np.sin(q[:, 2])) / reach
     got = singularity_measures(robot, q, relative=True)["elbow"]
     np.testing.assert_allclose(got, expected, rtol=1e-12)
+
+
+@pytest.mark.parametrize(("step", "jump"), [(5e-10, False), (5e-9, True)])
+def test_step_roundoff_is_1e_9(arm6, step, jump):
+    # a path that does not move but for one step: a jump only beyond round-off
+    from kinematica.motion.path_checks import STEP_ROUNDOFF
+
+    assert STEP_ROUNDOFF == 1e-9
+    q = np.zeros((21, 6))
+    q[11:, 0] = step
+    assert bool(speed_jumps(arm6, np.linspace(0, 1, 21), q)) is jump

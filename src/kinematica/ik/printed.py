@@ -43,7 +43,6 @@ from kinematica.ik.targets import parse_tolerance
 __all__ = [
     "PRINTED_DIGITS_MAX",
     "PRINTED_DIGITS_MIN",
-    "ROUNDOFF_RESIDUAL",
     "answer_overdetermined",
     "half_unit",
     "overdetermined_rows",
@@ -62,8 +61,6 @@ PRINTED_DIGITS_MAX = 12
 #: Numbers showing fewer than this were typed (0.5, 1e200), not printed from a pose:
 #: they are taken as exact.
 PRINTED_DIGITS_MIN = 3
-#: A solution's residual (m, rad) up to this is round-off: the target is on the set.
-ROUNDOFF_RESIDUAL = 1e-12
 _NOT_FOUND = _core.STATUS["not_found"]
 _UNREACHABLE = _core.STATUS["unreachable"]
 #: A tolerance a hair above the closest candidate's residual accepts it alone.
@@ -215,18 +212,16 @@ def answer_overdetermined(
             None: read from their digits (:func:`printed_precision`).
 
     Returns:
-        ``first`` when the target is on the arm's set (round-off residuals) or
-        nothing was close; else the closest configuration, accepted when within
-        the tolerance asked for or the target's printed precision (with a note).
+        ``first`` when the default tolerance answered it or nothing was close;
+        else the closest configuration, accepted when within the tolerance asked
+        for or the target's printed precision (with a note).
     """
     if first.status == IKStatus.UNREACHABLE and first.gap is not None:
         return _past_the_boundary(chain, target, options, first, solve, precision)
     solved = first.status in (IKStatus.OK, IKStatus.SINGULAR)
-    if solved:
-        exact = first.count == 0 or float(first.residuals.max()) <= ROUNDOFF_RESIDUAL
-        if options.tol is None or exact:  # the default tolerance polished what it took
-            return first
-    elif first.status != IKStatus.NOT_FOUND and not _unproven(first):
+    if solved and (options.tol is None or first.count == 0):
+        return first  # the default tolerance polished what it took
+    if not solved and first.status != IKStatus.NOT_FOUND and not _unproven(first):
         return first
     raw = np.asarray(target, dtype=float)
     digits = None
