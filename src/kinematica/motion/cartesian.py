@@ -25,6 +25,7 @@ refinement reaches :data:`MAX_DEPTH` levels (a jump: ``"branch_change"``).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -52,7 +53,15 @@ from kinematica.spatial import (
 if TYPE_CHECKING:
     from kinematica.robot import Robot
 
-__all__ = ["MAX_DEPTH", "MAX_JOINT_STEP", "CartesianPath", "PathEvent", "cartesian_path"]
+__all__ = [
+    "MAX_DEPTH",
+    "MAX_JOINT_STEP",
+    "CartesianPath",
+    "PathEvent",
+    "cartesian_path",
+    "follow",
+    "path_samples",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -161,7 +170,9 @@ class _Geometry:
 class _Follower:
     """Nearest-solution continuation of one robot along one path."""
 
-    def __init__(self, robot: Robot, geometry: _Geometry, position_only: bool) -> None:
+    def __init__(
+        self, robot: Robot, geometry: Callable[[FloatArray], FloatArray], position_only: bool
+    ) -> None:
         self.robot = robot
         self.position_only = position_only
         self.geo = geometry
@@ -291,36 +302,66 @@ def cartesian_path(
         if v.shape != (3,) or not np.all(np.isfinite(v)):
             raise DimensionError(f"via must be a point (3,) or a pose (4, 4), got {via!r}")
         via = v
+    ss = path_samples(steps, s)
+    geo = _Geometry(A, B, None if via is None else np.asarray(via))
+    return follow(robot, geo, ss, q0, position_only, q1)
+
+
+def path_samples(steps: int, s: ArrayLike | None) -> FloatArray:
+    """``(m,)`` path parameters: ``steps`` uniform ones, or ``s`` checked."""
     if s is None:
         if isinstance(steps, bool) or not isinstance(steps, int | np.integer) or steps < 2:
             raise KinematicaError(f"steps must be an integer >= 2, got {steps!r}")
-        ss = np.linspace(0.0, 1.0, int(steps))
-    else:
-        ss = np.asarray(s, dtype=float)
-        ok = ss.ndim == 1 and ss.size >= 2 and np.all(np.isfinite(ss))
-        if not ok or ss[0] < 0 or ss[-1] > 1 or np.any(np.diff(ss) < 0):
-            raise KinematicaError("s must hold >= 2 non-decreasing values within [0, 1]")
+        return np.linspace(0.0, 1.0, int(steps))
+    ss = np.asarray(s, dtype=float)
+    ok = ss.ndim == 1 and ss.size >= 2 and np.all(np.isfinite(ss))
+    if not ok or ss[0] < 0 or ss[-1] > 1 or np.any(np.diff(ss) < 0):
+        raise KinematicaError("s must hold >= 2 non-decreasing values within [0, 1]")
+    return ss
+
+
+def follow(
+    robot: Robot,
+    geometry: Callable[[FloatArray], FloatArray],
+    ss: FloatArray,
+    q0: ArrayLike | None,
+    position_only: bool | None,
+    q1: ArrayLike | None = None,
+) -> CartesianPath:
+    """Follow the poses ``geometry(s)`` at the samples ``ss`` on one IK branch.
+
+    Args:
+        robot: The robot.
+        geometry: Path parameter ``(...)`` to poses ``(..., 4, 4)`` (base frame).
+        ss: ``(m,)`` non-decreasing path parameters in [0, 1].
+        q0: ``(n,)`` configuration whose branch the path starts on, or ``None``.
+        position_only: As :func:`cartesian_path`'s (``None``: from the arm).
+        q1: ``(n,)`` configuration whose branch the path should end on (at
+            ``geometry(1)``), or ``None``: see :func:`cartesian_path`.
+
+    Returns:
+        The :class:`CartesianPath`, with its ``events``.
+    """
     q_start = None if q0 is None else robot.check_q(q0, "q0")
     q_end = None if q1 is None else robot.check_q(q1, "q1")
-    geo = _Geometry(A, B, None if via is None else np.asarray(via))
     if position_only is None:
         position_only = singularity_plan(robot).rows == (0, 1, 2)
-    follow = _Follower(robot, geo, bool(position_only))
-    poses = geo(ss)
+    follower = _Follower(robot, geometry, bool(position_only))
+    poses = geometry(ss)
     m, n = ss.size, robot.dof
     q = np.full((m, n), np.nan)
     raw: list[tuple[str, int, float, tuple[str, ...], str]] = []
     last: FloatArray | None = q_start
     last_ok = False  # whether sample i-1 was solved (the segment is then inspected)
     for i, si in enumerate(ss):
-        status, qi, why = follow.solve(float(si), last)
+        status, qi, why = follower.solve(float(si), last)
         if qi is None:
             names = tuple(why.split(", ")) if status == "joint_limit" else ()
             raw.append((status, i, float(si), names, why))
             last_ok = False
             continue
         if last_ok and last is not None:
-            for kind, se, names in follow.inspect(float(ss[i - 1]), last, float(si), qi):
+            for kind, se, names in follower.inspect(float(ss[i - 1]), last, float(si), qi):
                 raw.append((kind, i, se, names, ""))
         here = singularities(robot, qi)
         if here:
@@ -329,7 +370,8 @@ def cartesian_path(
         last, last_ok = qi, True
     checks = near_singular_passages(robot, ss, q) + speed_jumps(robot, ss, q)
     if q_end is not None:
-        checks += end_branch(robot, B, q, ss, q_end, bool(position_only))
+        end = geometry(np.array(1.0))
+        checks += end_branch(robot, end, q, ss, q_end, bool(position_only))
     return CartesianPath(ss, poses, q, _with_checks(_merge(raw), checks))
 
 
