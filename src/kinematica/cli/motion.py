@@ -289,7 +289,7 @@ def trajectory(args: argparse.Namespace) -> int:
             blend = 0.0 if args.blend is None else float(lengths_in(args.blend, robot, args))
             path = cartesian_via_path(robot, poses, blend=blend, q0=qa, s=s)
         else:
-            path = cartesian_path(robot, robot.fk(qa), robot.fk(qb), q0=qa, s=s)
+            path = cartesian_path(robot, robot.fk(qa), robot.fk(qb), q0=qa, s=s, q1=qb)
         q, qd, qdd = path.q, None, None
     elif through:
         if times is None and vmax is None and amax is None:

@@ -27,10 +27,11 @@ from __future__ import annotations
 import math
 import os
 import stat
+import warnings
 from pathlib import Path
 from typing import Any, Final
 
-from kinematica.errors import RobotFileError
+from kinematica.errors import KinematicaWarning, RobotFileError
 from kinematica.io.spec import FrameSpec
 from kinematica.io.urdf_model import JOINT_TYPES, MOVABLE_TYPES, UrdfJoint, UrdfModel
 from kinematica.io.xacro import XACRO_HINT, expand_xacro
@@ -152,6 +153,38 @@ def _axis(axis_elem: Any, jtype: str) -> tuple[float, float, float]:
     return (axis[0] / norm, axis[1] / norm, axis[2] / norm)
 
 
+def _no_limits(jtype: str, lo: float, hi: float) -> bool:
+    """True for ``<limit lower="0" upper="0">`` on a revolute joint: "no limits given".
+
+    CAD exporters (and example-robot-data's ``double_pendulum.urdf``) write it for a
+    joint without limits; Pinocchio reads it so. A joint that truly cannot move is
+    written as fixed.
+    """
+    return jtype == "revolute" and lo == 0.0 and hi == 0.0
+
+
+def _zero_limits_warning(elem: Any, source: str | None) -> None:
+    """Warn that a joint's ``lower="0" upper="0"`` was read as no limits."""
+    limit = next((e for e in elem if _local(e.tag) == "limit"), None)
+    if limit is None or elem.get("type") != "revolute":
+        return
+    if limit.get("lower") is None and limit.get("upper") is None:
+        return  # no bounds written: no limits, nothing to say
+    try:
+        lo = float(limit.get("lower") or 0.0)
+        hi = float(limit.get("upper") or 0.0)
+    except ValueError:
+        return
+    if _no_limits("revolute", lo, hi):
+        where = f"{source}: " if source else ""
+        warnings.warn(
+            f"{where}joint {elem.get('name')!r} has limits lower=0 upper=0, what CAD "
+            "exporters write for a joint without limits: read as no limits",
+            KinematicaWarning,
+            stacklevel=4,
+        )
+
+
 def _joint(elem: Any) -> UrdfJoint:
     """One ``<joint>`` element; raises ValueError with the problem (no joint name)."""
     jtype = elem.get("type")
@@ -190,12 +223,15 @@ def _joint(elem: Any) -> UrdfJoint:
             )
             lo = _numbers(lower, 1, (0.0,), "limit lower", bound, unit_name)[0]
             hi = _numbers(upper, 1, (0.0,), "limit upper", bound, unit_name)[0]
-            if not lo < hi:
+            if _no_limits(jtype, lo, hi):
+                limits = None  # "no limits given" (the reader warns)
+            elif not lo < hi:
                 raise ValueError(
                     f"has limits lower={lo:g} >= upper={hi:g}: the joint cannot move "
                     "(make it fixed, or give lower < upper)"
                 )
-            limits = (lo, hi)
+            else:
+                limits = (lo, hi)
     mimic_elem = first("mimic")
     mimic = None if mimic_elem is None else (mimic_elem.get("joint") or "?")
     return UrdfJoint(
@@ -259,6 +295,7 @@ def _model(root: Any, source: str | None) -> UrdfModel:
             joints[name] = _joint(elem)
         except ValueError as exc:
             raise RobotFileError(f"joint {name!r} {exc}", path=source) from exc
+        _zero_limits_warning(elem, source)
     if not links:
         raise RobotFileError("the URDF has no <link>", path=source)
     return UrdfModel(

@@ -10,10 +10,11 @@ kinematics; the origins are kept as :class:`~kinematica.io.spec.FrameSpec`.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
-from kinematica.errors import RobotFileError
+from kinematica.errors import KinematicaWarning, RobotFileError
 from kinematica.io._parse import MAX_JOINTS
 from kinematica.io.spec import FrameSpec
 
@@ -25,6 +26,12 @@ JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "plan
 MOVABLE_TYPES = ("revolute", "continuous", "prismatic")
 
 _SHOWN = 8  # names listed in a message before "..."
+#: The maker's controller base frame of ROS-Industrial descriptions (REP-199): DH
+#: frame 0 where it lies on axis 1 (UR publishes its DH table in it).
+MAKER_BASE = "base"
+#: The flange frame of ROS-Industrial descriptions (REP-199): where a chain ends when
+#: its leaves are all frames fixed to the last moving link.
+FLANGE = "tool0"
 
 
 def _names(names: Sequence[str]) -> str:
@@ -80,6 +87,9 @@ class UrdfChain:
         joints: The joints from ``base`` to ``tip`` in order, fixed ones
             included; each joint's parent is the previous joint's child.
         source: The file it was read from, or ``None``.
+        maker_base: The fixed joints from ``base`` to ROS-Industrial's ``base``
+            link (the maker's controller base frame, REP-199) when it hangs off
+            the chain before its first movable joint; ``()`` otherwise.
     """
 
     name: str
@@ -87,6 +97,7 @@ class UrdfChain:
     tip: str
     joints: tuple[UrdfJoint, ...]
     source: str | None = None
+    maker_base: tuple[UrdfJoint, ...] = ()
 
     @property
     def movable(self) -> tuple[UrdfJoint, ...]:
@@ -215,8 +226,11 @@ class UrdfModel:
             tip: The tip link; default the single leaf below ``base`` reached
                 through at least one movable joint (leaves hanging from the
                 base by fixed joints only, such as ROS-Industrial's ``base``
-                frame, are not candidates). With several candidates the error
-                lists them.
+                frame, are not candidates). When several leaves all hang by
+                fixed joints off the same last moving link (a UR file's
+                ``ee_link`` and ``tool0``), ``tool0`` if that link carries one,
+                else the last moving link, with a warning saying which. Other
+                cases of several candidates are an error that lists them.
 
         Returns:
             The chain.
@@ -259,7 +273,70 @@ class UrdfModel:
                 f"at most {MAX_JOINTS} are accepted (as in robot files); choose a shorter chain "
                 "(base= / --base, tip= / --tip)"
             )
-        return UrdfChain(name=self.name, base=start, tip=tip, joints=path, source=self.source)
+        return UrdfChain(
+            name=self.name,
+            base=start,
+            tip=tip,
+            joints=path,
+            source=self.source,
+            maker_base=self._maker_base(start, path),
+        )
+
+    def _maker_base(self, start: str, path: tuple[UrdfJoint, ...]) -> tuple[UrdfJoint, ...]:
+        """Fixed joints from ``start`` to a side link :data:`MAKER_BASE` before joint 1."""
+        before = [start]
+        for j in path:
+            if j.movable:
+                break
+            before.append(j.child)
+        if MAKER_BASE not in self.links or MAKER_BASE in before:
+            return ()
+        side: list[UrdfJoint] = []
+        link = MAKER_BASE
+        while link not in before:
+            joint = self._parent_joint.get(link)
+            if joint is None or joint.movable:
+                return ()
+            side.append(joint)
+            link = joint.parent
+        prefix = path[: before.index(link)]
+        return (*prefix, *reversed(side))
+
+    def _common_flange(self, leaves: list[str], children: dict[str, list[UrdfJoint]]) -> str | None:
+        """The tip when every leaf hangs by fixed joints off one last moving link, else None.
+
+        The chain is then unambiguous (the leaves are frames on one rigid body): it ends
+        at ``tool0``, the ROS-Industrial flange frame, where that body carries one, else
+        at the last moving link itself. A warning says which.
+        """
+        owners = set()
+        for leaf in leaves:
+            link = leaf
+            while link in self._parent_joint and not self._parent_joint[link].movable:
+                link = self._parent_joint[link].parent
+            owners.add(link)
+        if len(owners) != 1:
+            return None
+        (last,) = owners
+        rigid, stack = [], [last]  # the links fixed to the last moving link
+        while stack:
+            link = stack.pop()
+            rigid.append(link)
+            stack.extend(j.child for j in children[link] if not j.movable)
+        tip = FLANGE if FLANGE in rigid else last
+        why = (
+            f"the ROS-Industrial flange frame {FLANGE!r}"
+            if tip == FLANGE
+            else f"the last moving link {last!r}"
+        )
+        where = f"{self.source}: " if self.source else ""
+        warnings.warn(
+            f"{where}leaf links {_names(leaves)} all hang by fixed joints off {last!r}, the "
+            f"last moving link: the chain ends at {why}; choose another with tip= / --tip",
+            KinematicaWarning,
+            stacklevel=4,
+        )
+        return tip
 
     def _default_tip(self, base: str) -> str:
         children = self._children()
@@ -275,6 +352,9 @@ class UrdfModel:
             return candidates[0]
         if not candidates:
             raise self._error(f"no movable joint below link {base!r}")
+        flange = self._common_flange(candidates, children)
+        if flange is not None:
+            return flange
         raise self._error(
             f"{len(candidates)} leaf links below {base!r} end a chain with movable joints: "
             f"{_names(candidates)}; choose one as the tip (tip= / --tip)"

@@ -13,7 +13,10 @@ samples is then inspected; nothing changes silently:
 - ``"unreachable"``: the pose has no IK solution (the path leaves the workspace);
 - ``"joint_limit"``: the continuation lies outside a joint limit;
 - ``"branch_change"``: the nearest solution is not the continuation of the
-  previous one (a joint jump that refining the segment does not shrink).
+  previous one (a joint jump that refining the segment does not shrink);
+- ``"near_singularity"``, ``"speed_jump"``, ``"end_branch"``: a passage near a
+  singular set, a joint rate that jumps, an end on another branch than ``q1``
+  (:mod:`kinematica.motion.path_checks`).
 
 A segment whose largest joint step exceeds :data:`MAX_JOINT_STEP` is refined by
 bisection until every sub-step is below it (continuous, fast motion) or the
@@ -32,6 +35,12 @@ from numpy.typing import ArrayLike, NDArray
 from kinematica.arguments import check_count, check_flag, check_size
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.result import IKResult
+from kinematica.motion.path_checks import (
+    RawEvent,
+    end_branch,
+    near_singular_passages,
+    speed_jumps,
+)
 from kinematica.robot.singularities import singularities, singularity_plan
 from kinematica.spatial import (
     check_transform,
@@ -74,14 +83,16 @@ class PathEvent:
     """Something met along a Cartesian path.
 
     Attributes:
-        kind: ``"singularity"``, ``"unreachable"``, ``"joint_limit"`` or
-            ``"branch_change"``.
+        kind: ``"singularity"``, ``"unreachable"``, ``"joint_limit"``,
+            ``"branch_change"``, ``"near_singularity"``, ``"speed_jump"`` or
+            ``"end_branch"``.
         index: First sample where it is met (for a crossing or a jump
             between samples ``i-1`` and ``i``: ``i``).
         stop: Last sample of a run of consecutive samples with this event.
         s: Path parameter in [0, 1] where it is met (the crossing itself
             when located between samples).
-        names: Singularity names, or the joints (``"q3"``) over their limits.
+        names: Singularity names, or the joints (``"q3"``) over their limits,
+            jumping, or differing from the end asked for.
         message: One sentence for people.
     """
 
@@ -258,6 +269,7 @@ def cartesian_path(
     via: ArrayLike | None = None,
     s: ArrayLike | None = None,
     position_only: bool | None = None,
+    q1: ArrayLike | None = None,
 ) -> CartesianPath:
     """Follow a straight line (or an arc through ``via``) from ``T0`` to ``T1``.
 
@@ -276,6 +288,9 @@ def cartesian_path(
             ``poses`` is then not imposed). By default, True for arms whose
             whole mobility is positional (3R anthropomorphic, planar 2R: the
             rows :func:`singularities` judges are the position rows).
+        q1: ``(n,)`` configuration the path is asked to end on (the IK solution
+            of ``T1`` nearest to it): an ``"end_branch"`` event says when the
+            continuation ends elsewhere (the same pose, another branch).
 
     Returns:
         The :class:`CartesianPath`, with its ``events``.
@@ -296,7 +311,7 @@ def cartesian_path(
         via = v
     ss = path_samples(steps, s)
     geo = _Geometry(A, B, None if via is None else np.asarray(via))
-    return follow(robot, geo, ss, q0, position_only)
+    return follow(robot, geo, ss, q0, position_only, q1)
 
 
 def path_samples(steps: int, s: ArrayLike | None) -> FloatArray:
@@ -311,12 +326,23 @@ def path_samples(steps: int, s: ArrayLike | None) -> FloatArray:
     return ss
 
 
+def _one_configuration(robot: Robot, q: ArrayLike | None, name: str) -> FloatArray | None:
+    """``q`` checked as one configuration ``(n,)``, or None."""
+    if q is None:
+        return None
+    qa = as_batch_array(robot.check_q(q, name), name, (robot.dof,))
+    if qa.ndim != 1:
+        raise DimensionError(f"{name} must be one configuration ({robot.dof},), got {qa.shape}")
+    return qa
+
+
 def follow(
     robot: Robot,
     geometry: Callable[[FloatArray], FloatArray],
     ss: FloatArray,
     q0: ArrayLike | None,
     position_only: bool | None,
+    q1: ArrayLike | None = None,
 ) -> CartesianPath:
     """Follow the poses ``geometry(s)`` at the samples ``ss`` on one IK branch.
 
@@ -326,17 +352,14 @@ def follow(
         ss: ``(m,)`` non-decreasing path parameters in [0, 1].
         q0: ``(n,)`` configuration whose branch the path starts on, or ``None``.
         position_only: As :func:`cartesian_path`'s (``None``: from the arm).
+        q1: ``(n,)`` configuration whose branch the path should end on (at
+            ``geometry(1)``), or ``None``: see :func:`cartesian_path`.
 
     Returns:
         The :class:`CartesianPath`, with its ``events``.
     """
-    q_start = None
-    if q0 is not None:
-        q_start = as_batch_array(robot.check_q(q0, "q0"), "q0", (robot.dof,))
-        if q_start.ndim != 1:
-            raise DimensionError(
-                f"q0 must be one configuration ({robot.dof},), got {q_start.shape}"
-            )
+    q_start = _one_configuration(robot, q0, "q0")
+    q_end = _one_configuration(robot, q1, "q1")
     if position_only is None:
         position_only = singularity_plan(robot).rows == (0, 1, 2)
     position_only = check_flag(position_only, "position_only")
@@ -362,7 +385,31 @@ def follow(
             raw.append(("singularity", i, float(si), tuple(here), ""))
         q[i] = qi
         last, last_ok = qi, True
-    return CartesianPath(ss, poses, q, _merge(raw))
+    checks = near_singular_passages(robot, ss, q) + speed_jumps(robot, ss, q)
+    if q_end is not None:
+        end = geometry(np.array(1.0))
+        checks += end_branch(robot, end, q, ss, q_end, bool(position_only))
+    return CartesianPath(ss, poses, q, _with_checks(_merge(raw), checks))
+
+
+def _with_checks(events: tuple[PathEvent, ...], checks: list[RawEvent]) -> tuple[PathEvent, ...]:
+    """The events and the checks' findings, in path order.
+
+    A near-singular run that reaches a singularity of its name is told by that
+    singularity alone.
+    """
+    extra = []
+    for kind, i, stop, s, names, message in checks:
+        met = any(
+            e.kind == "singularity"
+            and set(names) <= set(e.names)
+            and i <= e.stop
+            and e.index <= stop
+            for e in events
+        )
+        if not (kind == "near_singularity" and met):
+            extra.append(PathEvent(kind, i, stop, s, names, message))
+    return tuple(sorted((*events, *extra), key=lambda e: e.index))
 
 
 def _merge(raw: list[tuple[str, int, float, tuple[str, ...], str]]) -> tuple[PathEvent, ...]:

@@ -29,6 +29,7 @@ from kinematica.dh import (
 )
 from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning
 from kinematica.ik import IKBatchResult, IKOptions, IKResult, Tolerance, solve_ik
+from kinematica.ik.reach import needs_proof
 from kinematica.ik.registry import TargetKind
 from kinematica.ik.result import CoreAnswer, result_of
 from kinematica.ik.solve import PoseSolver, pose_solver
@@ -427,6 +428,7 @@ class Robot:
         seed: int | np.random.Generator | None = None,
         tol: float | tuple[float, float] | Tolerance | None = None,
         workers: int | None = None,
+        precision: tuple[float, float] | None = None,
         options: IKOptions | None = None,
     ) -> IKResult | IKBatchResult:
         """Every inverse-kinematics solution of a target, or an honest status.
@@ -435,8 +437,8 @@ class Robot:
             target: A pose ``(4, 4)`` (tool in the base frame), a position
                 ``(3,)`` (tool origin; orientation free), or batches of any
                 shape ``(..., 4, 4)`` / ``(..., 3)``. A rotation orthonormal
-                to within ``PROJECTION_TOL`` (1e-4) is projected onto SO(3),
-                with a note in the result.
+                to within ``PROJECTION_TOL`` (2e-4: any copy with 4 decimals)
+                is projected onto SO(3), with a note in the result.
             method: ``"auto"`` (closed form when the structure allows, else
                 numeric), ``"analytic"`` or ``"numeric"``.
             respect_limits: Keep solutions outside the joint limits apart
@@ -449,6 +451,11 @@ class Robot:
             tol: Acceptance tolerance: one number for both, or a pair
                 (position m, rotation rad); default 1e-10 m and 1e-10 rad.
             workers: Threads for a batch (None: the library default).
+            precision: For a pose target of an arm with fewer than 6 joints
+                (over-determined): ``(position m, rotation entries)``, half a
+                unit in the last digit its numbers were printed with; None: read
+                from their digits. The closest configuration answers a target
+                it reproduces to that precision (a note says which was assumed).
             options: All of the above as one :class:`~kinematica.ik.IKOptions`
                 (then give none of them as keywords).
 
@@ -468,6 +475,7 @@ class Robot:
             and q0 is None
             and mask is None
             and seed is None
+            and precision is None
         ):  # one target, every default: straight to the core (a rigid target to round-off)
             if target.shape == (4, 4):
                 out = self._fast(target, "pose")
@@ -480,7 +488,7 @@ class Robot:
             if out is not None:
                 return out
         if options is None:
-            options = IKOptions(method, tol, respect_limits, q0, mask, seed, workers)
+            options = IKOptions(method, tol, respect_limits, q0, mask, seed, workers, precision)
         elif not isinstance(options, IKOptions):
             raise KinematicaError(
                 f"options must be an IKOptions, got {type(options).__name__}", arg="options"
@@ -489,7 +497,7 @@ class Robot:
             isinstance(method, str)
             and method == "auto"
             and respect_limits is True
-            and all(v is None for v in (tol, q0, mask, seed, workers))
+            and all(v is None for v in (tol, q0, mask, seed, workers, precision))
         ):
             raise KinematicaError(
                 "give the IK settings either as options= or as keywords, not both",
@@ -509,7 +517,9 @@ class Robot:
         out: CoreAnswer | None = fast.ik_rigid(
             self.chain.core, pose, fast.options, ROUNDOFF_TOL, fast.labels
         )
-        return None if out is None else result_of(*out, fast.method, fast.complete, ())
+        if out is None or needs_proof(out[-1][0], out[-1][1]):
+            return None  # the general path also tries the reach within the limits
+        return result_of(*out, fast.method, fast.complete, ())
 
     # ------------------------------------------------------------ derived models
     def to_convention(self, convention: str) -> Robot:
