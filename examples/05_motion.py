@@ -2,9 +2,10 @@
 
 Seed 000 names what the kinematic model is for: simulating motion, kinematic
 control and trajectory planning, robot design. This tour runs each piece on
-the lecture notes' arms and the PUMA 560, and draws two pictures when
-matplotlib is installed (``pip install 'kinematica[viz]'``): the workspace map
-and a trajectory plot, written to the current directory.
+the lecture notes' arms and the PUMA 560, and draws three pictures when
+matplotlib is installed (``pip install 'kinematica[viz]'``): the workspace map,
+a trajectory plot and trajectories through waypoints, written to the current
+directory.
 """
 
 from __future__ import annotations
@@ -105,7 +106,48 @@ def trajectories() -> None:
     print("  plot written to trajectory.png")
 
 
+def waypoints() -> None:
+    W = np.radians([[0, -30, 20], [30, -20, 30], [45, -10, 40], [60, -10, 20]])
+    times = [0.0, 1.0, 2.0, 3.0]
+    runs = {
+        "cubic spline (C2)": km.via_trajectory(W, "cubic", times),
+        "quintic spline (C4)": km.via_trajectory(W, "quintic", times),
+        "mstraj, tacc 0.4 s": km.via_trajectory(W, "mstraj", times, tacc=0.4),
+    }
+    print("\nthrough 4 waypoints in 3 s:")
+    for name, tr in runs.items():
+        at = np.searchsorted(tr.t, times)
+        miss = np.degrees(np.abs(tr.q[at] - W).max())
+        print(
+            f"  {name}: peak speed {np.abs(tr.qd).max():.3f} rad/s, "
+            f"off the waypoints {miss:.3f} deg"
+        )
+    a, b = [-0.0681, -0.448, 1.79, -0.5028], [1.5185, -0.3257, -0.5059, -0.5543]
+    lim = {"vmax": [0.402, 0.7714, 0.6901, 0.406], "amax": [2.3955, 2.0477, 0.5879, 1.0457]}
+    fast = km.joint_trajectory(a, b, None, "trapezoid", **lim)
+    line = km.joint_trajectory(a, b, None, "trapezoid", sync="shared", **lim)
+    print(f"minimum-time trapezoid {fast.t[-1]:.3f} s; one shared profile {line.t[-1]:.3f} s")
+    try:
+        from kinematica.motion.plot import require_matplotlib
+
+        plt = require_matplotlib()
+    except km.KinematicaError as exc:
+        print(f"  (no picture: {exc})")
+        return
+    fig, ax = plt.subplots(figsize=(7, 3.5))
+    for name, tr in runs.items():
+        ax.plot(tr.t, np.degrees(tr.q[:, 2]), label=name)
+    ax.plot(times, np.degrees(W[:, 2]), "ko", label="waypoints")
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("q3 (deg)")
+    ax.legend(fontsize=8)
+    ax.set_title("Through waypoints: splines pass them, mstraj cuts the corners")
+    fig.savefig("via.png", bbox_inches="tight", dpi=100)
+    print("  plot written to via.png")
+
+
 if __name__ == "__main__":
     velocity()
     workspace()
     trajectories()
+    waypoints()

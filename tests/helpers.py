@@ -14,6 +14,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
+import pytest
 from hypothesis import settings
 from hypothesis import strategies as st
 from numpy.typing import ArrayLike, NDArray
@@ -263,3 +264,19 @@ def random_q(spec: RobotSpec, rng: np.random.Generator, batch: tuple[int, ...] =
 
 #: Seeds for numpy generators drawn inside hypothesis tests.
 seeds = st.integers(0, 2**32 - 1)
+
+
+# ------------------------------------------------------------------ command line
+def run_cli(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
+    """Run the command line in-process: ``(exit code, stdout, stderr)``.
+
+    argparse's SystemExit (usage errors, ``--help``) becomes an exit code.
+    """
+    from kinematica.cli.main import main
+
+    try:
+        code = main(list(argv))
+    except SystemExit as exc:
+        code = exc.code if isinstance(exc.code, int) else 2
+    out, err = capsys.readouterr()
+    return code, out, err

@@ -264,21 +264,25 @@ def check(argv: tuple[str, ...], code: int, out: str, err: str) -> None:
         _strict_json(out)
 
 
-def run_in_process(capsys: pytest.CaptureFixture[str], argv: tuple[str, ...]) -> None:
+def run_in_process(
+    capsys: pytest.CaptureFixture[str], argv: tuple[str, ...], hang: int = HANG
+) -> tuple[int, str, str]:
+    """Run ``argv``, fail if it takes ``hang`` s, check the promises; ``(code, out, err)``."""
     previous = signal.signal(signal.SIGALRM, _alarm)
-    signal.alarm(HANG)
+    signal.alarm(hang)
     try:
         try:
             code = main(list(argv))
         except SystemExit as exc:  # argparse: usage errors, --help, --version
             code = exc.code if isinstance(exc.code, int) else 2
         except _Hang:
-            pytest.fail(f"no answer within {HANG} s: {argv}")
+            pytest.fail(f"no answer within {hang} s: {argv}")
     finally:
         signal.alarm(0)
         signal.signal(signal.SIGALRM, previous)
     out, err = capsys.readouterr()
     check(argv, code, out, err)
+    return code, out, err
 
 
 def _ids(cases: list[tuple[str, ...]]) -> list[str]:
@@ -383,3 +387,88 @@ def test_random_command_lines(capsys: pytest.CaptureFixture[str], words: list[st
         if "internal error: OverflowError" in str(exc):  # pragma: no cover
             return  # the IK solvers' overflow, pinned by KNOWN_SOLVER_BUGS above
         raise
+
+
+# --- extreme arguments: refused at once, exit 2, one line naming the option ----------------
+
+TRAJ = ("trajectory", "planar-3r", "--from", "0", "0", "0", "--to", "10", "20", "30")
+PLOT = ("plot", "planar-3r", "--q", "0", "30", "30", "-o", "@out.png")
+ANIMATE = ("animate", "planar-3r", "--trajectory", "@path.csv", "-o", "@out.gif")
+DESIGN = ("design", "@template.yaml", "--task", "@ring.csv", "-o", "@best.yaml", "--budget", "2")
+
+# (command line, what the one error line must say); "@name" is a file in tmp_path.
+REFUSED: list[tuple[tuple[str, ...], str]] = [
+    ((*TRAJ, "--duration", "1e308"), "--duration must be a number of seconds greater than 0 "
+     "and at most 1e+09 s, got 1e+308"),
+    ((*TRAJ, "--duration", "-1"), "--duration must be a number of seconds greater than 0"),
+    ((*TRAJ, "--dt", "1e-320"), "--duration/--dt gives inf samples (2 s every 1e-320 s); "
+     "at most 1,000,000 are made"),
+    ((*TRAJ, "--dt", "0"), "--dt must be a number of seconds greater than 0"),
+    ((*TRAJ, "--vmax", "1e-320"), "--vmax gives a duration of"),
+    ((*TRAJ, "--amax", "1e-320", "--profile", "cubic"), "--amax gives a duration of"),
+    ((*TRAJ, "--vmax", "1e-320", "--amax", "1", "--profile", "trapezoid"), "--vmax/--amax give"),
+    ((*TRAJ, "--duration", "1e5", "--dt", "1e-3", "--cartesian"), "--duration/--dt gives"),
+    (("workspace", "planar-3r", "--voxel", "1e300"), "--voxel must be a length from"),
+    (("workspace", "planar-3r", "--voxel", "1e-9"), "--voxel must be a length from"),
+    (("workspace", "planar-3r", "--voxel", "nan"), "--voxel must be a length"),
+    (("workspace", "planar-3r", "--at", "nan"), "--at needs finite numbers"),
+    (("workspace", "planar-3r", "--at", "inf", "--samples", "10"), "--at needs finite numbers"),
+    (("workspace", "planar-3r", "--samples", "0"), "--samples must be a whole number from 1"),
+    (("workspace", "planar-3r", "--samples", "99999999999"), "--samples must be a whole number"),
+    (("workspace", "planar-3r", "--seed", "-1", "--samples", "10"), "--seed must be a whole"),
+    ((*PLOT, "--dpi", "-1"), "--dpi must be a number of dots per inch from 10 to 2400, got -1"),
+    ((*PLOT, "--dpi", "1e308"), "--dpi must be a number of dots per inch from 10 to 2400"),
+    ((*PLOT, "--size", "100000", "100000"), "--size must be a whole number from 16 to 20,000"),
+    ((*PLOT, "--size", "20000", "20000"), "--size gives 4e+08 pixels; at most 40,000,000"),
+    ((*PLOT, "--size", "0", "10"), "--size must be a whole number from 16"),
+    ((*PLOT, "--solutions", "--size", "100000", "16"), "--size must be a whole number"),
+    ((*ANIMATE, "--fps", "1e-9"), "--fps must be a number of frames a second from 0.01 to 240"),
+    ((*ANIMATE, "--fps", "inf"), "--fps must be a number of frames a second"),
+    ((*ANIMATE, "--max-frames", "-3"), "--max-frames must be a whole number of at least 1"),
+    ((*ANIMATE, "--size", "100000", "100000"), "--size must be a whole number from 16"),
+    ((*ANIMATE[:3], "@fifo.csv", *ANIMATE[4:]), "fifo.csv: is a named pipe (FIFO), not a "
+     "trajectory file"),
+    ((*ANIMATE[:3], "@zero.csv", *ANIMATE[4:]), "zero.csv: is a device, not a trajectory file"),
+    ((*ANIMATE[:3], "@big.csv", *ANIMATE[4:]), "trajectory files of at most 67,108,864 bytes"),
+    (("view", "planar-3r", "--serve", "--port", "99999"), "argument --port: expected a port "
+     "number from 0 to 65535 (0: a free one), got '99999'"),
+    (("view", "planar-3r", "--serve", "--port", "-1"), "argument --port: expected a port"),
+    ((*DESIGN, "--checkpoint", "@zero.jsonl"), "zero.jsonl: is a device, not a checkpoint file"),
+    ((*DESIGN, "--checkpoint", "@fifo.csv"), "is a named pipe (FIFO), not a checkpoint file"),
+]  # fmt: skip
+
+
+@pytest.fixture
+def extreme_files(tmp_path: Path) -> Path:
+    (tmp_path / "path.csv").write_text("t,q1,q2,q3\n0,0,0,0\n1,0.1,0.2,0.3\n")
+    (tmp_path / "template.yaml").write_text(
+        "convention: standard\nparameters:\n  l1: {value: 0.5, min: 0.1, max: 0.9}\n"
+        "joints:\n  - {theta: q1, d: 0, a: l1, alpha: 0}\n  - {theta: q2, d: 0, a: 0.5, "
+        "alpha: 0}\n"
+    )
+    (tmp_path / "ring.csv").write_text("x,y,z\n0.5,0,0\n0,0.5,0\n")
+    with (tmp_path / "big.csv").open("wb") as f:
+        f.truncate(65 * 2**20)  # sparse: takes no room
+    if hasattr(os, "mkfifo"):
+        os.mkfifo(tmp_path / "fifo.csv")
+    if Path("/dev/zero").exists():
+        (tmp_path / "zero.csv").symlink_to("/dev/zero")
+        (tmp_path / "zero.jsonl").symlink_to("/dev/zero")
+    return tmp_path
+
+
+@pytest.mark.skipif(not hasattr(signal, "SIGALRM"), reason="needs SIGALRM")
+@pytest.mark.parametrize(("argv", "message"), REFUSED, ids=_ids([a for a, _ in REFUSED]))
+def test_extreme_arguments_are_refused_in_one_line(
+    capsys: pytest.CaptureFixture[str], extreme_files: Path, argv: tuple[str, ...], message: str
+) -> None:
+    real = tuple(str(extreme_files / a[1:]) if a.startswith("@") else a for a in argv)
+    special = [a[1:] for a in argv if a[1:] in ("fifo.csv", "zero.csv", "zero.jsonl")]
+    if any(not (extreme_files / name).exists() for name in special):
+        pytest.skip("this special file cannot be made on this system")
+    # A FIFO opened for reading, or /dev/zero read whole, would hang here.
+    code, _, err = run_in_process(capsys, real, hang=10)
+    assert code == 2, (code, err)
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and message in lines[0], err
+    assert not any(p.name.startswith("out.") for p in extreme_files.iterdir())

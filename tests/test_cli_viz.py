@@ -18,6 +18,7 @@ from PIL import Image
 
 from kinematica.cli.main import main
 from kinematica.viz import write_trajectory
+from kinematica.viz.server import TOKEN_HEADER
 
 
 def run(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
@@ -105,7 +106,7 @@ def test_plot_unreachable_pose_exits_1(tmp_path: Path, capsys: pytest.CaptureFix
         (["plot", "puma560"], "plot needs --q"),
         (["plot", "puma560", "--q", "1", "2"], "--q needs 6 values"),
         (["plot", "puma560", "--q", "0", "0", "0", "0", "0", "0", "-o", "a.txt"], "type '.txt'"),
-        (["animate", "puma560", "--trajectory", "missing.csv"], "cannot read the trajectory file"),
+        (["animate", "puma560", "--trajectory", "missing.csv"], "missing.csv: file not found"),
         (["plot", "nosuchrobot", "--q", "0"], "nosuchrobot"),
     ],
 )
@@ -190,6 +191,33 @@ def test_view_writes_the_page(
     assert f"{float(np.radians(30))!r}" in (tmp_path / "p.html").read_text()
 
 
+DATA = Path(__file__).parent / "data"
+
+
+@pytest.mark.parametrize(
+    ("source", "units"),
+    [
+        (DATA / "urdf" / "abb_irb140.urdf", {"angle": "deg", "length": "m"}),
+        (DATA / "robots" / "craig_rrp.yaml", {"angle": "deg", "length": "mm"}),
+        (DATA / "robots" / "seed_arm_rad_mm.yaml", {"angle": "rad", "length": "mm"}),
+        ("puma560", {"angle": "deg", "length": "m"}),
+    ],
+)
+def test_view_takes_every_robot_source(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], source: Path | str, units: dict[str, str]
+) -> None:
+    out = tmp_path / "page.html"
+    code, text, err = run(["view", str(source), "-o", str(out), "--json"], capsys)
+    assert (code, err) == (0, "")
+    robot = km.load(source)
+    assert json.loads(text) == {"robot": robot.name, "output": str(out), "units": units}
+    page = out.read_text()
+    start = page.index('id="robot-data">') + len('id="robot-data">')
+    data = json.loads(page[start : page.index("</script>", start)])
+    assert data["units"] == units
+    assert [j["name"] for j in data["joints"]] == [link.name for link in robot.links]
+
+
 def test_view_serve_answers_then_stops(tmp_path: Path) -> None:
     proc = subprocess.Popen(
         [sys.executable, "-m", "kinematica.cli.main", "view", "planar-3r", "--serve", "--json"],
@@ -207,11 +235,17 @@ def test_view_serve_answers_then_stops(tmp_path: Path) -> None:
             lines.append(line)
         url = json.loads("".join(lines))["url"]
         with urllib.request.urlopen(url, timeout=10) as r:
-            assert b"Planar 3R" in r.read()
+            page = r.read().decode()
+        assert "Planar 3R" in page
+        start = page.index('id="robot-data">') + len('id="robot-data">')
+        token = json.loads(page[start : page.index("</script>", start)])["token"]
         robot = km.load("planar-3r")
         T = robot.fk(np.radians([20, 40, -30]))
         req = urllib.request.Request(
-            url + "api/ik", data=json.dumps({"T": T.tolist()}).encode(), method="POST"
+            url + "api/ik",
+            data=json.dumps({"T": T.tolist()}).encode(),
+            method="POST",
+            headers={"Content-Type": "application/json", TOKEN_HEADER: token},
         )
         with urllib.request.urlopen(req, timeout=30) as r:
             res = json.loads(r.read())

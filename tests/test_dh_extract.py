@@ -167,11 +167,13 @@ def test_puma_urdf_table_by_hand():
     # meets it there; axis 3 parallel to axis 2, its joint at (0.4318, -0.0203, 0.1501) in
     # joint 2's frame; axis 4 meets axis 3 at joint 3; joint 5 0.4331 along axis 4; the tip
     # 0.0558 along axis 6. The file writes 90 degrees as 1.570796325 (1.8e-9 rad short), so
-    # its axes are that far from the ideal ones: 1e-9 m over these lengths.
+    # its axes are that far from the ideal ones: 1e-9 m over these lengths. Axes 2 and 3
+    # parallel leave S2's origin free along axis 3: level with S1 (d2 = 0), so the
+    # shoulder offset 0.1501 is d3, where Corke's table has its 0.15005.
     robot = km.load(URDF_DIR / "puma560_robot.urdf")
     theta, d, a, alpha = robot.dh_table().T
     np.testing.assert_allclose(np.abs(a), [0, math.hypot(0.4318, 0.0203), 0, 0, 0, 0], atol=1e-9)
-    np.testing.assert_allclose(np.abs(d), [0, 0.1501, 0, 0.4331, 0, 0.0558], atol=1e-9)
+    np.testing.assert_allclose(np.abs(d), [0, 0, 0.1501, 0.4331, 0, 0.0558], atol=1e-9)
     np.testing.assert_allclose(abs(theta[1]), math.atan2(0.0203, 0.4318), atol=1e-9)
     np.testing.assert_allclose(np.abs(alpha), [math.pi / 2, 0, *[math.pi / 2] * 3, 0], atol=1e-8)
     np.testing.assert_allclose(robot.base[:3, 3], [0, 0, 0.6718], atol=1e-12)

@@ -123,7 +123,10 @@ def test_unreachable_only_with_a_proof() -> None:
     reach = reach_after_joint3(arm.chain)
     far_arm = np.linalg.norm(arm.fk(np.zeros(6))[:3, 3] - np.array([0.0, 0.0, 0.5]))
     within = arm.ik(np.array([0.0, 0.0, 0.5 + far_arm + 0.5 * reach]))
-    assert within.status == "not_found"  # no wrist-at-0 solution, and no proof of none
+    # no wrist-at-0 solution and no proof from the closed form; the sum of the link
+    # lengths (0.5 + 0.4 + 0.4 + 0.1 = 1.4 m, kinematica.ik.reach) proves it 0.1 m out
+    assert within.status == "unreachable" and within.gap is not None
+    assert within.gap == pytest.approx(0.5 + far_arm + 0.5 * reach - 1.4, rel=1e-9)
     beyond = arm.ik(np.array([0.0, 0.0, 0.5 + far_arm + 2.0 * reach]))
     assert beyond.status == "unreachable" and beyond.gap is not None
     assert beyond.gap == pytest.approx(far_arm + 2.0 * reach - far_arm - reach, rel=1e-9)

@@ -77,9 +77,11 @@ def test_shortest_duration_from_limits_touches_a_limit(profile: str) -> None:
     assert 0.999 < ratio <= 1.0 + 1e-9
 
 
-def test_trapezoid_respects_vmax_amax_and_cruises() -> None:
+def test_shared_trapezoid_respects_vmax_amax_and_cruises() -> None:
     vmax, amax = 0.5, 2.0
-    t, q, qd, qdd = joint_trajectory(Q0, Q1, None, "trapezoid", dt=1e-3, vmax=vmax, amax=amax)
+    t, q, qd, qdd = joint_trajectory(
+        Q0, Q1, None, "trapezoid", dt=1e-3, vmax=vmax, amax=amax, sync="shared"
+    )
     delta = np.abs(Q1 - Q0)
     # the joint with the largest move is the limiting one: T = Δ/V + V/A (hand formula)
     assert np.isclose(t[-1], delta.max() / vmax + vmax / amax)

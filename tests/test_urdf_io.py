@@ -289,58 +289,6 @@ def test_a_declared_xacro_namespace_alone_is_plain_urdf(tmp_path):
     assert km.load(write(tmp_path, text)).dof == 2
 
 
-# ------------------------------------------------------------------ xacro
-XACRO = """<?xml version="1.0"?>
-<robot name="xarm" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:property name="len" value="0.4"/>
-  <xacro:macro name="seg" params="i parent">
-    <link name="l${i}"/>
-    <joint name="j${i}" type="revolute">
-      <parent link="${parent}"/><child link="l${i}"/>
-      <origin xyz="0 0 ${len}" rpy="0 ${pi/2} 0"/>
-      <axis xyz="0 0 1"/>
-      <limit lower="-1" upper="1" effort="1" velocity="1"/>
-    </joint>
-  </xacro:macro>
-  <link name="base"/>
-  <xacro:seg i="1" parent="base"/>
-  <xacro:seg i="2" parent="l1"/>
-</robot>
-"""
-
-
-def test_xacro_is_expanded_when_the_package_is_installed(tmp_path):
-    pytest.importorskip("xacro")
-    for name in ("arm.urdf.xacro", "arm.urdf"):  # by name, or by content
-        robot = km.load(write(tmp_path, XACRO, name))
-        assert robot.dof == 2
-        assert [link.name for link in robot.links] == ["j1", "j2"]
-        # two segments of 0.4 m along z, each turned 90 degrees about y
-        T = robot.fk([0.0, 0.0])
-        np.testing.assert_allclose(T[:3, 3], [0.4, 0.0, 0.4], atol=1e-15)
-
-
-def test_xacro_that_needs_ros_gives_one_line(tmp_path):
-    pytest.importorskip("xacro")
-    text = XACRO.replace(
-        '<link name="base"/>', '<xacro:include filename="$(find some_ros_package)/urdf/x.xacro"/>'
-    )
-    one_line_error(write(tmp_path, text, "arm.xacro"), "xacro could not expand the file")
-
-
-def test_xacro_without_the_package_says_how_to_expand(tmp_path, monkeypatch):
-    monkeypatch.setitem(sys.modules, "xacro", None)  # as if not installed
-    one_line_error(write(tmp_path, XACRO, "arm.xacro"), "xacro FILE > FILE.urdf")
-    one_line_error(write(tmp_path, XACRO, "arm.urdf"), "xacro elements", "pip install")
-    with pytest.raises(km.RobotFileError, match="xacro substitutions"):
-        parse_urdf(ARM.replace('xyz="0.1 0 0"', 'xyz="${a} 0 0"'))
-
-
-def test_hostile_xacro_is_refused_before_xacro_sees_it(tmp_path):
-    pytest.importorskip("xacro")
-    one_line_error(write(tmp_path, BOMB, "bomb.xacro"), "declares an entity")
-
-
 # ------------------------------------------------------------------ command line
 @pytest.mark.parametrize("command", ["show", "convert"])
 def test_cli_reports_a_broken_urdf_in_one_line(tmp_path, command):

@@ -13,6 +13,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import re
 import shutil
 import urllib.error
 import urllib.request
@@ -27,7 +28,7 @@ from helpers import JointSpec, RobotSpec, transform_from
 import kinematica as km
 from kinematica import viz
 from kinematica.spatial import GIMBAL_LOCK_TOL
-from kinematica.viz.server import MAX_REQUEST_BYTES
+from kinematica.viz.server import MAX_REQUEST_BYTES, TOKEN_HEADER
 
 #: What the page shows: 7 decimals, so at most 5e-8 from the exact value.
 PAGE_ATOL = 1e-6
@@ -51,6 +52,12 @@ needs_browser = pytest.mark.skipif(
     CHROMIUM is None,
     reason="no Chromium installed (apt-get install chromium): the page's browser tests skip",
 )
+
+
+def expect(locator: Any) -> Any:
+    from playwright.sync_api import expect as playwright_expect
+
+    return playwright_expect(locator)
 
 
 @pytest.fixture(scope="module")
@@ -184,9 +191,10 @@ joints = [
 """
 
 
-def _post(url: str, body: bytes) -> tuple[int, dict[str, Any]]:
-    req = urllib.request.Request(url + "api/ik", data=body, method="POST")
+def _post(server: viz.PageServer, body: bytes) -> tuple[int, dict[str, Any]]:
+    req = urllib.request.Request(server.url + "api/ik", data=body, method="POST")
     req.add_header("Content-Type", "application/json")
+    req.add_header(TOKEN_HEADER, server.token)
     try:
         with urllib.request.urlopen(req, timeout=10) as r:
             return r.status, json.loads(r.read())
@@ -201,7 +209,7 @@ def test_server_answers_ik_and_rejects_bad_requests() -> None:
         assert server.url.startswith("http://127.0.0.1:")
         with urllib.request.urlopen(server.url, timeout=10) as r:
             assert b'"serve": true' in r.read()
-        status, res = _post(server.url, json.dumps({"T": T.tolist()}).encode())
+        status, res = _post(server, json.dumps({"T": T.tolist()}).encode())
         assert status == 200 and res["status"] == "ok"
         expected = puma.ik(T)
         np.testing.assert_allclose(res["solutions"], expected.solutions)
@@ -209,16 +217,66 @@ def test_server_answers_ik_and_rejects_bad_requests() -> None:
         for q in res["solutions"]:
             np.testing.assert_allclose(puma.fk(q), T, atol=1e-9)
         far = km.transl(5.0, 0.0, 0.0)
-        status, res = _post(server.url, json.dumps({"T": far.tolist()}).encode())
+        status, res = _post(server, json.dumps({"T": far.tolist()}).encode())
         assert (status, res["status"], res["solutions"]) == (200, "unreachable", [])
-        assert _post(server.url, b"{nope")[1]["error"].startswith("the request is not JSON")
-        assert _post(server.url, b'{"T": [1, 2]}') == (
+        status, res = _post(server, json.dumps({"position": [5.0, 0.0, 0.0]}).encode())
+        assert (status, res["status"], res["solutions"]) == (200, "unreachable", [])
+        assert _post(server, b"{nope")[1]["error"].startswith("the request is not JSON")
+        assert _post(server, b'{"T": [1, 2]}') == (
             400,
-            {"error": "the target must be a finite 4x4 pose or 3 coordinates, got shape (2,)"},
+            {
+                "error": '"T" must be a 4x4 pose (4 rows of 4 finite numbers, m), '
+                "got a list of 2 (numbers)"
+            },
         )
-        assert _post(server.url, b'{"x": 1}')[0] == 400
+        assert _post(server, b'{"x": 1}')[0] == 400
         big = b'{"T": "' + b"x" * MAX_REQUEST_BYTES + b'"}'
-        assert _post(server.url, big) == (400, {"error": "missing or oversized request body"})
+        assert _post(server, big) == (413, {"error": f"the body is over {MAX_REQUEST_BYTES} bytes"})
+
+
+#: Text a robot file may hold that would be markup if a page took it as HTML: each one,
+#: run, sets ``window.pwned`` (and the title), which the browser tests check did not happen.
+PAYLOADS = (
+    "<img src=x onerror=\"window.pwned=1;document.title='pwned'\">",
+    "</script><script>window.pwned=2;document.title='pwned'</script>",
+    "<!--<script>window.pwned=3</script>",
+    "<svg><script>window.pwned=4</script></svg>\u2028\u2029&amp;",
+)
+EVIL_NAME = "</script><script>window.pwned=5;document.title='pwned'</script><b>x"
+
+
+def evil_yaml(path: Path, names: tuple[str, ...] = PAYLOADS) -> Path:
+    """A planar robot file named :data:`EVIL_NAME`, one joint for each of ``names``."""
+    joints = "\n".join(
+        f"  - {{theta: q{i + 1}, d: 0, a: 0.2, alpha: 0, name: {json.dumps(name)}}}"
+        for i, name in enumerate(names)
+    )
+    text = f"name: {json.dumps(EVIL_NAME)}\nconvention: standard\njoints:\n{joints}\n"
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def test_text_from_the_file_is_never_markup_in_the_page(tmp_path: Path) -> None:
+    robot = km.load(evil_yaml(tmp_path / "evil.yaml"))
+    assert [link.name for link in robot.links] == list(PAYLOADS)
+    text = viz.page_html(robot, serve=True, token="t0k")
+    start = text.index('id="robot-data">') + len('id="robot-data">')
+    blob = text[start : text.index("</script>", start)]
+    assert not {"<", ">", "&", "\u2028", "\u2029"} & set(blob)  # escaped, all of them
+    data = json.loads(blob)
+    assert (data["name"], data["token"]) == (EVIL_NAME, "t0k")
+    assert [j["name"] for j in data["joints"]] == list(PAYLOADS)
+    assert text.count("<script") == 2  # the data and the page's own script, nothing more
+
+
+def test_units_of_urdf_and_robots_made_in_python() -> None:
+    urdf = Path(__file__).parent / "data" / "urdf" / "abb_irb140.urdf"
+    assert viz.robot_units(urdf) == {"angle": "deg", "length": "m"}
+    assert viz.robot_units(km.load(urdf)) == {"angle": "deg", "length": "m"}
+    assert viz.robot_units(km.Robot.from_dh([km.Revolute(a=1.0)])) == {
+        "angle": "deg",
+        "length": "m",
+    }
 
 
 # --------------------------------------------------------------- in Chromium
@@ -235,7 +293,7 @@ def test_random_robots_random_q(page: Any, tmp_path: Path) -> None:
                 page.goto(url + hash_of(robot, q))  # a fresh load
             else:
                 page.evaluate(f"window.location.hash = {json.dumps(hash_of(robot, q))}")
-                page.wait_for_function("document.getElementById('q1-value') !== null")
+                page.locator("#q1-value").wait_for(state="attached")
             np.testing.assert_allclose(shown_T(page), spec.ref_fk(q), atol=PAGE_ATOL, rtol=0)
             np.testing.assert_allclose(shown_T(page), robot.fk(q), atol=PAGE_ATOL, rtol=0)
 
@@ -352,9 +410,8 @@ def test_served_page_drags_the_target_and_steps_through_solutions(
         page.mouse.down()
         page.mouse.move(x + 15, y - 10, steps=4)
         page.mouse.up()
-        page.wait_for_function(
-            "document.getElementById('solution').textContent.startsWith('solution 1 of')"
-        )
+        # locators, not wait_for_function: the page's CSP forbids the eval that one needs
+        expect(page.locator("#solution")).to_have_text(re.compile("^solution 1 of"))
         target = np.array(page.evaluate("window.kinematica.target()")).reshape(4, 4)
         assert np.linalg.norm(target[:3, 3] - robot.fk(q0)[:3, 3]) > 1e-3  # it moved
         np.testing.assert_allclose(target[:3, :3], robot.fk(q0)[:3, :3], atol=1e-12)
@@ -369,7 +426,38 @@ def test_served_page_drags_the_target_and_steps_through_solutions(
         assert len(seen) == count
         page.screenshot(path=str(tmp_path / "served.png"))
         page.evaluate("window.kinematica.setTarget([[1,0,0,5],[0,1,0,0],[0,0,1,0],[0,0,0,1]])")
-        page.wait_for_function(
-            "document.getElementById('ik-status').textContent.startsWith('unreachable')"
-        )
+        expect(page.locator("#ik-status")).to_have_text(re.compile("^unreachable"))
         assert page.inner_text("#solution") == "no solution"
+
+
+@needs_browser
+@pytest.mark.parametrize("names", [PAYLOADS, PAYLOADS[:1]], ids=["all", "img"])
+def test_names_from_the_file_are_shown_as_text(
+    page: Any, tmp_path: Path, names: tuple[str, ...]
+) -> None:
+    robot = km.load(evil_yaml(tmp_path / "evil.yaml", names))
+    page.goto(viz.write_page(robot, tmp_path / "evil.html").as_uri())
+    _shown_literally(page, robot)
+
+
+@needs_browser
+def test_names_from_the_file_are_shown_as_text_when_served(page: Any, tmp_path: Path) -> None:
+    robot = km.load(evil_yaml(tmp_path / "evil.yaml"))
+    with viz.serve(robot) as server:
+        page.goto(server.url)
+        _shown_literally(page, robot)
+        T = robot.fk(np.full(robot.dof, 0.3))
+        page.evaluate(f"window.kinematica.setTarget({json.dumps(T.tolist())})")
+        expect(page.locator("#ik-status")).to_have_text(re.compile("^ok"))
+
+
+def _shown_literally(page: Any, robot: km.Robot) -> None:
+    page.wait_for_timeout(300)  # time for an image's onerror to have run, were there one
+    assert page.evaluate("window.pwned") is None
+    assert page.title() == f"{EVIL_NAME} — kinematica"
+    assert page.inner_text("h1") == EVIL_NAME
+    for i, link in enumerate(robot.links):
+        label = page.locator(f"label[for=q{i + 1}]")
+        assert label.text_content() == f"q{i + 1} {link.name} (deg)"
+    assert page.locator("#joints img, #joints script, #joints svg").count() == 0
+    np.testing.assert_allclose(shown_T(page), robot.fk(np.zeros(robot.dof)), atol=PAGE_ATOL)

@@ -39,9 +39,11 @@ if TYPE_CHECKING:  # the names below load on first use: `import kinematica` stay
     from kinematica.motion import (
         analytic_jacobian,
         cartesian_path,
+        cartesian_via_path,
         condition_number,
         joint_trajectory,
         manipulability,
+        via_trajectory,
     )
     from kinematica.motion.workspace import (
         workspace,
@@ -136,9 +138,11 @@ _LAZY = {
     "workspace": "kinematica.motion.workspace",
     "analytic_jacobian": "kinematica.motion",
     "cartesian_path": "kinematica.motion",
+    "cartesian_via_path": "kinematica.motion",
     "condition_number": "kinematica.motion",
     "joint_trajectory": "kinematica.motion",
     "manipulability": "kinematica.motion",
+    "via_trajectory": "kinematica.motion",
 }
 #: Subpackages reachable as attributes (``km.ik``, ``km.spatial``...) before anything imported them.
 _SUBPACKAGES = frozenset(
@@ -196,6 +200,7 @@ __all__ = [
     "axis_angle_from_matrix",
     "builtin_names",
     "cartesian_path",
+    "cartesian_via_path",
     "check_rotation",
     "check_transform",
     "classify",
@@ -230,6 +235,7 @@ __all__ = [
     "to_pose",
     "transl",
     "urdf_to_dh",
+    "via_trajectory",
     "workspace",
     "wrap_angle",
     "write_robot_file",

@@ -31,6 +31,7 @@ from kinematica.cli.options import (
 )
 from kinematica.errors import ArgumentError
 from kinematica.ik import IKOptions, IKResult
+from kinematica.ik.printed import half_unit, printed_digits
 from kinematica.io import builtin_names
 from kinematica.robot import Robot, classify, load
 from kinematica.spatial import euler_from_matrix, from_pose, gimbal_locked
@@ -197,6 +198,29 @@ def _target(robot: Robot, args: argparse.Namespace) -> FloatArray:
     return from_pose(pose, euler=args.euler, degrees=not args.rad)
 
 
+def _precision(robot: Robot, args: argparse.Namespace) -> tuple[float, float] | None:
+    """The precision the typed pose carries (position m, rotation entries), if printed.
+
+    ``--matrix`` numbers as typed; ``--pose``: its lengths, and its angles, an error
+    of δ (rad) in each of three moving a rotation's entries by at most 3δ.
+    """
+    typed = args.matrix if args.matrix is not None else args.pose
+    if typed is None:
+        return None
+    digits = printed_digits(np.asarray(typed, dtype=float))
+    if digits is None:
+        return None
+    if args.matrix is not None:
+        m = np.asarray(args.matrix, dtype=float).reshape(4, 4)[:3]
+        position, rotation = m[:, 3], half_unit(m[:, :3], digits)
+    else:
+        pose = np.asarray(args.pose, dtype=float)
+        angle = half_unit(pose[3:], digits)
+        position, rotation = pose[:3], 3.0 * (angle if args.rad else math.radians(angle))
+    metres = float(lengths_in(half_unit(position, digits), robot, args))
+    return metres, rotation
+
+
 def ik(args: argparse.Namespace) -> int:
     """``kinematica ik ROBOT --pose ...``: every solution, one row each."""
     robot = robot_from_args(args)
@@ -204,7 +228,12 @@ def ik(args: argparse.Namespace) -> int:
     q0 = None if args.q0 is None else q_in(robot, args.q0, args, "q0")
     tol = _tolerance(robot, args)
     options = IKOptions(
-        method=args.method, tol=tol, respect_limits=not args.ignore_limits, q0=q0, seed=args.seed
+        method=args.method,
+        tol=tol,
+        respect_limits=not args.ignore_limits,
+        q0=q0,
+        seed=args.seed,
+        precision=_precision(robot, args),
     )
     res = robot.ik(target, options=options)
     assert isinstance(res, IKResult)

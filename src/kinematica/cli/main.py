@@ -55,6 +55,19 @@ _OPTIONS = {
     "euler": "--euler",
     "units": "--units",
     "frame": "--frame",
+    "samples": "--samples",
+    "voxel": "--voxel",
+    "at": "--at",
+    "duration": "--duration",
+    "dt": "--dt",
+    "duration/dt": "--duration/--dt",
+    "vmax": "--vmax",
+    "amax": "--amax",
+    "vmax/amax": "--vmax/--amax",
+    "dpi": "--dpi",
+    "size": "--size",
+    "fps": "--fps",
+    "max_frames": "--max-frames",
 }
 
 

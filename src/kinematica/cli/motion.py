@@ -11,12 +11,23 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.cli.format import fmt, matrix, table
-from kinematica.cli.options import add_common, add_robot, angle_unit, dump, q_in, q_out
+from kinematica.cli.options import (
+    add_common,
+    add_robot,
+    angle_unit,
+    dump,
+    finite,
+    lengths_in,
+    q_in,
+    q_out,
+    robot_from_args,
+)
 from kinematica.errors import KinematicaError
-from kinematica.robot import Robot, load
+from kinematica.robot import Robot
 
 if TYPE_CHECKING:  # kinematica.motion loads when one of these commands runs
     from kinematica.motion import CartesianPath
+    from kinematica.motion.trajectory import Profile
 
 __all__ = ["jacobian", "register", "trajectory", "workspace_cmd"]
 
@@ -54,7 +65,7 @@ def jacobian(args: argparse.Namespace) -> int:
         singularities,
     )
 
-    robot = load(args.robot)
+    robot = robot_from_args(args)
     q = q_in(robot, args.q, args, "q")
     J = robot.jacobian(q, frame=args.frame)
     rank, generic = jacobian_rank(robot, q)
@@ -110,9 +121,9 @@ def workspace_cmd(args: argparse.Namespace) -> int:
     """``kinematica workspace ROBOT``: bounds, volume, a slice, a map."""
     from kinematica.motion import workspace
 
-    robot = load(args.robot)
-    if args.samples < 1:
-        raise KinematicaError(f"--samples must be a positive integer, got {args.samples}")
+    robot = robot_from_args(args)
+    if args.at is not None:
+        finite([args.at], "--at")  # before sampling: the slice comes last
     bar = None
     if args.samples >= PROGRESS_FROM:
         from tqdm import tqdm
@@ -186,46 +197,129 @@ def _print_events(path: CartesianPath) -> None:
         print(f"event: {e.kind}: {e.message}")
 
 
+#: Library argument names and the trajectory command's options for them.
+_TRAJECTORY_OPTIONS = {
+    "tacc": "--tacc",
+    "times": "--times",
+    "vmax": "--vmax",
+    "amax": "--amax",
+    "duration": "--duration",
+    "blend": "--blend",
+    "ends": "--ends",
+    "sync": "--sync",
+    "dt": "--dt",
+}
+
+
+def _waypoints(robot: Robot, args: argparse.Namespace) -> tuple[FloatArray, FloatArray | None]:
+    """``(W (k, n) in SI, times (k,) or None)`` from --from/--via/--to or --waypoints."""
+    from kinematica.motion import read_csv
+
+    if args.waypoints:
+        if args.q_from or args.q_to or args.via:
+            raise KinematicaError("--waypoints holds every waypoint: drop --from, --to and --via")
+        t, W = read_csv(args.waypoints)
+        if W.shape[1] != robot.dof or W.shape[0] < 2:
+            raise KinematicaError(
+                f"--waypoints: {args.waypoints} must hold >= 2 rows of {robot.dof} joints "
+                f"for {robot.name}, got {W.shape[0]} rows of {W.shape[1]}"
+            )
+        if args.times is not None:
+            raise KinematicaError("--waypoints carries its times (column t): drop --times")
+        return W, t - t[0]
+    if not args.q_from or not args.q_to:
+        raise KinematicaError("give --from and --to (and any --via), or --waypoints FILE.csv")
+    vias = [q_in(robot, v, args, "via") for v in args.via or []]
+    W = np.stack(
+        [q_in(robot, args.q_from, args, "from"), *vias, q_in(robot, args.q_to, args, "to")]
+    )
+    times = None if args.times is None else np.asarray(args.times, dtype=float)
+    return W, times
+
+
 def trajectory(args: argparse.Namespace) -> int:
-    """``kinematica trajectory ROBOT --from ... --to ...``: samples, events, a file."""
+    """``kinematica trajectory ROBOT --from ... [--via ...] --to ...``: samples, events, a file."""
     from kinematica.motion import (
         cartesian_path,
+        cartesian_via_path,
         joint_trajectory,
         time_scaling,
+        via_trajectory,
         write_csv,
         write_json,
     )
 
-    robot = load(args.robot)
-    qa = q_in(robot, args.q_from, args, "from")
-    qb = q_in(robot, args.q_to, args, "to")
+    args.aliases = _TRAJECTORY_OPTIONS
+    robot = robot_from_args(args)
+    W, times = _waypoints(robot, args)
+    qa, qb = W[0], W[-1]
+    through = W.shape[0] > 2 or args.waypoints is not None or args.profile == "mstraj"
     out = Path(args.output) if args.output else None
     if out is not None and out.suffix.lower() not in (".csv", ".json"):
         raise KinematicaError(f"-o: the file must end in .csv or .json, got {out.name!r}")
     vmax = _limit(robot, args.vmax, args, "vmax")
     amax = _limit(robot, args.amax, args, "amax")
     duration = args.duration
-    if duration is None and vmax is None and amax is None:
+    if times is not None and duration is not None:
+        raise KinematicaError("--times sets the duration: drop --duration")
+    if duration is None and times is None and vmax is None and amax is None:
         duration = 2.0
+    if through and args.profile == "trapezoid":
+        raise KinematicaError(
+            "--profile trapezoid moves between two configurations; through --via points use "
+            "mstraj (lines with parabolic blends), cubic or quintic"
+        )
+    if not through and (args.times is not None or args.tacc is not None):
+        raise KinematicaError("--times and --tacc apply to moves through --via points")
+    if args.blend is not None and not (args.cartesian and through):
+        raise KinematicaError("--blend rounds the corners of a --cartesian path through --via")
     path: CartesianPath | None = None
     if args.cartesian:
         if vmax is not None or amax is not None:
             raise KinematicaError(
                 "--vmax/--amax limit joint trajectories; with --cartesian give --duration"
             )
-        t = joint_trajectory(qa, qb, duration, args.profile, args.dt).t
-        s, _, _ = time_scaling(args.profile, t, float(t[-1]))
-        path = cartesian_path(robot, robot.fk(qa), robot.fk(qb), q0=qa, s=s)
+        T = float(times[-1]) if times is not None else float(duration)
+        t = joint_trajectory(qa, qb, T, "quintic", args.dt).t  # checks T and dt
+        # Rest to rest along the path: the trapezoid's time scaling for mstraj's blends.
+        scaling: Profile = "trapezoid" if args.profile == "mstraj" else args.profile
+        s, _, _ = time_scaling(scaling, t, T)
+        if through:
+            poses = robot.fk(W)
+            blend = 0.0 if args.blend is None else float(lengths_in(args.blend, robot, args))
+            path = cartesian_via_path(robot, poses, blend=blend, q0=qa, s=s)
+        else:
+            path = cartesian_path(robot, robot.fk(qa), robot.fk(qb), q0=qa, s=s, q1=qb)
         q, qd, qdd = path.q, None, None
+    elif through:
+        if times is None and vmax is None and amax is None:
+            times = np.linspace(0.0, float(duration), W.shape[0])
+        t, q, qd, qdd = via_trajectory(
+            W,
+            args.profile,
+            times,
+            args.dt,
+            vmax,
+            amax,
+            tacc=args.tacc,
+            ends=args.ends,
+        )
     else:
-        t, q, qd, qdd = joint_trajectory(qa, qb, duration, args.profile, args.dt, vmax, amax)
+        t, q, qd, qdd = joint_trajectory(
+            qa, qb, duration, args.profile, args.dt, vmax, amax, sync=args.sync
+        )
     events = path.events if path is not None else ()
     blocked = any(e.kind in BLOCKING for e in events)
     if out is not None:
         if out.suffix.lower() == ".csv":
             write_csv(out, t, q)
         else:
-            meta = {"robot": robot.name, "profile": args.profile, "cartesian": args.cartesian}
+            meta = {
+                "robot": robot.name,
+                "profile": args.profile,
+                "cartesian": args.cartesian,
+                "waypoints": W.shape[0],
+            }
             write_json(out, t, q, qd, qdd, joint_types=robot.joint_types, events=events, meta=meta)
     if args.json:
         dump(
@@ -233,6 +327,8 @@ def trajectory(args: argparse.Namespace) -> int:
                 "robot": robot.name,
                 "profile": args.profile,
                 "cartesian": bool(args.cartesian),
+                "sync": None if through else args.sync,
+                "waypoints": _safe(q_out(robot, W, args)),
                 "units": {"t": "s", "angle": angle_unit(args), "length": "m"},
                 "duration": float(t[-1]),
                 "t": _safe(t),
@@ -254,7 +350,11 @@ def trajectory(args: argparse.Namespace) -> int:
         )
         return 1 if blocked else 0
     kind = "Cartesian (line, slerp)" if args.cartesian else "joint"
-    print(f"{robot.name}: {kind} trajectory, {args.profile}, {fmt(t[-1], 4)} s, {t.size} samples")
+    where = f" through {W.shape[0]} waypoints" if through else ""
+    print(
+        f"{robot.name}: {kind} trajectory{where}, {args.profile}, {fmt(t[-1], 4)} s, "
+        f"{t.size} samples"
+    )
     step = max(1, math.ceil(t.size / PRINTED_ROWS))
     idx = sorted(set(range(0, t.size, step)) | {t.size - 1})
     header = ("t (s)", *(f"q{i}" for i in range(1, robot.dof + 1)))
@@ -300,19 +400,65 @@ def register(sub: Any) -> None:
     add_common(p)
     p.set_defaults(run=workspace_cmd)
 
-    p = sub.add_parser("trajectory", help="joint or Cartesian trajectory between two q")
+    p = sub.add_parser(
+        "trajectory", help="joint or Cartesian trajectory between two q, or through --via points"
+    )
     add_robot(p)
-    p.add_argument("--from", dest="q_from", nargs="+", type=float, required=True, metavar="Q")
-    p.add_argument("--to", dest="q_to", nargs="+", type=float, required=True, metavar="Q")
-    p.add_argument("--profile", choices=("quintic", "cubic", "trapezoid"), default="quintic")
-    p.add_argument("--duration", type=float, help="seconds (default 2, or from the limits)")
+    p.add_argument("--from", dest="q_from", nargs="+", type=float, metavar="Q")
+    p.add_argument(
+        "--via",
+        nargs="+",
+        type=float,
+        action="append",
+        metavar="Q",
+        help="a configuration to pass through (repeat for several, in order)",
+    )
+    p.add_argument("--to", dest="q_to", nargs="+", type=float, metavar="Q")
+    p.add_argument(
+        "--waypoints",
+        metavar="FILE.csv",
+        help="every waypoint instead of --from/--via/--to: t,q1,...,qn in s, rad and m "
+        "(the format -o writes); t gives their times",
+    )
+    p.add_argument(
+        "--profile",
+        choices=("quintic", "cubic", "trapezoid", "mstraj"),
+        default="quintic",
+        help="between two q: quintic, cubic, trapezoid; through --via: the quintic (C4) or "
+        "cubic (C2) spline through every point, or mstraj (lines with parabolic blends)",
+    )
+    p.add_argument(
+        "--duration",
+        type=float,
+        help="seconds (default 2, or from the limits); --via points evenly spaced in it",
+    )
+    p.add_argument(
+        "--times", nargs="+", type=float, metavar="T", help="waypoint times in s, from 0"
+    )
     p.add_argument("--dt", type=float, default=0.01, help="sample spacing in s (default 0.01)")
     p.add_argument("--vmax", nargs="+", type=float, help="speed limit, one or n values (deg/s)")
     p.add_argument("--amax", nargs="+", type=float, help="acceleration limit (deg/s²)")
     p.add_argument(
+        "--sync",
+        choices=("each", "shared"),
+        default="each",
+        help="trapezoid: each joint its own profile in the slowest joint's minimum time "
+        "(default), or one shared profile on the joint-space line",
+    )
+    p.add_argument("--tacc", type=float, help="mstraj: blend time at each via point (s)")
+    p.add_argument(
+        "--ends",
+        choices=("clamped", "natural"),
+        default="clamped",
+        help="spline ends: at rest (default) or natural (free)",
+    )
+    p.add_argument(
         "--cartesian",
         action="store_true",
-        help="straight tool line from fk(--from) to fk(--to), IK on --from's branch",
+        help="straight tool lines through fk of each point, IK on --from's branch",
+    )
+    p.add_argument(
+        "--blend", type=float, help="--cartesian through --via: corner radius (robot's length unit)"
     )
     p.add_argument("-o", "--output", metavar="PATH.csv", help="write t,q1..qn (SI) to .csv/.json")
     add_common(p)

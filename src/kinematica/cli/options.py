@@ -101,11 +101,27 @@ def add_robot(p: argparse.ArgumentParser) -> None:
     p.add_argument("robot", metavar="ROBOT", help="built-in name, robot file or URDF")
     p.add_argument("--base", metavar="LINK", help="URDF only: base link of the chain")
     p.add_argument("--tip", metavar="LINK", help="URDF only: tip link of the chain")
+    p.add_argument(
+        "--xacro",
+        action="store_true",
+        help="URDF only: expand xacro in a .urdf file (a .xacro file always is)",
+    )
+    p.add_argument(
+        "--xacro-env",
+        action="store_true",
+        help="URDF only: let xacro read environment variables ($(env ...), $(optenv ...))",
+    )
 
 
 def robot_from_args(args: argparse.Namespace) -> Robot:
-    """The robot named by ``ROBOT`` (and, for a URDF, ``--base``/``--tip``)."""
-    return load(args.robot, base=args.base, tip=args.tip)
+    """The robot named by ``ROBOT`` (and, for a URDF, ``--base``/``--tip``/``--xacro``)."""
+    return load(
+        args.robot,
+        base=args.base,
+        tip=args.tip,
+        xacro=args.xacro,
+        xacro_env=args.xacro_env,
+    )
 
 
 def angle_unit(args: argparse.Namespace) -> str:

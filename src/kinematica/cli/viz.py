@@ -15,9 +15,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica.cli.options import add_common, add_robot, dump, q_in
+from kinematica.cli.options import add_common, add_robot, dump, q_in, robot_from_args
 from kinematica.errors import DimensionError, UnreachableError
-from kinematica.robot import load
 from kinematica.spatial import from_pose
 
 __all__ = ["animate", "plot", "register", "view"]
@@ -39,7 +38,7 @@ def plot(args: argparse.Namespace) -> int:
     """``kinematica plot ROBOT --q ...``: the arm as a picture, or every IK solution."""
     from kinematica import viz
 
-    robot = load(args.robot)
+    robot = robot_from_args(args)
     q = None if args.q is None else q_in(robot, args.q, args, "q")
     given = [args.pose, args.matrix, args.position]
     solutions = args.solutions or any(v is not None for v in given)
@@ -93,7 +92,7 @@ def animate(args: argparse.Namespace) -> int:
     """``kinematica animate ROBOT --trajectory path.csv -o arm.gif``."""
     from kinematica import viz
 
-    robot = load(args.robot)
+    robot = robot_from_args(args)
     t, q = viz.read_trajectory(args.trajectory, dof=robot.dof)
     anim = viz.animate(
         robot,
@@ -130,8 +129,8 @@ def view(args: argparse.Namespace) -> int:
     """``kinematica view ROBOT [-o arm.html] [--serve]``: the interactive page."""
     from kinematica import viz
 
-    robot = load(args.robot)
-    units = viz.robot_units(args.robot)
+    robot = robot_from_args(args)
+    units = viz.robot_units(robot)
     q = None if args.q is None else q_in(robot, args.q, args, "q")
     written = None
     if args.output is not None or not args.serve:
@@ -160,6 +159,18 @@ def view(args: argparse.Namespace) -> int:
     finally:
         server.close()
     return 0
+
+
+def _port(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = -1
+    if not 0 <= value <= 65535:
+        raise argparse.ArgumentTypeError(
+            f"expected a port number from 0 to 65535 (0: a free one), got {text!r}"
+        )
+    return value
 
 
 def _picture_options(p: argparse.ArgumentParser) -> None:
@@ -240,7 +251,7 @@ def register(sub: Any) -> None:
     )
     p.add_argument("--serve", action="store_true", help="serve the page with a draggable IK target")
     p.add_argument("--host", default="127.0.0.1", help="address to serve on (default 127.0.0.1)")
-    p.add_argument("--port", type=int, default=0, help="port to serve on (default: a free one)")
+    p.add_argument("--port", type=_port, default=0, help="port to serve on (default: a free one)")
     p.add_argument("--open", action="store_true", help="open the page in the web browser")
     add_common(p)
     p.set_defaults(run=view)

@@ -6,6 +6,11 @@ task's targets, and the version of the measures); each further line is one
 finished evaluation, written and flushed as soon as it is known. Floats are
 written with ``repr``, so they read back bit for bit.
 
+A new checkpoint is made whole (its header line written to a temporary file
+and renamed into place, :mod:`kinematica.io.atomic`); evaluations are then
+appended. An append that fails (a full disk) is cut back to the lines before
+it, so the file always ends with a whole line.
+
 A resumed run replays the optimiser from its seed and takes every evaluation
 it finds here instead of computing it again: the optimiser sees the same
 numbers, takes the same steps and ends with the same result. A line cut short
@@ -16,18 +21,24 @@ objective, budget or seed on the same template and task.
 
 from __future__ import annotations
 
+import contextlib
+import io
 import json
 import os
 from pathlib import Path
-from typing import IO, Any, Final
+from typing import Any, Final
 
 from kinematica.design.evaluate import Evaluation
 from kinematica.errors import KinematicaError
+from kinematica.io.atomic import write_failed, write_text_atomic
+from kinematica.io.reading import read_limited
 
 __all__ = ["Checkpoint", "CheckpointError"]
 
 #: The first key of a checkpoint's header line.
 FORMAT: Final = "kinematica-design-checkpoint"
+#: Largest checkpoint read (256 MiB): about a million evaluations.
+MAX_BYTES = 256 * 2**20
 #: Bumped whenever what an evaluation holds, or how it is computed, changes.
 VERSION: Final = 1
 
@@ -65,8 +76,12 @@ class Checkpoint:
         lines = text.split("\n")
         whole = lines[:-1]  # the part after the last newline is empty or cut short
         if not whole:
-            self._file = self._open("w")
-            self._write(header)
+            try:
+                write_text_atomic(self.path, json.dumps(header) + "\n")
+            except OSError as exc:
+                raise CheckpointError(write_failed(self.path, exc, "the checkpoint")) from exc
+            self._file = self._open()
+            self._file.seek(0, os.SEEK_END)
             return
         first = self._parse(whole[0], 1)
         if first.get("format") != FORMAT:
@@ -79,22 +94,26 @@ class Checkpoint:
         for number, line in enumerate(whole[1:], start=2):
             ev = self._evaluation(self._parse(line, number), number)
             self.found[ev.x] = ev
-        self._file = self._open("r+")
-        self._file.seek(0)
+        self._file = self._open()
         self._file.truncate(len("\n".join(whole).encode()) + 1)  # drop a cut line
         self._file.seek(0, os.SEEK_END)
 
     def _read(self) -> str:
+        data = read_limited(
+            self.path,
+            MAX_BYTES,
+            "checkpoint file",
+            lambda reason: CheckpointError(f"{self.path}: {reason}"),
+            missing_ok=True,
+        )
         try:
-            return self.path.read_text(encoding="utf-8")
-        except FileNotFoundError:
-            return ""
-        except (OSError, UnicodeDecodeError) as exc:
+            return data.decode("utf-8")
+        except UnicodeDecodeError as exc:
             raise CheckpointError(f"{self.path}: cannot read the checkpoint: {exc}") from exc
 
-    def _open(self, mode: str) -> IO[str]:
+    def _open(self) -> io.FileIO:
         try:
-            return self.path.open(mode, encoding="utf-8")
+            return io.FileIO(self.path, "r+")
         except OSError as exc:
             raise CheckpointError(
                 f"{self.path}: cannot write the checkpoint: {exc.strerror or exc}"
@@ -124,8 +143,19 @@ class Checkpoint:
 
     def _write(self, data: dict[str, Any]) -> None:
         # json writes floats with repr (exact); NaN/inf as NaN/Infinity, which it reads back.
-        self._file.write(json.dumps(data) + "\n")
-        self._file.flush()
+        line = memoryview((json.dumps(data) + "\n").encode("utf-8"))
+        end = self._file.tell()
+        try:
+            while line:  # unbuffered: each write goes to the file at once, or raises
+                line = line[self._file.write(line) or 0 :]
+        except OSError as exc:
+            with contextlib.suppress(OSError):  # drop the part of the line written
+                self._file.truncate(end)
+                self._file.seek(end)
+            raise CheckpointError(
+                f"{self.path}: cannot write the checkpoint ({exc.strerror or exc}); "
+                "the evaluations before it are kept"
+            ) from exc
 
     def append(self, ev: Evaluation) -> None:
         """Write one finished evaluation (flushed at once)."""

@@ -22,7 +22,8 @@ from kinematica.design.evaluate import Evaluation, evaluate_design
 from kinematica.design.measures import TaskMeasures, measure_task
 from kinematica.design.objectives import MEASURES
 from kinematica.design.result import DesignResult
-from kinematica.io.atomic import atomic_path, write_text_atomic
+from kinematica.errors import KinematicaError
+from kinematica.io.atomic import atomic_path, write_failed, write_text_atomic
 
 __all__ = ["write_log", "write_report"]
 
@@ -41,23 +42,26 @@ def write_log(result: DesignResult, path: str | os.PathLike[str]) -> Path:
     names = list(result.template.names)
     measures = [*MEASURES, "reached"]
     front = {ev.x for ev in result.front or ()}
-    with atomic_path(p) as tmp, tmp.open("w", newline="", encoding="utf-8") as f:
-        out = csv.writer(f)
-        header = ["evaluation", *names, "feasible", "violation", *measures, "objective"]
-        out.writerow([*header, "front"])
-        for i, ev in enumerate(result.history, start=1):
-            obj = result.objective.scalar(ev.measures)
-            out.writerow(
-                [
-                    i,
-                    *(repr(ev.params[n]) for n in names),
-                    int(ev.feasible),
-                    repr(ev.violation),
-                    *(repr(ev.measures.get(m, math.nan)) for m in measures),
-                    "" if math.isnan(obj) else repr(obj),
-                    int(ev.x in front),
-                ]
-            )
+    try:
+        with atomic_path(p) as tmp, tmp.open("w", newline="", encoding="utf-8") as f:
+            out = csv.writer(f)
+            header = ["evaluation", *names, "feasible", "violation", *measures, "objective"]
+            out.writerow([*header, "front"])
+            for i, ev in enumerate(result.history, start=1):
+                obj = result.objective.scalar(ev.measures)
+                out.writerow(
+                    [
+                        i,
+                        *(repr(ev.params[n]) for n in names),
+                        int(ev.feasible),
+                        repr(ev.violation),
+                        *(repr(ev.measures.get(m, math.nan)) for m in measures),
+                        "" if math.isnan(obj) else repr(obj),
+                        int(ev.x in front),
+                    ]
+                )
+    except OSError as exc:
+        raise KinematicaError(write_failed(p, exc, "the evaluation log")) from exc
     return p
 
 
@@ -109,8 +113,11 @@ def _coverage(result: DesignResult, path: Path) -> None:
 
 def _save(fig: Any, path: Path) -> None:
     """Write a report figure atomically (see :mod:`kinematica.io.atomic`)."""
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, dpi=90, format="png")
+    try:
+        with atomic_path(path) as tmp:
+            fig.savefig(tmp, dpi=90, format="png")
+    except OSError as exc:
+        raise KinematicaError(write_failed(path, exc, "the picture")) from exc
 
 
 def _scatter(ax: Any, x: Any, y: Any, m: TaskMeasures, vmax: float, fig: Any) -> None:
@@ -263,5 +270,8 @@ def write_report(
     named = [f"- {what}: `{Path(f).name}`" for what, f in files if f is not None]
     if named:
         lines += ["## Files", "", *named, ""]
-    write_text_atomic(p, "\n".join(lines))
+    try:
+        write_text_atomic(p, "\n".join(lines))
+    except OSError as exc:
+        raise KinematicaError(write_failed(p, exc, "the report")) from exc
     return written

@@ -12,23 +12,32 @@ same joint lines and the same home pose have the same FK.
 Frames, standard convention (the DH method's rules 4-9): ``S_(k-1)`` has z along
 joint k's axis, in the sense of the joint's positive motion.
 
-- ``S_0`` (rule 5: anywhere on axis 1): the nearest frame of the description
-  before joint 1 whose z is axis 1 and whose origin is on it, else the joint-1
-  frame if it is such a frame, else origin at joint 1 with x from its frame.
+- ``S_0`` (rule 5: anywhere on axis 1): the maker's base frame (ROS-Industrial's
+  ``base``) or the nearest frame of the description before joint 1 whose z is
+  axis 1 and whose origin is on it, else the joint-1 frame if it is such a frame,
+  else origin at joint 1 with x from its frame.
 - ``S_k``, k = 1..n-1 (rules 6-7): skew axes: x along the common normal, origin
   at its foot on axis k+1; axes that meet: origin at the intersection,
-  x = ±z_(k-1) × z_k; parallel axes: origin at joint k+1 (the joint's own
-  origin on its axis), x normal to both axes; coinciding axes: origin at joint
-  k+1, x from joint k+1's frame. Where the sense of x is free, it follows
-  joint k+1's own frame when that frame's x has a component along the normal
-  (so a table exported and read back keeps the signs of its a's and α's);
-  otherwise the normal from axis k to axis k+1, or z_(k-1) × z_k.
+  x = ±z_(k-1) × z_k; parallel axes: x normal to both axes, origin on axis k+1
+  level with S_(k-1) (d_k = 0: the origin is free along the axis); coinciding
+  axes: origin at joint k+1, x from joint k+1's frame. Where the sense of x is
+  free, it follows joint k+1's own frame when that frame's x has a component
+  along the normal (so a table exported and read back keeps the signs of its
+  a's and α's); otherwise the sense that turns x_(k-1) onto x_k by less than 90°
+  (an offset of 0 where one is possible), else the normal from axis k to axis
+  k+1, or z_(k-1) × z_k. A joint frame that already is the DH frame is kept whole.
 - ``S_n`` (rule 9): the nearest frame after joint n whose x is normal to axis
   n and meets it (a valid last DH frame, e.g. a flange or tool frame), else
   origin at the tip with z_n = z_(n-1) and x_n from axis n towards the tip (or
   from the tip frame when the tip is on axis n).
 
-Modified convention (Craig): ``S_k`` has z along joint k's axis; ``S_k``'s x
+Modified convention (Craig): the standard frames regrouped, ``S'_k = S_(k-1)
+Rot(z, θ_k) Tras(z, d_k)`` (on axis k where x_k meets it: a valid modified frame),
+so that one arm has one modified table, the one ``Robot.to_convention`` writes,
+unless the description's joint frames already are modified DH frames (a file
+written from a modified table, e.g. Franka's). Then, and for one joint, by the
+rules, and the standard frames are those regrouped the other way. The rules:
+``S_k`` has z along joint k's axis; ``S_k``'s x
 lies on the common normal to axis k+1 with the origin at its foot on axis k
 (same cases and choices, the joint of a parallel pair being joint k); ``S_n``
 is joint n's frame made valid (origin at joint n, x from its frame); ``S_0``
@@ -101,8 +110,14 @@ def _joint_label(g: ChainGeometry, k: int) -> str:
     return f"joint {k} ({name!r})" if name else f"joint {k}"
 
 
-def _pair(g: ChainGeometry, a: int, frame: int, on_b: bool) -> tuple[FloatArray, FrameRule]:
-    """The frame on axis ``a+1`` (``on_b``) or ``a`` by the common normal of axes a, a+1."""
+def _pair(
+    g: ChainGeometry, a: int, frame: int, on_b: bool, prev: FloatArray | None
+) -> tuple[FloatArray, FrameRule]:
+    """The frame on axis ``a+1`` (``on_b``) or ``a`` by the common normal of axes a, a+1.
+
+    ``prev`` is the DH frame before it (None when not yet placed): where the rules
+    leave a choice, d = 0 and an offset of 0 are taken from it (module docstring).
+    """
     A, B = g.joints[a - 1], g.joints[a]
     pair = line_pair(A.direction, A.frame[:3, 3], B.direction, B.frame[:3, 3], g.size)
     on = B if on_b else A
@@ -118,7 +133,13 @@ def _pair(g: ChainGeometry, a: int, frame: int, on_b: bool) -> tuple[FloatArray,
         )
         return frame_from(x, z, origin), FrameRule(frame, "collinear", text)
     x = pair.normal
-    flipped = float(on.frame[:3, 0] @ x) < -AXIS_ANGLE_TOL
+    along = float(on.frame[:3, 0] @ x)
+    if abs(along) > AXIS_ANGLE_TOL:  # the joint's own frame says which way x points
+        flipped, why = along < 0.0, f"as the frame of {_joint_label(g, k_on)} has it"
+    elif prev is not None and float(prev[:3, 0] @ x) < -AXIS_ANGLE_TOL:
+        flipped, why = True, f"so that x{frame - 1} turns onto it by less than 90°"
+    else:
+        flipped, why = False, ""
     if flipped:
         x = -x
     if pair.kind == "parallel":
@@ -130,13 +151,19 @@ def _pair(g: ChainGeometry, a: int, frame: int, on_b: bool) -> tuple[FloatArray,
         text = f"{axes} meet: origin at the intersection, x{frame} = {sense} (rule 6)"
     else:
         where = f"at {_joint_label(g, k_on)}" if pair.kind == "parallel" else f"on axis {k_on}"
+        if pair.kind == "parallel" and prev is not None:
+            # the origin is free along the axis: d = 0 (level with the frame before)
+            p_on = on.frame[:3, 3]
+            ref = prev[:3, 2] if on_b else z  # standard d is along z(k-1), modified along z(k)
+            origin = p_on + (float((prev[:3, 3] - p_on) @ ref) / float(z @ ref)) * z
+            where = f"on axis {k_on} level with S{frame - 1} (d{frame} = 0)"
         towards = f"from axis {a + 1} to axis {a}" if flipped else f"from axis {a} to axis {a + 1}"
         text = (
             f"{axes} are {pair.kind}: x{frame} on a common normal, origin {where} "
             f"(rules 6-7), x{frame} {towards}"
         )
-    if flipped:
-        text += f", as the frame of {_joint_label(g, k_on)} has it"
+    if why:
+        text += f", {why}"
     if _obeys_rules(on, A if on_b else B):
         # The joint's own frame is already this DH frame, to round-off: keep it whole (the
         # computed normal of nearly parallel axes is known only to about 1e-16 / angle).
@@ -178,6 +205,8 @@ def _candidates(
 
 
 def _standard_frames(g: ChainGeometry) -> tuple[list[FloatArray], list[FrameRule]]:
+    if len(g.joints) > 1 and _own_modified_frames(g) and not _own_standard_frames(g):
+        return _paul_frames(*_modified_frames(g))
     n = len(g.joints)
     j1, jn = g.joints[0], g.joints[-1]
     frames: list[FloatArray] = []
@@ -193,7 +222,7 @@ def _standard_frames(g: ChainGeometry) -> tuple[list[FloatArray], list[FrameRule
             FrameRule(0, "rule 5", f"origin at {_joint_label(g, 1)} on axis 1, x0 from its frame")
         )
     for k in range(1, n):
-        S, rule = _pair(g, k, k, on_b=True)
+        S, rule = _pair(g, k, k, on_b=True, prev=frames[-1])
         frames.append(S)
         rules.append(rule)
     h, p = jn.direction, jn.frame[:3, 3]
@@ -224,13 +253,82 @@ def _standard_frames(g: ChainGeometry) -> tuple[list[FloatArray], list[FrameRule
     return frames, rules
 
 
+def _own_modified_frames(g: ChainGeometry) -> bool:
+    """True when every joint's own frame but the last is already a modified DH frame.
+
+    That is: each has its x on the common normal to the next axis, meeting it (as
+    a description written from a modified table, e.g. Franka's URDF, has them).
+    """
+    return all(_obeys_rules(a, b) for a, b in zip(g.joints[:-1], g.joints[1:], strict=True))
+
+
+def _own_standard_frames(g: ChainGeometry) -> bool:
+    """True when every joint's own frame but the first is already a standard DH frame."""
+    return all(_obeys_rules(b, a) for a, b in zip(g.joints[:-1], g.joints[1:], strict=True))
+
+
+def _paul_frames(
+    mod: list[FloatArray], rules: list[FrameRule]
+) -> tuple[list[FloatArray], list[FrameRule]]:
+    """Standard frames of the modified frames ``mod``: the same θ and d columns.
+
+    ``S_k`` (k < n) is on axis k+1 (z of ``S'_(k+1)``) where the x line of ``S'_k``
+    meets it, with that x (``S'_k Rot(x, α_k) Tras(x, a_k)``); ``S_n = S'_n``: the
+    modified table regrouped (a and α moved up a row), as ``Robot.to_convention``
+    writes it.
+    """
+    frames: list[FloatArray] = []
+    texts: list[FrameRule] = []
+    n = len(mod) - 1
+    for k in range(n):
+        here, nxt = mod[k], mod[k + 1]
+        x = here[:3, 0]
+        origin = here[:3, 3] + float((nxt[:3, 3] - here[:3, 3]) @ x) * x
+        frames.append(frame_from(x, nxt[:3, 2], origin))
+        text = (
+            f"on axis {k + 1} where the x line of the modified S{k} meets it, with its x "
+            f"(Paul's frame of the modified table: the same θ and d); S{k}: {rules[k].text}"
+        )
+        texts.append(FrameRule(k, rules[k].rule, text))
+    frames.append(mod[n])
+    texts.append(rules[n])
+    return frames, texts
+
+
+def _craig_frames(
+    std: list[FloatArray], rules: list[FrameRule]
+) -> tuple[list[FloatArray], list[FrameRule]]:
+    """Craig's frames of the standard frames ``std``: the same θ and d columns.
+
+    ``S'_k`` (k >= 1) is on axis k (z of ``S_(k-1)``) where the x line of ``S_k``
+    meets it, with that x: ``S'_k = S_(k-1) Rot(z, θk) Tras(z, dk)``, a valid
+    modified frame (x on the common normal to axis k+1, origin at its foot). So the
+    modified table is the standard one regrouped (a and α moved down a row), as
+    ``Robot.to_convention`` writes it: one arm, one modified table.
+    """
+    frames, out = [std[0]], [rules[0]]
+    for k in range(1, len(std)):
+        prev, here = std[k - 1], std[k]
+        z = prev[:3, 2]
+        origin = prev[:3, 3] + float((here[:3, 3] - prev[:3, 3]) @ z) * z
+        frames.append(frame_from(here[:3, 0], z, origin))
+        text = (
+            f"on axis {k} where the x line of the standard S{k} meets it, with its x "
+            f"(Craig's frame of the standard table: the same θ{k} and d{k}); S{k}: {rules[k].text}"
+        )
+        out.append(FrameRule(k, rules[k].rule, text))
+    return frames, out
+
+
 def _modified_frames(g: ChainGeometry) -> tuple[list[FloatArray], list[FrameRule]]:
+    if len(g.joints) > 1 and not _own_modified_frames(g):
+        return _craig_frames(*_standard_frames(g))
     n = len(g.joints)
     j1, jn = g.joints[0], g.joints[-1]
     frames: list[FloatArray] = []
     rules: list[FrameRule] = []
     for k in range(1, n):
-        S, rule = _pair(g, k, k, on_b=False)
+        S, rule = _pair(g, k, k, on_b=False, prev=frames[-1] if frames else None)
         frames.append(S)
         rules.append(rule)
     F = frame_on_axis(jn.frame, jn.direction, jn.frame[:3, 3], g.size)

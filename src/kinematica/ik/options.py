@@ -30,6 +30,10 @@ class IKOptions:
         mask: ``(6,)`` weights of x, y, z, rx, ry, rz (numeric only).
         seed: Seed of the numeric restarts.
         workers: Threads for a batch (None: the library default).
+        precision: ``(position m, rotation entries)``: half a unit in the last
+            digit a pose target's numbers were printed with, for arms with fewer
+            than 6 joints (:mod:`kinematica.ik.printed`); None: read from the
+            numbers' own digits.
     """
 
     method: Method = "auto"
@@ -39,6 +43,7 @@ class IKOptions:
     mask: ArrayLike | None = None
     seed: int | np.random.Generator | None = None
     workers: int | None = None
+    precision: tuple[float, float] | None = None
 
 
 #: The options of a call that gives none.

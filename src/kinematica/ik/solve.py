@@ -28,6 +28,8 @@ from kinematica.ik.fallback import (
 )
 from kinematica.ik.numeric import LABEL, check_seed, numeric_setup
 from kinematica.ik.options import IKOptions, Method
+from kinematica.ik.printed import answer_overdetermined, overdetermined_rows
+from kinematica.ik.reach import beyond_limited_reach
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
 from kinematica.ik.result import CheckOutput, CoreAnswer, IKBatchResult, IKResult, result_of
 from kinematica.ik.structure import features
@@ -188,11 +190,48 @@ def _solver(
     return setup, (LABEL,), "numeric:lm"
 
 
+_UNREACHABLE = _core.STATUS["unreachable"]
+_ANSWERED = frozenset(_core.STATUS[k] for k in ("ok", "singular", "out_of_limits"))
+
+
+def _limited(
+    chain: Chain,
+    poses: FloatArray,
+    out: CoreAnswer,
+    respect_limits: bool,
+    tol: Tolerance,
+    weights: tuple[float, ...],
+) -> CoreAnswer:
+    """One target's answer, "unreachable" with its gap where the limited reach proves it."""
+    code, gap = out[-1][0], out[-1][1]
+    if not respect_limits or code in _ANSWERED:
+        return out
+    beyond, gaps = beyond_limited_reach(
+        chain, poses[:1], np.array([code]), np.array([np.nan if gap is None else gap]),
+        tol.position, weights,
+    )  # fmt: skip
+    if not beyond[0]:
+        return out
+    report = (_UNREACHABLE, float(gaps[0]), *out[-1][2:])
+    return (*out[:-1], report)
+
+
 def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IKBatchResult:
     """Every inverse-kinematics solution of a target, or an honest status.
 
-    See :meth:`kinematica.Robot.ik` for the arguments and what comes back.
+    See :meth:`kinematica.Robot.ik` for the arguments and what comes back. One pose
+    target of an arm with fewer than 6 joints is over-determined: see
+    :mod:`kinematica.ik.printed`.
     """
+    out = _solve(chain, target, options)
+    overdetermined = chain.dof < 6 and options.mask is None and np.shape(target) == (4, 4)
+    if overdetermined and isinstance(out, IKResult):
+        return answer_overdetermined(chain, target, options, out, _solve, options.precision)
+    return out
+
+
+def _solve(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IKBatchResult:
+    """:func:`solve_ik` without the over-determined targets' second look."""
     method: Method = options.method
     respect_limits, q0, workers = options.respect_limits, options.q0, options.workers
     if method not in ("auto", "analytic", "numeric"):
@@ -234,8 +273,10 @@ def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | 
             if needs_search(out[-1][0]):
                 numeric, nopts = search()
                 out = numeric.ik(chain.core, targets.poses[0], nopts, q0, (LABEL,))
+                out = _limited(chain, targets.poses, out, respect_limits, tolerance, w)
                 return result_of(*out, "numeric:lm", False, (*notes, FALLBACK_NOTE))
             notes = (*notes, INCOMPLETE_NOTE)
+        out = _limited(chain, targets.poses, out, respect_limits, tolerance, w)
         return result_of(*out, name, complete, notes)
     invalid = None
     if targets.invalid:
@@ -265,6 +306,17 @@ def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | 
             idx = where(i)
             note = FALLBACK_NOTE if i in searched_rows else INCOMPLETE_NOTE
             batch_notes[idx] = (*batch_notes.get(idx, ()), note)
+    if respect_limits:
+        beyond, gaps = beyond_limited_reach(
+            chain, targets.poses, raw["status"], raw["gap"], tolerance.position, w
+        )
+        if beyond.any():
+            raw = dict(raw, status=np.where(beyond, _UNREACHABLE, raw["status"]))
+            raw["gap"] = np.where(beyond, gaps, raw["gap"])
+    if chain.dof < 6 and m is None and not targets.position:  # over-determined poses
+        raw, more = overdetermined_rows(chain, target, options, raw, labels, q0s, solve_ik)
+        for i, extra in more.items():
+            batch_notes[where(i)] = extra
     return IKBatchResult(
         raw=CheckOutput(**raw),
         method=name,

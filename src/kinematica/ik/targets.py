@@ -21,6 +21,7 @@ from numpy.typing import ArrayLike, NDArray
 import kinematica._core as _core
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.spatial import ROUNDOFF_TOL, nearest_rotation
+from kinematica.spatial.checks import shown_above
 
 __all__ = [
     "POSITION_TOL",
@@ -42,10 +43,13 @@ POSITION_TOL = 1e-10
 #: ... and within this rotation angle of the target orientation (radians).
 ROTATION_TOL = 1e-10
 #: A target rotation orthonormal to within this (max |RᵀR − I|, and the last
-#: row within this of [0, 0, 0, 1]) is accepted: one printed with 6 digits is
-#: orthonormal to ~1e-6. It is replaced by the nearest rotation (with a note)
-#: when farther than round-off from orthonormal; beyond it, it is an error.
-PROJECTION_TOL = 1e-4
+#: row within this of [0, 0, 0, 1]) is accepted. A rotation copied with 4
+#: decimals has entries off by up to 5e-5, so (RᵀR − I)ᵢⱼ = Σₖ (Rₖᵢ Eₖⱼ + Eₖᵢ Rₖⱼ)
+#: + O(E²) reaches 2·√3·5e-5 ≈ 1.73e-4 (each column of R a unit vector): every
+#: 4-decimal copy is accepted, a 3-decimal one (up to ~1.7e-3) is not. It is
+#: replaced by the nearest rotation (with a note) when farther than round-off from
+#: orthonormal; beyond this, it is an error.
+PROJECTION_TOL = 2e-4
 
 
 @dataclass(frozen=True)
@@ -176,8 +180,9 @@ def _poses(raw: np.ndarray) -> Targets:
             invalid[i] = f"{where} last row must be [0, 0, 0, 1], got {poses[i, 3].tolist()}"
         elif ortho[i] > PROJECTION_TOL:
             invalid[i] = (
-                f"{where} rotation is not orthonormal: max |RᵀR − I| = {ortho[i]:.1e} "
-                f"(accepted up to {PROJECTION_TOL:.0e})"
+                f"{where} rotation is not orthonormal: max |RᵀR − I| = "
+                f"{shown_above(float(ortho[i]), PROJECTION_TOL)}, more than the "
+                f"{PROJECTION_TOL:.0e} a copy with 4 decimals stays within"
             )
         elif det[i] <= 0.0:
             invalid[i] = f"{where} rotation has det = {det[i]:+.3f}, expected +1 (a reflection)"

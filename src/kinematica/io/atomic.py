@@ -1,7 +1,8 @@
 """Writing a file so that a failure or a kill never leaves it empty or cut short.
 
 Every file kinematica writes (robot files, URDF, C++ headers, trajectories,
-pictures, animations, pages, reports) is written to a temporary file in the
+pictures, animations, pages, reports, the design log; a design checkpoint's
+first line) is written to a temporary file in the
 same folder, flushed to disk and renamed over the old one: a reader sees the
 old file or the whole new one, never a part. A write that fails (a full disk,
 a file-size limit, an exception while drawing) removes the temporary file and
@@ -18,7 +19,7 @@ import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 
-__all__ = ["atomic_path", "unchanged", "write_text_atomic"]
+__all__ = ["atomic_path", "unchanged", "write_failed", "write_text_atomic"]
 
 
 @contextlib.contextmanager
@@ -29,12 +30,21 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
     read the format from the name see the right one). On an exception inside
     the block, or while flushing and renaming, it is removed and the exception
     propagates: ``path`` is untouched. A new file gets the permissions an
-    ``open(path, "w")`` would give it; a replaced one keeps its own.
+    ``open(path, "w")`` would give it; a replaced one keeps its own. A symbolic
+    link is followed (the file it names is replaced, the link kept); a device
+    or FIFO (``/dev/stdout``) is written in place, as there is no file to keep.
 
     Raises:
         OSError: The folder does not exist or is not writable (nothing written).
     """
-    p = Path(path)
+    p = Path(os.path.realpath(path))
+    try:
+        special = not stat.S_ISREG(p.stat().st_mode)
+    except OSError:  # no such file yet
+        special = False
+    if special:
+        yield p
+        return
     fd, name = tempfile.mkstemp(dir=p.parent, prefix=f".{p.name}.", suffix=f".tmp{p.suffix}")
     os.close(fd)
     tmp = Path(name)
@@ -59,6 +69,16 @@ def write_text_atomic(path: str | os.PathLike[str], text: str) -> None:
 def unchanged(path: str | os.PathLike[str]) -> str:
     """What a failed write left: ``"the old file is unchanged"`` or ``"nothing was written"``."""
     return "the old file is unchanged" if Path(path).exists() else "nothing was written"
+
+
+def write_failed(path: str | os.PathLike[str], exc: OSError, what: str = "") -> str:
+    """One line for a write that failed, saying what it left.
+
+    For example ``"arm.csv: cannot write the trajectory (No space left on
+    device); the old file is unchanged"``; ``what`` names the content.
+    """
+    reason = exc.strerror or str(exc) or type(exc).__name__
+    return f"{path}: cannot write {what or 'the file'} ({reason}); {unchanged(path)}"
 
 
 def _mode(p: Path) -> int:

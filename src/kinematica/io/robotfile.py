@@ -50,7 +50,6 @@ from __future__ import annotations
 
 import json
 import os
-import stat
 import tomllib
 from collections.abc import Callable
 from pathlib import Path
@@ -60,6 +59,7 @@ from kinematica.errors import ArgumentError, KinematicaError, RobotFileError
 from kinematica.io._dump import dump_robot_dict, toml_dumps
 from kinematica.io._parse import parse_robot_dict
 from kinematica.io.atomic import unchanged, write_text_atomic
+from kinematica.io.reading import file_kind, os_reason, read_limited
 from kinematica.io.spec import RobotSpec
 
 __all__ = [
@@ -306,50 +306,12 @@ def _too_large(size: int, what: str) -> str:
     return f"the file is {size:,} {what}; robot files of at most {MAX_FILE_SIZE:,} bytes are read"
 
 
-def _kind(mode: int) -> str | None:
-    """What a file that is not a regular file is, or ``None`` for a regular file."""
-    if stat.S_ISREG(mode):
-        return None
-    if stat.S_ISDIR(mode):
-        return "a directory"
-    if stat.S_ISFIFO(mode):
-        return "a named pipe (FIFO)"
-    if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
-        return "a device"
-    if stat.S_ISSOCK(mode):
-        return "a socket"
-    return "a special file"
-
-
 def _read_bytes(p: Path) -> bytes:
-    """The bytes of a regular file of at most MAX_FILE_SIZE bytes.
-
-    Type and size are checked before the file is opened: opening a FIFO would
-    wait for a writer, and reading ``/dev/zero`` would never end.
-    """
-    try:
-        info = p.stat()
-    except FileNotFoundError as exc:
-        raise RobotFileError("file not found", path=str(p)) from exc
-    except (OSError, ValueError) as exc:  # ValueError: a NUL byte in the path
-        raise RobotFileError(f"cannot read the file: {_reason(exc)}", path=str(p)) from exc
-    kind = _kind(info.st_mode)
-    if kind is not None:
-        raise RobotFileError(f"is {kind}, not a robot file", path=str(p))
-    if info.st_size > MAX_FILE_SIZE:
-        raise RobotFileError(_too_large(info.st_size, "bytes"), path=str(p))
-    try:
-        with p.open("rb") as f:
-            data = f.read(MAX_FILE_SIZE + 1)  # the file may have grown since stat
-    except OSError as exc:
-        raise RobotFileError(f"cannot read the file: {_reason(exc)}", path=str(p)) from exc
-    if len(data) > MAX_FILE_SIZE:
-        raise RobotFileError(_too_large(len(data), "bytes or more"), path=str(p))
+    """The bytes of a regular file of at most MAX_FILE_SIZE bytes, without a BOM."""
+    data = read_limited(
+        p, MAX_FILE_SIZE, "robot file", lambda reason: RobotFileError(reason, path=str(p))
+    )
     return data.removeprefix(_BOM.encode("utf-8"))
-
-
-def _reason(exc: Exception) -> str:
-    return str(exc.strerror) if isinstance(exc, OSError) and exc.strerror else str(exc)
 
 
 def dumps_robot_file(spec: RobotSpec, suffix: str = ".yaml") -> str:
@@ -402,7 +364,7 @@ def write_robot_file(spec: RobotSpec, path: str | os.PathLike[str]) -> None:
     p = _path(path)
     suffix = _suffix(p)
     try:
-        kind = _kind(p.stat().st_mode)
+        kind = file_kind(p.stat().st_mode)
     except OSError:  # missing (it will be created), or unreadable (open says why)
         kind = None
     if kind is not None:
@@ -412,5 +374,5 @@ def write_robot_file(spec: RobotSpec, path: str | os.PathLike[str]) -> None:
         write_text_atomic(p, text)
     except (OSError, ValueError) as exc:
         raise RobotFileError(
-            f"cannot write the file: {_reason(exc)}; {unchanged(p)}", path=str(p)
+            f"cannot write the file: {os_reason(exc)}; {unchanged(p)}", path=str(p)
         ) from exc

@@ -14,27 +14,27 @@ A URDF may come from anywhere, so it is read defensively:
 - the XML is parsed with ``defusedxml``: entity declarations (the "billion
   laughs" bomb and its relatives), external entities and DTD-based tricks are
   refused with a clear error instead of being expanded;
-- a xacro file (elements in the ``xacro`` namespace, ``${...}`` or ``$(...)``
-  in attributes, or a ``.xacro`` name) is expanded with the ``xacro`` package
-  when it is installed (``pip install 'kinematica[xacro]'``; xacro evaluates
-  the file's expressions and reads its includes, so expand only files you
-  trust), and otherwise refused with the command that expands it. A file that
+- xacro is expanded only when asked: a ``.xacro`` file, or ``xacro=True`` for a
+  ``.urdf`` holding xacro (elements in the ``xacro`` namespace, ``${...}`` or
+  ``$(...)`` in attributes); otherwise such a file is refused with the option
+  to give. The expansion runs in a child process with time, size and memory
+  limits and without the environment (:mod:`kinematica.io.xacro`). A file that
   merely declares ``xmlns:xacro`` (as many generated URDFs do) is plain URDF.
 """
 
 from __future__ import annotations
 
-import contextlib
-import io
 import math
 import os
 import stat
+import warnings
 from pathlib import Path
-from typing import Any
+from typing import Any, Final
 
-from kinematica.errors import RobotFileError
+from kinematica.errors import KinematicaWarning, RobotFileError
 from kinematica.io.spec import FrameSpec
 from kinematica.io.urdf_model import JOINT_TYPES, MOVABLE_TYPES, UrdfJoint, UrdfModel
+from kinematica.io.xacro import XACRO_HINT, expand_xacro
 
 __all__ = ["URDF_MAX_BYTES", "URDF_SUFFIXES", "parse_urdf", "read_urdf"]
 
@@ -45,15 +45,29 @@ URDF_MAX_BYTES = 16 * 2**20
 #: File name endings read as URDF (``.xacro`` ones are expanded first).
 URDF_SUFFIXES = (".urdf", ".xacro")
 
-_XACRO_HINT = (
-    "expand it first: `xacro FILE > FILE.urdf` (pip install xacro), or install xacro "
-    "(pip install 'kinematica[xacro]') and kinematica expands it when loading"
-)
+#: Largest size of a joint origin's coordinate or a prismatic limit, in metres.
+#: The largest machines a URDF describes (cranes, gantries) measure tens of
+#: metres; a million metres leaves four orders of margin and keeps every
+#: product of lengths the kinematics form (squares, cross products) far from
+#: overflow, which 1e154 m reaches.
+URDF_MAX_LENGTH: Final = 1e6
+
+#: Largest size of an origin's roll, pitch or yaw, or of a revolute limit, in
+#: radians (1,591 turns). Files hold a few turns at most; an angle this large
+#: is still known to 2e-12 rad (one unit in the last place), so its rotation is
+#: as exact as the rest of the model, which a 1e16 rad angle is not at all.
+URDF_MAX_ANGLE: Final = 1e4
+
+#: An ``<axis xyz>`` is a direction and is normalised; its components may be at
+#: most this large and its length at least the inverse. Beyond, the numbers are
+#: not a direction anyone writes (1e200 1e200 0) or are too small to hold one.
+URDF_AXIS_SCALE: Final = 1e6
 
 
 def _local(tag: object) -> str:
     """An element's tag without its ``{namespace}``."""
-    return str(tag).rsplit("}", 1)[-1]
+    text = str(tag)
+    return text.rsplit("}", 1)[-1] if text.startswith("{") else text
 
 
 def _is_xacro(root: Any) -> str | None:
@@ -94,26 +108,81 @@ def _parse_xml(data: bytes, source: str | None) -> Any:
         line, column = getattr(exc, "position", (0, 0))
         what = str(exc).split(":")[0]
         if b"xacro:" in data:
-            hint = f"not valid XML ({what}): it looks like a xacro file; {_XACRO_HINT}"
+            hint = f"not valid XML ({what}): it looks like a xacro file; {XACRO_HINT}"
             raise fail(hint) from exc
         raise fail(f"not valid XML: {what} (line {line}, column {column + 1})") from exc
     except RecursionError as exc:  # pragma: no cover - expat does not recurse; defensive
         raise fail("the XML is nested too deeply") from exc
 
 
-def _numbers(text: str | None, count: int, default: tuple[float, ...], what: str) -> list[float]:
+def _numbers(
+    text: str | None, count: int, default: tuple[float, ...], what: str, bound: float, unit: str
+) -> list[float]:
+    """``count`` finite numbers of at most ``bound`` in size from an attribute's text."""
     if text is None:
         return list(default)
-    parts = text.split()
     try:
-        values = [float(p) for p in parts]
+        values = [float(p) for p in text.split()]
     except ValueError:
         values = []
+    if len(values) == count and all(-bound <= v <= bound for v in values):
+        return values  # NaN fails both comparisons
+    shown = text.strip()[:60]
     if len(values) != count:
-        raise ValueError(f'{what}="{text.strip()[:60]}" must be {count} numbers')
+        raise ValueError(f'{what}="{shown}" must be {count} numbers')
     if not all(math.isfinite(v) for v in values):
-        raise ValueError(f'{what}="{text.strip()[:60]}" holds NaN or inf')
-    return values
+        raise ValueError(f'{what}="{shown}" holds NaN or inf')
+    big = next(v for v in values if abs(v) > bound)
+    raise ValueError(f'{what}="{shown}" holds {big:g}: the accepted range is ±{bound:g}{unit}')
+
+
+def _axis(axis_elem: Any, jtype: str) -> tuple[float, float, float]:
+    """The unit axis of a joint: ``<axis xyz>`` (any length within the scale) normalised."""
+    text = None if axis_elem is None else axis_elem.get("xyz")
+    axis = _numbers(text, 3, (1, 0, 0), "axis xyz", URDF_AXIS_SCALE, "")
+    norm = math.hypot(*axis)  # hypot neither overflows nor underflows
+    if jtype not in MOVABLE_TYPES:
+        return (axis[0] / norm, axis[1] / norm, axis[2] / norm) if norm > 0.0 else (1.0, 0.0, 0.0)
+    if norm == 0.0:
+        raise ValueError(f"has a zero axis (axis xyz={' '.join(map(str, axis))!r})")
+    if norm < 1.0 / URDF_AXIS_SCALE:
+        raise ValueError(
+            f'has axis xyz="{(text or "").strip()[:60]}" of length {norm:.3g}: a direction '
+            f"needs a length of at least {1.0 / URDF_AXIS_SCALE:g} (a near-zero axis has none)"
+        )
+    return (axis[0] / norm, axis[1] / norm, axis[2] / norm)
+
+
+def _no_limits(jtype: str, lo: float, hi: float) -> bool:
+    """True for ``<limit lower="0" upper="0">`` on a revolute joint: "no limits given".
+
+    CAD exporters (and example-robot-data's ``double_pendulum.urdf``) write it for a
+    joint without limits; Pinocchio reads it so. A joint that truly cannot move is
+    written as fixed.
+    """
+    return jtype == "revolute" and lo == 0.0 and hi == 0.0
+
+
+def _zero_limits_warning(elem: Any, source: str | None) -> None:
+    """Warn that a joint's ``lower="0" upper="0"`` was read as no limits."""
+    limit = next((e for e in elem if _local(e.tag) == "limit"), None)
+    if limit is None or elem.get("type") != "revolute":
+        return
+    if limit.get("lower") is None and limit.get("upper") is None:
+        return  # no bounds written: no limits, nothing to say
+    try:
+        lo = float(limit.get("lower") or 0.0)
+        hi = float(limit.get("upper") or 0.0)
+    except ValueError:
+        return
+    if _no_limits("revolute", lo, hi):
+        where = f"{source}: " if source else ""
+        warnings.warn(
+            f"{where}joint {elem.get('name')!r} has limits lower=0 upper=0, what CAD "
+            "exporters write for a joint without limits: read as no limits",
+            KinematicaWarning,
+            stacklevel=4,
+        )
 
 
 def _joint(elem: Any) -> UrdfJoint:
@@ -123,39 +192,47 @@ def _joint(elem: Any) -> UrdfJoint:
         raise ValueError("has no type")
     if jtype not in JOINT_TYPES:
         raise ValueError(f"has unknown type {jtype!r} (expected one of {', '.join(JOINT_TYPES)})")
+    parts: dict[str, Any] = {}  # the first child element of each tag, in one pass
+    counts = {"parent": 0, "child": 0}
+    for e in elem:
+        tag = _local(e.tag)
+        parts.setdefault(tag, e)
+        if tag in counts:
+            counts[tag] += 1
     links = {}
     for role in ("parent", "child"):
-        found = [e for e in elem if _local(e.tag) == role]
-        if len(found) != 1 or not found[0].get("link"):
+        link = parts[role].get("link") if counts[role] == 1 else None
+        if not link:
             raise ValueError(f'needs exactly one <{role} link="..."/>')
-        links[role] = found[0].get("link")
-    origin_elem = next((e for e in elem if _local(e.tag) == "origin"), None)
-    xyz = _numbers(
-        None if origin_elem is None else origin_elem.get("xyz"), 3, (0, 0, 0), "origin xyz"
-    )
-    rpy = _numbers(
-        None if origin_elem is None else origin_elem.get("rpy"), 3, (0, 0, 0), "origin rpy"
-    )
-    axis_elem = next((e for e in elem if _local(e.tag) == "axis"), None)
-    axis = _numbers(None if axis_elem is None else axis_elem.get("xyz"), 3, (1, 0, 0), "axis xyz")
-    norm = math.sqrt(sum(v * v for v in axis))
-    if jtype in MOVABLE_TYPES and norm == 0.0:
-        raise ValueError(f"has a zero axis (axis xyz={' '.join(map(str, axis))!r})")
-    unit = (axis[0] / norm, axis[1] / norm, axis[2] / norm) if norm > 0.0 else (1.0, 0.0, 0.0)
+        links[role] = link
+    first = parts.get
+
+    origin_elem = first("origin")
+    xyz_text = None if origin_elem is None else origin_elem.get("xyz")
+    rpy_text = None if origin_elem is None else origin_elem.get("rpy")
+    xyz = _numbers(xyz_text, 3, (0, 0, 0), "origin xyz", URDF_MAX_LENGTH, " m")
+    rpy = _numbers(rpy_text, 3, (0, 0, 0), "origin rpy", URDF_MAX_ANGLE, " rad")
+    unit = _axis(first("axis"), jtype)
     limits = None
-    limit_elem = next((e for e in elem if _local(e.tag) == "limit"), None)
+    limit_elem = first("limit")
     if jtype in ("revolute", "prismatic") and limit_elem is not None:
         lower, upper = limit_elem.get("lower"), limit_elem.get("upper")
         if lower is not None or upper is not None:
-            lo = _numbers(lower, 1, (0.0,), "limit lower")[0]
-            hi = _numbers(upper, 1, (0.0,), "limit upper")[0]
-            if not lo < hi:
+            bound, unit_name = (
+                (URDF_MAX_ANGLE, " rad") if jtype == "revolute" else (URDF_MAX_LENGTH, " m")
+            )
+            lo = _numbers(lower, 1, (0.0,), "limit lower", bound, unit_name)[0]
+            hi = _numbers(upper, 1, (0.0,), "limit upper", bound, unit_name)[0]
+            if _no_limits(jtype, lo, hi):
+                limits = None  # "no limits given" (the reader warns)
+            elif not lo < hi:
                 raise ValueError(
                     f"has limits lower={lo:g} >= upper={hi:g}: the joint cannot move "
                     "(make it fixed, or give lower < upper)"
                 )
-            limits = (lo, hi)
-    mimic_elem = next((e for e in elem if _local(e.tag) == "mimic"), None)
+            else:
+                limits = (lo, hi)
+    mimic_elem = first("mimic")
     mimic = None if mimic_elem is None else (mimic_elem.get("joint") or "?")
     return UrdfJoint(
         name=elem.get("name") or "",
@@ -193,8 +270,9 @@ def _model(root: Any, source: str | None) -> UrdfModel:
         )
     why = _is_xacro(root)
     if why is not None:
-        raise RobotFileError(f"a xacro file, not plain URDF: {why}; {_XACRO_HINT}", path=source)
-    links: list[str] = []
+        raise RobotFileError(f"a xacro file, not plain URDF: {why}; {XACRO_HINT}", path=source)
+    # dicts, not lists, for the duplicate checks: a file may hold 100,000 links
+    links: dict[str, None] = {}
     for elem in root:
         if _local(elem.tag) != "link":
             continue
@@ -203,26 +281,27 @@ def _model(root: Any, source: str | None) -> UrdfModel:
             raise RobotFileError(f"link number {len(links) + 1} has no name", path=source)
         if name in links:
             raise RobotFileError(f"two links are named {name!r}", path=source)
-        links.append(name)
-    joints: list[UrdfJoint] = []
+        links[name] = None
+    joints: dict[str, UrdfJoint] = {}
     for elem in root:
         if _local(elem.tag) != "joint":
             continue
         name = elem.get("name")
         if not name:
             raise RobotFileError(f"joint number {len(joints) + 1} has no name", path=source)
-        if any(j.name == name for j in joints):
+        if name in joints:
             raise RobotFileError(f"two joints are named {name!r}", path=source)
         try:
-            joints.append(_joint(elem))
+            joints[name] = _joint(elem)
         except ValueError as exc:
             raise RobotFileError(f"joint {name!r} {exc}", path=source) from exc
+        _zero_limits_warning(elem, source)
     if not links:
         raise RobotFileError("the URDF has no <link>", path=source)
     return UrdfModel(
         name=root.get("name") or Path(source or "robot").stem,
         links=tuple(links),
-        joints=tuple(joints),
+        joints=tuple(joints.values()),
         source=source,
     )
 
@@ -252,47 +331,38 @@ def _read_bytes(p: Path, max_bytes: int) -> bytes:
     return data
 
 
-def _expand_xacro(p: Path, why: str) -> bytes:
-    """The URDF text that the ``xacro`` package makes of file ``p``."""
-    try:
-        import xacro
-    except ImportError as exc:
-        raise RobotFileError(f"a xacro file ({why}); {_XACRO_HINT}", path=str(p)) from exc
-    captured = io.StringIO()
-    try:
-        with contextlib.redirect_stdout(captured), contextlib.redirect_stderr(captured):
-            doc = xacro.process_file(str(p))
-        text: str = doc.toxml()
-    except (Exception, SystemExit) as exc:  # xacro raises many types, and may exit
-        detail = " ".join(str(exc).split())
-        if not detail:
-            lines = captured.getvalue().strip().splitlines()
-            detail = lines[-1] if lines else type(exc).__name__
-        raise RobotFileError(f"xacro could not expand the file: {detail}", path=str(p)) from exc
-    return text.encode("utf-8")
-
-
-def read_urdf(path: str | os.PathLike[str], *, max_bytes: int = URDF_MAX_BYTES) -> UrdfModel:
-    """Read a URDF file (or a xacro file, expanded with the ``xacro`` package).
+def read_urdf(
+    path: str | os.PathLike[str],
+    *,
+    max_bytes: int = URDF_MAX_BYTES,
+    xacro: bool = False,
+    xacro_env: bool = False,
+) -> UrdfModel:
+    """Read a URDF file, or a xacro file expanded with the ``xacro`` package.
 
     Args:
         path: The file.
-        max_bytes: Size limit in bytes; larger files are refused unread.
+        max_bytes: Size limit in bytes of the file, and of its expansion;
+            larger files are refused unread.
+        xacro: Expand xacro in a ``.urdf`` file too (a ``.xacro`` file is
+            always expanded). Without it, a ``.urdf`` holding xacro is refused.
+        xacro_env: Let xacro read the environment (``$(env ...)``,
+            ``$(optenv ...)``, ROS package paths); refused otherwise.
 
     Returns:
         The links and joints, checked to form one tree.
 
     Raises:
         RobotFileError: missing, not a regular file, too large, not valid or
-            hostile XML, xacro without the ``xacro`` package, or a malformed
-            URDF (the message names the joint or link).
+            hostile XML, xacro not asked for or failing (or past a limit of
+            :mod:`kinematica.io.xacro`), or a malformed URDF (the message
+            names the joint or link).
     """
     p = Path(path)
     source = str(p)
     data = _read_bytes(p, max_bytes)
     root = _parse_xml(data, source)  # hostile XML is refused before xacro sees it
-    why = "a .xacro file" if p.name.lower().endswith(".xacro") else _is_xacro(root)
-    if why is not None:
-        expanded = _expand_xacro(p, why)
+    if p.name.lower().endswith(".xacro") or (xacro and _is_xacro(root) is not None):
+        expanded = expand_xacro(p, max_bytes=max_bytes, env=xacro_env)
         return parse_urdf(expanded, source=source)
     return _model(root, source)

@@ -10,10 +10,12 @@ kinematics; the origins are kept as :class:`~kinematica.io.spec.FrameSpec`.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
-from kinematica.errors import RobotFileError
+from kinematica.errors import KinematicaWarning, RobotFileError
+from kinematica.io._parse import MAX_JOINTS
 from kinematica.io.spec import FrameSpec
 
 __all__ = ["JOINT_TYPES", "MOVABLE_TYPES", "UrdfChain", "UrdfJoint", "UrdfModel"]
@@ -24,6 +26,12 @@ JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "plan
 MOVABLE_TYPES = ("revolute", "continuous", "prismatic")
 
 _SHOWN = 8  # names listed in a message before "..."
+#: The maker's controller base frame of ROS-Industrial descriptions (REP-199): DH
+#: frame 0 where it lies on axis 1 (UR publishes its DH table in it).
+MAKER_BASE = "base"
+#: The flange frame of ROS-Industrial descriptions (REP-199): where a chain ends when
+#: its leaves are all frames fixed to the last moving link.
+FLANGE = "tool0"
 
 
 def _names(names: Sequence[str]) -> str:
@@ -79,6 +87,9 @@ class UrdfChain:
         joints: The joints from ``base`` to ``tip`` in order, fixed ones
             included; each joint's parent is the previous joint's child.
         source: The file it was read from, or ``None``.
+        maker_base: The fixed joints from ``base`` to ROS-Industrial's ``base``
+            link (the maker's controller base frame, REP-199) when it hangs off
+            the chain before its first movable joint; ``()`` otherwise.
     """
 
     name: str
@@ -86,6 +97,7 @@ class UrdfChain:
     tip: str
     joints: tuple[UrdfJoint, ...]
     source: str | None = None
+    maker_base: tuple[UrdfJoint, ...] = ()
 
     @property
     def movable(self) -> tuple[UrdfJoint, ...]:
@@ -114,12 +126,13 @@ class UrdfModel:
     joints: tuple[UrdfJoint, ...]
     source: str | None = None
     _parent_joint: dict[str, UrdfJoint] = field(init=False, repr=False, compare=False)
+    _link_set: frozenset[str] = field(init=False, repr=False, compare=False)
 
     def _error(self, message: str) -> RobotFileError:
         return RobotFileError(message, path=self.source)
 
     def __post_init__(self) -> None:
-        links = set(self.links)
+        links = frozenset(self.links)
         parent_joint: dict[str, UrdfJoint] = {}
         for j in self.joints:
             for role, link in (("parent", j.parent), ("child", j.child)):
@@ -148,16 +161,20 @@ class UrdfModel:
         if not roots:
             raise self._error(f"the joints form a loop: {self._loop(parent_joint)}")
         object.__setattr__(self, "_parent_joint", parent_joint)
+        object.__setattr__(self, "_link_set", links)
 
     @staticmethod
     def _loop(parent_joint: dict[str, UrdfJoint]) -> str:
         link = next(iter(parent_joint))
-        seen: list[str] = []
+        seen: dict[str, int] = {}  # link -> its place on the walk (a dict: the walk may be long)
         while link not in seen:
-            seen.append(link)
+            seen[link] = len(seen)
             link = parent_joint[link].parent
-        cycle = [*seen[seen.index(link) :], link]
-        return " <- ".join(repr(n) for n in cycle) + " (every link has a parent joint)"
+        cycle = [*list(seen)[seen[link] :], link]
+        shown = " <- ".join(repr(n) for n in cycle[:_SHOWN])
+        if len(cycle) > _SHOWN:
+            shown += f" <- ... ({len(cycle) - 1} links in the loop)"
+        return shown + " (every link has a parent joint)"
 
     @property
     def root(self) -> str:
@@ -184,7 +201,7 @@ class UrdfModel:
         return tuple(reversed(path))
 
     def _check_link(self, link: str, what: str) -> None:
-        if not isinstance(link, str) or link not in self.links:
+        if not isinstance(link, str) or link not in self._link_set:
             raise self._error(f"{what}: no link named {link!r}; links: {_names(self.links)}")
 
     def leaves(self, base: str | None = None) -> tuple[str, ...]:
@@ -209,16 +226,20 @@ class UrdfModel:
             tip: The tip link; default the single leaf below ``base`` reached
                 through at least one movable joint (leaves hanging from the
                 base by fixed joints only, such as ROS-Industrial's ``base``
-                frame, are not candidates). With several candidates the error
-                lists them.
+                frame, are not candidates). When several leaves all hang by
+                fixed joints off the same last moving link (a UR file's
+                ``ee_link`` and ``tool0``), ``tool0`` if that link carries one,
+                else the last moving link, with a warning saying which. Other
+                cases of several candidates are an error that lists them.
 
         Returns:
             The chain.
 
         Raises:
             RobotFileError: unknown link names, ``tip`` not below ``base``, no
-                single default tip, no movable joint on the chain, or a joint on
-                it that is floating, planar or a mimic joint.
+                single default tip, no movable joint on the chain or more than
+                ``MAX_JOINTS`` (100), or a joint on it that is floating, planar
+                or a mimic joint.
         """
         start = self.root if base is None else base
         self._check_link(start, "base")
@@ -243,9 +264,79 @@ class UrdfModel:
                     f"joint {j.name!r} mimics joint {j.mimic!r}: mimic joints are not supported "
                     "on the chain; choose a tip link before it (tip= / --tip)"
                 )
-        if not any(j.movable for j in path):
+        movable = sum(j.movable for j in path)
+        if not movable:
             raise self._error(f"no movable joint between links {start!r} and {tip!r}")
-        return UrdfChain(name=self.name, base=start, tip=tip, joints=path, source=self.source)
+        if movable > MAX_JOINTS:
+            raise self._error(
+                f"the chain from link {start!r} to link {tip!r} has {movable} movable joints; "
+                f"at most {MAX_JOINTS} are accepted (as in robot files); choose a shorter chain "
+                "(base= / --base, tip= / --tip)"
+            )
+        return UrdfChain(
+            name=self.name,
+            base=start,
+            tip=tip,
+            joints=path,
+            source=self.source,
+            maker_base=self._maker_base(start, path),
+        )
+
+    def _maker_base(self, start: str, path: tuple[UrdfJoint, ...]) -> tuple[UrdfJoint, ...]:
+        """Fixed joints from ``start`` to a side link :data:`MAKER_BASE` before joint 1."""
+        before = [start]
+        for j in path:
+            if j.movable:
+                break
+            before.append(j.child)
+        if MAKER_BASE not in self.links or MAKER_BASE in before:
+            return ()
+        side: list[UrdfJoint] = []
+        link = MAKER_BASE
+        while link not in before:
+            joint = self._parent_joint.get(link)
+            if joint is None or joint.movable:
+                return ()
+            side.append(joint)
+            link = joint.parent
+        prefix = path[: before.index(link)]
+        return (*prefix, *reversed(side))
+
+    def _common_flange(self, leaves: list[str], children: dict[str, list[UrdfJoint]]) -> str | None:
+        """The tip when every leaf hangs by fixed joints off one last moving link, else None.
+
+        The chain is then unambiguous (the leaves are frames on one rigid body): it ends
+        at ``tool0``, the ROS-Industrial flange frame, where that body carries one, else
+        at the last moving link itself. A warning says which.
+        """
+        owners = set()
+        for leaf in leaves:
+            link = leaf
+            while link in self._parent_joint and not self._parent_joint[link].movable:
+                link = self._parent_joint[link].parent
+            owners.add(link)
+        if len(owners) != 1:
+            return None
+        (last,) = owners
+        rigid, stack = [], [last]  # the links fixed to the last moving link
+        while stack:
+            link = stack.pop()
+            rigid.append(link)
+            stack.extend(j.child for j in children[link] if not j.movable)
+        tip = FLANGE if FLANGE in rigid else last
+        why = (
+            f"the ROS-Industrial flange frame {FLANGE!r}"
+            if tip == FLANGE
+            else f"the last moving link {last!r}"
+        )
+        where = f"{self.source}: " if self.source else ""
+        warnings.warn(
+            f"{where}leaf links {_names(leaves)} all hang by fixed joints off {last!r}, the "
+            f"last moving link: the chain ends at {why}; choose another with tip= / --tip",
+            KinematicaWarning,
+            stacklevel=4,
+        )
+        return tip
 
     def _default_tip(self, base: str) -> str:
         children = self._children()
@@ -261,6 +352,9 @@ class UrdfModel:
             return candidates[0]
         if not candidates:
             raise self._error(f"no movable joint below link {base!r}")
+        flange = self._common_flange(candidates, children)
+        if flange is not None:
+            return flange
         raise self._error(
             f"{len(candidates)} leaf links below {base!r} end a chain with movable joints: "
             f"{_names(candidates)}; choose one as the tip (tip= / --tip)"

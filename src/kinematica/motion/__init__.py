@@ -12,8 +12,16 @@ from kinematica.motion.cartesian import (
     PathEvent,
     cartesian_path,
 )
+from kinematica.motion.cartesian_via import ROTATION_LENGTH, cartesian_via_path
 from kinematica.motion.export import read_csv, write_csv, write_json
-from kinematica.motion.trajectory import JointTrajectory, joint_trajectory, time_scaling
+from kinematica.motion.piecewise import PiecewisePolynomial
+from kinematica.motion.trajectory import (
+    JointTrajectory,
+    joint_trajectory,
+    minimum_time,
+    time_scaling,
+)
+from kinematica.motion.via import via_polynomials, via_trajectory
 from kinematica.motion.workspace import Workspace, WorkspaceSlice, workspace
 from kinematica.robot.sampling import random_q
 from kinematica.robot.singularities import (
@@ -31,24 +39,30 @@ __all__ = [
     "ELBOW_TOL",
     "MAX_JOINT_STEP",
     "RANK_TOL",
+    "ROTATION_LENGTH",
     "SHOULDER_TOL",
     "WRIST_TOL",
     "CartesianPath",
     "JointTrajectory",
     "PathEvent",
+    "PiecewisePolynomial",
     "Singularity",
     "Workspace",
     "WorkspaceSlice",
     "analytic_jacobian",
     "cartesian_path",
+    "cartesian_via_path",
     "condition_number",
     "jacobian_rank",
     "joint_trajectory",
     "manipulability",
+    "minimum_time",
     "random_q",
     "read_csv",
     "singularities",
     "time_scaling",
+    "via_polynomials",
+    "via_trajectory",
     "workspace",
     "write_csv",
     "write_json",

@@ -13,7 +13,10 @@ samples is then inspected; nothing changes silently:
 - ``"unreachable"``: the pose has no IK solution (the path leaves the workspace);
 - ``"joint_limit"``: the continuation lies outside a joint limit;
 - ``"branch_change"``: the nearest solution is not the continuation of the
-  previous one (a joint jump that refining the segment does not shrink).
+  previous one (a joint jump that refining the segment does not shrink);
+- ``"near_singularity"``, ``"speed_jump"``, ``"end_branch"``: a passage near a
+  singular set, a joint rate that jumps, an end on another branch than ``q1``
+  (:mod:`kinematica.motion.path_checks`).
 
 A segment whose largest joint step exceeds :data:`MAX_JOINT_STEP` is refined by
 bisection until every sub-step is below it (continuous, fast motion) or the
@@ -22,14 +25,22 @@ refinement reaches :data:`MAX_DEPTH` levels (a jump: ``"branch_change"``).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from kinematica.arguments import check_count, check_flag, check_size
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.result import IKResult
+from kinematica.motion.path_checks import (
+    RawEvent,
+    end_branch,
+    near_singular_passages,
+    speed_jumps,
+)
 from kinematica.robot.singularities import singularities, singularity_plan
 from kinematica.spatial import (
     check_transform,
@@ -39,16 +50,28 @@ from kinematica.spatial import (
     quat_slerp,
     wrap_angle,
 )
+from kinematica.spatial.checks import as_batch_array, as_float_array
 
 if TYPE_CHECKING:
     from kinematica.robot import Robot
 
-__all__ = ["MAX_DEPTH", "MAX_JOINT_STEP", "CartesianPath", "PathEvent", "cartesian_path"]
+__all__ = [
+    "MAX_DEPTH",
+    "MAX_JOINT_STEP",
+    "MAX_STEPS",
+    "CartesianPath",
+    "PathEvent",
+    "cartesian_path",
+    "follow",
+    "path_samples",
+]
 
 FloatArray = NDArray[np.float64]
 
 #: Largest joint step (rad or m) between two path samples accepted without refining.
 MAX_JOINT_STEP = 0.2
+#: Most samples of a path (each is an IK solve).
+MAX_STEPS = 100_000
 #: Bisection levels when refining a segment or locating a singular crossing.
 MAX_DEPTH = 40
 #: Three points closer than this (m) to one line define no circle.
@@ -60,14 +83,16 @@ class PathEvent:
     """Something met along a Cartesian path.
 
     Attributes:
-        kind: ``"singularity"``, ``"unreachable"``, ``"joint_limit"`` or
-            ``"branch_change"``.
+        kind: ``"singularity"``, ``"unreachable"``, ``"joint_limit"``,
+            ``"branch_change"``, ``"near_singularity"``, ``"speed_jump"`` or
+            ``"end_branch"``.
         index: First sample where it is met (for a crossing or a jump
             between samples ``i-1`` and ``i``: ``i``).
         stop: Last sample of a run of consecutive samples with this event.
         s: Path parameter in [0, 1] where it is met (the crossing itself
             when located between samples).
-        names: Singularity names, or the joints (``"q3"``) over their limits.
+        names: Singularity names, or the joints (``"q3"``) over their limits,
+            jumping, or differing from the end asked for.
         message: One sentence for people.
     """
 
@@ -160,7 +185,9 @@ class _Geometry:
 class _Follower:
     """Nearest-solution continuation of one robot along one path."""
 
-    def __init__(self, robot: Robot, geometry: _Geometry, position_only: bool) -> None:
+    def __init__(
+        self, robot: Robot, geometry: Callable[[FloatArray], FloatArray], position_only: bool
+    ) -> None:
         self.robot = robot
         self.position_only = position_only
         self.geo = geometry
@@ -237,7 +264,7 @@ class _Follower:
 
 
 def _as_pose(T: ArrayLike, name: str) -> FloatArray:
-    out: FloatArray = check_transform(np.asarray(T, dtype=float), name=name)
+    out: FloatArray = check_transform(T, name=name)
     if out.shape != (4, 4):
         raise DimensionError(f"{name} must be one pose (4, 4), got shape {out.shape}")
     return out
@@ -252,6 +279,7 @@ def cartesian_path(
     via: ArrayLike | None = None,
     s: ArrayLike | None = None,
     position_only: bool | None = None,
+    q1: ArrayLike | None = None,
 ) -> CartesianPath:
     """Follow a straight line (or an arc through ``via``) from ``T0`` to ``T1``.
 
@@ -270,58 +298,128 @@ def cartesian_path(
             ``poses`` is then not imposed). By default, True for arms whose
             whole mobility is positional (3R anthropomorphic, planar 2R: the
             rows :func:`singularities` judges are the position rows).
+        q1: ``(n,)`` configuration the path is asked to end on (the IK solution
+            of ``T1`` nearest to it): an ``"end_branch"`` event says when the
+            continuation ends elsewhere (the same pose, another branch).
 
     Returns:
         The :class:`CartesianPath`, with its ``events``.
 
     Raises:
         DimensionError: Poses that are not rigid transforms, bad shapes.
-        KinematicaError: ``steps < 2``, ``s`` not increasing within [0, 1],
-            or ``via`` collinear with the ends.
+        ArgumentError: ``steps`` not a whole number from 2 to MAX_STEPS, or
+            ``s`` longer than MAX_STEPS.
+        KinematicaError: ``s`` not increasing within [0, 1], or ``via``
+            collinear with the ends.
     """
     A, B = _as_pose(T0, "T0"), _as_pose(T1, "T1")
     if via is not None:
-        v = np.asarray(via, dtype=float)
+        v = as_float_array(via, "via")
         v = _as_pose(v, "via")[:3, 3] if v.shape == (4, 4) else v
         if v.shape != (3,) or not np.all(np.isfinite(v)):
             raise DimensionError(f"via must be a point (3,) or a pose (4, 4), got {via!r}")
         via = v
-    if s is None:
-        if isinstance(steps, bool) or not isinstance(steps, int | np.integer) or steps < 2:
-            raise KinematicaError(f"steps must be an integer >= 2, got {steps!r}")
-        ss = np.linspace(0.0, 1.0, int(steps))
-    else:
-        ss = np.asarray(s, dtype=float)
-        ok = ss.ndim == 1 and ss.size >= 2 and np.all(np.isfinite(ss))
-        if not ok or ss[0] < 0 or ss[-1] > 1 or np.any(np.diff(ss) < 0):
-            raise KinematicaError("s must hold >= 2 non-decreasing values within [0, 1]")
-    q_start = None if q0 is None else robot.check_q(q0, "q0")
+    ss = path_samples(steps, s)
     geo = _Geometry(A, B, None if via is None else np.asarray(via))
+    return follow(robot, geo, ss, q0, position_only, q1)
+
+
+def path_samples(steps: int, s: ArrayLike | None) -> FloatArray:
+    """``(m,)`` path parameters: ``steps`` uniform ones, or ``s`` checked."""
+    if s is None:
+        return np.linspace(0.0, 1.0, check_count(steps, "steps", lo=2, hi=MAX_STEPS))
+    ss = as_float_array(s, "s")
+    ok = ss.ndim == 1 and ss.size >= 2 and np.all(np.isfinite(ss))
+    if not ok or ss[0] < 0 or ss[-1] > 1 or np.any(np.diff(ss) < 0):
+        raise KinematicaError("s must hold >= 2 non-decreasing values within [0, 1]")
+    check_size(ss.size, MAX_STEPS, "s", "samples")
+    return ss
+
+
+def _one_configuration(robot: Robot, q: ArrayLike | None, name: str) -> FloatArray | None:
+    """``q`` checked as one configuration ``(n,)``, or None."""
+    if q is None:
+        return None
+    qa = as_batch_array(robot.check_q(q, name), name, (robot.dof,))
+    if qa.ndim != 1:
+        raise DimensionError(f"{name} must be one configuration ({robot.dof},), got {qa.shape}")
+    return qa
+
+
+def follow(
+    robot: Robot,
+    geometry: Callable[[FloatArray], FloatArray],
+    ss: FloatArray,
+    q0: ArrayLike | None,
+    position_only: bool | None,
+    q1: ArrayLike | None = None,
+) -> CartesianPath:
+    """Follow the poses ``geometry(s)`` at the samples ``ss`` on one IK branch.
+
+    Args:
+        robot: The robot.
+        geometry: Path parameter ``(...)`` to poses ``(..., 4, 4)`` (base frame).
+        ss: ``(m,)`` non-decreasing path parameters in [0, 1].
+        q0: ``(n,)`` configuration whose branch the path starts on, or ``None``.
+        position_only: As :func:`cartesian_path`'s (``None``: from the arm).
+        q1: ``(n,)`` configuration whose branch the path should end on (at
+            ``geometry(1)``), or ``None``: see :func:`cartesian_path`.
+
+    Returns:
+        The :class:`CartesianPath`, with its ``events``.
+    """
+    q_start = _one_configuration(robot, q0, "q0")
+    q_end = _one_configuration(robot, q1, "q1")
     if position_only is None:
         position_only = singularity_plan(robot).rows == (0, 1, 2)
-    follow = _Follower(robot, geo, bool(position_only))
-    poses = geo(ss)
+    position_only = check_flag(position_only, "position_only")
+    follower = _Follower(robot, geometry, bool(position_only))
+    poses = geometry(ss)
     m, n = ss.size, robot.dof
     q = np.full((m, n), np.nan)
     raw: list[tuple[str, int, float, tuple[str, ...], str]] = []
     last: FloatArray | None = q_start
     last_ok = False  # whether sample i-1 was solved (the segment is then inspected)
     for i, si in enumerate(ss):
-        status, qi, why = follow.solve(float(si), last)
+        status, qi, why = follower.solve(float(si), last)
         if qi is None:
             names = tuple(why.split(", ")) if status == "joint_limit" else ()
             raw.append((status, i, float(si), names, why))
             last_ok = False
             continue
         if last_ok and last is not None:
-            for kind, se, names in follow.inspect(float(ss[i - 1]), last, float(si), qi):
+            for kind, se, names in follower.inspect(float(ss[i - 1]), last, float(si), qi):
                 raw.append((kind, i, se, names, ""))
         here = singularities(robot, qi)
         if here:
             raw.append(("singularity", i, float(si), tuple(here), ""))
         q[i] = qi
         last, last_ok = qi, True
-    return CartesianPath(ss, poses, q, _merge(raw))
+    checks = near_singular_passages(robot, ss, q) + speed_jumps(robot, ss, q)
+    if q_end is not None:
+        end = geometry(np.array(1.0))
+        checks += end_branch(robot, end, q, ss, q_end, bool(position_only))
+    return CartesianPath(ss, poses, q, _with_checks(_merge(raw), checks))
+
+
+def _with_checks(events: tuple[PathEvent, ...], checks: list[RawEvent]) -> tuple[PathEvent, ...]:
+    """The events and the checks' findings, in path order.
+
+    A near-singular run that reaches a singularity of its name is told by that
+    singularity alone.
+    """
+    extra = []
+    for kind, i, stop, s, names, message in checks:
+        met = any(
+            e.kind == "singularity"
+            and set(names) <= set(e.names)
+            and i <= e.stop
+            and e.index <= stop
+            for e in events
+        )
+        if not (kind == "near_singularity" and met):
+            extra.append(PathEvent(kind, i, stop, s, names, message))
+    return tuple(sorted((*events, *extra), key=lambda e: e.index))
 
 
 def _merge(raw: list[tuple[str, int, float, tuple[str, ...], str]]) -> tuple[PathEvent, ...]:

@@ -19,7 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.errors import DimensionError, KinematicaError
-from kinematica.io.atomic import atomic_path, write_text_atomic
+from kinematica.io.atomic import atomic_path, write_failed, write_text_atomic
 
 __all__ = ["read_csv", "write_csv", "write_json"]
 
@@ -52,10 +52,18 @@ def write_csv(path: str | Path, t: ArrayLike, q: ArrayLike) -> Path:
     ta, qa = _check(t, q)
     header = ",".join(["t"] + [f"q{i}" for i in range(1, qa.shape[1] + 1)])
     out = Path(path)
-    with atomic_path(out) as tmp:
-        np.savetxt(
-            tmp, np.column_stack([ta, qa]), delimiter=",", header=header, comments="", fmt="%.17g"
-        )
+    try:
+        with atomic_path(out) as tmp:
+            np.savetxt(
+                tmp,
+                np.column_stack([ta, qa]),
+                delimiter=",",
+                header=header,
+                comments="",
+                fmt="%.17g",
+            )
+    except OSError as exc:
+        raise KinematicaError(write_failed(out, exc, "the trajectory")) from exc
     return out
 
 
@@ -158,5 +166,9 @@ def write_json(
         for e in events
     ]
     out = Path(path)
-    write_text_atomic(out, json.dumps(data, indent=1, allow_nan=False) + "\n")
+    text = json.dumps(data, indent=1, allow_nan=False) + "\n"
+    try:
+        write_text_atomic(out, text)
+    except OSError as exc:
+        raise KinematicaError(write_failed(out, exc, "the trajectory")) from exc
     return out

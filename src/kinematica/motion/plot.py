@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 
 from kinematica.errors import KinematicaError
-from kinematica.io.atomic import atomic_path
+from kinematica.io.atomic import atomic_path, write_failed
 from kinematica.motion.workspace import WorkspaceSlice
 
 __all__ = ["MissingDependencyError", "plot_workspace_slice", "require_matplotlib"]
@@ -69,6 +69,8 @@ def plot_workspace_slice(sl: WorkspaceSlice, path: str | Path, title: str = "") 
     try:
         with atomic_path(out) as tmp:
             fig.savefig(tmp, bbox_inches="tight")
+    except OSError as exc:
+        raise KinematicaError(write_failed(out, exc, "the picture")) from exc
     finally:
         plt.close(fig)
     return out

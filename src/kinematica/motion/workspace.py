@@ -23,6 +23,7 @@ that plane: ``area`` (m²) and ``volume = 0``.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -30,14 +31,25 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
+from kinematica.arguments import check_count, check_flag, check_number
 from kinematica.errors import KinematicaError
-from kinematica.robot.sampling import Seed, random_q
+from kinematica.ik.numeric import check_seed, reach_bound
+from kinematica.robot.sampling import Seed, random_q, sampling_box
 from kinematica.robot.velocity import manipulability as _manipulability
 
 if TYPE_CHECKING:
     from kinematica.robot import Robot
 
-__all__ = ["CHUNK", "MAX_CELLS", "PLANAR_TOL", "Workspace", "WorkspaceSlice", "workspace"]
+__all__ = [
+    "CHUNK",
+    "MAX_CELLS",
+    "MAX_SAMPLES",
+    "PLANAR_TOL",
+    "Workspace",
+    "WorkspaceSlice",
+    "voxel_range",
+    "workspace",
+]
 
 FloatArray = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]
@@ -46,6 +58,8 @@ BoolArray = NDArray[np.bool_]
 CHUNK = 32_768
 #: Largest voxel grid; a finer ``voxel`` is coarsened to fit.
 MAX_CELLS = 1 << 22
+#: Most configurations sampled (32 bytes each: 640 MB).
+MAX_SAMPLES = 20_000_000
 #: A workspace thinner than this (m) along an axis is planar (or lower-dimensional).
 PLANAR_TOL = 1e-9
 #: Default voxel: about this many samples per occupied voxel.
@@ -179,15 +193,19 @@ class Workspace:
             raise KinematicaError(f"plane must be 'xy', 'xz' or 'yz', got {plane!r}")
         u, v = _AXES[key[0]], _AXES[key[1]]
         w = 3 - u - v
-        coord = float(self.bounds[:, w].mean()) if at is None else float(at)
-        k = int(np.floor((coord - self.origin[w]) / self.voxel))
+        coord = (
+            float(self.bounds[:, w].mean())
+            if at is None
+            else check_number(at, "at", unit="m", what="a coordinate")
+        )
+        k = float(np.floor((coord - self.origin[w]) / self.voxel))  # inf for at=1e308
         if not 0 <= k < self.occupancy.shape[w]:
             lo, hi = self.bounds[:, w]
             raise KinematicaError(
                 f"at={coord:g} m is outside the workspace along {'xyz'[w]} ([{lo:.4g}, {hi:.4g}] m)"
             )
-        occ = np.take(self.occupancy, k, axis=w)
-        man = np.take(self.manipulability_map, k, axis=w)
+        occ = np.take(self.occupancy, int(k), axis=w)
+        man = np.take(self.manipulability_map, int(k), axis=w)
         return WorkspaceSlice(
             plane=key,
             at=coord,
@@ -237,6 +255,20 @@ def _cells(
     return out
 
 
+def voxel_range(robot: Robot) -> tuple[float, float]:
+    """The voxel sides (m) :func:`workspace` accepts for ``robot``: ``(smallest, largest)``.
+
+    Every tool position lies within a ball of radius R about the base (R, a
+    bound on the reach: the sum of the chain's translations), so the
+    workspace is at most 2R wide along any axis. A voxel wider than 2R holds
+    the whole workspace; one narrower than 2R / MAX_CELLS would need more
+    cells along a single axis than the whole grid may have.
+    """
+    box = sampling_box(robot)
+    span = 2.0 * reach_bound(robot.chain, box[:, 0], box[:, 1])
+    return span / MAX_CELLS, span
+
+
 def workspace(
     robot: Robot,
     samples: int = 100_000,
@@ -262,15 +294,26 @@ def workspace(
         The :class:`Workspace`.
 
     Raises:
-        KinematicaError: ``samples < 1``, ``voxel <= 0``, or a prismatic joint
-            without limits.
+        ArgumentError: ``samples`` not a whole number from 1 to MAX_SAMPLES, a
+            bad ``seed``, or ``voxel`` outside :func:`voxel_range`.
+        KinematicaError: A prismatic joint without limits.
     """
-    if isinstance(samples, bool) or not isinstance(samples, int | np.integer) or samples < 1:
-        raise KinematicaError(f"samples must be a positive integer, got {samples!r}")
-    if voxel is not None and not (np.isfinite(voxel) and voxel > 0):
-        raise KinematicaError(f"voxel must be a positive length in metres, got {voxel!r}")
-    rng = np.random.default_rng(seed)
-    n = int(samples)
+    n = check_count(samples, "samples", lo=1, hi=MAX_SAMPLES)
+    rng = np.random.default_rng(check_seed(seed))
+    if voxel is not None:
+        smallest, largest = voxel_range(robot)
+        voxel = check_number(
+            voxel,
+            "voxel",
+            positive=True,
+            lo=smallest or None,  # 0 for an arm that does not move its tool point
+            hi=largest or None,
+            unit=f"m for {robot.name}",
+            what="a length",
+        )
+    manipulability = check_flag(manipulability, "manipulability")
+    if progress is not None and not callable(progress):
+        raise KinematicaError(f"progress must be a function or None, got {progress!r}")
     points = np.empty((n, 3))
     w = np.empty(n) if manipulability else None
     for start in range(0, n, CHUNK):
@@ -285,7 +328,7 @@ def workspace(
     lo, hi = points.min(axis=0), points.max(axis=0)
     extent = hi - lo
     h = _default_voxel(points, extent, n) if voxel is None else float(voxel)
-    cells = int(np.prod(_grid_shape(extent, h)))
+    cells = math.prod(_grid_shape(extent, h))  # Python integers: no overflow
     if cells > MAX_CELLS:  # coarsen to fit the grid in memory
         dims = int(np.sum(extent > PLANAR_TOL))
         h *= (cells / MAX_CELLS) ** (1.0 / dims) * 1.01

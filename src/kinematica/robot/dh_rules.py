@@ -81,7 +81,7 @@ def geometry_from_chain(chain: UrdfChain) -> ChainGeometry:
 
     Fixed joints are folded into the next origin; the link frames before the
     first movable joint and after the last one are kept by name (candidates
-    for DH frames 0 and n).
+    for DH frames 0 and n), ROS-Industrial's ``base`` frame (the maker's) first.
     """
     pose = np.eye(4)
     before = [NamedFrame(chain.base, pose)]
@@ -105,8 +105,14 @@ def geometry_from_chain(chain: UrdfChain) -> ChainGeometry:
             after.append(NamedFrame(j.child, pose))
         else:
             before.append(NamedFrame(j.child, pose))
+    nearest_first = list(reversed(before))
+    if chain.maker_base:  # the maker's base frame first: DH frame 0 wherever it may be
+        maker = np.eye(4)
+        for j in chain.maker_base:
+            maker = maker @ j.origin.as_matrix()
+        nearest_first.insert(0, NamedFrame(chain.maker_base[-1].child, maker))
     return ChainGeometry(
-        joints=tuple(joints), tip=pose, before=tuple(reversed(before)), after=tuple(after)
+        joints=tuple(joints), tip=pose, before=tuple(nearest_first), after=tuple(after)
     )
 
 

@@ -69,19 +69,26 @@ def load(
     base: str | None = None,
     tip: str | None = None,
     convention: str | None = None,
+    xacro: bool = False,
+    xacro_env: bool = False,
 ) -> Robot:
     """Load a built-in model by name, a robot file or a URDF by path.
 
     Args:
         name_or_path: A built-in name (see ``kinematica robots``), a path to a
             ``.yaml``/``.yml``/``.json``/``.toml`` robot file, or a ``.urdf``
-            file (``.xacro`` too, expanded with the ``xacro`` package).
+            file (``.xacro`` too, expanded with the ``xacro`` package in a
+            child process with time and size limits).
         base: URDF only: the base link of the chain (default the root link).
         tip: URDF only: the tip link (default the single leaf at the end of
             movable joints; the error lists the leaves when there are several).
         convention: URDF only: the DH convention of the extracted table,
             ``"standard"`` (default) or ``"modified"``; see
             :func:`kinematica.urdf_to_dh` for the rules and what they chose.
+        xacro: URDF only: expand xacro in a ``.urdf`` file too (a ``.xacro``
+            file always is); without it a ``.urdf`` holding xacro is refused.
+        xacro_env: URDF only: let xacro read the environment variables
+            (``$(env ...)``, ``$(optenv ...)``); refused by default.
 
     Returns:
         The robot. A URDF's robot has the URDF's forward kinematics, its joint
@@ -91,8 +98,8 @@ def load(
         UnknownRobotError: Neither a built-in name nor an existing file.
         RobotFileError: The file is malformed (the message says where).
         ArgumentError: ``name_or_path`` is not text or a path.
-        KinematicaError: ``base``, ``tip`` or ``convention`` for a robot that is
-            not a URDF.
+        KinematicaError: ``base``, ``tip``, ``convention``, ``xacro`` or
+            ``xacro_env`` for a robot that is not a URDF.
     """
     if not isinstance(name_or_path, str | os.PathLike):
         raise ArgumentError(
@@ -110,8 +117,22 @@ def load(
     if path.name.lower().endswith(URDF_SUFFIXES):
         if not exists:
             raise UnknownRobotError(f"{text}: no such URDF file")
-        return robot_from_urdf(path, base=base, tip=tip, convention=convention or "standard")
-    given = [k for k, v in (("base", base), ("tip", tip), ("convention", convention)) if v]
+        return robot_from_urdf(
+            path,
+            base=base,
+            tip=tip,
+            convention=convention or "standard",
+            xacro=xacro,
+            xacro_env=xacro_env,
+        )
+    urdf_only = {
+        "base": base,
+        "tip": tip,
+        "convention": convention,
+        "xacro": xacro,
+        "xacro_env": xacro_env,
+    }
+    given = [k for k, v in urdf_only.items() if v]
     if given:
         raise KinematicaError(
             f"{', '.join(given)}: only for URDF files (.urdf, .xacro), and {text!r} is not one"

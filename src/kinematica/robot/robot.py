@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from kinematica.arguments import check_choice, check_flag
 from kinematica.core import Chain
 from kinematica.dh import (
     Convention,
@@ -28,6 +29,7 @@ from kinematica.dh import (
 )
 from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning
 from kinematica.ik import IKBatchResult, IKOptions, IKResult, Tolerance, solve_ik
+from kinematica.ik.reach import needs_proof
 from kinematica.ik.registry import TargetKind
 from kinematica.ik.result import CoreAnswer, result_of
 from kinematica.ik.solve import PoseSolver, pose_solver
@@ -47,6 +49,8 @@ __all__ = ["Robot"]
 
 FloatArray = NDArray[np.float64]
 _FLOAT64 = np.dtype(np.float64)
+#: The frames a Jacobian is expressed in.
+_FRAMES = ("base", "tool")
 #: Where a position target is placed (the orientation is free).
 _IDENTITY = np.eye(4)
 #: What the core says of one configuration (kinematica._core.Chain.fk).
@@ -295,6 +299,8 @@ class Robot:
             ``(..., 4, 4)`` pose ``T = base · 0A1 · ... · (n-1)An · tool``, or
             ``(..., n+1, 4, 4)`` with ``all_frames``.
         """
+        if all_frames is not False and all_frames is not True:
+            all_frames = check_flag(all_frames, "all_frames")
         qa = q if type(q) is np.ndarray and q.dtype is _FLOAT64 else self.check_q(q)
         if qa.shape == self._single:
             try:  # one configuration, already what the core reads: one call
@@ -367,8 +373,8 @@ class Robot:
             ``(..., 6, n)`` (m/rad or m/m in the top rows, rad/rad below); rows
             of a batch holding NaN/inf come out NaN, with a warning.
         """
-        if frame not in ("base", "tool"):
-            raise KinematicaError(f"frame must be 'base' or 'tool', got {frame!r}", arg="frame")
+        if frame.__class__ is not str or frame not in _FRAMES:  # the common case costs ~30 ns
+            check_choice(frame, "frame", _FRAMES)
         if euler is not None:
             if frame != "base":
                 raise KinematicaError(
@@ -422,6 +428,7 @@ class Robot:
         seed: int | np.random.Generator | None = None,
         tol: float | tuple[float, float] | Tolerance | None = None,
         workers: int | None = None,
+        precision: tuple[float, float] | None = None,
         options: IKOptions | None = None,
     ) -> IKResult | IKBatchResult:
         """Every inverse-kinematics solution of a target, or an honest status.
@@ -430,8 +437,8 @@ class Robot:
             target: A pose ``(4, 4)`` (tool in the base frame), a position
                 ``(3,)`` (tool origin; orientation free), or batches of any
                 shape ``(..., 4, 4)`` / ``(..., 3)``. A rotation orthonormal
-                to within ``PROJECTION_TOL`` (1e-4) is projected onto SO(3),
-                with a note in the result.
+                to within ``PROJECTION_TOL`` (2e-4: any copy with 4 decimals)
+                is projected onto SO(3), with a note in the result.
             method: ``"auto"`` (closed form when the structure allows, else
                 numeric), ``"analytic"`` or ``"numeric"``.
             respect_limits: Keep solutions outside the joint limits apart
@@ -444,6 +451,11 @@ class Robot:
             tol: Acceptance tolerance: one number for both, or a pair
                 (position m, rotation rad); default 1e-10 m and 1e-10 rad.
             workers: Threads for a batch (None: the library default).
+            precision: For a pose target of an arm with fewer than 6 joints
+                (over-determined): ``(position m, rotation entries)``, half a
+                unit in the last digit its numbers were printed with; None: read
+                from their digits. The closest configuration answers a target
+                it reproduces to that precision (a note says which was assumed).
             options: All of the above as one :class:`~kinematica.ik.IKOptions`
                 (then give none of them as keywords).
 
@@ -456,12 +468,14 @@ class Robot:
             options is None
             and type(target) is np.ndarray
             and target.dtype is _FLOAT64
+            and method.__class__ is str
             and method == "auto"
             and respect_limits is True
             and tol is None
             and q0 is None
             and mask is None
             and seed is None
+            and precision is None
         ):  # one target, every default: straight to the core (a rigid target to round-off)
             if target.shape == (4, 4):
                 out = self._fast(target, "pose")
@@ -474,16 +488,23 @@ class Robot:
             if out is not None:
                 return out
         if options is None:
-            options = IKOptions(method, tol, respect_limits, q0, mask, seed, workers)
+            options = IKOptions(method, tol, respect_limits, q0, mask, seed, workers, precision)
+        elif not isinstance(options, IKOptions):
+            raise KinematicaError(
+                f"options must be an IKOptions, got {type(options).__name__}", arg="options"
+            )
         elif not (
-            method == "auto"
+            isinstance(method, str)
+            and method == "auto"
             and respect_limits is True
-            and all(v is None for v in (tol, q0, mask, seed, workers))
+            and all(v is None for v in (tol, q0, mask, seed, workers, precision))
         ):
             raise KinematicaError(
                 "give the IK settings either as options= or as keywords, not both",
                 arg="options",
             )
+        check_choice(options.method, "method", ("auto", "analytic", "numeric"))
+        check_flag(options.respect_limits, "respect_limits")
         return solve_ik(self.chain, target, options)
 
     def _fast(self, pose: FloatArray, kind: TargetKind) -> IKResult | None:
@@ -496,7 +517,9 @@ class Robot:
         out: CoreAnswer | None = fast.ik_rigid(
             self.chain.core, pose, fast.options, ROUNDOFF_TOL, fast.labels
         )
-        return None if out is None else result_of(*out, fast.method, fast.complete, ())
+        if out is None or needs_proof(out[-1][0], out[-1][1]):
+            return None  # the general path also tries the reach within the limits
+        return result_of(*out, fast.method, fast.complete, ())
 
     # ------------------------------------------------------------ derived models
     def to_convention(self, convention: str) -> Robot:
@@ -526,19 +549,17 @@ class Robot:
 
     def with_limits(self, qlim: Sequence[Sequence[float] | None] | FloatArray) -> Robot:
         """The same robot with other joint limits (``(n, 2)``; ``None`` rows free)."""
-        rows = list(qlim)
+        try:
+            rows = list(qlim)
+        except TypeError:  # a number, None: not rows
+            raise DimensionError(
+                f"qlim must have {self.dof} rows (lo, hi) or None, got {short(qlim)}"
+            ) from None
         if len(rows) != self.dof:
             raise DimensionError(f"qlim must have {self.dof} rows, got {len(rows)}")
-
-        def pair(lim: Sequence[float] | FloatArray | None) -> tuple[float, float] | None:
-            if lim is None:
-                return None
-            lo, hi = (float(v) for v in lim)
-            return (lo, hi)
-
+        # Each joint checks its own pair (two numbers lo < hi, or None).
         links = tuple(
-            dataclasses.replace(link, qlim=pair(lim))
-            for link, lim in zip(self.links, rows, strict=True)
+            dataclasses.replace(link, qlim=lim) for link, lim in zip(self.links, rows, strict=True)
         )
         return dataclasses.replace(self, links=links)
 

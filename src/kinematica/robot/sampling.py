@@ -2,20 +2,26 @@
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
 
+from kinematica.arguments import check_count, check_size
 from kinematica.errors import KinematicaError
+from kinematica.ik.numeric import check_seed
 
 if TYPE_CHECKING:
     from kinematica.robot import Robot
 
-__all__ = ["Seed", "random_q", "sampling_box"]
+__all__ = ["MAX_CONFIGURATIONS", "Seed", "random_q", "sampling_box"]
 
 FloatArray = NDArray[np.float64]
 Seed = int | np.random.Generator | None
+
+#: Most configurations :func:`random_q` draws in one call (80 MB per joint).
+MAX_CONFIGURATIONS = 10_000_000
 
 
 def sampling_box(robot: Robot, prismatic_range: float | None = None) -> FloatArray:
@@ -52,13 +58,17 @@ def random_q(robot: Robot, n: int | tuple[int, ...] = 1, seed: Seed = None) -> F
         ``robot.qlim`` (free revolute joints within ``(-π, π)``).
 
     Raises:
-        KinematicaError: A prismatic joint has no limits, or ``n`` is negative.
+        ArgumentError: ``n`` is not a whole number >= 0 (or a tuple of them),
+            asks for more than MAX_CONFIGURATIONS, or ``seed`` is not a seed.
+        KinematicaError: A prismatic joint has no limits.
     """
-    shape = (n,) if isinstance(n, int | np.integer) else tuple(int(v) for v in n)
-    if any(v < 0 for v in shape):
-        raise KinematicaError(f"n must be a non-negative count, got {n!r}")
+    if isinstance(n, tuple | list):
+        shape = tuple(check_count(v, "n") for v in n)
+    else:
+        shape = (check_count(n, "n"),)
+    check_size(math.prod(shape), MAX_CONFIGURATIONS, "n", "configurations")
+    rng = np.random.default_rng(check_seed(seed))
     box = sampling_box(robot)
-    rng = np.random.default_rng(seed)
     u = rng.random((*shape, robot.dof))
     out: FloatArray = box[:, 0] + u * (box[:, 1] - box[:, 0])
     return np.clip(out, box[:, 0], box[:, 1])

@@ -47,8 +47,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.dh.lines import lines_parallel
+from kinematica.ik.structure import arm_size
 from kinematica.robot.sampling import generic_rank_samples
 from kinematica.robot.structure import classify
+from kinematica.spatial.checks import as_batch_array
 
 if TYPE_CHECKING:
     from kinematica.robot import Robot
@@ -62,6 +64,7 @@ __all__ = [
     "SingularityPlan",
     "jacobian_rank",
     "singularities",
+    "singularity_measures",
     "singularity_plan",
     "task_plan_rows",
 ]
@@ -182,7 +185,7 @@ def singularity_plan(robot: Robot) -> SingularityPlan:
     # geometry (e.g. coincident axes), not a singularity: it is not used.
     degenerate = {
         name
-        for name, measure, _ in _named(robot, plan, generic_rank_samples(robot))
+        for name, measure, _, _ in _named(robot, plan, generic_rank_samples(robot))
         if np.any(measure < _TOLS[name])
     }
     plan = dataclasses.replace(plan, enabled=plan.enabled - degenerate)
@@ -230,8 +233,13 @@ def _covector(d: FloatArray, at: FloatArray, tool: FloatArray) -> FloatArray:
 
 def _named(
     robot: Robot, plan: SingularityPlan, q: FloatArray
-) -> list[tuple[str, FloatArray, FloatArray]]:
-    """Per name: ``(name, flagged (B,), geometric covector (B, 6))``, plus measures."""
+) -> list[tuple[str, FloatArray, FloatArray, FloatArray]]:
+    """Per name: ``(name, measure (B,), geometric covector (B, 6), scale (B,))``.
+
+    The scale is the largest value the measure takes at that configuration's
+    geometry (1 for the wrist's sine, the elbow point's distance from the elbow
+    axis for the elbow rate, the arm's size for the shoulder distance).
+    """
     h, p = robot.joint_axes(q)
     tool = robot.fk(q)[:, :3, 3]
     out = []
@@ -239,7 +247,8 @@ def _named(
         a, m, b = plan.wrist
         sine = np.linalg.norm(np.cross(h[:, a], h[:, b]), axis=-1)
         lost = _unit(np.cross(h[:, a], h[:, m]))
-        out.append(("wrist", sine, np.concatenate([np.zeros_like(lost), lost], axis=-1)))
+        covector = np.concatenate([np.zeros_like(lost), lost], axis=-1)
+        out.append(("wrist", sine, covector, np.ones_like(sine)))
     s = plan.shoulder_axis
     if s is not None:
         e = _point(plan.elbow_point, h, p, tool)
@@ -247,12 +256,14 @@ def _named(
         rho = rho - np.sum(rho * h[:, s], axis=-1, keepdims=True) * h[:, s]
         rho_hat = _unit(rho)
         rate = np.abs(np.sum(rho_hat * np.cross(h[:, s + 1], e - p[:, s + 1]), axis=-1))
-        out.append(("elbow", rate, _covector(rho_hat, e, tool)))
+        arm = np.linalg.norm(e - p[:, s + 1], axis=-1)  # |h × r| <= |r|: rate <= arm
+        out.append(("elbow", rate, _covector(rho_hat, e, tool), arm))
         if plan.shoulder_point is not None:
             w = _point(plan.shoulder_point, h, p, tool)
             normal = _unit(np.cross(h[:, 0], h[:, 1]))
             dist = np.abs(np.sum((w - p[:, 0]) * normal, axis=-1))
-            out.append(("shoulder", dist, _covector(h[:, 1], w, tool)))
+            size = np.full_like(dist, arm_size(robot.chain))
+            out.append(("shoulder", dist, _covector(h[:, 1], w, tool), size))
     return [item for item in out if item[0] in plan.enabled]
 
 
@@ -314,8 +325,12 @@ def singularities(robot: Robot, q: ArrayLike, detail: bool = False) -> Any:
         as ``["wrist"]`` or ``["elbow", "wrist"]`` (``"rank"`` once, however
         many unnamed directions), or with ``detail`` one :class:`Singularity`
         per lost direction. For a batch, nested lists of the batch's shape.
+
+    Raises:
+        DimensionError: ``q`` has the wrong shape, or a row holds NaN or inf
+            (the message names the first).
     """
-    qa = robot.check_q(q)
+    qa = as_batch_array(robot.check_q(q), "q", (robot.dof,))  # names cannot be NaN
     flat = qa.reshape(-1, robot.dof)
     plan = singularity_plan(robot)
     J = robot.jacobian(flat)[:, plan.rows, :]
@@ -324,14 +339,14 @@ def singularities(robot: Robot, q: ArrayLike, detail: bool = False) -> Any:
     lost = np.sum(ratio[:, : plan.rank] < RANK_TOL, axis=1) > 0
     named = _named(robot, plan, flat)
     flagged = lost.copy()
-    for name, measure, _g in named:
+    for name, measure, _g, _s in named:
         flagged |= measure < _TOLS[name]
     results: list[Any] = []
     for b in range(flat.shape[0]):
         if not flagged[b]:
             results.append([])
             continue
-        found = [(name, float(m[b]), g[b]) for name, m, g in named if m[b] < _TOLS[name]]
+        found = [(name, float(m[b]), g[b]) for name, m, g, _ in named if m[b] < _TOLS[name]]
         Ub = U[b]
         if len(plan.rows) == 3:  # position rows: embed (u, 0) in twist space
             Ub = np.vstack([Ub, np.zeros((3, 3))])
@@ -350,6 +365,35 @@ def singularities(robot: Robot, q: ArrayLike, detail: bool = False) -> Any:
     return arr.reshape(qa.shape[:-1]).tolist()
 
 
+def singularity_measures(
+    robot: Robot, q: ArrayLike, relative: bool = False
+) -> dict[str, FloatArray]:
+    """The measure of each named singularity of ``robot`` at ``q`` (see the module docstring).
+
+    Args:
+        robot: The robot.
+        q: ``(..., n)`` joint values.
+        relative: Divide each by its largest value at that geometry: the elbow
+            rate by the elbow point's distance from the elbow axis (the sine of
+            the angle at the elbow point in the triangle shoulder axis, elbow
+            axis, elbow point: 0 stretched or folded), the shoulder distance by
+            the arm's size; the wrist's sine stays.
+
+    Returns:
+        Name -> ``(...)`` measure: the sine between axes 4 and 6 (``"wrist"``),
+        the elbow rate (m/rad, ``"elbow"``), the shoulder distance (m,
+        ``"shoulder"``); only the names the arm's structure has. Each is 0 on its
+        singular set and grows away from it.
+    """
+    qa = robot.check_q(q)
+    flat = qa.reshape(-1, robot.dof)
+    out = {}
+    for name, measure, _, scale in _named(robot, singularity_plan(robot), flat):
+        m = measure / np.where(scale > 0.0, scale, 1.0) if relative else measure
+        out[name] = m.reshape(qa.shape[:-1])
+    return out
+
+
 def jacobian_rank(robot: Robot, q: ArrayLike) -> Any:
     """Rank of the arm's task Jacobian at ``q`` (singular values above RANK_TOL·σmax).
 
@@ -363,8 +407,9 @@ def jacobian_rank(robot: Robot, q: ArrayLike) -> Any:
         configurations). The rows are the position rows for arms whose whole
         mobility shows in the tool position, all six otherwise.
     """
+    qa = as_batch_array(robot.check_q(q), "q", (robot.dof,))  # a rank cannot be NaN
     plan = singularity_plan(robot)
-    J = robot.jacobian(q)[..., plan.rows, :]
+    J = robot.jacobian(qa)[..., plan.rows, :]
     s = np.linalg.svd(J, compute_uv=False)
     rank = np.sum(s > RANK_TOL * s[..., :1], axis=-1)
     return (int(rank) if rank.ndim == 0 else rank), plan.rank

@@ -70,6 +70,8 @@ def urdf_to_dh(
     base: str | None = None,
     tip: str | None = None,
     convention: str = "standard",
+    xacro: bool = False,
+    xacro_env: bool = False,
 ) -> DHExtraction:
     """Read a URDF and extract the DH table of its chain from ``base`` to ``tip``.
 
@@ -80,6 +82,9 @@ def urdf_to_dh(
         tip: Tip link; default the single leaf at the end of movable joints
             (the error lists the leaves when there are several).
         convention: ``"standard"`` or ``"modified"``.
+        xacro: Expand xacro in a ``.urdf`` file too (see
+            :func:`~kinematica.io.read_urdf`; ``.xacro`` files always are).
+        xacro_env: Let xacro read the environment.
 
     Returns:
         The :class:`DHExtraction`: ``.robot`` (its DH table the extracted one,
@@ -93,7 +98,10 @@ def urdf_to_dh(
             the file, the joint or link, and the problem).
     """
     check_convention(convention)
-    model = urdf if isinstance(urdf, UrdfModel) else read_urdf(urdf)
+    if isinstance(urdf, UrdfModel):
+        model = urdf
+    else:
+        model = read_urdf(urdf, xacro=xacro, xacro_env=xacro_env)
     chain = model.chain(base, tip)
     source = f"URDF {chain.source}" if chain.source else "URDF"
     ext = dh_from_chain(
@@ -112,6 +120,11 @@ def robot_from_urdf(
     base: str | None = None,
     tip: str | None = None,
     convention: str = "standard",
+    xacro: bool = False,
+    xacro_env: bool = False,
 ) -> Robot:
     """The robot of a URDF chain (see :func:`urdf_to_dh`)."""
-    return urdf_to_dh(urdf, base=base, tip=tip, convention=convention).robot
+    ext = urdf_to_dh(
+        urdf, base=base, tip=tip, convention=convention, xacro=xacro, xacro_env=xacro_env
+    )
+    return ext.robot

@@ -45,7 +45,10 @@ def task_rows(axes: Axes) -> tuple[int, ...]:
                 f"axes must be 'all', 'trans', 'rot', 'task' or row indices 0-5, got {axes!r}"
             )
         return _ROWS[axes]
-    rows = tuple(int(r) for r in axes)
+    try:
+        rows = tuple(int(r) for r in axes)
+    except (TypeError, ValueError, OverflowError):  # not indices: say what is expected below
+        rows = ()
     if not rows or any(r < 0 or r > 5 for r in rows) or len(set(rows)) != len(rows):
         raise KinematicaError(f"axes must be distinct Jacobian row indices 0-5, got {axes!r}")
     return rows
@@ -60,7 +63,14 @@ def _singular_values(robot: Robot, q: ArrayLike, axes: Axes) -> FloatArray:
     else:
         rows = task_rows(axes)
     J = robot.jacobian(q)[..., rows, :]
-    out: FloatArray = np.asarray(np.linalg.svd(J, compute_uv=False), dtype=np.float64)
+    finite = np.isfinite(J).all(axis=(-2, -1))
+    if finite.all():
+        out: FloatArray = np.asarray(np.linalg.svd(J, compute_uv=False), dtype=np.float64)
+        return out
+    # Rows of a batch holding NaN/inf (robot.jacobian warned of them) come out NaN:
+    # LAPACK's SVD does not converge on them.
+    out = np.full((*J.shape[:-2], min(J.shape[-2:])), np.nan)
+    out[finite] = np.linalg.svd(J[finite], compute_uv=False)
     return out
 
 

@@ -101,6 +101,20 @@ def as_batch_array(x: ArrayLike, name: str, tail: tuple[int, ...]) -> FloatArray
     return a
 
 
+def shown_above(value: float, limit: float) -> str:
+    """``value`` (> ``limit``) printed with the fewest digits that show it exceeds ``limit``.
+
+    ``1.04e-4`` against ``1e-4`` prints ``1.04e-04``, never ``1.0e-04``, which
+    would read as equal to the limit it is said to exceed.
+    """
+    shown_limit = float(f"{limit:.0e}")
+    for digits in range(1, 17):
+        text = f"{value:.{digits}e}"
+        if float(text) > shown_limit:
+            return text
+    return repr(value)
+
+
 def _check_orthonormal(R: FloatArray, name: str, tol: float) -> None:
     """Raise unless every ``(..., 3, 3)`` block of ``R`` is a rotation within ``tol``."""
     gram = np.swapaxes(R, -1, -2) @ R
@@ -110,7 +124,7 @@ def _check_orthonormal(R: FloatArray, name: str, tol: float) -> None:
         i = _first(bad)
         raise DimensionError(
             f"{_where(name, i)} rotation is not orthonormal: "
-            f"max |RᵀR − I| = {err[i]:.1e} (tolerance {tol:.0e})"
+            f"max |RᵀR − I| = {shown_above(float(err[i]), tol)} (tolerance {tol:.0e})"
         )
     det = np.linalg.det(R)
     bad = det < 0.0

@@ -14,14 +14,36 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica.errors import KinematicaError
+from kinematica.arguments import check_count, check_number, check_size
+from kinematica.errors import ArgumentError, KinematicaError
 
-__all__ = ["VizError", "equal_limits", "figure", "is_3d", "matplotlib", "new_axes", "pyplot"]
+__all__ = [
+    "MAX_DPI",
+    "MAX_PIXELS",
+    "MAX_SIDE",
+    "MIN_DPI",
+    "MIN_SIDE",
+    "VizError",
+    "check_picture",
+    "equal_limits",
+    "figure",
+    "is_3d",
+    "matplotlib",
+    "new_axes",
+    "pyplot",
+]
 
 FloatArray = NDArray[np.float64]
 
 #: Extra room around the drawn points, as a fraction of the largest extent.
 MARGIN = 0.08
+#: Smallest and largest side of a picture (pixels; Agg refuses 2^16 and more).
+MIN_SIDE, MAX_SIDE = 16, 20_000
+#: Most pixels in a picture: 40 megapixels are 160 MB of RGBA while it is drawn.
+MAX_PIXELS = 40_000_000
+#: Dots per inch, which scale text and lines against the picture's pixels: at 10
+#: a 10-point label is 1.4 pixels high, at 2400 it is wider than a 330-pixel panel.
+MIN_DPI, MAX_DPI = 10.0, 2400.0
 
 
 class VizError(KinematicaError):
@@ -53,6 +75,24 @@ def pyplot() -> Any:
     return plt
 
 
+def check_picture(size: object, dpi: object) -> tuple[tuple[int, int] | None, float]:
+    """``size`` (``(width, height)`` pixels, or ``None``) and ``dpi``, checked.
+
+    Raises:
+        ArgumentError: A side outside MIN_SIDE..MAX_SIDE, more than MAX_PIXELS
+            in all, or ``dpi`` outside MIN_DPI..MAX_DPI (``arg`` says which).
+    """
+    checked = None
+    if size is not None:
+        if not isinstance(size, tuple | list | np.ndarray) or len(size) != 2:
+            raise ArgumentError(f"size must be (width, height) in pixels, got {size!r}", arg="size")
+        w, h = (check_count(v, "size", lo=MIN_SIDE, hi=MAX_SIDE) for v in size)
+        check_size(w * h, MAX_PIXELS, "size", "pixels")
+        checked = (w, h)
+    dots = check_number(dpi, "dpi", lo=MIN_DPI, hi=MAX_DPI, what="a number of dots per inch")
+    return checked, dots
+
+
 def figure(width_px: int, height_px: int, dpi: float, *, pyplot_managed: bool) -> Any:
     """A new Figure of ``width_px`` x ``height_px`` pixels.
 
@@ -63,8 +103,7 @@ def figure(width_px: int, height_px: int, dpi: float, *, pyplot_managed: bool) -
         pyplot_managed: Create it through pyplot (so ``plt.show()`` displays
             it), or as a bare Figure that is only saved (command line, files).
     """
-    if width_px < 16 or height_px < 16:
-        raise VizError(f"a picture needs at least 16 x 16 pixels, got {width_px} x {height_px}")
+    check_picture((width_px, height_px), dpi)
     size = (width_px / dpi, height_px / dpi)
     if pyplot_managed:
         return pyplot().figure(figsize=size, dpi=dpi)

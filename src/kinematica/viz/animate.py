@@ -12,15 +12,32 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from kinematica.arguments import check_count, check_number, check_size
 from kinematica.io.atomic import atomic_path, unchanged
 from kinematica.robot import Robot
-from kinematica.viz._mpl import VizError, equal_limits, figure, matplotlib, new_axes
+from kinematica.viz._mpl import (
+    VizError,
+    check_picture,
+    equal_limits,
+    figure,
+    matplotlib,
+    new_axes,
+)
 from kinematica.viz.arm import ArmDrawing, extent_points
 from kinematica.viz.geometry import ArmPose, arm_pose, drawing_plane, robot_scale
 from kinematica.viz.plot import label_axes, tight_single
 from kinematica.viz.trajectory import PATH_COLOR, check_trajectory
 
-__all__ = ["ANIMATION_SUFFIXES", "Animation", "animate", "animation_samples", "mp4_available"]
+__all__ = [
+    "ANIMATION_SUFFIXES",
+    "MAX_FPS",
+    "MAX_RESAMPLED",
+    "MIN_FPS",
+    "Animation",
+    "animate",
+    "animation_samples",
+    "mp4_available",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -31,6 +48,12 @@ DEFAULT_FPS = 20.0
 #: At most this many frames unless asked otherwise (a GIF of thousands of frames
 #: takes minutes to draw and megabytes to store).
 MAX_FRAMES = 300
+#: Frame rates an animation plays at: a frame every 100 s at the slowest (a GIF
+#: holds delays up to 655 s), 240 frames a second at the fastest.
+MIN_FPS, MAX_FPS = 0.01, 240.0
+#: Most frames a trajectory is resampled into (``fps`` times its duration), before
+#: ``max_frames`` keeps some of them.
+MAX_RESAMPLED = 1_000_000
 
 
 @dataclass(frozen=True)
@@ -71,9 +94,12 @@ def animation_samples(
     duration stays the same.
     """
     duration = float(t[-1] - t[0])
-    if fps is not None and (not math.isfinite(fps) or fps <= 0):
-        raise VizError(f"fps must be a positive number, got {fps}")
+    if fps is not None:
+        fps = check_number(fps, "fps", lo=MIN_FPS, hi=MAX_FPS, what="a number of frames a second")
+    if max_frames is not None:
+        max_frames = check_count(max_frames, "max_frames", lo=1)
     if fps is not None and timed and len(t) > 1:
+        check_size(duration * fps + 1.0, MAX_RESAMPLED, "fps", f"frames over {duration:g} s")
         count = math.floor(duration * fps + 1e-9) + 1
         times = t[0] + np.arange(count) / fps
         qs = np.stack([np.interp(times, t, q[:, j]) for j in range(q.shape[1])], axis=-1)
@@ -81,13 +107,15 @@ def animation_samples(
     else:
         times, qs = t, q
         rate = fps or ((len(t) - 1) / duration if timed and duration > 0 else DEFAULT_FPS)
-    if max_frames is not None:
-        if max_frames < 1:
-            raise VizError(f"max_frames must be at least 1, got {max_frames}")
-        if len(times) > max_frames:
-            keep = np.unique(np.round(np.linspace(0, len(times) - 1, max_frames)).astype(int))
-            rate = rate * (len(keep) - 1) / (len(times) - 1) if len(keep) > 1 else rate
-            times, qs = times[keep], qs[keep]
+    if max_frames is not None and len(times) > max_frames:
+        keep = np.unique(np.round(np.linspace(0, len(times) - 1, max_frames)).astype(int))
+        rate = rate * (len(keep) - 1) / (len(times) - 1) if len(keep) > 1 else rate
+        times, qs = times[keep], qs[keep]
+    if rate < MIN_FPS:  # real time by the file's own clock: a frame every 1e6 s overflows a GIF
+        raise VizError(
+            f"the animation would play at {rate:.3g} frames a second ({len(times)} frames over "
+            f"{duration:.3g} s), slower than {MIN_FPS:g}: give more frames (max_frames)"
+        )
     return times, qs, rate
 
 
@@ -125,7 +153,8 @@ def animate(
         (``gid="tool-path"``) and the time shown in the title of every frame.
 
     Raises:
-        VizError: Unknown file type, MP4 without ffmpeg, bad ``fps``/``size``.
+        VizError: Unknown file type, MP4 without ffmpeg, a playing rate below MIN_FPS.
+        ArgumentError: ``fps``, ``size``, ``dpi`` or ``max_frames`` outside its range.
         DimensionError: ``q`` or ``t`` of the wrong shape.
     """
     out = Path(path)
@@ -136,6 +165,8 @@ def animate(
         )
     if not out.parent.is_dir():
         raise VizError(f"{out}: the folder {out.parent} does not exist")
+    checked, dpi = check_picture(size, dpi)
+    size = checked or size
     ta, qa = check_trajectory(robot, t, q)
     times, qs, rate = animation_samples(ta, qa, fps, max_frames, t is not None)
     matplotlib()

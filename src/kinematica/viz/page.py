@@ -12,6 +12,8 @@ whose IK runs in Python.
 
 from __future__ import annotations
 
+import base64
+import hashlib
 import html
 import json
 import math
@@ -26,9 +28,8 @@ from numpy.typing import ArrayLike
 
 from kinematica import __version__
 from kinematica.errors import DimensionError
-from kinematica.io import ROBOT_FILE_SUFFIXES, builtin_names, read_builtin, read_robot_file
 from kinematica.io.atomic import unchanged, write_text_atomic
-from kinematica.robot import Robot, classify
+from kinematica.robot import Robot, classify, load
 from kinematica.spatial import euler_from_matrix
 from kinematica.viz._mpl import VizError
 from kinematica.viz.geometry import ARROW, drawing_plane, robot_scale
@@ -49,23 +50,20 @@ VIEW_SAMPLES = 256
 _UNITS = {"angle": ("deg", "rad"), "length": ("m", "mm")}
 
 
-def robot_units(name_or_path: str | os.PathLike[str]) -> dict[str, str]:
-    """The units a robot file (or built-in model) is written in, for its sliders.
+def robot_units(robot: Robot | str | os.PathLike[str]) -> dict[str, str]:
+    """The units a robot's file is written in, for its sliders.
 
     Args:
-        name_or_path: What :func:`kinematica.load` takes.
+        robot: A :class:`~kinematica.Robot`, or what :func:`kinematica.load`
+            takes (a built-in name, a robot file or a URDF).
 
     Returns:
-        ``{"angle": "deg" | "rad", "length": "m" | "mm"}``.
+        ``{"angle": "deg" | "rad", "length": "m" | "mm"}``: the robot file's
+        units; degrees and metres for a URDF or a robot made in Python.
     """
-    text = os.fspath(name_or_path)
-    path = Path(text)
-    if path.suffix.lower() in ROBOT_FILE_SUFFIXES or path.exists() or os.sep in text:
-        spec = read_robot_file(path)
-    else:
-        key = text if text in builtin_names() else text.lower()
-        spec = read_builtin(key)
-    return {"angle": spec.units.get("angle", "deg"), "length": spec.units.get("length", "m")}
+    spec = (robot if isinstance(robot, Robot) else load(robot)).source_spec
+    units = {} if spec is None else spec.units
+    return {"angle": units.get("angle", "deg"), "length": units.get("length", "m")}
 
 
 def _check_units(units: dict[str, str] | None) -> dict[str, str]:
@@ -93,6 +91,7 @@ def page_data(
     q: ArrayLike | None = None,
     euler: str = "ZYZ",
     serve: bool = False,
+    token: str | None = None,
 ) -> dict[str, Any]:
     """What the page embeds: the DH table (rad, m), limits, base, tool and view.
 
@@ -102,6 +101,7 @@ def page_data(
         q: ``(n,)`` start configuration (rad, m); zeros moved into the limits if ``None``.
         euler: The Euler sequence shown first.
         serve: The page talks to :func:`kinematica.viz.serve` (the IK target).
+        token: The server's secret for this run, sent back with every IK request.
     """
     euler_from_matrix(np.eye(3), euler)  # raises EulerSequenceError on a bad name
     qlim = robot.qlim
@@ -149,6 +149,7 @@ def page_data(
         "q0": q0.tolist(),
         "euler": euler,
         "serve": serve,
+        "token": token,
         "scale": scale,
         "center": centre.tolist(),
         "radius": radius,
@@ -157,8 +158,42 @@ def page_data(
     }
 
 
+#: Characters a JSON text inside ``<script>`` must not carry as themselves: ``<`` (``</script>``,
+#: ``<!--`` and ``<script`` change how the HTML parser reads the element), ``>`` and ``&``
+#: for good measure, and the line separators JavaScript source once forbade in strings.
+_SCRIPT_ESCAPES = {c: f"\\u{ord(c):04x}" for c in "<>&\u2028\u2029"}
+
+
+def _script_json(data: Any) -> str:
+    r"""``data`` as JSON that is safe as the content of a ``<script>`` element.
+
+    Every character that could end the element or start a comment inside it is
+    written as a ``\u`` escape: the same JSON value, with no markup in the text.
+    """
+    text = json.dumps(data, allow_nan=False)
+    return re.sub("[<>&\u2028\u2029]", lambda m: _SCRIPT_ESCAPES[m.group(0)], text)
+
+
 def _asset(name: str) -> str:
     return resources.files("kinematica.viz").joinpath("web", name).read_text(encoding="utf-8")
+
+
+def _policy(script: str, css: str) -> str:
+    """The page's Content-Security-Policy: its own script and style run, nothing else.
+
+    Were any text ever to become markup, no script of its own would run (no
+    inline handler, no other ``<script>``), and nothing would be fetched but the
+    served page's own IK endpoint.
+    """
+
+    def digest(text: str) -> str:
+        return base64.b64encode(hashlib.sha256(text.encode("utf-8")).digest()).decode("ascii")
+
+    return (
+        f"default-src 'none'; script-src 'sha256-{digest(script)}'; "
+        f"style-src 'sha256-{digest(css)}'; img-src data:; connect-src 'self'; "
+        "base-uri 'none'; form-action 'none'"
+    )
 
 
 def page_html(
@@ -168,18 +203,20 @@ def page_html(
     q: ArrayLike | None = None,
     euler: str = "ZYZ",
     serve: bool = False,
+    token: str | None = None,
 ) -> str:
     """The page as one HTML text (arguments as :func:`page_data`)."""
-    data = page_data(robot, units=units, q=q, euler=euler, serve=serve)
-    # Inside <script>, "</" would end the element; "<\/" is the same JSON string.
-    blob = json.dumps(data, allow_nan=False).replace("</", "<\\/").replace("<!--", "<\\!--")
+    data = page_data(robot, units=units, q=q, euler=euler, serve=serve, token=token)
+    blob = _script_json(data)
     options = "".join(
         f'<option value="{s}"{" selected" if s == euler else ""}>{s}</option>'
         for s in EULER_SEQUENCES
     )
     script = _asset("kinematics.js") + "\n" + _asset("view.js")
+    css = _asset("page.css")
     replacements = {
-        "__CSS__": _asset("page.css"),
+        "__CSP__": _policy(script, css),
+        "__CSS__": css,
         "__TITLE__": html.escape(robot.name),
         "__SUMMARY__": html.escape(f"{classify(robot).summary}, {robot.convention} DH"),
         "__VERSION__": html.escape(__version__),
@@ -189,7 +226,7 @@ def page_html(
     }
     # One pass, so no inserted text (a robot's name...) is itself substituted.
     return re.sub(
-        r"__(CSS|TITLE|SUMMARY|VERSION|EULER_OPTIONS|JS|DATA)__",
+        r"__(CSP|CSS|TITLE|SUMMARY|VERSION|EULER_OPTIONS|JS|DATA)__",
         lambda m: replacements[m.group(0)],
         _asset("page.html"),
     )

@@ -13,9 +13,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from kinematica.errors import DimensionError, UnreachableError
 from kinematica.ik.result import IKResult
-from kinematica.io.atomic import atomic_path, unchanged
+from kinematica.io.atomic import atomic_path, write_failed
 from kinematica.robot import Robot
-from kinematica.viz._mpl import VizError, equal_limits, figure, is_3d, new_axes
+from kinematica.viz._mpl import VizError, check_picture, equal_limits, figure, is_3d, new_axes
 from kinematica.viz.arm import ArmDrawing, extent_points
 from kinematica.viz.geometry import ArmPose, arm_pose, drawing_plane, robot_scale
 
@@ -213,9 +213,7 @@ def save_figure(fig: Any, path: str | os.PathLike[str]) -> Path:
         with atomic_path(out) as tmp:
             fig.savefig(tmp, dpi=fig.dpi)
     except OSError as exc:
-        raise VizError(
-            f"{out}: cannot write the picture ({exc.strerror or exc}); {unchanged(out)}"
-        ) from exc
+        raise VizError(write_failed(out, exc, "the picture")) from exc
     return out
 
 
@@ -275,6 +273,7 @@ def save_solutions(
     Returns:
         The path, the number of solutions drawn, and the picture's size in pixels.
     """
+    size, dpi = check_picture(size, dpi)  # before the IK is solved
     fig = figure(100, 100, dpi, pyplot_managed=False)
     plot_solutions(robot, T, respect_limits=respect_limits, frames=frames, labels=labels, fig=fig)
     k = len(fig.axes)

@@ -15,11 +15,15 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.errors import KinematicaError
-from kinematica.io.atomic import atomic_path
+from kinematica.io.atomic import atomic_path, write_failed
+from kinematica.io.reading import read_limited
 
-__all__ = ["TrajectoryFileError", "read_trajectory", "write_trajectory"]
+__all__ = ["MAX_BYTES", "TrajectoryFileError", "read_trajectory", "write_trajectory"]
 
 FloatArray = NDArray[np.float64]
+
+#: Largest trajectory file read (64 MiB): about a million samples of six joints.
+MAX_BYTES = 64 * 2**20
 
 
 class TrajectoryFileError(KinematicaError, ValueError):
@@ -42,14 +46,20 @@ def read_trajectory(
         ``t`` of shape ``(T,)`` and ``q`` of shape ``(T, n)``.
 
     Raises:
-        TrajectoryFileError: No such file, no header, a wrong number of
+        TrajectoryFileError: No such file, not a regular file (a FIFO, a
+            device), larger than MAX_BYTES, not UTF-8, no header, a wrong number of
             columns, a value that is not a finite number, time not increasing.
     """
     p = Path(path)
+    data = read_limited(
+        p, MAX_BYTES, "trajectory file", lambda reason: TrajectoryFileError(f"{p}: {reason}")
+    )
     try:
-        text = p.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise TrajectoryFileError(f"{p}: cannot read the trajectory file ({exc.strerror})") from exc
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise TrajectoryFileError(
+            f"{p}: not UTF-8 text (bad byte at position {exc.start})"
+        ) from exc
     rows = [
         (number, row)
         for number, row in enumerate(csv.reader(text.splitlines()), start=1)
@@ -109,9 +119,12 @@ def write_trajectory(path: str | os.PathLike[str], t: ArrayLike, q: ArrayLike) -
             f"{qq.shape}"
         )
     p = Path(path)
-    with atomic_path(p) as tmp, tmp.open("w", newline="", encoding="utf-8") as fh:
-        writer = csv.writer(fh)
-        writer.writerow(["t", *(f"q{i}" for i in range(1, qq.shape[1] + 1))])
-        for ti, qi in zip(tt, qq, strict=True):
-            writer.writerow([repr(float(ti)), *(repr(float(v)) for v in qi)])
+    try:
+        with atomic_path(p) as tmp, tmp.open("w", newline="", encoding="utf-8") as fh:
+            writer = csv.writer(fh)
+            writer.writerow(["t", *(f"q{i}" for i in range(1, qq.shape[1] + 1))])
+            for ti, qi in zip(tt, qq, strict=True):
+                writer.writerow([repr(float(ti)), *(repr(float(v)) for v in qi)])
+    except OSError as exc:
+        raise TrajectoryFileError(write_failed(p, exc, "the trajectory")) from exc
     return p

@@ -41,12 +41,22 @@
       const row = document.createElement("div");
       row.className = "joint";
       const name = ROBOT.joints[i].name ? " " + ROBOT.joints[i].name : "";
-      row.innerHTML =
-        '<label for="q' + (i + 1) + '">q' + (i + 1) + name + " (" + unitName[i] + ")</label>" +
-        '<input type="range" id="q' + (i + 1) + '" min="' + r[0] + '" max="' + r[1] + '" step="any">' +
-        '<input type="number" id="q' + (i + 1) + '-value" step="any">';
+      // Names come from the robot file: text nodes and properties, never markup.
+      const label = document.createElement("label");
+      label.htmlFor = "q" + (i + 1);
+      label.textContent = "q" + (i + 1) + name + " (" + unitName[i] + ")";
+      const slider = document.createElement("input");
+      slider.type = "range";
+      slider.id = "q" + (i + 1);
+      slider.min = String(r[0]);
+      slider.max = String(r[1]);
+      slider.step = "any";
+      const number = document.createElement("input");
+      number.type = "number";
+      number.id = "q" + (i + 1) + "-value";
+      number.step = "any";
+      row.append(label, slider, number);
       box.appendChild(row);
-      const slider = row.children[1], number = row.children[2];
       slider.addEventListener("input", function () { setJoint(i, Number(slider.value), slider); });
       number.addEventListener("change", function () {
         const v = Number(number.value);
@@ -343,9 +353,11 @@
   function solveTarget() {
     $("ik-status").textContent = "solving...";
     const T = [0, 1, 2, 3].map(function (i) { return state.target.slice(4 * i, 4 * i + 4); });
-    return fetch("api/ik", { method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify({ T: T }) })
+    const headers = { "Content-Type": "application/json", "X-Kinematica-Token": ROBOT.token };
+    return fetch("api/ik", { method: "POST", headers: headers, body: JSON.stringify({ T: T }) })
       .then(function (r) { return r.json(); })
       .then(function (res) {
+        if (res.error) throw new Error(res.error);
         state.solutions = res.solutions || [];
         state.branches = res.branches || [];
         state.index = 0;
@@ -354,7 +366,7 @@
         return res;
       })
       .catch(function (err) {
-        $("ik-status").textContent = "IK request failed: " + err;
+        $("ik-status").textContent = "IK request failed: " + (err.message || err);
       });
   }
 

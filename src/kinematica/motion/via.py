@@ -1,0 +1,329 @@
+"""Joint trajectories through waypoints: splines and linear segments with blends.
+
+:func:`via_trajectory` samples, :func:`via_polynomials` returns the pieces
+(for exact values at any time and the left and right limits at a knot).
+
+Three methods:
+
+- ``"cubic"``: the C2 cubic spline (continuous acceleration) through every
+  waypoint (:mod:`kinematica.motion.splines`), clamped (end velocities given,
+  zero by default) or natural (zero end accelerations);
+- ``"quintic"``: the C4 quintic spline (continuous acceleration, jerk and
+  snap; the least-jerk interpolant), clamped (end velocities and
+  accelerations given, zero by default) or natural (zero end jerk and snap);
+- ``"mstraj"``: straight lines with parabolic blends of duration ``tacc``
+  (:mod:`kinematica.motion.blends`): continuous velocity, start and end
+  reached exactly, the via points passed at a distance, as the Toolbox's
+  ``mstraj`` does.
+
+With ``qd=`` (and ``qdd=``) the cubic and quintic pieces take the velocities
+(and accelerations) given at every waypoint instead of solving for them, as
+MATLAB's ``cubicpolytraj`` / ``quinticpolytraj`` do (whose default is zero at
+every waypoint: a stop at each).
+
+Times: given (``times``), or derived from the per-joint limits. For the
+splines, segment ``i`` first gets its slowest joint's rest-to-rest minimum
+time (as :func:`~kinematica.motion.trajectory.minimum_time`), then every time
+is scaled by one factor so that the spline's peak speed and acceleration
+(computed exactly, piece by piece) just reach the tightest ``vmax`` or
+``amax``: a spline with rest or natural ends scales exactly with its times.
+For ``"mstraj"`` the limits are per joint or per segment and joint
+(``vmax`` of shape ``(k-1, n)``), as the Toolbox's ``qdmax``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from kinematica.errors import DimensionError, KinematicaError
+from kinematica.motion.blends import blend_pieces, blend_times
+from kinematica.motion.piecewise import PiecewisePolynomial
+from kinematica.motion.splines import Ends, hermite_pieces, spline_derivatives
+from kinematica.motion.trajectory import DEFAULT_DT, LIMIT_RTOL, JointTrajectory, minimum_time
+
+__all__ = ["Method", "via_polynomials", "via_trajectory"]
+
+FloatArray = NDArray[np.float64]
+Method = Literal["cubic", "quintic", "mstraj"]
+
+
+def _array(x: ArrayLike | None, shape: tuple[int, ...], name: str) -> FloatArray:
+    """``x`` (a number, or an array broadcastable to ``shape``) as floats, checked."""
+    try:
+        a = np.asarray(0.0 if x is None else x, dtype=float)
+        out = np.broadcast_to(a, shape).astype(float)
+    except (TypeError, ValueError):
+        raise DimensionError(
+            f"{name} must be a number or numbers of shape {shape}", arg=name
+        ) from None
+    if not np.all(np.isfinite(out)):
+        raise DimensionError(f"{name} holds NaN or inf", arg=name)
+    return out
+
+
+def _limit(x: ArrayLike | None, shape: tuple[int, ...], name: str) -> FloatArray | None:
+    if x is None:
+        return None
+    out = _array(x, shape, name)
+    if np.any(out <= 0):
+        j = int(np.flatnonzero(out.reshape(-1, shape[-1]) <= 0)[0]) % shape[-1]
+        raise KinematicaError(f"{name} must be positive (joint {j + 1})", arg=name)
+    return out
+
+
+def _waypoints(waypoints: ArrayLike) -> FloatArray:
+    try:
+        w = np.asarray(waypoints, dtype=float)
+    except (TypeError, ValueError):
+        msg = "waypoints must be a (k, n) array of numbers"
+        raise DimensionError(msg, arg="waypoints") from None
+    if w.ndim != 2 or w.shape[0] < 2 or w.shape[1] == 0:
+        raise DimensionError(
+            f"waypoints must be (k, n) with k >= 2 configurations, got shape {w.shape}",
+            arg="waypoints",
+        )
+    if not np.all(np.isfinite(w)):
+        raise DimensionError("waypoints hold NaN or inf", arg="waypoints")
+    return w
+
+
+def _times(times: ArrayLike, k: int) -> FloatArray:
+    t = _array(times, np.shape(times), "times")
+    if t.shape != (k,) or not np.all(np.isfinite(t)):
+        raise DimensionError(f"times must be {k} finite values (one per waypoint)", arg="times")
+    if t[0] != 0.0 or np.any(np.diff(t) <= 0):
+        raise KinematicaError("times must start at 0 and increase strictly", arg="times")
+    return t
+
+
+def via_polynomials(
+    waypoints: ArrayLike,
+    method: Method = "cubic",
+    times: ArrayLike | None = None,
+    vmax: ArrayLike | None = None,
+    amax: ArrayLike | None = None,
+    *,
+    tacc: float | None = None,
+    ends: Ends = "clamped",
+    qd0: ArrayLike | None = None,
+    qd1: ArrayLike | None = None,
+    qdd0: ArrayLike | None = None,
+    qdd1: ArrayLike | None = None,
+    qd: ArrayLike | None = None,
+    qdd: ArrayLike | None = None,
+) -> PiecewisePolynomial:
+    """The pieces of the trajectory through ``waypoints`` (arguments of :func:`via_trajectory`)."""
+    if method not in ("cubic", "quintic", "mstraj"):
+        raise KinematicaError(
+            f"method must be 'cubic', 'quintic' or 'mstraj', got {method!r}", arg="method"
+        )
+    if ends not in ("clamped", "natural"):
+        raise KinematicaError(f"ends must be 'clamped' or 'natural', got {ends!r}", arg="ends")
+    w = _waypoints(waypoints)
+    k, n = w.shape
+    t = None if times is None else _times(times, k)
+    am = _limit(amax, (n,), "amax")
+    ends_given = {"qd0": qd0, "qd1": qd1, "qdd0": qdd0, "qdd1": qdd1, "qd": qd, "qdd": qdd}
+    if method == "mstraj":
+        named = [name for name, x in ends_given.items() if x is not None]
+        if named or ends != "clamped":
+            raise KinematicaError(
+                f"mstraj starts and ends at rest: drop {', '.join(named) or 'ends'}"
+            )
+        return _blends(w, t, vmax, am, tacc)
+    if tacc is not None:
+        raise KinematicaError("tacc is the blend time of method='mstraj'", arg="tacc")
+    spline: Literal["cubic", "quintic"] = "cubic" if method == "cubic" else "quintic"
+    return _spline(w, spline, t, _limit(vmax, (n,), "vmax"), am, ends, ends_given)
+
+
+def _blends(
+    w: FloatArray,
+    t: FloatArray | None,
+    vmax: ArrayLike | None,
+    am: FloatArray | None,
+    tacc: float | None,
+) -> PiecewisePolynomial:
+    """Method ``"mstraj"``: lines and parabolic blends, times from ``vmax`` if not given."""
+    k, n = w.shape
+    if tacc is None or not (math.isfinite(tacc) and tacc > 0):
+        raise KinematicaError(
+            f"tacc must be the blend time of mstraj, > 0 (s), got {tacc!r}", arg="tacc"
+        )
+    vm = _limit(vmax, (k - 1, n), "vmax")
+    if t is None:
+        if vm is None:
+            raise KinematicaError("times must be given, or vmax to derive them", arg="times")
+        t = blend_times(w, vm, tacc)
+    pieces = blend_pieces(w, t, tacc)
+    _check(pieces, None, am, vm, tacc)
+    return pieces
+
+
+def _spline(
+    w: FloatArray,
+    method: Literal["cubic", "quintic"],
+    t: FloatArray | None,
+    vm: FloatArray | None,
+    am: FloatArray | None,
+    ends: Ends,
+    bc: dict[str, ArrayLike | None],
+) -> PiecewisePolynomial:
+    """Methods ``"cubic"`` and ``"quintic"``: the spline, or given derivatives at every waypoint."""
+    k, n = w.shape
+    m = 2 if method == "cubic" else 3
+    if method == "cubic" and any(bc[x] is not None for x in ("qdd0", "qdd1", "qdd")):
+        raise KinematicaError("the cubic sets velocities only: use 'quintic' for accelerations")
+    if bc["qdd"] is not None and bc["qd"] is None:
+        raise KinematicaError("qdd at the waypoints needs qd too", arg="qdd")
+    start = np.stack([_array(bc["qd0"], (n,), "qd0"), _array(bc["qdd0"], (n,), "qdd0")])
+    end = np.stack([_array(bc["qd1"], (n,), "qd1"), _array(bc["qdd1"], (n,), "qdd1")])
+    start, end = start[: m - 1], end[: m - 1]
+    given: FloatArray | None = None
+    if bc["qd"] is not None:
+        if any(bc[x] is not None for x in ("qd0", "qd1", "qdd0", "qdd1")) or ends != "clamped":
+            raise KinematicaError("qd (and qdd) give every waypoint's derivatives: drop qd0..qdd1")
+        given = np.stack([_array(bc["qd"], (k, n), "qd"), _array(bc["qdd"], (k, n), "qdd")], 1)
+        given = given[:, : m - 1]
+
+    def build(tt: FloatArray) -> PiecewisePolynomial:
+        d = given if given is not None else spline_derivatives(tt, w, m, ends, start, end)
+        return hermite_pieces(tt, w, d)
+
+    if t is None:
+        if vm is None and am is None:
+            raise KinematicaError(
+                "times must be given, or vmax and/or amax to derive them", arg="times"
+            )
+        if np.any(start) or np.any(end) or (given is not None and np.any(given)):
+            raise KinematicaError("give times when velocities or accelerations are not zero")
+        inf = np.full(n, np.inf)
+        vl, al = (inf if vm is None else vm), (inf if am is None else am)
+        # Each segment its slowest joint's rest-to-rest time, then one factor for all so
+        # that the spline's exact peaks just reach the tightest limit (a spline with rest
+        # or natural ends scales with its times: speeds by 1/c, accelerations by 1/c²).
+        seg = minimum_time(np.diff(w, axis=0), vl, al, method).max(axis=1)
+        if np.any(seg <= 0):
+            i = int(np.flatnonzero(seg <= 0)[0])
+            raise KinematicaError(
+                f"waypoints {i + 1} and {i + 2} are equal: give times to dwell there"
+            )
+        t0 = np.concatenate([[0.0], np.cumsum(seg)])
+        trial = build(t0)
+        scale = max(float((trial.peak(1) / vl).max()), math.sqrt(float((trial.peak(2) / al).max())))
+        t = t0 * scale
+    pieces = build(t)
+    _check(pieces, vm, am)
+    return pieces
+
+
+def _check(
+    pieces: PiecewisePolynomial,
+    vm: FloatArray | None,
+    am: FloatArray | None,
+    vm_segments: FloatArray | None = None,
+    tacc: float | None = None,
+) -> None:
+    """Raise when the trajectory exceeds a limit (beyond round-off)."""
+    for lim, order, name in ((vm, 1, "vmax"), (am, 2, "amax")):
+        if lim is None:
+            continue
+        peak = pieces.peak(order)
+        over = peak > lim * (1.0 + LIMIT_RTOL)
+        if over.any():
+            j = int(np.flatnonzero(over)[0])
+            raise KinematicaError(
+                f"joint {j + 1} would reach {peak[j]:.6g} > {name} {lim[j]:g}: "
+                "lengthen the times" + (" or tacc" if name == "amax" else "")
+            )
+    if vm_segments is not None:  # mstraj: each segment's line within its own limits
+        assert tacc is not None
+        # Where each line starts (the end of the blend before it), its velocity is the line's.
+        starts = pieces.knots[:-1] + 0.5 * tacc
+        starts[0] = tacc
+        speed = np.abs(pieces(starts, 1))
+        over = speed > vm_segments * (1.0 + LIMIT_RTOL)
+        if over.any():
+            i, j = (int(x[0]) for x in np.nonzero(over))
+            raise KinematicaError(
+                f"segment {i + 1}, joint {j + 1} would move at {speed[i, j]:.6g} > vmax "
+                f"{vm_segments[i, j]:g}: lengthen the times"
+            )
+
+
+def via_trajectory(
+    waypoints: ArrayLike,
+    method: Method = "cubic",
+    times: ArrayLike | None = None,
+    dt: float = DEFAULT_DT,
+    vmax: ArrayLike | None = None,
+    amax: ArrayLike | None = None,
+    *,
+    tacc: float | None = None,
+    ends: Ends = "clamped",
+    qd0: ArrayLike | None = None,
+    qd1: ArrayLike | None = None,
+    qdd0: ArrayLike | None = None,
+    qdd1: ArrayLike | None = None,
+    qd: ArrayLike | None = None,
+    qdd: ArrayLike | None = None,
+) -> JointTrajectory:
+    """A joint trajectory through ``waypoints`` (module docstring for the methods).
+
+    Args:
+        waypoints: ``(k, n)`` configurations (rad, m), k >= 2: start, vias, end.
+        method: ``"cubic"``, ``"quintic"`` (splines through every waypoint)
+            or ``"mstraj"`` (lines with parabolic blends; vias cut).
+        times: ``(k,)`` times of the waypoints (s), from 0, increasing; for
+            ``"mstraj"`` the blends' centres. Derived from the limits if ``None``.
+        dt: Largest sample spacing (s); samples are uniform between knots and
+            every knot time is a sample.
+        vmax: Speed limits (rad/s, m/s): a number or ``(n,)``; for
+            ``"mstraj"`` also ``(k - 1, n)``, one row per segment.
+        amax: Acceleration limits (rad/s², m/s²): a number or ``(n,)``.
+        tacc: Blend time of ``"mstraj"`` (s).
+        ends: Spline ends: ``"clamped"`` (``qd0``, ``qd1``, ``qdd0``,
+            ``qdd1``, zero by default) or ``"natural"``.
+        qd0: ``(n,)`` start velocity of a clamped spline.
+        qd1: ``(n,)`` end velocity.
+        qdd0: ``(n,)`` start acceleration (quintic).
+        qdd1: ``(n,)`` end acceleration (quintic).
+        qd: ``(k, n)`` velocity at every waypoint (MATLAB's ``cubicpolytraj`` /
+            ``quinticpolytraj``): no spline, C1 pieces.
+        qdd: ``(k, n)`` acceleration at every waypoint (quintic with ``qd``;
+            zero by default, as MATLAB's).
+
+    Returns:
+        :class:`JointTrajectory` ``(t, q, qd, qdd)``; ``q`` is every waypoint
+        at its time (splines; exactly) and ends at the last one exactly.
+
+    Raises:
+        DimensionError: Shapes, NaN or inf.
+        KinematicaError: Unknown method or ends, times not increasing from 0,
+            arguments that do not apply to the method, or given times that make
+            a joint exceed ``vmax``/``amax`` (the message names the joint).
+    """
+    if not (math.isfinite(dt) and dt > 0):
+        raise KinematicaError(f"dt must be a positive number of seconds, got {dt!r}", arg="dt")
+    pieces = via_polynomials(
+        waypoints,
+        method,
+        times,
+        vmax,
+        amax,
+        tacc=tacc,
+        ends=ends,
+        qd0=qd0,
+        qd1=qd1,
+        qdd0=qdd0,
+        qdd1=qdd1,
+        qd=qd,
+        qdd=qdd,
+    )
+    traj = pieces.sample(dt)
+    traj.q[-1] = np.asarray(waypoints, dtype=float)[-1]
+    return traj
