@@ -45,7 +45,7 @@ docs: $(CORE_STAMP)
 # Run the lecture-notes notebook and store its outputs (the docs site shows them).
 notebook: $(CORE_STAMP)
 	$(BIN)/python -c "import nbformat, nbclient; p = 'examples/lecture_notes.ipynb'; \
-	nb = nbformat.read(p, as_version=4); nbclient.NotebookClient(nb, timeout=120).execute(); \
+	nb = nbformat.read(p, as_version=4); nbclient.NotebookClient(nb, timeout=120, record_timing=False).execute(); \
 	nbformat.write(nb, p)"
 
 # The core built with AddressSanitizer and UndefinedBehaviorSanitizer (in its own venv
