@@ -40,8 +40,12 @@ if TYPE_CHECKING:  # the names below load on first use: `import kinematica` stay
         analytic_jacobian,
         cartesian_path,
         condition_number,
+        ellipsoid,
+        hessian,
+        jacobian_dot,
         joint_trajectory,
         manipulability,
+        resolved_rate,
     )
     from kinematica.motion.workspace import (
         workspace,
@@ -139,6 +143,10 @@ _LAZY = {
     "condition_number": "kinematica.motion",
     "joint_trajectory": "kinematica.motion",
     "manipulability": "kinematica.motion",
+    "ellipsoid": "kinematica.motion",
+    "hessian": "kinematica.motion",
+    "jacobian_dot": "kinematica.motion",
+    "resolved_rate": "kinematica.motion",
 }
 #: Subpackages reachable as attributes (``km.ik``, ``km.spatial``...) before anything imported them.
 _SUBPACKAGES = frozenset(
@@ -201,10 +209,13 @@ __all__ = [
     "classify",
     "compose",
     "condition_number",
+    "ellipsoid",
     "euler_from_matrix",
     "from_pose",
     "gimbal_locked",
+    "hessian",
     "inv_transform",
+    "jacobian_dot",
     "joint_trajectory",
     "link_matrix",
     "load",
@@ -219,6 +230,7 @@ __all__ = [
     "quat_multiply",
     "quat_slerp",
     "read_robot_file",
+    "resolved_rate",
     "robot_from_spec",
     "rotation_angle",
     "rotvec_from_matrix",

@@ -1,9 +1,10 @@
-"""Motion: velocity kinematics, named singularities, workspace, trajectories.
+"""Motion: velocity kinematics, named singularities, workspace, trajectories, control.
 
 Layer 6: built on the robot and ik layers (public API only); numpy only. The
-velocity kinematics, the named singularities and the sampling of joint space
-live in the robot layer (``Robot.jacobian(euler=)``, ``Robot.singularities``,
-``Robot.random_q`` are thin methods over them) and are re-exported here.
+velocity kinematics (measures, ellipsoids, Hessian and J̇), the named
+singularities and the sampling of joint space live in the robot layer
+(``Robot.jacobian(euler=)``, ``Robot.singularities``, ``Robot.random_q`` are
+thin methods over them) and are re-exported here.
 """
 
 from kinematica.motion.cartesian import (
@@ -12,9 +13,12 @@ from kinematica.motion.cartesian import (
     PathEvent,
     cartesian_path,
 )
+from kinematica.motion.control import RateControl, resolved_rate
 from kinematica.motion.export import read_csv, write_csv, write_json
 from kinematica.motion.trajectory import JointTrajectory, joint_trajectory, time_scaling
 from kinematica.motion.workspace import Workspace, WorkspaceSlice, workspace
+from kinematica.robot.differential import exp_jacobian, hessian, jacobian_dot
+from kinematica.robot.ellipsoid import Ellipsoid, ellipsoid
 from kinematica.robot.sampling import random_q
 from kinematica.robot.singularities import (
     ELBOW_TOL,
@@ -25,7 +29,12 @@ from kinematica.robot.singularities import (
     jacobian_rank,
     singularities,
 )
-from kinematica.robot.velocity import analytic_jacobian, condition_number, manipulability
+from kinematica.robot.velocity import (
+    analytic_jacobian,
+    condition_number,
+    manipulability,
+    manipulability_gradient,
+)
 
 __all__ = [
     "ELBOW_TOL",
@@ -34,19 +43,27 @@ __all__ = [
     "SHOULDER_TOL",
     "WRIST_TOL",
     "CartesianPath",
+    "Ellipsoid",
     "JointTrajectory",
     "PathEvent",
+    "RateControl",
     "Singularity",
     "Workspace",
     "WorkspaceSlice",
     "analytic_jacobian",
     "cartesian_path",
     "condition_number",
+    "ellipsoid",
+    "exp_jacobian",
+    "hessian",
+    "jacobian_dot",
     "jacobian_rank",
     "joint_trajectory",
     "manipulability",
+    "manipulability_gradient",
     "random_q",
     "read_csv",
+    "resolved_rate",
     "singularities",
     "time_scaling",
     "workspace",
