@@ -7,22 +7,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from test_cli import run
 
 import kinematica as km
-from kinematica.cli.main import main
 from kinematica.motion import read_csv, resolved_rate
 
 Q0 = ["10", "-20", "10", "15", "40", "5"]
 POSE = ["0.4", "0.1", "0.3", "20", "60", "30"]
-
-
-def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
-    try:
-        code = main(list(argv))
-    except SystemExit as exc:
-        code = int(exc.code or 0)
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def test_control_json_matches_the_library(capsys: pytest.CaptureFixture[str]) -> None:
