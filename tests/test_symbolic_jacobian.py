@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 import sympy as sp
 from helpers import PROPERTY, RobotSpec, random_q, robot_specs, seeds
 from hypothesis import given, settings
 
 import kinematica as km
 from kinematica import symbolic
-from kinematica.symbolic.model import numeric_model
+from kinematica.symbolic.model import numeric_model, symbolic_robot
 
 
 @settings(PROPERTY, max_examples=6)
@@ -47,3 +48,20 @@ def test_puma_jacobian_in_the_modified_convention() -> None:
     f = sp.lambdify(numeric_model(puma).q, J, modules="numpy")
     q = np.radians([10, -20, 30, 40, 50, 60])
     assert np.allclose(np.array(f(*q), dtype=float), puma.jacobian(q), atol=1e-12)
+
+
+@pytest.mark.parametrize("name", ["anthropomorphic-3r", "stanford", "scara"])
+def test_textbook_form_equals_the_numeric_jacobian(name: str) -> None:
+    model = symbolic_robot(name)
+    J = symbolic.jacobian(model).xreplace({s: sp.Float(v) for s, v in model.values.items()})
+    f = sp.lambdify(model.q, J, modules="numpy")
+    for q in model.robot.random_q(3, seed=2):
+        got = np.array(f(*q), dtype=float)
+        assert np.allclose(got, model.robot.jacobian(q), atol=1e-12)
+
+
+def test_report_has_the_jacobian_in_both_languages() -> None:
+    en = symbolic.report("anthropomorphic-3r", format="markdown", lang="en")
+    es = symbolic.report("anthropomorphic-3r", format="markdown", lang="es")
+    assert "## Geometric Jacobian" in en and "## Jacobiano geométrico" in es
+    assert "J_{3} &=" in en and "L_{3} c_{23}" in en

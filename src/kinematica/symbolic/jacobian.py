@@ -3,7 +3,8 @@
 Column i is ``[z × (p − o); z]`` for a revolute joint, ``[z; 0]`` for a prismatic
 one, with ``p`` the tool origin and ``z``, ``o`` the axis of joint i and a point
 on it, all in the world (base) frame: the same as ``robot.jacobian(q)``. The
-axis of joint i is the z axis of DH frame i−1 in the standard convention (its
+top half is also ``∂p/∂q_i``, the form the textbook result uses. The axis of
+joint i is the z axis of DH frame i−1 in the standard convention (its
 ``Rot(z, θi)`` comes first in row i) and of frame i in the modified one (row i
 ends with ``Rot(z, θi) · Tras(z, di)``, so frame i's origin is on the axis too).
 """
@@ -35,7 +36,7 @@ def jacobian(robot: RobotLike, simplify: bool = True) -> sp.Matrix:
     model = symbolic_robot(robot)
     prefix = [sp.Matrix(model.base)]  # base · 0A1 ··· (k-1)Ak, no tool
     for A in link_matrices(model):
-        prefix.append(prefix[-1] * A)
+        prefix.append(tidy(prefix[-1] * A) if simplify else prefix[-1] * A)
     p = (prefix[-1] * sp.Matrix(model.tool))[:3, 3]
     columns = []
     for i, row in enumerate(model.rows):
@@ -46,4 +47,9 @@ def jacobian(robot: RobotLike, simplify: bool = True) -> sp.Matrix:
         else:
             columns.append(sp.Matrix.vstack(z.cross(p - o), z))
     J = sp.Matrix.hstack(*columns)
-    return tidy(J) if simplify else J
+    if not simplify:
+        return J
+    # The position rows are also ∂p/∂q (the tool origin's velocity): the derivative of
+    # p's textbook form folds better than the cross products, whose c1² + s1² stay.
+    J[:3, :] = tidy(sp.Matrix(p).jacobian(list(model.q)), fold=False)
+    return tidy(J, fold=False)
