@@ -180,7 +180,9 @@ def test_joint_axes_default_to_zero_configuration() -> None:
 
 def test_jacobian_bad_input() -> None:
     robot = MIXED.build()
-    with pytest.raises(KinematicaError, match="frame must be 'base' or 'tool', got 'world'"):
+    with pytest.raises(
+        KinematicaError, match="frame must be 'base', 'tool' or 'spatial', got 'world'"
+    ):
         robot.jacobian(np.zeros(4), frame="world")  # type: ignore[arg-type]
     with pytest.raises(DimensionError, match="must hold 4 joint values"):
         robot.jacobian(np.zeros(3))

@@ -41,8 +41,12 @@ if TYPE_CHECKING:  # the names below load on first use: `import kinematica` stay
         cartesian_path,
         cartesian_via_path,
         condition_number,
+        ellipsoid,
+        hessian,
+        jacobian_dot,
         joint_trajectory,
         manipulability,
+        resolved_rate,
         via_trajectory,
     )
     from kinematica.motion.workspace import (
@@ -143,6 +147,10 @@ _LAZY = {
     "joint_trajectory": "kinematica.motion",
     "manipulability": "kinematica.motion",
     "via_trajectory": "kinematica.motion",
+    "ellipsoid": "kinematica.motion",
+    "hessian": "kinematica.motion",
+    "jacobian_dot": "kinematica.motion",
+    "resolved_rate": "kinematica.motion",
 }
 #: Subpackages reachable as attributes (``km.ik``, ``km.spatial``...) before anything imported them.
 _SUBPACKAGES = frozenset(
@@ -206,10 +214,13 @@ __all__ = [
     "classify",
     "compose",
     "condition_number",
+    "ellipsoid",
     "euler_from_matrix",
     "from_pose",
     "gimbal_locked",
+    "hessian",
     "inv_transform",
+    "jacobian_dot",
     "joint_trajectory",
     "link_matrix",
     "load",
@@ -224,6 +235,7 @@ __all__ = [
     "quat_multiply",
     "quat_slerp",
     "read_robot_file",
+    "resolved_rate",
     "robot_from_spec",
     "rotation_angle",
     "rotvec_from_matrix",

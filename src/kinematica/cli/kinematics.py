@@ -250,6 +250,7 @@ def ik(args: argparse.Namespace) -> int:
                 "units": units(robot, args),
                 "solutions": clean(q_out(robot, res.solutions, args)),
                 "branches": list(res.branches),
+                "letters": list(res.letters),
                 "residuals": {
                     "position_m": clean(res.residuals[:, 0]),
                     "rotation_rad": clean(res.residuals[:, 1]),

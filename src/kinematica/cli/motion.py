@@ -70,6 +70,8 @@ def jacobian(args: argparse.Namespace) -> int:
     J = robot.jacobian(q, frame=args.frame)
     rank, generic = jacobian_rank(robot, q)
     w = float(manipulability(robot, q))
+    inverse_condition = float(manipulability(robot, q, method="inverse_condition"))
+    min_singular = float(manipulability(robot, q, method="min_singular"))
     cond = float(condition_number(robot, q))
     sing = singularities(robot, q, detail=True)
     Ja = analytic_jacobian(robot, q, args.euler) if args.analytic else None
@@ -83,6 +85,8 @@ def jacobian(args: argparse.Namespace) -> int:
             "rank": rank,
             "generic_rank": generic,
             "manipulability": w,
+            "inverse_condition": inverse_condition,
+            "min_singular_value": min_singular,
             "condition_number": _safe(cond),
             "singularities": [
                 {"name": s.name, "direction": _safe(s.direction), "measure": s.measure}
@@ -101,10 +105,14 @@ def jacobian(args: argparse.Namespace) -> int:
     )
     print(matrix(J))
     if Ja is not None:
-        print(f"\nanalytic Jacobian (x y z, Euler {args.euler} angles):")
+        rates = "rotation vector" if args.euler == "exp" else f"Euler {args.euler} angles"
+        print(f"\nanalytic Jacobian (x y z, {rates}):")
         print(matrix(Ja))
     print(f"\nrank {rank} (regular: {generic})")
-    print(f"manipulability {fmt(w, 6)}, condition number {cond:.4g}")
+    print(
+        f"manipulability {fmt(w, 6)} (Yoshikawa), inverse condition {fmt(inverse_condition, 6)}, "
+        f"smallest singular value {fmt(min_singular, 6)}, condition number {cond:.4g}"
+    )
     if not sing:
         print("singularities: none")
     for s in sing:
@@ -382,8 +390,14 @@ def register(sub: Any) -> None:
     p = sub.add_parser("jacobian", help="Jacobian, rank, manipulability, named singularities")
     add_robot(p)
     p.add_argument("--q", nargs="+", type=float, required=True, metavar="Q", help=qhelp)
-    p.add_argument("--frame", choices=("base", "tool"), default="base", help="frame of J")
-    p.add_argument("--analytic", action="store_true", help="also the analytic Jacobian for --euler")
+    p.add_argument(
+        "--frame", choices=("base", "tool", "spatial"), default="base", help="frame of J"
+    )
+    p.add_argument(
+        "--analytic",
+        action="store_true",
+        help="also the analytic Jacobian for --euler (--euler exp: rotation-vector rates)",
+    )
     add_common(p)
     p.set_defaults(run=jacobian)
 

@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.cli.options import add_common, add_robot, dump, q_in, robot_from_args
-from kinematica.errors import DimensionError, UnreachableError
+from kinematica.errors import DimensionError, KinematicaError, UnreachableError
 from kinematica.spatial import from_pose
 
 __all__ = ["animate", "plot", "register", "view"]
@@ -44,6 +44,10 @@ def plot(args: argparse.Namespace) -> int:
     solutions = args.solutions or any(v is not None for v in given)
     if q is None and not any(v is not None for v in given):
         raise DimensionError("plot needs --q Q... (or a target: --pose, --matrix, --position)")
+    if solutions and args.ellipsoid is not None:
+        raise KinematicaError(
+            "--ellipsoid draws one configuration (--q), not IK solutions of a target"
+        )
     out: dict[str, Any] = {"robot": robot.name, "kind": "solutions" if solutions else "arm"}
     if solutions:
         target = robot.fk(q) if q is not None else _target(args)
@@ -78,7 +82,17 @@ def plot(args: argparse.Namespace) -> int:
             dpi=args.dpi,
             title=f"{robot.name}   q = [{', '.join(f'{v:g}' for v in args.q)}] "
             f"({'rad' if args.rad else 'deg'}, m)",
+            ellipsoid=args.ellipsoid,
         )
+        if args.ellipsoid is not None:
+            from kinematica.motion import ellipsoid
+
+            e = ellipsoid(robot, q, args.ellipsoid)
+            out["ellipsoid"] = {
+                "kind": args.ellipsoid,
+                "radii": e.radii.tolist(),
+                "directions": e.directions.tolist(),
+            }
     out.update(output=str(path), size=list(size))
     if args.json:
         dump(out)
@@ -216,6 +230,11 @@ def register(sub: Any) -> None:
     )
     p.add_argument(
         "--ignore-limits", action="store_true", help="with --solutions: outside the limits too"
+    )
+    p.add_argument(
+        "--ellipsoid",
+        choices=("velocity", "force"),
+        help="also draw the tool point's velocity or force ellipsoid (with --q)",
     )
     p.add_argument(
         "-o", "--output", default="arm.png", help="PNG, SVG or PDF file (default arm.png)"

@@ -12,6 +12,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.errors import UnreachableError
+from kinematica.ik.letters import toolbox_letters
 from kinematica.ik.status import STATUS_NAMES, IKStatus, status_message
 
 __all__ = ["NEAR_NOTE", "CheckOutput", "CoreAnswer", "IKBatchResult", "IKResult", "result_of"]
@@ -88,6 +89,16 @@ class IKResult:
         if self.near_singular and self.status in (IKStatus.OK, IKStatus.SINGULAR):
             notes = (*notes, NEAR_NOTE)
         return "; ".join((text, *notes))
+
+    @property
+    def letters(self) -> tuple[str, ...]:
+        """``(k,)`` the branch labels in the Robotics Toolbox's letters (``"ruf"``...).
+
+        ``l/r`` shoulder, ``u/d`` elbow, ``n/f`` wrist in the Toolbox's meaning,
+        where ``f`` is kinematica's ``"wrist no-flip"``
+        (see :mod:`kinematica.ik.letters`).
+        """
+        return tuple(toolbox_letters(b) for b in self.branches)
 
     @property
     def count(self) -> int:
@@ -208,8 +219,9 @@ class IKBatchResult:
         mask = mask.reshape(*mask.shape, *([1] * (values.ndim - 2)))
         return self._shaped(np.where(mask, got, fill))
 
-    def _names(self, first: bool) -> NDArray[np.str_]:
-        names = np.array([*self.labels, ""], dtype=str)  # slot -1 -> ""
+    def _names(self, first: bool, letters: bool = False) -> NDArray[np.str_]:
+        labels = [toolbox_letters(b) for b in self.labels] if letters else self.labels
+        names = np.array([*labels, ""], dtype=str)  # slot -1 -> ""
         idx, mask = self._rows(first)
         slots = np.take_along_axis(self.raw.slot, idx, 1)
         return self._shaped(np.where(mask, names[slots], ""))
@@ -228,6 +240,14 @@ class IKBatchResult:
     def branches(self) -> NDArray[np.str_]:
         """``(..., k)`` their branch labels, ``""`` where padded."""
         return self._names(True)
+
+    @cached_property
+    def letters(self) -> NDArray[np.str_]:
+        """``(..., k)`` the branch labels in the Robotics Toolbox's letters, ``""`` where padded.
+
+        See :attr:`IKResult.letters`.
+        """
+        return self._names(True, letters=True)
 
     @cached_property
     def out_of_limits(self) -> FloatArray:

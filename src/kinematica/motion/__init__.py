@@ -1,9 +1,10 @@
-"""Motion: velocity kinematics, named singularities, workspace, trajectories.
+"""Motion: velocity kinematics, named singularities, workspace, trajectories, control.
 
 Layer 6: built on the robot and ik layers (public API only); numpy only. The
-velocity kinematics, the named singularities and the sampling of joint space
-live in the robot layer (``Robot.jacobian(euler=)``, ``Robot.singularities``,
-``Robot.random_q`` are thin methods over them) and are re-exported here.
+velocity kinematics (measures, ellipsoids, Hessian and J̇), the named
+singularities and the sampling of joint space live in the robot layer
+(``Robot.jacobian(euler=)``, ``Robot.singularities``, ``Robot.random_q`` are
+thin methods over them) and are re-exported here.
 """
 
 from kinematica.motion.cartesian import (
@@ -13,6 +14,7 @@ from kinematica.motion.cartesian import (
     cartesian_path,
 )
 from kinematica.motion.cartesian_via import ROTATION_LENGTH, cartesian_via_path
+from kinematica.motion.control import RateControl, resolved_rate
 from kinematica.motion.export import read_csv, write_csv, write_json
 from kinematica.motion.piecewise import PiecewisePolynomial
 from kinematica.motion.trajectory import (
@@ -23,6 +25,8 @@ from kinematica.motion.trajectory import (
 )
 from kinematica.motion.via import via_polynomials, via_trajectory
 from kinematica.motion.workspace import Workspace, WorkspaceSlice, workspace
+from kinematica.robot.differential import exp_jacobian, hessian, jacobian_dot
+from kinematica.robot.ellipsoid import Ellipsoid, ellipsoid
 from kinematica.robot.sampling import random_q
 from kinematica.robot.singularities import (
     ELBOW_TOL,
@@ -33,7 +37,12 @@ from kinematica.robot.singularities import (
     jacobian_rank,
     singularities,
 )
-from kinematica.robot.velocity import analytic_jacobian, condition_number, manipulability
+from kinematica.robot.velocity import (
+    analytic_jacobian,
+    condition_number,
+    manipulability,
+    manipulability_gradient,
+)
 
 __all__ = [
     "ELBOW_TOL",
@@ -43,9 +52,11 @@ __all__ = [
     "SHOULDER_TOL",
     "WRIST_TOL",
     "CartesianPath",
+    "Ellipsoid",
     "JointTrajectory",
     "PathEvent",
     "PiecewisePolynomial",
+    "RateControl",
     "Singularity",
     "Workspace",
     "WorkspaceSlice",
@@ -53,12 +64,18 @@ __all__ = [
     "cartesian_path",
     "cartesian_via_path",
     "condition_number",
+    "ellipsoid",
+    "exp_jacobian",
+    "hessian",
+    "jacobian_dot",
     "jacobian_rank",
     "joint_trajectory",
     "manipulability",
+    "manipulability_gradient",
     "minimum_time",
     "random_q",
     "read_csv",
+    "resolved_rate",
     "singularities",
     "time_scaling",
     "via_polynomials",

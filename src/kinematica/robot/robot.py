@@ -50,7 +50,7 @@ __all__ = ["Robot"]
 FloatArray = NDArray[np.float64]
 _FLOAT64 = np.dtype(np.float64)
 #: The frames a Jacobian is expressed in.
-_FRAMES = ("base", "tool")
+_FRAMES = ("base", "tool", "spatial")
 #: Where a position target is placed (the orientation is free).
 _IDENTITY = np.eye(4)
 #: What the core says of one configuration (kinematica._core.Chain.fk).
@@ -346,7 +346,7 @@ class Robot:
     def jacobian(
         self,
         q: ArrayLike,
-        frame: Literal["base", "tool"] = "base",
+        frame: Literal["base", "tool", "spatial"] = "base",
         euler: str | None = None,
         *,
         workers: int | None = None,
@@ -355,18 +355,23 @@ class Robot:
 
         Rows 0-2 map joint rates to the linear velocity of the tool origin, rows
         3-5 to the angular velocity, both expressed in the base frame
-        (``frame="base"``) or in the tool frame (``frame="tool"``). Column i is
-        ``[z × (p - o); z]`` for a revolute joint with axis ``z`` through ``o``,
-        ``[z; 0]`` for a prismatic one.
+        (``frame="base"``) or in the tool frame (``frame="tool"``, the body
+        Jacobian). Column i is ``[z × (p - o); z]`` for a revolute joint with
+        axis ``z`` through ``o``, ``[z; 0]`` for a prismatic one.
+        ``frame="spatial"``: the spatial (world) Jacobian, rows 0-2 the velocity
+        of the body point at the base origin, ``ṗ + p × ω`` (column i
+        ``[o × z; z]``); see :func:`kinematica.robot.differential.spatial_from_base`.
 
         With ``euler`` (e.g. ``"ZYZ"``): the analytic Jacobian of the pose
         ``(x, y, z, a, b, c)`` instead, base frame only; NaN rotation rows in
         gimbal lock. See :func:`kinematica.robot.velocity.analytic_jacobian`.
+        ``euler="exp"``: the rates of the position and the rotation vector
+        (exponential coordinates), :func:`kinematica.robot.differential.exp_jacobian`.
 
         Args:
             q: ``(..., n)`` joint values.
-            frame: ``"base"`` or ``"tool"``.
-            euler: An Euler sequence for the analytic Jacobian, or None.
+            frame: ``"base"``, ``"tool"`` or ``"spatial"``.
+            euler: An Euler sequence or ``"exp"`` for the analytic Jacobian, or None.
             workers: Threads for a batch (None: the library default).
 
         Returns:
@@ -385,6 +390,10 @@ class Robot:
             from kinematica.robot.velocity import analytic_jacobian
 
             return analytic_jacobian(self, q, euler)
+        if frame == "spatial":
+            from kinematica.robot.differential import spatial_from_base
+
+            return spatial_from_base(self.jacobian(q, workers=workers), self.fk(q)[..., :3, 3])
         qa = q if type(q) is np.ndarray and q.dtype is _FLOAT64 else self.check_q(q)
         if qa.shape == self._single:
             try:

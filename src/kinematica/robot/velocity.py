@@ -1,6 +1,6 @@
 """Velocity kinematics: analytic Jacobian, manipulability, condition number.
 
-All three are functions of the geometric Jacobian ``J = robot.jacobian(q)``
+All are functions of the geometric Jacobian ``J = robot.jacobian(q)``
 (``(..., 6, n)``, base frame: rows ``vx, vy, vz`` of the tool origin, then
 ``ωx, ωy, ωz``).
 """
@@ -20,7 +20,16 @@ from kinematica.spatial import euler_from_matrix, euler_rate_matrix, gimbal_lock
 if TYPE_CHECKING:
     from kinematica.robot import Robot
 
-__all__ = ["Axes", "analytic_jacobian", "condition_number", "manipulability", "task_rows"]
+__all__ = [
+    "Axes",
+    "ManipulabilityMethod",
+    "analytic_jacobian",
+    "condition_number",
+    "manipulability",
+    "manipulability_gradient",
+    "selected_rows",
+    "task_rows",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -29,6 +38,14 @@ FloatArray = NDArray[np.float64]
 #: ``"task"``: the rows :func:`kinematica.robot.singularities.singularities` judges (position rows
 #: for arms whose whole mobility shows in the tool position, else all six).
 Axes = Literal["all", "trans", "rot", "task"] | Sequence[int]
+
+#: A manipulability measure over the singular values ``σ1 >= ... >= σr`` of the
+#: selected rows: ``"yoshikawa"`` ``σ1···σr`` (the ellipsoid's volume measure),
+#: ``"inverse_condition"`` ``σr/σ1`` (isotropy, 1 for a sphere, unit-free) and
+#: ``"min_singular"`` ``σr`` (the slowest direction's speed per unit joint rate).
+ManipulabilityMethod = Literal["yoshikawa", "inverse_condition", "min_singular"]
+
+_METHODS = ("yoshikawa", "inverse_condition", "min_singular")
 
 _ROWS = {"all": (0, 1, 2, 3, 4, 5), "trans": (0, 1, 2), "rot": (3, 4, 5)}
 
@@ -54,15 +71,18 @@ def task_rows(axes: Axes) -> tuple[int, ...]:
     return rows
 
 
-def _singular_values(robot: Robot, q: ArrayLike, axes: Axes) -> FloatArray:
-    """``(..., min(m, n))`` singular values of the selected rows of ``J(q)``, descending."""
+def selected_rows(robot: Robot, axes: Axes) -> tuple[int, ...]:
+    """The Jacobian row indices ``axes`` names for ``robot`` (``"task"`` included)."""
     if isinstance(axes, str) and axes == "task":
         from kinematica.robot.singularities import task_plan_rows
 
-        rows = task_plan_rows(robot)
-    else:
-        rows = task_rows(axes)
-    J = robot.jacobian(q)[..., rows, :]
+        return tuple(task_plan_rows(robot))
+    return task_rows(axes)
+
+
+def _singular_values(robot: Robot, q: ArrayLike, axes: Axes) -> FloatArray:
+    """``(..., min(m, n))`` singular values of the selected rows of ``J(q)``, descending."""
+    J = robot.jacobian(q)[..., selected_rows(robot, axes), :]
     finite = np.isfinite(J).all(axis=(-2, -1))
     if finite.all():
         out: FloatArray = np.asarray(np.linalg.svd(J, compute_uv=False), dtype=np.float64)
@@ -74,8 +94,10 @@ def _singular_values(robot: Robot, q: ArrayLike, axes: Axes) -> FloatArray:
     return out
 
 
-def manipulability(robot: Robot, q: ArrayLike, axes: Axes = "all") -> FloatArray:
-    """Yoshikawa's manipulability: the volume measure of the velocity ellipsoid.
+def manipulability(
+    robot: Robot, q: ArrayLike, axes: Axes = "all", method: ManipulabilityMethod = "yoshikawa"
+) -> FloatArray:
+    """Manipulability: by default Yoshikawa's, the volume measure of the velocity ellipsoid.
 
     ``w = σ1 · σ2 · ... · σr`` over the singular values of the selected rows
     ``Jt`` of the geometric Jacobian (``r = min(m, n)`` for ``m`` rows). With
@@ -90,17 +112,62 @@ def manipulability(robot: Robot, q: ArrayLike, axes: Axes = "all") -> FloatArray
     With ``"all"`` on a 6R arm, rows in m/rad and rad/rad are mixed: ``w``
     then depends on the length unit (it is still zero exactly at singularities).
 
+    ``method`` picks another measure of the same singular values ``σ1 >= ... >= σr``:
+    ``"inverse_condition"`` gives ``σr/σ1`` (1 for an isotropic arm, 0 at a
+    singularity, independent of the arm's size), ``"min_singular"`` gives
+    ``σr``, the tool's speed along its slowest direction per unit joint rate.
+
     Args:
         robot: The robot.
         q: ``(..., n)`` joint values (rad, m).
         axes: ``"all"`` (default), ``"trans"``, ``"rot"``, ``"task"`` (the
             rows the singularity test judges) or row indices.
+        method: ``"yoshikawa"`` (default), ``"inverse_condition"`` or ``"min_singular"``.
 
     Returns:
         ``(...)`` manipulability, >= 0.
     """
+    if method not in _METHODS:
+        raise KinematicaError(
+            f"method must be 'yoshikawa', 'inverse_condition' or 'min_singular', got {method!r}",
+            arg="method",
+        )
     s = _singular_values(robot, q, axes)
+    if method == "min_singular":
+        return s[..., -1].copy()
+    if method == "inverse_condition":
+        with np.errstate(divide="ignore", invalid="ignore"):
+            inv: FloatArray = np.where(s[..., 0] > 0.0, s[..., -1] / s[..., 0], 0.0)
+        return inv
     out: FloatArray = np.prod(s, axis=-1)
+    return out
+
+
+def manipulability_gradient(robot: Robot, q: ArrayLike, axes: Axes = "all") -> FloatArray:
+    """Gradient of Yoshikawa's manipulability with respect to the joints.
+
+    ``∂w/∂q_j = w · tr(Jt⁺ · ∂Jt/∂q_j)`` (the derivative of ``log det``; Haviland
+    & Corke's eq. for the manipulability Jacobian), with ``∂Jt/∂q_j`` from the
+    Hessian (:func:`kinematica.robot.differential.hessian`) and ``Jt`` the
+    selected rows. It points towards larger ``w``: the null-space objective of
+    :func:`kinematica.motion.resolved_rate` climbs it. Where the rows lose rank
+    ``w`` has a kink (as ``|x|`` at 0) and the gradient returned is 0.
+
+    Args:
+        robot: The robot.
+        q: ``(..., n)`` joint values (rad, m).
+        axes: Rows, as for :func:`manipulability`.
+
+    Returns:
+        ``(..., n)``, units of ``w`` per rad (or per m).
+    """
+    from kinematica.robot.differential import hessian
+
+    rows = selected_rows(robot, axes)
+    Jt = robot.jacobian(q)[..., rows, :]
+    H = hessian(robot, q)[..., rows, :, :]
+    w = np.prod(np.linalg.svd(Jt, compute_uv=False), axis=-1)
+    out: FloatArray = w[..., None] * np.einsum("...ia,...aij->...j", np.linalg.pinv(Jt), H)
     return out
 
 
@@ -145,11 +212,17 @@ def analytic_jacobian(robot: Robot, q: ArrayLike, euler: str = "ZYZ") -> FloatAr
         robot: The robot.
         q: ``(..., n)`` joint values (rad, m).
         euler: Euler sequence, scipy naming (``"ZYZ"`` intrinsic, ``"xyz"``
-            extrinsic, ...).
+            extrinsic, ...), or ``"exp"`` for exponential coordinates (the
+            rotation vector's rates, no representation singularity below π:
+            :func:`kinematica.robot.differential.exp_jacobian`).
 
     Returns:
         ``(..., 6, n)``: rows 0-2 m/rad (or m/m), rows 3-5 rad/rad.
     """
+    if euler == "exp":
+        from kinematica.robot.differential import exp_jacobian
+
+        return exp_jacobian(robot, q)
     J = robot.jacobian(q)
     R = robot.fk(q)[..., :3, :3]
     locked = np.asarray(gimbal_locked(R, euler))

@@ -8,6 +8,7 @@ numbers), a built-in name or a robot-file path (named parameters stay symbols)::
 
     symbolic.link_matrices("arm6-dh")       # [0A1, 1A2, ...] in q1 ... q6, l1 ... l4
     symbolic.short(symbolic.position("anthropomorphic-3r"))   # c1*(L2*c2 + L3*c23), ...
+    symbolic.jacobian("anthropomorphic-3r")                    # (6, 3) geometric Jacobian
     print(symbolic.report("arm6-dh", format="markdown", lang="es"))
 """
 
@@ -20,6 +21,7 @@ except ImportError as exc:  # pragma: no cover - depends on the installation
         "kinematica.symbolic needs sympy: pip install 'kinematica[symbolic]'"
     ) from exc
 
+from kinematica.symbolic.jacobian import jacobian
 from kinematica.symbolic.kinematics import (
     Factor,
     factors,
@@ -50,6 +52,7 @@ __all__ = [
     "factors",
     "fk",
     "frames",
+    "jacobian",
     "lambdify",
     "link_factors",
     "link_matrices",

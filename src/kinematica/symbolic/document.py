@@ -15,6 +15,7 @@ import sympy as sp
 from kinematica.robot import classify
 from kinematica.symbolic.geometric import GeometricDerivation, derive_geometric
 from kinematica.symbolic.inverse import InverseDerivation, derive_inverse, target_symbols
+from kinematica.symbolic.jacobian import jacobian
 from kinematica.symbolic.kinematics import Factor, factors, frames, link_matrices
 from kinematica.symbolic.model import SymbolicRobot
 from kinematica.symbolic.notation import short
@@ -25,6 +26,10 @@ __all__ = ["Block", "Equations", "Heading", "Notation", "Para", "Table", "build"
 
 #: A matrix whose entries print longer than this (LaTeX characters) is shown entry by entry.
 MAX_ENTRY_CHARS = 48
+#: Largest arm whose report shows the geometric Jacobian: a redundant arm's columns
+#: take seconds more to put in textbook form (the Panda's about 7 s) for entries too
+#: long to read; kinematica.symbolic.jacobian still gives them.
+MAX_JACOBIAN_DOF = 6
 
 
 @dataclass(frozen=True)
@@ -215,6 +220,15 @@ def _forward(w: _Writer, model: SymbolicRobot) -> sp.Matrix:
     return T
 
 
+def _jacobian(w: _Writer, model: SymbolicRobot) -> None:
+    w.heading(2, "h.jacobian")
+    w.para(f"jacobian.{model.convention}")
+    J = jacobian(model)
+    for i in range(model.dof):
+        names = sp.Matrix([sp.Symbol(f"J_{k}{i + 1}") for k in range(1, 7)])
+        w.matrix(sp.Symbol(f"J_{i + 1}"), J[:, i], names)
+
+
 def _factor_name(f: Factor) -> Notation:
     """``Rot(z, q2 + pi/2)``, ``Tras(x, l2)`` in the three forms."""
     return Notation(
@@ -367,6 +381,8 @@ def build(model: SymbolicRobot, lang: str) -> list[Block]:
     structure = classify(model.robot)
     w.para("structure", summary=structure_summary(structure, lang))
     _forward(w, model)
+    if model.dof <= MAX_JACOBIAN_DOF:
+        _jacobian(w, model)
     geo = derive_geometric(model)
     if geo is not None:
         _geometric(w, geo, model)

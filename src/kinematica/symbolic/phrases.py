@@ -88,6 +88,36 @@ PHRASES: Final[dict[str, tuple[str, str]]] = {
         "Las tres primeras columnas de T (vectores n, o, a del extremo):",
         "The first three columns of T (the end effector's n, o, a vectors):",
     ),
+    # ---------------------------------------------------------------- jacobian
+    "h.jacobian": ("Jacobiano geométrico", "Geometric Jacobian"),
+    "jacobian.standard": (
+        "Si la articulación i es de rotación, la columna i del jacobiano tiene arriba "
+        "el producto vectorial de z por p - o y abajo z; si es prismática, arriba z y "
+        "abajo ceros. Aquí z es el eje z del sistema i-1 (el eje de la articulación i), "
+        "o su origen y p la posición del extremo, todo en la base. Las tres primeras "
+        "filas dan la velocidad lineal del extremo (son también las derivadas de su "
+        "posición), las tres últimas la angular:",
+        "For a revolute joint i, column i of the Jacobian holds the cross product of z "
+        "with p - o above z; for a prismatic one, z above zeros. Here z is the z axis of "
+        "frame i-1 (joint i's axis), o its origin and p the end effector's position, all "
+        "in the base frame. The first three rows give the end effector's linear velocity "
+        "(they are also the derivatives of its position), the last three its angular "
+        "velocity:",
+    ),
+    "jacobian.modified": (
+        "Si la articulación i es de rotación, la columna i del jacobiano tiene arriba "
+        "el producto vectorial de z por p - o y abajo z; si es prismática, arriba z y "
+        "abajo ceros. Aquí z es el eje z del sistema i (el eje de la articulación i en la "
+        "convención modificada), o su origen y p la posición del extremo, todo en la "
+        "base. Las tres primeras filas dan la velocidad lineal del extremo (son también "
+        "las derivadas de su posición), las tres últimas la angular:",
+        "For a revolute joint i, column i of the Jacobian holds the cross product of z "
+        "with p - o above z; for a prismatic one, z above zeros. Here z is the z axis of "
+        "frame i (joint i's axis in the modified convention), o its origin and p the end "
+        "effector's position, all in the base frame. The first three rows give the end "
+        "effector's linear velocity (they are also the derivatives of its position), the "
+        "last three its angular velocity:",
+    ),
     # ---------------------------------------------------------------- geometric
     "h.geometric": ("Método geométrico", "Geometric method"),
     "geo.planar": (

@@ -15,8 +15,10 @@ from kinematica.errors import DimensionError, UnreachableError
 from kinematica.ik.result import IKResult
 from kinematica.io.atomic import atomic_path, write_failed
 from kinematica.robot import Robot
+from kinematica.robot.ellipsoid import EllipsoidKind
 from kinematica.viz._mpl import VizError, check_picture, equal_limits, figure, is_3d, new_axes
 from kinematica.viz.arm import ArmDrawing, extent_points
+from kinematica.viz.ellipsoid import draw_ellipsoid
 from kinematica.viz.geometry import ArmPose, arm_pose, drawing_plane, robot_scale
 
 __all__ = ["IMAGE_SUFFIXES", "plot", "plot_solutions", "save_figure", "save_plot", "save_solutions"]
@@ -227,14 +229,26 @@ def save_plot(
     size: tuple[int, int] = (800, 700),
     dpi: float = 100.0,
     title: str | None = None,
+    ellipsoid: EllipsoidKind | None = None,
 ) -> Path:
-    """:func:`plot` into a file of ``size`` pixels (PNG, SVG, PDF...), without pyplot."""
+    """:func:`plot` into a file of ``size`` pixels (PNG, SVG, PDF...), without pyplot.
+
+    ``ellipsoid="velocity"`` or ``"force"`` also draws that ellipsoid of the tool
+    point (scaled to the arm: :func:`kinematica.viz.ellipsoid.draw_ellipsoid`);
+    the title then states the scale.
+    """
     qa = one_q(robot, q)
     fig = figure(*size, dpi, pyplot_managed=False)
     plane = drawing_plane(robot)
     ax = new_axes(fig, plane is None)
-    draw_arm(ax, robot, arm_pose(robot, qa), plane, frames=frames, labels=labels)
-    ax.set_title(title if title is not None else robot.name, fontsize=10)
+    extra = None
+    text = title if title is not None else robot.name
+    if ellipsoid is not None:
+        extra, scale = draw_ellipsoid(ax, robot, qa, ellipsoid, plane)
+        unit = "m/s per rad/s" if ellipsoid == "velocity" else "N per N·m"
+        text += f"\n{ellipsoid} ellipsoid of the tool point, drawn at {scale:.3g} m per ({unit})"
+    draw_arm(ax, robot, arm_pose(robot, qa), plane, frames=frames, labels=labels, extra=extra)
+    ax.set_title(text, fontsize=10)
     tight_single(fig, plane is None)
     return save_figure(fig, path)
 
