@@ -1,4 +1,4 @@
-"""Near-degenerate arms: a closed form's answers, completed by the numeric search.
+"""Closed forms that may miss a solution: their answers, completed by the numeric search.
 
 An arm whose axes are parallel, perpendicular or meeting only to within the line
 geometry's tolerances (:mod:`kinematica.dh.lines`) is solved by the closed form of
@@ -9,6 +9,10 @@ difference (:attr:`~kinematica.ik.structure.Features.slack`). So its results are
 marked incomplete, "unreachable" needs a gap beyond that slack, and a target
 for which no candidate survives the check goes to the numeric search, whose
 answer, whatever it is, is about the real arm.
+
+A partial closed form (position targets of longer arms: its candidates hold joints
+4..n at 0) may miss a target that other values of those joints reach: a target
+none of its candidates solved goes to the numeric search too.
 """
 
 from __future__ import annotations
@@ -22,7 +26,14 @@ import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.ik.structure import features
 
-__all__ = ["FALLBACK_NOTE", "INCOMPLETE_NOTE", "merge_batch", "needs_search", "slack_of"]
+__all__ = [
+    "FALLBACK_NOTE",
+    "INCOMPLETE_NOTE",
+    "PARTIAL_NOTE",
+    "merge_batch",
+    "needs_search",
+    "slack_of",
+]
 
 #: Said of a closed form's result on a near-degenerate arm.
 INCOMPLETE_NOTE = (
@@ -33,6 +44,12 @@ INCOMPLETE_NOTE = (
 FALLBACK_NOTE = (
     "the arm's axes have its closed form's structure only to within the tolerances of the "
     "line geometry, and no candidate of the closed form solved this target: "
+    "the numeric search answered"
+)
+
+#: Said of a target a partial closed form found nothing for, answered by the numeric search.
+PARTIAL_NOTE = (
+    "no configuration of the closed form (joints 4 onwards at 0) reaches this target: "
     "the numeric search answered"
 )
 

@@ -22,6 +22,7 @@ from kinematica.ik.analytic import SOLVERS
 from kinematica.ik.fallback import (
     FALLBACK_NOTE,
     INCOMPLETE_NOTE,
+    PARTIAL_NOTE,
     merge_batch,
     needs_search,
     slack_of,
@@ -121,6 +122,7 @@ def _options(
         opts.complete = complete
         opts.weights = weights
         opts.gap_slack = gap_slack
+        opts.repair = gap_slack > 0.0  # a near-degenerate arm: its family's closed form
         if len(_OPTIONS) < 64:
             _OPTIONS[key] = opts
     return opts
@@ -136,7 +138,7 @@ class PoseSolver(NamedTuple):
         method: The method name results carry.
         complete: It gives every solution (a closed form).
         direct: Its answer is the whole answer (False for a closed form on a
-            near-degenerate arm: see :mod:`kinematica.ik.fallback`).
+            near-degenerate arm, or a partial one: see :mod:`kinematica.ik.fallback`).
     """
 
     ik_rigid: Any
@@ -162,7 +164,7 @@ def pose_solver(chain: Chain, kind: TargetKind = "pose") -> PoseSolver:
     solver, labels, name = _solver(chain, closed, tolerance, True, None, w)
     complete = closed is not None
     opts = _options(tolerance, True, complete, w)
-    direct = closed is None or slack_of(chain) == 0.0
+    direct = closed is None or (slack_of(chain) == 0.0 and not closed.partial)
     return PoseSolver(solver.ik_rigid, opts, labels, name, complete, direct)
 
 
@@ -222,7 +224,11 @@ def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | 
     complete = closed is not None and slack == 0.0
     opts = _options(tolerance, respect_limits, complete, w, slack)
 
-    def search() -> tuple[Any, _core.CheckOptions]:  # a near-degenerate arm's second method
+    # a closed form that may miss a solution: a target it found nothing for is searched
+    partial = closed is not None and closed.partial
+    searched_note = FALLBACK_NOTE if slack else PARTIAL_NOTE
+
+    def search() -> tuple[Any, _core.CheckOptions]:  # the second method
         found = _solver(chain, None, tolerance, respect_limits, seed, w)[0]
         return found, _options(tolerance, respect_limits, False, w)
 
@@ -230,12 +236,13 @@ def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | 
         q0 = None if q0s is None else q0s[0]
         out: CoreAnswer = solver.ik(chain.core, targets.poses[0], opts, q0, labels)
         notes = targets.notes.get(0, ()) if targets.notes else ()
-        if slack:
+        if slack or partial:
             if needs_search(out[-1][0]):
                 numeric, nopts = search()
                 out = numeric.ik(chain.core, targets.poses[0], nopts, q0, (LABEL,))
-                return result_of(*out, "numeric:lm", False, (*notes, FALLBACK_NOTE))
-            notes = (*notes, INCOMPLETE_NOTE)
+                return result_of(*out, "numeric:lm", False, (*notes, searched_note))
+            if slack:
+                notes = (*notes, INCOMPLETE_NOTE)
         return result_of(*out, name, complete, notes)
     invalid = None
     if targets.invalid:
@@ -248,7 +255,8 @@ def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | 
         return tuple(int(v) for v in np.unravel_index(i, shape))
 
     batch_notes = {where(i): note for i, note in targets.notes.items()}
-    if slack:
+    methods: dict[tuple[int, ...], str] = {}
+    if slack or partial:
         rows = np.flatnonzero(needs_search(raw["status"]))
         if rows.size:
             numeric, nopts = search()
@@ -263,8 +271,10 @@ def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | 
             if i in targets.invalid:
                 continue
             idx = where(i)
-            note = FALLBACK_NOTE if i in searched_rows else INCOMPLETE_NOTE
-            batch_notes[idx] = (*batch_notes.get(idx, ()), note)
+            if i in searched_rows:
+                batch_notes[idx] = (*batch_notes.get(idx, ()), searched_note)
+            elif slack:
+                batch_notes[idx] = (*batch_notes.get(idx, ()), INCOMPLETE_NOTE)
     return IKBatchResult(
         raw=CheckOutput(**raw),
         method=name,
@@ -273,5 +283,5 @@ def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | 
         errors={where(i): msg for i, msg in targets.invalid.items()},
         notes=batch_notes,
         complete=complete,
-        methods=methods if slack else {},
+        methods=methods,
     )
