@@ -28,6 +28,12 @@ constexpr int POLISH_STEPS = 4;
 //! next to any singular value that matters, it keeps the normal equations solvable at a
 //! double root, where the Jacobian loses rank.
 constexpr double POLISH_DAMPING = 1e-12;
+//! Relative damping of the repair's steps: as the numeric search's smallest (lm.hpp's
+//! LAMBDA_MIN), far below the round-off of the normal matrix, so that a step moves along
+//! directions whose singular value is down to 1e-9 of the largest: near a singular q the
+//! residual a nearby arm leaves lies along them, and POLISH_DAMPING would freeze it. A
+//! step that round-off spoils raises the residual and is not kept.
+constexpr double REPAIR_DAMPING = 1e-21;
 //! Gauss-Newton steps at most for a candidate of a nearby arm (CheckOptions::repair).
 //! From a candidate within POLISH_LIMIT of a regular solution two or three steps reach
 //! round-off; at a double root (a fold) each step halves the distance, and twenty take
@@ -94,9 +100,9 @@ KM_HD inline void residual(const ChainView& ch, const double* q, const double* c
     r_err = std::sqrt(r2);
 }
 
-//! One Gauss-Newton step on q towards T (weighted rows only).
+//! One Gauss-Newton step on q towards T (weighted rows only), damped by lam (relative).
 KM_HD inline void gauss_newton_step(const ChainView& ch, double* q, const Pose& T,
-                                    const double* w, CheckWork& work) {
+                                    const double* w, double lam, CheckWork& work) {
     const int n = ch.n;
     double* c = work.c1.data();
     double* s = work.s1.data();
@@ -115,7 +121,7 @@ KM_HD inline void gauss_newton_step(const ChainView& ch, double* q, const Pose& 
             ++r;
         }
     }
-    damped_least_squares(Jr, r, n, er, POLISH_DAMPING, dq);
+    damped_least_squares(Jr, r, n, er, lam, dq);
     for (int j = 0; j < n; ++j) {
         q[j] += dq[j];
         if (!ch.joint[j].prismatic) q[j] = wrap(q[j]);
@@ -125,7 +131,9 @@ KM_HD inline void gauss_newton_step(const ChainView& ch, double* q, const Pose& 
 //! POLISH_STEPS Gauss-Newton steps on q towards T (weighted rows only).
 KM_HD inline void polish(const ChainView& ch, double* q, const Pose& T, const double* w,
                          CheckWork& work) {
-    for (int step = 0; step < POLISH_STEPS; ++step) gauss_newton_step(ch, q, T, w, work);
+    for (int step = 0; step < POLISH_STEPS; ++step) {
+        gauss_newton_step(ch, q, T, w, POLISH_DAMPING, work);
+    }
 }
 
 //! A candidate of a nearby arm carried to this arm's solution: Gauss-Newton steps from q
@@ -146,7 +154,7 @@ KM_HD inline void repair(const ChainView& ch, double* q, const Pose& T,
     int idle = 0;
     for (int step = 0; step < REPAIR_STEPS && best > REPAIR_QUIET && idle < REPAIR_PATIENCE;
          ++step) {
-        gauss_newton_step(ch, qt, T, w, work);
+        gauss_newton_step(ch, qt, T, w, REPAIR_DAMPING, work);
         joint_trig(ch, qt, work.c1.data(), work.s1.data());
         double p = INF, r = INF;
         residual(ch, qt, work.c1.data(), work.s1.data(), 1, T, w, p, r);
@@ -189,7 +197,7 @@ KM_HD inline CheckReport check(const ChainView& ch, const Pose& T, const double*
     double* res = work.res.data();
     double* key = work.key.data();
     int* state = work.state.data();
-    bool close = false;
+    bool close = false, lost = false;
     double near_p = NaN, near_r = NaN, near_score = INF;
     for (int j = 0; j < m; ++j) {
         state[j] = 0;
@@ -228,6 +236,10 @@ KM_HD inline CheckReport check(const ChainView& ch, const Pose& T, const double*
             }
         }
         close = close || std::fmax(p_err, r_err) < POLISH_LIMIT;
+        // a nearby arm's candidate that came close and could not be carried to a
+        // solution: one lies near it, at a configuration where the arm is singular to
+        // within the difference of the arms (the repair's steps stall there)
+        lost = lost || (opts.repair && !ok && std::fmax(p_err, r_err) < POLISH_LIMIT);
         if (!ok) {
             const double score = std::fmax(p_err / tol_p, r_err / tol_r);
             if (score < near_score) {
@@ -327,7 +339,7 @@ KM_HD inline CheckReport check(const ChainView& ch, const Pose& T, const double*
     rep.gap = rep.status == Status::unreachable ? gap : NaN;
     rep.nearest_position = near_p;
     rep.nearest_rotation = near_r;
-    rep.near = info.near;
+    rep.near = info.near || lost;
     rep.free = info.free;
     return rep;
 }

@@ -25,6 +25,7 @@ from kinematica.ik.fallback import (
     PARTIAL_NOTE,
     merge_batch,
     needs_search,
+    seeds,
     slack_of,
 )
 from kinematica.ik.numeric import LABEL, check_seed, numeric_setup
@@ -228,9 +229,16 @@ def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | 
     partial = closed is not None and closed.partial
     searched_note = FALLBACK_NOTE if slack else PARTIAL_NOTE
 
-    def search() -> tuple[Any, _core.CheckOptions]:  # the second method
+    def search(rows: Any) -> tuple[Any, _core.CheckOptions, FloatArray]:  # the second method
+        """The search, its options, and the first guesses of the targets ``rows``."""
         found = _solver(chain, None, tolerance, respect_limits, seed, w)[0]
-        return found, _options(tolerance, respect_limits, False, w)
+        if q0s is not None:
+            guess = np.ascontiguousarray(q0s[rows])
+        else:
+            assert closed is not None
+            poses = targets.poses[rows]
+            guess = seeds(closed, chain, poses, targets.position, found.middle)
+        return found, _options(tolerance, respect_limits, False, w), guess
 
     if targets.single:
         q0 = None if q0s is None else q0s[0]
@@ -238,8 +246,8 @@ def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | 
         notes = targets.notes.get(0, ()) if targets.notes else ()
         if slack or partial:
             if needs_search(out[-1][0]):
-                numeric, nopts = search()
-                out = numeric.ik(chain.core, targets.poses[0], nopts, q0, (LABEL,))
+                numeric, nopts, guess = search(np.zeros(1, dtype=np.intp))
+                out = numeric.ik(chain.core, targets.poses[0], nopts, guess[0], (LABEL,))
                 return result_of(*out, "numeric:lm", False, (*notes, searched_note))
             if slack:
                 notes = (*notes, INCOMPLETE_NOTE)
@@ -259,10 +267,9 @@ def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | 
     if slack or partial:
         rows = np.flatnonzero(needs_search(raw["status"]))
         if rows.size:
-            numeric, nopts = search()
-            q0r = None if q0s is None else np.ascontiguousarray(q0s[rows])
+            numeric, nopts, guess = search(rows)
             poses = np.ascontiguousarray(targets.poses[rows])
-            searched = numeric.ik_batch(chain.core, poses, nopts, q0r, None, threads)
+            searched = numeric.ik_batch(chain.core, poses, nopts, guess, None, threads)
             raw = merge_batch(raw, rows, searched)
             labels = (*labels, LABEL)
         searched_rows = set(rows.tolist())
