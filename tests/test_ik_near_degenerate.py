@@ -188,3 +188,20 @@ def test_near_aligned_tol_marks_a_wrist_nearly_aligned(q5: float, near: bool) ->
     assert res.status == "ok" and res.near_singular is near
     d = np.abs(np.angle(np.exp(1j * (res.solutions - q)))).max(axis=1)
     assert d.min() <= 1e-7
+
+
+def test_an_elbow_folded_within_1e_9_says_its_answer_is_a_continuum_within_tolerance() -> None:
+    """Equal links folded to within 1e-9 rad: the tool origin 4e-10 m off axis 2, so
+    turning q2 by 0.1 rad (the elbow following) still meets the 1e-10 m tolerance. The
+    result says so (issue 21 item 11), and each solution it gives is exact."""
+    robot = km.Robot.from_dh(
+        [km.Revolute(d=0.4, a=0.1, alpha=math.pi / 2), km.Revolute(a=0.4), km.Revolute(a=0.4)]
+    )
+    q = np.array([0.3, 0.7, math.pi - 1e-9])
+    p = robot.fk(q)[:3, 3]
+    res = robot.ik(p, respect_limits=False)
+    assert res.status == "ok" and res.near_singular
+    assert "continuum within the tolerance" in res.message
+    _exact(robot, res, p)
+    turned = q + np.array([0.0, 0.1, 0.0])  # q2 turned: still within the tolerance
+    assert np.linalg.norm(robot.fk(turned)[:3, 3] - p) <= TOL
