@@ -28,13 +28,6 @@ constexpr int POLISH_STEPS = 4;
 //! next to any singular value that matters, it keeps the normal equations solvable at a
 //! double root, where the Jacobian loses rank.
 constexpr double POLISH_DAMPING = 1e-12;
-//! Relative damping of a repair's second try: as the numeric search's smallest (lm.hpp's
-//! LAMBDA_MIN), far below the round-off of the normal matrix, so that a step moves along
-//! directions whose singular value is down to 1e-9 of the largest: near a singular q the
-//! residual a nearby arm leaves may lie along them, and POLISH_DAMPING freezes it. The
-//! first try damps by POLISH_DAMPING: an undamped step near a singular set may leap to
-//! another solution. A step that round-off spoils raises the residual and is not kept.
-constexpr double REPAIR_DAMPING = 1e-21;
 //! Gauss-Newton steps at most for a candidate of a nearby arm (CheckOptions::repair).
 //! From a candidate within POLISH_LIMIT of a regular solution two or three steps reach
 //! round-off; at a double root (a fold) each step halves the distance, and twenty take
@@ -55,14 +48,14 @@ constexpr double LIMIT_TOL = 1e-12;
 //! Scratch of checks of up to m candidates of an n-joint chain: made once per thread.
 struct CheckWork {
     int m = 0, n = 0;
-    std::vector<double> qs, angle, c, s, res, key, J, Jr, dq, c1, s1, qt, qo;
+    std::vector<double> qs, angle, c, s, res, key, J, Jr, dq, c1, s1, qt;
     std::vector<int> state;
 
     CheckWork(int m_, int n_)
         : m(m_), n(n_), qs(static_cast<size_t>(m_ * n_)), angle(qs.size()), c(qs.size()),
           s(qs.size()), res(static_cast<size_t>(2 * m_)), key(static_cast<size_t>(m_)),
           J(static_cast<size_t>(6 * n_)), Jr(J.size()), dq(static_cast<size_t>(n_)),
-          c1(dq.size()), s1(dq.size()), qt(dq.size()), qo(dq.size()), state(static_cast<size_t>(m_)) {}
+          c1(dq.size()), s1(dq.size()), qt(dq.size()), state(static_cast<size_t>(m_)) {}
 };
 
 //! Where the check writes one target's outcome: rows within the limits first, sorted,
@@ -101,9 +94,9 @@ KM_HD inline void residual(const ChainView& ch, const double* q, const double* c
     r_err = std::sqrt(r2);
 }
 
-//! One Gauss-Newton step on q towards T (weighted rows only), damped by lam (relative).
+//! One Gauss-Newton step on q towards T (weighted rows only), damped by POLISH_DAMPING.
 KM_HD inline void gauss_newton_step(const ChainView& ch, double* q, const Pose& T,
-                                    const double* w, double lam, CheckWork& work) {
+                                    const double* w, CheckWork& work) {
     const int n = ch.n;
     double* c = work.c1.data();
     double* s = work.s1.data();
@@ -122,7 +115,7 @@ KM_HD inline void gauss_newton_step(const ChainView& ch, double* q, const Pose& 
             ++r;
         }
     }
-    damped_least_squares(Jr, r, n, er, lam, dq);
+    damped_least_squares(Jr, r, n, er, POLISH_DAMPING, dq);
     for (int j = 0; j < n; ++j) {
         q[j] += dq[j];
         if (!ch.joint[j].prismatic) q[j] = wrap(q[j]);
@@ -132,17 +125,17 @@ KM_HD inline void gauss_newton_step(const ChainView& ch, double* q, const Pose& 
 //! POLISH_STEPS Gauss-Newton steps on q towards T (weighted rows only).
 KM_HD inline void polish(const ChainView& ch, double* q, const Pose& T, const double* w,
                          CheckWork& work) {
-    for (int step = 0; step < POLISH_STEPS; ++step) {
-        gauss_newton_step(ch, q, T, w, POLISH_DAMPING, work);
-    }
+    for (int step = 0; step < POLISH_STEPS; ++step) gauss_newton_step(ch, q, T, w, work);
 }
 
-//! Gauss-Newton steps damped by lam from q (residuals p_err, r_err on entry) until the
-//! residual is at round-off (REPAIR_QUIET), has not fallen for REPAIR_PATIENCE steps, or
-//! after REPAIR_STEPS; q and the residuals become the best point's.
-KM_HD inline void descend(const ChainView& ch, double* q, const Pose& T,
-                          const CheckOptions& opts, double lam, CheckWork& work,
-                          double& p_err, double& r_err) {
+//! A candidate of a nearby arm carried to this arm's solution: Gauss-Newton steps from q
+//! (residuals p_err, r_err on entry), damped as the polish's (an undamped step near a
+//! singular set may leap to another solution), until the residual is at round-off
+//! (REPAIR_QUIET), has not fallen for REPAIR_PATIENCE steps, or after REPAIR_STEPS; q and
+//! the residuals become the best point's.
+KM_HD inline void repair(const ChainView& ch, double* q, const Pose& T,
+                         const CheckOptions& opts, CheckWork& work, double& p_err,
+                         double& r_err) {
     const int n = ch.n;
     const double* w = opts.weights;
     double* qt = work.qt.data();
@@ -154,7 +147,7 @@ KM_HD inline void descend(const ChainView& ch, double* q, const Pose& T,
     int idle = 0;
     for (int step = 0; step < REPAIR_STEPS && best > REPAIR_QUIET && idle < REPAIR_PATIENCE;
          ++step) {
-        gauss_newton_step(ch, qt, T, w, lam, work);
+        gauss_newton_step(ch, qt, T, w, work);
         joint_trig(ch, qt, work.c1.data(), work.s1.data());
         double p = INF, r = INF;
         residual(ch, qt, work.c1.data(), work.s1.data(), 1, T, w, p, r);
@@ -168,27 +161,6 @@ KM_HD inline void descend(const ChainView& ch, double* q, const Pose& T,
         } else {
             ++idle;
         }
-    }
-}
-
-//! A candidate of a nearby arm carried to this arm's solution: descend() damped by
-//! POLISH_DAMPING, and where that stops short of the tolerances, again from the candidate
-//! damped by REPAIR_DAMPING; q and the residuals become the better end's.
-KM_HD inline void repair(const ChainView& ch, double* q, const Pose& T,
-                         const CheckOptions& opts, CheckWork& work, double& p_err,
-                         double& r_err) {
-    const int n = ch.n;
-    double* qo = work.qo.data();
-    for (int j = 0; j < n; ++j) qo[j] = q[j];
-    double po = p_err, ro = r_err;
-    descend(ch, q, T, opts, POLISH_DAMPING, work, p_err, r_err);
-    if (p_err <= opts.tol_position && r_err <= opts.tol_rotation) return;
-    descend(ch, qo, T, opts, REPAIR_DAMPING, work, po, ro);
-    const double first = std::fmax(p_err / opts.tol_position, r_err / opts.tol_rotation);
-    if (std::fmax(po / opts.tol_position, ro / opts.tol_rotation) < first) {
-        for (int j = 0; j < n; ++j) q[j] = qo[j];
-        p_err = po;
-        r_err = ro;
     }
 }
 
