@@ -77,6 +77,8 @@ void bind_ik(nb::module_& m) {
         .def_rw("complete", &km::CheckOptions::complete, "the solver gives every solution")
         .def_rw("gap_slack", &km::CheckOptions::gap_slack,
                 "m: unreachable needs a proven gap beyond tol_position + this")
+        .def_rw("repair", &km::CheckOptions::repair,
+                "carry each candidate to this arm's solution (a nearby arm's closed form)")
         .def_prop_rw(
             "weights",
             [](const km::CheckOptions& o) {

@@ -28,6 +28,18 @@ constexpr int POLISH_STEPS = 4;
 //! next to any singular value that matters, it keeps the normal equations solvable at a
 //! double root, where the Jacobian loses rank.
 constexpr double POLISH_DAMPING = 1e-12;
+//! Gauss-Newton steps at most for a candidate of a nearby arm (CheckOptions::repair).
+//! From a candidate within POLISH_LIMIT of a regular solution two or three steps reach
+//! round-off; at a double root (a fold) each step halves the distance, and twenty take
+//! a candidate 1e-5 rad off to 1e-11.
+constexpr int REPAIR_STEPS = 24;
+//! A repair stops when the residual, in units of the tolerances, is below this (its
+//! round-off: 1e-14 m or rad for the default tolerances) ...
+constexpr double REPAIR_QUIET = 1e-4;
+//! ... or after this many steps in a row that did not lower it (the noise floor, or a
+//! Newton step across a fold that overshoots before the next lands: steps are taken
+//! whatever they do and the best point is kept).
+constexpr int REPAIR_PATIENCE = 3;
 //! Two solutions closer than this in every joint (rad or m, angles modulo 2π) are one.
 constexpr double DEDUP_TOL = 1e-7;
 //! Slack on joint limits for values computed by floating point (rad or m).
@@ -36,14 +48,14 @@ constexpr double LIMIT_TOL = 1e-12;
 //! Scratch of checks of up to m candidates of an n-joint chain: made once per thread.
 struct CheckWork {
     int m = 0, n = 0;
-    std::vector<double> qs, angle, c, s, res, key, J, Jr, dq, c1, s1;
+    std::vector<double> qs, angle, c, s, res, key, J, Jr, dq, c1, s1, qt;
     std::vector<int> state;
 
     CheckWork(int m_, int n_)
         : m(m_), n(n_), qs(static_cast<size_t>(m_ * n_)), angle(qs.size()), c(qs.size()),
           s(qs.size()), res(static_cast<size_t>(2 * m_)), key(static_cast<size_t>(m_)),
           J(static_cast<size_t>(6 * n_)), Jr(J.size()), dq(static_cast<size_t>(n_)),
-          c1(dq.size()), s1(dq.size()), state(static_cast<size_t>(m_)) {}
+          c1(dq.size()), s1(dq.size()), qt(dq.size()), state(static_cast<size_t>(m_)) {}
 };
 
 //! Where the check writes one target's outcome: rows within the limits first, sorted,
@@ -82,9 +94,9 @@ KM_HD inline void residual(const ChainView& ch, const double* q, const double* c
     r_err = std::sqrt(r2);
 }
 
-//! POLISH_STEPS Gauss-Newton steps on q towards T (weighted rows only).
-KM_HD inline void polish(const ChainView& ch, double* q, const Pose& T, const double* w,
-                         CheckWork& work) {
+//! One Gauss-Newton step on q towards T (weighted rows only), damped by POLISH_DAMPING.
+KM_HD inline void gauss_newton_step(const ChainView& ch, double* q, const Pose& T,
+                                    const double* w, CheckWork& work) {
     const int n = ch.n;
     double* c = work.c1.data();
     double* s = work.s1.data();
@@ -92,22 +104,62 @@ KM_HD inline void polish(const ChainView& ch, double* q, const Pose& T, const do
     double* Jr = work.Jr.data();
     double* dq = work.dq.data();
     double er[6];
-    for (int step = 0; step < POLISH_STEPS; ++step) {
-        joint_trig(ch, q, c, s);
-        const Pose P = jacobian(ch, q, c, s, false, J);
-        const Twist e = pose_error(P, T);
-        int r = 0;
-        for (int k = 0; k < 6; ++k) {
-            if (w[k] > 0.0) {
-                er[r] = w[k] * e.e[k];
-                for (int j = 0; j < n; ++j) Jr[r * n + j] = w[k] * J[k * n + j];
-                ++r;
-            }
+    joint_trig(ch, q, c, s);
+    const Pose P = jacobian(ch, q, c, s, false, J);
+    const Twist e = pose_error(P, T);
+    int r = 0;
+    for (int k = 0; k < 6; ++k) {
+        if (w[k] > 0.0) {
+            er[r] = w[k] * e.e[k];
+            for (int j = 0; j < n; ++j) Jr[r * n + j] = w[k] * J[k * n + j];
+            ++r;
         }
-        damped_least_squares(Jr, r, n, er, POLISH_DAMPING, dq);
-        for (int j = 0; j < n; ++j) {
-            q[j] += dq[j];
-            if (!ch.joint[j].prismatic) q[j] = wrap(q[j]);
+    }
+    damped_least_squares(Jr, r, n, er, POLISH_DAMPING, dq);
+    for (int j = 0; j < n; ++j) {
+        q[j] += dq[j];
+        if (!ch.joint[j].prismatic) q[j] = wrap(q[j]);
+    }
+}
+
+//! POLISH_STEPS Gauss-Newton steps on q towards T (weighted rows only).
+KM_HD inline void polish(const ChainView& ch, double* q, const Pose& T, const double* w,
+                         CheckWork& work) {
+    for (int step = 0; step < POLISH_STEPS; ++step) gauss_newton_step(ch, q, T, w, work);
+}
+
+//! A candidate of a nearby arm carried to this arm's solution: Gauss-Newton steps from q
+//! (residuals p_err, r_err on entry), damped as the polish's (an undamped step near a
+//! singular set may leap to another solution), until the residual is at round-off
+//! (REPAIR_QUIET), has not fallen for REPAIR_PATIENCE steps, or after REPAIR_STEPS; q and
+//! the residuals become the best point's.
+KM_HD inline void repair(const ChainView& ch, double* q, const Pose& T,
+                         const CheckOptions& opts, CheckWork& work, double& p_err,
+                         double& r_err) {
+    const int n = ch.n;
+    const double* w = opts.weights;
+    double* qt = work.qt.data();
+    const auto score = [&](double p, double r) {
+        return std::fmax(p / opts.tol_position, r / opts.tol_rotation);
+    };
+    double best = score(p_err, r_err);
+    for (int j = 0; j < n; ++j) qt[j] = q[j];
+    int idle = 0;
+    for (int step = 0; step < REPAIR_STEPS && best > REPAIR_QUIET && idle < REPAIR_PATIENCE;
+         ++step) {
+        gauss_newton_step(ch, qt, T, w, work);
+        joint_trig(ch, qt, work.c1.data(), work.s1.data());
+        double p = INF, r = INF;
+        residual(ch, qt, work.c1.data(), work.s1.data(), 1, T, w, p, r);
+        const double now = score(p, r);
+        if (now < best) {
+            best = now;
+            p_err = p;
+            r_err = r;
+            for (int j = 0; j < n; ++j) q[j] = qt[j];
+            idle = 0;
+        } else {
+            ++idle;
         }
     }
 }
@@ -138,7 +190,7 @@ KM_HD inline CheckReport check(const ChainView& ch, const Pose& T, const double*
     double* res = work.res.data();
     double* key = work.key.data();
     int* state = work.state.data();
-    bool close = false;
+    bool close = false, lost = false;
     double near_p = NaN, near_r = NaN, near_score = INF;
     for (int j = 0; j < m; ++j) {
         state[j] = 0;
@@ -158,17 +210,29 @@ KM_HD inline CheckReport check(const ChainView& ch, const Pose& T, const double*
         int stride = 1;
         double p_err = INF, r_err = INF;
         bool ok = false;
-        for (int attempt = 0; attempt < 2; ++attempt) {
+        if (opts.repair) {
             detail::residual(ch, qj, cj, sj, stride, T, opts.weights, p_err, r_err);
+            if (std::fmax(p_err, r_err) < POLISH_LIMIT) {
+                detail::repair(ch, qj, T, opts, work, p_err, r_err);
+            }
             ok = p_err <= tol_p && r_err <= tol_r;
-            if (ok || attempt == 1 || !(std::fmax(p_err, r_err) < POLISH_LIMIT)) break;
-            detail::polish(ch, qj, T, opts.weights, work);
-            joint_trig(ch, qj, work.c1.data(), work.s1.data());
-            cj = work.c1.data();
-            sj = work.s1.data();
-            stride = 1;
+        } else {
+            for (int attempt = 0; attempt < 2; ++attempt) {
+                detail::residual(ch, qj, cj, sj, stride, T, opts.weights, p_err, r_err);
+                ok = p_err <= tol_p && r_err <= tol_r;
+                if (ok || attempt == 1 || !(std::fmax(p_err, r_err) < POLISH_LIMIT)) break;
+                detail::polish(ch, qj, T, opts.weights, work);
+                joint_trig(ch, qj, work.c1.data(), work.s1.data());
+                cj = work.c1.data();
+                sj = work.s1.data();
+                stride = 1;
+            }
         }
         close = close || std::fmax(p_err, r_err) < POLISH_LIMIT;
+        // a nearby arm's candidate that came close and could not be carried to a
+        // solution: one lies near it, at a configuration where the arm is singular to
+        // within the difference of the arms (the repair's steps stall there)
+        lost = lost || (opts.repair && !ok && std::fmax(p_err, r_err) < POLISH_LIMIT);
         if (!ok) {
             const double score = std::fmax(p_err / tol_p, r_err / tol_r);
             if (score < near_score) {
@@ -268,7 +332,7 @@ KM_HD inline CheckReport check(const ChainView& ch, const Pose& T, const double*
     rep.gap = rep.status == Status::unreachable ? gap : NaN;
     rep.nearest_position = near_p;
     rep.nearest_rotation = near_r;
-    rep.near = info.near;
+    rep.near = info.near || lost;
     rep.free = info.free;
     return rep;
 }

@@ -38,6 +38,12 @@ struct CheckOptions {
     //! arm its family holds for only to within the line geometry's tolerance proves
     //! "unreachable" only with a gap beyond tol_position + gap_slack
     double gap_slack = 0.0;
+    //! the candidates are a nearby arm's (a closed form of the family the arm belongs to
+    //! only within the line geometry's tolerance): each is carried to this arm's solution
+    //! by Gauss-Newton steps to round-off (check.hpp's REPAIR_STEPS), even one that already
+    //! meets the tolerances, which at a near-singular solution allow a joint error of
+    //! tolerance / smallest singular value
+    bool repair = false;
     double weights[6] = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};  //!< of x, y, z, rx, ry, rz (0: ignored)
 };
 
@@ -49,7 +55,7 @@ struct CheckReport {
     double gap = NaN;                 //!< for unreachable: the solver's proven gap (m), else NaN
     double nearest_position = NaN;    //!< the closest candidate that was no solution (m) ...
     double nearest_rotation = NaN;    //!< ... and its rotation error (rad)
-    bool near = false;                //!< the solver's near flag
+    bool near = false;                //!< the solver's near flag, or a candidate the repair lost
     std::uint32_t free = 0;           //!< the solver's free joints (bit j: joint j)
 };
 

@@ -1,4 +1,4 @@
-"""Near-degenerate arms: a closed form's answers, completed by the numeric search.
+"""Closed forms that may miss a solution: their answers, completed by the numeric search.
 
 An arm whose axes are parallel, perpendicular or meeting only to within the line
 geometry's tolerances (:mod:`kinematica.dh.lines`) is solved by the closed form of
@@ -8,7 +8,13 @@ cannot promise every solution, nor prove a target out of reach by less than the
 difference (:attr:`~kinematica.ik.structure.Features.slack`). So its results are
 marked incomplete, "unreachable" needs a gap beyond that slack, and a target
 for which no candidate survives the check goes to the numeric search, whose
-answer, whatever it is, is about the real arm.
+answer, whatever it is, is about the real arm. The search starts from the closed
+form's candidate that comes closest on the real arm (:func:`seeds`), unless the
+caller gave a first guess.
+
+A partial closed form (position targets of longer arms: its candidates hold joints
+4..n at 0) may miss a target that other values of those joints reach: a target
+none of its candidates solved goes to the numeric search too.
 """
 
 from __future__ import annotations
@@ -20,9 +26,19 @@ import numpy as np
 
 import kinematica._core as _core
 from kinematica.core import Chain
+from kinematica.ik.registry import ClosedForm
 from kinematica.ik.structure import features
+from kinematica.spatial import rotation_angle
 
-__all__ = ["FALLBACK_NOTE", "INCOMPLETE_NOTE", "merge_batch", "needs_search", "slack_of"]
+__all__ = [
+    "FALLBACK_NOTE",
+    "INCOMPLETE_NOTE",
+    "PARTIAL_NOTE",
+    "merge_batch",
+    "needs_search",
+    "seeds",
+    "slack_of",
+]
 
 #: Said of a closed form's result on a near-degenerate arm.
 INCOMPLETE_NOTE = (
@@ -33,6 +49,12 @@ INCOMPLETE_NOTE = (
 FALLBACK_NOTE = (
     "the arm's axes have its closed form's structure only to within the tolerances of the "
     "line geometry, and no candidate of the closed form solved this target: "
+    "the numeric search answered"
+)
+
+#: Said of a target a partial closed form found nothing for, answered by the numeric search.
+PARTIAL_NOTE = (
+    "no configuration of the closed form (joints 4 onwards at 0) reaches this target: "
     "the numeric search answered"
 )
 
@@ -51,6 +73,36 @@ def slack_of(chain: Chain) -> float:
 def needs_search(status: Any) -> Any:
     """Where (``(N,)`` bools, or one bool) the closed form found nothing on the real arm."""
     return status == _NOT_FOUND
+
+
+def seeds(closed: ClosedForm, chain: Chain, poses: Any, position: bool, default: Any) -> Any:
+    """``(k, n)`` first guesses of the search: per target, the closed form's closest candidate.
+
+    Args:
+        closed: The closed form whose candidates missed.
+        chain: The real arm.
+        poses: ``(k, 4, 4)`` the targets (a position target's origin only counts).
+        position: The targets are positions.
+        default: ``(n,)`` the guess of a target without any candidate.
+
+    Returns:
+        ``(k, n)``: the candidate whose forward kinematics on the real arm lies
+        nearest the target (the larger of its position error in m and rotation
+        error in rad).
+    """
+    out = np.empty((len(poses), chain.dof))
+    for i, T in enumerate(poses):
+        Q = np.asarray(closed.params.candidates(chain.core, T, None)[0])
+        Q = np.ascontiguousarray(Q[np.isfinite(Q).all(axis=1)])
+        if not len(Q):
+            out[i] = default
+            continue
+        F = chain.fk(Q)[0]
+        err = np.linalg.norm(F[:, :3, 3] - T[:3, 3], axis=1)
+        if not position:
+            err = np.maximum(err, rotation_angle(F[:, :3, :3], T[:3, :3]))
+        out[i] = Q[int(np.argmin(err))]
+    return out
 
 
 def merge_batch(raw: dict[str, Any], rows: Any, searched: dict[str, Any]) -> dict[str, Any]:

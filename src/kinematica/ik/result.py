@@ -21,8 +21,9 @@ FloatArray = NDArray[np.float64]
 
 #: Said of solutions found for a target within round-off of a singular set.
 NEAR_NOTE = (
-    "the target is within round-off of a singular set, where solutions merge: "
-    "solutions that merge there are given once"
+    "the target is within round-off of a singular set, where solutions merge or form a "
+    "continuum within the tolerance: solutions that merge there are given once, and "
+    "others may lie along it"
 )
 
 

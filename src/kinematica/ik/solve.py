@@ -22,8 +22,10 @@ from kinematica.ik.analytic import SOLVERS
 from kinematica.ik.fallback import (
     FALLBACK_NOTE,
     INCOMPLETE_NOTE,
+    PARTIAL_NOTE,
     merge_batch,
     needs_search,
+    seeds,
     slack_of,
 )
 from kinematica.ik.numeric import LABEL, check_seed, numeric_setup
@@ -123,6 +125,7 @@ def _options(
         opts.complete = complete
         opts.weights = weights
         opts.gap_slack = gap_slack
+        opts.repair = gap_slack > 0.0  # a near-degenerate arm: its family's closed form
         if len(_OPTIONS) < 64:
             _OPTIONS[key] = opts
     return opts
@@ -138,7 +141,7 @@ class PoseSolver(NamedTuple):
         method: The method name results carry.
         complete: It gives every solution (a closed form).
         direct: Its answer is the whole answer (False for a closed form on a
-            near-degenerate arm: see :mod:`kinematica.ik.fallback`).
+            near-degenerate arm, or a partial one: see :mod:`kinematica.ik.fallback`).
     """
 
     ik_rigid: Any
@@ -164,7 +167,7 @@ def pose_solver(chain: Chain, kind: TargetKind = "pose") -> PoseSolver:
     solver, labels, name = _solver(chain, closed, tolerance, True, None, w)
     complete = closed is not None
     opts = _options(tolerance, True, complete, w)
-    direct = closed is None or slack_of(chain) == 0.0
+    direct = closed is None or (slack_of(chain) == 0.0 and not closed.partial)
     return PoseSolver(solver.ik_rigid, opts, labels, name, complete, direct)
 
 
@@ -261,21 +264,33 @@ def _solve(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IK
     complete = closed is not None and slack == 0.0
     opts = _options(tolerance, respect_limits, complete, w, slack)
 
-    def search() -> tuple[Any, _core.CheckOptions]:  # a near-degenerate arm's second method
+    # a closed form that may miss a solution: a target it found nothing for is searched
+    partial = closed is not None and closed.partial
+    searched_note = FALLBACK_NOTE if slack else PARTIAL_NOTE
+
+    def search(rows: Any) -> tuple[Any, _core.CheckOptions, FloatArray]:  # the second method
+        """The search, its options, and the first guesses of the targets ``rows``."""
         found = _solver(chain, None, tolerance, respect_limits, seed, w)[0]
-        return found, _options(tolerance, respect_limits, False, w)
+        if q0s is not None:
+            guess = np.ascontiguousarray(q0s[rows])
+        else:
+            assert closed is not None
+            poses = targets.poses[rows]
+            guess = seeds(closed, chain, poses, targets.position, found.middle)
+        return found, _options(tolerance, respect_limits, False, w), guess
 
     if targets.single:
         q0 = None if q0s is None else q0s[0]
         out: CoreAnswer = solver.ik(chain.core, targets.poses[0], opts, q0, labels)
         notes = targets.notes.get(0, ()) if targets.notes else ()
-        if slack:
+        if slack or partial:
             if needs_search(out[-1][0]):
-                numeric, nopts = search()
-                out = numeric.ik(chain.core, targets.poses[0], nopts, q0, (LABEL,))
+                numeric, nopts, guess = search(np.zeros(1, dtype=np.intp))
+                out = numeric.ik(chain.core, targets.poses[0], nopts, guess[0], (LABEL,))
                 out = _limited(chain, targets.poses, out, respect_limits, tolerance, w)
-                return result_of(*out, "numeric:lm", False, (*notes, FALLBACK_NOTE))
-            notes = (*notes, INCOMPLETE_NOTE)
+                return result_of(*out, "numeric:lm", False, (*notes, searched_note))
+            if slack:
+                notes = (*notes, INCOMPLETE_NOTE)
         out = _limited(chain, targets.poses, out, respect_limits, tolerance, w)
         return result_of(*out, name, complete, notes)
     invalid = None
@@ -289,13 +304,13 @@ def _solve(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IK
         return tuple(int(v) for v in np.unravel_index(i, shape))
 
     batch_notes = {where(i): note for i, note in targets.notes.items()}
-    if slack:
+    methods: dict[tuple[int, ...], str] = {}
+    if slack or partial:
         rows = np.flatnonzero(needs_search(raw["status"]))
         if rows.size:
-            numeric, nopts = search()
-            q0r = None if q0s is None else np.ascontiguousarray(q0s[rows])
+            numeric, nopts, guess = search(rows)
             poses = np.ascontiguousarray(targets.poses[rows])
-            searched = numeric.ik_batch(chain.core, poses, nopts, q0r, None, threads)
+            searched = numeric.ik_batch(chain.core, poses, nopts, guess, None, threads)
             raw = merge_batch(raw, rows, searched)
             labels = (*labels, LABEL)
         searched_rows = set(rows.tolist())
@@ -304,8 +319,10 @@ def _solve(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IK
             if i in targets.invalid:
                 continue
             idx = where(i)
-            note = FALLBACK_NOTE if i in searched_rows else INCOMPLETE_NOTE
-            batch_notes[idx] = (*batch_notes.get(idx, ()), note)
+            if i in searched_rows:
+                batch_notes[idx] = (*batch_notes.get(idx, ()), searched_note)
+            elif slack:
+                batch_notes[idx] = (*batch_notes.get(idx, ()), INCOMPLETE_NOTE)
     if respect_limits:
         beyond, gaps = beyond_limited_reach(
             chain, targets.poses, raw["status"], raw["gap"], tolerance.position, w
@@ -325,5 +342,5 @@ def _solve(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IK
         errors={where(i): msg for i, msg in targets.invalid.items()},
         notes=batch_notes,
         complete=complete,
-        methods=methods if slack else {},
+        methods=methods,
     )

@@ -10,7 +10,8 @@
 //   q4 = σ4 (θ234 - q2 - σ3 q3).
 //
 // Up to 8 solutions. Singular sets, all continua of solutions (info marks them and
-// names the free joints; the candidates are representatives):
+// names the free joints; the candidates are representatives; a wrist within
+// NEAR_ALIGNED_TOL of aligned is marked near):
 //
 // * the wrist aligned, axis 6 along k (sine below CONTINUUM_TOL): q6 turns with q2, q3,
 //   q4 (axes 2, 3, 4, 6 all parallel). The representative q6 puts axis 4 at mid-reach
@@ -160,7 +161,8 @@ KM_HD inline int finish(const ParallelParams& P, const Pose& G, const Pair& pair
     // v = E5⁻¹(p4) - p6 = p5 - p6 + R5ᵀ (p4 - p5)
     const Vec3& p5 = P.p5;
     const Vec3 v = rotate_about(h5, c5, -s5, P.p4 - p5) + (p5 - P.p6);
-    const bool aligned = cross2(a, h6) <= CONTINUUM_TOL * CONTINUUM_TOL;  // axis 6 along k
+    const double tilt2 = cross2(a, h6);  // sin² of the angle of axis 6 and k
+    const bool aligned = tilt2 <= CONTINUUM_TOL * CONTINUUM_TOL;  // axis 6 along k
     const double q6 = aligned ? free_q6(P, G, c1, s1, v) : -subproblem1(a, b, h6);
     double s6, c6;
     sincos(q6, s6, c6);
@@ -188,6 +190,7 @@ KM_HD inline int finish(const ParallelParams& P, const Pose& G, const Pair& pair
     }
     const bool fold = (el.flags & TRIANGLE_FOLD) != 0;
     if ((el.flags & TRIANGLE_NEAR) != 0) info.near = true;
+    if (!aligned && count > 0 && tilt2 <= NEAR_ALIGNED_TOL * NEAR_ALIGNED_TOL) info.near = true;
     if (aligned) {
         info.set_free(1);
         info.set_free(2);

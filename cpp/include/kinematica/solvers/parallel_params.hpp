@@ -82,6 +82,13 @@ namespace parallel {
 //! 2). Moving along such a continuum moves the tool by at most about this fraction of
 //! the arm's size.
 constexpr double CONTINUUM_TOL = 1e-12;
+//! Axis 6 within this sine of k (the wrist nearly aligned, beyond CONTINUUM_TOL): q4 and
+//! q6 turn about axes that far from one, so configurations along the continuum of the
+//! aligned wrist move the tool by about this fraction of the arm's size per radian, and
+//! an arc of them meets the tolerances around each solution; on an arm whose axes 2-4
+//! are parallel only within the line geometry's tolerance, the real solutions lie
+//! anywhere along it. The target is marked near.
+constexpr double NEAR_ALIGNED_TOL = 1e-7;
 //! An equation missing a root by at most this (relative to the arm's size, or absolute
 //! for unit vectors) may be a double root moved by round-off or a target within
 //! tolerance of the workspace boundary: its least-squares angle is proposed (the check
