@@ -20,7 +20,15 @@ from kinematica.viz.geometry import ArmPose, arm_pose, drawing_plane, robot_scal
 from kinematica.viz.plot import label_axes, tight_single
 from kinematica.viz.trajectory import PATH_COLOR, check_trajectory
 
-__all__ = ["ANIMATION_SUFFIXES", "Animation", "animate", "animation_samples", "mp4_available"]
+__all__ = [
+    "ANIMATION_SUFFIXES",
+    "GIF_MAX_FPS",
+    "Animation",
+    "animate",
+    "animation_samples",
+    "gif_rate",
+    "mp4_available",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -31,6 +39,10 @@ DEFAULT_FPS = 20.0
 #: At most this many frames unless asked otherwise (a GIF of thousands of frames
 #: takes minutes to draw and megabytes to store).
 MAX_FRAMES = 300
+#: Fastest frame rate of a GIF. A GIF frame lasts a whole number of hundredths of a
+#: second, and browsers play frames shorter than 20 ms at 100 ms: a 100 fps GIF
+#: would run ten times too slowly.
+GIF_MAX_FPS = 50.0
 
 
 @dataclass(frozen=True)
@@ -42,12 +54,15 @@ class Animation:
         frames: Number of frames in it.
         fps: Frames per second it plays at.
         size: ``(width, height)`` in pixels.
+        note: What was changed from the rate asked for, or ``""``: a GIF plays
+            at most :data:`GIF_MAX_FPS`.
     """
 
     path: Path
     frames: int
     fps: float
     size: tuple[int, int]
+    note: str = ""
 
 
 def mp4_available() -> bool:
@@ -58,8 +73,25 @@ def mp4_available() -> bool:
     return bool(animation.writers.is_available("ffmpeg"))
 
 
+def gif_rate(rate: float) -> float:
+    """The rate a GIF is written at for ``rate`` asked: at most :data:`GIF_MAX_FPS`."""
+    return min(rate, GIF_MAX_FPS)
+
+
+def _resample(t: FloatArray, q: FloatArray, fps: float) -> tuple[FloatArray, FloatArray]:
+    """Times every ``1 / fps`` s from ``t[0]`` to ``t[-1]``, and q interpolated at them."""
+    count = math.floor(float(t[-1] - t[0]) * fps + 1e-9) + 1
+    times = t[0] + np.arange(count) / fps
+    return times, np.stack([np.interp(times, t, q[:, j]) for j in range(q.shape[1])], axis=-1)
+
+
 def animation_samples(
-    t: FloatArray, q: FloatArray, fps: float | None, max_frames: int | None, timed: bool
+    t: FloatArray,
+    q: FloatArray,
+    fps: float | None,
+    max_frames: int | None,
+    timed: bool,
+    gif: bool = False,
 ) -> tuple[FloatArray, FloatArray, float]:
     """The times, configurations and frame rate of the frames to draw.
 
@@ -68,15 +100,15 @@ def animation_samples(
     With ``fps`` (and times) the trajectory is resampled at that rate by
     linear interpolation, in real time. Then at most ``max_frames`` evenly
     spread frames are kept (first and last included), the rate scaled so the
-    duration stays the same.
+    duration stays the same. For a GIF (``gif``) the rate is then capped at
+    :data:`GIF_MAX_FPS`, a timed trajectory resampled at it so that it still
+    plays in real time.
     """
     duration = float(t[-1] - t[0])
     if fps is not None and (not math.isfinite(fps) or fps <= 0):
         raise VizError(f"fps must be a positive number, got {fps}")
     if fps is not None and timed and len(t) > 1:
-        count = math.floor(duration * fps + 1e-9) + 1
-        times = t[0] + np.arange(count) / fps
-        qs = np.stack([np.interp(times, t, q[:, j]) for j in range(q.shape[1])], axis=-1)
+        times, qs = _resample(t, q, fps)
         rate = fps
     else:
         times, qs = t, q
@@ -88,6 +120,10 @@ def animation_samples(
             keep = np.unique(np.round(np.linspace(0, len(times) - 1, max_frames)).astype(int))
             rate = rate * (len(keep) - 1) / (len(times) - 1) if len(keep) > 1 else rate
             times, qs = times[keep], qs[keep]
+    if gif and gif_rate(rate) != rate:
+        rate = gif_rate(rate)  # fewer frames than before: within max_frames still
+        if timed and len(t) > 1 and duration > 0:
+            times, qs = _resample(t, q, rate)
     return times, qs, rate
 
 
@@ -137,7 +173,16 @@ def animate(
     if not out.parent.is_dir():
         raise VizError(f"{out}: the folder {out.parent} does not exist")
     ta, qa = check_trajectory(robot, t, q)
-    times, qs, rate = animation_samples(ta, qa, fps, max_frames, t is not None)
+    timed = t is not None
+    times, qs, rate = animation_samples(ta, qa, fps, max_frames, timed, gif=suffix == ".gif")
+    note = ""
+    if suffix == ".gif":
+        natural = animation_samples(ta, qa, fps, max_frames, timed)[2]
+        if abs(natural - rate) > 1e-9 * natural:
+            note = (
+                f"{natural:.4g} fps lowered to {rate:.4g} fps: a GIF frame lasts at least "
+                "20 ms (browsers play shorter frames at 100 ms)"
+            )
     matplotlib()
     from matplotlib import animation
 
@@ -183,4 +228,4 @@ def animate(
     except (OSError, subprocess.CalledProcessError) as exc:
         reason = getattr(exc, "strerror", None) or exc
         raise VizError(f"{out}: cannot write the animation ({reason}); {unchanged(out)}") from exc
-    return Animation(path=out, frames=len(times), fps=float(rate), size=size)
+    return Animation(path=out, frames=len(times), fps=float(rate), size=size, note=note)
