@@ -197,3 +197,34 @@ def test_trajectory_bad_output_extension(capsys: pytest.CaptureFixture[str]) -> 
         "x.txt",
     )
     assert code == 2 and ".csv or .json" in err
+
+
+PR_XZ_FILE = """\
+name = "PR arm of the notes, no base"
+convention = "standard"
+units = { angle = "deg", length = "m" }
+parameters = { l1 = 0.5, l2 = 0.4 }
+joints = [
+  { theta = 0,         d = "q1 + l1", a = 0,    alpha = 90, limits = [0, 0.5] },
+  { theta = "q2 + 90", d = 0,         a = "l2", alpha = 0 },
+]
+"""
+
+
+def test_workspace_of_a_planar_arm_out_of_xy_uses_its_plane(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    # It moves in the base's xz plane: the default slice is that plane, and the
+    # area is that of tests/test_motion_workspace.py's PR_AREA (r = 0.4, stroke 0.5).
+    arm = tmp_path / "pr.toml"
+    arm.write_text(PR_XZ_FILE)
+    png = tmp_path / "pr-map.png"
+    code, out, _ = run(capsys, "workspace", str(arm), "--samples", "50000", "-o", str(png))
+    assert code == 0 and png.stat().st_size > 0
+    assert "planar workspace in the xz plane" in out and "xz slice at y = " in out
+    lens = 2 * 0.4**2 * np.arccos(0.5 / 0.8) - 0.25 * np.sqrt(4 * 0.4**2 - 0.5**2)
+    area = np.pi * 0.4**2 + 2 * 0.4 * 0.5 - lens
+    code, out, _ = run(capsys, "workspace", str(arm), "--samples", "50000", "--json")
+    data = json.loads(out)
+    assert data["plane"] == "xz" and data["slice"]["plane"] == "xz"
+    assert abs(data["slice"]["area"] / area - 1) < 0.03

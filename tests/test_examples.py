@@ -77,3 +77,61 @@ def test_cli_command_runs(page: str, command: str, tmp_path: Path) -> None:
     )
     assert proc.returncode in (0, 1), f"{page}: {command}\n{proc.stderr}"
     assert "Traceback" not in proc.stderr
+
+
+def _prose_calls(page: Path) -> list[str]:
+    """Names called in a page's sentences (tables left out): `write_csv(path, t, q)`."""
+    text = page.read_text()
+    prose = re.sub(r"```.*?```", "", text, flags=re.S)
+    sentences = "\n".join(line for line in prose.splitlines() if not line.startswith("|"))
+    spans = re.findall(r"`([^`\n]+)`", sentences)
+    return sorted({m.group(1) for s in spans if (m := re.match(r"([A-Za-z_][\w.]*)\(", s))})
+
+
+def _resolves(dotted: str) -> bool:
+    """True when ``kinematica.motion.write_csv`` (or ``km.load``) names something."""
+    import importlib
+
+    parts = ["kinematica", *dotted.split(".")[1:]]
+    for k in range(len(parts), 0, -1):
+        try:
+            obj = importlib.import_module(".".join(parts[:k]))
+        except ImportError:
+            continue
+        for part in parts[k:]:
+            if not hasattr(obj, part):
+                return False
+            obj = getattr(obj, part)
+        return True
+    return False
+
+
+@pytest.mark.parametrize("page", PAGES, ids=_name)
+def test_prose_names_what_exists(page: Path) -> None:
+    # `km.X(...)` and `kinematica.a.X(...)` must resolve. A function of a subpackage
+    # called bare in a sentence (`write_csv(path, t, q)` beside `km.joint_trajectory`)
+    # must be a name of `km` or one the page's examples import or call through
+    # their module: `km.write_csv` is an AttributeError.
+    import importlib
+
+    subpackages = ("motion", "viz", "symbolic", "design", "spatial", "io", "dh", "ik", "robot")
+    public = set()
+    for sub in subpackages:
+        try:
+            public |= set(importlib.import_module(f"kinematica.{sub}").__all__)
+        except ImportError:  # an optional extra not installed
+            continue
+    code = "\n".join(re.findall(r"```python\n(.*?)```", page.read_text(), flags=re.S))
+    imports = re.findall(r"^from kinematica[\w.]* import \(?([^)\n]*)", code, flags=re.M)
+    imported = {name.strip() for line in imports for name in line.split(",")}
+    missing = []
+    for call in _prose_calls(page):
+        head, *rest = call.split(".")
+        if head in ("km", "kinematica"):
+            if not _resolves(call):
+                missing.append(call)
+        elif not rest and head in public:
+            known = _resolves(f"km.{head}") or head in imported
+            if not known and not re.search(rf"\.{head}\(", code):
+                missing.append(call)
+    assert not missing, f"{_name(page)}: names that do not exist as written: {missing}"

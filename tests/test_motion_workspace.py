@@ -193,3 +193,31 @@ def test_bad_arguments() -> None:
         ws.slice("xw")
     with pytest.raises(km.KinematicaError, match="outside the workspace"):
         ws.slice("xz", at=5.0)
+
+
+# The seed 000 PR arm as a student types it, with no base transform: q1 slides along
+# z0 (stroke L = 0.5 m), joint 2 turns about y, so the tool sweeps the base's xz plane.
+# The tool is on a circle of radius r = 0.4 about a centre sliding along L: it covers
+# the stadium (pi r² + 2 r L) but for the lens where the discs about both ends overlap
+# (points nearer than r to every centre): 2 r² acos(L / 2r) - (L / 2) sqrt(4 r² - L²).
+PR_XZ = km.Robot.from_dh(
+    [
+        km.Prismatic(offset=0.5, alpha=np.pi / 2, qlim=(0.0, 0.5)),
+        km.Revolute(offset=np.pi / 2, a=0.4),
+    ]
+)
+PR_AREA = (
+    np.pi * 0.4**2
+    + 2 * 0.4 * 0.5
+    - (2 * 0.4**2 * np.arccos(0.5 / 0.8) - 0.25 * np.sqrt(4 * 0.4**2 - 0.5**2))
+)
+
+
+def test_planar_workspace_out_of_xy_is_measured_in_its_own_plane() -> None:
+    ws = km.workspace(PR_XZ, samples=100_000, seed=4, manipulability=False)
+    assert ws.planar and ws.plane == "xz"
+    assert ws.area is not None and abs(ws.area / PR_AREA - 1.0) < 0.02
+    sl = ws.slice()  # the arm's own plane, not a sliver of xy
+    assert sl.plane == "xz" and abs(sl.area / PR_AREA - 1.0) < 0.02
+    assert km.workspace(km.load("planar-3r"), samples=2_000, seed=0).plane == "xy"
+    assert km.workspace(km.load("anthropomorphic-3r"), samples=2_000, seed=0).plane is None

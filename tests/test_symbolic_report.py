@@ -46,7 +46,10 @@ def test_report_sections(fmt: str, lang: str) -> None:
     }[lang]
     for w in words:
         assert w in text
-    assert "Tras" in text and "Rot" in text  # each row's four elementary transforms
+    trans = {"es": "Tras", "en": "Trans"}[lang]  # each row's four elementary transforms
+    assert trans in text and "Rot" in text
+    if lang == "en":
+        assert "Tras" not in text
 
 
 def test_markdown_shows_short_notation_and_seed_formula() -> None:
@@ -186,3 +189,41 @@ def test_committed_arm6_report_is_current() -> None:
     # docs/symbolic.md: docs/arm6-dh.md is `kinematica derive arm6-dh -o docs/arm6-dh.md`.
     committed = Path(__file__).resolve().parents[1] / "docs" / "arm6-dh.md"
     assert committed.read_text(encoding="utf-8") == symbolic.report("arm6-dh")
+
+
+def test_geometric_segments_are_a_table_not_sines() -> None:
+    # s_1, s_2 would read as sin q1, sin q2 beside the short notation of the same report
+    text = symbolic.report("planar-prr", lang="en")
+    geometric = text[text.index("## Geometric method") :]
+    assert "| segment | angle turned | segment vector at zero |" in geometric
+    assert not re.search(r"s_\{\d\} &= \\left\(", geometric)
+    assert "| tramo | ángulo girado |" in symbolic.report("planar-prr", lang="es")
+
+
+def test_short_notation_legend_names_what_the_equations_use() -> None:
+    # planar-pr: q1 is prismatic, so there is no c1; the legend defines c2
+    text = symbolic.report("planar-pr", lang="en")
+    legend = text[text.index("## Position equations") :].split("\n\n")[1]
+    assert "c_{2} = \\cos{\\left(q_{2} \\right)}" in legend and "c_{1}" not in legend
+    six = symbolic.report("arm6-dh", lang="en")
+    legend = six[six.index("## Position equations") :].split("\n\n")[1]
+    assert "c_{1} = \\cos{\\left(q_{1} \\right)}" in legend
+    assert "c_{23} = \\cos{\\left(q_{2} + q_{3} \\right)}" in legend
+
+
+def test_six_dof_report_shows_T() -> None:
+    # T is too long to print whole: it is shown by its entries, given just below
+    text = symbolic.report("arm6-dh", lang="en")
+    t_section = text[text.index("## The homogeneous transformation matrix T") :]
+    t_section = t_section[: t_section.index("## Position equations")]
+    assert "T &= \\left[\\begin{matrix}r_{11} & r_{12} & r_{13} & p_{x}" in t_section
+
+
+def test_html_parentheses_and_minus_signs() -> None:
+    page = symbolic.report("arm6-dh", format="html", lang="en")
+    # Rot(z, q1) beside its matrix: parentheses that do not stretch to the matrix
+    assert '<mi>Rot</mi><mo stretchy="false">(</mo><mi>z</mi>' in page
+    assert "<mi>Trans</mi>" in page and "<mi>Tras</mi>" not in page
+    # minus signs, not hyphens: neither <mo>-</mo> nor a negative <mn>
+    assert "<mo>-</mo>" not in page and "<mn>-" not in page
+    assert "<mo>\u2212</mo>" in page

@@ -461,3 +461,33 @@ def _shown_literally(page: Any, robot: km.Robot) -> None:
         assert label.text_content() == f"q{i + 1} {link.name} (deg)"
     assert page.locator("#joints img, #joints script, #joints svg").count() == 0
     np.testing.assert_allclose(shown_T(page), robot.fk(np.zeros(robot.dof)), atol=PAGE_ATOL)
+
+
+@needs_browser
+def test_frame_labels_do_not_print_over_each_other(page: Any, tmp_path: Path) -> None:
+    # the notes' arm: "S4, S5" at the wrist centre, "S6" l4 = 0.1 m further (issue 22):
+    # every label the canvas writes keeps clear of the others
+    page.add_init_script(
+        """
+        window.labels = [];
+        const write = CanvasRenderingContext2D.prototype.fillText;
+        CanvasRenderingContext2D.prototype.fillText = function (text, x, y) {
+          window.labels.push([text, x, y, this.measureText(text).width]);
+          return write.apply(this, arguments);
+        };
+        """
+    )
+    robot = km.load("arm6-dh")
+    q = np.radians([30, 40, -30, 10, 60, -20])
+    page.goto(viz.write_page(robot, tmp_path / "a.html").as_uri() + hash_of(robot, q))
+    page.evaluate("window.labels = []")
+    page.uncheck("#labels")
+    page.check("#labels")  # one drawing with the labels
+    labels = page.evaluate("window.labels")
+    names = [label[0] for label in labels]
+    assert "S4, S5" in names and "S6" in names
+    line = page.evaluate("14 * (window.devicePixelRatio || 1)")
+    for i, (a, xa, ya, wa) in enumerate(labels):
+        for b, xb, yb, wb in labels[i + 1 :]:
+            apart = xa + wa <= xb or xb + wb <= xa or abs(ya - yb) >= line
+            assert apart, f"{a!r} at ({xa:.0f}, {ya:.0f}) and {b!r} at ({xb:.0f}, {yb:.0f})"

@@ -23,6 +23,7 @@ from PIL import Image
 
 from kinematica import viz
 from kinematica.viz.geometry import ARROW, PLANAR_TOL
+from kinematica.viz.plot import fit_solutions
 
 
 def _axes3d() -> object:
@@ -130,13 +131,92 @@ def test_labels_name_every_frame_once() -> None:
     assert not any(t.get_text().startswith("S") for t in ax.texts)
 
 
-@pytest.mark.parametrize(("d", "merged"), [(1e-9, True), (1e-3, False)])
-def test_coincident_frames_share_a_label(d: float, merged: bool) -> None:
-    # S1 and S2 are d apart along z; the arm is 1 + d long (SAME_PLACE = 1e-6 of it)
+@pytest.mark.parametrize(
+    ("d", "shown"),
+    [
+        (1e-9, ["S0", "S1, S2"]),  # within SAME_PLACE = 1e-6 of the arm's 1 + d: one place
+        (1e-3, ["S0", "S1\nS2"]),  # near: one block of lines (LABEL_NEAR = 0.1 of it)
+        (0.1, ["S0", "S1\nS2"]),  # 0.1 < 0.1 * 1.1
+        (0.12, ["S0", "S1", "S2"]),  # 0.12 > 0.1 * 1.12: apart, each at its own frame
+    ],
+)
+def test_coincident_frames_share_a_label(d: float, shown: list[str]) -> None:
+    # S1 and S2 are d apart along z; the arm is 1 + d long
     robot = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(d=d)])
     ax = viz.plot(robot, [0.3, 0.2], ax=_axes3d())
-    texts = sorted(t.get_text() for t in ax.texts)
-    assert texts == (["S0", "S1, S2"] if merged else ["S0", "S1", "S2"])
+    texts = sorted(t.get_text() for t in ax.texts if t.get_text())
+    assert texts == shown
+
+
+def _drawn(fig: Figure) -> object:
+    """Draw ``fig`` on an Agg canvas; its renderer."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    return canvas.get_renderer()
+
+
+def _overlaps(fig: Figure, texts: list[object]) -> list[tuple[str, str]]:
+    """Pairs of texts whose boxes overlap once drawn (3-D labels where they are projected)."""
+    from matplotlib.text import Text
+    from mpl_toolkits.mplot3d import proj3d
+
+    renderer = _drawn(fig)
+    boxes = []
+    for t in texts:
+        if not t.get_text():  # type: ignore[attr-defined]
+            continue
+        if hasattr(t, "get_position_3d"):  # a Text3D measures itself unprojected
+            x, y, _ = proj3d.proj_transform(*t.get_position_3d(), t.axes.get_proj())  # type: ignore[attr-defined]
+            t = Text(
+                x,
+                y,
+                t.get_text(),  # type: ignore[attr-defined]
+                fontproperties=t.get_fontproperties(),  # type: ignore[attr-defined]
+                va=t.get_va(),  # type: ignore[attr-defined]
+                ha=t.get_ha(),  # type: ignore[attr-defined]
+                transform=t.axes.transData,  # type: ignore[attr-defined]
+                figure=fig,
+            )
+        boxes.append((t.get_text(), t.get_window_extent(renderer)))  # type: ignore[attr-defined]
+    return [
+        (a, b)
+        for i, (a, box_a) in enumerate(boxes)
+        for b, box_b in boxes[i + 1 :]
+        if box_a.overlaps(box_b)
+    ]
+
+
+def test_wrist_labels_do_not_print_over_each_other() -> None:
+    # the notes' arm: S4, S5 at the wrist centre and S6 l4 = 0.1 m further (issue 22)
+    robot = km.load("arm6-dh")
+    fig = Figure(figsize=(8, 7), dpi=100)
+    ax = fig.add_subplot(projection="3d")
+    viz.plot(robot, np.radians([30, 40, -30, 10, 60, -20]), ax=ax)
+    assert _overlaps(fig, list(ax.texts)) == []
+    assert "S4, S5\nS6" in [t.get_text() for t in ax.texts]
+
+
+def test_single_solution_picture_keeps_its_text_inside(tmp_path: Path) -> None:
+    # one narrow panel: the picture's title, the panel's and the axis labels all inside it
+    for name, q in (("planar-pr", [0.2, 0.5]), ("anthropomorphic-3r", [0.2, 0.3, 0.5])):
+        robot = km.load(name)
+        fig = Figure(dpi=100)
+        viz.plot_solutions(robot, robot.fk(q), fig=fig)
+        _, count, size = viz.save_solutions(robot, robot.fk(q), tmp_path / "s.png")
+        assert count == 1
+        fig.set_size_inches(size[0] / 100, size[1] / 100)
+        fit_solutions(fig)  # as save_solutions does after its resize
+        renderer = _drawn(fig)
+        texts = [fig._suptitle] + [
+            t for ax in fig.axes for t in (ax.title, ax.xaxis.label, ax.yaxis.label)
+        ]
+        for text in texts:
+            box = text.get_window_extent(renderer)
+            assert box.x0 >= 0 and box.y0 >= 0, (name, text.get_text())
+            assert box.x1 <= size[0] and box.y1 <= size[1], (name, text.get_text())
+        assert _overlaps(fig, [fig._suptitle, *(ax.title for ax in fig.axes)]) == []
 
 
 def test_tool_frame_drawn_apart_at_fk() -> None:

@@ -21,6 +21,7 @@ from kinematica.errors import (
     KinematicaError,
     KinematicaWarning,
     RobotFileError,
+    UnitWarning,
     UnknownRobotError,
     UnreachableError,
 )
@@ -201,6 +202,7 @@ __all__ = [
     "Robot",
     "RobotFileError",
     "Structure",
+    "UnitWarning",
     "UnknownRobotError",
     "UnreachableError",
     "__version__",

@@ -13,6 +13,7 @@ __all__ = [
     "KinematicaError",
     "KinematicaWarning",
     "RobotFileError",
+    "UnitWarning",
     "UnknownRobotError",
     "UnreachableError",
     "located",
@@ -118,4 +119,14 @@ class KinematicaWarning(UserWarning):
 
     For example rows of a batch holding NaN (their results are NaN), or a
     value implausible for its unit (``alpha: 90`` in a file in radians).
+    """
+
+
+class UnitWarning(KinematicaWarning):
+    """A number valid as such but implausible in its unit, most likely a unit slip.
+
+    Degrees where radians are meant (``alpha: 90`` in a file in radians,
+    ``robot.fk([30, 40, -30, 10, 60, -20])``: joint angles beyond a full turn),
+    radians where degrees are meant, millimetres where metres are meant. The
+    value is used as given.
     """

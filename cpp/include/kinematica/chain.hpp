@@ -41,11 +41,14 @@ struct Joint {
     double ca = 1.0, sa = 0.0; //!< cosine and sine of the twist α about the new x
     double lo = -INF, hi = INF;        //!< the joint's own limits (rad or m), ±inf where none
     double qlo = -INF, qhi = INF;      //!< limits solutions are held to: own, else (-π, π) revolute
+    double turn = INF;                 //!< |q| beyond this is implausible: 2π for a revolute
+                                       //!< joint with no limits (degrees given for radians?)
     Pose frame{};              //!< G_i of FrameAt::custom
 };
 
-//! What one configuration is: fine, holding NaN/inf, or beyond some joint's own limits.
-enum class QState { ok = 0, not_finite = 1, outside_limits = 2 };
+//! What one configuration is: fine, holding NaN/inf, beyond some joint's own limits, or
+//! with a joint that has none beyond a full turn (computed all the same; said so).
+enum class QState { ok = 0, not_finite = 1, outside_limits = 2, beyond_turn = 3 };
 
 //! A chain's data as the algorithms read it (no ownership: a device copy can point here too).
 struct ChainView {
@@ -226,16 +229,18 @@ KM_HD KM_INLINE Pose walk(const ChainView& ch, const double* q, const double* c,
     return T;
 }
 
-//! QState of configuration q against the joints' own limits.
+//! QState of configuration q against the joints' own limits (and a full turn where none).
 KM_HD KM_INLINE QState q_state(const ChainView& ch, const double* q) {
-    bool finite = true, inside = true;
+    bool finite = true, inside = true, plausible = true;
     for (int i = 0; i < ch.n; ++i) {
         const double v = q[i];
         finite = finite && std::isfinite(v);
         inside = inside && ch.joint[i].lo <= v && v <= ch.joint[i].hi;
+        plausible = plausible && std::fabs(v) <= ch.joint[i].turn;
     }
     if (!finite) return QState::not_finite;
-    return inside ? QState::ok : QState::outside_limits;
+    if (!inside) return QState::outside_limits;
+    return plausible ? QState::ok : QState::beyond_turn;
 }
 
 //! The tool pose at q (joint_trig, then walk), with c, s scratch of n each.

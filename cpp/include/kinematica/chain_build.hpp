@@ -42,6 +42,7 @@ inline void set_limits(Joint& J, double lo, double hi) {
     const bool own = std::isfinite(lo) || std::isfinite(hi) || J.prismatic;
     J.qlo = own ? lo : -PI;
     J.qhi = own ? hi : PI;
+    J.turn = own ? INF : TWO_PI;
 }
 
 //! R = Rz(θ) Rx(α) Rz(δ) (ZXZ angles), accurate as a product however small sin α is.

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import re
 import sys
 from typing import Any
 
@@ -33,7 +34,7 @@ from kinematica.errors import ArgumentError
 from kinematica.ik import IKOptions, IKResult
 from kinematica.ik.printed import half_unit, printed_digits
 from kinematica.io import builtin_names
-from kinematica.robot import Robot, classify, load
+from kinematica.robot import Robot, classify, load, spec_from_robot
 from kinematica.spatial import euler_from_matrix, from_pose, gimbal_locked
 
 __all__ = ["fk", "ik", "register", "robots", "show"]
@@ -73,6 +74,7 @@ def _dh_rows(robot: Robot, args: argparse.Namespace) -> list[tuple[str, ...]]:
 
     rows: list[tuple[str, ...]] = []
     limits = robot.qlim
+    written = _written(robot)
     for i, (link, lim) in enumerate(zip(robot.links, limits, strict=True), start=1):
         if link.type == "R":
             theta, d = var(f"q{i}", ang(link.offset)), length(link.d)
@@ -81,8 +83,31 @@ def _dh_rows(robot: Robot, args: argparse.Namespace) -> list[tuple[str, ...]]:
             theta, d = ang(link.theta), var(f"q{i}", length(link.offset))
             lim_text = f"[{length(lim[0], 4)}, {length(lim[1], 4)}] {metres}"
         free = "" if robot.has_limits[i - 1] else " (free)"
-        rows.append((str(i), link.type, theta, d, length(link.a), ang(link.alpha), lim_text + free))
+        cells = dict(theta=theta, d=d, a=length(link.a), alpha=ang(link.alpha))
+        for key, text in written[i - 1].items():  # "l1 = 0.5" where the file says l1
+            cells[key] = f"{text} = {cells[key]}"
+        rows.append((str(i), link.type, *cells.values(), lim_text + free))
     return rows
+
+
+def _written(robot: Robot) -> list[dict[str, str]]:
+    """Per joint, the DH entries the robot file writes with parameter names (``d: l1``).
+
+    Only for rows the robot still has as written (a robot changed since it was read
+    is shown by its numbers alone).
+    """
+    spec = spec_from_robot(robot)
+    names = set(spec.parameters)
+    out: list[dict[str, str]] = []
+    for joint in spec.joints:
+        named = {
+            key: text
+            for key, text in joint.expr.items()
+            if key in ("theta", "d", "a", "alpha")
+            and names & set(re.findall(r"[A-Za-z_]\w*", str(text)))
+        }
+        out.append(named)
+    return out
 
 
 def show(args: argparse.Namespace) -> int:
@@ -171,10 +196,10 @@ def fk(args: argparse.Namespace) -> int:
     print(f"{plain(robot.name)}, q = [{', '.join(num(v, digits) for v in args.q)}]")
     print(f"units: {unit} for angles, {metres} for lengths")
     if frames is not None:
+        has_tool = not np.array_equal(robot.tool, np.eye(4))
         for i, F in enumerate(frames):
-            label = (
-                "0T0 (base)" if i == 0 else f"0T{i}" + (" (with tool)" if i == robot.dof else "")
-            )
+            tool = " (with tool)" if i == robot.dof and has_tool else ""
+            label = "0T0 (base)" if i == 0 else f"0T{i}{tool}"
             print(f"\n{label}:\n{matrix(F, precision=digits)}")
     print(f"\nT:\n{matrix(T, precision=digits)}")
     xyz = "  ".join(f"{c} = {num(v, digits)}" for c, v in zip("xyz", pos, strict=True))
@@ -219,6 +244,13 @@ def _precision(robot: Robot, args: argparse.Namespace) -> tuple[float, float] | 
         position, rotation = pose[:3], 3.0 * (angle if args.rad else math.radians(angle))
     metres = float(lengths_in(half_unit(position, digits), robot, args))
     return metres, rotation
+
+
+def _headline(status: str, message: str) -> str:
+    """``status — message``, or the message alone when it already opens with the status."""
+    if message.startswith(f"{status.replace('_', ' ')}:"):
+        return plain(message)  # it names its status already: "singular: infinitely many ..."
+    return f"{status} — {plain(message)}"
 
 
 def ik(args: argparse.Namespace) -> int:
@@ -266,7 +298,7 @@ def ik(args: argparse.Namespace) -> int:
             }
         )
         return 0 if solved else 1
-    print(f"{plain(robot.name)}: {res.status} — {plain(res.message)}")
+    print(f"{plain(robot.name)}: {_headline(res.status, res.message)}")
     unit, metres = ("rad" if args.rad else "deg"), length_unit(robot, args)
     print(f"units: {unit} for angles, {metres} for lengths")
     header = ("#", *(f"q{i}" for i in range(1, robot.dof + 1)), "branch", "error (m, rad)")

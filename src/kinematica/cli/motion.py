@@ -17,6 +17,7 @@ from kinematica.cli.options import (
     angle_unit,
     dump,
     finite,
+    joint_units,
     lengths_in,
     q_in,
     q_out,
@@ -149,7 +150,7 @@ def workspace_cmd(args: argparse.Namespace) -> int:
     finally:
         if bar is not None:
             bar.close()
-    plane = args.plane or ("xy" if ws.planar else "xz")
+    plane = args.plane or ws.plane or "xz"
     sl = ws.slice(plane, at=args.at) if (args.plane or args.output or ws.planar) else None
     if args.output and sl is not None:
         from kinematica.motion.plot import plot_workspace_slice
@@ -167,6 +168,7 @@ def workspace_cmd(args: argparse.Namespace) -> int:
                 "volume": ws.volume,
                 "area": ws.area,
                 "planar": ws.planar,
+                "plane": ws.plane,
                 "slice": None
                 if sl is None
                 else {"plane": sl.plane, "at": sl.at, "area": sl.area, "extent": list(sl.extent)},
@@ -179,7 +181,7 @@ def workspace_cmd(args: argparse.Namespace) -> int:
     print(table(("axis", "min (m)", "max (m)"), rows))
     print(f"reach {fmt(ws.reach, 4)} m")
     if ws.planar:
-        print(f"planar workspace: area {fmt(ws.area or 0.0, 4)} m²")
+        print(f"planar workspace in the {ws.plane} plane: area {fmt(ws.area or 0.0, 4)} m²")
     else:
         print(f"volume {fmt(ws.volume, 4)} m³")
     if sl is not None:
@@ -365,7 +367,7 @@ def trajectory(args: argparse.Namespace) -> int:
     )
     step = max(1, math.ceil(t.size / PRINTED_ROWS))
     idx = sorted(set(range(0, t.size, step)) | {t.size - 1})
-    header = ("t (s)", *(f"q{i}" for i in range(1, robot.dof + 1)))
+    header = ("t (s)", *(f"q{i} ({u})" for i, u in enumerate(joint_units(robot, args), 1)))
     shown = q_out(robot, q[idx], args)
     print(
         table(

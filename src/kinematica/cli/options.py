@@ -36,6 +36,7 @@ __all__ = [
     "clean",
     "dump",
     "finite",
+    "joint_units",
     "length_unit",
     "lengths_in",
     "lengths_out",
@@ -212,6 +213,12 @@ def q_out(robot: Robot, q: FloatArray, args: argparse.Namespace) -> FloatArray:
     """Joint values ``(..., n)`` in SI to the command line's units."""
     angles = q if args.rad else np.rad2deg(q)
     return np.where(robot.is_prismatic, lengths_out(q, robot, args), angles)
+
+
+def joint_units(robot: Robot, args: argparse.Namespace) -> list[str]:
+    """The unit of each joint's value as :func:`q_out` gives it: ``["deg", "deg", "m"]``."""
+    angle, length = angle_unit(args), length_unit(robot, args)
+    return [length if p else angle for p in robot.is_prismatic]
 
 
 def _jsonable(data: Any) -> Any:

@@ -17,6 +17,7 @@ from numpy.typing import NDArray
 
 from kinematica.cli.options import add_common, add_robot, dump, q_in, robot_from_args
 from kinematica.errors import DimensionError, KinematicaError, UnreachableError
+from kinematica.robot import Robot
 from kinematica.spatial import from_pose
 
 __all__ = ["animate", "plot", "register", "view"]
@@ -97,7 +98,8 @@ def plot(args: argparse.Namespace) -> int:
     if args.json:
         dump(out)
     else:
-        what = f"{out['solutions']} IK solutions" if solutions else "the arm"
+        count = out.get("solutions", 0)
+        what = f"{count} IK solution{'' if count == 1 else 's'}" if solutions else "the arm"
         print(f"wrote {path} ({size[0]} x {size[1]} px): {what} of {robot.name}")
     return 0
 
@@ -127,6 +129,7 @@ def animate(args: argparse.Namespace) -> int:
                 "output": str(anim.path),
                 "frames": anim.frames,
                 "fps": anim.fps,
+                "note": anim.note or None,
                 "size": list(anim.size),
                 "samples": int(q.shape[0]),
             }
@@ -136,7 +139,21 @@ def animate(args: argparse.Namespace) -> int:
             f"wrote {anim.path} ({anim.size[0]} x {anim.size[1]} px, {anim.frames} frames at "
             f"{anim.fps:.4g} fps) from {q.shape[0]} samples of {args.trajectory}"
         )
+        if anim.note:
+            print(f"note: {anim.note}")
     return 0
+
+
+def _hash_hint(robot: Robot) -> str:
+    """How to start the page at a configuration: ``#q=`` takes degrees and metres."""
+    kinds = set(robot.joint_types)
+    if len(kinds) == 1:
+        return f"add #q=... in {'metres' if kinds == {'P'} else 'degrees'} to start there"
+    each = ", ".join(
+        f"q{i} in {'m' if kind == 'P' else 'degrees'}"
+        for i, kind in enumerate(robot.joint_types, 1)
+    )
+    return f"add #q=... to start there: {each}"
 
 
 def view(args: argparse.Namespace) -> int:
@@ -154,7 +171,7 @@ def view(args: argparse.Namespace) -> int:
         if args.json:
             dump({"robot": robot.name, "output": str(written), "units": units})
         else:
-            print(f"wrote {written}: open it in a browser (add #q=... in degrees to start there)")
+            print(f"wrote {written}: open it in a browser ({_hash_hint(robot)})")
         return 0
     server = viz.serve(
         robot, host=args.host, port=args.port, units=units, q=q, euler=args.euler, start=False

@@ -22,7 +22,7 @@ from typing import Literal
 
 import numpy as np
 
-from kinematica.errors import ArgumentError, KinematicaError, KinematicaWarning
+from kinematica.errors import ArgumentError, KinematicaError, UnitWarning
 from kinematica.io import plausible
 from kinematica.io.spec import CONVENTION_ALIASES, Convention, convention_names
 
@@ -131,7 +131,7 @@ def _check(joint: Revolute | Prismatic, angles: tuple[str, ...], lengths: tuple[
             # stacklevel: _check <- __post_init__ <- __init__ <- the caller.
             warnings.warn(
                 f"{owner}: {key}={getattr(joint, key)!r}: {message}",
-                KinematicaWarning,
+                UnitWarning,
                 stacklevel=4,
             )
 

@@ -26,6 +26,7 @@ from kinematica.spatial.checks import shown_above
 __all__ = [
     "POSITION_TOL",
     "PROJECTION_TOL",
+    "QUIET_PROJECTION",
     "ROTATION_TOL",
     "Targets",
     "Tolerance",
@@ -50,6 +51,11 @@ ROTATION_TOL = 1e-10
 #: replaced by the nearest rotation (with a note) when farther than round-off from
 #: orthonormal; beyond this, it is an error.
 PROJECTION_TOL = 2e-4
+#: A projection onto SO(3) is said (a note) only when the rotation was farther than
+#: this from orthonormal: the projection moves it by about half that angle, and below
+#: ROTATION_TOL a solution meets the tolerance on the rotation as written too (a copy
+#: with 10 digits, orthonormal to ~1e-10, is projected silently).
+QUIET_PROJECTION = ROTATION_TOL
 
 
 @dataclass(frozen=True)
@@ -190,6 +196,7 @@ def _poses(raw: np.ndarray) -> Targets:
             poses[i, 3] = [0.0, 0.0, 0.0, 1.0]
             if ortho[i] > ROUNDOFF_TOL:
                 poses[i, :3, :3] = nearest_rotation(poses[i, :3, :3])
+            if ortho[i] > QUIET_PROJECTION:
                 notes[i] = (
                     f"target rotation projected onto SO(3) (it was orthonormal to "
                     f"{ortho[i]:.1e} only)",

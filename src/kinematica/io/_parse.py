@@ -18,7 +18,7 @@ from typing import Any, Final, Literal
 
 import numpy as np
 
-from kinematica.errors import KinematicaWarning, RobotFileError, located
+from kinematica.errors import RobotFileError, UnitWarning, located
 from kinematica.io import plausible
 from kinematica.io.expr import Affine, Expression, ExpressionError, is_joint_variable
 from kinematica.io.expr import parse_expression as _parse_expression
@@ -137,7 +137,7 @@ class _Reader:
         return RobotFileError(message, path=self.path, joint=joint, key=key)
 
     def warn(self, message: str | None, *, joint: int | None = None, key: str) -> None:
-        """Warn (KinematicaWarning) that a value is implausible for its unit, if it is."""
+        """Warn (UnitWarning) that a value is implausible for its unit, if it is."""
         if message is None:
             return
         if key == "limits" or key.endswith(".rpy") or key in ("theta", "alpha"):
@@ -147,7 +147,7 @@ class _Reader:
         if advice and "is it in" in message:
             message += f"; {advice} if the file is in those units"
         text = located(message, path=self.path, joint=joint, key=key)
-        warnings.warn(text, KinematicaWarning, stacklevel=3)
+        warnings.warn(text, UnitWarning, stacklevel=3)
 
     def check_angle(self, written: float, key: str, joint: int | None = None) -> None:
         """Warn about a constant angle ``written`` in file units, if implausible."""

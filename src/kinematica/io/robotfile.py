@@ -286,6 +286,8 @@ def read_robot_file(path: str | os.PathLike[str]) -> RobotSpec:
         KinematicaError: a YAML file and PyYAML is not installed.
     """
     p = _path(path)
+    if p.is_dir():  # before its name's suffix: a folder is not a file of an unknown type
+        raise RobotFileError("is a directory, not a robot file", path=str(p))
     suffix = _suffix(p)
     try:
         text = _read_bytes(p).decode("utf-8")

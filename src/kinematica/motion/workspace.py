@@ -15,8 +15,9 @@ voxel) a Cartesian arm's box comes out within 1 % at 10⁵ samples, and a 3R
 arm's spherical shell and a planar 3R arm's disc area too
 (``tests/test_motion_workspace.py``).
 
-A workspace whose points all lie in one plane (planar arms) is measured in
-that plane: ``area`` (m²) and ``volume = 0``.
+A workspace whose points all lie in one coordinate plane (planar arms) is
+measured in that plane: ``area`` (m²), ``volume = 0``, and ``plane`` names it
+(``"xz"`` for an arm moving in the base's xz plane); its slices default to it.
 """
 
 from __future__ import annotations
@@ -132,15 +133,29 @@ class Workspace:
         return self.area is not None
 
     @property
+    def plane(self) -> str | None:
+        """The coordinate plane a planar workspace lies in (``"xy"``, ``"xz"``, ``"yz"``), or None.
+
+        The axis along which the points are flattest is left out: for a planar
+        arm, the plane it moves in (the plane :func:`kinematica.viz.plot` draws it in).
+        """
+        if not self.planar:
+            return None
+        flat = int(np.argmin(self.bounds[1] - self.bounds[0]))
+        return "".join(axis for k, axis in enumerate("xyz") if k != flat)
+
+    @property
     def reach(self) -> float:
         """Largest distance (m) of a sampled point from the base origin."""
         return float(np.sqrt(np.max(np.sum(self.points**2, axis=1))))
 
-    def slice(self, plane: str = "xz", at: float | None = None) -> WorkspaceSlice:
+    def slice(self, plane: str | None = None, at: float | None = None) -> WorkspaceSlice:
         """The layer of voxels cut by a coordinate plane.
 
         Args:
-            plane: Two base axes, ``"xy"``, ``"xz"`` or ``"yz"`` (either order).
+            plane: Two base axes, ``"xy"``, ``"xz"`` or ``"yz"`` (either order);
+                if ``None``, the workspace's own :attr:`plane` when it is
+                planar, else ``"xz"``.
             at: Coordinate (m) along the third axis; the middle of the bounds
                 if ``None`` (the plane of a planar workspace).
 
@@ -150,6 +165,8 @@ class Workspace:
         Raises:
             KinematicaError: Unknown plane, or ``at`` outside the grid.
         """
+        if plane is None:
+            plane = self.plane or "xz"
         key = "".join(sorted(plane.lower())) if isinstance(plane, str) else ""
         if key not in ("xy", "xz", "yz"):
             raise KinematicaError(f"plane must be 'xy', 'xz' or 'yz', got {plane!r}")

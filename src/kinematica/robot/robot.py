@@ -27,12 +27,13 @@ from kinematica.dh import (
     convert_table,
     link_matrix,
 )
-from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning
+from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning, UnitWarning
 from kinematica.ik import IKBatchResult, IKOptions, IKResult, Tolerance, solve_ik
 from kinematica.ik.reach import needs_proof
 from kinematica.ik.registry import TargetKind
 from kinematica.ik.result import CoreAnswer, result_of
 from kinematica.ik.solve import PoseSolver, pose_solver
+from kinematica.io.plausible import PLAUSIBLE_ANGLE, check_angle
 from kinematica.robot.dh_rules import to_dh, to_urdf
 from kinematica.robot.frames import rigid_frame, short
 from kinematica.robot.save import write_robot_file
@@ -53,8 +54,10 @@ _FLOAT64 = np.dtype(np.float64)
 _FRAMES = ("base", "tool", "spatial")
 #: Where a position target is placed (the orientation is free).
 _IDENTITY = np.eye(4)
-#: What the core says of one configuration (kinematica._core.Chain.fk).
-_NOT_FINITE, _OUTSIDE_LIMITS = 1, 2
+#: What the core says of one configuration (kinematica._core.Chain.fk): QState in
+#: cpp/include/kinematica/chain.hpp. Beyond a turn: a revolute joint with no limits of
+#: its own beyond 2π (PLAUSIBLE_ANGLE), which batches check here.
+_NOT_FINITE, _OUTSIDE_LIMITS, _BEYOND_TURN = 1, 2, 3
 
 
 @dataclass(frozen=True, eq=False)
@@ -99,6 +102,7 @@ class Robot:
     _fast_ik: dict[str, PoseSolver] = field(
         init=False, repr=False, compare=False, default_factory=dict
     )
+    _turn: FloatArray | None = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         links = tuple(self.links)
@@ -132,6 +136,11 @@ class Robot:
         object.__setattr__(self, "_single", (len(links),))
         object.__setattr__(self, "_fk_one", chain.core.fk)
         object.__setattr__(self, "_jacobian_one", chain.core.jacobian)
+        # revolute joints with no limits of their own: a value beyond a full turn is
+        # most likely degrees given to the radian API (limits would say it otherwise)
+        free = np.array([isinstance(j, Revolute) and j.qlim is None for j in links], dtype=bool)
+        turn = np.where(free, PLAUSIBLE_ANGLE, np.inf) if free.any() else None
+        object.__setattr__(self, "_turn", turn)
 
     @classmethod
     def from_dh(
@@ -262,6 +271,22 @@ class Robot:
         if outside:
             warnings.warn(self._limits_message(qa, name), KinematicaWarning, stacklevel=3)
 
+    def _check_turns(self, qa: FloatArray, name: str = "q") -> None:
+        """Warn (:class:`UnitWarning`) of a free revolute joint beyond a full turn."""
+        if self._turn is None:
+            return
+        with np.errstate(invalid="ignore"):  # NaN and inf are reported apart
+            beyond = (np.abs(qa) > self._turn) & np.isfinite(qa)
+        if not beyond.any():
+            return
+        first = tuple(int(i) for i in np.argwhere(beyond)[0])
+        where = f" (row {first[:-1]})" if qa.ndim > 1 else ""
+        warnings.warn(
+            f"{name}: joint {first[-1] + 1}{where} = {check_angle(float(qa[first]))}",
+            UnitWarning,
+            stacklevel=3,
+        )
+
     def _limits_message(self, qa: FloatArray, name: str) -> str:
         """Which joints of which configurations lie beyond their own limits."""
         own = self.has_limits
@@ -293,7 +318,9 @@ class Robot:
         rows come out NaN, with a :class:`KinematicaWarning` naming them. A
         single configuration with NaN/inf raises :class:`DimensionError`. A
         configuration beyond a joint's own limits is computed, with a
-        :class:`KinematicaWarning` naming the joint and the limit.
+        :class:`KinematicaWarning` naming the joint and the limit; a revolute
+        joint with no limits of its own beyond a full turn (2π rad), with a
+        :class:`~kinematica.errors.UnitWarning` (degrees given for radians?).
 
         Returns:
             ``(..., 4, 4)`` pose ``T = base · 0A1 · ... · (n-1)An · tool``, or
@@ -308,13 +335,16 @@ class Robot:
             except ValueError:  # not contiguous: the general path copies it
                 pass
             else:
-                if state:
+                if state == _BEYOND_TURN:
+                    self._check_turns(qa)
+                elif state:
                     self._report(qa, "q", state == _NOT_FINITE, state == _OUTSIDE_LIMITS)
                 return T
         qa = self.check_q(qa)
         out, bad, outside = self.chain.fk(qa, all_frames, workers)
         if bad or outside:
             self._report(qa, "q", bad, outside)
+        self._check_turns(qa)
         return out
 
     def link_matrices(self, q: ArrayLike) -> FloatArray:
@@ -403,11 +433,14 @@ class Robot:
             else:
                 if state == _NOT_FINITE:
                     self._report(qa, "q", 1, 0)
+                elif state == _BEYOND_TURN:
+                    self._check_turns(qa)
                 return J
         qa = self.check_q(qa)
         J, bad = self.chain.jacobian(qa, frame == "tool", workers)
         if bad:
             self._report(qa, "q", bad, 0)
+        self._check_turns(qa)
         return J
 
     def joint_axes(self, q: ArrayLike | None = None) -> tuple[FloatArray, FloatArray]:

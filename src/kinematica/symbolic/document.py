@@ -18,7 +18,7 @@ from kinematica.symbolic.inverse import InverseDerivation, derive_inverse, targe
 from kinematica.symbolic.jacobian import jacobian
 from kinematica.symbolic.kinematics import Factor, factors, frames, link_matrices
 from kinematica.symbolic.model import SymbolicRobot
-from kinematica.symbolic.notation import short
+from kinematica.symbolic.notation import short, short_names
 from kinematica.symbolic.phrases import phrase, structure_summary
 from kinematica.symbolic.printing import latex, mathml
 
@@ -131,11 +131,22 @@ class _Writer:
         self.eqs(*((n, e) for n, e in zip(names, M, strict=True) if n is not None))
 
 
-def _short_legend(model: SymbolicRobot) -> Notation:
-    q = model.q
-    examples = [sp.Eq(sp.Symbol("c1"), sp.cos(q[0]))]
-    if len(q) > 2:
-        examples.append(sp.Eq(sp.Symbol("s23"), sp.sin(q[1] + q[2])))
+def _short_legend(T: sp.Matrix) -> Notation | None:
+    """``c1 = cos(q1), s23 = sin(q2 + q3)``: one of each kind ``T`` uses, or None if none.
+
+    Taken from the equations themselves, so a prismatic q1 never gets a ``c1``.
+    """
+    names = short_names(T)
+
+    def key(sym: sp.Symbol) -> tuple[int, bool, str]:
+        return (len(sp.Add.make_args(names[sym].args[0])), str(sym)[0] != "c", str(sym))
+
+    ordered = sorted(names, key=key)
+    single = [sym for sym in ordered if len(sp.Add.make_args(names[sym].args[0])) == 1]
+    summed = [sym for sym in ordered if len(sp.Add.make_args(names[sym].args[0])) > 1]
+    examples = [sp.Eq(sym, names[sym]) for sym in (single[:1] + summed[:1])]
+    if not examples:
+        return None
     latex = ",\\; ".join(sp.latex(e) for e in examples)
     mathml = "<mo>,</mo>".join(sp.mathml(e, printer="presentation") for e in examples)
     return Notation(latex, mathml, ", ".join(str(e) for e in examples))
@@ -180,7 +191,7 @@ def _forward(w: _Writer, model: SymbolicRobot) -> sp.Matrix:
     w.heading(2, "h.dh")
     A = _scripted("A", "i", "i-1")
     w.para(f"dh.{model.convention}", A=A)
-    w.blocks.append(Para((_factor_formula(model.convention),)))
+    w.blocks.append(Para((_factor_formula(model.convention, w.lang),)))
     w.blocks.append(_dh_table(model, w.lang))
     if model.values:
         w.para("params")
@@ -197,7 +208,7 @@ def _forward(w: _Writer, model: SymbolicRobot) -> sp.Matrix:
     for i, Ai in enumerate(mats, 1):
         w.heading(3, "h.row", i=str(i))
         w.para("row.factors", i=str(i))
-        w.eqs(*((_factor_name(f), f.matrix) for f in factors(model, i)))
+        w.eqs(*((_factor_name(f, w.lang), f.matrix) for f in factors(model, i)))
         w.para("row.product", A=_scripted("A", str(i), str(i - 1)))
         w.eqs((_scripted("A", str(i), str(i - 1)), short(Ai)))
 
@@ -208,11 +219,19 @@ def _forward(w: _Writer, model: SymbolicRobot) -> sp.Matrix:
     p, R = target_symbols()
     if max(len(sp.latex(e)) for e in short(T)) <= MAX_ENTRY_CHARS:
         w.eqs((sp.Symbol("T"), short(T)))
-    else:
+    else:  # too long to print whole: T by the names of its entries, each given below
+        named = sp.Matrix(4, 4, lambda i, j: R[i, j] if i < 3 and j < 3 else 0)
+        named[:3, 3] = p
+        named[3, 3] = 1
+        w.eqs((sp.Symbol("T"), named))
         w.para("T.entries")
 
     w.heading(2, "h.position")
-    w.para("position.text", short=_short_legend(model))
+    legend = _short_legend(T)
+    if legend is None:
+        w.para("position.plain")
+    else:
+        w.para("position.text", short=legend)
     w.eqs(*((p[i], short(T[i, 3])) for i in range(3)))
     w.heading(2, "h.orientation")
     w.para("orientation.text")
@@ -229,12 +248,18 @@ def _jacobian(w: _Writer, model: SymbolicRobot) -> None:
         w.matrix(sp.Symbol(f"J_{i + 1}"), J[:, i], names)
 
 
-def _factor_name(f: Factor) -> Notation:
-    """``Rot(z, q2 + pi/2)``, ``Tras(x, l2)`` in the three forms."""
+#: A parenthesis of inline notation: MathML stretches an ``<mo>(</mo>`` to the
+#: tallest item of its row (the matrix beside ``Rot(z, q1) =``) unless told not to.
+_OPEN, _CLOSE = '<mo stretchy="false">(</mo>', '<mo stretchy="false">)</mo>'
+
+
+def _factor_name(f: Factor, lang: str) -> Notation:
+    """``Rot(z, q2 + pi/2)``, ``Tras(x, l2)`` (``Trans`` in English) in the three forms."""
+    kind = phrase(f"op.{f.kind}", lang)
     return Notation(
-        f"\\mathrm{{{f.kind}}}({f.axis}, {latex(f.value)})",
-        f"<mi>{f.kind}</mi><mo>(</mo><mi>{f.axis}</mi><mo>,</mo>{mathml(f.value)}<mo>)</mo>",
-        f"{f.kind}({f.axis}, {f.value})",
+        f"\\mathrm{{{kind}}}({f.axis}, {latex(f.value)})",
+        f"<mrow><mi>{kind}</mi>{_OPEN}<mi>{f.axis}</mi><mo>,</mo>{mathml(f.value)}{_CLOSE}</mrow>",
+        f"{kind}({f.axis}, {f.value})",
     )
 
 
@@ -242,14 +267,15 @@ def _mi(x: str) -> str:
     return f"<mn>{x}</mn>" if x.isdigit() else f"<mi>{x}</mi>"
 
 
-def _factor_formula(convention: str) -> Notation:
+def _factor_formula(convention: str, lang: str) -> Notation:
     """``i-1Ai = Rot(z, θi)·Tras(z, di)·Tras(x, ai)·Rot(x, αi)`` (or Craig's order)."""
+    trans = phrase("op.Tras", lang)
     sub = "i" if convention == "standard" else "i-1"
     sub_ml = "<mi>i</mi>" if sub == "i" else "<mrow><mi>i</mi><mo>-</mo><mn>1</mn></mrow>"
     items = [
         ("Rot", "z", "\\theta", "&theta;", "i", "<mi>i</mi>"),
-        ("Tras", "z", "d", "d", "i", "<mi>i</mi>"),
-        ("Tras", "x", "a", "a", sub, sub_ml),
+        (trans, "z", "d", "d", "i", "<mi>i</mi>"),
+        (trans, "x", "a", "a", sub, sub_ml),
         ("Rot", "x", "\\alpha", "&alpha;", sub, sub_ml),
     ]
     if convention != "standard":
@@ -266,7 +292,7 @@ def _factor_formula(convention: str) -> Notation:
         lhs.mathml
         + "<mo>=</mo>"
         + "<mo>&middot;</mo>".join(
-            f"<mi>{k}</mi><mo>(</mo><mi>{ax}</mi><mo>,</mo><msub><mi>{ml}</mi>{sbml}</msub><mo>)</mo>"
+            f"<mi>{k}</mi>{_OPEN}<mi>{ax}</mi><mo>,</mo><msub><mi>{ml}</mi>{sbml}</msub>{_CLOSE}"
             for k, ax, _, ml, _, sbml in items
         )
     )
@@ -301,7 +327,10 @@ def _geometric(w: _Writer, g: GeometricDerivation, model: SymbolicRobot) -> None
             if model.rows[i - 1].kind == "R"
         )
         w.para("geo.planar", k=axis.xreplace(zero).T)
-        w.eqs(*((sp.Symbol(f"s{i}"), sp.Tuple(a, v.T)) for i, (a, v) in enumerate(g.segments, 1)))
+        # a table, not named vectors: s1, s2 would read as sin q1, sin q2
+        header = tuple(phrase(f"geo.col.{c}", w.lang) for c in ("segment", "angle", "vector"))
+        rows = tuple((str(i), a, v.T) for i, (a, v) in enumerate(g.segments, 1))
+        w.blocks.append(Table(header, rows))
     else:
         w.para("geo.arm_plane", q=model.q[0])
         w.eqs(*((s, short(e)) for s, e in g.extra))

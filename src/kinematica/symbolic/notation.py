@@ -17,7 +17,7 @@ from sympy.simplify.fu import TR10i
 
 from kinematica.symbolic.model import joint_index
 
-__all__ = ["short", "tidy"]
+__all__ = ["short", "short_names", "tidy"]
 
 _E = TypeVar("_E", sp.Expr, sp.MatrixBase)
 
@@ -104,6 +104,24 @@ def _short_name(f: sp.Expr) -> sp.Symbol | None:
     sep = "," if any(i > 9 for i in indices) else ""
     letter = "c" if isinstance(f, sp.cos) else "s"
     return sp.Symbol(letter + sep.join(map(str, indices)))
+
+
+def short_names(expr: sp.Expr | sp.MatrixBase) -> dict[sp.Symbol, sp.Expr]:
+    """The short symbols :func:`short` would write in ``expr``: ``{c1: cos(q1), s23: ...}``.
+
+    Args:
+        expr: A sympy expression or matrix.
+
+    Returns:
+        Each short symbol and the sine or cosine it stands for.
+    """
+    e = sp.Matrix(expr) if isinstance(expr, sp.MatrixBase) else sp.sympify(expr)
+    out = {}
+    for f in e.atoms(sp.sin, sp.cos):
+        name = _short_name(f)
+        if name is not None:
+            out[name] = f
+    return out
 
 
 def short(expr: _E) -> _E:

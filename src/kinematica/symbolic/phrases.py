@@ -67,6 +67,8 @@ PHRASES: Final[dict[str, tuple[str, str]]] = {
         "The four elementary transforms of row {i}:",
     ),
     "row.product": ("y su producto, la matriz {A}:", "and their product, the matrix {A}:"),
+    "op.Rot": ("Rot", "Rot"),
+    "op.Tras": ("Tras", "Trans"),
     "h.T": ("Matriz de transformación homogénea T", "The homogeneous transformation matrix T"),
     "T.text": (
         "T da la posición y la orientación del extremo respecto de la base en "
@@ -75,13 +77,19 @@ PHRASES: Final[dict[str, tuple[str, str]]] = {
         "frame as a function of the {n} joint coordinates:",
     ),
     "T.entries": (
-        "Sus elementos son las ecuaciones de posición y de orientación que siguen.",
-        "Its entries are the position and orientation equations that follow.",
+        "Sus elementos, demasiado largos para escribir T entera, son las ecuaciones "
+        "de posición y de orientación que siguen.",
+        "Its entries, too long to write T out whole, are the position and "
+        "orientation equations that follow.",
     ),
     "h.position": ("Ecuaciones de posición", "Position equations"),
     "position.text": (
         "La última columna de T, simplificada y en notación abreviada ({short}):",
         "The last column of T, simplified and in short notation ({short}):",
+    ),
+    "position.plain": (
+        "La última columna de T, simplificada:",
+        "The last column of T, simplified:",
     ),
     "h.orientation": ("Ecuaciones de orientación", "Orientation equations"),
     "orientation.text": (
@@ -124,13 +132,11 @@ PHRASES: Final[dict[str, tuple[str, str]]] = {
         "El brazo es plano: cada tramo rígido (de una articulación a la siguiente "
         "y al extremo) gira, respecto de su posición con las articulaciones "
         "rotacionales a cero, el ángulo acumulado de las articulaciones anteriores "
-        "alrededor del eje común {k}; las prismáticas lo alargan. Tramo a tramo "
-        "(ángulo girado, vector del tramo a cero):",
+        "alrededor del eje común {k}; las prismáticas lo alargan. Tramo a tramo:",
         "The arm is planar: each rigid segment (from one joint to the next and to "
         "the end effector) is turned, from its position with the revolute joints "
         "at zero, by the summed angle of the joints before it about the common axis "
-        "{k}; the prismatic joints stretch it. Segment by segment (angle turned, "
-        "segment vector at zero):",
+        "{k}; the prismatic joints stretch it. Segment by segment:",
     ),
     "geo.arm_plane": (
         "El brazo se mueve en un plano que contiene el eje 1: en ese plano es un "
@@ -140,6 +146,9 @@ PHRASES: Final[dict[str, tuple[str, str]]] = {
         "planar two-link arm, at distance r from axis 1 and height h; the plane "
         "turns by {q} about axis 1:",
     ),
+    "geo.col.segment": ("tramo", "segment"),
+    "geo.col.angle": ("ángulo girado", "angle turned"),
+    "geo.col.vector": ("vector del tramo a cero", "segment vector at zero"),
     "geo.result": ("Luego la posición del extremo es", "So the position of the end effector is"),
     "geo.agrees": (
         "Coincide con la posición obtenida por Denavit-Hartenberg (la diferencia se "

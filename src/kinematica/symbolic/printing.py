@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 import sympy as sp
@@ -45,8 +46,15 @@ def latex(item: Any) -> str:
     return str(_Latex({"mat_delim": "["}).doprint(sp.sympify(item)))
 
 
+#: The minus operator. sympy and our notation write the ASCII hyphen-minus, which
+#: Chromium's MathML shows as a short hyphen; the minus sign U+2212 is what MathML means.
+_MINUS = "<mo>\u2212</mo>"
+
+
 def mathml(item: Any) -> str:
-    """Presentation MathML (the content of a ``<math>`` element)."""
+    """Presentation MathML (the content of a ``<math>`` element), minus signs as U+2212."""
     if hasattr(item, "mathml") and not isinstance(item, sp.Basic):
-        return str(item.mathml)
-    return str(_MathML().doprint(sp.sympify(item)))
+        text = str(item.mathml)
+    else:
+        text = str(_MathML().doprint(sp.sympify(item)))
+    return re.sub(r"<mn>-(?=[0-9.])", _MINUS + "<mn>", text.replace("<mo>-</mo>", _MINUS))

@@ -30,12 +30,14 @@ from kinematica.viz.trajectory import PATH_COLOR, check_trajectory
 
 __all__ = [
     "ANIMATION_SUFFIXES",
+    "GIF_MAX_FPS",
     "MAX_FPS",
     "MAX_RESAMPLED",
     "MIN_FPS",
     "Animation",
     "animate",
     "animation_samples",
+    "gif_rate",
     "mp4_available",
 ]
 
@@ -54,6 +56,10 @@ MIN_FPS, MAX_FPS = 0.01, 240.0
 #: Most frames a trajectory is resampled into (``fps`` times its duration), before
 #: ``max_frames`` keeps some of them.
 MAX_RESAMPLED = 1_000_000
+#: Fastest frame rate of a GIF. A GIF frame lasts a whole number of hundredths of a
+#: second, and browsers play frames shorter than 20 ms at 100 ms: a 100 fps GIF
+#: would run ten times too slowly.
+GIF_MAX_FPS = 50.0
 
 
 @dataclass(frozen=True)
@@ -65,12 +71,15 @@ class Animation:
         frames: Number of frames in it.
         fps: Frames per second it plays at.
         size: ``(width, height)`` in pixels.
+        note: What was changed from the rate asked for, or ``""``: a GIF plays
+            at most :data:`GIF_MAX_FPS`.
     """
 
     path: Path
     frames: int
     fps: float
     size: tuple[int, int]
+    note: str = ""
 
 
 def mp4_available() -> bool:
@@ -81,8 +90,25 @@ def mp4_available() -> bool:
     return bool(animation.writers.is_available("ffmpeg"))
 
 
+def gif_rate(rate: float) -> float:
+    """The rate a GIF is written at for ``rate`` asked: at most :data:`GIF_MAX_FPS`."""
+    return min(rate, GIF_MAX_FPS)
+
+
+def _resample(t: FloatArray, q: FloatArray, fps: float) -> tuple[FloatArray, FloatArray]:
+    """Times every ``1 / fps`` s from ``t[0]`` to ``t[-1]``, and q interpolated at them."""
+    count = math.floor(float(t[-1] - t[0]) * fps + 1e-9) + 1
+    times = t[0] + np.arange(count) / fps
+    return times, np.stack([np.interp(times, t, q[:, j]) for j in range(q.shape[1])], axis=-1)
+
+
 def animation_samples(
-    t: FloatArray, q: FloatArray, fps: float | None, max_frames: int | None, timed: bool
+    t: FloatArray,
+    q: FloatArray,
+    fps: float | None,
+    max_frames: int | None,
+    timed: bool,
+    gif: bool = False,
 ) -> tuple[FloatArray, FloatArray, float]:
     """The times, configurations and frame rate of the frames to draw.
 
@@ -91,7 +117,9 @@ def animation_samples(
     With ``fps`` (and times) the trajectory is resampled at that rate by
     linear interpolation, in real time. Then at most ``max_frames`` evenly
     spread frames are kept (first and last included), the rate scaled so the
-    duration stays the same.
+    duration stays the same. For a GIF (``gif``) the rate is then capped at
+    :data:`GIF_MAX_FPS`, a timed trajectory resampled at it so that it still
+    plays in real time.
     """
     duration = float(t[-1] - t[0])
     if fps is not None:
@@ -100,9 +128,7 @@ def animation_samples(
         max_frames = check_count(max_frames, "max_frames", lo=1)
     if fps is not None and timed and len(t) > 1:
         check_size(duration * fps + 1.0, MAX_RESAMPLED, "fps", f"frames over {duration:g} s")
-        count = math.floor(duration * fps + 1e-9) + 1
-        times = t[0] + np.arange(count) / fps
-        qs = np.stack([np.interp(times, t, q[:, j]) for j in range(q.shape[1])], axis=-1)
+        times, qs = _resample(t, q, fps)
         rate = fps
     else:
         times, qs = t, q
@@ -116,6 +142,10 @@ def animation_samples(
             f"the animation would play at {rate:.3g} frames a second ({len(times)} frames over "
             f"{duration:.3g} s), slower than {MIN_FPS:g}: give more frames (max_frames)"
         )
+    if gif and gif_rate(rate) != rate:
+        rate = gif_rate(rate)  # fewer frames than before: within max_frames still
+        if timed and len(t) > 1 and duration > 0:
+            times, qs = _resample(t, q, rate)
     return times, qs, rate
 
 
@@ -168,7 +198,16 @@ def animate(
     checked, dpi = check_picture(size, dpi)
     size = checked or size
     ta, qa = check_trajectory(robot, t, q)
-    times, qs, rate = animation_samples(ta, qa, fps, max_frames, t is not None)
+    timed = t is not None
+    times, qs, rate = animation_samples(ta, qa, fps, max_frames, timed, gif=suffix == ".gif")
+    note = ""
+    if suffix == ".gif":
+        natural = animation_samples(ta, qa, fps, max_frames, timed)[2]
+        if abs(natural - rate) > 1e-9 * natural:
+            note = (
+                f"{natural:.4g} fps lowered to {rate:.4g} fps: a GIF frame lasts at least "
+                "20 ms (browsers play shorter frames at 100 ms)"
+            )
     matplotlib()
     from matplotlib import animation
 
@@ -214,4 +253,4 @@ def animate(
     except (OSError, subprocess.CalledProcessError) as exc:
         reason = getattr(exc, "strerror", None) or exc
         raise VizError(f"{out}: cannot write the animation ({reason}); {unchanged(out)}") from exc
-    return Animation(path=out, frames=len(times), fps=float(rate), size=size)
+    return Animation(path=out, frames=len(times), fps=float(rate), size=size, note=note)

@@ -39,6 +39,10 @@ PRISMATIC_COLOR = "#4a90d9"
 BASE_COLOR = "#9a9a9a"
 #: Frame origins closer than this fraction of the robot's size share one label ("S4, S5").
 SAME_PLACE = 1e-6
+#: Labels of frames nearer than this fraction of the robot's size, but not in one place
+#: ("S4, S5" and "S6" at a wrist, l4 apart), would print over each other: they are
+#: written as one block, a line each ("S4, S5" above "S6"), at the first one's corner.
+LABEL_NEAR = 0.1
 #: Below this fraction of the arrow length, a frame axis seen in a 2-D view is
 #: drawn as a dot (pointing at the viewer) or a cross (away from the viewer).
 OUT_OF_PLANE = 0.3
@@ -69,6 +73,21 @@ def _coincident(points: FloatArray, scale: float) -> list[list[int]]:
         else:
             groups.append([i])
     return groups
+
+
+def _label_blocks(points: FloatArray, scale: float) -> list[int]:
+    """For each label's point, the index of the first label of its block of near ones.
+
+    Points within :data:`LABEL_NEAR` of the robot's size of each other (chained)
+    are one block; a label that is first of its block has its own index.
+    """
+    first = list(range(len(points)))
+    for i in range(len(points)):
+        for j in range(i):
+            if np.linalg.norm(points[i] - points[j]) < LABEL_NEAR * scale:
+                first[i] = first[j]
+                break
+    return first
 
 
 def _arrow_2d(start: FloatArray, tip: FloatArray, length: float) -> list[FloatArray]:
@@ -131,14 +150,17 @@ class ArmDrawing:
                 *ends.T, color=LINK_COLOR, lw=1.2, ls="--", alpha=alpha, gid="tool"
             )[0]
         self.label_groups: list[list[int]] = []
+        self.label_names: list[str] = []
         if labels:
             self.label_groups = _coincident(pose.frames[:, :3, 3], self.scale)
             for group in self.label_groups:
-                name = ", ".join(f"S{i}" for i in group)
+                self.label_names.append(", ".join(f"S{i}" for i in group))
                 origin = pose.frames[group[0], :3, 3]
-                self.texts.append(self._text(origin, name, f"label-S{group[0]}"))
+                self.texts.append(self._text(origin, "", f"label-S{group[0]}"))
             if self.has_tool and frames:
-                self.texts.append(self._text(pose.tool[:3, 3], "tool", "label-tool", 2))
+                self.label_names.append("tool")
+                self.texts.append(self._text(pose.tool[:3, 3], "", "label-tool", 2))
+            self._write_labels(pose)
 
     # ----------------------------------------------------------------- public
     def update(self, pose: ArmPose) -> None:
@@ -151,13 +173,22 @@ class ArmDrawing:
             self.tool_frame.set_segments(self._frame_lines(pose.tool[None])[0])
         if self.tool_link is not None:
             self._set_line(self.tool_link, np.stack([pose.frames[-1, :3, 3], pose.tool[:3, 3]]))
-        points = [pose.frames[group[0], :3, 3] for group in self.label_groups]
-        if self.has_tool and self.show_frames and self.show_labels:
-            points.append(pose.tool[:3, 3])
-        for text, p in zip(self.texts, points, strict=True):
-            self._place(text, p, 2 if text.get_gid() == "label-tool" else 0)
+        self._write_labels(pose)
 
     # -------------------------------------------------------------- internals
+    def _write_labels(self, pose: ArmPose) -> None:
+        """Place the labels; near ones as one block of lines at the first one's place."""
+        points = [pose.frames[group[0], :3, 3] for group in self.label_groups]
+        if len(self.texts) > len(points):
+            points.append(pose.tool[:3, 3])
+        if not points:
+            return
+        first = _label_blocks(np.array(points), self.scale)
+        for k, (text, p) in enumerate(zip(self.texts, points, strict=True)):
+            block = [self.label_names[i] for i in range(len(points)) if first[i] == k]
+            text.set_text("\n".join(block))  # empty for a label written by its block
+            self._place(text, p, 2 if text.get_gid() == "label-tool" else 0)
+
     def _project(self, pts: FloatArray) -> FloatArray:
         return pts if self.plane is None else pts[..., list(self.plane)]
 
@@ -291,7 +322,7 @@ class ArmDrawing:
 
     def _text(self, p: FloatArray, label: str, gid: str, kind: int = 0) -> Any:
         pos = self._project(p) + self._offset(kind)
-        style = {"fontsize": 8, "alpha": self.alpha, "gid": gid, "zorder": 5}
+        style = {"fontsize": 8, "alpha": self.alpha, "gid": gid, "zorder": 5, "va": "top"}
         return self.ax.text(*pos, label, **style)
 
     def _place(self, text: Any, p: FloatArray, kind: int) -> None:

@@ -21,7 +21,15 @@ from kinematica.viz.arm import ArmDrawing, extent_points
 from kinematica.viz.ellipsoid import draw_ellipsoid
 from kinematica.viz.geometry import ArmPose, arm_pose, drawing_plane, robot_scale
 
-__all__ = ["IMAGE_SUFFIXES", "plot", "plot_solutions", "save_figure", "save_plot", "save_solutions"]
+__all__ = [
+    "IMAGE_SUFFIXES",
+    "fit_solutions",
+    "plot",
+    "plot_solutions",
+    "save_figure",
+    "save_plot",
+    "save_solutions",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -29,6 +37,12 @@ FloatArray = NDArray[np.float64]
 IMAGE_SUFFIXES = (".png", ".svg", ".pdf", ".jpg", ".jpeg")
 #: Most solution panels side by side in :func:`plot_solutions`.
 SOLUTION_COLUMNS = 4
+#: Size of a 3-D solution panel's cube in its panel (matplotlib's 1 leaves the axis
+#: labels of a narrow picture outside it), and the height of a line of the picture's
+#: title and of a panel's title in pixels.
+SOLUTION_ZOOM = 0.8
+SUPTITLE_PX = 32
+TITLE_PX = 16
 
 
 def one_q(robot: Robot, q: ArrayLike) -> FloatArray:
@@ -197,8 +211,33 @@ def plot_solutions(
         title = f"{i + 1}: {branch}" + (f" ({free} free)" if free else "")
         ax.set_title(textwrap.fill(title, 34), fontsize=9)
         ax.tick_params(labelsize=7)
-    fig.suptitle(f"{robot.name}: {k} solution{'s' if k > 1 else ''} ({res.method})", fontsize=11)
+    # about 40 characters of the title fit over one panel: a narrow picture wraps it
+    head = f"{robot.name}: {k} solution{'s' if k > 1 else ''} ({res.method})"
+    fig.suptitle(textwrap.fill(head, 40 * cols), fontsize=11)
+    if plane is not None:  # the layout engine keeps titles and axis labels in the picture
+        fig.set_layout_engine("constrained", h_pad=0.06, w_pad=0.06)
+    else:  # which it does not do for 3-D axes: each cube is drawn smaller in its panel
+        for ax in fig.axes:
+            ax.set_box_aspect((1.0, 1.0, 1.0), zoom=SOLUTION_ZOOM)
+        fit_solutions(fig)
     return fig
+
+
+def fit_solutions(fig: Any) -> None:
+    """Fit titles and labels in the picture at its size (call again after a resize).
+
+    2-D panels: the layout engine places them, but its first pass beside equal-aspect
+    axes leaves the bottom label a pixel out, so one pass is made here before saving.
+    3-D panels: room is left for the title lines above them.
+    """
+    if fig.get_layout_engine() is not None:
+        fig.draw_without_rendering()
+        return
+    lines = fig.get_suptitle().count("\n") + 1
+    panel = max((ax.get_title().count("\n") + 1 for ax in fig.axes), default=0)
+    room = SUPTITLE_PX * lines + TITLE_PX * panel
+    top = 1.0 - room / (fig.dpi * fig.get_figheight())
+    fig.subplots_adjust(left=0.0, right=0.97, bottom=0.04, top=top, wspace=0.1, hspace=0.25)
 
 
 def save_figure(fig: Any, path: str | os.PathLike[str]) -> Path:
@@ -295,4 +334,5 @@ def save_solutions(
     if size is None:
         size = (330 * cols, 320 * math.ceil(k / cols) + 50)
     fig.set_size_inches(size[0] / dpi, size[1] / dpi)
+    fit_solutions(fig)
     return save_figure(fig, path), k, size

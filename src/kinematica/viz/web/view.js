@@ -250,7 +250,24 @@
     items.sort(function (u, v) { return u.z - v.z; });
     ctx.setTransform(1, 0, 0, 1, 0, 0);
     ctx.clearRect(0, 0, canvas.width, canvas.height);
+    placeLabels(items, dpr);
     items.forEach(function (it) { paint(it, dpr); });
+  }
+
+  // Frames close together on the screen ("S4, S5" and "S6" at a wrist) would print
+  // their labels over each other: each label moves down a line until it is clear.
+  function placeLabels(items, dpr) {
+    ctx.font = 12 * dpr + "px sans-serif";
+    const placed = [], line = 14 * dpr;
+    items.forEach(function (it) {
+      if (it.kind !== "text") return;
+      const w = ctx.measureText(it.text).width, x = it.a.x + 6 * dpr;
+      let y = it.a.y + 14 * dpr;
+      const hits = function (b) { return x < b.x + b.w && b.x < x + w && y - line < b.y && b.y - line < y; };
+      while (placed.some(hits)) y += line;
+      placed.push({ x: x, y: y, w: w });
+      it.at = { x: x, y: y };
+    });
   }
 
   function paint(it, dpr) {
@@ -285,7 +302,7 @@
       ctx.closePath(); ctx.fill();
     } else if (it.kind === "text") {
       ctx.fillStyle = "#111111"; ctx.font = 12 * dpr + "px sans-serif";
-      ctx.fillText(it.text, it.a.x + 6 * dpr, it.a.y + 14 * dpr);
+      ctx.fillText(it.text, it.at.x, it.at.y);
     } else if (it.kind === "target") {
       ctx.strokeStyle = "#e377c2"; ctx.lineWidth = 3 * dpr;
       ctx.beginPath(); ctx.arc(it.a.x, it.a.y, 9 * dpr, 0, 2 * Math.PI); ctx.stroke();
