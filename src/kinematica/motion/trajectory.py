@@ -244,7 +244,8 @@ def minimum_time(
     d = np.abs(np.asarray(delta, dtype=float))
     v = np.broadcast_to(np.asarray(vmax, dtype=float), d.shape)
     a = np.broadcast_to(np.asarray(amax, dtype=float), d.shape)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    # a limit near 0 (1e-320) gives an infinite time: the callers refuse it by name
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         if profile == "trapezoid":
             triangle = v * v >= a * d
             out = np.where(triangle, 2.0 * np.sqrt(d / a), d / v + v / a)

@@ -219,7 +219,7 @@ def analytic_jacobian(robot: Robot, q: ArrayLike, euler: str = "ZYZ") -> FloatAr
     Returns:
         ``(..., 6, n)``: rows 0-2 m/rad (or m/m), rows 3-5 rad/rad.
     """
-    if euler == "exp":
+    if isinstance(euler, str) and euler == "exp":
         from kinematica.robot.differential import exp_jacobian
 
         return exp_jacobian(robot, q)
