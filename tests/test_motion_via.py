@@ -259,3 +259,17 @@ def test_mstraj_through_collinear_waypoints_has_no_corner() -> None:
     assert traj.t[-1] == pytest.approx(abs(b - a)[slow] / vmax[slow] + tacc, rel=1e-14)
     cruise = (traj.t > tacc) & (traj.t < traj.t[-1] - tacc)
     assert np.allclose(traj.qdd[cruise], 0.0, atol=1e-12)
+
+
+def test_a_sampling_too_fine_for_its_duration_is_refused_before_any_sample() -> None:
+    from kinematica.motion.trajectory import MAX_SAMPLES
+
+    W = np.array([[0.0], [1.0]])
+    times = [0.0, 1.0]
+    # duration / dt + knots: at MAX_SAMPLES it is made, one sample more it is refused
+    ok = km.via_trajectory(W, "cubic", times=times, dt=1.0 / (MAX_SAMPLES - 2))
+    assert ok.t.size <= MAX_SAMPLES
+    with pytest.raises(km.ArgumentError, match="dt"):
+        km.via_trajectory(W, "cubic", times=times, dt=1.0 / (MAX_SAMPLES - 1.5))
+    with pytest.raises(km.ArgumentError, match="dt"):
+        km.via_trajectory(W, "cubic", times=[0.0, 1e9], dt=1e-320)

@@ -39,11 +39,18 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from kinematica.arguments import check_number, check_size
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.motion.blends import blend_pieces, blend_times
 from kinematica.motion.piecewise import PiecewisePolynomial
 from kinematica.motion.splines import Ends, hermite_pieces, spline_derivatives
-from kinematica.motion.trajectory import DEFAULT_DT, LIMIT_RTOL, JointTrajectory, minimum_time
+from kinematica.motion.trajectory import (
+    DEFAULT_DT,
+    LIMIT_RTOL,
+    MAX_SAMPLES,
+    JointTrajectory,
+    minimum_time,
+)
 
 __all__ = ["Method", "via_polynomials", "via_trajectory"]
 
@@ -303,12 +310,13 @@ def via_trajectory(
 
     Raises:
         DimensionError: Shapes, NaN or inf.
+        ArgumentError: ``dt`` not a positive number, or more than MAX_SAMPLES
+            samples from the duration and ``dt`` (checked before sampling).
         KinematicaError: Unknown method or ends, times not increasing from 0,
             arguments that do not apply to the method, or given times that make
             a joint exceed ``vmax``/``amax`` (the message names the joint).
     """
-    if not (math.isfinite(dt) and dt > 0):
-        raise KinematicaError(f"dt must be a positive number of seconds, got {dt!r}", arg="dt")
+    dt = check_number(dt, "dt", positive=True, unit="s", what="a number of seconds")
     pieces = via_polynomials(
         waypoints,
         method,
@@ -324,6 +332,9 @@ def via_trajectory(
         qd=qd,
         qdd=qdd,
     )
+    # every knot is a sample too: at most one more per piece than duration / dt
+    count = pieces.duration / dt + pieces.knots.size
+    check_size(count, MAX_SAMPLES, "dt", f"samples ({pieces.duration:g} s every {dt!r} s)")
     traj = pieces.sample(dt)
     traj.q[-1] = np.asarray(waypoints, dtype=float)[-1]
     return traj
