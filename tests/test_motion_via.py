@@ -266,10 +266,10 @@ def test_a_sampling_too_fine_for_its_duration_is_refused_before_any_sample() -> 
 
     W = np.array([[0.0], [1.0]])
     times = [0.0, 1.0]
-    # duration / dt + knots: at MAX_SAMPLES it is made, one sample more it is refused
-    ok = km.via_trajectory(W, "cubic", times=times, dt=1.0 / (MAX_SAMPLES - 2))
+    # duration / dt + knots: one sample under MAX_SAMPLES is made, one over is refused
+    ok = km.via_trajectory(W, "cubic", times=times, dt=1.0 / (MAX_SAMPLES - 3))
     assert ok.t.size <= MAX_SAMPLES
     with pytest.raises(km.ArgumentError, match="dt"):
-        km.via_trajectory(W, "cubic", times=times, dt=1.0 / (MAX_SAMPLES - 1.5))
+        km.via_trajectory(W, "cubic", times=times, dt=1.0 / (MAX_SAMPLES - 1))
     with pytest.raises(km.ArgumentError, match="dt"):
         km.via_trajectory(W, "cubic", times=[0.0, 1e9], dt=1e-320)
