@@ -239,3 +239,19 @@ def test_bad_arguments() -> None:
         resolved_rate(puma, q0, target=T, qd_max=-1.0)
     with pytest.raises(km.DimensionError, match="6 joint values"):
         resolved_rate(puma, np.zeros(5), target=T)
+
+
+def test_a_run_longer_than_max_steps_is_refused_before_it_starts() -> None:
+    from kinematica.motion.control import MAX_STEPS
+
+    puma = km.load("puma560")
+    q0 = np.zeros(6)
+    T = puma.fk(q0 + 0.1)
+    with pytest.raises(km.ArgumentError, match="steps must be a whole number from 1"):
+        km.resolved_rate(puma, q0, target=T, steps=MAX_STEPS + 1)
+    with pytest.raises(km.ArgumentError, match="duration/dt"):
+        km.resolved_rate(puma, q0, target=T, dt=0.01, duration=0.01 * (MAX_STEPS + 1.5))
+    with pytest.raises(km.ArgumentError, match="duration/dt"):
+        km.resolved_rate(puma, q0, target=T, dt=0.01, duration=1e308)
+    run = km.resolved_rate(puma, q0, target=T, dt=0.01, duration=0.01 * (MAX_STEPS - 0.5))
+    assert run.reached  # stops when reached: the bound is on what may be asked

@@ -44,6 +44,7 @@ from typing import TYPE_CHECKING, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from kinematica.arguments import check_count, check_size
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.motion.trajectory import JointTrajectory
 from kinematica.robot.velocity import Axes, manipulability_gradient, selected_rows
@@ -55,6 +56,7 @@ if TYPE_CHECKING:
 __all__ = [
     "DEFAULT_STEPS",
     "MARGIN_RATE",
+    "MAX_STEPS",
     "DampingLaw",
     "RateControl",
     "damping_factor",
@@ -65,6 +67,9 @@ FloatArray = NDArray[np.float64]
 
 #: Steps when neither ``steps`` nor ``duration`` is given.
 DEFAULT_STEPS = 2000
+#: Most steps a run takes (``steps``, or ``duration / dt``): it keeps q, q̇ and the
+#: error of every step, ~100 MB for 7 joints.
+MAX_STEPS = 1_000_000
 
 #: With ``min_manipulability``: the fraction of the margin ``w − w_min`` one step may
 #: use up (to first order). Each step then keeps a half of what is left, so ``w``
@@ -164,12 +169,13 @@ def _steps(steps: int | None, duration: float | None, dt: float) -> int:
     if steps is not None and duration is not None:
         raise KinematicaError("give steps or duration, not both", arg="steps")
     if duration is not None:
-        return max(1, round(_positive(duration, "duration") / dt))
+        d = _positive(duration, "duration")
+        check_size(d / dt, MAX_STEPS, "duration/dt", f"steps ({d:g} s every {dt!r} s)",
+                   arg="duration")  # fmt: skip
+        return max(1, round(d / dt))
     if steps is None:
         return DEFAULT_STEPS
-    if isinstance(steps, bool) or not isinstance(steps, int | np.integer) or steps < 1:
-        raise KinematicaError(f"steps must be a positive integer, got {steps!r}", arg="steps")
-    return int(steps)
+    return check_count(steps, "steps", lo=1, hi=MAX_STEPS)
 
 
 def _limits_gradient(robot: Robot) -> Callable[[FloatArray], FloatArray]:
