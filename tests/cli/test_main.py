@@ -1,0 +1,530 @@
+"""The command line at its edges: units, precision, warnings, messages, version, no traceback.
+
+Most tests run ``main([...])`` in-process; the ones marked "console script"
+run the installed ``kinematica`` executable (or ``python -m kinematica``) as
+a user would. Expected numbers come from the library called directly (the
+CLI is a printing layer over it) and, for the round trips, from FK of the
+solutions the CLI prints.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import warnings
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+from support import ROOT
+
+import kinematica as km
+from kinematica.cli import options
+from kinematica.cli.format import DEFAULT_PRECISION, num, plain
+from kinematica.cli.main import cli_error, cli_words, main
+from kinematica.errors import KinematicaError
+
+SCRIPT = Path(sys.executable).with_name("kinematica")
+
+
+def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
+    """Run the CLI in-process; argparse's SystemExit becomes an exit code."""
+    try:
+        code = main(list(argv))
+    except SystemExit as exc:
+        code = int(exc.code or 0)
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def script(*argv: str, timeout: float = 60) -> subprocess.CompletedProcess[str]:
+    """Run the installed console script, as a user would."""
+    if not SCRIPT.exists():  # pragma: no cover - the venv always has it
+        pytest.skip("the kinematica console script is not installed next to this python")
+    return subprocess.run(
+        [str(SCRIPT), *argv], capture_output=True, text=True, timeout=timeout, check=False
+    )
+
+
+def strict_json(text: str) -> Any:
+    """JSON as the standard defines it: NaN and Infinity are not JSON."""
+
+    def refuse(token: str) -> None:
+        raise AssertionError(f"not valid JSON: {token}")
+
+    return json.loads(text, parse_constant=refuse)
+
+
+def one_line(err: str) -> str:
+    lines = [ln for ln in err.splitlines() if ln.strip()]
+    assert len(lines) == 1, err
+    assert "Traceback" not in err
+    return lines[0]
+
+
+def printed_matrix(out: str, title: str = "T:") -> np.ndarray:
+    """The 4x4 matrix printed under ``title``."""
+    lines = out.split(f"\n{title}\n", 1)[1].splitlines()[:4]
+    return np.array([[float(v) for v in ln.split()] for ln in lines])
+
+
+# --- version, python -m, help ---------------------------------------------------
+
+
+def test_version_from_the_console_script_and_python_m() -> None:
+    proc = script("--version")
+    assert proc.returncode == 0 and proc.stdout.strip() == f"kinematica {km.__version__}"
+    proc = subprocess.run(
+        [sys.executable, "-m", "kinematica", "--version"],
+        capture_output=True,
+        text=True,
+        check=False,
+        timeout=60,
+    )
+    assert proc.returncode == 0 and proc.stdout.strip() == f"kinematica {km.__version__}"
+
+
+def test_python_m_kinematica_runs_commands() -> None:
+    proc = subprocess.run(
+        [sys.executable, "-m", "kinematica", "fk", "planar-3r", "--q", "0", "0", "0", "--json"],
+        capture_output=True,
+        text=True,
+        check=False,
+        timeout=60,
+    )
+    assert proc.returncode == 0, proc.stderr
+    assert strict_json(proc.stdout)["robot"] == km.load("planar-3r").name
+
+
+# --- numbers that are not numbers name their option -------------------------------
+
+
+def test_minus_inf_in_q_is_a_number_rejected_naming_q() -> None:
+    proc = script("fk", "puma560", "--q", "0", "-inf", "0", "0", "0", "0")  # console script
+    assert proc.returncode == 2
+    expected = "kinematica: error: --q needs finite numbers, got -inf (value 2)"
+    assert one_line(proc.stderr) == expected
+
+
+@pytest.mark.parametrize(
+    ("argv", "expected"),
+    [
+        (("fk", "ur5", "--q", "0", "0", "-Infinity", "0", "nan", "0"), "--q needs finite numbers"),
+        (("fk", "ur5", "--q", "0", "0", "0", "0", "0", "1e999"), "got inf (value 6)"),
+        (("ik", "puma560", "--pose", "0.1", "0.1", "0.1", "0", "0", "nan"), "--pose needs finite"),
+        (("ik", "puma560", "--pose", "-inf", "0.1", "0.1", "0", "0", "0"), "--pose needs finite"),
+        (("ik", "puma560", "--position", "0.1", "inf", "0"), "--position needs finite numbers"),
+        (("ik", "puma560", "--matrix", *["0"] * 15, "nan"), "--matrix needs finite numbers"),
+        (("ik", "puma560", "--pose", *["0"] * 6, "--q0", *["0"] * 5, "-nan"), "--q0 needs finite"),
+    ],
+)
+def test_non_finite_values_name_the_option(
+    capsys: pytest.CaptureFixture[str], argv: tuple[str, ...], expected: str
+) -> None:
+    code, _, err = run(capsys, *argv)
+    assert code == 2
+    line = one_line(err)
+    assert expected in line
+    assert "p contains" not in line and "target" not in line
+
+
+def test_a_bad_matrix_is_named_as_the_option(capsys: pytest.CaptureFixture[str]) -> None:
+    rows = ["1", "0", "0", "0.3", "0", "1", "0", "0", "0", "0", "1.5", "0.2", "0", "0", "0", "1"]
+    code, _, err = run(capsys, "ik", "puma560", "--matrix", *rows)
+    assert code == 2
+    assert one_line(err).startswith("kinematica: error: --matrix rotation is not orthonormal")
+
+
+def test_messages_speak_options_not_python(capsys: pytest.CaptureFixture[str]) -> None:
+    code, _, err = run(capsys, "ik", "panda", "--pose", "0.3", "0", "0.5", "0", "180", "0",
+                       "--method", "analytic")  # fmt: skip
+    assert code == 2
+    line = one_line(err)
+    assert "use --method numeric" in line
+    assert "method=" not in line and "'numeric'" not in line
+
+
+@pytest.mark.parametrize(
+    ("message", "expected"),
+    [
+        ("target holds NaN", "--pose holds NaN"),
+        ("target: bad", "--pose: bad"),
+        ("targets are fine", "targets are fine"),  # a word, not the argument
+        ("a\nb\x1b[2J", "a\\nb\\x1b[2J"),
+    ],
+)
+def test_cli_words(message: str, expected: str) -> None:
+    assert cli_words(message, {"target": "--pose"}) == expected
+
+
+@pytest.mark.parametrize(
+    ("error", "expected"),
+    [
+        (
+            KinematicaError("no closed-form solver", arg="method", suggest=("method", "numeric")),
+            "no closed-form solver; use --method numeric",
+        ),
+        (
+            KinematicaError("tol (position) must be positive", arg="tol"),
+            "--tol (position) must be positive",
+        ),
+        (
+            KinematicaError("seed must be a whole number", arg="seed"),
+            "--seed must be a whole number",
+        ),
+        (KinematicaError("target holds NaN or inf", arg="target"), "--pose holds NaN or inf"),
+        (KinematicaError("plain words, no argument"), "plain words, no argument"),
+    ],
+)
+def test_errors_in_command_line_words(error: KinematicaError, expected: str) -> None:
+    # from the error's fields (arg, suggest), not from its text
+    assert cli_error(error, {"target": "--pose"}) == expected
+    assert "=" not in cli_error(error, {"target": "--pose"})
+
+
+@pytest.mark.parametrize(
+    ("argv", "fragment"),
+    [
+        (("ik", "puma560", "--pose", *["0"] * 6, "--seed", "-1"), "--seed: expected a whole"),
+        (("ik", "puma560", "--pose", *["0"] * 6, "--seed", "x"), "--seed: expected a whole"),
+        (("fk", "puma560", "--q", *["0"] * 6, "--precision", "0"), "--precision: expected"),
+        (("fk", "puma560", "--q", *["0"] * 6, "--precision", "18"), "--precision: expected"),
+        (("fk", "puma560", "--q", *["0"] * 6, "--units", "km"), "invalid choice: 'km'"),
+    ],
+)
+def test_bad_options_are_one_line(
+    capsys: pytest.CaptureFixture[str], argv: tuple[str, ...], fragment: str
+) -> None:
+    code, _, err = run(capsys, *argv)
+    assert code == 2
+    assert fragment in one_line(err)
+
+
+# --- precision ------------------------------------------------------------------------
+
+
+def test_num_significant_digits() -> None:
+    assert num(0.5) == "0.5"
+    assert num(np.cos(np.pi / 4)) == "0.7071067812"
+    assert num(np.cos(np.pi / 4), 3) == "0.707"
+    assert num(-123456.789, 4) == "-123500"
+    assert num(1e-17) == "0" and num(-3e-13) == "0"
+    assert num(1.5e-9) == "1.5e-09"
+    assert num(2.5e20) == "2.5e+20"
+    assert num(float("nan")) == "nan" and num(float("-inf")) == "-inf"
+    assert float(num(1 / 3, 17)) == 1 / 3
+
+
+def test_fk_text_prints_ten_significant_digits(capsys: pytest.CaptureFixture[str]) -> None:
+    q = [10, 20, 30, 40, 50, 60]
+    code, out, _ = run(capsys, "fk", "puma560", "--q", *map(str, q))
+    assert code == 0
+    T = km.load("puma560").fk(np.radians(q))
+    printed = printed_matrix(out)
+    np.testing.assert_allclose(printed, T, rtol=6e-10, atol=1e-12)
+    values = out.split("\nT:\n")[1].split()[:12]
+    digits = [len(v.lstrip("-").replace(".", "").lstrip("0")) for v in values]
+    assert max(digits) == DEFAULT_PRECISION
+
+
+def test_precision_option(capsys: pytest.CaptureFixture[str]) -> None:
+    q = ["10", "20", "30", "40", "50", "60"]
+    code, out, _ = run(capsys, "fk", "puma560", "--q", *q, "--precision", "3")
+    assert code == 0
+    T = km.load("puma560").fk(np.radians([10, 20, 30, 40, 50, 60]))
+    printed = printed_matrix(out)
+    np.testing.assert_allclose(printed, T, rtol=5e-3, atol=1e-12)
+    assert not np.allclose(printed, T, rtol=1e-4, atol=0)  # really rounded to 3 digits
+    code, out, _ = run(capsys, "ik", "puma560", "--pose", "0.4", "0.1", "0.3", "0", "90", "0",
+                       "--precision", "4")  # fmt: skip
+    row = out.splitlines()[4].split()
+    assert all(len(v.lstrip("-").replace(".", "").lstrip("0")) <= 4 for v in row[1:7])
+
+
+@pytest.mark.parametrize(
+    ("name", "q"),
+    [
+        ("puma560", [10, 20, 30, 40, 50, 60]),
+        ("irb120", [10, 20, 30, 40, 50, 60]),  # millimetres
+        ("ur5", [10, -60, 30, 40, 50, 60]),
+        ("kr6", [10, -20, 30, 40, 50, 60]),
+        ("arm6-dh", [30, 50, 20, 10, 60, -20]),
+    ],
+)
+def test_fk_text_pasted_into_ik_matrix_gives_q_back(
+    capsys: pytest.CaptureFixture[str], name: str, q: list[float]
+) -> None:
+    code, out, _ = run(capsys, "fk", name, "--q", *map(str, q))
+    assert code == 0
+    numbers = out.split("\nT:\n", 1)[1].split("\n\n")[0].split()
+    code, out, err = run(capsys, "ik", name, "--matrix", *numbers, "--json")
+    assert code == 0, err
+    data = strict_json(out)
+    found = np.array(data["solutions"] + data["out_of_limits"])
+    assert np.abs(found - q).max(axis=1).min() < 1e-6  # degrees
+
+
+def test_fk_json_has_every_digit(capsys: pytest.CaptureFixture[str]) -> None:
+    q = [0.1, -0.7, 0.3, 1.1, -0.4, 2.0]
+    code, out, _ = run(capsys, "fk", "ur5", "--q", *map(repr, q), "--rad", "--json", "--frames")
+    assert code == 0
+    data = strict_json(out)
+    robot = km.load("ur5")
+    assert data["T"] == robot.fk(q).tolist()  # exact: repr round trip
+    assert data["frames"] == robot.fk(q, all_frames=True).tolist()
+    assert data["position"] == robot.fk(q)[:3, 3].tolist()
+
+
+# --- units of length --------------------------------------------------------------------
+
+
+def test_a_millimetre_robot_prints_millimetres(capsys: pytest.CaptureFixture[str]) -> None:
+    q = [10, 20, 30, 40, 50, 60]
+    T = km.load("irb120").fk(np.radians(q))
+    code, out, _ = run(capsys, "fk", "irb120", "--q", *map(str, q), "--json")
+    data = strict_json(out)
+    assert data["units"] == {"angle": "deg", "length": "mm"}
+    np.testing.assert_allclose(data["position"], T[:3, 3] * 1000, rtol=1e-15)
+    np.testing.assert_allclose(np.array(data["T"])[:3, :3], T[:3, :3], rtol=0, atol=0)
+    code, out, _ = run(capsys, "fk", "irb120", "--q", *map(str, q))
+    assert code == 0
+    assert "units: deg for angles, mm for lengths" in out
+    assert "position (mm):" in out
+    np.testing.assert_allclose(printed_matrix(out)[:3, 3], T[:3, 3] * 1000, rtol=1e-9)
+
+
+def test_units_option_overrides_the_file(capsys: pytest.CaptureFixture[str]) -> None:
+    q = [10, 20, 30, 40, 50, 60]
+    code, out, _ = run(capsys, "fk", "irb120", "--q", *map(str, q), "--units", "m", "--json")
+    data = strict_json(out)
+    assert data["units"]["length"] == "m"
+    assert data["position"] == km.load("irb120").fk(np.radians(q))[:3, 3].tolist()
+    code, out, _ = run(capsys, "fk", "puma560", "--q", *map(str, q), "--units", "mm", "--json")
+    assert code == 0
+    data = strict_json(out)
+    assert data["units"]["length"] == "mm"
+    np.testing.assert_allclose(
+        data["position"], km.load("puma560").fk(np.radians(q))[:3, 3] * 1000, rtol=1e-15
+    )
+
+
+def test_prismatic_joints_and_poses_in_millimetres(capsys: pytest.CaptureFixture[str]) -> None:
+    robot = km.load("stanford")
+    q = np.array([10.0, 20.0, 500.0, 40.0, 50.0, 60.0])  # q3 in mm
+    q_si = np.where(robot.is_prismatic, q / 1000, np.radians(q))
+    code, out, _ = run(capsys, "fk", "stanford", "--q", *map(str, q), "--units", "mm", "--json")
+    data = strict_json(out)
+    T = robot.fk(q_si)
+    np.testing.assert_allclose(data["position"], T[:3, 3] * 1000, rtol=1e-14)
+    pose = [*data["position"], *data["euler"]]
+    code, out, err = run(capsys, "ik", "stanford", "--pose", *map(repr, pose), "--units", "mm",
+                         "--json", "--ignore-limits")  # fmt: skip
+    assert code == 0, err
+    data = strict_json(out)
+    assert data["units"] == {"angle": "deg", "length": "mm"}
+    assert np.abs(np.array(data["solutions"]) - q).max(axis=1).min() < 1e-6
+
+
+def test_ik_position_in_millimetres(capsys: pytest.CaptureFixture[str]) -> None:
+    robot = km.load("irb120")
+    q = np.radians([10, 20, 30, 40, 50, 60])
+    p_mm = (robot.fk(q)[:3, 3] * 1000).tolist()
+    code, out, err = run(capsys, "ik", "irb120", "--position", *map(repr, p_mm), "--json")
+    assert code == 0, err
+    solutions = strict_json(out)["solutions"]
+    assert solutions
+    for sol in solutions:
+        np.testing.assert_allclose(robot.fk(np.radians(sol))[:3, 3] * 1000, p_mm, atol=1e-6)
+
+
+def test_show_speaks_the_file_units(capsys: pytest.CaptureFixture[str]) -> None:
+    spec = km.load("irb120").source_spec
+    assert spec is not None
+    code, out, _ = run(capsys, "show", "irb120", "--json")
+    data = strict_json(out)
+    assert data["units"] == {"angle": "deg", "length": "mm"}
+    assert [row["d"] for row in data["dh"]] == pytest.approx([j.d * 1000 for j in spec.joints])
+    assert [row["alpha"] for row in data["dh"]] == pytest.approx(
+        [np.degrees(j.alpha) for j in spec.joints]
+    )
+    code, out, _ = run(capsys, "show", "irb120")
+    assert "d (mm)" in out and "a (mm)" in out and "290" in out
+    code, out, _ = run(capsys, "show", "stanford", "--units", "mm")
+    assert code == 0
+    assert "[304.8, 1270] mm" in out
+
+
+# --- warnings, RuntimeWarnings, internal errors -----------------------------------------
+
+
+def test_a_warning_is_one_line_on_stderr(tmp_path: Path) -> None:
+    path = tmp_path / "arm.yaml"
+    path.write_text(
+        "convention: standard\nunits: {angle: rad, length: m}\n"
+        "joints:\n  - {theta: q1, d: 0, a: 1, alpha: 90}\n"
+    )
+    proc = script("fk", str(path), "--q", "0", "--json")  # console script
+    assert proc.returncode == 0
+    assert strict_json(proc.stdout)["T"]
+    line = one_line(proc.stderr)
+    assert line.startswith(f"kinematica: warning: {path}, joint 1, key 'alpha': 90 rad is more")
+    assert "KinematicaWarning" not in line and "warnings.warn" not in proc.stderr
+
+
+def test_a_library_warning_during_a_command_is_one_line(
+    capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    fk = km.Robot.fk
+
+    def fk_with_a_bad_row(self: km.Robot, q: Any, all_frames: bool = False) -> np.ndarray:
+        fk(self, np.stack([np.asarray(q, dtype=float), np.full(self.dof, np.nan)]))  # warns
+        return fk(self, q, all_frames)
+
+    monkeypatch.setattr(km.Robot, "fk", fk_with_a_bad_row)
+    code, out, err = run(capsys, "fk", "planar-3r", "--q", "1", "2", "3")
+    assert code == 0 and "T:" in out
+    assert one_line(err) == (
+        "kinematica: warning: q: 1 row(s) hold NaN or inf, their results are NaN: (1,)"
+    )
+
+
+def test_runtime_warnings_print_nothing() -> None:
+    proc = script("ik", "ur5", "--pose", "1e300", "0", "0", "0", "0", "0")  # console script
+    assert proc.returncode == 1
+    assert proc.stderr == ""
+    assert "unreachable" in proc.stdout
+
+
+def test_warnings_filters_are_restored(capsys: pytest.CaptureFixture[str]) -> None:
+    before = warnings.filters[:]
+    run(capsys, "fk", "planar-3r", "--q", "1", "2", "3")
+    assert warnings.filters == before
+
+
+def test_an_internal_error_is_one_line_with_exit_2(
+    capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    def broken(name: str, **kwargs: object) -> km.Robot:
+        raise ZeroDivisionError("float division by zero")
+
+    monkeypatch.setattr(options, "load", broken)
+    code, out, err = run(capsys, "fk", "puma560", "--q", *["0"] * 6)
+    assert code == 2 and out == ""
+    line = one_line(err)
+    assert line.startswith("kinematica: internal error: ZeroDivisionError: float division by zero")
+    assert "please report" in line
+
+
+def test_json_is_valid_when_numbers_are_not_finite(capsys: pytest.CaptureFixture[str]) -> None:
+    pose = ["1e300", "0", "0", "0", "0", "0"]
+    code, out, err = run(capsys, "ik", "panda", "--pose", *pose, "--json")
+    assert code in (0, 1), err
+    data = strict_json(out)
+    assert data["status"] in ("unreachable", "not_found")
+
+
+# --- hostile robot files and names ----------------------------------------------------------
+
+
+def test_control_characters_in_names_are_neutralised(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    evil = "arm\x1b[2J\x1b[31m red\nsecond line\u202e"
+    path = tmp_path / "evil.json"
+    path.write_text(
+        json.dumps(
+            {
+                "name": evil,
+                "description": "text\r\nwith\x07bell",
+                "convention": "standard",
+                "joints": [{"theta": "q1", "d": 0, "a": 1, "alpha": 0, "name": "j\x1b1"}],
+            }
+        )
+    )
+    for argv in (("show", str(path)), ("fk", str(path), "--q", "0"), ("robots",)):
+        code, out, err = run(capsys, *argv)
+        assert code == 0, err
+        assert "\x1b" not in out and "\x07" not in out and "\u202e" not in out and "\r" not in out
+    code, out, _ = run(capsys, "show", str(path))
+    assert out.splitlines()[0].startswith("arm\\x1b[2J\\x1b[31m red\\nsecond line\\u202e: ")
+    code, out, _ = run(capsys, "show", str(path), "--json")
+    assert strict_json(out)["robot"] == evil  # JSON keeps the exact text, escaped
+    code, _, err = run(capsys, "fk", "no\x1b[31msuch", "--q", "0")
+    assert code == 2 and "\x1b" not in err
+
+
+def test_plain_keeps_ordinary_unicode() -> None:
+    assert plain("Brazo robótico 6R — π/2, 90°") == "Brazo robótico 6R — π/2, 90°"
+    assert plain("tab\there") == "tab\\there"
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no FIFOs on this system")
+def test_a_fifo_robot_file_is_refused_at_once(tmp_path: Path) -> None:
+    fifo = tmp_path / "x.yaml"
+    os.mkfifo(fifo)
+    proc = script("show", str(fifo), timeout=30)  # console script; would hang if opened
+    assert proc.returncode == 2
+    assert "is a named pipe (FIFO), not a robot file" in one_line(proc.stderr)
+
+
+# --- the README round trip -------------------------------------------------------------------
+
+
+def test_the_command_line_page_round_trip_is_true(capsys: pytest.CaptureFixture[str]) -> None:
+    text = (ROOT / "docs" / "command-line.md").read_text()
+    block = text.split("so that\nwhat `fk` prints can be pasted back into `ik`:", 1)[1]
+    block = block.split("```console\n", 1)[1].split("```", 1)[0]
+    fk_line, rest = block.split("\n", 1)
+    shown, ik_line = rest.rsplit("$ kinematica ik", 1)
+    code, out, _ = run(capsys, *fk_line.removeprefix("$ kinematica ").split())
+    assert code == 0
+    assert out == shown  # the page shows exactly what fk prints
+    code, out, _ = run(capsys, "ik", *ik_line.split(), "--json")
+    assert code == 0
+    data = strict_json(out)
+    q = np.array([10, 20, 30, 40, 50, 60])
+    assert np.abs(np.array(data["solutions"]) - q).max(axis=1).min() < 1e-6
+
+
+def test_the_docs_name_the_builtin_robots_in_millimetres(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    in_mm = set()
+    for name in km.builtin_names():
+        code, out, _ = run(capsys, "show", name, "--json")
+        assert code == 0
+        if strict_json(out)["units"]["length"] == "mm":
+            in_mm.add(name)
+    assert in_mm == {"irb120", "kr6"}  # as the command-line page says
+    page = (ROOT / "docs" / "command-line.md").read_text()
+    assert "for `irb120`, `kr6` and any file with" in page
+
+
+def test_the_all_extra_lists_every_optional_dependency() -> None:
+    import tomllib
+
+    extras = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"][
+        "optional-dependencies"
+    ]
+    # docs and bench are tools for working on kinematica, not parts of it
+    tools = ("all", "test", "bench", "docs")
+    optional = {dep for name, deps in extras.items() if name not in tools
+                for dep in deps}  # fmt: skip
+    assert optional <= set(extras["all"])
+    assert set(extras["docs"]) <= set(extras["test"])  # the tests build the site
+    assert set(extras["all"]) <= set(extras["test"])  # CI runs the tests of every part
+
+
+def test_a_terminal_that_cannot_show_degrees_gets_escapes() -> None:
+    if not SCRIPT.exists():  # pragma: no cover - the venv always has it
+        pytest.skip("the kinematica console script is not installed next to this python")
+    env = dict(os.environ, PYTHONIOENCODING="ascii")
+    proc = subprocess.run(
+        [str(SCRIPT), "show", "puma560"], capture_output=True, text=True, env=env, timeout=60,
+        check=False,
+    )  # fmt: skip
+    assert proc.returncode == 0 and proc.stderr == ""
+    assert "90\\xb0" in proc.stdout  # 90° as an escape, not a crash
