@@ -4,14 +4,18 @@ from __future__ import annotations
 
 import contextlib
 import math
+import sys
+from typing import Any
 
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from kinematica.errors import ArgumentError, KinematicaError
+from kinematica.errors import ArgumentError, KinematicaError, RobotFileError
+from kinematica.io import parse_robot_dict
 from kinematica.io.expr import (
     MAX_DEPTH,
+    MAX_LENGTH,
     Affine,
     ExpressionError,
     evaluate,
@@ -211,3 +215,53 @@ def test_affine_form_matches_arithmetic(a: float, b: float, c: float) -> None:
     form = evaluate(f"{a!r}*q1 + {b!r} - ({c!r})")
     assert form.const == b - c
     assert dict(form.coeffs) == ({"q1": a} if a != 0.0 else {})
+
+
+def _joints(n: int) -> dict[str, Any]:
+    rows = [{"theta": f"q{i}", "d": 0, "a": 0.1, "alpha": 0} for i in range(1, n + 1)]
+    return {"convention": "standard", "joints": rows}
+
+
+def _sum(terms: int) -> str:
+    return "q1" + " + 1" * (terms - 1)
+
+
+def test_expression_of_max_length_evaluates_and_one_character_more_is_refused() -> None:
+    terms = (MAX_LENGTH + 1) // 2
+    text = ("1" + "+1" * (terms - 1)).ljust(MAX_LENGTH)
+    assert len(text) == MAX_LENGTH
+    assert evaluate(text).const == terms
+    with pytest.raises(ExpressionError, match=rf"{MAX_LENGTH + 1} characters long; at most"):
+        evaluate(text + "1")
+
+
+def test_a_1000_term_expression_is_an_error_not_a_recursion_error() -> None:
+    with pytest.raises(ExpressionError, match=f"at most {MAX_LENGTH} are accepted") as info:
+        evaluate(_sum(1000))
+    assert len(str(info.value)) < 300  # the text is shown cut short
+    assert isinstance(info.value, KinematicaError)
+    data = _joints(1)
+    data["joints"][0]["theta"] = _sum(1000)
+    with pytest.raises(RobotFileError, match="joint 1, key 'theta': the expression is 3998"):
+        parse_robot_dict(data)
+
+
+def test_long_expressions_need_no_deep_recursion() -> None:
+    # A sum is one node with many terms, not a chain of nested nodes: an
+    # expression of the longest accepted length evaluates with little stack.
+    limit = sys.getrecursionlimit()
+    depth = len(__import__("inspect").stack())
+    sys.setrecursionlimit(depth + 60)
+    try:
+        form = evaluate(_sum(MAX_LENGTH // 4))
+        product = evaluate("*".join(["1"] * (MAX_LENGTH // 2)))
+    finally:
+        sys.setrecursionlimit(limit)
+    assert form.coeffs == {"q1": 1.0} and form.const == MAX_LENGTH // 4 - 1
+    assert product.const == 1.0
+
+
+def test_depth_limit_still_holds_within_the_length_limit() -> None:
+    assert evaluate("(" * MAX_DEPTH + "1" + ")" * MAX_DEPTH).const == 1.0
+    with pytest.raises(ExpressionError, match=f"nested deeper than {MAX_DEPTH}"):
+        evaluate("(" * (MAX_DEPTH + 1) + "1" + ")" * (MAX_DEPTH + 1))

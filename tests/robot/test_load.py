@@ -5,8 +5,10 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 import kinematica as km
+from kinematica.errors import ArgumentError, KinematicaError
 
 ROW = "  - {theta: q1, d: 0.3, a: 0.2, alpha: 90}\n  - {theta: q2, d: 0, a: 0.4, alpha: 0}\n"
 
@@ -23,3 +25,22 @@ def test_a_tool_written_with_seven_digits_loads_rigid(tmp_path: Path) -> None:
     assert np.abs(robot.tool - np.array(matrix)).max() < 1e-7
     # in code, the same matrix is accepted the same way
     assert np.array_equal(km.Robot.from_dh(robot.links, tool=matrix).tool, robot.tool)
+
+
+@pytest.mark.parametrize("bad", [None, 3, 2.5, ["puma560"], b"puma560"])
+def test_load_of_a_non_path_is_an_argument_error(bad: object) -> None:
+    with pytest.raises(ArgumentError, match="load takes a built-in robot name or"):
+        km.load(bad)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("bad", ["", "   "])
+def test_load_of_an_empty_name_is_an_argument_error(bad: str) -> None:
+    with pytest.raises(ArgumentError, match="load takes a built-in robot name or a path"):
+        km.load(bad)
+
+
+def test_load_of_a_name_too_long_for_the_file_system_is_unknown() -> None:
+    with pytest.raises(km.UnknownRobotError):
+        km.load("x" * 5000)
+    with pytest.raises(KinematicaError):
+        km.load("a\x00b.yaml")
