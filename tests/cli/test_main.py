@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 import pytest
 from support import ROOT
+from support.urdf import broken, write
 
 import kinematica as km
 from kinematica.cli import options
@@ -297,3 +298,23 @@ def test_a_terminal_that_cannot_show_degrees_gets_escapes() -> None:
     )  # fmt: skip
     assert proc.returncode == 0 and proc.stderr == ""
     assert "90\\xb0" in proc.stdout  # 90° as an escape, not a crash
+
+
+# ------------------------------------------------------------------ command line
+@pytest.mark.parametrize("command", ["show", "convert"])
+def test_cli_reports_a_broken_urdf_in_one_line(tmp_path, command):
+    path = write(tmp_path, broken('xyz="0.1 0 0"', 'xyz="nan 0 0"'))
+    extra = ["--to", "urdf"] if command == "convert" else []
+    proc = subprocess.run(
+        [sys.executable, "-m", "kinematica.cli.main", command, str(path), *extra],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        check=False,
+    )
+    assert proc.returncode == 2
+    assert proc.stdout == ""
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1
+    assert "joint 'j2'" in lines[0]
+    assert "NaN" in lines[0]

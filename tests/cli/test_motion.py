@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import json
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -228,3 +230,13 @@ def test_trajectory_table_gives_each_joint_its_unit(capsys: pytest.CaptureFixtur
         capsys, "trajectory", "planar-pr", "--from", "0", "0", "--to", "0.2", "0.5", "--rad"
     )
     assert "q2 (rad)" in out
+
+
+def test_the_cli_reports_the_three_events(tmp_path):
+    cmd = [sys.executable, "-m", "kinematica.cli.main", "trajectory", "arm6-dh", "--json"]
+    cmd += ["--from", "30", "40", "-30", "10", "10", "0", "--to", "30", "40", "-30", "10", "-10"]
+    cmd += ["0", "--cartesian"]
+    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=tmp_path, check=False)
+    assert proc.returncode == 0, proc.stderr
+    kinds = [e["kind"] for e in json.loads(proc.stdout)["events"]]
+    assert kinds == ["near_singularity", "speed_jump", "end_branch"]

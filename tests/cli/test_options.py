@@ -14,8 +14,10 @@ from typing import Any
 
 import numpy as np
 import pytest
+from support.urdf import write
 
 import kinematica as km
+import kinematica.io.xacro as xacro_module
 from kinematica.cli.main import main
 
 SCRIPT = Path(sys.executable).with_name("kinematica")
@@ -205,3 +207,49 @@ def test_json_is_valid_when_numbers_are_not_finite(capsys: pytest.CaptureFixture
     assert code in (0, 1), err
     data = strict_json(out)
     assert data["status"] in ("unreachable", "not_found")
+
+
+XACRO = """<?xml version="1.0"?>
+<robot name="xarm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="len" value="0.4"/>
+  <xacro:macro name="seg" params="i parent">
+    <link name="l${i}"/>
+    <joint name="j${i}" type="revolute">
+      <parent link="${parent}"/><child link="l${i}"/>
+      <origin xyz="0 0 ${len}" rpy="0 ${pi/2} 0"/>
+      <axis xyz="0 0 1"/>
+      <limit lower="-1" upper="1" effort="1" velocity="1"/>
+    </joint>
+  </xacro:macro>
+  <link name="base"/>
+  <xacro:seg i="1" parent="base"/>
+  <xacro:seg i="2" parent="l1"/>
+</robot>
+"""
+
+
+needs_xacro = pytest.mark.skipif(
+    xacro_module._xacro_dir() is None, reason="the xacro package is not installed"
+)
+
+
+@needs_xacro
+def test_the_command_line_option(tmp_path):
+    path = write(tmp_path, XACRO, "arm.urdf")
+
+    def show(*extra: str) -> subprocess.CompletedProcess[str]:
+        return subprocess.run(
+            [sys.executable, "-m", "kinematica.cli.main", "show", str(path), "--json", *extra],
+            capture_output=True,
+            text=True,
+            cwd=tmp_path,
+            check=False,
+        )
+
+    refused = show()
+    assert refused.returncode == 2
+    assert len(refused.stderr.strip().splitlines()) == 1
+    assert "--xacro" in refused.stderr
+    expanded = show("--xacro")
+    assert expanded.returncode == 0, expanded.stderr
+    assert '"xarm"' in expanded.stdout

@@ -11,11 +11,15 @@ URDF, the options are refused.
 from __future__ import annotations
 
 import json
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from support.helpers import assert_transform_close
 from support.helpers import run_cli as run
+from support.urdf import URDF_DIR, reference_file
 
 import kinematica as km
 
@@ -168,3 +172,30 @@ def test_base_and_tip_are_refused_for_a_robot_that_is_not_a_urdf(
     assert code == 2
     assert err.count("\n") == 1 and f"{option[0][2:]}: only for URDF files" in err, err
     assert not out and not list(tmp_path.iterdir())
+
+
+def test_every_command_takes_base_and_tip_for_a_urdf(tmp_path):
+    ur5 = str(URDF_DIR / "ur5_robot.urdf")
+
+    def run(*args: str) -> subprocess.CompletedProcess[str]:
+        return subprocess.run(
+            [sys.executable, "-m", "kinematica.cli.main", *args],
+            capture_output=True,
+            text=True,
+            cwd=tmp_path,
+            check=False,
+        )
+
+    default = run("show", ur5)  # ee_link and tool0 both on wrist_3_link: tool0, said
+    assert default.returncode == 0, default.stderr
+    assert "warning" in default.stderr and "'tool0'" in default.stderr
+    assert run("show", ur5, "--tip", "tool0", "--base", "base_link").returncode == 0
+    q = [0, -60, 80, 10, 20, 30]
+    proc = run("fk", ur5, "--tip", "tool0", "--json", "--q", *map(str, q))
+    assert proc.returncode == 0, proc.stderr
+    T = np.array(json.loads(proc.stdout)["T"])
+    ref = reference_file("ur5_robot.urdf", None, "tool0")
+    assert_transform_close(T, ref.fk(np.radians(q)), atol=1e-12)
+    proc = run("ik", ur5, "--tip", "tool0", "--matrix", *map(str, T.ravel()), "--json")
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout)["method"] == "analytic:three-parallel-6R"

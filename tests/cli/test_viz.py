@@ -15,6 +15,7 @@ import kinematica as km
 
 pytest.importorskip("matplotlib")
 
+
 import pytest
 from PIL import Image
 from support import DATA
@@ -272,3 +273,50 @@ def test_one_solution_is_singular(capsys: pytest.CaptureFixture[str], tmp_path: 
         capsys, "plot", "planar-pr", "--q", "0.2", "30", "--solutions", "-o", str(out_file)
     )
     assert code == 0 and "1 IK solution of" in out and "1 IK solutions" not in out
+
+
+def test_plot_with_an_ellipsoid(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    pytest.importorskip("matplotlib")
+    from kinematica.cli.main import main
+
+    out = tmp_path / "arm.png"
+    code = main(
+        [
+            "plot",
+            "puma560",
+            "--q",
+            "10",
+            "-30",
+            "40",
+            "20",
+            "50",
+            "0",
+            "--ellipsoid",
+            "velocity",
+            "-o",
+            str(out),
+            "--json",
+        ]
+    )
+    assert code == 0 and out.stat().st_size > 0
+    assert (
+        main(
+            [
+                "plot",
+                "puma560",
+                "--q",
+                "0",
+                "0",
+                "0",
+                "0",
+                "0",
+                "0",
+                "--ellipsoid",
+                "force",
+                "--solutions",
+                "-o",
+                str(out),
+            ]
+        )
+        == 2
+    )

@@ -3,10 +3,8 @@
 from __future__ import annotations
 
 import itertools
-import json
 
 import numpy as np
-import pytest
 
 import kinematica as km
 from kinematica.ik.letters import toolbox_letters
@@ -64,12 +62,3 @@ def test_batch_letters_equal_the_single_results() -> None:
         single = many[i]
         assert tuple(many.letters[i][: single.count]) == single.letters
         assert all(s == "" for s in many.letters[i][single.count :])
-
-
-def test_cli_ik_json_has_the_letters(capsys: pytest.CaptureFixture[str]) -> None:
-    from kinematica.cli.main import main
-
-    code = main(["ik", "puma560", "--pose", "0.4", "0.1", "0.3", "0", "90", "0", "--json"])
-    data = json.loads(capsys.readouterr().out)
-    assert code == 0
-    assert data["letters"] == [toolbox_letters(b) for b in data["branches"]]

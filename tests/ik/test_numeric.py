@@ -11,7 +11,6 @@ library.
 
 from __future__ import annotations
 
-import json
 import math
 
 import numpy as np
@@ -22,7 +21,6 @@ from kinematica._core import LAMBDA_MIN, LIMIT_TOL
 from kinematica._core.internals import lm_rows
 from support.helpers import JointSpec, RobotSpec, transforms
 
-from kinematica.cli.main import main
 from kinematica.dh import Prismatic, Revolute
 from kinematica.errors import ArgumentError, DimensionError, KinematicaError
 from kinematica.ik.result import IKBatchResult, IKResult
@@ -538,34 +536,6 @@ def test_a_distance_that_overflows_is_an_infinite_gap() -> None:
     res = numeric(robot, np.full(3, 1.5e308))
     assert res.status == "unreachable" and res.gap == math.inf
     assert "overflows" in res.message and "closed form" not in res.message
-
-
-def _strict_json(text: str):
-    def refuse(token: str) -> None:
-        raise AssertionError(f"not valid JSON: {token}")
-
-    return json.loads(text, parse_constant=refuse)
-
-
-@pytest.mark.parametrize(
-    ("pose", "gap"),
-    [
-        (["1e300", "0", "0", "0", "0", "0"], 1e300),
-        (["1.5e308", "1.5e308", "1.5e308", "0", "0", "0"], None),
-    ],
-    ids=["far", "overflow"],
-)
-def test_cli_json_of_a_huge_target(pose, gap, capsys: pytest.CaptureFixture[str]) -> None:
-    code = main(["ik", "panda", "--pose", *pose, "--json"])
-    out, err = capsys.readouterr()
-    assert code == 1 and err == ""
-    data = _strict_json(out)
-    assert data["status"] == "unreachable" and data["method"] == "numeric:lm"
-    assert data["solutions"] == [] and "closed form" not in data["message"]
-    if gap is None:
-        assert data["gap_m"] is None  # JSON has no infinity
-    else:
-        assert math.isclose(data["gap_m"], gap, rel_tol=1e-12)
 
 
 def test_messages_of_a_search_never_speak_of_a_closed_form() -> None:

@@ -114,20 +114,6 @@ def test_a_pose_off_the_arms_set_beyond_its_digits_is_not_answered():
     assert not res.success
 
 
-def test_the_cli_answers_a_pasted_pose(tmp_path):
-    import json
-    import subprocess
-    import sys
-
-    cmd = [sys.executable, "-m", "kinematica.cli.main", "ik", "anthropomorphic-3r", "--json"]
-    cmd += ["--pose", "0.52123", "0.30093", "0.80921", "-60", "90", "100"]
-    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=tmp_path, check=False)
-    assert proc.returncode == 0, proc.stdout + proc.stderr
-    out = json.loads(proc.stdout)
-    assert out["status"] == "ok"
-    assert any("precision its numbers carry" in n for n in out["notes"])
-
-
 def test_six_joint_arms_are_not_over_determined():
     puma = km.load("puma560")
     target = printed(puma.fk(np.array([0.2, -0.5, 0.3, 0.4, 0.8, -0.1])), 5)

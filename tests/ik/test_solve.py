@@ -1,4 +1,4 @@
-"""robot.ik end to end: statuses, round trips on every built-in arm, batches, CLI.
+"""robot.ik end to end: statuses, round trips on every built-in arm, batches.
 
 Every solution is re-checked here with forward kinematics and the geodesic
 rotation angle, independently of the solver's own bookkeeping.
@@ -6,13 +6,10 @@ rotation angle, independently of the solver's own bookkeeping.
 
 from __future__ import annotations
 
-import json
-
 import numpy as np
 import pytest
 
 import kinematica as km
-from kinematica.cli.main import main
 from kinematica.ik.result import IKBatchResult, IKResult
 
 TOL = 1e-10
@@ -213,21 +210,6 @@ def test_analytic_on_unsupported_structure_is_an_error() -> None:
 def test_bad_targets(target: object) -> None:
     with pytest.raises(km.KinematicaError):
         km.load("puma560").ik(target)  # type: ignore[arg-type]
-
-
-def test_cli_ik_json_and_exit_codes(capsys: pytest.CaptureFixture[str]) -> None:
-    puma = km.load("puma560")
-    T = puma.fk([0.3, -0.6, 0.2, 0.5, 0.9, -0.4])
-    code = main(["ik", "puma560", "--matrix", *map(str, T.ravel()), "--json", "--ignore-limits"])
-    data = json.loads(capsys.readouterr().out)
-    assert code == 0
-    assert data["status"] == "ok" and len(data["solutions"]) == 8
-    for q_deg in data["solutions"]:
-        np.testing.assert_allclose(puma.fk(np.radians(q_deg)), T, atol=1e-9)
-    code = main(["ik", "puma560", "--position", "3", "0", "0"])
-    out = capsys.readouterr().out
-    assert code == 1
-    assert "not found" in out or "unreachable" in out
 
 
 def test_batch_with_bad_rows_reports_them_and_solves_the_rest() -> None:

@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import os
-import subprocess
-import sys
 import time
 
 import numpy as np
@@ -224,23 +222,3 @@ def test_a_declared_xacro_namespace_alone_is_plain_urdf(tmp_path):
         '<robot name="arm">', '<robot name="arm" xmlns:xacro="http://ros.org/wiki/xacro">'
     )
     assert km.load(write(tmp_path, text)).dof == 2
-
-
-# ------------------------------------------------------------------ command line
-@pytest.mark.parametrize("command", ["show", "convert"])
-def test_cli_reports_a_broken_urdf_in_one_line(tmp_path, command):
-    path = write(tmp_path, broken('xyz="0.1 0 0"', 'xyz="nan 0 0"'))
-    extra = ["--to", "urdf"] if command == "convert" else []
-    proc = subprocess.run(
-        [sys.executable, "-m", "kinematica.cli.main", command, str(path), *extra],
-        capture_output=True,
-        text=True,
-        cwd=tmp_path,
-        check=False,
-    )
-    assert proc.returncode == 2
-    assert proc.stdout == ""
-    lines = proc.stderr.strip().splitlines()
-    assert len(lines) == 1
-    assert "joint 'j2'" in lines[0]
-    assert "NaN" in lines[0]

@@ -1,27 +1,20 @@
-"""URDF out: valid XML with the same FK and limits; roll-pitch-yaw; the convert command."""
+"""URDF out: valid XML with the same FK and limits; roll-pitch-yaw."""
 
 from __future__ import annotations
 
-import json
 import math
-import subprocess
-import sys
 import xml.etree.ElementTree as ET
 
 import numpy as np
 import pytest
-import yaml
 from hypothesis import given
 from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 from support.helpers import PROPERTY, assert_transform_close, random_q, robot_specs, seeds
-from support.urdf import URDF_DIR, link_poses, reference_chain
+from support.urdf import link_poses, reference_chain
 
 import kinematica as km
 from kinematica.io import rpy_from_matrix
-
-# Random joint values may lie beyond a joint's limits on purpose: FK is defined there.
-pytestmark = pytest.mark.filterwarnings("ignore:q. joint .* outside its limits")
 
 
 # ------------------------------------------------------------------ roll-pitch-yaw
@@ -106,78 +99,3 @@ def test_frames_of_the_export_are_the_dh_frames():
     for i in range(1, 7):  # link i holds joint i's motion: its frame at q = 0 is S_(i-1)
         assert_transform_close(poses[f"link{i}"], frames[i - 1], atol=1e-15)
     assert_transform_close(poses["tool0"], frames[6], atol=1e-15)
-
-
-# ------------------------------------------------------------------ kinematica convert
-def run(tmp_path, *args):
-    return subprocess.run(
-        [sys.executable, "-m", "kinematica.cli.main", "convert", *args],
-        capture_output=True,
-        text=True,
-        cwd=tmp_path,
-        check=False,
-    )
-
-
-def test_convert_to_urdf_prints_a_urdf_with_the_same_fk(tmp_path):
-    proc = run(tmp_path, "ur5", "--to", "urdf")
-    assert proc.returncode == 0, proc.stderr
-    ref = reference_chain(proc.stdout, tip="tool0")
-    ur5 = km.load("ur5")
-    q = np.random.default_rng(1).uniform(-3, 3, (5, 6))
-    assert_transform_close(ref.fk_batch(q), ur5.fk(q), atol=1e-12)
-
-
-@pytest.mark.parametrize("convention", ["standard", "modified"])
-def test_convert_urdf_to_dh_robot_files(tmp_path, convention):
-    src = URDF_DIR / "kuka_kr16_2.urdf"
-    proc = run(tmp_path, str(src), "--to", f"dh-{convention}")
-    assert proc.returncode == 0, proc.stderr
-    head = f"# {convention} DH frames placed by the Denavit-Hartenberg rules"
-    assert proc.stdout.startswith(head)
-    data = yaml.safe_load(proc.stdout)
-    assert data["convention"] == convention
-    assert len(data["joints"]) == 6
-    ref = reference_chain(src.read_text(), tip="tool0")
-    q = np.random.default_rng(2).uniform(-2, 2, (5, 6))
-    for suffix in (".yaml", ".json", ".toml"):
-        out = tmp_path / f"kr16{suffix}"
-        proc = run(tmp_path, str(src), "--to", f"dh-{convention}", "-o", str(out))
-        assert proc.returncode == 0, proc.stderr
-        assert proc.stdout.startswith(f"wrote {out}")
-        assert "S0:" in proc.stdout
-        robot = km.load(out)
-        assert robot.convention == convention
-        assert_transform_close(robot.fk(q), ref.fk_batch(q), atol=1e-12)
-
-
-def test_convert_json_and_yaml(tmp_path):
-    proc = run(tmp_path, "puma560", "--to", "dh-modified", "--json")
-    assert proc.returncode == 0, proc.stderr
-    data = json.loads(proc.stdout)
-    assert data["to"] == "dh-modified"
-    assert data["convention"] == "modified"
-    assert data["output"] is None
-    assert [r["frame"] for r in data["rules"]] == list(range(7))
-    assert yaml.safe_load(data["text"])["convention"] == "modified"
-    proc = run(tmp_path, "planar-pr", "--to", "yaml", "--rad")
-    assert proc.returncode == 0, proc.stderr
-    assert yaml.safe_load(proc.stdout)["units"]["angle"] == "rad"
-
-
-@pytest.mark.parametrize(
-    ("args", "pattern"),
-    [
-        (["puma560", "--to", "yaml", "-o", "x.urdf"], "unknown file type '.urdf'"),
-        (["puma560", "--to", "urdf", "--tip", "tool0"], "only for URDF files"),
-        (["puma560", "--to", "urdf", "-o", "."], "cannot write the file"),
-        (["nope.urdf", "--to", "urdf"], "no such URDF file"),
-        (["puma560", "--to", "sdf"], "invalid choice"),
-    ],
-)
-def test_convert_bad_input_exits_2_with_one_line(tmp_path, args, pattern):
-    proc = run(tmp_path, *args)
-    assert proc.returncode == 2
-    lines = proc.stderr.strip().splitlines()
-    assert len(lines) == 1
-    assert pattern in lines[0]

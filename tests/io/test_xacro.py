@@ -3,7 +3,6 @@ and never reading the environment unless asked."""
 
 from __future__ import annotations
 
-import subprocess
 import sys
 import time
 
@@ -96,28 +95,6 @@ def test_a_urdf_holding_xacro_needs_the_option(tmp_path):
     assert km.load(write(tmp_path, ARM, "plain.urdf"), xacro=True).dof == 2
     with pytest.raises(km.KinematicaError, match="xacro: only for URDF files"):
         km.load("puma560", xacro=True)
-
-
-@needs_xacro
-def test_the_command_line_option(tmp_path):
-    path = write(tmp_path, XACRO, "arm.urdf")
-
-    def show(*extra: str) -> subprocess.CompletedProcess[str]:
-        return subprocess.run(
-            [sys.executable, "-m", "kinematica.cli.main", "show", str(path), "--json", *extra],
-            capture_output=True,
-            text=True,
-            cwd=tmp_path,
-            check=False,
-        )
-
-    refused = show()
-    assert refused.returncode == 2
-    assert len(refused.stderr.strip().splitlines()) == 1
-    assert "--xacro" in refused.stderr
-    expanded = show("--xacro")
-    assert expanded.returncode == 0, expanded.stderr
-    assert '"xarm"' in expanded.stdout
 
 
 @needs_xacro

@@ -9,8 +9,6 @@ from __future__ import annotations
 
 import json
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -22,8 +20,6 @@ import kinematica as km
 #: FK of a loaded URDF equals the URDF's own to this (m; unitless for rotations).
 URDF_FK_ATOL = 1e-12
 
-# Random joint values may lie beyond a joint's limits on purpose: FK is defined there.
-pytestmark = pytest.mark.filterwarnings("ignore:q. joint .* outside its limits")
 
 PINOCCHIO = json.loads((URDF_DIR / "pinocchio_fk.json").read_text())
 CASES = [(c["file"], c["base"], c["tip"]) for c in PINOCCHIO["cases"]]
@@ -127,47 +123,3 @@ def test_structure_and_closed_form_ik_on_urdf_arms(name, tip, kind, convention):
         for sol in res.solutions:  # every solution, checked by the URDF's own FK
             assert_transform_close(ref.fk(sol), target, atol=1e-9)
         assert np.min(np.abs(np.angle(np.exp(1j * (res.solutions - q)))).max(axis=1)) < 1e-6
-
-
-def test_show_prints_the_extracted_table_of_a_urdf(tmp_path):
-    proc = subprocess.run(
-        [sys.executable, "-m", "kinematica.cli.main", "show", str(URDF_DIR / "kuka_kr16_2.urdf")],
-        capture_output=True,
-        text=True,
-        cwd=tmp_path,
-        check=False,
-    )
-    assert proc.returncode == 0, proc.stderr
-    out = proc.stdout
-    assert "kuka_kr16_2: 6R, spherical wrist" in out
-    assert "standard DH convention" in out
-    # a1 = 0.26 (shoulder offset), a2 = 0.68, a3 = 0.035, d4 = 0.67 along -z3: the KR 16's lengths
-    for cell in ("0.26", "0.68", "0.035", "-0.67", "[-185°, 185°]"):
-        assert cell in out
-
-
-def test_every_command_takes_base_and_tip_for_a_urdf(tmp_path):
-    ur5 = str(URDF_DIR / "ur5_robot.urdf")
-
-    def run(*args: str) -> subprocess.CompletedProcess[str]:
-        return subprocess.run(
-            [sys.executable, "-m", "kinematica.cli.main", *args],
-            capture_output=True,
-            text=True,
-            cwd=tmp_path,
-            check=False,
-        )
-
-    default = run("show", ur5)  # ee_link and tool0 both on wrist_3_link: tool0, said
-    assert default.returncode == 0, default.stderr
-    assert "warning" in default.stderr and "'tool0'" in default.stderr
-    assert run("show", ur5, "--tip", "tool0", "--base", "base_link").returncode == 0
-    q = [0, -60, 80, 10, 20, 30]
-    proc = run("fk", ur5, "--tip", "tool0", "--json", "--q", *map(str, q))
-    assert proc.returncode == 0, proc.stderr
-    T = np.array(json.loads(proc.stdout)["T"])
-    ref = reference_file("ur5_robot.urdf", None, "tool0")
-    assert_transform_close(T, ref.fk(np.radians(q)), atol=1e-12)
-    proc = run("ik", ur5, "--tip", "tool0", "--matrix", *map(str, T.ravel()), "--json")
-    assert proc.returncode == 0, proc.stderr
-    assert json.loads(proc.stdout)["method"] == "analytic:three-parallel-6R"

@@ -1,8 +1,7 @@
-"""Reports: the three formats in both languages, LaTeX compiles, HTML opens offline; CLI."""
+"""Reports: the three formats in both languages, LaTeX compiles, HTML opens offline."""
 
 from __future__ import annotations
 
-import json
 import re
 import shutil
 import subprocess
@@ -16,7 +15,6 @@ import kinematica as km
 sp = pytest.importorskip("sympy")
 
 from kinematica import symbolic  # noqa: E402
-from kinematica.cli.main import main  # noqa: E402
 from kinematica.symbolic.geometric import derive_geometric  # noqa: E402
 
 LATEX = shutil.which("pdflatex") or shutil.which("latex")
@@ -148,43 +146,6 @@ def test_html_opens_in_chromium_without_console_errors(tmp_path: Path) -> None:
     assert shot.stat().st_size > 10_000  # a picture with content
     console = [line for line in proc.stderr.splitlines() if ":CONSOLE" in line]
     assert console == []
-
-
-# ------------------------------------------------------------------------ CLI
-def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
-    try:
-        code = main(list(argv))
-    except SystemExit as exc:
-        code = int(exc.code or 0)
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def test_cli_derive_stdout_file_json(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
-    code, out, _ = run(capsys, "derive", "planar-pr", "--lang", "en")
-    assert code == 0 and out.startswith("# Kinematics of Planar PR")
-    target = tmp_path / "arm6.tex"
-    code, out, _ = run(capsys, "derive", "arm6-dh", "--format", "latex", "-o", str(target))
-    assert code == 0 and target.read_text().startswith("\\documentclass")
-    code, out, _ = run(capsys, "derive", "planar-3r", "--format", "html", "--json")
-    data = json.loads(out)
-    assert code == 0 and data["report"].startswith("<!DOCTYPE html>") and data["lang"] == "es"
-
-
-@pytest.mark.parametrize(
-    ("argv", "message"),
-    [
-        (["derive", "nope"], "no built-in robot named 'nope'"),
-        (["derive", "planar-pr", "--format", "pdf"], "invalid choice: 'pdf'"),
-        (["derive", "planar-pr", "-o", "/nonexistent-dir/x.md"], "cannot write"),
-    ],
-)
-def test_cli_derive_bad_input(
-    capsys: pytest.CaptureFixture[str], argv: list[str], message: str
-) -> None:
-    code, _, err = run(capsys, *argv)
-    assert code == 2 and message in err
-    assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
 
 
 def test_committed_arm6_report_is_current() -> None:

@@ -19,7 +19,6 @@ from support.helpers import transform_from
 from support.ik_search import joint_distance, random_q
 
 import kinematica as km
-from kinematica.cli.main import main
 from kinematica.dh import Revolute
 from kinematica.ik import IKBatchResult, IKResult, closed_form
 from kinematica.ik.analytic.arm_position import reach_after_joint3
@@ -162,19 +161,6 @@ def test_pose_targets_of_short_arms_never_use_the_position_solver() -> None:
     assert closed_form(arm.chain, "pose") is None
     T = arm.fk(np.array([0.2, 0.3, 0.4, 0.5, 0.6]))
     assert arm.ik(T, seed=0).method == "numeric:lm"
-
-
-def test_cli_prints_the_arm_solutions_with_the_wrist_free(
-    capsys: pytest.CaptureFixture[str],
-) -> None:
-    code = main(["ik", "puma560", "--position", "0.3", "0.2", "0.1", "--ignore-limits", "--json"])
-    data = json.loads(capsys.readouterr().out)
-    assert code == 0 and data["status"] == "singular"
-    assert data["method"] == "analytic:arm-position"
-    assert data["free_joints"] == ["q4", "q5", "q6"] and len(data["solutions"]) == 4
-    puma = km.load("puma560")
-    for q_deg in data["solutions"]:
-        np.testing.assert_allclose(puma.fk(np.radians(q_deg))[:3, 3], [0.3, 0.2, 0.1], atol=1e-9)
 
 
 @pytest.mark.filterwarnings("ignore::kinematica.KinematicaWarning")

@@ -11,7 +11,6 @@ both DH conventions. The property tests over degenerate arms are in
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass
 
@@ -25,7 +24,6 @@ from support.small_arms import KINDS, reached, seed_pr_arm
 
 import kinematica as km
 from kinematica import _core
-from kinematica.cli.main import main
 from kinematica.dh import Prismatic, Revolute
 from kinematica.dh.lines import AXIS_LENGTH_TOL
 from kinematica.ik import IKBatchResult, IKResult, closed_form
@@ -443,16 +441,6 @@ def test_planar_pose_targets_tilted_or_off_the_plane(kind: str) -> None:
         assert res.status == "unreachable" and res.gap == pytest.approx(0.2, abs=1e-12)
 
 
-def test_scara_pose_message_is_in_radians_not_metres(capsys: pytest.CaptureFixture[str]) -> None:
-    """The report: ``ik scara --pose 0.3 0.2 0.1 0 0 0`` said "3.14159 m outside the reach"."""
-    code = main(
-        ["ik", "scara", "--pose", "0.3", "0.2", "0.1", "0", "0", "0", "--method", "analytic"]
-    )
-    out = capsys.readouterr().out
-    assert code == 1 and "unreachable" in out
-    assert "m outside" not in out and "3.14 rad" in out
-
-
 def test_planar_pr_unreachable_gap() -> None:
     res = seed_pr_arm().ik(np.array([0.2, L2 + 0.1, 0.0]))
     assert res.status == "unreachable" and res.gap == pytest.approx(0.1, abs=1e-15)
@@ -503,31 +491,6 @@ def test_scara_and_3r_planar_fold_is_singular() -> None:
     assert res.status == "singular" and res.free_joints == (0, 2)
 
 
-def test_position_targets_leave_the_last_joint_free(capsys: pytest.CaptureFixture[str]) -> None:
-    """Issue 7 item 3: SCARA positions: q1, q2 by the triangle, q3 by the height, q4 free."""
-    scara = km.load("scara")
-    q = np.radians([30.0, -60.0, 0.0, 45.0])
-    q[2] = 0.1
-    res = scara.ik(scara.fk(q)[:3, 3])
-    assert res.status == "singular" and res.free_joints == (3,) and res.count == 2
-    assert res.branches == ("right-handed", "left-handed")
-    d = res.solutions[:, :3] - q[:3]  # q4 aside
-    d[:, :2] = km.wrap_angle(d[:, :2])
-    assert np.abs(d).max(axis=1).min() < 1e-12
-    code = main(
-        ["ik", "scara", "--position", "0.3", "0.2", "0.3", "--method", "analytic", "--json"]
-    )
-    data = json.loads(capsys.readouterr().out)
-    assert code == 0 and data["status"] == "singular" and data["free_joints"] == ["q4"]
-    for name in ("planar-3r", "planar-prr"):
-        robot = km.load(name)
-        lo, hi = np.nan_to_num(robot.qlim, posinf=1.0, neginf=-1.0).T
-        qs = np.random.default_rng(3).uniform(lo, hi, (20, robot.dof))
-        res = robot.ik(robot.fk(qs)[:, :3, 3])
-        assert (res.status == "singular").all() and res.free[:, -1].all()
-        assert not res.free[:, :-1].any()
-
-
 def test_free_last_representatives_respect_the_limits() -> None:
     """A PRR whose slide allows one narrow window: the middle representative misses it."""
     free = Robot.from_dh(
@@ -559,12 +522,6 @@ def test_huge_targets_are_unreachable_with_their_gap(name: str) -> None:
             assert one.status == many.status[0] == "unreachable"
             assert one.gap is not None and one.gap > 0.1 * x
             assert one.message == many[0].message
-
-
-def test_huge_target_json_is_valid(capsys: pytest.CaptureFixture[str]) -> None:
-    code = main(["ik", "anthropomorphic-3r", "--position", "1e300", "0", "0", "--json"])
-    data = json.loads(capsys.readouterr().out)
-    assert code == 1 and data["status"] == "unreachable" and data["gap_m"] == 1e300
 
 
 def test_closed_form_reports_gap_only_outside_the_reach() -> None:
