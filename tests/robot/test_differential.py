@@ -1,4 +1,4 @@
-"""Hessian, J̇, spatial and exponential-coordinate Jacobians, manipulability measures, ellipsoids.
+"""Hessian, J̇, spatial and exponential-coordinate Jacobians (``robot/differential.py``).
 
 References: central finite differences of the Jacobian and of the pose, the
 adjoint map written out in the test, numpy's SVD and a Bernoulli series.
@@ -185,108 +185,6 @@ def test_exp_jacobian_rates_satisfy_omega_equals_left_jacobian_times_rates() -> 
         assert np.allclose(Jl @ ur5.jacobian(q, euler="exp")[3:], ur5.jacobian(q)[3:], atol=1e-12)
 
 
-# ------------------------------------------------------------ measures
-def test_manipulability_methods_from_singular_values() -> None:
-    ur5 = km.load("ur5")
-    q = ur5.random_q(10, seed=5)
-    for axes, rows in (("all", slice(None)), ("trans", slice(0, 3)), ("rot", slice(3, 6))):
-        s = np.linalg.svd(ur5.jacobian(q)[:, rows], compute_uv=False)
-        inv = km.manipulability(ur5, q, axes, method="inverse_condition")
-        assert np.allclose(inv, s[:, -1] / s[:, 0], rtol=1e-12)
-        assert np.allclose(inv, 1.0 / km.condition_number(ur5, q, axes), rtol=1e-12)
-        mins = km.manipulability(ur5, q, axes, method="min_singular")
-        assert np.allclose(mins, s[:, -1], rtol=1e-12)
-        assert np.allclose(
-            km.manipulability(ur5, q, axes, method="yoshikawa"), s.prod(axis=-1), rtol=1e-12
-        )
-
-
-def test_manipulability_methods_of_planar_2r_by_hand() -> None:
-    """Jv = [[-l1 s1 - l2 s12, -l2 s12], [l1 c1 + l2 c12, l2 c12]]; at q1 = 0, q2 = 90°
-    with l1 = l2 = 1: [[-1, -1], [1, 0]], singular values √((3 ± √5)/2) = φ and 1/φ."""
-    arm = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=1.0)])
-    golden = (1 + math.sqrt(5)) / 2
-    q = [0.0, math.pi / 2]
-    assert math.isclose(km.manipulability(arm, q, [0, 1], "min_singular"), 1 / golden)
-    assert math.isclose(km.manipulability(arm, q, [0, 1], "inverse_condition"), 1 / golden**2)
-    stretched = [0.3, 0.0]
-    assert km.manipulability(arm, stretched, [0, 1], "inverse_condition") < 1e-15
-    assert km.manipulability(arm, stretched, [0, 1], "min_singular") < 1e-15
-
-
-def test_manipulability_rejects_an_unknown_method() -> None:
-    with pytest.raises(km.KinematicaError, match="method must be"):
-        km.manipulability(km.load("puma560"), np.zeros(6), method="volume")  # type: ignore[arg-type]
-
-
-@pytest.mark.parametrize("axes", ["all", "trans"])
-def test_manipulability_gradient_equals_finite_differences(axes: str) -> None:
-    panda = km.load("panda")
-    for q in panda.random_q(4, seed=6):
-        g = km.motion.manipulability_gradient(panda, q, axes)
-        fd = np.array(
-            [
-                (
-                    km.manipulability(panda, q + H * e, axes)
-                    - km.manipulability(panda, q - H * e, axes)
-                )
-                / (2 * H)
-                for e in np.eye(7)
-            ]
-        )
-        assert np.allclose(g, fd, atol=FD_TOL * (1.0 + np.abs(g).max()))
-
-
-# ------------------------------------------------------------ ellipsoids
-def test_ellipsoid_radii_are_the_singular_values() -> None:
-    puma = km.load("puma560")
-    q = puma.random_q(8, seed=7)
-    for axes, rows in (("trans", slice(0, 3)), ("rot", slice(3, 6)), ("all", slice(None))):
-        J = puma.jacobian(q)[:, rows]
-        s = np.linalg.svd(J, compute_uv=False)
-        vel = km.ellipsoid(puma, q, "velocity", axes)
-        force = km.ellipsoid(puma, q, "force", axes)
-        assert np.allclose(vel.radii, s, rtol=1e-12)
-        assert np.allclose(force.radii, 1.0 / s, rtol=1e-12)
-        # directions: orthonormal and J Jᵀ u_k = σ_k² u_k
-        D = vel.directions
-        m = D.shape[-1]
-        assert np.allclose(np.swapaxes(D, -1, -2) @ D, np.eye(m), atol=1e-12)
-        JJt = J @ np.swapaxes(J, -1, -2)
-        assert np.allclose(JJt @ D, D * s[:, None, :] ** 2, atol=1e-10)
-        assert np.allclose(vel.center, puma.fk(q)[:, :3, 3])
-
-
-def test_ellipsoid_of_a_2_joint_arm_in_3_rows_is_flat() -> None:
-    arm = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=1.0)])
-    vel = km.ellipsoid(arm, [0.0, math.pi / 2])
-    force = km.ellipsoid(arm, [0.0, math.pi / 2], "force")
-    golden = (1 + math.sqrt(5)) / 2
-    assert np.allclose(vel.radii, [golden, 1 / golden, 0.0], atol=1e-15)
-    assert np.allclose(force.radii[:2], [1 / golden, golden]) and force.radii[2] == np.inf
-    assert np.allclose(np.abs(vel.directions[:, 2]), [0, 0, 1])  # the flat axis is z
-    with pytest.raises(km.KinematicaError, match="infinite radius"):
-        force.surface()
-
-
-def test_ellipsoid_surface_points_satisfy_the_quadric() -> None:
-    puma = km.load("puma560")
-    q = puma.random_q(2, seed=8)
-    e = km.ellipsoid(puma, q)
-    pts = e.surface(resolution=9)
-    assert pts.shape == (2, 9, 9, 3)
-    local = np.einsum("bji,buvj->buvi", e.directions, pts - e.center[:, None, None, :])
-    assert np.allclose(((local / e.radii[:, None, None, :]) ** 2).sum(-1), 1.0, atol=1e-12)
-
-
-def test_ellipsoid_bad_input() -> None:
-    puma = km.load("puma560")
-    with pytest.raises(km.KinematicaError, match="kind must be"):
-        km.ellipsoid(puma, np.zeros(6), "torque")  # type: ignore[arg-type]
-    with pytest.raises(km.KinematicaError, match="3-D"):
-        km.ellipsoid(puma, np.zeros(6), axes="all").surface()
-
-
 @pytest.mark.parametrize("batch", [(), (1,), (3, 2)])
 def test_batch_shapes(batch: tuple[int, ...]) -> None:
     puma = km.load("puma560")
@@ -308,30 +206,3 @@ def test_bad_frame() -> None:
         km.hessian(puma, np.zeros(6), "world")  # type: ignore[arg-type]
     with pytest.raises(km.KinematicaError, match="'spatial'"):
         puma.jacobian(np.zeros(6), "world")  # type: ignore[arg-type]
-
-
-# ------------------------------------------------------------ drawn ellipsoids
-def test_drawn_ellipsoid_points_are_the_scaled_quadric() -> None:
-    pytest.importorskip("matplotlib")
-    from kinematica.viz.ellipsoid import ELLIPSOID_SIZE, ellipsoid_points
-    from kinematica.viz.geometry import robot_scale
-
-    puma = km.load("puma560")
-    q = np.radians([10, -30, 40, 20, 50, 0])
-    pts, scale, radii = ellipsoid_points(puma, q, "force")
-    e = km.ellipsoid(puma, q, "force")
-    assert np.allclose(radii, e.radii)
-    assert scale * radii.max() == pytest.approx(ELLIPSOID_SIZE * robot_scale(puma))
-    local = (pts - e.center) @ e.directions / (e.radii * scale)
-    assert np.allclose((local**2).sum(-1), 1.0, atol=1e-12)
-    # a planar arm: the ellipse in its plane, J's rows of those axes
-    arm = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=1.0)])
-    pts2, scale2, radii2 = ellipsoid_points(arm, [0.0, np.pi / 2], plane=(0, 1))
-    golden = (1 + np.sqrt(5)) / 2
-    assert np.allclose(radii2, [golden, 1 / golden])
-    assert np.allclose(pts2[:, 2], 0.0)
-    J = arm.jacobian([0.0, np.pi / 2])[:2]
-    centre = arm.fk([0.0, np.pi / 2])[:2, 3]
-    # points x = c + s·J u with |u| = 1: |J⁻¹ (x − c)| = s
-    u = np.linalg.solve(J, (pts2[:, :2] - centre).T)
-    assert np.allclose(np.linalg.norm(u, axis=0), scale2, rtol=1e-12)

@@ -177,3 +177,60 @@ def test_manipulability_of_a_batch_with_nan_rows_is_nan_there() -> None:
         w = manipulability(arm, [[0.0, 0.5, 0.5], [0.0, math.nan, 0.0]], axes="trans")
     assert np.isnan(w[1])
     assert w[0] == pytest.approx(float(manipulability(arm, [0.0, 0.5, 0.5], axes="trans")))
+
+
+#: Finite differences of step H agree with an exact derivative to ~H² plus
+#: round-off ~eps/H, i.e. ~1e-10 on arms of unit size; the contract is 1e-6.
+FD_TOL = 1e-6
+
+
+# ------------------------------------------------------------ measures
+def test_manipulability_methods_from_singular_values() -> None:
+    ur5 = km.load("ur5")
+    q = ur5.random_q(10, seed=5)
+    for axes, rows in (("all", slice(None)), ("trans", slice(0, 3)), ("rot", slice(3, 6))):
+        s = np.linalg.svd(ur5.jacobian(q)[:, rows], compute_uv=False)
+        inv = km.manipulability(ur5, q, axes, method="inverse_condition")
+        assert np.allclose(inv, s[:, -1] / s[:, 0], rtol=1e-12)
+        assert np.allclose(inv, 1.0 / km.condition_number(ur5, q, axes), rtol=1e-12)
+        mins = km.manipulability(ur5, q, axes, method="min_singular")
+        assert np.allclose(mins, s[:, -1], rtol=1e-12)
+        assert np.allclose(
+            km.manipulability(ur5, q, axes, method="yoshikawa"), s.prod(axis=-1), rtol=1e-12
+        )
+
+
+def test_manipulability_methods_of_planar_2r_by_hand() -> None:
+    """Jv = [[-l1 s1 - l2 s12, -l2 s12], [l1 c1 + l2 c12, l2 c12]]; at q1 = 0, q2 = 90°
+    with l1 = l2 = 1: [[-1, -1], [1, 0]], singular values √((3 ± √5)/2) = φ and 1/φ."""
+    arm = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=1.0)])
+    golden = (1 + math.sqrt(5)) / 2
+    q = [0.0, math.pi / 2]
+    assert math.isclose(km.manipulability(arm, q, [0, 1], "min_singular"), 1 / golden)
+    assert math.isclose(km.manipulability(arm, q, [0, 1], "inverse_condition"), 1 / golden**2)
+    stretched = [0.3, 0.0]
+    assert km.manipulability(arm, stretched, [0, 1], "inverse_condition") < 1e-15
+    assert km.manipulability(arm, stretched, [0, 1], "min_singular") < 1e-15
+
+
+def test_manipulability_rejects_an_unknown_method() -> None:
+    with pytest.raises(km.KinematicaError, match="method must be"):
+        km.manipulability(km.load("puma560"), np.zeros(6), method="volume")  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("axes", ["all", "trans"])
+def test_manipulability_gradient_equals_finite_differences(axes: str) -> None:
+    panda = km.load("panda")
+    for q in panda.random_q(4, seed=6):
+        g = km.motion.manipulability_gradient(panda, q, axes)
+        fd = np.array(
+            [
+                (
+                    km.manipulability(panda, q + H * e, axes)
+                    - km.manipulability(panda, q - H * e, axes)
+                )
+                / (2 * H)
+                for e in np.eye(7)
+            ]
+        )
+        assert np.allclose(g, fd, atol=FD_TOL * (1.0 + np.abs(g).max()))
