@@ -118,3 +118,15 @@ def arm_with_point_near_axis_3(eps: float) -> Robot:
     """Joint 3 moves the tool origin on a circle of radius eps (its axis almost through it)."""
     rows = [Revolute(d=0.4, alpha=PI / 2), Revolute(a=0.4), Revolute(a=eps)]
     return Robot.from_dh([*rows, Revolute(d=0.3)], name="point near axis 3")
+
+
+def near_flags(robot: Robot, T: FloatArray) -> NDArray[np.bool_]:
+    """``(N,)`` the pose solver's near flag for poses ``T (N, 4, 4)``."""
+    return candidates(solver(robot), robot, T)[1].near
+
+
+# ------------------------------------------------------ tolerances, both sides
+def moved_target(T: FloatArray, shift: FloatArray) -> FloatArray:
+    out = T.copy()
+    out[:3, 3] += shift
+    return out

@@ -20,7 +20,7 @@ from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 from support.helpers import transform_from
 from support.ik_search import dls_solutions, joint_distance, random_q
-from support.small_arms import KINDS, reached, seed_pr_arm
+from support.small_arms import A2, A3, D1, KINDS, reached, seed_anthropomorphic, seed_pr_arm
 
 import kinematica as km
 from kinematica import _core
@@ -288,14 +288,6 @@ def test_seed_pr_two_solutions_are_q2a_q2b() -> None:
         assert res.status == "ok" and res.count == 1
         assert joint_distance(robot, res.solutions[0], np.array(qa)) < 1e-12
         assert res.branches == (("link forward",) if qa[1] < PI / 2 else ("link backward",))
-
-
-D1, A2, A3 = 0.4, 0.35, 0.3  # seed 002's L1, L2, L3
-
-
-def seed_anthropomorphic() -> Robot:
-    """Seed 002's table: q1, L1, 0, 90° / q2, 0, L2, 0 / q3, 0, L3, 0."""
-    return Robot.from_dh([Revolute(d=D1, alpha=PI / 2), Revolute(a=A2), Revolute(a=A3)])
 
 
 def test_seed_anthropomorphic_four_solutions_are_the_seed_algebra() -> None:

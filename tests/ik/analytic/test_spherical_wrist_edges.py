@@ -23,7 +23,7 @@ from hypothesis import strategies as st
 from numpy.typing import NDArray
 from support.helpers import transforms
 from support.ik_search import joint_distance, random_q
-from support.wrist_arms import candidates, random_wrist_arm, solver
+from support.wrist_arms import moved_target, near_flags, random_wrist_arm, solver
 
 import kinematica as km
 from kinematica.dh import Prismatic, Revolute
@@ -49,11 +49,6 @@ PUMA = km.load("puma560")
 POSE_ROUNDOFF = 10 * DOUBLE_ROOT_TOL
 #: Two configurations this close in every joint are the same (as the check's dedupe).
 SAME = 1e-7
-
-
-def near_flags(robot: Robot, T: FloatArray) -> NDArray[np.bool_]:
-    """``(N,)`` the pose solver's near flag for poses ``T (N, 4, 4)``."""
-    return candidates(solver(robot), robot, T)[1].near
 
 
 def tolerance_at(robot: Robot, q: FloatArray) -> FloatArray:
@@ -395,13 +390,6 @@ def test_batch_equals_single_solution_by_solution_and_message_by_message() -> No
             assert one.branches == many[i].branches and one.free_joints == many[i].free_joints
     assert set(PUMA.ik(T).status) == {"ok", "singular", "unreachable"}
     assert tight.ik(reachable_out_of_limits).status == "out_of_limits"
-
-
-# ------------------------------------------------------ tolerances, both sides
-def moved_target(T: FloatArray, shift: FloatArray) -> FloatArray:
-    out = T.copy()
-    out[:3, 3] += shift
-    return out
 
 
 @pytest.mark.parametrize(("factor", "free"), [(0.5, True), (2.0, False)])
