@@ -55,9 +55,9 @@ SAN_VENV := .venv-sanitize
 SAN_ENV  := ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 \
             UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
             LD_PRELOAD="$$(gcc -print-file-name=libasan.so) $$(gcc -print-file-name=libubsan.so)"
-SAN_TESTS := tests/test_robot_fk.py tests/test_robot_jacobian.py tests/test_dh.py \
-             tests/test_core_scalar.py tests/test_core_geometry.py tests/test_urdf_exact.py \
-             tests/test_ik_numeric.py $(wildcard tests/test_ik_*.py)
+SAN_TESTS := tests/robot/test_robot.py tests/robot/test_robot_jacobian.py tests/dh/test_link.py \
+             tests/core/test_scalar.py tests/core/test_geometry.py tests/robot/test_urdf_exact.py \
+             $(wildcard tests/ik/test_*.py tests/ik/analytic/test_*.py)
 
 sanitize:
 	test -d $(SAN_VENV) || $(PYTHON) -m venv $(SAN_VENV)

@@ -1,7 +1,7 @@
 """Robot design: candidate evaluations per second, in this process and on a local Dask cluster.
 
 Run with ``.venv/bin/python benchmarks/design.py`` (``--poses``, ``--budget``,
-``--workers``). The problem is the one of ``tests/test_design_dask.py``, made
+``--workers``). The problem is the one of ``tests/design/test_runner.py``, made
 bigger: the seed 6-DOF arm with ``l2`` and ``l3`` free in [0.2, 0.7] m, a task
 of ``--poses`` poses it reaches, maximise the mean manipulability. Each
 candidate is one ``robot.ik`` on the whole batch (closed form, spherical

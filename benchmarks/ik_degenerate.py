@@ -2,7 +2,7 @@
 
 Run with ``.venv/bin/python benchmarks/ik_degenerate.py`` (``--arms``, ``--targets``,
 ``--seed`` change the sample; the defaults make about 100,000 targets: run it at low
-priority, ``nice -n 19``). The audit is ``tests/ik_audit.py``'s (its docstring says
+priority, ``nice -n 19``). The audit is ``tests/support/ik_audit.py``'s (its docstring says
 what is counted): arms from each family's ``sample_arm``, generic, degenerate and
 jittered (twists within 5e-10 rad of 0, ±π/2, π, lengths of 1e-10 m), targets by
 forward kinematics of random configurations, a third with a joint within 1e-9 rad of
@@ -23,7 +23,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
-from ik_audit import COUNTS, run
+from support.ik_audit import COUNTS, run
 
 
 def main() -> None:

@@ -9,10 +9,10 @@ import sys
 from pathlib import Path
 
 import pytest
+from support import ROOT
 
 import kinematica as km
 
-ROOT = Path(__file__).resolve().parents[1]
 README_MAX_LINES = 150
 
 

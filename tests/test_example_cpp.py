@@ -15,12 +15,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from support import ROOT
 
 import kinematica as km
 from kinematica.ik.analytic import SOLVERS
 from kinematica.robot.export_cpp import cpp_header
 
-ROOT = Path(__file__).resolve().parents[1]
 CXX = shutil.which("c++") or shutil.which("g++") or shutil.which("clang++")
 pytestmark = [
     pytest.mark.skipif(CXX is None, reason="no C++ compiler"),

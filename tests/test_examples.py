@@ -8,8 +8,8 @@ import sys
 from pathlib import Path
 
 import pytest
+from support import ROOT
 
-ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = sorted((ROOT / "examples").glob("*.py"))
 #: The pages whose examples run: the README and every page of the docs site.
 PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]

@@ -33,7 +33,7 @@ needs no density.
 With the default voxel (about six samples per voxel) this is within 0.3 % of
 the closed-form volume of a Cartesian arm's box (aligned with the grid or
 turned) at 10⁵-10⁶ samples and within 1 % of a 3R arm's spherical shell from
-10⁵ (``tests/test_motion_workspace.py``).
+10⁵ (``tests/motion/test_workspace.py``).
 """
 
 from __future__ import annotations

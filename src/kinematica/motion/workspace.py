@@ -13,7 +13,7 @@ holes and weighs each boundary voxel by the fraction of it the samples in it
 say is covered (see there). With the default voxel (about six samples per
 voxel) a Cartesian arm's box comes out within 1 % at 10⁵ samples, and a 3R
 arm's spherical shell and a planar 3R arm's disc area too
-(``tests/test_motion_workspace.py``).
+(``tests/motion/test_workspace.py``).
 
 A workspace whose points all lie in one coordinate plane (planar arms) is
 measured in that plane: ``area`` (m²), ``volume = 0``, and ``plane`` names it

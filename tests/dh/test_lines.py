@@ -1,0 +1,95 @@
+"""The line geometry of joint axes (``dh/lines.py``) as the classification reads it.
+
+Each tolerance is tested a factor 10 inside and outside its documented value,
+written here as a literal: a test that read the constant would move with it.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+import kinematica as km
+
+#: dh/lines.py, the one line geometry (DH extraction, classification, builders,
+#: singularities): the sine (parallel) or cosine (perpendicular) of an angle, and
+#: a distance relative to 1 + the arm's size (m).
+AXIS_ANGLE_TOL = 1e-9
+
+
+AXIS_LENGTH_TOL = 1e-9
+
+
+#: A case a factor 10 inside a tolerance, and one a factor 10 outside it.
+FACTORS = [(0.1, True), (10.0, False)]
+
+
+def test_the_line_geometry_s_documented_values() -> None:
+    assert km.dh.lines.AXIS_ANGLE_TOL == AXIS_ANGLE_TOL
+    assert km.dh.lines.AXIS_LENGTH_TOL == AXIS_LENGTH_TOL
+    assert km.dh.length_tol(2.0) == pytest.approx(3.0 * AXIS_LENGTH_TOL)
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_axis_angle_tol_is_the_sine_of_the_angle_between_parallel_axes(
+    factor: float, inside: bool
+) -> None:
+    """AXIS_ANGLE_TOL: two axes are parallel when the sine of their angle is below it.
+
+    A twist ``alpha`` between two joints tilts the second axis by ``alpha``.
+    """
+    robot = km.Robot.from_dh(
+        [km.Revolute(a=1.0, alpha=factor * AXIS_ANGLE_TOL), km.Revolute(a=1.0)]
+    )
+    assert km.classify(robot).parallel == (((0, 1),) if inside else ())
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_axis_length_tol_is_the_distance_of_axes_that_meet(factor: float, inside: bool) -> None:
+    """AXIS_LENGTH_TOL: two (non-parallel) axes meet when they pass closer than it
+    times 1 + the arm's size (m).
+
+    Perpendicular axes (twist 90°) a link length ``a`` apart are ``a`` apart; the
+    arm's size is its 1 m link (plus ``a``).
+    """
+    a = factor * AXIS_LENGTH_TOL * (1.0 + 1.0)
+    robot = km.Robot.from_dh([km.Revolute(a=a, alpha=math.pi / 2), km.Revolute(a=1.0)])
+    s = km.classify(robot)
+    assert s.features.size == pytest.approx(1.0 + a)
+    assert s.parallel == ()
+    assert s.intersecting == (((0, 1),) if inside else ())
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_axis_length_tol_decides_the_wrist_center(factor: float, inside: bool) -> None:
+    """AXIS_LENGTH_TOL also bounds how far each of the last three axes may pass from
+    their common point (the wrist center).
+
+    Axes 0 and 1 meet at the base origin; axis 2 (twisted 60°, all three
+    orthogonal to x) passes ``d`` from it along x. The least-squares point lies
+    d/3 along x, so the axes pass d/3, d/3 and 2d/3 from it: all within the
+    tolerance when d is a factor 10 below it, none when d is 10 times above it
+    (the arm's size is d: the tolerance is AXIS_LENGTH_TOL to 1e-8).
+    """
+    d = factor * AXIS_LENGTH_TOL
+    robot = km.Robot.from_dh(
+        [km.Revolute(alpha=-math.pi / 2), km.Revolute(a=d, alpha=math.pi / 3), km.Revolute()]
+    )
+    wc = km.classify(robot).wrist_center
+    assert (wc is not None) == inside
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_axis_angle_tol_is_the_cosine_of_the_angle_between_perpendicular_axes(
+    factor: float, inside: bool
+) -> None:
+    """AXIS_ANGLE_TOL: two axes are perpendicular when |cos| of their angle is below it.
+
+    A twist of 90° + ``e`` leaves the axes at cosine ``-sin(e)`` ~ ``e``.
+    """
+    e = factor * AXIS_ANGLE_TOL
+    robot = km.Robot.from_dh([km.Revolute(a=1.0, alpha=math.pi / 2 + e), km.Revolute(a=1.0)])
+    f = km.classify(robot).features
+    assert abs(float(f.directions[0] @ f.directions[1])) == pytest.approx(e, rel=1e-3)
+    assert f.is_perpendicular(0, 1) is inside

@@ -1,0 +1,236 @@
+"""The spherical-wrist solvers' building blocks, and their tolerances on both sides.
+
+Each named tolerance of the core's decoupled family (``kinematica._core.decoupled``,
+``cpp/include/kinematica/solvers/arm_*.hpp``) and of the builder is pinned by a case
+just inside and one just outside it; the references are polynomials and geometries
+built here with known roots and known rank.
+"""
+
+from __future__ import annotations
+
+import math
+
+import kinematica._core as _core
+import numpy as np
+import pytest
+from support.wrist_arms import arm_with_point_near_axis_3, rank_ratio
+
+from kinematica import load
+from kinematica.core import Chain
+from kinematica.dh import Revolute
+from kinematica.ik.analytic import arm_position, spherical_wrist
+from kinematica.ik.analytic.arm_point import (
+    RANK_TOL,
+    places_point,
+)
+from kinematica.ik.solve import closed_form
+from kinematica.ik.structure import features
+from kinematica.robot import Robot
+
+D = _core.decoupled
+PI = math.pi
+
+
+# ------------------------------------------------------------- clamped roots
+@pytest.mark.parametrize(("factor", "double"), [(0.5, True), (2.0, False)])
+def test_double_root_tol(factor: float, double: bool) -> None:
+    """A fold's signed distance within DOUBLE_ROOT_TOL of its size is round-off: one root."""
+    size = 3.0
+    diff = factor * D.DOUBLE_ROOT_TOL * (size + 1.0)
+    root, near = D.clamped_root(diff, size, 2.0, 1.0)
+    assert (root == 0.0) == double
+    assert near == double  # a double root is a fold
+    if not double:
+        assert root == pytest.approx(math.sqrt(diff * 2.0))
+
+
+@pytest.mark.parametrize(("factor", "candidate"), [(0.5, True), (2.0, False)])
+def test_near_tol_keeps_mirrored_roots_just_past_a_fold(factor: float, candidate: bool) -> None:
+    size = 3.0
+    diff = -factor * D.NEAR_TOL * size
+    root, near = D.clamped_root(diff, size, 2.0, 1.0)
+    assert math.isfinite(root) == candidate
+    assert near == candidate
+    if candidate:
+        assert root == pytest.approx(math.sqrt(-diff * 2.0))
+
+
+def test_clamped_root_of_another_failed_factor_is_nan() -> None:
+    assert math.isnan(D.clamped_root(1.0, 2.0, -1.0, 1.0)[0])
+    assert D.clamped_root(4.0, 4.0, 4.0, 1.0) == (4.0, False)
+
+
+# ----------------------------------------------------------------- quartics
+def test_trig_roots_are_those_of_the_trigonometric_polynomial() -> None:
+    rng = np.random.default_rng(51)
+    for _ in range(200):
+        F = rng.normal(size=5)
+        self_motion, q, _ = D.trig_roots(F, np.abs(F).sum())
+        assert not self_motion
+        real = q[~np.isnan(q)]
+        grid = np.linspace(-PI, PI, 20001)
+        f = F[0] + F[1] * np.cos(grid) + F[2] * np.sin(grid)
+        f += F[3] * np.cos(2 * grid) + F[4] * np.sin(2 * grid)
+        sign_changes = int(np.sum(np.sign(f[:-1]) != np.sign(f[1:])))
+        assert len(real) == sign_changes  # generic: simple roots only
+        for x in real:
+            val = F[0] + F[1] * math.cos(x) + F[2] * math.sin(x)
+            val += F[3] * math.cos(2 * x) + F[4] * math.sin(2 * x)
+            assert abs(val) < 1e-12 * np.abs(F).sum()
+        assert (np.diff(real) > 0).all() and (np.abs(real) <= PI).all()
+
+
+@pytest.mark.parametrize(("factor", "self_motion"), [(0.5, True), (2.0, False)])
+def test_self_motion_tol(factor: float, self_motion: bool) -> None:
+    """F that is 0 to round-off of the terms it came from: every q3 is a root."""
+    F = np.array([factor * D.SELF_MOTION_TOL, 0.0, 0.0, 0.0, 0.0])
+    found, q, _ = D.trig_roots(F, 1.0)
+    assert found == self_motion
+    if self_motion:
+        np.testing.assert_allclose(q, [-PI / 2, 0.0, PI / 2, PI])
+    else:
+        assert np.isnan(q).all()  # a nonzero constant has no root
+
+
+@pytest.mark.parametrize(("factor", "real"), [(0.5, True), (2.0, False)])
+def test_imag_tol(factor: float, real: bool) -> None:
+    """A complex pair this close to the real axis is a double root split by round-off."""
+    eps = factor * D.IMAG_TOL * (1.0 + 0.5)
+    k = np.real(np.poly([0.5 + 1j * eps, 0.5 - 1j * eps, -2.0, 3.0]))
+    q, near = D.slide_roots(k)
+    found = q[~np.isnan(q)]
+    assert len(found) == (4 if real else 2)
+    assert near != real  # dropped, yet near the real axis: near a fold
+    np.testing.assert_allclose(found[[0, -1]], [-2.0, 3.0], atol=1e-12)
+
+
+@pytest.mark.parametrize(("factor", "taken"), [(0.5, True), (2.0, False)])
+def test_max_newton_step(factor: float, taken: bool) -> None:
+    """Newton steps on F longer than MAX_NEWTON_STEP are round-off at a double root."""
+    step = factor * D.MAX_NEWTON_STEP
+    assert (D.bounded_step(step * 3.0, 3.0) == pytest.approx(step)) == taken
+    assert (D.bounded_step(step * 3.0, 3.0) == 0.0) != taken
+
+
+@pytest.mark.parametrize(("factor", "usable"), [(0.5, False), (2.0, True)])
+def test_rank_tol(factor: float, usable: bool) -> None:
+    # the ratio is linear in eps: aim it at factor · RANK_TOL
+    r1 = rank_ratio(arm_with_point_near_axis_3(1e-4))
+    eps = 1e-4 * factor * RANK_TOL / r1
+    robot = arm_with_point_near_axis_3(eps)
+    assert rank_ratio(robot) == pytest.approx(factor * RANK_TOL, rel=0.05)
+    assert places_point(robot.chain, np.zeros(3)) == usable
+
+
+# --- the flip as the no-flip's twin (q4 + π, -q5, q6 + π) -----------------------
+
+#: TWIN_TOL's documented value (cpp/include/kinematica/solvers/spherical_wrist.hpp), as a literal.
+TWIN_TOL_VALUE = 1e-13
+
+
+def puma_with_twisted_wrist(eps: float) -> Robot:
+    """The PUMA 560 with α4 off its right angle by ``eps``: ``h4ᵀh5 ≈ eps`` at q = 0."""
+    puma = load("puma560")
+    rows = list(puma.links)
+    r = rows[3]
+    rows[3] = Revolute(d=r.d, a=r.a, alpha=r.alpha + eps, offset=r.offset)
+    return Robot.from_dh(rows, base=puma.base, tool=puma.tool)
+
+
+def twin_flag(robot: Robot) -> bool:
+    closed = closed_form(robot.chain, "pose")
+    assert closed is not None and closed.name == "spherical-wrist"
+    return bool(closed.params.twin)
+
+
+def test_twin_tol_value() -> None:
+    assert D.TWIN_TOL == TWIN_TOL_VALUE
+
+
+@pytest.mark.parametrize(("factor", "twin"), [(0.1, True), (10.0, False)])
+def test_twin_tol_decides_the_flip_by_identity(factor: float, twin: bool) -> None:
+    robot = puma_with_twisted_wrist(factor * TWIN_TOL_VALUE)
+    assert twin_flag(robot) == twin
+    # either way every solution is exact by FK (the identity errs by ~eps)
+    rng = np.random.default_rng(3)
+    T = robot.fk(rng.uniform(-2.0, 2.0, (50, 6)))
+    res = robot.ik(T, respect_limits=False)
+    assert np.all(res.count == 8)
+    for i in range(len(T)):
+        F = robot.fk(res[i].solutions)
+        assert np.max(np.abs(F - T[i])) < 1e-12
+
+
+def test_the_twin_flip_is_the_solved_flip() -> None:
+    # The same solver with the identity switched off solves the flip's own
+    # angles: both give the same eight candidates (modulo 2π), to round-off.
+    for name in ("puma560", "irb120", "kr6", "stanford"):
+        robot = load(name)
+        closed = closed_form(robot.chain, "pose")
+        assert closed is not None and closed.params.twin
+        solved = spherical_wrist.build(robot.chain, features(robot.chain), "pose")
+        assert solved is not None
+        solved.params.twin = False
+        rng = np.random.default_rng(5)
+        lo = np.where(np.isfinite(robot.qlim[:, 0]), robot.qlim[:, 0], -1.0)
+        hi = np.where(np.isfinite(robot.qlim[:, 1]), robot.qlim[:, 1], 1.0)
+        for T in robot.fk(rng.uniform(lo, hi, (200, 6))):
+            Q1, *info1 = closed.params.candidates(robot.chain.core, T)
+            Q2, *info2 = solved.params.candidates(robot.chain.core, T)
+            assert np.array_equal(np.isnan(Q1), np.isnan(Q2))
+            d = np.abs(np.remainder(np.nan_to_num(Q1 - Q2) + PI, 2 * PI) - PI)
+            assert d.max() < 1e-9, name
+            np.testing.assert_array_equal(info1, info2)
+
+
+# ------------------------------------------------------------- the binding
+def test_fixed_arrays_check_their_shape_and_keep_their_values() -> None:
+    arm = D.ArmPoint()
+    arm.H = [1.0, 2.0, 3.0]
+    arm.fourier = np.arange(25.0).reshape(5, 5)
+    for name, bad in (("H", [1.0, 2.0]), ("xframe", np.zeros((2, 4))), ("fourier", np.zeros(25))):
+        with pytest.raises(ValueError, match=f"{name} must be of shape"):
+            setattr(arm, name, bad)
+    with pytest.raises(ValueError, match="upper_root must be of shape"):
+        arm.upper_root = np.ones(3, dtype=bool)
+    with pytest.raises(TypeError):
+        arm.p1 = [1.0, 2.0]  # a Vec3 takes three numbers
+    np.testing.assert_array_equal(arm.H, [1.0, 2.0, 3.0])  # a refused value changes nothing
+    np.testing.assert_array_equal(arm.fourier, np.arange(25.0).reshape(5, 5))
+    wrist = D.SphericalWristParams()
+    wrist.arm = arm
+    wrist.arm.a = 0.25  # the member, not a copy
+    assert wrist.arm.a == 0.25 and wrist.slots == 8
+    with pytest.raises(ValueError, match="n must be between 4 and 32, got 3"):
+        D.ArmPositionParams().n = 3
+
+
+def test_solvers_take_chains_of_their_size_only() -> None:
+    puma = load("puma560")
+    closed = closed_form(puma.chain, "pose")
+    assert closed is not None
+    arm7 = Robot.from_dh([*puma.links, Revolute(d=0.1)])
+    with pytest.raises(ValueError, match="takes a chain of 6 joints, got 7"):
+        closed.params.candidates(arm7.chain.core, np.eye(4))
+    with pytest.raises(ValueError):
+        closed.params.candidates(puma.chain.core, np.eye(3))
+
+
+@pytest.mark.parametrize("degenerate", [False, True])
+def test_sample_arms_are_of_the_family(degenerate: bool) -> None:
+    rng = np.random.default_rng(61)
+    for spec in (*spherical_wrist.SPECS, arm_position.SPEC):
+        for _ in range(15):
+            s = spec.sample_arm(rng, degenerate)
+            eye = np.eye(4)
+            chain = Chain.from_dh(
+                s.links,
+                s.convention,
+                eye if s.base is None else s.base,
+                eye if s.tool is None else s.tool,
+            )
+            f = features(chain)
+            assert spec.handles(f), (spec.kind, s.note)
+            closed = spec.build(chain, f, spec.targets[0])
+            assert closed is not None, (spec.kind, s.note)
+            assert bool(s.note) == degenerate

@@ -1,0 +1,237 @@
+"""The three-parallel family's named tolerances, each tested on both sides of its value.
+
+As in the other tolerance tests, every case sits a factor 10 below or above
+the value the constant's documentation states, written here as a literal (a test
+that read the constant would move with it). The cases go to the family's internals
+(``kinematica._core.parallel``: the roots of ``a cos θ + b sin θ = c``, the q5 of a
+meeting wrist, the elbow triangle, Newton on equations (1) and (2)) with inputs the
+test controls exactly; ``test_parallel_edges.py`` pins the same constants through
+``robot.ik`` on targets placed by construction.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from support import parallel_arms
+
+from kinematica import _core
+from kinematica.ik.analytic.parallel import pack
+from kinematica.ik.structure import features
+
+parallel = _core.parallel
+
+# The documented values, one per constant (cpp/include/kinematica/solvers/parallel_*.hpp).
+CONTINUUM_TOL = 1e-12
+NEAR_TOL = 1e-6
+DOUBLE_ROOT_TOL = 1e-14
+NEWTON_QUIET = 1e-14
+NEWTON_STEPS = 50
+TRIG_TOL = 1e-10  # geometry.hpp: a miss below it is a root, above it near
+
+#: A case a factor 10 inside a tolerance, and one a factor 10 outside it.
+FACTORS = [(0.1, True), (10.0, False)]
+
+
+def test_the_binding_exposes_the_documented_values() -> None:
+    assert parallel.CONTINUUM_TOL == CONTINUUM_TOL
+    assert parallel.NEAR_TOL == NEAR_TOL
+    assert parallel.DOUBLE_ROOT_TOL == DOUBLE_ROOT_TOL
+    assert parallel.NEWTON_QUIET == NEWTON_QUIET
+    assert parallel.NEWTON_STEPS == NEWTON_STEPS
+
+
+# --- parallel_pairs.hpp: a cos θ + b sin θ = c (q1, or q5 of parallel axes 5 and 6) ---
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_double_root_tol_merges_two_angles(factor: float, inside: bool) -> None:
+    """DOUBLE_ROOT_TOL: the two θ of a cos θ + b sin θ = c are one double root when
+    r² - c² is below it times r² (r = hypot(a, b)).
+
+    Tested on the internals: through robot.ik the check's deduplication (1e-7)
+    merges roots ~sqrt(1e-15) apart as well, and hides the constant.
+    """
+    a, b = 3.0, 4.0
+    r2 = a * a + b * b
+    c = math.sqrt(r2 * (1.0 - factor * DOUBLE_ROOT_TOL))
+    found, rise, fall, near = parallel.roots(a, b, c, 5.0)
+    assert found and not near
+    assert bool(rise == fall) is inside
+    for theta in (rise, fall):
+        assert a * math.cos(theta) + b * math.sin(theta) == pytest.approx(c, rel=1e-12)
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_near_tol_proposes_the_least_squares_angle(factor: float, inside: bool) -> None:
+    """NEAR_TOL: |c| above r by less than it (times the equation's size) gives the
+    least-squares angle twice and marks the target near; beyond it, no root.
+    """
+    a, b, size = 3.0, 4.0, 2.0
+    c = 5.0 + factor * NEAR_TOL * size
+    found, rise, fall, near = parallel.roots(a, b, c, size)
+    assert found is inside
+    if inside:
+        assert near
+        np.testing.assert_allclose([rise, fall], math.atan2(b, a), atol=1e-12)
+
+
+# --- parallel_pairs.hpp: q5 of a wrist whose axes 5 and 6 meet -------------------------
+
+
+def wrist_arm() -> parallel.ParallelParams:
+    """k·R5 h6 = 0.6 cos q5 + 0.2: it ranges over [-0.4, 0.8] (wlo, whi exact)."""
+    P = parallel.ParallelParams()
+    P.D1, P.E1, P.F1 = 0.6, 0.0, 0.2
+    P.wlo = 1.0 - 0.6 - 0.2  # 1 - |D1, E1| - F1
+    P.whi = 1.0 - 0.6 + 0.2  # 1 - |D1, E1| + F1
+    return P
+
+
+@pytest.mark.parametrize(
+    ("miss", "code"),
+    [(0.1 * TRIG_TOL, 1), (10.0 * TRIG_TOL, 0), (0.1 * NEAR_TOL, 0), (10.0 * NEAR_TOL, -1)],
+)
+def test_wrist_beyond_its_range(miss: float, code: int) -> None:
+    """k1·R_G h6 = d above the largest k·R5 h6 (0.8) by ``miss``: within TRIG_TOL two
+    roots (one double root), within NEAR_TOL near (the double root proposed), beyond
+    it none.
+    """
+    d = 0.8 + miss
+    got, q5_no_flip, q5_flip = parallel.wrist(wrist_arm(), d, (1.0 - d) * (1.0 + d))
+    assert got == code
+    if code >= 0:  # the extremum: q5 = 0 both times
+        assert abs(q5_no_flip) < 1e-5 and abs(q5_flip) < 1e-5
+    else:
+        assert math.isnan(q5_no_flip) and math.isnan(q5_flip)
+
+
+def test_wrist_inside_its_range_has_two_roots() -> None:
+    d = 0.5  # 0.6 cos q5 + 0.2 = 0.5: q5 = ±acos(0.5)
+    got, q5_no_flip, q5_flip = parallel.wrist(wrist_arm(), d, (1.0 - d) * (1.0 + d))
+    assert got == 1
+    assert q5_no_flip == pytest.approx(math.acos(0.5), abs=1e-15)
+    assert q5_flip == pytest.approx(-math.acos(0.5), abs=1e-15)
+
+
+# --- parallel.hpp: the elbow triangle -----------------------------------------------
+
+
+def triangle_arm(a: float, b: float) -> parallel.ParallelParams:
+    P = parallel.ParallelParams()
+    P.len_a, P.len_b, P.arg_a, P.arg_b = a, b, 0.0, 0.0
+    P.zup = [0.0, 1.0]
+    P.q2rep = 0.25
+    return P
+
+
+@pytest.mark.parametrize(
+    ("miss", "flags"),
+    [(0.1 * TRIG_TOL, 0), (10.0 * TRIG_TOL, 2), (0.1 * NEAR_TOL, 2), (10.0 * NEAR_TOL, -1)],
+)
+def test_triangle_beyond_the_stretched_arm(miss: float, flags: int) -> None:
+    """Axis 4 beyond the stretched elbow (span a + b) by ``miss`` times the span: a
+    root within TRIG_TOL, near within NEAR_TOL (the stretched elbow proposed), none beyond.
+    """
+    a, b = 0.5, 0.4
+    got, q2_up, psi_up, q2_down, psi_down = parallel.triangle(
+        triangle_arm(a, b), (a + b) * (1.0 + miss), 0.0
+    )
+    assert got == flags
+    if flags >= 0:  # stretched: q2 = 0, ψ = 0 for both elbows
+        np.testing.assert_allclose([q2_up, psi_up, q2_down, psi_down], 0.0, atol=1e-4)
+    else:
+        assert math.isnan(q2_up) and math.isnan(q2_down)
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_continuum_tol_folds_equal_links(factor: float, inside: bool) -> None:
+    """CONTINUUM_TOL: with equal links, axis 4 within it (of the span) from axis 2 is
+    the folded elbow (q2 free: its representative, then NaN); beyond it two elbows.
+    """
+    a = 0.4
+    got, q2_up, psi_up, q2_down, psi_down = parallel.triangle(
+        triangle_arm(a, a), factor * CONTINUUM_TOL * 2.0 * a, 0.0
+    )
+    if inside:
+        assert got == 1 and q2_up == 0.25 and psi_up == pytest.approx(math.pi)
+        assert math.isnan(q2_down) and math.isnan(psi_down)
+    else:
+        assert got == 0
+        assert abs(abs(psi_up) - math.pi) < 1e-9 and abs(abs(psi_down) - math.pi) < 1e-9
+        assert q2_up != q2_down
+
+
+# --- parallel_quartic.hpp: polishing the quartic's roots ----------------------------
+
+
+@pytest.mark.parametrize(("factor", "inside"), FACTORS)
+def test_newton_quiet_makes_a_small_step_the_last(factor: float, inside: bool) -> None:
+    """NEWTON_QUIET: Newton on equations (1) and (2) started ``factor * NEWTON_QUIET``
+    (rad) from a root takes that step and stops when it is below the constant (one
+    evaluation), and evaluates once more above it. Either way it lands on the root
+    (the q5 and q1 that made the target) to round-off, with the cosines and sines of
+    where it lands.
+
+    (1) and (2) are set up here from the family's equations: ``G = T M⁻¹``,
+    ``x6 = R_G h6``, ``w6 = G(p6) - p1``, sides ``(k⊥·y, (h1 × k)·y, k∥·y)``.
+    """
+    robot = parallel_arms.UR5_A5
+    packed = pack(robot.chain, features(robot.chain))
+    assert packed is not None and packed[1] == parallel.Mode.general
+    P = packed[0]
+    T, M = robot.fk(np.array([0.4, -1.1, 1.3, 0.2, 0.9, -0.5])), robot.fk(np.zeros(6))
+    RG = T[:3, :3] @ M[:3, :3].T
+    x6 = RG @ P.h6
+    w6 = RG @ P.p6 + T[:3, 3] - RG @ M[:3, 3] - P.p1
+    L1, L2 = (np.array([v @ y for v in (P.kperp, P.hk, P.kpar)]) for y in (x6, w6))
+    q1, q5, res, *_ = parallel.newton(P, x6, L1, L2, 0.4 + 1e-3, 0.9 - 1e-3)
+    assert res < 1e-14
+    assert abs(q1 - 0.4) < 1e-15 and abs(q5 - 0.9) < 1e-15  # the q that made T
+    a1, a5, _, evaluations, c1, s1, c5, s5 = parallel.newton(
+        P, x6, L1, L2, q1, q5 + factor * NEWTON_QUIET
+    )
+    assert evaluations == (1 if inside else 2)
+    assert abs(a1 - 0.4) < 1e-15 and abs(a5 - 0.9) < 1e-15
+    # the cosines and sines returned are those of the angles returned (turned by the
+    # last step to first order when it was that small)
+    for got, want in (
+        (c1, math.cos(a1)),
+        (s1, math.sin(a1)),
+        (c5, math.cos(a5)),
+        (s5, math.sin(a5)),
+    ):
+        assert abs(got - want) <= 4e-16  # a few ulps
+
+
+def test_newton_stops_where_there_is_no_root() -> None:
+    """Far from every root the steps stop shrinking: Newton gives up well before
+    NEWTON_STEPS and says how far (1) and (2) are from holding."""
+    robot = parallel_arms.UR5_A5
+    packed = pack(robot.chain, features(robot.chain))
+    assert packed is not None
+    P = packed[0]
+    x6 = np.array([0.0, 0.0, 1.0])
+    L1 = np.array([0.0, 0.0, 5.0])  # (1) misses by about 4: no root
+    L2 = np.array([0.0, 0.0, 0.0])
+    *_, res, evaluations, _c1, _s1, _c5, _s5 = parallel.newton(P, x6, L1, L2, 0.3, 0.2)
+    assert res > 1.0
+    assert 1 <= evaluations < NEWTON_STEPS
+
+
+def test_internals_reject_bad_input() -> None:
+    with pytest.raises(ValueError, match="size"):
+        parallel.roots(3.0, 4.0, 5.0, 0.0)
+    with pytest.raises(ValueError, match="finite"):
+        parallel.roots(math.nan, 4.0, 5.0, 1.0)
+    P = parallel.ParallelParams()
+    with pytest.raises(ValueError, match="L1"):
+        parallel.newton(P, [0.0, 0.0, 1.0], [1.0, 2.0], [0.0, 0.0, 0.0], 0.0, 0.0)
+    with pytest.raises(ValueError, match="minv"):
+        P.minv = [1.0, 2.0, 3.0]
+    with pytest.raises(ValueError, match="zup"):
+        P.zup = np.zeros(3)
+    P.minv = np.arange(4.0)
+    np.testing.assert_array_equal(P.minv, [0.0, 1.0, 2.0, 3.0])
