@@ -157,26 +157,25 @@ def test_random_arms_have_one_table_in_each_convention(spec, seed):
         assert_transform_close(back.fk(q), robot.fk(q), atol=1e-12)
 
 
-@pytest.mark.parametrize("inside", [True, False])
-def test_a_tool_on_the_last_x_line_goes_to_the_last_row_within_the_line_tolerances(inside):
+@pytest.mark.parametrize(("off_scale", "turn_scale"), [(0.5, 0.5), (2.0, 0.5), (0.5, 2.0)])
+def test_a_tool_on_the_last_x_line_goes_to_the_last_row_within_the_line_tolerances(
+    off_scale, turn_scale
+):
     # A modified planar 3R whose tool is Tras(x, 0.2) but for a sideways offset and a
-    # turn of the tool's x just inside (0.5x) or outside (2x) the line geometry's
-    # tolerances: to_convention and the DH rules agree on each side.
-    scale = 0.5 if inside else 2.0
-    off = scale * length_tol(0.2)
-    turn = scale * AXIS_ANGLE_TOL
+    # turn of the tool's x, each just inside (0.5x) or outside (2x) the line geometry's
+    # tolerance: to_convention and the DH rules agree on each side.
+    inside = off_scale < 1 and turn_scale < 1
+    off = off_scale * length_tol(0.2)
+    turn = turn_scale * AXIS_ANGLE_TOL
     tool = np.eye(4)
-    tool[:3, :3] = [
-        [math.cos(turn), -math.sin(turn), 0],
-        [math.sin(turn), math.cos(turn), 0],
-        [0, 0, 1],
-    ]
+    c, s = math.cos(turn), math.sin(turn)
+    tool[:3, :3] = [[c, -s, 0], [s, c, 0], [0, 0, 1]]
     tool[:3, 3] = [0.2, off, 0.0]
     modified = km.load("planar-3r").to_convention("modified").with_tool(tool)
     std = modified.to_convention("standard")
     a3 = std.links[-1].a
     assert a3 == (pytest.approx(0.2, abs=1e-15) if inside else 0.0)
-    if inside:  # what is left of the tool is the offset and the turn, exactly kept
+    if inside:  # what is left of the tool is the offset and the turn
         assert std.tool[1, 3] == pytest.approx(off, rel=1e-6)
     else:
         np.testing.assert_array_equal(std.tool, tool)
