@@ -21,7 +21,8 @@ from helpers import PROPERTY, assert_transform_close, robot_specs, seeds
 from hypothesis import assume, given
 
 import kinematica as km
-from kinematica.dh import AXIS_ANGLE_TOL, length_tol
+from kinematica.dh import AXIS_ANGLE_TOL, AxisFrame, ChainGeometry, length_tol
+from kinematica.errors import KinematicaError
 from kinematica.io import parse_urdf
 
 OTHER = {"standard": "modified", "modified": "standard"}
@@ -54,21 +55,26 @@ def test_standard_table_of_a_modified_robot_is_the_same_by_every_path(name, tmp_
     assert_same_table(km.urdf_to_dh(urdf).robot, want)
 
 
-def test_cli_convert_of_the_notes_arm_urdf_gives_to_conventions_table(tmp_path):
-    robot = km.load("arm6-dh")
-    urdf = tmp_path / "arm6.urdf"
+def cli_convert(robot: km.Robot, target: str, tmp_path) -> km.Robot:
+    """``kinematica convert <the robot's URDF> --to dh-<target>``, read back."""
+    urdf = tmp_path / "arm.urdf"
     robot.to_urdf(urdf)
-    out = tmp_path / "arm6_mdh.yaml"
+    out = tmp_path / "arm_dh.yaml"
     cmd = [sys.executable, "-m", "kinematica.cli.main", "convert", str(urdf)]
     proc = subprocess.run(
-        [*cmd, "--to", "dh-modified", "-o", str(out)],
+        [*cmd, "--to", f"dh-{target}", "-o", str(out)],
         capture_output=True,
         text=True,
         cwd=tmp_path,
         check=False,
     )
     assert proc.returncode == 0, proc.stderr
-    from_file = km.load(out)
+    return km.load(out)
+
+
+def test_cli_convert_of_the_notes_arm_urdf_gives_to_conventions_table(tmp_path):
+    robot = km.load("arm6-dh")
+    from_file = cli_convert(robot, "modified", tmp_path)
     want = robot.to_convention("modified")
     np.testing.assert_allclose(from_file.dh_table(), want.dh_table(), atol=1e-9)
     # row 3 keeps the notes' q3 - 90 and row 5 no 180° offset (the issue's two rows)
@@ -192,19 +198,7 @@ def test_a_tool_on_the_last_x_line_goes_to_the_last_row_within_the_line_toleranc
 def test_cli_convert_of_an_all_parallel_arm_in_both_directions(name, source, tmp_path):
     robot = _in(km.load(name), source)
     target = OTHER[source]
-    urdf = tmp_path / "arm.urdf"
-    robot.to_urdf(urdf)
-    out = tmp_path / "arm_dh.yaml"
-    cmd = [sys.executable, "-m", "kinematica.cli.main", "convert", str(urdf)]
-    proc = subprocess.run(
-        [*cmd, "--to", f"dh-{target}", "-o", str(out)],
-        capture_output=True,
-        text=True,
-        cwd=tmp_path,
-        check=False,
-    )
-    assert proc.returncode == 0, proc.stderr
-    from_file = km.load(out)
+    from_file = cli_convert(robot, target, tmp_path)
     want = robot.to_convention(target)
     assert from_file.convention == target
     np.testing.assert_allclose(from_file.dh_table(), want.dh_table(), atol=1e-9)
@@ -230,3 +224,11 @@ def test_a_urdf_says_which_dh_frames_its_links_are():
     assert not np.allclose(std.dh_table(), modified.to_convention("standard").dh_table())
     q = np.random.default_rng(6).uniform(0.0, 0.4, (4, 4))
     assert_transform_close(std.fk(q), modified.fk(q), atol=1e-12)
+
+
+def test_a_chain_says_standard_modified_or_nothing_of_its_frames():
+    joint = AxisFrame(kind="R", direction=np.array([0.0, 0.0, 1.0]), frame=np.eye(4))
+    for says in (None, "standard", "modified"):
+        assert ChainGeometry(joints=(joint,), tip=np.eye(4), dh_frames=says).dh_frames == says
+    with pytest.raises(KinematicaError, match="dh_frames must be 'standard', 'modified' or None"):
+        ChainGeometry(joints=(joint,), tip=np.eye(4), dh_frames="craig")

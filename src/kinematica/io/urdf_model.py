@@ -46,9 +46,8 @@ FLANGE = "tool0"
 #: (all axes parallel, say), it tells the DH extraction how to read them, so that a
 #: modified table written out and read back in either convention gives one table.
 DH_FRAMES_NOTE = "each link frame is a {convention} DH frame"
-_NOTE = re.compile(
-    rb"<!--[^>]*?" + DH_FRAMES_NOTE.format(convention="(standard|modified)").encode()
-)
+# The phrase alone (no scan for the comment's start: linear on any file).
+_NOTE = re.compile(DH_FRAMES_NOTE.format(convention="(standard|modified)").encode())
 
 
 def dh_frames_note(data: bytes) -> str | None:
