@@ -340,12 +340,16 @@ def _tip_on_x_line(g: ChainGeometry, last: FloatArray) -> FloatArray | None:
     ``last`` is the modified ``S'_n``; the test is the one ``Robot.to_convention``
     applies to the modified tool, so that both put the same pair in the last row.
     """
-    R, p = last[:3, :3], last[:3, 3]
-    tool = np.eye(4)
-    tool[:3, :3] = R.T @ g.tip[:3, :3]
-    tool[:3, 3] = R.T @ (g.tip[:3, 3] - p)
-    pair = x_screw(tool)
+    pair = x_screw(_seen_from(last, g.tip))
     return None if pair is None else last @ rx_tx(pair[1], pair[0])
+
+
+def _seen_from(F: FloatArray, T: FloatArray) -> FloatArray:
+    """``F⁻¹ · T`` for frames ``F`` and ``T`` (rigid: the rotation transposed)."""
+    out = np.eye(4)
+    out[:3, :3] = F[:3, :3].T @ T[:3, :3]
+    out[:3, 3] = F[:3, :3].T @ (T[:3, 3] - F[:3, 3])
+    return out
 
 
 def _craig_frames(
@@ -493,11 +497,7 @@ def extract_dh(geometry: ChainGeometry, convention: str = "standard") -> Extract
                     )
                 )
     base = snap(frames[0])
-    Sn = frames[-1]
-    tool = np.eye(4)
-    tool[:3, :3] = Sn[:3, :3].T @ geometry.tip[:3, :3]
-    tool[:3, 3] = Sn[:3, :3].T @ (geometry.tip[:3, 3] - Sn[:3, 3])
-    tool = snap(tool)
+    tool = snap(_seen_from(frames[-1], geometry.tip))
     table = tuple(rows)
     error = _fk_error(geometry, table, conv, base, tool)
     if error > FK_CHECK_TOL:
