@@ -272,7 +272,9 @@ def test_convention_round_trip(spec: RobotSpec, seed: int) -> None:
     # standard -> modified -> standard (and the reverse) gives the same FK, and
     # the same table: joint types, offsets, limits, every constant parameter,
     # except the one (a, α) pair the other convention cannot hold, which comes
-    # back inside the tool (from standard) or the base (from modified).
+    # back inside the base (from modified), or the tool (from standard) unless
+    # that tool is Tras(x, a)·Rot(x, α) itself: then the pair, with it, comes
+    # back to the last row (no tool: exactly the table it was).
     robot = spec.build()
     other = "modified" if spec.convention == "standard" else "standard"
     back = robot.to_convention(other).to_convention(spec.convention)
@@ -282,14 +284,32 @@ def test_convention_round_trip(spec: RobotSpec, seed: int) -> None:
     q = random_q(spec, np.random.default_rng(seed), (4,))
     assert_transform_close(back.fk(q), robot.fk(q), atol=1e-12)
     moved = -1 if spec.convention == "standard" else 0
+    tool = robot.tool
+    on_x = np.allclose(tool[:3, 0], [1, 0, 0], atol=1e-12) and np.allclose(
+        tool[1:3, 3], 0, atol=1e-12
+    )
+    to_row = spec.convention == "standard" and on_x
     for i, (got, want) in enumerate(zip(back.links, robot.links, strict=True)):
-        if i == moved % spec.dof:
-            assert (got.a, got.alpha) == (0.0, 0.0)
-            assert (got.theta, got.d, got.offset) == (want.theta, want.d, want.offset)
-        else:
+        if i != moved % spec.dof:
             assert got == want, f"joint {i + 1}"
+            continue
+        assert (got.theta, got.d, got.offset) == (want.theta, want.d, want.offset)
+        if to_row:  # the tool's own a and α add to the row's
+            assert got.a == pytest.approx(want.a + tool[0, 3], abs=1e-15)
+            twist = math.atan2(tool[2, 1], tool[1, 1])
+            assert math.remainder(got.alpha - want.alpha - twist, 2 * math.pi) == pytest.approx(
+                0.0, abs=1e-15
+            )
+        else:
+            assert (got.a, got.alpha) == (0.0, 0.0)
     pair = rot_x(robot.links[moved].alpha) @ tras_x(robot.links[moved].a)
-    if spec.convention == "standard":
+    if to_row:
+        assert_transform_close(back.base, robot.base, atol=1e-15)
+        assert_transform_close(back.tool, np.eye(4), atol=1e-15)
+        if spec.tool is None:  # the table it was, to the bit but for α's last digit
+            assert back.links[:-1] == robot.links[:-1]
+            np.testing.assert_array_equal(back.tool, np.eye(4))
+    elif spec.convention == "standard":
         assert_transform_close(back.base, robot.base, atol=1e-15)
         assert_transform_close(back.tool, pair @ robot.tool, atol=1e-15)
     else:

@@ -59,16 +59,25 @@ class ChainGeometry:
         tip: ``(4, 4)`` tip pose in the chain base frame at q = 0.
         before: Named frames before joint 1, nearest to joint 1 first.
         after: Named frames after joint n, nearest to joint n first.
+        dh_frames: ``"standard"`` or ``"modified"`` when the description says
+            its joint frames are DH frames of that convention (a URDF
+            kinematica wrote), else ``None``: how to read frames that obey
+            both conventions' rules.
     """
 
     joints: tuple[AxisFrame, ...]
     tip: FloatArray
     before: tuple[NamedFrame, ...] = ()
     after: tuple[NamedFrame, ...] = ()
+    dh_frames: str | None = None
 
     def __post_init__(self) -> None:
         if not self.joints:
             raise KinematicaError("a chain needs at least one movable joint")
+        if self.dh_frames not in (None, "standard", "modified"):
+            raise KinematicaError(
+                f"dh_frames must be 'standard', 'modified' or None, got {self.dh_frames!r}"
+            )
 
     @property
     def size(self) -> float:

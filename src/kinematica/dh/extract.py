@@ -34,9 +34,14 @@ joint k's axis, in the sense of the joint's positive motion.
 Modified convention (Craig): the standard frames regrouped, ``S'_k = S_(k-1)
 Rot(z, θ_k) Tras(z, d_k)`` (on axis k where x_k meets it: a valid modified frame),
 so that one arm has one modified table, the one ``Robot.to_convention`` writes,
-unless the description's joint frames already are modified DH frames (a file
-written from a modified table, e.g. Franka's). Then, and for one joint, by the
-rules, and the standard frames are those regrouped the other way. The rules:
+unless the description's joint frames are modified DH frames and not standard
+ones (e.g. Franka's), or obey both conventions' rules (all axes parallel) and the
+description says they are modified ones (a URDF kinematica wrote from a modified
+table: ``ChainGeometry.dh_frames``). Then by the rules, and the standard frames
+are those regrouped the other way, ``S_n`` being the tip when the tip is ``S'_n
+Tras(x, a) Rot(x, α)`` (the pair ``Robot.to_convention`` takes back from such a
+tool). One joint whose description says nothing: each convention by its rules.
+The rules:
 ``S_k`` has z along joint k's axis; ``S_k``'s x
 lies on the common normal to axis k+1 with the origin at its foot on axis k
 (same cases and choices, the joint of a parallel pair being joint k); ``S_n``
@@ -59,6 +64,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.dh.axes import AxisFrame, ChainGeometry, ExtractedTable, FrameRule, NamedFrame
+from kinematica.dh.convert import ROUND_OFF_TOL, rx_tx, snap, x_screw
 from kinematica.dh.joints import (
     Convention,
     Joint,
@@ -98,10 +104,6 @@ FloatArray = NDArray[np.float64]
 #: forward kinematics worse than this (largest entry of T, m or unitless): only
 #: nearly parallel consecutive axes, whose true common normal is far away, cause it.
 FK_CHECK_TOL = 1e-9
-#: Round-off of the frame arithmetic: a DH length this close to a 12-decimal
-#: number, an angle this close to a multiple of 45°, and a base or tool entry
-#: this close to 0, 1 or -1 are set to that value (FK moves by about this much).
-ROUND_OFF_TOL = 1e-15
 _CHECK_SAMPLES = 6  # configurations the FK check compares (q = 0 and random ones)
 
 
@@ -204,9 +206,38 @@ def _candidates(
     return None if F is None else (F, f"the frame of {label}")
 
 
+def _reading(g: ChainGeometry) -> Convention | None:
+    """The convention whose rules read the description's frames; the other regroups them.
+
+    Modified when the joint frames are modified DH frames and not standard ones
+    (Franka's); standard when they are standard DH frames and not modified ones,
+    or neither. Frames that obey both (all axes parallel) are read as the
+    description says they are (a URDF kinematica wrote), else as standard. One
+    joint: as the description says, else ``None`` (each convention by its rules).
+    """
+    if len(g.joints) == 1 and g.dh_frames is None:
+        return None
+    if len(g.joints) == 1:
+        return "modified" if g.dh_frames == "modified" else "standard"
+    modified, standard = _own_modified_frames(g), _own_standard_frames(g)
+    if modified and standard and g.dh_frames == "modified":
+        return "modified"
+    return "modified" if modified and not standard else "standard"
+
+
 def _standard_frames(g: ChainGeometry) -> tuple[list[FloatArray], list[FrameRule]]:
-    if len(g.joints) > 1 and _own_modified_frames(g) and not _own_standard_frames(g):
-        return _paul_frames(*_modified_frames(g))
+    if _reading(g) == "modified":
+        return _paul_frames(g, *_modified_rules(g))
+    return _standard_rules(g)
+
+
+def _modified_frames(g: ChainGeometry) -> tuple[list[FloatArray], list[FrameRule]]:
+    if _reading(g) == "standard":
+        return _craig_frames(*_standard_rules(g))
+    return _modified_rules(g)
+
+
+def _standard_rules(g: ChainGeometry) -> tuple[list[FloatArray], list[FrameRule]]:
     n = len(g.joints)
     j1, jn = g.joints[0], g.joints[-1]
     frames: list[FloatArray] = []
@@ -268,14 +299,16 @@ def _own_standard_frames(g: ChainGeometry) -> bool:
 
 
 def _paul_frames(
-    mod: list[FloatArray], rules: list[FrameRule]
+    g: ChainGeometry, mod: list[FloatArray], rules: list[FrameRule]
 ) -> tuple[list[FloatArray], list[FrameRule]]:
     """Standard frames of the modified frames ``mod``: the same θ and d columns.
 
     ``S_k`` (k < n) is on axis k+1 (z of ``S'_(k+1)``) where the x line of ``S'_k``
-    meets it, with that x (``S'_k Rot(x, α_k) Tras(x, a_k)``); ``S_n = S'_n``: the
-    modified table regrouped (a and α moved up a row), as ``Robot.to_convention``
-    writes it.
+    meets it, with that x (``S'_k Rot(x, α_k) Tras(x, a_k)``); ``S_n = S'_n``, or
+    the tip when the tip is ``S'_n Tras(x, a_n) Rot(x, α_n)`` (its x that of
+    ``S'_n``, its origin on that x line): the modified table regrouped (a and α
+    moved up a row, a tool that is such a pair into the last row), as
+    ``Robot.to_convention`` writes it.
     """
     frames: list[FloatArray] = []
     texts: list[FrameRule] = []
@@ -290,9 +323,33 @@ def _paul_frames(
             f"(Paul's frame of the modified table: the same θ and d); S{k}: {rules[k].text}"
         )
         texts.append(FrameRule(k, rules[k].rule, text))
-    frames.append(mod[n])
-    texts.append(rules[n])
+    tip = _tip_on_x_line(g, mod[n])
+    if tip is None:
+        frames.append(mod[n])
+        texts.append(rules[n])
+    else:
+        frames.append(tip)
+        text = f"the tip, whose x is that of the modified S{n} and meets axis {n} there (rule 9)"
+        texts.append(FrameRule(n, "frame", text))
     return frames, texts
+
+
+def _tip_on_x_line(g: ChainGeometry, last: FloatArray) -> FloatArray | None:
+    """``last · Tras(x, a) · Rot(x, α)`` when the tip is that (:func:`x_screw`), else None.
+
+    ``last`` is the modified ``S'_n``; the test is the one ``Robot.to_convention``
+    applies to the modified tool, so that both put the same pair in the last row.
+    """
+    pair = x_screw(_seen_from(last, g.tip))
+    return None if pair is None else last @ rx_tx(pair[1], pair[0])
+
+
+def _seen_from(F: FloatArray, T: FloatArray) -> FloatArray:
+    """``F⁻¹ · T`` for frames ``F`` and ``T`` (rigid: the rotation transposed)."""
+    out = np.eye(4)
+    out[:3, :3] = F[:3, :3].T @ T[:3, :3]
+    out[:3, 3] = F[:3, :3].T @ (T[:3, 3] - F[:3, 3])
+    return out
 
 
 def _craig_frames(
@@ -320,9 +377,7 @@ def _craig_frames(
     return frames, out
 
 
-def _modified_frames(g: ChainGeometry) -> tuple[list[FloatArray], list[FrameRule]]:
-    if len(g.joints) > 1 and not _own_modified_frames(g):
-        return _craig_frames(*_standard_frames(g))
+def _modified_rules(g: ChainGeometry) -> tuple[list[FloatArray], list[FrameRule]]:
     n = len(g.joints)
     j1, jn = g.joints[0], g.joints[-1]
     frames: list[FloatArray] = []
@@ -409,12 +464,6 @@ def _tidy_angle(v: float) -> float:
     return math.pi if k == -4 else r + 0.0  # wrapped to (-π, π]
 
 
-def _snap(T: FloatArray) -> FloatArray:
-    """``T`` with entries within :data:`ROUND_OFF_TOL` of 0, 1 or -1 set to them."""
-    near = np.clip(np.round(T), -1.0, 1.0)
-    return np.where(np.abs(T - near) <= ROUND_OFF_TOL, near, T)
-
-
 def extract_dh(geometry: ChainGeometry, convention: str = "standard") -> ExtractedTable:
     """The DH table of a serial chain, by the rules (see the module docstring).
 
@@ -447,12 +496,8 @@ def extract_dh(geometry: ChainGeometry, convention: str = "standard") -> Extract
                         theta=theta, a=a, alpha=alpha, offset=d, qlim=joint.qlim, name=joint.name
                     )
                 )
-    base = _snap(frames[0])
-    Sn = frames[-1]
-    tool = np.eye(4)
-    tool[:3, :3] = Sn[:3, :3].T @ geometry.tip[:3, :3]
-    tool[:3, 3] = Sn[:3, :3].T @ (geometry.tip[:3, 3] - Sn[:3, 3])
-    tool = _snap(tool)
+    base = snap(frames[0])
+    tool = snap(_seen_from(frames[-1], geometry.tip))
     table = tuple(rows)
     error = _fk_error(geometry, table, conv, base, tool)
     if error > FK_CHECK_TOL:

@@ -33,7 +33,13 @@ from typing import Any, Final
 
 from kinematica.errors import KinematicaWarning, RobotFileError
 from kinematica.io.spec import FrameSpec
-from kinematica.io.urdf_model import JOINT_TYPES, MOVABLE_TYPES, UrdfJoint, UrdfModel
+from kinematica.io.urdf_model import (
+    JOINT_TYPES,
+    MOVABLE_TYPES,
+    UrdfJoint,
+    UrdfModel,
+    dh_frames_note,
+)
 from kinematica.io.xacro import XACRO_HINT, expand_xacro
 
 __all__ = ["URDF_MAX_BYTES", "URDF_SUFFIXES", "parse_urdf", "read_urdf"]
@@ -259,10 +265,10 @@ def parse_urdf(data: bytes | str, *, source: str | None = None) -> UrdfModel:
             malformed joint or link, or links and joints that are not one tree.
     """
     raw = data.encode("utf-8") if isinstance(data, str) else bytes(data)
-    return _model(_parse_xml(raw, source), source)
+    return _model(_parse_xml(raw, source), source, dh_frames_note(raw))
 
 
-def _model(root: Any, source: str | None) -> UrdfModel:
+def _model(root: Any, source: str | None, dh_frames: str | None = None) -> UrdfModel:
     """The model of a parsed ``<robot>`` tree."""
     if _local(root.tag) != "robot":
         raise RobotFileError(
@@ -303,6 +309,7 @@ def _model(root: Any, source: str | None) -> UrdfModel:
         links=tuple(links),
         joints=tuple(joints.values()),
         source=source,
+        dh_frames=dh_frames,
     )
 
 
@@ -365,4 +372,4 @@ def read_urdf(
     if p.name.lower().endswith(".xacro") or (xacro and _is_xacro(root) is not None):
         expanded = expand_xacro(p, max_bytes=max_bytes, env=xacro_env)
         return parse_urdf(expanded, source=source)
-    return _model(root, source)
+    return _model(root, source, dh_frames_note(data))

@@ -10,6 +10,7 @@ kinematics; the origins are kept as :class:`~kinematica.io.spec.FrameSpec`.
 
 from __future__ import annotations
 
+import re
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -18,7 +19,15 @@ from kinematica.errors import KinematicaWarning, RobotFileError
 from kinematica.io._parse import MAX_JOINTS
 from kinematica.io.spec import FrameSpec
 
-__all__ = ["JOINT_TYPES", "MOVABLE_TYPES", "UrdfChain", "UrdfJoint", "UrdfModel"]
+__all__ = [
+    "DH_FRAMES_NOTE",
+    "JOINT_TYPES",
+    "MOVABLE_TYPES",
+    "UrdfChain",
+    "UrdfJoint",
+    "UrdfModel",
+    "dh_frames_note",
+]
 
 #: Joint types of the URDF specification.
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
@@ -32,6 +41,19 @@ MAKER_BASE = "base"
 #: The flange frame of ROS-Industrial descriptions (REP-199): where a chain ends when
 #: its leaves are all frames fixed to the last moving link.
 FLANGE = "tool0"
+#: The comment a URDF kinematica writes from a DH table carries: which convention's
+#: DH frames its link frames are. Where an arm's frames obey both conventions' rules
+#: (all axes parallel, say), it tells the DH extraction how to read them, so that a
+#: modified table written out and read back in either convention gives one table.
+DH_FRAMES_NOTE = "each link frame is a {convention} DH frame"
+# The phrase alone (no scan for the comment's start: linear on any file).
+_NOTE = re.compile(DH_FRAMES_NOTE.format(convention="(standard|modified)").encode())
+
+
+def dh_frames_note(data: bytes) -> str | None:
+    """The convention a URDF's :data:`DH_FRAMES_NOTE` comment names, or ``None``."""
+    found = _NOTE.search(data)
+    return None if found is None else found.group(1).decode()
 
 
 def _names(names: Sequence[str]) -> str:
@@ -90,6 +112,9 @@ class UrdfChain:
         maker_base: The fixed joints from ``base`` to ROS-Industrial's ``base``
             link (the maker's controller base frame, REP-199) when it hangs off
             the chain before its first movable joint; ``()`` otherwise.
+        dh_frames: ``"standard"`` or ``"modified"`` when the description says
+            its link frames are DH frames of that convention (a URDF kinematica
+            wrote: :data:`DH_FRAMES_NOTE`), else ``None``.
     """
 
     name: str
@@ -98,6 +123,7 @@ class UrdfChain:
     joints: tuple[UrdfJoint, ...]
     source: str | None = None
     maker_base: tuple[UrdfJoint, ...] = ()
+    dh_frames: str | None = None
 
     @property
     def movable(self) -> tuple[UrdfJoint, ...]:
@@ -114,6 +140,8 @@ class UrdfModel:
         links: Link names, in file order.
         joints: Joints, in file order.
         source: The file it was read from, or ``None``.
+        dh_frames: The DH convention the file says its link frames follow
+            (:data:`DH_FRAMES_NOTE`), or ``None``.
 
     Raises:
         RobotFileError: A joint names a link that does not exist, a link is
@@ -125,6 +153,7 @@ class UrdfModel:
     links: tuple[str, ...]
     joints: tuple[UrdfJoint, ...]
     source: str | None = None
+    dh_frames: str | None = None
     _parent_joint: dict[str, UrdfJoint] = field(init=False, repr=False, compare=False)
     _link_set: frozenset[str] = field(init=False, repr=False, compare=False)
 
@@ -280,6 +309,7 @@ class UrdfModel:
             joints=path,
             source=self.source,
             maker_base=self._maker_base(start, path),
+            dh_frames=self.dh_frames,
         )
 
     def _maker_base(self, start: str, path: tuple[UrdfJoint, ...]) -> tuple[UrdfJoint, ...]:

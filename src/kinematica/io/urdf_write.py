@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinematica.io.spec import FrameSpec
-from kinematica.io.urdf_model import UrdfChain
+from kinematica.io.urdf_model import DH_FRAMES_NOTE, UrdfChain
 
 __all__ = ["rpy_from_matrix", "urdf_text"]
 
@@ -66,7 +66,10 @@ def urdf_text(chain: UrdfChain, comment: str | None = None) -> str:
         chain: The chain; its joints' origins may be given as ``rpy`` or as a
             matrix (written as roll-pitch-yaw).
         comment: A comment put at the top of ``<robot>`` (e.g. where the model
-            comes from).
+            comes from). A chain whose link frames are DH frames
+            (``chain.dh_frames``) says so in a second comment
+            (:data:`~kinematica.io.urdf_model.DH_FRAMES_NOTE`), which reading
+            the file back finds.
 
     Returns:
         The XML document, ending with a newline. A revolute joint without
@@ -76,6 +79,8 @@ def urdf_text(chain: UrdfChain, comment: str | None = None) -> str:
     root = ET.Element("robot", name=chain.name)
     if comment:
         root.append(ET.Comment(" " + " ".join(comment.replace("--", "- -").split()) + " "))
+    if chain.dh_frames is not None:
+        root.append(ET.Comment(f" {DH_FRAMES_NOTE.format(convention=chain.dh_frames)} "))
     for link in (chain.base, *(j.child for j in chain.joints)):
         ET.SubElement(root, "link", name=link)
     for j in chain.joints:

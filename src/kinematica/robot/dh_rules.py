@@ -112,7 +112,11 @@ def geometry_from_chain(chain: UrdfChain) -> ChainGeometry:
             maker = maker @ j.origin.as_matrix()
         nearest_first.insert(0, NamedFrame(chain.maker_base[-1].child, maker))
     return ChainGeometry(
-        joints=tuple(joints), tip=pose, before=tuple(nearest_first), after=tuple(after)
+        joints=tuple(joints),
+        tip=pose,
+        before=tuple(nearest_first),
+        after=tuple(after),
+        dh_frames=chain.dh_frames,
     )
 
 
@@ -198,7 +202,13 @@ def chain_from_robot(robot: Robot) -> UrdfChain:
         parent = "flange"
     last = robot.tool if has_tool or not standard else A0[-1]
     joints.append(UrdfJoint(f"{parent}-tool0", "fixed", parent, "tool0", _frame(last)))
-    return UrdfChain(name=robot.name, base="base_link", tip="tool0", joints=tuple(joints))
+    return UrdfChain(
+        name=robot.name,
+        base="base_link",
+        tip="tool0",
+        joints=tuple(joints),
+        dh_frames=robot.convention,
+    )
 
 
 def to_dh(robot: Robot, convention: str = "standard") -> DHExtraction:
@@ -237,7 +247,7 @@ def to_urdf(robot: Robot, path: str | os.PathLike[str] | None = None) -> str:
     text = urdf_text(
         chain_from_robot(robot),
         comment=f"{robot.name}: written by kinematica from its {robot.convention} DH table; "
-        "each link frame is a DH frame. Kinematics only (effort and velocity unknown: 0).",
+        "Kinematics only (effort and velocity unknown: 0).",
     )
     if path is not None:
         p = Path(path)
