@@ -4,33 +4,13 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 import pytest
+from support.cli import run, strict_json
 
 import kinematica as km
 from kinematica.cli.format import DEFAULT_PRECISION, num, plain
-from kinematica.cli.main import main
-
-
-def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
-    """Run the CLI in-process; argparse's SystemExit becomes an exit code."""
-    try:
-        code = main(list(argv))
-    except SystemExit as exc:
-        code = int(exc.code or 0)
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def strict_json(text: str) -> Any:
-    """JSON as the standard defines it: NaN and Infinity are not JSON."""
-
-    def refuse(token: str) -> None:
-        raise AssertionError(f"not valid JSON: {token}")
-
-    return json.loads(text, parse_constant=refuse)
 
 
 def printed_matrix(out: str, title: str = "T:") -> np.ndarray:

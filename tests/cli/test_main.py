@@ -9,7 +9,6 @@ solutions the CLI prints.
 
 from __future__ import annotations
 
-import json
 import os
 import subprocess
 import sys
@@ -20,50 +19,13 @@ from typing import Any
 import numpy as np
 import pytest
 from support import ROOT
+from support.cli import SCRIPT, one_line, run, script, strict_json
 from support.urdf import broken, write
 
 import kinematica as km
 from kinematica.cli import options
-from kinematica.cli.main import cli_error, cli_words, main
+from kinematica.cli.main import cli_error, cli_words
 from kinematica.errors import KinematicaError
-
-SCRIPT = Path(sys.executable).with_name("kinematica")
-
-
-def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
-    """Run the CLI in-process; argparse's SystemExit becomes an exit code."""
-    try:
-        code = main(list(argv))
-    except SystemExit as exc:
-        code = int(exc.code or 0)
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def script(*argv: str, timeout: float = 60) -> subprocess.CompletedProcess[str]:
-    """Run the installed console script, as a user would."""
-    if not SCRIPT.exists():  # pragma: no cover - the venv always has it
-        pytest.skip("the kinematica console script is not installed next to this python")
-    return subprocess.run(
-        [str(SCRIPT), *argv], capture_output=True, text=True, timeout=timeout, check=False
-    )
-
-
-def strict_json(text: str) -> Any:
-    """JSON as the standard defines it: NaN and Infinity are not JSON."""
-
-    def refuse(token: str) -> None:
-        raise AssertionError(f"not valid JSON: {token}")
-
-    return json.loads(text, parse_constant=refuse)
-
-
-def one_line(err: str) -> str:
-    lines = [ln for ln in err.splitlines() if ln.strip()]
-    assert len(lines) == 1, err
-    assert "Traceback" not in err
-    return lines[0]
-
 
 # --- version, python -m, help ---------------------------------------------------
 

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import dataclass
 
 import kinematica._core as _core
 import numpy as np
@@ -22,7 +21,7 @@ from scipy.spatial.transform import Rotation
 from support import DATA as TESTS_DATA
 from support.helpers import assert_transform_close
 from support.ik_search import dls_solutions, joint_distance, random_q
-from support.wrist_arms import candidates, random_wrist_arm
+from support.wrist_arms import Info, candidates, random_wrist_arm
 
 from kinematica.dh import Prismatic, Revolute
 from kinematica.ik import ClosedForm, IKBatchResult, IKResult, closed_form
@@ -59,23 +58,6 @@ def solver_of(robot: Robot) -> ClosedForm:
     solver = closed_form(robot.chain, "pose")
     assert solver is not None and solver.slots == 8
     return solver
-
-
-@dataclass(frozen=True)
-class Info:
-    """What a solver says of each of N targets besides its candidates.
-
-    Attributes:
-        singular: ``(N,)`` the solutions form a continuum.
-        near: ``(N,)`` near a singular set or a fold.
-        gap: ``(N,)`` a proven distance to the reachable set (m), NaN: unknown.
-        free: ``(N, n)`` the joints free in the continuum.
-    """
-
-    singular: NDArray[np.bool_]
-    near: NDArray[np.bool_]
-    gap: FloatArray
-    free: NDArray[np.bool_]
 
 
 def raw(robot: Robot, T: FloatArray) -> tuple[FloatArray, Info]:
