@@ -12,7 +12,7 @@ import sys
 import numpy as np
 import pytest
 from support.cli import one_line, run, script, strict_json
-from support.urdf import write
+from support.urdf import XACRO, write
 
 import kinematica as km
 import kinematica.io.xacro as xacro_module
@@ -167,25 +167,6 @@ def test_json_is_valid_when_numbers_are_not_finite(capsys: pytest.CaptureFixture
     assert code in (0, 1), err
     data = strict_json(out)
     assert data["status"] in ("unreachable", "not_found")
-
-
-XACRO = """<?xml version="1.0"?>
-<robot name="xarm" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:property name="len" value="0.4"/>
-  <xacro:macro name="seg" params="i parent">
-    <link name="l${i}"/>
-    <joint name="j${i}" type="revolute">
-      <parent link="${parent}"/><child link="l${i}"/>
-      <origin xyz="0 0 ${len}" rpy="0 ${pi/2} 0"/>
-      <axis xyz="0 0 1"/>
-      <limit lower="-1" upper="1" effort="1" velocity="1"/>
-    </joint>
-  </xacro:macro>
-  <link name="base"/>
-  <xacro:seg i="1" parent="base"/>
-  <xacro:seg i="2" parent="l1"/>
-</robot>
-"""
 
 
 needs_xacro = pytest.mark.skipif(

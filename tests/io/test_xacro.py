@@ -8,30 +8,12 @@ import time
 
 import numpy as np
 import pytest
-from support.urdf import ARM, BOMB, one_line_error, write
+from support.urdf import ARM, BOMB, XACRO, one_line_error, write
 
 import kinematica as km
 import kinematica.io.xacro as xacro_module
 from kinematica.io import URDF_MAX_BYTES, parse_urdf, read_urdf
 from kinematica.io.xacro import XACRO_MAX_NODES, expand_xacro
-
-XACRO = """<?xml version="1.0"?>
-<robot name="xarm" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:property name="len" value="0.4"/>
-  <xacro:macro name="seg" params="i parent">
-    <link name="l${i}"/>
-    <joint name="j${i}" type="revolute">
-      <parent link="${parent}"/><child link="l${i}"/>
-      <origin xyz="0 0 ${len}" rpy="0 ${pi/2} 0"/>
-      <axis xyz="0 0 1"/>
-      <limit lower="-1" upper="1" effort="1" velocity="1"/>
-    </joint>
-  </xacro:macro>
-  <link name="base"/>
-  <xacro:seg i="1" parent="base"/>
-  <xacro:seg i="2" parent="l1"/>
-</robot>
-"""
 
 # A chain of `count` segments by a recursive macro with a loop counter: what real descriptions
 # do (a macro per part, called for each joint), some thousand nodes for 60 segments.

@@ -304,3 +304,23 @@ def extraction_rule(text: str, convention: str = "standard") -> str:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         return km.urdf_to_dh(parse_urdf(text), convention=convention).rules[1].rule
+
+
+#: Two segments made by a xacro macro (a property, ${pi/2}): what `.xacro` files hold.
+XACRO = """<?xml version="1.0"?>
+<robot name="xarm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="len" value="0.4"/>
+  <xacro:macro name="seg" params="i parent">
+    <link name="l${i}"/>
+    <joint name="j${i}" type="revolute">
+      <parent link="${parent}"/><child link="l${i}"/>
+      <origin xyz="0 0 ${len}" rpy="0 ${pi/2} 0"/>
+      <axis xyz="0 0 1"/>
+      <limit lower="-1" upper="1" effort="1" velocity="1"/>
+    </joint>
+  </xacro:macro>
+  <link name="base"/>
+  <xacro:seg i="1" parent="base"/>
+  <xacro:seg i="2" parent="l1"/>
+</robot>
+"""
