@@ -6,7 +6,9 @@ takes the arm; every solution reaches the target by forward kinematics; the
 configuration that made a pose is among the solutions where the answer is a
 finite set; a batch gives what single calls give (solutions, statuses,
 messages); a malformed row is reported and leaves the others as they were; a
-target far outside the reach is unreachable with a proven gap.
+target far outside the reach is unreachable with a proven gap. A family that
+solves at a parameter (``spec.parameter``, e.g. the arm angle of SRS 7R arms) is
+given each generating configuration's own value (``spec.parameter_of``).
 """
 
 from __future__ import annotations
@@ -61,6 +63,14 @@ def _same(a: km.ik.IKResult, b: km.ik.IKResult) -> None:
     np.testing.assert_array_equal(a.out_of_limits, b.out_of_limits)
 
 
+def _parameter(spec: SolverSpec, robot: km.Robot, q: np.ndarray) -> dict[str, np.ndarray]:
+    """The keyword a parametrised family needs: the configurations' own values."""
+    if spec.parameter is None:
+        return {}
+    assert spec.parameter_of is not None
+    return {spec.parameter: spec.parameter_of(robot.chain, q)}
+
+
 def _cases() -> list[tuple[SolverSpec, str, bool]]:
     return [(s, kind, deg) for s in SOLVERS for kind in s.targets for deg in (False, True)]
 
@@ -76,10 +86,11 @@ def test_solver_contract(spec: SolverSpec, kind: str, degenerate: bool) -> None:
         robot = _robot(spec, rng, degenerate)
         assert spec.handles(features(robot.chain)), robot.dh_table()
         q, targets = _targets(robot, kind, rng)
-        batch = robot.ik(targets)
+        extra = _parameter(spec, robot, q)
+        batch = robot.ik(targets, **extra)
         assert batch.method.startswith("analytic:"), batch.method
         for i in range(TARGETS):
-            one = robot.ik(targets[i])
+            one = robot.ik(targets[i], **{k: v[i] for k, v in extra.items()})
             _same(batch[i], one)
             for sol in one.solutions:  # each solution reaches the target, by FK
                 T = robot.fk(sol)
@@ -95,7 +106,7 @@ def test_solver_contract(spec: SolverSpec, kind: str, degenerate: bool) -> None:
         # a malformed row is reported, the others are as before
         bad = targets.copy()
         bad[1] = np.nan
-        marred = robot.ik(bad)
+        marred = robot.ik(bad, **extra)
         assert marred.status[1] == "invalid" and (1,) in marred.errors
         for i in (0, *range(2, TARGETS)):
             _same(marred[i], batch[i])
@@ -108,13 +119,13 @@ def test_far_targets_are_unreachable_with_a_gap(spec: SolverSpec) -> None:
     if np.any(robot.is_prismatic & ~np.isfinite(robot.qlim).all(axis=1)):
         pytest.skip("a slide without limits reaches any distance: no gap to prove")
     kind = spec.targets[0]
-    _, targets = _targets(robot, kind, rng)
+    q, targets = _targets(robot, kind, rng)
     far = targets.copy()
     if kind == "pose":
         far[:, :3, 3] *= 1e3
         far[:, :3, 3] += 1e3
     else:
         far = far * 1e3 + 1e3
-    res = robot.ik(far)
+    res = robot.ik(far, **_parameter(spec, robot, q))
     assert np.all(res.status == "unreachable"), res.message
     assert np.all(res.gap > 1.0)

@@ -34,6 +34,9 @@ class IKOptions:
             digit a pose target's numbers were printed with, for arms with fewer
             than 6 joints (:mod:`kinematica.ik.printed`); None: read from the
             numbers' own digits.
+        arm_angle: The arm angle (rad) of an SRS 7R arm's solutions
+            (:mod:`kinematica.ik.analytic.srs`): one value, or one per target;
+            None: no parameter.
     """
 
     method: Method = "auto"
@@ -44,6 +47,7 @@ class IKOptions:
     seed: int | np.random.Generator | None = None
     workers: int | None = None
     precision: tuple[float, float] | None = None
+    arm_angle: ArrayLike | None = None
 
 
 #: The options of a call that gives none.

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from typing import Any, Literal
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from kinematica.core import Chain
 from kinematica.dh.joints import Convention, Joint
@@ -103,6 +103,11 @@ class SolverSpec:
             ``"arm-plane"``), or ``None``.
         singular: The named singularities of the structure (``"shoulder"``,
             ``"elbow"``, ``"wrist"``) that ``robot.singularities`` looks for.
+        parameter: For a redundant arm's solver, the ``robot.ik`` keyword of the
+            parameter it solves at (``"arm_angle"``); it is used only when that is
+            given. ``None`` for the others.
+        parameter_of: ``(chain, q (..., n)) -> (...)`` the parameter's value at
+            configurations (what makes ``q`` one of the solutions at it).
     """
 
     kind: str
@@ -116,6 +121,8 @@ class SolverSpec:
     derivation: str | None = None
     geometric: str | None = None
     singular: frozenset[str] = frozenset()
+    parameter: str | None = None
+    parameter_of: Callable[[Chain, ArrayLike], FloatArray] | None = None
 
 
 def describing(features: Features, specs: tuple[SolverSpec, ...]) -> SolverSpec | None:

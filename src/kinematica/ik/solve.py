@@ -10,6 +10,7 @@ candidate by forward kinematics; the outcome is wrapped in an :class:`IKResult`
 from __future__ import annotations
 
 import weakref
+from dataclasses import replace
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -30,6 +31,7 @@ from kinematica.ik.fallback import (
 )
 from kinematica.ik.numeric import LABEL, check_seed, numeric_setup
 from kinematica.ik.options import IKOptions, Method
+from kinematica.ik.parameter import AtValues, parameter_values
 from kinematica.ik.printed import answer_overdetermined, overdetermined_rows
 from kinematica.ik.reach import beyond_limited_reach
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
@@ -46,7 +48,7 @@ _POSITION: tuple[float, ...] = (1.0, 1.0, 1.0, 0.0, 0.0, 0.0)
 
 # Closed-form solvers are built once per chain (a chain is immutable, so the
 # solver is a pure function of it); the cache forgets a chain when it dies.
-_SOLVERS: weakref.WeakKeyDictionary[Chain, dict[str, ClosedForm | None]] = (
+_SOLVERS: weakref.WeakKeyDictionary[Chain, dict[tuple[str, str | None], ClosedForm | None]] = (
     weakref.WeakKeyDictionary()
 )
 
@@ -56,26 +58,49 @@ def structure_of(chain: Chain) -> tuple[str, str, str]:
     return describe(features(chain), SOLVERS)
 
 
-def closed_form(chain: Chain, target: TargetKind) -> ClosedForm | None:
+def closed_form(
+    chain: Chain, target: TargetKind, parameter: str | None = None
+) -> ClosedForm | None:
     """The closed-form solver of a chain for pose or position targets, if there is one.
 
     A reduced arm (fewer than 6 joints) without a pose solver takes its
-    position solver for poses: the whole pose is then checked.
+    position solver for poses: the whole pose is then checked. With
+    ``parameter`` (``"arm_angle"``), the solver of a redundant arm at that
+    parameter (:attr:`SolverSpec.parameter`); without, only solvers that need none.
     """
     per_chain = _SOLVERS.setdefault(chain, {})
-    if target not in per_chain:
+    key = (target, parameter)
+    if key not in per_chain:
         found = None
         f = features(chain)
         for spec in SOLVERS:
-            if spec.handles(f):
+            if spec.parameter == parameter and spec.handles(f):
                 found = spec.build(chain, f, target)
                 if found is not None:
                     break
-        if found is None and target == "pose" and chain.dof < 6:
+        if found is None and target == "pose" and chain.dof < 6 and parameter is None:
             position = closed_form(chain, "position")
             found = position if position is not None and not position.partial else None
-        per_chain[target] = found
-    return per_chain[target]
+        per_chain[key] = found
+    return per_chain[key]
+
+
+def _at_parameter(
+    chain: Chain, closed: ClosedForm | None, options: IKOptions, masked: bool, values: FloatArray
+) -> ClosedForm:
+    """The closed form at the arm angle of each target (``robot.ik(T, arm_angle=...)``)."""
+    if options.method == "numeric" or masked:
+        why = "method='numeric'" if options.method == "numeric" else "a mask"
+        raise KinematicaError(
+            f"arm_angle is the parameter of a closed form: it takes no {why}", arg="arm_angle"
+        )
+    if closed is None:
+        raise KinematicaError(
+            "arm_angle is a parameter of pose targets of SRS 7R arms (axes 1-3 and 5-7 "
+            f"meeting) only; this arm: {structure_of(chain)[1]}",
+            arg="arm_angle",
+        )
+    return replace(closed, params=AtValues(closed.params, values))
 
 
 def _q0(chain: Chain, q0: ArrayLike | None, targets: Targets) -> FloatArray | None:
@@ -251,7 +276,13 @@ def _solve(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IK
     w = _POSITION if targets.position else _POSE
     if m is not None:
         w = tuple(float(a * b) for a, b in zip(m, w, strict=True))
-    closed = None if method == "numeric" or m is not None else closed_form(chain, kind)
+    values = None
+    if options.arm_angle is not None:
+        values = parameter_values("arm_angle", options.arm_angle, targets.shape)
+    parameter = None if values is None else "arm_angle"
+    closed = None if method == "numeric" or m is not None else closed_form(chain, kind, parameter)
+    if values is not None:  # the search would not keep to the arm angle: never a fallback
+        closed = _at_parameter(chain, closed, options, m is not None, values)
     if method == "analytic" and closed is None:
         why = "a mask was given" if m is not None else f"structure: {structure_of(chain)[1]}"
         raise KinematicaError(
@@ -284,7 +315,7 @@ def _solve(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IK
         out: CoreAnswer = solver.ik(chain.core, targets.poses[0], opts, q0, labels)
         notes = targets.notes.get(0, ()) if targets.notes else ()
         if slack or partial:
-            if needs_search(out[-1][0]):
+            if needs_search(out[-1][0]) and values is None:
                 numeric, nopts, guess = search(np.zeros(1, dtype=np.intp))
                 out = numeric.ik(chain.core, targets.poses[0], nopts, guess[0], (LABEL,))
                 out = _limited(chain, targets.poses, out, respect_limits, tolerance, w)
@@ -306,7 +337,7 @@ def _solve(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IK
     batch_notes = {where(i): note for i, note in targets.notes.items()}
     methods: dict[tuple[int, ...], str] = {}
     if slack or partial:
-        rows = np.flatnonzero(needs_search(raw["status"]))
+        rows = np.flatnonzero(needs_search(raw["status"]) & (values is None))
         if rows.size:
             numeric, nopts, guess = search(rows)
             poses = np.ascontiguousarray(targets.poses[rows])

@@ -29,6 +29,7 @@ from kinematica.dh import (
 )
 from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning, UnitWarning
 from kinematica.ik import IKBatchResult, IKOptions, IKResult, Tolerance, solve_ik
+from kinematica.ik.analytic.srs import arm_angle as arm_angle_of
 from kinematica.ik.reach import needs_proof
 from kinematica.ik.registry import TargetKind
 from kinematica.ik.result import CoreAnswer, result_of
@@ -471,6 +472,7 @@ class Robot:
         tol: float | tuple[float, float] | Tolerance | None = None,
         workers: int | None = None,
         precision: tuple[float, float] | None = None,
+        arm_angle: ArrayLike | None = None,
         options: IKOptions | None = None,
     ) -> IKResult | IKBatchResult:
         """Every inverse-kinematics solution of a target, or an honest status.
@@ -498,6 +500,9 @@ class Robot:
                 unit in the last digit its numbers were printed with; None: read
                 from their digits. The closest configuration answers a target
                 it reproduces to that precision (a note says which was assumed).
+            arm_angle: For an SRS 7R arm (iiwa type): the arm angle (rad) of the
+                solutions, one value or one per target; all 8 solutions at it
+                (see :mod:`kinematica.ik.analytic.srs` and :meth:`arm_angle`).
             options: All of the above as one :class:`~kinematica.ik.IKOptions`
                 (then give none of them as keywords).
 
@@ -518,6 +523,7 @@ class Robot:
             and mask is None
             and seed is None
             and precision is None
+            and arm_angle is None
         ):  # one target, every default: straight to the core (a rigid target to round-off)
             if target.shape == (4, 4):
                 out = self._fast(target, "pose")
@@ -530,7 +536,9 @@ class Robot:
             if out is not None:
                 return out
         if options is None:
-            options = IKOptions(method, tol, respect_limits, q0, mask, seed, workers, precision)
+            options = IKOptions(
+                method, tol, respect_limits, q0, mask, seed, workers, precision, arm_angle
+            )
         elif not isinstance(options, IKOptions):
             raise KinematicaError(
                 f"options must be an IKOptions, got {type(options).__name__}", arg="options"
@@ -539,7 +547,7 @@ class Robot:
             isinstance(method, str)
             and method == "auto"
             and respect_limits is True
-            and all(v is None for v in (tol, q0, mask, seed, workers, precision))
+            and all(v is None for v in (tol, q0, mask, seed, workers, precision, arm_angle))
         ):
             raise KinematicaError(
                 "give the IK settings either as options= or as keywords, not both",
@@ -548,6 +556,25 @@ class Robot:
         check_choice(options.method, "method", ("auto", "analytic", "numeric"))
         check_flag(options.respect_limits, "respect_limits")
         return solve_ik(self.chain, target, options)
+
+    def arm_angle(self, q: ArrayLike) -> FloatArray:
+        """The arm angle (rad) of configurations of an SRS 7R arm (iiwa type).
+
+        The parameter of ``ik(T, arm_angle=...)``: the angle about the line from
+        the shoulder centre to the wrist centre from the plane through that line
+        and axis 1 to the plane of the elbow (:mod:`kinematica.ik.analytic.srs`).
+
+        Args:
+            q: ``(..., 7)`` joint angles (rad).
+
+        Returns:
+            ``(...)`` angles in (-π, π]; NaN where undefined (the elbow stretched
+            or folded onto the shoulder-wrist line, or that line along axis 1).
+
+        Raises:
+            KinematicaError: The arm is not an SRS 7R arm.
+        """
+        return arm_angle_of(self.chain, self.check_q(q))
 
     def _fast(self, pose: FloatArray, kind: TargetKind) -> IKResult | None:
         """``ik`` of one rigid target with every default; None: the general path explains it."""

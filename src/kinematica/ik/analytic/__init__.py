@@ -12,6 +12,7 @@ from kinematica.ik.analytic import (
     parallel,
     planar_arms,
     spherical_wrist,
+    srs,
 )
 from kinematica.ik.registry import SolverSpec
 
@@ -24,5 +25,6 @@ SOLVERS: tuple[SolverSpec, ...] = (
     *planar_arms.SPECS,
     *elbow_arms.SPECS,
     *spherical_wrist.SPECS,
+    srs.SPEC,  # at an arm angle only (robot.ik(T, arm_angle=...))
     arm_position.SPEC,  # position targets of any longer arm: tried last
 )

@@ -1,0 +1,256 @@
+"""SRS 7R arms (KUKA iiwa type): all 8 solutions at a given arm angle.
+
+Axes 1, 2, 3 meet at the shoulder S, axes 5, 6, 7 at the wrist W, and axis 4
+(the elbow) passes through neither. The arm has one degree of redundancy; its
+parameter is the **arm angle** ψ (rad): the angle, right-handed about the unit
+vector n from S to W, from the reference half-plane (bounded by the line S-W and
+containing axis 1's direction h1) to the arm half-plane (bounded by S-W and
+containing the elbow point E, the foot of the perpendicular from S onto axis 4).
+It is the "conventional SEW angle" of Elias and Wen (IK-Geo, "Redundancy
+parameterization and inverse kinematics of 7-DOF revolute manipulators", 2022)
+with axis 1 as reference vector: it needs no solution of another arm (Shimizu et
+al. 2008 measure from the plane S-E-W of the solution with q3 = 0; on the iiwa
+that plane contains axis 1, so it is this reference plane, and ψ = 0 puts the
+elbow on the side axis 1 points to: up). It is undefined where the elbow lies on
+S-W (stretched or folded) and where S-W lies along axis 1.
+
+The core's solver (``cpp/include/kinematica/solvers/srs.hpp``) gives 8 slots:
+``elbow ±`` (q4 = q4* ± β, q4* where the elbow is stretched, β ∈ [0, π] its bend:
+on the iiwa the sign of q4), ``shoulder no-flip / flip`` (axes 1-3 split as a
+spherical wrist is: no-flip bends the shoulder as q2 > 0 bends it from q = 0, on
+the iiwa q2 > 0; flip is (q1 + π, -q2, q3 + π) there) and ``wrist no-flip / flip``
+(likewise q6 > 0 on the iiwa). This module reads the geometry from the joint
+axes, fills its ``SRSParams``, and computes the arm angle of configurations
+(:func:`arm_angle`) from forward kinematics.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+import kinematica._core as _core
+from kinematica.core import Chain
+from kinematica.dh.joints import Revolute
+from kinematica.dh.lines import common_point
+from kinematica.errors import KinematicaError
+from kinematica.ik.analytic.arm_point import unit_normal
+from kinematica.ik.analytic.sampling import random_transform
+from kinematica.ik.analytic.spherical_wrist import wrist_params
+from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
+from kinematica.ik.structure import Features, features
+
+__all__ = ["LABELS", "SPEC", "arm_angle", "build", "handles", "srs_points"]
+
+FloatArray = NDArray[np.float64]
+PI = math.pi
+
+#: Branch names of the 8 slots, slot 4 e + 2 s + w.
+LABELS: tuple[str, ...] = tuple(
+    f"elbow {e}, shoulder {s}, wrist {w}"
+    for e in ("+", "-")
+    for s in ("no-flip", "flip")
+    for w in ("no-flip", "flip")
+)
+
+
+def srs_points(f: Features) -> tuple[FloatArray, FloatArray, FloatArray] | None:
+    """``(S, E0, W0)``: shoulder centre, elbow point and wrist centre at q = 0, or None.
+
+    None unless the arm is 7R with axes 1-3 meeting at S, axes 5-7 at W, and axis
+    4 passing through neither (each within the line geometry's length tolerance).
+    E0 is the foot of the perpendicular from S onto axis 4 (base frame, m).
+    """
+    if f.joint_types != "RRRRRRR" or f.wrist_center is None:
+        return None
+    h, p = f.directions, f.points
+    if f.all_parallel(range(3)):
+        return None
+    S = common_point(h[:3], p[:3], f.size)
+    if S is None:
+        return None
+    W = np.asarray(f.wrist_center, dtype=float)
+    E = p[3] + float((S - p[3]) @ h[3]) * h[3]
+    for point in (S, W):
+        r = point - p[3]
+        if np.linalg.norm(r - float(r @ h[3]) * h[3]) <= f.length_tol:
+            return None  # the elbow axis through S or W: |S - W| would not depend on q4
+    return S, E, W
+
+
+def handles(f: Features) -> bool:
+    """True for SRS 7R arms (see :func:`srs_points`)."""
+    return srs_points(f) is not None
+
+
+def _turn(h: FloatArray, angle: float, v: FloatArray) -> FloatArray:
+    """``v`` turned by ``angle`` about the unit axis ``h`` (Rodrigues)."""
+    c, s = math.cos(angle), math.sin(angle)
+    out: FloatArray = c * v + s * np.cross(h, v) + (1.0 - c) * float(h @ v) * h
+    return out
+
+
+def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
+    """The closed form of an SRS 7R arm (pose targets), or None."""
+    points = srs_points(f)
+    if target != "pose" or points is None:
+        return None
+    S, E, W = points
+    h = f.directions
+    M = chain.fk(np.zeros(7))[0]
+    params = _core.srs.SRSParams()
+    shoulder = _core.decoupled.SphericalWristParams()
+    wrist = _core.decoupled.SphericalWristParams()
+    if not (
+        wrist_params(shoulder, h[0], h[1], h[2], np.eye(3))
+        and wrist_params(wrist, h[4], h[5], h[6], M[:3, :3])
+    ):
+        return None  # two consecutive axes of the shoulder or the wrist coincide
+    qlim = chain.qlim
+    shoulder.q4_lo, shoulder.q4_hi = qlim[0]
+    shoulder.q6_lo, shoulder.q6_hi = qlim[2]
+    wrist.q4_lo, wrist.q4_hi = qlim[4]
+    wrist.q6_lo, wrist.q6_hi = qlim[6]
+    se, ew, h4 = E - S, W - E, h[3]
+    # |se + R4(q4) ew|² = |se|² + |ew|² + 2 (C + A cos q4 + B sin q4): largest at atan2(B, A)
+    ew_across = ew - float(ew @ h4) * h4
+    se_across = se - float(se @ h4) * h4
+    stretched = math.atan2(float(h4 @ np.cross(ew, se)), float(se_across @ ew_across))
+    params.shoulder = shoulder
+    params.wrist = wrist
+    params.s = S
+    params.w_tool = M[:3, :3].T @ (W - M[:3, 3])
+    params.se = se
+    params.ew = ew
+    params.h4 = h4
+    params.ref = h[0]
+    params.ref_alt = unit_normal(h[0])
+    params.stretched = stretched
+    # the extremes as norms of vectors (no cancellation in |se|² + |ew|² - 2r at a fold)
+    params.d_max = float(np.linalg.norm(se + _turn(h4, stretched, ew)))
+    params.d_min = float(np.linalg.norm(se + _turn(h4, stretched + PI, ew)))
+    params.scale = f.size
+    return ClosedForm(name="srs", labels=LABELS, params=params)
+
+
+def arm_angle(chain: Chain, q: ArrayLike) -> FloatArray:
+    """The arm angle ψ (rad, in (-π, π]) of configurations of an SRS arm.
+
+    Measured as the module docstring defines it, from the joint frames' forward
+    kinematics (S, the elbow point E and the wrist centre W placed by frames 0, 3
+    and 4). NaN where it is undefined: the elbow on the line S-W, or S-W along
+    axis 1 (within 1e-12 of the arm's size, resp. in sine: the solver's
+    ``COLLINEAR_TOL`` and ``REFERENCE_TOL``).
+
+    Args:
+        chain: An SRS 7R chain.
+        q: ``(..., 7)`` joint angles (rad).
+
+    Returns:
+        ``(...)`` arm angles (rad).
+
+    Raises:
+        KinematicaError: The chain is no SRS 7R arm.
+    """
+    f = features(chain)
+    points = srs_points(f)
+    if points is None:
+        raise KinematicaError(
+            "the arm angle is defined for SRS 7R arms only (axes 1-3 and 5-7 meeting, "
+            "axis 4 through neither point)",
+            arg="q",
+        )
+    S, E0, W0 = points
+    q = np.asarray(q, dtype=float)
+    frames = chain.fk(q, all_frames=True)[0]
+    zero = chain.fk(np.zeros(7), all_frames=True)[0]
+
+    def placed(frame: int, point: FloatArray) -> FloatArray:
+        # the point fixed in frame `frame`, where that frame puts it at q
+        local = zero[frame, :3, :3].T @ (point - zero[frame, :3, 3])
+        return np.asarray(
+            np.einsum("...ij,j->...i", frames[..., frame, :3, :3], local)
+            + frames[..., frame, :3, 3]
+        )
+
+    sw = placed(4, W0) - S
+    se = placed(3, E0) - S
+    n = sw / np.linalg.norm(sw, axis=-1, keepdims=True)
+    ref = f.directions[0]
+    r = ref - (n @ ref)[..., None] * n
+    e = se - np.sum(se * n, axis=-1, keepdims=True) * n
+    y = np.sum(n * np.cross(r, e), axis=-1)
+    x = np.sum(r * e, axis=-1)
+    psi = np.arctan2(y, x)
+    rn, en = np.linalg.norm(r, axis=-1), np.linalg.norm(e, axis=-1)
+    undefined = (rn <= _core.srs.REFERENCE_TOL) | (en <= _core.srs.COLLINEAR_TOL * f.size)
+    out: FloatArray = np.where(undefined, np.nan, psi)
+    return out
+
+
+# ------------------------------------------------------------- sample arms
+def _twist(rng: np.random.Generator) -> float:
+    """A twist well away from 0 and π, either sign."""
+    return float(rng.uniform(0.3, PI - 0.3) * rng.choice([-1.0, 1.0]))
+
+
+#: The family's edge geometries (``sample_arm(rng, True)``).
+EDGES: tuple[str, ...] = (
+    "iiwa type",  # a = 0 everywhere, right-angle twists: the elbow stretches onto S-W
+    "equal links",  # iiwa type with |SE| = |EW|: folded, W reaches S
+    "shoulder offset 1e-10",  # axes 1-3 miss their common point by 1e-10
+    "wrist offset 1e-10",  # axes 5-7 likewise
+)
+
+
+def random_srs_rows(rng: np.random.Generator, edge: str = "") -> list[Revolute]:
+    """Standard DH rows of a random SRS 7R arm (an edge geometry by name, or generic).
+
+    Axes 1-3 meet when a1 = a2 = d2 = 0, axes 5-7 when a5 = a6 = d6 = 0; the elbow
+    (a3, d3, a4, d4, d5) is free, twists anything away from 0 and π.
+    """
+    u = rng.uniform
+    sign = lambda: float(rng.choice([-1.0, 1.0]))  # noqa: E731
+    upper, fore = u(0.25, 0.5), u(0.25, 0.5)
+    if edge == "equal links":
+        fore = upper
+    iiwa = edge in ("iiwa type", "equal links")
+    twists = [sign() * PI / 2 for _ in range(6)] if iiwa else [_twist(rng) for _ in range(6)]
+    off = [0.0 if iiwa else float(v) for v in u(-PI, PI, 7)]
+    a3, a4, d4 = (0.0, 0.0, 0.0) if iiwa else (u(-0.1, 0.1), u(-0.1, 0.1), u(-0.1, 0.1))
+    d2 = 1e-10 * sign() if edge == "shoulder offset 1e-10" else 0.0
+    d6 = 1e-10 * sign() if edge == "wrist offset 1e-10" else 0.0
+    return [
+        Revolute(d=u(0.2, 0.4), alpha=twists[0], offset=off[0]),
+        Revolute(d=d2, alpha=twists[1], offset=off[1]),
+        Revolute(d=upper, a=a3, alpha=twists[2], offset=off[2]),
+        Revolute(d=d4, a=a4, alpha=twists[3], offset=off[3]),
+        Revolute(d=fore, alpha=twists[4], offset=off[4]),
+        Revolute(d=d6, alpha=twists[5], offset=off[5]),
+        Revolute(d=u(0.0, 0.2), a=u(-0.05, 0.05), alpha=u(-PI, PI), offset=off[6]),
+    ]
+
+
+def sample_arm(rng: np.random.Generator, degenerate: bool) -> ArmSample:
+    """A random SRS arm (an edge geometry of :data:`EDGES` with ``degenerate``)."""
+    edge = str(rng.choice(EDGES)) if degenerate else ""
+    return ArmSample(
+        links=tuple(random_srs_rows(rng, edge)),
+        base=random_transform(rng, 0.5),
+        tool=random_transform(rng, 0.2),
+        note=edge,
+    )
+
+
+SPEC = SolverSpec(
+    kind="srs-7R",
+    summary="7R, spherical shoulder and wrist (SRS)",
+    summary_es="7R con hombro y muñeca esféricos (SRS)",
+    handles=handles,
+    build=build,
+    sample_arm=sample_arm,
+    parameter="arm_angle",
+    parameter_of=arm_angle,
+)

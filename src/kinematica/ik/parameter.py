@@ -1,0 +1,101 @@
+"""A redundant arm's closed form solved at given values of its parameter.
+
+``robot.ik(T, arm_angle=psi)`` solves an SRS 7R arm at the arm angle ``psi``
+(:mod:`kinematica.ik.analytic.srs`): one value for every target, or one per
+target. :class:`AtValues` stands in for the closed form's ``Params``
+(``ik``, ``ik_rigid``, ``ik_batch``, ``candidates``), each call made with a copy
+of them set to the target's value (``Params.at(value)``), so that the solver
+built once per arm is never changed.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from kinematica.errors import ArgumentError, DimensionError
+
+__all__ = ["AtValues", "parameter_values"]
+
+FloatArray = NDArray[np.float64]
+
+
+def parameter_values(name: str, value: ArrayLike, shape: tuple[int, ...]) -> FloatArray:
+    """``(N,)`` the parameter's value for each of the targets of batch shape ``shape``.
+
+    Args:
+        name: The keyword (``"arm_angle"``), for messages.
+        value: One number (every target), or an array of the targets' batch shape.
+        shape: The targets' batch shape (``()`` for one target).
+
+    Raises:
+        ArgumentError: Not numbers, or NaN/inf among them.
+        DimensionError: An array whose shape is not the targets' batch shape.
+    """
+    try:
+        v = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ArgumentError(
+            f"{name} must be a number (rad) or an array of them, got {value!r}", arg=name
+        ) from None
+    if not np.all(np.isfinite(v)):
+        raise ArgumentError(f"{name} must be finite (rad), got {value!r}", arg=name)
+    if v.ndim and v.shape != shape:
+        raise DimensionError(
+            f"{name} must be one number or one per target (shape {shape}), got shape {v.shape}",
+            arg=name,
+        )
+    n = int(np.prod(shape, dtype=np.int64))
+    return np.ascontiguousarray(np.broadcast_to(v, shape).reshape(n))
+
+
+class AtValues:
+    """A parametrised closed form's ``Params``, solving target i at ``values[i]``.
+
+    Args:
+        params: The closed form's ``Params`` (with ``at(value)``: a copy at it).
+        values: ``(N,)`` one value per target (the single-target methods take the first).
+    """
+
+    def __init__(self, params: Any, values: FloatArray) -> None:
+        self._params = params
+        self._values = values
+        self._first = params.at(float(values[0])) if values.size else params
+
+    def ik(self, chain: Any, T: Any, options: Any, q0: Any, labels: Any) -> Any:
+        """``Params.ik`` at the first value."""
+        return self._first.ik(chain, T, options, q0, labels)
+
+    def ik_rigid(self, chain: Any, T: Any, options: Any, roundoff: float, labels: Any) -> Any:
+        """``Params.ik_rigid`` at the first value."""
+        return self._first.ik_rigid(chain, T, options, roundoff, labels)
+
+    def candidates(self, chain: Any, T: Any, q0: Any = None) -> Any:
+        """``Params.candidates`` at the first value."""
+        return self._first.candidates(chain, T, q0)
+
+    def ik_batch(
+        self, chain: Any, T: FloatArray, options: Any, q0: Any, invalid: Any, workers: int
+    ) -> dict[str, Any]:
+        """``Params.ik_batch``, one core call per distinct value (over its targets)."""
+        values = self._values
+        distinct, which = np.unique(values, return_inverse=True)
+        if distinct.size <= 1:
+            return dict(self._first.ik_batch(chain, T, options, q0, invalid, workers))
+        out: dict[str, Any] = {}
+        for k, value in enumerate(distinct):
+            rows = np.flatnonzero(which == k)
+
+            def part(a: Any, rows: Any = rows) -> Any:
+                return None if a is None else np.ascontiguousarray(a[rows])
+
+            got = self._params.at(float(value)).ik_batch(
+                chain, part(T), options, part(q0), part(invalid), workers
+            )
+            for key, a in got.items():
+                if key not in out:
+                    out[key] = np.empty((values.size, *a.shape[1:]), dtype=a.dtype)
+                out[key][rows] = a
+        return out
