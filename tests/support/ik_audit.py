@@ -166,12 +166,19 @@ def _distance(robot: km.Robot, a: FloatArray, b: FloatArray) -> FloatArray:
 
 
 def audit_arm(
-    robot: km.Robot, q: FloatArray, position: bool
+    robot: km.Robot, q: FloatArray, position: bool, spec: SolverSpec | None = None
 ) -> tuple[collections.Counter[str], list[tuple[str, int, Any]]]:
-    """Counts of :data:`COUNTS` for the targets ``fk(q)``, and the failures ``(what, i, one)``."""
+    """Counts of :data:`COUNTS` for the targets ``fk(q)``, and the failures ``(what, i, one)``.
+
+    A family solving at a parameter (``spec.parameter``) is given each q's own
+    value (0 where it is undefined: there every value solves).
+    """
     T = robot.fk(q)
     targets = np.ascontiguousarray(T[:, :3, 3]) if position else T
-    res = robot.ik(targets, respect_limits=False)
+    extra = {}
+    if spec is not None and spec.parameter is not None and spec.parameter_of is not None:
+        extra = {spec.parameter: np.nan_to_num(spec.parameter_of(robot.chain, q))}
+    res = robot.ik(targets, respect_limits=False, **extra)
     size = features(robot.chain).size
     cond = _conditioning(robot, q, position, size)
     counts: collections.Counter[str] = collections.Counter(targets=len(q))
@@ -214,7 +221,7 @@ def run(
             total: collections.Counter[str] = collections.Counter()
             for robot, arm in arms(spec, rng, arms_per_case):
                 q = configurations(robot, rng, targets_per_arm)
-                counts, bad = audit_arm(robot, q, kind == "position")
+                counts, bad = audit_arm(robot, q, kind == "position", spec)
                 total.update(counts)
                 for what, i, one in bad:
                     if len(cases) < keep:

@@ -145,12 +145,16 @@ def cpp_header(robot: Robot, namespace: str | None = None) -> str:
     Returns:
         Header text defining, in ``namespace``: ``chain()`` (its ``km::Chain``),
         ``solver()`` (the filled ``Params``), ``Solver`` (the ``Params`` type),
-        ``labels`` (the branch name of each candidate slot).
+        ``labels`` (the branch name of each candidate slot). An SRS 7R arm's
+        solver solves at the arm angle in its field ``psi`` (0 as written).
 
     Raises:
         KinematicaError: When the robot has no closed-form solver for poses.
     """
     closed = closed_form(robot.chain, "pose")
+    at_angle = closed is None and closed_form(robot.chain, "pose", "arm_angle") is not None
+    if at_angle:  # an SRS arm: solved at the arm angle p.psi, which the program sets
+        closed = closed_form(robot.chain, "pose", "arm_angle")
     if closed is None:
         raise KinematicaError(
             f"{robot.name} has no closed-form IK solver: nothing to write as C++ but its chain"
@@ -160,10 +164,11 @@ def cpp_header(robot: Robot, namespace: str | None = None) -> str:
     ns = namespace or cpp_identifier(robot.name)
     body = "\n    ".join(_assignments(params, "p"))
     labels = ", ".join('"' + label.replace('"', "'") + '"' for label in closed.labels)
+    psi_note = "\n// It solves at the arm angle psi (rad; 0 as written): set it first." * at_angle
     return f"""\
 // {robot.name}: its chain and its closed-form IK solver ({closed.method}), for C++.
 // Written by kinematica (`kinematica convert ... --to cpp`) from the same values robot.ik
-// uses; include the core's headers (cpp/include) to build it. Not to be edited by hand.
+// uses; include the core's headers (cpp/include) to build it. Not to be edited by hand.{psi_note}
 #pragma once
 
 #include <array>
