@@ -303,6 +303,29 @@ def test_cli_ik_json_and_exit_codes(capsys: pytest.CaptureFixture[str]) -> None:
     assert "not found" in out or "unreachable" in out
 
 
+def test_cli_ik_at_an_arm_angle(capsys: pytest.CaptureFixture[str]) -> None:
+    iiwa = km.load("iiwa14")
+    T = iiwa.fk([0.3, 0.7, -0.4, 1.2, 0.5, -0.8, 0.2])
+    matrix = [*map(str, T.ravel())]
+    code, out, _ = run(capsys, "ik", "iiwa14", "--matrix", *matrix, "--arm-angle", "30",
+                       "--ignore-limits", "--json")  # fmt: skip
+    data = json.loads(out)
+    assert code == 0 and data["method"] == "analytic:srs" and len(data["solutions"]) == 8
+    q = np.radians(data["solutions"])
+    np.testing.assert_allclose(iiwa.fk(q), np.broadcast_to(T, (8, 4, 4)), atol=1e-9)
+    np.testing.assert_allclose(iiwa.arm_angle(q), math.radians(30), atol=1e-9)
+    psi = repr(math.radians(30))
+    code, rad, _ = run(capsys, "ik", "iiwa14", "--matrix", *matrix, "--rad",
+                       "--arm-angle", psi, "--ignore-limits", "--json")  # fmt: skip
+    np.testing.assert_allclose(json.loads(rad)["solutions"], q, atol=1e-12)
+    code, _, err = run(capsys, "ik", "puma560", "--pose", "0.5", "0", "0.5", "0", "180", "0",
+                       "--arm-angle", "30")  # fmt: skip
+    assert code == 2 and err.startswith("kinematica: error: --arm-angle is a parameter")
+    code, out, _ = run(capsys, "ik", "iiwa14", "--pose", "5", "0", "0.5", "0", "180", "0",
+                       "--arm-angle", "30")  # fmt: skip
+    assert code == 1 and "unreachable" in out
+
+
 def test_show_prints_the_extracted_table_of_a_urdf(tmp_path):
     proc = subprocess.run(
         [sys.executable, "-m", "kinematica.cli.main", "show", str(URDF_DIR / "kuka_kr16_2.urdf")],

@@ -259,6 +259,9 @@ def ik(args: argparse.Namespace) -> int:
     target = _target(robot, args)
     q0 = None if args.q0 is None else q_in(robot, args.q0, args, "q0")
     tol = _tolerance(robot, args)
+    arm_angle = args.arm_angle
+    if arm_angle is not None and not args.rad:
+        arm_angle = math.radians(arm_angle)
     options = IKOptions(
         method=args.method,
         tol=tol,
@@ -266,6 +269,7 @@ def ik(args: argparse.Namespace) -> int:
         q0=q0,
         seed=args.seed,
         precision=_precision(robot, args),
+        arm_angle=arm_angle,
     )
     res = robot.ik(target, options=options)
     assert isinstance(res, IKResult)
@@ -418,6 +422,14 @@ def register(sub: Any) -> None:
         help="list solutions outside the joint limits among the others",
     )
     p.add_argument("--seed", type=_seed, default=0, help="seed of numeric restarts (default 0)")
+    p.add_argument(
+        "--arm-angle",
+        type=float,
+        metavar="PSI",
+        help="SRS 7R arms (iiwa type): all 8 solutions at this arm angle (degrees, or "
+        "radians with --rad): about the shoulder-wrist line, from the plane of that line "
+        "and axis 1 to the elbow",
+    )
     p.add_argument(
         "--tol",
         nargs="+",

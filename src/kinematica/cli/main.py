@@ -68,6 +68,7 @@ _OPTIONS = {
     "size": "--size",
     "fps": "--fps",
     "max_frames": "--max-frames",
+    "arm_angle": "--arm-angle",
 }
 
 

@@ -41,7 +41,7 @@ def parameter_values(name: str, value: ArrayLike, shape: tuple[int, ...]) -> Flo
             f"{name} must be a number (rad) or an array of them, got {value!r}", arg=name
         ) from None
     if not np.all(np.isfinite(v)):
-        raise ArgumentError(f"{name} must be finite (rad), got {value!r}", arg=name)
+        raise ArgumentError(f"{name} must be finite, got {value!r}", arg=name)
     if v.ndim and v.shape != shape:
         raise DimensionError(
             f"{name} must be one number or one per target (shape {shape}), got shape {v.shape}",

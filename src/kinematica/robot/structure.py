@@ -29,7 +29,7 @@ class Structure:
             handles (``"planar-2R"``, ``"planar-3R"``, ``"planar-PR"``,
             ``"planar-PRR"``, ``"scara"``, ``"anthropomorphic-3R"``,
             ``"elbow-3R"``, ``"spherical-wrist-6R"``, ``"three-parallel-6R"``,
-            ``"rrp-spherical-wrist"``), or ``"general"``.
+            ``"rrp-spherical-wrist"``, ``"srs-7R"``), or ``"general"``.
         summary: One line for people, e.g. ``"6R, spherical wrist"``.
         features: The geometry of the joint axes at q = 0.
         summary_es: The line in Spanish, e.g. ``"6R con muñeca esférica"``.
