@@ -10,6 +10,8 @@ built once per arm is never changed.
 
 from __future__ import annotations
 
+import math
+import numbers
 from typing import Any
 
 import numpy as np
@@ -34,12 +36,19 @@ def parameter_values(name: str, value: ArrayLike, shape: tuple[int, ...]) -> Flo
         ArgumentError: Not numbers, or NaN/inf among them.
         DimensionError: An array whose shape is not the targets' batch shape.
     """
+    n = math.prod(shape)
+    not_numbers = f"{name} must be a number (rad) or an array of them, got {value!r}"
+    if isinstance(value, bool):
+        raise ArgumentError(not_numbers, arg=name)
+    if isinstance(value, numbers.Real):  # one number: no array to build
+        one = float(value)
+        if not math.isfinite(one):
+            raise ArgumentError(f"{name} must be finite, got {value!r}", arg=name)
+        return np.full(n, one)
     try:
         v = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        raise ArgumentError(
-            f"{name} must be a number (rad) or an array of them, got {value!r}", arg=name
-        ) from None
+        raise ArgumentError(not_numbers, arg=name) from None
     if not np.all(np.isfinite(v)):
         raise ArgumentError(f"{name} must be finite, got {value!r}", arg=name)
     if v.ndim and v.shape != shape:
@@ -47,7 +56,6 @@ def parameter_values(name: str, value: ArrayLike, shape: tuple[int, ...]) -> Flo
             f"{name} must be one number or one per target (shape {shape}), got shape {v.shape}",
             arg=name,
         )
-    n = int(np.prod(shape, dtype=np.int64))
     return np.ascontiguousarray(np.broadcast_to(v, shape).reshape(n))
 
 
