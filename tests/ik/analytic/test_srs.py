@@ -263,6 +263,9 @@ def test_exactly_stretched_target_is_singular_just_past_it_not(iiwa: km.Robot) -
     s, n = np.array([0.0, 0.0, D1]), np.array([0.6, 0.0, 0.8])
     at_reach = iiwa.ik(_pose_with_wrist_at(s + (UPPER + FORE) * n), arm_angle=0.3)
     assert at_reach.status == "singular", at_reach.message
+    folded = iiwa.ik(_pose_with_wrist_at(s + (UPPER - FORE) * n), arm_angle=0.3,
+                     respect_limits=False)  # fmt: skip
+    assert folded.status == "singular" and {0, 1, 2, 4, 5, 6} <= set(folded.free_joints)
     inside = iiwa.ik(
         _pose_with_wrist_at(s + (UPPER + FORE) * (1 - 1e-13) * n),
         arm_angle=0.3,
@@ -313,3 +316,23 @@ def test_aligned_shoulder_or_wrist_axes(iiwa: km.Robot, joint: int, free: set[in
     assert_transform_close(iiwa.fk(res.solutions), np.broadcast_to(T, (res.count, 4, 4)), 1e-10)
     sums = res.solutions[:, min(free)] + res.solutions[:, max(free)]
     assert float(_wrapped(sums - (q[min(free)] + q[max(free)])).min()) <= FOUND
+
+
+def test_wrist_on_the_shoulder_of_equal_links() -> None:
+    # an iiwa-type arm with upper arm = forearm folds W onto S: no line S-W at all
+    rows = [
+        km.Revolute(d=D1, alpha=-PI / 2),
+        km.Revolute(alpha=PI / 2),
+        km.Revolute(d=FORE, alpha=PI / 2),
+        km.Revolute(alpha=-PI / 2),
+        km.Revolute(d=FORE, alpha=-PI / 2),
+        km.Revolute(alpha=PI / 2),
+        km.Revolute(d=FLANGE),
+    ]
+    arm = km.Robot.from_dh(rows)
+    q = np.array([0.2, 0.5, 0.3, PI, 0.4, 0.6, 0.1])
+    T = arm.fk(q)
+    assert np.isnan(arm.arm_angle(q))
+    res = arm.ik(T, arm_angle=0.3)
+    assert res.status == "singular" and {0, 1, 2, 4, 5, 6} <= set(res.free_joints)
+    assert_transform_close(arm.fk(res.solutions), np.broadcast_to(T, (res.count, 4, 4)), 1e-10)

@@ -31,8 +31,8 @@
 //
 // At the edges (flagged singular, with the joints free along the continuum):
 // * the elbow on the line S-W (stretched or folded, possible when the perpendiculars from S
-//   and W onto axis 4 have the same foot, as on the iiwa): the arm plane and ψ are
-//   undefined; any turn of the arm about S-W solves (joints 1-3 and 5-7 free): one
+//   and W onto axis 4 have the same foot, as on the iiwa), or W on S (folded, equal links):
+//   the arm plane and ψ are undefined; any turn of the arm about S-W solves (joints 1-3 and 5-7 free): one
 //   representative per branch;
 // * S-W along the reference (axis 1): ψ's reference is undefined; turning the whole arm
 //   about axis 1 solves (q1 and the wrist free), a representative measured from `ref_alt`;
@@ -181,7 +181,9 @@ struct SRSParams {
             double s4, c4;
             sincos(q4[e], s4, c4);
             const Basis A = arm_basis(s4, c4, collinear, near);
-            // W on S (a folded arm of equal links): S-W has no direction; any will do
+            // W on S (a folded arm of equal links): S-W has no direction, no arm plane;
+            // any will do
+            if (!(D > tiny)) collinear = true;
             const Vec3 n = D > tiny ? (1.0 / D) * d : A.n;
             const Basis B = target_basis(n, no_reference, near);
             // R123 v = B.vector(A.coords(v)); R123ᵀ v = A.vector(B.coords(v))

@@ -140,9 +140,9 @@ def arm_angle(chain: Chain, q: ArrayLike) -> FloatArray:
 
     Measured as the module docstring defines it, from the joint frames' forward
     kinematics (S, the elbow point E and the wrist centre W placed by frames 0, 3
-    and 4). NaN where it is undefined: the elbow on the line S-W, or S-W along
-    axis 1 (within 1e-12 of the arm's size, resp. in sine: the solver's
-    ``COLLINEAR_TOL`` and ``REFERENCE_TOL``).
+    and 4). NaN where it is undefined: the elbow on the line S-W or W on S, or
+    S-W along axis 1 (within 1e-12 of the arm's size, resp. in sine: the
+    solver's ``COLLINEAR_TOL`` and ``REFERENCE_TOL``).
 
     Args:
         chain: An SRS 7R chain.
@@ -185,7 +185,9 @@ def arm_angle(chain: Chain, q: ArrayLike) -> FloatArray:
     x = np.sum(r * e, axis=-1)
     psi = np.arctan2(y, x)
     rn, en = np.linalg.norm(r, axis=-1), np.linalg.norm(e, axis=-1)
-    undefined = (rn <= _core.srs.REFERENCE_TOL) | (en <= _core.srs.COLLINEAR_TOL * f.size)
+    tiny = _core.srs.COLLINEAR_TOL * f.size
+    undefined = (rn <= _core.srs.REFERENCE_TOL) | (en <= tiny)
+    undefined |= np.linalg.norm(sw, axis=-1) <= tiny  # W on S: S-W has no direction
     out: FloatArray = np.where(undefined, np.nan, psi)
     return out
 
