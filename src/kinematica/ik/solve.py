@@ -285,10 +285,13 @@ def _solve(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IK
         closed = _at_parameter(chain, closed, options, m is not None, values)
     if method == "analytic" and closed is None:
         why = "a mask was given" if m is not None else f"structure: {structure_of(chain)[1]}"
+        at_angle = m is None and closed_form(chain, kind, "arm_angle") is not None
         raise KinematicaError(
-            f"no closed-form solver for this arm ({why})",
+            f"no closed-form solver for this arm ({why}) without an arm angle"
+            if at_angle
+            else f"no closed-form solver for this arm ({why})",
             arg="method",
-            suggest=("method", "numeric"),
+            suggest=("arm_angle", 0.0) if at_angle else ("method", "numeric"),
         )
     solver, labels, name = _solver(chain, closed, tolerance, respect_limits, seed, w)
     slack = slack_of(chain) if closed is not None else 0.0

@@ -286,6 +286,8 @@ def test_the_arm_angle_asked_of_other_arms_and_bad_values(iiwa: km.Robot) -> Non
     Ti = iiwa.fk(np.full(7, 0.3))
     with pytest.raises(KinematicaError, match="method='numeric'"):
         iiwa.ik(Ti, arm_angle=0.1, method="numeric")
+    with pytest.raises(KinematicaError, match=r"without an arm angle; use arm_angle=0\.0"):
+        iiwa.ik(Ti, method="analytic")
     with pytest.raises(KinematicaError, match="SRS 7R arms"):  # a position target
         iiwa.ik(Ti[:3, 3], arm_angle=0.1)
     with pytest.raises(ArgumentError, match="arm_angle must be finite"):

@@ -15,10 +15,10 @@
 // * Arm angle ψ (the parameter): the angle, right-handed about n = (W - S)/|W - S|, from the
 //   reference half-plane (bounded by the line S-W, containing the direction `ref`, axis 1)
 //   to the arm half-plane (bounded by S-W, containing the elbow point E). This is the
-//   "conventional SEW angle" of Elias and Wen (IK-Geo, 2022) with reference vector axis 1;
-//   for the iiwa it is the angle of Shimizu et al. (2008) measured from the plane S-E-W
-//   of q3 = 0 (that plane contains axis 1), 0 where the elbow is on the side axis 1 points
-//   to. The triangle S, E, W has sides |se|, |ew| (E is on axis 4, which W turns about) and
+//   "conventional SEW angle" of Elias and Wen (IK-Geo, 2022) with reference vector axis 1.
+//   On the iiwa its reference plane is Shimizu et al.'s (2008), the plane S-E-W of the
+//   solution with q3 = 0 (axes 2 and 4 are then parallel: the plane contains axis 1), and
+//   ψ = 0 is the half-plane on the side axis 1 points to (elbow up). The triangle S, E, W has sides |se|, |ew| (E is on axis 4, which W turns about) and
 //   D, so ψ puts E at one point: its part across n is along m_t = cos ψ r + sin ψ (n × r),
 //   r the unit part of `ref` across n.
 // * Shoulder: R1 R2 R3 is the rotation taking (n3, m3) to (n, m_t), n3 and m3 the same

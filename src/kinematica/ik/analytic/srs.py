@@ -8,11 +8,13 @@ containing axis 1's direction h1) to the arm half-plane (bounded by S-W and
 containing the elbow point E, the foot of the perpendicular from S onto axis 4).
 It is the "conventional SEW angle" of Elias and Wen (IK-Geo, "Redundancy
 parameterization and inverse kinematics of 7-DOF revolute manipulators", 2022)
-with axis 1 as reference vector: it needs no solution of another arm (Shimizu et
-al. 2008 measure from the plane S-E-W of the solution with q3 = 0; on the iiwa
-that plane contains axis 1, so it is this reference plane, and ψ = 0 puts the
-elbow on the side axis 1 points to: up). It is undefined where the elbow lies on
-S-W (stretched or folded) and where S-W lies along axis 1.
+with axis 1 as reference vector, chosen because it is defined by the target
+alone, for any SRS geometry, with no solution of another arm to compute first.
+Shimizu et al. (2008) measure from the plane S-E-W of the solution with q3 = 0;
+on the iiwa that plane contains axis 1 (axes 2 and 4 are then parallel), so it
+is this reference plane, and ψ = 0 is the half-plane on the side axis 1 points
+to (elbow up). It is undefined where the elbow lies on S-W (stretched or
+folded), where W is on S, and where S-W lies along axis 1.
 
 The core's solver (``cpp/include/kinematica/solvers/srs.hpp``) gives 8 slots:
 ``elbow ±`` (q4 = q4* ± β, q4* where the elbow is stretched, β ∈ [0, π] its bend:
