@@ -35,7 +35,6 @@ from numpy.typing import NDArray
 import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.dh.joints import Prismatic, Revolute
-from kinematica.dh.lines import AXIS_ANGLE_TOL
 from kinematica.ik.analytic.sampling import random_transform
 from kinematica.ik.analytic.spherical_wrist import sample_wrist_rows, wrist_solver
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
@@ -72,16 +71,11 @@ def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
     if target != "pose" or f.shoulder_center is None or f.dof != 6:
         return None
     back = chain.reversed()
-    fb = features(back)
-    solver = wrist_solver(back, fb)
+    # where q = 0 is singular, "no-flip" is the bend of q2 > 0, that is of q'5 < 0
+    solver = wrist_solver(back, features(back), singular_side=-1.0)
     if solver is None:
         return None
     wrist, positions = solver
-    h4, h5, h6 = fb.directions[3:]
-    if abs(float(np.cross(h4, h5) @ h6)) <= AXIS_ANGLE_TOL:
-        # q = 0 is singular for the shoulder: the reversed arm's no-flip is the side its
-        # q'5 > 0 bends, that is q2 < 0 here; this arm's no-flip is q2 > 0's side
-        wrist.flip = -wrist.flip
     params = _core.decoupled.SphericalShoulderParams()
     params.wrist = wrist
     slide = f.joint_types[3] == "P"

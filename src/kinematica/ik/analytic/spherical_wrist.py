@@ -43,7 +43,12 @@ PI = math.pi
 
 
 def wrist_params(
-    params: Any, h4: FloatArray, h5: FloatArray, h6: FloatArray, R_home: FloatArray
+    params: Any,
+    h4: FloatArray,
+    h5: FloatArray,
+    h6: FloatArray,
+    R_home: FloatArray,
+    singular_side: float = 1.0,
 ) -> bool:
     """Fill the wrist's fields of ``params``; False for no 3-DOF wrist.
 
@@ -53,6 +58,9 @@ def wrist_params(
         h5: See ``h4``.
         h6: See ``h4``.
         R_home: ``(3, 3)`` the tool's rotation at q = 0.
+        singular_side: When the wrist is singular at q = 0, "no-flip" is the bend
+            of q5 > 0 (``1``) or of q5 < 0 (``-1``, the reversed chain of a
+            spherical shoulder, whose q2 is -q5).
     """
     k45 = float(h4 @ h5)
     ea = h5 - k45 * h4
@@ -82,14 +90,18 @@ def wrist_params(
     params.k45 = k45
     params.s45 = s45
     params.k56 = k56
-    params.flip = math.copysign(1.0, home if abs(home) > AXIS_ANGLE_TOL else bend)
+    params.flip = math.copysign(1.0, home if abs(home) > AXIS_ANGLE_TOL else singular_side * bend)
     twin = max(abs(k45), abs(k56), float(np.linalg.norm(np.cross(h4, h6))))
     params.twin = twin <= _core.decoupled.TWIN_TOL
     return True
 
 
-def wrist_solver(chain: Chain, f: Features) -> tuple[Any, tuple[str, ...]] | None:
+def wrist_solver(
+    chain: Chain, f: Features, singular_side: float = 1.0
+) -> tuple[Any, tuple[str, ...]] | None:
     """The filled ``SphericalWristParams`` of a 6R or RRP arm whose last three axes meet.
+
+    ``singular_side``: see :func:`wrist_params`.
 
     Returns:
         ``(params, position labels (4,))``, or None when joints 1-3 cannot move
@@ -111,7 +123,7 @@ def wrist_solver(chain: Chain, f: Features) -> tuple[Any, tuple[str, ...]] | Non
     params = _core.decoupled.SphericalWristParams()
     params.arm = arm.arm
     params.c_tool = c_tool
-    if not wrist_params(params, h[3], h[4], h[5], M[:3, :3]):
+    if not wrist_params(params, h[3], h[4], h[5], M[:3, :3], singular_side):
         return None
     params.q4_lo, params.q4_hi = chain.qlim[3]
     params.q6_lo, params.q6_hi = chain.qlim[5]
