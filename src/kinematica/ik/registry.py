@@ -98,7 +98,9 @@ class SolverSpec:
         describes: False for a solver of some targets of arms of many
             structures (it names no structure: :func:`describe` passes it by).
         derivation: The textbook derivation :mod:`kinematica.symbolic` writes for
-            arms of this structure (its recipe's name), or ``None``.
+            arms of this structure (its recipe's name), or ``None``; the recipe
+            ``"reversed-spherical-wrist"`` has no symbolic steps: the report says
+            the method in words.
         geometric: The geometric method's recipe for the position (``"planar"``,
             ``"arm-plane"``), or ``None``.
         singular: The named singularities of the structure (``"shoulder"``,

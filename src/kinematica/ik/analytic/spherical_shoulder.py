@@ -136,6 +136,8 @@ def _shoulder_arm(types: str) -> SolverSpec:
         handles=lambda f: f.joint_types == types and f.shoulder_center is not None,
         build=build,
         sample_arm=_sample(not six),
+        # kinematica.symbolic says the method in words (no symbolic steps for it)
+        derivation="reversed-spherical-wrist",
     )
 
 
