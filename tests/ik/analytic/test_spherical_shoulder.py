@@ -20,6 +20,7 @@ from support.ik_search import dls_solutions, joint_distance
 
 import kinematica as km
 from kinematica.dh import Prismatic, Revolute
+from kinematica.dh.lines import length_tol
 from kinematica.ik import closed_form
 from kinematica.ik.analytic.spherical_shoulder import SPECS, reversed_arm, shoulder_labels
 from kinematica.ik.analytic.spherical_wrist import sample_wrist_rows
@@ -158,14 +159,15 @@ def test_no_flip_bends_the_shoulder_as_at_home() -> None:
 
 
 # ----------------------------------------------------- the Panda, q7 locked
-def panda_6r(q7: float, tilt: float = 0.0) -> km.Robot:
+def panda_6r(q7: float, tilt: float = 0.0, miss: float = 0.0) -> km.Robot:
     """The Panda's modified DH table (Franka's documentation), joint 7 at q7 in the tool.
 
-    ``tilt`` turns axis 3 off axis 1 at q = 0 (an offset of joint 2).
+    ``tilt`` turns axis 3 off axis 1 at q = 0 (an offset of joint 2); ``miss`` (m)
+    moves axis 2 off axis 1 (a1).
     """
     rows = [
         Revolute(d=0.333),
-        Revolute(alpha=-PI / 2, offset=tilt),
+        Revolute(a=miss, alpha=-PI / 2, offset=tilt),
         Revolute(d=0.316, alpha=PI / 2),
         Revolute(a=0.0825, alpha=PI / 2),
         Revolute(d=0.384, a=-0.0825, alpha=-PI / 2),
@@ -224,6 +226,26 @@ def test_no_flip_of_a_singular_home_is_q2_positive(tilt: float, home_decides: bo
                 np.sign(_triple(robot, qs)) == np.sign(home) if home_decides else np.sin(qs[1]) > 0
             )
             assert ("no-flip" in label) == no_flip, (label, qs)
+
+
+@pytest.mark.parametrize(("factor", "meet"), [(0.1, True), (10.0, False)])
+def test_axes_meet_within_the_line_geometrys_length_tolerance(factor: float, meet: bool) -> None:
+    """Axes 1 and 2 missing each other by a tenth of length_tol still meet; by 10x, not."""
+    size = features(panda_6r(0.3).chain).size
+    robot = panda_6r(0.3, miss=factor * length_tol(size))
+    q = np.random.default_rng(38).uniform(-2.5, 2.5, 6)
+    T = robot.fk(q)
+    res = robot.ik(T, seed=0)
+    if meet:
+        # the exact shoulder's candidates, repaired to this arm's solutions
+        assert classify(robot).kind == "spherical-shoulder-6R"
+        assert res.method == "analytic:spherical-shoulder" and not res.complete
+        assert _found(robot, res.solutions, q) <= FOUND_TOL
+        reached = robot.fk(res.solutions)
+        assert_transform_close(reached, np.broadcast_to(T, reached.shape), atol=REACH_TOL)
+    else:
+        assert classify(robot).kind == "general"
+        assert res.method == "numeric:lm"
 
 
 def test_a_slide_after_the_shoulder_and_the_builders_refusals() -> None:

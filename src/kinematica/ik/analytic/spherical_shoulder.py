@@ -27,6 +27,7 @@ Branch labels, base to tip (slot ``2 k + s``):
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable
 
 import numpy as np
@@ -71,8 +72,15 @@ def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
     if target != "pose" or f.shoulder_center is None or f.dof != 6:
         return None
     back = chain.reversed()
+    # The reversed chain's frame is this arm's tool frame at q = 0: its wrist centre is
+    # the shoulder centre seen from there. Taken from this arm, with this arm's size (the
+    # reversed chain counts other translations), so that the line geometry's tolerances
+    # decide once, on this arm.
+    M_inv = inv_transform(chain.fk(np.zeros(6))[0])
+    centre = M_inv[:3, :3] @ f.shoulder_center + M_inv[:3, 3]
+    fb = dataclasses.replace(features(back), wrist_center=centre, size=f.size)
     # where q = 0 is singular, "no-flip" is the bend of q2 > 0, that is of q'5 < 0
-    solver = wrist_solver(back, features(back), singular_side=-1.0)
+    solver = wrist_solver(back, fb, singular_side=-1.0)
     if solver is None:
         return None
     wrist, positions = solver
