@@ -228,6 +228,28 @@ def test_no_flip_of_a_singular_home_is_q2_positive(tilt: float, home_decides: bo
             assert ("no-flip" in label) == no_flip, (label, qs)
 
 
+@pytest.mark.parametrize("q13", [0.9, 3.0])
+def test_a_singular_shoulder_frees_joints_1_and_3_within_the_limits(q13: float) -> None:
+    """q2 = 0 aligns axes 1 and 3: only q1 + q3 is fixed; the representative is within limits.
+
+    With q1 + q3 = 3.0 and |q1|, |q3| <= 2.8973 (the Panda's limits), q3 = 0 would put
+    q1 outside: the family is followed into the limits.
+    """
+    robot = panda_6r(0.3).with_limits(km.load("panda").qlim[:6])
+    q = np.array([q13 - 0.5, 0.0, 0.5, -1.2, 0.3, 1.5])
+    T = robot.fk(q)
+    res = robot.ik(T)
+    assert res.status == "singular" and res.free_joints == (0, 2)
+    lo, hi = robot.qlim.T
+    assert ((res.solutions >= lo) & (res.solutions <= hi)).all()
+    on_it = res.solutions[np.abs(res.solutions[:, 1]) < 1e-12]
+    assert len(on_it) >= 1
+    sums = np.angle(np.exp(1j * (on_it[:, 0] + on_it[:, 2] - q13)))
+    assert np.abs(sums).max() < 1e-12
+    reached = robot.fk(res.solutions)
+    assert_transform_close(reached, np.broadcast_to(T, reached.shape), atol=REACH_TOL)
+
+
 @pytest.mark.parametrize(("factor", "meet"), [(0.1, True), (10.0, False)])
 def test_axes_meet_within_the_line_geometrys_length_tolerance(factor: float, meet: bool) -> None:
     """Axes 1 and 2 missing each other by a tenth of length_tol still meet; by 10x, not."""
