@@ -145,10 +145,16 @@ def describe(features: Features, specs: tuple[SolverSpec, ...]) -> tuple[str, st
     elif n > 6:
         summary += ", redundant"
         summary_es += ", redundante"
+        if features.shoulder_center is not None:
+            summary += ", spherical shoulder"
+            summary_es += ", con hombro esférico"
         if features.wrist_center is not None:
             summary += ", spherical wrist"
             summary_es += ", con muñeca esférica"
     elif features.wrist_center is not None:
         summary += ", last three axes meet (wrist)"
         summary_es += ", los tres últimos ejes se cortan (muñeca)"
+    elif features.shoulder_center is not None:
+        summary += ", first three axes meet (shoulder)"
+        summary_es += ", los tres primeros ejes se cortan (hombro)"
     return "general", summary, summary_es
