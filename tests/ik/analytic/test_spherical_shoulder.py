@@ -274,6 +274,13 @@ def test_a_slide_after_the_shoulder_and_the_builders_refusals() -> None:
     stanford_reversed = _robot(*reversed_arm(*_stanford()))
     assert classify(stanford_reversed).kind == "spherical-shoulder-prr"
     assert classify(stanford_reversed).summary == "spherical shoulder + PRR"
+    # "slide out" is the larger q4 (the reversed arm's smaller q'3 = -q4)
+    for q4 in (-0.4, 0.3):
+        res = stanford_reversed.ik(stanford_reversed.fk(np.array([0.3, 0.8, -0.5, q4, 1.0, 0.2])))
+        slid = {label: q[3] for label, q in zip(res.branches, res.solutions, strict=True)}
+        outs = [v for k, v in slid.items() if "slide out" in k]
+        ins = [v for k, v in slid.items() if "slide in" in k]
+        assert len(outs) == len(ins) == 4 and min(outs) > max(ins)
     # both a spherical wrist and a spherical shoulder: the wrist's solver takes it
     both = [Revolute(d=0.3, alpha=PI / 2), Revolute(alpha=PI / 2), Revolute(d=0.4, alpha=-PI / 2)]
     both += [Revolute(alpha=PI / 2), Revolute(alpha=-PI / 2), Revolute(d=0.1)]

@@ -19,9 +19,10 @@ Branch labels, base to tip (slot ``2 k + s``):
   on the Panda, sin q2 > 0.
 * then how joints 4-6 (the reversed arm's joints 3, 2, 1) place the shoulder centre
   as the tool sees it, named as for a spherical-wrist arm with its shoulder called
-  the wrist: ``elbow up`` / ``elbow down`` (or ``elbow branch 1/2``, ``slide out/in``)
-  for joint 4, ``wrist right`` / ``wrist left`` (or ``front`` / ``back``) for joints 6
-  and 5; arms whose last two axes neither meet nor are parallel number these
+  the wrist: ``elbow up`` / ``elbow down`` (or ``elbow branch 1/2``; for a slide,
+  ``slide out`` / ``slide in``: the larger and the smaller q4) for joint 4,
+  ``wrist right`` / ``wrist left`` (or ``front`` / ``back``) for joints 6 and 5; arms
+  whose last two axes neither meet nor are parallel number these
   ``wrist position 1..4``.
 """
 
@@ -52,11 +53,14 @@ def shoulder_labels(positions: tuple[str, ...]) -> tuple[str, ...]:
 
     The reversed arm's shoulder (its joints 1, 2) is this arm's wrist end, its
     elbow this arm's joint 4: ``"shoulder right, elbow up"`` becomes ``"elbow up,
-    wrist right"``, ``"position 2"`` becomes ``"wrist position 2"``.
+    wrist right"``, ``"position 2"`` becomes ``"wrist position 2"``; a slide's
+    ``"slide out"`` (the larger ``q'3 = -q4``) becomes ``"slide in"``.
     """
+    # the reversed arm's slide out is its larger q'3 = -q4: this arm's slide in
+    slide = {"slide out": "slide in", "slide in": "slide out"}
     labels = []
     for pos in positions:
-        parts = [p.replace("shoulder", "wrist") for p in pos.split(", ")]
+        parts = [slide.get(p, p.replace("shoulder", "wrist")) for p in pos.split(", ")]
         far = ", ".join(parts[::-1]) if len(parts) > 1 else f"wrist {parts[0]}"
         labels += [f"shoulder {s}, {far}" for s in ("no-flip", "flip")]
     return tuple(labels)
