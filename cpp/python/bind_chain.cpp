@@ -311,6 +311,18 @@ void bind_chain(nb::module_& m) {
             }
             return a;
         }, "(n, 3) the translation of each joint's fixed part, in its frame (m); a DH row's (a, 0, d).")
+        .def_prop_ro("fixed_parts", [](const Chain& c) {
+            double* out;
+            F64 a = new_f64({c.dof(), 4, 4}, out);
+            for (int i = 0; i < c.dof(); ++i) {
+                const km::Joint& J = c.joints()[static_cast<size_t>(i)];
+                const Pose F = km::detail::rot_z(J.ct, J.st) * km::detail::trans(J.t) *
+                               km::detail::rot_x(J.ca, J.sa);
+                F.to_rows(out + 16 * i);
+            }
+            return a;
+        }, "(n, 4, 4) each joint's fixed part Rz(θ) Trans(t) Rx(α), after its motion:\n"
+           "T = start · Π_i [M_i(q_i) · fixed_i] · tool.")
         .def_prop_ro("start", [](const Chain& c) { return c.view().start; })
         .def_prop_ro("tool", [](const Chain& c) { return c.view().tool; })
         .def_prop_ro("base", [](const Chain& c) { return c.view().base; })

@@ -13,6 +13,7 @@ given each generating configuration's own value (``spec.parameter_of``).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import zlib
 
@@ -129,3 +130,23 @@ def test_far_targets_are_unreachable_with_a_gap(spec: SolverSpec) -> None:
     res = robot.ik(far, **_parameter(spec, robot, q))
     assert np.all(res.status == "unreachable"), res.message
     assert np.all(res.gap > 1.0)
+
+
+def test_arms_no_solver_describes_name_their_meeting_axes() -> None:
+    # the first and last three axes meeting: the Panda (shoulder); an iiwa whose elbow
+    # axis passes through the shoulder (d3 = 0: no SRS arm, the iiwa itself is one)
+    assert km.classify(km.load("panda")).summary.endswith("redundant, spherical shoulder")
+    assert km.classify(km.load("iiwa14")).kind == "srs-7R"
+    iiwa = km.load("iiwa14")
+    no_upper_arm = [
+        dataclasses.replace(j, d=0.0) if i == 2 else j for i, j in enumerate(iiwa.links)
+    ]
+    both = km.classify(km.Robot.from_dh(no_upper_arm))
+    assert both.summary.endswith("redundant, spherical shoulder, spherical wrist")
+    assert both.summary_es.endswith("redundante, con hombro esférico, con muñeca esférica")
+    # a 5R arm whose first three axes meet (no solver of its own)
+    rows = [km.Revolute(d=0.3, alpha=math.pi / 2), km.Revolute(alpha=-math.pi / 2)]
+    rows += [km.Revolute(d=0.3, alpha=math.pi / 2), km.Revolute(a=0.3), km.Revolute(a=0.2)]
+    five = km.classify(km.Robot.from_dh(rows))
+    assert five.kind == "general"
+    assert five.summary == "5 joints (RRRRR), first three axes meet (shoulder)"

@@ -36,7 +36,6 @@ from numpy.typing import ArrayLike, NDArray
 import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.dh.joints import Revolute
-from kinematica.dh.lines import common_point
 from kinematica.errors import KinematicaError
 from kinematica.ik.analytic.arm_point import unit_normal
 from kinematica.ik.analytic.sampling import random_transform
@@ -65,14 +64,10 @@ def srs_points(f: Features) -> tuple[FloatArray, FloatArray, FloatArray] | None:
     4 passing through neither (each within the line geometry's length tolerance).
     E0 is the foot of the perpendicular from S onto axis 4 (base frame, m).
     """
-    if f.joint_types != "RRRRRRR" or f.wrist_center is None:
+    if f.joint_types != "RRRRRRR" or f.wrist_center is None or f.shoulder_center is None:
         return None
     h, p = f.directions, f.points
-    if f.all_parallel(range(3)):
-        return None
-    S = common_point(h[:3], p[:3], f.size)
-    if S is None:
-        return None
+    S = np.asarray(f.shoulder_center, dtype=float)
     W = np.asarray(f.wrist_center, dtype=float)
     E = p[3] + float((S - p[3]) @ h[3]) * h[3]
     for point in (S, W):
