@@ -338,3 +338,11 @@ def test_wrist_on_the_shoulder_of_equal_links() -> None:
     res = arm.ik(T, arm_angle=0.3)
     assert res.status == "singular" and {0, 1, 2, 4, 5, 6} <= set(res.free_joints)
     assert_transform_close(arm.fk(res.solutions), np.broadcast_to(T, (res.count, 4, 4)), 1e-10)
+
+
+def test_arm_angle_of_any_batch_shape(iiwa: km.Robot) -> None:
+    q = _generic_q(np.random.default_rng(10), 6)
+    flat = iiwa.arm_angle(q)
+    assert np.shape(iiwa.arm_angle(q[0])) == () and float(iiwa.arm_angle(q[0])) == flat[0]
+    assert iiwa.arm_angle(q[:1]).shape == (1,)
+    np.testing.assert_array_equal(iiwa.arm_angle(q.reshape(3, 2, 7)), flat.reshape(3, 2))
