@@ -42,7 +42,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _common import fmt_time, header, shortest_per_item, table, verdict
+from _common import best_of, fmt_time, header, shortest_per_item, table, verdict
 
 import kinematica as km
 from kinematica import _core
@@ -56,14 +56,9 @@ TOL = 1e-10
 FOUND = 1e-9
 
 
-def cpu_best_of(fn: Callable[[], object], repeats: int = 3) -> float:
-    """Shortest CPU time (s) of the process over ``repeats`` calls (the machine is shared)."""
-    times = []
-    for _ in range(repeats):
-        t0 = time.process_time()
-        fn()
-        times.append(time.process_time() - t0)
-    return min(times)
+def cpu_best_of(fn: Callable[[], object]) -> float:
+    """Shortest CPU time (s) of the process over 3 calls (the machine is shared)."""
+    return best_of(fn, clock=time.process_time)
 
 
 def _wrapped(a: np.ndarray) -> np.ndarray:
