@@ -8,8 +8,8 @@ on one core (``workers=1``):
 
 * time per pose of ``robot.ik(T, arm_angle=psi)`` (solve, check by FK,
   deduplicate, limits): batched (one call on all poses with one arm angle, best
-  of 3; and with one arm angle per pose, which costs one core call per distinct
-  value; CPU time of the process: the machine is shared) and one pose at a time
+  of 3; and with each pose's own arm angle; CPU time of the process: the machine
+  is shared) and one pose at a time
   (median over ``--singles`` poses, each pose's shortest of 3 passes); the
   core's calls alone (``SRSParams.ik_batch`` / ``ik``: the solve and the check,
   no Python around them) and the solver alone (``candidates``: the 8 raw
@@ -94,8 +94,7 @@ def main() -> None:
     rows = []
     batch = cpu_best_of(lambda: robot.ik(T, arm_angle=one_psi, workers=1)) / n
     core_batch = cpu_best_of(lambda: params.ik_batch(core, T, opts, None, None, 1)) / n
-    few = min(n, 500)
-    per_pose = cpu_best_of(lambda: robot.ik(T[:few], arm_angle=psi[:few], workers=1)) / few
+    per_pose = cpu_best_of(lambda: robot.ik(T, arm_angle=psi, workers=1)) / n
     single = shortest_per_item(lambda P: robot.ik(P, arm_angle=one_psi), singles)
     core_single = shortest_per_item(
         lambda P: params.ik(core, P, opts, None, closed.labels), singles

@@ -5,8 +5,44 @@
 
 namespace kmpy {
 
+namespace {
+
+using km::srs::SRSParams;
+
+//! An SRS arm at one arm angle as a solver (ik.hpp's interface): one per target of a batch
+//! with an angle per target, the Params shared.
+struct AtAngle {
+    const SRSParams& params;
+    double psi;
+    using Work = km::NoWork;
+    Work work(int) const { return {}; }
+    int slots() const { return params.slots(); }
+    int dof() const { return params.dof(); }
+    void solve(const km::ChainView&, const km::Pose& T, const double*, double* Q,
+               km::SolverInfo& info, Work&) const {
+        params.solve_at(T, psi, Q, info);
+    }
+};
+
+//! ik_batch with target i at the arm angle psi[i].
+nb::dict ik_batch_at(const SRSParams& p, const km::Chain& chain, F64 T, F64 psi,
+                     const km::CheckOptions& opts, nb::handle q0, nb::handle invalid,
+                     int workers) {
+    const npy_intp N = in_f64(T, "T", 3, {-1, 4, 4}).dim[0];
+    const double* angle = in_f64(psi, "psi", 1, {N}).data;
+    const AtAngle base{checked(p), p.psi};
+    return ik_many_rows(base, chain, T, q0, invalid, workers,
+                        [&base, angle, &opts](npy_intp i, const km::ChainView& ch,
+                                              const km::Pose& P, const double* q0i,
+                                              km::IKWork<AtAngle>& work, const km::CheckOut& o) {
+                            const AtAngle at{base.params, angle[i]};
+                            return solve_checked(at, ch, P, opts, q0i, work, o);
+                        });
+}
+
+}  // namespace
+
 void bind_srs(nb::module_& m) {
-    using km::srs::SRSParams;
     nb::module_ sub = m.def_submodule(
         "srs", "SRS 7R arms (axes 1-3 meet, axes 5-7 meet): all 8 solutions at an arm angle.");
     auto cls = bind_closed_form<SRSParams>(
@@ -37,6 +73,10 @@ void bind_srs(nb::module_& m) {
             return out;
         },
         nb::arg("psi"), "A copy solving at the arm angle psi (rad).");
+    cls.def("ik_batch_at", &ik_batch_at, nb::arg("chain"), nb::arg("T"), nb::arg("psi"),
+            nb::arg("options"), nb::arg("q0").none(), nb::arg("invalid").none(),
+            nb::arg("workers"),
+            "ik_batch of targets T (N, 4, 4), target i at the arm angle psi[i] (N,) (rad).");
     sub.attr("COLLINEAR_TOL") = km::srs::COLLINEAR_TOL;
     sub.attr("REFERENCE_TOL") = km::srs::REFERENCE_TOL;
 }

@@ -158,10 +158,11 @@ nb::object ik_rigid(const Solver& s, const km::Chain& chain, F64 T, const km::Ch
 
 //! A batch of N targets: a dict of arrays q (N, m, n), slot (N, m), res (N, m, 2),
 //! status (N,), count (N,), out_count (N,), gap (N,), nearest (N, 2), near (N,),
-//! free (N, n).
-template <class Solver>
-nb::dict ik_many(const Solver& s, const km::Chain& chain, F64 Th,
-                 const km::CheckOptions& opts, nb::handle q0h, nb::handle invalidh, int workers) {
+//! free (N, n). Target i is solved and checked by solve_row(i, chain, P, q0 of i, work, out)
+//! (a solver with a value per target); s gives the work arrays' dimensions.
+template <class Solver, class SolveRow>
+nb::dict ik_many_rows(const Solver& s, const km::Chain& chain, F64 Th, nb::handle q0h,
+                      nb::handle invalidh, int workers, const SolveRow& solve_row) {
     check_dims(s, chain);
     const km::ChainView ch = chain.view();
     const int n = ch.n, m = s.slots();
@@ -200,7 +201,7 @@ nb::dict ik_many(const Solver& s, const km::Chain& chain, F64 Th,
                     rep = km::invalid_target(m, n, o);
                 } else {
                     const km::Pose P = km::Pose::from_rows(T.data + 16 * i);
-                    rep = solve_checked(s, ch, P, opts, q0 != nullptr ? q0 + i * n : nullptr, work, o);
+                    rep = solve_row(i, ch, P, q0 != nullptr ? q0 + i * n : nullptr, work, o);
                 }
                 for (int r = 0; r < m; ++r) slot[i * m + r] = slots[static_cast<size_t>(r)];
                 status[i] = static_cast<npy_int64>(rep.status);
@@ -215,6 +216,18 @@ nb::dict ik_many(const Solver& s, const km::Chain& chain, F64 Th,
         });
     }
     return out;
+}
+
+//! ik_many_rows with one solver for every target.
+template <class Solver>
+nb::dict ik_many(const Solver& s, const km::Chain& chain, F64 Th,
+                 const km::CheckOptions& opts, nb::handle q0h, nb::handle invalidh, int workers) {
+    return ik_many_rows(s, chain, Th, q0h, invalidh, workers,
+                        [&s, &opts](npy_intp, const km::ChainView& ch, const km::Pose& P,
+                                    const double* q0, km::IKWork<Solver>& work,
+                                    const km::CheckOut& o) {
+                            return solve_checked(s, ch, P, opts, q0, work, o);
+                        });
 }
 
 //! (Q (m, n), singular, near, gap, free mask): the solver's raw candidates of one target.

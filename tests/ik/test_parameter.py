@@ -38,7 +38,7 @@ def test_bad_values(value: object, error: type[Exception], match: str) -> None:
     assert err.value.arg == "arm_angle"  # type: ignore[attr-defined]
 
 
-def test_a_batch_of_values_is_one_call_per_value() -> None:
+def test_a_batch_of_values_solves_each_target_at_its_own() -> None:
     iiwa = km.load("iiwa14")
     q = np.random.default_rng(0).uniform(-1.5, 1.5, (5, 7))
     T = np.ascontiguousarray(iiwa.fk(q))

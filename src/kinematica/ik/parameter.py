@@ -3,9 +3,10 @@
 ``robot.ik(T, arm_angle=psi)`` solves an SRS 7R arm at the arm angle ``psi``
 (:mod:`kinematica.ik.analytic.srs`): one value for every target, or one per
 target. :class:`AtValues` stands in for the closed form's ``Params``
-(``ik``, ``ik_rigid``, ``ik_batch``, ``candidates``), each call made with a copy
-of them set to the target's value (``Params.at(value)``), so that the solver
-built once per arm is never changed.
+(``ik``, ``ik_rigid``, ``ik_batch``, ``candidates``): one target is solved with a
+copy set to its value (``Params.at(value)``), a batch by the core with each
+target's value (``Params.ik_batch_at``), so that the solver built once per arm is
+never changed.
 """
 
 from __future__ import annotations
@@ -63,7 +64,8 @@ class AtValues:
     """A parametrised closed form's ``Params``, solving target i at ``values[i]``.
 
     Args:
-        params: The closed form's ``Params`` (with ``at(value)``: a copy at it).
+        params: The closed form's ``Params``, with ``at(value)`` (a copy at it) and
+            ``ik_batch_at`` (``ik_batch`` with a value per target, in the core).
         values: ``(N,)`` one value per target (the single-target methods take the first).
     """
 
@@ -87,23 +89,8 @@ class AtValues:
     def ik_batch(
         self, chain: Any, T: FloatArray, options: Any, q0: Any, invalid: Any, workers: int
     ) -> dict[str, Any]:
-        """``Params.ik_batch``, one core call per distinct value (over its targets)."""
+        """``Params.ik_batch`` at one value, else ``Params.ik_batch_at`` (one per target)."""
         values = self._values
-        distinct, which = np.unique(values, return_inverse=True)
-        if distinct.size <= 1:
+        if values.size and np.all(values == values[0]):
             return dict(self._first.ik_batch(chain, T, options, q0, invalid, workers))
-        out: dict[str, Any] = {}
-        for k, value in enumerate(distinct):
-            rows = np.flatnonzero(which == k)
-
-            def part(a: Any, rows: Any = rows) -> Any:
-                return None if a is None else np.ascontiguousarray(a[rows])
-
-            got = self._params.at(float(value)).ik_batch(
-                chain, part(T), options, part(q0), part(invalid), workers
-            )
-            for key, a in got.items():
-                if key not in out:
-                    out[key] = np.empty((values.size, *a.shape[1:]), dtype=a.dtype)
-                out[key][rows] = a
-        return out
+        return dict(self._params.ik_batch_at(chain, T, values, options, q0, invalid, workers))

@@ -111,9 +111,9 @@ struct SRSParams {
         return true;
     }
 
-    //! The basis (n, m_t): n along S-W, m_t the arm half-plane's direction at ψ.
-    //! `undefined` is raised when S-W is along ref (within REFERENCE_TOL).
-    KM_HD Basis target_basis(const Vec3& n, bool& undefined, bool& near) const {
+    //! The basis (n, m_t): n along S-W, m_t the arm half-plane's direction at the arm
+    //! angle `angle`. `undefined` is raised when S-W is along ref (within REFERENCE_TOL).
+    KM_HD Basis target_basis(const Vec3& n, double angle, bool& undefined, bool& near) const {
         Vec3 r = ref - dot(ref, n) * n;
         const double across = norm(r);
         if (across < decoupled::NEAR_SET_TOL) near = true;
@@ -124,7 +124,7 @@ struct SRSParams {
         r = (1.0 / norm(r)) * r;
         const Vec3 nr = cross(n, r);
         double sp, cp;
-        sincos(psi, sp, cp);
+        sincos(angle, sp, cp);
         Basis B;
         B.n = n;
         B.m = cp * r + sp * nr;
@@ -157,9 +157,13 @@ struct SRSParams {
         return B;
     }
 
-    //! Candidates for one pose T (base frame) into Q (8 x 7): slot 4 e + 2 s + w (elbow
-    //! +/-, shoulder no-flip/flip, wrist no-flip/flip), NaN rows where a branch has none.
-    KM_HD void solve(const Pose& T, double* Q, SolverInfo& info) const {
+    //! Candidates for one pose T (base frame) at the arm angle psi into Q (8 x 7).
+    KM_HD void solve(const Pose& T, double* Q, SolverInfo& info) const { solve_at(T, psi, Q, info); }
+
+    //! Candidates for one pose T (base frame) at the arm angle `angle` (rad) into Q (8 x 7):
+    //! slot 4 e + 2 s + w (elbow +/-, shoulder no-flip/flip, wrist no-flip/flip), NaN rows
+    //! where a branch has none.
+    KM_HD void solve_at(const Pose& T, double angle, double* Q, SolverInfo& info) const {
         for (int i = 0; i < 8 * 7; ++i) Q[i] = NaN;
         const Vec3 d = T.apply(w_tool) - s;
         const double D = norm(d);
@@ -185,7 +189,7 @@ struct SRSParams {
             // any will do
             if (!(D > tiny)) collinear = true;
             const Vec3 n = D > tiny ? (1.0 / D) * d : A.n;
-            const Basis B = target_basis(n, no_reference, near);
+            const Basis B = target_basis(n, angle, no_reference, near);
             // R123 v = B.vector(A.coords(v)); R123ᵀ v = A.vector(B.coords(v))
             const Vec3 w1 = B.vector(A.coords(shoulder.lh));
             const Vec3 y1 = B.vector(A.coords(shoulder.x6));
