@@ -53,3 +53,5 @@ def test_a_batch_of_values_solves_each_target_at_its_own() -> None:
         for key, a in want.items():
             np.testing.assert_array_equal(got[key][rows], a, err_msg=key)
     assert closed.params.psi == 0.0  # the solver built once per arm is never changed
+    with pytest.raises(ValueError, match="psi must be of size 5"):
+        closed.params.ik_batch_at(iiwa.chain.core, T, values[:2], opts, None, None, 1)
