@@ -18,9 +18,10 @@
 //   "conventional SEW angle" of Elias and Wen (IK-Geo, 2022) with reference vector axis 1.
 //   On the iiwa its reference plane is Shimizu et al.'s (2008), the plane S-E-W of the
 //   solution with q3 = 0 (axes 2 and 4 are then parallel: the plane contains axis 1), and
-//   ψ = 0 is the half-plane on the side axis 1 points to (elbow up). The triangle S, E, W has sides |se|, |ew| (E is on axis 4, which W turns about) and
-//   D, so ψ puts E at one point: its part across n is along m_t = cos ψ r + sin ψ (n × r),
-//   r the unit part of `ref` across n.
+//   ψ = 0 is the half-plane on the side axis 1 points to (elbow up). The triangle S, E, W
+//   has sides |se|, |ew| (E is on axis 4, which W turns about) and D, so ψ puts E at one
+//   point: its part across n is along m_t = cos ψ r + sin ψ (n × r), r the unit part of
+//   `ref` across n.
 // * Shoulder: R1 R2 R3 is the rotation taking (n3, m3) to (n, m_t), n3 and m3 the same
 //   directions of the arm at q1 = q2 = q3 = 0 (W and E seen from S); it is split into
 //   rotations about the three meeting axes as a spherical wrist is (two branches,
@@ -32,8 +33,8 @@
 // At the edges (flagged singular, with the joints free along the continuum):
 // * the elbow on the line S-W (stretched or folded, possible when the perpendiculars from S
 //   and W onto axis 4 have the same foot, as on the iiwa), or W on S (folded, equal links):
-//   the arm plane and ψ are undefined; any turn of the arm about S-W solves (joints 1-3 and 5-7 free): one
-//   representative per branch;
+//   the arm plane and ψ are undefined; any turn of the arm about S-W solves (joints 1-3
+//   and 5-7 free): one representative per branch;
 // * S-W along the reference (axis 1): ψ's reference is undefined; turning the whole arm
 //   about axis 1 solves (q1 and the wrist free), a representative measured from `ref_alt`;
 // * the shoulder's or the wrist's first and last axes aligned (q1 + q3, or q5 + q7, only).
