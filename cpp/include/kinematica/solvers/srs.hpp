@@ -102,9 +102,10 @@ struct SRSParams {
     //! (q4 of elbow +, q4 of elbow -) for |W - S| = D; false beyond [d_min, d_max] (gap >
     //! 0 then). A fold (β = 0 or π) within round-off is a double root and raises `near`.
     KM_HD bool elbow(double D, double q4[2], double& gap, bool& near) const {
+        using decoupled::clamped_root;
         gap = decoupled::py_max(0.0, decoupled::py_max(D - d_max, d_min - D));
-        const double sin_half = decoupled::clamped_root(d_max - D, d_max + D, d_max + D, scale, near);
-        const double cos_half = decoupled::clamped_root(D - d_min, D + d_min, D + d_min, scale, near);
+        const double sin_half = clamped_root(d_max - D, d_max + D, d_max + D, scale, near);
+        const double cos_half = clamped_root(D - d_min, D + d_min, D + d_min, scale, near);
         if (std::isnan(sin_half + cos_half)) return false;
         const double beta = 2.0 * std::atan2(sin_half, cos_half);
         q4[0] = wrap(stretched + beta);
@@ -159,7 +160,9 @@ struct SRSParams {
     }
 
     //! Candidates for one pose T (base frame) at the arm angle psi into Q (8 x 7).
-    KM_HD void solve(const Pose& T, double* Q, SolverInfo& info) const { solve_at(T, psi, Q, info); }
+    KM_HD void solve(const Pose& T, double* Q, SolverInfo& info) const {
+        solve_at(T, psi, Q, info);
+    }
 
     //! Candidates for one pose T (base frame) at the arm angle `angle` (rad) into Q (8 x 7):
     //! slot 4 e + 2 s + w (elbow +/-, shoulder no-flip/flip, wrist no-flip/flip), NaN rows
