@@ -311,6 +311,22 @@ void bind_chain(nb::module_& m) {
             }
             return a;
         }, "(n, 3) the translation of each joint's fixed part, in its frame (m); a DH row's (a, 0, d).")
+        .def_prop_ro("fixed_parts", [](const Chain& c) {
+            double* out;
+            F64 a = new_f64({c.dof(), 4, 4}, out);
+            for (int i = 0; i < c.dof(); ++i) {
+                const km::Joint& J = c.joints()[static_cast<size_t>(i)];
+                Pose turn, shift, twist;  // Rz(θ), Trans(t), Rx(α)
+                turn.x = {J.ct, J.st, 0.0};
+                turn.y = {-J.st, J.ct, 0.0};
+                shift.p = J.t;
+                twist.y = {0.0, J.ca, J.sa};
+                twist.z = {0.0, -J.sa, J.ca};
+                (turn * shift * twist).to_rows(out + 16 * i);
+            }
+            return a;
+        }, "(n, 4, 4) the fixed part after each joint's motion, Rz(θ) Trans(t) Rx(α): "
+           "T = start · Π_i [M_i(q_i) · fixed_i] · tool.")
         .def_prop_ro("start", [](const Chain& c) { return c.view().start; })
         .def_prop_ro("tool", [](const Chain& c) { return c.view().tool; })
         .def_prop_ro("base", [](const Chain& c) { return c.view().base; })

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 import warnings
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Literal
 
@@ -28,8 +28,9 @@ from kinematica.dh import (
     link_matrix,
 )
 from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning, UnitWarning
-from kinematica.ik import IKBatchResult, IKOptions, IKResult, Tolerance, solve_ik
+from kinematica.ik import IKBatchResult, IKOptions, IKResult, Tolerance
 from kinematica.ik.reach import needs_proof
+from kinematica.ik.redundancy import choose, solve_arm
 from kinematica.ik.registry import TargetKind
 from kinematica.ik.result import CoreAnswer, result_of
 from kinematica.ik.solve import PoseSolver, pose_solver
@@ -181,6 +182,13 @@ class Robot:
     def dof(self) -> int:
         """Number of joints n."""
         return len(self.links)
+
+    @property
+    def joint_names(self) -> tuple[str, ...]:
+        """Each joint's name: its own (a URDF's joint names), else ``"q1"``, ``"q2"``..."""
+        return tuple(
+            link.name if link.name else f"q{i}" for i, link in enumerate(self.links, start=1)
+        )
 
     @property
     def joint_types(self) -> str:
@@ -471,6 +479,7 @@ class Robot:
         tol: float | tuple[float, float] | Tolerance | None = None,
         workers: int | None = None,
         precision: tuple[float, float] | None = None,
+        fixed: Mapping[int | str, float] | None = None,
         options: IKOptions | None = None,
     ) -> IKResult | IKBatchResult:
         """Every inverse-kinematics solution of a target, or an honest status.
@@ -498,6 +507,14 @@ class Robot:
                 unit in the last digit its numbers were printed with; None: read
                 from their digits. The closest configuration answers a target
                 it reproduces to that precision (a note says which was assumed).
+            fixed: ``{joint: value}``: every solution with that joint held at the
+                value (rad or m; the joint by its 0-based index, its name, or
+                ``"qN"``); the status is relative to it and ``result.parameter``
+                names it. A value outside the joint's limits is an error unless
+                ``respect_limits=False``. Without it, ``method="auto"`` on a
+                7-joint arm holds a joint whose locked arm has a closed form (at
+                q0's value, else the middle of its limits) and says which; see
+                :mod:`kinematica.ik.redundancy`.
             options: All of the above as one :class:`~kinematica.ik.IKOptions`
                 (then give none of them as keywords).
 
@@ -518,6 +535,7 @@ class Robot:
             and mask is None
             and seed is None
             and precision is None
+            and fixed is None
         ):  # one target, every default: straight to the core (a rigid target to round-off)
             if target.shape == (4, 4):
                 out = self._fast(target, "pose")
@@ -530,7 +548,9 @@ class Robot:
             if out is not None:
                 return out
         if options is None:
-            options = IKOptions(method, tol, respect_limits, q0, mask, seed, workers, precision)
+            options = IKOptions(
+                method, tol, respect_limits, q0, mask, seed, workers, precision, fixed
+            )
         elif not isinstance(options, IKOptions):
             raise KinematicaError(
                 f"options must be an IKOptions, got {type(options).__name__}", arg="options"
@@ -539,7 +559,7 @@ class Robot:
             isinstance(method, str)
             and method == "auto"
             and respect_limits is True
-            and all(v is None for v in (tol, q0, mask, seed, workers, precision))
+            and all(v is None for v in (tol, q0, mask, seed, workers, precision, fixed))
         ):
             raise KinematicaError(
                 "give the IK settings either as options= or as keywords, not both",
@@ -547,13 +567,16 @@ class Robot:
             )
         check_choice(options.method, "method", ("auto", "analytic", "numeric"))
         check_flag(options.respect_limits, "respect_limits")
-        return solve_ik(self.chain, target, options)
+        return solve_arm(self.chain, target, options, self.joint_names)
 
     def _fast(self, pose: FloatArray, kind: TargetKind) -> IKResult | None:
         """``ik`` of one rigid target with every default; None: the general path explains it."""
         fast = self._fast_ik.get(kind)
         if fast is None:
-            fast = self._fast_ik[kind] = pose_solver(self.chain, kind)
+            fast = pose_solver(self.chain, kind)
+            if kind == "pose" and choose(self.chain) is not None:  # solved at a parameter
+                fast = fast._replace(direct=False)
+            self._fast_ik[kind] = fast
         if not fast.direct:
             return None
         out: CoreAnswer | None = fast.ik_rigid(
@@ -644,6 +667,28 @@ class Robot:
         from kinematica.robot.singularities import singularities
 
         return singularities(self, q, detail=detail)
+
+    def self_motion(
+        self,
+        target: ArrayLike,
+        parameter: Any,
+        *,
+        samples: int = 73,
+        values: ArrayLike | None = None,
+        max_jump: float | None = None,
+        method: str = "auto",
+    ) -> Any:
+        """The solution families at the pose ``target`` swept over ``parameter`` (a joint).
+
+        See :func:`kinematica.robot.self_motion.self_motion` (``max_jump`` None:
+        its ``MAX_JUMP``).
+        """
+        from kinematica.robot.self_motion import MAX_JUMP, self_motion
+
+        jump = MAX_JUMP if max_jump is None else max_jump
+        return self_motion(
+            self, target, parameter, samples=samples, values=values, max_jump=jump, method=method
+        )
 
     def random_q(
         self, n: int | tuple[int, ...] = 1, seed: int | np.random.Generator | None = None

@@ -1,0 +1,310 @@
+"""A redundant arm's parameter: a joint held at a value (``robot.ik(T, fixed={6: 0.3})``).
+
+Locking joint k of an n-joint arm leaves an (n - 1)-joint arm whose FK is the
+same (:meth:`kinematica.core.Chain.locked`: the joint's motion folded exactly into
+the neighbouring fixed transforms). That arm is solved by whatever the registry
+gives it, a closed form (every solution) or the numeric search, and each solution
+comes back as an n-vector with ``q_k`` = the value. The answer is relative to the
+lock: "unreachable" means unreachable with that joint at that value, and the
+result's :attr:`~kinematica.ik.IKResult.parameter` and message say so.
+
+A parameter is an object with a ``name``, a ``unit``, a ``span`` and a ``solve``
+(:class:`Parameter`); a joint is one (:class:`JointParameter`), the arm angle of an
+SRS arm would be another.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import weakref
+from collections import OrderedDict
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from kinematica.core import Chain
+from kinematica.errors import KinematicaError
+from kinematica.ik.options import IKOptions
+from kinematica.ik.result import IKBatchResult, IKResult
+from kinematica.ik.solve import solve_ik
+from kinematica.ik.stack import stack_results, widen_batch, widen_result
+from kinematica.ik.targets import parse_targets
+
+__all__ = [
+    "LOCKED_CACHE",
+    "JointParameter",
+    "Parameter",
+    "joint_names",
+    "joint_parameter",
+    "locked_chain",
+    "solve_fixed",
+]
+
+FloatArray = NDArray[np.float64]
+
+#: Locked arms kept per chain, least recently used first out (a sweep over a middle
+#: joint's values builds one per value; the first and last joints need one each).
+LOCKED_CACHE = 16
+
+_LOCKED: weakref.WeakKeyDictionary[Chain, OrderedDict[tuple[int, float], Chain]] = (
+    weakref.WeakKeyDictionary()
+)
+
+
+def locked_chain(chain: Chain, joint: int, value: float) -> Chain:
+    """``chain.locked(joint, value)``, built once and kept (:data:`LOCKED_CACHE` per chain)."""
+    per = _LOCKED.setdefault(chain, OrderedDict())
+    key = (joint, float(value))
+    found = per.get(key)
+    if found is None:
+        found = per[key] = chain.locked(joint, value)
+        if len(per) > LOCKED_CACHE:
+            per.popitem(last=False)
+    else:
+        per.move_to_end(key)
+    return found
+
+
+class Parameter(Protocol):
+    """What a redundancy parameter is: a name, a unit, a span, and the arm solved at values."""
+
+    @property
+    def name(self) -> str:
+        """How results and messages name it (``"q7"``, a joint's name, ``"arm angle"``)."""
+        ...
+
+    @property
+    def unit(self) -> str:
+        """``"rad"`` or ``"m"``."""
+        ...
+
+    def span(self, chain: Chain) -> tuple[float, float]:
+        """The values it takes (a joint: its limits)."""
+        ...
+
+    def solve(
+        self, chain: Chain, target: ArrayLike, values: ArrayLike, options: IKOptions
+    ) -> IKResult | IKBatchResult:
+        """Every solution of ``target`` with the parameter at ``values`` (one per target)."""
+        ...
+
+
+def joint_names(chain: Chain, names: Sequence[str] | None) -> tuple[str, ...]:
+    """The joints' display names: ``names`` when given, else ``q1..qn``."""
+    if names is not None:
+        return tuple(names)
+    return tuple(f"q{i + 1}" for i in range(chain.dof))
+
+
+@dataclass(frozen=True)
+class JointParameter:
+    """Joint ``index`` (0-based) as the parameter: the arm solved with it held at a value.
+
+    Attributes:
+        index: The joint, 0-based.
+        name: Its display name (the joint's own name, else ``"q<index + 1>"``).
+        prismatic: True for a sliding joint (values in m, else rad).
+    """
+
+    index: int
+    name: str
+    prismatic: bool = False
+
+    @property
+    def unit(self) -> str:
+        """``"m"`` for a prismatic joint, else ``"rad"``."""
+        return "m" if self.prismatic else "rad"
+
+    def describe(self, value: float) -> str:
+        """``"q7 = 0.3 rad"``."""
+        return f"{self.name} = {value:.6g} {self.unit}"
+
+    def span(self, chain: Chain) -> tuple[float, float]:
+        """The joint's limits solutions are held to (``(-π, π)`` for a free revolute joint)."""
+        lo, hi = chain.qlim[self.index]
+        return float(lo), float(hi)
+
+    def default(self, chain: Chain) -> float:
+        """The value used when none is given: the middle of its own limits, 0 when it has none."""
+        lo, hi = chain.own_limits[self.index]
+        return float(0.5 * (lo + hi)) if math.isfinite(lo) and math.isfinite(hi) else 0.0
+
+    def check(self, chain: Chain, value: object, respect_limits: bool = True) -> float:
+        """``value`` as a float the joint may hold.
+
+        Raises:
+            KinematicaError: (``arg="fixed"``) not a real number, NaN/inf, or, when
+                limits are respected, outside them (no solution could be within them).
+        """
+        if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
+            raise KinematicaError(
+                f"fixed: the value of {self.name} must be a number ({self.unit}), got {value!r}",
+                arg="fixed",
+            )
+        v = float(value)
+        if not math.isfinite(v):
+            raise KinematicaError(f"fixed: {self.name} must be finite, got {v}", arg="fixed")
+        lo, hi = self.span(chain)
+        if respect_limits and not lo <= v <= hi:
+            raise KinematicaError(
+                f"fixed: {self.name} = {v:.6g} {self.unit} is outside its limits "
+                f"[{lo:.6g}, {hi:.6g}] {self.unit}, so no solution would be within them "
+                "(respect_limits=False solves it all the same)",
+                arg="fixed",
+            )
+        return v
+
+    def solve(
+        self, chain: Chain, target: ArrayLike, values: ArrayLike, options: IKOptions
+    ) -> IKResult | IKBatchResult:
+        """Every solution with the joint held at ``values`` (one, or one per target).
+
+        A pose target of the first or last joint: the value only moves the base or
+        the tool, so the arm locked at 0 is built once and the targets are moved
+        instead (``T' = G₀ M(v)⁻¹ G₀⁻¹ T`` for the first, ``T G⁻¹ M(v)⁻¹ G`` for the
+        last, ``G₀`` the chain's start, ``G`` the last fixed part times the tool).
+        Otherwise one locked arm per value.
+
+        Args:
+            chain: The whole arm.
+            target: As :func:`~kinematica.ik.solve_ik` takes it.
+            values: One value for every target, or ``(N,)`` one per target of a
+                batch (C order); already checked (:meth:`check`).
+            options: The IK settings (``q0`` of the whole arm; ``fixed`` ignored).
+
+        Returns:
+            The whole arm's result: solutions ``(k, n)`` (``(..., k, n)``) with
+            ``q[index]`` equal to the value, and ``parameter`` naming it.
+        """
+        k, n = self.index, chain.dof
+        targets = parse_targets(target)
+        N = targets.poses.shape[0]
+        v = np.broadcast_to(np.asarray(values, dtype=float), (N,)).copy()
+        q0 = options.q0
+        if q0 is not None:
+            q0 = np.delete(np.asarray(q0, dtype=float), k, axis=-1)
+        opts = dataclasses.replace(options, q0=q0, fixed=None)
+        moved = not targets.position and k in (0, n - 1) and n - 1 >= 6
+        if moved:  # one locked arm, moved targets
+            arm = locked_chain(chain, k, 0.0)
+            poses = _moved(chain, k, targets.poses, v)
+            out = solve_ik(arm, targets._replace(poses=poses), opts)
+        elif np.all(v == v[0]):
+            out = solve_ik(locked_chain(chain, k, float(v[0])), target, opts)
+        else:  # a middle joint at several values: one arm per value, each target alone
+            return self._one_by_one(chain, targets, v, opts)
+        if isinstance(out, IKResult):
+            return widen_result(out, k, float(v[0]), (self.name, float(v[0])))
+        return widen_batch(out, k, v, self.name)
+
+    def _one_by_one(
+        self, chain: Chain, targets: object, v: FloatArray, opts: IKOptions
+    ) -> IKBatchResult:
+        from kinematica.ik.targets import Targets
+
+        assert isinstance(targets, Targets)
+        results: dict[int, IKResult] = {}
+        for i in range(targets.poses.shape[0]):
+            if i in targets.invalid:
+                continue
+            T = targets.poses[i, :3, 3] if targets.position else targets.poses[i]
+            q0 = None if opts.q0 is None else _row(opts.q0, targets.shape, i)
+            arm = locked_chain(chain, self.index, float(v[i]))
+            one = solve_ik(arm, T, dataclasses.replace(opts, q0=q0))
+            assert isinstance(one, IKResult)
+            results[i] = widen_result(one, self.index, float(v[i]), (self.name, float(v[i])))
+        return stack_results(results, targets, chain.dof, self.name, v)
+
+
+def _row(q0: ArrayLike, shape: tuple[int, ...], i: int) -> FloatArray:
+    """Row ``i`` (flat, C order) of a q0 broadcast over a batch of shape ``shape``."""
+    q = np.asarray(q0, dtype=float)
+    return np.broadcast_to(q, (*shape, q.shape[-1])).reshape(-1, q.shape[-1])[i]
+
+
+def _moved(chain: Chain, k: int, poses: FloatArray, v: FloatArray) -> FloatArray:
+    """``(N, 4, 4)`` targets of the arm locked at 0 that are ``poses`` with joint k at ``v``."""
+    inverse = np.array([chain.motion(k, -float(x)) for x in v])  # M(v)⁻¹ = M(-v)
+    if k == 0:
+        G = chain.start
+        return np.ascontiguousarray(G @ inverse @ np.linalg.inv(G) @ poses)
+    G = chain.fixed_parts[-1] @ chain.tool
+    return np.ascontiguousarray(poses @ np.linalg.inv(G) @ inverse @ G)
+
+
+def joint_parameter(
+    chain: Chain, key: object, names: Sequence[str] | None = None, arg: str = "fixed"
+) -> JointParameter:
+    """The joint a key names: a 0-based index, the joint's name, or ``"qN"`` (1-based).
+
+    Args:
+        chain: The arm.
+        key: The key.
+        names: The joints' display names (``q1..qn`` when None).
+        arg: The argument messages name.
+
+    Raises:
+        KinematicaError: (``arg=arg``) an index out of range, an unknown name,
+            or a key of another type; the message lists what is accepted.
+    """
+    n = chain.dof
+    shown = joint_names(chain, names)
+    index: int | None = None
+    if isinstance(key, int | np.integer) and not isinstance(key, bool):
+        if not 0 <= int(key) < n:
+            raise KinematicaError(
+                f"{arg}: joint index {int(key)} is out of range: 0..{n - 1} (0-based) "
+                f"for an arm of {n} joints",
+                arg=arg,
+            )
+        index = int(key)
+    elif isinstance(key, str):
+        if key in shown:
+            index = shown.index(key)
+        else:
+            q = key.strip().lower()
+            if q.startswith("q") and q[1:].isdigit() and 1 <= int(q[1:]) <= n:
+                index = int(q[1:]) - 1
+        if index is None:
+            raise KinematicaError(
+                f"{arg}: no joint is named {key!r}: give a 0-based index 0..{n - 1}, "
+                f"q1..q{n}, or one of {', '.join(shown)}",
+                arg=arg,
+            )
+    else:
+        raise KinematicaError(
+            f"{arg}: a joint is named by a 0-based index or a name, got {key!r}", arg=arg
+        )
+    return JointParameter(index, shown[index], bool(chain.prismatic[index]))
+
+
+def solve_fixed(
+    chain: Chain,
+    target: ArrayLike,
+    options: IKOptions,
+    names: Sequence[str] | None = None,
+) -> IKResult | IKBatchResult:
+    """``robot.ik(T, fixed={joint: value})``: every solution with that joint held at the value.
+
+    Raises:
+        KinematicaError: (``arg="fixed"``) not a mapping of one joint, a bad key or value,
+            or an arm of one joint.
+    """
+    fixed = options.fixed
+    if not isinstance(fixed, Mapping) or len(fixed) != 1:
+        got = f"{len(fixed)} entries" if isinstance(fixed, Mapping) else repr(fixed)
+        raise KinematicaError(
+            f"fixed must hold one joint and its value, e.g. {{6: 0.3}}, got {got}", arg="fixed"
+        )
+    if chain.dof < 2:
+        raise KinematicaError(
+            "fixed: an arm of one joint has no joint left to solve once it is locked", arg="fixed"
+        )
+    ((key, value),) = fixed.items()
+    joint = joint_parameter(chain, key, names)
+    v = joint.check(chain, value, bool(options.respect_limits))
+    return joint.solve(chain, target, v, options)
