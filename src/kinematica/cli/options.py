@@ -255,10 +255,16 @@ def joint_in(robot: Robot, key: str, option: str) -> int:
             or a name no joint has; the message names ``option``.
     """
     text = key.strip()
-    if text.lstrip("+-").isdigit():
+    names = robot.joint_names
+    numbered = (
+        text.lower().startswith("q") and text[1:].isdigit() and 1 <= int(text[1:]) <= robot.dof
+    )
+    if text not in names and not numbered:
+        own = [n for n in names if n != f"q{names.index(n) + 1}"]
         raise ArgumentError(
-            f"{option}: name a joint as q1..q{robot.dof} (1-based, as the tables show) or by "
-            f"its name, got {key!r}"
+            f"{option}: name a joint as q1..q{robot.dof} (1-based, as the tables show)"
+            + (f" or by its name ({', '.join(own)})" if own else "")
+            + f", got {key!r}"
         )
     return joint_parameter(robot.chain, text, robot.joint_names, arg=option).index
 

@@ -153,7 +153,7 @@ class JointParameter:
             raise KinematicaError(
                 f"fixed: {self.name} = {v:.6g} {self.unit} is outside its limits "
                 f"[{lo:.6g}, {hi:.6g}] {self.unit}, so no solution would be within them "
-                "(respect_limits=False solves it all the same)",
+                "(ignore the limits to see the solutions there)",
                 arg="fixed",
             )
         return v

@@ -12,15 +12,22 @@ import os
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import NDArray
 
 from kinematica.robot.self_motion import SelfMotion
-from kinematica.viz._mpl import figure
+from kinematica.viz._mpl import figure, matplotlib
 from kinematica.viz.plot import save_figure
 
 __all__ = ["save_self_motion"]
 
 #: The width of the picture (pixels) and the height of one joint's panel.
-WIDTH, PANEL_HEIGHT = 900, 150
+WIDTH, PANEL_HEIGHT = 1000, 150
+#: The legend's columns, and the height of one of its rows (pixels).
+LEGEND_COLUMNS, LEGEND_ROW = 2, 17
+#: Line styles, one per round of the 20 colours (families beyond 20 repeat a colour).
+STYLES = ("-", "--", ":", "-.")
+
+FloatArray = NDArray[np.float64]
 
 
 def save_self_motion(
@@ -42,37 +49,56 @@ def save_self_motion(
     """
     n = motion.qlim.shape[0]
     slides = prismatic or (False,) * n
+    # the parameter's own joint is a straight line against itself: not drawn
+    joints = [j for j in range(n) if motion.joint_names[j] != motion.parameter]
     scale = [1.0 if p or not degrees else 180.0 / math.pi for p in slides]
     unit = ["m" if p else ("deg" if degrees else "rad") for p in slides]
     pscale = 180.0 / math.pi if degrees and motion.unit == "rad" else 1.0
     punit = "deg" if degrees and motion.unit == "rad" else motion.unit
-    fig = figure(WIDTH, PANEL_HEIGHT * n + 120, dpi, pyplot_managed=False)
+    count = len(motion.families)
+    legend_rows = math.ceil(count / LEGEND_COLUMNS)
+    legend_px = LEGEND_ROW * legend_rows + 30
+    height = PANEL_HEIGHT * len(joints) + 90 + legend_px
+    fig = figure(WIDTH, height, dpi, pyplot_managed=False)
+    fig.subplots_adjust(top=1.0 - 50 / height, bottom=(legend_px + 45) / height, hspace=0.15)
     x = motion.values * pscale
-    axes = fig.subplots(n, 1, sharex=True)
-    colours = [f"C{i % 10}" for i in range(len(motion.families))]
-    for j, ax in enumerate(np.atleast_1d(axes)):
-        lo, hi = motion.qlim[j] * scale[j]
-        top = hi if math.isfinite(hi) else None
-        bottom = lo if math.isfinite(lo) else None
+    colours = matplotlib().colormaps["tab20"]
+    axes = np.atleast_1d(fig.subplots(len(joints), 1, sharex=True))
+    for ax, j in zip(axes, joints, strict=True):
         for i, fam in enumerate(motion.families):
-            label = f"{i + 1}: {fam.branch}" if j == 0 else None
-            ax.plot(x, fam.q[:, j] * scale[j], color=colours[i], lw=1.4, label=label)
+            xs, y = x, fam.q[:, j] * scale[j]
+            if not slides[j]:  # a turn wrapped across ±π: a break in the line, not a jump
+                xs, y = _broken(x, y, math.pi * scale[j])
+            label = f"{i + 1}: {fam.branch}" if ax is axes[0] else None
+            style = STYLES[(i // 20) % len(STYLES)]
+            ax.plot(xs, y, color=colours(i % 20), ls=style, lw=1.4, label=label)
+        lo, hi = motion.qlim[j] * scale[j]
         y0, y1 = ax.get_ylim()
-        if top is not None:
-            y1 = max(y1, top)
-            ax.axhspan(top, y1 + 0.05 * (y1 - y0), color="0.85", zorder=0)
-        if bottom is not None:
-            y0 = min(y0, bottom)
-            ax.axhspan(y0 - 0.05 * (y1 - y0), bottom, color="0.85", zorder=0)
-        ax.set_ylim(y0 - 0.05 * (y1 - y0), y1 + 0.05 * (y1 - y0))
+        y0 = min(y0, lo) if math.isfinite(lo) else y0
+        y1 = max(y1, hi) if math.isfinite(hi) else y1
+        pad = 0.05 * (y1 - y0)
+        if math.isfinite(hi):
+            ax.axhspan(hi, y1 + pad, color="0.85", zorder=0)
+        if math.isfinite(lo):
+            ax.axhspan(y0 - pad, lo, color="0.85", zorder=0)
+        ax.set_ylim(y0 - pad, y1 + pad)
         ax.set_ylabel(f"{motion.joint_names[j]} ({unit[j]})")
         ax.grid(True, lw=0.3)
-    last = np.atleast_1d(axes)[-1]
-    last.set_xlabel(f"{motion.parameter} ({punit})")
+    axes[-1].set_xlabel(f"{motion.parameter} ({punit})")
     fig.suptitle(
-        f"self-motion over {motion.parameter}: {len(motion.families)} families "
-        f"({motion.method}); grey: beyond the joint limits"
+        f"self-motion over {motion.parameter}: {count} families ({motion.method}); "
+        "grey: beyond the joint limits",
+        y=1.0 - 12 / height,
     )
-    if motion.families:
-        fig.legend(loc="upper right", fontsize="small", ncol=min(4, len(motion.families)))
+    if count:
+        fig.legend(loc="lower center", fontsize="small", ncol=LEGEND_COLUMNS, frameon=False)
     return save_figure(fig, path)
+
+
+def _broken(x: FloatArray, y: FloatArray, half_turn: float) -> tuple[FloatArray, FloatArray]:
+    """``(x, y)`` with a NaN point put between adjacent ``y`` more than half a turn apart."""
+    with np.errstate(invalid="ignore"):
+        jump = np.flatnonzero(np.abs(np.diff(y)) > half_turn) + 1
+    if not jump.size:
+        return x, y
+    return np.insert(x, jump, x[jump]), np.insert(y, jump, np.nan)
