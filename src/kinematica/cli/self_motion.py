@@ -29,6 +29,10 @@ __all__ = ["register", "self_motion"]
 def self_motion(args: argparse.Namespace) -> int:
     """``kinematica self-motion ROBOT --pose ... --parameter q7``: families and intervals."""
     robot = robot_from_args(args)
+    if args.plot is not None:  # a path no picture can be written to: said before the sweep
+        from kinematica.viz.plot import check_image_path
+
+        check_image_path(args.plot)
     target = target_in(robot, args)
     joint = joint_in(robot, args.parameter, "--parameter")
     args.aliases = {

@@ -8,6 +8,12 @@ adjacent samples into families: a family keeps one branch label, and ends where
 its next solution is farther than ``max_jump`` (:data:`MAX_JUMP`) away in joint
 space, or where its branch has no solution. Each family says where along the
 parameter it lies within every joint's limits.
+
+Branch labels are the locked arm's closed form's: at a value where the locked arm
+has another structure (axes that become parallel or meet there), another closed
+form names the same configurations differently, and the families change there.
+A joint that sets the reach (an elbow) holds a pose at isolated values only: a
+sweep over it finds nothing at almost every sample.
 """
 
 from __future__ import annotations
