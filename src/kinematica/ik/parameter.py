@@ -226,14 +226,40 @@ def _row(q0: ArrayLike, shape: tuple[int, ...], i: int) -> FloatArray:
     return np.broadcast_to(q, (*shape, q.shape[-1])).reshape(-1, q.shape[-1])[i]
 
 
+_ENDS: weakref.WeakKeyDictionary[Chain, dict[int, tuple[FloatArray, FloatArray]]] = (
+    weakref.WeakKeyDictionary()
+)
+
+
+def _ends(chain: Chain, k: int) -> tuple[FloatArray, FloatArray]:
+    """``(G, G⁻¹)``: the chain's start (k = 0), or its last fixed part times the tool."""
+    per = _ENDS.setdefault(chain, {})
+    found = per.get(k)
+    if found is None:
+        G = chain.start if k == 0 else chain.fixed_parts[-1] @ chain.tool
+        G_inv = np.eye(4)
+        G_inv[:3, :3] = G[:3, :3].T
+        G_inv[:3, 3] = -G[:3, :3].T @ G[:3, 3]
+        found = per[k] = (np.array(G), G_inv)
+    return found
+
+
 def _moved(chain: Chain, k: int, poses: FloatArray, v: FloatArray) -> FloatArray:
     """``(N, 4, 4)`` targets of the arm locked at 0 that are ``poses`` with joint k at ``v``."""
-    inverse = np.array([chain.motion(k, -float(x)) for x in v])  # M(v)⁻¹ = M(-v)
+    G, G_inv = _ends(chain, k)
+    inverse = np.zeros((v.size, 4, 4))  # M(v)⁻¹ = M(-v), one per target
+    inverse[:, 3, 3] = 1.0
+    if chain.prismatic[k]:
+        inverse[:, 0, 0] = inverse[:, 1, 1] = inverse[:, 2, 2] = 1.0
+        inverse[:, 2, 3] = -v
+    else:
+        c, s = np.cos(v), np.sin(v)
+        inverse[:, 0, 0] = inverse[:, 1, 1] = c
+        inverse[:, 0, 1], inverse[:, 1, 0] = s, -s
+        inverse[:, 2, 2] = 1.0
     if k == 0:
-        G = chain.start
-        return np.ascontiguousarray(G @ inverse @ np.linalg.inv(G) @ poses)
-    G = chain.fixed_parts[-1] @ chain.tool
-    return np.ascontiguousarray(poses @ np.linalg.inv(G) @ inverse @ G)
+        return np.ascontiguousarray(G @ (inverse @ (G_inv @ poses)))
+    return np.ascontiguousarray(((poses @ G_inv) @ inverse) @ G)
 
 
 def joint_parameter(

@@ -11,6 +11,7 @@ import dataclasses
 import warnings
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
@@ -183,7 +184,7 @@ class Robot:
         """Number of joints n."""
         return len(self.links)
 
-    @property
+    @cached_property
     def joint_names(self) -> tuple[str, ...]:
         """Each joint's name: its own (a URDF's joint names), else ``"q1"``, ``"q2"``..."""
         return tuple(
