@@ -218,3 +218,23 @@ def test_locked_arms_are_kept_least_recently_used_first_out(extra: int, kept: bo
     for i in range(extra):
         locked_chain(chain, 3, -1.5 + 0.01 * i)
     assert (locked_chain(chain, 3, -1.0) is first) == kept
+
+
+def test_a_free_joint_is_held_at_its_angle_wrapped_into_a_turn() -> None:
+    robot = random_7r(6)  # no limits: its angles come out in (-π, π]
+    q = robot.random_q(1, seed=2)[0]
+    q[3] = 3.5 - 2 * math.pi
+    res = robot.ik(robot.fk(q), fixed={3: 3.5}, seed=1)
+    assert res.parameter == ("q4", 3.5 - 2 * math.pi)
+    assert res.count and np.all(res.solutions[:, 3] == 3.5 - 2 * math.pi)
+
+
+def test_q0_of_the_whole_arm_and_a_closed_form_asked_of_the_locked_arm() -> None:
+    panda = km.load("panda")
+    T = panda.fk(np.array([0.1, 0.2, 0.3, -1.5, 0.1, 1.2, 0.4]))
+    with pytest.raises(km.errors.DimensionError, match="q0 must hold 7 joint values") as info:
+        panda.ik(T, fixed={6: 0.4}, q0=np.zeros(6))
+    assert info.value.arg == "q0"
+    with pytest.raises(KinematicaError, match="the arm left with q7 held") as bad:
+        panda.ik(T, fixed={6: 0.4}, method="analytic", mask=[1, 1, 1, 1, 1, 0])
+    assert bad.value.arg == "method"

@@ -27,12 +27,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.core import Chain
-from kinematica.errors import KinematicaError
+from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.options import IKOptions
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.solve import solve_ik
 from kinematica.ik.stack import stack_results, widen_batch, widen_result
 from kinematica.ik.targets import parse_targets
+from kinematica.spatial import wrap_angle
 
 __all__ = [
     "LOCKED_CACHE",
@@ -148,6 +149,8 @@ class JointParameter:
         v = float(value)
         if not math.isfinite(v):
             raise KinematicaError(f"fixed: {self.name} must be finite, got {v}", arg="fixed")
+        if not self.prismatic and not np.isfinite(chain.own_limits[self.index]).any():
+            v = float(wrap_angle(v))  # a joint free to turn: its angles come out in (-π, π]
         lo, hi = self.span(chain)
         if respect_limits and not lo <= v <= hi:
             raise KinematicaError(
@@ -186,17 +189,31 @@ class JointParameter:
         v = np.broadcast_to(np.asarray(values, dtype=float), (N,)).copy()
         q0 = options.q0
         if q0 is not None:
-            q0 = np.delete(np.asarray(q0, dtype=float), k, axis=-1)
+            q0 = np.asarray(q0, dtype=float)
+            if q0.ndim == 0 or q0.shape[-1] != n:
+                raise DimensionError(
+                    f"q0 must hold {n} joint values, got shape {q0.shape}", arg="q0"
+                )
+            q0 = np.delete(q0, k, axis=-1)
         opts = dataclasses.replace(options, q0=q0, fixed=None)
         moved = not targets.position and k in (0, n - 1) and n - 1 >= 6
-        if moved:  # one locked arm, moved targets
-            arm = locked_chain(chain, k, 0.0)
-            poses = _moved(chain, k, targets.poses, v)
-            out = solve_ik(arm, targets._replace(poses=poses), opts)
-        elif np.all(v == v[0]):
-            out = solve_ik(locked_chain(chain, k, float(v[0])), target, opts)
-        else:  # a middle joint at several values: one arm per value, each target alone
-            return self._one_by_one(chain, targets, v, opts)
+        try:
+            if moved:  # one locked arm, moved targets
+                arm = locked_chain(chain, k, 0.0)
+                poses = _moved(chain, k, targets.poses, v)
+                out = solve_ik(arm, targets._replace(poses=poses), opts)
+            elif np.all(v == v[0]):
+                out = solve_ik(locked_chain(chain, k, float(v[0])), target, opts)
+            else:  # a middle joint at several values: one arm per value, each target alone
+                return self._one_by_one(chain, targets, v, opts)
+        except KinematicaError as exc:
+            if exc.arg != "method":
+                raise
+            raise KinematicaError(
+                f"{exc.message} (the arm left with {self.name} held)",
+                arg=exc.arg,
+                suggest=exc.suggest,
+            ) from None
         if isinstance(out, IKResult):
             return widen_result(out, k, float(v[0]), (self.name, float(v[0])))
         return widen_batch(out, k, v, self.name)
