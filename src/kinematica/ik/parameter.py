@@ -87,6 +87,18 @@ class Parameter(Protocol):
         """The values it takes (a joint: its limits)."""
         ...
 
+    def default(self, chain: Chain) -> float:
+        """The value used when neither a value nor q0 is given."""
+        ...
+
+    def value_of(self, chain: Chain, q: FloatArray) -> FloatArray:
+        """``(N,)`` its value at configurations ``q (N, n)`` (q0's, for ``auto``)."""
+        ...
+
+    def describe(self, value: float) -> str:
+        """``"q7 = 0.3 rad"``: the parameter at a value, for notes."""
+        ...
+
     def solve(
         self, chain: Chain, target: ArrayLike, values: ArrayLike, options: IKOptions
     ) -> IKResult | IKBatchResult:
@@ -133,6 +145,10 @@ class JointParameter:
         """The value used when none is given: the middle of its own limits, 0 when it has none."""
         lo, hi = chain.own_limits[self.index]
         return float(0.5 * (lo + hi)) if math.isfinite(lo) and math.isfinite(hi) else 0.0
+
+    def value_of(self, chain: Chain, q: FloatArray) -> FloatArray:
+        """``(N,)`` the joint's entry of each configuration ``q (N, n)``."""
+        return np.asarray(q[:, self.index], dtype=float)
 
     def check(self, chain: Chain, value: object, respect_limits: bool = True) -> float:
         """``value`` as a float the joint may hold.

@@ -27,6 +27,7 @@ from kinematica.errors import DimensionError
 from kinematica.ik.options import IKOptions
 from kinematica.ik.parameter import (
     JointParameter,
+    Parameter,
     joint_names,
     locked_chain,
     solve_fixed,
@@ -60,7 +61,9 @@ def choose(chain: Chain, names: Sequence[str] | None = None) -> JointParameter |
     """The parameter ``auto`` uses for this arm, or None (not redundant, or no closed form).
 
     The first joint of :func:`preference` whose locked arm (at its default value)
-    has a closed-form pose solver; chosen once per chain.
+    has a closed-form pose solver; chosen once per chain. Another kind of
+    parameter (an SRS arm's arm angle) is one more :class:`Parameter` tried here,
+    before the joints.
     """
     if chain.dof != REDUNDANT_DOF:
         return None
@@ -102,16 +105,19 @@ def solve_arm(
 
 
 def _at_parameter(
-    chain: Chain, joint: JointParameter, target: ArrayLike, targets: Targets, options: IKOptions
+    chain: Chain, joint: Parameter, target: ArrayLike, targets: Targets, options: IKOptions
 ) -> IKResult | IKBatchResult:
     """Every solution with ``joint`` at q0's value (or its default); numeric where none."""
-    k, n = joint.index, chain.dof
+    n = chain.dof
     q0s = _q0_rows(options.q0, targets.shape, n)
     if q0s is None:
         values = np.full(targets.poses.shape[0], joint.default(chain))
-        why = "the middle of its limits" if np.isfinite(chain.own_limits[k]).all() else "0"
+        why = "its default value"
+        if isinstance(joint, JointParameter):
+            middle = np.isfinite(chain.own_limits[joint.index]).all()
+            why = "the middle of its limits" if middle else "0: it has no limits"
     else:
-        values = np.clip(q0s[:, k], *joint.span(chain))
+        values = np.clip(joint.value_of(chain, q0s), *joint.span(chain))
         why = "q0's value, within its limits"
     res = joint.solve(chain, target, values, options)
     numeric = dataclasses.replace(options, method="numeric")
