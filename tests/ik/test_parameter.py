@@ -238,3 +238,15 @@ def test_q0_of_the_whole_arm_and_a_closed_form_asked_of_the_locked_arm() -> None
     with pytest.raises(KinematicaError, match="the arm left with q7 held") as bad:
         panda.ik(T, fixed={6: 0.4}, method="analytic", mask=[1, 1, 1, 1, 1, 0])
     assert bad.value.arg == "method"
+
+
+def test_free_joints_of_a_singular_answer_are_named_in_the_whole_arm() -> None:
+    # q6 = 0 lines up axes 5 and 7: the locked arm's joints 4 and 6 are q5 and q7
+    robot = km.load("iiwa14")
+    T = robot.fk(np.array([0.3, 0.5, -0.2, -1.2, 0.4, 0.0, 0.2]))
+    res = robot.ik(T, fixed={0: 0.3})
+    assert res.status == "singular" and res.free_joints == (4, 6)
+    assert "(q5, q7 free)" in res.message
+    many = robot.ik(np.stack([T, T]), fixed={0: 0.3})
+    np.testing.assert_array_equal(many.free[0], [0, 0, 0, 0, 1, 0, 1])
+    assert many[1].free_joints == (4, 6)
