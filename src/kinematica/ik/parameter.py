@@ -215,8 +215,8 @@ class JointParameter:
         moved = not targets.position and k in (0, n - 1) and n - 1 >= 6
         try:
             if moved:  # one locked arm, moved targets
-                arm = locked_chain(chain, k, 0.0)
-                poses = _moved(chain, k, targets.poses, v)
+                arm, G, G_inv = _ends(chain, k)
+                poses = _moved(chain.prismatic[k], k, G, G_inv, targets.poses, v)
                 out = solve_ik(arm, targets._replace(poses=poses), opts)
             elif np.all(v == v[0]):
                 out = solve_ik(locked_chain(chain, k, float(v[0])), target, opts)
@@ -259,13 +259,16 @@ def _row(q0: ArrayLike, shape: tuple[int, ...], i: int) -> FloatArray:
     return np.broadcast_to(q, (*shape, q.shape[-1])).reshape(-1, q.shape[-1])[i]
 
 
-_ENDS: weakref.WeakKeyDictionary[Chain, dict[int, tuple[FloatArray, FloatArray]]] = (
+_ENDS: weakref.WeakKeyDictionary[Chain, dict[int, tuple[Chain, FloatArray, FloatArray]]] = (
     weakref.WeakKeyDictionary()
 )
 
 
-def _ends(chain: Chain, k: int) -> tuple[FloatArray, FloatArray]:
-    """``(G, G⁻¹)``: the chain's start (k = 0), or its last fixed part times the tool."""
+def _ends(chain: Chain, k: int) -> tuple[Chain, FloatArray, FloatArray]:
+    """The first (k = 0) or last joint locked at 0, once per chain, and ``(G, G⁻¹)``.
+
+    ``G``: the chain's start (k = 0), or its last fixed part times the tool.
+    """
     per = _ENDS.setdefault(chain, {})
     found = per.get(k)
     if found is None:
@@ -273,16 +276,17 @@ def _ends(chain: Chain, k: int) -> tuple[FloatArray, FloatArray]:
         G_inv = np.eye(4)
         G_inv[:3, :3] = G[:3, :3].T
         G_inv[:3, 3] = -G[:3, :3].T @ G[:3, 3]
-        found = per[k] = (np.array(G), G_inv)
+        found = per[k] = (chain.locked(k, 0.0), np.array(G), G_inv)
     return found
 
 
-def _moved(chain: Chain, k: int, poses: FloatArray, v: FloatArray) -> FloatArray:
+def _moved(
+    prismatic: bool, k: int, G: FloatArray, G_inv: FloatArray, poses: FloatArray, v: FloatArray
+) -> FloatArray:
     """``(N, 4, 4)`` targets of the arm locked at 0 that are ``poses`` with joint k at ``v``."""
-    G, G_inv = _ends(chain, k)
     inverse = np.zeros((v.size, 4, 4))  # M(v)⁻¹ = M(-v), one per target
     inverse[:, 3, 3] = 1.0
-    if chain.prismatic[k]:
+    if prismatic:
         inverse[:, 0, 0] = inverse[:, 1, 1] = inverse[:, 2, 2] = 1.0
         inverse[:, 2, 3] = -v
     else:

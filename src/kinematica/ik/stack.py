@@ -54,6 +54,8 @@ def widen_result(
 def _with_column(q: FloatArray, joint: int, value: float) -> FloatArray:
     """``(k, n - 1)`` rows with a column of ``value`` put in at ``joint``: ``(k, n)``."""
     out = np.empty((q.shape[0], q.shape[1] + 1))
+    if not q.shape[0]:
+        return out
     out[:, :joint] = q[:, :joint]
     out[:, joint] = value
     out[:, joint + 1 :] = q[:, joint:]
