@@ -165,9 +165,10 @@ class JointParameter:
         v = float(value)
         if not math.isfinite(v):
             raise KinematicaError(f"fixed: {self.name} must be finite, got {v}", arg="fixed")
-        if not self.prismatic and not np.isfinite(chain.own_limits[self.index]).any():
+        own_lo, own_hi = chain.own_limits[self.index].tolist()
+        if not self.prismatic and not (math.isfinite(own_lo) or math.isfinite(own_hi)):
             v = float(wrap_angle(v))  # a joint free to turn: its angles come out in (-π, π]
-        lo, hi = self.span(chain)
+        lo, hi = chain.qlim[self.index].tolist()
         if respect_limits and not lo <= v <= hi:
             raise KinematicaError(
                 f"fixed: {self.name} = {v:.6g} {self.unit} is outside its limits "
@@ -202,7 +203,10 @@ class JointParameter:
         k, n = self.index, chain.dof
         targets = parse_targets(target)
         N = targets.poses.shape[0]
-        v = np.broadcast_to(np.asarray(values, dtype=float), (N,)).copy()
+        if isinstance(values, float | int):
+            v = np.full(N, float(values))
+        else:
+            v = np.broadcast_to(np.asarray(values, dtype=float), (N,)).copy()
         q0 = options.q0
         if q0 is not None:
             q0 = np.asarray(q0, dtype=float)
@@ -211,7 +215,11 @@ class JointParameter:
                     f"q0 must hold {n} joint values, got shape {q0.shape}", arg="q0"
                 )
             q0 = np.delete(q0, k, axis=-1)
-        opts = dataclasses.replace(options, q0=q0, fixed=None)
+        opts = IKOptions(  # as dataclasses.replace(options, q0=q0, fixed=None), faster
+            method=options.method, tol=options.tol, respect_limits=options.respect_limits,
+            q0=q0, mask=options.mask, seed=options.seed, workers=options.workers,
+            precision=options.precision,
+        )  # fmt: skip
         moved = not targets.position and k in (0, n - 1) and n - 1 >= 6
         try:
             if moved:  # one locked arm, moved targets
@@ -284,6 +292,17 @@ def _moved(
     prismatic: bool, k: int, G: FloatArray, G_inv: FloatArray, poses: FloatArray, v: FloatArray
 ) -> FloatArray:
     """``(N, 4, 4)`` targets of the arm locked at 0 that are ``poses`` with joint k at ``v``."""
+    if v.size == 1:  # one target: 4x4 products
+        M = np.eye(4)
+        if prismatic:
+            M[2, 3] = -float(v[0])
+        else:
+            cos, sin = math.cos(float(v[0])), math.sin(float(v[0]))
+            M[0, 0] = M[1, 1] = cos
+            M[0, 1], M[1, 0] = sin, -sin
+        if k == 0:
+            return (G @ M @ G_inv @ poses[0])[None]
+        return (poses[0] @ G_inv @ M @ G)[None]
     inverse = np.zeros((v.size, 4, 4))  # M(v)⁻¹ = M(-v), one per target
     inverse[:, 3, 3] = 1.0
     if prismatic:
