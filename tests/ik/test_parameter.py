@@ -250,3 +250,24 @@ def test_free_joints_of_a_singular_answer_are_named_in_the_whole_arm() -> None:
     many = robot.ik(np.stack([T, T]), fixed={0: 0.3})
     np.testing.assert_array_equal(many.free[0], [0, 0, 0, 0, 1, 0, 1])
     assert many[1].free_joints == (4, 6)
+
+
+@pytest.mark.parametrize("first", [True, False])
+def test_a_slide_at_either_end_is_held_by_moving_the_targets(first: bool) -> None:
+    # a PUMA on a rail (a slide before joint 1), or with a slide after its flange
+    puma = km.load("puma560")
+    slide = km.Prismatic(theta=0.0, a=0.0, alpha=0.0, qlim=(-1.0, 1.0))
+    rows = [slide, *puma.links] if first else [*puma.links, slide]
+    robot = km.Robot.from_dh(rows, base=puma.base, tool=puma.tool)
+    k = 0 if first else 6
+    Q = np.array([[0.3, -0.6, 0.2, 0.5, 0.9, -0.4], [0.1, -0.2, 0.4, -0.5, 0.6, 0.3]])
+    Q = np.insert(Q, k, 0.25, axis=1)
+    T = robot.fk(Q)
+    many = robot.ik(T, fixed={k: 0.25}, respect_limits=False)
+    assert isinstance(many, IKBatchResult)
+    for i in range(2):
+        one = robot.ik(T[i], fixed={k: 0.25}, respect_limits=False)
+        assert one.method.startswith("analytic:") and one.count == 8, one.message
+        assert_locked(robot, one, T[i], k, 0.25)
+        assert contains(robot, one.solutions, Q[i])
+        np.testing.assert_allclose(many[i].solutions, one.solutions, atol=1e-12)
