@@ -45,8 +45,10 @@ from kinematica.spatial import ROUNDOFF_TOL
 if TYPE_CHECKING:
     import os
 
+    from kinematica.ik.parameter import Parameter
     from kinematica.io import RobotSpec
     from kinematica.robot.dh_rules import DHExtraction
+    from kinematica.robot.self_motion import SelfMotion
 
 __all__ = ["Robot"]
 
@@ -672,13 +674,13 @@ class Robot:
     def self_motion(
         self,
         target: ArrayLike,
-        parameter: Any,
+        parameter: int | str | Parameter,
         *,
         samples: int = 73,
         values: ArrayLike | None = None,
         max_jump: float | None = None,
         method: str = "auto",
-    ) -> Any:
+    ) -> SelfMotion:
         """The solution families at the pose ``target`` swept over ``parameter`` (a joint).
 
         See :func:`kinematica.robot.self_motion.self_motion` (``max_jump`` None:
