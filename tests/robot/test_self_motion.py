@@ -153,3 +153,15 @@ def test_a_position_target_is_refused() -> None:
     with pytest.raises(KinematicaError, match="one pose") as info:
         robot.self_motion(robot.fk(Q_PANDA)[:3, 3], 6)
     assert info.value.arg == "target"
+
+
+def test_the_search_is_carried_from_sample_to_sample() -> None:
+    # one answer a call: seeded with its neighbours' configurations, a family
+    # holds at every sample
+    robot = km.load("panda")
+    T = robot.fk(Q_PANDA)
+    values = np.linspace(0.0, 0.4, 5)
+    sm = robot.self_motion(T, 6, values=values, method="numeric")
+    assert sm.method == "numeric:lm"
+    check_motion(robot, T, sm, 6)
+    assert max(int(f.present.sum()) for f in sm.families) == values.size

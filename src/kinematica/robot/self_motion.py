@@ -9,6 +9,10 @@ its next solution is farther than ``max_jump`` (:data:`MAX_JUMP`) away in joint
 space, or where its branch has no solution. Each family says where along the
 parameter it lies within every joint's limits.
 
+A locked arm with no closed form is searched numerically, one configuration a
+call: each configuration found at a sample seeds the search at its neighbours,
+so a family found anywhere is followed as far as the search can carry it.
+
 Branch labels are the locked arm's closed form's: at a value where the locked arm
 has another structure (axes that become parallel or meet there), another closed
 form names the same configurations differently, and the families change there.
@@ -19,7 +23,7 @@ sweep over it finds nothing at almost every sample.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -31,6 +35,7 @@ from kinematica.ik.parameter import Parameter, joint_parameter
 from kinematica.ik.targets import parse_targets
 
 if TYPE_CHECKING:
+    from kinematica.core import Chain
     from kinematica.robot import Robot
 
 __all__ = ["MAX_JUMP", "Family", "SelfMotion", "families", "joint_jump", "self_motion"]
@@ -44,6 +49,8 @@ BoolArray = NDArray[np.bool_]
 #: 6 times the parameter's step stays whole; one passing close to a singular set,
 #: where joints turn fast, is split there.
 MAX_JUMP = 0.5
+#: Two configurations of the search closer than this in every joint (rad, m) are one.
+SAME_TOL = 1e-6
 
 
 @dataclass(frozen=True, eq=False)
@@ -246,13 +253,53 @@ def self_motion(
     options = IKOptions(method=method, respect_limits=False)  # type: ignore[arg-type]
     res = param.solve(chain, poses, grid, options)
     assert isinstance(res, IKBatchResult)
-    fams = families(
-        grid, res.solutions, res.branches, chain.prismatic, chain.own_limits, float(max_jump)
-    )
+    solutions, branches = res.solutions, res.branches
+    if not res.complete:  # a search: one answer a call, carried from sample to sample
+        solutions, branches = _continued(param, chain, targets.poses[0], grid, options, res)
+    fams = families(grid, solutions, branches, chain.prismatic, chain.own_limits, float(max_jump))
     return SelfMotion(
         param.name, param.unit, grid, fams, res.method, float(max_jump),
         chain.own_limits.copy(), robot.joint_names,
     )  # fmt: skip
+
+
+def _continued(
+    param: Parameter,
+    chain: Chain,
+    target: FloatArray,
+    grid: FloatArray,
+    options: IKOptions,
+    first: IKBatchResult,
+) -> tuple[FloatArray, NDArray[np.str_]]:
+    """Every configuration the search finds at each sample, seeded from the neighbours.
+
+    The numeric search gives one configuration a call, from its first guess: each
+    configuration found at a sample seeds the search at the next one (a sweep up
+    the samples, then one down), so a family it found anywhere is followed as far
+    as it goes. Two configurations within :data:`SAME_TOL` (every joint) are one.
+
+    Returns:
+        ``(N, k, n)`` solutions NaN-padded, and ``(N, k)`` their branch labels.
+    """
+    N = grid.size
+    count = first.count.reshape(-1)
+    found = [list(first.solutions.reshape(N, -1, chain.dof)[i, : count[i]]) for i in range(N)]
+    label = str(first.labels[0]) if first.labels else ""
+    for order in (range(1, N), range(N - 2, -1, -1)):
+        for i in order:
+            for seed in found[i - order.step]:
+                res = param.solve(chain, target, float(grid[i]), replace(options, q0=seed))
+                for q in res.solutions:
+                    if all(joint_jump(q, other, chain.prismatic) > SAME_TOL for other in found[i]):
+                        found[i].append(q)
+    k = max(1, *(len(f) for f in found))
+    solutions = np.full((N, k, chain.dof), np.nan)
+    branches = np.full((N, k), "", dtype=f"<U{max(1, len(label))}")
+    for i, rows in enumerate(found):
+        if rows:
+            solutions[i, : len(rows)] = rows
+            branches[i, : len(rows)] = label
+    return solutions, branches
 
 
 def _values(span: tuple[float, float], samples: object, values: ArrayLike | None) -> FloatArray:
