@@ -84,6 +84,7 @@ def save_self_motion(
         ax.set_ylim(y0 - pad, y1 + pad)
         ax.set_ylabel(f"{motion.joint_names[j]} ({unit[j]})")
         ax.grid(True, lw=0.3)
+    axes[-1].set_xlim(x[0], x[-1])  # the whole sweep, where families are or are not
     axes[-1].set_xlabel(f"{motion.parameter} ({punit})")
     fig.suptitle(
         f"self-motion over {motion.parameter}: {count} families ({motion.method}); "
