@@ -7,15 +7,26 @@ their intervals must agree with the joint limits sample by sample.
 
 from __future__ import annotations
 
+import dataclasses
 import math
+from typing import Any
 
 import numpy as np
 import pytest
 from support.helpers import assert_transform_close
 
 import kinematica as km
+from kinematica.core import Chain
 from kinematica.errors import KinematicaError
-from kinematica.robot.self_motion import MAX_JUMP, SelfMotion, families, joint_jump
+from kinematica.ik import IKBatchResult, IKOptions, IKResult
+from kinematica.ik.parameter import JointParameter
+from kinematica.robot.self_motion import (
+    MAX_JUMP,
+    SAME_TOL,
+    SelfMotion,
+    families,
+    joint_jump,
+)
 
 TOL = 1e-10
 Q_IIWA = np.array([0.3, 0.5, -0.2, -1.2, 0.4, 0.9, 0.2])
@@ -165,3 +176,50 @@ def test_the_search_is_carried_from_sample_to_sample() -> None:
     assert sm.method == "numeric:lm"
     check_motion(robot, T, sm, 6)
     assert max(int(f.present.sum()) for f in sm.families) == values.size
+
+
+@dataclasses.dataclass(frozen=True)
+class Nudged:
+    """A parameter (the Panda's q7, searched) whose seeded answers come back moved by ``by``."""
+
+    by: float
+    joint: JointParameter = dataclasses.field(default_factory=lambda: JointParameter(6, "q7"))
+    name: str = "q7"
+    unit: str = "rad"
+
+    def span(self, chain: Chain) -> tuple[float, float]:
+        return self.joint.span(chain)
+
+    def default(self, chain: Chain) -> float:
+        return self.joint.default(chain)
+
+    def value_of(self, chain: Chain, q: np.ndarray) -> np.ndarray:
+        return self.joint.value_of(chain, q)
+
+    def describe(self, value: float) -> str:
+        return self.joint.describe(value)
+
+    def solve(
+        self, chain: Chain, target: Any, values: Any, options: IKOptions
+    ) -> IKResult | IKBatchResult:
+        res = self.joint.solve(
+            chain, target, values, dataclasses.replace(options, method="numeric")
+        )
+        if isinstance(res, IKResult):  # a seeded call: its answer nudged in joint 1
+            return dataclasses.replace(
+                res, solutions=res.solutions + np.array([self.by, 0, 0, 0, 0, 0, 0])
+            )
+        return res
+
+
+@pytest.mark.parametrize(("by", "same"), [(5e-7, True), (2e-6, False)])
+def test_the_search_counts_answers_within_same_tol_once(by: float, same: bool) -> None:
+    # any object with the Parameter protocol's members is a parameter
+    robot = km.load("panda")
+    T = robot.fk(Q_PANDA)
+    values = np.linspace(0.0, 0.4, 5)
+    plain = robot.self_motion(T, Nudged(0.0), values=values)
+    nudged = robot.self_motion(T, Nudged(by), values=values)
+    assert SAME_TOL == 1e-6
+    assert nudged.parameter == "q7"
+    assert (len(nudged.families) == len(plain.families)) == same
