@@ -135,3 +135,17 @@ def test_six_joint_arms_a_mask_and_positions_are_not_held() -> None:
     assert iiwa.ik(T, mask=[1, 1, 1, 1, 1, 0], seed=1).parameter is None
     assert iiwa.ik(T[:3, 3], seed=1).parameter is None
     assert iiwa.ik(T, method="numeric", seed=1).parameter is None
+
+
+def test_a_ur5_with_a_seventh_joint_is_held_at_it_with_every_ur5_solution() -> None:
+    # its last joint leaves the UR5's three parallel axes: first in the preference
+    ur5 = km.load("ur5")
+    rows = [*ur5.links, km.Revolute(d=0.05, a=0.03, alpha=0.4)]
+    robot = km.Robot.from_dh(rows, base=ur5.base, tool=ur5.tool)
+    q = np.array([0.3, -1.0, 1.2, -0.5, 0.8, 0.4, 0.25])
+    T = robot.fk(q)
+    res = robot.ik(T, q0=q, respect_limits=False)
+    assert res.parameter == ("q7", 0.25)
+    assert res.method.startswith("analytic:") and res.count == 8
+    np.testing.assert_allclose(res.solutions[0], q, atol=1e-9)  # nearest q0 first
+    assert_transform_close(robot.fk(res.solutions), np.broadcast_to(T, (8, 4, 4)), atol=TOL)
