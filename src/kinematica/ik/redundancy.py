@@ -145,9 +145,14 @@ def _at_parameter(
     raw = res.raw
     missed = np.flatnonzero((raw.count == 0) & (raw.status != _INVALID))
     notes = dict(res.notes)
-    for i in np.flatnonzero(raw.count > 0).tolist():
-        idx = tuple(int(v) for v in np.unravel_index(i, res.shape))
-        notes[idx] = (*notes.get(idx, ()), note(float(values[i])))
+    said: dict[float, str] = {}  # one note per value, shared by its targets
+    held = np.flatnonzero(raw.count > 0)
+    cells = zip(*np.unravel_index(held, res.shape), strict=True)
+    for i, idx in zip(held.tolist(), cells, strict=True):
+        value = float(values[i])
+        text = said.get(value) or said.setdefault(value, note(value))
+        where = tuple(int(v) for v in idx)
+        notes[where] = (*notes.get(where, ()), text)
     res = dataclasses.replace(res, notes=notes)
     if missed.size:
         sub = targets._replace(
