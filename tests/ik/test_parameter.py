@@ -271,3 +271,15 @@ def test_a_slide_at_either_end_is_held_by_moving_the_targets(first: bool) -> Non
         assert_locked(robot, one, T[i], k, 0.25)
         assert contains(robot, one.solutions, Q[i])
         np.testing.assert_allclose(many[i].solutions, one.solutions, atol=1e-12)
+
+
+@pytest.mark.parametrize("k", [0, 6])
+def test_a_mask_is_read_in_the_frames_it_was_given(k: int) -> None:
+    # only x matters: every answer puts the tool at x, whatever y and z, with q_k held
+    robot = km.load("iiwa14")
+    q = np.array([0.3, 0.5, -0.2, -1.2, 0.4, 0.9, 0.2])
+    T = robot.fk(q)
+    res = robot.ik(T, fixed={k: float(q[k])}, mask=[1, 0, 0, 0, 0, 0], seed=1)
+    assert res.count
+    np.testing.assert_array_equal(res.solutions[:, k], q[k])
+    np.testing.assert_allclose(robot.fk(res.solutions)[:, 0, 3], T[0, 3], atol=TOL)

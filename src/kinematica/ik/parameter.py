@@ -187,7 +187,8 @@ class JointParameter:
         the tool, so the arm locked at 0 is built once and the targets are moved
         instead (``T' = G₀ M(v)⁻¹ G₀⁻¹ T`` for the first, ``T G⁻¹ M(v)⁻¹ G`` for the
         last, ``G₀`` the chain's start, ``G`` the last fixed part times the tool).
-        Otherwise one locked arm per value.
+        Otherwise (a middle joint, a position target, a mask, or fewer than 6
+        joints left) one locked arm per value.
 
         Args:
             chain: The whole arm.
@@ -220,7 +221,10 @@ class JointParameter:
             q0=q0, mask=options.mask, seed=options.seed, workers=options.workers,
             precision=options.precision,
         )  # fmt: skip
-        moved = not targets.position and k in (0, n - 1) and n - 1 >= 6
+        # moving the target moves the tool point (last joint) or turns the base frame
+        # (first): a mask's components and an over-determined target's printed digits
+        # would no longer be the ones given, so those are solved as they are
+        moved = not targets.position and options.mask is None and k in (0, n - 1) and n - 1 >= 6
         try:
             if moved:  # one locked arm, moved targets
                 arm, G, G_inv = _ends(chain, k)
