@@ -15,7 +15,13 @@ from support.helpers import assert_transform_close
 import kinematica as km
 from kinematica.errors import KinematicaError
 from kinematica.ik import IKBatchResult, IKOptions, IKResult
-from kinematica.ik.parameter import LOCKED_CACHE, joint_parameter, locked_chain
+from kinematica.ik.parameter import (
+    LOCKED_CACHE,
+    NARROWEST,
+    joint_parameter,
+    locked_chain,
+    narrowed_tolerance,
+)
 
 TOL = 1e-10  # the default acceptance tolerance of robot.ik (m, rad)
 
@@ -283,3 +289,51 @@ def test_a_mask_is_read_in_the_frames_it_was_given(k: int) -> None:
     assert res.count
     np.testing.assert_array_equal(res.solutions[:, k], q[k])
     np.testing.assert_allclose(robot.fk(res.solutions)[:, 0, 3], T[0, 3], atol=TOL)
+
+
+def slide_at_the_end(offset: float = 0.0) -> km.Robot:
+    """A PUMA whose flange turns about a 7th joint; the tool ``offset`` m off its axis."""
+    puma = km.load("puma560")
+    rows = [*puma.links, km.Revolute(d=0.05)]
+    return km.Robot.from_dh(rows, tool=np.array(km.transl(offset, 0.0, 0.1)))
+
+
+def test_the_last_joint_at_a_value_per_target_equals_single_calls() -> None:
+    robot = slide_at_the_end(0.2)
+    Q = np.array(
+        [[0.3, -0.6, 0.2, 0.5, 0.9, -0.4, 0.2], [0.1, -0.2, 0.4, -0.5, 0.6, 0.3, -1.1],
+         [0.2, -0.4, 0.1, 0.3, 0.5, 0.1, 2.5]]
+    )  # fmt: skip
+    T = robot.fk(Q)
+    T[2, :3, 3] = [3.0, 0.0, 0.0]  # far out of reach: a gap, the tool point's own
+    joint = joint_parameter(robot.chain, 6)
+    many = joint.solve(robot.chain, T, Q[:, 6], IKOptions())
+    assert isinstance(many, IKBatchResult)
+    assert many.status[2] == "unreachable"
+    for i in range(3):
+        one = robot.ik(T[i], fixed={6: float(Q[i, 6])})
+        got = many[i]
+        assert str(got.status) == str(one.status)
+        assert got.message == one.message
+        assert got.gap == one.gap
+        assert got.parameter == one.parameter
+        np.testing.assert_allclose(got.solutions, one.solutions, atol=1e-12)
+        if one.count:
+            assert_locked(robot, got, T[i], 6, float(Q[i, 6]))
+
+
+@pytest.mark.parametrize(("shift", "moved"), [(0.49, True), (0.51, False)])
+def test_a_target_moved_past_the_last_joint_keeps_at_least_half_the_tolerance(
+    shift: float, moved: bool
+) -> None:
+    # the tool 0.3 m off the last axis: a turn by v moves it by 0.6 sin(v/2)
+    robot = slide_at_the_end(0.3)
+    chain = robot.chain
+    G = chain.fixed_parts[-1] @ chain.tool
+    v = np.array([2.0 * math.asin(shift / 0.6)])
+    narrow = narrowed_tolerance(None, False, 6, G, np.linalg.inv(G), v)
+    assert NARROWEST == 0.5
+    if moved:
+        assert narrow == pytest.approx((1e-10 * (1.0 - shift), 1e-10), rel=1e-9)
+    else:
+        assert narrow is None

@@ -31,17 +31,19 @@ from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.options import IKOptions
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.solve import solve_ik
-from kinematica.ik.stack import stack_results, widen_batch, widen_result
-from kinematica.ik.targets import parse_targets
+from kinematica.ik.stack import replace_rows, stack_results, widen_batch, widen_result
+from kinematica.ik.targets import Targets, parse_targets, parse_tolerance
 from kinematica.spatial import wrap_angle
 
 __all__ = [
     "LOCKED_CACHE",
+    "NARROWEST",
     "JointParameter",
     "Parameter",
     "joint_names",
     "joint_parameter",
     "locked_chain",
+    "narrowed_tolerance",
     "solve_fixed",
 ]
 
@@ -50,6 +52,12 @@ FloatArray = NDArray[np.float64]
 #: Locked arms kept per chain, least recently used first out (a sweep over a middle
 #: joint's values builds one per value; the first and last joints need one each).
 LOCKED_CACHE = 16
+
+#: The least share of the position tolerance a target moved past the last joint may
+#: be held to (:func:`narrowed_tolerance`); below it (with equal position and rotation
+#: tolerances: the tool point moved by more than 0.5 m) the targets are solved on one
+#: locked arm per value instead.
+NARROWEST = 0.5
 
 _LOCKED: weakref.WeakKeyDictionary[Chain, OrderedDict[tuple[int, float], Chain]] = (
     weakref.WeakKeyDictionary()
@@ -221,16 +229,34 @@ class JointParameter:
             q0=q0, mask=options.mask, seed=options.seed, workers=options.workers,
             precision=options.precision,
         )  # fmt: skip
-        # moving the target moves the tool point (last joint) or turns the base frame
-        # (first): a mask's components and an over-determined target's printed digits
-        # would no longer be the ones given, so those are solved as they are
-        moved = not targets.position and options.mask is None and k in (0, n - 1) and n - 1 >= 6
+        same = bool(np.all(v == v[0]))
+        # The first joint's value turns the base frame about its axis: the moved target
+        # is the same problem, distances and angles kept. The last joint's moves the tool
+        # point: worth it only for values that differ per target (one locked arm for a
+        # sweep), checked against a narrower tolerance (see narrowed_tolerance). A mask's
+        # components and an over-determined target's printed digits would not be the
+        # ones given: those targets are solved as they are.
+        moved = (
+            not targets.position
+            and options.mask is None
+            and n - 1 >= 6
+            and (k == 0 or (k == n - 1 and not same))
+        )
+        if moved:
+            arm, G, G_inv = _ends(chain, k)
+            if k == n - 1:
+                narrow = narrowed_tolerance(options.tol, chain.prismatic[k], k, G, G_inv, v)
+                moved = narrow is not None
+                if narrow is not None:
+                    opts = dataclasses.replace(opts, tol=narrow)
         try:
             if moved:  # one locked arm, moved targets
-                arm, G, G_inv = _ends(chain, k)
                 poses = _moved(chain.prismatic[k], k, G, G_inv, targets.poses, v)
                 out = solve_ik(arm, targets._replace(poses=poses), opts)
-            elif np.all(v == v[0]):
+                if k == n - 1 and isinstance(out, IKBatchResult):
+                    out = widen_batch(out, k, v, self.name)
+                    return self._exact_gaps(chain, targets, v, out, options)
+            elif same:
                 out = solve_ik(locked_chain(chain, k, float(v[0])), target, opts)
             else:  # a middle joint at several values: one arm per value, each target alone
                 return self._one_by_one(chain, targets, v, opts)
@@ -246,11 +272,37 @@ class JointParameter:
             return widen_result(out, k, float(v[0]), (self.name, float(v[0])))
         return widen_batch(out, k, v, self.name)
 
+    def _exact_gaps(
+        self,
+        chain: Chain,
+        targets: Targets,
+        v: FloatArray,
+        out: IKBatchResult,
+        options: IKOptions,
+    ) -> IKBatchResult:
+        """``out`` with the targets proven out of reach solved again on their own arms.
+
+        A gap measured from a moved target is the distance of another point than
+        the tool's: those few targets are solved as they are, for a gap that is
+        the tool's.
+        """
+        rows = np.flatnonzero(np.isfinite(out.raw.gap))
+        if not rows.size:
+            return out
+        sub = targets._replace(
+            poses=np.ascontiguousarray(targets.poses[rows]),
+            shape=(int(rows.size),),
+            invalid={},
+            notes={},
+        )
+        q0 = None if options.q0 is None else _rows(options.q0, targets.shape, rows)
+        opts = dataclasses.replace(options, q0=q0, fixed=None)
+        again = self._one_by_one(chain, sub, v[rows], opts)
+        return replace_rows(out, rows, again, None)
+
     def _one_by_one(
         self, chain: Chain, targets: object, v: FloatArray, opts: IKOptions
     ) -> IKBatchResult:
-        from kinematica.ik.targets import Targets
-
         assert isinstance(targets, Targets)
         results: dict[int, IKResult] = {}
         for i in range(targets.poses.shape[0]):
@@ -263,6 +315,41 @@ class JointParameter:
             assert isinstance(one, IKResult)
             results[i] = widen_result(one, self.index, float(v[i]), (self.name, float(v[i])))
         return stack_results(results, targets, chain.dof, self.name, v)
+
+
+def _rows(q0: ArrayLike, shape: tuple[int, ...], rows: NDArray[np.intp]) -> FloatArray:
+    """Rows ``rows`` (flat, C order) of a q0 broadcast over a batch of shape ``shape``."""
+    q = np.asarray(q0, dtype=float)
+    return np.broadcast_to(q, (*shape, q.shape[-1])).reshape(-1, q.shape[-1])[rows]
+
+
+def narrowed_tolerance(
+    tol: object, prismatic: bool, k: int, G: FloatArray, G_inv: FloatArray, v: FloatArray
+) -> tuple[float, float] | None:
+    """The position tolerance a target moved past the last joint is held to, or None.
+
+    The arm's pose is ``F = L Y⁻¹`` for the locked arm's ``L`` checked against
+    ``T Y``: its position error is at most the locked arm's plus its rotation error
+    times ``|t_Y|`` (``(I - R) x`` is at most ``θ |x|``), so ``P - R max|t_Y|``
+    keeps every accepted solution within ``P`` of the real target. None when that
+    leaves less than :data:`NARROWEST` of ``P`` (solve those targets as they are).
+
+    Args:
+        tol: The tolerance as ``robot.ik`` takes it (None: the defaults).
+        prismatic: The last joint slides.
+        k: Its index.
+        G: ``(4, 4)`` its last fixed part times the tool; ``G_inv`` its inverse.
+        G_inv: See ``G``.
+        v: ``(N,)`` the values the targets are moved by.
+
+    Returns:
+        ``(position m, rotation rad)``, or None.
+    """
+    given = parse_tolerance(tol)  # type: ignore[arg-type]
+    Y = _moved(prismatic, k, G, G_inv, np.broadcast_to(np.eye(4), (v.size, 4, 4)), v)
+    shift = float(np.linalg.norm(Y[:, :3, 3], axis=1).max())
+    position = given.position - given.rotation * shift
+    return (position, given.rotation) if position >= NARROWEST * given.position else None
 
 
 def _row(q0: ArrayLike, shape: tuple[int, ...], i: int) -> FloatArray:

@@ -149,12 +149,17 @@ def stack_results(
 
 
 def replace_rows(
-    batch: IKBatchResult, rows: NDArray[np.intp], other: IKBatchResult, notes_of: Sequence[str]
+    batch: IKBatchResult,
+    rows: NDArray[np.intp],
+    other: IKBatchResult,
+    notes_of: Sequence[str] | None,
 ) -> IKBatchResult:
     """``batch`` with the flat rows ``rows`` answered by ``other`` (one target per row).
 
-    Those rows lose the batch's parameter (NaN), take ``other``'s method, and one
-    note each (``notes_of``, in the order of ``rows``).
+    With ``notes_of`` (one note per row, in the order of ``rows``) those rows are
+    answered with every joint free: they lose the batch's parameter (NaN) and take
+    ``other``'s method and the note. Without, they keep the parameter (the same
+    question answered again), and ``other``'s method where it is another.
     """
     a, b = batch.raw, other.raw
     m = a.q.shape[1]
@@ -178,12 +183,17 @@ def replace_rows(
     shape = batch.shape
     methods = dict(batch.methods)
     notes = dict(batch.notes)
-    for i, note in zip(rows.tolist(), notes_of, strict=True):
+    for j, i in enumerate(rows.tolist()):
         idx = _where(shape, i)
-        methods[idx] = other.method
-        notes[idx] = (*notes.get(idx, ()), note)
+        mine = other[j]
+        if notes_of is not None or mine.method != batch.method:
+            methods[idx] = mine.method
+        if notes_of is not None:
+            notes[idx] = (*notes.get(idx, ()), notes_of[j])
+        elif mine.notes:
+            notes[idx] = mine.notes
     parameter = batch.parameter
-    if parameter is not None:
+    if parameter is not None and notes_of is not None:
         values = np.array(parameter[1], dtype=float).reshape(-1)
         values[rows] = np.nan
         parameter = (parameter[0], values.reshape(shape))
