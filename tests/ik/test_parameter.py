@@ -15,13 +15,7 @@ from support.helpers import assert_transform_close
 import kinematica as km
 from kinematica.errors import KinematicaError
 from kinematica.ik import IKBatchResult, IKOptions, IKResult
-from kinematica.ik.parameter import (
-    LOCKED_CACHE,
-    NARROWEST,
-    joint_parameter,
-    locked_chain,
-    narrowed_tolerance,
-)
+from kinematica.ik.parameter import LOCKED_CACHE, joint_parameter, locked_chain
 
 TOL = 1e-10  # the default acceptance tolerance of robot.ik (m, rad)
 
@@ -320,20 +314,3 @@ def test_the_last_joint_at_a_value_per_target_equals_single_calls() -> None:
         np.testing.assert_allclose(got.solutions, one.solutions, atol=1e-12)
         if one.count:
             assert_locked(robot, got, T[i], 6, float(Q[i, 6]))
-
-
-@pytest.mark.parametrize(("shift", "moved"), [(0.49, True), (0.51, False)])
-def test_a_target_moved_past_the_last_joint_keeps_at_least_half_the_tolerance(
-    shift: float, moved: bool
-) -> None:
-    # the tool 0.3 m off the last axis: a turn by v moves it by 0.6 sin(v/2)
-    robot = slide_at_the_end(0.3)
-    chain = robot.chain
-    G = chain.fixed_parts[-1] @ chain.tool
-    v = np.array([2.0 * math.asin(shift / 0.6)])
-    narrow = narrowed_tolerance(None, False, 6, G, np.linalg.inv(G), v)
-    assert NARROWEST == 0.5
-    if moved:
-        assert narrow == pytest.approx((1e-10 * (1.0 - shift), 1e-10), rel=1e-9)
-    else:
-        assert narrow is None
