@@ -1,9 +1,11 @@
 """Inverse kinematics: closed-form speed and exactness against EAIK, then numeric IK.
 
 Run with ``make bench`` (or ``.venv/bin/python benchmarks/ik.py``; ``--poses``,
-``--singles``, ``--seed`` change the sample). For six 6R arms with a closed
+``--singles``, ``--seed`` change the sample). For eight 6R arms with a closed
 form (PUMA 560, UR5, ABB IRB 120, KUKA KR 6, an arbitrary spherical-wrist
-arm whose first three axes are skew, and the UR5 with a5 = 5 cm: axes 5 and 6
+arm whose first three axes are skew, the same arm reversed (a spherical
+shoulder: the two families on one geometry), the Panda with q7 = 0.3 (a
+spherical shoulder), and the UR5 with a5 = 5 cm: axes 5 and 6
 apart, the quartic) it draws random reachable poses (forward
 kinematics of configurations uniform within the joint limits, seeded) and
 prints:
@@ -57,9 +59,10 @@ from _common import best_of, fmt_time, header, shortest_per_item, table, verdict
 
 import kinematica as km
 from kinematica import _core
-from kinematica.dh import Revolute
+from kinematica.dh import Revolute, link_matrix
 from kinematica.errors import KinematicaWarning
 from kinematica.ik import ClosedForm, IKBatchResult, closed_form
+from kinematica.ik.analytic.spherical_shoulder import reversed_arm
 from kinematica.ik.result import result_of
 from kinematica.ik.targets import parse_tolerance
 from kinematica.robot import Robot
@@ -100,6 +103,32 @@ GENERAL_ROWS = [  # theta offset, d, a, alpha: 'general-spherical-wrist' of ik_r
 ]
 
 
+def shoulder_arms(general: Robot) -> list[Robot]:
+    """Two spherical-shoulder arms: ``general`` reversed, and the Panda with q7 = 0.3.
+
+    The reversed arm (the modified DH table of ``fk(q)⁻¹``, see
+    :func:`kinematica.ik.analytic.spherical_shoulder.reversed_arm`) has the
+    spherical-wrist arm's geometry exactly: the two families' figures compare
+    like with like. The Panda's joint 7 at 0.3 rad goes into the tool (its row:
+    a6 = 0.088, α6 = 90°, d7 = 0); joints 1-6 keep their limits.
+    """
+    rows, base, tool = reversed_arm(list(general.links), general.base, general.tool)
+    reversed_general = Robot.from_dh(
+        rows, convention="modified", base=base, tool=tool, name="general spherical wrist, reversed"
+    )
+    panda = km.load("panda")
+    last, q7 = panda.links[6], 0.3
+    joint7 = link_matrix(q7 + last.offset, last.d, last.a, last.alpha, "modified")
+    panda6 = Robot.from_dh(
+        panda.links[:6],
+        convention="modified",
+        base=panda.base,
+        tool=joint7 @ panda.tool,
+        name="Panda, q7 = 0.3 (spherical shoulder)",
+    )
+    return [reversed_general, panda6]
+
+
 def arms() -> list[Robot]:
     general = Robot.from_dh(
         [Revolute(offset=th, d=d, a=a, alpha=al) for th, d, a, al in GENERAL_ROWS],
@@ -110,7 +139,12 @@ def arms() -> list[Robot]:
     rows[4] = Revolute(d=rows[4].d, a=0.05, alpha=rows[4].alpha, offset=rows[4].offset)
     ur5_a5 = Robot.from_dh(rows, name="UR5, a5 = 5 cm", base=ur5.base, tool=ur5.tool)
     ur5_a5 = ur5_a5.with_limits(ur5.qlim)
-    return [*(km.load(name) for name in ("puma560", "ur5", "irb120", "kr6")), general, ur5_a5]
+    return [
+        *(km.load(name) for name in ("puma560", "ur5", "irb120", "kr6")),
+        general,
+        *shoulder_arms(general),
+        ur5_a5,
+    ]
 
 
 def raw(closed: ClosedForm, robot: Robot, T: np.ndarray) -> np.ndarray:

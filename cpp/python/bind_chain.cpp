@@ -316,16 +316,12 @@ void bind_chain(nb::module_& m) {
             F64 a = new_f64({c.dof(), 4, 4}, out);
             for (int i = 0; i < c.dof(); ++i) {
                 const km::Joint& J = c.joints()[static_cast<size_t>(i)];
-                Pose turn, shift, twist;  // Rz(θ), Trans(t), Rx(α)
-                turn.x = {J.ct, J.st, 0.0};
-                turn.y = {-J.st, J.ct, 0.0};
-                shift.p = J.t;
-                twist.y = {0.0, J.ca, J.sa};
-                twist.z = {0.0, -J.sa, J.ca};
-                (turn * shift * twist).to_rows(out + 16 * i);
+                const Pose F = km::detail::rot_z(J.ct, J.st) * km::detail::trans(J.t) *
+                               km::detail::rot_x(J.ca, J.sa);
+                F.to_rows(out + 16 * i);
             }
             return a;
-        }, "(n, 4, 4) the fixed part after each joint's motion, Rz(θ) Trans(t) Rx(α): "
+        }, "(n, 4, 4) each joint's fixed part Rz(θ) Trans(t) Rx(α), after its motion:\n"
            "T = start · Π_i [M_i(q_i) · fixed_i] · tool.")
         .def_prop_ro("start", [](const Chain& c) { return c.view().start; })
         .def_prop_ro("tool", [](const Chain& c) { return c.view().tool; })

@@ -1,7 +1,7 @@
 // The arms decoupled at joint 3: joints 1-3 placing a point (ArmPoint), the spherical
-// wrist's poses and the arm-position solver's position targets, bound into the
-// submodule kinematica._core.decoupled with the family's tolerances and the scalar
-// internals its tolerance tests call.
+// wrist's poses (and the spherical shoulder's, by the reversed chain) and the arm-position
+// solver's position targets, bound into the submodule kinematica._core.decoupled with the
+// family's tolerances and the scalar internals its tolerance tests call.
 #include <cstddef>
 #include <initializer_list>
 #include <string>
@@ -11,6 +11,7 @@
 #include "kinematica/solvers/arm_point.hpp"
 #include "kinematica/solvers/arm_position.hpp"
 #include "kinematica/solvers/arm_quartic.hpp"
+#include "kinematica/solvers/spherical_shoulder.hpp"
 #include "kinematica/solvers/spherical_wrist.hpp"
 #include "numpy_io.hpp"
 #include "solver_binding.hpp"
@@ -215,6 +216,14 @@ void bind_decoupled(nb::module_& m) {
         .def_rw("q6_lo", &kd::SphericalWristParams::q6_lo, "lower limit of q6 (rad)")
         .def_rw("q6_hi", &kd::SphericalWristParams::q6_hi, "upper limit of q6 (rad)")
         .def_rw("twin", &kd::SphericalWristParams::twin, "the flip is (q4 + pi, -q5, q6 + pi)");
+
+    auto shoulder = bind_closed_form<kd::SphericalShoulderParams>(
+        sub, "SphericalShoulderParams",
+        "A 6R or RRRPRR arm with a spherical shoulder (spherical_shoulder.hpp): the reversed "
+        "chain's spherical wrist, 8 slots, 6 joints.",
+        "km::decoupled::SphericalShoulderParams", "kinematica/solvers/spherical_shoulder.hpp");
+    shoulder.def_rw("wrist", &kd::SphericalShoulderParams::wrist,
+                    "the reversed chain's SphericalWristParams (its joint j is -q_(7-j))");
 
     auto position = bind_closed_form<kd::ArmPositionParams>(
         sub, "ArmPositionParams",

@@ -1,10 +1,17 @@
-"""The core's chain (``chain.hpp``): exact twists snapped, both sides of the tolerance."""
+"""The core's chain (``chain.hpp``): exact twists snapped, both sides of the tolerance.
+
+Its fixed parts and reversed chain are checked against transforms composed here
+with numpy (the motions and ``np.linalg.inv``).
+"""
 
 from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
+from support.helpers import assert_transform_close, rot_x, rot_z, transform_from, tras_z
+from support.urdf import URDF_DIR
 
 import kinematica as km
 
@@ -16,3 +23,45 @@ def test_snap_tol_is_1e_15(eps: float, exact: bool) -> None:
     robot = km.Robot.from_dh([km.Revolute(alpha=math.pi / 2 + eps)])
     T = robot.fk([0.0])
     assert bool(T[1, 1] == 0.0) == exact
+
+
+# ------------------------------------------------- fixed parts, the reversed chain
+def _arms() -> list[km.Robot]:
+    """A standard and a modified DH arm with base, tool, a slide and limits; a URDF arm."""
+    rng = np.random.default_rng(5)
+    rows = [
+        km.Revolute(d=0.3, a=0.1, alpha=0.7, offset=0.2, qlim=(-1.0, 2.0)),
+        km.Revolute(d=-0.1, a=0.4, alpha=-1.2, offset=-0.4),
+        km.Prismatic(theta=0.3, a=0.05, alpha=math.pi / 2, offset=0.2, qlim=(0.0, 0.5)),
+        km.Revolute(d=0.2, alpha=2.0, offset=1.0),
+    ]
+    base, tool = transform_from(rng.normal(size=4), [0.1, -0.2, 0.3]), tras_z(0.05) @ rot_x(0.4)
+    standard = km.Robot.from_dh(rows, base=base, tool=tool, name="standard")
+    modified = km.Robot.from_dh(rows, convention="modified", base=base, tool=tool, name="modified")
+    return [standard, modified, km.load(URDF_DIR / "ur5_robot.urdf")]
+
+
+@pytest.mark.parametrize("robot", _arms(), ids=["standard", "modified", "urdf"])
+def test_fixed_parts_rebuild_the_forward_kinematics(robot: km.Robot) -> None:
+    # T = start · Π_i [M_i(q_i) F_i] · tool, composed here with numpy
+    chain = robot.chain
+    q = np.random.default_rng(6).uniform(-1.0, 1.0, (4, chain.dof))
+    for qi in q:
+        T = chain.start.copy()
+        for j, F in enumerate(chain.fixed_parts):
+            T = T @ (tras_z(qi[j]) if chain.prismatic[j] else rot_z(qi[j])) @ F
+        assert_transform_close(T @ chain.tool, robot.fk(qi), atol=1e-14)
+
+
+@pytest.mark.parametrize("robot", _arms(), ids=["standard", "modified", "urdf"])
+def test_reversed_chain_is_the_inverse_transform(robot: km.Robot) -> None:
+    chain = robot.chain
+    back = chain.reversed()
+    q = np.random.default_rng(7).uniform(-1.0, 1.0, (6, chain.dof))
+    T, _, _ = chain.fk(q)
+    T_back, _, _ = back.fk(np.ascontiguousarray(-q[:, ::-1]))
+    assert_transform_close(T_back, np.linalg.inv(T), atol=1e-14)
+    np.testing.assert_array_equal(back.prismatic, chain.prismatic[::-1])
+    np.testing.assert_array_equal(back.own_limits, -chain.own_limits[::-1, ::-1])
+    twice, _, _ = back.reversed().fk(q)
+    assert_transform_close(twice, T, atol=1e-14)

@@ -147,14 +147,18 @@ def test_as_task_takes_arrays_paths_and_tasks(tmp_path: Path) -> None:
         ("h.json", '{"positions": [[1,2,3]], "poses": []}', r"exactly one of positions"),
         ("i.json", '{"region": "torus"}', r"expected ring, box or sphere, found 'torus'"),
         ("j.json", '{"region": "ring", "count": 3}', r"ring region: .*radius"),
-        ("k.json", '{"region": "ring", "radius": -1, "count": 3}', r"radius must be a positive"),
-        ("l.json", '{"region": "ring", "radius": 1, "count": 0}', r"count must be a positive"),
+        ("k.json", '{"region": "ring", "radius": -1, "count": 3}', r"radius must be a length .*-1"),
+        ("l.json", '{"region": "ring", "radius": 1, "count": 0}', r"count must be .*1,000,000"),
         ("m.json", '{"positions": [[1,2,3]], "colour": 1}', r"unknown key 'colour'"),
         ("n.json", '{"poses": [[0,0,0,0,0,0]], "angle": "grad"}', r"expected deg or rad"),
         ("o.json", '{"matrices": [[[2,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]}', r"target\[0\]"),
         ("p.txt", "1,2,3", r"unknown task file type '\.txt'"),
         ("q.json", "3", r"expected a list of targets or a mapping"),
         ("r.json", '{"region": "box", "lower": [1,1,1], "upper": [0,0,0], "count": 2}', "below"),
+        ("s.json", '{"region": "ring", "radius": "abc", "count": 3}', r"radius must be a length"),
+        ("t.json", '{"region": "ring", "radius": 1, "count": 1e12}', r"count must be a whole"),
+        ("u.json", '{"region": "sphere", "radius": 1, "count": 2, "seed": "x"}', r"seed must be"),
+        ("v.json", '{"region": "sphere", "radius": 1, "count": 2, "surface": "no"}', "surface"),
     ],
 )
 def test_bad_task_files_say_where(tmp_path: Path, name: str, text: str, match: str) -> None:
@@ -196,3 +200,13 @@ def test_fingerprint_follows_the_targets() -> None:
     a, b = Task.ring(0.3, 5), Task.ring(0.3, 5)
     assert a.fingerprint == b.fingerprint
     assert a.fingerprint != Task.ring(0.30000000001, 5).fingerprint
+
+
+def test_region_point_count_limit_at_its_boundary() -> None:
+    from kinematica.design.task import MAX_REGION_POINTS
+
+    assert len(Task.box((0, 0, 0), (1, 1, 1), MAX_REGION_POINTS)) == MAX_REGION_POINTS
+    with pytest.raises(TaskError, match="from 1 to 1,000,000, got 1000001"):
+        Task.box((0, 0, 0), (1, 1, 1), MAX_REGION_POINTS + 1)
+    with pytest.raises(TaskError, match="count must be a whole number"):
+        Task.ring(0.5, 3.0)  # type: ignore[arg-type]

@@ -118,3 +118,17 @@ def test_far_targets_are_unreachable_with_a_gap(spec: SolverSpec) -> None:
     res = robot.ik(far)
     assert np.all(res.status == "unreachable"), res.message
     assert np.all(res.gap > 1.0)
+
+
+def test_arms_no_solver_describes_name_their_meeting_axes() -> None:
+    # the first and last three axes meeting: the Panda (shoulder), the iiwa (both)
+    assert km.classify(km.load("panda")).summary.endswith("redundant, spherical shoulder")
+    iiwa = km.classify(km.load("iiwa14"))
+    assert iiwa.summary.endswith("redundant, spherical shoulder, spherical wrist")
+    assert iiwa.summary_es.endswith("redundante, con hombro esférico, con muñeca esférica")
+    # a 5R arm whose first three axes meet (no solver of its own)
+    rows = [km.Revolute(d=0.3, alpha=math.pi / 2), km.Revolute(alpha=-math.pi / 2)]
+    rows += [km.Revolute(d=0.3, alpha=math.pi / 2), km.Revolute(a=0.3), km.Revolute(a=0.2)]
+    five = km.classify(km.Robot.from_dh(rows))
+    assert five.kind == "general"
+    assert five.summary == "5 joints (RRRRR), first three axes meet (shoulder)"

@@ -92,6 +92,16 @@ def test_report_without_textbook_derivation_says_so() -> None:
     assert "no textbook closed-form derivation" in text and "three parallel axes" in text
 
 
+def test_report_of_a_spherical_shoulder_says_its_method() -> None:
+    # the Panda's joints 1-6 (q7 locked at 0: the flange's frame 7 is its tool)
+    panda = km.load("panda")
+    arm = km.Robot.from_dh(panda.links[:6], convention="modified", name="panda, q7 = 0")
+    text = symbolic.report(arm, lang="en")
+    assert "(6R, spherical shoulder: T⁻¹, the joints in reverse order" in text
+    assert "(method analytic (spherical-shoulder-6R))" in text
+    assert "no textbook closed-form derivation" not in text
+
+
 def test_class_not_example_modified_base_tool_offsets() -> None:
     # The same classes written differently: Craig's convention, a base, a tool, offsets.
     arm = km.load("anthropomorphic-3r").to_convention("modified")

@@ -22,6 +22,7 @@ from numpy.typing import NDArray
 import kinematica._core as _core
 from kinematica.core.workers import resolve_workers
 from kinematica.dh.joints import Convention, Joint, Prismatic, check_convention
+from kinematica.spatial.transform import inv_transform
 
 __all__ = ["Chain"]
 
@@ -144,12 +145,39 @@ class Chain:
             translations=_readonly(np.asarray(core.translations)),  # type: ignore[arg-type]
         )
 
+    def reversed(self) -> Chain:
+        """The chain of the inverse transform: joints in reverse order, variables negated.
+
+        With ``T(q) = start · Π_i [M_i(q_i) F_i] · tool`` (``F_i`` the joints'
+        :attr:`fixed_parts`),
+
+            T(q)⁻¹ = (tool⁻¹ F_n⁻¹) · M_n(-q_n) F_(n-1)⁻¹ ··· M_2(-q_2) F_1⁻¹ · M_1(-q_1) · start⁻¹
+
+        (a joint's motion inverted is its motion by -q_i), so the reversed chain's
+        ``fk(q')`` at ``q'_j = -q_(n+1-j)`` is ``fk(q)⁻¹``, built from the chain's
+        own transforms (no DH table is re-read). Its limits are the joints' own
+        mapped likewise (``[-hi, -lo]``), its frames are those of its motions (frame
+        offsets are the identity) and its base is the identity.
+        """
+        F_inv = inv_transform(self.fixed_parts)
+        n = self.dof
+        lims = -self.own_limits[::-1, ::-1]
+        return Chain.from_transforms(
+            inv_transform(self.tool) @ F_inv[-1],
+            np.ascontiguousarray(F_inv[-2::-1]),
+            inv_transform(self.start),
+            np.broadcast_to(np.eye(4), (n, 4, 4)),
+            self.prismatic[::-1],
+            lims,
+            np.eye(4),
+        )
+
     @cached_property
     def fixed_parts(self) -> FloatArray:
-        """``(n, 4, 4)`` the fixed transform after each joint's motion.
+        """``(n, 4, 4)`` each joint's fixed part ``F_i = Rz(θ_i) Trans(t_i) Rx(α_i)``.
 
-        ``T = start · M_1(q_1) · fixed_parts[0] · ... · M_n(q_n) · fixed_parts[n-1] · tool``,
-        ``M_i`` a rotation about (or a slide along) the z axis.
+        What follows joint i's motion ``M_i`` (a rotation about, or a slide along,
+        its z axis) in ``T(q) = start · Π_i [M_i(q_i) F_i] · tool``.
         """
         return _readonly(np.asarray(self.core.fixed_parts))  # type: ignore[return-value]
 

@@ -10,20 +10,25 @@ or read a task file with :func:`kinematica.design.load_task`.
 from __future__ import annotations
 
 import hashlib
-import math
 from dataclasses import dataclass, field
 from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica.errors import DimensionError, KinematicaError
+from kinematica.arguments import check_count, check_flag, check_number
+from kinematica.errors import ArgumentError, DimensionError, KinematicaError
 from kinematica.spatial import check_rotation, check_transform, from_pose
 
-__all__ = ["Task", "TaskError"]
+__all__ = ["MAX_REGION_POINTS", "Task", "TaskError"]
 
 FloatArray = NDArray[np.float64]
 TaskKind = Literal["position", "pose"]
+
+
+#: Most points a sampled region makes: a design solves IK at every target for every
+#: candidate arm, so a million targets is already hours of search.
+MAX_REGION_POINTS = 1_000_000
 
 
 class TaskError(KinematicaError, ValueError):
@@ -189,7 +194,7 @@ class Task:
         lo, hi = _vector(lower, "lower"), _vector(upper, "upper")
         if np.any(hi < lo):
             raise TaskError(f"box upper {hi.tolist()} is below lower {lo.tolist()}")
-        points = np.random.default_rng(seed).uniform(lo, hi, (_count(count), 3))
+        points = np.random.default_rng(_seed(seed)).uniform(lo, hi, (_count(count), 3))
         return _with_orientation(points, orientation, "box")
 
     @classmethod
@@ -215,26 +220,45 @@ class Task:
         """
         r = _positive(radius, "radius")
         n_points = _count(count)
-        rng = np.random.default_rng(seed)
+        try:
+            on_surface = check_flag(surface, "surface")
+        except ArgumentError as exc:
+            raise _as_task_error(exc) from None
+        rng = np.random.default_rng(_seed(seed))
         d = rng.normal(size=(n_points, 3))
         d /= np.linalg.norm(d, axis=1, keepdims=True)
         # Uniform in volume: the radius of a uniform point has CDF (s / r)^3.
-        s = np.ones(n_points) if surface else rng.uniform(size=n_points) ** (1.0 / 3.0)
+        s = np.ones(n_points) if on_surface else rng.uniform(size=n_points) ** (1.0 / 3.0)
         points = _vector(center, "center") + r * s[:, None] * d
         return _with_orientation(points, orientation, f"sphere r={r:g}")
 
 
-def _positive(value: float, what: str) -> float:
-    v = float(value)
-    if not math.isfinite(v) or v <= 0.0:
-        raise TaskError(f"{what} must be a positive number, got {value!r}")
-    return v
+def _as_task_error(exc: ArgumentError) -> TaskError:
+    return TaskError(exc.message, arg=exc.arg)
 
 
-def _count(value: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < 1:
-        raise TaskError(f"count must be a positive whole number, got {value!r}")
-    return int(value)
+def _positive(value: object, what: str) -> float:
+    """``value`` as a length in metres greater than 0 (the library's argument check)."""
+    try:
+        return check_number(value, what, positive=True, unit="m", what="a length")
+    except ArgumentError as exc:
+        raise _as_task_error(exc) from None
+
+
+def _count(value: object) -> int:
+    """``value`` as a number of points from 1 to :data:`MAX_REGION_POINTS`."""
+    try:
+        return check_count(value, "count", lo=1, hi=MAX_REGION_POINTS)
+    except ArgumentError as exc:
+        raise _as_task_error(exc) from None
+
+
+def _seed(value: object) -> int:
+    """``value`` as the seed of a region's draw: a whole number of at least 0."""
+    try:
+        return check_count(value, "seed", lo=0)
+    except ArgumentError as exc:
+        raise _as_task_error(exc) from None
 
 
 def _vector(value: ArrayLike, what: str) -> FloatArray:

@@ -98,7 +98,9 @@ class SolverSpec:
         describes: False for a solver of some targets of arms of many
             structures (it names no structure: :func:`describe` passes it by).
         derivation: The textbook derivation :mod:`kinematica.symbolic` writes for
-            arms of this structure (its recipe's name), or ``None``.
+            arms of this structure (its recipe's name), or ``None``; the recipe
+            ``"reversed-spherical-wrist"`` has no symbolic steps: the report says
+            the method in words.
         geometric: The geometric method's recipe for the position (``"planar"``,
             ``"arm-plane"``), or ``None``.
         singular: The named singularities of the structure (``"shoulder"``,
@@ -143,10 +145,16 @@ def describe(features: Features, specs: tuple[SolverSpec, ...]) -> tuple[str, st
     elif n > 6:
         summary += ", redundant"
         summary_es += ", redundante"
+        if features.shoulder_center is not None:
+            summary += ", spherical shoulder"
+            summary_es += ", con hombro esférico"
         if features.wrist_center is not None:
             summary += ", spherical wrist"
             summary_es += ", con muñeca esférica"
     elif features.wrist_center is not None:
         summary += ", last three axes meet (wrist)"
         summary_es += ", los tres últimos ejes se cortan (muñeca)"
+    elif features.shoulder_center is not None:
+        summary += ", first three axes meet (shoulder)"
+        summary_es += ", los tres primeros ejes se cortan (hombro)"
     return "general", summary, summary_es

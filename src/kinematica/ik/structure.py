@@ -52,6 +52,7 @@ class Features:
         intersecting: Index pairs ``(i, i+1)`` of consecutive axes that meet.
         wrist_center: ``(3,)`` point where the last three axes meet (base
             frame), when they are revolute, not all parallel, and meet.
+        shoulder_center: ``(3,)`` point where the first three axes meet, likewise.
         size: The arm's size (m, :func:`arm_size`): lines meet within
             ``length_tol(size)``.
         slack: 0 when every relation of two axes (parallel, perpendicular,
@@ -71,6 +72,7 @@ class Features:
     wrist_center: FloatArray | None
     size: float
     slack: float = 0.0
+    shoulder_center: FloatArray | None = None
 
     @property
     def near_degenerate(self) -> bool:
@@ -122,26 +124,38 @@ def features(chain: Chain) -> Features:
         for i in range(n - 1)
         if (i, i + 1) not in parallel and line_distance(h[i], p[i], h[i + 1], p[i + 1]) <= tol
     )
-    wrist = None
-    if n >= 3 and types[-3:] == "RRR":
-        last = [n - 3, n - 2, n - 1]
-        if not all(lines_parallel(h[last[0]], h[i]) for i in last):
-            wrist = common_point(h[-3:], p[-3:], size)
+    wrist = _center(h, p, types, size, range(n - 3, n))
+    shoulder = _center(h, p, types, size, range(3))
     for a in (h, p):
         a.flags.writeable = False
-    slack = near_degenerate_slack(h, p, size, wrist)
-    return Features(types, h, p, parallel, meet, wrist, size, slack)
+    slack = near_degenerate_slack(h, p, size, wrist, shoulder)
+    return Features(types, h, p, parallel, meet, wrist, size, slack, shoulder)
+
+
+def _center(
+    h: FloatArray, p: FloatArray, types: str, size: float, axes: range
+) -> FloatArray | None:
+    """The point where three revolute axes, not all parallel, meet; else None."""
+    if len(types) < 3 or any(types[i] != "R" for i in axes):
+        return None
+    if all(lines_parallel(h[axes[0]], h[i]) for i in axes):
+        return None
+    return common_point(h[axes], p[axes], size)
 
 
 def near_degenerate_slack(
-    h: FloatArray, p: FloatArray, size: float, wrist: FloatArray | None
+    h: FloatArray,
+    p: FloatArray,
+    size: float,
+    wrist: FloatArray | None,
+    shoulder: FloatArray | None = None,
 ) -> float:
     """A bound (m) on how far the relations that hold only within tolerance move the tool.
 
     Every pair of axes whose sine (parallel), cosine (perpendicular) or distance
     (meeting, coinciding) lies between ``AXIS_EXACT_TOL`` and the line
-    geometry's tolerance, and each axis passing the wrist centre within the
-    tolerance but not exactly, is a relation a closed form takes as exact. An
+    geometry's tolerance, and each axis passing the wrist (or shoulder) centre
+    within the tolerance but not exactly, is a relation a closed form takes as exact. An
     axis tilted by ε turns the points beyond it, at most ``size`` away, by at
     most ``2 ε size`` for any joint motion, a point off by δ moves them by δ: the
     slack is the sum over the relations, 0 when there are none.
@@ -151,6 +165,7 @@ def near_degenerate_slack(
         p: ``(n, 3)`` a point on each axis.
         size: The arm's size (m).
         wrist: The wrist centre, if any.
+        shoulder: The shoulder centre (axes 1-3), if any.
     """
     exact, tol = AXIS_EXACT_TOL, length_tol(size)
     exact_len = AXIS_EXACT_TOL * (1.0 + size)
@@ -166,9 +181,11 @@ def near_degenerate_slack(
             d = line_distance(h[i], p[i], h[j], p[j])
             if exact_len < d <= tol:
                 slack += d
-    if wrist is not None:
-        for i in range(n - 3, n):
-            r = wrist - p[i]
+    for center, axes in ((wrist, range(n - 3, n)), (shoulder, range(3))):
+        if center is None:
+            continue
+        for i in axes:
+            r = center - p[i]
             d = float(np.linalg.norm(r - float(r @ h[i]) * h[i]))
             if exact_len < d <= tol:
                 slack += d

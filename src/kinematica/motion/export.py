@@ -1,10 +1,8 @@
 """Trajectories to files: CSV (``t,q1,...,qn``) and JSON.
 
-The CSV format is the one ``kinematica animate`` reads: a header
-``t,q1,q2,...,qn``, then one row per sample, time in seconds first, then the
-joint values in SI units (rad for revolute, m for prismatic joints), written
-with 17 significant digits (exact round trip); ``nan`` where a sample has no
-configuration.
+The CSV format is :mod:`kinematica.io.trajectory_csv`'s (the one ``kinematica
+animate`` reads): ``write_csv`` is its writer; JSON adds velocities,
+accelerations, units and path events.
 """
 
 from __future__ import annotations
@@ -19,7 +17,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.errors import DimensionError, KinematicaError
-from kinematica.io.atomic import atomic_path, write_failed, write_text_atomic
+from kinematica.io.atomic import write_failed, write_text_atomic
+from kinematica.io.trajectory_csv import read_trajectory
+from kinematica.io.trajectory_csv import write_trajectory as write_csv
 
 __all__ = ["read_csv", "write_csv", "write_json"]
 
@@ -38,69 +38,17 @@ def _check(t: ArrayLike, q: ArrayLike) -> tuple[FloatArray, FloatArray]:
     return ta, qa
 
 
-def write_csv(path: str | Path, t: ArrayLike, q: ArrayLike) -> Path:
-    """Write ``t`` and ``q`` as CSV with the header ``t,q1,...,qn``.
-
-    Args:
-        path: The file to write.
-        t: ``(m,)`` times (s).
-        q: ``(m, n)`` joint values (rad, m).
-
-    Returns:
-        The path written.
-    """
-    ta, qa = _check(t, q)
-    header = ",".join(["t"] + [f"q{i}" for i in range(1, qa.shape[1] + 1)])
-    out = Path(path)
-    try:
-        with atomic_path(out) as tmp:
-            np.savetxt(
-                tmp,
-                np.column_stack([ta, qa]),
-                delimiter=",",
-                header=header,
-                comments="",
-                fmt="%.17g",
-            )
-    except OSError as exc:
-        raise KinematicaError(write_failed(out, exc, "the trajectory")) from exc
-    return out
-
-
 def read_csv(path: str | Path) -> tuple[FloatArray, FloatArray]:
-    """Read a trajectory CSV written by :func:`write_csv`.
+    """Read a trajectory CSV file (:func:`write_csv`'s format; ``nan`` allowed).
 
     Returns:
         ``(t (m,), q (m, n))``.
 
     Raises:
-        KinematicaError: The file is missing, its header is not
-            ``t,q1,...,qn`` or a row is malformed (the message says which).
+        TrajectoryFileError: The file is missing or not a regular file, its header is
+            not ``t,q1,...,qn``, or a row is malformed (the message says which line).
     """
-    p = Path(path)
-    try:
-        lines = p.read_text().splitlines()
-    except OSError as exc:
-        raise KinematicaError(f"{p}: cannot read ({exc.strerror})") from exc
-    if not lines:
-        raise KinematicaError(f"{p}: empty file, expected the header t,q1,...,qn")
-    head = [h.strip() for h in lines[0].split(",")]
-    want = ["t"] + [f"q{i}" for i in range(1, len(head))]
-    if len(head) < 2 or head != want:
-        raise KinematicaError(f"{p}: header must be {','.join(want)}, got {lines[0]!r}")
-    rows = []
-    for k, line in enumerate(lines[1:], start=2):
-        if not line.strip():
-            continue
-        cells = line.split(",")
-        try:
-            rows.append([float(c) for c in cells])
-        except ValueError as exc:
-            raise KinematicaError(f"{p}, line {k}: not a number ({exc})") from exc
-        if len(cells) != len(head):
-            raise KinematicaError(f"{p}, line {k}: expected {len(head)} values, got {len(cells)}")
-    data = np.array(rows, dtype=float).reshape(-1, len(head))
-    return data[:, 0], data[:, 1:]
+    return read_trajectory(path, allow_nan=True)
 
 
 def _json_safe(a: Any) -> Any:

@@ -363,7 +363,10 @@ def _inverse(w: _Writer, d: InverseDerivation | None, model: SymbolicRobot, meth
     w.heading(2, "h.ik")
     structure = classify(model.robot)
     if d is None:
-        w.para("ik.none", summary=structure_summary(structure, w.lang), method=method)
+        # a recipe with no symbolic steps (yet) is said in words
+        recipe = structure.spec.derivation if structure.spec is not None else None
+        key = "ik.reversed" if recipe == "reversed-spherical-wrist" else "ik.none"
+        w.para(key, summary=structure_summary(structure, w.lang), method=method)
         return
     p, R = target_symbols()
     has_pose = any(s.key in ("ik.last", "ik.wrist.R36") for s in d.steps)

@@ -175,6 +175,18 @@ PHRASES: Final[dict[str, tuple[str, str]]] = {
         "joints fix the position, not the orientation). Closed-form solution, step "
         "by step:",
     ),
+    "ik.reversed": (
+        "Leído del extremo a la base ({summary}: T⁻¹, con las articulaciones en orden "
+        "inverso y sus ángulos cambiados de signo), el brazo tiene muñeca esférica: sus "
+        "tres primeros ejes se cortan en el centro del hombro, que hace de centro de la "
+        "muñeca. robot.ik resuelve T⁻¹ por el desacoplo cinemático de la muñeca esférica "
+        "y lee cada solución al revés (método {method}).",
+        "Read from the end effector back to the base ({summary}: T⁻¹, the joints in "
+        "reverse order and their angles negated), the arm has a spherical wrist: its first "
+        "three axes meet at the shoulder centre, which plays the wrist centre. robot.ik "
+        "solves T⁻¹ by the spherical wrist's kinematic decoupling and reads each solution "
+        "back (method {method}).",
+    ),
     "ik.none": (
         "No hay una derivación cerrada de libro de texto para esta estructura "
         "({summary}); robot.ik la resuelve (método {method}).",

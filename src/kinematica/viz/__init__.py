@@ -13,6 +13,7 @@ picture is drawn, on the headless ``Agg`` backend when there is no display::
     fig = viz.plot_solutions(robot, robot.fk([0, 0.4, -0.3, 0, 0.5, 0]))
 """
 
+from kinematica.io.trajectory_csv import TrajectoryFileError, read_trajectory, write_trajectory
 from kinematica.viz._mpl import VizError
 from kinematica.viz.animate import Animation, animate, mp4_available
 from kinematica.viz.geometry import ArmPose, arm_pose, drawing_plane, robot_scale
@@ -21,7 +22,6 @@ from kinematica.viz.page import page_data, page_html, robot_units, write_page
 from kinematica.viz.plot import plot, plot_solutions, save_figure, save_plot, save_solutions
 from kinematica.viz.server import PageServer, serve
 from kinematica.viz.trajectory import plot_trajectory
-from kinematica.viz.trajectory_file import TrajectoryFileError, read_trajectory, write_trajectory
 from kinematica.viz.workspace import plot_workspace
 
 __all__ = [

@@ -11,6 +11,7 @@ from kinematica.ik.analytic import (
     elbow_arms,
     parallel,
     planar_arms,
+    spherical_shoulder,
     spherical_wrist,
 )
 from kinematica.ik.registry import SolverSpec
@@ -24,5 +25,6 @@ SOLVERS: tuple[SolverSpec, ...] = (
     *planar_arms.SPECS,
     *elbow_arms.SPECS,
     *spherical_wrist.SPECS,
+    *spherical_shoulder.SPECS,  # an arm with a spherical wrist too is the wrist's
     arm_position.SPEC,  # position targets of any longer arm: tried last
 )

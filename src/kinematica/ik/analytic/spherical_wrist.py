@@ -28,14 +28,27 @@ from kinematica.ik.analytic.sampling import random_transform
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
 
-__all__ = ["GEOMETRIES", "SPECS", "build", "random_wrist_rows", "wrist_params"]
+__all__ = [
+    "GEOMETRIES",
+    "SPECS",
+    "build",
+    "random_wrist_rows",
+    "sample_wrist_rows",
+    "wrist_params",
+    "wrist_solver",
+]
 
 FloatArray = NDArray[np.float64]
 PI = math.pi
 
 
 def wrist_params(
-    params: Any, h4: FloatArray, h5: FloatArray, h6: FloatArray, R_home: FloatArray
+    params: Any,
+    h4: FloatArray,
+    h5: FloatArray,
+    h6: FloatArray,
+    R_home: FloatArray,
+    singular_side: float = 1.0,
 ) -> bool:
     """Fill the wrist's fields of ``params``; False for no 3-DOF wrist.
 
@@ -45,6 +58,9 @@ def wrist_params(
         h5: See ``h4``.
         h6: See ``h4``.
         R_home: ``(3, 3)`` the tool's rotation at q = 0.
+        singular_side: When the wrist is singular at q = 0, "no-flip" is the bend
+            of q5 > 0 (``1``) or of q5 < 0 (``-1``, the reversed chain of a
+            spherical shoulder, whose q2 is -q5).
     """
     k45 = float(h4 @ h5)
     ea = h5 - k45 * h4
@@ -74,20 +90,25 @@ def wrist_params(
     params.k45 = k45
     params.s45 = s45
     params.k56 = k56
-    params.flip = math.copysign(1.0, home if abs(home) > AXIS_ANGLE_TOL else bend)
+    params.flip = math.copysign(1.0, home if abs(home) > AXIS_ANGLE_TOL else singular_side * bend)
     twin = max(abs(k45), abs(k56), float(np.linalg.norm(np.cross(h4, h6))))
     params.twin = twin <= _core.decoupled.TWIN_TOL
     return True
 
 
-def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
-    """The closed form of a 6R or RRP arm whose last three axes meet, or None.
+def wrist_solver(
+    chain: Chain, f: Features, singular_side: float = 1.0
+) -> tuple[Any, tuple[str, ...]] | None:
+    """The filled ``SphericalWristParams`` of a 6R or RRP arm whose last three axes meet.
 
-    None for position targets (see :mod:`kinematica.ik.analytic.arm_position`),
-    when joints 1-3 cannot move the wrist centre in three directions, or when
-    two consecutive wrist axes coincide.
+    ``singular_side``: see :func:`wrist_params`.
+
+    Returns:
+        ``(params, position labels (4,))``, or None when joints 1-3 cannot move
+        the wrist centre in three directions or two consecutive wrist axes
+        coincide.
     """
-    if target != "pose" or f.wrist_center is None or f.dof != 6:
+    if f.wrist_center is None or f.dof != 6:
         return None
     h, p = f.directions, f.points
     M = chain.fk(np.zeros(6))[0]
@@ -102,13 +123,26 @@ def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
     params = _core.decoupled.SphericalWristParams()
     params.arm = arm.arm
     params.c_tool = c_tool
-    if not wrist_params(params, h[3], h[4], h[5], M[:3, :3]):
+    if not wrist_params(params, h[3], h[4], h[5], M[:3, :3], singular_side):
         return None
     params.q4_lo, params.q4_hi = chain.qlim[3]
     params.q6_lo, params.q6_hi = chain.qlim[5]
-    labels = tuple(f"{pos}, wrist {w}" for pos in arm.labels for w in ("no-flip", "flip"))
+    return params, arm.labels
+
+
+def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
+    """The closed form of a 6R or RRP arm whose last three axes meet, or None.
+
+    None for position targets (see :mod:`kinematica.ik.analytic.arm_position`)
+    and where :func:`wrist_solver` gives none.
+    """
+    solver = wrist_solver(chain, f) if target == "pose" else None
+    if solver is None:
+        return None
+    params, positions = solver
+    labels = tuple(f"{pos}, wrist {w}" for pos in positions for w in ("no-flip", "flip"))
     return ClosedForm(
-        name="rrp-spherical-wrist" if prismatic else "spherical-wrist",
+        name="rrp-spherical-wrist" if params.arm.prismatic else "spherical-wrist",
         labels=labels,
         params=params,
     )
@@ -244,15 +278,28 @@ def _edge_rrp(rng: np.random.Generator) -> tuple[list[Revolute | Prismatic], str
     return rows, note
 
 
-def _sample(joint3: tuple[str, ...]) -> Any:
+def sample_wrist_rows(
+    rng: np.random.Generator, slide: bool, degenerate: bool
+) -> tuple[list[Revolute | Prismatic], str]:
+    """Standard DH rows of a random arm of the family, and what is special about it.
+
+    Args:
+        rng: Random numbers.
+        slide: An RRP arm (Stanford type) rather than a 6R one.
+        degenerate: One of the family's edge geometries (see ``_edge_6r``,
+            ``_edge_rrp``) rather than a generic arm of :data:`GEOMETRIES`.
+    """
+    if degenerate:
+        return _edge_rrp(rng) if slide else _edge_6r(rng)
+    pairs = [g for g in GEOMETRIES if (g[1] == "P") == slide]
+    shoulder, kind = pairs[int(rng.integers(len(pairs)))]
+    return random_wrist_rows(rng, shoulder, kind), ""
+
+
+def _sample(slide: bool) -> Any:
     def sample_arm(rng: np.random.Generator, degenerate: bool) -> ArmSample:
         """A random arm of the family (an edge case with ``degenerate``)."""
-        if degenerate:
-            rows, note = _edge_rrp(rng) if joint3 == ("P",) else _edge_6r(rng)
-        else:
-            pairs = [g for g in GEOMETRIES if g[1] in joint3]
-            shoulder, kind = pairs[int(rng.integers(len(pairs)))]
-            rows, note = random_wrist_rows(rng, shoulder, kind), ""
+        rows, note = sample_wrist_rows(rng, slide, degenerate)
         return ArmSample(
             links=tuple(rows),
             base=random_transform(rng, 0.5),
@@ -275,7 +322,7 @@ def _wrist_arm(types: str) -> SolverSpec:
         else "RRP con muñeca esférica (tipo Stanford)",
         handles=lambda f: f.joint_types == types and f.wrist_center is not None,
         build=build,
-        sample_arm=_sample(("R23", "R") if types == "RRRRRR" else ("P",)),
+        sample_arm=_sample(types != "RRRRRR"),
         derivation="spherical-wrist" if types == "RRRRRR" else None,
         singular=frozenset({"shoulder", "elbow", "wrist"} if types == "RRRRRR" else {"wrist"}),
     )

@@ -1,7 +1,10 @@
 """Trajectory CSV files: a header ``t,q1,...,qn``, then time (s) and joint values (rad, m).
 
-The format :mod:`kinematica.motion` writes too. Reading checks everything a
-picture relies on and says where a file is wrong: line, column, what was found.
+The one format every trajectory, path and control run is written in, and that
+``kinematica animate`` and ``trajectory --via`` read: values with 17
+significant digits (an exact round trip), ``nan`` where a sample has no
+configuration. Reading checks everything its user relies on and says where a
+file is wrong: line, column, what was found.
 """
 
 from __future__ import annotations
@@ -14,7 +17,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica.errors import KinematicaError
+from kinematica.errors import DimensionError, KinematicaError
 from kinematica.io.atomic import atomic_path, write_failed
 from kinematica.io.reading import read_limited
 
@@ -31,7 +34,7 @@ class TrajectoryFileError(KinematicaError, ValueError):
 
 
 def read_trajectory(
-    path: str | os.PathLike[str], dof: int | None = None
+    path: str | os.PathLike[str], dof: int | None = None, *, allow_nan: bool = False
 ) -> tuple[FloatArray, FloatArray]:
     """Read a trajectory CSV file.
 
@@ -41,6 +44,8 @@ def read_trajectory(
             units (rad for revolute, m for prismatic joints). Blank lines and
             lines starting with ``#`` are skipped.
         dof: The number of joints expected (the robot's), or ``None``.
+        allow_nan: Accept ``nan`` joint values (a sample with no configuration,
+            as a Cartesian path writes one); time must be finite regardless.
 
     Returns:
         ``t`` of shape ``(T,)`` and ``q`` of shape ``(T, n)``.
@@ -90,9 +95,10 @@ def read_trajectory(
         for j, cell in enumerate(row):
             try:
                 v = float(cell)
+                missing = allow_nan and j > 0 and math.isnan(v)  # a written "nan"
             except ValueError:
-                v = math.nan
-            if not math.isfinite(v):
+                v, missing = math.nan, False
+            if not (math.isfinite(v) or missing):
                 raise TrajectoryFileError(
                     f"{p}, line {number}, column {names[j]}: expected a finite number, "
                     f"found {cell.strip()!r}"
@@ -110,21 +116,42 @@ def read_trajectory(
 
 
 def write_trajectory(path: str | os.PathLike[str], t: ArrayLike, q: ArrayLike) -> Path:
-    """Write ``t`` ``(T,)`` (s) and ``q`` ``(T, n)`` (rad, m) as a trajectory CSV file."""
+    """Write a trajectory CSV file atomically (the old file stays whole if writing fails).
+
+    Args:
+        path: The file to write.
+        t: ``(T,)`` times (s).
+        q: ``(T, n)`` joint values (rad, m), or ``(T,)`` for one joint; ``nan``
+            where a sample has no configuration.
+
+    Returns:
+        The path written.
+
+    Raises:
+        DimensionError: The shapes do not match.
+        TrajectoryFileError: The file cannot be written (the old one is left as it was).
+    """
     tt = np.asarray(t, dtype=float)
     qq = np.asarray(q, dtype=float)
+    if qq.ndim == 1:
+        qq = qq[:, None]
     if tt.ndim != 1 or qq.ndim != 2 or qq.shape[0] != tt.shape[0]:
-        raise TrajectoryFileError(
-            f"a trajectory needs t of shape (T,) and q of shape (T, n), got {tt.shape} and "
-            f"{qq.shape}"
+        raise DimensionError(
+            f"a trajectory needs t of shape (T,) and q of shape (T, n) with the same T, got "
+            f"{tt.shape} and {qq.shape}"
         )
     p = Path(path)
+    header = ",".join(["t", *(f"q{i}" for i in range(1, qq.shape[1] + 1))])
     try:
-        with atomic_path(p) as tmp, tmp.open("w", newline="", encoding="utf-8") as fh:
-            writer = csv.writer(fh)
-            writer.writerow(["t", *(f"q{i}" for i in range(1, qq.shape[1] + 1))])
-            for ti, qi in zip(tt, qq, strict=True):
-                writer.writerow([repr(float(ti)), *(repr(float(v)) for v in qi)])
+        with atomic_path(p) as tmp:
+            np.savetxt(
+                tmp,
+                np.column_stack([tt, qq]),
+                delimiter=",",
+                header=header,
+                comments="",
+                fmt="%.17g",
+            )
     except OSError as exc:
         raise TrajectoryFileError(write_failed(p, exc, "the trajectory")) from exc
     return p
