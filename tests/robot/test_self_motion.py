@@ -223,3 +223,19 @@ def test_the_search_counts_answers_within_same_tol_once(by: float, same: bool) -
     assert SAME_TOL == 1e-6
     assert nudged.parameter == "q7"
     assert (len(nudged.families) == len(plain.families)) == same
+
+
+def test_the_carried_search_finds_configurations_of_the_closed_forms_families() -> None:
+    # two methods on the Panda over q7: every configuration the seeded search finds
+    # is one of the closed form's (spherical shoulder) at the same sample
+    robot = km.load("panda")
+    T = robot.fk(Q_PANDA)
+    values = np.linspace(0.0, 0.4, 5)
+    closed = robot.self_motion(T, 6, values=values)
+    searched = robot.self_motion(T, 6, values=values, method="numeric")
+    assert closed.method.startswith("analytic:") and searched.method == "numeric:lm"
+    for fam in searched.families:
+        for i in np.flatnonzero(fam.present):
+            mine = np.array([f.q[i] for f in closed.families if f.present[i]])
+            gaps = joint_jump(mine, fam.q[i], robot.chain.prismatic)
+            assert float(gaps.min()) < 1e-8
