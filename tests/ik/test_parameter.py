@@ -301,11 +301,11 @@ def test_the_last_joint_at_a_value_per_target_equals_single_calls() -> None:
     T = robot.fk(Q)
     T[2, :3, 3] = [3.0, 0.0, 0.0]  # far out of reach: a gap, the tool point's own
     joint = joint_parameter(robot.chain, 6)
-    many = joint.solve(robot.chain, T, Q[:, 6], IKOptions())
+    many = joint.solve(robot.chain, T, Q[:, 6], IKOptions(q0=Q))
     assert isinstance(many, IKBatchResult)
     assert many.status[2] == "unreachable"
     for i in range(3):
-        one = robot.ik(T[i], fixed={6: float(Q[i, 6])})
+        one = robot.ik(T[i], fixed={6: float(Q[i, 6])}, q0=Q[i])
         got = many[i]
         assert str(got.status) == str(one.status)
         assert got.message == one.message

@@ -289,21 +289,23 @@ class JointParameter:
             invalid={},
             notes={},
         )
-        q0 = None if options.q0 is None else _rows(options.q0, targets.shape, rows)
+        q0 = None
+        if options.q0 is not None:  # the whole arm's: the locked arm's without joint k
+            q0 = np.delete(_q0_rows(options.q0, targets.shape, rows), self.index, axis=-1)
         opts = dataclasses.replace(options, q0=q0, fixed=None)
         again = self._one_by_one(chain, sub, v[rows], opts)
         return replace_rows(out, rows, again, None)
 
     def _one_by_one(
-        self, chain: Chain, targets: object, v: FloatArray, opts: IKOptions
+        self, chain: Chain, targets: Targets, v: FloatArray, opts: IKOptions
     ) -> IKBatchResult:
-        assert isinstance(targets, Targets)
+        """Each target on the arm locked at its own value (``opts.q0``: the locked arm's)."""
         results: dict[int, IKResult] = {}
         for i in range(targets.poses.shape[0]):
             if i in targets.invalid:
                 continue
             T = targets.poses[i, :3, 3] if targets.position else targets.poses[i]
-            q0 = None if opts.q0 is None else _row(opts.q0, targets.shape, i)
+            q0 = None if opts.q0 is None else _q0_rows(opts.q0, targets.shape, i)
             arm = locked_chain(chain, self.index, float(v[i]))
             one = solve_ik(arm, T, dataclasses.replace(opts, q0=q0))
             assert isinstance(one, IKResult)
@@ -311,16 +313,10 @@ class JointParameter:
         return stack_results(results, targets, chain.dof, self.name, v)
 
 
-def _rows(q0: ArrayLike, shape: tuple[int, ...], rows: NDArray[np.intp]) -> FloatArray:
-    """Rows ``rows`` (flat, C order) of a q0 broadcast over a batch of shape ``shape``."""
+def _q0_rows(q0: ArrayLike, shape: tuple[int, ...], rows: int | NDArray[np.intp]) -> FloatArray:
+    """Row(s) ``rows`` (flat, C order) of a q0 broadcast over a batch of shape ``shape``."""
     q = np.asarray(q0, dtype=float)
     return np.broadcast_to(q, (*shape, q.shape[-1])).reshape(-1, q.shape[-1])[rows]
-
-
-def _row(q0: ArrayLike, shape: tuple[int, ...], i: int) -> FloatArray:
-    """Row ``i`` (flat, C order) of a q0 broadcast over a batch of shape ``shape``."""
-    q = np.asarray(q0, dtype=float)
-    return np.broadcast_to(q, (*shape, q.shape[-1])).reshape(-1, q.shape[-1])[i]
 
 
 def joint_parameter(
