@@ -264,7 +264,9 @@ def _strict_json(text: str):
 def test_cli_json_of_a_huge_target(pose, gap, capsys: pytest.CaptureFixture[str]) -> None:
     code = main(["ik", "panda", "--pose", *pose, "--json"])
     out, err = capsys.readouterr()
-    assert code == 1 and err == ""
+    # a 7-joint arm is held at a joint first; nothing there, the search answers, and says so
+    assert code == 1
+    assert all(line.startswith("kinematica: note: ") for line in err.splitlines()), err
     data = _strict_json(out)
     assert data["status"] == "unreachable" and data["method"] == "numeric:lm"
     assert data["solutions"] == [] and "closed form" not in data["message"]

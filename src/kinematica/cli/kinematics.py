@@ -20,6 +20,8 @@ from kinematica.cli.options import (
     clean,
     dump,
     finite,
+    fixed_in,
+    joint_value_out,
     length_unit,
     lengths_in,
     lengths_out,
@@ -37,7 +39,7 @@ from kinematica.io import builtin_names
 from kinematica.robot import Robot, classify, load, spec_from_robot
 from kinematica.spatial import euler_from_matrix, from_pose, gimbal_locked
 
-__all__ = ["fk", "ik", "register", "robots", "show"]
+__all__ = ["fk", "ik", "pose_target_args", "register", "robots", "show", "target_in"]
 
 FloatArray = NDArray[np.float64]
 
@@ -209,9 +211,9 @@ def fk(args: argparse.Namespace) -> int:
     return 0
 
 
-def _target(robot: Robot, args: argparse.Namespace) -> FloatArray:
+def target_in(robot: Robot, args: argparse.Namespace) -> FloatArray:
     """The target in metres; library messages about it name the option it came from."""
-    if args.position is not None:
+    if getattr(args, "position", None) is not None:
         args.aliases = {"target position": "--position", "target": "--position"}
         return lengths_in(finite(args.position, "--position"), robot, args)
     if args.matrix is not None:
@@ -248,7 +250,7 @@ def _precision(robot: Robot, args: argparse.Namespace) -> tuple[float, float] | 
 
 def _headline(status: str, message: str) -> str:
     """``status — message``, or the message alone when it already opens with the status."""
-    if message.startswith(f"{status.replace('_', ' ')}:"):
+    if message.startswith((f"{status.replace('_', ' ')}:", f"{status.replace('_', ' ')} with ")):
         return plain(message)  # it names its status already: "singular: infinitely many ..."
     return f"{status} — {plain(message)}"
 
@@ -256,7 +258,7 @@ def _headline(status: str, message: str) -> str:
 def ik(args: argparse.Namespace) -> int:
     """``kinematica ik ROBOT --pose ...``: every solution, one row each."""
     robot = robot_from_args(args)
-    target = _target(robot, args)
+    target = target_in(robot, args)
     q0 = None if args.q0 is None else q_in(robot, args.q0, args, "q0")
     tol = _tolerance(robot, args)
     arm_angle = args.arm_angle
@@ -269,6 +271,7 @@ def ik(args: argparse.Namespace) -> int:
         q0=q0,
         seed=args.seed,
         precision=_precision(robot, args),
+        fixed=None if args.fixed is None else fixed_in(robot, args.fixed, args),
         arm_angle=arm_angle,
     )
     res = robot.ik(target, options=options)
@@ -296,6 +299,7 @@ def ik(args: argparse.Namespace) -> int:
                 "free_joints": [f"q{i + 1}" for i in res.free_joints],
                 "gap_m": res.gap,
                 "notes": list(res.notes),
+                "parameter": _parameter(robot, res, args),
                 "tolerance": (
                     None if tol is None else {"position_m": tol[0], "rotation_rad": tol[1]}
                 ),
@@ -305,6 +309,9 @@ def ik(args: argparse.Namespace) -> int:
     print(f"{plain(robot.name)}: {_headline(res.status, res.message)}")
     unit, metres = ("rad" if args.rad else "deg"), length_unit(robot, args)
     print(f"units: {unit} for angles, {metres} for lengths")
+    held = _parameter(robot, res, args)
+    if held is not None:
+        print(f"parameter: {held['name']} = {num(held['value'], args.precision)} {held['unit']}")
     header = ("#", *(f"q{i}" for i in range(1, robot.dof + 1)), "branch", "error (m, rad)")
 
     def rows(
@@ -327,6 +334,21 @@ def ik(args: argparse.Namespace) -> int:
             )
         )
     return 0 if solved else 1
+
+
+def _parameter(robot: Robot, res: IKResult, args: argparse.Namespace) -> dict[str, Any] | None:
+    """The joint held at a value for this answer, in the command line's units, or None."""
+    if res.parameter is None:
+        return None
+    name, value = res.parameter
+    joint = robot.joint_names.index(name)
+    unit = length_unit(robot, args) if robot.is_prismatic[joint] else ("rad" if args.rad else "deg")
+    return {
+        "name": name,
+        "joint": f"q{joint + 1}",
+        "value": joint_value_out(robot, joint, value, args),
+        "unit": unit,
+    }
 
 
 def _tolerance(robot: Robot, args: argparse.Namespace) -> tuple[float, float] | None:
@@ -381,28 +403,7 @@ def register(sub: Any) -> None:
 
     p = sub.add_parser("ik", help="inverse kinematics: every solution, one row each")
     add_robot(p)
-    target = p.add_mutually_exclusive_group(required=True)
-    target.add_argument(
-        "--pose",
-        nargs=6,
-        type=float,
-        metavar=("X", "Y", "Z", "A", "B", "G"),
-        help="position (length unit, see --units) and three Euler angles (see --euler)",
-    )
-    target.add_argument(
-        "--matrix",
-        nargs=16,
-        type=float,
-        metavar="M",
-        help="the 4x4 pose, 16 numbers row by row (translation in the length unit)",
-    )
-    target.add_argument(
-        "--position",
-        nargs=3,
-        type=float,
-        metavar=("X", "Y", "Z"),
-        help="position only (length unit): orientation left free",
-    )
+    pose_target_args(p, position=True)
     p.add_argument(
         "--method",
         choices=("auto", "analytic", "numeric"),
@@ -420,6 +421,14 @@ def register(sub: Any) -> None:
         "--ignore-limits",
         action="store_true",
         help="list solutions outside the joint limits among the others",
+    )
+    p.add_argument(
+        "--fixed",
+        metavar="JOINT=VALUE",
+        help="hold one joint at a value and give every solution there: JOINT is q1..qN "
+        "(1-based, as the tables show) or the joint's name (URDF), VALUE in degrees (--rad: "
+        "radians) or the length unit; e.g. --fixed q7=30. A 7-joint arm without it holds "
+        "one joint chosen for a closed form (at --q0's value, else mid-limits) and says which",
     )
     p.add_argument("--seed", type=_seed, default=0, help="seed of numeric restarts (default 0)")
     p.add_argument(
@@ -442,3 +451,30 @@ def register(sub: Any) -> None:
     add_precision(p)
     add_common(p)
     p.set_defaults(run=ik)
+
+
+def pose_target_args(p: argparse.ArgumentParser, position: bool = False) -> None:
+    """The target options, one required: ``--pose``, ``--matrix`` (``--position`` if asked)."""
+    target = p.add_mutually_exclusive_group(required=True)
+    target.add_argument(
+        "--pose",
+        nargs=6,
+        type=float,
+        metavar=("X", "Y", "Z", "A", "B", "G"),
+        help="position (length unit, see --units) and three Euler angles (see --euler)",
+    )
+    target.add_argument(
+        "--matrix",
+        nargs=16,
+        type=float,
+        metavar="M",
+        help="the 4x4 pose, 16 numbers row by row (translation in the length unit)",
+    )
+    if position:
+        target.add_argument(
+            "--position",
+            nargs=3,
+            type=float,
+            metavar=("X", "Y", "Z"),
+            help="position only (length unit): orientation left free",
+        )

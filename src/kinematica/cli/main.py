@@ -23,7 +23,16 @@ from typing import Any, NoReturn, TextIO
 import numpy as np
 
 from kinematica import __version__
-from kinematica.cli import control, convert, derive, design, kinematics, motion, viz
+from kinematica.cli import (
+    control,
+    convert,
+    derive,
+    design,
+    kinematics,
+    motion,
+    self_motion,
+    viz,
+)
 from kinematica.cli.format import plain
 from kinematica.errors import KinematicaError
 
@@ -33,7 +42,7 @@ EXIT_OK, EXIT_NO_ANSWER, EXIT_BAD_INPUT = 0, 1, 2
 EXIT_INTERRUPTED = 130  # 128 + SIGINT, as shells report Ctrl-C
 
 #: The modules of subcommands, each with ``register(subparsers)``, in help order.
-COMMAND_MODULES = (kinematics, motion, control, viz, derive, convert, design)
+COMMAND_MODULES = (kinematics, self_motion, motion, control, viz, derive, convert, design)
 
 #: Where to report an internal error (a bug: every bad input has its own message).
 REPORT = "please report it to the kinematica developers, with the command line"
@@ -51,6 +60,9 @@ _OPTIONS = {
     "tol": "--tol",
     "seed": "--seed",
     "q0": "--q0",
+    "fixed": "--fixed",
+    "parameter": "--parameter",
+    "max_jump": "--max-jump",
     "precision": "--precision",
     "euler": "--euler",
     "units": "--units",

@@ -24,7 +24,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.cli.format import DEFAULT_PRECISION
-from kinematica.errors import DimensionError
+from kinematica.errors import ArgumentError, DimensionError
+from kinematica.ik.parameter import joint_parameter
 from kinematica.robot import Robot, load
 
 __all__ = [
@@ -244,3 +245,60 @@ def dump(data: dict[str, Any]) -> None:
 def clean(a: ArrayLike) -> Any:
     """An array as nested lists of floats for JSON, every digit kept; NaN/inf as ``None``."""
     return _jsonable(np.asarray(a, dtype=float).tolist())
+
+
+def joint_in(robot: Robot, key: str, option: str) -> int:
+    """The 0-based index of the joint ``key`` names on the command line: its name or ``qN``.
+
+    Raises:
+        ArgumentError: a bare number (the command line counts joints from 1: ``q7``),
+            or a name no joint has; the message names ``option``.
+    """
+    text = key.strip()
+    names = robot.joint_names
+    numbered = (
+        text.lower().startswith("q") and text[1:].isdigit() and 1 <= int(text[1:]) <= robot.dof
+    )
+    if text not in names and not numbered:
+        own = [n for n in names if n != f"q{names.index(n) + 1}"]
+        raise ArgumentError(
+            f"{option}: name a joint as q1..q{robot.dof} (1-based, as the tables show)"
+            + (f" or by its name ({', '.join(own)})" if own else "")
+            + f", got {key!r}"
+        )
+    return joint_parameter(robot.chain, text, robot.joint_names, arg=option).index
+
+
+def joint_value_in(robot: Robot, joint: int, value: float, args: argparse.Namespace) -> float:
+    """One joint's value as typed (degrees or --rad, the length unit) to rad or m."""
+    if robot.is_prismatic[joint]:
+        return float(lengths_in(value, robot, args))
+    return float(value) if getattr(args, "rad", False) else math.radians(float(value))
+
+
+def joint_value_out(robot: Robot, joint: int, value: float, args: argparse.Namespace) -> float:
+    """One joint's value in rad or m to the command line's unit."""
+    if robot.is_prismatic[joint]:
+        return float(lengths_out(value, robot, args))
+    return float(value) if getattr(args, "rad", False) else math.degrees(float(value))
+
+
+def fixed_in(robot: Robot, text: str, args: argparse.Namespace) -> dict[int | str, float]:
+    """``--fixed q7=30``: ``{6: 0.5236}`` (the value in degrees or --rad, or the length unit).
+
+    Raises:
+        ArgumentError: not ``JOINT=VALUE``, or a value that is not a finite number.
+    """
+    key, eq, number = text.partition("=")
+    if not eq or not key.strip():
+        raise ArgumentError(f"--fixed takes JOINT=VALUE, e.g. q7=30, got {text!r}")
+    try:
+        value = float(number)
+    except ValueError:
+        value = math.nan
+    if not math.isfinite(value):
+        raise ArgumentError(
+            f"--fixed: the value of {key.strip()} must be a finite number, got {number!r}"
+        )
+    joint = joint_in(robot, key, "--fixed")
+    return {joint: joint_value_in(robot, joint, value, args)}

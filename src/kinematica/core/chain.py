@@ -181,6 +181,40 @@ class Chain:
         """
         return _readonly(np.asarray(self.core.fixed_parts))  # type: ignore[return-value]
 
+    def motion(self, joint: int, value: float) -> FloatArray:
+        """``(4, 4)`` the motion ``M(value)`` of joint ``joint`` (0-based): ``Rz`` or ``Tz``."""
+        M = np.eye(4)
+        if self.prismatic[joint]:
+            M[2, 3] = value
+        else:
+            c, s = math.cos(value), math.sin(value)
+            M[:2, :2] = ((c, -s), (s, c))
+        return M
+
+    def locked(self, joint: int, value: float) -> Chain:
+        """The chain of the other joints, with joint ``joint`` (0-based) held at ``value``.
+
+        Its motion is folded into the neighbouring fixed transforms (the first
+        joint's into ``start``, the last's into ``tool``): the n - 1 joint chain's
+        FK at ``q`` without entry ``joint`` equals this chain's at ``q``, to round-off.
+        Its frames (``fk(all_frames=True)``) are those right after each motion.
+
+        Raises:
+            ValueError: A chain of one joint (nothing would be left).
+        """
+        n = self.dof
+        if n < 2:
+            raise ValueError("a chain of one joint has no joint left to solve once it is locked")
+        # T = G_0 M_0 G_1 M_1 ... M_{n-1} G_n: locking k merges G_k M_k G_{k+1}
+        parts = [self.start, *self.fixed_parts[:-1], self.fixed_parts[-1] @ self.tool]
+        parts[joint : joint + 2] = [parts[joint] @ self.motion(joint, value) @ parts[joint + 1]]
+        keep = np.arange(n) != joint
+        return Chain.from_transforms(
+            parts[0], np.array(parts[1:-1]).reshape(n - 2, 4, 4), parts[-1],
+            np.broadcast_to(np.eye(4), (n - 1, 4, 4)), self.prismatic[keep],
+            self.own_limits[keep], np.asarray(self.core.base),
+        )  # fmt: skip
+
     @cached_property
     def dof(self) -> int:
         """Number of joints n."""

@@ -36,7 +36,8 @@ def result_html(res: IKResult) -> str:
         label = f"{branch} (outside the limits)" if branch else "(outside the limits)"
         rows.append([f"{res.count + k + 1}", label, *(number(v) for v in q), "", ""])
     plural = "" if res.count == 1 else "s"
-    caption = f"{res.status}: {res.count} solution{plural} ({res.method}; q in rad, m)"
+    held = "" if res.parameter is None else f"; {res.parameter[0]} held at {res.parameter[1]:.6g}"
+    caption = f"{res.status}: {res.count} solution{plural} ({res.method}{held}; q in rad, m)"
     return html_table(header, rows, caption=caption, footer=(res.message,))
 
 
@@ -54,6 +55,7 @@ def batch_html(res: IKBatchResult) -> str:
     tally = ", ".join(
         f"{int(c)} {s}" for s, c in zip(*np.unique(status, return_counts=True), strict=True)
     )
-    caption = f"{res.size} targets ({tally}; {res.method})"
+    held = "" if res.parameter is None else f"; {res.parameter[0]} held at a value"
+    caption = f"{res.size} targets ({tally}; {res.method}{held})"
     footer = (f"… and {more} more targets",) if more > 0 else ()
     return html_table(["target", "status", "solutions", "message"], rows, caption, footer)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Literal
 
@@ -34,6 +35,9 @@ class IKOptions:
             digit a pose target's numbers were printed with, for arms with fewer
             than 6 joints (:mod:`kinematica.ik.printed`); None: read from the
             numbers' own digits.
+        fixed: ``{joint: value}``: solve with that joint held at the value (rad or
+            m), the joint named by its 0-based index or its name (or ``"qN"``,
+            1-based); every solution has that value (:mod:`kinematica.ik.parameter`).
         arm_angle: The arm angle (rad) of an SRS 7R arm's solutions
             (:mod:`kinematica.ik.analytic.srs`): one value, or one per target;
             None: no parameter.
@@ -47,6 +51,7 @@ class IKOptions:
     seed: int | np.random.Generator | None = None
     workers: int | None = None
     precision: tuple[float, float] | None = None
+    fixed: Mapping[int | str, float] | None = None
     arm_angle: ArrayLike | None = None
 
 

@@ -1,96 +1,393 @@
-"""A redundant arm's closed form solved at given values of its parameter.
+"""A redundant arm's parameter: a joint held at a value (``robot.ik(T, fixed={6: 0.3})``).
 
-``robot.ik(T, arm_angle=psi)`` solves an SRS 7R arm at the arm angle ``psi``
-(:mod:`kinematica.ik.analytic.srs`): one value for every target, or one per
-target. :class:`AtValues` stands in for the closed form's ``Params``
-(``ik``, ``ik_rigid``, ``ik_batch``, ``candidates``): one target is solved with a
-copy set to its value (``Params.at(value)``), a batch by the core with each
-target's value (``Params.ik_batch_at``), so that the solver built once per arm is
-never changed.
+Locking joint k of an n-joint arm leaves an (n - 1)-joint arm whose FK is the
+same (:meth:`kinematica.core.Chain.locked`: the joint's motion folded exactly into
+the neighbouring fixed transforms). That arm is solved by whatever the registry
+gives it, a closed form (every solution) or the numeric search, and each solution
+comes back as an n-vector with ``q_k`` = the value. The answer is relative to the
+lock: "unreachable" means unreachable with that joint at that value, and the
+result's :attr:`~kinematica.ik.IKResult.parameter` and message say so.
+
+A parameter is an object with a ``name``, a ``unit``, a ``span`` and a ``solve``
+(:class:`Parameter`); a joint is one (:class:`JointParameter`), the arm angle of an
+SRS arm would be another.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
-import numbers
-from typing import Any
+import weakref
+from collections import OrderedDict
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica.errors import ArgumentError, DimensionError
+from kinematica.core import Chain
+from kinematica.errors import DimensionError, KinematicaError
+from kinematica.ik.moved import end_arm, moved_targets, narrowed_tolerance
+from kinematica.ik.options import IKOptions
+from kinematica.ik.result import IKBatchResult, IKResult
+from kinematica.ik.solve import solve_ik
+from kinematica.ik.stack import replace_rows, stack_results, widen_batch, widen_result
+from kinematica.ik.targets import Targets, parse_targets
+from kinematica.spatial import wrap_angle
 
-__all__ = ["AtValues", "parameter_values"]
+__all__ = [
+    "LOCKED_CACHE",
+    "JointParameter",
+    "Parameter",
+    "joint_names",
+    "joint_parameter",
+    "locked_chain",
+    "solve_fixed",
+]
 
 FloatArray = NDArray[np.float64]
 
+#: Locked arms kept per chain, least recently used first out (a sweep over a middle
+#: joint's values builds one per value; the first and last joints' are kept apart,
+#: :func:`kinematica.ik.moved.end_arm`).
+LOCKED_CACHE = 16
 
-def parameter_values(name: str, value: ArrayLike, shape: tuple[int, ...]) -> FloatArray:
-    """``(N,)`` the parameter's value for each of the targets of batch shape ``shape``.
+_LOCKED: weakref.WeakKeyDictionary[Chain, OrderedDict[tuple[int, float], Chain]] = (
+    weakref.WeakKeyDictionary()
+)
+
+
+def locked_chain(chain: Chain, joint: int, value: float) -> Chain:
+    """``chain.locked(joint, value)``, built once and kept (:data:`LOCKED_CACHE` per chain)."""
+    per = _LOCKED.setdefault(chain, OrderedDict())
+    key = (joint, float(value))
+    found = per.get(key)
+    if found is None:
+        found = per[key] = chain.locked(joint, value)
+        if len(per) > LOCKED_CACHE:
+            per.popitem(last=False)
+    else:
+        per.move_to_end(key)
+    return found
+
+
+class Parameter(Protocol):
+    """What a redundancy parameter is: a name, a unit, a span, and the arm solved at values."""
+
+    @property
+    def name(self) -> str:
+        """How results and messages name it (``"q7"``, a joint's name, ``"arm angle"``)."""
+        ...
+
+    @property
+    def unit(self) -> str:
+        """``"rad"`` or ``"m"``."""
+        ...
+
+    def span(self, chain: Chain) -> tuple[float, float]:
+        """The values it takes (a joint: its limits)."""
+        ...
+
+    def default(self, chain: Chain) -> float:
+        """The value used when neither a value nor q0 is given."""
+        ...
+
+    def value_of(self, chain: Chain, q: FloatArray) -> FloatArray:
+        """``(N,)`` its value at configurations ``q (N, n)`` (q0's, for ``auto``)."""
+        ...
+
+    def describe(self, value: float) -> str:
+        """``"q7 = 0.3 rad"``: the parameter at a value, for notes."""
+        ...
+
+    def solve(
+        self, chain: Chain, target: ArrayLike, values: ArrayLike, options: IKOptions
+    ) -> IKResult | IKBatchResult:
+        """Every solution of ``target`` with the parameter at ``values`` (one per target)."""
+        ...
+
+
+def joint_names(chain: Chain, names: Sequence[str] | None) -> tuple[str, ...]:
+    """The joints' display names: ``names`` when given, else ``q1..qn``."""
+    if names is not None:
+        return tuple(names)
+    return tuple(f"q{i + 1}" for i in range(chain.dof))
+
+
+@dataclass(frozen=True)
+class JointParameter:
+    """Joint ``index`` (0-based) as the parameter: the arm solved with it held at a value.
+
+    Attributes:
+        index: The joint, 0-based.
+        name: Its display name (the joint's own name, else ``"q<index + 1>"``).
+        prismatic: True for a sliding joint (values in m, else rad).
+    """
+
+    index: int
+    name: str
+    prismatic: bool = False
+
+    @property
+    def unit(self) -> str:
+        """``"m"`` for a prismatic joint, else ``"rad"``."""
+        return "m" if self.prismatic else "rad"
+
+    def describe(self, value: float) -> str:
+        """``"q7 = 0.3 rad"``."""
+        return f"{self.name} = {value:.6g} {self.unit}"
+
+    def span(self, chain: Chain) -> tuple[float, float]:
+        """The joint's limits solutions are held to (``(-π, π)`` for a free revolute joint)."""
+        lo, hi = chain.qlim[self.index]
+        return float(lo), float(hi)
+
+    def default(self, chain: Chain) -> float:
+        """The value used when none is given: the middle of its own limits, 0 when it has none."""
+        lo, hi = chain.own_limits[self.index]
+        return float(0.5 * (lo + hi)) if math.isfinite(lo) and math.isfinite(hi) else 0.0
+
+    def value_of(self, chain: Chain, q: FloatArray) -> FloatArray:
+        """``(N,)`` the joint's entry of each configuration ``q (N, n)``."""
+        return np.asarray(q[:, self.index], dtype=float)
+
+    def check(self, chain: Chain, value: object, respect_limits: bool = True) -> float:
+        """``value`` as a float the joint may hold.
+
+        Raises:
+            KinematicaError: (``arg="fixed"``) not a real number, NaN/inf, or, when
+                limits are respected, outside them (no solution could be within them).
+        """
+        if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
+            raise KinematicaError(
+                f"fixed: the value of {self.name} must be a number ({self.unit}), got {value!r}",
+                arg="fixed",
+            )
+        v = float(value)
+        if not math.isfinite(v):
+            raise KinematicaError(f"fixed: {self.name} must be finite, got {v}", arg="fixed")
+        own_lo, own_hi = chain.own_limits[self.index].tolist()
+        if not self.prismatic and not (math.isfinite(own_lo) or math.isfinite(own_hi)):
+            v = float(wrap_angle(v))  # a joint free to turn: its angles come out in (-π, π]
+        lo, hi = chain.qlim[self.index].tolist()
+        if respect_limits and not lo <= v <= hi:
+            raise KinematicaError(
+                f"fixed: {self.name} = {v:.6g} {self.unit} is outside its limits "
+                f"[{lo:.6g}, {hi:.6g}] {self.unit}, so no solution would be within them "
+                "(ignore the limits to see the solutions there)",
+                arg="fixed",
+            )
+        return v
+
+    def solve(
+        self, chain: Chain, target: ArrayLike, values: ArrayLike, options: IKOptions
+    ) -> IKResult | IKBatchResult:
+        """Every solution with the joint held at ``values`` (one, or one per target).
+
+        A pose target of the first or last joint: the value only moves the base or
+        the tool, so the arm locked at 0 is built once and the targets are moved
+        instead (``T' = G₀ M(v)⁻¹ G₀⁻¹ T`` for the first, ``T G⁻¹ M(v)⁻¹ G`` for the
+        last, ``G₀`` the chain's start, ``G`` the last fixed part times the tool).
+        Otherwise (a middle joint, a position target, a mask, or fewer than 6
+        joints left) one locked arm per value.
+
+        Args:
+            chain: The whole arm.
+            target: As :func:`~kinematica.ik.solve_ik` takes it.
+            values: One value for every target, or ``(N,)`` one per target of a
+                batch (C order); already checked (:meth:`check`).
+            options: The IK settings (``q0`` of the whole arm; ``fixed`` ignored).
+
+        Returns:
+            The whole arm's result: solutions ``(k, n)`` (``(..., k, n)``) with
+            ``q[index]`` equal to the value, and ``parameter`` naming it.
+        """
+        k, n = self.index, chain.dof
+        targets = parse_targets(target)
+        N = targets.poses.shape[0]
+        if isinstance(values, float | int):
+            v = np.full(N, float(values))
+        else:
+            v = np.broadcast_to(np.asarray(values, dtype=float), (N,)).copy()
+        q0 = options.q0
+        if q0 is not None:
+            q0 = np.asarray(q0, dtype=float)
+            if q0.ndim == 0 or q0.shape[-1] != n:
+                raise DimensionError(
+                    f"q0 must hold {n} joint values, got shape {q0.shape}", arg="q0"
+                )
+            q0 = np.delete(q0, k, axis=-1)
+        opts = IKOptions(  # as dataclasses.replace(options, q0=q0, fixed=None), faster
+            method=options.method, tol=options.tol, respect_limits=options.respect_limits,
+            q0=q0, mask=options.mask, seed=options.seed, workers=options.workers,
+            precision=options.precision,
+        )  # fmt: skip
+        same = bool(np.all(v == v[0]))
+        # The first joint's value turns the base frame about its axis: the moved target
+        # is the same problem, distances and angles kept. The last joint's moves the tool
+        # point: worth it only for values that differ per target (one locked arm for a
+        # sweep), checked against a narrower tolerance (see narrowed_tolerance). A mask's
+        # components and an over-determined target's printed digits would not be the
+        # ones given: those targets are solved as they are.
+        moved = (
+            not targets.position
+            and options.mask is None
+            and n - 1 >= 6
+            and (k == 0 or (k == n - 1 and not same))
+        )
+        if moved:
+            arm, G, G_inv = end_arm(chain, k)
+            if k == n - 1:
+                narrow = narrowed_tolerance(options.tol, chain.prismatic[k], k, G, G_inv, v)
+                moved = narrow is not None
+                if narrow is not None:
+                    opts = dataclasses.replace(opts, tol=narrow)
+        try:
+            if moved:  # one locked arm, moved targets
+                poses = moved_targets(chain.prismatic[k], k, G, G_inv, targets.poses, v)
+                out = solve_ik(arm, targets._replace(poses=poses), opts)
+                if k == n - 1 and isinstance(out, IKBatchResult):
+                    out = widen_batch(out, k, v, self.name)
+                    return self._exact_gaps(chain, targets, v, out, options)
+            elif same:
+                out = solve_ik(locked_chain(chain, k, float(v[0])), target, opts)
+            else:  # a middle joint at several values: one arm per value, each target alone
+                return self._one_by_one(chain, targets, v, opts)
+        except KinematicaError as exc:
+            if exc.arg != "method":
+                raise
+            raise KinematicaError(
+                f"{exc.message} (the arm left with {self.name} held)",
+                arg=exc.arg,
+                suggest=exc.suggest,
+            ) from None
+        if isinstance(out, IKResult):
+            return widen_result(out, k, float(v[0]), (self.name, float(v[0])))
+        return widen_batch(out, k, v, self.name)
+
+    def _exact_gaps(
+        self,
+        chain: Chain,
+        targets: Targets,
+        v: FloatArray,
+        out: IKBatchResult,
+        options: IKOptions,
+    ) -> IKBatchResult:
+        """``out`` with the targets proven out of reach solved again on their own arms.
+
+        A gap measured from a moved target is the distance of another point than
+        the tool's: those few targets are solved as they are, for a gap that is
+        the tool's.
+        """
+        rows = np.flatnonzero(np.isfinite(out.raw.gap))
+        if not rows.size:
+            return out
+        sub = targets._replace(
+            poses=np.ascontiguousarray(targets.poses[rows]),
+            shape=(int(rows.size),),
+            invalid={},
+            notes={},
+        )
+        q0 = None
+        if options.q0 is not None:  # the whole arm's: the locked arm's without joint k
+            q0 = np.delete(_q0_rows(options.q0, targets.shape, rows), self.index, axis=-1)
+        opts = dataclasses.replace(options, q0=q0, fixed=None)
+        again = self._one_by_one(chain, sub, v[rows], opts)
+        return replace_rows(out, rows, again, None)
+
+    def _one_by_one(
+        self, chain: Chain, targets: Targets, v: FloatArray, opts: IKOptions
+    ) -> IKBatchResult:
+        """Each target on the arm locked at its own value (``opts.q0``: the locked arm's)."""
+        results: dict[int, IKResult] = {}
+        for i in range(targets.poses.shape[0]):
+            if i in targets.invalid:
+                continue
+            T = targets.poses[i, :3, 3] if targets.position else targets.poses[i]
+            q0 = None if opts.q0 is None else _q0_rows(opts.q0, targets.shape, i)
+            arm = locked_chain(chain, self.index, float(v[i]))
+            one = solve_ik(arm, T, dataclasses.replace(opts, q0=q0))
+            assert isinstance(one, IKResult)
+            results[i] = widen_result(one, self.index, float(v[i]), (self.name, float(v[i])))
+        return stack_results(results, targets, chain.dof, self.name, v)
+
+
+def _q0_rows(q0: ArrayLike, shape: tuple[int, ...], rows: int | NDArray[np.intp]) -> FloatArray:
+    """Row(s) ``rows`` (flat, C order) of a q0 broadcast over a batch of shape ``shape``."""
+    q = np.asarray(q0, dtype=float)
+    return np.broadcast_to(q, (*shape, q.shape[-1])).reshape(-1, q.shape[-1])[rows]
+
+
+def joint_parameter(
+    chain: Chain, key: object, names: Sequence[str] | None = None, arg: str = "fixed"
+) -> JointParameter:
+    """The joint a key names: a 0-based index, the joint's name, or ``"qN"`` (1-based).
 
     Args:
-        name: The keyword (``"arm_angle"``), for messages.
-        value: One number (every target), or an array of the targets' batch shape.
-        shape: The targets' batch shape (``()`` for one target).
+        chain: The arm.
+        key: The key.
+        names: The joints' display names (``q1..qn`` when None).
+        arg: The argument messages name.
 
     Raises:
-        ArgumentError: Not numbers, or NaN/inf among them.
-        DimensionError: An array whose shape is not the targets' batch shape.
+        KinematicaError: (``arg=arg``) an index out of range, an unknown name,
+            or a key of another type; the message lists what is accepted.
     """
-    n = math.prod(shape)
-    not_numbers = f"{name} must be a number (rad) or an array of them, got {value!r}"
-    if isinstance(value, bool):
-        raise ArgumentError(not_numbers, arg=name)
-    if isinstance(value, numbers.Real):  # one number: no array to build
-        one = float(value)
-        if not math.isfinite(one):
-            raise ArgumentError(f"{name} must be finite, got {value!r}", arg=name)
-        return np.full(n, one)
-    try:
-        v = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ArgumentError(not_numbers, arg=name) from None
-    if not np.all(np.isfinite(v)):
-        raise ArgumentError(f"{name} must be finite, got {value!r}", arg=name)
-    if v.ndim and v.shape != shape:
-        raise DimensionError(
-            f"{name} must be one number or one per target (shape {shape}), got shape {v.shape}",
-            arg=name,
+    n = chain.dof
+    shown = joint_names(chain, names)
+    index: int | None = None
+    if isinstance(key, int | np.integer) and not isinstance(key, bool):
+        if not 0 <= int(key) < n:
+            raise KinematicaError(
+                f"{arg}: joint index {int(key)} is out of range: 0..{n - 1} (0-based) "
+                f"for an arm of {n} joints",
+                arg=arg,
+            )
+        index = int(key)
+    elif isinstance(key, str):
+        if key in shown:
+            index = shown.index(key)
+        else:
+            q = key.strip().lower()
+            if q.startswith("q") and q[1:].isdigit() and 1 <= int(q[1:]) <= n:
+                index = int(q[1:]) - 1
+        if index is None:
+            raise KinematicaError(
+                f"{arg}: no joint is named {key!r}: give a 0-based index 0..{n - 1}, "
+                f"q1..q{n}, or one of {', '.join(shown)}",
+                arg=arg,
+            )
+    else:
+        raise KinematicaError(
+            f"{arg}: a joint is named by a 0-based index or a name, got {key!r}", arg=arg
         )
-    return np.ascontiguousarray(np.broadcast_to(v, shape).reshape(n))
+    return JointParameter(index, shown[index], bool(chain.prismatic[index]))
 
 
-class AtValues:
-    """A parametrised closed form's ``Params``, solving target i at ``values[i]``.
+def solve_fixed(
+    chain: Chain,
+    target: ArrayLike,
+    options: IKOptions,
+    names: Sequence[str] | None = None,
+) -> IKResult | IKBatchResult:
+    """``robot.ik(T, fixed={joint: value})``: every solution with that joint held at the value.
 
-    Args:
-        params: The closed form's ``Params``, with ``at(value)`` (a copy at it) and
-            ``ik_batch_at`` (``ik_batch`` with a value per target, in the core).
-        values: ``(N,)`` one value per target (the single-target methods take the first).
+    Raises:
+        KinematicaError: (``arg="fixed"``) not a mapping of one joint, a bad key or value,
+            or an arm of one joint.
     """
-
-    def __init__(self, params: Any, values: FloatArray) -> None:
-        self._params = params
-        self._values = values
-        self._first = params.at(float(values[0])) if values.size else params
-
-    def ik(self, chain: Any, T: Any, options: Any, q0: Any, labels: Any) -> Any:
-        """``Params.ik`` at the first value."""
-        return self._first.ik(chain, T, options, q0, labels)
-
-    def ik_rigid(self, chain: Any, T: Any, options: Any, roundoff: float, labels: Any) -> Any:
-        """``Params.ik_rigid`` at the first value."""
-        return self._first.ik_rigid(chain, T, options, roundoff, labels)
-
-    def candidates(self, chain: Any, T: Any, q0: Any = None) -> Any:
-        """``Params.candidates`` at the first value."""
-        return self._first.candidates(chain, T, q0)
-
-    def ik_batch(
-        self, chain: Any, T: FloatArray, options: Any, q0: Any, invalid: Any, workers: int
-    ) -> dict[str, Any]:
-        """``Params.ik_batch`` at one value, else ``Params.ik_batch_at`` (one per target)."""
-        values = self._values
-        if values.size and np.all(values == values[0]):
-            return dict(self._first.ik_batch(chain, T, options, q0, invalid, workers))
-        return dict(self._params.ik_batch_at(chain, T, values, options, q0, invalid, workers))
+    fixed = options.fixed
+    if not isinstance(fixed, Mapping) or len(fixed) != 1:
+        got = f"{len(fixed)} entries" if isinstance(fixed, Mapping) else repr(fixed)
+        raise KinematicaError(
+            f"fixed must hold one joint and its value, e.g. {{6: 0.3}}, got {got}", arg="fixed"
+        )
+    if chain.dof < 2:
+        raise KinematicaError(
+            "fixed: an arm of one joint has no joint left to solve once it is locked", arg="fixed"
+        )
+    ((key, value),) = fixed.items()
+    joint = joint_parameter(chain, key, names)
+    v = joint.check(chain, value, bool(options.respect_limits))
+    return joint.solve(chain, target, v, options)

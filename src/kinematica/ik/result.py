@@ -13,7 +13,7 @@ from numpy.typing import NDArray
 
 from kinematica.errors import UnreachableError
 from kinematica.ik.letters import toolbox_letters
-from kinematica.ik.status import STATUS_NAMES, IKStatus, status_message
+from kinematica.ik.status import STATUS_NAMES, IKStatus, held, status_message
 
 __all__ = ["NEAR_NOTE", "CheckOutput", "CoreAnswer", "IKBatchResult", "IKResult", "result_of"]
 
@@ -56,6 +56,10 @@ class IKResult:
             set or a workspace boundary, where closed-form solutions merge (the
             solutions given reach the target; some that merge there may be
             reported as one).
+        parameter: ``(name, value)`` of the joint held at a value for this answer
+            (``robot.ik(T, fixed=...)``, or a redundant arm's ``method="auto"``):
+            every solution has that value, and the status is relative to it
+            ("unreachable" with that joint there); None when every joint was free.
     """
 
     solutions: FloatArray
@@ -71,6 +75,7 @@ class IKResult:
     notes: tuple[str, ...] = ()
     complete: bool = True
     near_singular: bool = False
+    parameter: tuple[str, float] | None = None
 
     @cached_property
     def message(self) -> str:
@@ -85,6 +90,7 @@ class IKResult:
             nearest=self.nearest_error,
             complete=self.complete,
             near=self.near_singular,
+            held=None if self.parameter is None else held(*self.parameter),
         )
         notes = self.notes
         if self.near_singular and self.status in (IKStatus.OK, IKStatus.SINGULAR):
@@ -167,6 +173,9 @@ class IKBatchResult:
         methods: Batch index -> the method of a target solved by another than
             ``method`` (a near-degenerate arm's targets the numeric search
             answered; their results are not complete).
+        parameter: ``(name, values (...))``: the joint held at a value per
+            target (see :attr:`IKResult.parameter`), NaN for a target answered
+            with every joint free; None when no joint was held.
     """
 
     raw: CheckOutput = field(repr=False)
@@ -177,6 +186,7 @@ class IKBatchResult:
     notes: Mapping[tuple[int, ...], tuple[str, ...]] = field(default_factory=dict)
     complete: bool = True
     methods: Mapping[tuple[int, ...], str] = field(default_factory=dict)
+    parameter: tuple[str, FloatArray] | None = None
 
     @property
     def size(self) -> int:
@@ -316,10 +326,15 @@ class IKBatchResult:
         labels = self.labels
         branches = tuple(labels[j] for j in raw.slot[flat, : count + out].tolist())
         q = raw.q[flat]
+        parameter = None
+        if self.parameter is not None:
+            value = float(np.asarray(self.parameter[1]).reshape(-1)[flat])
+            parameter = None if value != value else (self.parameter[0], value)
         return result_of(
             q[:count], raw.res[flat, :count], q[count : count + out],
             branches[:count], branches[count:], report,
             self.methods.get(idx, self.method), self.complete and idx not in self.methods, notes,
+            parameter,
         )  # fmt: skip
 
     @cached_property
@@ -396,6 +411,7 @@ def result_of(
     method: str,
     complete: bool,
     notes: tuple[str, ...],
+    parameter: tuple[str, float] | None = None,
 ) -> IKResult:
     """The :class:`IKResult` of one target from what the core's check wrote for it.
 
@@ -411,6 +427,7 @@ def result_of(
         method: The method name.
         complete: The method gives every solution.
         notes: Remarks on the target.
+        parameter: The joint held at a value, ``(name, value)``, or None.
 
     Built without the frozen dataclass's ``__init__`` (a dozen guarded
     attribute writes): the one-target path of ``robot.ik`` runs through here.
@@ -431,5 +448,6 @@ def result_of(
         notes=notes,
         complete=complete,
         near_singular=near,
+        parameter=parameter,
     )
     return res

@@ -20,6 +20,7 @@ import kinematica._core as _core
 from kinematica.core import Chain, resolve_workers
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.analytic import SOLVERS
+from kinematica.ik.at_values import AtValues, parameter_values
 from kinematica.ik.fallback import (
     FALLBACK_NOTE,
     INCOMPLETE_NOTE,
@@ -31,7 +32,6 @@ from kinematica.ik.fallback import (
 )
 from kinematica.ik.numeric import LABEL, check_seed, numeric_setup
 from kinematica.ik.options import IKOptions, Method
-from kinematica.ik.parameter import AtValues, parameter_values
 from kinematica.ik.printed import answer_overdetermined, overdetermined_rows
 from kinematica.ik.reach import beyond_limited_reach
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
@@ -244,21 +244,33 @@ def _limited(
     return (*out[:-1], report)
 
 
-def solve_ik(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IKBatchResult:
+def solve_ik(
+    chain: Chain, target: ArrayLike | Targets, options: IKOptions
+) -> IKResult | IKBatchResult:
     """Every inverse-kinematics solution of a target, or an honest status.
 
     See :meth:`kinematica.Robot.ik` for the arguments and what comes back. One pose
     target of an arm with fewer than 6 joints is over-determined: see
-    :mod:`kinematica.ik.printed`.
+    :mod:`kinematica.ik.printed`. ``target`` may also be targets already parsed
+    (:class:`~kinematica.ik.targets.Targets`). The chain is solved as it is:
+    ``options.fixed`` and a redundant arm's parameter are
+    :func:`kinematica.ik.redundancy.solve_arm`'s.
     """
     out = _solve(chain, target, options)
-    overdetermined = chain.dof < 6 and options.mask is None and np.shape(target) == (4, 4)
-    if overdetermined and isinstance(out, IKResult):
+    overdetermined = (
+        chain.dof < 6
+        and options.mask is None
+        and not isinstance(target, Targets)
+        and np.shape(target) == (4, 4)
+    )
+    if overdetermined and isinstance(out, IKResult) and not isinstance(target, Targets):
         return answer_overdetermined(chain, target, options, out, _solve, options.precision)
     return out
 
 
-def _solve(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IKBatchResult:
+def _solve(
+    chain: Chain, target: ArrayLike | Targets, options: IKOptions
+) -> IKResult | IKBatchResult:
     """:func:`solve_ik` without the over-determined targets' second look."""
     method: Method = options.method
     respect_limits, q0, workers = options.respect_limits, options.q0, options.workers
@@ -266,7 +278,7 @@ def _solve(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IK
         raise KinematicaError(
             f"method must be 'auto', 'analytic' or 'numeric', got {method!r}", arg="method"
         )
-    targets = parse_targets(target)
+    targets = target if isinstance(target, Targets) else parse_targets(target)
     m = parse_mask(options.mask)
     tolerance = parse_tolerance(options.tol)
     seed = check_seed(options.seed)
@@ -364,7 +376,8 @@ def _solve(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IK
         if beyond.any():
             raw = dict(raw, status=np.where(beyond, _UNREACHABLE, raw["status"]))
             raw["gap"] = np.where(beyond, gaps, raw["gap"])
-    if chain.dof < 6 and m is None and not targets.position:  # over-determined poses
+    over = chain.dof < 6 and m is None and not targets.position
+    if over and not isinstance(target, Targets):  # over-determined poses
         raw, more = overdetermined_rows(chain, target, options, raw, labels, q0s, solve_ik)
         for i, extra in more.items():
             batch_notes[where(i)] = extra

@@ -7,7 +7,7 @@ from enum import StrEnum
 
 import kinematica._core as _core
 
-__all__ = ["SOLVED", "STATUS_NAMES", "IKStatus", "status_message"]
+__all__ = ["SOLVED", "STATUS_NAMES", "IKStatus", "held", "status_message"]
 
 
 class IKStatus(StrEnum):
@@ -53,6 +53,7 @@ def status_message(
     nearest: tuple[float, float],
     complete: bool,
     near: bool = False,
+    held: str | None = None,
 ) -> str:
     """One sentence for people about an IK outcome.
 
@@ -69,7 +70,41 @@ def status_message(
         complete: The method gives every solution (a closed form).
         near: The target is within round-off of a singular set (the closed
             form's solutions there may merge or be lost to round-off).
+        held: The joint held at a value for this answer (``"q7 = 0.3"``,
+            see :func:`held`): the outcome is said of the arm with it there.
     """
+    text = _message(status, method, count, out_of_limits, free, gap, nearest, complete, near)
+    if held is None or status == IKStatus.INVALID:
+        return text
+    if status in (IKStatus.OK, IKStatus.SINGULAR):
+        return f"{text}, with {held}"
+    head, _, rest = text.partition(": ")
+    if not rest:  # "3 solutions exist, none within the joint limits"
+        return f"with {held}: {text}; other values may do better"
+    name = held.split(" = ")[0]
+    return (
+        f"{head} with {held}: {rest} (said of the arm with {name} held there; "
+        f"other values of {name} may reach it)"
+    )
+
+
+def held(name: str, value: float) -> str:
+    """How messages name a joint held at a value: ``"q7 = 0.3"`` (the API's units: rad, m)."""
+    return f"{name} = {value:.6g}"
+
+
+def _message(
+    status: str,
+    method: str,
+    count: int,
+    out_of_limits: int,
+    free: tuple[int, ...],
+    gap: float,
+    nearest: tuple[float, float],
+    complete: bool,
+    near: bool,
+) -> str:
+    """:func:`status_message` of an answer with every joint free."""
     plural = "s" if count != 1 else ""
     if status == IKStatus.OK:
         extra = f"; {out_of_limits} more outside the joint limits" if out_of_limits else ""

@@ -3,7 +3,7 @@
 Layer 6: built on the robot and ik layers (public API only); numpy only. The
 velocity kinematics (measures, ellipsoids, Hessian and J̇), the named
 singularities and the sampling of joint space live in the robot layer
-(``Robot.jacobian(euler=)``, ``Robot.singularities``, ``Robot.random_q`` are
+(``Robot.jacobian(euler=)``, ``Robot.singularities``, ``Robot.random_q``, ``Robot.self_motion`` are
 thin methods over them) and are re-exported here.
 """
 
@@ -28,6 +28,7 @@ from kinematica.motion.workspace import Workspace, WorkspaceSlice, workspace
 from kinematica.robot.differential import exp_jacobian, hessian, jacobian_dot
 from kinematica.robot.ellipsoid import Ellipsoid, ellipsoid
 from kinematica.robot.sampling import random_q
+from kinematica.robot.self_motion import MAX_JUMP, Family, SelfMotion, self_motion
 from kinematica.robot.singularities import (
     ELBOW_TOL,
     RANK_TOL,
@@ -47,16 +48,19 @@ from kinematica.robot.velocity import (
 __all__ = [
     "ELBOW_TOL",
     "MAX_JOINT_STEP",
+    "MAX_JUMP",
     "RANK_TOL",
     "ROTATION_LENGTH",
     "SHOULDER_TOL",
     "WRIST_TOL",
     "CartesianPath",
     "Ellipsoid",
+    "Family",
     "JointTrajectory",
     "PathEvent",
     "PiecewisePolynomial",
     "RateControl",
+    "SelfMotion",
     "Singularity",
     "Workspace",
     "WorkspaceSlice",
@@ -76,6 +80,7 @@ __all__ = [
     "random_q",
     "read_csv",
     "resolved_rate",
+    "self_motion",
     "singularities",
     "time_scaling",
     "via_polynomials",

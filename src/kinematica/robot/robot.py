@@ -9,8 +9,9 @@ from __future__ import annotations
 
 import dataclasses
 import warnings
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
@@ -28,9 +29,10 @@ from kinematica.dh import (
     link_matrix,
 )
 from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning, UnitWarning
-from kinematica.ik import IKBatchResult, IKOptions, IKResult, Tolerance, solve_ik
+from kinematica.ik import IKBatchResult, IKOptions, IKResult, Tolerance
 from kinematica.ik.analytic.srs import arm_angle as arm_angle_of
 from kinematica.ik.reach import needs_proof
+from kinematica.ik.redundancy import choose, solve_arm
 from kinematica.ik.registry import TargetKind
 from kinematica.ik.result import CoreAnswer, result_of
 from kinematica.ik.solve import PoseSolver, pose_solver
@@ -44,8 +46,10 @@ from kinematica.spatial import ROUNDOFF_TOL
 if TYPE_CHECKING:
     import os
 
+    from kinematica.ik.parameter import Parameter
     from kinematica.io import RobotSpec
     from kinematica.robot.dh_rules import DHExtraction
+    from kinematica.robot.self_motion import SelfMotion
 
 __all__ = ["Robot"]
 
@@ -182,6 +186,13 @@ class Robot:
     def dof(self) -> int:
         """Number of joints n."""
         return len(self.links)
+
+    @cached_property
+    def joint_names(self) -> tuple[str, ...]:
+        """Each joint's name: its own (a URDF's joint names), else ``"q1"``, ``"q2"``..."""
+        return tuple(
+            link.name if link.name else f"q{i}" for i, link in enumerate(self.links, start=1)
+        )
 
     @property
     def joint_types(self) -> str:
@@ -472,6 +483,7 @@ class Robot:
         tol: float | tuple[float, float] | Tolerance | None = None,
         workers: int | None = None,
         precision: tuple[float, float] | None = None,
+        fixed: Mapping[int | str, float] | None = None,
         arm_angle: ArrayLike | None = None,
         options: IKOptions | None = None,
     ) -> IKResult | IKBatchResult:
@@ -500,6 +512,14 @@ class Robot:
                 unit in the last digit its numbers were printed with; None: read
                 from their digits. The closest configuration answers a target
                 it reproduces to that precision (a note says which was assumed).
+            fixed: ``{joint: value}``: every solution with that joint held at the
+                value (rad or m; the joint by its 0-based index, its name, or
+                ``"qN"``); the status is relative to it and ``result.parameter``
+                names it. A value outside the joint's limits is an error unless
+                ``respect_limits=False``. Without it, ``method="auto"`` on a
+                7-joint arm holds a joint whose locked arm has a closed form (at
+                q0's value, else the middle of its limits) and says which; see
+                :mod:`kinematica.ik.redundancy`.
             arm_angle: For an SRS 7R arm (iiwa type): the arm angle (rad) of the
                 solutions, one value or one per target; all 8 solutions at it
                 (see :mod:`kinematica.ik.analytic.srs` and :meth:`arm_angle`).
@@ -523,6 +543,7 @@ class Robot:
             and mask is None
             and seed is None
             and precision is None
+            and fixed is None
             and arm_angle is None
         ):  # one target, every default: straight to the core (a rigid target to round-off)
             if target.shape == (4, 4):
@@ -537,7 +558,7 @@ class Robot:
                 return out
         if options is None:
             options = IKOptions(
-                method, tol, respect_limits, q0, mask, seed, workers, precision, arm_angle
+                method, tol, respect_limits, q0, mask, seed, workers, precision, fixed, arm_angle
             )
         elif not isinstance(options, IKOptions):
             raise KinematicaError(
@@ -547,7 +568,7 @@ class Robot:
             isinstance(method, str)
             and method == "auto"
             and respect_limits is True
-            and all(v is None for v in (tol, q0, mask, seed, workers, precision, arm_angle))
+            and all(v is None for v in (tol, q0, mask, seed, workers, precision, fixed, arm_angle))
         ):
             raise KinematicaError(
                 "give the IK settings either as options= or as keywords, not both",
@@ -555,7 +576,7 @@ class Robot:
             )
         check_choice(options.method, "method", ("auto", "analytic", "numeric"))
         check_flag(options.respect_limits, "respect_limits")
-        return solve_ik(self.chain, target, options)
+        return solve_arm(self.chain, target, options, self.joint_names)
 
     def arm_angle(self, q: ArrayLike) -> FloatArray:
         """The arm angle (rad) of configurations of an SRS 7R arm (iiwa type).
@@ -580,7 +601,10 @@ class Robot:
         """``ik`` of one rigid target with every default; None: the general path explains it."""
         fast = self._fast_ik.get(kind)
         if fast is None:
-            fast = self._fast_ik[kind] = pose_solver(self.chain, kind)
+            fast = pose_solver(self.chain, kind)
+            if kind == "pose" and choose(self.chain) is not None:  # solved at a parameter
+                fast = fast._replace(direct=False)
+            self._fast_ik[kind] = fast
         if not fast.direct:
             return None
         out: CoreAnswer | None = fast.ik_rigid(
@@ -671,6 +695,28 @@ class Robot:
         from kinematica.robot.singularities import singularities
 
         return singularities(self, q, detail=detail)
+
+    def self_motion(
+        self,
+        target: ArrayLike,
+        parameter: int | str | Parameter,
+        *,
+        samples: int = 73,
+        values: ArrayLike | None = None,
+        max_jump: float | None = None,
+        method: str = "auto",
+    ) -> SelfMotion:
+        """The solution families at the pose ``target`` swept over ``parameter`` (a joint).
+
+        See :func:`kinematica.robot.self_motion.self_motion` (``max_jump`` None:
+        its ``MAX_JUMP``).
+        """
+        from kinematica.robot.self_motion import MAX_JUMP, self_motion
+
+        jump = MAX_JUMP if max_jump is None else max_jump
+        return self_motion(
+            self, target, parameter, samples=samples, values=values, max_jump=jump, method=method
+        )
 
     def random_q(
         self, n: int | tuple[int, ...] = 1, seed: int | np.random.Generator | None = None

@@ -23,6 +23,7 @@ from kinematica.viz.geometry import ArmPose, arm_pose, drawing_plane, robot_scal
 
 __all__ = [
     "IMAGE_SUFFIXES",
+    "check_image_path",
     "fit_solutions",
     "plot",
     "plot_solutions",
@@ -242,6 +243,21 @@ def fit_solutions(fig: Any) -> None:
 
 def save_figure(fig: Any, path: str | os.PathLike[str]) -> Path:
     """Write ``fig`` at its own pixel size; the file type follows the suffix."""
+    out = check_image_path(path)
+    try:
+        with atomic_path(out) as tmp:
+            fig.savefig(tmp, dpi=fig.dpi)
+    except OSError as exc:
+        raise VizError(write_failed(out, exc, "the picture")) from exc
+    return out
+
+
+def check_image_path(path: str | os.PathLike[str]) -> Path:
+    """``path`` as a Path a picture can be written to: a known suffix, an existing folder.
+
+    Raises:
+        VizError: Another suffix, or a folder that does not exist.
+    """
     out = Path(path)
     if out.suffix.lower() not in IMAGE_SUFFIXES:
         raise VizError(
@@ -250,11 +266,6 @@ def save_figure(fig: Any, path: str | os.PathLike[str]) -> Path:
         )
     if not out.parent.is_dir():
         raise VizError(f"{out}: the folder {out.parent} does not exist")
-    try:
-        with atomic_path(out) as tmp:
-            fig.savefig(tmp, dpi=fig.dpi)
-    except OSError as exc:
-        raise VizError(write_failed(out, exc, "the picture")) from exc
     return out
 
 

@@ -298,10 +298,13 @@ def test_the_arm_angle_asked_of_other_arms_and_bad_values(iiwa: km.Robot) -> Non
         iiwa.ik(np.stack([Ti, Ti]), arm_angle=[0.1, 0.2, 0.3])
 
 
-def test_without_an_arm_angle_the_iiwa_is_solved_as_before(iiwa: km.Robot) -> None:
-    # the parametrised closed form is used only when its parameter is given
-    res = iiwa.ik(iiwa.fk(np.full(7, 0.3)), seed=1)
-    assert res.method == "numeric:lm"
+def test_without_an_arm_angle_the_srs_solver_is_not_used(iiwa: km.Robot) -> None:
+    # the parametrised closed form is used only when its parameter is given (auto holds
+    # a joint instead); both parameters at once are refused
+    T = iiwa.fk(np.full(7, 0.3))
+    assert iiwa.ik(T, seed=1).method != "analytic:srs"
+    with pytest.raises(KinematicaError, match="arm_angle or fixed, not both"):
+        iiwa.ik(T, arm_angle=0.2, fixed={6: 0.3})
     assert classify(iiwa).kind == "srs-7R"
 
 

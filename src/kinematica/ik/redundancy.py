@@ -1,0 +1,188 @@
+"""A redundant arm's ``method="auto"``: every solution at a parameter value, said so.
+
+A 7-joint arm reaches a pose along a one-parameter family of configurations. With
+no parameter given, ``auto`` holds one joint at a value (q0's when given, else
+the joint's :meth:`~kinematica.ik.parameter.JointParameter.default`) and returns
+every solution there, from the closed form the registry has for the arm that
+lock leaves; the result names the parameter (``result.parameter``) and a note
+says why that value. The joint is the first in :func:`preference` whose locked
+arm the registry solves in closed form; an arm with none is searched
+numerically over all its joints, as any arm without a closed form. Where the
+lock finds no solution, the pose is not declared unreachable: the numeric search
+over every joint answers, and says so.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import weakref
+from collections.abc import Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+import kinematica._core as _core
+from kinematica.core import Chain
+from kinematica.errors import DimensionError, KinematicaError
+from kinematica.ik.options import IKOptions
+from kinematica.ik.parameter import (
+    JointParameter,
+    Parameter,
+    joint_names,
+    locked_chain,
+    solve_fixed,
+)
+from kinematica.ik.result import IKBatchResult, IKResult
+from kinematica.ik.solve import closed_form, solve_ik
+from kinematica.ik.stack import replace_rows
+from kinematica.ik.targets import Targets, parse_targets
+
+FloatArray = NDArray[np.float64]
+
+__all__ = ["REDUNDANT_DOF", "choose", "preference", "solve_arm"]
+
+#: The arms ``auto`` solves at a parameter: 7 joints, one more than a pose needs.
+REDUNDANT_DOF = 7
+
+_INVALID = _core.STATUS["invalid"]
+_CHOICE: weakref.WeakKeyDictionary[Chain, int | None] = weakref.WeakKeyDictionary()
+
+
+def preference(n: int) -> tuple[int, ...]:
+    """The joints (0-based) tried as an n-joint arm's parameter, in order of preference.
+
+    The last joint first, then the first (either only moves the tool or the base,
+    so one locked arm serves every value), then the others from the base out.
+    """
+    return (n - 1, 0, *range(1, n - 1))
+
+
+def choose(chain: Chain, names: Sequence[str] | None = None) -> JointParameter | None:
+    """The parameter ``auto`` uses for this arm, or None (not redundant, or no closed form).
+
+    The first joint of :func:`preference` whose locked arm (at its default value)
+    has a closed-form pose solver; chosen once per chain. Another kind of
+    parameter (an SRS arm's arm angle) is one more :class:`Parameter` tried here,
+    before the joints.
+    """
+    if chain.dof != REDUNDANT_DOF:
+        return None
+    if chain not in _CHOICE:
+        found = None
+        for k in preference(chain.dof):
+            joint = JointParameter(k, f"q{k + 1}", bool(chain.prismatic[k]))
+            closed = closed_form(locked_chain(chain, k, joint.default(chain)), "pose")
+            if closed is not None and not closed.partial:
+                found = k
+                break
+        _CHOICE[chain] = found
+    chosen = _CHOICE[chain]
+    if chosen is None:
+        return None
+    return JointParameter(chosen, joint_names(chain, names)[chosen], bool(chain.prismatic[chosen]))
+
+
+def solve_arm(
+    chain: Chain, target: ArrayLike, options: IKOptions, names: Sequence[str] | None = None
+) -> IKResult | IKBatchResult:
+    """``robot.ik``: a joint held at a value when asked or chosen, else the chain as it is.
+
+    Args:
+        chain: The arm.
+        target: As :func:`~kinematica.ik.solve_ik` takes it.
+        options: The IK settings (``fixed``: a joint held at a value).
+        names: The joints' display names (``q1..qn`` when None).
+    """
+    if options.arm_angle is not None:  # an SRS arm's own parameter: no joint held
+        if options.fixed is not None:
+            raise KinematicaError(
+                "give one redundancy parameter: arm_angle or fixed, not both", arg="arm_angle"
+            )
+        return solve_ik(chain, target, options)
+    if options.fixed is not None:
+        return solve_fixed(chain, target, options, names)
+    if options.method == "auto" and options.mask is None and chain.dof == REDUNDANT_DOF:
+        joint = choose(chain, names)
+        if joint is not None:
+            targets = parse_targets(target)
+            if not targets.position:
+                return _at_parameter(chain, joint, target, targets, options)
+    return solve_ik(chain, target, options)
+
+
+def _at_parameter(
+    chain: Chain, joint: Parameter, target: ArrayLike, targets: Targets, options: IKOptions
+) -> IKResult | IKBatchResult:
+    """Every solution with ``joint`` at q0's value (or its default); numeric where none."""
+    n = chain.dof
+    q0s = _q0_rows(options.q0, targets.shape, n)
+    if q0s is None:
+        values = np.full(targets.poses.shape[0], joint.default(chain))
+        why = "its default value"
+        if isinstance(joint, JointParameter):
+            middle = np.isfinite(chain.own_limits[joint.index]).all()
+            why = "the middle of its limits" if middle else "0: it has no limits"
+    else:
+        values = np.clip(joint.value_of(chain, q0s), *joint.span(chain))
+        why = "q0's value, within its limits"
+    res = joint.solve(chain, target, values, options)
+    numeric = dataclasses.replace(options, method="numeric")
+
+    def note(value: float) -> str:
+        return (
+            f"{chain.dof}-joint arm: every solution with {joint.describe(value)} ({why}), "
+            f"its redundancy parameter; give q0 or fixed= for another value, "
+            f"robot.self_motion for all of them"
+        )
+
+    def fallback(value: float) -> str:
+        return (
+            f"no solution with {joint.describe(value)}: the numeric search over all "
+            f"{chain.dof} joints answered"
+        )
+
+    if isinstance(res, IKResult):
+        value = float(values[0])
+        if res.success:
+            return dataclasses.replace(res, notes=(*res.notes, note(value)))
+        full = solve_ik(chain, target, numeric)
+        assert isinstance(full, IKResult)
+        return dataclasses.replace(full, notes=(*full.notes, fallback(value)))
+    raw = res.raw
+    missed = np.flatnonzero((raw.count == 0) & (raw.status != _INVALID))
+    notes = dict(res.notes)
+    said: dict[float, str] = {}  # one note per value, shared by its targets
+    held = np.flatnonzero(raw.count > 0)
+    cells = zip(*np.unravel_index(held, res.shape), strict=True)
+    for i, idx in zip(held.tolist(), cells, strict=True):
+        value = float(values[i])
+        text = said.get(value) or said.setdefault(value, note(value))
+        where = tuple(int(v) for v in idx)
+        notes[where] = (*notes.get(where, ()), text)
+    res = dataclasses.replace(res, notes=notes)
+    if missed.size:
+        sub = targets._replace(
+            poses=np.ascontiguousarray(targets.poses[missed]),
+            shape=(int(missed.size),),
+            invalid={},
+            notes={},
+        )
+        q0 = None if q0s is None else q0s[missed]
+        full = solve_ik(chain, sub, dataclasses.replace(numeric, q0=q0))
+        assert isinstance(full, IKBatchResult)
+        res = replace_rows(res, missed, full, [fallback(float(values[i])) for i in missed])
+    return res
+
+
+def _q0_rows(q0: ArrayLike | None, shape: tuple[int, ...], n: int) -> FloatArray | None:
+    """``(N, n)`` q0 per target (flat, C order), or None; its shape is checked by the solve."""
+    if q0 is None:
+        return None
+    q = np.asarray(q0, dtype=float)
+    try:
+        return np.broadcast_to(q, (*shape, n)).reshape(-1, n)
+    except ValueError:
+        raise DimensionError(
+            f"q0 of shape {q.shape} does not match targets of batch shape {shape} and {n} joints",
+            arg="q0",
+        ) from None

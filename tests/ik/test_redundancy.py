@@ -1,0 +1,151 @@
+"""method="auto" on a 7-joint arm: every solution at a parameter, named, or the search.
+
+Which joint is chosen depends on the closed forms the registry has (the Panda has
+none for any lock until a spherical-shoulder family lands): the tests compute the
+expected choice from the registry itself, then check what auto says and returns.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from support.helpers import assert_transform_close
+
+import kinematica as km
+from kinematica.ik import IKBatchResult, IKResult, closed_form
+from kinematica.ik.parameter import locked_chain
+from kinematica.ik.redundancy import REDUNDANT_DOF, choose, preference
+
+TOL = 1e-10
+
+
+def expected_joint(robot: km.Robot) -> int | None:
+    """The first joint of the preference whose locked arm has a closed form (or None)."""
+    for k in preference(robot.dof):
+        lo, hi = robot.chain.own_limits[k]
+        value = 0.5 * (lo + hi) if np.isfinite([lo, hi]).all() else 0.0
+        closed = closed_form(locked_chain(robot.chain, k, value), "pose")
+        if closed is not None and not closed.partial:
+            return k
+    return None
+
+
+def test_the_preference_is_last_first_then_base_to_tip() -> None:
+    assert preference(7) == (6, 0, 1, 2, 3, 4, 5)
+    assert preference(2) == (1, 0)
+
+
+@pytest.mark.parametrize("name", ["panda", "iiwa14"])
+def test_auto_says_its_parameter_and_every_solution_holds_it(name: str) -> None:
+    robot = km.load(name)
+    k = expected_joint(robot)
+    joint = choose(robot.chain, robot.joint_names)
+    assert (None if joint is None else joint.index) == k
+    q = np.array([0.2, 0.4, -0.1, -1.4, 0.3, 1.2, 0.5])
+    T = robot.fk(q)
+    res = robot.ik(T)
+    assert isinstance(res, IKResult)
+    if k is None:  # no lock gives a closed form: the search over every joint, as before
+        assert res.parameter is None and res.method == "numeric:lm"
+        return
+    lo, hi = robot.chain.own_limits[k]
+    value = 0.5 * (lo + hi)
+    if res.parameter is None:  # nothing at that value: the search answered, and said so
+        assert any("numeric search over all 7 joints" in n for n in res.notes)
+        return
+    assert res.parameter == (f"q{k + 1}", value)
+    assert res.method.startswith("analytic:")
+    np.testing.assert_array_equal(res.solutions[:, k], value)
+    assert_transform_close(robot.fk(res.solutions), np.broadcast_to(T, (res.count, 4, 4)), atol=TOL)
+    assert any(f"q{k + 1} = " in n and "redundancy parameter" in n for n in res.notes)
+    assert f"with q{k + 1} = " in res.message
+
+
+def test_auto_on_the_iiwa_holds_q0s_value() -> None:
+    robot = km.load("iiwa14")
+    k = expected_joint(robot)
+    assert k is not None  # its first joint leaves a spherical wrist (today; others later)
+    q = np.array([0.3, 0.5, -0.2, -1.2, 0.4, 0.9, 0.2])
+    T = robot.fk(q)
+    res = robot.ik(T, q0=q)
+    assert res.parameter == (f"q{k + 1}", q[k])
+    assert res.complete and res.count >= 1
+    np.testing.assert_allclose(res.solutions[0], q, atol=1e-9)  # nearest q0 first: q itself
+    # a q0 beyond the joint's limits holds the nearest limit
+    beyond = q.copy()
+    beyond[k] = 4.0
+    res = robot.ik(T, q0=beyond, respect_limits=False)
+    assert res.parameter is not None
+    assert res.parameter[1] == pytest.approx(robot.qlim[k, 1], abs=0)
+
+
+def test_where_the_lock_finds_nothing_the_search_over_every_joint_answers() -> None:
+    robot = km.load("iiwa14")
+    joint = choose(robot.chain)
+    assert joint is not None  # its first joint leaves a spherical wrist
+    value = joint.default(robot.chain)
+    # poses the whole arm reaches (made by fk) and, some of them, not with the lock
+    T = robot.fk(robot.random_q(40, seed=4))
+    locked = robot.ik(T, fixed={joint.index: value})
+    assert isinstance(locked, IKBatchResult)
+    missed = np.flatnonzero(locked.count == 0)
+    held = np.flatnonzero(locked.count > 0)
+    assert missed.size and held.size
+    aside, reached = T[missed[0]], T[held[0]]
+    res = robot.ik(aside)
+    assert res.status == "ok" and res.parameter is None and res.method == "numeric:lm"
+    assert any(f"no solution with {joint.describe(value)}" in n for n in res.notes)
+    assert_transform_close(
+        robot.fk(res.solutions), np.broadcast_to(aside, (res.count, 4, 4)), atol=TOL
+    )
+    # a batch: each row as its single call says it
+    many = robot.ik(np.stack([reached, aside, reached]))
+    assert isinstance(many, IKBatchResult)
+    values = np.asarray(many.parameter[1])  # type: ignore[index]
+    assert values[0] == values[2] == value and math.isnan(values[1])
+    for i, target in enumerate((reached, aside, reached)):
+        one = robot.ik(target)
+        assert many[i].parameter == one.parameter
+        assert many[i].method == one.method
+        assert str(many[i].status) == str(one.status)
+        if one.parameter is not None:
+            np.testing.assert_allclose(many[i].solutions, one.solutions, atol=1e-12)
+            assert many[i].message == one.message
+
+
+@pytest.mark.parametrize(("extra", "held"), [(0, True), (1, False)])
+def test_only_seven_joint_arms_are_held(extra: int, held: bool) -> None:
+    # an iiwa with one more joint at the tip (8 joints) is searched as before
+    iiwa = km.load("iiwa14")
+    rows = list(iiwa.links) + [km.Revolute(d=0.05, alpha=math.pi / 2)] * extra
+    robot = km.Robot.from_dh(rows)
+    assert robot.dof == REDUNDANT_DOF + extra
+    T = robot.fk(np.r_[0.3, 0.5, -0.2, -1.2, 0.4, 0.9, 0.2, [0.1] * extra])
+    res = robot.ik(T, seed=1)
+    assert (res.parameter is not None) == held
+
+
+def test_six_joint_arms_a_mask_and_positions_are_not_held() -> None:
+    puma = km.load("puma560")
+    assert puma.ik(puma.fk([0.3, -0.6, 0.2, 0.5, 0.9, -0.4])).parameter is None
+    iiwa = km.load("iiwa14")
+    T = iiwa.fk(np.array([0.3, 0.5, -0.2, -1.2, 0.4, 0.9, 0.2]))
+    assert iiwa.ik(T, mask=[1, 1, 1, 1, 1, 0], seed=1).parameter is None
+    assert iiwa.ik(T[:3, 3], seed=1).parameter is None
+    assert iiwa.ik(T, method="numeric", seed=1).parameter is None
+
+
+def test_a_ur5_with_a_seventh_joint_is_held_at_it_with_every_ur5_solution() -> None:
+    # its last joint leaves the UR5's three parallel axes: first in the preference
+    ur5 = km.load("ur5")
+    rows = [*ur5.links, km.Revolute(d=0.05, a=0.03, alpha=0.4)]
+    robot = km.Robot.from_dh(rows, base=ur5.base, tool=ur5.tool)
+    q = np.array([0.3, -1.0, 1.2, -0.5, 0.8, 0.4, 0.25])
+    T = robot.fk(q)
+    res = robot.ik(T, q0=q, respect_limits=False)
+    assert res.parameter == ("q7", 0.25)
+    assert res.method.startswith("analytic:") and res.count == 8
+    np.testing.assert_allclose(res.solutions[0], q, atol=1e-9)  # nearest q0 first
+    assert_transform_close(robot.fk(res.solutions), np.broadcast_to(T, (8, 4, 4)), atol=TOL)
