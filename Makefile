@@ -81,6 +81,7 @@ bench: $(CORE_STAMP)
 	$(BIN)/python benchmarks/symbolic.py
 	$(BIN)/python benchmarks/ik_small.py
 	$(BIN)/python benchmarks/ik_redundant.py
+	$(BIN)/python benchmarks/ik_srs.py
 
 clean:
 	rm -rf $(VENV) $(SAN_VENV) build dist site .pytest_cache .mypy_cache .ruff_cache
