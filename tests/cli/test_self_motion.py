@@ -100,3 +100,15 @@ def test_plot_is_written(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> 
     )  # fmt: skip
     assert code == 0 and f"wrote {path}" in out
     assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_the_arm_angle_in_degrees(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, _ = run(
+        capsys, "self-motion", "iiwa14", "--matrix", *matrix(), "--parameter", "arm-angle",
+        "--samples", "13", "--json",
+    )  # fmt: skip
+    data = strict_json(out)
+    assert code == 0
+    assert data["parameter"] == {"name": "arm angle", "joint": None, "unit": "deg"}
+    assert data["values"][0] == pytest.approx(-180.0) and data["values"][-1] == pytest.approx(180)
+    assert len(data["families"]) >= 8

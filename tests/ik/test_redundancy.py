@@ -15,7 +15,8 @@ from support.helpers import assert_transform_close
 
 import kinematica as km
 from kinematica.ik import IKBatchResult, IKResult, closed_form
-from kinematica.ik.parameter import locked_chain
+from kinematica.ik.arm_angle import ArmAngleParameter
+from kinematica.ik.parameter import JointParameter, locked_chain
 from kinematica.ik.redundancy import REDUNDANT_DOF, choose, preference
 
 TOL = 1e-10
@@ -37,7 +38,13 @@ def test_the_preference_is_last_first_then_base_to_tip() -> None:
     assert preference(2) == (1, 0)
 
 
-@pytest.mark.parametrize("name", ["panda", "iiwa14"])
+def test_an_srs_arm_holds_its_arm_angle_not_a_joint() -> None:
+    # the iiwa's solutions at an arm angle keep every joint free (tests/ik/analytic/test_srs.py)
+    assert isinstance(choose(km.load("iiwa14").chain), ArmAngleParameter)
+    assert not isinstance(choose(km.load("panda").chain), ArmAngleParameter)
+
+
+@pytest.mark.parametrize("name", ["panda"])
 def test_auto_says_its_parameter_and_every_solution_holds_it(name: str) -> None:
     robot = km.load(name)
     k = expected_joint(robot)
@@ -63,10 +70,10 @@ def test_auto_says_its_parameter_and_every_solution_holds_it(name: str) -> None:
     assert f"with q{k + 1} = " in res.message
 
 
-def test_auto_on_the_iiwa_holds_q0s_value() -> None:
-    robot = km.load("iiwa14")
+def test_auto_on_the_panda_holds_q0s_value() -> None:
+    robot = km.load("panda")
     k = expected_joint(robot)
-    assert k is not None  # its first joint leaves a spherical wrist (today; others later)
+    assert k is not None  # its last joint leaves a spherical shoulder
     q = np.array([0.3, 0.5, -0.2, -1.2, 0.4, 0.9, 0.2])
     T = robot.fk(q)
     res = robot.ik(T, q0=q)
@@ -76,15 +83,16 @@ def test_auto_on_the_iiwa_holds_q0s_value() -> None:
     # a q0 beyond the joint's limits holds the nearest limit
     beyond = q.copy()
     beyond[k] = 4.0
+    T = robot.fk(np.concatenate([q[:k], [2.85], q[k + 1 :]]))  # reached near that limit
     res = robot.ik(T, q0=beyond, respect_limits=False)
     assert res.parameter is not None
     assert res.parameter[1] == pytest.approx(robot.qlim[k, 1], abs=0)
 
 
 def test_where_the_lock_finds_nothing_the_search_over_every_joint_answers() -> None:
-    robot = km.load("iiwa14")
+    robot = km.load("panda")
     joint = choose(robot.chain)
-    assert joint is not None  # its first joint leaves a spherical wrist
+    assert isinstance(joint, JointParameter)  # its last joint leaves a spherical shoulder
     value = joint.default(robot.chain)
     # poses the whole arm reaches (made by fk) and, some of them, not with the lock
     T = robot.fk(robot.random_q(40, seed=4))

@@ -239,3 +239,35 @@ def test_the_carried_search_finds_configurations_of_the_closed_forms_families() 
             mine = np.array([f.q[i] for f in closed.families if f.present[i]])
             gaps = joint_jump(mine, fam.q[i], robot.chain.prismatic)
             assert float(gaps.min()) < 1e-8
+
+
+def test_the_arm_angle_of_an_srs_arm_is_swept_whole() -> None:
+    # every sample by FK and by its own arm angle (an independent reading, from the
+    # shoulder, elbow and wrist points), 8 branches each continuous over the turn
+    robot = km.load("iiwa14")
+    T = robot.fk(Q_IIWA)
+    sm = robot.self_motion(T, "arm_angle", samples=37)
+    assert sm.parameter == "arm angle" and sm.unit == "rad" and sm.method == "analytic:srs"
+    np.testing.assert_allclose(sm.values[[0, -1]], [-math.pi, math.pi])
+    assert len({fam.branch for fam in sm.families}) == 8
+    for fam in sm.families:
+        at = fam.present
+        assert_transform_close(
+            robot.fk(fam.q[at]), np.broadcast_to(T, (int(at.sum()), 4, 4)), atol=TOL
+        )
+        turn = np.angle(np.exp(1j * (robot.arm_angle(fam.q[at]) - sm.values[at])))
+        assert np.abs(turn).max() < 1e-9
+        rows = fam.q[at]
+        assert joint_jump(rows[:-1], rows[1:], robot.is_prismatic).max() <= sm.max_jump
+    # the configuration that made the pose lies on a family, at its own arm angle
+    own = float(robot.arm_angle(Q_IIWA))
+    again = robot.self_motion(T, "arm-angle", values=[own - 0.1, own, own + 0.1])
+    found = [fam.q[1] for fam in again.families if fam.present[1]]
+    assert min(float(joint_jump(q, Q_IIWA, robot.is_prismatic)) for q in found) < 1e-9
+
+
+def test_the_arm_angle_of_an_arm_that_has_none_is_refused() -> None:
+    panda = km.load("panda")
+    with pytest.raises(KinematicaError, match="SRS 7R arms") as err:
+        panda.self_motion(panda.fk(Q_PANDA), "arm_angle")
+    assert err.value.arg == "parameter"

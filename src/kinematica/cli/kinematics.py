@@ -337,10 +337,13 @@ def ik(args: argparse.Namespace) -> int:
 
 
 def _parameter(robot: Robot, res: IKResult, args: argparse.Namespace) -> dict[str, Any] | None:
-    """The joint held at a value for this answer, in the command line's units, or None."""
+    """The parameter held for this answer (a joint, an arm angle), in the CLI's units, or None."""
     if res.parameter is None:
         return None
     name, value = res.parameter
+    if name not in robot.joint_names:  # an SRS arm's arm angle: an angle, no joint
+        angle = float(value) if args.rad else math.degrees(float(value))
+        return {"name": name, "joint": None, "value": angle, "unit": "rad" if args.rad else "deg"}
     joint = robot.joint_names.index(name)
     unit = length_unit(robot, args) if robot.is_prismatic[joint] else ("rad" if args.rad else "deg")
     return {

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 from typing import Any
 
 import numpy as np
@@ -34,14 +35,21 @@ def self_motion(args: argparse.Namespace) -> int:
 
         check_image_path(args.plot)
     target = target_in(robot, args)
-    joint = joint_in(robot, args.parameter, "--parameter")
+    from kinematica.ik.arm_angle import ARM_ANGLE_NAMES
+
+    angle = args.parameter.strip().lower() in ARM_ANGLE_NAMES
+    joint = None if angle else joint_in(robot, args.parameter, "--parameter")
     args.aliases = {
         **getattr(args, "aliases", {}),
         "samples": "--samples",
         "max_jump": "--max-jump",
     }
     motion = robot.self_motion(
-        target, joint, samples=args.samples, max_jump=_jump(robot, joint, args), method=args.method
+        target,
+        "arm_angle" if joint is None else joint,
+        samples=args.samples,
+        max_jump=_jump(args),
+        method=args.method,
     )
     if args.plot is not None:
         from kinematica.viz.self_motion import save_self_motion
@@ -49,9 +57,12 @@ def self_motion(args: argparse.Namespace) -> int:
         save_self_motion(
             motion, args.plot, degrees=not args.rad, prismatic=tuple(robot.is_prismatic.tolist())
         )
-    unit = length_unit(robot, args) if robot.is_prismatic[joint] else ("rad" if args.rad else "deg")
+    slide = joint is not None and bool(robot.is_prismatic[joint])
+    unit = length_unit(robot, args) if slide else ("rad" if args.rad else "deg")
 
     def out(v: float) -> float:
+        if joint is None:  # the arm angle: an angle like any revolute joint's
+            return float(v) if args.rad else math.degrees(float(v))
         return joint_value_out(robot, joint, v, args)
 
     feasible = any(fam.feasible for fam in motion.families)
@@ -59,7 +70,11 @@ def self_motion(args: argparse.Namespace) -> int:
         dump(
             {
                 "robot": robot.name,
-                "parameter": {"name": motion.parameter, "joint": f"q{joint + 1}", "unit": unit},
+                "parameter": {
+                    "name": motion.parameter,
+                    "joint": None if joint is None else f"q{joint + 1}",
+                    "unit": unit,
+                },
                 "method": motion.method,
                 "units": units(robot, args),
                 "values": [out(v) for v in motion.values],
@@ -101,7 +116,7 @@ def self_motion(args: argparse.Namespace) -> int:
     return 0 if feasible else 1
 
 
-def _jump(robot: Any, joint: int, args: argparse.Namespace) -> float | None:
+def _jump(args: argparse.Namespace) -> float | None:
     """``--max-jump`` in rad (typed in degrees unless --rad), or None (the default)."""
     if args.max_jump is None:
         return None
@@ -115,7 +130,8 @@ def register(sub: Any) -> None:
     """Add ``self-motion`` to the subparsers ``sub``."""
     p = sub.add_parser(
         "self-motion",
-        help="a redundant arm's solution families at one pose, over a joint held at values",
+        help="a redundant arm's solution families at one pose, over a joint held at values "
+        "(or an SRS arm's arm angle)",
     )
     add_robot(p)
     pose_target_args(p)
@@ -124,7 +140,8 @@ def register(sub: Any) -> None:
         required=True,
         metavar="JOINT",
         help="the joint swept across its limits: q1..qN (1-based, as the tables show) or "
-        "the joint's name (URDF)",
+        "the joint's name (URDF); or arm-angle: an SRS arm's (iiwa type) arm angle, "
+        "swept over a whole turn",
     )
     p.add_argument("--samples", type=int, default=73, help="values across its limits (default 73)")
     p.add_argument(

@@ -24,6 +24,7 @@ from numpy.typing import ArrayLike, NDArray
 import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.errors import DimensionError, KinematicaError
+from kinematica.ik.arm_angle import ArmAngleParameter, arm_angle_parameter
 from kinematica.ik.options import IKOptions
 from kinematica.ik.parameter import (
     JointParameter,
@@ -57,16 +58,19 @@ def preference(n: int) -> tuple[int, ...]:
     return (n - 1, 0, *range(1, n - 1))
 
 
-def choose(chain: Chain, names: Sequence[str] | None = None) -> JointParameter | None:
+def choose(chain: Chain, names: Sequence[str] | None = None) -> Parameter | None:
     """The parameter ``auto`` uses for this arm, or None (not redundant, or no closed form).
 
-    The first joint of :func:`preference` whose locked arm (at its default value)
-    has a closed-form pose solver; chosen once per chain. Another kind of
-    parameter (an SRS arm's arm angle) is one more :class:`Parameter` tried here,
-    before the joints.
+    An SRS arm's arm angle (:mod:`kinematica.ik.arm_angle`): all 8 solutions at
+    any value, every joint free to take its whole range. Else the first joint of
+    :func:`preference` whose locked arm (at its default value) has a closed-form
+    pose solver; chosen once per chain.
     """
     if chain.dof != REDUNDANT_DOF:
         return None
+    angle = arm_angle_parameter(chain)
+    if angle is not None:
+        return angle
     if chain not in _CHOICE:
         found = None
         for k in preference(chain.dof):
@@ -98,7 +102,7 @@ def solve_arm(
             raise KinematicaError(
                 "give one redundancy parameter: arm_angle or fixed, not both", arg="arm_angle"
             )
-        return solve_ik(chain, target, options)
+        return ArmAngleParameter().solve(chain, target, options.arm_angle, options)
     if options.fixed is not None:
         return solve_fixed(chain, target, options, names)
     if options.method == "auto" and options.mask is None and chain.dof == REDUNDANT_DOF:
@@ -119,6 +123,8 @@ def _at_parameter(
     if q0s is None:
         values = np.full(targets.poses.shape[0], joint.default(chain))
         why = "its default value"
+        if isinstance(joint, ArmAngleParameter):
+            why = "0: the elbow in the plane of axis 1 and the shoulder-wrist line"
         if isinstance(joint, JointParameter):
             middle = np.isfinite(chain.own_limits[joint.index]).all()
             why = "the middle of its limits" if middle else "0: it has no limits"
@@ -127,11 +133,12 @@ def _at_parameter(
         why = "q0's value, within its limits"
     res = joint.solve(chain, target, values, options)
     numeric = dataclasses.replace(options, method="numeric")
+    keyword = "fixed=" if isinstance(joint, JointParameter) else "arm_angle="
 
     def note(value: float) -> str:
         return (
             f"{chain.dof}-joint arm: every solution with {joint.describe(value)} ({why}), "
-            f"its redundancy parameter; give q0 or fixed= for another value, "
+            f"its redundancy parameter; give q0 or {keyword} for another value, "
             f"robot.self_motion for all of them"
         )
 

@@ -30,7 +30,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.errors import KinematicaError
-from kinematica.ik import IKBatchResult, IKOptions
+from kinematica.ik import IKBatchResult, IKOptions, structure_of
+from kinematica.ik.arm_angle import ARM_ANGLE_NAMES, arm_angle_parameter
 from kinematica.ik.parameter import Parameter, joint_parameter
 from kinematica.ik.targets import parse_targets
 
@@ -217,8 +218,9 @@ def self_motion(
     Args:
         robot: The arm (a redundant one: 7 joints for a pose).
         target: ``(4, 4)`` the tool pose in the base frame.
-        parameter: A joint (0-based index, its name, or ``"qN"``), or a
-            :class:`~kinematica.ik.parameter.Parameter` object.
+        parameter: A joint (0-based index, its name, or ``"qN"``), ``"arm_angle"``
+            (an SRS arm's arm angle, swept over (-π, π]: :mod:`kinematica.ik.arm_angle`),
+            or a :class:`~kinematica.ik.parameter.Parameter` object.
         samples: The number of values across the parameter's span (its limits).
         values: ``(N,)`` the values to use instead (rad or m), in order.
         max_jump: See :data:`MAX_JUMP`.
@@ -233,8 +235,18 @@ def self_motion(
             max_jump or target.
     """
     chain = robot.chain
-    if isinstance(parameter, int | str | np.integer):
-        param: Parameter = joint_parameter(chain, parameter, robot.joint_names, arg="parameter")
+    param: Parameter
+    if isinstance(parameter, str) and parameter.strip().lower() in ARM_ANGLE_NAMES:
+        found = arm_angle_parameter(chain)
+        if found is None:
+            raise KinematicaError(
+                f"parameter: the arm angle is a parameter of SRS 7R arms (axes 1-3 and 5-7 "
+                f"meeting) only; {robot.name}: {structure_of(chain)[1]}; sweep a joint instead",
+                arg="parameter",
+            )
+        param = found
+    elif isinstance(parameter, int | str | np.integer):
+        param = joint_parameter(chain, parameter, robot.joint_names, arg="parameter")
     else:
         param = parameter
     targets = parse_targets(target)

@@ -298,11 +298,20 @@ def test_the_arm_angle_asked_of_other_arms_and_bad_values(iiwa: km.Robot) -> Non
         iiwa.ik(np.stack([Ti, Ti]), arm_angle=[0.1, 0.2, 0.3])
 
 
-def test_without_an_arm_angle_the_srs_solver_is_not_used(iiwa: km.Robot) -> None:
-    # the parametrised closed form is used only when its parameter is given (auto holds
-    # a joint instead); both parameters at once are refused
-    T = iiwa.fk(np.full(7, 0.3))
-    assert iiwa.ik(T, seed=1).method != "analytic:srs"
+def test_auto_holds_the_arm_angle_of_q0_or_zero(iiwa: km.Robot) -> None:
+    # auto on an SRS arm with no parameter: all 8 at q0's arm angle, else at 0, said so;
+    # both parameters at once are refused
+    q = np.array([0.3, 0.5, -0.2, 1.0, 0.4, -0.6, 0.2])
+    T = iiwa.fk(q)
+    own = float(iiwa.arm_angle(q))
+    at_q0 = iiwa.ik(T, q0=q)
+    assert at_q0.method == "analytic:srs" and at_q0.parameter == ("arm angle", own)
+    assert np.abs(at_q0.solutions[0] - q).max() < 1e-9  # sorted by distance to q0
+    assert np.allclose(iiwa.arm_angle(at_q0.solutions), own, atol=1e-10)
+    default = iiwa.ik(T)
+    assert default.parameter == ("arm angle", 0.0)
+    assert any("arm angle = 0 rad" in n and "arm_angle=" in n for n in default.notes)
+    assert np.allclose(iiwa.arm_angle(default.solutions), 0.0, atol=1e-10)
     with pytest.raises(KinematicaError, match="arm_angle or fixed, not both"):
         iiwa.ik(T, arm_angle=0.2, fixed={6: 0.3})
     assert classify(iiwa).kind == "srs-7R"
