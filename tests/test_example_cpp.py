@@ -26,7 +26,8 @@ pytestmark = [
     pytest.mark.skipif(CXX is None, reason="no C++ compiler"),
     pytest.mark.filterwarnings("ignore::kinematica.KinematicaWarning"),
 ]
-FLAGS = ["-std=c++17", "-O1", "-Wall", "-Wextra", "-Werror", "-I", str(ROOT / "cpp" / "include")]
+WARNINGS = ["-Wall", "-Wextra", "-Werror"]
+FLAGS = ["-std=c++17", "-O1", *WARNINGS, "-I", str(ROOT / "cpp" / "include")]
 
 
 def _build(source: Path, include: Path, out: Path) -> None:
@@ -40,11 +41,41 @@ def _build(source: Path, include: Path, out: Path) -> None:
     assert done.returncode == 0, done.stderr[-3000:]
 
 
-def test_the_puma_example_gives_what_robot_ik_gives(tmp_path: Path) -> None:
-    cli = [sys.executable, "-m", "kinematica", "convert", "puma560", "--to", "cpp"]
-    subprocess.run([*cli, "-o", str(tmp_path / "puma560_ik.hpp")], check=True, capture_output=True)
-    exe = tmp_path / "puma_ik"
-    _build(ROOT / "examples" / "cpp" / "puma_ik.cpp", tmp_path, exe)
+@pytest.fixture(scope="module")
+def docs_example(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, str]:
+    """The commands of docs/contributing.md's "From C++" run in a fresh folder, as written
+    (the compiler line with warnings as errors added): the PUMA program and its output."""
+    import re
+    import shlex
+
+    folder = tmp_path_factory.mktemp("docs_example")
+    text = (ROOT / "docs" / "contributing.md").read_text()
+    block = re.search(r"## From C\+\+.*?```sh\n(.*?)```", text, flags=re.S)
+    assert block is not None
+    exe = None
+    for line in block.group(1).strip().splitlines():
+        args = shlex.split(line)
+        if args[0].endswith("kinematica"):
+            args = [sys.executable, "-m", "kinematica", *args[1:]]
+        elif args[0] == "c++":
+            args = [
+                CXX or "c++",
+                *(str(ROOT / a) if a.startswith(("cpp/", "examples/")) else a for a in args[1:]),
+                *WARNINGS,
+            ]
+            exe = folder / args[args.index("-o") + 1]
+        done = subprocess.run(args, cwd=folder, capture_output=True, text=True, check=False)
+        assert done.returncode == 0, done.stderr[-2000:]
+    assert exe is not None and exe.exists()
+    return exe, done.stdout
+
+
+def test_the_docs_commands_build_and_run_the_example(docs_example: tuple[Path, str]) -> None:
+    assert "status 0" in docs_example[1]
+
+
+def test_the_puma_example_gives_what_robot_ik_gives(docs_example: tuple[Path, str]) -> None:
+    exe = docs_example[0]
     robot = km.load("puma560")
     for q in ([0.1, -0.5, 0.3, 0.7, 0.4, -0.2], [1.2, 0.4, -0.9, -2.0, 1.1, 2.5]):
         out = subprocess.run([str(exe), *map(repr, q)], capture_output=True, text=True, check=False)
@@ -144,24 +175,3 @@ def test_every_family_solves_in_cpp_as_in_python(tmp_path: Path) -> None:
         both = np.concatenate([res.solutions, res.out_of_limits]).reshape(rows.shape)
         np.testing.assert_array_equal(rows, both)  # the same code: the same bits
         assert km.ik.status.STATUS_NAMES[int(status)] == res.status
-
-
-def test_the_docs_commands_build_and_run_the_example(tmp_path: Path) -> None:
-    import re
-    import shlex
-
-    text = (ROOT / "docs" / "contributing.md").read_text()
-    block = re.search(r"## From C\+\+.*?```sh\n(.*?)```", text, flags=re.S)
-    assert block is not None
-    for line in block.group(1).strip().splitlines():
-        args = shlex.split(line)
-        if args[0].endswith("kinematica"):
-            args = [sys.executable, "-m", "kinematica", *args[1:]]
-        elif args[0] == "c++":
-            args = [
-                CXX or "c++",
-                *(str(ROOT / a) if a.startswith(("cpp/", "examples/")) else a for a in args[1:]),
-            ]
-        done = subprocess.run(args, cwd=tmp_path, capture_output=True, text=True, check=False)
-        assert done.returncode == 0, done.stderr[-2000:]
-    assert "status 0" in done.stdout

@@ -3,12 +3,11 @@
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 import yaml
+from support.cli import run_in
 from support.helpers import assert_transform_close
 from support.urdf import URDF_DIR, reference_chain
 
@@ -17,13 +16,7 @@ import kinematica as km
 
 # ------------------------------------------------------------------ kinematica convert
 def run(tmp_path, *args):
-    return subprocess.run(
-        [sys.executable, "-m", "kinematica.cli.main", "convert", *args],
-        capture_output=True,
-        text=True,
-        cwd=tmp_path,
-        check=False,
-    )
+    return run_in(tmp_path, "convert", *args)  # in-process: test_main runs the real script
 
 
 def test_convert_to_urdf_prints_a_urdf_with_the_same_fk(tmp_path):

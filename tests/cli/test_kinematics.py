@@ -11,6 +11,7 @@ import warnings
 import numpy as np
 import pytest
 from support import DATA
+from support.cli import run_in
 from support.helpers import run_cli as run
 from support.urdf import URDF_DIR
 
@@ -278,12 +279,10 @@ def test_cli_json_of_a_huge_target(pose, gap, capsys: pytest.CaptureFixture[str]
 
 def test_the_cli_answers_a_pasted_pose(tmp_path):
     import json
-    import subprocess
-    import sys
 
-    cmd = [sys.executable, "-m", "kinematica.cli.main", "ik", "anthropomorphic-3r", "--json"]
+    cmd = ["ik", "anthropomorphic-3r", "--json"]
     cmd += ["--pose", "0.52123", "0.30093", "0.80921", "-60", "90", "100"]
-    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=tmp_path, check=False)
+    proc = run_in(tmp_path, *cmd)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     out = json.loads(proc.stdout)
     assert out["status"] == "ok"
@@ -329,13 +328,7 @@ def test_cli_ik_at_an_arm_angle(capsys: pytest.CaptureFixture[str]) -> None:
 
 
 def test_show_prints_the_extracted_table_of_a_urdf(tmp_path):
-    proc = subprocess.run(
-        [sys.executable, "-m", "kinematica.cli.main", "show", str(URDF_DIR / "kuka_kr16_2.urdf")],
-        capture_output=True,
-        text=True,
-        cwd=tmp_path,
-        check=False,
-    )
+    proc = run_in(tmp_path, "show", str(URDF_DIR / "kuka_kr16_2.urdf"))
     assert proc.returncode == 0, proc.stderr
     out = proc.stdout
     assert "kuka_kr16_2: 6R, spherical wrist" in out

@@ -12,11 +12,11 @@ from __future__ import annotations
 
 import json
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from support.cli import run_in
 from support.helpers import assert_transform_close
 from support.helpers import run_cli as run
 from support.urdf import URDF_DIR, reference_file
@@ -178,13 +178,7 @@ def test_every_command_takes_base_and_tip_for_a_urdf(tmp_path):
     ur5 = str(URDF_DIR / "ur5_robot.urdf")
 
     def run(*args: str) -> subprocess.CompletedProcess[str]:
-        return subprocess.run(
-            [sys.executable, "-m", "kinematica.cli.main", *args],
-            capture_output=True,
-            text=True,
-            cwd=tmp_path,
-            check=False,
-        )
+        return run_in(tmp_path, *args)  # in-process: test_main runs the real script
 
     default = run("show", ur5)  # ee_link and tool0 both on wrist_3_link: tool0, said
     assert default.returncode == 0, default.stderr

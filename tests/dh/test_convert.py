@@ -11,13 +11,12 @@ both conventions' rules (all axes parallel: the planar 3R, the SCARA).
 from __future__ import annotations
 
 import math
-import subprocess
-import sys
 import warnings
 
 import numpy as np
 import pytest
 from hypothesis import assume, given
+from support.cli import run_in
 from support.helpers import PROPERTY, assert_transform_close, robot_specs, seeds
 
 import kinematica as km
@@ -60,14 +59,7 @@ def cli_convert(robot: km.Robot, target: str, tmp_path) -> km.Robot:
     urdf = tmp_path / "arm.urdf"
     robot.to_urdf(urdf)
     out = tmp_path / "arm_dh.yaml"
-    cmd = [sys.executable, "-m", "kinematica.cli.main", "convert", str(urdf)]
-    proc = subprocess.run(
-        [*cmd, "--to", f"dh-{target}", "-o", str(out)],
-        capture_output=True,
-        text=True,
-        cwd=tmp_path,
-        check=False,
-    )
+    proc = run_in(tmp_path, "convert", str(urdf), "--to", f"dh-{target}", "-o", str(out))
     assert proc.returncode == 0, proc.stderr
     return km.load(out)
 

@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import contextlib
+import io
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -23,6 +26,21 @@ def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
         code = int(exc.code or 0)
     out, err = capsys.readouterr()
     return code, out, err
+
+
+def run_in(folder: str | os.PathLike[str], *argv: str) -> subprocess.CompletedProcess[str]:
+    """Run the CLI in-process in ``folder``, as a finished process (exit code, stdout, stderr).
+
+    The same ``main()`` the console script calls, without a Python start (and the
+    package's imports) per call; :func:`script` runs the real script.
+    """
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.chdir(folder), contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        try:
+            code = main(list(argv))
+        except SystemExit as exc:
+            code = exc.code if isinstance(exc.code, int) else 2
+    return subprocess.CompletedProcess(list(argv), code, out.getvalue(), err.getvalue())
 
 
 def script(*argv: str, timeout: float = 60) -> subprocess.CompletedProcess[str]:

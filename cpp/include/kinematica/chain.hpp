@@ -57,6 +57,7 @@ struct ChainView {
     Pose start{}, tool{}, base{};
     FrameAt frames = FrameAt::after;
     bool tool_identity = false;  //!< the tool is exactly the identity: its product is skipped
+    bool tool_translation = false;  //!< the tool's rotation is exactly the identity (a flange)
 };
 
 //! The chain, owning its joints. Build with from_dh or from_transforms.
@@ -91,11 +92,12 @@ public:
     int dof() const { return static_cast<int>(joints_.size()); }
     const std::vector<Joint>& joints() const { return joints_; }
     ChainView view() const {
-        const bool identity = tool_.x.x == 1.0 && tool_.x.y == 0.0 && tool_.x.z == 0.0 &&
+        const bool rotation = tool_.x.x == 1.0 && tool_.x.y == 0.0 && tool_.x.z == 0.0 &&
                               tool_.y.x == 0.0 && tool_.y.y == 1.0 && tool_.y.z == 0.0 &&
-                              tool_.z.x == 0.0 && tool_.z.y == 0.0 && tool_.z.z == 1.0 &&
-                              tool_.p.x == 0.0 && tool_.p.y == 0.0 && tool_.p.z == 0.0;
-        return {joints_.data(), dof(), start_, tool_, base_, frames_, identity};
+                              tool_.z.x == 0.0 && tool_.z.y == 0.0 && tool_.z.z == 1.0;
+        const bool identity =
+            rotation && tool_.p.x == 0.0 && tool_.p.y == 0.0 && tool_.p.z == 0.0;
+        return {joints_.data(), dof(), start_, tool_, base_, frames_, identity, rotation};
     }
 
 private:
@@ -184,18 +186,24 @@ KM_HD KM_INLINE Pose walk(const ChainView& ch, const double* q, const double* c,
         const double ci = c[i * stride], si = s[i * stride];
         const Vec3 nx{ci * x.x + si * y.x, ci * x.y + si * y.y, ci * x.z + si * y.z};
         const Vec3 w{ci * y.x - si * x.x, ci * y.y - si * x.y, ci * y.z - si * x.z};
+        // A zero offset or a twist of 0 or ±90° (most DH rows) costs no multiplies: the
+        // products by 0 and ±1 it skips are exact (only the sign of an exact zero may differ).
         double d = J.t.z;
         if (J.prismatic) d += q[i];
-        p.x += d * z.x;
-        p.y += d * z.y;
-        p.z += d * z.z;
+        if (d != 0.0) {
+            p.x += d * z.x;
+            p.y += d * z.y;
+            p.z += d * z.z;
+        }
         if constexpr (R::frames) {
             if (i < n - 1 && ch.frames == FrameAt::middle) rec.frame(i + 1, Pose{nx, w, z, p});
             if (i < n - 1 && ch.frames == FrameAt::custom) rec.frame(i + 1, Pose{nx, w, z, p} * J.frame);
         }
-        p.x += J.t.x * nx.x;
-        p.y += J.t.x * nx.y;
-        p.z += J.t.x * nx.z;
+        if (J.t.x != 0.0) {
+            p.x += J.t.x * nx.x;
+            p.y += J.t.x * nx.y;
+            p.z += J.t.x * nx.z;
+        }
         if (J.t.y != 0.0) {  // 0 for every DH row
             p.x += J.t.y * w.x;
             p.y += J.t.y * w.y;
@@ -203,14 +211,26 @@ KM_HD KM_INLINE Pose walk(const ChainView& ch, const double* q, const double* c,
         }
         const double ca = J.ca, sa = J.sa;
         x = nx;
-        y = {ca * w.x + sa * z.x, ca * w.y + sa * z.y, ca * w.z + sa * z.z};
-        z = {ca * z.x - sa * w.x, ca * z.y - sa * w.y, ca * z.z - sa * w.z};
+        if (sa == 0.0 && ca == 1.0) {
+            y = w;
+        } else if (ca == 0.0 && (sa == 1.0 || sa == -1.0)) {
+            const Vec3 zs = z;
+            y = sa == 1.0 ? zs : Vec3{-zs.x, -zs.y, -zs.z};
+            z = sa == 1.0 ? Vec3{-w.x, -w.y, -w.z} : w;
+        } else {
+            y = {ca * w.x + sa * z.x, ca * w.y + sa * z.y, ca * w.z + sa * z.z};
+            z = {ca * z.x - sa * w.x, ca * z.y - sa * w.y, ca * z.z - sa * w.z};
+        }
         if constexpr (R::frames) {
             if (i < n - 1 && ch.frames == FrameAt::after) rec.frame(i + 1, Pose{x, y, z, p});
         }
     }
     Pose T{x, y, z, p};
-    if (!ch.tool_identity) {
+    if (ch.tool_translation && !ch.tool_identity) {  // products by 0 and 1 skipped, as above
+        const Vec3& e = ch.tool.p;
+        T.p = {p.x + x.x * e.x + y.x * e.y + z.x * e.z, p.y + x.y * e.x + y.y * e.y + z.y * e.z,
+               p.z + x.z * e.x + y.z * e.y + z.z * e.z};
+    } else if (!ch.tool_identity) {
         const Pose& E = ch.tool;
         T.x = {x.x * E.x.x + y.x * E.x.y + z.x * E.x.z, x.y * E.x.x + y.y * E.x.y + z.y * E.x.z,
                x.z * E.x.x + y.z * E.x.y + z.z * E.x.z};

@@ -170,7 +170,8 @@ KM_HD inline bool same(const ChainView& ch, const double* qa, const double* qb) 
         double d = qa[j] - qb[j];
         if (!ch.joint[j].prismatic) {
             d = std::fabs(d);
-            d = d <= TWO_PI ? std::fmin(d, TWO_PI - d) : std::fabs(wrap(d));
+            // (rows are finite here: a plain comparison, not std::fmin's library call)
+            d = d <= TWO_PI ? (TWO_PI - d < d ? TWO_PI - d : d) : std::fabs(wrap(d));
         }
         if (!(std::fabs(d) < DEDUP_TOL)) return false;
     }

@@ -23,14 +23,16 @@ KM_HD inline PoseDefects pose_defects(const double* T) {
         d.last_row = d.ortho = d.det = NaN;
         return d;
     }
-    d.last_row = std::fmax(std::fmax(std::fabs(T[12]), std::fabs(T[13])),
-                           std::fmax(std::fabs(T[14]), std::fabs(T[15] - 1.0)));
+    // every entry is finite from here: plain comparisons, not std::fmax's library calls
+    const auto larger = [](double a, double b) { return b > a ? b : a; };
+    d.last_row = larger(larger(std::fabs(T[12]), std::fabs(T[13])),
+                        larger(std::fabs(T[14]), std::fabs(T[15] - 1.0)));
     double ortho = 0.0;
     for (int i = 0; i < 3; ++i) {
         for (int j = i; j < 3; ++j) {
             double g = T[i] * T[j] + T[4 + i] * T[4 + j] + T[8 + i] * T[8 + j];
             if (i == j) g -= 1.0;
-            ortho = std::fmax(ortho, std::fabs(g));
+            ortho = larger(ortho, std::fabs(g));
         }
     }
     d.ortho = ortho;

@@ -384,6 +384,9 @@ class CheckOutput:
     free: NDArray[np.bool_]
 
 
+#: A new object without its class's ``__init__`` (see :func:`result_of`).
+_new = object.__new__
+
 #: The core's code of the singular status.
 _SINGULAR = next(code for code, name in STATUS_NAMES.items() if name is IKStatus.SINGULAR)
 
@@ -429,25 +432,25 @@ def result_of(
         notes: Remarks on the target.
         parameter: The joint held at a value, ``(name, value)``, or None.
 
-    Built without the frozen dataclass's ``__init__`` (a dozen guarded
-    attribute writes): the one-target path of ``robot.ik`` runs through here.
+    Built without the frozen dataclass's ``__init__`` (a dozen guarded attribute
+    writes), its fields stored straight into the new object's ``__dict__``: the
+    one-target path of ``robot.ik`` runs through here.
     """
     code, gap, near_p, near_r, near, free = report
-    res = IKResult.__new__(IKResult)
-    res.__dict__.update(
-        solutions=solutions,
-        status=STATUS_NAMES[code],
-        method=method,
-        residuals=residuals,
-        branches=branches,
-        out_of_limits=outside,
-        out_of_limits_branches=out_branches,
-        free_joints=free,
-        gap=gap,
-        nearest_error=(near_p, near_r),
-        notes=notes,
-        complete=complete,
-        near_singular=near,
-        parameter=parameter,
-    )
+    res = _new(IKResult)
+    d = res.__dict__
+    d["solutions"] = solutions
+    d["status"] = STATUS_NAMES[code]
+    d["method"] = method
+    d["residuals"] = residuals
+    d["branches"] = branches
+    d["out_of_limits"] = outside
+    d["out_of_limits_branches"] = out_branches
+    d["free_joints"] = free
+    d["gap"] = gap
+    d["nearest_error"] = (near_p, near_r)
+    d["notes"] = notes
+    d["complete"] = complete
+    d["near_singular"] = near
+    d["parameter"] = parameter
     return res
