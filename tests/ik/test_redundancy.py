@@ -14,10 +14,10 @@ import pytest
 from support.helpers import assert_transform_close
 
 import kinematica as km
-from kinematica.ik import IKBatchResult, IKResult, closed_form
+from kinematica.ik import IKBatchResult, IKResult, closed_form, redundancy
 from kinematica.ik.arm_angle import ArmAngleParameter
 from kinematica.ik.parameter import JointParameter, locked_chain
-from kinematica.ik.redundancy import REDUNDANT_DOF, choose, preference
+from kinematica.ik.redundancy import PARAMETER_SWEEP, REDUNDANT_DOF, choose, preference
 
 TOL = 1e-10
 
@@ -89,7 +89,37 @@ def test_auto_on_the_panda_holds_q0s_value() -> None:
     assert res.parameter[1] == pytest.approx(robot.qlim[k, 1], abs=0)
 
 
-def test_where_the_lock_finds_nothing_the_search_over_every_joint_answers() -> None:
+def test_where_the_default_finds_nothing_the_nearest_value_with_solutions_answers() -> None:
+    robot = km.load("panda")
+    joint = choose(robot.chain)
+    assert isinstance(joint, JointParameter)
+    value = joint.default(robot.chain)
+    T = robot.fk(robot.random_q(40, seed=4))
+    locked = robot.ik(T, fixed={joint.index: value})
+    assert isinstance(locked, IKBatchResult)
+    aside = T[np.flatnonzero(locked.count == 0)[0]]
+    res = robot.ik(aside)
+    assert res.parameter is not None and res.method == "analytic:spherical-shoulder"
+    held = res.parameter[1]
+    np.testing.assert_array_equal(res.solutions[:, joint.index], held)
+    assert_transform_close(
+        robot.fk(res.solutions), np.broadcast_to(aside, (res.count, 4, 4)), atol=TOL
+    )
+    assert any("the nearest of 73 values" in n for n in res.notes)
+    # it is the grid's value nearest the default with a solution: none nearer has one
+    lo, hi = robot.chain.qlim[joint.index]
+    grid = np.linspace(lo, hi, PARAMETER_SWEEP)
+    assert held in grid
+    nearer = grid[np.abs(grid - value) < abs(held - value)]
+    for v in nearer:
+        assert robot.ik(aside, fixed={joint.index: float(v)}).count == 0
+
+
+def test_where_no_value_finds_one_the_search_over_every_joint_answers(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # two values tried (the limits): most poses have no solution there
+    monkeypatch.setattr(redundancy, "PARAMETER_SWEEP", 2)
     robot = km.load("panda")
     joint = choose(robot.chain)
     assert isinstance(joint, JointParameter)  # its last joint leaves a spherical shoulder
@@ -98,7 +128,9 @@ def test_where_the_lock_finds_nothing_the_search_over_every_joint_answers() -> N
     T = robot.fk(robot.random_q(40, seed=4))
     locked = robot.ik(T, fixed={joint.index: value})
     assert isinstance(locked, IKBatchResult)
-    missed = np.flatnonzero(locked.count == 0)
+    lo, hi = robot.chain.qlim[joint.index]
+    at_ends = [robot.ik(T, fixed={joint.index: float(v)}).count for v in (lo, hi)]
+    missed = np.flatnonzero((locked.count == 0) & (at_ends[0] == 0) & (at_ends[1] == 0))
     held = np.flatnonzero(locked.count > 0)
     assert missed.size and held.size
     aside, reached = T[missed[0]], T[held[0]]

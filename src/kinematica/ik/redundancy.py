@@ -25,6 +25,7 @@ import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.arm_angle import ArmAngleParameter, arm_angle_parameter
+from kinematica.ik.moved import end_arm, moved_targets
 from kinematica.ik.options import IKOptions
 from kinematica.ik.parameter import (
     JointParameter,
@@ -40,10 +41,15 @@ from kinematica.ik.targets import Targets, parse_targets
 
 FloatArray = NDArray[np.float64]
 
-__all__ = ["REDUNDANT_DOF", "choose", "preference", "solve_arm"]
+__all__ = ["PARAMETER_SWEEP", "REDUNDANT_DOF", "choose", "preference", "solve_arm"]
 
 #: The arms ``auto`` solves at a parameter: 7 joints, one more than a pose needs.
 REDUNDANT_DOF = 7
+#: Values of the parameter tried, evenly across its span, when a target has no solution
+#: at q0's value or the default: the nearest one with a solution answers (every
+#: solution there), before the numeric search over every joint is asked. 73 values
+#: over a joint's ±166° are 4.6° apart.
+PARAMETER_SWEEP = 73
 
 _INVALID = _core.STATUS["invalid"]
 _CHOICE: weakref.WeakKeyDictionary[Chain, int | None] = weakref.WeakKeyDictionary()
@@ -117,7 +123,12 @@ def solve_arm(
 def _at_parameter(
     chain: Chain, joint: Parameter, target: ArrayLike, targets: Targets, options: IKOptions
 ) -> IKResult | IKBatchResult:
-    """Every solution with ``joint`` at q0's value (or its default); numeric where none."""
+    """Every solution with ``joint`` at q0's value (or its default).
+
+    A target with no solution there is answered at the nearest value that has one
+    (:data:`PARAMETER_SWEEP`), and only where none has, by the numeric search over
+    every joint.
+    """
     n = chain.dof
     q0s = _q0_rows(options.q0, targets.shape, n)
     if q0s is None:
@@ -148,10 +159,23 @@ def _at_parameter(
             f"{chain.dof} joints answered"
         )
 
+    def nearer(value: float, start: float) -> str:
+        return (
+            f"{chain.dof}-joint arm: no solution with {joint.describe(start)} ({why}); every "
+            f"solution with {joint.describe(value)}, the nearest of {PARAMETER_SWEEP} values "
+            f"across its span with one, its redundancy parameter; give q0 or {keyword} for "
+            f"another value, robot.self_motion for all of them"
+        )
+
     if isinstance(res, IKResult):
         value = float(values[0])
         if res.success:
             return dataclasses.replace(res, notes=(*res.notes, note(value)))
+        first = np.array([0])
+        found, moved = _nearest_with_solutions(chain, joint, targets, first, values, options)
+        again = joint.solve(chain, target, float(moved[0]), options) if found.size else None
+        if isinstance(again, IKResult) and again.success:
+            return dataclasses.replace(again, notes=(*again.notes, nearer(float(moved[0]), value)))
         full = solve_ik(chain, target, numeric)
         assert isinstance(full, IKResult)
         return dataclasses.replace(full, notes=(*full.notes, fallback(value)))
@@ -167,6 +191,26 @@ def _at_parameter(
         where = tuple(int(v) for v in idx)
         notes[where] = (*notes.get(where, ()), text)
     res = dataclasses.replace(res, notes=notes)
+    if missed.size:  # the nearest value with a solution, where there is one
+        found, moved = _nearest_with_solutions(chain, joint, targets, missed, values, options)
+        again = _solved_at(chain, joint, targets, found, moved, q0s, options)
+        kept = np.asarray(again.raw.count) > 0 if again is not None else found[:0]
+        if again is not None and not kept.all():  # the screen's value, not confirmed
+            found, moved = found[kept], moved[kept]
+            again = _solved_at(chain, joint, targets, found, moved, q0s, options)
+        if again is not None:
+            res = replace_rows(res, found, again, None)
+            assert res.parameter is not None
+            held_at = np.array(res.parameter[1], dtype=float).reshape(-1)
+            held_at[found] = moved
+            notes = dict(res.notes)
+            for i, v in zip(found.tolist(), moved.tolist(), strict=True):
+                where = tuple(int(c) for c in np.unravel_index(i, res.shape))
+                notes[where] = (*notes.get(where, ()), nearer(v, float(values[i])))
+            res = dataclasses.replace(
+                res, notes=notes, parameter=(res.parameter[0], held_at.reshape(res.shape))
+            )
+            missed = np.setdiff1d(missed, found)
     if missed.size:
         sub = targets._replace(
             poses=np.ascontiguousarray(targets.poses[missed]),
@@ -179,6 +223,83 @@ def _at_parameter(
         assert isinstance(full, IKBatchResult)
         res = replace_rows(res, missed, full, [fallback(float(values[i])) for i in missed])
     return res
+
+
+def _solved_at(
+    chain: Chain,
+    joint: Parameter,
+    targets: Targets,
+    rows: NDArray[np.intp],
+    values: FloatArray,
+    q0s: FloatArray | None,
+    options: IKOptions,
+) -> IKBatchResult | None:
+    """The targets ``rows`` (flat) solved with the parameter at ``values``; None for no rows."""
+    if not rows.size:
+        return None
+    opts = options if q0s is None else dataclasses.replace(options, q0=q0s[rows])
+    out = joint.solve(chain, np.ascontiguousarray(targets.poses[rows]), values, opts)
+    assert isinstance(out, IKBatchResult)
+    return out
+
+
+def _nearest_with_solutions(
+    chain: Chain,
+    joint: Parameter,
+    targets: Targets,
+    rows: NDArray[np.intp],
+    start: FloatArray,
+    options: IKOptions,
+) -> tuple[NDArray[np.intp], FloatArray]:
+    """For the targets ``rows`` (flat), the parameter value nearest ``start`` with a solution.
+
+    The parameter's candidates are :data:`PARAMETER_SWEEP` values evenly across its
+    span; a target takes the nearest to its start value whose answer has a
+    solution (within the limits, when they are respected). The caller solves the
+    target again at that value, and keeps it only if that answer has one.
+
+    Returns:
+        The rows that have such a value, and the value of each.
+    """
+    lo, hi = joint.span(chain)
+    if not (np.isfinite(lo) and np.isfinite(hi)) or not rows.size:
+        return rows[:0], np.empty(0)
+    grid = np.linspace(lo, hi, PARAMETER_SWEEP)
+    has = _has_solutions(chain, joint, targets.poses[rows], grid, options)
+    distance = np.where(has, np.abs(grid[None, :] - start[rows][:, None]), np.inf)
+    best = np.argmin(distance, axis=1)
+    ok = np.isfinite(distance[np.arange(rows.size), best])
+    return rows[ok], grid[best[ok]]
+
+
+def _has_solutions(
+    chain: Chain, joint: Parameter, poses: FloatArray, grid: FloatArray, options: IKOptions
+) -> NDArray[np.bool_]:
+    """``(M, S)`` True where pose i has a solution with the parameter at ``grid[j]``.
+
+    One batch of every pair: the first or last joint by the arm locked once with
+    the targets moved (:mod:`kinematica.ik.moved`), the arm angle by its solver at a
+    value per target; a middle joint one locked arm (one batch) per value.
+    """
+    M, S = poses.shape[0], grid.size
+    opts = dataclasses.replace(options, q0=None)
+    if isinstance(joint, JointParameter) and joint.index in (0, chain.dof - 1):
+        arm, G, G_inv = end_arm(chain, joint.index)
+        moved = moved_targets(
+            joint.prismatic, joint.index, G, G_inv, np.repeat(poses, S, axis=0), np.tile(grid, M)
+        )
+        out = solve_ik(arm, moved, dataclasses.replace(opts, fixed=None))
+    elif isinstance(joint, ArmAngleParameter):
+        out = joint.solve(chain, np.repeat(poses, S, axis=0), np.tile(grid, M), opts)
+    else:
+        has = np.zeros((M, S), dtype=bool)
+        for j, v in enumerate(grid.tolist()):
+            one = joint.solve(chain, poses, v, opts)
+            assert isinstance(one, IKBatchResult)
+            has[:, j] = np.asarray(one.raw.count) > 0
+        return has
+    assert isinstance(out, IKBatchResult)
+    return np.asarray(out.raw.count).reshape(M, S) > 0
 
 
 def _q0_rows(q0: ArrayLike | None, shape: tuple[int, ...], n: int) -> FloatArray | None:
