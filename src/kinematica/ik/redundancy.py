@@ -40,7 +40,14 @@ from kinematica.ik.targets import Targets, parse_targets
 
 FloatArray = NDArray[np.float64]
 
-__all__ = ["REDUNDANT_DOF", "choose", "preference", "solve_arm"]
+__all__ = [
+    "REDUNDANT_DOF",
+    "choose",
+    "default_value",
+    "held_note",
+    "preference",
+    "solve_arm",
+]
 
 #: The arms ``auto`` solves at a parameter: 7 joints, one more than a pose needs.
 REDUNDANT_DOF = 7
@@ -121,26 +128,16 @@ def _at_parameter(
     n = chain.dof
     q0s = _q0_rows(options.q0, targets.shape, n)
     if q0s is None:
-        values = np.full(targets.poses.shape[0], joint.default(chain))
-        why = "its default value"
-        if isinstance(joint, ArmAngleParameter):
-            why = "0: the elbow in the plane of axis 1 and the shoulder-wrist line"
-        if isinstance(joint, JointParameter):
-            middle = np.isfinite(chain.own_limits[joint.index]).all()
-            why = "the middle of its limits" if middle else "0: it has no limits"
+        default, why = default_value(chain, joint)
+        values = np.full(targets.poses.shape[0], default)
     else:
         values = np.clip(joint.value_of(chain, q0s), *joint.span(chain))
         why = "q0's value, within its limits"
     res = joint.solve(chain, target, values, options)
     numeric = dataclasses.replace(options, method="numeric")
-    keyword = "fixed=" if isinstance(joint, JointParameter) else "arm_angle="
 
     def note(value: float) -> str:
-        return (
-            f"{chain.dof}-joint arm: every solution with {joint.describe(value)} ({why}), "
-            f"its redundancy parameter; give q0 or {keyword} for another value, "
-            f"robot.self_motion for all of them"
-        )
+        return held_note(chain, joint, value, why)
 
     def fallback(value: float) -> str:
         return (
@@ -179,6 +176,27 @@ def _at_parameter(
         assert isinstance(full, IKBatchResult)
         res = replace_rows(res, missed, full, [fallback(float(values[i])) for i in missed])
     return res
+
+
+def default_value(chain: Chain, joint: Parameter) -> tuple[float, str]:
+    """The value ``auto`` holds ``joint`` at when no q0 is given, and why (for its note)."""
+    why = "its default value"
+    if isinstance(joint, ArmAngleParameter):
+        why = "0: the elbow in the plane of axis 1 and the shoulder-wrist line"
+    if isinstance(joint, JointParameter):
+        middle = np.isfinite(chain.own_limits[joint.index]).all()
+        why = "the middle of its limits" if middle else "0: it has no limits"
+    return joint.default(chain), why
+
+
+def held_note(chain: Chain, joint: Parameter, value: float, why: str) -> str:
+    """The note of an ``auto`` answer with ``joint`` held at ``value`` (``why``: whence)."""
+    keyword = "fixed=" if isinstance(joint, JointParameter) else "arm_angle="
+    return (
+        f"{chain.dof}-joint arm: every solution with {joint.describe(value)} ({why}), "
+        f"its redundancy parameter; give q0 or {keyword} for another value, "
+        f"robot.self_motion for all of them"
+    )
 
 
 def _q0_rows(q0: ArrayLike | None, shape: tuple[int, ...], n: int) -> FloatArray | None:
