@@ -23,7 +23,7 @@ import kinematica as km
 import kinematica.robot.robot as robot_module
 from kinematica.errors import KinematicaError
 from kinematica.ik import IKOptions, IKResult
-from kinematica.ik.direct import DirectParameter
+from kinematica.ik.direct import HELD_CACHE, DirectParameter
 
 #: Poses per case: made at the held value, at random, singular, beyond reach.
 AT_VALUE, RANDOM, SINGULAR, FAR = 90, 40, 30, 15
@@ -182,3 +182,21 @@ def test_bad_parameters_say_what_is_wrong_as_the_general_path_does(
     with pytest.raises(KinematicaError, match=match) as slow:
         robot.ik(T, options=IKOptions(**kwargs))
     assert str(fast.value) == str(slow.value) and fast.value.arg == slow.value.arg
+
+
+@pytest.mark.parametrize("joint", [0, 6])
+def test_a_sweep_past_the_cache_answers_as_the_general_path(joint: int) -> None:
+    robot = km.load("iiwa14")
+    direct = DirectParameter(robot.chain, robot.joint_names)
+    T = robot.fk(np.array([0.3, 0.5, 0.3, -1.2, 0.3, 0.8, 0.3]))
+    values = np.linspace(-1.0, 1.0, HELD_CACHE + 3).tolist()
+    for _ in range(2):  # the second pass: values made again after the cache let them go
+        answered = 0
+        for v in values:
+            slow = robot.ik(T, options=IKOptions(fixed={joint: v}))
+            fast = direct.fixed(T, {joint: v})
+            if fast is not None:
+                assert fast.parameter == (f"q{joint + 1}", v)
+                _same(fast, slow)
+                answered += 1
+        assert answered >= len(values) // 2
