@@ -72,6 +72,7 @@ def _direct(d: DirectParameter, T: np.ndarray, kwargs: dict[str, Any]) -> IKResu
 CASES = [  # robot, keywords, the joint the poses are made at and its value (None: auto's)
     ("panda", {}, 6, 0.0),  # auto: q7 held at the middle of its limits, spherical shoulder
     ("panda", {"fixed": {6: 0.3}}, 6, 0.3),
+    ("panda", {"fixed": {0: 0.3}}, 0, 0.3),  # no closed form locked there: the search
     ("iiwa14", {}, None, 0.0),  # auto: the arm angle at 0
     ("iiwa14", {"arm_angle": 0.3}, None, 0.0),
     ("iiwa14", {"arm_angle": 0}, None, 0.0),  # an int: the parameter comes out a float
