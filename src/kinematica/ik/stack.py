@@ -70,7 +70,7 @@ def widen_answer(out: CoreAnswer, joint: int, value: float) -> CoreAnswer:
 
 def _shifted(free: tuple[int, ...], joint: int) -> tuple[int, ...]:
     """A locked arm's joint indices as the whole arm's (``joint`` put back)."""
-    return tuple(j + (j >= joint) for j in free)
+    return tuple(j + (j >= joint) for j in free) if free else free
 
 
 def _with_column(q: FloatArray, joint: int, value: float) -> FloatArray:
