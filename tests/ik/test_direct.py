@@ -52,6 +52,15 @@ def _poses(robot: km.Robot, joint: int | None, value: float, seed: int) -> list[
     return list(np.ascontiguousarray(np.concatenate([T, far])))
 
 
+def _robot(name: str) -> km.Robot:
+    """A built-in arm, or ``"puma+1"``: a joint before the PUMA 560, which ``auto`` holds."""
+    if name != "puma+1":
+        return km.load(name)
+    puma = km.load("puma560")
+    rows = [km.Revolute(d=0.3, a=0.1, alpha=np.pi / 2), *puma.links]
+    return km.Robot.from_dh(rows, convention=puma.convention, tool=puma.tool)
+
+
 def _direct(d: DirectParameter, T: np.ndarray, kwargs: dict[str, Any]) -> IKResult | None:
     if "fixed" in kwargs:
         return d.fixed(T, kwargs["fixed"])
@@ -70,6 +79,7 @@ CASES = [  # robot, keywords, the joint the poses are made at and its value (Non
     ("iiwa14", {"fixed": {0: 0.3}}, 0, 0.3),  # the target moved (the first joint)
     ("iiwa14", {"fixed": {"q7": -0.3}}, 6, -0.3),  # by name
     ("iiwa14", {"fixed": {3: -1.0}}, 3, -1.0),  # a middle joint
+    ("puma+1", {}, 0, 0.0),  # auto: q1 held at 0 (no limits), the target moved
 ]
 
 
@@ -77,7 +87,7 @@ CASES = [  # robot, keywords, the joint the poses are made at and its value (Non
 def test_one_pose_at_a_parameter_matches_the_general_path(
     name: str, kwargs: dict[str, Any], joint: int | None, value: float
 ) -> None:
-    robot = km.load(name)
+    robot = _robot(name)
     direct = DirectParameter(robot.chain, robot.joint_names)
     general = IKOptions(**kwargs)
     statuses: Counter[str] = Counter()
