@@ -157,12 +157,13 @@ def _at_parameter(
     notes = dict(res.notes)
     said: dict[float, str] = {}  # one note per value, shared by its targets
     held = np.flatnonzero(raw.count > 0)
-    cells = zip(*np.unravel_index(held, res.shape), strict=True)
-    for i, idx in zip(held.tolist(), cells, strict=True):
-        value = float(values[i])
+    # plain ints and floats, made once: this loop runs once per target of a batch
+    cells = np.stack(np.unravel_index(held, res.shape), axis=-1).tolist()
+    for value, idx in zip(values[held].tolist(), cells, strict=True):
         text = said.get(value) or said.setdefault(value, note(value))
-        where = tuple(int(v) for v in idx)
-        notes[where] = (*notes.get(where, ()), text)
+        where = tuple(idx)
+        old = notes.get(where)
+        notes[where] = (text,) if old is None else (*old, text)
     res = dataclasses.replace(res, notes=notes)
     if missed.size:
         sub = targets._replace(
