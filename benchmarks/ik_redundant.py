@@ -11,12 +11,19 @@ prints, on one core (``workers=1``), for each way of solving:
   numeric search on the 6 joints left);
 * ``auto``: ``robot.ik(T)``, which holds a joint chosen for a closed form (or
   searches every joint when no lock has one), for the same poses;
-* ``numeric (7 joints)``: ``robot.ik(T, method="numeric")``, one answer a pose.
+* ``auto (poses at its value)``: ``robot.ik(T)`` on poses that have a solution
+  at the value ``auto`` holds (the Panda: q7 made at it; the iiwa: poses with a
+  solution at arm angle 0), so no pose falls back to the numeric search;
+* ``numeric (7 joints)``: ``robot.ik(T, method="numeric")``, one answer a pose;
+
+and, for reference, one pose of the PUMA 560 (a 6R arm, every default) in the same run.
 
 Columns: the method results name; µs per pose one pose at a time (median over
-``--singles`` poses of each pose's shortest of 3 passes, wall time) and batched
-(one call on ``--poses`` poses, best of 3, CPU time of the process: the machine
-may be shared); solutions per pose (mean); the share of poses
+``--singles`` poses of each pose's shortest of 3 passes, wall time), and the same
+through the general path (``robot.ik(T, options=IKOptions(...))``: what one pose
+cost before it went straight to the core, :mod:`kinematica.ik.direct`), and
+batched (one call on ``--poses`` poses, best of 3, CPU time of the process: the
+machine may be shared); solutions per pose (mean); the share of poses
 whose every solution our own FK puts within 1e-10 m and 1e-10 rad of the target
 and holds the locked joint at its value exactly; the share with at least one.
 
@@ -39,7 +46,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import fmt_time, header, shortest_per_item, table
 
 import kinematica as km
-from kinematica.ik import IKBatchResult
+from kinematica.ik import IKBatchResult, IKOptions
+from kinematica.ik.parameter import JointParameter
 from kinematica.ik.redundancy import choose
 from kinematica.spatial import rotation_angle
 
@@ -96,6 +104,18 @@ def eaik_panda() -> Any:
         return f"EAIK could not build the locked Panda ({exc}): skipped"
 
 
+def at_auto_value(robot: km.Robot, Q: np.ndarray) -> np.ndarray:
+    """``(N, 4, 4)`` poses with a solution at the value ``auto`` holds (no fallback)."""
+    auto = choose(robot.chain, robot.joint_names)
+    if isinstance(auto, JointParameter):
+        Q = Q.copy()
+        Q[:, auto.index] = auto.default(robot.chain)
+        return np.ascontiguousarray(robot.fk(Q))
+    T = np.ascontiguousarray(robot.fk(Q))
+    res = robot.ik(T, arm_angle=0.0 if auto is None else auto.default(robot.chain), workers=1)
+    return np.ascontiguousarray(T[np.asarray(res.count) > 0])
+
+
 def run(name: str, poses: int, singles: int, seed: int) -> None:
     robot = km.load(name)
     rng = np.random.default_rng(seed)
@@ -106,24 +126,31 @@ def run(name: str, poses: int, singles: int, seed: int) -> None:
     for k in LOCKS:
         Qk = Q.copy()
         Qk[:, k] = VALUE
-        T = robot.fk(Qk)
-        one = list(T[:singles])
-        cases: list[tuple[str, dict[str, Any], int | None]] = [
-            (f"fixed q{k + 1} = {VALUE}", {"fixed": {k: VALUE}}, k),
+        made = f"poses made with q{k + 1} = {VALUE}"
+        cases: list[tuple[str, dict[str, Any], int | None, np.ndarray]] = [
+            (f"fixed q{k + 1} = {VALUE} ({made})", {"fixed": {k: VALUE}}, k, robot.fk(Qk)),
         ]
         if k == LOCKS[0]:
-            cases += [("auto", {}, None), ("numeric (7 joints)", {"method": "numeric"}, None)]
-        for label, kwargs, held in cases:
+            cases += [
+                (f"auto ({made})", {}, None, robot.fk(Qk)),
+                ("auto (poses at its value)", {}, None, at_auto_value(robot, Q)),
+                (f"numeric (7 joints) ({made})", {"method": "numeric"}, None, robot.fk(Qk)),
+            ]
+        for label, kwargs, held, T in cases:
+            one = list(T[:singles])
             single = shortest_per_item(lambda t, kw=kwargs: robot.ik(t, **kw), one)
-            batch = cpu_best_of(lambda kw=kwargs, T=T: robot.ik(T, workers=1, **kw)) / poses
+            general = IKOptions(**kwargs)
+            slow = shortest_per_item(lambda t, o=general: robot.ik(t, options=o), one)
+            batch = cpu_best_of(lambda kw=kwargs, T=T: robot.ik(T, workers=1, **kw)) / len(T)
             res = robot.ik(T, workers=1, **kwargs)
             assert isinstance(res, IKBatchResult)
             mean, exact, found = judge(robot, res, T, held)
             rows.append(
                 [
-                    f"{label} (poses made with q{k + 1} = {VALUE})",
+                    label,
                     res.method,
                     fmt_time(single),
+                    fmt_time(slow),
                     fmt_time(batch),
                     f"{mean:.2f}",
                     f"{exact:.0%}",
@@ -139,8 +166,11 @@ def run(name: str, poses: int, singles: int, seed: int) -> None:
                 for t in one:
                     bot.IK(t)
                 single = (time.perf_counter() - t0) / len(one)
-                rows.append([f"EAIK locked q7 = {VALUE}", "eaik", fmt_time(single), "", "", "", ""])
-    head = ["call", "method", "single", "batched", "sols/pose", "all exact", "found"]
+                rows.append(
+                    [f"EAIK locked q7 = {VALUE}", "eaik", fmt_time(single), "", "", "", "", ""]
+                )
+    head = ["call", "method", "single", "single (general)", "batched", "sols/pose", "all exact",
+            "found"]  # fmt: skip
     print(table(rows, head))
 
 
@@ -153,6 +183,12 @@ def main() -> None:
     print(header("7R arms at a fixed joint (one core)"))
     for name in ("panda", "iiwa14"):
         run(name, args.poses, args.singles, args.seed)
+    # the 6R one pose in the same run: what one pose of a 7R arm at a value is held to
+    puma = km.load("puma560")
+    rng = np.random.default_rng(args.seed)
+    Tp = list(puma.fk(rng.uniform(*puma.qlim.T, size=(args.singles, 6))))
+    single = shortest_per_item(lambda t: puma.ik(t), Tp)
+    print(f"\nreference: PUMA 560 robot.ik(T), one pose (6R, spherical wrist): {fmt_time(single)}")
 
 
 if __name__ == "__main__":

@@ -10,14 +10,17 @@ on one core (``workers=1``):
   deduplicate, limits): batched (one call on all poses with one arm angle, best
   of 3; and with each pose's own arm angle; CPU time of the process: the machine
   is shared) and one pose at a time
-  (median over ``--singles`` poses, each pose's shortest of 3 passes); the
-  core's calls alone (``SRSParams.ik_batch`` / ``ik``: the solve and the check,
-  no Python around them) and the solver alone (``candidates``: the 8 raw
-  candidates of one pose, before the check);
+  (median over ``--singles`` poses, each pose's shortest of 3 passes; and one
+  pose through the general path, ``options=IKOptions(arm_angle=...)``, which a
+  pose with every other default skips: :mod:`kinematica.ik.direct`); ``robot.ik(T)``
+  (``auto``: every solution at arm angle 0, else the numeric search), batched and
+  one pose at a time; the core's calls alone (``SRSParams.ik_batch`` / ``ik``:
+  the solve and the check, no Python around them) and the solver alone
+  (``candidates``: the 8 raw candidates of one pose, before the check);
 * beside it, the numeric solver on the same poses (``method="numeric"``, one
   solution per pose, no arm angle), batched and one pose at a time, and the
-  PUMA 560's spherical-wrist closed form batched on as many of its poses (the
-  reference closed form, timed in the same run);
+  PUMA 560's spherical-wrist closed form on as many of its poses, batched and one
+  pose at a time (the reference closed form, timed in the same run);
 * exactness at each pose's own arm angle, limits ignored: the share of poses
   with 8 solutions, of poses whose every solution our FK puts within 1e-10 m and
   1e-10 rad of the target and whose arm angle is within 1e-10 rad of the one
@@ -46,7 +49,7 @@ from _common import best_of, fmt_time, header, shortest_per_item, table, verdict
 
 import kinematica as km
 from kinematica import _core
-from kinematica.ik import closed_form
+from kinematica.ik import IKOptions, closed_form
 
 #: The issue's target for all 8 solutions, batched (s per pose).
 TARGET = 5e-6
@@ -100,8 +103,14 @@ def main() -> None:
         lambda P: params.ik(core, P, opts, None, closed.labels), singles
     )
     raw = shortest_per_item(lambda P: params.candidates(core, P), singles)
+    general = IKOptions(arm_angle=one_psi)
+    slow = shortest_per_item(lambda P: robot.ik(P, options=general), singles)
+    auto_batch = cpu_best_of(lambda: robot.ik(T, workers=1)) / n
+    auto_single = shortest_per_item(lambda P: robot.ik(P), singles)
     rows.append(["robot.ik(T, arm_angle=psi)", fmt_time(batch), fmt_time(single)])
     rows.append(["  one arm angle per pose", fmt_time(per_pose), ""])
+    rows.append(["  through the general path (options=)", "", fmt_time(slow)])
+    rows.append(["robot.ik(T) (auto: arm angle 0)", fmt_time(auto_batch), fmt_time(auto_single)])
     rows.append(["core: SRSParams.ik_batch / ik", fmt_time(core_batch), fmt_time(core_single)])
     rows.append(["core: candidates (no check)", "", fmt_time(raw)])
     numeric_n = min(n, 300)
@@ -118,7 +127,9 @@ def main() -> None:
     qp = rng.uniform(puma.qlim[:, 0], puma.qlim[:, 1], (n, 6))
     Tp = np.ascontiguousarray(puma.fk(qp))
     puma_batch = cpu_best_of(lambda: puma.ik(Tp, workers=1)) / n
-    rows.append(["PUMA 560 robot.ik (spherical wrist, 6R)", fmt_time(puma_batch), ""])
+    puma_single = shortest_per_item(lambda P: puma.ik(P), list(Tp[: len(singles)]))
+    rows.append(["PUMA 560 robot.ik (spherical wrist, 6R)", fmt_time(puma_batch),
+                 fmt_time(puma_single)])  # fmt: skip
     print(f"\nTime per pose, one core ({n} poses batched: CPU time, best of 3; "
           f"{len(singles)} one by one: wall)")  # fmt: skip
     print(table(rows, ["", "batched", "one pose"]))

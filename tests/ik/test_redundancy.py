@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 import pytest
-from support.helpers import assert_transform_close
+from support.helpers import assert_same_result, assert_transform_close
 
 import kinematica as km
 from kinematica.ik import IKBatchResult, IKResult, closed_form, redundancy
@@ -189,3 +189,17 @@ def test_a_ur5_with_a_seventh_joint_is_held_at_it_with_every_ur5_solution() -> N
     assert res.method.startswith("analytic:") and res.count == 8
     np.testing.assert_allclose(res.solutions[0], q, atol=1e-9)  # nearest q0 first
     assert_transform_close(robot.fk(res.solutions), np.broadcast_to(T, (8, 4, 4)), atol=TOL)
+
+
+@pytest.mark.parametrize("name", ["iiwa14", "panda"])
+def test_a_batch_of_any_shape_equals_single_calls(name: str) -> None:
+    robot = km.load(name)
+    rng = np.random.default_rng(5)
+    q = rng.uniform(*robot.qlim.T, size=(3, 4, 7))
+    q[0, :, 6] = 0.0  # the Panda's lock (q7 at the middle of its limits) holds these
+    T = robot.fk(q)
+    T[1, 1, :3, 3] += 5.0  # beyond reach
+    many = robot.ik(T)
+    assert isinstance(many, IKBatchResult)
+    for idx in np.ndindex(3, 4):
+        assert_same_result(many[idx], robot.ik(np.ascontiguousarray(T[idx])))

@@ -11,25 +11,13 @@ one (not rigid, not finite) must still be explained there.
 
 from __future__ import annotations
 
-import dataclasses
-
 import numpy as np
 import pytest
+from support.helpers import assert_same_result
 
 import kinematica as km
 from kinematica.errors import KinematicaError
-from kinematica.ik import IKOptions, IKResult
-
-
-def _same(a: IKResult, b: IKResult) -> None:
-    for f in dataclasses.fields(IKResult):
-        x, y = getattr(a, f.name), getattr(b, f.name)
-        if isinstance(x, np.ndarray):
-            np.testing.assert_array_equal(x, y, err_msg=f.name)
-            assert x.shape == y.shape, f.name
-        else:
-            np.testing.assert_equal(x, y, err_msg=f.name)  # NaN equals NaN here
-            assert type(x) is type(y) or f.name == "status", f.name
+from kinematica.ik import IKOptions
 
 
 def _targets(robot: km.Robot) -> list[np.ndarray]:
@@ -49,9 +37,9 @@ def test_one_pose_and_one_position_match_the_general_path(name: str) -> None:
     robot = km.load(name)
     general = IKOptions()
     for T in _targets(robot):
-        _same(robot.ik(T), robot.ik(T, options=general))
+        assert_same_result(robot.ik(T), robot.ik(T, options=general))
         p = np.ascontiguousarray(T[:3, 3])
-        _same(robot.ik(p), robot.ik(p, options=general))
+        assert_same_result(robot.ik(p), robot.ik(p, options=general))
 
 
 def test_targets_the_one_target_path_leaves_are_explained_by_the_general_path() -> None:
@@ -61,7 +49,7 @@ def test_targets_the_one_target_path_leaves_are_explained_by_the_general_path() 
     skewed[:3, :3] *= 1.0 + 1e-6  # not rigid to round-off: projected, with a note
     res = robot.ik(skewed)
     assert res.status == "ok" and res.notes
-    _same(res, robot.ik(skewed, options=IKOptions()))
+    assert_same_result(res, robot.ik(skewed, options=IKOptions()))
     for bad in (np.full((4, 4), np.nan), np.array([np.nan, 0.0, 0.0])):
         with pytest.raises(KinematicaError, match="NaN"):
             robot.ik(bad)

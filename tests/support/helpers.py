@@ -9,6 +9,7 @@ reference frames.
 
 from __future__ import annotations
 
+import dataclasses
 import html
 import math
 import re
@@ -22,6 +23,7 @@ from hypothesis import strategies as st
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.dh import Prismatic, Revolute
+from kinematica.ik import IKResult
 from kinematica.robot import Robot
 
 FloatArray = NDArray[np.float64]
@@ -80,6 +82,26 @@ def assert_transform_close(
             f"position error = {pos:.3e} m, rotation error = {rot:.3e} rad\n"
             f"T1 =\n{a}\nT2 =\n{b}"
         )
+
+
+def assert_same_result(a: IKResult, b: IKResult) -> None:
+    """Assert two IK answers identical: every field (NaN equals NaN), its type, the message.
+
+    For two paths that must give the same answer (``robot.ik``'s one-target paths and
+    the general one), not for two methods that may differ by round-off.
+    """
+    for f in dataclasses.fields(IKResult):
+        x, y = getattr(a, f.name), getattr(b, f.name)
+        if isinstance(x, np.ndarray):
+            np.testing.assert_array_equal(x, y, err_msg=f.name)
+            assert x.shape == y.shape, f.name
+        else:
+            np.testing.assert_equal(x, y, err_msg=f.name)
+            assert type(x) is type(y) or f.name == "status", f.name
+    assert a.message == b.message
+    if a.parameter is not None:
+        assert b.parameter is not None
+        assert type(a.parameter[1]) is type(b.parameter[1]), "parameter"
 
 
 # ------------------------------------------------------ reference DH product

@@ -20,7 +20,7 @@ from numpy.typing import NDArray
 from kinematica.core import Chain
 from kinematica.ik.targets import parse_tolerance
 
-__all__ = ["NARROWEST", "end_arm", "moved_targets", "narrowed_tolerance"]
+__all__ = ["NARROWEST", "base_move", "end_arm", "moved_targets", "narrowed_tolerance"]
 
 FloatArray = NDArray[np.float64]
 
@@ -51,21 +51,36 @@ def end_arm(chain: Chain, k: int) -> tuple[Chain, FloatArray, FloatArray]:
     return found
 
 
+def _inverse_motion(prismatic: bool, value: float) -> FloatArray:
+    """``(4, 4)`` ``M(value)⁻¹ = M(-value)``: a joint's motion undone (``Rz`` or ``Tz``)."""
+    M = np.eye(4)
+    if prismatic:
+        M[2, 3] = -value
+    else:
+        cos, sin = math.cos(value), math.sin(value)
+        M[0, 0] = M[1, 1] = cos
+        M[0, 1], M[1, 0] = sin, -sin
+    return M
+
+
+def base_move(prismatic: bool, G: FloatArray, G_inv: FloatArray, value: float) -> FloatArray:
+    """``(4, 4)`` ``G₀ M(value)⁻¹ G₀⁻¹``: a target times it is the arm locked at 0's target.
+
+    What :func:`moved_targets` puts before one target when the first joint is held
+    at ``value`` (``G``: the chain's start, ``G_inv`` its inverse), for a caller
+    that moves many targets by one value.
+    """
+    return G @ _inverse_motion(prismatic, value) @ G_inv
+
+
 def moved_targets(
     prismatic: bool, k: int, G: FloatArray, G_inv: FloatArray, poses: FloatArray, v: FloatArray
 ) -> FloatArray:
     """``(N, 4, 4)`` targets of the arm locked at 0 that are ``poses`` with joint k at ``v``."""
     if v.size == 1:  # one target: 4x4 products
-        M = np.eye(4)
-        if prismatic:
-            M[2, 3] = -float(v[0])
-        else:
-            cos, sin = math.cos(float(v[0])), math.sin(float(v[0]))
-            M[0, 0] = M[1, 1] = cos
-            M[0, 1], M[1, 0] = sin, -sin
         if k == 0:
-            return (G @ M @ G_inv @ poses[0])[None]
-        return (poses[0] @ G_inv @ M @ G)[None]
+            return (base_move(prismatic, G, G_inv, float(v[0])) @ poses[0])[None]
+        return (poses[0] @ G_inv @ _inverse_motion(prismatic, float(v[0])) @ G)[None]
     inverse = np.zeros((v.size, 4, 4))  # M(v)⁻¹ = M(-v), one per target
     inverse[:, 3, 3] = 1.0
     if prismatic:

@@ -41,7 +41,15 @@ from kinematica.ik.targets import Targets, parse_targets
 
 FloatArray = NDArray[np.float64]
 
-__all__ = ["PARAMETER_SWEEP", "REDUNDANT_DOF", "choose", "preference", "solve_arm"]
+__all__ = [
+    "PARAMETER_SWEEP",
+    "REDUNDANT_DOF",
+    "choose",
+    "default_value",
+    "held_note",
+    "preference",
+    "solve_arm",
+]
 
 #: The arms ``auto`` solves at a parameter: 7 joints, one more than a pose needs.
 REDUNDANT_DOF = 7
@@ -132,26 +140,16 @@ def _at_parameter(
     n = chain.dof
     q0s = _q0_rows(options.q0, targets.shape, n)
     if q0s is None:
-        values = np.full(targets.poses.shape[0], joint.default(chain))
-        why = "its default value"
-        if isinstance(joint, ArmAngleParameter):
-            why = "0: the elbow in the plane of axis 1 and the shoulder-wrist line"
-        if isinstance(joint, JointParameter):
-            middle = np.isfinite(chain.own_limits[joint.index]).all()
-            why = "the middle of its limits" if middle else "0: it has no limits"
+        default, why = default_value(chain, joint)
+        values = np.full(targets.poses.shape[0], default)
     else:
         values = np.clip(joint.value_of(chain, q0s), *joint.span(chain))
         why = "q0's value, within its limits"
     res = joint.solve(chain, target, values, options)
     numeric = dataclasses.replace(options, method="numeric")
-    keyword = "fixed=" if isinstance(joint, JointParameter) else "arm_angle="
 
     def note(value: float) -> str:
-        return (
-            f"{chain.dof}-joint arm: every solution with {joint.describe(value)} ({why}), "
-            f"its redundancy parameter; give q0 or {keyword} for another value, "
-            f"robot.self_motion for all of them"
-        )
+        return held_note(chain, joint, value, why)
 
     def fallback(value: float) -> str:
         return (
@@ -160,6 +158,7 @@ def _at_parameter(
         )
 
     def nearer(value: float, start: float) -> str:
+        keyword = "fixed=" if isinstance(joint, JointParameter) else "arm_angle="
         return (
             f"{chain.dof}-joint arm: no solution with {joint.describe(start)} ({why}); every "
             f"solution with {joint.describe(value)}, the nearest of {PARAMETER_SWEEP} values "
@@ -184,12 +183,13 @@ def _at_parameter(
     notes = dict(res.notes)
     said: dict[float, str] = {}  # one note per value, shared by its targets
     held = np.flatnonzero(raw.count > 0)
-    cells = zip(*np.unravel_index(held, res.shape), strict=True)
-    for i, idx in zip(held.tolist(), cells, strict=True):
-        value = float(values[i])
+    # plain ints and floats, made once: this loop runs once per target of a batch
+    cells = np.stack(np.unravel_index(held, res.shape), axis=-1).tolist()
+    for value, idx in zip(values[held].tolist(), cells, strict=True):
         text = said.get(value) or said.setdefault(value, note(value))
-        where = tuple(int(v) for v in idx)
-        notes[where] = (*notes.get(where, ()), text)
+        where = tuple(idx)
+        old = notes.get(where)
+        notes[where] = (text,) if old is None else (*old, text)
     res = dataclasses.replace(res, notes=notes)
     if missed.size:  # the nearest value with a solution, where there is one
         found, moved = _nearest_with_solutions(chain, joint, targets, missed, values, options)
@@ -300,6 +300,27 @@ def _has_solutions(
         return has
     assert isinstance(out, IKBatchResult)
     return np.asarray(out.raw.count).reshape(M, S) > 0
+
+
+def default_value(chain: Chain, joint: Parameter) -> tuple[float, str]:
+    """The value ``auto`` holds ``joint`` at when no q0 is given, and why (for its note)."""
+    why = "its default value"
+    if isinstance(joint, ArmAngleParameter):
+        why = "0: the elbow in the plane of axis 1 and the shoulder-wrist line"
+    if isinstance(joint, JointParameter):
+        middle = np.isfinite(chain.own_limits[joint.index]).all()
+        why = "the middle of its limits" if middle else "0: it has no limits"
+    return joint.default(chain), why
+
+
+def held_note(chain: Chain, joint: Parameter, value: float, why: str) -> str:
+    """The note of an ``auto`` answer with ``joint`` held at ``value`` (``why``: whence)."""
+    keyword = "fixed=" if isinstance(joint, JointParameter) else "arm_angle="
+    return (
+        f"{chain.dof}-joint arm: every solution with {joint.describe(value)} ({why}), "
+        f"its redundancy parameter; give q0 or {keyword} for another value, "
+        f"robot.self_motion for all of them"
+    )
 
 
 def _q0_rows(q0: ArrayLike | None, shape: tuple[int, ...], n: int) -> FloatArray | None:

@@ -177,18 +177,24 @@ class PoseSolver(NamedTuple):
     direct: bool = True
 
 
-def pose_solver(chain: Chain, kind: TargetKind = "pose") -> PoseSolver:
+def pose_solver(
+    chain: Chain, kind: TargetKind = "pose", parameter: str | None = None
+) -> PoseSolver:
     """The solver ``solve_ik`` picks for one target of this kind with the default options.
 
     The same choice and settings as :func:`solve_ik` makes (closed form when the
     structure allows, else the numeric search with the default seed), ready for
     ``robot.ik``'s one-target path, which skips the general parsing when the
     target is a rigid transform to round-off (a position: placed in the identity
-    pose, as :func:`~kinematica.ik.targets.parse_targets` places it).
+    pose, as :func:`~kinematica.ik.targets.parse_targets` places it). With
+    ``parameter`` (``"arm_angle"``), the closed form at it, which the chain must have
+    (:func:`closed_form`); its ``ik_rigid`` solves at the value its ``Params`` hold.
     """
     tolerance = parse_tolerance(None)
     w = _POSITION if kind == "position" else _POSE
-    closed = closed_form(chain, kind)
+    closed = closed_form(chain, kind, parameter)
+    if parameter is not None and closed is None:
+        raise ValueError(f"this chain has no closed form at the parameter {parameter!r}")
     solver, labels, name = _solver(chain, closed, tolerance, True, None, w)
     complete = closed is not None
     opts = _options(tolerance, True, complete, w)

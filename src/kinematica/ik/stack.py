@@ -17,10 +17,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 import kinematica._core as _core
-from kinematica.ik.result import CheckOutput, IKBatchResult, IKResult
+from kinematica.ik.result import CheckOutput, CoreAnswer, IKBatchResult, IKResult
 from kinematica.ik.targets import Targets
 
-__all__ = ["replace_rows", "stack_results", "widen_batch", "widen_result"]
+__all__ = ["replace_rows", "stack_results", "widen_answer", "widen_batch", "widen_result"]
 
 FloatArray = NDArray[np.float64]
 
@@ -43,7 +43,7 @@ def widen_result(
     fields.update(
         solutions=_with_column(res.solutions, joint, value),
         out_of_limits=_with_column(res.out_of_limits, joint, value),
-        free_joints=tuple(j + (j >= joint) for j in res.free_joints),
+        free_joints=_shifted(res.free_joints, joint),
         parameter=parameter,
     )
     out = IKResult.__new__(IKResult)  # as result_of builds one: the one-target path
@@ -51,14 +51,38 @@ def widen_result(
     return out
 
 
+def widen_answer(out: CoreAnswer, joint: int, value: float) -> CoreAnswer:
+    """The core's answer of one target of an arm locked at ``joint``, with ``value`` put back.
+
+    As :func:`widen_result`, before the answer is wrapped (``robot.ik``'s one-pose path).
+    """
+    q, residuals, outside, branches, out_branches, report = out
+    code, gap, near_p, near_r, near, free = report
+    return (
+        _with_column(q, joint, value),
+        residuals,
+        _with_column(outside, joint, value),
+        branches,
+        out_branches,
+        (code, gap, near_p, near_r, near, _shifted(free, joint)),
+    )
+
+
+def _shifted(free: tuple[int, ...], joint: int) -> tuple[int, ...]:
+    """A locked arm's joint indices as the whole arm's (``joint`` put back)."""
+    return tuple(j + (j >= joint) for j in free) if free else free
+
+
 def _with_column(q: FloatArray, joint: int, value: float) -> FloatArray:
     """``(k, n - 1)`` rows with a column of ``value`` put in at ``joint``: ``(k, n)``."""
     out = np.empty((q.shape[0], q.shape[1] + 1))
     if not q.shape[0]:
         return out
-    out[:, :joint] = q[:, :joint]
+    if joint:  # the first and last joints (the usual parameters) skip an empty copy
+        out[:, :joint] = q[:, :joint]
     out[:, joint] = value
-    out[:, joint + 1 :] = q[:, joint:]
+    if joint < q.shape[1]:
+        out[:, joint + 1 :] = q[:, joint:]
     return out
 
 

@@ -31,6 +31,7 @@ from kinematica.dh import (
 from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning, UnitWarning
 from kinematica.ik import IKBatchResult, IKOptions, IKResult, Tolerance
 from kinematica.ik.analytic.srs import arm_angle as arm_angle_of
+from kinematica.ik.direct import DirectParameter
 from kinematica.ik.reach import needs_proof
 from kinematica.ik.redundancy import choose, solve_arm
 from kinematica.ik.registry import TargetKind
@@ -543,16 +544,22 @@ class Robot:
             and mask is None
             and seed is None
             and precision is None
-            and fixed is None
-            and arm_angle is None
         ):  # one target, every default: straight to the core (a rigid target to round-off)
-            if target.shape == (4, 4):
-                out = self._fast(target, "pose")
-            elif target.shape == (3,):
-                pose = _IDENTITY.copy()
-                pose[0, 3], pose[1, 3], pose[2, 3] = target.tolist()
-                out = self._fast(pose, "position")
-            else:
+            out: IKResult | None = None
+            try:
+                if fixed is None and arm_angle is None:
+                    if target.shape == (4, 4):
+                        out = self._fast(target, "pose")
+                    elif target.shape == (3,):
+                        pose = _IDENTITY.copy()
+                        pose[0, 3], pose[1, 3], pose[2, 3] = target.tolist()
+                        out = self._fast(pose, "position")
+                elif target.shape == (4, 4):  # one pose at one value of a redundant arm's parameter
+                    if arm_angle is None:
+                        out = self._direct.fixed(target, fixed)
+                    elif fixed is None:
+                        out = self._direct.arm_angle(target, arm_angle)
+            except ValueError:  # a view the core does not read (not C-contiguous): copied below
                 out = None
             if out is not None:
                 return out
@@ -597,6 +604,11 @@ class Robot:
         """
         return arm_angle_of(self.chain, self.check_q(q))
 
+    @cached_property
+    def _direct(self) -> DirectParameter:
+        """The one-pose paths at one value of a redundant arm's parameter."""
+        return DirectParameter(self.chain, self.joint_names)
+
     def _fast(self, pose: FloatArray, kind: TargetKind) -> IKResult | None:
         """``ik`` of one rigid target with every default; None: the general path explains it."""
         fast = self._fast_ik.get(kind)
@@ -605,8 +617,8 @@ class Robot:
             if kind == "pose" and choose(self.chain) is not None:  # solved at a parameter
                 fast = fast._replace(direct=False)
             self._fast_ik[kind] = fast
-        if not fast.direct:
-            return None
+        if not fast.direct:  # a redundant arm: at auto's parameter value, else the general path
+            return self._direct.auto(pose) if kind == "pose" else None
         out: CoreAnswer | None = fast.ik_rigid(
             self.chain.core, pose, fast.options, ROUNDOFF_TOL, fast.labels
         )
