@@ -193,24 +193,31 @@ def _at_parameter(
     res = dataclasses.replace(res, notes=notes)
     if missed.size:  # the nearest value with a solution, where there is one
         found, moved = _nearest_with_solutions(chain, joint, targets, missed, values, options)
-        again = _solved_at(chain, joint, targets, found, moved, q0s, options)
-        kept = np.asarray(again.raw.count) > 0 if again is not None else found[:0]
-        if again is not None and not kept.all():  # the screen's value, not confirmed
-            found, moved = found[kept], moved[kept]
-            again = _solved_at(chain, joint, targets, found, moved, q0s, options)
-        if again is not None:
-            res = replace_rows(res, found, again, None)
+        # one value at a time: the targets held at a value are solved as a single call
+        # at that value would solve them (batch == single, to the bit)
+        answered: list[tuple[NDArray[np.intp], float]] = []
+        for v in np.unique(moved).tolist():
+            rows = found[moved == v]
+            again = _solved_at(chain, joint, targets, rows, v, q0s, options)
+            kept = rows[np.asarray(again.raw.count) > 0]  # the screen's value, confirmed
+            if kept.size and kept.size < rows.size:
+                again = _solved_at(chain, joint, targets, kept, v, q0s, options)
+            if kept.size:
+                res = replace_rows(res, kept, again, None)
+                answered.append((kept, v))
+        if answered:
             assert res.parameter is not None
             held_at = np.array(res.parameter[1], dtype=float).reshape(-1)
-            held_at[found] = moved
             notes = dict(res.notes)
-            for i, v in zip(found.tolist(), moved.tolist(), strict=True):
-                where = tuple(int(c) for c in np.unravel_index(i, res.shape))
-                notes[where] = (*notes.get(where, ()), nearer(v, float(values[i])))
+            for rows, v in answered:
+                held_at[rows] = v
+                for i in rows.tolist():
+                    where = tuple(int(c) for c in np.unravel_index(i, res.shape))
+                    notes[where] = (*notes.get(where, ()), nearer(v, float(values[i])))
+                missed = np.setdiff1d(missed, rows)
             res = dataclasses.replace(
                 res, notes=notes, parameter=(res.parameter[0], held_at.reshape(res.shape))
             )
-            missed = np.setdiff1d(missed, found)
     if missed.size:
         sub = targets._replace(
             poses=np.ascontiguousarray(targets.poses[missed]),
@@ -230,15 +237,13 @@ def _solved_at(
     joint: Parameter,
     targets: Targets,
     rows: NDArray[np.intp],
-    values: FloatArray,
+    value: float,
     q0s: FloatArray | None,
     options: IKOptions,
-) -> IKBatchResult | None:
-    """The targets ``rows`` (flat) solved with the parameter at ``values``; None for no rows."""
-    if not rows.size:
-        return None
+) -> IKBatchResult:
+    """The targets ``rows`` (flat) solved with the parameter at ``value``."""
     opts = options if q0s is None else dataclasses.replace(options, q0=q0s[rows])
-    out = joint.solve(chain, np.ascontiguousarray(targets.poses[rows]), values, opts)
+    out = joint.solve(chain, np.ascontiguousarray(targets.poses[rows]), value, opts)
     assert isinstance(out, IKBatchResult)
     return out
 
