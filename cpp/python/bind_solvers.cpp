@@ -8,12 +8,14 @@ void bind_planar(nb::module_& m);
 void bind_elbow(nb::module_& m);
 void bind_decoupled(nb::module_& m);
 void bind_parallel(nb::module_& m);
+void bind_general6r(nb::module_& m);
 
 void bind_solvers(nb::module_& m) {
     bind_planar(m);
     bind_elbow(m);
     bind_decoupled(m);
     bind_parallel(m);
+    bind_general6r(m);
 }
 
 }  // namespace kmpy
