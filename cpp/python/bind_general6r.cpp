@@ -53,6 +53,7 @@ void bind_general6r(nb::module_& m) {
     sub.attr("FURTHER") = kg::FURTHER;
     sub.attr("REAL_ROOT_TOL") = kg::REAL_ROOT_TOL;
     sub.attr("LEADING_RCOND_TOL") = kg::LEADING_RCOND_TOL;
+    sub.attr("CLOSURE_TOL") = kg::CLOSURE_TOL;
 
     auto cls = bind_closed_form<General6RParams>(
         sub, "General6RParams",
@@ -80,6 +81,8 @@ void bind_general6r(nb::module_& m) {
         .def_rw("t_post", &General6RParams::t_post, "(4, 4) after T in that link")
         .def_rw("sign", &General6RParams::sign, "-1: the chain reversed (q' = -q)")
         .def_rw("scale", &General6RParams::scale, "lengths times this (1 / m)")
+        .def_rw("centre", &General6RParams::centre, "(3,) the reach bound's centre (m, base frame)")
+        .def_rw("reach", &General6RParams::reach, "the tool origin stays within this of centre (m)")
         .def_prop_rw(
             "order", [](const General6RParams& p) { return small::get_ints(p.order); },
             [](General6RParams& p, nb::handle h) { small::set_ints(p.order, h, "order", 0, 5); },

@@ -167,7 +167,9 @@ def pose_solver(chain: Chain, kind: TargetKind = "pose") -> PoseSolver:
     solver, labels, name = _solver(chain, closed, tolerance, True, None, w)
     complete = closed is not None
     opts = _options(tolerance, True, complete, w)
-    direct = closed is None or (slack_of(chain) == 0.0 and not closed.partial)
+    direct = closed is None or (
+        (closed.exact or slack_of(chain) == 0.0) and not (closed.partial or closed.search_note)
+    )
     return PoseSolver(solver.ik_rigid, opts, labels, name, complete, direct)
 
 
@@ -260,13 +262,15 @@ def _solve(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IK
             suggest=("method", "numeric"),
         )
     solver, labels, name = _solver(chain, closed, tolerance, respect_limits, seed, w)
-    slack = slack_of(chain) if closed is not None else 0.0
+    slack = slack_of(chain) if closed is not None and not closed.exact else 0.0
     complete = closed is not None and slack == 0.0
     opts = _options(tolerance, respect_limits, complete, w, slack)
 
     # a closed form that may miss a solution: a target it found nothing for is searched
-    partial = closed is not None and closed.partial
+    partial = closed is not None and (closed.partial or bool(closed.search_note))
     searched_note = FALLBACK_NOTE if slack else PARTIAL_NOTE
+    if closed is not None and closed.search_note:
+        searched_note = closed.search_note
 
     def search(rows: Any) -> tuple[Any, _core.CheckOptions, FloatArray]:  # the second method
         """The search, its options, and the first guesses of the targets ``rows``."""

@@ -21,12 +21,12 @@
 // equations and their products with x4 are 12 equations linear in the 12 monomials
 // x4^i x5^j (i <= 3, j <= 2): M(x6) u = 0 with M = A0 + A1 x6 + A2 x6², so det M(x6) = 0
 // (degree 24: up to 16 genuine real roots). Its roots are the eigenvalues of the 24 x 24
-// companion pencil; each real one gives u (eigenvector) hence x4, x5, then S2 = Q⁺(F - c0)
+// companion pencil; each real one gives u (M's null vector) hence x4, x5, then S2 = Q⁺(F - c0)
 // gives q'1, q'2 and the loop's closure q'3. The shared check polishes every candidate by
 // Gauss-Newton on the full pose, dedupes and judges it.
 //
 // Why Eigen: the eigenproblem needs a Hessenberg-QR (or QZ, when A2 is ill-conditioned)
-// with eigenvectors; Eigen's are well kept and tested, where our own would be a second,
+// and a full-pivot LU; Eigen's are well kept and tested, where our own would be a second,
 // less tested copy of LAPACK's algorithms. Only this header and its binding include it.
 //
 // Branch labels: a candidate's class is the signs of sin q2, sin q3, sin q5 (joint values
@@ -67,6 +67,16 @@ constexpr double REAL_ROOT_TOL = 1e-4;
 //! The companion matrix A2⁻¹(...) is used when A2's reciprocal condition number (LU
 //! estimate) is above this; below, the pencil is solved by QZ (a root near x6 = ∞).
 constexpr double LEADING_RCOND_TOL = 1e-8;
+//! M(x6) at a root has a null space of dimension 2 or more (a double root or a
+//! continuum: near is raised) when its full-pivot LU's second smallest pivot is below
+//! this times the largest.
+constexpr double DOUBLE_ROOT_TOL = 1e-10;
+//! A candidate "closes the loop" when its closure (the loop's product with q'3 taken from
+//! it) is within this of the identity (scaled lengths: of the arm's size; rad): a target
+//! none of whose candidates closes is not proven unreachable (near is raised, so the
+//! check says not_found, and the numeric search is asked). Wide: the check's polish
+//! (POLISH_LIMIT = 1e-5) starts from candidates this far and closer.
+constexpr double CLOSURE_TOL = 1e-4;
 //! The grid of angles the trigonometric polynomials are found from: 0, 2π/3, 4π/3.
 constexpr double GRID_STEP = 2.0 * PI / 3.0;
 
@@ -136,6 +146,10 @@ struct General6RParams {
     double c0[EQUATIONS]{};             //!< the left side's constant part
     double Qp[PRODUCTS][EQUATIONS]{};   //!< Q's pseudo-inverse
     double phi[3] = {0.0, 0.0, 0.0};    //!< shifts of q'4, q'5, q'6 (rad)
+    //! The tool origin stays within `reach` (m) of `centre` (base frame, m): a point on
+    //! axis 1 and the sum of the joints' fixed offsets. Beyond it: a proven gap.
+    Vec3 centre{};
+    double reach = INF;
 
     int slots() const { return SLOTS; }
 
@@ -232,8 +246,9 @@ struct General6RParams {
     }
 
     //! One candidate q (joint order) from a real root x6 and its monomial vector u.
-    void back_substitute(const Pose* L, const Pose* Li, double x6, const Vector12& u,
-                         double* q) const {
+    //! Returns how far the loop is from closing (scaled length + rad): see CLOSURE_TOL.
+    double back_substitute(const Pose* L, const Pose* Li, double x6, const Vector12& u,
+                           double* q) const {
         // x4 = u(i+1, j) / u(i, j), x5 = u(i, j+1) / u(i, j): the best-scaled pair
         int bi = 0, bj = 0;
         double best = -1.0;
@@ -269,6 +284,29 @@ struct General6RParams {
         const double a3 = std::atan2(W.x.y - W.y.x, W.x.x + W.y.y);
         const double a[6] = {a1, a2, a3, a4, a5, a6};
         for (int k = 0; k < 6; ++k) q[order[k]] = wrap(sign * a[k]);
+        // W = Rz(q'3) exactly when the loop closes: W's z axis is z, its origin 0
+        return norm(W.p) + std::fabs(W.z.x) + std::fabs(W.z.y);
+    }
+
+    //! u with M(x) u = 0 (M = A0 + x A1 + x² A2, divided by x² when |x| > 1): from the
+    //! full-pivot LU, whose last pivot is the smallest. A second pivot below
+    //! DOUBLE_ROOT_TOL (relative) means a null space of dimension 2 at least (a double
+    //! root, or a continuum): near is raised.
+    static Vector12 null_vector(const Matrix12* A, double x, SolverInfo& info) {
+        const bool big = std::fabs(x) > 1.0;
+        const double y = big ? 1.0 / x : x;
+        const Matrix12 M = big ? Matrix12(A[2] + y * (A[1] + y * A[0])) : Matrix12(A[0] + y * (A[1] + y * A[2]));
+        const Eigen::FullPivLU<Matrix12> lu(M);
+        const Matrix12& U = lu.matrixLU();
+        if (std::fabs(U(SIZE - 2, SIZE - 2)) <= DOUBLE_ROOT_TOL * std::fabs(U(0, 0))) info.near = true;
+        Vector12 v;
+        v(SIZE - 1) = 1.0;
+        for (int i = SIZE - 2; i >= 0; --i) {
+            double t = -U(i, SIZE - 1);
+            for (int j = i + 1; j < SIZE - 1; ++j) t -= U(i, j) * v(j);
+            v(i) = t / U(i, i);
+        }
+        return lu.permutationQ() * v;
     }
 
     //! The sign class of a candidate: bits of sin q2, sin q3, sin q5 > 0.
@@ -280,6 +318,11 @@ struct General6RParams {
     //! Candidates for one pose T (base frame) into Q (SLOTS x 6), NaN rows elsewhere.
     void solve(const Pose& T_in, double* Q, SolverInfo& info) const {
         for (int i = 0; i < SLOTS * 6; ++i) Q[i] = NaN;
+        const double far = norm(T_in.p - centre) - reach;
+        if (far > 0.0) {  // beyond every configuration's reach
+            info.gap = far;
+            return;
+        }
         Pose T = T_in;
         T.p = scale * T.p;
         Pose L[6], Li[4];
@@ -287,9 +330,8 @@ struct General6RParams {
         for (int k = 0; k < 4; ++k) Li[k] = inverse(L[k + 2]);
         Matrix12 A[3];
         pencil(Li, A);
-        // roots x6 and their vectors u (M(x6) u = 0)
+        // the real roots x6 of det M(x6), then the vector u of each (M(x6) u = 0)
         double roots[ROOTS];
-        Vector12 vecs[ROOTS];
         int found = 0;
         const Eigen::PartialPivLU<Matrix12> lead(A[2]);
         if (lead.rcond() > LEADING_RCOND_TOL) {
@@ -297,28 +339,14 @@ struct General6RParams {
             C.topRightCorner<SIZE, SIZE>().setIdentity();
             C.bottomLeftCorner<SIZE, SIZE>() = -lead.solve(A[0]);
             C.bottomRightCorner<SIZE, SIZE>() = -lead.solve(A[1]);
-            const Eigen::EigenSolver<Matrix24> eig(C, true);
+            const Eigen::EigenSolver<Matrix24> eig(C, false);
             if (eig.info() != Eigen::Success) {
-                info.near = true;
+                info.near = true;  // not proven unreachable
                 return;
             }
-            // (computed from the Schur form on each call of eigenvectors(): once)
-            const Eigen::Matrix<std::complex<double>, 2 * SIZE, 2 * SIZE> V = eig.eigenvectors();
             for (int r = 0; r < ROOTS; ++r) {
                 const std::complex<double> x = eig.eigenvalues()(r);
-                if (!(std::fabs(x.imag()) <= REAL_ROOT_TOL * (1.0 + std::abs(x)))) continue;
-                const auto v = V.col(r);
-                // v = (u, x u): the better-scaled half
-                const bool top = std::abs(x) <= 1.0;
-                Vector12 u;
-                std::complex<double> big = 0.0;
-                for (int i = 0; i < SIZE; ++i) {
-                    const std::complex<double> w = top ? v(i) : v(SIZE + i);
-                    if (std::abs(w) > std::abs(big)) big = w;
-                }
-                for (int i = 0; i < SIZE; ++i) u(i) = ((top ? v(i) : v(SIZE + i)) / big).real();
-                roots[found] = x.real();
-                vecs[found++] = u;
+                if (std::fabs(x.imag()) <= REAL_ROOT_TOL * (1.0 + std::abs(x))) roots[found++] = x.real();
             }
         } else {
             // QZ on the pencil (C0, C1): C0 v = x C1 v, the same linearisation
@@ -327,7 +355,7 @@ struct General6RParams {
             C0.bottomLeftCorner<SIZE, SIZE>() = -A[0];
             C0.bottomRightCorner<SIZE, SIZE>() = -A[1];
             C1.bottomRightCorner<SIZE, SIZE>() = A[2];
-            Eigen::GeneralizedEigenSolver<Matrix24> qz(C0, C1, false);
+            const Eigen::GeneralizedEigenSolver<Matrix24> qz(C0, C1, false);
             if (qz.info() != Eigen::Success) {
                 info.near = true;
                 return;
@@ -337,19 +365,17 @@ struct General6RParams {
                 const double be = qz.betas()(r);
                 if (be == 0.0) continue;  // x6 = ∞: q'6 = phi6 + π, not a genuine root
                 const std::complex<double> x = al / be;
-                if (!(std::fabs(x.imag()) <= REAL_ROOT_TOL * (1.0 + std::abs(x)))) continue;
-                const Matrix12 M = A[0] + x.real() * (A[1] + x.real() * A[2]);
-                const Eigen::JacobiSVD<Matrix12> svd(M, Eigen::ComputeFullV);
-                roots[found] = x.real();
-                vecs[found++] = svd.matrixV().col(SIZE - 1);
+                if (std::fabs(x.imag()) <= REAL_ROOT_TOL * (1.0 + std::abs(x))) roots[found++] = x.real();
             }
         }
         // candidates into their classes, each ordered by q1
         int filled[CLASSES] = {};
         int further = 0;
+        bool closes = false;
         for (int r = 0; r < found; ++r) {
             double q[6];
-            back_substitute(L, Li, roots[r], vecs[r], q);
+            const Vector12 u = null_vector(A, roots[r], info);
+            closes |= back_substitute(L, Li, roots[r], u, q) <= CLOSURE_TOL;
             const int cls = sign_class(q);
             int slot;
             if (filled[cls] < PER_CLASS) {
@@ -366,6 +392,7 @@ struct General6RParams {
             }
             for (int k = 0; k < 6; ++k) Q[slot * 6 + k] = q[k];
         }
+        info.near = !closes;
     }
 };
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 from kinematica.ik.analytic import (
     arm_position,
     elbow_arms,
+    general_6r,
     parallel,
     planar_arms,
     spherical_wrist,
@@ -24,5 +25,6 @@ SOLVERS: tuple[SolverSpec, ...] = (
     *planar_arms.SPECS,
     *elbow_arms.SPECS,
     *spherical_wrist.SPECS,
+    general_6r.SPEC,  # any other 6R arm: after every special family, which keep theirs
     arm_position.SPEC,  # position targets of any longer arm: tried last
 )
