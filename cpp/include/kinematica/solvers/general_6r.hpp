@@ -288,7 +288,8 @@ struct General6RParams {
         return norm(W.p) + std::fabs(W.z.x) + std::fabs(W.z.y);
     }
 
-    //! u with M(x) u = 0 (M = A0 + x A1 + x² A2, divided by x² when |x| > 1): from the
+    //! u with M(x) u = 0 (M = A0 + x A1 + x² A2, divided by x² when |x| > 1; A2 at
+    //! x = ∞): from the
     //! full-pivot LU, whose last pivot is the smallest. A second pivot below
     //! DOUBLE_ROOT_TOL (relative) means a null space of dimension 2 at least (a double
     //! root, or a continuum): near is raised.
@@ -363,7 +364,10 @@ struct General6RParams {
             for (int r = 0; r < ROOTS; ++r) {
                 const std::complex<double> al = qz.alphas()(r);
                 const double be = qz.betas()(r);
-                if (be == 0.0) continue;  // x6 = ∞: q'6 = phi6 + π, not a genuine root
+                if (be == 0.0) {  // x6 = ∞: q'6 = phi6 + π (M's null vector: A2's)
+                    if (al.imag() == 0.0) roots[found++] = INF;
+                    continue;
+                }
                 const std::complex<double> x = al / be;
                 if (std::fabs(x.imag()) <= REAL_ROOT_TOL * (1.0 + std::abs(x))) roots[found++] = x.real();
             }
