@@ -54,6 +54,8 @@ void bind_general6r(nb::module_& m) {
     sub.attr("REAL_ROOT_TOL") = kg::REAL_ROOT_TOL;
     sub.attr("LEADING_RCOND_TOL") = kg::LEADING_RCOND_TOL;
     sub.attr("CLOSURE_TOL") = kg::CLOSURE_TOL;
+    sub.attr("SECOND_SHIFT") = kg::SECOND_SHIFT;
+    sub.attr("DOUBLE_ROOT_TOL") = kg::DOUBLE_ROOT_TOL;
 
     auto cls = bind_closed_form<General6RParams>(
         sub, "General6RParams",

@@ -363,7 +363,8 @@ def _inverse(w: _Writer, d: InverseDerivation | None, model: SymbolicRobot, meth
     w.heading(2, "h.ik")
     structure = classify(model.robot)
     if d is None:
-        w.para("ik.none", summary=structure_summary(structure, w.lang), method=method)
+        key = "ik.general6r" if structure.kind == "general-6R" else "ik.none"
+        w.para(key, summary=structure_summary(structure, w.lang), method=method)
         return
     p, R = target_symbols()
     has_pose = any(s.key in ("ik.last", "ik.wrist.R36") for s in d.steps)

@@ -119,9 +119,10 @@ def test_a_pose_beyond_the_reach_sphere_is_unreachable_with_its_gap() -> None:
     assert any("not proven unreachable" in note for note in near.notes)
 
 
-def test_a_root_at_infinity_is_solved_by_qz() -> None:
-    # q'6 = phi6 + π puts a root of det M at x6 = ∞: A2 is singular there, the pencil
-    # goes to QZ (LEADING_RCOND_TOL), and the configuration is still found
+def test_a_root_at_infinity_is_solved_with_the_second_shift() -> None:
+    # q'6 = phi6 + π puts a root of det M at x6 = ∞: A2 is singular there (its rcond
+    # below LEADING_RCOND_TOL), the pencil is made again with q'6 shifted by SECOND_SHIFT
+    # more, and the configuration is still found
     rng = np.random.default_rng(9)
     robot = _robot(rng, False)
     params = closed_form(robot.chain, "pose").params

@@ -25,8 +25,7 @@
 // gives q'1, q'2 and the loop's closure q'3. The shared check polishes every candidate by
 // Gauss-Newton on the full pose, dedupes and judges it.
 //
-// Why Eigen: the eigenproblem needs a Hessenberg-QR (or QZ, when A2 is ill-conditioned)
-// and a full-pivot LU; Eigen's are well kept and tested, where our own would be a second,
+// Why Eigen: the eigenproblem needs a Hessenberg-QR and a full-pivot LU; Eigen's are well kept and tested, where our own would be a second,
 // less tested copy of LAPACK's algorithms. Only this header and its binding include it.
 //
 // Branch labels: a candidate's class is the signs of sin q2, sin q3, sin q5 (joint values
@@ -37,7 +36,6 @@
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
-#include <Eigen/SVD>
 #include <cmath>
 #include <complex>
 
@@ -65,8 +63,12 @@ constexpr int SLOTS = CLASSES * PER_CLASS + FURTHER;
 //! by the check (its FK misses the target).
 constexpr double REAL_ROOT_TOL = 1e-4;
 //! The companion matrix A2⁻¹(...) is used when A2's reciprocal condition number (LU
-//! estimate) is above this; below, the pencil is solved by QZ (a root near x6 = ∞).
+//! estimate) is above this; below (a root near x6 = ∞), the pencil is made again with
+//! q'6 shifted by SECOND_SHIFT more, which brings that root to a finite x6.
 constexpr double LEADING_RCOND_TOL = 1e-8;
+//! The second shift of q'6 (rad): far from 0 and π, so that a root at x6 = ∞ for the
+//! first is at |x6| = 1 / tan(SECOND_SHIFT / 2) ≈ 1.5 for the second.
+constexpr double SECOND_SHIFT = 1.1;
 //! M(x6) at a root has a null space of dimension 2 or more (a double root or a
 //! continuum: near is raised) when its full-pivot LU's second smallest pivot is below
 //! this times the largest.
@@ -185,8 +187,9 @@ struct General6RParams {
         return apply(Li[3], turn(c, -s, L));
     }
 
-    //! The 12 x 12 matrices A0, A1, A2 of M(x6) for the inverses Li of L3 ... L6.
-    void pencil(const Pose* Li, Matrix12 A[3]) const {
+    //! The 12 x 12 matrices A0, A1, A2 of M(x6) for the inverses Li of L3 ... L6, with
+    //! x6 = tan((q'6 - shift6) / 2).
+    void pencil(const Pose* Li, double shift6, Matrix12 A[3]) const {
         // G[a][b][c][e]: the 6 equations at the grid point (a, b, c)
         double G[3][3][3][REDUCED];
         for (int a = 0; a < 3; ++a) {
@@ -197,7 +200,7 @@ struct General6RParams {
                 sincos(b * GRID_STEP + phi[1], s, c);
                 const Line L5 = apply(Li[2], turn(c, -s, L4));
                 for (int g = 0; g < 3; ++g) {
-                    sincos(g * GRID_STEP + phi[2], s, c);
+                    sincos(g * GRID_STEP + shift6, s, c);
                     double f[EQUATIONS];
                     quantities(apply(Li[3], turn(c, -s, L5)), f);
                     for (int k = 0; k < EQUATIONS; ++k) f[k] -= c0[k];
@@ -247,8 +250,8 @@ struct General6RParams {
 
     //! One candidate q (joint order) from a real root x6 and its monomial vector u.
     //! Returns how far the loop is from closing (scaled length + rad): see CLOSURE_TOL.
-    double back_substitute(const Pose* L, const Pose* Li, double x6, const Vector12& u,
-                           double* q) const {
+    double back_substitute(const Pose* L, const Pose* Li, double x6, double shift6,
+                           const Vector12& u, double* q) const {
         // x4 = u(i+1, j) / u(i, j), x5 = u(i, j+1) / u(i, j): the best-scaled pair
         int bi = 0, bj = 0;
         double best = -1.0;
@@ -265,7 +268,7 @@ struct General6RParams {
                 if (w > best) best = w, bi = i, bj = j;
             }
         const double a5 = from_half(u(3 * bi + bj + 1), u(3 * bi + bj), phi[1]);
-        const double a6 = 2.0 * std::atan(x6) + phi[2];
+        const double a6 = 2.0 * std::atan(x6) + shift6;
         double f[EQUATIONS];
         quantities(right_side(Li, a4, a5, a6), f);
         double S[PRODUCTS];
@@ -288,8 +291,7 @@ struct General6RParams {
         return norm(W.p) + std::fabs(W.z.x) + std::fabs(W.z.y);
     }
 
-    //! u with M(x) u = 0 (M = A0 + x A1 + x² A2, divided by x² when |x| > 1; A2 at
-    //! x = ∞): from the
+    //! u with M(x) u = 0 (M = A0 + x A1 + x² A2, divided by x² when |x| > 1): from the
     //! full-pivot LU, whose last pivot is the smallest. A second pivot below
     //! DOUBLE_ROOT_TOL (relative) means a null space of dimension 2 at least (a double
     //! root, or a continuum): near is raised.
@@ -329,48 +331,37 @@ struct General6RParams {
         Pose L[6], Li[4];
         for (int k = 0; k < 6; ++k) L[k] = link_of(k, T);
         for (int k = 0; k < 4; ++k) Li[k] = inverse(L[k + 2]);
+        // M(x6) for the shift phi6, or phi6 + SECOND_SHIFT when A2 is ill-conditioned there
+        // (a root near x6 = ∞: q'6 near the shift + π, which the second shift moves to a
+        // finite x6); both ill-conditioned: no leading term, not solved here
         Matrix12 A[3];
-        pencil(Li, A);
-        // the real roots x6 of det M(x6), then the vector u of each (M(x6) u = 0)
+        double shift6 = phi[2];
+        pencil(Li, shift6, A);
+        Eigen::PartialPivLU<Matrix12> lead(A[2]);
+        if (!(lead.rcond() > LEADING_RCOND_TOL)) {
+            shift6 = phi[2] + SECOND_SHIFT;
+            pencil(Li, shift6, A);
+            lead.compute(A[2]);
+            if (!(lead.rcond() > LEADING_RCOND_TOL)) {
+                info.near = true;  // not proven unreachable: the numeric search is asked
+                return;
+            }
+        }
+        // the real roots x6 of det M(x6): eigenvalues of the companion matrix
+        Matrix24 C = Matrix24::Zero();
+        C.topRightCorner<SIZE, SIZE>().setIdentity();
+        C.bottomLeftCorner<SIZE, SIZE>() = -lead.solve(A[0]);
+        C.bottomRightCorner<SIZE, SIZE>() = -lead.solve(A[1]);
+        const Eigen::EigenSolver<Matrix24> eig(C, false);
+        if (eig.info() != Eigen::Success) {
+            info.near = true;  // not proven unreachable
+            return;
+        }
         double roots[ROOTS];
         int found = 0;
-        const Eigen::PartialPivLU<Matrix12> lead(A[2]);
-        if (lead.rcond() > LEADING_RCOND_TOL) {
-            Matrix24 C = Matrix24::Zero();
-            C.topRightCorner<SIZE, SIZE>().setIdentity();
-            C.bottomLeftCorner<SIZE, SIZE>() = -lead.solve(A[0]);
-            C.bottomRightCorner<SIZE, SIZE>() = -lead.solve(A[1]);
-            const Eigen::EigenSolver<Matrix24> eig(C, false);
-            if (eig.info() != Eigen::Success) {
-                info.near = true;  // not proven unreachable
-                return;
-            }
-            for (int r = 0; r < ROOTS; ++r) {
-                const std::complex<double> x = eig.eigenvalues()(r);
-                if (std::fabs(x.imag()) <= REAL_ROOT_TOL * (1.0 + std::abs(x))) roots[found++] = x.real();
-            }
-        } else {
-            // QZ on the pencil (C0, C1): C0 v = x C1 v, the same linearisation
-            Matrix24 C0 = Matrix24::Zero(), C1 = Matrix24::Identity();
-            C0.topRightCorner<SIZE, SIZE>().setIdentity();
-            C0.bottomLeftCorner<SIZE, SIZE>() = -A[0];
-            C0.bottomRightCorner<SIZE, SIZE>() = -A[1];
-            C1.bottomRightCorner<SIZE, SIZE>() = A[2];
-            const Eigen::GeneralizedEigenSolver<Matrix24> qz(C0, C1, false);
-            if (qz.info() != Eigen::Success) {
-                info.near = true;
-                return;
-            }
-            for (int r = 0; r < ROOTS; ++r) {
-                const std::complex<double> al = qz.alphas()(r);
-                const double be = qz.betas()(r);
-                if (be == 0.0) {  // x6 = ∞: q'6 = phi6 + π (M's null vector: A2's)
-                    if (al.imag() == 0.0) roots[found++] = INF;
-                    continue;
-                }
-                const std::complex<double> x = al / be;
-                if (std::fabs(x.imag()) <= REAL_ROOT_TOL * (1.0 + std::abs(x))) roots[found++] = x.real();
-            }
+        for (int r = 0; r < ROOTS; ++r) {
+            const std::complex<double> x = eig.eigenvalues()(r);
+            if (std::fabs(x.imag()) <= REAL_ROOT_TOL * (1.0 + std::abs(x))) roots[found++] = x.real();
         }
         // candidates into their classes, each ordered by q1
         int filled[CLASSES] = {};
@@ -379,7 +370,7 @@ struct General6RParams {
         for (int r = 0; r < found; ++r) {
             double q[6];
             const Vector12 u = null_vector(A, roots[r], info);
-            closes |= back_substitute(L, Li, roots[r], u, q) <= CLOSURE_TOL;
+            closes |= back_substitute(L, Li, roots[r], shift6, u, q) <= CLOSURE_TOL;
             const int cls = sign_class(q);
             int slot;
             if (filled[cls] < PER_CLASS) {
