@@ -212,34 +212,37 @@ struct General6RParams {
                 }
             }
         }
-        // the half-angle coefficients, one variable at a time: P[e][i4][i5][i6]
-        double H1[3][3][3][REDUCED], H2[3][3][3][REDUCED];
-        for (int i = 0; i < 3; ++i)
-            for (int b = 0; b < 3; ++b)
-                for (int g = 0; g < 3; ++g)
-                    for (int e = 0; e < REDUCED; ++e) {
-                        double v = 0.0;
-                        for (int a = 0; a < 3; ++a) v += HALF_ANGLE[i][a] * G[a][b][g][e];
-                        H1[i][b][g][e] = v;
-                    }
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-                for (int g = 0; g < 3; ++g)
-                    for (int e = 0; e < REDUCED; ++e) {
-                        double v = 0.0;
-                        for (int b = 0; b < 3; ++b) v += HALF_ANGLE[j][b] * H1[i][b][g][e];
-                        H2[i][j][g][e] = v;
-                    }
+        // the half-angle coefficients, one variable at a time: H[i4][i5][i6][e]
+        double H1[3][3][3][REDUCED], H2[3][3][3][REDUCED], H[3][3][3][REDUCED];
+        half_angle<0>(G, H1);
+        half_angle<1>(H1, H2);
+        half_angle<2>(H2, H);
         for (int k = 0; k < 3; ++k) A[k].setZero();
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j)
                 for (int k = 0; k < 3; ++k)
                     for (int e = 0; e < REDUCED; ++e) {
-                        double v = 0.0;
-                        for (int g = 0; g < 3; ++g) v += HALF_ANGLE[k][g] * H2[i][j][g][e];
                         // equation e times 1 (row 2e) and times x4 (row 2e + 1)
-                        A[k](2 * e, 3 * i + j) = v;
-                        A[k](2 * e + 1, 3 * (i + 1) + j) = v;
+                        A[k](2 * e, 3 * i + j) = H[i][j][k][e];
+                        A[k](2 * e + 1, 3 * (i + 1) + j) = H[i][j][k][e];
+                    }
+    }
+
+    //! HALF_ANGLE applied along one axis (0: q'4, 1: q'5, 2: q'6) of grid values.
+    template <int AXIS>
+    static void half_angle(const double (&in)[3][3][3][REDUCED], double (&out)[3][3][3][REDUCED]) {
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                for (int k = 0; k < 3; ++k)
+                    for (int e = 0; e < REDUCED; ++e) {
+                        const int row = AXIS == 0 ? i : (AXIS == 1 ? j : k);
+                        double v = 0.0;
+                        for (int t = 0; t < 3; ++t) {
+                            v += HALF_ANGLE[row][t] * (AXIS == 0   ? in[t][j][k][e]
+                                                       : AXIS == 1 ? in[i][t][k][e]
+                                                                   : in[i][j][t][e]);
+                        }
+                        out[i][j][k][e] = v;
                     }
     }
 
