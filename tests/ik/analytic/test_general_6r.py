@@ -9,6 +9,7 @@ the solutions' own joint values for their branch names.
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import kinematica._core as _core
 import numpy as np
@@ -198,3 +199,37 @@ def test_params_fields_are_checked() -> None:
         p.candidates(chain.core, T)
     with pytest.raises(ValueError, match=r"N must have shape \(6, 14\)"):
         p.N = np.zeros((14, 6))
+
+
+_URDF_JOINT = """
+  <joint name="j{k}" type="revolute">
+    <parent link="l{k}"/><child link="l{n}"/>
+    <origin xyz="{xyz}" rpy="{rpy}"/><axis xyz="{axis}"/>
+    <limit lower="-3.14159" upper="3.14159" effort="1" velocity="1"/>
+  </joint>"""
+
+
+def test_a_urdf_chain_with_axes_off_z_is_solved(tmp_path: Path) -> None:
+    # joint frames that are no DH frames: origins with roll-pitch-yaw, axes along y or x
+    rng = np.random.default_rng(12)
+    axes = ["0 1 0", "1 0 0", "0 0 1", "0 1 0", "1 0 0", "0 1 0"]
+    joints = "".join(
+        _URDF_JOINT.format(
+            k=k,
+            n=k + 1,
+            xyz=" ".join(f"{v:.4f}" for v in rng.uniform(-0.3, 0.3, 3)),
+            rpy=" ".join(f"{v:.4f}" for v in rng.uniform(-1.0, 1.0, 3)),
+            axis=axes[k],
+        )
+        for k in range(6)
+    )
+    links = "".join(f'<link name="l{k}"/>' for k in range(7))
+    path = tmp_path / "arm.urdf"
+    path.write_text(f'<robot name="skew">{links}{joints}</robot>')
+    robot = km.load(path)
+    q = rng.uniform(-math.pi, math.pi, (10, 6))
+    res = robot.ik(robot.fk(q))
+    assert res.method == "analytic:general-6R"
+    for i in range(len(q)):
+        assert res[i].status == "ok"
+        assert joint_distance(robot, res[i].solutions, q[i]).min() <= FOUND_TOL
