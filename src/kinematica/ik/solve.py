@@ -19,6 +19,7 @@ import kinematica._core as _core
 from kinematica.core import Chain, resolve_workers
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.analytic import SOLVERS
+from kinematica.ik.analytic.general_6r import numeric_note
 from kinematica.ik.fallback import (
     FALLBACK_NOTE,
     INCOMPLETE_NOTE,
@@ -76,6 +77,16 @@ def closed_form(chain: Chain, target: TargetKind) -> ClosedForm | None:
             found = position if position is not None and not position.partial else None
         per_chain[target] = found
     return per_chain[target]
+
+
+def _why_numeric(
+    chain: Chain, closed: ClosedForm | None, kind: TargetKind, mask: Any
+) -> tuple[str, ...]:
+    """The note saying why the search answers a pose no closed form takes (or none)."""
+    if closed is not None or kind != "pose" or mask is not None:
+        return ()
+    note = numeric_note(features(chain))
+    return () if note is None else (note,)
 
 
 def _q0(chain: Chain, q0: ArrayLike | None, targets: Targets) -> FloatArray | None:
@@ -167,8 +178,10 @@ def pose_solver(chain: Chain, kind: TargetKind = "pose") -> PoseSolver:
     solver, labels, name = _solver(chain, closed, tolerance, True, None, w)
     complete = closed is not None
     opts = _options(tolerance, True, complete, w)
-    direct = closed is None or (
-        (closed.exact or slack_of(chain) == 0.0) and not (closed.partial or closed.search_note)
+    direct = (closed is None and not _why_numeric(chain, None, kind, None)) or (
+        closed is not None
+        and (closed.exact or slack_of(chain) == 0.0)
+        and not (closed.partial or closed.search_note)
     )
     return PoseSolver(solver.ik_rigid, opts, labels, name, complete, direct)
 
@@ -296,7 +309,8 @@ def _solve(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IK
             if slack:
                 notes = (*notes, INCOMPLETE_NOTE)
         out = _limited(chain, targets.poses, out, respect_limits, tolerance, w)
-        return result_of(*out, name, complete, notes)
+        reason = _why_numeric(chain, closed, kind, m) if method == "auto" else ()
+        return result_of(*out, name, complete, (*notes, *reason))
     invalid = None
     if targets.invalid:
         invalid = np.zeros(targets.poses.shape[0], dtype=bool)
@@ -308,6 +322,10 @@ def _solve(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IK
         return tuple(int(v) for v in np.unravel_index(i, shape))
 
     batch_notes = {where(i): note for i, note in targets.notes.items()}
+    if method == "auto" and (reason := _why_numeric(chain, closed, kind, m)):
+        for i in range(targets.poses.shape[0]):
+            if i not in targets.invalid:
+                batch_notes[where(i)] = (*batch_notes.get(where(i), ()), *reason)
     methods: dict[tuple[int, ...], str] = {}
     if slack or partial:
         rows = np.flatnonzero(needs_search(raw["status"]))

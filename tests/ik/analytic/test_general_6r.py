@@ -233,3 +233,14 @@ def test_a_urdf_chain_with_axes_off_z_is_solved(tmp_path: Path) -> None:
     for i in range(len(q)):
         assert res[i].status == "ok"
         assert joint_distance(robot, res[i].solutions, q[i]).min() <= FOUND_TOL
+
+
+def test_a_6_joint_arm_with_a_slide_goes_to_the_search_and_says_why() -> None:
+    rows = list(_robot(np.random.default_rng(1), False).links)
+    rows[2] = km.Prismatic(theta=0.3, a=0.1, alpha=1.1, offset=0.2)
+    robot = km.Robot.from_dh(rows)
+    T = robot.fk(np.array([0.1, 0.2, 0.3, 0.4, 0.5, 0.6]))
+    for res in (robot.ik(T), robot.ik(np.stack([T, T]))[1]):
+        assert res.method == "numeric:lm"
+        assert any("revolute joints only (joint 3 slides)" in n for n in res.notes)
+    assert not robot.ik(T, method="numeric").notes  # asked for: nothing to explain
