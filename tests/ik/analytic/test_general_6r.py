@@ -11,7 +11,6 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-import kinematica._core as _core
 import numpy as np
 import pytest
 from support.ik_search import dls_solutions, joint_distance
@@ -184,21 +183,6 @@ def test_special_families_keep_their_arms_and_6r_arms_with_a_slide_are_not_taken
     rows[2] = km.Prismatic(theta=0.3, a=0.1, alpha=1.1, offset=0.2)
     robot = km.Robot.from_dh(rows)
     assert not g6.SPEC.handles(features(robot.chain))
-
-
-def test_params_fields_are_checked() -> None:
-    p = _core.general6r.General6RParams()
-    T = np.eye(4)
-    chain = _robot(np.random.default_rng(2), False).chain
-    p.t_link = 1
-    with pytest.raises(ValueError, match="t_link"):
-        p.candidates(chain.core, T)
-    p.t_link = 5
-    p.order = np.array([0, 0, 1, 2, 3, 4])
-    with pytest.raises(ValueError, match="permutation"):
-        p.candidates(chain.core, T)
-    with pytest.raises(ValueError, match=r"N must have shape \(6, 14\)"):
-        p.N = np.zeros((14, 6))
 
 
 _URDF_JOINT = """
