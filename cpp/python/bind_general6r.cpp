@@ -55,8 +55,6 @@ void bind_general6r(nb::module_& m) {
     sub.attr("LEADING_RCOND_TOL") = kg::LEADING_RCOND_TOL;
     sub.attr("CLOSURE_TOL") = kg::CLOSURE_TOL;
     sub.attr("SECOND_SHIFT") = kg::SECOND_SHIFT;
-    sub.attr("REFINE_TOL") = kg::REFINE_TOL;
-    sub.attr("REFINE_STEPS") = kg::REFINE_STEPS;
     sub.attr("DOUBLE_ROOT_TOL") = kg::DOUBLE_ROOT_TOL;
 
     auto cls = bind_closed_form<General6RParams>(

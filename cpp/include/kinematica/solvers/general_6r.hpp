@@ -79,12 +79,6 @@ constexpr double DOUBLE_ROOT_TOL = 1e-10;
 //! check says not_found, and the numeric search is asked). Wide: the check's polish
 //! (POLISH_LIMIT = 1e-5) starts from candidates this far and closer.
 constexpr double CLOSURE_TOL = 1e-4;
-//! Candidates whose closure error is above this (and within CLOSURE_TOL) get Newton
-//! steps on the loop (scaled length + rad): far below the check's tolerances.
-constexpr double REFINE_TOL = 1e-12;
-//! Newton steps of that refinement, at most: from CLOSURE_TOL, quadratic convergence
-//! reaches round-off in three.
-constexpr int REFINE_STEPS = 4;
 //! The grid of angles the trigonometric polynomials are found from: 0, 2π/3, 4π/3.
 constexpr double GRID_STEP = 2.0 * PI / 3.0;
 
@@ -294,47 +288,10 @@ struct General6RParams {
         const Pose right = L[2] * rz(a4) * L[3] * rz(a5) * L[4] * rz(a6) * L[5];
         const Pose W = inverse(right * left);
         const double a3 = std::atan2(W.x.y - W.y.x, W.x.x + W.y.y);
-        double a[6] = {a1, a2, a3, a4, a5, a6};
-        // W = Rz(q'3) exactly when the loop closes: W's z axis is z, its origin 0
-        double gap = norm(W.p) + std::fabs(W.z.x) + std::fabs(W.z.y);
-        if (gap > REFINE_TOL && gap <= CLOSURE_TOL) gap = refine(L, a);
+        const double a[6] = {a1, a2, a3, a4, a5, a6};
         for (int k = 0; k < 6; ++k) q[order[k]] = wrap(sign * a[k]);
-        return gap;
-    }
-
-    //! Newton steps on the loop's closure Rz(a1) L1 ... Rz(a6) L6 = I (REFINE_STEPS at
-    //! most): an ill-conditioned elimination (an arm near a special family) leaves its
-    //! candidates up to CLOSURE_TOL off, beyond the check's polish. Returns the closure
-    //! error left (scaled length + rad); a is kept only where the step made it smaller.
-    static double refine(const Pose* L, double* a) {
-        double best = INF;
-        for (int step = 0; step <= REFINE_STEPS; ++step) {
-            // the running frame before each joint's rotation, and the loop's product F
-            Pose F;
-            Vec3 w[6], o[6];
-            for (int k = 0; k < 6; ++k) {
-                w[k] = F.z;
-                o[k] = F.p;
-                F = F * rz(a[k]) * L[k];
-            }
-            // error of F against I: position, and the rotation's small-angle vector
-            const Vec3 ep = F.p;
-            const Vec3 er = {0.5 * (F.y.z - F.z.y), 0.5 * (F.z.x - F.x.z), 0.5 * (F.x.y - F.y.x)};
-            const double gap = norm(ep) + norm(er);
-            if (!(gap < best) || step == REFINE_STEPS) return std::fmin(gap, best);
-            best = gap;
-            Eigen::Matrix<double, 6, 6> J;
-            Eigen::Matrix<double, 6, 1> e;
-            for (int k = 0; k < 6; ++k) {
-                const Vec3 v = cross(w[k], F.p - o[k]);
-                J(0, k) = v.x, J(1, k) = v.y, J(2, k) = v.z;
-                J(3, k) = w[k].x, J(4, k) = w[k].y, J(5, k) = w[k].z;
-            }
-            e << ep.x, ep.y, ep.z, er.x, er.y, er.z;
-            const Eigen::Matrix<double, 6, 1> d = J.fullPivLu().solve(e);
-            for (int k = 0; k < 6; ++k) a[k] -= d(k);
-        }
-        return best;
+        // W = Rz(q'3) exactly when the loop closes: W's z axis is z, its origin 0
+        return norm(W.p) + std::fabs(W.z.x) + std::fabs(W.z.y);
     }
 
     //! u with M(x) u = 0 (M = A0 + x A1 + x² A2, divided by x² when |x| > 1): from the
