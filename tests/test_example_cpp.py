@@ -26,8 +26,22 @@ pytestmark = [
     pytest.mark.skipif(CXX is None, reason="no C++ compiler"),
     pytest.mark.filterwarnings("ignore::kinematica.KinematicaWarning"),
 ]
+# Eigen's headers (PyPI's cmeel-eigen, a test and build requirement): the general 6R's
+# header includes them; -isystem, as CMake gives them to the extension.
+EIGEN = [
+    str(Path(entry) / "cmeel.prefix" / "include" / "eigen3")
+    for entry in sys.path
+    if entry and (Path(entry) / "cmeel.prefix" / "include" / "eigen3").is_dir()
+][:1]
 WARNINGS = ["-Wall", "-Wextra", "-Werror"]
-FLAGS = ["-std=c++17", "-O1", *WARNINGS, "-I", str(ROOT / "cpp" / "include")]
+FLAGS = [
+    "-std=c++17",
+    "-O1",
+    *WARNINGS,
+    "-I",
+    str(ROOT / "cpp" / "include"),
+    *(flag for path in EIGEN for flag in ("-isystem", path)),
+]
 
 
 def _build(source: Path, include: Path, out: Path) -> None:

@@ -9,6 +9,7 @@ void bind_elbow(nb::module_& m);
 void bind_decoupled(nb::module_& m);
 void bind_parallel(nb::module_& m);
 void bind_srs(nb::module_& m);
+void bind_general6r(nb::module_& m);
 
 void bind_solvers(nb::module_& m) {
     bind_planar(m);
@@ -16,6 +17,7 @@ void bind_solvers(nb::module_& m) {
     bind_decoupled(m);
     bind_parallel(m);
     bind_srs(m);
+    bind_general6r(m);
 }
 
 }  // namespace kmpy

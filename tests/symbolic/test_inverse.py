@@ -164,3 +164,19 @@ def test_report_ik_vocabulary_es() -> None:
     wrist = symbolic.report("arm6-dh", lang="es")
     assert "muñeca esférica" in wrist and "Desacoplo cinemático" in wrist
     assert "{}^{3}R_{6}" in wrist and "Singularidad de la muñeca" in wrist
+
+
+def test_report_of_a_general_6r_arm_names_the_elimination() -> None:
+    # right-angle twists keep sympy quick; the offsets fit no special family
+    rows = [
+        km.Revolute(d=d, a=a, alpha=alpha)
+        for d, a, alpha in [
+            (0.3, 0.1, np.pi / 2), (0.05, 0.4, 0.0), (0.1, 0.05, np.pi / 2),
+            (0.35, 0.02, -np.pi / 2), (0.04, 0.03, np.pi / 2), (0.1, 0.0, 0.0),
+        ]
+    ]  # fmt: skip
+    robot = km.Robot.from_dh(rows, name="general")
+    assert robot.ik(robot.fk(np.full(6, 0.3))).method == "analytic:general-6R"
+    text = symbolic.report(robot, lang="en")
+    assert "Raghavan-Roth elimination to a 12x12 quadratic eigenproblem" in text
+    assert "analytic (general-6R)" in text and "24x24" in text

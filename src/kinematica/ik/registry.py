@@ -50,6 +50,8 @@ class ClosedForm:
     params: Any
     position_only: bool = False
     partial: bool = False
+    exact: bool = False
+    search_note: str = ""
 
     @property
     def slots(self) -> int:

@@ -20,6 +20,7 @@ import kinematica._core as _core
 from kinematica.core import Chain, resolve_workers
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.analytic import SOLVERS
+from kinematica.ik.analytic.general_6r import numeric_note
 from kinematica.ik.at_values import AtValues, parameter_values
 from kinematica.ik.fallback import (
     FALLBACK_NOTE,
@@ -101,6 +102,16 @@ def _at_parameter(
             arg="arm_angle",
         )
     return replace(closed, params=AtValues(closed.params, values))
+
+
+def _why_numeric(
+    chain: Chain, closed: ClosedForm | None, kind: TargetKind, mask: Any
+) -> tuple[str, ...]:
+    """The note saying why the search answers a pose no closed form takes (or none)."""
+    if closed is not None or kind != "pose" or mask is not None:
+        return ()
+    note = numeric_note(features(chain))
+    return () if note is None else (note,)
 
 
 def _q0(chain: Chain, q0: ArrayLike | None, targets: Targets) -> FloatArray | None:
@@ -198,7 +209,11 @@ def pose_solver(
     solver, labels, name = _solver(chain, closed, tolerance, True, None, w)
     complete = closed is not None
     opts = _options(tolerance, True, complete, w)
-    direct = closed is None or (slack_of(chain) == 0.0 and not closed.partial)
+    direct = (closed is None and not _why_numeric(chain, None, kind, None)) or (
+        closed is not None
+        and (closed.exact or slack_of(chain) == 0.0)
+        and not (closed.partial or closed.search_note)
+    )
     return PoseSolver(solver.ik_rigid, opts, labels, name, complete, direct)
 
 
@@ -312,13 +327,15 @@ def _solve(
             suggest=("arm_angle", 0.0) if at_angle else ("method", "numeric"),
         )
     solver, labels, name = _solver(chain, closed, tolerance, respect_limits, seed, w)
-    slack = slack_of(chain) if closed is not None else 0.0
+    slack = slack_of(chain) if closed is not None and not closed.exact else 0.0
     complete = closed is not None and slack == 0.0
     opts = _options(tolerance, respect_limits, complete, w, slack)
 
     # a closed form that may miss a solution: a target it found nothing for is searched
-    partial = closed is not None and closed.partial
+    partial = closed is not None and (closed.partial or bool(closed.search_note))
     searched_note = FALLBACK_NOTE if slack else PARTIAL_NOTE
+    if closed is not None and closed.search_note:
+        searched_note = closed.search_note
 
     def search(rows: Any) -> tuple[Any, _core.CheckOptions, FloatArray]:  # the second method
         """The search, its options, and the first guesses of the targets ``rows``."""
@@ -344,7 +361,8 @@ def _solve(
             if slack:
                 notes = (*notes, INCOMPLETE_NOTE)
         out = _limited(chain, targets.poses, out, respect_limits, tolerance, w)
-        return result_of(*out, name, complete, notes)
+        reason = _why_numeric(chain, closed, kind, m) if method == "auto" else ()
+        return result_of(*out, name, complete, (*notes, *reason))
     invalid = None
     if targets.invalid:
         invalid = np.zeros(targets.poses.shape[0], dtype=bool)
@@ -356,6 +374,10 @@ def _solve(
         return tuple(int(v) for v in np.unravel_index(i, shape))
 
     batch_notes = {where(i): note for i, note in targets.notes.items()}
+    if method == "auto" and (reason := _why_numeric(chain, closed, kind, m)):
+        for i in range(targets.poses.shape[0]):
+            if i not in targets.invalid:
+                batch_notes[where(i)] = (*batch_notes.get(where(i), ()), *reason)
     methods: dict[tuple[int, ...], str] = {}
     if slack or partial:
         rows = np.flatnonzero(needs_search(raw["status"]) & (values is None))

@@ -63,9 +63,14 @@ def _assignments(obj: Any, path: str) -> list[str]:
         target = f"{path}.{name}"
         if isinstance(value, enum.Enum):
             lines.append(f"{target} = static_cast<decltype({target})>({int(value.value)});")
-        elif isinstance(value, np.ndarray) and value.shape == (4, 4):  # a Pose, or double[4][4]
-            rows = ", ".join(_scalar(v) for v in value.ravel())
-            lines.append(f"km::assign_rows({target}, std::array<double, 16>{{{rows}}}.data());")
+        elif isinstance(value, np.ndarray) and value.shape[-2:] == (4, 4):
+            # a Pose or double[4][4], or an array of them (Pose link[6])
+            for index in np.ndindex(value.shape[:-2]):
+                where = "".join(f"[{i}]" for i in index)
+                rows = ", ".join(_scalar(v) for v in value[index].ravel())
+                lines.append(
+                    f"km::assign_rows({target}{where}, std::array<double, 16>{{{rows}}}.data());"
+                )
         elif isinstance(value, np.ndarray):
             for index in np.ndindex(value.shape):
                 where = "".join(f"[{i}]" for i in index)

@@ -366,6 +366,8 @@ def _inverse(w: _Writer, d: InverseDerivation | None, model: SymbolicRobot, meth
         # a recipe with no symbolic steps (yet) is said in words
         recipe = structure.spec.derivation if structure.spec is not None else None
         key = "ik.reversed" if recipe == "reversed-spherical-wrist" else "ik.none"
+        if structure.kind == "general-6R":
+            key = "ik.general6r"
         w.para(key, summary=structure_summary(structure, w.lang), method=method)
         return
     p, R = target_symbols()

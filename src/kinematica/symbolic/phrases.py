@@ -193,6 +193,37 @@ PHRASES: Final[dict[str, tuple[str, str]]] = {
         "There is no textbook closed-form derivation for this structure "
         "({summary}); robot.ik solves it (method {method}).",
     ),
+    "ik.general6r": (
+        "No hay una derivación de libro de texto para esta estructura ({summary}); "
+        "robot.ik la resuelve en forma cerrada (método {method}): eliminación de "
+        "Raghavan-Roth a un problema de autovalores 12x12 cuadrático (Manocha-Canny), "
+        "calculado numéricamente para el brazo. (1) El eje de una articulación (la 3, "
+        "o la que pida el etiquetado que el solver elige: la cadena girada o invertida) "
+        "se escribe de dos maneras: con q1, q2 desde la base y con q4, q5, q6 desde el "
+        "objetivo. (2) Su punto p y su dirección l dan 14 ecuaciones (p, l, p·p, p·l, "
+        "p×l, (p·p) l - 2 (p·l) p), lineales en los 8 productos de senos y cosenos de "
+        "q1 y q2. (3) Eliminados esos 8 productos, quedan 6 ecuaciones en q4, q5, q6. "
+        "(4) Con x = tan(q/2), esas 6 y sus productos por x4 son 12 ecuaciones lineales "
+        "en los 12 monomios x4^i x5^j: M(x6) u = 0, M cuadrática en x6. (5) det M(x6) = 0 "
+        "(grado 24, hasta 16 raíces reales): sus raíces son los autovalores de una "
+        "matriz 24x24. (6) Cada raíz real da u, luego q4 y q5; q1 y q2 salen de las 14 "
+        "ecuaciones y q3 de cerrar la cadena. Cada candidata se comprueba por "
+        "cinemática directa.",
+        "There is no textbook derivation for this structure ({summary}); robot.ik "
+        "solves it in closed form (method {method}): Raghavan-Roth elimination to a "
+        "12x12 quadratic eigenproblem (Manocha-Canny), computed numerically for the "
+        "arm. (1) The axis of one joint (joint 3, or the one the labelling the solver "
+        "chooses asks for: the chain turned or reversed) is written two ways: with q1, "
+        "q2 from the base and with q4, q5, q6 from the target. (2) Its point p and "
+        "direction l give 14 equations (p, l, p·p, p·l, p×l, (p·p) l - 2 (p·l) p), linear "
+        "in the 8 products of the sines and cosines of q1 and q2. (3) With those 8 "
+        "eliminated, 6 equations in q4, q5, q6 are left. (4) With x = tan(q/2), those 6 "
+        "and their products with x4 are 12 equations linear in the 12 monomials "
+        "x4^i x5^j: M(x6) u = 0, M quadratic in x6. (5) det M(x6) = 0 (degree 24, up to "
+        "16 real roots): its roots are the eigenvalues of a 24x24 matrix. (6) Each real "
+        "root gives u, hence q4 and q5; q1 and q2 come from the 14 equations and q3 "
+        "from closing the chain. Every candidate is checked by forward kinematics.",
+    ),
     "ik.frame1": (
         "El objetivo en el sistema cuyo eje z es el eje 1:",
         "The target in the frame whose z axis is axis 1:",

@@ -9,6 +9,7 @@ from __future__ import annotations
 from kinematica.ik.analytic import (
     arm_position,
     elbow_arms,
+    general_6r,
     parallel,
     planar_arms,
     spherical_shoulder,
@@ -28,5 +29,6 @@ SOLVERS: tuple[SolverSpec, ...] = (
     *spherical_wrist.SPECS,
     *spherical_shoulder.SPECS,  # an arm with a spherical wrist too is the wrist's
     srs.SPEC,  # at an arm angle only (robot.ik(T, arm_angle=...))
+    general_6r.SPEC,  # any other 6R arm: after every special family, which keep theirs
     arm_position.SPEC,  # position targets of any longer arm: tried last
 )

@@ -1,0 +1,397 @@
+// Closed-form IK of any 6R arm: Raghavan-Roth elimination, Manocha-Canny's eigenproblem.
+//
+// Any revolute chain is a loop of rotations about z and fixed transforms (the target T in
+// one of them, built by the Python builder for a chosen labelling of the joints):
+//
+//     I = Rz(q'1) L1 Rz(q'2) L2 Rz(q'3) L3 Rz(q'4) L4 Rz(q'5) L5 Rz(q'6) L6
+//
+// q'k = sign · q[order[k]] (the chain rotated cyclically, or reversed: sign -1). Joint 3'
+// turns about the z axis of the frame after L2, so that line (point p, direction l) is
+//
+//     Rz(q'1) L1 Rz(q'2) L2 · z  =  L6⁻¹ Rz(-q'6) L5⁻¹ Rz(-q'5) L4⁻¹ Rz(-q'4) L3⁻¹ · z
+//
+// (q'3 eliminated). L1, L2 hold no T: the left side's 14 quantities p, l, p·p, p·l, p×l,
+// (p·p) l - 2 (p·l) p are, per arm, c0 + Q S2 with S2 the 8 products of (1, c1', s1') ⊗
+// (1, c2', s2') but 1 (Raghavan-Roth: these quantities keep that form), Q 14 x 8 and c0
+// constant. N (6 x 14), the left null space of Q (from the builder), leaves 6 equations
+// N (F(q'4, q'5, q'6) - c0) = 0 in the right side only. Each is a trilinear trigonometric
+// polynomial; it is found exactly from its values on a 3 x 3 x 3 grid of angles (shifted
+// by phi, so that no genuine root sits at tan(π/2)), then the half-angle substitution
+// x = tan((q' - phi)/2) makes it a polynomial of degree 2 in each of x4, x5, x6. The 6
+// equations and their products with x4 are 12 equations linear in the 12 monomials
+// x4^i x5^j (i <= 3, j <= 2): M(x6) u = 0 with M = A0 + A1 x6 + A2 x6², so det M(x6) = 0
+// (degree 24: up to 16 genuine real roots). Its roots are the eigenvalues of the 24 x 24
+// companion pencil; each real one gives u (M's null vector) hence x4, x5, then S2 = Q⁺(F - c0)
+// gives q'1, q'2 and the loop's closure q'3. The shared check polishes every candidate by
+// Gauss-Newton on the full pose, dedupes and judges it.
+//
+// Why Eigen: the eigenproblem needs a Hessenberg-QR and a full-pivot LU; Eigen's are well kept and tested, where our own would be a second,
+// less tested copy of LAPACK's algorithms. Only this header and its binding include it.
+//
+// Branch labels: a candidate's class is the signs of sin q2, sin q3, sin q5 (joint values
+// in (0, π) or not), 4 slots per class ordered by q1; a ninth group of slots holds the
+// members beyond 4 of a class (rare), labelled "further solution".
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <cmath>
+#include <complex>
+
+#include "../config.hpp"
+#include "../ik_types.hpp"
+#include "../so3.hpp"
+#include "../trig.hpp"
+#include "../types.hpp"
+
+namespace km::general6r {
+
+constexpr int EQUATIONS = 14;  //!< p, l, p·p, p·l, p×l, (p·p) l - 2 (p·l) p
+constexpr int PRODUCTS = 8;    //!< the products of (1, c1', s1') ⊗ (1, c2', s2') but 1
+constexpr int REDUCED = 6;     //!< equations left once the products are eliminated
+constexpr int SIZE = 12;       //!< the matrix M(x6)
+constexpr int ROOTS = 24;      //!< degree of det M(x6)
+constexpr int CLASSES = 8;     //!< sign classes of (sin q2, sin q3, sin q5)
+constexpr int PER_CLASS = 4;   //!< slots of one class
+constexpr int FURTHER = 8;     //!< slots of the members beyond PER_CLASS of a class
+constexpr int SLOTS = CLASSES * PER_CLASS + FURTHER;
+
+//! An eigenvalue x is a real root when |Im x| <= this · (1 + |x|). Generous: a double
+//! root splits into a complex pair of imaginary part ~ sqrt(round-off), whose real part is
+//! still a candidate the check polishes; a genuinely complex root that passes is rejected
+//! by the check (its FK misses the target).
+constexpr double REAL_ROOT_TOL = 1e-4;
+//! The companion matrix A2⁻¹(...) is used when A2's reciprocal condition number (LU
+//! estimate) is above this; below (a root near x6 = ∞), the pencil is made again with
+//! q'6 shifted by SECOND_SHIFT more, which brings that root to a finite x6.
+constexpr double LEADING_RCOND_TOL = 1e-8;
+//! The second shift of q'6 (rad): far from 0 and π, so that a root at x6 = ∞ for the
+//! first is at |x6| = 1 / tan(SECOND_SHIFT / 2) ≈ 1.5 for the second.
+constexpr double SECOND_SHIFT = 1.1;
+//! M(x6) at a root has a null space of dimension 2 or more (a double root or a
+//! continuum: near is raised) when its full-pivot LU's second smallest pivot is below
+//! this times the largest.
+constexpr double DOUBLE_ROOT_TOL = 1e-10;
+//! A candidate "closes the loop" when its closure (the loop's product with q'3 taken from
+//! it) is within this of the identity (scaled lengths: of the arm's size; rad): a target
+//! none of whose candidates closes is not proven unreachable (near is raised, so the
+//! check says not_found, and the numeric search is asked). Wide: the check's polish
+//! (POLISH_LIMIT = 1e-5) starts from candidates this far and closer.
+constexpr double CLOSURE_TOL = 1e-4;
+//! The grid of angles the trigonometric polynomials are found from: 0, 2π/3, 4π/3.
+constexpr double GRID_STEP = 2.0 * PI / 3.0;
+
+using Matrix12 = Eigen::Matrix<double, SIZE, SIZE>;
+using Matrix24 = Eigen::Matrix<double, 2 * SIZE, 2 * SIZE>;
+using Vector12 = Eigen::Matrix<double, SIZE, 1>;
+
+//! The line (point, direction) a loop carries.
+struct Line {
+    Vec3 p{}, l{0.0, 0.0, 1.0};
+};
+
+//! A transform applied to a line.
+KM_HD inline Line apply(const Pose& A, const Line& L) { return {A.apply(L.p), A.rotate(L.l)}; }
+
+//! Rz(a) applied to a line (c, s: cosine and sine of a).
+KM_HD inline Line turn(double c, double s, const Line& L) {
+    return {{c * L.p.x - s * L.p.y, s * L.p.x + c * L.p.y, L.p.z},
+            {c * L.l.x - s * L.l.y, s * L.l.x + c * L.l.y, L.l.z}};
+}
+
+//! Rz(a) as a pose.
+KM_HD inline Pose rz(double a) {
+    double s, c;
+    sincos(a, s, c);
+    Pose P;
+    P.x = {c, s, 0.0};
+    P.y = {-s, c, 0.0};
+    return P;
+}
+
+//! The 14 quantities of a line's point and direction.
+KM_HD inline void quantities(const Line& L, double* f) {
+    const Vec3& p = L.p;
+    const Vec3& l = L.l;
+    const double pp = dot(p, p), pl = dot(p, l);
+    const Vec3 x = cross(p, l);
+    f[0] = p.x, f[1] = p.y, f[2] = p.z;
+    f[3] = l.x, f[4] = l.y, f[5] = l.z;
+    f[6] = pp, f[7] = pl;
+    f[8] = x.x, f[9] = x.y, f[10] = x.z;
+    f[11] = pp * l.x - 2.0 * pl * p.x;
+    f[12] = pp * l.y - 2.0 * pl * p.y;
+    f[13] = pp * l.z - 2.0 * pl * p.z;
+}
+
+//! From a trigonometric polynomial's values at the grid angles (0, 2π/3, 4π/3) to the
+//! coefficients of 1, x, x² of (1 + x²) times it, x = tan(angle/2): the inverse of the
+//! grid's (1, cos, sin) matrix, then (1, c, s)(1 + x²) = (1 + x², 1 - x², 2x).
+constexpr double HALF_ANGLE[3][3] = {
+    {1.0, 0.0, 0.0},
+    {0.0, 1.1547005383792515, -1.1547005383792515},  // ±2/√3
+    {-1.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0},
+};
+
+//! A general 6R arm: its loop for one labelling of the joints, and the elimination's
+//! constants (lengths scaled by `scale`, so that the arm's size is about 1).
+struct General6RParams {
+    Pose link[6]{};          //!< L1 ... L6 (the one holding T: unused)
+    int t_link = 5;          //!< which L holds the target: L = t_pre · T^t_power · t_post
+    int t_power = -1;        //!< +1 or -1
+    Pose t_pre{}, t_post{};  //!< (scaled lengths)
+    int order[6] = {0, 1, 2, 3, 4, 5};  //!< q'k = sign · q[order[k]]
+    double sign = 1.0;                  //!< -1: the chain reversed
+    double scale = 1.0;                 //!< lengths times this (1 / the arm's size)
+    double N[REDUCED][EQUATIONS]{};     //!< left null space of Q (rows orthonormal)
+    double c0[EQUATIONS]{};             //!< the left side's constant part
+    double Qp[PRODUCTS][EQUATIONS]{};   //!< Q's pseudo-inverse
+    double phi[3] = {0.0, 0.0, 0.0};    //!< shifts of q'4, q'5, q'6 (rad)
+    //! The tool origin stays within `reach` (m) of `centre` (base frame, m): a point on
+    //! axis 1 and the sum of the joints' fixed offsets. Beyond it: a proven gap.
+    Vec3 centre{};
+    double reach = INF;
+
+    int slots() const { return SLOTS; }
+
+    //! Why these fields cannot be solved with (nullptr when they can).
+    const char* invalid() const {
+        if (t_link < 2 || t_link > 5) return "t_link must be 2, 3, 4 or 5 (L1, L2 hold no target)";
+        if (t_power != 1 && t_power != -1) return "t_power must be 1 or -1";
+        if (sign != 1.0 && sign != -1.0) return "sign must be 1 or -1";
+        bool seen[6] = {};
+        for (int k = 0; k < 6; ++k) {
+            if (order[k] < 0 || order[k] > 5 || seen[order[k]]) return "order must be a permutation of 0..5";
+            seen[order[k]] = true;
+        }
+        return nullptr;
+    }
+    int dof() const { return 6; }
+
+    //! L_k of one target (T scaled).
+    Pose link_of(int k, const Pose& T) const {
+        if (k != t_link) return link[k];
+        return t_pre * (t_power > 0 ? T : inverse(T)) * t_post;
+    }
+
+    //! The right side's line at (q'4, q'5, q'6), from the inverses Li of L3 ... L6.
+    static Line right_side(const Pose* Li, double a4, double a5, double a6) {
+        double s, c;
+        Line L = apply(Li[0], Line{});
+        sincos(a4, s, c);
+        L = apply(Li[1], turn(c, -s, L));
+        sincos(a5, s, c);
+        L = apply(Li[2], turn(c, -s, L));
+        sincos(a6, s, c);
+        return apply(Li[3], turn(c, -s, L));
+    }
+
+    //! The 12 x 12 matrices A0, A1, A2 of M(x6) for the inverses Li of L3 ... L6, with
+    //! x6 = tan((q'6 - shift6) / 2).
+    void pencil(const Pose* Li, double shift6, Matrix12 A[3]) const {
+        // G[a][b][c][e]: the 6 equations at the grid point (a, b, c)
+        double G[3][3][3][REDUCED];
+        for (int a = 0; a < 3; ++a) {
+            double s, c;
+            sincos(a * GRID_STEP + phi[0], s, c);
+            const Line L4 = apply(Li[1], turn(c, -s, apply(Li[0], Line{})));
+            for (int b = 0; b < 3; ++b) {
+                sincos(b * GRID_STEP + phi[1], s, c);
+                const Line L5 = apply(Li[2], turn(c, -s, L4));
+                for (int g = 0; g < 3; ++g) {
+                    sincos(g * GRID_STEP + shift6, s, c);
+                    double f[EQUATIONS];
+                    quantities(apply(Li[3], turn(c, -s, L5)), f);
+                    for (int k = 0; k < EQUATIONS; ++k) f[k] -= c0[k];
+                    for (int e = 0; e < REDUCED; ++e) {
+                        double v = 0.0;
+                        for (int k = 0; k < EQUATIONS; ++k) v += N[e][k] * f[k];
+                        G[a][b][g][e] = v;
+                    }
+                }
+            }
+        }
+        // the half-angle coefficients, one variable at a time: H[i4][i5][i6][e]
+        double H1[3][3][3][REDUCED], H2[3][3][3][REDUCED], H[3][3][3][REDUCED];
+        half_angle<0>(G, H1);
+        half_angle<1>(H1, H2);
+        half_angle<2>(H2, H);
+        for (int k = 0; k < 3; ++k) A[k].setZero();
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                for (int k = 0; k < 3; ++k)
+                    for (int e = 0; e < REDUCED; ++e) {
+                        // equation e times 1 (row 2e) and times x4 (row 2e + 1)
+                        A[k](2 * e, 3 * i + j) = H[i][j][k][e];
+                        A[k](2 * e + 1, 3 * (i + 1) + j) = H[i][j][k][e];
+                    }
+    }
+
+    //! HALF_ANGLE applied along one axis (0: q'4, 1: q'5, 2: q'6) of grid values.
+    template <int AXIS>
+    static void half_angle(const double (&in)[3][3][3][REDUCED], double (&out)[3][3][3][REDUCED]) {
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                for (int k = 0; k < 3; ++k)
+                    for (int e = 0; e < REDUCED; ++e) {
+                        const int row = AXIS == 0 ? i : (AXIS == 1 ? j : k);
+                        double v = 0.0;
+                        for (int t = 0; t < 3; ++t) {
+                            v += HALF_ANGLE[row][t] * (AXIS == 0   ? in[t][j][k][e]
+                                                       : AXIS == 1 ? in[i][t][k][e]
+                                                                   : in[i][j][t][e]);
+                        }
+                        out[i][j][k][e] = v;
+                    }
+    }
+
+    //! Angle 2 atan2(num, den) + shift of the half-angle ratio num / den.
+    static double from_half(double num, double den, double shift) {
+        return 2.0 * std::atan2(num, den) + shift;
+    }
+
+    //! One candidate q (joint order) from a real root x6 and its monomial vector u.
+    //! Returns how far the loop is from closing (scaled length + rad): see CLOSURE_TOL.
+    double back_substitute(const Pose* L, const Pose* Li, double x6, double shift6,
+                           const Vector12& u, double* q) const {
+        // x4 = u(i+1, j) / u(i, j), x5 = u(i, j+1) / u(i, j): the best-scaled pair
+        int bi = 0, bj = 0;
+        double best = -1.0;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+                const double w = u(3 * i + j) * u(3 * i + j) + u(3 * (i + 1) + j) * u(3 * (i + 1) + j);
+                if (w > best) best = w, bi = i, bj = j;
+            }
+        const double a4 = from_half(u(3 * (bi + 1) + bj), u(3 * bi + bj), phi[0]);
+        best = -1.0;
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 2; ++j) {
+                const double w = u(3 * i + j) * u(3 * i + j) + u(3 * i + j + 1) * u(3 * i + j + 1);
+                if (w > best) best = w, bi = i, bj = j;
+            }
+        const double a5 = from_half(u(3 * bi + bj + 1), u(3 * bi + bj), phi[1]);
+        const double a6 = 2.0 * std::atan(x6) + shift6;
+        double f[EQUATIONS];
+        quantities(right_side(Li, a4, a5, a6), f);
+        double S[PRODUCTS];
+        for (int r = 0; r < PRODUCTS; ++r) {
+            double v = 0.0;
+            for (int k = 0; k < EQUATIONS; ++k) v += Qp[r][k] * (f[k] - c0[k]);
+            S[r] = v;
+        }
+        // S: c2, s2, c1, c1 c2, c1 s2, s1, s1 c2, s1 s2 (the builder's order)
+        const double a1 = std::atan2(S[5], S[2]);
+        const double a2 = std::atan2(S[1], S[0]);
+        // closure: Rz(q'3) = (Rz1 L1 Rz2 L2)⁻¹ (L3 Rz4 L4 Rz5 L5 Rz6 L6)⁻¹
+        const Pose left = rz(a1) * L[0] * rz(a2) * L[1];
+        const Pose right = L[2] * rz(a4) * L[3] * rz(a5) * L[4] * rz(a6) * L[5];
+        const Pose W = inverse(right * left);
+        const double a3 = std::atan2(W.x.y - W.y.x, W.x.x + W.y.y);
+        const double a[6] = {a1, a2, a3, a4, a5, a6};
+        for (int k = 0; k < 6; ++k) q[order[k]] = wrap(sign * a[k]);
+        // W = Rz(q'3) exactly when the loop closes: W's z axis is z, its origin 0
+        return norm(W.p) + std::fabs(W.z.x) + std::fabs(W.z.y);
+    }
+
+    //! u with M(x) u = 0 (M = A0 + x A1 + x² A2, divided by x² when |x| > 1): from the
+    //! full-pivot LU, whose last pivot is the smallest. A second pivot below
+    //! DOUBLE_ROOT_TOL (relative) means a null space of dimension 2 at least (a double
+    //! root, or a continuum): near is raised.
+    static Vector12 null_vector(const Matrix12* A, double x, SolverInfo& info) {
+        const bool big = std::fabs(x) > 1.0;
+        const double y = big ? 1.0 / x : x;
+        const Matrix12 M = big ? Matrix12(A[2] + y * (A[1] + y * A[0])) : Matrix12(A[0] + y * (A[1] + y * A[2]));
+        const Eigen::FullPivLU<Matrix12> lu(M);
+        const Matrix12& U = lu.matrixLU();
+        if (std::fabs(U(SIZE - 2, SIZE - 2)) <= DOUBLE_ROOT_TOL * std::fabs(U(0, 0))) info.near = true;
+        Vector12 v;
+        v(SIZE - 1) = 1.0;
+        for (int i = SIZE - 2; i >= 0; --i) {
+            double t = -U(i, SIZE - 1);
+            for (int j = i + 1; j < SIZE - 1; ++j) t -= U(i, j) * v(j);
+            v(i) = t / U(i, i);
+        }
+        return lu.permutationQ() * v;
+    }
+
+    //! The sign class of a candidate: bits of sin q2, sin q3, sin q5 > 0.
+    static int sign_class(const double* q) {
+        return (std::sin(q[1]) > 0.0 ? 4 : 0) + (std::sin(q[2]) > 0.0 ? 2 : 0) +
+               (std::sin(q[4]) > 0.0 ? 1 : 0);
+    }
+
+    //! Candidates for one pose T (base frame) into Q (SLOTS x 6), NaN rows elsewhere.
+    void solve(const Pose& T_in, double* Q, SolverInfo& info) const {
+        for (int i = 0; i < SLOTS * 6; ++i) Q[i] = NaN;
+        const double far = norm(T_in.p - centre) - reach;
+        if (far > 0.0) {  // beyond every configuration's reach
+            info.gap = far;
+            return;
+        }
+        Pose T = T_in;
+        T.p = scale * T.p;
+        Pose L[6], Li[4];
+        for (int k = 0; k < 6; ++k) L[k] = link_of(k, T);
+        for (int k = 0; k < 4; ++k) Li[k] = inverse(L[k + 2]);
+        // M(x6) for the shift phi6, or phi6 + SECOND_SHIFT when A2 is ill-conditioned there
+        // (a root near x6 = ∞: q'6 near the shift + π, which the second shift moves to a
+        // finite x6); both ill-conditioned: no leading term, not solved here
+        Matrix12 A[3];
+        double shift6 = phi[2];
+        pencil(Li, shift6, A);
+        Eigen::PartialPivLU<Matrix12> lead(A[2]);
+        if (!(lead.rcond() > LEADING_RCOND_TOL)) {
+            shift6 = phi[2] + SECOND_SHIFT;
+            pencil(Li, shift6, A);
+            lead.compute(A[2]);
+            if (!(lead.rcond() > LEADING_RCOND_TOL)) {
+                info.near = true;  // not proven unreachable: the numeric search is asked
+                return;
+            }
+        }
+        // the real roots x6 of det M(x6): eigenvalues of the companion matrix
+        Matrix24 C = Matrix24::Zero();
+        C.topRightCorner<SIZE, SIZE>().setIdentity();
+        C.bottomLeftCorner<SIZE, SIZE>() = -lead.solve(A[0]);
+        C.bottomRightCorner<SIZE, SIZE>() = -lead.solve(A[1]);
+        const Eigen::EigenSolver<Matrix24> eig(C, false);
+        if (eig.info() != Eigen::Success) {
+            info.near = true;  // not proven unreachable
+            return;
+        }
+        double roots[ROOTS];
+        int found = 0;
+        for (int r = 0; r < ROOTS; ++r) {
+            const std::complex<double> x = eig.eigenvalues()(r);
+            if (std::fabs(x.imag()) <= REAL_ROOT_TOL * (1.0 + std::abs(x))) roots[found++] = x.real();
+        }
+        // candidates into their classes, each ordered by q1
+        int filled[CLASSES] = {};
+        int further = 0;
+        bool closes = false;
+        for (int r = 0; r < found; ++r) {
+            double q[6];
+            const Vector12 u = null_vector(A, roots[r], info);
+            closes |= back_substitute(L, Li, roots[r], shift6, u, q) <= CLOSURE_TOL;
+            const int cls = sign_class(q);
+            int slot;
+            if (filled[cls] < PER_CLASS) {
+                slot = cls * PER_CLASS + filled[cls]++;
+                // insertion by q1 within the class
+                while (slot > cls * PER_CLASS && Q[(slot - 1) * 6] > q[0]) {
+                    for (int k = 0; k < 6; ++k) Q[slot * 6 + k] = Q[(slot - 1) * 6 + k];
+                    --slot;
+                }
+            } else if (further < FURTHER) {
+                slot = CLASSES * PER_CLASS + further++;
+            } else {
+                continue;  // beyond 24 real eigenvalues: not possible (degree 24)
+            }
+            for (int k = 0; k < 6; ++k) Q[slot * 6 + k] = q[k];
+        }
+        info.near = !closes;
+    }
+};
+
+}  // namespace km::general6r

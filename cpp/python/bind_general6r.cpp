@@ -1,0 +1,110 @@
+// The general 6R family: kinematica._core.general6r.
+//
+// General6RParams with a read-write attribute per field and the family's tolerances. The
+// only translation unit that includes Eigen (through general_6r.hpp): compile time counts.
+#include <nanobind/nanobind.h>
+
+#include "casters.hpp"
+#include "common.hpp"
+#include "kinematica/solvers/general_6r.hpp"
+#include "numpy_io.hpp"
+#include "small_fields.hpp"
+#include "solver_binding.hpp"
+
+namespace kmpy {
+
+namespace {
+
+namespace kg = km::general6r;
+using kg::General6RParams;
+
+//! A (R, K) float field: a new array out, any array of exactly that shape in.
+template <int R, int K>
+F64 get_matrix(const double (&v)[R][K]) {
+    double* out;
+    F64 a = new_f64({R, K}, out);
+    for (int i = 0; i < R; ++i)
+        for (int j = 0; j < K; ++j) out[i * K + j] = v[i][j];
+    return a;
+}
+
+template <int R, int K>
+void set_matrix(double (&v)[R][K], nb::handle src, const char* name) {
+    PyArrayObject* a = small::exact_array(src, name, NPY_DOUBLE, R, K);
+    const auto* d = static_cast<const double*>(PyArray_DATA(a));
+    for (int i = 0; i < R; ++i)
+        for (int j = 0; j < K; ++j) v[i][j] = d[i * K + j];
+    Py_DECREF(a);
+}
+
+}  // namespace
+
+void bind_general6r(nb::module_& m) {
+    nb::module_ sub = m.def_submodule(
+        "general6r",
+        "Any 6R arm: Raghavan-Roth elimination to a 12 x 12 quadratic eigenproblem "
+        "(Manocha-Canny), computed numerically from the arm's loop.");
+    sub.attr("EQUATIONS") = kg::EQUATIONS;
+    sub.attr("PRODUCTS") = kg::PRODUCTS;
+    sub.attr("REDUCED") = kg::REDUCED;
+    sub.attr("SLOTS") = kg::SLOTS;
+    sub.attr("CLASSES") = kg::CLASSES;
+    sub.attr("PER_CLASS") = kg::PER_CLASS;
+    sub.attr("FURTHER") = kg::FURTHER;
+    sub.attr("REAL_ROOT_TOL") = kg::REAL_ROOT_TOL;
+    sub.attr("LEADING_RCOND_TOL") = kg::LEADING_RCOND_TOL;
+    sub.attr("CLOSURE_TOL") = kg::CLOSURE_TOL;
+    sub.attr("SECOND_SHIFT") = kg::SECOND_SHIFT;
+    sub.attr("DOUBLE_ROOT_TOL") = kg::DOUBLE_ROOT_TOL;
+
+    auto cls = bind_closed_form<General6RParams>(
+        sub, "General6RParams",
+        "A 6R arm as the loop I = Rz(q'1) L1 ... Rz(q'6) L6 of one labelling of its joints, "
+        "and the elimination's constants (general_6r.hpp).",
+        "km::general6r::General6RParams", "kinematica/solvers/general_6r.hpp");
+    cls.def_prop_rw(
+           "link",
+           [](const General6RParams& p) {
+               double* out;
+               F64 a = new_f64({6, 4, 4}, out);
+               for (int k = 0; k < 6; ++k) p.link[k].to_rows(out + 16 * k);
+               return a;
+           },
+           [](General6RParams& p, nb::handle h) {
+               PyArrayObject* a = small::exact_array(h, "link", NPY_DOUBLE, 6, 16);
+               const auto* d = static_cast<const double*>(PyArray_DATA(a));
+               for (int k = 0; k < 6; ++k) p.link[k] = km::Pose::from_rows(d + 16 * k);
+               Py_DECREF(a);
+           },
+           "(6, 16) L1 ... L6, each a row-major 4 x 4 (lengths scaled); (6, 4, 4) out")
+        .def_rw("t_link", &General6RParams::t_link, "which L (0-based) holds the target")
+        .def_rw("t_power", &General6RParams::t_power, "+1 or -1: T or its inverse")
+        .def_rw("t_pre", &General6RParams::t_pre, "(4, 4) before T in that link")
+        .def_rw("t_post", &General6RParams::t_post, "(4, 4) after T in that link")
+        .def_rw("sign", &General6RParams::sign, "-1: the chain reversed (q' = -q)")
+        .def_rw("scale", &General6RParams::scale, "lengths times this (1 / m)")
+        .def_rw("centre", &General6RParams::centre, "(3,) the reach bound's centre (m, base frame)")
+        .def_rw("reach", &General6RParams::reach, "the tool origin stays within this of centre (m)")
+        .def_prop_rw(
+            "order", [](const General6RParams& p) { return small::get_ints(p.order); },
+            [](General6RParams& p, nb::handle h) { small::set_ints(p.order, h, "order", 0, 5); },
+            "(6,) q'k = sign q[order[k]]")
+        .def_prop_rw(
+            "c0", [](const General6RParams& p) { return small::get_vec(p.c0); },
+            [](General6RParams& p, nb::handle h) { small::set_vec(p.c0, h, "c0"); },
+            "(14,) the left side's constant part")
+        .def_prop_rw(
+            "phi", [](const General6RParams& p) { return small::get_vec(p.phi); },
+            [](General6RParams& p, nb::handle h) { small::set_vec(p.phi, h, "phi"); },
+            "(3,) shifts of q'4, q'5, q'6 (rad)")
+        .def_prop_rw(
+            "N", [](const General6RParams& p) { return get_matrix(p.N); },
+            [](General6RParams& p, nb::handle h) { set_matrix(p.N, h, "N"); },
+            "(6, 14) left null space of Q")
+        .def_prop_rw(
+            "Qp", [](const General6RParams& p) { return get_matrix(p.Qp); },
+            [](General6RParams& p, nb::handle h) { set_matrix(p.Qp, h, "Qp"); },
+            "(8, 14) Q's pseudo-inverse");
+}
+
+}  // namespace kmpy

@@ -1,0 +1,322 @@
+"""Any 6R arm: the builder of the general 6R solver (Raghavan-Roth, Manocha-Canny).
+
+The core's solver (``cpp/include/kinematica/solvers/general_6r.hpp``) solves the arm
+written as a loop ``I = Rz(q'1) L1 ... Rz(q'6) L6`` (one link holding the target), by
+eliminating q'3, then the 8 products of (q'1, q'2), leaving a 12 x 12 matrix quadratic
+in tan(q'6/2) whose determinant's roots are a 24 x 24 eigenproblem. This module writes
+the loop from the joint axes at q = 0 (product of exponentials: any base, tool,
+convention or URDF chain), computes the constants of the elimination once per arm
+(the left side's 14 x 8 matrix Q, its left null space and pseudo-inverse), and
+chooses the labelling of the joints (the loop turned cyclically or reversed) for
+which the elimination is well posed: the first of the eight on which random poses
+are solved, the generating configuration found among the candidates.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+import kinematica._core as _core
+from kinematica.core import Chain
+from kinematica.dh.joints import Revolute
+from kinematica.ik.analytic.sampling import random_transform
+from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
+from kinematica.ik.structure import Features
+
+__all__ = [
+    "LABELS",
+    "PHI",
+    "PROBE_TOL",
+    "RANK_TOL",
+    "SEARCH_NOTE",
+    "SPEC",
+    "build",
+    "loop_of",
+    "numeric_note",
+]
+
+FloatArray = NDArray[np.float64]
+PI = math.pi
+_G = _core.general6r
+
+#: Shifts (rad) of q'4, q'5, q'6 in the half-angle substitution: a configuration with
+#: q'k = shift + π (tan = ∞) is then no special value of a DH table (0, ±π/2, π).
+PHI = (0.3771, 0.6133, 0.8909)
+#: A labelling is rank-deficient when σ8 / σ1 of its 14 x 8 matrix Q is below this.
+RANK_TOL = 1e-9
+#: A labelling passes a probe pose when the configuration that made it is among the raw
+#: candidates to this (rad; the check's polish takes them the rest of the way).
+PROBE_TOL = 1e-6
+#: Random poses each labelling is probed on (fixed seed: the choice is reproducible).
+PROBES = 4
+
+#: Said of a target the elimination found nothing for, answered by the numeric search.
+SEARCH_NOTE = (
+    "the general 6R elimination gave no candidate closing the loop for this target "
+    "(the target at the workspace boundary, or its eigenproblem degenerate there): "
+    "not proven unreachable; the numeric search answered"
+)
+
+
+def numeric_note(f: Features) -> str | None:
+    """Why a 6-joint arm with a slide that no closed form takes goes to the search, or None."""
+    if f.dof != 6 or "P" not in f.joint_types:
+        return None
+    slides = ", ".join(str(i + 1) for i, t in enumerate(f.joint_types) if t == "P")
+    return (
+        f"no closed form for this arm: the general 6R elimination takes revolute joints "
+        f"only (joint {slides} slides); the numeric search answered"
+    )
+
+
+def _class_label(cls: int, k: int) -> str:
+    signs = [(cls >> 2) & 1, (cls >> 1) & 1, cls & 1]
+    parts = [f"q{j} {'>' if s else '<'} 0" for j, s in zip((2, 3, 5), signs, strict=True)]
+    return f"{', '.join(parts)} #{k + 1}"
+
+
+#: Branch names of the candidate slots: the signs of q2, q3, q5 (wrapped to (-π, π]),
+#: the members of a class numbered by increasing q1; then members beyond PER_CLASS.
+LABELS: tuple[str, ...] = tuple(
+    _class_label(c, k) for c in range(_G.CLASSES) for k in range(_G.PER_CLASS)
+) + tuple(f"further solution #{k + 1}" for k in range(_G.FURTHER))
+
+
+# ------------------------------------------------------------------ the loop
+def _frame(z: FloatArray, origin: FloatArray) -> FloatArray:
+    """A (4, 4) frame with z axis ``z`` at ``origin`` (x any unit normal)."""
+    seed = np.array([1.0, 0.0, 0.0]) if abs(z[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    x = np.cross(z, seed)
+    x /= np.linalg.norm(x)
+    G = np.eye(4)
+    G[:3, 0], G[:3, 1], G[:3, 2], G[:3, 3] = x, np.cross(z, x), z, origin
+    return G
+
+
+def _foot(h: FloatArray, p: FloatArray, i: int, j: int) -> FloatArray:
+    """The point of axis i nearest axis j (axis i's point when they are parallel)."""
+    w = np.cross(h[i], h[j])
+    n2 = float(w @ w)
+    if n2 < 1e-18:
+        return p[i]
+    t = float(np.cross(p[j] - p[i], h[j]) @ w) / n2
+    return p[i] + t * h[i]
+
+
+def loop_of(chain: Chain, f: Features) -> tuple[list[FloatArray], FloatArray, float]:
+    """``(K, G1, size)``: the arm as ``T(q) = G1 Rz(q1) K1 Rz(q2) K2 ... Rz(q6) K6``.
+
+    G_i is a frame with z along axis i at q = 0 (base frame), K_i = G_i⁻¹ G_{i+1} and
+    K6 = G6⁻¹ M (M the tool at q = 0): the product of exponentials
+    ``Π G_i Rz(q_i) G_i⁻¹ · M`` regrouped. Origins at the feet of the common normals keep
+    the numbers of the order of the arm's size.
+    """
+    h, p = f.directions, f.points
+    G = [_frame(h[i], _foot(h, p, i, i + 1 if i < 5 else 4)) for i in range(6)]
+    M = chain.fk(np.zeros(6))[0]
+    K = [np.linalg.inv(G[i]) @ G[i + 1] for i in range(5)] + [np.linalg.inv(G[5]) @ M]
+    return K, G[0], max(f.size, 1e-9)
+
+
+def _scaled(A: FloatArray, scale: float) -> FloatArray:
+    B = A.copy()
+    B[:3, 3] *= scale
+    return B
+
+
+def _quantities(A: FloatArray) -> FloatArray:
+    """The 14 quantities of the z axis of frame A: p, l, p·p, p·l, p×l, (p·p) l - 2 (p·l) p."""
+    pt, ln = A[:3, 3], A[:3, 2]
+    pp, pl = float(pt @ pt), float(pt @ ln)
+    return np.concatenate([pt, ln, [pp, pl], np.cross(pt, ln), pp * ln - 2.0 * pl * pt])
+
+
+def _rz(a: float) -> FloatArray:
+    R = np.eye(4)
+    c, s = math.cos(a), math.sin(a)
+    R[:2, :2] = [[c, -s], [s, c]]
+    return R
+
+
+def elimination(L1: FloatArray, L2: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """``(c0 (14,), Q (14, 8))``: the left side ``Rz(q'1) L1 Rz(q'2) L2 · z`` as c0 + Q S2.
+
+    S2: the products of (1, cos q'1, sin q'1) ⊗ (1, cos q'2, sin q'2) but 1, in that
+    order (the core reads cos, sin of q'1 from entries 2, 5 and of q'2 from 0, 1). The
+    quantities are trigonometric polynomials of degree 1 in each angle (Raghavan-Roth):
+    their values on a 3 x 3 grid give them exactly.
+    """
+    grid = 2.0 * PI / 3.0 * np.arange(3)
+    V = np.stack([np.ones(3), np.cos(grid), np.sin(grid)], axis=1)
+    F = np.array([[_quantities(_rz(a) @ L1 @ _rz(b) @ L2) for b in grid] for a in grid])
+    Vi = np.linalg.inv(V)
+    C = np.einsum("ia,jb,abe->eij", Vi, Vi, F).reshape(14, 9)
+    return C[:, 0].copy(), C[:, 1:].copy()
+
+
+def _labelling(
+    K: list[FloatArray], G1: FloatArray, start: int, reverse: bool
+) -> tuple[list[int], float, list[FloatArray | None], tuple[int, FloatArray, FloatArray]]:
+    """``(order, sign, links (None: the target's), (power, pre, post))`` of one labelling.
+
+    Forward: ``I = Rz(q1) K1 ... Rz(q6) [K6 T⁻¹ G1]``; reversed (q' = -q, joints 6..1):
+    ``I = Rz(-q6) K5⁻¹ ... K1⁻¹ Rz(-q1) [G1⁻¹ T K6⁻¹]``; turned to start at joint
+    ``start`` of that order (the target's link stays among L3 ... L6).
+    """
+
+    def inv(A: FloatArray) -> FloatArray:
+        return np.asarray(np.linalg.inv(A), dtype=np.float64)
+
+    if reverse:
+        order, sign = [5, 4, 3, 2, 1, 0], -1.0
+        links: list[FloatArray | None] = [inv(K[i]) for i in (4, 3, 2, 1, 0)] + [None]
+        target = (1, inv(G1), inv(K[5]))
+    else:
+        order, sign = [0, 1, 2, 3, 4, 5], 1.0
+        links = [K[i] for i in range(5)] + [None]
+        target = (-1, K[5], G1)
+    return order[start:] + order[:start], sign, links[start:] + links[:start], target
+
+
+def _params(
+    K: list[FloatArray], G1: FloatArray, size: float, start: int, reverse: bool
+) -> tuple[Any, float] | None:
+    """The core's Params of one labelling and its Q's σ8 / σ1, or None when rank-deficient."""
+    scale = 1.0 / size
+    order, sign, links, (power, pre, post) = _labelling(K, G1, start, reverse)
+    L1, L2 = links[0], links[1]
+    assert L1 is not None and L2 is not None  # the target's link is L3 ... L6
+    c0, Q = elimination(_scaled(L1, scale), _scaled(L2, scale))
+    U, S, _ = np.linalg.svd(Q)
+    ratio = float(S[-1] / S[0])
+    if not ratio > RANK_TOL:
+        return None
+    params = _G.General6RParams()
+    params.link = np.stack([np.eye(4) if L is None else _scaled(L, scale) for L in links]).reshape(
+        6, 16
+    )
+    params.t_link = next(k for k, L in enumerate(links) if L is None)
+    params.t_power = power
+    params.t_pre = _scaled(pre, scale)
+    params.t_post = _scaled(post, scale)
+    params.order = np.array(order, dtype=np.int64)
+    params.sign = sign
+    params.scale = scale
+    params.N = np.ascontiguousarray(U[:, 8:].T)
+    params.c0 = c0
+    params.Qp = np.linalg.pinv(Q)
+    params.phi = np.array(PHI)
+    params.centre = G1[:3, 3].copy()
+    params.reach = float(sum(np.linalg.norm(k[:3, 3]) for k in K)) * (1.0 + 1e-12) + 1e-12
+    return params, ratio
+
+
+def _probe_error(params: Any, chain: Chain) -> float:
+    """The worst, over PROBES random poses, of the generating q's distance to the candidates."""
+    rng = np.random.default_rng(6)
+    worst = 0.0
+    for q in rng.uniform(-PI, PI, (PROBES, 6)):
+        T = chain.fk(q)[0]
+        Q = params.candidates(chain.core, T)[0]
+        d = np.abs(np.remainder(Q - q + PI, 2.0 * PI) - PI).max(axis=1)
+        best = float(np.nanmin(d)) if np.isfinite(d).any() else math.inf
+        worst = max(worst, best)
+    return worst
+
+
+def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
+    """The general 6R solver of a 6R arm, or None (position targets; no labelling works).
+
+    Tries the eight labellings (forward, then reversed; each turned to start at joints
+    1-4 of its order) and keeps the first whose elimination is well posed and whose
+    candidates hold the generating configuration of every probe pose.
+    """
+    if target != "pose" or f.joint_types != "RRRRRR":
+        return None
+    K, G1, size = loop_of(chain, f)
+    for reverse in (False, True):
+        for start in range(4):
+            built = _params(K, G1, size, start, reverse)
+            if built is not None and _probe_error(built[0], chain) <= PROBE_TOL:
+                return ClosedForm(
+                    name="general-6R",
+                    labels=LABELS,
+                    params=built[0],
+                    exact=True,
+                    search_note=SEARCH_NOTE,
+                )
+    return None
+
+
+# ------------------------------------------------------------- sample arms
+def _random_rows(rng: np.random.Generator) -> list[Revolute]:
+    u = rng.uniform
+    return [
+        Revolute(d=u(-0.4, 0.4), a=u(-0.4, 0.4), alpha=u(-PI, PI), offset=u(-PI, PI))
+        for _ in range(6)
+    ]
+
+
+#: The UR5's DH table (standard; m, rad), perturbed for the "calibrated UR" edge.
+_UR5 = (
+    (0.089159, 0.0, PI / 2),
+    (0.0, -0.425, 0.0),
+    (0.0, -0.39225, 0.0),
+    (0.10915, 0.0, PI / 2),
+    (0.09465, 0.0, -PI / 2),
+    (0.0823, 0.0, 0.0),
+)
+
+
+def _edge(rng: np.random.Generator) -> tuple[list[Revolute], str]:
+    """A 6R arm on an edge of the general family, and what it is."""
+    u = rng.uniform
+    edge = str(rng.choice(["equal links", "offset 1e-10", "parallel 1e-9", "calibrated UR"]))
+    if edge == "calibrated UR":
+        rows = [
+            Revolute(d=d, a=a, alpha=al + 1e-3 * float(rng.choice([-1.0, 1.0])), offset=u(-PI, PI))
+            for d, a, al in _UR5
+        ]
+        return rows, "UR5 with every twist 1e-3 off"
+    rows = _random_rows(rng)
+    i = int(rng.integers(6))
+    r = rows[i]
+    if edge == "equal links":
+        a, d = u(0.2, 0.4), u(0.1, 0.3)
+        rows = [Revolute(d=d, a=a, alpha=x.alpha, offset=x.offset) for x in rows]
+    elif edge == "offset 1e-10":
+        rows[i] = Revolute(d=1e-10, a=1e-10, alpha=r.alpha, offset=r.offset)
+        edge = f"joint {i + 1}: d = a = 1e-10"
+    else:
+        rows[i] = Revolute(
+            d=r.d, a=r.a, alpha=1e-9 * float(rng.choice([-1.0, 1.0])), offset=r.offset
+        )
+        edge = f"axes {i + 1} and {i + 2} parallel but for 1e-9" if i < 5 else "alpha6 = 1e-9"
+    return rows, edge
+
+
+def sample_arm(rng: np.random.Generator, degenerate: bool) -> ArmSample:
+    """A random 6R arm of general geometry (an edge case with ``degenerate``)."""
+    rows, note = _edge(rng) if degenerate else (_random_rows(rng), "")
+    convention = str(rng.choice(["standard", "modified"]))
+    return ArmSample(
+        links=tuple(rows),
+        convention="modified" if convention == "modified" else "standard",
+        base=random_transform(rng, 0.5),
+        tool=random_transform(rng, 0.2),
+        note=note,
+    )
+
+
+SPEC = SolverSpec(
+    kind="general-6R",
+    summary="6R, general geometry",
+    summary_es="6R de geometría general",
+    handles=lambda f: f.joint_types == "RRRRRR",
+    build=build,
+    sample_arm=sample_arm,
+)

@@ -1,0 +1,230 @@
+"""The general 6R solver (Raghavan-Roth elimination, Manocha-Canny's eigenproblem).
+
+Checked against things it does not compute itself: forward kinematics of every
+solution, the configuration that made each pose, a 200-start damped-least-squares
+search (``support.ik_search``) for completeness, the reach sphere for the gap, and
+the solutions' own joint values for their branch names.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from support.ik_search import dls_solutions, joint_distance
+
+import kinematica as km
+from kinematica.dh.joints import Revolute
+from kinematica.ik.analytic import general_6r as g6
+from kinematica.ik.solve import closed_form
+from kinematica.ik.structure import features
+
+pytestmark = pytest.mark.filterwarnings("ignore::kinematica.KinematicaWarning")
+
+#: Every solution's FK reaches its target to this (m, rad).
+FK_TOL = 1e-10
+#: The configuration that made a pose is among the solutions to this (rad, modulo 2π).
+FOUND_TOL = 1e-9
+#: The arm is singular at q when the Jacobian's σmin / σmax is below this (the generating
+#: q may then be a representative's neighbour).
+SINGULAR_REL = 1e-6
+
+
+def _robot(rng: np.random.Generator, degenerate: bool) -> km.Robot:
+    arm = g6.sample_arm(rng, degenerate)
+    return km.Robot.from_dh(arm.links, convention=arm.convention, base=arm.base, tool=arm.tool)
+
+
+def _singular(robot: km.Robot, q: np.ndarray) -> bool:
+    s = np.linalg.svd(robot.jacobian(q), compute_uv=False)
+    return bool(s[-1] < SINGULAR_REL * s[0])
+
+
+@pytest.mark.parametrize("degenerate", [False, True], ids=["generic", "degenerate"])
+def test_round_trip_on_random_arms(degenerate: bool) -> None:
+    rng = np.random.default_rng(20 + degenerate)
+    for _ in range(4):
+        robot = _robot(rng, degenerate)
+        q = rng.uniform(-math.pi, math.pi, (25, 6))
+        res = robot.ik(robot.fk(q))
+        assert res.method == "analytic:general-6R"
+        for i in range(len(q)):
+            one = res[i]
+            T = robot.fk(q[i])
+            for sol in one.solutions:
+                Ts = robot.fk(sol)
+                assert np.linalg.norm(Ts[:3, 3] - T[:3, 3]) <= FK_TOL
+                assert km.rotation_angle(Ts[:3, :3], T[:3, :3]) <= FK_TOL
+            if _singular(robot, q[i]):
+                continue
+            assert one.status == "ok", one.message
+            assert joint_distance(robot, one.solutions, q[i]).min() <= FOUND_TOL
+
+
+def test_count_is_at_least_a_multistart_search() -> None:
+    rng = np.random.default_rng(7)
+    for degenerate in (False, True):
+        robot = _robot(rng, degenerate)
+        for q in rng.uniform(-math.pi, math.pi, (2, 6)):
+            T = robot.fk(q)
+            res = robot.ik(T)
+            found = dls_solutions(robot, T, rng, starts=200)
+            assert res.count >= len(found) >= 1
+            for sol in found:  # each of the search's is one of ours
+                assert joint_distance(robot, res.solutions, sol).min() <= 1e-6
+
+
+def test_branch_names_say_the_signs_of_q2_q3_q5() -> None:
+    rng = np.random.default_rng(3)
+    robot = _robot(rng, False)
+    for q in rng.uniform(-math.pi, math.pi, (10, 6)):
+        res = robot.ik(robot.fk(q))
+        for sol, name in zip(res.solutions, res.branches, strict=True):
+            if name.startswith("further"):
+                continue
+            for j in (2, 3, 5):
+                sign = ">" if math.sin(sol[j - 1]) > 0 else "<"
+                assert f"q{j} {sign} 0" in name
+
+
+def test_the_calibrated_ur_has_the_ur5s_solutions() -> None:
+    # the UR5 (three parallel axes: its own closed form) and the same arm with every
+    # twist 1e-3 off (the general 6R): as many solutions, each near one of the UR5's
+    rows = [Revolute(d=d, a=a, alpha=al) for d, a, al in g6._UR5]
+    ur5 = km.Robot.from_dh(rows)
+    off = km.Robot.from_dh([Revolute(d=d, a=a, alpha=al + 1e-3) for d, a, al in g6._UR5])
+    rng = np.random.default_rng(11)
+    for q in rng.uniform(-math.pi, math.pi, (5, 6)):
+        exact, near = ur5.ik(ur5.fk(q)), off.ik(off.fk(q))
+        assert exact.method != near.method == "analytic:general-6R"
+        assert near.count == exact.count
+        assert joint_distance(off, near.solutions, q).min() <= FOUND_TOL
+
+
+def test_a_pose_beyond_the_reach_sphere_is_unreachable_with_its_gap() -> None:
+    robot = _robot(np.random.default_rng(5), False)
+    params = closed_form(robot.chain, "pose").params
+    centre, reach = np.asarray(params.centre), params.reach
+    T = robot.fk(np.zeros(6))
+    direction = np.array([0.6, 0.0, 0.8])
+    outside, inside = T.copy(), T.copy()
+    outside[:3, 3] = centre + reach * (1 + 1e-6) * direction
+    inside[:3, 3] = centre + reach * (1 - 1e-6) * direction
+    far = robot.ik(outside)
+    assert far.status == "unreachable" and far.gap == pytest.approx(1e-6 * reach, rel=1e-3)
+    near = robot.ik(inside)  # within the sphere: nothing proven
+    assert near.status != "ok" and near.status != "unreachable"
+    assert any("not proven unreachable" in note for note in near.notes)
+
+
+def test_a_root_at_infinity_is_solved_with_the_second_shift() -> None:
+    # q'6 = phi6 + π puts a root of det M at x6 = ∞: A2 is singular there (its rcond
+    # below LEADING_RCOND_TOL), the pencil is made again with q'6 shifted by SECOND_SHIFT
+    # more, and the configuration is still found
+    rng = np.random.default_rng(9)
+    robot = _robot(rng, False)
+    params = closed_form(robot.chain, "pose").params
+    for _ in range(3):
+        q = rng.uniform(-math.pi, math.pi, 6)
+        j = int(params.order[5])
+        q[j] = math.remainder(params.sign * (g6.PHI[2] + math.pi), 2 * math.pi)
+        res = robot.ik(robot.fk(q))
+        assert joint_distance(robot, res.solutions, q).min() <= FOUND_TOL
+
+
+def test_rank_tol_rejects_a_deficient_labelling_and_keeps_a_nearly_deficient_one() -> None:
+    # the PUMA's reversed labelling (pair: joints 6, 5, whose axes meet) has rank(Q) = 7;
+    # moving axis 5 off axis 6 by ε (a5 = ε) makes σ8/σ1 about ε
+    def ratio_and_params(eps: float) -> tuple[float, object]:
+        puma = km.load("puma560")
+        rows = list(puma.links)
+        r = rows[4]
+        rows[4] = Revolute(d=r.d, a=r.a + eps, alpha=r.alpha, offset=r.offset)
+        chain = km.Robot.from_dh(rows, convention=puma.convention).chain
+        K, G1, size = g6.loop_of(chain, features(chain))
+        _, _, links, _ = g6._labelling(K, G1, 0, True)
+        scale = 1.0 / size
+        _, Q = g6.elimination(g6._scaled(links[0], scale), g6._scaled(links[1], scale))
+        s = np.linalg.svd(Q, compute_uv=False)
+        return float(s[-1] / s[0]), g6._params(K, G1, size, 0, True)
+
+    tilts = {}
+    for eps in (1e-3, 1e-5):
+        tilts[eps] = ratio_and_params(eps)[0]
+    slope = tilts[1e-3] / 1e-3  # σ8/σ1 ∝ ε
+    assert tilts[1e-5] == pytest.approx(slope * 1e-5, rel=0.1)
+    above, kept = ratio_and_params(10 * g6.RANK_TOL / slope)
+    below, dropped = ratio_and_params(0.1 * g6.RANK_TOL / slope)
+    assert above > g6.RANK_TOL > below
+    assert kept is not None and dropped is None
+
+
+def test_probe_tol_separates_a_working_labelling_from_a_degenerate_one() -> None:
+    robot = _robot(np.random.default_rng(4), False)
+    params = closed_form(robot.chain, "pose").params
+    assert g6._probe_error(params, robot.chain) <= 1e-3 * g6.PROBE_TOL
+    # the PUMA's forward labelling: Q of full rank, the pencil singular (spherical wrist)
+    puma = km.load("puma560").chain
+    K, G1, size = g6.loop_of(puma, features(puma))
+    built = g6._params(K, G1, size, 0, False)
+    assert built is not None and g6._probe_error(built[0], puma) >= 1e3 * g6.PROBE_TOL
+
+
+def test_special_families_keep_their_arms_and_6r_arms_with_a_slide_are_not_taken() -> None:
+    assert km.load("puma560").ik(km.load("puma560").fk(np.zeros(6))).method == (
+        "analytic:spherical-wrist"
+    )
+    assert km.load("ur5").ik(km.load("ur5").fk(np.zeros(6))).method == (
+        "analytic:three-parallel-6R"
+    )
+    rows = list(_robot(np.random.default_rng(1), False).links)
+    rows[2] = km.Prismatic(theta=0.3, a=0.1, alpha=1.1, offset=0.2)
+    robot = km.Robot.from_dh(rows)
+    assert not g6.SPEC.handles(features(robot.chain))
+
+
+_URDF_JOINT = """
+  <joint name="j{k}" type="revolute">
+    <parent link="l{k}"/><child link="l{n}"/>
+    <origin xyz="{xyz}" rpy="{rpy}"/><axis xyz="{axis}"/>
+    <limit lower="-3.14159" upper="3.14159" effort="1" velocity="1"/>
+  </joint>"""
+
+
+def test_a_urdf_chain_with_axes_off_z_is_solved(tmp_path: Path) -> None:
+    # joint frames that are no DH frames: origins with roll-pitch-yaw, axes along y or x
+    rng = np.random.default_rng(12)
+    axes = ["0 1 0", "1 0 0", "0 0 1", "0 1 0", "1 0 0", "0 1 0"]
+    joints = "".join(
+        _URDF_JOINT.format(
+            k=k,
+            n=k + 1,
+            xyz=" ".join(f"{v:.4f}" for v in rng.uniform(-0.3, 0.3, 3)),
+            rpy=" ".join(f"{v:.4f}" for v in rng.uniform(-1.0, 1.0, 3)),
+            axis=axes[k],
+        )
+        for k in range(6)
+    )
+    links = "".join(f'<link name="l{k}"/>' for k in range(7))
+    path = tmp_path / "arm.urdf"
+    path.write_text(f'<robot name="skew">{links}{joints}</robot>')
+    robot = km.load(path)
+    q = rng.uniform(-math.pi, math.pi, (10, 6))
+    res = robot.ik(robot.fk(q))
+    assert res.method == "analytic:general-6R"
+    for i in range(len(q)):
+        assert res[i].status == "ok"
+        assert joint_distance(robot, res[i].solutions, q[i]).min() <= FOUND_TOL
+
+
+def test_a_6_joint_arm_with_a_slide_goes_to_the_search_and_says_why() -> None:
+    rows = list(_robot(np.random.default_rng(1), False).links)
+    rows[2] = km.Prismatic(theta=0.3, a=0.1, alpha=1.1, offset=0.2)
+    robot = km.Robot.from_dh(rows)
+    T = robot.fk(np.array([0.1, 0.2, 0.3, 0.4, 0.5, 0.6]))
+    for res in (robot.ik(T), robot.ik(np.stack([T, T]))[1]):
+        assert res.method == "numeric:lm"
+        assert any("revolute joints only (joint 3 slides)" in n for n in res.notes)
+    assert not robot.ik(T, method="numeric").notes  # asked for: nothing to explain
