@@ -72,7 +72,7 @@ def _direct(d: DirectParameter, T: np.ndarray, kwargs: dict[str, Any]) -> IKResu
 CASES = [  # robot, keywords, the joint the poses are made at and its value (None: auto's)
     ("panda", {}, 6, 0.0),  # auto: q7 held at the middle of its limits, spherical shoulder
     ("panda", {"fixed": {6: 0.3}}, 6, 0.3),
-    ("panda", {"fixed": {0: 0.3}}, 0, 0.3),  # no closed form locked there: the search
+    ("panda", {"fixed": {0: 0.3}}, 0, 0.3),  # the general 6R locked there: not direct
     ("iiwa14", {}, None, 0.0),  # auto: the arm angle at 0
     ("iiwa14", {"arm_angle": 0.3}, None, 0.0),
     ("iiwa14", {"arm_angle": 0}, None, 0.0),  # an int: the parameter comes out a float
@@ -105,7 +105,11 @@ def test_one_pose_at_a_parameter_matches_the_general_path(
             statuses[str(slow.status)] += 1
             methods[slow.method] += 1
     # the direct path answered every pose at the value, and the cases below were met
-    assert answered >= AT_VALUE
+    if name == "panda" and kwargs == {"fixed": {0: 0.3}}:
+        # the general 6R may hand a target to the search: the general path answers
+        assert answered == 0 and methods["analytic:general-6R"] > 0
+    else:
+        assert answered >= AT_VALUE
     assert {"ok", "unreachable"} <= set(statuses)
     if name == "iiwa14" and "fixed" not in kwargs:
         assert statuses["singular"] >= SINGULAR // 3  # the elbow stretched: no arm angle

@@ -23,14 +23,18 @@ TOL = 1e-10
 
 
 def expected_joint(robot: km.Robot) -> int | None:
-    """The first joint of the preference whose locked arm has a closed form (or None)."""
+    """The first joint of the preference whose locked arm has a special family's closed
+    form, else the general 6R's (or None)."""
+    general = None
     for k in preference(robot.dof):
         lo, hi = robot.chain.own_limits[k]
         value = 0.5 * (lo + hi) if np.isfinite([lo, hi]).all() else 0.0
         closed = closed_form(locked_chain(robot.chain, k, value), "pose")
         if closed is not None and not closed.partial:
-            return k
-    return None
+            if not closed.search_note:
+                return k
+            general = k if general is None else general
+    return general
 
 
 def test_the_preference_is_last_first_then_base_to_tip() -> None:

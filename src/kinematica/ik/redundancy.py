@@ -78,7 +78,7 @@ def choose(chain: Chain, names: Sequence[str] | None = None) -> Parameter | None
     An SRS arm's arm angle (:mod:`kinematica.ik.arm_angle`): all 8 solutions at
     any value, every joint free to take its whole range. Else the first joint of
     :func:`preference` whose locked arm (at its default value) has a closed-form
-    pose solver; chosen once per chain.
+    pose solver of a special family, else of the general 6R; chosen once per chain.
     """
     if chain.dof != REDUNDANT_DOF:
         return None
@@ -86,14 +86,20 @@ def choose(chain: Chain, names: Sequence[str] | None = None) -> Parameter | None
     if angle is not None:
         return angle
     if chain not in _CHOICE:
-        found = None
+        # a closed form that answers every target itself (a special family) before one
+        # that may hand a target to the search (the general 6R's elimination)
+        found, fallback = None, None
         for k in preference(chain.dof):
             joint = JointParameter(k, f"q{k + 1}", bool(chain.prismatic[k]))
             closed = closed_form(locked_chain(chain, k, joint.default(chain)), "pose")
-            if closed is not None and not closed.partial:
+            if closed is None or closed.partial:
+                continue
+            if not closed.search_note:
                 found = k
                 break
-        _CHOICE[chain] = found
+            if fallback is None:
+                fallback = k
+        _CHOICE[chain] = found if found is not None else fallback
     chosen = _CHOICE[chain]
     if chosen is None:
         return None

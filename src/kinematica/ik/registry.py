@@ -43,6 +43,12 @@ class ClosedForm:
             target of a reduced arm its candidates are checked on the whole pose).
         partial: True when its candidates are representatives with some joints
             held at 0 (position targets of longer arms): never a pose solver.
+        exact: True when its answers are complete even on an arm whose axis
+            relations hold only within tolerance (it reads no relation as exact:
+            the general 6R's elimination).
+        search_note: When not empty, a target it finds nothing for is searched
+            numerically too, and this note says why (an elimination that may
+            lose a root to round-off); such a solver is the last resort of a family.
     """
 
     name: str
