@@ -21,7 +21,13 @@ from kinematica.errors import DimensionError, KinematicaError
 from kinematica.io.atomic import atomic_path, write_failed
 from kinematica.io.reading import read_limited
 
-__all__ = ["MAX_BYTES", "TrajectoryFileError", "read_trajectory", "write_trajectory"]
+__all__ = [
+    "MAX_BYTES",
+    "TrajectoryFileError",
+    "read_trajectory",
+    "trajectory_arrays",
+    "write_trajectory",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -115,6 +121,24 @@ def read_trajectory(
     return t.copy(), values[:, 1:].copy()
 
 
+def trajectory_arrays(t: ArrayLike, q: ArrayLike) -> tuple[FloatArray, FloatArray]:
+    """``t (T,)`` and ``q (T, n)`` as float arrays (``q (T,)``: one joint).
+
+    Raises:
+        DimensionError: Not a time per row of joint values.
+    """
+    tt = np.asarray(t, dtype=float)
+    qq = np.asarray(q, dtype=float)
+    if qq.ndim == 1:
+        qq = qq[:, None]
+    if tt.ndim != 1 or qq.ndim != 2 or qq.shape[0] != tt.shape[0]:
+        raise DimensionError(
+            f"a trajectory needs t of shape (T,) and q of shape (T, n) with the same T, got "
+            f"{tt.shape} and {qq.shape}"
+        )
+    return tt, qq
+
+
 def write_trajectory(path: str | os.PathLike[str], t: ArrayLike, q: ArrayLike) -> Path:
     """Write a trajectory CSV file atomically (the old file stays whole if writing fails).
 
@@ -131,15 +155,7 @@ def write_trajectory(path: str | os.PathLike[str], t: ArrayLike, q: ArrayLike) -
         DimensionError: The shapes do not match.
         TrajectoryFileError: The file cannot be written (the old one is left as it was).
     """
-    tt = np.asarray(t, dtype=float)
-    qq = np.asarray(q, dtype=float)
-    if qq.ndim == 1:
-        qq = qq[:, None]
-    if tt.ndim != 1 or qq.ndim != 2 or qq.shape[0] != tt.shape[0]:
-        raise DimensionError(
-            f"a trajectory needs t of shape (T,) and q of shape (T, n) with the same T, got "
-            f"{tt.shape} and {qq.shape}"
-        )
+    tt, qq = trajectory_arrays(t, q)
     p = Path(path)
     header = ",".join(["t", *(f"q{i}" for i in range(1, qq.shape[1] + 1))])
     try:

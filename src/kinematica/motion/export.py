@@ -16,26 +16,14 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica.errors import DimensionError, KinematicaError
+from kinematica.errors import KinematicaError
 from kinematica.io.atomic import write_failed, write_text_atomic
-from kinematica.io.trajectory_csv import read_trajectory
+from kinematica.io.trajectory_csv import read_trajectory, trajectory_arrays
 from kinematica.io.trajectory_csv import write_trajectory as write_csv
 
 __all__ = ["read_csv", "write_csv", "write_json"]
 
 FloatArray = NDArray[np.float64]
-
-
-def _check(t: ArrayLike, q: ArrayLike) -> tuple[FloatArray, FloatArray]:
-    ta = np.asarray(t, dtype=float)
-    qa = np.asarray(q, dtype=float)
-    if qa.ndim == 1:
-        qa = qa[:, None]
-    if ta.ndim != 1 or qa.ndim != 2 or qa.shape[0] != ta.shape[0]:
-        raise DimensionError(
-            f"t must be (m,) and q (m, n) with the same m, got {ta.shape} and {qa.shape}"
-        )
-    return ta, qa
 
 
 def read_csv(path: str | Path) -> tuple[FloatArray, FloatArray]:
@@ -92,7 +80,7 @@ def write_json(
     Returns:
         The path written.
     """
-    ta, qa = _check(t, q)
+    ta, qa = trajectory_arrays(t, q)
     data: dict[str, Any] = dict(meta or {})
     data["units"] = {"t": "s", "revolute": "rad", "prismatic": "m"}
     if joint_types is not None:
@@ -101,7 +89,7 @@ def write_json(
     data["q"] = _json_safe(qa)
     for key, val in (("qd", qd), ("qdd", qdd)):
         if val is not None:
-            data[key] = _json_safe(_check(ta, val)[1])
+            data[key] = _json_safe(trajectory_arrays(ta, val)[1])
     data["events"] = [
         {
             "kind": e.kind,
