@@ -1,7 +1,8 @@
 // The general 6R family: kinematica._core.general6r.
 //
-// General6RParams with a read-write attribute per field and the family's tolerances. The
-// only translation unit that includes Eigen (through general_6r.hpp): compile time counts.
+// General6RParams with a read-write attribute per field, the family's tolerances and the
+// internals their tolerance tests call. The only translation unit that includes Eigen
+// (through general_6r.hpp): compile time counts.
 #include <nanobind/nanobind.h>
 
 #include "casters.hpp"
@@ -37,6 +38,33 @@ void set_matrix(double (&v)[R][K], nb::handle src, const char* name) {
     Py_DECREF(a);
 }
 
+//! (u (12,), near): the header's null vector of M (12, 12), its double-root flag.
+nb::tuple null_vector_of(nb::handle M) {
+    kg::Matrix12 A[3];
+    PyArrayObject* a = small::exact_array(M, "M", NPY_DOUBLE, kg::SIZE, kg::SIZE);
+    const auto* d = static_cast<const double*>(PyArray_DATA(a));
+    for (int i = 0; i < kg::SIZE; ++i)
+        for (int j = 0; j < kg::SIZE; ++j) A[0](i, j) = d[i * kg::SIZE + j];
+    Py_DECREF(a);
+    A[1].setZero();
+    A[2].setZero();
+    km::SolverInfo info;
+    const kg::Vector12 u = kg::General6RParams::null_vector(A, 0.0, info);  // M(0) = A0
+    double* out;
+    F64 ua = new_f64({kg::SIZE}, out);
+    for (int i = 0; i < kg::SIZE; ++i) out[i] = u(i);
+    return nb::make_tuple(ua, info.near);
+}
+
+//! (rcond, shift6, closure, near) of one solve of the pose T: its Trace and flag.
+nb::tuple trace_of(const General6RParams& p, const km::Pose& T) {
+    double Q[kg::SLOTS * 6];
+    km::SolverInfo info;
+    kg::Trace t;
+    p.solve(T, Q, info, &t);
+    return nb::make_tuple(t.rcond, t.shift6, t.closure, info.near);
+}
+
 }  // namespace
 
 void bind_general6r(nb::module_& m) {
@@ -56,6 +84,13 @@ void bind_general6r(nb::module_& m) {
     sub.attr("CLOSURE_TOL") = kg::CLOSURE_TOL;
     sub.attr("SECOND_SHIFT") = kg::SECOND_SHIFT;
     sub.attr("DOUBLE_ROOT_TOL") = kg::DOUBLE_ROOT_TOL;
+    sub.def("real_root", [](double re, double im) { return kg::real_root({re, im}); },
+            nb::arg("re"), nb::arg("im"), "True when the eigenvalue re + i im is taken as a real root.");
+    sub.def("null_vector", &null_vector_of, nb::arg("M"),
+            "(u, near): M u = 0 from M's full-pivot LU; near when its null space looks 2-dimensional.");
+    sub.def("trace", &trace_of, nb::arg("params"), nb::arg("T"),
+            "(rcond, shift6, closure, near) of one solve: A2's rcond at the first shift, the shift "
+            "used (NaN: neither), the smallest candidate closure (inf: none), the near flag.");
 
     auto cls = bind_closed_form<General6RParams>(
         sub, "General6RParams",

@@ -6,12 +6,15 @@ and its tolerances are exported under the names the header gives them.
 
 from __future__ import annotations
 
+import math
+
 import kinematica._core as _core
 import numpy as np
 import pytest
 
 import kinematica as km
 from kinematica.ik.analytic import general_6r as g6
+from kinematica.ik.solve import closed_form
 
 
 def _chain() -> km.core.Chain:
@@ -39,3 +42,114 @@ def test_the_header_s_constants_are_exported() -> None:
     assert g.SLOTS == g.CLASSES * g.PER_CLASS + g.FURTHER == len(g6.LABELS)
     assert (g.EQUATIONS, g.PRODUCTS, g.REDUCED) == (14, 8, 6)
     assert 0 < g.DOUBLE_ROOT_TOL < g.LEADING_RCOND_TOL < g.CLOSURE_TOL < 1
+
+
+# ------------------------------------------------- the tolerances, from both sides
+#: Just inside / just outside a boundary: the tolerance times (1 ∓ this).
+EDGE = 1e-6
+
+# The documented values (general_6r.hpp), which the boundary cases below are made from.
+REAL_ROOT_TOL = 1e-4
+LEADING_RCOND_TOL = 1e-8
+SECOND_SHIFT = 1.1
+DOUBLE_ROOT_TOL = 1e-10
+CLOSURE_TOL = 1e-4
+
+
+def test_the_documented_values_are_the_core_s() -> None:
+    g = _core.general6r
+    assert g.REAL_ROOT_TOL == REAL_ROOT_TOL
+    assert g.LEADING_RCOND_TOL == LEADING_RCOND_TOL
+    assert g.SECOND_SHIFT == SECOND_SHIFT
+    assert g.DOUBLE_ROOT_TOL == DOUBLE_ROOT_TOL
+    assert g.CLOSURE_TOL == CLOSURE_TOL
+
+
+def _robot_and_params(seed: int) -> tuple[km.Robot, object]:
+    arm = g6.sample_arm(np.random.default_rng(seed), False)
+    robot = km.Robot.from_dh(arm.links, convention=arm.convention, base=arm.base, tool=arm.tool)
+    return robot, closed_form(robot.chain, "pose").params
+
+
+def test_real_root_tol_bounds_the_imaginary_part_relative_to_1_plus_the_modulus() -> None:
+    g = _core.general6r
+    for re in (0.0, 2.0, -50.0):
+        for im_scale in (1.0, -1.0):
+            # |Im x| = t (1 + |x|) solved for t's boundary: |x| depends on Im x itself
+            im = REAL_ROOT_TOL * (1.0 + abs(re))
+            for _ in range(50):  # fixed point of im = tol (1 + |re + i im|)
+                im = REAL_ROOT_TOL * (1.0 + abs(complex(re, im)))
+            assert g.real_root(re, im_scale * im * (1.0 - EDGE))
+            assert not g.real_root(re, im_scale * im * (1.0 + EDGE))
+    assert g.real_root(3.0, 0.0)
+
+
+def test_double_root_tol_flags_a_second_pivot_below_it_relative_to_the_largest() -> None:
+    # M: a well-conditioned 10 x 10 block R, a pivot s and a zero one, rows and columns
+    # permuted; full pivoting takes R's pivots first (largest |R_ij| first), then s, then 0
+    g = _core.general6r
+    rng = np.random.default_rng(3)
+    R = np.eye(10) + 0.1 * rng.standard_normal((10, 10))
+    big = float(np.abs(R).max())
+    rows, cols = rng.permutation(12), rng.permutation(12)
+    for s, near in (
+        (DOUBLE_ROOT_TOL * big * (1.0 + EDGE), False),
+        (DOUBLE_ROOT_TOL * big * (1.0 - EDGE), True),
+    ):
+        D = np.zeros((12, 12))
+        D[:10, :10], D[10, 10] = R, s
+        M = D[rows][:, cols]
+        u, flagged = g.null_vector(M)
+        assert flagged == near
+        # u spans the zero column's direction: M u = 0 (independent: the matrix built)
+        assert np.abs(M @ u).max() <= 1e-12 * np.abs(u).max()
+        assert np.abs(u[cols != 11]).max() <= 1e-12 * abs(u[cols == 11][0])
+
+
+def test_leading_rcond_tol_chooses_the_second_shift_just_below_it() -> None:
+    # q'6 = phi6 + π + d puts a root of det M at x6 = -cot(d/2) ≈ -2/d: A2's rcond is
+    # proportional to d (below d ~ 1e-4). Measured slope, then d for rcond at 3x and 1/3x
+    # the tolerance: the first shift is kept above it, the second taken below; the loop
+    # closes either way.
+    g = _core.general6r
+    rng = np.random.default_rng(9)
+    robot, params = _robot_and_params(9)
+    q = rng.uniform(-math.pi, math.pi, 6)
+    j = int(params.order[5])
+
+    def trace(d: float) -> tuple[float, float, float, bool]:
+        q[j] = math.remainder(params.sign * (g6.PHI[2] + math.pi + d), 2 * math.pi)
+        return g.trace(params, robot.fk(q))
+
+    slope = trace(1e-6)[0] / 1e-6
+    assert trace(1e-7)[0] == pytest.approx(slope * 1e-7, rel=0.01)
+    for factor, shift in ((3.0, g6.PHI[2]), (1.0 / 3.0, g6.PHI[2] + SECOND_SHIFT)):
+        rcond, shift6, closure, near = trace(factor * LEADING_RCOND_TOL / slope)
+        assert rcond == pytest.approx(factor * LEADING_RCOND_TOL, rel=0.01)
+        assert shift6 == pytest.approx(shift, abs=1e-15)
+        assert closure <= 1e-10 and not near
+
+
+def test_closure_tol_separates_a_loop_that_closes_from_one_that_cannot() -> None:
+    # c0 moved by eps along a row of N: the elimination's equations then hold where the
+    # loop is open, its closure proportional to eps (measured: slope). With eps for a
+    # closure of 1/2 and 2 times CLOSURE_TOL, near flips; unperturbed the loop closes.
+    g = _core.general6r
+    robot, params = _robot_and_params(9)
+    T = robot.fk(np.random.default_rng(1).uniform(-math.pi, math.pi, 6))
+    c0, row = np.array(params.c0), np.array(params.N)[1]
+    assert g.trace(params, T)[2] <= 1e-10
+
+    def closure(eps: float) -> tuple[float, bool]:
+        params.c0 = c0 + eps * row
+        _, _, c, near = g.trace(params, T)
+        return c, near
+
+    slope = closure(1e-7)[0] / 1e-7
+    assert closure(1e-6)[0] == pytest.approx(slope * 1e-6, rel=0.05)
+    for factor in (0.5, 2.0):
+        c, near = closure(factor * CLOSURE_TOL / slope)
+        assert c == pytest.approx(factor * CLOSURE_TOL, rel=0.1)
+        assert near == (factor > 1.0)
+        _, _, flag, _, _ = params.candidates(robot.chain.core, T)  # the public raw call agrees
+        assert flag == near

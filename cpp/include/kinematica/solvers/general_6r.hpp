@@ -86,6 +86,18 @@ using Matrix12 = Eigen::Matrix<double, SIZE, SIZE>;
 using Matrix24 = Eigen::Matrix<double, 2 * SIZE, 2 * SIZE>;
 using Vector12 = Eigen::Matrix<double, SIZE, 1>;
 
+//! What one solve decided, for the tests of its tolerances (solve fills it when given).
+struct Trace {
+    double rcond = NaN;    //!< A2's reciprocal condition number at the first shift (LU estimate)
+    double shift6 = NaN;   //!< the q'6 shift the pencil was made with (NaN: neither worked)
+    double closure = INF;  //!< the smallest closure of a candidate (INF: no candidate)
+};
+
+//! An eigenvalue x of the companion pencil is taken as a real root x6: see REAL_ROOT_TOL.
+inline bool real_root(std::complex<double> x) {
+    return std::fabs(x.imag()) <= REAL_ROOT_TOL * (1.0 + std::abs(x));
+}
+
 //! The line (point, direction) a loop carries.
 struct Line {
     Vec3 p{}, l{0.0, 0.0, 1.0};
@@ -321,8 +333,9 @@ struct General6RParams {
                (std::sin(q[4]) > 0.0 ? 1 : 0);
     }
 
-    //! Candidates for one pose T (base frame) into Q (SLOTS x 6), NaN rows elsewhere.
-    void solve(const Pose& T_in, double* Q, SolverInfo& info) const {
+    //! Candidates for one pose T (base frame) into Q (SLOTS x 6), NaN rows elsewhere;
+    //! what it decided into `trace` when given.
+    void solve(const Pose& T_in, double* Q, SolverInfo& info, Trace* trace = nullptr) const {
         for (int i = 0; i < SLOTS * 6; ++i) Q[i] = NaN;
         const double far = norm(T_in.p - centre) - reach;
         if (far > 0.0) {  // beyond every configuration's reach
@@ -341,6 +354,7 @@ struct General6RParams {
         double shift6 = phi[2];
         pencil(Li, shift6, A);
         Eigen::PartialPivLU<Matrix12> lead(A[2]);
+        if (trace != nullptr) trace->rcond = lead.rcond();
         if (!(lead.rcond() > LEADING_RCOND_TOL)) {
             shift6 = phi[2] + SECOND_SHIFT;
             pencil(Li, shift6, A);
@@ -350,6 +364,7 @@ struct General6RParams {
                 return;
             }
         }
+        if (trace != nullptr) trace->shift6 = shift6;
         // the real roots x6 of det M(x6): eigenvalues of the companion matrix
         Matrix24 C = Matrix24::Zero();
         C.topRightCorner<SIZE, SIZE>().setIdentity();
@@ -364,7 +379,7 @@ struct General6RParams {
         int found = 0;
         for (int r = 0; r < ROOTS; ++r) {
             const std::complex<double> x = eig.eigenvalues()(r);
-            if (std::fabs(x.imag()) <= REAL_ROOT_TOL * (1.0 + std::abs(x))) roots[found++] = x.real();
+            if (real_root(x)) roots[found++] = x.real();
         }
         // candidates into their classes, each ordered by q1
         int filled[CLASSES] = {};
@@ -373,7 +388,9 @@ struct General6RParams {
         for (int r = 0; r < found; ++r) {
             double q[6];
             const Vector12 u = null_vector(A, roots[r], info);
-            closes |= back_substitute(L, Li, roots[r], shift6, u, q) <= CLOSURE_TOL;
+            const double closure = back_substitute(L, Li, roots[r], shift6, u, q);
+            closes |= closure <= CLOSURE_TOL;
+            if (trace != nullptr && closure < trace->closure) trace->closure = closure;
             const int cls = sign_class(q);
             int slot;
             if (filled[cls] < PER_CLASS) {
