@@ -1,12 +1,16 @@
 """The general 6R solver's header (cpp/include/kinematica/solvers/general_6r.hpp) as bound.
 
 Its Params refuse fields the solver cannot run with (a ValueError naming the field),
-and its tolerances are exported under the names the header gives them.
+its tolerances are exported under the names the header gives them, and each named
+tolerance decides a case just inside its boundary one way and one just outside the
+other (through the binding's hooks real_root, null_vector and trace, which run the
+header's own code).
 """
 
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import kinematica._core as _core
 import numpy as np
@@ -14,7 +18,7 @@ import pytest
 
 import kinematica as km
 from kinematica.ik.analytic import general_6r as g6
-from kinematica.ik.solve import closed_form
+from kinematica.ik.structure import features
 
 
 def _chain() -> km.core.Chain:
@@ -65,10 +69,13 @@ def test_the_documented_values_are_the_core_s() -> None:
     assert g.CLOSURE_TOL == CLOSURE_TOL
 
 
-def _robot_and_params(seed: int) -> tuple[km.Robot, object]:
+def _robot_and_params(seed: int) -> tuple[km.Robot, Any]:
+    """A random general 6R arm and Params of its own (not the cached solver's: tests edit them)."""
     arm = g6.sample_arm(np.random.default_rng(seed), False)
     robot = km.Robot.from_dh(arm.links, convention=arm.convention, base=arm.base, tool=arm.tool)
-    return robot, closed_form(robot.chain, "pose").params
+    built = g6.build(robot.chain, features(robot.chain), "pose")
+    assert built is not None
+    return robot, built.params
 
 
 def test_real_root_tol_bounds_the_imaginary_part_relative_to_1_plus_the_modulus() -> None:
