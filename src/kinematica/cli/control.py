@@ -12,6 +12,7 @@ import numpy as np
 from kinematica.cli.format import fmt, table
 from kinematica.cli.options import (
     add_common,
+    add_pose,
     add_robot,
     angle_unit,
     dump,
@@ -147,13 +148,7 @@ def register(sub: Any) -> None:
         "--q0", nargs="+", type=float, required=True, metavar="Q", help="start (deg, or --rad)"
     )
     goal = p.add_mutually_exclusive_group(required=True)
-    goal.add_argument(
-        "--pose",
-        nargs=6,
-        type=float,
-        metavar=("X", "Y", "Z", "A", "B", "G"),
-        help="target: position (length unit) and Euler angles (see --euler)",
-    )
+    add_pose(goal, "target: position (length unit) and Euler angles (see --euler)")
     goal.add_argument(
         "--twist",
         nargs=6,

@@ -15,6 +15,7 @@ from kinematica.cli.format import fmt, matrix, num, plain, table
 from kinematica.cli.options import (
     PER_METRE,
     add_common,
+    add_pose,
     add_precision,
     add_robot,
     clean,
@@ -430,8 +431,10 @@ def register(sub: Any) -> None:
         metavar="JOINT=VALUE",
         help="hold one joint at a value and give every solution there: JOINT is q1..qN "
         "(1-based, as the tables show) or the joint's name (URDF), VALUE in degrees (--rad: "
-        "radians) or the length unit; e.g. --fixed q7=30. A 7-joint arm without it holds "
-        "one joint chosen for a closed form (at --q0's value, else mid-limits) and says which",
+        "radians) or the length unit; e.g. --fixed q7=30. A 7-joint arm without it holds a "
+        "parameter itself (an SRS arm's arm angle, else a joint whose locked arm has a closed "
+        "form; at --q0's value, else the default or the nearest value with a solution) and "
+        "prints which",
     )
     p.add_argument("--seed", type=_seed, default=0, help="seed of numeric restarts (default 0)")
     p.add_argument(
@@ -459,13 +462,7 @@ def register(sub: Any) -> None:
 def pose_target_args(p: argparse.ArgumentParser, position: bool = False) -> None:
     """The target options, one required: ``--pose``, ``--matrix`` (``--position`` if asked)."""
     target = p.add_mutually_exclusive_group(required=True)
-    target.add_argument(
-        "--pose",
-        nargs=6,
-        type=float,
-        metavar=("X", "Y", "Z", "A", "B", "G"),
-        help="position (length unit, see --units) and three Euler angles (see --euler)",
-    )
+    add_pose(target, "position (length unit, see --units) and three Euler angles (see --euler)")
     target.add_argument(
         "--matrix",
         nargs=16,

@@ -85,6 +85,18 @@ def _precision(text: str) -> int:
     return value
 
 
+def add_pose(group: Any, help: str) -> None:
+    """Add ``--pose X Y Z A B G`` (position, then three Euler angles) to ``group``.
+
+    Args:
+        group: A parser or a mutually exclusive group of one.
+        help: What the pose is for, and its units.
+    """
+    group.add_argument(
+        "--pose", nargs=6, type=float, metavar=("X", "Y", "Z", "A", "B", "G"), help=help
+    )
+
+
 def add_precision(p: argparse.ArgumentParser) -> None:
     """``--precision N``: significant digits of the text output (JSON is always full)."""
     p.add_argument(

@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica.cli.options import add_common, add_robot, dump, q_in, robot_from_args
+from kinematica.cli.options import add_common, add_pose, add_robot, dump, q_in, robot_from_args
 from kinematica.errors import DimensionError, KinematicaError, UnreachableError
 from kinematica.robot import Robot
 from kinematica.spatial import from_pose
@@ -225,12 +225,8 @@ def register(sub: Any) -> None:
         help="joint values (degrees, or radians with --rad; metres for prismatic joints)",
     )
     target = p.add_mutually_exclusive_group()
-    target.add_argument(
-        "--pose",
-        nargs=6,
-        type=float,
-        metavar=("X", "Y", "Z", "A", "B", "G"),
-        help="draw every IK solution of this pose: position (m), Euler angles (see --euler)",
+    add_pose(
+        target, "draw every IK solution of this pose: position (m), Euler angles (see --euler)"
     )
     target.add_argument(
         "--matrix", nargs=16, type=float, metavar="M", help="every IK solution of this 4x4 pose"
