@@ -22,21 +22,6 @@ from kinematica.ik.redundancy import PARAMETER_SWEEP, REDUNDANT_DOF, choose, pre
 TOL = 1e-10
 
 
-def expected_joint(robot: km.Robot) -> int | None:
-    """The first joint of the preference whose locked arm has a special family's closed
-    form, else the general 6R's (or None)."""
-    general = None
-    for k in preference(robot.dof):
-        lo, hi = robot.chain.own_limits[k]
-        value = 0.5 * (lo + hi) if np.isfinite([lo, hi]).all() else 0.0
-        closed = closed_form(locked_chain(robot.chain, k, value), "pose")
-        if closed is not None and not closed.partial:
-            if not closed.search_note:
-                return k
-            general = k if general is None else general
-    return general
-
-
 def test_the_preference_is_last_first_then_base_to_tip() -> None:
     assert preference(7) == (6, 0, 1, 2, 3, 4, 5)
     assert preference(2) == (1, 0)
@@ -48,36 +33,43 @@ def test_an_srs_arm_holds_its_arm_angle_not_a_joint() -> None:
     assert not isinstance(choose(km.load("panda").chain), ArmAngleParameter)
 
 
-@pytest.mark.parametrize("name", ["panda"])
-def test_auto_says_its_parameter_and_every_solution_holds_it(name: str) -> None:
-    robot = km.load(name)
-    k = expected_joint(robot)
+def test_auto_prefers_a_special_family_to_the_general_6r() -> None:
+    # a joint before the PUMA 560: holding the last joint leaves a general 6R, holding the
+    # first leaves the PUMA itself (a spherical wrist): the first is held
+    puma = km.load("puma560")
+    rows = [km.Revolute(d=0.3, a=0.1, alpha=np.pi / 2), *puma.links]
+    robot = km.Robot.from_dh(rows, convention=puma.convention, tool=puma.tool)
+    last = closed_form(locked_chain(robot.chain, 6, 0.0), "pose")
+    assert last is not None and last.name == "general-6R"
+    joint = choose(robot.chain)
+    assert isinstance(joint, JointParameter) and joint.index == 0
+    q = np.array([0.4, 0.1, -0.5, 0.3, 0.7, 0.4, -0.2])
+    res = robot.ik(robot.fk(q), q0=q)
+    assert res.method == "analytic:spherical-wrist" and res.parameter == ("q1", 0.4)
+    np.testing.assert_allclose(res.solutions[0], q, atol=1e-9)
+
+
+def test_auto_says_its_parameter_and_every_solution_holds_it() -> None:
+    # the Panda's axes 1-3 meet: held at q7 (its last joint, first in the preference), the
+    # arm left has a spherical shoulder; q7's limits are symmetric, so it is held at 0
+    robot = km.load("panda")
     joint = choose(robot.chain, robot.joint_names)
-    assert (None if joint is None else joint.index) == k
-    q = np.array([0.2, 0.4, -0.1, -1.4, 0.3, 1.2, 0.5])
+    assert isinstance(joint, JointParameter) and joint.index == 6
+    q = np.array([0.2, 0.4, -0.1, -1.4, 0.3, 1.2, 0.0])  # made at q7 = 0
     T = robot.fk(q)
     res = robot.ik(T)
     assert isinstance(res, IKResult)
-    if k is None:  # no lock gives a closed form: the search over every joint, as before
-        assert res.parameter is None and res.method == "numeric:lm"
-        return
-    lo, hi = robot.chain.own_limits[k]
-    value = 0.5 * (lo + hi)
-    if res.parameter is None:  # nothing at that value: the search answered, and said so
-        assert any("numeric search over all 7 joints" in n for n in res.notes)
-        return
-    assert res.parameter == (f"q{k + 1}", value)
-    assert res.method.startswith("analytic:")
-    np.testing.assert_array_equal(res.solutions[:, k], value)
+    assert res.parameter == ("q7", 0.0) and res.method == "analytic:spherical-shoulder"
+    np.testing.assert_array_equal(res.solutions[:, 6], 0.0)
     assert_transform_close(robot.fk(res.solutions), np.broadcast_to(T, (res.count, 4, 4)), atol=TOL)
-    assert any(f"q{k + 1} = " in n and "redundancy parameter" in n for n in res.notes)
-    assert f"with q{k + 1} = " in res.message
+    assert min(np.abs(res.solutions - q).max(axis=1)) < 1e-9  # the configuration that made it
+    assert any("q7 = 0 rad" in n and "redundancy parameter" in n for n in res.notes)
+    assert "with q7 = " in res.message
 
 
 def test_auto_on_the_panda_holds_q0s_value() -> None:
     robot = km.load("panda")
-    k = expected_joint(robot)
-    assert k is not None  # its last joint leaves a spherical shoulder
+    k = 6  # its last joint: the arm left has a spherical shoulder
     q = np.array([0.3, 0.5, -0.2, -1.2, 0.4, 0.9, 0.2])
     T = robot.fk(q)
     res = robot.ik(T, q0=q)
