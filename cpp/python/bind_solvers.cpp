@@ -6,6 +6,7 @@ namespace kmpy {
 
 void bind_planar(nb::module_& m);
 void bind_elbow(nb::module_& m);
+void bind_cylindrical(nb::module_& m);
 void bind_decoupled(nb::module_& m);
 void bind_parallel(nb::module_& m);
 void bind_srs(nb::module_& m);
@@ -14,6 +15,7 @@ void bind_general6r(nb::module_& m);
 void bind_solvers(nb::module_& m) {
     bind_planar(m);
     bind_elbow(m);
+    bind_cylindrical(m);
     bind_decoupled(m);
     bind_parallel(m);
     bind_srs(m);

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from kinematica.ik.analytic import (
     arm_position,
+    cylindrical,
     elbow_arms,
     general_6r,
     parallel,
@@ -25,6 +26,7 @@ __all__ = ["SOLVERS"]
 SOLVERS: tuple[SolverSpec, ...] = (
     parallel.SPEC,
     *planar_arms.SPECS,
+    *cylindrical.SPECS,
     *elbow_arms.SPECS,
     *spherical_wrist.SPECS,
     *spherical_shoulder.SPECS,  # an arm with a spherical wrist too is the wrist's
