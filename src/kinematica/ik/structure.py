@@ -9,6 +9,7 @@ every q.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -19,6 +20,7 @@ from kinematica.dh.lines import (
     AXIS_ANGLE_TOL,
     AXIS_EXACT_TOL,
     common_point,
+    cross3,
     length_tol,
     line_distance,
     lines_parallel,
@@ -173,7 +175,7 @@ def near_degenerate_slack(
     n = len(h)
     for i in range(n):
         for j in range(i + 1, n):
-            sine = float(np.linalg.norm(np.cross(h[i], h[j])))
+            sine = math.hypot(*cross3(h[i], h[j]))
             cosine = abs(float(h[i] @ h[j]))
             for v in (sine, cosine):
                 if exact < v <= AXIS_ANGLE_TOL:
