@@ -1,10 +1,4 @@
 // The cylindrical family (turn, lift, reach, and an optional roll): kinematica._core.cylindrical.
-#include <nanobind/stl/optional.h>
-#include <nanobind/stl/string.h>
-
-#include <optional>
-#include <string>
-
 #include "common.hpp"
 #include "kinematica/solvers/cylindrical.hpp"
 #include "solver_binding.hpp"
@@ -47,11 +41,6 @@ void bind_cylindrical(nb::module_& m) {
         .def_rw("scale", &CylindricalParams::scale, "size of the arm (m): the scale of SINGULAR_TOL")
         .def_rw("slack", &CylindricalParams::slack,
                 "how far the lift's tilt off k may put the tool from the ideal arm's (m)");
-    cls.def("invalid", [](const CylindricalParams& p) -> std::optional<std::string> {
-        const char* why = p.invalid();
-        if (why == nullptr) return std::nullopt;
-        return std::string(why);
-    }, "What makes the fields no arm the solver can index safely, or None.");
     sub.attr("SINGULAR_TOL") = km::triangle::SINGULAR_TOL;
     sub.attr("MERGE_TOL") = km::triangle::MERGE_TOL;
 }

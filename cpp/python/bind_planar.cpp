@@ -108,11 +108,6 @@ void bind_planar(nb::module_& m) {
     KM_SMALL_VEC(cls, PlanarParams, tip, "(2,) the tool origin at q = 0, plane coordinates (m)");
     KM_SMALL_VEC(cls, PlanarParams, u, "(2,) the slide direction across k, plane (unit)");
     KM_SMALL_PAIRS(cls, PlanarParams, qlim, "(4, 2) joint limits (rad or m; +-inf: none)");
-    cls.def("invalid", [](const PlanarParams& p) -> std::optional<std::string> {
-        const char* why = p.invalid();
-        if (why == nullptr) return std::nullopt;
-        return std::string(why);
-    }, "What makes the fields no arm the solver can index safely, or None.");
 
     sub.attr("SINGULAR_TOL") = km::triangle::SINGULAR_TOL;
     sub.attr("MERGE_TOL") = km::triangle::MERGE_TOL;

@@ -8,9 +8,12 @@
 #pragma once
 
 #include <nanobind/nanobind.h>
+#include <nanobind/stl/optional.h>
+#include <nanobind/stl/string.h>
 
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -308,6 +311,16 @@ nb::class_<Params> bind_closed_form(nb::module_& m, const char* name, const char
     cls.attr("cpp_type") = cpp_type;
     cls.attr("cpp_header") = cpp_header;
     add_ik_methods(cls, [](const Params& p) { return km::ClosedForm<Params>{checked(p)}; });
+    if constexpr (has_invalid<Params>::value) {
+        cls.def(
+            "invalid",
+            [](const Params& p) -> std::optional<std::string> {
+                const char* why = p.invalid();
+                if (why == nullptr) return std::nullopt;
+                return std::string(why);
+            },
+            "What makes the fields no arm the solver can index safely, or None.");
+    }
     return cls;
 }
 
