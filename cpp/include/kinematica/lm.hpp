@@ -6,7 +6,8 @@
 //
 // * A step that lowers ½ eᵀWe is accepted and λ shrinks tenfold (the last steps are
 //   Gauss-Newton steps, quadratically convergent to the 1e-10 tolerances); one that does
-//   not is rejected and λ grows fivefold. The Jacobian is computed at accepted points only.
+//   not is rejected and λ grows fivefold. The Jacobian, the bound scaling and the normal
+//   matrix are made at accepted points only: a rejected step changes λ alone.
 // * Joint limits: the step is taken in variables scaled by the distance to the bound each
 //   joint heads for (Coleman and Li's affine scaling, as scipy's least_squares "trf"), so
 //   a joint slows down as it nears that bound and one on it is blocked; the new
@@ -90,6 +91,7 @@ struct LMWork {
     std::vector<double> q, q_new, q_best, dq, d, c, s, J6, J, Jb;
     Pose pose{};
     Twist e6{};
+    NormalMatrix normal{};  //!< of the scaled rows Jb at the current point
     explicit LMWork(int n_)
         : n(n_), q(static_cast<size_t>(n_)), q_new(q.size()), q_best(q.size()), dq(q.size()),
           d(q.size()), c(q.size()), s(q.size()), J6(static_cast<size_t>(6 * n_)), J(J6.size()),
@@ -144,7 +146,10 @@ KM_HD inline void project(const ChainView& ch, const JointBound* b, double* q) {
         const double lo = b[i].lo, hi = b[i].hi;
         double v = q[i];
         const bool revolute = !ch.joint[i].prismatic;
-        if (revolute) v = b[i].wrap + floor_mod(v - b[i].wrap, TWO_PI);
+        // (inside its window already, as after most steps: no fmod call)
+        if (revolute && !(b[i].wrap <= v && v < b[i].wrap + TWO_PI)) {
+            v = b[i].wrap + floor_mod(v - b[i].wrap, TWO_PI);
+        }
         if (v > hi) v = (revolute && v - hi > lo + TWO_PI - v) ? lo : hi;
         q[i] = v < lo ? lo : v;
     }
@@ -213,7 +218,7 @@ KM_HD inline void bound_scaling(const JointBound* b, const double* q, const doub
         } else if (g < 0.0) {
             v = std::fmin(v, q[j] - b[j].lo);
         }
-        d[j] = std::sqrt(std::fmax(v, 0.0) / BOUND_SCALE);
+        d[j] = v >= BOUND_SCALE ? 1.0 : std::sqrt(std::fmax(v, 0.0) / BOUND_SCALE);
         for (int r = 0; r < count; ++r) Jb[r * n + j] = J[r * n + j] * d[j];
     }
 }
@@ -325,6 +330,7 @@ KM_HD inline LMStats lm_solve(const ChainView& ch, const JointBound* bounds, con
         double E_ref = E;
         double lam = LAMBDA_INIT;
         int k = 0;
+        bool moved = true;  // a new point: its scaling and normal matrix are to be made
         while (true) {
             norms(rows, err, pos, rot);
             if (pos <= tol_p && rot <= tol_r) {
@@ -334,10 +340,15 @@ KM_HD inline LMStats lm_solve(const ChainView& ch, const JointBound* bounds, con
             const bool window = k > 0 && k % STALL_WINDOW == 0;
             if ((window && STALL_FACTOR * E_ref < E) || lam > LAMBDA_MAX || k >= set.max_steps) break;
             if (window) E_ref = E;
-            // One damped step in bound-scaled variables, then back into the bounds.
-            for (int r = 0; r < rows.count; ++r) ew[r] = err[r] * rows.sw[r];
-            bound_scaling(bounds, q, work.J.data(), rows.count, n, ew, work.Jb.data(), work.d.data());
-            damped_least_squares(work.Jb.data(), rows.count, n, ew, lam, work.dq.data());
+            // One damped step in bound-scaled variables, then back into the bounds. A
+            // rejected step leaves the point, its scaling and its normal matrix as they were.
+            if (moved) {
+                for (int r = 0; r < rows.count; ++r) ew[r] = err[r] * rows.sw[r];
+                bound_scaling(bounds, q, work.J.data(), rows.count, n, ew, work.Jb.data(), work.d.data());
+                normal_matrix(work.Jb.data(), rows.count, n, work.normal);
+                moved = false;
+            }
+            damped_step(work.normal, work.Jb.data(), rows.count, n, ew, lam, work.dq.data());
             for (int i = 0; i < n; ++i) q_new[i] = q[i] + work.d[i] * work.dq[i];
             project(ch, bounds, q_new);
             pose_errors(ch, q_new, T, rows, work, err_new);
@@ -348,6 +359,7 @@ KM_HD inline LMStats lm_solve(const ChainView& ch, const JointBound* bounds, con
                 for (int r = 0; r < rows.count; ++r) err[r] = err_new[r];
                 jacobian_rows(ch, rows, work);
                 E = E_new;
+                moved = true;
                 lam = std::fmax(lam * LAMBDA_DOWN, LAMBDA_MIN);
             } else {
                 lam *= LAMBDA_UP;
