@@ -218,28 +218,35 @@ KM_HD inline double energy(const Rows& rows, const double* err) {
     return 0.5 * t;
 }
 
-//! Coleman-Li scaling: d (n) per joint, and the scaled Jacobian Jb = J diag(d).
-KM_HD inline void bound_scaling(const JointBound* b, const double* q, const double* J, int count,
-                                int n, const double* ew, double* Jb, double* d) {
+//! Coleman-Li scaling: d (n) per joint, and the scaled rows J diag(d): J itself where
+//! every d is 1 (no joint within BOUND_SCALE of the bound it heads for), else Jb.
+KM_HD inline const double* bound_scaling(const JointBound* b, const double* q, const double* J,
+                                         int count, int n, const double* ew, double* Jb,
+                                         double* d) {
     // g = Jᵀ ew into d first, row after row (each joint's sum in the order of the rows, as
     // a dot product's; the loops run along contiguous joints)
     for (int j = 0; j < n; ++j) d[j] = 0.0;
     for (int r = 0; r < count; ++r) {
         for (int j = 0; j < n; ++j) d[j] += J[r * n + j] * ew[r];
     }
+    bool scaled = false;
     for (int j = 0; j < n; ++j) {
         const double g = d[j];
         double v = BOUND_SCALE;
         if (g > 0.0) {
-            v = std::fmin(v, b[j].hi - q[j]);
+            v = b[j].hi - q[j];
         } else if (g < 0.0) {
-            v = std::fmin(v, q[j] - b[j].lo);
+            v = q[j] - b[j].lo;
         }
-        d[j] = v >= BOUND_SCALE ? 1.0 : std::sqrt(std::fmax(v, 0.0) / BOUND_SCALE);
+        // (comparisons, not fmin / fmax calls: v is never NaN, as q is within its bounds)
+        d[j] = v >= BOUND_SCALE ? 1.0 : std::sqrt((v > 0.0 ? v : 0.0) / BOUND_SCALE);
+        scaled = scaled || d[j] != 1.0;
     }
+    if (!scaled) return J;
     for (int r = 0; r < count; ++r) {
         for (int j = 0; j < n; ++j) Jb[r * n + j] = J[r * n + j] * d[j];
     }
+    return Jb;
 }
 
 //! A Gauss-Newton step dq holding the joints on a bound that it would carry out (solved
@@ -350,6 +357,7 @@ KM_HD inline LMStats lm_solve(const ChainView& ch, const JointBound* bounds, con
         double lam = LAMBDA_INIT;
         int k = 0;
         bool moved = true;  // a new point: its scaling and normal matrix are to be made
+        const double* Js = nullptr;  // the point's scaled rows (bound_scaling)
         while (true) {
             norms(rows, err, pos, rot);
             if (pos <= tol_p && rot <= tol_r) {
@@ -363,11 +371,12 @@ KM_HD inline LMStats lm_solve(const ChainView& ch, const JointBound* bounds, con
             // rejected step leaves the point, its scaling and its normal matrix as they were.
             if (moved) {
                 for (int r = 0; r < rows.count; ++r) ew[r] = err[r] * rows.sw[r];
-                bound_scaling(bounds, q, work.J.data(), rows.count, n, ew, work.Jb.data(), work.d.data());
-                normal_matrix(work.Jb.data(), rows.count, n, work.normal);
+                Js = bound_scaling(bounds, q, work.J.data(), rows.count, n, ew, work.Jb.data(),
+                                   work.d.data());
+                normal_matrix(Js, rows.count, n, work.normal);
                 moved = false;
             }
-            damped_step(work.normal, work.Jb.data(), rows.count, n, ew, lam, work.dq.data());
+            damped_step(work.normal, Js, rows.count, n, ew, lam, work.dq.data());
             for (int i = 0; i < n; ++i) q_new[i] = q[i] + work.d[i] * work.dq[i];
             project(ch, bounds, q_new);
             pose_errors(ch, q_new, T, rows, work, err_new);
