@@ -132,7 +132,7 @@ struct Rows {
 };
 
 //! Distance (m) from origin to T's position, counted axes only, without overflow.
-KM_HD inline double distance(const Pose& T, const Vec3& origin, const double* w) {
+KM_HD KM_INLINE double distance(const Pose& T, const Vec3& origin, const double* w) {
     double big = 0.0;
     for (int k = 0; k < 3; ++k) {
         if (w[k] > 0.0) big = std::fmax(big, std::fabs(T.p[k] - origin[k]));
@@ -149,7 +149,7 @@ KM_HD inline double distance(const Pose& T, const Vec3& origin, const double* w)
 }
 
 //! Wrap revolute angles into their window, then clamp into the bounds (in place).
-KM_HD inline void project(const ChainView& ch, const JointBound* b, double* q) {
+KM_HD KM_INLINE void project(const ChainView& ch, const JointBound* b, double* q) {
     for (int i = 0; i < ch.n; ++i) {
         const double lo = b[i].lo, hi = b[i].hi;
         double v = q[i];
@@ -164,8 +164,8 @@ KM_HD inline void project(const ChainView& ch, const JointBound* b, double* q) {
 }
 
 //! Pose at q, its axes (into work.J6), the full error e6 and the counted err.
-KM_HD inline void pose_errors(const ChainView& ch, const double* q, const Pose& T, const Rows& rows,
-                              LMWork& work, double* err) {
+KM_HD KM_INLINE void pose_errors(const ChainView& ch, const double* q, const Pose& T,
+                                 const Rows& rows, LMWork& work, double* err) {
     joint_trig(ch, q, work.c.data(), work.s.data());
     work.pose = walk(ch, q, work.c.data(), work.s.data(),
                      detail::AxesIntoJacobian{work.J6.data(), ch.n});
@@ -174,7 +174,7 @@ KM_HD inline void pose_errors(const ChainView& ch, const double* q, const Pose& 
 }
 
 //! Weighted rows J (count x n) of the counted errors, from the last pose_errors.
-KM_HD inline void jacobian_rows(const ChainView& ch, const Rows& rows, LMWork& work) {
+KM_HD KM_INLINE void jacobian_rows(const ChainView& ch, const Rows& rows, LMWork& work) {
     const int n = ch.n;
     double* J6 = work.J6.data();
     jacobian_columns(ch, work.pose, false, J6);
@@ -197,7 +197,7 @@ KM_HD inline void jacobian_rows(const ChainView& ch, const Rows& rows, LMWork& w
 }
 
 //! Position and rotation norms of err, each component scaled by rows.scale.
-KM_HD inline void norms(const Rows& rows, const double* err, double& pos, double& rot) {
+KM_HD KM_INLINE void norms(const Rows& rows, const double* err, double& pos, double& rot) {
     double p2 = 0.0, r2 = 0.0;
     for (int r = 0; r < rows.count; ++r) {
         const double v = (err[r] * rows.scale[r]) * (err[r] * rows.scale[r]);
@@ -212,7 +212,7 @@ KM_HD inline void norms(const Rows& rows, const double* err, double& pos, double
 }
 
 //! ½ Σ w_k e_k² of the counted errors.
-KM_HD inline double energy(const Rows& rows, const double* err) {
+KM_HD KM_INLINE double energy(const Rows& rows, const double* err) {
     double t = 0.0;
     for (int r = 0; r < rows.count; ++r) t += (err[r] * rows.sw[r]) * (err[r] * rows.sw[r]);
     return 0.5 * t;
@@ -220,9 +220,9 @@ KM_HD inline double energy(const Rows& rows, const double* err) {
 
 //! Coleman-Li scaling: d (n) per joint, and the scaled rows J diag(d): J itself where
 //! every d is 1 (no joint within BOUND_SCALE of the bound it heads for), else Jb.
-KM_HD inline const double* bound_scaling(const JointBound* b, const double* q, const double* J,
-                                         int count, int n, const double* ew, double* Jb,
-                                         double* d) {
+KM_HD KM_INLINE const double* bound_scaling(const JointBound* b, const double* q,
+                                            const double* J, int count, int n, const double* ew,
+                                            double* Jb, double* d) {
     // g = Jᵀ ew into d first, row after row (each joint's sum in the order of the rows, as
     // a dot product's; the loops run along contiguous joints)
     for (int j = 0; j < n; ++j) d[j] = 0.0;
@@ -315,9 +315,9 @@ KM_HD inline int end_game(const ChainView& ch, const JointBound* b, const Pose& 
 //! Args: the chain, bounds (n), weights w (6; 0: not counted), settings, target T, first
 //! guess start (n), restart configurations samples (R x n, used in order), q_out (n; the
 //! converged configuration, or the best failed one; NaN when the target was not searched).
-KM_HD inline LMStats lm_solve(const ChainView& ch, const JointBound* bounds, const double* w,
-                              const LMSettings& set, const Pose& T, const double* start,
-                              const double* samples, int R, double* q_out, LMWork& work) {
+KM_HD KM_INLINE LMStats lm_solve(const ChainView& ch, const JointBound* bounds, const double* w,
+                                 const LMSettings& set, const Pose& T, const double* start,
+                                 const double* samples, int R, double* q_out, LMWork& work) {
     using namespace lm;
     const int n = ch.n;
     LMStats stats;
