@@ -48,7 +48,7 @@ from kinematica._core import internals
 
 import kinematica as km
 from kinematica import _core
-from kinematica.ik.numeric import LABEL, numeric_setup
+from kinematica.ik.numeric import LABEL, NumericSetup, numeric_setup
 from kinematica.ik.result import IKBatchResult
 from kinematica.spatial import rotation_angle
 
@@ -70,18 +70,23 @@ def judge(robot: km.Robot, q: np.ndarray, targets: np.ndarray) -> np.ndarray:
     return ok & (dist <= TOL) & (angle <= TOL) & inside
 
 
+def default_setup(robot: km.Robot) -> NumericSetup:
+    """The numeric set-up ``robot.ik(T, method="numeric")`` uses (every default)."""
+    return numeric_setup(
+        robot.chain,
+        respect_limits=True,
+        tol_position=TOL,
+        tol_rotation=TOL,
+        seed=None,
+        weights=(1.0,) * 6,
+    )
+
+
 def core_call(robot: km.Robot) -> Any:
     """``T -> solver.ik(...)``: the core's search and check of one target, as robot.ik calls it."""
     default = robot.ik(robot.fk(robot.qlim.mean(axis=1)), method="numeric")
     assert default.method == "numeric:lm"
-    setup = numeric_setup(
-        robot.chain,
-        respect_limits=True,
-        tol_position=1e-10,
-        tol_rotation=1e-10,
-        seed=None,
-        weights=(1.0,) * 6,
-    )
+    setup = default_setup(robot)
     opts = _core.CheckOptions()
     opts.tol_position, opts.tol_rotation = 1e-10, 1e-10
     opts.respect_limits, opts.complete, opts.weights = True, False, (1.0,) * 6
@@ -91,14 +96,7 @@ def core_call(robot: km.Robot) -> Any:
 
 def account(robot: km.Robot, targets: np.ndarray, batched: float) -> list[str]:
     """A row of where the batched time goes: evaluations and attempts per target."""
-    setup = numeric_setup(
-        robot.chain,
-        respect_limits=True,
-        tol_position=1e-10,
-        tol_rotation=1e-10,
-        seed=None,
-        weights=(1.0,) * 6,
-    )
+    setup = default_setup(robot)
     evaluations, attempts, _ = internals.lm_stats(setup.solver, robot.chain.core, targets)
     restarted = attempts > 1
     p90, p99 = np.percentile(evaluations, [90, 99])
