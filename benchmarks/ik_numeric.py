@@ -18,6 +18,11 @@ prints, on one core (``workers=1``):
   core's call alone (``solver.ik``: the search and the check, no Python
   around it).
 
+Where the batched time goes: the search's own counts per target
+(``kinematica._core.internals.lm_stats``: configurations evaluated, attempts),
+their median, mean and tail, the share of targets that needed restarts and of
+the evaluations spent on them, and the batched time per evaluation.
+
 When ``roboticstoolbox`` imports (``make bench`` installs it when it can), the
 same poses go to its ``ETS.ik_LM`` (Levenberg-Marquardt with random
 restarts, C++), one call per pose, with its tolerance on ``E = ½ eᵀe`` set to
@@ -39,10 +44,11 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _common import fmt_time, header, shortest_per_item, table, verdict
+from kinematica._core import internals
 
 import kinematica as km
 from kinematica import _core
-from kinematica.ik.numeric import LABEL, numeric_setup
+from kinematica.ik.numeric import LABEL, NumericSetup, numeric_setup
 from kinematica.ik.result import IKBatchResult
 from kinematica.spatial import rotation_angle
 
@@ -64,23 +70,45 @@ def judge(robot: km.Robot, q: np.ndarray, targets: np.ndarray) -> np.ndarray:
     return ok & (dist <= TOL) & (angle <= TOL) & inside
 
 
+def default_setup(robot: km.Robot) -> NumericSetup:
+    """The numeric set-up ``robot.ik(T, method="numeric")`` uses (every default)."""
+    return numeric_setup(
+        robot.chain,
+        respect_limits=True,
+        tol_position=TOL,
+        tol_rotation=TOL,
+        seed=None,
+        weights=(1.0,) * 6,
+    )
+
+
 def core_call(robot: km.Robot) -> Any:
     """``T -> solver.ik(...)``: the core's search and check of one target, as robot.ik calls it."""
     default = robot.ik(robot.fk(robot.qlim.mean(axis=1)), method="numeric")
     assert default.method == "numeric:lm"
-    setup = numeric_setup(
-        robot.chain,
-        respect_limits=True,
-        tol_position=1e-10,
-        tol_rotation=1e-10,
-        seed=None,
-        weights=(1.0,) * 6,
-    )
+    setup = default_setup(robot)
     opts = _core.CheckOptions()
     opts.tol_position, opts.tol_rotation = 1e-10, 1e-10
     opts.respect_limits, opts.complete, opts.weights = True, False, (1.0,) * 6
     core = robot.chain.core
     return lambda T: setup.solver.ik(core, T, opts, None, (LABEL,))
+
+
+def account(robot: km.Robot, targets: np.ndarray, batched: float) -> list[str]:
+    """A row of where the batched time goes: evaluations and attempts per target."""
+    setup = default_setup(robot)
+    evaluations, attempts, _ = internals.lm_stats(setup.solver, robot.chain.core, targets)
+    restarted = attempts > 1
+    p90, p99 = np.percentile(evaluations, [90, 99])
+    return [
+        robot.name,
+        f"{np.median(evaluations):.0f} / {evaluations.mean():.1f}",
+        f"{p90:.0f} / {p99:.0f} / {evaluations.max()}",
+        f"{100 * restarted.mean():.1f} %",
+        f"{100 * evaluations[restarted].sum() / evaluations.sum():.0f} %",
+        f"{attempts.max()}",
+        fmt_time(batched / evaluations.mean()),
+    ]
 
 
 def ours(robot: km.Robot, targets: np.ndarray, singles: int) -> tuple[list[str], list[float]]:
@@ -176,7 +204,7 @@ def main() -> None:
         "(workers=1); batched: CPU time (wall in brackets); single: median over "
         f"{args.singles} poses of each one's shortest of 3 passes (wall)\n"
     )
-    rows, figures = [], {}
+    rows, figures, spent = [], {}, []
     for name in ("panda", "iiwa14"):
         robot = km.load(name)
         lo, hi = robot.qlim.T
@@ -184,6 +212,7 @@ def main() -> None:
         targets = robot.fk(q)
         row, figures[robot.name] = ours(robot, targets, args.singles)
         rows.append(row)
+        spent.append(account(robot, targets, figures[robot.name][2]))
         other = theirs(robot, targets, args.singles, figures[robot.name][1])
         if other:
             rows.append(other)
@@ -191,6 +220,10 @@ def main() -> None:
     print(table(rows, [*head, "single vs ours"]))
     if not any(r[1].startswith("RTB") for r in rows):
         print("\nroboticstoolbox not importable: its rows are skipped.")
+
+    print("\n  where the batched time goes: configurations evaluated per target")
+    head = ["arm", "median / mean", "p90 / p99 / max", "restarted", "their share", "most attempts"]
+    print(table(spent, [*head, "time per evaluation"]))
 
     print("\n  issue 19 targets (one core)")
     out = []

@@ -15,6 +15,7 @@
 #include "kinematica/geometry.hpp"
 #include "kinematica/linalg.hpp"
 #include "kinematica/lm.hpp"
+#include "kinematica/numeric.hpp"
 #include "kinematica/polynomial.hpp"
 #include "kinematica/so3.hpp"
 #include "kinematica/trig.hpp"
@@ -73,6 +74,30 @@ nb::tuple lm_rows(const km::Chain& chain, const std::array<double, 6>& w, F64 qh
         for (int j = 0; j < n; ++j) J[r * n + j] = work.J[static_cast<size_t>(r * n + j)];
     }
     return nb::make_tuple(E, Ja);
+}
+
+//! The numeric search of each target T (N, 4, 4) from the default first guess, as
+//! lm_solve counts it: (evaluations (N,), attempts (N,), converged (N,)).
+nb::tuple lm_stats(const km::NumericSolver& s, const km::Chain& chain, F64 Th) {
+    const In T = in_f64(Th, "T", 3, {-1, 4, 4});
+    if (s.dof() != chain.dof()) throw nb::value_error("the solver and the chain differ in joints");
+    const npy_intp N = T.dim[0];
+    npy_int64 *evaluations, *attempts;
+    npy_bool* converged;
+    nb::object Ea = new_i64({N}, evaluations), Aa = new_i64({N}, attempts);
+    nb::object Ca = new_array({N}, converged, NPY_BOOL);
+    const km::ChainView ch = chain.view();
+    km::LMWork work(s.n);
+    std::vector<double> q(static_cast<size_t>(s.n));
+    for (npy_intp i = 0; i < N; ++i) {
+        const km::LMStats st =
+            km::lm_solve(ch, s.bounds.data(), s.weights, s.settings, km::Pose::from_rows(T.data + 16 * i),
+                         s.middle.data(), s.samples.data(), s.restarts(), q.data(), work);
+        evaluations[i] = st.evaluations;
+        attempts[i] = st.attempts;
+        converged[i] = st.converged;
+    }
+    return nb::make_tuple(Ea, Aa, Ca);
 }
 
 F64 dls(F64 Jh, F64 eh, double lam) {
@@ -148,6 +173,9 @@ void bind_testing(nb::module_& m) {
     t.def("lm_rows", &lm_rows, nb::arg("chain"), nb::arg("weights"), nb::arg("q"), nb::arg("T"),
           "The search's model at q: (counted errors (r,), their weighted Jacobian rows (r, n)).");
     t.def("damped_least_squares", &dls, nb::arg("J"), nb::arg("e"), nb::arg("lam"));
+    t.def("lm_stats", &lm_stats, nb::arg("solver"), nb::arg("chain"), nb::arg("T"),
+          "The search of each target T (N, 4, 4) from the default first guess: (evaluations,\n"
+          "attempts, converged), each (N,).");
     t.attr("REDUCTION_LIMIT") = km::REDUCTION_LIMIT;
     t.attr("TRIG_TOL") = km::TRIG_TOL;
     t.attr("QUARTIC_CHECK") = km::QUARTIC_CHECK;

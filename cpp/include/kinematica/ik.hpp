@@ -45,11 +45,13 @@ struct IKWork {
         : solver(s.work(n)), check(s.slots(), n), Q(static_cast<size_t>(s.slots() * n)) {}
 };
 
-//! Every solution of one target T (base frame): candidates, then the check.
+//! Every solution of one target T (base frame): candidates, then the check. Inlined into
+//! its caller, so that each instruction-set copy of the caller (KM_CLONES) holds the
+//! solver's own code where that is inlined too (the numeric search is).
 template <class Solver>
-inline CheckReport solve_ik(const Solver& solver, const ChainView& ch, const Pose& T,
-                            const CheckOptions& opts, const double* q0, IKWork<Solver>& work,
-                            const CheckOut& out) {
+KM_INLINE CheckReport solve_ik(const Solver& solver, const ChainView& ch, const Pose& T,
+                               const CheckOptions& opts, const double* q0, IKWork<Solver>& work,
+                               const CheckOut& out) {
     SolverInfo info;
     solver.solve(ch, T, q0, work.Q.data(), info, work.solver);
     return check(ch, T, work.Q.data(), solver.slots(), info, opts, q0, work.check, out);

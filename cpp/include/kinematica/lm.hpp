@@ -4,15 +4,17 @@
 // (JᵀWJ + λ s I) Δq = JᵀW e (in its m x m form when the arm is redundant); W holds the
 // mask weights, s the mean diagonal of the normal matrix, so λ is dimensionless.
 //
-// * A step that lowers ½ eᵀWe is accepted and λ shrinks tenfold (the last steps are
+// * A step that lowers ½ eᵀWe is accepted and λ shrinks fivefold (the last steps are
 //   Gauss-Newton steps, quadratically convergent to the 1e-10 tolerances); one that does
-//   not is rejected and λ grows fivefold. The Jacobian is computed at accepted points only.
+//   not is rejected and λ grows fivefold. The Jacobian, the bound scaling and the normal
+//   matrix are made at accepted points only: a rejected step changes λ alone.
 // * Joint limits: the step is taken in variables scaled by the distance to the bound each
 //   joint heads for (Coleman and Li's affine scaling, as scipy's least_squares "trf"), so
 //   a joint slows down as it nears that bound and one on it is blocked; the new
 //   configuration is then wrapped and clamped into the bounds.
-// * An attempt stops when it converges, when λ exceeds LAMBDA_MAX, when the error norm has
-//   not halved over STALL_WINDOW steps (a local minimum), or after the step budget.
+// * An attempt stops when it converges, when λ exceeds LAMBDA_MAX, when ½ eᵀWe has not
+//   fallen by a fifth over the last STALL_WINDOW steps (a local minimum, or a crawl towards
+//   one: a restart is cheaper), or after the step budget.
 // * An attempt that stops within POLISH_LIMIT of the target (a near miss) gets
 //   Gauss-Newton steps taken whatever they do to the error and keeps the best point (the
 //   end game): near a fold the damped steps stall a hair from the target, the error left
@@ -39,8 +41,10 @@ namespace km {
 //! Initial damping, relative to the mean diagonal of the normal matrix: about as strong as
 //! the Jacobian itself, a safe first step from a distant guess.
 constexpr double LAMBDA_INIT = 1.0;
-//! Damping factor after an accepted step (towards Gauss-Newton) ...
-constexpr double LAMBDA_DOWN = 0.1;
+//! Damping factor after an accepted step (towards Gauss-Newton) ... (0.2 against 0.1:
+//! 7-19 % fewer evaluations on the Panda, PUMA 560 and a general 6R arm, as many on the
+//! iiwa14, with the stall test below; benchmarks/ik_numeric.py's arms, 4,000 poses each)
+constexpr double LAMBDA_DOWN = 0.2;
 //! ... and after a rejected one (towards short gradient steps).
 constexpr double LAMBDA_UP = 5.0;
 //! Smallest relative damping, far below the round-off of the normal matrix: the last steps
@@ -52,10 +56,12 @@ constexpr double LAMBDA_MIN = 1e-21;
 //! Damping at which an attempt has stalled: even tiny gradient steps no longer reduce the
 //! error (a local minimum, or the error is at round-off level).
 constexpr double LAMBDA_MAX = 1e8;
-//! Progress check: every STALL_WINDOW steps the squared error must have dropped below
-//! STALL_FACTOR times its value at the previous check (the error norm must halve).
-constexpr int STALL_WINDOW = 8;
-constexpr double STALL_FACTOR = 0.25;
+//! Progress check, at every step from the STALL_WINDOW-th on: ½ eᵀWe must be below
+//! STALL_FACTOR times its value STALL_WINDOW steps (accepted or not) before. Failed
+//! attempts crawl: most of a search's time went into them while the test looked every 8
+//! steps for the error norm to halve, and a converging attempt gains more than this.
+constexpr int STALL_WINDOW = 4;
+constexpr double STALL_FACTOR = 0.8;
 //! Distance to a bound (rad or m) below which a joint heading for it slows down: its
 //! column and step are scaled by √min(distance / BOUND_SCALE, 1). Measured on the Panda
 //! within its limits: 10-15 % fewer evaluations than blocking joints only on a bound.
@@ -90,6 +96,7 @@ struct LMWork {
     std::vector<double> q, q_new, q_best, dq, d, c, s, J6, J, Jb;
     Pose pose{};
     Twist e6{};
+    NormalMatrix normal{};  //!< of the scaled rows Jb at the current point
     explicit LMWork(int n_)
         : n(n_), q(static_cast<size_t>(n_)), q_new(q.size()), q_best(q.size()), dq(q.size()),
           d(q.size()), c(q.size()), s(q.size()), J6(static_cast<size_t>(6 * n_)), J(J6.size()),
@@ -105,6 +112,7 @@ struct Rows {
     double sw[6] = {};
     double scale[6] = {};
     bool exact = false;  //!< only some rotation components count: their rows need J_r⁻¹
+    bool plain = false;  //!< every component counts with weight 1: the rows are J itself
 
     KM_HD explicit Rows(const double* w) {
         int rotations = 0;
@@ -118,11 +126,13 @@ struct Rows {
             }
         }
         exact = 0 < rotations && rotations < 3;
+        plain = count == 6;
+        for (int r = 0; r < count; ++r) plain = plain && sw[r] == 1.0;
     }
 };
 
 //! Distance (m) from origin to T's position, counted axes only, without overflow.
-KM_HD inline double distance(const Pose& T, const Vec3& origin, const double* w) {
+KM_HD KM_INLINE double distance(const Pose& T, const Vec3& origin, const double* w) {
     double big = 0.0;
     for (int k = 0; k < 3; ++k) {
         if (w[k] > 0.0) big = std::fmax(big, std::fabs(T.p[k] - origin[k]));
@@ -139,20 +149,23 @@ KM_HD inline double distance(const Pose& T, const Vec3& origin, const double* w)
 }
 
 //! Wrap revolute angles into their window, then clamp into the bounds (in place).
-KM_HD inline void project(const ChainView& ch, const JointBound* b, double* q) {
+KM_HD KM_INLINE void project(const ChainView& ch, const JointBound* b, double* q) {
     for (int i = 0; i < ch.n; ++i) {
         const double lo = b[i].lo, hi = b[i].hi;
         double v = q[i];
         const bool revolute = !ch.joint[i].prismatic;
-        if (revolute) v = b[i].wrap + floor_mod(v - b[i].wrap, TWO_PI);
+        // (inside its window already, as after most steps: no fmod call)
+        if (revolute && !(b[i].wrap <= v && v < b[i].wrap + TWO_PI)) {
+            v = b[i].wrap + floor_mod(v - b[i].wrap, TWO_PI);
+        }
         if (v > hi) v = (revolute && v - hi > lo + TWO_PI - v) ? lo : hi;
         q[i] = v < lo ? lo : v;
     }
 }
 
 //! Pose at q, its axes (into work.J6), the full error e6 and the counted err.
-KM_HD inline void pose_errors(const ChainView& ch, const double* q, const Pose& T, const Rows& rows,
-                              LMWork& work, double* err) {
+KM_HD KM_INLINE void pose_errors(const ChainView& ch, const double* q, const Pose& T,
+                                 const Rows& rows, LMWork& work, double* err) {
     joint_trig(ch, q, work.c.data(), work.s.data());
     work.pose = walk(ch, q, work.c.data(), work.s.data(),
                      detail::AxesIntoJacobian{work.J6.data(), ch.n});
@@ -161,7 +174,7 @@ KM_HD inline void pose_errors(const ChainView& ch, const double* q, const Pose& 
 }
 
 //! Weighted rows J (count x n) of the counted errors, from the last pose_errors.
-KM_HD inline void jacobian_rows(const ChainView& ch, const Rows& rows, LMWork& work) {
+KM_HD KM_INLINE void jacobian_rows(const ChainView& ch, const Rows& rows, LMWork& work) {
     const int n = ch.n;
     double* J6 = work.J6.data();
     jacobian_columns(ch, work.pose, false, J6);
@@ -173,6 +186,10 @@ KM_HD inline void jacobian_rows(const ChainView& ch, const Rows& rows, LMWork& w
             for (int k = 0; k < 3; ++k) J6[(3 + k) * n + j] = A[3 * k] * w0 + A[3 * k + 1] * w1 + A[3 * k + 2] * w2;
         }
     }
+    if (rows.plain) {  // J is J6 itself: take it (the next pose_errors fills the other)
+        work.J.swap(work.J6);
+        return;
+    }
     for (int r = 0; r < rows.count; ++r) {
         const int k = rows.index[r];
         for (int j = 0; j < n; ++j) work.J[r * n + j] = rows.sw[r] * J6[k * n + j];
@@ -180,7 +197,7 @@ KM_HD inline void jacobian_rows(const ChainView& ch, const Rows& rows, LMWork& w
 }
 
 //! Position and rotation norms of err, each component scaled by rows.scale.
-KM_HD inline void norms(const Rows& rows, const double* err, double& pos, double& rot) {
+KM_HD KM_INLINE void norms(const Rows& rows, const double* err, double& pos, double& rot) {
     double p2 = 0.0, r2 = 0.0;
     for (int r = 0; r < rows.count; ++r) {
         const double v = (err[r] * rows.scale[r]) * (err[r] * rows.scale[r]);
@@ -195,27 +212,41 @@ KM_HD inline void norms(const Rows& rows, const double* err, double& pos, double
 }
 
 //! ½ Σ w_k e_k² of the counted errors.
-KM_HD inline double energy(const Rows& rows, const double* err) {
+KM_HD KM_INLINE double energy(const Rows& rows, const double* err) {
     double t = 0.0;
     for (int r = 0; r < rows.count; ++r) t += (err[r] * rows.sw[r]) * (err[r] * rows.sw[r]);
     return 0.5 * t;
 }
 
-//! Coleman-Li scaling: d (n) per joint, and the scaled Jacobian Jb = J diag(d).
-KM_HD inline void bound_scaling(const JointBound* b, const double* q, const double* J, int count,
-                                int n, const double* ew, double* Jb, double* d) {
+//! Coleman-Li scaling: d (n) per joint, and the scaled rows J diag(d): J itself where
+//! every d is 1 (no joint within BOUND_SCALE of the bound it heads for), else Jb.
+KM_HD KM_INLINE const double* bound_scaling(const JointBound* b, const double* q,
+                                            const double* J, int count, int n, const double* ew,
+                                            double* Jb, double* d) {
+    // g = Jᵀ ew into d first, row after row (each joint's sum in the order of the rows, as
+    // a dot product's; the loops run along contiguous joints)
+    for (int j = 0; j < n; ++j) d[j] = 0.0;
+    for (int r = 0; r < count; ++r) {
+        for (int j = 0; j < n; ++j) d[j] += J[r * n + j] * ew[r];
+    }
+    bool scaled = false;
     for (int j = 0; j < n; ++j) {
-        double g = 0.0;
-        for (int r = 0; r < count; ++r) g += J[r * n + j] * ew[r];
+        const double g = d[j];
         double v = BOUND_SCALE;
         if (g > 0.0) {
-            v = std::fmin(v, b[j].hi - q[j]);
+            v = b[j].hi - q[j];
         } else if (g < 0.0) {
-            v = std::fmin(v, q[j] - b[j].lo);
+            v = q[j] - b[j].lo;
         }
-        d[j] = std::sqrt(std::fmax(v, 0.0) / BOUND_SCALE);
-        for (int r = 0; r < count; ++r) Jb[r * n + j] = J[r * n + j] * d[j];
+        // (comparisons, not fmin / fmax calls: v is never NaN, as q is within its bounds)
+        d[j] = v >= BOUND_SCALE ? 1.0 : std::sqrt((v > 0.0 ? v : 0.0) / BOUND_SCALE);
+        scaled = scaled || d[j] != 1.0;
     }
+    if (!scaled) return J;
+    for (int r = 0; r < count; ++r) {
+        for (int j = 0; j < n; ++j) Jb[r * n + j] = J[r * n + j] * d[j];
+    }
+    return Jb;
 }
 
 //! A Gauss-Newton step dq holding the joints on a bound that it would carry out (solved
@@ -284,9 +315,9 @@ KM_HD inline int end_game(const ChainView& ch, const JointBound* b, const Pose& 
 //! Args: the chain, bounds (n), weights w (6; 0: not counted), settings, target T, first
 //! guess start (n), restart configurations samples (R x n, used in order), q_out (n; the
 //! converged configuration, or the best failed one; NaN when the target was not searched).
-KM_HD inline LMStats lm_solve(const ChainView& ch, const JointBound* bounds, const double* w,
-                              const LMSettings& set, const Pose& T, const double* start,
-                              const double* samples, int R, double* q_out, LMWork& work) {
+KM_HD KM_INLINE LMStats lm_solve(const ChainView& ch, const JointBound* bounds, const double* w,
+                                 const LMSettings& set, const Pose& T, const double* start,
+                                 const double* samples, int R, double* q_out, LMWork& work) {
     using namespace lm;
     const int n = ch.n;
     LMStats stats;
@@ -322,22 +353,30 @@ KM_HD inline LMStats lm_solve(const ChainView& ch, const JointBound* bounds, con
         jacobian_rows(ch, rows, work);
         ++stats.evaluations;
         double E = energy(rows, err);
-        double E_ref = E;
+        double recent[STALL_WINDOW];  // ½ eᵀWe at the last STALL_WINDOW steps (a ring)
         double lam = LAMBDA_INIT;
         int k = 0;
+        bool moved = true;  // a new point: its scaling and normal matrix are to be made
+        const double* Js = nullptr;  // the point's scaled rows (bound_scaling)
         while (true) {
             norms(rows, err, pos, rot);
             if (pos <= tol_p && rot <= tol_r) {
                 converged = true;
                 break;
             }
-            const bool window = k > 0 && k % STALL_WINDOW == 0;
-            if ((window && STALL_FACTOR * E_ref < E) || lam > LAMBDA_MAX || k >= set.max_steps) break;
-            if (window) E_ref = E;
-            // One damped step in bound-scaled variables, then back into the bounds.
-            for (int r = 0; r < rows.count; ++r) ew[r] = err[r] * rows.sw[r];
-            bound_scaling(bounds, q, work.J.data(), rows.count, n, ew, work.Jb.data(), work.d.data());
-            damped_least_squares(work.Jb.data(), rows.count, n, ew, lam, work.dq.data());
+            const bool stalled = k >= STALL_WINDOW && STALL_FACTOR * recent[k % STALL_WINDOW] < E;
+            if (stalled || lam > LAMBDA_MAX || k >= set.max_steps) break;
+            recent[k % STALL_WINDOW] = E;
+            // One damped step in bound-scaled variables, then back into the bounds. A
+            // rejected step leaves the point, its scaling and its normal matrix as they were.
+            if (moved) {
+                for (int r = 0; r < rows.count; ++r) ew[r] = err[r] * rows.sw[r];
+                Js = bound_scaling(bounds, q, work.J.data(), rows.count, n, ew, work.Jb.data(),
+                                   work.d.data());
+                normal_matrix(Js, rows.count, n, work.normal);
+                moved = false;
+            }
+            damped_step(work.normal, Js, rows.count, n, ew, lam, work.dq.data());
             for (int i = 0; i < n; ++i) q_new[i] = q[i] + work.d[i] * work.dq[i];
             project(ch, bounds, q_new);
             pose_errors(ch, q_new, T, rows, work, err_new);
@@ -348,6 +387,7 @@ KM_HD inline LMStats lm_solve(const ChainView& ch, const JointBound* bounds, con
                 for (int r = 0; r < rows.count; ++r) err[r] = err_new[r];
                 jacobian_rows(ch, rows, work);
                 E = E_new;
+                moved = true;
                 lam = std::fmax(lam * LAMBDA_DOWN, LAMBDA_MIN);
             } else {
                 lam *= LAMBDA_UP;

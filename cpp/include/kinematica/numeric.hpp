@@ -24,8 +24,9 @@ struct NumericSolver {
     int restarts() const { return n > 0 ? static_cast<int>(samples.size()) / n : 0; }
 
     //! The search's one candidate into Q (1 x n); info.gap when proven out of reach.
-    void solve(const ChainView& chain, const Pose& T, const double* q0, double* Q,
-               SolverInfo& info, Work& w) const {
+    //! (Inlined into each instruction-set copy of its caller, as the search is.)
+    KM_INLINE void solve(const ChainView& chain, const Pose& T, const double* q0, double* Q,
+                         SolverInfo& info, Work& w) const {
         const double* start = q0 != nullptr ? q0 : middle.data();
         const LMStats st = lm_solve(chain, bounds.data(), weights, settings, T, start,
                                     samples.data(), restarts(), Q, w);
