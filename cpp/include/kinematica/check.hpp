@@ -72,9 +72,9 @@ namespace detail {
 //!
 //! Unweighted, the rotation error is the angle of Rtᵀ R (exact near 0); with weights,
 //! the norms of the weighted error components.
-KM_HD inline void residual(const ChainView& ch, const double* q, const double* c,
-                           const double* s, int stride, const Pose& T, const double* w,
-                           double& p_err, double& r_err) {
+KM_HD KM_INLINE void residual(const ChainView& ch, const double* q, const double* c,
+                              const double* s, int stride, const Pose& T, const double* w,
+                              double& p_err, double& r_err) {
     const Pose P = walk(ch, q, c, s, NoRecord{}, stride);
     const bool plain = w[0] == 1.0 && w[1] == 1.0 && w[2] == 1.0 && w[3] == 1.0 &&
                        w[4] == 1.0 && w[5] == 1.0;
@@ -165,7 +165,7 @@ KM_HD inline void repair(const ChainView& ch, double* q, const Pose& T,
 }
 
 //! True when rows a and b agree within DEDUP_TOL in every joint (angles modulo 2π).
-KM_HD inline bool same(const ChainView& ch, const double* qa, const double* qb) {
+KM_HD KM_INLINE bool same(const ChainView& ch, const double* qa, const double* qb) {
     for (int j = 0; j < ch.n; ++j) {
         double d = qa[j] - qb[j];
         if (!ch.joint[j].prismatic) {
@@ -182,9 +182,9 @@ KM_HD inline bool same(const ChainView& ch, const double* qa, const double* qb) 
 
 //! Check the m candidates Q (m x n, row-major; NaN rows: no solution on that branch) of
 //! one target T against the chain; q0 (n) sorts the solutions when given (else nullptr).
-KM_HD inline CheckReport check(const ChainView& ch, const Pose& T, const double* Q, int m,
-                               const SolverInfo& info, const CheckOptions& opts,
-                               const double* q0, CheckWork& work, const CheckOut& out) {
+KM_HD KM_INLINE CheckReport check(const ChainView& ch, const Pose& T, const double* Q, int m,
+                                  const SolverInfo& info, const CheckOptions& opts,
+                                  const double* q0, CheckWork& work, const CheckOut& out) {
     const int n = ch.n;
     const double tol_p = opts.tol_position, tol_r = opts.tol_rotation;
     double* qs = work.qs.data();
