@@ -99,16 +99,19 @@ struct SphericalWristParams {
         return {ct[0], ct[1], ct[2]};
     }
 
-    //! R3ᵀ R2ᵀ R1ᵀ v: joints 1-3 of a placement turned back (a slide: joints 1, 2).
-    KM_HD Vec3 undo(const double* q3, const Vec3& v) const {
-        Vec3 w = v;
+    //! R3ᵀ R2ᵀ R1ᵀ of two vectors v and u: joints 1-3 of a placement turned back (a
+    //! slide: joints 1, 2); one sine and cosine of each joint for both.
+    KM_HD void undo(const double* q3, const Vec3& v, const Vec3& u, Vec3& v_out,
+                    Vec3& u_out) const {
+        v_out = v;
+        u_out = u;
         const Vec3 axes[3] = {arm.h1, arm.h2, arm.h3};
         for (int j = 0; j < (arm.prismatic ? 2 : 3); ++j) {
             double s, c;
             sincos(q3[j], s, c);
-            w = rotate_about(axes[j], c, -s, w);
+            v_out = rotate_about(axes[j], c, -s, v_out);
+            u_out = rotate_about(axes[j], c, -s, u_out);
         }
-        return w;
     }
 
     //! q6 turning x6 onto z = R5ᵀ R4ᵀ y about h6 (absorbs q4's, q5's round-off).
@@ -240,8 +243,8 @@ struct SphericalWristParams {
                 continue;
             }
             if (k < 2 && free) face(Q3[k], W0, st);
-            const Vec3 w = undo(Q3[k], W0);
-            const Vec3 y = undo(Q3[k], Y0);
+            Vec3 w, y;
+            undo(Q3[k], W0, Y0, w, y);
             WristAngles branches[2];
             wrist_singular |= wrist(w, y, branches[0], branches[1], st.near);
             for (int j = 0; j < 2; ++j) {
