@@ -364,6 +364,7 @@ struct ArmPoint {
             double v_a[2] = {NaN, NaN};  // not meet: v and D at H0, and their roots
             double D_a = NaN;
             double roots_a[2] = {NaN, NaN};
+            double H_v = NaN, v_h[2] = {NaN, NaN};  // v at the last height H (this branch)
             if (!meet) {
                 shoulder_v(zeta, rho, H[0], sign, st, v_a);
                 D_a = std::sqrt(v_a[0] * v_a[0] + v_a[1] * v_a[1] + H[0] * H[0]);
@@ -394,7 +395,14 @@ struct ArmPoint {
                     } else {
                         vals = values(q3);
                     }
-                    shoulder_v(zeta, rho, vals.H, sign, st, v);
+                    // (H is the same at every q3 when axes 2 and 3 are parallel: so is v)
+                    if (std::memcmp(&vals.H, &H_v, sizeof H_v) != 0) {
+                        shoulder_v(zeta, rho, vals.H, sign, st, v_h);
+                        H_v = vals.H;
+                    }
+                    v[0] = v_h[0];
+                    v[1] = v_h[1];
+                    if (it + 1 == passes) break;  // D is for the next pass
                     if (meet) {
                         D = std::sqrt(py_max(dd - a * a - 2.0 * a * v[0], 0.0));
                     } else {
