@@ -122,16 +122,12 @@ struct OneOut {
 
 //! (solutions (count, n), their residuals (count, 2), solutions outside the limits
 //! (out_count, n), the branch label of each within, of each outside, report) for one
-//! target; labels: the solver's branch names, one per slot.
+//! target P (read by the caller); labels: the solver's branch names, one per slot.
 template <class Solver>
-nb::tuple ik_one(const Solver& s, const km::Chain& chain, F64 T,
-                 const km::CheckOptions& opts, nb::handle q0, nb::handle labels) {
-    check_dims(s, chain);
-    checked_labels(labels, s.slots());
+nb::tuple ik_pose(const Solver& s, const km::Chain& chain, const km::Pose& P,
+                  const km::CheckOptions& opts, const double* q0p, nb::handle labels) {
     const km::ChainView ch = chain.view();
     const int n = ch.n, m = s.slots();
-    const km::Pose P = target_pose(T);
-    const double* q0p = optional_q0(q0, n);
     thread_local OneOut buf;
     buf.fit(m, n);
     km::IKWork<Solver>& work = thread_work(s, n);
@@ -148,15 +144,27 @@ nb::tuple ik_one(const Solver& s, const km::Chain& chain, F64 T,
                           branch_tuple(labels, slot, count, count + out), report_tuple(rep, n));
 }
 
+//! ik_pose of one target T (4, 4), q0 (n,) or None.
+template <class Solver>
+nb::tuple ik_one(const Solver& s, const km::Chain& chain, F64 T,
+                 const km::CheckOptions& opts, nb::handle q0, nb::handle labels) {
+    check_dims(s, chain);
+    checked_labels(labels, s.slots());
+    const km::Pose P = target_pose(T);
+    return ik_pose(s, chain, P, opts, optional_q0(q0, chain.dof()), labels);
+}
+
 //! ik_one for a target already rigid to round-off (finite, last row exact, |RᵀR - I| <=
 //! roundoff, det R > 0), else None: the caller's general path reads (and explains) it.
 template <class Solver>
 nb::object ik_rigid(const Solver& s, const km::Chain& chain, F64 T, const km::CheckOptions& opts,
                     double roundoff, nb::handle labels) {
+    check_dims(s, chain);
+    checked_labels(labels, s.slots());
     const In in = in_f64(T, "T", 2, {4, 4});
     const km::PoseDefects d = km::pose_defects(in.data);
     if (!(d.finite && d.last_row == 0.0 && d.ortho <= roundoff && d.det > 0.0)) return nb::none();
-    return ik_one(s, chain, T, opts, nb::none(), labels);
+    return ik_pose(s, chain, km::Pose::from_rows(in.data), opts, nullptr, labels);
 }
 
 //! A batch of N targets: a dict of arrays q (N, m, n), slot (N, m), res (N, m, 2),

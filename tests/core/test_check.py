@@ -3,7 +3,9 @@
 Each test uses literal distances a factor of 5-50 inside and outside the value the
 docstring states, so that a constant changed a thousandfold fails a test. Inputs
 are built by hand (exact solutions of a planar 2R arm, perturbed on purpose) and
-go straight to the core's check, so the solvers play no part.
+go straight to the core's check, so the solvers play no part. Last, the check's
+forward kinematics of candidates that share leading joints (walked once for all
+of them) against a walk from the base, to the last bit.
 """
 
 from __future__ import annotations
@@ -105,3 +107,38 @@ def test_limit_tol_is_1e_12(beyond: float, inside: bool) -> None:
     robot = two_link(qlim=(-1.0, q[1] - beyond))
     _, _, n_in, n_out = check(robot, target_of(q), np.array([q]))
     assert (n_in, n_out) == ((1, 0) if inside else (0, 1))
+
+
+@pytest.mark.filterwarnings("ignore::kinematica.KinematicaWarning")  # rows beyond the limits
+def test_candidates_sharing_leading_joints_get_the_residuals_of_their_own_fk() -> None:
+    # The PUMA's tool origin is its wrist centre: every wrist (q4, q5, q6) on a
+    # placement of joints 1-3 reaches a position target. Rows share 0 to 5 leading
+    # joints with the row before them (a +0.0 after a -0.0 shares nothing there); the
+    # check walks the shared joints once, and must give each row's residual exactly as
+    # FK from the base does.
+    robot = km.load("puma560")
+    rng = np.random.default_rng(8)
+    q = np.array([0.3, -0.7, 0.4, 0.0, 0.0, 0.0])
+    T = robot.fk(q)
+    other = robot.ik(T[:3, 3], respect_limits=False).solutions  # every placement of joints 1-3
+    placements = [q[:3], other[np.argmax(np.abs(other[:, 0] - q[0]))][:3]]
+    rows = []
+    for k, keep in enumerate([0, 3, 4, 5, 3, 1, 3, 4, 4]):
+        row = np.concatenate([placements[k % 3 == 2], rng.uniform(-3.0, 3.0, 3)])
+        if rows and keep > 3:
+            row[:keep] = rows[-1][:keep]
+        rows.append(row)
+    rows[7][4], rows[8][4] = -0.0, 0.0  # equal, not the same bits
+    Q = np.array(rows)
+    opts = _core.CheckOptions()
+    opts.respect_limits = False
+    opts.complete = True
+    opts.weights = POSITION.tolist()
+    qs, res, _, _, count, _, _ = internals.check(
+        robot.chain.core, T, Q, opts, math.nan, False, False, None
+    )
+    assert count == len(rows)
+    for qi, (p_err, r_err) in zip(qs[:count], res[:count], strict=True):
+        dx, dy, dz = (T[:3, 3] - robot.fk(qi)[:3, 3]).tolist()
+        assert p_err == math.sqrt(dx * dx + dy * dy + dz * dz)
+        assert r_err == 0.0  # rotation not counted

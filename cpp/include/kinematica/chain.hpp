@@ -167,20 +167,26 @@ struct NoRecord {
     KM_HD void axis(int, const Vec3&, const Vec3&) {}
 };
 
-//! Walk the chain at q with its trigonometry c[i stride], s[i stride] (joint_trig, or
-//! joint_trig_rows with stride m); the tool pose comes back.
-//!
-//! rec.axis(i, z, p): joint i's axis as a unit direction and a point on it (base frame).
-//! rec.frame(i, F): 0T0 (base), 0T1, ..., 0Tn (with tool).
+//! The running frame of a walk between two joints: its columns x, y, z and origin p
+//! (base frame).
+struct WalkFrame {
+    Vec3 x{}, y{}, z{}, p{};
+};
+
+//! walk() resumed at joint `first` from the running frame F after joint first - 1 (the
+//! chain's start for 0): the same operations on the same values, so the same bits as a
+//! walk from the base. saved (or nullptr): saved[i] gets the running frame after joint i,
+//! for each i >= first.
 template <class Record = NoRecord>
-KM_HD KM_INLINE Pose walk(const ChainView& ch, const double* q, const double* c, const double* s,
-                       Record&& rec = Record{}, int stride = 1) {
+KM_HD KM_INLINE Pose walk_from(const ChainView& ch, const double* q, const double* c,
+                               const double* s, Record&& rec, int stride, int first,
+                               const WalkFrame& F, WalkFrame* saved) {
     using R = typename std::remove_reference<Record>::type;
     // The running frame's columns stay in locals (registers): stores to the outputs do
     // not force reloads, as they would through a pointer that might alias them.
-    Vec3 x = ch.start.x, y = ch.start.y, z = ch.start.z, p = ch.start.p;
+    Vec3 x = F.x, y = F.y, z = F.z, p = F.p;
     const int n = ch.n;
-    for (int i = 0; i < n; ++i) {
+    for (int i = first; i < n; ++i) {
         const Joint& J = ch.joint[i];
         if constexpr (R::axes) rec.axis(i, z, p);
         const double ci = c[i * stride], si = s[i * stride];
@@ -224,6 +230,7 @@ KM_HD KM_INLINE Pose walk(const ChainView& ch, const double* q, const double* c,
         if constexpr (R::frames) {
             if (i < n - 1 && ch.frames == FrameAt::after) rec.frame(i + 1, Pose{x, y, z, p});
         }
+        if (saved != nullptr) saved[i] = WalkFrame{x, y, z, p};
     }
     Pose T{x, y, z, p};
     if (ch.tool_translation && !ch.tool_identity) {  // products by 0 and 1 skipped, as above
@@ -247,6 +254,18 @@ KM_HD KM_INLINE Pose walk(const ChainView& ch, const double* q, const double* c,
         rec.frame(n, T);
     }
     return T;
+}
+
+//! Walk the chain at q with its trigonometry c[i stride], s[i stride] (joint_trig, or
+//! joint_trig_rows with stride m); the tool pose comes back.
+//!
+//! rec.axis(i, z, p): joint i's axis as a unit direction and a point on it (base frame).
+//! rec.frame(i, F): 0T0 (base), 0T1, ..., 0Tn (with tool).
+template <class Record = NoRecord>
+KM_HD KM_INLINE Pose walk(const ChainView& ch, const double* q, const double* c, const double* s,
+                          Record&& rec = Record{}, int stride = 1) {
+    const WalkFrame start{ch.start.x, ch.start.y, ch.start.z, ch.start.p};
+    return walk_from(ch, q, c, s, static_cast<Record&&>(rec), stride, 0, start, nullptr);
 }
 
 //! QState of configuration q against the joints' own limits (and a full turn where none).

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "chain.hpp"
@@ -48,14 +49,16 @@ constexpr double LIMIT_TOL = 1e-12;
 //! Scratch of checks of up to m candidates of an n-joint chain: made once per thread.
 struct CheckWork {
     int m = 0, n = 0;
-    std::vector<double> qs, angle, c, s, res, key, J, Jr, dq, c1, s1, qt;
+    std::vector<double> qs, angle, c, s, res, key, J, Jr, dq, c1, s1, qt, walked;
     std::vector<int> state;
+    std::vector<WalkFrame> frames;  //!< the running frames of the candidate walked last
 
     CheckWork(int m_, int n_)
         : m(m_), n(n_), qs(static_cast<size_t>(m_ * n_)), angle(qs.size()), c(qs.size()),
           s(qs.size()), res(static_cast<size_t>(2 * m_)), key(static_cast<size_t>(m_)),
           J(static_cast<size_t>(6 * n_)), Jr(J.size()), dq(static_cast<size_t>(n_)),
-          c1(dq.size()), s1(dq.size()), qt(dq.size()), state(static_cast<size_t>(m_)) {}
+          c1(dq.size()), s1(dq.size()), qt(dq.size()), walked(dq.size()),
+          state(static_cast<size_t>(m_)), frames(dq.size()) {}
 };
 
 //! Where the check writes one target's outcome: rows within the limits first, sorted,
@@ -68,14 +71,12 @@ struct CheckOut {
 
 namespace detail {
 
-//! Position (m) and rotation (rad) error of q against T, weighted by w.
+//! Position (m) and rotation (rad) error of a tool pose P against T, weighted by w.
 //!
 //! Unweighted, the rotation error is the angle of Rtᵀ R (exact near 0); with weights,
 //! the norms of the weighted error components.
-KM_HD inline void residual(const ChainView& ch, const double* q, const double* c,
-                           const double* s, int stride, const Pose& T, const double* w,
-                           double& p_err, double& r_err) {
-    const Pose P = walk(ch, q, c, s, NoRecord{}, stride);
+KM_HD KM_INLINE void pose_residual(const Pose& P, const Pose& T, const double* w, double& p_err,
+                                   double& r_err) {
     const bool plain = w[0] == 1.0 && w[1] == 1.0 && w[2] == 1.0 && w[3] == 1.0 &&
                        w[4] == 1.0 && w[5] == 1.0;
     if (plain) {
@@ -92,6 +93,36 @@ KM_HD inline void residual(const ChainView& ch, const double* q, const double* c
     }
     p_err = std::sqrt(p2);
     r_err = std::sqrt(r2);
+}
+
+//! pose_residual of q (its trigonometry c[i stride], s[i stride]) against T.
+KM_HD KM_INLINE void residual(const ChainView& ch, const double* q, const double* c,
+                              const double* s, int stride, const Pose& T, const double* w,
+                              double& p_err, double& r_err) {
+    pose_residual(walk(ch, q, c, s, NoRecord{}, stride), T, w, p_err, r_err);
+}
+
+//! The tool pose of candidate q (trigonometry c, s), the walk resumed after the leading
+//! joints q shares, bit for bit, with the candidate walked before it (its joints in
+//! `walked`, its running frames in `frames`; none yet: `count` 0).
+//!
+//! A closed form's candidates share their first joints in twos and fours (a spherical
+//! wrist's pairs share q1-q3, the shoulder's q1): those joints are walked once.
+KM_HD KM_INLINE Pose walk_shared(const ChainView& ch, const double* q, const double* c,
+                                 const double* s, double* walked, WalkFrame* frames,
+                                 int& count) {
+    const int n = ch.n;
+    int first = 0;
+    if (count > 0) {  // the same bits of q give the same bits of every product
+        while (first < n - 1 && std::memcmp(q + first, walked + first, sizeof(double)) == 0) {
+            ++first;
+        }
+    }
+    for (int k = first; k < n; ++k) walked[k] = q[k];
+    ++count;
+    const WalkFrame start = first == 0 ? WalkFrame{ch.start.x, ch.start.y, ch.start.z, ch.start.p}
+                                       : frames[first - 1];
+    return walk_from(ch, q, c, s, NoRecord{}, 1, first, start, frames);
 }
 
 //! One Gauss-Newton step on q towards T (weighted rows only), damped by POLISH_DAMPING.
@@ -165,7 +196,7 @@ KM_HD inline void repair(const ChainView& ch, double* q, const Pose& T,
 }
 
 //! True when rows a and b agree within DEDUP_TOL in every joint (angles modulo 2π).
-KM_HD inline bool same(const ChainView& ch, const double* qa, const double* qb) {
+KM_HD KM_INLINE bool same(const ChainView& ch, const double* qa, const double* qb) {
     for (int j = 0; j < ch.n; ++j) {
         double d = qa[j] - qb[j];
         if (!ch.joint[j].prismatic) {
@@ -182,9 +213,9 @@ KM_HD inline bool same(const ChainView& ch, const double* qa, const double* qb) 
 
 //! Check the m candidates Q (m x n, row-major; NaN rows: no solution on that branch) of
 //! one target T against the chain; q0 (n) sorts the solutions when given (else nullptr).
-KM_HD inline CheckReport check(const ChainView& ch, const Pose& T, const double* Q, int m,
-                               const SolverInfo& info, const CheckOptions& opts,
-                               const double* q0, CheckWork& work, const CheckOut& out) {
+KM_HD KM_INLINE CheckReport check(const ChainView& ch, const Pose& T, const double* Q, int m,
+                                  const SolverInfo& info, const CheckOptions& opts,
+                                  const double* q0, CheckWork& work, const CheckOut& out) {
     const int n = ch.n;
     const double tol_p = opts.tol_position, tol_r = opts.tol_rotation;
     double* qs = work.qs.data();
@@ -201,6 +232,7 @@ KM_HD inline CheckReport check(const ChainView& ch, const Pose& T, const double*
         }
     }
     joint_trig_rows(ch, qs, m, work.angle.data(), work.c.data(), work.s.data());
+    int walks = 0;  // candidates walked (walk_shared)
     for (int j = 0; j < m; ++j) {
         double* qj = qs + j * n;
         bool valid = true;
@@ -211,15 +243,21 @@ KM_HD inline CheckReport check(const ChainView& ch, const Pose& T, const double*
         int stride = 1;
         double p_err = INF, r_err = INF;
         bool ok = false;
+        const Pose P = detail::walk_shared(ch, qj, cj, sj, work.walked.data(),
+                                           work.frames.data(), walks);
         if (opts.repair) {
-            detail::residual(ch, qj, cj, sj, stride, T, opts.weights, p_err, r_err);
+            detail::pose_residual(P, T, opts.weights, p_err, r_err);
             if (std::fmax(p_err, r_err) < POLISH_LIMIT) {
                 detail::repair(ch, qj, T, opts, work, p_err, r_err);
             }
             ok = p_err <= tol_p && r_err <= tol_r;
         } else {
             for (int attempt = 0; attempt < 2; ++attempt) {
-                detail::residual(ch, qj, cj, sj, stride, T, opts.weights, p_err, r_err);
+                if (attempt == 0) {
+                    detail::pose_residual(P, T, opts.weights, p_err, r_err);
+                } else {
+                    detail::residual(ch, qj, cj, sj, stride, T, opts.weights, p_err, r_err);
+                }
                 ok = p_err <= tol_p && r_err <= tol_r;
                 if (ok || attempt == 1 || !(std::fmax(p_err, r_err) < POLISH_LIMIT)) break;
                 detail::polish(ch, qj, T, opts.weights, work);

@@ -45,13 +45,17 @@ struct IKWork {
         : solver(s.work(n)), check(s.slots(), n), Q(static_cast<size_t>(s.slots() * n)) {}
 };
 
-//! Every solution of one target T (base frame): candidates, then the check. Inlined into
-//! its caller, so that each instruction-set copy of the caller (KM_CLONES) holds the
-//! solver's own code where that is inlined too (the numeric search is).
+//! Every solution of one target T (base frame): candidates, then the check.
+//!
+//! Inlined, with the check and the solver where that is inlined too (the numeric search
+//! is), into its caller: a batch loop compiled for AVX-512 and AVX2 (the binding's target
+//! clones) then runs the check's trigonometry of all candidates as SIMD; a call kept out
+//! of line is compiled for the baseline x86-64 only, and the check took twice as long
+//! (PUMA 560: 1.3 µs a target instead of 0.6).
 template <class Solver>
 KM_INLINE CheckReport solve_ik(const Solver& solver, const ChainView& ch, const Pose& T,
-                               const CheckOptions& opts, const double* q0, IKWork<Solver>& work,
-                               const CheckOut& out) {
+                               const CheckOptions& opts, const double* q0,
+                               IKWork<Solver>& work, const CheckOut& out) {
     SolverInfo info;
     solver.solve(ch, T, q0, work.Q.data(), info, work.solver);
     return check(ch, T, work.Q.data(), solver.slots(), info, opts, q0, work.check, out);

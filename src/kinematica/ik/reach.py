@@ -22,12 +22,16 @@ import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.ik.numeric import reach_bound
 
-__all__ = ["beyond_limited_reach", "limited_reach", "needs_proof"]
+__all__ = ["ANSWERED", "beyond_limited_reach", "limited_reach", "needs_proof"]
 
 FloatArray = NDArray[np.float64]
 
 _UNREACHABLE = _core.STATUS["unreachable"]
 _NOT_FOUND = _core.STATUS["not_found"]
+
+#: The status codes of answers with solutions: :func:`needs_proof` is False for them
+#: (a one-target path tests this first: a set lookup, not a call).
+ANSWERED = frozenset(_core.STATUS[k] for k in ("ok", "singular", "out_of_limits"))
 
 
 def needs_proof(code: int, gap: float | None) -> bool:

@@ -34,7 +34,7 @@ from kinematica.ik.fallback import (
 from kinematica.ik.numeric import LABEL, check_seed, numeric_setup
 from kinematica.ik.options import IKOptions, Method
 from kinematica.ik.printed import answer_overdetermined, overdetermined_rows
-from kinematica.ik.reach import beyond_limited_reach
+from kinematica.ik.reach import ANSWERED, beyond_limited_reach
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
 from kinematica.ik.result import CheckOutput, CoreAnswer, IKBatchResult, IKResult, result_of
 from kinematica.ik.structure import features
@@ -254,7 +254,6 @@ def _solver(
 
 
 _UNREACHABLE = _core.STATUS["unreachable"]
-_ANSWERED = frozenset(_core.STATUS[k] for k in ("ok", "singular", "out_of_limits"))
 
 
 def _limited(
@@ -267,7 +266,7 @@ def _limited(
 ) -> CoreAnswer:
     """One target's answer, "unreachable" with its gap where the limited reach proves it."""
     code, gap = out[-1][0], out[-1][1]
-    if not respect_limits or code in _ANSWERED:
+    if not respect_limits or code in ANSWERED:
         return out
     beyond, gaps = beyond_limited_reach(
         chain, poses[:1], np.array([code]), np.array([np.nan if gap is None else gap]),

@@ -32,7 +32,7 @@ from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning
 from kinematica.ik import IKBatchResult, IKOptions, IKResult, Tolerance
 from kinematica.ik.analytic.srs import arm_angle as arm_angle_of
 from kinematica.ik.direct import DirectParameter
-from kinematica.ik.reach import needs_proof
+from kinematica.ik.reach import ANSWERED, needs_proof
 from kinematica.ik.redundancy import choose, solve_arm
 from kinematica.ik.registry import TargetKind
 from kinematica.ik.result import CoreAnswer, result_of
@@ -622,7 +622,7 @@ class Robot:
         out: CoreAnswer | None = fast.ik_rigid(
             self.chain.core, pose, fast.options, ROUNDOFF_TOL, fast.labels
         )
-        if out is None or needs_proof(out[-1][0], out[-1][1]):
+        if out is None or (out[5][0] not in ANSWERED and needs_proof(out[5][0], out[5][1])):
             return None  # the general path also tries the reach within the limits
         return result_of(*out, fast.method, fast.complete, ())
 

@@ -43,6 +43,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstring>
 
 #include "../config.hpp"
 #include "../geometry.hpp"
@@ -88,6 +89,10 @@ struct ArmState {
     double gap = 0.0;       //!< lower bound of the distance of the target to the reachable points (m)
     double rho = 0.0;       //!< distance of the target from axis 1 (m)
     double azimuth = 0.0;   //!< the target's angle about axis 1 (rad), from a1
+    //! The last slot's (xa, xb) and the q1 they gave: the two slots of a shoulder branch
+    //! share them when H is constant (axes 2 and 3 parallel), and the same bits give the
+    //! same q1 without a second atan2.
+    double xa = NaN, xb = NaN, q1 = NaN;
 };
 
 //! u1, u2, H, L at one q3.
@@ -252,11 +257,18 @@ struct ArmPoint {
                               xframe[3][0];
             const double xb = vals.H * xframe[0][1] + v1 * xframe[1][1] + v2 * xframe[2][1] +
                               xframe[3][1];
-            q1 = st.azimuth - std::atan2(xb, xa);
-            if (q1 <= -PI) {
-                q1 += TWO_PI;
-            } else if (q1 > PI) {
-                q1 -= TWO_PI;
+            if (std::memcmp(&xa, &st.xa, sizeof xa) == 0 && std::memcmp(&xb, &st.xb, sizeof xb) == 0) {
+                q1 = st.q1;
+            } else {
+                q1 = st.azimuth - std::atan2(xb, xa);
+                if (q1 <= -PI) {
+                    q1 += TWO_PI;
+                } else if (q1 > PI) {
+                    q1 -= TWO_PI;
+                }
+                st.xa = xa;
+                st.xb = xb;
+                st.q1 = q1;
             }
         }
         if (std::isnan(q1 + q2 + q3 + v1 + v2)) {
@@ -335,22 +347,40 @@ struct ArmPoint {
         const int passes = refine ? 2 : 1;
         ArmValues vals;
         double roots[2] = {NaN, NaN};
+        // The first pass's roots depend on the shoulder branch A only (meet: on neither),
+        // so they, and a meeting shoulder's values at them, are computed once for the
+        // slots that share them: the same operations on the same values, the same bits.
         double at_d[2] = {NaN, NaN};  // meet: the roots of |u| = |d|, shared by every slot
+        ArmValues at_vals[2];         // meet: the values at them
         double v[2] = {NaN, NaN};
         double D = std::hypot(zeta, rho);
-        if (meet) q3_distance(D, st, at_d);
+        if (meet) {
+            q3_distance(D, st, at_d);
+            at_vals[0] = values(at_d[0]);
+            at_vals[1] = values(at_d[1]);
+        }
         for (int A = 0; A < 2; ++A) {
             const double sign = A == 0 ? 1.0 : -1.0;
+            double v_a[2] = {NaN, NaN};  // not meet: v and D at H0, and their roots
+            double D_a = NaN;
+            double roots_a[2] = {NaN, NaN};
+            double H_v = NaN, v_h[2] = {NaN, NaN};  // v at the last height H (this branch)
+            if (!meet) {
+                shoulder_v(zeta, rho, H[0], sign, st, v_a);
+                D_a = std::sqrt(v_a[0] * v_a[0] + v_a[1] * v_a[1] + H[0] * H[0]);
+                q3_distance(D_a, st, roots_a);
+            }
             for (int B = 0; B < 2; ++B) {
                 if (!meet) {
-                    shoulder_v(zeta, rho, H[0], sign, st, v);
-                    D = std::sqrt(v[0] * v[0] + v[1] * v[1] + H[0] * H[0]);
+                    v[0] = v_a[0];
+                    v[1] = v_a[1];
+                    D = D_a;
                 }
                 double q3 = NaN;
                 for (int it = 0; it < passes; ++it) {
-                    if (meet && it == 0) {
-                        roots[0] = at_d[0];
-                        roots[1] = at_d[1];
+                    if (it == 0) {
+                        roots[0] = meet ? at_d[0] : roots_a[0];
+                        roots[1] = meet ? at_d[1] : roots_a[1];
                     } else {
                         q3_distance(D, st, roots);
                     }
@@ -360,8 +390,19 @@ struct ArmPoint {
                         const int first = elbow * v[0] > 0.0 ? 1 : 0;
                         q3 = B == 0 ? roots[first] : roots[1 - first];
                     }
-                    vals = values(q3);
-                    shoulder_v(zeta, rho, vals.H, sign, st, v);
+                    if (meet && it == 0) {
+                        vals = upper_root[A][B] ? at_vals[0] : at_vals[1];
+                    } else {
+                        vals = values(q3);
+                    }
+                    // (H is the same at every q3 when axes 2 and 3 are parallel: so is v)
+                    if (std::memcmp(&vals.H, &H_v, sizeof H_v) != 0) {
+                        shoulder_v(zeta, rho, vals.H, sign, st, v_h);
+                        H_v = vals.H;
+                    }
+                    v[0] = v_h[0];
+                    v[1] = v_h[1];
+                    if (it + 1 == passes) break;  // D is for the next pass
                     if (meet) {
                         D = std::sqrt(py_max(dd - a * a - 2.0 * a * v[0], 0.0));
                     } else {

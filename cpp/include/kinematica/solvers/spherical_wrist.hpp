@@ -39,6 +39,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstring>
 
 #include "../config.hpp"
 #include "../geometry.hpp"
@@ -99,16 +100,32 @@ struct SphericalWristParams {
         return {ct[0], ct[1], ct[2]};
     }
 
-    //! R3ᵀ R2ᵀ R1ᵀ v: joints 1-3 of a placement turned back (a slide: joints 1, 2).
-    KM_HD Vec3 undo(const double* q3, const Vec3& v) const {
-        Vec3 w = v;
+    //! Two vectors v, u turned back by joint 1 at angle q1 (NaN: none yet).
+    struct TurnedBack {
+        double q1 = NaN;
+        Vec3 v{}, u{};
+    };
+
+    //! R3ᵀ R2ᵀ R1ᵀ of two vectors v and u: joints 1-3 of a placement turned back (a
+    //! slide: joints 1, 2); one sine and cosine of each joint for both. first holds R1ᵀ v,
+    //! R1ᵀ u of the placement before: placements of one shoulder branch share q1 (its
+    //! bits), and its turn is not made again.
+    KM_HD void undo(const double* q3, const Vec3& v, const Vec3& u, TurnedBack& first,
+                    Vec3& v_out, Vec3& u_out) const {
+        if (std::memcmp(&q3[0], &first.q1, sizeof first.q1) != 0) {
+            double s, c;
+            sincos(q3[0], s, c);
+            first = {q3[0], rotate_about(arm.h1, c, -s, v), rotate_about(arm.h1, c, -s, u)};
+        }
+        v_out = first.v;
+        u_out = first.u;
         const Vec3 axes[3] = {arm.h1, arm.h2, arm.h3};
-        for (int j = 0; j < (arm.prismatic ? 2 : 3); ++j) {
+        for (int j = 1; j < (arm.prismatic ? 2 : 3); ++j) {
             double s, c;
             sincos(q3[j], s, c);
-            w = rotate_about(axes[j], c, -s, w);
+            v_out = rotate_about(axes[j], c, -s, v_out);
+            u_out = rotate_about(axes[j], c, -s, u_out);
         }
-        return w;
     }
 
     //! q6 turning x6 onto z = R5ᵀ R4ᵀ y about h6 (absorbs q4's, q5's round-off).
@@ -233,6 +250,7 @@ struct SphericalWristParams {
         bool real = false;
         bool wrist_singular = false;
         const bool free = st.free[0] || st.free[1];
+        TurnedBack first;  // the target's axes turned back by the last q1
         for (int k = 0; k < 4; ++k) {
             double* row = Q + 2 * k * 6;
             if (std::isnan(Q3[k][0])) {  // no placement: both wrist rows NaN
@@ -240,8 +258,8 @@ struct SphericalWristParams {
                 continue;
             }
             if (k < 2 && free) face(Q3[k], W0, st);
-            const Vec3 w = undo(Q3[k], W0);
-            const Vec3 y = undo(Q3[k], Y0);
+            Vec3 w, y;
+            undo(Q3[k], W0, Y0, first, w, y);
             WristAngles branches[2];
             wrist_singular |= wrist(w, y, branches[0], branches[1], st.near);
             for (int j = 0; j < 2; ++j) {
