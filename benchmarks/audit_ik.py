@@ -25,8 +25,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
 from _common import header, table
+from support.audit_arms import CLASSES
 from support.ik_pose_audit import (
-    CLASSES,
     FOUND_TOL,
     SINGULAR_REL,
     STARTS,
@@ -48,6 +48,8 @@ COLUMNS = (
     ("extra", "extra"),
     ("d: batch ≠ one", "d"),
     ("e: status", "e"),
+    ("scaled", "scaled"),
+    ("scaled out", "scaled_out"),
     ("EAIK poses", "eaik"),
 )
 

@@ -1,12 +1,8 @@
 """The pose audit of every 6R closed form (issue 20's "Done means"), counted, never stopped.
 
-Arms of each class (:data:`CLASSES`) are drawn from a fixed seed and never seen
-before: generic random DH arms (standard and modified by turns, with a random base
-and tool), arms on the edges of the general 6R (all links equal, a joint's offsets
-of 1e-10 m, two axes parallel within 1e-9 rad, a calibrated UR5), and the
-degenerate arms of the spherical-wrist, spherical-shoulder and three-parallel
-families (their spec's ``sample_arm(rng, degenerate=True)``). Poses are the FK of
-random q within the limits. For each pose :func:`audit_arm` counts:
+Arms of each class (:data:`support.audit_arms.CLASSES`) are drawn from a fixed seed
+and never seen before; poses are the FK of random q within the limits. For each pose
+:func:`audit_arm` counts:
 
 * ``singular``: the arm is singular at q (σmin/σmax of the 6 x 6 Jacobian, lengths
   in units of the arm's size, below :data:`SINGULAR_REL`); check a skips it;
@@ -20,7 +16,12 @@ random q within the limits. For each pose :func:`audit_arm` counts:
 * ``e``: a false status: "ok" with a solution failing b, a pose made by FK called
   "unreachable", or a target outside the reach (the pose's translation scaled past
   the bound on the reach) answered other than "unreachable" / "not_found" with a
-  reason.
+  reason;
+* ``scaled``: every :data:`SCALED_EVERY`-th pose also gets a *scaled* target (its
+  translation from the base origin times :data:`SCALED`: often unreachable, but no
+  bound says so): an answer "unreachable" or "not_found" where the numeric search
+  finds a solution, or without a reason, is an ``e``; solutions are held to b and c
+  like a pose's; ``scaled_out`` counts those answered "unreachable" / "not_found".
 
 Used by ``benchmarks/audit_ik.py`` (10,000 poses per class) and
 ``tests/ik/test_audit.py`` (a few dozen).
@@ -32,18 +33,15 @@ import collections
 import dataclasses
 import math
 import time
-from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 import kinematica as km
-from kinematica.dh.joints import Revolute
-from kinematica.ik.analytic import SOLVERS
-from kinematica.ik.analytic.sampling import random_transform
 from kinematica.ik.registry import ArmSample
 from kinematica.ik.structure import arm_size, features
+from support.audit_arms import CLASSES, configurations, robot_from
 from support.helpers import assert_same_result
 from support.ik_audit import conditioning
 from support.ik_search import distinct, joint_distance
@@ -69,113 +67,18 @@ DISTINCT_TOL = 1e-6
 STARTS = 200
 #: Far targets sit this many times the bound on the reach from the base (at least).
 FAR = (1.05, 2.0)
+#: Scaled targets: every SCALED_EVERY-th pose's translation from the base origin
+#: times a factor drawn in SCALED.
+SCALED = (1.1, 1.6)
+SCALED_EVERY = 10
 #: Poses per arm (the last arm of a class may get fewer).
 POSES_PER_ARM = 100
 #: What is counted per class, in the table's order.
-COUNTS = ("poses", "singular", "a", "a_far", "b", "c", "extra", "d", "e", "eaik")
-
-#: The UR5's DH table (standard; d, a, alpha in m, m, rad): the calibrated UR's nominal.
-UR5 = (
-    (0.089159, 0.0, PI / 2),
-    (0.0, -0.425, 0.0),
-    (0.0, -0.39225, 0.0),
-    (0.10915, 0.0, PI / 2),
-    (0.09465, 0.0, -PI / 2),
-    (0.0823, 0.0, 0.0),
-)
-#: The calibration error of a UR: every twist (rad) and every a, d (m) off by up to this.
-CALIBRATION = 1e-3
-
-
-# ------------------------------------------------------------------ arm classes
-def _rows(rng: np.random.Generator) -> list[Revolute]:
-    u = rng.uniform
-    return [
-        Revolute(d=u(-0.4, 0.4), a=u(-0.4, 0.4), alpha=u(-PI, PI), offset=u(-PI, PI))
-        for _ in range(6)
-    ]
-
-
-def _placed(rows: list[Revolute], rng: np.random.Generator, note: str) -> ArmSample:
-    """The rows in either convention (a coin), with a random base and tool."""
-    convention = "modified" if rng.random() < 0.5 else "standard"
-    base, tool = random_transform(rng, 0.5), random_transform(rng, 0.2)
-    return ArmSample(tuple(rows), convention, base, tool, note)  # type: ignore[arg-type]
-
-
-def generic(rng: np.random.Generator) -> ArmSample:
-    """A random 6R arm: lengths and offsets in ±0.4 m, twists and joint offsets in ±π."""
-    return _placed(_rows(rng), rng, "")
-
-
-def equal_links(rng: np.random.Generator) -> ArmSample:
-    """A random 6R arm whose six a are equal and six d are equal (its twists random)."""
-    a, d = rng.uniform(0.1, 0.4), rng.uniform(0.1, 0.4)
-    rows = [dataclasses.replace(r, a=a, d=d) for r in _rows(rng)]
-    return _placed(rows, rng, f"a = {a:.4f}, d = {d:.4f} on every joint")
-
-
-def tiny_offsets(rng: np.random.Generator) -> ArmSample:
-    """A random 6R arm with one joint's a and d of ±1e-10 m (two axes meet but for that)."""
-    rows, i = _rows(rng), int(rng.integers(6))
-    s = rng.choice([-1.0, 1.0], 2)
-    rows[i] = dataclasses.replace(rows[i], a=1e-10 * s[0], d=1e-10 * s[1])
-    return _placed(rows, rng, f"joint {i + 1}: a, d = ±1e-10")
-
-
-def near_parallel(rng: np.random.Generator) -> ArmSample:
-    """A random 6R arm with one twist of ±1e-9 or π ± 1e-9 rad (axes parallel but for that)."""
-    rows, i = _rows(rng), int(rng.integers(6))
-    alpha = float(rng.choice([0.0, PI])) + 1e-9 * float(rng.choice([-1.0, 1.0]))
-    rows[i] = dataclasses.replace(rows[i], alpha=alpha)
-    return _placed(rows, rng, f"joint {i + 1}: alpha = {alpha!r}")
-
-
-def calibrated_ur(rng: np.random.Generator) -> ArmSample:
-    """The UR5 with every twist, a and d off by up to :data:`CALIBRATION` (uniform)."""
-    e = lambda: float(rng.uniform(-CALIBRATION, CALIBRATION))  # noqa: E731
-    rows = [Revolute(d=d + e(), a=a + e(), alpha=al + e()) for d, a, al in UR5]
-    return _placed(rows, rng, "UR5, calibrated")
-
-
-def _family(kind: str) -> Callable[[np.random.Generator], ArmSample]:
-    spec = next(s for s in SOLVERS if s.kind == kind)
-
-    def sample(rng: np.random.Generator) -> ArmSample:
-        return spec.sample_arm(rng, True)
-
-    sample.__doc__ = f"A degenerate arm of the {kind} family (its spec's sample_arm)."
-    return sample
-
-
-#: The arm classes of the audit, by name: ``rng -> ArmSample``.
-CLASSES: dict[str, Callable[[np.random.Generator], ArmSample]] = {
-    "generic": generic,
-    "equal links": equal_links,
-    "offsets 1e-10": tiny_offsets,
-    "parallel 1e-9": near_parallel,
-    "calibrated UR": calibrated_ur,
-    "spherical wrist": _family("spherical-wrist-6R"),
-    "spherical shoulder": _family("spherical-shoulder-6R"),
-    "three parallel": _family("three-parallel-6R"),
-}
+COUNTS = ("poses", "singular", "a", "a_far", "b", "c", "extra", "d", "e", "scaled",
+          "scaled_out", "eaik")  # fmt: skip
 
 
 # ------------------------------------------------------------------ references
-def robot_from(arm: ArmSample, name: str) -> km.Robot:
-    """The robot of a sample arm, its limits kept."""
-    return km.Robot.from_dh(
-        arm.links, convention=arm.convention, base=arm.base, tool=arm.tool, name=name
-    )
-
-
-def configurations(robot: km.Robot, rng: np.random.Generator, n: int) -> FloatArray:
-    """``(n, 6)`` random q within the limits (a joint without limits: one turn)."""
-    lo, hi = robot.qlim[:, 0], robot.qlim[:, 1]
-    lo, hi = np.where(np.isfinite(lo), lo, -PI), np.where(np.isfinite(hi), hi, PI)
-    return rng.uniform(lo, hi, (n, robot.dof))
-
-
 def numeric_search(
     robot: km.Robot, T: FloatArray, rng: np.random.Generator, starts: int = STARTS
 ) -> FloatArray:
@@ -190,6 +93,22 @@ def numeric_search(
     if not res.count.any():
         return np.zeros((0, robot.dof))
     return distinct(robot, res.solutions[res.count > 0, 0], DISTINCT_TOL)
+
+
+def scaled_search(
+    robot: km.Robot, S: FloatArray, one: km.ik.IKResult, rng: np.random.Generator
+) -> FloatArray:
+    """The references of a scaled target S that ``one`` answered: the numeric search's
+    solutions where ``one`` found some, else whether the library's own search (its first
+    guess and :data:`STARTS` restarts, stopping at the first success) finds one.
+
+    A start of :func:`numeric_search` that fails goes on through the solver's restarts:
+    on an unreachable target STARTS starts would cost STARTS² attempts.
+    """
+    if len(ours(one)):
+        return numeric_search(robot, S, rng)
+    res = robot.ik(S, method="numeric", respect_limits=False)
+    return np.concatenate([res.solutions, res.out_of_limits])
 
 
 @dataclasses.dataclass(frozen=True)
@@ -253,15 +172,26 @@ def fk_error(robot: km.Robot, Q: FloatArray, T: FloatArray) -> FloatArray:
     return np.maximum(pos, km.rotation_angle(F[:, :3, :3], T[:3, :3]))
 
 
-def far_target(robot: km.Robot, T: FloatArray, rng: np.random.Generator) -> FloatArray:
-    """T with its translation scaled from the base origin past the bound on the reach."""
+def moved_target(robot: km.Robot, T: FloatArray, distance: float) -> FloatArray:
+    """T with its translation moved along the ray from the base origin to ``distance`` (m)."""
     origin = robot.chain.start[:3, 3]
     r = T[:3, 3] - origin
     norm = float(np.linalg.norm(r))
     direction = r / norm if norm > 1e-12 else np.array([1.0, 0.0, 0.0])
-    far = T.copy()
-    far[:3, 3] = origin + direction * arm_size(robot.chain) * rng.uniform(*FAR)
-    return far
+    moved = T.copy()
+    moved[:3, 3] = origin + direction * distance
+    return moved
+
+
+def far_target(robot: km.Robot, T: FloatArray, rng: np.random.Generator) -> FloatArray:
+    """T with its translation scaled from the base origin past the bound on the reach."""
+    return moved_target(robot, T, arm_size(robot.chain) * rng.uniform(*FAR))
+
+
+def scaled_target(robot: km.Robot, T: FloatArray, rng: np.random.Generator) -> FloatArray:
+    """T with its distance from the base origin times a factor in :data:`SCALED`."""
+    distance = float(np.linalg.norm(T[:3, 3] - robot.chain.start[:3, 3]))
+    return moved_target(robot, T, distance * rng.uniform(*SCALED))
 
 
 def sigma_min(robot: km.Robot, Q: FloatArray, size: float) -> FloatArray:
@@ -339,6 +269,30 @@ def check_far(status: str, message: str) -> str | None:
     return f"target outside the reach: {status}: {message!r}"
 
 
+def check_scaled(
+    robot: km.Robot, S: FloatArray, one: km.ik.IKResult, ref: FloatArray, size: float
+) -> list[tuple[str, str]]:
+    """Checks b, c and e of the answer ``one`` to a scaled target S, given the numeric
+    search's solutions ``ref``: ``(check, detail)``."""
+    out = []
+    sols = ours(one)
+    err = fk_error(robot, sols, S)
+    if (err > TOL).any():
+        out.append(("b", f"scaled target, {one.status}: FK error {err.max():.3g}"))
+        if one.status == "ok":
+            out.append(("e", f"scaled target: ok with a solution off by {err.max():.3g}"))
+    if one.status in ("unreachable", "not_found") and len(ref):
+        out.append(("e", f"scaled target {one.status} ({one.message}) but the search "
+                         f"found {len(ref)} solutions, e.g. {ref[0].tolist()}"))  # fmt: skip
+    elif one.status != "ok" and not one.message:
+        out.append(("e", f"scaled target {one.status} without a reason"))
+    if not one.free_joints:
+        for x, near, tol in check_complete(robot, sols, ref, size)[0]:
+            out.append(("c", f"scaled target: reference solution {x.tolist()} missed: "
+                             f"nearest of our {len(sols)} at {near:.3g} > {tol:.3g}"))  # fmt: skip
+    return out
+
+
 def audit_arm(
     robot: km.Robot,
     arm: ArmSample,
@@ -388,6 +342,13 @@ def audit_arm(
         wrong = check_far(str(far_res.status[i]), str(far_res.message[i]))
         if wrong:
             fail("e", i, wrong)
+    for i in range(0, len(q), SCALED_EVERY):
+        S = scaled_target(robot, T[i], rng)
+        one = robot.ik(S)
+        counts["scaled"] += 1
+        counts["scaled_out"] += one.status in ("unreachable", "not_found")
+        for check, detail in check_scaled(robot, S, one, scaled_search(robot, S, one, rng), size):
+            fail(check, i, detail)
     return counts, found
 
 
