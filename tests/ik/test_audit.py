@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 import pytest
-from support.audit_arms import CALIBRATION, CLASSES, UR5, calibrated_ur, robot_from
+from support.audit_arms import CALIBRATION, CLASSES, calibrated_ur, robot_from
 from support.ik_pose_audit import (
     DISTINCT_TOL,
     FOUND_TOL,
@@ -118,8 +118,8 @@ def test_each_class_draws_arms_of_its_solver(name: str) -> None:
 
 def test_a_calibrated_ur_is_off_the_ur5_by_up_to_the_calibration() -> None:
     arm = calibrated_ur(np.random.default_rng(1))
-    rows = zip(arm.links, UR5, strict=True)
-    off = np.array([[j.d - d, j.a - a, j.alpha - al] for j, (d, a, al) in rows])
+    rows = zip(arm.links, km.load("ur5").links, strict=True)
+    off = np.array([[j.d - u.d, j.a - u.a, j.alpha - u.alpha] for j, u in rows])
     assert np.all(np.abs(off) <= CALIBRATION) and np.all(off != 0.0)
     assert np.abs(off).max() > CALIBRATION / 2
 

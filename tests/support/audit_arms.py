@@ -25,15 +25,6 @@ from kinematica.ik.registry import ArmSample
 FloatArray = NDArray[np.float64]
 PI = math.pi
 
-#: The UR5's DH table (standard; d, a, alpha in m, m, rad): the calibrated UR's nominal.
-UR5 = (
-    (0.089159, 0.0, PI / 2),
-    (0.0, -0.425, 0.0),
-    (0.0, -0.39225, 0.0),
-    (0.10915, 0.0, PI / 2),
-    (0.09465, 0.0, -PI / 2),
-    (0.0823, 0.0, 0.0),
-)
 #: The calibration error of a UR: every twist (rad) and every a, d (m) off by up to this.
 CALIBRATION = 1e-3
 
@@ -83,9 +74,13 @@ def near_parallel(rng: np.random.Generator) -> ArmSample:
 
 
 def calibrated_ur(rng: np.random.Generator) -> ArmSample:
-    """The UR5 with every twist, a and d off by up to :data:`CALIBRATION` (uniform)."""
+    """The UR5 (the built-in model) with every twist, a and d off by up to
+    :data:`CALIBRATION` (uniform), its limits dropped."""
     e = lambda: float(rng.uniform(-CALIBRATION, CALIBRATION))  # noqa: E731
-    rows = [Revolute(d=d + e(), a=a + e(), alpha=al + e()) for d, a, al in UR5]
+    rows = [
+        dataclasses.replace(j, d=j.d + e(), a=j.a + e(), alpha=j.alpha + e(), qlim=None)
+        for j in km.load("ur5").links
+    ]
     return _placed(rows, rng, "UR5, calibrated")
 
 

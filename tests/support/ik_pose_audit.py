@@ -219,6 +219,19 @@ def ours(one: km.ik.IKResult) -> FloatArray:
     return np.concatenate([one.solutions, one.out_of_limits])
 
 
+def _fk_checks(
+    robot: km.Robot, T: FloatArray, one: km.ik.IKResult, what: str
+) -> list[tuple[str, str]]:
+    """Checks b and e of every solution of ``one``: FK within TOL of T; "ok" only if so."""
+    out = []
+    err = fk_error(robot, ours(one), T)
+    if (err > TOL).any():
+        out.append(("b", f"{what}{one.status}: FK error {err.max():.3g} ({one.method})"))
+        if one.status == "ok":
+            out.append(("e", f"{what}ok with a solution off by {err.max():.3g}"))
+    return out
+
+
 def check_answer(
     robot: km.Robot, T: FloatArray, q: FloatArray, one: km.ik.IKResult, cond: float
 ) -> list[tuple[str, str]]:
@@ -227,13 +240,8 @@ def check_answer(
     ``cond`` is σmin/σmax at q (see :data:`SINGULAR_REL`); "a_far" is an "a" by
     more than :data:`DISTINCT_TOL`.
     """
-    out = []
+    out = _fk_checks(robot, T, one, "")
     sols = ours(one)
-    err = fk_error(robot, sols, T)
-    if (err > TOL).any():
-        out.append(("b", f"{one.status}: FK error {err.max():.3g} ({one.method})"))
-        if one.status == "ok":
-            out.append(("e", f"ok with a solution off by {err.max():.3g}"))
     if one.status == "unreachable":
         out.append(("e", f"a pose made by FK is unreachable: {one.message}"))
     gap = float(joint_distance(robot, sols, q).min()) if len(sols) else math.inf
@@ -274,13 +282,8 @@ def check_scaled(
 ) -> list[tuple[str, str]]:
     """Checks b, c and e of the answer ``one`` to a scaled target S, given the numeric
     search's solutions ``ref``: ``(check, detail)``."""
-    out = []
+    out = _fk_checks(robot, S, one, "scaled target: ")
     sols = ours(one)
-    err = fk_error(robot, sols, S)
-    if (err > TOL).any():
-        out.append(("b", f"scaled target, {one.status}: FK error {err.max():.3g}"))
-        if one.status == "ok":
-            out.append(("e", f"scaled target: ok with a solution off by {err.max():.3g}"))
     if one.status in ("unreachable", "not_found") and len(ref):
         out.append(("e", f"scaled target {one.status} ({one.message}) but the search "
                          f"found {len(ref)} solutions, e.g. {ref[0].tolist()}"))  # fmt: skip
