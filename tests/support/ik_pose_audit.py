@@ -157,7 +157,7 @@ def eaik_model(robot: km.Robot) -> Eaik | None:
     q = np.random.default_rng(0).uniform(-PI, PI, robot.dof)
     T = np.asarray(model.fwdKin(q), dtype=float)
     T[:3, :3] = T[:3, :3] @ eaik.R0
-    if fk_error(robot, q[None], T)[0] > 1e-9:
+    if fk_error(robot, q[None], T)[0] > 10 * TOL:  # EAIK's FK rounds as ours does, or near
         raise AssertionError("EAIK's model of the arm does not reproduce its FK")
     return eaik
 
