@@ -403,6 +403,44 @@ def test_batch_equals_one_by_one() -> None:
     assert batch.status[3] == "unreachable" and (batch.status != "ok").sum() == 1
 
 
+def test_batch_equals_one_by_one_where_the_check_completes_the_first_attempt() -> None:
+    # Found by the pose audit (benchmarks/audit_ik.py, a calibrated UR): from this first
+    # guess, near an elbow singularity (σmin/σmax 2e-5), LM's first attempt stops short of
+    # the tolerance and the check's polish completes it; the full search would go on to a
+    # restart converging 5e-4 rad away. One target and a batch must both take the first.
+    rows = [
+        (0.0891849682615843, -0.0009683410532165791, 1.5707792586092097),
+        (-0.000549645834894505, -0.42562834192497045, 0.0009174807313572576),
+        (-0.00044177736250496883, -0.39306164971486085, 0.00013142766726859751),
+        (0.10992705352950112, 0.00023928029060217028, 1.5706205116734957),
+        (0.0951199902115929, 0.0005970954545483546, -1.5706487519178873),
+        (0.08302095454035964, 0.00010986051534969004, 0.0006190054810758967),
+    ]
+    base = np.array([
+        [0.05724290865266923, 0.551452415789161, 0.8322400390087468, -0.23870029031817008],
+        [0.16040840420449534, 0.8176963815755689, -0.5528487780747904, 0.18663749859021506],
+        [-0.9853894627351916, 0.16514496867455503, -0.04165028273530469, -0.19465208603532091],
+        [0.0, 0.0, 0.0, 1.0],
+    ])  # fmt: skip
+    tool = np.array([
+        [0.3737208369063856, 0.2372890944318461, 0.8966753156665488, -0.08458222241199938],
+        [0.9273503888303815, -0.11519727231472054, -0.35602084880999324, 0.1517838070138523],
+        [0.018814685703747114, 0.9645846122113717, -0.2631017550053718, -0.0037197183243646847],
+        [0.0, 0.0, 0.0, 1.0],
+    ])  # fmt: skip
+    robot = Robot.from_dh([Revolute(d=d, a=a, alpha=al) for d, a, al in rows], base=base, tool=tool)
+    q = np.array([-2.8427797789929983, 1.428565127395248, 0.00020204669053613955,
+                  -1.4875043597231448, 1.0932547274170918, 2.2158742580218593])  # fmt: skip
+    q0 = np.array([-2.842780572777552, 1.4286828622204073, -4.2965574476743715e-05,
+                   -1.487377059226306, 1.0932539426020735, 2.2158742080634304])  # fmt: skip
+    T = robot.fk(q)
+    one = robot.ik(T, method="numeric", q0=q0)
+    batch = robot.ik(np.stack([T, T]), method="numeric", q0=np.stack([q0, q0]), workers=1)
+    assert one.status == "ok"
+    for i in range(2):
+        _same(batch[i], one)
+
+
 def test_deterministic_given_a_seed() -> None:
     robot = panda()
     targets = robot.fk(random_q(robot, 50, seed=13))

@@ -142,7 +142,7 @@ def configurations(robot: km.Robot, rng: np.random.Generator, count: int) -> Flo
     return q
 
 
-def _conditioning(robot: km.Robot, q: FloatArray, position: bool, size: float) -> FloatArray:
+def conditioning(robot: km.Robot, q: FloatArray, position: bool, size: float) -> FloatArray:
     """``(N,)`` smallest / largest singular value of the scaled Jacobian at each q.
 
     NaN where the arm is redundant for the target (more joints than counted rows):
@@ -180,7 +180,7 @@ def audit_arm(
         extra = {spec.parameter: np.nan_to_num(spec.parameter_of(robot.chain, q))}
     res = robot.ik(targets, respect_limits=False, **extra)
     size = features(robot.chain).size
-    cond = _conditioning(robot, q, position, size)
+    cond = conditioning(robot, q, position, size)
     counts: collections.Counter[str] = collections.Counter(targets=len(q))
     bad: list[tuple[str, int, Any]] = []
     for i in range(len(q)):

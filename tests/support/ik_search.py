@@ -22,7 +22,7 @@ FloatArray = NDArray[np.float64]
 def joint_distance(robot: Robot, q1: FloatArray, q2: FloatArray) -> FloatArray:
     """Largest joint difference (angles modulo 2π), broadcast over leading axes."""
     d = np.asarray(q1, dtype=float) - np.asarray(q2, dtype=float)
-    d = np.where(robot.is_prismatic, d, np.angle(np.exp(1j * d)))
+    d = np.where(robot.is_prismatic, d, np.remainder(d + math.pi, 2 * math.pi) - math.pi)
     return np.abs(d).max(axis=-1)
 
 
@@ -67,9 +67,25 @@ def dls_solutions(
             step = np.linalg.pinv(J) @ e[..., None]
         q = q + step[..., 0]
     done = np.abs(error(q)).max(axis=1) < 1e-10
-    found: list[FloatArray] = []
-    for qi in q[done]:
-        qi = np.where(robot.is_prismatic, qi, np.angle(np.exp(1j * qi)))
-        if all(joint_distance(robot, qi, f) > 1e-6 for f in found):
-            found.append(qi)
-    return np.array(found).reshape(-1, robot.dof)
+    return distinct(robot, q[done], 1e-6)
+
+
+def distinct(robot: Robot, q: FloatArray, tol: float) -> FloatArray:
+    """``(k, n)`` the rows of ``q`` ``(m, n)`` that are more than ``tol`` from every row
+    kept before them (revolute joints wrapped to (-π, π]).
+
+    Rows equal once rounded to ``tol`` are one before the pairwise test: a search's
+    hundreds of answers are mostly a few solutions found again and again.
+    """
+    q = np.where(robot.is_prismatic, q, np.angle(np.exp(1j * np.asarray(q, dtype=float))))
+    q = q.reshape(-1, robot.dof)
+    first = np.unique(np.round(q / tol), axis=0, return_index=True)[1]
+    q = q[np.sort(first)]
+    close = joint_distance(robot, q[:, None], q[None]) <= tol
+    kept: list[int] = []
+    taken = np.zeros(len(q), dtype=bool)
+    for i in range(len(q)):
+        if not taken[i]:
+            kept.append(i)
+            taken |= close[i]
+    return q[kept].reshape(-1, robot.dof)

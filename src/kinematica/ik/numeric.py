@@ -70,8 +70,10 @@ class NumericSetup:
     """The core's search for one arm and settings, and what it is made from.
 
     The restart configurations are drawn when a target first needs them: most
-    targets are found from the first guess, and a search without restarts gives
-    them the very answer the full search gives (its first attempt is the same).
+    targets are found from the first guess. A target, alone or in a batch, is
+    searched from its first guess alone first, and by the full search (the first
+    guess, then the restarts) only when that did not settle it: the same answer
+    either way.
 
     Attributes:
         bounds: ``(n, 3)`` per joint: start of its 2π wrap window, lower and
@@ -126,9 +128,35 @@ class NumericSetup:
             return out
         return self.solver.ik(core, T, options, None, labels)
 
-    def ik_batch(self, *args: Any) -> Any:
-        """A batch: the full search on every target (the core's ``ik_batch``)."""
-        return self.solver.ik_batch(*args)
+    def ik_batch(
+        self,
+        core: _core.Chain,
+        T: FloatArray,
+        options: _core.CheckOptions,
+        q0: Any,
+        invalid: Any,
+        workers: int,
+    ) -> Any:
+        """A batch, each target as :meth:`ik` solves it (the core's ``ik_batch``).
+
+        The first guesses alone, then the full search on the targets they did not
+        settle. Not the full search on every target: where the first attempt stops short of the
+        tolerance but within the check's polish, the check completes it, while the full
+        search goes on to a restart that may converge elsewhere (single calls and a
+        batch would then give different solutions).
+        """
+        out = dict(self.quick.ik_batch(core, T, options, q0, invalid, workers))
+        status, gap = np.asarray(out["status"]), np.asarray(out["gap"], dtype=float)
+        rows = np.flatnonzero((status == _NOT_FOUND) & ~np.isfinite(gap))
+        if rows.size:
+            guess = None if q0 is None else np.ascontiguousarray(np.asarray(q0)[rows])
+            poses = np.ascontiguousarray(T[rows])
+            redo = self.solver.ik_batch(core, poses, options, guess, None, workers)
+            for key, value in redo.items():
+                merged = np.array(out[key])
+                merged[rows] = value
+                out[key] = merged
+        return out
 
 
 #: The core's code of a target the search did not find (it may need the restarts).
@@ -136,7 +164,7 @@ _NOT_FOUND = _core.STATUS["not_found"]
 
 
 def _settled(out: Any) -> bool:
-    """True when a search without restarts has the full search's answer already."""
+    """True when a search without restarts has answered (the restarts are not tried)."""
     report = out[-1]
     return bool(report[0] != _NOT_FOUND or report[1] is not None)  # found, or a proven gap
 
