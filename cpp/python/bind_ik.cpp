@@ -96,6 +96,9 @@ void bind_ik(nb::module_& m) {
                 nb::arg("tol_rotation"), nb::arg("max_steps"), nb::arg("reach"), nb::arg("base"),
                 nb::arg("weights"), nb::arg("samples"), nb::arg("middle"));
     numeric.def_prop_ro("restarts", &km::NumericSolver::restarts);
+    numeric.def_rw("skip_first", &km::NumericSolver::skip_first,
+                   "True: the attempts start at the first restart (the first guess was "
+                   "searched alone already)");
     add_ik_methods(numeric, [](const km::NumericSolver& s) -> const km::NumericSolver& { return s; });
 
     m.def("pose_defects", &defects_one, nb::arg("T"),

@@ -16,6 +16,9 @@ struct NumericSolver {
     double weights[6] = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
     std::vector<double> samples;     //!< (R x n) restart configurations, used in order
     std::vector<double> middle;      //!< (n) the first guess when no q0 is given
+    //! The first guess was searched alone already (and did not settle the target): the
+    //! attempts start at the first restart, and the first guess is not searched again.
+    bool skip_first = false;
 
     using Work = LMWork;
     Work work(int n) const { return LMWork(n); }
@@ -27,9 +30,11 @@ struct NumericSolver {
     //! (Inlined into each instruction-set copy of its caller, as the search is.)
     KM_INLINE void solve(const ChainView& chain, const Pose& T, const double* q0, double* Q,
                          SolverInfo& info, Work& w) const {
-        const double* start = q0 != nullptr ? q0 : middle.data();
+        const int R = restarts();
+        const bool skip = skip_first && R > 0;
+        const double* start = skip ? samples.data() : (q0 != nullptr ? q0 : middle.data());
         const LMStats st = lm_solve(chain, bounds.data(), weights, settings, T, start,
-                                    samples.data(), restarts(), Q, w);
+                                    samples.data() + (skip ? n : 0), skip ? R - 1 : R, Q, w);
         info.gap = st.gap;
     }
 };

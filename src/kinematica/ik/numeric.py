@@ -71,9 +71,8 @@ class NumericSetup:
 
     The restart configurations are drawn when a target first needs them: most
     targets are found from the first guess. A target, alone or in a batch, is
-    searched from its first guess alone first, and by the full search (the first
-    guess, then the restarts) only when that did not settle it: the same answer
-    either way.
+    searched from its first guess alone first, and from the restarts only when that
+    did not settle it: the same answer either way, and no attempt made twice.
 
     Attributes:
         bounds: ``(n, 3)`` per joint: start of its 2π wrap window, lower and
@@ -99,8 +98,10 @@ class NumericSetup:
 
     @cached_property
     def solver(self) -> _core.NumericSolver:
-        """The full search: the first guess, then the restarts in order."""
-        return self._make(self.samples)
+        """The search after :attr:`quick`: the restarts in order (the first guess not again)."""
+        solver = self._make(self.samples)
+        solver.skip_first = True
+        return solver
 
     def ik(
         self,
@@ -139,11 +140,11 @@ class NumericSetup:
     ) -> Any:
         """A batch, each target as :meth:`ik` solves it (the core's ``ik_batch``).
 
-        The first guesses alone, then the full search on the targets they did not
-        settle. Not the full search on every target: where the first attempt stops short of the
-        tolerance but within the check's polish, the check completes it, while the full
-        search goes on to a restart that may converge elsewhere (single calls and a
-        batch would then give different solutions).
+        The first guesses alone, then the restarts on the targets they did not settle.
+        Not one search of the first guess and the restarts on every target: where the
+        first attempt stops short of the tolerance but within the check's polish, the
+        check completes it, while that search goes on to a restart that may converge
+        elsewhere (single calls and a batch would then give different solutions).
         """
         out = dict(self.quick.ik_batch(core, T, options, q0, invalid, workers))
         status, gap = np.asarray(out["status"]), np.asarray(out["gap"], dtype=float)
