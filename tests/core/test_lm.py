@@ -79,3 +79,18 @@ def test_converged_is_what_the_check_calls_ok() -> None:
     assert res.status[5] == "not_found" and (res.status == "ok").sum() == 39
     np.testing.assert_array_equal(converged, res.status == "ok")
     assert np.all(evaluations >= attempts) and np.all(attempts >= 1)
+
+
+def test_the_search_after_the_first_guess_starts_at_the_restarts() -> None:
+    # The first guess (the middle) solves this target exactly: the search from it alone
+    # returns it, the search robot.ik runs next (skip_first) never tries it again and
+    # ends where the first restart leads, elsewhere on the Panda's self-motion.
+    robot = km.load("panda")
+    setup = setup_of(robot)
+    T = robot.fk(setup.middle)
+    assert setup.solver.skip_first and not setup.quick.skip_first
+    first = setup.quick.candidates(robot.chain.core, T)[0][0]
+    after = setup.solver.candidates(robot.chain.core, T)[0][0]
+    np.testing.assert_allclose(first, setup.middle, atol=1e-12)
+    assert np.max(np.abs(after - setup.middle)) > 1e-3
+    np.testing.assert_allclose(robot.fk(after), T, atol=1e-9)
