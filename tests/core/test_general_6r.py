@@ -46,6 +46,8 @@ def test_the_header_s_constants_are_exported() -> None:
     assert g.SLOTS == g.CLASSES * g.PER_CLASS + g.FURTHER == len(g6.LABELS)
     assert (g.EQUATIONS, g.PRODUCTS, g.REDUCED) == (14, 8, 6)
     assert 0 < g.DOUBLE_ROOT_TOL < g.LEADING_RCOND_TOL < g.CLOSURE_TOL < 1
+    # a candidate that closes is one the check polishes (its POLISH_LIMIT: 1e-5)
+    assert g.CLOSURE_TOL < 1e-5
 
 
 # ------------------------------------------------- the tolerances, from both sides
@@ -57,7 +59,7 @@ REAL_ROOT_TOL = 1e-4
 LEADING_RCOND_TOL = 1e-8
 SECOND_SHIFT = 1.1
 DOUBLE_ROOT_TOL = 1e-10
-CLOSURE_TOL = 1e-4
+CLOSURE_TOL = 5e-6
 
 
 def test_the_documented_values_are_the_core_s() -> None:
@@ -126,7 +128,7 @@ def test_leading_rcond_tol_chooses_the_second_shift_just_below_it() -> None:
 
     def trace(d: float) -> tuple[float, float, float, bool]:
         q[j] = math.remainder(params.sign * (g6.PHI[2] + math.pi + d), 2 * math.pi)
-        return g.trace(params, robot.fk(q))
+        return g.trace(params, robot.fk(q))[:4]
 
     slope = trace(1e-6)[0] / 1e-6
     assert trace(1e-7)[0] == pytest.approx(slope * 1e-7, rel=0.01)
@@ -137,26 +139,60 @@ def test_leading_rcond_tol_chooses_the_second_shift_just_below_it() -> None:
         assert closure <= 1e-10 and not near
 
 
-def test_closure_tol_separates_a_loop_that_closes_from_one_that_cannot() -> None:
-    # c0 moved by eps along a row of N: the elimination's equations then hold where the
-    # loop is open, its closure proportional to eps (measured: slope). With eps for a
-    # closure of 1/2 and 2 times CLOSURE_TOL, near flips; unperturbed the loop closes.
+def _opened(seed: int) -> tuple[km.Robot, Any, np.ndarray, Any]:
+    """A random arm, its Params, a pose, and ``miss(eps)``: c0 moved by eps along a row of
+    N, so that the elimination's equations hold where the loop is open, its candidates'
+    smallest miss (the pose they make against the target, m or rad) proportional to eps."""
     g = _core.general6r
-    robot, params = _robot_and_params(9)
+    robot, params = _robot_and_params(seed)
     T = robot.fk(np.random.default_rng(1).uniform(-math.pi, math.pi, 6))
     c0, row = np.array(params.c0), np.array(params.N)[1]
-    assert g.trace(params, T)[2] <= 1e-10
 
-    def closure(eps: float) -> tuple[float, bool]:
+    def miss(eps: float) -> tuple[float, bool]:
         params.c0 = c0 + eps * row
-        _, _, c, near = g.trace(params, T)
+        _, _, c, near, _ = g.trace(params, T)
         return c, near
 
-    slope = closure(1e-7)[0] / 1e-7
-    assert closure(1e-6)[0] == pytest.approx(slope * 1e-6, rel=0.05)
+    return robot, params, T, miss
+
+
+def test_closure_tol_separates_a_loop_that_closes_from_one_that_cannot() -> None:
+    # With eps for a miss of 1/2 and 2 times CLOSURE_TOL, near flips; unperturbed the
+    # loop closes to round-off.
+    robot, params, T, miss = _opened(9)
+    assert miss(0.0)[0] <= 1e-12
+    slope = miss(1e-8)[0] / 1e-8
+    assert miss(1e-7)[0] == pytest.approx(slope * 1e-7, rel=0.05)
     for factor in (0.5, 2.0):
-        c, near = closure(factor * CLOSURE_TOL / slope)
+        c, near = miss(factor * CLOSURE_TOL / slope)
         assert c == pytest.approx(factor * CLOSURE_TOL, rel=0.1)
         assert near == (factor > 1.0)
         _, _, flag, _, _ = params.candidates(robot.chain.core, T)  # the public raw call agrees
         assert flag == near
+
+
+def test_the_miss_is_the_pose_error_the_check_measures() -> None:
+    # the candidate of smallest miss, through forward kinematics: the same number
+    robot, params, T, miss = _opened(9)
+    c, _ = miss(3e-6)
+    Q = params.candidates(robot.chain.core, T)[0]
+    Q = Q[np.isfinite(Q[:, 0])]
+    F = robot.fk(Q)
+    pos = np.linalg.norm(F[:, :3, 3] - T[:3, 3], axis=1)
+    rot = np.array([km.rotation_angle(f[:3, :3], T[:3, :3]) for f in F])
+    assert np.maximum(pos, rot).min() == pytest.approx(c, rel=1e-6)
+
+
+def test_candidates_that_miss_beyond_the_polish_make_no_unreachable_without_a_gap() -> None:
+    # Every candidate 2e-5 off (beyond the check's polish, 1e-5) and no reach gap: the
+    # elimination proves nothing, so the closed form's own answer (the core's, before
+    # any search) is not_found, near raised; never "unreachable" with no gap.
+    robot, params, T, miss = _opened(9)
+    c, near = miss(0.0)
+    slope = miss(1e-8)[0] / 1e-8
+    c, near = miss(2e-5 / slope)
+    assert 1.5e-5 < c < 3e-5 and near
+    opts = _core.CheckOptions()
+    opts.complete = True
+    *_, report = params.ik(robot.chain.core, T, opts, None, tuple(g6.LABELS))
+    assert report[0] == _core.STATUS["not_found"] and report[1] is None and report[4]

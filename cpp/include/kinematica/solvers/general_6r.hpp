@@ -20,13 +20,16 @@
 // x = tan((q' - phi)/2) makes it a polynomial of degree 2 in each of x4, x5, x6. The 6
 // equations and their products with x4 are 12 equations linear in the 12 monomials
 // x4^i x5^j (i <= 3, j <= 2): M(x6) u = 0 with M = A0 + A1 x6 + A2 x6², so det M(x6) = 0
-// (degree 24: up to 16 genuine real roots). Its roots are the eigenvalues of the 24 x 24
-// companion pencil; each real one gives u (M's null vector) hence x4, x5, then S2 = Q⁺(F - c0)
-// gives q'1, q'2 and the loop's closure q'3. The shared check polishes every candidate by
-// Gauss-Newton on the full pose, dedupes and judges it.
+// (degree 24, (1 + x6²)⁴ a factor: up to 16 genuine real roots). Its roots are the
+// eigenvalues of the 24 x 24 companion matrix, solved as a 16 x 16 one once the 8 at ±i
+// are eliminated (general_6r_roots.hpp); each real one gives u (M's null vector) hence
+// x4, x5, then S2 = Q⁺(F - c0) gives q'1, q'2 and the loop's closure q'3. The shared
+// check polishes every candidate by Gauss-Newton on the full pose, dedupes and judges it.
 //
-// Why Eigen: the eigenproblem needs a Hessenberg-QR and a full-pivot LU; Eigen's are well kept and tested, where our own would be a second,
-// less tested copy of LAPACK's algorithms. Only this header and its binding include it.
+// Why Eigen: the LUs (A2's, with its condition estimate; M's null vector by full
+// pivoting) are Eigen's, well kept and tested. The eigenvalues are the core's own
+// (eigenvalues.hpp: twice as fast at this size). Only these headers and their binding
+// include Eigen.
 //
 // Branch labels: a candidate's class is the signs of sin q2, sin q3, sin q5 (joint values
 // in (0, π) or not), 4 slots per class ordered by q1; a ninth group of slots holds the
@@ -34,34 +37,28 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <cmath>
 #include <complex>
 
+#include "../check.hpp"
 #include "../config.hpp"
 #include "../ik_types.hpp"
 #include "../so3.hpp"
 #include "../trig.hpp"
 #include "../types.hpp"
+#include "general_6r_roots.hpp"
 
 namespace km::general6r {
 
 constexpr int EQUATIONS = 14;  //!< p, l, p·p, p·l, p×l, (p·p) l - 2 (p·l) p
 constexpr int PRODUCTS = 8;    //!< the products of (1, c1', s1') ⊗ (1, c2', s2') but 1
 constexpr int REDUCED = 6;     //!< equations left once the products are eliminated
-constexpr int SIZE = 12;       //!< the matrix M(x6)
-constexpr int ROOTS = 24;      //!< degree of det M(x6)
 constexpr int CLASSES = 8;     //!< sign classes of (sin q2, sin q3, sin q5)
 constexpr int PER_CLASS = 4;   //!< slots of one class
 constexpr int FURTHER = 8;     //!< slots of the members beyond PER_CLASS of a class
 constexpr int SLOTS = CLASSES * PER_CLASS + FURTHER;
 
-//! An eigenvalue x is a real root when |Im x| <= this · (1 + |x|). Generous: a double
-//! root splits into a complex pair of imaginary part ~ sqrt(round-off), whose real part is
-//! still a candidate the check polishes; a genuinely complex root that passes is rejected
-//! by the check (its FK misses the target).
-constexpr double REAL_ROOT_TOL = 1e-4;
 //! The companion matrix A2⁻¹(...) is used when A2's reciprocal condition number (LU
 //! estimate) is above this; below (a root near x6 = ∞), the pencil is made again with
 //! q'6 shifted by SECOND_SHIFT more, which brings that root to a finite x6.
@@ -73,30 +70,24 @@ constexpr double SECOND_SHIFT = 1.1;
 //! continuum: near is raised) when its full-pivot LU's second smallest pivot is below
 //! this times the largest.
 constexpr double DOUBLE_ROOT_TOL = 1e-10;
-//! A candidate "closes the loop" when its closure (the loop's product with q'3 taken from
-//! it) is within this of the identity (scaled lengths: of the arm's size; rad): a target
-//! none of whose candidates closes is not proven unreachable (near is raised, so the
-//! check says not_found, and the numeric search is asked). Wide: the check's polish
-//! (POLISH_LIMIT = 1e-5) starts from candidates this far and closer.
-constexpr double CLOSURE_TOL = 1e-4;
+//! A candidate "closes the loop" when the pose it makes is within this of the target (m
+//! or rad, the larger; measured as the shared check measures it): half the check's
+//! POLISH_LIMIT, so that a candidate that closes is one the check polishes (and calls the
+//! target "close"). Where none closes, near is raised: the elimination proves nothing
+//! (a root lost to round-off at a near-double root, or the target out of reach: it cannot
+//! tell), so the check says not_found and the numeric search is asked. "unreachable"
+//! comes from the reach bound alone, which is a proven gap.
+constexpr double CLOSURE_TOL = 0.5 * POLISH_LIMIT;
 //! The grid of angles the trigonometric polynomials are found from: 0, 2π/3, 4π/3.
 constexpr double GRID_STEP = 2.0 * PI / 3.0;
-
-using Matrix12 = Eigen::Matrix<double, SIZE, SIZE>;
-using Matrix24 = Eigen::Matrix<double, 2 * SIZE, 2 * SIZE>;
-using Vector12 = Eigen::Matrix<double, SIZE, 1>;
 
 //! What one solve decided, for the tests of its tolerances (solve fills it when given).
 struct Trace {
     double rcond = NaN;    //!< A2's reciprocal condition number at the first shift (LU estimate)
     double shift6 = NaN;   //!< the q'6 shift the pencil was made with (NaN: neither worked)
-    double closure = INF;  //!< the smallest closure of a candidate (INF: no candidate)
+    double closure = INF;  //!< the smallest miss of a candidate (m or rad; INF: no candidate)
+    bool deflated = false; //!< the roots at x6 = ±i were eliminated before the eigenproblem
 };
-
-//! An eigenvalue x of the companion pencil is taken as a real root x6: see REAL_ROOT_TOL.
-inline bool real_root(std::complex<double> x) {
-    return std::fabs(x.imag()) <= REAL_ROOT_TOL * (1.0 + std::abs(x));
-}
 
 //! The line (point, direction) a loop carries.
 struct Line {
@@ -263,10 +254,10 @@ struct General6RParams {
         return 2.0 * std::atan2(num, den) + shift;
     }
 
-    //! One candidate q (joint order) from a real root x6 and its monomial vector u.
-    //! Returns how far the loop is from closing (scaled length + rad): see CLOSURE_TOL.
-    double back_substitute(const Pose* L, const Pose* Li, double x6, double shift6,
-                           const Vector12& u, double* q) const {
+    //! One candidate q (joint order) from a real root x6 and its monomial vector u, for
+    //! the target T (scaled). Returns how far its pose is from T (miss: m or rad).
+    double back_substitute(const Pose* L, const Pose* Li, const Pose& T, double x6,
+                           double shift6, const Vector12& u, double* q) const {
         // x4 = u(i+1, j) / u(i, j), x5 = u(i, j+1) / u(i, j): the best-scaled pair
         int bi = 0, bj = 0;
         double best = -1.0;
@@ -302,8 +293,22 @@ struct General6RParams {
         const double a3 = std::atan2(W.x.y - W.y.x, W.x.x + W.y.y);
         const double a[6] = {a1, a2, a3, a4, a5, a6};
         for (int k = 0; k < 6; ++k) q[order[k]] = wrap(sign * a[k]);
-        // W = Rz(q'3) exactly when the loop closes: W's z axis is z, its origin 0
-        return norm(W.p) + std::fabs(W.z.x) + std::fabs(W.z.y);
+        return miss(L, a, T);
+    }
+
+    //! How far the pose the loop's angles a (q'1 ... q'6) make is from the target T
+    //! (scaled): the larger of the position error (m) and the rotation error (rad), as
+    //! the shared check measures a candidate. With X the loop's factors Rz(q'k) L_k before
+    //! the target's link (and its Rz), Y those after, the loop X pre T^p post Y = I gives
+    //! T^p = (post Y X pre)⁻¹.
+    double miss(const Pose* L, const double* a, const Pose& T) const {
+        Pose X, Y;
+        for (int k = 0; k < t_link; ++k) X = X * rz(a[k]) * L[k];
+        X = X * rz(a[t_link]);
+        for (int k = t_link + 1; k < 6; ++k) Y = Y * rz(a[k]) * L[k];
+        const Pose H = t_post * Y * X * t_pre;
+        const Pose F = t_power < 0 ? H : inverse(H);  // the pose the angles make (scaled)
+        return std::fmax(norm(F.p - T.p) / scale, angle_between(F, T));
     }
 
     //! u with M(x) u = 0 (M = A0 + x A1 + x² A2, divided by x² when |x| > 1): from the
@@ -365,21 +370,12 @@ struct General6RParams {
             }
         }
         if (trace != nullptr) trace->shift6 = shift6;
-        // the real roots x6 of det M(x6): eigenvalues of the companion matrix
-        Matrix24 C = Matrix24::Zero();
-        C.topRightCorner<SIZE, SIZE>().setIdentity();
-        C.bottomLeftCorner<SIZE, SIZE>() = -lead.solve(A[0]);
-        C.bottomRightCorner<SIZE, SIZE>() = -lead.solve(A[1]);
-        const Eigen::EigenSolver<Matrix24> eig(C, false);
-        if (eig.info() != Eigen::Success) {
-            info.near = true;  // not proven unreachable
-            return;
-        }
+        // the real roots x6 of det M(x6) (general_6r_roots.hpp)
         double roots[ROOTS];
-        int found = 0;
-        for (int r = 0; r < ROOTS; ++r) {
-            const std::complex<double> x = eig.eigenvalues()(r);
-            if (real_root(x)) roots[found++] = x.real();
+        const int found = real_roots(A, lead, roots, trace != nullptr ? &trace->deflated : nullptr);
+        if (found < 0) {
+            info.near = true;  // the eigenvalue iteration failed: not proven unreachable
+            return;
         }
         // candidates into their classes, each ordered by q1
         int filled[CLASSES] = {};
@@ -388,7 +384,7 @@ struct General6RParams {
         for (int r = 0; r < found; ++r) {
             double q[6];
             const Vector12 u = null_vector(A, roots[r], info);
-            const double closure = back_substitute(L, Li, roots[r], shift6, u, q);
+            const double closure = back_substitute(L, Li, T, roots[r], shift6, u, q);
             closes |= closure <= CLOSURE_TOL;
             if (trace != nullptr && closure < trace->closure) trace->closure = closure;
             const int cls = sign_class(q);
@@ -403,7 +399,7 @@ struct General6RParams {
             } else if (further < FURTHER) {
                 slot = CLASSES * PER_CLASS + further++;
             } else {
-                continue;  // beyond 24 real eigenvalues: not possible (degree 24)
+                continue;  // beyond 24 real roots: not possible (degree 24)
             }
             for (int k = 0; k < 6; ++k) Q[slot * 6 + k] = q[k];
         }
