@@ -60,6 +60,9 @@ LEADING_RCOND_TOL = 1e-8
 SECOND_SHIFT = 1.1
 DOUBLE_ROOT_TOL = 1e-10
 CLOSURE_TOL = 5e-6
+REFINE_LIMIT = 1e-2
+REFINE_STEPS = 6
+REFINE_STEP = 1e-6
 
 
 def test_the_documented_values_are_the_core_s() -> None:
@@ -69,6 +72,11 @@ def test_the_documented_values_are_the_core_s() -> None:
     assert g.SECOND_SHIFT == SECOND_SHIFT
     assert g.DOUBLE_ROOT_TOL == DOUBLE_ROOT_TOL
     assert g.CLOSURE_TOL == CLOSURE_TOL
+    assert (g.REFINE_LIMIT, g.REFINE_STEPS, g.REFINE_STEP) == (
+        REFINE_LIMIT,
+        REFINE_STEPS,
+        REFINE_STEP,
+    )
 
 
 def _robot_and_params(seed: int) -> tuple[km.Robot, Any]:
@@ -139,12 +147,15 @@ def test_leading_rcond_tol_chooses_the_second_shift_just_below_it() -> None:
         assert closure <= 1e-10 and not near
 
 
-def _opened(seed: int) -> tuple[km.Robot, Any, np.ndarray, Any]:
+def _opened(seed: int, refine: bool = False) -> tuple[km.Robot, Any, np.ndarray, Any]:
     """A random arm, its Params, a pose, and ``miss(eps)``: c0 moved by eps along a row of
     N, so that the elimination's equations hold where the loop is open, its candidates'
-    smallest miss (the pose they make against the target, m or rad) proportional to eps."""
+    smallest miss (the pose they make against the target, m or rad) proportional to eps.
+    The pose is reachable (FK of a random q): Newton's method on the full pose from a
+    candidate (``refine``) finds the solution the elimination missed."""
     g = _core.general6r
     robot, params = _robot_and_params(seed)
+    params.refine_misses = refine
     T = robot.fk(np.random.default_rng(1).uniform(-math.pi, math.pi, 6))
     c0, row = np.array(params.c0), np.array(params.N)[1]
 
@@ -196,3 +207,48 @@ def test_candidates_that_miss_beyond_the_polish_make_no_unreachable_without_a_ga
     opts.complete = True
     *_, report = params.ik(robot.chain.core, T, opts, None, tuple(g6.LABELS))
     assert report[0] == _core.STATUS["not_found"] and report[1] is None and report[4]
+
+
+def _eps_for(miss: Any, target: float) -> float:
+    """eps for which the smallest miss is ``target`` (to 1 %): secant steps on log scale."""
+    eps = target / (miss(1e-8)[0] / 1e-8)
+    for _ in range(8):
+        now = miss(eps)[0]
+        if abs(now / target - 1.0) < 0.01:
+            return eps
+        eps *= target / now
+    raise AssertionError(f"no eps gives a miss of {target}")
+
+
+def test_refine_limit_bounds_the_candidates_newton_takes_to_a_solution() -> None:
+    # Without refinement the smallest miss is 1/2 or 2 times REFINE_LIMIT; with it, the
+    # first is carried to the solution (the pose is reachable), the second left alone.
+    g = _core.general6r
+    _, params, T, miss = _opened(9)
+    for factor in (0.5, 2.0):
+        eps = _eps_for(miss, factor * REFINE_LIMIT)
+        params.refine_misses = True
+        _, _, closure, near, _ = g.trace(params, T)
+        params.refine_misses = False
+        if factor < 1.0:
+            assert closure <= 1e-12 and not near
+        else:
+            assert closure == pytest.approx(miss(eps)[0], rel=1e-12) and near
+
+
+def test_candidates_that_miss_beyond_the_polish_are_carried_to_the_solutions() -> None:
+    # The case above of candidates 2e-5 off, refined: every candidate's solution found,
+    # the configuration that made the pose among them, the loop closed to round-off.
+    robot, params, T, miss = _opened(9, refine=True)
+    q = np.random.default_rng(1).uniform(-math.pi, math.pi, 6)
+    plain = params.candidates(robot.chain.core, T)[0]
+    slope = miss(1e-8)[0] / 1e-8
+    c, near = miss(2e-5 / slope)
+    assert c <= 1e-12 and not near
+    opts = _core.CheckOptions()
+    opts.complete = True
+    sols, *_, report = params.ik(robot.chain.core, T, opts, None, tuple(g6.LABELS))
+    assert report[0] == _core.STATUS["ok"]
+    assert len(sols) == np.isfinite(plain[:, 0]).sum()
+    d = np.abs(np.remainder(sols - q + math.pi, 2 * math.pi) - math.pi).max(axis=1)
+    assert d.min() <= 1e-9

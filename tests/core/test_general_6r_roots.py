@@ -93,3 +93,28 @@ def test_spurious_tol_bounds_the_eighth_pivot_from_below(side: float) -> None:
     deflated, r8, _ = G.spurious_pivots(*_pivots(SPURIOUS_TOL * side, 0.0))
     assert r8 == pytest.approx(SPURIOUS_TOL * side, rel=1e-12)
     assert deflated == (side > 1.0)
+
+
+def _split_boundary(x0: float) -> float:
+    """s with s = SPLIT_ROOT_TOL (1 + |x0 + i s|): the pair x0 ± i s on the boundary."""
+    s = 0.0
+    for _ in range(60):
+        s = G.SPLIT_ROOT_TOL * (1.0 + abs(complex(x0, s)))
+    return s
+
+
+@pytest.mark.parametrize("side", [1.0 - EDGE, 1.0 + EDGE])
+def test_split_root_tol_turns_a_nearly_real_pair_into_two_candidates(side: float) -> None:
+    # a pair x0 ± i s just inside the tolerance gives x0 - s and x0 + s; just outside,
+    # nothing; the real roots come out either way
+    assert G.SPLIT_ROOT_TOL == 1e-2  # the documented value
+    rng = np.random.default_rng(4)
+    x0 = 1.5
+    s = _split_boundary(x0) * side
+    real = [-2.0, -1.0, 0.5, 3.0]
+    factors = [SPURIOUS_FACTOR] * 4 + [_real_pair(-2.0, -1.0), _real_pair(0.5, 3.0)]
+    factors += [(x0 * x0 + s * s, -2 * x0, 1.0)] + [(1.0, 0.5, 1.0)] * 5
+    roots, deflated = G.real_roots(*_quadratic(rng, factors))
+    assert deflated
+    expected = sorted(real + ([x0 - s, x0 + s] if side < 1.0 else []))
+    np.testing.assert_allclose(np.sort(roots), expected, atol=ROOT_TOL)

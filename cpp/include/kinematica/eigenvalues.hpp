@@ -16,9 +16,14 @@
 
 namespace km::eigen {
 
-//! Francis steps per eigenvalue (or pair) before the iteration is declared failed
-//! (EISPACK's limit: exceptional shifts at 10 and 20 break the rare cycles).
-constexpr int QR_STEPS = 30;
+//! Francis steps per eigenvalue (or pair) before the iteration is declared failed. EISPACK
+//! stops at 30; a cluster of nearly equal complex pairs (the general 6R on an arm near a
+//! degenerate one) was seen to need more, so the limit is LAPACK's whole budget
+//! (dlahqr: 30 per row of the matrix), and failing is kept for a true cycle.
+constexpr int QR_STEPS = 30 * 24;
+//! Every this many steps without a deflation an exceptional shift breaks a cycle
+//! (EISPACK's and LAPACK's 10).
+constexpr int EXCEPTIONAL = 10;
 
 //! a := D⁻¹ a D for a diagonal D of powers of 2 that makes each row's and column's
 //! off-diagonal norms within a factor 2 of each other (eigenvalues unchanged, exactly).
@@ -129,7 +134,7 @@ inline bool hessenberg_eigenvalues(double (&h)[N][N], double* re, double* im) {
                 continue;
             }
             if (steps == QR_STEPS) return false;
-            if (steps == 10 || steps == 20) {  // exceptional shift
+            if (steps > 0 && steps % EXCEPTIONAL == 0) {  // exceptional shift
                 shift += x;
                 for (int i = 0; i <= nn; ++i) h[i][i] -= x;
                 s = std::fabs(h[nn][nn - 1]) + std::fabs(h[nn - 1][nn - 2]);

@@ -44,6 +44,7 @@
 #include "../check.hpp"
 #include "../config.hpp"
 #include "../ik_types.hpp"
+#include "../linalg.hpp"
 #include "../so3.hpp"
 #include "../trig.hpp"
 #include "../types.hpp"
@@ -78,6 +79,20 @@ constexpr double DOUBLE_ROOT_TOL = 1e-10;
 //! tell), so the check says not_found and the numeric search is asked. "unreachable"
 //! comes from the reach bound alone, which is a proven gap.
 constexpr double CLOSURE_TOL = 0.5 * POLISH_LIMIT;
+//! A candidate whose pose misses the target by POLISH_LIMIT (beyond the check's polish)
+//! up to this (m or rad) is taken by Newton's method on the full pose to the solution
+//! near it. Such candidates come from roots the eigenproblem gets to 1e-5..1e-3 only: on
+//! arms near one whose elimination degenerates (a calibrated UR: M(x6) nearly singular
+//! for every x6), where an eigenvalue's error is round-off over that distance. Beyond
+//! this the candidate is not near a solution (a complex root's real part), and Newton
+//! would only wander to another candidate's.
+constexpr double REFINE_LIMIT = 1e-2;
+//! Newton steps at most (quadratic from REFINE_LIMIT: 1e-2, 1e-4, 1e-8, 1e-15, then the
+//! noise floor stops it).
+constexpr int REFINE_STEPS = 6;
+//! The central differences' step (rad) of the refinement's Jacobian: its error, h² times
+//! the third derivative (~1e-12), slows Newton to a linear rate of 1e-12 per step.
+constexpr double REFINE_STEP = 1e-6;
 //! The grid of angles the trigonometric polynomials are found from: 0, 2π/3, 4π/3.
 constexpr double GRID_STEP = 2.0 * PI / 3.0;
 
@@ -155,6 +170,9 @@ struct General6RParams {
     //! axis 1 and the sum of the joints' fixed offsets. Beyond it: a proven gap.
     Vec3 centre{};
     double reach = INF;
+    //! Take candidates that miss by POLISH_LIMIT to REFINE_LIMIT to the solution near them
+    //! (false: as the eigenproblem gives them; for the tests of the other tolerances).
+    bool refine_misses = true;
 
     int slots() const { return SLOTS; }
 
@@ -254,10 +272,10 @@ struct General6RParams {
         return 2.0 * std::atan2(num, den) + shift;
     }
 
-    //! One candidate q (joint order) from a real root x6 and its monomial vector u, for
-    //! the target T (scaled). Returns how far its pose is from T (miss: m or rad).
+    //! One candidate's loop angles a (q'1 ... q'6) from a real root x6 and its monomial
+    //! vector u, for the target T (scaled). Returns how far its pose is from T (miss).
     double back_substitute(const Pose* L, const Pose* Li, const Pose& T, double x6,
-                           double shift6, const Vector12& u, double* q) const {
+                           double shift6, const Vector12& u, double* a) const {
         // x4 = u(i+1, j) / u(i, j), x5 = u(i, j+1) / u(i, j): the best-scaled pair
         int bi = 0, bj = 0;
         double best = -1.0;
@@ -291,24 +309,58 @@ struct General6RParams {
         const Pose right = L[2] * rz(a4) * L[3] * rz(a5) * L[4] * rz(a6) * L[5];
         const Pose W = inverse(right * left);
         const double a3 = std::atan2(W.x.y - W.y.x, W.x.x + W.y.y);
-        const double a[6] = {a1, a2, a3, a4, a5, a6};
-        for (int k = 0; k < 6; ++k) q[order[k]] = wrap(sign * a[k]);
+        a[0] = a1, a[1] = a2, a[2] = a3, a[3] = a4, a[4] = a5, a[5] = a6;
         return miss(L, a, T);
     }
 
-    //! How far the pose the loop's angles a (q'1 ... q'6) make is from the target T
-    //! (scaled): the larger of the position error (m) and the rotation error (rad), as
-    //! the shared check measures a candidate. With X the loop's factors Rz(q'k) L_k before
-    //! the target's link (and its Rz), Y those after, the loop X pre T^p post Y = I gives
-    //! T^p = (post Y X pre)⁻¹.
-    double miss(const Pose* L, const double* a, const Pose& T) const {
+    //! The pose (scaled) the loop's angles a (q'1 ... q'6) make. With X the loop's
+    //! factors Rz(q'k) L_k before the target's link (and its Rz), Y those after, the loop
+    //! X pre T^p post Y = I gives T^p = (post Y X pre)⁻¹.
+    Pose pose_of(const Pose* L, const double* a) const {
         Pose X, Y;
         for (int k = 0; k < t_link; ++k) X = X * rz(a[k]) * L[k];
         X = X * rz(a[t_link]);
         for (int k = t_link + 1; k < 6; ++k) Y = Y * rz(a[k]) * L[k];
         const Pose H = t_post * Y * X * t_pre;
-        const Pose F = t_power < 0 ? H : inverse(H);  // the pose the angles make (scaled)
+        return t_power < 0 ? H : inverse(H);
+    }
+
+    //! How far the pose the loop's angles a make is from the target T (scaled): the larger
+    //! of the position error (m) and the rotation error (rad), as the shared check
+    //! measures a candidate.
+    double miss(const Pose* L, const double* a, const Pose& T) const {
+        const Pose F = pose_of(L, a);
         return std::fmax(norm(F.p - T.p) / scale, angle_between(F, T));
+    }
+
+    //! Newton's method on the full pose from the loop angles a whose pose misses T (scaled)
+    //! by `from`: at most REFINE_STEPS steps (Jacobian by central differences of
+    //! REFINE_STEP, damped as the check's polish), a taken to the best point met. Returns
+    //! its miss.
+    double refine(const Pose* L, const Pose& T, double* a, double from) const {
+        double best = from, b[6];
+        for (int k = 0; k < 6; ++k) b[k] = a[k];
+        for (int step = 0; step < REFINE_STEPS; ++step) {
+            const Twist e = pose_error(pose_of(L, b), T);
+            double J[6 * 6], db[6];
+            for (int j = 0; j < 6; ++j) {
+                const double keep = b[j];
+                b[j] = keep + REFINE_STEP;
+                const Twist up = pose_error(pose_of(L, b), T);
+                b[j] = keep - REFINE_STEP;
+                const Twist down = pose_error(pose_of(L, b), T);
+                b[j] = keep;
+                // d(pose)/d(a_j) = -d(error)/d(a_j)
+                for (int k = 0; k < 6; ++k) J[k * 6 + j] = (down.e[k] - up.e[k]) / (2.0 * REFINE_STEP);
+            }
+            damped_least_squares(J, 6, 6, e.e, POLISH_DAMPING, db);
+            for (int k = 0; k < 6; ++k) b[k] += db[k];
+            const double now = miss(L, b, T);
+            if (!(now < best)) break;  // at the noise floor, or not converging
+            best = now;
+            for (int k = 0; k < 6; ++k) a[k] = b[k];
+        }
+        return best;
     }
 
     //! u with M(x) u = 0 (M = A0 + x A1 + x² A2, divided by x² when |x| > 1): from the
@@ -382,9 +434,13 @@ struct General6RParams {
         int further = 0;
         bool closes = false;
         for (int r = 0; r < found; ++r) {
-            double q[6];
+            double a[6], q[6];
             const Vector12 u = null_vector(A, roots[r], info);
-            const double closure = back_substitute(L, Li, T, roots[r], shift6, u, q);
+            double closure = back_substitute(L, Li, T, roots[r], shift6, u, a);
+            if (refine_misses && closure >= POLISH_LIMIT && closure < REFINE_LIMIT) {
+                closure = refine(L, T, a, closure);
+            }
+            for (int k = 0; k < 6; ++k) q[order[k]] = wrap(sign * a[k]);
             closes |= closure <= CLOSURE_TOL;
             if (trace != nullptr && closure < trace->closure) trace->closure = closure;
             const int cls = sign_class(q);

@@ -35,6 +35,14 @@ constexpr int GENUINE = ROOTS - SPURIOUS;
 //! still a candidate the check polishes; a genuinely complex root that passes is rejected
 //! by the check (its FK misses the target).
 constexpr double REAL_ROOT_TOL = 1e-4;
+//! A complex pair x0 ± i s with s beyond REAL_ROOT_TOL but at most this · (1 + |x|) gives
+//! the two candidates x0 - s and x0 + s. Two real roots close together (two solutions
+//! of nearly the same q'6: elbow up and down near a stretched arm) move by round-off over
+//! their distance, and on an arm near a degenerate one (a calibrated UR: the eigenvalues
+//! are good to 1e-4..1e-3 only) a pair at x0 ± s can come out as x0 ± i s, of the same
+//! size s. Each candidate is taken to a solution near it or dropped by the Newton step
+//! and the check (general_6r.hpp).
+constexpr double SPLIT_ROOT_TOL = 1e-2;
 //! M(i)'s null space is deflated when its full-pivot LU has exactly 4 pivots at most this
 //! times the largest (the spurious roots' null space, at round-off: 1e-16 measured) and
 //! the fifth above it (1e-4 to 1e-3 measured on random arms). Else (a genuine root near
@@ -160,7 +168,8 @@ inline void deflate(const double (&C)[ROOTS][ROOTS], Eigen::Matrix<double, ROOTS
 }
 
 //! The real roots x of det M(x) (M = A0 + A1 x + A2 x², lead: A2's LU) into roots (at
-//! most 16); their count, or -1 when the eigenvalue iteration failed. `deflated`: whether
+//! most 24), and the two candidates of each nearly real pair (SPLIT_ROOT_TOL); their
+//! count, or -1 when the eigenvalue iteration failed. `deflated`: whether
 //! the spurious roots were eliminated first (else the 24 x 24 problem was solved).
 inline int real_roots(const Matrix12* A, const Eigen::PartialPivLU<Matrix12>& lead, double* roots,
                       bool* deflated = nullptr) {
@@ -187,8 +196,14 @@ inline int real_roots(const Matrix12* A, const Eigen::PartialPivLU<Matrix12>& le
         return -1;
     }
     int found = 0;
-    for (int r = 0; r < n; ++r)
-        if (real_root({re[r], im[r]})) roots[found++] = re[r];
+    for (int r = 0; r < n; ++r) {
+        if (real_root({re[r], im[r]})) {
+            roots[found++] = re[r];
+        } else if (im[r] > 0.0 && im[r] <= SPLIT_ROOT_TOL * (1.0 + std::hypot(re[r], im[r]))) {
+            roots[found++] = re[r] - im[r];  // (its conjugate, im < 0, is skipped)
+            roots[found++] = re[r] + im[r];
+        }
+    }
     return found;
 }
 
