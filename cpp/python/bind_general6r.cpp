@@ -151,8 +151,8 @@ void bind_general6r(nb::module_& m) {
     sub.attr("SPURIOUS_TOL") = kg::SPURIOUS_TOL;
     sub.attr("SPLIT_ROOT_TOL") = kg::SPLIT_ROOT_TOL;
     sub.attr("REFINE_LIMIT") = kg::REFINE_LIMIT;
+    sub.attr("REFINE_FROM") = kg::REFINE_FROM;
     sub.attr("REFINE_STEPS") = kg::REFINE_STEPS;
-    sub.attr("REFINE_STEP") = kg::REFINE_STEP;
     sub.attr("QR_STEPS") = km::eigen::QR_STEPS;
     sub.def("real_roots", &real_roots_of, nb::arg("A0"), nb::arg("A1"), nb::arg("A2"),
             "(roots, deflated): the real roots of det(A0 + A1 x + A2 x²), each A (12, 12); "
@@ -196,7 +196,7 @@ void bind_general6r(nb::module_& m) {
         .def_rw("centre", &General6RParams::centre, "(3,) the reach bound's centre (m, base frame)")
         .def_rw("reach", &General6RParams::reach, "the tool origin stays within this of centre (m)")
         .def_rw("refine_misses", &General6RParams::refine_misses,
-                "take candidates that miss by POLISH_LIMIT to REFINE_LIMIT to the solution near "
+                "take candidates that miss by REFINE_FROM to REFINE_LIMIT to the solution near "
                 "them by Newton's method (False: as the eigenproblem gives them)")
         .def_prop_rw(
             "order", [](const General6RParams& p) { return small::get_ints(p.order); },

@@ -61,8 +61,8 @@ SECOND_SHIFT = 1.1
 DOUBLE_ROOT_TOL = 1e-10
 CLOSURE_TOL = 5e-6
 REFINE_LIMIT = 1e-2
+REFINE_FROM = 1e-12
 REFINE_STEPS = 6
-REFINE_STEP = 1e-6
 
 
 def test_the_documented_values_are_the_core_s() -> None:
@@ -72,10 +72,10 @@ def test_the_documented_values_are_the_core_s() -> None:
     assert g.SECOND_SHIFT == SECOND_SHIFT
     assert g.DOUBLE_ROOT_TOL == DOUBLE_ROOT_TOL
     assert g.CLOSURE_TOL == CLOSURE_TOL
-    assert (g.REFINE_LIMIT, g.REFINE_STEPS, g.REFINE_STEP) == (
+    assert (g.REFINE_LIMIT, g.REFINE_FROM, g.REFINE_STEPS) == (
         REFINE_LIMIT,
+        REFINE_FROM,
         REFINE_STEPS,
-        REFINE_STEP,
     )
 
 
@@ -236,14 +236,44 @@ def test_refine_limit_bounds_the_candidates_newton_takes_to_a_solution() -> None
             assert closure == pytest.approx(miss(eps)[0], rel=1e-12) and near
 
 
+def test_refine_from_bounds_the_candidates_newton_takes_to_round_off() -> None:
+    # A smallest miss of 1.5 to 5 times REFINE_FROM is taken to round-off; of 0.2 to 0.8
+    # times it, left as it is (eps from a grid: near round-off the miss is not linear).
+    g = _core.general6r
+    robot, params, T, miss = _opened(9)
+    for low, high in ((0.2, 0.8), (1.5, 5.0)):
+        eps = next(
+            e
+            for e in np.geomspace(1e-14, 1e-9, 400)
+            if low * REFINE_FROM < miss(e)[0] < high * REFINE_FROM
+        )
+        before = miss(eps)[0]
+        plain = params.candidates(robot.chain.core, T)[0]
+        params.refine_misses = True
+        closure = g.trace(params, T)[2]
+        refined = params.candidates(robot.chain.core, T)[0]
+        params.refine_misses = False
+        if low > 1.0:
+            assert closure < 0.1 * REFINE_FROM
+        else:  # the candidate of that smallest miss as it was (others, farther, refined)
+            rows = plain[np.isfinite(plain[:, 0])]
+            F = robot.fk(rows)
+            pos = np.linalg.norm(F[:, :3, 3] - T[:3, 3], axis=1)
+            rot = np.array([km.rotation_angle(f[:3, :3], T[:3, :3]) for f in F])
+            best = rows[int(np.argmin(np.maximum(pos, rot)))]
+            assert any(np.array_equal(r, best) for r in refined)
+            assert closure <= before
+
+
 def test_candidates_that_miss_beyond_the_polish_are_carried_to_the_solutions() -> None:
     # The case above of candidates 2e-5 off, refined: every candidate's solution found,
     # the configuration that made the pose among them, the loop closed to round-off.
-    robot, params, T, miss = _opened(9, refine=True)
+    robot, params, T, miss = _opened(9)
     q = np.random.default_rng(1).uniform(-math.pi, math.pi, 6)
     plain = params.candidates(robot.chain.core, T)[0]
-    slope = miss(1e-8)[0] / 1e-8
-    c, near = miss(2e-5 / slope)
+    eps = _eps_for(miss, 2e-5)
+    params.refine_misses = True
+    c, near = miss(eps)
     assert c <= 1e-12 and not near
     opts = _core.CheckOptions()
     opts.complete = True

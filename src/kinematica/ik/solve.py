@@ -209,10 +209,10 @@ def pose_solver(
     solver, labels, name = _solver(chain, closed, tolerance, True, None, w)
     complete = closed is not None
     opts = _options(tolerance, True, complete, w)
+    # (a closed form with a search_note says not_found where it proves nothing, and the
+    # one-pose path hands not_found to the general one, which searches)
     direct = (closed is None and not _why_numeric(chain, None, kind, None)) or (
-        closed is not None
-        and (closed.exact or slack_of(chain) == 0.0)
-        and not (closed.partial or closed.search_note)
+        closed is not None and (closed.exact or slack_of(chain) == 0.0) and not closed.partial
     )
     return PoseSolver(solver.ik_rigid, opts, labels, name, complete, direct)
 

@@ -79,20 +79,21 @@ constexpr double DOUBLE_ROOT_TOL = 1e-10;
 //! tell), so the check says not_found and the numeric search is asked. "unreachable"
 //! comes from the reach bound alone, which is a proven gap.
 constexpr double CLOSURE_TOL = 0.5 * POLISH_LIMIT;
-//! A candidate whose pose misses the target by POLISH_LIMIT (beyond the check's polish)
-//! up to this (m or rad) is taken by Newton's method on the full pose to the solution
-//! near it. Such candidates come from roots the eigenproblem gets to 1e-5..1e-3 only: on
-//! arms near one whose elimination degenerates (a calibrated UR: M(x6) nearly singular
-//! for every x6), where an eigenvalue's error is round-off over that distance. Beyond
-//! this the candidate is not near a solution (a complex root's real part), and Newton
-//! would only wander to another candidate's.
+//! A candidate whose pose misses the target by more than REFINE_FROM up to this (m or
+//! rad) is taken by Newton's method on the full pose to the solution near it. Candidates
+//! beyond the check's polish (POLISH_LIMIT) come from roots the eigenproblem gets to
+//! 1e-5..1e-3 only: on arms near one whose elimination degenerates (a calibrated UR:
+//! M(x6) nearly singular for every x6), where an eigenvalue's error is round-off over
+//! that distance. Beyond this the candidate is not near a solution (a complex root's
+//! real part), and Newton would only wander to another candidate's.
 constexpr double REFINE_LIMIT = 1e-2;
+//! ... and from this up (m or rad): a candidate that misses by 1e-12 is 1e-12 / σmin off
+//! in its joints (σmin: the Jacobian's smallest singular value), 1e-9 at σmin = 1e-3,
+//! yet the check takes it as it is (its tolerance: 1e-10). Newton takes it to round-off.
+constexpr double REFINE_FROM = 1e-12;
 //! Newton steps at most (quadratic from REFINE_LIMIT: 1e-2, 1e-4, 1e-8, 1e-15, then the
 //! noise floor stops it).
 constexpr int REFINE_STEPS = 6;
-//! The central differences' step (rad) of the refinement's Jacobian: its error, h² times
-//! the third derivative (~1e-12), slows Newton to a linear rate of 1e-12 per step.
-constexpr double REFINE_STEP = 1e-6;
 //! The grid of angles the trigonometric polynomials are found from: 0, 2π/3, 4π/3.
 constexpr double GRID_STEP = 2.0 * PI / 3.0;
 
@@ -170,7 +171,7 @@ struct General6RParams {
     //! axis 1 and the sum of the joints' fixed offsets. Beyond it: a proven gap.
     Vec3 centre{};
     double reach = INF;
-    //! Take candidates that miss by POLISH_LIMIT to REFINE_LIMIT to the solution near them
+    //! Take candidates that miss by REFINE_FROM to REFINE_LIMIT to the solution near them
     //! (false: as the eigenproblem gives them; for the tests of the other tolerances).
     bool refine_misses = true;
 
@@ -334,31 +335,43 @@ struct General6RParams {
     }
 
     //! Newton's method on the full pose from the loop angles a whose pose misses T (scaled)
-    //! by `from`: at most REFINE_STEPS steps (Jacobian by central differences of
-    //! REFINE_STEP, damped as the check's polish), a taken to the best point met. Returns
-    //! its miss.
+    //! by `from`: at most REFINE_STEPS steps, a taken to the best point met. Returns its
+    //! miss. The steps solve H(a) = G for H = post Y X pre (the loop's product without the
+    //! target: T^p = H⁻¹, so G = T for p = -1 and T⁻¹ for p = +1), whose Jacobian is the
+    //! geometric one of a chain of rotations about z (each joint's axis and origin met
+    //! along the product), damped as the check's polish.
     double refine(const Pose* L, const Pose& T, double* a, double from) const {
+        const Pose G = t_power < 0 ? T : inverse(T);
         double best = from, b[6];
         for (int k = 0; k < 6; ++k) b[k] = a[k];
-        for (int step = 0; step < REFINE_STEPS; ++step) {
-            const Twist e = pose_error(pose_of(L, b), T);
+        for (int step = 0; step <= REFINE_STEPS; ++step) {
+            Vec3 axis[6], origin[6];
+            Pose H = t_post;
+            for (int i = 0; i < 6; ++i) {
+                const int k = (t_link + 1 + i) % 6;  // after the target's link, round the loop
+                axis[k] = H.rotate(Vec3{0.0, 0.0, 1.0});
+                origin[k] = H.p;
+                H = H * rz(b[k]);
+                if (k != t_link) H = H * L[k];
+            }
+            H = H * t_pre;
+            if (step > 0) {  // the last step's point, judged as miss() judges
+                const Pose F = t_power < 0 ? H : inverse(H);
+                const double now = std::fmax(norm(F.p - T.p) / scale, angle_between(F, T));
+                if (!(now < best)) break;  // at the noise floor, or not converging
+                best = now;
+                for (int k = 0; k < 6; ++k) a[k] = b[k];
+                if (step == REFINE_STEPS) break;
+            }
+            const Twist e = pose_error(H, G);
             double J[6 * 6], db[6];
-            for (int j = 0; j < 6; ++j) {
-                const double keep = b[j];
-                b[j] = keep + REFINE_STEP;
-                const Twist up = pose_error(pose_of(L, b), T);
-                b[j] = keep - REFINE_STEP;
-                const Twist down = pose_error(pose_of(L, b), T);
-                b[j] = keep;
-                // d(pose)/d(a_j) = -d(error)/d(a_j)
-                for (int k = 0; k < 6; ++k) J[k * 6 + j] = (down.e[k] - up.e[k]) / (2.0 * REFINE_STEP);
+            for (int k = 0; k < 6; ++k) {
+                const Vec3 v = cross(axis[k], H.p - origin[k]);
+                J[0 * 6 + k] = v.x, J[1 * 6 + k] = v.y, J[2 * 6 + k] = v.z;
+                J[3 * 6 + k] = axis[k].x, J[4 * 6 + k] = axis[k].y, J[5 * 6 + k] = axis[k].z;
             }
             damped_least_squares(J, 6, 6, e.e, POLISH_DAMPING, db);
             for (int k = 0; k < 6; ++k) b[k] += db[k];
-            const double now = miss(L, b, T);
-            if (!(now < best)) break;  // at the noise floor, or not converging
-            best = now;
-            for (int k = 0; k < 6; ++k) a[k] = b[k];
         }
         return best;
     }
@@ -437,7 +450,7 @@ struct General6RParams {
             double a[6], q[6];
             const Vector12 u = null_vector(A, roots[r], info);
             double closure = back_substitute(L, Li, T, roots[r], shift6, u, a);
-            if (refine_misses && closure >= POLISH_LIMIT && closure < REFINE_LIMIT) {
+            if (refine_misses && closure > REFINE_FROM && closure < REFINE_LIMIT) {
                 closure = refine(L, T, a, closure);
             }
             for (int k = 0; k < 6; ++k) q[order[k]] = wrap(sign * a[k]);
