@@ -60,9 +60,9 @@ LEADING_RCOND_TOL = 1e-8
 SECOND_SHIFT = 1.1
 DOUBLE_ROOT_TOL = 1e-10
 CLOSURE_TOL = 5e-6
-REFINE_LIMIT = 1e-2
+REFINE_LIMIT = 1e-1
 REFINE_FROM = 1e-12
-REFINE_STEPS = 6
+REFINE_STEPS = 8
 
 
 def test_the_documented_values_are_the_core_s() -> None:

@@ -84,16 +84,18 @@ constexpr double CLOSURE_TOL = 0.5 * POLISH_LIMIT;
 //! beyond the check's polish (POLISH_LIMIT) come from roots the eigenproblem gets to
 //! 1e-5..1e-3 only: on arms near one whose elimination degenerates (a calibrated UR:
 //! M(x6) nearly singular for every x6), where an eigenvalue's error is round-off over
-//! that distance. Beyond this the candidate is not near a solution (a complex root's
-//! real part), and Newton would only wander to another candidate's.
-constexpr double REFINE_LIMIT = 1e-2;
+//! that distance: misses up to 2e-2 were seen on 2,000 poses of that UR (solutions lost
+//! when this was 1e-2). Beyond this the candidate is not near a solution (a complex
+//! root's real part: misses of 0.3 and more), and Newton would only wander to another
+//! candidate's.
+constexpr double REFINE_LIMIT = 1e-1;
 //! ... and from this up (m or rad): a candidate that misses by 1e-12 is 1e-12 / σmin off
 //! in its joints (σmin: the Jacobian's smallest singular value), 1e-9 at σmin = 1e-3,
 //! yet the check takes it as it is (its tolerance: 1e-10). Newton takes it to round-off.
 constexpr double REFINE_FROM = 1e-12;
-//! Newton steps at most (quadratic from REFINE_LIMIT: 1e-2, 1e-4, 1e-8, 1e-15, then the
-//! noise floor stops it).
-constexpr int REFINE_STEPS = 6;
+//! Newton steps at most (quadratic from REFINE_LIMIT: 1e-1, 1e-2, 1e-4, 1e-8, 1e-15,
+//! then the noise floor stops it).
+constexpr int REFINE_STEPS = 8;
 //! The grid of angles the trigonometric polynomials are found from: 0, 2π/3, 4π/3.
 constexpr double GRID_STEP = 2.0 * PI / 3.0;
 
