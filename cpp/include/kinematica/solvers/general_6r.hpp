@@ -439,7 +439,9 @@ struct General6RParams {
         if (trace != nullptr) trace->shift6 = shift6;
         // the real roots x6 of det M(x6) (general_6r_roots.hpp)
         double roots[ROOTS];
-        const int found = real_roots(A, lead, roots, trace != nullptr ? &trace->deflated : nullptr);
+        bool split[ROOTS];
+        const int found =
+            real_roots(A, lead, roots, trace != nullptr ? &trace->deflated : nullptr, split);
         if (found < 0) {
             info.near = true;  // the eigenvalue iteration failed: not proven unreachable
             return;
@@ -454,6 +456,9 @@ struct General6RParams {
             double closure = back_substitute(L, Li, T, roots[r], shift6, u, a);
             if (refine_misses && closure > REFINE_FROM && closure < REFINE_LIMIT) {
                 closure = refine(L, T, a, closure);
+                // a split pair's candidate that Newton takes no nearer than REFINE_FROM
+                // is at a fold's near miss (a complex pair of solutions), not a solution
+                if (split[r] && closure > REFINE_FROM) continue;
             }
             for (int k = 0; k < 6; ++k) q[order[k]] = wrap(sign * a[k]);
             closes |= closure <= CLOSURE_TOL;

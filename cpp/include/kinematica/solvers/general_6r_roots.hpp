@@ -168,11 +168,11 @@ inline void deflate(const double (&C)[ROOTS][ROOTS], Eigen::Matrix<double, ROOTS
 }
 
 //! The real roots x of det M(x) (M = A0 + A1 x + A2 x², lead: A2's LU) into roots (at
-//! most 24), and the two candidates of each nearly real pair (SPLIT_ROOT_TOL); their
-//! count, or -1 when the eigenvalue iteration failed. `deflated`: whether
+//! most 24), and the two candidates of each nearly real pair (SPLIT_ROOT_TOL: `split`
+//! true); their count, or -1 when the eigenvalue iteration failed. `deflated`: whether
 //! the spurious roots were eliminated first (else the 24 x 24 problem was solved).
 inline int real_roots(const Matrix12* A, const Eigen::PartialPivLU<Matrix12>& lead, double* roots,
-                      bool* deflated = nullptr) {
+                      bool* deflated = nullptr, bool* split = nullptr) {
     double C[ROOTS][ROOTS] = {};
     const Matrix12 B0 = -lead.solve(A[0]), B1 = -lead.solve(A[1]);
     for (int i = 0; i < SIZE; ++i) {
@@ -198,8 +198,10 @@ inline int real_roots(const Matrix12* A, const Eigen::PartialPivLU<Matrix12>& le
     int found = 0;
     for (int r = 0; r < n; ++r) {
         if (real_root({re[r], im[r]})) {
+            if (split != nullptr) split[found] = false;
             roots[found++] = re[r];
         } else if (im[r] > 0.0 && im[r] <= SPLIT_ROOT_TOL * (1.0 + std::hypot(re[r], im[r]))) {
+            if (split != nullptr) split[found] = split[found + 1] = true;
             roots[found++] = re[r] - im[r];  // (its conjugate, im < 0, is skipped)
             roots[found++] = re[r] + im[r];
         }
