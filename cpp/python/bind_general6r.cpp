@@ -1,4 +1,4 @@
-// The general 6R family: kinematica._core.general6r.
+// The general 6R family: kinematica._core.general6r (and eigenvalues.hpp's hook).
 //
 // General6RParams with a read-write attribute per field, the family's tolerances and the
 // internals their tolerance tests call. The only translation unit that includes Eigen
@@ -56,13 +56,73 @@ nb::tuple null_vector_of(nb::handle M) {
     return nb::make_tuple(ua, info.near);
 }
 
-//! (rcond, shift6, closure, near) of one solve of the pose T: its Trace and flag.
+//! A2, A1, A0 of a matrix quadratic M(x) = A0 + A1 x + A2 x² (each (12, 12)).
+void read_quadratic(nb::handle A0, nb::handle A1, nb::handle A2, kg::Matrix12 (&A)[3]) {
+    const nb::handle src[3] = {A0, A1, A2};
+    const char* names[3] = {"A0", "A1", "A2"};
+    for (int k = 0; k < 3; ++k) {
+        PyArrayObject* a = small::exact_array(src[k], names[k], NPY_DOUBLE, kg::SIZE, kg::SIZE);
+        const auto* d = static_cast<const double*>(PyArray_DATA(a));
+        for (int i = 0; i < kg::SIZE; ++i)
+            for (int j = 0; j < kg::SIZE; ++j) A[k](i, j) = d[i * kg::SIZE + j];
+        Py_DECREF(a);
+    }
+}
+
+//! (roots (k,), deflated): the header's real roots of det M(x) (general_6r_roots.hpp).
+nb::tuple real_roots_of(nb::handle A0, nb::handle A1, nb::handle A2) {
+    kg::Matrix12 A[3];
+    read_quadratic(A0, A1, A2, A);
+    const Eigen::PartialPivLU<kg::Matrix12> lead(A[2]);
+    double roots[kg::ROOTS];
+    bool deflated = false;
+    const int found = kg::real_roots(A, lead, roots, &deflated);
+    if (found < 0) throw nb::value_error("the eigenvalue iteration did not converge");
+    double* out;
+    F64 r = new_f64({found}, out);
+    for (int i = 0; i < found; ++i) out[i] = roots[i];
+    return nb::make_tuple(r, deflated);
+}
+
+//! (deflated, 8th pivot / 1st, 9th pivot / 1st) of M(i)'s elimination.
+nb::tuple spurious_of(nb::handle A0, nb::handle A1, nb::handle A2) {
+    kg::Matrix12 A[3];
+    read_quadratic(A0, A1, A2, A);
+    Eigen::Matrix<double, kg::ROOTS, kg::SPURIOUS> Z;
+    double ratios[2] = {km::NaN, km::NaN};
+    const bool deflated = kg::spurious_subspace(A, Z, ratios);
+    return nb::make_tuple(deflated, ratios[0], ratios[1]);
+}
+
+//! (re (N,), im (N,)) of eigenvalues.hpp for a (N, N) matrix, N = 16 or 24.
+template <int N>
+nb::tuple eigenvalues_n(PyArrayObject* a) {
+    double M[N][N];
+    const auto* d = static_cast<const double*>(PyArray_DATA(a));
+    for (int i = 0; i < N; ++i)
+        for (int j = 0; j < N; ++j) M[i][j] = d[i * N + j];
+    double *re, *im;
+    F64 ra = new_f64({N}, re), ia = new_f64({N}, im);
+    if (!km::eigen::eigenvalues(M, re, im)) throw nb::value_error("the eigenvalue iteration did not converge");
+    return nb::make_tuple(ra, ia);
+}
+
+nb::tuple eigenvalues_of(nb::handle A) {
+    const bool big = nb::len(A) == kg::ROOTS;
+    const int n = big ? kg::ROOTS : kg::GENUINE;
+    PyArrayObject* a = small::exact_array(A, "A", NPY_DOUBLE, n, n);
+    nb::tuple out = big ? eigenvalues_n<kg::ROOTS>(a) : eigenvalues_n<kg::GENUINE>(a);
+    Py_DECREF(a);
+    return out;
+}
+
+//! (rcond, shift6, closure, near, deflated) of one solve of the pose T: its Trace and flag.
 nb::tuple trace_of(const General6RParams& p, const km::Pose& T) {
     double Q[kg::SLOTS * 6];
     km::SolverInfo info;
     kg::Trace t;
     p.solve(T, Q, info, &t);
-    return nb::make_tuple(t.rcond, t.shift6, t.closure, info.near);
+    return nb::make_tuple(t.rcond, t.shift6, t.closure, info.near, t.deflated);
 }
 
 }  // namespace
@@ -88,9 +148,24 @@ void bind_general6r(nb::module_& m) {
             nb::arg("re"), nb::arg("im"), "True when the eigenvalue re + i im is taken as a real root.");
     sub.def("null_vector", &null_vector_of, nb::arg("M"),
             "(u, near): M u = 0 from M's full-pivot LU; near when its null space looks 2-dimensional.");
+    sub.attr("SPURIOUS_TOL") = kg::SPURIOUS_TOL;
+    sub.attr("SPLIT_ROOT_TOL") = kg::SPLIT_ROOT_TOL;
+    sub.attr("REFINE_LIMIT") = kg::REFINE_LIMIT;
+    sub.attr("REFINE_FROM") = kg::REFINE_FROM;
+    sub.attr("REFINE_STEPS") = kg::REFINE_STEPS;
+    sub.attr("QR_STEPS") = km::eigen::QR_STEPS;
+    sub.def("real_roots", &real_roots_of, nb::arg("A0"), nb::arg("A1"), nb::arg("A2"),
+            "(roots, deflated): the real roots of det(A0 + A1 x + A2 x²), each A (12, 12); "
+            "deflated when its 8 roots at x = ±i were eliminated first.");
+    sub.def("spurious_pivots", &spurious_of, nb::arg("A0"), nb::arg("A1"), nb::arg("A2"),
+            "(deflated, r8, r9): whether M(i)'s null space is taken as the spurious roots', and "
+            "its elimination's 8th and 9th pivots over the first.");
+    sub.def("eigenvalues", &eigenvalues_of, nb::arg("A"),
+            "(re, im): the eigenvalues of A (16, 16) or (24, 24) by the core's Hessenberg QR.");
     sub.def("trace", &trace_of, nb::arg("params"), nb::arg("T"),
-            "(rcond, shift6, closure, near) of one solve: A2's rcond at the first shift, the shift "
-            "used (NaN: neither), the smallest candidate closure (inf: none), the near flag.");
+            "(rcond, shift6, closure, near, deflated) of one solve: A2's rcond at the first shift, "
+            "the shift used (NaN: neither), the smallest candidate closure (inf: none), the near "
+            "flag, whether the roots at x6 = ±i were eliminated before the eigenproblem.");
 
     auto cls = bind_closed_form<General6RParams>(
         sub, "General6RParams",
@@ -120,6 +195,9 @@ void bind_general6r(nb::module_& m) {
         .def_rw("scale", &General6RParams::scale, "lengths times this (1 / m)")
         .def_rw("centre", &General6RParams::centre, "(3,) the reach bound's centre (m, base frame)")
         .def_rw("reach", &General6RParams::reach, "the tool origin stays within this of centre (m)")
+        .def_rw("refine_misses", &General6RParams::refine_misses,
+                "take candidates that miss by REFINE_FROM to REFINE_LIMIT to the solution near "
+                "them by Newton's method (False: as the eigenproblem gives them)")
         .def_prop_rw(
             "order", [](const General6RParams& p) { return small::get_ints(p.order); },
             [](General6RParams& p, nb::handle h) { small::set_ints(p.order, h, "order", 0, 5); },

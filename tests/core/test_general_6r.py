@@ -46,6 +46,8 @@ def test_the_header_s_constants_are_exported() -> None:
     assert g.SLOTS == g.CLASSES * g.PER_CLASS + g.FURTHER == len(g6.LABELS)
     assert (g.EQUATIONS, g.PRODUCTS, g.REDUCED) == (14, 8, 6)
     assert 0 < g.DOUBLE_ROOT_TOL < g.LEADING_RCOND_TOL < g.CLOSURE_TOL < 1
+    # a candidate that closes is one the check polishes (its POLISH_LIMIT: 1e-5)
+    assert g.CLOSURE_TOL < 1e-5
 
 
 # ------------------------------------------------- the tolerances, from both sides
@@ -57,7 +59,10 @@ REAL_ROOT_TOL = 1e-4
 LEADING_RCOND_TOL = 1e-8
 SECOND_SHIFT = 1.1
 DOUBLE_ROOT_TOL = 1e-10
-CLOSURE_TOL = 1e-4
+CLOSURE_TOL = 5e-6
+REFINE_LIMIT = 1e-1
+REFINE_FROM = 1e-12
+REFINE_STEPS = 8
 
 
 def test_the_documented_values_are_the_core_s() -> None:
@@ -67,6 +72,11 @@ def test_the_documented_values_are_the_core_s() -> None:
     assert g.SECOND_SHIFT == SECOND_SHIFT
     assert g.DOUBLE_ROOT_TOL == DOUBLE_ROOT_TOL
     assert g.CLOSURE_TOL == CLOSURE_TOL
+    assert (g.REFINE_LIMIT, g.REFINE_FROM, g.REFINE_STEPS) == (
+        REFINE_LIMIT,
+        REFINE_FROM,
+        REFINE_STEPS,
+    )
 
 
 def _robot_and_params(seed: int) -> tuple[km.Robot, Any]:
@@ -126,7 +136,7 @@ def test_leading_rcond_tol_chooses_the_second_shift_just_below_it() -> None:
 
     def trace(d: float) -> tuple[float, float, float, bool]:
         q[j] = math.remainder(params.sign * (g6.PHI[2] + math.pi + d), 2 * math.pi)
-        return g.trace(params, robot.fk(q))
+        return g.trace(params, robot.fk(q))[:4]
 
     slope = trace(1e-6)[0] / 1e-6
     assert trace(1e-7)[0] == pytest.approx(slope * 1e-7, rel=0.01)
@@ -137,26 +147,138 @@ def test_leading_rcond_tol_chooses_the_second_shift_just_below_it() -> None:
         assert closure <= 1e-10 and not near
 
 
-def test_closure_tol_separates_a_loop_that_closes_from_one_that_cannot() -> None:
-    # c0 moved by eps along a row of N: the elimination's equations then hold where the
-    # loop is open, its closure proportional to eps (measured: slope). With eps for a
-    # closure of 1/2 and 2 times CLOSURE_TOL, near flips; unperturbed the loop closes.
+def _opened(seed: int, refine: bool = False) -> tuple[km.Robot, Any, np.ndarray, Any]:
+    """A random arm, its Params, a pose, and ``miss(eps)``: c0 moved by eps along a row of
+    N, so that the elimination's equations hold where the loop is open, its candidates'
+    smallest miss (the pose they make against the target, m or rad) proportional to eps.
+    The pose is reachable (FK of a random q): Newton's method on the full pose from a
+    candidate (``refine``) finds the solution the elimination missed."""
     g = _core.general6r
-    robot, params = _robot_and_params(9)
+    robot, params = _robot_and_params(seed)
+    params.refine_misses = refine
     T = robot.fk(np.random.default_rng(1).uniform(-math.pi, math.pi, 6))
     c0, row = np.array(params.c0), np.array(params.N)[1]
-    assert g.trace(params, T)[2] <= 1e-10
 
-    def closure(eps: float) -> tuple[float, bool]:
+    def miss(eps: float) -> tuple[float, bool]:
         params.c0 = c0 + eps * row
-        _, _, c, near = g.trace(params, T)
+        _, _, c, near, _ = g.trace(params, T)
         return c, near
 
-    slope = closure(1e-7)[0] / 1e-7
-    assert closure(1e-6)[0] == pytest.approx(slope * 1e-6, rel=0.05)
+    return robot, params, T, miss
+
+
+def test_closure_tol_separates_a_loop_that_closes_from_one_that_cannot() -> None:
+    # With eps for a miss of 1/2 and 2 times CLOSURE_TOL, near flips; unperturbed the
+    # loop closes to round-off.
+    robot, params, T, miss = _opened(9)
+    assert miss(0.0)[0] <= 1e-12
+    slope = miss(1e-8)[0] / 1e-8
+    assert miss(1e-7)[0] == pytest.approx(slope * 1e-7, rel=0.05)
     for factor in (0.5, 2.0):
-        c, near = closure(factor * CLOSURE_TOL / slope)
+        c, near = miss(factor * CLOSURE_TOL / slope)
         assert c == pytest.approx(factor * CLOSURE_TOL, rel=0.1)
         assert near == (factor > 1.0)
         _, _, flag, _, _ = params.candidates(robot.chain.core, T)  # the public raw call agrees
         assert flag == near
+
+
+def test_the_miss_is_the_pose_error_the_check_measures() -> None:
+    # the candidate of smallest miss, through forward kinematics: the same number
+    robot, params, T, miss = _opened(9)
+    c, _ = miss(3e-6)
+    Q = params.candidates(robot.chain.core, T)[0]
+    Q = Q[np.isfinite(Q[:, 0])]
+    F = robot.fk(Q)
+    pos = np.linalg.norm(F[:, :3, 3] - T[:3, 3], axis=1)
+    rot = np.array([km.rotation_angle(f[:3, :3], T[:3, :3]) for f in F])
+    assert np.maximum(pos, rot).min() == pytest.approx(c, rel=1e-6)
+
+
+def test_candidates_that_miss_beyond_the_polish_make_no_unreachable_without_a_gap() -> None:
+    # Every candidate 2e-5 off (beyond the check's polish, 1e-5) and no reach gap: the
+    # elimination proves nothing, so the closed form's own answer (the core's, before
+    # any search) is not_found, near raised; never "unreachable" with no gap.
+    robot, params, T, miss = _opened(9)
+    c, near = miss(0.0)
+    slope = miss(1e-8)[0] / 1e-8
+    c, near = miss(2e-5 / slope)
+    assert 1.5e-5 < c < 3e-5 and near
+    opts = _core.CheckOptions()
+    opts.complete = True
+    *_, report = params.ik(robot.chain.core, T, opts, None, tuple(g6.LABELS))
+    assert report[0] == _core.STATUS["not_found"] and report[1] is None and report[4]
+
+
+def _eps_for(miss: Any, target: float) -> float:
+    """eps for which the smallest miss is ``target`` (to 1 %): secant steps on log scale."""
+    eps = target / (miss(1e-8)[0] / 1e-8)
+    for _ in range(8):
+        now = miss(eps)[0]
+        if abs(now / target - 1.0) < 0.01:
+            return eps
+        eps *= target / now
+    raise AssertionError(f"no eps gives a miss of {target}")
+
+
+def test_refine_limit_bounds_the_candidates_newton_takes_to_a_solution() -> None:
+    # Without refinement the smallest miss is 1/2 or 2 times REFINE_LIMIT; with it, the
+    # first is carried to the solution (the pose is reachable), the second left alone.
+    g = _core.general6r
+    _, params, T, miss = _opened(9)
+    for factor in (0.5, 2.0):
+        eps = _eps_for(miss, factor * REFINE_LIMIT)
+        params.refine_misses = True
+        _, _, closure, near, _ = g.trace(params, T)
+        params.refine_misses = False
+        if factor < 1.0:
+            assert closure <= 1e-12 and not near
+        else:
+            assert closure == pytest.approx(miss(eps)[0], rel=1e-12) and near
+
+
+def test_refine_from_bounds_the_candidates_newton_takes_to_round_off() -> None:
+    # A smallest miss of 1.5 to 5 times REFINE_FROM is taken to round-off; of 0.2 to 0.8
+    # times it, left as it is (eps from a grid: near round-off the miss is not linear).
+    g = _core.general6r
+    robot, params, T, miss = _opened(9)
+    for low, high in ((0.2, 0.8), (1.5, 5.0)):
+        eps = next(
+            e
+            for e in np.geomspace(1e-14, 1e-9, 400)
+            if low * REFINE_FROM < miss(e)[0] < high * REFINE_FROM
+        )
+        before = miss(eps)[0]
+        plain = params.candidates(robot.chain.core, T)[0]
+        params.refine_misses = True
+        closure = g.trace(params, T)[2]
+        refined = params.candidates(robot.chain.core, T)[0]
+        params.refine_misses = False
+        if low > 1.0:
+            assert closure < 0.1 * REFINE_FROM
+        else:  # the candidate of that smallest miss as it was (others, farther, refined)
+            rows = plain[np.isfinite(plain[:, 0])]
+            F = robot.fk(rows)
+            pos = np.linalg.norm(F[:, :3, 3] - T[:3, 3], axis=1)
+            rot = np.array([km.rotation_angle(f[:3, :3], T[:3, :3]) for f in F])
+            best = rows[int(np.argmin(np.maximum(pos, rot)))]
+            assert any(np.array_equal(r, best) for r in refined)
+            assert closure <= before
+
+
+def test_candidates_that_miss_beyond_the_polish_are_carried_to_the_solutions() -> None:
+    # The case above of candidates 2e-5 off, refined: every candidate's solution found,
+    # the configuration that made the pose among them, the loop closed to round-off.
+    robot, params, T, miss = _opened(9)
+    q = np.random.default_rng(1).uniform(-math.pi, math.pi, 6)
+    plain = params.candidates(robot.chain.core, T)[0]
+    eps = _eps_for(miss, 2e-5)
+    params.refine_misses = True
+    c, near = miss(eps)
+    assert c <= 1e-12 and not near
+    opts = _core.CheckOptions()
+    opts.complete = True
+    sols, *_, report = params.ik(robot.chain.core, T, opts, None, tuple(g6.LABELS))
+    assert report[0] == _core.STATUS["ok"]
+    assert len(sols) == np.isfinite(plain[:, 0]).sum()
+    d = np.abs(np.remainder(sols - q + math.pi, 2 * math.pi) - math.pi).max(axis=1)
+    assert d.min() <= 1e-9

@@ -106,10 +106,10 @@ def test_one_pose_at_a_parameter_matches_the_general_path(
             methods[slow.method] += 1
     # the direct path answered every pose at the value, and the cases below were met
     if name == "panda" and kwargs == {"fixed": {0: 0.3}}:
-        # the general 6R may hand a target to the search: the general path answers
-        assert answered == 0 and methods["analytic:general-6R"] > 0
-    else:
-        assert answered >= AT_VALUE
+        # the general 6R: answered directly too (a target it proves nothing for is
+        # not_found, which the direct path hands to the general one, which searches)
+        assert methods["analytic:general-6R"] > 0
+    assert answered >= AT_VALUE
     assert {"ok", "unreachable"} <= set(statuses)
     if name == "iiwa14" and "fixed" not in kwargs:
         assert statuses["singular"] >= SINGULAR // 3  # the elbow stretched: no arm angle

@@ -179,4 +179,4 @@ def test_report_of_a_general_6r_arm_names_the_elimination() -> None:
     assert robot.ik(robot.fk(np.full(6, 0.3))).method == "analytic:general-6R"
     text = symbolic.report(robot, lang="en")
     assert "Raghavan-Roth elimination to a 12x12 quadratic eigenproblem" in text
-    assert "analytic (general-6R)" in text and "24x24" in text
+    assert "analytic (general-6R)" in text and "16x16" in text

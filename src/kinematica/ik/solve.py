@@ -104,20 +104,6 @@ def _at_parameter(
     return replace(closed, params=AtValues(closed.params, values))
 
 
-def _searched(status: Any, gap: Any, closed: ClosedForm | None) -> Any:
-    """Where (``(N,)`` bools, or one bool) the numeric search answers after the closed form.
-
-    Where it found nothing on the real arm; and, for a closed form that may lose a
-    root to round-off (``search_note``: the general 6R's elimination), where it
-    found nothing and proved no gap: "unreachable" needs a proof.
-    """
-    found_nothing = needs_search(status)
-    if closed is not None and closed.search_note:
-        unproven = (status == _UNREACHABLE) & ~np.isfinite(np.asarray(gap, dtype=float))
-        found_nothing = found_nothing | unproven
-    return found_nothing
-
-
 def _why_numeric(
     chain: Chain, closed: ClosedForm | None, kind: TargetKind, mask: Any
 ) -> tuple[str, ...]:
@@ -223,10 +209,10 @@ def pose_solver(
     solver, labels, name = _solver(chain, closed, tolerance, True, None, w)
     complete = closed is not None
     opts = _options(tolerance, True, complete, w)
+    # (a closed form with a search_note says not_found where it proves nothing, and the
+    # one-pose path hands not_found to the general one, which searches)
     direct = (closed is None and not _why_numeric(chain, None, kind, None)) or (
-        closed is not None
-        and (closed.exact or slack_of(chain) == 0.0)
-        and not (closed.partial or closed.search_note)
+        closed is not None and (closed.exact or slack_of(chain) == 0.0) and not closed.partial
     )
     return PoseSolver(solver.ik_rigid, opts, labels, name, complete, direct)
 
@@ -366,7 +352,7 @@ def _solve(
         out: CoreAnswer = solver.ik(chain.core, targets.poses[0], opts, q0, labels)
         notes = targets.notes.get(0, ()) if targets.notes else ()
         if slack or partial:
-            if _searched(out[-1][0], out[-1][1], closed) and values is None:
+            if needs_search(out[-1][0]) and values is None:
                 numeric, nopts, guess = search(np.zeros(1, dtype=np.intp))
                 out = numeric.ik(chain.core, targets.poses[0], nopts, guess[0], (LABEL,))
                 out = _limited(chain, targets.poses, out, respect_limits, tolerance, w)
@@ -393,7 +379,7 @@ def _solve(
                 batch_notes[where(i)] = (*batch_notes.get(where(i), ()), *reason)
     methods: dict[tuple[int, ...], str] = {}
     if slack or partial:
-        rows = np.flatnonzero(_searched(raw["status"], raw["gap"], closed) & (values is None))
+        rows = np.flatnonzero(needs_search(raw["status"]) & (values is None))
         if rows.size:
             numeric, nopts, guess = search(rows)
             poses = np.ascontiguousarray(targets.poses[rows])

@@ -205,10 +205,11 @@ PHRASES: Final[dict[str, tuple[str, str]]] = {
         "q1 y q2. (3) Eliminados esos 8 productos, quedan 6 ecuaciones en q4, q5, q6. "
         "(4) Con x = tan(q/2), esas 6 y sus productos por x4 son 12 ecuaciones lineales "
         "en los 12 monomios x4^i x5^j: M(x6) u = 0, M cuadrática en x6. (5) det M(x6) = 0 "
-        "(grado 24, hasta 16 raíces reales): sus raíces son los autovalores de una "
-        "matriz 24x24. (6) Cada raíz real da u, luego q4 y q5; q1 y q2 salen de las 14 "
-        "ecuaciones y q3 de cerrar la cadena. Cada candidata se comprueba por "
-        "cinemática directa.",
+        "(grado 24, con (1 + x6²)⁴ como factor: hasta 16 raíces reales): quitadas las "
+        "8 raíces en ±i, las demás son los autovalores de una matriz 16x16. (6) Cada "
+        "raíz real da u, luego q4 y q5; q1 y q2 salen de las 14 ecuaciones y q3 de "
+        "cerrar la cadena. Cada candidata se afina por Newton sobre la pose completa y "
+        "se comprueba por cinemática directa.",
         "There is no textbook derivation for this structure ({summary}); robot.ik "
         "solves it in closed form (method {method}): Raghavan-Roth elimination to a "
         "12x12 quadratic eigenproblem (Manocha-Canny), computed numerically for the "
@@ -220,9 +221,11 @@ PHRASES: Final[dict[str, tuple[str, str]]] = {
         "eliminated, 6 equations in q4, q5, q6 are left. (4) With x = tan(q/2), those 6 "
         "and their products with x4 are 12 equations linear in the 12 monomials "
         "x4^i x5^j: M(x6) u = 0, M quadratic in x6. (5) det M(x6) = 0 (degree 24, up to "
-        "16 real roots): its roots are the eigenvalues of a 24x24 matrix. (6) Each real "
-        "root gives u, hence q4 and q5; q1 and q2 come from the 14 equations and q3 "
-        "from closing the chain. Every candidate is checked by forward kinematics.",
+        "16 real roots, (1 + x6²)⁴ a factor): without its 8 roots at ±i, the others are "
+        "the eigenvalues of a 16x16 matrix. (6) Each real root gives u, hence q4 and q5; "
+        "q1 and q2 come from the 14 equations and q3 from closing the chain. Every "
+        "candidate is refined by Newton on the full pose and checked by forward "
+        "kinematics.",
     ),
     "ik.frame1": (
         "El objetivo en el sistema cuyo eje z es el eje 1:",

@@ -20,13 +20,16 @@
 // x = tan((q' - phi)/2) makes it a polynomial of degree 2 in each of x4, x5, x6. The 6
 // equations and their products with x4 are 12 equations linear in the 12 monomials
 // x4^i x5^j (i <= 3, j <= 2): M(x6) u = 0 with M = A0 + A1 x6 + A2 x6², so det M(x6) = 0
-// (degree 24: up to 16 genuine real roots). Its roots are the eigenvalues of the 24 x 24
-// companion pencil; each real one gives u (M's null vector) hence x4, x5, then S2 = Q⁺(F - c0)
-// gives q'1, q'2 and the loop's closure q'3. The shared check polishes every candidate by
-// Gauss-Newton on the full pose, dedupes and judges it.
+// (degree 24, (1 + x6²)⁴ a factor: up to 16 genuine real roots). Its roots are the
+// eigenvalues of the 24 x 24 companion matrix, solved as a 16 x 16 one once the 8 at ±i
+// are eliminated (general_6r_roots.hpp); each real one gives u (M's null vector) hence
+// x4, x5, then S2 = Q⁺(F - c0) gives q'1, q'2 and the loop's closure q'3. The shared
+// check polishes every candidate by Gauss-Newton on the full pose, dedupes and judges it.
 //
-// Why Eigen: the eigenproblem needs a Hessenberg-QR and a full-pivot LU; Eigen's are well kept and tested, where our own would be a second,
-// less tested copy of LAPACK's algorithms. Only this header and its binding include it.
+// Why Eigen: the LUs (A2's, with its condition estimate; M's null vector by full
+// pivoting) are Eigen's, well kept and tested. The eigenvalues are the core's own
+// (eigenvalues.hpp: twice as fast at this size). Only these headers and their binding
+// include Eigen.
 //
 // Branch labels: a candidate's class is the signs of sin q2, sin q3, sin q5 (joint values
 // in (0, π) or not), 4 slots per class ordered by q1; a ninth group of slots holds the
@@ -34,34 +37,29 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <cmath>
 #include <complex>
 
+#include "../check.hpp"
 #include "../config.hpp"
 #include "../ik_types.hpp"
+#include "../linalg.hpp"
 #include "../so3.hpp"
 #include "../trig.hpp"
 #include "../types.hpp"
+#include "general_6r_roots.hpp"
 
 namespace km::general6r {
 
 constexpr int EQUATIONS = 14;  //!< p, l, p·p, p·l, p×l, (p·p) l - 2 (p·l) p
 constexpr int PRODUCTS = 8;    //!< the products of (1, c1', s1') ⊗ (1, c2', s2') but 1
 constexpr int REDUCED = 6;     //!< equations left once the products are eliminated
-constexpr int SIZE = 12;       //!< the matrix M(x6)
-constexpr int ROOTS = 24;      //!< degree of det M(x6)
 constexpr int CLASSES = 8;     //!< sign classes of (sin q2, sin q3, sin q5)
 constexpr int PER_CLASS = 4;   //!< slots of one class
 constexpr int FURTHER = 8;     //!< slots of the members beyond PER_CLASS of a class
 constexpr int SLOTS = CLASSES * PER_CLASS + FURTHER;
 
-//! An eigenvalue x is a real root when |Im x| <= this · (1 + |x|). Generous: a double
-//! root splits into a complex pair of imaginary part ~ sqrt(round-off), whose real part is
-//! still a candidate the check polishes; a genuinely complex root that passes is rejected
-//! by the check (its FK misses the target).
-constexpr double REAL_ROOT_TOL = 1e-4;
 //! The companion matrix A2⁻¹(...) is used when A2's reciprocal condition number (LU
 //! estimate) is above this; below (a root near x6 = ∞), the pencil is made again with
 //! q'6 shifted by SECOND_SHIFT more, which brings that root to a finite x6.
@@ -73,30 +71,41 @@ constexpr double SECOND_SHIFT = 1.1;
 //! continuum: near is raised) when its full-pivot LU's second smallest pivot is below
 //! this times the largest.
 constexpr double DOUBLE_ROOT_TOL = 1e-10;
-//! A candidate "closes the loop" when its closure (the loop's product with q'3 taken from
-//! it) is within this of the identity (scaled lengths: of the arm's size; rad): a target
-//! none of whose candidates closes is not proven unreachable (near is raised, so the
-//! check says not_found, and the numeric search is asked). Wide: the check's polish
-//! (POLISH_LIMIT = 1e-5) starts from candidates this far and closer.
-constexpr double CLOSURE_TOL = 1e-4;
+//! A candidate "closes the loop" when the pose it makes is within this of the target (m
+//! or rad, the larger; measured as the shared check measures it): half the check's
+//! POLISH_LIMIT, so that a candidate that closes is one the check polishes (and calls the
+//! target "close"). Where none closes, near is raised: the elimination proves nothing
+//! (a root lost to round-off at a near-double root, or the target out of reach: it cannot
+//! tell), so the check says not_found and the numeric search is asked. "unreachable"
+//! comes from the reach bound alone, which is a proven gap.
+constexpr double CLOSURE_TOL = 0.5 * POLISH_LIMIT;
+//! A candidate whose pose misses the target by more than REFINE_FROM up to this (m or
+//! rad) is taken by Newton's method on the full pose to the solution near it. Candidates
+//! beyond the check's polish (POLISH_LIMIT) come from roots the eigenproblem gets to
+//! 1e-5..1e-3 only: on arms near one whose elimination degenerates (a calibrated UR:
+//! M(x6) nearly singular for every x6), where an eigenvalue's error is round-off over
+//! that distance: misses up to 2e-2 were seen on 2,000 poses of that UR (solutions lost
+//! when this was 1e-2). Beyond this the candidate is not near a solution (a complex
+//! root's real part: misses of 0.3 and more), and Newton would only wander to another
+//! candidate's.
+constexpr double REFINE_LIMIT = 1e-1;
+//! ... and from this up (m or rad): a candidate that misses by 1e-12 is 1e-12 / σmin off
+//! in its joints (σmin: the Jacobian's smallest singular value), 1e-9 at σmin = 1e-3,
+//! yet the check takes it as it is (its tolerance: 1e-10). Newton takes it to round-off.
+constexpr double REFINE_FROM = 1e-12;
+//! Newton steps at most (quadratic from REFINE_LIMIT: 1e-1, 1e-2, 1e-4, 1e-8, 1e-15,
+//! then the noise floor stops it).
+constexpr int REFINE_STEPS = 8;
 //! The grid of angles the trigonometric polynomials are found from: 0, 2π/3, 4π/3.
 constexpr double GRID_STEP = 2.0 * PI / 3.0;
-
-using Matrix12 = Eigen::Matrix<double, SIZE, SIZE>;
-using Matrix24 = Eigen::Matrix<double, 2 * SIZE, 2 * SIZE>;
-using Vector12 = Eigen::Matrix<double, SIZE, 1>;
 
 //! What one solve decided, for the tests of its tolerances (solve fills it when given).
 struct Trace {
     double rcond = NaN;    //!< A2's reciprocal condition number at the first shift (LU estimate)
     double shift6 = NaN;   //!< the q'6 shift the pencil was made with (NaN: neither worked)
-    double closure = INF;  //!< the smallest closure of a candidate (INF: no candidate)
+    double closure = INF;  //!< the smallest miss of a candidate (m or rad; INF: no candidate)
+    bool deflated = false; //!< the roots at x6 = ±i were eliminated before the eigenproblem
 };
-
-//! An eigenvalue x of the companion pencil is taken as a real root x6: see REAL_ROOT_TOL.
-inline bool real_root(std::complex<double> x) {
-    return std::fabs(x.imag()) <= REAL_ROOT_TOL * (1.0 + std::abs(x));
-}
 
 //! The line (point, direction) a loop carries.
 struct Line {
@@ -164,6 +173,9 @@ struct General6RParams {
     //! axis 1 and the sum of the joints' fixed offsets. Beyond it: a proven gap.
     Vec3 centre{};
     double reach = INF;
+    //! Take candidates that miss by REFINE_FROM to REFINE_LIMIT to the solution near them
+    //! (false: as the eigenproblem gives them; for the tests of the other tolerances).
+    bool refine_misses = true;
 
     int slots() const { return SLOTS; }
 
@@ -263,10 +275,10 @@ struct General6RParams {
         return 2.0 * std::atan2(num, den) + shift;
     }
 
-    //! One candidate q (joint order) from a real root x6 and its monomial vector u.
-    //! Returns how far the loop is from closing (scaled length + rad): see CLOSURE_TOL.
-    double back_substitute(const Pose* L, const Pose* Li, double x6, double shift6,
-                           const Vector12& u, double* q) const {
+    //! One candidate's loop angles a (q'1 ... q'6) from a real root x6 and its monomial
+    //! vector u, for the target T (scaled). Returns how far its pose is from T (miss).
+    double back_substitute(const Pose* L, const Pose* Li, const Pose& T, double x6,
+                           double shift6, const Vector12& u, double* a) const {
         // x4 = u(i+1, j) / u(i, j), x5 = u(i, j+1) / u(i, j): the best-scaled pair
         int bi = 0, bj = 0;
         double best = -1.0;
@@ -300,10 +312,70 @@ struct General6RParams {
         const Pose right = L[2] * rz(a4) * L[3] * rz(a5) * L[4] * rz(a6) * L[5];
         const Pose W = inverse(right * left);
         const double a3 = std::atan2(W.x.y - W.y.x, W.x.x + W.y.y);
-        const double a[6] = {a1, a2, a3, a4, a5, a6};
-        for (int k = 0; k < 6; ++k) q[order[k]] = wrap(sign * a[k]);
-        // W = Rz(q'3) exactly when the loop closes: W's z axis is z, its origin 0
-        return norm(W.p) + std::fabs(W.z.x) + std::fabs(W.z.y);
+        a[0] = a1, a[1] = a2, a[2] = a3, a[3] = a4, a[4] = a5, a[5] = a6;
+        return miss(L, a, T);
+    }
+
+    //! The pose (scaled) the loop's angles a (q'1 ... q'6) make. With X the loop's
+    //! factors Rz(q'k) L_k before the target's link (and its Rz), Y those after, the loop
+    //! X pre T^p post Y = I gives T^p = (post Y X pre)⁻¹.
+    Pose pose_of(const Pose* L, const double* a) const {
+        Pose X, Y;
+        for (int k = 0; k < t_link; ++k) X = X * rz(a[k]) * L[k];
+        X = X * rz(a[t_link]);
+        for (int k = t_link + 1; k < 6; ++k) Y = Y * rz(a[k]) * L[k];
+        const Pose H = t_post * Y * X * t_pre;
+        return t_power < 0 ? H : inverse(H);
+    }
+
+    //! How far the pose the loop's angles a make is from the target T (scaled): the larger
+    //! of the position error (m) and the rotation error (rad), as the shared check
+    //! measures a candidate.
+    double miss(const Pose* L, const double* a, const Pose& T) const {
+        const Pose F = pose_of(L, a);
+        return std::fmax(norm(F.p - T.p) / scale, angle_between(F, T));
+    }
+
+    //! Newton's method on the full pose from the loop angles a whose pose misses T (scaled)
+    //! by `from`: at most REFINE_STEPS steps, a taken to the best point met. Returns its
+    //! miss. The steps solve H(a) = G for H = post Y X pre (the loop's product without the
+    //! target: T^p = H⁻¹, so G = T for p = -1 and T⁻¹ for p = +1), whose Jacobian is the
+    //! geometric one of a chain of rotations about z (each joint's axis and origin met
+    //! along the product), damped as the check's polish.
+    double refine(const Pose* L, const Pose& T, double* a, double from) const {
+        const Pose G = t_power < 0 ? T : inverse(T);
+        double best = from, b[6];
+        for (int k = 0; k < 6; ++k) b[k] = a[k];
+        for (int step = 0; step <= REFINE_STEPS; ++step) {
+            Vec3 axis[6], origin[6];
+            Pose H = t_post;
+            for (int i = 0; i < 6; ++i) {
+                const int k = (t_link + 1 + i) % 6;  // after the target's link, round the loop
+                axis[k] = H.rotate(Vec3{0.0, 0.0, 1.0});
+                origin[k] = H.p;
+                H = H * rz(b[k]);
+                if (k != t_link) H = H * L[k];
+            }
+            H = H * t_pre;
+            if (step > 0) {  // the last step's point, judged as miss() judges
+                const Pose F = t_power < 0 ? H : inverse(H);
+                const double now = std::fmax(norm(F.p - T.p) / scale, angle_between(F, T));
+                if (!(now < best)) break;  // at the noise floor, or not converging
+                best = now;
+                for (int k = 0; k < 6; ++k) a[k] = b[k];
+                if (step == REFINE_STEPS) break;
+            }
+            const Twist e = pose_error(H, G);
+            double J[6 * 6], db[6];
+            for (int k = 0; k < 6; ++k) {
+                const Vec3 v = cross(axis[k], H.p - origin[k]);
+                J[0 * 6 + k] = v.x, J[1 * 6 + k] = v.y, J[2 * 6 + k] = v.z;
+                J[3 * 6 + k] = axis[k].x, J[4 * 6 + k] = axis[k].y, J[5 * 6 + k] = axis[k].z;
+            }
+            damped_least_squares(J, 6, 6, e.e, POLISH_DAMPING, db);
+            for (int k = 0; k < 6; ++k) b[k] += db[k];
+        }
+        return best;
     }
 
     //! u with M(x) u = 0 (M = A0 + x A1 + x² A2, divided by x² when |x| > 1): from the
@@ -365,30 +437,30 @@ struct General6RParams {
             }
         }
         if (trace != nullptr) trace->shift6 = shift6;
-        // the real roots x6 of det M(x6): eigenvalues of the companion matrix
-        Matrix24 C = Matrix24::Zero();
-        C.topRightCorner<SIZE, SIZE>().setIdentity();
-        C.bottomLeftCorner<SIZE, SIZE>() = -lead.solve(A[0]);
-        C.bottomRightCorner<SIZE, SIZE>() = -lead.solve(A[1]);
-        const Eigen::EigenSolver<Matrix24> eig(C, false);
-        if (eig.info() != Eigen::Success) {
-            info.near = true;  // not proven unreachable
-            return;
-        }
+        // the real roots x6 of det M(x6) (general_6r_roots.hpp)
         double roots[ROOTS];
-        int found = 0;
-        for (int r = 0; r < ROOTS; ++r) {
-            const std::complex<double> x = eig.eigenvalues()(r);
-            if (real_root(x)) roots[found++] = x.real();
+        bool split[ROOTS];
+        const int found =
+            real_roots(A, lead, roots, trace != nullptr ? &trace->deflated : nullptr, split);
+        if (found < 0) {
+            info.near = true;  // the eigenvalue iteration failed: not proven unreachable
+            return;
         }
         // candidates into their classes, each ordered by q1
         int filled[CLASSES] = {};
         int further = 0;
         bool closes = false;
         for (int r = 0; r < found; ++r) {
-            double q[6];
+            double a[6], q[6];
             const Vector12 u = null_vector(A, roots[r], info);
-            const double closure = back_substitute(L, Li, roots[r], shift6, u, q);
+            double closure = back_substitute(L, Li, T, roots[r], shift6, u, a);
+            if (refine_misses && closure > REFINE_FROM && closure < REFINE_LIMIT) {
+                closure = refine(L, T, a, closure);
+                // a split pair's candidate that Newton takes no nearer than REFINE_FROM
+                // is at a fold's near miss (a complex pair of solutions), not a solution
+                if (split[r] && closure > REFINE_FROM) continue;
+            }
+            for (int k = 0; k < 6; ++k) q[order[k]] = wrap(sign * a[k]);
             closes |= closure <= CLOSURE_TOL;
             if (trace != nullptr && closure < trace->closure) trace->closure = closure;
             const int cls = sign_class(q);
@@ -403,7 +475,7 @@ struct General6RParams {
             } else if (further < FURTHER) {
                 slot = CLASSES * PER_CLASS + further++;
             } else {
-                continue;  // beyond 24 real eigenvalues: not possible (degree 24)
+                continue;  // beyond 24 real roots: not possible (degree 24)
             }
             for (int k = 0; k < 6; ++k) Q[slot * 6 + k] = q[k];
         }

@@ -3,7 +3,8 @@
 The core's solver (``cpp/include/kinematica/solvers/general_6r.hpp``) solves the arm
 written as a loop ``I = Rz(q'1) L1 ... Rz(q'6) L6`` (one link holding the target), by
 eliminating q'3, then the 8 products of (q'1, q'2), leaving a 12 x 12 matrix quadratic
-in tan(q'6/2) whose determinant's roots are a 24 x 24 eigenproblem. This module writes
+in tan(q'6/2) whose determinant's roots are a 16 x 16 eigenproblem (its 8 roots at ±i
+deflated from the 24 x 24 companion matrix). This module writes
 the loop from the joint axes at q = 0 (product of exponentials: any base, tool,
 convention or URDF chain), computes the constants of the elimination once per arm
 (the left side's 14 x 8 matrix Q, its left null space and pseudo-inverse), and
@@ -54,7 +55,9 @@ PROBE_TOL = 1e-6
 #: Random poses each labelling is probed on (fixed seed: the choice is reproducible).
 PROBES = 4
 
-#: Said of a target the elimination found nothing for, answered by the numeric search.
+#: Said of a target the elimination found nothing for (the core's not_found, its near
+#: flag raised: no candidate within the check's polish, no reach gap), answered by the
+#: numeric search.
 SEARCH_NOTE = (
     "the general 6R elimination gave no candidate closing the loop for this target "
     "(the target at the workspace boundary, or its eigenproblem degenerate there): "

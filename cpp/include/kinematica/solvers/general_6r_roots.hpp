@@ -1,0 +1,212 @@
+// The real roots of det M(x) for the general 6R: M(x) = A0 + A1 x + A2 x², 12 x 12.
+//
+// det M has degree 24, but (1 + x²)⁴ divides it: the half-angle substitution of the
+// elimination (general_6r.hpp) leaves 8 roots at x = ±i that no configuration makes, and
+// M(±i) has a null space of dimension 4 (a semi-simple eigenvalue: measured 4 pivots at
+// round-off and the fifth 1e-4 to 1e-3 of the largest on random arms and poses). With
+// C = [[0, I], [-A2⁻¹A0, -A2⁻¹A1]] the 24 x 24 companion matrix (C [v; x v] = x [v; x v]
+// exactly when M(x) v = 0), the null vectors v of M(i) give C's real invariant subspace
+// Z (24 x 8) of those 8 roots: the real and imaginary parts of [v; i v]. Eliminating it
+// (Z's rows permuted, Z = [Z1; Z2], then T = [[Z1, 0], [Z2, I]] gives T⁻¹ C T =
+// [[S, ·], [0, C22 - Z2 Z1⁻¹ C12]]) leaves a 16 x 16 matrix whose eigenvalues are the 16
+// roots a configuration can make: a third of the work of the 24 x 24 eigenproblem.
+//
+// Where M(i)'s null space is not 4 clean dimensions (SPURIOUS_TOL), the 24 x 24 problem
+// is solved as it is: its 8 roots at ±i are then no real root (REAL_ROOT_TOL).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <cmath>
+#include <complex>
+#include <utility>
+
+#include "../eigenvalues.hpp"
+
+namespace km::general6r {
+
+constexpr int SIZE = 12;      //!< the matrix M(x)
+constexpr int ROOTS = 24;     //!< degree of det M(x)
+constexpr int SPURIOUS = 8;   //!< roots of det M at x = ±i: 4 each
+constexpr int GENUINE = ROOTS - SPURIOUS;
+
+//! An eigenvalue x is a real root when |Im x| <= this · (1 + |x|). Generous: a double
+//! root splits into a complex pair of imaginary part ~ sqrt(round-off), whose real part is
+//! still a candidate the check polishes; a genuinely complex root that passes is rejected
+//! by the check (its FK misses the target).
+constexpr double REAL_ROOT_TOL = 1e-4;
+//! A complex pair x0 ± i s with s beyond REAL_ROOT_TOL but at most this · (1 + |x|) gives
+//! the two candidates x0 - s and x0 + s. Two real roots close together (two solutions
+//! of nearly the same q'6: elbow up and down near a stretched arm) move by round-off over
+//! their distance, and on an arm near a degenerate one (a calibrated UR: the eigenvalues
+//! are good to 1e-4..1e-3 only) a pair at x0 ± s can come out as x0 ± i s, of the same
+//! size s. Each candidate is taken to a solution near it or dropped by the Newton step
+//! and the check (general_6r.hpp).
+constexpr double SPLIT_ROOT_TOL = 1e-2;
+//! M(i)'s null space is deflated when its full-pivot LU has exactly 4 pivots at most this
+//! times the largest (the spurious roots' null space, at round-off: 1e-16 measured) and
+//! the fifth above it (1e-4 to 1e-3 measured on random arms). Else (a genuine root near
+//! x = ±i, or a degenerate arm) the 24 x 24 problem is solved whole.
+constexpr double SPURIOUS_TOL = 1e-9;
+
+using Matrix12 = Eigen::Matrix<double, SIZE, SIZE>;
+using Vector12 = Eigen::Matrix<double, SIZE, 1>;
+
+//! An eigenvalue x of the companion matrix is taken as a real root: see REAL_ROOT_TOL.
+inline bool real_root(std::complex<double> x) {
+    return std::fabs(x.imag()) <= REAL_ROOT_TOL * (1.0 + std::abs(x));
+}
+
+//! Z (24 x 8), the real basis of C's invariant subspace of the roots x = ±i, from M(i)'s
+//! elimination with full pivoting (real and imaginary parts apart: std::complex's
+//! products check for infinities, at several times the cost); false (Z untouched) when
+//! that null space is not 4 clean dimensions (SPURIOUS_TOL). `ratios`, when given: the
+//! 8th and 9th pivots' moduli over the first's.
+inline bool spurious_subspace(const Matrix12* A, Eigen::Matrix<double, ROOTS, SPURIOUS>& Z,
+                              double* ratios = nullptr) {
+    constexpr int RANK = SIZE - SPURIOUS / 2;
+    double re[SIZE][SIZE], im[SIZE][SIZE];  // M(i) = A0 - A2 + i A1
+    for (int r = 0; r < SIZE; ++r)
+        for (int c = 0; c < SIZE; ++c) {
+            re[r][c] = A[0](r, c) - A[2](r, c);
+            im[r][c] = A[1](r, c);
+        }
+    int col[SIZE];  // column k of the eliminated matrix is M(i)'s column col[k]
+    for (int c = 0; c < SIZE; ++c) col[c] = c;
+    double first = 0.0, last = 0.0;  // squared moduli of the first and RANK-th pivots
+    for (int k = 0; k <= RANK; ++k) {
+        int pr = k, pc = k;
+        double big = -1.0;
+        for (int r = k; r < SIZE; ++r)
+            for (int c = k; c < SIZE; ++c) {
+                const double m = re[r][c] * re[r][c] + im[r][c] * im[r][c];
+                if (m > big) big = m, pr = r, pc = c;
+            }
+        if (k == 0) first = big;
+        if (k == RANK - 1) last = big;
+        if (k == RANK) {  // the (RANK+1)-th pivot: the null space's own size
+            if (ratios != nullptr) ratios[0] = std::sqrt(last / first), ratios[1] = std::sqrt(big / first);
+            const double tol2 = SPURIOUS_TOL * SPURIOUS_TOL * first;
+            if (!(big <= tol2 && last > tol2)) return false;
+            break;
+        }
+        for (int c = 0; c < SIZE; ++c) std::swap(re[k][c], re[pr][c]), std::swap(im[k][c], im[pr][c]);
+        for (int r = 0; r < SIZE; ++r) std::swap(re[r][k], re[r][pc]), std::swap(im[r][k], im[r][pc]);
+        std::swap(col[k], col[pc]);
+        // 1 / pivot
+        const double ir = re[k][k] / big, ii = -im[k][k] / big;
+        for (int r = k + 1; r < SIZE; ++r) {
+            const double lr = re[r][k] * ir - im[r][k] * ii, li = re[r][k] * ii + im[r][k] * ir;
+            for (int c = k + 1; c < SIZE; ++c) {
+                re[r][c] -= lr * re[k][c] - li * im[k][c];
+                im[r][c] -= lr * im[k][c] + li * re[k][c];
+            }
+        }
+    }
+    for (int f = 0; f < SPURIOUS / 2; ++f) {
+        // the null vector with free column RANK + f set to 1, the other free ones 0
+        double vr[SIZE] = {}, vi[SIZE] = {};
+        vr[RANK + f] = 1.0;
+        for (int i = RANK - 1; i >= 0; --i) {
+            double tr = -re[i][RANK + f], ti = -im[i][RANK + f];
+            for (int j = i + 1; j < RANK; ++j) {
+                tr -= re[i][j] * vr[j] - im[i][j] * vi[j];
+                ti -= re[i][j] * vi[j] + im[i][j] * vr[j];
+            }
+            const double d = re[i][i] * re[i][i] + im[i][i] * im[i][i];
+            vr[i] = (tr * re[i][i] + ti * im[i][i]) / d;
+            vi[i] = (ti * re[i][i] - tr * im[i][i]) / d;
+        }
+        // w = v in M(i)'s column order; [w; i w]: real part [Re w; -Im w], imaginary [Im w; Re w]
+        for (int k = 0; k < SIZE; ++k) {
+            const int j = col[k];
+            Z(j, 2 * f) = vr[k];
+            Z(SIZE + j, 2 * f) = -vi[k];
+            Z(j, 2 * f + 1) = vi[k];
+            Z(SIZE + j, 2 * f + 1) = vr[k];
+        }
+    }
+    return true;
+}
+
+//! C with its invariant subspace Z eliminated: D, the 16 x 16 matrix of C's other roots.
+//! Z = P [L1; L2] U by partial pivoting (rows `perm[0..7]` first); then W = L2 L1⁻¹
+//! (entries of L at most 1) and D = C22 - W C12 over the other rows and columns.
+inline void deflate(const double (&C)[ROOTS][ROOTS], Eigen::Matrix<double, ROOTS, SPURIOUS> Z,
+                    double (&D)[GENUINE][GENUINE]) {
+    int perm[ROOTS];
+    for (int i = 0; i < ROOTS; ++i) perm[i] = i;
+    for (int k = 0; k < SPURIOUS; ++k) {
+        int p = k;
+        for (int i = k + 1; i < ROOTS; ++i)
+            if (std::fabs(Z(i, k)) > std::fabs(Z(p, k))) p = i;
+        if (p != k) {
+            Z.row(p).swap(Z.row(k));
+            std::swap(perm[p], perm[k]);
+        }
+        for (int i = k + 1; i < ROOTS; ++i) {
+            const double l = Z(i, k) / Z(k, k);
+            Z(i, k) = l;
+            for (int j = k + 1; j < SPURIOUS; ++j) Z(i, j) -= l * Z(k, j);
+        }
+    }
+    // W (16 x 8) with W L1 = L2, L1 unit lower triangular: its columns from the last
+    double W[GENUINE][SPURIOUS];
+    for (int r = 0; r < GENUINE; ++r) {
+        for (int k = SPURIOUS - 1; k >= 0; --k) {
+            double t = Z(SPURIOUS + r, k);
+            for (int j = k + 1; j < SPURIOUS; ++j) t -= W[r][j] * Z(j, k);
+            W[r][k] = t;
+        }
+    }
+    for (int r = 0; r < GENUINE; ++r)
+        for (int c = 0; c < GENUINE; ++c) {
+            double t = C[perm[SPURIOUS + r]][perm[SPURIOUS + c]];
+            for (int k = 0; k < SPURIOUS; ++k) t -= W[r][k] * C[perm[k]][perm[SPURIOUS + c]];
+            D[r][c] = t;
+        }
+}
+
+//! The real roots x of det M(x) (M = A0 + A1 x + A2 x², lead: A2's LU) into roots (at
+//! most 24), and the two candidates of each nearly real pair (SPLIT_ROOT_TOL: `split`
+//! true); their count, or -1 when the eigenvalue iteration failed. `deflated`: whether
+//! the spurious roots were eliminated first (else the 24 x 24 problem was solved).
+inline int real_roots(const Matrix12* A, const Eigen::PartialPivLU<Matrix12>& lead, double* roots,
+                      bool* deflated = nullptr, bool* split = nullptr) {
+    double C[ROOTS][ROOTS] = {};
+    const Matrix12 B0 = -lead.solve(A[0]), B1 = -lead.solve(A[1]);
+    for (int i = 0; i < SIZE; ++i) {
+        C[i][SIZE + i] = 1.0;
+        for (int j = 0; j < SIZE; ++j) {
+            C[SIZE + i][j] = B0(i, j);
+            C[SIZE + i][SIZE + j] = B1(i, j);
+        }
+    }
+    Eigen::Matrix<double, ROOTS, SPURIOUS> Z;
+    const bool spurious = spurious_subspace(A, Z);
+    if (deflated != nullptr) *deflated = spurious;
+    double re[ROOTS], im[ROOTS];
+    int n = ROOTS;
+    if (spurious) {
+        double D[GENUINE][GENUINE];
+        deflate(C, Z, D);
+        if (!eigen::eigenvalues(D, re, im)) return -1;
+        n = GENUINE;
+    } else if (!eigen::eigenvalues(C, re, im)) {
+        return -1;
+    }
+    int found = 0;
+    for (int r = 0; r < n; ++r) {
+        if (real_root({re[r], im[r]})) {
+            if (split != nullptr) split[found] = false;
+            roots[found++] = re[r];
+        } else if (im[r] > 0.0 && im[r] <= SPLIT_ROOT_TOL * (1.0 + std::hypot(re[r], im[r]))) {
+            if (split != nullptr) split[found] = split[found + 1] = true;
+            roots[found++] = re[r] - im[r];  // (its conjugate, im < 0, is skipped)
+            roots[found++] = re[r] + im[r];
+        }
+    }
+    return found;
+}
+
+}  // namespace km::general6r

@@ -1,0 +1,120 @@
+"""The real roots of the general 6R's det M(x) (``solvers/general_6r_roots.hpp``).
+
+Against matrix polynomials built with known roots: M(x) = U diag(d_k(x)) V with U, V
+constant and well conditioned, so det M = det U det V Π d_k(x). Four d_k = 1 + x²
+give the structure of the elimination (8 roots at ±i, M(i) of nullity 4), the others
+(x - a)(x - b) or a complex pair: the real roots are exactly the real a, b. The
+deflation's tolerance SPURIOUS_TOL is pinned from both sides on matrices whose
+elimination's pivots are set by construction.
+"""
+
+from __future__ import annotations
+
+import kinematica._core as _core
+import numpy as np
+import pytest
+
+G = _core.general6r
+#: The documented value (general_6r_roots.hpp).
+SPURIOUS_TOL = 1e-9
+#: Just inside / just outside a boundary: the tolerance times (1 ∓ this).
+EDGE = 1e-6
+#: Roots of a well-conditioned M agree with the constructed ones to this.
+ROOT_TOL = 1e-10
+
+
+def test_the_documented_value_is_the_core_s() -> None:
+    assert G.SPURIOUS_TOL == SPURIOUS_TOL
+
+
+def _quadratic(rng: np.random.Generator, factors: list[tuple[float, float, float]]) -> list:
+    """A0, A1, A2 of U diag(c + b x + a x²) V for the 12 factors (c, b, a)."""
+    U = np.linalg.qr(rng.standard_normal((12, 12)))[0] @ np.diag(rng.uniform(1, 2, 12))
+    V = np.linalg.qr(rng.standard_normal((12, 12)))[0]
+    return [U @ np.diag([f[k] for f in factors]) @ V for k in range(3)]
+
+
+def _real_pair(a: float, b: float) -> tuple[float, float, float]:
+    return (a * b, -(a + b), 1.0)
+
+
+SPURIOUS_FACTOR = (1.0, 0.0, 1.0)  # 1 + x²
+
+
+def test_the_roots_at_plus_minus_i_are_deflated_and_the_real_ones_found() -> None:
+    rng = np.random.default_rng(1)
+    for trial in range(5):
+        real = np.sort(rng.uniform(-4.0, 4.0, 2 * (3 + trial % 3)))
+        pairs = [_real_pair(real[2 * k], real[2 * k + 1]) for k in range(len(real) // 2)]
+        # complex pairs (x - p)² + s², s not small: never a real root
+        pairs += [
+            (p * p + s * s, -2 * p, 1.0) for p, s in rng.uniform(0.5, 2.0, (8 - len(pairs), 2))
+        ]
+        A = _quadratic(rng, [SPURIOUS_FACTOR] * 4 + pairs)
+        roots, deflated = G.real_roots(*A)
+        assert deflated
+        np.testing.assert_allclose(np.sort(roots), real, atol=ROOT_TOL)
+
+
+def test_without_the_spurious_structure_the_whole_problem_is_solved() -> None:
+    # three factors 1 + x² only: M(i) has nullity 3, not 4; the 24 x 24 problem gives
+    # the same real roots (the ±i ones, and a root at 1 + x² = 0 spare, are no real root)
+    rng = np.random.default_rng(2)
+    real = [-2.0, -0.5, 0.25, 1.5, 3.0, 3.5]
+    pairs = [_real_pair(real[2 * k], real[2 * k + 1]) for k in range(3)]
+    pairs += [(1.0, 0.5, 1.0)] * 6
+    A = _quadratic(rng, [SPURIOUS_FACTOR] * 3 + pairs)
+    roots, deflated = G.real_roots(*A)
+    assert not deflated
+    np.testing.assert_allclose(np.sort(roots), real, atol=ROOT_TOL)
+
+
+def _pivots(r8: float, r9: float) -> list[np.ndarray]:
+    """A0 (A1 = A2 = 0, so M(i) = A0) whose full-pivot elimination has pivots 1 (7 of them,
+    first the largest entry 1), then r8, then r9, then zeros; rows and columns permuted."""
+    rng = np.random.default_rng(3)
+    D = np.zeros((12, 12))
+    D[:7, :7] = np.eye(7)
+    D[7, 7], D[8, 8] = r8, r9
+    rows, cols = rng.permutation(12), rng.permutation(12)
+    return [D[rows][:, cols], np.zeros((12, 12)), np.zeros((12, 12))]
+
+
+@pytest.mark.parametrize("side", [1.0 - EDGE, 1.0 + EDGE])
+def test_spurious_tol_bounds_the_ninth_pivot(side: float) -> None:
+    deflated, r8, r9 = G.spurious_pivots(*_pivots(0.5, SPURIOUS_TOL * side))
+    assert r8 == pytest.approx(0.5) and r9 == pytest.approx(SPURIOUS_TOL * side, rel=1e-12)
+    assert deflated == (side < 1.0)
+
+
+@pytest.mark.parametrize("side", [1.0 - EDGE, 1.0 + EDGE])
+def test_spurious_tol_bounds_the_eighth_pivot_from_below(side: float) -> None:
+    # a fifth null direction (a genuine root at ±i, or a degenerate arm): not deflated
+    deflated, r8, _ = G.spurious_pivots(*_pivots(SPURIOUS_TOL * side, 0.0))
+    assert r8 == pytest.approx(SPURIOUS_TOL * side, rel=1e-12)
+    assert deflated == (side > 1.0)
+
+
+def _split_boundary(x0: float) -> float:
+    """s with s = SPLIT_ROOT_TOL (1 + |x0 + i s|): the pair x0 ± i s on the boundary."""
+    s = 0.0
+    for _ in range(60):
+        s = G.SPLIT_ROOT_TOL * (1.0 + abs(complex(x0, s)))
+    return s
+
+
+@pytest.mark.parametrize("side", [1.0 - EDGE, 1.0 + EDGE])
+def test_split_root_tol_turns_a_nearly_real_pair_into_two_candidates(side: float) -> None:
+    # a pair x0 ± i s just inside the tolerance gives x0 - s and x0 + s; just outside,
+    # nothing; the real roots come out either way
+    assert G.SPLIT_ROOT_TOL == 1e-2  # the documented value
+    rng = np.random.default_rng(4)
+    x0 = 1.5
+    s = _split_boundary(x0) * side
+    real = [-2.0, -1.0, 0.5, 3.0]
+    factors = [SPURIOUS_FACTOR] * 4 + [_real_pair(-2.0, -1.0), _real_pair(0.5, 3.0)]
+    factors += [(x0 * x0 + s * s, -2 * x0, 1.0)] + [(1.0, 0.5, 1.0)] * 5
+    roots, deflated = G.real_roots(*_quadratic(rng, factors))
+    assert deflated
+    expected = sorted(real + ([x0 - s, x0 + s] if side < 1.0 else []))
+    np.testing.assert_allclose(np.sort(roots), expected, atol=ROOT_TOL)
