@@ -39,18 +39,11 @@ from kinematica.ik.structure import arm_size
 
 pytestmark = pytest.mark.filterwarnings("ignore::kinematica.KinematicaWarning")
 
-#: The classes the general 6R solves: it is being reworked (issue 20), and its
-#: polish leaves some generating configurations 1e-9 to 1e-7 rad off (reported in the
-#: audit's findings); check a is held to DISTINCT_TOL (``a_far``) on them here.
+#: The classes the general 6R solves.
 GENERAL = ("generic", "equal links", "offsets 1e-10", "parallel 1e-9", "calibrated UR")
-#: The checks each class is held to: the general 6R loses roots of calibrated URs (a
-#: and c: see test_the_general_6r_finds_every_solution_of_a_calibrated_ur).
-CHECKS = dict.fromkeys(GENERAL, ("a_far", "b", "c", "d", "e")) | {
-    "calibrated UR": ("b", "d", "e"),
-    "spherical wrist": ("a", "b", "c", "d", "e"),
-    "spherical shoulder": ("a", "b", "c", "d", "e"),
-    "three parallel": ("a", "b", "c", "d", "e"),
-}
+#: The checks each class is held to: every one.
+CHECKS = dict.fromkeys((*GENERAL, "spherical wrist", "spherical shoulder", "three parallel"),
+                       ("a", "b", "c", "d", "e"))  # fmt: skip
 #: The solver each class is made for.
 SOLVER = dict.fromkeys(GENERAL, "analytic:general-6R") | {
     "spherical wrist": "analytic:spherical-wrist",
@@ -69,7 +62,6 @@ def test_no_check_fails_on_30_poses_of_each_class(name: str) -> None:
     assert c["singular"] <= 3  # random q: a singular arm is rare
 
 
-@pytest.mark.xfail(strict=True, reason="the general 6R loses a root (audit finding F1)")
 def test_the_general_6r_finds_every_solution_of_a_calibrated_ur() -> None:
     # found by the audit (calibrated UR, seed 1): "ok" with 5 solutions, an odd count
     rows = [
