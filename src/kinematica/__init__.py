@@ -12,9 +12,9 @@ with an honest status::
     res = robot.ik(T)
 """
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
+from kinematica._lazy import exports
 from kinematica.errors import (
     ArgumentError,
     DimensionError,
@@ -172,22 +172,9 @@ _SUBPACKAGES = frozenset(
 )
 
 
-def __getattr__(name: str) -> Any:
-    """The public names and subpackages, imported when first asked for (PEP 562)."""
-    module = _LAZY.get(name)
-    if module is not None:
-        value = getattr(importlib.import_module(module), name)
-    elif name in _SUBPACKAGES:
-        value = importlib.import_module(f"kinematica.{name}")
-    else:
-        raise AttributeError(f"module 'kinematica' has no attribute {name!r}")
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY) | _SUBPACKAGES)
-
+__getattr__, __dir__ = exports(
+    __name__, {**_LAZY, **{name: f"kinematica.{name}" for name in _SUBPACKAGES}}
+)
 
 __all__ = [
     "ArgumentError",

@@ -5,15 +5,16 @@ from __future__ import annotations
 import argparse
 import dataclasses
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from kinematica.cli.options import add_common, add_robot, dump, robot_from_args
-from kinematica.dh import FrameRule
 from kinematica.errors import RobotFileError
-from kinematica.io import URDF_SUFFIXES, dumps_robot_file
 from kinematica.io.atomic import unchanged, write_text_atomic
-from kinematica.robot import Robot, spec_from_robot, urdf_to_dh
-from kinematica.robot.export_cpp import cpp_header
+from kinematica.io.reading import URDF_SUFFIXES
+
+if TYPE_CHECKING:  # the library's modules load when the command runs
+    from kinematica.dh import FrameRule
+    from kinematica.robot import Robot
 
 __all__ = ["FORMATS", "convert", "register"]
 
@@ -28,6 +29,8 @@ def _is_urdf(name: str) -> bool:
 def _extract(args: argparse.Namespace, convention: str) -> tuple[Robot, tuple[FrameRule, ...]]:
     """The robot's DH table by the rules, read from the URDF itself when it is one."""
     if _is_urdf(args.robot):
+        from kinematica.robot.urdf import urdf_to_dh
+
         ext = urdf_to_dh(args.robot, base=args.base, tip=args.tip, convention=convention)
     else:
         ext = robot_from_args(args).to_dh(convention)
@@ -36,6 +39,9 @@ def _extract(args: argparse.Namespace, convention: str) -> tuple[Robot, tuple[Fr
 
 def _robot_file(robot: Robot, suffix: str, rad: bool, rules: tuple[FrameRule, ...]) -> str:
     units = {"angle": "rad" if rad else "deg", "length": "m"}
+    from kinematica.io.robotfile import dumps_robot_file
+    from kinematica.robot.save import spec_from_robot
+
     spec = dataclasses.replace(spec_from_robot(robot), units=units)
     text = dumps_robot_file(spec, suffix)
     if rules and suffix.lower() in (".yaml", ".yml", ".toml"):
@@ -53,6 +59,8 @@ def convert(args: argparse.Namespace) -> int:
         text = robot.to_urdf()
     elif args.to == "cpp":
         robot = robot_from_args(args)
+        from kinematica.robot.export_cpp import cpp_header
+
         text = cpp_header(robot)
     else:
         if args.to == "yaml":

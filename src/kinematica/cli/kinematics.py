@@ -6,7 +6,7 @@ import argparse
 import math
 import re
 import sys
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -34,11 +34,11 @@ from kinematica.cli.options import (
     units,
 )
 from kinematica.errors import ArgumentError
-from kinematica.ik import IKOptions, IKResult
-from kinematica.ik.printed import half_unit, printed_digits
-from kinematica.io import builtin_names
-from kinematica.robot import Robot, classify, load, spec_from_robot
+from kinematica.robot import Robot, load
 from kinematica.spatial import euler_from_matrix, from_pose, gimbal_locked
+
+if TYPE_CHECKING:  # the IK layer loads when `ik` runs: `fk` never imports it
+    from kinematica.ik import IKResult
 
 __all__ = ["fk", "ik", "pose_target_args", "register", "robots", "show", "target_in"]
 
@@ -47,6 +47,9 @@ FloatArray = NDArray[np.float64]
 
 def robots(args: argparse.Namespace) -> int:
     """``kinematica robots``: the built-in models."""
+    from kinematica.io.builtin import builtin_names
+    from kinematica.robot.structure import classify
+
     rows = []
     for name in builtin_names():
         robot = load(name)
@@ -99,6 +102,8 @@ def _written(robot: Robot) -> list[dict[str, str]]:
     Only for rows the robot still has as written (a robot changed since it was read
     is shown by its numbers alone).
     """
+    from kinematica.robot.save import spec_from_robot
+
     spec = spec_from_robot(robot)
     names = set(spec.parameters)
     out: list[dict[str, str]] = []
@@ -116,6 +121,8 @@ def _written(robot: Robot) -> list[dict[str, str]]:
 def show(args: argparse.Namespace) -> int:
     """``kinematica show ROBOT``: DH table, limits, structure."""
     robot = robot_from_args(args)
+    from kinematica.robot.structure import classify
+
     structure = classify(robot)
     if args.json:
         dh = robot.dh_table()  # theta, d, a, alpha at q = 0, in rad and m
@@ -235,6 +242,8 @@ def _precision(robot: Robot, args: argparse.Namespace) -> tuple[float, float] | 
     typed = args.matrix if args.matrix is not None else args.pose
     if typed is None:
         return None
+    from kinematica.ik.printed import half_unit, printed_digits
+
     digits = printed_digits(np.asarray(typed, dtype=float))
     if digits is None:
         return None
@@ -258,6 +267,8 @@ def _headline(status: str, message: str) -> str:
 
 def ik(args: argparse.Namespace) -> int:
     """``kinematica ik ROBOT --pose ...``: every solution, one row each."""
+    from kinematica.ik import IKOptions, IKResult
+
     robot = robot_from_args(args)
     target = target_in(robot, args)
     q0 = None if args.q0 is None else q_in(robot, args.q0, args, "q0")

@@ -15,7 +15,6 @@ at the edge, and every output says which units it uses.
 from __future__ import annotations
 
 import argparse
-import json
 import math
 from collections.abc import Sequence
 from typing import Any, Final
@@ -25,7 +24,6 @@ from numpy.typing import ArrayLike, NDArray
 
 from kinematica.cli.format import DEFAULT_PRECISION
 from kinematica.errors import ArgumentError, DimensionError
-from kinematica.ik.parameter import joint_parameter
 from kinematica.robot import Robot, load
 
 __all__ = [
@@ -251,6 +249,8 @@ def _jsonable(data: Any) -> Any:
 
 def dump(data: dict[str, Any]) -> None:
     """Print ``data`` as JSON: valid JSON always, ``null`` for NaN and infinities."""
+    import json  # only for --json
+
     print(json.dumps(_jsonable(data), indent=2, allow_nan=False))
 
 
@@ -278,6 +278,8 @@ def joint_in(robot: Robot, key: str, option: str) -> int:
             + (f" or by its name ({', '.join(own)})" if own else "")
             + f", got {key!r}"
         )
+    from kinematica.ik.parameter import joint_parameter
+
     return joint_parameter(robot.chain, text, robot.joint_names, arg=option).index
 
 

@@ -13,7 +13,7 @@ in the order they are tried; nothing else names solver kinds.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -135,7 +135,7 @@ class SolverSpec:
     parameter_of: Callable[[Chain, ArrayLike], FloatArray] | None = None
 
 
-def describing(features: Features, specs: tuple[SolverSpec, ...]) -> SolverSpec | None:
+def describing(features: Features, specs: Iterable[SolverSpec]) -> SolverSpec | None:
     """The first spec that describes an arm of these features, or ``None``."""
     for spec in specs:
         if spec.describes and spec.handles(features):
@@ -143,7 +143,7 @@ def describing(features: Features, specs: tuple[SolverSpec, ...]) -> SolverSpec 
     return None
 
 
-def describe(features: Features, specs: tuple[SolverSpec, ...]) -> tuple[str, str, str]:
+def describe(features: Features, specs: Iterable[SolverSpec]) -> tuple[str, str, str]:
     """``(kind, summary, summary in Spanish)`` of an arm: the first spec that handles it.
 
     An arm no spec describes is ``"general"``, summarised from its joint types

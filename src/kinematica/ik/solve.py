@@ -19,8 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 import kinematica._core as _core
 from kinematica.core import Chain, resolve_workers
 from kinematica.errors import DimensionError, KinematicaError
-from kinematica.ik.analytic import SOLVERS
-from kinematica.ik.analytic.general_6r import numeric_note
+from kinematica.ik.analytic import solvers_for
 from kinematica.ik.at_values import AtValues, parameter_values
 from kinematica.ik.fallback import (
     FALLBACK_NOTE,
@@ -34,11 +33,12 @@ from kinematica.ik.fallback import (
 from kinematica.ik.numeric import LABEL, check_seed, numeric_setup
 from kinematica.ik.options import IKOptions, Method
 from kinematica.ik.printed import answer_overdetermined, overdetermined_rows
-from kinematica.ik.reach import ANSWERED, beyond_limited_reach
+from kinematica.ik.reach import ANSWERED, beyond_limited_reach, needs_proof
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
 from kinematica.ik.result import CheckOutput, CoreAnswer, IKBatchResult, IKResult, result_of
 from kinematica.ik.structure import features
 from kinematica.ik.targets import Targets, Tolerance, parse_mask, parse_targets, parse_tolerance
+from kinematica.spatial import ROUNDOFF_TOL
 
 __all__ = ["PoseSolver", "closed_form", "pose_solver", "solve_ik", "structure_of"]
 
@@ -56,7 +56,8 @@ _SOLVERS: weakref.WeakKeyDictionary[Chain, dict[tuple[str, str | None], ClosedFo
 
 def structure_of(chain: Chain) -> tuple[str, str, str]:
     """``(kind, summary, summary in Spanish)`` of a chain's structure (see :func:`describe`)."""
-    return describe(features(chain), SOLVERS)
+    f = features(chain)
+    return describe(f, solvers_for(f.joint_types))
 
 
 def closed_form(
@@ -74,7 +75,7 @@ def closed_form(
     if key not in per_chain:
         found = None
         f = features(chain)
-        for spec in SOLVERS:
+        for spec in solvers_for(f.joint_types):
             if spec.parameter == parameter and spec.handles(f):
                 found = spec.build(chain, f, target)
                 if found is not None:
@@ -110,6 +111,8 @@ def _why_numeric(
     """The note saying why the search answers a pose no closed form takes (or none)."""
     if closed is not None or kind != "pose" or mask is not None:
         return ()
+    from kinematica.ik.analytic.general_6r import numeric_note  # the numeric path's note only
+
     note = numeric_note(features(chain))
     return () if note is None else (note,)
 
@@ -186,6 +189,17 @@ class PoseSolver(NamedTuple):
     method: str
     complete: bool
     direct: bool = True
+
+    def rigid(self, chain: _core.Chain, pose: FloatArray) -> IKResult | None:
+        """The answer for one rigid ``(4, 4)`` pose, or None when the general path must give it.
+
+        None when the core found nothing it can vouch for without the reach within
+        the limits, which only the general path tries.
+        """
+        out: CoreAnswer | None = self.ik_rigid(chain, pose, self.options, ROUNDOFF_TOL, self.labels)
+        if out is None or (out[5][0] not in ANSWERED and needs_proof(out[5][0], out[5][1])):
+            return None
+        return result_of(*out, self.method, self.complete, ())
 
 
 def pose_solver(

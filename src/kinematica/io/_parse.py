@@ -7,7 +7,6 @@ Every problem raises :class:`RobotFileError` naming the file, the joint number
 from __future__ import annotations
 
 import copy
-import difflib
 import math
 import re
 import warnings
@@ -114,6 +113,8 @@ def describe(value: object) -> str:
 
 
 def _suggest(word: str, allowed: Sequence[str]) -> str:
+    import difflib  # only for a message: a correct file never needs it
+
     close = difflib.get_close_matches(word, allowed, n=1)
     return f" (did you mean {close[0]!r}?)" if close else ""
 

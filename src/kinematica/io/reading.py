@@ -12,7 +12,17 @@ import stat
 from collections.abc import Callable
 from pathlib import Path
 
-__all__ = ["file_kind", "os_reason", "read_limited"]
+__all__ = ["ROBOT_FILE_SUFFIXES", "URDF_SUFFIXES", "file_kind", "os_reason", "read_limited"]
+
+# Which reader a path goes to, known without importing the readers (``load`` of a
+# built-in model imports neither the URDF reader nor the robot-file writer).
+
+#: File extensions of robot files (:mod:`kinematica.io.robotfile` reads and writes them).
+ROBOT_FILE_SUFFIXES = (".yaml", ".yml", ".json", ".toml")
+
+#: File name endings read as URDF (:mod:`kinematica.io.urdf`; ``.xacro`` ones are
+#: expanded first).
+URDF_SUFFIXES = (".urdf", ".xacro")
 
 
 def file_kind(mode: int) -> str | None:

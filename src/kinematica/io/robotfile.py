@@ -59,12 +59,11 @@ from kinematica.errors import ArgumentError, KinematicaError, RobotFileError
 from kinematica.io._dump import dump_robot_dict, toml_dumps
 from kinematica.io._parse import parse_robot_dict
 from kinematica.io.atomic import unchanged, write_text_atomic
-from kinematica.io.reading import file_kind, os_reason, read_limited
+from kinematica.io.reading import ROBOT_FILE_SUFFIXES, file_kind, os_reason, read_limited
 from kinematica.io.spec import RobotSpec
 
 __all__ = [
     "MAX_FILE_SIZE",
-    "ROBOT_FILE_SUFFIXES",
     "dump_robot_dict",
     "dumps_robot_file",
     "load_robot_text",
@@ -72,9 +71,6 @@ __all__ = [
     "read_robot_file",
     "write_robot_file",
 ]
-
-#: File extensions read and written by this module.
-ROBOT_FILE_SUFFIXES = (".yaml", ".yml", ".json", ".toml")
 
 #: Largest robot file read, in bytes (256 KiB). A DH table with limits and
 #: comments is a few kilobytes; anything near this size is not a robot file,

@@ -42,14 +42,12 @@ from kinematica.io.urdf_model import (
 )
 from kinematica.io.xacro import XACRO_HINT, expand_xacro
 
-__all__ = ["URDF_MAX_BYTES", "URDF_SUFFIXES", "parse_urdf", "read_urdf"]
+__all__ = ["URDF_MAX_BYTES", "parse_urdf", "read_urdf"]
 
 #: Largest URDF file read, in bytes (real arm descriptions are a few tens of kB;
 #: humanoids with inline meshes lists stay under a few MB).
 URDF_MAX_BYTES = 16 * 2**20
 
-#: File name endings read as URDF (``.xacro`` ones are expanded first).
-URDF_SUFFIXES = (".urdf", ".xacro")
 
 #: Largest size of a joint origin's coordinate or a prismatic limit, in metres.
 #: The largest machines a URDF describes (cranes, gantries) measure tens of

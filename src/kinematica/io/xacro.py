@@ -27,7 +27,6 @@ from __future__ import annotations
 
 import importlib.util
 import os
-import subprocess
 import sys
 from pathlib import Path
 from typing import Final
@@ -103,6 +102,8 @@ def expand_xacro(path: str | os.PathLike[str], *, max_bytes: int, env: bool = Fa
             "(pip install 'kinematica[xacro]'); or expand it first: `xacro FILE > FILE.urdf`",
             path=source,
         )
+    import subprocess  # only here: reading a plain URDF starts no process
+
     limit = float(XACRO_TIME_LIMIT)
     command = [
         sys.executable,

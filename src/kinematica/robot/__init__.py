@@ -1,10 +1,25 @@
 """The Robot: DH table, limits, base and tool; forward kinematics and Jacobians; URDF."""
 
-from kinematica.robot.dh_rules import DHExtraction
+from typing import TYPE_CHECKING
+
+from kinematica._lazy import exports
 from kinematica.robot.load import load, robot_from_spec, spec_from_robot, write_robot_file
 from kinematica.robot.robot import Robot
-from kinematica.robot.structure import Structure, classify
-from kinematica.robot.urdf import urdf_to_dh
+
+if TYPE_CHECKING:  # the names below load on first use (kinematica._lazy): the IK layer, URDF
+    from kinematica.robot.dh_rules import DHExtraction
+    from kinematica.robot.structure import Structure, classify
+    from kinematica.robot.urdf import urdf_to_dh
+
+__getattr__, __dir__ = exports(
+    __name__,
+    {
+        "DHExtraction": "kinematica.robot.dh_rules",
+        "Structure": "kinematica.robot.structure",
+        "classify": "kinematica.robot.structure",
+        "urdf_to_dh": "kinematica.robot.urdf",
+    },
+)
 
 __all__ = [
     "DHExtraction",

@@ -11,17 +11,11 @@ from numpy.typing import NDArray
 from kinematica.dh import Joint, Prismatic, Revolute
 from kinematica.dh.joints import values_checked
 from kinematica.errors import ArgumentError, KinematicaError, UnknownRobotError
-from kinematica.io import (
-    ROBOT_FILE_SUFFIXES,
-    URDF_SUFFIXES,
-    JointSpec,
-    RobotSpec,
-    read_builtin,
-    read_robot_file,
-)
+from kinematica.io.builtin import read_builtin
+from kinematica.io.reading import ROBOT_FILE_SUFFIXES, URDF_SUFFIXES
+from kinematica.io.spec import JointSpec, RobotSpec
 from kinematica.robot.robot import Robot
 from kinematica.robot.save import spec_from_robot, write_robot_file
-from kinematica.robot.urdf import robot_from_urdf
 
 __all__ = ["load", "robot_from_spec", "spec_from_robot", "write_robot_file"]
 
@@ -117,6 +111,8 @@ def load(
     if path.name.lower().endswith(URDF_SUFFIXES):
         if not exists:
             raise UnknownRobotError(f"{text}: no such URDF file")
+        from kinematica.robot.urdf import robot_from_urdf  # the URDF readers: only for one
+
         return robot_from_urdf(
             path,
             base=base,
@@ -140,5 +136,7 @@ def load(
     if path.suffix.lower() in ROBOT_FILE_SUFFIXES or exists or os.sep in text:
         if not exists:
             raise UnknownRobotError(f"{text}: no such robot file")
+        from kinematica.io.robotfile import read_robot_file  # its writers too: only for a file
+
         return robot_from_spec(read_robot_file(path))
     return robot_from_spec(read_builtin(text))  # raises UnknownRobotError with suggestions

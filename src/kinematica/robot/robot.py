@@ -29,25 +29,21 @@ from kinematica.dh import (
     link_matrix,
 )
 from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning, UnitWarning
-from kinematica.ik import IKBatchResult, IKOptions, IKResult, Tolerance
-from kinematica.ik.analytic.srs import arm_angle as arm_angle_of
-from kinematica.ik.direct import DirectParameter
-from kinematica.ik.reach import ANSWERED, needs_proof
-from kinematica.ik.redundancy import choose, solve_arm
-from kinematica.ik.registry import TargetKind
-from kinematica.ik.result import CoreAnswer, result_of
-from kinematica.ik.solve import PoseSolver, pose_solver
 from kinematica.io.plausible import PLAUSIBLE_ANGLE, check_angle
-from kinematica.robot.dh_rules import to_dh, to_urdf
 from kinematica.robot.frames import rigid_frame, short
 from kinematica.robot.save import write_robot_file
 from kinematica.robot.transforms import ChainTransforms, dh_frames
-from kinematica.spatial import ROUNDOFF_TOL
 
+# The IK layer and the DH rules load when a method first needs them: a robot that only
+# answers FK (`kinematica fk`) never imports them.
 if TYPE_CHECKING:
     import os
 
+    from kinematica.ik import IKBatchResult, IKOptions, IKResult, Tolerance
+    from kinematica.ik.direct import DirectParameter
     from kinematica.ik.parameter import Parameter
+    from kinematica.ik.registry import TargetKind
+    from kinematica.ik.solve import PoseSolver
     from kinematica.io import RobotSpec
     from kinematica.robot.dh_rules import DHExtraction
     from kinematica.robot.self_motion import SelfMotion
@@ -563,6 +559,9 @@ class Robot:
                 out = None
             if out is not None:
                 return out
+        from kinematica.ik.options import IKOptions
+        from kinematica.ik.redundancy import solve_arm
+
         if options is None:
             options = IKOptions(
                 method, tol, respect_limits, q0, mask, seed, workers, precision, fixed, arm_angle
@@ -602,29 +601,31 @@ class Robot:
         Raises:
             KinematicaError: The arm is not an SRS 7R arm.
         """
-        return arm_angle_of(self.chain, self.check_q(q))
+        from kinematica.ik.analytic.srs import arm_angle
+
+        return arm_angle(self.chain, self.check_q(q))
 
     @cached_property
     def _direct(self) -> DirectParameter:
         """The one-pose paths at one value of a redundant arm's parameter."""
+        from kinematica.ik.direct import DirectParameter
+
         return DirectParameter(self.chain, self.joint_names)
 
     def _fast(self, pose: FloatArray, kind: TargetKind) -> IKResult | None:
         """``ik`` of one rigid target with every default; None: the general path explains it."""
         fast = self._fast_ik.get(kind)
         if fast is None:
+            from kinematica.ik.redundancy import choose
+            from kinematica.ik.solve import pose_solver
+
             fast = pose_solver(self.chain, kind)
             if kind == "pose" and choose(self.chain) is not None:  # solved at a parameter
                 fast = fast._replace(direct=False)
             self._fast_ik[kind] = fast
         if not fast.direct:  # a redundant arm: at auto's parameter value, else the general path
             return self._direct.auto(pose) if kind == "pose" else None
-        out: CoreAnswer | None = fast.ik_rigid(
-            self.chain.core, pose, fast.options, ROUNDOFF_TOL, fast.labels
-        )
-        if out is None or (out[5][0] not in ANSWERED and needs_proof(out[5][0], out[5][1])):
-            return None  # the general path also tries the reach within the limits
-        return result_of(*out, fast.method, fast.complete, ())
+        return fast.rigid(self.chain.core, pose)  # None: the general path explains it
 
     # ------------------------------------------------------------ derived models
     def to_convention(self, convention: str) -> Robot:
@@ -692,10 +693,14 @@ class Robot:
             A ``DHExtraction``: ``.robot``, ``.rules`` (which rule placed each
             frame), ``.fk_error``.
         """
+        from kinematica.robot.dh_rules import to_dh
+
         return to_dh(self, convention)
 
     def to_urdf(self, path: str | os.PathLike[str] | None = None) -> str:
         """The robot as URDF text (each link frame a DH frame), written to ``path`` if given."""
+        from kinematica.robot.dh_rules import to_urdf
+
         return to_urdf(self, path)
 
     # ------------------------------------------- motion (thin, over kinematica.motion)

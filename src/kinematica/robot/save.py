@@ -10,8 +10,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.errors import ArgumentError
-from kinematica.io import FrameSpec, JointSpec, RobotSpec
-from kinematica.io import write_robot_file as write_spec_file
+from kinematica.io.spec import FrameSpec, JointSpec, RobotSpec
 from kinematica.robot.frames import rigid_frame
 
 if TYPE_CHECKING:
@@ -135,4 +134,6 @@ def write_robot_file(robot: Robot | RobotSpec, path: str | os.PathLike[str]) -> 
         spec = spec_from_robot(robot)
     else:
         raise ArgumentError(f"expected a Robot or a RobotSpec, got {type(robot).__name__}")
+    from kinematica.io.robotfile import write_robot_file as write_spec_file  # the writers
+
     write_spec_file(spec, path)

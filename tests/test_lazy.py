@@ -1,0 +1,130 @@
+"""What a start imports: packages load their names on first use (kinematica._lazy).
+
+The command line's start-up is mostly imports. A fresh process reports which
+modules it holds after each step, and the modules a step does not need must be
+absent: ``import kinematica`` imports neither numpy nor the core; a built-in
+robot's FK imports no IK, URDF, robot-file writer or DH extraction; its first IK
+imports the solver modules of the families tried before its own, not the
+others'; ``kinematica fk`` imports no IK. One process for the library's steps,
+one for the command line's (each about half a second).
+"""
+
+from __future__ import annotations
+
+import importlib
+import json
+import subprocess
+import sys
+import textwrap
+
+import pytest
+
+#: Packages built with kinematica._lazy.exports.
+LAZY_PACKAGES = (
+    "kinematica",
+    "kinematica.dh",
+    "kinematica.io",
+    "kinematica.ik",
+    "kinematica.robot",
+)
+
+#: Modules no built-in robot's FK needs (the IK layer is checked as a whole).
+NOT_FOR_FK = (
+    "kinematica.dh.extract",
+    "kinematica.io.robotfile",
+    "kinematica.io.urdf",
+    "kinematica.io.urdf_write",
+    "kinematica.io.xacro",
+    "kinematica.robot.dh_rules",
+    "kinematica.robot.structure",
+    "kinematica.robot.urdf",
+    "difflib",
+    "tempfile",
+    "webbrowser",
+    "xml.etree.ElementTree",
+)
+
+#: Solver modules the PUMA 560's first IK must not import (not tried before its family).
+NOT_FOR_PUMA_IK = tuple(
+    f"kinematica.ik.analytic.{m}"
+    for m in ("arm_position", "elbow_arms", "general_6r", "planar_arms", "spherical_shoulder")
+)
+
+_REPORT = """
+import json, sys
+seen = {}
+def report(step):
+    seen[step] = sorted(sys.modules)
+"""
+
+
+def _steps(body: str) -> dict[str, set[str]]:
+    """Run ``body`` (which calls ``report(step)``) in a fresh process: modules per step."""
+    code = textwrap.dedent(_REPORT) + textwrap.dedent(body) + "\nprint(json.dumps(seen))"
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=False, timeout=120
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    return {step: set(mods) for step, mods in json.loads(done.stdout.splitlines()[-1]).items()}
+
+
+def _ours(modules: set[str], prefix: str) -> set[str]:
+    return {m for m in modules if m == prefix or m.startswith(prefix + ".")}
+
+
+@pytest.mark.parametrize("package", LAZY_PACKAGES)
+def test_every_public_name_resolves(package: str) -> None:
+    module = importlib.import_module(package)
+    missing = [name for name in module.__all__ if not hasattr(module, name)]
+    assert missing == []
+    assert set(module.__all__) <= set(dir(module))
+    with pytest.raises(AttributeError, match="no attribute 'no_such_name'"):
+        _ = module.no_such_name
+
+
+def test_a_package_name_is_its_module_s_object() -> None:
+    import kinematica as km
+    from kinematica.io import builtin
+    from kinematica.robot import load
+
+    assert km.builtin_names is builtin.builtin_names
+    assert km.load is load and callable(load)  # the function, not the module robot.load
+    assert km.ik is importlib.import_module("kinematica.ik")
+
+
+def test_the_library_imports_what_each_step_needs_only() -> None:
+    seen = _steps(
+        """
+        import kinematica as km
+        report("import")
+        robot = km.load("puma560")
+        T = robot.fk([0.1, 0.2, 0.3, 0.4, 0.5, 0.6])
+        report("fk")
+        assert robot.ik(T).method == "analytic:spherical-wrist"
+        report("ik")
+        """
+    )
+    imported = seen["import"] - {"kinematica", "kinematica._lazy", "kinematica.errors"}
+    assert _ours(imported, "kinematica") == set()
+    assert "numpy" not in imported
+    assert _ours(seen["fk"], "kinematica.ik") == set()
+    assert set(NOT_FOR_FK) & seen["fk"] == set()
+    assert "kinematica.ik.analytic.spherical_wrist" in seen["ik"]
+    assert set(NOT_FOR_PUMA_IK) & seen["ik"] == set()
+
+
+def test_the_command_line_imports_no_ik_for_fk() -> None:
+    seen = _steps(
+        """
+        import contextlib, io
+        from kinematica.cli.main import main
+        with contextlib.redirect_stdout(io.StringIO()):
+            assert main(["fk", "puma560", "--q", "0", "45", "-30", "0", "0", "0"]) == 0
+            report("fk")
+            assert main(["ik", "puma560", "--pose", "0.4", "0.1", "0.3", "0", "90", "0"]) == 0
+            report("ik")
+        """
+    )
+    assert _ours(seen["fk"], "kinematica.ik") == set()
+    assert set(NOT_FOR_FK) & seen["fk"] == set()
+    assert set(NOT_FOR_PUMA_IK) & seen["ik"] == set()
