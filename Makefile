@@ -11,10 +11,14 @@ CORE_FLAGS   := --config-settings=cmake.define.KM_WERROR=ON
 
 .PHONY: demo test suite lint docs notebook bench sanitize clean
 
+# --no-compile: pip would byte-compile every module of every dependency (about 9,000
+# files, 20-30 s of one core), most of which nothing here imports; the suite reads
+# its bytecode from .venv/pycache anyway (below), and any other process compiles a module
+# the first time it imports it.
 $(STAMP): pyproject.toml
 	test -d $(VENV) || $(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet $(CORE_FLAGS) -e '.[test]'
+	$(BIN)/python -m pip install --quiet --no-compile --upgrade pip
+	$(BIN)/python -m pip install --quiet --no-compile $(CORE_FLAGS) -e '.[test]'
 	touch $(STAMP)
 
 # An edit of the core rebuilds it (incrementally, in build/) and reinstalls it; right
