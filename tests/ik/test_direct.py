@@ -20,7 +20,7 @@ import pytest
 from support.helpers import assert_same_result
 
 import kinematica as km
-import kinematica.robot.robot as robot_module
+import kinematica.ik.redundancy as redundancy_module
 from kinematica.errors import KinematicaError
 from kinematica.ik import IKOptions, IKResult
 from kinematica.ik.direct import HELD_CACHE, DirectParameter
@@ -131,7 +131,7 @@ def test_one_reachable_pose_does_not_take_the_general_path(
     def general(*args: object, **kw: object) -> None:
         raise AssertionError("the general path was taken")
 
-    monkeypatch.setattr(robot_module, "solve_arm", general)
+    monkeypatch.setattr(redundancy_module, "solve_arm", general)  # robot.ik's general path
     res = robot.ik(T, **kwargs)
     assert res.status == "ok" and res.count >= 1
     _same(res, expected)
