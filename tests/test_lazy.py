@@ -5,8 +5,8 @@ modules it holds after each step, and the modules a step does not need must be
 absent: ``import kinematica`` imports neither numpy nor the core; a built-in
 robot's FK imports no IK, URDF, robot-file writer or DH extraction; its first IK
 imports the solver modules of the families tried before its own, not the
-others'; ``kinematica fk`` imports no IK. One process for the library's steps,
-one for the command line's (each about half a second).
+others' nor the redundancy layer; ``kinematica fk`` imports no IK. One process
+for the library's steps, one for the command line's (each about half a second).
 """
 
 from __future__ import annotations
@@ -44,10 +44,16 @@ NOT_FOR_FK = (
     "xml.etree.ElementTree",
 )
 
-#: Solver modules the PUMA 560's first IK must not import (not tried before its family).
-NOT_FOR_PUMA_IK = tuple(
-    f"kinematica.ik.analytic.{m}"
-    for m in ("arm_position", "elbow_arms", "general_6r", "planar_arms", "spherical_shoulder")
+#: Modules the PUMA 560's first IK must not import: solver families not tried before its
+#: own, and the redundancy layer (a 6R arm holds no joint).
+NOT_FOR_PUMA_IK = (
+    *(
+        f"kinematica.ik.analytic.{m}"
+        for m in ("arm_position", "elbow_arms", "general_6r", "planar_arms", "spherical_shoulder")
+    ),
+    "kinematica.ik.analytic.srs",
+    "kinematica.ik.parameter",
+    "kinematica.ik.redundancy",
 )
 
 _REPORT = """

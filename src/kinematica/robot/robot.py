@@ -52,6 +52,9 @@ __all__ = ["Robot"]
 
 FloatArray = NDArray[np.float64]
 _FLOAT64 = np.dtype(np.float64)
+#: Coordinates a pose fixes: an arm of more joints is redundant, and only such an arm's IK
+#: needs the redundancy layer (kinematica.ik.redundancy), loaded for it alone.
+_POSE_DOF = 6
 #: The frames a Jacobian is expressed in.
 _FRAMES = ("base", "tool", "spatial")
 #: Where a position target is placed (the orientation is free).
@@ -560,7 +563,6 @@ class Robot:
             if out is not None:
                 return out
         from kinematica.ik.options import IKOptions
-        from kinematica.ik.redundancy import solve_arm
 
         if options is None:
             options = IKOptions(
@@ -582,6 +584,14 @@ class Robot:
             )
         check_choice(options.method, "method", ("auto", "analytic", "numeric"))
         check_flag(options.respect_limits, "respect_limits")
+        if self.dof <= _POSE_DOF and options.fixed is None and options.arm_angle is None:
+            # no joint to hold: solve_arm would hand the target to solve_ik, as here, with
+            # the redundancy layer loaded for nothing
+            from kinematica.ik.solve import solve_ik
+
+            return solve_ik(self.chain, target, options)
+        from kinematica.ik.redundancy import solve_arm
+
         return solve_arm(self.chain, target, options, self.joint_names)
 
     def arm_angle(self, q: ArrayLike) -> FloatArray:
@@ -616,12 +626,14 @@ class Robot:
         """``ik`` of one rigid target with every default; None: the general path explains it."""
         fast = self._fast_ik.get(kind)
         if fast is None:
-            from kinematica.ik.redundancy import choose
             from kinematica.ik.solve import pose_solver
 
             fast = pose_solver(self.chain, kind)
-            if kind == "pose" and choose(self.chain) is not None:  # solved at a parameter
-                fast = fast._replace(direct=False)
+            if kind == "pose" and self.dof > _POSE_DOF:
+                from kinematica.ik.redundancy import choose
+
+                if choose(self.chain) is not None:  # solved at a parameter
+                    fast = fast._replace(direct=False)
             self._fast_ik[kind] = fast
         if not fast.direct:  # a redundant arm: at auto's parameter value, else the general path
             return self._direct.auto(pose) if kind == "pose" else None
