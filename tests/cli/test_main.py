@@ -9,6 +9,7 @@ solutions the CLI prints.
 
 from __future__ import annotations
 
+import argparse
 import os
 import subprocess
 import sys
@@ -24,7 +25,7 @@ from support.urdf import broken, write
 
 import kinematica as km
 from kinematica.cli import options
-from kinematica.cli.main import cli_error, cli_words
+from kinematica.cli.main import COMMANDS, build_parser, cli_error, cli_words
 from kinematica.errors import KinematicaError
 
 # --- version, python -m, help ---------------------------------------------------
@@ -41,6 +42,21 @@ def test_version_from_the_console_script_and_python_m() -> None:
         timeout=60,
     )
     assert proc.returncode == 0 and proc.stdout.strip() == f"kinematica {km.__version__}"
+
+
+def _commands(parser: argparse.ArgumentParser) -> set[str]:
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    return set(sub.choices)
+
+
+def test_commands_name_the_module_that_registers_each() -> None:
+    # a command line naming a command registers its module alone: the table must say
+    # which module that is, for every command the modules register
+    assert _commands(build_parser()) == set(COMMANDS)
+    for command, module in COMMANDS.items():
+        alone = {c for c, m in COMMANDS.items() if m == module}
+        assert _commands(build_parser(command)) == alone, command
+    assert _commands(build_parser("no-such-command")) == set(COMMANDS)
 
 
 def test_python_m_kinematica_runs_commands() -> None:

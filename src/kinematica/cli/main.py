@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import importlib
 import os
 import re
 import sys
@@ -23,16 +24,6 @@ from typing import Any, NoReturn, TextIO
 import numpy as np
 
 from kinematica import __version__
-from kinematica.cli import (
-    control,
-    convert,
-    derive,
-    design,
-    kinematics,
-    motion,
-    self_motion,
-    viz,
-)
 from kinematica.cli.format import plain
 from kinematica.errors import KinematicaError
 
@@ -41,8 +32,39 @@ __all__ = ["main"]
 EXIT_OK, EXIT_NO_ANSWER, EXIT_BAD_INPUT = 0, 1, 2
 EXIT_INTERRUPTED = 130  # 128 + SIGINT, as shells report Ctrl-C
 
-#: The modules of subcommands, each with ``register(subparsers)``, in help order.
-COMMAND_MODULES = (kinematics, self_motion, motion, control, viz, derive, convert, design)
+#: The modules of subcommands (in kinematica.cli), each with ``register(subparsers)``, in
+#: help order.
+COMMAND_MODULES = (
+    "kinematics",
+    "self_motion",
+    "motion",
+    "control",
+    "viz",
+    "derive",
+    "convert",
+    "design",
+)
+
+#: Each command and the module that registers it: a command line naming one imports and
+#: registers that module alone (tests/cli/test_main.py holds this equal to what the
+#: modules register).
+COMMANDS = {
+    "robots": "kinematics",
+    "show": "kinematics",
+    "fk": "kinematics",
+    "ik": "kinematics",
+    "self-motion": "self_motion",
+    "jacobian": "motion",
+    "workspace": "motion",
+    "trajectory": "motion",
+    "control": "control",
+    "plot": "viz",
+    "animate": "viz",
+    "view": "viz",
+    "derive": "derive",
+    "convert": "convert",
+    "design": "design",
+}
 
 #: Where to report an internal error (a bug: every bad input has its own message).
 REPORT = "please report it to the kinematica developers, with the command line"
@@ -126,8 +148,13 @@ class _Parser(argparse.ArgumentParser):
         self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {plain(message)} (see --help)\n")
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The argument parser of every subcommand."""
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The argument parser of every subcommand, or of ``command``'s module alone.
+
+    Args:
+        command: The command the line names; None, or a name no module registers
+            (a typo, ``--help``): every module, so that help and errors list them all.
+    """
     parser = _Parser(
         prog="kinematica",
         description="Kinematics of serial robot manipulators: DH tables, forward "
@@ -137,8 +164,8 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub.required = True
 
-    for module in COMMAND_MODULES:
-        module.register(sub)
+    for name in (COMMANDS[command],) if command in COMMANDS else COMMAND_MODULES:
+        importlib.import_module(f"kinematica.cli.{name}").register(sub)
     return parser
 
 
@@ -190,8 +217,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         argv: Arguments without the program name; ``sys.argv[1:]`` if None.
     """
     _printable_everywhere()
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    words = sys.argv[1:] if argv is None else list(argv)
+    parser = build_parser(words[0] if words else None)
+    args = parser.parse_args(words)
     try:
         with _warnings_as_lines(sys.stderr, args):
             return int(args.run(args))
