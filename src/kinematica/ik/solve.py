@@ -32,7 +32,6 @@ from kinematica.ik.fallback import (
 )
 from kinematica.ik.numeric import LABEL, check_seed, numeric_setup
 from kinematica.ik.options import IKOptions, Method
-from kinematica.ik.printed import answer_overdetermined, overdetermined_rows
 from kinematica.ik.reach import ANSWERED, beyond_limited_reach, needs_proof
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
 from kinematica.ik.result import CheckOutput, CoreAnswer, IKBatchResult, IKResult, result_of
@@ -298,6 +297,8 @@ def solve_ik(
         and np.shape(target) == (4, 4)
     )
     if overdetermined and isinstance(out, IKResult) and not isinstance(target, Targets):
+        from kinematica.ik.printed import answer_overdetermined  # a reduced arm's pose only
+
         return answer_overdetermined(chain, target, options, out, _solve, options.precision)
     return out
 
@@ -419,6 +420,8 @@ def _solve(
             raw["gap"] = np.where(beyond, gaps, raw["gap"])
     over = chain.dof < 6 and m is None and not targets.position
     if over and not isinstance(target, Targets):  # over-determined poses
+        from kinematica.ik.printed import overdetermined_rows
+
         raw, more = overdetermined_rows(chain, target, options, raw, labels, q0s, solve_ik)
         for i, extra in more.items():
             batch_notes[where(i)] = extra
