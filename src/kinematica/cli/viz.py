@@ -181,7 +181,7 @@ def view(args: argparse.Namespace) -> int:
         print(f"serving {robot.name} on {server.url} (Ctrl-C to stop)")
     sys.stdout.flush()
     if args.open:
-        import webbrowser  # only for --open: it costs every command's start 5-10 ms
+        import webbrowser  # only for --open: importing it slows every command's start
 
         webbrowser.open(server.url)
     try:

@@ -44,7 +44,7 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
     if special:
         yield p
         return
-    import tempfile  # only when writing: its import costs every command's start 5-10 ms
+    import tempfile  # only when writing: importing it (shutil, random) slows any start
 
     fd, name = tempfile.mkstemp(dir=p.parent, prefix=f".{p.name}.", suffix=f".tmp{p.suffix}")
     os.close(fd)
