@@ -147,6 +147,9 @@ FAMILIES = [
     ("SCARA", "scara", "pose"),
     ("anthropomorphic 3R", "anthropomorphic-3r", "pose"),
     ("arm position (PUMA 560, a position target)", "puma560", "position"),
+    ("cylindrical RPPR (the lecture notes' 4-DOF arm)", "cylindrical-4dof", "pose"),
+    ("spherical shoulder, q7 held (Panda, auto)", "panda", "pose"),
+    ("SRS at its arm angle (iiwa 14, auto)", "iiwa14", "pose"),
     ("numeric (Panda)", "panda", "numeric"),
 ]
 
