@@ -83,7 +83,11 @@ def default_setup(robot: km.Robot) -> NumericSetup:
 
 
 def core_call(robot: km.Robot) -> Any:
-    """``T -> solver.ik(...)``: the core's search and check of one target, as robot.ik calls it."""
+    """``T -> setup.ik(...)``: the core's search and check of one target, as robot.ik calls it.
+
+    (The first guess alone, then the restarts where it did not settle: two core calls for
+    the few targets that need restarts, one for the rest.)
+    """
     default = robot.ik(robot.fk(robot.qlim.mean(axis=1)), method="numeric")
     assert default.method == "numeric:lm"
     setup = default_setup(robot)
@@ -91,7 +95,7 @@ def core_call(robot: km.Robot) -> Any:
     opts.tol_position, opts.tol_rotation = 1e-10, 1e-10
     opts.respect_limits, opts.complete, opts.weights = True, False, (1.0,) * 6
     core = robot.chain.core
-    return lambda T: setup.solver.ik(core, T, opts, None, (LABEL,))
+    return lambda T: setup.ik(core, T, opts, None, (LABEL,))
 
 
 def account(robot: km.Robot, targets: np.ndarray, batched: float) -> list[str]:
