@@ -112,9 +112,20 @@ def test_a_roll_off_the_tool_is_turned_to_reach_a_position() -> None:
     np.testing.assert_allclose(pose.solutions, [q], atol=1e-10)
 
 
-def test_a_target_at_1e300_gives_a_finite_gap(notes: km.Robot) -> None:
-    res = _offset_arm().ik(np.array([0.0, 1e-3, 1e300]), respect_limits=False)
-    assert res.status == "unreachable" and math.isfinite(res.gap)
+def test_targets_at_1e300_give_finite_candidates_and_gaps() -> None:
+    # Nothing that grows with the target is squared: across k (the reach) and along it
+    # (the lift) a target 1e300 m away gives finite slides, and one inside the offset with
+    # a lift of 1e300 m its exact gap.
+    robot = _offset_arm()
+    closed = km.ik.solve.closed_form(robot.chain, "position")
+    assert closed is not None
+    for target in ([1e300, 0.0, 0.9], [0.0, 1e300, 1e300], [0.0, 1e-3, 1e300]):
+        T = np.eye(4)
+        T[:3, 3] = target
+        Q = closed.params.candidates(robot.chain.core, T)[0]
+        assert np.all(np.isfinite(Q)), (target, Q)
+    res = robot.ik(np.array([0.0, 1e-3, 1e300]), respect_limits=False)
+    assert res.status == "unreachable" and res.gap == pytest.approx(0.149, abs=TOL)
 
 
 def test_malformed_params_are_refused_before_the_core() -> None:

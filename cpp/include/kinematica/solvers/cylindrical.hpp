@@ -155,12 +155,17 @@ KM_HD inline double roll_for(const CylindricalParams& P, double r, Vec3& x) {
     return q4;
 }
 
-//! The two candidates of the tool origin at p = o + d (the roll, if any, free).
-KM_HD inline void position(const CylindricalParams& P, const Vec3& d, double* Q, SolverInfo& info) {
-    const double tol = triangle::SINGULAR_TOL * P.scale;
+//! The distance of o + d from axis 1 (through o along k): no component squared.
+KM_HD inline double across(const CylindricalParams& P, const Vec3& d) {
     const double kd = dot(P.k, d);
-    const Vec3 dp{d.x - kd * P.k.x, d.y - kd * P.k.y, d.z - kd * P.k.z};
-    const double r = norm(dp);
+    return std::hypot(std::hypot(d.x - kd * P.k.x, d.y - kd * P.k.y), d.z - kd * P.k.z);
+}
+
+//! The two candidates of the tool origin at p = o + d, r = across(d) from axis 1 (the
+//! roll, if any, free).
+KM_HD inline void position(const CylindricalParams& P, const Vec3& d, double r, double* Q,
+                           SolverInfo& info) {
+    const double tol = triangle::SINGULAR_TOL * P.scale;
     Vec3 x;
     const double q4 = roll_for(P, r, x);
     const Vec3 v{x.x - P.o.x, x.y - P.o.y, x.z - P.o.z};
@@ -196,14 +201,13 @@ KM_HD inline void position(const CylindricalParams& P, const Vec3& d, double* Q,
 KM_HD inline void CylindricalParams::solve(const Pose& T, double* Q, SolverInfo& info) const {
     for (int i = 0; i < 2 * n; ++i) Q[i] = NaN;
     const Vec3 d{T.p.x - o.x, T.p.y - o.y, T.p.z - o.z};
+    const double r = cylindrical::across(*this, d);
     if (pose) {
         cylindrical::pose(*this, T, d, Q);
     } else {
-        cylindrical::position(*this, d, Q, info);
+        cylindrical::position(*this, d, r, Q, info);
     }
     // No tool origin comes closer to axis 1 than offset − rho across k.
-    const double kd = dot(k, d);
-    const double r = norm(Vec3{d.x - kd * k.x, d.y - kd * k.y, d.z - kd * k.z});
     double gap = offset - rho - r;
     gap = gap > 0.0 ? gap : 0.0;
     const double tol = triangle::SINGULAR_TOL * scale;
