@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import weakref
 from dataclasses import replace
-from typing import Any, NamedTuple
+from typing import Any, Literal, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -202,21 +202,25 @@ class PoseSolver(NamedTuple):
 
 
 def pose_solver(
-    chain: Chain, kind: TargetKind = "pose", parameter: str | None = None
+    chain: Chain,
+    kind: TargetKind = "pose",
+    parameter: str | None = None,
+    method: Literal["auto", "numeric"] = "auto",
 ) -> PoseSolver:
     """The solver ``solve_ik`` picks for one target of this kind with the default options.
 
     The same choice and settings as :func:`solve_ik` makes (closed form when the
-    structure allows, else the numeric search with the default seed), ready for
-    ``robot.ik``'s one-target path, which skips the general parsing when the
-    target is a rigid transform to round-off (a position: placed in the identity
-    pose, as :func:`~kinematica.ik.targets.parse_targets` places it). With
-    ``parameter`` (``"arm_angle"``), the closed form at it, which the chain must have
-    (:func:`closed_form`); its ``ik_rigid`` solves at the value its ``Params`` hold.
+    structure allows, else the numeric search with the default seed; with ``method``
+    ``"numeric"``, the search), ready for ``robot.ik``'s one-target path, which skips
+    the general parsing when the target is a rigid transform to round-off (a position:
+    placed in the identity pose, as :func:`~kinematica.ik.targets.parse_targets` places
+    it). With ``parameter`` (``"arm_angle"``), the closed form at it, which the chain
+    must have (:func:`closed_form`); its ``ik_rigid`` solves at the value its ``Params``
+    hold.
     """
     tolerance = parse_tolerance(None)
     w = _POSITION if kind == "position" else _POSE
-    closed = closed_form(chain, kind, parameter)
+    closed = None if method == "numeric" else closed_form(chain, kind, parameter)
     if parameter is not None and closed is None:
         raise ValueError(f"this chain has no closed form at the parameter {parameter!r}")
     solver, labels, name = _solver(chain, closed, tolerance, True, None, w)
@@ -224,9 +228,12 @@ def pose_solver(
     opts = _options(tolerance, True, complete, w)
     # (a closed form with a search_note says not_found where it proves nothing, and the
     # one-pose path hands not_found to the general one, which searches)
-    direct = (closed is None and not _why_numeric(chain, None, kind, None)) or (
-        closed is not None and (closed.exact or slack_of(chain) == 0.0) and not closed.partial
-    )
+    if closed is None:
+        # (the search's answer for "auto" carries the note saying why no closed form took
+        # it, which only the general path adds; "numeric" was asked for: no note)
+        direct = method == "numeric" or not _why_numeric(chain, None, kind, None)
+    else:
+        direct = (closed.exact or slack_of(chain) == 0.0) and not closed.partial
     return PoseSolver(solver.ik_rigid, opts, labels, name, complete, direct)
 
 

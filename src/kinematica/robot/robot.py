@@ -104,7 +104,7 @@ class Robot:
     _jacobian_one: Callable[[FloatArray, bool], tuple[FloatArray, int]] = field(
         init=False, repr=False, compare=False
     )
-    _fast_ik: dict[str, PoseSolver] = field(
+    _fast_ik: dict[tuple[str, str], PoseSolver] = field(
         init=False, repr=False, compare=False, default_factory=dict
     )
     _turn: FloatArray | None = field(init=False, repr=False, compare=False)
@@ -536,24 +536,26 @@ class Robot:
             and type(target) is np.ndarray
             and target.dtype is _FLOAT64
             and method.__class__ is str
-            and method == "auto"
+            and (method == "auto" or method == "numeric")
             and respect_limits is True
             and tol is None
             and q0 is None
             and mask is None
             and seed is None
+            and workers is None
             and precision is None
         ):  # one target, every default: straight to the core (a rigid target to round-off)
             out: IKResult | None = None
             try:
                 if fixed is None and arm_angle is None:
                     if target.shape == (4, 4):
-                        out = self._fast(target, "pose")
+                        out = self._fast(target, "pose", method)
                     elif target.shape == (3,):
                         pose = _IDENTITY.copy()
                         pose[0, 3], pose[1, 3], pose[2, 3] = target.tolist()
-                        out = self._fast(pose, "position")
-                elif target.shape == (4, 4):  # one pose at one value of a redundant arm's parameter
+                        out = self._fast(pose, "position", method)
+                elif method == "auto" and target.shape == (4, 4):
+                    # one pose at one value of a redundant arm's parameter
                     if arm_angle is None:
                         out = self._direct.fixed(target, fixed)
                     elif fixed is None:
@@ -622,19 +624,21 @@ class Robot:
 
         return DirectParameter(self.chain, self.joint_names)
 
-    def _fast(self, pose: FloatArray, kind: TargetKind) -> IKResult | None:
+    def _fast(
+        self, pose: FloatArray, kind: TargetKind, method: Literal["auto", "numeric"]
+    ) -> IKResult | None:
         """``ik`` of one rigid target with every default; None: the general path explains it."""
-        fast = self._fast_ik.get(kind)
+        fast = self._fast_ik.get((kind, method))
         if fast is None:
             from kinematica.ik.solve import pose_solver
 
-            fast = pose_solver(self.chain, kind)
-            if kind == "pose" and self.dof > _POSE_DOF:
+            fast = pose_solver(self.chain, kind, method=method)
+            if method == "auto" and kind == "pose" and self.dof > _POSE_DOF:
                 from kinematica.ik.redundancy import choose
 
                 if choose(self.chain) is not None:  # solved at a parameter
                     fast = fast._replace(direct=False)
-            self._fast_ik[kind] = fast
+            self._fast_ik[(kind, method)] = fast
         if not fast.direct:  # a redundant arm: at auto's parameter value, else the general path
             return self._direct.auto(pose) if kind == "pose" else None
         return fast.rigid(self.chain.core, pose)  # None: the general path explains it
