@@ -22,7 +22,8 @@
 // x4^i x5^j (i <= 3, j <= 2): M(x6) u = 0 with M = A0 + A1 x6 + A2 x6², so det M(x6) = 0
 // (degree 24, (1 + x6²)⁴ a factor: up to 16 genuine real roots). Its roots are the
 // eigenvalues of the 24 x 24 companion matrix, solved as a 16 x 16 one once the 8 at ±i
-// are eliminated (general_6r_roots.hpp); each real one gives u (M's null vector) hence
+// are eliminated (general_6r_roots.hpp; the generalized eigenproblem by QZ where A2 is
+// ill-conditioned); each real one gives u (M's null vector) hence
 // x4, x5, then S2 = Q⁺(F - c0) gives q'1, q'2 and the loop's closure q'3. The shared
 // check polishes every candidate by Gauss-Newton on the full pose, dedupes and judges it.
 //
@@ -62,7 +63,10 @@ constexpr int SLOTS = CLASSES * PER_CLASS + FURTHER;
 
 //! The companion matrix A2⁻¹(...) is used when A2's reciprocal condition number (LU
 //! estimate) is above this; below (a root near x6 = ∞), the pencil is made again with
-//! q'6 shifted by SECOND_SHIFT more, which brings that root to a finite x6.
+//! q'6 shifted by SECOND_SHIFT more, which brings that root to a finite x6. Below it at
+//! both shifts (M(x6) nearly singular for every x6: a calibrated UR5, whose exact arm's
+//! det M(x6) ≡ 0), the roots are the generalized eigenvalues by QZ (real_roots_qz: a
+//! few times the companion's cost, no inverse of A2).
 constexpr double LEADING_RCOND_TOL = 1e-8;
 //! The second shift of q'6 (rad): far from 0 and π, so that a root at x6 = ∞ for the
 //! first is at |x6| = 1 / tan(SECOND_SHIFT / 2) ≈ 1.5 for the second.
@@ -102,9 +106,10 @@ constexpr double GRID_STEP = 2.0 * PI / 3.0;
 //! What one solve decided, for the tests of its tolerances (solve fills it when given).
 struct Trace {
     double rcond = NaN;    //!< A2's reciprocal condition number at the first shift (LU estimate)
-    double shift6 = NaN;   //!< the q'6 shift the pencil was made with (NaN: neither worked)
+    double shift6 = NaN;   //!< the q'6 shift the pencil was made with
     double closure = INF;  //!< the smallest miss of a candidate (m or rad; INF: no candidate)
     bool deflated = false; //!< the roots at x6 = ±i were eliminated before the eigenproblem
+    bool qz = false;       //!< A2 ill-conditioned at both shifts: the roots by QZ
 };
 
 //! The line (point, direction) a loop carries.
@@ -427,21 +432,22 @@ struct General6RParams {
         pencil(Li, shift6, A);
         Eigen::PartialPivLU<Matrix12> lead(A[2]);
         if (trace != nullptr) trace->rcond = lead.rcond();
+        bool qz = false;
         if (!(lead.rcond() > LEADING_RCOND_TOL)) {
             shift6 = phi[2] + SECOND_SHIFT;
             pencil(Li, shift6, A);
             lead.compute(A[2]);
-            if (!(lead.rcond() > LEADING_RCOND_TOL)) {
-                info.near = true;  // not proven unreachable: the numeric search is asked
-                return;
-            }
+            // both ill-conditioned: M(x6) nearly singular for every x6 (an arm near one
+            // whose elimination degenerates), the generalized eigenproblem by QZ
+            qz = !(lead.rcond() > LEADING_RCOND_TOL);
         }
-        if (trace != nullptr) trace->shift6 = shift6;
+        if (trace != nullptr) trace->shift6 = shift6, trace->qz = qz;
         // the real roots x6 of det M(x6) (general_6r_roots.hpp)
         double roots[ROOTS];
         bool split[ROOTS];
-        const int found =
-            real_roots(A, lead, roots, trace != nullptr ? &trace->deflated : nullptr, split);
+        const int found = qz ? real_roots_qz(A, roots, split)
+                             : real_roots(A, lead, roots,
+                                          trace != nullptr ? &trace->deflated : nullptr, split);
         if (found < 0) {
             info.near = true;  // the eigenvalue iteration failed: not proven unreachable
             return;
