@@ -215,7 +215,7 @@ void bind_general6r(nb::module_& m) {
         .def_rw("centre", &General6RParams::centre, "(3,) the reach bound's centre (m, base frame)")
         .def_rw("reach", &General6RParams::reach, "the tool origin stays within this of centre (m)")
         .def_rw("refine_misses", &General6RParams::refine_misses,
-                "take candidates that miss by REFINE_FROM to REFINE_LIMIT to the solution near "
+                "take candidates that miss by up to REFINE_LIMIT to the solution near "
                 "them by Newton's method (False: as the eigenproblem gives them)")
         .def_prop_rw(
             "order", [](const General6RParams& p) { return small::get_ints(p.order); },

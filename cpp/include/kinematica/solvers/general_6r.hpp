@@ -83,8 +83,10 @@ constexpr double DOUBLE_ROOT_TOL = 1e-10;
 //! tell), so the check says not_found and the numeric search is asked. "unreachable"
 //! comes from the reach bound alone, which is a proven gap.
 constexpr double CLOSURE_TOL = 0.5 * POLISH_LIMIT;
-//! A candidate whose pose misses the target by more than REFINE_FROM up to this (m or
-//! rad) is taken by Newton's method on the full pose to the solution near it. Candidates
+//! A candidate whose pose misses the target by up to this (m or rad; by anything above
+//! 0: one that misses by 1e-13 is 1e-13 / σmin off in its joints, 1e-8 at the σmin of
+//! 1e-5 seen on calibrated UR5s, where the check takes it as it is, its tolerance
+//! 1e-10) is taken by Newton's method on the full pose to the solution near it. Candidates
 //! beyond the check's polish (POLISH_LIMIT) come from roots the eigenproblem gets to
 //! 1e-5..1e-3 only: on arms near one whose elimination degenerates (a calibrated UR:
 //! M(x6) nearly singular for every x6), where an eigenvalue's error is round-off over
@@ -93,9 +95,10 @@ constexpr double CLOSURE_TOL = 0.5 * POLISH_LIMIT;
 //! root's real part: misses of 0.3 and more), and Newton would only wander to another
 //! candidate's.
 constexpr double REFINE_LIMIT = 1e-1;
-//! ... and from this up (m or rad): a candidate that misses by 1e-12 is 1e-12 / σmin off
-//! in its joints (σmin: the Jacobian's smallest singular value), 1e-9 at σmin = 1e-3,
-//! yet the check takes it as it is (its tolerance: 1e-10). Newton takes it to round-off.
+//! A split pair's candidate (general_6r_roots.hpp: SPLIT_ROOT_TOL) that Newton takes no
+//! nearer than this (m or rad) to the target is at a fold's near miss (a complex pair of
+//! solutions), not at a solution, and dropped (one that converges reaches round-off:
+//! 2e-16 to 7e-16 measured on calibrated UR5s).
 constexpr double REFINE_FROM = 1e-12;
 //! Newton steps at most (quadratic from REFINE_LIMIT: 1e-1, 1e-2, 1e-4, 1e-8, 1e-15,
 //! then the noise floor stops it).
@@ -178,7 +181,7 @@ struct General6RParams {
     //! axis 1 and the sum of the joints' fixed offsets. Beyond it: a proven gap.
     Vec3 centre{};
     double reach = INF;
-    //! Take candidates that miss by REFINE_FROM to REFINE_LIMIT to the solution near them
+    //! Take candidates that miss by up to REFINE_LIMIT to the solution near them
     //! (false: as the eigenproblem gives them; for the tests of the other tolerances).
     bool refine_misses = true;
 
@@ -460,7 +463,7 @@ struct General6RParams {
             double a[6], q[6];
             const Vector12 u = null_vector(A, roots[r], info);
             double closure = back_substitute(L, Li, T, roots[r], shift6, u, a);
-            if (refine_misses && closure > REFINE_FROM && closure < REFINE_LIMIT) {
+            if (refine_misses && closure > 0.0 && closure < REFINE_LIMIT) {
                 closure = refine(L, T, a, closure);
                 // a split pair's candidate that Newton takes no nearer than REFINE_FROM
                 // is at a fold's near miss (a complex pair of solutions), not a solution
