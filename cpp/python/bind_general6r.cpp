@@ -116,13 +116,27 @@ nb::tuple eigenvalues_of(nb::handle A) {
     return out;
 }
 
-//! (rcond, shift6, closure, near, deflated) of one solve of the pose T: its Trace and flag.
+//! (rcond, shift6, closure, near, deflated, qz) of one solve of the pose T: its Trace and flag.
 nb::tuple trace_of(const General6RParams& p, const km::Pose& T) {
     double Q[kg::SLOTS * 6];
     km::SolverInfo info;
     kg::Trace t;
     p.solve(T, Q, info, &t);
-    return nb::make_tuple(t.rcond, t.shift6, t.closure, info.near, t.deflated);
+    return nb::make_tuple(t.rcond, t.shift6, t.closure, info.near, t.deflated, t.qz);
+}
+
+//! (roots (k,), split (k,)): the header's real roots of det M(x) by QZ.
+nb::tuple real_roots_qz_of(nb::handle A0, nb::handle A1, nb::handle A2) {
+    kg::Matrix12 A[3];
+    read_quadratic(A0, A1, A2, A);
+    double roots[kg::ROOTS];
+    bool split[kg::ROOTS];
+    const int found = kg::real_roots_qz(A, roots, split);
+    if (found < 0) throw nb::value_error("the QZ iteration did not converge");
+    double *out, *sp;
+    F64 r = new_f64({found}, out), s = new_f64({found}, sp);
+    for (int i = 0; i < found; ++i) out[i] = roots[i], sp[i] = split[i] ? 1.0 : 0.0;
+    return nb::make_tuple(r, s);
 }
 
 }  // namespace
@@ -157,15 +171,20 @@ void bind_general6r(nb::module_& m) {
     sub.def("real_roots", &real_roots_of, nb::arg("A0"), nb::arg("A1"), nb::arg("A2"),
             "(roots, deflated): the real roots of det(A0 + A1 x + A2 x²), each A (12, 12); "
             "deflated when its 8 roots at x = ±i were eliminated first.");
+    sub.def("real_roots_qz", &real_roots_qz_of, nb::arg("A0"), nb::arg("A1"), nb::arg("A2"),
+            "(roots, split): the real roots of det(A0 + A1 x + A2 x²) as generalized eigenvalues "
+            "by QZ (no inverse of A2; a root at x = inf as +-1e300), split 1.0 for the two "
+            "candidates of a nearly real pair.");
     sub.def("spurious_pivots", &spurious_of, nb::arg("A0"), nb::arg("A1"), nb::arg("A2"),
             "(deflated, r8, r9): whether M(i)'s null space is taken as the spurious roots', and "
             "its elimination's 8th and 9th pivots over the first.");
     sub.def("eigenvalues", &eigenvalues_of, nb::arg("A"),
             "(re, im): the eigenvalues of A (16, 16) or (24, 24) by the core's Hessenberg QR.");
     sub.def("trace", &trace_of, nb::arg("params"), nb::arg("T"),
-            "(rcond, shift6, closure, near, deflated) of one solve: A2's rcond at the first shift, "
-            "the shift used (NaN: neither), the smallest candidate closure (inf: none), the near "
-            "flag, whether the roots at x6 = ±i were eliminated before the eigenproblem.");
+            "(rcond, shift6, closure, near, deflated, qz) of one solve: A2's rcond at the first "
+            "shift, the shift used, the smallest candidate closure (inf: none), the near flag, "
+            "whether the roots at x6 = ±i were eliminated before the eigenproblem, whether the "
+            "roots came from QZ (A2 ill-conditioned at both shifts).");
 
     auto cls = bind_closed_form<General6RParams>(
         sub, "General6RParams",
@@ -196,7 +215,7 @@ void bind_general6r(nb::module_& m) {
         .def_rw("centre", &General6RParams::centre, "(3,) the reach bound's centre (m, base frame)")
         .def_rw("reach", &General6RParams::reach, "the tool origin stays within this of centre (m)")
         .def_rw("refine_misses", &General6RParams::refine_misses,
-                "take candidates that miss by REFINE_FROM to REFINE_LIMIT to the solution near "
+                "take candidates that miss by up to REFINE_LIMIT to the solution near "
                 "them by Newton's method (False: as the eigenproblem gives them)")
         .def_prop_rw(
             "order", [](const General6RParams& p) { return small::get_ints(p.order); },

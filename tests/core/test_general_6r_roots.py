@@ -118,3 +118,41 @@ def test_split_root_tol_turns_a_nearly_real_pair_into_two_candidates(side: float
     assert deflated
     expected = sorted(real + ([x0 - s, x0 + s] if side < 1.0 else []))
     np.testing.assert_allclose(np.sort(roots), expected, atol=ROOT_TOL)
+
+
+def test_qz_finds_the_real_roots_and_the_one_at_infinity_where_a2_is_singular() -> None:
+    # a factor x - 0.7 of degree 1: A2 of rank 11, det M of degree 23 (a root at x = ∞,
+    # q' = shift + π); QZ forms no inverse of A2 and gives it as 1e300
+    rng = np.random.default_rng(4)
+    real = [-2.0, -0.5, 0.25, 0.7, 1.5, 3.0, 3.5]
+    pairs = [_real_pair(a, b) for a, b in ((-2.0, -0.5), (0.25, 1.5), (3.0, 3.5))]
+    A = _quadratic(rng, [SPURIOUS_FACTOR] * 4 + pairs + [(-0.7, 1.0, 0.0)] + [(1.0, 0.5, 1.0)] * 4)
+    assert np.linalg.matrix_rank(A[2]) == 11
+    roots, split = G.real_roots_qz(*A)
+    assert not split.any()
+    roots = np.sort(roots)
+    assert roots[-1] == 1e300
+    np.testing.assert_allclose(roots[:-1], real, atol=ROOT_TOL)
+    # the same pencil with A2 regular (the factor (x - 0.7)(1 + x/10)): the companion
+    # matrix's roots and QZ's agree
+    A = _quadratic(rng, [SPURIOUS_FACTOR] * 4 + pairs + [(-0.7, 0.93, 0.1)] + [(1.0, 0.5, 1.0)] * 4)
+    qz, companion = np.sort(G.real_roots_qz(*A)[0]), np.sort(G.real_roots(*A)[0])
+    np.testing.assert_allclose(qz, companion, atol=ROOT_TOL)
+    np.testing.assert_allclose(qz, np.sort([*real, -10.0]), atol=ROOT_TOL)
+
+
+def test_qz_on_a_singular_pencil_keeps_the_regular_roots_among_spurious_ones() -> None:
+    # a factor ≡ 0: det M ≡ 0 (the exact UR5's elimination); the regular part's real
+    # roots are still found, with spurious ones of the singular part (anywhere: the
+    # solver's closure and the shared check drop them)
+    rng = np.random.default_rng(5)
+    real = [-2.0, -0.5, 0.25, 1.5, 3.0, 3.5]
+    pairs = [_real_pair(real[2 * k], real[2 * k + 1]) for k in range(3)]
+    singular = [SPURIOUS_FACTOR] * 4 + pairs + [(0.0, 0.0, 0.0)] + [(1.0, 0.5, 1.0)] * 4
+    spurious = 0
+    for _ in range(3):
+        A = _quadratic(rng, singular)
+        roots = G.real_roots_qz(*A)[0]
+        assert np.abs(roots[:, None] - np.array(real)[None]).min(axis=0).max() <= 1e-8
+        spurious += len(roots) - len(real)
+    assert spurious >= 1  # the singular part gave real eigenvalues that are no root

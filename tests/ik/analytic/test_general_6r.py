@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+import kinematica._core as _core
 import numpy as np
 import pytest
 from support.ik_search import dls_solutions, joint_distance
@@ -164,12 +165,12 @@ def test_rank_tol_rejects_a_deficient_labelling_and_keeps_a_nearly_deficient_one
 def test_probe_tol_separates_a_working_labelling_from_a_degenerate_one() -> None:
     robot = _robot(np.random.default_rng(4), False)
     params = closed_form(robot.chain, "pose").params
-    assert g6._probe_error(params, robot.chain) <= 1e-3 * g6.PROBE_TOL
+    assert g6._probe(params, robot.chain, refine=True).max() <= 1e-3 * g6.PROBE_TOL
     # the PUMA's forward labelling: Q of full rank, the pencil singular (spherical wrist)
     puma = km.load("puma560").chain
     K, G1, size = g6.loop_of(puma, features(puma))
     built = g6._params(K, G1, size, 0, False)
-    assert built is not None and g6._probe_error(built[0], puma) >= 1e3 * g6.PROBE_TOL
+    assert built is not None and g6._probe(built[0], puma, refine=True).max() >= 1e3 * g6.PROBE_TOL
 
 
 def test_special_families_keep_their_arms_and_6r_arms_with_a_slide_are_not_taken() -> None:
@@ -275,3 +276,37 @@ def test_a_calibrated_ur_loses_no_solution() -> None:
         many = robot.ik(np.repeat(robot.fk(q[i])[None], 200, axis=0), method="numeric", q0=starts)
         for x in many.solutions[many.count > 0, 0]:
             assert joint_distance(robot, one.solutions, x).min() <= 1e-6
+
+
+def test_a_calibrated_ur_once_refused_is_solved_by_qz_and_its_spurious_roots_dropped() -> None:
+    # sample_arm's first calibrated UR (the UR5's table, twists 1e-3 off, modified DH):
+    # A2 ill-conditioned at both shifts on every pose (M(x6) nearly singular for every x6),
+    # which the builder refused (no candidates: every probe missed). Its roots now come
+    # from QZ; the singular part's real eigenvalues give candidates whose pose misses the
+    # target, none of which is returned. Reference: 200 numeric starts per pose.
+    arm = g6.sample_arm(np.random.default_rng(0), True)
+    assert arm.note.startswith("UR5") and arm.convention == "modified"
+    robot = km.Robot.from_dh(arm.links, convention=arm.convention, base=arm.base, tool=arm.tool)
+    params = closed_form(robot.chain, "pose").params
+    rng = np.random.default_rng(1)
+    q = rng.uniform(-math.pi, math.pi, (4, 6))[[1, 3]]
+    res = robot.ik(robot.fk(q))
+    for i in range(len(q)):
+        T = robot.fk(q[i])
+        assert _core.general6r.trace(params, T)[5]  # the roots by QZ
+        raw = params.candidates(robot.chain.core, T)[0]
+        raw = raw[np.isfinite(raw[:, 0])]
+        F = robot.fk(raw)
+        misses = np.linalg.norm(F[:, :3, 3] - T[:3, 3], axis=1)
+        assert (misses > 1e-3).sum() >= 2  # spurious candidates
+        one = res[i]
+        assert one.method == "analytic:general-6R" and one.status == "ok"
+        for sol in one.solutions:
+            Ts = robot.fk(sol)
+            assert np.linalg.norm(Ts[:3, 3] - T[:3, 3]) <= FK_TOL
+            assert km.rotation_angle(Ts[:3, :3], T[:3, :3]) <= FK_TOL
+        assert joint_distance(robot, one.solutions, q[i]).min() <= FOUND_TOL
+        found = dls_solutions(robot, T, rng, starts=200)
+        assert one.count >= len(found) >= 1
+        for sol in found:
+            assert joint_distance(robot, one.solutions, sol).min() <= 1e-6

@@ -22,7 +22,8 @@
 // x4^i x5^j (i <= 3, j <= 2): M(x6) u = 0 with M = A0 + A1 x6 + A2 x6², so det M(x6) = 0
 // (degree 24, (1 + x6²)⁴ a factor: up to 16 genuine real roots). Its roots are the
 // eigenvalues of the 24 x 24 companion matrix, solved as a 16 x 16 one once the 8 at ±i
-// are eliminated (general_6r_roots.hpp); each real one gives u (M's null vector) hence
+// are eliminated (general_6r_roots.hpp; the generalized eigenproblem by QZ where A2 is
+// ill-conditioned); each real one gives u (M's null vector) hence
 // x4, x5, then S2 = Q⁺(F - c0) gives q'1, q'2 and the loop's closure q'3. The shared
 // check polishes every candidate by Gauss-Newton on the full pose, dedupes and judges it.
 //
@@ -62,7 +63,10 @@ constexpr int SLOTS = CLASSES * PER_CLASS + FURTHER;
 
 //! The companion matrix A2⁻¹(...) is used when A2's reciprocal condition number (LU
 //! estimate) is above this; below (a root near x6 = ∞), the pencil is made again with
-//! q'6 shifted by SECOND_SHIFT more, which brings that root to a finite x6.
+//! q'6 shifted by SECOND_SHIFT more, which brings that root to a finite x6. Below it at
+//! both shifts (M(x6) nearly singular for every x6: a calibrated UR5, whose exact arm's
+//! det M(x6) ≡ 0), the roots are the generalized eigenvalues by QZ (real_roots_qz: a
+//! few times the companion's cost, no inverse of A2).
 constexpr double LEADING_RCOND_TOL = 1e-8;
 //! The second shift of q'6 (rad): far from 0 and π, so that a root at x6 = ∞ for the
 //! first is at |x6| = 1 / tan(SECOND_SHIFT / 2) ≈ 1.5 for the second.
@@ -79,8 +83,10 @@ constexpr double DOUBLE_ROOT_TOL = 1e-10;
 //! tell), so the check says not_found and the numeric search is asked. "unreachable"
 //! comes from the reach bound alone, which is a proven gap.
 constexpr double CLOSURE_TOL = 0.5 * POLISH_LIMIT;
-//! A candidate whose pose misses the target by more than REFINE_FROM up to this (m or
-//! rad) is taken by Newton's method on the full pose to the solution near it. Candidates
+//! A candidate whose pose misses the target by up to this (m or rad; by anything above
+//! 0: one that misses by 1e-13 is 1e-13 / σmin off in its joints, 1e-8 at the σmin of
+//! 1e-5 seen on calibrated UR5s, where the check takes it as it is, its tolerance
+//! 1e-10) is taken by Newton's method on the full pose to the solution near it. Candidates
 //! beyond the check's polish (POLISH_LIMIT) come from roots the eigenproblem gets to
 //! 1e-5..1e-3 only: on arms near one whose elimination degenerates (a calibrated UR:
 //! M(x6) nearly singular for every x6), where an eigenvalue's error is round-off over
@@ -89,9 +95,10 @@ constexpr double CLOSURE_TOL = 0.5 * POLISH_LIMIT;
 //! root's real part: misses of 0.3 and more), and Newton would only wander to another
 //! candidate's.
 constexpr double REFINE_LIMIT = 1e-1;
-//! ... and from this up (m or rad): a candidate that misses by 1e-12 is 1e-12 / σmin off
-//! in its joints (σmin: the Jacobian's smallest singular value), 1e-9 at σmin = 1e-3,
-//! yet the check takes it as it is (its tolerance: 1e-10). Newton takes it to round-off.
+//! A split pair's candidate (general_6r_roots.hpp: SPLIT_ROOT_TOL) that Newton takes no
+//! nearer than this (m or rad) to the target is at a fold's near miss (a complex pair of
+//! solutions), not at a solution, and dropped (one that converges reaches round-off:
+//! 2e-16 to 7e-16 measured on calibrated UR5s).
 constexpr double REFINE_FROM = 1e-12;
 //! Newton steps at most (quadratic from REFINE_LIMIT: 1e-1, 1e-2, 1e-4, 1e-8, 1e-15,
 //! then the noise floor stops it).
@@ -102,9 +109,10 @@ constexpr double GRID_STEP = 2.0 * PI / 3.0;
 //! What one solve decided, for the tests of its tolerances (solve fills it when given).
 struct Trace {
     double rcond = NaN;    //!< A2's reciprocal condition number at the first shift (LU estimate)
-    double shift6 = NaN;   //!< the q'6 shift the pencil was made with (NaN: neither worked)
+    double shift6 = NaN;   //!< the q'6 shift the pencil was made with
     double closure = INF;  //!< the smallest miss of a candidate (m or rad; INF: no candidate)
     bool deflated = false; //!< the roots at x6 = ±i were eliminated before the eigenproblem
+    bool qz = false;       //!< A2 ill-conditioned at both shifts: the roots by QZ
 };
 
 //! The line (point, direction) a loop carries.
@@ -173,7 +181,7 @@ struct General6RParams {
     //! axis 1 and the sum of the joints' fixed offsets. Beyond it: a proven gap.
     Vec3 centre{};
     double reach = INF;
-    //! Take candidates that miss by REFINE_FROM to REFINE_LIMIT to the solution near them
+    //! Take candidates that miss by up to REFINE_LIMIT to the solution near them
     //! (false: as the eigenproblem gives them; for the tests of the other tolerances).
     bool refine_misses = true;
 
@@ -427,21 +435,22 @@ struct General6RParams {
         pencil(Li, shift6, A);
         Eigen::PartialPivLU<Matrix12> lead(A[2]);
         if (trace != nullptr) trace->rcond = lead.rcond();
+        bool qz = false;
         if (!(lead.rcond() > LEADING_RCOND_TOL)) {
             shift6 = phi[2] + SECOND_SHIFT;
             pencil(Li, shift6, A);
             lead.compute(A[2]);
-            if (!(lead.rcond() > LEADING_RCOND_TOL)) {
-                info.near = true;  // not proven unreachable: the numeric search is asked
-                return;
-            }
+            // both ill-conditioned: M(x6) nearly singular for every x6 (an arm near one
+            // whose elimination degenerates), the generalized eigenproblem by QZ
+            qz = !(lead.rcond() > LEADING_RCOND_TOL);
         }
-        if (trace != nullptr) trace->shift6 = shift6;
+        if (trace != nullptr) trace->shift6 = shift6, trace->qz = qz;
         // the real roots x6 of det M(x6) (general_6r_roots.hpp)
         double roots[ROOTS];
         bool split[ROOTS];
-        const int found =
-            real_roots(A, lead, roots, trace != nullptr ? &trace->deflated : nullptr, split);
+        const int found = qz ? real_roots_qz(A, roots, split)
+                             : real_roots(A, lead, roots,
+                                          trace != nullptr ? &trace->deflated : nullptr, split);
         if (found < 0) {
             info.near = true;  // the eigenvalue iteration failed: not proven unreachable
             return;
@@ -454,7 +463,7 @@ struct General6RParams {
             double a[6], q[6];
             const Vector12 u = null_vector(A, roots[r], info);
             double closure = back_substitute(L, Li, T, roots[r], shift6, u, a);
-            if (refine_misses && closure > REFINE_FROM && closure < REFINE_LIMIT) {
+            if (refine_misses && closure > 0.0 && closure < REFINE_LIMIT) {
                 closure = refine(L, T, a, closure);
                 // a split pair's candidate that Newton takes no nearer than REFINE_FROM
                 // is at a fold's near miss (a complex pair of solutions), not a solution

@@ -9,8 +9,9 @@ the loop from the joint axes at q = 0 (product of exponentials: any base, tool,
 convention or URDF chain), computes the constants of the elimination once per arm
 (the left side's 14 x 8 matrix Q, its left null space and pseudo-inverse), and
 chooses the labelling of the joints (the loop turned cyclically or reversed) for
-which the elimination is well posed: the first of the eight on which random poses
-are solved, the generating configuration found among the candidates.
+which the elimination is well posed: of the eight, those on which random poses are
+solved (the generating configuration found among the candidates), the one whose
+eigenvalues are the most accurate there.
 """
 
 from __future__ import annotations
@@ -35,6 +36,7 @@ __all__ = [
     "RANK_TOL",
     "SEARCH_NOTE",
     "SPEC",
+    "accuracy",
     "build",
     "loop_of",
     "numeric_note",
@@ -53,7 +55,7 @@ RANK_TOL = 1e-9
 #: candidates to this (rad; the check's polish takes them the rest of the way).
 PROBE_TOL = 1e-6
 #: Random poses each labelling is probed on (fixed seed: the choice is reproducible).
-PROBES = 4
+PROBES = 8
 
 #: Said of a target the elimination found nothing for (the core's not_found, its near
 #: flag raised: no candidate within the check's polish, no reach gap), answered by the
@@ -218,40 +220,64 @@ def _params(
     return params, ratio
 
 
-def _probe_error(params: Any, chain: Chain) -> float:
-    """The worst, over PROBES random poses, of the generating q's distance to the candidates."""
-    rng = np.random.default_rng(6)
-    worst = 0.0
-    for q in rng.uniform(-PI, PI, (PROBES, 6)):
-        T = chain.fk(q)[0]
+def _probe(params: Any, chain: Chain, refine: bool) -> FloatArray:
+    """``(PROBES,)``: per random pose, how far its configuration is from the candidates.
+
+    The distance (rad) of the configuration that made the pose to the nearest candidate
+    (inf: none), with Newton's step or (``refine`` False) as the eigenproblem gives them.
+    """
+    q = np.random.default_rng(6).uniform(-PI, PI, (PROBES, 6))
+    params.refine_misses = refine
+    out = np.full(PROBES, math.inf)
+    for i, T in enumerate(chain.fk(q)[0]):
         Q = params.candidates(chain.core, T)[0]
-        d = np.abs(np.remainder(Q - q + PI, 2.0 * PI) - PI).max(axis=1)
-        best = float(np.nanmin(d)) if np.isfinite(d).any() else math.inf
-        worst = max(worst, best)
-    return worst
+        d = np.abs(np.remainder(Q - q[i] + PI, 2.0 * PI) - PI).max(axis=1)
+        if np.isfinite(d).any():
+            out[i] = float(np.nanmin(d))
+    params.refine_misses = True
+    return out
+
+
+def accuracy(params: Any, chain: Chain) -> float:
+    """How well a labelling's eigenproblem finds the probe poses' configurations.
+
+    The mean of log10 of their distance (rad) to the nearest candidate before Newton's
+    step, clipped to [1e-16, 1] (1: none found); lower is better.
+    """
+    d = _probe(params, chain, refine=False)
+    return float(np.mean(np.log10(np.clip(d, 1e-16, 1.0))))
 
 
 def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
     """The general 6R solver of a 6R arm, or None (position targets; no labelling works).
 
     Tries the eight labellings (forward, then reversed; each turned to start at joints
-    1-4 of its order) and keeps the first whose elimination is well posed and whose
-    candidates hold the generating configuration of every probe pose.
+    1-4 of its order) and keeps, of those whose elimination is well posed and whose
+    candidates hold the generating configuration of every probe pose, the one whose
+    eigenproblem is the most accurate on the probes. On an arm near one whose
+    elimination degenerates (a calibrated UR5) the labellings' root errors differ by
+    orders of magnitude, and the first that passes is often not the best (measured on
+    30 calibrated UR5s, 200 poses each: 122 generating configurations missed with the
+    first that passes, 9 with the most accurate, 8 of them at singular poses).
     """
     if target != "pose" or f.joint_types != "RRRRRR":
         return None
     K, G1, size = loop_of(chain, f)
+    ranked: list[tuple[float, int, Any]] = []
     for reverse in (False, True):
         for start in range(4):
             built = _params(K, G1, size, start, reverse)
-            if built is not None and _probe_error(built[0], chain) <= PROBE_TOL:
-                return ClosedForm(
-                    name="general-6R",
-                    labels=LABELS,
-                    params=built[0],
-                    exact=True,
-                    search_note=SEARCH_NOTE,
-                )
+            if built is not None:
+                ranked.append((accuracy(built[0], chain), len(ranked), built[0]))
+    for _, _, params in sorted(ranked, key=lambda r: r[:2]):
+        if _probe(params, chain, refine=True).max() <= PROBE_TOL:
+            return ClosedForm(
+                name="general-6R",
+                labels=LABELS,
+                params=params,
+                exact=True,
+                search_note=SEARCH_NOTE,
+            )
     return None
 
 
