@@ -109,11 +109,21 @@ def test_each_class_draws_arms_of_its_solver(name: str) -> None:
 
 
 def test_a_calibrated_ur_is_off_the_ur5_by_up_to_the_calibration() -> None:
-    arm = calibrated_ur(np.random.default_rng(1))
-    rows = zip(arm.links, km.load("ur5").links, strict=True)
-    off = np.array([[j.d - u.d, j.a - u.a, j.alpha - u.alpha] for j, u in rows])
-    assert np.all(np.abs(off) <= CALIBRATION) and np.all(off != 0.0)
-    assert np.abs(off).max() > CALIBRATION / 2
+    ur5 = km.load("ur5").links
+    seen = set()
+    for seed in range(8):
+        arm = calibrated_ur(np.random.default_rng(seed))
+        seen.add(arm.convention)
+        d = [j.d - u.d for j, u in zip(arm.links, ur5, strict=True)]
+        if arm.convention == "standard":
+            pairs = zip(arm.links, ur5, strict=True)
+        else:  # Craig's table of the same arm: row i + 1 holds row i's a and alpha
+            assert arm.links[0].a == arm.links[0].alpha == 0.0
+            pairs = zip(arm.links[1:], ur5[:-1], strict=True)
+        off = np.array(d + [v for j, u in pairs for v in (j.a - u.a, j.alpha - u.alpha)])
+        assert np.all(np.abs(off) <= CALIBRATION) and np.all(off != 0.0)
+        assert np.abs(off).max() > CALIBRATION / 2
+    assert seen == {"standard", "modified"}
 
 
 def _arm() -> tuple[km.Robot, np.ndarray, np.ndarray, km.ik.IKResult]:

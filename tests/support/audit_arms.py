@@ -17,6 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 import kinematica as km
+from kinematica.dh.convert import convert_table
 from kinematica.dh.joints import Revolute
 from kinematica.ik.analytic import SOLVERS
 from kinematica.ik.analytic.sampling import random_transform
@@ -81,7 +82,14 @@ def calibrated_ur(rng: np.random.Generator) -> ArmSample:
         dataclasses.replace(j, d=j.d + e(), a=j.a + e(), alpha=j.alpha + e(), qlim=None)
         for j in km.load("ur5").links
     ]
-    return _placed(rows, rng, "UR5, calibrated")
+    arm = _placed(rows, rng, "UR5, calibrated")
+    if arm.convention == "standard":
+        return arm
+    # the same arm, its table in Craig's convention (the UR5's rows read as modified ones
+    # would be another arm: 2-4 solutions a pose)
+    links, b, t = convert_table(rows, "standard", "modified", np.eye(4), np.eye(4))
+    assert arm.base is not None and arm.tool is not None
+    return ArmSample(links, "modified", arm.base @ b, t @ arm.tool, arm.note)
 
 
 def _family(kind: str) -> Callable[[np.random.Generator], ArmSample]:

@@ -19,6 +19,7 @@ from support.ik_search import dls_solutions, joint_distance
 import kinematica as km
 from kinematica.dh.joints import Revolute
 from kinematica.ik.analytic import general_6r as g6
+from kinematica.ik.analytic.sampling import random_transform
 from kinematica.ik.solve import closed_form
 from kinematica.ik.structure import features
 
@@ -173,6 +174,28 @@ def test_probe_tol_separates_a_working_labelling_from_a_degenerate_one() -> None
     assert built is not None and g6._probe(built[0], puma, refine=True).max() >= 1e3 * g6.PROBE_TOL
 
 
+@pytest.mark.parametrize(("factor", "scored"), [(0.5, 1), (2.0, 8)])
+def test_a_labelling_accurate_to_round_off_is_kept_without_scoring_the_others(
+    monkeypatch: pytest.MonkeyPatch, factor: float, scored: int
+) -> None:
+    robot = _robot(np.random.default_rng(4), False)
+    f = features(robot.chain)
+    # a generic arm's first labelling is accurate to round-off: the early choice is taken
+    K, G1, size = g6.loop_of(robot.chain, f)
+    first = g6._params(K, G1, size, 0, False)
+    assert first is not None and g6.accuracy(first[0], robot.chain) <= math.log10(g6.ACCURATE)
+    # scores just inside / just outside ACCURATE: the first kept at once / all eight scored
+    calls: list[object] = []
+
+    def score(params: object, chain: object) -> float:
+        calls.append(params)
+        return math.log10(factor * g6.ACCURATE)
+
+    monkeypatch.setattr(g6, "accuracy", score)
+    assert g6.build(robot.chain, f, "pose") is not None
+    assert len(calls) == scored
+
+
 def test_special_families_keep_their_arms_and_6r_arms_with_a_slide_are_not_taken() -> None:
     assert km.load("puma560").ik(km.load("puma560").fk(np.zeros(6))).method == (
         "analytic:spherical-wrist"
@@ -279,14 +302,17 @@ def test_a_calibrated_ur_loses_no_solution() -> None:
 
 
 def test_a_calibrated_ur_once_refused_is_solved_by_qz_and_its_spurious_roots_dropped() -> None:
-    # sample_arm's first calibrated UR (the UR5's table, twists 1e-3 off, modified DH):
-    # A2 ill-conditioned at both shifts on every pose (M(x6) nearly singular for every x6),
+    # The UR5's standard table, twists 1e-3 off, read as a modified one (another arm, of
+    # 2-4 solutions a pose; sample_arm made it until it converted the table): A2
+    # ill-conditioned at both shifts on every pose (M(x6) nearly singular for every x6),
     # which the builder refused (no candidates: every probe missed). Its roots now come
     # from QZ; the singular part's real eigenvalues give candidates whose pose misses the
     # target, none of which is returned. Reference: 200 numeric starts per pose.
-    arm = g6.sample_arm(np.random.default_rng(0), True)
-    assert arm.note.startswith("UR5") and arm.convention == "modified"
-    robot = km.Robot.from_dh(arm.links, convention=arm.convention, base=arm.base, tool=arm.tool)
+    rng = np.random.default_rng(0)
+    rows, note = g6._edge(rng)
+    assert note.startswith("UR5") and str(rng.choice(["standard", "modified"])) == "modified"
+    base, tool = random_transform(rng, 0.5), random_transform(rng, 0.2)
+    robot = km.Robot.from_dh(rows, convention="modified", base=base, tool=tool)
     params = closed_form(robot.chain, "pose").params
     rng = np.random.default_rng(1)
     q = rng.uniform(-math.pi, math.pi, (4, 6))[[1, 3]]
