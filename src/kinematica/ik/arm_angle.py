@@ -14,11 +14,11 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from kinematica._record import record
 from kinematica.core import Chain
 from kinematica.ik.analytic.srs import arm_angle
 from kinematica.ik.at_values import parameter_values
@@ -37,7 +37,7 @@ FloatArray = NDArray[np.float64]
 ARM_ANGLE_NAMES = ("arm_angle", "arm angle", "arm-angle", "psi")
 
 
-@dataclass(frozen=True)
+@record(eq=True)
 class ArmAngleParameter:
     """The arm angle ψ of an SRS 7R arm (rad), as a redundancy parameter."""
 

@@ -13,7 +13,7 @@ import math
 import sys
 import weakref
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import field
 from functools import cached_property
 from typing import Any, cast
 
@@ -21,6 +21,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 import kinematica._core as _core
+from kinematica._record import record
 from kinematica.core import Chain
 from kinematica.errors import ArgumentError
 
@@ -65,7 +66,7 @@ def _is_generator(seed: object) -> bool:
     return random is not None and isinstance(seed, random.Generator)
 
 
-@dataclass(frozen=True, eq=False)
+@record
 class NumericSetup:
     """The core's search for one arm and settings, and what it is made from.
 

@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator, Mapping
-from dataclasses import dataclass, field
+from dataclasses import field
 from functools import cached_property
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from kinematica._record import record
 from kinematica.errors import UnreachableError
 from kinematica.ik.letters import toolbox_letters
 from kinematica.ik.status import STATUS_NAMES, IKStatus, held, status_message
@@ -27,7 +28,7 @@ NEAR_NOTE = (
 )
 
 
-@dataclass(frozen=True, eq=False)
+@record
 class IKResult:
     """All inverse-kinematics solutions of one target.
 
@@ -141,7 +142,7 @@ class IKResult:
         return result_html(self)
 
 
-@dataclass(frozen=True, eq=False)
+@record
 class IKBatchResult:
     """IK results for a batch of targets of any shape ``(...)``, as arrays.
 
@@ -355,7 +356,7 @@ class IKBatchResult:
         return batch_html(self)
 
 
-@dataclass(frozen=True, eq=False)
+@record
 class CheckOutput:
     """What the core's check wrote for N targets (``ik_batch`` of a solver).
 

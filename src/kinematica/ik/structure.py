@@ -10,11 +10,11 @@ every q.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
+from kinematica._record import record
 from kinematica.core import Chain
 from kinematica.dh.lines import (
     AXIS_ANGLE_TOL,
@@ -42,7 +42,7 @@ def arm_size(chain: Chain) -> float:
     return size + float(np.abs(chain.translations).sum())
 
 
-@dataclass(frozen=True, eq=False)
+@record
 class Features:
     """What the joint axes of an arm have in common, at q = 0.
 

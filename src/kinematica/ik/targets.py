@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Any, NamedTuple
 
@@ -19,6 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 import kinematica._core as _core
+from kinematica._record import record
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.spatial import ROUNDOFF_TOL, nearest_rotation
 from kinematica.spatial.checks import shown_above
@@ -58,7 +58,7 @@ PROJECTION_TOL = 2e-4
 QUIET_PROJECTION = ROTATION_TOL
 
 
-@dataclass(frozen=True)
+@record(eq=True)
 class Tolerance:
     """Acceptance tolerances of a solution: position (m) and rotation (rad)."""
 
