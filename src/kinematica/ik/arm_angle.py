@@ -24,7 +24,8 @@ from kinematica.ik.analytic.srs import arm_angle
 from kinematica.ik.at_values import parameter_values
 from kinematica.ik.options import IKOptions
 from kinematica.ik.result import IKBatchResult, IKResult
-from kinematica.ik.solve import closed_form, solve_ik
+from kinematica.ik.solve import solve_ik
+from kinematica.ik.solvers import closed_form
 from kinematica.ik.targets import parse_targets
 
 __all__ = ["ARM_ANGLE_NAMES", "ArmAngleParameter", "arm_angle_parameter"]

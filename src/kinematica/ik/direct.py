@@ -8,7 +8,7 @@ with the same check, giving the same answer field by field
 (:func:`~kinematica.ik.parameter.solve_fixed`,
 :meth:`~kinematica.ik.arm_angle.ArmAngleParameter.solve`), without the general
 path's parsing, options and copies. A joint held at a value is looked up once per
-(joint, value): the arm locked there and its :class:`~kinematica.ik.solve.PoseSolver`
+(joint, value): the arm locked there and its :class:`~kinematica.ik.solvers.PoseSolver`
 (the first joint's value moves the target instead, :mod:`kinematica.ik.moved`, as
 the general path does). Whatever the general path adds to an answer or explains (a
 pose not rigid to round-off, an answer that proves nothing, ``auto``'s search over
@@ -35,7 +35,7 @@ from kinematica.ik.parameter import JointParameter, joint_parameter, locked_chai
 from kinematica.ik.reach import needs_proof
 from kinematica.ik.redundancy import REDUNDANT_DOF, choose, default_value, held_note
 from kinematica.ik.result import CoreAnswer, IKResult, result_of
-from kinematica.ik.solve import PoseSolver, closed_form, pose_solver
+from kinematica.ik.solvers import PoseSolver, closed_form, pose_solver
 from kinematica.ik.stack import widen_answer
 from kinematica.spatial import ROUNDOFF_TOL
 

@@ -35,7 +35,8 @@ from kinematica.ik.parameter import (
     solve_fixed,
 )
 from kinematica.ik.result import IKBatchResult, IKResult
-from kinematica.ik.solve import closed_form, solve_ik
+from kinematica.ik.solve import solve_ik
+from kinematica.ik.solvers import closed_form
 from kinematica.ik.stack import replace_rows
 from kinematica.ik.targets import Targets, parse_targets
 
