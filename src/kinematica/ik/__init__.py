@@ -12,7 +12,8 @@ if TYPE_CHECKING:  # the names below load on first use (kinematica._lazy)
     from kinematica.ik.solvers import closed_form, structure_of
     from kinematica.ik.status import IKStatus
     from kinematica.ik.structure import Features, features
-    from kinematica.ik.targets import POSITION_TOL, PROJECTION_TOL, ROTATION_TOL, Tolerance
+    from kinematica.ik.targets import PROJECTION_TOL
+    from kinematica.ik.tolerance import POSITION_TOL, ROTATION_TOL, Tolerance
 
 __getattr__, __dir__ = exports(
     __name__,
@@ -29,10 +30,10 @@ __getattr__, __dir__ = exports(
         "IKStatus": "kinematica.ik.status",
         "Features": "kinematica.ik.structure",
         "features": "kinematica.ik.structure",
-        "POSITION_TOL": "kinematica.ik.targets",
+        "POSITION_TOL": "kinematica.ik.tolerance",
         "PROJECTION_TOL": "kinematica.ik.targets",
-        "ROTATION_TOL": "kinematica.ik.targets",
-        "Tolerance": "kinematica.ik.targets",
+        "ROTATION_TOL": "kinematica.ik.tolerance",
+        "Tolerance": "kinematica.ik.tolerance",
     },
 )
 

@@ -9,7 +9,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinematica._record import record, store
-from kinematica.ik.targets import Tolerance
+from kinematica.ik.tolerance import Tolerance
 
 __all__ = ["IKOptions", "Method"]
 

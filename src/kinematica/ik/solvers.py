@@ -21,16 +21,15 @@ import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.ik.analytic import solvers_for
 from kinematica.ik.fallback import slack_of
-from kinematica.ik.numeric import LABEL, numeric_setup
 from kinematica.ik.reach import ANSWERED, needs_proof
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
 from kinematica.ik.result import CoreAnswer, IKResult, result_of
 from kinematica.ik.structure import features
-from kinematica.ik.targets import parse_tolerance
+from kinematica.ik.tolerance import parse_tolerance
 from kinematica.spatial import ROUNDOFF_TOL
 
 if TYPE_CHECKING:
-    from kinematica.ik.targets import Tolerance
+    from kinematica.ik.tolerance import Tolerance
 
 __all__ = [
     "POSE_WEIGHTS",
@@ -205,6 +204,8 @@ def solver_of(
     """``(solver, branch labels, method name)``: the closed form, else the numeric search."""
     if closed is not None:
         return closed.params, closed.labels, closed.method
+    from kinematica.ik.numeric import LABEL, numeric_setup  # an arm without a closed form
+
     setup = numeric_setup(
         chain,
         respect_limits=respect_limits,

@@ -31,6 +31,8 @@ from kinematica.ik.structure import Features
 __all__ = [
     "LABELS",
     "PHI",
+    "PROBES",
+    "PROBE_CONFIGS",
     "PROBE_TOL",
     "RANK_TOL",
     "SEARCH_NOTE",
@@ -52,8 +54,21 @@ RANK_TOL = 1e-9
 #: A labelling passes a probe pose when the configuration that made it is among the raw
 #: candidates to this (rad; the check's polish takes them the rest of the way).
 PROBE_TOL = 1e-6
-#: Random poses each labelling is probed on (fixed seed: the choice is reproducible).
-PROBES = 4
+#: The configurations whose poses each labelling is probed on: uniform in (-π, π],
+#: ``np.random.default_rng(6).uniform(-π, π, (4, 6))`` written out (the choice is
+#: reproducible, and the first IK of a process does not import numpy.random: 10-20 ms).
+PROBE_CONFIGS = (
+    (0.2397936924265509, -0.9847581679958686, -0.8226747951461473,
+     -0.788560078461733, 3.062707200397904, 0.8341322614811477),
+    (1.0953095588356296, -1.0683711188056741, 1.1304560051279005,
+     -2.3689344345096206, -2.8165683032376525, 2.200317124970402),
+    (-3.085698658954023, 3.0081853122768454, 2.0546206072295448,
+     1.7920333090860519, -2.8394751945374326, -1.8382133040260147),
+    (2.1982705927845485, -0.42414760756750125, 0.8009046481796953,
+     -2.3732696820540706, -1.9708070338793215, -0.017166210520705327),
+)  # fmt: skip
+#: Poses each labelling is probed on.
+PROBES = len(PROBE_CONFIGS)
 
 #: Said of a target the elimination found nothing for (the core's not_found, its near
 #: flag raised: no candidate within the check's polish, no reach gap), answered by the
@@ -219,10 +234,9 @@ def _params(
 
 
 def _probe_error(params: Any, chain: Chain) -> float:
-    """The worst, over PROBES random poses, of the generating q's distance to the candidates."""
-    rng = np.random.default_rng(6)
+    """The worst, over the probe poses, of the generating q's distance to the candidates."""
     worst = 0.0
-    for q in rng.uniform(-PI, PI, (PROBES, 6)):
+    for q in np.array(PROBE_CONFIGS):
         T = chain.fk(q)[0]
         Q = params.candidates(chain.core, T)[0]
         d = np.abs(np.remainder(Q - q + PI, 2.0 * PI) - PI).max(axis=1)
