@@ -1,26 +1,32 @@
-"""Frozen dataclasses whose classes compile no code when they are made.
+"""Frozen dataclasses whose classes cost next to nothing to make.
 
-``@dataclass(frozen=True)`` writes the source of ``__init__``, ``__repr__``,
-``__setattr__`` and ``__delattr__`` (``__eq__`` and ``__hash__`` too with
-``eq=True``) and compiles it with ``exec`` when the class statement runs: 0.3 to
-0.7 ms a class on a 2-core machine. The first ``robot.ik`` of a process made a
-dozen such classes, half of its time. :func:`record` makes the same dataclass
-(``dataclasses.fields``, ``replace`` and ``asdict`` work on it; ``is_dataclass``
-is true) from the fields alone, 0.05 ms a class, with those methods written once
-here: reading the fields at each call instead of compiled per class. A class
-that is built in a hot path writes its own ``__init__`` (it then stores its
-fields through :func:`store`).
+``@dataclass(frozen=True)`` reads every field's annotation and default, then
+writes the source of ``__init__``, ``__repr__``, ``__setattr__`` and
+``__delattr__`` (``__eq__`` and ``__hash__`` too with ``eq=True``) and compiles
+it with ``exec``, when the class statement runs: 0.3 to 0.7 ms a class on a
+2-core machine, in a fresh process. The first ``robot.ik`` of a process made a
+dozen such classes: half of its time.
 
-The difference a user can see: ``inspect.signature`` of such a class reads
-``(*args, **kwargs)`` unless it writes its ``__init__``; calls take the same
-arguments, positional or by name, and fail with the same ``TypeError``.
+:func:`record` makes the same frozen dataclass with methods written once here,
+which read a plan of the fields (their names, defaults and default factories,
+taken from the class body: 0.01 ms) at each call, and leaves the dataclass's own
+bookkeeping (``__dataclass_fields__``) to the first thing that asks for it:
+``dataclasses.fields``, ``replace``, ``asdict`` and ``is_dataclass`` then run
+:func:`dataclasses.dataclass` on the class (without generating methods) and work
+as on any dataclass. A class that is built in a hot path may write its own
+``__init__`` (storing its fields with :func:`store`: records are frozen).
+
+What differs from ``@dataclass(frozen=True)``: ``inspect.signature`` of a record
+class reads ``(*args, **kwargs)`` unless it writes its ``__init__`` (calls take the
+same arguments, positional or by name, and fail with the same ``TypeError``); a
+record class declares its own fields, none inherited, and no ``ClassVar``.
 """
 
 from __future__ import annotations
 
 import dataclasses
 from collections.abc import Callable
-from typing import Any, TypeVar, cast, dataclass_transform, overload
+from typing import Any, TypeVar, dataclass_transform, overload
 
 __all__ = ["record", "store"]
 
@@ -28,6 +34,8 @@ T = TypeVar("T", bound=type)
 
 #: Each record class's field names, the required ones, default values and default factories.
 _PLAN = "__record_plan__"
+#: Where :func:`dataclasses.fields` and the rest look for a dataclass's fields.
+_FIELDS = "__dataclass_fields__"
 
 
 def store(obj: object, **fields: Any) -> None:
@@ -85,6 +93,10 @@ def _repr(self: Any) -> str:
     return f"{type(self).__qualname__}({', '.join(shown)})"
 
 
+def _replace(self: Any, /, **changes: Any) -> Any:
+    return dataclasses.replace(self, **changes)
+
+
 def _values(obj: Any) -> tuple[Any, ...]:
     return tuple(getattr(obj, name) for name in getattr(type(obj), _PLAN)[0])
 
@@ -99,31 +111,57 @@ def _hash(self: Any) -> int:
     return hash(_values(self))
 
 
+class _Fields:
+    """A record class's ``__dataclass_fields__`` before anything asked for it.
+
+    The first look-up makes the class a dataclass (fields only: every method is
+    already there), which puts the real mapping in this descriptor's place.
+    """
+
+    def __get__(self, obj: object, cls: type) -> dict[str, dataclasses.Field[Any]]:
+        dataclasses.dataclass(init=False, repr=False, eq=False)(cls)
+        fields: dict[str, dataclasses.Field[Any]] = cls.__dict__[_FIELDS]
+        return fields
+
+
+_LAZY_FIELDS = _Fields()
+
+
 def _make(cls: T, eq: bool) -> T:
-    out = cast(T, dataclasses.dataclass(init=False, repr=False, eq=False)(cls))
+    if any(hasattr(base, _FIELDS) for base in cls.__mro__[1:]):
+        raise TypeError(f"record {cls.__qualname__}: a record inherits no fields")
+    names: list[str] = []
     defaults: dict[str, Any] = {}
     factories: dict[str, Callable[[], Any]] = {}
-    names = []
-    for f in dataclasses.fields(out):
-        names.append(f.name)
-        if f.default is not dataclasses.MISSING:
-            defaults[f.name] = f.default
-        elif f.default_factory is not dataclasses.MISSING:
-            factories[f.name] = f.default_factory
+    for name, annotation in cls.__dict__.get("__annotations__", {}).items():
+        if "ClassVar" in str(annotation) or "InitVar" in str(annotation):
+            raise TypeError(f"record {cls.__qualname__}: {name} is no field (ClassVar, InitVar)")
+        names.append(name)
+        value = cls.__dict__.get(name, dataclasses.MISSING)
+        if isinstance(value, dataclasses.Field):
+            if value.default is not dataclasses.MISSING:
+                defaults[name] = value.default
+            elif value.default_factory is not dataclasses.MISSING:
+                factories[name] = value.default_factory
+        elif value is not dataclasses.MISSING:
+            defaults[name] = value
     required = frozenset(names) - defaults.keys() - factories.keys()
-    setattr(out, _PLAN, (tuple(names), required, defaults, factories))
+    setattr(cls, _PLAN, (tuple(names), required, defaults, factories))
     methods: dict[str, Any] = {
         "__init__": _init,
         "__repr__": _repr,
         "__setattr__": _setattr,
         "__delattr__": _delattr,
+        "__replace__": _replace,
+        "__match_args__": tuple(names),
+        _FIELDS: _LAZY_FIELDS,
     }
     if eq:
         methods |= {"__eq__": _eq, "__hash__": _hash}
     for key, method in methods.items():
         if key not in cls.__dict__:  # the class's own comes first
-            setattr(out, key, method)
-    return out
+            setattr(cls, key, method)
+    return cls
 
 
 @overload

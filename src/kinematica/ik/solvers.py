@@ -12,7 +12,7 @@ of its options, of the arm angle's values, ...) it does not import.
 from __future__ import annotations
 
 import weakref
-from typing import TYPE_CHECKING, Any, NamedTuple
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -132,8 +132,10 @@ def check_options(
     return opts
 
 
-class PoseSolver(NamedTuple):
+class PoseSolver:
     """What ``robot.ik(T)`` with every default runs for one pose (see :func:`pose_solver`).
+
+    A plain class (a named tuple's class took 0.15 ms to make, at the first ``robot.ik``).
 
     Attributes:
         ik_rigid: The solver's ``ik_rigid(chain, T, options, roundoff, labels)``.
@@ -145,12 +147,23 @@ class PoseSolver(NamedTuple):
             near-degenerate arm, or a partial one: see :mod:`kinematica.ik.fallback`).
     """
 
-    ik_rigid: Any
-    options: _core.CheckOptions
-    labels: tuple[str, ...]
-    method: str
-    complete: bool
-    direct: bool = True
+    __slots__ = ("complete", "direct", "ik_rigid", "labels", "method", "options")
+
+    def __init__(
+        self,
+        ik_rigid: Any,
+        options: _core.CheckOptions,
+        labels: tuple[str, ...],
+        method: str,
+        complete: bool,
+        direct: bool = True,
+    ) -> None:
+        self.ik_rigid = ik_rigid
+        self.options = options
+        self.labels = labels
+        self.method = method
+        self.complete = complete
+        self.direct = direct
 
     def rigid(self, chain: _core.Chain, pose: FloatArray) -> IKResult | None:
         """The answer for one rigid ``(4, 4)`` pose, or None when the general path must give it.
