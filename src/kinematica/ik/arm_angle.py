@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -21,14 +22,13 @@ from numpy.typing import ArrayLike, NDArray
 from kinematica._record import record
 from kinematica.core import Chain
 from kinematica.ik.analytic.srs import arm_angle
-from kinematica.ik.at_values import parameter_values
-from kinematica.ik.options import IKOptions
 from kinematica.ik.result import IKBatchResult, IKResult
-from kinematica.ik.solve import solve_ik
 from kinematica.ik.solvers import closed_form
-from kinematica.ik.targets import parse_targets
 
 __all__ = ["ARM_ANGLE_NAMES", "ArmAngleParameter", "arm_angle_parameter"]
+
+if TYPE_CHECKING:  # the general path's modules: loaded when it runs
+    from kinematica.ik.options import IKOptions
 
 FloatArray = NDArray[np.float64]
 
@@ -75,6 +75,10 @@ class ArmAngleParameter:
             values: One angle, or ``(N,)`` one per target of a batch (C order).
             options: The IK settings (``fixed`` and ``arm_angle`` are replaced).
         """
+        from kinematica.ik.at_values import parameter_values
+        from kinematica.ik.solve import solve_ik
+        from kinematica.ik.targets import parse_targets
+
         targets = parse_targets(target)
         angle: ArrayLike = values
         if isinstance(values, np.ndarray) and values.ndim == 1:

@@ -19,7 +19,6 @@ from numpy.typing import ArrayLike, NDArray
 import kinematica._core as _core
 from kinematica.core import Chain, resolve_workers
 from kinematica.errors import DimensionError, KinematicaError
-from kinematica.ik.at_values import AtValues, parameter_values
 from kinematica.ik.fallback import (
     FALLBACK_NOTE,
     INCOMPLETE_NOTE,
@@ -67,6 +66,8 @@ def _at_parameter(
             f"meeting) only; this arm: {structure_of(chain)[1]}",
             arg="arm_angle",
         )
+    from kinematica.ik.at_values import AtValues  # an SRS arm's arm angle only
+
     return replace(closed, params=AtValues(closed.params, values))
 
 
@@ -166,6 +167,8 @@ def _solve(
         w = tuple(float(a * b) for a, b in zip(m, w, strict=True))
     values = None
     if options.arm_angle is not None:
+        from kinematica.ik.at_values import parameter_values  # an SRS arm's arm angle only
+
         values = parameter_values("arm_angle", options.arm_angle, targets.shape)
     parameter = None if values is None else "arm_angle"
     closed = None if method == "numeric" or m is not None else closed_form(chain, kind, parameter)
