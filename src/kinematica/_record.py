@@ -135,7 +135,7 @@ def _make(cls: T, eq: bool) -> T:
     factories: dict[str, Callable[[], Any]] = {}
     for name, annotation in cls.__dict__.get("__annotations__", {}).items():
         if "ClassVar" in str(annotation) or "InitVar" in str(annotation):
-            raise TypeError(f"record {cls.__qualname__}: {name} is no field (ClassVar, InitVar)")
+            raise TypeError(f"record {cls.__qualname__}: {name} is a ClassVar or InitVar")
         names.append(name)
         value = cls.__dict__.get(name, dataclasses.MISSING)
         if isinstance(value, dataclasses.Field):
