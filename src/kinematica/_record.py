@@ -25,6 +25,7 @@ record class declares its own fields, none inherited, and no ``ClassVar``.
 from __future__ import annotations
 
 import dataclasses
+import inspect
 from collections.abc import Callable
 from typing import Any, TypeVar, dataclass_transform, overload
 
@@ -133,7 +134,7 @@ def _make(cls: T, eq: bool) -> T:
     names: list[str] = []
     defaults: dict[str, Any] = {}
     factories: dict[str, Callable[[], Any]] = {}
-    for name, annotation in cls.__dict__.get("__annotations__", {}).items():
+    for name, annotation in inspect.get_annotations(cls).items():
         if "ClassVar" in str(annotation) or "InitVar" in str(annotation):
             raise TypeError(f"record {cls.__qualname__}: {name} is a ClassVar or InitVar")
         names.append(name)
