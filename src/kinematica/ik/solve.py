@@ -28,7 +28,7 @@ from kinematica.ik.fallback import (
     seeds,
     slack_of,
 )
-from kinematica.ik.numeric import LABEL, check_seed
+from kinematica.ik.numeric import LABEL, check_seed, numeric_solver
 from kinematica.ik.options import IKOptions, Method
 from kinematica.ik.reach import ANSWERED, beyond_limited_reach
 from kinematica.ik.registry import ClosedForm, TargetKind
@@ -184,7 +184,11 @@ def _solve(
             arg="method",
             suggest=("arm_angle", 0.0) if at_angle else ("method", "numeric"),
         )
-    solver, labels, name = solver_of(chain, closed, tolerance, respect_limits, seed, w)
+    solver, labels, name = (
+        solver_of(chain, closed, tolerance, respect_limits, seed, w)
+        if closed is not None
+        else numeric_solver(chain, tolerance, respect_limits, seed, w)
+    )
     slack = slack_of(chain) if closed is not None and not closed.exact else 0.0
     complete = closed is not None and slack == 0.0
     opts = check_options(tolerance, respect_limits, complete, w, slack)
@@ -197,7 +201,7 @@ def _solve(
 
     def search(rows: Any) -> tuple[Any, _core.CheckOptions, FloatArray]:  # the second method
         """The search, its options, and the first guesses of the targets ``rows``."""
-        found = solver_of(chain, None, tolerance, respect_limits, seed, w)[0]
+        found = numeric_solver(chain, tolerance, respect_limits, seed, w)[0]
         if q0s is not None:
             guess = np.ascontiguousarray(q0s[rows])
         else:

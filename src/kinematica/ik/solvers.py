@@ -214,17 +214,13 @@ def solver_of(
     seed: int | np.random.Generator | None,
     weights: tuple[float, ...],
 ) -> tuple[Any, tuple[str, ...], str]:
-    """``(solver, branch labels, method name)``: the closed form, else the numeric search."""
+    """``(solver, branch labels, method name)``: the closed form, else the numeric search.
+
+    (:func:`kinematica.ik.solve.solve_ik`, which loads the numeric module anyway, asks
+    :func:`~kinematica.ik.numeric.numeric_solver` itself: no import on each call.)
+    """
     if closed is not None:
         return closed.params, closed.labels, closed.method
-    from kinematica.ik.numeric import LABEL, numeric_setup  # an arm without a closed form
+    from kinematica.ik.numeric import numeric_solver  # an arm without a closed form
 
-    setup = numeric_setup(
-        chain,
-        respect_limits=respect_limits,
-        tol_position=tolerance.position,
-        tol_rotation=tolerance.rotation,
-        seed=seed,
-        weights=weights,
-    )
-    return setup, (LABEL,), "numeric:lm"
+    return numeric_solver(chain, tolerance, respect_limits, seed, weights)
