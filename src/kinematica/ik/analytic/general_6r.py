@@ -24,6 +24,7 @@ from numpy.typing import NDArray
 import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.dh.joints import Revolute
+from kinematica.dh.lines import cross3
 from kinematica.ik.analytic.sampling import random_transform
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
@@ -108,20 +109,20 @@ LABELS: tuple[str, ...] = tuple(
 def _frame(z: FloatArray, origin: FloatArray) -> FloatArray:
     """A (4, 4) frame with z axis ``z`` at ``origin`` (x any unit normal)."""
     seed = np.array([1.0, 0.0, 0.0]) if abs(z[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
-    x = np.cross(z, seed)
+    x = cross3(z, seed)
     x /= np.linalg.norm(x)
     G = np.eye(4)
-    G[:3, 0], G[:3, 1], G[:3, 2], G[:3, 3] = x, np.cross(z, x), z, origin
+    G[:3, 0], G[:3, 1], G[:3, 2], G[:3, 3] = x, cross3(z, x), z, origin
     return G
 
 
 def _foot(h: FloatArray, p: FloatArray, i: int, j: int) -> FloatArray:
     """The point of axis i nearest axis j (axis i's point when they are parallel)."""
-    w = np.cross(h[i], h[j])
+    w = cross3(h[i], h[j])
     n2 = float(w @ w)
     if n2 < 1e-18:
         return p[i]
-    t = float(np.cross(p[j] - p[i], h[j]) @ w) / n2
+    t = float(cross3(p[j] - p[i], h[j]) @ w) / n2
     return p[i] + t * h[i]
 
 
@@ -150,7 +151,7 @@ def _quantities(A: FloatArray) -> FloatArray:
     """The 14 quantities of the z axis of frame A: p, l, p·p, p·l, p×l, (p·p) l - 2 (p·l) p."""
     pt, ln = A[:3, 3], A[:3, 2]
     pp, pl = float(pt @ pt), float(pt @ ln)
-    return np.concatenate([pt, ln, [pp, pl], np.cross(pt, ln), pp * ln - 2.0 * pl * pt])
+    return np.concatenate([pt, ln, [pp, pl], cross3(pt, ln), pp * ln - 2.0 * pl * pt])
 
 
 def _rz(a: float) -> FloatArray:
