@@ -13,7 +13,6 @@ from numpy.typing import NDArray
 
 from kinematica._record import record
 from kinematica.errors import UnreachableError
-from kinematica.ik.letters import toolbox_letters
 from kinematica.ik.status import STATUS_NAMES, IKStatus, held, status_message
 
 __all__ = ["NEAR_NOTE", "CheckOutput", "CoreAnswer", "IKBatchResult", "IKResult", "result_of"]
@@ -106,6 +105,8 @@ class IKResult:
         where ``f`` is kinematica's ``"wrist no-flip"``
         (see :mod:`kinematica.ik.letters`).
         """
+        from kinematica.ik.letters import toolbox_letters  # asked for by some only
+
         return tuple(toolbox_letters(b) for b in self.branches)
 
     @property
@@ -232,6 +233,8 @@ class IKBatchResult:
         return self._shaped(np.where(mask, got, fill))
 
     def _names(self, first: bool, letters: bool = False) -> NDArray[np.str_]:
+        from kinematica.ik.letters import toolbox_letters  # asked for by some only
+
         labels = [toolbox_letters(b) for b in self.labels] if letters else self.labels
         names = np.array([*labels, ""], dtype=str)  # slot -1 -> ""
         idx, mask = self._rows(first)

@@ -20,7 +20,6 @@ from numpy.typing import NDArray
 import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.ik.analytic import solvers_for
-from kinematica.ik.fallback import slack_of
 from kinematica.ik.reach import ANSWERED, needs_proof
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
 from kinematica.ik.result import CoreAnswer, IKResult, result_of
@@ -201,7 +200,7 @@ def pose_solver(
     # (a closed form with a search_note says not_found where it proves nothing, and the
     # one-pose path hands not_found to the general one, which searches)
     direct = (closed is None and not why_numeric(chain, None, kind, None)) or (
-        closed is not None and (closed.exact or slack_of(chain) == 0.0) and not closed.partial
+        closed is not None and (closed.exact or features(chain).slack == 0.0) and not closed.partial
     )
     return PoseSolver(solver.ik_rigid, opts, labels, name, complete, direct)
 
