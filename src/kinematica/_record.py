@@ -24,6 +24,7 @@ record class declares its own fields, none inherited, and no ``ClassVar``.
 
 from __future__ import annotations
 
+import _thread
 import dataclasses
 import inspect
 from collections.abc import Callable
@@ -120,9 +121,15 @@ class _Fields:
     """
 
     def __get__(self, obj: object, cls: type) -> dict[str, dataclasses.Field[Any]]:
-        dataclasses.dataclass(init=False, repr=False, eq=False)(cls)
+        with _MAKING:  # once: a second pass would read the defaults the first took away
+            if cls.__dict__[_FIELDS] is self:
+                dataclasses.dataclass(init=False, repr=False, eq=False)(cls)
         fields: dict[str, dataclasses.Field[Any]] = cls.__dict__[_FIELDS]
         return fields
+
+
+#: Held while a record class is made a dataclass (two threads may ask at once).
+_MAKING = _thread.allocate_lock()  # (the threading module: 0.7 ms to import)
 
 
 _LAZY_FIELDS = _Fields()
