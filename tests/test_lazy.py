@@ -5,8 +5,10 @@ modules it holds after each step, and the modules a step does not need must be
 absent: ``import kinematica`` imports neither numpy nor the core; a built-in
 robot's FK imports no IK, URDF, robot-file writer or DH extraction; its first IK
 imports the solver modules of the families tried before its own, not the
-others' nor the redundancy layer; ``kinematica fk`` imports no IK. One process
-for the library's steps, one for the command line's (each about half a second).
+others' nor the redundancy layer, and a first one-pose IK (a 6R, a redundant
+arm at its parameter) none of the general path's modules nor numpy.random;
+``kinematica fk`` imports no IK. One process for the library's steps, one for
+the command line's (each about half a second).
 """
 
 from __future__ import annotations
@@ -54,6 +56,18 @@ NOT_FOR_PUMA_IK = (
     "kinematica.ik.analytic.srs",
     "kinematica.ik.parameter",
     "kinematica.ik.redundancy",
+)
+
+#: Modules the first one-pose IK with every default (PUMA 560, iiwa 14 at its arm angle,
+#: a general 6R arm) must not import either: the general path's (parsing, options, the
+#: numeric search), and numpy.random (10-20 ms).
+NOT_FOR_ONE_POSE = (
+    "kinematica.ik.at_values",
+    "kinematica.ik.numeric",
+    "kinematica.ik.options",
+    "kinematica.ik.solve",
+    "kinematica.ik.targets",
+    "numpy.random",
 )
 
 _REPORT = """
@@ -108,6 +122,14 @@ def test_the_library_imports_what_each_step_needs_only() -> None:
         report("fk")
         assert robot.ik(T).method == "analytic:spherical-wrist"
         report("ik")
+        iiwa = km.load("iiwa14")
+        assert iiwa.ik(iiwa.fk([0.3, 0.5, 0.3, -1.2, 0.3, 0.8, 0.3])).method == "analytic:srs"
+        report("redundant")
+        rows = [(0.2, 0.25, 0.8), (-0.2, -0.35, -1.2), (-0.1, -0.35, 2.1), (0.4, 0.1, -0.7)]
+        rows += [(-0.05, 0.4, 1.4), (0.3, -0.1, -2.6)]
+        arm = km.Robot.from_dh([km.Revolute(d=d, a=a, alpha=al) for d, a, al in rows])
+        assert arm.ik(arm.fk([0.3] * 6)).method == "analytic:general-6R"
+        report("general")
         """
     )
     imported = seen["import"] - {"kinematica", "kinematica._lazy", "kinematica.errors"}
@@ -117,6 +139,7 @@ def test_the_library_imports_what_each_step_needs_only() -> None:
     assert set(NOT_FOR_FK) & seen["fk"] == set()
     assert "kinematica.ik.analytic.spherical_wrist" in seen["ik"]
     assert set(NOT_FOR_PUMA_IK) & seen["ik"] == set()
+    assert set(NOT_FOR_ONE_POSE) & seen["general"] == set()
 
 
 def test_the_command_line_imports_no_ik_for_fk() -> None:

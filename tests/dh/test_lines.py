@@ -93,3 +93,16 @@ def test_axis_angle_tol_is_the_cosine_of_the_angle_between_perpendicular_axes(
     f = km.classify(robot).features
     assert abs(float(f.directions[0] @ f.directions[1])) == pytest.approx(e, rel=1e-3)
     assert f.is_perpendicular(0, 1) is inside
+
+
+def test_cross3_gives_np_cross_s_floats() -> None:
+    # the builders take cross3 for np.cross on one pair: the same operations, the same bits
+    import numpy as np
+
+    from kinematica.dh.lines import cross3
+
+    rng = np.random.default_rng(3)
+    a = rng.normal(size=(500, 3)) * 10.0 ** rng.uniform(-12, 3, size=(500, 1))
+    b = rng.normal(size=(500, 3))
+    assert all(np.array_equal(cross3(x, y), np.cross(x, y)) for x, y in zip(a, b, strict=True))
+    assert np.array_equal(cross3(a[0], [1.0, 0.0, 0.0]), np.cross(a[0], [1.0, 0.0, 0.0]))

@@ -8,10 +8,12 @@ if TYPE_CHECKING:  # the names below load on first use (kinematica._lazy)
     from kinematica.ik.options import IKOptions, Method
     from kinematica.ik.registry import ClosedForm, SolverSpec
     from kinematica.ik.result import IKBatchResult, IKResult
-    from kinematica.ik.solve import closed_form, solve_ik, structure_of
+    from kinematica.ik.solve import solve_ik
+    from kinematica.ik.solvers import closed_form, structure_of
     from kinematica.ik.status import IKStatus
     from kinematica.ik.structure import Features, features
-    from kinematica.ik.targets import POSITION_TOL, PROJECTION_TOL, ROTATION_TOL, Tolerance
+    from kinematica.ik.targets import PROJECTION_TOL
+    from kinematica.ik.tolerance import POSITION_TOL, ROTATION_TOL, Tolerance
 
 __getattr__, __dir__ = exports(
     __name__,
@@ -22,16 +24,16 @@ __getattr__, __dir__ = exports(
         "SolverSpec": "kinematica.ik.registry",
         "IKBatchResult": "kinematica.ik.result",
         "IKResult": "kinematica.ik.result",
-        "closed_form": "kinematica.ik.solve",
+        "closed_form": "kinematica.ik.solvers",
         "solve_ik": "kinematica.ik.solve",
-        "structure_of": "kinematica.ik.solve",
+        "structure_of": "kinematica.ik.solvers",
         "IKStatus": "kinematica.ik.status",
         "Features": "kinematica.ik.structure",
         "features": "kinematica.ik.structure",
-        "POSITION_TOL": "kinematica.ik.targets",
+        "POSITION_TOL": "kinematica.ik.tolerance",
         "PROJECTION_TOL": "kinematica.ik.targets",
-        "ROTATION_TOL": "kinematica.ik.targets",
-        "Tolerance": "kinematica.ik.targets",
+        "ROTATION_TOL": "kinematica.ik.tolerance",
+        "Tolerance": "kinematica.ik.tolerance",
     },
 )
 

@@ -14,20 +14,21 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from kinematica._record import record
 from kinematica.core import Chain
 from kinematica.ik.analytic.srs import arm_angle
-from kinematica.ik.at_values import parameter_values
-from kinematica.ik.options import IKOptions
 from kinematica.ik.result import IKBatchResult, IKResult
-from kinematica.ik.solve import closed_form, solve_ik
-from kinematica.ik.targets import parse_targets
+from kinematica.ik.solvers import closed_form
 
 __all__ = ["ARM_ANGLE_NAMES", "ArmAngleParameter", "arm_angle_parameter"]
+
+if TYPE_CHECKING:  # the general path's modules: loaded when it runs
+    from kinematica.ik.options import IKOptions
 
 FloatArray = NDArray[np.float64]
 
@@ -37,7 +38,7 @@ FloatArray = NDArray[np.float64]
 ARM_ANGLE_NAMES = ("arm_angle", "arm angle", "arm-angle", "psi")
 
 
-@dataclass(frozen=True)
+@record(eq=True)
 class ArmAngleParameter:
     """The arm angle ψ of an SRS 7R arm (rad), as a redundancy parameter."""
 
@@ -74,6 +75,10 @@ class ArmAngleParameter:
             values: One angle, or ``(N,)`` one per target of a batch (C order).
             options: The IK settings (``fixed`` and ``arm_angle`` are replaced).
         """
+        from kinematica.ik.at_values import parameter_values
+        from kinematica.ik.solve import solve_ik
+        from kinematica.ik.targets import parse_targets
+
         targets = parse_targets(target)
         angle: ArrayLike = values
         if isinstance(values, np.ndarray) and values.ndim == 1:

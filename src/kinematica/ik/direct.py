@@ -8,7 +8,7 @@ with the same check, giving the same answer field by field
 (:func:`~kinematica.ik.parameter.solve_fixed`,
 :meth:`~kinematica.ik.arm_angle.ArmAngleParameter.solve`), without the general
 path's parsing, options and copies. A joint held at a value is looked up once per
-(joint, value): the arm locked there and its :class:`~kinematica.ik.solve.PoseSolver`
+(joint, value): the arm locked there and its :class:`~kinematica.ik.solvers.PoseSolver`
 (the first joint's value moves the target instead, :mod:`kinematica.ik.moved`, as
 the general path does). Whatever the general path adds to an answer or explains (a
 pose not rigid to round-off, an answer that proves nothing, ``auto``'s search over
@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from functools import cached_property
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -35,7 +35,7 @@ from kinematica.ik.parameter import JointParameter, joint_parameter, locked_chai
 from kinematica.ik.reach import needs_proof
 from kinematica.ik.redundancy import REDUNDANT_DOF, choose, default_value, held_note
 from kinematica.ik.result import CoreAnswer, IKResult, result_of
-from kinematica.ik.solve import PoseSolver, closed_form, pose_solver
+from kinematica.ik.solvers import PoseSolver, closed_form, pose_solver
 from kinematica.ik.stack import widen_answer
 from kinematica.spatial import ROUNDOFF_TOL
 
@@ -54,8 +54,11 @@ _ARM_ANGLE = ArmAngleParameter()
 _VALUE_TYPES = (float, int, np.float64)
 
 
-class Held(NamedTuple):
+class Held:
     """A joint held at a value, ready for one pose.
+
+    Plain classes here (a named tuple's class took 0.15 ms to make, at the first
+    ``robot.ik`` of a redundant arm).
 
     Attributes:
         joint: The joint.
@@ -65,20 +68,40 @@ class Held(NamedTuple):
         move: ``(4, 4)`` what a target is multiplied by (the first joint), else None.
     """
 
-    joint: JointParameter
-    value: float
-    arm: Chain
-    solver: PoseSolver
-    move: FloatArray | None
+    __slots__ = ("arm", "joint", "move", "solver", "value")
+
+    def __init__(
+        self,
+        joint: JointParameter,
+        value: float,
+        arm: Chain,
+        solver: PoseSolver,
+        move: FloatArray | None,
+    ) -> None:
+        self.joint = joint
+        self.value = value
+        self.arm = arm
+        self.solver = solver
+        self.move = move
 
 
-class _Auto(NamedTuple):
-    """``auto``'s parameter at its value without q0: held (a joint) or the SRS solver."""
+class _Auto:
+    """``auto``'s parameter at its value without q0: held (a joint) or the SRS solver.
 
-    held: Held | None
-    angle: Any  # the SRS closed form's Params at the value, when the arm angle is held
-    value: float
-    note: str
+    Attributes:
+        held: The joint held, or None (the arm angle).
+        angle: The SRS closed form's Params at the value, when the arm angle is held.
+        value: The value.
+        note: The note of the answers.
+    """
+
+    __slots__ = ("angle", "held", "note", "value")
+
+    def __init__(self, held: Held | None, angle: Any, value: float, note: str) -> None:
+        self.held = held
+        self.angle = angle
+        self.value = value
+        self.note = note
 
 
 def _rigid(pose: FloatArray) -> bool:

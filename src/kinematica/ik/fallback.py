@@ -19,7 +19,6 @@ none of its candidates solved goes to the numeric search too.
 
 from __future__ import annotations
 
-import weakref
 from typing import Any
 
 import numpy as np
@@ -59,15 +58,11 @@ PARTIAL_NOTE = (
 )
 
 _NOT_FOUND = _core.STATUS["not_found"]
-_SLACKS: weakref.WeakKeyDictionary[Chain, float] = weakref.WeakKeyDictionary()
 
 
 def slack_of(chain: Chain) -> float:
-    """The chain's :attr:`~kinematica.ik.structure.Features.slack` (m), computed once."""
-    slack = _SLACKS.get(chain)
-    if slack is None:
-        slack = _SLACKS[chain] = features(chain).slack
-    return slack
+    """The chain's :attr:`~kinematica.ik.structure.Features.slack` (m)."""
+    return features(chain).slack
 
 
 def needs_search(status: Any) -> Any:

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.core import Chain
-from kinematica.ik.targets import parse_tolerance
+from kinematica.ik.tolerance import parse_tolerance
 
 __all__ = ["NARROWEST", "base_move", "end_arm", "moved_targets", "narrowed_tolerance"]
 

@@ -13,14 +13,15 @@ import math
 import sys
 import weakref
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import field
 from functools import cached_property
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 from numpy.typing import NDArray
 
 import kinematica._core as _core
+from kinematica._record import record
 from kinematica.core import Chain
 from kinematica.errors import ArgumentError
 
@@ -34,8 +35,12 @@ __all__ = [
     "NumericSetup",
     "check_seed",
     "numeric_setup",
+    "numeric_solver",
     "reach_bound",
 ]
+
+if TYPE_CHECKING:
+    from kinematica.ik.tolerance import Tolerance
 
 FloatArray = NDArray[np.float64]
 
@@ -65,7 +70,7 @@ def _is_generator(seed: object) -> bool:
     return random is not None and isinstance(seed, random.Generator)
 
 
-@dataclass(frozen=True, eq=False)
+@record
 class NumericSetup:
     """The core's search for one arm and settings, and what it is made from.
 
@@ -224,6 +229,25 @@ def numeric_setup(
             per_chain.pop(next(iter(per_chain)))
         per_chain[key] = setup
     return setup
+
+
+def numeric_solver(
+    chain: Chain,
+    tolerance: Tolerance,
+    respect_limits: bool,
+    seed: int | np.random.Generator | None,
+    weights: tuple[float, ...],
+) -> tuple[NumericSetup, tuple[str, ...], str]:
+    """``(set-up, branch labels, method name)`` of the search, as ``robot.ik`` runs it."""
+    setup = numeric_setup(
+        chain,
+        respect_limits=respect_limits,
+        tol_position=tolerance.position,
+        tol_rotation=tolerance.rotation,
+        seed=seed,
+        weights=weights,
+    )
+    return setup, (LABEL,), "numeric:lm"
 
 
 def reach_bound(chain: Chain, lo: FloatArray, hi: FloatArray) -> float:

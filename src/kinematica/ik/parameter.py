@@ -20,20 +20,17 @@ import math
 import weakref
 from collections import OrderedDict
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from kinematica._record import record
 from kinematica.core import Chain
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.moved import end_arm, moved_targets, narrowed_tolerance
-from kinematica.ik.options import IKOptions
 from kinematica.ik.result import IKBatchResult, IKResult
-from kinematica.ik.solve import solve_ik
 from kinematica.ik.stack import replace_rows, stack_results, widen_batch, widen_result
-from kinematica.ik.targets import Targets, parse_targets
 from kinematica.spatial import wrap_angle
 
 __all__ = [
@@ -45,6 +42,10 @@ __all__ = [
     "locked_chain",
     "solve_fixed",
 ]
+
+if TYPE_CHECKING:  # the general path's modules: loaded when it runs
+    from kinematica.ik.options import IKOptions
+    from kinematica.ik.targets import Targets
 
 FloatArray = NDArray[np.float64]
 
@@ -115,7 +116,7 @@ def joint_names(chain: Chain, names: Sequence[str] | None) -> tuple[str, ...]:
     return tuple(f"q{i + 1}" for i in range(chain.dof))
 
 
-@dataclass(frozen=True)
+@record(eq=True)
 class JointParameter:
     """Joint ``index`` (0-based) as the parameter: the arm solved with it held at a value.
 
@@ -203,6 +204,10 @@ class JointParameter:
             The whole arm's result: solutions ``(k, n)`` (``(..., k, n)``) with
             ``q[index]`` equal to the value, and ``parameter`` naming it.
         """
+        from kinematica.ik.options import IKOptions
+        from kinematica.ik.solve import solve_ik
+        from kinematica.ik.targets import parse_targets
+
         k, n = self.index, chain.dof
         targets = parse_targets(target)
         N = targets.poses.shape[0]
@@ -246,7 +251,7 @@ class JointParameter:
         try:
             if moved:  # one locked arm, moved targets
                 poses = moved_targets(chain.prismatic[k], k, G, G_inv, targets.poses, v)
-                out = solve_ik(arm, targets._replace(poses=poses), opts)
+                out = solve_ik(arm, targets.replace(poses=poses), opts)
                 if k == n - 1 and isinstance(out, IKBatchResult):
                     out = widen_batch(out, k, v, self.name)
                     return self._exact_gaps(chain, targets, v, out, options)
@@ -283,7 +288,7 @@ class JointParameter:
         rows = np.flatnonzero(np.isfinite(out.raw.gap))
         if not rows.size:
             return out
-        sub = targets._replace(
+        sub = targets.replace(
             poses=np.ascontiguousarray(targets.poses[rows]),
             shape=(int(rows.size),),
             invalid={},
@@ -300,6 +305,8 @@ class JointParameter:
         self, chain: Chain, targets: Targets, v: FloatArray, opts: IKOptions
     ) -> IKBatchResult:
         """Each target on the arm locked at its own value (``opts.q0``: the locked arm's)."""
+        from kinematica.ik.solve import solve_ik
+
         results: dict[int, IKResult] = {}
         for i in range(targets.poses.shape[0]):
             if i in targets.invalid:

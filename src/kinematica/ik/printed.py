@@ -38,7 +38,7 @@ from kinematica.core import Chain
 from kinematica.ik.options import IKOptions
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.status import IKStatus
-from kinematica.ik.targets import parse_tolerance
+from kinematica.ik.tolerance import parse_tolerance
 
 __all__ = [
     "PRINTED_DIGITS_MAX",

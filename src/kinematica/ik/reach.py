@@ -20,7 +20,6 @@ from numpy.typing import NDArray
 
 import kinematica._core as _core
 from kinematica.core import Chain
-from kinematica.ik.numeric import reach_bound
 
 __all__ = ["ANSWERED", "beyond_limited_reach", "limited_reach", "needs_proof"]
 
@@ -41,6 +40,8 @@ def needs_proof(code: int, gap: float | None) -> bool:
 
 def limited_reach(chain: Chain) -> float:
     """Bound (m) on the tool origin's distance from the base origin, within the limits."""
+    from kinematica.ik.numeric import reach_bound  # asked where no candidate reached the target
+
     return reach_bound(chain, chain.qlim[:, 0], chain.qlim[:, 1])
 
 

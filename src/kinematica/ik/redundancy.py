@@ -17,6 +17,7 @@ from __future__ import annotations
 import dataclasses
 import weakref
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -26,7 +27,6 @@ from kinematica.core import Chain
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.arm_angle import ArmAngleParameter, arm_angle_parameter
 from kinematica.ik.moved import end_arm, moved_targets
-from kinematica.ik.options import IKOptions
 from kinematica.ik.parameter import (
     JointParameter,
     Parameter,
@@ -35,9 +35,13 @@ from kinematica.ik.parameter import (
     solve_fixed,
 )
 from kinematica.ik.result import IKBatchResult, IKResult
-from kinematica.ik.solve import closed_form, solve_ik
+from kinematica.ik.solvers import closed_form
 from kinematica.ik.stack import replace_rows
-from kinematica.ik.targets import Targets, parse_targets
+
+if TYPE_CHECKING:  # the general path's modules load when it runs (robot.ik's one pose
+    # of a redundant arm does not need them)
+    from kinematica.ik.options import IKOptions
+    from kinematica.ik.targets import Targets
 
 FloatArray = NDArray[np.float64]
 
@@ -117,6 +121,9 @@ def solve_arm(
         options: The IK settings (``fixed``: a joint held at a value).
         names: The joints' display names (``q1..qn`` when None).
     """
+    from kinematica.ik.solve import solve_ik
+    from kinematica.ik.targets import parse_targets
+
     if options.arm_angle is not None:  # an SRS arm's own parameter: no joint held
         if options.fixed is not None:
             raise KinematicaError(
@@ -143,6 +150,8 @@ def _at_parameter(
     (:data:`PARAMETER_SWEEP`), and only where none has, by the numeric search over
     every joint.
     """
+    from kinematica.ik.solve import solve_ik
+
     n = chain.dof
     q0s = _q0_rows(options.q0, targets.shape, n)
     if q0s is None:
@@ -225,7 +234,7 @@ def _at_parameter(
                 res, notes=notes, parameter=(res.parameter[0], held_at.reshape(res.shape))
             )
     if missed.size:
-        sub = targets._replace(
+        sub = targets.replace(
             poses=np.ascontiguousarray(targets.poses[missed]),
             shape=(int(missed.size),),
             invalid={},
@@ -292,6 +301,8 @@ def _has_solutions(
     the targets moved (:mod:`kinematica.ik.moved`), the arm angle by its solver at a
     value per target; a middle joint one locked arm (one batch) per value.
     """
+    from kinematica.ik.solve import solve_ik
+
     M, S = poses.shape[0], grid.size
     opts = dataclasses.replace(options, q0=None)
     if isinstance(joint, JointParameter) and joint.index in (0, chain.dof - 1):

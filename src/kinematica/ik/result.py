@@ -4,15 +4,15 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator, Mapping
-from dataclasses import dataclass, field
+from dataclasses import field
 from functools import cached_property
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from kinematica._record import record
 from kinematica.errors import UnreachableError
-from kinematica.ik.letters import toolbox_letters
 from kinematica.ik.status import STATUS_NAMES, IKStatus, held, status_message
 
 __all__ = ["NEAR_NOTE", "CheckOutput", "CoreAnswer", "IKBatchResult", "IKResult", "result_of"]
@@ -27,7 +27,7 @@ NEAR_NOTE = (
 )
 
 
-@dataclass(frozen=True, eq=False)
+@record
 class IKResult:
     """All inverse-kinematics solutions of one target.
 
@@ -105,6 +105,8 @@ class IKResult:
         where ``f`` is kinematica's ``"wrist no-flip"``
         (see :mod:`kinematica.ik.letters`).
         """
+        from kinematica.ik.letters import toolbox_letters  # asked for by some only
+
         return tuple(toolbox_letters(b) for b in self.branches)
 
     @property
@@ -141,7 +143,7 @@ class IKResult:
         return result_html(self)
 
 
-@dataclass(frozen=True, eq=False)
+@record
 class IKBatchResult:
     """IK results for a batch of targets of any shape ``(...)``, as arrays.
 
@@ -231,6 +233,8 @@ class IKBatchResult:
         return self._shaped(np.where(mask, got, fill))
 
     def _names(self, first: bool, letters: bool = False) -> NDArray[np.str_]:
+        from kinematica.ik.letters import toolbox_letters  # asked for by some only
+
         labels = [toolbox_letters(b) for b in self.labels] if letters else self.labels
         names = np.array([*labels, ""], dtype=str)  # slot -1 -> ""
         idx, mask = self._rows(first)
@@ -355,7 +359,7 @@ class IKBatchResult:
         return batch_html(self)
 
 
-@dataclass(frozen=True, eq=False)
+@record
 class CheckOutput:
     """What the core's check wrote for N targets (``ik_batch`` of a solver).
 

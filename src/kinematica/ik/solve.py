@@ -1,6 +1,7 @@
 """``robot.ik``: choose a solver, let the core solve and check the targets, wrap the answer.
 
-One path for one target and for a batch of any shape: a closed-form solver's
+One path for one target and for a batch of any shape (the solver chosen by
+:mod:`kinematica.ik.solvers`): a closed-form solver's
 ``Params`` (or the numeric search) and the shared check run in one core call per
 target or per batch (``cpp/include/kinematica/ik.hpp``), which judges every
 candidate by forward kinematics; the outcome is wrapped in an :class:`IKResult`
@@ -9,9 +10,8 @@ candidate by forward kinematics; the outcome is wrapped in an :class:`IKResult`
 
 from __future__ import annotations
 
-import weakref
 from dataclasses import replace
-from typing import Any, Literal, NamedTuple
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -19,8 +19,6 @@ from numpy.typing import ArrayLike, NDArray
 import kinematica._core as _core
 from kinematica.core import Chain, resolve_workers
 from kinematica.errors import DimensionError, KinematicaError
-from kinematica.ik.analytic import solvers_for
-from kinematica.ik.at_values import AtValues, parameter_values
 from kinematica.ik.fallback import (
     FALLBACK_NOTE,
     INCOMPLETE_NOTE,
@@ -30,60 +28,27 @@ from kinematica.ik.fallback import (
     seeds,
     slack_of,
 )
-from kinematica.ik.numeric import LABEL, check_seed, numeric_setup
+from kinematica.ik.numeric import LABEL, check_seed, numeric_solver
 from kinematica.ik.options import IKOptions, Method
-from kinematica.ik.reach import ANSWERED, beyond_limited_reach, needs_proof
-from kinematica.ik.registry import ClosedForm, TargetKind, describe
+from kinematica.ik.reach import ANSWERED, beyond_limited_reach
+from kinematica.ik.registry import ClosedForm, TargetKind
 from kinematica.ik.result import CheckOutput, CoreAnswer, IKBatchResult, IKResult, result_of
-from kinematica.ik.structure import features
+from kinematica.ik.solvers import (
+    POSE_WEIGHTS,
+    POSITION_WEIGHTS,
+    PoseSolver,
+    check_options,
+    closed_form,
+    pose_solver,
+    solver_of,
+    structure_of,
+    why_numeric,
+)
 from kinematica.ik.targets import Targets, Tolerance, parse_mask, parse_targets, parse_tolerance
-from kinematica.spatial import ROUNDOFF_TOL
 
 __all__ = ["PoseSolver", "closed_form", "pose_solver", "solve_ik", "structure_of"]
 
 FloatArray = NDArray[np.float64]
-
-_POSE: tuple[float, ...] = (1.0, 1.0, 1.0, 1.0, 1.0, 1.0)
-_POSITION: tuple[float, ...] = (1.0, 1.0, 1.0, 0.0, 0.0, 0.0)
-
-# Closed-form solvers are built once per chain (a chain is immutable, so the
-# solver is a pure function of it); the cache forgets a chain when it dies.
-_SOLVERS: weakref.WeakKeyDictionary[Chain, dict[tuple[str, str | None], ClosedForm | None]] = (
-    weakref.WeakKeyDictionary()
-)
-
-
-def structure_of(chain: Chain) -> tuple[str, str, str]:
-    """``(kind, summary, summary in Spanish)`` of a chain's structure (see :func:`describe`)."""
-    f = features(chain)
-    return describe(f, solvers_for(f.joint_types))
-
-
-def closed_form(
-    chain: Chain, target: TargetKind, parameter: str | None = None
-) -> ClosedForm | None:
-    """The closed-form solver of a chain for pose or position targets, if there is one.
-
-    A reduced arm (fewer than 6 joints) without a pose solver takes its
-    position solver for poses: the whole pose is then checked. With
-    ``parameter`` (``"arm_angle"``), the solver of a redundant arm at that
-    parameter (:attr:`SolverSpec.parameter`); without, only solvers that need none.
-    """
-    per_chain = _SOLVERS.setdefault(chain, {})
-    key = (target, parameter)
-    if key not in per_chain:
-        found = None
-        f = features(chain)
-        for spec in solvers_for(f.joint_types):
-            if spec.parameter == parameter and spec.handles(f):
-                found = spec.build(chain, f, target)
-                if found is not None:
-                    break
-        if found is None and target == "pose" and chain.dof < 6 and parameter is None:
-            position = closed_form(chain, "position")
-            found = position if position is not None and not position.partial else None
-        per_chain[key] = found
-    return per_chain[key]
 
 
 def _at_parameter(
@@ -101,19 +66,9 @@ def _at_parameter(
             f"meeting) only; this arm: {structure_of(chain)[1]}",
             arg="arm_angle",
         )
+    from kinematica.ik.at_values import AtValues  # an SRS arm's arm angle only
+
     return replace(closed, params=AtValues(closed.params, values))
-
-
-def _why_numeric(
-    chain: Chain, closed: ClosedForm | None, kind: TargetKind, mask: Any
-) -> tuple[str, ...]:
-    """The note saying why the search answers a pose no closed form takes (or none)."""
-    if closed is not None or kind != "pose" or mask is not None:
-        return ()
-    from kinematica.ik.analytic.general_6r import numeric_note  # the numeric path's note only
-
-    note = numeric_note(features(chain))
-    return () if note is None else (note,)
 
 
 def _q0(chain: Chain, q0: ArrayLike | None, targets: Targets) -> FloatArray | None:
@@ -137,126 +92,6 @@ def _q0(chain: Chain, q0: ArrayLike | None, targets: Targets) -> FloatArray | No
             arg="q0",
         ) from None
     return np.ascontiguousarray(full.reshape(-1, n))
-
-
-# The core's check options, one per combination of settings seen.
-_OPTIONS: dict[tuple[object, ...], _core.CheckOptions] = {}
-
-
-def _options(
-    tolerance: Tolerance,
-    respect_limits: bool,
-    complete: bool,
-    weights: tuple[float, ...],
-    gap_slack: float = 0.0,
-) -> _core.CheckOptions:
-    """The check's options for these settings (built once, then reused)."""
-    key = (
-        tolerance.position, tolerance.rotation, bool(respect_limits), complete, weights, gap_slack
-    )  # fmt: skip
-    opts = _OPTIONS.get(key)
-    if opts is None:
-        opts = _core.CheckOptions()
-        opts.tol_position = tolerance.position
-        opts.tol_rotation = tolerance.rotation
-        opts.respect_limits = bool(respect_limits)
-        opts.complete = complete
-        opts.weights = weights
-        opts.gap_slack = gap_slack
-        opts.repair = gap_slack > 0.0  # a near-degenerate arm: its family's closed form
-        if len(_OPTIONS) < 64:
-            _OPTIONS[key] = opts
-    return opts
-
-
-class PoseSolver(NamedTuple):
-    """What ``robot.ik(T)`` with every default runs for one pose (see :func:`pose_solver`).
-
-    Attributes:
-        ik_rigid: The solver's ``ik_rigid(chain, T, options, roundoff, labels)``.
-        options: The check's options.
-        labels: The branch names of its slots.
-        method: The method name results carry.
-        complete: It gives every solution (a closed form).
-        direct: Its answer is the whole answer (False for a closed form on a
-            near-degenerate arm, or a partial one: see :mod:`kinematica.ik.fallback`).
-    """
-
-    ik_rigid: Any
-    options: _core.CheckOptions
-    labels: tuple[str, ...]
-    method: str
-    complete: bool
-    direct: bool = True
-
-    def rigid(self, chain: _core.Chain, pose: FloatArray) -> IKResult | None:
-        """The answer for one rigid ``(4, 4)`` pose, or None when the general path must give it.
-
-        None when the core found nothing it can vouch for without the reach within
-        the limits, which only the general path tries.
-        """
-        out: CoreAnswer | None = self.ik_rigid(chain, pose, self.options, ROUNDOFF_TOL, self.labels)
-        if out is None or (out[5][0] not in ANSWERED and needs_proof(out[5][0], out[5][1])):
-            return None
-        return result_of(*out, self.method, self.complete, ())
-
-
-def pose_solver(
-    chain: Chain,
-    kind: TargetKind = "pose",
-    parameter: str | None = None,
-    method: Literal["auto", "numeric"] = "auto",
-) -> PoseSolver:
-    """The solver ``solve_ik`` picks for one target of this kind with the default options.
-
-    The same choice and settings as :func:`solve_ik` makes (closed form when the
-    structure allows, else the numeric search with the default seed; with ``method``
-    ``"numeric"``, the search), ready for ``robot.ik``'s one-target path, which skips
-    the general parsing when the target is a rigid transform to round-off (a position:
-    placed in the identity pose, as :func:`~kinematica.ik.targets.parse_targets` places
-    it). With ``parameter`` (``"arm_angle"``), the closed form at it, which the chain
-    must have (:func:`closed_form`); its ``ik_rigid`` solves at the value its ``Params``
-    hold.
-    """
-    tolerance = parse_tolerance(None)
-    w = _POSITION if kind == "position" else _POSE
-    closed = None if method == "numeric" else closed_form(chain, kind, parameter)
-    if parameter is not None and closed is None:
-        raise ValueError(f"this chain has no closed form at the parameter {parameter!r}")
-    solver, labels, name = _solver(chain, closed, tolerance, True, None, w)
-    complete = closed is not None
-    opts = _options(tolerance, True, complete, w)
-    # (a closed form with a search_note says not_found where it proves nothing, and the
-    # one-pose path hands not_found to the general one, which searches)
-    if closed is None:
-        # (the search's answer for "auto" carries the note saying why no closed form took
-        # it, which only the general path adds; "numeric" was asked for: no note)
-        direct = method == "numeric" or not _why_numeric(chain, None, kind, None)
-    else:
-        direct = (closed.exact or slack_of(chain) == 0.0) and not closed.partial
-    return PoseSolver(solver.ik_rigid, opts, labels, name, complete, direct)
-
-
-def _solver(
-    chain: Chain,
-    closed: ClosedForm | None,
-    tolerance: Tolerance,
-    respect_limits: bool,
-    seed: int | np.random.Generator | None,
-    weights: tuple[float, ...],
-) -> tuple[Any, tuple[str, ...], str]:
-    """``(solver, branch labels, method name)``: the closed form, else the numeric search."""
-    if closed is not None:
-        return closed.params, closed.labels, closed.method
-    setup = numeric_setup(
-        chain,
-        respect_limits=respect_limits,
-        tol_position=tolerance.position,
-        tol_rotation=tolerance.rotation,
-        seed=seed,
-        weights=weights,
-    )
-    return setup, (LABEL,), "numeric:lm"
 
 
 _UNREACHABLE = _core.STATUS["unreachable"]
@@ -327,11 +162,13 @@ def _solve(
     threads = 1 if workers is None and targets.single else resolve_workers(workers)
     q0s = _q0(chain, q0, targets)
     kind: TargetKind = "position" if targets.position else "pose"
-    w = _POSITION if targets.position else _POSE
+    w = POSITION_WEIGHTS if targets.position else POSE_WEIGHTS
     if m is not None:
         w = tuple(float(a * b) for a, b in zip(m, w, strict=True))
     values = None
     if options.arm_angle is not None:
+        from kinematica.ik.at_values import parameter_values  # an SRS arm's arm angle only
+
         values = parameter_values("arm_angle", options.arm_angle, targets.shape)
     parameter = None if values is None else "arm_angle"
     closed = None if method == "numeric" or m is not None else closed_form(chain, kind, parameter)
@@ -347,10 +184,14 @@ def _solve(
             arg="method",
             suggest=("arm_angle", 0.0) if at_angle else ("method", "numeric"),
         )
-    solver, labels, name = _solver(chain, closed, tolerance, respect_limits, seed, w)
+    solver, labels, name = (
+        solver_of(chain, closed, tolerance, respect_limits, seed, w)
+        if closed is not None
+        else numeric_solver(chain, tolerance, respect_limits, seed, w)
+    )
     slack = slack_of(chain) if closed is not None and not closed.exact else 0.0
     complete = closed is not None and slack == 0.0
-    opts = _options(tolerance, respect_limits, complete, w, slack)
+    opts = check_options(tolerance, respect_limits, complete, w, slack)
 
     # a closed form that may miss a solution: a target it found nothing for is searched
     partial = closed is not None and (closed.partial or bool(closed.search_note))
@@ -360,14 +201,14 @@ def _solve(
 
     def search(rows: Any) -> tuple[Any, _core.CheckOptions, FloatArray]:  # the second method
         """The search, its options, and the first guesses of the targets ``rows``."""
-        found = _solver(chain, None, tolerance, respect_limits, seed, w)[0]
+        found = numeric_solver(chain, tolerance, respect_limits, seed, w)[0]
         if q0s is not None:
             guess = np.ascontiguousarray(q0s[rows])
         else:
             assert closed is not None
             poses = targets.poses[rows]
             guess = seeds(closed, chain, poses, targets.position, found.middle)
-        return found, _options(tolerance, respect_limits, False, w), guess
+        return found, check_options(tolerance, respect_limits, False, w), guess
 
     if targets.single:
         q0 = None if q0s is None else q0s[0]
@@ -382,7 +223,7 @@ def _solve(
             if slack:
                 notes = (*notes, INCOMPLETE_NOTE)
         out = _limited(chain, targets.poses, out, respect_limits, tolerance, w)
-        reason = _why_numeric(chain, closed, kind, m) if method == "auto" else ()
+        reason = why_numeric(chain, closed, kind, m) if method == "auto" else ()
         return result_of(*out, name, complete, (*notes, *reason))
     invalid = None
     if targets.invalid:
@@ -395,7 +236,7 @@ def _solve(
         return tuple(int(v) for v in np.unravel_index(i, shape))
 
     batch_notes = {where(i): note for i, note in targets.notes.items()}
-    if method == "auto" and (reason := _why_numeric(chain, closed, kind, m)):
+    if method == "auto" and (reason := why_numeric(chain, closed, kind, m)):
         for i in range(targets.poses.shape[0]):
             if i not in targets.invalid:
                 batch_notes[where(i)] = (*batch_notes.get(where(i), ()), *reason)

@@ -11,16 +11,18 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Mapping, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 import kinematica._core as _core
 from kinematica.ik.result import CheckOutput, CoreAnswer, IKBatchResult, IKResult
-from kinematica.ik.targets import Targets
 
 __all__ = ["replace_rows", "stack_results", "widen_answer", "widen_batch", "widen_result"]
+
+if TYPE_CHECKING:  # the general path's modules: loaded when it runs
+    from kinematica.ik.targets import Targets
 
 FloatArray = NDArray[np.float64]
 

@@ -10,11 +10,12 @@ every q.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+import weakref
 
 import numpy as np
 from numpy.typing import NDArray
 
+from kinematica._record import record
 from kinematica.core import Chain
 from kinematica.dh.lines import (
     AXIS_ANGLE_TOL,
@@ -42,7 +43,7 @@ def arm_size(chain: Chain) -> float:
     return size + float(np.abs(chain.translations).sum())
 
 
-@dataclass(frozen=True, eq=False)
+@record
 class Features:
     """What the joint axes of an arm have in common, at q = 0.
 
@@ -112,8 +113,21 @@ class Features:
         )
 
 
+#: Each chain's features, made once (a chain is immutable; the cache forgets a chain
+#: when it dies): the builders, the choice of a redundant arm's parameter and the
+#: near-degenerate test all ask for them.
+_FEATURES: weakref.WeakKeyDictionary[Chain, Features] = weakref.WeakKeyDictionary()
+
+
 def features(chain: Chain) -> Features:
     """The features of a chain's joint axes at q = 0."""
+    found = _FEATURES.get(chain)
+    if found is None:
+        found = _FEATURES[chain] = _features(chain)
+    return found
+
+
+def _features(chain: Chain) -> Features:
     axes = chain.joint_axes(np.zeros(chain.dof))
     h, p = axes[:, :3].copy(), axes[:, 3:].copy()
     n = chain.dof

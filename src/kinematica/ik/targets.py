@@ -11,15 +11,15 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
 from types import MappingProxyType
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 import kinematica._core as _core
-from kinematica.errors import DimensionError, KinematicaError
+from kinematica.errors import DimensionError
+from kinematica.ik.tolerance import POSITION_TOL, ROTATION_TOL, Tolerance, parse_tolerance
 from kinematica.spatial import ROUNDOFF_TOL, nearest_rotation
 from kinematica.spatial.checks import shown_above
 
@@ -39,10 +39,6 @@ FloatArray = NDArray[np.float64]
 #: No remarks: an empty, read-only mapping shared by every clean batch.
 _NONE: Mapping[int, Any] = MappingProxyType({})
 
-#: A solution must put the tool within this distance of the target (metres)...
-POSITION_TOL = 1e-10
-#: ... and within this rotation angle of the target orientation (radians).
-ROTATION_TOL = 1e-10
 #: A target rotation orthonormal to within this (max |RᵀR − I|, and the last
 #: row within this of [0, 0, 0, 1]) is accepted. A rotation copied with 4
 #: decimals has entries off by up to 5e-5, so (RᵀR − I)ᵢⱼ = Σₖ (Rₖᵢ Eₖⱼ + Eₖᵢ Rₖⱼ)
@@ -58,19 +54,12 @@ PROJECTION_TOL = 2e-4
 QUIET_PROJECTION = ROTATION_TOL
 
 
-@dataclass(frozen=True)
-class Tolerance:
-    """Acceptance tolerances of a solution: position (m) and rotation (rad)."""
-
-    position: float = POSITION_TOL
-    rotation: float = ROTATION_TOL
-
-
-class Targets(NamedTuple):
+class Targets:
     """Targets, flattened for the core.
 
-    A named tuple, not a dataclass: ``robot.ik`` of one pose builds one on
-    every call, and a frozen dataclass took a microsecond of it.
+    A plain class: ``robot.ik`` of one pose builds one on every call (a frozen
+    dataclass took a microsecond of it), and a named tuple's class took 0.15 ms
+    to make at the first ``robot.ik``.
 
     Attributes:
         poses: ``(N, 4, 4)`` C-contiguous; a position target is a pose with an
@@ -82,16 +71,31 @@ class Targets(NamedTuple):
         notes: Flat index -> remarks (a rotation projected onto SO(3)).
     """
 
-    poses: FloatArray
-    shape: tuple[int, ...]
-    position: bool
-    invalid: Mapping[int, str] = _NONE
-    notes: Mapping[int, tuple[str, ...]] = _NONE
+    __slots__ = ("invalid", "notes", "poses", "position", "shape")
+
+    def __init__(
+        self,
+        poses: FloatArray,
+        shape: tuple[int, ...],
+        position: bool,
+        invalid: Mapping[int, str] = _NONE,
+        notes: Mapping[int, tuple[str, ...]] = _NONE,
+    ) -> None:
+        self.poses = poses
+        self.shape = shape
+        self.position = position
+        self.invalid = invalid
+        self.notes = notes
 
     @property
     def single(self) -> bool:
         """True for one target (shape ``()``)."""
         return self.shape == ()
+
+    def replace(self, **changes: Any) -> Targets:
+        """The same targets with the given attributes changed (``poses=``, ``shape=``...)."""
+        fields = {name: getattr(self, name) for name in self.__slots__}
+        return Targets(**(fields | changes))
 
 
 def _where(shape: tuple[int, ...], flat: int) -> str:
@@ -225,31 +229,3 @@ def parse_mask(mask: ArrayLike | None) -> FloatArray | None:
     if not np.any(m > 0):
         raise DimensionError("mask selects no error component: every weight is 0", arg="mask")
     return None if np.all(m == 1.0) else m
-
-
-_DEFAULT_TOLERANCE = Tolerance()
-
-
-def parse_tolerance(tol: float | tuple[float, float] | Tolerance | None) -> Tolerance:
-    """A :class:`Tolerance` from one number (both), a pair (m, rad) or a Tolerance."""
-    if tol is None:
-        return _DEFAULT_TOLERANCE
-    values: tuple[float, ...]
-    if isinstance(tol, Tolerance):
-        values = (tol.position, tol.rotation)
-    elif isinstance(tol, int | float | np.floating | np.integer) and not isinstance(tol, bool):
-        values = (float(tol), float(tol))
-    else:
-        try:
-            values = tuple(float(v) for v in tol)  # type: ignore[union-attr]
-        except (TypeError, ValueError):
-            values = ()
-        if len(values) != 2:
-            raise KinematicaError(
-                f"tol must be a number or a pair (position m, rotation rad), got {tol!r}",
-                arg="tol",
-            )
-    for name, v in zip(("position", "rotation"), values, strict=True):
-        if not (math.isfinite(v) and v > 0):
-            raise KinematicaError(f"tol ({name}) must be a positive number, got {v!r}", arg="tol")
-    return Tolerance(values[0], values[1])

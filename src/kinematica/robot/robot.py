@@ -43,7 +43,7 @@ if TYPE_CHECKING:
     from kinematica.ik.direct import DirectParameter
     from kinematica.ik.parameter import Parameter
     from kinematica.ik.registry import TargetKind
-    from kinematica.ik.solve import PoseSolver
+    from kinematica.ik.solvers import PoseSolver
     from kinematica.io import RobotSpec
     from kinematica.robot.dh_rules import DHExtraction
     from kinematica.robot.self_motion import SelfMotion
@@ -104,7 +104,7 @@ class Robot:
     _jacobian_one: Callable[[FloatArray, bool], tuple[FloatArray, int]] = field(
         init=False, repr=False, compare=False
     )
-    _fast_ik: dict[tuple[str, str], PoseSolver] = field(
+    _fast_ik: dict[tuple[str, str], PoseSolver | None] = field(
         init=False, repr=False, compare=False, default_factory=dict
     )
     _turn: FloatArray | None = field(init=False, repr=False, compare=False)
@@ -586,7 +586,7 @@ class Robot:
             )
         check_choice(options.method, "method", ("auto", "analytic", "numeric"))
         check_flag(options.respect_limits, "respect_limits")
-        if self.dof <= _POSE_DOF and options.fixed is None and options.arm_angle is None:
+        if options.fixed is None and options.arm_angle is None and not self._holds(options):
             # no joint to hold: solve_arm would hand the target to solve_ik, as here, with
             # the redundancy layer loaded for nothing
             from kinematica.ik.solve import solve_ik
@@ -624,24 +624,44 @@ class Robot:
 
         return DirectParameter(self.chain, self.joint_names)
 
+    def _holds(self, options: IKOptions) -> bool:
+        """True when ``auto`` may hold a joint of this arm (a redundant arm's pose targets).
+
+        :func:`~kinematica.ik.redundancy.solve_arm`'s own test, made without loading
+        the redundancy layer: ``auto`` without a mask, and one joint more than a pose fixes.
+        """
+        return options.method == "auto" and options.mask is None and self.dof == _POSE_DOF + 1
+
     def _fast(
         self, pose: FloatArray, kind: TargetKind, method: Literal["auto", "numeric"]
     ) -> IKResult | None:
         """``ik`` of one rigid target with every default; None: the general path explains it."""
-        fast = self._fast_ik.get((kind, method))
-        if fast is None:
-            from kinematica.ik.solve import pose_solver
+        key = (kind, method)
+        if key in self._fast_ik:
+            fast = self._fast_ik[key]
+        else:
+            fast = None  # a redundant arm solved at a parameter: no solver of its own
+            if (
+                method == "numeric"
+                or kind != "pose"
+                or self.dof != _POSE_DOF + 1
+                or not self._at_parameter()
+            ):
+                from kinematica.ik.solvers import pose_solver
 
-            fast = pose_solver(self.chain, kind, method=method)
-            if method == "auto" and kind == "pose" and self.dof > _POSE_DOF:
-                from kinematica.ik.redundancy import choose
-
-                if choose(self.chain) is not None:  # solved at a parameter
-                    fast = fast._replace(direct=False)
-            self._fast_ik[(kind, method)] = fast
-        if not fast.direct:  # a redundant arm: at auto's parameter value, else the general path
-            return self._direct.auto(pose) if kind == "pose" else None
+                fast = pose_solver(self.chain, kind, method=method)
+            self._fast_ik[key] = fast
+        if fast is None:  # at auto's parameter value, else the general path
+            return self._direct.auto(pose)
+        if not fast.direct:
+            return None  # the general path completes or explains it
         return fast.rigid(self.chain.core, pose)  # None: the general path explains it
+
+    def _at_parameter(self) -> bool:
+        """True when ``auto`` holds a parameter of this (redundant) arm for a pose target."""
+        from kinematica.ik.redundancy import choose
+
+        return choose(self.chain) is not None
 
     # ------------------------------------------------------------ derived models
     def to_convention(self, convention: str) -> Robot:

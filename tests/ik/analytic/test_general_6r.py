@@ -163,6 +163,12 @@ def test_rank_tol_rejects_a_deficient_labelling_and_keeps_a_nearly_deficient_one
     assert kept is not None and dropped is None
 
 
+def test_the_probe_configurations_are_the_seeded_uniform_draw_they_say() -> None:
+    # written out so that building the solver does not import numpy.random
+    drawn = np.random.default_rng(6).uniform(-np.pi, np.pi, (g6.PROBES, 6))
+    assert np.array_equal(np.array(g6.PROBE_CONFIGS), drawn)
+
+
 def test_probe_tol_separates_a_working_labelling_from_a_degenerate_one() -> None:
     robot = _robot(np.random.default_rng(4), False)
     params = closed_form(robot.chain, "pose").params

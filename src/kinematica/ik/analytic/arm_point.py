@@ -13,15 +13,15 @@ frame of axis 2, the bounds of the reachable shell, and the branch labels.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 import kinematica._core as _core
+from kinematica._record import record
 from kinematica.core import Chain
-from kinematica.dh.lines import AXIS_ANGLE_TOL, length_tol, lines_parallel, normal_feet
+from kinematica.dh.lines import AXIS_ANGLE_TOL, cross3, length_tol, lines_parallel, normal_feet
 
 __all__ = [
     "PROBES",
@@ -43,7 +43,7 @@ RANK_TOL = 1e-6
 PROBES = np.array([[0.3, -0.7, 1.1], [-1.3, 0.4, -0.6], [2.1, 1.7, 0.2]])
 
 
-@dataclass(frozen=True, eq=False)
+@record
 class ArmGeometry:
     """The core's arm part, and the names of its four slots.
 
@@ -79,9 +79,9 @@ def places_point(chain: Chain, c_tool: FloatArray) -> bool:
 
 def unit_normal(h: FloatArray) -> FloatArray:
     """A unit vector normal to the unit vector ``h``."""
-    n = np.cross(h, [1.0, 0.0, 0.0])
+    n = cross3(h, [1.0, 0.0, 0.0])
     if np.linalg.norm(n) < 0.5:
-        n = np.cross(h, [0.0, 1.0, 0.0])
+        n = cross3(h, [0.0, 1.0, 0.0])
     return n / np.linalg.norm(n)
 
 
@@ -108,7 +108,7 @@ def arm_geometry(
     tol = length_tol(size)
     # the lengths the solver's own tolerances scale with (its double roots, its polish)
     scale = 1.0 + float(np.linalg.norm(c - p1) + np.linalg.norm(p2 - p1))
-    ca, sa = float(h1 @ h2), float(np.linalg.norm(np.cross(h1, h2)))
+    ca, sa = float(h1 @ h2), float(np.linalg.norm(cross3(h1, h2)))
     if sa <= AXIS_ANGLE_TOL:
         delta = (p2 - p1) - ((p2 - p1) @ h1) * h1
         a = float(np.linalg.norm(delta))
@@ -116,26 +116,26 @@ def arm_geometry(
             return None  # axes 1 and 2 coincide
         kind, p2 = _Shoulder.parallel, p1 + delta
         e1 = delta / a
-        e2 = np.cross(h2, e1)
+        e2 = cross3(h2, e1)
     else:
         f1, f2 = normal_feet(h1, p1, h2, p2)
         a = float(np.linalg.norm(f2 - f1))
         if a <= tol:  # they meet, or all but (an offset of 1e-10)
             kind, p1, p2 = _Shoulder.meet, f1, f2
             e2 = (h1 - ca * h2) / sa
-            e1 = np.cross(e2, h2)
+            e1 = cross3(e2, h2)
             a = float((f2 - f1) @ e1)  # signed: f2 - f1 is along h1 × h2, so along e1
         else:
             kind, p1, p2 = _Shoulder.general, f1, f2
             e1 = (f2 - f1) / a
-            e2 = np.cross(h2, e1)
+            e2 = cross3(h2, e1)
     if prismatic:
         U = np.array([c - p2, h3, np.zeros(3)])
         parallel23 = False
     else:
         r = c - p3
         rpar = (r @ h3) * h3
-        U = np.array([p3 - p2 + rpar, r - rpar, np.cross(h3, r - rpar)])
+        U = np.array([p3 - p2 + rpar, r - rpar, cross3(h3, r - rpar)])
         if float(np.linalg.norm(U[1])) <= tol:
             return None  # the point is on axis 3
         parallel23 = lines_parallel(h3, h2)

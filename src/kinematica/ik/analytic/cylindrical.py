@@ -28,6 +28,7 @@ from kinematica import _core
 from kinematica.core import Chain
 from kinematica.dh.convert import convert_table
 from kinematica.dh.joints import Convention, Joint, Prismatic, Revolute
+from kinematica.dh.lines import cross3
 from kinematica.ik.analytic.planar_arms import plane_basis
 from kinematica.ik.analytic.sampling import random_transform
 from kinematica.ik.analytic.small_samples import TINY
@@ -78,7 +79,7 @@ def build(chain: Chain, features: Features, target: TargetKind) -> ClosedForm | 
     s = h[2] / np.linalg.norm(h[2])
     sk = float(k @ s)
     sp = s - sk * k
-    nrm = np.cross(k, sp)
+    nrm = cross3(k, sp)
     nrm /= np.linalg.norm(nrm)
     if n == 4:
         h4 = h[3] / np.linalg.norm(h[3])
@@ -114,7 +115,7 @@ def build(chain: Chain, features: Features, target: TargetKind) -> ClosedForm | 
     params.scale = features.size
     # The lift parallel to k within the classification's tolerance only: a travel t along
     # a direction tilted by δ moves the tool δ t across k (no limit: no bound).
-    tilt = float(np.linalg.norm(np.cross(h[lift], k)))
+    tilt = float(np.linalg.norm(cross3(h[lift], k)))
     travel = float(np.max(np.abs(chain.qlim[lift])))
     params.slack = tilt * travel if tilt > 0.0 else 0.0
     position_only = target == "position"

@@ -28,7 +28,7 @@ from numpy.typing import NDArray
 
 from kinematica import _core
 from kinematica.core import Chain
-from kinematica.dh.lines import normal_feet
+from kinematica.dh.lines import cross3, normal_feet
 from kinematica.ik.analytic.planar_arms import plane_basis
 from kinematica.ik.analytic.small_samples import sampler
 from kinematica.ik.registry import ClosedForm, SolverSpec, TargetKind
@@ -71,7 +71,7 @@ def build(chain: Chain, features: Features, target: TargetKind) -> ClosedForm | 
     a, b = plane(p[2] - p[1]), plane(x - p[2])
     if min(np.linalg.norm(a), np.linalg.norm(b)) <= features.length_tol:
         return None  # a link that moves nothing, or coinciding axes: degenerate
-    hk = np.cross(h1, k)
+    hk = cross3(h1, k)
     foot1, foot2 = normal_feet(h1, p[0], k, p[1])
     # The tool turns about axis 3 on a circle (centre c3, radius rho3); its
     # distance from foot2 (on axis 2, which turns about itself) spans [rmin, rmax].
@@ -106,7 +106,7 @@ def build(chain: Chain, features: Features, target: TargetKind) -> ClosedForm | 
     # Axis 3 is parallel to axis 2 within the classification's tolerance: a turn
     # about it moves the tool (within `length`) by at most 2 δ length off the ideal.
     length = float(sum(np.linalg.norm(np.diff(np.vstack([p, x]), axis=0), axis=1)))
-    params.slack = 2.0 * float(np.linalg.norm(np.cross(h[2], k))) * length
+    params.slack = 2.0 * float(np.linalg.norm(cross3(h[2], k))) * length
     return ClosedForm(
         name=kind,
         labels=LABELS,

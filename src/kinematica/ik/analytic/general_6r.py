@@ -26,6 +26,7 @@ import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.dh.convert import convert_table
 from kinematica.dh.joints import Joint, Revolute
+from kinematica.dh.lines import cross3
 from kinematica.ik.analytic.sampling import random_transform
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
@@ -34,6 +35,8 @@ __all__ = [
     "ACCURATE",
     "LABELS",
     "PHI",
+    "PROBES",
+    "PROBE_CONFIGS",
     "PROBE_TOL",
     "RANK_TOL",
     "SEARCH_NOTE",
@@ -56,8 +59,29 @@ RANK_TOL = 1e-9
 #: A labelling passes a probe pose when the configuration that made it is among the raw
 #: candidates to this (rad; the check's polish takes them the rest of the way).
 PROBE_TOL = 1e-6
-#: Random poses each labelling is probed on (fixed seed: the choice is reproducible).
-PROBES = 8
+#: The configurations whose poses each labelling is probed on: uniform in (-π, π],
+#: ``np.random.default_rng(6).uniform(-π, π, (8, 6))`` written out (the choice is
+#: reproducible, and the first IK of a process does not import numpy.random: 10-20 ms).
+PROBE_CONFIGS = (
+    (0.2397936924265509, -0.9847581679958686, -0.8226747951461473,
+     -0.788560078461733, 3.062707200397904, 0.8341322614811477),
+    (1.0953095588356296, -1.0683711188056741, 1.1304560051279005,
+     -2.3689344345096206, -2.8165683032376525, 2.200317124970402),
+    (-3.085698658954023, 3.0081853122768454, 2.0546206072295448,
+     1.7920333090860519, -2.8394751945374326, -1.8382133040260147),
+    (2.1982705927845485, -0.42414760756750125, 0.8009046481796953,
+     -2.3732696820540706, -1.9708070338793215, -0.017166210520705327),
+    (1.630276583194279, 0.250430200722215, -2.4700453142945857,
+     2.300814988218379, -2.2640898449367772, -0.37914149140104936),
+    (0.5456913354825392, -1.1363171893390018, -0.5148808609029172,
+     2.43136960316206, -0.28817388591814597, 0.24659688064192586),
+    (2.9561705279185215, -1.4075394657208866, 2.480539907955195,
+     -0.8679873580267703, -1.180981117766106, 2.395710664347914),
+    (-2.730064447817266, 2.303762074792796, 2.059424684268012,
+     2.4800664901287144, -2.7661266688773907, -1.6411328506132996),
+)  # fmt: skip
+#: Poses each labelling is probed on.
+PROBES = len(PROBE_CONFIGS)
 #: A labelling whose candidates hold the probe poses' configurations to this (rad; the
 #: geometric mean of their distances, before Newton's step) is taken without scoring the
 #: others: round-off for a well-posed elimination (generic arms: 1e-15..1e-13), where
@@ -103,20 +127,20 @@ LABELS: tuple[str, ...] = tuple(
 def _frame(z: FloatArray, origin: FloatArray) -> FloatArray:
     """A (4, 4) frame with z axis ``z`` at ``origin`` (x any unit normal)."""
     seed = np.array([1.0, 0.0, 0.0]) if abs(z[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
-    x = np.cross(z, seed)
+    x = cross3(z, seed)
     x /= np.linalg.norm(x)
     G = np.eye(4)
-    G[:3, 0], G[:3, 1], G[:3, 2], G[:3, 3] = x, np.cross(z, x), z, origin
+    G[:3, 0], G[:3, 1], G[:3, 2], G[:3, 3] = x, cross3(z, x), z, origin
     return G
 
 
 def _foot(h: FloatArray, p: FloatArray, i: int, j: int) -> FloatArray:
     """The point of axis i nearest axis j (axis i's point when they are parallel)."""
-    w = np.cross(h[i], h[j])
+    w = cross3(h[i], h[j])
     n2 = float(w @ w)
     if n2 < 1e-18:
         return p[i]
-    t = float(np.cross(p[j] - p[i], h[j]) @ w) / n2
+    t = float(cross3(p[j] - p[i], h[j]) @ w) / n2
     return p[i] + t * h[i]
 
 
@@ -224,12 +248,12 @@ def _params(
 
 
 def _probe(params: Any, chain: Chain, refine: bool) -> FloatArray:
-    """``(PROBES,)``: per random pose, how far its configuration is from the candidates.
+    """``(PROBES,)``: per probe pose, how far its configuration is from the candidates.
 
     The distance (rad) of the configuration that made the pose to the nearest candidate
     (inf: none), with Newton's step or (``refine`` False) as the eigenproblem gives them.
     """
-    q = np.random.default_rng(6).uniform(-PI, PI, (PROBES, 6))
+    q = np.array(PROBE_CONFIGS)
     params.refine_misses = refine
     out = np.full(PROBES, math.inf)
     for i, T in enumerate(chain.fk(q)[0]):

@@ -39,7 +39,7 @@ from kinematica import _core
 from kinematica.core import Chain
 from kinematica.dh.convert import convert_table
 from kinematica.dh.joints import Convention, Revolute
-from kinematica.dh.lines import line_distance, lines_parallel, normal_feet
+from kinematica.dh.lines import cross3, line_distance, lines_parallel, normal_feet
 from kinematica.ik.analytic.sampling import random_transform
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
@@ -70,7 +70,7 @@ def _project(x: FloatArray, h: FloatArray, p: FloatArray) -> FloatArray:
 
 def _angle(u: FloatArray, v: FloatArray) -> float:
     """Angle between unit vectors (accurate near 0 and π)."""
-    return math.atan2(float(np.linalg.norm(np.cross(u, v))), float(u @ v))
+    return math.atan2(float(np.linalg.norm(cross3(u, v))), float(u @ v))
 
 
 def _middle(lo: float, hi: float) -> float:
@@ -96,8 +96,8 @@ def pack(
     h1, h5, h6 = h[0], h[4], h[5]
     if lines_parallel(h1, k) or lines_parallel(h5, k):
         return None
-    e1 = _unit(np.cross(k, [1.0, 0.0, 0.0] if abs(k[0]) < 0.9 else [0.0, 1.0, 0.0]))
-    e2 = np.cross(k, e1)
+    e1 = _unit(cross3(k, [1.0, 0.0, 0.0] if abs(k[0]) < 0.9 else [0.0, 1.0, 0.0]))
+    e2 = cross3(k, e1)
 
     def plane(x: FloatArray) -> FloatArray:
         return np.array([x @ e1, x @ e2])
@@ -119,9 +119,9 @@ def pack(
             p5 = p6 = 0.5 * (p5 + p6)
     h6par = (h5 @ h6) * h5
     z = p6 - p5
-    eq1 = np.array([k @ (h6 - h6par), k @ np.cross(h5, h6), (k @ h5) * (h5 @ h6)])
+    eq1 = np.array([k @ (h6 - h6par), k @ cross3(h5, h6), (k @ h5) * (h5 @ h6)])
     eq2 = np.array(
-        [k @ (z - (h5 @ z) * h5), k @ np.cross(h5, z), (k @ h5) * (h5 @ z) + k @ (p5 - p[0])]
+        [k @ (z - (h5 @ z) * h5), k @ cross3(h5, z), (k @ h5) * (h5 @ z) + k @ (p5 - p[0])]
     )
     minv = np.zeros(4)
     if mode == _core.parallel.Mode.meet:
@@ -140,9 +140,9 @@ def pack(
         a = nxt
     kpar = (h1 @ k) * h1
     P = _core.parallel.ParallelParams()
-    P.k, P.h1, P.p1, P.kpar, P.kperp, P.hk = k, h1, p[0], kpar, k - kpar, np.cross(h1, k)
+    P.k, P.h1, P.p1, P.kpar, P.kperp, P.hk = k, h1, p[0], kpar, k - kpar, cross3(h1, k)
     P.h5, P.p5, P.h6, P.p6 = h5, p5, h6, p6
-    P.h6par, P.h6perp, P.h5xh6 = h6par, h6 - h6par, np.cross(h5, h6)
+    P.h6par, P.h6perp, P.h5xh6 = h6par, h6 - h6par, cross3(h5, h6)
     P.p2, P.p4, P.e1, P.e2 = p[1], p[3], e1, e2
     P.home = chain.fk(np.zeros(6))[0]
     P.p1s, P.a6 = p1s, a
@@ -154,7 +154,7 @@ def pack(
     P.whi = 2.0 * math.cos(0.5 * (alpha + beta)) ** 2
     P.len_a, P.len_b = (float(v) for v in np.abs([zA, zB]))
     P.arg_a, P.arg_b = (float(v) for v in np.angle([zA, zB]))
-    P.zup = plane(np.cross(h1, k))
+    P.zup = plane(cross3(h1, k))
     P.sign3 = math.copysign(1.0, h[2] @ k)
     P.sign4 = math.copysign(1.0, h[3] @ k)
     P.bound = bound

@@ -32,6 +32,7 @@ from numpy.typing import NDArray
 
 from kinematica import _core
 from kinematica.core import Chain
+from kinematica.dh.lines import cross3
 from kinematica.ik.analytic.small_samples import sampler
 from kinematica.ik.registry import ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
@@ -52,9 +53,9 @@ LABELS: dict[str, tuple[str, str]] = {
 
 def plane_basis(k: FloatArray) -> tuple[FloatArray, FloatArray]:
     """A unit basis ``e1, e2 = k × e1`` of the plane normal to the unit vector ``k``."""
-    e1 = np.cross(k, np.eye(3)[int(np.argmin(np.abs(k)))])
+    e1 = cross3(k, np.eye(3)[int(np.argmin(np.abs(k)))])
     e1 /= np.linalg.norm(e1)
-    return e1, np.cross(k, e1)
+    return e1, cross3(k, e1)
 
 
 def _sign(v: float) -> float:
@@ -134,13 +135,13 @@ def build(chain: Chain, features: Features, target: TargetKind) -> ClosedForm | 
     # classification's tolerance): a turn about an axis tilted by δ moves every
     # point within `length` of it by at most 2 δ length more or less.
     length = float(sum(np.linalg.norm(np.diff(np.vstack([p, t_M]), axis=0), axis=1)))
-    tilts = [float(np.linalg.norm(np.cross(h[j], k))) for j in rev]
+    tilts = [float(np.linalg.norm(cross3(h[j], k))) for j in rev]
     params.length = length
     params.slack = 2.0 * sum(tilts) * length
     if slide >= 0:
         params.slide_tilt = abs(float(h[slide] @ k))
     if lift >= 0:
-        params.lift_tilt = float(np.linalg.norm(np.cross(h[lift], k)))
+        params.lift_tilt = float(np.linalg.norm(cross3(h[lift], k)))
     return ClosedForm(
         name=kind,
         labels=LABELS[kind],

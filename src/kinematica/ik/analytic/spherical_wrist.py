@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.dh.joints import Prismatic, Revolute
-from kinematica.dh.lines import AXIS_ANGLE_TOL, lines_parallel
+from kinematica.dh.lines import AXIS_ANGLE_TOL, cross3, lines_parallel
 from kinematica.ik.analytic.arm_point import (
     arm_geometry,
     places_point,
@@ -68,30 +68,30 @@ def wrist_params(
     if s45 <= AXIS_ANGLE_TOL or lines_parallel(h5, h6):
         return False  # consecutive wrist axes coincide: no 3-DOF wrist
     ea = ea / s45
-    eb = np.cross(h4, ea)
+    eb = cross3(h4, ea)
     F = np.stack([h4, ea, eb])  # rows: the frame (h4, ea, eb)
     x6 = unit_normal(h6)
     k56 = float(h5 @ h6)
     # "no-flip" bends the wrist as at q = 0 (the sign of γ there), or as q5 > 0
     # bends it from there when γ = 0 at q = 0 (h6 in the plane of h4 and h5,
     # e.g. aligned with h4): (h4 × h5)ᵀ R5(ε) h6 ≈ ε (k45 k56 - h4ᵀh6)
-    home = float(np.cross(h4, h5) @ h6)
+    home = float(cross3(h4, h5) @ h6)
     bend = k45 * k56 - float(h4 @ h6)
     params.lh = R_home.T @ h6
     params.lx = R_home.T @ x6
     params.h4 = h4
     params.h5 = h5
     params.x6 = x6
-    params.y6 = np.cross(h6, x6)
+    params.y6 = cross3(h6, x6)
     params.ea = ea
     params.eb = eb
-    params.n56 = F @ np.cross(h5, h6)
+    params.n56 = F @ cross3(h5, h6)
     params.h6f = F @ h6
     params.k45 = k45
     params.s45 = s45
     params.k56 = k56
     params.flip = math.copysign(1.0, home if abs(home) > AXIS_ANGLE_TOL else singular_side * bend)
-    twin = max(abs(k45), abs(k56), float(np.linalg.norm(np.cross(h4, h6))))
+    twin = max(abs(k45), abs(k56), float(np.linalg.norm(cross3(h4, h6))))
     params.twin = twin <= _core.decoupled.TWIN_TOL
     return True
 

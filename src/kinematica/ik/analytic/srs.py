@@ -36,6 +36,7 @@ from numpy.typing import ArrayLike, NDArray
 import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.dh.joints import Revolute
+from kinematica.dh.lines import cross3
 from kinematica.errors import KinematicaError
 from kinematica.ik.analytic.arm_point import unit_normal
 from kinematica.ik.analytic.sampling import random_transform
@@ -85,7 +86,7 @@ def handles(f: Features) -> bool:
 def _turn(h: FloatArray, angle: float, v: FloatArray) -> FloatArray:
     """``v`` turned by ``angle`` about the unit axis ``h`` (Rodrigues)."""
     c, s = math.cos(angle), math.sin(angle)
-    out: FloatArray = c * v + s * np.cross(h, v) + (1.0 - c) * float(h @ v) * h
+    out: FloatArray = c * v + s * cross3(h, v) + (1.0 - c) * float(h @ v) * h
     return out
 
 
@@ -114,7 +115,7 @@ def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
     # |se + R4(q4) ew|² = |se|² + |ew|² + 2 (C + A cos q4 + B sin q4): largest at atan2(B, A)
     ew_across = ew - float(ew @ h4) * h4
     se_across = se - float(se @ h4) * h4
-    stretched = math.atan2(float(h4 @ np.cross(ew, se)), float(se_across @ ew_across))
+    stretched = math.atan2(float(h4 @ cross3(ew, se)), float(se_across @ ew_across))
     params.shoulder = shoulder
     params.wrist = wrist
     params.s = S
