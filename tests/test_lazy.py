@@ -112,6 +112,16 @@ def test_a_package_name_is_its_module_s_object() -> None:
     assert km.ik is importlib.import_module("kinematica.ik")
 
 
+def test_a_submodule_not_named_in_the_exports_loads_as_an_attribute() -> None:
+    # in a fresh process, where nothing imported kinematica.dh.lines before
+    code = "import kinematica as km; print(km.dh.lines.AXIS_ANGLE_TOL, km.ik.analytic.srs.__name__)"
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=False, timeout=120
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout.split() == ["1e-09", "kinematica.ik.analytic.srs"]
+
+
 def test_the_library_imports_what_each_step_needs_only() -> None:
     seen = _steps(
         """

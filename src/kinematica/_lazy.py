@@ -12,6 +12,7 @@ the names from the package's ``if TYPE_CHECKING:`` imports.
 from __future__ import annotations
 
 import importlib
+import importlib.util
 import sys
 from collections.abc import Callable, Mapping
 from typing import Any
@@ -27,7 +28,8 @@ def exports(
     Args:
         package: The package's ``__name__``.
         where: Each public name and the module (absolute name) that defines it;
-            a subpackage or submodule named for itself is the module.
+            a subpackage or submodule named for itself is the module. Any other
+            submodule loads when asked for by its name, as an attribute.
 
     Returns:
         The two module-level functions to assign in the package's ``__init__``.
@@ -36,7 +38,11 @@ def exports(
     def get(name: str) -> Any:
         source = where.get(name)
         if source is None:
-            raise AttributeError(f"module {package!r} has no attribute {name!r}")
+            # a submodule of the package not named above (``kinematica.dh.lines``): an
+            # eager package that imported it had it as an attribute too
+            if name.startswith("__") or importlib.util.find_spec(f"{package}.{name}") is None:
+                raise AttributeError(f"module {package!r} has no attribute {name!r}")
+            source = f"{package}.{name}"
         module = importlib.import_module(source)
         # a subpackage is its own value (``where["ik"] = "kinematica.ik"`` at the root)
         value = module if source == f"{package}.{name}" else getattr(module, name)

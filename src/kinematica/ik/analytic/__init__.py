@@ -10,6 +10,7 @@ wrist's module and the one tried before it, not the SRS, general 6R or planar on
 from __future__ import annotations
 
 import importlib
+import importlib.util
 from collections.abc import Callable, Iterator
 from typing import TYPE_CHECKING, Any
 
@@ -65,9 +66,14 @@ def solvers_for(joint_types: str) -> Iterator[SolverSpec]:
 
 
 def __getattr__(name: str) -> Any:
-    """:data:`SOLVERS`, made (every family's module imported) when first asked for."""
+    """:data:`SOLVERS`, made (every family's module imported) when first asked for.
+
+    A family's module by its name (``analytic.general_6r``) is imported then.
+    """
     if name != "SOLVERS":
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+        if name.startswith("__") or importlib.util.find_spec(f"{__name__}.{name}") is None:
+            raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+        return importlib.import_module(f"{__name__}.{name}")
     specs = tuple(spec for module, _ in FAMILIES for spec in _specs(module))
     globals()["SOLVERS"] = specs
     return specs
