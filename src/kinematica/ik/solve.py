@@ -20,6 +20,7 @@ import kinematica._core as _core
 from kinematica.core import Chain, resolve_workers
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.analytic import solvers_for
+from kinematica.ik.analytic.general_6r import is_general_6r, mark_continua
 from kinematica.ik.at_values import AtValues, parameter_values
 from kinematica.ik.fallback import (
     FALLBACK_NOTE,
@@ -260,6 +261,23 @@ def _solver(
 
 
 _UNREACHABLE = _core.STATUS["unreachable"]
+_OK = _core.STATUS["ok"]
+
+
+def _continuum_of_search(params: Any, T: FloatArray, out: CoreAnswer) -> CoreAnswer:
+    """The numeric search's answer for a general 6R target, singular where its solution
+    lies on a continuum (:func:`~kinematica.ik.analytic.general_6r.mark_continua`)."""
+    sols, *rest, report = out
+    code, gap, near_p, near_r, near, _ = report
+    if code != _OK or len(sols) == 0:
+        return out
+    status = np.array([code])
+    free = np.zeros((1, sols.shape[1]), dtype=bool)
+    mark_continua(params, T[None], sols[:1], status, free, _OK)
+    if int(status[0]) == code:
+        return out
+    joints = tuple(int(j) for j in np.flatnonzero(free[0]))
+    return (sols, *rest, (int(status[0]), gap, near_p, near_r, near, joints))  # type: ignore[return-value]
 
 
 def _limited(
@@ -377,6 +395,8 @@ def _solve(
             if needs_search(out[-1][0]) and values is None:
                 numeric, nopts, guess = search(np.zeros(1, dtype=np.intp))
                 out = numeric.ik(chain.core, targets.poses[0], nopts, guess[0], (LABEL,))
+                if closed is not None and is_general_6r(closed.params):
+                    out = _continuum_of_search(closed.params, targets.poses[0], out)
                 out = _limited(chain, targets.poses, out, respect_limits, tolerance, w)
                 return result_of(*out, "numeric:lm", False, (*notes, searched_note))
             if slack:
@@ -406,6 +426,15 @@ def _solve(
             numeric, nopts, guess = search(rows)
             poses = np.ascontiguousarray(targets.poses[rows])
             searched = numeric.ik_batch(chain.core, poses, nopts, guess, None, threads)
+            if closed is not None and is_general_6r(closed.params):
+                mark_continua(
+                    closed.params,
+                    poses,
+                    searched["q"][:, 0],
+                    searched["status"],
+                    searched["free"],
+                    _OK,
+                )
             raw = merge_batch(raw, rows, searched)
             labels = (*labels, LABEL)
         searched_rows = set(rows.tolist())
