@@ -265,8 +265,11 @@ _OK = _core.STATUS["ok"]
 
 
 def _continuum_of_search(params: Any, T: FloatArray, out: CoreAnswer) -> CoreAnswer:
-    """The numeric search's answer for a general 6R target, singular where its solution
-    lies on a continuum (:func:`~kinematica.ik.analytic.general_6r.mark_continua`)."""
+    """The numeric search's answer for a general 6R target, singular on a continuum.
+
+    Said where its solution lies on one, as
+    :func:`~kinematica.ik.analytic.general_6r.mark_continua` says of a batch's.
+    """
     sols, *rest, report = out
     code, gap, near_p, near_r, near, _ = report
     if code != _OK or len(sols) == 0:

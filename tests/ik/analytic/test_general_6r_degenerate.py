@@ -61,7 +61,7 @@ def _coaxial(robot: km.Robot, rng: np.random.Generator, count: int) -> list[tupl
     while len(found) < count:
         q, s = rng.uniform(-math.pi, math.pi, 6), float(rng.choice([-1.0, 1.0]))
 
-        def f(x: np.ndarray) -> np.ndarray:
+        def f(x: np.ndarray, s: float = s) -> np.ndarray:
             z, m = _axes(robot, x)
             return np.concatenate([z[5] - s * z[0], m[5] - s * m[0]])
 
@@ -81,7 +81,7 @@ def _fold(robot: km.Robot, rng: np.random.Generator) -> np.ndarray:
     while True:
         q = rng.uniform(-math.pi, math.pi, 6)
 
-        def det(t: float) -> float:
+        def det(t: float, q: np.ndarray = q) -> float:
             x = q.copy()
             x[2] = t
             return float(np.linalg.det(robot.jacobian(x)))
