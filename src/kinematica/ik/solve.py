@@ -20,7 +20,6 @@ import kinematica._core as _core
 from kinematica.core import Chain, resolve_workers
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.analytic import solvers_for
-from kinematica.ik.analytic.general_6r import is_general_6r, mark_continua
 from kinematica.ik.at_values import AtValues, parameter_values
 from kinematica.ik.fallback import (
     FALLBACK_NOTE,
@@ -264,12 +263,19 @@ _UNREACHABLE = _core.STATUS["unreachable"]
 _OK = _core.STATUS["ok"]
 
 
+def _general_6r(closed: ClosedForm) -> bool:
+    """True for the general 6R's closed form (its search answers get a continuum test)."""
+    return isinstance(closed.params, _core.general6r.General6RParams)
+
+
 def _continuum_of_search(params: Any, T: FloatArray, out: CoreAnswer) -> CoreAnswer:
     """The numeric search's answer for a general 6R target, singular on a continuum.
 
     Said where its solution lies on one, as
     :func:`~kinematica.ik.analytic.general_6r.mark_continua` says of a batch's.
     """
+    from kinematica.ik.analytic.general_6r import mark_continua
+
     sols, *rest, report = out
     code, gap, near_p, near_r, near, _ = report
     if code != _OK or len(sols) == 0:
@@ -398,7 +404,7 @@ def _solve(
             if needs_search(out[-1][0]) and values is None:
                 numeric, nopts, guess = search(np.zeros(1, dtype=np.intp))
                 out = numeric.ik(chain.core, targets.poses[0], nopts, guess[0], (LABEL,))
-                if closed is not None and is_general_6r(closed.params):
+                if closed is not None and _general_6r(closed):
                     out = _continuum_of_search(closed.params, targets.poses[0], out)
                 out = _limited(chain, targets.poses, out, respect_limits, tolerance, w)
                 return result_of(*out, "numeric:lm", False, (*notes, searched_note))
@@ -429,7 +435,9 @@ def _solve(
             numeric, nopts, guess = search(rows)
             poses = np.ascontiguousarray(targets.poses[rows])
             searched = numeric.ik_batch(chain.core, poses, nopts, guess, None, threads)
-            if closed is not None and is_general_6r(closed.params):
+            if closed is not None and _general_6r(closed):
+                from kinematica.ik.analytic.general_6r import mark_continua
+
                 mark_continua(
                     closed.params,
                     poses,

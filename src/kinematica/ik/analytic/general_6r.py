@@ -39,7 +39,6 @@ __all__ = [
     "accuracy",
     "build",
     "free_joints",
-    "is_general_6r",
     "loop_of",
     "mark_continua",
     "numeric_note",
@@ -336,11 +335,6 @@ def mark_continua(
         if joints:
             status[i] = singular
             free[i, list(joints)] = True
-
-
-def is_general_6r(params: Any) -> bool:
-    """True for the general 6R solver's ``Params`` (their search answers get mark_continua)."""
-    return isinstance(params, _G.General6RParams)
 
 
 # ------------------------------------------------------------- sample arms
