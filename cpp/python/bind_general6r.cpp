@@ -125,6 +125,44 @@ nb::tuple trace_of(const General6RParams& p, const km::Pose& T) {
     return nb::make_tuple(t.rcond, t.shift6, t.closure, info.near, t.deflated, t.qz);
 }
 
+//! (singular, near, free mask, rank, reclosure) of one solve of the pose T: the solver's
+//! info and the self-motion tests' smallest σ6/σ1 (NaN: none computed) and re-closure.
+nb::tuple degeneracy_of(const General6RParams& p, const km::Pose& T) {
+    double Q[kg::SLOTS * 6];
+    km::SolverInfo info;
+    kg::Trace t;
+    p.solve(T, Q, info, &t);
+    return nb::make_tuple(info.singular, info.near, info.free, t.rank, t.reclosure);
+}
+
+//! (verdict, rank, reclosure, moved (6,), free mask) of the self-motion test at the joint
+//! values q (6,) of a solution of the pose T; moved and the mask per joint (not per loop
+//! joint). Refused when q does not close the loop (CLOSURE_TOL): the test presumes it.
+nb::tuple self_motion_of(const General6RParams& p, const km::Pose& T_in, nb::handle qh) {
+    PyArrayObject* qa = small::exact_array(qh, "q", NPY_DOUBLE, 6, 0);
+    double q[6];
+    for (int k = 0; k < 6; ++k) q[k] = static_cast<const double*>(PyArray_DATA(qa))[k];
+    Py_DECREF(qa);
+    km::Pose T = T_in;
+    T.p = p.scale * T.p;
+    km::Pose L[6];
+    for (int k = 0; k < 6; ++k) L[k] = p.link_of(k, T);
+    double a[6];
+    for (int k = 0; k < 6; ++k) a[k] = p.sign * q[p.order[k]];
+    if (!(p.miss(L, a, T) <= kg::CLOSURE_TOL)) {
+        throw nb::value_error("q does not close the loop for T (its miss is above CLOSURE_TOL)");
+    }
+    const kg::SelfMotion sm = p.self_motion(L, T, a);
+    double* out;
+    F64 moved = new_f64({6}, out);
+    std::uint32_t free = 0;
+    for (int k = 0; k < 6; ++k) {
+        out[p.order[k]] = sm.moved[k];
+        if ((sm.free >> k) & 1U) free |= std::uint32_t{1} << p.order[k];
+    }
+    return nb::make_tuple(static_cast<int>(sm.verdict), sm.rank, sm.reclosure, moved, free);
+}
+
 //! (roots (k,), split (k,)): the header's real roots of det M(x) by QZ.
 nb::tuple real_roots_qz_of(nb::handle A0, nb::handle A1, nb::handle A2) {
     kg::Matrix12 A[3];
@@ -167,6 +205,24 @@ void bind_general6r(nb::module_& m) {
     sub.attr("REFINE_LIMIT") = kg::REFINE_LIMIT;
     sub.attr("REFINE_FROM") = kg::REFINE_FROM;
     sub.attr("REFINE_STEPS") = kg::REFINE_STEPS;
+    sub.attr("SINGULAR_RANK_TOL") = kg::SINGULAR_RANK_TOL;
+    sub.attr("SELF_MOTION_STEP") = kg::SELF_MOTION_STEP;
+    sub.attr("SELF_MOTION_STEPS") = kg::SELF_MOTION_STEPS;
+    sub.attr("SELF_MOTION_TOL") = kg::SELF_MOTION_TOL;
+    sub.attr("FREE_JOINT_TOL") = kg::FREE_JOINT_TOL;
+    sub.def("moves", &kg::moves, nb::arg("d"),
+            "True when a joint that moved by d (rad) along a continuum is taken as free.");
+    sub.attr("DEGENERACY") = nb::make_tuple("regular", "fold", "continuum");
+    sub.def("degeneracy", &degeneracy_of, nb::arg("params"), nb::arg("T"),
+            "(singular, near, free, rank, reclosure) of one solve: the solver's flags and free "
+            "joint mask, the smallest sigma6/sigma1 of a closing candidate's loop Jacobian the "
+            "self-motion test computed (NaN: none; its screen proved every one regular) and "
+            "the smallest miss of its re-closures (inf: none).");
+    sub.def("self_motion", &self_motion_of, nb::arg("params"), nb::arg("T"), nb::arg("q"),
+            "(verdict, rank, reclosure, moved, free) of the self-motion test at the solution q "
+            "(6,) of the pose T: verdict an index of DEGENERACY, sigma6/sigma1 (NaN: the screen "
+            "proved it regular), the re-closure's miss, how far each joint moved on the "
+            "continuum (rad) and the free joints' mask.");
     sub.attr("QR_STEPS") = km::eigen::QR_STEPS;
     sub.def("real_roots", &real_roots_of, nb::arg("A0"), nb::arg("A1"), nb::arg("A2"),
             "(roots, deflated): the real roots of det(A0 + A1 x + A2 x²), each A (12, 12); "

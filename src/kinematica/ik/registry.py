@@ -49,6 +49,10 @@ class ClosedForm:
         search_note: When not empty, a target it finds nothing for is searched
             numerically too, and this note says why (an elimination that may
             lose a root to round-off); such a solver is the last resort of a family.
+        mark_searched: With ``search_note``: what it says of the search's answers,
+            ``(poses (k, 4, 4), q (k, n), status (k,), free (k, n))``, the last two
+            changed in place (the general 6R: singular, with the free joints, where a
+            solution lies on a continuum); None: nothing.
     """
 
     name: str
@@ -58,6 +62,7 @@ class ClosedForm:
     partial: bool = False
     exact: bool = False
     search_note: str = ""
+    mark_searched: Callable[[FloatArray, FloatArray, Any, Any], None] | None = None
 
     @property
     def slots(self) -> int:

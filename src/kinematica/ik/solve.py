@@ -95,6 +95,29 @@ def _q0(chain: Chain, q0: ArrayLike | None, targets: Targets) -> FloatArray | No
 
 
 _UNREACHABLE = _core.STATUS["unreachable"]
+_OK = _core.STATUS["ok"]
+
+
+def _searched_one(closed: ClosedForm | None, T: FloatArray, out: CoreAnswer) -> CoreAnswer:
+    """The numeric search's answer for one target, as its closed form marks it.
+
+    A closed form whose ``mark_searched`` is set (the general 6R: singular where the
+    search's solution lies on a continuum) says of the search's answer what it says
+    of its own; the batch path calls it on the searched rows.
+    """
+    if closed is None or closed.mark_searched is None:
+        return out
+    sols, *rest, report = out
+    code, gap, near_p, near_r, near, _ = report
+    if code != _OK or len(sols) == 0:
+        return out
+    status = np.array([code])
+    free = np.zeros((1, sols.shape[1]), dtype=bool)
+    closed.mark_searched(T[None], sols[:1], status, free)
+    if int(status[0]) == code:
+        return out
+    joints = tuple(int(j) for j in np.flatnonzero(free[0]))
+    return (sols, *rest, (int(status[0]), gap, near_p, near_r, near, joints))  # type: ignore[return-value]
 
 
 def _limited(
@@ -218,6 +241,7 @@ def _solve(
             if needs_search(out[-1][0]) and values is None:
                 numeric, nopts, guess = search(np.zeros(1, dtype=np.intp))
                 out = numeric.ik(chain.core, targets.poses[0], nopts, guess[0], (LABEL,))
+                out = _searched_one(closed, targets.poses[0], out)
                 out = _limited(chain, targets.poses, out, respect_limits, tolerance, w)
                 return result_of(*out, "numeric:lm", False, (*notes, searched_note))
             if slack:
@@ -247,6 +271,9 @@ def _solve(
             numeric, nopts, guess = search(rows)
             poses = np.ascontiguousarray(targets.poses[rows])
             searched = numeric.ik_batch(chain.core, poses, nopts, guess, None, threads)
+            if closed is not None and closed.mark_searched is not None:
+                q = searched["q"][:, 0]
+                closed.mark_searched(poses, q, searched["status"], searched["free"])
             raw = merge_batch(raw, rows, searched)
             labels = (*labels, LABEL)
         searched_rows = set(rows.tolist())

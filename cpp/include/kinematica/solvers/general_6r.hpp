@@ -32,6 +32,17 @@
 // (eigenvalues.hpp: twice as fast at this size). Only these headers and their binding
 // include Eigen.
 //
+// Where the method degenerates. A candidate that closes the loop where the loop's Jacobian
+// loses rank (σ6/σ1 below SINGULAR_RANK_TOL) is at a double root (a fold: two branches
+// meet) or on a continuum (a self-motion: the pose held while joints turn). The two are
+// told apart by following the Jacobian's null direction: a step of SELF_MOTION_STEP along
+// it, then Gauss-Newton on five joints with the sixth held (the one the step moves most)
+// back to the target. On a continuum the loop closes again to round-off (within
+// SELF_MOTION_TOL), and the joints that moved (by more than FREE_JOINT_TOL) are the free
+// ones: the answer is singular, those joints named, the candidates representatives. At
+// a fold it cannot (the target is missed by about the curvature times the step squared):
+// near is raised, as for the other families' double roots.
+//
 // Branch labels: a candidate's class is the signs of sin q2, sin q3, sin q5 (joint values
 // in (0, π) or not), 4 slots per class ordered by q1; a ninth group of slots holds the
 // members beyond 4 of a class (rare), labelled "further solution".
@@ -39,8 +50,10 @@
 
 #include <Eigen/Core>
 #include <Eigen/LU>
+#include <Eigen/SVD>
 #include <cmath>
 #include <complex>
+#include <cstdint>
 
 #include "../check.hpp"
 #include "../config.hpp"
@@ -103,6 +116,37 @@ constexpr double REFINE_FROM = 1e-12;
 //! Newton steps at most (quadratic from REFINE_LIMIT: 1e-1, 1e-2, 1e-4, 1e-8, 1e-15,
 //! then the noise floor stops it).
 constexpr int REFINE_STEPS = 8;
+//! A candidate that closes the loop (CLOSURE_TOL) is at a singular configuration, and
+//! tested for a self-motion, when its loop Jacobian's σ6/σ1 (lengths scaled to the arm's
+//! size) is below this. On a continuum it is round-off (1e-18..5e-17 measured, the
+//! candidate Newton-refined onto it); at a fold the elimination's double root is good to
+//! about √ε in the joints and Newton's steps, linear there, take it on (1e-17..3e-9
+//! measured). A regular solution whose fold partner is δ rad away has σ6/σ1 of about δ,
+//! and the pair is lost to round-off (a complex pair) when δ nears √ε: above this, a fold
+//! is far enough for both to be found, and near is not raised.
+constexpr double SINGULAR_RANK_TOL = 1e-7;
+//! The step (rad, along the unit null direction of the loop's Jacobian) of the
+//! self-motion test: large enough that at a fold the held joint leaves the re-closed
+//! loop a miss of about the curvature times its square (1e-6..5e-6 measured), far above
+//! SELF_MOTION_TOL; small enough that on a continuum Gauss-Newton starts within the
+//! curvature times its square of the family and converges in a few steps.
+constexpr double SELF_MOTION_STEP = 1e-2;
+//! Gauss-Newton steps of the re-closure at most (quadratic from 1e-4: 1e-8, 1e-16 in
+//! three, then the noise floor stops it).
+constexpr int SELF_MOTION_STEPS = 8;
+//! After the step, the loop re-closed with one joint held misses the target by at most
+//! this (m or rad): a continuum, or the target within this of one. On one it is
+//! round-off (2e-16..1e-15 measured); a fold leaves 1e-6 and more.
+constexpr double SELF_MOTION_TOL = 1e-12;
+//! A joint that moved by more than this (rad) between the candidate and the re-closed
+//! point on its continuum (a step of SELF_MOTION_STEP) is free: one the family holds
+//! stays to round-off (below 4e-15 measured), one that moves does by a share of the step
+//! (7e-3 for two coaxial axes) or, where it moves only at second order, its square.
+constexpr double FREE_JOINT_TOL = 1e-8;
+
+//! True when a joint that moved by d (rad) along a continuum is free (FREE_JOINT_TOL).
+KM_HD inline bool moves(double d) { return d > FREE_JOINT_TOL; }
+
 //! The grid of angles the trigonometric polynomials are found from: 0, 2π/3, 4π/3.
 constexpr double GRID_STEP = 2.0 * PI / 3.0;
 
@@ -113,6 +157,24 @@ struct Trace {
     double closure = INF;  //!< the smallest miss of a candidate (m or rad; INF: no candidate)
     bool deflated = false; //!< the roots at x6 = ±i were eliminated before the eigenproblem
     bool qz = false;       //!< A2 ill-conditioned at both shifts: the roots by QZ
+    double rank = NaN;     //!< the smallest σ6/σ1 computed at a closing candidate (NaN: none)
+    double reclosure = INF;  //!< the smallest miss of a self-motion test's re-closure
+};
+
+//! What the self-motion test says of a candidate that closes the loop.
+enum class Degeneracy : int {
+    regular = 0,    //!< its Jacobian has full rank (σ6/σ1 above SINGULAR_RANK_TOL)
+    fold = 1,       //!< rank-deficient, no self-motion: a double root (near)
+    continuum = 2,  //!< a self-motion: joints turn with the pose held (singular, free joints)
+};
+
+//! The self-motion test's measurements at one candidate (for its tolerances' tests).
+struct SelfMotion {
+    Degeneracy verdict = Degeneracy::regular;
+    double rank = NaN;        //!< σ6/σ1 of the loop's Jacobian (NaN: not computed, the screen passed it)
+    double reclosure = INF;   //!< the smallest miss of the re-closures (m or rad; INF: none)
+    double moved[6] = {};     //!< per loop joint, how far it moved on the continuum (rad)
+    std::uint32_t free = 0;   //!< bit k: loop joint k is free
 };
 
 //! The line (point, direction) a loop carries.
@@ -344,46 +406,133 @@ struct General6RParams {
         return std::fmax(norm(F.p - T.p) / scale, angle_between(F, T));
     }
 
+    //! The loop's product without the target, H(b) = post Y X pre (T^p = H⁻¹ closes the
+    //! loop), and its geometric Jacobian J (6 x 6 row-major: rows linear then angular,
+    //! column k loop joint k): each joint's axis and origin met along the product.
+    Pose loop_jacobian(const Pose* L, const double* b, double* J) const {
+        Vec3 axis[6], origin[6];
+        Pose H = t_post;
+        for (int i = 0; i < 6; ++i) {
+            const int k = (t_link + 1 + i) % 6;  // after the target's link, round the loop
+            axis[k] = H.rotate(Vec3{0.0, 0.0, 1.0});
+            origin[k] = H.p;
+            H = H * rz(b[k]);
+            if (k != t_link) H = H * L[k];
+        }
+        H = H * t_pre;
+        for (int k = 0; k < 6; ++k) {
+            const Vec3 v = cross(axis[k], H.p - origin[k]);
+            J[0 * 6 + k] = v.x, J[1 * 6 + k] = v.y, J[2 * 6 + k] = v.z;
+            J[3 * 6 + k] = axis[k].x, J[4 * 6 + k] = axis[k].y, J[5 * 6 + k] = axis[k].z;
+        }
+        return H;
+    }
+
+    //! How far the loop's product H misses the target T (scaled), as miss() measures.
+    double miss_of(const Pose& H, const Pose& T) const {
+        const Pose F = t_power < 0 ? H : inverse(H);
+        return std::fmax(norm(F.p - T.p) / scale, angle_between(F, T));
+    }
+
     //! Newton's method on the full pose from the loop angles a whose pose misses T (scaled)
     //! by `from`: at most REFINE_STEPS steps, a taken to the best point met. Returns its
     //! miss. The steps solve H(a) = G for H = post Y X pre (the loop's product without the
     //! target: T^p = H⁻¹, so G = T for p = -1 and T⁻¹ for p = +1), whose Jacobian is the
-    //! geometric one of a chain of rotations about z (each joint's axis and origin met
-    //! along the product), damped as the check's polish.
-    double refine(const Pose* L, const Pose& T, double* a, double from) const {
+    //! geometric one of a chain of rotations about z (loop_jacobian), damped as the
+    //! check's polish. Ja (6 x 6 row-major) becomes the Jacobian at the a returned.
+    double refine(const Pose* L, const Pose& T, double* a, double from, double* Ja) const {
         const Pose G = t_power < 0 ? T : inverse(T);
         double best = from, b[6];
         for (int k = 0; k < 6; ++k) b[k] = a[k];
         for (int step = 0; step <= REFINE_STEPS; ++step) {
-            Vec3 axis[6], origin[6];
-            Pose H = t_post;
-            for (int i = 0; i < 6; ++i) {
-                const int k = (t_link + 1 + i) % 6;  // after the target's link, round the loop
-                axis[k] = H.rotate(Vec3{0.0, 0.0, 1.0});
-                origin[k] = H.p;
-                H = H * rz(b[k]);
-                if (k != t_link) H = H * L[k];
-            }
-            H = H * t_pre;
+            double J[6 * 6], db[6];
+            const Pose H = loop_jacobian(L, b, J);
             if (step > 0) {  // the last step's point, judged as miss() judges
-                const Pose F = t_power < 0 ? H : inverse(H);
-                const double now = std::fmax(norm(F.p - T.p) / scale, angle_between(F, T));
+                const double now = miss_of(H, T);
                 if (!(now < best)) break;  // at the noise floor, or not converging
                 best = now;
                 for (int k = 0; k < 6; ++k) a[k] = b[k];
-                if (step == REFINE_STEPS) break;
             }
+            for (int i = 0; i < 6 * 6; ++i) Ja[i] = J[i];  // a is b here
+            if (step == REFINE_STEPS) break;
             const Twist e = pose_error(H, G);
-            double J[6 * 6], db[6];
-            for (int k = 0; k < 6; ++k) {
-                const Vec3 v = cross(axis[k], H.p - origin[k]);
-                J[0 * 6 + k] = v.x, J[1 * 6 + k] = v.y, J[2 * 6 + k] = v.z;
-                J[3 * 6 + k] = axis[k].x, J[4 * 6 + k] = axis[k].y, J[5 * 6 + k] = axis[k].z;
-            }
             damped_least_squares(J, 6, 6, e.e, POLISH_DAMPING, db);
             for (int k = 0; k < 6; ++k) b[k] += db[k];
         }
         return best;
+    }
+
+    //! The self-motion test at the loop angles a, which close the loop for T (scaled).
+    //!
+    //! Regular when the loop's Jacobian J (at a, 6 x 6 row-major: refine's; nullptr: made
+    //! here) has full rank, proven without its SVD for nearly every candidate: |det J|
+    //! above SINGULAR_RANK_TOL ‖J‖_F⁶ (σ6 ≥ |det J| / σ1⁵, σ1 ≤ ‖J‖_F: loose, 730 of
+    //! 4,000 random poses had a solution it let through), else ‖J‖_F ‖J⁻¹‖_F below
+    //! 1 / SINGULAR_RANK_TOL (σ1/σ6 ≤ that product, within 6x of it: 0 of those 4,000);
+    //! else σ6/σ1 from the SVD. Below
+    //! SINGULAR_RANK_TOL, each null direction v (σi/σ1 below it) is followed: the loop
+    //! angles a + SELF_MOTION_STEP v, the joint v moves most held there, the loop closed
+    //! again by Gauss-Newton on the other five (six equations: least squares). A miss of
+    //! at most SELF_MOTION_TOL is a continuum, its free joints those that moved by more
+    //! than FREE_JOINT_TOL; none re-closes: a fold.
+    SelfMotion self_motion(const Pose* L, const Pose& T, const double* a,
+                           const double* Ja = nullptr) const {
+        using Matrix6 = Eigen::Matrix<double, 6, 6, Eigen::RowMajor>;
+        SelfMotion out;
+        Matrix6 J;
+        if (Ja != nullptr) {
+            J = Eigen::Map<const Matrix6>(Ja);
+        } else {
+            loop_jacobian(L, a, J.data());
+        }
+        const double f2 = J.squaredNorm();
+        const Eigen::PartialPivLU<Matrix6> lu(J);
+        if (std::fabs(lu.determinant()) > SINGULAR_RANK_TOL * f2 * f2 * f2) return out;
+        // (a singular J's inverse is inf or NaN: the comparison fails, the SVD decides)
+        if (std::sqrt(f2 * lu.inverse().squaredNorm()) * SINGULAR_RANK_TOL < 1.0) return out;
+        const Eigen::JacobiSVD<Matrix6> svd(J, Eigen::ComputeFullV);
+        const auto& sv = svd.singularValues();
+        out.rank = sv(0) > 0.0 ? sv(5) / sv(0) : 0.0;
+        if (!(out.rank < SINGULAR_RANK_TOL)) return out;
+        out.verdict = Degeneracy::fold;
+        const Pose G = t_power < 0 ? T : inverse(T);
+        for (int i = 5; i >= 0 && !(sv(i) >= SINGULAR_RANK_TOL * sv(0)); --i) {
+            const auto v = svd.matrixV().col(i);
+            int hold = 0;
+            for (int k = 1; k < 6; ++k)
+                if (std::fabs(v(k)) > std::fabs(v(hold))) hold = k;
+            double b[6], best_b[6];
+            for (int k = 0; k < 6; ++k) b[k] = best_b[k] = a[k] + SELF_MOTION_STEP * v(k);
+            double best = INF;
+            for (int step = 0; step <= SELF_MOTION_STEPS; ++step) {
+                double Jb[6 * 6], Jr[6 * 5], db[5];
+                const Pose H = loop_jacobian(L, b, Jb);
+                const double now = miss_of(H, T);
+                if (now < best) {
+                    best = now;
+                    for (int k = 0; k < 6; ++k) best_b[k] = b[k];
+                } else if (step > 0) {
+                    break;  // at the noise floor, or no solution with that joint held
+                }
+                if (step == SELF_MOTION_STEPS) break;
+                for (int r = 0; r < 6; ++r)
+                    for (int k = 0, c = 0; k < 6; ++k)
+                        if (k != hold) Jr[r * 5 + c++] = Jb[r * 6 + k];
+                const Twist e = pose_error(H, G);
+                damped_least_squares(Jr, 6, 5, e.e, POLISH_DAMPING, db);
+                for (int k = 0, c = 0; k < 6; ++k)
+                    if (k != hold) b[k] += db[c++];
+            }
+            if (best < out.reclosure) out.reclosure = best;
+            if (!(best <= SELF_MOTION_TOL)) continue;
+            out.verdict = Degeneracy::continuum;
+            for (int k = 0; k < 6; ++k) {
+                const double d = std::fabs(wrap(best_b[k] - a[k]));
+                if (d > out.moved[k]) out.moved[k] = d;
+                if (moves(d)) out.free |= std::uint32_t{1} << k;
+            }
+        }
+        return out;
     }
 
     //! u with M(x) u = 0 (M = A0 + x A1 + x² A2, divided by x² when |x| > 1): from the
@@ -458,19 +607,34 @@ struct General6RParams {
         // candidates into their classes, each ordered by q1
         int filled[CLASSES] = {};
         int further = 0;
-        bool closes = false;
+        bool closes = false, fold = false;
         for (int r = 0; r < found; ++r) {
-            double a[6], q[6];
+            double a[6], q[6], J[6 * 6];
             const Vector12 u = null_vector(A, roots[r], info);
             double closure = back_substitute(L, Li, T, roots[r], shift6, u, a);
+            bool refined = false;
             if (refine_misses && closure > 0.0 && closure < REFINE_LIMIT) {
-                closure = refine(L, T, a, closure);
+                closure = refine(L, T, a, closure, J);
+                refined = true;
                 // a split pair's candidate that Newton takes no nearer than REFINE_FROM
                 // is at a fold's near miss (a complex pair of solutions), not a solution
                 if (split[r] && closure > REFINE_FROM) continue;
             }
+            if (closure <= CLOSURE_TOL) {  // a solution: at a fold, or on a continuum?
+                closes = true;
+                const SelfMotion sm = self_motion(L, T, a, refined ? J : nullptr);
+                if (sm.verdict == Degeneracy::continuum) {
+                    info.singular = true;
+                    for (int k = 0; k < 6; ++k)
+                        if ((sm.free >> k) & 1U) info.set_free(order[k]);
+                }
+                fold |= sm.verdict == Degeneracy::fold;
+                if (trace != nullptr) {
+                    if (!std::isnan(sm.rank) && !(sm.rank >= trace->rank)) trace->rank = sm.rank;
+                    if (sm.reclosure < trace->reclosure) trace->reclosure = sm.reclosure;
+                }
+            }
             for (int k = 0; k < 6; ++k) q[order[k]] = wrap(sign * a[k]);
-            closes |= closure <= CLOSURE_TOL;
             if (trace != nullptr && closure < trace->closure) trace->closure = closure;
             const int cls = sign_class(q);
             int slot;
@@ -488,7 +652,10 @@ struct General6RParams {
             }
             for (int k = 0; k < 6; ++k) Q[slot * 6 + k] = q[k];
         }
-        info.near = !closes;
+        // (what null_vector raised is not kept: on calibrated UR5s, M(x6) nearly singular for
+        // every x6, its second pivot falls below DOUBLE_ROOT_TOL at roots whose solutions
+        // are all found, 7 of 2,000 poses; a fold is told by the solution's Jacobian)
+        info.near = !closes || fold;
     }
 };
 

@@ -16,6 +16,7 @@ eigenvalues are the most accurate there.
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import Any
 
@@ -43,7 +44,9 @@ __all__ = [
     "SPEC",
     "accuracy",
     "build",
+    "free_joints",
     "loop_of",
+    "mark_continua",
     "numeric_note",
 ]
 
@@ -313,8 +316,64 @@ def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
 
 def _closed_form(params: Any) -> ClosedForm:
     return ClosedForm(
-        name="general-6R", labels=LABELS, params=params, exact=True, search_note=SEARCH_NOTE
+        name="general-6R",
+        labels=LABELS,
+        params=params,
+        exact=True,
+        search_note=SEARCH_NOTE,
+        mark_searched=functools.partial(mark_continua, params),
     )
+
+
+# ------------------------------------------------------ continua of a search's answers
+def free_joints(params: Any, T: FloatArray, q: FloatArray) -> tuple[int, ...]:
+    """The joints free along the continuum of solutions through ``q``, or ``()``.
+
+    The core's self-motion test (``general_6r.hpp``: the loop's Jacobian rank-deficient
+    at q, a step along its null direction, the loop closed again with one joint held),
+    the one the elimination's own candidates go through.
+
+    Args:
+        params: The arm's ``General6RParams``.
+        T: ``(4, 4)`` the target (base frame, m).
+        q: ``(6,)`` a solution of T (rad), e.g. the numeric search's.
+
+    Returns:
+        0-based indices of the free joints (ascending); ``()`` when q is regular, at a
+        fold, or not a solution to within the loop's closure tolerance.
+    """
+    try:
+        verdict, _, _, _, mask = _G.self_motion(params, T, q)
+    except ValueError:  # q does not close the loop: no test
+        return ()
+    if _G.DEGENERACY[verdict] != "continuum":
+        return ()
+    return tuple(j for j in range(6) if (mask >> j) & 1)
+
+
+def mark_continua(params: Any, poses: FloatArray, q: FloatArray, status: Any, free: Any) -> None:
+    """Say ``singular`` where the numeric search's answer lies on a continuum (in place).
+
+    The search answers the targets the elimination found nothing for (its candidates
+    lost where the method degenerates, a continuum among them): a solution on a
+    continuum is one point of infinitely many, so its status becomes singular and the
+    joints free along it are named, as the closed form says of its own.
+
+    Args:
+        params: The arm's ``General6RParams``.
+        poses: ``(k, 4, 4)`` the targets searched.
+        q: ``(k, 6)`` the search's solution of each (NaN: none).
+        status: ``(k,)`` int status codes, changed in place.
+        free: ``(k, 6)`` bool free joints, changed in place.
+    """
+    solved, singular = _core.STATUS["ok"], _core.STATUS["singular"]
+    for i in range(len(poses)):
+        if int(status[i]) != solved or not np.isfinite(q[i]).all():
+            continue
+        joints = free_joints(params, poses[i], q[i])
+        if joints:
+            status[i] = singular
+            free[i, list(joints)] = True
 
 
 # ------------------------------------------------------------- sample arms
