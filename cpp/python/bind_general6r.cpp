@@ -38,8 +38,8 @@ void set_matrix(double (&v)[R][K], nb::handle src, const char* name) {
     Py_DECREF(a);
 }
 
-//! (u (12,), near): the header's null vector of M (12, 12), its double-root flag.
-nb::tuple null_vector_of(nb::handle M) {
+//! u (12,): the header's null vector of M (12, 12).
+F64 null_vector_of(nb::handle M) {
     kg::Matrix12 A[3];
     PyArrayObject* a = small::exact_array(M, "M", NPY_DOUBLE, kg::SIZE, kg::SIZE);
     const auto* d = static_cast<const double*>(PyArray_DATA(a));
@@ -48,12 +48,11 @@ nb::tuple null_vector_of(nb::handle M) {
     Py_DECREF(a);
     A[1].setZero();
     A[2].setZero();
-    km::SolverInfo info;
-    const kg::Vector12 u = kg::General6RParams::null_vector(A, 0.0, info);  // M(0) = A0
+    const kg::Vector12 u = kg::General6RParams::null_vector(A, 0.0);  // M(0) = A0
     double* out;
     F64 ua = new_f64({kg::SIZE}, out);
     for (int i = 0; i < kg::SIZE; ++i) out[i] = u(i);
-    return nb::make_tuple(ua, info.near);
+    return ua;
 }
 
 //! A2, A1, A0 of a matrix quadratic M(x) = A0 + A1 x + A2 x² (each (12, 12)).
@@ -195,11 +194,10 @@ void bind_general6r(nb::module_& m) {
     sub.attr("LEADING_RCOND_TOL") = kg::LEADING_RCOND_TOL;
     sub.attr("CLOSURE_TOL") = kg::CLOSURE_TOL;
     sub.attr("SECOND_SHIFT") = kg::SECOND_SHIFT;
-    sub.attr("DOUBLE_ROOT_TOL") = kg::DOUBLE_ROOT_TOL;
     sub.def("real_root", [](double re, double im) { return kg::real_root({re, im}); },
             nb::arg("re"), nb::arg("im"), "True when the eigenvalue re + i im is taken as a real root.");
     sub.def("null_vector", &null_vector_of, nb::arg("M"),
-            "(u, near): M u = 0 from M's full-pivot LU; near when its null space looks 2-dimensional.");
+            "u: M u = 0 from M's full-pivot LU (M (12, 12), its null space one-dimensional).");
     sub.attr("SPURIOUS_TOL") = kg::SPURIOUS_TOL;
     sub.attr("SPLIT_ROOT_TOL") = kg::SPLIT_ROOT_TOL;
     sub.attr("REFINE_LIMIT") = kg::REFINE_LIMIT;

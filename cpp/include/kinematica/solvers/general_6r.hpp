@@ -84,10 +84,6 @@ constexpr double LEADING_RCOND_TOL = 1e-8;
 //! The second shift of q'6 (rad): far from 0 and π, so that a root at x6 = ∞ for the
 //! first is at |x6| = 1 / tan(SECOND_SHIFT / 2) ≈ 1.5 for the second.
 constexpr double SECOND_SHIFT = 1.1;
-//! M(x6) at a root has a null space of dimension 2 or more (a double root or a
-//! continuum: near is raised) when its full-pivot LU's second smallest pivot is below
-//! this times the largest.
-constexpr double DOUBLE_ROOT_TOL = 1e-10;
 //! A candidate "closes the loop" when the pose it makes is within this of the target (m
 //! or rad, the larger; measured as the shared check measures it): half the check's
 //! POLISH_LIMIT, so that a candidate that closes is one the check polishes (and calls the
@@ -536,16 +532,16 @@ struct General6RParams {
     }
 
     //! u with M(x) u = 0 (M = A0 + x A1 + x² A2, divided by x² when |x| > 1): from the
-    //! full-pivot LU, whose last pivot is the smallest. A second pivot below
-    //! DOUBLE_ROOT_TOL (relative) means a null space of dimension 2 at least (a double
-    //! root, or a continuum): near is raised.
-    static Vector12 null_vector(const Matrix12* A, double x, SolverInfo& info) {
+    //! full-pivot LU, whose last pivot is the smallest. (Its second smallest pivot says
+    //! nothing the answer can use: on calibrated UR5s, M(x6) nearly singular for every
+    //! x6, it is tiny at roots whose solutions are all found; a double root or a
+    //! continuum is told by the solution's Jacobian, self_motion.)
+    static Vector12 null_vector(const Matrix12* A, double x) {
         const bool big = std::fabs(x) > 1.0;
         const double y = big ? 1.0 / x : x;
         const Matrix12 M = big ? Matrix12(A[2] + y * (A[1] + y * A[0])) : Matrix12(A[0] + y * (A[1] + y * A[2]));
         const Eigen::FullPivLU<Matrix12> lu(M);
         const Matrix12& U = lu.matrixLU();
-        if (std::fabs(U(SIZE - 2, SIZE - 2)) <= DOUBLE_ROOT_TOL * std::fabs(U(0, 0))) info.near = true;
         Vector12 v;
         v(SIZE - 1) = 1.0;
         for (int i = SIZE - 2; i >= 0; --i) {
@@ -610,7 +606,7 @@ struct General6RParams {
         bool closes = false, fold = false;
         for (int r = 0; r < found; ++r) {
             double a[6], q[6], J[6 * 6];
-            const Vector12 u = null_vector(A, roots[r], info);
+            const Vector12 u = null_vector(A, roots[r]);
             double closure = back_substitute(L, Li, T, roots[r], shift6, u, a);
             bool refined = false;
             if (refine_misses && closure > 0.0 && closure < REFINE_LIMIT) {
@@ -652,9 +648,6 @@ struct General6RParams {
             }
             for (int k = 0; k < 6; ++k) Q[slot * 6 + k] = q[k];
         }
-        // (what null_vector raised is not kept: on calibrated UR5s, M(x6) nearly singular for
-        // every x6, its second pivot falls below DOUBLE_ROOT_TOL at roots whose solutions
-        // are all found, 7 of 2,000 poses; a fold is told by the solution's Jacobian)
         info.near = !closes || fold;
     }
 };
