@@ -201,7 +201,10 @@ void bind_general6r(nb::module_& m) {
     sub.attr("SPURIOUS_TOL") = kg::SPURIOUS_TOL;
     sub.attr("SPLIT_ROOT_TOL") = kg::SPLIT_ROOT_TOL;
     sub.attr("REFINE_LIMIT") = kg::REFINE_LIMIT;
-    sub.attr("REFINE_FROM") = kg::REFINE_FROM;
+    sub.attr("SPLIT_CLOSURE_TOL") = kg::SPLIT_CLOSURE_TOL;
+    sub.def("split_closes", &kg::split_closes, nb::arg("closure"),
+            "True when a split pair's candidate Newton took to within closure (m or rad) of the "
+            "target is a solution.");
     sub.attr("REFINE_STEPS") = kg::REFINE_STEPS;
     sub.attr("SINGULAR_RANK_TOL") = kg::SINGULAR_RANK_TOL;
     sub.attr("SELF_MOTION_STEP") = kg::SELF_MOTION_STEP;

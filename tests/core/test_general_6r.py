@@ -60,7 +60,7 @@ LEADING_RCOND_TOL = 1e-8
 SECOND_SHIFT = 1.1
 CLOSURE_TOL = 5e-6
 REFINE_LIMIT = 1e-1
-REFINE_FROM = 1e-12
+SPLIT_CLOSURE_TOL = 1e-12
 REFINE_STEPS = 8
 
 
@@ -70,9 +70,9 @@ def test_the_documented_values_are_the_core_s() -> None:
     assert g.LEADING_RCOND_TOL == LEADING_RCOND_TOL
     assert g.SECOND_SHIFT == SECOND_SHIFT
     assert g.CLOSURE_TOL == CLOSURE_TOL
-    assert (g.REFINE_LIMIT, g.REFINE_FROM, g.REFINE_STEPS) == (
+    assert (g.REFINE_LIMIT, g.SPLIT_CLOSURE_TOL, g.REFINE_STEPS) == (
         REFINE_LIMIT,
-        REFINE_FROM,
+        SPLIT_CLOSURE_TOL,
         REFINE_STEPS,
     )
 
@@ -243,6 +243,16 @@ def test_every_candidate_below_refine_limit_is_taken_to_round_off() -> None:
         closure = g.trace(params, T)[2]
         params.refine_misses = False
         assert closure < 2e-15 < target
+
+
+def test_split_closure_tol_keeps_a_split_pair_s_candidate_newton_closes() -> None:
+    # The decision at its boundary; and the margins it sits between: a candidate Newton
+    # takes to a solution is at round-off (the test above: below 2e-15), a fold's near
+    # miss that SPLIT_ROOT_TOL lets split is 1e-8 or more off the target.
+    g = _core.general6r
+    assert g.split_closes(SPLIT_CLOSURE_TOL * (1 - EDGE))
+    assert not g.split_closes(SPLIT_CLOSURE_TOL * (1 + EDGE))
+    assert 2e-15 < 1e-2 * g.SPLIT_CLOSURE_TOL < 1e2 * g.SPLIT_CLOSURE_TOL < 1e-8
 
 
 def test_candidates_that_miss_beyond_the_polish_are_carried_to_the_solutions() -> None:

@@ -106,9 +106,14 @@ constexpr double CLOSURE_TOL = 0.5 * POLISH_LIMIT;
 constexpr double REFINE_LIMIT = 1e-1;
 //! A split pair's candidate (general_6r_roots.hpp: SPLIT_ROOT_TOL) that Newton takes no
 //! nearer than this (m or rad) to the target is at a fold's near miss (a complex pair of
-//! solutions), not at a solution, and dropped (one that converges reaches round-off:
-//! 2e-16 to 7e-16 measured on calibrated UR5s).
-constexpr double REFINE_FROM = 1e-12;
+//! solutions), not at a solution, and dropped: one that converges reaches round-off
+//! (2e-16 to 7e-16 measured on calibrated UR5s), while a pair splits only as far as
+//! SPLIT_ROOT_TOL allows where the target misses the fold by 1e-8 or more.
+constexpr double SPLIT_CLOSURE_TOL = 1e-12;
+
+//! True when a split pair's candidate that Newton took to within `closure` of the target
+//! (m or rad) is a solution (SPLIT_CLOSURE_TOL).
+KM_HD inline bool split_closes(double closure) { return closure <= SPLIT_CLOSURE_TOL; }
 //! Newton steps at most (quadratic from REFINE_LIMIT: 1e-1, 1e-2, 1e-4, 1e-8, 1e-15,
 //! then the noise floor stops it).
 constexpr int REFINE_STEPS = 8;
@@ -612,9 +617,9 @@ struct General6RParams {
             if (refine_misses && closure > 0.0 && closure < REFINE_LIMIT) {
                 closure = refine(L, T, a, closure, J);
                 refined = true;
-                // a split pair's candidate that Newton takes no nearer than REFINE_FROM
-                // is at a fold's near miss (a complex pair of solutions), not a solution
-                if (split[r] && closure > REFINE_FROM) continue;
+                // a split pair's candidate that Newton takes no nearer than
+                // SPLIT_CLOSURE_TOL is at a fold's near miss (a complex pair), not a solution
+                if (split[r] && !split_closes(closure)) continue;
             }
             if (closure <= CLOSURE_TOL) {  // a solution: at a fold, or on a continuum?
                 closes = true;
