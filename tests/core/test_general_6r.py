@@ -248,7 +248,8 @@ def test_every_candidate_below_refine_limit_is_taken_to_round_off() -> None:
 def test_split_closure_tol_keeps_a_split_pair_s_candidate_newton_closes() -> None:
     # The decision at its boundary; and the margins it sits between: a candidate Newton
     # takes to a solution is at round-off (the test above: below 2e-15), a fold's near
-    # miss that SPLIT_ROOT_TOL lets split is 1e-8 or more off the target.
+    # miss split into a pair is about 1e-8 or more off the target (|Im x| past
+    # REAL_ROOT_TOL = 1e-4 grows as the miss's square root: the header's estimate).
     g = _core.general6r
     assert g.split_closes(SPLIT_CLOSURE_TOL * (1 - EDGE))
     assert not g.split_closes(SPLIT_CLOSURE_TOL * (1 + EDGE))

@@ -107,8 +107,10 @@ constexpr double REFINE_LIMIT = 1e-1;
 //! A split pair's candidate (general_6r_roots.hpp: SPLIT_ROOT_TOL) that Newton takes no
 //! nearer than this (m or rad) to the target is at a fold's near miss (a complex pair of
 //! solutions), not at a solution, and dropped: one that converges reaches round-off
-//! (2e-16 to 7e-16 measured on calibrated UR5s), while a pair splits only as far as
-//! SPLIT_ROOT_TOL allows where the target misses the fold by 1e-8 or more.
+//! (2e-16 to 7e-16 measured on calibrated UR5s), while a fold's complex pair is split
+//! only past REAL_ROOT_TOL (|Im x| of 1e-4 and more; below, its real part is taken as a
+//! real root), and its imaginary part grows as the square root of the target's miss:
+//! a miss of about 1e-8 (arm-size units) and more (an estimate, not a measurement).
 constexpr double SPLIT_CLOSURE_TOL = 1e-12;
 
 //! True when a split pair's candidate that Newton took to within `closure` of the target
