@@ -315,8 +315,9 @@ def test_a_calibrated_ur_once_refused_is_solved_by_qz_and_its_spurious_roots_dro
     # from QZ; the singular part's real eigenvalues give candidates whose pose misses the
     # target, none of which is returned. Reference: 200 numeric starts per pose.
     rng = np.random.default_rng(0)
-    rows, note = g6._edge(rng)
-    assert note.startswith("UR5") and str(rng.choice(["standard", "modified"])) == "modified"
+    rows, note, standard = g6._edge(rng)
+    assert note.startswith("UR5") and standard
+    assert str(rng.choice(["standard", "modified"])) == "modified"
     base, tool = random_transform(rng, 0.5), random_transform(rng, 0.2)
     robot = km.Robot.from_dh(rows, convention="modified", base=base, tool=tool)
     params = closed_form(robot.chain, "pose").params

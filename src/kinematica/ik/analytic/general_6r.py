@@ -396,15 +396,12 @@ _UR5 = (
 )
 
 
-#: The note of the "calibrated UR" edge.
-_CALIBRATED_UR = "UR5 with every twist 1e-3 off"
+def _edge(rng: np.random.Generator) -> tuple[list[Revolute], str, bool]:
+    """A 6R arm on an edge of the general family: ``(rows, what it is, standard)``.
 
-
-def _edge(rng: np.random.Generator) -> tuple[list[Revolute], str]:
-    """A 6R arm on an edge of the general family, and what it is.
-
-    A calibrated UR's table is in the standard convention; the others are random tables
-    for either.
+    ``standard``: the rows are a real arm's table in the standard convention (a
+    calibrated UR's), to be converted for Craig's; the others are random tables that
+    serve either convention as they are.
     """
     u = rng.uniform
     edge = str(rng.choice(["equal links", "offset 1e-10", "parallel 1e-9", "calibrated UR"]))
@@ -413,7 +410,7 @@ def _edge(rng: np.random.Generator) -> tuple[list[Revolute], str]:
             Revolute(d=d, a=a, alpha=al + 1e-3 * float(rng.choice([-1.0, 1.0])), offset=u(-PI, PI))
             for d, a, al in _UR5
         ]
-        return rows, _CALIBRATED_UR
+        return rows, "UR5 with every twist 1e-3 off", True
     rows = _random_rows(rng)
     i = int(rng.integers(6))
     r = rows[i]
@@ -428,16 +425,16 @@ def _edge(rng: np.random.Generator) -> tuple[list[Revolute], str]:
             d=r.d, a=r.a, alpha=1e-9 * float(rng.choice([-1.0, 1.0])), offset=r.offset
         )
         edge = f"axes {i + 1} and {i + 2} parallel but for 1e-9" if i < 5 else "alpha6 = 1e-9"
-    return rows, edge
+    return rows, edge, False
 
 
 def sample_arm(rng: np.random.Generator, degenerate: bool) -> ArmSample:
     """A random 6R arm of general geometry (an edge case with ``degenerate``)."""
-    rows, note = _edge(rng) if degenerate else (_random_rows(rng), "")
+    rows, note, standard = _edge(rng) if degenerate else (_random_rows(rng), "", False)
     modified = str(rng.choice(["standard", "modified"])) == "modified"
     base, tool = random_transform(rng, 0.5), random_transform(rng, 0.2)
     links: tuple[Joint, ...] = tuple(rows)
-    if modified and note == _CALIBRATED_UR:  # the same arm, its table in Craig's convention
+    if modified and standard:  # the same arm, its table in Craig's convention
         links, b, t = convert_table(links, "standard", "modified", np.eye(4), np.eye(4))
         base, tool = base @ b, t @ tool
     return ArmSample(
