@@ -46,10 +46,20 @@ void fill_nan(double* p, npy_intp count) {
     for (npy_intp i = 0; i < count; ++i) p[i] = km::NaN;
 }
 
-//! What the blocks of a batch count.
+//! What the blocks of a batch count: configurations holding NaN/inf, beyond their own
+//! limits, and with a joint beyond a full turn (km::beyond_turn), so that Python reads the
+//! batch again only to name the first of them.
 struct Counts {
-    std::atomic<long> bad{0}, outside{0};
+    std::atomic<long> bad{0}, outside{0}, turns{0};
 };
+
+//! Count configuration q's state st (not ok) into bad, outside and turns.
+inline void count_state(const ChainView& ch, const double* q, QState st, long& bad, long& outside,
+                        long& turns) {
+    bad += st == QState::not_finite;
+    outside += st == QState::outside_limits;
+    turns += st == QState::beyond_turn || km::beyond_turn(ch, q);
+}
 
 //! Scratch of one block's joint trigonometry: on the stack for the usual sizes.
 //! (Storage only: the trigonometry is computed in the multiversioned block functions.)
@@ -79,7 +89,7 @@ KM_CLONES void fk_block(const ChainView& ch, const double* Q, long b0, long b1, 
     const int n = ch.n;
     BlockTrig trig(n, b1 - b0);
     km::joint_trig_rows(ch, Q + b0 * n, static_cast<int>(b1 - b0), trig.angle(), trig.c(), trig.s());
-    long bad = 0, outside = 0;
+    long bad = 0, outside = 0, turns = 0;
     for (long b = b0; b < b1; ++b) {
         const double* q = Q + b * n;
         const double* c = trig.c() + (b - b0) * n;
@@ -92,16 +102,16 @@ KM_CLONES void fk_block(const ChainView& ch, const double* Q, long b0, long b1, 
         }
         T.to_rows(poses + 16 * b);
         const QState st = km::q_state(ch, q);
+        if (st == QState::ok) continue;
+        count_state(ch, q, st, bad, outside, turns);
         if (st == QState::not_finite) {
-            ++bad;
             fill_nan(poses + 16 * b, 16);
             if (frames != nullptr) fill_nan(frames + b * 16 * (n + 1), 16 * (n + 1));
-        } else if (st == QState::outside_limits) {
-            ++outside;
         }
     }
     counts.bad += bad;
     counts.outside += outside;
+    counts.turns += turns;
 }
 
 //! Jacobians of rows [b0, b1) of Q.
@@ -110,17 +120,18 @@ KM_CLONES void jacobian_block(const ChainView& ch, const double* Q, long b0, lon
     const int n = ch.n;
     BlockTrig trig(n, b1 - b0);
     km::joint_trig_rows(ch, Q + b0 * n, static_cast<int>(b1 - b0), trig.angle(), trig.c(), trig.s());
-    long bad = 0;
+    long bad = 0, outside = 0, turns = 0;
     for (long b = b0; b < b1; ++b) {
         const double* q = Q + b * n;
         double* Jb = J + b * 6 * n;
         km::jacobian(ch, q, trig.c() + (b - b0) * n, trig.s() + (b - b0) * n, tool_frame, Jb);
-        if (km::q_state(ch, q) == QState::not_finite) {
-            ++bad;
-            fill_nan(Jb, 6 * n);
-        }
+        const QState st = km::q_state(ch, q);
+        if (st == QState::ok) continue;
+        count_state(ch, q, st, bad, outside, turns);
+        if (st == QState::not_finite) fill_nan(Jb, 6 * n);
     }
     counts.bad += bad;
+    counts.turns += turns;
 }
 
 In check_q(const Chain& chain, F64 q) {
@@ -187,7 +198,8 @@ nb::tuple fk_many(const Chain& chain, F64 Qh, bool all_frames, int workers) {
             fk_block(ch, Q.data, b0, b1, poses, frames, counts);
         });
     }
-    return nb::make_tuple(all_frames ? F : P, counts.bad.load(), counts.outside.load());
+    return nb::make_tuple(all_frames ? F : P, counts.bad.load(), counts.outside.load(),
+                          counts.turns.load());
 }
 
 nb::tuple jacobian_one(const Chain& chain, F64 q, bool tool_frame) {
@@ -220,7 +232,7 @@ nb::tuple jacobian_many(const Chain& chain, F64 Qh, bool tool_frame, int workers
             jacobian_block(ch, Q.data, b0, b1, tool_frame, out, counts);
         });
     }
-    return nb::make_tuple(J, counts.bad.load());
+    return nb::make_tuple(J, counts.bad.load(), counts.turns.load());
 }
 
 F64 joint_axes(const Chain& chain, F64 Qh) {
@@ -329,11 +341,12 @@ void bind_chain(nb::module_& m) {
         .def("fk", &fk_one, nb::arg("q"), "(T (4, 4), state) of q (n,); state 1: NaN/inf, 2: outside own limits.")
         .def("fk_frames", &fk_frames_one, nb::arg("q"), "(frames (n + 1, 4, 4), state) of q (n,).")
         .def("fk_batch", &fk_many, nb::arg("Q"), nb::arg("all_frames"), nb::arg("workers"),
-             "(poses (B, 4, 4) or frames (B, n + 1, 4, 4), bad, outside) of Q (B, n).")
+             "(poses (B, 4, 4) or frames (B, n + 1, 4, 4), bad, outside, turns) of Q (B, n): how many\n"
+             "rows hold NaN/inf, lie beyond their own limits, have a joint beyond a full turn.")
         .def("jacobian", &jacobian_one, nb::arg("q"), nb::arg("tool_frame"),
              "(J (6, n), state) of q (n,).")
         .def("jacobian_batch", &jacobian_many, nb::arg("Q"), nb::arg("tool_frame"),
-             nb::arg("workers"), "(J (B, 6, n), bad) of Q (B, n).")
+             nb::arg("workers"), "(J (B, 6, n), bad, turns) of Q (B, n), counted as for fk_batch.")
         .def("joint_axes", &joint_axes, nb::arg("Q"),
              "(B, n, 6): each joint's axis direction, then a point on it (base frame).");
 }

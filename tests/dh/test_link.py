@@ -313,7 +313,7 @@ def _chain(spec: RobotSpec) -> Chain:
     return Chain.from_dh(joints, spec.convention, base, tool)  # type: ignore[arg-type]
 
 
-def kfk(chain: Chain, q: np.ndarray, all_frames: bool = False) -> tuple[np.ndarray, int, int]:
+def kfk(chain: Chain, q: np.ndarray, all_frames: bool = False) -> tuple[np.ndarray, int, int, int]:
     return chain.fk(q, all_frames)
 
 

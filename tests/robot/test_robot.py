@@ -656,7 +656,7 @@ def test_degrees_given_to_the_radian_api_warn_without_limits() -> None:
     with pytest.warns(km.UnitWarning, match="is it in degrees"):
         arm.jacobian([0, 0, 0, 0, 90, 0])
     assert issubclass(km.UnitWarning, km.KinematicaWarning)
-    turn = 2 * np.pi  # the boundary, single call (the core) and batch (numpy) alike
+    turn = 2 * np.pi  # the boundary, single call and batch (the core counts, numpy names) alike
     for q in ([turn * (1 - 1e-12), 0, 0, 0, 0, 0], [[-turn * (1 - 1e-12), 0, 0, 0, 0, 0]]):
         with warnings.catch_warnings():
             warnings.simplefilter("error")
@@ -676,3 +676,31 @@ def test_degrees_given_to_the_radian_api_warn_without_limits() -> None:
     with pytest.warns(km.KinematicaWarning, match="outside its limits") as caught:
         km.load("puma560").fk([30, 0, 0, 0, 0, 0])
     assert not any(issubclass(w.category, km.UnitWarning) for w in caught)
+
+
+def test_a_batch_names_every_slip_of_a_row_that_has_several() -> None:
+    # the core counts a row beyond a turn even when it is also outside the limits or
+    # holds NaN, so that the batch names it (the first state of a row is not its only one)
+    arm = Robot.from_dh([Revolute(a=0.3), Revolute(a=0.2, qlim=(-1.0, 1.0))])
+    for rows, other in (([[7.0, 2.0]], "outside its limits"), ([[7.0, np.nan]], "NaN or inf")):
+        for call in (arm.fk, arm.jacobian):
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                call(np.array([[0.0, 0.0], *rows]))
+            said = [str(w.message) for w in caught]
+            assert any("joint 1 (row (1,)) = 7 rad" in m for m in said), said
+            if call == arm.fk or other.startswith("NaN"):  # a Jacobian ignores limits
+                assert any(other in m for m in said), said
+
+
+def test_the_limits_warning_of_a_large_batch_names_the_first_row_and_counts_all() -> None:
+    arm = km.load("puma560")
+    q = np.zeros((3, 5000, 6))
+    q[1, 4321, 1] = 4.5  # joint 2's limits: [-45°, 225°]
+    q[2, 17, 2] = -9.0
+    q[2, 18, 0] = 9.0
+    with pytest.warns(km.KinematicaWarning) as caught:
+        arm.fk(q)
+    (message,) = [str(w.message) for w in caught]
+    assert message.startswith("q: joint 2 = 4.5 rad in row (1, 4321) is outside its limits")
+    assert message.endswith("(3 configurations outside the limits)")

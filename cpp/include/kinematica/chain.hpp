@@ -282,6 +282,17 @@ KM_HD KM_INLINE QState q_state(const ChainView& ch, const double* q) {
     return plausible ? QState::ok : QState::beyond_turn;
 }
 
+//! True when a finite joint value of q lies beyond a full turn (a revolute joint with no
+//! limits of its own): what q_state says when nothing else is wrong, asked apart for a
+//! configuration that is also outside limits or holds NaN/inf.
+KM_HD KM_INLINE bool beyond_turn(const ChainView& ch, const double* q) {
+    bool beyond = false;
+    for (int i = 0; i < ch.n; ++i) {
+        beyond = beyond || (std::isfinite(q[i]) && std::fabs(q[i]) > ch.joint[i].turn);
+    }
+    return beyond;
+}
+
 //! The tool pose at q (joint_trig, then walk), with c, s scratch of n each.
 KM_HD KM_INLINE Pose fk(const ChainView& ch, const double* q, double* c, double* s) {
     joint_trig(ch, q, c, s);

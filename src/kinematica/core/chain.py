@@ -29,9 +29,15 @@ __all__ = ["Chain"]
 FloatArray = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]
 
-#: What the core says of one configuration (kinematica._core.Chain.fk).
-_NOT_FINITE, _OUTSIDE_LIMITS = 1, 2
+#: What the core says of one configuration (kinematica._core.Chain.fk): QState in
+#: cpp/include/kinematica/chain.hpp.
+_NOT_FINITE, _OUTSIDE_LIMITS, _BEYOND_TURN = 1, 2, 3
 _FLOAT64 = np.dtype(np.float64)
+
+
+def _counts(state: int) -> tuple[int, int, int]:
+    """``(bad, outside, turns)`` of one configuration from its core state."""
+    return int(state == _NOT_FINITE), int(state == _OUTSIDE_LIMITS), int(state == _BEYOND_TURN)
 
 
 def _readonly(a: NDArray[np.generic]) -> NDArray[np.generic]:
@@ -232,7 +238,7 @@ class Chain:
     # ------------------------------------------------------------ kinematics
     def fk(
         self, q: FloatArray, all_frames: bool = False, workers: int | None = None
-    ) -> tuple[FloatArray, int, int]:
+    ) -> tuple[FloatArray, int, int, int]:
         """Tool poses (or every frame) of configurations ``q``.
 
         Args:
@@ -241,35 +247,39 @@ class Chain:
             workers: Threads for a batch (None: the library default).
 
         Returns:
-            ``(T, bad, outside)``: ``(..., 4, 4)`` poses or ``(..., n+1, 4, 4)``
+            ``(T, bad, outside, turns)``: ``(..., 4, 4)`` poses or ``(..., n+1, 4, 4)``
             frames; the number of configurations holding NaN/inf (their results
-            are NaN); the number beyond some joint's own limits (computed all the same).
+            are NaN); the number beyond some joint's own limits (computed all the
+            same); the number with a revolute joint that has no limits of its own
+            beyond a full turn. One configuration counts in the first of the three
+            that applies.
         """
         if q.ndim == 1:
             if q.dtype is not _FLOAT64 or not q.flags.c_contiguous:
                 q = np.ascontiguousarray(q, dtype=np.float64)
             T, state = self.core.fk_frames(q) if all_frames else self.core.fk(q)
-            return T, int(state == _NOT_FINITE), int(state == _OUTSIDE_LIMITS)
+            return T, *_counts(state)
         flat = self._flat(q)
-        out, bad, outside = self.core.fk_batch(flat, all_frames, resolve_workers(workers))
-        return out.reshape(*q.shape[:-1], *out.shape[1:]), int(bad), int(outside)
+        out, bad, outside, turns = self.core.fk_batch(flat, all_frames, resolve_workers(workers))
+        return out.reshape(*q.shape[:-1], *out.shape[1:]), int(bad), int(outside), int(turns)
 
     def jacobian(
         self, q: FloatArray, tool_frame: bool = False, workers: int | None = None
-    ) -> tuple[FloatArray, int]:
+    ) -> tuple[FloatArray, int, int]:
         """Geometric Jacobians ``(..., 6, n)`` of configurations ``q (..., n)``.
 
         Returns:
-            ``(J, bad)`` as for :meth:`fk`.
+            ``(J, bad, turns)`` as for :meth:`fk`.
         """
         if q.ndim == 1:
             if q.dtype is not _FLOAT64 or not q.flags.c_contiguous:
                 q = np.ascontiguousarray(q, dtype=np.float64)
             J, state = self.core.jacobian(q, tool_frame)
-            return J, int(state == _NOT_FINITE)
+            bad, _, turns = _counts(state)
+            return J, bad, turns
         flat = self._flat(q)
-        J, bad = self.core.jacobian_batch(flat, tool_frame, resolve_workers(workers))
-        return J.reshape(*q.shape[:-1], 6, self.dof), int(bad)
+        J, bad, turns = self.core.jacobian_batch(flat, tool_frame, resolve_workers(workers))
+        return J.reshape(*q.shape[:-1], 6, self.dof), int(bad), int(turns)
 
     def joint_axes(self, q: FloatArray) -> FloatArray:
         """Each joint's axis as a line: ``(..., n, 6)`` unit direction, then a point.

@@ -63,6 +63,9 @@ _IDENTITY = np.eye(4)
 #: cpp/include/kinematica/chain.hpp. Beyond a turn: a revolute joint with no limits of
 #: its own beyond 2π (PLAUSIBLE_ANGLE), which batches check here.
 _NOT_FINITE, _OUTSIDE_LIMITS, _BEYOND_TURN = 1, 2, 3
+#: Rows of a batch read at a time when looking for the first configuration beyond the
+#: limits (the core counts them; only the first is named).
+_SCAN_ROWS = 4096
 
 
 @dataclass(frozen=True, eq=False)
@@ -281,7 +284,7 @@ class Robot:
                 stacklevel=3,
             )
         if outside:
-            warnings.warn(self._limits_message(qa, name), KinematicaWarning, stacklevel=3)
+            warnings.warn(self._limits_message(qa, name, outside), KinematicaWarning, stacklevel=3)
 
     def _check_turns(self, qa: FloatArray, name: str = "q") -> None:
         """Warn (:class:`UnitWarning`) of a free revolute joint beyond a full turn."""
@@ -299,19 +302,31 @@ class Robot:
             stacklevel=3,
         )
 
-    def _limits_message(self, qa: FloatArray, name: str) -> str:
-        """Which joints of which configurations lie beyond their own limits."""
+    def _limits_message(self, qa: FloatArray, name: str, count: int) -> str:
+        """Which joint of which configuration lies beyond its own limits, and how many do.
+
+        ``count``: the configurations beyond their limits, as the core counted them.
+        The first is looked for a block of rows at a time, so that a batch whose first
+        rows are outside is not read whole.
+        """
         own = self.has_limits
         lo, hi = self.qlim[:, 0], self.qlim[:, 1]
-        beyond = own & ((qa < lo) | (qa > hi))
-        first = tuple(int(i) for i in np.argwhere(beyond)[0])
-        j = first[-1]
-        where = f" in row {first[:-1]}" if qa.ndim > 1 else ""
-        unit = "m" if self.links[j].type == "P" else "rad"
-        count = int(beyond.any(axis=-1).sum()) if qa.ndim > 1 else 1
         more = f" ({count} configurations outside the limits)" if count > 1 else ""
+        rows = qa.reshape(-1, self.dof)
+        for start in range(0, len(rows), _SCAN_ROWS):
+            block = rows[start : start + _SCAN_ROWS]
+            beyond = own & ((block < lo) | (block > hi))
+            hit = np.flatnonzero(beyond.any(axis=-1))
+            if hit.size:
+                row, j = start + int(hit[0]), int(np.flatnonzero(beyond[hit[0]])[0])
+                break
+        else:  # not expected: the core and this test read the same limits
+            return f"{name}: outside the joint limits{more}"
+        index = tuple(int(i) for i in np.unravel_index(row, qa.shape[:-1])) if qa.ndim > 1 else ()
+        where = f" in row {index}" if qa.ndim > 1 else ""
+        unit = "m" if self.links[j].type == "P" else "rad"
         return (
-            f"{name}: joint {j + 1} = {qa[first]:.6g} {unit}{where} is outside its limits "
+            f"{name}: joint {j + 1} = {qa[(*index, j)]:.6g} {unit}{where} is outside its limits "
             f"[{lo[j]:.6g}, {hi[j]:.6g}] {unit}{more}"
         )
 
@@ -353,10 +368,11 @@ class Robot:
                     self._report(qa, "q", state == _NOT_FINITE, state == _OUTSIDE_LIMITS)
                 return T
         qa = self.check_q(qa)
-        out, bad, outside = self.chain.fk(qa, all_frames, workers)
+        out, bad, outside, turns = self.chain.fk(qa, all_frames, workers)
         if bad or outside:
             self._report(qa, "q", bad, outside)
-        self._check_turns(qa)
+        if turns:
+            self._check_turns(qa)
         return out
 
     def link_matrices(self, q: ArrayLike) -> FloatArray:
@@ -449,10 +465,11 @@ class Robot:
                     self._check_turns(qa)
                 return J
         qa = self.check_q(qa)
-        J, bad = self.chain.jacobian(qa, frame == "tool", workers)
+        J, bad, turns = self.chain.jacobian(qa, frame == "tool", workers)
         if bad:
             self._report(qa, "q", bad, 0)
-        self._check_turns(qa)
+        if turns:
+            self._check_turns(qa)
         return J
 
     def joint_axes(self, q: ArrayLike | None = None) -> tuple[FloatArray, FloatArray]:
