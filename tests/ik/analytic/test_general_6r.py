@@ -8,6 +8,7 @@ the solutions' own joint values for their branch names.
 
 from __future__ import annotations
 
+import itertools
 import math
 from pathlib import Path
 
@@ -189,17 +190,51 @@ def test_a_labelling_accurate_to_round_off_is_kept_without_scoring_the_others(
     # a generic arm's first labelling is accurate to round-off: the early choice is taken
     K, G1, size = g6.loop_of(robot.chain, f)
     first = g6._params(K, G1, size, 0, False)
-    assert first is not None and g6.accuracy(first[0], robot.chain) <= math.log10(g6.ACCURATE)
+    assert first is not None and g6.accuracy(first[0], robot.chain)[0] <= math.log10(g6.ACCURATE)
     # scores just inside / just outside ACCURATE: the first kept at once / all eight scored
     calls: list[object] = []
 
-    def score(params: object, chain: object) -> float:
+    def score(params: object, chain: object) -> tuple[float, float]:
         calls.append(params)
-        return math.log10(factor * g6.ACCURATE)
+        return math.log10(factor * g6.ACCURATE), factor * g6.ACCURATE
 
     monkeypatch.setattr(g6, "accuracy", score)
     assert g6.build(robot.chain, f, "pose") is not None
     assert len(calls) == scored
+
+
+@pytest.mark.parametrize(("factor", "refined"), [(1.0, 0), (2.0, 1)])
+def test_a_labelling_whose_every_probe_is_accurate_passes_without_the_refined_probes(
+    monkeypatch: pytest.MonkeyPatch, factor: float, refined: int
+) -> None:
+    robot = _robot(np.random.default_rng(4), False)
+    probe, passes = g6._probe, []
+
+    def counted(params: object, chain: km.core.Chain, refine: bool) -> np.ndarray:
+        passes.append(refine)
+        return probe(params, chain, refine)
+
+    monkeypatch.setattr(g6, "_probe", counted)
+    monkeypatch.setattr(g6, "accuracy", lambda p, c: (-15.0, factor * g6.PROBE_TOL))
+    assert g6.build(robot.chain, features(robot.chain), "pose") is not None
+    assert passes.count(True) == refined
+
+
+def test_labellings_within_probe_tol_on_every_probe_pass_the_refined_probes_too() -> None:
+    # the early acceptance's premise: Newton's step takes those candidates nearer
+    rng, kept = np.random.default_rng(11), 0
+    for _ in range(4):
+        robot = _robot(rng, False)
+        K, G1, size = g6.loop_of(robot.chain, features(robot.chain))
+        for start, reverse in itertools.product(range(4), (False, True)):
+            built = g6._params(K, G1, size, start, reverse)
+            if built is not None:
+                raw = g6._probe(built[0], robot.chain, refine=False)
+                refined = g6._probe(built[0], robot.chain, refine=True)
+                if raw.max() <= g6.PROBE_TOL:
+                    kept += 1
+                    assert refined.max() <= g6.ACCURATE  # round-off, wherever raw was
+    assert kept >= 24
 
 
 def test_special_families_keep_their_arms_and_6r_arms_with_a_slide_are_not_taken() -> None:
