@@ -142,8 +142,8 @@ class PoseSolver:
         labels: The branch names of its slots.
         method: The method name results carry.
         complete: It gives every solution (a closed form).
-        direct: Its answer is the whole answer (False for a closed form on a
-            near-degenerate arm, or a partial one: see :mod:`kinematica.ik.fallback`).
+        direct: Its answer is the whole answer where it proves something (False for
+            a closed form on a near-degenerate arm: see :mod:`kinematica.ik.fallback`).
     """
 
     __slots__ = ("complete", "direct", "ik_rigid", "labels", "method", "options")
@@ -201,14 +201,14 @@ def pose_solver(
     solver, labels, name = solver_of(chain, closed, tolerance, True, None, w)
     complete = closed is not None
     opts = check_options(tolerance, True, complete, w)
-    # (a closed form with a search_note says not_found where it proves nothing, and the
-    # one-pose path hands not_found to the general one, which searches)
+    # (a closed form with a search_note, or a partial one, says not_found where it proves
+    # nothing, and the one-pose path hands not_found to the general one, which searches)
     if closed is None:
         # (the search's answer for "auto" carries the note saying why no closed form took
         # it, which only the general path adds; "numeric" was asked for: no note)
         direct = method == "numeric" or not why_numeric(chain, None, kind, None)
     else:
-        direct = (closed.exact or features(chain).slack == 0.0) and not closed.partial
+        direct = closed.exact or features(chain).slack == 0.0
     return PoseSolver(solver.ik_rigid, opts, labels, name, complete, direct)
 
 
