@@ -19,7 +19,7 @@ from numpy.typing import NDArray
 
 import kinematica._core as _core
 from kinematica.core import Chain
-from kinematica.ik.analytic import solvers_for
+from kinematica.ik.analytic import solvers_at, solvers_for
 from kinematica.ik.reach import ANSWERED, needs_proof
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
 from kinematica.ik.result import CoreAnswer, IKResult, result_of
@@ -77,8 +77,8 @@ def closed_form(
     if key not in per_chain:
         found = None
         f = features(chain)
-        for spec in solvers_for(f.joint_types):
-            if spec.parameter == parameter and spec.handles(f):
+        for spec in solvers_at(f.joint_types, parameter):
+            if spec.handles(f):
                 found = spec.build(chain, f, target)
                 if found is not None:
                     break

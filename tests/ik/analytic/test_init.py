@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 import kinematica as km
-from kinematica.ik.analytic import FAMILIES, SOLVERS, solvers_for
+from kinematica.ik.analytic import FAMILIES, PARAMETERS, SOLVERS, solvers_at, solvers_for
 from kinematica.ik.registry import SolverSpec
 from kinematica.ik.structure import Features, features
 
@@ -76,3 +76,13 @@ def test_solvers_for_gives_the_specs_of_the_families_taking_the_arm(
     for f in arms:
         first = next((s for s in SOLVERS if s.handles(f)), None)
         assert next((s for s in solvers_for(f.joint_types) if s.handles(f)), None) is first
+
+
+def test_each_family_solves_at_the_parameter_it_is_listed_with() -> None:
+    for module, _ in FAMILIES:
+        assert {s.parameter for s in _own(module)} == {PARAMETERS.get(module)}, module
+    assert set(PARAMETERS) <= {module for module, _ in FAMILIES}
+    for types in ("RRRRRR", "RRRRRRR", "RRR"):
+        for parameter in (None, "arm_angle"):
+            specs = [s for s in solvers_for(types) if s.parameter == parameter]
+            assert list(solvers_at(types, parameter)) == specs

@@ -19,7 +19,7 @@ from kinematica.ik.registry import SolverSpec
 if TYPE_CHECKING:
     SOLVERS: tuple[SolverSpec, ...]
 
-__all__ = ["FAMILIES", "SOLVERS", "solvers_for"]
+__all__ = ["FAMILIES", "PARAMETERS", "SOLVERS", "solvers_at", "solvers_for"]
 
 #: Each family's module, and the joint types (``"RRRRRR"``, ...) of every arm one of
 #: its specs handles: each spec's predicate tests them before anything else
@@ -41,6 +41,10 @@ FAMILIES: tuple[tuple[str, Callable[[str], bool]], ...] = (
     # position targets of any longer arm: tried last
     ("arm_position", lambda t: len(t) > 3 and t[:2] == "RR"),
 )
+#: The parameter a family's specs solve at (:attr:`SolverSpec.parameter`), for the
+#: families that have one: the search for a solver at a parameter (or without one)
+#: imports no family of the other kind (tests/ik/analytic/test_init.py holds it).
+PARAMETERS: dict[str, str] = {"srs": "arm_angle"}
 
 
 def _specs(module: str) -> tuple[SolverSpec, ...]:
@@ -62,6 +66,16 @@ def solvers_for(joint_types: str) -> Iterator[SolverSpec]:
     """
     for module, takes in FAMILIES:
         if takes(joint_types):
+            yield from _specs(module)
+
+
+def solvers_at(joint_types: str, parameter: str | None) -> Iterator[SolverSpec]:
+    """:func:`solvers_for`'s specs that solve at ``parameter`` (None: at none).
+
+    The families listed with another parameter in :data:`PARAMETERS` are not imported.
+    """
+    for module, takes in FAMILIES:
+        if PARAMETERS.get(module) == parameter and takes(joint_types):
             yield from _specs(module)
 
 
