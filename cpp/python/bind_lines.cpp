@@ -1,9 +1,11 @@
 // The line geometry of joint axes (lines.hpp): a chain's whole feature set in one call, the
 // predicates and the tolerances, for kinematica.dh.lines and kinematica.ik.structure.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include <nanobind/stl/optional.h>
 #include <nanobind/stl/string.h>
 
 #include "casters.hpp"
@@ -109,15 +111,15 @@ std::vector<Vec3> vec3_rows(const In& a) {
     return out;
 }
 
-nb::object common_point(F64 h, F64 p, double size) {
+std::optional<Vec3> common_point(F64 h, F64 p, double size) {
     const In hh = in_f64(h, "h", 2, {-1, 3});
     const In pp = in_f64(p, "p", 2, {hh.dim[0], 3});
     const std::vector<Vec3> H = vec3_rows(hh), P = vec3_rows(pp);
     Vec3 c;
     if (!kl::common_point(H.data(), P.data(), static_cast<int>(H.size()), size, c)) {
-        return nb::none();
+        return std::nullopt;
     }
-    return nb::cast(c);
+    return c;
 }
 
 }  // namespace
