@@ -27,5 +27,6 @@ void bind_ik(nb::module_& m);
 void bind_spatial(nb::module_& m);
 void bind_testing(nb::module_& m);
 void bind_solvers(nb::module_& m);
+void bind_lines(nb::module_& m);
 
 }  // namespace kmpy

@@ -21,5 +21,6 @@ NB_MODULE(_core, m) {
     kmpy::bind_ik(m);
     kmpy::bind_solvers(m);
     kmpy::bind_spatial(m);
+    kmpy::bind_lines(m);
     kmpy::bind_testing(m);
 }

@@ -13,7 +13,9 @@ description keeps its frames wherever they already obey the rules.
 A line is a unit direction ``h`` and a point ``p`` on it, both ``(3,)`` in one
 frame; a frame is a ``(4, 4)`` homogeneous transform whose columns are x, y, z
 and the origin. Lengths are compared relative to the arm's size (see
-:func:`length_tol`).
+:func:`length_tol`). The tolerances, the predicates (parallel, perpendicular),
+:func:`line_distance` and :func:`common_point` are the compiled core's
+(``cpp/include/kinematica/lines.hpp``), where an arm's features are read too.
 """
 
 from __future__ import annotations
@@ -25,6 +27,8 @@ from typing import Literal
 
 import numpy as np
 from numpy.typing import NDArray
+
+from kinematica._core import lines as _lines
 
 __all__ = [
     "AXIS_ANGLE_TOL",
@@ -47,26 +51,22 @@ __all__ = [
 
 FloatArray = NDArray[np.float64]
 
+# The tolerances and the predicates below are the core's (cpp/include/kinematica/lines.hpp,
+# where each value's reasons are written): the classification of an arm's features
+# (kinematica.ik.structure) runs there, and the callers here ask the same code.
+
 #: Two axis directions are parallel when the sine of their angle is at most this;
-#: perpendicular when the cosine is. A closed-form solver built for parallel axes
-#: misses an arm whose axes are off by ε by about ε times its size, which the
-#: check's polishing absorbs while ε is this small. In DH extraction, parallel
-#: axes get the rule for parallel axes (its frames off the true common normal by
-#: at most this angle); beyond it the true normal is used, far away (at about
-#: offset / angle), its round-off about 1e-16 · offset / angle: at this angle
-#: 1e-7 · offset, reported as the table's FK error.
-AXIS_ANGLE_TOL = 1e-9
+#: perpendicular when the cosine is (the core's ``km::lines::AXIS_ANGLE_TOL``).
+AXIS_ANGLE_TOL: float = _lines.AXIS_ANGLE_TOL
 #: Two lines meet, a point is on a line, and parallel lines coincide when their
 #: distance is at most this times ``1 + size`` (size: the arm's, m; see
-#: :func:`length_tol`). Meeting axes are placed exactly either way (only the
-#: sense of x may change); coinciding axes within it lose that offset.
-AXIS_LENGTH_TOL = 1e-9
+#: :func:`length_tol`; the core's ``km::lines::AXIS_LENGTH_TOL``).
+AXIS_LENGTH_TOL: float = _lines.AXIS_LENGTH_TOL
 #: A relation holds exactly, not only within the tolerances above, when its sine,
-#: cosine or distance / (1 + size) is at most this: the round-off of the frame
-#: arithmetic (a DH twist of 90° leaves a cosine of 6e-17). An arm whose axes
-#: meet one of its relations only within the tolerances is *near-degenerate*: a
-#: closed form built for the exact relation is then not the whole answer.
-AXIS_EXACT_TOL = 1e-12
+#: cosine or distance / (1 + size) is at most this: an arm whose axes meet one of
+#: its relations only within the tolerances is *near-degenerate* (the core's
+#: ``km::lines::AXIS_EXACT_TOL``).
+AXIS_EXACT_TOL: float = _lines.AXIS_EXACT_TOL
 
 
 def length_tol(size: float) -> float:
@@ -76,27 +76,22 @@ def length_tol(size: float) -> float:
     and more, ``AXIS_LENGTH_TOL`` metres for small ones (whose round-off is
     smaller still).
     """
-    return AXIS_LENGTH_TOL * (1.0 + size)
+    return _lines.length_tol(size)
 
 
 def lines_parallel(hA: FloatArray, hB: FloatArray) -> bool:
     """True when unit directions ``hA``, ``hB`` (3,) are parallel or anti-parallel."""
-    return float(np.linalg.norm(cross3(hA, hB))) <= AXIS_ANGLE_TOL
+    return _lines.lines_parallel(hA, hB)
 
 
 def lines_perpendicular(hA: FloatArray, hB: FloatArray) -> bool:
     """True when unit directions ``hA``, ``hB`` (3,) are perpendicular."""
-    return abs(float(hA @ hB)) <= AXIS_ANGLE_TOL
+    return _lines.lines_perpendicular(hA, hB)
 
 
 def line_distance(hA: FloatArray, pA: FloatArray, hB: FloatArray, pB: FloatArray) -> float:
     """Distance (m) between the lines ``pA + t hA`` and ``pB + s hB`` (unit directions)."""
-    n = cross3(hA, hB)
-    s = float(np.linalg.norm(n))
-    w = pB - pA
-    if s <= AXIS_ANGLE_TOL:
-        return float(np.linalg.norm(w - float(w @ hA) * hA))
-    return abs(float(w @ n)) / s
+    return _lines.line_distance(hA, pA, hB, pB)
 
 
 def normal_feet(
@@ -128,24 +123,13 @@ def common_point(h: FloatArray, p: FloatArray, size: float) -> FloatArray | None
         size: The arm's size (m), for :func:`length_tol`.
 
     Returns:
-        ``(3,)`` the least-squares point, if every line passes within
-        ``length_tol(size)`` of it; otherwise ``None``.
+        ``(3,)`` the least-squares point, if the normal matrix ``Σ (I - h hᵀ)``
+        has rank 3 at tolerance :data:`AXIS_ANGLE_TOL` and every line passes
+        within ``length_tol(size)`` of it; otherwise ``None``.
     """
-    A = np.zeros((3, 3))
-    b = np.zeros(3)
-    for hi, pi in zip(h, p, strict=True):
-        P = np.eye(3) - np.outer(hi, hi)  # projector orthogonal to the line
-        A += P
-        b += P @ pi
-    if np.linalg.matrix_rank(A, tol=AXIS_ANGLE_TOL) < 3:
-        return None
-    c: FloatArray = np.linalg.solve(A, b).astype(np.float64)
-    tol = length_tol(size)
-    for hi, pi in zip(h, p, strict=True):
-        d = c - pi
-        if np.linalg.norm(d - np.dot(d, hi) * hi) > tol:
-            return None
-    return c
+    return _lines.common_point(
+        np.ascontiguousarray(h, dtype=np.float64), np.ascontiguousarray(p, dtype=np.float64), size
+    )
 
 
 PairKind = Literal["skew", "intersecting", "parallel", "collinear"]

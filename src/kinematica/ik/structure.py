@@ -9,26 +9,17 @@ every q.
 
 from __future__ import annotations
 
-import math
 import weakref
 
 import numpy as np
 from numpy.typing import NDArray
 
+from kinematica._core import lines as _lines
 from kinematica._record import record
 from kinematica.core import Chain
-from kinematica.dh.lines import (
-    AXIS_ANGLE_TOL,
-    AXIS_EXACT_TOL,
-    common_point,
-    cross3,
-    length_tol,
-    line_distance,
-    lines_parallel,
-    lines_perpendicular,
-)
+from kinematica.dh.lines import length_tol, line_distance, lines_parallel, lines_perpendicular
 
-__all__ = ["Features", "arm_size", "features", "near_degenerate_slack"]
+__all__ = ["Features", "arm_size", "features"]
 
 FloatArray = NDArray[np.float64]
 
@@ -39,8 +30,7 @@ def arm_size(chain: Chain) -> float:
     The scale the line geometry's length tolerance is relative to
     (:func:`kinematica.dh.lines.length_tol`); a slide's travel is not counted.
     """
-    size = float(np.linalg.norm(chain.tool[:3, 3]))
-    return size + float(np.abs(chain.translations).sum())
+    return _lines.arm_size(chain.core)
 
 
 @record
@@ -61,10 +51,13 @@ class Features:
         slack: 0 when every relation of two axes (parallel, perpendicular,
             meeting) and the wrist centre holds exactly or not at all; else a
             bound (m) on how far an arm with those relations made exact moves the
-            tool from this one's (see :func:`near_degenerate_slack`).
+            tool from this one's: each relation whose sine, cosine or distance
+            lies in ``(AXIS_EXACT_TOL, tolerance]`` adds ``2 ε size`` (an axis
+            tilted by ε) or its distance δ (an axis, or one through a centre, off by δ).
 
     Every relation is :mod:`kinematica.dh.lines`' (its tolerances, the same
-    ones DH extraction uses).
+    ones DH extraction uses); :func:`features` reads them all in one call of the
+    core (``km::lines::axis_features``, ``cpp/include/kinematica/lines.hpp``).
     """
 
     joint_types: str
@@ -128,81 +121,5 @@ def features(chain: Chain) -> Features:
 
 
 def _features(chain: Chain) -> Features:
-    axes = chain.joint_axes(np.zeros(chain.dof))
-    h, p = axes[:, :3].copy(), axes[:, 3:].copy()
-    n = chain.dof
-    size = arm_size(chain)
-    tol = length_tol(size)
-    types = "".join("P" if v else "R" for v in chain.prismatic)
-    parallel = tuple((i, i + 1) for i in range(n - 1) if lines_parallel(h[i], h[i + 1]))
-    meet = tuple(
-        (i, i + 1)
-        for i in range(n - 1)
-        if (i, i + 1) not in parallel and line_distance(h[i], p[i], h[i + 1], p[i + 1]) <= tol
-    )
-    wrist = _center(h, p, types, size, range(n - 3, n))
-    shoulder = _center(h, p, types, size, range(3))
-    for a in (h, p):
-        a.flags.writeable = False
-    slack = near_degenerate_slack(h, p, size, wrist, shoulder)
-    return Features(types, h, p, parallel, meet, wrist, size, slack, shoulder)
-
-
-def _center(
-    h: FloatArray, p: FloatArray, types: str, size: float, axes: range
-) -> FloatArray | None:
-    """The point where three revolute axes, not all parallel, meet; else None."""
-    if len(types) < 3 or any(types[i] != "R" for i in axes):
-        return None
-    if all(lines_parallel(h[axes[0]], h[i]) for i in axes):
-        return None
-    return common_point(h[axes], p[axes], size)
-
-
-def near_degenerate_slack(
-    h: FloatArray,
-    p: FloatArray,
-    size: float,
-    wrist: FloatArray | None,
-    shoulder: FloatArray | None = None,
-) -> float:
-    """A bound (m) on how far the relations that hold only within tolerance move the tool.
-
-    Every pair of axes whose sine (parallel), cosine (perpendicular) or distance
-    (meeting, coinciding) lies between ``AXIS_EXACT_TOL`` and the line
-    geometry's tolerance, and each axis passing the wrist (or shoulder) centre
-    within the tolerance but not exactly, is a relation a closed form takes as exact. An
-    axis tilted by ε turns the points beyond it, at most ``size`` away, by at
-    most ``2 ε size`` for any joint motion, a point off by δ moves them by δ: the
-    slack is the sum over the relations, 0 when there are none.
-
-    Args:
-        h: ``(n, 3)`` unit axis directions at q = 0.
-        p: ``(n, 3)`` a point on each axis.
-        size: The arm's size (m).
-        wrist: The wrist centre, if any.
-        shoulder: The shoulder centre (axes 1-3), if any.
-    """
-    exact, tol = AXIS_EXACT_TOL, length_tol(size)
-    exact_len = AXIS_EXACT_TOL * (1.0 + size)
-    slack = 0.0
-    n = len(h)
-    for i in range(n):
-        for j in range(i + 1, n):
-            sine = math.hypot(*cross3(h[i], h[j]))
-            cosine = abs(float(h[i] @ h[j]))
-            for v in (sine, cosine):
-                if exact < v <= AXIS_ANGLE_TOL:
-                    slack += 2.0 * v * size
-            d = line_distance(h[i], p[i], h[j], p[j])
-            if exact_len < d <= tol:
-                slack += d
-    for center, axes in ((wrist, range(n - 3, n)), (shoulder, range(3))):
-        if center is None:
-            continue
-        for i in axes:
-            r = center - p[i]
-            d = float(np.linalg.norm(r - float(r @ h[i]) * h[i]))
-            if exact_len < d <= tol:
-                slack += d
-    return slack
+    """The features, read by the core in one call (its fields in Features' order)."""
+    return Features(*_lines.features(chain.core))

@@ -1,0 +1,151 @@
+// The line geometry of joint axes (lines.hpp): a chain's whole feature set in one call, the
+// predicates and the tolerances, for kinematica.dh.lines and kinematica.ik.structure.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nanobind/stl/optional.h>
+#include <nanobind/stl/string.h>
+
+#include "casters.hpp"
+#include "common.hpp"
+#include "kinematica/chain.hpp"
+#include "kinematica/lines.hpp"
+
+namespace kmpy {
+
+namespace {
+
+namespace kl = km::lines;
+using km::Vec3;
+
+//! Records each joint's axis (direction, point) of a walk.
+struct AxesOf {
+    static constexpr bool frames = false;
+    static constexpr bool axes = true;
+    Vec3* h;
+    Vec3* p;
+    void frame(int, const km::Pose&) {}
+    void axis(int i, const Vec3& z, const Vec3& o) {
+        h[i] = z;
+        p[i] = o;
+    }
+};
+
+//! The arm's size (m): the length of the tool's offset plus the sum of |t| over the joints'
+//! fixed translations (a slide's travel not counted): the scale of length_tol.
+double arm_size(const km::Chain& chain) {
+    double joints = 0.0;
+    for (const km::Joint& J : chain.joints()) {
+        joints += std::fabs(J.t.x);
+        joints += std::fabs(J.t.y);
+        joints += std::fabs(J.t.z);
+    }
+    return km::norm(chain.view().tool.p) + joints;
+}
+
+//! A new read-only float64 array of shape (rows, 3) holding v[0 .. rows).
+nb::object readonly_rows(const Vec3* v, npy_intp rows) {
+    double* out;
+    nb::object a = new_f64({rows, 3}, out);
+    for (npy_intp i = 0; i < rows; ++i) {
+        out[3 * i] = v[i].x;
+        out[3 * i + 1] = v[i].y;
+        out[3 * i + 2] = v[i].z;
+    }
+    PyArray_CLEARFLAGS(reinterpret_cast<PyArrayObject*>(a.ptr()), NPY_ARRAY_WRITEABLE);
+    return a;
+}
+
+//! A centre as a read-only (3,) array, or None.
+nb::object centre_or_none(const kl::Centre& c) {
+    if (!c.found) return nb::none();
+    double* out;
+    nb::object a = new_f64({3}, out);
+    out[0] = c.at.x;
+    out[1] = c.at.y;
+    out[2] = c.at.z;
+    PyArray_CLEARFLAGS(reinterpret_cast<PyArrayObject*>(a.ptr()), NPY_ARRAY_WRITEABLE);
+    return a;
+}
+
+//! The pairs (i, i + 1) whose flag is set, as a tuple of tuples.
+nb::tuple pairs(const bool* flag, int count) {
+    nb::list out;
+    for (int i = 0; i < count; ++i) {
+        if (flag[i]) out.append(nb::make_tuple(i, i + 1));
+    }
+    return nb::steal<nb::tuple>(PyList_AsTuple(out.ptr()));
+}
+
+nb::tuple features(const km::Chain& chain) {
+    const km::ChainView ch = chain.view();
+    const int n = ch.n;
+    const auto N = static_cast<size_t>(n);
+    std::vector<double> q(N, 0.0), c(N), s(N);
+    std::vector<Vec3> h(N), p(N);
+    km::joint_trig(ch, q.data(), c.data(), s.data());
+    km::walk(ch, q.data(), c.data(), s.data(), AxesOf{h.data(), p.data()});
+    std::string types(N, 'R');
+    // (arrays of bool, not vector<bool>: axis_features reads and writes through pointers)
+    const std::unique_ptr<bool[]> prismatic(new bool[N]), parallel(new bool[N]), meet(new bool[N]);
+    for (int i = 0; i < n; ++i) {
+        prismatic[static_cast<size_t>(i)] = ch.joint[i].prismatic;
+        if (ch.joint[i].prismatic) types[static_cast<size_t>(i)] = 'P';
+    }
+    const double size = arm_size(chain);
+    const kl::AxisFeatures f =
+        kl::axis_features(h.data(), p.data(), prismatic.get(), n, size, parallel.get(), meet.get());
+    return nb::make_tuple(types, readonly_rows(h.data(), n), readonly_rows(p.data(), n),
+                          pairs(parallel.get(), n - 1), pairs(meet.get(), n - 1),
+                          centre_or_none(f.wrist), size, f.slack, centre_or_none(f.shoulder));
+}
+
+//! (k, 3) float64 arrays as Vec3 lines.
+std::vector<Vec3> vec3_rows(const In& a) {
+    std::vector<Vec3> out(static_cast<size_t>(a.dim[0]));
+    for (size_t i = 0; i < out.size(); ++i) {
+        out[i] = {a.data[3 * i], a.data[3 * i + 1], a.data[3 * i + 2]};
+    }
+    return out;
+}
+
+std::optional<Vec3> common_point(F64 h, F64 p, double size) {
+    const In hh = in_f64(h, "h", 2, {-1, 3});
+    const In pp = in_f64(p, "p", 2, {hh.dim[0], 3});
+    const std::vector<Vec3> H = vec3_rows(hh), P = vec3_rows(pp);
+    Vec3 c;
+    if (!kl::common_point(H.data(), P.data(), static_cast<int>(H.size()), size, c)) {
+        return std::nullopt;
+    }
+    return c;
+}
+
+}  // namespace
+
+void bind_lines(nb::module_& m) {
+    nb::module_ sub = m.def_submodule(
+        "lines", "Joint axes as lines: the one line geometry and its tolerances (lines.hpp).");
+    sub.attr("AXIS_ANGLE_TOL") = kl::AXIS_ANGLE_TOL;
+    sub.attr("AXIS_LENGTH_TOL") = kl::AXIS_LENGTH_TOL;
+    sub.attr("AXIS_EXACT_TOL") = kl::AXIS_EXACT_TOL;
+    sub.def("length_tol", &kl::length_tol, nb::arg("size"),
+            "The distance (m) below which lines meet, for an arm of this size (m).");
+    sub.def("lines_parallel", &kl::lines_parallel, nb::arg("hA"), nb::arg("hB"),
+            "True when unit directions hA, hB (3,) are parallel or anti-parallel.");
+    sub.def("lines_perpendicular", &kl::lines_perpendicular, nb::arg("hA"), nb::arg("hB"),
+            "True when unit directions hA, hB (3,) are perpendicular.");
+    sub.def("line_distance", &kl::line_distance, nb::arg("hA"), nb::arg("pA"), nb::arg("hB"),
+            nb::arg("pB"), "Distance (m) between lines pA + t hA and pB + s hB (unit directions).");
+    sub.def("common_point", &common_point, nb::arg("h"), nb::arg("p"), nb::arg("size"),
+            "(3,) the least-squares point of the lines p[i] + t h[i] ((k, 3) each), or None\n"
+            "(normal matrix of rank < 3, or a line farther than length_tol(size) from it).");
+    sub.def("arm_size", &arm_size, nb::arg("chain"),
+            "The arm's size (m): |tool offset| + Σ |fixed translations| of its joints.");
+    sub.def("features", &features, nb::arg("chain"),
+            "(joint_types, directions (n, 3), points (n, 3), parallel, intersecting, wrist,\n"
+            "size, slack, shoulder) of a chain's axes at q = 0: Features' fields in order.");
+}
+
+}  // namespace kmpy
