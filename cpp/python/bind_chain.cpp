@@ -9,6 +9,7 @@
 #include "common.hpp"
 #include "kinematica/chain.hpp"
 #include "kinematica/jacobian.hpp"
+#include "kinematica/point_rank.hpp"
 #include "pool.hpp"
 
 namespace kmpy {
@@ -252,6 +253,21 @@ F64 joint_axes(const Chain& chain, F64 Qh) {
     return A;
 }
 
+F64 point_rank_ratios(const Chain& chain, F64 Qh, const km::Vec3& c_tool) {
+    const In Q = check_batch(chain, Qh);
+    const ChainView ch = chain.view();
+    const int n = ch.n;
+    if (n < 3) throw nb::value_error("the point's Jacobian needs joints 1-3: a chain of 3 joints or more");
+    const npy_intp B = Q.dim[0];
+    double* out;
+    F64 R = new_f64({B}, out);
+    std::vector<double> c(static_cast<size_t>(n)), s(c.size()), J(6 * c.size());
+    for (npy_intp b = 0; b < B; ++b) {
+        out[b] = km::point_rank_ratio(ch, Q.data + b * n, c_tool, c.data(), s.data(), J.data());
+    }
+    return R;
+}
+
 Chain from_dh(Bools prismatic, F64 theta, F64 d, F64 a, F64 alpha,
               F64 lo, F64 hi, bool modified, const Pose& base, const Pose& tool) {
     const In th = in_f64(theta, "theta", 1);
@@ -348,7 +364,10 @@ void bind_chain(nb::module_& m) {
         .def("jacobian_batch", &jacobian_many, nb::arg("Q"), nb::arg("tool_frame"),
              nb::arg("workers"), "(J (B, 6, n), bad, turns) of Q (B, n), counted as for fk_batch.")
         .def("joint_axes", &joint_axes, nb::arg("Q"),
-             "(B, n, 6): each joint's axis direction, then a point on it (base frame).");
+             "(B, n, 6): each joint's axis direction, then a point on it (base frame).")
+        .def("point_rank_ratios", &point_rank_ratios, nb::arg("Q"), nb::arg("c_tool"),
+             "(B,): σmin / σmax of the Jacobian d(point)/d(q1, q2, q3) at each row of Q (B, n),\n"
+             "the point fixed in the tool frame at c_tool (3,).");
 }
 
 }  // namespace kmpy

@@ -212,3 +212,14 @@ def test_arm_rank_tol_needs_joints_1_to_3_to_place_the_point(factor: float, usab
     robot = wrist_parts.arm_with_point_near_axis_3(1e-4 * factor * ARM_RANK_TOL / r1)
     assert wrist_parts.rank_ratio(robot) == pytest.approx(factor * ARM_RANK_TOL, rel=0.05)
     assert arm_point.places_point(robot.chain, np.zeros(3)) == usable
+
+
+@pytest.mark.parametrize("name", ["puma560", "stanford", "irb120"])
+def test_the_core_s_rank_ratio_is_that_of_the_point_s_jacobian_by_differences(name: str) -> None:
+    # places_point's ratio (the core's Gram matrix, Jacobi eigenvalues) against the SVD
+    # of the tool origin's Jacobian taken by central differences (support/wrist_arms.py)
+    robot = km.load(name)
+    q = np.zeros((len(arm_point.PROBES), robot.dof))
+    q[:, :3] = arm_point.PROBES
+    best = float(robot.chain.core.point_rank_ratios(q, np.zeros(3)).max())
+    assert best == pytest.approx(wrist_parts.rank_ratio(robot), rel=1e-6)

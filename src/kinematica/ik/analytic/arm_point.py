@@ -69,12 +69,7 @@ def places_point(chain: Chain, c_tool: FloatArray) -> bool:
     """
     q = np.zeros((len(PROBES), chain.dof))
     q[:, :3] = PROBES
-    T = chain.fk(q)[0]
-    J = chain.jacobian(q)[0]  # linear velocity of the tool origin, then ω (base frame)
-    r = T[:, :3, :3] @ c_tool  # the point relative to the tool origin
-    Jc = J[:, :3, :3] + np.cross(J[:, 3:, :3], r[:, :, None], axis=1)
-    s = np.linalg.svd(Jc, compute_uv=False)
-    return bool(np.any(s[:, -1] > RANK_TOL * s[:, 0]))
+    return bool((chain.core.point_rank_ratios(q, c_tool) > RANK_TOL).any())
 
 
 def unit_normal(h: FloatArray) -> FloatArray:
