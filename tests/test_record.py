@@ -15,7 +15,7 @@ from typing import Any
 
 import pytest
 
-from kinematica._record import record, store
+from kinematica._record import record, replace, store
 
 
 @record
@@ -132,6 +132,24 @@ def test_fields_are_made_when_first_asked_for_and_a_hand_written_init_is_kept() 
     assert (q.a, q.b) == (1, 2)
     assert dataclasses.replace(q, b=5).b == 5
     assert isinstance(Q.__dict__["__dataclass_fields__"], dict)  # made by replace
+
+
+@pytest.mark.parametrize("eq", [False, True])
+def test_replace_is_dataclasses_replace_without_making_the_dataclass(eq: bool) -> None:
+    @record(eq=eq)
+    class R:
+        a: int
+        b: str = "s"
+        c: list[int] = field(default_factory=list)
+
+    r = R(1, c=[3])
+    new = replace(r, b="t")
+    assert not isinstance(R.__dict__["__dataclass_fields__"], dict)  # still not made
+    assert (new.a, new.b, new.c) == (1, "t", [3]) and r.b == "s"
+    assert vars(new) == vars(dataclasses.replace(r, b="t"))
+    assert vars(r.__replace__(a=2)) == vars(dataclasses.replace(r, a=2))
+    with pytest.raises(TypeError, match="unexpected keyword argument 'z'"):
+        replace(r, z=1)
 
 
 def test_what_a_record_does_not_take() -> None:

@@ -28,13 +28,13 @@ Branch labels, base to tip (slot ``2 k + s``):
 
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Callable
 
 import numpy as np
 from numpy.typing import NDArray
 
 import kinematica._core as _core
+from kinematica._record import replace
 from kinematica.core import Chain
 from kinematica.dh.joints import Prismatic, Revolute
 from kinematica.ik.analytic.sampling import random_transform
@@ -82,7 +82,7 @@ def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
     # decide once, on this arm.
     M_inv = inv_transform(chain.fk(np.zeros(6))[0])
     centre = M_inv[:3, :3] @ f.shoulder_center + M_inv[:3, 3]
-    fb = dataclasses.replace(features(back), wrist_center=centre, size=f.size)
+    fb = replace(features(back), wrist_center=centre, size=f.size)
     # where q = 0 is singular, "no-flip" is the bend of q2 > 0, that is of q'5 < 0
     solver = wrist_solver(back, fb, singular_side=-1.0)
     if solver is None:
