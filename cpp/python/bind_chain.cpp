@@ -342,15 +342,19 @@ void bind_chain(nb::module_& m) {
         .def_prop_ro("fixed_parts", [](const Chain& c) {
             double* out;
             F64 a = new_f64({c.dof(), 4, 4}, out);
-            for (int i = 0; i < c.dof(); ++i) {
-                const km::Joint& J = c.joints()[static_cast<size_t>(i)];
-                const Pose F = km::detail::rot_z(J.ct, J.st) * km::detail::trans(J.t) *
-                               km::detail::rot_x(J.ca, J.sa);
-                F.to_rows(out + 16 * i);
-            }
+            for (int i = 0; i < c.dof(); ++i) c.fixed_part(i).to_rows(out + 16 * i);
             return a;
         }, "(n, 4, 4) each joint's fixed part Rz(θ) Trans(t) Rx(α), after its motion:\n"
            "T = start · Π_i [M_i(q_i) · fixed_i] · tool.")
+        .def("locked", [](const Chain& c, int joint, double value) {
+            if (c.dof() < 2) throw nb::value_error("a chain of one joint has no joint left once it is locked");
+            if (joint < 0 || joint >= c.dof()) throw nb::index_error("joint out of range");
+            if (!std::isfinite(value)) throw nb::value_error("the value of a locked joint must be finite");
+            return c.locked(joint, value);
+        }, nb::arg("joint"), nb::arg("value"),
+           "The chain of the other joints, joint (0-based) held at value (see chain.hpp).")
+        .def("reversed", &Chain::reversed,
+             "The chain of the inverse transform: joints reversed, variables negated (chain.hpp).")
         .def_prop_ro("start", [](const Chain& c) { return c.view().start; })
         .def_prop_ro("tool", [](const Chain& c) { return c.view().tool; })
         .def_prop_ro("base", [](const Chain& c) { return c.view().base; })

@@ -73,3 +73,13 @@ def test_motion_is_a_turn_or_a_slide() -> None:
     np.testing.assert_array_equal(M[:3, :3], np.eye(3))
     assert M[2, 3] == 0.4
     assert isinstance(arm.chain.locked(0, 0.1), Chain)
+
+
+def test_the_core_refuses_a_lock_it_cannot_make() -> None:
+    # the core's own checks (the Python above checks first): an error, never a crash
+    core = km.load("puma560").chain.core
+    for joint, value in ((6, 0.0), (-1, 0.0), (0, math.nan), (0, math.inf)):
+        with pytest.raises((ValueError, IndexError)):
+            core.locked(joint, value)
+    with pytest.raises(ValueError, match="one joint"):
+        km.Robot.from_dh([km.Revolute(a=1.0)]).chain.core.locked(0, 0.0)

@@ -89,6 +89,21 @@ public:
                                  const Pose* frame_offset, const bool* prismatic,
                                  const double* lo, const double* hi, const Pose& base);
 
+    //! The chain of the other joints, joint k (0-based) held at value: its motion folded
+    //! into the neighbouring fixed transforms (the first joint's into start, the last's into
+    //! the tool). Its FK at q without entry k is this chain's at q, to round-off; its frames
+    //! are those right after each motion; the base is kept. Needs n >= 2.
+    Chain locked(int k, double value) const;
+    //! The chain of the inverse transform: joints in reverse order, variables negated.
+    //!
+    //! With T(q) = start · Π_i [M_i(q_i) F_i] · tool (F_i: fixed_part(i)),
+    //! T(q)⁻¹ = (tool⁻¹ F_n⁻¹) · M_n(-q_n) F_(n-1)⁻¹ ··· M_2(-q_2) F_1⁻¹ · M_1(-q_1) · start⁻¹:
+    //! its fk(q') at q'_j = -q_(n+1-j) is fk(q)⁻¹. Its own limits are the joints' mapped
+    //! likewise ([-hi, -lo]), its frames those of its motions, its base the identity.
+    Chain reversed() const;
+    //! Joint i's fixed part F_i = Rz(θ_i) Trans(t_i) Rx(α_i), after its motion.
+    Pose fixed_part(int i) const;
+
     int dof() const { return static_cast<int>(joints_.size()); }
     const std::vector<Joint>& joints() const { return joints_; }
     ChainView view() const {

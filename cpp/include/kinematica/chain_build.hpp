@@ -141,4 +141,58 @@ inline Chain Chain::from_transforms(int n, const Pose& start, const Pose* betwee
     return ch;
 }
 
+inline Pose Chain::fixed_part(int i) const {
+    const Joint& J = joints_[static_cast<size_t>(i)];
+    return detail::rot_z(J.ct, J.st) * detail::trans(J.t) * detail::rot_x(J.ca, J.sa);
+}
+
+inline Chain Chain::locked(int k, double value) const {
+    const int n = dof();
+    // T = G_0 M_0 G_1 M_1 ... M_(n-1) G_n: locking joint k merges G_k M_k G_(k+1)
+    std::vector<Pose> G(static_cast<size_t>(n + 1));
+    G[0] = start_;
+    for (int i = 1; i < n; ++i) G[static_cast<size_t>(i)] = fixed_part(i - 1);
+    G[static_cast<size_t>(n)] = fixed_part(n - 1) * tool_;
+    const Joint& J = joints_[static_cast<size_t>(k)];
+    const Pose motion = J.prismatic ? detail::trans({0.0, 0.0, value})
+                                    : detail::rot_z(std::cos(value), std::sin(value));
+    std::vector<Pose> parts;
+    std::vector<char> prismatic;
+    std::vector<double> lo, hi;
+    for (int i = 0; i <= n; ++i) {
+        if (i == k + 1) continue;  // merged into part k
+        parts.push_back(i == k ? G[static_cast<size_t>(k)] * motion * G[static_cast<size_t>(k + 1)]
+                               : G[static_cast<size_t>(i)]);
+    }
+    for (int i = 0; i < n; ++i) {
+        if (i == k) continue;
+        const Joint& Ji = joints_[static_cast<size_t>(i)];
+        prismatic.push_back(Ji.prismatic);
+        lo.push_back(Ji.lo);
+        hi.push_back(Ji.hi);
+    }
+    const std::vector<Pose> offsets(static_cast<size_t>(n - 1));
+    return from_transforms(n - 1, parts.front(), parts.data() + 1, parts.back(), offsets.data(),
+                           reinterpret_cast<const bool*>(prismatic.data()), lo.data(), hi.data(),
+                           base_);
+}
+
+inline Chain Chain::reversed() const {
+    const int n = dof();
+    std::vector<Pose> between, offsets(static_cast<size_t>(n));
+    for (int i = n - 2; i >= 0; --i) between.push_back(inverse(fixed_part(i)));
+    std::vector<char> prismatic;
+    std::vector<double> lo, hi;
+    for (int i = n - 1; i >= 0; --i) {
+        const Joint& J = joints_[static_cast<size_t>(i)];
+        prismatic.push_back(J.prismatic);
+        lo.push_back(-J.hi);
+        hi.push_back(-J.lo);
+    }
+    return from_transforms(n, inverse(tool_) * inverse(fixed_part(n - 1)), between.data(),
+                           inverse(start_), offsets.data(),
+                           reinterpret_cast<const bool*>(prismatic.data()), lo.data(), hi.data(),
+                           Pose{});
+}
+
 }  // namespace km

@@ -22,7 +22,6 @@ from numpy.typing import NDArray
 import kinematica._core as _core
 from kinematica.core.workers import resolve_workers
 from kinematica.dh.joints import Convention, Joint, Prismatic, check_convention
-from kinematica.spatial.transform import inv_transform
 
 __all__ = ["Chain"]
 
@@ -163,20 +162,10 @@ class Chain:
         ``fk(q')`` at ``q'_j = -q_(n+1-j)`` is ``fk(q)⁻¹``, built from the chain's
         own transforms (no DH table is re-read). Its limits are the joints' own
         mapped likewise (``[-hi, -lo]``), its frames are those of its motions (frame
-        offsets are the identity) and its base is the identity.
+        offsets are the identity) and its base is the identity. Built by the core
+        (``Chain::reversed``, ``cpp/include/kinematica/chain_build.hpp``).
         """
-        F_inv = inv_transform(self.fixed_parts)
-        n = self.dof
-        lims = -self.own_limits[::-1, ::-1]
-        return Chain.from_transforms(
-            inv_transform(self.tool) @ F_inv[-1],
-            np.ascontiguousarray(F_inv[-2::-1]),
-            inv_transform(self.start),
-            np.broadcast_to(np.eye(4), (n, 4, 4)),
-            self.prismatic[::-1],
-            lims,
-            np.eye(4),
-        )
+        return Chain._of(self.core.reversed(), self.prismatic[::-1], -self.own_limits[::-1, ::-1])
 
     @cached_property
     def fixed_parts(self) -> FloatArray:
@@ -204,22 +193,17 @@ class Chain:
         joint's into ``start``, the last's into ``tool``): the n - 1 joint chain's
         FK at ``q`` without entry ``joint`` equals this chain's at ``q``, to round-off.
         Its frames (``fk(all_frames=True)``) are those right after each motion.
+        Built by the core (``Chain::locked``, ``cpp/include/kinematica/chain_build.hpp``).
 
         Raises:
             ValueError: A chain of one joint (nothing would be left).
         """
-        n = self.dof
-        if n < 2:
+        if self.dof < 2:
             raise ValueError("a chain of one joint has no joint left to solve once it is locked")
-        # T = G_0 M_0 G_1 M_1 ... M_{n-1} G_n: locking k merges G_k M_k G_{k+1}
-        parts = [self.start, *self.fixed_parts[:-1], self.fixed_parts[-1] @ self.tool]
-        parts[joint : joint + 2] = [parts[joint] @ self.motion(joint, value) @ parts[joint + 1]]
-        keep = np.arange(n) != joint
-        return Chain.from_transforms(
-            parts[0], np.array(parts[1:-1]).reshape(n - 2, 4, 4), parts[-1],
-            np.broadcast_to(np.eye(4), (n - 1, 4, 4)), self.prismatic[keep],
-            self.own_limits[keep], np.asarray(self.core.base),
-        )  # fmt: skip
+        keep = np.arange(self.dof) != joint
+        return Chain._of(
+            self.core.locked(joint, value), self.prismatic[keep], self.own_limits[keep]
+        )
 
     @cached_property
     def dof(self) -> int:
