@@ -58,14 +58,28 @@ def shortest_per_item(
     Each item's time is the shortest of ``passes`` passes over all the items: a
     neighbour's burst on a shared machine slows one pass, not all of them.
     """
-    fn(items[0])
-    best = [math.inf] * len(items)
+    return shortest_per_item_together([(fn, items)], passes)[0]
+
+
+def shortest_per_item_together(
+    calls: Sequence[tuple[Callable[[np.ndarray], object], Sequence[np.ndarray]]], passes: int = 3
+) -> list[float]:
+    """:func:`shortest_per_item` of several ``(fn, items)``, their passes taken in turn.
+
+    Pass k of each call runs right after pass k of the one before it, so that the
+    calls compared (ours and a peer's) meet the same state of a shared machine: a
+    burst that slows one of them in a pass slows the next one too, or neither.
+    """
+    for fn, items in calls:
+        fn(items[0])
+    best = [[math.inf] * len(items) for _, items in calls]
     for _ in range(passes):
-        for i, item in enumerate(items):
-            t0 = time.perf_counter()
-            fn(item)
-            best[i] = min(best[i], time.perf_counter() - t0)
-    return statistics.median(best)
+        for (fn, items), times in zip(calls, best, strict=True):
+            for i, item in enumerate(items):
+                t0 = time.perf_counter()
+                fn(item)
+                times[i] = min(times[i], time.perf_counter() - t0)
+    return [statistics.median(times) for times in best]
 
 
 def cores() -> tuple[int, int]:

@@ -11,7 +11,8 @@ kinematics of configurations uniform within the joint limits, seeded) and
 prints:
 
 * time per pose: one pose at a time (median over ``--singles`` poses, each
-  call timed on its own, each pose's shortest of ``SINGLE_PASSES`` passes)
+  call timed on its own, each pose's shortest of ``SINGLE_PASSES`` passes; ours
+  and EAIK's passes in turn, so that both meet the same state of the machine)
   and batched on one thread (one call on all ``--poses`` poses, best of
   ``BATCH_REPEATS``; for ``robot.ik`` and EAIK also the "steady" figure, the shortest
   of ``STEADY_REPEATS`` batches of ``STEADY_POSES``), for the public
@@ -55,7 +56,15 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _common import best_of, fmt_time, header, shortest_per_item, table, verdict
+from _common import (
+    best_of,
+    fmt_time,
+    header,
+    shortest_per_item,
+    shortest_per_item_together,
+    table,
+    verdict,
+)
 
 import kinematica as km
 from kinematica import _core
@@ -349,13 +358,20 @@ def bench_arm(robot: Robot, n_poses: int, n_singles: int, seed: int, eaik: str |
     T = robot.fk(q_gen)
     few = list(T[:n_singles])
     core = robot.chain.core
+    e = None if eaik is None else eaik_model(robot, eaik)
+    if isinstance(e, Eaik):  # one pose at a time, ours and EAIK's passes in turn
+        single, e_single = shortest_per_item_together(
+            [(robot.ik, few), (e.model.IK, list(e.poses(T[:n_singles])))], SINGLE_PASSES
+        )
+    else:
+        single, e_single = shortest_per_item(robot.ik, few, SINGLE_PASSES), math.nan
 
     rep = Report(
         robot.name,
         [
             (
                 "kinematica robot.ik",
-                shortest_per_item(robot.ik, few, SINGLE_PASSES),
+                single,
                 best_of(lambda: robot.ik(T, workers=1), BATCH_REPEATS) / n_poses,
             ),
             (
@@ -384,12 +400,10 @@ def bench_arm(robot: Robot, n_poses: int, n_singles: int, seed: int, eaik: str |
             "robot.ik statuses: " + ", ".join(f"{k} {v:,}" for k, v in statuses.items())
         )
 
-    if eaik is not None:
-        e = eaik_model(robot, eaik)
-        if isinstance(e, str):
-            rep.notes.append(e)
-        else:
-            bench_eaik(rep, robot, e, T, q_gen, ours, n_singles)
+    if isinstance(e, str):
+        rep.notes.append(e)
+    elif e is not None:
+        bench_eaik(rep, robot, e, T, q_gen, ours, e_single)
     return rep
 
 
@@ -400,16 +414,19 @@ def bench_eaik(
     T: np.ndarray,
     q_gen: np.ndarray,
     ours: np.ndarray,
-    n_singles: int,
+    single: float,
 ) -> None:
-    """Time EAIK on the poses ``T`` and judge its answers against ``ours`` (every solution)."""
+    """Time EAIK on the poses ``T`` and judge its answers against ``ours`` (every solution).
+
+    ``single``: its one-pose time, taken beside ours (:func:`bench_arm`).
+    """
     n_poses = len(T)
     Te = e.poses(T)  # converted outside the timed calls
     pose_list = list(Te)
     rep.times.append(
         (
             f"{e.version} IK / IK_batched (1 thread)",
-            shortest_per_item(e.model.IK, list(Te[:n_singles]), SINGLE_PASSES),
+            single,
             best_of(lambda: e.model.IK_batched(pose_list, 1), BATCH_REPEATS) / n_poses,
         )
     )
