@@ -99,8 +99,14 @@ Pool& pool() {
 }  // namespace
 
 int hardware_threads() {
-    const unsigned n = std::thread::hardware_concurrency();
-    return n == 0 ? 1 : static_cast<int>(n);
+    // read once: glibc reads /sys/devices/system/cpu/online on every call (10-15 µs, as
+    // much as a batch of a few targets), and the machine's threads do not change under a
+    // running process
+    static const int threads = [] {
+        const unsigned n = std::thread::hardware_concurrency();
+        return n == 0 ? 1 : static_cast<int>(n);
+    }();
+    return threads;
 }
 
 void parallel_for(int blocks, int workers, const std::function<void(int)>& fn) {

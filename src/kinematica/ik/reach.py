@@ -71,12 +71,14 @@ def beyond_limited_reach(
         "unreachable" without a gap and the target lies beyond the limited reach
         by more than ``tol_position``; ``(N,)`` that distance (NaN elsewhere).
     """
-    reach = limited_reach(chain)
     code = np.asarray(status)
     unproven = (code == _NOT_FOUND) | ((code == _UNREACHABLE) & ~(np.asarray(gap) > 0.0))
     out = np.full(code.shape, np.nan)
     w_min = min(weights[:3])
-    if not np.isfinite(reach) or w_min <= 0.0 or not unproven.any():
+    if w_min <= 0.0 or not unproven.any():  # nothing to prove (the bound is not asked)
+        return np.zeros(code.shape, dtype=bool), out
+    reach = limited_reach(chain)
+    if not np.isfinite(reach):
         return np.zeros(code.shape, dtype=bool), out
     d = poses[:, :3, 3] - chain.start[:3, 3]
     # the largest component first: no square of a coordinate near 1e200 overflows
