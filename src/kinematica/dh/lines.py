@@ -190,17 +190,16 @@ def line_pair(
         :data:`AXIS_ANGLE_TOL`, and meet (or coincide) when their distance
         is at most ``length_tol(size)``.
     """
-    cross = cross3(hA, hB)
-    s = float(np.linalg.norm(cross))
     w = pB - pA
     tol = length_tol(size)
-    if s <= AXIS_ANGLE_TOL:
+    if lines_parallel(hA, hB):
         perp = w - float(w @ hA) * hA
         dist = float(np.linalg.norm(perp))
         if dist <= tol:
             return LinePair("collinear", None, pA, pB, dist)
         return LinePair("parallel", perp / dist, pA, pB, dist)
-    n = cross / s
+    cross = cross3(hA, hB)
+    n = cross / float(np.linalg.norm(cross))
     signed = float(w @ n)
     foot_a, foot_b = normal_feet(hA, pA, hB, pB)
     if abs(signed) <= tol:
@@ -249,7 +248,7 @@ def frame_on_axis(F: FloatArray, h: FloatArray, p: FloatArray, size: float) -> F
         its x projected normal to ``h`` and its origin projected on the axis.
     """
     z = F[:3, 2]
-    if np.linalg.norm(cross3(z, h)) > AXIS_ANGLE_TOL or float(z @ h) <= 0.0:
+    if not lines_parallel(z, h) or float(z @ h) <= 0.0:
         return None
     d = F[:3, 3] - p
     along = float(d @ h)
