@@ -58,9 +58,9 @@ NOT_FOR_PUMA_IK = (
     "kinematica.ik.redundancy",
 )
 
-#: Modules the first one-pose IK with every default (PUMA 560, iiwa 14 at its arm angle,
-#: a general 6R arm) must not import either: the general path's (parsing, options, the
-#: numeric search), and numpy.random (10-20 ms).
+#: Modules the first one-pose IK with every default (PUMA 560, its position target, iiwa 14
+#: at its arm angle, the Panda with q7 held, a general 6R arm) must not import either: the
+#: general path's (parsing, options, the numeric search), and numpy.random (10-20 ms).
 NOT_FOR_ONE_POSE = (
     "kinematica.ik.at_values",
     "kinematica.ik.numeric",
@@ -132,8 +132,12 @@ def test_the_library_imports_what_each_step_needs_only() -> None:
         report("fk")
         assert robot.ik(T).method == "analytic:spherical-wrist"
         report("ik")
+        assert robot.ik(T[:3, 3].copy()).method == "analytic:arm-position"
         iiwa = km.load("iiwa14")
         assert iiwa.ik(iiwa.fk([0.3, 0.5, 0.3, -1.2, 0.3, 0.8, 0.3])).method == "analytic:srs"
+        panda = km.load("panda")
+        T7 = panda.fk([0.3, 0.2, 0.3, -1.2, 0.3, 1.5, 0.3])
+        assert panda.ik(T7).method == "analytic:spherical-shoulder"
         report("redundant")
         rows = [(0.2, 0.25, 0.8), (-0.2, -0.35, -1.2), (-0.1, -0.35, 2.1), (0.4, 0.1, -0.7)]
         rows += [(-0.05, 0.4, 1.4), (0.3, -0.1, -2.6)]
