@@ -58,13 +58,15 @@ def cpu_seconds_to_load(path: Path, links: int, dof: int) -> float:
 def test_loading_a_long_chain_is_linear(tmp_path):
     # quadratic before: 20,000 links took 4.4 s, 40,000 links 20.6 s. Four times the
     # links: linear 4x, quadratic 16x; 5,000 and 20,000 tell them apart as 10,000 and
-    # 40,000 did (a quadratic 20,000 took 4.4 s, over 8x any linear 5,000).
+    # 40,000 did (a quadratic 20,000 took 4.4 s). The bound sits between the two: a
+    # linear load read up to 8.0x on a busy 2-core machine (the small file's time is the
+    # shorter of two loads, its noise being the larger share of it).
     small = write(tmp_path, chain_text(5_000, movable_every=1_250), "small.urdf")
     big = write(tmp_path, chain_text(20_000, movable_every=4_000), "big.urdf")
-    t_small = cpu_seconds_to_load(small, 5_000, 4)
+    t_small = min(cpu_seconds_to_load(small, 5_000, 4) for _ in range(2))
     t_big = cpu_seconds_to_load(big, 20_000, 5)
     assert t_big < 5.0
-    assert t_big < 8.0 * t_small
+    assert t_big < 10.0 * t_small
 
 
 def test_a_star_of_30000_joints_names_its_leaves_or_loads_one_arm():
