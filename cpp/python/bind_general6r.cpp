@@ -176,6 +176,26 @@ nb::tuple real_roots_qz_of(nb::handle A0, nb::handle A1, nb::handle A2) {
     return nb::make_tuple(r, s);
 }
 
+//! (c0 (14,), Q (14, 8)): the left side Rz(q'1) L1 Rz(q'2) L2 · z as c0 + Q S2.
+nb::tuple left_side_of(const km::Pose& L1, const km::Pose& L2) {
+    double *c0, *Q;
+    F64 ca = new_f64({kg::EQUATIONS}, c0), Qa = new_f64({kg::EQUATIONS, kg::PRODUCTS}, Q);
+    double q[kg::EQUATIONS][kg::PRODUCTS];
+    kg::left_side(L1, L2, c0, q);
+    for (int e = 0; e < kg::EQUATIONS; ++e)
+        for (int k = 0; k < kg::PRODUCTS; ++k) Q[e * kg::PRODUCTS + k] = q[e][k];
+    return nb::make_tuple(ca, Qa);
+}
+
+//! The params' own c0, N, Qp from their L1, L2 (t_link 2..5); σ8 / σ1 of Q.
+double eliminate_params(General6RParams& p) {
+    if (p.per_target()) throw nb::value_error("L1 or L2 holds the target: its constants are the target's");
+    kg::Elimination E;
+    const double ratio = kg::eliminate(p.link[0], p.link[1], E);
+    if (ratio > kg::RANK_TOL) static_cast<kg::Elimination&>(p) = E;
+    return ratio;
+}
+
 }  // namespace
 
 void bind_general6r(nb::module_& m) {
@@ -200,6 +220,10 @@ void bind_general6r(nb::module_& m) {
             "u: M u = 0 from M's full-pivot LU (M (12, 12), its null space one-dimensional).");
     sub.attr("SPURIOUS_TOL") = kg::SPURIOUS_TOL;
     sub.attr("SPLIT_ROOT_TOL") = kg::SPLIT_ROOT_TOL;
+    sub.attr("RANK_TOL") = kg::RANK_TOL;
+    sub.def("left_side", &left_side_of, nb::arg("L1"), nb::arg("L2"),
+            "(c0 (14,), Q (14, 8)): the quantities of the line Rz(q'1) L1 Rz(q'2) L2 z as "
+            "c0 + Q S2, S2 = (c2, s2, c1, c1 c2, c1 s2, s1, s1 c2, s1 s2) of q'1, q'2.");
     sub.attr("REFINE_LIMIT") = kg::REFINE_LIMIT;
     sub.attr("SPLIT_CLOSURE_TOL") = kg::SPLIT_CLOSURE_TOL;
     sub.def("split_closes", &kg::split_closes, nb::arg("closure"),
@@ -263,6 +287,12 @@ void bind_general6r(nb::module_& m) {
                Py_DECREF(a);
            },
            "(6, 16) L1 ... L6, each a row-major 4 x 4 (lengths scaled); (6, 4, 4) out")
+        .def("eliminate", &eliminate_params,
+             "c0, N and Qp from L1 and L2 (which hold no target): returns sigma8/sigma1 of Q; "
+             "the fields are left as they were when it is not above RANK_TOL.")
+        .def_prop_ro("per_target", &General6RParams::per_target,
+                     "True when L1 or L2 holds the target (t_link 0 or 1): the elimination's "
+                     "constants are computed for each target")
         .def_rw("t_link", &General6RParams::t_link, "which L (0-based) holds the target")
         .def_rw("t_power", &General6RParams::t_power, "+1 or -1: T or its inverse")
         .def_rw("t_pre", &General6RParams::t_pre, "(4, 4) before T in that link")

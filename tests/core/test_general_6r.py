@@ -30,7 +30,7 @@ def test_params_fields_are_checked() -> None:
     p = _core.general6r.General6RParams()
     T = np.eye(4)
     chain = _chain()
-    p.t_link = 1
+    p.t_link = 6
     with pytest.raises(ValueError, match="t_link"):
         p.candidates(chain.core, T)
     p.t_link = 5
@@ -151,7 +151,11 @@ def _opened(seed: int, refine: bool = False) -> tuple[km.Robot, Any, np.ndarray,
     robot, params = _robot_and_params(seed)
     params.refine_misses = refine
     T = robot.fk(np.random.default_rng(1).uniform(-math.pi, math.pi, 6))
-    c0, row = np.array(params.c0), np.array(params.N)[1]
+    # the direction: the left null space's projection of a fixed vector (whatever basis
+    # of that space the SVD gives N)
+    N = np.array(params.N)
+    row = N.T @ (N @ np.linspace(1.0, 2.0, 14))
+    c0, row = np.array(params.c0), row / np.linalg.norm(row)
 
     def miss(eps: float) -> tuple[float, bool]:
         params.c0 = c0 + eps * row
@@ -204,13 +208,17 @@ def test_candidates_that_miss_beyond_the_polish_make_no_unreachable_without_a_ga
 
 
 def _eps_for(miss: Any, target: float) -> float:
-    """eps for which the smallest miss is ``target`` (to 1 %): secant steps on log scale."""
-    eps = target / (miss(1e-8)[0] / 1e-8)
-    for _ in range(8):
-        now = miss(eps)[0]
+    """eps for which the smallest miss is ``target`` (to 1 %): the first eps of a log grid
+    past it, then bisection on log scale (the miss is linear only near 0)."""
+    grid = np.geomspace(1e-8, 10.0, 91)
+    above = next(i for i, e in enumerate(grid) if miss(e)[0] >= target)
+    lo, hi = math.log(grid[above - 1]), math.log(grid[above])
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        now = miss(math.exp(mid))[0]
         if abs(now / target - 1.0) < 0.01:
-            return eps
-        eps *= target / now
+            return math.exp(mid)
+        lo, hi = (mid, hi) if now < target else (lo, mid)
     raise AssertionError(f"no eps gives a miss of {target}")
 
 

@@ -10,10 +10,17 @@
 //
 //     Rz(q'1) L1 Rz(q'2) L2 · z  =  L6⁻¹ Rz(-q'6) L5⁻¹ Rz(-q'5) L4⁻¹ Rz(-q'4) L3⁻¹ · z
 //
-// (q'3 eliminated). L1, L2 hold no T: the left side's 14 quantities p, l, p·p, p·l, p×l,
-// (p·p) l - 2 (p·l) p are, per arm, c0 + Q S2 with S2 the 8 products of (1, c1', s1') ⊗
+// (q'3 eliminated). The left side's 14 quantities p, l, p·p, p·l, p×l,
+// (p·p) l - 2 (p·l) p are c0 + Q S2 with S2 the 8 products of (1, c1', s1') ⊗
 // (1, c2', s2') but 1 (Raghavan-Roth: these quantities keep that form), Q 14 x 8 and c0
-// constant. N (6 x 14), the left null space of Q (from the builder), leaves 6 equations
+// found exactly from the left side's values on a 3 x 3 grid of (q'1, q'2) (eliminate()).
+// Where L1 and L2 hold no T they are constants of the arm, computed once; where one of
+// them holds T (t_link 0 or 1: the labelling that starts at the joint after the target)
+// they are computed for each target. That choice matters: on arms whose axes meet or are
+// parallel in many pairs (FANUC CRX, Kinova JACO 2: every common normal but one of length
+// 0), the 8 labellings with constant c0, Q all give det M(x6) ≡ 0, while one of the 4
+// with T on the left gives a well-posed pencil (its roots accurate to 1e-14 there).
+// N (6 x 14), the left null space of Q, leaves 6 equations
 // N (F(q'4, q'5, q'6) - c0) = 0 in the right side only. Each is a trilinear trigonometric
 // polynomial; it is found exactly from its values on a 3 x 3 x 3 grid of angles (shifted
 // by phi, so that no genuine root sits at tan(π/2)), then the half-angle substitution
@@ -152,6 +159,10 @@ KM_HD inline bool moves(double d) { return d > FREE_JOINT_TOL; }
 
 //! The grid of angles the trigonometric polynomials are found from: 0, 2π/3, 4π/3.
 constexpr double GRID_STEP = 2.0 * PI / 3.0;
+//! A left side is rank-deficient (its products cannot be eliminated: the labelling is
+//! unusable, for the arm or, with T on the left, for that target) when σ8 / σ1 of its
+//! 14 x 8 matrix Q is below this.
+constexpr double RANK_TOL = 1e-9;
 
 //! What one solve decided, for the tests of its tolerances (solve fills it when given).
 struct Trace {
@@ -228,9 +239,77 @@ constexpr double HALF_ANGLE[3][3] = {
     {-1.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0},
 };
 
+//! From a trigonometric polynomial's values at the grid angles (0, 2π/3, 4π/3) to its
+//! coefficients of 1, cos, sin: the inverse of the grid's (1, cos, sin) matrix.
+constexpr double FROM_GRID[3][3] = {
+    {1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0},
+    {2.0 / 3.0, -1.0 / 3.0, -1.0 / 3.0},
+    {0.0, 0.5773502691896258, -0.5773502691896258},  // ±1/√3
+};
+
+//! The elimination's constants of one left side Rz(q'1) L1 Rz(q'2) L2 (lengths scaled).
+struct Elimination {
+    double N[REDUCED][EQUATIONS]{};    //!< left null space of Q (rows orthonormal)
+    double c0[EQUATIONS]{};            //!< the left side's constant part
+    double Qp[PRODUCTS][EQUATIONS]{};  //!< Q's pseudo-inverse
+};
+
+//! The left side's quantities as c0 + Q S2: its values on the 3 x 3 grid of (q'1, q'2),
+//! then FROM_GRID along each angle. S2 (Q's columns): c2, s2, c1, c1 c2, c1 s2, s1, s1 c2,
+//! s1 s2 (the products of (1, c1, s1) ⊗ (1, c2, s2) but 1, in that order).
+KM_HD inline void left_side(const Pose& L1, const Pose& L2, double* c0, double (*Q)[PRODUCTS]) {
+    double F[3][3][EQUATIONS];
+    for (int a = 0; a < 3; ++a) {
+        const Pose A = rz(a * GRID_STEP) * L1;
+        for (int b = 0; b < 3; ++b) {
+            const Pose B = A * rz(b * GRID_STEP) * L2;
+            quantities(Line{B.p, B.rotate(Vec3{0.0, 0.0, 1.0})}, F[a][b]);
+        }
+    }
+    for (int e = 0; e < EQUATIONS; ++e)
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+                double v = 0.0;
+                for (int a = 0; a < 3; ++a)
+                    for (int b = 0; b < 3; ++b) v += FROM_GRID[i][a] * FROM_GRID[j][b] * F[a][b][e];
+                if (i == 0 && j == 0) {
+                    c0[e] = v;
+                } else {
+                    Q[e][3 * i + j - 1] = v;
+                }
+            }
+}
+
+//! The elimination's constants of the left side L1, L2 into E: c0, Q's left null space
+//! and pseudo-inverse from its SVD. Returns σ8 / σ1 of Q; below RANK_TOL, E is unusable.
+inline double eliminate(const Pose& L1, const Pose& L2, Elimination& E) {
+    using Matrix14x8 = Eigen::Matrix<double, EQUATIONS, PRODUCTS>;
+    double Qa[EQUATIONS][PRODUCTS];
+    left_side(L1, L2, E.c0, Qa);
+    Matrix14x8 Q;
+    for (int e = 0; e < EQUATIONS; ++e)
+        for (int k = 0; k < PRODUCTS; ++k) Q(e, k) = Qa[e][k];
+    const Eigen::JacobiSVD<Matrix14x8> svd(Q, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    const auto& s = svd.singularValues();
+    const double ratio = s(0) > 0.0 ? s(PRODUCTS - 1) / s(0) : 0.0;
+    if (!(ratio > RANK_TOL)) return ratio;
+    const auto& U = svd.matrixU();
+    const auto& V = svd.matrixV();
+    for (int r = 0; r < REDUCED; ++r)
+        for (int e = 0; e < EQUATIONS; ++e) E.N[r][e] = U(e, PRODUCTS + r);
+    for (int k = 0; k < PRODUCTS; ++k)
+        for (int e = 0; e < EQUATIONS; ++e) {
+            double v = 0.0;
+            for (int j = 0; j < PRODUCTS; ++j) v += V(k, j) * U(e, j) / s(j);
+            E.Qp[k][e] = v;
+        }
+    return ratio;
+}
+
 //! A general 6R arm: its loop for one labelling of the joints, and the elimination's
-//! constants (lengths scaled by `scale`, so that the arm's size is about 1).
-struct General6RParams {
+//! constants (lengths scaled by `scale`, so that the arm's size is about 1): the
+//! Elimination's fields, used where L1 and L2 hold no target (t_link 2..5).
+struct General6RParams : Elimination {
     Pose link[6]{};          //!< L1 ... L6 (the one holding T: unused)
     int t_link = 5;          //!< which L holds the target: L = t_pre · T^t_power · t_post
     int t_power = -1;        //!< +1 or -1
@@ -238,9 +317,6 @@ struct General6RParams {
     int order[6] = {0, 1, 2, 3, 4, 5};  //!< q'k = sign · q[order[k]]
     double sign = 1.0;                  //!< -1: the chain reversed
     double scale = 1.0;                 //!< lengths times this (1 / the arm's size)
-    double N[REDUCED][EQUATIONS]{};     //!< left null space of Q (rows orthonormal)
-    double c0[EQUATIONS]{};             //!< the left side's constant part
-    double Qp[PRODUCTS][EQUATIONS]{};   //!< Q's pseudo-inverse
     double phi[3] = {0.0, 0.0, 0.0};    //!< shifts of q'4, q'5, q'6 (rad)
     //! The tool origin stays within `reach` (m) of `centre` (base frame, m): a point on
     //! axis 1 and the sum of the joints' fixed offsets. Beyond it: a proven gap.
@@ -254,7 +330,7 @@ struct General6RParams {
 
     //! Why these fields cannot be solved with (nullptr when they can).
     const char* invalid() const {
-        if (t_link < 2 || t_link > 5) return "t_link must be 2, 3, 4 or 5 (L1, L2 hold no target)";
+        if (t_link < 0 || t_link > 5) return "t_link must be 0 ... 5";
         if (t_power != 1 && t_power != -1) return "t_power must be 1 or -1";
         if (sign != 1.0 && sign != -1.0) return "sign must be 1 or -1";
         bool seen[6] = {};
@@ -265,6 +341,8 @@ struct General6RParams {
         return nullptr;
     }
     int dof() const { return 6; }
+    //! True when L1 or L2 holds the target: c0, N, Qp are computed for each target.
+    bool per_target() const { return t_link < 2; }
 
     //! L_k of one target (T scaled).
     Pose link_of(int k, const Pose& T) const {
@@ -286,7 +364,7 @@ struct General6RParams {
 
     //! The 12 x 12 matrices A0, A1, A2 of M(x6) for the inverses Li of L3 ... L6, with
     //! x6 = tan((q'6 - shift6) / 2).
-    void pencil(const Pose* Li, double shift6, Matrix12 A[3]) const {
+    void pencil(const Elimination& E, const Pose* Li, double shift6, Matrix12 A[3]) const {
         // G[a][b][c][e]: the 6 equations at the grid point (a, b, c)
         double G[3][3][3][REDUCED];
         for (int a = 0; a < 3; ++a) {
@@ -300,10 +378,10 @@ struct General6RParams {
                     sincos(g * GRID_STEP + shift6, s, c);
                     double f[EQUATIONS];
                     quantities(apply(Li[3], turn(c, -s, L5)), f);
-                    for (int k = 0; k < EQUATIONS; ++k) f[k] -= c0[k];
+                    for (int k = 0; k < EQUATIONS; ++k) f[k] -= E.c0[k];
                     for (int e = 0; e < REDUCED; ++e) {
                         double v = 0.0;
-                        for (int k = 0; k < EQUATIONS; ++k) v += N[e][k] * f[k];
+                        for (int k = 0; k < EQUATIONS; ++k) v += E.N[e][k] * f[k];
                         G[a][b][g][e] = v;
                     }
                 }
@@ -350,8 +428,8 @@ struct General6RParams {
 
     //! One candidate's loop angles a (q'1 ... q'6) from a real root x6 and its monomial
     //! vector u, for the target T (scaled). Returns how far its pose is from T (miss).
-    double back_substitute(const Pose* L, const Pose* Li, const Pose& T, double x6,
-                           double shift6, const Vector12& u, double* a) const {
+    double back_substitute(const Elimination& E, const Pose* L, const Pose* Li, const Pose& T,
+                           double x6, double shift6, const Vector12& u, double* a) const {
         // x4 = u(i+1, j) / u(i, j), x5 = u(i, j+1) / u(i, j): the best-scaled pair
         int bi = 0, bj = 0;
         double best = -1.0;
@@ -374,7 +452,7 @@ struct General6RParams {
         double S[PRODUCTS];
         for (int r = 0; r < PRODUCTS; ++r) {
             double v = 0.0;
-            for (int k = 0; k < EQUATIONS; ++k) v += Qp[r][k] * (f[k] - c0[k]);
+            for (int k = 0; k < EQUATIONS; ++k) v += E.Qp[r][k] * (f[k] - E.c0[k]);
             S[r] = v;
         }
         // S: c2, s2, c1, c1 c2, c1 s2, s1, s1 c2, s1 s2 (the builder's order)
@@ -579,18 +657,28 @@ struct General6RParams {
         Pose L[6], Li[4];
         for (int k = 0; k < 6; ++k) L[k] = link_of(k, T);
         for (int k = 0; k < 4; ++k) Li[k] = inverse(L[k + 2]);
+        // the left side's constants: the arm's, or (T on the left) this target's
+        Elimination local;
+        const Elimination* E = this;
+        if (per_target()) {
+            if (!(eliminate(L[0], L[1], local) > RANK_TOL)) {
+                info.near = true;  // rank-deficient for this target: nothing proven
+                return;
+            }
+            E = &local;
+        }
         // M(x6) for the shift phi6, or phi6 + SECOND_SHIFT when A2 is ill-conditioned there
         // (a root near x6 = ∞: q'6 near the shift + π, which the second shift moves to a
         // finite x6); both ill-conditioned: no leading term, not solved here
         Matrix12 A[3];
         double shift6 = phi[2];
-        pencil(Li, shift6, A);
+        pencil(*E, Li, shift6, A);
         Eigen::PartialPivLU<Matrix12> lead(A[2]);
         if (trace != nullptr) trace->rcond = lead.rcond();
         bool qz = false;
         if (!(lead.rcond() > LEADING_RCOND_TOL)) {
             shift6 = phi[2] + SECOND_SHIFT;
-            pencil(Li, shift6, A);
+            pencil(*E, Li, shift6, A);
             lead.compute(A[2]);
             // both ill-conditioned: M(x6) nearly singular for every x6 (an arm near one
             // whose elimination degenerates), the generalized eigenproblem by QZ
@@ -614,7 +702,7 @@ struct General6RParams {
         for (int r = 0; r < found; ++r) {
             double a[6], q[6], J[6 * 6];
             const Vector12 u = null_vector(A, roots[r]);
-            double closure = back_substitute(L, Li, T, roots[r], shift6, u, a);
+            double closure = back_substitute(*E, L, Li, T, roots[r], shift6, u, a);
             bool refined = false;
             if (refine_misses && closure > 0.0 && closure < REFINE_LIMIT) {
                 closure = refine(L, T, a, closure, J);

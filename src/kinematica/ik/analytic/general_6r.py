@@ -34,6 +34,7 @@ from kinematica.ik.structure import Features
 
 __all__ = [
     "ACCURATE",
+    "LABELLINGS",
     "LABELS",
     "PHI",
     "PROBES",
@@ -57,8 +58,9 @@ _G = _core.general6r
 #: Shifts (rad) of q'4, q'5, q'6 in the half-angle substitution: a configuration with
 #: q'k = shift + π (tan = ∞) is then no special value of a DH table (0, ±π/2, π).
 PHI = (0.3771, 0.6133, 0.8909)
-#: A labelling is rank-deficient when σ8 / σ1 of its 14 x 8 matrix Q is below this.
-RANK_TOL = 1e-9
+#: A labelling is rank-deficient when σ8 / σ1 of its 14 x 8 matrix Q is below this (the
+#: core's: the same test decides, per target, for a labelling with T on the left side).
+RANK_TOL: float = _G.RANK_TOL
 #: A labelling passes a probe pose when the configuration that made it is among the raw
 #: candidates to this (rad; the check's polish takes them the rest of the way).
 PROBE_TOL = 1e-6
@@ -85,6 +87,14 @@ PROBE_CONFIGS = (
 )  # fmt: skip
 #: Poses each labelling is probed on.
 PROBES = len(PROBE_CONFIGS)
+#: The labellings (start, reversed) in the order they are tried: the eight whose
+#: elimination's constants are the arm's (made once), then the four with the target's
+#: link at L1 or L2 (made for each target: a 14 x 8 SVD more a solve), which are the
+#: well-posed ones where the eight degenerate (FANUC CRX, Kinova JACO 2).
+LABELLINGS: tuple[tuple[int, bool], ...] = tuple(
+    (start, reverse) for starts in (range(4), range(4, 6)) for reverse in (False, True)
+    for start in starts
+)  # fmt: skip
 #: A labelling whose candidates hold the probe poses' configurations to this (rad; the
 #: geometric mean of their distances, before Newton's step) is taken without scoring the
 #: others: round-off for a well-posed elimination (generic arms: 1e-15..1e-13), where
@@ -172,25 +182,12 @@ def elimination(L1: FloatArray, L2: FloatArray) -> tuple[FloatArray, FloatArray]
     """``(c0 (14,), Q (14, 8))``: the left side ``Rz(q'1) L1 Rz(q'2) L2 · z`` as c0 + Q S2.
 
     S2: the products of (1, cos q'1, sin q'1) ⊗ (1, cos q'2, sin q'2) but 1, in that
-    order (the core reads cos, sin of q'1 from entries 2, 5 and of q'2 from 0, 1). The
-    quantities are trigonometric polynomials of degree 1 in each angle (Raghavan-Roth):
-    their values on a 3 x 3 grid give them exactly.
+    order (c2, s2, c1, c1 c2, c1 s2, s1, s1 c2, s1 s2). The quantities are trigonometric
+    polynomials of degree 1 in each angle (Raghavan-Roth): the core finds them exactly
+    from their values on a 3 x 3 grid (``general_6r.hpp``, ``left_side``).
     """
-    grid = 2.0 * PI / 3.0 * np.arange(3)
-    V = np.stack([np.ones(3), np.cos(grid), np.sin(grid)], axis=1)
-    Rz = np.zeros((3, 4, 4))
-    Rz[:, 0, 0] = Rz[:, 1, 1] = V[:, 1]
-    Rz[:, 1, 0], Rz[:, 0, 1] = V[:, 2], -V[:, 2]
-    Rz[:, 2, 2] = Rz[:, 3, 3] = 1.0
-    A = (Rz @ L1)[:, None] @ (Rz @ L2)[None, :]  # (3, 3, 4, 4): Rz(a) L1 Rz(b) L2
-    pt, ln = A[..., :3, 3], A[..., :3, 2]
-    pp = np.einsum("abi,abi->ab", pt, pt)[..., None]
-    pl = np.einsum("abi,abi->ab", pt, ln)[..., None]
-    x = pt[..., [1, 2, 0]] * ln[..., [2, 0, 1]] - pt[..., [2, 0, 1]] * ln[..., [1, 2, 0]]
-    F = np.concatenate([pt, ln, pp, pl, x, pp * ln - 2.0 * pl * pt], axis=-1)  # (3, 3, 14)
-    Vi = np.linalg.inv(V)
-    C = np.einsum("ia,jb,abe->eij", Vi, Vi, F).reshape(14, 9)
-    return C[:, 0].copy(), C[:, 1:].copy()
+    c0, Q = _G.left_side(L1, L2)
+    return np.asarray(c0), np.asarray(Q)
 
 
 def _labelling(
@@ -200,7 +197,8 @@ def _labelling(
 
     Forward: ``I = Rz(q1) K1 ... Rz(q6) [K6 T⁻¹ G1]``; reversed (q' = -q, joints 6..1):
     ``I = Rz(-q6) K5⁻¹ ... K1⁻¹ Rz(-q1) [G1⁻¹ T K6⁻¹]``; turned to start at joint
-    ``start`` of that order (the target's link stays among L3 ... L6).
+    ``start`` (0..5) of that order. Starts 4 and 5 put the target's link at L2 or L1:
+    the elimination's constants are then the target's.
     """
 
     def inv(A: FloatArray) -> FloatArray:
@@ -220,16 +218,13 @@ def _labelling(
 def _params(
     K: list[FloatArray], G1: FloatArray, size: float, start: int, reverse: bool
 ) -> tuple[Any, float] | None:
-    """The core's Params of one labelling and its Q's σ8 / σ1, or None when rank-deficient."""
+    """The core's Params of one labelling and its Q's σ8 / σ1, or None when rank-deficient.
+
+    A labelling with the target's link at L1 or L2 has no constant Q (the core eliminates
+    for each target, and refuses a target whose Q is rank-deficient): its ratio is NaN.
+    """
     scale = 1.0 / size
     order, sign, links, (power, pre, post) = _labelling(K, G1, start, reverse)
-    L1, L2 = links[0], links[1]
-    assert L1 is not None and L2 is not None  # the target's link is L3 ... L6
-    c0, Q = elimination(_scaled(L1, scale), _scaled(L2, scale))
-    U, S, _ = np.linalg.svd(Q)
-    ratio = float(S[-1] / S[0])
-    if not ratio > RANK_TOL:
-        return None
     params = _G.General6RParams()
     params.link = np.stack([np.eye(4) if L is None else _scaled(L, scale) for L in links]).reshape(
         6, 16
@@ -241,9 +236,9 @@ def _params(
     params.order = np.array(order, dtype=np.int64)
     params.sign = sign
     params.scale = scale
-    params.N = np.ascontiguousarray(U[:, 8:].T)
-    params.c0 = c0
-    params.Qp = np.linalg.pinv(Q)
+    ratio = math.nan if params.per_target else float(params.eliminate())
+    if not (params.per_target or ratio > RANK_TOL):
+        return None
     params.phi = np.array(PHI)
     params.centre = G1[:3, 3].copy()
     params.reach = float(sum(np.linalg.norm(k[:3, 3]) for k in K)) * (1.0 + 1e-12) + 1e-12
@@ -283,8 +278,9 @@ def accuracy(params: Any, chain: Chain) -> tuple[float, float]:
 def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
     """The general 6R solver of a 6R arm, or None (position targets; no labelling works).
 
-    Tries the eight labellings (forward, then reversed; each turned to start at joints
-    1-4 of its order) and keeps, of those whose elimination is well posed and whose
+    Tries the twelve labellings (forward, then reversed; each turned to start at joints
+    1-4 of its order; then those starting at joints 5 and 6, whose elimination is made
+    for each target) and keeps, of those whose elimination is well posed and whose
     candidates hold the generating configuration of every probe pose, the one whose
     eigenproblem is the most accurate on the probes. On an arm near one whose
     elimination degenerates (a calibrated UR5) the labellings' root errors differ by
@@ -303,18 +299,17 @@ def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
         return bool(_probe(params, chain, refine=True).max() <= PROBE_TOL)
 
     ranked: list[tuple[float, int, Any]] = []
-    for reverse in (False, True):
-        for start in range(4):
-            built = _params(K, G1, size, start, reverse)
-            if built is None:
-                continue
-            score, worst = accuracy(built[0], chain)
-            # every probe's configuration among the raw candidates to PROBE_TOL already:
-            # Newton's step only takes a candidate nearer the solution it is near, so
-            # the refined probes would pass too (tested on random arms)
-            if score <= math.log10(ACCURATE) and (worst <= PROBE_TOL or passes(built[0])):
-                return _closed_form(built[0])
-            ranked.append((score, len(ranked), built[0]))
+    for start, reverse in LABELLINGS:
+        built = _params(K, G1, size, start, reverse)
+        if built is None:
+            continue
+        score, worst = accuracy(built[0], chain)
+        # every probe's configuration among the raw candidates to PROBE_TOL already:
+        # Newton's step only takes a candidate nearer the solution it is near, so
+        # the refined probes would pass too (tested on random arms)
+        if score <= math.log10(ACCURATE) and (worst <= PROBE_TOL or passes(built[0])):
+            return _closed_form(built[0])
+        ranked.append((score, len(ranked), built[0]))
     for _, _, params in sorted(ranked, key=lambda r: r[:2]):
         if passes(params):
             return _closed_form(params)
