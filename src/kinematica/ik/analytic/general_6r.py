@@ -398,6 +398,18 @@ _UR5 = (
 )
 
 
+#: The edges of the general family a degenerate sample arm is drawn from.
+_EDGES = (
+    "equal links",
+    "offset 1e-10",
+    "parallel 1e-9",
+    "calibrated UR",
+    "one common normal",
+    "two pairs meet",
+    "parallel pairs",
+)
+
+
 def _edge(rng: np.random.Generator) -> tuple[list[Revolute], str, bool]:
     """A 6R arm on an edge of the general family: ``(rows, what it is, standard)``.
 
@@ -406,7 +418,9 @@ def _edge(rng: np.random.Generator) -> tuple[list[Revolute], str, bool]:
     serve either convention as they are.
     """
     u = rng.uniform
-    edge = str(rng.choice(["equal links", "offset 1e-10", "parallel 1e-9", "calibrated UR"]))
+    edge = str(rng.choice(_EDGES))
+    if edge in ("one common normal", "two pairs meet", "parallel pairs"):
+        return _special(rng, edge), edge, False
     if edge == "calibrated UR":
         rows = [
             Revolute(d=d, a=a, alpha=al + 1e-3 * float(rng.choice([-1.0, 1.0])), offset=u(-PI, PI))
@@ -428,6 +442,34 @@ def _edge(rng: np.random.Generator) -> tuple[list[Revolute], str, bool]:
         )
         edge = f"axes {i + 1} and {i + 2} parallel but for 1e-9" if i < 5 else "alpha6 = 1e-9"
     return rows, edge, False
+
+
+def _special(rng: np.random.Generator, edge: str) -> list[Revolute]:
+    """A random table with the special axes of makers' cobots (FANUC CRX, Kinova JACO 2).
+
+    "one common normal": every a but one 0 (consecutive axes meet), the twists right
+    angles or random (the one beside the nonzero a may be 0 or π: a parallel pair, the
+    CRX's 2 ∥ 3); "two pairs meet": two a's 0; "parallel pairs": one or two twists 0 or π
+    (a pair of parallel axes anywhere).
+    """
+    rows = _random_rows(rng)
+    u = rng.uniform
+    a = [r.a for r in rows]
+    alpha = [r.alpha for r in rows]
+    if edge == "one common normal":
+        k = int(rng.integers(6))
+        a = [u(0.2, 0.6) if i == k else 0.0 for i in range(6)]
+        for i in range(6):
+            if rng.random() < 0.6:  # coaxial consecutive joints (a = 0, α = 0 or π) excluded
+                alpha[i] = float(rng.choice([PI / 2, -PI / 2] + ([0.0, PI] if i == k else [])))
+    elif edge == "two pairs meet":
+        for i in rng.choice(6, 2, replace=False):
+            a[int(i)] = 0.0
+    else:
+        for i in rng.choice(6, int(rng.integers(1, 3)), replace=False):
+            alpha[int(i)] = float(rng.choice([0.0, PI]))
+            a[int(i)] = u(0.1, 0.4)
+    return [Revolute(d=r.d, a=a[i], alpha=alpha[i], offset=r.offset) for i, r in enumerate(rows)]
 
 
 def sample_arm(rng: np.random.Generator, degenerate: bool) -> ArmSample:
