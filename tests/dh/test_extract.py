@@ -251,6 +251,30 @@ def test_fk_check_warns_only_beyond_its_tolerance():
     assert 1.5 * FK_CHECK_TOL < outside.fk_error < 3 * FK_CHECK_TOL
 
 
+def _slider(tilt: float, stroke: float) -> str:
+    """A turn about z, then a slide of +-stroke m along an axis tilted by ``tilt`` rad."""
+    return f"""<robot name="s"><link name="b"/><link name="l1"/><link name="l2"/>
+    <joint name="j1" type="continuous"><parent link="b"/><child link="l1"/>
+      <axis xyz="0 0 1"/></joint>
+    <joint name="j2" type="prismatic"><parent link="l1"/><child link="l2"/>
+      <origin xyz="0.5 0 0" rpy="0 {tilt!r} 0"/><axis xyz="0 0 1"/>
+      <limit lower="{-stroke!r}" upper="{stroke!r}" effort="1" velocity="1"/></joint></robot>"""
+
+
+@pytest.mark.parametrize("stroke", [2.0, 20.0])
+def test_fk_error_is_measured_over_the_joint_limits(stroke):
+    # The slider's axis, tilted by half AXIS_ANGLE_TOL, is taken as parallel to axis 1:
+    # the table misses the tip by the tilt times the slide, so the largest miss within
+    # the limits is tilt * stroke (beyond the tilt of the rotation entries), reached at
+    # the ends of the stroke. The figure follows the limits and never exceeds them.
+    tilt = 0.5 * AXIS_ANGLE_TOL
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # 20 m: beyond FK_CHECK_TOL, with a warning
+        ext = km.urdf_to_dh(parse_urdf(_slider(tilt, stroke)))
+    assert ext.rules[1].rule == "parallel"
+    assert 0.95 * tilt * stroke < ext.fk_error <= tilt * stroke * (1 + 1e-6)
+
+
 def test_round_off_tolerance_tidies_lengths_angles_and_transforms():
     # a1 between parallel axes 1 and 2 is the joint-2 offset along x
     def a1(extra: float) -> float:

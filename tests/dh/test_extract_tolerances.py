@@ -85,6 +85,26 @@ def test_fk_check_tol_warns_beyond_it(factor: float, inside: bool) -> None:
     assert warned is not inside
 
 
+@pytest.mark.parametrize(("factor", "inside"), [(0.5, True), (2.0, False)])
+def test_fk_check_tol_warns_beyond_it_on_a_loaded_robots_to_dh(factor: float, inside: bool) -> None:
+    """FK_CHECK_TOL through ``robot.to_dh()``: the table is measured against the chain
+    the robot was loaded from (not against its own DH rows), so it warns as
+    ``urdf_to_dh`` does (the same chain as in the test above).
+    """
+    tilt = 0.5 * AXIS_ANGLE_TOL
+    L = factor * FK_CHECK_TOL / tilt
+    urdf = parse_urdf(_two_joints("0.5 0 0", f"0 {tilt!r} 0", f"0 0 {L!r}"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        robot = km.urdf_to_dh(urdf).robot
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ex = robot.to_dh("standard")
+    assert ex.fk_error == pytest.approx(factor * FK_CHECK_TOL, rel=1e-3)
+    warned = any("reproduces the chain's forward kinematics" in str(w.message) for w in caught)
+    assert warned is not inside
+
+
 @pytest.mark.parametrize(("factor", "inside"), [(0.5, True), (20.0, False)])
 def test_round_off_tol_tidies_lengths_and_angles(factor: float, inside: bool) -> None:
     """ROUND_OFF_TOL: a length or angle within it of a round value (0.3 m, π/2)

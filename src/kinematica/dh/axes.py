@@ -122,8 +122,13 @@ class ExtractedTable:
         base: ``(4, 4)`` pose of ``S_0`` in the chain base frame.
         tool: ``(4, 4)`` pose of the tip in ``S_n``.
         rules: One :class:`FrameRule` per frame ``S_0..S_n``.
-        fk_error: Largest difference of any entry of T between the table's
-            forward kinematics and the chain's, over q = 0 and random q.
+        fk_error: How far the table (rows, base, tool) is from the chain it was
+            read off: the largest difference of any entry of the tool pose T
+            (m for the translation, unitless for the rotation) between the
+            table's FK and the chain's own (about its joint axes as given, not
+            as the rules idealised them), over q = 0 and
+            :data:`~kinematica.dh.extract.FK_CHECK_SAMPLES` configurations
+            spread within the joint limits (seeded).
         frames: ``(n+1, 4, 4)`` the frames ``S_0..S_n`` at q = 0, chain base frame.
     """
 

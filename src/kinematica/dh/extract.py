@@ -104,7 +104,9 @@ FloatArray = NDArray[np.float64]
 #: forward kinematics worse than this (largest entry of T, m or unitless): only
 #: nearly parallel consecutive axes, whose true common normal is far away, cause it.
 FK_CHECK_TOL = 1e-9
-_CHECK_SAMPLES = 6  # configurations the FK check compares (q = 0 and random ones)
+#: Configurations the FK check compares besides q = 0: a Latin hypercube over the
+#: joint limits (seeded, so one chain always gives one figure).
+FK_CHECK_SAMPLES = 32
 
 
 def _joint_label(g: ChainGeometry, k: int) -> str:
@@ -420,15 +422,46 @@ def _row(F0: FloatArray, F1: FloatArray, convention: Convention) -> tuple[float,
     return theta, float(step @ z1), float(step @ x0), alpha
 
 
+def _check_configurations(g: ChainGeometry) -> FloatArray:
+    """``(1 + FK_CHECK_SAMPLES, n)``: q = 0, then a Latin hypercube over the joint ranges.
+
+    Each joint's range is split into :data:`FK_CHECK_SAMPLES` equal strata, one value
+    drawn in each and the strata shuffled joint by joint (seed 0): well spread in
+    every joint, the same configurations on every call. The range is the joint's
+    limits, else (-π, π) for a revolute joint and (-L, L) for a prismatic one, L
+    the chain's size (1 m for a chain of no size). q = 0, the home posture the
+    table was read at, comes first even when outside the limits.
+    """
+    n = len(g.joints)
+    reach = g.size if g.size > 0.0 else 1.0
+    lo = np.empty(n)
+    hi = np.empty(n)
+    for k, joint in enumerate(g.joints):
+        free = math.pi if joint.kind == "R" else reach
+        a, b = joint.qlim if joint.qlim is not None else (-free, free)
+        lo[k] = a if math.isfinite(a) else -free
+        hi[k] = b if math.isfinite(b) else free
+    rng = np.random.default_rng(0)
+    strata = np.argsort(rng.random((FK_CHECK_SAMPLES, n)), axis=0)  # a permutation per joint
+    u = (strata + rng.random((FK_CHECK_SAMPLES, n))) / FK_CHECK_SAMPLES
+    return np.vstack([np.zeros(n), lo + u * (hi - lo)])
+
+
 def _fk_error(
     g: ChainGeometry, rows: tuple[Joint, ...], conv: Convention, base: FloatArray, tool: FloatArray
 ) -> float:
-    """Largest entry difference between the table's FK and the chain's (product of exponentials)."""
-    n = len(g.joints)
-    rng = np.random.default_rng(0)
+    """How far the table's FK is from the chain's: the largest difference of any entry of T.
+
+    ``T`` is the tool pose in the chain's base frame (rotation entries unitless,
+    translation entries in metres, the largest of either), compared at the
+    configurations of :func:`_check_configurations`. The chain's FK is its own
+    product of exponentials, ``exp(q1 ξ1) ... exp(qn ξn) · tip``, about the joint
+    axes exactly as ``g`` gives them (the loaded chain, to round-off), not about
+    the lines the rules idealised (axes taken as parallel or meeting).
+    """
+    q = _check_configurations(g)
+    m, n = q.shape
     prismatic = np.array([j.kind == "P" for j in g.joints])
-    q = rng.uniform(-math.pi, math.pi, (_CHECK_SAMPLES, n))
-    q[0] = 0.0
     h = np.array([j.direction for j in g.joints])
     p = np.array([j.frame[:3, 3] for j in g.joints])
     theta = np.where(prismatic, [r.theta for r in rows], q + [r.theta for r in rows])
@@ -443,9 +476,9 @@ def _fk_error(
         prismatic[:, None], h * q[..., None], p - np.einsum("...ij,...j->...i", R, p)
     )
     E[..., 3, 3] = 1.0
-    T_dh = np.broadcast_to(base, (_CHECK_SAMPLES, 4, 4))
-    T_ref = np.broadcast_to(np.eye(4), (_CHECK_SAMPLES, 4, 4))
-    for k in range(n):  # batched 4x4 products over the samples
+    T_dh = np.broadcast_to(base, (m, 4, 4))
+    T_ref = np.broadcast_to(np.eye(4), (m, 4, 4))
+    for k in range(n):  # batched 4x4 products over the configurations
         T_dh = T_dh @ A[:, k]
         T_ref = T_ref @ E[:, k]
     return float(np.abs(T_dh @ tool - T_ref @ g.tip).max())
@@ -472,9 +505,10 @@ def extract_dh(geometry: ChainGeometry, convention: str = "standard") -> Extract
         convention: ``"standard"`` or ``"modified"`` (aliases accepted).
 
     Returns:
-        Rows, base, tool, the rule that placed each frame and the measured FK
-        agreement. A :class:`~kinematica.errors.KinematicaWarning` is raised
-        when that agreement is worse than :data:`FK_CHECK_TOL`.
+        Rows, base, tool, the rule that placed each frame and ``fk_error``, the
+        table's distance from the chain's own FK (:class:`ExtractedTable`). A
+        :class:`~kinematica.errors.KinematicaWarning` is raised when it is above
+        :data:`FK_CHECK_TOL`.
     """
     conv = check_convention(convention)
     build = _standard_frames if conv == "standard" else _modified_frames

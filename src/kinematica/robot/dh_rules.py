@@ -1,12 +1,12 @@
 """DH tables read off joint axes by the DH rules, and robots written as URDF chains.
 
 A :class:`~kinematica.Robot` stays a DH robot. A serial chain (from a URDF, or
-a robot written as one) has its joint axes placed in space at q = 0 and a DH
+a robot's own kinematics) has its joint axes placed in space at q = 0 and a DH
 table extracted by the rules of the DH method (:func:`kinematica.dh.extract_dh`),
-with base and tool transforms for what DH cannot say; the robot's forward
-kinematics equals the chain's. The way out writes each DH frame as a URDF link,
-so that extracting the table again gives the same rows. Nothing here imports
-the Robot class: the caller passes its constructor (no import cycle).
+with base and tool transforms for what DH cannot say, and the table's distance
+from the chain's FK measured (``fk_error``). The way out writes each DH frame as
+a URDF link, so that extracting the table again gives the same rows. Nothing
+here imports the Robot class: the caller passes its constructor (no import cycle).
 """
 
 from __future__ import annotations
@@ -28,6 +28,7 @@ from kinematica.dh import (
     NamedFrame,
     extract_dh,
 )
+from kinematica.dh.lines import frame_from, perpendicular_hint
 from kinematica.errors import RobotFileError
 from kinematica.io import FrameSpec, UrdfChain, UrdfJoint, urdf_text
 from kinematica.io.atomic import unchanged, write_text_atomic
@@ -40,6 +41,7 @@ __all__ = [
     "chain_from_robot",
     "dh_from_chain",
     "geometry_from_chain",
+    "geometry_from_robot",
     "to_dh",
     "to_urdf",
 ]
@@ -52,11 +54,20 @@ class DHExtraction:
     """A DH robot extracted from a chain's joint axes, and how.
 
     Attributes:
-        robot: The DH robot; its FK equals the chain's.
+        robot: The DH robot. From :func:`kinematica.urdf_to_dh` it computes
+            with the file's own transforms (its FK the file's); from
+            :meth:`kinematica.Robot.to_dh`, with the table alone.
         rules: For each DH frame ``S_0..S_n``, the rule that placed it
             (:class:`~kinematica.dh.FrameRule`: ``.frame``, ``.rule``, ``.text``).
-        fk_error: Largest difference of any entry of T between the robot's
-            FK and the chain's, measured at q = 0 and random q.
+        fk_error: How far the DH table alone (rows, base, tool) is from the
+            chain it was read off (the URDF as loaded, or the robot's own
+            kinematics): the largest difference of any entry of the tool pose T
+            (m, or unitless for the rotation), over q = 0 and
+            :data:`~kinematica.dh.extract.FK_CHECK_SAMPLES` configurations
+            spread within the joint limits (seeded). Round-off when DH
+            describes the axes exactly; 5.9e-10 on rtb-data's AL5D URDF, whose
+            rpy values write π as 3.141592653 (axes 5.9e-10 rad off parallel,
+            taken as parallel).
         frames: ``(n+1, 4, 4)`` the DH frames ``S_0..S_n`` at q = 0, in the
             chain's base frame.
         source: What the chain was read from (``"arm.urdf: base_link -> tool0"``).
@@ -120,6 +131,73 @@ def geometry_from_chain(chain: UrdfChain) -> ChainGeometry:
     )
 
 
+def geometry_from_robot(robot: Robot) -> ChainGeometry:
+    """The joint axes, tip and named frames of the robot's own kinematics at q = 0.
+
+    For a DH robot, its table's (the chain :func:`chain_from_robot` writes). For
+    a robot computing with a loaded chain's transforms (a URDF), that chain's:
+    each joint's axis where the file puts it, its frame the DH frame on that
+    axis moved onto it exactly (so that the rules choose as the table did), the
+    tip the chain's home pose. Its DH rows describe such a robot only to their
+    extraction's accuracy, so they are not the chain to measure a table against.
+    Frames are in the robot's world frame.
+    """
+    t = robot.transforms
+    if t is None:
+        return geometry_from_chain(chain_from_robot(robot))
+    motion = robot.base @ t.motion_frames()  # (n, 4, 4): z along each joint's axis
+    dh = np.concatenate([robot.base[None], motion @ t.frame_offsets])  # S_0..S_n
+    on_axis = dh[:-1] if robot.convention == "standard" else dh[1:]  # S on joint i's axis
+    joints = []
+    for M, S, link, name in zip(motion, on_axis, robot.links, _joint_names(robot), strict=True):
+        h, p = M[:3, 2], M[:3, 3]
+        foot = p + float((S[:3, 3] - p) @ h) * h
+        frame = frame_from(perpendicular_hint(S, h), h, foot)
+        joints.append(AxisFrame(link.type, h, frame, name=name, qlim=link.qlim))
+    tip = motion[-1] @ t.end @ robot.tool
+    identity = np.eye(4)
+    before = [NamedFrame("base_link", identity)]
+    if not np.array_equal(robot.base, identity):
+        before.insert(0, NamedFrame("link0", robot.base))
+    after = [NamedFrame("tool0", tip)]
+    if robot.convention == "standard" and not np.array_equal(robot.tool, identity):
+        after.insert(0, NamedFrame("flange", dh[-1]))
+    return ChainGeometry(
+        joints=tuple(joints),
+        tip=tip,
+        before=tuple(before),
+        after=tuple(after),
+        dh_frames=robot.convention,
+    )
+
+
+def _extraction(
+    geometry: ChainGeometry,
+    convention: str,
+    make: Callable[..., Robot],
+    name: str,
+    description: str | None,
+    source: str | None,
+) -> DHExtraction:
+    """The DH robot of the chain ``geometry`` describes, and the table's ``fk_error``."""
+    table = extract_dh(geometry, convention)
+    robot = make(
+        table.rows,
+        convention=table.convention,
+        name=name,
+        base=table.base,
+        tool=table.tool,
+        description=description,
+    )
+    return DHExtraction(
+        robot=robot,
+        rules=table.rules,
+        fk_error=table.fk_error,
+        frames=table.frames,
+        source=source,
+    )
+
+
 def dh_from_chain(
     chain: UrdfChain,
     convention: str = "standard",
@@ -138,24 +216,17 @@ def dh_from_chain(
         description: Free text for the robot.
 
     Returns:
-        The robot, its frames and the rule behind each.
+        The robot (its DH table alone), its frames, the rule behind each and the
+        table's ``fk_error`` against the chain as the file gives it.
     """
-    table = extract_dh(geometry_from_chain(chain), convention)
-    robot = make(
-        table.rows,
-        convention=table.convention,
-        name=name or chain.name,
-        base=table.base,
-        tool=table.tool,
-        description=description,
-    )
     where = f"{chain.source}: " if chain.source else ""
-    return DHExtraction(
-        robot=robot,
-        rules=table.rules,
-        fk_error=table.fk_error,
-        frames=table.frames,
-        source=f"{where}{chain.base} -> {chain.tip}",
+    return _extraction(
+        geometry_from_chain(chain),
+        convention,
+        make,
+        name or chain.name,
+        description,
+        f"{where}{chain.base} -> {chain.tip}",
     )
 
 
@@ -214,14 +285,15 @@ def chain_from_robot(robot: Robot) -> UrdfChain:
 def to_dh(robot: Robot, convention: str = "standard") -> DHExtraction:
     """Extract the DH table of a robot's joint axes again, by the rules.
 
-    In the robot's own convention this gives back its rows (angles wrapped to
-    (-π, π]); in the other convention, a table placed by the rules with the
-    same FK. See :func:`kinematica.dh.extract_dh`.
+    The axes are the robot's own (:func:`geometry_from_robot`): a URDF's as
+    loaded, not its DH table's. In the robot's own convention this gives back
+    its rows (angles wrapped to (-π, π]); in the other convention, a table
+    placed by the rules with the same FK. ``fk_error`` is the returned table's
+    distance from the robot's own FK. See :func:`kinematica.dh.extract_dh`.
     """
-    chain = chain_from_robot(robot)
     make = type(robot).from_dh
-    ext = dh_from_chain(
-        chain, convention, make=make, name=robot.name, description=robot.description
+    ext = _extraction(
+        geometry_from_robot(robot), convention, make, robot.name, robot.description, None
     )
     out = ext.robot
     named = make(
@@ -235,7 +307,7 @@ def to_dh(robot: Robot, convention: str = "standard") -> DHExtraction:
         tool=out.tool,
         description=out.description,
     )
-    return dataclasses.replace(ext, robot=named, source=None)
+    return dataclasses.replace(ext, robot=named)
 
 
 def to_urdf(robot: Robot, path: str | os.PathLike[str] | None = None) -> str:
