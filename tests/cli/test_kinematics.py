@@ -336,3 +336,73 @@ def test_show_prints_the_extracted_table_of_a_urdf(tmp_path):
     # a1 = 0.26 (shoulder offset), a2 = 0.68, a3 = 0.035, d4 = 0.67 along -z3: the KR 16's lengths
     for cell in ("0.26", "0.68", "0.035", "-0.67", "[-185°, 185°]"):
         assert cell in out
+
+
+# ------------------------------------------------ show: the IK solver of pose targets
+_GENERAL_6R = """name: General 6R
+convention: standard
+units: {angle: rad, length: m}
+joints:
+  - {theta: q1, d: 0.2, a: 0.25, alpha: 0.8}
+  - {theta: q2, d: -0.2, a: -0.35, alpha: -1.2}
+  - {theta: q3, d: -0.1, a: -0.35, alpha: 2.1}
+  - {theta: q4, d: 0.4, a: 0.1, alpha: -0.7}
+  - {theta: q5, d: -0.05, a: 0.4, alpha: 1.4}
+  - {theta: q6, d: 0.3, a: -0.1, alpha: -2.6}
+"""
+_SLIDE_6 = """name: RPRRRR arm
+convention: standard
+units: {angle: deg, length: m}
+joints:
+  - {theta: q1, d: 0.4, a: 0, alpha: 90}
+  - {theta: 20, d: q2, a: 0.1, alpha: -60, limits: [0, 1]}
+  - {theta: q3, d: 0.05, a: 0.3, alpha: 90}
+  - {theta: q4, d: 0.3, a: 0.02, alpha: -90}
+  - {theta: q5, d: 0, a: 0.01, alpha: 90}
+  - {theta: q6, d: 0.1, a: 0, alpha: 0}
+"""
+
+
+@pytest.mark.parametrize(
+    ("robot", "line"),
+    [
+        ("puma560", "IK of poses: analytic:spherical-wrist (closed form: every solution)"),
+        ("ur5", "IK of poses: analytic:three-parallel-6R (closed form: every solution)"),
+        ("general-6r.yaml", "IK of poses: analytic:general-6R (closed form: every solution)"),
+        (
+            "panda",
+            "IK of poses: analytic:spherical-shoulder (closed form: every solution with q7 "
+            "held at a value, its redundancy parameter)",
+        ),
+        (
+            "slide-6.yaml",
+            "IK of poses: numeric:lm (a local search that finds one solution at most; more "
+            "may exist)\n  no closed form applies: a slide outside the closed-form families "
+            "(6 joints, RPRRRR), and the general 6R elimination takes revolute joints only "
+            "(joint 2 slides)",
+        ),
+    ],
+)
+def test_show_names_the_ik_solver_of_poses(tmp_path, robot: str, line: str) -> None:
+    (tmp_path / "general-6r.yaml").write_text(_GENERAL_6R)
+    (tmp_path / "slide-6.yaml").write_text(_SLIDE_6)
+    proc = run_in(tmp_path, "show", robot)
+    assert proc.returncode == 0, proc.stderr
+    head = proc.stdout.split("\n\n")[0]  # before the DH table
+    assert line in head
+    proc = run_in(tmp_path, "show", robot, "--json")
+    assert proc.returncode == 0, proc.stderr
+    solver = json.loads(proc.stdout)["ik"]["pose"]
+    assert set(solver) == {"method", "parameter", "complete", "reason"}
+    assert line.startswith(f"IK of poses: {solver['method']} (")
+    assert solver["parameter"] == ("q7" if robot == "panda" else None)
+    assert solver["complete"] is (solver["method"] != "numeric:lm")
+    # the reason the answers' note gives
+    loaded = km.load(robot if "." not in robot else tmp_path / robot)
+    res = loaded.ik(loaded.fk(np.full(loaded.dof, 0.3)), respect_limits=False)
+    assert res.method == solver["method"]
+    if solver["reason"] is None:
+        assert not any("no closed form applies" in n for n in res.notes)
+    else:
+        assert solver["reason"] in line
+        assert any(f"no closed form applies: {solver['reason']};" in n for n in res.notes)

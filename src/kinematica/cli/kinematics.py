@@ -118,12 +118,45 @@ def _written(robot: Robot) -> list[dict[str, str]]:
     return out
 
 
+def _pose_ik(robot: Robot) -> dict[str, Any]:
+    """The solver ``robot.ik`` gives the arm's pose targets (``show``'s JSON key ``ik.pose``)."""
+    from kinematica.ik.choice import pose_choice
+
+    choice = pose_choice(robot.chain, robot.joint_names)
+    return {
+        "method": choice.method,
+        "parameter": choice.parameter,
+        "complete": choice.complete,
+        "reason": choice.reason,
+    }
+
+
+def _pose_ik_lines(solver: dict[str, Any]) -> list[str]:
+    """``IK of poses: analytic:spherical-wrist (closed form: every solution)`` and the like."""
+    from kinematica.ik.choice import LOCAL_SEARCH
+
+    method, parameter, reason = solver["method"], solver["parameter"], solver["reason"]
+    if reason is not None:
+        return [f"IK of poses: {method} ({LOCAL_SEARCH})", f"  no closed form applies: {reason}"]
+    what = "every solution" if solver["complete"] else "exact solutions, maybe not all"
+    if parameter is not None:
+        what += f" with {parameter} held at a value, its redundancy parameter"
+    lines = [f"IK of poses: {method} (closed form: {what})"]
+    if not solver["complete"]:
+        lines.append(
+            "  the axes have its structure only to within the line geometry's tolerances; "
+            "a target it misses is searched numerically"
+        )
+    return lines
+
+
 def show(args: argparse.Namespace) -> int:
-    """``kinematica show ROBOT``: DH table, limits, structure."""
+    """``kinematica show ROBOT``: DH table, limits, structure, the IK solver of pose targets."""
     robot = robot_from_args(args)
     from kinematica.robot.structure import classify
 
     structure = classify(robot)
+    solver = _pose_ik(robot)
     if args.json:
         dh = robot.dh_table()  # theta, d, a, alpha at q = 0, in rad and m
         angles = dh[:, [0, 3]] if args.rad else np.rad2deg(dh[:, [0, 3]])
@@ -135,6 +168,7 @@ def show(args: argparse.Namespace) -> int:
                 "convention": robot.convention,
                 "joints": robot.joint_types,
                 "structure": {"kind": structure.kind, "summary": structure.summary},
+                "ik": {"pose": solver},
                 "units": units(robot, args),
                 "dh": [
                     dict(zip(("theta", "d", "a", "alpha"), r, strict=True))
@@ -153,6 +187,8 @@ def show(args: argparse.Namespace) -> int:
     metres = length_unit(robot, args)
     print(f"{plain(robot.name)}: {structure.summary}")
     print(f"{robot.dof} joints ({robot.joint_types}), {robot.convention} DH convention")
+    for line in _pose_ik_lines(solver):
+        print(plain(line))
     if robot.description:
         print(plain(robot.description.strip()))
     print()
@@ -395,7 +431,9 @@ def register(sub: Any) -> None:
     add_common(p)  # --euler/--rad accepted on every command; this one prints no angles
     p.set_defaults(run=robots)
 
-    p = sub.add_parser("show", help="DH table, limits and structure of a robot")
+    p = sub.add_parser(
+        "show", help="DH table, limits and structure of a robot, and its IK solver of poses"
+    )
     add_robot(p)
     add_common(p)
     p.set_defaults(run=show)

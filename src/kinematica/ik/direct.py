@@ -150,6 +150,8 @@ class DirectParameter:
             if len(self._held) >= HELD_CACHE:
                 self._held.clear()
             self._held[key, value] = held
+        if not held.solver.complete and held.arm.dof == _POSE_DOF:
+            return None  # no closed form there: perhaps a continuum (held_continuum)
         return self._at_joint(pose, held, ())
 
     def arm_angle(self, pose: FloatArray, value: object) -> IKResult | None:
@@ -201,7 +203,11 @@ class DirectParameter:
         v = held.value
         k = held.joint.index
         return result_of(
-            *widen_answer(out, k, v), fast.method, fast.complete, notes, (held.joint.name, v)
+            *widen_answer(out, k, v),
+            fast.method,
+            fast.complete,
+            (*fast.notes, *notes),  # the search's note first, as the general path has it
+            (held.joint.name, v),
         )
 
     def _at_angle(

@@ -25,6 +25,7 @@ import numpy as np
 
 import kinematica._core as _core
 from kinematica.core import Chain
+from kinematica.ik.choice import LOCAL_SEARCH
 from kinematica.ik.registry import ClosedForm
 from kinematica.ik.structure import features
 from kinematica.spatial import rotation_angle
@@ -35,6 +36,7 @@ __all__ = [
     "PARTIAL_NOTE",
     "merge_batch",
     "needs_search",
+    "searched_note",
     "seeds",
     "slack_of",
 ]
@@ -48,16 +50,21 @@ INCOMPLETE_NOTE = (
 FALLBACK_NOTE = (
     "the arm's axes have its closed form's structure only to within the tolerances of the "
     "line geometry, and no candidate of the closed form solved this target: "
-    "the numeric search answered"
+    f"the numeric search answered, {LOCAL_SEARCH}"
 )
 
 #: Said of a target a partial closed form found nothing for, answered by the numeric search.
 PARTIAL_NOTE = (
     "no configuration of the closed form (joints 4 onwards at 0) reaches this target: "
-    "the numeric search answered"
+    f"the numeric search answered, {LOCAL_SEARCH}"
 )
 
 _NOT_FOUND = _core.STATUS["not_found"]
+
+
+def searched_note(closed_note: str) -> str:
+    """The note of a target a closed form's ``search_note`` names, answered by the search."""
+    return f"{closed_note}, {LOCAL_SEARCH}"
 
 
 def slack_of(chain: Chain) -> float:

@@ -31,6 +31,7 @@ __all__ = [
     "DEFAULT_SEED",
     "FULL_TURN",
     "LABEL",
+    "METHOD",
     "PRISMATIC_SPAN",
     "NumericSetup",
     "check_seed",
@@ -62,6 +63,8 @@ PRISMATIC_SPAN = 1.0
 FULL_TURN = 2.0 * math.pi - 1e-12
 #: The one label of the numeric solver's single candidate slot.
 LABEL = "numeric"
+#: The method name its results carry.
+METHOD = "numeric:lm"
 
 
 def _is_generator(seed: object) -> bool:
@@ -247,7 +250,7 @@ def numeric_solver(
         seed=seed,
         weights=weights,
     )
-    return setup, (LABEL,), "numeric:lm"
+    return setup, (LABEL,), METHOD
 
 
 def reach_bound(chain: Chain, lo: FloatArray, hi: FloatArray) -> float:

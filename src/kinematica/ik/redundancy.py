@@ -26,6 +26,7 @@ import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.arm_angle import ArmAngleParameter, arm_angle_parameter
+from kinematica.ik.choice import LOCAL_SEARCH
 from kinematica.ik.moved import end_arm, moved_targets
 from kinematica.ik.parameter import (
     JointParameter,
@@ -169,7 +170,7 @@ def _at_parameter(
     def fallback(value: float) -> str:
         return (
             f"no solution with {joint.describe(value)}: the numeric search over all "
-            f"{chain.dof} joints answered"
+            f"{chain.dof} joints answered, {LOCAL_SEARCH}"
         )
 
     def nearer(value: float, start: float) -> str:

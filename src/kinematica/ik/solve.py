@@ -25,10 +25,11 @@ from kinematica.ik.fallback import (
     PARTIAL_NOTE,
     merge_batch,
     needs_search,
+    searched_note,
     seeds,
     slack_of,
 )
-from kinematica.ik.numeric import LABEL, check_seed, numeric_solver
+from kinematica.ik.numeric import LABEL, METHOD, check_seed, numeric_solver
 from kinematica.ik.options import IKOptions, Method
 from kinematica.ik.reach import ANSWERED, beyond_limited_reach
 from kinematica.ik.registry import ClosedForm, TargetKind
@@ -218,9 +219,9 @@ def _solve(
 
     # a closed form that may miss a solution: a target it found nothing for is searched
     partial = closed is not None and (closed.partial or bool(closed.search_note))
-    searched_note = FALLBACK_NOTE if slack else PARTIAL_NOTE
+    search_text = FALLBACK_NOTE if slack else PARTIAL_NOTE
     if closed is not None and closed.search_note:
-        searched_note = closed.search_note
+        search_text = searched_note(closed.search_note)
 
     def search(rows: Any) -> tuple[Any, _core.CheckOptions, FloatArray]:  # the second method
         """The search, its options, and the first guesses of the targets ``rows``."""
@@ -243,7 +244,7 @@ def _solve(
                 out = numeric.ik(chain.core, targets.poses[0], nopts, guess[0], (LABEL,))
                 out = _searched_one(closed, targets.poses[0], out)
                 out = _limited(chain, targets.poses, out, respect_limits, tolerance, w)
-                return result_of(*out, "numeric:lm", False, (*notes, searched_note))
+                return result_of(*out, METHOD, False, (*notes, search_text))
             if slack:
                 notes = (*notes, INCOMPLETE_NOTE)
         out = _limited(chain, targets.poses, out, respect_limits, tolerance, w)
@@ -277,13 +278,13 @@ def _solve(
             raw = merge_batch(raw, rows, searched)
             labels = (*labels, LABEL)
         searched_rows = set(rows.tolist())
-        methods = {where(i): "numeric:lm" for i in searched_rows}
+        methods = {where(i): METHOD for i in searched_rows}
         for i in range(targets.poses.shape[0]):
             if i in targets.invalid:
                 continue
             idx = where(i)
             if i in searched_rows:
-                batch_notes[idx] = (*batch_notes.get(idx, ()), searched_note)
+                batch_notes[idx] = (*batch_notes.get(idx, ()), search_text)
             elif slack:
                 batch_notes[idx] = (*batch_notes.get(idx, ()), INCOMPLETE_NOTE)
     if respect_limits:

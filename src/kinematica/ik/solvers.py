@@ -92,13 +92,16 @@ def closed_form(
 def why_numeric(
     chain: Chain, closed: ClosedForm | None, kind: TargetKind, mask: Any
 ) -> tuple[str, ...]:
-    """The note saying why the search answers a pose no closed form takes (or none)."""
-    if closed is not None or kind != "pose" or mask is not None:
-        return ()
-    from kinematica.ik.analytic.general_6r import numeric_note  # the numeric path's note only
+    """``auto``'s note on the search's answer where no closed form applies (``()``: one does).
 
-    note = numeric_note(features(chain))
-    return () if note is None else (note,)
+    It says the answer is one solution of a local search, more may exist, and why no
+    closed form applies (:mod:`kinematica.ik.choice`).
+    """
+    if closed is not None:
+        return ()
+    from kinematica.ik.choice import numeric_reason, search_note  # the numeric path's note only
+
+    return (search_note(numeric_reason(chain, kind, mask is not None)),)
 
 
 # The core's check options, one per combination of settings seen.
@@ -144,9 +147,10 @@ class PoseSolver:
         complete: It gives every solution (a closed form).
         direct: Its answer is the whole answer where it proves something (False for
             a closed form on a near-degenerate arm: see :mod:`kinematica.ik.fallback`).
+        notes: The notes of its answers (``auto``'s search: why no closed form applies).
     """
 
-    __slots__ = ("complete", "direct", "ik_rigid", "labels", "method", "options")
+    __slots__ = ("complete", "direct", "ik_rigid", "labels", "method", "notes", "options")
 
     def __init__(
         self,
@@ -156,6 +160,7 @@ class PoseSolver:
         method: str,
         complete: bool,
         direct: bool = True,
+        notes: tuple[str, ...] = (),
     ) -> None:
         self.ik_rigid = ik_rigid
         self.options = options
@@ -163,6 +168,7 @@ class PoseSolver:
         self.method = method
         self.complete = complete
         self.direct = direct
+        self.notes = notes
 
     def rigid(self, chain: _core.Chain, pose: FloatArray) -> IKResult | None:
         """The answer for one rigid ``(4, 4)`` pose, or None when the general path must give it.
@@ -173,7 +179,7 @@ class PoseSolver:
         out: CoreAnswer | None = self.ik_rigid(chain, pose, self.options, ROUNDOFF_TOL, self.labels)
         if out is None or (out[5][0] not in ANSWERED and needs_proof(out[5][0], out[5][1])):
             return None
-        return result_of(*out, self.method, self.complete, ())
+        return result_of(*out, self.method, self.complete, self.notes)
 
 
 def pose_solver(
@@ -203,13 +209,10 @@ def pose_solver(
     opts = check_options(tolerance, True, complete, w)
     # (a closed form with a search_note, or a partial one, says not_found where it proves
     # nothing, and the one-pose path hands not_found to the general one, which searches)
-    if closed is None:
-        # (the search's answer for "auto" carries the note saying why no closed form took
-        # it, which only the general path adds; "numeric" was asked for: no note)
-        direct = method == "numeric" or not why_numeric(chain, None, kind, None)
-    else:
-        direct = closed.exact or features(chain).slack == 0.0
-    return PoseSolver(solver.ik_rigid, opts, labels, name, complete, direct)
+    direct = closed is None or closed.exact or features(chain).slack == 0.0
+    # the search's answers for "auto" say why no closed form applies; "numeric" was asked for
+    notes = why_numeric(chain, closed, kind, None) if method == "auto" else ()
+    return PoseSolver(solver.ik_rigid, opts, labels, name, complete, direct, notes)
 
 
 def solver_of(

@@ -14,7 +14,9 @@ class IKStatus(StrEnum):
     """What an IK answer is. Each compares equal to its string, e.g. ``"ok"``.
 
     Attributes:
-        OK: Every solution found (a closed form), or one found (numeric).
+        OK: Every solution found (a closed form), or one found (the numeric search:
+            a local search, more may exist; the result's ``complete`` is False, and
+            where ``method="auto"`` fell back to it, a note says why).
         SINGULAR: Infinitely many solutions; the rows are representatives and
             ``free_joints`` names the joints left free.
         OUT_OF_LIMITS: Solutions exist, none within the joint limits.
