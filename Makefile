@@ -82,12 +82,13 @@ sanitize:
 	$(SAN_ENV) $(SAN_VENV)/bin/pytest -q -p no:cacheprovider -p no:warnings $(sort $(SAN_TESTS))
 
 bench: $(CORE_STAMP)
-	@for peer in pin roboticstoolbox-python eaik; do \
+	@for peer in pin roboticstoolbox-python eaik ssik; do \
 	  $(BIN)/python -m pip install --quiet $$peer >/dev/null 2>&1 \
 	    || echo "bench: $$peer not installable here; the benchmarks skip it"; \
 	done
 	$(BIN)/python benchmarks/fk.py
 	@if [ -f benchmarks/ik.py ]; then $(BIN)/python benchmarks/ik.py; fi
+	$(BIN)/python benchmarks/ik_makers.py
 	$(BIN)/python benchmarks/robot_files.py
 	$(BIN)/python benchmarks/urdf.py
 	$(BIN)/python benchmarks/motion.py

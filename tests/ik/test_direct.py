@@ -78,7 +78,7 @@ CASES = [  # robot, keywords, the joint the poses are made at and its value (Non
     ("iiwa14", {"arm_angle": 0}, None, 0.0),  # an int: the parameter comes out a float
     ("iiwa14", {"fixed": {0: 0.3}}, 0, 0.3),  # the target moved (the first joint)
     ("iiwa14", {"fixed": {"q7": -0.3}}, 6, -0.3),  # by name
-    ("iiwa14", {"fixed": {3: -1.0}}, 3, -1.0),  # a middle joint
+    ("iiwa14", {"fixed": {4: -1.0}}, 4, -1.0),  # a middle joint (q4 held: a continuum)
     ("puma+1", {}, 0, 0.0),  # auto: q1 held at 0 (no limits), the target moved
 ]
 

@@ -58,7 +58,8 @@ def test_locking_first_middle_last_joint_reaches_the_pose(name: str, k: int) -> 
         T = robot.fk(q)
         res = robot.ik(T, fixed={k: float(q[k])}, respect_limits=False)
         assert isinstance(res, IKResult)
-        assert res.status == "ok", res.message
+        # an SRS arm's elbow held: the arm angle's circle (tests/ik/test_held_continuum.py)
+        assert res.status == ("singular" if (name, k) == ("iiwa14", 3) else "ok"), res.message
         assert_locked(robot, res, T, k, float(q[k]))
         if res.complete:  # a closed form gives every solution: the one that made T too
             assert contains(robot, res.solutions, q), res.solutions

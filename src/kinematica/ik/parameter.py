@@ -28,6 +28,7 @@ from numpy.typing import ArrayLike, NDArray
 from kinematica._record import record
 from kinematica.core import Chain
 from kinematica.errors import DimensionError, KinematicaError
+from kinematica.ik.held_continuum import continuum_answer
 from kinematica.ik.moved import end_arm, moved_targets, narrowed_tolerance
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.stack import replace_rows, stack_results, widen_batch, widen_result
@@ -255,8 +256,13 @@ class JointParameter:
                 if k == n - 1 and isinstance(out, IKBatchResult):
                     out = widen_batch(out, k, v, self.name)
                     return self._exact_gaps(chain, targets, v, out, options)
-            elif same:
+            elif same and not (targets.poses.shape[0] > 1 and self._continua(chain, v, opts)):
                 out = solve_ik(locked_chain(chain, k, float(v[0])), target, opts)
+                if isinstance(out, IKResult) and self._continua(chain, v, opts):
+                    wide = widen_result(out, k, float(v[0]), (self.name, float(v[0])))
+                    return continuum_answer(
+                        chain, k, float(v[0]), self.name, targets.poses[0], wide, opts
+                    )
             else:  # a middle joint at several values: one arm per value, each target alone
                 return self._one_by_one(chain, targets, v, opts)
         except KinematicaError as exc:
@@ -270,6 +276,23 @@ class JointParameter:
         if isinstance(out, IKResult):
             return widen_result(out, k, float(v[0]), (self.name, float(v[0])))
         return widen_batch(out, k, v, self.name)
+
+    def _continua(self, chain: Chain, v: FloatArray, opts: IKOptions) -> bool:
+        """True when ``auto``'s pose answers on the arm locked at ``v`` may be continua.
+
+        The arm left has no closed form (every elimination degenerate) and is tested
+        for a continuum at the search's answer (:mod:`kinematica.ik.held_continuum`).
+        """
+        from kinematica.ik.solvers import closed_form
+
+        return (
+            opts.method == "auto"
+            and opts.mask is None
+            and chain.dof == 7
+            and not bool(chain.prismatic.any())
+            and bool(np.all(v == v[0]))
+            and closed_form(locked_chain(chain, self.index, float(v[0])), "pose") is None
+        )
 
     def _exact_gaps(
         self,
@@ -316,7 +339,11 @@ class JointParameter:
             arm = locked_chain(chain, self.index, float(v[i]))
             one = solve_ik(arm, T, dataclasses.replace(opts, q0=q0))
             assert isinstance(one, IKResult)
-            results[i] = widen_result(one, self.index, float(v[i]), (self.name, float(v[i])))
+            vi = float(v[i])
+            one = widen_result(one, self.index, vi, (self.name, vi))
+            if not targets.position and self._continua(chain, v[i : i + 1], opts):
+                one = continuum_answer(chain, self.index, vi, self.name, T, one, opts)
+            results[i] = one
         return stack_results(results, targets, chain.dof, self.name, v)
 
 

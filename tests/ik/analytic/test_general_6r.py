@@ -342,17 +342,26 @@ def test_a_calibrated_ur_loses_no_solution() -> None:
             assert joint_distance(robot, one.solutions, x).min() <= 1e-6
 
 
-def test_a_calibrated_ur_once_refused_is_solved_by_qz_and_its_spurious_roots_dropped() -> None:
+def test_a_calibrated_ur_once_refused_is_solved_by_qz_and_its_spurious_roots_dropped(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
     # The UR5's standard table, twists 1e-3 off, read as a modified one (another arm, of
     # 2-4 solutions a pose; sample_arm made it until it converted the table): A2
     # ill-conditioned at both shifts on every pose (M(x6) nearly singular for every x6),
     # which the builder refused (no candidates: every probe missed). Its roots now come
     # from QZ; the singular part's real eigenvalues give candidates whose pose misses the
     # target, none of which is returned. Reference: 200 numeric starts per pose.
-    rng = np.random.default_rng(0)
-    rows, note, standard = g6._edge(rng)
-    assert note.startswith("UR5") and standard
-    assert str(rng.choice(["standard", "modified"])) == "modified"
+    seed = 0
+    while True:  # the first seed whose edge is a calibrated UR read as a modified table
+        rng = np.random.default_rng(seed)
+        rows, note, standard = g6._edge(rng)
+        if note.startswith("UR5") and str(rng.choice(["standard", "modified"])) == "modified":
+            break
+        seed += 1
+    assert standard
+    # the eight labellings whose constants are the arm's (those the QZ path serves; one
+    # with T on the left may be well posed here and take the companion matrix)
+    monkeypatch.setattr(g6, "LABELLINGS", g6.LABELLINGS[:8])
     base, tool = random_transform(rng, 0.5), random_transform(rng, 0.2)
     robot = km.Robot.from_dh(rows, convention="modified", base=base, tool=tool)
     params = closed_form(robot.chain, "pose").params

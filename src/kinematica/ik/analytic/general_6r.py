@@ -48,7 +48,6 @@ __all__ = [
     "free_joints",
     "loop_of",
     "mark_continua",
-    "numeric_note",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -110,17 +109,6 @@ SEARCH_NOTE = (
     "(the target at the workspace boundary, or its eigenproblem degenerate there): "
     "not proven unreachable; the numeric search answered"
 )
-
-
-def numeric_note(f: Features) -> str | None:
-    """Why a 6-joint arm with a slide that no closed form takes goes to the search, or None."""
-    if f.dof != 6 or "P" not in f.joint_types:
-        return None
-    slides = ", ".join(str(i + 1) for i, t in enumerate(f.joint_types) if t == "P")
-    return (
-        f"no closed form for this arm: the general 6R elimination takes revolute joints "
-        f"only (joint {slides} slides); the numeric search answered"
-    )
 
 
 def _class_label(cls: int, k: int) -> str:

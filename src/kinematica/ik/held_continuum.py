@@ -1,0 +1,171 @@
+"""A joint held where the arm left reaches every pose along a continuum.
+
+Holding a joint of a 7-joint arm at some values leaves a 6-joint arm with no isolated
+solutions at all: the iiwa's or any SRS arm's elbow (q4) held leaves a spherical
+shoulder and a spherical wrist, whose distance is then fixed, so every pose it reaches
+is reached along the circle of the arm angle; its q2 held at 0 makes axes 1 and 3 one
+line, and only q1 + q3 counts. No closed form is built for such an arm (each
+elimination degenerates), and the numeric search would answer one point of the
+continuum as if it were the answer.
+
+Here the search's point is tested for a self-motion by the general 6R's test in the
+core (``general_6r.hpp``, ``self_motion``: the locked arm's Jacobian rank-deficient
+there, a step along its null direction, the loop closed again with one joint held).
+On a continuum, the answer is ``singular`` with the free joints named, and its
+representatives are every solution with the held joint at its value among those of
+the arm with the free joint that moved most held at the search point's value instead:
+that arm is regular there, and its closed form gives all of them (every branch of the
+continuum through that value, not only the search's).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+from numpy.typing import NDArray
+
+import kinematica._core as _core
+from kinematica.core import Chain
+from kinematica.ik.result import IKResult
+from kinematica.ik.stack import widen_result
+from kinematica.ik.status import IKStatus
+
+if TYPE_CHECKING:
+    from kinematica.ik.options import IKOptions
+
+__all__ = ["HELD_MATCH_TOL", "continuum_answer", "holds_value"]
+
+FloatArray = NDArray[np.float64]
+
+#: A representative of the continuum (a solution of the arm with another joint held) has
+#: the held joint at its value when they differ by at most this (rad, or m for a slide).
+#: That arm is regular there, so its closed form gives the held joint to round-off
+#: (within 3.6e-14 on 60 poses of the iiwa and the Panda); the other branches of that
+#: arm's solutions have it elsewhere (0.025 rad and more away on those poses).
+HELD_MATCH_TOL = 1e-8
+
+
+def holds_value(q: float, value: float, prismatic: bool) -> bool:
+    """True when a joint at ``q`` is at the held ``value`` (HELD_MATCH_TOL; modulo 2π)."""
+    d = q - value if prismatic else math.remainder(q - value, 2.0 * math.pi)
+    return abs(d) <= HELD_MATCH_TOL
+
+
+def _self_motion(locked: Chain, T: FloatArray, q: FloatArray) -> tuple[int, ...]:
+    """The locked arm's joints free along a continuum through its solution q, or ``()``.
+
+    Ordered by how far each moved along it in the test's step, most first.
+    """
+    if locked.dof != 6 or bool(np.any(locked.prismatic)):
+        return ()
+    from kinematica.ik.analytic import general_6r as g6
+    from kinematica.ik.structure import features
+
+    K, G1, size = g6.loop_of(locked, features(locked))
+    built = g6._params(K, G1, size, 5, False)  # T on the left: no constant Q needed
+    if built is None:
+        return ()
+    try:
+        verdict, _, _, moved, mask = _core.general6r.self_motion(built[0], T, q)
+    except ValueError:  # q does not close the loop: no test
+        return ()
+    if _core.general6r.DEGENERACY[verdict] != "continuum":
+        return ()
+    free = [j for j in range(6) if (mask >> j) & 1]
+    return tuple(sorted(free, key=lambda j: -float(moved[j])))
+
+
+def continuum_answer(
+    chain: Chain,
+    joint: int,
+    value: float,
+    name: str,
+    T: FloatArray,
+    answer: IKResult,
+    options: IKOptions,
+) -> IKResult:
+    """``answer`` (the numeric search's, joint ``joint`` held) as a continuum where it is one.
+
+    Args:
+        chain: The whole arm.
+        joint: The held joint (0-based).
+        value: Its value (rad or m).
+        name: Its name, as results name the parameter.
+        T: ``(4, 4)`` the target (base frame, m).
+        answer: The whole arm's answer with the joint held (the search's point in it).
+        options: The IK settings of the call.
+
+    Returns:
+        ``answer`` as it is when its solution is not on a continuum (or none was found);
+        else ``singular``: the free joints named and every representative with another
+        free joint held at the search point's value.
+    """
+    from kinematica.ik.parameter import locked_chain
+    from kinematica.ik.solve import solve_ik
+    from kinematica.ik.solvers import closed_form
+
+    found = np.concatenate([answer.solutions, answer.out_of_limits])
+    if not len(found):
+        return answer
+    q = found[0]
+    locked = locked_chain(chain, joint, value)
+    free_locked = _self_motion(locked, T, np.delete(q, joint))
+    if not free_locked:
+        return answer
+    free = tuple(j if j < joint else j + 1 for j in free_locked)
+    # hold the free joint whose locked arm has a closed form (those that moved most first)
+    for other in free:
+        arm = locked_chain(chain, other, float(q[other]))
+        if closed_form(arm, "pose") is None:
+            continue
+        opts = dataclasses.replace(options, q0=None, fixed=None)
+        res = solve_ik(arm, T, opts)
+        assert isinstance(res, IKResult)
+        wide = widen_result(res, other, float(q[other]), None)
+        slide = bool(chain.prismatic[joint])
+        keep = [holds_value(float(s[joint]), value, slide) for s in wide.solutions]
+        keep_out = [holds_value(float(s[joint]), value, slide) for s in wide.out_of_limits]
+        if not any(keep) and not any(keep_out):
+            continue
+        solutions = wide.solutions[keep]
+        solutions[:, joint] = value
+        outside = wide.out_of_limits[keep_out]
+        outside[:, joint] = value
+        residuals = _residuals(chain, solutions, T)
+        note = (
+            f"with {name} held at {value:.6g} the pose is reached along a continuum "
+            f"(joints {', '.join(str(j + 1) for j in sorted(free))} move together, the arm left "
+            f"has rank 5 all along it): the solutions given are its representatives with "
+            f"joint {other + 1} at {float(q[other]):.6g}, where the search met it"
+        )
+        return IKResult(
+            solutions=solutions,
+            status=IKStatus.SINGULAR if len(solutions) else IKStatus.OUT_OF_LIMITS,
+            method=res.method,
+            residuals=residuals,
+            branches=tuple(b for b, k in zip(wide.branches, keep, strict=True) if k),
+            out_of_limits=outside,
+            out_of_limits_branches=tuple(
+                b for b, k in zip(wide.out_of_limits_branches, keep_out, strict=True) if k
+            ),
+            free_joints=tuple(sorted(free)),
+            notes=(note,),
+            complete=False,
+            parameter=(name, value),
+        )
+    return answer
+
+
+def _residuals(chain: Chain, q: FloatArray, T: FloatArray) -> FloatArray:
+    """``(k, 2)`` position (m) and rotation (rad) errors of each row of q against T."""
+    if not len(q):
+        return np.zeros((0, 2))
+    F = chain.fk(q)[0]
+    pos = np.linalg.norm(F[:, :3, 3] - T[:3, 3], axis=1)
+    from kinematica.spatial import rotation_angle
+
+    rot = np.asarray(rotation_angle(F[:, :3, :3], T[:3, :3]))
+    return np.stack([pos, rot], axis=1)
