@@ -19,8 +19,9 @@ from support.helpers import assert_same_result
 
 import kinematica as km
 from kinematica.ik import IKOptions
-from kinematica.ik.choice import LOCAL_SEARCH, numeric_reason, pose_choice, search_note
+from kinematica.ik.choice import pose_choice
 from kinematica.ik.fallback import FALLBACK_NOTE, PARTIAL_NOTE, searched_note
+from kinematica.ik.local_search import LOCAL_SEARCH, numeric_reason, search_note
 
 PI = math.pi
 
@@ -64,7 +65,11 @@ def eight_r() -> km.Robot:
 # the arm, a mask or None, and what the note's reason says
 NUMERIC_ARMS = {
     "6-joint slide": (slide_6, None, "revolute joints only (joint 2 slides)"),
-    "7 joints, none held": (slides_7, None, "7 joints and no joint held (none, held at"),
+    "7 joints, none held": (
+        slides_7,
+        None,
+        "7 joints and no joint held (auto holds one only where",
+    ),
     "8R": (eight_r, None, "8 joints, 2 more than a pose fixes"),
     "PUMA, a mask": (lambda: km.load("puma560"), [1, 1, 1, 0, 0, 1], "a mask"),
 }

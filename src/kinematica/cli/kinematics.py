@@ -133,7 +133,7 @@ def _pose_ik(robot: Robot) -> dict[str, Any]:
 
 def _pose_ik_lines(solver: dict[str, Any]) -> list[str]:
     """``IK of poses: analytic:spherical-wrist (closed form: every solution)`` and the like."""
-    from kinematica.ik.choice import LOCAL_SEARCH
+    from kinematica.ik.local_search import LOCAL_SEARCH
 
     method, parameter, reason = solver["method"], solver["parameter"], solver["reason"]
     if reason is not None:

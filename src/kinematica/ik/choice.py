@@ -1,12 +1,8 @@
 """Which solver ``robot.ik`` gives an arm, in words: a closed form's name, or why the search.
 
-``method="auto"`` answers a target by the closed form the arm's structure has, else
-by the numeric search (``numeric:lm``): a local search (Levenberg-Marquardt from one
-initial guess, with seeded restarts) that finds one solution at most where more may
-exist. An answer of the search that the caller did not ask for carries a note
-saying so and why no closed form applied (:func:`search_note`, from
-:func:`numeric_reason`); ``kinematica show`` prints the same choice, and the same
-reason, for the arm's pose targets (:func:`pose_choice`).
+``kinematica show`` prints, for the arm's pose targets, the closed form ``auto`` takes
+(a redundant arm's at its redundancy parameter) or the numeric search and the reason
+its answers' notes give (:mod:`kinematica.ik.local_search`): :func:`pose_choice`.
 """
 
 from __future__ import annotations
@@ -15,13 +11,12 @@ from collections.abc import Sequence
 
 from kinematica._record import record
 from kinematica.core import Chain
-from kinematica.ik.registry import ClosedForm, TargetKind
+from kinematica.ik.local_search import numeric_reason
+from kinematica.ik.registry import ClosedForm
 from kinematica.ik.structure import features
 
-__all__ = ["LOCAL_SEARCH", "SolverChoice", "numeric_reason", "pose_choice", "search_note"]
+__all__ = ["SolverChoice", "pose_choice"]
 
-#: What every answer of the search that ``auto`` fell back to says of it (its notes end so).
-LOCAL_SEARCH = "a local search that finds one solution at most; more may exist"
 #: The joints a pose fixes: an arm of more is redundant.
 _POSE_DOF = 6
 
@@ -46,50 +41,6 @@ class SolverChoice:
     parameter: str | None = None
     reason: str | None = None
     complete: bool = True
-
-
-def numeric_reason(chain: Chain, kind: TargetKind, masked: bool) -> str:
-    """Why no closed form answers this chain's targets of ``kind``: the structure, or a mask.
-
-    Args:
-        chain: The arm solved (for ``robot.ik(T, fixed=...)``, the arm the lock leaves).
-        kind: ``"pose"`` or ``"position"``.
-        masked: A mask weights the error components.
-    """
-    if masked:
-        return "a mask (the closed forms solve whole poses and positions)"
-    from kinematica.ik.solvers import structure_of  # the registry's words for the structure
-
-    f = features(chain)
-    n, types = f.dof, f.joint_types
-    summary = structure_of(chain)[1]
-    if kind == "position":
-        return f"position targets of this structure ({summary}), which no closed-form family solves"
-    if n > _POSE_DOF + 1:
-        return f"{n} joints, {n - _POSE_DOF} more than a pose fixes"
-    if n == _POSE_DOF + 1:
-        from kinematica.ik.redundancy import choose  # a redundant arm only
-
-        if choose(chain) is None:
-            return (
-                f"{n} joints and no joint held (none, held at its default value, "
-                "leaves an arm with a closed form)"
-            )
-        return f"{n} joints and no joint held"
-    if n == _POSE_DOF and "P" in types:
-        slides = ", ".join(str(i + 1) for i, t in enumerate(types) if t == "P")
-        return (
-            f"a slide outside the closed-form families ({n} joints, {types}), and the general "
-            f"6R elimination takes revolute joints only (joint {slides} slides)"
-        )
-    if n == _POSE_DOF:
-        return f"{summary}: the general 6R elimination is ill-posed in every ordering of its joints"
-    return f"{summary}, a structure no closed-form family solves"
-
-
-def search_note(reason: str) -> str:
-    """The note of an answer of the search ``auto`` fell back to, no closed form applying."""
-    return f"no closed form applies: {reason}; the numeric search answered, {LOCAL_SEARCH}"
 
 
 def pose_choice(chain: Chain, names: Sequence[str] | None = None) -> SolverChoice:

@@ -25,7 +25,7 @@ import numpy as np
 
 import kinematica._core as _core
 from kinematica.core import Chain
-from kinematica.ik.choice import LOCAL_SEARCH
+from kinematica.ik.local_search import LOCAL_SEARCH
 from kinematica.ik.registry import ClosedForm
 from kinematica.ik.structure import features
 from kinematica.spatial import rotation_angle

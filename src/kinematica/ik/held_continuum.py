@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -30,6 +31,7 @@ from numpy.typing import NDArray
 import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.ik.result import IKResult
+from kinematica.ik.solvers import closed_form
 from kinematica.ik.stack import widen_result
 from kinematica.ik.status import IKStatus
 
@@ -86,6 +88,8 @@ def continuum_answer(
     T: FloatArray,
     answer: IKResult,
     options: IKOptions,
+    lock: Callable[[Chain, int, float], Chain],
+    solve: Callable[[Chain, FloatArray, IKOptions], object],
 ) -> IKResult:
     """``answer`` (the numeric search's, joint ``joint`` held) as a continuum where it is one.
 
@@ -97,32 +101,30 @@ def continuum_answer(
         T: ``(4, 4)`` the target (base frame, m).
         answer: The whole arm's answer with the joint held (the search's point in it).
         options: The IK settings of the call.
+        lock: ``(chain, joint, value)`` -> the arm with that joint held (the kept one).
+        solve: ``(arm, T, options)`` -> its answer (``solve_ik``).
 
     Returns:
         ``answer`` as it is when its solution is not on a continuum (or none was found);
         else ``singular``: the free joints named and every representative with another
         free joint held at the search point's value.
     """
-    from kinematica.ik.parameter import locked_chain
-    from kinematica.ik.solve import solve_ik
-    from kinematica.ik.solvers import closed_form
-
     found = np.concatenate([answer.solutions, answer.out_of_limits])
     if not len(found):
         return answer
     q = found[0]
-    locked = locked_chain(chain, joint, value)
+    locked = lock(chain, joint, value)
     free_locked = _self_motion(locked, T, np.delete(q, joint))
     if not free_locked:
         return answer
     free = tuple(j if j < joint else j + 1 for j in free_locked)
     # hold the free joint whose locked arm has a closed form (those that moved most first)
     for other in free:
-        arm = locked_chain(chain, other, float(q[other]))
+        arm = lock(chain, other, float(q[other]))
         if closed_form(arm, "pose") is None:
             continue
         opts = dataclasses.replace(options, q0=None, fixed=None)
-        res = solve_ik(arm, T, opts)
+        res = solve(arm, T, opts)
         assert isinstance(res, IKResult)
         wide = widen_result(res, other, float(q[other]), None)
         slide = bool(chain.prismatic[joint])

@@ -261,8 +261,9 @@ class JointParameter:
                 if isinstance(out, IKResult) and self._continua(chain, v, opts):
                     wide = widen_result(out, k, float(v[0]), (self.name, float(v[0])))
                     return continuum_answer(
-                        chain, k, float(v[0]), self.name, targets.poses[0], wide, opts
-                    )
+                        chain, k, float(v[0]), self.name, targets.poses[0], wide, opts,
+                        locked_chain, solve_ik,
+                    )  # fmt: skip
             else:  # a middle joint at several values: one arm per value, each target alone
                 return self._one_by_one(chain, targets, v, opts)
         except KinematicaError as exc:
@@ -342,7 +343,9 @@ class JointParameter:
             vi = float(v[i])
             one = widen_result(one, self.index, vi, (self.name, vi))
             if not targets.position and self._continua(chain, v[i : i + 1], opts):
-                one = continuum_answer(chain, self.index, vi, self.name, T, one, opts)
+                one = continuum_answer(
+                    chain, self.index, vi, self.name, T, one, opts, locked_chain, solve_ik
+                )
             results[i] = one
         return stack_results(results, targets, chain.dof, self.name, v)
 

@@ -26,7 +26,7 @@ import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.arm_angle import ArmAngleParameter, arm_angle_parameter
-from kinematica.ik.choice import LOCAL_SEARCH
+from kinematica.ik.local_search import LOCAL_SEARCH
 from kinematica.ik.moved import end_arm, moved_targets
 from kinematica.ik.parameter import (
     JointParameter,

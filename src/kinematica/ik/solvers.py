@@ -95,11 +95,11 @@ def why_numeric(
     """``auto``'s note on the search's answer where no closed form applies (``()``: one does).
 
     It says the answer is one solution of a local search, more may exist, and why no
-    closed form applies (:mod:`kinematica.ik.choice`).
+    closed form applies (:mod:`kinematica.ik.local_search`).
     """
     if closed is not None:
         return ()
-    from kinematica.ik.choice import numeric_reason, search_note  # the numeric path's note only
+    from kinematica.ik.local_search import numeric_reason, search_note  # the search's note
 
     return (search_note(numeric_reason(chain, kind, mask is not None)),)
 
