@@ -5,9 +5,12 @@
 // (through general_6r.hpp): compile time counts.
 #include <nanobind/nanobind.h>
 
+#include <utility>
+
 #include "casters.hpp"
 #include "common.hpp"
 #include "kinematica/solvers/general_6r.hpp"
+#include "kinematica/solvers/general_6r_build.hpp"
 #include "numpy_io.hpp"
 #include "small_fields.hpp"
 #include "solver_binding.hpp"
@@ -196,6 +199,46 @@ double eliminate_params(General6RParams& p) {
     return ratio;
 }
 
+//! The Params of labelling `which` of a chain (or None: not 6R, or its left side
+//! rank-deficient), and σ8 / σ1 of its Q (NaN with the target on the left).
+nb::tuple labelling_of(const km::Chain& chain, int which) {
+    if (which < 0 || which >= kg::LABELLINGS) throw nb::value_error("which must be 0 ... 11");
+    kg::Loop loop;
+    if (!kg::loop_of(chain, loop)) return nb::make_tuple(nb::none(), km::NaN);
+    General6RParams p;
+    double ratio = km::NaN;
+    if (!kg::labelling(loop, which, p, &ratio)) return nb::make_tuple(nb::none(), ratio);
+    return nb::make_tuple(nb::cast(std::move(p)), ratio);
+}
+
+//! (PROBES,) the probe distances of a labelling's candidates (builder's probe()).
+F64 probe_of(const General6RParams& p, const km::Chain& chain, bool refine) {
+    if (chain.dof() != 6) throw nb::value_error("the chain must have 6 joints");
+    if (const char* why = p.invalid()) throw nb::value_error(why);
+    double* out;
+    F64 a = new_f64({kg::PROBES}, out);
+    kg::probe(p, chain.view(), refine, out);
+    return a;
+}
+
+//! (score, worst) of a labelling on the probes (builder's accuracy()).
+nb::tuple accuracy_of(const General6RParams& p, const km::Chain& chain) {
+    if (chain.dof() != 6) throw nb::value_error("the chain must have 6 joints");
+    if (const char* why = p.invalid()) throw nb::value_error(why);
+    double score, worst;
+    kg::accuracy(p, chain.view(), score, worst);
+    return nb::make_tuple(score, worst);
+}
+
+//! (params or None, chosen, scored, refined): the builder's choice and what it did.
+nb::tuple build_of(const km::Chain& chain) {
+    General6RParams p;
+    kg::BuildTrace t;
+    const bool found = kg::build(chain, p, &t);
+    nb::object params = found ? nb::cast(std::move(p)) : nb::object(nb::none());
+    return nb::make_tuple(params, t.chosen, t.scored, t.refined);
+}
+
 }  // namespace
 
 void bind_general6r(nb::module_& m) {
@@ -221,6 +264,54 @@ void bind_general6r(nb::module_& m) {
     sub.attr("SPURIOUS_TOL") = kg::SPURIOUS_TOL;
     sub.attr("SPLIT_ROOT_TOL") = kg::SPLIT_ROOT_TOL;
     sub.attr("RANK_TOL") = kg::RANK_TOL;
+    sub.attr("PROBE_TOL") = kg::PROBE_TOL;
+    sub.attr("ACCURATE") = kg::ACCURATE;
+    sub.attr("PROBES") = kg::PROBES;
+    sub.attr("FOOT_PARALLEL_TOL") = kg::FOOT_PARALLEL_TOL;
+    sub.attr("FOOT_REACH") = kg::FOOT_REACH;
+    sub.def("foot",
+            [](const km::Vec3& hi, const km::Vec3& pi, const km::Vec3& hj, const km::Vec3& pj,
+               double size) {
+                const km::Vec3 h[2] = {hi, hj}, p[2] = {pi, pj};
+                return kg::detail::foot(h, p, 0, 1, size);
+            },
+            nb::arg("hi"), nb::arg("pi"), nb::arg("hj"), nb::arg("pj"), nb::arg("size"),
+            "The origin the builder gives axis i's frame: the foot of its common normal with "
+            "axis j, or its own point pi (parallel axes, or a foot beyond FOOT_REACH sizes).");
+    {
+        nb::list configs, labellings;
+        for (const auto& row : kg::PROBE_CONFIGS) {
+            configs.append(nb::make_tuple(row[0], row[1], row[2], row[3], row[4], row[5]));
+        }
+        for (int i = 0; i < kg::LABELLINGS; ++i) {
+            labellings.append(nb::make_tuple(kg::LABELLING_START[i], kg::LABELLING_REVERSE[i]));
+        }
+        sub.attr("PROBE_CONFIGS") = nb::tuple(configs);
+        sub.attr("LABELLINGS") = nb::tuple(labellings);
+        sub.attr("PHI") = nb::make_tuple(kg::PHI[0], kg::PHI[1], kg::PHI[2]);
+    }
+    sub.def("kept_at_once",
+            [](double score, double worst, bool passes) {
+                return kg::kept_at_once(score, worst, [passes] { return passes; });
+            },
+            nb::arg("score"), nb::arg("worst"), nb::arg("passes"),
+            "True when the builder keeps a labelling without scoring the others (score: "
+            "mean log10 of its probe distances; worst: the largest; passes: the refined "
+            "probes within PROBE_TOL).");
+    sub.def("labelling", &labelling_of, nb::arg("chain"), nb::arg("which"),
+            "(params or None, sigma8/sigma1 of Q): labelling `which` (an index of LABELLINGS) "
+            "of a 6R chain; None where its left side is rank-deficient (ratio NaN: the target "
+            "on the left, Q the target's).");
+    sub.def("probe", &probe_of, nb::arg("params"), nb::arg("chain"), nb::arg("refine"),
+            "(PROBES,) per probe pose, the distance (rad) of its configuration to the nearest "
+            "candidate (inf: none), with Newton's step or (refine False) without.");
+    sub.def("accuracy", &accuracy_of, nb::arg("params"), nb::arg("chain"),
+            "(score, worst): the mean log10 of the raw probe distances clipped to [1e-16, 1], "
+            "and the largest.");
+    sub.def("build", &build_of, nb::arg("chain"),
+            "(params or None, chosen, scored, refined): the general 6R solver of a 6R chain "
+            "(general_6r_build.hpp), the labelling kept (an index of LABELLINGS, -1: none), "
+            "how many were scored and how many refined probe passes ran.");
     sub.def("left_side", &left_side_of, nb::arg("L1"), nb::arg("L2"),
             "(c0 (14,), Q (14, 8)): the quantities of the line Rz(q'1) L1 Rz(q'2) L2 z as "
             "c0 + Q S2, S2 = (c2, s2, c1, c1 c2, c1 s2, s1, s1 c2, s1 s2) of q'1, q'2.");

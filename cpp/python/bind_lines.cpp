@@ -33,18 +33,6 @@ struct AxesOf {
     }
 };
 
-//! The arm's size (m): the length of the tool's offset plus the sum of |t| over the joints'
-//! fixed translations (a slide's travel not counted): the scale of length_tol.
-double arm_size(const km::Chain& chain) {
-    double joints = 0.0;
-    for (const km::Joint& J : chain.joints()) {
-        joints += std::fabs(J.t.x);
-        joints += std::fabs(J.t.y);
-        joints += std::fabs(J.t.z);
-    }
-    return km::norm(chain.view().tool.p) + joints;
-}
-
 //! A new read-only float64 array of shape (rows, 3) holding v[0 .. rows).
 nb::object readonly_rows(const Vec3* v, npy_intp rows) {
     double* out;
@@ -94,7 +82,7 @@ nb::tuple features(const km::Chain& chain) {
         prismatic[static_cast<size_t>(i)] = ch.joint[i].prismatic;
         if (ch.joint[i].prismatic) types[static_cast<size_t>(i)] = 'P';
     }
-    const double size = arm_size(chain);
+    const double size = km::arm_size(chain);
     const kl::AxisFeatures f =
         kl::axis_features(h.data(), p.data(), prismatic.get(), n, size, parallel.get(), meet.get());
     return nb::make_tuple(types, readonly_rows(h.data(), n), readonly_rows(p.data(), n),
@@ -141,7 +129,7 @@ void bind_lines(nb::module_& m) {
     sub.def("common_point", &common_point, nb::arg("h"), nb::arg("p"), nb::arg("size"),
             "(3,) the least-squares point of the lines p[i] + t h[i] ((k, 3) each), or None\n"
             "(normal matrix of rank < 3, or a line farther than length_tol(size) from it).");
-    sub.def("arm_size", &arm_size, nb::arg("chain"),
+    sub.def("arm_size", &km::arm_size, nb::arg("chain"),
             "The arm's size (m): |tool offset| + Σ |fixed translations| of its joints.");
     sub.def("features", &features, nb::arg("chain"),
             "(joint_types, directions (n, 3), points (n, 3), parallel, intersecting, wrist,\n"

@@ -18,7 +18,6 @@ import pytest
 
 import kinematica as km
 from kinematica.ik.analytic import general_6r as g6
-from kinematica.ik.structure import features
 
 
 def _chain() -> km.core.Chain:
@@ -82,7 +81,7 @@ def _robot_and_params(seed: int) -> tuple[km.Robot, Any]:
     them), of its first labelling (the builder's choice may change with its ranking)."""
     arm = g6.sample_arm(np.random.default_rng(seed), False)
     robot = km.Robot.from_dh(arm.links, convention=arm.convention, base=arm.base, tool=arm.tool)
-    built = g6._params(*g6.loop_of(robot.chain, features(robot.chain)), 0, False)
+    built = g6.labelling(robot.chain, 0, False)
     assert built is not None
     return robot, built[0]
 

@@ -141,6 +141,18 @@ inline Chain Chain::from_transforms(int n, const Pose& start, const Pose* betwee
     return ch;
 }
 
+//! The arm's size (m): |tool offset| + Σ |fixed translations| of its joints (a slide's
+//! travel not counted): the scale of the line geometry's length tolerance (lines.hpp).
+inline double arm_size(const Chain& chain) {
+    double joints = 0.0;
+    for (const Joint& J : chain.joints()) {
+        joints += std::fabs(J.t.x);
+        joints += std::fabs(J.t.y);
+        joints += std::fabs(J.t.z);
+    }
+    return norm(chain.view().tool.p) + joints;
+}
+
 inline Pose Chain::fixed_part(int i) const {
     const Joint& J = joints_[static_cast<size_t>(i)];
     return detail::rot_z(J.ct, J.st) * detail::trans(J.t) * detail::rot_x(J.ca, J.sa);

@@ -64,10 +64,8 @@ def _self_motion(locked: Chain, T: FloatArray, q: FloatArray) -> tuple[int, ...]
     if locked.dof != 6 or bool(np.any(locked.prismatic)):
         return ()
     from kinematica.ik.analytic import general_6r as g6
-    from kinematica.ik.structure import features
 
-    K, G1, size = g6.loop_of(locked, features(locked))
-    built = g6._params(K, G1, size, 5, False)  # T on the left: no constant Q needed
+    built = g6.labelling(locked, 5, False)  # T on the left: no constant Q needed
     if built is None:
         return ()
     try:

@@ -26,6 +26,8 @@ from kinematica.ik.structure import features
 
 pytestmark = pytest.mark.filterwarnings("ignore::kinematica.KinematicaWarning")
 
+G = _core.general6r
+
 #: Every solution's FK reaches its target to this (m, rad).
 FK_TOL = 1e-10
 #: The configuration that made a pose is among the solutions to this (rad, modulo 2π).
@@ -146,12 +148,8 @@ def test_rank_tol_rejects_a_deficient_labelling_and_keeps_a_nearly_deficient_one
         r = rows[4]
         rows[4] = Revolute(d=r.d, a=r.a + eps, alpha=r.alpha, offset=r.offset)
         chain = km.Robot.from_dh(rows, convention=puma.convention).chain
-        K, G1, size = g6.loop_of(chain, features(chain))
-        _, _, links, _ = g6._labelling(K, G1, 0, True)
-        scale = 1.0 / size
-        _, Q = g6.elimination(g6._scaled(links[0], scale), g6._scaled(links[1], scale))
-        s = np.linalg.svd(Q, compute_uv=False)
-        return float(s[-1] / s[0]), g6._params(K, G1, size, 0, True)
+        params, ratio = G.labelling(chain.core, g6.LABELLINGS.index((0, True)))
+        return float(ratio), params
 
     tilts = {}
     for eps in (1e-3, 1e-5):
@@ -164,8 +162,19 @@ def test_rank_tol_rejects_a_deficient_labelling_and_keeps_a_nearly_deficient_one
     assert kept is not None and dropped is None
 
 
+def test_the_core_s_rank_ratio_is_numpy_s() -> None:
+    # σ8/σ1 of the left side's Q, the core's (Jacobi SVD) against LAPACK's
+    chain = _robot(np.random.default_rng(4), False).chain
+    for which in range(8):
+        params, ratio = G.labelling(chain.core, which)
+        assert params is not None
+        L = np.array(params.link)
+        s = np.linalg.svd(g6.elimination(L[0], L[1])[1], compute_uv=False)
+        assert ratio == pytest.approx(s[-1] / s[0], rel=1e-12)
+
+
 def test_the_probe_configurations_are_the_seeded_uniform_draw_they_say() -> None:
-    # written out so that building the solver does not import numpy.random
+    # written out so that building the solver needs no random generator
     drawn = np.random.default_rng(6).uniform(-np.pi, np.pi, (g6.PROBES, 6))
     assert np.array_equal(np.array(g6.PROBE_CONFIGS), drawn)
 
@@ -173,51 +182,37 @@ def test_the_probe_configurations_are_the_seeded_uniform_draw_they_say() -> None
 def test_probe_tol_separates_a_working_labelling_from_a_degenerate_one() -> None:
     robot = _robot(np.random.default_rng(4), False)
     params = closed_form(robot.chain, "pose").params
-    assert g6._probe(params, robot.chain, refine=True).max() <= 1e-3 * g6.PROBE_TOL
+    assert G.probe(params, robot.chain.core, True).max() <= 1e-3 * g6.PROBE_TOL
     # the PUMA's forward labelling: Q of full rank, the pencil singular (spherical wrist)
     puma = km.load("puma560").chain
-    K, G1, size = g6.loop_of(puma, features(puma))
-    built = g6._params(K, G1, size, 0, False)
-    assert built is not None and g6._probe(built[0], puma, refine=True).max() >= 1e3 * g6.PROBE_TOL
+    built = g6.labelling(puma, 0, False)
+    assert built is not None and G.probe(built[0], puma.core, True).max() >= 1e3 * g6.PROBE_TOL
 
 
-@pytest.mark.parametrize(("factor", "scored"), [(0.5, 1), (2.0, 12)])
-def test_a_labelling_accurate_to_round_off_is_kept_without_scoring_the_others(
-    monkeypatch: pytest.MonkeyPatch, factor: float, scored: int
-) -> None:
-    robot = _robot(np.random.default_rng(4), False)
-    f = features(robot.chain)
-    # a generic arm's first labelling is accurate to round-off: the early choice is taken
-    K, G1, size = g6.loop_of(robot.chain, f)
-    first = g6._params(K, G1, size, 0, False)
-    assert first is not None and g6.accuracy(first[0], robot.chain)[0] <= math.log10(g6.ACCURATE)
-    # scores just inside / just outside ACCURATE: the first kept at once / all twelve scored
-    calls: list[object] = []
-
-    def score(params: object, chain: object) -> tuple[float, float]:
-        calls.append(params)
-        return math.log10(factor * g6.ACCURATE), factor * g6.ACCURATE
-
-    monkeypatch.setattr(g6, "accuracy", score)
-    assert g6.build(robot.chain, f, "pose") is not None
-    assert len(calls) == scored
-
-
-@pytest.mark.parametrize(("factor", "refined"), [(1.0, 0), (2.0, 1)])
-def test_a_labelling_whose_every_probe_is_accurate_passes_without_the_refined_probes(
-    monkeypatch: pytest.MonkeyPatch, factor: float, refined: int
-) -> None:
-    robot = _robot(np.random.default_rng(4), False)
-    probe, passes = g6._probe, []
-
-    def counted(params: object, chain: km.core.Chain, refine: bool) -> np.ndarray:
-        passes.append(refine)
-        return probe(params, chain, refine)
-
-    monkeypatch.setattr(g6, "_probe", counted)
-    monkeypatch.setattr(g6, "accuracy", lambda p, c: (-15.0, factor * g6.PROBE_TOL))
-    assert g6.build(robot.chain, features(robot.chain), "pose") is not None
-    assert passes.count(True) == refined
+def test_a_labelling_accurate_to_round_off_is_kept_without_scoring_the_others() -> None:
+    # the rule at its boundaries: the score just inside / just outside ACCURATE, every
+    # probe within PROBE_TOL before Newton's step or only after it
+    acc, tol = math.log10(g6.ACCURATE), g6.PROBE_TOL
+    assert G.kept_at_once(acc + math.log10(0.5), 0.0, False)
+    assert not G.kept_at_once(acc + math.log10(2.0), 0.0, True)
+    assert G.kept_at_once(-15.0, tol, False)
+    assert not G.kept_at_once(-15.0, 2.0 * tol, False)
+    assert G.kept_at_once(-15.0, 2.0 * tol, True)
+    # a generic arm whose first labelling is accurate to round-off (well within ACCURATE:
+    # the first of seeds 0, 1, ...): kept, the others unscored
+    rng = np.random.default_rng(0)
+    while True:
+        robot = _robot(rng, False)
+        first = g6.labelling(robot.chain, 0, False)
+        if first is not None and G.accuracy(first[0], robot.chain.core)[0] <= acc - 1.0:
+            break
+    params, chosen, scored, refined = G.build(robot.chain.core)
+    assert params is not None and (chosen, scored) == (0, 1) and refined <= 1
+    # an arm whose constant labellings are not accurate (a UR5, every twist 1e-3 off):
+    # all twelve scored, the last (T on the left, reversed) accurate to round-off and kept
+    rows = [Revolute(d=d, a=a, alpha=al + 1e-3) for d, a, al in g6._UR5]
+    params, chosen, scored, _ = G.build(km.Robot.from_dh(rows).chain.core)
+    assert params is not None and params.per_target and scored == chosen + 1 > 8
 
 
 def test_labellings_within_probe_tol_on_every_probe_pass_the_refined_probes_too() -> None:
@@ -225,12 +220,11 @@ def test_labellings_within_probe_tol_on_every_probe_pass_the_refined_probes_too(
     rng, kept = np.random.default_rng(11), 0
     for _ in range(4):
         robot = _robot(rng, False)
-        K, G1, size = g6.loop_of(robot.chain, features(robot.chain))
         for start, reverse in g6.LABELLINGS:
-            built = g6._params(K, G1, size, start, reverse)
+            built = g6.labelling(robot.chain, start, reverse)
             if built is not None:
-                raw = g6._probe(built[0], robot.chain, refine=False)
-                refined = g6._probe(built[0], robot.chain, refine=True)
+                raw = G.probe(built[0], robot.chain.core, False)
+                refined = G.probe(built[0], robot.chain.core, True)
                 if raw.max() <= g6.PROBE_TOL:
                     kept += 1
                     assert refined.max() <= g6.ACCURATE  # round-off, wherever raw was
@@ -342,9 +336,7 @@ def test_a_calibrated_ur_loses_no_solution() -> None:
             assert joint_distance(robot, one.solutions, x).min() <= 1e-6
 
 
-def test_a_calibrated_ur_once_refused_is_solved_by_qz_and_its_spurious_roots_dropped(
-    monkeypatch: pytest.MonkeyPatch,
-) -> None:
+def test_a_calibrated_ur_once_refused_is_solved_by_qz_and_its_spurious_roots_dropped() -> None:
     # The UR5's standard table, twists 1e-3 off, read as a modified one (another arm, of
     # 2-4 solutions a pose; sample_arm made it until it converted the table): A2
     # ill-conditioned at both shifts on every pose (M(x6) nearly singular for every x6),
@@ -359,12 +351,13 @@ def test_a_calibrated_ur_once_refused_is_solved_by_qz_and_its_spurious_roots_dro
             break
         seed += 1
     assert standard
-    # the eight labellings whose constants are the arm's (those the QZ path serves; one
-    # with T on the left may be well posed here and take the companion matrix)
-    monkeypatch.setattr(g6, "LABELLINGS", g6.LABELLINGS[:8])
     base, tool = random_transform(rng, 0.5), random_transform(rng, 0.2)
     robot = km.Robot.from_dh(rows, convention="modified", base=base, tool=tool)
-    params = closed_form(robot.chain, "pose").params
+    # of the eight labellings whose constants are the arm's (those the QZ path serves; the
+    # builder may keep one with T on the left, well posed here), the most accurate
+    chain = robot.chain.core
+    built = [G.labelling(chain, which)[0] for which in range(8)]
+    params = min((p for p in built if p is not None), key=lambda p: G.accuracy(p, chain)[0])
     rng = np.random.default_rng(1)
     q = rng.uniform(-math.pi, math.pi, (4, 6))[[1, 3]]
     res = robot.ik(robot.fk(q))
@@ -469,3 +462,45 @@ def _rz(a: float) -> np.ndarray:
     R[0, 0] = R[1, 1] = math.cos(a)
     R[1, 0], R[0, 1] = math.sin(a), -math.sin(a)
     return R
+
+
+def test_foot_reach_at_its_boundary() -> None:
+    # axis i: the z axis through pi = 0; axis j through (1, 0, t), its direction in the y-z
+    # plane: their common normal is along x at height t, its foot on axis i (0, 0, t)
+    size = 0.5
+    hi, pi = np.array([0.0, 0.0, 1.0]), np.zeros(3)
+    hj = np.array([0.0, 1.0, 1.0]) / math.sqrt(2.0)
+    for t, far in ((0.9 * G.FOOT_REACH * size, False), (1.1 * G.FOOT_REACH * size, True)):
+        foot = np.asarray(G.foot(hi, pi, hj, np.array([1.0, 0.0, t]), size))
+        assert np.allclose(foot, pi if far else [0.0, 0.0, t], atol=1e-12)
+
+
+def test_a_maker_s_arm_moved_by_1e_8_is_solved_completely(tmp_path: Path) -> None:
+    # The JACO 2's URDF with every joint origin moved by ±1e-8: axes 2 and 3 (parallel in
+    # the file) then meet 4e7 m away; a loop through that point lost 1.6e-9 m to round-off
+    # and Newton's step stalled there: no labelling passed, the search answered (112 of 400
+    # such arms). The frames' origins now stay within FOOT_REACH sizes of the arm.
+    import re
+
+    text = (Path(__file__).parents[2] / "data" / "makers" / "kinova_jaco2.urdf").read_text()
+    rng = np.random.default_rng(5)
+
+    def moved(m: re.Match[str]) -> str:
+        vals = [float(v) + 1e-8 * float(rng.choice([-1.0, 1.0])) for v in m.group(2).split()]
+        return f'{m.group(1)}="{" ".join(repr(v) for v in vals)}"'
+
+    path = tmp_path / "jaco2_moved.urdf"
+    path.write_text(re.sub(r'(<origin xyz)="([^"]*)"', moved, text))
+    robot = km.load(path)
+    q = rng.uniform(-math.pi, math.pi, (20, 6))
+    res = robot.ik(robot.fk(q), respect_limits=False)
+    assert res.method == "analytic:general-6R"
+    for i in range(len(q)):
+        _reaches_all(robot, res[i].solutions, robot.fk(q[i]))
+        assert joint_distance(robot, res[i].solutions, q[i]).min() <= FOUND_TOL
+
+
+def _reaches_all(robot: km.Robot, S: np.ndarray, T: np.ndarray) -> None:
+    F = robot.fk(S)
+    assert np.linalg.norm(F[:, :3, 3] - T[:3, 3], axis=1).max() <= FK_TOL
+    assert max(km.rotation_angle(f[:3, :3], T[:3, :3]) for f in F) <= FK_TOL

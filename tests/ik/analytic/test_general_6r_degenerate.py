@@ -21,7 +21,6 @@ from support.ik_search import joint_distance
 
 import kinematica as km
 from kinematica.ik.analytic import general_6r as g6
-from kinematica.ik.structure import features
 
 pytestmark = pytest.mark.filterwarnings("ignore::kinematica.KinematicaWarning")
 
@@ -103,7 +102,7 @@ def _fold(robot: km.Robot, rng: np.random.Generator) -> np.ndarray:
 
 def _params(robot: km.Robot, start: int, reverse: bool) -> Any:
     """Params of one labelling (not the cached solver's: the builder's choice may change)."""
-    built = g6._params(*g6.loop_of(robot.chain, features(robot.chain)), start, reverse)
+    built = g6.labelling(robot.chain, start, reverse)
     assert built is not None
     return built[0]
 
