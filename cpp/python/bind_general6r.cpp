@@ -58,6 +58,26 @@ F64 null_vector_of(nb::handle M) {
     return ua;
 }
 
+//! (k, 12): the header's monomial vectors of two solutions sharing a root, M (12, 12)
+//! its matrix there (null space two-dimensional).
+F64 null_pair_of(nb::handle M) {
+    kg::Matrix12 A[3];
+    PyArrayObject* a = small::exact_array(M, "M", NPY_DOUBLE, kg::SIZE, kg::SIZE);
+    const auto* d = static_cast<const double*>(PyArray_DATA(a));
+    for (int i = 0; i < kg::SIZE; ++i)
+        for (int j = 0; j < kg::SIZE; ++j) A[0](i, j) = d[i * kg::SIZE + j];
+    Py_DECREF(a);
+    A[1].setZero();
+    A[2].setZero();
+    kg::Vector12 u[2];
+    const int count = kg::General6RParams::null_pair(A, 0.0, u);  // M(0) = A0
+    double* out;
+    F64 ua = new_f64({count, kg::SIZE}, out);
+    for (int k = 0; k < count; ++k)
+        for (int i = 0; i < kg::SIZE; ++i) out[k * kg::SIZE + i] = u[k](i);
+    return ua;
+}
+
 //! A2, A1, A0 of a matrix quadratic M(x) = A0 + A1 x + A2 x² (each (12, 12)).
 void read_quadratic(nb::handle A0, nb::handle A1, nb::handle A2, kg::Matrix12 (&A)[3]) {
     const nb::handle src[3] = {A0, A1, A2};
@@ -261,6 +281,9 @@ void bind_general6r(nb::module_& m) {
             nb::arg("re"), nb::arg("im"), "True when the eigenvalue re + i im is taken as a real root.");
     sub.def("null_vector", &null_vector_of, nb::arg("M"),
             "u: M u = 0 from M's full-pivot LU (M (12, 12), its null space one-dimensional).");
+    sub.def("null_pair", &null_pair_of, nb::arg("M"),
+            "(k, 12), k <= 2: the monomial vectors (x4^i x5^j at 3i + j) of the solutions "
+            "whose two-dimensional null space M (12, 12) has.");
     sub.attr("SPURIOUS_TOL") = kg::SPURIOUS_TOL;
     sub.attr("SPLIT_ROOT_TOL") = kg::SPLIT_ROOT_TOL;
     sub.attr("RANK_TOL") = kg::RANK_TOL;
@@ -316,6 +339,23 @@ void bind_general6r(nb::module_& m) {
             "(c0 (14,), Q (14, 8)): the quantities of the line Rz(q'1) L1 Rz(q'2) L2 z as "
             "c0 + Q S2, S2 = (c2, s2, c1, c1 c2, c1 s2, s1, s1 c2, s1 s2) of q'1, q'2.");
     sub.attr("REFINE_LIMIT") = kg::REFINE_LIMIT;
+    sub.attr("RESOLVE_TOL") = kg::RESOLVE_TOL;
+    sub.attr("SAME_CANDIDATE_TOL") = kg::SAME_CANDIDATE_TOL;
+    sub.def("resolves", &kg::resolves, nb::arg("miss"),
+            "True when a candidate that missed by `worst` (m or rad) before Newton's step is "
+            "looked for again as one of two solutions sharing its root.");
+    sub.def("resolved",
+            [](const General6RParams& p, const km::Pose& T) {
+                if (const char* why = p.invalid()) throw nb::value_error(why);
+                double Q[kg::SLOTS * 6];
+                km::SolverInfo info;
+                kg::Trace t;
+                p.solve(T, Q, info, &t);
+                return t.resolved;
+            },
+            nb::arg("params"), nb::arg("T"),
+            "True when the solve of the pose T took a root's null space as two-dimensional "
+            "(a candidate missed by over RESOLVE_TOL).");
     sub.attr("SPLIT_CLOSURE_TOL") = kg::SPLIT_CLOSURE_TOL;
     sub.def("split_closes", &kg::split_closes, nb::arg("closure"),
             "True when a split pair's candidate Newton took to within closure (m or rad) of the "

@@ -504,3 +504,44 @@ def _reaches_all(robot: km.Robot, S: np.ndarray, T: np.ndarray) -> None:
     F = robot.fk(S)
     assert np.linalg.norm(F[:, :3, 3] - T[:3, 3], axis=1).max() <= FK_TOL
     assert max(km.rotation_angle(f[:3, :3], T[:3, :3]) for f in F) <= FK_TOL
+
+
+def _monomials(x4: float, x5: float) -> np.ndarray:
+    return np.array([x4**i * x5**j for i in range(4) for j in range(3)])
+
+
+def test_null_pair_separates_two_solutions_sharing_a_root() -> None:
+    # M with the null space spanned by the monomial vectors of (x4, x5) = (0.7, -1.3) and
+    # (-0.4, 2.1): a random matrix times the projector onto the complement
+    rng = np.random.default_rng(8)
+    u1, u2 = _monomials(0.7, -1.3), _monomials(-0.4, 2.1)
+    Qb, _ = np.linalg.qr(np.stack([u1, u2], axis=1))
+    M = rng.normal(size=(12, 12)) @ (np.eye(12) - Qb @ Qb.T)
+    pair = G.null_pair(M)
+    assert len(pair) == 2
+    found = sorted((u[3] / u[0], u[1] / u[0]) for u in pair)  # (x4, x5) of each
+    assert np.allclose(found, sorted([(0.7, -1.3), (-0.4, 2.1)]), atol=1e-12)
+    # a one-dimensional null space gives its own vector (the other eigenvalue spurious, or
+    # a complex pair): never a solution lost
+    M1 = rng.normal(size=(12, 12)) @ (np.eye(12) - np.outer(u1, u1) / (u1 @ u1))
+    assert any(np.allclose(u / u[0], u1, atol=1e-9) for u in G.null_pair(M1))
+
+
+def test_resolve_tol_at_its_boundary_and_the_pose_it_was_set_for() -> None:
+    edge = 1e-9
+    assert not G.resolves(G.RESOLVE_TOL * (1 - edge))
+    assert G.resolves(G.RESOLVE_TOL * (1 + edge))
+    # The FANUC CRX-10iA/L (ssik's geometry): a pose whose solutions come in pairs sharing q2,
+    # the root the labelling kept eliminates to. Its one null vector there was a mix of two
+    # solutions' and Newton's step took its candidate to neither: 3 of 4 solutions, the one
+    # that made the pose missing (1 pose in 11,000); now each is found from the pair.
+    robot = km.load(Path(__file__).parents[2] / "data" / "makers" / "fanuc_crx10ial.urdf")
+    q = np.array(
+        [-0.5548079263728516, -0.6468591956014116, -2.811561733483302,
+         0.08254219499784199, 0.9172236458514806, 0.46230447496132054]
+    )  # fmt: skip
+    T = robot.fk(q)
+    res = robot.ik(T, respect_limits=False)
+    assert res.count == 4 and joint_distance(robot, res.solutions, q).min() <= FOUND_TOL
+    _reaches_all(robot, res.solutions, T)
+    assert G.resolved(closed_form(robot.chain, "pose").params, T)

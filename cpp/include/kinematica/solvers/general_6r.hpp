@@ -120,6 +120,23 @@ constexpr double REFINE_LIMIT = 1e-1;
 //! a miss of about 1e-8 (arm-size units) and more (an estimate, not a measurement).
 constexpr double SPLIT_CLOSURE_TOL = 1e-12;
 
+//! A candidate that misses the target by more than this before Newton's step (m or rad)
+//! is looked for again as one of two solutions sharing its root x6 (null_pair): a genuine
+//! simple root is got to round-off (1e-15..1e-12 on random and makers' arms), while two
+//! solutions with one q'6 (a double root: M(x6)'s null space two-dimensional, its one null
+//! vector a mix of theirs) give a candidate that misses by 1e-3 and more, and Newton's step
+//! may take it to neither (the FANUC CRX-10iA/L: 1 pose in 11,000, 3 of its 4 solutions
+//! found). So do the roots of near-real complex pairs (1e-4 and more): 4-14 % of poses of
+//! random arms, JACO 2s and CRXs have one, and pay for the extraction.
+constexpr double RESOLVE_TOL = 1e-6;
+//! A candidate within this (rad, every joint, modulo 2π) of one in the slots already is the
+//! same solution and is not added again (both refined to round-off).
+constexpr double SAME_CANDIDATE_TOL = 1e-8;
+
+//! True when a candidate that missed by `miss` (m or rad) before Newton's step is looked for
+//! again as one of a pair sharing its root (RESOLVE_TOL).
+KM_HD inline bool resolves(double miss) { return miss > RESOLVE_TOL; }
+
 //! True when a split pair's candidate that Newton took to within `closure` of the target
 //! (m or rad) is a solution (SPLIT_CLOSURE_TOL).
 KM_HD inline bool split_closes(double closure) { return closure <= SPLIT_CLOSURE_TOL; }
@@ -173,6 +190,7 @@ struct Trace {
     bool qz = false;       //!< A2 ill-conditioned at both shifts: the roots by QZ
     double rank = NaN;     //!< the smallest σ6/σ1 computed at a closing candidate (NaN: none)
     double reclosure = INF;  //!< the smallest miss of a self-motion test's re-closure
+    bool resolved = false;   //!< a root's null space was taken as two-dimensional (RESOLVE_TOL)
 };
 
 //! What the self-motion test says of a candidate that closes the loop.
@@ -364,15 +382,16 @@ struct General6RParams : Elimination {
 
     //! The 12 x 12 matrices A0, A1, A2 of M(x6) for the inverses Li of L3 ... L6, with
     //! x6 = tan((q'6 - shift6) / 2).
-    void pencil(const Elimination& E, const Pose* Li, double shift6, Matrix12 A[3]) const {
+    void pencil(const Elimination& E, const Pose* Li, const double* ph, double shift6,
+                Matrix12 A[3]) const {
         // G[a][b][c][e]: the 6 equations at the grid point (a, b, c)
         double G[3][3][3][REDUCED];
         for (int a = 0; a < 3; ++a) {
             double s, c;
-            sincos(a * GRID_STEP + phi[0], s, c);
+            sincos(a * GRID_STEP + ph[0], s, c);
             const Line L4 = apply(Li[1], turn(c, -s, apply(Li[0], Line{})));
             for (int b = 0; b < 3; ++b) {
-                sincos(b * GRID_STEP + phi[1], s, c);
+                sincos(b * GRID_STEP + ph[1], s, c);
                 const Line L5 = apply(Li[2], turn(c, -s, L4));
                 for (int g = 0; g < 3; ++g) {
                     sincos(g * GRID_STEP + shift6, s, c);
@@ -429,7 +448,8 @@ struct General6RParams : Elimination {
     //! One candidate's loop angles a (q'1 ... q'6) from a real root x6 and its monomial
     //! vector u, for the target T (scaled). Returns how far its pose is from T (miss).
     double back_substitute(const Elimination& E, const Pose* L, const Pose* Li, const Pose& T,
-                           double x6, double shift6, const Vector12& u, double* a) const {
+                           const double* ph, double x6, double shift6, const Vector12& u,
+                           double* a) const {
         // x4 = u(i+1, j) / u(i, j), x5 = u(i, j+1) / u(i, j): the best-scaled pair
         int bi = 0, bj = 0;
         double best = -1.0;
@@ -438,14 +458,14 @@ struct General6RParams : Elimination {
                 const double w = u(3 * i + j) * u(3 * i + j) + u(3 * (i + 1) + j) * u(3 * (i + 1) + j);
                 if (w > best) best = w, bi = i, bj = j;
             }
-        const double a4 = from_half(u(3 * (bi + 1) + bj), u(3 * bi + bj), phi[0]);
+        const double a4 = from_half(u(3 * (bi + 1) + bj), u(3 * bi + bj), ph[0]);
         best = -1.0;
         for (int i = 0; i < 4; ++i)
             for (int j = 0; j < 2; ++j) {
                 const double w = u(3 * i + j) * u(3 * i + j) + u(3 * i + j + 1) * u(3 * i + j + 1);
                 if (w > best) best = w, bi = i, bj = j;
             }
-        const double a5 = from_half(u(3 * bi + bj + 1), u(3 * bi + bj), phi[1]);
+        const double a5 = from_half(u(3 * bi + bj + 1), u(3 * bi + bj), ph[1]);
         const double a6 = 2.0 * std::atan(x6) + shift6;
         double f[EQUATIONS];
         quantities(right_side(Li, a4, a5, a6), f);
@@ -622,10 +642,7 @@ struct General6RParams : Elimination {
     //! x6, it is tiny at roots whose solutions are all found; a double root or a
     //! continuum is told by the solution's Jacobian, self_motion.)
     static Vector12 null_vector(const Matrix12* A, double x) {
-        const bool big = std::fabs(x) > 1.0;
-        const double y = big ? 1.0 / x : x;
-        const Matrix12 M = big ? Matrix12(A[2] + y * (A[1] + y * A[0])) : Matrix12(A[0] + y * (A[1] + y * A[2]));
-        const Eigen::FullPivLU<Matrix12> lu(M);
+        const Eigen::FullPivLU<Matrix12> lu(matrix_at(A, x));
         const Matrix12& U = lu.matrixLU();
         Vector12 v;
         v(SIZE - 1) = 1.0;
@@ -637,10 +654,165 @@ struct General6RParams : Elimination {
         return lu.permutationQ() * v;
     }
 
+    //! M(x) = A0 + x A1 + x² A2, divided by x² when |x| > 1.
+    static Matrix12 matrix_at(const Matrix12* A, double x) {
+        const bool big = std::fabs(x) > 1.0;
+        const double y = big ? 1.0 / x : x;
+        return big ? Matrix12(A[2] + y * (A[1] + y * A[0])) : Matrix12(A[0] + y * (A[1] + y * A[2]));
+    }
+
+    //! The monomial vectors u (x4^i x5^j at 3i + j) of two solutions sharing the root x
+    //! (M(x)'s null space two-dimensional): with V (12 x 2) a basis of it (the right
+    //! singular vectors of M's two smallest singular values), u = V c where the rows of
+    //! x4^(i+1) x5^j are x4 times those of x4^i x5^j: U1 c = x4 U0 c, in least squares the
+    //! 2 x 2 eigenproblem (U0ᵀU0)⁻¹ U0ᵀU1 c = x4 c. Returns how many (0 ... 2: its real
+    //! eigenvalues) it wrote to u.
+    static int null_pair(const Matrix12* A, double x, Vector12* u) {
+        const Eigen::JacobiSVD<Matrix12> svd(matrix_at(A, x), Eigen::ComputeFullV);
+        const Eigen::Matrix<double, SIZE, 2> V = svd.matrixV().rightCols<2>();
+        Eigen::Matrix<double, 9, 2> U0, U1;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+                U0.row(3 * i + j) = V.row(3 * i + j);
+                U1.row(3 * i + j) = V.row(3 * (i + 1) + j);
+            }
+        const Eigen::Matrix2d G = U0.transpose() * U0;
+        const Eigen::Matrix2d H = U0.transpose() * U1;
+        const double g = G.determinant();
+        if (!(std::fabs(g) > 0.0)) return 0;
+        const Eigen::Matrix2d B = G.inverse() * H;
+        const double half = 0.5 * (B(0, 0) + B(1, 1));
+        const double disc = half * half - B.determinant();
+        if (!(disc >= 0.0)) return 0;  // a complex pair: no real solutions there
+        const double root = std::sqrt(disc);
+        const double lambda[2] = {half + root, half - root};
+        int count = 0;
+        for (double l : lambda) {
+            // c in the null space of B - l I: from its row of larger norm
+            const Eigen::Vector2d r0(B(0, 0) - l, B(0, 1)), r1(B(1, 0), B(1, 1) - l);
+            const Eigen::Vector2d& r = r0.squaredNorm() >= r1.squaredNorm() ? r0 : r1;
+            Eigen::Vector2d c(-r(1), r(0));
+            if (!(c.squaredNorm() > 0.0)) c = Eigen::Vector2d(1.0, 0.0);  // B = l I
+            u[count++] = V * c;
+        }
+        return count;
+    }
+
     //! The sign class of a candidate: bits of sin q2, sin q3, sin q5 > 0.
     static int sign_class(const double* q) {
         return (std::sin(q[1]) > 0.0 ? 4 : 0) + (std::sin(q[2]) > 0.0 ? 2 : 0) +
                (std::sin(q[4]) > 0.0 ? 1 : 0);
+    }
+
+    //! What the passes of one solve have filled and decided so far.
+    struct Passes {
+        int filled[CLASSES] = {};
+        int further = 0;
+        bool closes = false, fold = false;
+    };
+
+    //! True when q (6) is within SAME_CANDIDATE_TOL of a candidate already in Q.
+    static bool already(const double* Q, const double* q) {
+        for (int r = 0; r < SLOTS; ++r) {
+            if (!std::isfinite(Q[r * 6])) continue;
+            double d = 0.0;
+            for (int k = 0; k < 6; ++k) d = std::fmax(d, std::fabs(wrap(Q[r * 6 + k] - q[k])));
+            if (d <= SAME_CANDIDATE_TOL) return true;
+        }
+        return false;
+    }
+
+    //! The elimination with the half-angle shifts ph (q'4, q'5, q'6): its candidates into
+    //! Q's slots (those of a root's two-dimensional null space only where no candidate is
+    //! already there). False when the eigenvalue iteration failed.
+    bool pass(const Elimination& E, const Pose* L, const Pose* Li, const Pose& T,
+              const double* ph, double* Q, Passes& st, SolverInfo& info, Trace* trace) const {
+        // M(x6) for the shift ph6, or ph6 + SECOND_SHIFT when A2 is ill-conditioned there
+        // (a root near x6 = ∞: q'6 near the shift + π, which the second shift moves to a
+        // finite x6); both ill-conditioned: no leading term, not solved here
+        Matrix12 A[3];
+        double shift6 = ph[2];
+        pencil(E, Li, ph, shift6, A);
+        Eigen::PartialPivLU<Matrix12> lead(A[2]);
+        if (trace != nullptr) trace->rcond = lead.rcond();
+        bool qz = false;
+        if (!(lead.rcond() > LEADING_RCOND_TOL)) {
+            shift6 = ph[2] + SECOND_SHIFT;
+            pencil(E, Li, ph, shift6, A);
+            lead.compute(A[2]);
+            // both ill-conditioned: M(x6) nearly singular for every x6 (an arm near one
+            // whose elimination degenerates), the generalized eigenproblem by QZ
+            qz = !(lead.rcond() > LEADING_RCOND_TOL);
+        }
+        if (trace != nullptr) trace->shift6 = shift6, trace->qz = qz;
+        // the real roots x6 of det M(x6) (general_6r_roots.hpp)
+        double roots[ROOTS];
+        bool split[ROOTS];
+        const int found = qz ? real_roots_qz(A, roots, split)
+                             : real_roots(A, lead, roots,
+                                          trace != nullptr ? &trace->deflated : nullptr, split);
+        if (found < 0) return false;
+        // candidates into their classes, each ordered by q1
+        auto add = [&](double* a, double closure, bool split_root, bool check_same) {
+            double q[6], J[6 * 6];
+            bool refined = false;
+            if (refine_misses && closure > 0.0 && closure < REFINE_LIMIT) {
+                closure = refine(L, T, a, closure, J);
+                refined = true;
+                // a split pair's candidate that Newton takes no nearer than
+                // SPLIT_CLOSURE_TOL is at a fold's near miss (a complex pair), not a solution
+                if (split_root && !split_closes(closure)) return;
+            }
+            for (int k = 0; k < 6; ++k) q[order[k]] = wrap(sign * a[k]);
+            if (check_same && already(Q, q)) return;
+            if (closure <= CLOSURE_TOL) {  // a solution: at a fold, or on a continuum?
+                st.closes = true;
+                const SelfMotion sm = self_motion(L, T, a, refined ? J : nullptr);
+                if (sm.verdict == Degeneracy::continuum) {
+                    info.singular = true;
+                    for (int k = 0; k < 6; ++k)
+                        if ((sm.free >> k) & 1U) info.set_free(order[k]);
+                }
+                st.fold |= sm.verdict == Degeneracy::fold;
+                if (trace != nullptr) {
+                    if (!std::isnan(sm.rank) && !(sm.rank >= trace->rank)) trace->rank = sm.rank;
+                    if (sm.reclosure < trace->reclosure) trace->reclosure = sm.reclosure;
+                }
+            }
+            if (trace != nullptr && closure < trace->closure) trace->closure = closure;
+            const int cls = sign_class(q);
+            int slot;
+            if (st.filled[cls] < PER_CLASS) {
+                slot = cls * PER_CLASS + st.filled[cls]++;
+                // insertion by q1 within the class
+                while (slot > cls * PER_CLASS && Q[(slot - 1) * 6] > q[0]) {
+                    for (int k = 0; k < 6; ++k) Q[slot * 6 + k] = Q[(slot - 1) * 6 + k];
+                    --slot;
+                }
+            } else if (st.further < FURTHER) {
+                slot = CLASSES * PER_CLASS + st.further++;
+            } else {
+                return;  // beyond 24 real roots: not possible (degree 24)
+            }
+            for (int k = 0; k < 6; ++k) Q[slot * 6 + k] = q[k];
+        };
+        for (int r = 0; r < found; ++r) {
+            double a[6];
+            const Vector12 u = null_vector(A, roots[r]);
+            const double closure = back_substitute(E, L, Li, T, ph, roots[r], shift6, u, a);
+            add(a, closure, split[r], false);
+            if (!(refine_misses && resolves(closure))) continue;
+            // perhaps two solutions share this root: each from M's two-dimensional null space
+            if (trace != nullptr) trace->resolved = true;
+            Vector12 pair[2];
+            const int count = null_pair(A, roots[r], pair);
+            for (int k = 0; k < count; ++k) {
+                double b[6];
+                const double c = back_substitute(E, L, Li, T, ph, roots[r], shift6, pair[k], b);
+                add(b, c, split[r], true);
+            }
+        }
+        return true;
     }
 
     //! Candidates for one pose T (base frame) into Q (SLOTS x 6), NaN rows elsewhere;
@@ -667,83 +839,12 @@ struct General6RParams : Elimination {
             }
             E = &local;
         }
-        // M(x6) for the shift phi6, or phi6 + SECOND_SHIFT when A2 is ill-conditioned there
-        // (a root near x6 = ∞: q'6 near the shift + π, which the second shift moves to a
-        // finite x6); both ill-conditioned: no leading term, not solved here
-        Matrix12 A[3];
-        double shift6 = phi[2];
-        pencil(*E, Li, shift6, A);
-        Eigen::PartialPivLU<Matrix12> lead(A[2]);
-        if (trace != nullptr) trace->rcond = lead.rcond();
-        bool qz = false;
-        if (!(lead.rcond() > LEADING_RCOND_TOL)) {
-            shift6 = phi[2] + SECOND_SHIFT;
-            pencil(*E, Li, shift6, A);
-            lead.compute(A[2]);
-            // both ill-conditioned: M(x6) nearly singular for every x6 (an arm near one
-            // whose elimination degenerates), the generalized eigenproblem by QZ
-            qz = !(lead.rcond() > LEADING_RCOND_TOL);
-        }
-        if (trace != nullptr) trace->shift6 = shift6, trace->qz = qz;
-        // the real roots x6 of det M(x6) (general_6r_roots.hpp)
-        double roots[ROOTS];
-        bool split[ROOTS];
-        const int found = qz ? real_roots_qz(A, roots, split)
-                             : real_roots(A, lead, roots,
-                                          trace != nullptr ? &trace->deflated : nullptr, split);
-        if (found < 0) {
+        Passes st;
+        if (!pass(*E, L, Li, T, phi, Q, st, info, trace)) {
             info.near = true;  // the eigenvalue iteration failed: not proven unreachable
             return;
         }
-        // candidates into their classes, each ordered by q1
-        int filled[CLASSES] = {};
-        int further = 0;
-        bool closes = false, fold = false;
-        for (int r = 0; r < found; ++r) {
-            double a[6], q[6], J[6 * 6];
-            const Vector12 u = null_vector(A, roots[r]);
-            double closure = back_substitute(*E, L, Li, T, roots[r], shift6, u, a);
-            bool refined = false;
-            if (refine_misses && closure > 0.0 && closure < REFINE_LIMIT) {
-                closure = refine(L, T, a, closure, J);
-                refined = true;
-                // a split pair's candidate that Newton takes no nearer than
-                // SPLIT_CLOSURE_TOL is at a fold's near miss (a complex pair), not a solution
-                if (split[r] && !split_closes(closure)) continue;
-            }
-            if (closure <= CLOSURE_TOL) {  // a solution: at a fold, or on a continuum?
-                closes = true;
-                const SelfMotion sm = self_motion(L, T, a, refined ? J : nullptr);
-                if (sm.verdict == Degeneracy::continuum) {
-                    info.singular = true;
-                    for (int k = 0; k < 6; ++k)
-                        if ((sm.free >> k) & 1U) info.set_free(order[k]);
-                }
-                fold |= sm.verdict == Degeneracy::fold;
-                if (trace != nullptr) {
-                    if (!std::isnan(sm.rank) && !(sm.rank >= trace->rank)) trace->rank = sm.rank;
-                    if (sm.reclosure < trace->reclosure) trace->reclosure = sm.reclosure;
-                }
-            }
-            for (int k = 0; k < 6; ++k) q[order[k]] = wrap(sign * a[k]);
-            if (trace != nullptr && closure < trace->closure) trace->closure = closure;
-            const int cls = sign_class(q);
-            int slot;
-            if (filled[cls] < PER_CLASS) {
-                slot = cls * PER_CLASS + filled[cls]++;
-                // insertion by q1 within the class
-                while (slot > cls * PER_CLASS && Q[(slot - 1) * 6] > q[0]) {
-                    for (int k = 0; k < 6; ++k) Q[slot * 6 + k] = Q[(slot - 1) * 6 + k];
-                    --slot;
-                }
-            } else if (further < FURTHER) {
-                slot = CLASSES * PER_CLASS + further++;
-            } else {
-                continue;  // beyond 24 real roots: not possible (degree 24)
-            }
-            for (int k = 0; k < 6; ++k) Q[slot * 6 + k] = q[k];
-        }
-        info.near = !closes || fold;
+        info.near = !st.closes || st.fold;
     }
 };
 
