@@ -341,6 +341,9 @@ void bind_general6r(nb::module_& m) {
     sub.attr("REFINE_LIMIT") = kg::REFINE_LIMIT;
     sub.attr("RESOLVE_TOL") = kg::RESOLVE_TOL;
     sub.attr("SAME_CANDIDATE_TOL") = kg::SAME_CANDIDATE_TOL;
+    sub.attr("PAIR_ROOT_TOL") = kg::PAIR_ROOT_TOL;
+    sub.def("close_roots", &kg::close_roots, nb::arg("x"), nb::arg("y"),
+            "True when the roots x and y of det M are taken as one double root.");
     sub.def("resolves", &kg::resolves, nb::arg("miss"),
             "True when a candidate that missed by `worst` (m or rad) before Newton's step is "
             "looked for again as one of two solutions sharing its root.");

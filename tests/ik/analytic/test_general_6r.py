@@ -545,3 +545,11 @@ def test_resolve_tol_at_its_boundary_and_the_pose_it_was_set_for() -> None:
     assert res.count == 4 and joint_distance(robot, res.solutions, q).min() <= FOUND_TOL
     _reaches_all(robot, res.solutions, T)
     assert G.resolved(closed_form(robot.chain, "pose").params, T)
+
+
+def test_pair_root_tol_at_its_boundary() -> None:
+    tol = G.PAIR_ROOT_TOL
+    for x in (0.0, 3.0, -250.0):
+        gap = tol * (1.0 + abs(x))
+        assert G.close_roots(x, x + 0.999 * gap)
+        assert not G.close_roots(x, x + 1.001 * gap)

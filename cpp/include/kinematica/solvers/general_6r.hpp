@@ -120,14 +120,15 @@ constexpr double REFINE_LIMIT = 1e-1;
 //! a miss of about 1e-8 (arm-size units) and more (an estimate, not a measurement).
 constexpr double SPLIT_CLOSURE_TOL = 1e-12;
 
-//! A candidate that misses the target by more than this before Newton's step (m or rad)
-//! is looked for again as one of two solutions sharing its root x6 (null_pair): a genuine
+//! A candidate that misses the target by more than this before Newton's step (m or rad),
+//! of a root another is close to (PAIR_ROOT_TOL), is looked for again as one of two
+//! solutions sharing that root x6 (null_pair): a genuine
 //! simple root is got to round-off (1e-15..1e-12 on random and makers' arms), while two
 //! solutions with one q'6 (a double root: M(x6)'s null space two-dimensional, its one null
 //! vector a mix of theirs) give a candidate that misses by 1e-3 and more, and Newton's step
 //! may take it to neither (the FANUC CRX-10iA/L: 1 pose in 11,000, 3 of its 4 solutions
-//! found). So do the roots of near-real complex pairs (1e-4 and more): 4-14 % of poses of
-//! random arms, JACO 2s and CRXs have one, and pay for the extraction.
+//! found). So do the roots of near-real complex pairs (1e-4 and more), whose real part is
+//! computed twice: the extraction runs there too.
 constexpr double RESOLVE_TOL = 1e-6;
 //! A candidate within this (rad, every joint, modulo 2π) of one in the slots already is the
 //! same solution and is not added again (both refined to round-off).
@@ -136,6 +137,16 @@ constexpr double SAME_CANDIDATE_TOL = 1e-8;
 //! True when a candidate that missed by `miss` (m or rad) before Newton's step is looked for
 //! again as one of a pair sharing its root (RESOLVE_TOL).
 KM_HD inline bool resolves(double miss) { return miss > RESOLVE_TOL; }
+//! Two roots x6 within this (relative to 1 + |x|) are one double root: a double root is
+//! computed as two reals or a complex pair about √ε·|x| apart (its real part twice), and
+//! only there is the extraction run (not at the extraneous real roots some special arms'
+//! determinants have at every pose: the Agilex Piper, Doosan M0609, whose candidates miss
+//! at 99-100 % of poses, 160-290 µs a pose when each was looked at).
+constexpr double PAIR_ROOT_TOL = 1e-4;
+//! True when the roots x and y are one double root (PAIR_ROOT_TOL).
+KM_HD inline bool close_roots(double x, double y) {
+    return std::fabs(x - y) <= PAIR_ROOT_TOL * (1.0 + std::fmax(std::fabs(x), std::fabs(y)));
+}
 
 //! True when a split pair's candidate that Newton took to within `closure` of the target
 //! (m or rad) is a solution (SPLIT_CLOSURE_TOL).
@@ -654,6 +665,18 @@ struct General6RParams : Elimination {
         return lu.permutationQ() * v;
     }
 
+    //! True when root r has another within PAIR_ROOT_TOL and is the first of them: a
+    //! double root, computed as two (or a complex pair's real part, twice).
+    static bool first_of_pair(const double* roots, int found, int r) {
+        bool paired = false;
+        for (int s = 0; s < found; ++s) {
+            if (s == r || !close_roots(roots[r], roots[s])) continue;
+            if (s < r) return false;  // the pair's first root looked already
+            paired = true;
+        }
+        return paired;
+    }
+
     //! M(x) = A0 + x A1 + x² A2, divided by x² when |x| > 1.
     static Matrix12 matrix_at(const Matrix12* A, double x) {
         const bool big = std::fabs(x) > 1.0;
@@ -662,14 +685,27 @@ struct General6RParams : Elimination {
     }
 
     //! The monomial vectors u (x4^i x5^j at 3i + j) of two solutions sharing the root x
-    //! (M(x)'s null space two-dimensional): with V (12 x 2) a basis of it (the right
-    //! singular vectors of M's two smallest singular values), u = V c where the rows of
+    //! (M(x)'s null space two-dimensional): with V (12 x 2) a basis of it (from M's
+    //! full-pivot LU, as null_vector's one), u = V c where the rows of
     //! x4^(i+1) x5^j are x4 times those of x4^i x5^j: U1 c = x4 U0 c, in least squares the
     //! 2 x 2 eigenproblem (U0ᵀU0)⁻¹ U0ᵀU1 c = x4 c. Returns how many (0 ... 2: its real
     //! eigenvalues) it wrote to u.
     static int null_pair(const Matrix12* A, double x, Vector12* u) {
-        const Eigen::JacobiSVD<Matrix12> svd(matrix_at(A, x), Eigen::ComputeFullV);
-        const Eigen::Matrix<double, SIZE, 2> V = svd.matrixV().rightCols<2>();
+        // the basis from M's full-pivot LU, its last two pivots taken as 0: the unknowns of
+        // the last two (column-permuted) places free, each set to 1 in turn
+        const Eigen::FullPivLU<Matrix12> lu(matrix_at(A, x));
+        const Matrix12& R = lu.matrixLU();
+        Eigen::Matrix<double, SIZE, 2> V;
+        for (int c = 0; c < 2; ++c) {
+            Vector12 v = Vector12::Zero();
+            v(SIZE - 2 + c) = 1.0;
+            for (int i = SIZE - 3; i >= 0; --i) {
+                double t = 0.0;
+                for (int j = i + 1; j < SIZE; ++j) t -= R(i, j) * v(j);
+                v(i) = t / R(i, i);
+            }
+            V.col(c) = lu.permutationQ() * v;
+        }
         Eigen::Matrix<double, 9, 2> U0, U1;
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) {
@@ -801,7 +837,7 @@ struct General6RParams : Elimination {
             const Vector12 u = null_vector(A, roots[r]);
             const double closure = back_substitute(E, L, Li, T, ph, roots[r], shift6, u, a);
             add(a, closure, split[r], false);
-            if (!(refine_misses && resolves(closure))) continue;
+            if (!(refine_misses && resolves(closure) && first_of_pair(roots, found, r))) continue;
             // perhaps two solutions share this root: each from M's two-dimensional null space
             if (trace != nullptr) trace->resolved = true;
             Vector12 pair[2];
