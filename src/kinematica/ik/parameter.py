@@ -256,9 +256,11 @@ class JointParameter:
                 if k == n - 1 and isinstance(out, IKBatchResult):
                     out = widen_batch(out, k, v, self.name)
                     return self._exact_gaps(chain, targets, v, out, options)
-            elif same and not (targets.poses.shape[0] > 1 and self._continua(chain, v, opts)):
+            elif same and not (
+                targets.poses.shape[0] > 1 and self._continua(chain, v, opts, targets)
+            ):
                 out = solve_ik(locked_chain(chain, k, float(v[0])), target, opts)
-                if isinstance(out, IKResult) and self._continua(chain, v, opts):
+                if isinstance(out, IKResult) and self._continua(chain, v, opts, targets):
                     wide = widen_result(out, k, float(v[0]), (self.name, float(v[0])))
                     return continuum_answer(
                         chain, k, float(v[0]), self.name, targets.poses[0], wide, opts,
@@ -278,7 +280,7 @@ class JointParameter:
             return widen_result(out, k, float(v[0]), (self.name, float(v[0])))
         return widen_batch(out, k, v, self.name)
 
-    def _continua(self, chain: Chain, v: FloatArray, opts: IKOptions) -> bool:
+    def _continua(self, chain: Chain, v: FloatArray, opts: IKOptions, targets: Targets) -> bool:
         """True when ``auto``'s pose answers on the arm locked at ``v`` may be continua.
 
         The arm left has no closed form (every elimination degenerate) and is tested
@@ -288,6 +290,7 @@ class JointParameter:
 
         return (
             opts.method == "auto"
+            and not targets.position
             and opts.mask is None
             and chain.dof == 7
             and not bool(chain.prismatic.any())
@@ -342,7 +345,7 @@ class JointParameter:
             assert isinstance(one, IKResult)
             vi = float(v[i])
             one = widen_result(one, self.index, vi, (self.name, vi))
-            if not targets.position and self._continua(chain, v[i : i + 1], opts):
+            if self._continua(chain, v[i : i + 1], opts, targets):
                 one = continuum_answer(
                     chain, self.index, vi, self.name, T, one, opts, locked_chain, solve_ik
                 )
