@@ -141,6 +141,40 @@ nb::tuple check_given(const km::Chain& chain, F64 Th, F64 Qh, const km::CheckOpt
     return nb::make_tuple(Qa, Ra, slots, static_cast<int>(r.status), r.count, r.out_count, r.gap);
 }
 
+//! The check's repair of one candidate q (n,) of target T: (q, position error, rotation
+//! error) of the best point its Gauss-Newton steps reached.
+nb::tuple repair_of(const km::Chain& chain, F64 Th, F64 qh, const km::CheckOptions& opts) {
+    const int n = chain.dof();
+    const In Ti = in_f64(Th, "T", 2, {4, 4});
+    const In q = in_f64(qh, "q", 1, {n});
+    const km::ChainView ch = chain.view();
+    const km::Pose T = km::Pose::from_rows(Ti.data);
+    km::CheckWork work(1, n);
+    double* out;
+    F64 Qa = new_f64({n}, out);
+    for (int j = 0; j < n; ++j) out[j] = q.data[j];
+    std::vector<double> c(static_cast<size_t>(n)), s(static_cast<size_t>(n));
+    km::joint_trig(ch, out, c.data(), s.data());
+    double p_err = km::INF, r_err = km::INF;
+    km::detail::residual(ch, out, c.data(), s.data(), 1, T, opts.weights, p_err, r_err);
+    km::detail::repair(ch, out, T, opts, work, p_err, r_err);
+    return nb::make_tuple(Qa, p_err, r_err);
+}
+
+//! One Gauss-Newton step of the check's repair from q (n,) towards T: the new q.
+F64 repair_step_of(const km::Chain& chain, F64 Th, F64 qh, const km::CheckOptions& opts) {
+    const int n = chain.dof();
+    const In Ti = in_f64(Th, "T", 2, {4, 4});
+    const In q = in_f64(qh, "q", 1, {n});
+    km::CheckWork work(1, n);
+    double* out;
+    F64 Qa = new_f64({n}, out);
+    for (int j = 0; j < n; ++j) out[j] = q.data[j];
+    km::detail::gauss_newton_step(chain.view(), out, km::Pose::from_rows(Ti.data), opts.weights,
+                                  work, true);
+    return Qa;
+}
+
 }  // namespace
 
 void bind_testing(nb::module_& m) {
@@ -167,6 +201,15 @@ void bind_testing(nb::module_& m) {
     t.def("check", &check_given, nb::arg("chain"), nb::arg("T"), nb::arg("Q"), nb::arg("options"),
           nb::arg("gap"), nb::arg("singular"), nb::arg("near"), nb::arg("q0").none(),
           "The shared check of candidates Q (m, n): (q, res, slots, status, count, out_count, gap).");
+    t.def("repair", &repair_of, nb::arg("chain"), nb::arg("T"), nb::arg("q"), nb::arg("options"),
+          "The check's repair of one candidate q (n,): (q, position error, rotation error).");
+    t.def("repair_step", &repair_step_of, nb::arg("chain"), nb::arg("T"), nb::arg("q"),
+          nb::arg("options"), "One Gauss-Newton step of the repair from q (n,): the new q.");
+    t.attr("REPAIR_DAMPING") = km::REPAIR_DAMPING;
+    t.attr("REPAIR_DAMPING_FLOOR") = km::REPAIR_DAMPING_FLOOR;
+    t.attr("REPAIR_PATIENCE") = km::REPAIR_PATIENCE;
+    t.attr("REPAIR_STEPS") = km::REPAIR_STEPS;
+    t.attr("REPAIR_QUIET") = km::REPAIR_QUIET;
     t.attr("POLISH_LIMIT") = km::POLISH_LIMIT;
     t.attr("DEDUP_TOL") = km::DEDUP_TOL;
     t.attr("LIMIT_TOL") = km::LIMIT_TOL;

@@ -10,14 +10,17 @@ of them) against a walk from the base, to the last bit.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
 import pytest
 from kinematica._core import internals
+from support.parallel_arms import random_arm
 
 import kinematica as km
 from kinematica import _core
+from kinematica.ik import closed_form
 
 L1 = L2 = 1.0
 
@@ -109,6 +112,69 @@ def test_limit_tol_is_1e_12(beyond: float, inside: bool) -> None:
     assert (n_in, n_out) == ((1, 0) if inside else (0, 1))
 
 
+def repair_options() -> _core.CheckOptions:
+    """The check's options for a nearby arm's candidates (CheckOptions.repair)."""
+    opts = _core.CheckOptions()
+    opts.tol_position = opts.tol_rotation = 1e-10
+    opts.weights = POSITION.tolist()
+    opts.gap_slack = 1e-9
+    opts.repair = True
+    return opts
+
+
+def test_repair_damping_is_100() -> None:
+    # A step of the repair minimises |J dq - e|² + μ |e|² |dq|² (REPAIR_DAMPING μ = 100
+    # per rad²): along a singular direction of value σ it is |e| σ / (σ² + μ |e|²),
+    # 1 / (2 √μ) = 0.05 rad where σ = √μ |e|. The 2R arm nearly stretched (σmin 4.5e-4),
+    # the target moved by σmin / 10 along the direction it cannot follow: the undamped
+    # step would be 0.1 rad; μ a thousand times larger makes it 1e-4, smaller 0.0999.
+    robot = two_link()
+    q = np.array([0.3, 1e-3])
+    U, S, _ = np.linalg.svd(robot.jacobian(q)[:3])
+    T = target_of(list(q))
+    T[:3, 3] += U[:, 1] * S[1] / 10
+    assert internals.REPAIR_DAMPING == 100.0
+    step = float(
+        np.linalg.norm(internals.repair_step(robot.chain.core, T, q, repair_options()) - q)
+    )
+    assert step == pytest.approx(0.05, rel=1e-6)
+
+
+def test_repair_damping_floor_is_1e_15() -> None:
+    # Where μ |e|² is below REPAIR_DAMPING_FLOOR s (s the normal matrix's mean diagonal,
+    # 2.5 here), the step along a singular direction of value σ is |e| σ / (σ² + 1e-15 s).
+    # The 2R arm stretched to σmin = 1e-8, the target 1e-10 along the direction it cannot
+    # follow: 3.8e-4 rad; a floor a thousand times larger gives 4e-7, smaller 1e-2.
+    robot = two_link()
+    q = np.array([0.3, 2.2e-8])
+    J = robot.jacobian(q)[:3]
+    U, S, _ = np.linalg.svd(J)
+    T = target_of(list(q))
+    T[:3, 3] += U[:, 1] * 1e-10
+    s = float(np.trace(J.T @ J)) / 2.0
+    assert internals.REPAIR_DAMPING_FLOOR == 1e-15
+    step = float(
+        np.linalg.norm(internals.repair_step(robot.chain.core, T, q, repair_options()) - q)
+    )
+    want = 1e-10 * S[1] / (S[1] ** 2 + 1e-15 * s)
+    assert step == pytest.approx(want, rel=0.3)
+
+
+@pytest.mark.parametrize("psi", [1e-5, 1e-6])
+def test_the_repair_reaches_a_solution_beside_a_fold(psi: float) -> None:
+    # The 2R arm's target with the elbow at ±psi (two solutions 2 psi apart, σmin about
+    # psi / 2): from the elbow at 3e-3 the repair's steps halve the distance to the root
+    # on their side, to round-off. A constant damping of 1e-12 times the normal matrix's
+    # mean diagonal (the polish's) stalls where σmin² falls below it: from psi = 1e-6 it
+    # stopped 2.6e-7 rad off (the residual 1.5e-13, within the tolerances).
+    robot = two_link()
+    q = np.array([0.3, psi])
+    T = target_of(list(q))
+    out, p_err, _ = internals.repair(robot.chain.core, T, np.array([0.3, 3e-3]), repair_options())
+    assert np.abs(out - q).max() <= 1e-8
+    assert p_err <= 1e-14  # REPAIR_QUIET x 1e-10
+
+
 @pytest.mark.filterwarnings("ignore::kinematica.KinematicaWarning")  # rows beyond the limits
 def test_candidates_sharing_leading_joints_get_the_residuals_of_their_own_fk() -> None:
     # The PUMA's tool origin is its wrist centre: every wrist (q4, q5, q6) on a
@@ -142,3 +208,31 @@ def test_candidates_sharing_leading_joints_get_the_residuals_of_their_own_fk() -
         dx, dy, dz = (T[:3, 3] - robot.fk(qi)[:3, 3]).tolist()
         assert p_err == math.sqrt(dx * dx + dy * dy + dz * dz)
         assert r_err == 0.0  # rotation not counted
+
+
+def test_repair_patience_outlasts_steps_that_overshoot_and_land() -> None:
+    # REPAIR_PATIENCE (6): a three-parallel arm whose axes 2 and 3 are 5e-10 off parallel,
+    # its wrist 1e-6 rad from aligned (σmin 6e-8): the family's candidate nearest the
+    # generating q is 3e-3 rad off it. The repair's steps alternately overshoot (the
+    # residual up to 8e-7) and land, the best falling every two or three steps: with a
+    # patience of 3 it stopped 2.4e-4 rad off (the residual 1.4e-11, within the
+    # tolerances); it now reaches round-off, 3e-8 rad off.
+    rng = np.random.default_rng(4)
+    robot = random_arm(rng, "meet", square=True)
+    links = list(robot.links)
+    links[1] = dataclasses.replace(links[1], alpha=links[1].alpha + 5e-10)
+    robot = km.Robot.from_dh(links, base=robot.base, tool=robot.tool)
+    q = np.array([-1.8043360707549974, -2.307837226526689, 0.03810703212573863,
+                  1.7912437217382067, 0.09957063778417395, 1.6887427728460738])  # fmt: skip
+    T = robot.fk(q)
+    assert internals.REPAIR_PATIENCE == 6
+    assert np.linalg.svd(robot.jacobian(q), compute_uv=False)[-1] < 1e-7
+    raw = np.asarray(closed_form(robot.chain, "pose").params.candidates(robot.chain.core, T)[0])
+    raw = raw[np.isfinite(raw).all(axis=1)]
+    x = raw[np.argmin(np.abs(np.angle(np.exp(1j * (raw - q)))).max(axis=1))]
+    assert 1e-3 < np.abs(np.angle(np.exp(1j * (x - q)))).max() < 1e-2
+    opts = repair_options()
+    opts.weights = [1.0] * 6
+    out, p_err, r_err = internals.repair(robot.chain.core, T, x, opts)
+    assert max(p_err, r_err) <= 1e-14
+    assert np.abs(np.angle(np.exp(1j * (out - q)))).max() <= 1e-7

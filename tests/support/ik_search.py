@@ -19,6 +19,46 @@ from kinematica.robot import Robot
 FloatArray = NDArray[np.float64]
 
 
+#: Round-off of a target, with a margin of 1,000 (m or rad, for arms of about a metre):
+#: the configuration that made a target is found to within what it moves a solution by.
+FOUND_SCALE = 1e-13
+#: ... but never asked closer than this (rad).
+FOUND_FLOOR = 1e-9
+
+
+def found_tolerance(robot: Robot, q: FloatArray, position: bool = False) -> float:
+    """How close to ``q`` a solution of the target ``fk(q)`` must be (rad).
+
+    A change δ of the target (FOUND_SCALE) moves a solution by δ / σmin where the
+    Jacobian is well conditioned, and by at most √(2 δ / κ) at a fold (two branches
+    meeting), κ the curvature of the forward kinematics along the Jacobian's null
+    direction (m / rad²): the smaller of the two, at least FOUND_FLOOR.
+
+    Args:
+        robot: The robot.
+        q: ``(n,)`` the configuration that made the target.
+        position: The target is the tool origin only (the Jacobian's linear rows).
+    """
+    rows = 3 if position else 6
+
+    def task(x: FloatArray) -> FloatArray:
+        T = robot.fk(x)
+        if position:
+            return np.asarray(T[:3, 3])
+        rot = Rotation.from_matrix(T[:3, :3] @ robot.fk(q)[:3, :3].T).as_rotvec()
+        return np.concatenate([T[:3, 3], rot])
+
+    U, S, Vt = np.linalg.svd(robot.jacobian(q)[:rows])  # (a square Jacobian: n = rows)
+    v = Vt[rows - 1]
+    h = 1e-4  # central second difference along the null direction
+    d2 = (task(q + h * v) - 2.0 * task(q) + task(q - h * v)) / (h * h)
+    kappa = abs(float(U[:, rows - 1] @ d2))
+    sigma = float(S[rows - 1])
+    by_sigma = FOUND_SCALE / max(sigma, 1e-300)
+    by_fold = math.sqrt(2.0 * FOUND_SCALE / max(kappa, 1e-300))
+    return max(FOUND_FLOOR, min(by_sigma, by_fold))
+
+
 def joint_distance(robot: Robot, q1: FloatArray, q2: FloatArray) -> FloatArray:
     """Largest joint difference (angles modulo 2π), broadcast over leading axes."""
     d = np.asarray(q1, dtype=float) - np.asarray(q2, dtype=float)

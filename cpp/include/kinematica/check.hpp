@@ -34,13 +34,35 @@ constexpr double POLISH_DAMPING = 1e-12;
 //! round-off; at a double root (a fold) each step halves the distance, and twenty take
 //! a candidate 1e-5 rad off to 1e-11.
 constexpr int REPAIR_STEPS = 24;
+//! The repair's damping follows the residual (Levenberg-Marquardt with λ = μ |e|²,
+//! Yamashita and Fukushima 2001): a step minimises |J dq − e|² + μ |e|² |dq|², μ this
+//! (1 / rad²). No step is then longer than 1 / (2 √μ) = 0.05 rad, however small σmin (a
+//! step near a singular set does not leap to another solution), while near a solution
+//! the damping vanishes: at a fold (two branches meeting), d rad from the double root
+//! where σmin ≈ κ d and |e| ≈ κ d² / 2 for a curvature κ, it is μ d² / 4 of σmin², for
+//! every κ, and each step still about halves d, down to round-off; at a regular solution
+//! the convergence stays quadratic. A constant damping (POLISH_DAMPING's 1e-12 s, s the
+//! normal matrix's mean diagonal) outweighs σmin² once σmin < 1e-6 √s and the steps
+//! stall there: an elbow 3R whose axes 2 and 3 are 5e-10 off parallel had its candidates
+//! at the stretched or folded elbow stop 1e-6 to 2e-4 rad from the solution, within the
+//! tolerance's residual.
+constexpr double REPAIR_DAMPING = 100.0;
+//! ... and at least this, relative to s: the normal equations the steps are solved by
+//! hold s to round-off only (1e-16 s), and a damping below it would leave the weak
+//! direction's pivot to that round-off (on a near-degenerate planar 3R, whose third row,
+//! across the plane, has σ about 1e-10, steps of 2 rad). Steps stall where σmin falls
+//! below √(1e-15 s), 3e-8 √s: at a fold of curvature κ about √s, 3e-8 rad from the root,
+//! where the residual is at round-off.
+constexpr double REPAIR_DAMPING_FLOOR = 1e-15;
 //! A repair stops when the residual, in units of the tolerances, is below this (its
 //! round-off: 1e-14 m or rad for the default tolerances) ...
 constexpr double REPAIR_QUIET = 1e-4;
 //! ... or after this many steps in a row that did not lower it (the noise floor, or a
 //! Newton step across a fold that overshoots before the next lands: steps are taken
-//! whatever they do and the best point is kept).
-constexpr int REPAIR_PATIENCE = 3;
+//! whatever they do and the best point is kept). Near a singular set a candidate 1e-3
+//! rad off takes steps that alternately overshoot and land (the residual up 1e3 times,
+//! then down), and the best falls only every two or three steps.
+constexpr int REPAIR_PATIENCE = 6;
 //! Two solutions closer than this in every joint (rad or m, angles modulo 2π) are one.
 constexpr double DEDUP_TOL = 1e-7;
 //! Slack on joint limits for values computed by floating point (rad or m).
@@ -125,9 +147,10 @@ KM_HD KM_INLINE Pose walk_shared(const ChainView& ch, const double* q, const dou
     return walk_from(ch, q, c, s, NoRecord{}, 1, first, start, frames);
 }
 
-//! One Gauss-Newton step on q towards T (weighted rows only), damped by POLISH_DAMPING.
+//! One Gauss-Newton step on q towards T (weighted rows only), damped by POLISH_DAMPING,
+//! or (repairing) by REPAIR_DAMPING times the squared residual.
 KM_HD inline void gauss_newton_step(const ChainView& ch, double* q, const Pose& T,
-                                    const double* w, CheckWork& work) {
+                                    const double* w, CheckWork& work, bool repairing = false) {
     const int n = ch.n;
     double* c = work.c1.data();
     double* s = work.s1.data();
@@ -146,7 +169,16 @@ KM_HD inline void gauss_newton_step(const ChainView& ch, double* q, const Pose& 
             ++r;
         }
     }
-    damped_least_squares(Jr, r, n, er, POLISH_DAMPING, dq);
+    NormalMatrix N;
+    normal_matrix(Jr, r, n, N);
+    double lam = POLISH_DAMPING;  // relative to s, as damped_step takes it
+    if (repairing) {
+        double e2 = 0.0;
+        for (int k = 0; k < r; ++k) e2 += er[k] * er[k];
+        lam = REPAIR_DAMPING * e2 / N.scale;  // μ |e|², relative to s
+        if (lam < REPAIR_DAMPING_FLOOR) lam = REPAIR_DAMPING_FLOOR;
+    }
+    damped_step(N, Jr, r, n, er, lam, dq);
     for (int j = 0; j < n; ++j) {
         q[j] += dq[j];
         if (!ch.joint[j].prismatic) q[j] = wrap(q[j]);
@@ -160,8 +192,8 @@ KM_HD inline void polish(const ChainView& ch, double* q, const Pose& T, const do
 }
 
 //! A candidate of a nearby arm carried to this arm's solution: Gauss-Newton steps from q
-//! (residuals p_err, r_err on entry), damped as the polish's (an undamped step near a
-//! singular set may leap to another solution), until the residual is at round-off
+//! (residuals p_err, r_err on entry), damped by the residual (REPAIR_DAMPING: an undamped
+//! step near a singular set may leap to another solution), until the residual is at round-off
 //! (REPAIR_QUIET), has not fallen for REPAIR_PATIENCE steps, or after REPAIR_STEPS; q and
 //! the residuals become the best point's.
 KM_HD inline void repair(const ChainView& ch, double* q, const Pose& T,
@@ -178,7 +210,7 @@ KM_HD inline void repair(const ChainView& ch, double* q, const Pose& T,
     int idle = 0;
     for (int step = 0; step < REPAIR_STEPS && best > REPAIR_QUIET && idle < REPAIR_PATIENCE;
          ++step) {
-        gauss_newton_step(ch, qt, T, w, work);
+        gauss_newton_step(ch, qt, T, w, work, true);
         joint_trig(ch, qt, work.c1.data(), work.s1.data());
         double p = INF, r = INF;
         residual(ch, qt, work.c1.data(), work.s1.data(), 1, T, w, p, r);

@@ -1,0 +1,124 @@
+"""Elbow 3R arms whose axes 2 and 3 are parallel only to within 5e-10 rad, at the elbow's fold.
+
+Such an arm is solved by the closed form of the exact elbow arm beside it, each
+candidate carried to this arm's solution by the check's repair (Gauss-Newton steps,
+``check.hpp``). At the stretched or folded elbow the two elbow branches meet: the
+arm's Jacobian loses rank there, and the exact arm beside it sees the branches
+merge or vanish (the target out of its reach by up to the slack, m). Position
+targets made by FK with q3 at the fold or up to 1e-4 rad off it must give the
+generating configuration to what round-off allows (``found_tolerance``: 1e-13 /
+σmin, or √(2e-13 / κ) at the fold), and both branches where they are apart.
+
+Before (issue 32, item 4c): the repair's constant damping stalled 1e-6 to 2e-4 rad
+from the fold's solution (within the tolerance's residual), and where the exact arm
+saw one merged branch only one of the real arm's two was found.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from numpy.typing import NDArray
+from support.ik_search import found_tolerance, joint_distance
+
+import kinematica as km
+from kinematica.ik import closed_form
+from kinematica.ik.structure import features
+
+pytestmark = pytest.mark.filterwarnings("ignore::kinematica.KinematicaWarning")
+
+FloatArray = NDArray[np.float64]
+PI = math.pi
+ALPHA2 = 5e-10
+#: Position (m) every solution reaches (the default tolerance).
+TOL = 1e-10
+#: How far q3 is put off the fold (rad).
+OFFSETS = (0.0, 1e-12, 1e-10, 1e-8)
+
+
+#: Elbow arms with α2 = 5e-10 (DH rows, standard) and a tool off the last axis (m): two
+#: anthropomorphic ones and two with a shoulder offset, on which the repair stalled.
+ARMS: dict[str, tuple[list[km.Revolute], tuple[float, float, float]]] = {
+    "anthropomorphic": (
+        [
+            km.Revolute(d=0.45, alpha=PI / 2),
+            km.Revolute(d=-0.06, a=0.51, alpha=ALPHA2),
+            km.Revolute(d=0.14, a=0.49, alpha=0.19),
+        ],
+        (0.1, 0.09, -0.01),
+    ),
+    "anthropomorphic, twisted wrist": (
+        [
+            km.Revolute(d=0.38, alpha=PI / 2),
+            km.Revolute(d=0.03, a=0.46, alpha=ALPHA2),
+            km.Revolute(d=-0.2, a=0.47, alpha=1.87),
+        ],
+        (-0.04, -0.19, -0.1),
+    ),
+    "offset": (
+        [
+            km.Revolute(d=0.41, a=0.18, alpha=-PI / 2),
+            km.Revolute(d=-0.06, a=0.31, alpha=PI + ALPHA2),
+            km.Revolute(d=0.03, a=0.34, alpha=0.88),
+        ],
+        (-0.06, -0.02, 0.19),
+    ),
+    "offset, long links": (
+        [
+            km.Revolute(d=0.45, a=0.14, alpha=-PI / 2),
+            km.Revolute(d=0.08, a=0.56, alpha=PI + ALPHA2),
+            km.Revolute(d=0.06, a=0.46, alpha=1.05),
+        ],
+        (0.09, -0.01, 0.03),
+    ),
+}
+
+
+def arm(name: str) -> km.Robot:
+    """The robot of ``ARMS[name]``."""
+    rows, at = ARMS[name]
+    tool = np.eye(4)
+    tool[:3, 3] = at
+    robot = km.Robot.from_dh(rows, tool=tool)
+    kind = "anthropomorphic-3R" if name.startswith("anthropomorphic") else "elbow-3R"
+    assert km.classify(robot).kind == kind
+    assert features(robot.chain).near_degenerate
+    return robot
+
+
+def fold_of(robot: km.Robot, folded: bool) -> float:
+    """q3 (rad) where the exact arm beside this one is stretched (or folded): links 2
+    and 3 in line in the plane of axes 2 and 3 (the closed form's a and b)."""
+    P = closed_form(robot.chain, "position").params
+    psi0 = math.atan2(P.a[0] * P.b[1] - P.a[1] * P.b[0], P.a[0] * P.b[0] + P.a[1] * P.b[1])
+    return float(P.s3 * (-psi0 + (PI if folded else 0.0)))
+
+
+def configurations(fold: float) -> FloatArray:
+    """``(k, 3)`` q with q3 at ``fold`` plus each offset (both signs), q1, q2 at random."""
+    rng = np.random.default_rng(int(abs(fold) * 1000) + 7)
+    rows = []
+    for off in OFFSETS:
+        for sign in (1.0, -1.0):
+            q = rng.uniform(-PI, PI, 3)
+            q[2] = fold + sign * off
+            rows.append(q)
+    return np.array(rows)
+
+
+@pytest.mark.parametrize("name", list(ARMS))
+@pytest.mark.parametrize("folded", [False, True])
+def test_the_generating_configuration_is_found_at_the_fold(name: str, folded: bool) -> None:
+    robot = arm(name)
+    q = configurations(fold_of(robot, folded))
+    p = np.ascontiguousarray(robot.fk(q)[:, :3, 3])
+    many = robot.ik(p, respect_limits=False)
+    for i in range(len(q)):
+        one = many[i]
+        assert one.status == "ok", (q[i].tolist(), one.message)
+        reached = robot.fk(one.solutions)[:, :3, 3]
+        assert np.linalg.norm(reached - p[i], axis=-1).max() <= TOL
+        gap = float(joint_distance(robot, one.solutions, q[i]).min())
+        assert gap <= found_tolerance(robot, q[i], position=True), (q[i].tolist(), gap)
