@@ -29,9 +29,10 @@ F64 pairs2(const double (&out)[2][2]) {
     return a;
 }
 
-nb::tuple two_link(double ax, double ay, double bx, double by, double tx, double ty) {
+nb::tuple two_link(double ax, double ay, double bx, double by, double tx, double ty,
+                   double slack) {
     double out[2][2];
-    const km::triangle::Code code = km::triangle::two_link(ax, ay, bx, by, tx, ty, out);
+    const km::triangle::Code code = km::triangle::two_link(ax, ay, bx, by, tx, ty, out, slack);
     return nb::make_tuple(static_cast<int>(code), pairs2(out));
 }
 
@@ -118,9 +119,10 @@ void bind_planar(nb::module_& m) {
     sub.def("turn", &km::triangle::turn, nb::arg("ax"), nb::arg("ay"), nb::arg("bx"),
             nb::arg("by"), "The rotation (rad) turning the direction of (ax, ay) onto (bx, by).");
     sub.def("two_link", &two_link, nb::arg("ax"), nb::arg("ay"), nb::arg("bx"), nb::arg("by"),
-            nb::arg("tx"), nb::arg("ty"),
+            nb::arg("tx"), nb::arg("ty"), nb::arg("slack") = 0.0,
             "The 2R triangle Rot(d1) (a + Rot(d2) b) = t: (code, (2, 2) rows psi <= 0 and "
-            ">= 0, columns d1, d2 in rad); code REGULAR, NEAR or FOLD.");
+            ">= 0, columns d1, d2 in rad); code REGULAR, NEAR or FOLD. slack (m): a nearby "
+            "arm's triangle, its branches straddling the fold within it.");
     sub.def("slide_link", &slide_link, nb::arg("ux"), nb::arg("uy"), nb::arg("bx"),
             nb::arg("by"), nb::arg("tx"), nb::arg("ty"),
             "A slide then a link s u + Rot(d) b = t: (merging, (2, 2) rows link forward and "

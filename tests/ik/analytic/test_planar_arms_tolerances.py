@@ -79,6 +79,38 @@ def test_two_link_near_within_merge_tol_of_the_first_axis(factor: float, inside:
     assert (code == _core.planar.NEAR) is inside
 
 
+@pytest.mark.parametrize(
+    ("factor", "inside"), [(0.1, True), (10.0, False), (-0.5, True), (-2.0, False)]
+)
+@pytest.mark.parametrize("folded", [False, True])
+def test_two_link_straddles_the_fold_within_its_slack(
+    factor: float, inside: bool, folded: bool
+) -> None:
+    """A nearby arm's triangle (slack 1e-9 m): where 4 L1 L2 sin²(ψ/2) (stretched) or
+    cos²(ψ/2) (folded) is below slack (2 r + slack), the real arm's branches may
+    lie on either side of the fold, so the rows are raised by that much, one on each
+    side (beyond the reach by half of it too: factor -0.5); above it, or beyond the reach
+    by more (-2), the plain rows (there the least-squares fold, twice)."""
+    L1, L2, slack = 0.6, 0.4, 1e-9
+    edge = abs(L1 - L2) if folded else L1 + L2
+    margin = slack * (2.0 * edge + slack)  # (2 r + slack) slack, r at the fold
+    r = math.sqrt(edge * edge + (factor if folded else -factor) * margin)
+    _, plain = _core.planar.two_link(L1, 0.0, L2, 0.0, r, 0.0)
+    _, rows = _core.planar.two_link(L1, 0.0, L2, 0.0, r, 0.0, slack)
+    fold = math.pi if folded else 0.0
+    psi = np.abs(np.angle(np.exp(1j * (rows[:, 1] - fold))))  # distance from the fold
+    if not inside:
+        np.testing.assert_array_equal(rows, plain)
+        return
+    plain_psi = np.abs(np.angle(np.exp(1j * (plain[:, 1] - fold))))
+    assert (psi > plain_psi).all()  # farther from the fold than the plain rows
+    assert rows[0, 1] != rows[1, 1]  # one on each side
+    # S (or C) raised by the margin: 4 L1 L2 sin²(|ψ - fold| / 2) = (factor + 1) margin
+    np.testing.assert_allclose(
+        4.0 * L1 * L2 * np.sin(psi / 2) ** 2, (factor + 1) * margin, rtol=1e-4
+    )
+
+
 @pytest.mark.parametrize(("factor", "inside"), FACTORS)
 def test_slide_link_merges_within_merge_tol(factor: float, inside: bool) -> None:
     """slide_link merges when the link is within MERGE_TOL of across the slide."""

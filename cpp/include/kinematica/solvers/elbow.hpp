@@ -123,6 +123,12 @@ KM_HD inline void position(const ElbowParams& P, const Vec3& v, const Height& ab
     double roots[2];
     const double rho = std::hypot(abe.A, abe.B);
     const double tol = triangle::SINGULAR_TOL * P.scale;
+    // an arm whose axes 2 and 3 are parallel within tolerance only puts the tool up to its
+    // slack from where the exact arm does: the height equation and the triangle are known
+    // to within it, and roots merging within it are proposed apart, one on each side (as
+    // far as the slack allows: from there the repair carries each to the solution on its
+    // side), here and in two_link
+    const double slack = P.slack > tol ? P.slack : 0.0;
     if (rho <= tol) {  // on axis 1: any q1 or none
         roots[0] = 0.0;
         roots[1] = PI;
@@ -131,7 +137,10 @@ KM_HD inline void position(const ElbowParams& P, const Vec3& v, const Height& ab
             info.set_free(0);
         }
     } else {  // least-squares roots when out of reach
-        trig_linear(abe.A / rho, abe.B / rho, abe.e / rho, roots);
+        const double e = slack > 0.0 && rho - std::fabs(abe.e) < slack
+                             ? abe.e - std::copysign(slack, abe.e)  // straddle the merge
+                             : abe.e;
+        trig_linear(abe.A / rho, abe.B / rho, e / rho, roots);
         const double c = abe.e / rho;  // the roots merge where |c| -> 1; q1 is uncertain where rho -> 0
         if ((1.0 - c) * (1.0 + c) < MERGE_TOL * MERGE_TOL || rho < MERGE_TOL * P.scale) {
             info.near = true;
@@ -144,7 +153,8 @@ KM_HD inline void position(const ElbowParams& P, const Vec3& v, const Height& ab
         const double theta = shoulder == 0 ? roots[first] : roots[1 - first];
         const Placed pl = place(P, theta, v);
         double br[2][2];
-        const Code code = triangle::two_link(P.a[0], P.a[1], P.b[0], P.b[1], pl.t[0], pl.t[1], br);
+        const Code code =
+            triangle::two_link(P.a[0], P.a[1], P.b[0], P.b[1], pl.t[0], pl.t[1], br, slack);
         if (code == Code::fold) {
             info.singular = true;
             info.set_free(1);

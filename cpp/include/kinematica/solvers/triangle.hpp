@@ -57,15 +57,29 @@ KM_HD inline double turn(double ax, double ay, double bx, double by) {
 //! SINGULAR_TOL of the reach), where every d1 solves; near when the branches merge (ψ
 //! within MERGE_TOL of 0 or π, at or beyond the reach's edges) or t is within MERGE_TOL
 //! of the reach from the first axis; else regular.
+//!
+//! slack (m, default 0): the triangle is a nearby arm's, which puts the point up to slack
+//! from where this one does (its axes parallel only within tolerance). Its S and C are
+//! then known only to within (2 r + slack) slack (r² moves by at most that): where either
+//! is below it, the real arm's two branches may straddle the fold however this triangle
+//! sees it (reached twice, or not at all). The rows are then the branches with S (or C)
+//! raised by that much, one on each side of the fold and at least as far from it as the
+//! real arm's: a Gauss-Newton repair on the real arm carries each to the solution on its
+//! side (from outside a fold's double root Newton's iterates stay outside, on their
+//! side). The code is this triangle's.
 KM_HD inline Code two_link(double ax, double ay, double bx, double by, double tx, double ty,
-                           double (&out)[2][2]) {
+                           double (&out)[2][2], double slack = 0.0) {
     const double L1 = std::hypot(ax, ay);
     const double L2 = std::hypot(bx, by);
     const double r = std::hypot(tx, ty);
     const double far = L1 + L2;
     const double near = std::fabs(L1 - L2);
-    const double S = (far - r) * (far + r);    // 4 L1 L2 sin²(ψ/2)
-    const double C = (r - near) * (r + near);  // 4 L1 L2 cos²(ψ/2)
+    const double S0 = (far - r) * (far + r);    // 4 L1 L2 sin²(ψ/2)
+    const double C0 = (r - near) * (r + near);  // 4 L1 L2 cos²(ψ/2)
+    const double margin = slack * (2.0 * r + slack);
+    const bool straddle = margin > 0.0 && (S0 < margin || C0 < margin);
+    const double S = straddle && S0 < margin ? S0 + margin : S0;
+    const double C = straddle && C0 < margin ? C0 + margin : C0;
     double psi, vx, vy;
     if (S <= 0.0) {  // stretched (a double root) or beyond
         psi = 0.0;
@@ -79,8 +93,13 @@ KM_HD inline Code two_link(double ax, double ay, double bx, double by, double tx
         const double sS = std::sqrt(S);
         const double sC = std::sqrt(C);
         psi = 2.0 * std::atan2(sS, sC);
-        vx = (r * r + (L1 - L2) * far) / (2.0 * L1);  // the point in link 1's frame
-        vy = sS * sC / (2.0 * L1);                     // the triangle's height over link 1
+        if (straddle) {  // S + C is no longer 4 L1 L2: the point of the raised ψ
+            vx = L1 + L2 * std::cos(psi);
+            vy = L2 * std::sin(psi);
+        } else {
+            vx = (r * r + (L1 - L2) * far) / (2.0 * L1);  // the point in link 1's frame
+            vy = sS * sC / (2.0 * L1);                     // the triangle's height over link 1
+        }
     }
     const double a0 = std::atan2(ay, ax);
     const double psi0 = turn(ax, ay, bx, by);
@@ -92,7 +111,7 @@ KM_HD inline Code two_link(double ax, double ay, double bx, double by, double tx
     const double tol = SINGULAR_TOL * far;
     if (r <= tol && near <= tol) return Code::fold;
     const double merge = MERGE_TOL * MERGE_TOL * L1 * L2;  // 4 L1 L2 sin²(MERGE_TOL / 2)
-    return std::min(S, C) < merge || r < MERGE_TOL * far ? Code::near : Code::regular;
+    return std::min(S0, C0) < merge || r < MERGE_TOL * far ? Code::near : Code::regular;
 }
 
 //! A slide then a link: s, d with s u + Rot(d) b = t (t from the axis at s = 0).
