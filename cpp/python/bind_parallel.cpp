@@ -142,6 +142,7 @@ void bind_parallel(nb::module_& m) {
     sub.attr("DOUBLE_ROOT_TOL") = km::parallel::DOUBLE_ROOT_TOL;
     sub.attr("NEWTON_STEPS") = km::parallel::NEWTON_STEPS;
     sub.attr("NEWTON_QUIET") = km::parallel::NEWTON_QUIET;
+    sub.attr("FREE_Q1_SAMPLES") = km::parallel::FREE_Q1_SAMPLES;
 
     sub.def("roots", &roots_of, nb::arg("a"), nb::arg("b"), nb::arg("c"), nb::arg("size"),
             "(found, θ rising, θ falling, near) of a cos θ + b sin θ = c: a double root "

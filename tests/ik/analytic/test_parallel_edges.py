@@ -392,6 +392,46 @@ def test_quartic_vanishing_is_singular_with_q1_free() -> None:
     assert_reaches(robot, res, robot.fk(q))
 
 
+#: The zero-offset arm with a wrist twist of 1 rad: k·R5 h6 spans [-sin 1, sin 1] only, so
+#: with the wrist point on axis 1, q5 has a root over part of q1's turn only.
+NARROW_WRIST_ROWS = [*ZERO_OFFSET_ROWS[:4], Revolute(d=0.1, alpha=-1.0), ZERO_OFFSET_ROWS[5]]
+
+
+def wrist_point_on_axis_1(rows: list[Revolute], q: FloatArray) -> FloatArray:
+    """q with q2, q3, q4 moved (Newton) to put the wrist point (frame 5's origin of the
+    first five rows) on axis 1, the base z axis."""
+    first5 = Robot.from_dh(rows[:5])
+    q = q.copy()
+    for _ in range(40):
+        J = first5.jacobian(q[:5])[:2, 1:4]
+        q[1:4] -= np.linalg.pinv(J) @ first5.fk(q[:5])[:2, 3]
+    assert np.abs(first5.fk(q[:5])[:2, 3]).max() < 1e-15
+    return q
+
+
+@pytest.mark.parametrize("where", ["wrist point on axis 1", "axes 5, 6 parallel to axis 1"])
+def test_a_continuum_in_q1_is_represented_where_the_other_joints_follow(where: str) -> None:
+    """Where q1 turns freely, the continuum spans an arc of q1 only: the other joints
+    follow it while q5 has a root and the triangle closes. With the wrist point on axis
+    1 of an arm whose wrist cannot point everywhere (NARROW_WRIST_ROWS), or axes 5 and
+    6 parallel to axis 1 (the UR5 with α5 = 0, a5 = 6 cm: q2 + q3 + q4 = 0), q1 = 0 (the
+    middle of its limits) may lie off the arc: those poses made by FK were answered
+    "unreachable" (issue 32, item 4a: 3 and 18 of these 20). The representative is
+    now a q1 of the arc (FREE_Q1_SAMPLES)."""
+    rng = np.random.default_rng(60)
+    robot = Robot.from_dh(NARROW_WRIST_ROWS) if where.startswith("wrist") else UR5_P56
+    for _ in range(20):
+        q = rng.uniform(-PI, PI, 6)
+        if where.startswith("wrist"):
+            q = wrist_point_on_axis_1(NARROW_WRIST_ROWS, q)
+        else:
+            q[3] = -(q[1] + q[2])
+        T = robot.fk(q)
+        res = one(robot, T)
+        assert res.status == "singular" and 0 in res.free_joints, (q.tolist(), res.message)
+        assert_reaches(robot, res, T)
+
+
 # ----------------------------------------------------- issue 13, item 4 (UR type)
 def test_issue13_item4_equal_links_folded_is_singular() -> None:
     """a2 = a3, folded at q3 = 0 (joint 3 offset π): was ``unreachable``; q2 is free."""

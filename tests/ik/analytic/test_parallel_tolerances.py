@@ -15,13 +15,17 @@ import math
 
 import numpy as np
 import pytest
+from numpy.typing import NDArray
 from support import parallel_arms
 
 from kinematica import _core
+from kinematica.dh import Revolute
 from kinematica.ik.analytic.parallel import pack
 from kinematica.ik.structure import features
+from kinematica.robot import Robot
 
 parallel = _core.parallel
+FloatArray = NDArray[np.float64]
 
 # The documented values, one per constant (cpp/include/kinematica/solvers/parallel_*.hpp).
 CONTINUUM_TOL = 1e-12
@@ -29,6 +33,7 @@ NEAR_TOL = 1e-6
 DOUBLE_ROOT_TOL = 1e-14
 NEWTON_QUIET = 1e-14
 NEWTON_STEPS = 50
+FREE_Q1_SAMPLES = 64
 TRIG_TOL = 1e-10  # geometry.hpp: a miss below it is a root, above it near
 
 #: A case a factor 10 inside a tolerance, and one a factor 10 outside it.
@@ -41,6 +46,7 @@ def test_the_binding_exposes_the_documented_values() -> None:
     assert parallel.DOUBLE_ROOT_TOL == DOUBLE_ROOT_TOL
     assert parallel.NEWTON_QUIET == NEWTON_QUIET
     assert parallel.NEWTON_STEPS == NEWTON_STEPS
+    assert parallel.FREE_Q1_SAMPLES == FREE_Q1_SAMPLES
 
 
 # --- parallel_pairs.hpp: a cos θ + b sin θ = c (q1, or q5 of parallel axes 5 and 6) ---
@@ -219,6 +225,66 @@ def test_newton_stops_where_there_is_no_root() -> None:
     *_, res, evaluations, _c1, _s1, _c5, _s5 = parallel.newton(P, x6, L1, L2, 0.3, 0.2)
     assert res > 1.0
     assert 1 <= evaluations < NEWTON_STEPS
+
+
+# --- parallel.hpp: the representative of a continuum in which q1 turns ----------------
+
+
+def narrow_arc_arm(rep: float) -> Robot:
+    """The UR5 with axes 5 and 6 parallel 1 cm apart (α5 = 0, a5 = 0.01), q1's limits
+    about ``rep`` (the q1 a continuum in q1 is first represented at: their middle)."""
+    rows = [*parallel_arms.UR5_ROWS[:4], Revolute(d=0.09465, a=0.01), parallel_arms.UR5_ROWS[5]]
+    rows[0] = Revolute(d=0.089159, alpha=math.pi / 2, qlim=(rep - 1.0, rep + 1.0))
+    return Robot.from_dh(rows)
+
+
+#: Axes 5 and 6 parallel to axis 1 (q2 + q3 + q4 = 0): (1) holds for every q1, and (2)
+#: gives q5 while |its left side| <= its amplitude (about a5 = 1 cm): an arc of q1.
+NARROW_Q = np.array([0.4, -1.2, 1.5, -0.3, 0.8, -0.6])
+
+
+def arc_of_q1(robot: Robot, q: FloatArray) -> tuple[float, float]:
+    """The arc of q1 about q[0] over which (2), k1·(G(p6) - p1) = D2 cos q5 + E2 sin q5 +
+    F2, has a root q5 (the arm's equation (2): parallel_pairs.hpp), found on a fine grid."""
+    packed = pack(robot.chain, features(robot.chain))
+    assert packed is not None and packed[1] == parallel.Mode.parallel
+    P = packed[0]
+    G = robot.fk(q) @ np.linalg.inv(np.asarray(P.home))
+    w6 = G[:3, :3] @ np.asarray(P.p6) + G[:3, 3] - np.asarray(P.p1)
+    a, b, c = (float(np.asarray(v) @ w6) for v in (P.kperp, P.hk, P.kpar))
+    x = q[0] + np.linspace(-0.5, 0.5, 1_000_001)
+    ok = np.abs(a * np.cos(x) + b * np.sin(x) + c - P.F2) <= math.hypot(P.D2, P.E2)
+    mid = len(x) // 2
+    assert ok[mid]
+    lo = mid - int(np.argmin(ok[mid::-1]))
+    hi = mid + int(np.argmin(ok[mid:]))
+    return float(x[lo + 1]), float(x[hi - 1])
+
+
+@pytest.mark.parametrize("inside", [True, False])
+def test_free_q1_samples_steps_over_an_arc_shorter_than_its_step(inside: bool) -> None:
+    """FREE_Q1_SAMPLES: a continuum in q1 is represented at the first of q1rep, q1rep ±
+    2π/64, ± 2·2π/64, ... that the other joints follow. Its arc here is 0.038 rad long,
+    shorter than the step (0.098 rad). With q1rep a step and 0.005 rad beyond the arc's
+    middle, the step back lands in it (inside); with q1rep half a step from the middle,
+    the grid's points fall 0.049 rad either side of the middle, past the arc's ends: the
+    target is not found (and near, never unreachable). A grid a thousand times finer
+    finds it there; one of q1rep alone does not, inside either."""
+    step = 2.0 * math.pi / FREE_Q1_SAMPLES
+    lo, hi = arc_of_q1(narrow_arc_arm(0.0), NARROW_Q)
+    assert 0.03 < hi - lo < step / 2  # between two grid points, either side of the middle
+    middle = 0.5 * (lo + hi)
+    rep = middle + step + 0.005 if inside else middle + step / 2
+    robot = narrow_arc_arm(rep)
+    T = robot.fk(NARROW_Q)
+    res = robot.ik(T, respect_limits=False)
+    if inside:
+        assert res.status == "singular" and 0 in res.free_joints
+        assert lo <= res.solutions[0, 0] <= hi
+        assert abs(res.solutions[0, 0] - (rep - step)) < 1e-12
+        parallel_arms.assert_reaches(robot, res, T)
+    else:
+        assert res.status == "not_found" and res.near_singular
 
 
 def test_internals_reject_bad_input() -> None:

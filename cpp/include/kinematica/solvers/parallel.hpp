@@ -17,9 +17,12 @@
 //   q4 (axes 2, 3, 4, 6 all parallel). The representative q6 puts axis 4 at mid-reach
 //   of the triangle;
 // * axis 4 on axis 2 with equal links (the folded elbow): q2 turns with q4;
-// * equations (1) and (2) independent of q1 (with axes 5 and 6 meeting: the wrist point
-//   on axis 1 and no shoulder offset; apart: axis 6 along axis 1 through it, and the
-//   offsets such that q5 can meet both): q1 turns, the other joints following it.
+// * an equation independent of q1 (axes 5 and 6 meeting: (2), the wrist point on axis 1
+//   and no shoulder offset; parallel: (1), axis 6 parallel to axis 1; apart: both
+//   together, axis 6 along axis 1 through it, and the offsets such that q5 can meet
+//   both): q1 turns, the other joints following it over an arc of q1 (where q5 has a
+//   root and the triangle closes). The representative is the first q1 of q1rep and a
+//   grid (FREE_Q1_SAMPLES) that the other joints can follow.
 //
 // Elbow labels: "up" when the elbow (axis 3) lies on the side of the line
 // axis 2 -> axis 4 toward which h1 points.
@@ -238,12 +241,22 @@ KM_HD inline void ParallelParams::solve(const Pose& T, double* Q, SolverInfo& in
     gap = larger(larger(gap, miss / lip), 0.0);
     int count = 0;
     if (miss <= NEAR_TOL * size) {
-        Pairs pairs;
-        find_pairs(*this, x6, w6, pairs, info);
-        for (int j = 0; j < 4; ++j) {
-            if (pairs.kind[j] != PairKind::none) {
-                count += finish(*this, G, pairs.pair[j], pairs.kind[j], j, Q, info);
+        // Where q1 turns freely, the first q1 of FREE_Q1_SAMPLES at which the other
+        // joints can follow it (q1rep when they can there); info as on entry for each.
+        const SolverInfo entry = info;
+        for (int j = 0; j < FREE_Q1_SAMPLES; ++j) {
+            info = entry;
+            Pairs pairs;
+            find_pairs(*this, x6, w6, free_q1_sample(q1rep, j), pairs, info);
+            for (int m = 0; m < 4; ++m) {
+                if (pairs.kind[m] != PairKind::none) {
+                    count += finish(*this, G, pairs.pair[m], pairs.kind[m], m, Q, info);
+                }
             }
+            if (count > 0 || !pairs.free_q1) break;
+            // on a continuum none of whose q1 tried so far the other joints can follow:
+            // not proven unreachable (an arc shorter than the step)
+            info.near = true;
         }
     }
     if (count == 0) {

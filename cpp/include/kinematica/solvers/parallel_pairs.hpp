@@ -110,13 +110,15 @@ KM_HD inline PairKind first(double a, double b, double rhs, double size, double 
     return roots(a, b, rhs, size, out, info) ? PairKind::root : PairKind::none;
 }
 
-//! Axes 5 and 6 meet: q1 from (2) (shoulder right, left), q5 from (1) (no-flip, flip).
+//! Axes 5 and 6 meet: q1 from (2) (shoulder right, left), q5 from (1) (no-flip, flip);
+//! rep is the q1 given where q1 is free.
 KM_HD inline void pairs_meet(const ParallelParams& P, const Vec3& x6, const Sides& L2,
-                             Pairs& pairs, SolverInfo& info) {
+                             double rep, Pairs& pairs, SolverInfo& info) {
     const double size = P.scale;
     double q1s[2];
-    const PairKind kind = first(L2.a, L2.b, P.F2 - L2.c, size, P.q1rep, q1s, info);
+    const PairKind kind = first(L2.a, L2.b, P.F2 - L2.c, size, rep, q1s, info);
     if (kind == PairKind::none) return;
+    pairs.free_q1 = kind == PairKind::free_q1;
     for (int i = 0; i < 2; ++i) {
         const double q1 = q1s[i];
         if (std::isnan(q1)) continue;
@@ -135,13 +137,15 @@ KM_HD inline void pairs_meet(const ParallelParams& P, const Vec3& x6, const Side
     }
 }
 
-//! Axes 5 and 6 parallel: q1 from (1), then q5 from (2).
+//! Axes 5 and 6 parallel: q1 from (1), then q5 from (2); rep is the q1 given where q1
+//! is free.
 KM_HD inline void pairs_parallel(const ParallelParams& P, const Sides& L1, const Sides& L2,
-                                 Pairs& pairs, SolverInfo& info) {
+                                 double rep, Pairs& pairs, SolverInfo& info) {
     double q1s[2];
     double q5s[2];
-    const PairKind kind = first(L1.a, L1.b, P.F1 - L1.c, 1.0, P.q1rep, q1s, info);
+    const PairKind kind = first(L1.a, L1.b, P.F1 - L1.c, 1.0, rep, q1s, info);
     if (kind == PairKind::none) return;
+    pairs.free_q1 = kind == PairKind::free_q1;
     const double D2 = P.D2, E2 = P.E2;
     const double size = P.scale;
     for (int i = 0; i < 2; ++i) {
@@ -178,23 +182,25 @@ KM_HD inline void sort_pairs(Pairs& pairs) {
 
 //! Every (q1, q5) of a target, by the arm's mode.
 //!
-//! x6 = R_G h6 (axis 6's direction in the target), w6 = G(p6) - p1. The pairs: q1, q5,
-//! their cosines and sines (ParallelMode::meet: pair 2 shoulder + wrist; otherwise by
-//! increasing q1), and each one's kind; info.near is set here.
+//! x6 = R_G h6 (axis 6's direction in the target), w6 = G(p6) - p1, rep the q1 given
+//! where q1 is free. The pairs: q1, q5, their cosines and sines (ParallelMode::meet: pair
+//! 2 shoulder + wrist; otherwise by increasing q1), and each one's kind; info.near is set
+//! here.
 KM_HD inline void find_pairs(const ParallelParams& P, const Vec3& x6, const Vec3& w6,
-                             Pairs& pairs, SolverInfo& info) {
+                             double rep, Pairs& pairs, SolverInfo& info) {
     // a, b, c of (1) and (2): k1·y = a cos q1 + b sin q1 + c
     const Sides L1{dot(P.kperp, x6), dot(P.hk, x6), dot(P.kpar, x6)};
     const Sides L2{dot(P.kperp, w6), dot(P.hk, w6), dot(P.kpar, w6)};
     for (int i = 0; i < 4; ++i) pairs.kind[i] = PairKind::none;
+    pairs.free_q1 = false;
     if (P.mode == ParallelMode::meet) {
-        pairs_meet(P, x6, L2, pairs, info);
+        pairs_meet(P, x6, L2, rep, pairs, info);
         return;
     }
     if (P.mode == ParallelMode::parallel) {
-        pairs_parallel(P, L1, L2, pairs, info);
+        pairs_parallel(P, L1, L2, rep, pairs, info);
     } else {
-        pairs_general(P, x6, L1, L2, pairs, info);
+        pairs_general(P, x6, L1, L2, rep, pairs, info);
     }
     sort_pairs(pairs);
 }

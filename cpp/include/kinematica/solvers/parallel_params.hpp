@@ -103,6 +103,26 @@ constexpr double NEAR_TOL = 1e-6;
 //! apart, which the other joints amplify past the check's deduplication.
 constexpr double DOUBLE_ROOT_TOL = 1e-14;
 
+//! Where q1 turns freely, the q1 values tried as the continuum's representative: q1rep,
+//! then q1rep ± 2π j / FREE_Q1_SAMPLES (j = 1, 2, ...), nearest first, until the other
+//! joints can follow (q5 has a root, the triangle closes). The continuum through a
+//! solution spans an arc of q1 that ends where q5 or the elbow reaches a double root, and
+//! one q1 of it is enough; q1rep alone may lie off the arc (on an arm whose range of
+//! k·R5 h6 is less than [-1, 1], or with axes 5 and 6 apart). An arc shorter than the
+//! step, 2π / FREE_Q1_SAMPLES (0.098 rad), may be stepped over: the target is then at
+//! once on a continuum and within about that of its end, and is marked near (not found,
+//! never unreachable).
+constexpr int FREE_Q1_SAMPLES = 64;
+
+//! The j-th q1 tried as the representative of a continuum in which q1 turns freely
+//! (j = 0 .. FREE_Q1_SAMPLES - 1): rep, rep + δ, rep - δ, rep + 2δ, ... (δ = 2π /
+//! FREE_Q1_SAMPLES), wrapped.
+KM_HD inline double free_q1_sample(double rep, int j) {
+    const int steps = (j + 1) / 2;
+    const double turn = (j % 2 == 1 ? 1.0 : -1.0) * steps * (TWO_PI / FREE_Q1_SAMPLES);
+    return j == 0 ? rep : wrap(rep + turn);
+}
+
 //! What a pair is: none, a root, or a representative of a continuum in which q1 turns
 //! freely (the other joints following it).
 enum class PairKind : int { none = 0, root = 1, free_q1 = 2 };
@@ -117,6 +137,9 @@ struct Pair {
 struct Pairs {
     Pair pair[4];
     PairKind kind[4] = {PairKind::none, PairKind::none, PairKind::none, PairKind::none};
+    //! q1 turns freely (an equation independent of q1), whether or not the other
+    //! equation has a root at the representative q1 tried
+    bool free_q1 = false;
 };
 
 //! A direction y seen by (1) or (2): k1·y = a cos q1 + b sin q1 + c.

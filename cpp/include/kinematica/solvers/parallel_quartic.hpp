@@ -152,9 +152,10 @@ KM_HD inline void polish(const ParallelParams& P, const Vec3& x6, const Sides& L
 
 //! Axes 5 and 6 apart: the quartic of subproblem 6, its roots polished by Newton.
 //!
-//! (1) and (2) read k1·y = a cos q1 + b sin q1 + c with L1, L2 = (a, b, c).
+//! (1) and (2) read k1·y = a cos q1 + b sin q1 + c with L1, L2 = (a, b, c); rep is the q1
+//! given where every q1 solves.
 KM_HD inline void pairs_general(const ParallelParams& P, const Vec3& x6, const Sides& L1,
-                                const Sides& L2, Pairs& pairs, SolverInfo& info) {
+                                const Sides& L2, double rep, Pairs& pairs, SolverInfo& info) {
     const double m0 = P.minv[0], m1 = P.minv[1], m2 = P.minv[2], m3 = P.minv[3];
     const double P00 = m0 * L1.a + m1 * L2.a;
     const double P01 = m0 * L1.b + m1 * L2.b;
@@ -177,11 +178,12 @@ KM_HD inline void pairs_general(const ParallelParams& P, const Vec3& x6, const S
         }
     }
     if (worst <= CONTINUUM_TOL * size) {  // every q1 solves, each with one q5
-        const double q1 = P.q1rep;
+        const double q1 = rep;
         const double u = P00 * std::cos(q1) + P01 * std::sin(q1) + P02;
         const double v = P10 * std::cos(q1) + P11 * std::sin(q1) + P12;
         store_pair(pairs.pair[0], q1, std::atan2(v, u));
         pairs.kind[0] = PairKind::free_q1;
+        pairs.free_q1 = true;
         return;
     }
     const double phi0 = far - PI;
