@@ -41,9 +41,8 @@ void set_matrix(double (&v)[R][K], nb::handle src, const char* name) {
     Py_DECREF(a);
 }
 
-//! u (12,): the header's null vector of M (12, 12).
-F64 null_vector_of(nb::handle M) {
-    kg::Matrix12 A[3];
+//! A[0] = M (12, 12), A[1] = A[2] = 0: the quadratic M(x) whose value at x = 0 is M.
+void constant_quadratic(nb::handle M, kg::Matrix12 (&A)[3]) {
     PyArrayObject* a = small::exact_array(M, "M", NPY_DOUBLE, kg::SIZE, kg::SIZE);
     const auto* d = static_cast<const double*>(PyArray_DATA(a));
     for (int i = 0; i < kg::SIZE; ++i)
@@ -51,6 +50,12 @@ F64 null_vector_of(nb::handle M) {
     Py_DECREF(a);
     A[1].setZero();
     A[2].setZero();
+}
+
+//! u (12,): the header's null vector of M (12, 12).
+F64 null_vector_of(nb::handle M) {
+    kg::Matrix12 A[3];
+    constant_quadratic(M, A);
     const kg::Vector12 u = kg::General6RParams::null_vector(A, 0.0);  // M(0) = A0
     double* out;
     F64 ua = new_f64({kg::SIZE}, out);
@@ -62,13 +67,7 @@ F64 null_vector_of(nb::handle M) {
 //! its matrix there (null space two-dimensional).
 F64 null_pair_of(nb::handle M) {
     kg::Matrix12 A[3];
-    PyArrayObject* a = small::exact_array(M, "M", NPY_DOUBLE, kg::SIZE, kg::SIZE);
-    const auto* d = static_cast<const double*>(PyArray_DATA(a));
-    for (int i = 0; i < kg::SIZE; ++i)
-        for (int j = 0; j < kg::SIZE; ++j) A[0](i, j) = d[i * kg::SIZE + j];
-    Py_DECREF(a);
-    A[1].setZero();
-    A[2].setZero();
+    constant_quadratic(M, A);
     kg::Vector12 u[2];
     const int count = kg::General6RParams::null_pair(A, 0.0, u);  // M(0) = A0
     double* out;
