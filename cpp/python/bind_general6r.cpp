@@ -249,13 +249,13 @@ nb::tuple accuracy_of(const General6RParams& p, const km::Chain& chain) {
     return nb::make_tuple(score, worst);
 }
 
-//! (params or None, chosen, scored, refined): the builder's choice and what it did.
+//! (params or None, chosen, scored, refined, probed): the builder's choice and what it did.
 nb::tuple build_of(const km::Chain& chain) {
     General6RParams p;
     kg::BuildTrace t;
     const bool found = kg::build(chain, p, &t);
     nb::object params = found ? nb::cast(std::move(p)) : nb::object(nb::none());
-    return nb::make_tuple(params, t.chosen, t.scored, t.refined);
+    return nb::make_tuple(params, t.chosen, t.scored, t.refined, t.probed);
 }
 
 }  // namespace
@@ -331,9 +331,10 @@ void bind_general6r(nb::module_& m) {
             "(score, worst): the mean log10 of the raw probe distances clipped to [1e-16, 1], "
             "and the largest.");
     sub.def("build", &build_of, nb::arg("chain"),
-            "(params or None, chosen, scored, refined): the general 6R solver of a 6R chain "
-            "(general_6r_build.hpp), the labelling kept (an index of LABELLINGS, -1: none), "
-            "how many were scored and how many refined probe passes ran.");
+            "(params or None, chosen, scored, refined, probed): the general 6R solver of a 6R "
+            "chain (general_6r_build.hpp), the labelling kept (an index of LABELLINGS, -1: "
+            "none), how many were scored, how many refined probe passes ran and how many raw "
+            "probe poses were solved.");
     sub.def("left_side", &left_side_of, nb::arg("L1"), nb::arg("L2"),
             "(c0 (14,), Q (14, 8)): the quantities of the line Rz(q'1) L1 Rz(q'2) L2 z as "
             "c0 + Q S2, S2 = (c2, s2, c1, c1 c2, c1 s2, s1, s1 c2, s1 s2) of q'1, q'2.");

@@ -206,13 +206,34 @@ def test_a_labelling_accurate_to_round_off_is_kept_without_scoring_the_others() 
         first = g6.labelling(robot.chain, 0, False)
         if first is not None and G.accuracy(first[0], robot.chain.core)[0] <= acc - 1.0:
             break
-    params, chosen, scored, refined = G.build(robot.chain.core)
-    assert params is not None and (chosen, scored) == (0, 1) and refined <= 1
+    params, chosen, scored, refined, probed = G.build(robot.chain.core)
+    assert params is not None and (chosen, scored, probed) == (0, 1, g6.PROBES) and refined <= 1
     # an arm whose constant labellings are not accurate (a UR5, every twist 1e-3 off):
     # all twelve scored, the last (T on the left, reversed) accurate to round-off and kept
     rows = [Revolute(d=d, a=a, alpha=al + 1e-3) for d, a, al in g6._UR5]
-    params, chosen, scored, _ = G.build(km.Robot.from_dh(rows).chain.core)
+    params, chosen, scored, _, probed = G.build(km.Robot.from_dh(rows).chain.core)
     assert params is not None and params.per_target and scored == chosen + 1 > 8
+    assert probed < scored * g6.PROBES  # the inaccurate ones given up on early
+
+
+def test_scoring_gives_up_only_where_the_probes_left_cannot_make_a_labelling_accurate() -> None:
+    # A FANUC CRX: eleven of its twelve labellings have det M = 0 for every target
+    # (candidates ~1 rad off every probe). Each is given up on after the fewest probes that
+    # prove its mean log10 distance above log10(ACCURATE) even were the rest at 1e-16,
+    # and the twelfth (T on the left, reversed) kept: 11 x 3 + 8 raw probe solves, not 96.
+    robot = km.load(Path(__file__).parents[2] / "data" / "makers" / "fanuc_crx10ia.urdf")
+    params, chosen, scored, refined, probed = G.build(robot.chain.core)
+    assert params is not None and (chosen, scored, refined) == (11, 12, 0)
+    assert probed == 11 * 3 + g6.PROBES
+    # the labelling kept is the one full scoring ranks first (the reference: every
+    # labelling scored on all probes)
+    chain = robot.chain.core
+    scores = []
+    for which in range(12):
+        built = G.labelling(chain, which)
+        if built is not None:
+            scores.append((G.accuracy(built[0], chain)[0], which))
+    assert min(scores)[1] == chosen and min(scores)[0] <= math.log10(g6.ACCURATE)
 
 
 def test_labellings_within_probe_tol_on_every_probe_pass_the_refined_probes_too() -> None:

@@ -92,6 +92,7 @@ struct BuildTrace {
     int chosen = -1;   //!< the labelling kept (an index of LABELLING_*), -1: none
     int scored = 0;    //!< labellings whose probes were scored
     int refined = 0;   //!< refined probe passes run
+    int probed = 0;    //!< raw probe poses solved in scoring
 };
 
 namespace detail {
@@ -207,39 +208,63 @@ inline bool labelling(const Loop& loop, int which, General6RParams& p, double* r
     return true;
 }
 
+namespace detail {
+
+//! How far (rad, the largest joint difference modulo 2π) probe pose i's configuration is
+//! from the nearest candidate of P (INF: none).
+inline double probe_one(const General6RParams& P, const ChainView& ch, int i) {
+    double Q[SLOTS * 6], c[6], s[6];
+    const Pose T = fk(ch, PROBE_CONFIGS[i], c, s);
+    SolverInfo info;
+    P.solve(T, Q, info);
+    double best = INF;
+    for (int r = 0; r < SLOTS; ++r) {
+        if (!std::isfinite(Q[r * 6])) continue;
+        double d = 0.0;
+        for (int k = 0; k < 6; ++k) d = std::fmax(d, std::fabs(wrap(Q[r * 6 + k] - PROBE_CONFIGS[i][k])));
+        best = std::fmin(best, d);
+    }
+    return best;
+}
+
+//! A probe distance's term of the score: log10 of it clipped to [1e-16, 1].
+inline double score_term(double d) { return std::log10(std::clamp(d, 1e-16, 1.0)); }
+
+}  // namespace detail
+
 //! Per probe pose, how far (rad, the largest joint difference modulo 2π) the configuration
 //! that made it is from the nearest candidate (INF: none), with Newton's step (`refine`) or
 //! as the eigenproblem gives them.
 inline void probe(const General6RParams& p, const ChainView& ch, bool refine, double* out) {
     General6RParams P = p;
     P.refine_misses = refine;
-    double Q[SLOTS * 6], c[6], s[6];
-    for (int i = 0; i < PROBES; ++i) {
-        const Pose T = fk(ch, PROBE_CONFIGS[i], c, s);
-        SolverInfo info;
-        P.solve(T, Q, info);
-        double best = INF;
-        for (int r = 0; r < SLOTS; ++r) {
-            if (!std::isfinite(Q[r * 6])) continue;
-            double d = 0.0;
-            for (int k = 0; k < 6; ++k) d = std::fmax(d, std::fabs(wrap(Q[r * 6 + k] - PROBE_CONFIGS[i][k])));
-            best = std::fmin(best, d);
-        }
-        out[i] = best;
-    }
+    for (int i = 0; i < PROBES; ++i) out[i] = detail::probe_one(P, ch, i);
 }
 
 //! (score, worst) of a labelling's raw candidates on the probes: the mean of log10 of the
 //! distances clipped to [1e-16, 1] (1: none found; lower is better), and the largest.
-inline void accuracy(const General6RParams& p, const ChainView& ch, double& score, double& worst) {
-    double d[PROBES];
-    probe(p, ch, false, d);
-    score = 0.0, worst = 0.0;
+//! With `give_up`, scoring stops (false) once the probes scored so far prove the score
+//! above log10(ACCURATE) whatever the others give (each at best -16): such a labelling
+//! cannot be kept at once, and is scored in full only if the ranking needs it. Degenerate
+//! labellings (det M ≡ 0: eleven of a FANUC CRX's twelve) then cost 3 probes, not 8.
+inline bool accuracy(const General6RParams& p, const ChainView& ch, double& score, double& worst,
+                     bool give_up = false, int* probed = nullptr) {
+    General6RParams P = p;
+    P.refine_misses = false;
+    double sum = 0.0;
+    worst = 0.0;
     for (int i = 0; i < PROBES; ++i) {
-        score += std::log10(std::clamp(d[i], 1e-16, 1.0));
-        worst = std::fmax(worst, d[i]);
+        const double d = detail::probe_one(P, ch, i);
+        if (probed != nullptr) ++*probed;
+        sum += detail::score_term(d);
+        worst = std::fmax(worst, d);
+        if (give_up && sum - 16.0 * (PROBES - 1 - i) > PROBES * std::log10(ACCURATE)) {
+            score = NaN;
+            return false;
+        }
     }
-    score /= PROBES;
+    score = sum / PROBES;
+    return true;
 }
 
 //! True when a labelling is kept without scoring the others: accurate to round-off, every
@@ -270,14 +295,18 @@ inline bool build(const Chain& chain, General6RParams& out, BuildTrace* trace = 
     for (int which = 0; which < LABELLINGS; ++which) {
         if (!labelling(loop, which, built[which])) continue;
         double worst;
-        accuracy(built[which], ch, score[which], worst);
+        const bool scored = accuracy(built[which], ch, score[which], worst, true, &t.probed);
         ++t.scored;
-        if (kept_at_once(score[which], worst, [&] { return passes(built[which]); })) {
+        if (scored && kept_at_once(score[which], worst, [&] { return passes(built[which]); })) {
             out = built[which];
             t.chosen = which;
             return true;
         }
         ranked[count++] = which;
+    }
+    for (int i = 0; i < count; ++i) {  // the labellings given up on, scored in full to rank
+        double worst;
+        if (std::isnan(score[ranked[i]])) accuracy(built[ranked[i]], ch, score[ranked[i]], worst, false, &t.probed);
     }
     std::stable_sort(ranked, ranked + count, [&](int a, int b) { return score[a] < score[b]; });
     for (int i = 0; i < count; ++i) {
