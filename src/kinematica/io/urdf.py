@@ -41,6 +41,8 @@ from kinematica.io.urdf_model import (
     dh_frames_note,
 )
 from kinematica.io.xacro import XACRO_HINT, expand_xacro
+from kinematica.io.xml_parse import local_name as _local
+from kinematica.io.xml_parse import parse_xml
 
 __all__ = ["URDF_MAX_BYTES", "parse_urdf", "read_urdf"]
 
@@ -68,12 +70,6 @@ URDF_MAX_ANGLE: Final = 1e4
 URDF_AXIS_SCALE: Final = 1e6
 
 
-def _local(tag: object) -> str:
-    """An element's tag without its ``{namespace}``."""
-    text = str(tag)
-    return text.rsplit("}", 1)[-1] if text.startswith("{") else text
-
-
 def _is_xacro(root: Any) -> str | None:
     """Why the tree needs xacro, or None when it is plain URDF."""
     for elem in root.iter():
@@ -88,35 +84,7 @@ def _is_xacro(root: Any) -> str | None:
 
 def _parse_xml(data: bytes, source: str | None) -> Any:
     """The XML root element, parsed by defusedxml (no entities, no external refs)."""
-    import defusedxml
-    from defusedxml import ElementTree as SafeET
-
-    def fail(message: str) -> RobotFileError:
-        return RobotFileError(message, path=source)
-
-    try:
-        return SafeET.fromstring(data, forbid_dtd=False, forbid_entities=True, forbid_external=True)
-    except defusedxml.EntitiesForbidden as exc:
-        raise fail(
-            f"the XML declares an entity ({exc.name!r}): refused, since entity expansion is how "
-            "XML bombs work and a URDF needs none"
-        ) from exc
-    except defusedxml.ExternalReferenceForbidden as exc:
-        raise fail(
-            f"the XML refers to an external resource ({exc.sysid or exc.pubid!r}): refused, "
-            "a URDF is read on its own"
-        ) from exc
-    except defusedxml.DefusedXmlException as exc:
-        raise fail(f"the XML uses a forbidden construct: {exc}") from exc
-    except SafeET.ParseError as exc:
-        line, column = getattr(exc, "position", (0, 0))
-        what = str(exc).split(":")[0]
-        if b"xacro:" in data:
-            hint = f"not valid XML ({what}): it looks like a xacro file; {XACRO_HINT}"
-            raise fail(hint) from exc
-        raise fail(f"not valid XML: {what} (line {line}, column {column + 1})") from exc
-    except RecursionError as exc:  # pragma: no cover - expat does not recurse; defensive
-        raise fail("the XML is nested too deeply") from exc
+    return parse_xml(data, source, hint=XACRO_HINT)
 
 
 def _numbers(

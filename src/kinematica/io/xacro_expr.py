@@ -1,0 +1,655 @@
+"""The expressions of xacro files (``${...}``, ``$(eval ...)``), evaluated safely.
+
+xacro evaluates ``${...}`` with Python's ``eval`` behind a thin guard, which a
+file can get around (``python.vars(python.type(f))['__globals__']`` reaches
+``os.system``). This module evaluates the part of Python that robot
+descriptions write, with a tokenizer, parser and evaluator of its own (no
+``eval``, no ``compile``, no attribute of any Python object is ever looked up):
+
+- numbers, strings in quotes, ``True``/``False``/``None``, lists ``[a, b]`` and
+  tuples ``(a, b)``, indexing ``x[i]``;
+- ``+ - * / // % **``, comparisons (chained), ``and``/``or``/``not``, ``in``,
+  and the conditional ``a if c else b``;
+- names: the file's properties (looked up by the caller), ``pi``, ``e``,
+  ``tau``, ``inf``, ``nan``;
+- calls of the functions of :data:`FUNCTIONS` (``sin``, ``radians``, ``min``,
+  ``int``, ``str``, ...; ``math.sin`` too) and those the caller adds
+  (``load_yaml``);
+- ``.key`` only on what ``load_yaml`` returned (a mapping read from YAML).
+
+Anything else (other attributes, ``__`` names, lambdas, comprehensions,
+unknown names or functions, string formatting with ``%``) raises
+:class:`XacroExpressionError` naming the expression and the column. Numbers,
+strings and lists are bounded (:data:`MAX_INT_BITS`, :data:`MAX_TEXT`), so an
+expression cannot ask for unbounded memory or time.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Any, Final
+
+from kinematica.errors import KinematicaError
+
+__all__ = [
+    "FUNCTIONS",
+    "MAX_DEPTH",
+    "MAX_INT_BITS",
+    "MAX_LENGTH",
+    "MAX_TEXT",
+    "Namespace",
+    "XacroExpressionError",
+    "YamlDict",
+    "YamlList",
+    "evaluate",
+    "flat_size",
+    "text_of",
+]
+
+#: Deepest nesting of brackets, operators and calls in one expression.
+MAX_DEPTH: Final = 64
+#: Longest expression, in characters (real ones are a few dozen).
+MAX_LENGTH: Final = 4000
+#: Largest integer, in bits, an expression may make (``2**1024`` and beyond are refused:
+#: ``9**9**9**9`` would otherwise compute for ever).
+MAX_INT_BITS: Final = 1024
+#: Longest string or list an expression may make, in characters or items.
+MAX_TEXT: Final = 1_000_000
+
+
+class XacroExpressionError(Exception):
+    """An expression that is malformed or asks for something refused.
+
+    Attributes:
+        reason: What is wrong.
+        text: The expression.
+        position: 0-based index in ``text`` of the offending part, or None.
+    """
+
+    def __init__(self, reason: str, text: str = "", position: int | None = None) -> None:
+        self.reason = reason
+        self.text = text
+        self.position = position
+        super().__init__(reason)
+
+    def describe(self) -> str:
+        """The reason with the expression and the column."""
+        where = f" at column {self.position + 1}" if self.position is not None else ""
+        shown = self.text if len(self.text) <= 100 else self.text[:97] + "..."
+        return f"{self.reason}{where} in the expression {shown!r}"
+
+
+class YamlDict(dict[Any, Any]):
+    """A mapping read by ``load_yaml``: its keys are reachable as ``.key`` too."""
+
+
+class YamlList(list[Any]):
+    """A list read by ``load_yaml``."""
+
+
+def flat_size(value: Any, limit: int = MAX_TEXT) -> int:
+    """Items and characters of ``value`` with nested lists counted as often as they appear.
+
+    Stops counting past ``limit`` (a list of a list of a list ... shared a thousand times at
+    each level is small in memory and huge as text).
+    """
+    total = 0
+    todo = [value]
+    while todo and total <= limit:
+        item = todo.pop()
+        if isinstance(item, str):
+            total += len(item)
+        elif isinstance(item, dict):
+            total += len(item)
+            todo.extend(item.keys())
+            todo.extend(item.values())
+        elif isinstance(item, list | tuple):
+            total += len(item)
+            todo.extend(item)
+        else:
+            total += 1
+    return total
+
+
+def text_of(value: Any) -> str:
+    """``str(value)``, refused when the text would be longer than :data:`MAX_TEXT`."""
+    if isinstance(value, list | tuple | dict) and flat_size(value) > MAX_TEXT:
+        raise ValueError(f"a value longer than {MAX_TEXT:,} as text: refused")
+    return str(value)
+
+
+def _check_size(value: Any) -> Any:
+    if isinstance(value, bool):
+        return value
+    if isinstance(value, int) and value.bit_length() > MAX_INT_BITS:
+        raise ValueError(f"an integer of more than {MAX_INT_BITS} bits: refused")
+    if isinstance(value, str | list | tuple) and flat_size(value) > MAX_TEXT:
+        raise ValueError(f"a string or list longer than {MAX_TEXT:,}: refused")
+    return value
+
+
+def _sum(*args: Any) -> Any:
+    if len(args) != 1 or not all(isinstance(v, int | float) for v in args[0]):
+        raise ValueError("sum() takes one list of numbers here")
+    return sum(args[0])
+
+
+def _power(a: Any, b: Any) -> Any:
+    if isinstance(a, int) and isinstance(b, int) and not isinstance(b, bool) and b > 0:
+        if abs(a) > 1 and b * max(a.bit_length() - 1, 1) > MAX_INT_BITS:
+            raise ValueError(f"{a}**{b} is larger than 2**{MAX_INT_BITS}: refused")
+    return a**b
+
+
+def _times(a: Any, b: Any) -> Any:
+    for seq, n in ((a, b), (b, a)):
+        if isinstance(seq, str | list | tuple) and isinstance(n, int):
+            if len(seq) * max(n, 0) > MAX_TEXT:
+                raise ValueError(f"a string or list longer than {MAX_TEXT:,}: refused")
+    return a * b
+
+
+def _modulo(a: Any, b: Any) -> Any:
+    if isinstance(a, str):
+        raise ValueError("string formatting with % is not supported")
+    return a % b
+
+
+_BINARY: Final[dict[str, Callable[[Any, Any], Any]]] = {
+    "+": lambda a, b: a + b,
+    "-": lambda a, b: a - b,
+    "*": _times,
+    "/": lambda a, b: a / b,
+    "//": lambda a, b: a // b,
+    "%": _modulo,
+    "**": _power,
+}
+
+_COMPARE: Final[dict[str, Callable[[Any, Any], bool]]] = {
+    "<": lambda a, b: a < b,
+    "<=": lambda a, b: a <= b,
+    ">": lambda a, b: a > b,
+    ">=": lambda a, b: a >= b,
+    "==": lambda a, b: a == b,
+    "!=": lambda a, b: a != b,
+    "in": lambda a, b: a in b,
+    "not in": lambda a, b: a not in b,
+}
+
+
+def _number(kind: Callable[[Any], Any]) -> Callable[..., Any]:
+    def convert(*args: Any) -> Any:
+        if len(args) > 1:
+            raise ValueError(f"{kind.__name__}() takes one argument here")
+        return kind(*args)
+
+    return convert
+
+
+def _sequence(kind: type) -> Callable[..., Any]:
+    def convert(*args: Any) -> Any:
+        if len(args) > 1 or (args and not isinstance(args[0], str | list | tuple | dict)):
+            raise ValueError(f"{kind.__name__}() takes a string, list or tuple here")
+        return kind(*args)
+
+    return convert
+
+
+_MATH: Final = (
+    "sin cos tan asin acos atan atan2 sinh cosh tanh asinh acosh atanh sqrt exp log log10 "
+    "log2 pow fabs floor ceil trunc radians degrees hypot copysign fmod isclose isfinite "
+    "isinf isnan"
+).split()
+
+#: Functions an expression may call, by name (``math.NAME`` reaches the math ones too).
+FUNCTIONS: Final[Mapping[str, Callable[..., Any]]] = {
+    **{name: getattr(math, name) for name in _MATH},
+    "abs": abs,
+    "min": min,
+    "max": max,
+    "round": round,
+    "sum": _sum,
+    "len": len,
+    "int": _number(int),
+    "float": _number(float),
+    "bool": _number(bool),
+    "str": _number(text_of),
+    "list": _sequence(list),
+    "tuple": _sequence(tuple),
+}
+
+#: Names an expression may use as values, besides the file's properties.
+CONSTANTS: Final[Mapping[str, Any]] = {
+    "pi": math.pi,
+    "e": math.e,
+    "tau": math.tau,
+    "inf": math.inf,
+    "nan": math.nan,
+    "True": True,
+    "False": False,
+    "None": None,
+}
+
+_KEYWORDS: Final = frozenset({"and", "or", "not", "if", "else", "in", "True", "False", "None"})
+_REFUSED_WORDS: Final = {
+    "lambda": "lambda functions are not allowed",
+    "for": "comprehensions are not allowed",
+    "import": "import is not allowed",
+    "yield": "yield is not allowed",
+    "await": "await is not allowed",
+    "is": "'is' is not supported (use ==)",
+}
+
+_TOKEN = re.compile(
+    r"""
+    (?P<space>\s+)
+  | (?P<number>(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)
+  | (?P<string>'[^'\\]*(?:\\.[^'\\]*)*'|"[^"\\]*(?:\\.[^"\\]*)*")
+  | (?P<name>[A-Za-z_][A-Za-z_0-9]*)
+  | (?P<op>\*\*|//|==|!=|<=|>=|[-+*/%<>()\[\],.])
+    """,
+    re.VERBOSE | re.ASCII,
+)
+_ESCAPES: Final = {"n": "\n", "t": "\t", "\\": "\\", "'": "'", '"': '"'}
+
+
+@dataclass(frozen=True)
+class _Tok:
+    kind: str
+    text: str
+    pos: int
+
+
+def _unquote(text: str) -> str:
+    body = text[1:-1]
+    return re.sub(r"\\(.)", lambda m: _ESCAPES.get(m.group(1), "\\" + m.group(1)), body)
+
+
+def _tokenize(text: str) -> list[_Tok]:
+    tokens = []
+    pos = 0
+    while pos < len(text):
+        m = _TOKEN.match(text, pos)
+        if m is None:
+            raise XacroExpressionError(f"unexpected character {text[pos]!r}", text, pos)
+        kind = m.lastgroup or ""
+        if kind == "name" and m.group().startswith("__"):
+            raise XacroExpressionError("names with a double underscore are refused", text, pos)
+        if kind == "name" and m.group() in _REFUSED_WORDS:
+            raise XacroExpressionError(_REFUSED_WORDS[m.group()], text, pos)
+        if kind == "string" and tokens and tokens[-1].kind == "name" and tokens[-1].pos + len(
+            tokens[-1].text
+        ) == pos:
+            raise XacroExpressionError("string prefixes (f'', r'', b'') are not supported", text, pos)
+        if kind != "space":
+            tokens.append(_Tok(kind, m.group(), pos))
+        pos = m.end()
+    tokens.append(_Tok("end", "", len(text)))
+    return tokens
+
+
+# The syntax tree: tuples (kind, position, ...), built and walked here only.
+_Node = tuple[Any, ...]
+
+
+class _Parser:
+    def __init__(self, text: str) -> None:
+        self.text = text
+        self.toks = _tokenize(text)
+        self.i = 0
+        self.depth = 0
+
+    @property
+    def tok(self) -> _Tok:
+        return self.toks[self.i]
+
+    def take(self, text: str) -> bool:
+        if self.tok.text == text and self.tok.kind in ("op", "name"):
+            self.i += 1
+            return True
+        return False
+
+    def expect(self, text: str) -> None:
+        if not self.take(text):
+            raise self.fail(f"expected {text!r}")
+
+    def fail(self, what: str = "") -> XacroExpressionError:
+        tok = self.tok
+        got = "the end of the expression" if tok.kind == "end" else repr(tok.text)
+        return XacroExpressionError(f"unexpected {got}" + (f" ({what})" if what else ""), self.text, tok.pos)
+
+    def nest(self) -> None:
+        self.depth += 1
+        if self.depth > MAX_DEPTH:
+            raise XacroExpressionError(f"nested deeper than {MAX_DEPTH} levels", self.text, self.tok.pos)
+
+    def parse(self) -> _Node:
+        if self.tok.kind == "end":
+            raise XacroExpressionError("empty expression", self.text, None)
+        node = self.conditional()
+        if self.tok.kind != "end":
+            raise self.fail()
+        return node
+
+    def conditional(self) -> _Node:
+        self.nest()
+        node = self.disjunction()
+        if self.tok.text == "if" and self.tok.kind == "name":
+            pos = self.tok.pos
+            self.i += 1
+            cond = self.disjunction()
+            self.expect("else")
+            node = ("if", pos, cond, node, self.conditional())
+        self.depth -= 1
+        return node
+
+    def disjunction(self) -> _Node:
+        items = [self.conjunction()]
+        while self.take("or"):
+            items.append(self.conjunction())
+        return items[0] if len(items) == 1 else ("or", None, items)
+
+    def conjunction(self) -> _Node:
+        items = [self.negation()]
+        while self.take("and"):
+            items.append(self.negation())
+        return items[0] if len(items) == 1 else ("and", None, items)
+
+    def negation(self) -> _Node:
+        pos = self.tok.pos
+        if self.take("not"):
+            self.nest()
+            node = ("not", pos, self.negation())
+            self.depth -= 1
+            return node
+        return self.comparison()
+
+    def comparison(self) -> _Node:
+        first = self.arith()
+        rest = []
+        while True:
+            tok = self.tok
+            if tok.kind == "op" and tok.text in ("<", "<=", ">", ">=", "==", "!="):
+                op = tok.text
+                self.i += 1
+            elif self.take("in"):
+                op = "in"
+            elif tok.text == "not" and self.toks[self.i + 1].text == "in":
+                self.i += 2
+                op = "not in"
+            else:
+                break
+            rest.append((op, tok.pos, self.arith()))
+        return first if not rest else ("cmp", None, first, rest)
+
+    def binary(self, ops: tuple[str, ...], operand: Callable[[], _Node]) -> _Node:
+        node = operand()
+        while self.tok.kind == "op" and self.tok.text in ops:
+            tok = self.tok
+            self.i += 1
+            node = ("bin", tok.pos, tok.text, node, operand())
+        return node
+
+    def arith(self) -> _Node:
+        return self.binary(("+", "-"), self.term)
+
+    def term(self) -> _Node:
+        return self.binary(("*", "/", "//", "%"), self.unary)
+
+    def unary(self) -> _Node:
+        tok = self.tok
+        if tok.kind == "op" and tok.text in ("+", "-"):
+            self.i += 1
+            self.nest()
+            node = ("neg" if tok.text == "-" else "pos", tok.pos, self.unary())
+            self.depth -= 1
+            return node
+        return self.power()
+
+    def power(self) -> _Node:
+        node = self.postfix()
+        if self.tok.kind == "op" and self.tok.text == "**":
+            tok = self.tok
+            self.i += 1
+            self.nest()
+            node = ("bin", tok.pos, "**", node, self.unary())
+            self.depth -= 1
+        return node
+
+    def postfix(self) -> _Node:
+        node = self.atom()
+        while self.tok.kind == "op" and self.tok.text in ("(", "[", "."):
+            tok = self.tok
+            self.i += 1
+            self.nest()
+            if tok.text == "(":
+                args = self.items(")")
+                node = ("call", tok.pos, node, args)
+            elif tok.text == "[":
+                index = self.conditional()
+                self.expect("]")
+                node = ("index", tok.pos, node, index)
+            else:
+                name = self.tok
+                if name.kind != "name":
+                    raise self.fail("expected a name after '.'")
+                self.i += 1
+                node = ("attr", name.pos, node, name.text)
+        return node
+
+    def items(self, close: str) -> list[_Node]:
+        items: list[_Node] = []
+        while not self.take(close):
+            if items:
+                self.expect(",")
+                if self.take(close):
+                    break
+            if self.tok.kind == "name" and self.toks[self.i + 1].text == "=":
+                raise self.fail("keyword arguments are not supported")
+            items.append(self.conditional())
+        self.depth -= 1
+        return items
+
+    def atom(self) -> _Node:
+        tok = self.tok
+        if tok.kind == "number":
+            self.i += 1
+            is_int = re.fullmatch(r"[0-9]+", tok.text) is not None
+            return ("const", tok.pos, int(tok.text) if is_int else float(tok.text))
+        if tok.kind == "string":
+            self.i += 1
+            value = _unquote(tok.text)
+            while self.tok.kind == "string":  # adjacent literals join, as in Python
+                value += _unquote(self.tok.text)
+                self.i += 1
+            return ("const", tok.pos, value)
+        if tok.kind == "name" and tok.text not in _KEYWORDS - {"True", "False", "None"}:
+            self.i += 1
+            return ("name", tok.pos, tok.text)
+        if tok.kind == "op" and tok.text in ("(", "["):
+            self.i += 1
+            self.nest()
+            if tok.text == "[":
+                return ("list", tok.pos, self.items("]"))
+            if self.take(")"):
+                self.depth -= 1
+                return ("tuple", tok.pos, [])
+            first = self.conditional()
+            if self.take(")"):
+                self.depth -= 1
+                return first
+            self.expect(",")
+            rest = self.items(")")
+            return ("tuple", tok.pos, [first, *rest])
+        raise self.fail("expected a number, a string, a name or '('")
+
+
+class Namespace:
+    """``math`` and ``xacro`` in ``math.sin(x)``, ``xacro.load_yaml(f)``."""
+
+    def __init__(self, name: str, members: Mapping[str, Any]) -> None:
+        self.name = name
+        self.members = members
+
+
+class _Evaluator:
+    def __init__(
+        self, text: str, lookup: Callable[[str], Any], functions: Mapping[str, Callable[..., Any]]
+    ) -> None:
+        self.text = text
+        self.lookup = lookup
+        self.functions = functions
+
+    def fail(self, reason: str, pos: int | None) -> XacroExpressionError:
+        return XacroExpressionError(reason, self.text, pos)
+
+    def name(self, name: str, pos: int) -> Any:
+        try:
+            return self.lookup(name)
+        except KeyError:
+            pass
+        if name in CONSTANTS:
+            return CONSTANTS[name]
+        if name in self.functions:
+            return self.functions[name]
+        if name == "math":
+            return Namespace("math", {**{n: FUNCTIONS[n] for n in _MATH}, **CONSTANTS})
+        if name == "xacro":
+            members = {k[6:]: v for k, v in self.functions.items() if k.startswith("xacro.")}
+            return Namespace("xacro", members)
+        if name == "python":
+            raise self.fail("the 'python' namespace is refused", pos)
+        raise self.fail(f"unknown name {name!r}", pos)
+
+    def value(self, node: _Node) -> Any:
+        kind, pos = node[0], node[1]
+        if kind == "const":
+            return node[2]
+        if kind == "name":
+            found = self.name(node[2], pos)
+            if isinstance(found, Namespace):
+                raise self.fail(f"{node[2]!r} is a namespace, not a value", pos)
+            if callable(found):
+                raise self.fail(f"{node[2]!r} is a function, not a value", pos)
+            return found
+        if kind == "attr":
+            return self.attribute(node)
+        try:
+            return _check_size(self.compute(node))
+        except (XacroExpressionError, KinematicaError):
+            raise
+        except (ArithmeticError, ValueError, TypeError, IndexError, KeyError) as exc:
+            reason = str(exc).strip("'\"") or type(exc).__name__
+            raise self.fail(f"cannot evaluate: {reason}", pos) from exc
+
+    def compute(self, node: _Node) -> Any:
+        kind, pos = node[0], node[1]
+        if kind == "bin":
+            return _BINARY[node[2]](self.value(node[3]), self.value(node[4]))
+        if kind == "neg":
+            return -self.value(node[2])
+        if kind == "pos":
+            return +self.value(node[2])
+        if kind == "not":
+            return not self.value(node[2])
+        if kind == "and" or kind == "or":
+            result = None
+            for item in node[2]:
+                result = self.value(item)
+                if bool(result) == (kind == "or"):
+                    break
+            return result
+        if kind == "if":
+            return self.value(node[3] if self.value(node[2]) else node[4])
+        if kind == "cmp":
+            left = self.value(node[2])
+            for op, _, operand in node[3]:
+                right = self.value(operand)
+                if not _COMPARE[op](left, right):
+                    return False
+                left = right
+            return True
+        if kind == "list":
+            return [self.value(item) for item in node[2]]
+        if kind == "tuple":
+            return tuple(self.value(item) for item in node[2])
+        if kind == "index":
+            return self.index(self.value(node[2]), self.value(node[3]), pos)
+        if kind == "call":
+            return self.call(node)
+        raise self.fail("unsupported expression", pos)  # pragma: no cover - the parser makes none
+
+    def index(self, seq: Any, key: Any, pos: int) -> Any:
+        if isinstance(seq, dict):
+            return seq[key]
+        if isinstance(seq, str | list | tuple) and isinstance(key, int):
+            return seq[key]
+        raise self.fail(f"cannot index a {type(seq).__name__} with a {type(key).__name__}", pos)
+
+    def attribute(self, node: _Node) -> Any:
+        owner_node, name = node[2], node[3]
+        if owner_node[0] == "name":
+            owner = self.name(owner_node[2], owner_node[1])
+        else:
+            owner = self.value(owner_node)
+        if isinstance(owner, Namespace):
+            if name in owner.members:
+                member = owner.members[name]
+                if callable(member):
+                    raise self.fail(f"{owner.name}.{name} is a function, not a value", node[1])
+                return member
+            raise self.fail(f"{owner.name}.{name} is not available", node[1])
+        if isinstance(owner, YamlDict):
+            if name not in owner:
+                raise self.fail(f"the YAML mapping has no key {name!r}", node[1])
+            return owner[name]
+        raise self.fail(
+            f"attribute access (.{name}) is refused except on what load_yaml read", node[1]
+        )
+
+    def call(self, node: _Node) -> Any:
+        callee, pos = node[2], node[1]
+        function: Any = None
+        if callee[0] == "name":
+            function = self.name(callee[2], callee[1])
+            shown = callee[2]
+        elif callee[0] == "attr" and callee[2][0] == "name":
+            owner = self.name(callee[2][2], callee[2][1])
+            shown = f"{callee[2][2]}.{callee[3]}"
+            if isinstance(owner, Namespace) and callee[3] in owner.members:
+                function = owner.members[callee[3]]
+        else:
+            shown = "this"
+        if not callable(function) or isinstance(function, type):
+            raise self.fail(f"{shown} is not a function that may be called", pos)
+        args = [self.value(arg) for arg in node[3]]
+        return function(*args)
+
+
+def evaluate(
+    text: str,
+    lookup: Callable[[str], Any],
+    functions: Mapping[str, Callable[..., Any]] = FUNCTIONS,
+) -> Any:
+    """The value of expression ``text``.
+
+    Args:
+        text: The expression (what is between ``${`` and ``}``).
+        lookup: The value of a property by name; raises ``KeyError`` for an
+            unknown one (then constants and functions are tried).
+        functions: The functions that may be called (``"xacro.NAME"`` entries
+            are reached as ``xacro.NAME(...)``).
+
+    Raises:
+        XacroExpressionError: malformed, refused, or failing to evaluate.
+    """
+    if len(text) > MAX_LENGTH:
+        raise XacroExpressionError(
+            f"the expression is {len(text)} characters long; at most {MAX_LENGTH} are accepted",
+            text[:100],
+        )
+    tree = _Parser(text.strip()).parse()
+    return _Evaluator(text.strip(), lookup, functions).value(tree)
