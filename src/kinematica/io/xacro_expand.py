@@ -298,6 +298,9 @@ class _Expander:
             tail, child.tail = child.tail, None
             if not isinstance(child.tag, str):  # a comment or processing instruction
                 pass
+            elif child.tag == "property" and "name" in child.attrib:
+                self.current = child  # ROS 1 xacro read <property> without the namespace
+                self.property(child, scope)
             elif _is_xacro(child.tag):
                 self.current = child
                 lead, nodes = self.xacro(child, parent, macros, scope)
@@ -529,9 +532,11 @@ class _MissingPackageError(XacroError):
 
 
 def _required(elem: Any, name: str, *, xacro_ns: bool = False) -> str:
-    value = elem.get(name)
-    if value is None and xacro_ns:
-        value = next((v for k, v in elem.attrib.items() if _is_xacro(k) and k.endswith("}" + name)), None)
+    if xacro_ns:  # xacro:name, in xacro's namespace
+        found = (v for k, v in elem.attrib.items() if _is_xacro(k) and k.endswith("}" + name))
+        value = next(found, None)
+    else:
+        value = elem.get(name)
     if value is None:
         raise XacroError(f"<xacro:{local_name(elem.tag)}> needs the attribute {name!r}")
     return str(value)
