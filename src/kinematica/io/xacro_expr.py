@@ -274,6 +274,9 @@ def _tokenize(text: str) -> list[_Tok]:
     while pos < len(text):
         m = _TOKEN.match(text, pos)
         if m is None:
+            if text[pos] in "'\"":
+                reason = "a string that is not closed (a '}' inside ${...} ends the expression)"
+                raise XacroExpressionError(reason, text, pos)
             raise XacroExpressionError(f"unexpected character {text[pos]!r}", text, pos)
         kind = m.lastgroup or ""
         if kind == "name" and m.group().startswith("__"):
@@ -622,7 +625,8 @@ class _Evaluator:
             if isinstance(owner, Namespace) and callee[3] in owner.members:
                 function = owner.members[callee[3]]
         else:
-            shown = "this"
+            self.value(callee)  # refuses what it is made of first (python., __, ...)
+            shown = "the result of an expression"
         if not callable(function) or isinstance(function, type):
             raise self.fail(f"{shown} is not a function that may be called", pos)
         args = [self.value(arg) for arg in node[3]]
