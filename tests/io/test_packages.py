@@ -114,7 +114,10 @@ def test_the_order_given_own_ros_ament(tmp_path: Path, clean_env) -> None:
     ros = package(tmp_path / "ros" / "pkg", "pkg", length=0.3)
     package(tmp_path / "install" / "share" / "pkg", "pkg", length=0.4)
     given = package(tmp_path / "given", None, length=0.1)
-    env = {"ROS_PACKAGE_PATH": str(tmp_path / "ros"), "AMENT_PREFIX_PATH": str(tmp_path / "install")}
+    env = {
+        "ROS_PACKAGE_PATH": str(tmp_path / "ros"),
+        "AMENT_PREFIX_PATH": str(tmp_path / "install"),
+    }
     start = own / "robots" / "r.xacro"
     assert PackageMap({"pkg": given}, start=start, environ=env).find("pkg") == given.resolve()
     assert PackageMap(start=start, environ=env).find("pkg") == own.resolve()
@@ -137,9 +140,7 @@ def test_a_missing_package_is_one_line_saying_how_to_give_it(tmp_path: Path, cle
 def test_mesh_names_of_a_missing_package_do_not_fail_the_load(tmp_path: Path, clean_env) -> None:
     # package://arm_pkg/meshes/l1.stl names a package that is nowhere: kinematics needs no mesh
     folder = package(tmp_path / "pkgs" / "x", None)
-    (folder / "urdf" / "arm.xacro").write_text(
-        ARM.format(package="no_such_mesh_pkg", length=0.3)
-    )
+    (folder / "urdf" / "arm.xacro").write_text(ARM.format(package="no_such_mesh_pkg", length=0.3))
     path = robot_file(tmp_path / "robot", "arm_pkg")
     assert km.load(path, packages={"arm_pkg": folder}).dof == 2
 
@@ -156,8 +157,10 @@ def test_files_outside_the_packages_are_not_read(tmp_path: Path, clean_env) -> N
         km.load(path, packages={"arm_pkg": folder})
     # the same file, inside the package's folder, is read
     (folder / "other.xacro").write_text('<robot xmlns:xacro="x:xacro"/>')
-    path.write_text(text.replace(str(tmp_path / "pkgs" / "other.xacro"), str(folder / "other.xacro")))
-    with pytest.raises(km.RobotFileError, match="parent link .base. is not defined"):  # read
+    path.write_text(
+        text.replace(str(tmp_path / "pkgs" / "other.xacro"), str(folder / "other.xacro"))
+    )
+    with pytest.raises(km.RobotFileError, match="parent link 'base' is not defined"):  # read
         km.load(path, packages={"arm_pkg": folder})
 
 

@@ -46,7 +46,7 @@ def variants(marker: Path) -> dict[str, tuple[str, str]]:
             "python",
         ),
         "escape in a macro default": (
-            f"<xacro:macro name=\"m\" params=\"x:=${{{ESCAPE.format(marker=m)}}}\">"
+            f'<xacro:macro name="m" params="x:=${{{ESCAPE.format(marker=m)}}}">'
             '<link name="${x}"/></xacro:macro><xacro:m/>',
             "python",
         ),
@@ -55,7 +55,7 @@ def variants(marker: Path) -> dict[str, tuple[str, str]]:
             "python",
         ),
         "escape in $(eval)": (
-            f'<link name="$(eval {GLOBALS}[\'os\'].system(\'{touch}\'))"/>',
+            f"<link name=\"$(eval {GLOBALS}['os'].system('{touch}'))\"/>",
             "python",
         ),
         "__import__": (
@@ -63,7 +63,7 @@ def variants(marker: Path) -> dict[str, tuple[str, str]]:
             "double underscore",
         ),
         "eval": (
-            f'<link name="${{eval(&quot;open(\'{m}\', \'w\')&quot;)}}"/>',
+            f"<link name=\"${{eval(&quot;open('{m}', 'w')&quot;)}}\"/>",
             "unknown name 'eval'",
         ),
         "exec": (
@@ -72,11 +72,12 @@ def variants(marker: Path) -> dict[str, tuple[str, str]]:
         ),
         "open": (f"<link name=\"${{open('{m}', 'w')}}\"/>", "unknown name 'open'"),
         "getattr": (
-            f"<link name=\"${{getattr(xacro.tokenize, '__glo' + 'bals__')['os'].system('{touch}')}}\"/>",
+            f"<link name=\"${{getattr(xacro.tokenize, '__glo' + 'bals__')['os'].system('{touch}')}}"
+            '"/>',
             "unknown name 'getattr'",
         ),
         "attribute chain": (
-            "<link name=\"${().__class__.__bases__[0].__subclasses__()}\"/>",
+            '<link name="${().__class__.__bases__[0].__subclasses__()}"/>',
             "double underscore",
         ),
         "attribute of a function": (
@@ -123,7 +124,8 @@ def variants(marker: Path) -> dict[str, tuple[str, str]]:
             "not a function that may be called",
         ),
         "load_yaml outside the packages": (
-            f"<link name=\"${{load_yaml('{marker.parent.parent / 'outside' / 'secret.yaml'}')}}\"/>",
+            f"<link name=\"${{load_yaml('{marker.parent.parent / 'outside' / 'secret.yaml'}')}}"
+            '"/>',
             "outside the folders",
         ),
         "load_yaml of a python tag": (

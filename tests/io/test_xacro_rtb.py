@@ -43,7 +43,7 @@ TIPS = {
     "dual_panda": "panda_1_hand",
     **{
         arm: "/ee_gripper_link"
-        for arm in "px100 px150 rx150 rx200 vx250 vx300 wx200 wx250".split()
+        for arm in ["px100", "px150", "rx150", "rx200", "vx250", "vx300", "wx200", "wx250"]
     },
 }
 #: Mobile manipulators whose base joint has limits of ±999,999 rad, beyond what the URDF

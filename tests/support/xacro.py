@@ -39,7 +39,8 @@ RTB_ROBOTS: tuple[str, ...] = tuple(
         for p in RTB.rglob("*.xacro")
         if not p.name.endswith("_macro.xacro")
         and not p.name.startswith("common_")
-        and p.name not in ("panda_arm.xacro", "hand.xacro", "frankie_arm.xacro", "frankieOmni_arm.xacro")
+        and p.name
+        not in ("panda_arm.xacro", "hand.xacro", "frankie_arm.xacro", "frankieOmni_arm.xacro")
     )
 )
 

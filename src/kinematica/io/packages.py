@@ -116,7 +116,9 @@ class PackageMap:
                 raise RobotFileError(f"packages: {name!r} is not a ROS package name")
             path = Path(folder).expanduser()
             if not path.is_dir():
-                raise RobotFileError(f"packages: the folder of {name!r}, {str(path)!r}, is not a folder")
+                raise RobotFileError(
+                    f"packages: the folder of {name!r}, {str(path)!r}, is not a folder"
+                )
             self._given[name] = path.resolve()
         self._start = start
         env = os.environ if environ is None else environ

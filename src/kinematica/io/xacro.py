@@ -48,11 +48,11 @@ from kinematica.errors import RobotFileError
 
 __all__ = [
     "XACRO_HINT",
-    "xacro_to_urdf",
     "XACRO_MAX_MEMORY",
     "XACRO_MAX_NODES",
     "XACRO_TIME_LIMIT",
     "expand_xacro",
+    "xacro_to_urdf",
 ]
 
 #: Seconds a xacro expansion may take. Real descriptions (a humanoid with its

@@ -16,7 +16,8 @@ It reads only the file, the files it includes and the YAML files it loads,
 and only inside the file's folder and the folders of the packages it names
 (:class:`~kinematica.io.packages.PackageMap`): ``/etc/passwd`` is refused. It
 stops at :data:`~kinematica.io.xacro.XACRO_MAX_NODES` elements made by macros
-and includes, :data:`MAX_DEPTH` levels of nesting, :data:`MAX_FILES` files,
+and includes, :data:`MAX_DEPTH` levels of nesting,
+:data:`~kinematica.io.xacro_subst.MAX_FILES` files,
 the size limit in characters made and the time limit. Every problem is one
 :class:`~kinematica.errors.RobotFileError` naming the file and line.
 """
@@ -27,52 +28,43 @@ import copy
 import os
 import re
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any, Final
 
 from kinematica.errors import KinematicaError, RobotFileError
 from kinematica.io.packages import PackageMap, missing_package
-from kinematica.io.reading import os_reason, read_limited
-from kinematica.io.xacro_expr import (
-    FUNCTIONS,
-    Namespace,
-    XacroExpressionError,
-    evaluate,
-    text_of,
-)
+from kinematica.io.reading import os_reason
 from kinematica.io.xacro_scope import (
     Macro,
     Macros,
     Scope,
-    ScopeView,
     XacroError,
-    auto_value,
     boolean,
     parse_params,
     valid_name,
 )
-from kinematica.io.xacro_yaml import load_yaml
-from kinematica.io.xml_parse import LINE, local_name, parse_xml
+from kinematica.io.xacro_subst import MissingPackageError, Substitutions
+from kinematica.io.xml_parse import LINE, local_name
 
-__all__ = ["MAX_DEPTH", "MAX_FILES", "ENV_REFUSED", "expand"]
+__all__ = ["MAX_DEPTH", "expand"]
 
 #: Deepest nesting of elements and macro calls within one another.
 MAX_DEPTH: Final = 120
-#: Most files (the file, its includes, YAML files) one expansion reads.
-MAX_FILES: Final = 500
 
-#: The message for ``$(env ...)`` without the caller's consent ({name}: the variable).
-ENV_REFUSED: Final = (
-    "reads the environment variable {name!r}: refused, kinematica expands xacro without the "
-    "environment unless asked (xacro_env=True, --xacro-env on the command line)"
-)
-
-_LEXER: Final = re.compile(
-    r"(?P<dollars>\$\$+[{(])|(?P<expr>\$\{[^}]*\})|(?P<ext>\$\([^)]*\))|(?P<text>[^$]+|\$[^{($]+|\$\Z)"
-)
 _XACRO_TAGS: Final = frozenset(
-    "property macro include if unless arg insert_block call element attribute".split()
+    [
+        "property",
+        "macro",
+        "include",
+        "if",
+        "unless",
+        "arg",
+        "insert_block",
+        "call",
+        "element",
+        "attribute",
+    ]
 )
 
 
@@ -80,172 +72,15 @@ def _is_xacro(name: str) -> bool:
     return name.startswith("{") and "xacro" in name[1:].split("}", 1)[0]
 
 
-class _Expander:
-    """One expansion: its files, arguments, package map, limits and counters."""
+class _Expander(Substitutions):
+    """One expansion: the substitutions and files, and the elements it makes."""
 
-    def __init__(
-        self,
-        packages: PackageMap,
-        *,
-        env: bool,
-        max_nodes: int,
-        max_chars: int,
-        deadline: float,
-        roots: list[Path],
-    ) -> None:
-        self.packages = packages
-        self.env = env
+    def __init__(self, packages: PackageMap, *, max_nodes: int, **limits: Any) -> None:
+        super().__init__(packages, **limits)
         self.max_nodes = max_nodes
-        self.max_chars = max_chars
-        self.deadline = deadline
-        self.roots = roots
-        self.files: list[Path] = []
-        self.stack: list[int] = []  # indices into files: the file being read, innermost last
-        self.args: dict[str, str] = {}
         self.nodes = 0
-        self.chars = 0
         self.depth = 0
         self.current: Any = None  # the element being expanded, for messages
-        self.functions: dict[str, Callable[..., Any]] = {
-            **FUNCTIONS,
-            "load_yaml": self.load_yaml,
-            "xacro.load_yaml": self.load_yaml,
-            "xacro.arg": self.arg,
-            "xacro.fatal": self.fatal,
-            **{f"xacro.{name}": _silent for name in ("message", "warning", "error")},
-        }
-
-    # --- files ----------------------------------------------------------------------
-
-    def current_dir(self) -> Path:
-        return self.files[self.stack[-1]].parent
-
-    def readable(self, path: Path, what: str) -> Path:
-        """``path`` resolved, if it is inside the folders a xacro file may read."""
-        real = path.resolve()
-        allowed = [*self.roots, *self.packages.folders()]
-        if not any(real == root or root in real.parents for root in allowed):
-            raise XacroError(
-                f"{what} {str(path)!r} is outside the folders a xacro file may read (its own "
-                "folder and the folders of its packages): refused"
-            )
-        if len(self.files) >= MAX_FILES:
-            raise XacroError(f"more than {MAX_FILES} files included or loaded: refused")
-        return real
-
-    def parse_file(self, path: Path) -> Any:
-        index = len(self.files)
-        self.files.append(path)
-        data = read_limited(path, self.max_chars, "xacro file", _file_error(path))
-        return parse_xml(data, str(path), lines=str(index))
-
-    def load_yaml(self, filename: Any) -> Any:
-        if not isinstance(filename, str):
-            raise XacroError("load_yaml takes a file name")
-        path = self.readable(self.current_dir() / filename, "the YAML file")
-        self.files.append(path)
-        data = read_limited(path, self.max_chars, "YAML file", _file_error(path))
-        return load_yaml(data, str(path))
-
-    # --- substitutions --------------------------------------------------------------
-
-    def arg(self, name: Any) -> str:
-        if not isinstance(name, str) or name not in self.args:
-            raise XacroError(f"undefined argument {name!r} (declare it with <xacro:arg>)")
-        return self.args[name]
-
-    @staticmethod
-    def fatal(*words: Any) -> str:
-        raise XacroError("the file stops the expansion: " + " ".join(map(str, words)))
-
-    def count(self, text: str) -> str:
-        self.chars += len(text)
-        if self.chars > self.max_chars:
-            raise XacroError(
-                f"the expansion made more than {self.max_chars:,} characters of text: refused"
-            )
-        return text
-
-    def text(self, text: str, scope: Scope) -> Any:
-        """``text`` with its ``${...}`` and ``$(...)`` substituted; typed when it is one of them."""
-        results: list[Any] = []
-        pos = 0
-        while pos < len(text):
-            m = _LEXER.match(text, pos)
-            if m is None:
-                raise XacroError(f"invalid substitution: {text[pos : pos + 60]!r}")
-            pos = m.end()
-            piece = m.group()
-            if m.lastgroup == "dollars":
-                results.append(piece[1:])
-            elif m.lastgroup == "expr":
-                inner = _text(self.text(piece[2:-1], scope))
-                results.append(self.expression(inner, _lookup(scope), self.functions))
-            elif m.lastgroup == "ext":
-                results.append(self.extension(_text(self.text(piece[2:-1], scope))))
-            else:
-                results.append(piece)
-        if len(results) == 1:
-            return results[0]
-        return self.count("".join(map(_text, results)))
-
-    def string(self, text: str, scope: Scope) -> str:
-        return self.count(_text(self.text(text, scope)))
-
-    def expression(
-        self, text: str, lookup: Callable[[str], Any], functions: Mapping[str, Any]
-    ) -> Any:
-        if time.monotonic() > self.deadline:
-            raise XacroError("the expansion did not finish within its time limit: refused")
-        try:
-            return evaluate(text, lookup, functions)
-        except XacroExpressionError as exc:
-            raise XacroError(exc.describe()) from exc
-
-    def extension(self, content: str) -> str:
-        """``$(content)``: ``find``, ``arg``, ``dirname``, ``eval``, ``env``, ``optenv``."""
-        if content.startswith("eval "):
-            return _text(self.expression(content[5:], self.eval_lookup, self.eval_functions()))
-        words = content.split()
-        command, args = (words[0], words[1:]) if words else ("", [])
-        if command == "find" and len(args) == 1:
-            folder = self.packages.find(args[0])
-            if folder is None:
-                raise _MissingPackageError(args[0])
-            return str(folder)
-        if command == "arg" and len(args) == 1:
-            return self.arg(args[0])
-        if command == "dirname" and not args:
-            return str(self.current_dir().resolve())
-        if command in ("env", "optenv") and args:
-            if not self.env:
-                raise XacroError(ENV_REFUSED.format(name=args[0]))
-            if command == "env":
-                if args[0] not in os.environ:
-                    raise XacroError(f"the environment variable {args[0]!r} is not set")
-                return os.environ[args[0]]
-            return os.environ.get(args[0], " ".join(args[1:]))
-        raise XacroError(
-            f"unknown or malformed substitution $({content}): kinematica expands $(find PKG), "
-            "$(arg NAME), $(dirname), $(eval EXPR), and $(env NAME)/$(optenv NAME DEFAULT) "
-            "when allowed"
-        )
-
-    def eval_lookup(self, name: str) -> Any:
-        if name in ("true", "false"):
-            return name == "true"
-        if name in self.args:
-            return auto_value(self.args[name])
-        raise KeyError(name)
-
-    def eval_functions(self) -> dict[str, Callable[..., Any]]:
-        def arg(name: Any) -> Any:
-            return auto_value(self.arg(name))
-
-        def dirname() -> str:
-            return str(self.current_dir().resolve())
-
-        return {**FUNCTIONS, "arg": arg, "dirname": dirname}
 
     # --- elements -------------------------------------------------------------------
 
@@ -318,9 +153,7 @@ class _Expander:
         """What replaces an element by its content: its text and children."""
         return elem.text or "", list(elem)
 
-    def xacro(
-        self, elem: Any, parent: Any, macros: Macros, scope: Scope
-    ) -> tuple[str, list[Any]]:
+    def xacro(self, elem: Any, parent: Any, macros: Macros, scope: Scope) -> tuple[str, list[Any]]:
         """What the xacro element ``elem`` becomes: (text, elements)."""
         tag = local_name(elem.tag)
         if tag == "property":
@@ -446,7 +279,9 @@ class _Expander:
             if attr == LINE or _is_xacro(attr):
                 continue
             if attr not in params:
-                raise XacroError(f"macro {name!r} has no parameter {attr!r} (it takes {macro.params})")
+                raise XacroError(
+                    f"macro {name!r} has no parameter {attr!r} (it takes {macro.params})"
+                )
             params.remove(attr)
             local.set(attr, self.text(value, scope), lazy=False)
         self.children(elem, macros, scope)  # blocks are expanded where the call is
@@ -457,7 +292,9 @@ class _Expander:
             local.set(param, blocks.pop(0), lazy=False)
             params.remove(param)
         if blocks:
-            raise XacroError(f"macro {name!r} got a block it has no parameter for (<{blocks[0].tag}>)")
+            raise XacroError(
+                f"macro {name!r} got a block it has no parameter for (<{blocks[0].tag}>)"
+            )
         for param in list(params):
             forward, default = macro.defaults.get(param, (False, None))
             if forward and param in scope:
@@ -504,33 +341,6 @@ class _Expander:
         return self.content(root)
 
 
-def _lookup(scope: Scope) -> Callable[[str], Any]:
-    """Property lookup for expressions: a namespace scope is seen as ``ns.name``."""
-
-    def lookup(name: str) -> Any:
-        value = scope.lookup(name)
-        return Namespace(name, ScopeView(value)) if isinstance(value, Scope) else value
-
-    return lookup
-
-
-def _text(value: Any) -> str:
-    try:
-        return text_of(value)
-    except ValueError as exc:
-        raise XacroError(str(exc)) from exc
-
-
-def _silent(*_: Any) -> str:
-    return ""
-
-
-class _MissingPackageError(XacroError):
-    def __init__(self, name: str) -> None:
-        super().__init__(name)
-        self.name = name
-
-
 def _required(elem: Any, name: str, *, xacro_ns: bool = False) -> str:
     if xacro_ns:  # xacro:name, in xacro's namespace
         found = (v for k, v in elem.attrib.items() if _is_xacro(k) and k.endswith("}" + name))
@@ -540,10 +350,6 @@ def _required(elem: Any, name: str, *, xacro_ns: bool = False) -> str:
     if value is None:
         raise XacroError(f"<xacro:{local_name(elem.tag)}> needs the attribute {name!r}")
     return str(value)
-
-
-def _file_error(path: Path) -> Callable[[str], Exception]:
-    return lambda reason: XacroError(f"{path}: {reason}")
 
 
 def _strip_lines(root: Any) -> None:
@@ -597,7 +403,7 @@ def expand(
         root = run.parse_file(p)
         run.stack.append(0)
         run.element(root, Macros(), Scope(None, run.text))
-    except _MissingPackageError as exc:
+    except MissingPackageError as exc:
         raise missing_package(exc.name, f"{run.where(run.current)}") from exc
     except XacroError as exc:
         raise RobotFileError(str(exc), path=run.where(run.current)) from exc

@@ -1,5 +1,7 @@
-"""The tables of kinematica's xacro expander: properties with xacro's scoping and
-lazy evaluation, macros, and the small conversions xacro applies to text.
+"""The tables of kinematica's xacro expander: properties, macros, conversions of text.
+
+Properties follow xacro's scoping and lazy evaluation; the conversions are the small
+ones xacro applies to text (literals, booleans, arguments in ``$(eval)``).
 
 Property values are kept as written and evaluated at their first use
 ("lazy", as xacro does), then kept evaluated; a property that needs itself
@@ -115,7 +117,10 @@ class Scope:
         self.values: dict[str, Any] = {}
         self.lazy: set[str] = set()
         self.namespace = namespace
-        self._evaluate = evaluate if evaluate is not None else (parent and parent._evaluate)
+        inherited = parent._evaluate if parent is not None else None
+        self._evaluate: Callable[[str, Scope], Any] | None = (
+            evaluate if evaluate is not None else inherited
+        )
         self._resolving: list[str] = [] if parent is None else parent._resolving
 
     def lookup(self, name: str) -> Any:

@@ -67,9 +67,7 @@ def load_yaml(data: bytes, source: str) -> Any:
     try:
         import yaml
     except ImportError as exc:
-        raise XacroError(
-            "load_yaml needs PyYAML: pip install 'kinematica[yaml]'"
-        ) from exc
+        raise XacroError("load_yaml needs PyYAML: pip install 'kinematica[yaml]'") from exc
 
     class Loader(yaml.SafeLoader):
         """The safe loader with xacro's unit tags."""
@@ -87,7 +85,7 @@ def load_yaml(data: bytes, source: str) -> Any:
     for tag, factor in UNITS.items():
         Loader.add_constructor(tag, unit(factor))
     try:
-        value = yaml.load(data, Loader=Loader)  # noqa: S506 - a SafeLoader subclass
+        value = yaml.load(data, Loader=Loader)
     except yaml.YAMLError as exc:
         problem = " ".join(str(getattr(exc, "problem", None) or exc).split())
         raise XacroError(f"{source}: not valid YAML: {problem}") from exc

@@ -27,9 +27,8 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[1]))  # tests/, for support
 
 import xacro  # noqa: E402
-from xacro import substitution_args  # noqa: E402
-
 from support.xacro import REFERENCE, RTB, RTB_PACKAGES, RTB_ROBOTS, digest  # noqa: E402
+from xacro import substitution_args  # noqa: E402
 
 
 def find(name: str) -> str:
