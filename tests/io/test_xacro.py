@@ -15,6 +15,7 @@ import kinematica as km
 import kinematica.io.xacro as xacro_module
 from kinematica.io import URDF_MAX_BYTES, parse_urdf, read_urdf
 from kinematica.io.xacro import XACRO_MAX_NODES, expand_xacro
+from kinematica.io.xacro_expand import MAX_DEPTH
 
 # A chain of `count` segments by a recursive macro with a loop counter: what real descriptions
 # do (a macro per part, called for each joint), some thousand nodes for 60 segments.
@@ -215,3 +216,43 @@ def test_nothing_from_the_files_folder_is_imported(tmp_path):
     # the child runs isolated: a module named like xacro's beside the file is not run
     (tmp_path / "xacro.py").write_text("raise SystemExit('imported from the folder')\n")
     assert km.load(write(tmp_path, XACRO, "arm.xacro"), trust_xacro=True).dof == 2
+
+
+RECURSION = (
+    '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+    '<xacro:macro name="m" params="i"><xacro:if value="${{i &lt; {levels}}}">'
+    '<xacro:m i="${{i + 1}}"/></xacro:if></xacro:macro><link name="base"/><xacro:m i="0"/></robot>'
+)
+
+
+def test_macro_recursion_stops_at_the_depth_limit(tmp_path):
+    # 118 nested calls are within MAX_DEPTH (the root element counts too), 119 are not
+    assert MAX_DEPTH == 120
+    read_urdf(write(tmp_path, RECURSION.format(levels=118), "ok.xacro"))
+    one_line_error(
+        write(tmp_path, RECURSION.format(levels=119), "deep.xacro"), "nested deeper than 120"
+    )
+    endless = RECURSION.replace("${{i &lt; {levels}}}", "true").format()
+    one_line_error(write(tmp_path, endless, "endless.xacro"), "nested deeper than 120")
+
+
+def test_the_number_of_files_is_bounded(tmp_path, monkeypatch):
+    # a chain of includes: 3 files are read under a limit of 3, not under a limit of 2
+    import kinematica.io.xacro_subst as subst
+
+    for k in (1, 2):
+        write(
+            tmp_path,
+            f'<robot xmlns:xacro="http://www.ros.org/wiki/xacro">'
+            f'<xacro:include filename="f{k + 1}.xacro"/></robot>',
+            f"f{k}.xacro",
+        )
+    write(tmp_path, '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"/>', "f3.xacro")
+    text = XACRO.replace(
+        '<link name="base"/>', '<link name="base"/><xacro:include filename="f1.xacro"/>'
+    )
+    path = write(tmp_path, text, "top.xacro")
+    monkeypatch.setattr(subst, "MAX_FILES", 4)
+    assert km.load(path).dof == 2
+    monkeypatch.setattr(subst, "MAX_FILES", 3)
+    one_line_error(path, "more than 3 files")

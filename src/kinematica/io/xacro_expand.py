@@ -85,12 +85,16 @@ class _Expander(Substitutions):
     # --- elements -------------------------------------------------------------------
 
     def where(self, elem: Any) -> str:
-        """``"FILE, line N"`` of an element (its file, or the file being read)."""
+        """Where ``elem`` is: ``"TOP, line N"``, or ``"TOP, in INCLUDED line N"``."""
+        if not self.files:
+            return "?"
+        top = self.files[0]
         mark = elem.get(LINE) if elem is not None else None
-        if mark:
-            index, _, line = mark.partition(":")
-            return f"{self.files[int(index)]}, line {line}"
-        return str(self.files[self.stack[-1]]) if self.stack else "?"
+        index, _, line = mark.partition(":") if mark else ("", "", "")
+        file = self.files[int(index)] if index else self.files[self.stack[-1] if self.stack else 0]
+        if file == top:
+            return f"{top}, line {line}" if line else str(top)
+        return f"{top}, in {file}" + (f" line {line}" if line else "")
 
     def grow(self, elem: Any) -> Any:
         """A deep copy of ``elem``, counted against the node limit."""

@@ -302,6 +302,15 @@ class _Evaluator:
         kind, pos = node[0], node[1]
         if kind == "bin":
             return _BINARY[node[2]](self.value(node[3]), self.value(node[4]))
+        if kind == "chain":
+            result = self.value(node[2])
+            for op, where, operand in node[3]:
+                right = self.value(operand)
+                try:
+                    result = _check_size(_BINARY[op](result, right))
+                except (ArithmeticError, ValueError, TypeError) as exc:
+                    raise self.fail(f"cannot evaluate: {exc}", where) from exc
+            return result
         if kind == "neg":
             return -self.value(node[2])
         if kind == "pos":

@@ -59,7 +59,7 @@ _TOKEN = re.compile(
   | (?P<number>(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)
   | (?P<string>'[^'\\]*(?:\\.[^'\\]*)*'|"[^"\\]*(?:\\.[^"\\]*)*")
   | (?P<name>[A-Za-z_][A-Za-z_0-9]*)
-  | (?P<op>\*\*|//|==|!=|<=|>=|[-+*/%<>()\[\],.])
+  | (?P<op>\*\*|//|==|!=|<=|>=|[-+*/%<>()\[\],.=])
     """,
     re.VERBOSE | re.ASCII,
 )
@@ -208,12 +208,14 @@ class _Parser:
         return first if not rest else ("cmp", None, first, rest)
 
     def binary(self, ops: tuple[str, ...], operand: Callable[[], Node]) -> Node:
-        node = operand()
+        # one node for ``a + b - c + ...``: a long sum makes a wide tree, not a deep one
+        first = operand()
+        rest = []
         while self.tok.kind == "op" and self.tok.text in ops:
             tok = self.tok
             self.i += 1
-            node = ("bin", tok.pos, tok.text, node, operand())
-        return node
+            rest.append((tok.text, tok.pos, operand()))
+        return ("chain", None, first, rest) if rest else first
 
     def arith(self) -> Node:
         return self.binary(("+", "-"), self.term)
