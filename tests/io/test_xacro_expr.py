@@ -76,7 +76,7 @@ def python(text: str) -> object:
     namespace = {**NAMES, **{k: getattr(math, k) for k in dir(math) if not k.startswith("_")}}
     namespace.update(math=math, abs=abs, min=min, max=max, round=round, len=len, int=int)
     namespace.update(float=float, str=str, bool=bool)
-    return eval(text, {"__builtins__": {}}, namespace)  # noqa: S307 - trusted test constants
+    return eval(text, {"__builtins__": {}}, namespace)  # trusted test constants only
 
 
 @pytest.mark.parametrize("text", SAME_AS_PYTHON)

@@ -112,6 +112,7 @@ class _Expander(Substitutions):
         if self.depth > MAX_DEPTH:
             raise XacroError(f"elements or macro calls nested deeper than {MAX_DEPTH}: refused")
         self.current = elem
+        self.check_time()
         for name in list(elem.attrib):
             if _is_xacro(name):
                 del elem.attrib[name]

@@ -92,7 +92,8 @@ class Substitutions:
         if not any(real == root or root in real.parents for root in allowed):
             raise XacroError(
                 f"{what} {str(path)!r} is outside the folders a xacro file may read (its own "
-                "folder and the folders of its packages): refused"
+                "folder, its package's and those of the packages it names): refused; to allow "
+                "a folder, name it as a package (--package NAME=DIR, packages= in Python)"
             )
         if len(self.files) >= MAX_FILES:
             raise XacroError(f"more than {MAX_FILES} files included or loaded: refused")
@@ -126,6 +127,11 @@ class Substitutions:
     def fatal(*words: Any) -> str:
         """``xacro.fatal(...)``: the file stops the expansion."""
         raise XacroError("the file stops the expansion: " + " ".join(map(str, words)))
+
+    def check_time(self) -> None:
+        """Refuse to go on past the expansion's deadline."""
+        if time.monotonic() > self.deadline:
+            raise XacroError("the expansion did not finish within its time limit: refused")
 
     def count(self, text: str) -> str:
         """``text``, counted against the characters the expansion may make."""
@@ -167,8 +173,7 @@ class Substitutions:
         self, text: str, lookup: Callable[[str], Any], functions: Mapping[str, Any]
     ) -> Any:
         """The value of expression ``text``; one :class:`XacroError` if refused or wrong."""
-        if time.monotonic() > self.deadline:
-            raise XacroError("the expansion did not finish within its time limit: refused")
+        self.check_time()
         try:
             return evaluate(text, lookup, functions)
         except XacroExpressionError as exc:

@@ -79,7 +79,7 @@ def urdf_to_dh(
     """Read a URDF and extract the DH table of its chain from ``base`` to ``tip``.
 
     Args:
-        urdf: A ``.urdf`` file (``.xacro`` too, with the ``xacro`` package), or
+        urdf: A ``.urdf`` file (``.xacro`` too, expanded without running its code), or
             a parsed :class:`~kinematica.io.UrdfModel`.
         base: Base link; default the root link.
         tip: Tip link; default the single leaf at the end of movable joints
