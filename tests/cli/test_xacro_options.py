@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -73,3 +74,24 @@ def test_the_help_explains_both_options(capsys: pytest.CaptureFixture[str]) -> N
     text = " ".join(out.split())
     assert "--trust-xacro" in text and "RUNS the file's code" in text
     assert "--package NAME=DIR" in text and "ROS_PACKAGE_PATH" in text
+
+
+def test_xacro_arguments_on_the_command_line(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    path = tmp_path / "arm.urdf.xacro"
+    path.write_text(
+        '<robot name="$(arg name)" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:arg name="name" default="arm"/><xacro:arg name="length" default="0.5"/>'
+        '<link name="base"/><link name="l1"/><joint name="j1" type="revolute">'
+        '<parent link="base"/><child link="l1"/><origin xyz="0 0 $(arg length)"/>'
+        '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+        "</robot>"
+    )
+    # the robot's name is an argument used before it is declared: xacro too needs it given
+    argv = ["--xacro-arg", "length:=0.75", "--xacro-arg", "name:=tall"]
+    code, out, err = run(capsys, "fk", str(path), "--q", "0", *argv, "--json")
+    assert code == 0, err
+    assert json.loads(out)["T"][2][3] == 0.75
+    code, _, err = run(capsys, "show", str(path), "--xacro-arg", "length=0.75")
+    assert code == 2 and "NAME:=VALUE" in err

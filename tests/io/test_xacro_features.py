@@ -124,3 +124,18 @@ def test_what_only_kinematica_offers(tmp_path: Path) -> None:
     assert info is not None
     assert info.get("dir") == str(tmp_path.resolve())
     assert info.get("abs") == "2" and info.get("sum") == "3.5"
+
+
+@pytest.mark.parametrize("trust", [False, pytest.param(True, marks=needs_xacro, id="trusted")])
+def test_arguments_given_by_the_caller(trust: bool) -> None:
+    given = {"gripper": "false", "side": "right", "count": "5"}
+    text = xacro_to_urdf(
+        FEATURES / "conditions.xacro", max_bytes=2**20, packages=PACKAGES, args=given, trust=trust
+    )
+    root = ET.fromstring(text)
+    links = [link.get("name") for link in root.iter("link")]
+    assert "no_gripper" in links and "gripper_right" not in links and "left_side" not in links
+    info = root.find("info")
+    assert info is not None
+    assert (info.get("count"), info.get("twice"), info.get("cond")) == ("5", "10", "no")
+    assert info.get("xarg") == "right"

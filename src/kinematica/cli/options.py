@@ -139,6 +139,14 @@ def add_robot(p: argparse.ArgumentParser) -> None:
         "(repeatable; ROS_PACKAGE_PATH, AMENT_PREFIX_PATH and the file's own package.xml "
         "find the others)",
     )
+    p.add_argument(
+        "--xacro-arg",
+        action="append",
+        type=_xacro_arg,
+        default=[],
+        metavar="NAME:=VALUE",
+        help="URDF only: the value of the xacro file's <xacro:arg name=NAME> (repeatable)",
+    )
 
 
 def _package(text: str) -> tuple[str, str]:
@@ -151,6 +159,14 @@ def _package(text: str) -> tuple[str, str]:
         raise argparse.ArgumentTypeError(str(exc)) from exc
 
 
+def _xacro_arg(text: str) -> tuple[str, str]:
+    """``--xacro-arg NAME:=VALUE`` as ``(name, value)``."""
+    name, sep, value = text.partition(":=")
+    if not sep or not name.strip() or " " in name.strip():
+        raise argparse.ArgumentTypeError(f"--xacro-arg takes NAME:=VALUE, got {text!r}")
+    return name.strip(), value
+
+
 def urdf_options(args: argparse.Namespace) -> dict[str, Any]:
     """The URDF-only options given (``--base``, ``--tip``, xacro's), as keyword arguments."""
     given = {
@@ -160,6 +176,7 @@ def urdf_options(args: argparse.Namespace) -> dict[str, Any]:
         "xacro_env": args.xacro_env,
         "trust_xacro": args.trust_xacro,
         "packages": dict(args.package) if args.package else None,
+        "xacro_args": dict(args.xacro_arg) if args.xacro_arg else None,
     }
     return {k: v for k, v in given.items() if v}
 

@@ -1,7 +1,7 @@
 """Expand one xacro file in a child process, within limits; run by :mod:`kinematica.io.xacro`.
 
 Run as a script (``python -I _xacro_child.py FILE XACRO_DIR MAX_BYTES MAX_NODES
-MAX_MEMORY ENV PACKAGES``), never imported by kinematica: it needs only the standard
+MAX_MEMORY ENV PACKAGES ARGS``), never imported by kinematica: it needs only the standard
 library and the ``xacro`` package (found in ``XACRO_DIR``). It writes the
 expanded URDF (UTF-8) to stdout and exits 0, or writes one line to stderr and
 exits 2. The parent process bounds its time; here its memory (an address-space
@@ -10,7 +10,8 @@ is counted, so a macro bomb stops at the limit instead of growing
 exponentially) and its output are bounded. Unless ``ENV`` is ``1`` the
 environment is empty and ``$(env ...)``, ``$(optenv ...)`` and their
 ``${env(...)}`` forms are refused by name. ``$(find pkg)`` is answered from
-``PACKAGES``, a JSON object of package name -> folder (ROS is not needed).
+``PACKAGES``, a JSON object of package name -> folder (ROS is not needed);
+``ARGS`` (JSON) gives the file's ``<xacro:arg>`` values.
 """
 
 from __future__ import annotations
@@ -86,7 +87,7 @@ def _find_in(substitution_args: Any, packages: dict[str, str], exception: type[E
 
 def main(argv: list[str]) -> int:
     """Expand ``argv[0]``; see the module's docstring for the arguments."""
-    path, xacro_dir, max_bytes, max_nodes, max_memory, allow_env, packages = argv
+    path, xacro_dir, max_bytes, max_nodes, max_memory, allow_env, packages, args = argv
     sys.path.insert(0, xacro_dir)
     if resource is not None:  # POSIX; elsewhere the time and node limits still hold
         resource.setrlimit(resource.RLIMIT_AS, (int(max_memory), int(max_memory)))
@@ -99,7 +100,7 @@ def main(argv: list[str]) -> int:
             _refuse_environment(substitution_args, substitution_args.SubstitutionException)
         _find_in(substitution_args, json.loads(packages), substitution_args.SubstitutionException)
         _count_clones(int(max_nodes))
-        text = xacro.process_file(path).toxml()
+        text = xacro.process_file(path, mappings=json.loads(args)).toxml()
     except MemoryError:
         sys.stderr.write(f"the expansion needed more than {int(max_memory)} bytes of memory\n")
         return 2

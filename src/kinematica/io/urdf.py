@@ -315,6 +315,7 @@ def read_urdf(
     xacro_env: bool = False,
     trust_xacro: bool = False,
     packages: Mapping[str, str | os.PathLike[str]] | None = None,
+    xacro_args: Mapping[str, str] | None = None,
 ) -> UrdfModel:
     """Read a URDF file, or a xacro file expanded into URDF.
 
@@ -332,6 +333,8 @@ def read_urdf(
         packages: ROS package name -> folder, for ``$(find pkg)`` in xacro
             files (``ROS_PACKAGE_PATH``, ``AMENT_PREFIX_PATH`` and the file's
             own ``package.xml`` find the others).
+        xacro_args: Values of the xacro file's ``<xacro:arg>`` (as xacro's
+            ``name:=value``), over their defaults.
 
     Returns:
         The links and joints, checked to form one tree.
@@ -348,7 +351,12 @@ def read_urdf(
     root = _parse_xml(data, source)  # hostile XML is refused before xacro sees it
     if p.name.lower().endswith(".xacro") or (xacro and _is_xacro(root) is not None):
         expanded = xacro_to_urdf(
-            p, max_bytes=max_bytes, env=xacro_env, trust=trust_xacro, packages=packages
+            p,
+            max_bytes=max_bytes,
+            env=xacro_env,
+            trust=trust_xacro,
+            packages=packages,
+            args=xacro_args,
         )
         return parse_urdf(expanded, source=source)
     return _model(root, source, dh_frames_note(data))

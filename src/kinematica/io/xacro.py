@@ -97,6 +97,7 @@ def xacro_to_urdf(
     env: bool = False,
     trust: bool = False,
     packages: Mapping[str, str | os.PathLike[str]] | None = None,
+    args: Mapping[str, str] | None = None,
 ) -> bytes:
     """The URDF text xacro file ``path`` expands to: by kinematica's expander, or trusted.
 
@@ -108,6 +109,8 @@ def xacro_to_urdf(
             (see the module docstring); otherwise kinematica's own expander.
         packages: Package name -> folder, for ``$(find pkg)``; the rules of
             :class:`~kinematica.io.packages.PackageMap` find the others.
+        args: Values of the file's ``<xacro:arg>`` (``name:=value`` on xacro's
+            command line), over their defaults.
 
     Raises:
         RobotFileError: one line naming the file (and the line and expression
@@ -118,7 +121,7 @@ def xacro_to_urdf(
 
     pmap = PackageMap(packages, start=Path(path))
     if trust:
-        return expand_xacro(path, max_bytes=max_bytes, env=env, packages=pmap.known())
+        return expand_xacro(path, max_bytes=max_bytes, env=env, packages=pmap.known(), args=args)
     from xml.etree import ElementTree
 
     from kinematica.io.xacro_expand import expand
@@ -130,6 +133,7 @@ def xacro_to_urdf(
         time_limit=XACRO_TIME_LIMIT,
         env=env,
         packages=pmap,
+        args=args,
     )
     text: bytes = ElementTree.tostring(root, encoding="utf-8")
     if len(text) > max_bytes:
@@ -145,6 +149,7 @@ def expand_xacro(
     max_bytes: int,
     env: bool = False,
     packages: Mapping[str, Path] | None = None,
+    args: Mapping[str, str] | None = None,
 ) -> bytes:
     """The URDF text that the ``xacro`` package makes of file ``path``, within limits.
 
@@ -156,6 +161,7 @@ def expand_xacro(
         max_bytes: Largest expanded text accepted, in bytes.
         env: Let xacro read the environment (``$(env ...)``, ``$(optenv ...)``).
         packages: Package name -> folder, answering ``$(find pkg)``.
+        args: Values of the file's ``<xacro:arg>``.
 
     Returns:
         The expanded URDF, UTF-8.
@@ -189,6 +195,7 @@ def expand_xacro(
         str(XACRO_MAX_MEMORY),
         "1" if env else "0",
         json.dumps({k: str(v) for k, v in (packages or {}).items()}),
+        json.dumps(dict(args or {})),
     ]
     try:
         done = subprocess.run(

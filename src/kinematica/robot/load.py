@@ -68,6 +68,7 @@ def load(
     xacro_env: bool = False,
     trust_xacro: bool = False,
     packages: Mapping[str, str | os.PathLike[str]] | None = None,
+    xacro_args: Mapping[str, str] | None = None,
 ) -> Robot:
     """Load a built-in model by name, a robot file or a URDF by path.
 
@@ -92,6 +93,8 @@ def load(
         packages: URDF only: ROS package name -> folder, for ``$(find pkg)``
             in xacro files; ``ROS_PACKAGE_PATH``, ``AMENT_PREFIX_PATH`` and the
             file's own ``package.xml`` find the others.
+        xacro_args: URDF only: values of the xacro file's ``<xacro:arg>`` (as
+            xacro's ``name:=value``), over their defaults.
 
     Returns:
         The robot. A URDF's robot has the URDF's forward kinematics, its joint
@@ -102,8 +105,8 @@ def load(
         RobotFileError: The file is malformed (the message says where).
         ArgumentError: ``name_or_path`` is not text or a path.
         KinematicaError: ``base``, ``tip``, ``convention``, ``xacro``,
-            ``xacro_env``, ``trust_xacro`` or ``packages`` for a robot that is
-            not a URDF.
+            ``xacro_env``, ``trust_xacro``, ``packages`` or ``xacro_args`` for
+            a robot that is not a URDF.
     """
     if not isinstance(name_or_path, str | os.PathLike):
         raise ArgumentError(
@@ -132,6 +135,7 @@ def load(
             xacro_env=xacro_env,
             trust_xacro=trust_xacro,
             packages=packages,
+            xacro_args=xacro_args,
         )
     urdf_only = {
         "base": base,
@@ -141,6 +145,7 @@ def load(
         "xacro_env": xacro_env,
         "trust_xacro": trust_xacro,
         "packages": packages,
+        "xacro_args": xacro_args,
     }
     given = [k for k, v in urdf_only.items() if v]
     if given:

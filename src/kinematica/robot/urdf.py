@@ -75,6 +75,7 @@ def urdf_to_dh(
     xacro_env: bool = False,
     trust_xacro: bool = False,
     packages: Mapping[str, str | os.PathLike[str]] | None = None,
+    xacro_args: Mapping[str, str] | None = None,
 ) -> DHExtraction:
     """Read a URDF and extract the DH table of its chain from ``base`` to ``tip``.
 
@@ -91,6 +92,7 @@ def urdf_to_dh(
         trust_xacro: Expand xacro with the ``xacro`` package, which runs the
             file's code; by default kinematica's own expander, which runs none.
         packages: ROS package name -> folder, for ``$(find pkg)`` in xacro.
+        xacro_args: Values of the xacro file's ``<xacro:arg>``.
 
     Returns:
         The :class:`DHExtraction`: ``.robot`` (its DH table the extracted one,
@@ -113,6 +115,7 @@ def urdf_to_dh(
             xacro_env=xacro_env,
             trust_xacro=trust_xacro,
             packages=packages,
+            xacro_args=xacro_args,
         )
     chain = model.chain(base, tip)
     source = f"URDF {chain.source}" if chain.source else "URDF"
@@ -136,6 +139,7 @@ def robot_from_urdf(
     xacro_env: bool = False,
     trust_xacro: bool = False,
     packages: Mapping[str, str | os.PathLike[str]] | None = None,
+    xacro_args: Mapping[str, str] | None = None,
 ) -> Robot:
     """The robot of a URDF chain (see :func:`urdf_to_dh`)."""
     ext = urdf_to_dh(
@@ -147,5 +151,6 @@ def robot_from_urdf(
         xacro_env=xacro_env,
         trust_xacro=trust_xacro,
         packages=packages,
+        xacro_args=xacro_args,
     )
     return ext.robot
