@@ -69,6 +69,15 @@ SAME_AS_PYTHON = [
     "True + False",
     "'it''s'",
     "'a\\tb'",
+    "s.split('b')[0]",
+    "'1 2  3'.split()",
+    "'a,b'.rsplit(',', 1)",
+    "' x '.strip() + ' y'.lstrip() + 'z '.rstrip()",
+    "s.upper() + s.lower()",
+    "s.replace('a', 'zz')",
+    "'-'.join(['a', 'b'])",
+    "s.startswith('a') and not s.endswith('a')",
+    "(s + 'c').upper()",
 ]
 
 
@@ -120,6 +129,14 @@ def test_strings_and_lists_are_bounded() -> None:
     refused("str([[0] * 1000] * 1001)", "longer than 1,000,000")
 
 
+def test_string_methods_are_bounded() -> None:
+    inside = "('x' * 1000).replace('x', 'y' * 999)"
+    assert len(evaluate(inside, NAMES.__getitem__)) == 999_000
+    refused("('x' * 1000).replace('x', 'y' * 1001)", "longer than 1,000,000")
+    refused("'-'.join(['x' * 600000, 'y' * 600000])", "longer than 1,000,000")
+    refused("'-'.join([1, 2])", "join() takes a list of strings")
+
+
 def test_length_and_depth_are_bounded() -> None:
     assert evaluate("1" + " + 1" * ((MAX_LENGTH - 1) // 4), NAMES.__getitem__) > 0
     refused("1" + " " * MAX_LENGTH, f"at most {MAX_LENGTH}")
@@ -141,7 +158,9 @@ def test_length_and_depth_are_bounded() -> None:
         ("max", "is a function, not a value"),
         ("math", "is a namespace, not a value"),
         ("math.nothing", "math.nothing is not available"),
-        ("s.upper()", "not a function that may be called"),
+        ("s.encode()", "not a function that may be called"),
+        ("s.format(a)", "not a function that may be called"),
+        ("a.bit_length()", "not a function that may be called"),
         ("L.append", "attribute access (.append) is refused"),
         ("a.real", "attribute access (.real) is refused"),
         ("max(key=1)", "keyword arguments"),

@@ -86,7 +86,7 @@ def variants(marker: Path) -> dict[str, tuple[str, str]]:
         ),
         "method of a string": (
             "<link name=\"${'0.__init__.__globals__'.format(xacro.tokenize)}\"/>",
-            "attribute access (.format) is refused",
+            "(...).format is not a function that may be called",
         ),
         "format with %": (f"<link name=\"${{'%s' % '{touch}'}}\"/>", "string formatting"),
         "f-string": (f"<link name=\"${{f'open(&quot;{m}&quot;, &quot;w&quot;)'}}\"/>", "f''"),

@@ -15,7 +15,9 @@ descriptions write, with a tokenizer, parser and evaluator of its own (no
 - calls of the functions of :data:`FUNCTIONS` (``sin``, ``radians``, ``min``,
   ``int``, ``str``, ...; ``math.sin`` too) and those the caller adds
   (``load_yaml``);
-- ``.key`` only on what ``load_yaml`` returned (a mapping read from YAML).
+- ``.key`` only on what ``load_yaml`` returned (a mapping read from YAML), and
+  the string methods ``split``, ``strip``, ``lower``, ``upper``, ``replace``,
+  ``startswith``, ``endswith``, ``join`` (and ``rsplit``, ``lstrip``, ``rstrip``).
 
 Anything else (other attributes, ``__`` names, lambdas, comprehensions,
 unknown names or functions, string formatting with ``%``) raises
@@ -26,6 +28,7 @@ expression cannot ask for unbounded memory or time.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable, Mapping
 from typing import Any, Final
@@ -154,6 +157,40 @@ _COMPARE: Final[dict[str, Callable[[Any, Any], bool]]] = {
     "!=": lambda a, b: a != b,
     "in": lambda a, b: a in b,
     "not in": lambda a, b: a not in b,
+}
+
+
+def _replace(text: str, old: Any, new: Any, *count: Any) -> str:
+    if not isinstance(old, str) or not isinstance(new, str):
+        raise ValueError("replace() takes strings here")
+    growth = max(len(new) - len(old), 0) * (text.count(old) if old else len(text) + 1)
+    if len(text) + growth > MAX_TEXT:
+        raise ValueError(f"a string longer than {MAX_TEXT:,}: refused")
+    return text.replace(old, new, *count)
+
+
+def _join(separator: str, items: Any) -> str:
+    if not isinstance(items, list | tuple) or not all(isinstance(i, str) for i in items):
+        raise ValueError("join() takes a list of strings here")
+    if sum(map(len, items)) + len(separator) * len(items) > MAX_TEXT:
+        raise ValueError(f"a string longer than {MAX_TEXT:,}: refused")
+    return separator.join(items)
+
+
+#: The methods of strings an expression may call (``xyz.split(' ')[0]``): these and no
+#: other attribute of any object, each a function of ours or of ``str`` itself.
+_STRING_METHODS: Final[Mapping[str, Callable[..., Any]]] = {
+    "split": str.split,
+    "rsplit": str.rsplit,
+    "strip": str.strip,
+    "lstrip": str.lstrip,
+    "rstrip": str.rstrip,
+    "lower": str.lower,
+    "upper": str.upper,
+    "startswith": str.startswith,
+    "endswith": str.endswith,
+    "replace": _replace,
+    "join": _join,
 }
 
 
@@ -378,11 +415,20 @@ class _Evaluator:
         if callee[0] == "name":
             function = self.name(callee[2], callee[1])
             shown = callee[2]
-        elif callee[0] == "attr" and callee[2][0] == "name":
-            owner = self.name(callee[2][2], callee[2][1])
-            shown = f"{callee[2][2]}.{callee[3]}"
-            if isinstance(owner, Namespace) and callee[3] in owner.members:
-                function = owner.members[callee[3]]
+        elif callee[0] == "attr":
+            owner_node, method = callee[2], callee[3]
+            if owner_node[0] == "name":
+                owner = self.name(owner_node[2], owner_node[1])
+                shown = f"{owner_node[2]}.{method}"
+            else:
+                owner = self.value(owner_node)
+                shown = f"(...).{method}"
+            if isinstance(owner, Namespace) and method in owner.members:
+                function = owner.members[method]
+            elif isinstance(owner, str) and method in _STRING_METHODS:
+                function = functools.partial(_STRING_METHODS[method], owner)
+            elif isinstance(owner, YamlDict) and method == "get" and method not in owner:
+                function = owner.get
         else:
             self.value(callee)  # refuses what it is made of first (python., __, ...)
             shown = "the result of an expression"
