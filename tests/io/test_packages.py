@@ -86,6 +86,12 @@ def test_the_files_own_package_and_its_siblings(tmp_path: Path, clean_env) -> No
     assert height(km.load(path)) == pytest.approx(0.4)
     path.write_text(ROBOT.format(package="sibling_pkg"))
     assert height(km.load(path)) == pytest.approx(0.9)
+    # a package of the same repository, a level further (repo/moveit_configs/arm_config)
+    nested = package(src / "moveit_configs" / "arm_config", "arm_config", length=0.5)
+    path.write_text(ROBOT.format(package="arm_config"))
+    assert height(km.load(path)) == pytest.approx(0.5)
+    config = robot_file(nested / "config", "sibling_pkg")  # and back, from the nested one
+    assert height(km.load(config)) == pytest.approx(0.9)
 
 
 def test_ros_package_path_is_searched(tmp_path: Path, clean_env) -> None:

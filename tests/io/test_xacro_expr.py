@@ -78,13 +78,15 @@ SAME_AS_PYTHON = [
     "'-'.join(['a', 'b'])",
     "s.startswith('a') and not s.endswith('a')",
     "(s + 'c').upper()",
+    "dict(j1=0.5, j2=a)['j2']",
+    "dict(dict(x=1), y=2)",
 ]
 
 
 def python(text: str) -> object:
     namespace = {**NAMES, **{k: getattr(math, k) for k in dir(math) if not k.startswith("_")}}
     namespace.update(math=math, abs=abs, min=min, max=max, round=round, len=len, int=int)
-    namespace.update(float=float, str=str, bool=bool)
+    namespace.update(float=float, str=str, bool=bool, dict=dict)
     return eval(text, {"__builtins__": {}}, namespace)  # trusted test constants only
 
 
@@ -163,7 +165,8 @@ def test_length_and_depth_are_bounded() -> None:
         ("a.bit_length()", "not a function that may be called"),
         ("L.append", "attribute access (.append) is refused"),
         ("a.real", "attribute access (.real) is refused"),
-        ("max(key=1)", "keyword arguments"),
+        ("max(key=1)", "takes no keyword arguments"),
+        ("[a=1]", "keyword arguments are only for calls"),
         ("1 is 1", "'is' is not supported"),
         ("'%d' % 3", "string formatting"),
         ("(-8) ** 0.5", "complex number"),

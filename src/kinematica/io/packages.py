@@ -7,8 +7,9 @@ index; kinematica answers from a :class:`PackageMap`, which looks for a package
 1. in the folders the user gave (``packages={"name": "dir"}`` on the loaders,
    ``--package NAME=DIR`` on the command line);
 2. in the package the file itself belongs to: the nearest ``package.xml``
-   above the file names it (``<name>...</name>``), and in that package's
-   sibling folders holding a ``package.xml`` (a repository of several packages);
+   above the file names it (``<name>...</name>``), and around it: the folder
+   holding that package and the one above are searched as ``ROS_PACKAGE_PATH``
+   folders are (a repository or workspace of several packages);
 3. in the folders of ``ROS_PACKAGE_PATH`` (ROS 1): each is searched, to
    :data:`CRAWL_DEPTH` levels, for a ``package.xml`` naming the package;
 4. in ``<prefix>/share/<name>`` of each prefix of ``AMENT_PREFIX_PATH`` (ROS 2).
@@ -90,6 +91,33 @@ def parse_package_option(text: str) -> tuple[str, str]:
     return name, folder.strip()
 
 
+def _crawl(tops: list[Path]) -> dict[str, Path]:
+    """Packages in and below the folders ``tops`` (first found wins).
+
+    At most :data:`CRAWL_DEPTH` levels deep and :data:`CRAWL_MAX_DIRS` folders, and
+    never inside a package (as ROS's crawl).
+    """
+    found: dict[str, Path] = {}
+    listed = 0
+    for top in tops:
+        queue = [(top, 0)]
+        while queue and listed < CRAWL_MAX_DIRS:
+            folder, depth = queue.pop(0)
+            listed += 1
+            name = _package_name(folder)
+            if name is not None:  # a package: ROS does not look inside it for more
+                found.setdefault(name, folder)
+                continue
+            if depth >= CRAWL_DEPTH:
+                continue
+            try:
+                children = sorted(p for p in folder.iterdir() if p.is_dir())
+            except OSError:
+                continue
+            queue += [(c, depth + 1) for c in children if not c.name.startswith(".")]
+    return found
+
+
 class PackageMap:
     """Finds ROS packages' folders by the rules of the module docstring.
 
@@ -168,50 +196,24 @@ class PackageMap:
         return None
 
     def _own_packages(self) -> dict[str, Path]:
-        """The file's own package (nearest package.xml above it) and that package's siblings."""
+        """The file's own package, and the packages around it (its repository, workspace)."""
         if self._own is not None:
             return self._own
         self._own = {}
-        if self._start is None:
+        own = self.own_folder()
+        if own is None:
             return self._own
-        for folder in Path(self._start).resolve().parents:
-            own = _package_name(folder)
-            if own is None:
-                continue
-            try:
-                siblings = sorted(p for p in folder.parent.iterdir() if p.is_dir())
-            except OSError:
-                siblings = []
-            for sibling in siblings[:CRAWL_MAX_DIRS]:
-                sibling_name = _package_name(sibling) if sibling != folder else None
-                if sibling_name is not None:
-                    self._own.setdefault(sibling_name, sibling)
-            self._own[own] = folder
-            break
+        name = _package_name(own)
+        assert name is not None
+        # the folder holding the package and the one above it, as ROS_PACKAGE_PATH folders
+        self._own = _crawl([own.parent, own.parent.parent])
+        self._own[name] = own
         return self._own
 
     def _crawl(self) -> dict[str, Path]:
         """Packages under the ``ROS_PACKAGE_PATH`` folders (first found wins), bounded."""
-        if self._crawled is not None:
-            return self._crawled
-        self._crawled = {}
-        listed = 0
-        for top in self._ros_path:
-            queue = [(top, 0)]
-            while queue and listed < CRAWL_MAX_DIRS:
-                folder, depth = queue.pop(0)
-                listed += 1
-                name = _package_name(folder)
-                if name is not None:  # a package: ROS does not look inside it for more
-                    self._crawled.setdefault(name, folder)
-                    continue
-                if depth >= CRAWL_DEPTH:
-                    continue
-                try:
-                    children = sorted(p for p in folder.iterdir() if p.is_dir())
-                except OSError:
-                    continue
-                queue += [(c, depth + 1) for c in children if not c.name.startswith(".")]
+        if self._crawled is None:
+            self._crawled = _crawl(self._ros_path)
         return self._crawled
 
     def _ament_packages(self) -> dict[str, Path]:

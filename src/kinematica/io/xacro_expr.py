@@ -194,6 +194,12 @@ _STRING_METHODS: Final[Mapping[str, Callable[..., Any]]] = {
 }
 
 
+def _dict(*args: Any, **keywords: Any) -> dict[Any, Any]:
+    if len(args) > 1 or (args and not isinstance(args[0], dict)):
+        raise ValueError("dict() takes a mapping or keyword arguments here")
+    return {**(args[0] if args else {}), **keywords}
+
+
 def _number(kind: Callable[[Any], Any]) -> Callable[..., Any]:
     def convert(*args: Any) -> Any:
         if len(args) > 1:
@@ -261,6 +267,7 @@ FUNCTIONS: Final[Mapping[str, Callable[..., Any]]] = {
     "bool": _number(bool),
     "str": _number(text_of),
     "list": _sequence(list),
+    "dict": _dict,
     "tuple": _sequence(tuple),
 }
 
@@ -434,8 +441,11 @@ class _Evaluator:
             shown = "the result of an expression"
         if not callable(function) or isinstance(function, type):
             raise self.fail(f"{shown} is not a function that may be called", pos)
-        args = [self.value(arg) for arg in node[3]]
-        return function(*args)
+        args = [self.value(arg) for arg in node[3] if arg[0] != "keyword"]
+        keywords = {arg[2]: self.value(arg[3]) for arg in node[3] if arg[0] == "keyword"}
+        if keywords and function is not _dict:
+            raise self.fail(f"{shown} takes no keyword arguments (only dict() does)", pos)
+        return function(*args, **keywords)
 
 
 def evaluate(

@@ -250,7 +250,7 @@ class _Parser:
             self.i += 1
             self.nest()
             if tok.text == "(":
-                args = self.items(")")
+                args = self.items(")", keywords=True)
                 node = ("call", tok.pos, node, args)
             elif tok.text == "[":
                 index = self.conditional()
@@ -264,7 +264,7 @@ class _Parser:
                 node = ("attr", name.pos, node, name.text)
         return node
 
-    def items(self, close: str) -> list[Node]:
+    def items(self, close: str, *, keywords: bool = False) -> list[Node]:
         items: list[Node] = []
         while not self.take(close):
             if items:
@@ -272,7 +272,12 @@ class _Parser:
                 if self.take(close):
                     break
             if self.tok.kind == "name" and self.toks[self.i + 1].text == "=":
-                raise self.fail("keyword arguments are not supported")
+                if not keywords:
+                    raise self.fail("keyword arguments are only for calls")
+                name = self.tok
+                self.i += 2
+                items.append(("keyword", name.pos, name.text, self.conditional()))
+                continue
             items.append(self.conditional())
         self.depth -= 1
         return items
