@@ -256,3 +256,15 @@ def test_the_number_of_files_is_bounded(tmp_path, monkeypatch):
     assert km.load(path).dof == 2
     monkeypatch.setattr(subst, "MAX_FILES", 3)
     one_line_error(path, "more than 3 files")
+
+
+def test_a_default_that_never_ends_is_refused_at_once(tmp_path):
+    # xacro's own pattern for macro defaults backtracks exponentially on this (2**k ways to
+    # read k "${x}"); kinematica's reads each piece one way only, and bounds the params
+    params = "a:=" + "${x}" * 2000 + "'"
+    text = XACRO.replace('params="i parent"', f'params="{params}"')
+    start = time.perf_counter()
+    one_line_error(write(tmp_path, text, "redos.xacro"), "is not a name")
+    assert time.perf_counter() - start < 1.0
+    long = XACRO.replace('params="i parent"', f'params="i parent {"x " * 5000}"')
+    one_line_error(write(tmp_path, long, "long.xacro"), "at most 10,000 are read")

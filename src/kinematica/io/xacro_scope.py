@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 from typing import Any, Final
 
 __all__ = [
+    "MAX_PARAMS_LENGTH",
     "Macro",
     "Macros",
     "Scope",
@@ -243,9 +244,15 @@ class Macros:
         return None
 
 
+#: Longest ``params`` of a macro read (real ones are a few hundred characters).
+MAX_PARAMS_LENGTH: Final = 10_000
+
+# One way only to match each piece of a default (``${...}`` is never also read character
+# by character), so that a default that does not end cannot make the match backtrack
+# exponentially.
 _PARAM_DEFAULT: Final = re.compile(
     r"""\s*(?P<name>[^\s:=]+?)\s*:?=\s*(?P<forward>\^\|?)?
-    (?P<default>(?:\$\{[^}]*\}|\$\([^)]*\)|'[^']*'|"[^"]*"|[^\s'"])*)(?:\s+|$)""",
+    (?P<default>(?:\$\{[^}]*\}|\$\([^)]*\)|'[^']*'|"[^"]*"|[^\s'"$]|\$(?![{(]))*)(?:\s+|$)""",
     re.VERBOSE,
 )
 
@@ -259,6 +266,11 @@ def parse_params(text: str) -> tuple[list[str], dict[str, tuple[bool, str | None
     Raises:
         XacroError: a parameter name that is not an identifier.
     """
+    if len(text) > MAX_PARAMS_LENGTH:
+        raise XacroError(
+            f"the macro's params are {len(text):,} characters long; at most "
+            f"{MAX_PARAMS_LENGTH:,} are read"
+        )
     names: list[str] = []
     defaults: dict[str, tuple[bool, str | None]] = {}
     rest = text
@@ -273,6 +285,7 @@ def parse_params(text: str) -> tuple[list[str], dict[str, tuple[bool, str | None
             name, _, rest = rest.strip().partition(" ")
         bare = name.lstrip("*")
         if not valid_name(bare) or len(name) - len(bare) > 2:
-            raise XacroError(f"the macro parameter {name!r} is not a name")
+            shown = name if len(name) <= 60 else name[:57] + "..."
+            raise XacroError(f"the macro parameter {shown!r} is not a name")
         names.append(name)
     return names, defaults
