@@ -3,6 +3,7 @@ a package is nowhere (issue 35, item 2)."""
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -131,6 +132,18 @@ def test_the_order_given_own_ros_ament(tmp_path: Path, clean_env) -> None:
     only_ament = {"AMENT_PREFIX_PATH": env["AMENT_PREFIX_PATH"]}
     assert PackageMap(environ=only_ament).find("pkg") == (tmp_path / "install/share/pkg").resolve()
     assert PackageMap(environ={}).find("pkg") is None
+
+
+def test_a_package_name_never_walks_out_of_a_folder(tmp_path: Path, clean_env) -> None:
+    # AMENT_PREFIX_PATH joins <prefix>/share/<name>: "../.." would be <prefix>'s parent
+    (tmp_path / "install" / "share").mkdir(parents=True)
+    env = {"AMENT_PREFIX_PATH": str(tmp_path / "install")}
+    for name in ("..", "../..", "../../etc", ".", "a/b", "x.y"):
+        assert PackageMap(environ=env).find(name) is None, name
+    path = robot_file(tmp_path / "robot", "../..")
+    clean_env.setenv("AMENT_PREFIX_PATH", env["AMENT_PREFIX_PATH"])
+    with pytest.raises(km.RobotFileError, match=re.escape("needs the ROS package '../..'")):
+        km.load(path)
 
 
 def test_a_missing_package_is_one_line_saying_how_to_give_it(tmp_path: Path, clean_env) -> None:

@@ -47,7 +47,7 @@ CRAWL_MAX_DIRS: Final = 20_000
 #: Largest ``package.xml`` read (real ones are 1-5 kB).
 PACKAGE_XML_MAX_BYTES: Final = 256 * 1024
 
-_NAME: Final = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.\-]*")
+_NAME: Final = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_\-]*")
 
 
 def _package_name(folder: Path) -> str | None:
@@ -157,7 +157,13 @@ class PackageMap:
         self._own: dict[str, Path] | None = None
 
     def find(self, name: str) -> Path | None:
-        """The folder of package ``name``, or None when no rule finds it."""
+        """The folder of package ``name``, or None when no rule finds it.
+
+        A name that is not a ROS package name (``../..``) is found nowhere: it is
+        never joined to a folder.
+        """
+        if _NAME.fullmatch(name) is None or name in (".", ".."):
+            return None
         if name in self._given:
             return self._given[name]
         if name not in self._found:

@@ -326,6 +326,8 @@ class _Expander(Substitutions):
         space = elem.get("ns")
         if space:
             space = self.string(space, scope)
+            if not valid_name(space):
+                raise XacroError(f"the include's namespace {space!r} is not a valid name")
             inner = Scope(scope, namespace=True)
             scope.set(space, inner, lazy=False)
             macros.namespaces[space] = inner_macros = Macros()
