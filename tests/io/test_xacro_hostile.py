@@ -140,6 +140,10 @@ def variants(marker: Path) -> dict[str, tuple[str, str]]:
             "outside the folders",
         ),
         "include of itself": ('<xacro:include filename="evil.xacro"/>', "include cycle"),
+        "a package name that is a path": (
+            '<xacro:include filename="$(find ../../..)/etc/passwd"/>',
+            "needs the ROS package '../../..'",
+        ),
         "unknown substitution": ('<link name="$(cwd)"/>', "unknown or malformed substitution"),
         "unknown xacro element": ('<xacro:python code="x"/>', "unknown xacro element"),
     }
