@@ -92,6 +92,7 @@ bench: $(CORE_STAMP)
 	$(BIN)/python benchmarks/ik_makers.py
 	$(BIN)/python benchmarks/robot_files.py
 	$(BIN)/python benchmarks/urdf.py
+	$(BIN)/python benchmarks/xacro_expansion.py
 	$(BIN)/python benchmarks/motion.py
 	$(BIN)/python benchmarks/viz.py
 	$(BIN)/python benchmarks/design.py

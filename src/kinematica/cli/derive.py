@@ -11,7 +11,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from kinematica.cli.options import add_common, add_robot, dump, robot_from_args
+from kinematica.cli.options import add_common, add_robot, dump, robot_from_args, urdf_options
 from kinematica.errors import KinematicaError
 from kinematica.io.atomic import unchanged, write_text_atomic
 
@@ -30,9 +30,9 @@ def derive(args: argparse.Namespace) -> int:
             "kinematica derive needs sympy: pip install 'kinematica[symbolic]'"
         ) from exc
     # By name, a robot file's named lengths stay symbols; a URDF asked with its
-    # own options (--base, --tip, --xacro) is loaded first (numbers only either way).
-    urdf_options = (args.base, args.tip, args.xacro, args.xacro_env)
-    source = robot_from_args(args) if any(urdf_options) else args.robot
+    # own options (--base, --tip, --xacro, --package...) is loaded first (numbers only
+    # either way).
+    source = robot_from_args(args) if urdf_options(args) else args.robot
     text = report(source, format=args.format, lang=args.lang)
     if args.output is not None:
         path = Path(args.output)

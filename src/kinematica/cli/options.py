@@ -123,17 +123,67 @@ def add_robot(p: argparse.ArgumentParser) -> None:
         action="store_true",
         help="URDF only: let xacro read environment variables ($(env ...), $(optenv ...))",
     )
+    p.add_argument(
+        "--trust-xacro",
+        action="store_true",
+        help="URDF only: expand xacro with the xacro package, which RUNS the file's code "
+        "(only for files you trust); by default kinematica's own expander runs none",
+    )
+    p.add_argument(
+        "--package",
+        action="append",
+        type=_package,
+        default=[],
+        metavar="NAME=DIR",
+        help="URDF only: the folder of ROS package NAME, for $(find NAME) in xacro files "
+        "(repeatable; ROS_PACKAGE_PATH, AMENT_PREFIX_PATH and the file's own package.xml "
+        "find the others)",
+    )
+    p.add_argument(
+        "--xacro-arg",
+        action="append",
+        type=_xacro_arg,
+        default=[],
+        metavar="NAME:=VALUE",
+        help="URDF only: the value of the xacro file's <xacro:arg name=NAME> (repeatable)",
+    )
+
+
+def _package(text: str) -> tuple[str, str]:
+    """``--package NAME=DIR`` as ``(name, dir)``."""
+    from kinematica.io.packages import parse_package_option
+
+    try:
+        return parse_package_option(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from exc
+
+
+def _xacro_arg(text: str) -> tuple[str, str]:
+    """``--xacro-arg NAME:=VALUE`` as ``(name, value)``."""
+    name, sep, value = text.partition(":=")
+    if not sep or not name.strip() or " " in name.strip():
+        raise argparse.ArgumentTypeError(f"--xacro-arg takes NAME:=VALUE, got {text!r}")
+    return name.strip(), value
+
+
+def urdf_options(args: argparse.Namespace) -> dict[str, Any]:
+    """The URDF-only options given (``--base``, ``--tip``, xacro's), as keyword arguments."""
+    given = {
+        "base": args.base,
+        "tip": args.tip,
+        "xacro": args.xacro,
+        "xacro_env": args.xacro_env,
+        "trust_xacro": args.trust_xacro,
+        "packages": dict(args.package) if args.package else None,
+        "xacro_args": dict(args.xacro_arg) if args.xacro_arg else None,
+    }
+    return {k: v for k, v in given.items() if v}
 
 
 def robot_from_args(args: argparse.Namespace) -> Robot:
-    """The robot named by ``ROBOT`` (and, for a URDF, ``--base``/``--tip``/``--xacro``)."""
-    return load(
-        args.robot,
-        base=args.base,
-        tip=args.tip,
-        xacro=args.xacro,
-        xacro_env=args.xacro_env,
-    )
+    """The robot named by ``ROBOT`` (and, for a URDF, ``--base``/``--tip``/``--xacro``...)."""
+    return load(args.robot, **urdf_options(args))
 
 
 def angle_unit(args: argparse.Namespace) -> str:

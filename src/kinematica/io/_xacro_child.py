@@ -1,7 +1,7 @@
 """Expand one xacro file in a child process, within limits; run by :mod:`kinematica.io.xacro`.
 
 Run as a script (``python -I _xacro_child.py FILE XACRO_DIR MAX_BYTES MAX_NODES
-MAX_MEMORY ENV``), never imported by kinematica: it needs only the standard
+MAX_MEMORY ENV PACKAGES ARGS``), never imported by kinematica: it needs only the standard
 library and the ``xacro`` package (found in ``XACRO_DIR``). It writes the
 expanded URDF (UTF-8) to stdout and exits 0, or writes one line to stderr and
 exits 2. The parent process bounds its time; here its memory (an address-space
@@ -9,11 +9,14 @@ limit), the elements it may create (every node a macro call or a loop clones
 is counted, so a macro bomb stops at the limit instead of growing
 exponentially) and its output are bounded. Unless ``ENV`` is ``1`` the
 environment is empty and ``$(env ...)``, ``$(optenv ...)`` and their
-``${env(...)}`` forms are refused by name.
+``${env(...)}`` forms are refused by name. ``$(find pkg)`` is answered from
+``PACKAGES``, a JSON object of package name -> folder (ROS is not needed);
+``ARGS`` (JSON) gives the file's ``<xacro:arg>`` values.
 """
 
 from __future__ import annotations
 
+import json
 import sys
 import xml.dom.minidom
 from types import ModuleType
@@ -67,9 +70,24 @@ def _refuse_environment(substitution_args: Any, exception: type[Exception]) -> N
     substitution_args._eval_dict["optenv"] = env
 
 
+def _find_in(substitution_args: Any, packages: dict[str, str], exception: type[Exception]) -> None:
+    """Answer ``$(find pkg)`` from ``packages`` instead of ROS's package index."""
+
+    def find(name: str) -> str:
+        if name not in packages:
+            raise exception(
+                f"needs the ROS package {name!r}, which was not found: give its folder with "
+                f"--package {name}=DIR (packages={{{name!r}: DIR}} in Python)"
+            )
+        return packages[name]
+
+    substitution_args._eval_find = find
+    substitution_args._eval_dict["find"] = find
+
+
 def main(argv: list[str]) -> int:
     """Expand ``argv[0]``; see the module's docstring for the arguments."""
-    path, xacro_dir, max_bytes, max_nodes, max_memory, allow_env = argv
+    path, xacro_dir, max_bytes, max_nodes, max_memory, allow_env, packages, args = argv
     sys.path.insert(0, xacro_dir)
     if resource is not None:  # POSIX; elsewhere the time and node limits still hold
         resource.setrlimit(resource.RLIMIT_AS, (int(max_memory), int(max_memory)))
@@ -80,8 +98,9 @@ def main(argv: list[str]) -> int:
 
         if allow_env != "1":
             _refuse_environment(substitution_args, substitution_args.SubstitutionException)
+        _find_in(substitution_args, json.loads(packages), substitution_args.SubstitutionException)
         _count_clones(int(max_nodes))
-        text = xacro.process_file(path).toxml()
+        text = xacro.process_file(path, mappings=json.loads(args)).toxml()
     except MemoryError:
         sys.stderr.write(f"the expansion needed more than {int(max_memory)} bytes of memory\n")
         return 2

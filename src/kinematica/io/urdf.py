@@ -17,9 +17,11 @@ A URDF may come from anywhere, so it is read defensively:
 - xacro is expanded only when asked: a ``.xacro`` file, or ``xacro=True`` for a
   ``.urdf`` holding xacro (elements in the ``xacro`` namespace, ``${...}`` or
   ``$(...)`` in attributes); otherwise such a file is refused with the option
-  to give. The expansion runs in a child process with time, size and memory
-  limits and without the environment (:mod:`kinematica.io.xacro`). A file that
-  merely declares ``xmlns:xacro`` (as many generated URDFs do) is plain URDF.
+  to give. kinematica's own expander runs no code from the file, reads only
+  files inside its folder and its packages, and not the environment; the
+  ``xacro`` package is used only with ``trust_xacro=True``
+  (:mod:`kinematica.io.xacro`). A file that merely declares ``xmlns:xacro`` (as
+  many generated URDFs do) is plain URDF.
 """
 
 from __future__ import annotations
@@ -28,6 +30,7 @@ import math
 import os
 import stat
 import warnings
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any, Final
 
@@ -40,7 +43,9 @@ from kinematica.io.urdf_model import (
     UrdfModel,
     dh_frames_note,
 )
-from kinematica.io.xacro import XACRO_HINT, expand_xacro
+from kinematica.io.xacro import XACRO_HINT, xacro_to_urdf
+from kinematica.io.xml_parse import local_name as _local
+from kinematica.io.xml_parse import parse_xml
 
 __all__ = ["URDF_MAX_BYTES", "parse_urdf", "read_urdf"]
 
@@ -68,12 +73,6 @@ URDF_MAX_ANGLE: Final = 1e4
 URDF_AXIS_SCALE: Final = 1e6
 
 
-def _local(tag: object) -> str:
-    """An element's tag without its ``{namespace}``."""
-    text = str(tag)
-    return text.rsplit("}", 1)[-1] if text.startswith("{") else text
-
-
 def _is_xacro(root: Any) -> str | None:
     """Why the tree needs xacro, or None when it is plain URDF."""
     for elem in root.iter():
@@ -88,35 +87,7 @@ def _is_xacro(root: Any) -> str | None:
 
 def _parse_xml(data: bytes, source: str | None) -> Any:
     """The XML root element, parsed by defusedxml (no entities, no external refs)."""
-    import defusedxml
-    from defusedxml import ElementTree as SafeET
-
-    def fail(message: str) -> RobotFileError:
-        return RobotFileError(message, path=source)
-
-    try:
-        return SafeET.fromstring(data, forbid_dtd=False, forbid_entities=True, forbid_external=True)
-    except defusedxml.EntitiesForbidden as exc:
-        raise fail(
-            f"the XML declares an entity ({exc.name!r}): refused, since entity expansion is how "
-            "XML bombs work and a URDF needs none"
-        ) from exc
-    except defusedxml.ExternalReferenceForbidden as exc:
-        raise fail(
-            f"the XML refers to an external resource ({exc.sysid or exc.pubid!r}): refused, "
-            "a URDF is read on its own"
-        ) from exc
-    except defusedxml.DefusedXmlException as exc:
-        raise fail(f"the XML uses a forbidden construct: {exc}") from exc
-    except SafeET.ParseError as exc:
-        line, column = getattr(exc, "position", (0, 0))
-        what = str(exc).split(":")[0]
-        if b"xacro:" in data:
-            hint = f"not valid XML ({what}): it looks like a xacro file; {XACRO_HINT}"
-            raise fail(hint) from exc
-        raise fail(f"not valid XML: {what} (line {line}, column {column + 1})") from exc
-    except RecursionError as exc:  # pragma: no cover - expat does not recurse; defensive
-        raise fail("the XML is nested too deeply") from exc
+    return parse_xml(data, source, hint=XACRO_HINT)
 
 
 def _numbers(
@@ -342,8 +313,11 @@ def read_urdf(
     max_bytes: int = URDF_MAX_BYTES,
     xacro: bool = False,
     xacro_env: bool = False,
+    trust_xacro: bool = False,
+    packages: Mapping[str, str | os.PathLike[str]] | None = None,
+    xacro_args: Mapping[str, str] | None = None,
 ) -> UrdfModel:
-    """Read a URDF file, or a xacro file expanded with the ``xacro`` package.
+    """Read a URDF file, or a xacro file expanded into URDF.
 
     Args:
         path: The file.
@@ -352,22 +326,37 @@ def read_urdf(
         xacro: Expand xacro in a ``.urdf`` file too (a ``.xacro`` file is
             always expanded). Without it, a ``.urdf`` holding xacro is refused.
         xacro_env: Let xacro read the environment (``$(env ...)``,
-            ``$(optenv ...)``, ROS package paths); refused otherwise.
+            ``$(optenv ...)``); refused otherwise.
+        trust_xacro: Expand with the ``xacro`` package, which runs the file's
+            code (in a child process with limits); by default kinematica's own
+            expander, which runs none (see :mod:`kinematica.io.xacro`).
+        packages: ROS package name -> folder, for ``$(find pkg)`` in xacro
+            files (``ROS_PACKAGE_PATH``, ``AMENT_PREFIX_PATH`` and the file's
+            own ``package.xml`` find the others).
+        xacro_args: Values of the xacro file's ``<xacro:arg>`` (as xacro's
+            ``name:=value``), over their defaults.
 
     Returns:
         The links and joints, checked to form one tree.
 
     Raises:
         RobotFileError: missing, not a regular file, too large, not valid or
-            hostile XML, xacro not asked for or failing (or past a limit of
-            :mod:`kinematica.io.xacro`), or a malformed URDF (the message
-            names the joint or link).
+            hostile XML, xacro not asked for or failing (refused constructs,
+            missing packages, limits), or a malformed URDF (the message names
+            the joint or link).
     """
     p = Path(path)
     source = str(p)
     data = _read_bytes(p, max_bytes)
     root = _parse_xml(data, source)  # hostile XML is refused before xacro sees it
     if p.name.lower().endswith(".xacro") or (xacro and _is_xacro(root) is not None):
-        expanded = expand_xacro(p, max_bytes=max_bytes, env=xacro_env)
+        expanded = xacro_to_urdf(
+            p,
+            max_bytes=max_bytes,
+            env=xacro_env,
+            trust=trust_xacro,
+            packages=packages,
+            args=xacro_args,
+        )
         return parse_urdf(expanded, source=source)
     return _model(root, source, dh_frames_note(data))

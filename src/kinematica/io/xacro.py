@@ -1,33 +1,46 @@
-"""Expanding xacro files into URDF, in a child process with limits.
+"""Expanding xacro files into URDF: safely by default, with the ``xacro`` package if trusted.
 
-xacro evaluates the expressions of the file it expands (Python, with a thin
-guard), reads the files it includes and, through ``$(env NAME)`` and
-``$(optenv NAME)``, the environment. So kinematica expands xacro only when
-asked (a ``.xacro`` file, or ``xacro=True`` for a ``.urdf`` holding xacro),
-and never in its own process: the ``xacro`` package runs in a child Python
-(:mod:`kinematica.io._xacro_child`) that
+A xacro file is a program: the ``xacro`` package evaluates its expressions with
+Python's ``eval`` behind a guard that a file can get around
+(``${python.vars(python.type(f))['__globals__']...}`` reaches ``os.system``).
+So kinematica expands xacro in one of two ways:
 
-- is stopped after :data:`XACRO_TIME_LIMIT` seconds (a loop or a huge number
-  in an expression cannot hang the caller);
-- may create at most :data:`XACRO_MAX_NODES` XML nodes by macro calls and
-  loops (a "macro bomb", each macro calling the one before twice, stops there
-  at once instead of doubling thirty times) and use at most
-  :data:`XACRO_MAX_MEMORY` bytes of memory;
-- may write at most the URDF size limit of expanded text;
-- starts with an empty environment, and refuses ``$(env ...)`` and
-  ``$(optenv ...)`` by name, unless ``env=True`` (``xacro_env=True`` on the
-  loaders, ``--xacro-env`` on the command line) hands it the caller's;
-- runs isolated (``python -I``): nothing from the file's folder is imported.
+- **By default, with its own expander** (:mod:`kinematica.io.xacro_expand`):
+  properties, macros, includes, conditionals, arguments and ``load_yaml``, with
+  expressions evaluated by a parser of its own (arithmetic, comparisons, math
+  functions, strings, lists; no ``eval``, no attribute of a Python object). It
+  runs no code from the file, reads only files inside the file's folder and its
+  packages' folders, and reads no environment variable unless ``env=True``.
+  Anything else is refused with an error naming the file, the line and the
+  expression.
+- **With the ``xacro`` package, only when the caller trusts the file**
+  (``trust_xacro=True`` on the loaders, ``--trust-xacro`` on the command line):
+  for files that use what kinematica's expander refuses. The file's code then
+  runs, in a child Python (:mod:`kinematica.io._xacro_child`) that
 
-Includes are still read (the file's folder is the child's working
-directory): expand only files you trust as far as reading goes.
+  - is stopped after :data:`XACRO_TIME_LIMIT` seconds;
+  - may create at most :data:`XACRO_MAX_NODES` XML nodes by macro calls and
+    loops (a "macro bomb" stops there at once) and use at most
+    :data:`XACRO_MAX_MEMORY` bytes of memory;
+  - may write at most the URDF size limit of expanded text;
+  - starts with an empty environment, and refuses ``$(env ...)`` and
+    ``$(optenv ...)`` by name, unless ``env=True``;
+  - runs isolated (``python -I``): nothing from the file's folder is imported;
+  - resolves ``$(find pkg)`` through the same package map.
+
+  These limits bound its time and memory; they do not stop its code: trust
+  only files you would run.
+
+Both resolve ``$(find pkg)`` through a :class:`~kinematica.io.packages.PackageMap`.
 """
 
 from __future__ import annotations
 
 import importlib.util
+import json
 import os
 import sys
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Final
 
@@ -39,6 +52,7 @@ __all__ = [
     "XACRO_MAX_NODES",
     "XACRO_TIME_LIMIT",
     "expand_xacro",
+    "xacro_to_urdf",
 ]
 
 #: Seconds a xacro expansion may take. Real descriptions (a humanoid with its
@@ -58,8 +72,8 @@ XACRO_MAX_MEMORY: Final = 2 * 2**30
 
 #: How to get plain URDF from a xacro file, for messages.
 XACRO_HINT: Final = (
-    "load it with xacro=True (--xacro on the command line) to expand it with the xacro "
-    "package, or expand it first: `xacro FILE > FILE.urdf`"
+    "load it with xacro=True (--xacro on the command line) to expand it, "
+    "or expand it first: `xacro FILE > FILE.urdf`"
 )
 
 _CHILD = Path(__file__).with_name("_xacro_child.py")
@@ -76,14 +90,78 @@ def _xacro_dir() -> str | None:
     return str(Path(spec.origin).resolve().parent.parent)
 
 
-def expand_xacro(path: str | os.PathLike[str], *, max_bytes: int, env: bool = False) -> bytes:
+def xacro_to_urdf(
+    path: str | os.PathLike[str],
+    *,
+    max_bytes: int,
+    env: bool = False,
+    trust: bool = False,
+    packages: Mapping[str, str | os.PathLike[str]] | None = None,
+    args: Mapping[str, str] | None = None,
+) -> bytes:
+    """The URDF text xacro file ``path`` expands to: by kinematica's expander, or trusted.
+
+    Args:
+        path: The xacro file.
+        max_bytes: Largest file and expanded text accepted, in bytes.
+        env: Allow ``$(env ...)`` and ``$(optenv ...)``.
+        trust: Expand with the ``xacro`` package, running the file's code
+            (see the module docstring); otherwise kinematica's own expander.
+        packages: Package name -> folder, for ``$(find pkg)``; the rules of
+            :class:`~kinematica.io.packages.PackageMap` find the others.
+        args: Values of the file's ``<xacro:arg>`` (``name:=value`` on xacro's
+            command line), over their defaults.
+
+    Raises:
+        RobotFileError: one line naming the file (and the line and expression
+            for kinematica's expander): a refused or malformed construct, a
+            missing package, a limit passed, or (trusted) xacro's error.
+    """
+    from kinematica.io.packages import PackageMap
+
+    pmap = PackageMap(packages, start=Path(path))
+    if trust:
+        return expand_xacro(path, max_bytes=max_bytes, env=env, packages=pmap.known(), args=args)
+    from xml.etree import ElementTree
+
+    from kinematica.io.xacro_expand import expand
+
+    root = expand(
+        path,
+        max_bytes=max_bytes,
+        max_nodes=XACRO_MAX_NODES,
+        time_limit=XACRO_TIME_LIMIT,
+        env=env,
+        packages=pmap,
+        args=args,
+    )
+    text: bytes = ElementTree.tostring(root, encoding="utf-8")
+    if len(text) > max_bytes:
+        raise RobotFileError(
+            f"the expanded URDF is larger than the limit of {max_bytes} bytes", path=str(path)
+        )
+    return text
+
+
+def expand_xacro(
+    path: str | os.PathLike[str],
+    *,
+    max_bytes: int,
+    env: bool = False,
+    packages: Mapping[str, Path] | None = None,
+    args: Mapping[str, str] | None = None,
+) -> bytes:
     """The URDF text that the ``xacro`` package makes of file ``path``, within limits.
+
+    This runs the file's code (in a child process with limits): only for trusted
+    files; :func:`xacro_to_urdf` chooses.
 
     Args:
         path: The xacro file.
         max_bytes: Largest expanded text accepted, in bytes.
-        env: Let xacro read the environment (``$(env ...)``, ``$(optenv ...)``,
-            ROS package paths for ``$(find ...)``).
+        env: Let xacro read the environment (``$(env ...)``, ``$(optenv ...)``).
+        packages: Package name -> folder, answering ``$(find pkg)``.
+        args: Values of the file's ``<xacro:arg>``.
 
     Returns:
         The expanded URDF, UTF-8.
@@ -98,8 +176,9 @@ def expand_xacro(path: str | os.PathLike[str], *, max_bytes: int, env: bool = Fa
     where = _xacro_dir()
     if where is None:
         raise RobotFileError(
-            "a xacro file, and expanding it needs the xacro package "
-            "(pip install 'kinematica[xacro]'); or expand it first: `xacro FILE > FILE.urdf`",
+            "trust_xacro=True (--trust-xacro) expands with the xacro package, which is not "
+            "installed (pip install 'kinematica[xacro]'); without it kinematica's own expander "
+            "is used",
             path=source,
         )
     import subprocess  # only here: reading a plain URDF starts no process
@@ -115,6 +194,8 @@ def expand_xacro(path: str | os.PathLike[str], *, max_bytes: int, env: bool = Fa
         str(XACRO_MAX_NODES),
         str(XACRO_MAX_MEMORY),
         "1" if env else "0",
+        json.dumps({k: str(v) for k, v in (packages or {}).items()}),
+        json.dumps(dict(args or {})),
     ]
     try:
         done = subprocess.run(

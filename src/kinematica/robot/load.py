@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+from collections.abc import Mapping
 from pathlib import Path
 
 import numpy as np
@@ -65,14 +66,17 @@ def load(
     convention: str | None = None,
     xacro: bool = False,
     xacro_env: bool = False,
+    trust_xacro: bool = False,
+    packages: Mapping[str, str | os.PathLike[str]] | None = None,
+    xacro_args: Mapping[str, str] | None = None,
 ) -> Robot:
     """Load a built-in model by name, a robot file or a URDF by path.
 
     Args:
         name_or_path: A built-in name (see ``kinematica robots``), a path to a
             ``.yaml``/``.yml``/``.json``/``.toml`` robot file, or a ``.urdf``
-            file (``.xacro`` too, expanded with the ``xacro`` package in a
-            child process with time and size limits).
+            file (``.xacro`` too, expanded by kinematica's own xacro expander,
+            which runs no code from the file).
         base: URDF only: the base link of the chain (default the root link).
         tip: URDF only: the tip link (default the single leaf at the end of
             movable joints; the error lists the leaves when there are several).
@@ -83,6 +87,14 @@ def load(
             file always is); without it a ``.urdf`` holding xacro is refused.
         xacro_env: URDF only: let xacro read the environment variables
             (``$(env ...)``, ``$(optenv ...)``); refused by default.
+        trust_xacro: URDF only: expand xacro with the ``xacro`` package, which
+            runs the file's code (in a child process with limits): only for
+            files you trust; by default kinematica's own expander.
+        packages: URDF only: ROS package name -> folder, for ``$(find pkg)``
+            in xacro files; ``ROS_PACKAGE_PATH``, ``AMENT_PREFIX_PATH`` and the
+            file's own ``package.xml`` find the others.
+        xacro_args: URDF only: values of the xacro file's ``<xacro:arg>`` (as
+            xacro's ``name:=value``), over their defaults.
 
     Returns:
         The robot. A URDF's robot has the URDF's forward kinematics, its joint
@@ -92,8 +104,9 @@ def load(
         UnknownRobotError: Neither a built-in name nor an existing file.
         RobotFileError: The file is malformed (the message says where).
         ArgumentError: ``name_or_path`` is not text or a path.
-        KinematicaError: ``base``, ``tip``, ``convention``, ``xacro`` or
-            ``xacro_env`` for a robot that is not a URDF.
+        KinematicaError: ``base``, ``tip``, ``convention``, ``xacro``,
+            ``xacro_env``, ``trust_xacro``, ``packages`` or ``xacro_args`` for
+            a robot that is not a URDF.
     """
     if not isinstance(name_or_path, str | os.PathLike):
         raise ArgumentError(
@@ -120,6 +133,9 @@ def load(
             convention=convention or "standard",
             xacro=xacro,
             xacro_env=xacro_env,
+            trust_xacro=trust_xacro,
+            packages=packages,
+            xacro_args=xacro_args,
         )
     urdf_only = {
         "base": base,
@@ -127,6 +143,9 @@ def load(
         "convention": convention,
         "xacro": xacro,
         "xacro_env": xacro_env,
+        "trust_xacro": trust_xacro,
+        "packages": packages,
+        "xacro_args": xacro_args,
     }
     given = [k for k, v in urdf_only.items() if v]
     if given:

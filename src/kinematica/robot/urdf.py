@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
+from collections.abc import Mapping
 
 import numpy as np
 from numpy.typing import NDArray
@@ -72,11 +73,14 @@ def urdf_to_dh(
     convention: str = "standard",
     xacro: bool = False,
     xacro_env: bool = False,
+    trust_xacro: bool = False,
+    packages: Mapping[str, str | os.PathLike[str]] | None = None,
+    xacro_args: Mapping[str, str] | None = None,
 ) -> DHExtraction:
     """Read a URDF and extract the DH table of its chain from ``base`` to ``tip``.
 
     Args:
-        urdf: A ``.urdf`` file (``.xacro`` too, with the ``xacro`` package), or
+        urdf: A ``.urdf`` file (``.xacro`` too, expanded without running its code), or
             a parsed :class:`~kinematica.io.UrdfModel`.
         base: Base link; default the root link.
         tip: Tip link; default the single leaf at the end of movable joints
@@ -85,6 +89,10 @@ def urdf_to_dh(
         xacro: Expand xacro in a ``.urdf`` file too (see
             :func:`~kinematica.io.read_urdf`; ``.xacro`` files always are).
         xacro_env: Let xacro read the environment.
+        trust_xacro: Expand xacro with the ``xacro`` package, which runs the
+            file's code; by default kinematica's own expander, which runs none.
+        packages: ROS package name -> folder, for ``$(find pkg)`` in xacro.
+        xacro_args: Values of the xacro file's ``<xacro:arg>``.
 
     Returns:
         The :class:`DHExtraction`: ``.robot`` (its DH table the extracted one,
@@ -101,7 +109,14 @@ def urdf_to_dh(
     if isinstance(urdf, UrdfModel):
         model = urdf
     else:
-        model = read_urdf(urdf, xacro=xacro, xacro_env=xacro_env)
+        model = read_urdf(
+            urdf,
+            xacro=xacro,
+            xacro_env=xacro_env,
+            trust_xacro=trust_xacro,
+            packages=packages,
+            xacro_args=xacro_args,
+        )
     chain = model.chain(base, tip)
     source = f"URDF {chain.source}" if chain.source else "URDF"
     ext = dh_from_chain(
@@ -122,9 +137,20 @@ def robot_from_urdf(
     convention: str = "standard",
     xacro: bool = False,
     xacro_env: bool = False,
+    trust_xacro: bool = False,
+    packages: Mapping[str, str | os.PathLike[str]] | None = None,
+    xacro_args: Mapping[str, str] | None = None,
 ) -> Robot:
     """The robot of a URDF chain (see :func:`urdf_to_dh`)."""
     ext = urdf_to_dh(
-        urdf, base=base, tip=tip, convention=convention, xacro=xacro, xacro_env=xacro_env
+        urdf,
+        base=base,
+        tip=tip,
+        convention=convention,
+        xacro=xacro,
+        xacro_env=xacro_env,
+        trust_xacro=trust_xacro,
+        packages=packages,
+        xacro_args=xacro_args,
     )
     return ext.robot
