@@ -43,7 +43,7 @@ def test_calibrated_robot_is_the_fitted_model(ur5_fit):
 
 
 def test_urdf_reproduces_the_calibrated_robot_exactly(ur5_fit, tmp_path):
-    robot, true, res = ur5_fit
+    robot, _, res = ur5_fit
     path = tmp_path / "calibrated.urdf"
     path.write_text(res.urdf)
     back = km.load(path)
@@ -52,7 +52,7 @@ def test_urdf_reproduces_the_calibrated_robot_exactly(ur5_fit, tmp_path):
 
 
 def test_dh_table_and_its_error(ur5_fit, tmp_path):
-    robot, true, res = ur5_fit
+    robot, _, res = ur5_fit
     path = tmp_path / "calibrated.yaml"
     res.dh.robot.save(path)
     back = km.load(path)
@@ -64,7 +64,7 @@ def test_dh_table_and_its_error(ur5_fit, tmp_path):
 
 
 def test_ik_on_the_calibrated_ur5_gives_every_solution(ur5_fit):
-    robot, true, res = ur5_fit
+    *_, res = ur5_fit
     arm = res.robot
     for q in arm.random_q(4, seed=14):
         T = arm.fk(q)
@@ -79,7 +79,9 @@ def test_ik_on_a_calibrated_puma_gives_every_solution():
     robot = km.load("puma560")
     true = perturbed(robot, 61)
     q = robot.random_q(40, seed=62)
-    res = calibration.calibrate(robot, q, calibration.simulate(true, q, NOISE, seed=63), noise=NOISE)
+    res = calibration.calibrate(
+        robot, q, calibration.simulate(true, q, NOISE, seed=63), noise=NOISE
+    )
     arm = res.robot.with_limits([None] * 6)  # every branch, not only those within the limits
     rng = np.random.default_rng(65)
     for q0 in res.robot.random_q(2, seed=64):

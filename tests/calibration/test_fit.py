@@ -34,7 +34,7 @@ def puma_fit():
 
 
 def test_exact_measurements_are_fitted_exactly(puma_fit):
-    robot, true, q, res, exact = puma_fit
+    robot, true, _, _, exact = puma_fit
     # the identified parameters describe the arm as it is: nothing is left unexplained
     assert exact.rms()[0] < 1e-10 and exact.rms()[1] < 1e-10
     q2 = robot.random_q(20, seed=99)  # configurations the fit never saw
@@ -42,7 +42,7 @@ def test_exact_measurements_are_fitted_exactly(puma_fit):
 
 
 def test_every_identified_parameter_within_three_standard_errors(puma_fit):
-    robot, true, q, res, exact = puma_fit
+    *_, res, exact = puma_fit
     assert res.fitted == exact.fitted
     for p in res.parameters:
         if p.fitted:
@@ -51,7 +51,7 @@ def test_every_identified_parameter_within_three_standard_errors(puma_fit):
 
 
 def test_rms_after_is_the_noise_level(puma_fit):
-    robot, true, q, res, exact = puma_fit
+    *_, res, _ = puma_fit
     # RMS of the distance |Δp| for noise σ per coordinate: σ√3; of the rotation angle: σ√3
     position, orientation = res.rms()
     assert position == pytest.approx(math.sqrt(3) * NOISE[0], rel=0.10)
@@ -61,7 +61,7 @@ def test_rms_after_is_the_noise_level(puma_fit):
 
 
 def test_robust_loss_with_gross_outliers():
-    robot, true, q, measured = _case(m=80, seed=21)
+    robot, _, q, measured = _case(m=80, seed=21)
     rng = np.random.default_rng(3)
     bad = rng.choice(len(q), size=4, replace=False)  # 5 %
     direction = rng.normal(size=(len(bad), 3))
@@ -76,7 +76,7 @@ def test_robust_loss_with_gross_outliers():
 
 
 def test_position_measurements():
-    robot, true, q, measured = _case(m=60, seed=31, kind="position")
+    robot, _, q, measured = _case(m=60, seed=31, kind="position")
     res = calibration.calibrate(robot, q, measured, "position", noise=NOISE)
     assert res.rank == 4 * 6 + 3
     assert res.rms()[0] == pytest.approx(math.sqrt(3) * NOISE[0], rel=0.15)
@@ -86,7 +86,7 @@ def test_position_measurements():
 
 
 def test_params_subset_fits_only_those():
-    robot, true, q, measured = _case(m=30, seed=41)
+    robot, _, q, measured = _case(m=30, seed=41)
     res = calibration.calibrate(robot, q, measured, "pose", params=["a2", "d3", "a3", "d4"])
     assert set(res.fitted) == {"a2", "d3", "a3", "d4"}
     assert {p.name for p in res.parameters} == {"a2", "d3", "a3", "d4"}
@@ -94,7 +94,7 @@ def test_params_subset_fits_only_those():
 
 # ------------------------------------------------------------------------ bad data
 def test_wrong_shapes_are_named():
-    robot, true, q, measured = _case(m=10, seed=51)
+    robot, _, q, measured = _case(m=10, seed=51)
     with pytest.raises(DimensionError, match=r"q must have shape \(m, 6\)"):
         calibration.calibrate(robot, q[:, :5], measured)
     with pytest.raises(DimensionError, match=r"measured must have shape \(10, 4, 4\)"):
@@ -106,7 +106,7 @@ def test_wrong_shapes_are_named():
 
 
 def test_readings_outside_the_limits():
-    robot, true, q, measured = _case(m=10, seed=52)
+    robot, _, q, measured = _case(m=10, seed=52)
     q = q.copy()
     q[4, 2] = robot.qlim[2, 1] + 0.1
     with pytest.raises(ArgumentError, match="row 4, joint 3"):
@@ -114,17 +114,17 @@ def test_readings_outside_the_limits():
 
 
 def test_too_few_measurements_says_how_many():
-    robot, true, q, measured = _case(m=5, seed=53)
-    with pytest.raises(ArgumentError, match="30 parameters .* at least 6 poses; got 5"):
+    robot, _, q, measured = _case(m=5, seed=53)
+    with pytest.raises(ArgumentError, match=r"30 parameters .* at least 6 poses; got 5"):
         calibration.calibrate(robot, q, measured)
     calibration.calibrate(robot, *_case(m=6, seed=53)[2:])  # six are enough
-    robot, true, q, measured = _case(m=5, seed=53, kind="position")
-    with pytest.raises(ArgumentError, match="27 parameters .* at least 10 positions; got 5"):
+    robot, _, q, measured = _case(m=5, seed=53, kind="position")
+    with pytest.raises(ArgumentError, match=r"27 parameters .* at least 10 positions; got 5"):
         calibration.calibrate(robot, q, measured, "position")
 
 
 def test_rotation_tolerance_either_side():
-    robot, true, q, measured = _case(m=10, seed=54)
+    robot, _, q, measured = _case(m=10, seed=54)
     tol = calibration.ROTATION_TOL
     for scale, ok in ((0.5, True), (2.0, False)):
         m = measured.copy()
@@ -137,7 +137,7 @@ def test_rotation_tolerance_either_side():
 
 
 def test_unknown_names():
-    robot, true, q, measured = _case(m=10, seed=55)
+    robot, _, q, measured = _case(m=10, seed=55)
     with pytest.raises(ArgumentError, match="did you mean 'theta2'"):
         calibration.calibrate(robot, q, measured, params=["theta_2"])
     with pytest.raises(ArgumentError, match="loss must be"):

@@ -51,7 +51,10 @@ def test_puma_parameters_left_out_and_why():
     assert why["d6"] == ("tool_z",)
     assert all(f.structural for f in ident.left_out)
     f = next(f for f in ident.left_out if f.name == "d1")
-    assert finding_text(f, "en") == "d1 and base z move the tool alike: the data cannot tell them apart."
+    assert (
+        finding_text(f, "en")
+        == "d1 and base z move the tool alike: the data cannot tell them apart."
+    )
     assert finding_text(f, "es").startswith("d1 mueve la herramienta igual que base z")
 
 
@@ -94,7 +97,9 @@ def test_a_parameter_that_does_not_move_the_tool():
     J = _columns([1.0, 0, 0], [0.0, 0, 0])
     ident = identify(J, ("a", "b"), [0, 1])
     assert ident.left_out[0].partners == ()
-    assert finding_text(ident.left_out[0], "en", "position") == "b does not move the measured point."
+    assert (
+        finding_text(ident.left_out[0], "en", "position") == "b does not move the measured point."
+    )
 
 
 @pytest.mark.parametrize("factor, reported", [(1.001, True), (0.999, False)])

@@ -40,10 +40,8 @@ def test_link_components_are_the_dh_values_they_are_named_after(convention):
         delta = np.zeros(model.size)
         delta[model.names.index(f"{component}{joint}")] = eps
         rows = list(robot.links)
-        if convention == "modified" and component in ("a", "alpha"):
-            k = joint  # Craig's a_i, alpha_i sit in row i + 1
-        else:
-            k = joint - 1
+        # Craig's a_i, alpha_i sit in row i + 1
+        k = joint if convention == "modified" and component in ("a", "alpha") else joint - 1
         link = rows[k]
         field = {"theta": "offset"}.get(component, component)
         rows[k] = type(link)(**{**link.__dict__, field: getattr(link, field) + eps})
@@ -130,7 +128,9 @@ def test_inverse_left_jacobian_is_the_derivative_of_the_log():
     w = rng.normal(size=3)
     h = 1e-6
     R = matrix_from_rotvec(phi)
-    fd = (log_rotation(matrix_from_rotvec(h * w) @ R) - log_rotation(matrix_from_rotvec(-h * w) @ R)) / (2 * h)
+    fd = (
+        log_rotation(matrix_from_rotvec(h * w) @ R) - log_rotation(matrix_from_rotvec(-h * w) @ R)
+    ) / (2 * h)
     from kinematica.calibration.model import inv_left_jacobian
 
     np.testing.assert_allclose(inv_left_jacobian(phi) @ w, fd, atol=1e-8)

@@ -55,7 +55,9 @@ def read_measurements(path: str | os.PathLike[str], dof: int) -> tuple[FloatArra
             is not a finite number (line and column named), no rows.
     """
     p = Path(path)
-    raw = read_limited(p, MAX_BYTES, "measurement CSV file", lambda m: MeasurementFileError(f"{p}: {m}"))
+    raw = read_limited(
+        p, MAX_BYTES, "measurement CSV file", lambda m: MeasurementFileError(f"{p}: {m}")
+    )
     try:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError:
@@ -67,12 +69,13 @@ def read_measurements(path: str | os.PathLike[str], dof: int) -> tuple[FloatArra
         cells = [c.strip() for c in row]
         if not cells or all(not c for c in cells) or cells[0].startswith("#"):
             continue
-        values = []
+        values: list[float] = []
         for col, cell in enumerate(cells, start=1):
+            v: float | None
             try:
                 v = float(cell)
             except ValueError:
-                v = None  # type: ignore[assignment]
+                v = None
             if v is None or not np.isfinite(v):
                 if not rows and v is None and col == 1:
                     values = []  # a header line of names

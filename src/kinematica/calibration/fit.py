@@ -4,9 +4,10 @@ The parameters are those of the error model (:mod:`kinematica.calibration.model`
 the ones the measurements can determine are found from the analytic identification
 Jacobian at the nominal arm (:mod:`kinematica.calibration.identify`) and fitted by
 scipy's ``least_squares`` with the analytic Jacobian (Levenberg-Marquardt for the
-plain loss, trust-region reflective for the robust ones, named as scipy names them); the others stay at their nominal values and are reported
-with their reason. Standard errors come from the covariance ``σ² (JᵀJ)⁻¹`` at the
-solution, ``σ²`` the residual variance ``2 · cost / (rows − parameters)``.
+plain loss, trust-region reflective for the robust ones, named as scipy names them);
+the others stay at their nominal values and are reported with their reason. Standard
+errors come from the covariance ``σ² (JᵀJ)⁻¹`` at the solution, ``σ²`` the residual
+variance ``2 · cost / (rows − parameters)``.
 """
 
 from __future__ import annotations

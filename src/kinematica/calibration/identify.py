@@ -139,20 +139,20 @@ def identify(
     A = J / np.where(moving, norms, 1.0)
     A[:, ~moving] = 0.0
     cols = [j for j in order if j in allowed]
-    R = np.linalg.qr(A[:, cols], mode="r") if cols else np.zeros((0, 0))
+    R = np.asarray(np.linalg.qr(A[:, cols], mode="r") if cols else np.zeros((0, 0)), dtype=float)
     position = {j: k for k, j in enumerate(cols)}
     s_all = np.linalg.svd(R, compute_uv=False) if cols else np.zeros(0)
     top = float(s_all[0]) if s_all.size else 0.0
     rank = int(np.sum(s_all > RANK_RTOL * top))
     chosen: list[int] = []
-    s = np.zeros(0)
+    s: FloatArray = np.zeros(0)
     for j in cols:
         if not moving[j]:
             continue
-        trial = chosen + [j]
+        trial = [*chosen, j]
         s_trial = np.linalg.svd(R[:, [position[k] for k in trial]], compute_uv=False)
         if s_trial[-1] > RANK_RTOL * top:
-            chosen, s = trial, s_trial
+            chosen, s = trial, np.asarray(s_trial, dtype=float)
     generic_set = None if generic is None else {int(g) for g in generic}
     left_out = []
     # least squares over the columns of A = Q R is least squares over those of R

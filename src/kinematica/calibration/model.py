@@ -7,7 +7,8 @@ row i's in the standard convention, Craig's ``a_i, α_i`` in the modified one). 
 calibrated chain puts a rigid error transform in each link, between ``Tz(d_i)`` and
 ``Trans(a_i, y_i, 0)``, and one on each side of the chain::
 
-    T(q; δ) = E_base · S · Π_i [M_i(q_i) Rz(θ_i) Tz(d_i) · E_i · Trans(a_i, y_i, 0) Rx(α_i)] · U · E_tool
+    T(q; δ) = E_base · S · Π_i [M_i(q_i) Rz(θ_i) Tz(d_i) · E_i · Trans(a_i, y_i, 0) Rx(α_i)]
+              · U · E_tool
 
 with ``E(x, y, z, rx, ry, rz) = Trans(x, y, z) · Rz(rz) · Ry(ry) · Rx(rx)``. In a link the
 six components are named after the DH values they change: ``z`` is ``d_i`` (exactly:
@@ -70,7 +71,7 @@ def _rx(a: float) -> FloatArray:
 
 
 def error_transform(e: FloatArray) -> FloatArray:
-    """``(4, 4)`` ``E = Trans(x, y, z) · Rz(rz) · Ry(ry) · Rx(rx)`` of ``e = (x, y, z, rx, ry, rz)``."""
+    """``(4, 4)`` ``E = Trans(x, y, z) Rz(rz) Ry(ry) Rx(rx)`` of ``e = (x, y, z, rx, ry, rz)``."""
     E = np.eye(4)
     E[:3, :3] = _rz(e[5]) @ _ry(e[4]) @ _rx(e[3])
     E[:3, 3] = e[:3]
@@ -101,7 +102,9 @@ def log_rotation(R: FloatArray) -> FloatArray:
     """``(..., 3)`` the rotation vectors of rotations ``R (..., 3, 3)`` (angle below π)."""
     cos = np.clip((np.trace(R, axis1=-2, axis2=-1) - 1.0) / 2.0, -1.0, 1.0)
     theta = np.arccos(cos)
-    w = np.stack([R[..., 2, 1] - R[..., 1, 2], R[..., 0, 2] - R[..., 2, 0], R[..., 1, 0] - R[..., 0, 1]], -1)
+    w = np.stack(
+        [R[..., 2, 1] - R[..., 1, 2], R[..., 0, 2] - R[..., 2, 0], R[..., 1, 0] - R[..., 0, 1]], -1
+    )
     small = theta < SMALL_ANGLE
     sin = np.sin(np.where(small, 1.0, theta))
     t2 = theta**2
@@ -192,8 +195,11 @@ class ErrorModel:
 
     @cached_property
     def names(self) -> tuple[str, ...]:
-        """Each parameter's name: ``base_x``..., ``theta1``, ``d1``, ``a1``, ``alpha1``,
-        ``beta1``, ``y1``..., ``tool_x``... (``_rx, _ry, _rz`` rotations about x, y, z)."""
+        """Each parameter's name, in the order of the parameter vector.
+
+        ``base_x``..., then ``a1``, ``y1``, ``d1``, ``alpha1``, ``beta1``, ``theta1``...,
+        then ``tool_x``... (``_rx, _ry, _rz``: rotations about x, y, z).
+        """
         base = [f"base_{c}" for c in COMPONENTS]
         links = [f"{LINK_NAMES[c]}{i}" for i in range(1, self.dof + 1) for c in COMPONENTS]
         return (*base, *links, *(f"tool_{c}" for c in COMPONENTS))

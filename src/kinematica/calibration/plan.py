@@ -34,7 +34,9 @@ FloatArray = NDArray[np.float64]
 RIDGE = 1e-9
 
 
-def _rows(robot: Robot, model: ErrorModel, q: FloatArray, kind: str, columns: NDArray[np.intp]) -> FloatArray:
+def _rows(
+    robot: Robot, model: ErrorModel, q: FloatArray, kind: str, columns: NDArray[np.intp]
+) -> FloatArray:
     """``(m, k, p)`` the Jacobian rows of each configuration (unit noise)."""
     T = model.fk(np.zeros(model.size), q)
     data = Measurements(q, T if kind == "pose" else T[:, :3, 3], kind, (1.0, 1.0))  # type: ignore[arg-type]

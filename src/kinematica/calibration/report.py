@@ -112,7 +112,12 @@ def report_text(
         )
     out += ["", f"## {phrase('h.dh', lang)}", ""]
     out.append(
-        phrase("dh.error", lang, convention=result.dh.robot.convention, error=f"{result.dh.fk_error:.2g}")
+        phrase(
+            "dh.error",
+            lang,
+            convention=result.dh.robot.convention,
+            error=f"{result.dh.fk_error:.2g}",
+        )
     )
     out += ["", f"## {phrase('h.pictures', lang)}", ""]
     out.append(f"![{phrase('histogram', lang)}]({stem}-histogram.png)")
@@ -129,7 +134,9 @@ def _pictures(result: CalibrationResult, lang: str, stem: Path, dpi: int) -> lis
             "the report's pictures need matplotlib: pip install 'kinematica[calibration]'"
         ) from None
     pose = result.kind == "pose"
-    columns = [(0, 1e3, "axis.position")] + ([(1, 180.0 / np.pi, "axis.orientation")] if pose else [])
+    columns = [(0, 1e3, "axis.position")] + (
+        [(1, 180.0 / np.pi, "axis.orientation")] if pose else []
+    )
     paths = []
     fig = Figure(figsize=(4.2 * len(columns), 3.4))
     FigureCanvasAgg(fig)

@@ -78,7 +78,10 @@ def residuals(model: ErrorModel, delta: FloatArray, data: Measurements) -> Float
 
 
 def jacobian(
-    model: ErrorModel, delta: FloatArray, data: Measurements, columns: NDArray[np.intp] | None = None
+    model: ErrorModel,
+    delta: FloatArray,
+    data: Measurements,
+    columns: NDArray[np.intp] | None = None,
 ) -> tuple[FloatArray, FloatArray]:
     """The scaled residuals and their Jacobian at ``δ``, analytic.
 

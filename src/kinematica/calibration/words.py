@@ -29,8 +29,10 @@ PHRASES: Final[dict[str, tuple[str, str]]] = {
     "kind.position": ("posición", "position"),
     "h.residuals": ("Residuos", "Residuals"),
     "residuals.table": (
-        "| | RMS posición (mm) | máx. posición (mm) | RMS orientación (grados) | máx. orientación (grados) |",
-        "| | RMS position (mm) | max position (mm) | RMS orientation (degrees) | max orientation (degrees) |",
+        "| | RMS posición (mm) | máx. posición (mm) | RMS orientación (grados) "
+        "| máx. orientación (grados) |",
+        "| | RMS position (mm) | max position (mm) | RMS orientation (degrees) "
+        "| max orientation (degrees) |",
     ),
     "before": ("antes", "before"),
     "after": ("después", "after"),

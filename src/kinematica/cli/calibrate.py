@@ -76,9 +76,10 @@ def calibrate(args: argparse.Namespace) -> int:
     robot = robot_from_args(args)
     q, measured, kind = _measurements(robot, args)
     per_metre = PER_METRE[length_unit(robot, args)]
-    if args.noise is None:
-        from kinematica.calibration import DEFAULT_NOISE as noise
-    else:
+    from kinematica.calibration import DEFAULT_NOISE
+
+    noise = DEFAULT_NOISE
+    if args.noise is not None:
         sr = args.noise[1] if args.rad else math.radians(args.noise[1])
         noise = (args.noise[0] / per_metre, sr)
     result = fit(robot, q, measured, kind, loss=args.loss, noise=noise, params=args.params)  # type: ignore[arg-type]
@@ -101,7 +102,9 @@ def calibrate(args: argparse.Namespace) -> int:
         _write(Path(args.urdf), result.urdf)
         written.append(args.urdf)
     if args.report:
-        written += [str(p) for p in write_report(result, args.report, args.lang, degrees=not args.rad)]
+        written += [
+            str(p) for p in write_report(result, args.report, args.lang, degrees=not args.rad)
+        ]
     rms0, rms1 = result.rms(False), result.rms(True)
     if args.json:
         dump(
@@ -185,8 +188,15 @@ def register(sub: Any) -> None:
         help="write a Markdown report and its two pictures (FILE-histogram.png, "
         "FILE-residuals.png) beside it",
     )
-    p.add_argument("--lang", choices=("es", "en"), default="es", help="of the report: es (default) or en")
-    p.add_argument("--loss", choices=LOSSES, default="linear", help="scipy's least_squares loss (default linear)")
+    p.add_argument(
+        "--lang", choices=("es", "en"), default="es", help="of the report: es (default) or en"
+    )
+    p.add_argument(
+        "--loss",
+        choices=LOSSES,
+        default="linear",
+        help="scipy's least_squares loss (default linear)",
+    )
     p.add_argument(
         "--noise",
         nargs=2,
@@ -196,6 +206,11 @@ def register(sub: Any) -> None:
         help="measurement noise the residuals are weighted by: position in the length unit, "
         "orientation in degrees (--rad); default 10 µm and 10 µrad",
     )
-    p.add_argument("--params", nargs="+", metavar="NAME", help="fit only these parameters (theta2, d3, base_z...)")
+    p.add_argument(
+        "--params",
+        nargs="+",
+        metavar="NAME",
+        help="fit only these parameters (theta2, d3, base_z...)",
+    )
     add_common(p)
     p.set_defaults(run=calibrate)
