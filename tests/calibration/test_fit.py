@@ -71,8 +71,20 @@ def test_robust_loss_with_gross_outliers():
     rms = math.sqrt(np.mean(res.after[good, 0] ** 2))
     assert rms == pytest.approx(math.sqrt(3) * NOISE[0], rel=0.20)
     assert res.after[bad, 0].min() > 4e-3  # the outliers stay outside
+    assert sorted(res.outliers) == sorted(bad)
+    assert res.rms(inliers=True)[0] == pytest.approx(rms)
     plain = calibration.calibrate(robot, q, measured, "pose", noise=NOISE)
     assert math.sqrt(np.mean(plain.after[good, 0] ** 2)) > 5 * rms
+
+
+@pytest.mark.parametrize("factor, outlier", [(0.6, False), (1.6, True)])
+def test_outlier_limit_either_side(factor, outlier):
+    robot, _, q, measured = _case(m=60, seed=71)
+    measured = measured.copy()
+    measured[7, 0, 3] += factor * calibration.OUTLIER_LIMIT * NOISE[0]
+    res = calibration.calibrate(robot, q, measured, "pose", noise=NOISE, loss="huber")
+    assert (7 in res.outliers) == outlier
+    assert len(res.outliers) == int(outlier)
 
 
 def test_position_measurements():

@@ -22,6 +22,7 @@ from kinematica.calibration.checks import ROTATION_TOL
 from kinematica.calibration.fit import (
     DEFAULT_NOISE,
     LOSSES,
+    OUTLIER_LIMIT,
     ROBUST_KNEE,
     CalibrationResult,
     ParameterRow,
@@ -42,6 +43,7 @@ __all__ = [
     "CORRELATION_LIMIT",
     "DEFAULT_NOISE",
     "LOSSES",
+    "OUTLIER_LIMIT",
     "RANK_RTOL",
     "REASON_SHARE",
     "ROBUST_KNEE",

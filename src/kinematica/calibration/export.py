@@ -14,11 +14,13 @@ parallel (there a DH table needs a far common normal and loses digits).
 
 from __future__ import annotations
 
+import warnings
 from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
 
+from kinematica.errors import UnitWarning
 from kinematica.io import FrameSpec, UrdfChain, UrdfJoint, UrdfModel, urdf_text
 from kinematica.robot.urdf import urdf_to_dh
 
@@ -84,8 +86,11 @@ def calibrated_extraction(
         its ``links`` the DH table; ``.fk_error`` how far that table alone is.
     """
     chain = calibrated_chain(robot, model, delta)
-    ext = urdf_to_dh(_model(chain), convention=convention or robot.convention)
-    return ext
+    with warnings.catch_warnings():
+        # nearly parallel axes give a DH table lengths of metres (the common normal is
+        # far away): the table's values are what they are, not a unit slip
+        warnings.simplefilter("ignore", UnitWarning)
+        return urdf_to_dh(_model(chain), convention=convention or robot.convention)
 
 
 def calibrated_urdf(robot: Robot, model: ErrorModel, delta: FloatArray) -> str:

@@ -47,6 +47,7 @@ __all__ = [
     "DEFAULT_NOISE",
     "GENERIC_POSES",
     "LOSSES",
+    "OUTLIER_LIMIT",
     "ROBUST_KNEE",
     "CalibrationResult",
     "ParameterRow",
@@ -62,6 +63,10 @@ FloatArray = NDArray[np.float64]
 DEFAULT_NOISE = (1e-5, 1e-5)
 #: A robust loss's knee (scipy's ``f_scale``), in standard deviations of the noise.
 ROBUST_KNEE = 3.0
+#: A measurement with a residual beyond this many robust standard deviations (1.4826
+#: times the median absolute residual, of positions and orientations apart, and at least
+#: the noise given) after the fit is reported as an outlier.
+OUTLIER_LIMIT = 5.0
 #: scipy ``least_squares``' losses.
 LOSSES = ("linear", "soft_l1", "huber", "cauchy", "arctan")
 #: Configurations (seeded, within the limits) from which the parameters a rich set of
@@ -120,6 +125,8 @@ class CalibrationResult:
         before: ``(m, 2)`` each measurement's position error (m) and rotation
             error (rad, NaN for points) with the nominal arm.
         after: ``(m, 2)`` the same with the calibrated arm.
+        outliers: Indices of the measurements whose residual after the fit lies
+            beyond :data:`OUTLIER_LIMIT` robust standard deviations.
         evaluations: Model evaluations the fit took.
     """
 
@@ -138,6 +145,7 @@ class CalibrationResult:
     sigma: float
     before: FloatArray = field(repr=False)
     after: FloatArray = field(repr=False)
+    outliers: NDArray[np.intp] = field(repr=False)
     evaluations: int
 
     @property
@@ -165,9 +173,16 @@ class CalibrationResult:
         """Sun and Hollerbach's O1..O5 of the fitted parameters (see ``identify``)."""
         return self.identification.observability(self.before.shape[0])
 
-    def rms(self, after: bool = True) -> tuple[float, float]:
-        """``(position (m), orientation (rad))`` RMS errors over the measurements."""
+    def rms(self, after: bool = True, *, inliers: bool = False) -> tuple[float, float]:
+        """``(position (m), orientation (rad))`` RMS errors over the measurements.
+
+        Args:
+            after: With the calibrated arm (else the nominal one).
+            inliers: Over the measurements that are not :attr:`outliers` only.
+        """
         e = self.after if after else self.before
+        if inliers:
+            e = np.delete(e, self.outliers, axis=0)
         return float(np.sqrt(np.mean(e[:, 0] ** 2))), float(np.sqrt(np.mean(e[:, 1] ** 2)))
 
     def max(self, after: bool = True) -> tuple[float, float]:
@@ -193,6 +208,21 @@ def _errors(T: FloatArray, data: Measurements) -> FloatArray:
     dp, phi = pose_errors(T, data)
     rot = np.full(len(dp), np.nan) if phi is None else np.linalg.norm(phi, axis=1)
     return np.stack([np.linalg.norm(dp, axis=1), rot], axis=1)
+
+
+def _outliers(scaled: FloatArray) -> NDArray[np.intp]:
+    """The rows of ``scaled (m, k)`` (residuals in units of the noise given) that stand out.
+
+    Position and orientation residuals each have their robust standard deviation
+    (1.4826 times their median absolute value), floored at 1 (the noise given): a
+    measurement is an outlier when a residual lies beyond :data:`OUTLIER_LIMIT` of them.
+    """
+    flagged = np.zeros(scaled.shape[0], dtype=bool)
+    for part in (scaled[:, :3], scaled[:, 3:]):
+        if part.size:
+            sd = max(1.4826 * float(np.median(part)), 1.0)
+            flagged |= part.max(axis=1) > OUTLIER_LIMIT * sd
+    return np.flatnonzero(flagged)
 
 
 def identifiable(
@@ -331,6 +361,7 @@ def calibrate(
         gtol=FIT_TOL,
     )
     delta = full(solution.x)
+    outliers = _outliers(np.abs(residuals(model, delta, data)).reshape(data.count, -1))
     dof = max(len(solution.fun) - len(free), 1)
     variance = 2.0 * float(solution.cost) / dof
     Jw = solution.jac
@@ -368,5 +399,6 @@ def calibrate(
         sigma=math.sqrt(variance),
         before=_errors(model.fk(zero, qa), data),
         after=_errors(model.fk(delta, qa), data),
+        outliers=outliers,
         evaluations=int(solution.nfev),
     )

@@ -1,8 +1,10 @@
 """The calibration report: a Markdown page and its two pictures, in Spanish or English.
 
-``calibration.md`` holds the residuals before and after, the identifiability findings in
+``calibration.md`` holds the residuals before and after (and after without the
+outliers, when a measurement stands out), the identifiability findings in
 words, the correlated pairs, the parameter table and the DH table's error; beside it
-``calibration-histogram.png`` (the residuals' histograms before and after) and
+``calibration-histogram.png`` (the residuals' histograms before and after, the
+outliers left out of the latter) and
 ``calibration-residuals.png`` (each measurement's residual, before and after, along the
 measurement set). The pictures are drawn with matplotlib's object API on an Agg canvas
 (no pyplot state).
@@ -16,6 +18,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from kinematica.calibration.fit import OUTLIER_LIMIT
 from kinematica.calibration.identify import CORRELATION_LIMIT
 from kinematica.calibration.words import (
     LANGS,
@@ -70,13 +73,27 @@ def report_text(
     ]
     out += [f"## {phrase('h.residuals', lang)}", "", phrase("residuals.table", lang)]
     out.append("|---|---|---|---|---|")
-    for after in (False, True):
-        rms, big = result.rms(after), result.max(after)
-        label = phrase("after" if after else "before", lang)
+    inliers = np.delete(result.after, result.outliers, axis=0)
+    rows = [
+        (phrase("before", lang), result.rms(False), result.max(False)),
+        (phrase("after", lang), result.rms(True), result.max(True)),
+    ]
+    if len(result.outliers) and len(inliers):
+        rows.append(
+            (
+                phrase("inliers", lang, k=len(result.outliers)),
+                result.rms(True, inliers=True),
+                (float(inliers[:, 0].max()), float(inliers[:, 1].max())),
+            )
+        )
+    for label, rms, big in rows:
         out.append(
             f"| {label} | {rms[0] * 1e3:.4f} | {big[0] * 1e3:.4f} | "
             f"{math.degrees(rms[1]):.5f} | {math.degrees(big[1]):.5f} |"
         )
+    if len(result.outliers):
+        shown = ", ".join(str(int(i)) for i in result.outliers)
+        out += ["", phrase("outliers", lang, limit=f"{OUTLIER_LIMIT:g}", which=shown)]
     out += ["", f"## {phrase('h.identify', lang)}", ""]
     out.append(
         phrase(
@@ -134,20 +151,25 @@ def _pictures(result: CalibrationResult, lang: str, stem: Path, dpi: int) -> lis
             "the report's pictures need matplotlib: pip install 'kinematica[calibration]'"
         ) from None
     pose = result.kind == "pose"
-    columns = [(0, 1e3, "axis.position")] + (
-        [(1, 180.0 / np.pi, "axis.orientation")] if pose else []
-    )
+    columns = [(0, 1e3, "axis.position")]
+    if pose:
+        columns.append((1, 180.0 / np.pi, "axis.orientation"))
     paths = []
-    fig = Figure(figsize=(4.2 * len(columns), 3.4))
+    fig = Figure(figsize=(4.2 * len(columns), 5.6))
     FigureCanvasAgg(fig)
-    for k, (col, scale, label) in enumerate(columns):
-        ax = fig.add_subplot(1, len(columns), k + 1)
-        before, after = result.before[:, col] * scale, result.after[:, col] * scale
-        ax.hist(before, bins=BINS, alpha=0.6, label=phrase("before", lang), color="tab:red")
-        ax.hist(after, bins=BINS, alpha=0.8, label=phrase("after", lang), color="tab:blue")
-        ax.set_xlabel(phrase(label, lang))
-        ax.set_ylabel(phrase("axis.count", lang))
-        ax.legend()
+    after = np.delete(result.after, result.outliers, axis=0)
+    title = phrase("inliers", lang, k=len(result.outliers)) if len(result.outliers) else None
+    panels = (
+        (result.before, phrase("before", lang), "tab:red"),
+        (after, title or phrase("after", lang), "tab:blue"),
+    )
+    for row, (errors, name, color) in enumerate(panels):
+        for k, (col, scale, label) in enumerate(columns):
+            ax = fig.add_subplot(2, len(columns), row * len(columns) + k + 1)
+            ax.hist(errors[:, col] * scale, bins=BINS, color=color)
+            ax.set_title(name)
+            ax.set_xlabel(phrase(label, lang))
+            ax.set_ylabel(phrase("axis.count", lang))
     fig.suptitle(phrase("histogram", lang))
     fig.tight_layout()
     paths.append(stem.with_name(stem.name + "-histogram.png"))
@@ -163,7 +185,7 @@ def _pictures(result: CalibrationResult, lang: str, stem: Path, dpi: int) -> lis
                     label=phrase("after", lang))  # fmt: skip
         ax.set_ylabel(phrase(label, lang))
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(loc="upper right")
+        ax.legend(loc="best")
     ax.set_xlabel(phrase("axis.index", lang))
     fig.suptitle(phrase("along", lang))
     fig.tight_layout()

@@ -36,6 +36,11 @@ PHRASES: Final[dict[str, tuple[str, str]]] = {
     ),
     "before": ("antes", "before"),
     "after": ("después", "after"),
+    "inliers": ("después, sin los {k} atípicos", "after, without the {k} outliers"),
+    "outliers": (
+        "Medidas atípicas (residuo mayor que {limit} desviaciones típicas robustas): {which}.",
+        "Outliers (a residual beyond {limit} robust standard deviations): {which}.",
+    ),
     "h.identify": ("Identificabilidad", "Identifiability"),
     "rank": (
         "Rango de la jacobiana de identificación: {rank} de {p} parámetros; con medidas "
