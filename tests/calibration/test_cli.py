@@ -49,6 +49,8 @@ def test_calibrate_writes_robot_urdf_and_report(tmp_path, capsys, monkeypatch):
     assert np.abs(back.fk(q) - true.fk(q)).max() < 1e-4  # the arm as it is, to the noise
     table = km.load(tmp_path / "cal.yaml")  # the DH table: the same arm, to its fk_error
     assert np.abs(table.fk(q) - back.fk(q)).max() < 1e-9
+    code, out, err = run(capsys, "show", "cal.urdf")
+    assert code == 0 and "6R, general geometry" in out  # IK: the general 6R, every solution
     text = (tmp_path / "cal.md").read_text()
     assert "# Kinematic calibration of PUMA 560" in text
     assert "![Residual histograms](cal-histogram.png)" in text

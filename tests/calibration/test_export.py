@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 from support.calibration import NOISE, perturbed
@@ -54,13 +56,17 @@ def test_urdf_reproduces_the_calibrated_robot_exactly(ur5_fit, tmp_path):
 def test_dh_table_and_its_error(ur5_fit, tmp_path):
     robot, _, res = ur5_fit
     path = tmp_path / "calibrated.yaml"
-    res.dh.robot.save(path)
-    back = km.load(path)
+    with warnings.catch_warnings(record=True) as caught:  # the far common normals
+        warnings.simplefilter("always")
+        res.dh.robot.save(path)
+        back = km.load(path)
+    assert caught and all("longer than 20 m" in str(w.message) for w in caught)
     q = robot.random_q(20, seed=13)
     err = np.abs(back.fk(q) - res.robot.fk(q)).max()
-    # the DH table is a description of the calibrated arm, to its reported error
-    assert err <= max(10 * res.dh.fk_error, 1e-12)
-    assert np.allclose(back.fk(q), res.robot.fk(q), atol=1e-6)
+    # the DH table describes the calibrated arm to its reported error: round-off here,
+    # though the tilted parallel axes put its common normals hundreds of metres away
+    assert res.dh.fk_error < 1e-12 and err < 1e-12
+    assert max(abs(link.d) for link in back.links) > 10.0
 
 
 def test_ik_on_the_calibrated_ur5_gives_every_solution(ur5_fit):
