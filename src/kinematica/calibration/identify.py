@@ -5,8 +5,8 @@ columns normalised to unit length (a parameter's unit then does not matter) and 
 by its singular values: the rank is the number above :data:`RANK_RTOL` times the
 largest. A basis of parameters is chosen in a fixed order of preference (the base's six,
 the tool's six, then each joint's θ, d, a, α, then the β and y twists, see
-:data:`PREFERENCE`): a parameter joins when the chosen columns' smallest singular value
-stays above the same tolerance. Each parameter left out is written as a combination of
+:data:`PREFERENCE`): a parameter joins when the part of its column that the parameters
+chosen before it cannot explain (Gram-Schmidt in that order) is above the same tolerance. Each parameter left out is written as a combination of
 the chosen ones (least squares over the columns): those it moves the tool like are its
 reason. The observability indices of the chosen columns are Sun and Hollerbach's
 (Observability index selection for robot calibration, ICRA 2008): O1 (Borm and Menq's
@@ -144,27 +144,36 @@ def identify(
     s_all = np.linalg.svd(R, compute_uv=False) if cols else np.zeros(0)
     top = float(s_all[0]) if s_all.size else 0.0
     rank = int(np.sum(s_all > RANK_RTOL * top))
+    # Gram-Schmidt in the order of preference over the columns of R (the geometry of A's
+    # columns): a column joins when the part the chosen ones cannot explain is above the
+    # tolerance; a column left out adds no direction (a plain QR's R_kk would: a left-out
+    # column gets an arbitrary direction there, which hides the next columns' parts)
     chosen: list[int] = []
-    s: FloatArray = np.zeros(0)
-    for j in cols:
+    Q = np.zeros((R.shape[0], 0))
+    for k, j in enumerate(cols):
         if not moving[j]:
             continue
-        trial = [*chosen, j]
-        s_trial = np.linalg.svd(R[:, [position[k] for k in trial]], compute_uv=False)
-        if s_trial[-1] > RANK_RTOL * top:
-            chosen, s = trial, np.asarray(s_trial, dtype=float)
-    generic_set = None if generic is None else {int(g) for g in generic}
-    left_out = []
-    # least squares over the columns of A = Q R is least squares over those of R
+        v = R[:, k] - Q @ (Q.T @ R[:, k])
+        v = v - Q @ (Q.T @ v)  # twice is enough (Kahan-Parlett)
+        size = float(np.linalg.norm(v))
+        if size > RANK_RTOL * top:
+            chosen.append(j)
+            Q = np.column_stack([Q, v / size])
     basis = R[:, [position[k] for k in chosen]]
-    for j in cols:
-        if j in chosen:
-            continue
+    s: FloatArray = np.linalg.svd(basis, compute_uv=False) if chosen else np.zeros(0)
+    generic_set = None if generic is None else {int(g) for g in generic}
+    out = [j for j in cols if j not in set(chosen)]
+    # least squares over the columns of A = Q R is least squares over those of R
+    combos = np.zeros((len(chosen), len(out)))
+    if chosen and out:
+        combos = np.linalg.lstsq(basis, R[:, [position[j] for j in out]], rcond=None)[0]
+    left_out = []
+    for k, j in enumerate(out):
         partners: tuple[str, ...] = ()
-        if moving[j] and chosen:
-            c = np.linalg.lstsq(basis, R[:, position[j]], rcond=None)[0]
+        c = combos[:, k]
+        if moving[j] and chosen and np.abs(c).max() > 0.0:
             keep = np.abs(c) >= REASON_SHARE * np.abs(c).max()
-            partners = tuple(names[chosen[k]] for k in np.flatnonzero(keep))
+            partners = tuple(names[chosen[i]] for i in np.flatnonzero(keep))
         structural = generic_set is None or j not in generic_set
         left_out.append(Finding(names[j], partners, structural))
     return Identification(rank, np.array(chosen, dtype=np.intp), tuple(left_out), s)

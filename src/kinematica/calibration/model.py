@@ -273,8 +273,8 @@ class ErrorModel:
         for b in range(self.dof + 2):
             axes[b], points[b] = _local_axes(e[b])
         R, p = W[..., :3, :3], W[..., :3, 3]  # (m, n+2, 3, 3), (m, n+2, 3)
-        world_axes = np.einsum("mbij,bkj->mbki", R, axes)
-        world_points = np.einsum("mbij,bj->mbi", R, points) + p
+        world_axes = np.swapaxes(R @ np.swapaxes(axes, 1, 2), -1, -2)  # (m, n+2, 6, 3)
+        world_points = (R @ points[:, :, None])[..., 0] + p
         m = W.shape[0]
         point = np.broadcast_to(world_points[:, :, None, :], (m, self.dof + 2, 6, 3))
         rotation = np.tile(np.array([False, False, False, True, True, True]), self.dof + 2)

@@ -108,7 +108,7 @@ def jacobian(
         r = (dp_phi[0] / sp).ravel()
         J = np.swapaxes(dp / sp, 1, 2).reshape(m * 3, -1)
         return r, J
-    dphi = np.einsum("mij,mpj->mpi", inv_left_jacobian(dp_phi[1]), axis) * turn
+    dphi = (axis @ np.swapaxes(inv_left_jacobian(dp_phi[1]), 1, 2)) * turn
     r = np.concatenate([dp_phi[0] / sp, dp_phi[1] / sr], axis=1).ravel()
     J = np.concatenate([dp / sp, dphi / sr], axis=2)  # (m, p, 6)
     return r, np.swapaxes(J, 1, 2).reshape(m * 6, -1)
