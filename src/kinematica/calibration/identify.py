@@ -6,11 +6,11 @@ by its singular values: the rank is the number above :data:`RANK_RTOL` times the
 largest. A basis of parameters is chosen in a fixed order of preference (the base's six,
 the tool's six, then each joint's θ, d, a, α, then the β and y twists, see
 :data:`PREFERENCE`): a parameter joins when the part of its column that the parameters
-chosen before it cannot explain (Gram-Schmidt in that order) is above the same tolerance. Each parameter left out is written as a combination of
-the chosen ones (least squares over the columns): those it moves the tool like are its
-reason. The observability indices of the chosen columns are Sun and Hollerbach's
-(Observability index selection for robot calibration, ICRA 2008): O1 (Borm and Menq's
-geometric mean of the singular values over √m), O2 (the inverse condition number), O3
+chosen before it cannot explain (Gram-Schmidt in that order) is above the same
+tolerance. Each parameter left out is written as a combination of the chosen ones (least
+squares over the columns): those it moves the tool like are its reason. The
+observability indices of the chosen columns are Sun and Hollerbach's (Observability
+index selection for robot calibration, ICRA 2008): O1 (Borm and Menq's of the singular values over √m), O2 (the inverse condition number), O3
 (the smallest singular value), O4 (σ_min²/σ_max, the noise amplification index) and O5
 (1/Σ 1/σ_i).
 """
