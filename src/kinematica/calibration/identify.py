@@ -10,9 +10,10 @@ chosen before it cannot explain (Gram-Schmidt in that order) is above the same
 tolerance. Each parameter left out is written as a combination of the chosen ones (least
 squares over the columns): those it moves the tool like are its reason. The
 observability indices of the chosen columns are Sun and Hollerbach's (Observability
-index selection for robot calibration, ICRA 2008): O1 (Borm and Menq's of the singular values over √m), O2 (the inverse condition number), O3
-(the smallest singular value), O4 (σ_min²/σ_max, the noise amplification index) and O5
-(1/Σ 1/σ_i).
+index selection for robot calibration, ICRA 2008): O1 (Borm and Menq's geometric mean
+of the singular values over √m), O2 (the inverse condition number), O3 (the smallest
+singular value), O4
+(σ_min²/σ_max, the noise amplification index) and O5 (1/Σ 1/σ_i).
 """
 
 from __future__ import annotations
