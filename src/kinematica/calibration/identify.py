@@ -12,8 +12,7 @@ squares over the columns): those it moves the tool like are its reason. The
 observability indices of the chosen columns are Sun and Hollerbach's (Observability
 index selection for robot calibration, ICRA 2008): O1 (Borm and Menq's geometric mean
 of the singular values over √m), O2 (the inverse condition number), O3 (the smallest
-singular value), O4
-(σ_min²/σ_max, the noise amplification index) and O5 (1/Σ 1/σ_i).
+singular value), O4 (σ_min²/σ_max, the noise amplification index) and O5 (1/Σ 1/σ_i).
 """
 
 from __future__ import annotations
