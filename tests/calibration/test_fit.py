@@ -158,3 +158,51 @@ def test_unknown_names():
         calibration.calibrate(robot, q, measured, "frame")
     with pytest.raises(ArgumentError, match="noise must be"):
         calibration.calibrate(robot, q, measured, noise=(0.0, 1e-5))
+
+
+@pytest.mark.parametrize(
+    "source, kind",
+    [
+        ("stanford", "pose"),  # a prismatic joint
+        ("puma560-modified", "pose"),  # Craig's convention
+        ("ur10_robot.urdf", "pose"),  # a URDF's own transforms
+        ("kinova_j2s6s200.urdf", "position"),  # a URDF with 60-degree wrist links
+    ],
+)
+def test_any_chain_kinematica_reads_is_calibrated(source, kind):
+    from support.urdf import URDF_DIR
+
+    if source.endswith(".urdf"):
+        tip = "tool0" if "ur10" in source else "j2s6s200_end_effector"
+        robot = km.load(URDF_DIR / source, tip=tip)
+    elif source.endswith("-modified"):
+        robot = km.load(source.removesuffix("-modified")).to_convention("modified")
+    else:
+        robot = km.load(source)
+    if kind == "position":
+        robot = robot.with_tool(robot.tool @ km.transl(0.05, 0.03, 0.1))
+    true = perturbed(robot, 81) if robot.transforms is None else _moved(robot)
+    q = robot.random_q(50, seed=82)
+    T = true.fk(q)
+    measured = T if kind == "pose" else T[:, :3, 3]
+    res = calibration.calibrate(robot, q, measured, kind, noise=NOISE)
+    r, p = robot.joint_types.count("R"), robot.joint_types.count("P")
+    assert res.rank == 4 * r + 2 * p + (6 if kind == "pose" else 3)
+    assert res.rms()[0] < 1e-9  # exact measurements: the calibrated arm is the arm
+    q2 = robot.random_q(10, seed=83)
+    gap = (
+        res.robot.fk(q2)[:, :3, 3] - true.fk(q2)[:, :3, 3]
+    )  # (the tool's rotation: unseen by points)
+    assert np.abs(gap).max() < 1e-9
+    if kind == "pose":
+        assert_transform_close(res.robot.fk(q2), true.fk(q2), atol=1e-9)
+
+
+def _moved(robot):
+    """A robot read from a URDF, as it is: its chain moved by the error model itself."""
+    from kinematica.calibration.export import calibrated_extraction
+    from kinematica.calibration.model import ErrorModel
+
+    model = ErrorModel.of(robot.chain)
+    delta = np.random.default_rng(84).uniform(-1e-3, 1e-3, model.size)
+    return calibrated_extraction(robot, model, delta).robot
