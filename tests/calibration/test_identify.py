@@ -126,3 +126,21 @@ def test_observability_indices_by_hand():
     assert o["O1"] == pytest.approx(np.sqrt(s[0] * s[1]))
     assert o["O4"] == pytest.approx(s[1] ** 2 / s[0])
     assert o["O5"] == pytest.approx(1 / (1 / s[0] + 1 / s[1]))
+
+
+def test_a_lack_of_data_is_told_from_a_structural_redundancy():
+    # the wrist never moves: its offsets cannot be told from the tool's, with these poses
+    robot = km.load("puma560")
+    q = robot.random_q(30, seed=9)
+    q[:, 3:] = 0.2
+    T = robot.fk(q)
+    res = calibration.calibrate(robot, q, T, "pose")
+    assert res.rank < res.generic_count == 30
+    lacking = [f for f in res.undetermined if not f.structural]
+    assert len(lacking) == res.generic_count - res.rank
+    text = finding_text(lacking[0], "en")
+    assert text.endswith("with these measurements (more varied poses would determine it).")
+    assert finding_text(lacking[0], "es").endswith("lo determinarían).")
+    # and the structural ones are those of a rich set
+    structural = {f.name for f in res.undetermined if f.structural}
+    assert structural == {f.name for f in calibration.identifiable(robot).left_out}
