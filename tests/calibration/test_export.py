@@ -106,3 +106,12 @@ def test_ik_on_a_calibrated_puma_gives_every_solution():
 
 def _gaps(solutions, q):
     return np.abs(np.angle(np.exp(1j * (solutions - q)))).max(axis=1)
+
+
+def test_calibrated_robot_reproduces_the_fitted_model_exactly(ur5_fit):
+    robot, _, res = ur5_fit
+    model = ErrorModel.of(robot.chain)
+    delta = np.array([p.correction for p in res.parameters])  # every parameter, in order
+    assert [p.name for p in res.parameters] == list(model.names)
+    q = robot.random_q(20, seed=15)
+    assert np.abs(res.robot.fk(q) - model.fk(delta, q)).max() < 1e-12
