@@ -53,6 +53,19 @@ def test_urdf_reproduces_the_calibrated_robot_exactly(ur5_fit, tmp_path):
     assert np.abs(back.fk(q) - res.robot.fk(q)).max() < 1e-12
 
 
+@pytest.mark.parametrize("suffix", [".yaml", ".json", ".toml"])
+def test_robot_file_reproduces_the_calibrated_robot_exactly(ur5_fit, tmp_path, suffix):
+    robot, _, res = ur5_fit
+    path = tmp_path / f"calibrated{suffix}"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        res.robot.save(path)
+        back = km.load(path)
+    q = robot.random_q(20, seed=16)
+    assert np.abs(back.fk(q) - res.robot.fk(q)).max() < 1e-12
+    assert [link.d for link in back.links] == [link.d for link in res.robot.links]
+
+
 def test_dh_table_and_its_error(ur5_fit, tmp_path):
     robot, _, res = ur5_fit
     path = tmp_path / "calibrated.yaml"

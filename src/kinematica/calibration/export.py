@@ -7,9 +7,10 @@ fixed transform before it. kinematica reads such a chain exactly
 the fitted transforms themselves (FK equal to the model's to round-off) and carries the
 DH table the DH rules read off its axes as its description, with that table's
 ``fk_error``. The URDF text reproduces the robot exactly (its numbers are written with
-the shortest decimal that reads back to the same float); a DH robot file reproduces it
-to the table's ``fk_error``, which is round-off unless consecutive axes are nearly
-parallel (there a DH table needs a far common normal and loses digits).
+the shortest decimal that reads back to the same float), and so does its robot file
+(``robot.save``: the DH table, and the arm's own transforms in its ``chain`` block). The
+DH table alone reproduces it to its ``fk_error``, which is round-off unless consecutive
+axes are nearly parallel (there a DH table needs a far common normal and loses digits).
 """
 
 from __future__ import annotations

@@ -12,6 +12,7 @@ variance ``2 · cost / (rows − parameters)``.
 
 from __future__ import annotations
 
+import dataclasses
 import difflib
 import math
 from collections.abc import Sequence
@@ -383,10 +384,11 @@ def calibrate(
         for k in candidates
     )
     ext = calibrated_extraction(robot, model, delta, convention)
+    table = dataclasses.replace(ext.robot, transforms=None)  # the DH table alone
     return CalibrationResult(
         robot=ext.robot,
         nominal=robot,
-        dh=ext,
+        dh=dataclasses.replace(ext, robot=table),
         urdf=calibrated_urdf(robot, model, delta),
         kind=kind,
         loss=loss,

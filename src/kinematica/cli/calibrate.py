@@ -29,7 +29,8 @@ if TYPE_CHECKING:  # the library's modules load when the command runs
 __all__ = ["EXACT_FK", "calibrate", "register"]
 
 #: A DH table whose FK is within this (m) of the calibrated arm's is written without a
-#: warning; beyond it the command says so and points to the URDF, which is exact.
+#: note; beyond it the command says how far the table alone is (the file is exact: it
+#: holds the arm's own transforms too).
 EXACT_FK = 1e-12
 
 
@@ -43,11 +44,12 @@ def _write(path: Path, text: str) -> None:
 
 
 def _robot_file(result: CalibrationResult, path: Path, args: argparse.Namespace) -> None:
+    """The calibrated arm as a robot file: its DH table, and its own transforms (exact)."""
     from kinematica.io.robotfile import dumps_robot_file
     from kinematica.robot.save import spec_from_robot
 
     units = {"angle": angle_unit(args), "length": "m"}
-    spec = dataclasses.replace(spec_from_robot(result.dh.robot), units=units)
+    spec = dataclasses.replace(spec_from_robot(result.robot), units=units)
     _write(path, dumps_robot_file(spec, path.suffix))
 
 
@@ -91,12 +93,12 @@ def calibrate(args: argparse.Namespace) -> int:
             _write(out, result.urdf)
         else:
             _robot_file(result, out, args)
-            if result.dh.fk_error > EXACT_FK:
-                notes.append(
-                    f"the DH table in {out} reproduces the calibrated arm within "
-                    f"{result.dh.fk_error:.2g} m only (nearly parallel axes); the URDF "
-                    "(--urdf FILE) is exact"
-                )
+        if result.dh.fk_error > EXACT_FK:
+            notes.append(
+                f"the DH table alone reproduces the calibrated arm within "
+                f"{result.dh.fk_error:.2g} m (nearly parallel axes: far common normals); "
+                f"{out} holds the arm's own transforms too, and is exact"
+            )
         written.append(str(out))
     if args.urdf:
         _write(Path(args.urdf), result.urdf)
@@ -178,8 +180,8 @@ def register(sub: Any) -> None:
         "-o",
         "--output",
         metavar="FILE",
-        help="the calibrated robot: .urdf (exact) or a robot file (.yaml, .json, .toml) of "
-        "the DH table read off the calibrated axes (its error is printed when not exact)",
+        help="the calibrated robot, exact: .urdf, or a robot file (.yaml, .json, .toml) "
+        "holding the DH table read off the calibrated axes and the arm's own transforms",
     )
     p.add_argument("--urdf", metavar="FILE", help="also write the calibrated arm as URDF (exact)")
     p.add_argument(
