@@ -27,6 +27,7 @@ from kinematica.errors import (
 )
 
 if TYPE_CHECKING:  # the names below load on first use: `import kinematica` stays light
+    from kinematica.calibration import calibrate
     from kinematica.dh import (
         Prismatic,
         Revolute,
@@ -99,6 +100,7 @@ __version__ = "0.1.0"
 #: Public names imported on first use, and the module each comes from.
 _LAZY = {
     "Prismatic": "kinematica.dh",
+    "calibrate": "kinematica.calibration",
     "Revolute": "kinematica.dh",
     "link_matrix": "kinematica.dh",
     "ExpressionError": "kinematica.io",
@@ -156,6 +158,7 @@ _LAZY = {
 #: Subpackages reachable as attributes (``km.ik``, ``km.spatial``...) before anything imported them.
 _SUBPACKAGES = frozenset(
     {
+        "calibration",
         "core",
         "design",
         "dh",
@@ -196,6 +199,7 @@ __all__ = [
     "analytic_jacobian",
     "axis_angle_from_matrix",
     "builtin_names",
+    "calibrate",
     "cartesian_path",
     "cartesian_via_path",
     "check_rotation",

@@ -43,6 +43,7 @@ COMMAND_MODULES = (
     "derive",
     "convert",
     "design",
+    "calibrate",
 )
 
 #: Each command and the module that registers it: a command line naming one imports and
@@ -64,6 +65,7 @@ COMMANDS = {
     "derive": "derive",
     "convert": "convert",
     "design": "design",
+    "calibrate": "calibrate",
 }
 
 #: Where to report an internal error (a bug: every bad input has its own message).

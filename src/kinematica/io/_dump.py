@@ -140,6 +140,14 @@ def _build(spec: RobotSpec, units: Mapping[str, str], use_text: bool) -> dict[st
         data["base"] = _frame(spec.base, angle, length)
     if spec.tool is not None:
         data["tool"] = _frame(spec.tool, angle, length)
+    if spec.chain is not None:
+        c = spec.chain
+        data["chain"] = {
+            "start": _frame(c.start, angle, length),
+            "between": [_frame(f, angle, length) for f in c.between],
+            "end": _frame(c.end, angle, length),
+            "frames": [_frame(f, angle, length) for f in c.frames],
+        }
     return data
 
 

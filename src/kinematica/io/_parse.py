@@ -23,6 +23,7 @@ from kinematica.io.expr import Affine, Expression, ExpressionError, is_joint_var
 from kinematica.io.expr import parse_expression as _parse_expression
 from kinematica.io.spec import (
     CONVENTION_ALIASES,
+    ChainSpec,
     FrameSpec,
     JointKind,
     JointSpec,
@@ -40,7 +41,10 @@ TOP_KEYS: Final = (
     "tool",
     "description",
     "source",
+    "chain",
 )
+#: Keys of the optional ``chain`` block: an arm's own transforms (:class:`ChainSpec`).
+CHAIN_KEYS: Final = ("start", "between", "end", "frames")
 JOINT_KEYS: Final = ("theta", "d", "a", "alpha", "limits", "name", "type")
 DH_KEYS: Final = ("theta", "d", "a", "alpha")
 FRAME_KEYS: Final = ("xyz", "rpy", "matrix")
@@ -131,6 +135,10 @@ class _Reader:
     pi_parameters: set[str] = field(default_factory=set)
     bounds: dict[str, tuple[float, float]] = field(default_factory=dict)
     overrides: Mapping[str, float] = field(default_factory=dict)
+    #: The file holds the arm's own transforms (``chain``): its DH table describes the
+    #: arm, and nearly parallel axes give that table common normals far away (lengths of
+    #: kilometres that are no unit slip).
+    described: bool = False
 
     def error(
         self, message: str, *, joint: int | None = None, key: str | None = None
@@ -468,7 +476,7 @@ class _Reader:
         for key in ("theta", "alpha"):
             self.check_angle(forms[key].const, key, i)
         to_m = self.to_si("length")
-        for key in ("d", "a"):
+        for key in () if self.described else ("d", "a"):
             message = plausible.check_length(to_m(forms[key].const), self.length_unit)
             self.warn(message, joint=i, key=key)
         if qlim is None or kind != "R" or not isinstance(raw_limits, list | tuple):
@@ -518,6 +526,34 @@ class _Reader:
             written = math.degrees(angle) if self.angle_unit == "deg" else angle
             self.check_angle(written, f"{which}.rpy")
         return FrameSpec(xyz=(x, y, z), rpy=(roll, pitch, yaw))
+
+    def chain(self, raw: object, n: int) -> ChainSpec | None:
+        """The optional ``chain`` block: start, n - 1 between, end, n frames."""
+        if raw is None:
+            return None
+        data = self.mapping(raw, "a mapping with start, between, end and frames", key="chain")
+        self.check_keys(data, CHAIN_KEYS, "chain.")
+        missing = [k for k in CHAIN_KEYS if k not in data]
+        if missing:
+            raise self.error(f"missing {', '.join(missing)}", key="chain")
+        lists = {}
+        for key, count in (("between", n - 1), ("frames", n)):
+            items = data[key]
+            if not isinstance(items, list | tuple) or len(items) != count:
+                raise self.error(
+                    f"expected a list of {count} frames (the robot has {n} joints), "
+                    f"found {describe(items)}",
+                    key=f"chain.{key}",
+                )
+            lists[key] = tuple(
+                self.frame(item, f"chain.{key}[{i}]") or FrameSpec() for i, item in enumerate(items)
+            )
+        return ChainSpec(
+            start=self.frame(data["start"], "chain.start") or FrameSpec(),
+            between=lists["between"],
+            end=self.frame(data["end"], "chain.end") or FrameSpec(),
+            frames=lists["frames"],
+        )
 
     def matrix(
         self, raw: object, key: str
@@ -597,6 +633,7 @@ def parse_robot_dict(
 
     r.units(top.get("units"))
     r.read_parameters(top.get("parameters"))
+    r.described = top.get("chain") is not None
 
     if "joints" not in top:
         raise r.error("missing key 'joints': the DH table, one entry per joint")
@@ -623,6 +660,7 @@ def parse_robot_dict(
         reference=r.text(top.get("source"), "source"),
         parameter_bounds=dict(r.bounds),
         document=_document(r, top),
+        chain=r.chain(top.get("chain"), len(joints)),
     )
 
 

@@ -20,6 +20,7 @@ from kinematica.errors import RobotFileError
 
 __all__ = [
     "CONVENTION_ALIASES",
+    "ChainSpec",
     "Convention",
     "FrameSpec",
     "JointKind",
@@ -153,6 +154,28 @@ class FrameSpec:
 
 
 @dataclass(frozen=True)
+class ChainSpec:
+    """An arm's own transforms, when its DH table only describes it (a URDF's, a calibration's).
+
+    ``T = base · start · M1(q1) · between[0] ··· Mn(qn) · end · tool``, each ``Mi`` a
+    turn about (or slide along) the z axis of the frame it acts in; relative to the DH
+    frames 0 and n of the table (see :class:`kinematica.robot.transforms.ChainTransforms`).
+
+    Attributes:
+        start: DH frame 0 to the frame joint 1 moves in.
+        between: ``n - 1`` transforms from the frame after each motion to the next
+            joint's frame.
+        end: From the frame after the last motion to DH frame n.
+        frames: ``n`` placements of DH frame i in the frame after motion i.
+    """
+
+    start: FrameSpec
+    between: tuple[FrameSpec, ...]
+    end: FrameSpec
+    frames: tuple[FrameSpec, ...]
+
+
+@dataclass(frozen=True)
 class RobotSpec:
     """A whole robot description: DH table, placements and provenance.
 
@@ -182,6 +205,8 @@ class RobotSpec:
         parameter_bounds: ``name -> (min, max)`` (file units) of the bounded
             parameters ``l1: {value: 0.3, min: 0.1, max: 0.9}`` of a design
             template; ``parameters`` holds their values.
+        chain: The arm's own transforms (:class:`ChainSpec`), which its kinematics
+            use, its DH table then describing it; ``None``: the DH table is the arm.
         document: The file's content as read (plain data), so that
             :func:`kinematica.io.with_parameters` can rebuild the spec with
             other parameter values; ``None`` for a spec built in code.
@@ -200,6 +225,7 @@ class RobotSpec:
     parameter_texts: Mapping[str, str] = field(default_factory=dict, compare=False)
     parameter_bounds: Mapping[str, tuple[float, float]] = field(default_factory=dict, compare=False)
     document: Mapping[str, Any] | None = field(default=None, compare=False, repr=False)
+    chain: ChainSpec | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         if self.convention not in ("standard", "modified"):

@@ -17,6 +17,7 @@ from kinematica.io.reading import ROBOT_FILE_SUFFIXES, URDF_SUFFIXES
 from kinematica.io.spec import JointSpec, RobotSpec
 from kinematica.robot.robot import Robot
 from kinematica.robot.save import spec_from_robot, write_robot_file
+from kinematica.robot.transforms import ChainTransforms
 
 __all__ = ["load", "robot_from_spec", "spec_from_robot", "write_robot_file"]
 
@@ -47,6 +48,15 @@ def robot_from_spec(spec: RobotSpec) -> Robot:
         raise ArgumentError(f"expected a RobotSpec, got {type(spec).__name__}")
     with values_checked():  # the file reader has warned, naming file, joint and key
         joints = [_joint(j) for j in spec.joints]
+    transforms = None
+    if spec.chain is not None:  # the arm's own transforms: its kinematics, exactly
+        c = spec.chain
+        transforms = ChainTransforms(
+            start=c.start.as_matrix(),
+            between=np.array([f.as_matrix() for f in c.between]).reshape(len(joints) - 1, 4, 4),
+            end=c.end.as_matrix(),
+            frame_offsets=np.array([f.as_matrix() for f in c.frames]),
+        )
     return Robot(  # the dataclass validates links, convention, base and tool
         links=tuple(joints),
         convention=spec.convention,
@@ -55,6 +65,7 @@ def robot_from_spec(spec: RobotSpec) -> Robot:
         tool=np.eye(4) if spec.tool is None else spec.tool.as_matrix(),
         description=spec.description,
         source_spec=spec,
+        transforms=transforms,
     )
 
 

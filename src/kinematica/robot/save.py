@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.errors import ArgumentError
-from kinematica.io.spec import FrameSpec, JointSpec, RobotSpec
+from kinematica.io.spec import ChainSpec, FrameSpec, JointSpec, RobotSpec
 from kinematica.robot.frames import rigid_frame
 
 if TYPE_CHECKING:
@@ -50,6 +50,23 @@ def _frame(T: FloatArray, written: FrameSpec | None, T_written: FloatArray) -> F
     return FrameSpec(matrix=tuple(tuple(float(v) for v in row) for row in T))
 
 
+def _matrix(T: FloatArray) -> FrameSpec:
+    return FrameSpec(matrix=tuple(tuple(float(v) for v in row) for row in T))
+
+
+def _chain(robot: Robot) -> ChainSpec | None:
+    """The robot's own transforms (a URDF's, a calibration's), or ``None`` for a DH robot."""
+    t = robot.transforms
+    if t is None:
+        return None
+    return ChainSpec(
+        start=_matrix(t.start),
+        between=tuple(_matrix(T) for T in t.between),
+        end=_matrix(t.end),
+        frames=tuple(_matrix(T) for T in t.frame_offsets),
+    )
+
+
 def spec_from_robot(robot: Robot) -> RobotSpec:
     """The description of a robot, for writing it to a file.
 
@@ -59,6 +76,10 @@ def spec_from_robot(robot: Robot) -> RobotSpec:
     ``q2 + 90``), base and tool as written. Parts changed since (by
     :meth:`Robot.with_tool`, :meth:`Robot.with_limits`,
     :meth:`Robot.to_convention`...) are described by their numbers.
+
+    A robot that computes with its own transforms (read from a URDF, or calibrated)
+    keeps them, in the ``chain`` block: the file reproduces it exactly, its DH table
+    describing it.
 
     Args:
         robot: The robot.
@@ -96,6 +117,7 @@ def spec_from_robot(robot: Robot) -> RobotSpec:
             tool=_frame(robot.tool, None, identity),
             description=robot.description,
             units={"angle": "rad", "length": "m"},
+            chain=_chain(robot),
         )
     return RobotSpec(
         name=robot.name,
@@ -109,6 +131,7 @@ def spec_from_robot(robot: Robot) -> RobotSpec:
         units=written.units,
         reference=written.reference,
         parameter_texts=written.parameter_texts,
+        chain=_chain(robot),
     )
 
 
