@@ -48,8 +48,11 @@ test: $(CORE_STAMP)
 # compiled once, kept in the venv, even where PYTHONDONTWRITEBYTECODE is set (each would
 # otherwise compile the whole package again: about 0.2 s of CPU a start). worksteal: an
 # idle worker takes tests queued for the other, so neither waits for the other's tail.
+# One BLAS thread a worker: two workers already fill the two cores, and OpenBLAS's own
+# threads fighting them made a 0.2 s least-squares fit take 5-14 s of wall time.
 suite: $(CORE_STAMP)
 	env -u PYTHONDONTWRITEBYTECODE PYTHONPYCACHEPREFIX="$(CURDIR)/$(VENV)/pycache" \
+	  OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 MKL_NUM_THREADS=1 \
 	  $(BIN)/pytest -n 2 --dist worksteal
 
 # The documentation site, into site/ (open site/index.html); --strict: a broken link or
