@@ -27,7 +27,7 @@ from kinematica.errors import KinematicaError
 from kinematica.robot import Robot
 
 if TYPE_CHECKING:  # kinematica.motion loads when one of these commands runs
-    from kinematica.motion import CartesianPath
+    from kinematica.motion import CartesianPath, JointTrajectory
     from kinematica.motion.trajectory import Profile
 
 __all__ = ["jacobian", "register", "trajectory", "workspace_cmd"]
@@ -202,6 +202,19 @@ def _limit(robot: Robot, values: list[float] | None, args: argparse.Namespace, n
     return np.abs(q_in(robot, values, args, name))
 
 
+def _scurve_json(traj: JointTrajectory | None) -> dict[str, Any]:
+    """The waypoint timing of a jerk-limited move through waypoints, for --json."""
+    from kinematica.motion.scurve import JerkTrajectory
+
+    if not isinstance(traj, JerkTrajectory) or traj.margin is None:
+        return {}
+    return {
+        "waypoint_times": _safe(traj.waypoint_times),
+        "stop_duration": traj.stop_duration,
+        "margin": traj.margin,
+    }
+
+
 def _print_events(path: CartesianPath) -> None:
     for e in path.events:
         print(f"event: {e.kind}: {e.message}")
@@ -213,6 +226,7 @@ _TRAJECTORY_OPTIONS = {
     "times": "--times",
     "vmax": "--vmax",
     "amax": "--amax",
+    "jmax": "--jmax",
     "duration": "--duration",
     "blend": "--blend",
     "ends": "--ends",
@@ -250,6 +264,7 @@ def _waypoints(robot: Robot, args: argparse.Namespace) -> tuple[FloatArray, Floa
 def trajectory(args: argparse.Namespace) -> int:
     """``kinematica trajectory ROBOT --from ... [--via ...] --to ...``: samples, events, a file."""
     from kinematica.motion import (
+        JerkTrajectory,
         cartesian_path,
         cartesian_via_path,
         joint_trajectory,
@@ -269,10 +284,19 @@ def trajectory(args: argparse.Namespace) -> int:
         raise KinematicaError(f"-o: the file must end in .csv or .json, got {out.name!r}")
     vmax = _limit(robot, args.vmax, args, "vmax")
     amax = _limit(robot, args.amax, args, "amax")
+    jmax = _limit(robot, args.jmax, args, "jmax")
+    scurve = args.profile == "scurve"
+    if jmax is not None and not scurve:
+        raise KinematicaError("--jmax limits --profile scurve only")
+    if scurve and (args.cartesian or args.times is not None or args.waypoints is not None):
+        raise KinematicaError(
+            "--profile scurve times joint moves from --vmax, --amax and --jmax: "
+            "drop --cartesian, --times and --waypoints"
+        )
     duration = args.duration
     if times is not None and duration is not None:
         raise KinematicaError("--times sets the duration: drop --duration")
-    if duration is None and times is None and vmax is None and amax is None:
+    if duration is None and times is None and vmax is None and amax is None and not scurve:
         duration = 2.0
     if through and args.profile == "trapezoid":
         raise KinematicaError(
@@ -284,6 +308,9 @@ def trajectory(args: argparse.Namespace) -> int:
     if args.blend is not None and not (args.cartesian and through):
         raise KinematicaError("--blend rounds the corners of a --cartesian path through --via")
     path: CartesianPath | None = None
+    traj: JointTrajectory | None = None
+    if args.plot and args.cartesian:
+        raise KinematicaError("--plot draws joint trajectories: drop --cartesian")
     if args.cartesian:
         if vmax is not None or amax is not None:
             raise KinematicaError(
@@ -301,23 +328,28 @@ def trajectory(args: argparse.Namespace) -> int:
         else:
             path = cartesian_path(robot, robot.fk(qa), robot.fk(qb), q0=qa, s=s, q1=qb)
         q, qd, qdd = path.q, None, None
+    elif through and scurve:
+        if duration is not None:
+            raise KinematicaError("--profile scurve through --via takes its time from the limits")
+        traj = via_trajectory(W, "scurve", None, args.dt, vmax, amax, jmax=jmax, qlim=robot.qlim)
+        t, q, qd, qdd = traj
     elif through:
         if times is None and vmax is None and amax is None:
             times = np.linspace(0.0, float(duration), W.shape[0])
-        t, q, qd, qdd = via_trajectory(
-            W,
-            args.profile,
-            times,
-            args.dt,
-            vmax,
-            amax,
-            tacc=args.tacc,
-            ends=args.ends,
+        traj = via_trajectory(
+            W, args.profile, times, args.dt, vmax, amax, tacc=args.tacc, ends=args.ends
         )
+        t, q, qd, qdd = traj
     else:
-        t, q, qd, qdd = joint_trajectory(
-            qa, qb, duration, args.profile, args.dt, vmax, amax, sync=args.sync
+        traj = joint_trajectory(
+            qa, qb, duration, args.profile, args.dt, vmax, amax, sync=args.sync, jmax=jmax
         )
+        t, q, qd, qdd = traj
+    jerk = traj.qddd if isinstance(traj, JerkTrajectory) else None
+    if args.plot and traj is not None:
+        from kinematica.viz.limits import save_limits
+
+        save_limits(traj, args.plot, vmax=vmax, amax=amax, jmax=jmax, title=robot.name)
     events = path.events if path is not None else ()
     blocked = any(e.kind in BLOCKING for e in events)
     if out is not None:
@@ -345,6 +377,8 @@ def trajectory(args: argparse.Namespace) -> int:
                 "q": _safe(q_out(robot, q, args)),
                 "qd": None if qd is None else _safe(q_out(robot, qd, args)),
                 "qdd": None if qdd is None else _safe(q_out(robot, qdd, args)),
+                "qddd": None if jerk is None else _safe(q_out(robot, jerk, args)),
+                **_scurve_json(traj),
                 "events": [
                     {
                         "kind": e.kind,
@@ -356,6 +390,7 @@ def trajectory(args: argparse.Namespace) -> int:
                     for e in events
                 ],
                 "file": None if out is None else str(out),
+                "plot": args.plot,
             }
         )
         return 1 if blocked else 0
@@ -377,6 +412,13 @@ def trajectory(args: argparse.Namespace) -> int:
     )
     if step > 1:
         print(f"  (every {step}th sample and the last; -o FILE or --json for all)")
+    if isinstance(traj, JerkTrajectory) and traj.margin is not None:
+        print(
+            f"passing the waypoints without a stop: {fmt(traj.margin, 4)} s shorter than "
+            f"stopping at each ({fmt(traj.stop_duration or 0.0, 4)} s)"
+        )
+    if args.plot:
+        print(f"figure written to {args.plot}")
     if path is not None:
         _print_events(path)
         if path.ok:
@@ -438,10 +480,12 @@ def register(sub: Any) -> None:
     )
     p.add_argument(
         "--profile",
-        choices=("quintic", "cubic", "trapezoid", "mstraj"),
+        choices=("quintic", "cubic", "trapezoid", "mstraj", "scurve"),
         default="quintic",
         help="between two q: quintic, cubic, trapezoid; through --via: the quintic (C4) or "
-        "cubic (C2) spline through every point, or mstraj (lines with parabolic blends)",
+        "cubic (C2) spline through every point, or mstraj (lines with parabolic blends); "
+        "scurve: jerk-limited (--vmax --amax --jmax; needs ruckig), between two q or "
+        "through --via points without stopping",
     )
     p.add_argument(
         "--duration",
@@ -454,6 +498,7 @@ def register(sub: Any) -> None:
     p.add_argument("--dt", type=float, default=0.01, help="sample spacing in s (default 0.01)")
     p.add_argument("--vmax", nargs="+", type=float, help="speed limit, one or n values (deg/s)")
     p.add_argument("--amax", nargs="+", type=float, help="acceleration limit (deg/s²)")
+    p.add_argument("--jmax", nargs="+", type=float, help="jerk limit of --profile scurve (deg/s³)")
     p.add_argument(
         "--sync",
         choices=("each", "shared"),
@@ -477,5 +522,10 @@ def register(sub: Any) -> None:
         "--blend", type=float, help="--cartesian through --via: corner radius (robot's length unit)"
     )
     p.add_argument("-o", "--output", metavar="PATH.csv", help="write t,q1..qn (SI) to .csv/.json")
+    p.add_argument(
+        "--plot",
+        metavar="FIG.png",
+        help="draw q, q̇, q̈ (and the jerk of scurve) against their limits (needs matplotlib)",
+    )
     add_common(p)
     p.set_defaults(run=trajectory)

@@ -58,9 +58,11 @@ __all__ = [
 ]
 
 FloatArray = NDArray[np.float64]
-Profile = Literal["quintic", "cubic", "trapezoid"]
+Profile = Literal["quintic", "cubic", "trapezoid", "scurve"]
 Sync = Literal["each", "shared"]
 PROFILES: tuple[Profile, ...] = ("quintic", "cubic", "trapezoid")
+#: joint_trajectory's profiles: the time scalings and the jerk-limited move (motion.scurve).
+MOVES: tuple[Profile, ...] = (*PROFILES, "scurve")
 SYNCS: tuple[Sync, ...] = ("each", "shared")
 
 #: Default sample spacing (s).
@@ -330,6 +332,7 @@ def joint_trajectory(
     qdd0: ArrayLike | None = None,
     qdd1: ArrayLike | None = None,
     sync: Sync = "each",
+    jmax: ArrayLike | None = None,
 ) -> JointTrajectory:
     """A synchronised joint trajectory from ``q0`` to ``q1``.
 
@@ -342,22 +345,28 @@ def joint_trajectory(
         profile: ``"quintic"`` (zero or given velocity and acceleration at
             both ends), ``"cubic"`` (velocity at both ends) or ``"trapezoid"``
             (rest to rest, constant acceleration ``±amax``, a cruise or a
-            triangle when the cruise speed is not reached; ``sync``).
+            triangle when the cruise speed is not reached; ``sync``) or
+            ``"scurve"`` (jerk-limited, time-optimal from any start state to
+            any target state: :mod:`kinematica.motion.scurve`; needs ``vmax``,
+            ``amax`` and ``jmax``, and ruckig, the extra ``trajectory``).
         dt: Largest sample spacing (s); samples are uniform, the last at T.
         vmax: Speed limit per joint (scalar or ``(n,)``; rad/s, m/s).
         amax: Acceleration limit per joint (rad/s², m/s²).
         qd0: ``(n,)`` start velocity (quintic, cubic); zero by default.
         qd1: ``(n,)`` end velocity.
-        qdd0: ``(n,)`` start acceleration (quintic).
-        qdd1: ``(n,)`` end acceleration (quintic).
+        qdd0: ``(n,)`` start acceleration (quintic, scurve).
+        qdd1: ``(n,)`` end acceleration (quintic, scurve).
         sync: How the trapezoid synchronises the joints (module docstring):
             ``"each"`` (default: every joint its own profile at its ``amax``,
             the slowest joint's minimum time for all) or ``"shared"`` (one
             profile on the joint-space line, limited by the most limited
             joint). The quintic and cubic give the same for both.
+        jmax: Jerk limit per joint (rad/s³, m/s³) of the ``"scurve"``.
 
     Returns:
-        :class:`JointTrajectory` ``(t, q, qd, qdd)``.
+        :class:`JointTrajectory` ``(t, q, qd, qdd)``; for ``"scurve"`` a
+        :class:`~kinematica.motion.scurve.JerkTrajectory` (its jerk ``qddd`` too),
+        at least ``duration`` long if one is given.
 
     Raises:
         DimensionError: Shapes differ, NaN or inf.
@@ -368,7 +377,7 @@ def joint_trajectory(
         KinematicaError: Limits that are not positive, or a given duration
             too short for the limits.
     """
-    check_choice(profile, "profile", PROFILES)
+    check_choice(profile, "profile", MOVES)
     check_choice(sync, "sync", SYNCS)
     a = as_float_array(q0, "q0")
     if a.ndim == 2:
@@ -391,6 +400,17 @@ def joint_trajectory(
         _times_check(duration, dt, "duration/dt")
     vm = None if vmax is None else _vector(vmax, n, "vmax", positive=True)
     am = None if amax is None else _vector(amax, n, "amax", positive=True)
+    if profile == "scurve":
+        if sync != "each":
+            raise KinematicaError(
+                "the scurve times each joint's own profile: drop sync", arg="sync"
+            )
+        from kinematica.motion.scurve import scurve_trajectory
+
+        move = (qd0, qd1, qdd0, qdd1)
+        return scurve_trajectory(a, b, duration, dt, vm, am, jmax, *move)
+    if jmax is not None:
+        raise KinematicaError("jmax limits the 'scurve' profile only", arg="jmax")
     delta = np.abs(b - a)
     moving = delta > 0
     # Limits of the path parameter s in [0, 1], set by the most limited joint.
