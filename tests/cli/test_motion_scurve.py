@@ -74,9 +74,9 @@ def test_a_quintic_figure_has_no_jerk_row(tmp_path: Path) -> None:
 @pytest.mark.parametrize(
     ("extra", "match"),
     [
-        (["--profile", "quintic", "--jmax", "900"], "--jmax limits --profile scurve only"),
-        (["--profile", "scurve", "--cartesian"], "drop --cartesian"),
-        (["--profile", "scurve", "--vmax", "90", "--amax", "180"], "needs jmax"),
+        (["--profile", "quintic", "--jmax", "900"], "only it takes --jmax"),
+        (["--profile", "scurve", "--cartesian"], "not with --cartesian"),
+        (["--profile", "scurve", "--vmax", "90", "--amax", "180"], "and --jmax"),
         (["--profile", "scurve", *LIMITS[:4], "--jmax", "0"], "jmax must be positive"),
     ],
 )

@@ -12,7 +12,6 @@ from support.scurve_reference import (
     rest_to_rest_time,
 )
 
-import kinematica as km
 from kinematica.errors import ArgumentError, DimensionError, KinematicaError
 from kinematica.motion import JointTrajectory, joint_trajectory, time_scaling
 from kinematica.motion.scurve import PIECE_RTOL, JerkTrajectory
@@ -166,7 +165,7 @@ def test_samples_are_the_pieces_and_unpack_as_four() -> None:
     traj = joint_trajectory(
         [0.0, 1.0], [1.0, -1.0], profile="scurve", dt=0.05, vmax=1, amax=2, jmax=5
     )
-    t, q, qd, qdd = traj
+    t, q, _, _ = traj
     assert isinstance(traj, JointTrajectory) and len(traj) == 4
     assert t[0] == 0.0 and np.all(np.diff(t) <= 0.05 + 1e-15)
     assert np.allclose(q, traj.pieces(t), atol=1e-12)

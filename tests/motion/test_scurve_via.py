@@ -105,7 +105,7 @@ def test_position_atol_boundary() -> None:
 def test_ends_that_must_leave_the_limits_are_refused() -> None:
     # starting 1 cm below the limit, moving up at 0.9: it cannot stop before the limit
     W = np.array([[0.99], [0.5], [0.0]])
-    with pytest.raises(KinematicaError, match="segment 1 .* leaves qlim"):
+    with pytest.raises(KinematicaError, match=r"segment 1 .* leaves qlim"):
         via_trajectory(W, "scurve", vmax=1, amax=1, jmax=1, qd0=[0.9], qlim=[[-1.0, 1.0]])
 
 

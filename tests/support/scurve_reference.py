@@ -28,10 +28,7 @@ FloatArray = NDArray[np.float64]
 
 def _rise(u: float, A: float, J: float) -> tuple[float, float]:
     """Time and distance from rest to speed ``u`` at zero acceleration."""
-    if u >= A * A / J:
-        t = u / A + A / J
-    else:
-        t = 2.0 * math.sqrt(u / J)
+    t = u / A + A / J if u >= A * A / J else 2.0 * math.sqrt(u / J)
     return t, 0.5 * u * t
 
 

@@ -11,6 +11,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.cli.format import fmt, matrix, table
+from kinematica.cli.jerk import add_jerk_options, jerk_json, jerk_text
 from kinematica.cli.options import (
     add_common,
     add_robot,
@@ -202,19 +203,6 @@ def _limit(robot: Robot, values: list[float] | None, args: argparse.Namespace, n
     return np.abs(q_in(robot, values, args, name))
 
 
-def _scurve_json(traj: JointTrajectory | None) -> dict[str, Any]:
-    """The waypoint timing of a jerk-limited move through waypoints, for --json."""
-    from kinematica.motion.scurve import JerkTrajectory
-
-    if not isinstance(traj, JerkTrajectory) or traj.margin is None:
-        return {}
-    return {
-        "waypoint_times": _safe(traj.waypoint_times),
-        "stop_duration": traj.stop_duration,
-        "margin": traj.margin,
-    }
-
-
 def _print_events(path: CartesianPath) -> None:
     for e in path.events:
         print(f"event: {e.kind}: {e.message}")
@@ -264,7 +252,6 @@ def _waypoints(robot: Robot, args: argparse.Namespace) -> tuple[FloatArray, Floa
 def trajectory(args: argparse.Namespace) -> int:
     """``kinematica trajectory ROBOT --from ... [--via ...] --to ...``: samples, events, a file."""
     from kinematica.motion import (
-        JerkTrajectory,
         cartesian_path,
         cartesian_via_path,
         joint_trajectory,
@@ -286,12 +273,10 @@ def trajectory(args: argparse.Namespace) -> int:
     amax = _limit(robot, args.amax, args, "amax")
     jmax = _limit(robot, args.jmax, args, "jmax")
     scurve = args.profile == "scurve"
-    if jmax is not None and not scurve:
-        raise KinematicaError("--jmax limits --profile scurve only")
-    if scurve and (args.cartesian or args.times is not None or args.waypoints is not None):
+    if (jmax is not None) != scurve or (scurve and (args.cartesian or times is not None)):
         raise KinematicaError(
-            "--profile scurve times joint moves from --vmax, --amax and --jmax: "
-            "drop --cartesian, --times and --waypoints"
+            "--profile scurve times joint moves from --vmax, --amax and --jmax (only it takes "
+            "--jmax; not with --cartesian, --times or --waypoints)"
         )
     duration = args.duration
     if times is not None and duration is not None:
@@ -309,8 +294,6 @@ def trajectory(args: argparse.Namespace) -> int:
         raise KinematicaError("--blend rounds the corners of a --cartesian path through --via")
     path: CartesianPath | None = None
     traj: JointTrajectory | None = None
-    if args.plot and args.cartesian:
-        raise KinematicaError("--plot draws joint trajectories: drop --cartesian")
     if args.cartesian:
         if vmax is not None or amax is not None:
             raise KinematicaError(
@@ -329,8 +312,6 @@ def trajectory(args: argparse.Namespace) -> int:
             path = cartesian_path(robot, robot.fk(qa), robot.fk(qb), q0=qa, s=s, q1=qb)
         q, qd, qdd = path.q, None, None
     elif through and scurve:
-        if duration is not None:
-            raise KinematicaError("--profile scurve through --via takes its time from the limits")
         traj = via_trajectory(W, "scurve", None, args.dt, vmax, amax, jmax=jmax, qlim=robot.qlim)
         t, q, qd, qdd = traj
     elif through:
@@ -345,10 +326,11 @@ def trajectory(args: argparse.Namespace) -> int:
             qa, qb, duration, args.profile, args.dt, vmax, amax, sync=args.sync, jmax=jmax
         )
         t, q, qd, qdd = traj
-    jerk = traj.qddd if isinstance(traj, JerkTrajectory) else None
-    if args.plot and traj is not None:
+    if args.plot:
         from kinematica.viz.limits import save_limits
 
+        if traj is None:
+            raise KinematicaError("--plot draws joint trajectories: drop --cartesian")
         save_limits(traj, args.plot, vmax=vmax, amax=amax, jmax=jmax, title=robot.name)
     events = path.events if path is not None else ()
     blocked = any(e.kind in BLOCKING for e in events)
@@ -377,8 +359,7 @@ def trajectory(args: argparse.Namespace) -> int:
                 "q": _safe(q_out(robot, q, args)),
                 "qd": None if qd is None else _safe(q_out(robot, qd, args)),
                 "qdd": None if qdd is None else _safe(q_out(robot, qdd, args)),
-                "qddd": None if jerk is None else _safe(q_out(robot, jerk, args)),
-                **_scurve_json(traj),
+                **jerk_json(traj, robot, args, _safe),
                 "events": [
                     {
                         "kind": e.kind,
@@ -412,11 +393,7 @@ def trajectory(args: argparse.Namespace) -> int:
     )
     if step > 1:
         print(f"  (every {step}th sample and the last; -o FILE or --json for all)")
-    if isinstance(traj, JerkTrajectory) and traj.margin is not None:
-        print(
-            f"passing the waypoints without a stop: {fmt(traj.margin, 4)} s shorter than "
-            f"stopping at each ({fmt(traj.stop_duration or 0.0, 4)} s)"
-        )
+    jerk_text(traj)
     if args.plot:
         print(f"figure written to {args.plot}")
     if path is not None:
@@ -498,7 +475,6 @@ def register(sub: Any) -> None:
     p.add_argument("--dt", type=float, default=0.01, help="sample spacing in s (default 0.01)")
     p.add_argument("--vmax", nargs="+", type=float, help="speed limit, one or n values (deg/s)")
     p.add_argument("--amax", nargs="+", type=float, help="acceleration limit (deg/s²)")
-    p.add_argument("--jmax", nargs="+", type=float, help="jerk limit of --profile scurve (deg/s³)")
     p.add_argument(
         "--sync",
         choices=("each", "shared"),
@@ -522,10 +498,6 @@ def register(sub: Any) -> None:
         "--blend", type=float, help="--cartesian through --via: corner radius (robot's length unit)"
     )
     p.add_argument("-o", "--output", metavar="PATH.csv", help="write t,q1..qn (SI) to .csv/.json")
-    p.add_argument(
-        "--plot",
-        metavar="FIG.png",
-        help="draw q, q̇, q̈ (and the jerk of scurve) against their limits (needs matplotlib)",
-    )
+    add_jerk_options(p)
     add_common(p)
     p.set_defaults(run=trajectory)

@@ -41,11 +41,11 @@ from kinematica.motion.trajectory import DURATION_RTOL, LIMIT_RTOL, MAX_SAMPLES,
 __all__ = [
     "JerkTrajectory",
     "Segment",
-    "require_ruckig",
     "limits_from",
+    "require_ruckig",
     "scurve_pieces",
-    "state_from",
     "scurve_trajectory",
+    "state_from",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -207,7 +207,7 @@ class Segment:
 
 
 def _reason(message: str) -> str:
-    """ruckig's message, its DoF numbered from 0 turned into our joints from 1."""
+    """The message of ruckig, its DoF numbered from 0 turned into our joints from 1."""
     text = message.strip().removeprefix("[ruckig]").strip()
     return re.sub(r"DoF (\d+)", lambda m: f"joint {int(m.group(1)) + 1}", text)
 
@@ -318,13 +318,17 @@ def scurve_trajectory(
     ``profile="scurve"`` (its arguments, already checked for shape).
 
     Args:
-        q0, q1: ``(n,)`` start and target joint values (rad, m).
+        q0: ``(n,)`` start joint values (rad, m).
+        q1: ``(n,)`` target joint values.
         duration: At least this long (s), if given; the shortest otherwise.
         dt: Largest sample spacing (s).
-        vmax, amax, jmax: Limits per joint (a number or ``(n,)``; rad/s,
-            rad/s², rad/s³ or m/...), all three needed.
-        qd0, qdd0: ``(n,)`` start velocity and acceleration (zero by default).
-        qd1, qdd1: ``(n,)`` target velocity and acceleration.
+        vmax: Speed limit per joint (a number or ``(n,)``; rad/s, m/s).
+        amax: Acceleration limit per joint (rad/s², m/s²).
+        jmax: Jerk limit per joint (rad/s³, m/s³); all three limits are needed.
+        qd0: ``(n,)`` start velocity (zero by default).
+        qd1: ``(n,)`` target velocity.
+        qdd0: ``(n,)`` start acceleration.
+        qdd1: ``(n,)`` target acceleration.
 
     Returns:
         :class:`JerkTrajectory`: time-optimal for the slowest joint, every

@@ -153,10 +153,14 @@ def scurve_via(
     Args:
         w: ``(k, n)`` waypoints (rad, m), checked; no two in a row equal.
         dt: Largest sample spacing (s); every waypoint's time is a sample.
-        vmax, amax, jmax: Limits per joint (a number or ``(n,)``).
+        vmax: Speed limit per joint (a number or ``(n,)``; rad/s, m/s).
+        amax: Acceleration limit per joint (rad/s², m/s²).
+        jmax: Jerk limit per joint (rad/s³, m/s³).
         qlim: ``(n, 2)`` position limits (low, high) every sample keeps; none if ``None``.
-        qd0, qdd0: ``(n,)`` start velocity and acceleration (zero by default).
-        qd1, qdd1: ``(n,)`` end velocity and acceleration.
+        qd0: ``(n,)`` start velocity (zero by default).
+        qd1: ``(n,)`` end velocity.
+        qdd0: ``(n,)`` start acceleration.
+        qdd1: ``(n,)`` end acceleration.
 
     Returns:
         :class:`~kinematica.motion.scurve.JerkTrajectory` with

@@ -340,20 +340,15 @@ def via_trajectory(
     """
     dt = check_number(dt, "dt", positive=True, unit="s", what="a number of seconds")
     if method == "scurve":
-        named = [
-            x
-            for x, v in (("times", times), ("tacc", tacc), ("qd", qd), ("qdd", qdd))
-            if v is not None
-        ]
+        extra = {"times": times, "tacc": tacc, "qd": qd, "qdd": qdd}
+        named = [x for x, v in extra.items() if v is not None]
         if named or ends != "clamped":
-            raise KinematicaError(
-                f"the scurve times itself from vmax, amax and jmax: drop {', '.join(named) or 'ends'}"
-            )
+            what = ", ".join(named) or "ends"
+            raise KinematicaError(f"the scurve times itself from vmax, amax and jmax: drop {what}")
         from kinematica.motion.scurve_via import scurve_via
 
-        w = _waypoints(waypoints)
         ends_given = {"qd0": qd0, "qd1": qd1, "qdd0": qdd0, "qdd1": qdd1}
-        return scurve_via(w, dt, vmax, amax, jmax, qlim=qlim, **ends_given)
+        return scurve_via(_waypoints(waypoints), dt, vmax, amax, jmax, qlim=qlim, **ends_given)
     if jmax is not None or qlim is not None:
         named = " and ".join(x for x, v in (("jmax", jmax), ("qlim", qlim)) if v is not None)
         raise KinematicaError(f"{named} apply to method='scurve' only")

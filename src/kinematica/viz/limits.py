@@ -55,15 +55,19 @@ def plot_limits(
     Args:
         traj: The trajectory; a :class:`~kinematica.motion.scurve.JerkTrajectory`
             adds its jerk row and brings its own limits.
-        vmax, amax, jmax: ``(n,)`` limits (or one number) drawn as dashed
-            ``±limit`` lines; the trajectory's own when ``None`` and it has them.
+        vmax: ``(n,)`` speed limits (or one number) drawn as dashed ``±vmax``
+            lines; the trajectory's own when ``None`` and it has them.
+        amax: Acceleration limits, likewise.
+        jmax: Jerk limits, likewise (drawn when the trajectory has a jerk).
         fig: A Figure to draw on (empty); a new 1000 x 900 pixel one if ``None``.
         title: The figure's title.
 
     Returns:
         The Figure; its Axes are ``position``, ``velocity``, ``acceleration``
         (and ``jerk``) by label, each joint's curve with ``gid`` ``q1``... and
-        its limit lines with ``gid`` ``q1-limit``...
+        its limit lines with ``gid`` ``q1-limit``...; through waypoints a
+        dotted line (``gid="waypoint"``) at each waypoint's time. The jerk
+        of a jerk-limited move is drawn from its exact pieces.
     """
     t, q = traj.t, traj.q
     if q.ndim != 2 or t.shape != (q.shape[0],):
@@ -87,15 +91,21 @@ def plot_limits(
         fig = figure(1000, 220 * len(series) + 120, 100, pyplot_managed=False)
     axes = fig.subplots(len(series), 1, sharex=True, squeeze=False)[:, 0]
     colours = [f"C{j % 10}" for j in range(n)]
+    waypoints = getattr(traj, "waypoint_times", None)
+    pieces = getattr(traj, "pieces", None)
     for ax, (values, lim), (label, ylabel) in zip(axes, series, _ROWS, strict=False):
         ax.set_label(label)
-        # the jerk is piecewise constant: drawn as steps, not as ramps between samples
-        draw = ax.step if label == "jerk" else ax.plot
+        x = t
+        if label == "jerk" and pieces is not None:
+            # piecewise constant: steps at the exact switch times, not ramps between samples
+            x = pieces.breaks
+            values = np.vstack([pieces(x[:-1], 3), pieces(x[-1:], 3, left=True)])
         for j in range(n):
-            kw = {"where": "post"} if label == "jerk" else {}
-            draw(
-                t, values[:, j], color=colours[j], lw=1.3, label=f"q{j + 1}", gid=f"q{j + 1}", **kw
-            )
+            style = {"color": colours[j], "lw": 1.3, "label": f"q{j + 1}", "gid": f"q{j + 1}"}
+            if label == "jerk":
+                ax.step(x, values[:, j], where="post", **style)
+            else:
+                ax.plot(x, values[:, j], **style)
             if lim is not None:
                 for sign in (1.0, -1.0):
                     ax.axhline(
@@ -106,13 +116,18 @@ def plot_limits(
                         alpha=0.7,
                         gid=f"q{j + 1}-limit",
                     )
+        for tw in () if waypoints is None else waypoints:
+            ax.axvline(tw, color="0.5", lw=0.8, ls=":", gid="waypoint")
         ax.set_ylabel(ylabel, fontsize=9)
         ax.grid(True, lw=0.4, alpha=0.5)
     axes[0].legend(fontsize=7, ncol=min(n, 7), loc="upper left", bbox_to_anchor=(0.0, 1.28))
     axes[-1].set_xlabel("t (s)")
     kind = "jerk-limited" if jerk is not None else "timed"
     head = f"{title}: " if title else ""
-    fig.suptitle(f"{head}{kind} trajectory, {float(t[-1]):.4g} s; dashed: ±limits", fontsize=11)
+    dotted = "" if waypoints is None else "; dotted: waypoints"
+    fig.suptitle(
+        f"{head}{kind} trajectory, {float(t[-1]):.4g} s; dashed: ±limits{dotted}", fontsize=11
+    )
     fig.subplots_adjust(left=0.09, right=0.98, bottom=0.07, top=0.9, hspace=0.12)
     return fig
 
