@@ -15,7 +15,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica.motion.trajectory import JointTrajectory, sample_times
+from kinematica.motion.samples import JointTrajectory, sample_times
 
 __all__ = ["PiecewisePolynomial"]
 

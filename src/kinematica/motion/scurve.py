@@ -36,7 +36,7 @@ from kinematica.arguments import check_size
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.motion.piecewise import PiecewisePolynomial
 from kinematica.motion.plot import MissingDependencyError
-from kinematica.motion.trajectory import DURATION_RTOL, LIMIT_RTOL, MAX_SAMPLES, JointTrajectory
+from kinematica.motion.samples import DURATION_RTOL, LIMIT_RTOL, MAX_SAMPLES, JointTrajectory
 
 __all__ = [
     "JerkTrajectory",

@@ -44,6 +44,7 @@ from numpy.typing import ArrayLike, NDArray
 from kinematica.arguments import check_size
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.motion.piecewise import PiecewisePolynomial
+from kinematica.motion.samples import MAX_SAMPLES
 from kinematica.motion.scurve import (
     JerkTrajectory,
     Segment,
@@ -53,7 +54,6 @@ from kinematica.motion.scurve import (
     scurve_pieces,
     state_from,
 )
-from kinematica.motion.trajectory import MAX_SAMPLES
 
 __all__ = ["GOLDEN_STEPS", "JOINT_SWEEPS", "POSITION_ATOL", "SWEEPS", "UNIFORM_GRID", "scurve_via"]
 
@@ -241,22 +241,21 @@ def scurve_via(
             seg_t[i - 1] = time(i - 1, vel[i - 1], vel[i])
             seg_t[i] = time(i, vel[i], vel[i + 1])
 
+    def along(i: int) -> Callable[[float], FloatArray]:
+        return lambda x: x * vhat[i]
+
     for _ in range(SWEEPS):  # one speed fraction per waypoint, along its chord
         for i in range(1, k - 1):
             if vhat[i].any():
-                improve(i, lambda x, i=i: x * vhat[i])
-    d = np.diff(w, axis=0)
+                improve(i, along(i))
+    steps = np.diff(w, axis=0)
     for _ in range(JOINT_SWEEPS):  # then each joint's own speed
         for i in range(1, k - 1):
             for j in range(n):
                 # an onward joint in its direction; one that turns back may pass its waypoint
                 # moving either way (overshooting the waypoint on one side)
-                signs = (
-                    [np.sign(vhat[i, j])]
-                    if vhat[i, j]
-                    else [np.sign(d[i - 1, j]), np.sign(d[i, j])]
-                )
-                for sign in signs:
+                signs = [vhat[i, j]] if vhat[i, j] else [steps[i - 1, j], steps[i, j]]
+                for sign in np.sign(signs):
                     if sign == 0.0:
                         continue
 

@@ -31,7 +31,7 @@ slowest joint's own minimum time.
 from __future__ import annotations
 
 import math
-from typing import Literal, NamedTuple
+from typing import Literal
 
 import numpy as np
 from numpy.polynomial import polynomial as npoly
@@ -39,6 +39,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from kinematica.arguments import check_choice, check_number, check_size
 from kinematica.errors import ArgumentError, DimensionError, KinematicaError
+from kinematica.motion.samples import (
+    DURATION_RTOL,
+    LIMIT_RTOL,
+    MAX_SAMPLES,
+    JointTrajectory,
+    sample_times,
+)
 from kinematica.spatial.checks import as_float_array
 
 __all__ = [
@@ -67,15 +74,8 @@ SYNCS: tuple[Sync, ...] = ("each", "shared")
 
 #: Default sample spacing (s).
 DEFAULT_DT = 0.01
-#: Relative shortfall of a given duration (or waypoint spacing) below the
-#: shortest one accepted as round-off of the times' arithmetic.
-DURATION_RTOL = 1e-12
-#: Relative excess over ``vmax``/``amax`` accepted as round-off when checking given times.
-LIMIT_RTOL = 1e-9
 #: Longest trajectory (s), given or derived from the limits: about 30 years.
 MAX_DURATION = 1e9
-#: Most samples a trajectory has (duration / dt + 1): ~50 MB of q, qd, qdd for 6 joints.
-MAX_SAMPLES = 1_000_000
 
 # Hermite bases, coefficients in s (lowest power first). Weights: quintic
 # (p0, T·v0, T²·a0, T²·a1, T·v1, p1); cubic (p0, T·v0, T·v1, p1). The splines
@@ -94,31 +94,6 @@ QUINTIC_BASIS = np.array(
 CUBIC_BASIS = np.array([[1, 0, -3, 2], [0, 1, -2, 1], [0, 0, -1, 1], [0, 0, 3, -2]], dtype=float)
 # Peak |ds/dt|·T and |d²s/dt²|·T² of the rest-to-rest profiles.
 _PEAKS = {"quintic": (15.0 / 8.0, 10.0 / math.sqrt(3.0)), "cubic": (1.5, 6.0)}
-
-
-class JointTrajectory(NamedTuple):
-    """Samples of a joint trajectory (unpacks as ``t, q, qd, qdd``).
-
-    Attributes:
-        t: ``(m,)`` times (s), from 0 to the duration.
-        q: ``(m, n)`` joint values (rad, m).
-        qd: ``(m, n)`` joint velocities (rad/s, m/s).
-        qdd: ``(m, n)`` joint accelerations (rad/s², m/s²).
-    """
-
-    t: FloatArray
-    q: FloatArray
-    qd: FloatArray
-    qdd: FloatArray
-
-    def _repr_html_(self) -> str:
-        """A few samples' joint values as an HTML table (Jupyter)."""
-        from kinematica.motion.display import samples_html
-
-        m, n = self.q.shape
-        duration = float(self.t[-1]) if m else 0.0
-        caption = f"{n} joints, {m} samples over {duration:g} s (q in rad, m)"
-        return samples_html(self.t, self.q, time_name="t (s)", caption=caption)
 
 
 def _vector(x: ArrayLike | None, n: int, name: str, positive: bool = False) -> FloatArray:
@@ -506,14 +481,6 @@ def _derived_check(T: float, dt: float, vmax: object, amax: object) -> None:
             arg=name,
         )
     _times_check(T, dt, name)
-
-
-def sample_times(T: float, dt: float) -> FloatArray:
-    """``(m,)`` uniform times from 0 to ``T`` (the last exactly ``T``), spacing <= ``dt``."""
-    m = max(2, math.ceil(T / dt - 1e-9) + 1)
-    t = np.linspace(0.0, T, m)
-    t[-1] = T
-    return t
 
 
 def _still(t: FloatArray, a: FloatArray, b: FloatArray) -> JointTrajectory:

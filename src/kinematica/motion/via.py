@@ -350,8 +350,8 @@ def via_trajectory(
         ends_given = {"qd0": qd0, "qd1": qd1, "qdd0": qdd0, "qdd1": qdd1}
         return scurve_via(_waypoints(waypoints), dt, vmax, amax, jmax, qlim=qlim, **ends_given)
     if jmax is not None or qlim is not None:
-        named = " and ".join(x for x, v in (("jmax", jmax), ("qlim", qlim)) if v is not None)
-        raise KinematicaError(f"{named} apply to method='scurve' only")
+        given = " and ".join(x for x, v in (("jmax", jmax), ("qlim", qlim)) if v is not None)
+        raise KinematicaError(f"{given} apply to method='scurve' only")
     pieces = via_polynomials(
         waypoints,
         method,
