@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 import ruckig
@@ -14,7 +16,7 @@ from support.scurve_reference import (
 
 from kinematica.errors import ArgumentError, DimensionError, KinematicaError
 from kinematica.motion import JointTrajectory, joint_trajectory, time_scaling
-from kinematica.motion.scurve import PIECE_RTOL, JerkTrajectory
+from kinematica.motion.scurve import PIECE_RTOL, JerkTrajectory, scurve_pieces
 from kinematica.motion.trajectory import LIMIT_RTOL
 
 #: Durations against the hand-derived rest-to-rest minimum time (s).
@@ -161,6 +163,40 @@ def test_pieces_agree_with_ruckigs_own_evaluation() -> None:
             assert np.allclose(traj.pieces(t, order)[0], want[order], rtol=0, atol=1e-11)
 
 
+def test_the_end_is_settled_where_ruckig_stops_at_1e_9() -> None:
+    # joint 2 is re-timed to a 17 s cruise at 1/5 of its vmax; ruckig's own profile ends
+    # 8.7e-10 from its target position (its precision is 1e-8): ours within round-off
+    V, A, J = (
+        [0.21408505168916647, 0.14811895771890776],
+        [0.8933303831395544, 3.8665166524679115],
+        [1.1645216903630877, 5.357365487550325],
+    )
+    q0, q1 = [-1.8492218013449508, 1.523811133573088], [1.5936465609481227, 1.7119241986036142]
+    v0, a0 = (
+        [-0.10090283135460065, -0.09101208521469142],
+        [-0.28728207575289233, -0.34532513792828323],
+    )
+    v1, a1 = (
+        [0.09797185061656716, 0.015374228266414047],
+        [-0.46351153817476387, 0.24054743291442995],
+    )
+    n = 2
+    otg, inp, out = ruckig.Ruckig(n), ruckig.InputParameter(n), ruckig.Trajectory(n)
+    inp.current_position, inp.current_velocity, inp.current_acceleration = q0, v0, a0
+    inp.target_position, inp.target_velocity, inp.target_acceleration = q1, v1, a1
+    inp.max_velocity, inp.max_acceleration, inp.max_jerk = V, A, J
+    otg.calculate(inp, out)
+    assert abs(out.at_time(out.duration)[0][1] - q1[1]) > 5 * END_ATOL
+    traj = joint_trajectory(
+        q0, q1, profile="scurve", vmax=V, amax=A, jmax=J, qd0=v0, qdd0=a0, qd1=v1, qdd1=a1
+    )
+    assert traj.pieces.coef.shape[1] == 6  # a quintic step in the cruise
+    for order, want in enumerate((q1, v1, a1)):
+        assert np.abs(traj.pieces(traj.duration, order, left=True)[0] - want).max() <= END_ATOL
+    _check_limits(traj)
+    _check_first_principles(traj, (np.array(q0), np.array(v0), np.array(a0)))
+
+
 def test_samples_are_the_pieces_and_unpack_as_four() -> None:
     traj = joint_trajectory(
         [0.0, 1.0], [1.0, -1.0], profile="scurve", dt=0.05, vmax=1, amax=2, jmax=5
@@ -187,9 +223,25 @@ def test_no_move_is_one_sample() -> None:
     assert traj.duration == 0.0 and traj.q.shape == (1, 2)
 
 
-def test_merged_pieces_stay_longer_than_the_tolerance() -> None:
-    traj = joint_trajectory(np.zeros(3), [1.0, 1.0, 1.0], profile="scurve", vmax=1, amax=1, jmax=1)
-    assert np.diff(traj.pieces.breaks).min() > PIECE_RTOL * traj.duration
+def _cruise(T: float, switch: float, v: float) -> SimpleNamespace:
+    """A fake ruckig profile: a cruise at ``v`` cut in two phases at ``switch``."""
+    t = [switch, T - switch, 0, 0, 0, 0, 0]
+    p = [0.0, v * switch] + [v * T] * 6
+    brake = SimpleNamespace(t=[0, 0], j=[0, 0], p=[0, 0], v=[0, 0], a=[0, 0])
+    return SimpleNamespace(brake=brake, t=t, j=[0.0] * 7, p=p, v=[v] * 8, a=[0.0] * 8, pf=v * T)
+
+
+def test_piece_rtol_boundary() -> None:
+    # two joints switching 0.5 and 2 PIECE_RTOL apart: merged into one cut, or kept apart
+    T = 2.0
+    for gap, pieces in ((0.5, 2), (2.0, 3)):
+        profiles = [_cruise(T, 1.0, 1.0), _cruise(T, 1.0 + gap * PIECE_RTOL * T, 0.5)]
+        out = SimpleNamespace(duration=T, profiles=[profiles])
+        one = np.ones(2)
+        seg = SimpleNamespace(out=out, n=2, limits=(one, one, one))
+        pp = scurve_pieces(seg)  # type: ignore[arg-type]
+        assert pp.coef.shape[0] == pieces
+        assert np.abs(pp(T, left=True)[0] - [2.0, 1.0]).max() <= END_ATOL
 
 
 @pytest.mark.parametrize(

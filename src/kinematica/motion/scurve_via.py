@@ -278,7 +278,9 @@ def scurve_via(
     breaks = np.concatenate([knots[:1], *shifted])
     for t0 in knots[1:]:  # every waypoint's time exactly among the breaks
         breaks[np.argmin(np.abs(breaks - t0))] = t0
-    pieces = PiecewisePolynomial(breaks, np.concatenate([p.coef for p in parts]), knots)
+    deg = max(p.coef.shape[1] for p in parts)  # cubic, or quintic where settled
+    coef = [np.pad(p.coef, ((0, 0), (0, deg - p.coef.shape[1]), (0, 0))) for p in parts]
+    pieces = PiecewisePolynomial(breaks, np.concatenate(coef), knots)
     check_peaks(pieces, (vm, am, jm))
     traj = jerk_samples(pieces, dt, (vm, am, jm), (w[-1], V[-1], A[-1]))
     traj.waypoint_times = knots
