@@ -223,22 +223,43 @@ def test_no_move_is_one_sample() -> None:
     assert traj.duration == 0.0 and traj.q.shape == (1, 2)
 
 
-def _cruise(T: float, switch: float, v: float) -> SimpleNamespace:
-    """A fake ruckig profile: a cruise at ``v`` cut in two phases at ``switch``."""
+def _cruise(T: float, switch: float, v: float, miss: float = 0.0) -> SimpleNamespace:
+    """A fake ruckig profile: a cruise at ``v`` cut in two phases at ``switch``, its
+    target ``miss`` beyond where the cruise ends."""
     t = [switch, T - switch, 0, 0, 0, 0, 0]
     p = [0.0, v * switch] + [v * T] * 6
     brake = SimpleNamespace(t=[0, 0], j=[0, 0], p=[0, 0], v=[0, 0], a=[0, 0])
-    return SimpleNamespace(brake=brake, t=t, j=[0.0] * 7, p=p, v=[v] * 8, a=[0.0] * 8, pf=v * T)
+    return SimpleNamespace(
+        brake=brake, t=t, j=[0.0] * 7, p=p, v=[v] * 8, a=[0.0] * 8, pf=v * T + miss
+    )
+
+
+def _fake(T: float, *profiles: SimpleNamespace) -> SimpleNamespace:
+    two = np.full(len(profiles), 2.0)
+    out = SimpleNamespace(duration=T, profiles=[list(profiles)])
+    return SimpleNamespace(out=out, n=len(profiles), limits=(two, two, two))
+
+
+def test_settle_ulps_boundary() -> None:
+    # an end 8 units in the last place off is round-off (kept, cubic pieces); 32 are
+    # settled (a quintic step in the cruise), and the end lands on the target
+    ulp = float(np.spacing(2.0))
+    kept = scurve_pieces(_fake(2.0, _cruise(2.0, 1.0, 1.0, 8 * ulp)))  # type: ignore[arg-type]
+    assert kept.coef.shape[1] == 4
+    moved = scurve_pieces(_fake(2.0, _cruise(2.0, 1.0, 1.0, 32 * ulp)))  # type: ignore[arg-type]
+    assert moved.coef.shape[1] == 6
+    assert abs(moved(2.0, left=True)[0, 0] - (2.0 + 32 * ulp)) <= 2 * ulp
+    assert abs(moved(2.0, 1, left=True)[0, 0] - 1.0) <= 1e-15
+    # a cruise at vmax has no room for the step: ruckig's end is kept, no limit broken
+    at_vmax = scurve_pieces(_fake(2.0, _cruise(2.0, 1.0, 2.0, 1e-9)))  # type: ignore[arg-type]
+    assert at_vmax.coef.shape[1] == 4 and at_vmax.peak(1)[0] == 2.0
 
 
 def test_piece_rtol_boundary() -> None:
     # two joints switching 0.5 and 2 PIECE_RTOL apart: merged into one cut, or kept apart
     T = 2.0
     for gap, pieces in ((0.5, 2), (2.0, 3)):
-        profiles = [_cruise(T, 1.0, 1.0), _cruise(T, 1.0 + gap * PIECE_RTOL * T, 0.5)]
-        out = SimpleNamespace(duration=T, profiles=[profiles])
-        one = np.ones(2)
-        seg = SimpleNamespace(out=out, n=2, limits=(one, one, one))
+        seg = _fake(T, _cruise(T, 1.0, 1.0), _cruise(T, 1.0 + gap * PIECE_RTOL * T, 0.5))
         pp = scurve_pieces(seg)  # type: ignore[arg-type]
         assert pp.coef.shape[0] == pieces
         assert np.abs(pp(T, left=True)[0] - [2.0, 1.0]).max() <= END_ATOL

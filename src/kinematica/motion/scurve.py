@@ -26,6 +26,7 @@ with position limits (:mod:`kinematica.motion.scurve_via`) and the pictures.
 
 from __future__ import annotations
 
+import math
 import re
 from typing import Any
 
@@ -40,6 +41,8 @@ from kinematica.motion.plot import MissingDependencyError
 from kinematica.motion.samples import DURATION_RTOL, LIMIT_RTOL, MAX_SAMPLES, JointTrajectory
 
 __all__ = [
+    "PIECE_RTOL",
+    "SETTLE_ULPS",
     "JerkTrajectory",
     "Segment",
     "limits_from",
@@ -262,9 +265,29 @@ def scurve_pieces(seg: Segment) -> PiecewisePolynomial:
     return PiecewisePolynomial(breaks, coef, np.array([0.0, T]))
 
 
+#: End-position errors up to this many units in the last place of the target are
+#: round-off of the pieces' own arithmetic, and left as they are.
+SETTLE_ULPS = 16
 #: Peaks of the smoothstep ``10s³ - 15s⁴ + 6s⁵`` on [0, 1]: its first, second and third
 #: derivatives (15/8, 10/√3, 60).
 _STEP_PEAKS = (15.0 / 8.0, 10.0 / np.sqrt(3.0), 60.0)
+#: The smoothstep's derivatives 0..5, each a polynomial in s (lowest power first).
+_STEP = [
+    np.array([0.0, 0.0, 0.0, 10.0, -15.0, 6.0]),
+    np.array([0.0, 0.0, 30.0, -60.0, 30.0]),
+    np.array([0.0, 60.0, -180.0, 120.0]),
+    np.array([60.0, -360.0, 360.0]),
+    np.array([-360.0, 720.0]),
+    np.array([720.0]),
+]
+
+
+def _step_taylor(s0: FloatArray, scale: float) -> FloatArray:
+    """``(m, 6)`` coefficients in ``u`` of the smoothstep at ``s0 + scale·u``."""
+    out = np.empty((s0.size, 6))
+    for k, c in enumerate(_STEP):
+        out[:, k] = npoly.polyval(s0, c) * scale**k / math.factorial(k)
+    return out
 
 
 def _settle(
@@ -291,8 +314,9 @@ def _settle(
             continue
         last = coef[-1, :, d]
         h = T - tb[-1]
-        e = last[0] + h * (last[1] + h * (last[2] + h * last[3])) - seg.out.profiles[0][d].pf
-        if e == 0.0:
+        target = float(seg.out.profiles[0][d].pf)
+        e = last[0] + h * (last[1] + h * (last[2] + h * last[3])) - target
+        if abs(e) <= SETTLE_ULPS * np.spacing(abs(target)):
             continue
         for k in np.argsort(-dur):
             tau = dur[k]
@@ -308,10 +332,7 @@ def _settle(
                 out = np.concatenate([coef, np.zeros((coef.shape[0], 2, coef.shape[2]))], axis=1)
             mid = 0.5 * (tb + breaks[1:])
             inside = (mid >= t0[k]) & (mid <= t0[k] + tau)
-            step = npoly.Polynomial([0.0, 0.0, 0.0, 10.0, -15.0, 6.0])
-            for i in np.flatnonzero(inside):
-                local = step(npoly.Polynomial([(tb[i] - t0[k]) / tau, 1.0 / tau]))
-                out[i, : local.coef.size, d] -= e * local.coef
+            out[inside, :, d] -= e * _step_taylor((tb[inside] - t0[k]) / tau, 1.0 / tau)
             out[mid > t0[k] + tau, 0, d] -= e
             break
     return out
