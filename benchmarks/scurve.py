@@ -12,8 +12,10 @@ Run with ``make bench`` (or ``.venv/bin/python benchmarks/scurve.py [--cases N]`
   rest-to-rest durations against the hand-derived closed form
   (``tests/support/scurve_reference.py``; the slowest joint's time), and from
   random start and target states: the end state, the limits on a 1 ms
-  resampling, and the time-optimal structure of some joint (every phase at a
-  limit). Counts of failures, and the largest errors.
+  resampling, the time-optimal structure of some joint (every phase at a
+  limit), and the synchronisation one joint at a time (each joint planned
+  alone to last at least ``T`` takes exactly ``T``; to last ``T - 1e-6`` s,
+  some joint cannot). Counts of failures, and the largest errors.
 
 No assertions: figures only.
 """
@@ -32,7 +34,12 @@ sys.path.insert(0, str(Path(__file__).parents[1] / "tests"))
 
 import ruckig
 from _common import fmt_time, header, per_call, table
-from support.scurve_reference import random_limits, random_state, rest_to_rest_time
+from support.scurve_reference import (
+    random_limits,
+    random_state,
+    rest_to_rest_time,
+    retimed_durations,
+)
 
 from kinematica.motion import joint_trajectory, via_trajectory
 from kinematica.motion.scurve import JerkTrajectory, Segment
@@ -64,6 +71,8 @@ def audit(cases: int) -> list[tuple[str, str, str]]:
     worst_end = 0.0
     worst_limit = 0.0
     not_extremal = 0
+    not_synced = 0
+    shorter_feasible = 0
     for c in range(cases):
         n = 1 if c % 4 == 0 else int(rng.integers(2, 8))
         V, A, J = random_limits(rng, n)
@@ -86,6 +95,11 @@ def audit(cases: int) -> list[tuple[str, str, str]]:
         for order, lim in ((1, V), (2, A), (3, J)):
             worst_limit = max(worst_limit, float((np.abs(p(t, order)) / lim).max()) - 1.0)
         not_extremal += not any(_saturated(traj, j) for j in range(n))
+        states = (q0, v0, a0, q1, v1, a1)
+        at_T = retimed_durations(*states, (V, A, J), T)
+        not_synced += bool(np.abs(at_T - T).max() > 1e-9)
+        shorter = retimed_durations(*states, (V, A, J), T - 1e-6)
+        shorter_feasible += not np.any(shorter > T - 1e-6 + 1e-9)
     return [
         (
             f"rest to rest, {cases} cases: duration vs closed form",
@@ -103,6 +117,8 @@ def audit(cases: int) -> list[tuple[str, str, str]]:
             f"{'within' if worst_limit <= LIMIT_RTOL else 'BEYOND'} {LIMIT_RTOL:g}",
         ),
         ("  some joint with every phase at a limit", f"{cases - not_extremal} of {cases}", ""),
+        ("  every joint alone can take T", f"{cases - not_synced} of {cases}", ""),
+        ("  some joint alone cannot take T - 1e-6 s", f"{cases - shorter_feasible} of {cases}", ""),
     ]
 
 

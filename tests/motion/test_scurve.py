@@ -12,6 +12,7 @@ from support.scurve_reference import (
     random_limits,
     random_state,
     rest_to_rest_time,
+    retimed_durations,
 )
 
 from kinematica.errors import ArgumentError, DimensionError, KinematicaError
@@ -25,6 +26,10 @@ DURATION_ATOL = 1e-9
 END_ATOL = 1e-10
 #: The resampling of the limit checks (s).
 RESAMPLE = 1e-3
+#: How much shorter a synchronised duration is shown infeasible (s; the issue's bound).
+SHORTER = 1e-6
+#: Durations of one joint re-timed on its own against the synchronised one (s).
+SYNC_ATOL = 1e-9
 
 
 def _resample(traj: JerkTrajectory) -> np.ndarray:
@@ -142,6 +147,12 @@ def test_any_state_to_any_state() -> None:
         # the duration is the slowest joint's own optimum, or later (a joint that
         # cannot take some durations): either way some joint's profile is extremal
         assert any(_saturates(traj, j) for j in range(n)), case
+        # every joint can take T, and some joint cannot take T - 1e-6 (one at a time)
+        lim = (V, A, J)
+        at_T = retimed_durations(q0, v0, a0, q1, v1, a1, lim, T)
+        assert np.abs(at_T - T).max() <= SYNC_ATOL
+        shorter = retimed_durations(q0, v0, a0, q1, v1, a1, lim, T - SHORTER)
+        assert np.any(shorter > T - SHORTER + SYNC_ATOL), case
 
 
 def test_pieces_agree_with_ruckigs_own_evaluation() -> None:

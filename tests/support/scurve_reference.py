@@ -92,3 +92,39 @@ def integrate_jerk(
         [np.zeros((1, v.shape[1])), np.cumsum(h * (v[1:] + v[:-1]) / 2, axis=0)]
     )
     return q, v, a
+
+
+def retimed_durations(
+    q0: FloatArray,
+    v0: FloatArray,
+    a0: FloatArray,
+    q1: FloatArray,
+    v1: FloatArray,
+    a1: FloatArray,
+    limits: tuple[FloatArray, FloatArray, FloatArray],
+    at_least: float,
+) -> FloatArray:
+    """``(n,)`` each joint alone, planned to last at least ``at_least`` s (ruckig, one DoF).
+
+    A joint that can take exactly ``at_least`` returns it; one that cannot (its own
+    minimum is longer, or ``at_least`` falls in a gap of the durations it can take)
+    returns the next duration it can. So the synchronised duration ``T`` of all
+    joints is the smallest ``T`` every joint returns unchanged: each returns ``T``
+    at ``T``, and some joint returns more than ``T - δ`` at ``T - δ``. This checks
+    ruckig's synchronisation one joint at a time, through its fixed-duration path.
+    """
+    import ruckig
+
+    out = np.empty(q0.size)
+    for d in range(q0.size):
+        otg, inp, traj = ruckig.Ruckig(1), ruckig.InputParameter(1), ruckig.Trajectory(1)
+        inp.current_position, inp.current_velocity = [q0[d]], [v0[d]]
+        inp.current_acceleration = [a0[d]]
+        inp.target_position, inp.target_velocity = [q1[d]], [v1[d]]
+        inp.target_acceleration = [a1[d]]
+        inp.max_velocity, inp.max_acceleration = [limits[0][d]], [limits[1][d]]
+        inp.max_jerk = [limits[2][d]]
+        inp.minimum_duration = at_least
+        otg.calculate(inp, traj)
+        out[d] = traj.duration
+    return out
