@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from types import SimpleNamespace
 
 import numpy as np
@@ -17,6 +18,7 @@ from support.scurve_reference import (
 
 from kinematica.errors import ArgumentError, DimensionError, KinematicaError
 from kinematica.motion import JointTrajectory, joint_trajectory, time_scaling
+from kinematica.motion.plot import MissingDependencyError
 from kinematica.motion.scurve import PIECE_RTOL, JerkTrajectory, scurve_pieces
 from kinematica.motion.trajectory import LIMIT_RTOL
 
@@ -302,3 +304,9 @@ def test_jmax_belongs_to_the_scurve() -> None:
         joint_trajectory([0.0], [1.0], profile="trapezoid", vmax=1, amax=1, jmax=1)
     with pytest.raises(ArgumentError, match="profile"):
         time_scaling("scurve", [0.0], 1.0)  # type: ignore[arg-type]
+
+
+def test_without_ruckig_the_error_names_the_extra(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setitem(sys.modules, "ruckig", None)  # import ruckig raises ImportError
+    with pytest.raises(MissingDependencyError, match=r"kinematica\[trajectory\]"):
+        joint_trajectory([0.0], [1.0], profile="scurve", vmax=1, amax=1, jmax=1)

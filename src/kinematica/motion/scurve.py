@@ -67,7 +67,8 @@ class JerkTrajectory(JointTrajectory):
         qddd: ``(m, n)`` joint jerk at the samples (rad/s³, m/s³): piecewise
             constant, the right-hand value at a switch.
         pieces: The exact trajectory: cubic pieces in time, one per interval
-            between phase switches of any joint (``pieces(t, 3)`` is the jerk).
+            between phase switches of any joint (``pieces(t, 3)`` is the jerk;
+            quintic where a joint's end was settled, :func:`scurve_pieces`).
         vmax, amax, jmax: ``(n,)`` the limits it was planned with.
         waypoint_times: ``(k,)`` times (s) of the waypoints, through waypoints
             only (``None`` for a state-to-state move).
