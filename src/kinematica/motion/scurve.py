@@ -218,28 +218,34 @@ def _reason(message: str) -> str:
     return re.sub(r"DoF (\d+)", lambda m: f"joint {int(m.group(1)) + 1}", text)
 
 
+def _phases(seg: Segment) -> tuple[FloatArray, ...]:
+    """``(n, 9)`` durations, jerks and start states ``p, v, a`` of the joints' phases.
+
+    The brake's two phases, then the profile's seven; last ``(n,)`` the targets.
+    """
+    profs = seg.out.profiles[0]
+    t = np.array([[*pr.brake.t, *pr.t] for pr in profs], dtype=float)
+    j = np.array([[*pr.brake.j, *pr.j] for pr in profs], dtype=float)
+    p = np.array([[*pr.brake.p, *pr.p[:7]] for pr in profs], dtype=float)
+    v = np.array([[*pr.brake.v, *pr.v[:7]] for pr in profs], dtype=float)
+    a = np.array([[*pr.brake.a, *pr.a[:7]] for pr in profs], dtype=float)
+    pf = np.array([pr.pf for pr in profs], dtype=float)
+    return t, j, p, v, a, pf
+
+
 def scurve_pieces(seg: Segment) -> PiecewisePolynomial:
     """The last planned segment as cubic pieces from ``t = 0`` (knots: its two ends).
 
     Each joint's phases (a brake first, if any, then seven) are cut at the
     union of every joint's switch times; each piece holds ``p, v, a/2, j/6``
-    of its joint at the piece's start, evaluated from the phase that contains it.
+    of its joint at the piece's start, evaluated from the phase that contains
+    it. Then each joint's end is settled on its target (:func:`_settle`).
     """
     T = float(seg.out.duration)
-    starts, states = [], []
-    for prof in seg.out.profiles[0]:
-        b = prof.brake
-        t = np.concatenate([np.asarray(b.t, dtype=float), np.asarray(prof.t, dtype=float)])
-        j = np.concatenate([np.asarray(b.j, dtype=float), np.asarray(prof.j, dtype=float)])
-        # the state at each phase start: the brake's two, then the profile's seven
-        p = np.concatenate([np.asarray(b.p, dtype=float), np.asarray(prof.p, dtype=float)[:7]])
-        v = np.concatenate([np.asarray(b.v, dtype=float), np.asarray(prof.v, dtype=float)[:7]])
-        a = np.concatenate([np.asarray(b.a, dtype=float), np.asarray(prof.a, dtype=float)[:7]])
-        used = t > 0.0
-        t0 = np.concatenate([[0.0], np.cumsum(t)[:-1]])
-        starts.append(t0[used])
-        states.append((t0[used], t[used], p[used], v[used], a[used], j[used]))
-    cuts = np.unique(np.concatenate([*starts, [0.0, T]]))
+    t, j, p, v, a, pf = _phases(seg)
+    used = t > 0.0
+    t0 = np.concatenate([np.zeros((seg.n, 1)), np.cumsum(t, axis=1)[:, :-1]], axis=1)
+    cuts = np.unique(np.concatenate([t0[used], [0.0, T]]))
     cuts = cuts[(cuts >= 0.0) & (cuts <= T)]
     keep = np.concatenate([[True], np.diff(cuts) > PIECE_RTOL * max(T, 1.0)])
     breaks = cuts[keep]
@@ -247,22 +253,26 @@ def scurve_pieces(seg: Segment) -> PiecewisePolynomial:
     if breaks.size < 2:  # a move of zero duration: one empty piece holding the state
         breaks = np.array([0.0, 0.0])
     tb = breaks[:-1]
-    coef = np.empty((tb.size, 4, seg.n))
-    for d, (t0, _, p, v, a, j) in enumerate(states):
-        if t0.size == 0:  # a joint with no phase: at rest at its target
-            coef[:, :, d] = [float(seg.out.profiles[0][d].pf), 0.0, 0.0, 0.0]
-            continue
-        # the phase holding each piece's midpoint: a switch merged into a piece's start
-        # (PIECE_RTOL) may lie a hair after it, and its phase is the one the piece follows
-        mid = 0.5 * (tb + breaks[1:])
-        k = np.clip(np.searchsorted(t0, mid, side="right") - 1, 0, t0.size - 1)
-        tau = tb - t0[k]
-        jk = j[k]
-        coef[:, 0, d] = p[k] + tau * (v[k] + tau * (a[k] / 2.0 + tau * jk / 6.0))
-        coef[:, 1, d] = v[k] + tau * (a[k] + tau * jk / 2.0)
-        coef[:, 2, d] = (a[k] + tau * jk) / 2.0
-        coef[:, 3, d] = jk / 6.0
-    coef = _settle(seg, breaks, coef, states)
+    # the phase holding each piece's midpoint: a switch merged into a piece's start
+    # (PIECE_RTOL) may lie a hair after it, and its phase is the one the piece follows
+    mid = 0.5 * (tb + breaks[1:])
+    began = used[:, :, None] & (t0[:, :, None] <= mid[None, None, :])  # (n, 9, pieces)
+    k = t.shape[1] - 1 - np.argmax(began[:, ::-1, :], axis=1)  # the last phase begun
+    tau = tb[None, :] - np.take_along_axis(t0, k, axis=1)
+    pk, vk, ak, jk = (np.take_along_axis(x, k, axis=1) for x in (p, v, a, j))
+    coef = np.stack(
+        [
+            pk + tau * (vk + tau * (ak / 2.0 + tau * jk / 6.0)),
+            vk + tau * (ak + tau * jk / 2.0),
+            (ak + tau * jk) / 2.0,
+            jk / 6.0,
+        ],
+        axis=1,
+    ).T  # (n, 4, pieces) -> (pieces, 4, n)
+    still = ~used.any(axis=1)  # a joint with no phase: at rest at its target
+    coef[:, :, still] = 0.0
+    coef[:, 0, still] = pf[still]
+    coef = _settle(seg, breaks, coef, (t0, t, v, a, j, pf), used)
     return PiecewisePolynomial(breaks, coef, np.array([0.0, T]))
 
 
@@ -292,7 +302,11 @@ def _step_taylor(s0: FloatArray, scale: float) -> FloatArray:
 
 
 def _settle(
-    seg: Segment, breaks: FloatArray, coef: FloatArray, states: list[tuple[FloatArray, ...]]
+    seg: Segment,
+    breaks: FloatArray,
+    coef: FloatArray,
+    phases: tuple[FloatArray, ...],
+    used: NDArray[np.bool_],
 ) -> FloatArray:
     """Land each joint exactly on its target position (round-off instead of ruckig's 1e-8).
 
@@ -306,19 +320,18 @@ def _settle(
     (:data:`_STEP_PEAKS` over the phase's duration). A joint without one keeps
     ruckig's end. Pieces become quintic where a step is added.
     """
-    T = breaks[-1]
+    t0s, durs, vs, accs, jerks, pf = phases
     tb = breaks[:-1]
+    mid = 0.5 * (tb + breaks[1:])
     vmax, amax, jmax = seg.limits
+    h = breaks[-1] - tb[-1]
+    last = coef[-1]  # (4, n)
+    e_all = last[0] + h * (last[1] + h * (last[2] + h * last[3])) - pf
+    off = (np.abs(e_all) > SETTLE_ULPS * np.spacing(np.abs(pf))) & used.any(axis=1)
     out = coef
-    for d, (t0, dur, _, v, a, j) in enumerate(states):
-        if t0.size == 0:
-            continue
-        last = coef[-1, :, d]
-        h = T - tb[-1]
-        target = float(seg.out.profiles[0][d].pf)
-        e = last[0] + h * (last[1] + h * (last[2] + h * last[3])) - target
-        if abs(e) <= SETTLE_ULPS * np.spacing(abs(target)):
-            continue
+    for d in np.flatnonzero(off):
+        e = float(e_all[d])
+        t0, dur, v, a, j = (x[d, used[d]] for x in (t0s, durs, vs, accs, jerks))
         for k in np.argsort(-dur):
             tau = dur[k]
             v_end = v[k] + a[k] * tau
@@ -331,7 +344,6 @@ def _settle(
                 continue
             if out.shape[1] == 4:
                 out = np.concatenate([coef, np.zeros((coef.shape[0], 2, coef.shape[2]))], axis=1)
-            mid = 0.5 * (tb + breaks[1:])
             inside = (mid >= t0[k]) & (mid <= t0[k] + tau)
             out[inside, :, d] -= e * _step_taylor((tb[inside] - t0[k]) / tau, 1.0 / tau)
             out[mid > t0[k] + tau, 0, d] -= e
