@@ -327,7 +327,7 @@ def joint_trajectory(
         dt: Largest sample spacing (s); samples are uniform, the last at T.
         vmax: Speed limit per joint (scalar or ``(n,)``; rad/s, m/s).
         amax: Acceleration limit per joint (rad/s², m/s²).
-        qd0: ``(n,)`` start velocity (quintic, cubic); zero by default.
+        qd0: ``(n,)`` start velocity (quintic, cubic, scurve); zero by default.
         qd1: ``(n,)`` end velocity.
         qdd0: ``(n,)`` start acceleration (quintic, scurve).
         qdd1: ``(n,)`` end acceleration (quintic, scurve).
