@@ -97,6 +97,7 @@ bench: $(CORE_STAMP)
 	$(BIN)/python benchmarks/urdf.py
 	$(BIN)/python benchmarks/xacro_expansion.py
 	$(BIN)/python benchmarks/motion.py
+	$(BIN)/python benchmarks/scurve.py
 	$(BIN)/python benchmarks/viz.py
 	$(BIN)/python benchmarks/design.py
 	$(BIN)/python benchmarks/calibration.py  # pybotics, its peer, pins numpy<2: by hand, --no-deps

@@ -11,6 +11,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.cli.format import fmt, matrix, table
+from kinematica.cli.jerk import add_jerk_options, jerk_json, jerk_text
 from kinematica.cli.options import (
     add_common,
     add_robot,
@@ -27,7 +28,7 @@ from kinematica.errors import KinematicaError
 from kinematica.robot import Robot
 
 if TYPE_CHECKING:  # kinematica.motion loads when one of these commands runs
-    from kinematica.motion import CartesianPath
+    from kinematica.motion import CartesianPath, JointTrajectory
     from kinematica.motion.trajectory import Profile
 
 __all__ = ["jacobian", "register", "trajectory", "workspace_cmd"]
@@ -213,6 +214,7 @@ _TRAJECTORY_OPTIONS = {
     "times": "--times",
     "vmax": "--vmax",
     "amax": "--amax",
+    "jmax": "--jmax",
     "duration": "--duration",
     "blend": "--blend",
     "ends": "--ends",
@@ -269,10 +271,17 @@ def trajectory(args: argparse.Namespace) -> int:
         raise KinematicaError(f"-o: the file must end in .csv or .json, got {out.name!r}")
     vmax = _limit(robot, args.vmax, args, "vmax")
     amax = _limit(robot, args.amax, args, "amax")
+    jmax = _limit(robot, args.jmax, args, "jmax")
+    scurve = args.profile == "scurve"
+    if (jmax is not None) != scurve or (scurve and (args.cartesian or times is not None)):
+        raise KinematicaError(
+            "--profile scurve times joint moves from --vmax, --amax and --jmax (only it takes "
+            "--jmax; not with --cartesian, --times or --waypoints)"
+        )
     duration = args.duration
     if times is not None and duration is not None:
         raise KinematicaError("--times sets the duration: drop --duration")
-    if duration is None and times is None and vmax is None and amax is None:
+    if duration is None and times is None and vmax is None and amax is None and not scurve:
         duration = 2.0
     if through and args.profile == "trapezoid":
         raise KinematicaError(
@@ -284,6 +293,7 @@ def trajectory(args: argparse.Namespace) -> int:
     if args.blend is not None and not (args.cartesian and through):
         raise KinematicaError("--blend rounds the corners of a --cartesian path through --via")
     path: CartesianPath | None = None
+    traj: JointTrajectory | None = None
     if args.cartesian:
         if vmax is not None or amax is not None:
             raise KinematicaError(
@@ -301,23 +311,27 @@ def trajectory(args: argparse.Namespace) -> int:
         else:
             path = cartesian_path(robot, robot.fk(qa), robot.fk(qb), q0=qa, s=s, q1=qb)
         q, qd, qdd = path.q, None, None
+    elif through and scurve:
+        traj = via_trajectory(W, "scurve", None, args.dt, vmax, amax, jmax=jmax, qlim=robot.qlim)
+        t, q, qd, qdd = traj
     elif through:
         if times is None and vmax is None and amax is None:
             times = np.linspace(0.0, float(duration), W.shape[0])
-        t, q, qd, qdd = via_trajectory(
-            W,
-            args.profile,
-            times,
-            args.dt,
-            vmax,
-            amax,
-            tacc=args.tacc,
-            ends=args.ends,
+        traj = via_trajectory(
+            W, args.profile, times, args.dt, vmax, amax, tacc=args.tacc, ends=args.ends
         )
+        t, q, qd, qdd = traj
     else:
-        t, q, qd, qdd = joint_trajectory(
-            qa, qb, duration, args.profile, args.dt, vmax, amax, sync=args.sync
+        traj = joint_trajectory(
+            qa, qb, duration, args.profile, args.dt, vmax, amax, sync=args.sync, jmax=jmax
         )
+        t, q, qd, qdd = traj
+    if args.plot:
+        from kinematica.viz.limits import save_limits
+
+        if traj is None:
+            raise KinematicaError("--plot draws joint trajectories: drop --cartesian")
+        save_limits(traj, args.plot, vmax=vmax, amax=amax, jmax=jmax, title=robot.name)
     events = path.events if path is not None else ()
     blocked = any(e.kind in BLOCKING for e in events)
     if out is not None:
@@ -345,6 +359,7 @@ def trajectory(args: argparse.Namespace) -> int:
                 "q": _safe(q_out(robot, q, args)),
                 "qd": None if qd is None else _safe(q_out(robot, qd, args)),
                 "qdd": None if qdd is None else _safe(q_out(robot, qdd, args)),
+                **jerk_json(traj, robot, args, _safe),
                 "events": [
                     {
                         "kind": e.kind,
@@ -356,6 +371,7 @@ def trajectory(args: argparse.Namespace) -> int:
                     for e in events
                 ],
                 "file": None if out is None else str(out),
+                "plot": args.plot,
             }
         )
         return 1 if blocked else 0
@@ -377,6 +393,9 @@ def trajectory(args: argparse.Namespace) -> int:
     )
     if step > 1:
         print(f"  (every {step}th sample and the last; -o FILE or --json for all)")
+    jerk_text(traj)
+    if args.plot:
+        print(f"figure written to {args.plot}")
     if path is not None:
         _print_events(path)
         if path.ok:
@@ -438,10 +457,12 @@ def register(sub: Any) -> None:
     )
     p.add_argument(
         "--profile",
-        choices=("quintic", "cubic", "trapezoid", "mstraj"),
+        choices=("quintic", "cubic", "trapezoid", "mstraj", "scurve"),
         default="quintic",
         help="between two q: quintic, cubic, trapezoid; through --via: the quintic (C4) or "
-        "cubic (C2) spline through every point, or mstraj (lines with parabolic blends)",
+        "cubic (C2) spline through every point, or mstraj (lines with parabolic blends); "
+        "scurve: jerk-limited (--vmax --amax --jmax; needs ruckig), between two q or "
+        "through --via points without stopping",
     )
     p.add_argument(
         "--duration",
@@ -477,5 +498,6 @@ def register(sub: Any) -> None:
         "--blend", type=float, help="--cartesian through --via: corner radius (robot's length unit)"
     )
     p.add_argument("-o", "--output", metavar="PATH.csv", help="write t,q1..qn (SI) to .csv/.json")
+    add_jerk_options(p)
     add_common(p)
     p.set_defaults(run=trajectory)

@@ -17,6 +17,7 @@ from kinematica.motion.cartesian_via import ROTATION_LENGTH, cartesian_via_path
 from kinematica.motion.control import RateControl, resolved_rate
 from kinematica.motion.export import read_csv, write_csv, write_json
 from kinematica.motion.piecewise import PiecewisePolynomial
+from kinematica.motion.scurve import JerkTrajectory
 from kinematica.motion.trajectory import (
     JointTrajectory,
     joint_trajectory,
@@ -56,6 +57,7 @@ __all__ = [
     "CartesianPath",
     "Ellipsoid",
     "Family",
+    "JerkTrajectory",
     "JointTrajectory",
     "PathEvent",
     "PiecewisePolynomial",

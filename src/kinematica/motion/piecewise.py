@@ -15,7 +15,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica.motion.trajectory import JointTrajectory, sample_times
+from kinematica.motion.samples import JointTrajectory, sample_times
 
 __all__ = ["PiecewisePolynomial"]
 
@@ -49,6 +49,9 @@ def _real_parts_of_roots(polys: FloatArray) -> FloatArray:
         if rows.size == 0:
             continue
         c = polys[rows, : deg + 1]
+        if deg == 1:  # a line: its root directly (a 1 x 1 eigenproblem per row is slow)
+            out[rows, 0] = -c[:, 0] / c[:, 1]
+            continue
         comp = np.zeros((rows.size, deg, deg))
         comp[:, 1:, :-1] = np.eye(deg - 1)
         comp[:, :, -1] = -c[:, :deg] / c[:, deg : deg + 1]

@@ -31,7 +31,7 @@ slowest joint's own minimum time.
 from __future__ import annotations
 
 import math
-from typing import Literal, NamedTuple
+from typing import Literal
 
 import numpy as np
 from numpy.polynomial import polynomial as npoly
@@ -39,6 +39,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from kinematica.arguments import check_choice, check_number, check_size
 from kinematica.errors import ArgumentError, DimensionError, KinematicaError
+from kinematica.motion.samples import (
+    DURATION_RTOL,
+    LIMIT_RTOL,
+    MAX_SAMPLES,
+    JointTrajectory,
+    sample_times,
+)
 from kinematica.spatial.checks import as_float_array
 
 __all__ = [
@@ -58,22 +65,17 @@ __all__ = [
 ]
 
 FloatArray = NDArray[np.float64]
-Profile = Literal["quintic", "cubic", "trapezoid"]
+Profile = Literal["quintic", "cubic", "trapezoid", "scurve"]
 Sync = Literal["each", "shared"]
 PROFILES: tuple[Profile, ...] = ("quintic", "cubic", "trapezoid")
+#: joint_trajectory's profiles: the time scalings and the jerk-limited move (motion.scurve).
+MOVES: tuple[Profile, ...] = (*PROFILES, "scurve")
 SYNCS: tuple[Sync, ...] = ("each", "shared")
 
 #: Default sample spacing (s).
 DEFAULT_DT = 0.01
-#: Relative shortfall of a given duration (or waypoint spacing) below the
-#: shortest one accepted as round-off of the times' arithmetic.
-DURATION_RTOL = 1e-12
-#: Relative excess over ``vmax``/``amax`` accepted as round-off when checking given times.
-LIMIT_RTOL = 1e-9
 #: Longest trajectory (s), given or derived from the limits: about 30 years.
 MAX_DURATION = 1e9
-#: Most samples a trajectory has (duration / dt + 1): ~50 MB of q, qd, qdd for 6 joints.
-MAX_SAMPLES = 1_000_000
 
 # Hermite bases, coefficients in s (lowest power first). Weights: quintic
 # (p0, T·v0, T²·a0, T²·a1, T·v1, p1); cubic (p0, T·v0, T·v1, p1). The splines
@@ -92,31 +94,6 @@ QUINTIC_BASIS = np.array(
 CUBIC_BASIS = np.array([[1, 0, -3, 2], [0, 1, -2, 1], [0, 0, -1, 1], [0, 0, 3, -2]], dtype=float)
 # Peak |ds/dt|·T and |d²s/dt²|·T² of the rest-to-rest profiles.
 _PEAKS = {"quintic": (15.0 / 8.0, 10.0 / math.sqrt(3.0)), "cubic": (1.5, 6.0)}
-
-
-class JointTrajectory(NamedTuple):
-    """Samples of a joint trajectory (unpacks as ``t, q, qd, qdd``).
-
-    Attributes:
-        t: ``(m,)`` times (s), from 0 to the duration.
-        q: ``(m, n)`` joint values (rad, m).
-        qd: ``(m, n)`` joint velocities (rad/s, m/s).
-        qdd: ``(m, n)`` joint accelerations (rad/s², m/s²).
-    """
-
-    t: FloatArray
-    q: FloatArray
-    qd: FloatArray
-    qdd: FloatArray
-
-    def _repr_html_(self) -> str:
-        """A few samples' joint values as an HTML table (Jupyter)."""
-        from kinematica.motion.display import samples_html
-
-        m, n = self.q.shape
-        duration = float(self.t[-1]) if m else 0.0
-        caption = f"{n} joints, {m} samples over {duration:g} s (q in rad, m)"
-        return samples_html(self.t, self.q, time_name="t (s)", caption=caption)
 
 
 def _vector(x: ArrayLike | None, n: int, name: str, positive: bool = False) -> FloatArray:
@@ -330,6 +307,7 @@ def joint_trajectory(
     qdd0: ArrayLike | None = None,
     qdd1: ArrayLike | None = None,
     sync: Sync = "each",
+    jmax: ArrayLike | None = None,
 ) -> JointTrajectory:
     """A synchronised joint trajectory from ``q0`` to ``q1``.
 
@@ -342,22 +320,28 @@ def joint_trajectory(
         profile: ``"quintic"`` (zero or given velocity and acceleration at
             both ends), ``"cubic"`` (velocity at both ends) or ``"trapezoid"``
             (rest to rest, constant acceleration ``±amax``, a cruise or a
-            triangle when the cruise speed is not reached; ``sync``).
+            triangle when the cruise speed is not reached; ``sync``) or
+            ``"scurve"`` (jerk-limited, time-optimal from any start state to
+            any target state: :mod:`kinematica.motion.scurve`; needs ``vmax``,
+            ``amax`` and ``jmax``, and ruckig, the extra ``trajectory``).
         dt: Largest sample spacing (s); samples are uniform, the last at T.
         vmax: Speed limit per joint (scalar or ``(n,)``; rad/s, m/s).
         amax: Acceleration limit per joint (rad/s², m/s²).
-        qd0: ``(n,)`` start velocity (quintic, cubic); zero by default.
+        qd0: ``(n,)`` start velocity (quintic, cubic, scurve); zero by default.
         qd1: ``(n,)`` end velocity.
-        qdd0: ``(n,)`` start acceleration (quintic).
-        qdd1: ``(n,)`` end acceleration (quintic).
+        qdd0: ``(n,)`` start acceleration (quintic, scurve).
+        qdd1: ``(n,)`` end acceleration (quintic, scurve).
         sync: How the trapezoid synchronises the joints (module docstring):
             ``"each"`` (default: every joint its own profile at its ``amax``,
             the slowest joint's minimum time for all) or ``"shared"`` (one
             profile on the joint-space line, limited by the most limited
             joint). The quintic and cubic give the same for both.
+        jmax: Jerk limit per joint (rad/s³, m/s³) of the ``"scurve"``.
 
     Returns:
-        :class:`JointTrajectory` ``(t, q, qd, qdd)``.
+        :class:`JointTrajectory` ``(t, q, qd, qdd)``; for ``"scurve"`` a
+        :class:`~kinematica.motion.scurve.JerkTrajectory` (its jerk ``qddd`` too),
+        at least ``duration`` long if one is given.
 
     Raises:
         DimensionError: Shapes differ, NaN or inf.
@@ -368,7 +352,7 @@ def joint_trajectory(
         KinematicaError: Limits that are not positive, or a given duration
             too short for the limits.
     """
-    check_choice(profile, "profile", PROFILES)
+    check_choice(profile, "profile", MOVES)
     check_choice(sync, "sync", SYNCS)
     a = as_float_array(q0, "q0")
     if a.ndim == 2:
@@ -391,6 +375,17 @@ def joint_trajectory(
         _times_check(duration, dt, "duration/dt")
     vm = None if vmax is None else _vector(vmax, n, "vmax", positive=True)
     am = None if amax is None else _vector(amax, n, "amax", positive=True)
+    if profile == "scurve":
+        if sync != "each":
+            raise KinematicaError(
+                "the scurve times each joint's own profile: drop sync", arg="sync"
+            )
+        from kinematica.motion.scurve import scurve_trajectory
+
+        move = (qd0, qd1, qdd0, qdd1)
+        return scurve_trajectory(a, b, duration, dt, vm, am, jmax, *move)
+    if jmax is not None:
+        raise KinematicaError("jmax limits the 'scurve' profile only", arg="jmax")
     delta = np.abs(b - a)
     moving = delta > 0
     # Limits of the path parameter s in [0, 1], set by the most limited joint.
@@ -486,14 +481,6 @@ def _derived_check(T: float, dt: float, vmax: object, amax: object) -> None:
             arg=name,
         )
     _times_check(T, dt, name)
-
-
-def sample_times(T: float, dt: float) -> FloatArray:
-    """``(m,)`` uniform times from 0 to ``T`` (the last exactly ``T``), spacing <= ``dt``."""
-    m = max(2, math.ceil(T / dt - 1e-9) + 1)
-    t = np.linspace(0.0, T, m)
-    t[-1] = T
-    return t
 
 
 def _still(t: FloatArray, a: FloatArray, b: FloatArray) -> JointTrajectory:

@@ -3,7 +3,7 @@
 :func:`via_trajectory` samples, :func:`via_polynomials` returns the pieces
 (for exact values at any time and the left and right limits at a knot).
 
-Three methods:
+Four methods:
 
 - ``"cubic"``: the C2 cubic spline (continuous acceleration) through every
   waypoint (:mod:`kinematica.motion.splines`), clamped (end velocities given,
@@ -14,7 +14,11 @@ Three methods:
 - ``"mstraj"``: straight lines with parabolic blends of duration ``tacc``
   (:mod:`kinematica.motion.blends`): continuous velocity, start and end
   reached exactly, the via points passed at a distance, as the Toolbox's
-  ``mstraj`` does.
+  ``mstraj`` does;
+- ``"scurve"``: jerk-limited segments from waypoint to waypoint, the
+  velocities at the waypoints chosen to shorten the move instead of stopping
+  at each, position limits held (:mod:`kinematica.motion.scurve_via`; needs
+  ``vmax``, ``amax``, ``jmax`` and ruckig, the extra ``trajectory``).
 
 With ``qd=`` (and ``qdd=``) the cubic and quintic pieces take the velocities
 (and accelerations) given at every waypoint instead of solving for them, as
@@ -55,7 +59,7 @@ from kinematica.motion.trajectory import (
 __all__ = ["Method", "via_polynomials", "via_trajectory"]
 
 FloatArray = NDArray[np.float64]
-Method = Literal["cubic", "quintic", "mstraj"]
+Method = Literal["cubic", "quintic", "mstraj", "scurve"]
 
 
 def _array(x: ArrayLike | None, shape: tuple[int, ...], name: str) -> FloatArray:
@@ -123,7 +127,15 @@ def via_polynomials(
     qd: ArrayLike | None = None,
     qdd: ArrayLike | None = None,
 ) -> PiecewisePolynomial:
-    """The pieces of the trajectory through ``waypoints`` (arguments of :func:`via_trajectory`)."""
+    """The pieces of the trajectory through ``waypoints`` (arguments of :func:`via_trajectory`).
+
+    For ``"scurve"`` the pieces are ``via_trajectory(...).pieces``.
+    """
+    if method == "scurve":
+        raise KinematicaError(
+            "the scurve's pieces come with its samples: via_trajectory(..., 'scurve').pieces",
+            arg="method",
+        )
     if method not in ("cubic", "quintic", "mstraj"):
         raise KinematicaError(
             f"method must be 'cubic', 'quintic' or 'mstraj', got {method!r}", arg="method"
@@ -278,13 +290,17 @@ def via_trajectory(
     qdd1: ArrayLike | None = None,
     qd: ArrayLike | None = None,
     qdd: ArrayLike | None = None,
+    jmax: ArrayLike | None = None,
+    qlim: ArrayLike | None = None,
 ) -> JointTrajectory:
     """A joint trajectory through ``waypoints`` (module docstring for the methods).
 
     Args:
         waypoints: ``(k, n)`` configurations (rad, m), k >= 2: start, vias, end.
-        method: ``"cubic"``, ``"quintic"`` (splines through every waypoint)
-            or ``"mstraj"`` (lines with parabolic blends; vias cut).
+        method: ``"cubic"``, ``"quintic"`` (splines through every waypoint),
+            ``"mstraj"`` (lines with parabolic blends; vias cut) or
+            ``"scurve"`` (jerk-limited, through every waypoint without
+            stopping; times from the limits).
         times: ``(k,)`` times of the waypoints (s), from 0, increasing; for
             ``"mstraj"`` the blends' centres. Derived from the limits if ``None``.
         dt: Largest sample spacing (s); samples are uniform between knots and
@@ -303,10 +319,16 @@ def via_trajectory(
             ``quinticpolytraj``): no spline, C1 pieces.
         qdd: ``(k, n)`` acceleration at every waypoint (quintic with ``qd``;
             zero by default, as MATLAB's).
+        jmax: Jerk limits of ``"scurve"`` (rad/s³, m/s³): a number or ``(n,)``.
+        qlim: ``(n, 2)`` position limits ``"scurve"`` holds (e.g. ``robot.qlim``).
 
     Returns:
         :class:`JointTrajectory` ``(t, q, qd, qdd)``; ``q`` is every waypoint
-        at its time (splines; exactly) and ends at the last one exactly.
+        at its time (splines, scurve; exactly) and ends at the last one
+        exactly. For ``"scurve"`` a
+        :class:`~kinematica.motion.scurve.JerkTrajectory`: its jerk, the
+        waypoint times and velocities, and ``margin``, how much shorter it is
+        than stopping at every waypoint.
 
     Raises:
         DimensionError: Shapes, NaN or inf.
@@ -317,6 +339,19 @@ def via_trajectory(
             a joint exceed ``vmax``/``amax`` (the message names the joint).
     """
     dt = check_number(dt, "dt", positive=True, unit="s", what="a number of seconds")
+    if method == "scurve":
+        extra = {"times": times, "tacc": tacc, "qd": qd, "qdd": qdd}
+        named = [x for x, v in extra.items() if v is not None]
+        if named or ends != "clamped":
+            what = ", ".join(named) or "ends"
+            raise KinematicaError(f"the scurve times itself from vmax, amax and jmax: drop {what}")
+        from kinematica.motion.scurve_via import scurve_via
+
+        ends_given = {"qd0": qd0, "qd1": qd1, "qdd0": qdd0, "qdd1": qdd1}
+        return scurve_via(_waypoints(waypoints), dt, vmax, amax, jmax, qlim=qlim, **ends_given)
+    if jmax is not None or qlim is not None:
+        given = " and ".join(x for x, v in (("jmax", jmax), ("qlim", qlim)) if v is not None)
+        raise KinematicaError(f"{given} apply to method='scurve' only")
     pieces = via_polynomials(
         waypoints,
         method,

@@ -17,6 +17,7 @@ from kinematica.io.trajectory_csv import TrajectoryFileError, read_trajectory, w
 from kinematica.viz._mpl import VizError
 from kinematica.viz.animate import Animation, animate, mp4_available
 from kinematica.viz.geometry import ArmPose, arm_pose, drawing_plane, robot_scale
+from kinematica.viz.limits import plot_limits, save_limits
 from kinematica.viz.notebook import PageView, page_view
 from kinematica.viz.page import page_data, page_html, robot_units, write_page
 from kinematica.viz.plot import plot, plot_solutions, save_figure, save_plot, save_solutions
@@ -39,6 +40,7 @@ __all__ = [
     "page_html",
     "page_view",
     "plot",
+    "plot_limits",
     "plot_solutions",
     "plot_trajectory",
     "plot_workspace",
@@ -46,6 +48,7 @@ __all__ = [
     "robot_scale",
     "robot_units",
     "save_figure",
+    "save_limits",
     "save_plot",
     "save_solutions",
     "serve",

@@ -1,0 +1,210 @@
+"""Jerk-limited moves: speed against ruckig's own ``calculate``, and a 10,000-case audit.
+
+Run with ``make bench`` (or ``.venv/bin/python benchmarks/scurve.py [--cases N]``).
+
+* Speed, 7 joints, random states: ruckig's ``calculate`` alone (its Python
+  objects made once), our segment planner (the same call, with the lists set
+  and ruckig's input check), ruckig's calculate with its own ``at_time``
+  every 10 ms, the whole ``joint_trajectory(profile="scurve")`` (limits
+  checked, exact pieces, samples every 10 ms, jerk included), and the
+  waypoint planner per segment (its search of the waypoint velocities included).
+* Audit on ``--cases`` random cases (10,000 by default), 1 to 7 joints:
+  rest-to-rest durations against the hand-derived closed form
+  (``tests/support/scurve_reference.py``; the slowest joint's time), and from
+  random start and target states: the end state, the limits on a 1 ms
+  resampling, the time-optimal structure of some joint (every phase at a
+  limit), and the synchronisation one joint at a time (each joint planned
+  alone to last at least ``T`` takes exactly ``T``; to last ``T - 1e-6`` s,
+  some joint cannot). Counts of failures, and the largest errors.
+
+No assertions: figures only.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).parent))
+sys.path.insert(0, str(Path(__file__).parents[1] / "tests"))
+
+import ruckig
+from _common import fmt_time, header, per_call, table
+from support.scurve_reference import (
+    random_limits,
+    random_state,
+    rest_to_rest_time,
+    retimed_durations,
+)
+
+from kinematica.motion import joint_trajectory, via_trajectory
+from kinematica.motion.scurve import JerkTrajectory, Segment
+from kinematica.motion.trajectory import LIMIT_RTOL
+
+
+def _saturated(traj: JerkTrajectory, joint: int, tol: float = 1e-7) -> bool:
+    """Every phase of ``joint`` at a limit: |j| = J, or j = 0 at |a| = A or at |v| = V, a = 0."""
+    p = traj.pieces
+    J, A, V = traj.jmax[joint], traj.amax[joint], traj.vmax[joint]
+    for i in range(p.coef.shape[0]):
+        if p.breaks[i + 1] - p.breaks[i] <= 1e-9 * max(traj.duration, 1.0):
+            continue
+        j, a, v = 6.0 * p.coef[i, 3, joint], 2.0 * p.coef[i, 2, joint], p.coef[i, 1, joint]
+        if abs(abs(j) - J) <= tol * J:
+            continue
+        at_a = abs(abs(a) - A) <= tol * A
+        at_v = abs(a) <= tol * A and abs(abs(v) - V) <= tol * V
+        if abs(j) <= tol * J and (at_a or at_v):
+            continue
+        return False
+    return True
+
+
+def audit(cases: int) -> list[tuple[str, str, str]]:
+    rng = np.random.default_rng(36)
+    worst_rest = 0.0
+    bad_rest = 0
+    worst_end = 0.0
+    worst_limit = 0.0
+    not_extremal = 0
+    not_synced = 0
+    shorter_feasible = 0
+    for c in range(cases):
+        n = 1 if c % 4 == 0 else int(rng.integers(2, 8))
+        V, A, J = random_limits(rng, n)
+        q0, q1 = rng.uniform(-2, 2, n), rng.uniform(-2, 2, n)
+        rest = joint_trajectory(q0, q1, profile="scurve", dt=0.1, vmax=V, amax=A, jmax=J)
+        want = max(rest_to_rest_time(d, *lim) for d, *lim in zip(q1 - q0, V, A, J, strict=True))
+        err = abs(rest.duration - want)
+        worst_rest = max(worst_rest, err)
+        bad_rest += err > 1e-6
+        v0, a0 = random_state(rng, V, A, J)
+        v1, a1 = random_state(rng, V, A, J, target=True)
+        traj = joint_trajectory(
+            q0, q1, profile="scurve", dt=0.1, vmax=V, amax=A, jmax=J,
+            qd0=v0, qdd0=a0, qd1=v1, qdd1=a1,
+        )  # fmt: skip
+        T, p = traj.duration, traj.pieces
+        for order, goal in enumerate((q1, v1, a1)):
+            worst_end = max(worst_end, float(np.abs(p(T, order, left=True)[0] - goal).max()))
+        t = np.union1d(np.arange(0.0, T, 1e-3), [T])
+        for order, lim in ((1, V), (2, A), (3, J)):
+            worst_limit = max(worst_limit, float((np.abs(p(t, order)) / lim).max()) - 1.0)
+        not_extremal += not any(_saturated(traj, j) for j in range(n))
+        states = (q0, v0, a0, q1, v1, a1)
+        at_T = retimed_durations(*states, (V, A, J), T)
+        not_synced += bool(np.abs(at_T - T).max() > 1e-9)
+        shorter = retimed_durations(*states, (V, A, J), T - 1e-6)
+        shorter_feasible += not np.any(shorter > T - 1e-6 + 1e-9)
+    return [
+        (
+            f"rest to rest, {cases} cases: duration vs closed form",
+            f"largest error {worst_rest:.2e} s",
+            f"{bad_rest} beyond 1e-6 s",
+        ),
+        (
+            f"any state to any state, {cases} cases: end state",
+            f"largest error {worst_end:.2e}",
+            f"{'within' if worst_end <= 1e-10 else 'BEYOND'} 1e-10",
+        ),
+        (
+            "  limits on a 1 ms resampling",
+            f"largest excess {worst_limit:+.2e} (relative)",
+            f"{'within' if worst_limit <= LIMIT_RTOL else 'BEYOND'} {LIMIT_RTOL:g}",
+        ),
+        ("  some joint with every phase at a limit", f"{cases - not_extremal} of {cases}", ""),
+        ("  every joint alone can take T", f"{cases - not_synced} of {cases}", ""),
+        ("  some joint alone cannot take T - 1e-6 s", f"{cases - shorter_feasible} of {cases}", ""),
+    ]
+
+
+def speed() -> list[tuple[str, str, str]]:
+    n = 7
+    rng = np.random.default_rng(7)
+    V, A, J = np.full(n, 2.0), np.full(n, 5.0), np.full(n, 30.0)
+    states = []
+    for _ in range(64):
+        q0, q1 = rng.uniform(-2, 2, n), rng.uniform(-2, 2, n)
+        v0, a0 = random_state(rng, V, A, J)
+        states.append((q0, v0, a0, q1))
+    otg, inp, out = ruckig.Ruckig(n), ruckig.InputParameter(n), ruckig.Trajectory(n)
+    inp.max_velocity, inp.max_acceleration, inp.max_jerk = V.tolist(), A.tolist(), J.tolist()
+    inputs = []
+    for q0, v0, a0, q1 in states:  # ruckig's inputs made beforehand: calculate alone is timed
+        x = ruckig.InputParameter(n)
+        x.max_velocity, x.max_acceleration, x.max_jerk = V.tolist(), A.tolist(), J.tolist()
+        x.current_position, x.current_velocity = q0.tolist(), v0.tolist()
+        x.current_acceleration, x.target_position = a0.tolist(), q1.tolist()
+        inputs.append(x)
+    it = iter(range(10**9))
+
+    def rk() -> None:
+        otg.calculate(inputs[next(it) % 64], out)
+
+    def rk_sampled() -> None:  # the same output from ruckig itself: samples every 10 ms
+        otg.calculate(inputs[next(it) % 64], out)
+        for t in np.arange(0.0, out.duration, 0.01):
+            out.at_time(t)
+
+    seg = Segment(V, A, J)
+    z = np.zeros(n)
+
+    def ours_plan() -> None:
+        q0, v0, a0, q1 = states[next(it) % 64]
+        seg.plan(q0, v0, a0, q1, z, z)
+
+    def ours_full() -> None:
+        q0, v0, a0, q1 = states[next(it) % 64]
+        joint_trajectory(q0, q1, profile="scurve", vmax=V, amax=A, jmax=J, qd0=v0, qdd0=a0)
+
+    t_rk = per_call(rk, calls=20_000)
+    t_plan = per_call(ours_plan, calls=20_000)
+    t_full = per_call(ours_full, calls=2_000)
+    t_rks = per_call(rk_sampled, calls=2_000)
+    rows = [
+        ("7 joints, state to state: ruckig calculate", fmt_time(t_rk), "1.00x"),
+        ("  our segment planner (ruckig + input check)", fmt_time(t_plan), f"{t_plan / t_rk:.2f}x"),
+        ("  ruckig calculate + at_time every 10 ms", fmt_time(t_rks), f"{t_rks / t_rk:.2f}x"),
+        (
+            "  joint_trajectory(profile='scurve'), 10 ms samples",
+            fmt_time(t_full),
+            f"{t_full / t_rk:.2f}x ({t_full / t_rks:.2f}x ruckig sampled)",
+        ),
+    ]
+    for k in (5, 10, 20):
+        W = np.cumsum(rng.uniform(-0.6, 0.9, (k, n)), axis=0)
+        t0 = time.perf_counter()
+        reps = 3
+        for _ in range(reps):
+            traj = via_trajectory(W, "scurve", vmax=V, amax=A, jmax=J, dt=0.01)
+        per_seg = (time.perf_counter() - t0) / reps / (k - 1)
+        assert isinstance(traj, JerkTrajectory) and traj.margin is not None
+        rows.append(
+            (
+                f"7 joints through {k} waypoints, per segment",
+                fmt_time(per_seg),
+                f"{per_seg / t_rk:.0f}x; {traj.margin:.3f} s shorter than stopping "
+                f"({traj.margin / (traj.stop_duration or 1.0):.0%})",
+            )
+        )
+    return rows
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--cases", type=int, default=10_000, help="audit cases (default 10,000)")
+    cases = parser.parse_args().cases
+    print(
+        header("kinematica jerk-limited moves (profile scurve, ruckig " + ruckig.__version__ + ")")
+    )
+    print(table(speed(), ("what", "time per call", "against ruckig calculate")))
+    print()
+    print(table(audit(cases), ("audit", "result", "")))
+
+
+if __name__ == "__main__":
+    main()
