@@ -53,6 +53,7 @@ if TYPE_CHECKING:  # the names below load on first use: `import kinematica` stay
     from kinematica.motion.workspace import (
         workspace,
     )
+    from kinematica.reach import base_placement, reachability
     from kinematica.robot import (
         DHExtraction,
         Robot,
@@ -141,6 +142,8 @@ _LAZY = {
     "transl": "kinematica.spatial",
     "wrap_angle": "kinematica.spatial",
     "workspace": "kinematica.motion.workspace",
+    "reachability": "kinematica.reach",
+    "base_placement": "kinematica.reach",
     "analytic_jacobian": "kinematica.motion",
     "cartesian_path": "kinematica.motion",
     "cartesian_via_path": "kinematica.motion",
@@ -163,6 +166,7 @@ _SUBPACKAGES = frozenset(
         "ik",
         "io",
         "motion",
+        "reach",
         "robot",
         "spatial",
         "symbolic",
@@ -195,6 +199,7 @@ __all__ = [
     "__version__",
     "analytic_jacobian",
     "axis_angle_from_matrix",
+    "base_placement",
     "builtin_names",
     "cartesian_path",
     "cartesian_via_path",
@@ -223,6 +228,7 @@ __all__ = [
     "quat_from_matrix",
     "quat_multiply",
     "quat_slerp",
+    "reachability",
     "read_robot_file",
     "resolved_rate",
     "robot_from_spec",
