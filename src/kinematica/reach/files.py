@@ -50,7 +50,8 @@ def _binary(a: NDArray[np.generic]) -> str:
 def vti_text(m: ReachabilityMap) -> str:
     """The map as the text of a VTK XML ImageData file (cell data per voxel)."""
     nx, ny, nz = m.shape
-    h = m.resolution
+    h = float(m.resolution)
+    ox, oy, oz = (float(v) for v in m.origin)
     arrays = {
         "reachability_index": m.index,
         "reached": m.reached.astype(np.int32),
@@ -65,7 +66,7 @@ def vti_text(m: ReachabilityMap) -> str:
         f"  <!-- kinematica reachability map of {_comment(m.robot)}: "
         f"{m.count} orientations per voxel -->",
         f'  <ImageData WholeExtent="0 {nx} 0 {ny} 0 {nz}" '
-        f'Origin="{m.origin[0]!r} {m.origin[1]!r} {m.origin[2]!r}" '
+        f'Origin="{ox!r} {oy!r} {oz!r}" '
         f'Spacing="{h!r} {h!r} {h!r}" Direction="1 0 0 0 1 0 0 0 1">',
         f'    <Piece Extent="0 {nx} 0 {ny} 0 {nz}">',
         '      <CellData Scalars="reachability_index">',

@@ -125,12 +125,22 @@ def _unit(direction: ArrayLike, name: str) -> FloatArray:
     return out
 
 
-def _frame_with_z(z: FloatArray) -> FloatArray:
-    """A rotation whose third column is the unit vector ``z``."""
-    helper = np.array([1.0, 0.0, 0.0]) if abs(z[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
-    x = np.cross(helper, z)
-    x /= np.linalg.norm(x)
-    return np.column_stack([x, np.cross(z, x), z])
+def _turn_z_to(a: FloatArray) -> FloatArray:
+    """The smallest rotation taking the base z axis to the unit vector ``a``.
+
+    About ``z × a`` by the angle between them; about x by π for ``a = −z``
+    (any axis normal to z would do there).
+    """
+    z = np.array([0.0, 0.0, 1.0])
+    axis = np.cross(z, a)
+    s = float(np.linalg.norm(axis))
+    angle = math.atan2(s, float(a[2]))
+    if s == 0.0:
+        axis = np.array([1.0, 0.0, 0.0])
+    else:
+        axis = axis / s
+    out: FloatArray = rotation_about(axis, np.float64(angle))
+    return out
 
 
 def cone_set(n: int, axis: ArrayLike, half_angle: float) -> FloatArray:
@@ -144,13 +154,14 @@ def cone_set(n: int, axis: ArrayLike, half_angle: float) -> FloatArray:
 
     Returns:
         ``(n, 3, 3)`` rotations; z axes on the Fibonacci lattice of the cap,
-        spins by the √2 sequence (module docs).
+        spins by the √2 sequence (module docs), turned by the smallest rotation
+        taking the base z axis to ``axis`` (about z, π: the SO(3) set itself).
     """
     count = _count(n)
     a = _unit(axis, "approach")
     alpha = check_number(half_angle, "half_angle", lo=0.0, hi=math.pi, unit="rad", what="an angle")
     local = _fibonacci(count, math.cos(alpha))
-    out: FloatArray = _frame_with_z(a) @ local
+    out: FloatArray = _turn_z_to(a) @ local
     return out
 
 
