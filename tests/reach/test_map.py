@@ -60,9 +60,14 @@ def test_blocks_do_not_change_the_map(
         robot, REGION, resolution=0.1, orientations=16, threads=1, progress=done.append
     )
     assert_same_map(serial, small)
-    assert set(done[:-1]) == {48} and sum(done) == np.count_nonzero(
-        np.linalg.norm(serial.centres() - serial.centre, axis=-1) <= serial.radius
-    ) * 16
+    assert (
+        set(done[:-1]) == {48}
+        and sum(done)
+        == np.count_nonzero(
+            np.linalg.norm(serial.centres() - serial.centre, axis=-1) <= serial.radius
+        )
+        * 16
+    )
 
 
 def test_npz_round_trip_and_vti_that_vtk_reads(serial: ReachabilityMap, tmp_path: Path) -> None:
@@ -129,7 +134,9 @@ def test_approach_cone_asks_tool_axes_near_the_direction(robot: km.Robot) -> Non
         ({"scheduler": 3}, "scheduler"),
     ],
 )
-def test_bad_arguments_are_clear_errors(robot: km.Robot, kwargs: dict[str, Any], match: str) -> None:
+def test_bad_arguments_are_clear_errors(
+    robot: km.Robot, kwargs: dict[str, Any], match: str
+) -> None:
     with pytest.raises(KinematicaError, match=match):
         km.reachability(robot, **{"resolution": 0.2, **kwargs})
 

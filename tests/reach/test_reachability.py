@@ -10,14 +10,11 @@ orientations) is checked against the set's discrepancy.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import pytest
-from support.reach_arms import FORE, L1, L2, L3, R_IN, R_OUT, UPPER, elbow_wrist, planar
+from support.reach_arms import L1, L2, L3, R_IN, R_OUT, elbow_wrist, planar
 
 import kinematica as km
-from kinematica.reach.orientations import planar_set
 
 #: Pairs (voxel, orientation) whose hand-derived condition is within this (m) of
 #: its boundary are left out: there IK and the formula may differ by round-off.

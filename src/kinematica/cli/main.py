@@ -43,6 +43,8 @@ COMMAND_MODULES = (
     "derive",
     "convert",
     "design",
+    "reach",
+    "place",
 )
 
 #: Each command and the module that registers it: a command line naming one imports and
@@ -64,6 +66,8 @@ COMMANDS = {
     "derive": "derive",
     "convert": "convert",
     "design": "design",
+    "reach": "reach",
+    "place": "place",
 }
 
 #: Where to report an internal error (a bug: every bad input has its own message).
@@ -103,6 +107,13 @@ _OPTIONS = {
     "fps": "--fps",
     "max_frames": "--max-frames",
     "arm_angle": "--arm-angle",
+    "resolution": "--resolution",
+    "orientations": "--orientations",
+    "region": "--region",
+    "approach": "--approach",
+    "half_angle": "--approach",
+    "yaw": "--yaw",
+    "workers": "--workers",
 }
 
 

@@ -8,10 +8,10 @@
   of a task is reachable, ranked by the worst manipulability over the task.
 """
 
+from kinematica.reach.build import reachability
 from kinematica.reach.files import load_map, save_map
 from kinematica.reach.orientations import cone_set, planar_set, so3_set
 from kinematica.reach.placement import BasePlacement, base_placement
-from kinematica.reach.reachability import reachability
 from kinematica.reach.reachmap import ReachabilityMap, ReachabilitySlice
 
 __all__ = [

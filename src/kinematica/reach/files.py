@@ -21,6 +21,7 @@ from __future__ import annotations
 import base64
 import os
 from pathlib import Path
+from typing import Any
 from xml.sax.saxutils import quoteattr
 
 import numpy as np
@@ -52,7 +53,7 @@ def vti_text(m: ReachabilityMap) -> str:
     nx, ny, nz = m.shape
     h = float(m.resolution)
     ox, oy, oz = (float(v) for v in m.origin)
-    arrays = {
+    arrays: dict[str, NDArray[np.generic]] = {
         "reachability_index": m.index,
         "reached": m.reached.astype(np.int32),
         "solutions": m.solutions.astype(np.int32),
@@ -61,8 +62,7 @@ def vti_text(m: ReachabilityMap) -> str:
     }
     lines = [
         '<?xml version="1.0"?>',
-        '<VTKFile type="ImageData" version="1.0" byte_order="LittleEndian" '
-        'header_type="UInt64">',
+        '<VTKFile type="ImageData" version="1.0" byte_order="LittleEndian" header_type="UInt64">',
         f"  <!-- kinematica reachability map of {_comment(m.robot)}: "
         f"{m.count} orientations per voxel -->",
         f'  <ImageData WholeExtent="0 {nx} 0 {ny} 0 {nz}" '
@@ -110,16 +110,16 @@ def save_map(m: ReachabilityMap, path: str | os.PathLike[str]) -> Path:
                 else np.append(m.approach[0], m.approach[1])
             )
             with p.open("wb") as f:
-                np.savez_compressed(
-                    f,
+                arrays: dict[str, Any] = {name: np.asarray(getattr(m, name)) for name in _FIELDS}
+                arrays.update(
                     version=np.int64(_FORMAT_VERSION),
                     robot=np.str_(m.robot),
                     centre=m.centre,
                     radius=np.float64(m.radius),
                     approach=approach,
                     plane=np.int64(-1 if m.plane is None else m.plane),
-                    **{name: np.asarray(getattr(m, name)) for name in _FIELDS},
                 )
+                np.savez_compressed(f, **arrays)
     except OSError as exc:
         raise KinematicaError(f"cannot write {p}: {exc.strerror or exc}") from exc
     return p
@@ -157,6 +157,4 @@ def load_map(path: str | os.PathLike[str]) -> ReachabilityMap:
                 plane=None if plane < 0 else plane,
             )
     except (OSError, KeyError, ValueError) as exc:
-        raise KinematicaError(
-            f"{p}: not a reachability map written by kinematica ({exc})"
-        ) from exc
+        raise KinematicaError(f"{p}: not a reachability map written by kinematica ({exc})") from exc

@@ -151,7 +151,9 @@ def _region(region: ArrayLike, plane: Plane | None) -> FloatArray:
     return box
 
 
-def make_grid(robot: Robot, region: ArrayLike | None, resolution: float) -> tuple[Grid, Plane | None]:
+def make_grid(
+    robot: Robot, region: ArrayLike | None, resolution: float
+) -> tuple[Grid, Plane | None]:
     """The grid of a map of ``robot`` over ``region`` (default: its reach cube).
 
     Args:
@@ -174,11 +176,7 @@ def make_grid(robot: Robot, region: ArrayLike | None, resolution: float) -> tupl
     box_q = sampling_box(robot)
     radius = reach_bound(chain, box_q[:, 0], box_q[:, 1])
     centre = chain.start[:3, 3].astype(np.float64)
-    box = (
-        np.stack([centre - radius, centre + radius])
-        if region is None
-        else _region(region, plane)
-    )
+    box = np.stack([centre - radius, centre + radius]) if region is None else _region(region, plane)
     span = box[1] - box[0]
     with np.errstate(over="ignore"):
         counts = np.maximum(1.0, np.ceil(span / h - 1e-9))

@@ -102,7 +102,7 @@ def so3_set(n: int) -> FloatArray:
     return _fibonacci(_count(n), -1.0)
 
 
-def rotation_about(axis: FloatArray, angle: FloatArray) -> FloatArray:
+def rotation_about(axis: FloatArray, angle: ArrayLike) -> FloatArray:
     """``(..., 3, 3)`` rotations by ``angle`` (rad) about the unit ``axis`` (3,)."""
     k = np.asarray(axis, dtype=np.float64)
     K = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
@@ -135,11 +135,8 @@ def _turn_z_to(a: FloatArray) -> FloatArray:
     axis = np.cross(z, a)
     s = float(np.linalg.norm(axis))
     angle = math.atan2(s, float(a[2]))
-    if s == 0.0:
-        axis = np.array([1.0, 0.0, 0.0])
-    else:
-        axis = axis / s
-    out: FloatArray = rotation_about(axis, np.float64(angle))
+    axis = np.array([1.0, 0.0, 0.0]) if s == 0.0 else axis / s
+    out: FloatArray = rotation_about(axis, np.array(angle))
     return out
 
 

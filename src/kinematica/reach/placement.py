@@ -142,7 +142,7 @@ def _yaws(yaw: int | ArrayLike) -> FloatArray:
 def base_placement(
     robot: Robot,
     task_poses: ArrayLike,
-    region: ArrayLike,
+    region: ArrayLike | None = None,
     *,
     resolution: float = 0.05,
     yaw: int | ArrayLike = 8,
@@ -156,6 +156,9 @@ def base_placement(
         task_poses: ``(m, 4, 4)`` (or ``(4, 4)``) tool poses in the world frame.
         region: ``(2, 3)`` lower and upper corners (m, world frame) of the box
             of base positions; equal bounds on an axis fix it (e.g. z = 0).
+            None: the floor z = 0 under the task, its x and y bounds widened
+            by the arm's reach bound R (no base farther can reach a task pose),
+            from a multiple of ``resolution``.
         resolution: Spacing (m) of the candidate positions.
         yaw: Number of yaws spread evenly over a turn (8: every 45°), or the
             yaw angles (rad) to try.
@@ -169,8 +172,15 @@ def base_placement(
             MAX_CANDIDATES candidates.
     """
     W_T = _task(task_poses)
-    box = _box(region)
     h = check_number(resolution, "resolution", positive=True, unit="m", what="a length")
+    lim = sampling_box(robot)
+    radius = reach_bound(robot.chain, lim[:, 0], lim[:, 1])
+    if region is None:
+        p = W_T[:, :3, 3]
+        lo = np.floor((p.min(axis=0) - radius) / h) * h  # round numbers, h apart
+        hi = p.max(axis=0) + radius
+        region = [[lo[0], lo[1], 0.0], [hi[0], hi[1], 0.0]]
+    box = _box(region)
     yaws = _yaws(yaw)
     with np.errstate(over="ignore"):
         counts = np.floor((box[1] - box[0]) / h + 1e-9) + 1.0
@@ -188,8 +198,6 @@ def base_placement(
     C, m = positions.shape[0], W_T.shape[0]
 
     # Reject without IK the candidates that leave a task position outside the reach ball.
-    lim = sampling_box(robot)
-    radius = reach_bound(robot.chain, lim[:, 0], lim[:, 1])
     centre = robot.chain.start[:3, 3]
     B_inv = np.linalg.inv(yaw_pose(positions, cand_yaw))  # (C, 4, 4)
     local_p = np.einsum("cij,mj->cmi", B_inv[:, :3, :3], W_T[:, :3, 3]) + B_inv[:, None, :3, 3]

@@ -59,7 +59,11 @@ def plot_reachability(m: ReachabilityMap, title: str = "") -> Any:
         "positions only"
         if m.orientations.shape[0] == 0
         else f"{m.count} orientations"
-        + ("" if m.approach is None else f" within {np.degrees(m.approach[1]):.0f}° of the approach")
+        + (
+            ""
+            if m.approach is None
+            else f" within {np.degrees(m.approach[1]):.0f}° of the approach"
+        )
     )
     unit = "m²" if m.plane is not None else "m³"
     head = f"{title}\n" if title else ""
@@ -114,7 +118,9 @@ def save_reachability_plot(
     return save_figure(plot_reachability(m, title), path)
 
 
-def plot_placement(found: BasePlacement, task_poses: ArrayLike | None = None, title: str = "") -> Any:
+def plot_placement(
+    found: BasePlacement, task_poses: ArrayLike | None = None, title: str = ""
+) -> Any:
     """A figure of a base-placement search seen from above (world x, y).
 
     Args:
