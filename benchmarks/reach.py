@@ -155,7 +155,7 @@ def where_time_goes() -> None:
                 "reduce",
                 "solutions",
                 "Jacobians",
-                "SVDs",
+                "det (manip.)",
                 "sol./pose",
             ),
         )
