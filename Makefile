@@ -95,6 +95,7 @@ bench: $(CORE_STAMP)
 	$(BIN)/python benchmarks/motion.py
 	$(BIN)/python benchmarks/viz.py
 	$(BIN)/python benchmarks/design.py
+	$(BIN)/python benchmarks/reach.py
 	$(BIN)/python benchmarks/symbolic.py
 	$(BIN)/python benchmarks/ik_small.py
 	$(BIN)/python benchmarks/ik_redundant.py

@@ -127,6 +127,8 @@ def test_approach_cone_asks_tool_axes_near_the_direction(robot: km.Robot) -> Non
         ({"orientations": np.eye(3)}, "orientations"),
         ({"orientations": 2 * np.eye(3)[None]}, "orientations"),
         ({"approach": ([0, 0, 1],)}, "approach"),
+        ({"approach": ([0, 0, 1], "wide")}, "half_angle"),
+        ({"approach": (["a", 0, 1], 0.1)}, "approach"),
         ({"approach": ([0, 0, 1], 0.1), "orientations": None}, "approach"),
         ({"manipulability": "yes"}, "manipulability"),
         ({"workers": 0}, "workers"),
@@ -171,3 +173,22 @@ def test_dask_map_is_the_serial_map_bit_for_bit(
         by_client = km.reachability(robot, REGION, 0.1, orientations=16, scheduler=client)
         assert client.status == "running"
     assert_same_map(serial, by_client)
+
+
+def test_a_planar_arm_in_a_tilted_plane_is_refused() -> None:
+    from support.reach_arms import planar
+
+    arm = planar(3)
+    base = km.make_transform(km.rotx(0.3), [0, 0, 0])
+    tilted = km.Robot.from_dh(arm.links, base=base, name="tilted")
+    with pytest.raises(KinematicaError, match="not a base axis"):
+        km.reachability(tilted, resolution=0.2)
+
+
+def test_index_at_reads_a_planar_map_anywhere_in_its_plane() -> None:
+    from support.reach_arms import L1, L2, planar
+
+    m = km.reachability(planar(2), resolution=0.05, orientations=None)
+    inside = np.array([[0.0, (L1 + L2) / 2 + 0.01, 0.0], [0.0, (L1 + L2) / 2 + 0.01, 5.0]])
+    np.testing.assert_array_equal(m.index_at(inside), [1.0, 1.0])
+    assert m.index_at(np.array([0.0, 0.0, 0.0])) == 0.0  # the hole of the annulus

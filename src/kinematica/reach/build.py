@@ -36,7 +36,7 @@ __all__ = ["MAX_QUERIES", "reachability"]
 MAX_QUERIES = 10**10
 
 
-def _approach(approach: object) -> tuple[np.ndarray, float]:
+def _approach(approach: object) -> tuple[object, object]:
     if (
         not isinstance(approach, tuple | list)
         or len(approach) != 2
@@ -48,8 +48,7 @@ def _approach(approach: object) -> tuple[np.ndarray, float]:
             arg="approach",
         )
     direction, half = approach
-    # cone_set checks both; a direction of the wrong shape is reported there
-    return np.asarray(direction, dtype=np.float64), float(half)
+    return direction, half  # cone_set checks both
 
 
 def reachability(
@@ -116,8 +115,9 @@ def reachability(
     elif isinstance(orientations, int | np.integer) and not isinstance(orientations, bool):
         if approach is not None:
             direction, half = _approach(approach)
-            rotations = cone_set(int(orientations), direction, half)
-            cone = (direction / np.linalg.norm(direction), half)
+            rotations = cone_set(int(orientations), direction, half)  # type: ignore[arg-type]
+            axis = np.asarray(direction, dtype=np.float64)
+            cone = (axis / np.linalg.norm(axis), float(half))  # type: ignore[arg-type]
         elif plane is not None:
             rotations = planar_set(int(orientations), plane.normal, plane.start)
         else:
