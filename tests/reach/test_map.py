@@ -192,3 +192,20 @@ def test_index_at_reads_a_planar_map_anywhere_in_its_plane() -> None:
     inside = np.array([[0.0, (L1 + L2) / 2 + 0.01, 0.0], [0.0, (L1 + L2) / 2 + 0.01, 5.0]])
     np.testing.assert_array_equal(m.index_at(inside), [1.0, 1.0])
     assert m.index_at(np.array([0.0, 0.0, 0.0])) == 0.0  # the hole of the annulus
+
+
+def test_vtk_itself_reads_the_vti(serial: ReachabilityMap, tmp_path: Path) -> None:
+    # VTK (a 140 MB wheel) is no test dependency: run where it is installed (it was with
+    # VTK 9.7.2 when this was written, every array equal, cell centres the voxel centres).
+    vtk = pytest.importorskip("vtk")
+    from vtk.util.numpy_support import vtk_to_numpy
+
+    save_map(serial, tmp_path / "map.vti")
+    reader = vtk.vtkXMLImageDataReader()
+    reader.SetFileName(str(tmp_path / "map.vti"))
+    reader.Update()
+    image = reader.GetOutput()
+    assert image.GetDimensions() == (10, 10, 10)
+    np.testing.assert_allclose(image.GetOrigin(), REGION[0])
+    index = vtk_to_numpy(image.GetCellData().GetArray("reachability_index"))
+    np.testing.assert_array_equal(index.reshape(9, 9, 9).transpose(2, 1, 0), serial.index)
