@@ -42,8 +42,11 @@ def test_the_known_base_is_feasible_and_every_feasible_base_reaches(
             assert res.count > 0
             np.testing.assert_allclose(robot.fk(res.solutions[0]), T, atol=POSE_TOL)
     # ranked by the worst manipulability over the task, best first
+    from kinematica.reach.placement import TIE_TOL
+
     worst = found.worst_manipulability[found.order]
-    assert np.all(np.diff(worst) <= 0) and np.all(worst > 0)
+    assert np.all(np.diff(worst) <= TIE_TOL * worst[0]) and np.all(worst > 0)
+    assert worst[0] >= (1 - TIE_TOL) * worst.max()
     np.testing.assert_allclose(found.best, found.poses()[0])
     # an infeasible candidate misses a task pose
     for i in np.flatnonzero(~found.feasible)[:5]:
@@ -75,3 +78,15 @@ def test_bad_arguments(problem, kwargs, match) -> None:  # type: ignore[no-untyp
     with pytest.raises(km.KinematicaError, match=match):
         km.base_placement(robot, args.pop("task_poses"), args.pop("region"), **args)
     assert issubclass(ArgumentError, km.KinematicaError)
+
+
+def test_ties_within_tie_tol_keep_the_grid_order() -> None:
+    from kinematica.reach.placement import TIE_TOL, rank
+
+    ok = np.ones(2, dtype=bool)
+    inside, outside = 1.0 - 0.9 * TIE_TOL, 1.0 - 1.1 * TIE_TOL
+    assert rank(np.array([inside, 1.0]), ok).tolist() == [0, 1]  # equal: grid order
+    assert rank(np.array([outside, 1.0]), ok).tolist() == [1, 0]  # better first
+    worst = np.array([0.2, np.nan, 0.5, 0.5])
+    assert rank(worst, np.array([True, False, True, True])).tolist() == [2, 3, 0]
+    assert rank(worst, np.zeros(4, dtype=bool)).size == 0

@@ -9,7 +9,9 @@ when the arm's IK (closed form, within the joint limits) reaches every task
 pose so seen. Candidates for which some task position lies outside the arm's
 reach ball are rejected without asking the IK. Feasible candidates are ranked
 by the worst, over the task's poses, of the best manipulability among each
-pose's solutions (the arm chooses its branch per pose), largest first.
+pose's solutions (the arm chooses its branch per pose), largest first;
+candidates within :data:`TIE_TOL` of each other in that measure keep their
+grid order.
 """
 
 from __future__ import annotations
@@ -32,7 +34,7 @@ from kinematica.spatial import check_transform
 if TYPE_CHECKING:
     from kinematica.robot import Robot
 
-__all__ = ["MAX_CANDIDATES", "BasePlacement", "base_placement", "yaw_pose"]
+__all__ = ["MAX_CANDIDATES", "TIE_TOL", "BasePlacement", "base_placement", "rank", "yaw_pose"]
 
 FloatArray = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]
@@ -41,6 +43,11 @@ BoolArray = NDArray[np.bool_]
 MAX_CANDIDATES = 1_000_000
 #: Poses solved in one IK call (bounds the memory of a search).
 CHUNK_POSES = 1 << 16
+#: Feasible candidates whose worst manipulability differs by less than this share of
+#: the best one's rank as equals, in grid order (position, then yaw): yaws about the
+#: vertical of an arm whose first joint turns about it leave the manipulability
+#: unchanged but for round-off, which must not decide the order.
+TIE_TOL = 1e-9
 
 
 def yaw_pose(position: ArrayLike, yaw: ArrayLike) -> FloatArray:
@@ -97,6 +104,19 @@ class BasePlacement:
     def poses(self) -> FloatArray:
         """``(F, 4, 4)`` the feasible base poses, best first."""
         return yaw_pose(self.positions[self.order], self.yaws[self.order])
+
+
+def rank(worst: FloatArray, feasible: BoolArray) -> NDArray[np.intp]:
+    """Indices of the feasible candidates, largest ``worst`` first; equals (TIE_TOL) in order."""
+    idx = np.flatnonzero(feasible)
+    if not idx.size:
+        return idx
+    top = float(np.max(np.abs(worst[idx])))
+    step = TIE_TOL * top if top > 0.0 else 1.0
+    # whole steps of TIE_TOL·top below the best: those in one step keep the grid order
+    below = np.floor((float(np.max(worst[idx])) - worst[idx]) / step)
+    out: NDArray[np.intp] = idx[np.argsort(below, kind="stable")]
+    return out
 
 
 def _task(task_poses: ArrayLike) -> FloatArray:
@@ -223,8 +243,7 @@ def base_placement(
         w[valid] = _manipulability(robot, sol[valid], axes="task")
         worst[idx[full]] = w.max(axis=2).min(axis=1)
     feasible = reached == 1.0
-    order = np.flatnonzero(feasible)
-    order = order[np.argsort(-worst[order], kind="stable")]
+    order = rank(worst, feasible)
     return BasePlacement(
         positions=positions,
         yaws=cand_yaw,
