@@ -34,6 +34,7 @@ def assert_same_map(a: ReachabilityMap, b: ReachabilityMap) -> None:
     for name in ("origin", "orientations", "reached", "solutions", "manipulability", "centre"):
         np.testing.assert_array_equal(getattr(a, name), getattr(b, name), err_msg=name)
     assert (a.resolution, a.radius, a.robot, a.plane) == (b.resolution, b.radius, b.robot, b.plane)
+    assert (a.complete, a.held) == (b.complete, b.held)
 
 
 def test_region_grid_and_volumes(serial: ReachabilityMap) -> None:
@@ -209,3 +210,12 @@ def test_vtk_itself_reads_the_vti(serial: ReachabilityMap, tmp_path: Path) -> No
     np.testing.assert_allclose(image.GetOrigin(), REGION[0])
     index = vtk_to_numpy(image.GetCellData().GetArray("reachability_index"))
     np.testing.assert_array_equal(index.reshape(9, 9, 9).transpose(2, 1, 0), serial.index)
+
+
+def test_a_redundant_arm_says_which_parameter_its_map_holds(tmp_path: Path) -> None:
+    iiwa = km.load("iiwa14")
+    m = km.reachability(iiwa, resolution=0.4, orientations=4, manipulability=False)
+    assert m.held == "arm angle" and m.reachable.any()
+    back = load_map(save_map(m, tmp_path / "iiwa.npz"))
+    assert back.held == "arm angle"
+    assert km.reachability(elbow_wrist(), resolution=0.4, orientations=2).held is None

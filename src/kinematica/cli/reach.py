@@ -105,6 +105,8 @@ def reach(args: argparse.Namespace) -> int:
                 "reachable_volume": reachable,
                 "dexterous_volume": dexterous,
                 "best_manipulability": best,
+                "complete": m.complete,
+                "held": m.held,
                 "files": written,
             }
         )  # fmt: skip
@@ -122,6 +124,10 @@ def reach(args: argparse.Namespace) -> int:
         print(f"dexterous: {np.count_nonzero(m.dexterous)} voxels, {fmt(dexterous, 4)} {vol_unit}")
         if best is not None:
             print(f"best manipulability: {fmt(best, 4)}")
+        if m.held is not None:
+            print(f"note: the IK held the {m.held} at its default: a lower bound of the reach")
+        if not m.complete:
+            print("note: some poses were solved numerically: a lower bound of the reach")
         for path in written:
             print(f"written: {path}")
     return 0 if m.reachable.any() else 1

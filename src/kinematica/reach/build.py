@@ -7,7 +7,11 @@ is the share of the orientations reached; it is *dexterous* when all are.
 Unlike a cloud of forward-kinematics samples, nothing is estimated: the index
 of a voxel is the exact answer for its centre and its orientations (for the
 arm's closed form; an arm without one is solved numerically, and its map says
-so through :attr:`ReachabilityMap.complete`).
+so through :attr:`ReachabilityMap.complete`). A redundant arm is answered as
+its IK answers a pose by default, with a parameter held (an SRS arm's arm
+angle 0, or a joint at the middle of its limits): its map is then that of the
+arm at that value, a lower bound of what the whole self-motion reaches, and
+:attr:`ReachabilityMap.held` names the parameter.
 """
 
 from __future__ import annotations
@@ -136,7 +140,7 @@ def reachability(
         n_workers = workers or default_workers()
         if client is not None and workers is None:
             n_workers = max(1, len(client.scheduler_info().get("workers", {})))
-        reached, solutions, best = solve_blocks(
+        reached, solutions, best, how = solve_blocks(
             robot,
             grid.centres,
             voxels,
@@ -164,6 +168,8 @@ def reachability(
         radius=grid.radius,
         approach=cone,
         plane=None if plane is None else plane.axis,
+        complete=how.complete,
+        held=how.held,
     )
 
 

@@ -45,11 +45,16 @@ class Block:
         solutions: ``(v,)`` IK solutions within the limits, summed over them.
         manipulability: ``(v,)`` best manipulability over those solutions
             (NaN where none, or not asked).
+        complete: Every pose was solved in closed form (all its solutions).
+        held: The parameter the IK held for a redundant arm (``"arm angle"``,
+            ``"q1"``...), or None.
     """
 
     reached: IntArray
     solutions: IntArray
     manipulability: FloatArray
+    complete: bool = True
+    held: str | None = None
 
 
 def solve_block(
@@ -96,7 +101,9 @@ def solve_block(
         w[valid] = _manipulability(robot, sol[valid], axes="task")
         per_voxel = w.reshape(v, -1).max(axis=1)
         best = np.where(reached > 0, per_voxel, np.nan)
-    return Block(reached, solutions, best)
+    complete = bool(res.complete) and not res.methods
+    held = None if res.parameter is None else str(res.parameter[0])
+    return Block(reached, solutions, best, complete, held)
 
 
 def _blocks(voxels: NDArray[np.intp], per_block: int) -> list[NDArray[np.intp]]:
@@ -114,7 +121,7 @@ def solve_blocks(
     client: Any,
     workers: int,
     progress: Callable[[int], None] | None,
-) -> tuple[IntArray, IntArray, FloatArray]:
+) -> tuple[IntArray, IntArray, FloatArray, Block]:
     """Every voxel of ``voxels``: here, or on the Dask ``client``'s workers.
 
     Args:
@@ -129,7 +136,8 @@ def solve_blocks(
         progress: Called with the number of poses done after each block.
 
     Returns:
-        ``(V,)`` reached orientations, solution counts, best manipulability.
+        ``(V,)`` reached orientations, solution counts, best manipulability, and
+        an empty :class:`Block` holding ``complete`` and ``held`` over them all.
     """
     n_orient = 1 if rotations is None else rotations.shape[0]
     per_block = max(1, CHUNK_QUERIES // n_orient)
@@ -142,17 +150,20 @@ def solve_blocks(
     solutions = np.zeros(voxels.size, dtype=np.int32)
     best = np.full(voxels.size, np.nan)
     starts = np.cumsum([0] + [p.size for p in parts])
+    how: dict[str, Any] = {"complete": True, "held": None}
 
     def store(i: int, block: Block) -> None:
         s = slice(int(starts[i]), int(starts[i + 1]))
         reached[s], solutions[s], best[s] = block.reached, block.solutions, block.manipulability
+        how["complete"] = bool(how["complete"]) and block.complete
+        how["held"] = how["held"] or block.held
         if progress is not None:
             progress(int(parts[i].size) * n_orient)
 
     if client is None:
         for i, part in enumerate(parts):
             store(i, solve_block(robot, voxel_centres(part), rotations, manipulability, threads))
-        return reached, solutions, best
+        return reached, solutions, best, _summary(how)
 
     from dask.distributed import as_completed
 
@@ -166,7 +177,12 @@ def solve_blocks(
     index = {f.key: i for i, f in enumerate(futures)}
     for future in as_completed(futures):
         store(index[future.key], future.result())
-    return reached, solutions, best
+    return reached, solutions, best, _summary(how)
+
+
+def _summary(how: dict[str, Any]) -> Block:
+    empty = np.zeros(0, dtype=np.int32)
+    return Block(empty, empty, np.zeros(0), bool(how["complete"]), how["held"])
 
 
 def _remote_block(
@@ -183,4 +199,6 @@ def _remote_block(
         np.concatenate([p.reached for p in pieces]),
         np.concatenate([p.solutions for p in pieces]),
         np.concatenate([p.manipulability for p in pieces]),
+        all(p.complete for p in pieces),
+        next((p.held for p in pieces if p.held is not None), None),
     )

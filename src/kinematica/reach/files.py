@@ -118,6 +118,8 @@ def save_map(m: ReachabilityMap, path: str | os.PathLike[str]) -> Path:
                     radius=np.float64(m.radius),
                     approach=approach,
                     plane=np.int64(-1 if m.plane is None else m.plane),
+                    complete=np.bool_(m.complete),
+                    held=np.str_("" if m.held is None else m.held),
                 )
                 np.savez_compressed(f, **arrays)
     except OSError as exc:
@@ -155,6 +157,8 @@ def load_map(path: str | os.PathLike[str]) -> ReachabilityMap:
                 if np.isnan(approach[0])
                 else (approach[:3].copy(), float(approach[3])),
                 plane=None if plane < 0 else plane,
+                complete=bool(data["complete"]),
+                held=str(data["held"]) or None,
             )
     except (OSError, KeyError, ValueError) as exc:
         raise KinematicaError(f"{p}: not a reachability map written by kinematica ({exc})") from exc

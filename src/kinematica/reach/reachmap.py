@@ -74,6 +74,11 @@ class ReachabilityMap:
         approach: ``(direction (3,), half-angle rad)`` of a cone of tool z
             axes, or None (all of SO(3), or a planar arm's plane).
         plane: For a planar arm, the base axis (0, 1, 2) normal to its plane; else None.
+        complete: Every pose was solved in closed form, every solution found;
+            False when some were solved numerically (the map is then a lower bound).
+        held: For a redundant arm, the parameter its IK held (``"arm angle"``,
+            a joint's name) at its default value: the map is that arm's at that
+            value, a lower bound of the whole self-motion's; None otherwise.
     """
 
     robot: str
@@ -87,6 +92,8 @@ class ReachabilityMap:
     radius: float
     approach: tuple[FloatArray, float] | None = None
     plane: int | None = None
+    complete: bool = True
+    held: str | None = None
 
     @property
     def shape(self) -> tuple[int, int, int]:
