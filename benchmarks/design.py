@@ -31,9 +31,9 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _common import fmt_time, header, median_of, table
+from _common import best_of, fmt_time, header, median_of, table, verdict
 
-from kinematica.design import Task, evaluate_design, load_template, optimize
+from kinematica.design import DesignTemplate, Task, evaluate_design, load_template, optimize
 
 TEMPLATE = """
 name: Seed 6-DOF arm, design
@@ -54,6 +54,29 @@ joints:
 """
 
 
+def cost_of_ik(tmpl: DesignTemplate, task: Task) -> None:
+    """One evaluation against the batched IK of its poses (one thread, CPU time), by stage."""
+    x = np.array([0.45, 0.5])
+    robot = tmpl.robot_at(tmpl.params(x))
+    stages = {
+        "evaluation (all of it)": lambda: evaluate_design(tmpl, task, x),
+        "rebuild the arm from the template": lambda: tmpl.robot_at(tmpl.params(x)),
+        "batched IK of the poses (1 thread)": lambda: robot.ik(task.targets, workers=1).count,
+    }
+    res = robot.ik(task.targets, workers=1)
+    sol = res.solutions[np.isfinite(res.solutions[..., 0])]
+    J = robot.jacobian(sol)
+    stages["Jacobians of every solution"] = lambda: robot.jacobian(sol)
+    stages["their singular values (numpy SVD)"] = lambda: np.linalg.svd(J, compute_uv=False)
+    times = {k: best_of(f, repeats=15, clock=time.process_time) for k, f in stages.items()}
+    ik = times["batched IK of the poses (1 thread)"]
+    rows = [(k, fmt_time(t), f"{t / ik:.2f}x") for k, t in times.items()]
+    print(f"\nwhere an evaluation's time goes ({sol.shape[0]} solutions of {len(task)} poses):")
+    print(table(rows, ("stage (CPU time)", "time", "x the IK")))
+    ratio = times["evaluation (all of it)"] / ik
+    print(f"evaluation / its IK: {ratio:.1f}x (target 3x: {verdict(ratio <= 3.0)})")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--poses", type=int, default=300)
@@ -72,7 +95,9 @@ def main() -> None:
         task = Task.from_poses(robot.fk(q))
         one = median_of(lambda: evaluate_design(tmpl, task, [0.45, 0.5]), repeats=9)
         print(f"\n6R, {args.poses} poses, mean manipulability, budget {args.budget}")
-        print(f"one evaluation: {fmt_time(one)} ({fmt_time(one / args.poses)} per pose)\n")
+        print(f"one evaluation: {fmt_time(one)} ({fmt_time(one / args.poses)} per pose)")
+        cost_of_ik(tmpl, task)
+        print()
 
         t0 = time.perf_counter()
         serial = optimize(path, task, "mean_manipulability", budget=args.budget, seed=1)

@@ -54,6 +54,7 @@ if TYPE_CHECKING:  # the names below load on first use: `import kinematica` stay
     from kinematica.motion.workspace import (
         workspace,
     )
+    from kinematica.reach import base_placement, reachability
     from kinematica.robot import (
         DHExtraction,
         Robot,
@@ -143,6 +144,8 @@ _LAZY = {
     "transl": "kinematica.spatial",
     "wrap_angle": "kinematica.spatial",
     "workspace": "kinematica.motion.workspace",
+    "reachability": "kinematica.reach",
+    "base_placement": "kinematica.reach",
     "analytic_jacobian": "kinematica.motion",
     "cartesian_path": "kinematica.motion",
     "cartesian_via_path": "kinematica.motion",
@@ -166,6 +169,7 @@ _SUBPACKAGES = frozenset(
         "ik",
         "io",
         "motion",
+        "reach",
         "robot",
         "spatial",
         "symbolic",
@@ -198,6 +202,7 @@ __all__ = [
     "__version__",
     "analytic_jacobian",
     "axis_angle_from_matrix",
+    "base_placement",
     "builtin_names",
     "calibrate",
     "cartesian_path",
@@ -227,6 +232,7 @@ __all__ = [
     "quat_from_matrix",
     "quat_multiply",
     "quat_slerp",
+    "reachability",
     "read_robot_file",
     "resolved_rate",
     "robot_from_spec",

@@ -120,9 +120,9 @@ def test_existing_cluster_by_address_or_client(
 def test_unreachable_scheduler_is_a_clear_error(
     problem: tuple[Path, Task], monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    from kinematica.design import runner
+    from kinematica.reach import cluster
 
-    monkeypatch.setattr(runner, "CONNECT_TIMEOUT", "1s")
+    monkeypatch.setattr(cluster, "CONNECT_TIMEOUT", "1s")
     path, task = problem
     with pytest.raises(
         KinematicaError, match=r"cannot reach the Dask scheduler at 'tcp://127\.0\.0\.1"

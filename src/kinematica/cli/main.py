@@ -44,6 +44,8 @@ COMMAND_MODULES = (
     "convert",
     "design",
     "calibrate",
+    "reach",
+    "place",
 )
 
 #: Each command and the module that registers it: a command line naming one imports and
@@ -66,6 +68,8 @@ COMMANDS = {
     "convert": "convert",
     "design": "design",
     "calibrate": "calibrate",
+    "reach": "reach",
+    "place": "place",
 }
 
 #: Where to report an internal error (a bug: every bad input has its own message).
@@ -105,6 +109,13 @@ _OPTIONS = {
     "fps": "--fps",
     "max_frames": "--max-frames",
     "arm_angle": "--arm-angle",
+    "resolution": "--resolution",
+    "orientations": "--orientations",
+    "region": "--region",
+    "approach": "--approach",
+    "half_angle": "--approach",
+    "yaw": "--yaw",
+    "workers": "--workers",
 }
 
 

@@ -4,8 +4,10 @@ The optimiser hands a :class:`Runner` whole generations of candidates. The
 runner serves each from its cache (evaluations of this run, or read from the
 checkpoint), computes the others in this process (``scheduler=None``) or on a
 ``dask.distributed`` cluster (``"local"``: a LocalCluster started here;
-``"tcp://host:port"``: an existing scheduler; or a ``distributed.Client``), and
-writes each to the checkpoint as soon as it is finished. Results come back in
+``"tcp://host:port"``: an existing scheduler; or a ``distributed.Client``;
+:func:`kinematica.reach.cluster.dask_client`), a generation's candidates in
+runs of up to :data:`CANDIDATES_PER_TASK` a Dask task (about two tasks a
+worker), and writes each to the checkpoint as soon as its run is finished. Results come back in
 the order asked, whatever order the workers finish in, and every evaluation is
 a pure function of the candidate: the optimiser's path does not depend on the
 number of workers.
@@ -14,9 +16,11 @@ number of workers.
 from __future__ import annotations
 
 import hashlib
+import math
 import os
 import sys
 from collections.abc import Sequence
+from contextlib import ExitStack
 from types import TracebackType
 from typing import Any
 
@@ -29,34 +33,24 @@ from kinematica.design.measures import IK_SEED
 from kinematica.design.task import Task
 from kinematica.design.template import DesignTemplate
 from kinematica.errors import KinematicaError
+from kinematica.reach.cluster import Scheduler, check_workers, dask_client, default_workers
 
-__all__ = ["Runner", "Scheduler"]
+__all__ = ["CANDIDATES_PER_TASK", "Runner", "Scheduler"]
 
 FloatArray = NDArray[np.float64]
 Key = tuple[float, ...]
-#: ``None`` (this process), ``"local"``, a scheduler address, or a ``distributed.Client``.
-Scheduler = Any
 
-#: How long to wait for an existing Dask scheduler to answer.
-CONNECT_TIMEOUT = "10s"
-
-_NEEDS_DASK = (
-    "scheduler={!r} needs dask.distributed: pip install 'kinematica[dask]' "
-    "(or pip install 'dask[distributed]')"
-)
+#: Dask tasks per worker for one generation: each task evaluates a run of
+#: candidates, so that a task's overhead (a few ms) is small against its work.
+TASKS_PER_WORKER = 2
+#: Most candidates in one Dask task (a checkpoint records them when it returns).
+CANDIDATES_PER_TASK = 16
 
 
 def fingerprint(template: DesignTemplate, task: Task) -> str:
     """What an evaluation depends on: template, task, measures' version, IK seed."""
     text = f"{template.fingerprint}|{task.fingerprint}|{VERSION}|{IK_SEED}"
     return hashlib.sha256(text.encode()).hexdigest()
-
-
-def _default_workers() -> int:
-    try:
-        return max(1, len(os.sched_getaffinity(0)))
-    except AttributeError:  # not on Linux
-        return max(1, os.cpu_count() or 1)
 
 
 class Runner:
@@ -85,14 +79,7 @@ class Runner:
         progress: bool | None = None,
         total: int = 0,
     ) -> None:
-        if workers is not None and (
-            isinstance(workers, bool) or not isinstance(workers, int) or workers < 1
-        ):
-            raise KinematicaError(f"workers must be a positive whole number, got {workers!r}")
-        if workers is not None and scheduler is None:
-            scheduler = "local"
-        if workers is not None and scheduler != "local":
-            raise KinematicaError("workers sets the size of a local cluster: use scheduler='local'")
+        scheduler, workers = check_workers(workers, scheduler)
         self.template = template
         self.task = task
         self.scheduler = scheduler
@@ -113,8 +100,9 @@ class Runner:
         self._total = total
         self._bar: Any = None
         self._client: Any = None
-        self._cluster: Any = None
+        self._stack = ExitStack()
         self._remote: tuple[Any, Any] | None = None
+        self._workers = 1
 
     # ------------------------------------------------------------- lifecycle
     def __enter__(self) -> Runner:
@@ -142,12 +130,8 @@ class Runner:
         if self._checkpoint is not None:
             self._checkpoint.close()
             self._checkpoint = None
-        owned = self._cluster is not None or isinstance(self.scheduler, str)
-        if self._client is not None and owned:
-            self._client.close()
-        if self._cluster is not None:
-            self._cluster.close()
-        self._client = self._cluster = self._remote = None
+        self._stack.close()  # closes a client and a cluster started here, not one given
+        self._client = self._remote = None
 
     def _start_bar(self) -> None:
         show = sys.stderr.isatty() if self._progress is None else self._progress
@@ -164,43 +148,14 @@ class Runner:
         self._bar = tqdm(total=self._total, desc="design", unit="eval", file=sys.stderr)
 
     def _start_cluster(self) -> None:
-        scheduler = self.scheduler
-        if scheduler is None:
+        self._client = self._stack.enter_context(dask_client(self.scheduler, self.workers))
+        if self._client is None:
             return
-        if isinstance(scheduler, str):
-            try:
-                from dask.distributed import Client, LocalCluster
-            except ImportError as exc:
-                raise KinematicaError(_NEEDS_DASK.format(scheduler)) from exc
-            if scheduler == "local":
-                try:
-                    self._cluster = LocalCluster(
-                        n_workers=self.workers or _default_workers(),
-                        threads_per_worker=1,
-                        processes=True,
-                        dashboard_address=None,
-                    )
-                except Exception as exc:  # distributed raises bare RuntimeErrors here
-                    raise KinematicaError(
-                        f"could not start a local Dask cluster ({type(exc).__name__}: {exc}); "
-                        "in a script, call optimize under `if __name__ == '__main__':` "
-                        "(worker processes import the main module)"
-                    ) from exc
-                self._client = Client(self._cluster)
-            else:
-                try:
-                    self._client = Client(scheduler, timeout=CONNECT_TIMEOUT)
-                except (OSError, TimeoutError, ValueError) as exc:
-                    raise KinematicaError(
-                        f"cannot reach the Dask scheduler at {scheduler!r}: {exc}"
-                    ) from exc
-        elif hasattr(scheduler, "submit") and hasattr(scheduler, "scatter"):
-            self._client = scheduler
-        else:
-            raise KinematicaError(
-                "scheduler must be None, 'local', an address such as 'tcp://host:8786', "
-                f"or a dask.distributed Client; got {scheduler!r}"
-            )
+        self._workers = self.workers or (
+            default_workers()
+            if self.scheduler == "local"
+            else max(1, len(self._client.scheduler_info().get("workers", {})))
+        )
         template, task = self._client.scatter([self.template, self.task], broadcast=True)
         self._remote = (template, task)
 
@@ -243,15 +198,24 @@ class Runner:
 
         assert self._remote is not None
         template, task = self._remote
+        size = min(CANDIDATES_PER_TASK, math.ceil(len(todo) / (TASKS_PER_WORKER * self._workers)))
+        runs = [list(todo[i : i + size]) for i in range(0, len(todo), size)]
         futures = [
-            self._client.submit(evaluate_design, template, task, np.array(key), pure=False)
-            for key in todo
+            self._client.submit(_evaluate_run, template, task, np.array(run), pure=False)
+            for run in runs
         ]
         index = {f.key: i for i, f in enumerate(futures)}
         for future in as_completed(futures):
-            self._done(todo[index[future.key]], future.result())
-            self._tick(1)
+            run = runs[index[future.key]]
+            for key, ev in zip(run, future.result(), strict=True):
+                self._done(key, ev)
+            self._tick(len(run))
 
     def _tick(self, n: int) -> None:
         if self._bar is not None and n > 0:
             self._bar.update(n)
+
+
+def _evaluate_run(template: DesignTemplate, task: Task, X: FloatArray) -> list[Evaluation]:
+    """Candidates ``X`` ``(s, p)`` one after the other: one Dask task."""
+    return [evaluate_design(template, task, x) for x in X]

@@ -150,6 +150,22 @@ class Robot:
         turn = np.where(free, PLAUSIBLE_ANGLE, np.inf) if free.any() else None
         object.__setattr__(self, "_turn", turn)
 
+    def __reduce__(self) -> tuple[Callable[..., Robot], tuple[object, ...]]:
+        """Pickle the description alone (Dask workers): the core's chain is rebuilt from it."""
+        return (
+            _unpickle,
+            (
+                self.links,
+                self.convention,
+                self.name,
+                self.base,
+                self.tool,
+                self.description,
+                self.source_spec,
+                self.transforms,
+            ),
+        )
+
     @classmethod
     def from_dh(
         cls,
@@ -804,3 +820,26 @@ class Robot:
         from kinematica.robot.sampling import random_q
 
         return random_q(self, n, seed=seed)
+
+
+def _unpickle(
+    links: tuple[Joint, ...],
+    convention: Convention,
+    name: str,
+    base: FloatArray,
+    tool: FloatArray,
+    description: str | None,
+    source_spec: RobotSpec | None,
+    transforms: ChainTransforms | None,
+) -> Robot:
+    """A pickled :class:`Robot` built again from its description."""
+    return Robot(
+        links,
+        convention,
+        name,
+        base,
+        tool,
+        description,
+        source_spec=source_spec,
+        transforms=transforms,
+    )

