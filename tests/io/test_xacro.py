@@ -105,10 +105,10 @@ def test_the_environment_is_read_only_when_asked(tmp_path, monkeypatch, trust):
 def test_a_macro_bomb_is_refused_quickly(tmp_path, trust):
     text = macro_bomb()
     assert len(text) < 2000
-    start = time.perf_counter()
     path = write(tmp_path, text, "bomb.xacro")
+    # the node count stopped it, not the time limit (whose message names seconds): no
+    # wall-clock bound here, which a loaded machine breaks
     one_line_error(path, f"more than {XACRO_MAX_NODES} XML", trust_xacro=trust)
-    assert time.perf_counter() - start < 8.0  # the time limit is 10 s: the node count stopped it
 
 
 @BOTH
@@ -132,7 +132,7 @@ def test_a_huge_number_is_refused_at_once(tmp_path):
     text = XACRO.replace('value="0.4"', 'value="${9**9**9**9}"')
     start = time.perf_counter()
     one_line_error(write(tmp_path, text, "slow.xacro"), "9**9**9**9", "larger than 2**1024")
-    assert time.perf_counter() - start < 1.0
+    assert time.perf_counter() - start < 5.0  # unbounded work would never end: a wide margin
 
 
 @needs_xacro
@@ -265,6 +265,6 @@ def test_a_default_that_never_ends_is_refused_at_once(tmp_path):
     text = XACRO.replace('params="i parent"', f'params="{params}"')
     start = time.perf_counter()
     one_line_error(write(tmp_path, text, "redos.xacro"), "is not a name")
-    assert time.perf_counter() - start < 1.0
+    assert time.perf_counter() - start < 5.0  # unbounded work would never end: a wide margin
     long = XACRO.replace('params="i parent"', f'params="i parent {"x " * 5000}"')
     one_line_error(write(tmp_path, long, "long.xacro"), "at most 10,000 are read")
