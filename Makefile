@@ -28,7 +28,18 @@ $(CORE_STAMP): $(STAMP) $(CORE_SOURCES)
 	else $(BIN)/python -m pip install --quiet --no-deps $(CORE_FLAGS) -e .; fi
 	touch $(CORE_STAMP)
 
-demo: $(CORE_STAMP)
+# The demo needs numpy and the compiled core, nothing more: on a fresh clone it installs
+# kinematica alone (no extra), in the same venv that `make test` later completes with the
+# test tools. A venv the tests have set up is used as it is.
+DEMO_STAMP := $(VENV)/.installed-core
+$(DEMO_STAMP): pyproject.toml $(CORE_SOURCES)
+	test -d $(VENV) || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --no-compile $(CORE_FLAGS) -e .
+	touch $(DEMO_STAMP)
+
+demo:
+	@if [ -f $(STAMP) ]; then $(MAKE) --no-print-directory $(CORE_STAMP); \
+	else $(MAKE) --no-print-directory $(DEMO_STAMP); fi
 	$(BIN)/python examples/01_demo.py
 
 lint: $(CORE_STAMP)

@@ -307,6 +307,10 @@ def ik(args: argparse.Namespace) -> int:
 
     robot = robot_from_args(args)
     target = target_in(robot, args)
+    if args.steps:
+        from kinematica.cli.steps import print_steps
+
+        return print_steps(robot, target, args)
     q0 = None if args.q0 is None else q_in(robot, args.q0, args, "q0")
     tol = _tolerance(robot, args)
     arm_angle = args.arm_angle
@@ -502,6 +506,13 @@ def register(sub: Any) -> None:
         help="acceptance tolerance: position in the length unit, then rotation in the angle "
         "unit; one number: the position, and its value in metres as radians for the "
         "rotation; default 1e-10 m and 1e-10 rad",
+    )
+    p.add_argument(
+        "--steps",
+        action="store_true",
+        help="a 6-joint arm with a spherical wrist: print the decoupling step by step (the "
+        "wrist centre p_m, the arm solutions q1-q3, R03, R36 = R03^T R06, the wrist "
+        "solutions q4-q6), every solution, also outside the limits",
     )
     add_precision(p)
     add_common(p)

@@ -45,6 +45,7 @@ if TYPE_CHECKING:
     from kinematica.ik.registry import TargetKind
     from kinematica.ik.solvers import PoseSolver
     from kinematica.io import RobotSpec
+    from kinematica.robot.decoupling import Decoupling
     from kinematica.robot.dh_rules import DHExtraction
     from kinematica.robot.self_motion import SelfMotion
 
@@ -635,6 +636,41 @@ class Robot:
         from kinematica.ik.analytic.srs import arm_angle
 
         return arm_angle(self.chain, self.check_q(q))
+
+    def wrist_center(self, T: ArrayLike) -> FloatArray:
+        """The wrist centre p_m of tool poses (seed 002's ``p - d6·R·z``).
+
+        Args:
+            T: ``(..., 4, 4)`` tool poses in the base (world) frame.
+
+        Returns:
+            ``(..., 3)`` the point where axes 4-6 meet, world frame (m).
+
+        Raises:
+            KinematicaError: The last three axes do not meet in one point.
+        """
+        from kinematica.robot.decoupling import wrist_center
+
+        return wrist_center(self, T)
+
+    def decouple(self, T: ArrayLike) -> Decoupling:
+        """Seed 002's kinematic decoupling of a pose, step by step.
+
+        p_m, the arm solutions of joints 1-3 for it, R03 and R36 = R03ᵀ·R06 of each,
+        and the wrist solutions q4-q6 of each (see :mod:`kinematica.robot.decoupling`).
+
+        Args:
+            T: ``(4, 4)`` tool pose in the base (world) frame.
+
+        Returns:
+            A :class:`~kinematica.robot.decoupling.Decoupling`.
+
+        Raises:
+            KinematicaError: Not a 6-joint DH arm with a spherical wrist.
+        """
+        from kinematica.robot.decoupling import decouple
+
+        return decouple(self, T)
 
     @cached_property
     def _direct(self) -> DirectParameter:
