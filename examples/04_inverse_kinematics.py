@@ -13,7 +13,7 @@ import numpy as np
 import kinematica as km
 
 
-def show(title: str, robot: km.Robot, res: km.IKResult) -> None:
+def show(title: str, robot: km.Robot, res: km.ik.IKResult) -> None:
     print(f"\n{title}: {res.status} ({res.method}) - {res.message}")
     for q, branch in zip(res.solutions, res.branches, strict=True):
         cells = "  ".join(f"{v:9.4f}" for v in q)

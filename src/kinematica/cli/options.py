@@ -126,14 +126,19 @@ def add_robot(p: argparse.ArgumentParser) -> None:
 
 
 def robot_from_args(args: argparse.Namespace) -> Robot:
-    """The robot named by ``ROBOT`` (and, for a URDF, ``--base``/``--tip``/``--xacro``)."""
-    return load(
+    """The robot named by ``ROBOT`` (and, for a URDF, ``--base``/``--tip``/``--xacro``).
+
+    Sets ``args.length_shown``, the length unit its warnings speak (:func:`length_unit`).
+    """
+    robot = load(
         args.robot,
         base=args.base,
         tip=args.tip,
         xacro=args.xacro,
         xacro_env=args.xacro_env,
     )
+    args.length_shown = length_unit(robot, args)
+    return robot
 
 
 def angle_unit(args: argparse.Namespace) -> str:

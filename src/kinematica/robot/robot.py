@@ -28,7 +28,13 @@ from kinematica.dh import (
     convert_table,
     link_matrix,
 )
-from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning, UnitWarning
+from kinematica.errors import (
+    DimensionError,
+    KinematicaError,
+    KinematicaWarning,
+    LimitWarning,
+    UnitWarning,
+)
 from kinematica.io.plausible import PLAUSIBLE_ANGLE, check_angle
 from kinematica.robot.frames import rigid_frame, short
 from kinematica.robot.save import write_robot_file
@@ -285,7 +291,7 @@ class Robot:
                 stacklevel=3,
             )
         if outside:
-            warnings.warn(self._limits_message(qa, name, outside), KinematicaWarning, stacklevel=3)
+            warnings.warn(self._limits_message(qa, name, outside), stacklevel=3)
 
     def _check_turns(self, qa: FloatArray, name: str = "q") -> None:
         """Warn (:class:`UnitWarning`) of a free revolute joint beyond a full turn."""
@@ -303,7 +309,7 @@ class Robot:
             stacklevel=3,
         )
 
-    def _limits_message(self, qa: FloatArray, name: str, count: int) -> str:
+    def _limits_message(self, qa: FloatArray, name: str, count: int) -> KinematicaWarning:
         """Which joint of which configuration lies beyond its own limits, and how many do.
 
         ``count``: the configurations beyond their limits, as the core counted them.
@@ -322,14 +328,13 @@ class Robot:
                 row, j = start + int(hit[0]), int(np.flatnonzero(beyond[hit[0]])[0])
                 break
         else:  # not expected: the core and this test read the same limits
-            return f"{name}: outside the joint limits{more}"
+            return KinematicaWarning(f"{name}: outside the joint limits{more}")
         index = tuple(int(i) for i in np.unravel_index(row, qa.shape[:-1])) if qa.ndim > 1 else ()
         where = f" in row {index}" if qa.ndim > 1 else ""
-        unit = "m" if self.links[j].type == "P" else "rad"
-        return (
-            f"{name}: joint {j + 1} = {qa[(*index, j)]:.6g} {unit}{where} is outside its limits "
-            f"[{lo[j]:.6g}, {hi[j]:.6g}] {unit}{more}"
-        )
+        return LimitWarning(
+            name=name, joint=j, value=float(qa[(*index, j)]), limits=(float(lo[j]), float(hi[j])),
+            prismatic=self.links[j].type == "P", where=where, more=more,
+        )  # fmt: skip
 
     def fk(
         self, q: ArrayLike, all_frames: bool = False, *, workers: int | None = None
