@@ -329,8 +329,9 @@ def ik(args: argparse.Namespace) -> int:
     res = robot.ik(target, options=options)
     assert isinstance(res, IKResult)
     solved = res.success
-    for note in res.notes:  # e.g. a rotation projected onto SO(3): said on stderr too
-        print(f"kinematica: note: {plain(note)}", file=sys.stderr)
+    for note in res.notes:  # e.g. a rotation projected onto SO(3): said on stderr too,
+        if note not in res.message:  # unless the headline below says it already
+            print(f"kinematica: note: {plain(note)}", file=sys.stderr)
     if args.json:
         dump(
             {
