@@ -17,8 +17,22 @@ import pytest
 from support import ROOT
 
 #: The optional dependencies (pyproject's extras) and the test tools: the demo needs none.
-OPTIONAL = ("yaml", "xacro", "matplotlib", "PIL", "scipy", "sympy", "dask", "distributed",
-            "mkdocs", "playwright", "hypothesis", "nbclient", "ipykernel", "pytest")  # fmt: skip
+OPTIONAL = (
+    "yaml",
+    "xacro",
+    "matplotlib",
+    "PIL",
+    "scipy",
+    "sympy",
+    "dask",
+    "distributed",
+    "mkdocs",
+    "playwright",
+    "hypothesis",
+    "nbclient",
+    "ipykernel",
+    "pytest",
+)
 
 _BLOCK = """
 import importlib.abc, sys
@@ -36,8 +50,9 @@ runpy.run_path({script!r}, run_name="__main__")
 def test_the_demo_runs_on_numpy_and_the_core_alone() -> None:
     script = str(ROOT / "examples" / "01_demo.py")
     code = _BLOCK.format(names=set(OPTIONAL), script=script)
-    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                          check=False, timeout=120)  # fmt: skip
+    proc = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=False, timeout=120
+    )
     assert proc.returncode == 0, proc.stderr[-2000:]
     assert "Inverse kinematics" in proc.stdout
 
@@ -45,8 +60,14 @@ def test_the_demo_runs_on_numpy_and_the_core_alone() -> None:
 @pytest.mark.skipif(shutil.which("make") is None, reason="make is not installed")
 def test_make_demo_on_a_fresh_clone_installs_kinematica_alone(tmp_path: Path) -> None:
     venv = tmp_path / "venv"  # a fresh clone: no venv yet (make -n runs nothing but $(MAKE))
-    proc = subprocess.run(["make", "-n", "demo", f"VENV={venv}"], cwd=ROOT, capture_output=True,
-                          text=True, check=False, timeout=60)  # fmt: skip
+    proc = subprocess.run(
+        ["make", "-n", "demo", f"VENV={venv}"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        check=False,
+        timeout=60,
+    )
     assert proc.returncode == 0, proc.stderr
     installs = [line for line in proc.stdout.splitlines() if "pip install" in line]
     assert installs, proc.stdout

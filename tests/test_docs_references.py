@@ -96,7 +96,9 @@ def test_every_document_a_file_cites_is_in_the_repository() -> None:
         data = rel.startswith("tests/data/") and path.suffix != ".md"  # data, not text
         if path.suffix not in TEXT_SUFFIXES or data or rel == THIS or not path.is_file():
             continue
-        for name in set(re.findall(r"\b([A-Z][A-Za-z_-]*\.md)\b", path.read_text(errors="replace"))):
+        for name in set(
+            re.findall(r"\b([A-Z][A-Za-z_-]*\.md)\b", path.read_text(errors="replace"))
+        ):
             if name not in held:
                 cited.append(f"{rel}: {name}")
     assert cited == []
@@ -108,7 +110,7 @@ def _readme_examples() -> str:
 
 
 def test_every_readme_example_a_page_cites_is_in_the_readme() -> None:
-    """"the README's X example": the README shows an example of X."""
+    """Each "the README's X example" of a page names an example the README shows."""
     examples = _readme_examples()
     wrong = []
     for page in PAGES:

@@ -11,7 +11,9 @@ from support.cli import run
 import kinematica as km
 
 
-def test_steps_print_p_m_each_arm_solution_and_its_wrist(capsys: pytest.CaptureFixture[str]) -> None:
+def test_steps_print_p_m_each_arm_solution_and_its_wrist(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
     robot = km.load("arm6-dh")
     T = robot.fk(np.radians([-150, -10, -30, 20, 40, 60]))
     pose = km.to_pose(T, euler="ZYZ")
@@ -36,5 +38,7 @@ def test_steps_print_p_m_each_arm_solution_and_its_wrist(capsys: pytest.CaptureF
 def test_steps_on_an_arm_without_a_spherical_wrist_is_one_line(
     capsys: pytest.CaptureFixture[str],
 ) -> None:
-    code, out, err = run(capsys, "ik", "ur5", "--pose", "0.4", "0.1", "0.3", "0", "90", "0", "--steps")
+    code, _, err = run(
+        capsys, "ik", "ur5", "--pose", "0.4", "0.1", "0.3", "0", "90", "0", "--steps"
+    )
     assert code == 2 and "no spherical wrist" in err and "Traceback" not in err

@@ -36,7 +36,7 @@ DEG = math.pi / 180
 
 
 def _seed_arm() -> dict[str, Any]:
-    """The seed arm (tests/data/robots/seed_arm.yaml) as loaded data; each test mutates its own copy."""
+    """The seed arm (tests/data/robots/seed_arm.yaml) as data; each test mutates its copy."""
     return {
         "name": "Seed 6-DOF arm",
         "convention": "standard",

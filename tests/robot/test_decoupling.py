@@ -75,7 +75,9 @@ def test_wrist_center_carries_the_tool(seed_arm: km.Robot) -> None:
     tool = km.from_pose([0.0, 0.02, 0.05, 0, 0, 0])
     arm = seed_arm.with_tool(tool)
     q = np.radians([10.0, 20.0, -30.0, 40.0, 50.0, 60.0])
-    assert np.allclose(arm.wrist_center(arm.fk(q)), seed_arm.wrist_center(seed_arm.fk(q)), atol=1e-14)
+    assert np.allclose(
+        arm.wrist_center(arm.fk(q)), seed_arm.wrist_center(seed_arm.fk(q)), atol=1e-14
+    )
 
 
 def test_seed_arm_decoupling_gives_the_issue_arm_solution(seed_arm: km.Robot) -> None:
@@ -98,8 +100,12 @@ def test_seed_arm_arm_solutions_are_seed_002_formulas(seed_arm: km.Robot) -> Non
         assert steps.arm_status == "ok" and len(steps.arms) == 4
         # seed 000's table writes θ2 = q2 + 90° and θ3 = q3 - 90° (its forearm along z3):
         # the seed 002 arm's angles are q2 + 90° and q3
-        ours = sorted(tuple(np.round(km.wrap_angle(a.q + [0, math.pi / 2, 0]), 9)) for a in steps.arms)
-        seed = sorted(tuple(np.round(km.wrap_angle(s), 9)) for s in seed002_arm(steps.wrist_center, L1, L2, L3))
+        shift = np.array([0, math.pi / 2, 0])
+        ours = sorted(tuple(np.round(km.wrap_angle(a.q + shift), 9)) for a in steps.arms)
+        seed = sorted(
+            tuple(np.round(km.wrap_angle(s), 9))
+            for s in seed002_arm(steps.wrist_center, L1, L2, L3)
+        )
         assert np.allclose(ours, seed, atol=1e-8)
 
 

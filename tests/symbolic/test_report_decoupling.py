@@ -14,8 +14,10 @@ from kinematica.symbolic.document import EXAMPLE_Q_DEG
 pytest.importorskip("sympy")
 
 
-@pytest.mark.parametrize(("lang", "heading"), [("es", "desacoplo cinemático paso a paso"),
-                                               ("en", "the kinematic decoupling step by step")])  # fmt: skip
+@pytest.mark.parametrize(
+    ("lang", "heading"),
+    [("es", "desacoplo cinemático paso a paso"), ("en", "the kinematic decoupling step by step")],
+)
 def test_the_seed_arm_report_works_the_decoupling_with_numbers(lang: str, heading: str) -> None:
     arm = km.load("arm6-dh")
     text = report(arm, lang=lang)

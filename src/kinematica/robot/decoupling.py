@@ -25,6 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from kinematica._record import record
 from kinematica.errors import KinematicaError
+from kinematica.ik import IKResult
 from kinematica.spatial import check_transform, wrap_angle
 
 if TYPE_CHECKING:
@@ -152,14 +153,15 @@ class Decoupling:
 
 def _arm_robot(robot: Robot, c3: FloatArray) -> Robot:
     """Joints 1-3 with the wrist centre as their tool (its place in frame 3)."""
-    from kinematica.robot.robot import Robot
-
     tool = np.eye(4)
     tool[:3, 3] = c3
-    return Robot.from_dh(
-        robot.links[_ARM], convention=robot.convention, base=robot.base, tool=tool,
+    return type(robot).from_dh(
+        robot.links[_ARM],
+        convention=robot.convention,
+        base=robot.base,
+        tool=tool,
         name=f"{robot.name}, joints 1-3",
-    )  # fmt: skip
+    )
 
 
 def _distance(robot: Robot, a: FloatArray, b: FloatArray) -> float:
@@ -236,6 +238,7 @@ def decouple(robot: Robot, T: ArrayLike) -> Decoupling:
     R06 = Ta[:3, :3] @ robot.tool[:3, :3].T
     arm_res = _arm_robot(robot, c3).ik(p_m, respect_limits=False)
     whole = robot.ik(Ta)
+    assert isinstance(arm_res, IKResult) and isinstance(whole, IKResult)  # one target each
     arms = [np.asarray(s, dtype=float) for s in arm_res.solutions]
     arm_branches = list(arm_res.branches)
     # within the limits first (a revolute joint's value as the limits hold it), then beyond
@@ -254,12 +257,22 @@ def decouple(robot: Robot, T: ArrayLike) -> Decoupling:
         wrist = rows[idx, _WRIST] if idx else np.zeros((0, 3))
         steps.append(
             ArmStep(
-                q=qa, branch=branch, R03=R03, R36=R03.T @ R06, wrist=wrist,
+                q=qa,
+                branch=branch,
+                R03=R03,
+                R36=R03.T @ R06,
+                wrist=wrist,
                 wrist_branches=tuple(_wrist_label(branches[i]) for i in idx),
                 within_limits=inside[idx],
             )
-        )  # fmt: skip
+        )
     return Decoupling(
-        target=Ta, offset=offset, wrist_center=p_m, R06=R06, arm_status=arm_res.status,
-        arms=tuple(steps), status=whole.status, message=whole.message,
-    )  # fmt: skip
+        target=Ta,
+        offset=offset,
+        wrist_center=p_m,
+        R06=R06,
+        arm_status=arm_res.status,
+        arms=tuple(steps),
+        status=whole.status,
+        message=whole.message,
+    )
