@@ -89,8 +89,10 @@ def rounded_spec(spec: RobotSpec) -> RobotSpec:
             return None
         if f.matrix is not None:
             rows = tuple(
-                tuple(shortest_within(v, AXIS_ANGLE_TOL, unitless) for v in row[:3])
-                + (m(row[3]) if i < 3 else row[3],)
+                (
+                    *(shortest_within(v, AXIS_ANGLE_TOL, unitless) for v in row[:3]),
+                    m(row[3]) if i < 3 else row[3],
+                )
                 for i, row in enumerate(f.matrix)
             )
             return dataclasses.replace(f, matrix=rows)
