@@ -422,7 +422,7 @@ BAD_CASES: list[tuple[str, Any, str | None, int | None, str | None]] = [
     (
         "limits reversed",
         _set((J, 0, "limits"), [160, -160]),
-        r"lower < upper, found a list of 2",
+        r"lower < upper, found \[160, -160\] \(lower > upper",
         1,
         "limits",
     ),

@@ -330,7 +330,7 @@ def ik(args: argparse.Namespace) -> int:
     assert isinstance(res, IKResult)
     solved = res.success
     for note in res.notes:  # e.g. a rotation projected onto SO(3): said on stderr too,
-        if note not in res.message:  # unless the headline below says it already
+        if args.json or note not in res.message:  # unless the headline below says it
             print(f"kinematica: note: {plain(note)}", file=sys.stderr)
     if args.json:
         dump(
@@ -433,7 +433,7 @@ def _seed(text: str) -> int:
 def register(sub: Any) -> None:
     """Add ``robots``, ``show``, ``fk`` and ``ik`` to the subparsers ``sub``."""
     p = sub.add_parser("robots", help="list the built-in robot models")
-    add_common(p)  # --euler/--rad accepted on every command; this one prints no angles
+    add_common(p, numbers=False)  # --euler/--rad/--units accepted, not offered: no numbers here
     p.set_defaults(run=robots)
 
     p = sub.add_parser(
