@@ -349,7 +349,7 @@ def ik(args: argparse.Namespace) -> int:
                 },
                 "out_of_limits": clean(q_out(robot, res.out_of_limits, args)),
                 "out_of_limits_branches": list(res.out_of_limits_branches),
-                "free_joints": [f"q{i + 1}" for i in res.free_joints],
+                "free_joints": list(res.free_names),
                 "gap_m": res.gap,
                 "notes": list(res.notes),
                 "parameter": _parameter(robot, res, args),

@@ -556,6 +556,13 @@ class Robot:
             (arrays with the targets' batch shape) for a batch. In a batch, a
             malformed target gets the status ``"invalid"``; the others are solved.
         """
+        if q0 is not None or fixed is not None or arm_angle is not None or options is not None:
+            from kinematica.robot.given import check_given  # degrees given for radians?
+
+            given = (q0, fixed, arm_angle)
+            if options is not None and hasattr(options, "q0"):
+                given = (options.q0, options.fixed, options.arm_angle)
+            check_given(self, *given)
         if (
             options is None
             and type(target) is np.ndarray
@@ -830,6 +837,10 @@ class Robot:
         """
         from kinematica.robot.self_motion import MAX_JUMP, self_motion
 
+        if values is not None:  # degrees given for radians? (as fk warns of q)
+            from kinematica.robot.given import check_joint_values
+
+            check_joint_values(self, parameter, values, "values")
         jump = MAX_JUMP if max_jump is None else max_jump
         return self_motion(
             self, target, parameter, samples=samples, values=values, max_jump=jump, method=method
