@@ -109,13 +109,12 @@ def test_seed_arm_arm_solutions_are_seed_002_formulas(seed_arm: km.Robot) -> Non
         assert np.allclose(ours, seed, atol=1e-8)
 
 
-@pytest.mark.parametrize("name", ["arm6-dh", "puma560"])
+@pytest.mark.parametrize("name", ["arm6-dh", "puma560", "stanford", "kr6"])
 def test_every_step_checks_by_forward_kinematics(name: str) -> None:
     robot = km.load(name)
     free = robot.with_limits([None] * 6)
-    rng = np.random.default_rng(7)
-    for _ in range(4):
-        T = free.fk(rng.uniform(-1.5, 1.5, 6))
+    for q in robot.random_q(4, seed=7):
+        T = free.fk(q)
         steps = robot.decouple(T)
         R06 = T[:3, :3] @ robot.tool[:3, :3].T
         assert np.allclose(steps.R06, R06, atol=1e-15)
@@ -128,11 +127,15 @@ def test_every_step_checks_by_forward_kinematics(name: str) -> None:
             assert np.allclose(a.R36, a.R03.T @ R06, atol=1e-14)
             for w in a.wrist:
                 full = free.fk(np.concatenate([a.q, w]), all_frames=True)
-                wrist_rotation = full[3, :3, :3].T @ full[6, :3, :3]
+                # frame 6 without the tool (the last frame of fk carries it)
+                wrist_rotation = full[3, :3, :3].T @ full[6, :3, :3] @ robot.tool[:3, :3].T
                 assert np.allclose(wrist_rotation, a.R36, atol=1e-10)  # the wrist makes R36
                 assert np.allclose(full[-1], T, atol=1e-10)
             total += len(a.wrist)
-        assert total == 8 == steps.solutions.shape[0]
+        # every solution of the whole arm, each under its own arm solution, once
+        assert total == steps.solutions.shape[0] == robot.ik(T, respect_limits=False).count
+        arms = np.array([a.q for a in steps.arms])
+        assert len({tuple(np.round(a, 6)) for a in arms}) == len(arms)
 
 
 def test_puma_recovers_the_readme_configuration() -> None:

@@ -193,6 +193,11 @@ def group_by_arm(
     return members, strays
 
 
+def _arm_label(branch: str) -> str:
+    """The arm's part of a whole-arm branch label (without the wrist's)."""
+    return ", ".join(p for p in branch.split(", ") if not p.startswith("wrist")) or branch
+
+
 def _wrist_label(branch: str) -> str:
     """The wrist's part of a whole-arm branch label."""
     parts = [p.strip() for p in branch.split(",")]
@@ -246,10 +251,21 @@ def decouple(robot: Robot, T: ArrayLike) -> Decoupling:
     branches = (*whole.branches, *whole.out_of_limits_branches)
     inside = np.arange(rows.shape[0]) < whole.solutions.shape[0]
     members, strays = group_by_arm(robot, arms, rows)
-    for i in strays:  # a whole solution no arm solution gave: its own arm step
-        arms.append(rows[i, _ARM])
-        arm_branches.append(", ".join(p for p in branches[i].split(", ") if "wrist" not in p))
-        members.append([i])
+    solved = len(arms)
+    for i in strays:  # a whole solution no arm solution gave (the arm's search found one)
+        near, _ = group_by_arm(robot, arms[solved:], rows[i : i + 1])
+        k = next((solved + j for j, m in enumerate(near) if m), None)
+        if k is None:  # its own arm step
+            arms.append(rows[i, _ARM])
+            arm_branches.append(_arm_label(branches[i]))
+            members.append([i])
+        else:  # beside a stray with the same q1..q3
+            members[k].append(i)
+    # the whole robot's names of the arm solutions, as robot.ik prints them
+    arm_branches = [
+        _arm_label(branches[m[0]]) if m else b
+        for b, m in zip(arm_branches, members, strict=True)
+    ]
     free = robot.with_limits([None] * _DOF)  # R03 of arm solutions beyond the limits, unwarned
     steps = []
     for qa, branch, idx in zip(arms, arm_branches, members, strict=True):
