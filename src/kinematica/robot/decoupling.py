@@ -263,8 +263,7 @@ def decouple(robot: Robot, T: ArrayLike) -> Decoupling:
             members[k].append(i)
     # the whole robot's names of the arm solutions, as robot.ik prints them
     arm_branches = [
-        _arm_label(branches[m[0]]) if m else b
-        for b, m in zip(arm_branches, members, strict=True)
+        _arm_label(branches[m[0]]) if m else b for b, m in zip(arm_branches, members, strict=True)
     ]
     free = robot.with_limits([None] * _DOF)  # R03 of arm solutions beyond the limits, unwarned
     steps = []
