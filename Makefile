@@ -15,10 +15,19 @@ CORE_FLAGS   := --config-settings=cmake.define.KM_WERROR=ON
 # files, 20-30 s of one core), most of which nothing here imports; the suite reads
 # its bytecode from .venv/pycache anyway (below), and any other process compiles a module
 # the first time it imports it.
+#
+# After `make demo` (kinematica installed and its core built from these very sources and
+# pyproject.toml), the test tools alone are added: installing the package again would
+# compile the whole core a second time (pip builds it in a new, isolated environment).
+TEST_EXTRA := import subprocess, sys, tomllib; \
+  extra = tomllib.load(open("pyproject.toml", "rb"))["project"]["optional-dependencies"]["test"]; \
+  subprocess.check_call([sys.executable, "-m", "pip", "install", "--quiet", "--no-compile", *extra])
 $(STAMP): pyproject.toml
 	test -d $(VENV) || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --no-compile --upgrade pip
-	$(BIN)/python -m pip install --quiet --no-compile $(CORE_FLAGS) -e '.[test]'
+	if [ -f $(DEMO_STAMP) ] && [ -z "$$(find pyproject.toml $(CORE_SOURCES) -newer $(DEMO_STAMP))" ]; \
+	then $(BIN)/python -c '$(TEST_EXTRA)'; \
+	else $(BIN)/python -m pip install --quiet --no-compile $(CORE_FLAGS) -e '.[test]'; fi
 	touch $(STAMP)
 
 # An edit of the core rebuilds it (incrementally, in build/) and reinstalls it; right

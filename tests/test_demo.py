@@ -74,3 +74,19 @@ def test_make_demo_on_a_fresh_clone_installs_kinematica_alone(tmp_path: Path) ->
     assert all("[" not in line for line in installs), installs  # no extra: no test tools
     assert any(line.rstrip().endswith("-e .") for line in installs), installs
     assert "examples/01_demo.py" in proc.stdout
+
+
+@pytest.mark.skipif(shutil.which("make") is None, reason="make is not installed")
+def test_make_test_after_the_demo_adds_the_test_tools_without_a_second_build(
+    tmp_path: Path,
+) -> None:
+    # the demo's venv (its stamp newer than every source): `make test` installs the test
+    # extra's requirements, read from pyproject.toml, and does not build kinematica again
+    venv = tmp_path / "venv"
+    venv.mkdir()
+    (venv / ".installed-core").touch()
+    proc = subprocess.run(["make", "-n", "test", f"VENV={venv}"], cwd=ROOT, capture_output=True,
+                          text=True, check=False, timeout=60)  # fmt: skip
+    assert proc.returncode == 0, proc.stderr
+    assert '["optional-dependencies"]["test"]' in proc.stdout
+    assert f"-newer {venv}/.installed-core" in proc.stdout
