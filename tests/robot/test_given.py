@@ -49,6 +49,8 @@ def test_fixed_and_self_motion_values_of_a_free_joint_in_degrees_warn(iiwa: km.R
     with pytest.warns(km.UnitWarning, match=r"values: joint 1 = 90 rad"):
         free.self_motion(T, "q1", values=[0.0, 90.0])
     _quiet(lambda: free.ik(T, fixed={0: 0.3}))
+    with pytest.warns(km.UnitWarning, match=r"values: the arm angle = 45 rad"):
+        iiwa.self_motion(iiwa.fk(Q_IIWA), "arm angle", values=[0.0, 45.0], samples=3)
 
 
 def test_free_joints_have_the_names_the_messages_use() -> None:

@@ -17,6 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinematica.errors import UnitWarning
+from kinematica.ik.arm_angle import ARM_ANGLE_NAMES
 from kinematica.io.plausible import PLAUSIBLE_ANGLE, check_angle
 
 if TYPE_CHECKING:
@@ -50,14 +51,19 @@ def check_joint_values(
     ``stacklevel``: as :func:`warnings.warn`'s, from this function (3: its caller's caller).
     """
     j = _joint(robot, key)
-    if j is None or robot.is_prismatic[j] or robot.has_limits[j]:
+    angle = isinstance(key, str) and key.strip().lower() in ARM_ANGLE_NAMES
+    if not angle and (j is None or robot.is_prismatic[j] or robot.has_limits[j]):
         return  # a joint's own limits judge its values (the solver says so)
-    a = np.asarray(values, dtype=float).ravel()
+    try:
+        a = np.asarray(values, dtype=float).ravel()
+    except (TypeError, ValueError):
+        return  # not numbers: the solver's own check says so
     with np.errstate(invalid="ignore"):
         beyond = a[np.isfinite(a) & (np.abs(a) > PLAUSIBLE_ANGLE)]
     if beyond.size:
         text = check_angle(float(beyond[0]))
-        warnings.warn(f"{name}: joint {j + 1} = {text}", UnitWarning, stacklevel=stacklevel)
+        what = "the arm angle" if angle else f"joint {j + 1}"
+        warnings.warn(f"{name}: {what} = {text}", UnitWarning, stacklevel=stacklevel)
 
 
 def check_given(
