@@ -17,7 +17,6 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinematica.errors import UnitWarning
-from kinematica.ik.arm_angle import ARM_ANGLE_NAMES
 from kinematica.io.plausible import PLAUSIBLE_ANGLE, check_angle
 
 if TYPE_CHECKING:
@@ -50,6 +49,8 @@ def check_joint_values(
 
     ``stacklevel``: as :func:`warnings.warn`'s, from this function (3: its caller's caller).
     """
+    from kinematica.ik.arm_angle import ARM_ANGLE_NAMES  # loaded by the solver anyway
+
     j = _joint(robot, key)
     angle = isinstance(key, str) and key.strip().lower() in ARM_ANGLE_NAMES
     if not angle and (j is None or robot.is_prismatic[j] or robot.has_limits[j]):

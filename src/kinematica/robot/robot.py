@@ -556,12 +556,12 @@ class Robot:
             (arrays with the targets' batch shape) for a batch. In a batch, a
             malformed target gets the status ``"invalid"``; the others are solved.
         """
-        if q0 is not None or fixed is not None or arm_angle is not None or options is not None:
+        given = (q0, fixed, arm_angle)
+        if options is not None and hasattr(options, "q0"):
+            given = (options.q0, options.fixed, options.arm_angle)
+        if given[0] is not None or given[1] is not None or given[2] is not None:
             from kinematica.robot.given import check_given  # degrees given for radians?
 
-            given = (q0, fixed, arm_angle)
-            if options is not None and hasattr(options, "q0"):
-                given = (options.q0, options.fixed, options.arm_angle)
             check_given(self, *given)
         if (
             options is None
