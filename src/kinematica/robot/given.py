@@ -63,7 +63,7 @@ def check_joint_values(
         beyond = a[np.isfinite(a) & (np.abs(a) > PLAUSIBLE_ANGLE)]
     if beyond.size:
         text = check_angle(float(beyond[0]))
-        what = "the arm angle" if angle else f"joint {j + 1}"
+        what = "the arm angle" if angle or j is None else f"joint {j + 1}"
         warnings.warn(f"{name}: {what} = {text}", UnitWarning, stacklevel=stacklevel)
 
 
