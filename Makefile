@@ -15,10 +15,19 @@ CORE_FLAGS   := --config-settings=cmake.define.KM_WERROR=ON
 # files, 20-30 s of one core), most of which nothing here imports; the suite reads
 # its bytecode from .venv/pycache anyway (below), and any other process compiles a module
 # the first time it imports it.
+#
+# After `make demo` (kinematica installed and its core built from these very sources and
+# pyproject.toml), the test tools alone are added: installing the package again would
+# compile the whole core a second time (pip builds it in a new, isolated environment).
+TEST_EXTRA := import subprocess, sys, tomllib; \
+  extra = tomllib.load(open("pyproject.toml", "rb"))["project"]["optional-dependencies"]["test"]; \
+  subprocess.check_call([sys.executable, "-m", "pip", "install", "--quiet", "--no-compile", *extra])
 $(STAMP): pyproject.toml
 	test -d $(VENV) || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --no-compile --upgrade pip
-	$(BIN)/python -m pip install --quiet --no-compile $(CORE_FLAGS) -e '.[test]'
+	if [ -f $(DEMO_STAMP) ] && [ -z "$$(find pyproject.toml $(CORE_SOURCES) -newer $(DEMO_STAMP))" ]; \
+	then $(BIN)/python -c '$(TEST_EXTRA)'; \
+	else $(BIN)/python -m pip install --quiet --no-compile $(CORE_FLAGS) -e '.[test]'; fi
 	touch $(STAMP)
 
 # An edit of the core rebuilds it (incrementally, in build/) and reinstalls it; right
@@ -28,7 +37,18 @@ $(CORE_STAMP): $(STAMP) $(CORE_SOURCES)
 	else $(BIN)/python -m pip install --quiet --no-deps $(CORE_FLAGS) -e .; fi
 	touch $(CORE_STAMP)
 
-demo: $(CORE_STAMP)
+# The demo needs numpy and the compiled core, nothing more: on a fresh clone it installs
+# kinematica alone (no extra), in the same venv that `make test` later completes with the
+# test tools. A venv the tests have set up is used as it is.
+DEMO_STAMP := $(VENV)/.installed-core
+$(DEMO_STAMP): pyproject.toml $(CORE_SOURCES)
+	test -d $(VENV) || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --no-compile $(CORE_FLAGS) -e .
+	touch $(DEMO_STAMP)
+
+demo:
+	@if [ -f $(STAMP) ]; then $(MAKE) --no-print-directory $(CORE_STAMP); \
+	else $(MAKE) --no-print-directory $(DEMO_STAMP); fi
 	$(BIN)/python examples/01_demo.py
 
 lint: $(CORE_STAMP)

@@ -59,7 +59,7 @@ def main() -> None:
     # works (the shoulder singularity). kinematica says so and names the free joint.
     T_sing = robot.fk(np.radians([30.0, 20.0, -40.0, 10.0, 60.0, -20.0]))
     res = robot.ik(T_sing)
-    print(f"status: {res.status}; free joints: {[f'q{i + 1}' for i in res.free_joints]}")
+    print(f"status: {res.status}; free joints: {list(res.free_names)}")
     print(f"{res.message}")
 
     section("5. An honest answer when there is none")

@@ -13,7 +13,7 @@ import numpy as np
 import kinematica as km
 
 
-def show(title: str, robot: km.Robot, res: km.IKResult) -> None:
+def show(title: str, robot: km.Robot, res: km.ik.IKResult) -> None:
     print(f"\n{title}: {res.status} ({res.method}) - {res.message}")
     for q, branch in zip(res.solutions, res.branches, strict=True):
         cells = "  ".join(f"{v:9.4f}" for v in q)
@@ -47,10 +47,7 @@ def main() -> None:
     print(f"\nPUMA 560, 2 m away: {puma.ik(far).message}")
     wrist_aligned = puma.fk([0.4, -0.3, 0.3, 1.0, 0.0, -0.5])
     res = puma.ik(wrist_aligned)
-    print(
-        f"PUMA 560, wrist aligned: {res.status}, free joints "
-        f"{[f'q{i + 1}' for i in res.free_joints]}"
-    )
+    print(f"PUMA 560, wrist aligned: {res.status}, free joints {list(res.free_names)}")
 
     # A redundant arm: numeric, within its limits, exact to 1e-10.
     panda = km.load("panda")

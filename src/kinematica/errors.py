@@ -122,6 +122,48 @@ class KinematicaWarning(UserWarning):
     """
 
 
+class LimitWarning(KinematicaWarning):
+    """A joint value beyond the joint's own limits, with its parts for other units.
+
+    The message speaks the library's units (rad, m); :meth:`in_units` says the same
+    in a caller's (the command line's degrees, a robot file's millimetres).
+
+    Attributes:
+        name: The argument (``"q"``, ``"q0"``).
+        joint: The joint's 0-based index.
+        value: Its value (rad or m).
+        limits: ``(lower, upper)`` (rad or m).
+        prismatic: Whether the joint is prismatic (a length).
+        where: Which row of a batch (``" in row (3,)"``), or ``""``.
+        more: How many configurations are beyond their limits, or ``""``.
+    """
+
+    def __init__(
+        self,
+        *,
+        name: str,
+        joint: int,
+        value: float,
+        limits: tuple[float, float],
+        prismatic: bool,
+        where: str = "",
+        more: str = "",
+    ) -> None:
+        self.name, self.joint, self.value, self.limits = name, joint, value, limits
+        self.prismatic, self.where, self.more = prismatic, where, more
+        super().__init__(self.in_units())
+
+    def in_units(self, per_rad: float = 1.0, angle: str = "rad", per_m: float = 1.0,
+                 length: str = "m") -> str:  # fmt: skip
+        """The message with angles times ``per_rad`` in ``angle``, lengths times ``per_m``."""
+        scale, unit = (per_m, length) if self.prismatic else (per_rad, angle)
+        lo, hi = (v * scale for v in self.limits)
+        return (
+            f"{self.name}: joint {self.joint + 1} = {self.value * scale:.6g} {unit}{self.where} "
+            f"is outside its limits [{lo:.6g}, {hi:.6g}] {unit}{self.more}"
+        )
+
+
 class UnitWarning(KinematicaWarning):
     """A number valid as such but implausible in its unit, most likely a unit slip.
 

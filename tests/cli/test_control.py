@@ -72,3 +72,14 @@ def test_control_twist_and_bad_input(capsys: pytest.CaptureFixture[str]) -> None
     assert code == 2 and "--q0" in err
     code, _, err = run(capsys, "control", "puma560", "--q0", *Q0, "--pose", *POSE, "--dt", "0")
     assert code == 2 and "dt must be a positive number" in err
+
+
+def test_no_false_limit_alarm_and_limits_in_degrees(capsys: pytest.CaptureFixture[str]) -> None:
+    # Issue 35, item 6: the step that stops at a limit warned it was past it, in radians
+    argv = ["control", "puma560", "--q0", "0", "0", "0", "0", "0", "0"]
+    _, _, err = run(capsys, *argv, "--pose", "5", "0", "0", "0", "0", "0", "--steps", "50")
+    assert "outside its limits" not in err
+    _, _, err = run(capsys, "fk", "puma560", "--q", "0", "0", "100", "0", "0", "0")
+    assert "joint 3 = 100 deg is outside its limits [-225, 45] deg" in err
+    _, _, err = run(capsys, "fk", "puma560", "--q", "0", "0", "1", "0", "0", "0", "--rad")
+    assert "joint 3 = 1 rad is outside its limits [-3.92699, 0.785398] rad" in err

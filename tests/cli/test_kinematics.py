@@ -406,3 +406,11 @@ def test_show_names_the_ik_solver_of_poses(tmp_path, robot: str, line: str) -> N
     else:
         assert solver["reason"] in line
         assert any(f"no closed form applies: {solver['reason']};" in n for n in res.notes)
+
+
+def test_a_note_the_headline_says_is_said_once(capsys: pytest.CaptureFixture[str]) -> None:
+    # Issue 35, item 6: the example-robot-data UR5 said "may not give all" twice per IK
+    urdf = str(DATA / "urdf" / "ur5_robot.urdf")
+    code, out, err = run(capsys, "ik", urdf, "--pose", "0.4", "0.1", "0.3", "0", "90", "0")
+    assert code == 0
+    assert (out + err).count("may not give all") == 1

@@ -240,3 +240,17 @@ def test_the_cli_reports_the_three_events(tmp_path):
     assert proc.returncode == 0, proc.stderr
     kinds = [e["kind"] for e in json.loads(proc.stdout)["events"]]
     assert kinds == ["near_singularity", "speed_jump", "end_branch"]
+
+
+def test_workspace_refusal_names_the_joint_and_file_needing_limits(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    # Issue 35, item 8: the refusal gave Python advice (robot.with_limits) to a CLI user
+    path = tmp_path / "rp.yaml"
+    path.write_text(
+        "name: rp arm\nconvention: standard\nunits: {angle: deg, length: m}\njoints:\n"
+        "  - {theta: q1, d: 0.3, a: 0, alpha: 90}\n  - {theta: 0, d: q2, a: 0, alpha: 0}\n"
+    )
+    code, _, err = run(capsys, "workspace", str(path))
+    assert code == 2
+    assert f"add `limits: [lower, upper]` to joint 2 (q2) of {path}" in err

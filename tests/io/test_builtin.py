@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 from support import DATA
 
+import kinematica as km
 from kinematica.errors import UnknownRobotError
 from kinematica.io import RobotSpec, builtin_names, builtin_path, read_builtin
 
@@ -39,8 +40,9 @@ EXPECTED = {
     "scara",
     "stanford",
     "ur5",
+    "ur10",
 }
-INDUSTRIAL = {"iiwa14", "irb120", "kr6", "panda", "puma560", "scara", "stanford", "ur5"}
+INDUSTRIAL = {"iiwa14", "irb120", "kr6", "panda", "puma560", "scara", "stanford", "ur5", "ur10"}
 
 
 # --- a tiny forward kinematics, for these tests only ---------------------------
@@ -356,3 +358,21 @@ def test_irb120_and_kr6_limits_are_the_datasheet_values() -> None:
     for name, limits in (("irb120", irb), ("kr6", kr6), ("iiwa14", iiwa)):
         got = [j.qlim for j in read_builtin(name).joints]
         assert got == [(lo * deg, hi * deg) for lo, hi in limits], name
+
+
+def test_ur10_is_example_robot_data_s_ur10_flange() -> None:
+    # Issue 35, item 9: km.load("ur10") suggested "irb120". The built-in is UR's published
+    # table; example-robot-data 6.0.0's URDF (tests/data/urdf, PROVENANCE.md) is the
+    # independent reference: its base_link is the DH base turned by 180° about z, its tool0
+    # a fixed frame on DH frame 6. Its rpy are printed to 10 digits (1.570796325): 1e-10.
+    import warnings
+
+    dh = km.load("ur10")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", km.KinematicaWarning)  # the tool0 choice, said
+        urdf = km.load(DATA / "urdf" / "ur10_robot.urdf", tip="tool0")
+    B = np.diag([-1.0, -1.0, 1.0, 1.0])  # Rz(180°)
+    E = np.linalg.inv(B @ dh.fk(np.zeros(6))) @ urdf.fk(np.zeros(6))
+    q = np.random.default_rng(RNG_SEED).uniform(-3, 3, (50, 6))
+    assert np.abs(B @ dh.fk(q) @ E - urdf.fk(q)).max() < 1e-10
+    assert km.classify(dh).kind == km.classify(urdf).kind

@@ -36,7 +36,7 @@ DEG = math.pi / 180
 
 
 def _seed_arm() -> dict[str, Any]:
-    """The DESIGN.md arm as loaded data; each test mutates its own copy."""
+    """The seed arm (tests/data/robots/seed_arm.yaml) as data; each test mutates its copy."""
     return {
         "name": "Seed 6-DOF arm",
         "convention": "standard",
@@ -422,7 +422,7 @@ BAD_CASES: list[tuple[str, Any, str | None, int | None, str | None]] = [
     (
         "limits reversed",
         _set((J, 0, "limits"), [160, -160]),
-        r"lower < upper, found a list of 2",
+        r"lower < upper, found \[160, -160\] \(lower > upper",
         1,
         "limits",
     ),

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import time
+import warnings
 
 import numpy as np
 import pytest
@@ -222,3 +223,24 @@ def test_a_declared_xacro_namespace_alone_is_plain_urdf(tmp_path):
         '<robot name="arm">', '<robot name="arm" xmlns:xacro="http://ros.org/wiki/xacro">'
     )
     assert km.load(write(tmp_path, text)).dof == 2
+
+
+_NO_LIMIT = """<robot name="r">
+  <link name="a"/><link name="b"/><link name="c"/>
+  <joint name="shoulder" type="revolute"><parent link="a"/><child link="b"/>
+    <axis xyz="0 0 1"/></joint>
+  <joint name="elbow" type="revolute"><parent link="b"/><child link="c"/>
+    <axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>"""
+
+
+def test_a_moving_joint_without_limit_is_read_free_with_a_warning_naming_it() -> None:
+    # Issue 35, item 8: the URDF spec requires <limit> of revolute and prismatic joints
+    with pytest.warns(km.KinematicaWarning, match=r"arm.urdf: joint 'shoulder' has no <limit>"):
+        model = parse_urdf(_NO_LIMIT, source="arm.urdf")
+    by_name = {j.name: j for j in model.joints}
+    assert by_name["shoulder"].limits is None and by_name["elbow"].limits == (-1.0, 1.0)
+    with warnings.catch_warnings():  # every joint with its <limit>: nothing to say
+        warnings.simplefilter("error")
+        limit = '<limit effort="1" velocity="1" lower="-2" upper="2"/>'
+        parse_urdf(_NO_LIMIT.replace('<axis xyz="0 0 1"/>', f'<axis xyz="0 0 1"/>{limit}'))

@@ -255,3 +255,17 @@ def test_a_run_longer_than_max_steps_is_refused_before_it_starts() -> None:
         km.resolved_rate(puma, q0, target=T, dt=0.01, duration=1e308)
     run = km.resolved_rate(puma, q0, target=T, dt=0.01, duration=0.01 * (MAX_STEPS - 0.5))
     assert run.reached  # stops when reached: the bound is on what may be asked
+
+
+def test_a_step_clipped_at_a_limit_lands_on_it_exactly() -> None:
+    # Issue 35, item 6: q + ((hi - q) / dt) * dt rounded 1-2 ulp past the PUMA's joint 3
+    # limit (45°) and warned that 0.785398 rad was outside [.., 0.785398].
+    import warnings
+
+    puma = km.load("puma560")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", km.KinematicaWarning)
+        run = resolved_rate(puma, np.zeros(6), target=km.from_pose([5, 0, 0, 0, 0, 0]), steps=50)
+    lo, hi = puma.qlim[:, 0], puma.qlim[:, 1]
+    assert np.all(run.q >= lo) and np.all(run.q <= hi)
+    assert np.any(run.q == hi) or np.any(run.q == lo)  # it did reach a limit, exactly

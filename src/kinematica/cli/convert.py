@@ -40,9 +40,11 @@ def _extract(args: argparse.Namespace, convention: str) -> tuple[Robot, tuple[Fr
 def _robot_file(robot: Robot, suffix: str, rad: bool, rules: tuple[FrameRule, ...]) -> str:
     units = {"angle": "rad" if rad else "deg", "length": "m"}
     from kinematica.io.robotfile import dumps_robot_file
+    from kinematica.robot.rounding import rounded_spec
     from kinematica.robot.save import spec_from_robot
 
-    spec = dataclasses.replace(spec_from_robot(robot), units=units)
+    # an extracted table is written as a user reads it: its round-off within the line tolerances
+    spec = rounded_spec(dataclasses.replace(spec_from_robot(robot), units=units))
     text = dumps_robot_file(spec, suffix)
     if rules and suffix.lower() in (".yaml", ".yml", ".toml"):
         head = [f"# {robot.convention} DH frames placed by the Denavit-Hartenberg rules:"]

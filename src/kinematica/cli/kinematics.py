@@ -307,6 +307,10 @@ def ik(args: argparse.Namespace) -> int:
 
     robot = robot_from_args(args)
     target = target_in(robot, args)
+    if args.steps:
+        from kinematica.cli.steps import print_steps
+
+        return print_steps(robot, target, args)
     q0 = None if args.q0 is None else q_in(robot, args.q0, args, "q0")
     tol = _tolerance(robot, args)
     arm_angle = args.arm_angle
@@ -325,8 +329,9 @@ def ik(args: argparse.Namespace) -> int:
     res = robot.ik(target, options=options)
     assert isinstance(res, IKResult)
     solved = res.success
-    for note in res.notes:  # e.g. a rotation projected onto SO(3): said on stderr too
-        print(f"kinematica: note: {plain(note)}", file=sys.stderr)
+    for note in res.notes:  # e.g. a rotation projected onto SO(3): said on stderr too,
+        if args.json or note not in res.message:  # unless the headline below says it
+            print(f"kinematica: note: {plain(note)}", file=sys.stderr)
     if args.json:
         dump(
             {
@@ -344,7 +349,7 @@ def ik(args: argparse.Namespace) -> int:
                 },
                 "out_of_limits": clean(q_out(robot, res.out_of_limits, args)),
                 "out_of_limits_branches": list(res.out_of_limits_branches),
-                "free_joints": [f"q{i + 1}" for i in res.free_joints],
+                "free_joints": list(res.free_names),
                 "gap_m": res.gap,
                 "notes": list(res.notes),
                 "parameter": _parameter(robot, res, args),
@@ -428,7 +433,7 @@ def _seed(text: str) -> int:
 def register(sub: Any) -> None:
     """Add ``robots``, ``show``, ``fk`` and ``ik`` to the subparsers ``sub``."""
     p = sub.add_parser("robots", help="list the built-in robot models")
-    add_common(p)  # --euler/--rad accepted on every command; this one prints no angles
+    add_common(p, numbers=False)  # --euler/--rad/--units accepted, not offered: no numbers here
     p.set_defaults(run=robots)
 
     p = sub.add_parser(
@@ -502,6 +507,13 @@ def register(sub: Any) -> None:
         help="acceptance tolerance: position in the length unit, then rotation in the angle "
         "unit; one number: the position, and its value in metres as radians for the "
         "rotation; default 1e-10 m and 1e-10 rad",
+    )
+    p.add_argument(
+        "--steps",
+        action="store_true",
+        help="a 6-joint arm with a spherical wrist: print the decoupling step by step (the "
+        "wrist centre p_m, the arm solutions q1-q3, R03, R36 = R03^T R06, the wrist "
+        "solutions q4-q6), every solution, also outside the limits",
     )
     add_precision(p)
     add_common(p)

@@ -13,6 +13,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import importlib
+import math
 import os
 import re
 import sys
@@ -25,7 +26,7 @@ import numpy as np
 
 from kinematica import __version__
 from kinematica.cli.format import plain
-from kinematica.errors import KinematicaError
+from kinematica.errors import KinematicaError, LimitWarning
 
 __all__ = ["main"]
 
@@ -196,6 +197,12 @@ def _warnings_as_lines(stream: TextIO, args: argparse.Namespace) -> Iterator[Non
     def show(message: Warning | str, category: type[Warning], *_: Any, **__: Any) -> None:
         if not issubclass(category, UserWarning):  # RuntimeWarning, DeprecationWarning...
             return
+        if isinstance(message, LimitWarning):  # in the command line's units, not rad and m
+            from kinematica.cli.options import PER_METRE
+
+            length = getattr(args, "length_shown", None) or getattr(args, "units", None) or "m"
+            per_rad, angle = (1.0, "rad") if getattr(args, "rad", False) else (180 / math.pi, "deg")
+            message = message.in_units(per_rad, angle, PER_METRE.get(length, 1.0), length)
         line = f"kinematica: warning: {cli_words(str(message), _aliases(args))}"
         if line not in shown:
             shown.add(line)

@@ -439,7 +439,15 @@ def register(sub: Any) -> None:
         "trajectory", help="joint or Cartesian trajectory between two q, or through --via points"
     )
     add_robot(p)
-    p.add_argument("--from", dest="q_from", nargs="+", type=float, metavar="Q")
+    p.add_argument(
+        "--from",
+        dest="q_from",
+        nargs="+",
+        type=float,
+        metavar="Q",
+        help="the first configuration: degrees for revolute joints (radians with --rad), "
+        "the length unit for prismatic joints",
+    )
     p.add_argument(
         "--via",
         nargs="+",
@@ -448,7 +456,14 @@ def register(sub: Any) -> None:
         metavar="Q",
         help="a configuration to pass through (repeat for several, in order)",
     )
-    p.add_argument("--to", dest="q_to", nargs="+", type=float, metavar="Q")
+    p.add_argument(
+        "--to",
+        dest="q_to",
+        nargs="+",
+        type=float,
+        metavar="Q",
+        help="the last configuration, in the units of --from",
+    )
     p.add_argument(
         "--waypoints",
         metavar="FILE.csv",

@@ -53,23 +53,32 @@ FloatArray = NDArray[np.float64]
 PER_METRE: Final = {"m": 1.0, "mm": 1000.0}
 
 
-def add_common(p: argparse.ArgumentParser) -> None:
-    """The options every command takes: ``--json``, ``--euler``, ``--rad``, ``--units``."""
+def add_common(p: argparse.ArgumentParser, numbers: bool = True) -> None:
+    """The options every command takes: ``--json``, ``--euler``, ``--rad``, ``--units``.
+
+    ``numbers=False``: a command that prints no angle or length accepts ``--euler``,
+    ``--rad`` and ``--units`` (every command does) but its help does not offer them.
+    """
+    shown = (lambda text: text) if numbers else (lambda text: argparse.SUPPRESS)
     p.add_argument("--json", action="store_true", help="machine-readable output (stable keys)")
     p.add_argument(
         "--euler",
         default="ZYZ",
         metavar="SEQ",
-        help="Euler sequence, scipy naming: upper case intrinsic (ZYZ, XYZ...), "
-        "lower case extrinsic (zyz, xyz...); default ZYZ",
+        help=shown(
+            "Euler sequence, scipy naming: upper case intrinsic (ZYZ, XYZ...), "
+            "lower case extrinsic (zyz, xyz...); default ZYZ"
+        ),
     )
-    p.add_argument("--rad", action="store_true", help="angles in radians (default degrees)")
+    p.add_argument("--rad", action="store_true", help=shown("angles in radians (default degrees)"))
     p.add_argument(
         "--units",
         choices=tuple(PER_METRE),
         default=None,
-        help="unit of lengths in and out (default: the robot file's, metres for most "
-        "built-in robots)",
+        help=shown(
+            "unit of lengths in and out (default: the robot file's, metres for most "
+            "built-in robots)"
+        ),
     )
 
 
@@ -182,8 +191,13 @@ def urdf_options(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def robot_from_args(args: argparse.Namespace) -> Robot:
-    """The robot named by ``ROBOT`` (and, for a URDF, ``--base``/``--tip``/``--xacro``...)."""
-    return load(args.robot, **urdf_options(args))
+    """The robot named by ``ROBOT`` (and, for a URDF, ``--base``/``--tip``/``--xacro``...).
+
+    Sets ``args.length_shown``, the length unit its warnings speak (:func:`length_unit`).
+    """
+    robot = load(args.robot, **urdf_options(args))
+    args.length_shown = length_unit(robot, args)
+    return robot
 
 
 def angle_unit(args: argparse.Namespace) -> str:

@@ -44,7 +44,8 @@ class IKResult:
         branches: ``(k,)`` branch label of each solution (e.g. ``"elbow up"``).
         out_of_limits: ``(j, n)`` solutions that reach the target but violate limits.
         out_of_limits_branches: ``(j,)`` their branch labels.
-        free_joints: 0-based indices of the joints left free in a singular case.
+        free_joints: 0-based indices of the joints left free in a singular case
+            (:attr:`free_names` names them as the messages do: ``("q4", "q6")``).
         gap: For ``"unreachable"``, a lower bound of the distance between the
             target and the reachable set (m), when one is known; else None.
         nearest_error: Position (m) and rotation (rad) error of the closest
@@ -108,6 +109,14 @@ class IKResult:
         from kinematica.ik.letters import toolbox_letters  # asked for by some only
 
         return tuple(toolbox_letters(b) for b in self.branches)
+
+    @property
+    def free_names(self) -> tuple[str, ...]:
+        """The free joints as the messages and tables name them, 1-based: ``("q4", "q6")``.
+
+        Each is accepted where a joint is asked for (``fixed={"q4": ...}``).
+        """
+        return tuple(f"q{i + 1}" for i in self.free_joints)
 
     @property
     def count(self) -> int:

@@ -445,8 +445,10 @@ class _Reader:
             qty: Quantity = "angle" if kind == "R" else "length"
             lo, hi = self.numbers(data["limits"], (qty, qty), "limits", **where)
             if not lo < hi:
+                shown = ", ".join(str(v) for v in data["limits"])
                 raise self.error(
-                    f"expected [lower, upper] with lower < upper, found {describe(data['limits'])}",
+                    f"expected [lower, upper] with lower < upper, found [{shown}] "
+                    f"(lower {'=' if lo == hi else '>'} upper; swap them?)",
                     key="limits",
                     **where,
                 )

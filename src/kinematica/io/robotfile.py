@@ -146,6 +146,16 @@ def _load_yaml(text: str) -> object:
         mark = getattr(exc, "problem_mark", None)
         problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
         where = f" (line {mark.line + 1}, column {mark.column + 1})" if mark is not None else ""
+        lines = text.splitlines()
+        if (
+            mark is not None
+            and mark.line < len(lines)
+            and "\t" in lines[mark.line][: mark.column + 1]
+        ):
+            raise ValueError(
+                f"not valid YAML: line {mark.line + 1} is indented with a tab; YAML indents "
+                "with spaces only (replace the tab by spaces)"
+            ) from exc
         raise ValueError(f"not valid YAML: {problem}{where}") from exc
 
 

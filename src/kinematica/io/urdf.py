@@ -160,6 +160,21 @@ def _zero_limits_warning(elem: Any, source: str | None) -> None:
         )
 
 
+def _missing_limits_warning(names: list[str], source: str | None) -> None:
+    """Warn of revolute and prismatic joints without ``<limit>`` (read as free), by name."""
+    if not names:
+        return
+    where = f"{source}: " if source else ""
+    listed = ", ".join(repr(n) for n in names)
+    warnings.warn(
+        f"{where}joint{'s' if len(names) > 1 else ''} {listed} "
+        f"{'have' if len(names) > 1 else 'has'} no <limit>, which the URDF specification "
+        "requires of revolute and prismatic joints: read as free (no joint limits)",
+        KinematicaWarning,
+        stacklevel=4,
+    )
+
+
 def _joint(elem: Any) -> UrdfJoint:
     """One ``<joint>`` element; raises ValueError with the problem (no joint name)."""
     jtype = elem.get("type")
@@ -258,6 +273,7 @@ def _model(root: Any, source: str | None, dh_frames: str | None = None) -> UrdfM
             raise RobotFileError(f"two links are named {name!r}", path=source)
         links[name] = None
     joints: dict[str, UrdfJoint] = {}
+    unlimited: list[str] = []
     for elem in root:
         if _local(elem.tag) != "joint":
             continue
@@ -271,6 +287,11 @@ def _model(root: Any, source: str | None, dh_frames: str | None = None) -> UrdfM
         except ValueError as exc:
             raise RobotFileError(f"joint {name!r} {exc}", path=source) from exc
         _zero_limits_warning(elem, source)
+        if elem.get("type") in ("revolute", "prismatic") and not any(
+            _local(e.tag) == "limit" for e in elem
+        ):
+            unlimited.append(name)
+    _missing_limits_warning(unlimited, source)
     if not links:
         raise RobotFileError("the URDF has no <link>", path=source)
     return UrdfModel(

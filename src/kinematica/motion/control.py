@@ -389,6 +389,8 @@ def resolved_rate(
             break
         if k < count:
             q = q + qd * dt
+            if respect_limits:  # q + ((hi - q) / dt) * dt may round an ulp past hi: land on it
+                q = np.clip(q, lo, hi)
     if goal is not None and not stop:  # tracking: on target at the end?
         reached = errs[-1][0] <= tol and errs[-1][1] <= tol
     elif goal is not None and reached is None:

@@ -28,7 +28,13 @@ from kinematica.dh import (
     convert_table,
     link_matrix,
 )
-from kinematica.errors import DimensionError, KinematicaError, KinematicaWarning, UnitWarning
+from kinematica.errors import (
+    DimensionError,
+    KinematicaError,
+    KinematicaWarning,
+    LimitWarning,
+    UnitWarning,
+)
 from kinematica.io.plausible import PLAUSIBLE_ANGLE, check_angle
 from kinematica.robot.frames import rigid_frame, short
 from kinematica.robot.save import write_robot_file
@@ -45,6 +51,7 @@ if TYPE_CHECKING:
     from kinematica.ik.registry import TargetKind
     from kinematica.ik.solvers import PoseSolver
     from kinematica.io import RobotSpec
+    from kinematica.robot.decoupling import Decoupling
     from kinematica.robot.dh_rules import DHExtraction
     from kinematica.robot.self_motion import SelfMotion
 
@@ -300,7 +307,7 @@ class Robot:
                 stacklevel=3,
             )
         if outside:
-            warnings.warn(self._limits_message(qa, name, outside), KinematicaWarning, stacklevel=3)
+            warnings.warn(self._limits_message(qa, name, outside), stacklevel=3)
 
     def _check_turns(self, qa: FloatArray, name: str = "q") -> None:
         """Warn (:class:`UnitWarning`) of a free revolute joint beyond a full turn."""
@@ -318,7 +325,7 @@ class Robot:
             stacklevel=3,
         )
 
-    def _limits_message(self, qa: FloatArray, name: str, count: int) -> str:
+    def _limits_message(self, qa: FloatArray, name: str, count: int) -> KinematicaWarning:
         """Which joint of which configuration lies beyond its own limits, and how many do.
 
         ``count``: the configurations beyond their limits, as the core counted them.
@@ -337,14 +344,13 @@ class Robot:
                 row, j = start + int(hit[0]), int(np.flatnonzero(beyond[hit[0]])[0])
                 break
         else:  # not expected: the core and this test read the same limits
-            return f"{name}: outside the joint limits{more}"
+            return KinematicaWarning(f"{name}: outside the joint limits{more}")
         index = tuple(int(i) for i in np.unravel_index(row, qa.shape[:-1])) if qa.ndim > 1 else ()
         where = f" in row {index}" if qa.ndim > 1 else ""
-        unit = "m" if self.links[j].type == "P" else "rad"
-        return (
-            f"{name}: joint {j + 1} = {qa[(*index, j)]:.6g} {unit}{where} is outside its limits "
-            f"[{lo[j]:.6g}, {hi[j]:.6g}] {unit}{more}"
-        )
+        return LimitWarning(
+            name=name, joint=j, value=float(qa[(*index, j)]), limits=(float(lo[j]), float(hi[j])),
+            prismatic=self.links[j].type == "P", where=where, more=more,
+        )  # fmt: skip
 
     def fk(
         self, q: ArrayLike, all_frames: bool = False, *, workers: int | None = None
@@ -566,6 +572,13 @@ class Robot:
             (arrays with the targets' batch shape) for a batch. In a batch, a
             malformed target gets the status ``"invalid"``; the others are solved.
         """
+        given = (q0, fixed, arm_angle)
+        if options is not None and hasattr(options, "q0"):
+            given = (options.q0, options.fixed, options.arm_angle)
+        if given[0] is not None or given[1] is not None or given[2] is not None:
+            from kinematica.robot.given import check_given  # degrees given for radians?
+
+            check_given(self, *given)
         if (
             options is None
             and type(target) is np.ndarray
@@ -651,6 +664,41 @@ class Robot:
         from kinematica.ik.analytic.srs import arm_angle
 
         return arm_angle(self.chain, self.check_q(q))
+
+    def wrist_center(self, T: ArrayLike) -> FloatArray:
+        """The wrist centre p_m of tool poses (seed 002's ``p - d6·R·z``).
+
+        Args:
+            T: ``(..., 4, 4)`` tool poses in the base (world) frame.
+
+        Returns:
+            ``(..., 3)`` the point where axes 4-6 meet, world frame (m).
+
+        Raises:
+            KinematicaError: The last three axes do not meet in one point.
+        """
+        from kinematica.robot.decoupling import wrist_center
+
+        return wrist_center(self, T)
+
+    def decouple(self, T: ArrayLike) -> Decoupling:
+        """Seed 002's kinematic decoupling of a pose, step by step.
+
+        p_m, the arm solutions of joints 1-3 for it, R03 and R36 = R03ᵀ·R06 of each,
+        and the wrist solutions q4-q6 of each (see :mod:`kinematica.robot.decoupling`).
+
+        Args:
+            T: ``(4, 4)`` tool pose in the base (world) frame.
+
+        Returns:
+            A :class:`~kinematica.robot.decoupling.Decoupling`.
+
+        Raises:
+            KinematicaError: Not a 6-joint DH arm with a spherical wrist.
+        """
+        from kinematica.robot.decoupling import decouple
+
+        return decouple(self, T)
 
     @cached_property
     def _direct(self) -> DirectParameter:
@@ -805,6 +853,10 @@ class Robot:
         """
         from kinematica.robot.self_motion import MAX_JUMP, self_motion
 
+        if values is not None:  # degrees given for radians? (as fk warns of q)
+            from kinematica.robot.given import check_joint_values
+
+            check_joint_values(self, parameter, values, "values")
         jump = MAX_JUMP if max_jump is None else max_jump
         return self_motion(
             self, target, parameter, samples=samples, values=values, max_jump=jump, method=method

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -24,6 +25,25 @@ Seed = int | np.random.Generator | None
 MAX_CONFIGURATIONS = 10_000_000
 
 
+def _no_range(robot: Robot, i: int) -> str:
+    """Which joint of which robot (and file) needs limits, and how to give them."""
+    spec = robot.source_spec
+    source = None if spec is None else spec.source
+    if source is not None and not source.startswith("builtin:"):
+        suffix = Path(source).suffix.lower()
+        how = (
+            f"add <limit lower=... upper=.../> to its joint in {source}"
+            if suffix in (".urdf", ".xacro")
+            else f"add `limits: [lower, upper]` to joint {i + 1} (q{i + 1}) of {source}"
+        )
+    else:
+        how = "give it limits, e.g. robot.with_limits(...)"
+    return (
+        f"joint {i + 1} (q{i + 1}) of {robot.name} is prismatic without limits: sampling "
+        f"needs a finite range; {how}"
+    )
+
+
 def sampling_box(robot: Robot, prismatic_range: float | None = None) -> FloatArray:
     """``(n, 2)`` the box joint values are drawn from: the joint limits.
 
@@ -37,10 +57,7 @@ def sampling_box(robot: Robot, prismatic_range: float | None = None) -> FloatArr
     box = robot.qlim.copy()
     for i in np.flatnonzero(~np.all(np.isfinite(box), axis=1)):
         if prismatic_range is None:
-            raise KinematicaError(
-                f"joint {i + 1} of {robot.name} is prismatic without limits: sampling "
-                "needs a finite range (give the joint limits, e.g. robot.with_limits(...))"
-            )
+            raise KinematicaError(_no_range(robot, int(i)))
         box[i] = (-prismatic_range, prismatic_range)
     return box
 

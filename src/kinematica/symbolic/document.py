@@ -10,8 +10,10 @@ import string
 from dataclasses import dataclass
 from typing import Any
 
+import numpy as np
 import sympy as sp
 
+from kinematica.ik.structure import features
 from kinematica.robot import classify
 from kinematica.symbolic.geometric import GeometricDerivation, derive_geometric
 from kinematica.symbolic.inverse import InverseDerivation, derive_inverse, target_symbols
@@ -407,6 +409,50 @@ def _inverse(w: _Writer, d: InverseDerivation | None, model: SymbolicRobot, meth
     w.para("ik.count", n=sp.Integer(d.solutions))
 
 
+#: The configuration (degrees) of the report's numeric decoupling: the demo's and the
+#: README's picture's, within the limits of the built-in 6R arms.
+EXAMPLE_Q_DEG = (30.0, 40.0, -30.0, 10.0, 60.0, -20.0)
+
+
+def _number(v: float) -> sp.Float:
+    """A value as the example prints it: 4 decimals."""
+    return sp.Float(f"{float(v) + 0.0:.4f}")
+
+
+def _numbers(M: Any) -> sp.Matrix:
+    return sp.Matrix(np.vectorize(_number, otypes=[object])(np.atleast_1d(M)))
+
+
+def _decoupling_example(w: _Writer, model: SymbolicRobot) -> None:
+    """Seed 002's decoupling with numbers, step by step, for a 6R arm with a spherical wrist."""
+    robot = model.robot
+    if robot.dof != 6 or robot.joint_types != "RRRRRR" or robot.transforms is not None:
+        return
+    if features(robot.chain).wrist_center is None:
+        return
+    q = np.radians(EXAMPLE_Q_DEG)
+    T = robot.with_limits([None] * 6).fk(q)
+    steps = robot.decouple(T)
+    deg = [sp.Tuple(*(sp.Integer(round(v)) for v in EXAMPLE_Q_DEG))]
+    w.heading(2, "h.decoupling")
+    w.para("dec.target", q=deg[0])
+    w.eqs((sp.Symbol("T"), _numbers(T)))
+    w.para("dec.pm", c=_numbers(steps.offset).T)
+    w.eqs((sp.Symbol("p_m"), _numbers(steps.wrist_center).T))
+    w.para("dec.arms", n=sp.Integer(len(steps.arms)))
+    names = model.q
+    for k, arm in enumerate(steps.arms, start=1):
+        w.para("dec.arm", k=sp.Integer(k))
+        rows: list[tuple[Any, Any]] = [
+            (sp.Tuple(*names[:3]), sp.Tuple(*_numbers(np.degrees(arm.q)))),
+            (_scripted("R", "3", "0"), _numbers(arm.R03)),
+            (_scripted("R", "6", "3"), _numbers(arm.R36)),
+        ]
+        rows += [(sp.Tuple(*names[3:]), sp.Tuple(*_numbers(np.degrees(v)))) for v in arm.wrist]
+        w.eqs(*rows)
+    w.para("dec.check", n=sp.Integer(steps.solutions.shape[0]))
+
+
 def build(model: SymbolicRobot, lang: str) -> list[Block]:
     """Every block of the report of ``model`` in ``lang`` (``"es"`` or ``"en"``)."""
     w = _Writer(model, lang)
@@ -425,4 +471,5 @@ def build(model: SymbolicRobot, lang: str) -> list[Block]:
     if d is None and structure.kind != "general":
         method = f"analytic ({structure.kind})"
     _inverse(w, d, model, method)
+    _decoupling_example(w, model)
     return w.blocks

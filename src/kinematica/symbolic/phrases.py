@@ -331,6 +331,36 @@ PHRASES: Final[dict[str, tuple[str, str]]] = {
         "In all, up to {n} solutions. kinematica checks these formulas against its "
         "numeric forward kinematics before showing them.",
     ),
+    # ------------------------------------------- the decoupling, with numbers
+    "h.decoupling": (
+        "Ejemplo numérico: el desacoplo cinemático paso a paso",
+        "A numeric example: the kinematic decoupling step by step",
+    ),
+    "dec.target": (
+        "Sea T la pose que da la cinemática directa en {q} (grados):",
+        "Take the pose T forward kinematics gives at {q} (degrees):",
+    ),
+    "dec.pm": (
+        "1. Centro de la muñeca: el punto fijo del extremo donde se cortan los ejes 4, 5 "
+        "y 6 está en {c} en el sistema del extremo ((0, 0, -d6) si el extremo es el "
+        "sistema 6), luego p_m = p + R c (p - d6 R z):",
+        "1. Wrist centre: the point of the end effector where axes 4, 5 and 6 meet is at "
+        "{c} in the end effector's frame ((0, 0, -d6) when the end effector is frame 6), "
+        "so p_m = p + R c (p - d6 R z):",
+    ),
+    "dec.arms": (
+        "2. Las articulaciones 1 a 3 llevan el centro de la muñeca a p_m: {n} soluciones "
+        "del brazo. Para cada una, 3. la orientación del sistema 3 y la que le queda a "
+        "la muñeca, y 4. los ángulos de la muñeca que la dan (grados):",
+        "2. Joints 1 to 3 bring the wrist centre to p_m: {n} arm solutions. For each, "
+        "3. the orientation of frame 3 and the one left to the wrist, and 4. the wrist "
+        "angles that make it (degrees):",
+    ),
+    "dec.arm": ("Solución del brazo {k}:", "Arm solution {k}:"),
+    "dec.check": (
+        "Cada una de las {n} configuraciones da T por cinemática directa.",
+        "Each of the {n} configurations gives T by forward kinematics.",
+    ),
     "or": ("o", "or"),
 }
 
