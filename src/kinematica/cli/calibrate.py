@@ -186,7 +186,7 @@ def register(sub: Any) -> None:
     p.add_argument("--urdf", metavar="FILE", help="also write the calibrated arm as URDF (exact)")
     p.add_argument(
         "--report",
-        metavar="FILE.md",
+        metavar="report.md",
         help="write a Markdown report and its two pictures (FILE-histogram.png, "
         "FILE-residuals.png) beside it",
     )

@@ -43,8 +43,11 @@ def _robot_file(robot: Robot, suffix: str, rad: bool, rules: tuple[FrameRule, ..
     from kinematica.robot.rounding import rounded_spec
     from kinematica.robot.save import spec_from_robot
 
+    spec = dataclasses.replace(spec_from_robot(robot), units=units)
+    if rules:  # --to dh-*: the DH table asked for, not the arm's own transforms beside it
+        spec = dataclasses.replace(spec, chain=None)
     # an extracted table is written as a user reads it: its round-off within the line tolerances
-    spec = rounded_spec(dataclasses.replace(spec_from_robot(robot), units=units))
+    spec = rounded_spec(spec)
     text = dumps_robot_file(spec, suffix)
     if rules and suffix.lower() in (".yaml", ".yml", ".toml"):
         head = [f"# {robot.convention} DH frames placed by the Denavit-Hartenberg rules:"]
