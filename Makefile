@@ -93,6 +93,7 @@ bench: $(CORE_STAMP)
 	$(BIN)/python benchmarks/robot_files.py
 	$(BIN)/python benchmarks/urdf.py
 	$(BIN)/python benchmarks/motion.py
+	$(BIN)/python benchmarks/optimal.py
 	$(BIN)/python benchmarks/viz.py
 	$(BIN)/python benchmarks/design.py
 	$(BIN)/python benchmarks/symbolic.py

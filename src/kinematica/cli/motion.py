@@ -274,6 +274,12 @@ def trajectory(args: argparse.Namespace) -> int:
         raise KinematicaError("--times sets the duration: drop --duration")
     if duration is None and times is None and vmax is None and amax is None:
         duration = 2.0
+    if args.optimal:
+        from kinematica.cli.motion_optimal import optimal_trajectory
+
+        return optimal_trajectory(args, robot, W, vmax, amax, _safe)
+    if args.figure or args.tcp_speed is not None:
+        raise KinematicaError("--figure and --tcp-speed go with --optimal")
     if through and args.profile == "trapezoid":
         raise KinematicaError(
             "--profile trapezoid moves between two configurations; through --via points use "
@@ -476,6 +482,14 @@ def register(sub: Any) -> None:
     p.add_argument(
         "--blend", type=float, help="--cartesian through --via: corner radius (robot's length unit)"
     )
+    p.add_argument(
+        "--optimal",
+        action="store_true",
+        help="the fastest timing of the path (joint spline through the points, or --cartesian "
+        "lines) within --vmax, --amax and --tcp-speed",
+    )
+    p.add_argument("--tcp-speed", type=float, help="--optimal: tool speed limit (length unit/s)")
+    p.add_argument("--figure", metavar="PLOT.png", help="--optimal: draw q, q̇, q̈ and the phase plane")
     p.add_argument("-o", "--output", metavar="PATH.csv", help="write t,q1..qn (SI) to .csv/.json")
     add_common(p)
     p.set_defaults(run=trajectory)

@@ -1,0 +1,292 @@
+"""Time-optimal timing: closed forms, every limit between grid points, toppra, honesty."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import kinematica as km
+from kinematica.errors import ArgumentError, DimensionError, KinematicaError
+from kinematica.motion import JointTrajectory, joint_trajectory, time_optimal
+from kinematica.motion.optimal import MAX_PATH_SPEED, SLOW_FRACTION, TimeOptimal
+
+#: Relative excess over a limit accepted on a 1 ms resampling (round-off only).
+HOLD_RTOL = 1e-9
+#: Largest excess of our duration over toppra's on the same path and limits.
+TOPPRA_RTOL = 0.005
+#: Resampling step of the checks (s).
+DENSE_DT = 1e-3
+
+
+def excess(values: np.ndarray, lim: np.ndarray) -> float:
+    """Largest relative excess of ``values`` (m, n) over limits ``(n, 2)`` (lo, hi); <= 0 inside."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        hi = np.where(values > 0, values / lim[:, 1] - 1.0, -1.0)
+        lo = np.where(values < 0, values / lim[:, 0] - 1.0, -1.0)
+    hi = np.where(np.isinf(lim[:, 1]), -1.0, np.nan_to_num(hi, nan=-1.0, posinf=np.inf))
+    lo = np.where(np.isinf(lim[:, 0]), -1.0, np.nan_to_num(lo, nan=-1.0, posinf=np.inf))
+    return float(max(hi.max(), lo.max()))
+
+
+def held(res: TimeOptimal) -> tuple[float, float]:
+    """The largest relative excess over the velocity and acceleration limits."""
+    tr = res.trajectory
+    return excess(tr.qd, res.vel), excess(tr.qdd, res.acc)
+
+
+def random_case(rng: np.random.Generator, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    k = int(rng.integers(5, 21))
+    W = np.cumsum(rng.uniform(-0.8, 0.8, (k, n)), axis=0)
+    vel = np.stack([-rng.uniform(0.3, 3.0, n), rng.uniform(0.3, 3.0, n)], axis=1)
+    acc = np.stack([-rng.uniform(1.0, 10.0, n), rng.uniform(1.0, 10.0, n)], axis=1)
+    return W, vel, acc
+
+
+# ------------------------------------------------------------------ closed forms
+@pytest.mark.parametrize(
+    ("v", "a", "T"),
+    [(1.0, 1.0, 2.0), (0.5, 1.0, 1.0 / 0.5 + 0.5 / 1.0), (2.0, 4.0, 2.0 * np.sqrt(1.0 / 4.0))],
+)
+def test_a_straight_line_is_the_textbook_trapezoid(v: float, a: float, T: float) -> None:
+    # one joint from 0 to 1: T = D/v + v/a, or 2·sqrt(D/a) when v²/a >= D (a triangle)
+    res = time_optimal([[0.0], [1.0]], v, a, dt=DENSE_DT)
+    assert res.ok and res.status == "ok"
+    assert res.duration == pytest.approx(T, rel=1e-9)
+    ref = joint_trajectory([0.0], [1.0], None, "trapezoid", DENSE_DT, v, a)
+    assert ref.t[-1] == pytest.approx(T, rel=1e-12)
+    assert np.abs(np.interp(ref.t, res.trajectory.t, res.trajectory.q[:, 0]) - ref.q[:, 0]).max() < 1e-6
+
+
+def test_a_spline_path_passes_its_waypoints_at_chord_length_s() -> None:
+    W = np.array([[0.0, 0.0], [3.0, 4.0], [3.0, 10.0]])  # chords 5 and 6
+    res = time_optimal(W, 1.0, 2.0)
+    assert np.allclose(res.path.knots, [0.0, 5.0 / 11.0, 1.0])
+    assert np.allclose(res.path(res.path.knots), W, atol=1e-12)
+    assert np.allclose(res.trajectory.q[[0, -1]], W[[0, -1]], atol=1e-12)
+
+
+# ------------------------------------------------- every limit, between grid points
+@pytest.mark.parametrize("n", [6, 7])
+def test_random_paths_hold_every_limit_on_a_dense_resampling(n: int) -> None:
+    rng = np.random.default_rng(n)
+    for _ in range(4):
+        W, vel, acc = random_case(rng, n)
+        res = time_optimal(W, vel, acc, dt=DENSE_DT, grid=300)
+        assert res.ok
+        ev, ea = held(res)
+        assert ev <= HOLD_RTOL and ea <= HOLD_RTOL, (ev, ea)
+        # some limit is reached (the timing is not slack): within 1 % somewhere
+        assert max(ev, ea) > -0.01
+        # qd and qdd are the derivatives of q (central differences, an independent check)
+        tr = res.trajectory
+        fd = np.gradient(tr.q, tr.t, axis=0)[1:-1]
+        assert np.abs(fd - tr.qd[1:-1]).max() <= 2e-3 * np.abs(tr.qd).max()
+
+
+def test_the_phase_plane_is_consistent() -> None:
+    rng = np.random.default_rng(3)
+    W, vel, acc = random_case(rng, 6)
+    res = time_optimal(W, vel, acc, grid=200)
+    k = res.controllable
+    assert res.sd.shape == res.sd_max.shape == res.s.shape and k.shape == (res.s.size, 2)
+    assert np.all(res.sd <= k[:, 1] * (1 + 1e-9) + 1e-12)
+    assert np.all(res.sd >= k[:, 0] * (1 - 1e-9) - 1e-12)
+    assert np.all(res.sd <= res.sd_max * (1 + 1e-9) + 1e-12)
+    r = res.reachable
+    assert np.all(res.sd <= r[:, 1] * (1 + 1e-9) + 1e-12)
+    assert res.sd[0] == 0.0 and res.sd[-1] == 0.0
+    # the time of the grid profile: Σ 2h / (ṡ_i + ṡ_i+1)
+    h = np.diff(res.s)
+    assert res.duration == pytest.approx(np.sum(2 * h / (res.sd[:-1] + res.sd[1:])), rel=1e-12)
+
+
+def test_end_speeds_are_met() -> None:
+    W = np.array([[0.0, 0.0], [1.0, 0.5], [2.0, 0.0]])
+    res = time_optimal(W, 2.0, 4.0, sd_start=0.1, sd_end=0.2, dt=DENSE_DT)
+    assert res.ok and res.sd[0] == pytest.approx(0.1) and res.sd[-1] == pytest.approx(0.2)
+    d1 = res.path(np.array([0.0, 1.0]), 1)
+    assert np.allclose(res.trajectory.qd[0], 0.1 * d1[0]) and np.allclose(res.trajectory.qd[-1], 0.2 * d1[1])
+    too_fast = time_optimal(W, 2.0, 4.0, sd_start=100.0)
+    assert too_fast.status == "infeasible" and too_fast.limit == "start speed"
+
+
+def test_a_joint_trajectory_is_retimed_along_its_own_path() -> None:
+    slow = joint_trajectory([0.0, 0.0, 0.0], [1.0, -0.5, 0.2], 5.0, "quintic", 0.01)
+    res = time_optimal(slow, 1.0, 2.0, dt=DENSE_DT)
+    assert res.ok and res.duration < 5.0
+    ev, ea = held(res)
+    assert ev <= HOLD_RTOL and ea <= HOLD_RTOL
+    # the same straight joint-space path: every sample on the line q0 + s·Δ
+    q = res.trajectory.q
+    lam = q[:, 0] / 1.0
+    assert np.allclose(q, lam[:, None] * np.array([1.0, -0.5, 0.2]), atol=1e-9)
+
+
+# ------------------------------------------------------------------ toppra
+toppra = pytest.importorskip("toppra")
+
+
+def toppra_time(W: np.ndarray, vel: np.ndarray, acc: np.ndarray, grid: np.ndarray | None) -> tuple:
+    import toppra.algorithm as algo
+    import toppra.constraint as constraint
+
+    chord = np.linalg.norm(np.diff(W, axis=0), axis=1)
+    knots = np.concatenate([[0.0], np.cumsum(chord)]) / chord.sum()
+    knots[-1] = 1.0
+    path = toppra.SplineInterpolator(knots, W, bc_type="natural")
+    cons = [constraint.JointVelocityConstraint(vel), constraint.JointAccelerationConstraint(acc)]
+    inst = algo.TOPPRA(cons, path, gridpoints=grid, parametrizer="ParametrizeConstAccel")
+    return inst.compute_trajectory(0.0, 0.0), path
+
+
+@pytest.mark.parametrize("n", [6, 7])
+def test_duration_within_half_a_percent_of_toppra_which_breaks_limits_between_points(n: int) -> None:
+    rng = np.random.default_rng(10 + n)
+    worst_theirs = 0.0
+    for _ in range(3):
+        W, vel, acc = random_case(rng, n)
+        vel = np.stack([-vel[:, 1], vel[:, 1]], axis=1)  # toppra's velocity limits: symmetric here
+        ours = time_optimal(W, vel, acc, dt=DENSE_DT, grid=1000)
+        theirs, _ = toppra_time(W, vel, acc, np.linspace(0.0, 1.0, 1001))
+        assert ours.ok and theirs is not None
+        assert ours.duration <= theirs.duration * (1.0 + TOPPRA_RTOL), (ours.duration, theirs.duration)
+        t = np.arange(0.0, theirs.duration, DENSE_DT)
+        worst_theirs = max(worst_theirs, *(excess(theirs(t, k), lim) for k, lim in ((1, vel), (2, acc))))
+    # theirs breaks a limit between grid points by far more than our tolerance (just outside)
+    assert worst_theirs > 1e3 * HOLD_RTOL
+
+
+def test_a_wide_spread_of_limits_where_toppra_fails_is_timed() -> None:
+    # a slow joint beside fast ones: toppra's default grid says the path is not controllable
+    W = np.array([[0.0, 0.0, 0.0], [0.5, 2.0, 1.0], [1.0, 0.0, 3.0], [1.2, 1.0, 2.0], [2.0, 3.0, 0.0]])
+    vel = np.array([[-1e-3, 1e-3], [-50.0, 50.0], [-50.0, 50.0]])
+    acc = np.array([[-1e-3, 1e-3], [-1e3, 1e3], [-1e3, 1e3]])
+    theirs, _ = toppra_time(W, vel, acc, None)
+    ours = time_optimal(W, vel, acc, dt=1.0)
+    assert theirs is None  # toppra 0.6.10: FailUncontrollable
+    assert ours.ok
+    ev, ea = held(ours)
+    assert ev <= HOLD_RTOL and ea <= HOLD_RTOL
+
+
+# ------------------------------------------------------------- honest failures
+def two_moves() -> JointTrajectory:
+    """Joint 1 moves in the first second, joint 2 in the next (each rest to rest)."""
+    a = joint_trajectory([0.0, 0.0], [1.0, 0.0], 1.0, "quintic", 0.05)
+    b = joint_trajectory([1.0, 0.0], [1.0, 1.0], 1.0, "quintic", 0.05)
+    return JointTrajectory(
+        np.concatenate([a.t, 1.0 + b.t[1:]]),
+        np.concatenate([a.q, b.q[1:]]),
+        np.concatenate([a.qd, b.qd[1:]]),
+        np.concatenate([a.qdd, b.qdd[1:]]),
+    )
+
+
+def test_a_zero_velocity_limit_on_a_joint_that_moves_later_stops_the_path_there() -> None:
+    res = time_optimal(two_moves(), [1.0, 0.0], 2.0, dt=DENSE_DT)
+    assert res.status == "infeasible" and not res.ok
+    assert res.limit == "velocity of joint 2"
+    assert res.s_stop == pytest.approx(0.5, abs=1e-3)
+    assert "s = 0.5" in res.message and "velocity of joint 2" in res.message
+    tr = res.trajectory  # the fastest timing to there, at rest there, within every limit
+    assert np.allclose(tr.q[-1], [1.0, 0.0], atol=1e-6) and np.allclose(tr.qd[-1], 0.0)
+    ev, ea = held(res)
+    assert ev <= HOLD_RTOL and ea <= HOLD_RTOL
+    # a zero limit on a joint that does not move is no limit at all
+    assert time_optimal([[0.0, 0.0], [1.0, 0.0]], [1.0, 0.0], 2.0).ok
+
+
+def test_a_zero_acceleration_limit_stops_the_path_at_its_start() -> None:
+    res = time_optimal([[0.0, 0.0], [1.0, 1.0]], 1.0, [1.0, 0.0])
+    assert res.status == "infeasible" and res.s_stop == 0.0
+    assert res.limit == "acceleration of joint 2" and res.duration == 0.0
+
+
+def test_a_line_through_the_puma_wrist_singularity_stops_before_it() -> None:
+    puma = km.load("puma560")
+    q_sing = np.array([0.2, -0.5, 0.3, 0.4, 0.0, -0.1])
+    Ts = puma.fk(q_sing)
+    d = np.array([0.0, 0.1, 0.05])
+    T0, T1 = Ts.copy(), Ts.copy()
+    T0[:3, 3] -= 0.7 * d
+    T1[:3, 3] += 1.3 * d
+    path = km.cartesian_path(puma, T0, T1, 40, q0=q_sing, vmax=2.0, amax=5.0, tcp_speed=0.25)
+    assert path.t is not None and path.qd is not None and path.qdd is not None
+    stop = [e for e in path.events if e.kind == "stopped"]
+    assert len(stop) == 1 and "wrist" in stop[0].names[0] and abs(stop[0].s - 0.35) < 1e-3
+    assert not path.ok and path.s[-1] < 0.35
+    assert np.allclose(path.qd[-1], 0.0)
+    J = puma.jacobian(path.q)
+    speed = np.linalg.norm(np.einsum("mij,mj->mi", J[:, :3], path.qd), axis=1)
+    assert speed.max() <= 0.25 * (1 + HOLD_RTOL)
+    assert np.abs(path.qd).max() <= 2.0 * (1 + HOLD_RTOL)
+
+
+def test_a_cartesian_line_slows_near_the_wrist_singularity_and_says_so() -> None:
+    puma = km.load("puma560")
+    q_near = np.array([0.2, -0.5, 0.3, 0.4, 0.02, -0.1])  # q5 = 0.02 rad from the wrist singularity
+    Ts = puma.fk(q_near)
+    d = np.array([0.0, 0.1, 0.05])
+    T0, T1 = Ts.copy(), Ts.copy()
+    T0[:3, 3] -= 0.5 * d
+    T1[:3, 3] += 0.5 * d
+    free = km.cartesian_path(puma, T0, T1, 400, q0=q_near)
+    timed = km.cartesian_path(puma, T0, T1, 400, q0=q_near, vmax=1.5, amax=20.0, tcp_speed=0.5, dt=DENSE_DT)
+    assert timed.t is not None and timed.qd is not None
+    slowed = [e for e in timed.events if e.kind == "slowed"]
+    assert slowed and "joint" in slowed[0].names[0] and abs(slowed[0].s - 0.5) < 0.05
+    # the tool slows below half its top speed there; within every limit everywhere
+    J = puma.jacobian(timed.q)
+    speed = np.linalg.norm(np.einsum("mij,mj->mi", J[:, :3], timed.qd), axis=1)
+    assert speed.max() <= 0.5 * (1 + HOLD_RTOL)
+    assert np.abs(timed.qd).max() <= 1.5 * (1 + HOLD_RTOL)
+    mid = np.argmin(np.abs(timed.s - 0.5))
+    assert speed[mid] < SLOW_FRACTION * speed.max()
+    # the joint path is the one followed without timing (the spline through its samples)
+    assert np.allclose(puma.fk(timed.q)[:, :3, 3], timed.poses[:, :3, 3], atol=1e-4)
+    assert np.allclose(timed.q[0], free.q[0]) and np.allclose(timed.q[-1], free.q[-1], atol=1e-9)
+
+
+def test_a_tool_speed_alone_bounds_a_cartesian_line_at_that_speed() -> None:
+    puma = km.load("puma560")
+    q = np.array([0.2, -0.5, 0.3, 0.4, 0.9, -0.1])
+    T0 = puma.fk(q)
+    T1 = T0.copy()
+    T1[:3, 3] += [0.1, 0.05, 0.0]
+    L = float(np.linalg.norm([0.1, 0.05]))
+    res = time_optimal(km.cartesian_path(puma, T0, T1, 60, q0=q), robot=puma, tcp_speed=0.2, amax=50.0)
+    J = puma.jacobian(res.trajectory.q)
+    speed = np.linalg.norm(np.einsum("mij,mj->mi", J[:, :3], res.trajectory.qd), axis=1)
+    assert speed.max() <= 0.2 * (1 + HOLD_RTOL) and speed.max() > 0.2 * 0.99
+    assert res.duration > L / 0.2  # at most 0.2 m/s over L metres, accelerating first
+
+
+# ------------------------------------------------------------------ bad input
+def test_bad_input_is_named() -> None:
+    W = [[0.0, 0.0], [1.0, 1.0]]
+    with pytest.raises(ArgumentError, match="vmax"):
+        time_optimal(W, -1.0, 1.0)
+    with pytest.raises(DimensionError, match="vmax"):
+        time_optimal(W, [1.0, 1.0, 1.0], 1.0)
+    with pytest.raises(ArgumentError, match="lo <= 0 <= hi"):
+        time_optimal(W, [[0.5, 1.0], [-1.0, 1.0]], 1.0)
+    with pytest.raises(ArgumentError, match="at least one limit"):
+        time_optimal(W)
+    with pytest.raises(ArgumentError, match="robot"):
+        time_optimal(W, 1.0, tcp_speed=0.1)
+    with pytest.raises(KinematicaError, match="waypoints 1 and 2 are equal"):
+        time_optimal([[0.0], [0.0], [1.0]], 1.0, 1.0)
+    with pytest.raises(DimensionError, match="NaN"):
+        time_optimal([[0.0], [np.nan]], 1.0, 1.0)
+    with pytest.raises(ArgumentError, match="sd_start"):
+        time_optimal(W, 1.0, 1.0, sd_start=2 * MAX_PATH_SPEED)
+    with pytest.raises(ArgumentError, match="grid"):
+        time_optimal(W, 1.0, 1.0, grid=0)
+
+
+def test_the_figure_is_drawn(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    from kinematica.motion.plot import plot_time_optimal
+
+    res = time_optimal(two_moves(), [1.0, 0.0], 2.0)
+    out = plot_time_optimal(res, tmp_path / "topp.png", title="two moves")
+    assert out.stat().st_size > 10_000
