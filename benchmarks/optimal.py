@@ -64,7 +64,11 @@ def main() -> None:
             fmt_time(tc),
             f"target <= 1 ms: {verdict(tc <= TARGET, fmt_time(tc))}",
         ),
-        ("km.time_optimal (path, core, 10 ms samples)", fmt_time(tw), f"duration {ours.duration:.6f} s"),
+        (
+            "km.time_optimal (path, core, 10 ms samples)",
+            fmt_time(tw),
+            f"duration {ours.duration:.6f} s",
+        ),
     ]
     try:
         import toppra
@@ -75,7 +79,10 @@ def main() -> None:
     else:
         toppra.setup_logging("WARNING")
         path = toppra.SplineInterpolator(pp.knots, W, bc_type="natural")
-        cons = [constraint.JointVelocityConstraint(vel), constraint.JointAccelerationConstraint(acc)]
+        cons = [
+            constraint.JointVelocityConstraint(vel),
+            constraint.JointAccelerationConstraint(acc),
+        ]
         inst = algo.TOPPRA(cons, path, gridpoints=s, parametrizer="ParametrizeConstAccel")
         tt = best_of(lambda: inst.compute_parameters(0.0, 0.0), repeats=10)
         traj = inst.compute_trajectory(0.0, 0.0)

@@ -63,11 +63,17 @@ def test_optimal_cartesian_with_a_tool_speed(capsys: pytest.CaptureFixture[str])
         (["--vmax", "90", "--tcp-speed", "-1"], "--tcp-speed must be"),
     ],
 )
-def test_optimal_bad_options(capsys: pytest.CaptureFixture[str], extra: list[str], message: str) -> None:
-    code, _, err = run(capsys, "trajectory", "puma560", "--from", *FROM, "--to", *TO, "--optimal", *extra)
+def test_optimal_bad_options(
+    capsys: pytest.CaptureFixture[str], extra: list[str], message: str
+) -> None:
+    code, _, err = run(
+        capsys, "trajectory", "puma560", "--from", *FROM, "--to", *TO, "--optimal", *extra
+    )
     assert code == 2 and message in err
 
 
 def test_figure_without_optimal_is_refused(capsys: pytest.CaptureFixture[str]) -> None:
-    code, _, err = run(capsys, "trajectory", "puma560", "--from", *FROM, "--to", *TO, "--figure", "x.png")
+    code, _, err = run(
+        capsys, "trajectory", "puma560", "--from", *FROM, "--to", *TO, "--figure", "x.png"
+    )
     assert code == 2 and "--optimal" in err

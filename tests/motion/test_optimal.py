@@ -54,7 +54,10 @@ def test_a_straight_line_is_the_textbook_trapezoid(v: float, a: float, T: float)
     assert res.duration == pytest.approx(T, rel=1e-9)
     ref = joint_trajectory([0.0], [1.0], None, "trapezoid", DENSE_DT, v, a)
     assert ref.t[-1] == pytest.approx(T, rel=1e-12)
-    assert np.abs(np.interp(ref.t, res.trajectory.t, res.trajectory.q[:, 0]) - ref.q[:, 0]).max() < 1e-6
+    assert (
+        np.abs(np.interp(ref.t, res.trajectory.t, res.trajectory.q[:, 0]) - ref.q[:, 0]).max()
+        < 1e-6
+    )
 
 
 def test_a_spline_path_passes_its_waypoints_at_chord_length_s() -> None:
@@ -105,7 +108,9 @@ def test_end_speeds_are_met() -> None:
     res = time_optimal(W, 2.0, 4.0, sd_start=0.1, sd_end=0.2, dt=DENSE_DT)
     assert res.ok and res.sd[0] == pytest.approx(0.1) and res.sd[-1] == pytest.approx(0.2)
     d1 = res.path(np.array([0.0, 1.0]), 1)
-    assert np.allclose(res.trajectory.qd[0], 0.1 * d1[0]) and np.allclose(res.trajectory.qd[-1], 0.2 * d1[1])
+    assert np.allclose(res.trajectory.qd[0], 0.1 * d1[0]) and np.allclose(
+        res.trajectory.qd[-1], 0.2 * d1[1]
+    )
     too_fast = time_optimal(W, 2.0, 4.0, sd_start=100.0)
     assert too_fast.status == "infeasible" and too_fast.limit == "start speed"
 
@@ -140,7 +145,9 @@ def toppra_time(W: np.ndarray, vel: np.ndarray, acc: np.ndarray, grid: np.ndarra
 
 
 @pytest.mark.parametrize("n", [6, 7])
-def test_duration_within_half_a_percent_of_toppra_which_breaks_limits_between_points(n: int) -> None:
+def test_duration_within_half_a_percent_of_toppra_which_breaks_limits_between_points(
+    n: int,
+) -> None:
     rng = np.random.default_rng(10 + n)
     worst_theirs = 0.0
     for _ in range(3):
@@ -149,9 +156,14 @@ def test_duration_within_half_a_percent_of_toppra_which_breaks_limits_between_po
         ours = time_optimal(W, vel, acc, dt=DENSE_DT, grid=1000)
         theirs, _ = toppra_time(W, vel, acc, np.linspace(0.0, 1.0, 1001))
         assert ours.ok and theirs is not None
-        assert ours.duration <= theirs.duration * (1.0 + TOPPRA_RTOL), (ours.duration, theirs.duration)
+        assert ours.duration <= theirs.duration * (1.0 + TOPPRA_RTOL), (
+            ours.duration,
+            theirs.duration,
+        )
         t = np.arange(0.0, theirs.duration, DENSE_DT)
-        worst_theirs = max(worst_theirs, *(excess(theirs(t, k), lim) for k, lim in ((1, vel), (2, acc))))
+        worst_theirs = max(
+            worst_theirs, *(excess(theirs(t, k), lim) for k, lim in ((1, vel), (2, acc)))
+        )
     # theirs breaks a limit between grid points by far more than our tolerance (just outside)
     assert worst_theirs > 1e3 * HOLD_RTOL
 
@@ -257,7 +269,9 @@ def test_a_cartesian_line_slows_near_the_wrist_singularity_and_says_so() -> None
     T0[:3, 3] -= 0.5 * d
     T1[:3, 3] += 0.5 * d
     free = km.cartesian_path(puma, T0, T1, 400, q0=q_near)
-    timed = km.cartesian_path(puma, T0, T1, 400, q0=q_near, vmax=1.5, amax=20.0, tcp_speed=0.5, dt=DENSE_DT)
+    timed = km.cartesian_path(
+        puma, T0, T1, 400, q0=q_near, vmax=1.5, amax=20.0, tcp_speed=0.5, dt=DENSE_DT
+    )
     assert timed.t is not None and timed.qd is not None
     slowed = [e for e in timed.events if e.kind == "slowed"]
     nearest = free.s[np.argmin(np.abs(np.sin(free.q[:, 4])))]  # closest to q5 = 0 on the line
@@ -281,7 +295,9 @@ def test_a_tool_speed_alone_bounds_a_cartesian_line_at_that_speed() -> None:
     T1 = T0.copy()
     T1[:3, 3] += [0.1, 0.05, 0.0]
     L = float(np.linalg.norm([0.1, 0.05]))
-    res = time_optimal(km.cartesian_path(puma, T0, T1, 60, q0=q), robot=puma, tcp_speed=0.2, amax=50.0)
+    res = time_optimal(
+        km.cartesian_path(puma, T0, T1, 60, q0=q), robot=puma, tcp_speed=0.2, amax=50.0
+    )
     J = puma.jacobian(res.trajectory.q)
     speed = np.linalg.norm(np.einsum("mij,mj->mi", J[:, :3], res.trajectory.qd), axis=1)
     assert speed.max() <= 0.2 * (1 + HOLD_RTOL) and speed.max() > 0.2 * 0.99

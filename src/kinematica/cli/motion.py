@@ -489,7 +489,9 @@ def register(sub: Any) -> None:
         "lines) within --vmax, --amax and --tcp-speed",
     )
     p.add_argument("--tcp-speed", type=float, help="--optimal: tool speed limit (length unit/s)")
-    p.add_argument("--figure", metavar="PLOT.png", help="--optimal: draw q, q̇, q̈ and the phase plane")
+    p.add_argument(
+        "--figure", metavar="PLOT.png", help="--optimal: draw q, q̇, q̈ and the phase plane"
+    )
     p.add_argument("-o", "--output", metavar="PATH.csv", help="write t,q1..qn (SI) to .csv/.json")
     add_common(p)
     p.set_defaults(run=trajectory)

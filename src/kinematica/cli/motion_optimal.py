@@ -73,7 +73,9 @@ def optimal_trajectory(
         meta = {"robot": robot.name, "optimal": True, "status": res.status, "limit": res.limit}
         write_json(out, t, q, qd, qdd, joint_types=robot.joint_types, events=events, meta=meta)
     notes = [e.message for e in events]
-    notes += [f"slowed at s = {w.s:.4g} to ṡ = {w.sd:.4g}/s by the {w.limit}" for w in res.slowdowns]
+    notes += [
+        f"slowed at s = {w.s:.4g} to ṡ = {w.sd:.4g}/s by the {w.limit}" for w in res.slowdowns
+    ]
     if not res.ok:
         notes.append(res.message)
     code = 0 if res.ok else 1

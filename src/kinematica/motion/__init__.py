@@ -15,8 +15,8 @@ from kinematica.motion.cartesian import (
 )
 from kinematica.motion.cartesian_via import ROTATION_LENGTH, cartesian_via_path
 from kinematica.motion.control import RateControl, resolved_rate
-from kinematica.motion.optimal import Slowdown, TimeOptimal, time_optimal
 from kinematica.motion.export import read_csv, write_csv, write_json
+from kinematica.motion.optimal import Slowdown, TimeOptimal, time_optimal
 from kinematica.motion.piecewise import PiecewisePolynomial
 from kinematica.motion.trajectory import (
     JointTrajectory,

@@ -69,11 +69,9 @@ def time_cartesian(
     m = ss.size
 
     def at(s: float) -> int:
-        return int(min(np.searchsorted(ss, s), m - 1))
+        return min(int(np.searchsorted(ss, s)), m - 1)
 
-    events = [
-        PathEvent(e.kind, at(e.s), at(e.s), e.s, e.names, e.message) for e in path.events
-    ]
+    events = [PathEvent(e.kind, at(e.s), at(e.s), e.s, e.names, e.message) for e in path.events]
     for w in res.slowdowns:
         i = at(w.s)
         events.append(

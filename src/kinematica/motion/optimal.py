@@ -171,7 +171,7 @@ def _limits(x: ArrayLike | None, n: int, name: str) -> FloatArray:
 
 
 def _geometry(
-    path: object, robot: Robot | None
+    path: ArrayLike | JointTrajectory | CartesianPath, robot: Robot | None
 ) -> tuple[PiecewisePolynomial, tuple[float, str] | None]:
     """The path ``q(s)``, and for a Cartesian path met by a blocking event, where and why."""
     if isinstance(path, JointTrajectory):
@@ -185,9 +185,10 @@ def _geometry(
         keep = np.concatenate([[True], np.diff(s) > 0])  # repeated s: one sample
         s, q = s[keep], q[keep]
         if s.size < 2:
-            raise KinematicaError("the Cartesian path cannot be followed from its start: " + (
-                stop.message if stop is not None else "no configuration"
-            ))
+            raise KinematicaError(
+                "the Cartesian path cannot be followed from its start: "
+                + (stop.message if stop is not None else "no configuration")
+            )
         why = None
         if stop is not None:
             names = f" ({', '.join(stop.names)})" if stop.names else ""
@@ -311,9 +312,11 @@ def time_optimal(
     vel, acc = _limits(vmax, n, "vmax"), _limits(amax, n, "amax")
     dt = check_number(dt, "dt", positive=True, unit="s", what="a number of seconds")
     grid = check_count(grid, "grid", lo=1, hi=MAX_SAMPLES)
-    speeds = tuple(
-        None if v is None else check_number(v, name, positive=True, what="a speed")
-        for v, name in ((tcp_speed, "tcp_speed"), (tcp_angular_speed, "tcp_angular_speed"))
+    speeds = (
+        None if tcp_speed is None else check_number(tcp_speed, "tcp_speed", positive=True),
+        None
+        if tcp_angular_speed is None
+        else check_number(tcp_angular_speed, "tcp_angular_speed", positive=True),
     )
     if robot is None and speeds != (None, None):
         raise ArgumentError("tool speeds need the robot: give robot=", arg="robot")

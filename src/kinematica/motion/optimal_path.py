@@ -37,7 +37,7 @@ FloatArray = NDArray[np.float64]
 
 
 def spline_path(knots: FloatArray, q: FloatArray) -> PiecewisePolynomial:
-    """The natural cubic spline through ``q`` ``(k, n)`` at increasing ``knots`` ``(k,)`` in [0, 1]."""
+    """The natural cubic spline through ``q`` ``(k, n)`` at increasing ``knots`` ``(k,)``."""
     zero = np.zeros((1, q.shape[1]))
     derivs = spline_derivatives(knots, q, 2, "natural", zero, zero)
     return hermite_pieces(knots, q, derivs)

@@ -107,8 +107,11 @@ def plot_time_optimal(res: TimeOptimal, path: str | Path, title: str = "") -> Pa
     tr = res.trajectory
     fig, axes = plt.subplots(2, 2, figsize=(11, 7.5), dpi=100)
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
-    panels = ((tr.q, None, "q (rad, m)"), (tr.qd, res.vel, "q̇ (rad/s, m/s)"))
-    panels += ((tr.qdd, res.acc, "q̈ (rad/s², m/s²)"),)
+    panels: list[tuple[Any, Any, str]] = [
+        (tr.q, None, "q (rad, m)"),
+        (tr.qd, res.vel, "q̇ (rad/s, m/s)"),
+        (tr.qdd, res.acc, "q̈ (rad/s², m/s²)"),
+    ]
     for ax, (values, lim, label) in zip(axes.ravel()[:3], panels, strict=True):
         for j in range(values.shape[1]):
             c = colours[j % len(colours)]
