@@ -19,6 +19,7 @@ points, toppra's at them). No assertions: figures only.
 from __future__ import annotations
 
 import sys
+from importlib.metadata import version
 from pathlib import Path
 
 import numpy as np
@@ -84,11 +85,11 @@ def main() -> None:
             constraint.JointAccelerationConstraint(acc),
         ]
         inst = algo.TOPPRA(cons, path, gridpoints=s, parametrizer="ParametrizeConstAccel")
-        tt = best_of(lambda: inst.compute_parameters(0.0, 0.0), repeats=10)
+        tt = best_of(lambda: inst.compute_parameterization(0.0, 0.0), repeats=10)
         traj = inst.compute_trajectory(0.0, 0.0)
         rows.append(
             (
-                f"toppra {toppra.__version__}, same path and grid",
+                f"toppra {version('toppra')}, same path and grid",
                 fmt_time(tt),
                 f"core {tt / tc:.1f}x faster; its duration {traj.duration:.6f} s "
                 f"(ours {100 * (ours.duration / traj.duration - 1):+.3f} %)",

@@ -15,7 +15,7 @@ namespace {
 namespace kt = km::topp;
 
 nb::tuple time_optimal(F64 s, F64 coef, F64 vlo, F64 vhi, F64 alo, F64 ahi, F64 cap, double x_start,
-                       double x_end, double x_max) {
+                       double x_end, double x_max, bool sets) {
     const In S = in_f64(s, "s", 1);
     const npy_intp N = S.dim[0] - 1;
     if (N < 1) fail_value("s", "at least 2 grid points");
@@ -74,8 +74,8 @@ nb::tuple time_optimal(F64 s, F64 coef, F64 vlo, F64 vhi, F64 alo, F64 ahi, F64 
     out.mvc = mvc;
     {
         nb::gil_scoped_release release;
-        std::vector<std::vector<kt::Row>> stages;
-        kt::time_optimal(P, out, stages);
+        kt::Workspace ws;
+        kt::time_optimal(P, out, ws, sets);
     }
     return nb::make_tuple(static_cast<int>(out.status), out.stage, static_cast<int>(out.kind), out.joint, X,
                           KL, KH, RL, RH, M);
@@ -86,10 +86,10 @@ nb::tuple time_optimal(F64 s, F64 coef, F64 vlo, F64 vhi, F64 alo, F64 ahi, F64 
 void bind_topp(nb::module_& m) {
     m.def("time_optimal", &time_optimal, nb::arg("s"), nb::arg("coef"), nb::arg("vlo"), nb::arg("vhi"),
           nb::arg("alo"), nb::arg("ahi"), nb::arg("cap"), nb::arg("x_start"), nb::arg("x_end"),
-          nb::arg("x_max"),
+          nb::arg("x_max"), nb::arg("sets") = true,
           "TOPP-RA on a grid s (N+1,) of a path with Taylor coefficients coef (N, d+1, n) at each s_i; "
           "joint limits (n,) each, caps on ṡ² per interval (N,). Returns (status, stage, kind, joint, "
-          "x, k_lo, k_hi, r_lo, r_hi, mvc), the arrays (N+1,) of ṡ².");
+          "x, k_lo, k_hi, r_lo, r_hi, mvc), the arrays (N+1,) of ṡ²; sets=False: no mvc, r_lo, r_hi (NaN).");
     m.attr("TOPP_MAX_DEGREE") = kt::MAX_DEGREE;
 }
 

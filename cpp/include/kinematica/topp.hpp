@@ -88,23 +88,33 @@ struct Output {
 
 namespace detail {
 
-inline double binomial(int n, int k) {
-    double r = 1.0;
-    for (int i = 1; i <= k; ++i) r = r * (n - k + i) / i;
-    return r;
-}
+//! Highest degree of a polynomial the rows are made of (q'² times a line, quintic path).
+constexpr int MAX_BERNSTEIN = 2 * MAX_DEGREE - 1;
 
-//! Bernstein coefficients on [0, 1] of the polynomial p (power basis, degree d).
-inline void bernstein(const double* p, int d, double* out) {
-    for (int k = 0; k <= d; ++k) {
-        double sum = 0.0;
-        for (int j = 0; j <= k; ++j) sum += binomial(k, j) / binomial(d, j) * p[j];
-        out[k] = sum;
+//! Power-to-Bernstein conversion on [0, 1]: b_k = Σ_{j<=k} C(k, j) / C(d, j) · a_j.
+struct BernsteinTable {
+    double w[MAX_BERNSTEIN + 1][MAX_BERNSTEIN + 1][MAX_BERNSTEIN + 1] = {};
+    BernsteinTable() {
+        double C[MAX_BERNSTEIN + 1][MAX_BERNSTEIN + 1] = {};
+        for (int n = 0; n <= MAX_BERNSTEIN; ++n) {
+            C[n][0] = 1.0;
+            for (int k = 1; k <= n; ++k) C[n][k] = C[n - 1][k - 1] + (k <= n - 1 ? C[n - 1][k] : 0.0);
+        }
+        for (int d = 0; d <= MAX_BERNSTEIN; ++d)
+            for (int k = 0; k <= d; ++k)
+                for (int j = 0; j <= k; ++j) w[d][k][j] = C[k][j] / C[d][j];
     }
-}
+    void convert(const double* p, int d, double* out) const {
+        for (int k = 0; k <= d; ++k) {
+            double sum = 0.0;
+            for (int j = 0; j <= k; ++j) sum += w[d][k][j] * p[j];
+            out[k] = sum;
+        }
+    }
+};
 
 //! The rows of one stage: each joint's velocity and acceleration over the whole interval.
-inline void stage_rows(const Problem& P, int i, std::vector<Row>& rows) {
+inline void stage_rows(const Problem& P, const BernsteinTable& bt, int i, std::vector<Row>& rows) {
     rows.clear();
     const int n = P.n, deg = P.degree;
     const double h = P.s[i + 1] - P.s[i];
@@ -122,7 +132,7 @@ inline void stage_rows(const Problem& P, int i, std::vector<Row>& rows) {
         const double vhi = P.vhi[j], vlo = P.vlo[j];
         if (std::isfinite(vhi) || std::isfinite(vlo)) {
             double b1[MAX_DEGREE + 1];
-            bernstein(d1, d1deg, b1);
+            bt.convert(d1, d1deg, b1);
             bool pos = true, neg = true, zero = true;
             for (int k = 0; k <= d1deg; ++k) {
                 pos = pos && b1[k] >= 0.0;
@@ -132,12 +142,12 @@ inline void stage_rows(const Problem& P, int i, std::vector<Row>& rows) {
             // The bound on |q̇| that holds for the sign(s) q' takes on the interval.
             const double v = pos ? vhi : neg ? -vlo : std::min(vhi, -vlo);
             if (!zero && std::isfinite(v)) {
-                double sq[2 * MAX_DEGREE + 1] = {0.0};
+                double sq[MAX_BERNSTEIN + 1] = {0.0};
                 const int D = 2 * d1deg;
                 for (int a = 0; a <= d1deg; ++a)
                     for (int b = 0; b <= d1deg; ++b) sq[a + b] += d1[a] * d1[b];
-                double B[2 * MAX_DEGREE + 2] = {0.0};
-                bernstein(sq, D, B);
+                double B[MAX_BERNSTEIN + 1] = {0.0};
+                bt.convert(sq, D, B);
                 // x·(1 - t)·q'² + y·t·q'², degree D + 1.
                 for (int k = 0; k <= D + 1; ++k) {
                     const double a = k <= D ? (D + 1 - k) * B[k] / (D + 1) : 0.0;
@@ -160,8 +170,8 @@ inline void stage_rows(const Problem& P, int i, std::vector<Row>& rows) {
                 Bp[k + 1] += d2[k];
             }
             double bA[MAX_DEGREE + 1], bB[MAX_DEGREE + 1];
-            bernstein(A, d1deg, bA);
-            bernstein(Bp, d1deg, bB);
+            bt.convert(A, d1deg, bA);
+            bt.convert(Bp, d1deg, bB);
             for (int k = 0; k <= d1deg; ++k) {
                 if (std::isfinite(ahi)) rows.push_back({bA[k], bB[k], ahi, Kind::acceleration, j});
                 if (std::isfinite(alo)) rows.push_back({-bA[k], -bB[k], -alo, Kind::acceleration, j});
@@ -173,27 +183,55 @@ inline void stage_rows(const Problem& P, int i, std::vector<Row>& rows) {
     rows.push_back({0.0, 1.0, cap, Kind::cap, -1});
 }
 
+//! A bound p + r·x on the second variable of a stage at its first one x.
+struct Line {
+    double p, r;
+};
+
+//! A stage's rows solved for one of its variables: upper and lower bounds on it as lines
+//! in the other, and the bounds on the other alone.
+struct Lines {
+    std::vector<Line> up, lo;
+    double first_lo = 0.0, first_hi = std::numeric_limits<double>::infinity();
+    bool never = false;  //!< a row 0 <= c < 0: nothing satisfies it
+
+    //! swap: solve for the first variable (x) instead of the second (y).
+    void build(const std::vector<Row>& rows, bool swap) {
+        up.clear();
+        lo.clear();
+        first_lo = 0.0;
+        first_hi = std::numeric_limits<double>::infinity();
+        never = false;
+        for (const Row& w : rows) {
+            const double a = swap ? w.b : w.a, b = swap ? w.a : w.b;
+            if (b > 0.0) up.push_back({w.c / b, -a / b});
+            else if (b < 0.0) lo.push_back({w.c / b, -a / b});
+            else if (a > 0.0) first_hi = std::min(first_hi, w.c / a);
+            else if (a < 0.0) first_lo = std::max(first_lo, w.c / a);
+            else if (w.c < 0.0) never = true;
+        }
+    }
+};
+
 //! The tightest bounds on the second variable at the first one, with their slopes.
 struct Bounds {
     double U, su, L, sl;
-    int upper_row;  //!< row giving U (-1: the interval's own end)
 };
 
-//! Bounds on y at x from rows (a x + b y <= c), y in [ylo, yhi]; swap: the roles reversed.
-inline Bounds bounds_at(const std::vector<Row>& rows, bool swap, double x, double ylo, double yhi) {
-    Bounds r{yhi, 0.0, ylo, 0.0, -1};
-    for (int k = 0; k < static_cast<int>(rows.size()); ++k) {
-        const Row& w = rows[k];
-        const double a = swap ? w.b : w.a, b = swap ? w.a : w.b;
-        if (b > 0.0) {
-            const double v = (w.c - a * x) / b;
-            if (v < r.U) r = {v, -a / b, r.L, r.sl, k};
-        } else if (b < 0.0) {
-            const double v = (w.c - a * x) / b;
-            if (v > r.L) {
-                r.L = v;
-                r.sl = -a / b;
-            }
+inline Bounds bounds_at(const Lines& L, double x, double ylo, double yhi) {
+    Bounds r{yhi, 0.0, ylo, 0.0};
+    for (const Line& l : L.up) {
+        const double v = l.p + l.r * x;
+        if (v < r.U) {
+            r.U = v;
+            r.su = l.r;
+        }
+    }
+    for (const Line& l : L.lo) {
+        const double v = l.p + l.r * x;
+        if (v > r.L) {
+            r.L = v;
+            r.sl = l.r;
         }
     }
     return r;
@@ -203,20 +241,15 @@ inline double gap_tol(const Bounds& b) { return GAP_RTOL * (std::fabs(b.U) + std
 
 //! The largest (or smallest) first variable of a feasible pair, the second in [ylo, yhi]
 //! and the first in [xlo, xhi]; false when there is none.
-inline bool extreme(const std::vector<Row>& rows, bool swap, bool largest, double xlo, double xhi,
-                    double ylo, double yhi, double& out) {
-    if (!(ylo <= yhi)) return false;
-    for (const Row& w : rows) {  // rows on the first variable alone
-        const double a = swap ? w.b : w.a, b = swap ? w.a : w.b;
-        if (b != 0.0) continue;
-        if (a > 0.0) xhi = std::min(xhi, w.c / a);
-        else if (a < 0.0) xlo = std::max(xlo, w.c / a);
-        else if (w.c < 0.0) return false;
-    }
+inline bool extreme(const Lines& L, bool largest, double xlo, double xhi, double ylo, double yhi,
+                    double& out) {
+    if (L.never || !(ylo <= yhi)) return false;
+    xlo = std::max(xlo, L.first_lo);
+    xhi = std::min(xhi, L.first_hi);
     if (!(xlo <= xhi)) return false;
     double x = largest ? xhi : xlo;
     for (int it = 0; it < MAX_NEWTON; ++it) {
-        const Bounds b = bounds_at(rows, swap, x, ylo, yhi);
+        const Bounds b = bounds_at(L, x, ylo, yhi);
         const double g = b.U - b.L;
         if (g >= -gap_tol(b)) {
             out = x;
@@ -237,59 +270,65 @@ inline bool extreme(const std::vector<Row>& rows, bool swap, bool largest, doubl
     return false;
 }
 
-//! The first row that forces y = 0 at x = 0 at stage i (the limit that stops the path).
-inline void name_stop(const std::vector<Row>& rows, Output& out) {
+//! The first row that forces y = 0 at x = 0 (the limit that stops the path); false if none.
+inline bool name_stop(const std::vector<Row>& rows, Output& out) {
     for (const Row& w : rows) {
         if (w.b > 0.0 && w.c <= 0.0) {
             out.kind = w.kind;
             out.joint = w.joint;
-            return;
+            return true;
         }
     }
+    return false;
 }
 
 }  // namespace detail
 
+//! Scratch of one timing, reused across calls.
+struct Workspace {
+    std::vector<detail::Lines> stages;
+    std::vector<Row> rows;
+    detail::Lines swapped;
+    detail::BernsteinTable bernstein;
+};
+
 //! Time-optimal ṡ² along the grid within every limit at every s (see the file comment).
-//! rows_per_stage: scratch, reused across calls.
-inline void time_optimal(const Problem& P, Output& out, std::vector<std::vector<Row>>& stages) {
+//! sets: also the limit curve and the reachable sets (NaN otherwise).
+inline void time_optimal(const Problem& P, Output& out, Workspace& ws, bool sets = true) {
     using detail::extreme;
     const int N = P.N;
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const double inf = std::numeric_limits<double>::infinity();
-    stages.resize(N);
-    for (int i = 0; i < N; ++i) detail::stage_rows(P, i, stages[i]);
+    ws.stages.resize(N);
     for (int i = 0; i <= N; ++i) {
         out.x[i] = out.k_lo[i] = out.k_hi[i] = out.r_lo[i] = out.r_hi[i] = out.mvc[i] = nan;
     }
-    // The limit curve: each stage's own largest x, whatever follows.
-    for (int i = 0; i < N; ++i) {
-        double v;
-        if (extreme(stages[i], false, true, 0.0, inf, 0.0, inf, v)) out.mvc[i] = v;
-    }
-    {
-        double v;
-        if (extreme(stages[N - 1], true, true, 0.0, inf, 0.0, inf, v)) out.mvc[N] = v;
-    }
     // Backward: the controllable sets.
     out.k_lo[N] = out.k_hi[N] = P.x_end;
-    int empty_at = -1;
+    out.status = Status::ok;
     for (int i = N - 1; i >= 0; --i) {
+        detail::stage_rows(P, ws.bernstein, i, ws.rows);
+        ws.stages[i].build(ws.rows, false);
+        if (sets) {
+            double v;
+            if (extreme(ws.stages[i], true, 0.0, inf, 0.0, inf, v)) out.mvc[i] = v;
+            if (i == N - 1) {
+                ws.swapped.build(ws.rows, true);
+                if (extreme(ws.swapped, true, 0.0, inf, 0.0, inf, v)) out.mvc[N] = v;
+            }
+        }
+        if (out.status != Status::ok) continue;  // the limit curve goes on
         double lo, hi;
-        if (!extreme(stages[i], false, false, 0.0, inf, out.k_lo[i + 1], out.k_hi[i + 1], lo) ||
-            !extreme(stages[i], false, true, 0.0, inf, out.k_lo[i + 1], out.k_hi[i + 1], hi)) {
-            empty_at = i;
-            break;
+        if (!extreme(ws.stages[i], false, 0.0, inf, out.k_lo[i + 1], out.k_hi[i + 1], lo) ||
+            !extreme(ws.stages[i], true, 0.0, inf, out.k_lo[i + 1], out.k_hi[i + 1], hi)) {
+            out.status = Status::empty;
+            out.stage = i;
+            continue;
         }
         out.k_lo[i] = lo;
         out.k_hi[i] = std::max(lo, hi);
     }
-    out.status = Status::ok;
-    if (empty_at >= 0) {
-        out.status = Status::empty;
-        out.stage = empty_at;
-        return;
-    }
+    if (out.status != Status::ok) return;
     const double x0 = P.x_start;
     if (x0 > out.k_hi[0] * (1.0 + GAP_RTOL) || x0 < out.k_lo[0] * (1.0 - GAP_RTOL)) {
         out.status = Status::start_outside;
@@ -299,26 +338,28 @@ inline void time_optimal(const Problem& P, Output& out, std::vector<std::vector<
     // Forward: the fastest successor within the next controllable set.
     out.x[0] = out.r_lo[0] = out.r_hi[0] = x0;
     for (int i = 0; i < N; ++i) {
-        const std::vector<Row>& rows = stages[i];
+        const detail::Lines& L = ws.stages[i];
         const double x = out.x[i];
-        const detail::Bounds b = detail::bounds_at(rows, false, x, out.k_lo[i + 1], out.k_hi[i + 1]);
+        const detail::Bounds b = detail::bounds_at(L, x, out.k_lo[i + 1], out.k_hi[i + 1]);
         const double y = std::max(0.0, b.U);
-        // The reachable set: successors of the reachable x within the controllable set.
-        double rlo, rhi;
-        const double xa = std::max(out.r_lo[i], out.k_lo[i]), xb = std::min(out.r_hi[i], out.k_hi[i]);
-        if (extreme(rows, true, false, out.k_lo[i + 1], out.k_hi[i + 1], xa, xb, rlo) &&
-            extreme(rows, true, true, out.k_lo[i + 1], out.k_hi[i + 1], xa, xb, rhi)) {
-            out.r_lo[i + 1] = rlo;
-            out.r_hi[i + 1] = std::max(rlo, rhi);
+        if (sets) {  // successors of the reachable x within the controllable sets
+            detail::stage_rows(P, ws.bernstein, i, ws.rows);
+            ws.swapped.build(ws.rows, true);
+            const double xa = std::max(out.r_lo[i], out.k_lo[i]), xb = std::min(out.r_hi[i], out.k_hi[i]);
+            double rlo, rhi;
+            if (extreme(ws.swapped, false, out.k_lo[i + 1], out.k_hi[i + 1], xa, xb, rlo) &&
+                extreme(ws.swapped, true, out.k_lo[i + 1], out.k_hi[i + 1], xa, xb, rhi)) {
+                out.r_lo[i + 1] = rlo;
+                out.r_hi[i + 1] = std::max(rlo, rhi);
+            }
         }
         if (x <= 0.0 && y <= 0.0) {  // at rest and held there: the path cannot go on
             out.status = Status::stuck;
             out.stage = i;
             for (int j = i; j < N; ++j) {  // the stage whose own limit holds it, not the sets'
-                detail::Bounds own = detail::bounds_at(stages[j], false, 0.0, 0.0, inf);
-                if (own.U <= 0.0) {
-                    detail::name_stop(stages[j], out);
-                    break;
+                if (detail::bounds_at(ws.stages[j], 0.0, 0.0, inf).U <= 0.0) {
+                    detail::stage_rows(P, ws.bernstein, j, ws.rows);
+                    if (detail::name_stop(ws.rows, out)) break;
                 }
             }
             return;

@@ -65,6 +65,7 @@ def time_optimal_grid(
     x_start: float,
     x_end: float,
     x_max: float,
+    sets: bool = True,
 ) -> GridTiming:
     """TOPP-RA in the core, limits held over every grid interval.
 
@@ -79,6 +80,7 @@ def time_optimal_grid(
         x_start: ``ṡ²`` at ``s[0]``.
         x_end: ``ṡ²`` at ``s[-1]``.
         x_max: Largest ``ṡ²`` anywhere.
+        sets: Also the limit curve and the reachable sets (else NaN): about 2x the work.
 
     Returns:
         The :class:`GridTiming`.
@@ -95,6 +97,7 @@ def time_optimal_grid(
         float(x_start),
         float(x_end),
         float(x_max),
+        bool(sets),
     )
     status, stage, kind, joint, *arrays = out
     return GridTiming(STATUSES[status], int(stage), KINDS[kind], int(joint), *arrays)
