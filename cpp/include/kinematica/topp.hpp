@@ -113,22 +113,26 @@ struct BernsteinTable {
     }
 };
 
-//! The rows of one stage: each joint's velocity and acceleration over the whole interval.
-inline void stage_rows(const Problem& P, const BernsteinTable& bt, int i, std::vector<Row>& rows) {
-    rows.clear();
-    const int n = P.n, deg = P.degree;
+//! Each row of stage i, given to sink(a, b, c, kind, joint): every joint's velocity and
+//! acceleration over the whole interval, then the cap. DEG: the degree of the pieces (a
+//! template parameter, so that the short loops below unroll).
+template <int DEG, class Sink>
+inline void for_each_row(const Problem& P, const BernsteinTable& bt, int i, Sink&& sink) {
+    constexpr int d1deg = DEG - 1;  // degree of q'
+    constexpr int D = 2 * d1deg;    // degree of q'²
+    const int n = P.n;
     const double h = P.s[i + 1] - P.s[i];
-    const double* c = P.coef + static_cast<std::ptrdiff_t>(i) * (deg + 1) * n;
+    const double half_inv_h = 0.5 / h;
+    const double* c = P.coef + static_cast<std::ptrdiff_t>(i) * (DEG + 1) * n;
     for (int j = 0; j < n; ++j) {
         // q'(t) and q''(t) in t = τ/h, power basis.
         double d1[MAX_DEGREE + 1] = {0.0}, d2[MAX_DEGREE + 1] = {0.0};
         double hp = 1.0;  // h^(m-1)
-        for (int m = 1; m <= deg; ++m) {
+        for (int m = 1; m <= DEG; ++m) {
             d1[m - 1] = m * c[m * n + j] * hp;
-            if (m >= 2) d2[m - 2] = m * (m - 1) * c[m * n + j] * hp / h;
+            if (m >= 2) d2[m - 2] = (m - 1) * d1[m - 1] / h;
             hp *= h;
         }
-        const int d1deg = deg - 1;
         const double vhi = P.vhi[j], vlo = P.vlo[j];
         if (std::isfinite(vhi) || std::isfinite(vlo)) {
             double b1[MAX_DEGREE + 1];
@@ -143,7 +147,6 @@ inline void stage_rows(const Problem& P, const BernsteinTable& bt, int i, std::v
             const double v = pos ? vhi : neg ? -vlo : std::min(vhi, -vlo);
             if (!zero && std::isfinite(v)) {
                 double sq[MAX_BERNSTEIN + 1] = {0.0};
-                const int D = 2 * d1deg;
                 for (int a = 0; a <= d1deg; ++a)
                     for (int b = 0; b <= d1deg; ++b) sq[a + b] += d1[a] * d1[b];
                 double B[MAX_BERNSTEIN + 1] = {0.0};
@@ -152,7 +155,7 @@ inline void stage_rows(const Problem& P, const BernsteinTable& bt, int i, std::v
                 for (int k = 0; k <= D + 1; ++k) {
                     const double a = k <= D ? (D + 1 - k) * B[k] / (D + 1) : 0.0;
                     const double b = k >= 1 ? k * B[k - 1] / (D + 1) : 0.0;
-                    rows.push_back({a, b, v * v, Kind::velocity, j});
+                    sink(a, b, v * v, Kind::velocity, j);
                 }
             }
         }
@@ -161,10 +164,10 @@ inline void stage_rows(const Problem& P, const BernsteinTable& bt, int i, std::v
             // q̈ = x·A(t) + y·B(t), A = q''(1 - t) - q'/(2h), B = q''·t + q'/(2h).
             double A[MAX_DEGREE + 1] = {0.0}, Bp[MAX_DEGREE + 1] = {0.0};
             for (int k = 0; k <= d1deg; ++k) {
-                A[k] = -d1[k] / (2.0 * h);
-                Bp[k] = d1[k] / (2.0 * h);
+                A[k] = -d1[k] * half_inv_h;
+                Bp[k] = d1[k] * half_inv_h;
             }
-            for (int k = 0; k + 2 <= deg; ++k) {
+            for (int k = 0; k + 2 <= DEG; ++k) {
                 A[k] += d2[k];
                 A[k + 1] -= d2[k];
                 Bp[k + 1] += d2[k];
@@ -173,14 +176,34 @@ inline void stage_rows(const Problem& P, const BernsteinTable& bt, int i, std::v
             bt.convert(A, d1deg, bA);
             bt.convert(Bp, d1deg, bB);
             for (int k = 0; k <= d1deg; ++k) {
-                if (std::isfinite(ahi)) rows.push_back({bA[k], bB[k], ahi, Kind::acceleration, j});
-                if (std::isfinite(alo)) rows.push_back({-bA[k], -bB[k], -alo, Kind::acceleration, j});
+                if (std::isfinite(ahi)) sink(bA[k], bB[k], ahi, Kind::acceleration, j);
+                if (std::isfinite(alo)) sink(-bA[k], -bB[k], -alo, Kind::acceleration, j);
             }
         }
     }
     const double cap = std::min(P.cap[i], P.x_max);
-    rows.push_back({1.0, 0.0, cap, Kind::cap, -1});
-    rows.push_back({0.0, 1.0, cap, Kind::cap, -1});
+    sink(1.0, 0.0, cap, Kind::cap, -1);
+    sink(0.0, 1.0, cap, Kind::cap, -1);
+}
+
+//! for_each_row at the problem's degree.
+template <class Sink>
+inline void each_row(const Problem& P, const BernsteinTable& bt, int i, Sink&& sink) {
+    switch (P.degree) {
+        case 1: for_each_row<1>(P, bt, i, sink); break;
+        case 2: for_each_row<2>(P, bt, i, sink); break;
+        case 3: for_each_row<3>(P, bt, i, sink); break;
+        case 4: for_each_row<4>(P, bt, i, sink); break;
+        default: for_each_row<5>(P, bt, i, sink); break;
+    }
+}
+
+//! The rows of stage i as a list (for naming the limit that stops a path).
+inline void stage_rows(const Problem& P, const BernsteinTable& bt, int i, std::vector<Row>& rows) {
+    rows.clear();
+    each_row(P, bt, i, [&](double a, double b, double c, Kind kind, int joint) {
+        rows.push_back({a, b, c, kind, joint});
+    });
 }
 
 //! A bound p + r·x on the second variable of a stage at its first one x.
@@ -195,21 +218,38 @@ struct Lines {
     double first_lo = 0.0, first_hi = std::numeric_limits<double>::infinity();
     bool never = false;  //!< a row 0 <= c < 0: nothing satisfies it
 
-    //! swap: solve for the first variable (x) instead of the second (y).
-    void build(const std::vector<Row>& rows, bool swap) {
+    void clear() {
         up.clear();
         lo.clear();
         first_lo = 0.0;
         first_hi = std::numeric_limits<double>::infinity();
         never = false;
-        for (const Row& w : rows) {
-            const double a = swap ? w.b : w.a, b = swap ? w.a : w.b;
-            if (b > 0.0) up.push_back({w.c / b, -a / b});
-            else if (b < 0.0) lo.push_back({w.c / b, -a / b});
-            else if (a > 0.0) first_hi = std::min(first_hi, w.c / a);
-            else if (a < 0.0) first_lo = std::max(first_lo, w.c / a);
-            else if (w.c < 0.0) never = true;
+    }
+
+    //! Add the row a·x + b·y <= c, solved for y.
+    void add(double a, double b, double c) {
+        if (b > 0.0) {
+            const double inv = 1.0 / b;
+            up.push_back({c * inv, -a * inv});
+        } else if (b < 0.0) {
+            const double inv = 1.0 / b;
+            lo.push_back({c * inv, -a * inv});
+        } else if (a > 0.0) {
+            first_hi = std::min(first_hi, c / a);
+        } else if (a < 0.0) {
+            first_lo = std::max(first_lo, c / a);
+        } else if (c < 0.0) {
+            never = true;
         }
+    }
+
+    //! Stage i's rows, solved for y (swap: for x).
+    void build(const Problem& P, const BernsteinTable& bt, int i, bool swap) {
+        clear();
+        each_row(P, bt, i, [&](double a, double b, double c, Kind, int) {
+            if (swap) add(b, a, c);
+            else add(a, b, c);
+        });
     }
 };
 
@@ -307,13 +347,12 @@ inline void time_optimal(const Problem& P, Output& out, Workspace& ws, bool sets
     out.k_lo[N] = out.k_hi[N] = P.x_end;
     out.status = Status::ok;
     for (int i = N - 1; i >= 0; --i) {
-        detail::stage_rows(P, ws.bernstein, i, ws.rows);
-        ws.stages[i].build(ws.rows, false);
+        ws.stages[i].build(P, ws.bernstein, i, false);
         if (sets) {
             double v;
             if (extreme(ws.stages[i], true, 0.0, inf, 0.0, inf, v)) out.mvc[i] = v;
             if (i == N - 1) {
-                ws.swapped.build(ws.rows, true);
+                ws.swapped.build(P, ws.bernstein, i, true);
                 if (extreme(ws.swapped, true, 0.0, inf, 0.0, inf, v)) out.mvc[N] = v;
             }
         }
@@ -343,8 +382,7 @@ inline void time_optimal(const Problem& P, Output& out, Workspace& ws, bool sets
         const detail::Bounds b = detail::bounds_at(L, x, out.k_lo[i + 1], out.k_hi[i + 1]);
         const double y = std::max(0.0, b.U);
         if (sets) {  // successors of the reachable x within the controllable sets
-            detail::stage_rows(P, ws.bernstein, i, ws.rows);
-            ws.swapped.build(ws.rows, true);
+            ws.swapped.build(P, ws.bernstein, i, true);
             const double xa = std::max(out.r_lo[i], out.k_lo[i]), xb = std::min(out.r_hi[i], out.k_hi[i]);
             double rlo, rhi;
             if (extreme(ws.swapped, false, out.k_lo[i + 1], out.k_hi[i + 1], xa, xb, rlo) &&
