@@ -52,6 +52,7 @@ def test_a_straight_line_is_the_textbook_trapezoid(v: float, a: float, T: float)
     res = time_optimal([[0.0], [1.0]], v, a, dt=DENSE_DT)
     assert res.ok and res.status == "ok"
     assert res.duration == pytest.approx(T, rel=1e-9)
+    assert res.slowdowns == ()  # ṡ rises then falls: no interior minimum to report
     ref = joint_trajectory([0.0], [1.0], None, "trapezoid", DENSE_DT, v, a)
     assert ref.t[-1] == pytest.approx(T, rel=1e-12)
     assert (
@@ -302,6 +303,55 @@ def test_a_tool_speed_alone_bounds_a_cartesian_line_at_that_speed() -> None:
     speed = np.linalg.norm(np.einsum("mij,mj->mi", J[:, :3], res.trajectory.qd), axis=1)
     assert speed.max() <= 0.2 * (1 + HOLD_RTOL) and speed.max() > 0.2 * 0.99
     assert res.duration > L / 0.2  # at most 0.2 m/s over L metres, accelerating first
+
+
+@pytest.mark.parametrize(
+    ("name", "q"),
+    [("puma560", [0.2, -0.5, 0.3, 0.4, 0.9, -0.1]), ("ur5", [0.3, -1.2, 1.4, -1.0, -1.5, 0.2])],
+)
+def test_cartesian_lines_of_built_in_arms_hold_joint_and_tool_limits(
+    name: str, q: list[float]
+) -> None:
+    robot = km.load(name)
+    T0 = robot.fk(q)
+    T1 = T0 @ km.make_transform(km.rotz(0.4), [0.05, -0.08, 0.06])
+    path = km.cartesian_path(
+        robot, T0, T1, 80, q0=q, vmax=1.0, amax=4.0, tcp_speed=0.3, tcp_angular_speed=1.0
+    )
+    assert path.t is not None and path.qd is not None and path.qdd is not None
+    assert path.ok, path.events
+    assert np.abs(path.qd).max() <= 1.0 * (1 + HOLD_RTOL)
+    assert np.abs(path.qdd).max() <= 4.0 * (1 + HOLD_RTOL)
+    J = robot.jacobian(path.q)
+    tw = np.einsum("mij,mj->mi", J, path.qd)
+    lin, ang = np.linalg.norm(tw[:, :3], axis=1), np.linalg.norm(tw[:, 3:], axis=1)
+    assert lin.max() <= 0.3 * (1 + HOLD_RTOL) and ang.max() <= 1.0 * (1 + HOLD_RTOL)
+    # some limit is reached
+    top = max(lin.max() / 0.3, ang.max(), np.abs(path.qd).max(), np.abs(path.qdd).max() / 4.0)
+    assert top > 0.99
+    # the tool follows the line: FK of the timed joints against the poses asked for
+    assert np.abs(robot.fk(path.q)[:, :3, 3] - path.poses[:, :3, 3]).max() < 1e-4
+
+
+def test_a_via_path_is_timed_too() -> None:
+    puma = km.load("puma560")
+    q = np.array([0.2, -0.5, 0.3, 0.4, 0.9, -0.1])
+    T0 = puma.fk(q)
+    poses = np.stack([T0, T0.copy(), T0.copy()])
+    poses[1, :3, 3] += [0.08, 0.0, 0.0]
+    poses[2, :3, 3] += [0.08, 0.08, 0.0]
+    path = km.cartesian_via_path(puma, poses, blend=0.02, steps=120, q0=q, tcp_speed=0.2)
+    untimed = km.cartesian_via_path(puma, poses, blend=0.02, steps=120, q0=q)
+    assert path.t is not None and untimed.t is None and path.ok
+    assert np.allclose(path.q[[0, -1]], untimed.q[[0, -1]], atol=1e-9)
+    speed = np.linalg.norm(np.einsum("mij,mj->mi", puma.jacobian(path.q)[:, :3], path.qd), axis=1)
+    assert speed.max() <= 0.2 * (1 + HOLD_RTOL)
+
+
+def test_the_largest_path_speed_is_a_bound_not_an_error() -> None:
+    W = [[0.0, 0.0], [1.0, 1.0]]
+    res = time_optimal(W, 1.0, 1.0, sd_start=MAX_PATH_SPEED)  # accepted: too fast to start
+    assert res.status == "infeasible" and res.limit == "start speed"
 
 
 # ------------------------------------------------------------------ bad input
