@@ -8,7 +8,7 @@ import pytest
 import kinematica as km
 from kinematica.errors import ArgumentError, DimensionError, KinematicaError
 from kinematica.motion import JointTrajectory, joint_trajectory, time_optimal
-from kinematica.motion.optimal import MAX_PATH_SPEED, SLOW_FRACTION, TimeOptimal
+from kinematica.motion.optimal import MAX_INTERVALS, MAX_PATH_SPEED, SLOW_FRACTION, TimeOptimal
 
 #: Relative excess over a limit accepted on a 1 ms resampling (round-off only).
 HOLD_RTOL = 1e-9
@@ -129,10 +129,8 @@ def test_a_joint_trajectory_is_retimed_along_its_own_path() -> None:
 
 
 # ------------------------------------------------------------------ toppra
-toppra = pytest.importorskip("toppra")
-
-
 def toppra_time(W: np.ndarray, vel: np.ndarray, acc: np.ndarray, grid: np.ndarray | None) -> tuple:
+    toppra = pytest.importorskip("toppra")  # the test extra installs it
     import toppra.algorithm as algo
     import toppra.constraint as constraint
 
@@ -375,6 +373,11 @@ def test_bad_input_is_named() -> None:
         time_optimal(W, 1.0, 1.0, sd_start=2 * MAX_PATH_SPEED)
     with pytest.raises(ArgumentError, match="grid"):
         time_optimal(W, 1.0, 1.0, grid=0)
+    with pytest.raises(ArgumentError, match="grid"):
+        time_optimal(W, 1.0, 1.0, grid=MAX_INTERVALS + 1)
+    assert time_optimal(W, 1.0, 1.0, grid=MAX_INTERVALS).ok  # the largest grid is taken
+    with pytest.raises(DimensionError, match="robot 6"):
+        time_optimal(W, 1.0, 1.0, km.load("puma560"), tcp_speed=0.1)
 
 
 def test_the_figure_is_drawn(tmp_path) -> None:  # type: ignore[no-untyped-def]

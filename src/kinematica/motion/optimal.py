@@ -64,6 +64,7 @@ __all__ = [
     "BLOCKING_EVENTS",
     "CAP_SUBSAMPLES",
     "DEFAULT_GRID",
+    "MAX_INTERVALS",
     "MAX_PATH_SPEED",
     "SLOW_FRACTION",
     "Slowdown",
@@ -75,6 +76,8 @@ FloatArray = NDArray[np.float64]
 
 #: Grid intervals over s in [0, 1] by default (every knot is on the grid too).
 DEFAULT_GRID = 1000
+#: Most grid intervals of one timing (knots included): the core keeps ~1.5 kB a stage.
+MAX_INTERVALS = 50_000
 #: Largest path speed ṡ (1/s): bounds a stretch no limit constrains (the path covered in 1 µs).
 MAX_PATH_SPEED = 1e6
 #: Sub-intervals per grid interval where the tool speeds are sampled.
@@ -202,8 +205,6 @@ def _geometry(
         )
     if not np.all(np.isfinite(W)):
         raise DimensionError("path holds NaN or inf")
-    if robot is not None and W.shape[1] != robot.dof:
-        raise DimensionError(f"path has {W.shape[1]} joints, the robot {robot.dof}")
     return waypoint_path(W), None
 
 
@@ -309,9 +310,11 @@ def time_optimal(
     """
     pp, blocked = _geometry(path, robot)
     n = pp.coef.shape[2]
+    if robot is not None and n != robot.dof:
+        raise DimensionError(f"the path has {n} joints, the robot {robot.dof}")
     vel, acc = _limits(vmax, n, "vmax"), _limits(amax, n, "amax")
     dt = check_number(dt, "dt", positive=True, unit="s", what="a number of seconds")
-    grid = check_count(grid, "grid", lo=1, hi=MAX_SAMPLES)
+    grid = check_count(grid, "grid", lo=1, hi=MAX_INTERVALS)
     speeds = (
         None if tcp_speed is None else check_number(tcp_speed, "tcp_speed", positive=True),
         None
@@ -329,6 +332,7 @@ def time_optimal(
     if pp.coef.shape[1] - 1 > MAX_DEGREE:  # pragma: no cover - the paths built here are quintic
         raise KinematicaError(f"path pieces of degree above {MAX_DEGREE}")
     s, piece = grid_for(pp.knots, grid)
+    check_size(s.size - 1, MAX_INTERVALS, "grid", "grid intervals (one at least between knots)")
     coef = taylor_coefficients(pp, s, piece)
     cap, which = np.full(s.size - 1, np.inf), np.zeros(s.size - 1, dtype=int)
     if robot is not None and speeds != (None, None):
