@@ -11,6 +11,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.cli.format import fmt, matrix, table
+from kinematica.cli.motion_optimal import add_optimal_options, optimal_trajectory
 from kinematica.cli.options import (
     add_common,
     add_robot,
@@ -275,8 +276,6 @@ def trajectory(args: argparse.Namespace) -> int:
     if duration is None and times is None and vmax is None and amax is None:
         duration = 2.0
     if args.optimal:
-        from kinematica.cli.motion_optimal import optimal_trajectory
-
         return optimal_trajectory(args, robot, W, vmax, amax, _safe)
     if args.figure or args.tcp_speed is not None:
         raise KinematicaError("--figure and --tcp-speed go with --optimal")
@@ -482,16 +481,7 @@ def register(sub: Any) -> None:
     p.add_argument(
         "--blend", type=float, help="--cartesian through --via: corner radius (robot's length unit)"
     )
-    p.add_argument(
-        "--optimal",
-        action="store_true",
-        help="the fastest timing of the path (joint spline through the points, or --cartesian "
-        "lines) within --vmax, --amax and --tcp-speed",
-    )
-    p.add_argument("--tcp-speed", type=float, help="--optimal: tool speed limit (length unit/s)")
-    p.add_argument(
-        "--figure", metavar="PLOT.png", help="--optimal: draw q, q̇, q̈ and the phase plane"
-    )
+    add_optimal_options(p)
     p.add_argument("-o", "--output", metavar="PATH.csv", help="write t,q1..qn (SI) to .csv/.json")
     add_common(p)
     p.set_defaults(run=trajectory)

@@ -15,11 +15,25 @@ from kinematica.cli.options import angle_unit, dump, joint_units, lengths_in, q_
 from kinematica.errors import KinematicaError
 from kinematica.robot import Robot
 
-__all__ = ["optimal_trajectory"]
+__all__ = ["add_optimal_options", "optimal_trajectory"]
 
 FloatArray = NDArray[np.float64]
 #: Rows of the trajectory printed as text (every k-th sample, and the last).
 PRINTED_ROWS = 12
+
+
+def add_optimal_options(p: argparse.ArgumentParser) -> None:
+    """The trajectory command's ``--optimal``, ``--tcp-speed`` and ``--figure``."""
+    p.add_argument(
+        "--optimal",
+        action="store_true",
+        help="the fastest timing of the path (joint spline through the points, or --cartesian "
+        "lines) within --vmax, --amax and --tcp-speed",
+    )
+    p.add_argument("--tcp-speed", type=float, help="--optimal: tool speed limit (length unit/s)")
+    p.add_argument(
+        "--figure", metavar="PLOT.png", help="--optimal: draw q, q̇, q̈ and the phase plane"
+    )
 
 
 def optimal_trajectory(
