@@ -171,5 +171,5 @@ def test_the_command_line_imports_no_ik_for_fk() -> None:
     assert _ours(seen["fk"], "kinematica.ik") == set()
     assert set(NOT_FOR_FK) & seen["fk"] == set()
     assert set(NOT_FOR_PUMA_IK) & seen["ik"] == set()
-    others = ("control", "convert", "derive", "design", "motion", "self_motion", "viz")
+    others = ("analysis", "control", "convert", "derive", "design", "motion", "self_motion", "viz")
     assert {f"kinematica.cli.{m}" for m in others} & seen["ik"] == set()  # fk's module alone

@@ -6,6 +6,10 @@
 #include "common.hpp"
 #include "pool.hpp"
 
+namespace kmpy {
+void bind_topp(nb::module_& m);  // bind_topp.cpp: the time-optimal timing of a path
+}  // namespace kmpy
+
 namespace {
 int import_numpy() {
     import_array1(-1);
@@ -22,5 +26,6 @@ NB_MODULE(_core, m) {
     kmpy::bind_solvers(m);
     kmpy::bind_spatial(m);
     kmpy::bind_lines(m);
+    kmpy::bind_topp(m);
     kmpy::bind_testing(m);
 }

@@ -50,6 +50,7 @@ if TYPE_CHECKING:  # the names below load on first use: `import kinematica` stay
         joint_trajectory,
         manipulability,
         resolved_rate,
+        time_optimal,
         via_trajectory,
     )
     from kinematica.motion.workspace import (
@@ -158,6 +159,7 @@ _LAZY = {
     "hessian": "kinematica.motion",
     "jacobian_dot": "kinematica.motion",
     "resolved_rate": "kinematica.motion",
+    "time_optimal": "kinematica.motion",
 }
 #: Subpackages reachable as attributes (``km.ik``, ``km.spatial``...) before anything imported them.
 _SUBPACKAGES = frozenset(
@@ -245,6 +247,7 @@ __all__ = [
     "rotz",
     "se3_error",
     "spec_from_robot",
+    "time_optimal",
     "to_pose",
     "transl",
     "urdf_to_dh",

@@ -5,11 +5,12 @@ from __future__ import annotations
 import math
 import unicodedata
 from collections.abc import Callable, Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-__all__ = ["DEFAULT_PRECISION", "fmt", "matrix", "num", "plain", "table"]
+__all__ = ["DEFAULT_PRECISION", "fmt", "json_numbers", "matrix", "num", "plain", "table"]
 
 #: Values closer to zero than this print as 0 (avoids "-0" and "1e-17" noise).
 PRINT_ZERO = 5e-13
@@ -95,3 +96,16 @@ def plain(text: object) -> str:
         else ch
         for ch in s
     )
+
+
+def json_numbers(a: Any) -> Any:
+    """Nested lists for JSON: NaN/inf as null, tiny values as 0."""
+    if isinstance(a, np.ndarray):
+        return json_numbers(a.tolist())
+    if isinstance(a, list | tuple):
+        return [json_numbers(v) for v in a]
+    if isinstance(a, float):
+        if not math.isfinite(a):
+            return None
+        return 0.0 if abs(a) < 5e-16 else a
+    return a

@@ -21,7 +21,8 @@ def add_jerk_options(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--plot",
         metavar="FIG.png",
-        help="draw q, q̇, q̈ (and the jerk of scurve) against their limits (needs matplotlib)",
+        help="draw q, q̇, q̈ against their limits (and the jerk of scurve; with --optimal, the "
+        "phase plane) (needs matplotlib)",
     )
 
 

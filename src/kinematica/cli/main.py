@@ -38,6 +38,7 @@ EXIT_INTERRUPTED = 130  # 128 + SIGINT, as shells report Ctrl-C
 COMMAND_MODULES = (
     "kinematics",
     "self_motion",
+    "analysis",
     "motion",
     "control",
     "viz",
@@ -58,8 +59,8 @@ COMMANDS = {
     "fk": "kinematics",
     "ik": "kinematics",
     "self-motion": "self_motion",
-    "jacobian": "motion",
-    "workspace": "motion",
+    "jacobian": "analysis",
+    "workspace": "analysis",
     "trajectory": "motion",
     "control": "control",
     "plot": "viz",

@@ -16,6 +16,7 @@ from kinematica.motion.cartesian import (
 from kinematica.motion.cartesian_via import ROTATION_LENGTH, cartesian_via_path
 from kinematica.motion.control import RateControl, resolved_rate
 from kinematica.motion.export import read_csv, write_csv, write_json
+from kinematica.motion.optimal import Slowdown, TimeOptimal, time_optimal
 from kinematica.motion.piecewise import PiecewisePolynomial
 from kinematica.motion.scurve import JerkTrajectory
 from kinematica.motion.trajectory import (
@@ -64,6 +65,8 @@ __all__ = [
     "RateControl",
     "SelfMotion",
     "Singularity",
+    "Slowdown",
+    "TimeOptimal",
     "Workspace",
     "WorkspaceSlice",
     "analytic_jacobian",
@@ -84,6 +87,7 @@ __all__ = [
     "resolved_rate",
     "self_motion",
     "singularities",
+    "time_optimal",
     "time_scaling",
     "via_polynomials",
     "via_trajectory",

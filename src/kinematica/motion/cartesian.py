@@ -26,7 +26,6 @@ refinement reaches :data:`MAX_DEPTH` levels (a jump: ``"branch_change"``).
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -35,12 +34,15 @@ from numpy.typing import ArrayLike, NDArray
 from kinematica.arguments import check_count, check_flag, check_size
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.result import IKResult
+from kinematica.motion.cartesian_timed import time_cartesian
+from kinematica.motion.cartesian_types import CartesianPath, PathEvent
 from kinematica.motion.path_checks import (
     RawEvent,
     end_branch,
     near_singular_passages,
     speed_jumps,
 )
+from kinematica.motion.trajectory import DEFAULT_DT
 from kinematica.robot.singularities import singularities, singularity_plan
 from kinematica.spatial import (
     check_transform,
@@ -76,71 +78,6 @@ MAX_STEPS = 100_000
 MAX_DEPTH = 40
 #: Three points closer than this (m) to one line define no circle.
 COLLINEAR_TOL = 1e-9
-
-
-@dataclass(frozen=True)
-class PathEvent:
-    """Something met along a Cartesian path.
-
-    Attributes:
-        kind: ``"singularity"``, ``"unreachable"``, ``"joint_limit"``,
-            ``"branch_change"``, ``"near_singularity"``, ``"speed_jump"`` or
-            ``"end_branch"``.
-        index: First sample where it is met (for a crossing or a jump
-            between samples ``i-1`` and ``i``: ``i``).
-        stop: Last sample of a run of consecutive samples with this event.
-        s: Path parameter in [0, 1] where it is met (the crossing itself
-            when located between samples).
-        names: Singularity names, or the joints (``"q3"``) over their limits,
-            jumping, or differing from the end asked for.
-        message: One sentence for people.
-    """
-
-    kind: str
-    index: int
-    stop: int
-    s: float
-    names: tuple[str, ...]
-    message: str
-
-
-@dataclass(frozen=True)
-class CartesianPath:
-    """Samples of a Cartesian path and the configurations that follow it.
-
-    Attributes:
-        s: ``(m,)`` path parameter, 0 to 1.
-        poses: ``(m, 4, 4)`` tool poses (base frame).
-        q: ``(m, n)`` joint values (rad, m); NaN where the pose has no
-            solution within the limits.
-        events: What was met along the way, in path order.
-    """
-
-    s: FloatArray
-    poses: FloatArray
-    q: FloatArray
-    events: tuple[PathEvent, ...]
-
-    @property
-    def ok(self) -> bool:
-        """True when the path was followed on one branch, meeting nothing."""
-        return not self.events
-
-    @property
-    def max_step(self) -> float:
-        """Largest joint change between consecutive samples (rad or m)."""
-        d = np.abs(np.diff(self.q, axis=0))
-        return float(np.nanmax(d)) if np.isfinite(d).any() else float("nan")
-
-    def _repr_html_(self) -> str:
-        """A few samples' joint values and every event, as HTML (Jupyter)."""
-        from kinematica.motion.display import samples_html
-
-        k = len(self.events)
-        met = "no event" if k == 0 else f"{k} event" + ("s" if k > 1 else "")
-        caption = f"{len(self.s)} samples along the path, {met} (q in rad, m)"
-        footer = tuple(e.message for e in self.events)
-        return samples_html(self.s, self.q, time_name="s", caption=caption, footer=footer)
 
 
 class _Geometry:
@@ -280,8 +217,19 @@ def cartesian_path(
     s: ArrayLike | None = None,
     position_only: bool | None = None,
     q1: ArrayLike | None = None,
+    *,
+    vmax: ArrayLike | None = None,
+    amax: ArrayLike | None = None,
+    tcp_speed: float | None = None,
+    tcp_angular_speed: float | None = None,
+    dt: float = DEFAULT_DT,
 ) -> CartesianPath:
     """Follow a straight line (or an arc through ``via``) from ``T0`` to ``T1``.
+
+    Given any of ``vmax``, ``amax``, ``tcp_speed``, ``tcp_angular_speed``, the
+    path is timed by the robot (:mod:`kinematica.motion.cartesian_timed`): the
+    fastest timing, rest to rest, of the path through the ``steps`` samples within
+    those limits, sampled every ``dt``.
 
     Args:
         robot: The robot.
@@ -301,9 +249,16 @@ def cartesian_path(
         q1: ``(n,)`` configuration the path is asked to end on (the IK solution
             of ``T1`` nearest to it): an ``"end_branch"`` event says when the
             continuation ends elsewhere (the same pose, another branch).
+        vmax: Joint velocity limits (rad/s, m/s; as for
+            :func:`~kinematica.motion.optimal.time_optimal`).
+        amax: Joint acceleration limits (rad/s², m/s²).
+        tcp_speed: Largest linear speed of the tool (m/s).
+        tcp_angular_speed: Largest angular speed of the tool (rad/s).
+        dt: Largest sample spacing (s) of a timed path.
 
     Returns:
-        The :class:`CartesianPath`, with its ``events``.
+        The :class:`CartesianPath`, with its ``events``; timed (``t``, ``qd``,
+        ``qdd`` set) when limits are given.
 
     Raises:
         DimensionError: Poses that are not rigid transforms, bad shapes.
@@ -321,7 +276,11 @@ def cartesian_path(
         via = v
     ss = path_samples(steps, s)
     geo = _Geometry(A, B, None if via is None else np.asarray(via))
-    return follow(robot, geo, ss, q0, position_only, q1)
+    path = follow(robot, geo, ss, q0, position_only, q1)
+    timing = (vmax, amax, tcp_speed, tcp_angular_speed, dt)
+    if any(v is not None for v in timing[:4]):
+        return time_cartesian(robot, geo, path, timing)
+    return path
 
 
 def path_samples(steps: int, s: ArrayLike | None) -> FloatArray:

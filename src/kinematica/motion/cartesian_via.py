@@ -35,6 +35,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.motion.cartesian import CartesianPath, follow, path_samples
+from kinematica.motion.cartesian_timed import time_cartesian
+from kinematica.motion.trajectory import DEFAULT_DT
 from kinematica.spatial import (
     check_transform,
     make_transform,
@@ -121,8 +123,17 @@ def cartesian_via_path(
     q0: ArrayLike | None = None,
     s: ArrayLike | None = None,
     position_only: bool | None = None,
+    *,
+    vmax: ArrayLike | None = None,
+    amax: ArrayLike | None = None,
+    tcp_speed: float | None = None,
+    tcp_angular_speed: float | None = None,
+    dt: float = DEFAULT_DT,
 ) -> CartesianPath:
     """Follow straight lines through ``poses``, the corners blended over ``blend`` metres.
+
+    Given any of ``vmax``, ``amax``, ``tcp_speed``, ``tcp_angular_speed``, the
+    path is timed by the robot, as :func:`~kinematica.motion.cartesian.cartesian_path`'s.
 
     Args:
         robot: The robot.
@@ -136,9 +147,14 @@ def cartesian_via_path(
         s: ``(m,)`` non-decreasing path parameters in [0, 1] instead of
             ``steps`` uniform ones (e.g. a time scaling ``s(t)``).
         position_only: As for :func:`cartesian_path`.
+        vmax: Joint velocity limits (rad/s, m/s), as for :func:`cartesian_path`.
+        amax: Joint acceleration limits (rad/s², m/s²).
+        tcp_speed: Largest linear speed of the tool (m/s).
+        tcp_angular_speed: Largest angular speed of the tool (rad/s).
+        dt: Largest sample spacing (s) of a timed path.
 
     Returns:
-        The :class:`CartesianPath`, with its ``events``.
+        The :class:`CartesianPath`, with its ``events``; timed when limits are given.
 
     Raises:
         DimensionError: Poses that are not rigid transforms, bad shapes.
@@ -151,4 +167,9 @@ def cartesian_via_path(
     if not (np.isfinite(blend) and blend >= 0):
         raise KinematicaError(f"blend must be a length >= 0 (m), got {blend!r}", arg="blend")
     ss = path_samples(steps, s)
-    return follow(robot, BlendedPolyline(P, float(blend)), ss, q0, position_only)
+    geo = BlendedPolyline(P, float(blend))
+    path = follow(robot, geo, ss, q0, position_only)
+    timing = (vmax, amax, tcp_speed, tcp_angular_speed, dt)
+    if any(v is not None for v in timing[:4]):
+        return time_cartesian(robot, geo, path, timing)
+    return path

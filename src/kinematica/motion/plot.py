@@ -1,4 +1,4 @@
-"""The one picture the motion layer draws: a workspace slice as a map.
+"""The motion layer's pictures: a workspace slice as a map, a time-optimal timing.
 
 matplotlib is an optional dependency (extra ``viz``), imported only here,
 when a picture is asked for.
@@ -7,7 +7,7 @@ when a picture is asked for.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -15,7 +15,15 @@ from kinematica.errors import KinematicaError
 from kinematica.io.atomic import atomic_path, write_failed
 from kinematica.motion.workspace import WorkspaceSlice
 
-__all__ = ["MissingDependencyError", "plot_workspace_slice", "require_matplotlib"]
+if TYPE_CHECKING:
+    from kinematica.motion.optimal import TimeOptimal
+
+__all__ = [
+    "MissingDependencyError",
+    "plot_time_optimal",
+    "plot_workspace_slice",
+    "require_matplotlib",
+]
 
 
 class MissingDependencyError(KinematicaError, ImportError):
@@ -65,6 +73,11 @@ def plot_workspace_slice(sl: WorkspaceSlice, path: str | Path, title: str = "") 
     ax.set_aspect("equal")
     head = f"{title}\n" if title else ""
     ax.set_title(f"{head}{u}{v} slice at {w} = {sl.at:.3f} m, area {sl.area:.4g} m²")
+    return _save(plt, fig, path)
+
+
+def _save(plt: Any, fig: Any, path: str | Path) -> Path:
+    """Write ``fig`` to ``path`` (atomically) and close it."""
     out = Path(path)
     try:
         with atomic_path(out) as tmp:
@@ -74,3 +87,58 @@ def plot_workspace_slice(sl: WorkspaceSlice, path: str | Path, title: str = "") 
     finally:
         plt.close(fig)
     return out
+
+
+def plot_time_optimal(res: TimeOptimal, path: str | Path, title: str = "") -> Path:
+    """Save a time-optimal timing: q, q̇, q̈ against time with their limits, and the phase plane.
+
+    The phase plane shows the path speed ``ṡ`` against ``s``, the limit curve (the
+    largest ``ṡ`` each grid interval's own limits allow) and the controllable sets.
+
+    Args:
+        res: The :func:`~kinematica.motion.optimal.time_optimal` result.
+        path: Output file; the format follows the extension (``.png``, ``.svg``, ...).
+        title: Title line (the duration and status are added).
+
+    Returns:
+        The path written.
+    """
+    plt = require_matplotlib()
+    tr = res.trajectory
+    fig, axes = plt.subplots(2, 2, figsize=(11, 7.5), dpi=100)
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    panels: list[tuple[Any, Any, str]] = [
+        (tr.q, None, "q (rad, m)"),
+        (tr.qd, res.vel, "q̇ (rad/s, m/s)"),
+        (tr.qdd, res.acc, "q̈ (rad/s², m/s²)"),
+    ]
+    for ax, (values, lim, label) in zip(axes.ravel()[:3], panels, strict=True):
+        for j in range(values.shape[1]):
+            c = colours[j % len(colours)]
+            ax.plot(tr.t, values[:, j], color=c, lw=1.2, label=f"q{j + 1}")
+            if lim is not None:
+                for bound in lim[j]:
+                    if np.isfinite(bound):
+                        ax.axhline(bound, color=c, lw=0.8, ls="--", alpha=0.6)
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+    axes[0, 0].legend(fontsize=7, ncol=2)
+    ax = axes[1, 1]
+    k = res.controllable
+    ax.fill_between(res.s, k[:, 0], k[:, 1], color="0.85", label="controllable sets")
+    ax.plot(res.s, res.sd_max, color="tab:red", lw=1.0, label="limit curve")
+    ax.plot(res.s, res.sd, color="tab:blue", lw=1.6, label="ṡ (time-optimal)")
+    if res.s_stop is not None:
+        ax.axvline(res.s_stop, color="k", ls=":", label=f"stops: {res.limit}")
+    top = np.nanmax(res.sd) if np.isfinite(res.sd).any() else 1.0
+    ax.set_ylim(0.0, 1.6 * top if top > 0 else 1.0)
+    ax.set_xlabel("s")
+    ax.set_ylabel("ṡ (1/s)")
+    ax.set_title("phase plane")
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+    head = f"{title}: " if title else ""
+    fig.suptitle(f"{head}{res.status}, {res.duration:.4g} s")
+    fig.tight_layout()
+    return _save(plt, fig, path)

@@ -1,0 +1,96 @@
+// Time-optimal timing of a joint path (topp.hpp) for kinematica.motion.optimal: one path per
+// call, every array checked here before the core sees it.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "common.hpp"
+#include "kinematica/topp.hpp"
+#include "numpy_io.hpp"
+
+namespace kmpy {
+
+namespace {
+
+namespace kt = km::topp;
+
+nb::tuple time_optimal(F64 s, F64 coef, F64 vlo, F64 vhi, F64 alo, F64 ahi, F64 cap, double x_start,
+                       double x_end, double x_max, bool sets) {
+    const In S = in_f64(s, "s", 1);
+    const npy_intp N = S.dim[0] - 1;
+    if (N < 1) fail_value("s", "at least 2 grid points");
+    const In C = in_f64(coef, "coef", 3, {N, -1, -1});
+    const npy_intp n = C.dim[2];
+    const int degree = static_cast<int>(C.dim[1]) - 1;
+    if (n < 1) fail_value("coef", "of at least one joint");
+    if (degree < 1 || degree > kt::MAX_DEGREE) {
+        fail_value("coef", "of degree 1 to " + std::to_string(kt::MAX_DEGREE) + " (axis 1 of size 2 to 6)");
+    }
+    const In VL = in_f64(vlo, "vlo", 1, {n}), VH = in_f64(vhi, "vhi", 1, {n});
+    const In AL = in_f64(alo, "alo", 1, {n}), AH = in_f64(ahi, "ahi", 1, {n});
+    const In CP = in_f64(cap, "cap", 1, {N});
+    for (npy_intp i = 0; i < N; ++i) {
+        if (!(S.data[i + 1] > S.data[i]) || !std::isfinite(S.data[i + 1] - S.data[i])) {
+            fail_value("s", "finite and strictly increasing");
+        }
+        if (!(CP.data[i] >= 0.0)) fail_value("cap", ">= 0 (inf for none)");
+    }
+    for (npy_intp k = 0; k < C.size(); ++k) {
+        if (!std::isfinite(C.data[k])) fail_value("coef", "finite");
+    }
+    for (npy_intp j = 0; j < n; ++j) {
+        if (!(VL.data[j] <= 0.0 && VH.data[j] >= 0.0 && AL.data[j] <= 0.0 && AH.data[j] >= 0.0)) {
+            fail_value("limits", "lo <= 0 <= hi for every joint");
+        }
+    }
+    if (!(x_start >= 0.0 && x_end >= 0.0 && std::isfinite(x_start) && std::isfinite(x_end))) {
+        fail_value("x_start and x_end", "finite squared speeds >= 0");
+    }
+    if (!(x_max > 0.0 && std::isfinite(x_max))) fail_value("x_max", "a finite positive number");
+
+    kt::Problem P;
+    P.n = static_cast<int>(n);
+    P.N = static_cast<int>(N);
+    P.degree = degree;
+    P.s = S.data;
+    P.coef = C.data;
+    P.vlo = VL.data;
+    P.vhi = VH.data;
+    P.alo = AL.data;
+    P.ahi = AH.data;
+    P.cap = CP.data;
+    P.x_start = x_start;
+    P.x_end = x_end;
+    P.x_max = x_max;
+    double *x, *klo, *khi, *rlo, *rhi, *mvc;
+    nb::object X = new_f64({N + 1}, x), KL = new_f64({N + 1}, klo), KH = new_f64({N + 1}, khi);
+    nb::object RL = new_f64({N + 1}, rlo), RH = new_f64({N + 1}, rhi), M = new_f64({N + 1}, mvc);
+    kt::Output out;
+    out.x = x;
+    out.k_lo = klo;
+    out.k_hi = khi;
+    out.r_lo = rlo;
+    out.r_hi = rhi;
+    out.mvc = mvc;
+    {
+        nb::gil_scoped_release release;
+        kt::Workspace ws;
+        kt::time_optimal(P, out, ws, sets);
+    }
+    return nb::make_tuple(static_cast<int>(out.status), out.stage, static_cast<int>(out.kind), out.joint, X,
+                          KL, KH, RL, RH, M);
+}
+
+}  // namespace
+
+void bind_topp(nb::module_& m) {
+    m.def("time_optimal", &time_optimal, nb::arg("s"), nb::arg("coef"), nb::arg("vlo"), nb::arg("vhi"),
+          nb::arg("alo"), nb::arg("ahi"), nb::arg("cap"), nb::arg("x_start"), nb::arg("x_end"),
+          nb::arg("x_max"), nb::arg("sets") = true,
+          "TOPP-RA on a grid s (N+1,) of a path with Taylor coefficients coef (N, d+1, n) at each s_i; "
+          "joint limits (n,) each, caps on ṡ² per interval (N,). Returns (status, stage, kind, joint, "
+          "x, k_lo, k_hi, r_lo, r_hi, mvc), the arrays (N+1,) of ṡ²; sets=False: no mvc, r_lo, r_hi (NaN).");
+    m.attr("TOPP_MAX_DEGREE") = kt::MAX_DEGREE;
+}
+
+}  // namespace kmpy
