@@ -9,10 +9,12 @@ should, the target a UR-type arm called unreachable, the tolerances that decide
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
 import pytest
+from support.helpers import run_cli
 from support.ik_singular_audit import (
     COUNTS,
     FAILURES,
@@ -32,7 +34,7 @@ from kinematica.ik.redundancy import UNDEFINED_AT_Q0
 pytestmark = pytest.mark.filterwarnings("ignore::kinematica.KinematicaWarning")
 
 #: check.hpp's and spherical_wrist.hpp's constants, as the core has them.
-MERGE_SPAN = 1e-5
+MERGE_SPAN = 1e-6
 NEAR_ALIGNED_TOL = 1e-7
 
 
@@ -48,8 +50,8 @@ def test_no_check_fails_on_a_sample_of_every_family() -> None:
         assert c["targets"] == 360
         failed = {k: c[k] for k in FAILURES if c[k]}
         assert not failed, (family, failed, [(f.what, f.detail, f.q.tolist()) for f in findings])
-        # the placements are singular: most answers are flagged, some continua
-        assert c["near"] + c["singular"] > c["targets"] // 3, (family, dict(c))
+        # the placements are singular: many answers flagged, some continua
+        assert c["near"] + c["singular"] > c["targets"] // 6, (family, dict(c))
     assert set(COUNTS) >= set(FAILURES)
 
 
@@ -193,9 +195,9 @@ def test_merge_span_makes_branches_at_a_stretched_elbow_one(factor: float, count
 
 def test_merge_needs_the_midpoint_to_solve() -> None:
     """Two exact solutions within MERGE_SPAN whose midpoint misses the tolerance (links of
-    100 m: elbows ±4e-6 have the stretched arm as midpoint, 4e-10 m short) stay two."""
-    robot = km.Robot.from_dh([km.Revolute(a=100.0), km.Revolute(a=100.0)])
-    T = robot.fk([0.3, 4e-6])
+    10 km: elbows ±4e-7 have the stretched arm as midpoint, 4e-10 m short) stay two."""
+    robot = km.Robot.from_dh([km.Revolute(a=1e4), km.Revolute(a=1e4)])
+    T = robot.fk([0.3, 4e-7])
     res = robot.ik(T[:3, 3], respect_limits=False)
     assert res.status == "ok" and res.count == 2, res.solutions
 
@@ -227,3 +229,16 @@ def test_a_batch_with_one_q0_without_arm_angle_solves_every_target() -> None:
     assert held[0] == pytest.approx(float(iiwa.arm_angle(qs[0])))
     assert held[1] == 0.0
     assert UNDEFINED_AT_Q0 in res[1].message and UNDEFINED_AT_Q0 not in res[0].message
+
+
+def test_the_cli_solves_an_srs_target_from_a_q0_without_arm_angle(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    iiwa = km.load("iiwa14")
+    T = iiwa.fk([0.3, 0.7, -0.4, 1.2, 0.5, -0.8, 0.2])
+    code, out, err = run_cli(capsys, "ik", "iiwa14", "--matrix", *map(str, T.ravel()),
+                             "--q0", *["0"] * 7, "--ignore-limits", "--json")  # fmt: skip
+    assert code == 0 and "--arm-angle" not in err, err
+    data = json.loads(out)
+    assert data["method"] == "analytic:srs" and len(data["solutions"]) == 8
+    np.testing.assert_allclose(iiwa.arm_angle(np.radians(data["solutions"])), 0.0, atol=1e-9)

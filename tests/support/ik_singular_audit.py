@@ -81,11 +81,12 @@ POLISH = 10
 #: Step of the central differences of the arm angle (rad).
 ANGLE_STEP = 1e-6
 #: Two solutions this close (rad or m) whose midpoint reaches the target within TOL are
-#: one solution to tolerance (at a fold, branches d apart have a midpoint off by about
-#: κ d² / 8: up to 1e-5 rad apart for curvatures of the order of 1).
-MERGE_SPAN = 1e-5
+#: one solution to tolerance: a change δ of the target moves branches at a fold by up to
+#: √(2 δ / κ), 5e-7 for round-off of a target of 1 m at a curvature κ of 1 (the check's
+#: MERGE_SPAN, which gives them once).
+MERGE_SPAN = 1e-6
 #: Two solutions this close are counted as a close pair (reported, not held to 0).
-CLOSE_TOL = 1e-6
+CLOSE_TOL = 1e-5
 #: The offsets off the singular set: signed, 10^U(OFFSET_EXP) rad; one in
 #: EXACT_EVERY is not moved.
 OFFSET_EXP = (-13.0, -6.0)

@@ -69,9 +69,12 @@ constexpr double DEDUP_TOL = 1e-7;
 //! are one solution to tolerance, given once, and the target is near a singular set:
 //! branches that merge there (elbow up and down at a stretched elbow, a fold of a
 //! closed form's equations), d apart, leave a midpoint off by about κ d² / 8 for a
-//! curvature κ of the order of the arm's size, within 1e-10 up to d of about 1e-5;
-//! distinct solutions this close exist only within round-off of such a fold.
-constexpr double MERGE_SPAN = 1e-5;
+//! curvature κ of the order of the arm's size; a change δ of the target moves them by
+//! up to √(2 δ / κ) at the fold, 5e-7 rad for the round-off of a target of the order
+//! of 1 m (δ 1e-13): branches this close are not told apart by the target (elbow up
+//! and down 4.5e-7 apart, issue 34), while two 2e-6 apart, 1e-6 either side of a fold,
+//! are two solutions (tests/ik/analytic/test_elbow_near.py).
+constexpr double MERGE_SPAN = 1e-6;
 //! Slack on joint limits for values computed by floating point (rad or m).
 constexpr double LIMIT_TOL = 1e-12;
 
