@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import math
 
+import kinematica._core as _core
 import numpy as np
 import pytest
 from support.helpers import run_cli
@@ -28,7 +29,6 @@ from support.ik_singular_audit import (
 )
 
 import kinematica as km
-import kinematica._core as _core
 from kinematica.ik.redundancy import UNDEFINED_AT_Q0
 
 pytestmark = pytest.mark.filterwarnings("ignore::kinematica.KinematicaWarning")

@@ -57,7 +57,6 @@ import kinematica as km
 from kinematica.ik.analytic.parallel import SPEC as PARALLEL
 from kinematica.ik.analytic.sampling import random_transform
 from kinematica.ik.analytic.spherical_wrist import SPECS as WRIST_SPECS
-from kinematica.ik.analytic.srs import SPEC as SRS
 from kinematica.ik.analytic.srs import random_srs_rows
 from kinematica.ik.registry import ArmSample
 from kinematica.ik.structure import features
@@ -238,8 +237,8 @@ def _follow(robot: km.Robot, x: FloatArray, moving: NDArray[np.bool_], T: FloatA
     """One Gauss-Newton step of the joints ``moving`` of x (in place) towards the pose T."""
     F = robot.fk(x)
     Re = T[:3, :3] @ F[:3, :3].T
-    e = np.concatenate([T[:3, 3] - F[:3, 3],
-                        0.5 * np.array([Re[2, 1] - Re[1, 2], Re[0, 2] - Re[2, 0], Re[1, 0] - Re[0, 1]])])  # fmt: skip
+    axis = np.array([Re[2, 1] - Re[1, 2], Re[0, 2] - Re[2, 0], Re[1, 0] - Re[0, 1]])
+    e = np.concatenate([T[:3, 3] - F[:3, 3], 0.5 * axis])
     J = robot.jacobian(x)[:, moving]
     x[moving] += np.linalg.lstsq(J, e, rcond=1e-12)[0]
 
