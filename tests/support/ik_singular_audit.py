@@ -31,9 +31,10 @@ answer is counted by what it says of a target made by FK:
   already exceeds it);
 * ``singular_missing``: ``singular`` and no representative from which that
   configuration is reached along the named free joints: the free joints moved from
-  the representative's values to the configuration's in :data:`WALK_STEPS` steps, the
-  other joints following by Gauss-Newton steps on the pose (they may have to: a
-  shoulder's free q1 turns the wrist's target), end within :data:`FOUND_TOL` of it;
+  the representative's values to the configuration's in :data:`WALK_STEPS` steps (the
+  shorter way round, then the longer), the other joints following by Gauss-Newton
+  steps on the pose (they may have to: a shoulder's free q1 turns the wrist's target),
+  end within :data:`FOUND_TOL` of it;
 * ``duplicates``: two solutions within :data:`MERGE_SPAN` of each other whose midpoint
   reaches the target within the tolerance (one solution to tolerance, given twice);
   ``close_pairs`` counts those within :data:`CLOSE_TOL` whatever their midpoint does;
@@ -74,7 +75,7 @@ FOUND_TOL = 1e-6
 ROUNDOFF = 1e-12
 #: Steps of the walk along the free joints of a singular answer, and Gauss-Newton
 #: steps of the other joints at each (then POLISH more at the end).
-WALK_STEPS = 24
+WALK_STEPS = 100
 FOLLOW = 3
 POLISH = 10
 #: Step of the central differences of the arm angle (rad).
@@ -245,18 +246,28 @@ def _follow(robot: km.Robot, x: FloatArray, moving: NDArray[np.bool_], T: FloatA
 
 def reached_along(robot: km.Robot, r: FloatArray, q: FloatArray, free: tuple[int, ...],
                   T: FloatArray) -> float:  # fmt: skip
-    """How far from q a walk from r ends whose free joints go to q's (rad or m, max)."""
+    """How far from q a walk from r ends whose free joints go to q's (rad or m, max).
+
+    The free joints turn the shorter way, and (revolute ones) the longer way round: a
+    continuum may be an arc of a joint's turn, not the whole of it.
+    """
     moving = np.ones(robot.dof, dtype=bool)
     moving[list(free)] = False
-    x = r.astype(float).copy()
-    delta = _wrapped(robot, q - r)[list(free)]
-    for k in range(1, WALK_STEPS + 1):
-        x[list(free)] = r[list(free)] + delta * k / WALK_STEPS
-        for _ in range(FOLLOW):
+    short = _wrapped(robot, q - r)[list(free)]
+    turn = np.where(robot.is_prismatic[list(free)], 0.0, 2 * PI * np.sign(short))
+    best = math.inf
+    for delta in (short, short - turn):
+        x = r.astype(float).copy()
+        for k in range(1, WALK_STEPS + 1):
+            x[list(free)] = r[list(free)] + delta * k / WALK_STEPS
+            for _ in range(FOLLOW):
+                _follow(robot, x, moving, T)
+        for _ in range(POLISH):
             _follow(robot, x, moving, T)
-    for _ in range(POLISH):
-        _follow(robot, x, moving, T)
-    return float(np.abs(_wrapped(robot, x - q)).max())
+        best = min(best, float(np.abs(_wrapped(robot, x - q)).max()))
+        if best <= FOUND_TOL:
+            break
+    return best
 
 
 def conditioning(robot: km.Robot, q: FloatArray) -> FloatArray:
