@@ -273,6 +273,7 @@ void bind_decoupled(nb::module_& m) {
     sub.attr("SELF_MOTION_TOL") = kd::SELF_MOTION_TOL;
     sub.attr("TWIN_TOL") = kd::TWIN_TOL;
     sub.attr("WRIST_SINGULAR_TOL") = kd::WRIST_SINGULAR_TOL;
+    sub.attr("NEAR_ALIGNED_TOL") = kd::NEAR_ALIGNED_TOL;
     sub.attr("MAX_POSITION_DOF") = kd::MAX_POSITION_DOF;
 }
 

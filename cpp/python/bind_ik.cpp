@@ -119,6 +119,7 @@ void bind_ik(nb::module_& m) {
     m.attr("POLISH_STEPS") = km::POLISH_STEPS;
     m.attr("POLISH_DAMPING") = km::POLISH_DAMPING;
     m.attr("DEDUP_TOL") = km::DEDUP_TOL;
+    m.attr("MERGE_SPAN") = km::MERGE_SPAN;
     m.attr("LIMIT_TOL") = km::LIMIT_TOL;
     m.attr("LAMBDA_INIT") = km::LAMBDA_INIT;
     m.attr("LAMBDA_DOWN") = km::LAMBDA_DOWN;

@@ -65,6 +65,16 @@ constexpr double REPAIR_QUIET = 1e-4;
 constexpr int REPAIR_PATIENCE = 6;
 //! Two solutions closer than this in every joint (rad or m, angles modulo 2π) are one.
 constexpr double DEDUP_TOL = 1e-7;
+//! Two solutions closer than this in every joint whose midpoint also meets the tolerances
+//! are one solution to tolerance, given once, and the target is near a singular set:
+//! branches that merge there (elbow up and down at a stretched elbow, a fold of a
+//! closed form's equations), d apart, leave a midpoint off by about κ d² / 8 for a
+//! curvature κ of the order of the arm's size; a change δ of the target moves them by
+//! up to √(2 δ / κ) at the fold, 5e-7 rad for the round-off of a target of the order
+//! of 1 m (δ 1e-13): branches this close are not told apart by the target (elbow up
+//! and down 4.5e-7 apart, issue 34), while two 2e-6 apart, 1e-6 either side of a fold,
+//! are two solutions (tests/ik/analytic/test_elbow_near.py).
+constexpr double MERGE_SPAN = 1e-6;
 //! Slack on joint limits for values computed by floating point (rad or m).
 constexpr double LIMIT_TOL = 1e-12;
 
@@ -227,8 +237,9 @@ KM_HD inline void repair(const ChainView& ch, double* q, const Pose& T,
     }
 }
 
-//! True when rows a and b agree within DEDUP_TOL in every joint (angles modulo 2π).
-KM_HD KM_INLINE bool same(const ChainView& ch, const double* qa, const double* qb) {
+//! True when rows a and b agree within tol in every joint (angles modulo 2π).
+KM_HD KM_INLINE bool same(const ChainView& ch, const double* qa, const double* qb,
+                          double tol = DEDUP_TOL) {
     for (int j = 0; j < ch.n; ++j) {
         double d = qa[j] - qb[j];
         if (!ch.joint[j].prismatic) {
@@ -236,9 +247,25 @@ KM_HD KM_INLINE bool same(const ChainView& ch, const double* qa, const double* q
             // (rows are finite here: a plain comparison, not std::fmin's library call)
             d = d <= TWO_PI ? (TWO_PI - d < d ? TWO_PI - d : d) : std::fabs(wrap(d));
         }
-        if (!(std::fabs(d) < DEDUP_TOL)) return false;
+        if (!(std::fabs(d) < tol)) return false;
     }
     return true;
+}
+
+//! True when the midpoint of rows a and b (angles: along the shorter way) meets the
+//! tolerances on T (MERGE_SPAN: the two are one solution to tolerance). Scratch: work.qt,
+//! work.c1, work.s1.
+KM_HD inline bool midpoint_solves(const ChainView& ch, const double* qa, const double* qb,
+                                  const Pose& T, const CheckOptions& opts, CheckWork& work) {
+    double* qt = work.qt.data();
+    for (int k = 0; k < ch.n; ++k) {
+        const double d = qa[k] - qb[k];
+        qt[k] = qb[k] + 0.5 * (ch.joint[k].prismatic ? d : wrap(d));
+    }
+    joint_trig(ch, qt, work.c1.data(), work.s1.data());
+    double p = INF, r = INF;
+    residual(ch, qt, work.c1.data(), work.s1.data(), 1, T, opts.weights, p, r);
+    return p <= opts.tol_position && r <= opts.tol_rotation;
 }
 
 }  // namespace detail
@@ -254,7 +281,7 @@ KM_HD KM_INLINE CheckReport check(const ChainView& ch, const Pose& T, const doub
     double* res = work.res.data();
     double* key = work.key.data();
     int* state = work.state.data();
-    bool close = false, lost = false;
+    bool close = false, lost = false, merged = false;
     double near_p = NaN, near_r = NaN, near_score = INF;
     for (int j = 0; j < m; ++j) {
         state[j] = 0;
@@ -335,8 +362,14 @@ KM_HD KM_INLINE CheckReport check(const ChainView& ch, const Pose& T, const doub
         }
         bool duplicate = false;  // (modulo 2π: the turn above changes nothing here)
         for (int i = 0; i < j; ++i) {
-            if (state[i] != 0 && detail::same(ch, qj, qs + i * n)) {
+            if (state[i] == 0 || !detail::same(ch, qj, qs + i * n, MERGE_SPAN)) continue;
+            if (detail::same(ch, qj, qs + i * n)) {
                 duplicate = true;
+                break;
+            }
+            if (detail::midpoint_solves(ch, qj, qs + i * n, T, opts, work)) {
+                duplicate = true;  // one solution to tolerance: branches merging
+                merged = true;
                 break;
             }
         }
@@ -403,7 +436,7 @@ KM_HD KM_INLINE CheckReport check(const ChainView& ch, const Pose& T, const doub
     rep.gap = rep.status == Status::unreachable ? gap : NaN;
     rep.nearest_position = near_p;
     rep.nearest_rotation = near_r;
-    rep.near = info.near || lost;
+    rep.near = info.near || lost || merged;
     rep.free = info.free;
     return rep;
 }

@@ -55,7 +55,9 @@ struct CheckReport {
     double gap = NaN;                 //!< for unreachable: the solver's proven gap (m), else NaN
     double nearest_position = NaN;    //!< the closest candidate that was no solution (m) ...
     double nearest_rotation = NaN;    //!< ... and its rotation error (rad)
-    bool near = false;                //!< the solver's near flag, or a candidate the repair lost
+    //! the solver's near flag, a candidate the repair lost, or two branches merged
+    //! (check.hpp's MERGE_SPAN)
+    bool near = false;
     std::uint32_t free = 0;           //!< the solver's free joints (bit j: joint j)
 };
 

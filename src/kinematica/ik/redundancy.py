@@ -64,6 +64,12 @@ REDUNDANT_DOF = 7
 #: over a joint's ±166° are 4.6° apart.
 PARAMETER_SWEEP = 73
 
+#: Why a q0 has no value of the parameter (an SRS arm's arm angle), in its note.
+UNDEFINED_AT_Q0 = (
+    "its elbow is on the line from the shoulder to the wrist centre, or that line is "
+    "along axis 1: no value is nearer q0 than another"
+)
+
 _INVALID = _core.STATUS["invalid"]
 _CHOICE: weakref.WeakKeyDictionary[Chain, int | None] = weakref.WeakKeyDictionary()
 
@@ -155,17 +161,24 @@ def _at_parameter(
 
     n = chain.dof
     q0s = _q0_rows(options.q0, targets.shape, n)
+    default, default_why = default_value(chain, joint)
+    undefined = np.zeros(targets.poses.shape[0], dtype=bool)
     if q0s is None:
-        default, why = default_value(chain, joint)
+        why = default_why
         values = np.full(targets.poses.shape[0], default)
     else:
-        values = np.clip(joint.value_of(chain, q0s), *joint.span(chain))
+        at_q0 = joint.value_of(chain, q0s)
+        # an arm angle is undefined at a q0 whose elbow is on the shoulder-wrist line (or
+        # that line along axis 1): that target is held at the default, and its note says so
+        undefined = ~np.isfinite(at_q0)
+        values = np.clip(np.where(undefined, default, at_q0), *joint.span(chain))
         why = "q0's value, within its limits"
+    why_undefined = f"{default_why}; q0's {joint.name} is undefined: {UNDEFINED_AT_Q0}"
     res = joint.solve(chain, target, values, options)
     numeric = dataclasses.replace(options, method="numeric")
 
-    def note(value: float) -> str:
-        return held_note(chain, joint, value, why)
+    def note(value: float, undef: bool = False) -> str:
+        return held_note(chain, joint, value, why_undefined if undef else why)
 
     def fallback(value: float) -> str:
         return (
@@ -173,36 +186,39 @@ def _at_parameter(
             f"{chain.dof} joints answered, {LOCAL_SEARCH}"
         )
 
-    def nearer(value: float, start: float) -> str:
+    def nearer(value: float, start: float, undef: bool = False) -> str:
         keyword = "fixed=" if isinstance(joint, JointParameter) else "arm_angle="
+        whence = why_undefined if undef else why
         return (
-            f"{chain.dof}-joint arm: no solution with {joint.describe(start)} ({why}); every "
+            f"{chain.dof}-joint arm: no solution with {joint.describe(start)} ({whence}); every "
             f"solution with {joint.describe(value)}, the nearest of {PARAMETER_SWEEP} values "
             f"across its span with one, its redundancy parameter; give q0 or {keyword} for "
             f"another value, robot.self_motion for all of them"
         )
 
     if isinstance(res, IKResult):
-        value = float(values[0])
+        value, undef = float(values[0]), bool(undefined[0])
         if res.success:
-            return dataclasses.replace(res, notes=(*res.notes, note(value)))
+            return dataclasses.replace(res, notes=(*res.notes, note(value, undef)))
         first = np.array([0])
         found, moved = _nearest_with_solutions(chain, joint, targets, first, values, options)
         again = joint.solve(chain, target, float(moved[0]), options) if found.size else None
         if isinstance(again, IKResult) and again.success:
-            return dataclasses.replace(again, notes=(*again.notes, nearer(float(moved[0]), value)))
+            moved_note = nearer(float(moved[0]), value, undef)
+            return dataclasses.replace(again, notes=(*again.notes, moved_note))
         full = solve_ik(chain, target, numeric)
         assert isinstance(full, IKResult)
         return dataclasses.replace(full, notes=(*full.notes, fallback(value)))
     raw = res.raw
     missed = np.flatnonzero((raw.count == 0) & (raw.status != _INVALID))
     notes = dict(res.notes)
-    said: dict[float, str] = {}  # one note per value, shared by its targets
+    said: dict[tuple[float, bool], str] = {}  # one note per value, shared by its targets
     held = np.flatnonzero(raw.count > 0)
     # plain ints and floats, made once: this loop runs once per target of a batch
     cells = np.stack(np.unravel_index(held, res.shape), axis=-1).tolist()
-    for value, idx in zip(values[held].tolist(), cells, strict=True):
-        text = said.get(value) or said.setdefault(value, note(value))
+    keys = zip(values[held].tolist(), undefined[held].tolist(), strict=True)
+    for key, idx in zip(keys, cells, strict=True):
+        text = said.get(key) or said.setdefault(key, note(*key))
         where = tuple(idx)
         old = notes.get(where)
         notes[where] = (text,) if old is None else (*old, text)
@@ -229,7 +245,8 @@ def _at_parameter(
                 held_at[rows] = v
                 for i in rows.tolist():
                     where = tuple(int(c) for c in np.unravel_index(i, res.shape))
-                    notes[where] = (*notes.get(where, ()), nearer(v, float(values[i])))
+                    moved_note = nearer(v, float(values[i]), bool(undefined[i]))
+                    notes[where] = (*notes.get(where, ()), moved_note)
                 missed = np.setdiff1d(missed, rows)
             res = dataclasses.replace(
                 res, notes=notes, parameter=(res.parameter[0], held_at.reshape(res.shape))

@@ -54,9 +54,12 @@ class IKResult:
             projected onto SO(3), a target near a singular set...).
         complete: True when the method gives every solution (a closed form).
         near_singular: True when the target lies within round-off of a singular
-            set or a workspace boundary, where closed-form solutions merge (the
-            solutions given reach the target; some that merge there may be
-            reported as one).
+            set or a workspace boundary, where closed-form solutions merge or form
+            a continuum within the tolerance (a spherical wrist aligned to within
+            1e-7 rad; two branches under 1e-5 rad apart whose midpoint also
+            reaches the target, reported as one). Without it, the solutions of a
+            closed form are exact to round-off over the arm's conditioning
+            (docs/inverse-kinematics.md, "Near a singular set").
         parameter: ``(name, value)`` of the joint held at a value for this answer
             (``robot.ik(T, fixed=...)``, or a redundant arm's ``method="auto"``):
             every solution has that value, and the status is relative to it

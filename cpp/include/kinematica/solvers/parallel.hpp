@@ -106,7 +106,8 @@ constexpr int TRIANGLE_NONE = -1;
 //! Axis 4 on axis 2 with equal links: q2 free, the first elbow a representative and the
 //! second NaN.
 constexpr int TRIANGLE_FOLD = 1;
-//! Missed by less than NEAR_TOL: the least-squares elbow.
+//! Stretched or folded to round-off, or missed by less than NEAR_TOL: the least-squares
+//! elbow, once for both (the elbows merge: the target is near).
 constexpr int TRIANGLE_NEAR = 2;
 
 //! The elbows of the triangle: flags, then (q2, ψ) of elbow up and of elbow down.
@@ -132,7 +133,7 @@ KM_HD inline Elbows triangle(const ParallelParams& P, const Plane& tx) {
     }
     const double miss = larger(n - span, d - n);
     int flags = 0;
-    if (miss > TRIG_TOL * span) {
+    if (miss > 0.0) {  // past the stretched or folded elbow: the elbows merge there
         if (miss > NEAR_TOL * span) return {TRIANGLE_NONE, NaN, NaN, NaN, NaN};
         flags = TRIANGLE_NEAR;
     }

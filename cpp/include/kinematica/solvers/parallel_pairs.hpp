@@ -39,7 +39,8 @@ enum class WristRoots : int { none = -1, near = 0, two = 1 };
 //! q5 = φ ± δ with cos δ = (d - F1) / ρ; 1 ∓ cos δ is formed from 1 ∓ d
 //! (= m2 / (1 ± d)) and the exact constants wlo, whi. Writes q5, cos q5, sin q5 of
 //! "no-flip" φ + δ into pair[0] and of "flip" φ - δ into pair[1] (none: no root, both
-//! unchanged; near: missed by less than NEAR_TOL, the double root twice).
+//! unchanged; near: a double root, or missed by less than NEAR_TOL: the double root
+//! twice, the branches merging there).
 KM_HD inline WristRoots wrist(const ParallelParams& P, double d, double m2, Pair* pair) {
     const double D1 = P.D1, E1 = P.E1;
     const double rho = std::sqrt(D1 * D1 + E1 * E1);  // lengths of the arm: no overflow (nor below)
@@ -49,7 +50,7 @@ KM_HD inline WristRoots wrist(const ParallelParams& P, double d, double m2, Pair
     double hi = (opd - P.whi) / rho;  // 1 + cos δ
     WristRoots code = WristRoots::two;
     const double worst = smaller(lo, hi) * rho;
-    if (worst < -TRIG_TOL) {
+    if (worst < 0.0) {  // a double root, or missed: the two q5 merge (near)
         if (worst < -NEAR_TOL) return WristRoots::none;
         code = WristRoots::near;
     }
@@ -73,8 +74,8 @@ KM_HD inline WristRoots wrist(const ParallelParams& P, double d, double m2, Pair
 
 //! The two θ of a cos θ + b sin θ = c into out[2]: the rising root, then the falling.
 //!
-//! A double root within DOUBLE_ROOT_TOL is one angle, twice; a root missed by less than
-//! NEAR_TOL (of size) gives the least-squares angle twice and marks the target near.
+//! A double root within DOUBLE_ROOT_TOL is one angle, twice, and a root missed by less
+//! than NEAR_TOL (of size) the least-squares angle twice: both mark the target near.
 //! False when there is no root (out then holds trig_linear's angles).
 KM_HD inline bool roots(double a, double b, double c, double size, double* out,
                         SolverInfo& info) {
@@ -82,9 +83,10 @@ KM_HD inline bool roots(double a, double b, double c, double size, double* out,
     if (trig_linear(a, b, c, out) != TrigRoots::two) {
         if (std::fabs(c) - std::sqrt(r2) > NEAR_TOL * size) return false;
         info.near = true;
-    } else if (r2 - c * c <= DOUBLE_ROOT_TOL * r2) {
+    } else if (r2 - c * c <= DOUBLE_ROOT_TOL * r2) {  // two branches merge: near
         out[0] = std::atan2(b * c, a * c);
         out[1] = out[0];
+        info.near = true;
     } else {
         const double rise = out[1];  // a cos + b sin = r cos(θ - φ): rising at φ - δ
         out[1] = out[0];

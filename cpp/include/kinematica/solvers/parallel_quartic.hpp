@@ -67,7 +67,12 @@ struct NewtonEnd {
 //! Newton steps on (1) and (2) from (q1, q5).
 //!
 //! Steps stop after one of at most NEWTON_QUIET, or when they no longer shrink
-//! (round-off reached, or no root nearby). (1) is evaluated as unit_gap: its error stays
+//! (round-off reached, or no root nearby); stopped so, they end at the point of least
+//! residual they evaluated: at a double root (a fold of (1) and (2), where the Jacobian
+//! of the pair loses rank) a seed that round-off put where the pair has no real root
+//! takes a first step of any length, and the point it leaps to is no root (a target made
+//! by FK was called unreachable: issue 34 item 2), while the seed met (1) and (2) to
+//! round-off. (1) is evaluated as unit_gap: its error stays
 //! at round-off of its (small) terms near the aligned wrist, where two roots merge, so
 //! the roots are resolved however close they are. After a step of at most NEWTON_QUIET
 //! the last cosines and sines are turned by it to first order: exact (d² < 1e-28), and
@@ -84,7 +89,9 @@ KM_HD inline NewtonEnd newton(const ParallelParams& P, const Vec3& x6, const Sid
     double last = INF;
     int evaluations = 0;
     bool moved = false;
+    bool quiet = false;  // ended by a step of at most NEWTON_QUIET
     double c1 = NaN, s1 = NaN, c5 = NaN, s5 = NaN;
+    NewtonEnd best{q1, q5, INF, 0, NaN, NaN, NaN, NaN};  // the least residual evaluated
     for (int step_index = 0; step_index < NEWTON_STEPS; ++step_index) {
         evaluations += 1;
         sincos(q1, s1, c1);
@@ -97,6 +104,7 @@ KM_HD inline NewtonEnd newton(const ParallelParams& P, const Vec3& x6, const Sid
         const double f1 = unit_gap(dot(k1, x6), cross2(k1, x6), dot(k, r), cross2(k, r));
         const double f2 = L2.a * c1 + L2.b * s1 + L2.c - (D2 * c5 + E2 * s5 + P.F2);
         res = std::fabs(f1) + std::fabs(f2) / size;
+        if (res < best.res) best = {q1, q5, res, 0, c1, s1, c5, s5};
         const double j11 = L1.b * c1 - L1.a * s1;
         const double j12 = D1 * s5 - E1 * c5;
         const double j21 = L2.b * c1 - L2.a * s1;
@@ -119,14 +127,18 @@ KM_HD inline NewtonEnd newton(const ParallelParams& P, const Vec3& x6, const Sid
             c5 = c5n;
             s5 = s5n;
             moved = false;
+            quiet = true;
             break;
         }
     }
-    if (moved) {  // NEWTON_STEPS used up
+    if (quiet) return {q1, q5, res, evaluations, c1, s1, c5, s5};
+    if (moved) {  // NEWTON_STEPS used up, every step contracting: where the last one led
         sincos(q1, s1, c1);
         sincos(q5, s5, c5);
+        return {q1, q5, res, evaluations, c1, s1, c5, s5};
     }
-    return {q1, q5, res, evaluations, c1, s1, c5, s5};
+    best.evaluations = evaluations;
+    return best;
 }
 
 //! Newton from the seed of pair m into pair m and its kind.

@@ -59,6 +59,13 @@ constexpr double TWIN_TOL = 1e-13;
 //! and w is below this: the representative q4 = 0 then reproduces the rotation to about
 //! twice this (far below 1e-10 rad).
 constexpr double WRIST_SINGULAR_TOL = 1e-12;
+//! The target is near the wrist singularity (`near`) when that sine is below this: the
+//! wrist's solutions there form a continuum within the tolerances (turning q4 by t and q6
+//! back by t moves the tool by about t times the sine: an arc of 1e-3 rad within 1e-10
+//! at this sine), and q4 and q6 carry the round-off of joints 1-3 over the sine (up to
+//! 1e-5 rad measured at 1e-7 on the PUMA 560 where joints 1-3 are ill-conditioned too).
+//! docs/inverse-kinematics.md promises the flag to this sine.
+constexpr double NEAR_ALIGNED_TOL = 1e-7;
 
 //! The wrist's three angles on one branch.
 struct WristAngles {
@@ -186,14 +193,14 @@ struct SphericalWristParams {
     //!
     //! w is the target's axis 6 with joints 1-3 turned back, y its x6 likewise. NaN where
     //! the wrist cannot make the rotation (a singular wrist: the flip, the same family, is
-    //! NaN). `near` is raised near the wrist singularity or fold.
+    //! NaN). `near` is raised within NEAR_ALIGNED_TOL of the wrist singularity, or at a fold.
     KM_HD bool wrist(const Vec3& w, const Vec3& y, WristAngles& no_flip, WristAngles& flipped,
                      bool& near) const {
         const double w4 = dot(h4, w);
         const double wa = dot(ea, w);
         const double wb = dot(eb, w);
         const double off2 = wa * wa + wb * wb;  // |w × h4|², exact (no 1 - cos² cancellation)
-        if (off2 < NEAR_SET_TOL * NEAR_SET_TOL) near = true;
+        if (off2 < NEAR_ALIGNED_TOL * NEAR_ALIGNED_TOL) near = true;
         if (off2 < WRIST_SINGULAR_TOL * WRIST_SINGULAR_TOL) {
             // q4 free: c' = w; q5 turns h6 onto w about h5; q6 absorbs the rest
             const double cw = w4 * n56.x + wa * n56.y + wb * n56.z;
