@@ -186,3 +186,17 @@ def test_no_traceback_from_a_real_process(files: Path) -> None:
     assert proc.returncode == 2
     assert "Traceback" not in proc.stderr
     assert len(proc.stderr.strip().splitlines()) == 1
+
+
+def test_a_task_of_three_points(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    (tmp_path / "t.yaml").write_text(TEMPLATE)
+    np.savetxt(tmp_path / "three.csv", Task.ring(0.6, 3).targets, delimiter=",",
+               header="x,y,z", comments="")  # fmt: skip
+    code, out, err = run(
+        capsys, "design", str(tmp_path / "t.yaml"), "--task", str(tmp_path / "three.csv"),
+        "--budget", "20", "--seed", "1", "-o", str(tmp_path / "best.yaml"), "--json",
+        "--no-pictures",
+    )  # fmt: skip
+    assert code == 0, err
+    assert "internal error" not in err
+    assert json.loads(out)["best_measures"]["reached"] == 1.0
