@@ -11,11 +11,16 @@ from typing import Any
 
 import numpy as np
 
-from kinematica.errors import KinematicaError
+from kinematica.errors import ArgumentError, KinematicaError
 from kinematica.io.atomic import atomic_path, write_failed
 from kinematica.motion.workspace import WorkspaceSlice
 
-__all__ = ["MissingDependencyError", "plot_workspace_slice", "require_matplotlib"]
+__all__ = [
+    "MissingDependencyError",
+    "check_map_path",
+    "plot_workspace_slice",
+    "require_matplotlib",
+]
 
 
 class MissingDependencyError(KinematicaError, ImportError):
@@ -40,6 +45,30 @@ def require_matplotlib() -> Any:
     return plt
 
 
+def check_map_path(path: str | Path) -> Path:
+    """``path`` as a Path a map can be written to: a file type matplotlib writes.
+
+    Checked before anything is drawn (the command line: before sampling), since the
+    type follows the name's suffix.
+
+    Raises:
+        ArgumentError: A suffix matplotlib writes no picture for (``.txt``), or none.
+        MissingDependencyError: matplotlib is not installed.
+    """
+    require_matplotlib()
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    out = Path(path)
+    kinds = sorted(FigureCanvasBase.get_supported_filetypes())
+    if out.suffix[1:].lower() not in kinds:
+        raise ArgumentError(
+            f"{out}: cannot draw a map as a file of type {out.suffix or '(none)'!r}; "
+            f"name it with one of {', '.join('.' + k for k in kinds)}",
+            arg="path",
+        )
+    return out
+
+
 def plot_workspace_slice(sl: WorkspaceSlice, path: str | Path, title: str = "") -> Path:
     """Save a workspace slice as a picture: reachable pixels coloured by manipulability.
 
@@ -50,7 +79,11 @@ def plot_workspace_slice(sl: WorkspaceSlice, path: str | Path, title: str = "") 
 
     Returns:
         The path written.
+
+    Raises:
+        ArgumentError: ``path`` names a file type matplotlib does not write.
     """
+    out = check_map_path(path)
     plt = require_matplotlib()
     u, v = sl.plane[0], sl.plane[1]
     w = ({"x", "y", "z"} - {u, v}).pop()
@@ -65,7 +98,6 @@ def plot_workspace_slice(sl: WorkspaceSlice, path: str | Path, title: str = "") 
     ax.set_aspect("equal")
     head = f"{title}\n" if title else ""
     ax.set_title(f"{head}{u}{v} slice at {w} = {sl.at:.3f} m, area {sl.area:.4g} m²")
-    out = Path(path)
     try:
         with atomic_path(out) as tmp:
             fig.savefig(tmp, bbox_inches="tight")
