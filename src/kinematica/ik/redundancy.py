@@ -38,7 +38,6 @@ from kinematica.ik.parameter import (
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.solvers import closed_form
 from kinematica.ik.stack import replace_rows
-from kinematica.ik.targets import parse_q0
 
 if TYPE_CHECKING:  # the general path's modules load when it runs (robot.ik's one pose
     # of a redundant arm does not need them)
@@ -349,4 +348,8 @@ def held_note(chain: Chain, joint: Parameter, value: float, why: str) -> str:
 
 def _q0_rows(q0: ArrayLike | None, shape: tuple[int, ...], n: int) -> FloatArray | None:
     """``(N, n)`` q0 per target (flat, C order), or None; checked (finite) as solve_ik does."""
+    if q0 is None:
+        return None
+    from kinematica.ik.targets import parse_q0  # a q0 given: not on the one-pose path
+
     return parse_q0(q0, n, shape)
