@@ -14,6 +14,7 @@ from typing import Any, Final
 
 import sympy as sp
 
+from kinematica.io.markdown import markdown_text
 from kinematica.symbolic.document import Block, Equations, Heading, Notation, Para
 from kinematica.symbolic.phrases import phrase
 from kinematica.symbolic.printing import latex, mathml
@@ -45,25 +46,8 @@ def _latex_lines(expr: Any) -> list[str]:
 
 
 # ------------------------------------------------------------------ markdown
-#: Text (a robot's name among it) as Markdown shows it literally: the characters that
-#: start markup escaped (CommonMark escapes any ASCII punctuation with a backslash), and
-#: ``<``, ``>``, ``&`` as entities, so that a renderer passing HTML through gets none.
-_MD_ESCAPES: Final = {
-    **{ch: "\\" + ch for ch in "\\`*_[]{}#!|~$"},
-    "<": "&lt;",
-    ">": "&gt;",
-    "&": "&amp;",
-    "\n": " ",
-    "\r": " ",
-}
-
-
-def _md_text(text: str) -> str:
-    return "".join(_MD_ESCAPES.get(ch, ch) for ch in text)
-
-
 def _md_parts(parts: Sequence[Any]) -> str:
-    return "".join(_md_text(p) if isinstance(p, str) else f"${latex(p)}$" for p in parts)
+    return "".join(markdown_text(p) if isinstance(p, str) else f"${latex(p)}$" for p in parts)
 
 
 def _md(blocks: Sequence[Block], lang: str) -> str:
@@ -77,7 +61,7 @@ def _md(blocks: Sequence[Block], lang: str) -> str:
             rows = _latex_rows(b, lang)
             out.append("$$\n\\begin{aligned}\n" + " \\\\\n".join(rows) + "\n\\end{aligned}\n$$")
         else:
-            cell = lambda c: _md_text(c) if isinstance(c, str) else f"${latex(c)}$"  # noqa: E731
+            cell = lambda c: markdown_text(c) if isinstance(c, str) else f"${latex(c)}$"  # noqa: E731
             lines = ["| " + " | ".join(cell(c) for c in b.header) + " |"]
             lines.append("|" + "---|" * len(b.header))
             lines += ["| " + " | ".join(cell(c) for c in row) + " |" for row in b.rows]
