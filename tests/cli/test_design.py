@@ -202,7 +202,9 @@ def test_a_task_of_three_points(capsys: pytest.CaptureFixture[str], tmp_path: Pa
     assert json.loads(out)["best_measures"]["reached"] == 1.0
 
 
-def test_the_report_shows_names_literally(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+def test_the_report_shows_names_literally(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
     markdown_it = pytest.importorskip("markdown_it")
     evil = "<img src=x onerror=alert(1)> *b* [l](javascript:x)"
     (tmp_path / "t.yaml").write_text(TEMPLATE.replace("planar 2R, l1 + l2 = 1", f"'{evil}'"))
