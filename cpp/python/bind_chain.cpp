@@ -9,8 +9,8 @@
 #include "common.hpp"
 #include "kinematica/chain.hpp"
 #include "kinematica/jacobian.hpp"
+#include "interrupt.hpp"
 #include "kinematica/point_rank.hpp"
-#include "pool.hpp"
 
 namespace kmpy {
 
@@ -191,14 +191,11 @@ nb::tuple fk_many(const Chain& chain, F64 Qh, bool all_frames, int workers) {
     nb::object F;
     if (all_frames) F = new_f64({B, n + 1, 4, 4}, frames);
     Counts counts;
-    {
-        nb::gil_scoped_release release;
-        parallel_for(blocks_of(B, FK_BLOCK), workers, [&](int blk) {
-            const long b0 = static_cast<long>(blk) * FK_BLOCK;
-            const long b1 = b0 + FK_BLOCK < B ? b0 + FK_BLOCK : B;
-            fk_block(ch, Q.data, b0, b1, poses, frames, counts);
-        });
-    }
+    run_blocks(blocks_of(B, FK_BLOCK), workers, [&](int blk) {
+        const long b0 = static_cast<long>(blk) * FK_BLOCK;
+        const long b1 = b0 + FK_BLOCK < B ? b0 + FK_BLOCK : B;
+        fk_block(ch, Q.data, b0, b1, poses, frames, counts);
+    });
     return nb::make_tuple(all_frames ? F : P, counts.bad.load(), counts.outside.load(),
                           counts.turns.load());
 }
@@ -225,35 +222,36 @@ nb::tuple jacobian_many(const Chain& chain, F64 Qh, bool tool_frame, int workers
     double* out;
     nb::object J = new_f64({B, 6, n}, out);
     Counts counts;
-    {
-        nb::gil_scoped_release release;
-        parallel_for(blocks_of(B, FK_BLOCK), workers, [&](int blk) {
-            const long b0 = static_cast<long>(blk) * FK_BLOCK;
-            const long b1 = b0 + FK_BLOCK < B ? b0 + FK_BLOCK : B;
-            jacobian_block(ch, Q.data, b0, b1, tool_frame, out, counts);
-        });
-    }
+    run_blocks(blocks_of(B, FK_BLOCK), workers, [&](int blk) {
+        const long b0 = static_cast<long>(blk) * FK_BLOCK;
+        const long b1 = b0 + FK_BLOCK < B ? b0 + FK_BLOCK : B;
+        jacobian_block(ch, Q.data, b0, b1, tool_frame, out, counts);
+    });
     return nb::make_tuple(J, counts.bad.load(), counts.turns.load());
 }
 
-F64 joint_axes(const Chain& chain, F64 Qh) {
+F64 joint_axes(const Chain& chain, F64 Qh, int workers) {
     const In Q = check_batch(chain, Qh);
     const ChainView ch = chain.view();
     const int n = ch.n;
     const npy_intp B = Q.dim[0];
     double* out;
     F64 A = new_f64({B, n, 6}, out);
-    std::vector<double> c(static_cast<size_t>(n)), s(c.size());
-    for (npy_intp b = 0; b < B; ++b) {
-        const double* q = Q.data + b * n;
-        km::joint_trig(ch, q, c.data(), s.data());
-        km::walk(ch, q, c.data(), s.data(), AxesInto{out + b * 6 * n});
-        if (km::q_state(ch, q) == QState::not_finite) fill_nan(out + b * 6 * n, 6 * n);
-    }
+    run_blocks(blocks_of(B, FK_BLOCK), workers, [&](int blk) {
+        const long b0 = static_cast<long>(blk) * FK_BLOCK;
+        const long b1 = b0 + FK_BLOCK < B ? b0 + FK_BLOCK : B;
+        std::vector<double> c(static_cast<size_t>(n)), s(c.size());
+        for (long b = b0; b < b1; ++b) {
+            const double* q = Q.data + b * n;
+            km::joint_trig(ch, q, c.data(), s.data());
+            km::walk(ch, q, c.data(), s.data(), AxesInto{out + b * 6 * n});
+            if (km::q_state(ch, q) == QState::not_finite) fill_nan(out + b * 6 * n, 6 * n);
+        }
+    });
     return A;
 }
 
-F64 point_rank_ratios(const Chain& chain, F64 Qh, const km::Vec3& c_tool) {
+F64 point_rank_ratios(const Chain& chain, F64 Qh, const km::Vec3& c_tool, int workers) {
     const In Q = check_batch(chain, Qh);
     const ChainView ch = chain.view();
     const int n = ch.n;
@@ -261,10 +259,14 @@ F64 point_rank_ratios(const Chain& chain, F64 Qh, const km::Vec3& c_tool) {
     const npy_intp B = Q.dim[0];
     double* out;
     F64 R = new_f64({B}, out);
-    std::vector<double> c(static_cast<size_t>(n)), s(c.size()), J(6 * c.size());
-    for (npy_intp b = 0; b < B; ++b) {
-        out[b] = km::point_rank_ratio(ch, Q.data + b * n, c_tool, c.data(), s.data(), J.data());
-    }
+    run_blocks(blocks_of(B, FK_BLOCK), workers, [&](int blk) {
+        const long b0 = static_cast<long>(blk) * FK_BLOCK;
+        const long b1 = b0 + FK_BLOCK < B ? b0 + FK_BLOCK : B;
+        std::vector<double> c(static_cast<size_t>(n)), s(c.size()), J(6 * c.size());
+        for (long b = b0; b < b1; ++b) {
+            out[b] = km::point_rank_ratio(ch, Q.data + b * n, c_tool, c.data(), s.data(), J.data());
+        }
+    });
     return R;
 }
 
@@ -367,9 +369,10 @@ void bind_chain(nb::module_& m) {
              "(J (6, n), state) of q (n,).")
         .def("jacobian_batch", &jacobian_many, nb::arg("Q"), nb::arg("tool_frame"),
              nb::arg("workers"), "(J (B, 6, n), bad, turns) of Q (B, n), counted as for fk_batch.")
-        .def("joint_axes", &joint_axes, nb::arg("Q"),
+        .def("joint_axes", &joint_axes, nb::arg("Q"), nb::arg("workers") = 1,
              "(B, n, 6): each joint's axis direction, then a point on it (base frame).")
         .def("point_rank_ratios", &point_rank_ratios, nb::arg("Q"), nb::arg("c_tool"),
+             nb::arg("workers") = 1,
              "(B,): σmin / σmax of the Jacobian d(point)/d(q1, q2, q3) at each row of Q (B, n),\n"
              "the point fixed in the tool frame at c_tool (3,).");
 }

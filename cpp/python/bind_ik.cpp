@@ -7,6 +7,7 @@
 
 #include "casters.hpp"
 #include "common.hpp"
+#include "interrupt.hpp"
 #include "kinematica/check.hpp"
 #include "kinematica/lm.hpp"
 #include "kinematica/numeric.hpp"
@@ -49,20 +50,25 @@ nb::tuple defects_one(F64 T) {
     return nb::make_tuple(d.finite, d.last_row, d.ortho, d.det);
 }
 
-nb::tuple defects_many(F64 T) {
+nb::tuple defects_many(F64 T, int workers) {
     const In in = in_f64(T, "T", 3, {-1, 4, 4});
     const npy_intp N = in.dim[0];
     npy_bool* finite;
     double *last, *ortho, *det;
     nb::object F = new_array({N}, finite, NPY_BOOL);
     nb::object L = new_f64({N}, last), O = new_f64({N}, ortho), D = new_f64({N}, det);
-    for (npy_intp i = 0; i < N; ++i) {
-        const km::PoseDefects d = km::pose_defects(in.data + 16 * i);
-        finite[i] = d.finite;
-        last[i] = d.last_row;
-        ortho[i] = d.ortho;
-        det[i] = d.det;
-    }
+    const int blocks = static_cast<int>((N + FK_BLOCK - 1) / FK_BLOCK);
+    run_blocks(blocks, workers, [&](int blk) {
+        const npy_intp i0 = static_cast<npy_intp>(blk) * FK_BLOCK;
+        const npy_intp i1 = i0 + FK_BLOCK < N ? i0 + FK_BLOCK : N;
+        for (npy_intp i = i0; i < i1; ++i) {
+            const km::PoseDefects d = km::pose_defects(in.data + 16 * i);
+            finite[i] = d.finite;
+            last[i] = d.last_row;
+            ortho[i] = d.ortho;
+            det[i] = d.det;
+        }
+    });
     return nb::make_tuple(F, L, O, D);
 }
 
@@ -103,7 +109,7 @@ void bind_ik(nb::module_& m) {
 
     m.def("pose_defects", &defects_one, nb::arg("T"),
           "(finite, max |last row - [0,0,0,1]|, max |RᵀR - I|, det R) of T (4, 4).");
-    m.def("pose_defects_batch", &defects_many, nb::arg("T"),
+    m.def("pose_defects_batch", &defects_many, nb::arg("T"), nb::arg("workers") = 1,
           "The defects of T (N, 4, 4), as four (N,) arrays.");
 
     nb::dict status;

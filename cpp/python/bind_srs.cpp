@@ -28,8 +28,9 @@ struct AtAngle {
 nb::dict ik_batch_at(const SRSParams& p, const km::Chain& chain, F64 T, F64 psi,
                      const km::CheckOptions& opts, nb::handle q0, nb::handle invalid,
                      int workers) {
-    const npy_intp N = in_f64(T, "T", 3, {-1, 4, 4}).dim[0];
-    const double* angle = in_f64(psi, "psi", 1, {N}).data;
+    const npy_intp N = shape_f64(T, "T", 3, {-1, 4, 4}).dim[0];  // read by ik_many_rows
+    const In angles = in_f64(psi, "psi", 1, {N});  // held while the batch reads it
+    const double* angle = angles.data;
     const AtAngle base{checked(p), p.psi};
     return ik_many_rows(base, chain, T, q0, invalid, workers,
                         [&base, angle, &opts](npy_intp i, const km::ChainView& ch,

@@ -125,7 +125,8 @@ nb::tuple check_given(const km::Chain& chain, F64 Th, F64 Qh, const km::CheckOpt
     const In Q = in_f64(Qh, "Q", 2, {-1, n});
     const int m = static_cast<int>(Q.dim[0]);
     if (m < 1) throw nb::value_error("Q must hold a candidate");
-    const double* q0 = q0h.is_none() ? nullptr : in_f64(q0h, "q0", 1, {n}).data;
+    const In q0in = q0h.is_none() ? In{} : in_f64(q0h, "q0", 1, {n});
+    const double* q0 = q0in.data;
     km::SolverInfo info;
     info.gap = gap;
     info.singular = singular;

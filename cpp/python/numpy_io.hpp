@@ -3,8 +3,9 @@
 // nanobind's ndarray caster serves any framework through DLPack and costs about 0.4 µs
 // per array; a single FK or IK call moves two or three small arrays, so the hot paths
 // read and make NumPy arrays directly (about 0.05 µs each), as eigenpy does for
-// Pinocchio. Every input is checked here (type, dtype, contiguity, shape) before any
-// pointer reaches the core: a wrong array is a TypeError or ValueError, never a crash.
+// Pinocchio. Every input is checked here (type, dtype, shape) before any pointer reaches
+// the core, and one laid out otherwise than the core reads (misaligned, strided, swapped) is
+// copied: a wrong array is a TypeError or ValueError, never a crash.
 #pragma once
 
 #include <nanobind/nanobind.h>
@@ -40,11 +41,14 @@ public:
     NB_OBJECT_DEFAULT(Bools, nb::object, "numpy.typing.NDArray[numpy.bool_]", any_object)
 };
 
-//! A checked float64 input array: C-contiguous, aligned, of the given rank.
+//! A checked float64 input array: C-contiguous, aligned, native byte order, of the given
+//! rank. `data` points into the caller's array, or into `copy` (held as long as this In is)
+//! when the caller's was not laid out so.
 struct In {
     const double* data = nullptr;
     int ndim = 0;
     npy_intp dim[4] = {0, 0, 0, 0};
+    nb::object copy;
     npy_intp size() const {
         npy_intp s = 1;
         for (int i = 0; i < ndim; ++i) s *= dim[i];
@@ -59,13 +63,12 @@ struct In {
     throw nb::value_error((std::string(name) + " must be " + what).c_str());
 }
 
-//! h as a float64 array of rank ndim whose trailing dimensions are `tail` (-1: any).
-inline In in_f64(nb::handle h, const char* name, int ndim, std::initializer_list<npy_intp> tail = {}) {
+//! The dimensions of h, checked as in_f64 checks them (data not read, nothing copied).
+inline In shape_f64(nb::handle h, const char* name, int ndim, std::initializer_list<npy_intp> tail = {}) {
     PyObject* o = h.ptr();
     if (!PyArray_Check(o)) fail_type(name, "a numpy array");
     auto* a = reinterpret_cast<PyArrayObject*>(o);
     if (PyArray_TYPE(a) != NPY_DOUBLE) fail_type(name, "of dtype float64");
-    if (!PyArray_IS_C_CONTIGUOUS(a) || !PyArray_ISALIGNED(a)) fail_value(name, "C-contiguous and aligned");
     if (PyArray_NDIM(a) != ndim) fail_value(name, "of rank " + std::to_string(ndim));
     In in;
     in.ndim = ndim;
@@ -77,6 +80,23 @@ inline In in_f64(nb::handle h, const char* name, int ndim, std::initializer_list
                                  ", got " + std::to_string(in.dim[i]));
         }
         ++i;
+    }
+    return in;
+}
+
+//! h as a float64 array of rank ndim whose trailing dimensions are `tail` (-1: any). A
+//! float64 array the core cannot read in place (a row of a packed record array, a buffer
+//! read at an odd offset, strided, byte-swapped) is copied once, here, to one it can.
+inline In in_f64(nb::handle h, const char* name, int ndim, std::initializer_list<npy_intp> tail = {}) {
+    In in = shape_f64(h, name, ndim, tail);
+    auto* a = reinterpret_cast<PyArrayObject*>(h.ptr());
+    if (!PyArray_IS_C_CONTIGUOUS(a) || !PyArray_ISALIGNED(a) || !PyArray_ISNOTSWAPPED(a)) {
+        // PyArray_FromArray steals the reference to the descriptor
+        PyObject* c = PyArray_FromArray(a, PyArray_DescrFromType(NPY_DOUBLE),
+                                        NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_ALIGNED);
+        if (c == nullptr) throw nb::python_error();
+        in.copy = nb::steal(c);
+        a = reinterpret_cast<PyArrayObject*>(c);
     }
     in.data = static_cast<const double*>(PyArray_DATA(a));
     return in;

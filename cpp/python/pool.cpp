@@ -15,11 +15,12 @@ namespace {
 
 class Pool {
 public:
-    void run(int blocks, int workers, const std::function<void(int)>& fn) {
+    //! false: stop() said true and some blocks were left.
+    bool run(int blocks, int workers, const std::function<void(int)>& fn,
+             const std::function<bool()>& stop) {
         std::unique_lock<std::mutex> batch(batch_, std::try_to_lock);
         if (!batch.owns_lock()) {  // another thread's batch holds the pool: run alone
-            for (int b = 0; b < blocks; ++b) fn(b);
-            return;
+            return run_alone(blocks, fn, stop);
         }
         const int helpers = workers - 1;
         {
@@ -31,15 +32,32 @@ public:
             job_ = &fn;
             blocks_ = blocks;
             next_.store(0);
+            stopped_.store(false);
             wanted_ = helpers;
             running_ = helpers;
             ++generation_;
         }
         wake_.notify_all();
-        work();
+        for (int b = take(); b < blocks_; b = take()) {
+            (*job_)(b);
+            if (stop && next_.load(std::memory_order_relaxed) < blocks_ && stop()) {
+                stopped_.store(true);
+            }
+        }
         std::unique_lock<std::mutex> lock(mutex_);
         done_.wait(lock, [this] { return running_ == 0; });
         job_ = nullptr;
+        return !stopped_.load();
+    }
+
+    //! Every block on the caller's thread, stop() asked after each.
+    static bool run_alone(int blocks, const std::function<void(int)>& fn,
+                          const std::function<bool()>& stop) {
+        for (int b = 0; b < blocks; ++b) {
+            fn(b);
+            if (b + 1 < blocks && stop && stop()) return false;
+        }
+        return true;
     }
 
     //! In a forked child: the threads are gone (their objects are leaked, never joined).
@@ -56,8 +74,11 @@ public:
     }
 
 private:
+    //! The next block to run; blocks_ (none) once the batch is stopped.
+    int take() { return stopped_.load(std::memory_order_relaxed) ? blocks_ : next_.fetch_add(1); }
+
     void work() {
-        for (int b = next_.fetch_add(1); b < blocks_; b = next_.fetch_add(1)) (*job_)(b);
+        for (int b = take(); b < blocks_; b = take()) (*job_)(b);
     }
 
     void loop(int index) {
@@ -80,6 +101,7 @@ private:
     std::vector<std::thread> threads_;
     const std::function<void(int)>* job_ = nullptr;
     std::atomic<int> next_{0};
+    std::atomic<bool> stopped_{false};  // the caller's stop() said true: no block starts
     int blocks_ = 0;
     int wanted_ = 0;
     int running_ = 0;
@@ -109,14 +131,12 @@ int hardware_threads() {
     return threads;
 }
 
-void parallel_for(int blocks, int workers, const std::function<void(int)>& fn) {
-    if (blocks <= 0) return;
+bool parallel_for(int blocks, int workers, const std::function<void(int)>& fn,
+                  const std::function<bool()>& stop) {
+    if (blocks <= 0) return true;
     if (workers > blocks) workers = blocks;
-    if (workers <= 1) {
-        for (int b = 0; b < blocks; ++b) fn(b);
-        return;
-    }
-    pool().run(blocks, workers, fn);
+    if (workers <= 1) return Pool::run_alone(blocks, fn, stop);
+    return pool().run(blocks, workers, fn, stop);
 }
 
 }  // namespace kmpy

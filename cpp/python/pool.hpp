@@ -11,8 +11,11 @@
 namespace kmpy {
 
 //! Run fn(b) for every block b in [0, blocks) on up to `workers` threads (the caller's
-//! included); returns when all are done. fn must not throw.
-void parallel_for(int blocks, int workers, const std::function<void(int)>& fn);
+//! included); returns when all are done. After each block the caller's thread runs (but the
+//! last) it asks stop(), when given: once that says true no thread starts another block
+//! (those running finish theirs), and the call returns false. fn and stop must not throw.
+bool parallel_for(int blocks, int workers, const std::function<void(int)>& fn,
+                  const std::function<bool()>& stop = {});
 
 //! The number of threads the machine offers (at least 1).
 int hardware_threads();

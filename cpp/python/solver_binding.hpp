@@ -21,11 +21,11 @@
 
 #include "casters.hpp"
 #include "common.hpp"
+#include "interrupt.hpp"
 #include "kinematica/chain.hpp"
 #include "kinematica/ik.hpp"
 #include "kinematica/pose_check.hpp"
 #include "numpy_io.hpp"
-#include "pool.hpp"
 
 namespace kmpy {
 
@@ -47,11 +47,11 @@ inline nb::tuple report_tuple(const km::CheckReport& r, int n) {
     int nfree = 0;
     const bool singular = r.status == km::Status::singular;
     if (singular) {
-        for (int j = 0; j < n; ++j) nfree += static_cast<int>(((r.free >> j) & 1U) != 0);
+        for (int j = 0; j < n; ++j) nfree += static_cast<int>(km::free_bit(r.free, j));
     }
     nb::object free = nb::steal(PyTuple_New(nfree));
     for (int j = 0, k = 0; singular && j < n; ++j) {
-        if (((r.free >> j) & 1U) != 0) PyTuple_SET_ITEM(free.ptr(), k++, PyLong_FromLong(j));
+        if (km::free_bit(r.free, j)) PyTuple_SET_ITEM(free.ptr(), k++, PyLong_FromLong(j));
     }
     return nb::make_tuple(static_cast<int>(r.status), gap, r.nearest_position,
                           r.nearest_rotation, r.near, free);
@@ -83,9 +83,10 @@ inline km::Pose target_pose(F64 T) {
     return km::Pose::from_rows(in.data);
 }
 
-inline const double* optional_q0(nb::handle q0, int n) {
-    if (q0.is_none()) return nullptr;
-    return in_f64(q0, "q0", 1, {n}).data;
+//! q0 (n,) checked, or an In without data for None (read .data while the In lives).
+inline In optional_q0(nb::handle q0, int n) {
+    if (q0.is_none()) return In{};
+    return in_f64(q0, "q0", 1, {n});
 }
 
 //! A solver built for n joints takes chains of n joints only.
@@ -151,7 +152,8 @@ nb::tuple ik_one(const Solver& s, const km::Chain& chain, F64 T,
     check_dims(s, chain);
     checked_labels(labels, s.slots());
     const km::Pose P = target_pose(T);
-    return ik_pose(s, chain, P, opts, optional_q0(q0, chain.dof()), labels);
+    const In q0in = optional_q0(q0, chain.dof());
+    return ik_pose(s, chain, P, opts, q0in.data, labels);
 }
 
 //! ik_one for a target already rigid to round-off (finite, last row exact, |RᵀR - I| <=
@@ -179,8 +181,8 @@ nb::dict ik_many_rows(const Solver& s, const km::Chain& chain, F64 Th, nb::handl
     const int n = ch.n, m = s.slots();
     const In T = in_f64(Th, "T", 3, {-1, 4, 4});
     const npy_intp N = T.dim[0];
-    const double* q0 = nullptr;
-    if (!q0h.is_none()) q0 = in_f64(q0h, "q0", 2, {N, n}).data;
+    const In q0in = q0h.is_none() ? In{} : in_f64(q0h, "q0", 2, {N, n});
+    const double* q0 = q0in.data;
     const npy_bool* invalid = in_flags(invalidh, "invalid", N);
     double *q, *res, *gap, *nearest;
     npy_int64 *slot, *status, *count, *out_count;
@@ -197,9 +199,8 @@ nb::dict ik_many_rows(const Solver& s, const km::Chain& chain, F64 Th, nb::handl
     out["near"] = new_array({N}, near, NPY_BOOL);
     out["free"] = new_array({N, n}, freeb, NPY_BOOL);
     {
-        nb::gil_scoped_release release;
         const int blocks = static_cast<int>((N + TARGET_BLOCK - 1) / TARGET_BLOCK);
-        parallel_for(blocks, workers, [&](int blk) {
+        run_blocks(blocks, workers, [&](int blk) {
             km::IKWork<Solver> work(s, n);  // once per block
             std::vector<int> slots(static_cast<size_t>(m));
             const npy_intp i1 = (blk + 1) * static_cast<npy_intp>(TARGET_BLOCK) < N
@@ -222,7 +223,7 @@ nb::dict ik_many_rows(const Solver& s, const km::Chain& chain, F64 Th, nb::handl
                 nearest[2 * i] = rep.nearest_position;
                 nearest[2 * i + 1] = rep.nearest_rotation;
                 near[i] = rep.near;
-                for (int j = 0; j < n; ++j) freeb[i * n + j] = ((rep.free >> j) & 1U) != 0;
+                for (int j = 0; j < n; ++j) freeb[i * n + j] = km::free_bit(rep.free, j);
             }
         });
     }
@@ -248,7 +249,8 @@ nb::tuple candidates(const Solver& s, const km::Chain& chain, F64 T, nb::handle 
     const km::ChainView ch = chain.view();
     const int n = ch.n, m = s.slots();
     const km::Pose P = target_pose(T);
-    const double* q0p = optional_q0(q0, n);
+    const In q0in = optional_q0(q0, n);
+    const double* q0p = q0in.data;
     double* Q;
     nb::object Qa = new_f64({m, n}, Q);
     km::IKWork<Solver>& work = thread_work(s, n);

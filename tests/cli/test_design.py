@@ -186,3 +186,38 @@ def test_no_traceback_from_a_real_process(files: Path) -> None:
     assert proc.returncode == 2
     assert "Traceback" not in proc.stderr
     assert len(proc.stderr.strip().splitlines()) == 1
+
+
+def test_a_task_of_three_points(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    (tmp_path / "t.yaml").write_text(TEMPLATE)
+    np.savetxt(tmp_path / "three.csv", Task.ring(0.6, 3).targets, delimiter=",",
+               header="x,y,z", comments="")  # fmt: skip
+    code, out, err = run(
+        capsys, "design", str(tmp_path / "t.yaml"), "--task", str(tmp_path / "three.csv"),
+        "--budget", "20", "--seed", "1", "-o", str(tmp_path / "best.yaml"), "--json",
+        "--no-pictures",
+    )  # fmt: skip
+    assert code == 0, err
+    assert "internal error" not in err
+    assert json.loads(out)["best_measures"]["reached"] == 1.0
+
+
+def test_the_report_shows_names_literally(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    markdown_it = pytest.importorskip("markdown_it")
+    evil = "<img src=x onerror=alert(1)> *b* [l](javascript:x)"
+    (tmp_path / "t.yaml").write_text(TEMPLATE.replace("planar 2R, l1 + l2 = 1", f"'{evil}'"))
+    np.savetxt(tmp_path / "ring.csv", Task.ring(0.6, 4).targets, delimiter=",",
+               header="x,y,z", comments="")  # fmt: skip
+    out = tmp_path / "best`x.yaml"
+    code, _, err = run(
+        capsys, "design", str(tmp_path / "t.yaml"), "--task", str(tmp_path / "ring.csv"),
+        "--budget", "20", "--seed", "1", "-o", str(out), "--no-pictures",
+    )  # fmt: skip
+    assert code == 0, err
+    page = markdown_it.MarkdownIt("commonmark").render((tmp_path / "best`x_report.md").read_text())
+    for tag in ("<img", "<a ", "<em>"):
+        assert tag not in page
+    assert f"<h1>Design of {evil.replace('<', '&lt;').replace('>', '&gt;')}</h1>" in page
+    assert "<code>best`x.yaml</code>" in page

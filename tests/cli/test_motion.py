@@ -254,3 +254,18 @@ def test_workspace_refusal_names_the_joint_and_file_needing_limits(
     code, _, err = run(capsys, "workspace", str(path))
     assert code == 2
     assert f"add `limits: [lower, upper]` to joint 2 (q2) of {path}" in err
+
+
+@pytest.mark.parametrize("name", ["ws.txt", "ws.csv", "ws"])
+def test_workspace_map_of_no_picture_type_is_refused_before_sampling(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path, name: str
+) -> None:
+    pytest.importorskip("matplotlib")
+    target = tmp_path / name
+    code, out, err = run(
+        capsys, "workspace", "planar-3r", "--samples", "20000000", "-o", str(target)
+    )  # 20 million samples would take minutes: refused before any is drawn
+    assert code == 2 and out == ""
+    assert "internal error" not in err and "Traceback" not in err
+    assert f"{target}: cannot draw a map as a file of type" in err and ".png" in err
+    assert not target.exists() and list(tmp_path.iterdir()) == []

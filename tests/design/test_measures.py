@@ -222,3 +222,18 @@ def test_random_2r_designs_on_rings_by_hand(
     # at the boundary the arm is singular: w = 0 up to the IK's 1e-10 m tolerance
     np.testing.assert_allclose(found.manipulability, w, rtol=1e-6, atol=1e-4 * l1 * l2)
     assert found.violation == 0.0
+
+
+@pytest.mark.parametrize("count", [1, 2, 3, 4])
+def test_a_task_of_any_number_of_positions(count: int) -> None:
+    # three positions are a (3, 3) array, which robot.ik would read as a rotation:
+    # the task of exactly three is measured as the others are, target by target
+    r = 0.6
+    task = Task.ring(r, count)
+    found = measure_task(planar_2r(), task)
+    c2 = (r * r - L1 * L1 - L2 * L2) / (2 * L1 * L2)
+    assert found.reached.shape == (count,) and found.reached.all()
+    np.testing.assert_allclose(found.manipulability, L1 * L2 * math.sqrt(1 - c2 * c2), rtol=1e-9)
+    far = measure_task(planar_2r(), Task.from_positions([[0.6, 0, 0], [0, 0.9, 0], [1.0, 0, 0]]))
+    np.testing.assert_array_equal(far.reached, [True, False, False])
+    np.testing.assert_allclose(far.gap, [0.0, 0.1, 0.2], rtol=1e-9, atol=0.0)

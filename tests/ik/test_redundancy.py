@@ -199,3 +199,31 @@ def test_a_batch_of_any_shape_equals_single_calls(name: str) -> None:
     assert isinstance(many, IKBatchResult)
     for idx in np.ndindex(3, 4):
         assert_same_result(many[idx], robot.ik(np.ascontiguousarray(T[idx])))
+
+
+@pytest.mark.parametrize("name", ["panda", "iiwa14"])
+def test_a_q0_holding_nan_is_refused_by_name_on_every_path(name: str) -> None:
+    # the Panda's auto path holds a joint at q0's value: NaN reached the core's locked
+    # arm, whose ValueError was all the user saw
+    robot = km.load(name)
+    T = robot.fk(np.full(7, 0.3))
+    for q0 in ([np.nan] * 7, [0.0] * 6 + [np.inf]):
+        for extra in ({}, {"method": "numeric"}, {"fixed": {"q2": 0.1}}):
+            with pytest.raises(km.DimensionError, match="q0 holds NaN or inf") as info:
+                robot.ik(T, q0=q0, **extra)  # type: ignore[arg-type]
+            assert info.value.arg == "q0"
+        with pytest.raises(km.DimensionError, match="q0 holds NaN or inf"):
+            robot.ik(np.stack([T, T]), q0=q0)
+
+
+@pytest.mark.parametrize("name", ["panda", "iiwa14"])
+@pytest.mark.parametrize("held", [{}, {"fixed": {"q1": 0.1}}, {"fixed": {"q3": 0.1}}])
+def test_an_empty_batch_of_a_redundant_arm_is_an_empty_result(name: str, held: dict) -> None:
+    robot = km.load(name)
+    one = robot.ik(robot.fk(np.full(7, 0.3)), **held)
+    for shape in ((0,), (2, 0)):
+        res = robot.ik(np.zeros((*shape, 4, 4)), **held)
+        assert isinstance(res, IKBatchResult)
+        assert res.shape == shape and res.status.shape == shape and res.count.shape == shape
+        assert res.solutions.shape[: len(shape)] == shape and res.solutions.shape[-1] == 7
+        assert res.method == one.method

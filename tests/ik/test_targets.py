@@ -116,3 +116,30 @@ def test_projection_note_only_beyond_round_off_of_the_tolerance() -> None:
     assert orthonormality_error(outside[:3, :3]) > QUIET_PROJECTION
     assert arm.ik(inside).notes == ()
     assert "projected onto SO(3)" in arm.ik(outside).notes[0]
+
+
+def test_a_numpy_matrix_target_is_read_as_its_array() -> None:
+    # numpy.matrix keeps two axes when indexed: read as a plain (4, 4) array
+    for robot in (km.load("puma560"), km.load("panda"), km.load("iiwa14")):
+        T = robot.fk(np.full(robot.dof, 0.2))
+        found, expected = robot.ik(np.matrix(T)), robot.ik(T)
+        assert found.status == expected.status and found.count == expected.count >= 1
+        np.testing.assert_array_equal(found.solutions, expected.solutions)
+
+
+def test_q0_is_checked_once_for_every_path() -> None:
+    from kinematica.errors import DimensionError
+    from kinematica.ik.targets import parse_q0
+
+    np.testing.assert_array_equal(parse_q0([1.0, 2.0], 2, (3,)), [[1.0, 2.0]] * 3)
+    assert parse_q0(None, 2, ()) is None
+    for bad, words in [
+        ([np.nan, 0.0], "q0 holds NaN or inf"),
+        ([0.0, np.inf], "q0 holds NaN or inf"),
+        ([0.0], "q0 must hold 2 joint values"),
+        ("ab", "q0 must be numbers"),
+        (np.zeros((2, 2)), "does not match targets of batch shape"),
+    ]:
+        with pytest.raises(DimensionError, match=words) as info:
+            parse_q0(bad, 2, (3,))
+        assert info.value.arg == "q0"

@@ -265,6 +265,9 @@ def test_a_save_killed_at_random_moments_never_leaves_a_cut_file(tmp_path):
         assert read_robot_file(path).name in {r.name for r in robots}
     assert kills == 21
     assert time.monotonic() - start < 10.0
+    for suffix in ("yaml", "json", "toml"):  # a save of each removes what the kills left
+        robots[1].save(tmp_path / f"arm.{suffix}")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["arm.json", "arm.toml", "arm.yaml"]
 
 
 def read_robot_file_text(robot: km.Robot, like: Path) -> str:
@@ -274,3 +277,91 @@ def read_robot_file_text(robot: km.Robot, like: Path) -> str:
     text = other.read_text(encoding="utf-8")
     other.unlink()
     return text
+
+
+# A child that starts a save of argv[1] and is killed in the middle of it: it has
+# written part of its temporary file when it says so.
+MIDSAVE = textwrap.dedent(
+    """
+    import sys, time
+    from kinematica.io.atomic import atomic_path
+
+    with atomic_path(sys.argv[1]) as tmp:
+        tmp.write_text("name: half a robot fi")
+        print(tmp, flush=True)
+        time.sleep(60)
+    """
+)
+
+
+def _start_midsave(path: Path) -> tuple[subprocess.Popen[str], Path]:
+    child = subprocess.Popen(
+        [sys.executable, "-c", MIDSAVE, str(path)], stdout=subprocess.PIPE, text=True
+    )
+    assert child.stdout is not None
+    tmp = Path(child.stdout.readline().strip())
+    assert tmp.parent == path.parent and tmp.exists()
+    return child, tmp
+
+
+def _leftovers(folder: Path) -> list[str]:
+    return sorted(p.name for p in folder.iterdir() if ".tmp" in p.name)
+
+
+def test_a_save_killed_midway_leaves_a_file_the_next_save_removes(tmp_path: Path) -> None:
+    path = tmp_path / "arm.yaml"
+    km.load("scara").save(path)
+    old = path.read_text(encoding="utf-8")
+    child, tmp = _start_midsave(path)
+    child.kill()
+    child.wait()
+    assert tmp.exists() and path.read_text(encoding="utf-8") == old  # what a kill leaves
+    assert f"-{child.pid}-" in tmp.name
+    other = tmp_path / "other.yaml"  # another file's save leaves it
+    km.load("puma560").save(other)
+    assert _leftovers(tmp_path) == [tmp.name]
+    km.load("puma560").save(path)  # the next save of the same file removes it
+    assert _leftovers(tmp_path) == []
+    assert read_robot_file(path).name == km.load("puma560").name
+
+
+def test_a_running_writers_file_is_left_alone(tmp_path: Path) -> None:
+    path = tmp_path / "arm.json"
+    child, tmp = _start_midsave(path)
+    try:
+        km.load("puma560").save(path)  # the other writer runs: its file stays
+        assert _leftovers(tmp_path) == [tmp.name]
+        assert read_robot_file(path).name == km.load("puma560").name
+    finally:
+        child.kill()
+        child.wait()
+    km.load("scara").save(path)
+    assert _leftovers(tmp_path) == []
+
+
+def test_leftovers_by_age_on_both_sides_of_stale_age(tmp_path: Path) -> None:
+    from kinematica.io.atomic import STALE_AGE
+
+    path = tmp_path / "arm.toml"
+    now = time.time()
+    names = {
+        # a process of another machine (its host hash), or a running one here: by age
+        "other host, old": (".arm.toml.~km-00000000-123-abcd1234.tmp.toml", STALE_AGE + 60),
+        "other host, young": (".arm.toml.~km-00000000-124-abcd1234.tmp.toml", STALE_AGE - 60),
+        "running, old": (f".arm.toml.~km-HOST-{os.getpid()}-abcd1234.tmp.toml", STALE_AGE + 60),
+        "running, young": (f".arm.toml.~km-HOST-{os.getppid()}-abcd1234.tmp.toml", 1.0),
+        # the form before writers were named: by age
+        "unnamed, old": (".arm.toml.ab_d1234.tmp.toml", STALE_AGE + 60),
+        "unnamed, young": (".arm.toml.ab_d1235.tmp.toml", STALE_AGE - 60),
+        # not ours: never
+        "a user's file": (".arm.toml.notes.tmp.toml", STALE_AGE * 10),
+    }
+    host = f"{__import__('zlib').crc32(os.uname().nodename.encode()):08x}"
+    for name, age in names.values():
+        leftover = tmp_path / name.replace("HOST", host)
+        leftover.write_text("x")
+        os.utime(leftover, (now - age, now - age))
+    km.load("scara").save(path)
+    kept = {label for label, (name, _) in names.items()
+            if (tmp_path / name.replace("HOST", host)).exists()}  # fmt: skip
+    assert kept == {"other host, young", "running, young", "unnamed, young", "a user's file"}

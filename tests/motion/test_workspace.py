@@ -6,6 +6,7 @@ import itertools
 import math
 import time
 import tracemalloc
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -274,3 +275,14 @@ def test_the_voxel_range_follows_the_arm_and_the_grid() -> None:
         workspace(arm, samples=10**7, seed=0, voxel=smallest * 0.99)
     assert time.perf_counter() - start < 0.5  # 10**7 samples would take seconds
     workspace(arm, samples=50, seed=0, voxel=smallest * 1.01)  # coarsened to fit, as before
+
+
+def test_a_slice_map_of_no_picture_type_is_an_argument_error(tmp_path: Path) -> None:
+    pytest.importorskip("matplotlib")
+    from kinematica.motion.plot import plot_workspace_slice
+
+    sl = workspace(km.load("planar-3r"), samples=200, seed=0).slice("xy")
+    with pytest.raises(ArgumentError, match=r"ws\.txt: cannot draw a map .* '\.txt'"):
+        plot_workspace_slice(sl, tmp_path / "ws.txt")
+    assert list(tmp_path.iterdir()) == []
+    assert plot_workspace_slice(sl, tmp_path / "ws.svg").read_text().lstrip().startswith("<?xml")

@@ -190,3 +190,29 @@ def test_html_parentheses_and_minus_signs() -> None:
     # minus signs, not hyphens: neither <mo>-</mo> nor a negative <mn>
     assert "<mo>-</mo>" not in page and "<mn>-" not in page
     assert "<mo>\u2212</mo>" in page
+
+
+EVIL_NAME = "<img src=x onerror=alert(1)> *b* _i_ [l](http://x) `c` $x$ | ~s~ # \\ &amp; {t} !"
+
+
+@pytest.mark.parametrize("lang", ["es", "en"])
+def test_markdown_shows_a_robot_name_literally(lang: str) -> None:
+    """CommonMark (markdown-it, as GitHub and Jupyter render) makes no markup of a name."""
+    markdown_it = pytest.importorskip("markdown_it")
+    import html
+
+    robot = km.load("planar-3r")
+    evil = km.Robot.from_dh(robot.links, name=EVIL_NAME + "\n# heading\n<script>x</script>")
+    text = symbolic.report(evil, format="markdown", lang=lang)
+    page = markdown_it.MarkdownIt("commonmark").render(text)  # raw HTML passes through
+    for tag in ("<img", "<script", "<a ", "<em>", "<strong>", "<code>", "<h2>heading"):
+        assert tag not in page
+    title = re.search(r"<h1>(.*)</h1>", page)
+    assert title is not None
+    word = "Kinematics of" if lang == "en" else "Cinemática de"
+    shown = EVIL_NAME + " # heading <script>x</script>"
+    assert html.unescape(title.group(1)) == f"{word} {shown}"
+    # the report of a plain name is unchanged: no escape where none is needed
+    assert symbolic.report(robot, format="markdown", lang=lang).startswith(
+        f"# {word} {robot.name}\n"
+    )

@@ -7,15 +7,29 @@
 
 namespace km {
 
+//! Joints a free-joint mask can name: bits 0..FREE_JOINTS-1. Only closed forms name free
+//! joints, on arms of at most 32 joints (arm_position.hpp's MAX_POSITION_DOF; the others
+//! 7), so every free joint fits; a chain may still have up to 100 joints (the numeric
+//! search), whose bits past these read as not free: a shift of a 32-bit mask by 32 or
+//! more is undefined.
+constexpr int FREE_JOINTS = 32;
+
+//! Bit j of a free-joint mask: false for j outside [0, FREE_JOINTS).
+KM_HD inline bool free_bit(std::uint32_t mask, int j) {
+    return j >= 0 && j < FREE_JOINTS && ((mask >> j) & 1U) != 0;
+}
+
 //! What a solver knows of one target besides its candidates.
 struct SolverInfo {
     bool singular = false;  //!< the solutions form a continuum; candidates are representatives
     bool near = false;      //!< near a singular set, where a closed form may lose solutions to round-off
     double gap = NaN;       //!< a lower bound of the distance to the reachable set (m); NaN: unknown
-    std::uint32_t free = 0; //!< bit j: joint j is free (in a continuum)
+    std::uint32_t free = 0; //!< bit j: joint j is free (in a continuum); j < FREE_JOINTS
 
-    KM_HD void set_free(int j) { free |= (std::uint32_t{1} << j); }
-    KM_HD bool is_free(int j) const { return ((free >> j) & 1U) != 0; }
+    KM_HD void set_free(int j) {
+        if (j >= 0 && j < FREE_JOINTS) free |= (std::uint32_t{1} << j);
+    }
+    KM_HD bool is_free(int j) const { return free_bit(free, j); }
 };
 
 //! The status of an IK answer (the ik layer names them).

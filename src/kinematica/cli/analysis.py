@@ -100,6 +100,10 @@ def workspace_cmd(args: argparse.Namespace) -> int:
     robot = robot_from_args(args)
     if args.at is not None:
         finite([args.at], "--at")  # before sampling: the slice comes last
+    if args.output:  # a file no map can be written as: said before sampling
+        from kinematica.motion.plot import check_map_path
+
+        check_map_path(args.output)
     bar = None
     if args.samples >= PROGRESS_FROM:
         from tqdm import tqdm

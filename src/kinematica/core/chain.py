@@ -270,7 +270,7 @@ class Chain:
 
         In the base frame (m).
         """
-        axes = self.core.joint_axes(self._flat(q))
+        axes = self.core.joint_axes(self._flat(q), resolve_workers(None))
         return axes.reshape(*q.shape[:-1], self.dof, 6)
 
     def _flat(self, q: FloatArray) -> FloatArray:

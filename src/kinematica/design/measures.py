@@ -186,18 +186,22 @@ def measure_task(robot: Robot, task: Task) -> TaskMeasures:
     Returns:
         The per-target measures (see the module docs).
     """
-    result = robot.ik(task.targets, seed=IK_SEED)
-    assert isinstance(result, IKBatchResult)
     rows: Rows = task.kind
-    n_targets, k_max = result.solutions.shape[:2]
+    n_targets = len(task)
+    # positions as (N, 1, 3): three of them as (3, 3) would read as a rotation
+    targets = task.targets[:, None, :] if rows == "position" else task.targets
+    result = robot.ik(targets, seed=IK_SEED)
+    assert isinstance(result, IKBatchResult)
+    solutions = result.solutions.reshape(n_targets, -1, robot.dof)  # (N, k, n), NaN-padded
+    k_max = solutions.shape[1]
     rank = generic_rank(robot, rows)
-    reached = result.count > 0
+    reached = result.count.reshape(n_targets) > 0
     shape = (n_targets,)
     manip = np.full(shape, np.nan)
     cond = np.full(shape, np.nan)
     clear = np.full(shape, np.nan)
     if reached.any() and k_max > 0:
-        sol = result.solutions  # (N, k, n), NaN-padded
+        sol = solutions
         valid = np.all(np.isfinite(sol), axis=-1)
         s = np.zeros((*valid.shape, rank))  # (N, k, r), the SVDs of real solutions only
         s[valid] = task_singular_values(robot, sol[valid], rows, rank)
@@ -210,5 +214,6 @@ def measure_task(robot: Robot, task: Task) -> TaskMeasures:
         clear = np.max(np.where(valid, smallest, -np.inf), axis=1)
         for a in (manip, cond, clear):
             a[~reached] = np.nan
-    gap = np.where(reached | ~np.isfinite(result.gap), 0.0, result.gap)
+    raw_gap = result.gap.reshape(n_targets)
+    gap = np.where(reached | ~np.isfinite(raw_gap), 0.0, raw_gap)
     return TaskMeasures(reached, manip, cond, clear, np.maximum(gap, 0.0), rank)

@@ -24,6 +24,7 @@ from kinematica.design.objectives import MEASURES
 from kinematica.design.result import DesignResult
 from kinematica.errors import KinematicaError
 from kinematica.io.atomic import atomic_path, write_failed, write_text_atomic
+from kinematica.io.markdown import markdown_code, markdown_text
 
 __all__ = ["write_log", "write_report"]
 
@@ -207,13 +208,13 @@ def write_report(
     nominal = _nominal(result)
     units = tmpl.units
     lines = [
-        f"# Design of {tmpl.name}",
+        f"# Design of {markdown_text(tmpl.name)}",
         "",
-        f"- Template: `{tmpl.spec.source}`; design variables (file units: lengths in "
-        f"{units.get('length', 'm')}, angles in {units.get('angle', 'deg')}): "
+        f"- Template: {markdown_code(str(tmpl.spec.source))}; design variables (file "
+        f"units: lengths in {units.get('length', 'm')}, angles in {units.get('angle', 'deg')}): "
         + ", ".join(f"{n} in [{lo:g}, {hi:g}]" for n, lo, hi in _bounds(result)),
-        f"- Task: {task.name}, {len(task)} {task.kind} targets, every one to be reached "
-        "within the joint limits",
+        f"- Task: {markdown_text(task.name)}, {len(task)} {task.kind} targets, every one to be "
+        "reached within the joint limits",
         f"- Objective: {obj.describe()}",
         f"- Search: differential evolution, seed {result.seed}, {len(result.history)} evaluations "
         f"({result.evaluated} computed, {result.reused} from the checkpoint)",
@@ -267,7 +268,7 @@ def write_report(
             written.append(png)
             lines += [f"## {title}", "", f"![{title}]({png.name})", ""]
     files = [("best robot file", robot_file), ("evaluation log", log_file)]
-    named = [f"- {what}: `{Path(f).name}`" for what, f in files if f is not None]
+    named = [f"- {what}: {markdown_code(Path(f).name)}" for what, f in files if f is not None]
     if named:
         lines += ["## Files", "", *named, ""]
     try:

@@ -229,7 +229,9 @@ class JointParameter:
             q0=q0, mask=options.mask, seed=options.seed, workers=options.workers,
             precision=options.precision,
         )  # fmt: skip
-        same = bool(np.all(v == v[0]))
+        # no target (an empty batch): the arm locked at the default value answers, empty
+        first = float(v[0]) if N else self.default(chain)
+        same = bool(np.all(v == first))
         # The first joint's value turns the base frame about its axis: the moved target
         # is the same problem, distances and angles kept. The last joint's moves the tool
         # point: worth it only for values that differ per target (one locked arm for a
@@ -259,11 +261,11 @@ class JointParameter:
             elif same and not (
                 targets.poses.shape[0] > 1 and self._continua(chain, v, opts, targets)
             ):
-                out = solve_ik(locked_chain(chain, k, float(v[0])), target, opts)
+                out = solve_ik(locked_chain(chain, k, first), target, opts)
                 if isinstance(out, IKResult) and self._continua(chain, v, opts, targets):
-                    wide = widen_result(out, k, float(v[0]), (self.name, float(v[0])))
+                    wide = widen_result(out, k, first, (self.name, first))
                     return continuum_answer(
-                        chain, k, float(v[0]), self.name, targets.poses[0], wide, opts,
+                        chain, k, first, self.name, targets.poses[0], wide, opts,
                         locked_chain, solve_ik,
                     )  # fmt: skip
             else:  # a middle joint at several values: one arm per value, each target alone

@@ -24,7 +24,7 @@ from numpy.typing import ArrayLike, NDArray
 
 import kinematica._core as _core
 from kinematica.core import Chain
-from kinematica.errors import DimensionError, KinematicaError
+from kinematica.errors import KinematicaError
 from kinematica.ik.arm_angle import ArmAngleParameter, arm_angle_parameter
 from kinematica.ik.local_search import LOCAL_SEARCH
 from kinematica.ik.moved import end_arm, moved_targets
@@ -364,14 +364,9 @@ def held_note(chain: Chain, joint: Parameter, value: float, why: str) -> str:
 
 
 def _q0_rows(q0: ArrayLike | None, shape: tuple[int, ...], n: int) -> FloatArray | None:
-    """``(N, n)`` q0 per target (flat, C order), or None; its shape is checked by the solve."""
+    """``(N, n)`` q0 per target (flat, C order), or None; checked (finite) as solve_ik does."""
     if q0 is None:
         return None
-    q = np.asarray(q0, dtype=float)
-    try:
-        return np.broadcast_to(q, (*shape, n)).reshape(-1, n)
-    except ValueError:
-        raise DimensionError(
-            f"q0 of shape {q.shape} does not match targets of batch shape {shape} and {n} joints",
-            arg="q0",
-        ) from None
+    from kinematica.ik.targets import parse_q0  # a q0 given: not on the one-pose path
+
+    return parse_q0(q0, n, shape)

@@ -18,7 +18,7 @@ from numpy.typing import ArrayLike, NDArray
 
 import kinematica._core as _core
 from kinematica.core import Chain, resolve_workers
-from kinematica.errors import DimensionError, KinematicaError
+from kinematica.errors import KinematicaError
 from kinematica.ik.fallback import (
     FALLBACK_NOTE,
     INCOMPLETE_NOTE,
@@ -45,7 +45,14 @@ from kinematica.ik.solvers import (
     structure_of,
     why_numeric,
 )
-from kinematica.ik.targets import Targets, Tolerance, parse_mask, parse_targets, parse_tolerance
+from kinematica.ik.targets import (
+    Targets,
+    Tolerance,
+    parse_mask,
+    parse_q0,
+    parse_targets,
+    parse_tolerance,
+)
 
 __all__ = ["PoseSolver", "closed_form", "pose_solver", "solve_ik", "structure_of"]
 
@@ -74,25 +81,7 @@ def _at_parameter(
 
 def _q0(chain: Chain, q0: ArrayLike | None, targets: Targets) -> FloatArray | None:
     """``(N, n)`` q0 per target, or None."""
-    if q0 is None:
-        return None
-    try:
-        q = np.asarray(q0, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise DimensionError(f"q0 must be numbers, got {q0!r}", arg="q0") from exc
-    n = chain.dof
-    if q.ndim == 0 or q.shape[-1] != n:
-        raise DimensionError(f"q0 must hold {n} joint values, got shape {q.shape}", arg="q0")
-    if not np.all(np.isfinite(q)):
-        raise DimensionError("q0 holds NaN or inf", arg="q0")
-    try:
-        full = np.broadcast_to(q, (*targets.shape, n))
-    except ValueError:
-        raise DimensionError(
-            f"q0 of shape {q.shape} does not match targets of batch shape {targets.shape}",
-            arg="q0",
-        ) from None
-    return np.ascontiguousarray(full.reshape(-1, n))
+    return parse_q0(q0, chain.dof, targets.shape)
 
 
 _UNREACHABLE = _core.STATUS["unreachable"]

@@ -31,6 +31,7 @@ __all__ = [
     "Targets",
     "Tolerance",
     "parse_mask",
+    "parse_q0",
     "parse_targets",
     "parse_tolerance",
 ]
@@ -113,11 +114,11 @@ def parse_targets(target: ArrayLike) -> Targets:
         DimensionError: Non-numbers, an ambiguous or wrong shape, or a single
             target that is malformed (a batch marks such rows instead).
     """
-    if isinstance(target, np.ndarray) and target.shape == (4, 4) and target.dtype == np.float64:
+    if type(target) is np.ndarray and target.shape == (4, 4) and target.dtype == np.float64:
         raw: np.ndarray = target  # the common case: one pose, no conversion
     else:
         try:
-            raw = np.asarray(target)
+            raw = np.asarray(target)  # a subclass (numpy.matrix) as a plain array
         except (TypeError, ValueError) as exc:
             raise DimensionError(
                 f"target must be numbers, got {type(target).__name__}", arg="target"
@@ -210,6 +211,37 @@ def _poses(raw: np.ndarray) -> Targets:
     for i in invalid:
         poses[i] = np.eye(4)
     return Targets(poses, shape, False, invalid, notes)
+
+
+def parse_q0(q0: ArrayLike | None, n: int, shape: tuple[int, ...]) -> FloatArray | None:
+    """``(N, n)`` first guesses, one per target of batch shape ``shape`` (flat, C order).
+
+    Args:
+        q0: ``(n,)`` for every target, or ``(..., n)`` broadcast to the batch; or None.
+        n: The arm's joints.
+        shape: The targets' batch shape.
+
+    Raises:
+        DimensionError: Not numbers, not n values a row, NaN or inf, or a shape that
+            does not broadcast to the batch (``arg="q0"``).
+    """
+    if q0 is None:
+        return None
+    try:
+        q = np.asarray(q0, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise DimensionError(f"q0 must be numbers, got {q0!r}"[:200], arg="q0") from exc
+    if q.ndim == 0 or q.shape[-1] != n:
+        raise DimensionError(f"q0 must hold {n} joint values, got shape {q.shape}", arg="q0")
+    if not np.all(np.isfinite(q)):
+        raise DimensionError("q0 holds NaN or inf", arg="q0")
+    try:
+        full = np.broadcast_to(q, (*shape, n))
+    except ValueError:
+        raise DimensionError(
+            f"q0 of shape {q.shape} does not match targets of batch shape {shape}", arg="q0"
+        ) from None
+    return np.ascontiguousarray(full.reshape(-1, n))
 
 
 def parse_mask(mask: ArrayLike | None) -> FloatArray | None:

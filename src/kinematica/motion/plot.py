@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from kinematica.errors import KinematicaError
+from kinematica.errors import ArgumentError, KinematicaError
 from kinematica.io.atomic import atomic_path, write_failed
 from kinematica.motion.workspace import WorkspaceSlice
 
@@ -20,6 +20,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "MissingDependencyError",
+    "check_map_path",
     "plot_time_optimal",
     "plot_workspace_slice",
     "require_matplotlib",
@@ -48,6 +49,30 @@ def require_matplotlib() -> Any:
     return plt
 
 
+def check_map_path(path: str | Path) -> Path:
+    """``path`` as a Path a map can be written to: a file type matplotlib writes.
+
+    Checked before anything is drawn (the command line: before sampling), since the
+    type follows the name's suffix.
+
+    Raises:
+        ArgumentError: A suffix matplotlib writes no picture for (``.txt``), or none.
+        MissingDependencyError: matplotlib is not installed.
+    """
+    require_matplotlib()
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    out = Path(path)
+    kinds = sorted(FigureCanvasBase.get_supported_filetypes())
+    if out.suffix[1:].lower() not in kinds:
+        raise ArgumentError(
+            f"{out}: cannot draw a map as a file of type {out.suffix or '(none)'!r}; "
+            f"name it with one of {', '.join('.' + k for k in kinds)}",
+            arg="path",
+        )
+    return out
+
+
 def plot_workspace_slice(sl: WorkspaceSlice, path: str | Path, title: str = "") -> Path:
     """Save a workspace slice as a picture: reachable pixels coloured by manipulability.
 
@@ -58,7 +83,11 @@ def plot_workspace_slice(sl: WorkspaceSlice, path: str | Path, title: str = "") 
 
     Returns:
         The path written.
+
+    Raises:
+        ArgumentError: ``path`` names a file type matplotlib does not write.
     """
+    out = check_map_path(path)
     plt = require_matplotlib()
     u, v = sl.plane[0], sl.plane[1]
     w = ({"x", "y", "z"} - {u, v}).pop()

@@ -73,6 +73,8 @@ _NOT_FINITE, _OUTSIDE_LIMITS, _BEYOND_TURN = 1, 2, 3
 #: Rows of a batch read at a time when looking for the first configuration beyond the
 #: limits (the core counts them; only the first is named).
 _SCAN_ROWS = 4096
+#: Configurations a warning of NaN/inf rows names (it says how many there are in all).
+_SHOWN_ROWS = 5
 
 
 @dataclass(frozen=True, eq=False)
@@ -299,15 +301,31 @@ class Robot:
             index = int(np.flatnonzero(~np.isfinite(qa))[0])
             raise DimensionError(f"{name} holds NaN or inf at index ({index},)")
         if bad:
-            rows = [tuple(int(i) for i in r) for r in np.argwhere(~np.isfinite(qa).all(axis=-1))]
-            shown = ", ".join(map(str, rows[:5])) + (" ..." if len(rows) > 5 else "")
+            rows = self._first_bad_rows(qa, _SHOWN_ROWS)
+            shown = ", ".join(map(str, rows)) + (" ..." if bad > len(rows) else "")
             warnings.warn(
-                f"{name}: {len(rows)} row(s) hold NaN or inf, their results are NaN: {shown}",
+                f"{name}: {bad} row(s) hold NaN or inf, their results are NaN: {shown}",
                 KinematicaWarning,
                 stacklevel=3,
             )
         if outside:
             warnings.warn(self._limits_message(qa, name, outside), stacklevel=3)
+
+    def _first_bad_rows(self, qa: FloatArray, count: int) -> list[tuple[int, ...]]:
+        """The indices of the first ``count`` configurations holding NaN/inf.
+
+        Read a block of rows at a time, and only as far as the ``count``-th: a batch of a
+        million bad rows costs no more than one of a few (no Python object per row).
+        """
+        rows = qa.reshape(-1, self.dof)
+        found: list[int] = []
+        for start in range(0, len(rows), _SCAN_ROWS):
+            block = rows[start : start + _SCAN_ROWS]
+            hit = np.flatnonzero(~np.isfinite(block).all(axis=-1))[: count - len(found)]
+            found += (start + hit).tolist()
+            if len(found) == count:
+                break
+        return [tuple(int(i) for i in np.unravel_index(r, qa.shape[:-1])) for r in found]
 
     def _check_turns(self, qa: FloatArray, name: str = "q") -> None:
         """Warn (:class:`UnitWarning`) of a free revolute joint beyond a full turn."""

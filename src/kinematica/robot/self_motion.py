@@ -29,6 +29,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from kinematica.arguments import check_count, check_size
 from kinematica.errors import KinematicaError
 from kinematica.ik import IKBatchResult, IKOptions, structure_of
 from kinematica.ik.arm_angle import ARM_ANGLE_NAMES, arm_angle_parameter
@@ -39,7 +40,15 @@ if TYPE_CHECKING:
     from kinematica.core import Chain
     from kinematica.robot import Robot
 
-__all__ = ["MAX_JUMP", "Family", "SelfMotion", "families", "joint_jump", "self_motion"]
+__all__ = [
+    "MAX_JUMP",
+    "MAX_SAMPLES",
+    "Family",
+    "SelfMotion",
+    "families",
+    "joint_jump",
+    "self_motion",
+]
 
 FloatArray = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]
@@ -50,6 +59,10 @@ BoolArray = NDArray[np.bool_]
 #: 6 times the parameter's step stays whole; one passing close to a singular set,
 #: where joints turn fast, is split there.
 MAX_JUMP = 0.5
+#: Most parameter values a sweep takes (``samples`` or ``values``): each holds an IK
+#: answer of up to a few hundred bytes and every family an ``(N, n)`` array, so a
+#: million is a few hundred MB at most (``resolved_rate`` takes as many steps).
+MAX_SAMPLES = 1_000_000
 #: Two configurations of the search closer than this in every joint (rad, m) are one.
 SAME_TOL = 1e-6
 
@@ -221,8 +234,10 @@ def self_motion(
         parameter: A joint (0-based index, its name, or ``"qN"``), ``"arm_angle"``
             (an SRS arm's arm angle, swept over (-π, π]: :mod:`kinematica.ik.arm_angle`),
             or a :class:`~kinematica.ik.parameter.Parameter` object.
-        samples: The number of values across the parameter's span (its limits).
-        values: ``(N,)`` the values to use instead (rad or m), in order.
+        samples: The number of values across the parameter's span (its limits),
+            from 2 to :data:`MAX_SAMPLES`.
+        values: ``(N,)`` the values to use instead (rad or m), in order; at most
+            :data:`MAX_SAMPLES`.
         max_jump: See :data:`MAX_JUMP`.
         method: How each sample is solved: ``"auto"`` (the locked arm's closed
             form when the registry has one), ``"analytic"`` or ``"numeric"``.
@@ -321,19 +336,17 @@ def _values(span: tuple[float, float], samples: object, values: ArrayLike | None
             v = np.asarray(values, dtype=float).reshape(-1)
         except (TypeError, ValueError):
             raise KinematicaError(f"values must be numbers, got {values!r}", arg="values") from None
+        check_size(v.size, MAX_SAMPLES, "values", "parameter values")
         if v.size < 2 or not np.isfinite(v).all() or np.any(np.diff(v) <= 0):
             raise KinematicaError(
                 "values must hold at least 2 finite numbers in increasing order", arg="values"
             )
         return v
-    if isinstance(samples, bool) or not isinstance(samples, int | np.integer) or samples < 2:
-        raise KinematicaError(
-            f"samples must be a whole number >= 2, got {samples!r}", arg="samples"
-        )
+    n = check_count(samples, "samples", lo=2, hi=MAX_SAMPLES)
     lo, hi = span
     if not (math.isfinite(lo) and math.isfinite(hi)):
         raise KinematicaError(
             "values: the parameter has no limits to sweep (a free slide); give values=",
             arg="values",
         )
-    return np.linspace(lo, hi, int(samples))
+    return np.linspace(lo, hi, n)

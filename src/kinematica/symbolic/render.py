@@ -14,6 +14,7 @@ from typing import Any, Final
 
 import sympy as sp
 
+from kinematica.io.markdown import markdown_text
 from kinematica.symbolic.document import Block, Equations, Heading, Notation, Para
 from kinematica.symbolic.phrases import phrase
 from kinematica.symbolic.printing import latex, mathml
@@ -46,7 +47,7 @@ def _latex_lines(expr: Any) -> list[str]:
 
 # ------------------------------------------------------------------ markdown
 def _md_parts(parts: Sequence[Any]) -> str:
-    return "".join(p if isinstance(p, str) else f"${latex(p)}$" for p in parts)
+    return "".join(markdown_text(p) if isinstance(p, str) else f"${latex(p)}$" for p in parts)
 
 
 def _md(blocks: Sequence[Block], lang: str) -> str:
@@ -60,7 +61,7 @@ def _md(blocks: Sequence[Block], lang: str) -> str:
             rows = _latex_rows(b, lang)
             out.append("$$\n\\begin{aligned}\n" + " \\\\\n".join(rows) + "\n\\end{aligned}\n$$")
         else:
-            cell = lambda c: c if isinstance(c, str) else f"${latex(c)}$"  # noqa: E731
+            cell = lambda c: markdown_text(c) if isinstance(c, str) else f"${latex(c)}$"  # noqa: E731
             lines = ["| " + " | ".join(cell(c) for c in b.header) + " |"]
             lines.append("|" + "---|" * len(b.header))
             lines += ["| " + " | ".join(cell(c) for c in row) + " |" for row in b.rows]

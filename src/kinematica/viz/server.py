@@ -15,8 +15,12 @@ JSON body. Anything else is a 4xx with a JSON ``{"error": message}``.
 What it holds up under: connections are served by one event loop, so an idle
 or stalled client costs no thread; each request must arrive whole within
 :data:`READ_TIMEOUT` seconds or is dropped; at most :data:`MAX_CONNECTIONS`
-are open at once (more are answered 503 at once); IK runs on
-:data:`WORKERS` threads; the listen backlog is :data:`BACKLOG`.
+are open at once. A connection past the cap closes the oldest one that has waited
+:data:`IDLE_GRACE` seconds or more for its request (idle, or sending it slowly) to
+make room, so idle clients cannot lock the page out; only when no open connection
+has waited that long (every one has sent its request, or has just come) is the
+newcomer answered 503. IK runs on :data:`WORKERS` threads;
+the listen backlog is :data:`BACKLOG`.
 """
 
 from __future__ import annotations
@@ -42,6 +46,7 @@ from kinematica.viz.page import page_html
 
 __all__ = [
     "BACKLOG",
+    "IDLE_GRACE",
     "MAX_CONNECTIONS",
     "MAX_HEADER_BYTES",
     "MAX_REQUEST_BYTES",
@@ -59,8 +64,14 @@ MAX_REQUEST_BYTES = 64 * 1024
 MAX_HEADER_BYTES = 16 * 1024
 #: Seconds a client has to send a whole request (line, headers and body) once connected.
 READ_TIMEOUT = 5.0
-#: Connections open at once; one more is answered 503 and closed.
+#: Connections open at once; one more closes the oldest still waiting for its request
+#: (for IDLE_GRACE or more), or, when none is, is answered 503 and closed.
 MAX_CONNECTIONS = 256
+#: Seconds a connection waits for its request before a newcomer past the cap may close
+#: it: a client sends its request as it connects (milliseconds on loopback), while the
+#: server may not have read a request that has already arrived when the next
+#: connection comes; an idle or slow client is past this long before READ_TIMEOUT.
+IDLE_GRACE = 0.5
 #: Threads that run IK (and nothing else) for the requests.
 WORKERS = 4
 #: Connections the system queues before the server accepts them.
@@ -164,6 +175,11 @@ class PageServer:
         self._loop.set_default_executor(self._pool)  # name look-ups too: no other threads
         self._loop.set_exception_handler(lambda loop, context: None)  # no tracebacks
         self._tasks: set[asyncio.Task[None]] = set()
+        # the connections still reading their request, oldest first (a dict keeps order),
+        # with the loop's time each came at
+        self._waiting: dict[asyncio.Task[None], float] = {}
+        # those closed to make room, until their tasks end: no longer counted as open
+        self._evicted: set[asyncio.Task[None]] = set()
         self._server: asyncio.Server | None = None
         bound = self._sock.getsockname()[1]
         shown = (f"[{host}]" if ":" in host else host).lower()
@@ -239,11 +255,13 @@ class PageServer:
         assert task is not None  # a connection's callback runs as a task
         self._tasks.add(task)
         try:
-            if len(self._tasks) > MAX_CONNECTIONS:
+            crowded = len(self._tasks) - len(self._evicted) > MAX_CONNECTIONS
+            if crowded and not self._make_room():
                 status: int = HTTPStatus.SERVICE_UNAVAILABLE
                 answer = _json(status, {"error": "too many connections"})
             else:
-                status, answer = await self._answer(reader)
+                self._waiting[task] = self._loop.time()
+                status, answer = await self._answer(reader, task)
             async with asyncio.timeout(self._read_timeout):  # a client that reads nothing
                 writer.write(answer)
                 await writer.drain()
@@ -253,13 +271,28 @@ class PageServer:
             pass  # the client went away, or stopped reading: nobody to answer
         finally:
             self._tasks.discard(task)
+            self._waiting.pop(task, None)
+            self._evicted.discard(task)
             writer.close()
 
-    async def _answer(self, reader: asyncio.StreamReader) -> tuple[int, bytes]:
+    def _make_room(self) -> bool:
+        """Close the oldest connection waiting IDLE_GRACE or more; False if there is none."""
+        oldest = next(iter(self._waiting), None)
+        if oldest is None or self._loop.time() - self._waiting[oldest] < IDLE_GRACE:
+            return False
+        del self._waiting[oldest]
+        self._evicted.add(oldest)
+        oldest.cancel()  # its reading stops; it closes its socket as it ends
+        return True
+
+    async def _answer(
+        self, reader: asyncio.StreamReader, task: asyncio.Task[None]
+    ) -> tuple[int, bytes]:
         try:
             try:
                 async with asyncio.timeout(self._read_timeout):
                     body = await self._request(reader)
+                self._waiting.pop(task, None)  # the request is in: no longer idle
             except TimeoutError:
                 raise _RefusedError(
                     HTTPStatus.REQUEST_TIMEOUT,

@@ -24,6 +24,7 @@ namespace km::decoupled {
 
 //! Most joints an arm-position solver serves: its free joints are bits of SolverInfo::free.
 constexpr int MAX_POSITION_DOF = 32;
+static_assert(MAX_POSITION_DOF <= FREE_JOINTS, "every joint's free bit must fit the mask");
 
 //! Position targets of an arm of n > 3 joints whose joints 1-3 place the tool origin.
 struct ArmPositionParams {

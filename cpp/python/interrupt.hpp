@@ -1,0 +1,53 @@
+// A batch that Ctrl-C stops: the GIL released while it runs, Python's signals read
+// between its blocks.
+//
+// Python's own handler of SIGINT only notes the signal; the KeyboardInterrupt is raised
+// when the interpreter next runs (PyErr_CheckSignals), which it does not while the core
+// holds the caller's thread for a whole batch. So the caller's thread, between the blocks
+// it runs, takes the GIL back at most every POLL_INTERVAL and asks; on a pending
+// KeyboardInterrupt (or any exception a signal handler raises) no further block starts,
+// the blocks running finish, and the call raises it: the results are dropped, the
+// interpreter and the core's threads are as before.
+#pragma once
+
+#include <nanobind/nanobind.h>
+
+#include <chrono>
+#include <functional>
+
+#include "pool.hpp"
+
+namespace kmpy {
+
+namespace nb = nanobind;
+
+//! Longest wait (s) between two looks at Python's signals during a batch: a Ctrl-C stops
+//! it within this plus one block's time (a block: FK_BLOCK configurations, TARGET_BLOCK
+//! targets). A look costs taking the GIL (about a microsecond when no other thread holds
+//! it), 1e-4 of the time at this interval.
+constexpr double POLL_INTERVAL = 0.01;
+
+//! Run fn(b) for every block b in [0, blocks) on up to `workers` threads, the GIL
+//! released, called with the GIL held; a signal handler's exception (KeyboardInterrupt)
+//! stops it between blocks and is raised here. fn must not throw or touch Python.
+inline void run_blocks(int blocks, int workers, const std::function<void(int)>& fn) {
+    using Clock = std::chrono::steady_clock;
+    const auto interval = std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(POLL_INTERVAL));
+    Clock::time_point last = Clock::now();
+    const auto interrupted = [&last, interval]() {
+        const Clock::time_point now = Clock::now();
+        if (now - last < interval) return false;
+        last = now;
+        nb::gil_scoped_acquire acquire;
+        return PyErr_CheckSignals() != 0;  // the exception stays set on this thread
+    };
+    bool done = false;
+    {
+        nb::gil_scoped_release release;
+        done = parallel_for(blocks, workers, fn, interrupted);
+    }
+    if (!done) throw nb::python_error();
+}
+
+}  // namespace kmpy
