@@ -102,7 +102,7 @@ def plot_workspace_slice(sl: WorkspaceSlice, path: str | Path, title: str = "") 
     ax.set_aspect("equal")
     head = f"{title}\n" if title else ""
     ax.set_title(f"{head}{u}{v} slice at {w} = {sl.at:.3f} m, area {sl.area:.4g} m²")
-    return _save(plt, fig, path)
+    return _save(plt, fig, out)
 
 
 def _save(plt: Any, fig: Any, path: str | Path) -> Path:
