@@ -60,6 +60,9 @@ T6B = PUMA.fk(Q6B)
 T7 = IIWA.fk(Q7)
 R = T6[:3, :3]
 QUAT = [0.1, 0.2, 0.3, 0.927361849549570]
+#: Readings near the middle of the PUMA's limits, and what a tracker would measure there.
+QC = np.mean(PUMA.qlim, axis=1) + np.random.default_rng(0).uniform(-0.3, 0.3, (12, 6))
+BOX = [[-0.3, -0.3, 0.0], [0.3, 0.3, 0.3]]
 
 
 def _fields(result: Any) -> tuple[Any, ...]:
@@ -73,7 +76,8 @@ def _fields(result: Any) -> tuple[Any, ...]:
     if isinstance(result, km.Robot):
         return (result.base, result.tool, result.fk(Q6 if result.dof == 6 else Q7))
     names = ("solutions", "status", "count", "q", "t", "qd", "values", "points", "errors",
-             "radii", "axes", "near", "center", "manipulability")  # fmt: skip
+             "radii", "axes", "near", "center", "manipulability", "sd", "index", "positions",
+             "fitted", "covariance")  # fmt: skip
     found = tuple(np.asarray(getattr(result, n)) for n in names if hasattr(result, n))
     assert found, f"nothing to compare in {type(result).__name__}"
     return found
@@ -138,6 +142,11 @@ CALLS: dict[str, Callable[[Layout], Any]] = {
     "quat_multiply": lambda c: km.quat_multiply(c(QUAT), c(QUAT)),
     "quat_slerp": lambda c: km.quat_slerp(c(QUAT), c([0.0, 0.0, 0.0, 1.0]), c([0.25, 0.5])),
     "link_matrix": lambda c: km.link_matrix(c([0.1, 0.2]), c([0.3, 0.0]), c([0.5, 0.1]), 0.2),
+    "time_optimal": lambda c: km.time_optimal(c(Q6B), vmax=c([1.0] * 6), amax=2.0, grid=50),
+    "reachability": lambda c: km.reachability(PUMA, c(BOX), 0.3, orientations=c(R[None])),
+    "base_placement": lambda c: km.base_placement(PUMA, c(T6B), c(BOX), resolution=0.3, yaw=2),
+    "calibrate": lambda c: km.calibrate(PUMA, c(QC), c(PUMA.fk(QC))),
+    "Robot.wrist_center": lambda c: PUMA.wrist_center(c(T6B)),
 }
 
 
