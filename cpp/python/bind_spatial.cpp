@@ -1,33 +1,42 @@
 // What kinematica.spatial computes through the core: wrap, the SO(3) log, the angle
-// between rotations, the pose error (one source each, shared with the solvers).
+// between rotations, the pose error (one source each, shared with the solvers). Each
+// batch checks its arrays and makes its result with the GIL held, then runs its rows
+// through run_rows: the GIL released, Ctrl-C read between blocks.
 #include "casters.hpp"
 #include "common.hpp"
+#include "interrupt.hpp"
 #include "kinematica/so3.hpp"
 
 namespace kmpy {
 
 namespace {
 
+//! Angles per block of wrap (one takes 5-30 ns): a block of about 0.1 ms at most.
+constexpr long ANGLE_BLOCK = 4096;
+
 F64 wrap_many(F64 a) {
     const In in = in_f64(a, "angle", 1);
     double* out;
     F64 r = new_f64({in.dim[0]}, out);
-    for (npy_intp i = 0; i < in.dim[0]; ++i) out[i] = km::wrap(in.data[i]);
+    run_rows(in.dim[0], ANGLE_BLOCK, 1, [&](long i0, long i1) {
+        for (long i = i0; i < i1; ++i) out[i] = km::wrap(in.data[i]);
+    });
     return r;
 }
 
 nb::tuple so3_log(F64 R) {
     const In in = in_f64(R, "R", 3, {-1, 3, 3});
-    const npy_intp N = in.dim[0];
     double *v, *angle;
-    nb::object V = new_f64({N, 3}, v), A = new_f64({N}, angle);
-    for (npy_intp i = 0; i < N; ++i) {
-        const double* m = in.data + 9 * i;
-        const km::Vec3 w = km::rotvec(m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8], angle[i]);
-        v[3 * i] = w.x;
-        v[3 * i + 1] = w.y;
-        v[3 * i + 2] = w.z;
-    }
+    nb::object V = new_f64({in.dim[0], 3}, v), A = new_f64({in.dim[0]}, angle);
+    run_rows(in.dim[0], FK_BLOCK, 1, [&](long i0, long i1) {
+        for (long i = i0; i < i1; ++i) {
+            const double* m = in.data + 9 * i;
+            const km::Vec3 w = km::rotvec(m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8], angle[i]);
+            v[3 * i] = w.x;
+            v[3 * i + 1] = w.y;
+            v[3 * i + 2] = w.z;
+        }
+    });
     return nb::make_tuple(V, A);
 }
 
@@ -41,10 +50,12 @@ F64 angles_between(F64 Ra, F64 Rb) {
     const In b = in_f64(Rb, "R_b", 3, {a.dim[0], 3, 3});
     double* out;
     F64 r = new_f64({a.dim[0]}, out);
-    for (npy_intp i = 0; i < a.dim[0]; ++i) {
-        // the angle of R_aᵀ R_b: angle_between(T, Tt) is that of Rtᵀ R
-        out[i] = km::angle_between(rotation_pose(b.data + 9 * i), rotation_pose(a.data + 9 * i));
-    }
+    run_rows(a.dim[0], FK_BLOCK, 1, [&](long i0, long i1) {
+        for (long i = i0; i < i1; ++i) {
+            // the angle of R_aᵀ R_b: angle_between(T, Tt) is that of Rtᵀ R
+            out[i] = km::angle_between(rotation_pose(b.data + 9 * i), rotation_pose(a.data + 9 * i));
+        }
+    });
     return r;
 }
 
@@ -53,10 +64,13 @@ F64 pose_errors(F64 Tc, F64 Tt) {
     const In t = in_f64(Tt, "T_target", 3, {c.dim[0], 4, 4});
     double* out;
     F64 r = new_f64({c.dim[0], 6}, out);
-    for (npy_intp i = 0; i < c.dim[0]; ++i) {
-        const km::Twist e = km::pose_error(km::Pose::from_rows(c.data + 16 * i), km::Pose::from_rows(t.data + 16 * i));
-        for (int k = 0; k < 6; ++k) out[6 * i + k] = e.e[k];
-    }
+    run_rows(c.dim[0], FK_BLOCK, 1, [&](long i0, long i1) {
+        for (long i = i0; i < i1; ++i) {
+            const km::Twist e =
+                km::pose_error(km::Pose::from_rows(c.data + 16 * i), km::Pose::from_rows(t.data + 16 * i));
+            for (int k = 0; k < 6; ++k) out[6 * i + k] = e.e[k];
+        }
+    });
     return r;
 }
 

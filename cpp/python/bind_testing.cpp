@@ -10,6 +10,7 @@
 
 #include "casters.hpp"
 #include "common.hpp"
+#include "interrupt.hpp"
 #include "kinematica/chain.hpp"
 #include "kinematica/check.hpp"
 #include "kinematica/geometry.hpp"
@@ -87,16 +88,18 @@ nb::tuple lm_stats(const km::NumericSolver& s, const km::Chain& chain, F64 Th) {
     nb::object Ea = new_i64({N}, evaluations), Aa = new_i64({N}, attempts);
     nb::object Ca = new_array({N}, converged, NPY_BOOL);
     const km::ChainView ch = chain.view();
-    km::LMWork work(s.n);
-    std::vector<double> q(static_cast<size_t>(s.n));
-    for (npy_intp i = 0; i < N; ++i) {
-        const km::LMStats st =
-            km::lm_solve(ch, s.bounds.data(), s.weights, s.settings, km::Pose::from_rows(T.data + 16 * i),
-                         s.middle.data(), s.samples.data(), s.restarts(), q.data(), work);
-        evaluations[i] = st.evaluations;
-        attempts[i] = st.attempts;
-        converged[i] = st.converged;
-    }
+    run_rows(N, TARGET_BLOCK, 1, [&](long i0, long i1) {
+        km::LMWork work(s.n);
+        std::vector<double> q(static_cast<size_t>(s.n));
+        for (long i = i0; i < i1; ++i) {
+            const km::LMStats st =
+                km::lm_solve(ch, s.bounds.data(), s.weights, s.settings, km::Pose::from_rows(T.data + 16 * i),
+                             s.middle.data(), s.samples.data(), s.restarts(), q.data(), work);
+            evaluations[i] = st.evaluations;
+            attempts[i] = st.attempts;
+            converged[i] = st.converged;
+        }
+    });
     return nb::make_tuple(Ea, Aa, Ca);
 }
 

@@ -50,4 +50,22 @@ inline void run_blocks(int blocks, int workers, const std::function<void(int)>& 
     if (!done) throw nb::python_error();
 }
 
+//! Rows [0, rows) in blocks of `block` rows, fn(begin, end) for each, through run_blocks. A
+//! batch of one block runs here, the GIL held: it is over within a block's time anyway
+//! (there is no look between blocks to make), and releasing and taking back the GIL
+//! would cost more than a single row of the cheapest batches (wrap, so3_log: 20-30 ns).
+template <class Fn>
+void run_rows(long rows, long block, int workers, const Fn& fn) {
+    if (rows <= block) {
+        if (rows > 0) fn(0L, rows);
+        return;
+    }
+    const int blocks = static_cast<int>((rows + block - 1) / block);
+    run_blocks(blocks, workers, [&](int blk) {
+        const long begin = static_cast<long>(blk) * block;
+        fn(begin, begin + block < rows ? begin + block : rows);
+    });
+}
+
 }  // namespace kmpy
+

@@ -97,11 +97,18 @@ def test_batches_release_the_gil() -> None:
     core = arm.chain.core
     Q = rng.uniform(-1.0, 1.0, (20_000, 40))
     T = km.load("puma560").fk(rng.uniform(-1.0, 1.0, (100_000, 6)))
+    T2 = T[::-1].copy()
+    R, R2 = np.ascontiguousarray(T[:, :3, :3]), np.ascontiguousarray(T2[:, :3, :3])
+    angles = rng.uniform(-100.0, 100.0, 2_000_000)
     calls = {
         "joint_axes": lambda: core.joint_axes(Q, 1),
         "point_rank_ratios": lambda: core.point_rank_ratios(Q[:4000], np.zeros(3), 1),
         "pose_defects_batch": lambda: _core.pose_defects_batch(T, 1),
         "fk_batch": lambda: core.fk_batch(Q, True, 1),
+        "wrap": lambda: _core.wrap(angles),
+        "so3_log": lambda: _core.so3_log(R),
+        "rotation_angles": lambda: _core.rotation_angles(R, R2),
+        "pose_errors": lambda: _core.pose_errors(T, T2),
     }
     repeats = 5
     windows: dict[str, list[tuple[float, float]]] = {name: [] for name in calls}
