@@ -232,6 +232,10 @@ void bind_decoupled(nb::module_& m) {
     position.def_rw("arm", &kd::ArmPositionParams::arm, "joints 1-3 placing the tool origin")
         .def_rw("reach", &kd::ArmPositionParams::reach,
                 "bound (m) on how far joints 4..n move the tool origin")
+        .def_rw("centre", &kd::ArmPositionParams::centre,
+                "joints 1-3 placing a point C on axis 4 (its shell bounds alone are read)")
+        .def_rw("centre_reach", &kd::ArmPositionParams::centre_reach,
+                "bound (m) on |tool origin - C| over every q (inf: none)")
         .def_prop_rw(
             "n", [](const kd::ArmPositionParams& p) { return p.n; },
             [](kd::ArmPositionParams& p, int n) {

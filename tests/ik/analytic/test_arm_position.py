@@ -123,15 +123,16 @@ def test_unreachable_only_with_a_proof() -> None:
     reach = reach_after_joint3(arm.chain)
     far_arm = np.linalg.norm(arm.fk(np.zeros(6))[:3, 3] - np.array([0.0, 0.0, 0.5]))
     within = arm.ik(np.array([0.0, 0.0, 0.5 + far_arm + 0.5 * reach]))
-    # no wrist-at-0 solution and no proof from the closed form: the numeric search answers,
-    # and the sum of the link lengths (0.5 + 0.4 + 0.4 + 0.1 = 1.4 m, kinematica.ik.reach)
-    # proves the target out of reach, 0.1 m out at least
-    assert within.method == "numeric:lm" and PARTIAL_NOTE in within.notes
+    # The wrist-at-0 shell (0.9 m about the shoulder) less 2 x 0.1 m proves nothing here;
+    # the wrist centre's shell (0.8 m) less the flange's 0.1 m proves the exact distance:
+    # the target is 0.9 + 0.1 = 1.0 m above the shoulder, 0.1 m beyond the reach of 0.9 m
+    assert far_arm == pytest.approx(0.9, abs=1e-12) and reach == pytest.approx(0.2, abs=1e-12)
+    assert within.method == "analytic:arm-position"
     assert within.status == "unreachable" and within.gap is not None
-    assert within.gap >= 0.5 + far_arm + 0.5 * reach - 1.4 - 1e-9
+    assert within.gap == pytest.approx(0.1, abs=1e-12)
     beyond = arm.ik(np.array([0.0, 0.0, 0.5 + far_arm + 2.0 * reach]))
     assert beyond.status == "unreachable" and beyond.gap is not None
-    assert beyond.gap == pytest.approx(far_arm + 2.0 * reach - far_arm - reach, rel=1e-9)
+    assert beyond.gap == pytest.approx(2.0 * reach, abs=1e-12)  # 1.3 m above the shoulder
 
 
 @pytest.mark.parametrize("batch", [(), (1,), (3, 2)])

@@ -12,7 +12,10 @@ names no structure: ``km.classify`` describes arms by their pose solver.
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
+from numpy.typing import NDArray
 
 import kinematica._core as _core
 from kinematica.core import Chain
@@ -23,7 +26,15 @@ from kinematica.ik.analytic.spherical_wrist import GEOMETRIES, random_wrist_rows
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
 
-__all__ = ["SPEC", "build", "reach_after_joint3"]
+__all__ = ["PARALLEL_SIN2", "SPEC", "build", "reach_after_joint3", "wrist_chain"]
+
+FloatArray = NDArray[np.float64]
+
+#: Two axes whose sine squared is below this are treated as parallel when a point of one
+#: nearest the other is chosen (:func:`wrist_chain`): the choice decides only how tight
+#: the bound is, never whether it holds (any point of an axis would do); nearly parallel
+#: axes would put their common perpendicular's feet far away, and the bound out of use.
+PARALLEL_SIN2 = 1e-12
 
 
 def reach_after_joint3(chain: Chain) -> float:
@@ -49,6 +60,53 @@ def reach_after_joint3(chain: Chain) -> float:
     return 2.0 * half
 
 
+def wrist_chain(chain: Chain, f: Features) -> tuple[FloatArray, float] | None:
+    """A point C on axis 4 and a bound (m) on the tool origin's distance from it, or None.
+
+    A point on a revolute joint's axis is fixed to the links before and after it, so
+    the distance of two points on consecutive axes k and k + 1 (both fixed to the link
+    between them) is the same at every q, as is that of the tool origin from a point on
+    axis n. With B_k on axis k (k = 4..n), the foot of the common perpendicular towards
+    axis k + 1 (axis n: towards axis n - 1; parallel axes: the tool origin's foot),
+    the triangle inequality gives, at every q (limits or not),
+
+        |tool origin - B_4| <= sum_k |B_(k+1) - B_k| + |tool origin - B_n|.
+
+    For a spherical wrist every B_k is the wrist centre and the bound is the exact
+    wrist-to-tool distance. None when a joint after the third slides (its link moves
+    along, not about, its axis).
+
+    Args:
+        chain: The arm (n > 3 joints).
+        f: Its features: ``directions``, ``points`` ``(n, 3)`` at q = 0 (base frame).
+
+    Returns:
+        ``(C, R)``: C ``(3,)`` (base frame at q = 0, m) and R (m).
+    """
+    if any(chain.prismatic[3:]):
+        return None
+    tool = chain.fk(np.zeros(chain.dof))[0][:3, 3]
+    n = chain.dof
+    feet = []
+    for k in range(3, n):
+        other = k + 1 if k + 1 < n else k - 1
+        feet.append(_foot(f.points[k], f.directions[k], f.points[other], f.directions[other], tool))
+    steps = [np.linalg.norm(b - a) for a, b in itertools.pairwise(feet)]
+    return feet[0], float(sum(steps) + np.linalg.norm(tool - feet[-1]))
+
+
+def _foot(p: FloatArray, h: FloatArray, q: FloatArray, g: FloatArray, x: FloatArray) -> FloatArray:
+    """``(3,)`` the point of line (p, h) nearest line (q, g); parallel lines: nearest ``x``."""
+    h = h / np.linalg.norm(h)
+    g = g / np.linalg.norm(g)
+    c = float(h @ g)
+    det = 1.0 - c * c
+    if det < PARALLEL_SIN2:  # parallel (any point of the line would do): the one nearest x
+        return p + float(h @ (x - p)) * h
+    w = q - p
+    return p + (float(h @ w) - c * float(g @ w)) / det * h
+
+
 def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
     """The arm-position solver for position targets, or None (pose targets, unusable arms)."""
     if target != "position" or not _handles(f):
@@ -62,6 +120,15 @@ def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
     params = _core.decoupled.ArmPositionParams()
     params.arm = arm.arm
     params.reach = reach_after_joint3(chain)
+    wrist = wrist_chain(chain, f)
+    centre = (
+        None
+        if wrist is None
+        else arm_geometry(f.directions[:3], f.points[:3], f.joint_types[2] == "P", wrist[0], f.size)
+    )
+    if wrist is not None and centre is not None:
+        params.centre = centre.arm
+        params.centre_reach = wrist[1]
     params.n = chain.dof
     return ClosedForm(
         name="arm-position",
