@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from kinematica.cli.format import fmt, table
+from kinematica.cli.format import fmt, printed_rows, table
 from kinematica.cli.options import (
     add_common,
     add_pose,
@@ -28,7 +28,6 @@ from kinematica.spatial import from_pose
 __all__ = ["control", "register"]
 
 #: Rows of the run printed as text (every k-th sample, and the last).
-PRINTED_ROWS = 12
 
 
 def _damping(text: str) -> str | float | None:
@@ -120,8 +119,7 @@ def control(args: argparse.Namespace) -> int:
         return 1 if failed else 0
     t = run.t
     print(f"{robot.name}: resolved-rate control, {fmt(t[-1], 4)} s, {t.size} samples")
-    step = max(1, math.ceil(t.size / PRINTED_ROWS))
-    idx = sorted(set(range(0, t.size, step)) | {t.size - 1})
+    idx, step = printed_rows(t.size)
     header = ("t (s)", *(f"q{i}" for i in range(1, robot.dof + 1)), "w")
     shown = q_out(robot, run.q[idx], args)
     rows = [

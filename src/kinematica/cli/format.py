@@ -10,7 +10,17 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-__all__ = ["DEFAULT_PRECISION", "fmt", "json_numbers", "matrix", "num", "plain", "table"]
+__all__ = [
+    "DEFAULT_PRECISION",
+    "PRINTED_ROWS",
+    "fmt",
+    "json_numbers",
+    "matrix",
+    "num",
+    "plain",
+    "printed_rows",
+    "table",
+]
 
 #: Values closer to zero than this print as 0 (avoids "-0" and "1e-17" noise).
 PRINT_ZERO = 5e-13
@@ -109,3 +119,13 @@ def json_numbers(a: Any) -> Any:
             return None
         return 0.0 if abs(a) < 5e-16 else a
     return a
+
+
+#: Rows of a sampled trajectory printed as text (every k-th sample, and the last).
+PRINTED_ROWS = 12
+
+
+def printed_rows(count: int) -> tuple[list[int], int]:
+    """``(indices, step)`` of the samples printed of ``count``: every step-th, and the last."""
+    step = max(1, math.ceil(count / PRINTED_ROWS))
+    return sorted(set(range(0, count, step)) | {count - 1}), step

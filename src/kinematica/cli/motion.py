@@ -3,14 +3,13 @@
 from __future__ import annotations
 
 import argparse
-import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica.cli.format import fmt, json_numbers, table
+from kinematica.cli.format import fmt, json_numbers, printed_rows, table
 from kinematica.cli.jerk import add_jerk_options, jerk_json, jerk_text
 from kinematica.cli.motion_optimal import add_optimal_options, optimal_trajectory
 from kinematica.cli.options import (
@@ -37,8 +36,6 @@ FloatArray = NDArray[np.float64]
 
 #: Sample counts from which the workspace command shows a progress bar.
 PROGRESS_FROM = 200_000
-#: Rows of a trajectory printed as text (every k-th sample, and the last).
-PRINTED_ROWS = 12
 #: Event kinds after which a Cartesian path cannot be executed as computed.
 BLOCKING = {"unreachable", "joint_limit", "branch_change"}
 
@@ -235,8 +232,7 @@ def trajectory(args: argparse.Namespace) -> int:
         f"{robot.name}: {kind} trajectory{where}, {args.profile}, {fmt(t[-1], 4)} s, "
         f"{t.size} samples"
     )
-    step = max(1, math.ceil(t.size / PRINTED_ROWS))
-    idx = sorted(set(range(0, t.size, step)) | {t.size - 1})
+    idx, step = printed_rows(t.size)
     header = ("t (s)", *(f"q{i} ({u})" for i, u in enumerate(joint_units(robot, args), 1)))
     shown = q_out(robot, q[idx], args)
     print(

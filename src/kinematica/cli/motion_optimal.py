@@ -3,14 +3,13 @@
 from __future__ import annotations
 
 import argparse
-import math
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica.cli.format import fmt, table
+from kinematica.cli.format import fmt, printed_rows, table
 from kinematica.cli.options import angle_unit, dump, joint_units, lengths_in, q_out
 from kinematica.errors import KinematicaError
 from kinematica.robot import Robot
@@ -18,8 +17,6 @@ from kinematica.robot import Robot
 __all__ = ["add_optimal_options", "optimal_trajectory"]
 
 FloatArray = NDArray[np.float64]
-#: Rows of the trajectory printed as text (every k-th sample, and the last).
-PRINTED_ROWS = 12
 
 
 def add_optimal_options(p: argparse.ArgumentParser) -> None:
@@ -116,12 +113,13 @@ def optimal_trajectory(
         f"{robot.name}: time-optimal {kind} trajectory through {W.shape[0]} points, "
         f"{fmt(res.duration, 6)} s, {t.size} samples ({res.status})"
     )
-    step = max(1, math.ceil(t.size / PRINTED_ROWS))
-    idx = sorted(set(range(0, t.size, step)) | {t.size - 1})
+    idx, step = printed_rows(t.size)
     header = ("t (s)", *(f"q{i} ({u})" for i, u in enumerate(joint_units(robot, args), 1)))
     shown = q_out(robot, q[idx], args)
     rows = [(fmt(t[i], 4), *(fmt(v, 4) for v in row)) for i, row in zip(idx, shown, strict=True)]
     print(table(header, rows))
+    if step > 1:
+        print(f"  (every {step}th sample and the last; -o FILE or --json for all)")
     for note in notes:
         print(f"note: {note}")
     if args.output:
