@@ -56,6 +56,7 @@ def test_calibrate_writes_robot_urdf_and_report(tmp_path, capsys, monkeypatch):
     assert code == 0 and "6R, general geometry" in out  # IK: the general 6R, every solution
     text = (tmp_path / "cal.md").read_text()
     assert "# Kinematic calibration of PUMA 560" in text
+    assert "pose measurements (least squares)" in text  # the loss in words
     assert "![Residual histograms](cal-histogram.png)" in text
     for png in ("cal-histogram.png", "cal-residuals.png"):
         assert (tmp_path / png).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
@@ -80,6 +81,7 @@ def test_calibrate_json_and_spanish_report(tmp_path, capsys, monkeypatch):
     text = (tmp_path / "r.md").read_text()
     assert "# Calibración cinemática de PUMA 560" in text
     assert "tool rx no mueve el punto medido." in text
+    assert "medidas de posición (pérdida robusta de Huber)" in text
 
 
 def test_bad_csv_is_a_one_line_error(tmp_path, capsys, monkeypatch):
@@ -107,3 +109,12 @@ def test_read_measurements_names_line_and_column(tmp_path):
     p.write_text("q,x,y,z\n0.5,1,2,3\n")
     q, m, kind = read_measurements(p, 1)
     assert kind == "position" and q.tolist() == [[0.5]] and m.tolist() == [[1, 2, 3]]
+
+
+def test_every_loss_is_named_in_both_languages():
+    from kinematica.calibration.fit import LOSSES
+    from kinematica.calibration.words import LANGS, phrase
+
+    for loss in LOSSES:
+        names = {phrase(f"loss.{loss}", lang) for lang in LANGS}
+        assert len(names) == len(LANGS) and loss not in names

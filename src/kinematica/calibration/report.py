@@ -65,7 +65,7 @@ def report_text(
             lang,
             m=result.before.shape[0],
             kind=kind,
-            loss=result.loss,
+            loss=phrase(f"loss.{result.loss}", lang),
             sp=f"{result.noise[0] * 1e3:g}",
             sr=f"{math.degrees(result.noise[1]):.3g}",
         ),

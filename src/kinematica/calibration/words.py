@@ -25,6 +25,14 @@ PHRASES: Final[dict[str, tuple[str, str]]] = {
         "Error model: a small rigid transform in every link, the base and the tool "
         "(DH values and Hayati's beta twist).",
     ),
+    "loss.linear": ("mínimos cuadrados", "least squares"),
+    "loss.soft_l1": (
+        "pérdida robusta soft-L1 de scipy",
+        "scipy's robust soft-L1 loss",
+    ),
+    "loss.huber": ("pérdida robusta de Huber", "Huber's robust loss"),
+    "loss.cauchy": ("pérdida robusta de Cauchy", "Cauchy's robust loss"),
+    "loss.arctan": ("pérdida robusta arcotangente", "the robust arctangent loss"),
     "kind.pose": ("pose", "pose"),
     "kind.position": ("posición", "position"),
     "h.residuals": ("Residuos", "Residuals"),
