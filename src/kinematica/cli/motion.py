@@ -137,7 +137,7 @@ def trajectory(args: argparse.Namespace) -> int:
     if through and args.profile == "trapezoid":
         raise KinematicaError(
             "--profile trapezoid moves between two configurations; through --via points use "
-            "mstraj (lines with parabolic blends), cubic or quintic"
+            "mstraj (the Robotics Toolbox's lines with blends), cubic or quintic"
         )
     if not through and (args.times is not None or args.tacc is not None):
         raise KinematicaError("--times and --tacc apply to moves through --via points")
@@ -297,7 +297,8 @@ def register(sub: Any) -> None:
         choices=("quintic", "cubic", "trapezoid", "mstraj", "scurve"),
         default="quintic",
         help="between two q: quintic, cubic, trapezoid; through --via: the quintic (C4) or "
-        "cubic (C2) spline through every point, or mstraj (lines with parabolic blends); "
+        "cubic (C2) spline through every point, or mstraj (the Robotics Toolbox's lines with "
+        "quintic blends, times rounded up to --dt); "
         "scurve: jerk-limited (--vmax --amax --jmax; needs ruckig), between two q or "
         "through --via points without stopping",
     )
@@ -319,7 +320,9 @@ def register(sub: Any) -> None:
         help="trapezoid: each joint its own profile in the slowest joint's minimum time "
         "(default), or one shared profile on the joint-space line",
     )
-    p.add_argument("--tacc", type=float, help="mstraj: blend time at each via point (s)")
+    p.add_argument(
+        "--tacc", type=float, help="mstraj: blend time at each via point (s; 0 for none)"
+    )
     p.add_argument(
         "--ends",
         choices=("clamped", "natural"),

@@ -90,7 +90,7 @@ def test_random_srs_arms(degenerate: bool) -> None:
         arm = srs.sample_arm(rng, degenerate)
         if "1e-10" in arm.note:  # near-degenerate: checked in test_near_degenerate_arm
             continue
-        robot = km.Robot.from_dh(arm.links, base=arm.base, tool=arm.tool)
+        robot = km.Robot.from_dh(arm.links, base=arm.base, tool=arm.tool, convention="standard")
         q = rng.uniform(-PI, PI, (40, 7))
         res = robot.ik(robot.fk(q), arm_angle=robot.arm_angle(q), respect_limits=False)
         keep = np.flatnonzero(~res.near_singular)  # near a fold: q to round-off over it
@@ -103,7 +103,9 @@ def test_near_degenerate_arm_keeps_the_arm_angle_to_the_repair() -> None:
     # carried onto this one by the check's repair, which may turn it a little along the
     # self-motion; the answer says it may be incomplete
     rng = np.random.default_rng(4)
-    robot = km.Robot.from_dh(srs.random_srs_rows(rng, "shoulder offset 1e-10"))
+    robot = km.Robot.from_dh(
+        srs.random_srs_rows(rng, "shoulder offset 1e-10"), convention="standard"
+    )
     q = rng.uniform(-PI, PI, (30, 7))
     T, psi = robot.fk(q), robot.arm_angle(q)
     res = robot.ik(T, arm_angle=psi, respect_limits=False)
@@ -343,7 +345,7 @@ def test_wrist_on_the_shoulder_of_equal_links() -> None:
         km.Revolute(alpha=PI / 2),
         km.Revolute(d=FLANGE),
     ]
-    arm = km.Robot.from_dh(rows)
+    arm = km.Robot.from_dh(rows, convention="standard")
     q = np.array([0.2, 0.5, 0.3, PI, 0.4, 0.6, 0.1])
     T = arm.fk(q)
     assert np.isnan(arm.arm_angle(q))
