@@ -152,17 +152,17 @@ def test_q3_zero_is_shimizus_reference_plane(iiwa: km.Robot) -> None:
 
 
 def test_labels_are_the_joint_signs_on_the_iiwa(iiwa: km.Robot) -> None:
-    # elbow +: q4 > 0; shoulder no-flip: q2 > 0; wrist no-flip: q6 > 0
+    # shoulder no-flip: q2 > 0; elbow bent positive: q4 > 0; wrist no-flip: q6 > 0
     q = _generic_q(np.random.default_rng(7), 20)
     res = iiwa.ik(iiwa.fk(q), arm_angle=0.4, respect_limits=False)
     for i in range(len(q)):
         one = res[i]
         for sol, label in zip(one.solutions, one.branches, strict=True):
-            elbow, shoulder, wrist = label.split(", ")
-            assert (sol[3] > 0) == (elbow == "elbow +"), label
+            shoulder, elbow, wrist = label.split(", ")
+            assert (sol[3] > 0) == (elbow == "elbow bent positive"), label
             assert (sol[1] > 0) == (shoulder == "shoulder no-flip"), label
             assert (sol[5] > 0) == (wrist == "wrist no-flip"), label
-    assert srs.LABELS[0] == "elbow +, shoulder no-flip, wrist no-flip"
+    assert srs.LABELS[0] == "shoulder no-flip, elbow bent positive, wrist no-flip"
 
 
 def test_batch_equals_single_calls(iiwa: km.Robot) -> None:
