@@ -148,3 +148,5 @@ def test_bad_input() -> None:
         via_trajectory(W, "mstraj", vmax=1.0, tacc=0.2, dt=0.0)
     with pytest.raises(km.KinematicaError, match=r"joint .* > amax"):
         via_trajectory(W, "mstraj", vmax=1.0, tacc=0.2, amax=0.5)
+    with pytest.raises(km.KinematicaError, match="dt is the step of method='mstraj'"):
+        via_polynomials(W, "cubic", [0.0, 1.0, 2.0], dt=0.1)

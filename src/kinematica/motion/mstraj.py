@@ -23,6 +23,11 @@ Toolbox's own output to 1e-12, ``tests/data/rtb_mstraj.json``). Waypoints
   from the last line's last sample to ``w_{k-1}`` at the velocity ``qdf`` (here
   ``qd1``), zero by default.
 
+Speed limits bound the lines, not the blends: the first line passes ``w_0`` at
+``t = 0`` and its blend, starting there at rest, must catch up with it (``Δ =
+T·v`` in ``T``), so the quintic peaks at 1.512 times the line's speed (``v·(15s⁴
+- 32s³ + 18s²)`` at ``s = 0.6``), and the last blend likewise; as in the Toolbox.
+
 The steps are counted as the Toolbox counts them, in floating point:
 ``ceil(tacc / dt)`` steps, then ``ceil(that·dt / 2 / dt)`` for the half, so a
 blend of 0.6 s at ``dt = 0.1`` s has a half of 4 steps, not 3 (0.6000000000000001

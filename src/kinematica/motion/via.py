@@ -135,13 +135,13 @@ def via_polynomials(
     qdd1: ArrayLike | None = None,
     qd: ArrayLike | None = None,
     qdd: ArrayLike | None = None,
-    dt: float = DEFAULT_DT,
+    dt: float | None = None,
 ) -> PiecewisePolynomial:
     """The pieces of the trajectory through ``waypoints`` (arguments of :func:`via_trajectory`).
 
     For ``"scurve"`` the pieces are ``via_trajectory(...).pieces``. ``dt`` is
-    ``"mstraj"``'s step: its pieces start and end on whole steps (their
-    ``breaks``, also their ``knots``).
+    ``"mstraj"``'s step (default ``DEFAULT_DT``): its pieces start and end on
+    whole steps (their ``breaks``, also their ``knots``); the splines take none.
     """
     if method == "scurve":
         raise KinematicaError(
@@ -166,11 +166,14 @@ def via_polynomials(
                 f"mstraj takes a start and an end velocity (qd0, qd1) only: drop "
                 f"{', '.join(named) or 'ends'}"
             )
-        dt = check_number(dt, "dt", positive=True, unit="s", what="a number of seconds")
+        step = DEFAULT_DT if dt is None else dt
+        step = check_number(step, "dt", positive=True, unit="s", what="a number of seconds")
         ends_v = (_array(qd0, (n,), "qd0"), _array(qd1, (n,), "qd1"))
-        return _mstraj(w, t, vmax, am, tacc, dt, ends_v)
+        return _mstraj(w, t, vmax, am, tacc, step, ends_v)
     if tacc is not None:
         raise KinematicaError("tacc is the blend time of method='mstraj'", arg="tacc")
+    if dt is not None:
+        raise KinematicaError("dt is the step of method='mstraj'; splines sample any dt", arg="dt")
     spline: Literal["cubic", "quintic"] = "cubic" if method == "cubic" else "quintic"
     return _spline(w, spline, t, _limit(vmax, (n,), "vmax"), am, ends, ends_given)
 
@@ -377,12 +380,12 @@ def via_trajectory(
         qdd1=qdd1,
         qd=qd,
         qdd=qdd,
-        dt=dt,
+        dt=dt if method == "mstraj" else None,
     )
     if method == "mstraj":  # the Toolbox's grid: every sample ends a step, and is its left limit
         steps = round(pieces.duration / dt)
         check_size(steps + 1, MAX_SAMPLES, "dt", f"samples ({pieces.duration:g} s every {dt!r} s)")
-        t = np.arange(steps + 1) * dt
+        t = np.arange(steps + 1, dtype=float) * dt
         out = JointTrajectory(t, pieces(t, left=True), pieces(t, 1, True), pieces(t, 2, True))
         out.q[-1] = np.asarray(waypoints, dtype=float)[-1]
         return out
