@@ -40,8 +40,9 @@ qd0=, qdf=)``: ``W`` is ``viapoints`` with ``q0`` as its first row (as the
 Toolbox reads ``viapoints`` without ``q0``), ``vmax=qdmax``, ``times=[0,
 *cumsum(tsegment)]`` (waypoint times, as for the other methods), ``qd1=qdf``
 (the end velocity's name for every method); ``dt`` and ``tacc`` as they are.
-``verbose`` has no counterpart: the library prints nothing, and the segments'
-times are the pieces' breaks (:func:`via_polynomials`).
+``verbose`` has no counterpart: the library prints nothing; the pieces
+(:func:`via_polynomials` with the same ``dt``) hold every blend and line, each
+starting and ending on a break.
 """
 
 from __future__ import annotations
