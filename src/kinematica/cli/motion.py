@@ -169,7 +169,7 @@ def trajectory(args: argparse.Namespace) -> int:
         if times is None and vmax is None and amax is None:
             times = np.linspace(0.0, float(duration), W.shape[0])
         traj = via_trajectory(
-            W, args.profile, times, args.dt, vmax, amax, tacc=args.tacc, ends=args.ends
+            W, args.profile, times, args.dt, vmax, amax, tacc=_tacc(args.tacc), ends=args.ends
         )
         t, q, qd, qdd = traj
     else:
@@ -255,6 +255,11 @@ def trajectory(args: argparse.Namespace) -> int:
     return 1 if blocked else 0
 
 
+def _tacc(tacc: list[float] | None) -> float | list[float] | None:
+    """``--tacc``: one blend time for every segment, or one each."""
+    return tacc[0] if tacc is not None and len(tacc) == 1 else tacc
+
+
 def register(sub: Any) -> None:
     """Add ``trajectory`` to the subparsers ``sub``."""
     p = sub.add_parser(
@@ -321,7 +326,10 @@ def register(sub: Any) -> None:
         "(default), or one shared profile on the joint-space line",
     )
     p.add_argument(
-        "--tacc", type=float, help="mstraj: blend time at each via point (s; 0 for none)"
+        "--tacc",
+        nargs="+",
+        type=float,
+        help="mstraj: blend time at each via point (s; 0 for none), or one per segment",
     )
     p.add_argument(
         "--ends",
