@@ -172,7 +172,8 @@ import kinematica as km
 name, kind, rows = sys.argv[1], sys.argv[2], json.loads(sys.argv[3])
 t0 = time.perf_counter()
 if rows:
-    robot = km.Robot.from_dh([km.Revolute(d=d, a=a, alpha=al) for d, a, al in rows])
+    links = [km.Revolute(d=d, a=a, alpha=al) for d, a, al in rows]
+    robot = km.Robot.from_dh(links, convention="standard")
 else:
     robot = km.load(name)
 q = np.clip(np.full(robot.dof, 0.3), robot.qlim[:, 0], robot.qlim[:, 1])

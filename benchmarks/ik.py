@@ -142,11 +142,14 @@ def arms() -> list[Robot]:
     general = Robot.from_dh(
         [Revolute(offset=th, d=d, a=a, alpha=al) for th, d, a, al in GENERAL_ROWS],
         name="general spherical wrist",
+        convention="standard",
     )
     ur5 = km.load("ur5")
     rows = list(ur5.links)
     rows[4] = Revolute(d=rows[4].d, a=0.05, alpha=rows[4].alpha, offset=rows[4].offset)
-    ur5_a5 = Robot.from_dh(rows, name="UR5, a5 = 5 cm", base=ur5.base, tool=ur5.tool)
+    ur5_a5 = Robot.from_dh(
+        rows, name="UR5, a5 = 5 cm", base=ur5.base, tool=ur5.tool, convention="standard"
+    )
     ur5_a5 = ur5_a5.with_limits(ur5.qlim)
     return [
         *(km.load(name) for name in ("puma560", "ur5", "irb120", "kr6")),

@@ -60,10 +60,10 @@ def arms(seed: int) -> dict[str, km.Robot]:
     equal = [Revolute(d=0.2, a=0.3, alpha=float(rng.uniform(-math.pi, math.pi))) for _ in range(6)]
     ur = [Revolute(d=d, a=a, alpha=al + 1e-3 * (-1) ** i) for i, (d, a, al) in enumerate(_UR5)]
     return {
-        "random (standard DH)": km.Robot.from_dh(random_rows()),
+        "random (standard DH)": km.Robot.from_dh(random_rows(), convention="standard"),
         "random (modified DH)": km.Robot.from_dh(random_rows(), convention="modified"),
-        "equal links": km.Robot.from_dh(equal),
-        "UR5, twists 1e-3 off": km.Robot.from_dh(ur),
+        "equal links": km.Robot.from_dh(equal, convention="standard"),
+        "UR5, twists 1e-3 off": km.Robot.from_dh(ur, convention="standard"),
     }
 
 

@@ -53,7 +53,9 @@ TARGET_SINGLE, TARGET_BATCHED = 15e-6, 3e-6
 
 
 def arms() -> list[Robot]:
-    two_r = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=0.4)], name="planar 2R")
+    two_r = km.Robot.from_dh(
+        [km.Revolute(a=0.5), km.Revolute(a=0.4)], name="planar 2R", convention="standard"
+    )
     names = ("planar-pr", "planar-3r", "planar-prr", "scara", "anthropomorphic-3r", "rrr-geometric")
     return [two_r, *(km.load(name) for name in names)]
 

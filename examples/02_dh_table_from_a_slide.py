@@ -45,7 +45,9 @@ def main() -> None:
         km.Revolute(alpha=np.pi / 2),
         km.Revolute(d=0.1),
     ]
-    same = km.Robot.from_dh(rows, tool=km.transl(0, 0, 0.05), name="from code")
+    same = km.Robot.from_dh(
+        rows, tool=km.transl(0, 0, 0.05), name="from code", convention="standard"
+    )
 
     q = np.radians([10, -20, 30, 40, -50, 60])
     T = robot.fk(q)

@@ -141,7 +141,9 @@ def test_the_library_imports_what_each_step_needs_only() -> None:
         report("redundant")
         rows = [(0.2, 0.25, 0.8), (-0.2, -0.35, -1.2), (-0.1, -0.35, 2.1), (0.4, 0.1, -0.7)]
         rows += [(-0.05, 0.4, 1.4), (0.3, -0.1, -2.6)]
-        arm = km.Robot.from_dh([km.Revolute(d=d, a=a, alpha=al) for d, a, al in rows])
+        arm = km.Robot.from_dh(
+            [km.Revolute(d=d, a=a, alpha=al) for d, a, al in rows], convention="standard"
+        )
         assert arm.ik(arm.fk([0.3] * 6)).method == "analytic:general-6R"
         report("general")
         """

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 from kinematica._lazy import exports
 from kinematica.errors import (
     ArgumentError,
+    ConventionWarning,
     DimensionError,
     KinematicaError,
     KinematicaWarning,
@@ -188,6 +189,7 @@ __getattr__, __dir__ = exports(
 
 __all__ = [
     "ArgumentError",
+    "ConventionWarning",
     "DHExtraction",
     "DimensionError",
     "EulerSequenceError",

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 __all__ = [
     "ArgumentError",
+    "ConventionWarning",
     "DimensionError",
     "KinematicaError",
     "KinematicaWarning",
@@ -171,4 +172,13 @@ class UnitWarning(KinematicaWarning):
     ``robot.fk([30, 40, -30, 10, 60, -20])``: joint angles beyond a full turn),
     radians where degrees are meant, millimetres where metres are meant. The
     value is used as given.
+    """
+
+
+class ConventionWarning(KinematicaWarning):
+    """No DH convention was given: the table is read as standard (Paul, distal).
+
+    One rule for ``Robot.from_dh(rows)`` and a robot file without ``convention``:
+    the common convention is assumed, and said, because a modified (Craig) table
+    read as standard gives another arm without any error.
     """

@@ -56,6 +56,16 @@ def test_mstraj_with_limits_and_a_waypoint_file(
     t, q = km.motion.read_csv(out_csv)
     ref = km.via_trajectory(waypoints(), "mstraj", vmax=np.radians(45), tacc=0.3)
     assert np.allclose(t, ref.t) and np.allclose(q, ref.q, atol=1e-12)
+    # one blend time per segment, as the Toolbox's tacc
+    code, _, _ = run(
+        capsys, *argv, "--profile", "mstraj", "--vmax", "45", "--tacc", "0.3", "0.5", "-o",
+        str(out_csv),
+    )  # fmt: skip
+    ref = km.via_trajectory(waypoints(), "mstraj", vmax=np.radians(45), tacc=[0.3, 0.5])
+    t, q = km.motion.read_csv(out_csv)
+    assert code == 0 and np.allclose(t, ref.t) and np.allclose(q, ref.q, atol=1e-12)
+    one = km.via_trajectory(waypoints(), "mstraj", vmax=np.radians(45), tacc=0.3)
+    assert ref.t.size != one.t.size  # the second blend is longer
     # a waypoint file in the -o format (t,q1..qn, SI): its t column gives the times
     wfile = tmp_path / "waypoints.csv"
     km.motion.write_csv(wfile, [0.0, 1.0, 2.5], waypoints())

@@ -56,7 +56,9 @@ def test_locking_a_urdf_chain_keeps_its_fk() -> None:
 
 
 def test_a_two_joint_arm_locks_to_one_and_a_one_joint_arm_refuses() -> None:
-    arm = km.Robot.from_dh([km.Revolute(a=1.0), km.Prismatic(theta=0.3, a=0.5)])
+    arm = km.Robot.from_dh(
+        [km.Revolute(a=1.0), km.Prismatic(theta=0.3, a=0.5)], convention="standard"
+    )
     one = arm.chain.locked(1, 0.25)
     q = 0.7
     expected = arm.fk([q, 0.25])
@@ -66,7 +68,7 @@ def test_a_two_joint_arm_locks_to_one_and_a_one_joint_arm_refuses() -> None:
 
 
 def test_motion_is_a_turn_or_a_slide() -> None:
-    arm = km.Robot.from_dh([km.Revolute(), km.Prismatic()])
+    arm = km.Robot.from_dh([km.Revolute(), km.Prismatic()], convention="standard")
     c, s = math.cos(0.4), math.sin(0.4)
     np.testing.assert_allclose(arm.chain.motion(0, 0.4)[:2, :2], [[c, -s], [s, c]], atol=0)
     M = arm.chain.motion(1, 0.4)
@@ -82,4 +84,4 @@ def test_the_core_refuses_a_lock_it_cannot_make() -> None:
         with pytest.raises((ValueError, IndexError)):
             core.locked(joint, value)
     with pytest.raises(ValueError, match="one joint"):
-        km.Robot.from_dh([km.Revolute(a=1.0)]).chain.core.locked(0, 0.0)
+        km.Robot.from_dh([km.Revolute(a=1.0)], convention="standard").chain.core.locked(0, 0.0)

@@ -29,7 +29,9 @@ POSITION = np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0])
 
 
 def two_link(qlim: tuple[float, float] | None = None) -> km.Robot:
-    return km.Robot.from_dh([km.Revolute(a=L1), km.Revolute(a=L2, qlim=qlim)])
+    return km.Robot.from_dh(
+        [km.Revolute(a=L1), km.Revolute(a=L2, qlim=qlim)], convention="standard"
+    )
 
 
 def target_of(q: list[float]) -> np.ndarray:
@@ -221,7 +223,7 @@ def test_repair_patience_outlasts_steps_that_overshoot_and_land() -> None:
     robot = random_arm(rng, "meet", square=True)
     links = list(robot.links)
     links[1] = dataclasses.replace(links[1], alpha=links[1].alpha + 5e-10)
-    robot = km.Robot.from_dh(links, base=robot.base, tool=robot.tool)
+    robot = km.Robot.from_dh(links, base=robot.base, tool=robot.tool, convention="standard")
     q = np.array([-1.8043360707549974, -2.307837226526689, 0.03810703212573863,
                   1.7912437217382067, 0.09957063778417395, 1.6887427728460738])  # fmt: skip
     T = robot.fk(q)

@@ -95,7 +95,9 @@ def test_batches_release_the_gil() -> None:
     256 rows or fewer keeps the GIL (a few µs).
     """
     rng = np.random.default_rng(1)
-    arm = km.Robot.from_dh([km.Revolute(a=0.01, alpha=0.3) for _ in range(40)], name="40R")
+    arm = km.Robot.from_dh(
+        [km.Revolute(a=0.01, alpha=0.3) for _ in range(40)], name="40R", convention="standard"
+    )
     core = arm.chain.core
     Q = rng.uniform(-1.0, 1.0, (20_000, 40))
     T = km.load("puma560").fk(rng.uniform(-1.0, 1.0, (100_000, 6)))

@@ -49,7 +49,9 @@ def test_a_target_beyond_the_reach_bound_is_not_searched() -> None:
 
 
 def planar_2r() -> km.Robot:
-    return km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=0.7)], name="planar 2R")
+    return km.Robot.from_dh(
+        [km.Revolute(a=1.0), km.Revolute(a=0.7)], name="planar 2R", convention="standard"
+    )
 
 
 def test_a_target_in_the_hole_uses_every_restart_and_stalls_early() -> None:

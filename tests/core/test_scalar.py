@@ -94,7 +94,8 @@ def test_fk_of_a_batch_equals_single_calls_beyond_the_reduction(rows: int) -> No
             km.Revolute(d=0.3, alpha=math.pi / 2, offset=0.25),
             km.Prismatic(theta=0.7, alpha=-math.pi / 2),
             km.Revolute(a=0.4, offset=-1.0),
-        ]
+        ],
+        convention="standard",
     )
     rng = np.random.default_rng(rows)
     Q = rng.uniform(-7.0, 7.0, (rows, 3))

@@ -20,7 +20,9 @@ L1, L2 = 0.5, 0.3
 
 
 def planar_2r(l1: float = L1, l2: float = L2, qlim: tuple[float, float] | None = None) -> km.Robot:
-    return km.Robot.from_dh([km.Revolute(a=l1, qlim=qlim), km.Revolute(a=l2)])
+    return km.Robot.from_dh(
+        [km.Revolute(a=l1, qlim=qlim), km.Revolute(a=l2)], convention="standard"
+    )
 
 
 def svals_2r(l1: float, l2: float, q2: float) -> tuple[float, float]:
@@ -108,7 +110,8 @@ def test_rank_tolerance_on_both_sides() -> None:
     def twisted(eps: float) -> km.Robot:
         # a planar 3R whose second axis is tilted by eps: it moves out of its plane by ~eps
         return km.Robot.from_dh(
-            [km.Revolute(a=0.5), km.Revolute(a=0.4, alpha=eps), km.Revolute(a=0.3)]
+            [km.Revolute(a=0.5), km.Revolute(a=0.4, alpha=eps), km.Revolute(a=0.3)],
+            convention="standard",
         )
 
     # largest σ3/σ1 over the sampled configurations: ~4e-7 and ~4e-11
@@ -122,7 +125,9 @@ def test_total_length_of_the_seed_arm() -> None:
     robot = km.load("arm6-dh").with_tool(km.transl(0, 0, 0.05))
     assert math.isclose(total_length(robot), 1.45, rel_tol=1e-15)
     # a prismatic joint counts its constant offset, not its stroke
-    pr = km.Robot.from_dh([km.Prismatic(a=0.2, offset=0.1), km.Revolute(a=-0.3, d=0.05)])
+    pr = km.Robot.from_dh(
+        [km.Prismatic(a=0.2, offset=0.1), km.Revolute(a=-0.3, d=0.05)], convention="standard"
+    )
     assert math.isclose(total_length(pr), 0.2 + 0.1 + 0.3 + 0.05, rel_tol=1e-15)
 
 

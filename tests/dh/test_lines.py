@@ -40,7 +40,8 @@ def test_axis_angle_tol_is_the_sine_of_the_angle_between_parallel_axes(
     A twist ``alpha`` between two joints tilts the second axis by ``alpha``.
     """
     robot = km.Robot.from_dh(
-        [km.Revolute(a=1.0, alpha=factor * AXIS_ANGLE_TOL), km.Revolute(a=1.0)]
+        [km.Revolute(a=1.0, alpha=factor * AXIS_ANGLE_TOL), km.Revolute(a=1.0)],
+        convention="standard",
     )
     assert km.classify(robot).parallel == (((0, 1),) if inside else ())
 
@@ -54,7 +55,9 @@ def test_axis_length_tol_is_the_distance_of_axes_that_meet(factor: float, inside
     arm's size is its 1 m link (plus ``a``).
     """
     a = factor * AXIS_LENGTH_TOL * (1.0 + 1.0)
-    robot = km.Robot.from_dh([km.Revolute(a=a, alpha=math.pi / 2), km.Revolute(a=1.0)])
+    robot = km.Robot.from_dh(
+        [km.Revolute(a=a, alpha=math.pi / 2), km.Revolute(a=1.0)], convention="standard"
+    )
     s = km.classify(robot)
     assert s.features.size == pytest.approx(1.0 + a)
     assert s.parallel == ()
@@ -74,7 +77,8 @@ def test_axis_length_tol_decides_the_wrist_center(factor: float, inside: bool) -
     """
     d = factor * AXIS_LENGTH_TOL
     robot = km.Robot.from_dh(
-        [km.Revolute(alpha=-math.pi / 2), km.Revolute(a=d, alpha=math.pi / 3), km.Revolute()]
+        [km.Revolute(alpha=-math.pi / 2), km.Revolute(a=d, alpha=math.pi / 3), km.Revolute()],
+        convention="standard",
     )
     wc = km.classify(robot).wrist_center
     assert (wc is not None) == inside
@@ -89,7 +93,9 @@ def test_axis_angle_tol_is_the_cosine_of_the_angle_between_perpendicular_axes(
     A twist of 90° + ``e`` leaves the axes at cosine ``-sin(e)`` ~ ``e``.
     """
     e = factor * AXIS_ANGLE_TOL
-    robot = km.Robot.from_dh([km.Revolute(a=1.0, alpha=math.pi / 2 + e), km.Revolute(a=1.0)])
+    robot = km.Robot.from_dh(
+        [km.Revolute(a=1.0, alpha=math.pi / 2 + e), km.Revolute(a=1.0)], convention="standard"
+    )
     f = km.classify(robot).features
     assert abs(float(f.directions[0] @ f.directions[1])) == pytest.approx(e, rel=1e-3)
     assert f.is_perpendicular(0, 1) is inside
@@ -130,7 +136,8 @@ def test_the_features_of_a_puma_table_are_those_found_by_hand() -> None:
             km.Revolute(d=d4, alpha=math.pi / 2),
             km.Revolute(alpha=-math.pi / 2),
             km.Revolute(),
-        ]
+        ],
+        convention="standard",
     )
     f = features(robot.chain)
     assert f.joint_types == "RRRRRR"
@@ -158,7 +165,7 @@ def test_the_near_degenerate_slack_is_its_relations_sum_by_hand(
 ) -> None:
     from kinematica.ik.structure import features
 
-    f = features(km.Robot.from_dh(rows).chain)
+    f = features(km.Robot.from_dh(rows, convention="standard").chain)
     assert f.near_degenerate
     assert f.slack == pytest.approx(slack, rel=1e-6)
 

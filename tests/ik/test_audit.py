@@ -85,7 +85,7 @@ def test_the_general_6r_finds_every_solution_of_a_calibrated_ur() -> None:
         [0.0, 0.0, 0.0, 1.0],
     ]
     links = [km.Revolute(d=d, a=a, alpha=al) for d, a, al in rows]
-    robot = km.Robot.from_dh(links, base=np.array(base), tool=np.array(tool))
+    robot = km.Robot.from_dh(links, base=np.array(base), tool=np.array(tool), convention="standard")
     q = np.array([1.198739643342586, -2.166245331097235, 1.6436931343575854,
                   2.438595817867922, 0.030105794920242346, -0.5220349259662291])  # fmt: skip
     other = np.array([0.9718718962933703, -1.0343418537366595, -1.1958359921840909,

@@ -38,6 +38,7 @@ def slide_6() -> km.Robot:
             km.Revolute(d=0.1),
         ],
         name="RPRRRR",
+        convention="standard",
     )
 
 
@@ -54,12 +55,15 @@ def slides_7() -> km.Robot:
             km.Revolute(d=0.1),
         ],
         name="RPRPRRR",
+        convention="standard",
     )
 
 
 def eight_r() -> km.Robot:
     """An 8R arm: two joints more than a pose fixes."""
-    return km.Robot.from_dh([km.Revolute(d=0.3, a=0.1, alpha=PI / 2) for _ in range(8)])
+    return km.Robot.from_dh(
+        [km.Revolute(d=0.3, a=0.1, alpha=PI / 2) for _ in range(8)], convention="standard"
+    )
 
 
 # the arm, a mask or None, and what the note's reason says
@@ -206,12 +210,14 @@ def test_the_choice_of_arms_without_a_closed_form() -> None:
 def test_the_choice_of_a_general_6r_and_a_near_degenerate_arm() -> None:
     rows = [(0.2, 0.25, 0.8), (-0.2, -0.35, -1.2), (-0.1, -0.35, 2.1), (0.4, 0.1, -0.7)]
     rows += [(-0.05, 0.4, 1.4), (0.3, -0.1, -2.6)]
-    arm = km.Robot.from_dh([km.Revolute(d=d, a=a, alpha=al) for d, a, al in rows])
+    arm = km.Robot.from_dh(
+        [km.Revolute(d=d, a=a, alpha=al) for d, a, al in rows], convention="standard"
+    )
     choice = pose_choice(arm.chain)
     assert (choice.method, choice.complete) == ("analytic:general-6R", True)
     links = list(km.load("ur5").links)
     links[1] = dataclasses.replace(links[1], alpha=links[1].alpha + 5e-10)  # off by 5e-10
-    near = km.Robot.from_dh(links)
+    near = km.Robot.from_dh(links, convention="standard")
     choice = pose_choice(near.chain)
     assert (choice.method, choice.complete) == ("analytic:three-parallel-6R", False)
     assert not near.ik(near.fk(_q(near))).complete

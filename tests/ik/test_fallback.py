@@ -195,7 +195,8 @@ def test_an_elbow_folded_within_1e_9_says_its_answer_is_a_continuum_within_toler
     turning q2 by 0.1 rad (the elbow following) still meets the 1e-10 m tolerance. The
     result says so (issue 21 item 11), and each solution it gives is exact."""
     robot = km.Robot.from_dh(
-        [km.Revolute(d=0.4, a=0.1, alpha=math.pi / 2), km.Revolute(a=0.4), km.Revolute(a=0.4)]
+        [km.Revolute(d=0.4, a=0.1, alpha=math.pi / 2), km.Revolute(a=0.4), km.Revolute(a=0.4)],
+        convention="standard",
     )
     q = np.array([0.3, 0.7, math.pi - 1e-9])
     p = robot.fk(q)[:3, 3]

@@ -16,7 +16,9 @@ def arm(offset: float) -> km.Robot:
     """A UR5 whose flange turns about a 7th joint; the tool ``offset`` m off that axis."""
     ur5 = km.load("ur5")
     rows = [*ur5.links, km.Revolute(d=0.04)]
-    return km.Robot.from_dh(rows, base=ur5.base, tool=np.array(km.transl(offset, 0.0, 0.08)))
+    return km.Robot.from_dh(
+        rows, base=ur5.base, tool=np.array(km.transl(offset, 0.0, 0.08)), convention="standard"
+    )
 
 
 @pytest.mark.parametrize("k", [0, 6])

@@ -52,7 +52,7 @@ def puma() -> Robot:
         Revolute(alpha=-PI / 2),
         Revolute(),
     ]
-    return Robot.from_dh(joints, name="puma")
+    return Robot.from_dh(joints, name="puma", convention="standard")
 
 
 def stanford() -> Robot:
@@ -65,12 +65,14 @@ def stanford() -> Robot:
         Revolute(alpha=PI / 2),
         Revolute(d=0.263),
     ]
-    return Robot.from_dh(joints, name="stanford")
+    return Robot.from_dh(joints, name="stanford", convention="standard")
 
 
 def planar2r() -> Robot:
     """Two revolute joints in the xy plane, links 1.0 and 0.7 m."""
-    return Robot.from_dh([Revolute(a=1.0), Revolute(a=0.7)], name="planar 2R")
+    return Robot.from_dh(
+        [Revolute(a=1.0), Revolute(a=0.7)], name="planar 2R", convention="standard"
+    )
 
 
 def random_q(robot: Robot, count: int, seed: int) -> np.ndarray:
@@ -257,7 +259,7 @@ def test_a_search_does_not_claim_out_of_limits() -> None:
     # at the bound, 1e-9 m short; the check's polishing then reaches the target
     # just outside the limit. A search proves nothing about the rest of the
     # limits: not_found, the candidate listed among out_of_limits.
-    robot = Robot.from_dh([Revolute(a=1.0, qlim=(0.0, 1.0))], name="1R")
+    robot = Robot.from_dh([Revolute(a=1.0, qlim=(0.0, 1.0))], name="1R", convention="standard")
     res = numeric(robot, robot.fk(np.array([-1e-9]))[:3, 3])
     assert res.status == "not_found"
     np.testing.assert_allclose(res.out_of_limits, [[-1e-9]], rtol=1e-6)
@@ -298,7 +300,9 @@ def test_prismatic_joint_without_limits() -> None:
     # Cylindrical RPP arm, prismatic joints free: restarts sample them in ±1 m,
     # the targets need 1.5 m.
     robot = Robot.from_dh(
-        [Revolute(d=0.5), Prismatic(alpha=-PI / 2), Prismatic()], name="cylindrical"
+        [Revolute(d=0.5), Prismatic(alpha=-PI / 2), Prismatic()],
+        name="cylindrical",
+        convention="standard",
     )
     q = np.array([[0.4, 0.8, 1.5], [-2.0, -0.3, 0.6]])
     targets = robot.fk(q)[:, :3, 3]
@@ -325,7 +329,9 @@ def test_nearly_parallel_axes_converge() -> None:
     assert LAMBDA_MIN == 1e-21
     eps = 1e-9
     robot = Robot.from_dh(
-        [Prismatic(alpha=eps), Prismatic(theta=PI / 2, alpha=PI / 2), Prismatic()], name="PPP"
+        [Prismatic(alpha=eps), Prismatic(theta=PI / 2, alpha=PI / 2), Prismatic()],
+        name="PPP",
+        convention="standard",
     )
     q = np.array([[0.3, 5.0, 0.2], [-2.0, 4.0, 1.0], [1.0, -3.0, 0.5], [0.0, 2.5, -0.7]])
     targets = robot.fk(q)[:, :3, 3]
@@ -357,6 +363,7 @@ def test_a_near_miss_gets_gauss_newton_steps_across_a_fold() -> None:
         ],
         tool=tool,
         name="wrist",
+        convention="standard",
     )
     q = np.array([0.4454747566899011, 0.057049601567374666, 0.7471597799800846])
     target = robot.fk(q)[:3, 3]
@@ -428,7 +435,12 @@ def test_batch_equals_one_by_one_where_the_check_completes_the_first_attempt() -
         [0.018814685703747114, 0.9645846122113717, -0.2631017550053718, -0.0037197183243646847],
         [0.0, 0.0, 0.0, 1.0],
     ])  # fmt: skip
-    robot = Robot.from_dh([Revolute(d=d, a=a, alpha=al) for d, a, al in rows], base=base, tool=tool)
+    robot = Robot.from_dh(
+        [Revolute(d=d, a=a, alpha=al) for d, a, al in rows],
+        base=base,
+        tool=tool,
+        convention="standard",
+    )
     q = np.array([-2.8427797789929983, 1.428565127395248, 0.00020204669053613955,
                   -1.4875043597231448, 1.0932547274170918, 2.2158742580218593])  # fmt: skip
     q0 = np.array([-2.842780572777552, 1.4286828622204073, -4.2965574476743715e-05,

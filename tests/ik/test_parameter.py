@@ -31,7 +31,7 @@ def random_7r(seed: int) -> km.Robot:
         )
         for _ in range(7)
     ]
-    return km.Robot.from_dh(rows, name=f"random 7R ({seed})")
+    return km.Robot.from_dh(rows, name=f"random 7R ({seed})", convention="standard")
 
 
 def assert_locked(robot: km.Robot, res: IKResult, T: np.ndarray, k: int, value: float) -> None:
@@ -80,7 +80,7 @@ def test_names_qn_and_indices_name_the_same_joint() -> None:
         km.Revolute(d=0.2 * (i % 2), alpha=(-1) ** i * math.pi / 2, name=f"j{i}")
         for i in range(2, 8)
     ]
-    robot = km.Robot.from_dh(rows)
+    robot = km.Robot.from_dh(rows, convention="standard")
     assert robot.joint_names == ("base", "j2", "j3", "j4", "j5", "j6", "j7")
     assert km.load("panda").joint_names == tuple(f"q{i}" for i in range(1, 8))
     q = robot.random_q(1, seed=3)[0]
@@ -131,7 +131,7 @@ def test_a_value_beyond_the_limits_is_solved_when_limits_are_ignored() -> None:
 
 
 def test_a_single_joint_arm_has_nothing_left_to_solve() -> None:
-    arm = km.Robot.from_dh([km.Revolute(a=1.0)])
+    arm = km.Robot.from_dh([km.Revolute(a=1.0)], convention="standard")
     with pytest.raises(KinematicaError, match="one joint") as info:
         arm.ik(np.array([1.0, 0.0, 0.0]), fixed={0: 0.0})
     assert info.value.arg == "fixed"
@@ -259,7 +259,7 @@ def test_a_slide_at_either_end_is_held_by_moving_the_targets(first: bool) -> Non
     puma = km.load("puma560")
     slide = km.Prismatic(theta=0.0, a=0.0, alpha=0.0, qlim=(-1.0, 1.0))
     rows = [slide, *puma.links] if first else [*puma.links, slide]
-    robot = km.Robot.from_dh(rows, base=puma.base, tool=puma.tool)
+    robot = km.Robot.from_dh(rows, base=puma.base, tool=puma.tool, convention="standard")
     k = 0 if first else 6
     Q = np.array([[0.3, -0.6, 0.2, 0.5, 0.9, -0.4], [0.1, -0.2, 0.4, -0.5, 0.6, 0.3]])
     Q = np.insert(Q, k, 0.25, axis=1)
@@ -290,7 +290,7 @@ def slide_at_the_end(offset: float = 0.0) -> km.Robot:
     """A PUMA whose flange turns about a 7th joint; the tool ``offset`` m off its axis."""
     puma = km.load("puma560")
     rows = [*puma.links, km.Revolute(d=0.05)]
-    return km.Robot.from_dh(rows, tool=np.array(km.transl(offset, 0.0, 0.1)))
+    return km.Robot.from_dh(rows, tool=np.array(km.transl(offset, 0.0, 0.1)), convention="standard")
 
 
 def test_the_last_joint_at_a_value_per_target_equals_single_calls() -> None:

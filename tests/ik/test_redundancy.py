@@ -156,7 +156,7 @@ def test_only_seven_joint_arms_are_held(extra: int, held: bool) -> None:
     # an iiwa with one more joint at the tip (8 joints) is searched as before
     iiwa = km.load("iiwa14")
     rows = list(iiwa.links) + [km.Revolute(d=0.05, alpha=math.pi / 2)] * extra
-    robot = km.Robot.from_dh(rows)
+    robot = km.Robot.from_dh(rows, convention="standard")
     assert robot.dof == REDUNDANT_DOF + extra
     T = robot.fk(np.r_[0.3, 0.5, -0.2, -1.2, 0.4, 0.9, 0.2, [0.1] * extra])
     res = robot.ik(T, seed=1)
@@ -177,7 +177,7 @@ def test_a_ur5_with_a_seventh_joint_is_held_at_it_with_every_ur5_solution() -> N
     # its last joint leaves the UR5's three parallel axes: first in the preference
     ur5 = km.load("ur5")
     rows = [*ur5.links, km.Revolute(d=0.05, a=0.03, alpha=0.4)]
-    robot = km.Robot.from_dh(rows, base=ur5.base, tool=ur5.tool)
+    robot = km.Robot.from_dh(rows, base=ur5.base, tool=ur5.tool, convention="standard")
     q = np.array([0.3, -1.0, 1.2, -0.5, 0.8, 0.4, 0.25])
     T = robot.fk(q)
     res = robot.ik(T, q0=q, respect_limits=False)

@@ -141,12 +141,12 @@ def test_arms_no_solver_describes_name_their_meeting_axes() -> None:
     no_upper_arm = [
         dataclasses.replace(j, d=0.0) if i == 2 else j for i, j in enumerate(iiwa.links)
     ]
-    both = km.classify(km.Robot.from_dh(no_upper_arm))
+    both = km.classify(km.Robot.from_dh(no_upper_arm, convention="standard"))
     assert both.summary.endswith("redundant, spherical shoulder, spherical wrist")
     assert both.summary_es.endswith("redundante, con hombro esférico, con muñeca esférica")
     # a 5R arm whose first three axes meet (no solver of its own)
     rows = [km.Revolute(d=0.3, alpha=math.pi / 2), km.Revolute(alpha=-math.pi / 2)]
     rows += [km.Revolute(d=0.3, alpha=math.pi / 2), km.Revolute(a=0.3), km.Revolute(a=0.2)]
-    five = km.classify(km.Robot.from_dh(rows))
+    five = km.classify(km.Robot.from_dh(rows, convention="standard"))
     assert five.kind == "general"
     assert five.summary == "5 joints (RRRRR), first three axes meet (shoulder)"

@@ -102,7 +102,7 @@ def test_judge_counts_false_statuses_and_representatives_off_q() -> None:
 
 
 def test_duplicates_counts_two_rows_one_solution_to_tolerance() -> None:
-    robot = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=1.0)])
+    robot = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=1.0)], convention="standard")
     for d, merged in ((0.5 * MERGE_SPAN, 1), (2 * MERGE_SPAN, 0)):
         rows = np.array([[0.3, d / 2], [0.3 + d / 2, -d / 2]])  # elbows ±d/2: d apart
         T = robot.fk(rows[0])[:3, 3]  # a position target
@@ -181,7 +181,7 @@ def test_near_aligned_tol_flags_the_iiwa_wrist_within_it(factor: float, near: bo
 def test_merge_span_makes_branches_at_a_stretched_elbow_one(factor: float, count: int) -> None:
     """MERGE_SPAN: elbow up and down, factor · MERGE_SPAN apart at a nearly stretched 2R
     arm (both exact), are one solution flagged near within it; beyond it, two."""
-    robot = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=1.0)])
+    robot = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=1.0)], convention="standard")
     half = 0.5 * factor * MERGE_SPAN
     up, down = np.array([0.3, half]), np.array([0.3 + half, -half])
     T = robot.fk(up)
@@ -196,7 +196,7 @@ def test_merge_span_makes_branches_at_a_stretched_elbow_one(factor: float, count
 def test_merge_needs_the_midpoint_to_solve() -> None:
     """Two exact solutions within MERGE_SPAN whose midpoint misses the tolerance (links of
     10 km: elbows ±4e-7 have the stretched arm as midpoint, 4e-10 m short) stay two."""
-    robot = km.Robot.from_dh([km.Revolute(a=1e4), km.Revolute(a=1e4)])
+    robot = km.Robot.from_dh([km.Revolute(a=1e4), km.Revolute(a=1e4)], convention="standard")
     T = robot.fk([0.3, 4e-7])
     res = robot.ik(T[:3, 3], respect_limits=False)
     assert res.status == "ok" and res.count == 2, res.solutions

@@ -73,7 +73,9 @@ def _ur5_a5() -> km.Robot:
     ur5 = km.load("ur5")
     rows = list(ur5.links)
     rows[4] = km.Revolute(d=rows[4].d, a=0.05, alpha=rows[4].alpha, offset=rows[4].offset)
-    return km.Robot.from_dh(rows, base=ur5.base, tool=ur5.tool).with_limits(ur5.qlim)
+    return km.Robot.from_dh(rows, base=ur5.base, tool=ur5.tool, convention="standard").with_limits(
+        ur5.qlim
+    )
 
 
 @pytest.mark.parametrize("arm", ["puma560", "ur5", "stanford", "ur5-a5", "puma560-position"])

@@ -29,7 +29,7 @@ def long_arm(n: int, rng: np.random.Generator) -> km.Robot:
         )
         for _ in range(n)
     ]
-    return km.Robot.from_dh(rows, name=f"{n}R")
+    return km.Robot.from_dh(rows, name=f"{n}R", convention="standard")
 
 
 def test_the_mask_has_the_bits_arm_position_names() -> None:
@@ -55,7 +55,7 @@ def test_position_batches_at_the_mask_width_and_past_it() -> None:
     # tool origin and names joints 4..32 free (bits 3..31)
     rows = list(km.load("puma560").links[:4])
     rows += [km.Revolute(a=0.01, alpha=float(rng.uniform(-1.5, 1.5))) for _ in range(28)]
-    arm32 = km.Robot.from_dh(rows, name="32R")
+    arm32 = km.Robot.from_dh(rows, name="32R", convention="standard")
     q = rng.uniform(-0.5, 0.5, (4, 32))
     p = arm32.fk(q)[:, :3, 3]
     res = arm32.ik(p)

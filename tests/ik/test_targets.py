@@ -28,7 +28,7 @@ Q_2R = [0.4, 1.1]
 
 
 def two_link() -> km.Robot:
-    return km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=1.0)])
+    return km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=1.0)], convention="standard")
 
 
 def pose(R: np.ndarray) -> np.ndarray:

@@ -176,6 +176,7 @@ def test_rebuilt_robot_matches_a_hand_written_table(l1: float, reach: float) -> 
             km.Revolute(a=(1000 - l1) / 1000),
         ],
         tool=km.transl(reach / 1000, 0, 0),
+        convention="standard",
     )
     q = np.random.default_rng(0).uniform(-2, 2, (5, 3))
     np.testing.assert_allclose(robot.fk(q), by_hand.fk(q), atol=1e-14)

@@ -80,12 +80,13 @@ def test_names_are_escaped_and_kept_when_unique():
     robot = km.Robot.from_dh(
         [km.Revolute(a=0.3, name='shoulder "A" <&>'), km.Prismatic(name="slide")],
         name='arm <&> "quoted"',
+        convention="standard",
     )
     root = ET.fromstring(robot.to_urdf())
     assert root.get("name") == 'arm <&> "quoted"'
     names = [j.get("name") for j in root.findall("joint") if j.get("type") != "fixed"]
     assert names == ['shoulder "A" <&>', "slide"]
-    twins = km.Robot.from_dh([km.Revolute(name="j"), km.Revolute(name="j")])
+    twins = km.Robot.from_dh([km.Revolute(name="j"), km.Revolute(name="j")], convention="standard")
     names = [j.get("name") for j in ET.fromstring(twins.to_urdf()).findall("joint")]
     assert names[:2] == ["joint1", "joint2"]
 

@@ -101,7 +101,9 @@ def test_joint_limit() -> None:
 
 
 def planar_2r() -> km.Robot:
-    return km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=1.0)], name="2R")
+    return km.Robot.from_dh(
+        [km.Revolute(a=1.0), km.Revolute(a=1.0)], name="2R", convention="standard"
+    )
 
 
 def test_branch_change_between_far_samples_is_reported() -> None:

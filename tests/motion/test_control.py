@@ -13,7 +13,7 @@ from kinematica.motion.control import MARGIN_RATE, damping_factor
 
 
 def planar_2r() -> km.Robot:
-    return km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=0.5)])
+    return km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=0.5)], convention="standard")
 
 
 def test_reaches_a_reachable_pose_to_1e_9() -> None:
@@ -70,7 +70,8 @@ def test_moving_target_is_tracked_with_the_lag_of_a_p_controller() -> None:
             km.Prismatic(alpha=-math.pi / 2),
             km.Prismatic(theta=-math.pi / 2, alpha=-math.pi / 2),
             km.Prismatic(),
-        ]
+        ],
+        convention="standard",
     )
     v, gain = np.array([0.02, -0.01, 0.03]), 4.0
     T0 = ppp.fk([0.1, 0.1, 0.1])

@@ -43,7 +43,8 @@ def cartesian_box() -> km.Robot:
             km.Prismatic(alpha=-np.pi / 2, qlim=(0.0, 0.5)),
             km.Prismatic(theta=-np.pi / 2, alpha=-np.pi / 2, qlim=(0.0, 0.4)),
             km.Prismatic(qlim=(0.0, 0.3)),
-        ]
+        ],
+        convention="standard",
     )
 
 
@@ -113,7 +114,7 @@ def test_planar_3r_area_within_2_percent() -> None:
 
 
 def test_planar_2r_annulus_with_a_given_voxel() -> None:
-    arm = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=0.3)])
+    arm = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=0.3)], convention="standard")
     ws = km.workspace(arm, samples=200_000, seed=2, voxel=0.005, manipulability=False)
     assert ws.voxel == 0.005
     assert ws.area is not None and abs(ws.area / (np.pi * (0.8**2 - 0.2**2)) - 1.0) < 0.02
@@ -181,7 +182,7 @@ def test_random_q_within_limits_and_shapes() -> None:
 
 
 def test_prismatic_joint_without_limits_is_an_error() -> None:
-    arm = km.Robot.from_dh([km.Revolute(a=0.3), km.Prismatic()])
+    arm = km.Robot.from_dh([km.Revolute(a=0.3), km.Prismatic()], convention="standard")
     with pytest.raises(km.KinematicaError, match=r"joint 2 .* prismatic without limits"):
         arm.random_q(3)
     with pytest.raises(km.KinematicaError, match="joint 2"):
@@ -210,7 +211,8 @@ PR_XZ = km.Robot.from_dh(
     [
         km.Prismatic(offset=0.5, alpha=np.pi / 2, qlim=(0.0, 0.5)),
         km.Revolute(offset=np.pi / 2, a=0.4),
-    ]
+    ],
+    convention="standard",
 )
 PR_AREA = (
     np.pi * 0.4**2
@@ -246,7 +248,9 @@ def test_workspace_planar_tol_is_a_thickness(factor: float, inside: bool) -> Non
     """
     t = factor * WORKSPACE_PLANAR_TOL
     arm = km.Robot.from_dh(
-        [km.Revolute(a=0.4), km.Revolute(a=0.3), km.Prismatic(qlim=(0.0, t))], name="2R on a slide"
+        [km.Revolute(a=0.4), km.Revolute(a=0.3), km.Prismatic(qlim=(0.0, t))],
+        name="2R on a slide",
+        convention="standard",
     )
     ws = km.workspace(arm, samples=2000, seed=3, manipulability=False)
     thickness = float(np.ptp(ws.points[:, 2]))

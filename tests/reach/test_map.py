@@ -181,7 +181,7 @@ def test_a_planar_arm_in_a_tilted_plane_is_refused() -> None:
 
     arm = planar(3)
     base = km.make_transform(km.rotx(0.3), [0, 0, 0])
-    tilted = km.Robot.from_dh(arm.links, base=base, name="tilted")
+    tilted = km.Robot.from_dh(arm.links, base=base, name="tilted", convention="standard")
     with pytest.raises(KinematicaError, match="not a base axis"):
         km.reachability(tilted, resolution=0.2)
 

@@ -71,7 +71,7 @@ def test_jacobian_dot_equals_finite_differences_along_the_motion(
 def test_hessian_of_planar_2r_by_hand() -> None:
     """x = l1 c1 + l2 c12, y = l1 s1 + l2 s12: every second derivative written out."""
     l1, l2, q1, q2 = 0.7, 0.4, 0.3, -1.1
-    arm = km.Robot.from_dh([km.Revolute(a=l1), km.Revolute(a=l2)])
+    arm = km.Robot.from_dh([km.Revolute(a=l1), km.Revolute(a=l2)], convention="standard")
     c1, s1, c12, s12 = math.cos(q1), math.sin(q1), math.cos(q1 + q2), math.sin(q1 + q2)
     Hq = km.hessian(arm, [q1, q2])
     d11 = [-l1 * c1 - l2 * c12, -l1 * s1 - l2 * s12]  # ∂²(x, y)/∂q1²
@@ -120,7 +120,11 @@ def test_spatial_jacobian_is_the_adjoint_of_the_body_one(spec: RobotSpec, seed: 
 
 
 def test_spatial_jacobian_column_of_a_revolute_joint_is_o_cross_z() -> None:
-    arm = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=0.3)], base=km.transl(1.0, 2.0, 0.0))
+    arm = km.Robot.from_dh(
+        [km.Revolute(a=0.5), km.Revolute(a=0.3)],
+        base=km.transl(1.0, 2.0, 0.0),
+        convention="standard",
+    )
     Js = arm.jacobian([0.0, 0.0], "spatial")
     # joint 1: axis z through (1, 2, 0); joint 2: through (1.5, 2, 0)
     assert np.allclose(Js[:, 0], [2.0, -1.0, 0.0, 0.0, 0.0, 1.0], atol=1e-15)

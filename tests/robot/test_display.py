@@ -33,7 +33,9 @@ def test_a_prismatic_joint_and_limits_show_in_their_units() -> None:
 
 def test_text_from_a_file_is_escaped() -> None:
     robot = km.Robot.from_dh(
-        [km.Revolute(a=0.3, name="<img src=x onerror=alert(1)>")], name="<b>x</b>"
+        [km.Revolute(a=0.3, name="<img src=x onerror=alert(1)>")],
+        name="<b>x</b>",
+        convention="standard",
     )
     page = robot._repr_html_()
     assert "<img" not in page and "<b>" not in page

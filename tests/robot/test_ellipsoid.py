@@ -34,7 +34,7 @@ def test_ellipsoid_radii_are_the_singular_values() -> None:
 
 
 def test_ellipsoid_of_a_2_joint_arm_in_3_rows_is_flat() -> None:
-    arm = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=1.0)])
+    arm = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=1.0)], convention="standard")
     vel = km.ellipsoid(arm, [0.0, math.pi / 2])
     force = km.ellipsoid(arm, [0.0, math.pi / 2], "force")
     golden = (1 + math.sqrt(5)) / 2

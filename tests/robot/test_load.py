@@ -24,7 +24,9 @@ def test_a_tool_written_with_seven_digits_loads_rigid(tmp_path: Path) -> None:
     assert np.abs(Rt.T @ Rt - np.eye(3)).max() < 1e-15
     assert np.abs(robot.tool - np.array(matrix)).max() < 1e-7
     # in code, the same matrix is accepted the same way
-    assert np.array_equal(km.Robot.from_dh(robot.links, tool=matrix).tool, robot.tool)
+    assert np.array_equal(
+        km.Robot.from_dh(robot.links, tool=matrix, convention="standard").tool, robot.tool
+    )
 
 
 @pytest.mark.parametrize("bad", [None, 3, 2.5, ["puma560"], b"puma560"])

@@ -403,6 +403,7 @@ def test_seed000_prismatic_revolute_example() -> None:
             Revolute(a=l2, offset=-90 * DEG),
         ],
         base=base,
+        convention="standard",
     )
     q = np.random.default_rng(15).uniform([-0.2, -math.pi], [0.5, math.pi], (40, 2))
     p = robot.fk(q)[:, :3, 3]
@@ -442,7 +443,7 @@ def test_seed001_planar_3r_example() -> None:
     # Seed 001, example 1: rows (θi, 0, li, 0). The tool is turned by q1 + q2 + q3
     # about z and sits at x = l1 c1 + l2 c12 + l3 c123, y = l1 s1 + l2 s12 + l3 s123, z = 0.
     lengths = (0.4, 0.3, 0.2)
-    robot = Robot.from_dh([Revolute(a=a) for a in lengths])
+    robot = Robot.from_dh([Revolute(a=a) for a in lengths], convention="standard")
     q = np.random.default_rng(17).uniform(-math.pi, math.pi, (40, 3))
     c = np.cumsum(q, axis=-1)
     expected = np.array([rot_z(ci) for ci in c[:, 2]])
@@ -581,8 +582,8 @@ def test_complex_joint_values_are_rejected(puma: Robot) -> None:
 def test_bad_base_and_tool(which: str, value: np.ndarray, match: str) -> None:
     rows = [Revolute(a=0.3), Prismatic(alpha=0.2)]
     with pytest.raises(DimensionError, match=f"{which} {match}"):
-        Robot.from_dh(rows, **{which: value})
-    robot = Robot.from_dh(rows)
+        Robot.from_dh(rows, convention="standard", **{which: value})
+    robot = Robot.from_dh(rows, convention="standard")
     with pytest.raises(DimensionError, match=f"{which} {match}"):
         robot.with_base(value) if which == "base" else robot.with_tool(value)
 
@@ -590,16 +591,16 @@ def test_bad_base_and_tool(which: str, value: np.ndarray, match: str) -> None:
 @pytest.mark.parametrize("which", ["base", "tool"])
 def test_base_or_tool_that_is_not_numbers(which: str) -> None:
     with pytest.raises(KinematicaError, match=which):
-        Robot.from_dh([Revolute()], **{which: "identity"})
+        Robot.from_dh([Revolute()], convention="standard", **{which: "identity"})
 
 
 def test_bad_robot_descriptions() -> None:
     with pytest.raises(KinematicaError, match="at least one joint"):
-        Robot.from_dh([])
+        Robot.from_dh([], convention="standard")
     with pytest.raises(
         KinematicaError, match=r"joint 2: expected kinematica\.Revolute .* got tuple"
     ):
-        Robot.from_dh([Revolute(), (0.0, 0.0, 0.0, 0.0)])  # type: ignore[list-item]
+        Robot.from_dh([Revolute(), (0.0, 0.0, 0.0, 0.0)], convention="standard")  # type: ignore[list-item]
     with pytest.raises(KinematicaError, match="unknown DH convention 'sideways'"):
         Robot.from_dh([Revolute()], convention="sideways")
 
@@ -625,7 +626,9 @@ def test_base_and_tool_written_with_seven_digits_are_accepted_and_made_rigid() -
     R = rot_z(0.3)
     R[0, 1] += 3e-7
     for which in ("base", "tool"):
-        robot = Robot.from_dh([Revolute(a=0.3), Prismatic(alpha=0.2)], **{which: R})
+        robot = Robot.from_dh(
+            [Revolute(a=0.3), Prismatic(alpha=0.2)], convention="standard", **{which: R}
+        )
         M = getattr(robot, which)
         assert np.abs(M[:3, :3].T @ M[:3, :3] - np.eye(3)).max() < 1e-15
         assert np.abs(M - R).max() < 1e-6
@@ -638,11 +641,11 @@ def test_base_orthonormal_to_roundoff_is_kept_bit_for_bit() -> None:
     # given; one 1e-12 off orthonormal (written with 12 digits) is projected.
     exact = rot_z(0.3) @ rot_x(1.1)
     assert 0 < np.abs(exact[:3, :3].T @ exact[:3, :3] - np.eye(3)).max() < 1e-15
-    robot = Robot.from_dh([Revolute(a=0.3)], base=exact)
+    robot = Robot.from_dh([Revolute(a=0.3)], base=exact, convention="standard")
     np.testing.assert_array_equal(robot.base, exact)
     off = exact.copy()
     off[0, 0] += 1e-12
-    robot = Robot.from_dh([Revolute(a=0.3)], base=off)
+    robot = Robot.from_dh([Revolute(a=0.3)], base=off, convention="standard")
     assert not np.array_equal(robot.base, off)
     assert np.abs(robot.base[:3, :3].T @ robot.base[:3, :3] - np.eye(3)).max() < 1e-15
 
@@ -681,7 +684,7 @@ def test_degrees_given_to_the_radian_api_warn_without_limits() -> None:
 def test_a_batch_names_every_slip_of_a_row_that_has_several() -> None:
     # the core counts a row beyond a turn even when it is also outside the limits or
     # holds NaN, so that the batch names it (the first state of a row is not its only one)
-    arm = Robot.from_dh([Revolute(a=0.3), Revolute(a=0.2, qlim=(-1.0, 1.0))])
+    arm = Robot.from_dh([Revolute(a=0.3), Revolute(a=0.2, qlim=(-1.0, 1.0))], convention="standard")
     for rows, other in (([[7.0, 2.0]], "outside its limits"), ([[7.0, np.nan]], "NaN or inf")):
         for call in (arm.fk, arm.jacobian):
             with warnings.catch_warnings(record=True) as caught:

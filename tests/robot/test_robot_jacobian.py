@@ -102,7 +102,7 @@ def test_planar_2r_jacobian_by_hand() -> None:
     # Two links l1, l2 in the plane: p = (l1 c1 + l2 c12, l1 s1 + l2 s12, 0), so
     # J = [[-l1 s1 - l2 s12, -l2 s12], [l1 c1 + l2 c12, l2 c12], [0, 0], [0, 0], [0, 0], [1, 1]].
     l1, l2 = 0.7, 0.4
-    robot = Robot.from_dh([Revolute(a=l1), Revolute(a=l2)])
+    robot = Robot.from_dh([Revolute(a=l1), Revolute(a=l2)], convention="standard")
     q = np.random.default_rng(20).uniform(-math.pi, math.pi, (25, 2))
     s1, c1 = np.sin(q[:, 0]), np.cos(q[:, 0])
     s12, c12 = np.sin(q.sum(-1)), np.cos(q.sum(-1))
@@ -117,7 +117,7 @@ def test_cartesian_prr_jacobian_by_hand() -> None:
     # A vertical slide then a planar 2R arm about z: the slide's column is
     # [0, 0, 1, 0, 0, 0] and the rest is the planar Jacobian.
     l1, l2 = 0.5, 0.3
-    robot = Robot.from_dh([Prismatic(), Revolute(a=l1), Revolute(a=l2)])
+    robot = Robot.from_dh([Prismatic(), Revolute(a=l1), Revolute(a=l2)], convention="standard")
     q = np.array([0.2, 0.4, -1.1])
     s1, c1, s12, c12 = math.sin(0.4), math.cos(0.4), math.sin(-0.7), math.cos(-0.7)
     expected = np.array(

@@ -15,7 +15,7 @@ from kinematica.robot.sampling import MAX_CONFIGURATIONS
 
 
 def test_the_most_configurations_and_samples() -> None:
-    one = km.Robot.from_dh([km.Revolute(a=1.0, qlim=(-1.0, 1.0))])
+    one = km.Robot.from_dh([km.Revolute(a=1.0, qlim=(-1.0, 1.0))], convention="standard")
     assert random_q(one, (MAX_CONFIGURATIONS // 2, 0)).shape == (MAX_CONFIGURATIONS // 2, 0, 1)
     with pytest.raises(ArgumentError, match=r"^n gives 1e\+07 configurations; at most 10,000,000"):
         random_q(one, (MAX_CONFIGURATIONS // 2 + 1, 2))  # a batch shape counts all of it

@@ -134,6 +134,7 @@ def test_a_robot_built_in_code_saves_in_radians_and_metres(tmp_path: Path) -> No
         [km.Revolute(d=0.4, alpha=math.pi / 2), km.Revolute(a=0.3), km.Prismatic(alpha=0.1)],
         name="code arm",
         tool=km.transl(0.0, 0.0, 0.1),
+        convention="standard",
     )
     for suffix in SUFFIXES:
         robot.save(tmp_path / f"code{suffix}")

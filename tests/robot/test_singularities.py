@@ -173,7 +173,9 @@ def test_shoulder_tolerance_boundary() -> None:
 def polar_arm() -> km.Robot:
     """R then P along the radius: the Jacobian's singular values are 1 and the extension."""
     return km.Robot.from_dh(
-        [km.Revolute(alpha=-np.pi / 2), km.Prismatic(qlim=(0.0, 1.0))], name="polar"
+        [km.Revolute(alpha=-np.pi / 2), km.Prismatic(qlim=(0.0, 1.0))],
+        name="polar",
+        convention="standard",
     )
 
 

@@ -79,7 +79,9 @@ def test_rank_tol_is_the_relative_singular_value(factor: float, inside: bool) ->
     values of the position rows are 1 (the slide) and the extension q2 (m, the
     turn), so their ratio is q2.
     """
-    arm = km.Robot.from_dh([km.Revolute(alpha=-math.pi / 2), km.Prismatic(qlim=(0.0, 1.0))])
+    arm = km.Robot.from_dh(
+        [km.Revolute(alpha=-math.pi / 2), km.Prismatic(qlim=(0.0, 1.0))], convention="standard"
+    )
     s = np.linalg.svd(arm.jacobian([0.2, 0.5])[:3], compute_uv=False)
     assert s == pytest.approx([1.0, 0.5])
     assert arm.singularities([0.2, factor * RANK_TOL]) == (["rank"] if inside else [])

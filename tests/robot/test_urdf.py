@@ -74,6 +74,7 @@ def test_extracted_table_alone_reproduces_fk(name, base, tip):
         ],
         base=r.base,
         tool=r.tool,
+        convention="standard",
     )
     ref = reference_file(name, base, tip)
     q = random_joint_values(ref, np.random.default_rng(3), (20,))

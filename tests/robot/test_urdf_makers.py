@@ -137,6 +137,7 @@ def test_ur_urdf_gives_urs_published_table(name):
         ],
         base=robot.base,
         tool=robot.tool,
+        convention="standard",
     )
     q = np.random.default_rng(4).uniform(-3, 3, (10, 6))
     assert_transform_close(rebuilt.fk(q), ref.fk_batch(q), atol=1e-9)

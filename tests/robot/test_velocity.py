@@ -93,7 +93,7 @@ def test_analytic_jacobian_rejects_tool_frame() -> None:
 
 
 def planar_2r(l1: float, l2: float) -> km.Robot:
-    return km.Robot.from_dh([km.Revolute(a=l1), km.Revolute(a=l2)])
+    return km.Robot.from_dh([km.Revolute(a=l1), km.Revolute(a=l2)], convention="standard")
 
 
 def test_manipulability_of_planar_2r_by_hand() -> None:
@@ -203,7 +203,7 @@ def test_manipulability_methods_from_singular_values() -> None:
 def test_manipulability_methods_of_planar_2r_by_hand() -> None:
     """Jv = [[-l1 s1 - l2 s12, -l2 s12], [l1 c1 + l2 c12, l2 c12]]; at q1 = 0, q2 = 90°
     with l1 = l2 = 1: [[-1, -1], [1, 0]], singular values √((3 ± √5)/2) = φ and 1/φ."""
-    arm = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=1.0)])
+    arm = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=1.0)], convention="standard")
     golden = (1 + math.sqrt(5)) / 2
     q = [0.0, math.pi / 2]
     assert math.isclose(km.manipulability(arm, q, [0, 1], "min_singular"), 1 / golden)

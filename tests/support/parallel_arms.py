@@ -39,13 +39,17 @@ UR5_ROWS = [
     Revolute(d=0.09465, alpha=-PI / 2),
     Revolute(d=0.0823),
 ]
-UR5 = Robot.from_dh(UR5_ROWS, name="UR5")
+UR5 = Robot.from_dh(UR5_ROWS, name="UR5", convention="standard")
 #: The UR5 with axes 5 and 6 apart (a5 = 5 cm): the quartic.
 UR5_A5 = Robot.from_dh(
-    [*UR5_ROWS[:4], Revolute(d=0.09465, a=0.05, alpha=-PI / 2), UR5_ROWS[5]], name="UR5 a5"
+    [*UR5_ROWS[:4], Revolute(d=0.09465, a=0.05, alpha=-PI / 2), UR5_ROWS[5]],
+    name="UR5 a5",
+    convention="standard",
 )
 #: The UR5 with axes 5 and 6 parallel (α5 = 0, a5 = 6 cm).
-UR5_P56 = Robot.from_dh([*UR5_ROWS[:4], Revolute(d=0.09465, a=0.06), UR5_ROWS[5]], name="UR5 p56")
+UR5_P56 = Robot.from_dh(
+    [*UR5_ROWS[:4], Revolute(d=0.09465, a=0.06), UR5_ROWS[5]], name="UR5 p56", convention="standard"
+)
 
 MODES = ("meet", "apart", "parallel")
 
@@ -95,7 +99,7 @@ def random_arm(
     ]
     base = transform_from(rng.normal(size=4), rng.uniform(-0.5, 0.5, 3))
     tool = transform_from(rng.normal(size=4), rng.uniform(-0.2, 0.2, 3))
-    robot = Robot.from_dh(rows, base=base, tool=tool)
+    robot = Robot.from_dh(rows, base=base, tool=tool, convention="standard")
     if modified:
         robot = robot.to_convention("modified")
     assert classify(robot).kind == "three-parallel-6R"

@@ -15,7 +15,7 @@ R_IN, R_OUT = UPPER - FORE, UPPER + FORE  # its wrist-centre shell about the sho
 def planar(n: int) -> km.Robot:
     """A planar nR arm in the base xy plane, joints unlimited."""
     rows = [Revolute(a=a) for a in (L1, L2, L3)[:n]]
-    return km.Robot.from_dh(rows, name=f"planar {n}R")
+    return km.Robot.from_dh(rows, name=f"planar {n}R", convention="standard")
 
 
 def elbow_wrist(tool: float = 0.0) -> km.Robot:
@@ -33,4 +33,6 @@ def elbow_wrist(tool: float = 0.0) -> km.Robot:
         Revolute(alpha=np.pi / 2),
         Revolute(),
     ]
-    return km.Robot.from_dh(rows, name="elbow arm", tool=km.transl(0.0, 0.0, tool))
+    return km.Robot.from_dh(
+        rows, name="elbow arm", tool=km.transl(0.0, 0.0, tool), convention="standard"
+    )

@@ -61,7 +61,9 @@ def seed_pr_arm() -> Robot:
     """
     base = np.array([[0, 0, 1, 0], [-1, 0, 0, 0], [0, -1, 0, 0], [0, 0, 0, 1]], dtype=float)
     return Robot.from_dh(
-        [Prismatic(alpha=PI / 2, offset=L1), Revolute(a=L2, offset=PI / 2)], base=base
+        [Prismatic(alpha=PI / 2, offset=L1), Revolute(a=L2, offset=PI / 2)],
+        base=base,
+        convention="standard",
     )
 
 
@@ -70,4 +72,6 @@ D1, A2, A3 = 0.4, 0.35, 0.3  # seed 002's L1, L2, L3
 
 def seed_anthropomorphic() -> Robot:
     """Seed 002's table: q1, L1, 0, 90° / q2, 0, L2, 0 / q3, 0, L3, 0."""
-    return Robot.from_dh([Revolute(d=D1, alpha=PI / 2), Revolute(a=A2), Revolute(a=A3)])
+    return Robot.from_dh(
+        [Revolute(d=D1, alpha=PI / 2), Revolute(a=A2), Revolute(a=A3)], convention="standard"
+    )

@@ -67,7 +67,9 @@ def random_wrist_arm(rng: np.random.Generator, shoulder: str, joint3: str) -> Ro
     rows = random_wrist_rows(rng, shoulder, joint3)
     base = transform_from(rng.normal(size=4), rng.uniform(-0.5, 0.5, 3))
     tool = transform_from(rng.normal(size=4), rng.uniform(-0.2, 0.2, 3))
-    robot = Robot.from_dh(rows, base=base, tool=tool, name=f"{shoulder}-{joint3}")
+    robot = Robot.from_dh(
+        rows, base=base, tool=tool, name=f"{shoulder}-{joint3}", convention="standard"
+    )
     if rng.random() < 0.5:
         robot = robot.to_convention("modified")
     return robot
@@ -90,7 +92,7 @@ def shoulder(alpha1: float, a1: float) -> str:
         Revolute(a=0.4, alpha=0.7),
         Revolute(d=0.1, a=0.05, alpha=PI / 2),
     ]
-    robot = Robot.from_dh([*rows, Revolute(d=0.4)], name="arm")
+    robot = Robot.from_dh([*rows, Revolute(d=0.4)], name="arm", convention="standard")
     h, p = robot.joint_axes()
     c = robot.fk(np.zeros(4))[:3, 3]
     arm = arm_geometry(h[:3], p[:3], False, c, features(robot.chain).size)
@@ -117,7 +119,7 @@ def rank_ratio(robot: Robot) -> float:
 def arm_with_point_near_axis_3(eps: float) -> Robot:
     """Joint 3 moves the tool origin on a circle of radius eps (its axis almost through it)."""
     rows = [Revolute(d=0.4, alpha=PI / 2), Revolute(a=0.4), Revolute(a=eps)]
-    return Robot.from_dh([*rows, Revolute(d=0.3)], name="point near axis 3")
+    return Robot.from_dh([*rows, Revolute(d=0.3)], name="point near axis 3", convention="standard")
 
 
 def near_flags(robot: Robot, T: FloatArray) -> NDArray[np.bool_]:

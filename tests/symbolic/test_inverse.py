@@ -118,6 +118,7 @@ def test_class_not_example_modified_base_tool_offsets() -> None:
             km.Revolute(a=0.3, alpha=np.pi / 2, offset=0.2),
         ],
         tool=np.array([[1, 0, 0, 0.05], [0, 1, 0, 0.02], [0, 0, 1, 0.1], [0, 0, 0, 1.0]]),
+        convention="standard",
     )
     assert km.classify(elbow).kind == "elbow-3R"
     check_against_ik(elbow, elbow, pose=False)
@@ -175,7 +176,7 @@ def test_report_of_a_general_6r_arm_names_the_elimination() -> None:
             (0.35, 0.02, -np.pi / 2), (0.04, 0.03, np.pi / 2), (0.1, 0.0, 0.0),
         ]
     ]  # fmt: skip
-    robot = km.Robot.from_dh(rows, name="general")
+    robot = km.Robot.from_dh(rows, name="general", convention="standard")
     assert robot.ik(robot.fk(np.full(6, 0.3))).method == "analytic:general-6R"
     text = symbolic.report(robot, lang="en")
     assert "Raghavan-Roth elimination to a 12x12 quadratic eigenproblem" in text

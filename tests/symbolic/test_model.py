@@ -32,7 +32,8 @@ def test_robot_keeps_numbers_and_snaps_angles() -> None:
         [
             km.Revolute(d=0.25, a=1.0, alpha=math.radians(90), offset=math.radians(-15)),
             km.Prismatic(theta=math.pi, alpha=0.3, offset=0.1),
-        ]
+        ],
+        convention="standard",
     )
     m = symbolic.symbolic_robot(robot)
     q1, q2 = m.q
@@ -127,6 +128,7 @@ def test_near_exact_twist_snaps_in_report_but_not_in_lambdify() -> None:
     robot = km.Robot.from_dh(
         [km.Revolute(alpha=math.pi / 2 + 5e-13), km.Revolute(d=2.0, a=2.0)],
         base=np.array([[1, 0, 0, 0], [0, 0, -1, 0], [0, 1 + 4e-13, 0, 0], [0, 0, 0, 1.0]]),
+        convention="standard",
     )
     assert symbolic.symbolic_robot(robot).rows[0].alpha == sp.pi / 2
     q = np.array([[0.3, 1.2], [-2.0, 0.4]])

@@ -202,7 +202,9 @@ def test_markdown_shows_a_robot_name_literally(lang: str) -> None:
     import html
 
     robot = km.load("planar-3r")
-    evil = km.Robot.from_dh(robot.links, name=EVIL_NAME + "\n# heading\n<script>x</script>")
+    evil = km.Robot.from_dh(
+        robot.links, name=EVIL_NAME + "\n# heading\n<script>x</script>", convention="standard"
+    )
     text = symbolic.report(evil, format="markdown", lang=lang)
     page = markdown_it.MarkdownIt("commonmark").render(text)  # raw HTML passes through
     for tag in ("<img", "<script", "<a ", "<em>", "<strong>", "<code>", "<h2>heading"):

@@ -23,7 +23,7 @@ def test_drawn_ellipsoid_points_are_the_scaled_quadric() -> None:
     local = (pts - e.center) @ e.directions / (e.radii * scale)
     assert np.allclose((local**2).sum(-1), 1.0, atol=1e-12)
     # a planar arm: the ellipse in its plane, J's rows of those axes
-    arm = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=1.0)])
+    arm = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=1.0)], convention="standard")
     pts2, scale2, radii2 = ellipsoid_points(arm, [0.0, np.pi / 2], plane=(0, 1))
     golden = (1 + np.sqrt(5)) / 2
     assert np.allclose(radii2, [golden, 1 / golden])

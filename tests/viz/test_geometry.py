@@ -23,5 +23,7 @@ def test_viz_planar_tol_decides_the_2d_view(factor: float, inside: bool) -> None
     from kinematica import viz
 
     alpha = factor * VIZ_PLANAR_TOL
-    arm = km.Robot.from_dh([km.Revolute(a=0.4, alpha=alpha), km.Revolute(a=0.3)])
+    arm = km.Robot.from_dh(
+        [km.Revolute(a=0.4, alpha=alpha), km.Revolute(a=0.3)], convention="standard"
+    )
     assert viz.drawing_plane(arm) == ((0, 1) if inside else None)

@@ -142,7 +142,9 @@ def random_spec(rng: np.random.Generator) -> RobotSpec:
 # ----------------------------------------------------------- without a browser
 def test_page_embeds_the_table_and_escapes_names() -> None:
     robot = km.Robot.from_dh(
-        [km.Revolute(a=0.3), km.Prismatic(qlim=(0, 0.2))], name="</script><b>x"
+        [km.Revolute(a=0.3), km.Prismatic(qlim=(0, 0.2))],
+        name="</script><b>x",
+        convention="standard",
     )
     text = viz.page_html(robot)
     assert "</script><b>" not in text
@@ -274,7 +276,7 @@ def test_units_of_urdf_and_robots_made_in_python() -> None:
     urdf = DATA / "urdf" / "abb_irb140.urdf"
     assert viz.robot_units(urdf) == {"angle": "deg", "length": "m"}
     assert viz.robot_units(km.load(urdf)) == {"angle": "deg", "length": "m"}
-    assert viz.robot_units(km.Robot.from_dh([km.Revolute(a=1.0)])) == {
+    assert viz.robot_units(km.Robot.from_dh([km.Revolute(a=1.0)], convention="standard")) == {
         "angle": "deg",
         "length": "m",
     }

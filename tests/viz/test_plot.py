@@ -142,7 +142,7 @@ def test_labels_name_every_frame_once() -> None:
 )
 def test_coincident_frames_share_a_label(d: float, shown: list[str]) -> None:
     # S1 and S2 are d apart along z; the arm is 1 + d long
-    robot = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(d=d)])
+    robot = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(d=d)], convention="standard")
     ax = viz.plot(robot, [0.3, 0.2], ax=_axes3d())
     texts = sorted(t.get_text() for t in ax.texts if t.get_text())
     assert texts == shown
@@ -269,7 +269,9 @@ def test_planar_pr_drawn_in_its_plane() -> None:
 
 
 def _tilted_2r(alpha: float) -> km.Robot:
-    return km.Robot.from_dh([km.Revolute(a=0.4, alpha=alpha), km.Revolute(a=0.3)])
+    return km.Robot.from_dh(
+        [km.Revolute(a=0.4, alpha=alpha), km.Revolute(a=0.3)], convention="standard"
+    )
 
 
 def test_planar_tolerance_both_sides() -> None:
@@ -282,7 +284,9 @@ def test_planar_tolerance_both_sides() -> None:
 def test_vertical_planar_arm_uses_x_z() -> None:
     # base turned so the joint axes lie along world y: the arm moves in x-z
     base = km.make_transform(km.rotx(-math.pi / 2), [0, 0, 0])
-    robot = km.Robot.from_dh([km.Revolute(a=0.4), km.Revolute(a=0.3)], base=base)
+    robot = km.Robot.from_dh(
+        [km.Revolute(a=0.4), km.Revolute(a=0.3)], base=base, convention="standard"
+    )
     assert viz.drawing_plane(robot) == (0, 2)
     q = [0.3, -0.6]
     ax = viz.plot(robot, q)
@@ -380,9 +384,10 @@ def test_robot_scale_by_hand() -> None:
     robot = km.Robot.from_dh(
         [km.Revolute(d=0.3, a=0.2), km.Prismatic(a=-0.1, qlim=(-0.5, 0.25))],
         tool=km.transl(0.0, 0.3, 0.4),
+        convention="standard",
     )
     assert viz.robot_scale(robot) == pytest.approx(0.3 + 0.2 + 0.1 + 0.5 + 0.5)
-    assert viz.robot_scale(km.Robot.from_dh([km.Prismatic()])) == 1.0
+    assert viz.robot_scale(km.Robot.from_dh([km.Prismatic()], convention="standard")) == 1.0
 
 
 def test_pyplot_figure_when_no_axes_given() -> None:

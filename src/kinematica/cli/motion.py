@@ -137,7 +137,7 @@ def trajectory(args: argparse.Namespace) -> int:
     if through and args.profile == "trapezoid":
         raise KinematicaError(
             "--profile trapezoid moves between two configurations; through --via points use "
-            "mstraj (lines with parabolic blends), cubic or quintic"
+            "mstraj (the Robotics Toolbox's lines with blends), cubic or quintic"
         )
     if not through and (args.times is not None or args.tacc is not None):
         raise KinematicaError("--times and --tacc apply to moves through --via points")
@@ -169,7 +169,7 @@ def trajectory(args: argparse.Namespace) -> int:
         if times is None and vmax is None and amax is None:
             times = np.linspace(0.0, float(duration), W.shape[0])
         traj = via_trajectory(
-            W, args.profile, times, args.dt, vmax, amax, tacc=args.tacc, ends=args.ends
+            W, args.profile, times, args.dt, vmax, amax, tacc=_tacc(args.tacc), ends=args.ends
         )
         t, q, qd, qdd = traj
     else:
@@ -255,6 +255,11 @@ def trajectory(args: argparse.Namespace) -> int:
     return 1 if blocked else 0
 
 
+def _tacc(tacc: list[float] | None) -> float | list[float] | None:
+    """``--tacc``: one blend time for every segment, or one each."""
+    return tacc[0] if tacc is not None and len(tacc) == 1 else tacc
+
+
 def register(sub: Any) -> None:
     """Add ``trajectory`` to the subparsers ``sub``."""
     p = sub.add_parser(
@@ -297,7 +302,8 @@ def register(sub: Any) -> None:
         choices=("quintic", "cubic", "trapezoid", "mstraj", "scurve"),
         default="quintic",
         help="between two q: quintic, cubic, trapezoid; through --via: the quintic (C4) or "
-        "cubic (C2) spline through every point, or mstraj (lines with parabolic blends); "
+        "cubic (C2) spline through every point, or mstraj (the Robotics Toolbox's lines with "
+        "quintic blends, times rounded up to --dt); "
         "scurve: jerk-limited (--vmax --amax --jmax; needs ruckig), between two q or "
         "through --via points without stopping",
     )
@@ -319,7 +325,12 @@ def register(sub: Any) -> None:
         help="trapezoid: each joint its own profile in the slowest joint's minimum time "
         "(default), or one shared profile on the joint-space line",
     )
-    p.add_argument("--tacc", type=float, help="mstraj: blend time at each via point (s)")
+    p.add_argument(
+        "--tacc",
+        nargs="+",
+        type=float,
+        help="mstraj: blend time at each via point (s; 0 for none), or one per segment",
+    )
     p.add_argument(
         "--ends",
         choices=("clamped", "natural"),

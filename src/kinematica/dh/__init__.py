@@ -15,6 +15,7 @@ if TYPE_CHECKING:  # the names below load on first use (kinematica._lazy)
         Prismatic,
         Revolute,
         check_convention,
+        given_convention,
     )
     from kinematica.dh.lines import AXIS_ANGLE_TOL, AXIS_LENGTH_TOL, LinePair, length_tol, line_pair
     from kinematica.dh.link import link_matrix
@@ -36,6 +37,7 @@ __getattr__, __dir__ = exports(
         "Prismatic": "kinematica.dh.joints",
         "Revolute": "kinematica.dh.joints",
         "check_convention": "kinematica.dh.joints",
+        "given_convention": "kinematica.dh.joints",
         "AXIS_ANGLE_TOL": "kinematica.dh.lines",
         "AXIS_LENGTH_TOL": "kinematica.dh.lines",
         "LinePair": "kinematica.dh.lines",
@@ -63,6 +65,7 @@ __all__ = [
     "check_convention",
     "convert_table",
     "extract_dh",
+    "given_convention",
     "length_tol",
     "line_pair",
     "link_matrix",

@@ -24,7 +24,12 @@ import numpy as np
 
 from kinematica.errors import ArgumentError, KinematicaError, UnitWarning
 from kinematica.io import plausible
-from kinematica.io.spec import CONVENTION_ALIASES, Convention, convention_names
+from kinematica.io.spec import (
+    CONVENTION_ALIASES,
+    Convention,
+    convention_names,
+    missing_convention,
+)
 
 __all__ = [
     "Convention",
@@ -33,6 +38,7 @@ __all__ = [
     "Prismatic",
     "Revolute",
     "check_convention",
+    "given_convention",
     "values_checked",
 ]
 
@@ -55,6 +61,17 @@ def check_convention(convention: str) -> Convention:
             f"unknown DH convention {convention!r}: expected {convention_names()}"
         )
     return CONVENTION_ALIASES[key]
+
+
+def given_convention(convention: str | None) -> Convention:
+    """:func:`check_convention`, with ``None`` read as standard and said (ConventionWarning).
+
+    The rule of ``Robot.from_dh`` (and of robot files): see
+    :func:`kinematica.io.spec.missing_convention`.
+    """
+    if convention is None:
+        return missing_convention(stacklevel=3)  # the warning points at from_dh's caller
+    return check_convention(convention)
 
 
 # Inside `values_checked()`, joints skip the plausibility warnings.

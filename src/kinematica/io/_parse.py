@@ -24,11 +24,13 @@ from kinematica.io.expr import parse_expression as _parse_expression
 from kinematica.io.spec import (
     CONVENTION_ALIASES,
     ChainSpec,
+    Convention,
     FrameSpec,
     JointKind,
     JointSpec,
     RobotSpec,
     convention_names,
+    missing_convention,
 )
 
 TOP_KEYS: Final = (
@@ -620,13 +622,11 @@ def parse_robot_dict(
     if name is not None and not name.strip():
         raise r.error("expected a non-empty name", key="name")
 
+    word = top.get("convention")
     if "convention" not in top:
-        raise r.error(
-            "missing key 'convention': write standard (Paul/distal DH, as in most "
-            "courses) or modified (Craig/proximal)"
-        )
-    word = top["convention"]
-    convention = CONVENTION_ALIASES.get(word.strip().lower()) if isinstance(word, str) else None
+        convention: Convention | None = missing_convention(r.path or "the robot data", stacklevel=2)
+    else:
+        convention = CONVENTION_ALIASES.get(word.strip().lower()) if isinstance(word, str) else None
     if convention is None:
         raise r.error(
             f"expected {convention_names()}, found {describe(word)}",

@@ -15,10 +15,12 @@ Example (YAML; JSON and TOML carry the same keys)::
 Keys:
 
 - ``name`` (text; default: the file name without extension).
-- ``convention`` (required): ``standard`` (aliases ``dh``, ``paul``,
-  ``distal``) or ``modified`` (aliases ``craig``, ``proximal``). In the
-  modified convention each row holds a(i-1), alpha(i-1), theta(i), d(i), as
-  Craig writes it.
+- ``convention``: ``standard`` (aliases ``dh``, ``paul``, ``distal``) or
+  ``modified`` (aliases ``craig``, ``proximal``). In the modified convention
+  each row holds a(i-1), alpha(i-1), theta(i), d(i), as Craig writes it. Left
+  out, the table is read as standard and a
+  :class:`~kinematica.errors.ConventionWarning` names the file and the key: the
+  one rule of ``Robot.from_dh(rows)`` without ``convention=`` too.
 - ``units``: ``{angle: deg | rad, length: m | mm}``; default **deg** and **m**.
   They apply to every number in the file: DH cells, parameters, limits, base
   and tool. Degrees become radians and millimetres metres on reading.

@@ -10,13 +10,14 @@ beyond building the 4x4 matrix of a base or tool placement.
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
 import numpy as np
 
-from kinematica.errors import RobotFileError
+from kinematica.errors import ConventionWarning, RobotFileError, located
 
 __all__ = [
     "CONVENTION_ALIASES",
@@ -27,6 +28,7 @@ __all__ = [
     "JointSpec",
     "RobotSpec",
     "convention_names",
+    "missing_convention",
 ]
 
 JointKind = Literal["R", "P"]
@@ -53,6 +55,29 @@ def convention_names() -> str:
         others = [k for k, v in CONVENTION_ALIASES.items() if v == canonical and k != canonical]
         parts.append(f"{canonical} (also {', '.join(others)})")
     return " or ".join(parts)
+
+
+def missing_convention(path: str | None = None, *, stacklevel: int = 2) -> Convention:
+    """The one rule for a DH table without a convention: standard, said aloud.
+
+    Warns :class:`~kinematica.errors.ConventionWarning` (naming the file and the
+    key ``convention`` when ``path`` is given) and returns ``"standard"``. Used
+    by ``Robot.from_dh`` and by robot files alike.
+
+    Args:
+        path: The robot file, or ``None`` for a table given in Python.
+        stacklevel: The caller's frame for the warning, as ``warnings.warn`` counts
+            from the caller of this function.
+    """
+    say = "add convention: standard" if path is not None else "say convention='standard'"
+    message = (
+        f"no DH convention given: read as standard (Paul, distal); {say} "
+        "or 'modified' (Craig, proximal)"
+    )
+    if path is not None:
+        message = located(message, path=path, key="convention")
+    warnings.warn(message, ConventionWarning, stacklevel=stacklevel + 1)
+    return "standard"
 
 
 def _default_units() -> dict[str, str]:

@@ -10,14 +10,14 @@ uniform speed in ``s``, with no corner.
 
 A corner ``i`` is blended over ``s`` in ``[s_i - δ, s_i + δ]`` by constant
 "acceleration" in ``s`` (a parabola joining the incoming and outgoing lines
-tangentially, the linear-parabolic blend of :mod:`kinematica.motion.blends`
-in space), and the orientation likewise in the tangent space at the corner's
-orientation: ``R_i·exp(ω_in·x + (ω_out − ω_in)·(x + δ)²/(4δ))`` with ``x = s -
-s_i``. Position and orientation are continuous with continuous rates
-``d/ds``. ``δ`` is chosen so that the blend leaves each segment at most
-``blend`` metres before the corner (exactly ``blend`` where the two segments
-move at the same rate in ``s``), and never more than half of either segment; a
-corner between two pure rotations is not blended (the blend is a length).
+tangentially: Craig's linear-parabolic blend, in space), and the orientation
+likewise in the tangent space at the corner's orientation: ``R_i·exp(ω_in·x +
+(ω_out − ω_in)·(x + δ)²/(4δ))`` with ``x = s - s_i``. Position and orientation
+are continuous with continuous rates ``d/ds``. ``δ`` is chosen so that the
+blend leaves each segment at most ``blend`` metres before the corner (exactly
+``blend`` where the two segments move at the same rate in ``s``), and never
+more than half of either segment; a corner between two pure rotations is not
+blended (the blend is a length).
 The corner poses themselves are then not reached; with ``blend = 0`` every
 pose is passed exactly.
 

@@ -68,8 +68,8 @@ class PiecewisePolynomial:
             ``breaks[0]`` is 0, ``breaks[-1]`` the duration.
         coef: ``(p, d + 1, n)`` coefficients of piece ``i`` in ``τ = t -
             breaks[i]`` (lowest power first; rad or m, per second powers).
-        knots: ``(k,)`` the waypoints' times (s): the breaks of a spline, the
-            nominal via times of linear segments with blends.
+        knots: ``(k,)`` the waypoints' times (s): the breaks of a spline;
+            for ``"mstraj"`` every break (whole steps of its ``dt``).
     """
 
     breaks: FloatArray

@@ -11,10 +11,11 @@ Four methods:
 - ``"quintic"``: the C4 quintic spline (continuous acceleration, jerk and
   snap; the least-jerk interpolant), clamped (end velocities and
   accelerations given, zero by default) or natural (zero end jerk and snap);
-- ``"mstraj"``: straight lines with parabolic blends of duration ``tacc``
-  (:mod:`kinematica.motion.blends`): continuous velocity, start and end
-  reached exactly, the via points passed at a distance, as the Toolbox's
-  ``mstraj`` does;
+- ``"mstraj"``: the Robotics Toolbox's ``mstraj``, sample for sample
+  (:mod:`kinematica.motion.mstraj`, with where it differs on purpose): lines
+  between the waypoints joined by quintic blends of ``tacc``, every time
+  rounded up to whole steps of ``dt``; the via points are cut, start and end
+  reached exactly;
 - ``"scurve"``: jerk-limited segments from waypoint to waypoint, the
   velocities at the waypoints chosen to shorten the move instead of stopping
   at each, position limits held (:mod:`kinematica.motion.scurve_via`; needs
@@ -31,8 +32,17 @@ time (as :func:`~kinematica.motion.trajectory.minimum_time`), then every time
 is scaled by one factor so that the spline's peak speed and acceleration
 (computed exactly, piece by piece) just reach the tightest ``vmax`` or
 ``amax``: a spline with rest or natural ends scales exactly with its times.
-For ``"mstraj"`` the limits are per joint or per segment and joint
-(``vmax`` of shape ``(k-1, n)``), as the Toolbox's ``qdmax``.
+For ``"mstraj"``, ``vmax`` is the Toolbox's ``qdmax`` (per joint, or per
+segment and joint, ``(k-1, n)``): each segment lasts its slowest joint's time.
+
+Porting the Toolbox's ``mstraj(viapoints, dt, tacc, qdmax=, tsegment=, q0=,
+qd0=, qdf=)``: ``W`` is ``viapoints`` with ``q0`` as its first row (as the
+Toolbox reads ``viapoints`` without ``q0``), ``vmax=qdmax``, ``times=[0,
+*cumsum(tsegment)]`` (waypoint times, as for the other methods), ``qd1=qdf``
+(the end velocity's name for every method); ``dt`` and ``tacc`` as they are.
+``verbose`` has no counterpart: the library prints nothing; the pieces
+(:func:`via_polynomials` with the same ``dt``) hold every blend and line, each
+starting and ending on a break.
 """
 
 from __future__ import annotations
@@ -45,7 +55,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from kinematica.arguments import check_number, check_size
 from kinematica.errors import DimensionError, KinematicaError
-from kinematica.motion.blends import blend_pieces, blend_times
+from kinematica.motion.mstraj import mstraj_pieces
 from kinematica.motion.piecewise import PiecewisePolynomial
 from kinematica.motion.splines import Ends, hermite_pieces, spline_derivatives
 from kinematica.motion.trajectory import (
@@ -118,7 +128,7 @@ def via_polynomials(
     vmax: ArrayLike | None = None,
     amax: ArrayLike | None = None,
     *,
-    tacc: float | None = None,
+    tacc: ArrayLike | None = None,
     ends: Ends = "clamped",
     qd0: ArrayLike | None = None,
     qd1: ArrayLike | None = None,
@@ -126,10 +136,13 @@ def via_polynomials(
     qdd1: ArrayLike | None = None,
     qd: ArrayLike | None = None,
     qdd: ArrayLike | None = None,
+    dt: float | None = None,
 ) -> PiecewisePolynomial:
     """The pieces of the trajectory through ``waypoints`` (arguments of :func:`via_trajectory`).
 
-    For ``"scurve"`` the pieces are ``via_trajectory(...).pieces``.
+    For ``"scurve"`` the pieces are ``via_trajectory(...).pieces``. ``dt`` is
+    ``"mstraj"``'s step (default ``DEFAULT_DT``): its pieces start and end on
+    whole steps (their ``breaks``, also their ``knots``); the splines take none.
     """
     if method == "scurve":
         raise KinematicaError(
@@ -148,38 +161,48 @@ def via_polynomials(
     am = _limit(amax, (n,), "amax")
     ends_given = {"qd0": qd0, "qd1": qd1, "qdd0": qdd0, "qdd1": qdd1, "qd": qd, "qdd": qdd}
     if method == "mstraj":
-        named = [name for name, x in ends_given.items() if x is not None]
+        named = [x for x in ("qdd0", "qdd1", "qd", "qdd") if ends_given[x] is not None]
         if named or ends != "clamped":
             raise KinematicaError(
-                f"mstraj starts and ends at rest: drop {', '.join(named) or 'ends'}"
+                f"mstraj takes a start and an end velocity (qd0, qd1) only: drop "
+                f"{', '.join(named) or 'ends'}"
             )
-        return _blends(w, t, vmax, am, tacc)
+        step = DEFAULT_DT if dt is None else dt
+        step = check_number(step, "dt", positive=True, unit="s", what="a number of seconds")
+        ends_v = (_array(qd0, (n,), "qd0"), _array(qd1, (n,), "qd1"))
+        return _mstraj(w, t, vmax, am, tacc, step, ends_v)
     if tacc is not None:
         raise KinematicaError("tacc is the blend time of method='mstraj'", arg="tacc")
+    if dt is not None:
+        raise KinematicaError("dt is the step of method='mstraj'; splines sample any dt", arg="dt")
     spline: Literal["cubic", "quintic"] = "cubic" if method == "cubic" else "quintic"
     return _spline(w, spline, t, _limit(vmax, (n,), "vmax"), am, ends, ends_given)
 
 
-def _blends(
+def _mstraj(
     w: FloatArray,
     t: FloatArray | None,
     vmax: ArrayLike | None,
     am: FloatArray | None,
-    tacc: float | None,
+    tacc: ArrayLike | None,
+    dt: float,
+    ends: tuple[FloatArray, FloatArray],
 ) -> PiecewisePolynomial:
-    """Method ``"mstraj"``: lines and parabolic blends, times from ``vmax`` if not given."""
+    """Method ``"mstraj"``: the Toolbox's, timed by ``vmax`` or by ``times`` (one of them)."""
     k, n = w.shape
-    if tacc is None or not (math.isfinite(tacc) and tacc > 0):
+    if tacc is None:
+        raise KinematicaError("tacc must be the blend time of mstraj (s; 0 for none)", arg="tacc")
+    ta = _array(tacc, (k - 1,), "tacc")
+    if np.any(ta < 0):
+        raise KinematicaError(f"tacc must be >= 0 (s), got {tacc!r}", arg="tacc")
+    if (t is None) == (vmax is None):
         raise KinematicaError(
-            f"tacc must be the blend time of mstraj, > 0 (s), got {tacc!r}", arg="tacc"
+            "mstraj takes times or vmax (the Toolbox's tsegment or qdmax), one of them",
+            arg="times",
         )
     vm = _limit(vmax, (k - 1, n), "vmax")
-    if t is None:
-        if vm is None:
-            raise KinematicaError("times must be given, or vmax to derive them", arg="times")
-        t = blend_times(w, vm, tacc)
-    pieces = blend_pieces(w, t, tacc)
-    _check(pieces, None, am, vm, tacc)
+    pieces = mstraj_pieces(w, dt, ta, vmax=vm, times=t, qd0=ends[0], qd1=ends[1])
+    _check(pieces, None, am)
     return pieces
 
 
@@ -244,8 +267,6 @@ def _check(
     pieces: PiecewisePolynomial,
     vm: FloatArray | None,
     am: FloatArray | None,
-    vm_segments: FloatArray | None = None,
-    tacc: float | None = None,
 ) -> None:
     """Raise when the trajectory exceeds a limit (beyond round-off)."""
     for lim, order, name in ((vm, 1, "vmax"), (am, 2, "amax")):
@@ -259,19 +280,6 @@ def _check(
                 f"joint {j + 1} would reach {peak[j]:.6g} > {name} {lim[j]:g}: "
                 "lengthen the times" + (" or tacc" if name == "amax" else "")
             )
-    if vm_segments is not None:  # mstraj: each segment's line within its own limits
-        assert tacc is not None
-        # Where each line starts (the end of the blend before it), its velocity is the line's.
-        starts = pieces.knots[:-1] + 0.5 * tacc
-        starts[0] = tacc
-        speed = np.abs(pieces(starts, 1))
-        over = speed > vm_segments * (1.0 + LIMIT_RTOL)
-        if over.any():
-            i, j = (int(x[0]) for x in np.nonzero(over))
-            raise KinematicaError(
-                f"segment {i + 1}, joint {j + 1} would move at {speed[i, j]:.6g} > vmax "
-                f"{vm_segments[i, j]:g}: lengthen the times"
-            )
 
 
 def via_trajectory(
@@ -282,7 +290,7 @@ def via_trajectory(
     vmax: ArrayLike | None = None,
     amax: ArrayLike | None = None,
     *,
-    tacc: float | None = None,
+    tacc: ArrayLike | None = None,
     ends: Ends = "clamped",
     qd0: ArrayLike | None = None,
     qd1: ArrayLike | None = None,
@@ -302,17 +310,22 @@ def via_trajectory(
             ``"scurve"`` (jerk-limited, through every waypoint without
             stopping; times from the limits).
         times: ``(k,)`` times of the waypoints (s), from 0, increasing; for
-            ``"mstraj"`` the blends' centres. Derived from the limits if ``None``.
+            ``"mstraj"`` the times its lines pass them (the Toolbox's
+            ``tsegment`` are their differences). Derived from the limits if
+            ``None``.
         dt: Largest sample spacing (s); samples are uniform between knots and
-            every knot time is a sample.
+            every knot time is a sample. For ``"mstraj"`` the step: samples
+            every ``dt`` exactly, times rounded up to whole steps.
         vmax: Speed limits (rad/s, m/s): a number or ``(n,)``; for
-            ``"mstraj"`` also ``(k - 1, n)``, one row per segment.
+            ``"mstraj"`` (the Toolbox's ``qdmax``; not with ``times``) also
+            ``(k - 1, n)``, one row per segment: the lines' speeds.
         amax: Acceleration limits (rad/s², m/s²): a number or ``(n,)``.
-        tacc: Blend time of ``"mstraj"`` (s).
+        tacc: Blend time of ``"mstraj"`` (s, >= 0): a number, or ``(k - 1,)``
+            one per segment (the blend at its start).
         ends: Spline ends: ``"clamped"`` (``qd0``, ``qd1``, ``qdd0``,
             ``qdd1``, zero by default) or ``"natural"``.
-        qd0: ``(n,)`` start velocity of a clamped spline.
-        qd1: ``(n,)`` end velocity.
+        qd0: ``(n,)`` start velocity of a clamped spline or of ``"mstraj"``.
+        qd1: ``(n,)`` end velocity (the Toolbox's ``qdf`` for ``"mstraj"``).
         qdd0: ``(n,)`` start acceleration (quintic).
         qdd1: ``(n,)`` end acceleration (quintic).
         qd: ``(k, n)`` velocity at every waypoint (MATLAB's ``cubicpolytraj`` /
@@ -325,7 +338,9 @@ def via_trajectory(
     Returns:
         :class:`JointTrajectory` ``(t, q, qd, qdd)``; ``q`` is every waypoint
         at its time (splines, scurve; exactly) and ends at the last one
-        exactly. For ``"scurve"`` a
+        exactly. For ``"mstraj"`` the Toolbox's samples with the start added
+        at ``t = 0`` (the Toolbox leaves it out and stamps its first sample,
+        one step later, 0): ``t = j·dt``. For ``"scurve"`` a
         :class:`~kinematica.motion.scurve.JerkTrajectory`: its jerk, the
         waypoint times and velocities, and ``margin``, how much shorter it is
         than stopping at every waypoint.
@@ -366,7 +381,15 @@ def via_trajectory(
         qdd1=qdd1,
         qd=qd,
         qdd=qdd,
+        dt=dt if method == "mstraj" else None,
     )
+    if method == "mstraj":  # the Toolbox's grid: every sample ends a step, and is its left limit
+        steps = round(pieces.duration / dt)
+        check_size(steps + 1, MAX_SAMPLES, "dt", f"samples ({pieces.duration:g} s every {dt!r} s)")
+        t = np.arange(steps + 1, dtype=float) * dt
+        out = JointTrajectory(t, pieces(t, left=True), pieces(t, 1, True), pieces(t, 2, True))
+        out.q[-1] = np.asarray(waypoints, dtype=float)[-1]
+        return out
     # every knot is a sample too: at most one more per piece than duration / dt
     count = pieces.duration / dt + pieces.knots.size
     check_size(count, MAX_SAMPLES, "dt", f"samples ({pieces.duration:g} s every {dt!r} s)")

@@ -26,6 +26,7 @@ from kinematica.dh import (
     Revolute,
     check_convention,
     convert_table,
+    given_convention,
     link_matrix,
 )
 from kinematica.errors import (
@@ -180,7 +181,7 @@ class Robot:
         cls,
         rows: Iterable[Joint],
         *,
-        convention: str = "standard",
+        convention: str | None = None,
         name: str = "robot",
         base: ArrayLike | None = None,
         tool: ArrayLike | None = None,
@@ -191,7 +192,9 @@ class Robot:
         Args:
             rows: ``Revolute(d=, a=, alpha=, offset=, qlim=)`` and
                 ``Prismatic(theta=, a=, alpha=, offset=, qlim=)`` rows, base to tip.
-            convention: ``"standard"`` or ``"modified"`` (aliases accepted).
+            convention: ``"standard"`` or ``"modified"`` (aliases accepted);
+                ``None`` reads standard with a ConventionWarning (as a robot file
+                without ``convention``).
             name: Display name.
             base: ``(4, 4)`` pose of frame 0 in the world frame; identity if ``None``.
             tool: ``(4, 4)`` pose of the tool in frame n; identity if ``None``.
@@ -202,7 +205,7 @@ class Robot:
         """
         return cls(
             links=tuple(rows),
-            convention=check_convention(convention),
+            convention=given_convention(convention),
             name=name,
             base=rigid_frame(base, "base"),
             tool=rigid_frame(tool, "tool"),

@@ -134,7 +134,7 @@ def puma_with_twisted_wrist(eps: float) -> Robot:
     rows = list(puma.links)
     r = rows[3]
     rows[3] = Revolute(d=r.d, a=r.a, alpha=r.alpha + eps, offset=r.offset)
-    return Robot.from_dh(rows, base=puma.base, tool=puma.tool)
+    return Robot.from_dh(rows, base=puma.base, tool=puma.tool, convention="standard")
 
 
 def twin_flag(robot: Robot) -> bool:
@@ -209,7 +209,7 @@ def test_solvers_take_chains_of_their_size_only() -> None:
     puma = load("puma560")
     closed = closed_form(puma.chain, "pose")
     assert closed is not None
-    arm7 = Robot.from_dh([*puma.links, Revolute(d=0.1)])
+    arm7 = Robot.from_dh([*puma.links, Revolute(d=0.1)], convention="standard")
     with pytest.raises(ValueError, match="takes a chain of 6 joints, got 7"):
         closed.params.candidates(arm7.chain.core, np.eye(4))
     with pytest.raises(ValueError):

@@ -174,7 +174,7 @@ def test_max_position_dof_bounds_the_arm_position_solver(n: int, accepted: bool)
             params.n = n
     rows = [Revolute(d=0.4, alpha=math.pi / 2), Revolute(a=0.45), Revolute(alpha=math.pi / 2)]
     rows += [Revolute(d=0.01 * (i + 1), alpha=0.3) for i in range(n - 3)]
-    robot = km.Robot.from_dh(rows, name=f"{n} joints")
+    robot = km.Robot.from_dh(rows, name=f"{n} joints", convention="standard")
     q = np.zeros(n)
     q[:3] = 0.2  # joints 4..n at 0: a target the closed form's own configurations reach
     res = robot.ik(robot.fk(q)[:3, 3], seed=0)

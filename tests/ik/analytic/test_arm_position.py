@@ -41,7 +41,9 @@ def seven_dof() -> Robot:
         Revolute(d=0.1, alpha=-PI / 2),
         Revolute(d=0.08),
     ]
-    return Robot.from_dh(rows, tool=transform_from([1, 0.2, 0, 0], [0, 0, 0.05]), name="7-DOF")
+    return Robot.from_dh(
+        rows, tool=transform_from([1, 0.2, 0, 0], [0, 0, 0.05]), name="7-DOF", convention="standard"
+    )
 
 
 def wrist_at_zero(robot: Robot, rng: np.random.Generator, n: int) -> np.ndarray:
@@ -157,7 +159,7 @@ def test_batch_shapes_and_single_equals_batch(batch: tuple[int, ...]) -> None:
 def test_pose_targets_of_short_arms_never_use_the_position_solver() -> None:
     rows = [Revolute(d=0.4, alpha=PI / 2), Revolute(a=0.4), Revolute(alpha=PI / 2)]
     rows += [Revolute(d=0.4, alpha=-PI / 2), Revolute(alpha=PI / 2)]  # 5R: no pose solver
-    arm = Robot.from_dh(rows, name="5R")
+    arm = Robot.from_dh(rows, name="5R", convention="standard")
     assert closed_form(arm.chain, "position") is not None
     assert closed_form(arm.chain, "pose") is None
     T = arm.fk(np.array([0.2, 0.3, 0.4, 0.5, 0.6]))

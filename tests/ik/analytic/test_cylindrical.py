@@ -39,7 +39,7 @@ def _offset_arm(roll: bool = False) -> km.Robot:
     ]
     if roll:  # the tool 0.05 m off the roll's axis
         rows.append(Revolute(d=0.1, a=0.05, alpha=0.3))
-    return km.Robot.from_dh(rows)
+    return km.Robot.from_dh(rows, convention="standard")
 
 
 def test_the_notes_arm_is_solved_in_closed_form(notes: km.Robot) -> None:

@@ -81,7 +81,7 @@ def arm(name: str) -> km.Robot:
     rows, at = ARMS[name]
     tool = np.eye(4)
     tool[:3, 3] = at
-    robot = km.Robot.from_dh(rows, tool=tool)
+    robot = km.Robot.from_dh(rows, tool=tool, convention="standard")
     kind = "anthropomorphic-3R" if name.startswith("anthropomorphic") else "elbow-3R"
     assert km.classify(robot).kind == kind
     assert features(robot.chain).near_degenerate

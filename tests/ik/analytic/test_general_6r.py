@@ -98,8 +98,10 @@ def test_the_calibrated_ur_has_the_ur5s_solutions() -> None:
     # the UR5 (three parallel axes: its own closed form) and the same arm with every
     # twist 1e-3 off (the general 6R): as many solutions, each near one of the UR5's
     rows = [Revolute(d=d, a=a, alpha=al) for d, a, al in g6._UR5]
-    ur5 = km.Robot.from_dh(rows)
-    off = km.Robot.from_dh([Revolute(d=d, a=a, alpha=al + 1e-3) for d, a, al in g6._UR5])
+    ur5 = km.Robot.from_dh(rows, convention="standard")
+    off = km.Robot.from_dh(
+        [Revolute(d=d, a=a, alpha=al + 1e-3) for d, a, al in g6._UR5], convention="standard"
+    )
     rng = np.random.default_rng(11)
     for q in rng.uniform(-math.pi, math.pi, (5, 6)):
         exact, near = ur5.ik(ur5.fk(q)), off.ik(off.fk(q))
@@ -211,7 +213,9 @@ def test_a_labelling_accurate_to_round_off_is_kept_without_scoring_the_others() 
     # an arm whose constant labellings are not accurate (a UR5, every twist 1e-3 off):
     # all twelve scored, the last (T on the left, reversed) accurate to round-off and kept
     rows = [Revolute(d=d, a=a, alpha=al + 1e-3) for d, a, al in g6._UR5]
-    params, chosen, scored, _, probed = G.build(km.Robot.from_dh(rows).chain.core)
+    params, chosen, scored, _, probed = G.build(
+        km.Robot.from_dh(rows, convention="standard").chain.core
+    )
     assert params is not None and params.per_target and scored == chosen + 1 > 8
     assert probed < scored * g6.PROBES  # the inaccurate ones given up on early
 
@@ -261,7 +265,7 @@ def test_special_families_keep_their_arms_and_6r_arms_with_a_slide_are_not_taken
     )
     rows = list(_robot(np.random.default_rng(1), False).links)
     rows[2] = km.Prismatic(theta=0.3, a=0.1, alpha=1.1, offset=0.2)
-    robot = km.Robot.from_dh(rows)
+    robot = km.Robot.from_dh(rows, convention="standard")
     assert not g6.SPEC.handles(features(robot.chain))
 
 
@@ -302,7 +306,7 @@ def test_a_urdf_chain_with_axes_off_z_is_solved(tmp_path: Path) -> None:
 def test_a_6_joint_arm_with_a_slide_goes_to_the_search_and_says_why() -> None:
     rows = list(_robot(np.random.default_rng(1), False).links)
     rows[2] = km.Prismatic(theta=0.3, a=0.1, alpha=1.1, offset=0.2)
-    robot = km.Robot.from_dh(rows)
+    robot = km.Robot.from_dh(rows, convention="standard")
     T = robot.fk(np.array([0.1, 0.2, 0.3, 0.4, 0.5, 0.6]))
     for res in (robot.ik(T), robot.ik(np.stack([T, T]))[1]):
         assert res.method == "numeric:lm"
@@ -335,7 +339,7 @@ def test_candidates_beyond_the_polish_are_carried_to_every_solution() -> None:
 def _calibrated_ur() -> km.Robot:
     """The UR5 with its twists 1e-3 off, alternately (the benchmark's calibrated UR)."""
     rows = [Revolute(d=d, a=a, alpha=al + 1e-3 * (-1) ** i) for i, (d, a, al) in enumerate(g6._UR5)]
-    return km.Robot.from_dh(rows)
+    return km.Robot.from_dh(rows, convention="standard")
 
 
 def test_a_calibrated_ur_loses_no_solution() -> None:

@@ -103,7 +103,8 @@ def test_ur5_matches_eaik_reference_solution_sets() -> None:
     arms = {a["name"]: a for a in json.loads(REFERENCE.read_text())["arms"]}
     ref = arms["ur5"]
     robot = Robot.from_dh(
-        [Revolute(d=j["d"], a=j["a"], alpha=j["alpha"], offset=j["theta"]) for j in ref["joints"]]
+        [Revolute(d=j["d"], a=j["a"], alpha=j["alpha"], offset=j["theta"]) for j in ref["joints"]],
+        convention="standard",
     )
     assert_transform_close(robot.fk(np.zeros(6)), UR5.fk(np.zeros(6)), atol=0)
     T = np.array([s["T"] for s in ref["samples"]])
@@ -208,17 +209,22 @@ def test_classification_and_declined_arms() -> None:
         )
     rows = UR5_ROWS
     # axes 5 and 6 on one line: q5 and q6 only add up; the numeric solver takes it
-    same_line = Robot.from_dh([*rows[:4], Revolute(d=0.09465), Revolute(d=0.0823)])
+    same_line = Robot.from_dh(
+        [*rows[:4], Revolute(d=0.09465), Revolute(d=0.0823)], convention="standard"
+    )
     # a link of the triangle of length zero: axes 2 and 3 on one line
-    no_link = Robot.from_dh([rows[0], Revolute(), *rows[2:]])
+    no_link = Robot.from_dh([rows[0], Revolute(), *rows[2:]], convention="standard")
     # axis 1 parallel to axes 2-4: four parallel axes
-    four = Robot.from_dh([Revolute(d=0.1), *rows[1:]])
+    four = Robot.from_dh([Revolute(d=0.1), *rows[1:]], convention="standard")
     for robot in (same_line, no_link, four):
         T = robot.fk(np.array([0.3, -1.0, 1.2, 0.3, 0.8, 0.2]))
         assert robot.ik(T, seed=0).method == "numeric:lm"
     puma = km.load("puma560")
     assert classify(puma).kind != "three-parallel-6R"
-    assert classify(Robot.from_dh([Revolute(), Prismatic()])).kind != "three-parallel-6R"
+    assert (
+        classify(Robot.from_dh([Revolute(), Prismatic()], convention="standard")).kind
+        != "three-parallel-6R"
+    )
 
 
 # ------------------------------------------------------------- the spec's sample arms

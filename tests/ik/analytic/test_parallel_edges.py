@@ -53,6 +53,7 @@ FOLD = Robot.from_dh(
         Revolute(d=0.08),
     ],
     name="fold",
+    convention="standard",
 )
 #: UR type whose axes 4, 5, 6 meet (d5 = 0): axis 4 is where the wrist point
 #: is, for every branch alike. Stretched at q3 = 0.
@@ -66,6 +67,7 @@ STRETCH = Robot.from_dh(
         Revolute(d=0.08),
     ],
     name="stretch",
+    convention="standard",
 )
 
 
@@ -316,7 +318,7 @@ def wrist_point_at(distance: float) -> FloatArray:
     q1 turns freely. q2, q3, q4 move it in the arm's plane (through axis 1 at
     angle q1): Newton steps drive it to ``distance`` from the axis there.
     """
-    first5 = Robot.from_dh(ZERO_OFFSET_ROWS[:5])
+    first5 = Robot.from_dh(ZERO_OFFSET_ROWS[:5], convention="standard")
     q = np.array([0.3, 0.9, -1.2, 0.4, 0.7, -0.5])
     goal = distance * np.array([math.cos(q[0]), math.sin(q[0])])
     for _ in range(30):
@@ -328,8 +330,8 @@ def wrist_point_at(distance: float) -> FloatArray:
 
 
 def test_wrist_point_on_axis_1_is_singular_with_q1_free() -> None:
-    robot = Robot.from_dh(ZERO_OFFSET_ROWS)
-    first5 = Robot.from_dh(ZERO_OFFSET_ROWS[:5])
+    robot = Robot.from_dh(ZERO_OFFSET_ROWS, convention="standard")
+    first5 = Robot.from_dh(ZERO_OFFSET_ROWS[:5], convention="standard")
     for distance in (0.0, 1e-12, 1e-10, 1e-8):
         q = wrist_point_at(distance)
         res = one(robot, robot.fk(q))
@@ -370,7 +372,8 @@ def test_quartic_vanishing_is_singular_with_q1_free() -> None:
                 Revolute(d=d4, alpha=1.2),
                 Revolute(d=0.1, a=0.05, alpha=-0.9),
                 Revolute(d=0.08),
-            ]
+            ],
+            convention="standard",
         )
 
     packed = pack(arm(0.0).chain, features(arm(0.0).chain))
@@ -409,7 +412,7 @@ NARROW_WRIST_ROWS = [*ZERO_OFFSET_ROWS[:4], Revolute(d=0.1, alpha=-1.0), ZERO_OF
 def wrist_point_on_axis_1(rows: list[Revolute], q: FloatArray) -> FloatArray:
     """q with q2, q3, q4 moved (Newton) to put the wrist point (frame 5's origin of the
     first five rows) on axis 1, the base z axis."""
-    first5 = Robot.from_dh(rows[:5])
+    first5 = Robot.from_dh(rows[:5], convention="standard")
     q = q.copy()
     for _ in range(40):
         J = first5.jacobian(q[:5])[:2, 1:4]
@@ -428,7 +431,11 @@ def test_a_continuum_in_q1_is_represented_where_the_other_joints_follow(where: s
     "unreachable" (issue 32, item 4a: 3 and 18 of these 20). The representative is
     now a q1 of the arc (FREE_Q1_SAMPLES)."""
     rng = np.random.default_rng(60)
-    robot = Robot.from_dh(NARROW_WRIST_ROWS) if where.startswith("wrist") else UR5_P56
+    robot = (
+        Robot.from_dh(NARROW_WRIST_ROWS, convention="standard")
+        if where.startswith("wrist")
+        else UR5_P56
+    )
     for _ in range(20):
         q = rng.uniform(-PI, PI, 6)
         if where.startswith("wrist"):
@@ -452,7 +459,8 @@ def test_issue13_item4_equal_links_folded_is_singular() -> None:
             Revolute(alpha=PI / 2),
             Revolute(alpha=-PI / 2),
             Revolute(),
-        ]
+        ],
+        convention="standard",
     )
     rng = np.random.default_rng(46)
     qs = np.vstack([np.zeros(6), rng.uniform(-PI, PI, (10, 6))])
@@ -477,7 +485,8 @@ def test_issue13_item4_continuum_is_not_four_points() -> None:
             Revolute(d=1, alpha=PI / 2),
             Revolute(alpha=-PI / 2),
             Revolute(),
-        ]
+        ],
+        convention="standard",
     )
     res = one(robot, robot.fk(np.zeros(6)))
     assert res.status == "singular", res.message

@@ -240,7 +240,7 @@ def narrow_arc_arm(rep: float) -> Robot:
     about ``rep`` (the q1 a continuum in q1 is first represented at: their middle)."""
     rows = [*parallel_arms.UR5_ROWS[:4], Revolute(d=0.09465, a=0.01), parallel_arms.UR5_ROWS[5]]
     rows[0] = Revolute(d=0.089159, alpha=math.pi / 2, qlim=(rep - 1.0, rep + 1.0))
-    return Robot.from_dh(rows)
+    return Robot.from_dh(rows, convention="standard")
 
 
 #: Axes 5 and 6 parallel to axis 1 (q2 + q3 + q4 = 0): (1) holds for every q1, and (2)

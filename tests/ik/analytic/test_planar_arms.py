@@ -100,7 +100,9 @@ def random_arm(kind: str, rng: np.random.Generator) -> Robot:
             Revolute(d=u(-0.2, 0.2), a=length(rng), alpha=flip(rng), offset=u(-PI, PI)),
             Revolute(d=u(-0.2, 0.2), a=length(rng), alpha=u(-PI, PI), offset=u(-PI, PI)),
         ]
-    robot = Robot.from_dh(rows, base=random_frame(rng), tool=random_frame(rng), name=kind)
+    robot = Robot.from_dh(
+        rows, base=random_frame(rng), tool=random_frame(rng), name=kind, convention="standard"
+    )
     if rng.random() < 0.5:
         robot = robot.to_convention("modified")
     assert classify(robot).kind == kind
@@ -235,7 +237,9 @@ def test_batch_shapes(kind: str, shape: tuple[int, ...]) -> None:
 def test_other_structures_and_degenerate_links_fall_back() -> None:
     puma = km.load("puma560")
     assert classify(puma).kind not in KINDS
-    skew_3r = Robot.from_dh([Revolute(alpha=1.0), Revolute(a=0.5, alpha=0.3), Revolute(a=0.4)])
+    skew_3r = Robot.from_dh(
+        [Revolute(alpha=1.0), Revolute(a=0.5, alpha=0.3), Revolute(a=0.4)], convention="standard"
+    )
     assert classify(skew_3r).kind == "general"
     # A planar 2R whose tool sits on axis 2 (q2 moves nothing), or within the line
     # geometry's length tolerance of it (AXIS_LENGTH_TOL · (1 + size), size 0.5 m here):
@@ -245,13 +249,15 @@ def test_other_structures_and_degenerate_links_fall_back() -> None:
         (AXIS_LENGTH_TOL / 10, "numeric"),
         (AXIS_LENGTH_TOL * 10, "analytic"),
     ):
-        arm = Robot.from_dh([Revolute(a=0.5), Revolute(a=a2)])
+        arm = Robot.from_dh([Revolute(a=0.5), Revolute(a=a2)], convention="standard")
         assert classify(arm).kind == "planar-2R"
         target = arm.fk([0.3, 0.4])[:3, 3]
         res = arm.ik(target, seed=0)
         assert res.method.startswith(method) and res.status in ("ok", "singular"), res.message
     with pytest.raises(km.KinematicaError, match="numeric"):
-        Robot.from_dh([Revolute(a=0.5), Revolute()]).ik(np.zeros(3), method="analytic")
+        Robot.from_dh([Revolute(a=0.5), Revolute()], convention="standard").ik(
+            np.zeros(3), method="analytic"
+        )
 
 
 # ------------------------------------------------------- seeds' hand formulas
@@ -358,7 +364,9 @@ def test_labels_3r_shoulder_and_elbow(kind: str, position: bool) -> None:
 
 
 def test_scara_right_handed_has_positive_elbow_turn() -> None:
-    scara = Robot.from_dh([Revolute(d=0.4, a=0.3), Revolute(a=0.25), Prismatic(), Revolute()])
+    scara = Robot.from_dh(
+        [Revolute(d=0.4, a=0.3), Revolute(a=0.25), Prismatic(), Revolute()], convention="standard"
+    )
     T = scara.fk(np.array([[0.2, 0.7, 0.1, 0.0], [0.2, -0.7, 0.1, 0.0]]))
     labels, cand, _ = raw_candidates(scara, T)
     assert labels == ("right-handed", "left-handed")
@@ -367,14 +375,14 @@ def test_scara_right_handed_has_positive_elbow_turn() -> None:
 
 # ------------------------------------------------------------ special targets
 def test_planar_2r_singular_at_the_base_and_unreachable() -> None:
-    robot = Robot.from_dh([Revolute(a=0.5), Revolute(a=0.5, offset=0.2)])
+    robot = Robot.from_dh([Revolute(a=0.5), Revolute(a=0.5, offset=0.2)], convention="standard")
     res = robot.ik(np.array([[1.3, 0.0, 0.0], [0.0, 0.0, 0.0], [0.3, 0.4, 0.25], [0.3, 0.4, 0]]))
     assert list(res.status) == ["unreachable", "singular", "unreachable", "ok"]
     assert res.gap[0] == pytest.approx(0.3, abs=1e-15)  # beyond the reach
     assert res.gap[2] == pytest.approx(0.25, abs=1e-15)  # off the plane
     assert res.free[1].tolist() == [True, False]
     assert "at least 0.3 m outside the reach" in res[0].message
-    unequal = Robot.from_dh([Revolute(a=0.5), Revolute(a=0.3)])
+    unequal = Robot.from_dh([Revolute(a=0.5), Revolute(a=0.3)], convention="standard")
     res = unequal.ik(np.array([[0.1, 0.0, 0.0], [0.3, 0.5, 0.0]]))
     assert list(res.status) == ["unreachable", "ok"]
     assert res.gap[0] == pytest.approx(0.1, abs=1e-15)  # inside the hole
@@ -382,7 +390,7 @@ def test_planar_2r_singular_at_the_base_and_unreachable() -> None:
 
 def test_folded_equal_2r_near_the_base() -> None:
     """The report: l1 = l2 = 0.5, targets 1e-9 m from the base gave not_found for 3 of 7."""
-    robot = Robot.from_dh([Revolute(a=0.5), Revolute(a=0.5)])
+    robot = Robot.from_dh([Revolute(a=0.5), Revolute(a=0.5)], convention="standard")
     angles = np.linspace(-PI, PI, 7, endpoint=False) + 0.1
     for r in (1e-7, 1e-9, 1e-11):
         targets = r * np.stack([np.cos(angles), np.sin(angles), 0 * angles], axis=1)
@@ -405,7 +413,7 @@ def test_folded_equal_2r_near_the_base() -> None:
 
 def test_pose_targets_fix_the_fold_of_reduced_arms() -> None:
     """A pose fixes q1 of a folded 2R (the position alone does not): one solution."""
-    robot = Robot.from_dh([Revolute(a=0.5), Revolute(a=0.5)])
+    robot = Robot.from_dh([Revolute(a=0.5), Revolute(a=0.5)], convention="standard")
     for q in ([0.7, PI], [-2.0, PI - 1e-9], [1.0, 0.0], [0.3, 1e-10]):
         res = robot.ik(robot.fk(q))
         assert res.status == "ok" and res.count == 1, res.message
@@ -471,13 +479,16 @@ def test_tool_on_axis_1_pose_is_solved_position_is_singular(name: str) -> None:
 
 def test_scara_and_3r_planar_fold_is_singular() -> None:
     scara = Robot.from_dh(
-        [Revolute(d=0.4, a=0.3), Revolute(a=0.3, alpha=PI), Prismatic(), Revolute(d=0.1)]
+        [Revolute(d=0.4, a=0.3), Revolute(a=0.3, alpha=PI), Prismatic(), Revolute(d=0.1)],
+        convention="standard",
     )
     T = scara.fk([0.3, PI, 0.05, 0.2])  # the wrist folded back onto axis 1
     res = scara.ik(T)
     assert res.status == "singular" and res.free_joints == (0, 3)
     assert (reached(scara, res.solutions, T) <= TOL).all()
-    planar = Robot.from_dh([Revolute(a=0.4), Revolute(a=0.4), Revolute(a=0.2)])
+    planar = Robot.from_dh(
+        [Revolute(a=0.4), Revolute(a=0.4), Revolute(a=0.2)], convention="standard"
+    )
     T = planar.fk([1.0, PI, 0.5])
     res = planar.ik(T)
     assert res.status == "singular" and res.free_joints == (0, 2)
@@ -486,7 +497,9 @@ def test_scara_and_3r_planar_fold_is_singular() -> None:
 def test_free_last_representatives_respect_the_limits() -> None:
     """A PRR whose slide allows one narrow window: the middle representative misses it."""
     free = Robot.from_dh(
-        [Prismatic(alpha=PI / 2), Revolute(a=0.5, offset=PI / 2), Revolute(a=0.4)], name="PRR"
+        [Prismatic(alpha=PI / 2), Revolute(a=0.5, offset=PI / 2), Revolute(a=0.4)],
+        name="PRR",
+        convention="standard",
     )
     p = free.fk([0.0, 0.3, 0.9])[:3, 3]
     base = free.ik(p, respect_limits=False)
@@ -546,7 +559,7 @@ def test_axes_parallel_within_tolerance_make_misses_no_proof(kind: str) -> None:
         else:  # equal links folded: q2 free (a continuum)
             rows = [Revolute(d=0.3, a=0.1, alpha=PI / 2), Revolute(a=0.4, alpha=twist)]
             rows.append(Revolute(a=0.4))
-        robot = Robot.from_dh(rows)
+        robot = Robot.from_dh(rows, convention="standard")
         assert classify(robot).kind == kind
         return robot
 
@@ -578,7 +591,9 @@ def test_gap_below_round_off_is_not_reported() -> None:
     0.1x the floor beyond the reach reports no distance (at the edge, where
     branches merge, that is no proof: ``not_found``), 100x reports it.
     """
-    robot = Robot.from_dh([Revolute(a=0.6), Revolute(a=0.4), Revolute(a=0.2)])  # reach 1.2 m
+    robot = Robot.from_dh(
+        [Revolute(a=0.6), Revolute(a=0.4), Revolute(a=0.2)], convention="standard"
+    )  # reach 1.2 m
     T = robot.fk(np.zeros(3))
     T[:3, :3] = Rotation.from_rotvec([0.0, 0.01, 0.0]).as_matrix()  # tilted out of the plane
     for factor, reported in ((0.1, False), (100.0, True)):
@@ -593,7 +608,7 @@ def test_gap_below_round_off_is_not_reported() -> None:
 
 def test_merging_branches_are_said_so() -> None:
     """MERGE_TOL, both sides: 0.1x from stretched the branches merge (a note says so), 10x not."""
-    robot = Robot.from_dh([Revolute(a=0.5), Revolute(a=0.3)])
+    robot = Robot.from_dh([Revolute(a=0.5), Revolute(a=0.3)], convention="standard")
     for factor, near in ((0.1, True), (10.0, False)):
         q = np.array([0.4, factor * MERGE_TOL])
         res = robot.ik(robot.fk(q)[:3, 3])
@@ -608,7 +623,7 @@ def test_merging_branches_are_said_so() -> None:
 
 def test_double_root_is_one_solution() -> None:
     """Stretched arms (and 1e-12 rad from it): the two branches merge into one solution."""
-    planar = Robot.from_dh([Revolute(a=0.5), Revolute(a=0.3)])
+    planar = Robot.from_dh([Revolute(a=0.5), Revolute(a=0.3)], convention="standard")
     arm = seed_anthropomorphic()
     pr = seed_pr_arm()
     for robot, q in (

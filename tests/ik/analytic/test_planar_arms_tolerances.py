@@ -135,7 +135,7 @@ def test_subproblem_inputs_are_validated() -> None:
         p.rev = [0, 1, 7]
     with pytest.raises(ValueError):
         p.n = 5
-    robot = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=0.3)])
+    robot = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=0.3)], convention="standard")
     with pytest.raises(ValueError, match="n must be"):  # a default Params is no arm
         p.candidates(robot.chain.core, np.eye(4))
     p.n, p.nrev, p.rev = 2, 2, [0, 1, 0]
@@ -156,7 +156,7 @@ def test_triangle_singular_tol_is_the_fold_continuum(factor: float, inside: bool
     folded 2R arm with equal links is on the fold: every turn of joint 1 reaches it
     (status "singular", q1 free); farther, two solutions.
     """
-    robot = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=0.5)])
+    robot = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=0.5)], convention="standard")
     r = factor * TRIANGLE_SINGULAR_TOL * 1.0  # the reach is 1 m
     res = robot.ik(np.array([r, 0.0, 0.0]))
     if inside:
@@ -189,7 +189,7 @@ def test_merge_tol_near_the_first_axis(factor: float, inside: bool) -> None:
     deduplication plays no part (unlike a merge at the stretched arm, where the
     angle ψ is round-off below ~1e-8 and cannot be placed inside).
     """
-    robot = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=0.5)])
+    robot = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=0.5)], convention="standard")
     res = robot.ik(np.array([factor * MERGE_TOL * 1.0, 0.0, 0.0]))  # the reach is 1 m
     assert res.status == "ok" and len(res.solutions) == 2
     assert res.near_singular is inside
@@ -201,7 +201,7 @@ def test_length_tol_is_a_link_that_moves_nothing(factor: float, inside: bool) ->
     size, m) of axis 2 (q2 moves nothing) has no closed form; the numeric method answers.
     """
     tol = AXIS_LENGTH_TOL * (1.0 + 0.5)  # the arm's size: its 0.5 m link (and the tiny one)
-    arm = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=factor * tol)])
+    arm = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=factor * tol)], convention="standard")
     assert km.classify(arm).kind == "planar-2R"
     assert km.classify(arm).features.length_tol == pytest.approx(tol, rel=1e-8)
     res = arm.ik(arm.fk([0.3, 0.4])[:3, 3], seed=0)
@@ -242,7 +242,8 @@ def test_elbow_merge_tol_of_the_height_equation(tangent: bool) -> None:
     """
     height = 0.1  # the tool's offset along axes 2 and 3
     robot = km.Robot.from_dh(
-        [km.Revolute(d=0.4, alpha=math.pi / 2), km.Revolute(d=height, a=0.35), km.Revolute(a=0.3)]
+        [km.Revolute(d=0.4, alpha=math.pi / 2), km.Revolute(d=height, a=0.35), km.Revolute(a=0.3)],
+        convention="standard",
     )
     assert km.classify(robot).kind == "anthropomorphic-3R"
     closed = closed_form(robot.chain, "position")
@@ -272,7 +273,9 @@ def test_singular_tol_tells_a_free_last_joint_from_one_solution(factor: float, f
     joint when a range of its turns wider than SINGULAR_TOL (times the reach) reaches it;
     closer to the stretched reach than that, the arm has one configuration.
     """
-    robot = km.Robot.from_dh([km.Revolute(a=0.4), km.Revolute(a=0.3), km.Revolute(a=0.2)])
+    robot = km.Robot.from_dh(
+        [km.Revolute(a=0.4), km.Revolute(a=0.3), km.Revolute(a=0.2)], convention="standard"
+    )
     reach = 0.9
     r = reach - factor * TRIANGLE_SINGULAR_TOL * reach  # the free range of lengths: reach - r
     closed = closed_form(robot.chain, "position")

@@ -84,7 +84,7 @@ def test_dh_reversal_is_the_inverse_transform() -> None:
     for slide in (False, True):
         rows, _ = sample_wrist_rows(rng, slide, False)
         base, tool = rot_z(0.3) @ tras_x(0.2) @ rot_x(1.1), tras_z(0.1) @ rot_x(-0.4)
-        wrist = km.Robot.from_dh(rows, base=base, tool=tool, name="wrist")
+        wrist = km.Robot.from_dh(rows, base=base, tool=tool, name="wrist", convention="standard")
         shoulder = _robot(*reversed_arm(rows, base, tool))
         q = _q(wrist, rng, 10)
         assert_transform_close(shoulder.fk(-q[:, ::-1]), np.linalg.inv(wrist.fk(q)), atol=1e-14)
@@ -96,7 +96,7 @@ def test_an_arm_given_reversed_is_solved_alike_by_both_families() -> None:
     for _ in range(4):
         rows, _ = sample_wrist_rows(rng, False, False)
         base, tool = rot_x(0.5) @ tras_z(0.2), rot_z(-0.7) @ tras_x(0.05)
-        wrist = km.Robot.from_dh(rows, base=base, tool=tool, name="wrist")
+        wrist = km.Robot.from_dh(rows, base=base, tool=tool, name="wrist", convention="standard")
         shoulder = _robot(*reversed_arm(rows, base, tool))
         assert classify(wrist).kind == "spherical-wrist-6R"
         assert classify(shoulder).kind == "spherical-shoulder-6R"
@@ -284,13 +284,13 @@ def test_a_slide_after_the_shoulder_and_the_builders_refusals() -> None:
     # both a spherical wrist and a spherical shoulder: the wrist's solver takes it
     both = [Revolute(d=0.3, alpha=PI / 2), Revolute(alpha=PI / 2), Revolute(d=0.4, alpha=-PI / 2)]
     both += [Revolute(alpha=PI / 2), Revolute(alpha=-PI / 2), Revolute(d=0.1)]
-    robot = km.Robot.from_dh(both)
+    robot = km.Robot.from_dh(both, convention="standard")
     assert features(robot.chain).shoulder_center is not None
     assert classify(robot).kind == "spherical-wrist-6R"
     # axes 5 and 6 coincide (twist 0, no offset): the shoulder centre has 2 DOF from the tool
     flat = [Revolute(d=0.3, alpha=PI / 2), Revolute(alpha=-PI / 2), Revolute(d=0.4, alpha=PI / 2)]
     flat += [Revolute(a=0.3, alpha=PI / 2), Revolute(d=0.3), Revolute(d=0.1)]
-    robot = km.Robot.from_dh(flat)
+    robot = km.Robot.from_dh(flat, convention="standard")
     assert classify(robot).kind == "spherical-shoulder-6R"
     assert closed_form(robot.chain, "pose") is None
     assert robot.ik(robot.fk(np.full(6, 0.3)), seed=0).method == "numeric:lm"

@@ -232,7 +232,7 @@ def test_nearly_parallel_shoulder_axes_stay_exact() -> None:
         Revolute(alpha=2.8464679704414912, offset=-PI / 2),
         Revolute(d=0.15652726621762514, alpha=-0.3451884803825527, offset=-1.5476061685567883),
     ]
-    robot = Robot.from_dh(rows, name="nearly parallel shoulder")
+    robot = Robot.from_dh(rows, name="nearly parallel shoulder", convention="standard")
     assert shoulder_of(robot)[0] == "general"
     q0 = np.array([[-2.63290526, -1.25548875, -2.16983424, 2.16527726, 2.13149496, 0.27287491]])
     rng = np.random.default_rng(23)
@@ -341,7 +341,7 @@ def test_shoulder_singularity_frees_q1() -> None:
         Revolute(alpha=PI / 2),
         Revolute(d=0.1),
     ]
-    robot = Robot.from_dh(rows, name="no shoulder offset")
+    robot = Robot.from_dh(rows, name="no shoulder offset", convention="standard")
     q0 = np.array([[0.3, PI / 2, PI / 2, 0.2, 0.4, 0.5]])  # wrist centre on axis 1
     T = robot.fk(q0)
     centre = T[0, :3, 3] - 0.1 * T[0, :3, 2]
@@ -386,7 +386,7 @@ def test_orientation_the_wrist_cannot_make() -> None:
         Revolute(alpha=0.3),
         Revolute(d=0.1),
     ]
-    robot = Robot.from_dh(rows, name="narrow wrist")
+    robot = Robot.from_dh(rows, name="narrow wrist", convention="standard")
     rng = np.random.default_rng(18)
     T = robot.fk(np.array([0.2, 0.5, 1.0, 0.3, 0.2, 0.1]))
     flipped = T.copy()  # same wrist centre, tool axis reversed
@@ -450,11 +450,11 @@ def test_builders_refuse_other_arms() -> None:
     # axes 1 and 2 coincide (twist 0, no offset): the wrist centre has 2 DOF only
     rows = [Revolute(d=0.3), Revolute(a=0.4), Revolute(alpha=PI / 2)]
     rows += [Revolute(d=0.3, alpha=-PI / 2), Revolute(alpha=PI / 2), Revolute(d=0.1)]
-    flat = Robot.from_dh(rows)
+    flat = Robot.from_dh(rows, convention="standard")
     assert classify(flat).kind == "spherical-wrist-6R"
     assert closed_form(flat.chain, "pose") is None
     assert flat.ik(flat.fk(np.full(6, 0.3)), seed=0).method == "numeric:lm"
-    assert classify(Robot.from_dh(rows[:5])).kind == "general"
+    assert classify(Robot.from_dh(rows[:5], convention="standard")).kind == "general"
 
 
 @pytest.mark.parametrize(("shoulder", "joint3"), [*GEOMETRIES, ("puma", "")])

@@ -227,7 +227,7 @@ def test_stanford_type_arm_with_joint_2_offset_by_1e_10(where: str) -> None:
         Revolute(alpha=PI / 2),
         Revolute(d=0.263),
     ]
-    robot = Robot.from_dh(rows, name="stanford, offset joint 2")
+    robot = Robot.from_dh(rows, name="stanford, offset joint 2", convention="standard")
     assert km.classify(robot).kind == "rrp-spherical-wrist"
     rng = np.random.default_rng(33)
     q = random_q(robot, rng, 200)
@@ -301,7 +301,9 @@ def wrist_arms(draw: st.DrawFn) -> Robot:
         Revolute(alpha=draw(sign) * PI / 2, offset=draw(offset)),
         Revolute(d=draw(st.floats(0.0, 0.2)), offset=draw(offset)),
     ]
-    robot = Robot.from_dh(rows, base=draw(transforms()), tool=draw(transforms()), name="random")
+    robot = Robot.from_dh(
+        rows, base=draw(transforms()), tool=draw(transforms()), name="random", convention="standard"
+    )
     if draw(st.booleans()):
         robot = robot.to_convention("modified")
     return robot

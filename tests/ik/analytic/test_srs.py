@@ -90,7 +90,7 @@ def test_random_srs_arms(degenerate: bool) -> None:
         arm = srs.sample_arm(rng, degenerate)
         if "1e-10" in arm.note:  # near-degenerate: checked in test_near_degenerate_arm
             continue
-        robot = km.Robot.from_dh(arm.links, base=arm.base, tool=arm.tool)
+        robot = km.Robot.from_dh(arm.links, base=arm.base, tool=arm.tool, convention="standard")
         q = rng.uniform(-PI, PI, (40, 7))
         res = robot.ik(robot.fk(q), arm_angle=robot.arm_angle(q), respect_limits=False)
         keep = np.flatnonzero(~res.near_singular)  # near a fold: q to round-off over it
@@ -103,7 +103,9 @@ def test_near_degenerate_arm_keeps_the_arm_angle_to_the_repair() -> None:
     # carried onto this one by the check's repair, which may turn it a little along the
     # self-motion; the answer says it may be incomplete
     rng = np.random.default_rng(4)
-    robot = km.Robot.from_dh(srs.random_srs_rows(rng, "shoulder offset 1e-10"))
+    robot = km.Robot.from_dh(
+        srs.random_srs_rows(rng, "shoulder offset 1e-10"), convention="standard"
+    )
     q = rng.uniform(-PI, PI, (30, 7))
     T, psi = robot.fk(q), robot.arm_angle(q)
     res = robot.ik(T, arm_angle=psi, respect_limits=False)
@@ -150,17 +152,17 @@ def test_q3_zero_is_shimizus_reference_plane(iiwa: km.Robot) -> None:
 
 
 def test_labels_are_the_joint_signs_on_the_iiwa(iiwa: km.Robot) -> None:
-    # elbow +: q4 > 0; shoulder no-flip: q2 > 0; wrist no-flip: q6 > 0
+    # shoulder no-flip: q2 > 0; elbow bent positive: q4 > 0; wrist no-flip: q6 > 0
     q = _generic_q(np.random.default_rng(7), 20)
     res = iiwa.ik(iiwa.fk(q), arm_angle=0.4, respect_limits=False)
     for i in range(len(q)):
         one = res[i]
         for sol, label in zip(one.solutions, one.branches, strict=True):
-            elbow, shoulder, wrist = label.split(", ")
-            assert (sol[3] > 0) == (elbow == "elbow +"), label
+            shoulder, elbow, wrist = label.split(", ")
+            assert (sol[3] > 0) == (elbow == "elbow bent positive"), label
             assert (sol[1] > 0) == (shoulder == "shoulder no-flip"), label
             assert (sol[5] > 0) == (wrist == "wrist no-flip"), label
-    assert srs.LABELS[0] == "elbow +, shoulder no-flip, wrist no-flip"
+    assert srs.LABELS[0] == "shoulder no-flip, elbow bent positive, wrist no-flip"
 
 
 def test_batch_equals_single_calls(iiwa: km.Robot) -> None:
@@ -343,7 +345,7 @@ def test_wrist_on_the_shoulder_of_equal_links() -> None:
         km.Revolute(alpha=PI / 2),
         km.Revolute(d=FLANGE),
     ]
-    arm = km.Robot.from_dh(rows)
+    arm = km.Robot.from_dh(rows, convention="standard")
     q = np.array([0.2, 0.5, 0.3, PI, 0.4, 0.6, 0.1])
     T = arm.fk(q)
     assert np.isnan(arm.arm_angle(q))

@@ -24,6 +24,7 @@ from kinematica.core import Chain
 from kinematica.dh.lines import AXIS_ANGLE_TOL, cross3, length_tol, lines_parallel, normal_feet
 
 __all__ = [
+    "ELBOW_BENDS",
     "PROBES",
     "RANK_TOL",
     "ArmGeometry",
@@ -249,6 +250,14 @@ def _fourier_matrix(a: float, sa: float, ca: float, L: FloatArray, H: FloatArray
     return F
 
 
+#: The two elbows of a meeting shoulder whose axes 2 and 3 are not parallel (the arm
+#: does not move in a plane, so "up" and "down" mean nothing): joint 3 turned from its
+#: stretched angle q3* (where the point is farthest from the shoulder) by +bend or
+#: -bend (right-hand rule about axis 3), bend in [0, π]; the two reach the same
+#: distance. Slot order: q3* + bend first.
+ELBOW_BENDS = ("elbow bent positive", "elbow bent negative")
+
+
 def _labels(kind: _core.decoupled.Shoulder, prismatic: bool, parallel23: bool) -> tuple[str, ...]:
     if kind == _Shoulder.meet and parallel23:
         return (
@@ -265,6 +274,6 @@ def _labels(kind: _core.decoupled.Shoulder, prismatic: bool, parallel23: bool) -
             "shoulder back, elbow down",
         )
     if kind == _Shoulder.meet:
-        second = ("slide out", "slide in") if prismatic else ("elbow branch 1", "elbow branch 2")
+        second = ("slide out", "slide in") if prismatic else ELBOW_BENDS
         return tuple(f"shoulder {s}, {e}" for s in ("right", "left") for e in second)
     return tuple(f"position {k}" for k in range(1, 5))

@@ -19,8 +19,11 @@ Branch labels, base to tip (slot ``2 k + s``):
   on the Panda, sin q2 > 0.
 * then how joints 4-6 (the reversed arm's joints 3, 2, 1) place the shoulder centre
   as the tool sees it, named as for a spherical-wrist arm with its shoulder called
-  the wrist: ``elbow up`` / ``elbow down`` (or ``elbow branch 1/2``; for a slide,
-  ``slide out`` / ``slide in``: the larger and the smaller q4) for joint 4,
+  the wrist: ``elbow up`` / ``elbow down`` (or, where axes 4 and 5 are not parallel,
+  ``elbow bent positive`` / ``elbow bent negative``: q4 turned either way from its
+  stretched angle q4*, right-hand rule about axis 4; on the Panda, whose q4 is
+  always negative, bent negative; for a slide, ``slide out`` / ``slide in``: the
+  larger and the smaller q4) for joint 4,
   ``wrist right`` / ``wrist left`` (or ``front`` / ``back``) for joints 6 and 5; arms
   whose last two axes neither meet nor are parallel number these
   ``wrist position 1..4``.
@@ -56,8 +59,14 @@ def shoulder_labels(positions: tuple[str, ...]) -> tuple[str, ...]:
     wrist right"``, ``"position 2"`` becomes ``"wrist position 2"``; a slide's
     ``"slide out"`` (the larger ``q'3 = -q4``) becomes ``"slide in"``.
     """
-    # the reversed arm's slide out is its larger q'3 = -q4: this arm's slide in
-    slide = {"slide out": "slide in", "slide in": "slide out"}
+    # the reversed arm's slide out is its larger q'3 = -q4: this arm's slide in; its
+    # elbow bent positive (q'3 > q'3*) is this arm's q4 < q4*: bent negative
+    slide = {
+        "slide out": "slide in",
+        "slide in": "slide out",
+        "elbow bent positive": "elbow bent negative",
+        "elbow bent negative": "elbow bent positive",
+    }
     labels = []
     for pos in positions:
         parts = [slide.get(p, p.replace("shoulder", "wrist")) for p in pos.split(", ")]

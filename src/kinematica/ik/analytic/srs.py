@@ -16,12 +16,24 @@ is this reference plane, and ψ = 0 is the half-plane on the side axis 1 points
 to (elbow up). It is undefined where the elbow lies on S-W (stretched or
 folded), where W is on S, and where S-W lies along axis 1.
 
-The core's solver (``cpp/include/kinematica/solvers/srs.hpp``) gives 8 slots:
-``elbow ±`` (q4 = q4* ± β, q4* where the elbow is stretched, β ∈ [0, π] its bend:
-on the iiwa the sign of q4), ``shoulder no-flip / flip`` (axes 1-3 split as a
-spherical wrist is: no-flip bends the shoulder as q2 > 0 bends it from q = 0, on
-the iiwa q2 > 0; flip is (q1 + π, -q2, q3 + π) there) and ``wrist no-flip / flip``
-(likewise q6 > 0 on the iiwa). This module reads the geometry from the joint
+The core's solver (``cpp/include/kinematica/solvers/srs.hpp``) gives 8 slots,
+named base to tip by what each changes. At one arm angle the shoulder centre S,
+the elbow point E and the wrist centre W are the same points in all 8 (so
+"elbow up" or "down", where E lies, is the arm angle's to say: on the iiwa ψ = 0
+is up, ψ = π down); what differs is how the joints around each point make it:
+
+- ``shoulder no-flip / flip``: axes 1-3 split as a spherical wrist is: no-flip
+  bends the shoulder as q2 > 0 bends it from q = 0, on the iiwa q2 > 0; flip is
+  (q1 + π, -q2, q3 + π) there: joint 1 turned half a turn, the arm leaning back
+  over it;
+- ``elbow bent positive / negative``: q4 = q4* ± β, q4* where the elbow is
+  stretched, β ∈ [0, π] its bend, turned either way about axis 4 (right-hand
+  rule): on the iiwa (stretched at q4 = 0) the sign of q4, with q3 and q5 half
+  a turn apart between the two (axes 3-5 meet at E there: an elbow flip);
+- ``wrist no-flip / flip``: likewise for axes 5-7, q6 > 0 on the iiwa.
+
+These are Shimizu et al.'s global configuration signs (GC2, GC4, GC6) and the
+iiwa controller's status bits (A2, A4, A6 negative). This module reads the geometry from the joint
 axes, fills its ``SRSParams``, and computes the arm angle of configurations
 (:func:`arm_angle`) from forward kinematics.
 """
@@ -49,10 +61,10 @@ __all__ = ["LABELS", "SPEC", "arm_angle", "build", "handles", "srs_points"]
 FloatArray = NDArray[np.float64]
 PI = math.pi
 
-#: Branch names of the 8 slots, slot 4 e + 2 s + w.
+#: Branch names of the 8 slots, slot 4 e + 2 s + w (e: elbow bent positive, negative).
 LABELS: tuple[str, ...] = tuple(
-    f"elbow {e}, shoulder {s}, wrist {w}"
-    for e in ("+", "-")
+    f"shoulder {s}, elbow bent {e}, wrist {w}"
+    for e in ("positive", "negative")
     for s in ("no-flip", "flip")
     for w in ("no-flip", "flip")
 )
