@@ -288,6 +288,7 @@ class JointParameter:
         The arm left has no closed form (every elimination degenerate) and is tested
         for a continuum at the search's answer (:mod:`kinematica.ik.held_continuum`).
         """
+        from kinematica.ik.coaxial import coaxial_pair
         from kinematica.ik.solvers import closed_form
 
         return (
@@ -297,7 +298,8 @@ class JointParameter:
             and chain.dof == 7
             and not bool(chain.prismatic.any())
             and bool(np.all(v == v[0]))
-            and closed_form(locked_chain(chain, self.index, float(v[0])), "pose") is None
+            and closed_form(locked := locked_chain(chain, self.index, float(v[0])), "pose") is None
+            and coaxial_pair(locked) is None  # a coaxial pair: kinematica.ik.coaxial answers
         )
 
     def _exact_gaps(
