@@ -72,7 +72,8 @@ def pose_choice(chain: Chain, names: Sequence[str] | None = None) -> SolverChoic
     closed = closed_form(chain, "pose")
     if closed is not None:
         return SolverChoice(closed.method, complete=_complete(chain, closed))
-    from kinematica.ik.coaxial import METHOD, coaxial_pair
+    from kinematica.ik.coaxial import METHOD
+    from kinematica.ik.coaxial_pair import coaxial_pair
 
     if coaxial_pair(chain) is not None:  # a continuum at every pose it reaches
         return SolverChoice(METHOD)

@@ -58,9 +58,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 import kinematica._core as _core
-from kinematica._record import record
 from kinematica.core import Chain
-from kinematica.dh.lines import AXIS_EXACT_TOL, line_distance
+from kinematica.ik.coaxial_pair import CoaxialPair, coaxial_pair
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.status import IKStatus
 from kinematica.ik.structure import features
@@ -75,19 +74,26 @@ __all__ = [
     "VIRTUAL_LINES",
     "VIRTUAL_POINT",
     "CoaxialPair",
+    "aimed_line",
+    "coaxial_answer",
     "coaxial_pair",
     "solve_coaxial",
+    "turn_axis",
     "virtual_arm",
 ]
 
 FloatArray = NDArray[np.float64]
-Solve = Callable[[Chain, object, "IKOptions"], "IKResult | IKBatchResult"]
+Solve = Callable[[Chain, FloatArray, "IKOptions"], "IKResult | IKBatchResult"]
 
 #: What the answers' ``method`` says.
 METHOD = "analytic:coaxial-pair"
 #: The virtual joint's axis, in the tool frame: a direction with no special relation to
 #: the frame's axes (unit; the components of (2, -3, 5) / √38).
-VIRTUAL_AXIS: tuple[float, float, float] = (2 / math.sqrt(38), -3 / math.sqrt(38), 5 / math.sqrt(38))
+VIRTUAL_AXIS: tuple[float, float, float] = (
+    2 / math.sqrt(38),
+    -3 / math.sqrt(38),
+    5 / math.sqrt(38),
+)
 #: A point of that axis, in the tool frame, in units of the arm's size (m per m).
 VIRTUAL_POINT: tuple[float, float, float] = (0.31, 0.17, -0.23)
 #: The lines tried (the second only where the first leaves a 6R without a closed form):
@@ -107,48 +113,6 @@ AIM_STEPS = 60
 AIM_TOL = 1e-9
 #: The seed of those configurations (the same line for the same target, every call).
 AIM_SEED = 32
-
-
-@record(eq=True)
-class CoaxialPair:
-    """Two consecutive revolute joints on one line.
-
-    Attributes:
-        first: The first joint of the pair (0-based); the second is ``first + 1``.
-        sign: +1 when their axes point the same way (``q_a + q_(a+1)`` counts), -1 when
-            opposite (``q_a - q_(a+1)``).
-    """
-
-    first: int
-    sign: float
-
-    @property
-    def second(self) -> int:
-        """The second joint of the pair (0-based)."""
-        return self.first + 1
-
-    def merged(self, q: FloatArray) -> FloatArray:
-        """``(...)`` the angle that counts, ``q_a + σ q_(a+1)``, of configurations ``(..., 6)``."""
-        return np.asarray(q[..., self.first] + self.sign * q[..., self.second])
-
-
-def coaxial_pair(chain: Chain) -> CoaxialPair | None:
-    """The first pair of consecutive joints of a 6R arm on one line, or None.
-
-    One line to within :data:`~kinematica.dh.lines.AXIS_EXACT_TOL`: the sine of the
-    axes' angle at most that, their distance at most that times ``1 + size``.
-    """
-    if chain.dof != 6 or bool(chain.prismatic.any()):
-        return None
-    f = features(chain)
-    h, p = f.directions, f.points
-    for i in range(5):
-        sine = float(np.linalg.norm(np.cross(h[i], h[i + 1])))
-        if sine > AXIS_EXACT_TOL:
-            continue
-        if line_distance(h[i], p[i], h[i + 1], p[i + 1]) <= AXIS_EXACT_TOL * (1.0 + f.size):
-            return CoaxialPair(i, 1.0 if float(np.dot(h[i], h[i + 1])) > 0.0 else -1.0)
-    return None
 
 
 _VIRTUAL: weakref.WeakKeyDictionary[Chain, tuple[Chain, ...]] = weakref.WeakKeyDictionary()
@@ -187,7 +151,7 @@ def _with_virtual(chain: Chain, pair: CoaxialPair, W: FloatArray) -> Chain:
     return Chain.from_transforms(
         locked.start,
         between,
-        np.linalg.inv(W),
+        np.asarray(np.linalg.inv(W), dtype=np.float64),
         np.broadcast_to(np.eye(4), (6, 4, 4)).copy(),
         np.zeros(6, dtype=bool),
         limits,
@@ -247,13 +211,13 @@ def aimed_line(
             else:
                 b = mid
         E = screw(0.5 * (a + b)[None])[0][0]
-        W = _turn_axis(E)
+        W = turn_axis(E)
         if W is not None:
             return W
     return None
 
 
-def _turn_axis(E: FloatArray) -> FloatArray | None:
+def turn_axis(E: FloatArray) -> FloatArray | None:
     """A frame whose z axis is the line ``E (4, 4)`` turns about, or None (not a turn)."""
     R, t = E[:3, :3], E[:3, 3]
     w = 0.5 * np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
@@ -306,9 +270,7 @@ def _split(s: float, chain: Chain, pair: CoaxialPair, respect_limits: bool) -> t
     return a, b
 
 
-def _real(
-    chain: Chain, pair: CoaxialPair, q: FloatArray, respect_limits: bool
-) -> FloatArray:
+def _real(chain: Chain, pair: CoaxialPair, q: FloatArray, respect_limits: bool) -> FloatArray:
     """``(k, 6)`` real configurations of the virtual arm's solutions ``q (k, 6)``."""
     out = np.empty((len(q), 6))
     keep = [j for j in range(6) if j != pair.second]
@@ -415,9 +377,7 @@ def coaxial_answer(
         f"{why}: it reaches only a 5-dimensional set of poses, and not this one (every "
         "solution of the arm with a virtual joint at the tool has that joint away from 0)"
     )
-    return _answer(
-        IKStatus.UNREACHABLE, chain, T, Q, Q, (), True, gap, (note,), closest=closest
-    )
+    return _answer(IKStatus.UNREACHABLE, chain, T, Q, Q, (), True, gap, (note,), closest=closest)
 
 
 def _virtual_answer(

@@ -288,7 +288,7 @@ class JointParameter:
         The arm left has no closed form (every elimination degenerate) and is tested
         for a continuum at the search's answer (:mod:`kinematica.ik.held_continuum`).
         """
-        from kinematica.ik.coaxial import coaxial_pair
+        from kinematica.ik.coaxial_pair import coaxial_pair
         from kinematica.ik.solvers import closed_form
 
         return (

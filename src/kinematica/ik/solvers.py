@@ -219,7 +219,7 @@ def pose_solver(
 
 def _coaxial(chain: Chain) -> bool:
     """True for a 6R arm with two consecutive joints on one line (:mod:`kinematica.ik.coaxial`)."""
-    from kinematica.ik.coaxial import coaxial_pair  # arms without a closed form only
+    from kinematica.ik.coaxial_pair import coaxial_pair  # arms without a closed form only
 
     return coaxial_pair(chain) is not None
 

@@ -170,9 +170,7 @@ def stack_results(
         notes=notes,
         complete=complete,
         methods=methods,
-        parameter=None
-        if name is None or values is None
-        else (name, values.reshape(targets.shape)),
+        parameter=None if name is None or values is None else (name, values.reshape(targets.shape)),
     )
 
 
