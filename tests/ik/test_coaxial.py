@@ -198,3 +198,24 @@ def test_an_aimed_line_is_a_turn_of_pitch_within_aim_tol(pitch: float, turn: boo
     if W is not None:  # the frame's z axis is the turn's line
         assert abs(abs(float(W[:3, 2] @ z)) - 1.0) < 1e-12
         assert np.linalg.norm(np.cross(W[:3, 3] - c, z)) < 1e-9
+
+
+@pytest.mark.parametrize(("held", "pair"), [(1, (0, 2)), (3, (2, 4)), (5, (4, 6))])
+def test_a_7r_arm_held_where_two_axes_become_one_line(held: int, pair: tuple[int, int]) -> None:
+    robot = km.load("iiwa14")  # q2, q4 or q6 at 0 puts the axes either side on one line
+    rng = np.random.default_rng(14 + held)
+    for _ in range(2):
+        q = rng.uniform(-1.2, 1.2, 7)
+        q[held] = 0.0
+        T = robot.fk(q)
+        res = robot.ik(T, fixed={held: 0.0}, respect_limits=False)
+        assert res.status == "singular", res.message
+        assert (res.method, res.free_joints, res.parameter) == (METHOD, pair, (f"q{held + 1}", 0.0))
+        F = robot.fk(res.solutions)
+        assert np.linalg.norm(F[:, :3, 3] - T[:3, 3], axis=1).max() <= FK_TOL
+        others = [j for j in range(7) if j not in pair]
+        a, b = pair
+        same = (_wrapped(res.solutions[:, others] - q[others]).max(axis=1) <= MATCH) & (
+            _wrapped(res.solutions[:, a] + res.solutions[:, b] - q[a] - q[b]) <= MATCH
+        )
+        assert same.any()
