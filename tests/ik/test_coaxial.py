@@ -138,6 +138,11 @@ def test_limits_hold_the_pair_within_both() -> None:
     row = res.solutions[_wrapped(res.solutions[:, 0] - q[0]) <= MATCH][0]
     assert row[2] == pytest.approx(max(0.3, row[1] + row[2] - 0.5))
     _reaches(robot, res.solutions, T)
+    # a sum beyond both limits together (at most 0.5 + 1.5): outside the limits only
+    q[1], q[2] = 1.0, 1.4
+    far = robot.ik(robot.fk(q))
+    assert far.status == "out_of_limits", far.message
+    assert not len(far.solutions) and _on_continuum(far.out_of_limits, q, CoaxialPair(1, 1.0))
 
 
 def test_a_batch_answers_as_one_call_each() -> None:

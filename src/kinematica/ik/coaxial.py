@@ -294,12 +294,6 @@ def _errors(chain: Chain, q: FloatArray, T: FloatArray) -> FloatArray:
     return np.stack([pos, rot], axis=1)
 
 
-def _within_limits(chain: Chain, q: FloatArray) -> NDArray[np.bool_]:
-    """``(k,)`` rows of q within the chain's limits."""
-    lo, hi = chain.qlim[:, 0], chain.qlim[:, 1]
-    return np.asarray(np.all((q >= lo) & (q <= hi), axis=1))
-
-
 def coaxial_answer(
     chain: Chain, pair: CoaxialPair, T: FloatArray, options: IKOptions, solve: Solve
 ) -> IKResult:
@@ -328,8 +322,9 @@ def coaxial_answer(
     Q = _real(chain, pair, found, respect)
     err = _errors(chain, Q, T)
     meets = (err[:, 0] <= tol.position) & (err[:, 1] <= tol.rotation)
-    Q, err = Q[meets], err[meets]
-    inside = _within_limits(chain, Q) if respect else np.ones(len(Q), dtype=bool)
+    # within the virtual arm's limits (the pair's summed) iff a split within both exists
+    inside = np.arange(len(found)) < len(res.solutions)
+    Q, err, inside = Q[meets], err[meets], inside[meets]
     if options.q0 is not None and len(Q):
         order = np.argsort(np.linalg.norm(Q - np.asarray(options.q0, dtype=float), axis=1))
         Q, err, inside = Q[order], err[order], inside[order]
@@ -338,7 +333,7 @@ def coaxial_answer(
         f"joints {a} and {b} turn about one line (only q{a} {sign} q{b} counts): the arm "
         "has 5 degrees of freedom"
     )
-    complete = res.complete and str(res.status) != IKStatus.NOT_FOUND
+    complete = _decides(res)
     if len(Q):
         status = IKStatus.SINGULAR if inside.any() else IKStatus.OUT_OF_LIMITS
         note = (
@@ -415,8 +410,16 @@ def _virtual_answer(
 
 
 def _decides(res: IKResult) -> bool:
-    """A virtual arm's answer gives every solution it has (a closed form's, not the search's)."""
-    return res.complete and str(res.status) != IKStatus.NOT_FOUND
+    """A virtual arm's answer gives every solution it has, each once.
+
+    A closed form's (not the search's), of isolated solutions (not a continuum's
+    representatives), away from a singular set (where solutions merge within round-off).
+    """
+    return (
+        res.complete
+        and str(res.status) in (IKStatus.OK, IKStatus.OUT_OF_LIMITS, IKStatus.UNREACHABLE)
+        and not res.near_singular
+    )
 
 
 def _answer(
