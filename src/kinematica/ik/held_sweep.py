@@ -117,7 +117,8 @@ def sweep_joints(locked: Chain, joint: int, q: FloatArray | None) -> tuple[int, 
 
     At a solution ``q (7,)`` of the held arm (the search's), the right singular vector
     of its Jacobian's smallest singular value is the near-continuum's direction; its
-    largest entries name the joints that move most along it. Without q, the end joints.
+    largest entries name the joints that move most along it. Then the end joints (one
+    locked arm serves every value), and without q every other joint.
     """
     order: list[int] = []
     if q is not None and np.isfinite(q).all():
@@ -127,6 +128,8 @@ def sweep_joints(locked: Chain, joint: int, q: FloatArray | None) -> tuple[int, 
     for end in (0, locked.dof):
         if end != joint and end not in order:
             order.append(end)
+    if q is None or not np.isfinite(q).all():  # no direction known: the middle joints too
+        order += [j for j in range(1, locked.dof) if j != joint and j not in order]
     return tuple(order)
 
 
