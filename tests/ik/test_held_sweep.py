@@ -11,6 +11,7 @@ made-up branches at each tolerance's boundary.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -89,7 +90,7 @@ def _never(t: float) -> np.ndarray:
     raise AssertionError("narrowed")
 
 
-def _linear(g0: float, g1: float, t0: float, t1: float):  # noqa: ANN202
+def _linear(g0: float, g1: float, t0: float, t1: float) -> Callable[[float], np.ndarray]:
     def at(t: float) -> np.ndarray:
         w = (t - t0) / (t1 - t0)
         return np.array([[0.3 + g0 + w * (g1 - g0), 0.1 * w]])
