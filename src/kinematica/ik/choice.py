@@ -72,9 +72,14 @@ def pose_choice(chain: Chain, names: Sequence[str] | None = None) -> SolverChoic
     closed = closed_form(chain, "pose")
     if closed is not None:
         return SolverChoice(closed.method, complete=_complete(chain, closed))
-    from kinematica.ik.numeric import METHOD  # an arm without a closed form
+    from kinematica.ik.coaxial import METHOD
+    from kinematica.ik.coaxial_pair import coaxial_pair
 
-    return SolverChoice(METHOD, reason=numeric_reason(chain, "pose", False), complete=False)
+    if coaxial_pair(chain) is not None:  # a continuum at every pose it reaches
+        return SolverChoice(METHOD)
+    from kinematica.ik.numeric import METHOD as SEARCH  # an arm without a closed form
+
+    return SolverChoice(SEARCH, reason=numeric_reason(chain, "pose", False), complete=False)
 
 
 def _complete(chain: Chain, closed: ClosedForm) -> bool:

@@ -130,11 +130,13 @@ def continuum_answer(
         keep_out = [holds_value(float(s[joint]), value, slide) for s in wide.out_of_limits]
         if not any(keep) and not any(keep_out):
             continue
-        solutions = wide.solutions[keep]
-        solutions[:, joint] = value
-        outside = wide.out_of_limits[keep_out]
-        outside[:, joint] = value
+        solutions, exact = _exact(locked, joint, value, wide.solutions[keep], T, options)
+        outside, exact_out = _exact(locked, joint, value, wide.out_of_limits[keep_out], T, options)
+        if not len(solutions) and not len(outside):
+            continue
         residuals = _residuals(chain, solutions, T)
+        branches = [b for b, k in zip(wide.branches, keep, strict=True) if k]
+        out_branches = [b for b, k in zip(wide.out_of_limits_branches, keep_out, strict=True) if k]
         note = (
             f"with {name} held at {value:.6g} the pose is reached along a continuum "
             f"(joints {', '.join(str(j + 1) for j in sorted(free))} move together, the arm left "
@@ -146,10 +148,10 @@ def continuum_answer(
             status=IKStatus.SINGULAR if len(solutions) else IKStatus.OUT_OF_LIMITS,
             method=res.method,
             residuals=residuals,
-            branches=tuple(b for b, k in zip(wide.branches, keep, strict=True) if k),
+            branches=tuple(b for b, k in zip(branches, exact, strict=True) if k),
             out_of_limits=outside,
             out_of_limits_branches=tuple(
-                b for b, k in zip(wide.out_of_limits_branches, keep_out, strict=True) if k
+                b for b, k in zip(out_branches, exact_out, strict=True) if k
             ),
             free_joints=tuple(sorted(free)),
             notes=(note,),
@@ -157,6 +159,37 @@ def continuum_answer(
             parameter=(name, value),
         )
     return answer
+
+
+def _exact(
+    locked: Chain, joint: int, value: float, Q: FloatArray, T: FloatArray, options: IKOptions
+) -> tuple[FloatArray, list[bool]]:
+    """The rows of ``Q (k, n)`` with the held joint put at its value, each exact; which kept.
+
+    A row whose held joint was off its value by up to HELD_MATCH_TOL misses the target
+    by up to that times the arm's size once the joint is put there (1.7e-9 m was seen
+    on rtb-data's iiwa URDF with q4 held at 1e-6): such a row is taken by Newton's
+    method on the held arm back to the target (:func:`kinematica.ik.held_sweep.polished`),
+    and dropped where it cannot be.
+    """
+    from kinematica.ik.held_sweep import polished
+    from kinematica.ik.tolerance import parse_tolerance
+
+    tol = parse_tolerance(options.tol)
+    rows: list[FloatArray] = []
+    kept: list[bool] = []
+    for row in np.array(Q, dtype=float):
+        row[joint] = value
+        err = _residuals(locked, np.ascontiguousarray(np.delete(row, joint))[None], T)[0]
+        if not (err[0] <= tol.position and err[1] <= tol.rotation):
+            again = polished(locked, joint, value, [row], T, tol.position, tol.rotation)
+            if not len(again):
+                kept.append(False)
+                continue
+            row = again[0]
+        rows.append(row)
+        kept.append(True)
+    return np.array(rows).reshape(-1, Q.shape[1]), kept
 
 
 def _residuals(chain: Chain, q: FloatArray, T: FloatArray) -> FloatArray:

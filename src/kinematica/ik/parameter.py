@@ -264,10 +264,7 @@ class JointParameter:
                 out = solve_ik(locked_chain(chain, k, first), target, opts)
                 if isinstance(out, IKResult) and self._continua(chain, v, opts, targets):
                     wide = widen_result(out, k, first, (self.name, first))
-                    return continuum_answer(
-                        chain, k, first, self.name, targets.poses[0], wide, opts,
-                        locked_chain, solve_ik,
-                    )  # fmt: skip
+                    return self._held_answer(chain, first, targets.poses[0], wide, opts)
             else:  # a middle joint at several values: one arm per value, each target alone
                 return self._one_by_one(chain, targets, v, opts)
         except KinematicaError as exc:
@@ -288,6 +285,7 @@ class JointParameter:
         The arm left has no closed form (every elimination degenerate) and is tested
         for a continuum at the search's answer (:mod:`kinematica.ik.held_continuum`).
         """
+        from kinematica.ik.coaxial_pair import coaxial_pair
         from kinematica.ik.solvers import closed_form
 
         return (
@@ -297,8 +295,39 @@ class JointParameter:
             and chain.dof == 7
             and not bool(chain.prismatic.any())
             and bool(np.all(v == v[0]))
-            and closed_form(locked_chain(chain, self.index, float(v[0])), "pose") is None
+            and closed_form(locked := locked_chain(chain, self.index, float(v[0])), "pose") is None
+            and coaxial_pair(locked) is None  # a coaxial pair: kinematica.ik.coaxial answers
         )
+
+    def _held_answer(
+        self, chain: Chain, value: float, T: FloatArray, answer: IKResult, opts: IKOptions
+    ) -> IKResult:
+        """The search's ``answer`` on an arm without a closed form: a continuum, or the sweep's.
+
+        A continuum (:mod:`kinematica.ik.held_continuum`) is said so; else the solutions
+        found along the self-motion (:mod:`kinematica.ik.held_sweep`) answer, where it
+        finds any: the search's single point stands only where the sweep found nothing.
+        """
+        from kinematica.ik.held_sweep import held_sweep, sweep_result
+        from kinematica.ik.solve import solve_ik
+
+        k = self.index
+        one = continuum_answer(chain, k, value, self.name, T, answer, opts, locked_chain, solve_ik)
+        if one is not answer or T.shape != (4, 4):
+            return one
+
+        def hold(s: int, target: FloatArray, values: FloatArray | float, o: IKOptions) -> object:
+            return JointParameter(s, f"q{s + 1}").solve(chain, target, values, o)
+
+        q = np.concatenate([answer.solutions, answer.out_of_limits])
+        first = q[0] if len(q) else None
+        swept = held_sweep(chain, k, value, T, opts, hold, first)  # type: ignore[arg-type]
+        if swept is None:
+            return one
+        found, method, note = swept
+        res = sweep_result(chain, found, method, note, T, bool(opts.respect_limits),
+                           (self.name, value))  # fmt: skip
+        return continuum_answer(chain, k, value, self.name, T, res, opts, locked_chain, solve_ik)
 
     def _exact_gaps(
         self,
@@ -348,9 +377,7 @@ class JointParameter:
             vi = float(v[i])
             one = widen_result(one, self.index, vi, (self.name, vi))
             if self._continua(chain, v[i : i + 1], opts, targets):
-                one = continuum_answer(
-                    chain, self.index, vi, self.name, T, one, opts, locked_chain, solve_ik
-                )
+                one = self._held_answer(chain, vi, T, one, opts)
             results[i] = one
         return stack_results(results, targets, chain.dof, self.name, v)
 

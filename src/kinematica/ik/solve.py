@@ -187,6 +187,12 @@ def _solve(
     closed = None if method == "numeric" or m is not None else closed_form(chain, kind, parameter)
     if values is not None:  # the search would not keep to the arm angle: never a fallback
         closed = _at_parameter(chain, closed, options, m is not None, values)
+    if closed is None and method != "numeric" and m is None and kind == "pose":
+        from kinematica.ik.coaxial import coaxial_pair, solve_coaxial  # a 6R with a coaxial pair
+
+        pair = coaxial_pair(chain)
+        if pair is not None:
+            return solve_coaxial(chain, pair, targets, options, solve_ik)
     if method == "analytic" and closed is None:
         why = "a mask was given" if m is not None else f"structure: {structure_of(chain)[1]}"
         at_angle = m is None and closed_form(chain, kind, "arm_angle") is not None

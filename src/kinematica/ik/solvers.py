@@ -210,9 +210,18 @@ def pose_solver(
     # (a closed form with a search_note, or a partial one, says not_found where it proves
     # nothing, and the one-pose path hands not_found to the general one, which searches)
     direct = closed is None or closed.exact or features(chain).slack == 0.0
+    if closed is None and method == "auto" and kind == "pose" and _coaxial(chain):
+        direct = False  # the general path answers: a continuum (kinematica.ik.coaxial)
     # the search's answers for "auto" say why no closed form applies; "numeric" was asked for
     notes = why_numeric(chain, closed, kind, None) if method == "auto" else ()
     return PoseSolver(solver.ik_rigid, opts, labels, name, complete, direct, notes)
+
+
+def _coaxial(chain: Chain) -> bool:
+    """True for a 6R arm with two consecutive joints on one line (:mod:`kinematica.ik.coaxial`)."""
+    from kinematica.ik.coaxial_pair import coaxial_pair  # arms without a closed form only
+
+    return coaxial_pair(chain) is not None
 
 
 def solver_of(

@@ -109,8 +109,8 @@ def stack_results(
     results: Mapping[int, IKResult],
     targets: Targets,
     n: int,
-    name: str,
-    values: FloatArray,
+    name: str | None,
+    values: FloatArray | None,
 ) -> IKBatchResult:
     """One batch of single answers (flat target index -> answer); the others are invalid.
 
@@ -118,8 +118,8 @@ def stack_results(
         results: The answer of each valid target (already whole: n joint values).
         targets: The parsed targets (shape, invalid rows and their messages, notes).
         n: Joints of the arm.
-        name: The parameter's name.
-        values: ``(N,)`` its value per target.
+        name: The parameter's name (None: every joint was free).
+        values: ``(N,)`` its value per target (None with ``name`` None).
     """
     N = targets.poses.shape[0]
     labels: list[str] = []
@@ -170,7 +170,7 @@ def stack_results(
         notes=notes,
         complete=complete,
         methods=methods,
-        parameter=(name, values.reshape(targets.shape)),
+        parameter=None if name is None or values is None else (name, values.reshape(targets.shape)),
     )
 
 

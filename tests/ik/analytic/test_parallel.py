@@ -208,17 +208,22 @@ def test_classification_and_declined_arms() -> None:
             "6R, three parallel axes (2-3-4), UR type",
         )
     rows = UR5_ROWS
-    # axes 5 and 6 on one line: q5 and q6 only add up; the numeric solver takes it
+    # axes 5 and 6 on one line: q5 and q6 only add up (a continuum: kinematica.ik.coaxial)
     same_line = Robot.from_dh(
         [*rows[:4], Revolute(d=0.09465), Revolute(d=0.0823)], convention="standard"
     )
     # a link of the triangle of length zero: axes 2 and 3 on one line
     no_link = Robot.from_dh([rows[0], Revolute(), *rows[2:]], convention="standard")
-    # axis 1 parallel to axes 2-4: four parallel axes
+    # axis 1 parallel to axes 2-4: four parallel axes (axes 1 and 2 on one line, a = 0)
     four = Robot.from_dh([Revolute(d=0.1), *rows[1:]], convention="standard")
-    for robot in (same_line, no_link, four):
-        T = robot.fk(np.array([0.3, -1.0, 1.2, 0.3, 0.8, 0.2]))
-        assert robot.ik(T, seed=0).method == "numeric:lm"
+    q = np.array([0.3, -1.0, 1.2, 0.3, 0.8, 0.2])
+    for robot, pair in ((same_line, (4, 5)), (no_link, (1, 2)), (four, (0, 1))):
+        res = robot.ik(robot.fk(q), seed=0)
+        assert (res.method, res.status, res.free_joints) == (
+            "analytic:coaxial-pair",
+            "singular",
+            pair,
+        )
     puma = km.load("puma560")
     assert classify(puma).kind != "three-parallel-6R"
     assert (

@@ -287,13 +287,19 @@ def test_a_slide_after_the_shoulder_and_the_builders_refusals() -> None:
     robot = km.Robot.from_dh(both, convention="standard")
     assert features(robot.chain).shoulder_center is not None
     assert classify(robot).kind == "spherical-wrist-6R"
-    # axes 5 and 6 coincide (twist 0, no offset): the shoulder centre has 2 DOF from the tool
+    # axes 5 and 6 coincide (twist 0, no offset): the shoulder centre has 2 DOF from the
+    # tool, and only q5 + q6 counts: a continuum (kinematica.ik.coaxial), not the search
     flat = [Revolute(d=0.3, alpha=PI / 2), Revolute(alpha=-PI / 2), Revolute(d=0.4, alpha=PI / 2)]
     flat += [Revolute(a=0.3, alpha=PI / 2), Revolute(d=0.3), Revolute(d=0.1)]
     robot = km.Robot.from_dh(flat, convention="standard")
     assert classify(robot).kind == "spherical-shoulder-6R"
     assert closed_form(robot.chain, "pose") is None
-    assert robot.ik(robot.fk(np.full(6, 0.3)), seed=0).method == "numeric:lm"
+    res = robot.ik(robot.fk(np.full(6, 0.3)), seed=0)
+    assert (res.method, res.status, res.free_joints) == (
+        "analytic:coaxial-pair",
+        "singular",
+        (4, 5),
+    )
 
 
 def _stanford() -> tuple[list[Revolute | Prismatic], FloatArray, FloatArray]:
