@@ -239,8 +239,15 @@ def test_solution_panels_thin_their_ticks_and_title_their_q() -> None:
     fit_solutions(fig)
     renderer = _draw(fig)
     res = puma.ik(T, respect_limits=False)
+    titles = [fig._suptitle] + [ax.title for ax in fig.axes]
+    boxes = [(t.get_text(), t.get_window_extent(renderer)) for t in titles]
+    assert _overlapping(boxes) == []
+    for text, box in boxes:
+        assert box.x0 >= 0 and box.x1 <= fig.bbox.width and box.y1 <= fig.bbox.height, text
+    caption = next(t for t in fig.texts if t.get_gid() == "caption").get_window_extent(renderer)
     for ax, q in zip(fig.axes, res.solutions, strict=True):
         assert _overlapping(_tick_boxes(ax, renderer)) == []
+        assert [t for t, box in _tick_boxes(ax, renderer) if box.overlaps(caption)] == []
         title = ax.get_title().replace("\n", " ")
         assert title.endswith("(deg)")
         printed = np.array([float(v) for v in title.split("q = [")[1].split("]")[0].split(",")])

@@ -196,8 +196,8 @@ class ArmDrawing:
             self.placer = LabelPlacer(ax, texts, self._project(points), gids, style)
         self.texts: list[Any] = [] if self.placer is None else self.placer.labels
         self.legend = None
-        if frames and legend:
-            self.legend = axis_legend(ax)
+        if frames and legend:  # 3-D: a corner the box leaves free; 2-D: where it is empty
+            self.legend = axis_legend(ax, loc="upper left" if plane is None else "best")
 
     # ----------------------------------------------------------------- public
     def update(self, pose: ArmPose) -> None:

@@ -265,8 +265,8 @@ def tight_single(fig: Any, three_d: bool) -> None:
     zoom and the Axes' place corrected until the box, its ticks and axis names
     fill the figure below the title within :data:`EDGE_PX`.
     """
-    if not three_d:
-        fig.subplots_adjust(left=0.1, right=0.97, bottom=0.08, top=0.94)
+    if not three_d:  # the layout engine keeps the axes' names and title inside
+        fig.set_layout_engine("constrained", h_pad=0.04, w_pad=0.04)
         return
     ax = fig.axes[0]
     width, height = fig.bbox.width, fig.bbox.height

@@ -46,13 +46,15 @@ SOLUTION_COLUMNS = 4
 #: title, of a panel's title and of the caption in pixels.
 SOLUTION_ZOOM = 0.8
 SUPTITLE_PX = 32
-TITLE_PX = 14
+TITLE_PX = 15
 CAPTION_PX = 15
+NAMES_PX = 20
 #: Space (points) between a panel's 3-D axis and its name.
 PANEL_NAME_PAD = 8.0
-#: Characters of a panel's title on one line (about 330 pixels at 8 points), and of
-#: the caption a panel wide.
-TITLE_CHARS = 50
+#: Characters of a panel's title on one line (330 pixels at 8 points): its branch, its
+#: q (wider characters: digits), and of the caption a panel wide.
+TITLE_CHARS = 46
+Q_CHARS = 38
 CAPTION_CHARS = 55
 
 
@@ -217,7 +219,7 @@ def _draw_solutions(
         label_axes(ax, plane)
         branch = res.branches[i] if i < len(res.branches) and res.branches[i] else "solution"
         title = f"{i + 1}: {branch}" + (f" ({free} free)" if free else "")
-        q_line = textwrap.fill(q_text(robot, sols[i], degrees), TITLE_CHARS)
+        q_line = textwrap.fill(q_text(robot, sols[i], degrees), Q_CHARS)
         ax.set_title(f"{textwrap.fill(title, TITLE_CHARS)}\n{q_line}", fontsize=8)
         for axis in (ax.xaxis, ax.yaxis, getattr(ax, "zaxis", None)):
             if axis is not None:  # small panels: names nearer their 7-point tick labels
@@ -260,7 +262,8 @@ def fit_solutions(fig: Any) -> None:
     room = SUPTITLE_PX * lines + TITLE_PX * panel
     height = fig.dpi * fig.get_figheight()
     top = 1.0 - room / height
-    bottom = 0.04 + CAPTION_PX * _caption_lines(fig) / height
+    lines = _caption_lines(fig)  # the bottom panels' axis names hang below their boxes
+    bottom = 0.04 + (CAPTION_PX * lines + (NAMES_PX if lines else 0)) / height
     if top - bottom < 0.4:  # too small for its text (save_solutions resizes it after)
         top, bottom = 0.8, 0.1
     rows = max(ax.get_subplotspec().get_geometry()[0] for ax in fig.axes)
