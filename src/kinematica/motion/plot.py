@@ -125,7 +125,8 @@ def slice_figure(sl: WorkspaceSlice, title: str = "") -> Any:
         i, j = np.nonzero(holes)
         centres = np.asarray(sl.origin) + (np.stack([i, j], axis=1) + 0.5) * sl.pixel
         ax.scatter(
-            *centres.T,
+            centres[:, 0],
+            centres[:, 1],
             s=4,
             marker="o",
             color="white",

@@ -167,7 +167,6 @@ class ArmDrawing:
         self.scale = robot_scale(robot)
         self.prismatic = robot.is_prismatic
         self.has_tool = not np.array_equal(robot.tool, np.eye(4))
-        self.texts: list[Any] = []
         self._draw_base()
         xy = self._project(pose.origins)
         self.links = ax.plot(*xy.T, color=LINK_COLOR, lw=3.0, alpha=alpha, gid="links")[0]

@@ -213,8 +213,8 @@ class LabelPlacer:
             label.set_verticalalignment(va)
             label.set_position(tuple(offset / px_per_pt))
             if ring > 0:  # far from its point: a leader line from the point to the box
-                box = _box(anchor, np.array(sizes[shown.index(k)]), offset, ha, va)
-                near = np.clip(anchor, box[:2], box[2:])
+                placed = _box(anchor, np.array(sizes[shown.index(k)]), offset, ha, va)
+                near = np.clip(anchor, placed[:2], placed[2:])
                 self.leaders[k].set_data([anchor[0], near[0]], [anchor[1], near[1]])
                 self.leaders[k].set_visible(True)
 

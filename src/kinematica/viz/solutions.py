@@ -125,10 +125,10 @@ def _caption(groups: list[tuple[list[int], list[int]]]) -> list[str]:
     for group, joints in groups:
         by_joints.setdefault(tuple(joints), []).append(group)
     lines = []
-    for joints, alike in by_joints.items():
+    for key, alike in by_joints.items():
         named = [f"({', '.join(str(i + 1) for i in group)})" for group in alike]
         panels = named[0] if len(named) == 1 else ", ".join(named[:-1]) + " and " + named[-1]
-        which = ", ".join(f"q{j + 1}" for j in joints) or "no joint (one solution found twice)"
+        which = ", ".join(f"q{j + 1}" for j in key) or "no joint (one solution found twice)"
         kind = "pair" if all(len(g) == 2 for g in alike) else "group"
         each = f"of each {kind} " if len(alike) > 1 else ""
         lines.append(

@@ -14,10 +14,13 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from kinematica.viz._mpl import is_3d, matplotlib
 
 __all__ = ["TICK_ROOM", "fit_ticks"]
+
+FloatArray = NDArray[np.float64]
 
 #: Room kept around a tick label, as a factor of its estimated size: the estimate
 #: (0.62 of the font size a character) is a little wide for digits and short for "-".
@@ -59,7 +62,7 @@ def _fitting_locator_class() -> Any:
     matplotlib()
     from matplotlib.ticker import MaxNLocator
 
-    class FittingLocator(MaxNLocator):  # type: ignore[misc]
+    class FittingLocator(MaxNLocator):
         """MaxNLocator with the most bins whose labels keep apart on the screen."""
 
         def __init__(self, ax: Any, index: int, size: float) -> None:
@@ -68,13 +71,14 @@ def _fitting_locator_class() -> Any:
 
         def tick_values(self, vmin: float, vmax: float) -> Any:
             lo, hi = sorted((float(vmin), float(vmax)))
+            ticks: FloatArray
             if not hi > lo:
                 return super().tick_values(vmin, vmax)
             ux, uy = _screen_step(self._ax, self._index, lo, hi)
             axis = (self._ax.xaxis, self._ax.yaxis, getattr(self._ax, "zaxis", None))[self._index]
             for bins in range(MAX_TICKS, 1, -1):
                 self.set_params(nbins=bins)
-                ticks = super().tick_values(vmin, vmax)
+                ticks = np.asarray(super().tick_values(vmin, vmax), dtype=float)
                 inside = ticks[(ticks >= lo - 1e-9 * (hi - lo)) & (ticks <= hi + 1e-9 * (hi - lo))]
                 if len(inside) < 2:
                     return ticks
