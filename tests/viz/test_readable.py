@@ -232,15 +232,15 @@ def _tick_boxes(ax: object, renderer: object) -> list[tuple[str, object]]:
 def test_solution_panels_thin_their_ticks_and_title_their_q() -> None:
     puma = km.load("puma560")
     T = puma.fk(np.radians([10, -30, 20, 40, 50, -10]))
-    fig = Figure(figsize=(13.2, 7.3), dpi=100)
-    viz.plot_solutions(puma, T, respect_limits=False, fig=fig)
+    fig = Figure(figsize=(13.2, 7.45), dpi=100)
+    viz.plot_solutions(puma, T, respect_limits=False, frames=True, labels=True, fig=fig)
     from kinematica.viz.solutions import fit_solutions
 
     fit_solutions(fig)
     renderer = _draw(fig)
     res = puma.ik(T, respect_limits=False)
-    titles = [fig._suptitle] + [ax.title for ax in fig.axes]
-    boxes = [(t.get_text(), t.get_window_extent(renderer)) for t in titles]
+    titles = [fig._suptitle, *fig.legends] + [ax.title for ax in fig.axes]
+    boxes = [(str(t), t.get_window_extent(renderer)) for t in titles]
     assert _overlapping(boxes) == []
     for text, box in boxes:
         assert box.x0 >= 0 and box.x1 <= fig.bbox.width and box.y1 <= fig.bbox.height, text

@@ -233,8 +233,8 @@ def _draw_solutions(
     if caption:
         wrapped = [textwrap.fill(line, CAPTION_CHARS * cols) for line in caption]
         fig.text(0.01, 0.005, "\n".join(wrapped), fontsize=8, ha="left", va="bottom", gid="caption")
-    if frames:
-        axis_legend(fig, loc="upper left")
+    if frames:  # one row in the top-right corner, beside the picture's title
+        axis_legend(fig, loc="upper right", ncol=3, title=None, borderaxespad=0.2)
     if plane is not None:  # the layout engine keeps titles and axis labels in the picture
         fig.set_layout_engine("constrained", h_pad=0.06, w_pad=0.06)
     else:  # which it does not do for 3-D axes: room is made for the titles by hand
