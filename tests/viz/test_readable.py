@@ -211,6 +211,9 @@ def test_the_arm_fills_its_picture() -> None:
         assert box.x0 >= 0 and box.y0 >= 0, text.get_text()
         assert box.x1 <= fig.bbox.width and box.y1 <= fig.bbox.height, text.get_text()
     assert _overlapping(_tick_boxes(ax, renderer)) == []
+    # thinned, not emptied: the 1.4 m tall z axis keeps a tick every 0.2 m or so
+    z_ticks = [t for t in ax.zaxis.get_major_ticks() if 0 <= t.get_loc() <= ax.get_zlim()[1]]
+    assert len(z_ticks) >= 5
     legend = next(a for a in fig.legends + ax.get_children() if a.get_gid() == "axis-legend")
     drawn = [(t.get_text(), t.get_window_extent(renderer)) for t in [fig._suptitle, *ax.texts]]
     assert [t for t, b in drawn if b.overlaps(legend.get_window_extent(renderer))] == []
@@ -289,3 +292,15 @@ def test_animation_time_stamp_clear_of_the_ticks() -> None:
     assert box.x0 >= 0 and box.x1 <= fig.bbox.width and box.y1 <= fig.bbox.height
     others = [fig._suptitle, *fig.axes[0].texts, fig.axes[0].get_legend()]
     assert [o for o in others if o.get_window_extent(renderer).overlaps(box)] == []
+
+
+def test_box_sides_in_proportion_with_a_floor() -> None:
+    from kinematica.viz._mpl import MARGIN, MIN_BOX_SIDE, equal_limits
+
+    ax = Figure().add_subplot(projection="3d")
+    # 2 m along x, 0.6 m along z, nothing along y: the y side is the floor's
+    equal_limits(ax, np.array([[0.0, 0.0, 0.0], [2.0, 0.0, 0.6]]))
+    widths = np.array([np.diff(lim)[0] for lim in (ax.get_xlim(), ax.get_ylim(), ax.get_zlim())])
+    np.testing.assert_allclose(widths / 2.0, [1.0 + MARGIN, MIN_BOX_SIDE, 0.3 + MARGIN])
+    aspect = np.array(ax.get_box_aspect())
+    np.testing.assert_allclose(aspect / aspect[0], widths / widths[0], rtol=1e-12)
