@@ -118,9 +118,9 @@ class LabelPlacer:
         texts: The labels' texts (empty for a label not shown).
         points: ``(K, 3)`` their points (world frame, m); for a 2-D Axes, the
             two shown coordinates ``(K, 2)``.
-        style: Keyword arguments of every label's :class:`~matplotlib.text.Annotation`
-            (``gid`` is given per label in ``gids``).
-        gids: One ``gid`` per label.
+        gids: One ``gid`` per label (``"label-S4"``...); its leader line is
+            ``"leader-" + gid``.
+        style: Keyword arguments of every label's :class:`~matplotlib.text.Annotation`.
 
     Each label is an Annotation whose ``xy`` is its point (projected into the
     Axes' 2-D data coordinates in 3-D) and whose text is offset from it
