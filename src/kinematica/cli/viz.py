@@ -59,6 +59,7 @@ def plot(args: argparse.Namespace) -> int:
                 respect_limits=not args.ignore_limits,
                 frames=args.frames,
                 labels=args.frames and not args.no_labels,
+                degrees=not args.rad,
                 size=_size(args),
                 dpi=args.dpi,
             )

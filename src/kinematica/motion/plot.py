@@ -13,6 +13,7 @@ import numpy as np
 
 from kinematica.errors import ArgumentError, KinematicaError
 from kinematica.io.atomic import atomic_path, write_failed
+from kinematica.motion.volume import sampling_holes
 from kinematica.motion.workspace import WorkspaceSlice
 
 if TYPE_CHECKING:
@@ -24,6 +25,7 @@ __all__ = [
     "plot_time_optimal",
     "plot_workspace_slice",
     "require_matplotlib",
+    "slice_figure",
 ]
 
 
@@ -76,6 +78,12 @@ def check_map_path(path: str | Path) -> Path:
 def plot_workspace_slice(sl: WorkspaceSlice, path: str | Path, title: str = "") -> Path:
     """Save a workspace slice as a picture: reachable pixels coloured by manipulability.
 
+    Pixels no sample fell in that the slice's area counts as inside
+    (:func:`kinematica.motion.volume.sampling_holes`: enclosed by sampled
+    pixels, never a cell of a cavity three pixels wide) are filled with their
+    neighbours' value, marked with a dot and named in the legend; nothing
+    outside the closed region is painted.
+
     Args:
         sl: The slice (:meth:`kinematica.motion.Workspace.slice`).
         path: Output file; the format follows the extension (``.png``, ``.svg``, ...).
@@ -89,20 +97,67 @@ def plot_workspace_slice(sl: WorkspaceSlice, path: str | Path, title: str = "") 
     """
     out = check_map_path(path)
     plt = require_matplotlib()
+    return _save(plt, slice_figure(sl, title), out)
+
+
+def slice_figure(sl: WorkspaceSlice, title: str = "") -> Any:
+    """The Figure :func:`plot_workspace_slice` saves (a bare Figure, not pyplot's).
+
+    Its Axes holds the reach image (the first ``AxesImage``: 1 where reachable,
+    NaN elsewhere), the manipulability image when computed, and the filled
+    sampling holes as dots (``gid="sampling-holes"``).
+    """
+    require_matplotlib()
+    from matplotlib.figure import Figure
+
     u, v = sl.plane[0], sl.plane[1]
     w = ({"x", "y", "z"} - {u, v}).pop()
-    fig, ax = plt.subplots(figsize=(6.4, 5.6), dpi=110)
-    reach = np.where(sl.occupancy, 1.0, np.nan)
+    fig = Figure(figsize=(6.4, 5.9), dpi=110)
+    ax = fig.add_subplot()
+    holes = sampling_holes(sl.occupancy)
+    reach = np.where(sl.occupancy | holes, 1.0, np.nan)
     ax.imshow(reach.T, origin="lower", extent=sl.extent, cmap="Greys", vmin=0.0, vmax=3.0)
     if np.isfinite(sl.manipulability).any():
-        im = ax.imshow(sl.manipulability.T, origin="lower", extent=sl.extent, cmap="viridis")
+        shown = _fill_from_neighbours(sl.manipulability, holes)
+        im = ax.imshow(shown.T, origin="lower", extent=sl.extent, cmap="viridis")
         fig.colorbar(im, ax=ax, label="manipulability (largest in each pixel)")
+    if holes.any():
+        i, j = np.nonzero(holes)
+        centres = np.asarray(sl.origin) + (np.stack([i, j], axis=1) + 0.5) * sl.pixel
+        ax.scatter(
+            centres[:, 0],
+            centres[:, 1],
+            s=4,
+            marker="o",
+            color="white",
+            edgecolors="#333333",
+            linewidths=0.3,
+            gid="sampling-holes",
+            label=f"{int(holes.sum())} pixels inside the region that no sample hit: "
+            "filled\n(value of their neighbours), as the area counts them",
+        )
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.11), fontsize=7, frameon=False)
     ax.set_xlabel(f"{u} (m)")
     ax.set_ylabel(f"{v} (m)")
     ax.set_aspect("equal")
     head = f"{title}\n" if title else ""
     ax.set_title(f"{head}{u}{v} slice at {w} = {sl.at:.3f} m, area {sl.area:.4g} m²")
-    return _save(plt, fig, out)
+    return fig
+
+
+def _fill_from_neighbours(values: np.ndarray, holes: np.ndarray) -> np.ndarray:
+    """``values`` with each hole given the mean of its face neighbours' finite values."""
+    out = values.copy()
+    padded = np.pad(values, 1, constant_values=np.nan)
+    around = np.stack(
+        [padded[:-2, 1:-1], padded[2:, 1:-1], padded[1:-1, :-2], padded[1:-1, 2:]], axis=0
+    )
+    finite = np.isfinite(around)
+    total = np.where(finite, around, 0.0).sum(axis=0)
+    count = finite.sum(axis=0)
+    mean = np.divide(total, count, out=np.full(values.shape, np.nan), where=count > 0)
+    out[holes] = mean[holes]
+    return out
 
 
 def _save(plt: Any, fig: Any, path: str | Path) -> Path:

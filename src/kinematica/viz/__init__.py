@@ -20,8 +20,9 @@ from kinematica.viz.geometry import ArmPose, arm_pose, drawing_plane, robot_scal
 from kinematica.viz.limits import plot_limits, save_limits
 from kinematica.viz.notebook import PageView, page_view
 from kinematica.viz.page import page_data, page_html, robot_units, write_page
-from kinematica.viz.plot import plot, plot_solutions, save_figure, save_plot, save_solutions
+from kinematica.viz.plot import plot, save_figure, save_plot
 from kinematica.viz.server import PageServer, serve
+from kinematica.viz.solutions import plot_solutions, save_solutions
 from kinematica.viz.trajectory import plot_trajectory
 from kinematica.viz.workspace import plot_workspace
 

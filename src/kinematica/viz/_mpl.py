@@ -37,6 +37,8 @@ FloatArray = NDArray[np.float64]
 
 #: Extra room around the drawn points, as a fraction of the largest extent.
 MARGIN = 0.08
+#: Narrowest side of a picture's box, as a fraction of its widest.
+MIN_BOX_SIDE = 0.35
 #: Smallest and largest side of a picture (pixels; Agg refuses 2^16 and more).
 MIN_SIDE, MAX_SIDE = 16, 20_000
 #: Most pixels in a picture: 40 megapixels are 160 MB of RGBA while it is drawn.
@@ -127,13 +129,22 @@ def is_3d(ax: Any) -> bool:
     return getattr(ax, "name", "") == "3d"
 
 
-def equal_limits(ax: Any, points: FloatArray, plane: tuple[int, int] | None = None) -> None:
-    """Equal scaling on every axis: a cube (3-D) or square (2-D) around ``points``.
+def equal_limits(
+    ax: Any, points: FloatArray, plane: tuple[int, int] | None = None, zoom: float = 1.0
+) -> None:
+    """Equal scaling on every axis, the box shaped like the points' extent.
+
+    Each axis spans the points' extent with a :data:`MARGIN` (at least
+    :data:`MIN_BOX_SIDE` of the widest, so an arm standing straight up is not
+    drawn in a sliver); the box's sides (3-D ``box_aspect``, 2-D ``aspect``
+    ``"equal"``) are in proportion to the spans, so a metre has one length on
+    every axis and the arm fills the panel instead of a cube around it.
 
     Args:
         ax: The Axes.
         points: ``(N, 3)`` points that must be visible (metres, world frame).
         plane: For a 2-D Axes, the two world coordinates shown (e.g. ``(0, 1)``).
+        zoom: Size of a 3-D box in its panel (matplotlib's ``zoom``).
     """
     pts = np.asarray(points, dtype=float).reshape(-1, 3)
     pts = pts[np.all(np.isfinite(pts), axis=1)]
@@ -142,12 +153,16 @@ def equal_limits(ax: Any, points: FloatArray, plane: tuple[int, int] | None = No
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     centre = (lo + hi) / 2.0
     cols = list(plane) if plane is not None else [0, 1, 2]
-    half = float(np.max(hi[cols] - lo[cols])) / 2.0
-    half = half * (1.0 + 2.0 * MARGIN) if half > 0 else 0.5
+    half = (hi[cols] - lo[cols]) / 2.0
+    widest = float(np.max(half))
+    if widest <= 0:
+        half = np.full(len(cols), 0.5)
+    else:
+        half = np.maximum(half + MARGIN * widest, MIN_BOX_SIDE * widest)
     setters = (ax.set_xlim, ax.set_ylim, getattr(ax, "set_zlim", None))
-    for setter, col in zip(setters, cols, strict=False):
-        setter(centre[col] - half, centre[col] + half)
+    for setter, col, h in zip(setters, cols, half, strict=False):
+        setter(centre[col] - h, centre[col] + h)
     if is_3d(ax):
-        ax.set_box_aspect((1.0, 1.0, 1.0))
+        ax.set_box_aspect(tuple(float(h) for h in half), zoom=zoom)
     else:
         ax.set_aspect("equal", adjustable="box")

@@ -26,6 +26,7 @@ from kinematica.viz._mpl import (
 from kinematica.viz.arm import ArmDrawing, extent_points
 from kinematica.viz.geometry import ArmPose, arm_pose, drawing_plane, robot_scale
 from kinematica.viz.plot import label_axes, tight_single
+from kinematica.viz.ticks import fit_ticks
 from kinematica.viz.trajectory import PATH_COLOR, check_trajectory
 
 __all__ = [
@@ -149,6 +150,49 @@ def animation_samples(
     return times, qs, rate
 
 
+def animation_figure(
+    robot: Robot,
+    q_path: FloatArray,
+    q_frames: FloatArray,
+    size: tuple[int, int],
+    dpi: float,
+    frames: bool,
+    labels: bool,
+) -> tuple[Any, ArmDrawing, Any]:
+    """The Figure an animation is drawn on, at its first frame.
+
+    Args:
+        robot: The robot.
+        q_path: ``(T, n)`` the trajectory's samples (the faint tool path).
+        q_frames: ``(F, n)`` the configurations of the frames (the view holds them all).
+        size: ``(width, height)`` in pixels.
+        dpi: Dots per inch.
+        frames: Draw the DH frames.
+        labels: Name the frames.
+
+    Returns:
+        The Figure, the arm's :class:`ArmDrawing` (moved by its ``update``) and the
+        time stamp's Text (``gid="time"``), in the top-right corner, above the axes
+        and their ticks.
+    """
+    fig = figure(*size, dpi, pyplot_managed=False)
+    plane = drawing_plane(robot)
+    ax = new_axes(fig, plane is None)
+    poses = arm_pose(robot, q_frames)
+    path_pts = arm_pose(robot, q_path).tool[:, :3, 3]
+    shown = path_pts if plane is None else path_pts[:, list(plane)]
+    ax.plot(*shown.T, color=PATH_COLOR, lw=1.2, alpha=0.6, gid="tool-path")
+    first = ArmPose(poses.origins[0], poses.frames[0], poses.tool[0], poses.joints[0])
+    drawing = ArmDrawing(ax, robot, first, plane=plane, frames=frames, labels=labels)
+    equal_limits(ax, extent_points(poses, robot_scale(robot)), plane)
+    label_axes(ax, plane)
+    ax.set_title(robot.name, fontsize=10)
+    fit_ticks(ax, 7.0)
+    tight_single(fig, plane is None)
+    stamp = fig.text(0.99, 0.99, "", fontsize=9, ha="right", va="top", gid="time")
+    return fig, drawing, stamp
+
+
 def animate(
     robot: Robot,
     q: ArrayLike,
@@ -180,7 +224,7 @@ def animate(
 
     Returns:
         The :class:`Animation` written. The tool path is drawn faintly
-        (``gid="tool-path"``) and the time shown in the title of every frame.
+        (``gid="tool-path"``) and the time shown in the top-right corner of every frame.
 
     Raises:
         VizError: Unknown file type, MP4 without ffmpeg, a playing rate below MIN_FPS.
@@ -222,26 +266,12 @@ def animate(
         size = (size[0] + size[0] % 2, size[1] + size[1] % 2)  # yuv420p needs even sizes
     else:
         writer = animation.PillowWriter(**rate_arg)
-    fig = figure(*size, dpi, pyplot_managed=False)
-    plane = drawing_plane(robot)
-    ax = new_axes(fig, plane is None)
+    fig, drawing, stamp_text = animation_figure(robot, qa, qs, size, dpi, frames, labels)
     poses = arm_pose(robot, qs)
-    path_pts = arm_pose(robot, qa).tool[:, :3, 3]
-    shown = path_pts if plane is None else path_pts[:, list(plane)]
-    ax.plot(*shown.T, color=PATH_COLOR, lw=1.2, alpha=0.6, gid="tool-path")
 
     def at(k: int) -> ArmPose:
         return ArmPose(poses.origins[k], poses.frames[k], poses.tool[k], poses.joints[k])
 
-    drawing = ArmDrawing(ax, robot, at(0), plane=plane, frames=frames, labels=labels)
-    equal_limits(ax, extent_points(poses, robot_scale(robot)), plane)
-    label_axes(ax, plane)
-    tight_single(fig, plane is None)
-    ax.set_title(robot.name, fontsize=10)
-    ax.tick_params(labelsize=7)
-    stamp_text = fig.text(0.01, 0.01, "", fontsize=9, ha="left", va="bottom", gid="time")
-    # Every frame shows its own time in the bottom-left corner, so no two
-    # frames are identical (pillow merges identical neighbours in a GIF).
     decimals = max(2, math.ceil(math.log10(max(rate, 1.0))) + 1)
     try:
         with atomic_path(out) as tmp, writer.saving(fig, str(tmp), dpi):

@@ -26,8 +26,16 @@ from kinematica.viz.geometry import (
     plane_normal_sign,
     robot_scale,
 )
+from kinematica.viz.labels import LabelPlacer
 
-__all__ = ["AXIS_COLORS", "ArmDrawing", "extent_points"]
+__all__ = [
+    "AXIS_COLORS",
+    "ArmDrawing",
+    "arrow_lengths",
+    "axis_legend",
+    "coincident_names",
+    "extent_points",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -37,12 +45,13 @@ LINK_COLOR = "#333333"
 REVOLUTE_COLOR = "#f0a030"
 PRISMATIC_COLOR = "#4a90d9"
 BASE_COLOR = "#9a9a9a"
-#: Frame origins closer than this fraction of the robot's size share one label ("S4, S5").
+#: Frame origins closer than this fraction of the robot's size share one label ("S4, S5"):
+#: no picture can show them apart. Frames further apart each have their own label at
+#: their own origin, placed by :mod:`kinematica.viz.labels` so that none covers another.
 SAME_PLACE = 1e-6
-#: Labels of frames nearer than this fraction of the robot's size, but not in one place
-#: ("S4, S5" and "S6" at a wrist, l4 apart), would print over each other: they are
-#: written as one block, a line each ("S4, S5" above "S6"), at the first one's corner.
-LABEL_NEAR = 0.1
+#: A frame whose origin is that of k earlier ones (S5 at S4's) is drawn with arrows
+#: SHRINK**k as long, so that the arrows of frames in one place can be told apart.
+SHRINK = 0.6
 #: Below this fraction of the arrow length, a frame axis seen in a 2-D view is
 #: drawn as a dot (pointing at the viewer) or a cross (away from the viewer).
 OUT_OF_PLANE = 0.3
@@ -62,32 +71,56 @@ def extent_points(pose: ArmPose, scale: float) -> FloatArray:
     return np.concatenate(parts)
 
 
-def _coincident(points: FloatArray, scale: float) -> list[list[int]]:
-    """Indices of ``points`` grouped where they coincide (one label for S4, S5, S6)."""
-    groups: list[list[int]] = []
+def coincident_names(points: FloatArray, scale: float) -> list[str]:
+    """Each frame's label: "S4, S5" for the first of frames in one place, "" for the others.
+
+    Frames whose origins are within :data:`SAME_PLACE` of the robot's size of
+    the first one of a group share its label (as on the interactive page).
+    """
+    names = [""] * len(points)
+    first: list[int] = []
     for i, p in enumerate(points):
-        for group in groups:
-            if np.linalg.norm(points[group[0]] - p) < SAME_PLACE * scale:
-                group.append(i)
+        for j in first:
+            if np.linalg.norm(points[j] - p) < SAME_PLACE * scale:
+                names[j] += f", S{i}"
                 break
         else:
-            groups.append([i])
-    return groups
+            first.append(i)
+            names[i] = f"S{i}"
+    return names
 
 
-def _label_blocks(points: FloatArray, scale: float) -> list[int]:
-    """For each label's point, the index of the first label of its block of near ones.
+def axis_legend(ax: Any, **where: Any) -> Any:
+    """A legend of the frame arrows' colours: x red, y green, z blue (``gid="axis-legend"``).
 
-    Points within :data:`LABEL_NEAR` of the robot's size of each other (chained)
-    are one block; a label that is first of its block has its own index.
+    Args:
+        ax: The Axes, or a Figure for one legend over all its panels.
+        where: Keyword arguments of ``legend`` (``loc``...).
     """
-    first = list(range(len(points)))
-    for i in range(len(points)):
-        for j in range(i):
-            if np.linalg.norm(points[i] - points[j]) < LABEL_NEAR * scale:
-                first[i] = first[j]
-                break
-    return first
+    from matplotlib.lines import Line2D
+
+    handles = [
+        Line2D([], [], color=color, lw=2.0, label=f"{name} axis")
+        for name, color in zip("xyz", AXIS_COLORS, strict=True)
+    ]
+    style = {"loc": "upper left", "fontsize": 7, "title": "frame arrows", "title_fontsize": 7}
+    style.update(where)
+    legend = ax.legend(handles=handles, **style)
+    legend.set_gid("axis-legend")
+    return legend
+
+
+def arrow_lengths(frames: FloatArray, scale: float) -> FloatArray:
+    """``(F,)`` arrow length of each frame: ARROW * scale, times SHRINK per earlier frame there.
+
+    Frames in one place (within :data:`SAME_PLACE` of ``scale``), such as S4 and
+    S5 at a spherical wrist's centre, would draw their arrows over each other.
+    """
+    origins = frames[:, :3, 3]
+    gaps = np.linalg.norm(origins[:, None] - origins[None], axis=-1)
+    earlier = np.tril(gaps < SAME_PLACE * scale, k=-1).sum(axis=1)
+    lengths: FloatArray = ARROW * scale * SHRINK**earlier
+    return lengths
 
 
 def _arrow_2d(start: FloatArray, tip: FloatArray, length: float) -> list[FloatArray]:
@@ -114,6 +147,7 @@ class ArmDrawing:
         frames: Draw the DH frames S0..Sn and the tool frame.
         labels: Name the frames (S0..Sn, tool, W for the world frame).
         alpha: Opacity of everything drawn (fainter ghosts of other poses).
+        legend: With ``frames``, a legend of the arrows' colours (x, y, z) on the Axes.
     """
 
     def __init__(
@@ -126,13 +160,13 @@ class ArmDrawing:
         frames: bool = True,
         labels: bool = True,
         alpha: float = 1.0,
+        legend: bool = True,
     ) -> None:
         self.ax, self.robot, self.plane = ax, robot, plane
         self.show_frames, self.show_labels, self.alpha = frames, labels, alpha
         self.scale = robot_scale(robot)
         self.prismatic = robot.is_prismatic
         self.has_tool = not np.array_equal(robot.tool, np.eye(4))
-        self.texts: list[Any] = []
         self._draw_base()
         xy = self._project(pose.origins)
         self.links = ax.plot(*xy.T, color=LINK_COLOR, lw=3.0, alpha=alpha, gid="links")[0]
@@ -149,18 +183,20 @@ class ArmDrawing:
             self.tool_link = ax.plot(
                 *ends.T, color=LINK_COLOR, lw=1.2, ls="--", alpha=alpha, gid="tool"
             )[0]
-        self.label_groups: list[list[int]] = []
-        self.label_names: list[str] = []
+        self.placer: LabelPlacer | None = None
         if labels:
-            self.label_groups = _coincident(pose.frames[:, :3, 3], self.scale)
-            for group in self.label_groups:
-                self.label_names.append(", ".join(f"S{i}" for i in group))
-                origin = pose.frames[group[0], :3, 3]
-                self.texts.append(self._text(origin, "", f"label-S{group[0]}"))
+            gids = [f"label-S{i}" for i in range(len(pose.frames))]
             if self.has_tool and frames:
-                self.label_names.append("tool")
-                self.texts.append(self._text(pose.tool[:3, 3], "", "label-tool", 2))
-            self._write_labels(pose)
+                gids.append("label-tool")
+            if self._shows_world():
+                gids.append("label-W")
+            style = {"fontsize": 8, "alpha": alpha, "zorder": 5}
+            texts, points = self._label_texts(pose, len(gids))
+            self.placer = LabelPlacer(ax, texts, self._project(points), gids, style)
+        self.texts: list[Any] = [] if self.placer is None else self.placer.labels
+        self.legend = None
+        if frames and legend:  # 3-D: a corner the box leaves free; 2-D: where it is empty
+            self.legend = axis_legend(ax, loc="upper left" if plane is None else "best")
 
     # ----------------------------------------------------------------- public
     def update(self, pose: ArmPose) -> None:
@@ -176,18 +212,31 @@ class ArmDrawing:
         self._write_labels(pose)
 
     # -------------------------------------------------------------- internals
+    def _label_texts(self, pose: ArmPose, count: int) -> tuple[list[str], FloatArray]:
+        """The labels' texts and points: frames (in one place: one label), tool, W."""
+        origins = pose.frames[:, :3, 3]
+        texts = coincident_names(origins, self.scale)
+        points = [origins]
+        if len(texts) < count and self.has_tool and self.show_frames:
+            texts.append("tool")
+            points.append(pose.tool[None, :3, 3])
+        if len(texts) < count:
+            texts.append("W")
+            points.append(np.zeros((1, 3)))
+        return texts, np.concatenate(points)
+
     def _write_labels(self, pose: ArmPose) -> None:
-        """Place the labels; near ones as one block of lines at the first one's place."""
-        points = [pose.frames[group[0], :3, 3] for group in self.label_groups]
-        if len(self.texts) > len(points):
-            points.append(pose.tool[:3, 3])
-        if not points:
+        """Name the frames at this pose (the next draw places the labels)."""
+        if self.placer is None:
             return
-        first = _label_blocks(np.array(points), self.scale)
-        for k, (text, p) in enumerate(zip(self.texts, points, strict=True)):
-            block = [self.label_names[i] for i in range(len(points)) if first[i] == k]
-            text.set_text("\n".join(block))  # empty for a label written by its block
-            self._place(text, p, 2 if text.get_gid() == "label-tool" else 0)
+        texts, points = self._label_texts(pose, len(self.placer.labels))
+        for label, text in zip(self.placer.labels, texts, strict=True):
+            label.set_text(text)
+        self.placer.set_points(self._project(points))
+
+    def _shows_world(self) -> bool:
+        """True when the world frame W is drawn (and named): a base transform moves S0."""
+        return self.show_frames and not np.array_equal(self.robot.base, np.eye(4))
 
     def _project(self, pts: FloatArray) -> FloatArray:
         return pts if self.plane is None else pts[..., list(self.plane)]
@@ -260,10 +309,9 @@ class ArmDrawing:
         return faces if self.plane is not None else _padded(faces)
 
     def _frame_lines(self, frames: FloatArray) -> tuple[list[FloatArray], list[str]]:
-        length = ARROW * self.scale
         segs: list[FloatArray] = []
         colors: list[str] = []
-        for frame in frames:
+        for frame, length in zip(frames, arrow_lengths(frames, self.scale), strict=True):
             arrows = arrow_segments(frame, length)
             for j in range(3):
                 if self.plane is None:
@@ -314,24 +362,6 @@ class ArmDrawing:
         coll.set_gid(gid)
         return coll
 
-    def _offset(self, kind: int) -> FloatArray:
-        """Where a label sits from its point: 0 a frame, 1 the world frame, 2 the tool."""
-        s = 0.035 * self.scale
-        off = ((s, -s, s), (-4.0 * s, -2.0 * s, -s), (s, s, 1.5 * s))[kind]
-        return np.array(off if self.plane is None else off[:2])
-
-    def _text(self, p: FloatArray, label: str, gid: str, kind: int = 0) -> Any:
-        pos = self._project(p) + self._offset(kind)
-        style = {"fontsize": 8, "alpha": self.alpha, "gid": gid, "zorder": 5, "va": "top"}
-        return self.ax.text(*pos, label, **style)
-
-    def _place(self, text: Any, p: FloatArray, kind: int) -> None:
-        pos = self._project(p) + self._offset(kind)
-        if self.plane is None:
-            text.set_position_3d(pos)
-        else:
-            text.set_position(pos)
-
     def _draw_base(self) -> None:
         """A grey plate under S0 (in the world's horizontal plane), and the world frame W."""
         base = self.robot.base
@@ -358,14 +388,12 @@ class ArmDrawing:
             )
             self.ax.add_patch(coll)
         coll.set_gid("base")
-        if np.array_equal(base, np.eye(4)) or not self.show_frames:
+        if not self._shows_world():
             return
         segs, colors = self._frame_lines(np.eye(4)[None])
         self._lines(segs, colors, 1.0, "world-frame")
         ends = self._project(np.stack([np.zeros(3), o]))
         self.ax.plot(*ends.T, color=BASE_COLOR, lw=1.0, ls=":", alpha=self.alpha, gid="base-link")
-        if self.show_labels:
-            self._text(np.zeros(3), "W", "label-W", 1)
 
 
 def _padded(faces: list[FloatArray]) -> FloatArray:

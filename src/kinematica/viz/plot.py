@@ -1,49 +1,42 @@
-"""Static pictures of the arm: one configuration, or every IK solution of a pose."""
+"""Static pictures of the arm at one configuration (every IK solution: :mod:`.solutions`)."""
 
 from __future__ import annotations
 
-import math
 import os
-import textwrap
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica.errors import DimensionError, UnreachableError
-from kinematica.ik.result import IKResult
+from kinematica.errors import DimensionError
 from kinematica.io.atomic import atomic_path, write_failed
 from kinematica.robot import Robot
 from kinematica.robot.ellipsoid import EllipsoidKind
-from kinematica.viz._mpl import VizError, check_picture, equal_limits, figure, is_3d, new_axes
+from kinematica.viz._mpl import VizError, equal_limits, figure, is_3d, new_axes
 from kinematica.viz.arm import ArmDrawing, extent_points
 from kinematica.viz.ellipsoid import draw_ellipsoid
-from kinematica.viz.geometry import ArmPose, arm_pose, drawing_plane, robot_scale
+from kinematica.viz.geometry import ArmPose, arm_pose, drawing_plane
+from kinematica.viz.ticks import fit_ticks
 
 __all__ = [
     "IMAGE_SUFFIXES",
+    "arm_figure",
     "check_image_path",
-    "fit_solutions",
     "plot",
-    "plot_solutions",
     "save_figure",
     "save_plot",
-    "save_solutions",
 ]
 
 FloatArray = NDArray[np.float64]
 
 #: File types a static picture can be written as (matplotlib's Agg, SVG and PDF writers).
 IMAGE_SUFFIXES = (".png", ".svg", ".pdf", ".jpg", ".jpeg")
-#: Most solution panels side by side in :func:`plot_solutions`.
-SOLUTION_COLUMNS = 4
-#: Size of a 3-D solution panel's cube in its panel (matplotlib's 1 leaves the axis
-#: labels of a narrow picture outside it), and the height of a line of the picture's
-#: title and of a panel's title in pixels.
-SOLUTION_ZOOM = 0.8
-SUPTITLE_PX = 32
-TITLE_PX = 16
+#: Space (points) between a 3-D axis and its name, beyond its tick labels.
+AXIS_NAME_PAD = 14.0
+#: Free room (pixels) at a single picture's edges, and the draws made to fit it.
+EDGE_PX = 4
+FIT_STEPS = 3
 
 
 def one_q(robot: Robot, q: ArrayLike) -> FloatArray:
@@ -73,10 +66,10 @@ def axes_plane(robot: Robot, ax: Any) -> tuple[int, int] | None:
 def label_axes(ax: Any, plane: tuple[int, int] | None) -> None:
     """Name the world coordinates on the axes (metres)."""
     names = ("x (m)", "y (m)", "z (m)")
-    if plane is None:
-        ax.set_xlabel(names[0])
-        ax.set_ylabel(names[1])
-        ax.set_zlabel(names[2])
+    if plane is None:  # clear of the tick labels (matplotlib's pad of 4 points is not)
+        ax.set_xlabel(names[0], labelpad=AXIS_NAME_PAD)
+        ax.set_ylabel(names[1], labelpad=AXIS_NAME_PAD)
+        ax.set_zlabel(names[2], labelpad=AXIS_NAME_PAD)
     else:
         ax.set_xlabel(names[plane[0]])
         ax.set_ylabel(names[plane[1]])
@@ -146,99 +139,8 @@ def draw_arm(
         pts = np.concatenate([pts, np.asarray(extra, dtype=float).reshape(-1, 3)])
     equal_limits(ax, pts, plane)
     label_axes(ax, plane)
+    fit_ticks(ax)
     return drawing
-
-
-def plot_solutions(
-    robot: Robot,
-    T: ArrayLike,
-    *,
-    respect_limits: bool = True,
-    frames: bool = False,
-    labels: bool = False,
-    fig: Any = None,
-) -> Any:
-    """Every IK solution of one target, side by side, each titled with its branch.
-
-    Args:
-        robot: The robot.
-        T: ``(4, 4)`` target pose, or ``(3,)`` position (orientation free),
-            world frame, metres.
-        respect_limits: Only solutions within the joint limits (as ``robot.ik``).
-        frames: Draw the DH frames in every panel.
-        labels: Name the frames.
-        fig: A Figure to draw on (empty); a new one through pyplot if ``None``.
-
-    Returns:
-        The Figure: one panel per solution, with a common scale, the target
-        marked (``gid="target"``), each titled "k: <branch>".
-
-    Raises:
-        UnreachableError: The target has no solution to draw (the message
-            gives the IK status and why).
-        DimensionError: ``T`` is not one pose or position.
-    """
-    target = np.asarray(T, dtype=float)
-    if target.shape not in ((4, 4), (3,)):
-        raise DimensionError(
-            f"plot_solutions takes one target: a (4, 4) pose or a (3,) position, "
-            f"got shape {target.shape}"
-        )
-    res = robot.ik(target, respect_limits=respect_limits)
-    assert isinstance(res, IKResult)  # one target gives one result
-    sols = res.solutions
-    if sols.shape[0] == 0:
-        raise UnreachableError(f"{robot.name}: no solution to draw ({res.status}): {res.message}")
-    k = sols.shape[0]
-    cols = min(k, SOLUTION_COLUMNS)
-    rows = math.ceil(k / cols)
-    if fig is None:
-        fig = figure(330 * cols, 320 * rows + 50, 100, pyplot_managed=True)
-    plane = drawing_plane(robot)
-    poses = arm_pose(robot, sols)
-    point = target[:3, 3] if target.shape == (4, 4) else target
-    scale = robot_scale(robot)
-    all_pts = np.concatenate([extent_points(poses, scale), point[None]])
-    free = ", ".join(f"q{i + 1}" for i in res.free_joints)
-    for i in range(k):
-        ax = new_axes(fig, plane is None, rows, cols, i + 1)
-        one = ArmPose(poses.origins[i], poses.frames[i], poses.tool[i], poses.joints[i])
-        ArmDrawing(ax, robot, one, plane=plane, frames=frames, labels=labels)
-        shown = point if plane is None else point[list(plane)]
-        ax.plot(*[[v] for v in shown], marker="*", ms=11, color="#e377c2", ls="", gid="target")
-        equal_limits(ax, all_pts, plane)
-        label_axes(ax, plane)
-        branch = res.branches[i] if i < len(res.branches) and res.branches[i] else "solution"
-        title = f"{i + 1}: {branch}" + (f" ({free} free)" if free else "")
-        ax.set_title(textwrap.fill(title, 34), fontsize=9)
-        ax.tick_params(labelsize=7)
-    # about 40 characters of the title fit over one panel: a narrow picture wraps it
-    head = f"{robot.name}: {k} solution{'s' if k > 1 else ''} ({res.method})"
-    fig.suptitle(textwrap.fill(head, 40 * cols), fontsize=11)
-    if plane is not None:  # the layout engine keeps titles and axis labels in the picture
-        fig.set_layout_engine("constrained", h_pad=0.06, w_pad=0.06)
-    else:  # which it does not do for 3-D axes: each cube is drawn smaller in its panel
-        for ax in fig.axes:
-            ax.set_box_aspect((1.0, 1.0, 1.0), zoom=SOLUTION_ZOOM)
-        fit_solutions(fig)
-    return fig
-
-
-def fit_solutions(fig: Any) -> None:
-    """Fit titles and labels in the picture at its size (call again after a resize).
-
-    2-D panels: the layout engine places them, but its first pass beside equal-aspect
-    axes leaves the bottom label a pixel out, so one pass is made here before saving.
-    3-D panels: room is left for the title lines above them.
-    """
-    if fig.get_layout_engine() is not None:
-        fig.draw_without_rendering()
-        return
-    lines = fig.get_suptitle().count("\n") + 1
-    panel = max((ax.get_title().count("\n") + 1 for ax in fig.axes), default=0)
-    room = SUPTITLE_PX * lines + TITLE_PX * panel
-    top = 1.0 - room / (fig.dpi * fig.get_figheight())
-    fig.subplots_adjust(left=0.0, right=0.97, bottom=0.04, top=top, wspace=0.1, hspace=0.25)
 
 
 def save_figure(fig: Any, path: str | os.PathLike[str]) -> Path:
@@ -285,8 +187,33 @@ def save_plot(
 
     ``ellipsoid="velocity"`` or ``"force"`` also draws that ellipsoid of the tool
     point (scaled to the arm: :func:`kinematica.viz.ellipsoid.draw_ellipsoid`);
-    the title then states the scale.
+    the title then states the scale. The arm fills the picture (:func:`tight_single`).
     """
+    fig = arm_figure(
+        robot,
+        q,
+        frames=frames,
+        labels=labels,
+        size=size,
+        dpi=dpi,
+        title=title,
+        ellipsoid=ellipsoid,
+    )
+    return save_figure(fig, path)
+
+
+def arm_figure(
+    robot: Robot,
+    q: ArrayLike,
+    *,
+    frames: bool = True,
+    labels: bool = True,
+    size: tuple[int, int] = (800, 700),
+    dpi: float = 100.0,
+    title: str | None = None,
+    ellipsoid: EllipsoidKind | None = None,
+) -> Any:
+    """The Figure :func:`save_plot` writes (a bare Figure, without pyplot)."""
     qa = one_q(robot, q)
     fig = figure(*size, dpi, pyplot_managed=False)
     plane = drawing_plane(robot)
@@ -300,50 +227,81 @@ def save_plot(
     draw_arm(ax, robot, arm_pose(robot, qa), plane, frames=frames, labels=labels, extra=extra)
     ax.set_title(text, fontsize=10)
     tight_single(fig, plane is None)
-    return save_figure(fig, path)
+    return fig
+
+
+def drawn_box(ax: Any) -> Any:
+    """The Bbox (pixels) of a drawn 3-D Axes' box, its axes' ticks and names, its texts.
+
+    ``Axes3D.get_tightbbox`` also holds the Axes' whole rectangle, most of it empty.
+    """
+    from matplotlib.transforms import Bbox
+    from mpl_toolkits.mplot3d import proj3d
+
+    renderer = ax.figure._get_renderer()
+    limits = (ax.get_xlim3d(), ax.get_ylim3d(), ax.get_zlim3d())
+    corners = np.array(np.meshgrid(*limits, indexing="ij")).reshape(3, -1)
+    x, y, _ = proj3d.proj_transform(*corners, ax.M)
+    boxes = [
+        Bbox.from_extents(
+            *ax.transData.transform(np.stack([x, y], 1)).min(0),
+            *ax.transData.transform(np.stack([x, y], 1)).max(0),
+        )
+    ]
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+        boxes.append(axis.get_tightbbox(renderer))
+    texts = [ax.title, *ax.texts]
+    boxes += [t.get_window_extent(renderer) for t in texts if t.get_visible() and t.get_text()]
+    return Bbox.union([b for b in boxes if b is not None and b.width > 0])
 
 
 def tight_single(fig: Any, three_d: bool) -> None:
-    """Let one Axes fill its figure (3-D axes carry wide margins by default)."""
-    if three_d:
-        fig.subplots_adjust(left=0.0, right=0.96, bottom=0.03, top=0.92)
-    else:
-        fig.subplots_adjust(left=0.1, right=0.97, bottom=0.08, top=0.94)
+    """Let one Axes fill its figure: the 3-D box as large as its title and labels allow.
+
+    The Axes' title becomes the figure's (at its top) and the legend of the frame
+    arrows goes to the figure's top-left corner. A 3-D box is sized by
+    matplotlib's ``zoom`` and its tick labels stick out of its Axes by amounts
+    that depend on the view: the picture is drawn (without rendering) and the
+    zoom and the Axes' place corrected until the box, its ticks and axis names
+    fill the figure below the title within :data:`EDGE_PX`.
+    """
+    if not three_d:  # the layout engine keeps the axes' names and title inside
+        fig.set_layout_engine("constrained", h_pad=0.04, w_pad=0.04)
+        return
+    ax = fig.axes[0]
+    width, height = fig.bbox.width, fig.bbox.height
+    top = height - EDGE_PX
+    if ax.get_title():
+        title = fig.suptitle(ax.get_title(), fontsize=10, y=top / height, va="top")
+        ax.set_title("")
+        fig.draw_without_rendering()
+        top = title.get_window_extent().y0 - EDGE_PX
+    legend = ax.get_legend()
+    if legend is not None:
+        legend.set_bbox_to_anchor((0.0, 1.0), transform=fig.transFigure)
+    fig.subplots_adjust(left=0.0, right=1.0, bottom=0.0, top=top / height)
+    fit_box(ax, (EDGE_PX, EDGE_PX, width - EDGE_PX, top))
 
 
-def save_solutions(
-    robot: Robot,
-    T: ArrayLike,
-    path: str | os.PathLike[str],
-    *,
-    respect_limits: bool = True,
-    frames: bool = False,
-    labels: bool = False,
-    size: tuple[int, int] | None = None,
-    dpi: float = 100.0,
-) -> tuple[Path, int, tuple[int, int]]:
-    """:func:`plot_solutions` into a file, without pyplot.
+def fit_box(ax: Any, region: tuple[float, float, float, float]) -> None:
+    """Zoom and move a 3-D Axes until its box, ticks, axis names and title fill ``region``.
 
     Args:
-        robot: The robot.
-        T: ``(4, 4)`` target pose or ``(3,)`` position (m, world frame).
-        path: Output file (PNG, SVG, PDF...).
-        respect_limits: Only solutions within the joint limits.
-        frames: Draw the DH frames.
-        labels: Name the frames.
-        size: ``(width, height)`` in pixels; about 330 x 320 per panel if ``None``.
-        dpi: Dots per inch.
-
-    Returns:
-        The path, the number of solutions drawn, and the picture's size in pixels.
+        ax: An Axes3D of a figure that can be drawn.
+        region: ``(x0, y0, x1, y1)`` in pixels of the figure.
     """
-    size, dpi = check_picture(size, dpi)  # before the IK is solved
-    fig = figure(100, 100, dpi, pyplot_managed=False)
-    plot_solutions(robot, T, respect_limits=respect_limits, frames=frames, labels=labels, fig=fig)
-    k = len(fig.axes)
-    cols = min(k, SOLUTION_COLUMNS)
-    if size is None:
-        size = (330 * cols, 320 * math.ceil(k / cols) + 50)
-    fig.set_size_inches(size[0] / dpi, size[1] / dpi)
-    fit_solutions(fig)
-    return save_figure(fig, path), k, size
+    fig = ax.figure
+    x0, y0, x1, y1 = region
+    aspect, zoom = np.array(ax.get_box_aspect()), 1.0
+    for _ in range(FIT_STEPS):
+        fig.draw_without_rendering()
+        box = drawn_box(ax)
+        factor = min((x1 - x0) / box.width, (y1 - y0) / box.height)
+        zoom = float(np.clip(zoom * factor, 0.2, 5.0))
+        ax.set_box_aspect(aspect, zoom=zoom)
+        fig.draw_without_rendering()
+        box = drawn_box(ax)  # then centred: the zoom grows the box about the Axes' centre
+        pos = ax.get_position()
+        dx = ((x0 + x1) / 2 - (box.x0 + box.x1) / 2) / fig.bbox.width
+        dy = ((y0 + y1) / 2 - (box.y0 + box.y1) / 2) / fig.bbox.height
+        ax.set_position([pos.x0 + dx, pos.y0 + dy, pos.width, pos.height])

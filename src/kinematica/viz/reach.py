@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike
 from kinematica.reach import BasePlacement, ReachabilityMap
 from kinematica.viz._mpl import figure, new_axes
 from kinematica.viz.plot import save_figure
+from kinematica.viz.ticks import fit_ticks
 
 __all__ = ["plot_placement", "plot_reachability", "save_placement_plot", "save_reachability_plot"]
 
@@ -104,6 +105,7 @@ def plot_reachability(m: ReachabilityMap, title: str = "") -> Any:
     ax3.set_xlabel("x (m)")
     ax3.set_ylabel("y (m)")
     ax3.set_zlabel("z (m)")
+    fit_ticks(ax3)
     ax3.set_title(f"reachable voxels, y ≤ {m.centre[1]:.3g} m (the rest cut away)", fontsize=10)
     if im is not None:
         cax = fig.add_axes((0.89, 0.15, 0.015, 0.7))

@@ -12,7 +12,8 @@ from kinematica.robot import Robot
 from kinematica.viz._mpl import equal_limits, figure, new_axes
 from kinematica.viz.arm import ArmDrawing, extent_points
 from kinematica.viz.geometry import ArmPose, arm_pose, drawing_plane, robot_scale
-from kinematica.viz.plot import label_axes
+from kinematica.viz.plot import EDGE_PX, fit_box, label_axes
+from kinematica.viz.ticks import fit_ticks
 
 __all__ = ["check_trajectory", "plot_trajectory"]
 
@@ -96,10 +97,18 @@ def plot_trajectory(
     ax3.plot(*[[v] for v in shown[0]], marker="o", color=PATH_COLOR, ls="", gid="start")
     ax3.plot(*[[v] for v in shown[-1]], marker="s", color=PATH_COLOR, ls="", gid="end")
     last = len(qa) - 1
-    ArmDrawing(ax3, robot, _pose_at(poses, 0), plane=plane, frames=frames, labels=False, alpha=0.3)
+    first = _pose_at(poses, 0)
+    ArmDrawing(ax3, robot, first, plane=plane, frames=frames, labels=False, alpha=0.3, legend=False)
     ArmDrawing(ax3, robot, _pose_at(poses, last), plane=plane, frames=frames, labels=frames)
     equal_limits(ax3, extent_points(poses, robot_scale(robot)), plane)
     label_axes(ax3, plane)
+    fit_ticks(ax3)
     ax3.set_title("tool path", fontsize=10)
-    fig.suptitle(f"{robot.name}: trajectory of {len(qa)} samples", fontsize=11)
+    title = fig.suptitle(f"{robot.name}: trajectory of {len(qa)} samples", fontsize=11)
+    if plane is None:  # the box as large as the right half below the title allows
+        fig.draw_without_rendering()
+        width = fig.bbox.width
+        curves = max(ax.get_tightbbox().x1 for ax in fig.axes if ax is not ax3)
+        top = title.get_window_extent().y0 - EDGE_PX
+        fit_box(ax3, (max(curves, width / 2) + EDGE_PX, EDGE_PX, width - EDGE_PX, top))
     return fig

@@ -13,6 +13,7 @@ from kinematica.viz._mpl import equal_limits, figure, is_3d, new_axes
 from kinematica.viz.arm import ArmDrawing, extent_points
 from kinematica.viz.geometry import arm_pose, drawing_plane, robot_scale
 from kinematica.viz.plot import axes_plane, label_axes, one_q
+from kinematica.viz.ticks import fit_ticks
 
 __all__ = ["plot_workspace", "workspace_arrays"]
 
@@ -96,4 +97,5 @@ def plot_workspace(
         extent = np.concatenate([pts, extent_points(pose, robot_scale(robot))])
     equal_limits(ax, extent, plane)
     label_axes(ax, plane)
+    fit_ticks(ax)
     return ax
