@@ -126,10 +126,7 @@ def test_the_flange_has_its_own_label() -> None:
 )
 def test_frames_share_a_label_only_in_one_place(d: float, shown: list[str]) -> None:
     assert SAME_PLACE == 1e-6
-    robot = km.Robot.from_dh(
-        [km.Revolute(a=1.0), km.Revolute(d=d)][km.Revolute(a=1.0), km.Revolute(d=d)],
-        convention="standard",
-    )
+    robot = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(d=d)], convention="standard")
     fig = Figure(figsize=(5, 5), dpi=100)
     ax = fig.add_subplot(projection="3d")
     viz.plot(robot, [0.3, 0.2], ax=ax)

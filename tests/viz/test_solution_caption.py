@@ -89,10 +89,7 @@ def test_caption_boundary_same_place() -> None:
     from kinematica.viz.solutions import same_links
 
     assert SAME_PLACE == 1e-6
-    arm = km.Robot.from_dh(
-        [km.Revolute(a=1.0), km.Revolute(a=1.0)][km.Revolute(a=1.0), km.Revolute(a=1.0)],
-        convention="standard",
-    )
+    arm = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(a=1.0)], convention="standard")
     near = np.array([[0.0, 0.0], [0.5 * SAME_PLACE, 0.0]])  # the tip moves 0.5 SAME_PLACE * 2
     far = np.array([[0.0, 0.0], [2.0 * SAME_PLACE, 0.0]])  # the tip moves 2 SAME_PLACE * 2
     assert [g for g, _ in same_links(arm, near)] == [[0, 1]]
@@ -103,10 +100,7 @@ def test_caption_boundary_joints_that_differ() -> None:
     # the last joint turns about an axis through every point after it: it moves no link
     from kinematica.viz.solutions import same_links
 
-    arm = km.Robot.from_dh(
-        [km.Revolute(a=1.0), km.Revolute(alpha=0.0)][km.Revolute(a=1.0), km.Revolute(alpha=0.0)],
-        convention="standard",
-    )
+    arm = km.Robot.from_dh([km.Revolute(a=1.0), km.Revolute(alpha=0.0)], convention="standard")
     small = np.array([[0.2, 0.0], [0.2, 0.5 * SAME_PLACE]])
     large = np.array([[0.2, 0.0], [0.2, 2.0 * SAME_PLACE]])
     flipped = np.array([[0.2, 0.0], [0.2, np.pi]])

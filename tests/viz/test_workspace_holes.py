@@ -48,10 +48,7 @@ def test_staircase_notches_are_not_filled() -> None:
 def test_two_link_arm_slice_keeps_its_inner_hole() -> None:
     # a planar 2R arm reaches the annulus |l1 - l2| <= r <= l1 + l2, nothing else
     l1, l2 = 1.0, 0.6
-    arm = km.Robot.from_dh(
-        [km.Revolute(a=l1), km.Revolute(a=l2)][km.Revolute(a=l1), km.Revolute(a=l2)],
-        convention="standard",
-    )
+    arm = km.Robot.from_dh([km.Revolute(a=l1), km.Revolute(a=l2)], convention="standard")
     ws = km.workspace(arm, samples=12_000, seed=3, manipulability=True)
     sl = ws.slice()
     assert sl.plane == "xy"
