@@ -7,10 +7,10 @@ Apart from :mod:`kinematica.ik.targets` (which re-exports them): the one-pose pa
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
-from kinematica._record import record
 from kinematica.errors import KinematicaError
 
 __all__ = ["POSITION_TOL", "ROTATION_TOL", "Tolerance", "parse_tolerance"]
@@ -21,7 +21,7 @@ POSITION_TOL = 1e-10
 ROTATION_TOL = 1e-10
 
 
-@record(eq=True)
+@dataclass(frozen=True, slots=True)
 class Tolerance:
     """Acceptance tolerances of a solution: position (m) and rotation (rad)."""
 

@@ -18,12 +18,12 @@ same R36), each checked here: the wrist's rotation at them is R36.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica._record import record
 from kinematica.errors import KinematicaError
 from kinematica.ik import IKResult
 from kinematica.spatial import check_transform, wrap_angle
@@ -93,7 +93,7 @@ def wrist_center(robot: Robot, T: ArrayLike) -> FloatArray:
     return np.asarray(Ta[..., :3, :3] @ c + Ta[..., :3, 3], dtype=float)
 
 
-@record
+@dataclass(frozen=True, slots=True, eq=False)
 class ArmStep:
     """One arm solution and the wrist solutions that complete it.
 
@@ -118,7 +118,7 @@ class ArmStep:
     within_limits: NDArray[np.bool_]
 
 
-@record
+@dataclass(frozen=True, slots=True, eq=False)
 class Decoupling:
     """The steps of the spherical wrist's decoupling for one target pose.
 
