@@ -14,7 +14,7 @@ from kinematica.ik.structure import Features, features
 
 if TYPE_CHECKING:
     from kinematica.ik.registry import SolverSpec
-    from kinematica.robot.robot import Robot
+    from kinematica.robot.description import RobotDescription
 
 __all__ = ["Structure", "classify"]
 
@@ -65,7 +65,7 @@ class Structure:
         return self.features.wrist_center
 
 
-def classify(robot: Robot) -> Structure:
+def classify(robot: RobotDescription) -> Structure:
     """Classify an arm from its joint axes at q = 0 (never from its name)."""
     f = features(robot.chain)
     kind, summary, summary_es = describe(f, SOLVERS)
