@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from kinematica.errors import ArgumentError, KinematicaError
+from kinematica.errors import ArgumentError, KinematicaError, MissingDependencyError
 from kinematica.io.atomic import atomic_path, write_failed
 from kinematica.motion.workspace import WorkspaceSlice
 
@@ -25,10 +25,6 @@ __all__ = [
     "plot_workspace_slice",
     "require_matplotlib",
 ]
-
-
-class MissingDependencyError(KinematicaError, ImportError):
-    """An optional dependency needed for this feature is not installed."""
 
 
 def require_matplotlib() -> Any:
