@@ -121,6 +121,8 @@ void bind_ik(nb::module_& m) {
     status["invalid"] = static_cast<int>(km::Status::invalid);
     m.attr("STATUS") = status;
 
+    m.attr("POSITION_TOL") = km::DEFAULT_TOL_POSITION;
+    m.attr("ROTATION_TOL") = km::DEFAULT_TOL_ROTATION;
     m.attr("POLISH_LIMIT") = km::POLISH_LIMIT;
     m.attr("POLISH_STEPS") = km::POLISH_STEPS;
     m.attr("POLISH_DAMPING") = km::POLISH_DAMPING;

@@ -115,6 +115,10 @@ class UnreachableError(KinematicaError):
     """A target pose cannot be reached by the robot."""
 
 
+class MissingDependencyError(KinematicaError, ImportError):
+    """An optional dependency needed for this feature is not installed."""
+
+
 class KinematicaWarning(UserWarning):
     """Something was computed, but part of the input looks wrong.
 

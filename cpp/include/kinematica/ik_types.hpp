@@ -42,10 +42,15 @@ enum class Status : int {
     invalid = 5,        //!< a malformed target in a batch
 };
 
+//! The default acceptance tolerances of a solution, for the check and the numeric search
+//! alike (kinematica.ik.POSITION_TOL and ROTATION_TOL are these).
+constexpr double DEFAULT_TOL_POSITION = 1e-10;  //!< m
+constexpr double DEFAULT_TOL_ROTATION = 1e-10;  //!< rad
+
 //! How candidates are judged.
 struct CheckOptions {
-    double tol_position = 1e-10;  //!< m
-    double tol_rotation = 1e-10;  //!< rad
+    double tol_position = DEFAULT_TOL_POSITION;  //!< m
+    double tol_rotation = DEFAULT_TOL_ROTATION;  //!< rad
     bool respect_limits = true;   //!< solutions outside the limits are listed apart
     bool complete = false;        //!< the solver gives every solution (a closed form)
     //! m the solver's proven gap may be off the real arm's: a closed form built for an

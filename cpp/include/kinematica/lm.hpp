@@ -75,9 +75,9 @@ struct JointBound {
 
 //! How the search runs.
 struct LMSettings {
-    double tol_position = 1e-10;  //!< m
-    double tol_rotation = 1e-10;  //!< rad
-    int max_steps = 60;           //!< steps per attempt
+    double tol_position = DEFAULT_TOL_POSITION;  //!< m
+    double tol_rotation = DEFAULT_TOL_ROTATION;  //!< rad
+    int max_steps = 60;                          //!< steps per attempt
     double reach = INF;           //!< bound on the distance of the tool origin from `base` (m)
     Vec3 base{};                  //!< the start frame's origin
 };

@@ -14,12 +14,12 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica._record import record
 from kinematica.core import Chain
 from kinematica.ik.analytic.srs import arm_angle
 from kinematica.ik.result import IKBatchResult, IKResult
@@ -38,7 +38,7 @@ FloatArray = NDArray[np.float64]
 ARM_ANGLE_NAMES = ("arm_angle", "arm angle", "arm-angle", "psi")
 
 
-@record(eq=True)
+@dataclass(frozen=True, slots=True)
 class ArmAngleParameter:
     """The arm angle ψ of an SRS 7R arm (rad), as a redundancy parameter."""
 

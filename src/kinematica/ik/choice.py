@@ -8,8 +8,8 @@ its answers' notes give (:mod:`kinematica.ik.local_search`): :func:`pose_choice`
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 
-from kinematica._record import record
 from kinematica.core import Chain
 from kinematica.ik.local_search import numeric_reason
 from kinematica.ik.registry import ClosedForm
@@ -21,7 +21,7 @@ __all__ = ["SolverChoice", "pose_choice"]
 _POSE_DOF = 6
 
 
-@record
+@dataclass(frozen=True, slots=True, eq=False)
 class SolverChoice:
     """The solver ``robot.ik(T)`` (``method="auto"``) gives an arm's pose targets.
 

@@ -2,22 +2,79 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import Any, Protocol
 
 import numpy as np
+from numpy.typing import NDArray
 
 from kinematica.io.html_table import html_table, number
 
-if TYPE_CHECKING:
-    from kinematica.ik.result import IKBatchResult, IKResult
-
 __all__ = ["batch_html", "result_html"]
+
+
+class Answer(Protocol):
+    """What a table of one target reads (an :class:`~kinematica.ik.result.IKResult`)."""
+
+    @property
+    def solutions(self) -> NDArray[np.float64]: ...
+
+    @property
+    def branches(self) -> tuple[str, ...]: ...
+
+    @property
+    def residuals(self) -> NDArray[np.float64]: ...
+
+    @property
+    def out_of_limits(self) -> NDArray[np.float64]: ...
+
+    @property
+    def out_of_limits_branches(self) -> tuple[str, ...]: ...
+
+    @property
+    def parameter(self) -> tuple[str, float] | None: ...
+
+    @property
+    def status(self) -> Any: ...
+
+    @property
+    def method(self) -> str: ...
+
+    @property
+    def count(self) -> int: ...
+
+    @property
+    def message(self) -> str: ...
+
+
+class Answers(Protocol):
+    """What a table of a batch reads (an :class:`~kinematica.ik.result.IKBatchResult`)."""
+
+    @property
+    def shape(self) -> tuple[int, ...]: ...
+
+    @property
+    def method(self) -> str: ...
+
+    @property
+    def parameter(self) -> tuple[str, NDArray[np.float64]] | None: ...
+
+    @property
+    def size(self) -> int: ...
+
+    @property
+    def status(self) -> NDArray[np.str_]: ...
+
+    @property
+    def count(self) -> NDArray[np.int64]: ...
+
+    def __getitem__(self, idx: tuple[int, ...]) -> Answer: ...
+
 
 #: Rows of a batch shown in its table; the caption says how many more there are.
 BATCH_ROWS_SHOWN = 20
 
 
-def result_html(res: IKResult) -> str:
+def result_html(res: Answer) -> str:
     """Every solution of one target, one row each: branch, joint values, residuals.
 
     Joint values are in the API's units: radians for revolute joints, metres
@@ -41,7 +98,7 @@ def result_html(res: IKResult) -> str:
     return html_table(header, rows, caption=caption, footer=(res.message,))
 
 
-def batch_html(res: IKBatchResult) -> str:
+def batch_html(res: Answers) -> str:
     """One row per target (the first :data:`BATCH_ROWS_SHOWN`): status, count, message."""
     shown = min(res.size, BATCH_ROWS_SHOWN)
     rows = []

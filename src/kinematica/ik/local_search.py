@@ -11,7 +11,7 @@ from :func:`numeric_reason`). A module of words only, below every path that says
 from __future__ import annotations
 
 from kinematica.core import Chain
-from kinematica.ik.analytic import solvers_for
+from kinematica.ik.analytic import SOLVERS
 from kinematica.ik.registry import TargetKind, describe
 from kinematica.ik.structure import features
 
@@ -35,7 +35,7 @@ def numeric_reason(chain: Chain, kind: TargetKind, masked: bool) -> str:
         return "a mask (the closed forms solve whole poses and positions)"
     f = features(chain)
     n, types = f.dof, f.joint_types
-    summary = describe(f, solvers_for(types))[1]  # the registry's words for the structure
+    summary = describe(f, SOLVERS)[1]  # the registry's words for the structure
     if kind == "position":
         return f"position targets of this structure ({summary}), which no closed-form family solves"
     if n > _POSE_DOF + 1:

@@ -13,7 +13,7 @@ import math
 import sys
 import weakref
 from collections.abc import Callable
-from dataclasses import field
+from dataclasses import dataclass, field
 from functools import cached_property
 from typing import TYPE_CHECKING, Any, cast
 
@@ -21,7 +21,6 @@ import numpy as np
 from numpy.typing import NDArray
 
 import kinematica._core as _core
-from kinematica._record import record
 from kinematica.core import Chain
 from kinematica.errors import ArgumentError
 
@@ -73,7 +72,7 @@ def _is_generator(seed: object) -> bool:
     return random is not None and isinstance(seed, random.Generator)
 
 
-@record
+@dataclass(frozen=True, eq=False)
 class NumericSetup:
     """The core's search for one arm and settings, and what it is made from.
 

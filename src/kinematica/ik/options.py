@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinematica._record import record, store
 from kinematica.ik.tolerance import Tolerance
 
 __all__ = ["IKOptions", "Method"]
@@ -16,7 +16,7 @@ __all__ = ["IKOptions", "Method"]
 Method = Literal["auto", "analytic", "numeric"]
 
 
-@record
+@dataclass(frozen=True, slots=True, eq=False)
 class IKOptions:
     """The settings of an IK call (see :meth:`kinematica.Robot.ik` for each one).
 
@@ -53,24 +53,6 @@ class IKOptions:
     precision: tuple[float, float] | None = None
     fixed: Mapping[int | str, float] | None = None
     arm_angle: ArrayLike | None = None
-
-    def __init__(  # written out: robot.ik makes one per call that is not all defaults
-        self,
-        method: Method = "auto",
-        tol: float | tuple[float, float] | Tolerance | None = None,
-        respect_limits: bool = True,
-        q0: ArrayLike | None = None,
-        mask: ArrayLike | None = None,
-        seed: int | np.random.Generator | None = None,
-        workers: int | None = None,
-        precision: tuple[float, float] | None = None,
-        fixed: Mapping[int | str, float] | None = None,
-        arm_angle: ArrayLike | None = None,
-    ) -> None:
-        store(
-            self, method=method, tol=tol, respect_limits=respect_limits, q0=q0, mask=mask,
-            seed=seed, workers=workers, precision=precision, fixed=fixed, arm_angle=arm_angle,
-        )  # fmt: skip
 
 
 #: The options of a call that gives none.

@@ -20,12 +20,12 @@ import math
 import weakref
 from collections import OrderedDict
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica._record import record
 from kinematica.core import Chain
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.held_continuum import continuum_answer
@@ -117,7 +117,7 @@ def joint_names(chain: Chain, names: Sequence[str] | None) -> tuple[str, ...]:
     return tuple(f"q{i + 1}" for i in range(chain.dof))
 
 
-@record(eq=True)
+@dataclass(frozen=True, slots=True)
 class JointParameter:
     """Joint ``index`` (0-based) as the parameter: the arm solved with it held at a value.
 

@@ -14,12 +14,12 @@ in the order they are tried; nothing else names solver kinds.
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
+from dataclasses import dataclass
 from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica._record import record
 from kinematica.core import Chain
 from kinematica.dh.joints import Convention, Joint
 from kinematica.ik.structure import Features
@@ -30,7 +30,7 @@ FloatArray = NDArray[np.float64]
 TargetKind = Literal["pose", "position"]
 
 
-@record
+@dataclass(frozen=True, slots=True, eq=False)
 class ClosedForm:
     """A closed-form solver built for one arm.
 
@@ -75,7 +75,7 @@ class ClosedForm:
         return f"analytic:{self.name}"
 
 
-@record
+@dataclass(frozen=True, slots=True, eq=False)
 class ArmSample:
     """An arm of a solver's family, as a DH table (what ``sample_arm`` gives).
 
@@ -94,7 +94,7 @@ class ArmSample:
     note: str = ""
 
 
-@record(eq=True)
+@dataclass(frozen=True, slots=True)
 class SolverSpec:
     """The structure a closed-form solver handles, its builder, and arms of its family.
 

@@ -4,14 +4,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator, Mapping
-from dataclasses import field
+from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica._record import record
 from kinematica.errors import UnreachableError
 from kinematica.ik.status import STATUS_NAMES, IKStatus, held, status_message
 
@@ -27,7 +26,7 @@ NEAR_NOTE = (
 )
 
 
-@record
+@dataclass(frozen=True, eq=False)
 class IKResult:
     """All inverse-kinematics solutions of one target.
 
@@ -155,7 +154,7 @@ class IKResult:
         return result_html(self)
 
 
-@record
+@dataclass(frozen=True, eq=False)
 class IKBatchResult:
     """IK results for a batch of targets of any shape ``(...)``, as arrays.
 
@@ -371,7 +370,7 @@ class IKBatchResult:
         return batch_html(self)
 
 
-@record
+@dataclass(frozen=True, slots=True, eq=False)
 class CheckOutput:
     """What the core's check wrote for N targets (``ik_batch`` of a solver).
 

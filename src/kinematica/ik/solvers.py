@@ -19,7 +19,7 @@ from numpy.typing import NDArray
 
 import kinematica._core as _core
 from kinematica.core import Chain
-from kinematica.ik.analytic import solvers_at, solvers_for
+from kinematica.ik.analytic import SOLVERS, solvers_at
 from kinematica.ik.reach import ANSWERED, needs_proof
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
 from kinematica.ik.result import CoreAnswer, IKResult, result_of
@@ -59,7 +59,7 @@ _SOLVERS: weakref.WeakKeyDictionary[Chain, dict[tuple[str, str | None], ClosedFo
 def structure_of(chain: Chain) -> tuple[str, str, str]:
     """``(kind, summary, summary in Spanish)`` of a chain's structure (see :func:`describe`)."""
     f = features(chain)
-    return describe(f, solvers_for(f.joint_types))
+    return describe(f, SOLVERS)
 
 
 def closed_form(
@@ -77,7 +77,7 @@ def closed_form(
     if key not in per_chain:
         found = None
         f = features(chain)
-        for spec in solvers_at(f.joint_types, parameter):
+        for spec in solvers_at(parameter):
             if spec.handles(f):
                 found = spec.build(chain, f, target)
                 if found is not None:

@@ -10,12 +10,12 @@ every q.
 from __future__ import annotations
 
 import weakref
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
 from kinematica._core import lines as _lines
-from kinematica._record import record
 from kinematica.core import Chain
 from kinematica.dh.lines import length_tol, line_distance, lines_parallel, lines_perpendicular
 
@@ -33,7 +33,7 @@ def arm_size(chain: Chain) -> float:
     return _lines.arm_size(chain.core)
 
 
-@record
+@dataclass(frozen=True, slots=True, eq=False)
 class Features:
     """What the joint axes of an arm have in common, at q = 0.
 

@@ -7,21 +7,23 @@ Apart from :mod:`kinematica.ik.targets` (which re-exports them): the one-pose pa
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
-from kinematica._record import record
+from kinematica import _core
 from kinematica.errors import KinematicaError
 
 __all__ = ["POSITION_TOL", "ROTATION_TOL", "Tolerance", "parse_tolerance"]
 
-#: A solution must put the tool within this distance of the target (metres)...
-POSITION_TOL = 1e-10
-#: ... and within this rotation angle of the target orientation (radians).
-ROTATION_TOL = 1e-10
+#: A solution must put the tool within this distance of the target (metres, 1e-10)...
+POSITION_TOL: float = _core.POSITION_TOL
+#: ... and within this rotation angle of the target orientation (radians, 1e-10): the
+#: core's defaults (``DEFAULT_TOL_POSITION``, ``DEFAULT_TOL_ROTATION`` in ik_types.hpp).
+ROTATION_TOL: float = _core.ROTATION_TOL
 
 
-@record(eq=True)
+@dataclass(frozen=True, slots=True)
 class Tolerance:
     """Acceptance tolerances of a solution: position (m) and rotation (rad)."""
 

@@ -6,6 +6,8 @@ neutral descriptions to the layers above: a :class:`RobotSpec` (a DH table)
 or a :class:`UrdfModel` (links and joints of a URDF).
 """
 
+# ruff: noqa: F401 (the imports are the public names; kinematica._lazy makes __all__)
+
 from typing import TYPE_CHECKING
 
 from kinematica._lazy import exports
@@ -28,67 +30,4 @@ if TYPE_CHECKING:  # the names below load on first use (kinematica._lazy)
     from kinematica.io.urdf_model import UrdfChain, UrdfJoint, UrdfModel
     from kinematica.io.urdf_write import rpy_from_matrix, urdf_text
 
-__getattr__, __dir__ = exports(
-    __name__,
-    {
-        "builtin_names": "kinematica.io.builtin",
-        "builtin_path": "kinematica.io.builtin",
-        "read_builtin": "kinematica.io.builtin",
-        "Affine": "kinematica.io.expr",
-        "Expression": "kinematica.io.expr",
-        "ExpressionError": "kinematica.io.expr",
-        "evaluate": "kinematica.io.expr",
-        "parse_expression": "kinematica.io.expr",
-        "ROBOT_FILE_SUFFIXES": "kinematica.io.reading",
-        "dump_robot_dict": "kinematica.io.robotfile",
-        "dumps_robot_file": "kinematica.io.robotfile",
-        "load_robot_text": "kinematica.io.robotfile",
-        "parse_robot_dict": "kinematica.io.robotfile",
-        "read_robot_file": "kinematica.io.robotfile",
-        "write_robot_file": "kinematica.io.robotfile",
-        "FrameSpec": "kinematica.io.spec",
-        "JointSpec": "kinematica.io.spec",
-        "RobotSpec": "kinematica.io.spec",
-        "with_parameters": "kinematica.io.template",
-        "URDF_MAX_BYTES": "kinematica.io.urdf",
-        "URDF_SUFFIXES": "kinematica.io.reading",
-        "parse_urdf": "kinematica.io.urdf",
-        "read_urdf": "kinematica.io.urdf",
-        "UrdfChain": "kinematica.io.urdf_model",
-        "UrdfJoint": "kinematica.io.urdf_model",
-        "UrdfModel": "kinematica.io.urdf_model",
-        "rpy_from_matrix": "kinematica.io.urdf_write",
-        "urdf_text": "kinematica.io.urdf_write",
-    },
-)
-
-__all__ = [
-    "ROBOT_FILE_SUFFIXES",
-    "URDF_MAX_BYTES",
-    "URDF_SUFFIXES",
-    "Affine",
-    "Expression",
-    "ExpressionError",
-    "FrameSpec",
-    "JointSpec",
-    "RobotSpec",
-    "UrdfChain",
-    "UrdfJoint",
-    "UrdfModel",
-    "builtin_names",
-    "builtin_path",
-    "dump_robot_dict",
-    "dumps_robot_file",
-    "evaluate",
-    "load_robot_text",
-    "parse_expression",
-    "parse_robot_dict",
-    "parse_urdf",
-    "read_builtin",
-    "read_robot_file",
-    "read_urdf",
-    "rpy_from_matrix",
-    "urdf_text",
-    "with_parameters",
-    "write_robot_file",
-]
+__getattr__, __dir__, __all__ = exports(__name__)

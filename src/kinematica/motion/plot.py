@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from kinematica.errors import ArgumentError, KinematicaError
+from kinematica.errors import ArgumentError, KinematicaError, MissingDependencyError
 from kinematica.io.atomic import atomic_path, write_failed
 from kinematica.motion.volume import sampling_holes
 from kinematica.motion.workspace import WorkspaceSlice
@@ -27,10 +27,6 @@ __all__ = [
     "require_matplotlib",
     "slice_figure",
 ]
-
-
-class MissingDependencyError(KinematicaError, ImportError):
-    """An optional dependency needed for this feature is not installed."""
 
 
 def require_matplotlib() -> Any:

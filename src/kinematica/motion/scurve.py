@@ -35,9 +35,8 @@ from numpy.polynomial import polynomial as npoly
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.arguments import check_size
-from kinematica.errors import DimensionError, KinematicaError
+from kinematica.errors import DimensionError, KinematicaError, MissingDependencyError
 from kinematica.motion.piecewise import PiecewisePolynomial
-from kinematica.motion.plot import MissingDependencyError
 from kinematica.motion.samples import DURATION_RTOL, LIMIT_RTOL, MAX_SAMPLES, JointTrajectory
 
 __all__ = [

@@ -1,5 +1,7 @@
 """The Robot: DH table, limits, base and tool; forward kinematics and Jacobians; URDF."""
 
+# ruff: noqa: F401 (the imports are the public names; kinematica._lazy makes __all__)
+
 from typing import TYPE_CHECKING
 
 from kinematica._lazy import exports
@@ -11,24 +13,4 @@ if TYPE_CHECKING:  # the names below load on first use (kinematica._lazy): the I
     from kinematica.robot.structure import Structure, classify
     from kinematica.robot.urdf import urdf_to_dh
 
-__getattr__, __dir__ = exports(
-    __name__,
-    {
-        "DHExtraction": "kinematica.robot.dh_rules",
-        "Structure": "kinematica.robot.structure",
-        "classify": "kinematica.robot.structure",
-        "urdf_to_dh": "kinematica.robot.urdf",
-    },
-)
-
-__all__ = [
-    "DHExtraction",
-    "Robot",
-    "Structure",
-    "classify",
-    "load",
-    "robot_from_spec",
-    "spec_from_robot",
-    "urdf_to_dh",
-    "write_robot_file",
-]
+__getattr__, __dir__, __all__ = exports(__name__)

@@ -18,18 +18,18 @@ same R36), each checked here: the wrist's rotation at them is R36.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica._record import record
 from kinematica.errors import KinematicaError
 from kinematica.ik import IKResult
 from kinematica.spatial import check_transform, wrap_angle
 
 if TYPE_CHECKING:
-    from kinematica.robot.robot import Robot
+    from kinematica.robot.inverse import RobotIK
 
 __all__ = ["ARM_MATCH_TOL", "ArmStep", "Decoupling", "decouple", "wrist_center", "wrist_offset"]
 
@@ -45,7 +45,7 @@ _ARM, _WRIST = slice(0, 3), slice(3, 6)
 _DOF = 6
 
 
-def _wrist_point(robot: Robot) -> FloatArray:
+def _wrist_point(robot: RobotIK) -> FloatArray:
     """The wrist centre at q = 0 (world frame, m), or a KinematicaError naming why none."""
     from kinematica.ik.structure import features
 
@@ -58,7 +58,7 @@ def _wrist_point(robot: Robot) -> FloatArray:
     return np.asarray(f.wrist_center, dtype=float)
 
 
-def wrist_offset(robot: Robot) -> FloatArray:
+def wrist_offset(robot: RobotIK) -> FloatArray:
     """Where the wrist centre sits in the tool frame (m): ``(3,)``.
 
     For a DH arm without a tool whose last row is ``d6`` along z6 (the seeds' arm),
@@ -72,7 +72,7 @@ def wrist_offset(robot: Robot) -> FloatArray:
     return M[:3, :3].T @ (c - M[:3, 3])
 
 
-def wrist_center(robot: Robot, T: ArrayLike) -> FloatArray:
+def wrist_center(robot: RobotIK, T: ArrayLike) -> FloatArray:
     """The wrist centre p_m of a tool pose: ``p + R·c`` with ``c`` the :func:`wrist_offset`.
 
     Seed 002's ``p_m = p - d6·R·z`` for an arm whose tool is frame 6.
@@ -93,7 +93,7 @@ def wrist_center(robot: Robot, T: ArrayLike) -> FloatArray:
     return np.asarray(Ta[..., :3, :3] @ c + Ta[..., :3, 3], dtype=float)
 
 
-@record
+@dataclass(frozen=True, slots=True, eq=False)
 class ArmStep:
     """One arm solution and the wrist solutions that complete it.
 
@@ -118,7 +118,7 @@ class ArmStep:
     within_limits: NDArray[np.bool_]
 
 
-@record
+@dataclass(frozen=True, slots=True, eq=False)
 class Decoupling:
     """The steps of the spherical wrist's decoupling for one target pose.
 
@@ -151,7 +151,7 @@ class Decoupling:
         return np.array(rows, dtype=float).reshape(-1, _DOF)
 
 
-def _arm_robot(robot: Robot, c3: FloatArray) -> Robot:
+def _arm_robot(robot: RobotIK, c3: FloatArray) -> RobotIK:
     """Joints 1-3 with the wrist centre as their tool (its place in frame 3)."""
     tool = np.eye(4)
     tool[:3, 3] = c3
@@ -164,7 +164,7 @@ def _arm_robot(robot: Robot, c3: FloatArray) -> Robot:
     )
 
 
-def _distance(robot: Robot, a: FloatArray, b: FloatArray) -> float:
+def _distance(robot: RobotIK, a: FloatArray, b: FloatArray) -> float:
     """Largest difference of two arm configurations (revolute joints modulo 2π)."""
     d = np.asarray(a - b, dtype=float)
     revolute = ~robot.is_prismatic[_ARM]
@@ -173,7 +173,7 @@ def _distance(robot: Robot, a: FloatArray, b: FloatArray) -> float:
 
 
 def group_by_arm(
-    robot: Robot, arms: list[FloatArray], rows: FloatArray, tol: float = ARM_MATCH_TOL
+    robot: RobotIK, arms: list[FloatArray], rows: FloatArray, tol: float = ARM_MATCH_TOL
 ) -> tuple[list[list[int]], list[int]]:
     """Which solution rows share each arm solution's q1..q3.
 
@@ -205,7 +205,7 @@ def _wrist_label(branch: str) -> str:
     return ", ".join(wrist) if wrist else branch
 
 
-def decouple(robot: Robot, T: ArrayLike) -> Decoupling:
+def decouple(robot: RobotIK, T: ArrayLike) -> Decoupling:
     """Seed 002's decoupling of a 6-joint arm with a spherical wrist, every step.
 
     Args:

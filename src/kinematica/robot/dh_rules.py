@@ -16,7 +16,7 @@ import os
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Generic, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -34,7 +34,7 @@ from kinematica.io import FrameSpec, UrdfChain, UrdfJoint, urdf_text
 from kinematica.io.atomic import unchanged, write_text_atomic
 
 if TYPE_CHECKING:
-    from kinematica.robot.robot import Robot
+    from kinematica.robot.kinematics import RobotKinematics
 
 __all__ = [
     "DHExtraction",
@@ -49,8 +49,12 @@ __all__ = [
 FloatArray = NDArray[np.float64]
 
 
+#: The robot class a table is extracted for (made by its ``from_dh``).
+R = TypeVar("R", bound="RobotKinematics")
+
+
 @dataclass(frozen=True)
-class DHExtraction:
+class DHExtraction(Generic[R]):
     """A DH robot extracted from a chain's joint axes, and how.
 
     Attributes:
@@ -73,7 +77,7 @@ class DHExtraction:
         source: What the chain was read from (``"arm.urdf: base_link -> tool0"``).
     """
 
-    robot: Robot
+    robot: R
     rules: tuple[FrameRule, ...]
     fk_error: float
     frames: FloatArray = field(repr=False)
@@ -131,7 +135,7 @@ def geometry_from_chain(chain: UrdfChain) -> ChainGeometry:
     )
 
 
-def geometry_from_robot(robot: Robot) -> ChainGeometry:
+def geometry_from_robot(robot: RobotKinematics) -> ChainGeometry:
     """The joint axes, tip and named frames of the robot's own kinematics at q = 0.
 
     For a DH robot, its table's (the chain :func:`chain_from_robot` writes). For
@@ -174,11 +178,11 @@ def geometry_from_robot(robot: Robot) -> ChainGeometry:
 def _extraction(
     geometry: ChainGeometry,
     convention: str,
-    make: Callable[..., Robot],
+    make: Callable[..., R],
     name: str,
     description: str | None,
     source: str | None,
-) -> DHExtraction:
+) -> DHExtraction[R]:
     """The DH robot of the chain ``geometry`` describes, and the table's ``fk_error``."""
     table = extract_dh(geometry, convention)
     robot = make(
@@ -202,10 +206,10 @@ def dh_from_chain(
     chain: UrdfChain,
     convention: str = "standard",
     *,
-    make: Callable[..., Robot],
+    make: Callable[..., R],
     name: str | None = None,
     description: str | None = None,
-) -> DHExtraction:
+) -> DHExtraction[R]:
     """The DH robot of a URDF chain, by the DH rules (frames placed on the joint axes).
 
     Args:
@@ -234,14 +238,14 @@ def _frame(T: FloatArray) -> FrameSpec:
     return FrameSpec(matrix=tuple(tuple(float(v) for v in row) for row in T))
 
 
-def _joint_names(robot: Robot) -> list[str]:
+def _joint_names(robot: RobotKinematics) -> list[str]:
     names = [link.name for link in robot.links]
     if all(names) and len(set(names)) == len(names):
         return [str(n) for n in names]
     return [f"joint{i}" for i in range(1, robot.dof + 1)]
 
 
-def chain_from_robot(robot: Robot) -> UrdfChain:
+def chain_from_robot(robot: RobotKinematics) -> UrdfChain:
     """The robot as a URDF chain whose link frames are its DH frames.
 
     Links ``base_link`` (the world), ``link0`` (DH frame 0, when the base is
@@ -282,7 +286,7 @@ def chain_from_robot(robot: Robot) -> UrdfChain:
     )
 
 
-def to_dh(robot: Robot, convention: str = "standard") -> DHExtraction:
+def to_dh(robot: R, convention: str = "standard") -> DHExtraction[R]:
     """Extract the DH table of a robot's joint axes again, by the rules.
 
     The axes are the robot's own (:func:`geometry_from_robot`): a URDF's as
@@ -310,7 +314,7 @@ def to_dh(robot: Robot, convention: str = "standard") -> DHExtraction:
     return dataclasses.replace(ext, robot=named)
 
 
-def to_urdf(robot: Robot, path: str | os.PathLike[str] | None = None) -> str:
+def to_urdf(robot: RobotKinematics, path: str | os.PathLike[str] | None = None) -> str:
     """The robot as URDF text (links without geometry), saved to ``path`` if given.
 
     Raises:

@@ -35,7 +35,7 @@ from kinematica.errors import KinematicaError
 from kinematica.spatial import rotvec_from_matrix
 
 if TYPE_CHECKING:
-    from kinematica.robot import Robot
+    from kinematica.robot.kinematics import RobotKinematics
 
 __all__ = [
     "EXP_SERIES_ANGLE",
@@ -120,7 +120,7 @@ def _hessian_base(J: FloatArray) -> FloatArray:
     return _stack(top, bottom)
 
 
-def hessian(robot: Robot, q: ArrayLike, frame: Frame = "base") -> FloatArray:
+def hessian(robot: RobotKinematics, q: ArrayLike, frame: Frame = "base") -> FloatArray:
     """The Jacobian's derivatives with respect to the joints (the manipulator Hessian).
 
     ``H[..., :, i, j] = ∂J[..., :, i]/∂q_j`` for the geometric Jacobian ``J`` of
@@ -160,7 +160,9 @@ def hessian(robot: Robot, q: ArrayLike, frame: Frame = "base") -> FloatArray:
     return _stack((Rt @ dv[..., None])[..., 0], (Rt @ dw[..., None])[..., 0])
 
 
-def jacobian_dot(robot: Robot, q: ArrayLike, qd: ArrayLike, frame: Frame = "base") -> FloatArray:
+def jacobian_dot(
+    robot: RobotKinematics, q: ArrayLike, qd: ArrayLike, frame: Frame = "base"
+) -> FloatArray:
     """The Jacobian's time derivative ``J̇ = Σ_j (∂J/∂q_j) q̇_j`` along a motion.
 
     So the tool acceleration is ``J q̈ + J̇ q̇`` (in the chosen frame).
@@ -202,7 +204,7 @@ def left_jacobian_inverse_coefficient(theta: ArrayLike) -> FloatArray:
     return out
 
 
-def exp_jacobian(robot: Robot, q: ArrayLike) -> FloatArray:
+def exp_jacobian(robot: RobotKinematics, q: ArrayLike) -> FloatArray:
     """Analytic Jacobian in exponential coordinates: rates of ``(p, φ)``.
 
     ``φ = km.rotvec_from_matrix(R)`` is the rotation vector of the tool

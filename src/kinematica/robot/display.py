@@ -10,7 +10,7 @@ import numpy as np
 from kinematica.io.html_table import html_table, number
 
 if TYPE_CHECKING:
-    from kinematica.robot.robot import Robot
+    from kinematica.robot.description import RobotDescription
 
 __all__ = ["robot_html"]
 
@@ -28,7 +28,7 @@ def _plus(var: str, offset: str, zero: bool) -> str:
     return f"{var} {sign} {offset.removeprefix('−')}"
 
 
-def robot_html(robot: Robot) -> str:
+def robot_html(robot: RobotDescription) -> str:
     """The DH table as the lecture notes write it (``q2 + 90°``), degrees and metres.
 
     One row per joint: its name, type, θ, d, a, α in the robot's own convention

@@ -24,7 +24,7 @@ from kinematica.errors import KinematicaError
 from kinematica.robot.velocity import Axes, selected_rows
 
 if TYPE_CHECKING:
-    from kinematica.robot import Robot
+    from kinematica.robot.kinematics import RobotKinematics
 
 __all__ = ["Ellipsoid", "EllipsoidKind", "ellipsoid"]
 
@@ -94,7 +94,7 @@ class Ellipsoid:
 
 
 def ellipsoid(
-    robot: Robot, q: ArrayLike, kind: EllipsoidKind = "velocity", axes: Axes = "trans"
+    robot: RobotKinematics, q: ArrayLike, kind: EllipsoidKind = "velocity", axes: Axes = "trans"
 ) -> Ellipsoid:
     """The velocity or force ellipsoid of the tool at ``q``.
 

@@ -20,7 +20,7 @@ from kinematica.errors import UnitWarning
 from kinematica.io.plausible import PLAUSIBLE_ANGLE, check_angle
 
 if TYPE_CHECKING:
-    from kinematica.robot.robot import Robot
+    from kinematica.robot.kinematics import RobotKinematics
 
 __all__ = ["check_given", "check_joint_values"]
 
@@ -29,7 +29,7 @@ _Q_NAME = re.compile(r"q([1-9][0-9]*)")
 _STACK = 3
 
 
-def _joint(robot: Robot, key: Any) -> int | None:
+def _joint(robot: RobotKinematics, key: Any) -> int | None:
     """The 0-based joint a key names (index, ``"qN"`` or a joint name), or None."""
     if isinstance(key, int | np.integer) and not isinstance(key, bool):
         return int(key) if 0 <= int(key) < robot.dof else None
@@ -43,7 +43,7 @@ def _joint(robot: Robot, key: Any) -> int | None:
 
 
 def check_joint_values(
-    robot: Robot, key: Any, values: ArrayLike, name: str, stacklevel: int = _STACK
+    robot: RobotKinematics, key: Any, values: ArrayLike, name: str, stacklevel: int = _STACK
 ) -> None:
     """Warn (:class:`UnitWarning`) of values of a free revolute joint beyond a full turn.
 
@@ -68,7 +68,7 @@ def check_joint_values(
 
 
 def check_given(
-    robot: Robot, q0: ArrayLike | None, fixed: Mapping[Any, float] | None, arm_angle: Any
+    robot: RobotKinematics, q0: ArrayLike | None, fixed: Mapping[Any, float] | None, arm_angle: Any
 ) -> None:
     """Warn of ``q0``, ``fixed`` and ``arm_angle`` values as ``fk`` warns of ``q``."""
     if q0 is not None:

@@ -14,7 +14,7 @@ from kinematica.errors import KinematicaError
 from kinematica.ik.numeric import check_seed
 
 if TYPE_CHECKING:
-    from kinematica.robot import Robot
+    from kinematica.robot.description import RobotDescription
 
 __all__ = ["MAX_CONFIGURATIONS", "Seed", "random_q", "sampling_box"]
 
@@ -25,7 +25,7 @@ Seed = int | np.random.Generator | None
 MAX_CONFIGURATIONS = 10_000_000
 
 
-def _no_range(robot: Robot, i: int) -> str:
+def _no_range(robot: RobotDescription, i: int) -> str:
     """Which joint of which robot (and file) needs limits, and how to give them."""
     spec = robot.source_spec
     source = None if spec is None else spec.source
@@ -44,7 +44,7 @@ def _no_range(robot: Robot, i: int) -> str:
     )
 
 
-def sampling_box(robot: Robot, prismatic_range: float | None = None) -> FloatArray:
+def sampling_box(robot: RobotDescription, prismatic_range: float | None = None) -> FloatArray:
     """``(n, 2)`` the box joint values are drawn from: the joint limits.
 
     Free revolute joints span ``(-π, π]``. A prismatic joint without limits
@@ -62,7 +62,9 @@ def sampling_box(robot: Robot, prismatic_range: float | None = None) -> FloatArr
     return box
 
 
-def random_q(robot: Robot, n: int | tuple[int, ...] = 1, seed: Seed = None) -> FloatArray:
+def random_q(
+    robot: RobotDescription, n: int | tuple[int, ...] = 1, seed: Seed = None
+) -> FloatArray:
     """Configurations drawn uniformly within the joint limits.
 
     Args:
@@ -91,7 +93,7 @@ def random_q(robot: Robot, n: int | tuple[int, ...] = 1, seed: Seed = None) -> F
     return np.clip(out, box[:, 0], box[:, 1])
 
 
-def generic_rank_samples(robot: Robot, count: int = 8) -> FloatArray:
+def generic_rank_samples(robot: RobotDescription, count: int = 8) -> FloatArray:
     """A few fixed, reproducible configurations for measuring the generic rank."""
     box = sampling_box(robot, prismatic_range=1.0)
     rng = np.random.default_rng(20240)

@@ -14,7 +14,7 @@ from kinematica.io.spec import ChainSpec, FrameSpec, JointSpec, RobotSpec
 from kinematica.robot.frames import rigid_frame
 
 if TYPE_CHECKING:
-    from kinematica.robot.robot import Robot
+    from kinematica.robot.description import RobotDescription
 
 __all__ = ["spec_from_robot", "write_robot_file"]
 
@@ -54,7 +54,7 @@ def _matrix(T: FloatArray) -> FrameSpec:
     return FrameSpec(matrix=tuple(tuple(float(v) for v in row) for row in T))
 
 
-def _chain(robot: Robot) -> ChainSpec | None:
+def _chain(robot: RobotDescription) -> ChainSpec | None:
     """The robot's own transforms (a URDF's, a calibration's), or ``None`` for a DH robot."""
     t = robot.transforms
     if t is None:
@@ -67,7 +67,7 @@ def _chain(robot: Robot) -> ChainSpec | None:
     )
 
 
-def spec_from_robot(robot: Robot) -> RobotSpec:
+def spec_from_robot(robot: RobotDescription) -> RobotSpec:
     """The description of a robot, for writing it to a file.
 
     For a robot read from a file (``robot.source_spec``), every part that
@@ -135,7 +135,7 @@ def spec_from_robot(robot: Robot) -> RobotSpec:
     )
 
 
-def write_robot_file(robot: Robot | RobotSpec, path: str | os.PathLike[str]) -> None:
+def write_robot_file(robot: RobotDescription | RobotSpec, path: str | os.PathLike[str]) -> None:
     """Write a robot as a robot file; the extension picks the format.
 
     A robot read from a file is written as the file was (see

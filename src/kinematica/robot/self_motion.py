@@ -38,7 +38,7 @@ from kinematica.ik.targets import parse_targets
 
 if TYPE_CHECKING:
     from kinematica.core import Chain
-    from kinematica.robot import Robot
+    from kinematica.robot.kinematics import RobotKinematics
 
 __all__ = [
     "MAX_JUMP",
@@ -217,7 +217,7 @@ def _intervals(values: FloatArray, inside: BoolArray) -> tuple[tuple[float, floa
 
 
 def self_motion(
-    robot: Robot,
+    robot: RobotKinematics,
     target: ArrayLike,
     parameter: int | str | Parameter,
     *,

@@ -53,7 +53,7 @@ from kinematica.robot.structure import classify
 from kinematica.spatial.checks import as_batch_array
 
 if TYPE_CHECKING:
-    from kinematica.robot import Robot
+    from kinematica.robot.kinematics import RobotKinematics
 
 __all__ = [
     "ELBOW_TOL",
@@ -122,7 +122,7 @@ class SingularityPlan:
     enabled: frozenset[str] = frozenset({"wrist", "elbow", "shoulder"})
 
 
-_PLANS: weakref.WeakKeyDictionary[Robot, SingularityPlan] = weakref.WeakKeyDictionary()
+_PLANS: weakref.WeakKeyDictionary[RobotKinematics, SingularityPlan] = weakref.WeakKeyDictionary()
 
 
 def _generic_rank(J: FloatArray) -> int:
@@ -130,7 +130,7 @@ def _generic_rank(J: FloatArray) -> int:
     return int(np.max(np.sum(s > RANK_TOL * s[:, :1], axis=1)))
 
 
-def singularity_plan(robot: Robot) -> SingularityPlan:
+def singularity_plan(robot: RobotKinematics) -> SingularityPlan:
     """What to test on ``robot`` (its Jacobian rows, wrist, shoulder, elbow), cached."""
     if robot in _PLANS:
         return _PLANS[robot]
@@ -193,7 +193,7 @@ def singularity_plan(robot: Robot) -> SingularityPlan:
     return plan
 
 
-def task_plan_rows(robot: Robot) -> tuple[int, ...]:
+def task_plan_rows(robot: RobotKinematics) -> tuple[int, ...]:
     """The Jacobian rows judged for ``robot`` (see the module docstring)."""
     return singularity_plan(robot).rows
 
@@ -232,7 +232,7 @@ def _covector(d: FloatArray, at: FloatArray, tool: FloatArray) -> FloatArray:
 
 
 def _named(
-    robot: Robot, plan: SingularityPlan, q: FloatArray
+    robot: RobotKinematics, plan: SingularityPlan, q: FloatArray
 ) -> list[tuple[str, FloatArray, FloatArray, FloatArray]]:
     """Per name: ``(name, measure (B,), geometric covector (B, 6), scale (B,))``.
 
@@ -309,7 +309,7 @@ def _assign(
     return out
 
 
-def singularities(robot: Robot, q: ArrayLike, detail: bool = False) -> Any:
+def singularities(robot: RobotKinematics, q: ArrayLike, detail: bool = False) -> Any:
     """The singularities of ``robot`` at ``q``, by name.
 
     See the module docstring for the names, their tests and tolerances.
@@ -366,7 +366,7 @@ def singularities(robot: Robot, q: ArrayLike, detail: bool = False) -> Any:
 
 
 def singularity_measures(
-    robot: Robot, q: ArrayLike, relative: bool = False
+    robot: RobotKinematics, q: ArrayLike, relative: bool = False
 ) -> dict[str, FloatArray]:
     """The measure of each named singularity of ``robot`` at ``q`` (see the module docstring).
 
@@ -394,7 +394,7 @@ def singularity_measures(
     return out
 
 
-def jacobian_rank(robot: Robot, q: ArrayLike) -> Any:
+def jacobian_rank(robot: RobotKinematics, q: ArrayLike) -> Any:
     """Rank of the arm's task Jacobian at ``q`` (singular values above RANK_TOL·σmax).
 
     Args:

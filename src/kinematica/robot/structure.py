@@ -8,13 +8,13 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica.ik.analytic import solvers_for
+from kinematica.ik.analytic import SOLVERS
 from kinematica.ik.registry import describe, describing
 from kinematica.ik.structure import Features, features
 
 if TYPE_CHECKING:
     from kinematica.ik.registry import SolverSpec
-    from kinematica.robot.robot import Robot
+    from kinematica.robot.description import RobotDescription
 
 __all__ = ["Structure", "classify"]
 
@@ -65,8 +65,8 @@ class Structure:
         return self.features.wrist_center
 
 
-def classify(robot: Robot) -> Structure:
+def classify(robot: RobotDescription) -> Structure:
     """Classify an arm from its joint axes at q = 0 (never from its name)."""
     f = features(robot.chain)
-    kind, summary, summary_es = describe(f, solvers_for(f.joint_types))
-    return Structure(kind, summary, f, summary_es, describing(f, solvers_for(f.joint_types)))
+    kind, summary, summary_es = describe(f, SOLVERS)
+    return Structure(kind, summary, f, summary_es, describing(f, SOLVERS))

@@ -76,7 +76,7 @@ def urdf_to_dh(
     trust_xacro: bool = False,
     packages: Mapping[str, str | os.PathLike[str]] | None = None,
     xacro_args: Mapping[str, str] | None = None,
-) -> DHExtraction:
+) -> DHExtraction[Robot]:
     """Read a URDF and extract the DH table of its chain from ``base`` to ``tip``.
 
     Args:

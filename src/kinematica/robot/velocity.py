@@ -18,7 +18,7 @@ from kinematica.errors import KinematicaError, KinematicaWarning
 from kinematica.spatial import euler_from_matrix, euler_rate_matrix, gimbal_locked
 
 if TYPE_CHECKING:
-    from kinematica.robot import Robot
+    from kinematica.robot.kinematics import RobotKinematics
 
 __all__ = [
     "Axes",
@@ -71,7 +71,7 @@ def task_rows(axes: Axes) -> tuple[int, ...]:
     return rows
 
 
-def selected_rows(robot: Robot, axes: Axes) -> tuple[int, ...]:
+def selected_rows(robot: RobotKinematics, axes: Axes) -> tuple[int, ...]:
     """The Jacobian row indices ``axes`` names for ``robot`` (``"task"`` included)."""
     if isinstance(axes, str) and axes == "task":
         from kinematica.robot.singularities import task_plan_rows
@@ -80,7 +80,7 @@ def selected_rows(robot: Robot, axes: Axes) -> tuple[int, ...]:
     return task_rows(axes)
 
 
-def _singular_values(robot: Robot, q: ArrayLike, axes: Axes) -> FloatArray:
+def _singular_values(robot: RobotKinematics, q: ArrayLike, axes: Axes) -> FloatArray:
     """``(..., min(m, n))`` singular values of the selected rows of ``J(q)``, descending."""
     J = robot.jacobian(q)[..., selected_rows(robot, axes), :]
     finite = np.isfinite(J).all(axis=(-2, -1))
@@ -95,7 +95,10 @@ def _singular_values(robot: Robot, q: ArrayLike, axes: Axes) -> FloatArray:
 
 
 def manipulability(
-    robot: Robot, q: ArrayLike, axes: Axes = "all", method: ManipulabilityMethod = "yoshikawa"
+    robot: RobotKinematics,
+    q: ArrayLike,
+    axes: Axes = "all",
+    method: ManipulabilityMethod = "yoshikawa",
 ) -> FloatArray:
     """Manipulability: by default Yoshikawa's, the volume measure of the velocity ellipsoid.
 
@@ -152,7 +155,7 @@ def manipulability(
     return out
 
 
-def manipulability_gradient(robot: Robot, q: ArrayLike, axes: Axes = "all") -> FloatArray:
+def manipulability_gradient(robot: RobotKinematics, q: ArrayLike, axes: Axes = "all") -> FloatArray:
     """Gradient of Yoshikawa's manipulability with respect to the joints.
 
     ``∂w/∂q_j = w · tr(Jt⁺ · ∂Jt/∂q_j)`` (the derivative of ``log det``; Haviland
@@ -180,7 +183,7 @@ def manipulability_gradient(robot: Robot, q: ArrayLike, axes: Axes = "all") -> F
     return out
 
 
-def condition_number(robot: Robot, q: ArrayLike, axes: Axes = "all") -> FloatArray:
+def condition_number(robot: RobotKinematics, q: ArrayLike, axes: Axes = "all") -> FloatArray:
     """Condition number ``σmax / σmin`` of the selected rows of the Jacobian.
 
     1 for an isotropic arm, growing towards a singularity, ``inf`` at one.
@@ -201,7 +204,7 @@ def condition_number(robot: Robot, q: ArrayLike, axes: Axes = "all") -> FloatArr
     return out
 
 
-def analytic_jacobian(robot: Robot, q: ArrayLike, euler: str = "ZYZ") -> FloatArray:
+def analytic_jacobian(robot: RobotKinematics, q: ArrayLike, euler: str = "ZYZ") -> FloatArray:
     """Analytic Jacobian: the rates of the pose ``(x, y, z, a, b, c)``.
 
     ``J_a = blockdiag(I, E⁻¹) · J``, where ``J`` is the geometric Jacobian in

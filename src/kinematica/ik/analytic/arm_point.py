@@ -13,13 +13,13 @@ frame of axis 2, the bounds of the reachable shell, and the branch labels.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 import kinematica._core as _core
-from kinematica._record import record
 from kinematica.core import Chain
 from kinematica.dh.lines import AXIS_ANGLE_TOL, cross3, length_tol, lines_parallel, normal_feet
 
@@ -44,7 +44,7 @@ RANK_TOL = 1e-6
 PROBES = np.array([[0.3, -0.7, 1.1], [-1.3, 0.4, -0.6], [2.1, 1.7, 0.2]])
 
 
-@record
+@dataclass(frozen=True, slots=True, eq=False)
 class ArmGeometry:
     """The core's arm part, and the names of its four slots.
 

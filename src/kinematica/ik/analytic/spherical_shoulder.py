@@ -32,12 +32,12 @@ Branch labels, base to tip (slot ``2 k + s``):
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import replace
 
 import numpy as np
 from numpy.typing import NDArray
 
 import kinematica._core as _core
-from kinematica._record import replace
 from kinematica.core import Chain
 from kinematica.dh.joints import Prismatic, Revolute
 from kinematica.ik.analytic.sampling import random_transform
