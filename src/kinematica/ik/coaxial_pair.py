@@ -7,10 +7,11 @@ without loading the solver, which itself asks for closed forms.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica._record import record
 from kinematica.core import Chain
 from kinematica.dh.lines import AXIS_EXACT_TOL, line_distance
 from kinematica.ik.structure import features
@@ -20,7 +21,7 @@ __all__ = ["CoaxialPair", "coaxial_pair"]
 FloatArray = NDArray[np.float64]
 
 
-@record(eq=True)
+@dataclass(frozen=True, slots=True)
 class CoaxialPair:
     """Two consecutive revolute joints on one line.
 
