@@ -27,6 +27,7 @@ LAZY_PACKAGES = (
     "kinematica.dh",
     "kinematica.io",
     "kinematica.ik",
+    "kinematica.motion",
     "kinematica.robot",
 )
 
@@ -173,3 +174,37 @@ def test_the_command_line_imports_no_ik_for_fk() -> None:
     assert set(NOT_FOR_PUMA_IK) & seen["ik"] == set()
     others = ("analysis", "control", "convert", "derive", "design", "motion", "self_motion", "viz")
     assert {f"kinematica.cli.{m}" for m in others} & seen["ik"] == set()  # fk's module alone
+
+
+def test_timing_a_path_imports_no_cartesian_paths_robots_or_ik() -> None:
+    """``km.time_optimal``'s first call imports the timing's own modules only.
+
+    It once imported the whole motion package (the Cartesian paths, the singularities,
+    the IK layer: 147 modules, 140-200 ms; 51 and 45-80 ms now, benchmarks/_startup.py).
+    """
+    seen = _steps(
+        """
+        import numpy as np
+        import kinematica as km
+        report("import")
+        km.time_optimal(np.array([[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]]), vmax=1.0, amax=1.0)
+        report("timed")
+        """
+    )
+    new = seen["timed"] - seen["import"]
+    assert "kinematica.motion.optimal" in new
+    for heavy in ("kinematica.motion.cartesian", "kinematica.robot", "kinematica.ik", "scipy"):
+        assert _ours(new, heavy) == set(), heavy
+
+
+def test_the_motion_package_s_workspace_is_the_function_whoever_imported_its_module() -> None:
+    code = (
+        "import kinematica as km; import kinematica.motion.workspace as m; "
+        "from kinematica.motion import workspace; "
+        "print(callable(workspace), km.workspace is workspace, m is workspace)"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=False, timeout=120
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout.split() == ["True", "True", "True"]
