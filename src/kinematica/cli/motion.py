@@ -298,7 +298,7 @@ def register(sub: Any) -> None:
         default="quintic",
         help="between two q: quintic, cubic, trapezoid; through --via: the quintic (C4) or "
         "cubic (C2) spline through every point, or mstraj (lines with parabolic blends); "
-        "scurve: jerk-limited (--vmax --amax --jmax; needs ruckig), between two q or "
+        "scurve: jerk-limited (--vmax --amax --jmax), between two q (needs ruckig) or "
         "through --via points without stopping",
     )
     p.add_argument(
