@@ -237,6 +237,22 @@ inline double trapezoid_guess(const Frame& f, const Limits& L) {
     return disc > 0.0 ? std::max(0.0, 0.5 * L.a * (std::sqrt(disc) - b)) : 0.0;
 }
 
+//! Newton's start on the upper branch: the excess if both ramps were triangular and started
+//! from the same velocity m (then the distance (2m + r²)·2r/√J is cubic in r = √e: Cardano),
+//! when that excess keeps both triangular; else trapezoid_guess.
+inline double peak_guess(const Frame& f, const Limits& L) {
+    const double m = std::max(f.w0, f.w1), c = std::fabs(f.w1 - f.w0);
+    // r³ + 2m r - d√J/2 = 0, one real root when m >= 0
+    const double p = 2.0 * m, q = -0.5 * f.d * std::sqrt(L.j);
+    const double disc = 0.25 * q * q + p * p * p / 27.0;
+    if (m >= 0.0 && disc >= 0.0) {
+        const double sq = std::sqrt(disc);
+        const double r = std::cbrt(-0.5 * q + sq) + std::cbrt(-0.5 * q - sq);
+        if (r > 0.0 && (c + r * r) * L.j <= L.a * L.a) return r * r;
+    }
+    return trapezoid_guess(f, L);
+}
+
 }  // namespace detail
 
 //! The shortest duration of one joint's move from (0, v0, 0) to (D, v1, 0), |v0|, |v1| <= L.v.
@@ -256,7 +272,7 @@ inline double shortest(double D, double v0, double v1, const Limits& L) {
     } else if (f.d <= 0.5 * (f.w0 + f.w1) * t0) {  // the direct ramp itself (a tie)
         t = t0;
     } else {
-        const double start = std::sqrt(detail::trapezoid_guess(f, L));
+        const double start = std::sqrt(detail::peak_guess(f, L));
         const double r = detail::solve_peak(f, m, true, 0.0, std::sqrt(L.v - m), true, L, start);
         t = shape_time(detail::branch_shape(f, m, true, r), f.w0, f.w1, L);
     }
@@ -388,17 +404,12 @@ inline void profile(double T, double D, double v0, double v1, const Limits& L, P
     out.phases = k;
 }
 
-//! The shortest duration every joint of a segment can take: from positions p0 and velocities
-//! v0 to p1, v1, accelerations zero at both ends (velocities within the limits). The largest
-//! of the joints' shortest durations, moved past any interval a joint cannot take; t: n
-//! scratch entries (each joint's shortest).
-inline double segment_time(int n, const double* p0, const double* v0, const double* p1, const double* v1,
-                           const Limits* L, double* t) {
+//! The shortest duration every joint of a segment can take, given each joint's shortest
+//! t: the largest of them, moved past any interval of durations a joint cannot take.
+inline double synchronised(int n, const double* p0, const double* v0, const double* p1, const double* v1,
+                           const Limits* L, const double* t) {
     double T = 0.0;
-    for (int i = 0; i < n; ++i) {
-        t[i] = shortest(p1[i] - p0[i], v0[i], v1[i], L[i]);
-        T = std::max(T, t[i]);
-    }
+    for (int i = 0; i < n; ++i) T = std::max(T, t[i]);
     for (int pass = 0; pass <= n; ++pass) {
         bool moved = false;
         for (int i = 0; i < n; ++i) {
@@ -412,6 +423,15 @@ inline double segment_time(int n, const double* p0, const double* v0, const doub
         if (!moved) break;
     }
     return T;
+}
+
+//! The shortest synchronised duration of a segment of n joints from positions p0 and
+//! velocities v0 to p1, v1, accelerations zero at both ends (velocities within the limits);
+//! t: n entries, filled with each joint's shortest.
+inline double segment_time(int n, const double* p0, const double* v0, const double* p1, const double* v1,
+                           const Limits* L, double* t) {
+    for (int i = 0; i < n; ++i) t[i] = shortest(p1[i] - p0[i], v0[i], v1[i], L[i]);
+    return synchronised(n, p0, v0, p1, v1, L, t);
 }
 
 }  // namespace km::jerk

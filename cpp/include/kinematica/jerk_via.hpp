@@ -98,7 +98,8 @@ namespace detail {
 //! The search's state: the problem, the chosen velocities and durations, scratch.
 class ViaSearch {
 public:
-    ViaSearch(const Via& P, ViaOutput& out) : P_(P), out_(out), t_(P.n), vhat_(P.k * P.n), trial_(P.n) {}
+    ViaSearch(const Via& P, ViaOutput& out)
+        : P_(P), out_(out), t_(P.n), shortest_((P.k - 1) * P.n), vhat_(P.k * P.n), trial_(P.n) {}
 
     void run(const ViaParams& prm) {
         const int k = P_.k, n = P_.n;
@@ -125,12 +126,13 @@ public:
                 std::copy(trial_time.begin(), trial_time.end(), out_.time);
             }
         }
+        refresh();
         for (int s = 0; s < prm.sweeps; ++s) {
             for (int i = 1; i < k - 1; ++i) {
                 bool moving = false;
                 for (int j = 0; j < n; ++j) moving = moving || vhat_[i * n + j] != 0.0;
                 if (!moving) continue;
-                improve(i, prm.golden_steps, [&](double x, double* v) {
+                improve(i, prm.golden_steps, -1, [&](double x, double* v) {
                     for (int j = 0; j < n; ++j) v[j] = x * vhat_[i * n + j];
                 });
             }
@@ -147,7 +149,7 @@ public:
                     for (const double sign : signs) {
                         if (sign == 0.0) continue;
                         const double top = (sign > 0.0 ? 1.0 : -1.0) * P_.limits[j].v;
-                        improve(i, prm.golden_steps, [&](double x, double* v) {
+                        improve(i, prm.golden_steps, j, [&](double x, double* v) {
                             std::copy(vel + i * n, vel + (i + 1) * n, v);
                             v[j] = x * top;
                         });
@@ -158,24 +160,52 @@ public:
     }
 
 private:
-    //! Duration of segment i (waypoint i to i+1) from velocity vi to vj; inf if it leaves qlim.
-    double time(int i, const double* vi, const double* vj) {
+    //! Duration of segment i (waypoint i to i+1) from velocity vi to vj; inf if it leaves
+    //! qlim. joint >= 0: only that joint's velocity differs from the chosen ones, whose
+    //! joints' shortest durations are kept (the others' are not computed again).
+    double time(int i, const double* vi, const double* vj, int joint = -1) {
         const int n = P_.n;
         const double* p0 = P_.w + i * n;
         const double* p1 = p0 + n;
         ++out_.evaluations;
-        const double T = segment_time(n, p0, vi, p1, vj, P_.limits, t_.data());
-        if (P_.qlim == nullptr) return T;
+        double T;
+        if (joint < 0) {
+            T = segment_time(n, p0, vi, p1, vj, P_.limits, t_.data());
+        } else {
+            std::copy(shortest_.begin() + i * n, shortest_.begin() + (i + 1) * n, t_.begin());
+            t_[joint] = shortest(p1[joint] - p0[joint], vi[joint], vj[joint], P_.limits[joint]);
+            T = synchronised(n, p0, vi, p1, vj, P_.limits, t_.data());
+        }
+        return within_qlim(i, T, vi, vj) ? T : std::numeric_limits<double>::infinity();
+    }
+
+    //! The chosen velocities' segments: each joint's shortest duration, kept for time().
+    void refresh() {
+        const int n = P_.n;
+        const double* vel = out_.velocity;
+        for (int i = 0; i < P_.k - 1; ++i) {
+            const double* p0 = P_.w + i * n;
+            for (int j = 0; j < n; ++j) {
+                shortest_[i * n + j] =
+                    shortest(p0[n + j] - p0[j], vel[i * n + j], vel[(i + 1) * n + j], P_.limits[j]);
+            }
+        }
+    }
+
+    //! Whether every joint of segment i, of duration T, stays within qlim.
+    bool within_qlim(int i, double T, const double* vi, const double* vj) const {
+        const int n = P_.n;
+        const double* p0 = P_.w + i * n;
+        const double* p1 = p0 + n;
+        if (P_.qlim == nullptr || !std::isfinite(T)) return true;
         Profile prof;
         for (int j = 0; j < n; ++j) {
             profile(T, p1[j] - p0[j], vi[j], vj[j], P_.limits[j], prof);
             double lo, hi;
             extremes(p0[j], vi[j], prof, lo, hi);
-            if (lo < P_.qlim[2 * j] - P_.qlim_atol || hi > P_.qlim[2 * j + 1] + P_.qlim_atol) {
-                return std::numeric_limits<double>::infinity();
-            }
+            if (lo < P_.qlim[2 * j] - P_.qlim_atol || hi > P_.qlim[2 * j + 1] + P_.qlim_atol) return false;
         }
-        return T;
+        return true;
     }
 
     double total(const double* vel, double* times) {
@@ -188,13 +218,15 @@ private:
     }
 
     //! Waypoint i's velocity: the best candidate(x, v), x in [0, 1], if it shortens the move.
+    //! joint >= 0: the candidates differ from the chosen velocity in that joint only.
     template <class Candidate>
-    void improve(int i, int steps, const Candidate& candidate) {
+    void improve(int i, int steps, int joint, const Candidate& candidate) {
         const int n = P_.n;
         double* vel = out_.velocity;
         const auto around = [&](double x) {
             candidate(x, trial_.data());
-            return time(i - 1, vel + (i - 1) * n, trial_.data()) + time(i, trial_.data(), vel + (i + 1) * n);
+            return time(i - 1, vel + (i - 1) * n, trial_.data(), joint) +
+                   time(i, trial_.data(), vel + (i + 1) * n, joint);
         };
         double lo = 0.0, hi = 1.0;
         double x1 = hi - GOLD, x2 = lo + GOLD;
@@ -217,7 +249,9 @@ private:
             candidate(xb, trial_.data());
             std::copy(trial_.begin(), trial_.end(), vel + i * n);
             out_.time[i - 1] = time(i - 1, vel + (i - 1) * n, vel + i * n);
+            std::copy(t_.begin(), t_.end(), shortest_.begin() + (i - 1) * n);
             out_.time[i] = time(i, vel + i * n, vel + (i + 1) * n);
+            std::copy(t_.begin(), t_.end(), shortest_.begin() + i * n);
         }
     }
 
@@ -246,7 +280,7 @@ private:
 
     const Via& P_;
     ViaOutput& out_;
-    std::vector<double> t_, vhat_, trial_;
+    std::vector<double> t_, shortest_, vhat_, trial_;
 };
 
 }  // namespace detail
