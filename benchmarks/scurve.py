@@ -292,7 +292,7 @@ def speed() -> list[tuple[str, str, str]]:
                 (
                     f"7 joints through {k} waypoints: the search, {name}, per segment",
                     fmt_time(t_search),
-                    f"{t_search / t_rkz:.0f}x ruckig's segment; {evals:.0f} segments planned each; "
+                    f"{t_search / t_rkz:.1f}x ruckig's segment; {evals:.0f} segments planned each; "
                     f"{saving:.1%} shorter than stopping",
                 )
             )
