@@ -6,8 +6,10 @@ Run with ``make bench`` (or ``.venv/bin/python benchmarks/scurve.py [--cases N]`
   objects made once), our segment planner (the same call, with the lists set
   and ruckig's input check), ruckig's calculate with its own ``at_time``
   every 10 ms, the whole ``joint_trajectory(profile="scurve")`` (limits
-  checked, exact pieces, samples every 10 ms, jerk included), and the
-  waypoint planner per segment (its search of the waypoint velocities included).
+  checked, exact pieces, samples every 10 ms, jerk included); the core's own
+  segment at zero accelerations (``jerk.hpp``) beside ruckig on the same
+  states; and through waypoints: the core's search of the waypoint velocities
+  alone per segment, and the whole ``via_trajectory(W, "scurve")`` per segment.
 * Audit on ``--cases`` random cases (10,000 by default), 1 to 7 joints:
   rest-to-rest durations against the hand-derived closed form
   (``tests/support/scurve_reference.py``; the slowest joint's time), and from
@@ -15,7 +17,9 @@ Run with ``make bench`` (or ``.venv/bin/python benchmarks/scurve.py [--cases N]`
   resampling, the time-optimal structure of some joint (every phase at a
   limit), and the synchronisation one joint at a time (each joint planned
   alone to last at least ``T`` takes exactly ``T``; to last ``T - 1e-6`` s,
-  some joint cannot). Counts of failures, and the largest errors.
+  some joint cannot). Counts of failures, and the largest errors. Then the
+  core's segments at zero accelerations (``jerk.hpp``) against ruckig on
+  ``--cases`` random cases: durations, end states and limits.
 
 No assertions: figures only.
 """
@@ -41,8 +45,10 @@ from support.scurve_reference import (
     retimed_durations,
 )
 
+from kinematica.core.jerk import jerk_segments, jerk_via
 from kinematica.motion import joint_trajectory, via_trajectory
 from kinematica.motion.scurve import JerkTrajectory, Segment
+from kinematica.motion.scurve_via import GOLDEN_STEPS, JOINT_SWEEPS, POSITION_ATOL, SWEEPS
 from kinematica.motion.trajectory import LIMIT_RTOL
 
 
@@ -122,6 +128,68 @@ def audit(cases: int) -> list[tuple[str, str, str]]:
     ]
 
 
+def _walk(p: float, v: float, t: np.ndarray, j: np.ndarray) -> tuple[float, ...]:
+    """End p, v, a of a joint's phases from (p, v, 0); the largest |v|, |a| on the way."""
+    a, vmax, amax = 0.0, abs(v), 0.0
+    for h, jk in zip(t, j, strict=True):
+        if jk != 0.0 and 0.0 < -a / jk < h:
+            tau = -a / jk
+            vmax = max(vmax, abs(v + a * tau + jk * tau * tau / 2.0))
+        p, v, a = p + h * (v + h * (a / 2.0 + h * jk / 6.0)), v + h * (a + h * jk / 2.0), a + h * jk
+        vmax, amax = max(vmax, abs(v)), max(amax, abs(a))
+    return p, v, a, vmax, amax
+
+
+def audit_core(cases: int) -> list[tuple[str, str, str]]:
+    """The core's zero-acceleration segments (jerk.hpp) against ruckig, 1 to 7 joints."""
+    rng = np.random.default_rng(3636)
+    worst_t = worst_end = worst_lim = 0.0
+    bad = 0
+    for c in range(cases):
+        n = 1 if c % 4 == 0 else int(rng.integers(2, 8))
+        V, A, J = random_limits(rng, n)
+        kind = rng.integers(0, 4, (2, n))
+        v0, v1 = (
+            np.select([k == 0, k == 1, k == 2], [np.zeros(n), V, -V], rng.uniform(-1, 1, n) * V)
+            for k in kind
+        )
+        p0 = rng.uniform(-2, 2, n)
+        p1 = p0 + rng.uniform(-1, 1, n) * (2.0, 0.05, 1e-4, 10.0)[c % 4]
+        seg = jerk_segments(p0[None], v0[None], p1[None], v1[None], (V, A, J))
+        T = float(seg.duration[0])
+        otg, inp, out = ruckig.Ruckig(n), ruckig.InputParameter(n), ruckig.Trajectory(n)
+        inp.current_position, inp.current_velocity = p0.tolist(), v0.tolist()
+        inp.target_position, inp.target_velocity = p1.tolist(), v1.tolist()
+        inp.max_velocity, inp.max_acceleration, inp.max_jerk = V.tolist(), A.tolist(), J.tolist()
+        otg.calculate(inp, out)
+        err = abs(T - out.duration)
+        worst_t = max(worst_t, err)
+        bad += err > 1e-6
+        for i in range(n):
+            k = int(seg.phases[0, i])
+            p, v, a, vm, am = _walk(p0[i], v0[i], seg.t[0, i, :k], seg.j[0, i, :k])
+            worst_end = max(worst_end, abs(p - p1[i]), abs(v - v1[i]), abs(a))
+            jm = float(np.abs(seg.j[0, i, :k]).max(initial=0.0))
+            worst_lim = max(worst_lim, vm / V[i] - 1.0, am / A[i] - 1.0, jm / J[i] - 1.0)
+    return [
+        (
+            f"the core's segments (zero accelerations), {cases} cases: duration vs ruckig",
+            f"largest difference {worst_t:.2e} s",
+            f"{bad} beyond 1e-6 s",
+        ),
+        (
+            "  end state (integrated phases)",
+            f"largest error {worst_end:.2e}",
+            f"{'within' if worst_end <= 1e-10 else 'BEYOND'} 1e-10",
+        ),
+        (
+            "  limits at the phases' extremes",
+            f"largest excess {worst_lim:+.2e} (relative)",
+            f"{'within' if worst_lim <= LIMIT_RTOL else 'BEYOND'} {LIMIT_RTOL:g}",
+        ),
+    ]
+
+
 def speed() -> list[tuple[str, str, str]]:
     n = 7
     rng = np.random.default_rng(7)
@@ -175,20 +243,71 @@ def speed() -> list[tuple[str, str, str]]:
             f"{t_full / t_rk:.2f}x ({t_full / t_rks:.2f}x ruckig sampled)",
         ),
     ]
+    # the core's own segment, zero accelerations, beside ruckig on the same states
+    zero = []
+    for q0, v0, _, q1 in states:
+        v1 = np.clip(rng.uniform(-1, 1, n) * V, -V, V)
+        x = ruckig.InputParameter(n)
+        x.max_velocity, x.max_acceleration, x.max_jerk = V.tolist(), A.tolist(), J.tolist()
+        x.current_position, x.current_velocity = q0.tolist(), v0.tolist()
+        x.target_position, x.target_velocity = q1.tolist(), v1.tolist()
+        zero.append((x, q0[None], v0[None], q1[None], v1[None]))
+
+    def rk_zero() -> None:
+        otg.calculate(zero[next(it) % 64][0], out)
+
+    def core_zero() -> None:
+        _, q0, v0, q1, v1 = zero[next(it) % 64]
+        jerk_segments(q0, v0, q1, v1, (V, A, J))
+
+    batch = [np.concatenate([z[i] for z in zero]) for i in range(1, 5)]
+    t_rkz = per_call(rk_zero, calls=20_000)
+    t_core = per_call(core_zero, calls=20_000)
+    t_batch = per_call(lambda: jerk_segments(*batch, (V, A, J)), calls=300) / 64
+    rows += [
+        ("7 joints, zero accelerations: ruckig calculate", fmt_time(t_rkz), f"{t_rkz / t_rk:.2f}x"),
+        (
+            "  the core's segment (jerk.hpp), one a call",
+            fmt_time(t_core),
+            f"{t_core / t_rkz:.2f}x ruckig",
+        ),
+        ("  the core's segment, 64 a call", fmt_time(t_batch), f"{t_batch / t_rkz:.2f}x ruckig"),
+    ]
+    searches = {
+        f"default {SWEEPS, GOLDEN_STEPS, JOINT_SWEEPS}": (SWEEPS, GOLDEN_STEPS, JOINT_SWEEPS),
+        f"no joint sweeps {SWEEPS, GOLDEN_STEPS, 0}": (SWEEPS, GOLDEN_STEPS, 0),
+    }
     for k in (5, 10, 20):
         W = np.cumsum(rng.uniform(-0.6, 0.9, (k, n)), axis=0)
+        z = np.zeros(n)
+        for name, search in searches.items():
+            choice = jerk_via(W, z, z, (V, A, J), None, POSITION_ATOL, search)
+            t_search = per_call(
+                lambda W=W, z=z, s=search: jerk_via(W, z, z, (V, A, J), None, 0.0, s), 30
+            )
+            t_search /= k - 1
+            evals = choice.evaluations / (k - 1)
+            saving = 1.0 - choice.time.sum() / choice.stop.sum()
+            rows.append(
+                (
+                    f"7 joints through {k} waypoints: the search, {name}, per segment",
+                    fmt_time(t_search),
+                    f"{t_search / t_rkz:.1f}x ruckig's segment; {evals:.0f} segments planned each; "
+                    f"{saving:.1%} shorter than stopping",
+                )
+            )
         t0 = time.perf_counter()
-        reps = 3
+        reps = 5
         for _ in range(reps):
             traj = via_trajectory(W, "scurve", vmax=V, amax=A, jmax=J, dt=0.01)
         per_seg = (time.perf_counter() - t0) / reps / (k - 1)
         assert isinstance(traj, JerkTrajectory) and traj.margin is not None
         rows.append(
             (
-                f"7 joints through {k} waypoints, per segment",
+                "  via_trajectory(W, 'scurve') (default search), per segment",
                 fmt_time(per_seg),
-                f"{per_seg / t_rk:.0f}x; {traj.margin:.3f} s shorter than stopping "
-                f"({traj.margin / (traj.stop_duration or 1.0):.0%})",
+                f"{per_seg / t_rkz:.0f}x ruckig's segment (exact pieces, 10 ms samples); "
+                f"{traj.margin:.3f} s shorter than stopping",
             )
         )
     return rows
@@ -203,7 +322,7 @@ def main() -> None:
     )
     print(table(speed(), ("what", "time per call", "against ruckig calculate")))
     print()
-    print(table(audit(cases), ("audit", "result", "")))
+    print(table(audit(cases) + audit_core(cases), ("audit", "result", "")))
 
 
 if __name__ == "__main__":

@@ -23,6 +23,7 @@ LAZY_PACKAGES = (
     "kinematica.dh",
     "kinematica.io",
     "kinematica.ik",
+    "kinematica.motion",
     "kinematica.robot",
 )
 
@@ -84,3 +85,16 @@ def test_no_optional_extra_is_imported_before_it_is_needed() -> None:
     for step, modules in seen.items():
         loaded = {m.split(".")[0] for m in modules} & set(OPTIONAL)
         assert loaded == set(), f"{step}: {sorted(loaded)}"
+
+
+def test_the_motion_package_s_workspace_is_the_function_whoever_imported_its_module() -> None:
+    code = (
+        "import kinematica as km; import kinematica.motion.workspace as m; "
+        "from kinematica.motion import workspace; "
+        "print(callable(workspace), km.workspace is workspace, m is workspace)"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=False, timeout=120
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout.split() == ["True", "True", "True"]

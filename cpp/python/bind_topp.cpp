@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "common.hpp"
+#include "interrupt.hpp"
 #include "kinematica/topp.hpp"
 #include "numpy_io.hpp"
 
@@ -75,8 +76,10 @@ nb::tuple time_optimal(F64 s, F64 coef, F64 vlo, F64 vhi, F64 alo, F64 ahi, F64 
     {
         nb::gil_scoped_release release;
         kt::Workspace ws;
-        kt::time_optimal(P, out, ws, sets);
+        SignalPoll interrupted;
+        kt::time_optimal(P, out, ws, sets, std::ref(interrupted));
     }
+    if (out.status == kt::Status::interrupted) throw nb::python_error();
     return nb::make_tuple(static_cast<int>(out.status), out.stage, static_cast<int>(out.kind), out.joint, X,
                           KL, KH, RL, RH, M);
 }

@@ -27,25 +27,35 @@ namespace nb = nanobind;
 //! it), 1e-4 of the time at this interval.
 constexpr double POLL_INTERVAL = 0.01;
 
+//! A look at Python's signals from a thread that released the GIL, at most every
+//! POLL_INTERVAL: true when a signal handler raised (KeyboardInterrupt), the exception
+//! then set on this thread for nb::python_error to raise once the GIL is held again.
+class SignalPoll {
+public:
+    bool operator()() {
+        const Clock::time_point now = Clock::now();
+        if (now - last_ < interval_) return false;
+        last_ = now;
+        nb::gil_scoped_acquire acquire;
+        return PyErr_CheckSignals() != 0;
+    }
+
+private:
+    using Clock = std::chrono::steady_clock;
+    Clock::duration interval_ =
+        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(POLL_INTERVAL));
+    Clock::time_point last_ = Clock::now();
+};
+
 //! Run fn(b) for every block b in [0, blocks) on up to `workers` threads, the GIL
 //! released, called with the GIL held; a signal handler's exception (KeyboardInterrupt)
 //! stops it between blocks and is raised here. fn must not throw or touch Python.
 inline void run_blocks(int blocks, int workers, const std::function<void(int)>& fn) {
-    using Clock = std::chrono::steady_clock;
-    const auto interval = std::chrono::duration_cast<Clock::duration>(
-        std::chrono::duration<double>(POLL_INTERVAL));
-    Clock::time_point last = Clock::now();
-    const auto interrupted = [&last, interval]() {
-        const Clock::time_point now = Clock::now();
-        if (now - last < interval) return false;
-        last = now;
-        nb::gil_scoped_acquire acquire;
-        return PyErr_CheckSignals() != 0;  // the exception stays set on this thread
-    };
+    SignalPoll interrupted;
     bool done = false;
     {
         nb::gil_scoped_release release;
-        done = parallel_for(blocks, workers, fn, interrupted);
+        done = parallel_for(blocks, workers, fn, std::ref(interrupted));
     }
     if (!done) throw nb::python_error();
 }

@@ -8,6 +8,7 @@
 
 namespace kmpy {
 void bind_topp(nb::module_& m);  // bind_topp.cpp: the time-optimal timing of a path
+void bind_jerk(nb::module_& m);  // bind_jerk.cpp: jerk-limited segments and waypoints
 }  // namespace kmpy
 
 namespace {
@@ -27,5 +28,6 @@ NB_MODULE(_core, m) {
     kmpy::bind_spatial(m);
     kmpy::bind_lines(m);
     kmpy::bind_topp(m);
+    kmpy::bind_jerk(m);
     kmpy::bind_testing(m);
 }

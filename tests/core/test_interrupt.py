@@ -191,3 +191,59 @@ def test_sigint_stops_a_spatial_batch_inside_the_call() -> None:
     assert lines[0] == ["interrupted", "True"]
     word, err = lines[1]
     assert word == "after" and float(err) < 1e-9
+
+
+TOPP_CHILD = r"""
+import os, signal, sys, threading
+import numpy as np
+from kinematica.core.topp import time_optimal_grid
+
+sys.setswitchinterval(100.0)  # the second thread runs only once the core lets go of the GIL
+
+
+def problem(n, N):
+    rng = np.random.default_rng(3)
+    s = np.linspace(0.0, 1.0, N + 1)
+    coef = np.zeros((N, 4, n))
+    coef[:, 1] = rng.uniform(0.5, 1.0, n)
+    coef[:, 2] = 0.01 * rng.uniform(-1.0, 1.0, (N, n))
+    coef[:, 0] = np.cumsum(coef[:, 1] / N, axis=0)
+    one = np.ones(n)
+    return s, coef, (-one, one), (-5.0 * one, 5.0 * one), np.full(N, np.inf), 0.0, 0.0, 1e12
+
+
+small = time_optimal_grid(*problem(3, 50))
+long_path = problem(20, 20_000)  # one path of 20 joints on 20,000 intervals: 0.1-0.5 s
+go = threading.Event()
+
+def ctrl_c():
+    go.wait()
+    os.kill(os.getpid(), signal.SIGINT)
+
+threading.Thread(target=ctrl_c).start()
+go.set()
+result = None
+try:
+    result = time_optimal_grid(*long_path)
+    print("finished", flush=True)
+except KeyboardInterrupt:
+    print("interrupted", result is None, flush=True)
+again = time_optimal_grid(*problem(3, 50))
+same = again.status == small.status == "ok" and np.array_equal(again.x, small.x)
+print("after", same, flush=True)
+"""
+
+
+def test_sigint_stops_one_long_time_optimal_path_inside_the_call() -> None:
+    """One path's timing (the core's topp.hpp) reads Ctrl-C between its stages.
+
+    As above: the SIGINT comes from a thread that runs only once the call has released
+    the GIL; a call that did not look at the signals would finish first and return. The
+    core then times a small path exactly as before the interruption.
+    """
+    child = subprocess.run(
+        [sys.executable, "-c", TOPP_CHILD], capture_output=True, text=True, timeout=60
+    )
+    assert child.returncode == 0, child.stderr
+    lines = [line.split() for line in child.stdout.splitlines()]
+    assert lines == [["interrupted", "True"], ["after", "True"]]

@@ -118,6 +118,8 @@ def test_ends_that_must_leave_the_limits_are_refused() -> None:
         ({"tacc": 0.1}, KinematicaError, "drop tacc"),
         ({"qlim": [[0.0, 1.0]]}, DimensionError, "qlim must be"),
         ({"qd0": [2.0, 0.0]}, KinematicaError, "joint 1"),
+        ({"qdd0": [0.0, 0.1]}, KinematicaError, "qdd0 must be 0"),
+        ({"qdd1": 0.1}, KinematicaError, "qdd1 must be 0"),
     ],
 )
 def test_bad_input_is_named(kwargs: dict, error: type, match: str) -> None:
@@ -135,3 +137,24 @@ def test_equal_waypoints_and_other_methods() -> None:
         via_trajectory(W[:2], "cubic", vmax=1, jmax=1)
     with pytest.raises(KinematicaError, match=r"\.pieces"):
         via_polynomials(W[:2], "scurve")
+
+
+def test_each_segment_lasts_what_ruckig_plans_for_its_states() -> None:
+    """The core's segments at the chosen waypoint velocities against ruckig's planner."""
+    ruckig = pytest.importorskip("ruckig")
+    rng = np.random.default_rng(11)
+    n, k = 6, 8
+    V, A, J = random_limits(rng, n)
+    W = np.cumsum(rng.uniform(-0.5, 1.0, (k, n)), axis=0)
+    traj = via_trajectory(W, "scurve", vmax=V, amax=A, jmax=J, dt=0.05)
+    assert traj.waypoint_qd is not None and traj.waypoint_times is not None
+    otg, inp, out = ruckig.Ruckig(n), ruckig.InputParameter(n), ruckig.Trajectory(n)
+    inp.max_velocity, inp.max_acceleration, inp.max_jerk = V.tolist(), A.tolist(), J.tolist()
+    for i in range(k - 1):
+        inp.current_position, inp.current_velocity = W[i].tolist(), traj.waypoint_qd[i].tolist()
+        inp.target_position, inp.target_velocity = (
+            W[i + 1].tolist(),
+            traj.waypoint_qd[i + 1].tolist(),
+        )
+        otg.calculate(inp, out)
+        assert abs(np.diff(traj.waypoint_times)[i] - out.duration) <= 1e-9

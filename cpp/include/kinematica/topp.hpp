@@ -27,6 +27,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -53,7 +54,10 @@ struct Row {
 };
 
 //! How the timing ended.
-enum class Status : int { ok = 0, stuck = 1, start_outside = 2, empty = 3 };
+//! Stages between two calls of the caller's stop() (a few µs to tens of µs of work).
+constexpr int STOP_STAGES = 64;
+//! interrupted: the caller's stop() said so; the outputs are then incomplete.
+enum class Status : int { ok = 0, stuck = 1, start_outside = 2, empty = 3, interrupted = 4 };
 
 //! A path and its limits, every array owned by the caller.
 struct Problem {
@@ -333,8 +337,11 @@ struct Workspace {
 };
 
 //! Time-optimal ṡ² along the grid within every limit at every s (see the file comment).
-//! sets: also the limit curve and the reachable sets (NaN otherwise).
-inline void time_optimal(const Problem& P, Output& out, Workspace& ws, bool sets = true) {
+//! sets: also the limit curve and the reachable sets (NaN otherwise). stop, when given, is
+//! asked every STOP_STAGES stages of either pass; once it says true the call returns with
+//! status interrupted (a long path in a thread the caller must be able to stop).
+inline void time_optimal(const Problem& P, Output& out, Workspace& ws, bool sets = true,
+                         const std::function<bool()>& stop = {}) {
     using detail::extreme;
     const int N = P.N;
     const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -346,7 +353,14 @@ inline void time_optimal(const Problem& P, Output& out, Workspace& ws, bool sets
     // Backward: the controllable sets.
     out.k_lo[N] = out.k_hi[N] = P.x_end;
     out.status = Status::ok;
+    const auto stopped = [&stop, &out](int i) {
+        if (!stop || i % STOP_STAGES != 0 || !stop()) return false;
+        out.status = Status::interrupted;
+        out.stage = i;
+        return true;
+    };
     for (int i = N - 1; i >= 0; --i) {
+        if (stopped(i)) return;
         ws.stages[i].build(P, ws.bernstein, i, false);
         if (sets) {
             double v;
@@ -377,6 +391,7 @@ inline void time_optimal(const Problem& P, Output& out, Workspace& ws, bool sets
     // Forward: the fastest successor within the next controllable set.
     out.x[0] = out.r_lo[0] = out.r_hi[0] = x0;
     for (int i = 0; i < N; ++i) {
+        if (stopped(i)) return;
         const detail::Lines& L = ws.stages[i];
         const double x = out.x[i];
         const detail::Bounds b = detail::bounds_at(L, x, out.k_lo[i + 1], out.k_hi[i + 1]);

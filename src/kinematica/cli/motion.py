@@ -304,7 +304,7 @@ def register(sub: Any) -> None:
         help="between two q: quintic, cubic, trapezoid; through --via: the quintic (C4) or "
         "cubic (C2) spline through every point, or mstraj (the Robotics Toolbox's lines with "
         "quintic blends, times rounded up to --dt); "
-        "scurve: jerk-limited (--vmax --amax --jmax; needs ruckig), between two q or "
+        "scurve: jerk-limited (--vmax --amax --jmax), between two q (needs ruckig) or "
         "through --via points without stopping",
     )
     p.add_argument(

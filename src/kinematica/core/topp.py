@@ -19,7 +19,7 @@ __all__ = ["KINDS", "MAX_DEGREE", "STATUSES", "GridTiming", "time_optimal_grid"]
 FloatArray = NDArray[np.float64]
 
 #: The core's statuses, by number.
-STATUSES = ("ok", "stuck", "start_outside", "empty")
+STATUSES = ("ok", "stuck", "start_outside", "empty", "interrupted")
 #: What a limit is about, by the core's number.
 KINDS = ("velocity", "acceleration", "cap", "next_set", "none")
 #: Highest degree of a path piece the core takes.

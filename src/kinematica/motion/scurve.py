@@ -45,6 +45,7 @@ __all__ = [
     "JerkTrajectory",
     "Segment",
     "limits_from",
+    "phase_pieces",
     "require_ruckig",
     "scurve_pieces",
     "scurve_trajectory",
@@ -235,15 +236,32 @@ def _phases(seg: Segment) -> tuple[FloatArray, ...]:
 def scurve_pieces(seg: Segment) -> PiecewisePolynomial:
     """The last planned segment as cubic pieces from ``t = 0`` (knots: its two ends).
 
-    Each joint's phases (a brake first, if any, then seven) are cut at the
-    union of every joint's switch times; each piece holds ``p, v, a/2, j/6``
-    of its joint at the piece's start, evaluated from the phase that contains
-    it. Then each joint's end is settled on its target (:func:`_settle`).
+    ruckig's phases (a brake first, if any, then seven) through :func:`phase_pieces`.
     """
-    T = float(seg.out.duration)
-    t, j, p, v, a, pf = _phases(seg)
+    return phase_pieces(float(seg.out.duration), _phases(seg), seg.limits)
+
+
+def phase_pieces(
+    T: float, phases: tuple[FloatArray, ...], limits: tuple[FloatArray, ...]
+) -> PiecewisePolynomial:
+    """Joints' phases of constant jerk as cubic pieces from ``t = 0`` to ``T`` (knots: 0, T).
+
+    Args:
+        T: Duration (s).
+        phases: ``(t, j, p, v, a, pf)``: ``(n, P)`` each joint's phase durations and
+            jerks and its position, velocity and acceleration at each phase's start,
+            and ``(n,)`` its target position.
+        limits: ``(vmax, amax, jmax)``, each ``(n,)`` (for :func:`_settle`).
+
+    Each joint's phases are cut at the union of every joint's switch times; each
+    piece holds ``p, v, a/2, j/6`` of its joint at the piece's start, evaluated from
+    the phase that contains it. Then each joint's end is settled on its target
+    (:func:`_settle`).
+    """
+    t, j, p, v, a, pf = phases
+    n = t.shape[0]
     used = t > 0.0
-    t0 = np.concatenate([np.zeros((seg.n, 1)), np.cumsum(t, axis=1)[:, :-1]], axis=1)
+    t0 = np.concatenate([np.zeros((n, 1)), np.cumsum(t, axis=1)[:, :-1]], axis=1)
     cuts = np.unique(np.concatenate([t0[used], [0.0, T]]))
     cuts = cuts[(cuts >= 0.0) & (cuts <= T)]
     keep = np.concatenate([[True], np.diff(cuts) > PIECE_RTOL * max(T, 1.0)])
@@ -255,7 +273,7 @@ def scurve_pieces(seg: Segment) -> PiecewisePolynomial:
     # the phase holding each piece's midpoint: a switch merged into a piece's start
     # (PIECE_RTOL) may lie a hair after it, and its phase is the one the piece follows
     mid = 0.5 * (tb + breaks[1:])
-    began = used[:, :, None] & (t0[:, :, None] <= mid[None, None, :])  # (n, 9, pieces)
+    began = used[:, :, None] & (t0[:, :, None] <= mid[None, None, :])  # (n, P, pieces)
     k = t.shape[1] - 1 - np.argmax(began[:, ::-1, :], axis=1)  # the last phase begun
     tau = tb[None, :] - np.take_along_axis(t0, k, axis=1)
     pk, vk, ak, jk = (np.take_along_axis(x, k, axis=1) for x in (p, v, a, j))
@@ -271,7 +289,7 @@ def scurve_pieces(seg: Segment) -> PiecewisePolynomial:
     still = ~used.any(axis=1)  # a joint with no phase: at rest at its target
     coef[:, :, still] = 0.0
     coef[:, 0, still] = pf[still]
-    coef = _settle(seg, breaks, coef, (t0, t, v, a, j, pf), used)
+    coef = _settle(limits, breaks, coef, (t0, t, v, a, j, pf), used)
     return PiecewisePolynomial(breaks, coef, np.array([0.0, T]))
 
 
@@ -301,7 +319,7 @@ def _step_taylor(s0: FloatArray, scale: float) -> FloatArray:
 
 
 def _settle(
-    seg: Segment,
+    limits: tuple[FloatArray, ...],
     breaks: FloatArray,
     coef: FloatArray,
     phases: tuple[FloatArray, ...],
@@ -322,7 +340,7 @@ def _settle(
     t0s, durs, vs, accs, jerks, pf = phases
     tb = breaks[:-1]
     mid = 0.5 * (tb + breaks[1:])
-    vmax, amax, jmax = seg.limits
+    vmax, amax, jmax = limits
     h = breaks[-1] - tb[-1]
     last = coef[-1]  # (4, n)
     e_all = last[0] + h * (last[1] + h * (last[2] + h * last[3])) - pf

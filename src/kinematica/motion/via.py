@@ -18,8 +18,9 @@ Four methods:
   reached exactly;
 - ``"scurve"``: jerk-limited segments from waypoint to waypoint, the
   velocities at the waypoints chosen to shorten the move instead of stopping
-  at each, position limits held (:mod:`kinematica.motion.scurve_via`; needs
-  ``vmax``, ``amax``, ``jmax`` and ruckig, the extra ``trajectory``).
+  at each (the acceleration zero there), position limits held
+  (:mod:`kinematica.motion.scurve_via`, in the compiled core; needs ``vmax``,
+  ``amax``, ``jmax``).
 
 With ``qd=`` (and ``qdd=``) the cubic and quintic pieces take the velocities
 (and accelerations) given at every waypoint instead of solving for them, as

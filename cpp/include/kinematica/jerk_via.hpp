@@ -1,0 +1,297 @@
+// Jerk-limited moves through waypoints (jerk.hpp's segments), the velocities at the
+// waypoints chosen to make the whole move short; the acceleration at every waypoint is zero.
+//
+// 1. A direction per waypoint from its neighbours: a joint that moves the same way before
+//    and after the waypoint keeps moving through it, along the chord w[i+1] - w[i-1]; a
+//    joint that turns back (or does not move on one side) passes it at rest. The chord is
+//    scaled to the highest speed the joints' limits allow along it: vhat[i].
+// 2. The velocity at waypoint i is λ_i·vhat[i], λ_i in [0, 1]: one common λ for every
+//    waypoint is tried on a grid (a stop at each included), then each λ_i in turn by a
+//    golden-section search on the sum of its two segments' durations; then, optionally,
+//    each joint's own speed at each waypoint. A value is kept only when it shortens the
+//    move, so the result is never longer than a stop at every waypoint.
+// 3. With position limits a segment whose exact extremes leave them counts as infinitely
+//    long, so the search keeps only velocities whose segments stay inside.
+// A heuristic over one number per waypoint (and per joint), not a global optimum: its
+// duration is an upper bound of the best jerk-limited move through the same waypoints.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "kinematica/jerk.hpp"
+
+namespace km::jerk {
+
+//! Common speed fractions of the first search (0: a stop at every waypoint).
+constexpr double VIA_GRID[] = {0.0, 0.5, 1.0};
+//! (√5 - 1)/2.
+constexpr double GOLD = 0.6180339887498949;
+
+//! How hard the search looks.
+struct ViaParams {
+    int sweeps = 1;        //!< sweeps over the waypoints with one speed fraction each
+    int golden_steps = 8;  //!< evaluations of each golden-section search (0.618^8 ~ 2 %)
+    int joint_sweeps = 0;  //!< then sweeps over each joint's own speed at each waypoint
+};
+
+//! The waypoints and limits, every array the caller's.
+struct Via {
+    int k = 0;                       //!< waypoints (>= 2)
+    int n = 0;                       //!< joints
+    const double* w = nullptr;       //!< (k, n) waypoints, no two in a row equal
+    const double* v_start = nullptr; //!< (n) velocity at the first waypoint
+    const double* v_end = nullptr;   //!< (n) velocity at the last
+    const Limits* limits = nullptr;  //!< (n)
+    const double* qlim = nullptr;    //!< (n, 2) position limits (low, high), or nullptr
+    double qlim_atol = 0.0;          //!< how far an extreme may pass a position limit
+};
+
+//! What the search chose; the arrays are the caller's.
+struct ViaOutput {
+    double* velocity = nullptr;  //!< (k, n) at the waypoints
+    double* time = nullptr;      //!< (k - 1) each segment's duration
+    double* stop = nullptr;      //!< (k - 1) each segment's duration with a stop at every waypoint
+    long evaluations = 0;        //!< segments planned by the search
+};
+
+//! Lowest and highest position of a joint's profile from (p0, v0, 0): its ends, and where
+//! its velocity (quadratic in each phase) is zero inside a phase.
+inline void extremes(double p0, double v0, const Profile& P, double& lo, double& hi) {
+    double p = p0, v = v0, a = 0.0;
+    lo = hi = p0;
+    for (int k = 0; k < P.phases; ++k) {
+        const double h = P.t[k], j = P.j[k];
+        // v + a τ + j τ²/2 = 0 for τ in (0, h)
+        double roots[2];
+        int nr = 0;
+        if (j == 0.0) {
+            if (a != 0.0) roots[nr++] = -v / a;
+        } else {
+            const double disc = a * a - 2.0 * j * v;
+            if (disc >= 0.0) {
+                const double sq = std::sqrt(disc);
+                roots[nr++] = (-a + sq) / j;
+                roots[nr++] = (-a - sq) / j;
+            }
+        }
+        for (int r = 0; r < nr; ++r) {
+            const double tau = roots[r];
+            if (tau > 0.0 && tau < h) {
+                const double x = p + tau * (v + tau * (a / 2.0 + tau * j / 6.0));
+                lo = std::min(lo, x);
+                hi = std::max(hi, x);
+            }
+        }
+        p += h * (v + h * (a / 2.0 + h * j / 6.0));
+        v += h * (a + h * j / 2.0);
+        a += h * j;
+        lo = std::min(lo, p);
+        hi = std::max(hi, p);
+    }
+}
+
+namespace detail {
+
+//! The search's state: the problem, the chosen velocities and durations, scratch.
+class ViaSearch {
+public:
+    ViaSearch(const Via& P, ViaOutput& out)
+        : P_(P), out_(out), t_(P.n), shortest_((P.k - 1) * P.n), vhat_(P.k * P.n), trial_(P.n) {}
+
+    void run(const ViaParams& prm) {
+        const int k = P_.k, n = P_.n;
+        directions();
+        double* vel = out_.velocity;
+        for (int i = 0; i < k * n; ++i) vel[i] = 0.0;
+        for (int j = 0; j < n; ++j) {
+            vel[j] = P_.v_start[j];
+            vel[(k - 1) * n + j] = P_.v_end[j];
+        }
+        double best = total(vel, out_.stop);
+        std::vector<double> trial_vel(vel, vel + k * n), trial_time(k - 1);
+        for (int i = 0; i < k - 1; ++i) out_.time[i] = out_.stop[i];
+        if (!std::isfinite(best)) return;  // the caller names the segment
+        for (const double x : VIA_GRID) {
+            if (x == 0.0) continue;
+            for (int i = 1; i < k - 1; ++i) {
+                for (int j = 0; j < n; ++j) trial_vel[i * n + j] = x * vhat_[i * n + j];
+            }
+            const double d = total(trial_vel.data(), trial_time.data());
+            if (d < best) {
+                best = d;
+                std::copy(trial_vel.begin(), trial_vel.end(), vel);
+                std::copy(trial_time.begin(), trial_time.end(), out_.time);
+            }
+        }
+        refresh();
+        for (int s = 0; s < prm.sweeps; ++s) {
+            for (int i = 1; i < k - 1; ++i) {
+                bool moving = false;
+                for (int j = 0; j < n; ++j) moving = moving || vhat_[i * n + j] != 0.0;
+                if (!moving) continue;
+                improve(i, prm.golden_steps, -1, [&](double x, double* v) {
+                    for (int j = 0; j < n; ++j) v[j] = x * vhat_[i * n + j];
+                });
+            }
+        }
+        for (int s = 0; s < prm.joint_sweeps; ++s) {
+            for (int i = 1; i < k - 1; ++i) {
+                for (int j = 0; j < n; ++j) {
+                    // an onward joint in its direction; one that turns back may pass its
+                    // waypoint moving either way (overshooting it on one side)
+                    const double before = P_.w[i * n + j] - P_.w[(i - 1) * n + j];
+                    const double after = P_.w[(i + 1) * n + j] - P_.w[i * n + j];
+                    const double vh = vhat_[i * n + j];
+                    const double signs[2] = {vh != 0.0 ? vh : before, vh != 0.0 ? 0.0 : after};
+                    for (const double sign : signs) {
+                        if (sign == 0.0) continue;
+                        const double top = (sign > 0.0 ? 1.0 : -1.0) * P_.limits[j].v;
+                        improve(i, prm.golden_steps, j, [&](double x, double* v) {
+                            std::copy(vel + i * n, vel + (i + 1) * n, v);
+                            v[j] = x * top;
+                        });
+                    }
+                }
+            }
+        }
+    }
+
+private:
+    //! Duration of segment i (waypoint i to i+1) from velocity vi to vj; inf if it leaves
+    //! qlim. joint >= 0: only that joint's velocity differs from the chosen ones, whose
+    //! joints' shortest durations are kept (the others' are not computed again).
+    double time(int i, const double* vi, const double* vj, int joint = -1) {
+        const int n = P_.n;
+        const double* p0 = P_.w + i * n;
+        const double* p1 = p0 + n;
+        ++out_.evaluations;
+        double T;
+        if (joint < 0) {
+            T = segment_time(n, p0, vi, p1, vj, P_.limits, t_.data());
+        } else {
+            std::copy(shortest_.begin() + i * n, shortest_.begin() + (i + 1) * n, t_.begin());
+            t_[joint] = shortest(p1[joint] - p0[joint], vi[joint], vj[joint], P_.limits[joint]);
+            T = synchronised(n, p0, vi, p1, vj, P_.limits, t_.data());
+        }
+        return within_qlim(i, T, vi, vj) ? T : std::numeric_limits<double>::infinity();
+    }
+
+    //! The chosen velocities' segments: each joint's shortest duration, kept for time().
+    void refresh() {
+        const int n = P_.n;
+        const double* vel = out_.velocity;
+        for (int i = 0; i < P_.k - 1; ++i) {
+            const double* p0 = P_.w + i * n;
+            for (int j = 0; j < n; ++j) {
+                shortest_[i * n + j] =
+                    shortest(p0[n + j] - p0[j], vel[i * n + j], vel[(i + 1) * n + j], P_.limits[j]);
+            }
+        }
+    }
+
+    //! Whether every joint of segment i, of duration T, stays within qlim.
+    bool within_qlim(int i, double T, const double* vi, const double* vj) const {
+        const int n = P_.n;
+        const double* p0 = P_.w + i * n;
+        const double* p1 = p0 + n;
+        if (P_.qlim == nullptr || !std::isfinite(T)) return true;
+        Profile prof;
+        for (int j = 0; j < n; ++j) {
+            profile(T, p1[j] - p0[j], vi[j], vj[j], P_.limits[j], prof);
+            double lo, hi;
+            extremes(p0[j], vi[j], prof, lo, hi);
+            if (lo < P_.qlim[2 * j] - P_.qlim_atol || hi > P_.qlim[2 * j + 1] + P_.qlim_atol) return false;
+        }
+        return true;
+    }
+
+    double total(const double* vel, double* times) {
+        double sum = 0.0;
+        for (int i = 0; i < P_.k - 1; ++i) {
+            times[i] = time(i, vel + i * P_.n, vel + (i + 1) * P_.n);
+            sum += times[i];
+        }
+        return sum;
+    }
+
+    //! Waypoint i's velocity: the best candidate(x, v), x in [0, 1], if it shortens the move.
+    //! joint >= 0: the candidates differ from the chosen velocity in that joint only.
+    template <class Candidate>
+    void improve(int i, int steps, int joint, const Candidate& candidate) {
+        const int n = P_.n;
+        double* vel = out_.velocity;
+        const auto around = [&](double x) {
+            candidate(x, trial_.data());
+            return time(i - 1, vel + (i - 1) * n, trial_.data(), joint) +
+                   time(i, trial_.data(), vel + (i + 1) * n, joint);
+        };
+        double lo = 0.0, hi = 1.0;
+        double x1 = hi - GOLD, x2 = lo + GOLD;
+        double f1 = around(x1), f2 = around(x2);
+        double xb = f1 <= f2 ? x1 : x2, fb = std::min(f1, f2);
+        for (int s = 2; s < steps; ++s) {
+            if (f1 <= f2) {
+                hi = x2, x2 = x1, f2 = f1;
+                x1 = hi - GOLD * (hi - lo);
+                f1 = around(x1);
+                if (f1 < fb) fb = f1, xb = x1;
+            } else {
+                lo = x1, x1 = x2, f1 = f2;
+                x2 = lo + GOLD * (hi - lo);
+                f2 = around(x2);
+                if (f2 < fb) fb = f2, xb = x2;
+            }
+        }
+        if (fb < out_.time[i - 1] + out_.time[i]) {
+            candidate(xb, trial_.data());
+            std::copy(trial_.begin(), trial_.end(), vel + i * n);
+            out_.time[i - 1] = time(i - 1, vel + (i - 1) * n, vel + i * n);
+            std::copy(t_.begin(), t_.end(), shortest_.begin() + (i - 1) * n);
+            out_.time[i] = time(i, vel + i * n, vel + (i + 1) * n);
+            std::copy(t_.begin(), t_.end(), shortest_.begin() + i * n);
+        }
+    }
+
+    //! vhat (module comment, 1).
+    void directions() {
+        const int k = P_.k, n = P_.n;
+        std::fill(vhat_.begin(), vhat_.end(), 0.0);
+        for (int i = 1; i < k - 1; ++i) {
+            double scale = std::numeric_limits<double>::infinity();
+            for (int j = 0; j < n; ++j) {
+                const double before = P_.w[i * n + j] - P_.w[(i - 1) * n + j];
+                const double after = P_.w[(i + 1) * n + j] - P_.w[i * n + j];
+                const bool same = before != 0.0 && (before > 0.0) == (after > 0.0) && after != 0.0;
+                const double u = same ? P_.w[(i + 1) * n + j] - P_.w[(i - 1) * n + j] : 0.0;
+                vhat_[i * n + j] = u;
+                if (u != 0.0) scale = std::min(scale, P_.limits[j].v / std::fabs(u));
+            }
+            if (!std::isfinite(scale)) continue;
+            for (int j = 0; j < n; ++j) {
+                // the joint that sets the scale: its limit, not one ulp over
+                const double v = vhat_[i * n + j] * scale, V = P_.limits[j].v;
+                vhat_[i * n + j] = std::min(V, std::max(-V, v));
+            }
+        }
+    }
+
+    const Via& P_;
+    ViaOutput& out_;
+    std::vector<double> t_, shortest_, vhat_, trial_;
+};
+
+}  // namespace detail
+
+//! Velocities at the waypoints and the segments' durations (file comment). out.time holds
+//! out.stop's values (and the velocities are the stops') when a stop at every waypoint
+//! already leaves qlim: some entry of out.stop is then inf.
+inline void via(const Via& P, const ViaParams& prm, ViaOutput& out) {
+    out.evaluations = 0;
+    detail::ViaSearch search(P, out);
+    search.run(prm);
+}
+
+}  // namespace km::jerk

@@ -1,0 +1,154 @@
+// Jerk-limited segments at zero acceleration and moves through waypoints (jerk.hpp,
+// jerk_via.hpp) for kinematica.motion.scurve_via: every array checked here before the core
+// sees it.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "common.hpp"
+#include "kinematica/jerk.hpp"
+#include "kinematica/jerk_via.hpp"
+#include "numpy_io.hpp"
+
+namespace kmpy {
+
+namespace {
+
+namespace kj = km::jerk;
+
+//! (n) limits, each finite and positive.
+std::vector<kj::Limits> limits_of(const In& V, const In& A, const In& J) {
+    std::vector<kj::Limits> L(static_cast<std::size_t>(V.dim[0]));
+    for (npy_intp i = 0; i < V.dim[0]; ++i) {
+        const double v = V.data[i], a = A.data[i], j = J.data[i];
+        if (!(v > 0.0 && a > 0.0 && j > 0.0 && std::isfinite(v) && std::isfinite(a) && std::isfinite(j))) {
+            fail_value("vmax, amax and jmax", "finite and positive");
+        }
+        L[static_cast<std::size_t>(i)] = kj::Limits{v, a, j};
+    }
+    return L;
+}
+
+//! Every value finite and each velocity within its joint's limit.
+void check_states(const In& x, const char* name, const std::vector<kj::Limits>* L) {
+    const npy_intp n = x.dim[x.ndim - 1];
+    for (npy_intp k = 0; k < x.size(); ++k) {
+        const double v = x.data[k];
+        if (!std::isfinite(v)) fail_value(name, "finite");
+        if (L != nullptr && std::fabs(v) > (*L)[static_cast<std::size_t>(k % n)].v) {
+            fail_value(name, "within vmax");
+        }
+    }
+}
+
+nb::tuple jerk_segments(F64 p0, F64 v0, F64 p1, F64 v1, F64 vmax, F64 amax, F64 jmax) {
+    const In P0 = in_f64(p0, "p0", 2);
+    const npy_intp m = P0.dim[0], n = P0.dim[1];
+    if (n < 1) fail_value("p0", "of at least one joint");
+    const In V0 = in_f64(v0, "v0", 2, {m, n}), P1 = in_f64(p1, "p1", 2, {m, n}), V1 = in_f64(v1, "v1", 2, {m, n});
+    const In VM = in_f64(vmax, "vmax", 1, {n}), AM = in_f64(amax, "amax", 1, {n}), JM = in_f64(jmax, "jmax", 1, {n});
+    const std::vector<kj::Limits> L = limits_of(VM, AM, JM);
+    check_states(P0, "p0", nullptr);
+    check_states(P1, "p1", nullptr);
+    check_states(V0, "v0", &L);
+    check_states(V1, "v1", &L);
+    double *T, *t, *j;
+    npy_int64* phases;
+    nb::object To = new_f64({m}, T), to = new_f64({m, n, kj::MAX_PHASES}, t), jo = new_f64({m, n, kj::MAX_PHASES}, j);
+    nb::object po = new_i64({m, n}, phases);
+    {
+        nb::gil_scoped_release release;
+        std::vector<double> scratch(static_cast<std::size_t>(n));
+        kj::Profile prof;
+        for (npy_intp r = 0; r < m; ++r) {
+            const npy_intp o = r * n;
+            T[r] = kj::segment_time(static_cast<int>(n), P0.data + o, V0.data + o, P1.data + o, V1.data + o, L.data(),
+                                    scratch.data());
+            for (npy_intp i = 0; i < n; ++i) {
+                kj::profile(T[r], P1.data[o + i] - P0.data[o + i], V0.data[o + i], V1.data[o + i],
+                            L[static_cast<std::size_t>(i)], prof);
+                phases[o + i] = prof.phases;
+                for (int k = 0; k < kj::MAX_PHASES; ++k) {
+                    t[(o + i) * kj::MAX_PHASES + k] = k < prof.phases ? prof.t[k] : 0.0;
+                    j[(o + i) * kj::MAX_PHASES + k] = k < prof.phases ? prof.j[k] : 0.0;
+                }
+            }
+        }
+    }
+    return nb::make_tuple(To, to, jo, po);
+}
+
+nb::tuple jerk_via(F64 w, F64 v_start, F64 v_end, F64 vmax, F64 amax, F64 jmax, nb::object qlim, double qlim_atol,
+                   int sweeps, int golden_steps, int joint_sweeps) {
+    const In W = in_f64(w, "w", 2);
+    const npy_intp k = W.dim[0], n = W.dim[1];
+    if (k < 2 || n < 1) fail_value("w", "of at least 2 waypoints of at least one joint");
+    const In VS = in_f64(v_start, "v_start", 1, {n}), VE = in_f64(v_end, "v_end", 1, {n});
+    const In VM = in_f64(vmax, "vmax", 1, {n}), AM = in_f64(amax, "amax", 1, {n}), JM = in_f64(jmax, "jmax", 1, {n});
+    const std::vector<kj::Limits> L = limits_of(VM, AM, JM);
+    check_states(W, "w", nullptr);
+    check_states(VS, "v_start", &L);
+    check_states(VE, "v_end", &L);
+    for (npy_intp i = 0; i + 1 < k; ++i) {
+        bool same = true;
+        for (npy_intp j = 0; j < n; ++j) same = same && W.data[i * n + j] == W.data[(i + 1) * n + j];
+        if (same) fail_value("w", "without two equal waypoints in a row");
+    }
+    if (!(qlim_atol >= 0.0 && std::isfinite(qlim_atol))) fail_value("qlim_atol", "finite and >= 0");
+    if (sweeps < 0 || joint_sweeps < 0 || golden_steps < 2 || sweeps > 100 || joint_sweeps > 100 ||
+        golden_steps > 100) {
+        fail_value("sweeps, golden_steps, joint_sweeps", "0-100, 2-100, 0-100");
+    }
+    In Q;
+    if (!qlim.is_none()) {
+        Q = in_f64(qlim, "qlim", 2, {n, 2});
+        for (npy_intp j = 0; j < n; ++j) {
+            if (std::isnan(Q.data[2 * j]) || std::isnan(Q.data[2 * j + 1]) || Q.data[2 * j] > Q.data[2 * j + 1]) {
+                fail_value("qlim", "low <= high, not NaN");
+            }
+        }
+    }
+    double *vel, *time, *stop;
+    nb::object Vo = new_f64({k, n}, vel), To = new_f64({k - 1}, time), So = new_f64({k - 1}, stop);
+    kj::Via P;
+    P.k = static_cast<int>(k);
+    P.n = static_cast<int>(n);
+    P.w = W.data;
+    P.v_start = VS.data;
+    P.v_end = VE.data;
+    P.limits = L.data();
+    P.qlim = qlim.is_none() ? nullptr : Q.data;
+    P.qlim_atol = qlim_atol;
+    kj::ViaParams prm;
+    prm.sweeps = sweeps;
+    prm.golden_steps = golden_steps;
+    prm.joint_sweeps = joint_sweeps;
+    kj::ViaOutput out;
+    out.velocity = vel;
+    out.time = time;
+    out.stop = stop;
+    {
+        nb::gil_scoped_release release;
+        kj::via(P, prm, out);
+    }
+    return nb::make_tuple(Vo, To, So, out.evaluations);
+}
+
+}  // namespace
+
+void bind_jerk(nb::module_& m) {
+    m.def("jerk_segments", &jerk_segments, nb::arg("p0"), nb::arg("v0"), nb::arg("p1"), nb::arg("v1"),
+          nb::arg("vmax"), nb::arg("amax"), nb::arg("jmax"),
+          "Time-optimal synchronised jerk-limited segments from (p0, v0, 0) to (p1, v1, 0), each (m, n); "
+          "limits (n,). Returns (T (m,), durations (m, n, P), jerks (m, n, P), phases (m, n)): each joint's "
+          "phases of constant jerk, P = JERK_MAX_PHASES.");
+    m.def("jerk_via", &jerk_via, nb::arg("w"), nb::arg("v_start"), nb::arg("v_end"), nb::arg("vmax"),
+          nb::arg("amax"), nb::arg("jmax"), nb::arg("qlim").none(), nb::arg("qlim_atol"), nb::arg("sweeps"),
+          nb::arg("golden_steps"), nb::arg("joint_sweeps"),
+          "Velocities at the waypoints w (k, n) of a jerk-limited move through them (zero acceleration at "
+          "each), chosen to shorten it. Returns (velocity (k, n), time (k-1,), stop (k-1,), evaluations): "
+          "the segments' durations, and with a stop at every waypoint (inf: leaves qlim).");
+    m.attr("JERK_MAX_PHASES") = kj::MAX_PHASES;
+}
+
+}  // namespace kmpy

@@ -1,0 +1,113 @@
+"""The core's jerk-limited segments and waypoint search (``cpp/include/kinematica/jerk.hpp``).
+
+Every state here has zero acceleration: a segment goes from ``(p0, v0, 0)`` to
+``(p1, v1, 0)``, each joint's profile time-optimal or, for a joint that is not the
+slowest, of the common duration. The caller (:mod:`kinematica.motion.scurve_via`)
+checks the user's input; this module only names what the core returns.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from numpy.typing import NDArray
+
+import kinematica._core as _core
+
+__all__ = ["MAX_PHASES", "Segments", "ViaChoice", "jerk_segments", "jerk_via"]
+
+FloatArray = NDArray[np.float64]
+
+#: Most phases of constant jerk in one joint's profile of one segment.
+MAX_PHASES: int = _core.JERK_MAX_PHASES
+
+
+class Segments(NamedTuple):
+    """``m`` segments of ``n`` joints.
+
+    Attributes:
+        duration: ``(m,)`` each segment's duration (s).
+        t: ``(m, n, MAX_PHASES)`` each joint's phase durations (s; zero past ``phases``).
+        j: ``(m, n, MAX_PHASES)`` their jerks.
+        phases: ``(m, n)`` how many phases each joint has.
+    """
+
+    duration: FloatArray
+    t: FloatArray
+    j: FloatArray
+    phases: NDArray[np.int64]
+
+
+class ViaChoice(NamedTuple):
+    """What the waypoint search chose.
+
+    Attributes:
+        velocity: ``(k, n)`` the velocities at the waypoints.
+        time: ``(k - 1,)`` each segment's duration (s).
+        stop: ``(k - 1,)`` each segment's duration with a stop at every waypoint (inf
+            where a segment then leaves qlim).
+        evaluations: Segments the search planned.
+    """
+
+    velocity: FloatArray
+    time: FloatArray
+    stop: FloatArray
+    evaluations: int
+
+
+def _f(x: FloatArray) -> FloatArray:
+    return np.ascontiguousarray(x, dtype=float)
+
+
+def jerk_segments(
+    p0: FloatArray,
+    v0: FloatArray,
+    p1: FloatArray,
+    v1: FloatArray,
+    limits: tuple[FloatArray, FloatArray, FloatArray],
+) -> Segments:
+    """Time-optimal synchronised segments, each ``(m, n)`` state at zero acceleration.
+
+    Args:
+        p0: ``(m, n)`` start positions.
+        v0: ``(m, n)`` start velocities.
+        p1: ``(m, n)`` end positions.
+        v1: ``(m, n)`` end velocities.
+        limits: ``(vmax, amax, jmax)``, each ``(n,)`` positive; ``|v| <= vmax``.
+
+    Returns:
+        The :class:`Segments`.
+    """
+    vm, am, jm = (_f(x) for x in limits)
+    return Segments(*_core.jerk_segments(_f(p0), _f(v0), _f(p1), _f(v1), vm, am, jm))
+
+
+def jerk_via(
+    w: FloatArray,
+    v_start: FloatArray,
+    v_end: FloatArray,
+    limits: tuple[FloatArray, FloatArray, FloatArray],
+    qlim: FloatArray | None,
+    qlim_atol: float,
+    search: tuple[int, int, int],
+) -> ViaChoice:
+    """The waypoints' velocities of a short jerk-limited move through ``w`` (k, n).
+
+    Args:
+        w: ``(k, n)`` waypoints, no two in a row equal.
+        v_start: ``(n,)`` the velocity at the first waypoint.
+        v_end: ``(n,)`` the velocity at the last waypoint.
+        limits: ``(vmax, amax, jmax)``, each ``(n,)``.
+        qlim: ``(n, 2)`` position limits every segment keeps, or ``None``.
+        qlim_atol: How far a segment's extreme may pass a position limit.
+        search: ``(sweeps, golden_steps, joint_sweeps)`` (``jerk_via.hpp``).
+
+    Returns:
+        The :class:`ViaChoice`.
+    """
+    vm, am, jm = (_f(x) for x in limits)
+    q = None if qlim is None else _f(qlim)
+    out = _core.jerk_via(_f(w), _f(v_start), _f(v_end), vm, am, jm, q, float(qlim_atol), *search)
+    velocity, time, stop, evaluations = out
+    return ViaChoice(velocity, time, stop, int(evaluations))
