@@ -36,8 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tests"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
 from support.ik_pose_audit import check_complete
 from support.ik_search import dls_solutions, found_tolerance, joint_distance
@@ -49,9 +48,13 @@ from kinematica.ik import closed_form
 from kinematica.ik.analytic.parallel import pack
 from kinematica.ik.structure import features
 
+ROOT = Path(__file__).resolve().parents[1]
 PI = math.pi
 ALPHA2 = 5e-10
-URDFS = (ROOT / "tests/data/urdf/ur5_robot.urdf", ROOT / "tests/data/makers/universal_robots_ur5.urdf")
+URDFS = (
+    ROOT / "tests/data/urdf/ur5_robot.urdf",
+    ROOT / "tests/data/makers/universal_robots_ur5.urdf",
+)
 
 
 def tilted(robot: km.Robot) -> km.Robot:
@@ -100,36 +103,44 @@ def completeness(arms: int, poses: int, seed: int) -> None:
     for robot in robots:
         f = features(robot.chain)
         closed = closed_form(robot.chain, "pose")
-        assert closed is not None and isinstance(closed.params, _core.general6r.NearParallelParams)
+        assert isinstance(closed.params, _core.general6r.NearParallelParams)  # type: ignore[union-attr]
         default = closed.params.watch
         root = math.sqrt(f.slack / f.size)
         q = rng.uniform(-PI, PI, (poses, 6))
-        q[:, 4] = aligned_q5(robot) + rng.choice([-1.0, 1.0], poses) * 10 ** rng.uniform(-12, -2, poses)
+        off = rng.choice([-1.0, 1.0], poses) * 10 ** rng.uniform(-12, -2, poses)
+        q[:, 4] = aligned_q5(robot) + off
         T = robot.fk(q)
         for i in range(poses):
             total += 1
             ref = dls_solutions(robot, T[i], rng)
             rows = closed.params.candidates(robot.chain.core, T[i])[0]
+            failed = {}
             for name, watch in settings.items():
                 closed.params.watch = default if watch is None else watch
                 res = robot.ik(T[i], respect_limits=False)
                 raw = closed.params.candidates(robot.chain.core, T[i])[0]
-                lost_q = res.count == 0 or float(joint_distance(robot, res.solutions, q[i]).min()) > found_tolerance(robot, q[i])
+                near = joint_distance(robot, res.solutions, q[i]).min(initial=math.inf)
+                lost_q = float(near) > found_tolerance(robot, q[i])
                 missed, _ = check_complete(robot, res.solutions, ref, f.size)
                 c = counts[name]
                 c[0] += lost_q
                 c[1] += bool(missed)
                 c[2] += bool(np.isfinite(raw[8:, 0]).any())
-                if name == "0" and (lost_q or missed):
-                    worst = max(worst, margin(robot, rows[:8]) / root)
+                failed[name] = lost_q or bool(missed)
+            if failed["0"] and not failed["inf"]:  # lost for want of the general 6R
+                worst = max(worst, margin(robot, rows[:8]) / root)
             closed.params.watch = default
-    print(f"{len(robots)} arms, {total} poses, q5 10^U(-12, -2) rad from aligned "
-          f"({time.perf_counter() - t0:.0f} s)")
+    print(
+        f"{len(robots)} arms, {total} poses, q5 10^U(-12, -2) rad from aligned "
+        f"({time.perf_counter() - t0:.0f} s)"
+    )
     print(f"{'watch':<10} {'q missing':>10} {'search missed':>14} {'general ran':>12}")
     for name, (a, b, c) in counts.items():
         print(f"{name:<10} {a:>10} {b:>14} {c:>12}")
-    print(f"failing with watch 0: largest margin / sqrt(slack / size) = {worst:.3g} "
-          f"(WATCH_FACTOR {_core.general6r.WATCH_FACTOR:g})")
+    print(
+        f"failing with watch 0: largest margin / sqrt(slack / size) = {worst:.3g} "
+        f"(WATCH_FACTOR {_core.general6r.WATCH_FACTOR:g})"
+    )
 
 
 def per_pose(robot: km.Robot, T: np.ndarray, repeat: int = 3) -> tuple[float, float]:
@@ -149,23 +160,27 @@ def per_pose(robot: km.Robot, T: np.ndarray, repeat: int = 3) -> tuple[float, fl
 
 def speed(poses: int, seed: int) -> None:
     rng = np.random.default_rng(seed)
-    print(f"\n{'arm':<34} {'slack (m)':>10} {'one (us)':>9} {'batch (us)':>10}")
+    print(f"\n{'arm':<40} {'slack (m)':>10} {'one (us)':>9} {'batch (us)':>10}")
     exact = km.load("ur5")
     T = exact.fk(rng.uniform(-PI, PI, (poses, 6)))
     one, batch = per_pose(exact, T)
-    print(f"{'UR5 (built in, exact)':<34} {0.0:>10.2g} {one:>9.1f} {batch:>10.1f}")
+    print(f"{'UR5 (built in, exact)':<40} {0.0:>10.2g} {one:>9.1f} {batch:>10.1f}")
     for path in URDFS:
         robot = km.load(path)
         f = features(robot.chain)
         closed = closed_form(robot.chain, "pose")
         T = robot.fk(rng.uniform(-PI, PI, (poses, 6)))
-        for label, watch in (("", None), (", general 6R always", math.inf)):
+        cases = [("", None)]
+        if hasattr(closed.params, "watch"):  # the general 6R at every target, as before
+            cases.append((", general 6R always", math.inf))
+        for label, watch in cases:
             if watch is not None:
                 closed.params.watch = watch
             one, batch = per_pose(robot, T)
             name = f"{path.stem}{label}"
-            print(f"{name:<34} {f.slack:>10.2g} {one:>9.1f} {batch:>10.1f}")
-        closed.params.watch = _core.general6r.WATCH_FACTOR * math.sqrt(f.slack / f.size)
+            print(f"{name:<40} {f.slack:>10.2g} {one:>9.1f} {batch:>10.1f}")
+        if hasattr(closed.params, "watch"):
+            closed.params.watch = _core.general6r.WATCH_FACTOR * math.sqrt(f.slack / f.size)
 
 
 def main() -> None:

@@ -34,6 +34,14 @@ constexpr int NEWTON_STEPS = 50;
 //! one more step, to find that steps had stopped shrinking (two sine-cosine pairs per
 //! root).
 constexpr double NEWTON_QUIET = 1e-14;
+//! From a point that meets (1) and (2) to TRIG_TOL already (a root, as polish() judges
+//! it), a Newton step longer than this (|Δq1| + |Δq5|, rad) is not taken: only a
+//! Jacobian near rank loss makes one (a simple root's step is the residual over the
+//! pair's conditioning), that is a double root that round-off split, and the step leaps
+//! to another root, losing this one (issue 34: a UR-type arm at a fold of its shoulder
+//! answered "ok" without the configuration that made the target, its seed polished
+//! onto the two simple roots).
+constexpr double NEWTON_LEAP = 1e-3;
 
 //! cos and sin of m π/4, m = 0..7, as the C library rounds them (cos π/2 = 6.1e-17):
 //! where |P x|² - 1 is sampled.
@@ -115,6 +123,7 @@ KM_HD inline NewtonEnd newton(const ParallelParams& P, const Vec3& x6, const Sid
         const double d5 = (j11 * f2 - j21 * f1) / det;
         const double step = std::fabs(d1) + std::fabs(d5);
         if (!(step < last)) break;  // no longer contracting: round-off (or no root here)
+        if (res <= TRIG_TOL && step > NEWTON_LEAP) break;  // a double root: stay
         last = step;
         q1 -= d1;
         q5 -= d5;
