@@ -10,18 +10,18 @@ singular sets.
 
 Part 1, completeness: the near UR5 and random arms of the family (axes 5 and 6 meeting
 and apart, ±90° twists so that the wrist aligns), 16 poses each made by FK with q5
-10^U(-12, -2) rad from aligned. Per setting of ``watch`` (0: the general 6R only where
-the family says near or singular or finds nothing; the default; ∞: at every target, as
-before this trigger) it counts the poses whose generating configuration is missing (to
-the conditioning's allowance, ``support.ik_search.found_tolerance``), the poses where a
-200-start search finds a solution we miss (``support.ik_pose_audit.check_complete``),
-and the poses at which the general 6R ran. Then, over the poses that fail with watch 0,
-the largest margin of the family's candidates over √(slack / size): WATCH_FACTOR must
-lie above it.
+10^U(-12, -2) rad from aligned. Per setting of ``watch`` in units of √(slack / size)
+(0: the general 6R only where the family says near or singular or finds nothing; 1;
+10; WATCH_FACTOR, the default; ∞: at every target, as before this trigger) it counts
+the poses whose generating configuration is missing (to the conditioning's allowance,
+``support.ik_search.found_tolerance``), the poses where a 200-start search finds a
+solution we miss (``support.ik_pose_audit.check_complete``), and the poses at which
+the general 6R ran: WATCH_FACTOR must lie where the counts have reached ∞'s.
 
-Part 2, speed (one core): µs per pose of the UR5 URDFs (example-robot-data's and
-ssik's catalogue's, near-degenerate to 3e-11 m), one pose at a time and batched, with
-the default watch and with ∞, beside the exact built-in UR5.
+Part 2, speed (one core; ``--timing-only``, run by ``make bench``): µs per pose of the
+UR5 URDFs (example-robot-data's and ssik's catalogue's, near-degenerate to 3e-11 m),
+one pose at a time and batched, with the default watch and with ∞, beside the exact
+built-in UR5 (the last column: batched, over the exact UR5's).
 """
 
 from __future__ import annotations
@@ -69,36 +69,17 @@ def aligned_q5(robot: km.Robot) -> float:
     return q5 if abs(math.hypot(P.D1, P.E1) + P.F1 - 1.0) < 1e-9 else q5 + PI
 
 
-def margin(robot: km.Robot, rows: np.ndarray) -> float:
-    """The family's margin, from the arm itself: the sine of axis 6's tilt from axis 2
-    at each candidate, half the distance of two pairs' (q1, q5), of elbow up and down."""
-    out = math.inf
-    for m in range(4):
-        up, down = rows[2 * m], rows[2 * m + 1]
-        row = up if np.isfinite(up[0]) else down
-        if not np.isfinite(row[0]):
-            continue
-        J = robot.jacobian(row)
-        out = min(out, float(np.linalg.norm(np.cross(J[3:, 5], J[3:, 1]))))
-        if np.isfinite(up[0]) and np.isfinite(down[0]):
-            out = min(out, 0.5 * abs(math.remainder(up[2] - down[2], 2 * PI)))
-        for j in range(m):
-            other = rows[2 * j] if np.isfinite(rows[2 * j, 0]) else rows[2 * j + 1]
-            if np.isfinite(other[0]):
-                d = max(abs(math.remainder(row[k] - other[k], 2 * PI)) for k in (0, 4))
-                out = min(out, 0.5 * d)
-    return out
-
-
 def completeness(arms: int, poses: int, seed: int) -> None:
     rng = np.random.default_rng(seed)
     robots = [tilted(km.Robot.from_dh(UR5_ROWS))]
     while len(robots) < arms:
         robots.append(tilted(random_arm(rng, ("meet", "apart")[len(robots) % 2], square=True)))
-    settings = {"0": 0.0, "default": None, "inf": math.inf}
+    # watch in units of sqrt(slack / size): 0 (the general 6R only where the family says
+    # near or singular or finds nothing), then 1, 10, WATCH_FACTOR (the default), inf
+    factor = _core.general6r.WATCH_FACTOR
+    settings = {"0": 0.0, "1": 1.0, "10": 10.0, f"{factor:g}": factor, "inf": math.inf}
     counts = {k: [0, 0, 0] for k in settings}  # q missing, search's missed, general ran
     total = 0
-    worst = 0.0
     t0 = time.perf_counter()
     for robot in robots:
         f = features(robot.chain)
@@ -106,6 +87,7 @@ def completeness(arms: int, poses: int, seed: int) -> None:
         assert isinstance(closed.params, _core.general6r.NearParallelParams)  # type: ignore[union-attr]
         default = closed.params.watch
         root = math.sqrt(f.slack / f.size)
+        assert default == factor * root
         q = rng.uniform(-PI, PI, (poses, 6))
         off = rng.choice([-1.0, 1.0], poses) * 10 ** rng.uniform(-12, -2, poses)
         q[:, 4] = aligned_q5(robot) + off
@@ -113,34 +95,24 @@ def completeness(arms: int, poses: int, seed: int) -> None:
         for i in range(poses):
             total += 1
             ref = dls_solutions(robot, T[i], rng)
-            rows = closed.params.candidates(robot.chain.core, T[i])[0]
-            failed = {}
             for name, watch in settings.items():
-                closed.params.watch = default if watch is None else watch
+                closed.params.watch = watch * root
                 res = robot.ik(T[i], respect_limits=False)
                 raw = closed.params.candidates(robot.chain.core, T[i])[0]
                 near = joint_distance(robot, res.solutions, q[i]).min(initial=math.inf)
-                lost_q = float(near) > found_tolerance(robot, q[i])
-                missed, _ = check_complete(robot, res.solutions, ref, f.size)
                 c = counts[name]
-                c[0] += lost_q
-                c[1] += bool(missed)
+                c[0] += float(near) > found_tolerance(robot, q[i])
+                c[1] += bool(check_complete(robot, res.solutions, ref, f.size)[0])
                 c[2] += bool(np.isfinite(raw[8:, 0]).any())
-                failed[name] = lost_q or bool(missed)
-            if failed["0"] and not failed["inf"]:  # lost for want of the general 6R
-                worst = max(worst, margin(robot, rows[:8]) / root)
             closed.params.watch = default
     print(
         f"{len(robots)} arms, {total} poses, q5 10^U(-12, -2) rad from aligned "
         f"({time.perf_counter() - t0:.0f} s)"
     )
-    print(f"{'watch':<10} {'q missing':>10} {'search missed':>14} {'general ran':>12}")
+    head = ("watch / sqrt(slack/size)", "q missing", "search missed", "general ran")
+    print(f"{head[0]:<26} {head[1]:>10} {head[2]:>14} {head[3]:>12}")
     for name, (a, b, c) in counts.items():
-        print(f"{name:<10} {a:>10} {b:>14} {c:>12}")
-    print(
-        f"failing with watch 0: largest margin / sqrt(slack / size) = {worst:.3g} "
-        f"(WATCH_FACTOR {_core.general6r.WATCH_FACTOR:g})"
-    )
+        print(f"{name:<26} {a:>10} {b:>14} {c:>12}")
 
 
 def per_pose(robot: km.Robot, T: np.ndarray, repeat: int = 3) -> tuple[float, float]:
@@ -160,11 +132,11 @@ def per_pose(robot: km.Robot, T: np.ndarray, repeat: int = 3) -> tuple[float, fl
 
 def speed(poses: int, seed: int) -> None:
     rng = np.random.default_rng(seed)
-    print(f"\n{'arm':<40} {'slack (m)':>10} {'one (us)':>9} {'batch (us)':>10}")
+    print(f"\n{'arm':<40} {'slack (m)':>10} {'one (us)':>9} {'batch (us)':>10} {'x exact':>8}")
     exact = km.load("ur5")
     T = exact.fk(rng.uniform(-PI, PI, (poses, 6)))
-    one, batch = per_pose(exact, T)
-    print(f"{'UR5 (built in, exact)':<40} {0.0:>10.2g} {one:>9.1f} {batch:>10.1f}")
+    one, base = per_pose(exact, T)
+    print(f"{'UR5 (built in, exact)':<40} {0.0:>10.2g} {one:>9.1f} {base:>10.1f} {1.0:>8.2f}")
     for path in URDFS:
         robot = km.load(path)
         f = features(robot.chain)
@@ -178,7 +150,8 @@ def speed(poses: int, seed: int) -> None:
                 closed.params.watch = watch
             one, batch = per_pose(robot, T)
             name = f"{path.stem}{label}"
-            print(f"{name:<40} {f.slack:>10.2g} {one:>9.1f} {batch:>10.1f}")
+            ratio = batch / base
+            print(f"{name:<40} {f.slack:>10.2g} {one:>9.1f} {batch:>10.1f} {ratio:>8.2f}")
         if hasattr(closed.params, "watch"):
             closed.params.watch = _core.general6r.WATCH_FACTOR * math.sqrt(f.slack / f.size)
 

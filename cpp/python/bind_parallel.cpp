@@ -144,7 +144,6 @@ void bind_parallel(nb::module_& m) {
     sub.attr("DOUBLE_ROOT_TOL") = km::parallel::DOUBLE_ROOT_TOL;
     sub.attr("NEWTON_STEPS") = km::parallel::NEWTON_STEPS;
     sub.attr("NEWTON_QUIET") = km::parallel::NEWTON_QUIET;
-    sub.attr("NEWTON_LEAP") = km::parallel::NEWTON_LEAP;
     sub.attr("FREE_Q1_SAMPLES") = km::parallel::FREE_Q1_SAMPLES;
 
     sub.def("roots", &roots_of, nb::arg("a"), nb::arg("b"), nb::arg("c"), nb::arg("size"),

@@ -6,7 +6,9 @@ Near the family's singular sets that is not enough: with the wrist β rad from
 aligned, this arm's solutions lie up to about 5e-10 / β from the exact arm's,
 beyond the repair's reach once β is below about 1e-5, and at β = 0 the exact arm's
 continuum is broken into isolated solutions anywhere along it. The general 6R's
-candidates, which know this arm, join the family's (``solvers/near_6r.hpp``).
+candidates, which know this arm, join the family's (``solvers/near_6r.hpp``) where
+the family's candidates lie within WATCH_FACTOR √(slack / size) of its singular sets
+(or it calls the target near or singular).
 
 Before (issue 32, item 4b): "ok" with 4 of 7 solutions and the generating
 configuration missing, at most poses with β below 1e-5.
@@ -36,6 +38,7 @@ pytestmark = pytest.mark.filterwarnings("ignore::kinematica.KinematicaWarning")
 FloatArray = NDArray[np.float64]
 PI = math.pi
 ALPHA2 = 5e-10
+WATCH_FACTOR = 100.0  # solvers/near_6r.hpp
 #: How far the wrist is put from aligned (rad). Closer, this arm's σmin falls to about
 #: 1e-11 (at 1e-9 rad), where configurations a radian apart meet the 1e-10 tolerances: a
 #: continuum within them (test_at_the_aligned_wrist_...).
@@ -160,3 +163,26 @@ def test_batch_equals_single(a5: float) -> None:
             b.status, b.method, b.message, b.branches,
         )  # fmt: skip
         np.testing.assert_array_equal(one.solutions, b.solutions)
+
+
+@pytest.mark.parametrize(("factor", "runs"), [(0.5, True), (2.0, False)])
+def test_watch_factor_runs_the_general_6r_within_its_margin(factor: float, runs: bool) -> None:
+    """WATCH_FACTOR: the general 6R's candidates (slots 8 on) are computed where the
+    family's candidates lie within watch = WATCH_FACTOR √(slack / size) of its singular
+    sets, here the wrist factor · watch from aligned (the elbow and the pairs far from
+    their folds), and not beyond; either way q is found."""
+    robot = arms()[0]
+    f = features(robot.chain)
+    closed = closed_form(robot.chain, "pose")
+    assert closed is not None
+    P = closed.params
+    assert _core.general6r.WATCH_FACTOR == WATCH_FACTOR
+    assert P.watch == pytest.approx(WATCH_FACTOR * math.sqrt(f.slack / f.size), rel=1e-15)
+    q = np.array([0.4, -1.1, 1.3, -0.7, aligned_q5(robot) + factor * P.watch, 0.9])
+    T = robot.fk(q)
+    raw = np.asarray(P.candidates(robot.chain.core, T)[0])
+    assert np.isfinite(raw[:8, 0]).sum() == 8  # the family's: every branch
+    assert bool(np.isfinite(raw[8:, 0]).any()) is runs
+    res = robot.ik(T, respect_limits=False)
+    assert res.status == "ok"
+    assert float(joint_distance(robot, res.solutions, q).min()) <= found_tolerance(robot, q)

@@ -34,14 +34,6 @@ constexpr int NEWTON_STEPS = 50;
 //! one more step, to find that steps had stopped shrinking (two sine-cosine pairs per
 //! root).
 constexpr double NEWTON_QUIET = 1e-14;
-//! From a point that meets (1) and (2) to TRIG_TOL already (a root, as polish() judges
-//! it), a Newton step longer than this (|Δq1| + |Δq5|, rad) is not taken: only a
-//! Jacobian near rank loss makes one (a simple root's step is the residual over the
-//! pair's conditioning), that is a double root that round-off split, and the step leaps
-//! to another root, losing this one (issue 34: a UR-type arm at a fold of its shoulder
-//! answered "ok" without the configuration that made the target, its seed polished
-//! onto the two simple roots).
-constexpr double NEWTON_LEAP = 1e-3;
 
 //! cos and sin of m π/4, m = 0..7, as the C library rounds them (cos π/2 = 6.1e-17):
 //! where |P x|² - 1 is sampled.
@@ -123,7 +115,6 @@ KM_HD inline NewtonEnd newton(const ParallelParams& P, const Vec3& x6, const Sid
         const double d5 = (j11 * f2 - j21 * f1) / det;
         const double step = std::fabs(d1) + std::fabs(d5);
         if (!(step < last)) break;  // no longer contracting: round-off (or no root here)
-        if (res <= TRIG_TOL && step > NEWTON_LEAP) break;  // a double root: stay
         last = step;
         q1 -= d1;
         q5 -= d5;
@@ -251,6 +242,20 @@ KM_HD inline void pairs_general(const ParallelParams& P, const Vec3& x6, const S
             b.seed1 = a.q1 + wrap(a.seed1 - a.q1) + wrap(b.seed1 - a.q1);
             b.seed5 = a.q5 + wrap(a.seed5 - a.q5) + wrap(b.seed5 - a.q5);
             polish(P, x6, L1, L2, pairs, j, info);
+        }
+    }
+    // Two pairs still one root: a merging pair's other root is lost to round-off (at a
+    // double root Newton's first step may go anywhere, onto another root): the pair
+    // system is at a fold there, and the target is near (issue 34: an "ok" without the
+    // flag lacked the configuration that made the target).
+    for (int j = 0; j < 4; ++j) {
+        for (int i = 0; i < j; ++i) {
+            if (pairs.kind[i] == PairKind::none || pairs.kind[j] == PairKind::none) continue;
+            const Pair& a = pairs.pair[i];
+            const Pair& b = pairs.pair[j];
+            if (larger(std::fabs(wrap(a.q1 - b.q1)), std::fabs(wrap(a.q5 - b.q5))) < DEDUP_TOL) {
+                info.near = true;
+            }
         }
     }
 }
