@@ -222,8 +222,8 @@ def test_a_double_root_lost_to_round_off_marks_the_target_near() -> None:
     assert res.status == "ok" and res.method == "analytic:three-parallel-6R"
     assert res.near_singular
     assert judge(robot, APART_Q, T, res, float(conditioning(robot, APART_Q[None])[0])) == []
-    # the wrist 0.3 rad on: off the fold, not near, q found
-    moved = APART_Q + np.array([0.0, 0.0, 0.0, 0.0, 0.3, 0.0])
+    # q2 0.3 rad on (q2 placed the shoulder on its fold): not near, q found
+    moved = APART_Q + np.array([0.0, 0.3, 0.0, 0.0, 0.0, 0.0])
     far = robot.ik(robot.fk(moved), respect_limits=False)
     assert far.status == "ok" and not far.near_singular
     d = np.abs(np.remainder(far.solutions - moved + math.pi, 2 * math.pi) - math.pi)
