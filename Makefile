@@ -123,6 +123,7 @@ bench: $(CORE_STAMP)
 	$(BIN)/python benchmarks/design.py
 	$(BIN)/python benchmarks/calibration.py  # pybotics, its peer, pins numpy<2: by hand, --no-deps
 	$(BIN)/python benchmarks/reach.py
+	$(BIN)/python benchmarks/ik_parallel_near.py --timing-only
 	$(BIN)/python benchmarks/symbolic.py
 	$(BIN)/python benchmarks/ik_small.py
 	$(BIN)/python benchmarks/ik_redundant.py

@@ -11,6 +11,7 @@
 #include "common.hpp"
 #include "kinematica/solvers/general_6r.hpp"
 #include "kinematica/solvers/general_6r_build.hpp"
+#include "kinematica/solvers/near_6r.hpp"
 #include "numpy_io.hpp"
 #include "small_fields.hpp"
 #include "solver_binding.hpp"
@@ -458,6 +459,21 @@ void bind_general6r(nb::module_& m) {
             "Qp", [](const General6RParams& p) { return get_matrix(p.Qp); },
             [](General6RParams& p, nb::handle h) { set_matrix(p.Qp, h, "Qp"); },
             "(8, 14) Q's pseudo-inverse");
+
+    using NearParallel = km::Near6RParams<km::ParallelParams>;
+    auto near = bind_closed_form<NearParallel>(
+        sub, "NearParallelParams",
+        "A three-parallel 6R arm whose axes hold that structure only within the line "
+        "geometry's tolerance: the family's candidates and the general 6R's, checked "
+        "together (solvers/near_6r.hpp).",
+        "km::Near6RParams<km::ParallelParams>", "kinematica/solvers/near_6r.hpp");
+    near.def_rw("family", &NearParallel::family, "the family's ParallelParams (the nearby arm)")
+        .def_rw("general", &NearParallel::general, "the General6RParams of this arm")
+        .def_rw("watch", &NearParallel::watch,
+                "the general 6R runs where the family's candidates lie within this of its "
+                "singular sets (rad; inf: everywhere)");
+    sub.attr("WATCH_FACTOR") = km::WATCH_FACTOR;
+    sub.attr("NEAR_GAP") = km::NEAR_GAP;
 }
 
 }  // namespace kmpy

@@ -130,6 +130,8 @@ void bind_parallel(nb::module_& m) {
         .def_rw("bound", &ParallelParams::bound, "reach bound about p1s (m)")
         .def_rw("lip", &ParallelParams::lip, "|h1·k| + |kperp|")
         .def_rw("scale", &ParallelParams::scale, "size of the arm (m)")
+        .def_rw("slack", &ParallelParams::slack,
+                "how far the real arm may put axis 4 from this one's (m; 0: exact)")
         .def_rw("q1rep", &ParallelParams::q1rep, "q1 given when q1 is free (rad)")
         .def_rw("q2rep", &ParallelParams::q2rep, "q2 given when q2 is free (rad)");
     KM_SMALL_VEC(cls, ParallelParams, minv,

@@ -157,6 +157,36 @@ def test_triangle_beyond_the_stretched_arm(miss: float, flags: int) -> None:
         assert math.isnan(q2_up) and math.isnan(q2_down)
 
 
+@pytest.mark.parametrize(
+    ("factor", "inside"), [(0.1, True), (10.0, False), (-0.5, True), (-2.0, False)]
+)
+@pytest.mark.parametrize("folded", [False, True])
+def test_triangle_straddles_the_fold_within_the_slack(
+    factor: float, inside: bool, folded: bool
+) -> None:
+    """A near-degenerate arm's triangle (slack 1e-9 m): where 1 - cos γ (stretched) or
+    1 + cos γ (folded) is below slack (2 |tx| + slack) / (2 a b), the two elbows are
+    put either side of the fold, that side raised by as much (beyond the reach by half of
+    it too: factor -0.5); above it, or beyond the reach by more (-2), the elbows of the
+    exact arm (there its least-squares fold, twice)."""
+    a, b, slack = 0.5, 0.4, 1e-9
+    edge = abs(a - b) if folded else a + b
+    margin = slack * (2.0 * edge + slack) / (2.0 * a * b)  # |tx| at the fold
+    n = math.sqrt(edge * edge + (1.0 if folded else -1.0) * factor * margin * 2.0 * a * b)
+    exact = parallel.triangle(triangle_arm(a, b), n, 0.0)
+    P = triangle_arm(a, b)
+    P.slack = slack
+    got = parallel.triangle(P, n, 0.0)
+    assert got[0] == exact[0]  # the exact triangle's flags
+    if not inside:
+        assert got == exact
+        return
+    psi_up, psi_down = got[2], got[4]
+    assert psi_up == pytest.approx(-psi_down, rel=1e-12)  # one on each side of the fold
+    side = (1.0 + math.cos(psi_up)) if folded else (1.0 - math.cos(psi_up))
+    assert side == pytest.approx((factor + 1.0) * margin, rel=1e-4)
+
+
 @pytest.mark.parametrize(("factor", "inside"), FACTORS)
 def test_continuum_tol_folds_equal_links(factor: float, inside: bool) -> None:
     """CONTINUUM_TOL: with equal links, axis 4 within it (of the span) from axis 2 is

@@ -21,8 +21,9 @@
 //   and no shoulder offset; parallel: (1), axis 6 parallel to axis 1; apart: both
 //   together, axis 6 along axis 1 through it, and the offsets such that q5 can meet
 //   both): q1 turns, the other joints following it over an arc of q1 (where q5 has a
-//   root and the triangle closes). The representative is the first q1 of q1rep and a
-//   grid (FREE_Q1_SAMPLES) that the other joints can follow.
+//   root and the triangle closes), a pair's continuum in one or more arcs of q1. Each arc
+//   of each pair is represented (free_q1_arcs: at q1rep when the arc holds it, else at
+//   its middle on a grid of FREE_Q1_SAMPLES).
 //
 // Elbow labels: "up" when the elbow (axis 3) lies on the side of the line
 // axis 2 -> axis 4 toward which h1 points.
@@ -121,6 +122,15 @@ struct Elbows {
 //! tx = e^{i q2} (A + e^{iψ} B); with γ = ψ + arg B - arg A, 1 ∓ cos γ are formed as
 //! products of sums and differences of lengths (exact at the folded and stretched elbow).
 //! TRIANGLE_NONE: no solution (angles NaN).
+//!
+//! A near-degenerate arm (P.slack > 0, m: how far the real arm may put axis 4 from this
+//! one's) knows 1 ∓ cos γ only to within slack (2 |tx| + slack) / (2 |A| |B|) (|tx|² moves
+//! by at most slack (2 |tx| + slack)):
+//! where the stretched (or folded) side is below that, the real arm's two elbows may lie
+//! either side of the fold however this triangle sees them, so that side is raised by
+//! it, the elbows one on each side and at least as far from the fold as the real arm's
+//! (the repair carries each to the solution on its side; triangle.hpp's two_link, the
+//! same for the small arms). The flags are this triangle's.
 KM_HD inline Elbows triangle(const ParallelParams& P, const Plane& tx) {
     const double a = P.len_a, b = P.len_b;
     const double arg_a = P.arg_a, arg_b = P.arg_b;
@@ -137,8 +147,17 @@ KM_HD inline Elbows triangle(const ParallelParams& P, const Plane& tx) {
         if (miss > NEAR_TOL * span) return {TRIANGLE_NONE, NaN, NaN, NaN, NaN};
         flags = TRIANGLE_NEAR;
     }
-    const double omc = larger((span - n) * (span + n) / (2.0 * a * b), 0.0);  // 1 - cos γ
-    const double opc = larger((n - d) * (n + d) / (2.0 * a * b), 0.0);        // 1 + cos γ
+    const double omc0 = (span - n) * (span + n) / (2.0 * a * b);  // 1 - cos γ
+    const double opc0 = (n - d) * (n + d) / (2.0 * a * b);        // 1 + cos γ
+    double omc = larger(omc0, 0.0), opc = larger(opc0, 0.0);
+    const double margin = P.slack * (2.0 * n + P.slack) / (2.0 * a * b);
+    if (margin > 0.0 && omc0 < margin) {  // straddle the stretched elbow (beyond the
+        omc = smaller(larger(omc0 + margin, 0.0), 2.0);  // reach by more: stretched)
+        opc = 2.0 - omc;
+    } else if (margin > 0.0 && opc0 < margin) {  // ... or the folded one
+        opc = smaller(larger(opc0 + margin, 0.0), 2.0);
+        omc = 2.0 - opc;
+    }
     const double sg = std::sqrt(omc * opc);  // sin γ >= 0
     const double gamma = std::atan2(sg, 0.5 * (opc - omc));
     const double arg_t = std::atan2(tx.v, tx.u);
@@ -211,10 +230,120 @@ KM_HD inline int finish(const ParallelParams& P, const Pose& G, const Pair& pair
     return count;
 }
 
+//! How close the pairs of one target and their elbows (rows of Q) lie to the family's
+//! singular sets (rad): the smallest sine of the wrist's tilt (axis 6 from k) over the
+//! pairs found, whether or not their triangle closes; half the largest joint difference
+//! of two pairs (q1, q5), which merge at a fold; half the difference of q3 of elbow up
+//! and down (the stretched or folded elbow). +inf with no pair.
+KM_HD inline double pair_margin(const ParallelParams& P, const Pairs& pairs, const double* Q) {
+    double out = INF;
+    for (int m = 0; m < 4; ++m) {
+        if (pairs.kind[m] == PairKind::none) continue;
+        const Pair& x = pairs.pair[m];
+        out = smaller(out, std::sqrt(cross2(rotate_about(P.h5, x.c5, -x.s5, P.k), P.h6)));
+        const double* up = Q + 12 * m;
+        out = smaller(out, 0.5 * std::fabs(wrap(up[2] - up[8])));  // NaN: kept
+        for (int j = 0; j < m; ++j) {
+            if (pairs.kind[j] == PairKind::none) continue;
+            const Pair& y = pairs.pair[j];
+            out = smaller(out, 0.5 * larger(std::fabs(wrap(x.q1 - y.q1)),
+                                            std::fabs(wrap(x.q5 - y.q5))));
+        }
+    }
+    return out;
+}
+
+//! Where q1 turns freely: one representative on each arc of q1 of each pair, into Q
+//! (8, 6); how many rows were written. info as on entry (entry), then each written
+//! representative's.
+//!
+//! The pairs' existence is read at FREE_Q1_SAMPLES values of q1 around the circle
+//! (free_q1_sample's, in circular order here): a maximal run of samples at which the
+//! other joints can follow pair m is an arc, represented at q1rep when the run holds it,
+//! else at its middle sample. A pair's first arc (the nearest q1rep) takes its own slots;
+//! any other arc takes the slots of a pair found at no sample (the meet and parallel
+//! modes give two pairs where q1 is free, the general mode one), while any remain: an arc
+//! left without one marks the target near, as does no arc at all.
+KM_HD inline int free_q1_arcs(const ParallelParams& P, const Pose& G, const Vec3& x6,
+                              const Vec3& w6, const SolverInfo& entry, double* Q,
+                              SolverInfo& info) {
+    constexpr int N = FREE_Q1_SAMPLES;
+    const double step = TWO_PI / N;
+    unsigned found[N];
+    unsigned ever = 0;
+    double scratch[8 * 6];
+    for (int j = 0; j < N; ++j) {
+        SolverInfo tmp = entry;
+        Pairs pairs;
+        find_pairs(P, x6, w6, wrap(P.q1rep + j * step), pairs, tmp);
+        found[j] = 0;
+        for (int m = 0; m < 4; ++m) {
+            if (pairs.kind[m] != PairKind::none &&
+                finish(P, G, pairs.pair[m], pairs.kind[m], m, scratch, tmp) > 0) {
+                found[j] |= 1u << m;
+            }
+        }
+        ever |= found[j];
+    }
+    info = entry;
+    int spare = 0;  // the next pair index found at no sample
+    int count = 0;
+    for (int m = 0; m < 4; ++m) {
+        if ((ever & (1u << m)) == 0) continue;
+        // the arcs' representative samples, nearest q1rep first
+        int reps[N];
+        int arcs = 0;
+        for (int j = 0; j < N; ++j) {
+            const bool on = (found[j] >> m) & 1u;
+            const bool before = (found[(j + N - 1) % N] >> m) & 1u;
+            if (!on || before) continue;  // not the first sample of a run
+            int len = 1;
+            while (len < N && ((found[(j + len) % N] >> m) & 1u)) ++len;
+            reps[arcs++] = (j == 0 || j + len > N) ? 0 : (j + (len - 1) / 2) % N;
+        }
+        if (arcs == 0) reps[arcs++] = 0;  // every sample: the whole turn
+        for (int a = 1; a < arcs; ++a) {  // by circular distance from sample 0
+            for (int b = a; b > 0; --b) {
+                const int x = reps[b] < N - reps[b] ? reps[b] : N - reps[b];
+                const int y = reps[b - 1] < N - reps[b - 1] ? reps[b - 1] : N - reps[b - 1];
+                if (x >= y) break;
+                const int t = reps[b];
+                reps[b] = reps[b - 1];
+                reps[b - 1] = t;
+            }
+        }
+        for (int a = 0; a < arcs; ++a) {
+            int slot = m;
+            if (a > 0) {
+                while (spare < 4 && (ever & (1u << spare)) != 0) ++spare;
+                if (spare == 4) {  // no slot left for this arc
+                    info.near = true;
+                    break;
+                }
+                slot = spare++;
+            }
+            Pairs pairs;
+            find_pairs(P, x6, w6, wrap(P.q1rep + reps[a] * step), pairs, info);
+            count += finish(P, G, pairs.pair[m], pairs.kind[m], slot, Q, info);
+        }
+    }
+    // on a continuum none of whose sampled q1 the other joints can follow: not proven
+    // unreachable (an arc shorter than the step)
+    if (count == 0) info.near = true;
+    return count;
+}
+
 }  // namespace parallel
 
 KM_HD inline void ParallelParams::solve(const Pose& T, double* Q, SolverInfo& info) const {
+    double margin;
+    solve(T, Q, info, margin);
+}
+
+KM_HD inline void ParallelParams::solve(const Pose& T, double* Q, SolverInfo& info,
+                                        double& margin) const {
     using namespace parallel;
+    margin = INF;
     for (int i = 0; i < 8 * 6; ++i) Q[i] = NaN;
     info.gap = NaN;
     bool ok = true;
@@ -242,22 +371,19 @@ KM_HD inline void ParallelParams::solve(const Pose& T, double* Q, SolverInfo& in
     gap = larger(larger(gap, miss / lip), 0.0);
     int count = 0;
     if (miss <= NEAR_TOL * size) {
-        // Where q1 turns freely, the first q1 of FREE_Q1_SAMPLES at which the other
-        // joints can follow it (q1rep when they can there); info as on entry for each.
         const SolverInfo entry = info;
-        for (int j = 0; j < FREE_Q1_SAMPLES; ++j) {
-            info = entry;
-            Pairs pairs;
-            find_pairs(*this, x6, w6, free_q1_sample(q1rep, j), pairs, info);
+        Pairs pairs;
+        find_pairs(*this, x6, w6, q1rep, pairs, info);
+        if (pairs.free_q1) {
+            count = free_q1_arcs(*this, G, x6, w6, entry, Q, info);
+            margin = 0.0;  // on the singular set
+        } else {
             for (int m = 0; m < 4; ++m) {
                 if (pairs.kind[m] != PairKind::none) {
                     count += finish(*this, G, pairs.pair[m], pairs.kind[m], m, Q, info);
                 }
             }
-            if (count > 0 || !pairs.free_q1) break;
-            // on a continuum none of whose q1 tried so far the other joints can follow:
-            // not proven unreachable (an arc shorter than the step)
-            info.near = true;
+            margin = pair_margin(*this, pairs, Q);
         }
     }
     if (count == 0) {

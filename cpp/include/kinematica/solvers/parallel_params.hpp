@@ -63,6 +63,10 @@ struct ParallelParams {
     double bound = 0.0;  //!< reach bound about p1s (m)
     double lip = 1.0;    //!< |h1·k| + |kperp|: (2)'s sides move at most this per metre of target
     double scale = 1.0;  //!< size of the arm (m), for relative tolerances
+    //! how far the real arm may put axis 4 from this one's (m): 0 for an arm of the
+    //! family, the line geometry's slack for a near-degenerate one (the triangle's elbows
+    //! then straddle its fold)
+    double slack = 0.0;
     double q1rep = 0.0;  //!< q1 given when q1 is free (middle of its limits)
     double q2rep = 0.0;  //!< q2 given when q2 is free
 
@@ -72,6 +76,9 @@ struct ParallelParams {
     //! Every solution of one target T (base frame): candidates Q (8, 6, row-major; NaN
     //! rows: no real solution on that branch) and info. Defined in parallel.hpp.
     KM_HD void solve(const Pose& T, double* Q, SolverInfo& info) const;
+    //! solve(), and how close its pairs (q1, q5) and elbows lie to the family's singular
+    //! sets (rad; parallel.hpp's pair_margin, 0 where q1 is free).
+    KM_HD void solve(const Pose& T, double* Q, SolverInfo& info, double& margin) const;
 };
 
 namespace parallel {
@@ -87,7 +94,8 @@ constexpr double CONTINUUM_TOL = 1e-12;
 //! aligned wrist move the tool by about this fraction of the arm's size per radian, and
 //! an arc of them meets the tolerances around each solution; on an arm whose axes 2-4
 //! are parallel only within the line geometry's tolerance, the real solutions lie
-//! anywhere along it. The target is marked near.
+//! anywhere along it (near_6r.hpp gives such an arm the general 6R's candidates too).
+//! The target is marked near.
 constexpr double NEAR_ALIGNED_TOL = 1e-7;
 //! An equation missing a root by at most this (relative to the arm's size, or absolute
 //! for unit vectors) may be a double root moved by round-off or a target within
@@ -103,25 +111,16 @@ constexpr double NEAR_TOL = 1e-6;
 //! apart, which the other joints amplify past the check's deduplication.
 constexpr double DOUBLE_ROOT_TOL = 1e-14;
 
-//! Where q1 turns freely, the q1 values tried as the continuum's representative: q1rep,
-//! then q1rep ± 2π j / FREE_Q1_SAMPLES (j = 1, 2, ...), nearest first, until the other
-//! joints can follow (q5 has a root, the triangle closes). The continuum through a
-//! solution spans an arc of q1 that ends where q5 or the elbow reaches a double root, and
-//! one q1 of it is enough; q1rep alone may lie off the arc (on an arm whose range of
-//! k·R5 h6 is less than [-1, 1], or with axes 5 and 6 apart). An arc shorter than the
-//! step, 2π / FREE_Q1_SAMPLES (0.098 rad), may be stepped over: the target is then at
-//! once on a continuum and within about that of its end, and is marked near (not found,
-//! never unreachable).
+//! Where q1 turns freely, the q1 values at which the pairs are sought: q1rep + 2π j /
+//! FREE_Q1_SAMPLES (j = 0 .. FREE_Q1_SAMPLES - 1). The continuum through a solution spans
+//! an arc of q1 that ends where q5 or the elbow reaches a double root; a pair may have
+//! several arcs, each lying anywhere (q1rep may lie off all of them: on an arm whose
+//! range of k·R5 h6 is less than [-1, 1], or with axes 5 and 6 apart), and each arc gets
+//! its own representative (parallel.hpp's free_q1_arcs). An arc shorter than the step,
+//! 2π / FREE_Q1_SAMPLES (0.098 rad), may be stepped over: where no arc is found the
+//! target is then at once on a continuum and within about that of its end, and is
+//! marked near (not found, never unreachable).
 constexpr int FREE_Q1_SAMPLES = 64;
-
-//! The j-th q1 tried as the representative of a continuum in which q1 turns freely
-//! (j = 0 .. FREE_Q1_SAMPLES - 1): rep, rep + δ, rep - δ, rep + 2δ, ... (δ = 2π /
-//! FREE_Q1_SAMPLES), wrapped.
-KM_HD inline double free_q1_sample(double rep, int j) {
-    const int steps = (j + 1) / 2;
-    const double turn = (j % 2 == 1 ? 1.0 : -1.0) * steps * (TWO_PI / FREE_Q1_SAMPLES);
-    return j == 0 ? rep : wrap(rep + turn);
-}
 
 //! What a pair is: none, a root, or a representative of a continuum in which q1 turns
 //! freely (the other joints following it).

@@ -244,6 +244,20 @@ KM_HD inline void pairs_general(const ParallelParams& P, const Vec3& x6, const S
             polish(P, x6, L1, L2, pairs, j, info);
         }
     }
+    // Two pairs still one root: a merging pair's other root is lost to round-off (at a
+    // double root Newton's first step may go anywhere, onto another root): the pair
+    // system is at a fold there, and the target is near (issue 34: an "ok" without the
+    // flag lacked the configuration that made the target).
+    for (int j = 0; j < 4; ++j) {
+        for (int i = 0; i < j; ++i) {
+            if (pairs.kind[i] == PairKind::none || pairs.kind[j] == PairKind::none) continue;
+            const Pair& a = pairs.pair[i];
+            const Pair& b = pairs.pair[j];
+            if (larger(std::fabs(wrap(a.q1 - b.q1)), std::fabs(wrap(a.q5 - b.q5))) < DEDUP_TOL) {
+                info.near = true;
+            }
+        }
+    }
 }
 
 }  // namespace parallel

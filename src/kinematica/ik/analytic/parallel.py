@@ -160,6 +160,7 @@ def pack(
     P.bound = bound
     P.lip = float(abs(h1 @ k) + float(np.linalg.norm(k - kpar)))
     P.scale = bound
+    P.slack = features.slack  # 0 unless near-degenerate: the triangle straddles its fold
     lims = chain.qlim
     P.q1rep = _middle(*lims[0])
     P.q2rep = _middle(*lims[1])
@@ -167,18 +168,32 @@ def pack(
 
 
 def build(chain: Chain, features: Features, target: TargetKind) -> ClosedForm | None:
-    """The closed-form solver of a UR-type arm for pose targets, or ``None``."""
+    """The closed-form solver of a UR-type arm for pose targets, or ``None``.
+
+    An arm whose axes have the structure only within the line geometry's tolerance
+    (``features.near_degenerate``) gets the general 6R's candidates too, when its
+    builder finds a labelling (``cpp/include/kinematica/solvers/near_6r.hpp``: near the
+    family's singular sets the real arm's solutions lie beyond the repair's reach of
+    the family's); their branch labels follow the family's.
+    """
     if target != "pose":
         return None
     packed = pack(chain, features)
     if packed is None:
         return None
     params, mode = packed
-    return ClosedForm(
-        name="three-parallel-6R",
-        labels=LABELS if mode == _core.parallel.Mode.meet else GENERAL_LABELS,
-        params=params,
-    )
+    labels = LABELS if mode == _core.parallel.Mode.meet else GENERAL_LABELS
+    if features.near_degenerate:
+        from kinematica.ik.analytic import general_6r  # a near-degenerate arm's only
+
+        exact = general_6r.build(chain, features, target)
+        if exact is not None:
+            near = _core.general6r.NearParallelParams()
+            near.family = params
+            near.general = exact.params
+            near.watch = _core.general6r.WATCH_FACTOR * math.sqrt(features.slack / features.size)
+            return ClosedForm(name="three-parallel-6R", labels=labels + exact.labels, params=near)
+    return ClosedForm(name="three-parallel-6R", labels=labels, params=params)
 
 
 # ------------------------------------------------------------------ sample arms
