@@ -71,7 +71,7 @@ def aligned_q5(robot: km.Robot) -> float:
 
 def completeness(arms: int, poses: int, seed: int) -> None:
     rng = np.random.default_rng(seed)
-    robots = [tilted(km.Robot.from_dh(UR5_ROWS))]
+    robots = [tilted(km.Robot.from_dh(UR5_ROWS, convention="standard"))]
     while len(robots) < arms:
         robots.append(tilted(random_arm(rng, ("meet", "apart")[len(robots) % 2], square=True)))
     # watch in units of sqrt(slack / size): 0 (the general 6R only where the family says

@@ -56,7 +56,7 @@ def arms() -> list[Robot]:
     """The UR5, and a random arm of the family with axes 5 and 6 meeting and apart, each
     tilted (standard tables: α2 is the twist of axes 2 and 3)."""
     rng = np.random.default_rng(4)
-    out = [tilted(Robot.from_dh(UR5_ROWS))]
+    out = [tilted(Robot.from_dh(UR5_ROWS, convention="standard"))]
     out += [tilted(random_arm(rng, mode, square=True)) for mode in ("meet", "apart")]
     for robot in out:
         assert features(robot.chain).near_degenerate
@@ -87,7 +87,7 @@ def test_a_near_degenerate_arm_gets_the_general_6r_candidates_too() -> None:
     assert closed.labels[: len(LABELS)] == LABELS
     assert len(closed.labels) == closed.params.slots == 8 + _core.general6r.SLOTS
     # an exact arm keeps the family's closed form alone
-    exact = closed_form(Robot.from_dh(UR5_ROWS).chain, "pose")
+    exact = closed_form(Robot.from_dh(UR5_ROWS, convention="standard").chain, "pose")
     assert exact is not None and isinstance(exact.params, _core.parallel.ParallelParams)
 
 
@@ -151,7 +151,7 @@ def test_at_the_aligned_wrist_the_answer_is_a_continuum_within_tolerance() -> No
 @pytest.mark.parametrize("a5", [0.0, 0.05])
 def test_batch_equals_single(a5: float) -> None:
     rows = [*UR5_ROWS[:4], Revolute(d=0.09465, a=a5, alpha=-PI / 2), UR5_ROWS[5]]
-    robot = tilted(Robot.from_dh(rows))
+    robot = tilted(Robot.from_dh(rows, convention="standard"))
     rng = np.random.default_rng(8)
     q = near_aligned(robot, rng, 1e-6, 20)
     T = robot.fk(q)
