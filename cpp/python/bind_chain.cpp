@@ -3,6 +3,7 @@
 #include <nanobind/stl/vector.h>
 
 #include <atomic>
+#include <utility>
 #include <vector>
 
 #include "casters.hpp"
@@ -241,11 +242,39 @@ int mask_rows(int mask, int* rows) {
     return m;
 }
 
+//! km::singular_values_lanes of SV_LANES matrices, compiled for each target of KM_CLONES (the
+//! loops over lanes become AVX-512 or AVX2 instructions where the processor has them).
+KM_CLONES void lanes_kernel(const double* const* in, int count, int m, int n, double* W,
+                            double* const* out) {
+    km::singular_values_lanes<km::SV_LANES>(in, count, m, n, W, out);
+}
+
+//! Matrices waiting for one km::singular_values_lanes call (SV_LANES side by side).
+struct Lanes {
+    int m, n, count = 0;
+    std::vector<double> A, W;
+    const double* in[km::SV_LANES];
+    double* out[km::SV_LANES];
+    Lanes(int m_, int n_)
+        : m(m_), n(n_), A(static_cast<size_t>(m_ * n_ * km::SV_LANES)), W(A.size()) {}
+    //! The next lane's matrix storage (m x n, row-major); its values go to `s` at the flush.
+    double* add(double* s) {
+        double* a = A.data() + static_cast<size_t>(count) * static_cast<size_t>(m * n);
+        in[count] = a;
+        out[count++] = s;
+        return a;
+    }
+    bool full() const { return count == km::SV_LANES; }
+    void flush() {
+        if (count > 0) lanes_kernel(in, count, m, n, W.data(), out);
+        count = 0;
+    }
+};
+
 //! Singular values of the Jacobians (the rows of `mask`) of rows [b0, b1) of Q, into S
-//! (min(m, n) a row): one walk and one km::singular_values each, no Jacobian kept beyond
-//! its group. Rows come in groups of `group` (the solutions of one target): a row whose
-//! Jacobian equals an earlier one's of its group up to column signs (a wrist flip) takes
-//! its values; a row holding NaN/inf gets NaN without a walk.
+//! (min(m, n) a row), SV_LANES at a time. Rows come in groups of `group` (the solutions of
+//! one target): a row whose Jacobian equals an earlier one's of its group up to column
+//! signs (a wrist flip) takes its values; a row holding NaN/inf gets NaN without a walk.
 KM_CLONES void singular_block(const ChainView& ch, const double* Q, long b0, long b1, const int* rows,
                               int m, int group, double* S) {
     const int n = ch.n;
@@ -253,8 +282,10 @@ KM_CLONES void singular_block(const ChainView& ch, const double* Q, long b0, lon
     BlockTrig trig(n, b1 - b0);
     km::joint_trig_rows(ch, Q + b0 * n, static_cast<int>(b1 - b0), trig.angle(), trig.c(), trig.s());
     const size_t mn = static_cast<size_t>(m) * static_cast<size_t>(n);
-    std::vector<double> J(6 * static_cast<size_t>(n)), A(mn * static_cast<size_t>(group)), W(mn);
+    std::vector<double> J(6 * static_cast<size_t>(n)), A(mn * static_cast<size_t>(group));
     std::vector<long> kept(static_cast<size_t>(group));
+    std::vector<std::pair<long, long>> copies;  // (row, its twin): filled once computed
+    Lanes lanes(m, n);
     for (long g0 = b0; g0 < b1; g0 += group) {
         int n_kept = 0;
         for (long b = g0; b < g0 + group; ++b) {
@@ -269,18 +300,25 @@ KM_CLONES void singular_block(const ChainView& ch, const double* Q, long b0, lon
             for (int i = 0; i < m; ++i) {
                 for (int j = 0; j < n; ++j) Ab[i * n + j] = J[static_cast<size_t>(rows[i] * n + j)];
             }
-            bool same = false;
-            for (int p = 0; p < n_kept && !same; ++p) {
+            long twin = -1;
+            for (int p = 0; p < n_kept && twin < 0; ++p) {
                 if (km::same_up_to_column_signs(A.data() + static_cast<size_t>(p) * mn, Ab, m, n)) {
-                    const double* from = S + kept[static_cast<size_t>(p)] * k;
-                    for (int i = 0; i < k; ++i) out[i] = from[i];
-                    same = true;
+                    twin = kept[static_cast<size_t>(p)];
                 }
             }
-            if (same) continue;
-            km::singular_values(Ab, m, n, W.data(), out);
+            if (twin >= 0) {
+                copies.emplace_back(b, twin);
+                continue;
+            }
+            double* lane = lanes.add(out);
+            for (size_t e = 0; e < mn; ++e) lane[e] = Ab[e];
+            if (lanes.full()) lanes.flush();
             kept[static_cast<size_t>(n_kept++)] = b;
         }
+    }
+    lanes.flush();
+    for (const auto& [row, twin] : copies) {
+        for (int i = 0; i < k; ++i) S[row * k + i] = S[twin * k + i];
     }
 }
 
@@ -314,11 +352,14 @@ F64 singular_values_many(F64 Ah, int workers) {
     double* out;
     F64 S = new_f64({B, k}, out);
     run_rows(B, FK_BLOCK, workers, [&](long b0, long b1) {
-        std::vector<double> W(static_cast<size_t>(m * n));
+        Lanes lanes(static_cast<int>(m), static_cast<int>(n));
         for (long b = b0; b < b1; ++b) {
-            km::singular_values(A.data + b * m * n, static_cast<int>(m), static_cast<int>(n), W.data(),
-                                out + b * k);
+            double* a = lanes.add(out + b * k);
+            const double* from = A.data + b * m * n;
+            for (npy_intp e = 0; e < m * n; ++e) a[e] = from[e];
+            if (lanes.full()) lanes.flush();
         }
+        lanes.flush();
     });
     return S;
 }

@@ -153,9 +153,37 @@ def test_batch_shapes_and_threads() -> None:
     )
 
 
-@pytest.mark.parametrize("scale", [1e-200, 1e200, 2.0**400, 2.0**401, 2.0**-401])
+@pytest.mark.parametrize("scale", [1e-200, 1e200, 2.0**200, 2.0**201, 2.0**-201, 2.0**-202])
 def test_far_scales(scale: float) -> None:
     """Matrices far from unit size (scaled exactly by a power of 2 inside) keep their values."""
     A = np.random.default_rng(4).standard_normal((50, 6, 6))
     ref = np.linalg.svd(A, compute_uv=False) * scale
     assert _worst(singular_values(A * scale), ref) <= AGREE
+
+
+def test_a_wrist_flip_shares_its_twins_values_within_the_tolerance() -> None:
+    """Rows in groups: a wrist flip's Jacobian (column 5 negated) takes its twin's values.
+
+    The PUMA's flip (q4 + π, −q5, q6 + π) reaches the same pose with J·diag(1, 1, 1, 1,
+    −1, 1). A flip moved by 1e-15 rad (its Jacobian within SAME_COLUMNS_TOL = 1e-14 of
+    the twin's, up to sign) takes the twin's values bit for bit; one moved by 1e-11 rad
+    (outside it) has its own, which differ from the twin's.
+    """
+    puma = km.load("puma560")
+    q = np.array([0.3, -0.4, 0.5, 0.7, 0.9, -1.1])
+    flip = q + [0.0, 0.0, 0.0, np.pi, -2 * q[4], np.pi]
+    J, Jf = puma.jacobian(q), puma.jacobian(flip)
+    np.testing.assert_allclose(Jf * [1, 1, 1, 1, -1, 1], J, atol=1e-15)
+    for delta, shared in [(1e-15, True), (1e-11, False)]:
+        near = flip + [0, delta, 0, 0, 0, 0]  # q2: the arm itself moves (q1 only turns it)
+        Q = np.array([q, near, [np.nan] * 6, q + 0.2])
+        grouped = puma.chain.singular_values(Q, group=4)
+        alone = puma.chain.singular_values(Q)
+        assert np.array_equal(grouped[1], grouped[0]) is shared
+        assert np.all(np.abs(grouped - alone)[[0, 1, 3]] <= AGREE * grouped[0, 0])
+        assert np.isnan(grouped[2]).all()
+        assert np.array_equal(grouped[3], alone[3])
+    with pytest.raises(ValueError, match="group"):
+        puma.chain.singular_values(Q[:3], group=2)
+    with pytest.raises(ValueError, match="group"):
+        puma.chain.singular_values(np.zeros((17, 6)), group=17)
