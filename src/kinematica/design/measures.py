@@ -206,23 +206,26 @@ def measure_task(robot: Robot, task: Task) -> TaskMeasures:
     cond = np.full(shape, np.nan)
     clear = np.full(shape, np.nan)
     if reached.any() and k_max > 0:
-        sol = solutions
-        valid = np.all(np.isfinite(sol), axis=-1)
-        # (N, k, r): one core call over the padded array, a target's solutions a group
-        # (a wrist flip's values are copied, NaN rows skipped)
+        # (N·k, min(m, n)): one core call over the padded array, a target's solutions a
+        # group (a wrist flip's values are copied); NaN rows (no solution) stay NaN below,
+        # and the reductions over a target's solutions (fmax, fmin) skip them
         group = k_max if k_max <= MAX_GROUP else 1
         flat = robot.chain.singular_values(
-            sol.reshape(-1, robot.dof), _ROW_INDICES[rows], group=group
+            solutions.reshape(-1, robot.dof), _ROW_INDICES[rows], group=group
         )
-        s = flat.reshape(n_targets, k_max, -1)[..., :rank].copy()
-        s[~valid] = 0.0
-        smallest = s[..., -1] if rank > 0 else np.zeros(valid.shape)
+        s = flat.reshape(n_targets, k_max, -1)
+        if rank > 0:
+            smallest = s[..., rank - 1]
+            w = np.prod(s[..., :rank], axis=-1)
+        else:  # no motion the task sees: every measure 0 (NaN rows kept NaN)
+            smallest = np.where(np.isnan(s[..., 0]), np.nan, 0.0)
+            w = smallest
         with np.errstate(divide="ignore", invalid="ignore"):
-            kappa = np.where(smallest > 0.0, s[..., 0] / smallest, np.inf)
-        w = np.prod(s, axis=-1) if rank > 0 else np.zeros(valid.shape)
-        manip = np.max(np.where(valid, w, -np.inf), axis=1)
-        cond = np.min(np.where(valid, kappa, np.inf), axis=1)
-        clear = np.max(np.where(valid, smallest, -np.inf), axis=1)
+            kappa = s[..., 0] / smallest
+        kappa[smallest == 0.0] = np.inf
+        manip = np.fmax.reduce(w, axis=1)
+        cond = np.fmin.reduce(kappa, axis=1)
+        clear = np.fmax.reduce(smallest, axis=1)
         for a in (manip, cond, clear):
             a[~reached] = np.nan
     raw_gap = result.gap.reshape(n_targets)

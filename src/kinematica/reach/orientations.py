@@ -189,8 +189,10 @@ def planar_set(n: int, normal: ArrayLike, start: ArrayLike | None = None) -> Flo
     return out
 
 
-#: Below this angle (rad), ``θ − sin θ`` is summed from its series (no cancellation).
-_SERIES_ANGLE = 1e-2
+#: Below this angle (rad), ``θ − sin θ`` is summed from its series (no cancellation):
+#: through θ¹³ the series is exact to round-off there, and above it the difference
+#: loses at most 2·10⁻¹⁴ of its value.
+_SERIES_ANGLE = 0.3
 #: Bisection steps for an angle of the ball's set (2^-60 of π: below round-off).
 _BISECT_STEPS = 60
 
@@ -198,7 +200,11 @@ _BISECT_STEPS = 60
 def _versine_integral(theta: FloatArray) -> FloatArray:
     """``θ − sin θ`` (the Haar measure of the ball of radius θ, up to a constant)."""
     t = np.asarray(theta, dtype=np.float64)
-    series = t**3 / 6.0 - t**5 / 120.0 + t**7 / 5040.0
+    t2 = t * t
+    series = t * t2 / 6.0  # θ³/3! (1 − θ²/20 (1 − θ²/42 (1 − θ²/72 (1 − θ²/110 (1 − θ²/156)))))
+    series = series * (
+        1 - t2 / 20 * (1 - t2 / 42 * (1 - t2 / 72 * (1 - t2 / 110 * (1 - t2 / 156))))
+    )
     out: FloatArray = np.where(t < _SERIES_ANGLE, series, t - np.sin(t))
     return out
 
