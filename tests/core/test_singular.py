@@ -171,11 +171,13 @@ def test_a_wrist_flip_shares_its_twins_values_within_the_tolerance() -> None:
     """
     puma = km.load("puma560")
     q = np.array([0.3, -0.4, 0.5, 0.7, 0.9, -1.1])
-    flip = q + [0.0, 0.0, 0.0, np.pi, -2 * q[4], np.pi]
+    flip = q + np.array([0.0, 0.0, 0.0, np.pi, -2 * q[4], np.pi])
     J, Jf = puma.jacobian(q), puma.jacobian(flip)
     np.testing.assert_allclose(Jf * [1, 1, 1, 1, -1, 1], J, atol=1e-15)
     for delta, shared in [(1e-15, True), (1e-11, False)]:
-        near = flip + [0, delta, 0, 0, 0, 0]  # q2: the arm itself moves (q1 only turns it)
+        near = flip + np.array(
+            [0, delta, 0, 0, 0, 0]
+        )  # q2: the arm itself moves (q1 only turns it)
         Q = np.array([q, near, [np.nan] * 6, q + 0.2])
         grouped = puma.chain.singular_values(Q, group=4)
         alone = puma.chain.singular_values(Q)

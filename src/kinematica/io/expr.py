@@ -23,10 +23,10 @@ of the offending character; its message gives a 1-based column, as editors do.
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 from collections.abc import Callable, Mapping
-import functools
 from dataclasses import dataclass, field
 from typing import Final, TypeVar
 
@@ -459,8 +459,10 @@ def parse_expression(text: str) -> Expression:
 
 @functools.lru_cache(maxsize=PARSE_CACHE)
 def _parse_text(text: str) -> Expression:
-    """The parse of a checked text, kept: expressions are immutable, and a design
-    search parses the same template's cells again for every candidate."""
+    """The parse of a checked text, kept (expressions are immutable).
+
+    A design search parses the same template's cells again for every candidate.
+    """
     root = _Parser(text).parse()
     return Expression(text, frozenset(_names(root)), root)
 
