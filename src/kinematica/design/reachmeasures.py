@@ -57,8 +57,8 @@ class ReachSettings:
 
     Attributes:
         region: ``(2, 3)`` lower and upper corners of the box (m, base frame)
-            whose dexterous volume is measured; None: ``dexterous_volume`` is
-            not measured (NaN).
+            whose dexterous volume is measured (kept as a read-only array);
+            None: ``dexterous_volume`` is not measured (NaN).
         resolution: Voxel side (m) of that box's map.
         orientations: Orientations asked per voxel (spread over SO(3)).
         tolerance: The task's orientation tolerance (rad, 0 to π); None: all
@@ -66,7 +66,7 @@ class ReachSettings:
         samples: Orientations asked per target for ``task_reachability``.
     """
 
-    region: FloatArray | None = None
+    region: ArrayLike | None = None
     resolution: float = 0.05
     orientations: int = 64
     tolerance: float | None = None
