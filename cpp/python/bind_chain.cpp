@@ -3,6 +3,7 @@
 #include <nanobind/stl/vector.h>
 
 #include <atomic>
+#include <utility>
 #include <vector>
 
 #include "casters.hpp"
@@ -11,6 +12,7 @@
 #include "kinematica/jacobian.hpp"
 #include "interrupt.hpp"
 #include "kinematica/point_rank.hpp"
+#include "kinematica/singular.hpp"
 
 namespace kmpy {
 
@@ -230,6 +232,138 @@ nb::tuple jacobian_many(const Chain& chain, F64 Qh, bool tool_frame, int workers
     return nb::make_tuple(J, counts.bad.load(), counts.turns.load());
 }
 
+//! The rows of a 6-row Jacobian a bit mask names (bit r: row r), ascending; their count.
+int mask_rows(int mask, int* rows) {
+    if (mask < 1 || mask > 63) throw nb::value_error("rows must be a bit mask of Jacobian rows 0-5 (1-63)");
+    int m = 0;
+    for (int r = 0; r < 6; ++r) {
+        if ((mask >> r) & 1) rows[m++] = r;
+    }
+    return m;
+}
+
+//! km::singular_values_lanes of SV_LANES matrices, compiled for each target of KM_CLONES (the
+//! loops over lanes become AVX-512 or AVX2 instructions where the processor has them).
+KM_CLONES void lanes_kernel(const double* const* in, int count, int m, int n, double* W,
+                            double* const* out) {
+    km::singular_values_lanes<km::SV_LANES>(in, count, m, n, W, out);
+}
+
+//! Matrices waiting for one km::singular_values_lanes call (SV_LANES side by side).
+struct Lanes {
+    int m, n, count = 0;
+    std::vector<double> A, W;
+    const double* in[km::SV_LANES];
+    double* out[km::SV_LANES];
+    Lanes(int m_, int n_)
+        : m(m_), n(n_), A(static_cast<size_t>(m_ * n_ * km::SV_LANES)), W(A.size()) {}
+    //! The next lane's matrix storage (m x n, row-major); its values go to `s` at the flush.
+    double* add(double* s) {
+        double* a = A.data() + static_cast<size_t>(count) * static_cast<size_t>(m * n);
+        in[count] = a;
+        out[count++] = s;
+        return a;
+    }
+    bool full() const { return count == km::SV_LANES; }
+    void flush() {
+        if (count > 0) lanes_kernel(in, count, m, n, W.data(), out);
+        count = 0;
+    }
+};
+
+//! Singular values of the Jacobians (the rows of `mask`) of rows [b0, b1) of Q, into S
+//! (min(m, n) a row), SV_LANES at a time. Rows come in groups of `group` (the solutions of
+//! one target): a row whose Jacobian equals an earlier one's of its group up to column
+//! signs (a wrist flip) takes its values; a row holding NaN/inf gets NaN without a walk.
+KM_CLONES void singular_block(const ChainView& ch, const double* Q, long b0, long b1, const int* rows,
+                              int m, int group, double* S) {
+    const int n = ch.n;
+    const int k = m < n ? m : n;
+    BlockTrig trig(n, b1 - b0);
+    km::joint_trig_rows(ch, Q + b0 * n, static_cast<int>(b1 - b0), trig.angle(), trig.c(), trig.s());
+    const size_t mn = static_cast<size_t>(m) * static_cast<size_t>(n);
+    std::vector<double> J(6 * static_cast<size_t>(n)), A(mn * static_cast<size_t>(group));
+    std::vector<long> kept(static_cast<size_t>(group));
+    std::vector<std::pair<long, long>> copies;  // (row, its twin): filled once computed
+    Lanes lanes(m, n);
+    for (long g0 = b0; g0 < b1; g0 += group) {
+        int n_kept = 0;
+        for (long b = g0; b < g0 + group; ++b) {
+            const double* q = Q + b * n;
+            double* out = S + b * k;
+            if (km::q_state(ch, q) == QState::not_finite) {
+                fill_nan(out, k);
+                continue;
+            }
+            km::jacobian(ch, q, trig.c() + (b - b0) * n, trig.s() + (b - b0) * n, false, J.data());
+            double* Ab = A.data() + static_cast<size_t>(n_kept) * mn;
+            for (int i = 0; i < m; ++i) {
+                for (int j = 0; j < n; ++j) Ab[i * n + j] = J[static_cast<size_t>(rows[i] * n + j)];
+            }
+            long twin = -1;
+            for (int p = 0; p < n_kept && twin < 0; ++p) {
+                if (km::same_up_to_column_signs(A.data() + static_cast<size_t>(p) * mn, Ab, m, n)) {
+                    twin = kept[static_cast<size_t>(p)];
+                }
+            }
+            if (twin >= 0) {
+                copies.emplace_back(b, twin);
+                continue;
+            }
+            double* lane = lanes.add(out);
+            for (size_t e = 0; e < mn; ++e) lane[e] = Ab[e];
+            if (lanes.full()) lanes.flush();
+            kept[static_cast<size_t>(n_kept++)] = b;
+        }
+    }
+    lanes.flush();
+    for (const auto& [row, twin] : copies) {
+        for (int i = 0; i < k; ++i) S[row * k + i] = S[twin * k + i];
+    }
+}
+
+F64 jacobian_singular_values(const Chain& chain, F64 Qh, int mask, int group, int workers) {
+    const In Q = check_batch(chain, Qh);
+    const ChainView ch = chain.view();
+    int rows[6];
+    const int m = mask_rows(mask, rows);
+    const int k = m < ch.n ? m : ch.n;
+    const npy_intp B = Q.dim[0];
+    if (group < 1 || group > km::MAX_SLOTS || B % group != 0) {
+        throw nb::value_error("group must be 1-16 rows and divide the rows of Q");
+    }
+    double* out;
+    F64 S = new_f64({B, k}, out);
+    const long per_block = group * ((FK_BLOCK + group - 1) / group);  // whole groups
+    run_rows(B, per_block, workers,
+             [&](long b0, long b1) { singular_block(ch, Q.data, b0, b1, rows, m, group, out); });
+    return S;
+}
+
+//! Singular values of a batch of small matrices (B, m, n), min(m, n) <= MAX_SINGULAR.
+F64 singular_values_many(F64 Ah, int workers) {
+    const In A = in_f64(Ah, "A", 3);
+    const npy_intp B = A.dim[0], m = A.dim[1], n = A.dim[2];
+    if (m < 1 || n < 1) throw nb::value_error("A must hold matrices of at least one row and column");
+    const npy_intp k = m < n ? m : n;
+    if (k > km::MAX_SINGULAR || m * n > 6 * 4096) {
+        throw nb::value_error("A's matrices must have at most 6 rows or 6 columns, and 24,576 entries");
+    }
+    double* out;
+    F64 S = new_f64({B, k}, out);
+    run_rows(B, FK_BLOCK, workers, [&](long b0, long b1) {
+        Lanes lanes(static_cast<int>(m), static_cast<int>(n));
+        for (long b = b0; b < b1; ++b) {
+            double* a = lanes.add(out + b * k);
+            const double* from = A.data + b * m * n;
+            for (npy_intp e = 0; e < m * n; ++e) a[e] = from[e];
+            if (lanes.full()) lanes.flush();
+        }
+        lanes.flush();
+    });
+    return S;
+}
+
 F64 joint_axes(const Chain& chain, F64 Qh, int workers) {
     const In Q = check_batch(chain, Qh);
     const ChainView ch = chain.view();
@@ -369,12 +503,21 @@ void bind_chain(nb::module_& m) {
              "(J (6, n), state) of q (n,).")
         .def("jacobian_batch", &jacobian_many, nb::arg("Q"), nb::arg("tool_frame"),
              nb::arg("workers"), "(J (B, 6, n), bad, turns) of Q (B, n), counted as for fk_batch.")
+        .def("jacobian_singular_values", &jacobian_singular_values, nb::arg("Q"), nb::arg("rows"),
+             nb::arg("group") = 1, nb::arg("workers") = 1,
+             "(B, min(m, n)): the singular values, largest first, of the m rows of the Jacobian\n"
+             "(base frame) that the bit mask rows names (bit r: row r), at each row of Q (B, n);\n"
+             "NaN for a row holding NaN/inf. Rows in groups of `group` (one target's solutions):\n"
+             "a Jacobian equal to an earlier one of its group up to column signs takes its values.")
         .def("joint_axes", &joint_axes, nb::arg("Q"), nb::arg("workers") = 1,
              "(B, n, 6): each joint's axis direction, then a point on it (base frame).")
         .def("point_rank_ratios", &point_rank_ratios, nb::arg("Q"), nb::arg("c_tool"),
              nb::arg("workers") = 1,
              "(B,): σmin / σmax of the Jacobian d(point)/d(q1, q2, q3) at each row of Q (B, n),\n"
              "the point fixed in the tool frame at c_tool (3,).");
+    m.def("singular_values", &singular_values_many, nb::arg("A"), nb::arg("workers") = 1,
+          "(B, min(m, n)): the singular values, largest first, of A (B, m, n), min(m, n) <= 6\n"
+          "(one-sided Jacobi, singular.hpp); NaN for a matrix holding NaN/inf.");
 }
 
 }  // namespace kmpy

@@ -221,3 +221,19 @@ def test_the_report_shows_names_literally(
         assert tag not in page
     assert f"<h1>Design of {evil.replace('<', '&lt;').replace('>', '&gt;')}</h1>" in page
     assert "<code>best`x.yaml</code>" in page
+
+
+def test_reach_measures_from_the_command_line(
+    capsys: pytest.CaptureFixture[str], files: Path
+) -> None:
+    args = ["design", str(files / "t.yaml"), "--task", str(files / "ring.csv"), "--budget", "10",
+            "-o", str(files / "r.yaml"), "--json", "--no-pictures"]  # fmt: skip
+    reach = ["--tolerance", "10", "--samples", "8", "--region", "-0.5", "-0.5", "0", "0.5",
+             "0.5", "0", "--reach-resolution", "0.25", "--reach-orientations", "4"]  # fmt: skip
+    code, out, err = run(capsys, *args, *reach)
+    assert code == 0, err
+    measures = json.loads(out)["best_measures"]
+    assert 0.0 <= measures["task_reachability"] <= 1.0
+    assert measures["dexterous_volume"] >= 0.0
+    code, out, err = run(capsys, *args, "--objective", "dexterous_volume")
+    assert code == 2 and "region" in err and "Traceback" not in err

@@ -105,6 +105,7 @@ def test_batches_release_the_gil() -> None:
     Tb2 = Tb[::-1].copy()
     R, R2 = np.ascontiguousarray(Tb[:, :3, :3]), np.ascontiguousarray(Tb2[:, :3, :3])
     angles = rng.uniform(-100.0, 100.0, 2_000_000)
+    J6 = rng.standard_normal((40_000, 6, 6))  # 20-40 ms of singular values
     calls = {
         "joint_axes": lambda: core.joint_axes(Q, 1),
         "point_rank_ratios": lambda: core.point_rank_ratios(Q[:4000], np.zeros(3), 1),
@@ -114,6 +115,8 @@ def test_batches_release_the_gil() -> None:
         "so3_log": lambda: _core.so3_log(R),
         "rotation_angles": lambda: _core.rotation_angles(R, R2),
         "pose_errors": lambda: _core.pose_errors(Tb, Tb2),
+        "jacobian_singular_values": lambda: core.jacobian_singular_values(Q[:4000], 63, 1, 1),
+        "singular_values": lambda: _core.singular_values(J6, 1),
     }
     repeats = 5
     windows: dict[str, list[tuple[float, float]]] = {name: [] for name in calls}

@@ -221,3 +221,19 @@ def test_checkpoint_of_another_problem_or_not_a_checkpoint(
         optimize(path, Task.ring(0.5, 4), budget=10, checkpoint=broken)
     with pytest.raises(CheckpointError, match="cannot write the checkpoint"):
         optimize(path, task, budget=10, checkpoint=tmp_path / "no" / "such.ckpt")
+
+
+def test_balanced_runs_split_a_generation_evenly() -> None:
+    """Sizes within one of each other, larger first, order kept, at most 16 a run."""
+    from kinematica.design.runner import CANDIDATES_PER_TASK, balanced_runs
+
+    keys = [(float(i),) for i in range(10)]
+    runs = balanced_runs(keys, 2)
+    assert [len(r) for r in runs] == [3, 3, 2, 2]
+    assert [k for r in runs for k in r] == keys
+    assert [len(r) for r in balanced_runs(keys[:3], 2)] == [1, 1, 1]
+    big = [(float(i),) for i in range(100)]
+    sizes = [len(r) for r in balanced_runs(big, 2)]
+    assert max(sizes) <= CANDIDATES_PER_TASK and max(sizes) - min(sizes) <= 1
+    assert sum(sizes) == 100 and len(sizes) == 7
+    assert balanced_runs([], 4) == []

@@ -31,6 +31,27 @@ def _objective(tokens: list[str]) -> str | dict[str, float] | list[str]:
     return weights
 
 
+def _reach(args: argparse.Namespace, objective: object) -> Any:
+    """ReachSettings from --region, --tolerance, ... when given or named; else None."""
+    from kinematica.design import ReachSettings
+    from kinematica.design.reachmeasures import REACH_MEASURES
+
+    names = objective if isinstance(objective, list | dict) else [objective]
+    if args.region is None and args.tolerance is None and not set(names) & set(REACH_MEASURES):
+        return None
+    region = None if args.region is None else [args.region[:3], args.region[3:]]
+    tolerance = args.tolerance
+    if tolerance is not None and not args.rad:
+        tolerance = math.radians(tolerance)
+    return ReachSettings(
+        region=region,
+        resolution=args.reach_resolution,
+        orientations=args.reach_orientations,
+        tolerance=tolerance,
+        samples=args.samples,
+    )
+
+
 def _finite(value: Any) -> Any:
     """JSON-safe: non-finite floats become None."""
     if isinstance(value, float):
@@ -64,16 +85,18 @@ def design(args: argparse.Namespace) -> int:
 
     robot_path, report_path, log_path = _outputs(args)
     task = load_task(args.task, euler=args.euler, degrees=not args.rad)
+    objective = _objective(args.objective)
     res = optimize(
         args.template,
         task,
-        _objective(args.objective),
+        objective,
         budget=args.budget,
         seed=args.seed,
         scheduler=args.scheduler,
         workers=args.workers,
         checkpoint=args.checkpoint,
         progress=False if args.no_progress else None,
+        reach=_reach(args, objective),
     )
     written = {"log": str(log_path), "report": str(report_path)}
     try:
@@ -158,9 +181,34 @@ def register(sub: Any) -> None:
         default=["min_manipulability"],
         metavar="NAME",
         help="min_manipulability (default), mean_manipulability, worst_condition, "
-        "singularity_clearance or total_length; NAME=WEIGHT ... for a weighted sum; "
+        "singularity_clearance, total_length, dexterous_volume (needs --region) or "
+        "task_reachability (see --tolerance); NAME=WEIGHT ... for a weighted sum; "
         "two names for a Pareto front",
     )
+    p.add_argument(
+        "--region",
+        nargs=6,
+        type=float,
+        metavar=("X0", "Y0", "Z0", "X1", "Y1", "Z1"),
+        help="box (m, base frame) whose dexterous volume dexterous_volume measures",
+    )
+    p.add_argument(
+        "--reach-resolution", type=float, default=0.05, metavar="M",
+        help="voxel side (m) of --region's map (default 0.05)",
+    )  # fmt: skip
+    p.add_argument(
+        "--reach-orientations", type=int, default=64, metavar="N",
+        help="orientations asked per voxel of --region (default 64)",
+    )  # fmt: skip
+    p.add_argument(
+        "--tolerance", type=float, metavar="ANGLE",
+        help="task_reachability: orientations within ANGLE (degrees; rad with --rad) of each "
+        "target's; default all of SO(3)",
+    )  # fmt: skip
+    p.add_argument(
+        "--samples", type=int, default=64, metavar="N",
+        help="task_reachability: orientations asked per target (default 64)",
+    )  # fmt: skip
     p.add_argument("--budget", type=int, default=300, help="candidate evaluations (default 300)")
     p.add_argument("--seed", type=int, default=0, help="seed of the search (default 0)")
     p.add_argument(

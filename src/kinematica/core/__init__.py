@@ -7,6 +7,7 @@ compiled chain with the joint facts Python needs) and :func:`resolve_workers`.
 """
 
 from kinematica.core.chain import Chain
+from kinematica.core.linalg import singular_values
 from kinematica.core.workers import WORKERS_ENV, resolve_workers
 
-__all__ = ["WORKERS_ENV", "Chain", "resolve_workers"]
+__all__ = ["WORKERS_ENV", "Chain", "resolve_workers", "singular_values"]

@@ -265,6 +265,38 @@ class Chain:
         J, bad, turns = self.core.jacobian_batch(flat, tool_frame, resolve_workers(workers))
         return J.reshape(*q.shape[:-1], 6, self.dof), int(bad), int(turns)
 
+    def singular_values(
+        self,
+        q: FloatArray,
+        rows: Sequence[int] = (0, 1, 2, 3, 4, 5),
+        workers: int | None = None,
+        group: int = 1,
+    ) -> FloatArray:
+        """Singular values of the Jacobians' ``rows`` (base frame) at ``q (..., n)``.
+
+        One chain walk and one one-sided Jacobi SVD per configuration in the core
+        (``cpp/include/kinematica/singular.hpp``); the Jacobians are not stored.
+
+        Args:
+            q: ``(..., n)`` float joint values (rad, m).
+            rows: Distinct Jacobian row indices 0-5 (their order does not matter).
+            workers: Threads for a batch (None: the library default).
+            group: The configurations come in runs of ``group`` (1 to 16; the
+                solutions of one target): a Jacobian equal to an earlier one of
+                its run up to the signs of its columns (a wrist's two flips) has
+                the same singular values, taken from it rather than computed.
+
+        Returns:
+            ``(..., min(len(rows), n))`` singular values, largest first; NaN for a
+            configuration holding NaN/inf.
+        """
+        mask = 0
+        for r in rows:
+            mask |= 1 << int(r)
+        flat = self._flat(q)
+        S = self.core.jacobian_singular_values(flat, mask, group, resolve_workers(workers))
+        return S.reshape(*q.shape[:-1], S.shape[-1])
+
     def joint_axes(self, q: FloatArray) -> FloatArray:
         """Each joint's axis as a line: ``(..., n, 6)`` unit direction, then a point.
 

@@ -6,7 +6,9 @@ A *design template* is a robot file whose parameters carry bounds
 poses, from a file, an array or a sampled region). :func:`optimize` searches
 the bounded parameters by differential evolution for the best objective
 (worst or mean manipulability, condition number, singularity clearance, total
-length; weighted sums; a Pareto front of two), with every target reached within
+length; with :class:`ReachSettings`, the dexterous volume in a region and the
+task's reachability index within an orientation tolerance; weighted sums; a
+Pareto front of two), with every target reached within
 the joint limits as a hard constraint; candidates run here or on a Dask
 cluster, with a checkpoint to resume from. Needs the ``design`` extra (scipy,
 tqdm); Dask needs the ``dask`` extra::
@@ -30,6 +32,7 @@ from kinematica.design.measures import (
 )
 from kinematica.design.objectives import MEASURES, Measure, Objective
 from kinematica.design.optimize import optimize
+from kinematica.design.reachmeasures import ReachSettings, reach_measures, task_reachability
 from kinematica.design.result import DesignResult
 from kinematica.design.task import Task, TaskError
 from kinematica.design.taskfile import as_task, load_task
@@ -43,6 +46,7 @@ __all__ = [
     "Evaluation",
     "Measure",
     "Objective",
+    "ReachSettings",
     "Task",
     "TaskError",
     "TaskMeasures",
@@ -53,6 +57,8 @@ __all__ = [
     "load_template",
     "measure_task",
     "optimize",
+    "reach_measures",
+    "task_reachability",
     "task_singular_values",
     "total_length",
 ]

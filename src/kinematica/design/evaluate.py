@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinematica.design.measures import measure_task, total_length
+from kinematica.design.reachmeasures import ReachSettings, reach_measures
 from kinematica.design.task import Task
 from kinematica.design.template import DesignTemplate
 
@@ -53,7 +54,9 @@ class Evaluation:
         return tuple(self.params.values())
 
 
-def evaluate_design(template: DesignTemplate, task: Task, x: ArrayLike) -> Evaluation:
+def evaluate_design(
+    template: DesignTemplate, task: Task, x: ArrayLike, reach: ReachSettings | None = None
+) -> Evaluation:
     """Measure the design ``x`` of ``template`` on ``task``.
 
     Args:
@@ -61,6 +64,8 @@ def evaluate_design(template: DesignTemplate, task: Task, x: ArrayLike) -> Evalu
         task: The targets, in the robot's base frame.
         x: ``(p,)`` values of the design variables (``template.names`` order,
             file units), within their bounds.
+        reach: Also measure ``dexterous_volume`` and ``task_reachability``
+            (:mod:`kinematica.design.reachmeasures`) this way; None: not.
 
     Returns:
         The evaluation.
@@ -70,4 +75,6 @@ def evaluate_design(template: DesignTemplate, task: Task, x: ArrayLike) -> Evalu
     found = measure_task(robot, task)
     measures = found.summary()
     measures["total_length"] = total_length(robot)
+    if reach is not None:
+        measures.update(reach_measures(robot, task, reach))
     return Evaluation(params=params, measures=measures, violation=found.violation)

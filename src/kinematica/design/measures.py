@@ -55,15 +55,21 @@ RANK_SAMPLES: Final = 12
 #: Seed of the numeric IK restarts, fixed so that a candidate's measures are a
 #: pure function of the design (the same on every worker and in checkpoints).
 IK_SEED: Final = 0
+#: Most solutions of one target the core compares for equal singular values.
+MAX_GROUP: Final = 16
 #: Half-width (m) of the range sampled for a prismatic joint without limits.
 _FREE_STROKE: Final = 1.0
 
 
-def _rows(robot: Robot, q: ArrayLike, rows: Rows) -> FloatArray:
-    if rows not in ("position", "pose"):
+_ROW_INDICES: Final = {"position": (0, 1, 2), "pose": (0, 1, 2, 3, 4, 5)}
+
+
+def _singular_values(robot: Robot, q: ArrayLike, rows: Rows) -> FloatArray:
+    """``(..., min(m, n))`` singular values of the task rows of ``J(q)``, largest first."""
+    if rows not in _ROW_INDICES:
         raise KinematicaError(f"rows must be 'position' or 'pose', got {rows!r}")
-    J = robot.jacobian(q)
-    return J[..., :3, :] if rows == "position" else J
+    qa = robot.check_q(q)
+    return robot.chain.singular_values(qa, _ROW_INDICES[rows])
 
 
 def generic_rank(robot: Robot, rows: Rows = "position") -> int:
@@ -84,7 +90,7 @@ def generic_rank(robot: Robot, rows: Rows = "position") -> int:
     lim[~np.isfinite(lim[:, 0]), 0] = -_FREE_STROKE
     lim[~np.isfinite(lim[:, 1]), 1] = _FREE_STROKE
     q = np.random.default_rng(0).uniform(lim[:, 0], lim[:, 1], (RANK_SAMPLES, robot.dof))
-    s = np.linalg.svd(_rows(robot, q, rows), compute_uv=False)
+    s = _singular_values(robot, q, rows)
     top = s[:, :1]
     return int(np.max(np.sum(s > RANK_TOL * top, axis=-1), initial=0))
 
@@ -106,8 +112,7 @@ def task_singular_values(
         ``σ1/σr`` the condition number, ``σr`` the clearance.
     """
     r = generic_rank(robot, rows) if rank is None else rank
-    s = np.linalg.svd(_rows(robot, q, rows), compute_uv=False)
-    return np.asarray(s[..., :r], dtype=np.float64)
+    return np.ascontiguousarray(_singular_values(robot, q, rows)[..., :r])
 
 
 def total_length(robot: Robot) -> float:
@@ -201,17 +206,26 @@ def measure_task(robot: Robot, task: Task) -> TaskMeasures:
     cond = np.full(shape, np.nan)
     clear = np.full(shape, np.nan)
     if reached.any() and k_max > 0:
-        sol = solutions
-        valid = np.all(np.isfinite(sol), axis=-1)
-        s = np.zeros((*valid.shape, rank))  # (N, k, r), the SVDs of real solutions only
-        s[valid] = task_singular_values(robot, sol[valid], rows, rank)
-        smallest = s[..., -1] if rank > 0 else np.zeros(valid.shape)
+        # (N·k, min(m, n)): one core call over the padded array, a target's solutions a
+        # group (a wrist flip's values are copied); NaN rows (no solution) stay NaN below,
+        # and the reductions over a target's solutions (fmax, fmin) skip them
+        group = k_max if k_max <= MAX_GROUP else 1
+        flat = robot.chain.singular_values(
+            solutions.reshape(-1, robot.dof), _ROW_INDICES[rows], group=group
+        )
+        s = flat.reshape(n_targets, k_max, -1)
+        if rank > 0:
+            smallest = s[..., rank - 1]
+            w = np.prod(s[..., :rank], axis=-1)
+        else:  # no motion the task sees: every measure 0 (NaN rows kept NaN)
+            smallest = np.where(np.isnan(s[..., 0]), np.nan, 0.0)
+            w = smallest
         with np.errstate(divide="ignore", invalid="ignore"):
-            kappa = np.where(smallest > 0.0, s[..., 0] / smallest, np.inf)
-        w = np.prod(s, axis=-1) if rank > 0 else np.zeros(valid.shape)
-        manip = np.max(np.where(valid, w, -np.inf), axis=1)
-        cond = np.min(np.where(valid, kappa, np.inf), axis=1)
-        clear = np.max(np.where(valid, smallest, -np.inf), axis=1)
+            kappa = s[..., 0] / smallest
+        kappa[smallest == 0.0] = np.inf
+        manip = np.fmax.reduce(w, axis=1)
+        cond = np.fmin.reduce(kappa, axis=1)
+        clear = np.fmax.reduce(smallest, axis=1)
         for a in (manip, cond, clear):
             a[~reached] = np.nan
     raw_gap = result.gap.reshape(n_targets)

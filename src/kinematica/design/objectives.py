@@ -10,7 +10,12 @@ name                       sense     value
 ``worst_condition``        minimise  the largest condition number over the task
 ``singularity_clearance``  maximise  the smallest singular value over the task
 ``total_length``           minimise  the sum of the link lengths (m)
+``dexterous_volume``       maximise  the dexterous volume (m³) in a region (``reach=``)
+``task_reachability``      maximise  the share of orientations near the targets' reached
 =========================  ========  ===============================================
+
+The last two are measured only when a run gives
+:class:`~kinematica.design.reachmeasures.ReachSettings` (``reach=``).
 
 Reaching every target within the joint limits is a hard constraint, never
 traded against these. ``objective=`` takes a name, a mapping ``{name: weight}``
@@ -61,6 +66,10 @@ MEASURES: dict[str, Measure] = {
         Measure("worst_condition", "min", "largest condition number over the task"),
         Measure("singularity_clearance", "max", "smallest singular value over the task"),
         Measure("total_length", "min", "sum of the link lengths (m)"),
+        Measure("dexterous_volume", "max", "dexterous volume in the region (m³)"),
+        Measure(
+            "task_reachability", "max", "mean share of the orientations within tolerance reached"
+        ),
     )
 }
 

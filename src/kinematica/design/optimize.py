@@ -29,6 +29,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from kinematica.design.evaluate import Evaluation
 from kinematica.design.objectives import Objective
+from kinematica.design.reachmeasures import REACH_MEASURES, ReachSettings, as_reach_settings
 from kinematica.design.result import DesignResult
 from kinematica.design.runner import Runner, Scheduler
 from kinematica.design.task import Task
@@ -202,6 +203,20 @@ def _pareto(
     return knee, _nondominated(history, objective)
 
 
+def _check_reach(obj: Objective, reach: ReachSettings | None) -> None:
+    """An objective naming a reachability measure needs the settings that measure it."""
+    wanted = [n for n in obj.names if n in REACH_MEASURES]
+    if wanted and reach is None:
+        raise KinematicaError(
+            f"the objective {wanted[0]} is measured from reachability: give "
+            "reach=kinematica.design.ReachSettings(region=..., tolerance=...)"
+        )
+    if "dexterous_volume" in wanted and reach is not None and reach.region is None:
+        raise KinematicaError(
+            "dexterous_volume is measured in a region: give ReachSettings(region=[lower, upper])"
+        )
+
+
 def optimize(
     template: DesignTemplate | RobotSpec | str | os.PathLike[str],
     task: Task | ArrayLike | str | os.PathLike[str],
@@ -214,6 +229,7 @@ def optimize(
     checkpoint: str | os.PathLike[str] | None = None,
     progress: bool | None = None,
     front_size: int = FRONT_SIZE,
+    reach: ReachSettings | None = None,
 ) -> DesignResult:
     """Choose a design template's parameters for a task.
 
@@ -243,6 +259,10 @@ def optimize(
             from ``seed`` and evaluations found there are not computed again.
         progress: A tqdm progress bar on stderr (``None``: when it is a terminal).
         front_size: Subproblems of a Pareto front (its two ends included).
+        reach: Also measure ``dexterous_volume`` (in ``reach.region``) and
+            ``task_reachability`` (within ``reach.tolerance``) for every
+            candidate (:class:`~kinematica.design.reachmeasures.ReachSettings`);
+            needed by an objective that names them.
 
     Returns:
         The :class:`DesignResult`.
@@ -256,6 +276,8 @@ def optimize(
     tmpl = load_template(template)
     tk = as_task(task)
     obj = Objective.parse(objective)
+    settings = as_reach_settings(reach)
+    _check_reach(obj, settings)
     if isinstance(budget, bool) or not isinstance(budget, int) or budget < 1:
         raise KinematicaError(f"budget must be a positive whole number, got {budget!r}")
     if seed is None:
@@ -272,6 +294,7 @@ def optimize(
         checkpoint=checkpoint,
         progress=progress,
         total=budget,
+        reach=settings,
     ) as runner:
         if obj.pareto:
             energy, front = _pareto(runner, tmpl, obj, budget, seed, front_size, history)

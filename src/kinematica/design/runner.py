@@ -30,12 +30,13 @@ from numpy.typing import NDArray
 from kinematica.design.checkpoint import VERSION, Checkpoint
 from kinematica.design.evaluate import Evaluation, evaluate_design
 from kinematica.design.measures import IK_SEED
+from kinematica.design.reachmeasures import ReachSettings
 from kinematica.design.task import Task
 from kinematica.design.template import DesignTemplate
 from kinematica.errors import KinematicaError
 from kinematica.reach.cluster import Scheduler, check_workers, dask_client, default_workers
 
-__all__ = ["CANDIDATES_PER_TASK", "Runner", "Scheduler"]
+__all__ = ["CANDIDATES_PER_TASK", "Runner", "Scheduler", "balanced_runs"]
 
 FloatArray = NDArray[np.float64]
 Key = tuple[float, ...]
@@ -47,10 +48,33 @@ TASKS_PER_WORKER = 2
 CANDIDATES_PER_TASK = 16
 
 
-def fingerprint(template: DesignTemplate, task: Task) -> str:
-    """What an evaluation depends on: template, task, measures' version, IK seed."""
+def fingerprint(template: DesignTemplate, task: Task, reach: ReachSettings | None = None) -> str:
+    """What an evaluation depends on: template, task, measures' version, IK seed, reach."""
     text = f"{template.fingerprint}|{task.fingerprint}|{VERSION}|{IK_SEED}"
+    if reach is not None:
+        text += f"|{reach.key}"
     return hashlib.sha256(text.encode()).hexdigest()
+
+
+def balanced_runs(todo: Sequence[Key], workers: int) -> list[list[Key]]:
+    """``todo`` cut into runs of sizes differing by one at most, in order.
+
+    ``TASKS_PER_WORKER`` runs a worker (fewer if there are fewer candidates),
+    more if a run would hold over :data:`CANDIDATES_PER_TASK`: a generation of 10
+    on 2 workers is 4 runs of 3, 3, 2, 2 (5 a worker), not 3, 3, 3, 1 (6 on one
+    worker, 4 on the other, which caps the speed-up at 10/6).
+    """
+    count = len(todo)
+    runs = max(math.ceil(count / CANDIDATES_PER_TASK), min(count, TASKS_PER_WORKER * workers))
+    if runs == 0:
+        return []
+    base, extra = divmod(count, runs)
+    out, start = [], 0
+    for i in range(runs):
+        size = base + (1 if i < extra else 0)
+        out.append(list(todo[start : start + size]))
+        start += size
+    return out
 
 
 class Runner:
@@ -66,6 +90,7 @@ class Runner:
         checkpoint: A checkpoint file to resume from and append to, or ``None``.
         progress: Show a tqdm progress bar (``None``: when stderr is a terminal).
         total: The number of evaluations the bar counts to.
+        reach: The reachability measures' settings (None: not measured).
     """
 
     def __init__(
@@ -78,10 +103,12 @@ class Runner:
         checkpoint: str | os.PathLike[str] | None = None,
         progress: bool | None = None,
         total: int = 0,
+        reach: ReachSettings | None = None,
     ) -> None:
         scheduler, workers = check_workers(workers, scheduler)
         self.template = template
         self.task = task
+        self.reach = reach
         self.scheduler = scheduler
         self.workers = workers
         self.cache: dict[Key, Evaluation] = {}
@@ -91,7 +118,7 @@ class Runner:
         self._checkpoint = (
             None
             if checkpoint is None
-            else Checkpoint(checkpoint, fingerprint(template, task), template.names)
+            else Checkpoint(checkpoint, fingerprint(template, task, reach), template.names)
         )
         if self._checkpoint is not None:
             self.cache.update(self._checkpoint.found)
@@ -184,7 +211,8 @@ class Runner:
                 todo.append(key)
         if self._client is None:
             for key in todo:
-                self._done(key, evaluate_design(self.template, self.task, np.array(key)))
+                ev = evaluate_design(self.template, self.task, np.array(key), self.reach)
+                self._done(key, ev)
                 self._tick(1)
         else:
             self._evaluate_remote(todo)
@@ -198,10 +226,11 @@ class Runner:
 
         assert self._remote is not None
         template, task = self._remote
-        size = min(CANDIDATES_PER_TASK, math.ceil(len(todo) / (TASKS_PER_WORKER * self._workers)))
-        runs = [list(todo[i : i + size]) for i in range(0, len(todo), size)]
+        runs = balanced_runs(todo, self._workers)
         futures = [
-            self._client.submit(_evaluate_run, template, task, np.array(run), pure=False)
+            self._client.submit(
+                _evaluate_run, template, task, np.array(run), self.reach, pure=False
+            )
             for run in runs
         ]
         index = {f.key: i for i, f in enumerate(futures)}
@@ -216,6 +245,8 @@ class Runner:
             self._bar.update(n)
 
 
-def _evaluate_run(template: DesignTemplate, task: Task, X: FloatArray) -> list[Evaluation]:
+def _evaluate_run(
+    template: DesignTemplate, task: Task, X: FloatArray, reach: ReachSettings | None
+) -> list[Evaluation]:
     """Candidates ``X`` ``(s, p)`` one after the other: one Dask task."""
-    return [evaluate_design(template, task, x) for x in X]
+    return [evaluate_design(template, task, x, reach) for x in X]

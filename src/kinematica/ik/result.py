@@ -239,7 +239,11 @@ class IKBatchResult:
 
     def _gather(self, values: NDArray[Any], first: bool, fill: Any) -> NDArray[Any]:
         idx, mask = self._rows(first)
-        got = np.take_along_axis(values, idx.reshape(*idx.shape, *([1] * (values.ndim - 2))), 1)
+        if first:  # the slots within the limits come first: the leading ones, a slice
+            got = values[:, : idx.shape[1]]
+        else:
+            at = idx.reshape(*idx.shape, *([1] * (values.ndim - 2)))
+            got = np.take_along_axis(values, at, 1)
         mask = mask.reshape(*mask.shape, *([1] * (values.ndim - 2)))
         return self._shaped(np.where(mask, got, fill))
 

@@ -23,6 +23,7 @@ of the offending character; its message gives a 1-based column, as editors do.
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 from collections.abc import Callable, Mapping
@@ -50,6 +51,8 @@ MAX_DEPTH: Final = 64
 #: Longest expression accepted, in characters. A DH cell is a few dozen
 #: characters (``l1 + l2/2 - 0.0125``); this bounds the work one cell can ask for.
 MAX_LENGTH: Final = 1000
+#: Parsed expressions kept (by text): a template's cells, parsed once a search.
+PARSE_CACHE: Final = 4096
 
 #: Longest expression quoted whole in an error message; longer ones are cut.
 _SHOWN: Final = 80
@@ -451,6 +454,15 @@ def parse_expression(text: str) -> Expression:
             text,
             None,
         )
+    return _parse_text(text)
+
+
+@functools.lru_cache(maxsize=PARSE_CACHE)
+def _parse_text(text: str) -> Expression:
+    """The parse of a checked text, kept (expressions are immutable).
+
+    A design search parses the same template's cells again for every candidate.
+    """
     root = _Parser(text).parse()
     return Expression(text, frozenset(_names(root)), root)
 

@@ -10,7 +10,7 @@
 
 from kinematica.reach.build import reachability
 from kinematica.reach.files import load_map, save_map
-from kinematica.reach.orientations import cone_set, planar_set, so3_set
+from kinematica.reach.orientations import ball_set, cone_set, planar_set, so3_set
 from kinematica.reach.placement import BasePlacement, base_placement
 from kinematica.reach.reachmap import ReachabilityMap, ReachabilitySlice
 
@@ -18,6 +18,7 @@ __all__ = [
     "BasePlacement",
     "ReachabilityMap",
     "ReachabilitySlice",
+    "ball_set",
     "base_placement",
     "cone_set",
     "load_map",

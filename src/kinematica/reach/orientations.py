@@ -28,6 +28,13 @@ construction with ``cos θ`` spread over ``[cos α, 1]``, the cap of half-angle
 α, turned so that its axis is the given direction. With α = 0 every rotation
 has that z axis and only the spins differ (a SCARA's tool pointing down).
 
+**A ball** (:func:`ball_set`, a design task's orientation tolerance): the
+rotations within an angle ε of the identity. In axis-angle form the Haar
+measure has density ``∝ 1 − cos θ`` in the angle θ, uniform in the axis, so
+the angles are the quantiles ``(i + ½)/N`` of ``(θ − sin θ) / (ε − sin ε)``
+and the axes points of the spherical Fibonacci lattice, visited in the order
+of the √2 sequence so that the axis does not follow the angle.
+
 **A plane** (:func:`planar_set`): a planar arm reaches only rotations about
 its joints' common axis; ``N`` turns ``2π(k + ½)/N`` about it.
 """
@@ -44,6 +51,7 @@ from kinematica.errors import ArgumentError
 
 __all__ = [
     "MAX_ORIENTATIONS",
+    "ball_set",
     "cone_set",
     "planar_set",
     "rotation_about",
@@ -178,4 +186,58 @@ def planar_set(n: int, normal: ArrayLike, start: ArrayLike | None = None) -> Flo
     phi = 2.0 * math.pi * (np.arange(count) + 0.5) / count
     R0 = np.eye(3) if start is None else np.asarray(start, dtype=np.float64)
     out: FloatArray = rotation_about(k, phi) @ R0
+    return out
+
+
+#: Below this angle (rad), ``θ − sin θ`` is summed from its series (no cancellation):
+#: through θ¹³ the series is exact to round-off there, and above it the difference
+#: loses at most 2·10⁻¹⁴ of its value.
+_SERIES_ANGLE = 0.3
+#: Bisection steps for an angle of the ball's set (2^-60 of π: below round-off).
+_BISECT_STEPS = 60
+
+
+def _versine_integral(theta: FloatArray) -> FloatArray:
+    """``θ − sin θ`` (the Haar measure of the ball of radius θ, up to a constant)."""
+    t = np.asarray(theta, dtype=np.float64)
+    t2 = t * t
+    series = t * t2 / 6.0  # θ³/3! (1 − θ²/20 (1 − θ²/42 (1 − θ²/72 (1 − θ²/110 (1 − θ²/156)))))
+    series = series * (
+        1 - t2 / 20 * (1 - t2 / 42 * (1 - t2 / 72 * (1 - t2 / 110 * (1 - t2 / 156))))
+    )
+    out: FloatArray = np.where(t < _SERIES_ANGLE, series, t - np.sin(t))
+    return out
+
+
+def ball_set(n: int, radius: float) -> FloatArray:
+    """``n`` rotations spread evenly over those within ``radius`` of the identity.
+
+    Args:
+        n: Number of rotations.
+        radius: The largest rotation angle (rad), 0 to π (π: all of SO(3)).
+
+    Returns:
+        ``(n, 3, 3)`` rotations (module docs); a target's tolerance set is
+        ``R_target @ ball_set(n, radius)``.
+    """
+    count = _count(n)
+    eps = check_number(radius, "tolerance", lo=0.0, hi=math.pi, unit="rad", what="an angle")
+    i = np.arange(count, dtype=np.float64)
+    goal = (i + 0.5) / count * _versine_integral(np.array(eps))
+    lo, hi = np.zeros(count), np.full(count, eps)
+    for _ in range(_BISECT_STEPS):
+        mid = 0.5 * (lo + hi)
+        below = _versine_integral(mid) < goal
+        lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
+    angle = 0.5 * (lo + hi)
+    order = np.argsort(np.mod(i * _SPIN, 1.0), kind="stable")
+    cos_colat = 1.0 - 2.0 * (order + 0.5) / count
+    lon = 2.0 * math.pi * np.mod(order / _GOLDEN, 1.0)
+    sin_colat = np.sqrt(np.clip(1.0 - cos_colat**2, 0.0, 1.0))
+    axes = np.stack([sin_colat * np.cos(lon), sin_colat * np.sin(lon), cos_colat], axis=-1)
+    K = np.zeros((count, 3, 3))
+    K[:, 0, 1], K[:, 0, 2], K[:, 1, 2] = -axes[:, 2], axes[:, 1], -axes[:, 0]
+    K -= np.transpose(K, (0, 2, 1))
+    a = angle[:, None, None]
+    out: FloatArray = np.eye(3) + np.sin(a) * K + (1.0 - np.cos(a)) * (K @ K)
     return out

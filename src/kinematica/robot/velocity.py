@@ -81,17 +81,16 @@ def selected_rows(robot: RobotKinematics, axes: Axes) -> tuple[int, ...]:
 
 
 def _singular_values(robot: RobotKinematics, q: ArrayLike, axes: Axes) -> FloatArray:
-    """``(..., min(m, n))`` singular values of the selected rows of ``J(q)``, descending."""
+    """``(..., min(m, n))`` singular values of the selected rows of ``J(q)``, descending.
+
+    The core's (:func:`kinematica.core.singular_values`) where ``min(m, n) <= 6``, as
+    every Jacobian's rows are; rows of a batch holding NaN/inf (robot.jacobian
+    warned of them) come out NaN.
+    """
+    from kinematica.core import singular_values
+
     J = robot.jacobian(q)[..., selected_rows(robot, axes), :]
-    finite = np.isfinite(J).all(axis=(-2, -1))
-    if finite.all():
-        out: FloatArray = np.asarray(np.linalg.svd(J, compute_uv=False), dtype=np.float64)
-        return out
-    # Rows of a batch holding NaN/inf (robot.jacobian warned of them) come out NaN:
-    # LAPACK's SVD does not converge on them.
-    out = np.full((*J.shape[:-2], min(J.shape[-2:])), np.nan)
-    out[finite] = np.linalg.svd(J[finite], compute_uv=False)
-    return out
+    return singular_values(J)
 
 
 def manipulability(
