@@ -88,6 +88,7 @@ def dls_solutions(
     """
     position_only = target.shape == (3,)
     q = random_q(robot, rng, starts)
+    turns = ~np.asarray(robot.chain.prismatic, dtype=bool)
 
     def error(q: FloatArray) -> FloatArray:
         T = robot.fk(q, workers=1)  # small batches: threads cost more than they give
@@ -106,6 +107,8 @@ def dls_solutions(
         else:
             step = np.linalg.pinv(J) @ e[..., None]
         q = q + step[..., 0]
+        # kept within a turn: the same poses, and no warning of angles given in degrees
+        q[:, turns] = np.remainder(q[:, turns] + math.pi, 2.0 * math.pi) - math.pi
     done = np.abs(error(q)).max(axis=1) < 1e-10
     return distinct(robot, q[done], 1e-6)
 
