@@ -61,6 +61,7 @@ import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.ik.coaxial_pair import CoaxialPair, coaxial_pair
 from kinematica.ik.result import IKBatchResult, IKResult
+from kinematica.ik.stack import pose_residuals
 from kinematica.ik.status import IKStatus
 from kinematica.ik.structure import features
 
@@ -282,18 +283,6 @@ def _real(chain: Chain, pair: CoaxialPair, q: FloatArray, respect_limits: bool) 
     return out
 
 
-def _errors(chain: Chain, q: FloatArray, T: FloatArray) -> FloatArray:
-    """``(k, 2)`` position (m) and rotation (rad) errors of each row of q against T."""
-    if not len(q):
-        return np.zeros((0, 2))
-    from kinematica.spatial import rotation_angle
-
-    F = chain.fk(q)[0]
-    pos = np.linalg.norm(F[:, :3, 3] - T[:3, 3], axis=1)
-    rot = np.asarray(rotation_angle(F[:, :3, :3], T[:3, :3]))
-    return np.stack([pos, rot], axis=1)
-
-
 def coaxial_answer(
     chain: Chain, pair: CoaxialPair, T: FloatArray, options: IKOptions, solve: Solve
 ) -> IKResult:
@@ -320,7 +309,7 @@ def coaxial_answer(
         )  # fmt: skip
     found = np.concatenate([res.solutions, res.out_of_limits])
     Q = _real(chain, pair, found, respect)
-    err = _errors(chain, Q, T)
+    err = pose_residuals(chain, Q, T)
     meets = (err[:, 0] <= tol.position) & (err[:, 1] <= tol.rotation)
     # within the virtual arm's limits (the pair's summed) iff a split within both exists
     inside = np.arange(len(found)) < len(res.solutions)
@@ -347,7 +336,7 @@ def coaxial_answer(
         )  # fmt: skip
     closest = None
     if len(found):
-        every = _errors(chain, _real(chain, pair, found, respect), T)
+        every = pose_residuals(chain, _real(chain, pair, found, respect), T)
         closest = every[int(np.argmin(every[:, 0] + every[:, 1]))]
     if not complete and respect:  # the limited reach may still prove it
         from kinematica.ik.reach import beyond_limited_reach
@@ -438,7 +427,7 @@ def _answer(
 ) -> IKResult:
     """The :class:`IKResult` of one target."""
     if residuals is None:
-        residuals = _errors(chain, inside, T)
+        residuals = pose_residuals(chain, inside, T)
     nearest = (math.nan, math.nan) if closest is None else (float(closest[0]), float(closest[1]))
     return IKResult(
         solutions=inside,

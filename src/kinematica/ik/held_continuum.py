@@ -32,7 +32,7 @@ import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.ik.result import IKResult
 from kinematica.ik.solvers import closed_form
-from kinematica.ik.stack import widen_result
+from kinematica.ik.stack import pose_residuals, widen_result
 from kinematica.ik.status import IKStatus
 
 if TYPE_CHECKING:
@@ -134,7 +134,7 @@ def continuum_answer(
         outside, exact_out = _exact(locked, joint, value, wide.out_of_limits[keep_out], T, options)
         if not len(solutions) and not len(outside):
             continue
-        residuals = _residuals(chain, solutions, T)
+        residuals = pose_residuals(chain, solutions, T)
         branches = [b for b, k in zip(wide.branches, keep, strict=True) if k]
         out_branches = [b for b, k in zip(wide.out_of_limits_branches, keep_out, strict=True) if k]
         note = (
@@ -180,7 +180,7 @@ def _exact(
     kept: list[bool] = []
     for row in np.array(Q, dtype=float):
         row[joint] = value
-        err = _residuals(locked, np.ascontiguousarray(np.delete(row, joint))[None], T)[0]
+        err = pose_residuals(locked, np.ascontiguousarray(np.delete(row, joint))[None], T)[0]
         if not (err[0] <= tol.position and err[1] <= tol.rotation):
             again = polished(locked, joint, value, [row], T, tol.position, tol.rotation)
             if not len(again):
@@ -190,15 +190,3 @@ def _exact(
         rows.append(row)
         kept.append(True)
     return np.array(rows).reshape(-1, Q.shape[1]), kept
-
-
-def _residuals(chain: Chain, q: FloatArray, T: FloatArray) -> FloatArray:
-    """``(k, 2)`` position (m) and rotation (rad) errors of each row of q against T."""
-    if not len(q):
-        return np.zeros((0, 2))
-    F = chain.fk(q)[0]
-    pos = np.linalg.norm(F[:, :3, 3] - T[:3, 3], axis=1)
-    from kinematica.spatial import rotation_angle
-
-    rot = np.asarray(rotation_angle(F[:, :3, :3], T[:3, :3]))
-    return np.stack([pos, rot], axis=1)

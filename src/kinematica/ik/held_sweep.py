@@ -42,6 +42,7 @@ from numpy.typing import NDArray
 
 from kinematica.core import Chain
 from kinematica.ik.result import IKBatchResult, IKResult
+from kinematica.ik.stack import pose_residuals
 from kinematica.ik.status import IKStatus
 
 if TYPE_CHECKING:
@@ -366,22 +367,13 @@ def sweep_result(
     parameter: tuple[str, float],
 ) -> IKResult:
     """The held arm's answer from the sweep's solutions (``found (k, 7)``)."""
-    from kinematica.spatial import rotation_angle
-
     lo, hi = chain.qlim[:, 0], chain.qlim[:, 1]
     inside = (
         np.all((found >= lo) & (found <= hi), axis=1)
         if respect_limits
         else np.ones(len(found), dtype=bool)
     )
-    F = chain.fk(np.ascontiguousarray(found))[0]
-    residuals = np.stack(
-        [
-            np.linalg.norm(F[:, :3, 3] - T[:3, 3], axis=1),
-            np.asarray(rotation_angle(F[:, :3, :3], T[:3, :3])),
-        ],
-        axis=1,
-    )
+    residuals = pose_residuals(chain, found, T)
     k = int(inside.sum())
     return IKResult(
         solutions=found[inside],

@@ -17,9 +17,17 @@ import numpy as np
 from numpy.typing import NDArray
 
 import kinematica._core as _core
+from kinematica.core import Chain
 from kinematica.ik.result import CheckOutput, CoreAnswer, IKBatchResult, IKResult
 
-__all__ = ["replace_rows", "stack_results", "widen_answer", "widen_batch", "widen_result"]
+__all__ = [
+    "pose_residuals",
+    "replace_rows",
+    "stack_results",
+    "widen_answer",
+    "widen_batch",
+    "widen_result",
+]
 
 if TYPE_CHECKING:  # the general path's modules: loaded when it runs
     from kinematica.ik.targets import Targets
@@ -27,6 +35,22 @@ if TYPE_CHECKING:  # the general path's modules: loaded when it runs
 FloatArray = NDArray[np.float64]
 
 _INVALID = _core.STATUS["invalid"]
+
+
+def pose_residuals(chain: Chain, q: FloatArray, T: FloatArray) -> FloatArray:
+    """``(k, 2)`` position (m) and rotation (rad) errors of each row of ``q (k, n)``.
+
+    Against the target ``T (4, 4)`` (base frame), as a result's ``residuals`` hold them:
+    the answers assembled in Python (continua, coaxial pairs, sweeps) measure theirs here.
+    """
+    if not len(q):
+        return np.zeros((0, 2))
+    from kinematica.spatial import rotation_angle
+
+    F = chain.fk(np.ascontiguousarray(q))[0]
+    pos = np.linalg.norm(F[:, :3, 3] - T[:3, 3], axis=1)
+    rot = np.asarray(rotation_angle(F[:, :3, :3], T[:3, :3]))
+    return np.stack([pos, rot], axis=1)
 
 
 def widen_result(
