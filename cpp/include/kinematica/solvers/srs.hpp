@@ -11,7 +11,8 @@
 // * Elbow: |W_t - S| = D fixes q4 (joints 1-3 keep lengths): |se + R4 ew|² is largest at
 //   q4 = `stretched` (d_max) and smallest half a turn away (d_min), and q4 = stretched ± β
 //   with tan(β/2) = sqrt((d_max² - D²) / (D² - d_min²)), both factors written as
-//   (d - D)(d + D) so that a target at the fold keeps its accuracy ("elbow +", "elbow -").
+//   (d - D)(d + D) so that a target at the fold keeps its accuracy (the branches "elbow
+//   bent positive" and "elbow bent negative").
 // * Arm angle ψ (the parameter): the angle, right-handed about n = (W - S)/|W - S|, from the
 //   reference half-plane (bounded by the line S-W, containing the direction `ref`, axis 1)
 //   to the arm half-plane (bounded by S-W, containing the elbow point E). This is the
@@ -99,8 +100,9 @@ struct SRSParams {
         return r > tiny ? (1.0 / r) * v : fallback;
     }
 
-    //! (q4 of elbow +, q4 of elbow -) for |W - S| = D; false beyond [d_min, d_max] (gap >
-    //! 0 then). A fold (β = 0 or π) within round-off is a double root and raises `near`.
+    //! (q4 of the elbow bent positive, of the elbow bent negative) for |W - S| = D; false
+    //! beyond [d_min, d_max] (gap > 0 then). A fold (β = 0 or π) within round-off is a
+    //! double root and raises `near`.
     KM_HD bool elbow(double D, double q4[2], double& gap, bool& near) const {
         using decoupled::clamped_root;
         gap = decoupled::py_max(0.0, decoupled::py_max(D - d_max, d_min - D));
@@ -165,8 +167,8 @@ struct SRSParams {
     }
 
     //! Candidates for one pose T (base frame) at the arm angle `angle` (rad) into Q (8 x 7):
-    //! slot 4 e + 2 s + w (elbow +/-, shoulder no-flip/flip, wrist no-flip/flip), NaN rows
-    //! where a branch has none.
+    //! slot 4 e + 2 s + w (elbow bent positive/negative, shoulder no-flip/flip, wrist
+    //! no-flip/flip), NaN rows where a branch has none.
     KM_HD void solve_at(const Pose& T, double angle, double* Q, SolverInfo& info) const {
         for (int i = 0; i < 8 * 7; ++i) Q[i] = NaN;
         const Vec3 d = T.apply(w_tool) - s;
