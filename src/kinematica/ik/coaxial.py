@@ -459,14 +459,16 @@ def solve_coaxial(
         notes = targets.notes.get(0, ()) if targets.notes else ()
         return dataclasses.replace(one, notes=(*notes, *one.notes)) if notes else one
     q0 = options.q0
+    rows = (
+        None
+        if q0 is None
+        else np.broadcast_to(np.asarray(q0, dtype=float), (*targets.shape, 6)).reshape(-1, 6)
+    )
     results: dict[int, IKResult] = {}
     for i in range(targets.poses.shape[0]):
         if i in targets.invalid:
             continue
-        opts = options
-        if q0 is not None:
-            rows = np.broadcast_to(np.asarray(q0, dtype=float), (*targets.shape, 6))
-            opts = dataclasses.replace(options, q0=rows.reshape(-1, 6)[i])
+        opts = options if rows is None else dataclasses.replace(options, q0=rows[i])
         results[i] = coaxial_answer(chain, pair, targets.poses[i], opts, solve)
     out = stack_results(results, targets, 6, None, None)
     if targets.notes:
