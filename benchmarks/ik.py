@@ -11,7 +11,9 @@ kinematics of configurations uniform within the joint limits, seeded) and
 prints:
 
 * time per pose: one pose at a time (median over ``--singles`` poses, each
-  call timed on its own, each pose's shortest of ``SINGLE_PASSES`` passes; ours
+  call timed on its own; with every default, and with ``respect_limits=False``,
+  ``tol=`` and ``options=``, which cost what the defaults cost: issue 33; each
+  pose's shortest of ``SINGLE_PASSES`` passes; ours
   and EAIK's passes in turn, so that both meet the same state of the machine)
   and batched on one thread (one call on all ``--poses`` poses, best of
   ``BATCH_REPEATS``; for ``robot.ik`` and EAIK also the "steady" figure, the shortest
@@ -70,7 +72,7 @@ import kinematica as km
 from kinematica import _core
 from kinematica.dh import Revolute, link_matrix
 from kinematica.errors import KinematicaWarning
-from kinematica.ik import ClosedForm, IKBatchResult, closed_form
+from kinematica.ik import ClosedForm, IKBatchResult, IKOptions, closed_form
 from kinematica.ik.analytic.spherical_shoulder import reversed_arm
 from kinematica.ik.result import result_of
 from kinematica.ik.targets import parse_tolerance
@@ -156,6 +158,19 @@ def arms() -> list[Robot]:
         general,
         *shoulder_arms(general),
         ur5_a5,
+    ]
+
+
+#: The settings timed beside the defaults' one pose (issue 33: each costs what they cost).
+OPTIONS = IKOptions(tol=(1e-10, 1e-10), respect_limits=True)
+
+
+def option_calls(robot: Robot) -> list[tuple[str, Callable[[np.ndarray], object]]]:
+    """``robot.ik`` of one pose with a setting given: its label and the call."""
+    return [
+        ("respect_limits=False", lambda t: robot.ik(t, respect_limits=False)),
+        ("tol=1e-9", lambda t: robot.ik(t, tol=1e-9)),
+        ("options=IKOptions(...)", lambda t: robot.ik(t, options=OPTIONS)),
     ]
 
 
@@ -362,12 +377,16 @@ def bench_arm(robot: Robot, n_poses: int, n_singles: int, seed: int, eaik: str |
     few = list(T[:n_singles])
     core = robot.chain.core
     e = None if eaik is None else eaik_model(robot, eaik)
-    if isinstance(e, Eaik):  # one pose at a time, ours and EAIK's passes in turn
-        single, e_single = shortest_per_item_together(
-            [(robot.ik, few), (e.model.IK, list(e.poses(T[:n_singles])))], SINGLE_PASSES
+    # one pose at a time, with every default and with each kind of setting (issue 33: the
+    # same cost), ours and EAIK's passes in turn
+    calls = [(robot.ik, few), *((call, few) for _, call in option_calls(robot))]
+    if isinstance(e, Eaik):
+        *mine, e_single = shortest_per_item_together(
+            [*calls, (e.model.IK, list(e.poses(T[:n_singles])))], SINGLE_PASSES
         )
     else:
-        single, e_single = shortest_per_item(robot.ik, few, SINGLE_PASSES), math.nan
+        mine, e_single = shortest_per_item_together(calls, SINGLE_PASSES), math.nan
+    single, with_options = mine[0], mine[1:]
 
     rep = Report(
         robot.name,
@@ -376,6 +395,10 @@ def bench_arm(robot: Robot, n_poses: int, n_singles: int, seed: int, eaik: str |
                 "kinematica robot.ik",
                 single,
                 best_of(lambda: robot.ik(T, workers=1), BATCH_REPEATS) / n_poses,
+            ),
+            *(
+                (f"kinematica robot.ik(T, {label})", t, math.nan)
+                for (label, _), t in zip(option_calls(robot), with_options, strict=True)
             ),
             (
                 f"kinematica solver alone (params.candidates, {solver.name})",
@@ -620,6 +643,32 @@ def main() -> None:
             ]
         )
     head = ["", "single", "vs EAIK", "", "batched (steady)", "EAIK's", "vs EAIK", ""]
+    print(table(rows, head))
+
+    print(
+        "\n  issue 33 target: one pose with any setting (respect_limits=False, tol=, options=) "
+        "<= EAIK's one pose, same run"
+    )
+    rows = []
+    for r in reports:
+        e = next((t for t in r.times if t[0].startswith("EAIK")), None)
+        given = [t for t in r.times if t[0].startswith("kinematica robot.ik(T, ")]
+        worst = max(given, key=lambda t: t[1])
+        if e is None:
+            rows.append([r.arm, fmt_time(r.times[0][1]), fmt_time(worst[1]), "-", "(no EAIK)"])
+            continue
+        ratio = worst[1] / e[1]
+        rows.append(
+            [
+                r.arm,
+                fmt_time(r.times[0][1]),
+                f"{fmt_time(worst[1])} ({worst[0].removeprefix('kinematica robot.ik(T, ')[:-1]})",
+                fmt_time(e[1]),
+                f"{ratio:.2f}x",
+                verdict(ratio <= TARGET_SINGLE_VS_EAIK, f"{ratio:.2f}x"),
+            ]
+        )
+    head = ["", "defaults", "slowest setting", "EAIK", "vs EAIK", ""]
     print(table(rows, head))
 
     print("\nNumeric IK: benchmarks/ik_numeric.py, run from here.\n")

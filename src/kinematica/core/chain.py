@@ -206,6 +206,14 @@ class Chain:
         )
 
     @cached_property
+    def memo(self) -> dict[object, object]:
+        """What the layers above compute once for this chain (its IK plans...), by their keys.
+
+        A chain is immutable: what is computed from it alone holds as long as it lives.
+        """
+        return {}
+
+    @cached_property
     def dof(self) -> int:
         """Number of joints n."""
         return int(self.prismatic.shape[0])

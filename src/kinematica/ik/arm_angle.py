@@ -76,6 +76,7 @@ class ArmAngleParameter:
             options: The IK settings (``fixed`` and ``arm_angle`` are replaced).
         """
         from kinematica.ik.at_values import parameter_values
+        from kinematica.ik.request import IKRequest
         from kinematica.ik.solve import solve_ik
         from kinematica.ik.targets import parse_targets
 
@@ -86,7 +87,7 @@ class ArmAngleParameter:
                 angle = float(values[0])
             elif not targets.single and values.size == math.prod(targets.shape):
                 angle = values.reshape(targets.shape)  # one per target, C order
-        opts = dataclasses.replace(options, arm_angle=angle, fixed=None)
+        opts = IKRequest.of(options).but(arm_angle=angle, fixed=None)
         res = solve_ik(chain, targets, opts)
         given = parameter_values("arm_angle", angle, targets.shape)  # (N,), checked
         if isinstance(res, IKResult):

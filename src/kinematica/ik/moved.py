@@ -12,7 +12,6 @@ tolerance (:func:`narrowed_tolerance`).
 from __future__ import annotations
 
 import math
-import weakref
 
 import numpy as np
 from numpy.typing import NDArray
@@ -30,17 +29,14 @@ FloatArray = NDArray[np.float64]
 #: locked arm per value instead.
 NARROWEST = 0.5
 
-_ENDS: weakref.WeakKeyDictionary[Chain, dict[int, tuple[Chain, FloatArray, FloatArray]]] = (
-    weakref.WeakKeyDictionary()
-)
-
 
 def end_arm(chain: Chain, k: int) -> tuple[Chain, FloatArray, FloatArray]:
     """The first (k = 0) or last joint locked at 0, once per chain, and ``(G, G⁻¹)``.
 
     ``G``: the chain's start (k = 0), or its last fixed part times the tool.
     """
-    per = _ENDS.setdefault(chain, {})
+    per: dict[int, tuple[Chain, FloatArray, FloatArray]]
+    per = chain.memo.setdefault("end arms", {})  # type: ignore[assignment]
     found = per.get(k)
     if found is None:
         G = chain.start if k == 0 else chain.fixed_parts[-1] @ chain.tool

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import math
 import sys
-import weakref
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -177,9 +176,6 @@ def _settled(out: Any) -> bool:
     return bool(report[0] != _NOT_FOUND or report[1] is not None)  # found, or a proven gap
 
 
-_SETUPS: weakref.WeakKeyDictionary[Chain, dict[tuple[object, ...], NumericSetup]] = (
-    weakref.WeakKeyDictionary()
-)
 _SETUPS_PER_CHAIN = 8
 
 
@@ -220,7 +216,8 @@ def numeric_setup(
     w = weights
     key = (respect_limits, tol_position, tol_rotation, seed, restarts, max_iterations, w)
     cacheable = not _is_generator(seed)
-    per_chain = _SETUPS.setdefault(chain, {})
+    per_chain: dict[tuple[object, ...], NumericSetup]
+    per_chain = chain.memo.setdefault("numeric set-ups", {})  # type: ignore[assignment]
     if cacheable and key in per_chain:
         return per_chain[key]
     setup = _compile(

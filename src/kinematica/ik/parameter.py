@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import weakref
 from collections import OrderedDict
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -55,14 +54,11 @@ FloatArray = NDArray[np.float64]
 #: :func:`kinematica.ik.moved.end_arm`).
 LOCKED_CACHE = 16
 
-_LOCKED: weakref.WeakKeyDictionary[Chain, OrderedDict[tuple[int, float], Chain]] = (
-    weakref.WeakKeyDictionary()
-)
-
 
 def locked_chain(chain: Chain, joint: int, value: float) -> Chain:
     """``chain.locked(joint, value)``, built once and kept (:data:`LOCKED_CACHE` per chain)."""
-    per = _LOCKED.setdefault(chain, OrderedDict())
+    per: OrderedDict[tuple[int, float], Chain]
+    per = chain.memo.setdefault("locked arms", OrderedDict())  # type: ignore[assignment]
     key = (joint, float(value))
     found = per.get(key)
     if found is None:
@@ -205,14 +201,15 @@ class JointParameter:
             The whole arm's result: solutions ``(k, n)`` (``(..., k, n)``) with
             ``q[index]`` equal to the value, and ``parameter`` naming it.
         """
-        from kinematica.ik.options import IKOptions
+        from kinematica.ik.request import IKRequest
         from kinematica.ik.solve import solve_ik
         from kinematica.ik.targets import parse_targets
 
         k, n = self.index, chain.dof
         targets = parse_targets(target)
         N = targets.poses.shape[0]
-        if isinstance(values, float | int):
+        scalar = isinstance(values, float | int)
+        if scalar:
             v = np.full(N, float(values))
         else:
             v = np.broadcast_to(np.asarray(values, dtype=float), (N,)).copy()
@@ -224,14 +221,10 @@ class JointParameter:
                     f"q0 must hold {n} joint values, got shape {q0.shape}", arg="q0"
                 )
             q0 = np.delete(q0, k, axis=-1)
-        opts = IKOptions(  # as dataclasses.replace(options, q0=q0, fixed=None), faster
-            method=options.method, tol=options.tol, respect_limits=options.respect_limits,
-            q0=q0, mask=options.mask, seed=options.seed, workers=options.workers,
-            precision=options.precision,
-        )  # fmt: skip
+        opts = IKRequest.of(options).but(q0=q0, fixed=None, arm_angle=None)
         # no target (an empty batch): the arm locked at the default value answers, empty
         first = float(v[0]) if N else self.default(chain)
-        same = bool(np.all(v == first))
+        same = scalar or bool(np.all(v == first))
         # The first joint's value turns the base frame about its axis: the moved target
         # is the same problem, distances and angles kept. The last joint's moves the tool
         # point: worth it only for values that differ per target (one locked arm for a
@@ -250,7 +243,7 @@ class JointParameter:
                 narrow = narrowed_tolerance(options.tol, chain.prismatic[k], k, G, G_inv, v)
                 moved = narrow is not None
                 if narrow is not None:
-                    opts = dataclasses.replace(opts, tol=narrow)
+                    opts = opts.but(tol=narrow)
         try:
             if moved:  # one locked arm, moved targets
                 poses = moved_targets(chain.prismatic[k], k, G, G_inv, targets.poses, v)
@@ -258,11 +251,9 @@ class JointParameter:
                 if k == n - 1 and isinstance(out, IKBatchResult):
                     out = widen_batch(out, k, v, self.name)
                     return self._exact_gaps(chain, targets, v, out, options)
-            elif same and not (
-                targets.poses.shape[0] > 1 and self._continua(chain, v, opts, targets)
-            ):
+            elif same and not (N > 1 and self._continua(chain, first, opts, targets)):
                 out = solve_ik(locked_chain(chain, k, first), target, opts)
-                if isinstance(out, IKResult) and self._continua(chain, v, opts, targets):
+                if isinstance(out, IKResult) and self._continua(chain, first, opts, targets):
                     wide = widen_result(out, k, first, (self.name, first))
                     return self._held_answer(chain, first, targets.poses[0], wide, opts)
             else:  # a middle joint at several values: one arm per value, each target alone
@@ -279,25 +270,30 @@ class JointParameter:
             return widen_result(out, k, float(v[0]), (self.name, float(v[0])))
         return widen_batch(out, k, v, self.name)
 
-    def _continua(self, chain: Chain, v: FloatArray, opts: IKOptions, targets: Targets) -> bool:
-        """True when ``auto``'s pose answers on the arm locked at ``v`` may be continua.
+    def _continua(self, chain: Chain, value: float, opts: IKOptions, targets: Targets) -> bool:
+        """True when ``auto``'s pose answers on the arm locked at ``value`` may be continua.
 
         The arm left has no closed form (every elimination degenerate) and is tested
         for a continuum at the search's answer (:mod:`kinematica.ik.held_continuum`).
         """
-        from kinematica.ik.coaxial_pair import coaxial_pair
-        from kinematica.ik.solvers import closed_form
+        if (
+            opts.method != "auto"
+            or targets.position
+            or opts.mask is not None
+            or chain.dof != 7
+            or bool(chain.prismatic.any())
+        ):
+            return False
+        locked = locked_chain(chain, self.index, value)
+        found = locked.memo.get("continua")
+        if found is None:
+            from kinematica.ik.coaxial_pair import coaxial_pair
+            from kinematica.ik.solvers import closed_form
 
-        return (
-            opts.method == "auto"
-            and not targets.position
-            and opts.mask is None
-            and chain.dof == 7
-            and not bool(chain.prismatic.any())
-            and bool(np.all(v == v[0]))
-            and closed_form(locked := locked_chain(chain, self.index, float(v[0])), "pose") is None
-            and coaxial_pair(locked) is None  # a coaxial pair: kinematica.ik.coaxial answers
-        )
+            # a coaxial pair: kinematica.ik.coaxial answers
+            found = closed_form(locked, "pose") is None and coaxial_pair(locked) is None
+            locked.memo["continua"] = found
+        return bool(found)
 
     def _held_answer(
         self, chain: Chain, value: float, T: FloatArray, answer: IKResult, opts: IKOptions
@@ -376,7 +372,7 @@ class JointParameter:
             assert isinstance(one, IKResult)
             vi = float(v[i])
             one = widen_result(one, self.index, vi, (self.name, vi))
-            if self._continua(chain, v[i : i + 1], opts, targets):
+            if self._continua(chain, vi, opts, targets):
                 one = self._held_answer(chain, vi, T, one, opts)
             results[i] = one
         return stack_results(results, targets, chain.dof, self.name, v)

@@ -15,7 +15,6 @@ over every joint answers, and says so.
 from __future__ import annotations
 
 import dataclasses
-import weakref
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
@@ -36,11 +35,11 @@ from kinematica.ik.parameter import (
     solve_fixed,
 )
 from kinematica.ik.result import IKBatchResult, IKResult
+from kinematica.ik.solve import REDUNDANT_DOF, solve_ik
 from kinematica.ik.solvers import closed_form
 from kinematica.ik.stack import replace_rows
 
-if TYPE_CHECKING:  # the general path's modules load when it runs (robot.ik's one pose
-    # of a redundant arm does not need them)
+if TYPE_CHECKING:
     from kinematica.ik.options import IKOptions
     from kinematica.ik.targets import Targets
 
@@ -56,8 +55,6 @@ __all__ = [
     "solve_arm",
 ]
 
-#: The arms ``auto`` solves at a parameter: 7 joints, one more than a pose needs.
-REDUNDANT_DOF = 7
 #: Values of the parameter tried, evenly across its span, when a target has no solution
 #: at q0's value or the default: the nearest one with a solution answers (every
 #: solution there), before the numeric search over every joint is asked. 73 values
@@ -71,7 +68,6 @@ UNDEFINED_AT_Q0 = (
 )
 
 _INVALID = _core.STATUS["invalid"]
-_CHOICE: weakref.WeakKeyDictionary[Chain, int | None] = weakref.WeakKeyDictionary()
 
 
 def preference(n: int) -> tuple[int, ...]:
@@ -96,7 +92,8 @@ def choose(chain: Chain, names: Sequence[str] | None = None) -> Parameter | None
     angle = arm_angle_parameter(chain)
     if angle is not None:
         return angle
-    if chain not in _CHOICE:
+    memo = chain.memo
+    if "held joint" not in memo:
         # a closed form that answers every target itself (a special family) before one
         # that may hand a target to the search (the general 6R's elimination)
         found, fallback = None, None
@@ -110,8 +107,8 @@ def choose(chain: Chain, names: Sequence[str] | None = None) -> Parameter | None
                 break
             if fallback is None:
                 fallback = k
-        _CHOICE[chain] = found if found is not None else fallback
-    chosen = _CHOICE[chain]
+        memo["held joint"] = found if found is not None else fallback
+    chosen: int | None = memo["held joint"]  # type: ignore[assignment]
     if chosen is None:
         return None
     return JointParameter(chosen, joint_names(chain, names)[chosen], bool(chain.prismatic[chosen]))
@@ -128,7 +125,6 @@ def solve_arm(
         options: The IK settings (``fixed``: a joint held at a value).
         names: The joints' display names (``q1..qn`` when None).
     """
-    from kinematica.ik.solve import solve_ik
     from kinematica.ik.targets import parse_targets
 
     if options.arm_angle is not None:  # an SRS arm's own parameter: no joint held
@@ -157,8 +153,6 @@ def _at_parameter(
     (:data:`PARAMETER_SWEEP`), and only where none has, by the numeric search over
     every joint.
     """
-    from kinematica.ik.solve import solve_ik
-
     n = chain.dof
     q0s = _q0_rows(options.q0, targets.shape, n)
     default, default_why = default_value(chain, joint)
@@ -319,8 +313,6 @@ def _has_solutions(
     the targets moved (:mod:`kinematica.ik.moved`), the arm angle by its solver at a
     value per target; a middle joint one locked arm (one batch) per value.
     """
-    from kinematica.ik.solve import solve_ik
-
     M, S = poses.shape[0], grid.size
     opts = dataclasses.replace(options, q0=None)
     if isinstance(joint, JointParameter) and joint.index in (0, chain.dof - 1):

@@ -1,16 +1,28 @@
-"""``robot.ik``: choose a solver, let the core solve and check the targets, wrap the answer.
+"""``robot.ik``'s one door: the request, the arm's plan, one core call, the answer.
 
-One path for one target and for a batch of any shape (the solver chosen by
-:mod:`kinematica.ik.solvers`): a closed-form solver's
-``Params`` (or the numeric search) and the shared check run in one core call per
-target or per batch (``cpp/include/kinematica/ik.hpp``), which judges every
-candidate by forward kinematics; the outcome is wrapped in an :class:`IKResult`
-(one target) or an :class:`IKBatchResult` (a batch).
+:func:`solve` takes every target and setting of ``robot.ik``, one target or a batch of
+any shape: a redundant arm with a parameter to hold goes to
+:func:`kinematica.ik.redundancy.solve_arm` (which comes back here with the arm the
+lock leaves), every other to :func:`solve_ik`. There the chain's :class:`~kinematica.ik.
+solvers.Plan` for the request's settings (made once, kept by the chain) names the
+solver, a closed form's ``Params`` or the numeric search; the solver and the shared
+check run in one core call per target or per batch (``cpp/include/kinematica/ik.hpp``),
+which judges every candidate by forward kinematics; the outcome is wrapped in an
+:class:`IKResult` (one target) or an :class:`IKBatchResult` (a batch).
+
+One target given as the core reads it (a C-contiguous float ``(4, 4)`` pose, or a
+``(3,)`` position placed in the identity pose) is not parsed: the core checks that it
+is rigid to round-off in the same call (``ik_rigid``), and only a target it refuses is
+read by :func:`~kinematica.ik.targets.parse_targets` (projected onto SO(3) with a
+note, or explained). What an answer then needs is decided by the answer: the numeric
+search where a closed form that may miss a solution found none (:mod:`kinematica.ik.
+fallback`), the limited reach where nothing was proven (:mod:`kinematica.ik.reach`),
+the over-determined reading of an arm of fewer than 6 joints
+(:mod:`kinematica.ik.printed`).
 """
 
 from __future__ import annotations
 
-from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -18,74 +30,69 @@ from numpy.typing import ArrayLike, NDArray
 
 import kinematica._core as _core
 from kinematica.core import Chain, resolve_workers
-from kinematica.errors import KinematicaError
-from kinematica.ik.fallback import (
-    FALLBACK_NOTE,
-    INCOMPLETE_NOTE,
-    PARTIAL_NOTE,
-    merge_batch,
-    needs_search,
-    searched_note,
-    seeds,
-    slack_of,
-)
-from kinematica.ik.numeric import LABEL, METHOD, check_seed, numeric_solver
-from kinematica.ik.options import IKOptions, Method
+from kinematica.ik.fallback import INCOMPLETE_NOTE, merge_batch, needs_search, seeds
+from kinematica.ik.numeric import LABEL, METHOD, numeric_solver
+from kinematica.ik.options import IKOptions
 from kinematica.ik.reach import ANSWERED, beyond_limited_reach
 from kinematica.ik.registry import ClosedForm, TargetKind
+from kinematica.ik.request import IKRequest
 from kinematica.ik.result import CheckOutput, CoreAnswer, IKBatchResult, IKResult, result_of
-from kinematica.ik.solvers import (
-    POSE_WEIGHTS,
-    POSITION_WEIGHTS,
-    PoseSolver,
-    check_options,
-    closed_form,
-    pose_solver,
-    solver_of,
-    structure_of,
-    why_numeric,
-)
-from kinematica.ik.targets import (
-    Targets,
-    Tolerance,
-    parse_mask,
-    parse_q0,
-    parse_targets,
-    parse_tolerance,
-)
+from kinematica.ik.solvers import Plan, check_options, closed_form, plan_of, structure_of
+from kinematica.ik.targets import Targets, parse_q0, parse_targets
+from kinematica.spatial import ROUNDOFF_TOL
 
-__all__ = ["PoseSolver", "closed_form", "pose_solver", "solve_ik", "structure_of"]
+__all__ = ["REDUNDANT_DOF", "closed_form", "solve", "solve_ik", "structure_of"]
 
 FloatArray = NDArray[np.float64]
 
-
-def _at_parameter(
-    chain: Chain, closed: ClosedForm | None, options: IKOptions, masked: bool, values: FloatArray
-) -> ClosedForm:
-    """The closed form at the arm angle of each target (``robot.ik(T, arm_angle=...)``)."""
-    if options.method == "numeric" or masked:
-        why = "method='numeric'" if options.method == "numeric" else "a mask"
-        raise KinematicaError(
-            f"arm_angle is the parameter of a closed form: it takes no {why}", arg="arm_angle"
-        )
-    if closed is None:
-        raise KinematicaError(
-            "arm_angle is a parameter of pose targets of SRS 7R arms (axes 1-3 and 5-7 "
-            f"meeting) only; this arm: {structure_of(chain)[1]}",
-            arg="arm_angle",
-        )
-    from kinematica.ik.at_values import AtValues  # an SRS arm's arm angle only
-
-    return replace(closed, params=AtValues(closed.params, values))
-
-
-def _q0(chain: Chain, q0: ArrayLike | None, targets: Targets) -> FloatArray | None:
-    """``(N, n)`` q0 per target, or None."""
-    return parse_q0(q0, chain.dof, targets.shape)
-
-
+#: The arms ``auto`` solves at a parameter: 7 joints, one more than a pose needs.
+REDUNDANT_DOF = 7
+#: Joints a pose fixes: an arm of fewer reads a pose target as over-determined.
+_POSE_DOF = 6
 _UNREACHABLE = _core.STATUS["unreachable"]
 _OK = _core.STATUS["ok"]
+_NOT_FOUND = _core.STATUS["not_found"]
+_FLOAT64 = np.dtype(np.float64)
+#: Where a position target is placed (the orientation is free).
+_IDENTITY = np.eye(4)
+
+
+def solve(
+    chain: Chain, target: ArrayLike, request: IKRequest, names: tuple[str, ...] | None = None
+) -> IKResult | IKBatchResult:
+    """``robot.ik``: every inverse-kinematics solution of a target, or an honest status.
+
+    See :meth:`kinematica.Robot.ik` for the arguments and what comes back.
+
+    Args:
+        chain: The arm.
+        target: As ``robot.ik`` takes it.
+        request: The call's settings (:meth:`IKRequest.parse`).
+        names: The joints' display names (``result.parameter`` names a held joint so).
+    """
+    if (
+        request.fixed is None
+        and request.arm_angle is None
+        and (chain.dof != REDUNDANT_DOF or request.method != "auto" or request.mask is not None)
+    ):
+        return solve_ik(chain, target, request)
+    from kinematica.ik.redundancy import solve_arm  # a redundant arm's parameter
+
+    return solve_arm(chain, target, request, names)
+
+
+def _given(target: object) -> tuple[FloatArray, TargetKind] | None:
+    """One target as the core reads it: ``(pose, kind)``, else None (it is parsed)."""
+    if type(target) is not np.ndarray or target.dtype is not _FLOAT64:
+        return None
+    shape = target.shape
+    if shape == (4, 4):
+        return (target, "pose") if target.flags.c_contiguous else None
+    if shape == (3,):
+        pose = _IDENTITY.copy()
+        pose[0, 3], pose[1, 3], pose[2, 3] = target.tolist()
+        return pose, "position"
+    return None
 
 
 def _searched_one(closed: ClosedForm | None, T: FloatArray, out: CoreAnswer) -> CoreAnswer:
@@ -110,21 +117,14 @@ def _searched_one(closed: ClosedForm | None, T: FloatArray, out: CoreAnswer) -> 
     return (sols, *rest, (int(status[0]), gap, near_p, near_r, near, joints))  # type: ignore[return-value]
 
 
-def _limited(
-    chain: Chain,
-    poses: FloatArray,
-    out: CoreAnswer,
-    respect_limits: bool,
-    tol: Tolerance,
-    weights: tuple[float, ...],
-) -> CoreAnswer:
+def _limited(chain: Chain, pose: FloatArray, out: CoreAnswer, plan: Plan, tol: float) -> CoreAnswer:
     """One target's answer, "unreachable" with its gap where the limited reach proves it."""
     code, gap = out[-1][0], out[-1][1]
-    if not respect_limits or code in ANSWERED:
+    if code in ANSWERED:
         return out
     beyond, gaps = beyond_limited_reach(
-        chain, poses[:1], np.array([code]), np.array([np.nan if gap is None else gap]),
-        tol.position, weights,
+        chain, pose[None], np.array([code]), np.array([np.nan if gap is None else gap]),
+        tol, plan.weights,
     )  # fmt: skip
     if not beyond[0]:
         return out
@@ -132,29 +132,36 @@ def _limited(
     return (*out[:-1], report)
 
 
+def _search(chain: Chain, plan: Plan, request: IKRequest) -> tuple[Any, _core.CheckOptions]:
+    """The numeric search that completes ``plan``'s closed form, and its check's options."""
+    found = numeric_solver(chain, request.tolerance, request.respect_limits, request.seed,
+                           plan.weights)[0]  # fmt: skip
+    return found, check_options(request.tolerance, request.respect_limits, False, plan.weights)
+
+
 def solve_ik(
     chain: Chain, target: ArrayLike | Targets, options: IKOptions
 ) -> IKResult | IKBatchResult:
-    """Every inverse-kinematics solution of a target, or an honest status.
+    """Every inverse-kinematics solution of a target of the chain as it is, or an honest status.
 
     See :meth:`kinematica.Robot.ik` for the arguments and what comes back. One pose
     target of an arm with fewer than 6 joints is over-determined: see
     :mod:`kinematica.ik.printed`. ``target`` may also be targets already parsed
     (:class:`~kinematica.ik.targets.Targets`). The chain is solved as it is:
-    ``options.fixed`` and a redundant arm's parameter are
-    :func:`kinematica.ik.redundancy.solve_arm`'s.
+    ``options.fixed`` and a redundant arm's parameter are :func:`solve`'s.
     """
-    out = _solve(chain, target, options)
-    overdetermined = (
-        chain.dof < 6
-        and options.mask is None
+    request = IKRequest.of(options)
+    out = _solve(chain, target, request)
+    if (
+        chain.dof < _POSE_DOF
+        and request.mask is None
+        and isinstance(out, IKResult)
         and not isinstance(target, Targets)
         and np.shape(target) == (4, 4)
-    )
-    if overdetermined and isinstance(out, IKResult) and not isinstance(target, Targets):
+    ):
         from kinematica.ik.printed import answer_overdetermined  # a reduced arm's pose only
 
-        return answer_overdetermined(chain, target, options, out, _solve, options.precision)
+        return answer_overdetermined(chain, target, request, out, _solve, request.precision)
     return out
 
 
@@ -162,110 +169,115 @@ def _solve(
     chain: Chain, target: ArrayLike | Targets, options: IKOptions
 ) -> IKResult | IKBatchResult:
     """:func:`solve_ik` without the over-determined targets' second look."""
-    method: Method = options.method
-    respect_limits, q0, workers = options.respect_limits, options.q0, options.workers
-    if method not in ("auto", "analytic", "numeric"):
-        raise KinematicaError(
-            f"method must be 'auto', 'analytic' or 'numeric', got {method!r}", arg="method"
-        )
+    request = IKRequest.of(options)
+    given = None
+    if request.q0 is None and request.arm_angle is None:
+        given = _given(target)
+    if given is not None:  # the core checks the target is rigid, in the same call
+        pose, kind = given
+        plan = plan_of(chain, kind, request)
+        if plan.coaxial is None:
+            out = plan.solver.ik_rigid(chain.core, pose, plan.options, ROUNDOFF_TOL, plan.labels)
+            if out is not None:
+                return _one(chain, plan, request, pose, kind, out, (), None)
     targets = target if isinstance(target, Targets) else parse_targets(target)
-    m = parse_mask(options.mask)
-    tolerance = parse_tolerance(options.tol)
-    seed = check_seed(options.seed)
-    threads = 1 if workers is None and targets.single else resolve_workers(workers)
-    q0s = _q0(chain, q0, targets)
-    kind: TargetKind = "position" if targets.position else "pose"
-    w = POSITION_WEIGHTS if targets.position else POSE_WEIGHTS
-    if m is not None:
-        w = tuple(float(a * b) for a, b in zip(m, w, strict=True))
+    kind = "position" if targets.position else "pose"
     values = None
-    if options.arm_angle is not None:
+    if request.arm_angle is not None:
         from kinematica.ik.at_values import parameter_values  # an SRS arm's arm angle only
 
-        values = parameter_values("arm_angle", options.arm_angle, targets.shape)
-    parameter = None if values is None else "arm_angle"
-    closed = None if method == "numeric" or m is not None else closed_form(chain, kind, parameter)
-    if values is not None:  # the search would not keep to the arm angle: never a fallback
-        closed = _at_parameter(chain, closed, options, m is not None, values)
-    if closed is None and method != "numeric" and m is None and kind == "pose":
-        from kinematica.ik.coaxial import coaxial_pair, solve_coaxial  # a 6R with a coaxial pair
+        values = parameter_values("arm_angle", request.arm_angle, targets.shape)
+    plan = plan_of(chain, kind, request, None if values is None else "arm_angle")
+    if plan.coaxial is not None:
+        from kinematica.ik.coaxial import solve_coaxial  # a 6R with a coaxial pair
 
-        pair = coaxial_pair(chain)
-        if pair is not None:
-            return solve_coaxial(chain, pair, targets, options, solve_ik)
-    if method == "analytic" and closed is None:
-        why = "a mask was given" if m is not None else f"structure: {structure_of(chain)[1]}"
-        at_angle = m is None and closed_form(chain, kind, "arm_angle") is not None
-        raise KinematicaError(
-            f"no closed-form solver for this arm ({why}) without an arm angle"
-            if at_angle
-            else f"no closed-form solver for this arm ({why})",
-            arg="method",
-            suggest=("arm_angle", 0.0) if at_angle else ("method", "numeric"),
-        )
-    solver, labels, name = (
-        solver_of(chain, closed, tolerance, respect_limits, seed, w)
-        if closed is not None
-        else numeric_solver(chain, tolerance, respect_limits, seed, w)
-    )
-    slack = slack_of(chain) if closed is not None and not closed.exact else 0.0
-    complete = closed is not None and slack == 0.0
-    opts = check_options(tolerance, respect_limits, complete, w, slack)
+        return solve_coaxial(chain, plan.coaxial, targets, request, solve_ik)
+    solver = plan.solver
+    if values is not None:
+        from kinematica.ik.at_values import AtValues
 
-    # a closed form that may miss a solution: a target it found nothing for is searched
-    partial = closed is not None and (closed.partial or bool(closed.search_note))
-    search_text = FALLBACK_NOTE if slack else PARTIAL_NOTE
-    if closed is not None and closed.search_note:
-        search_text = searched_note(closed.search_note)
-
-    def search(rows: Any) -> tuple[Any, _core.CheckOptions, FloatArray]:  # the second method
-        """The search, its options, and the first guesses of the targets ``rows``."""
-        found = numeric_solver(chain, tolerance, respect_limits, seed, w)[0]
-        if q0s is not None:
-            guess = np.ascontiguousarray(q0s[rows])
-        else:
-            assert closed is not None
-            poses = targets.poses[rows]
-            guess = seeds(closed, chain, poses, targets.position, found.middle)
-        return found, check_options(tolerance, respect_limits, False, w), guess
-
+        solver = AtValues(solver, values)
+    q0s = parse_q0(request.q0, chain.dof, targets.shape)
     if targets.single:
+        pose = targets.poses[0]
         q0 = None if q0s is None else q0s[0]
-        out: CoreAnswer = solver.ik(chain.core, targets.poses[0], opts, q0, labels)
+        out = solver.ik(chain.core, pose, plan.options, q0, plan.labels)
         notes = targets.notes.get(0, ()) if targets.notes else ()
-        if slack or partial:
-            if needs_search(out[-1][0]) and values is None:
-                numeric, nopts, guess = search(np.zeros(1, dtype=np.intp))
-                out = numeric.ik(chain.core, targets.poses[0], nopts, guess[0], (LABEL,))
-                out = _searched_one(closed, targets.poses[0], out)
-                out = _limited(chain, targets.poses, out, respect_limits, tolerance, w)
-                return result_of(*out, METHOD, False, (*notes, search_text))
-            if slack:
-                notes = (*notes, INCOMPLETE_NOTE)
-        out = _limited(chain, targets.poses, out, respect_limits, tolerance, w)
-        reason = why_numeric(chain, closed, kind, m) if method == "auto" else ()
-        return result_of(*out, name, complete, (*notes, *reason))
+        return _one(chain, plan, request, pose, kind, out, notes, q0)
+    return _batch(chain, target, targets, request, plan, solver, q0s)
+
+
+def _one(
+    chain: Chain,
+    plan: Plan,
+    request: IKRequest,
+    pose: FloatArray,
+    kind: TargetKind,
+    out: CoreAnswer,
+    notes: tuple[str, ...],
+    q0: FloatArray | None,
+) -> IKResult:
+    """The answer to one target from the core's ``out``, completed where it proves nothing."""
+    code = out[-1][0]
+    tol = request.tolerance.position
+    if plan.search is not None and code == _NOT_FOUND:  # the closed form found nothing
+        numeric, nopts = _search(chain, plan, request)
+        if q0 is None:
+            assert plan.closed is not None
+            q0 = seeds(plan.closed, chain, pose[None], kind == "position", numeric.middle)[0]
+        out = numeric.ik(chain.core, pose, nopts, q0, (LABEL,))
+        out = _searched_one(plan.closed, pose, out)
+        if request.respect_limits:
+            out = _limited(chain, pose, out, plan, tol)
+        return result_of(*out, METHOD, False, (*notes, plan.search))
+    if plan.slack:
+        notes = (*notes, INCOMPLETE_NOTE)
+    if request.respect_limits and code not in ANSWERED:
+        out = _limited(chain, pose, out, plan, tol)
+    return result_of(
+        *out, plan.method, plan.complete, (*notes, *plan.notes) if notes else plan.notes
+    )
+
+
+def _batch(
+    chain: Chain,
+    target: ArrayLike | Targets,
+    targets: Targets,
+    request: IKRequest,
+    plan: Plan,
+    solver: Any,
+    q0s: FloatArray | None,
+) -> IKBatchResult:
+    """The answers to a batch of targets (one core call, then the rows that need more)."""
+    respect_limits, tolerance = request.respect_limits, request.tolerance
+    labels, name, closed, w, slack = plan.labels, plan.method, plan.closed, plan.weights, plan.slack
+    threads = resolve_workers(request.workers)
     invalid = None
     if targets.invalid:
         invalid = np.zeros(targets.poses.shape[0], dtype=bool)
         invalid[list(targets.invalid)] = True
-    raw = solver.ik_batch(chain.core, targets.poses, opts, q0s, invalid, threads)
+    raw = solver.ik_batch(chain.core, targets.poses, plan.options, q0s, invalid, threads)
     shape = targets.shape
 
     def where(i: int) -> tuple[int, ...]:
         return tuple(int(v) for v in np.unravel_index(i, shape))
 
     batch_notes = {where(i): note for i, note in targets.notes.items()}
-    if method == "auto" and (reason := why_numeric(chain, closed, kind, m)):
+    if plan.notes:  # auto's search: why no closed form applies
         for i in range(targets.poses.shape[0]):
             if i not in targets.invalid:
-                batch_notes[where(i)] = (*batch_notes.get(where(i), ()), *reason)
+                batch_notes[where(i)] = (*batch_notes.get(where(i), ()), *plan.notes)
     methods: dict[tuple[int, ...], str] = {}
-    if slack or partial:
-        rows = np.flatnonzero(needs_search(raw["status"]) & (values is None))
-        if rows.size:
-            numeric, nopts, guess = search(rows)
+    if plan.search is not None or slack:
+        rows = np.flatnonzero(needs_search(raw["status"]) & (plan.search is not None))
+        if rows.size:  # the closed form found nothing: the search answers
+            numeric, nopts = _search(chain, plan, request)
             poses = np.ascontiguousarray(targets.poses[rows])
+            if q0s is not None:
+                guess = np.ascontiguousarray(q0s[rows])
+            else:
+                assert closed is not None
+                guess = seeds(closed, chain, poses, targets.position, numeric.middle)
             searched = numeric.ik_batch(chain.core, poses, nopts, guess, None, threads)
             if closed is not None and closed.mark_searched is not None:
                 q = searched["q"][:, 0]
@@ -279,7 +291,7 @@ def _solve(
                 continue
             idx = where(i)
             if i in searched_rows:
-                batch_notes[idx] = (*batch_notes.get(idx, ()), search_text)
+                batch_notes[idx] = (*batch_notes.get(idx, ()), str(plan.search))
             elif slack:
                 batch_notes[idx] = (*batch_notes.get(idx, ()), INCOMPLETE_NOTE)
     if respect_limits:
@@ -289,11 +301,11 @@ def _solve(
         if beyond.any():
             raw = dict(raw, status=np.where(beyond, _UNREACHABLE, raw["status"]))
             raw["gap"] = np.where(beyond, gaps, raw["gap"])
-    over = chain.dof < 6 and m is None and not targets.position
+    over = chain.dof < _POSE_DOF and request.mask is None and not targets.position
     if over and not isinstance(target, Targets):  # over-determined poses
         from kinematica.ik.printed import overdetermined_rows
 
-        raw, more = overdetermined_rows(chain, target, options, raw, labels, q0s, solve_ik)
+        raw, more = overdetermined_rows(chain, target, request, raw, labels, q0s, solve_ik)
         for i, extra in more.items():
             batch_notes[where(i)] = extra
     return IKBatchResult(
@@ -303,6 +315,6 @@ def _solve(
         shape=shape,
         errors={where(i): msg for i, msg in targets.invalid.items()},
         notes=batch_notes,
-        complete=complete,
+        complete=plan.complete,
         methods=methods,
     )

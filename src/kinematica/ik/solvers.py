@@ -1,43 +1,44 @@
-"""Which solver answers an arm's targets, and the one-pose path of ``robot.ik``.
+"""Which solver answers an arm's targets: its :class:`Plan` for one request's settings.
 
 The closed form the structure of the joint axes allows (the first of the registry's
 specs that handles the arm and builds), else the numeric search: chosen and built
-once per chain (:func:`closed_form`), with the check's options once per settings
-(:func:`check_options`). :func:`pose_solver` readies the choice for one rigid
-target with every default, the path ``robot.ik(T)`` takes without the general
-parsing of :func:`kinematica.ik.solve.solve_ik`, whose module (and the modules
-of its options, of the arm angle's values, ...) it does not import.
+once per chain (:func:`closed_form`). :func:`plan_of` readies that choice for the
+targets of one kind and one request's settings (the solver, the check's options,
+the notes its answers carry, what completes a closed form that may miss a
+solution), made once per chain and settings and kept by the chain
+(:attr:`kinematica.core.Chain.memo`): every call of :func:`kinematica.ik.solve.solve`
+with those settings finds it by one look-up.
 """
 
 from __future__ import annotations
 
-import weakref
-from typing import TYPE_CHECKING, Any, Literal
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 import kinematica._core as _core
 from kinematica.core import Chain
+from kinematica.errors import KinematicaError
 from kinematica.ik.analytic import SOLVERS, solvers_at
-from kinematica.ik.reach import ANSWERED, needs_proof
+from kinematica.ik.fallback import FALLBACK_NOTE, PARTIAL_NOTE, searched_note
+from kinematica.ik.numeric import numeric_solver
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
-from kinematica.ik.result import CoreAnswer, IKResult, result_of
 from kinematica.ik.structure import features
-from kinematica.ik.tolerance import parse_tolerance
-from kinematica.spatial import ROUNDOFF_TOL
 
 if TYPE_CHECKING:
+    from kinematica.ik.request import IKRequest
     from kinematica.ik.tolerance import Tolerance
 
 __all__ = [
+    "PLANS",
     "POSE_WEIGHTS",
     "POSITION_WEIGHTS",
-    "PoseSolver",
+    "Plan",
     "check_options",
     "closed_form",
-    "pose_solver",
-    "solver_of",
+    "plan_of",
     "structure_of",
     "why_numeric",
 ]
@@ -48,12 +49,6 @@ FloatArray = NDArray[np.float64]
 POSE_WEIGHTS: tuple[float, ...] = (1.0, 1.0, 1.0, 1.0, 1.0, 1.0)
 #: ... and of a position target (the orientation is free).
 POSITION_WEIGHTS: tuple[float, ...] = (1.0, 1.0, 1.0, 0.0, 0.0, 0.0)
-
-# Closed-form solvers are built once per chain (a chain is immutable, so the
-# solver is a pure function of it); the cache forgets a chain when it dies.
-_SOLVERS: weakref.WeakKeyDictionary[Chain, dict[tuple[str, str | None], ClosedForm | None]] = (
-    weakref.WeakKeyDictionary()
-)
 
 
 def structure_of(chain: Chain) -> tuple[str, str, str]:
@@ -72,7 +67,9 @@ def closed_form(
     ``parameter`` (``"arm_angle"``), the solver of a redundant arm at that
     parameter (:attr:`SolverSpec.parameter`); without, only solvers that need none.
     """
-    per_chain = _SOLVERS.setdefault(chain, {})
+    # built once per chain (a chain is immutable: the solver is a pure function of it)
+    per_chain: dict[tuple[str, str | None], ClosedForm | None]
+    per_chain = chain.memo.setdefault("closed forms", {})  # type: ignore[assignment]
     key = (target, parameter)
     if key not in per_chain:
         found = None
@@ -104,10 +101,6 @@ def why_numeric(
     return (search_note(numeric_reason(chain, kind, mask is not None)),)
 
 
-# The core's check options, one per combination of settings seen.
-_CHECK_OPTIONS: dict[tuple[object, ...], _core.CheckOptions] = {}
-
-
 def check_options(
     tolerance: Tolerance,
     respect_limits: bool,
@@ -115,130 +108,130 @@ def check_options(
     weights: tuple[float, ...],
     gap_slack: float = 0.0,
 ) -> _core.CheckOptions:
-    """The check's options for these settings (built once, then reused)."""
-    key = (
-        tolerance.position, tolerance.rotation, bool(respect_limits), complete, weights, gap_slack
-    )  # fmt: skip
-    opts = _CHECK_OPTIONS.get(key)
-    if opts is None:
-        opts = _core.CheckOptions()
-        opts.tol_position = tolerance.position
-        opts.tol_rotation = tolerance.rotation
-        opts.respect_limits = bool(respect_limits)
-        opts.complete = complete
-        opts.weights = weights
-        opts.gap_slack = gap_slack
-        opts.repair = gap_slack > 0.0  # a near-degenerate arm: its family's closed form
-        if len(_CHECK_OPTIONS) < 64:
-            _CHECK_OPTIONS[key] = opts
+    """The check's options for these settings (a plan keeps its own: :class:`Plan`)."""
+    opts = _core.CheckOptions()
+    opts.tol_position = tolerance.position
+    opts.tol_rotation = tolerance.rotation
+    opts.respect_limits = bool(respect_limits)
+    opts.complete = complete
+    opts.weights = weights
+    opts.gap_slack = gap_slack
+    opts.repair = gap_slack > 0.0  # a near-degenerate arm: its family's closed form
     return opts
 
 
-class PoseSolver:
-    """What ``robot.ik(T)`` with every default runs for one pose (see :func:`pose_solver`).
-
-    A plain class (a named tuple's class took 0.15 ms to make, at the first ``robot.ik``).
+@dataclass(frozen=True, slots=True, eq=False)
+class Plan:
+    """How one chain solves the targets of one kind with one request's settings.
 
     Attributes:
-        ik_rigid: The solver's ``ik_rigid(chain, T, options, roundoff, labels)``.
-        options: The check's options.
+        closed: The closed form, or None (the numeric search).
+        solver: Its ``Params`` (``ik``, ``ik_rigid``, ``ik_batch``), or the search's set-up.
         labels: The branch names of its slots.
         method: The method name results carry.
-        complete: It gives every solution (a closed form).
-        direct: Its answer is the whole answer where it proves something (False for
-            a closed form on a near-degenerate arm: see :mod:`kinematica.ik.fallback`).
-        notes: The notes of its answers (``auto``'s search: why no closed form applies).
+        complete: It gives every solution (an exact closed form).
+        options: The check's options.
+        weights: The weights of the error components x, y, z, rx, ry, rz.
+        slack: The closed form's slack on a near-degenerate arm (m; 0: exact).
+        search: The note of a target the closed form found nothing for, which the
+            numeric search answers; None: no such search.
+        notes: The notes of every answer (``auto``'s search: why no closed form applies).
+        coaxial: A 6R arm's coaxial pair, whose answers :mod:`kinematica.ik.coaxial`
+            gives; None.
     """
 
-    __slots__ = ("complete", "direct", "ik_rigid", "labels", "method", "notes", "options")
-
-    def __init__(
-        self,
-        ik_rigid: Any,
-        options: _core.CheckOptions,
-        labels: tuple[str, ...],
-        method: str,
-        complete: bool,
-        direct: bool = True,
-        notes: tuple[str, ...] = (),
-    ) -> None:
-        self.ik_rigid = ik_rigid
-        self.options = options
-        self.labels = labels
-        self.method = method
-        self.complete = complete
-        self.direct = direct
-        self.notes = notes
-
-    def rigid(self, chain: _core.Chain, pose: FloatArray) -> IKResult | None:
-        """The answer for one rigid ``(4, 4)`` pose, or None when the general path must give it.
-
-        None when the core found nothing it can vouch for without the reach within
-        the limits, which only the general path tries.
-        """
-        out: CoreAnswer | None = self.ik_rigid(chain, pose, self.options, ROUNDOFF_TOL, self.labels)
-        if out is None or (out[5][0] not in ANSWERED and needs_proof(out[5][0], out[5][1])):
-            return None
-        return result_of(*out, self.method, self.complete, self.notes)
+    closed: ClosedForm | None
+    solver: Any
+    labels: tuple[str, ...]
+    method: str
+    complete: bool
+    options: _core.CheckOptions
+    weights: tuple[float, ...]
+    slack: float
+    search: str | None
+    notes: tuple[str, ...]
+    coaxial: Any
 
 
-def pose_solver(
-    chain: Chain,
-    kind: TargetKind = "pose",
-    parameter: str | None = None,
-    method: Literal["auto", "numeric"] = "auto",
-) -> PoseSolver:
-    """The solver ``solve_ik`` picks for one target of this kind with the default options.
+#: Plans a chain keeps (past it the oldest goes: a sweep over many tolerances).
+PLANS = 32
 
-    The same choice and settings as :func:`solve_ik` makes (closed form when the
-    structure allows, else the numeric search with the default seed; with ``method``
-    ``"numeric"``, the search), ready for ``robot.ik``'s one-target path, which skips
-    the general parsing when the target is a rigid transform to round-off (a position:
-    placed in the identity pose, as :func:`~kinematica.ik.targets.parse_targets` places
-    it). With ``parameter`` (``"arm_angle"``), the closed form at it, which the chain
-    must have (:func:`closed_form`); its ``ik_rigid`` solves at the value its ``Params``
-    hold.
+
+def plan_of(
+    chain: Chain, kind: TargetKind, request: IKRequest, parameter: str | None = None
+) -> Plan:
+    """The plan of ``chain`` for targets of ``kind`` with ``request``'s settings.
+
+    With ``parameter`` (``"arm_angle"``), the closed form at that parameter (its value
+    is the call's: see :mod:`kinematica.ik.at_values`).
+
+    Raises:
+        KinematicaError: ``method="analytic"`` on an arm without a closed form, or
+            ``arm_angle`` where it is no closed form's parameter.
     """
-    tolerance = parse_tolerance(None)
+    memo = chain.memo
+    key = ("plan", kind, parameter, request.key)
+    found = memo.get(key) if request.key is not None else None
+    if found is not None:
+        return found  # type: ignore[return-value]
+    plan = _plan(chain, kind, request, parameter)
+    if request.key is not None:
+        plans = [k for k in memo if type(k) is tuple and k[0] == "plan"]
+        if len(plans) >= PLANS:
+            del memo[plans[0]]
+        memo[key] = plan
+    return plan
+
+
+def _plan(chain: Chain, kind: TargetKind, request: IKRequest, parameter: str | None) -> Plan:
+    """:func:`plan_of`, made."""
+    method, masked, tolerance = request.method, request.mask is not None, request.tolerance
     w = POSITION_WEIGHTS if kind == "position" else POSE_WEIGHTS
-    closed = None if method == "numeric" else closed_form(chain, kind, parameter)
-    if parameter is not None and closed is None:
-        raise ValueError(f"this chain has no closed form at the parameter {parameter!r}")
-    solver, labels, name = solver_of(chain, closed, tolerance, True, None, w)
-    complete = closed is not None
-    opts = check_options(tolerance, True, complete, w)
-    # (a closed form with a search_note, or a partial one, says not_found where it proves
-    # nothing, and the one-pose path hands not_found to the general one, which searches)
-    direct = closed is None or closed.exact or features(chain).slack == 0.0
-    if closed is None and method == "auto" and kind == "pose" and _coaxial(chain):
-        direct = False  # the general path answers: a continuum (kinematica.ik.coaxial)
-    # the search's answers for "auto" say why no closed form applies; "numeric" was asked for
-    notes = why_numeric(chain, closed, kind, None) if method == "auto" else ()
-    return PoseSolver(solver.ik_rigid, opts, labels, name, complete, direct, notes)
+    if masked:
+        w = tuple(float(a * b) for a, b in zip(request.mask, w, strict=True))  # type: ignore[arg-type]
+    closed = None if method == "numeric" or masked else closed_form(chain, kind, parameter)
+    if parameter is not None:
+        if method == "numeric" or masked:
+            why = "method='numeric'" if method == "numeric" else "a mask"
+            raise KinematicaError(
+                f"arm_angle is the parameter of a closed form: it takes no {why}", arg="arm_angle"
+            )
+        if closed is None:
+            raise KinematicaError(
+                "arm_angle is a parameter of pose targets of SRS 7R arms (axes 1-3 and 5-7 "
+                f"meeting) only; this arm: {structure_of(chain)[1]}",
+                arg="arm_angle",
+            )
+    coaxial = None
+    if closed is None and method != "numeric" and not masked and kind == "pose":
+        from kinematica.ik.coaxial_pair import coaxial_pair  # arms without a closed form only
 
-
-def _coaxial(chain: Chain) -> bool:
-    """True for a 6R arm with two consecutive joints on one line (:mod:`kinematica.ik.coaxial`)."""
-    from kinematica.ik.coaxial_pair import coaxial_pair  # arms without a closed form only
-
-    return coaxial_pair(chain) is not None
-
-
-def solver_of(
-    chain: Chain,
-    closed: ClosedForm | None,
-    tolerance: Tolerance,
-    respect_limits: bool,
-    seed: int | np.random.Generator | None,
-    weights: tuple[float, ...],
-) -> tuple[Any, tuple[str, ...], str]:
-    """``(solver, branch labels, method name)``: the closed form, else the numeric search.
-
-    (:func:`kinematica.ik.solve.solve_ik`, which loads the numeric module anyway, asks
-    :func:`~kinematica.ik.numeric.numeric_solver` itself: no import on each call.)
-    """
+        coaxial = coaxial_pair(chain)
+    if method == "analytic" and closed is None and coaxial is None:
+        why = "a mask was given" if masked else f"structure: {structure_of(chain)[1]}"
+        at_angle = not masked and closed_form(chain, kind, "arm_angle") is not None
+        raise KinematicaError(
+            f"no closed-form solver for this arm ({why}) without an arm angle"
+            if at_angle
+            else f"no closed-form solver for this arm ({why})",
+            arg="method",
+            suggest=("arm_angle", 0.0) if at_angle else ("method", "numeric"),
+        )
+    respect = request.respect_limits
     if closed is not None:
-        return closed.params, closed.labels, closed.method
-    from kinematica.ik.numeric import numeric_solver  # an arm without a closed form
-
-    return numeric_solver(chain, tolerance, respect_limits, seed, weights)
+        solver, labels, name = closed.params, closed.labels, closed.method
+    else:
+        solver, labels, name = numeric_solver(chain, tolerance, respect, request.seed, w)  # type: ignore[arg-type]
+    slack = features(chain).slack if closed is not None and not closed.exact else 0.0
+    complete = closed is not None and slack == 0.0
+    search = None  # a closed form that may miss a solution: a target it missed is searched
+    if closed is not None and parameter is None:
+        if closed.search_note:
+            search = searched_note(closed.search_note)
+        elif slack:
+            search = FALLBACK_NOTE
+        elif closed.partial:
+            search = PARTIAL_NOTE
+    notes = why_numeric(chain, closed, kind, request.mask) if method == "auto" else ()
+    options = check_options(tolerance, respect, complete, w, slack)
+    return Plan(closed, solver, labels, name, complete, options, w, slack, search, notes, coaxial)

@@ -9,7 +9,6 @@ every q.
 
 from __future__ import annotations
 
-import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -106,18 +105,17 @@ class Features:
         )
 
 
-#: Each chain's features, made once (a chain is immutable; the cache forgets a chain
-#: when it dies): the builders, the choice of a redundant arm's parameter and the
-#: near-degenerate test all ask for them.
-_FEATURES: weakref.WeakKeyDictionary[Chain, Features] = weakref.WeakKeyDictionary()
-
-
 def features(chain: Chain) -> Features:
-    """The features of a chain's joint axes at q = 0."""
-    found = _FEATURES.get(chain)
+    """The features of a chain's joint axes at q = 0 (made once, kept by the chain).
+
+    The builders, the choice of a redundant arm's parameter and the near-degenerate
+    test all ask for them.
+    """
+    memo = chain.memo
+    found = memo.get("features")
     if found is None:
-        found = _FEATURES[chain] = _features(chain)
-    return found
+        found = memo["features"] = _features(chain)
+    return found  # type: ignore[return-value]
 
 
 def _features(chain: Chain) -> Features:

@@ -34,7 +34,6 @@ from kinematica.robot.frames import rigid_frame, short
 from kinematica.robot.transforms import ChainTransforms, dh_frames
 
 if TYPE_CHECKING:
-    from kinematica.ik.solvers import PoseSolver
     from kinematica.io import RobotSpec
 
 __all__ = ["RobotDescription"]
@@ -62,9 +61,6 @@ class RobotDescription:
     )
     _jacobian_one: Callable[[FloatArray, bool], tuple[FloatArray, int]] = field(
         init=False, repr=False, compare=False
-    )
-    _fast_ik: dict[tuple[str, str], PoseSolver | None] = field(
-        init=False, repr=False, compare=False, default_factory=dict
     )
     _turn: FloatArray | None = field(init=False, repr=False, compare=False)
 

@@ -1,34 +1,23 @@
-"""A robot's inverse kinematics: ``robot.ik`` and what its one-target paths keep."""
+"""A robot's inverse kinematics: ``robot.ik``, one door into :func:`kinematica.ik.solve.solve`."""
 
 from __future__ import annotations
 
 from collections.abc import Mapping
-from functools import cached_property
 from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica.arguments import check_choice, check_flag
-from kinematica.errors import KinematicaError
 from kinematica.robot.kinematics import RobotKinematics
 
 # The IK layer loads when a method first needs it: a robot that only answers FK
 # (`kinematica fk`) never imports it.
 if TYPE_CHECKING:
     from kinematica.ik import IKBatchResult, IKOptions, IKResult, Tolerance
-    from kinematica.ik.direct import DirectParameter
-    from kinematica.ik.registry import TargetKind
 
 __all__ = ["RobotIK"]
 
 FloatArray = NDArray[np.float64]
-_FLOAT64 = np.dtype(np.float64)
-#: Coordinates a pose fixes: an arm of more joints is redundant, and only such an arm's IK
-#: needs the redundancy layer (kinematica.ik.redundancy), loaded for it alone.
-_POSE_DOF = 6
-#: Where a position target is placed (the orientation is free).
-_IDENTITY = np.eye(4)
 
 
 class RobotIK(RobotKinematics):
@@ -103,70 +92,23 @@ class RobotIK(RobotKinematics):
             from kinematica.robot.given import check_given  # degrees given for radians?
 
             check_given(self, *given)
-        if (
-            options is None
-            and type(target) is np.ndarray
-            and target.dtype is _FLOAT64
-            and method.__class__ is str
-            and (method == "auto" or method == "numeric")
-            and respect_limits is True
-            and tol is None
-            and q0 is None
-            and mask is None
-            and seed is None
-            and workers is None
-            and precision is None
-        ):  # one target, every default: straight to the core (a rigid target to round-off)
-            out: IKResult | None = None
-            try:
-                if fixed is None and arm_angle is None:
-                    if target.shape == (4, 4):
-                        out = self._fast(target, "pose", method)
-                    elif target.shape == (3,):
-                        pose = _IDENTITY.copy()
-                        pose[0, 3], pose[1, 3], pose[2, 3] = target.tolist()
-                        out = self._fast(pose, "position", method)
-                elif method == "auto" and target.shape == (4, 4):
-                    # one pose at one value of a redundant arm's parameter
-                    if arm_angle is None:
-                        out = self._direct.fixed(target, fixed)
-                    elif fixed is None:
-                        out = self._direct.arm_angle(target, arm_angle)
-            except ValueError:  # a view the core does not read (not C-contiguous): copied below
-                out = None
-            if out is not None:
-                return out
-        from kinematica.ik.options import IKOptions
+        from kinematica.ik.request import IKRequest
+        from kinematica.ik.solve import solve
 
-        if options is None:
-            options = IKOptions(
-                method, tol, respect_limits, q0, mask, seed, workers, precision, fixed, arm_angle
-            )
-        elif not isinstance(options, IKOptions):
-            raise KinematicaError(
-                f"options must be an IKOptions, got {type(options).__name__}", arg="options"
-            )
-        elif not (
-            isinstance(method, str)
-            and method == "auto"
-            and respect_limits is True
-            and all(v is None for v in (tol, q0, mask, seed, workers, precision, fixed, arm_angle))
-        ):
-            raise KinematicaError(
-                "give the IK settings either as options= or as keywords, not both",
-                arg="options",
-            )
-        check_choice(options.method, "method", ("auto", "analytic", "numeric"))
-        check_flag(options.respect_limits, "respect_limits")
-        if options.fixed is None and options.arm_angle is None and not self._holds(options):
-            # no joint to hold: solve_arm would hand the target to solve_ik, as here, with
-            # the redundancy layer loaded for nothing
-            from kinematica.ik.solve import solve_ik
-
-            return solve_ik(self.chain, target, options)
-        from kinematica.ik.redundancy import solve_arm
-
-        return solve_arm(self.chain, target, options, self.joint_names)
+        request = IKRequest.parse(
+            method,
+            tol,
+            respect_limits,
+            q0,
+            mask,
+            seed,
+            workers,
+            precision,
+            fixed,
+            arm_angle,
+            options,
+        )
+        return solve(self.chain, target, request, self.joint_names)
 
     def arm_angle(self, q: ArrayLike) -> FloatArray:
         """The arm angle (rad) of configurations of an SRS 7R arm (iiwa type).
@@ -188,49 +130,3 @@ class RobotIK(RobotKinematics):
         from kinematica.ik.analytic.srs import arm_angle
 
         return arm_angle(self.chain, self.check_q(q))
-
-    @cached_property
-    def _direct(self) -> DirectParameter:
-        """The one-pose paths at one value of a redundant arm's parameter."""
-        from kinematica.ik.direct import DirectParameter
-
-        return DirectParameter(self.chain, self.joint_names)
-
-    def _holds(self, options: IKOptions) -> bool:
-        """True when ``auto`` may hold a joint of this arm (a redundant arm's pose targets).
-
-        :func:`~kinematica.ik.redundancy.solve_arm`'s own test, made without loading
-        the redundancy layer: ``auto`` without a mask, and one joint more than a pose fixes.
-        """
-        return options.method == "auto" and options.mask is None and self.dof == _POSE_DOF + 1
-
-    def _fast(
-        self, pose: FloatArray, kind: TargetKind, method: Literal["auto", "numeric"]
-    ) -> IKResult | None:
-        """``ik`` of one rigid target with every default; None: the general path explains it."""
-        key = (kind, method)
-        if key in self._fast_ik:
-            fast = self._fast_ik[key]
-        else:
-            fast = None  # a redundant arm solved at a parameter: no solver of its own
-            if (
-                method == "numeric"
-                or kind != "pose"
-                or self.dof != _POSE_DOF + 1
-                or not self._at_parameter()
-            ):
-                from kinematica.ik.solvers import pose_solver
-
-                fast = pose_solver(self.chain, kind, method=method)
-            self._fast_ik[key] = fast
-        if fast is None:  # at auto's parameter value, else the general path
-            return self._direct.auto(pose)
-        if not fast.direct:
-            return None  # the general path completes or explains it
-        return fast.rigid(self.chain.core, pose)  # None: the general path explains it
-
-    def _at_parameter(self) -> bool:
-        """True when ``auto`` holds a parameter of this (redundant) arm for a pose target."""
-        from kinematica.ik.redundancy import choose
-
-        return choose(self.chain) is not None

@@ -1,0 +1,183 @@
+"""What ``robot.ik`` is asked, validated once: :class:`IKRequest`.
+
+``robot.ik(target, **settings)`` reads its settings into one :class:`IKRequest`
+(:meth:`IKRequest.parse`), which :func:`kinematica.ik.solve.solve` takes with the
+target: the same object whether the settings came as keywords or as ``options=``.
+Every setting that needs neither the arm nor the target is checked here, once (the
+method, the flag, the tolerance, the mask, the seed, the workers); ``q0``, ``fixed``
+and ``arm_angle`` are checked against the arm and the targets where they are used.
+
+A request is an :class:`~kinematica.ik.options.IKOptions` whose fields hold the
+checked values (``tol`` a :class:`Tolerance`, ``mask`` the weights or None), so that
+``dataclasses.replace(request, tol=...)`` gives a request checked again. Requests
+of hashable settings are made once and reused (:data:`MEMO`): a call with the same
+keywords finds its request by one dictionary look-up.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from kinematica.arguments import check_choice, check_flag
+from kinematica.core import resolve_workers
+from kinematica.errors import KinematicaError
+from kinematica.ik.numeric import check_seed
+from kinematica.ik.options import IKOptions
+from kinematica.ik.targets import parse_mask
+from kinematica.ik.tolerance import Tolerance, parse_tolerance
+
+__all__ = ["MEMO", "IKRequest"]
+
+#: Requests kept by their settings (past it the table is emptied and filled again).
+MEMO = 64
+#: The methods ``robot.ik`` takes.
+_METHODS = ("auto", "analytic", "numeric")
+
+_requests: dict[tuple[object, ...], IKRequest] = {}
+#: The settings, in IKOptions' order.
+_FIELDS = ("method", "tol", "respect_limits", "q0", "mask", "seed", "workers", "precision",
+           "fixed", "arm_angle")  # fmt: skip
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class IKRequest(IKOptions):
+    """An IK call's settings, checked (see :meth:`kinematica.Robot.ik` for each one).
+
+    Attributes:
+        key: What a solver and its check depend on: ``(method, tolerance,
+            respect_limits, weights, seed)``; None for a seed that is a Generator
+            (drawn from on every call, so nothing built from it is kept).
+    """
+
+    key: tuple[object, ...] | None = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        check_choice(self.method, "method", _METHODS)
+        flag = check_flag(self.respect_limits, "respect_limits")
+        tolerance = parse_tolerance(self.tol)
+        mask = parse_mask(self.mask)
+        seed = check_seed(self.seed)
+        if self.workers is not None:
+            resolve_workers(self.workers)  # a bad value is an error on every call
+        weights = None if mask is None else tuple(mask.tolist())
+        kept = seed is None or isinstance(seed, int)  # a Generator is drawn from every call
+        put = object.__setattr__
+        put(self, "respect_limits", flag)
+        put(self, "tol", tolerance)
+        put(self, "mask", mask)
+        put(self, "seed", seed)
+        put(self, "key", (self.method, tolerance, flag, weights, seed) if kept else None)
+
+    @property
+    def tolerance(self) -> Tolerance:
+        """The acceptance tolerance."""
+        tol = self.tol
+        assert isinstance(tol, Tolerance)
+        return tol
+
+    def but(self, **changes: Any) -> IKRequest:
+        """This request with some settings changed, checked (``dataclasses.replace``, kept)."""
+        fields = {name: getattr(self, name) for name in _FIELDS}
+        fields.update(changes)
+        return _made(**fields)
+
+    @classmethod
+    def of(cls, options: IKOptions) -> IKRequest:
+        """``options`` checked (a request is returned as it is)."""
+        if type(options) is IKRequest:
+            return options
+        return _made(
+            options.method, options.tol, options.respect_limits, options.q0, options.mask,
+            options.seed, options.workers, options.precision, options.fixed, options.arm_angle,
+        )  # fmt: skip
+
+    @classmethod
+    def parse(
+        cls,
+        method: object = "auto",
+        tol: object = None,
+        respect_limits: object = True,
+        q0: Any = None,
+        mask: Any = None,
+        seed: Any = None,
+        workers: Any = None,
+        precision: Any = None,
+        fixed: Any = None,
+        arm_angle: Any = None,
+        options: object = None,
+    ) -> IKRequest:
+        """The request of ``robot.ik``'s keywords, or of its ``options=`` (not both).
+
+        Raises:
+            KinematicaError: A setting that is not valid (its ``arg`` names it), or
+                ``options`` given with keywords, or not an ``IKOptions``.
+        """
+        if options is None:
+            return _made(method, tol, respect_limits, q0, mask, seed, workers, precision,
+                         fixed, arm_angle)  # fmt: skip
+        if not isinstance(options, IKOptions):
+            raise KinematicaError(
+                f"options must be an IKOptions, got {type(options).__name__}", arg="options"
+            )
+        if not (
+            isinstance(method, str)
+            and method == "auto"
+            and respect_limits is True
+            and all(v is None for v in (tol, q0, mask, seed, workers, precision, fixed, arm_angle))
+        ):
+            raise KinematicaError(
+                "give the IK settings either as options= or as keywords, not both",
+                arg="options",
+            )
+        return cls.of(options)
+
+
+def _made(
+    method: Any,
+    tol: Any,
+    respect_limits: Any,
+    q0: Any,
+    mask: Any,
+    seed: Any,
+    workers: Any,
+    precision: Any,
+    fixed: Any,
+    arm_angle: Any,
+) -> IKRequest:
+    """The request of these settings: found by them when they are hashable, else made."""
+    if q0 is None and mask is None:
+        try:
+            memo = (
+                method, tol, respect_limits, seed, workers, precision, _frozen(fixed), arm_angle,
+                type(method), type(respect_limits), type(tol), type(seed),
+            )  # fmt: skip
+            found = _requests.get(memo)
+        except TypeError:  # unhashable: an array, a list
+            memo = None
+            found = None
+        if found is not None:
+            return found
+    else:
+        memo = None
+    if type(fixed) is dict:
+        fixed = dict(fixed)  # kept: the caller's dict may change after the call
+    request = IKRequest(method, tol, respect_limits, q0, mask, seed, workers, precision,
+                        fixed, arm_angle)  # type: ignore[arg-type]  # fmt: skip
+    if memo is not None and request.key is not None and not isinstance(arm_angle, np.ndarray):
+        if len(_requests) >= MEMO:
+            _requests.clear()
+        _requests[memo] = request
+    return request
+
+
+def _frozen(fixed: object) -> object:
+    """A ``fixed`` mapping as a hashable key (its items, with their types), else itself."""
+    if type(fixed) is dict:
+        return (dict, *((k, type(k), v, type(v)) for k, v in fixed.items()))
+    if fixed is None or not isinstance(fixed, Mapping):
+        return fixed
+    raise TypeError("not a plain dict: not kept")
