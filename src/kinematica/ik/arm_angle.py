@@ -22,7 +22,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from kinematica.core import Chain
 from kinematica.ik.analytic.srs import arm_angle
-from kinematica.ik.result import IKBatchResult, IKResult
+from kinematica.ik.result import IKBatchResult, IKResult, amended
 from kinematica.ik.solvers import closed_form
 
 __all__ = ["ARM_ANGLE_NAMES", "ArmAngleParameter", "arm_angle_parameter"]
@@ -89,9 +89,11 @@ class ArmAngleParameter:
                 angle = values.reshape(targets.shape)  # one per target, C order
         opts = IKRequest.of(options).but(arm_angle=angle, fixed=None)
         res = solve_ik(chain, targets, opts)
+        if isinstance(res, IKResult) and type(angle) is float:
+            return amended(res, parameter=(self.name, angle))
         given = parameter_values("arm_angle", angle, targets.shape)  # (N,), checked
         if isinstance(res, IKResult):
-            return dataclasses.replace(res, parameter=(self.name, float(given[0])))
+            return amended(res, parameter=(self.name, float(given[0])))
         return dataclasses.replace(res, parameter=(self.name, given.reshape(res.shape)))
 
 

@@ -34,7 +34,8 @@ from kinematica.ik.parameter import (
     locked_chain,
     solve_fixed,
 )
-from kinematica.ik.result import IKBatchResult, IKResult
+from kinematica.ik.request import IKRequest
+from kinematica.ik.result import IKBatchResult, IKResult, amended
 from kinematica.ik.solve import REDUNDANT_DOF, solve_ik
 from kinematica.ik.solvers import closed_form
 from kinematica.ik.stack import replace_rows
@@ -168,11 +169,18 @@ def _at_parameter(
         values = np.clip(np.where(undefined, default, at_q0), *joint.span(chain))
         why = "q0's value, within its limits"
     why_undefined = f"{default_why}; q0's {joint.name} is undefined: {UNDEFINED_AT_Q0}"
-    res = joint.solve(chain, target, values, options)
-    numeric = dataclasses.replace(options, method="numeric")
+    one = targets.single  # one target: its value as a number
+    res = joint.solve(chain, target, float(values[0]) if one else values, options)
 
     def note(value: float, undef: bool = False) -> str:
-        return held_note(chain, joint, value, why_undefined if undef else why)
+        whence = why_undefined if undef else why
+        if q0s is not None:
+            return held_note(chain, joint, value, whence)
+        key = ("held note", joint.name, value, whence)  # the default value's: said once
+        text = chain.memo.get(key)
+        if text is None:
+            text = chain.memo[key] = held_note(chain, joint, value, whence)
+        return text  # type: ignore[return-value]
 
     def fallback(value: float) -> str:
         return (
@@ -193,14 +201,14 @@ def _at_parameter(
     if isinstance(res, IKResult):
         value, undef = float(values[0]), bool(undefined[0])
         if res.success:
-            return dataclasses.replace(res, notes=(*res.notes, note(value, undef)))
+            return amended(res, notes=(*res.notes, note(value, undef)))
         first = np.array([0])
         found, moved = _nearest_with_solutions(chain, joint, targets, first, values, options)
         again = joint.solve(chain, target, float(moved[0]), options) if found.size else None
         if isinstance(again, IKResult) and again.success:
             moved_note = nearer(float(moved[0]), value, undef)
             return dataclasses.replace(again, notes=(*again.notes, moved_note))
-        full = solve_ik(chain, target, numeric)
+        full = solve_ik(chain, target, IKRequest.of(options).but(method="numeric"))
         assert isinstance(full, IKResult)
         return dataclasses.replace(full, notes=(*full.notes, fallback(value)))
     raw = res.raw
@@ -253,7 +261,7 @@ def _at_parameter(
             notes={},
         )
         q0 = None if q0s is None else q0s[missed]
-        full = solve_ik(chain, sub, dataclasses.replace(numeric, q0=q0))
+        full = solve_ik(chain, sub, IKRequest.of(options).but(method="numeric", q0=q0))
         assert isinstance(full, IKBatchResult)
         res = replace_rows(res, missed, full, [fallback(float(values[i])) for i in missed])
     return res

@@ -30,14 +30,19 @@ from kinematica.ik.options import IKOptions
 from kinematica.ik.targets import parse_mask
 from kinematica.ik.tolerance import Tolerance, parse_tolerance
 
-__all__ = ["MEMO", "IKRequest"]
+__all__ = ["KEYS", "MEMO", "IKRequest", "settings_key"]
 
 #: Requests kept by their settings (past it the table is emptied and filled again).
 MEMO = 64
 #: The methods ``robot.ik`` takes.
 _METHODS = ("auto", "analytic", "numeric")
 
+#: Settings given numbers (:func:`settings_key`), at most.
+KEYS = 4096
+
 _requests: dict[tuple[object, ...], IKRequest] = {}
+_keys: dict[tuple[object, ...], int] = {}
+_next_key = 0
 #: The settings, in IKOptions' order.
 _FIELDS = ("method", "tol", "respect_limits", "q0", "mask", "seed", "workers", "precision",
            "fixed", "arm_angle")  # fmt: skip
@@ -48,12 +53,15 @@ class IKRequest(IKOptions):
     """An IK call's settings, checked (see :meth:`kinematica.Robot.ik` for each one).
 
     Attributes:
-        key: What a solver and its check depend on: ``(method, tolerance,
-            respect_limits, weights, seed)``; None for a seed that is a Generator
-            (drawn from on every call, so nothing built from it is kept).
+        tolerance: The acceptance tolerance (``tol`` read).
+        key: What a solver and its check depend on (``method, tolerance,
+            respect_limits, weights, seed``), as a whole number: equal settings, equal
+            keys (:func:`settings_key`); None for a seed that is a Generator (drawn
+            from on every call, so nothing built from it is kept).
     """
 
-    key: tuple[object, ...] | None = field(init=False, repr=False)
+    tolerance: Tolerance = field(init=False, repr=False)
+    key: int | None = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         check_choice(self.method, "method", _METHODS)
@@ -70,14 +78,9 @@ class IKRequest(IKOptions):
         put(self, "tol", tolerance)
         put(self, "mask", mask)
         put(self, "seed", seed)
-        put(self, "key", (self.method, tolerance, flag, weights, seed) if kept else None)
-
-    @property
-    def tolerance(self) -> Tolerance:
-        """The acceptance tolerance."""
-        tol = self.tol
-        assert isinstance(tol, Tolerance)
-        return tol
+        put(self, "tolerance", tolerance)
+        settings = (self.method, tolerance.position, tolerance.rotation, flag, weights, seed)
+        put(self, "key", settings_key(settings) if kept else None)
 
     def but(self, **changes: Any) -> IKRequest:
         """This request with some settings changed, checked (``dataclasses.replace``, kept)."""
@@ -124,16 +127,39 @@ class IKRequest(IKOptions):
                 f"options must be an IKOptions, got {type(options).__name__}", arg="options"
             )
         if not (
-            isinstance(method, str)
+            method.__class__ is str
             and method == "auto"
             and respect_limits is True
-            and all(v is None for v in (tol, q0, mask, seed, workers, precision, fixed, arm_angle))
+            and tol is None
+            and q0 is None
+            and mask is None
+            and seed is None
+            and workers is None
+            and precision is None
+            and fixed is None
+            and arm_angle is None
         ):
             raise KinematicaError(
                 "give the IK settings either as options= or as keywords, not both",
                 arg="options",
             )
         return cls.of(options)
+
+
+def settings_key(settings: tuple[object, ...]) -> int:
+    """A whole number for these settings: the same for equal settings, never reused.
+
+    Kept in a table of :data:`KEYS` settings; past it the table is emptied and later
+    settings take new numbers (a number once given is never given to other settings).
+    """
+    global _next_key
+    found = _keys.get(settings)
+    if found is None:
+        if len(_keys) >= KEYS:
+            _keys.clear()
+        found = _keys[settings] = _next_key
+        _next_key += 1
+    return found
 
 
 def _made(

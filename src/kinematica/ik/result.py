@@ -14,7 +14,15 @@ from numpy.typing import NDArray
 from kinematica.errors import UnreachableError
 from kinematica.ik.status import STATUS_NAMES, IKStatus, held, status_message
 
-__all__ = ["NEAR_NOTE", "CheckOutput", "CoreAnswer", "IKBatchResult", "IKResult", "result_of"]
+__all__ = [
+    "NEAR_NOTE",
+    "CheckOutput",
+    "CoreAnswer",
+    "IKBatchResult",
+    "IKResult",
+    "amended",
+    "result_of",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -473,3 +481,16 @@ def result_of(
     d["near_singular"] = near
     d["parameter"] = parameter
     return res
+
+
+def amended(res: IKResult, **fields: Any) -> IKResult:
+    """``res`` with ``fields`` changed, as ``dataclasses.replace`` gives it.
+
+    Built as :func:`result_of` builds one; its message (a cached property) is said again.
+    """
+    out = _new(IKResult)
+    d = out.__dict__
+    d.update(res.__dict__)
+    d.pop("message", None)
+    d.update(fields)
+    return out

@@ -81,20 +81,6 @@ def solve(
     return solve_arm(chain, target, request, names)
 
 
-def _given(target: object) -> tuple[FloatArray, TargetKind] | None:
-    """One target as the core reads it: ``(pose, kind)``, else None (it is parsed)."""
-    if type(target) is not np.ndarray or target.dtype is not _FLOAT64:
-        return None
-    shape = target.shape
-    if shape == (4, 4):
-        return (target, "pose") if target.flags.c_contiguous else None
-    if shape == (3,):
-        pose = _IDENTITY.copy()
-        pose[0, 3], pose[1, 3], pose[2, 3] = target.tolist()
-        return pose, "position"
-    return None
-
-
 def _searched_one(closed: ClosedForm | None, T: FloatArray, out: CoreAnswer) -> CoreAnswer:
     """The numeric search's answer for one target, as its closed form marks it.
 
@@ -150,7 +136,7 @@ def solve_ik(
     (:class:`~kinematica.ik.targets.Targets`). The chain is solved as it is:
     ``options.fixed`` and a redundant arm's parameter are :func:`solve`'s.
     """
-    request = IKRequest.of(options)
+    request = options if type(options) is IKRequest else IKRequest.of(options)
     out = _solve(chain, target, request)
     if (
         chain.dof < _POSE_DOF
@@ -166,15 +152,22 @@ def solve_ik(
 
 
 def _solve(
-    chain: Chain, target: ArrayLike | Targets, options: IKOptions
+    chain: Chain, target: ArrayLike | Targets, request: IKRequest
 ) -> IKResult | IKBatchResult:
     """:func:`solve_ik` without the over-determined targets' second look."""
-    request = IKRequest.of(options)
-    given = None
-    if request.q0 is None and request.arm_angle is None:
-        given = _given(target)
-    if given is not None:  # the core checks the target is rigid, in the same call
-        pose, kind = given
+    kind: TargetKind | None = None
+    if (
+        type(target) is np.ndarray
+        and target.dtype is _FLOAT64
+        and request.q0 is None
+        and request.arm_angle is None
+    ):  # one target as the core reads it: not parsed
+        if target.shape == (4, 4) and target.flags.c_contiguous:
+            pose, kind = target, "pose"
+        elif target.shape == (3,):
+            pose, kind = _IDENTITY.copy(), "position"
+            pose[0, 3], pose[1, 3], pose[2, 3] = target.tolist()
+    if kind is not None:  # the core checks that it is rigid, in the same call
         plan = plan_of(chain, kind, request)
         if plan.coaxial is None:
             out = plan.solver.ik_rigid(chain.core, pose, plan.options, ROUNDOFF_TOL, plan.labels)
@@ -219,7 +212,6 @@ def _one(
 ) -> IKResult:
     """The answer to one target from the core's ``out``, completed where it proves nothing."""
     code = out[-1][0]
-    tol = request.tolerance.position
     if plan.search is not None and code == _NOT_FOUND:  # the closed form found nothing
         numeric, nopts = _search(chain, plan, request)
         if q0 is None:
@@ -228,12 +220,12 @@ def _one(
         out = numeric.ik(chain.core, pose, nopts, q0, (LABEL,))
         out = _searched_one(plan.closed, pose, out)
         if request.respect_limits:
-            out = _limited(chain, pose, out, plan, tol)
+            out = _limited(chain, pose, out, plan, request.tolerance.position)
         return result_of(*out, METHOD, False, (*notes, plan.search))
     if plan.slack:
         notes = (*notes, INCOMPLETE_NOTE)
     if request.respect_limits and code not in ANSWERED:
-        out = _limited(chain, pose, out, plan, tol)
+        out = _limited(chain, pose, out, plan, request.tolerance.position)
     return result_of(
         *out, plan.method, plan.complete, (*notes, *plan.notes) if notes else plan.notes
     )

@@ -170,21 +170,24 @@ def plan_of(
             ``arm_angle`` where it is no closed form's parameter.
     """
     memo = chain.memo
-    key = ("plan", kind, parameter, request.key)
-    found = memo.get(key) if request.key is not None else None
-    if found is not None:
-        return found  # type: ignore[return-value]
-    plan = _plan(chain, kind, request, parameter)
-    if request.key is not None:
-        plans = [k for k in memo if type(k) is tuple and k[0] == "plan"]
+    settings = request.key
+    if settings is None:  # a Generator's seed: drawn from on every call
+        return _plan(chain, kind, request, parameter)
+    # one whole number per (settings, kind, parameter): the look-up of every call
+    key = 4 * settings + (kind == "position") + 2 * (parameter is not None)
+    found = memo.get(key)
+    if found is None:
+        found = _plan(chain, kind, request, parameter)
+        plans = [k for k in memo if type(k) is int]
         if len(plans) >= PLANS:
             del memo[plans[0]]
-        memo[key] = plan
-    return plan
+        memo[key] = found
+    return found  # type: ignore[return-value]
 
 
 def _plan(chain: Chain, kind: TargetKind, request: IKRequest, parameter: str | None) -> Plan:
     """:func:`plan_of`, made."""
+    assert parameter in (None, "arm_angle")  # plan_of's keys know of one parameter
     method, masked, tolerance = request.method, request.mask is not None, request.tolerance
     w = POSITION_WEIGHTS if kind == "position" else POSE_WEIGHTS
     if masked:

@@ -18,13 +18,12 @@ from numpy.typing import NDArray
 
 import kinematica._core as _core
 from kinematica.core import Chain
-from kinematica.ik.result import CheckOutput, CoreAnswer, IKBatchResult, IKResult
+from kinematica.ik.result import CheckOutput, IKBatchResult, IKResult, amended
 
 __all__ = [
     "pose_residuals",
     "replace_rows",
     "stack_results",
-    "widen_answer",
     "widen_batch",
     "widen_result",
 ]
@@ -64,33 +63,12 @@ def widen_result(
         value: Its value (rad or m).
         parameter: What the result names as its parameter (``("q7", 0.3)``).
     """
-    fields = dict(res.__dict__)
-    fields.pop("message", None)  # a cached property: said again with the parameter
-    fields.update(
+    return amended(
+        res,
         solutions=_with_column(res.solutions, joint, value),
         out_of_limits=_with_column(res.out_of_limits, joint, value),
         free_joints=_shifted(res.free_joints, joint),
         parameter=parameter,
-    )
-    out = IKResult.__new__(IKResult)  # as result_of builds one: the one-target path
-    out.__dict__.update(fields)
-    return out
-
-
-def widen_answer(out: CoreAnswer, joint: int, value: float) -> CoreAnswer:
-    """The core's answer of one target of an arm locked at ``joint``, with ``value`` put back.
-
-    As :func:`widen_result`, before the answer is wrapped (``robot.ik``'s one-pose path).
-    """
-    q, residuals, outside, branches, out_branches, report = out
-    code, gap, near_p, near_r, near, free = report
-    return (
-        _with_column(q, joint, value),
-        residuals,
-        _with_column(outside, joint, value),
-        branches,
-        out_branches,
-        (code, gap, near_p, near_r, near, _shifted(free, joint)),
     )
 
 

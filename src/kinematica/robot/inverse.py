@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Literal
 
 import numpy as np
@@ -14,10 +14,25 @@ from kinematica.robot.kinematics import RobotKinematics
 # (`kinematica fk`) never imports it.
 if TYPE_CHECKING:
     from kinematica.ik import IKBatchResult, IKOptions, IKResult, Tolerance
+    from kinematica.ik.request import IKRequest
 
 __all__ = ["RobotIK"]
 
 FloatArray = NDArray[np.float64]
+
+
+#: ``(IKRequest.parse, solve)``, once the IK layer is loaded (:func:`_door`).
+_DOOR: tuple[Callable[..., IKRequest], Callable[..., IKResult | IKBatchResult]] | None = None
+
+
+def _door() -> tuple[Callable[..., IKRequest], Callable[..., IKResult | IKBatchResult]]:
+    """The IK layer's door, loaded when a robot first solves IK (``kinematica fk`` never does)."""
+    global _DOOR
+    from kinematica.ik.request import IKRequest
+    from kinematica.ik.solve import solve
+
+    _DOOR = (IKRequest.parse, solve)
+    return _DOOR
 
 
 class RobotIK(RobotKinematics):
@@ -85,29 +100,13 @@ class RobotIK(RobotKinematics):
             (arrays with the targets' batch shape) for a batch. In a batch, a
             malformed target gets the status ``"invalid"``; the others are solved.
         """
-        given = (q0, fixed, arm_angle)
-        if options is not None and hasattr(options, "q0"):
-            given = (options.q0, options.fixed, options.arm_angle)
-        if given[0] is not None or given[1] is not None or given[2] is not None:
+        parse, solve = _DOOR or _door()
+        request = parse(method, tol, respect_limits, q0, mask, seed, workers, precision, fixed,
+                        arm_angle, options)  # fmt: skip
+        if request.q0 is not None or request.fixed is not None or request.arm_angle is not None:
             from kinematica.robot.given import check_given  # degrees given for radians?
 
-            check_given(self, *given)
-        from kinematica.ik.request import IKRequest
-        from kinematica.ik.solve import solve
-
-        request = IKRequest.parse(
-            method,
-            tol,
-            respect_limits,
-            q0,
-            mask,
-            seed,
-            workers,
-            precision,
-            fixed,
-            arm_angle,
-            options,
-        )
+            check_given(self, request.q0, request.fixed, request.arm_angle)
         return solve(self.chain, target, request, self.joint_names)
 
     def arm_angle(self, q: ArrayLike) -> FloatArray:
