@@ -22,8 +22,12 @@ from numpy.typing import ArrayLike, NDArray
 
 from kinematica.core import Chain
 from kinematica.ik.analytic.srs import arm_angle
+from kinematica.ik.at_values import parameter_values
+from kinematica.ik.request import IKRequest
 from kinematica.ik.result import IKBatchResult, IKResult, amended
+from kinematica.ik.solve import solve_ik
 from kinematica.ik.solvers import closed_form
+from kinematica.ik.targets import parse_targets
 
 __all__ = ["ARM_ANGLE_NAMES", "ArmAngleParameter", "arm_angle_parameter"]
 
@@ -75,11 +79,6 @@ class ArmAngleParameter:
             values: One angle, or ``(N,)`` one per target of a batch (C order).
             options: The IK settings (``fixed`` and ``arm_angle`` are replaced).
         """
-        from kinematica.ik.at_values import parameter_values
-        from kinematica.ik.request import IKRequest
-        from kinematica.ik.solve import solve_ik
-        from kinematica.ik.targets import parse_targets
-
         targets = parse_targets(target)
         angle: ArrayLike = values
         if isinstance(values, np.ndarray) and values.ndim == 1:

@@ -29,8 +29,11 @@ from kinematica.core import Chain
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.held_continuum import continuum_answer
 from kinematica.ik.moved import end_arm, moved_targets, narrowed_tolerance
+from kinematica.ik.request import IKRequest
 from kinematica.ik.result import IKBatchResult, IKResult
+from kinematica.ik.solve import solve_ik
 from kinematica.ik.stack import replace_rows, stack_results, widen_batch, widen_result
+from kinematica.ik.targets import Targets, parse_targets
 from kinematica.spatial import wrap_angle
 
 __all__ = [
@@ -43,9 +46,8 @@ __all__ = [
     "solve_fixed",
 ]
 
-if TYPE_CHECKING:  # the general path's modules: loaded when it runs
+if TYPE_CHECKING:
     from kinematica.ik.options import IKOptions
-    from kinematica.ik.targets import Targets
 
 FloatArray = NDArray[np.float64]
 
@@ -201,12 +203,13 @@ class JointParameter:
             The whole arm's result: solutions ``(k, n)`` (``(..., k, n)``) with
             ``q[index]`` equal to the value, and ``parameter`` naming it.
         """
-        from kinematica.ik.request import IKRequest
-        from kinematica.ik.solve import solve_ik
-        from kinematica.ik.targets import parse_targets
-
         k, n = self.index, chain.dof
-        targets = parse_targets(target)
+        if type(target) is np.ndarray and target.shape in ((4, 4), (3,)):
+            # one target: read where it is solved (its pose only where it is moved)
+            targets = Targets(np.empty((1, 4, 4)), (), target.shape == (3,))
+            parsed = False
+        else:
+            targets, parsed = parse_targets(target), True
         N = targets.poses.shape[0]
         scalar = isinstance(values, float | int)
         if scalar:
@@ -238,6 +241,8 @@ class JointParameter:
             and (k == 0 or (k == n - 1 and not same))
         )
         if moved:
+            if not parsed:
+                targets = parse_targets(target)
             arm, G, G_inv = end_arm(chain, k)
             if k == n - 1:
                 narrow = narrowed_tolerance(options.tol, chain.prismatic[k], k, G, G_inv, v)
@@ -254,6 +259,8 @@ class JointParameter:
             elif same and not (N > 1 and self._continua(chain, first, opts, targets)):
                 out = solve_ik(locked_chain(chain, k, first), target, opts)
                 if isinstance(out, IKResult) and self._continua(chain, first, opts, targets):
+                    if not parsed:
+                        targets = parse_targets(target)
                     wide = widen_result(out, k, first, (self.name, first))
                     return self._held_answer(chain, first, targets.poses[0], wide, opts)
             else:  # a middle joint at several values: one arm per value, each target alone
@@ -276,13 +283,7 @@ class JointParameter:
         The arm left has no closed form (every elimination degenerate) and is tested
         for a continuum at the search's answer (:mod:`kinematica.ik.held_continuum`).
         """
-        if (
-            opts.method != "auto"
-            or targets.position
-            or opts.mask is not None
-            or chain.dof != 7
-            or bool(chain.prismatic.any())
-        ):
+        if opts.method != "auto" or targets.position or opts.mask is not None or chain.dof != 7:
             return False
         locked = locked_chain(chain, self.index, value)
         found = locked.memo.get("continua")
@@ -290,9 +291,11 @@ class JointParameter:
             from kinematica.ik.coaxial_pair import coaxial_pair
             from kinematica.ik.solvers import closed_form
 
-            # a coaxial pair: kinematica.ik.coaxial answers
-            found = closed_form(locked, "pose") is None and coaxial_pair(locked) is None
-            locked.memo["continua"] = found
+            found = locked.memo["continua"] = (
+                not bool(chain.prismatic.any())
+                and closed_form(locked, "pose") is None
+                and coaxial_pair(locked) is None  # a coaxial pair: kinematica.ik.coaxial answers
+            )
         return bool(found)
 
     def _held_answer(
@@ -305,7 +308,6 @@ class JointParameter:
         finds any: the search's single point stands only where the sweep found nothing.
         """
         from kinematica.ik.held_sweep import held_sweep, sweep_result
-        from kinematica.ik.solve import solve_ik
 
         k = self.index
         one = continuum_answer(chain, k, value, self.name, T, answer, opts, locked_chain, solve_ik)
@@ -359,8 +361,6 @@ class JointParameter:
         self, chain: Chain, targets: Targets, v: FloatArray, opts: IKOptions
     ) -> IKBatchResult:
         """Each target on the arm locked at its own value (``opts.q0``: the locked arm's)."""
-        from kinematica.ik.solve import solve_ik
-
         results: dict[int, IKResult] = {}
         for i in range(targets.poses.shape[0]):
             if i in targets.invalid:
@@ -443,7 +443,7 @@ def solve_fixed(
             or an arm of one joint.
     """
     fixed = options.fixed
-    if not isinstance(fixed, Mapping) or len(fixed) != 1:
+    if not (type(fixed) is dict or isinstance(fixed, Mapping)) or len(fixed) != 1:
         got = f"{len(fixed)} entries" if isinstance(fixed, Mapping) else repr(fixed)
         raise KinematicaError(
             f"fixed must hold one joint and its value, e.g. {{6: 0.3}}, got {got}", arg="fixed"
@@ -453,6 +453,21 @@ def solve_fixed(
             "fixed: an arm of one joint has no joint left to solve once it is locked", arg="fixed"
         )
     ((key, value),) = fixed.items()
-    joint = joint_parameter(chain, key, names)
-    v = joint.check(chain, value, bool(options.respect_limits))
+    respect = bool(options.respect_limits)
+    # the joint and its value, read once per (key, value): one pose at a time, often the same
+    memo: dict[tuple[object, ...], tuple[JointParameter, float]]
+    memo = chain.memo.setdefault("held values", {})  # type: ignore[assignment]
+    seen = (type(key), key, type(value), value, respect, None if names is None else tuple(names))
+    try:
+        found = memo.get(seen)
+    except TypeError:  # unhashable: read (and refused) below
+        found, seen = None, None
+    if found is None:
+        joint = joint_parameter(chain, key, names)
+        found = (joint, joint.check(chain, value, respect))
+        if seen is not None:
+            if len(memo) >= LOCKED_CACHE:
+                memo.clear()
+            memo[seen] = found
+    joint, v = found
     return joint.solve(chain, target, v, options)

@@ -39,10 +39,10 @@ from kinematica.ik.result import IKBatchResult, IKResult, amended
 from kinematica.ik.solve import REDUNDANT_DOF, solve_ik
 from kinematica.ik.solvers import closed_form
 from kinematica.ik.stack import replace_rows
+from kinematica.ik.targets import Targets, parse_q0, parse_targets
 
 if TYPE_CHECKING:
     from kinematica.ik.options import IKOptions
-    from kinematica.ik.targets import Targets
 
 FloatArray = NDArray[np.float64]
 
@@ -112,7 +112,12 @@ def choose(chain: Chain, names: Sequence[str] | None = None) -> Parameter | None
     chosen: int | None = memo["held joint"]  # type: ignore[assignment]
     if chosen is None:
         return None
-    return JointParameter(chosen, joint_names(chain, names)[chosen], bool(chain.prismatic[chosen]))
+    key = ("held parameter", None if names is None else tuple(names))
+    found = memo.get(key)
+    if found is None:
+        name = joint_names(chain, names)[chosen]
+        found = memo[key] = JointParameter(chosen, name, bool(chain.prismatic[chosen]))
+    return found  # type: ignore[return-value]
 
 
 def solve_arm(
@@ -126,8 +131,6 @@ def solve_arm(
         options: The IK settings (``fixed``: a joint held at a value).
         names: The joints' display names (``q1..qn`` when None).
     """
-    from kinematica.ik.targets import parse_targets
-
     if options.arm_angle is not None:  # an SRS arm's own parameter: no joint held
         if options.fixed is not None:
             raise KinematicaError(
@@ -344,6 +347,15 @@ def _has_solutions(
 
 def default_value(chain: Chain, joint: Parameter) -> tuple[float, str]:
     """The value ``auto`` holds ``joint`` at when no q0 is given, and why (for its note)."""
+    key = ("default", joint.name)
+    found = chain.memo.get(key)
+    if found is None:
+        found = chain.memo[key] = _default_value(chain, joint)
+    return found  # type: ignore[return-value]
+
+
+def _default_value(chain: Chain, joint: Parameter) -> tuple[float, str]:
+    """:func:`default_value`, found."""
     why = "its default value"
     if isinstance(joint, ArmAngleParameter):
         why = "0: the elbow in the plane of axis 1 and the shoulder-wrist line"
@@ -367,6 +379,4 @@ def _q0_rows(q0: ArrayLike | None, shape: tuple[int, ...], n: int) -> FloatArray
     """``(N, n)`` q0 per target (flat, C order), or None; checked (finite) as solve_ik does."""
     if q0 is None:
         return None
-    from kinematica.ik.targets import parse_q0  # a q0 given: not on the one-pose path
-
     return parse_q0(q0, n, shape)

@@ -62,6 +62,7 @@ class IKRequest(IKOptions):
 
     tolerance: Tolerance = field(init=False, repr=False)
     key: int | None = field(init=False, repr=False)
+    _changed: dict[tuple[object, ...], IKRequest] = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         check_choice(self.method, "method", _METHODS)
@@ -79,14 +80,27 @@ class IKRequest(IKOptions):
         put(self, "mask", mask)
         put(self, "seed", seed)
         put(self, "tolerance", tolerance)
+        put(self, "_changed", {})
         settings = (self.method, tolerance.position, tolerance.rotation, flag, weights, seed)
         put(self, "key", settings_key(settings) if kept else None)
 
     def but(self, **changes: Any) -> IKRequest:
-        """This request with some settings changed, checked (``dataclasses.replace``, kept)."""
-        fields = {name: getattr(self, name) for name in _FIELDS}
-        fields.update(changes)
-        return _made(**fields)
+        """This request with some settings changed, checked (``dataclasses.replace``, kept).
+
+        A change of hashable values is made once per request, then found by them.
+        """
+        try:
+            key = tuple(changes.items())
+            found = self._changed.get(key)
+        except TypeError:  # an array (q0): made each time
+            key, found = None, None
+        if found is None:
+            fields = {name: getattr(self, name) for name in _FIELDS}
+            fields.update(changes)
+            found = _made(**fields)
+            if key is not None and len(self._changed) < MEMO:
+                self._changed[key] = found
+        return found
 
     @classmethod
     def of(cls, options: IKOptions) -> IKRequest:

@@ -76,9 +76,20 @@ def solve(
         and (chain.dof != REDUNDANT_DOF or request.method != "auto" or request.mask is not None)
     ):
         return solve_ik(chain, target, request)
-    from kinematica.ik.redundancy import solve_arm  # a redundant arm's parameter
+    return (_solve_arm or _redundancy())(chain, target, request, names)
 
-    return solve_arm(chain, target, request, names)
+
+#: :func:`kinematica.ik.redundancy.solve_arm`, once loaded (:func:`_redundancy`).
+_solve_arm: Any = None
+
+
+def _redundancy() -> Any:
+    """The redundancy layer's door, loaded when a redundant arm is first solved."""
+    global _solve_arm
+    from kinematica.ik.redundancy import solve_arm
+
+    _solve_arm = solve_arm
+    return solve_arm
 
 
 def _searched_one(closed: ClosedForm | None, T: FloatArray, out: CoreAnswer) -> CoreAnswer:

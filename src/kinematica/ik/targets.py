@@ -170,11 +170,12 @@ def _positions(arr: FloatArray) -> Targets:
 
 def _poses(raw: np.ndarray) -> Targets:
     shape = raw.shape[:-2]
-    if not shape and raw.dtype == np.float64:  # one pose: the cheapest copy, one core call
-        poses = raw[None].copy()
+    if not shape and raw.dtype == np.float64:  # one pose: one core call, no copy if rigid
+        poses = raw[None] if raw.flags.c_contiguous else raw[None].copy()
         finite1, last1, ortho1, det1 = _core.pose_defects(poses[0])
         if finite1 and ortho1 <= ROUNDOFF_TOL and last1 == 0.0 and det1 > 0.0:
-            return Targets(poses, shape, False)
+            return Targets(poses, shape, False)  # read, never written
+        poses = raw[None].copy()  # projected or explained below
     else:
         poses = np.array(raw.reshape(-1, 4, 4), dtype=np.float64, order="C")  # a copy
     finite, last, ortho, det = _core.pose_defects_batch(poses)

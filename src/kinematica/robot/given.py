@@ -86,7 +86,7 @@ def check_given(
                 warning = robot._limits_message(qa, "q0", count)
                 warnings.warn(warning, stacklevel=_STACK)
             robot._check_turns(qa, "q0")
-    if isinstance(fixed, Mapping):
+    if type(fixed) is dict or isinstance(fixed, Mapping):
         for key, value in fixed.items():
             check_joint_values(robot, key, value, "fixed", _STACK + 1)
     if arm_angle is not None:
