@@ -20,8 +20,8 @@ and, for reference, one pose of the PUMA 560 (a 6R arm, every default) in the sa
 
 Columns: the method results name; µs per pose one pose at a time (median over
 ``--singles`` poses of each pose's shortest of 3 passes, wall time), and the same
-through the general path (``robot.ik(T, options=IKOptions(...))``: what one pose
-cost before it went straight to the core, :mod:`kinematica.ik.direct`), and
+given as ``options=`` (``robot.ik(T, options=IKOptions(...))``: the same path as the
+keywords since issue 33, so the same cost), and
 batched (one call on ``--poses`` poses, best of 3, CPU time of the process: the
 machine may be shared); solutions per pose (mean); the share of poses
 whose every solution our own FK puts within 1e-10 m and 1e-10 rad of the target
@@ -199,7 +199,7 @@ def run(name: str, poses: int, singles: int, seed: int) -> None:
                     [f"EAIK locked q7 = {VALUE} (1 thread)", "eaik", fmt_time(single), "",
                      fmt_time(batch), "", "", ""]
                 )  # fmt: skip
-    head = ["call", "method", "single", "single (general)", "batched", "sols/pose", "all exact",
+    head = ["call", "method", "single", "single (options=)", "batched", "sols/pose", "all exact",
             "found"]  # fmt: skip
     print(table(rows, head))
 

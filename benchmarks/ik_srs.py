@@ -11,8 +11,7 @@ on one core (``workers=1``):
   of 3; and with each pose's own arm angle; CPU time of the process: the machine
   is shared) and one pose at a time
   (median over ``--singles`` poses, each pose's shortest of 3 passes; and one
-  pose through the general path, ``options=IKOptions(arm_angle=...)``, which a
-  pose with every other default skips: :mod:`kinematica.ik.direct`); ``robot.ik(T)``
+  pose given ``options=IKOptions(arm_angle=...)``: the same path, issue 33); ``robot.ik(T)``
   (``auto``: every solution at arm angle 0, else the numeric search), batched and
   one pose at a time; the core's calls alone (``SRSParams.ik_batch`` / ``ik``:
   the solve and the check, no Python around them) and the solver alone
@@ -109,7 +108,7 @@ def main() -> None:
     auto_single = shortest_per_item(lambda P: robot.ik(P), singles)
     rows.append(["robot.ik(T, arm_angle=psi)", fmt_time(batch), fmt_time(single)])
     rows.append(["  one arm angle per pose", fmt_time(per_pose), ""])
-    rows.append(["  through the general path (options=)", "", fmt_time(slow)])
+    rows.append(["  given as options=", "", fmt_time(slow)])
     rows.append(["robot.ik(T) (auto: arm angle 0)", fmt_time(auto_batch), fmt_time(auto_single)])
     rows.append(["core: SRSParams.ik_batch / ik", fmt_time(core_batch), fmt_time(core_single)])
     rows.append(["core: candidates (no check)", "", fmt_time(raw)])

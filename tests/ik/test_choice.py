@@ -117,8 +117,8 @@ def test_the_note_is_made_from_the_reason_show_prints() -> None:
 
 
 def test_one_pose_straight_to_the_core_carries_the_note_as_the_general_path_does() -> None:
-    # one rigid pose with every default goes straight to the core (Robot._fast); its
-    # answer is the general path's, note included
+    # one rigid pose with every default, as keywords or as options: one answer, note
+    # included
     for make in (slide_6, slides_7, eight_r):
         robot = make()
         T = robot.fk(_q(robot))

@@ -212,7 +212,7 @@ class JointParameter:
             targets, parsed = parse_targets(target), True
         N = targets.poses.shape[0]
         scalar = isinstance(values, float | int)
-        if scalar:
+        if isinstance(values, float | int):
             v = np.full(N, float(values))
         else:
             v = np.broadcast_to(np.asarray(values, dtype=float), (N,)).copy()
@@ -457,6 +457,7 @@ def solve_fixed(
     # the joint and its value, read once per (key, value): one pose at a time, often the same
     memo: dict[tuple[object, ...], tuple[JointParameter, float]]
     memo = chain.memo.setdefault("held values", {})  # type: ignore[assignment]
+    seen: tuple[object, ...] | None
     seen = (type(key), key, type(value), value, respect, None if names is None else tuple(names))
     try:
         found = memo.get(seen)

@@ -113,11 +113,11 @@ def choose(chain: Chain, names: Sequence[str] | None = None) -> Parameter | None
     if chosen is None:
         return None
     key = ("held parameter", None if names is None else tuple(names))
-    found = memo.get(key)
-    if found is None:
+    held = memo.get(key)
+    if held is None:
         name = joint_names(chain, names)[chosen]
-        found = memo[key] = JointParameter(chosen, name, bool(chain.prismatic[chosen]))
-    return found  # type: ignore[return-value]
+        held = memo[key] = JointParameter(chosen, name, bool(chain.prismatic[chosen]))
+    return held  # type: ignore[return-value]
 
 
 def solve_arm(

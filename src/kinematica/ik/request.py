@@ -206,7 +206,7 @@ def _made(
     if type(fixed) is dict:
         fixed = dict(fixed)  # kept: the caller's dict may change after the call
     request = IKRequest(method, tol, respect_limits, q0, mask, seed, workers, precision,
-                        fixed, arm_angle)  # type: ignore[arg-type]  # fmt: skip
+                        fixed, arm_angle)  # fmt: skip
     if memo is not None and request.key is not None and not isinstance(arm_angle, np.ndarray):
         if len(_requests) >= MEMO:
             _requests.clear()

@@ -1,9 +1,9 @@
-"""``robot.ik``'s one door: the request, the arm's plan, one core call, the answer.
+"""An arm solved as it is: the request, the arm's plan, one core call, the answer.
 
-:func:`solve` takes every target and setting of ``robot.ik``, one target or a batch of
-any shape: a redundant arm with a parameter to hold goes to
-:func:`kinematica.ik.redundancy.solve_arm` (which comes back here with the arm the
-lock leaves), every other to :func:`solve_ik`. There the chain's :class:`~kinematica.ik.
+:func:`solve_ik` is where every target of ``robot.ik`` is solved (through
+:func:`kinematica.ik.door.solve`; a redundant arm's parameter is held by
+:func:`kinematica.ik.redundancy.solve_arm`, which comes back here with the arm the lock
+leaves), one target or a batch of any shape. The chain's :class:`~kinematica.ik.
 solvers.Plan` for the request's settings (made once, kept by the chain) names the
 solver, a closed form's ``Params`` or the numeric search; the solver and the shared
 check run in one core call per target or per batch (``cpp/include/kinematica/ik.hpp``),
@@ -41,7 +41,7 @@ from kinematica.ik.solvers import Plan, check_options, closed_form, plan_of, str
 from kinematica.ik.targets import Targets, parse_q0, parse_targets
 from kinematica.spatial import ROUNDOFF_TOL
 
-__all__ = ["REDUNDANT_DOF", "closed_form", "solve", "solve_ik", "structure_of"]
+__all__ = ["REDUNDANT_DOF", "closed_form", "solve_ik", "structure_of"]
 
 FloatArray = NDArray[np.float64]
 
@@ -55,41 +55,6 @@ _NOT_FOUND = _core.STATUS["not_found"]
 _FLOAT64 = np.dtype(np.float64)
 #: Where a position target is placed (the orientation is free).
 _IDENTITY = np.eye(4)
-
-
-def solve(
-    chain: Chain, target: ArrayLike, request: IKRequest, names: tuple[str, ...] | None = None
-) -> IKResult | IKBatchResult:
-    """``robot.ik``: every inverse-kinematics solution of a target, or an honest status.
-
-    See :meth:`kinematica.Robot.ik` for the arguments and what comes back.
-
-    Args:
-        chain: The arm.
-        target: As ``robot.ik`` takes it.
-        request: The call's settings (:meth:`IKRequest.parse`).
-        names: The joints' display names (``result.parameter`` names a held joint so).
-    """
-    if (
-        request.fixed is None
-        and request.arm_angle is None
-        and (chain.dof != REDUNDANT_DOF or request.method != "auto" or request.mask is not None)
-    ):
-        return solve_ik(chain, target, request)
-    return (_solve_arm or _redundancy())(chain, target, request, names)
-
-
-#: :func:`kinematica.ik.redundancy.solve_arm`, once loaded (:func:`_redundancy`).
-_solve_arm: Any = None
-
-
-def _redundancy() -> Any:
-    """The redundancy layer's door, loaded when a redundant arm is first solved."""
-    global _solve_arm
-    from kinematica.ik.redundancy import solve_arm
-
-    _solve_arm = solve_arm
-    return solve_arm
 
 
 def _searched_one(closed: ClosedForm | None, T: FloatArray, out: CoreAnswer) -> CoreAnswer:
@@ -163,9 +128,10 @@ def solve_ik(
 
 
 def _solve(
-    chain: Chain, target: ArrayLike | Targets, request: IKRequest
+    chain: Chain, target: ArrayLike | Targets, options: IKOptions
 ) -> IKResult | IKBatchResult:
     """:func:`solve_ik` without the over-determined targets' second look."""
+    request = options if type(options) is IKRequest else IKRequest.of(options)
     kind: TargetKind | None = None
     if (
         type(target) is np.ndarray

@@ -190,8 +190,9 @@ def _plan(chain: Chain, kind: TargetKind, request: IKRequest, parameter: str | N
     assert parameter in (None, "arm_angle")  # plan_of's keys know of one parameter
     method, masked, tolerance = request.method, request.mask is not None, request.tolerance
     w = POSITION_WEIGHTS if kind == "position" else POSE_WEIGHTS
-    if masked:
-        w = tuple(float(a * b) for a, b in zip(request.mask, w, strict=True))  # type: ignore[arg-type]
+    if request.mask is not None:
+        mask = np.asarray(request.mask, dtype=float)
+        w = tuple(float(a * b) for a, b in zip(mask.tolist(), w, strict=True))
     closed = None if method == "numeric" or masked else closed_form(chain, kind, parameter)
     if parameter is not None:
         if method == "numeric" or masked:
@@ -224,7 +225,7 @@ def _plan(chain: Chain, kind: TargetKind, request: IKRequest, parameter: str | N
     if closed is not None:
         solver, labels, name = closed.params, closed.labels, closed.method
     else:
-        solver, labels, name = numeric_solver(chain, tolerance, respect, request.seed, w)  # type: ignore[arg-type]
+        solver, labels, name = numeric_solver(chain, tolerance, respect, request.seed, w)
     slack = features(chain).slack if closed is not None and not closed.exact else 0.0
     complete = closed is not None and slack == 0.0
     search = None  # a closed form that may miss a solution: a target it missed is searched

@@ -1,4 +1,4 @@
-"""A robot's inverse kinematics: ``robot.ik``, one door into :func:`kinematica.ik.solve.solve`."""
+"""A robot's inverse kinematics: ``robot.ik``, one door into :func:`kinematica.ik.door.solve`."""
 
 from __future__ import annotations
 
@@ -28,8 +28,8 @@ _DOOR: tuple[Callable[..., IKRequest], Callable[..., IKResult | IKBatchResult]] 
 def _door() -> tuple[Callable[..., IKRequest], Callable[..., IKResult | IKBatchResult]]:
     """The IK layer's door, loaded when a robot first solves IK (``kinematica fk`` never does)."""
     global _DOOR
+    from kinematica.ik.door import solve
     from kinematica.ik.request import IKRequest
-    from kinematica.ik.solve import solve
 
     _DOOR = (IKRequest.parse, solve)
     return _DOOR

@@ -1,0 +1,57 @@
+"""``robot.ik``'s one door: :func:`solve` takes every target and setting.
+
+``Robot.ik`` reads its settings into an :class:`~kinematica.ik.request.IKRequest`
+(:meth:`~kinematica.ik.request.IKRequest.parse`) and hands it here with the target. A
+redundant arm with a parameter to hold (``fixed=``, ``arm_angle=``, or ``auto`` on a
+7-joint arm) goes to :func:`kinematica.ik.redundancy.solve_arm`, which holds it and
+solves the arm the lock leaves; every other arm to :func:`kinematica.ik.solve.solve_ik`.
+Either way the targets are solved by ``solve_ik``'s one path.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from numpy.typing import ArrayLike
+
+from kinematica.core import Chain
+from kinematica.ik.request import IKRequest
+from kinematica.ik.result import IKBatchResult, IKResult
+from kinematica.ik.solve import REDUNDANT_DOF, solve_ik
+
+__all__ = ["solve"]
+
+
+def solve(
+    chain: Chain, target: ArrayLike, request: IKRequest, names: tuple[str, ...] | None = None
+) -> IKResult | IKBatchResult:
+    """``robot.ik``: every inverse-kinematics solution of a target, or an honest status.
+
+    See :meth:`kinematica.Robot.ik` for the arguments and what comes back.
+
+    Args:
+        chain: The arm.
+        target: As ``robot.ik`` takes it.
+        request: The call's settings (:meth:`IKRequest.parse`).
+        names: The joints' display names (``result.parameter`` names a held joint so).
+    """
+    if (
+        request.fixed is None
+        and request.arm_angle is None
+        and (chain.dof != REDUNDANT_DOF or request.method != "auto" or request.mask is not None)
+    ):
+        return solve_ik(chain, target, request)
+    return (_solve_arm or _redundancy())(chain, target, request, names)
+
+
+#: :func:`kinematica.ik.redundancy.solve_arm`, once loaded (:func:`_redundancy`).
+_solve_arm: Any = None
+
+
+def _redundancy() -> Any:
+    """The redundancy layer's door, loaded when a redundant arm is first solved."""
+    global _solve_arm
+    from kinematica.ik.redundancy import solve_arm
+
+    _solve_arm = solve_arm
+    return solve_arm
