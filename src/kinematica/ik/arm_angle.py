@@ -31,7 +31,7 @@ from kinematica.ik.targets import parse_targets
 
 __all__ = ["ARM_ANGLE_NAMES", "ArmAngleParameter", "arm_angle_parameter"]
 
-if TYPE_CHECKING:  # the general path's modules: loaded when it runs
+if TYPE_CHECKING:
     from kinematica.ik.options import IKOptions
 
 FloatArray = NDArray[np.float64]

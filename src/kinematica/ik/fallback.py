@@ -27,7 +27,6 @@ import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.ik.local_search import LOCAL_SEARCH
 from kinematica.ik.registry import ClosedForm
-from kinematica.ik.structure import features
 from kinematica.spatial import rotation_angle
 
 __all__ = [
@@ -38,7 +37,6 @@ __all__ = [
     "needs_search",
     "searched_note",
     "seeds",
-    "slack_of",
 ]
 
 #: Said of a closed form's result on a near-degenerate arm.
@@ -65,11 +63,6 @@ _NOT_FOUND = _core.STATUS["not_found"]
 def searched_note(closed_note: str) -> str:
     """The note of a target a closed form's ``search_note`` names, answered by the search."""
     return f"{closed_note}, {LOCAL_SEARCH}"
-
-
-def slack_of(chain: Chain) -> float:
-    """The chain's :attr:`~kinematica.ik.structure.Features.slack` (m)."""
-    return features(chain).slack
 
 
 def needs_search(status: Any) -> Any:

@@ -29,7 +29,7 @@ _UNREACHABLE = _core.STATUS["unreachable"]
 _NOT_FOUND = _core.STATUS["not_found"]
 
 #: The status codes of answers with solutions: :func:`needs_proof` is False for them
-#: (a one-target path tests this first: a set lookup, not a call).
+#: (one target's answer is tested for this first: a set lookup, not a call).
 ANSWERED = frozenset(_core.STATUS[k] for k in ("ok", "singular", "out_of_limits"))
 
 

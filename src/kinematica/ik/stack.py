@@ -28,7 +28,7 @@ __all__ = [
     "widen_result",
 ]
 
-if TYPE_CHECKING:  # the general path's modules: loaded when it runs
+if TYPE_CHECKING:
     from kinematica.ik.targets import Targets
 
 FloatArray = NDArray[np.float64]

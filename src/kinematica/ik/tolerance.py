@@ -1,7 +1,7 @@
 """Acceptance tolerances of an IK solution: the defaults, and the ``tol`` argument read.
 
-Apart from :mod:`kinematica.ik.targets` (which re-exports them): the one-pose path of
-``robot.ik`` (:mod:`kinematica.ik.solvers`) needs the defaults, not the targets' parsing.
+Apart from :mod:`kinematica.ik.targets` (which re-exports them): a request
+(:mod:`kinematica.ik.request`) reads ``tol`` without the targets' parsing.
 """
 
 from __future__ import annotations
