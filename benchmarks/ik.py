@@ -655,7 +655,7 @@ def main() -> None:
         given = [t for t in r.times if t[0].startswith("kinematica robot.ik(T, ")]
         worst = max(given, key=lambda t: t[1])
         if e is None:
-            rows.append([r.arm, fmt_time(r.times[0][1]), fmt_time(worst[1]), "-", "(no EAIK)"])
+            rows.append([r.arm, fmt_time(r.times[0][1]), fmt_time(worst[1]), "-", "-", "(no EAIK)"])
             continue
         ratio = worst[1] / e[1]
         rows.append(

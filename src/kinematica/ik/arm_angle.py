@@ -100,4 +100,7 @@ def arm_angle_parameter(chain: Chain) -> ArmAngleParameter | None:
     """The arm angle when ``chain`` is an SRS arm (its closed form needs one), else None."""
     if chain.dof != 7 or closed_form(chain, "pose", "arm_angle") is None:
         return None
-    return ArmAngleParameter()
+    return _ARM_ANGLE
+
+
+_ARM_ANGLE = ArmAngleParameter()

@@ -206,7 +206,7 @@ class JointParameter:
         k, n = self.index, chain.dof
         if type(target) is np.ndarray and target.shape in ((4, 4), (3,)):
             # one target: read where it is solved (its pose only where it is moved)
-            targets = Targets(np.empty((1, 4, 4)), (), target.shape == (3,))
+            targets = _ONE_POSITION if target.shape == (3,) else _ONE_POSE
             parsed = False
         else:
             targets, parsed = parse_targets(target), True
@@ -376,6 +376,12 @@ class JointParameter:
                 one = self._held_answer(chain, vi, T, one, opts)
             results[i] = one
         return stack_results(results, targets, chain.dof, self.name, v)
+
+
+#: One target not read yet (:meth:`JointParameter.solve`): its kind alone, no pose.
+_ONE_POSE = Targets(np.full((1, 4, 4), np.nan), (), False)
+_ONE_POSITION = Targets(_ONE_POSE.poses, (), True)
+_ONE_POSE.poses.flags.writeable = False
 
 
 def _q0_rows(q0: ArrayLike, shape: tuple[int, ...], rows: int | NDArray[np.intp]) -> FloatArray:

@@ -69,6 +69,9 @@ UNDEFINED_AT_Q0 = (
 )
 
 _INVALID = _core.STATUS["invalid"]
+#: One target's value is defined (read only).
+_DEFINED = np.zeros(1, dtype=bool)
+_DEFINED.flags.writeable = False
 
 
 def preference(n: int) -> tuple[int, ...]:
@@ -160,10 +163,11 @@ def _at_parameter(
     n = chain.dof
     q0s = _q0_rows(options.q0, targets.shape, n)
     default, default_why = default_value(chain, joint)
-    undefined = np.zeros(targets.poses.shape[0], dtype=bool)
+    N = targets.poses.shape[0]
+    undefined = _DEFINED if N == 1 else np.zeros(N, dtype=bool)
     if q0s is None:
         why = default_why
-        values = np.full(targets.poses.shape[0], default)
+        values = np.full(N, default)
     else:
         at_q0 = joint.value_of(chain, q0s)
         # an arm angle is undefined at a q0 whose elbow is on the shoulder-wrist line (or
@@ -171,18 +175,21 @@ def _at_parameter(
         undefined = ~np.isfinite(at_q0)
         values = np.clip(np.where(undefined, default, at_q0), *joint.span(chain))
         why = "q0's value, within its limits"
-    why_undefined = f"{default_why}; q0's {joint.name} is undefined: {UNDEFINED_AT_Q0}"
     one = targets.single  # one target: its value as a number
     res = joint.solve(chain, target, float(values[0]) if one else values, options)
 
+    def whence(undef: bool) -> str:
+        if not undef:
+            return why
+        return f"{default_why}; q0's {joint.name} is undefined: {UNDEFINED_AT_Q0}"
+
     def note(value: float, undef: bool = False) -> str:
-        whence = why_undefined if undef else why
         if q0s is not None:
-            return held_note(chain, joint, value, whence)
-        key = ("held note", joint.name, value, whence)  # the default value's: said once
+            return held_note(chain, joint, value, whence(undef))
+        key = ("held note", joint.name, value)  # the default value's: said once
         text = chain.memo.get(key)
         if text is None:
-            text = chain.memo[key] = held_note(chain, joint, value, whence)
+            text = chain.memo[key] = held_note(chain, joint, value, why)
         return text  # type: ignore[return-value]
 
     def fallback(value: float) -> str:
@@ -193,9 +200,9 @@ def _at_parameter(
 
     def nearer(value: float, start: float, undef: bool = False) -> str:
         keyword = "fixed=" if isinstance(joint, JointParameter) else "arm_angle="
-        whence = why_undefined if undef else why
         return (
-            f"{chain.dof}-joint arm: no solution with {joint.describe(start)} ({whence}); every "
+            f"{chain.dof}-joint arm: no solution with {joint.describe(start)} "
+            f"({whence(undef)}); every "
             f"solution with {joint.describe(value)}, the nearest of {PARAMETER_SWEEP} values "
             f"across its span with one, its redundancy parameter; give q0 or {keyword} for "
             f"another value, robot.self_motion for all of them"

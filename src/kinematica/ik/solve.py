@@ -139,15 +139,23 @@ def _solve(
         and request.q0 is None
         and request.arm_angle is None
     ):  # one target as the core reads it: not parsed
-        if target.shape == (4, 4) and target.flags.c_contiguous:
+        if target.shape == (4, 4):
             pose, kind = target, "pose"
         elif target.shape == (3,):
             pose, kind = _IDENTITY.copy(), "position"
             pose[0, 3], pose[1, 3], pose[2, 3] = target.tolist()
     if kind is not None:  # the core checks that it is rigid, in the same call
-        plan = plan_of(chain, kind, request)
+        key = request.key  # the plan, found by a whole number (plan_of)
+        plan = chain.memo.get(4 * key + (kind == "position")) if key is not None else None
+        if plan is None:
+            plan = plan_of(chain, kind, request)
         if plan.coaxial is None:
-            out = plan.solver.ik_rigid(chain.core, pose, plan.options, ROUNDOFF_TOL, plan.labels)
+            try:
+                out = plan.solver.ik_rigid(
+                    chain.core, pose, plan.options, ROUNDOFF_TOL, plan.labels
+                )
+            except ValueError:  # a view the core does not read (not C-contiguous): parsed
+                out = None
             if out is not None:
                 return _one(chain, plan, request, pose, kind, out, (), None)
     targets = target if isinstance(target, Targets) else parse_targets(target)

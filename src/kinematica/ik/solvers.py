@@ -173,7 +173,8 @@ def plan_of(
     settings = request.key
     if settings is None:  # a Generator's seed: drawn from on every call
         return _plan(chain, kind, request, parameter)
-    # one whole number per (settings, kind, parameter): the look-up of every call
+    # one whole number per (settings, kind, parameter): the look-up of every call (one
+    # target is looked up so in kinematica.ik.solve too)
     key = 4 * settings + (kind == "position") + 2 * (parameter is not None)
     found = memo.get(key)
     if found is None:
