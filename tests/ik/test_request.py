@@ -38,11 +38,19 @@ def test_keywords_and_options_give_one_request_and_the_same_answer() -> None:
 def test_a_kept_request_never_stands_for_a_setting_that_only_compares_equal() -> None:
     robot = km.load("puma560")
     T = robot.fk(np.full(6, 0.3))
-    robot.ik(T, respect_limits=True, tol=1)
-    for bad in ({"respect_limits": 1}, {"tol": True}, {"seed": True}):
+    robot.ik(T, respect_limits=True, tol=1, seed=1, workers=1)
+    for bad in ({"respect_limits": 1}, {"tol": True}, {"seed": True}, {"workers": True}):
         with pytest.raises(KinematicaError):
             robot.ik(T, **bad)  # type: ignore[arg-type]
     assert robot.ik(T, seed=1).status == "ok"
+    iiwa = km.load("iiwa14")
+    P = iiwa.fk(np.array([0.3, 0.5, 0.3, -1.2, 0.3, 0.8, 0.3]))
+    assert iiwa.ik(P, arm_angle=1).parameter == ("arm angle", 1.0)
+    with pytest.raises(KinematicaError, match="must be a number"):
+        iiwa.ik(P, arm_angle=True)
+    assert iiwa.ik(P, fixed={6: 1}).parameter == ("q7", 1.0)
+    with pytest.raises(KinematicaError, match="must be a number"):
+        iiwa.ik(P, fixed={6: True})
 
 
 def test_a_fixed_dict_changed_after_a_call_is_read_again() -> None:

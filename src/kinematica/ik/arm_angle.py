@@ -87,7 +87,7 @@ class ArmAngleParameter:
             elif not targets.single and values.size == math.prod(targets.shape):
                 angle = values.reshape(targets.shape)  # one per target, C order
         opts = IKRequest.of(options).but(arm_angle=angle, fixed=None)
-        res = solve_ik(chain, targets, opts)
+        res = solve_ik(chain, target if targets.single else targets, opts)
         if isinstance(res, IKResult) and type(angle) is float:
             return amended(res, parameter=(self.name, angle))
         given = parameter_values("arm_angle", angle, targets.shape)  # (N,), checked

@@ -188,12 +188,17 @@ def _made(
     fixed: Any,
     arm_angle: Any,
 ) -> IKRequest:
-    """The request of these settings: found by them when they are hashable, else made."""
-    if q0 is None and mask is None:
+    """The request of these settings: found by them when they are hashable, else made.
+
+    A setting's type is part of what finds it: ``True == 1``, and only one of them is a
+    valid ``respect_limits`` (or ``tol``, ``seed``, ``workers``, ``arm_angle``).
+    """
+    if q0 is None and mask is None and precision is None:
         try:
             memo = (
-                method, tol, respect_limits, seed, workers, precision, _frozen(fixed), arm_angle,
-                type(method), type(respect_limits), type(tol), type(seed),
+                method, method.__class__, respect_limits, respect_limits.__class__,
+                tol, tol.__class__, seed, seed.__class__, workers, workers.__class__,
+                arm_angle, arm_angle.__class__, None if fixed is None else _frozen(fixed),
             )  # fmt: skip
             found = _requests.get(memo)
         except TypeError:  # unhashable: an array, a list
@@ -218,6 +223,6 @@ def _frozen(fixed: object) -> object:
     """A ``fixed`` mapping as a hashable key (its items, with their types), else itself."""
     if type(fixed) is dict:
         return (dict, *((k, type(k), v, type(v)) for k, v in fixed.items()))
-    if fixed is None or not isinstance(fixed, Mapping):
+    if not isinstance(fixed, Mapping):
         return fixed
     raise TypeError("not a plain dict: not kept")

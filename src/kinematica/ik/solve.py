@@ -23,6 +23,7 @@ the over-determined reading of an arm of fewer than 6 joints
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -41,7 +42,7 @@ from kinematica.ik.solvers import Plan, check_options, closed_form, plan_of, str
 from kinematica.ik.targets import Targets, parse_q0, parse_targets
 from kinematica.spatial import ROUNDOFF_TOL
 
-__all__ = ["REDUNDANT_DOF", "closed_form", "solve_ik", "structure_of"]
+__all__ = ["AT_VALUES", "REDUNDANT_DOF", "closed_form", "solve_ik", "structure_of"]
 
 FloatArray = NDArray[np.float64]
 
@@ -133,11 +134,12 @@ def _solve(
     """:func:`solve_ik` without the over-determined targets' second look."""
     request = options if type(options) is IKRequest else IKRequest.of(options)
     kind: TargetKind | None = None
+    angle = request.arm_angle  # one number (an SRS arm's arm angle) or None
     if (
         type(target) is np.ndarray
         and target.dtype is _FLOAT64
         and request.q0 is None
-        and request.arm_angle is None
+        and (angle is None or (type(angle) is float and math.isfinite(angle)))
     ):  # one target as the core reads it: not parsed
         if target.shape == (4, 4):
             pose, kind = target, "pose"
@@ -146,14 +148,15 @@ def _solve(
             pose[0, 3], pose[1, 3], pose[2, 3] = target.tolist()
     if kind is not None:  # the core checks that it is rigid, in the same call
         key = request.key  # the plan, found by a whole number (plan_of)
-        plan = chain.memo.get(4 * key + (kind == "position")) if key is not None else None
+        plan = None
+        if key is not None and angle is None:
+            plan = chain.memo.get(4 * key + (kind == "position"))
         if plan is None:
-            plan = plan_of(chain, kind, request)
+            plan = plan_of(chain, kind, request, None if angle is None else "arm_angle")
+        solver = plan.solver if angle is None else _at(chain, plan, angle)
         if plan.coaxial is None:
             try:
-                out = plan.solver.ik_rigid(
-                    chain.core, pose, plan.options, ROUNDOFF_TOL, plan.labels
-                )
+                out = solver.ik_rigid(chain.core, pose, plan.options, ROUNDOFF_TOL, plan.labels)
             except ValueError:  # a view the core does not read (not C-contiguous): parsed
                 out = None
             if out is not None:
@@ -183,6 +186,21 @@ def _solve(
         notes = targets.notes.get(0, ()) if targets.notes else ()
         return _one(chain, plan, request, pose, kind, out, notes, q0)
     return _batch(chain, target, targets, request, plan, solver, q0s)
+
+
+#: Closed forms at one value of their parameter a chain keeps (:func:`_at`).
+AT_VALUES = 16
+
+
+def _at(chain: Chain, plan: Plan, value: float) -> Any:
+    """``plan``'s closed form at ``value`` of its parameter (made once per value, kept)."""
+    memo: dict[float, Any] = chain.memo.setdefault("at values", {})  # type: ignore[assignment]
+    found = memo.get(value)
+    if found is None:
+        if len(memo) >= AT_VALUES:
+            memo.clear()
+        found = memo[value] = plan.solver.at(value)
+    return found
 
 
 def _one(
