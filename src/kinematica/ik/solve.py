@@ -148,12 +148,12 @@ def _solve(
             pose[0, 3], pose[1, 3], pose[2, 3] = target.tolist()
     if kind is not None:  # the core checks that it is rigid, in the same call
         key = request.key  # the plan, found by a whole number (plan_of)
-        plan = None
+        plan: Plan | None = None
         if key is not None and angle is None:
-            plan = chain.memo.get(4 * key + (kind == "position"))
+            plan = chain.memo.get(4 * key + (kind == "position"))  # type: ignore[assignment]
         if plan is None:
             plan = plan_of(chain, kind, request, None if angle is None else "arm_angle")
-        solver = plan.solver if angle is None else _at(chain, plan, angle)
+        solver = plan.solver if angle is None else _at(chain, plan, float(angle))  # type: ignore[arg-type]
         if plan.coaxial is None:
             try:
                 out = solver.ik_rigid(chain.core, pose, plan.options, ROUNDOFF_TOL, plan.labels)
