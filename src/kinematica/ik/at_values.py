@@ -3,7 +3,7 @@
 ``robot.ik(T, arm_angle=psi)`` solves an SRS 7R arm at the arm angle ``psi``
 (:mod:`kinematica.ik.analytic.srs`): one value for every target, or one per
 target. :class:`AtValues` stands in for the closed form's ``Params``
-(``ik``, ``ik_rigid``, ``ik_batch``, ``candidates``): one target is solved with a
+(``ik``, ``ik_batch``): one target is solved with a
 copy set to its value (``Params.at(value)``), a batch by the core with each
 target's value (``Params.ik_batch_at``), so that the solver built once per arm is
 never changed.
@@ -77,14 +77,6 @@ class AtValues:
     def ik(self, chain: Any, T: Any, options: Any, q0: Any, labels: Any) -> Any:
         """``Params.ik`` at the first value."""
         return self._first.ik(chain, T, options, q0, labels)
-
-    def ik_rigid(self, chain: Any, T: Any, options: Any, roundoff: float, labels: Any) -> Any:
-        """``Params.ik_rigid`` at the first value."""
-        return self._first.ik_rigid(chain, T, options, roundoff, labels)
-
-    def candidates(self, chain: Any, T: Any, q0: Any = None) -> Any:
-        """``Params.candidates`` at the first value."""
-        return self._first.candidates(chain, T, q0)
 
     def ik_batch(
         self, chain: Any, T: FloatArray, options: Any, q0: Any, invalid: Any, workers: int

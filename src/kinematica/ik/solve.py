@@ -103,36 +103,26 @@ def _search(chain: Chain, plan: Plan, request: IKRequest) -> tuple[Any, _core.Ch
 
 
 def solve_ik(
-    chain: Chain, target: ArrayLike | Targets, options: IKOptions
+    chain: Chain, target: ArrayLike | Targets, options: IKOptions, look: bool = True
 ) -> IKResult | IKBatchResult:
     """Every inverse-kinematics solution of a target of the chain as it is, or an honest status.
 
     See :meth:`kinematica.Robot.ik` for the arguments and what comes back. One pose
-    target of an arm with fewer than 6 joints is over-determined: see
-    :mod:`kinematica.ik.printed`. ``target`` may also be targets already parsed
-    (:class:`~kinematica.ik.targets.Targets`). The chain is solved as it is:
-    ``options.fixed`` and a redundant arm's parameter are :func:`solve`'s.
+    target of an arm with fewer than 6 joints is over-determined (``look``: its answer
+    is read so, :mod:`kinematica.ik.printed`). ``target`` may also be targets already
+    parsed (:class:`~kinematica.ik.targets.Targets`). The chain is solved as it is:
+    ``options.fixed`` and a redundant arm's parameter are :func:`kinematica.ik.door.solve`'s.
     """
     request = options if type(options) is IKRequest else IKRequest.of(options)
-    out = _solve(chain, target, request)
-    if (
-        chain.dof < _POSE_DOF
-        and request.mask is None
-        and isinstance(out, IKResult)
-        and not isinstance(target, Targets)
-        and np.shape(target) == (4, 4)
-    ):
-        from kinematica.ik.printed import answer_overdetermined  # a reduced arm's pose only
+    if look and chain.dof < _POSE_DOF and request.mask is None:
+        first = solve_ik(chain, target, request, False)
+        if isinstance(first, IKResult) and not isinstance(target, Targets):
+            if np.shape(target) != (4, 4):
+                return first
+            from kinematica.ik.printed import answer_overdetermined  # a reduced arm's pose
 
-        return answer_overdetermined(chain, target, request, out, _solve, request.precision)
-    return out
-
-
-def _solve(
-    chain: Chain, target: ArrayLike | Targets, options: IKOptions
-) -> IKResult | IKBatchResult:
-    """:func:`solve_ik` without the over-determined targets' second look."""
-    request = options if type(options) is IKRequest else IKRequest.of(options)
+            return answer_overdetermined(chain, target, request, first, _as_is, request.precision)
+        return first
     kind: TargetKind | None = None
     angle = request.arm_angle  # one number (an SRS arm's arm angle) or None
     if (
@@ -190,6 +180,11 @@ def _solve(
 
 #: Closed forms at one value of their parameter a chain keeps (:func:`_at`).
 AT_VALUES = 16
+
+
+def _as_is(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IKBatchResult:
+    """:func:`solve_ik` without the over-determined reading (:mod:`kinematica.ik.printed`'s)."""
+    return solve_ik(chain, target, options, False)
 
 
 def _at(chain: Chain, plan: Plan, value: float) -> Any:
