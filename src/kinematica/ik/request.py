@@ -89,8 +89,8 @@ class IKRequest(IKOptions):
 
         A change of hashable values is made once per request, then found by them.
         """
-        try:
-            key = tuple(changes.items())
+        try:  # the values' types too: True == 1
+            key = (*changes.items(), *map(type, changes.values()))
             found = self._changed.get(key)
         except TypeError:  # an array (q0): made each time
             key, found = None, None
