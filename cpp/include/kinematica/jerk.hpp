@@ -405,19 +405,37 @@ inline void profile(double T, double D, double v0, double v1, const Limits& L, P
 }
 
 //! The shortest duration every joint of a segment can take, given each joint's shortest
-//! t: the largest of them, moved past any interval of durations a joint cannot take.
+//! t: the largest of them, moved past any interval of durations a joint cannot take (the
+//! smallest T >= max t that no joint's interval holds). skip >= 0: that joint is left out.
+//! binding (n entries, or nullptr): set where leaving the joint out could shorten the result
+//! (its t alone is the largest, or it moved T); a joint that is not binding can take the
+//! result with any velocities whose t is no larger and whose interval does not hold it.
 inline double synchronised(int n, const double* p0, const double* v0, const double* p1, const double* v1,
-                           const Limits* L, const double* t) {
-    double T = 0.0;
-    for (int i = 0; i < n; ++i) T = std::max(T, t[i]);
+                           const Limits* L, const double* t, int skip = -1, unsigned char* binding = nullptr) {
+    double T = 0.0, second = 0.0;
+    int top = -1;
+    for (int i = 0; i < n; ++i) {
+        if (i == skip) continue;
+        if (top < 0 || t[i] > T) {
+            second = top < 0 ? 0.0 : T;
+            T = t[i];
+            top = i;
+        } else {
+            second = std::max(second, t[i]);
+        }
+    }
+    if (binding != nullptr) {
+        for (int i = 0; i < n; ++i) binding[i] = i == top && T > second ? 1 : 0;
+    }
     for (int pass = 0; pass <= n; ++pass) {
         bool moved = false;
         for (int i = 0; i < n; ++i) {
-            if (!(T > t[i])) continue;
+            if (i == skip || !(T > t[i])) continue;
             const double later = unblocked(T, p1[i] - p0[i], v0[i], v1[i], L[i]);
             if (later > T) {
                 T = later;
                 moved = true;
+                if (binding != nullptr) binding[i] = 1;
             }
         }
         if (!moved) break;

@@ -99,7 +99,14 @@ namespace detail {
 class ViaSearch {
 public:
     ViaSearch(const Via& P, ViaOutput& out)
-        : P_(P), out_(out), t_(P.n), shortest_((P.k - 1) * P.n), vhat_(P.k * P.n), trial_(P.n) {}
+        : P_(P),
+          out_(out),
+          t_(P.n),
+          shortest_((P.k - 1) * P.n),
+          vhat_(P.k * P.n),
+          trial_(P.n),
+          b_(P.n),
+          binding_((P.k - 1) * P.n) {}
 
     void run(const ViaParams& prm) {
         const int k = P_.k, n = P_.n;
@@ -161,45 +168,68 @@ public:
 
 private:
     //! Duration of segment i (waypoint i to i+1) from velocity vi to vj; inf if it leaves
-    //! qlim. joint >= 0: only that joint's velocity differs from the chosen ones, whose
-    //! joints' shortest durations are kept (the others' are not computed again).
-    double time(int i, const double* vi, const double* vj, int joint = -1) {
+    //! qlim. Each joint's shortest duration is left in t_, the binding joints in b_.
+    double time(int i, const double* vi, const double* vj) {
         const int n = P_.n;
         const double* p0 = P_.w + i * n;
         const double* p1 = p0 + n;
         ++out_.evaluations;
+        for (int j = 0; j < n; ++j) t_[j] = shortest(p1[j] - p0[j], vi[j], vj[j], P_.limits[j]);
+        const double T = synchronised(n, p0, vi, p1, vj, P_.limits, t_.data(), -1, b_.data());
+        return within_qlim(i, T, vi, vj, -1) ? T : std::numeric_limits<double>::infinity();
+    }
+
+    //! time(i, vi, vj) when only `joint`'s velocities differ from the chosen ones. tw: the
+    //! segment's duration without that joint; bind: whether the joint binds the chosen
+    //! segment (else tw is its duration, whose other joints are known to keep qlim). The
+    //! other joints' shortest durations are the chosen segment's (not computed again).
+    double time_joint(int i, const double* vi, const double* vj, int joint, double tw, bool bind) {
+        const int n = P_.n;
+        const double* p0 = P_.w + i * n;
+        const double* p1 = p0 + n;
+        ++out_.evaluations;
+        const double d = p1[joint] - p0[joint];
+        const Limits& L = P_.limits[joint];
+        const double tj = shortest(d, vi[joint], vj[joint], L);
         double T;
-        if (joint < 0) {
-            T = segment_time(n, p0, vi, p1, vj, P_.limits, t_.data());
+        bool others_kept = !bind;
+        if (tj <= tw && unblocked(tw, d, vi[joint], vj[joint], L) == tw) {
+            T = tw;  // the other joints' duration, which this joint can take
         } else {
             std::copy(shortest_.begin() + i * n, shortest_.begin() + (i + 1) * n, t_.begin());
-            t_[joint] = shortest(p1[joint] - p0[joint], vi[joint], vj[joint], P_.limits[joint]);
+            t_[joint] = tj;
             T = synchronised(n, p0, vi, p1, vj, P_.limits, t_.data());
+            others_kept = false;
         }
-        return within_qlim(i, T, vi, vj) ? T : std::numeric_limits<double>::infinity();
+        return within_qlim(i, T, vi, vj, others_kept ? joint : -1) ? T : std::numeric_limits<double>::infinity();
     }
 
-    //! The chosen velocities' segments: each joint's shortest duration, kept for time().
+    //! The chosen velocities' segments: each joint's shortest duration and the binding
+    //! joints, kept for time_joint().
     void refresh() {
         const int n = P_.n;
-        const double* vel = out_.velocity;
         for (int i = 0; i < P_.k - 1; ++i) {
-            const double* p0 = P_.w + i * n;
-            for (int j = 0; j < n; ++j) {
-                shortest_[i * n + j] =
-                    shortest(p0[n + j] - p0[j], vel[i * n + j], vel[(i + 1) * n + j], P_.limits[j]);
-            }
+            time(i, out_.velocity + i * n, out_.velocity + (i + 1) * n);
+            keep(i);
         }
     }
 
-    //! Whether every joint of segment i, of duration T, stays within qlim.
-    bool within_qlim(int i, double T, const double* vi, const double* vj) const {
+    //! t_ and b_ (of segment i at the chosen velocities) kept.
+    void keep(int i) {
+        const int n = P_.n;
+        std::copy(t_.begin(), t_.end(), shortest_.begin() + i * n);
+        std::copy(b_.begin(), b_.end(), binding_.begin() + i * n);
+    }
+
+    //! Whether every joint of segment i (only `joint` if >= 0), of duration T, stays within
+    //! qlim.
+    bool within_qlim(int i, double T, const double* vi, const double* vj, int joint) const {
         const int n = P_.n;
         const double* p0 = P_.w + i * n;
         const double* p1 = p0 + n;
         if (P_.qlim == nullptr || !std::isfinite(T)) return true;
         Profile prof;
-        for (int j = 0; j < n; ++j) {
+        for (int j = joint < 0 ? 0 : joint; j < (joint < 0 ? n : joint + 1); ++j) {
             profile(T, p1[j] - p0[j], vi[j], vj[j], P_.limits[j], prof);
             double lo, hi;
             extremes(p0[j], vi[j], prof, lo, hi);
@@ -218,15 +248,32 @@ private:
     }
 
     //! Waypoint i's velocity: the best candidate(x, v), x in [0, 1], if it shortens the move.
-    //! joint >= 0: the candidates differ from the chosen velocity in that joint only.
+    //! joint >= 0: the candidates differ from the chosen velocity in that joint only, which
+    //! is searched only where it binds a segment next to the waypoint (elsewhere no velocity
+    //! of it shortens them).
     template <class Candidate>
     void improve(int i, int steps, int joint, const Candidate& candidate) {
         const int n = P_.n;
         double* vel = out_.velocity;
+        double tw[2] = {out_.time[i - 1], out_.time[i]};
+        bool bind[2] = {false, false};
+        if (joint >= 0) {
+            for (int s = 0; s < 2; ++s) {
+                const int seg = i - 1 + s;
+                bind[s] = binding_[seg * n + joint] != 0;
+                if (bind[s]) {
+                    const double* p0 = P_.w + seg * n;
+                    tw[s] = synchronised(n, p0, vel + seg * n, p0 + n, vel + (seg + 1) * n, P_.limits,
+                                         shortest_.data() + seg * n, joint);
+                }
+            }
+            if (!bind[0] && !bind[1]) return;
+        }
         const auto around = [&](double x) {
             candidate(x, trial_.data());
-            return time(i - 1, vel + (i - 1) * n, trial_.data(), joint) +
-                   time(i, trial_.data(), vel + (i + 1) * n, joint);
+            if (joint < 0) return time(i - 1, vel + (i - 1) * n, trial_.data()) + time(i, trial_.data(), vel + (i + 1) * n);
+            return time_joint(i - 1, vel + (i - 1) * n, trial_.data(), joint, tw[0], bind[0]) +
+                   time_joint(i, trial_.data(), vel + (i + 1) * n, joint, tw[1], bind[1]);
         };
         double lo = 0.0, hi = 1.0;
         double x1 = hi - GOLD, x2 = lo + GOLD;
@@ -249,9 +296,9 @@ private:
             candidate(xb, trial_.data());
             std::copy(trial_.begin(), trial_.end(), vel + i * n);
             out_.time[i - 1] = time(i - 1, vel + (i - 1) * n, vel + i * n);
-            std::copy(t_.begin(), t_.end(), shortest_.begin() + (i - 1) * n);
+            keep(i - 1);
             out_.time[i] = time(i, vel + i * n, vel + (i + 1) * n);
-            std::copy(t_.begin(), t_.end(), shortest_.begin() + i * n);
+            keep(i);
         }
     }
 
@@ -281,6 +328,7 @@ private:
     const Via& P_;
     ViaOutput& out_;
     std::vector<double> t_, shortest_, vhat_, trial_;
+    std::vector<unsigned char> b_, binding_;  //!< binding joints of a segment; of the chosen ones
 };
 
 }  // namespace detail
