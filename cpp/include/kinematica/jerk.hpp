@@ -27,6 +27,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -180,15 +182,17 @@ inline double distance_slope(const Frame& f, double base, bool upper, double r, 
 //! Newton's step falls within round-off, or else the bracket's end where the predicate
 //! holds (the side on which the caller's duration is feasible).
 inline double solve_peak(const Frame& f, double base, bool upper, double rlo, double rhi, bool nonneg,
-                         const Limits& L, double start = -1.0) {
+                         const Limits& L, double start = -1.0, bool known = false) {
     const auto g = [&](double r) { return shape_distance(branch_shape(f, base, upper, r), f.w0, f.w1, L) - f.d; };
     const auto ok = [nonneg](double gv) { return nonneg ? gv >= 0.0 : gv <= 0.0; };
-    const double ghi = g(rhi), glo = g(rlo);
-    if (ok(ghi) == ok(glo)) {  // no change of side: round-off at a root on an end
-        return ok(ghi) || std::fabs(ghi) < std::fabs(glo) ? rhi : rlo;
-    }
     double good = rhi, bad = rlo;
-    if (!ok(ghi)) std::swap(good, bad);
+    if (!known) {  // else the caller knows the predicate fails at rlo and holds at rhi
+        const double ghi = g(rhi), glo = g(rlo);
+        if (ok(ghi) == ok(glo)) {  // no change of side: round-off at a root on an end
+            return ok(ghi) || std::fabs(ghi) < std::fabs(glo) ? rhi : rlo;
+        }
+        if (!ok(ghi)) std::swap(good, bad);
+    }
     double x = start > std::min(rlo, rhi) && start < std::max(rlo, rhi) ? start : good;
     for (int it = 0; it < MAX_ITERATIONS; ++it) {
         const double gx = g(x);
@@ -237,6 +241,20 @@ inline double trapezoid_guess(const Frame& f, const Limits& L) {
     return disc > 0.0 ? std::max(0.0, 0.5 * L.a * (std::sqrt(disc) - b)) : 0.0;
 }
 
+//! The cube root of x, for a Newton start: the exponent's third from the bits (a few %),
+//! then four Newton steps (std::cbrt, exact to an ulp, costs several times more).
+inline double rough_cbrt(double x) {
+    const double a = std::fabs(x);
+    if (!(a > 0.0) || !std::isfinite(a)) return x;
+    std::uint64_t bits;
+    std::memcpy(&bits, &a, sizeof bits);
+    bits = bits / 3 + 0x2A9F7893782DA1CEull;
+    double y;
+    std::memcpy(&y, &bits, sizeof y);
+    for (int k = 0; k < 4; ++k) y -= (y - a / (y * y)) / 3.0;
+    return x < 0.0 ? -y : y;
+}
+
 //! Newton's start on the upper branch: the excess if both ramps were triangular and started
 //! from the same velocity m (then the distance (2m + r²)·2r/√J is cubic in r = √e: Cardano),
 //! when that excess keeps both triangular; else trapezoid_guess.
@@ -247,7 +265,7 @@ inline double peak_guess(const Frame& f, const Limits& L) {
     const double disc = 0.25 * q * q + p * p * p / 27.0;
     if (m >= 0.0 && disc >= 0.0) {
         const double sq = std::sqrt(disc);
-        const double r = std::cbrt(-0.5 * q + sq) + std::cbrt(-0.5 * q - sq);
+        const double r = rough_cbrt(-0.5 * q + sq) + rough_cbrt(-0.5 * q - sq);
         if (r > 0.0 && (c + r * r) * L.j <= L.a * L.a) return r * r;
     }
     return trapezoid_guess(f, L);
@@ -273,7 +291,8 @@ inline double shortest(double D, double v0, double v1, const Limits& L) {
         t = t0;
     } else {
         const double start = std::sqrt(detail::peak_guess(f, L));
-        const double r = detail::solve_peak(f, m, true, 0.0, std::sqrt(L.v - m), true, L, start);
+        // the distance is below d at r = 0 (the direct ramp) and above it at the top speed
+        const double r = detail::solve_peak(f, m, true, 0.0, std::sqrt(L.v - m), true, L, start, true);
         t = shape_time(detail::branch_shape(f, m, true, r), f.w0, f.w1, L);
     }
     return std::max(t, t0);

@@ -19,6 +19,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "kinematica/jerk.hpp"
@@ -174,7 +176,11 @@ private:
         const double* p0 = P_.w + i * n;
         const double* p1 = p0 + n;
         ++out_.evaluations;
-        for (int j = 0; j < n; ++j) t_[j] = shortest(p1[j] - p0[j], vi[j], vj[j], P_.limits[j]);
+        const double* ci = out_.velocity + i * n;  // the chosen velocities, whose shortest are kept
+        for (int j = 0; j < n; ++j) {
+            t_[j] = kept_ && vi[j] == ci[j] && vj[j] == ci[n + j] ? shortest_[i * n + j]
+                                                                  : shortest(p1[j] - p0[j], vi[j], vj[j], P_.limits[j]);
+        }
         const double T = synchronised(n, p0, vi, p1, vj, P_.limits, t_.data(), -1, b_.data());
         return within_qlim(i, T, vi, vj, -1) ? T : std::numeric_limits<double>::infinity();
     }
@@ -208,10 +214,12 @@ private:
     //! joints, kept for time_joint().
     void refresh() {
         const int n = P_.n;
+        kept_ = false;
         for (int i = 0; i < P_.k - 1; ++i) {
             time(i, out_.velocity + i * n, out_.velocity + (i + 1) * n);
             keep(i);
         }
+        kept_ = true;
     }
 
     //! t_ and b_ (of segment i at the chosen velocities) kept.
@@ -247,6 +255,53 @@ private:
         return sum;
     }
 
+    //! The best of `steps` evaluations of f on [0, 1] by golden section: (x, f(x)).
+    template <class F>
+    static std::pair<double, double> golden(const F& f, int steps) {
+        double lo = 0.0, hi = 1.0;
+        double x1 = hi - GOLD, x2 = lo + GOLD;
+        double f1 = f(x1), f2 = f(x2);
+        double xb = f1 <= f2 ? x1 : x2, fb = std::min(f1, f2);
+        for (int s = 2; s < steps; ++s) {
+            if (f1 <= f2) {
+                hi = x2, x2 = x1, f2 = f1;
+                x1 = hi - GOLD * (hi - lo);
+                f1 = f(x1);
+                if (f1 < fb) fb = f1, xb = x1;
+            } else {
+                lo = x1, x1 = x2, f1 = f2;
+                x2 = lo + GOLD * (hi - lo);
+                f2 = f(x2);
+                if (f2 < fb) fb = f2, xb = x2;
+            }
+        }
+        return {xb, fb};
+    }
+
+    //! A lower bound of time(i, vi, vj): its joints' largest shortest duration (equal to it
+    //! unless a joint's blocked durations or qlim lengthen it).
+    double lower(int i, const double* vi, const double* vj) {
+        const int n = P_.n;
+        const double* p0 = P_.w + i * n;
+        const double* ci = out_.velocity + i * n;
+        ++out_.evaluations;
+        double T = 0.0;
+        for (int j = 0; j < n; ++j) {
+            const double t = kept_ && vi[j] == ci[j] && vj[j] == ci[n + j]
+                                 ? shortest_[i * n + j]
+                                 : shortest(p0[n + j] - p0[j], vi[j], vj[j], P_.limits[j]);
+            T = std::max(T, t);
+        }
+        return T;
+    }
+
+    //! A lower bound of time_joint(i, vi, vj, joint, tw, ...): max(tw, the joint's shortest).
+    double lower_joint(int i, const double* vi, const double* vj, int joint, double tw) {
+        const double* p0 = P_.w + i * P_.n;
+        ++out_.evaluations;
+        return std::max(tw, shortest(p0[P_.n + joint] - p0[joint], vi[joint], vj[joint], P_.limits[joint]));
+    }
+
     //! Waypoint i's velocity: the best candidate(x, v), x in [0, 1], if it shortens the move.
     //! joint >= 0: the candidates differ from the chosen velocity in that joint only, which
     //! is searched only where it binds a segment next to the waypoint (elsewhere no velocity
@@ -269,36 +324,37 @@ private:
             }
             if (!bind[0] && !bind[1]) return;
         }
+        // a lower bound of the two segments' duration: the slowest joint's shortest, or the
+        // joint's against the others' duration (no joint's blocked durations, no qlim)
+        const auto bound = [&](double x) {
+            candidate(x, trial_.data());
+            if (joint < 0) return lower(i - 1, vel + (i - 1) * n, trial_.data()) + lower(i, trial_.data(), vel + (i + 1) * n);
+            return lower_joint(i - 1, vel + (i - 1) * n, trial_.data(), joint, tw[0]) +
+                   lower_joint(i, trial_.data(), vel + (i + 1) * n, joint, tw[1]);
+        };
         const auto around = [&](double x) {
             candidate(x, trial_.data());
             if (joint < 0) return time(i - 1, vel + (i - 1) * n, trial_.data()) + time(i, trial_.data(), vel + (i + 1) * n);
             return time_joint(i - 1, vel + (i - 1) * n, trial_.data(), joint, tw[0], bind[0]) +
                    time_joint(i, trial_.data(), vel + (i + 1) * n, joint, tw[1], bind[1]);
         };
-        double lo = 0.0, hi = 1.0;
-        double x1 = hi - GOLD, x2 = lo + GOLD;
-        double f1 = around(x1), f2 = around(x2);
-        double xb = f1 <= f2 ? x1 : x2, fb = std::min(f1, f2);
-        for (int s = 2; s < steps; ++s) {
-            if (f1 <= f2) {
-                hi = x2, x2 = x1, f2 = f1;
-                x1 = hi - GOLD * (hi - lo);
-                f1 = around(x1);
-                if (f1 < fb) fb = f1, xb = x1;
-            } else {
-                lo = x1, x1 = x2, f1 = f2;
-                x2 = lo + GOLD * (hi - lo);
-                f2 = around(x2);
-                if (f2 < fb) fb = f2, xb = x2;
-            }
+        // the search on the bound, whose best point is then timed: where the bound is the
+        // duration there (no blocked duration or position limit met), that is the result; else
+        // the search again on the durations themselves
+        auto [xb, fb] = golden(bound, steps);
+        const double fx = around(xb);
+        if (fx != fb) {
+            std::tie(xb, fb) = golden(around, steps);
         }
         if (fb < out_.time[i - 1] + out_.time[i]) {
             candidate(xb, trial_.data());
+            kept_ = false;  // the two segments' kept values are the old velocities'
             std::copy(trial_.begin(), trial_.end(), vel + i * n);
             out_.time[i - 1] = time(i - 1, vel + (i - 1) * n, vel + i * n);
             keep(i - 1);
             out_.time[i] = time(i, vel + i * n, vel + (i + 1) * n);
             keep(i);
+            kept_ = true;
         }
     }
 
@@ -329,6 +385,7 @@ private:
     ViaOutput& out_;
     std::vector<double> t_, shortest_, vhat_, trial_;
     std::vector<unsigned char> b_, binding_;  //!< binding joints of a segment; of the chosen ones
+    bool kept_ = false;                       //!< shortest_ and binding_ hold the chosen segments'
 };
 
 }  // namespace detail
