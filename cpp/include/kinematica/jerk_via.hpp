@@ -107,8 +107,10 @@ public:
           shortest_((P.k - 1) * P.n),
           vhat_(P.k * P.n),
           trial_(P.n),
+          grid_t_((P.k - 1) * P.n),
           b_(P.n),
-          binding_((P.k - 1) * P.n) {}
+          binding_((P.k - 1) * P.n),
+          grid_b_((P.k - 1) * P.n) {}
 
     void run(const ViaParams& prm) {
         const int k = P_.k, n = P_.n;
@@ -119,10 +121,14 @@ public:
             vel[j] = P_.v_start[j];
             vel[(k - 1) * n + j] = P_.v_end[j];
         }
+        // each total() keeps its segments' shortest durations and binding joints in
+        // grid_t_, grid_b_: the best's are the chosen segments'
         double best = total(vel, out_.stop);
         std::vector<double> trial_vel(vel, vel + k * n), trial_time(k - 1);
         for (int i = 0; i < k - 1; ++i) out_.time[i] = out_.stop[i];
         if (!std::isfinite(best)) return;  // the caller names the segment
+        shortest_.swap(grid_t_);
+        binding_.swap(grid_b_);
         for (const double x : VIA_GRID) {
             if (x == 0.0) continue;
             for (int i = 1; i < k - 1; ++i) {
@@ -133,9 +139,11 @@ public:
                 best = d;
                 std::copy(trial_vel.begin(), trial_vel.end(), vel);
                 std::copy(trial_time.begin(), trial_time.end(), out_.time);
+                shortest_.swap(grid_t_);
+                binding_.swap(grid_b_);
             }
         }
-        refresh();
+        kept_ = true;
         for (int s = 0; s < prm.sweeps; ++s) {
             for (int i = 1; i < k - 1; ++i) {
                 bool moving = false;
@@ -210,18 +218,6 @@ private:
         return within_qlim(i, T, vi, vj, others_kept ? joint : -1) ? T : std::numeric_limits<double>::infinity();
     }
 
-    //! The chosen velocities' segments: each joint's shortest duration and the binding
-    //! joints, kept for time_joint().
-    void refresh() {
-        const int n = P_.n;
-        kept_ = false;
-        for (int i = 0; i < P_.k - 1; ++i) {
-            time(i, out_.velocity + i * n, out_.velocity + (i + 1) * n);
-            keep(i);
-        }
-        kept_ = true;
-    }
-
     //! t_ and b_ (of segment i at the chosen velocities) kept.
     void keep(int i) {
         const int n = P_.n;
@@ -246,10 +242,15 @@ private:
         return true;
     }
 
+    //! The move's duration at the velocities vel (k, n) (no kept values used), each segment's
+    //! in times; its joints' shortest durations and binding joints in grid_t_, grid_b_.
     double total(const double* vel, double* times) {
+        const int n = P_.n;
         double sum = 0.0;
         for (int i = 0; i < P_.k - 1; ++i) {
-            times[i] = time(i, vel + i * P_.n, vel + (i + 1) * P_.n);
+            times[i] = time(i, vel + i * n, vel + (i + 1) * n);
+            std::copy(t_.begin(), t_.end(), grid_t_.begin() + i * n);
+            std::copy(b_.begin(), b_.end(), grid_b_.begin() + i * n);
             sum += times[i];
         }
         return sum;
@@ -348,13 +349,13 @@ private:
         }
         if (fb < out_.time[i - 1] + out_.time[i]) {
             candidate(xb, trial_.data());
-            kept_ = false;  // the two segments' kept values are the old velocities'
-            std::copy(trial_.begin(), trial_.end(), vel + i * n);
-            out_.time[i - 1] = time(i - 1, vel + (i - 1) * n, vel + i * n);
+            // timed before the velocities are changed: the joints whose velocity is the same
+            // keep their shortest durations (each segment's own, kept by keep())
+            out_.time[i - 1] = time(i - 1, vel + (i - 1) * n, trial_.data());
             keep(i - 1);
-            out_.time[i] = time(i, vel + i * n, vel + (i + 1) * n);
+            out_.time[i] = time(i, trial_.data(), vel + (i + 1) * n);
             keep(i);
-            kept_ = true;
+            std::copy(trial_.begin(), trial_.end(), vel + i * n);
         }
     }
 
@@ -383,8 +384,8 @@ private:
 
     const Via& P_;
     ViaOutput& out_;
-    std::vector<double> t_, shortest_, vhat_, trial_;
-    std::vector<unsigned char> b_, binding_;  //!< binding joints of a segment; of the chosen ones
+    std::vector<double> t_, shortest_, vhat_, trial_, grid_t_;
+    std::vector<unsigned char> b_, binding_, grid_b_;  //!< binding joints of a segment; of the chosen ones
     bool kept_ = false;                       //!< shortest_ and binding_ hold the chosen segments'
 };
 
