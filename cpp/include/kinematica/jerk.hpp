@@ -182,17 +182,15 @@ inline double distance_slope(const Frame& f, double base, bool upper, double r, 
 //! Newton's step falls within round-off, or else the bracket's end where the predicate
 //! holds (the side on which the caller's duration is feasible).
 inline double solve_peak(const Frame& f, double base, bool upper, double rlo, double rhi, bool nonneg,
-                         const Limits& L, double start = -1.0, bool known = false) {
+                         const Limits& L, double start = -1.0) {
     const auto g = [&](double r) { return shape_distance(branch_shape(f, base, upper, r), f.w0, f.w1, L) - f.d; };
     const auto ok = [nonneg](double gv) { return nonneg ? gv >= 0.0 : gv <= 0.0; };
-    double good = rhi, bad = rlo;
-    if (!known) {  // else the caller knows the predicate fails at rlo and holds at rhi
-        const double ghi = g(rhi), glo = g(rlo);
-        if (ok(ghi) == ok(glo)) {  // no change of side: round-off at a root on an end
-            return ok(ghi) || std::fabs(ghi) < std::fabs(glo) ? rhi : rlo;
-        }
-        if (!ok(ghi)) std::swap(good, bad);
+    const double ghi = g(rhi), glo = g(rlo);
+    if (ok(ghi) == ok(glo)) {  // no change of side: round-off at a root on an end
+        return ok(ghi) || std::fabs(ghi) < std::fabs(glo) ? rhi : rlo;
     }
+    double good = rhi, bad = rlo;
+    if (!ok(ghi)) std::swap(good, bad);
     double x = start > std::min(rlo, rhi) && start < std::max(rlo, rhi) ? start : good;
     for (int it = 0; it < MAX_ITERATIONS; ++it) {
         const double gx = g(x);
@@ -275,13 +273,13 @@ inline double peak_guess(const Frame& f, const Limits& L) {
     return trapezoid_guess(f, L);
 }
 
-//! The peak's r = √e of the upper branch for a move whose velocities both go its way
-//! (w0, w1 >= 0; m the larger, c their gap): one ramp changes the velocity by r², the other
-//! by c + r², and the distance (2m + r²)/2 · R(r²) + (2m - c + r²)/2 · R(c + r²) grows with
-//! r (every factor does). Safeguarded Newton on [0, rhi] (the distance below d at 0, at or
-//! above it at rhi), each step one square root and the slope in closed form: solve_peak's
-//! root, at a fraction of its cost.
-inline double onward_peak(const Frame& f, double m, double c, const Limits& L, double start, double rhi) {
+//! The peak's r = √e of the upper branch's shape without cruise whose distance is f.d (m
+//! the larger velocity, c the velocities' gap): one ramp changes the velocity by r², the
+//! other by c + r², and the distance is (2m + r²)/2 · R(r²) + (2m - c + r²)/2 · R(c + r²),
+//! below d at r = 0 (the direct ramp) and at or above it at rhi, and crossing d once
+//! between (it grows, or dips and then grows: convex in the duration). Safeguarded Newton
+//! (solve_peak's), each step one square root and the slope in closed form.
+inline double upper_peak(const Frame& f, double m, double c, const Limits& L, double start, double rhi) {
     const double sj = std::sqrt(L.j);
     // R(dv) and dR/dr, where d dv/dr = 2r
     const auto ramp = [&L, sj](double dv, double r, double& R, double& dR) {
@@ -341,9 +339,7 @@ inline double shortest(double D, double v0, double v1, const Limits& L) {
     } else {
         const double start = std::sqrt(detail::peak_guess(f, L));
         // the distance is below d at r = 0 (the direct ramp) and above it at the top speed
-        const double rhi = std::sqrt(L.v - m), lo = std::min(f.w0, f.w1);
-        const double r = lo >= 0.0 ? detail::onward_peak(f, m, m - lo, L, start, rhi)
-                                   : detail::solve_peak(f, m, true, 0.0, rhi, true, L, start, true);
+        const double r = detail::upper_peak(f, m, std::fabs(f.w1 - f.w0), L, start, std::sqrt(L.v - m));
         t = shape_time(detail::branch_shape(f, m, true, r), f.w0, f.w1, L);
     }
     return std::max(t, t0);
