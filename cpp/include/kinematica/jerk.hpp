@@ -221,9 +221,10 @@ inline double solve_peak(const Frame& f, double base, bool upper, double rlo, do
 namespace detail {
 
 //! The frame of one joint's move in which D is at or above the direct ramp's (a tie: the one
-//! with the velocities' sum >= 0, whose upper branch rises from the direct ramp at once).
-inline Frame frame_of(double D, double v0, double v1, const Limits& L) {
-    const double direct = 0.5 * (v0 + v1) * ramp_time(v1 - v0, L);
+//! with the velocities' sum >= 0, whose upper branch rises from the direct ramp at once); t0
+//! the direct ramp's duration R(v1 - v0).
+inline Frame frame_of(double D, double v0, double v1, double t0) {
+    const double direct = 0.5 * (v0 + v1) * t0;
     const double sg = D > direct || (D == direct && v0 + v1 >= 0.0) ? 1.0 : -1.0;
     return Frame{sg * v0, sg * v1, sg * D};
 }
@@ -278,8 +279,10 @@ inline double peak_guess(const Frame& f, const Limits& L) {
 //! other by c + r², and the distance is (2m + r²)/2 · R(r²) + (2m - c + r²)/2 · R(c + r²),
 //! below d at r = 0 (the direct ramp) and at or above it at rhi, and crossing d once
 //! between (it grows, or dips and then grows: convex in the duration). Safeguarded Newton
-//! (solve_peak's), each step one square root and the slope in closed form.
-inline double upper_peak(const Frame& f, double m, double c, const Limits& L, double start, double rhi) {
+//! (solve_peak's), each step one square root and the slope in closed form; duration: the
+//! shape's at the root, R(r²) + R(c + r²).
+inline double upper_peak(const Frame& f, double m, double c, const Limits& L, double start, double rhi,
+                         double& duration) {
     const double sj = std::sqrt(L.j);
     // R(dv) and dR/dr, where d dv/dr = 2r
     const auto ramp = [&L, sj](double dv, double r, double& R, double& dR) {
@@ -291,7 +294,7 @@ inline double upper_peak(const Frame& f, double m, double c, const Limits& L, do
             dR = 2.0 * r / L.a;
         }
     };
-    double good = rhi, bad = 0.0;
+    double good = rhi, bad = 0.0, t_good = std::numeric_limits<double>::quiet_NaN();
     double x = start > 0.0 && start < rhi ? start : rhi;
     for (int it = 0; it < MAX_ITERATIONS; ++it) {
         const double e = x * x;
@@ -301,6 +304,7 @@ inline double upper_peak(const Frame& f, double m, double c, const Limits& L, do
         const double g = 0.5 * (2.0 * m + e) * R1 + 0.5 * (2.0 * m - c + e) * R2 - f.d;
         if (g >= 0.0) {
             good = x;
+            t_good = R1 + R2;
         } else {
             bad = x;
         }
@@ -310,11 +314,21 @@ inline double upper_peak(const Frame& f, double m, double c, const Limits& L, do
         const double slope = x * (R1 + R2) + 0.5 * (2.0 * m + e) * dR1 + 0.5 * (2.0 * m - c + e) * dR2;
         const double step = g / slope;
         // converged: the next step is within round-off of x (solve_peak)
-        if (std::fabs(step) <= 4.0 * std::numeric_limits<double>::epsilon() * x) return x;
+        if (std::fabs(step) <= 4.0 * std::numeric_limits<double>::epsilon() * x) {
+            duration = R1 + R2;
+            return x;
+        }
         double next = x - step;
         if (!(next > std::min(good, bad) && next < std::max(good, bad))) next = 0.5 * (good + bad);
         x = next;
     }
+    if (std::isnan(t_good)) {
+        double R1, R2, dR;
+        ramp(good * good, good, R1, dR);
+        ramp(c + good * good, good, R2, dR);
+        t_good = R1 + R2;
+    }
+    duration = t_good;
     return good;
 }
 
@@ -327,7 +341,7 @@ inline double shortest(double D, double v0, double v1, const Limits& L) {
     using detail::shape_distance;
     using detail::shape_time;
     const double t0 = detail::ramp_time(v1 - v0, L);
-    const detail::Frame f = detail::frame_of(D, v0, v1, L);
+    const detail::Frame f = detail::frame_of(D, v0, v1, t0);
     const double m = std::max(f.w0, f.w1);
     const Shape top{L.v, 0.0};
     const double reach = shape_distance(top, f.w0, f.w1, L);
@@ -339,8 +353,7 @@ inline double shortest(double D, double v0, double v1, const Limits& L) {
     } else {
         const double start = std::sqrt(detail::peak_guess(f, L));
         // the distance is below d at r = 0 (the direct ramp) and above it at the top speed
-        const double r = detail::upper_peak(f, m, std::fabs(f.w1 - f.w0), L, start, std::sqrt(L.v - m));
-        t = shape_time(detail::branch_shape(f, m, true, r), f.w0, f.w1, L);
+        detail::upper_peak(f, m, std::fabs(f.w1 - f.w0), L, start, std::sqrt(L.v - m), t);
     }
     return std::max(t, t0);
 }
@@ -352,7 +365,7 @@ inline double shortest(double D, double v0, double v1, const Limits& L) {
 //! cover so little until it has time to turn back.
 inline double unblocked(double T, double D, double v0, double v1, const Limits& L) {
     using detail::shape_distance;
-    const detail::Frame f = detail::frame_of(D, v0, v1, L);
+    const detail::Frame f = detail::frame_of(D, v0, v1, detail::ramp_time(v1 - v0, L));
     const double mn = std::min(f.w0, f.w1);
     if (mn <= 0.0) return T;
     const Shape low = detail::extreme(T, f.w0, f.w1, false, L);
