@@ -27,8 +27,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -240,40 +238,6 @@ inline double trapezoid_guess(const Frame& f, const Limits& L) {
     return disc > 0.0 ? std::max(0.0, 0.5 * L.a * (std::sqrt(disc) - b)) : 0.0;
 }
 
-//! The cube root of x, for a Newton start: the exponent's third from the bits (a few %),
-//! then two Halley steps, to about 1e-15 (std::cbrt, exact to an ulp, costs several times
-//! more).
-inline double rough_cbrt(double x) {
-    const double a = std::fabs(x);
-    if (!(a > 0.0) || !std::isfinite(a)) return x;
-    std::uint64_t bits;
-    std::memcpy(&bits, &a, sizeof bits);
-    bits = bits / 3 + 0x2A9F7893782DA1CEull;
-    double y;
-    std::memcpy(&y, &bits, sizeof y);
-    for (int k = 0; k < 2; ++k) {  // Halley: the error cubed at each step
-        const double y3 = y * y * y;
-        y *= (y3 + 2.0 * a) / (2.0 * y3 + a);
-    }
-    return x < 0.0 ? -y : y;
-}
-
-//! Newton's start on the upper branch: the excess if both ramps were triangular and started
-//! from the same velocity m (then the distance (2m + r²)·2r/√J is cubic in r = √e: Cardano),
-//! when that excess keeps both triangular; else trapezoid_guess.
-inline double peak_guess(const Frame& f, const Limits& L) {
-    const double m = std::max(f.w0, f.w1), c = std::fabs(f.w1 - f.w0);
-    // r³ + 2m r - d√J/2 = 0, one real root when m >= 0
-    const double p = 2.0 * m, q = -0.5 * f.d * std::sqrt(L.j);
-    const double disc = 0.25 * q * q + p * p * p / 27.0;
-    if (m >= 0.0 && disc >= 0.0) {
-        const double sq = std::sqrt(disc);
-        const double r = rough_cbrt(-0.5 * q + sq) + rough_cbrt(-0.5 * q - sq);
-        if (r > 0.0 && (c + r * r) * L.j <= L.a * L.a) return r * r;
-    }
-    return trapezoid_guess(f, L);
-}
-
 //! The peak's r = √e of the upper branch's shape without cruise whose distance is f.d (m
 //! the larger velocity, c the velocities' gap): one ramp changes the velocity by r², the
 //! other by c + r², and the distance is (2m + r²)/2 · R(r²) + (2m - c + r²)/2 · R(c + r²),
@@ -351,7 +315,7 @@ inline double shortest(double D, double v0, double v1, const Limits& L) {
     } else if (f.d <= 0.5 * (f.w0 + f.w1) * t0) {  // the direct ramp itself (a tie)
         t = t0;
     } else {
-        const double start = std::sqrt(detail::peak_guess(f, L));
+        const double start = std::sqrt(detail::trapezoid_guess(f, L));
         // the distance is below d at r = 0 (the direct ramp) and above it at the top speed
         detail::upper_peak(f, m, std::fabs(f.w1 - f.w0), L, start, std::sqrt(L.v - m), t);
     }
