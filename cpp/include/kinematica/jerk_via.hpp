@@ -14,6 +14,18 @@
 //    long, so the search keeps only velocities whose segments stay inside.
 // A heuristic over one number per waypoint (and per joint), not a global optimum: its
 // duration is an upper bound of the best jerk-limited move through the same waypoints.
+//
+// What makes it cheap (the choices are those of searching on the durations themselves):
+// - A segment's duration is the smallest one its slowest joint can take that no joint's
+//   blocked durations hold (jerk.hpp), so only a *binding* joint (the slowest alone, or one
+//   that moved the duration past its blocked ones) can shorten it: the per-joint search
+//   skips every joint that binds neither segment next to its waypoint, and times the one
+//   it searches against the other joints' duration, kept once (one joint planned, not n).
+// - Each golden section runs on a lower bound of the two durations (each joint's shortest
+//   duration, no blocked durations or position limits: no profile built), kept for the
+//   joints whose velocity does not change; its best point is then timed exactly, and only
+//   where the two differ (a blocked duration or a position limit met) is the section run
+//   again on the exact durations.
 #pragma once
 
 #include <algorithm>
@@ -110,7 +122,8 @@ public:
           grid_t_((P.k - 1) * P.n),
           b_(P.n),
           binding_((P.k - 1) * P.n),
-          grid_b_((P.k - 1) * P.n) {}
+          grid_b_((P.k - 1) * P.n),
+          changed_(P.k - 1, 0) {}
 
     void run(const ViaParams& prm) {
         const int k = P_.k, n = P_.n;
@@ -154,8 +167,13 @@ public:
                 });
             }
         }
+        // a waypoint whose two segments have not changed since its last search began would
+        // be searched to the same end: skipped
+        std::vector<long> searched(k, -1);
         for (int s = 0; s < prm.joint_sweeps; ++s) {
             for (int i = 1; i < k - 1; ++i) {
+                if (searched[i] >= std::max(changed_[i - 1], changed_[i])) continue;
+                searched[i] = accepted_;
                 for (int j = 0; j < n; ++j) {
                     // an onward joint in its direction; one that turns back may pass its
                     // waypoint moving either way (overshooting it on one side)
@@ -356,6 +374,7 @@ private:
             out_.time[i] = time(i, trial_.data(), vel + (i + 1) * n);
             keep(i);
             std::copy(trial_.begin(), trial_.end(), vel + i * n);
+            changed_[i - 1] = changed_[i] = ++accepted_;
         }
     }
 
@@ -386,6 +405,8 @@ private:
     ViaOutput& out_;
     std::vector<double> t_, shortest_, vhat_, trial_, grid_t_;
     std::vector<unsigned char> b_, binding_, grid_b_;  //!< binding joints of a segment; of the chosen ones
+    std::vector<long> changed_;  //!< each segment's last change: the value of accepted_ then
+    long accepted_ = 0;          //!< velocities accepted so far
     bool kept_ = false;                       //!< shortest_ and binding_ hold the chosen segments'
 };
 
