@@ -329,6 +329,8 @@ inline double shortest(double D, double v0, double v1, const Limits& L) {
 //! cover so little until it has time to turn back.
 inline double unblocked(double T, double D, double v0, double v1, const Limits& L) {
     using detail::shape_distance;
+    // a velocity at rest or the two opposed: mn <= 0 below, whatever the frame
+    if (!((v0 > 0.0 && v1 > 0.0) || (v0 < 0.0 && v1 < 0.0))) return T;
     const detail::Frame f = detail::frame_of(D, v0, v1, detail::ramp_time(v1 - v0, L));
     const double mn = std::min(f.w0, f.w1);
     if (mn <= 0.0) return T;

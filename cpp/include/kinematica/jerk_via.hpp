@@ -21,11 +21,10 @@
 //   that moved the duration past its blocked ones) can shorten it: the per-joint search
 //   skips every joint that binds neither segment next to its waypoint, and times the one
 //   it searches against the other joints' duration, kept once (one joint planned, not n).
-// - Each golden section runs on a lower bound of the two durations (each joint's shortest
-//   duration, no blocked durations or position limits: no profile built), kept for the
-//   joints whose velocity does not change; its best point is then timed exactly, and only
-//   where the two differ (a blocked duration or a position limit met) is the section run
-//   again on the exact durations.
+// - The joints whose velocity a candidate does not change keep their shortest durations.
+// - With position limits, each golden section runs on the durations without them (no
+//   profile built) and its best point is then checked; only where that leaves qlim is the
+//   section run again with every point checked.
 #pragma once
 
 #include <algorithm>
@@ -197,7 +196,7 @@ public:
 private:
     //! Duration of segment i (waypoint i to i+1) from velocity vi to vj; inf if it leaves
     //! qlim. Each joint's shortest duration is left in t_, the binding joints in b_.
-    double time(int i, const double* vi, const double* vj) {
+    double time(int i, const double* vi, const double* vj, bool qlim = true) {
         const int n = P_.n;
         const double* p0 = P_.w + i * n;
         const double* p1 = p0 + n;
@@ -208,14 +207,14 @@ private:
                                                                   : shortest(p1[j] - p0[j], vi[j], vj[j], P_.limits[j]);
         }
         const double T = synchronised(n, p0, vi, p1, vj, P_.limits, t_.data(), -1, b_.data());
-        return within_qlim(i, T, vi, vj, -1) ? T : std::numeric_limits<double>::infinity();
+        return !qlim || within_qlim(i, T, vi, vj, -1) ? T : std::numeric_limits<double>::infinity();
     }
 
     //! time(i, vi, vj) when only `joint`'s velocities differ from the chosen ones. tw: the
     //! segment's duration without that joint; bind: whether the joint binds the chosen
     //! segment (else tw is its duration, whose other joints are known to keep qlim). The
     //! other joints' shortest durations are the chosen segment's (not computed again).
-    double time_joint(int i, const double* vi, const double* vj, int joint, double tw, bool bind) {
+    double time_joint(int i, const double* vi, const double* vj, int joint, double tw, bool bind, bool qlim) {
         const int n = P_.n;
         const double* p0 = P_.w + i * n;
         const double* p1 = p0 + n;
@@ -233,6 +232,7 @@ private:
             T = synchronised(n, p0, vi, p1, vj, P_.limits, t_.data());
             others_kept = false;
         }
+        if (!qlim) return T;
         return within_qlim(i, T, vi, vj, others_kept ? joint : -1) ? T : std::numeric_limits<double>::infinity();
     }
 
@@ -297,30 +297,6 @@ private:
         return {xb, fb};
     }
 
-    //! A lower bound of time(i, vi, vj): its joints' largest shortest duration (equal to it
-    //! unless a joint's blocked durations or qlim lengthen it).
-    double lower(int i, const double* vi, const double* vj) {
-        const int n = P_.n;
-        const double* p0 = P_.w + i * n;
-        const double* ci = out_.velocity + i * n;
-        ++out_.evaluations;
-        double T = 0.0;
-        for (int j = 0; j < n; ++j) {
-            const double t = kept_ && vi[j] == ci[j] && vj[j] == ci[n + j]
-                                 ? shortest_[i * n + j]
-                                 : shortest(p0[n + j] - p0[j], vi[j], vj[j], P_.limits[j]);
-            T = std::max(T, t);
-        }
-        return T;
-    }
-
-    //! A lower bound of time_joint(i, vi, vj, joint, tw, ...): max(tw, the joint's shortest).
-    double lower_joint(int i, const double* vi, const double* vj, int joint, double tw) {
-        const double* p0 = P_.w + i * P_.n;
-        ++out_.evaluations;
-        return std::max(tw, shortest(p0[P_.n + joint] - p0[joint], vi[joint], vj[joint], P_.limits[joint]));
-    }
-
     //! Waypoint i's velocity: the best candidate(x, v), x in [0, 1], if it shortens the move.
     //! joint >= 0: the candidates differ from the chosen velocity in that joint only, which
     //! is searched only where it binds a segment next to the waypoint (elsewhere no velocity
@@ -343,27 +319,21 @@ private:
             }
             if (!bind[0] && !bind[1]) return;
         }
-        // a lower bound of the two segments' duration: the slowest joint's shortest, or the
-        // joint's against the others' duration (no joint's blocked durations, no qlim)
-        const auto bound = [&](double x) {
+        // the two segments' duration, with qlim or without (a lower bound: no profile built)
+        const auto around = [&](double x, bool qlim) {
             candidate(x, trial_.data());
-            if (joint < 0) return lower(i - 1, vel + (i - 1) * n, trial_.data()) + lower(i, trial_.data(), vel + (i + 1) * n);
-            return lower_joint(i - 1, vel + (i - 1) * n, trial_.data(), joint, tw[0]) +
-                   lower_joint(i, trial_.data(), vel + (i + 1) * n, joint, tw[1]);
+            if (joint < 0) {
+                return time(i - 1, vel + (i - 1) * n, trial_.data(), qlim) +
+                       time(i, trial_.data(), vel + (i + 1) * n, qlim);
+            }
+            return time_joint(i - 1, vel + (i - 1) * n, trial_.data(), joint, tw[0], bind[0], qlim) +
+                   time_joint(i, trial_.data(), vel + (i + 1) * n, joint, tw[1], bind[1], qlim);
         };
-        const auto around = [&](double x) {
-            candidate(x, trial_.data());
-            if (joint < 0) return time(i - 1, vel + (i - 1) * n, trial_.data()) + time(i, trial_.data(), vel + (i + 1) * n);
-            return time_joint(i - 1, vel + (i - 1) * n, trial_.data(), joint, tw[0], bind[0]) +
-                   time_joint(i, trial_.data(), vel + (i + 1) * n, joint, tw[1], bind[1]);
-        };
-        // the search on the bound, whose best point is then timed: where the bound is the
-        // duration there (no blocked duration or position limit met), that is the result; else
-        // the search again on the durations themselves
-        auto [xb, fb] = golden(bound, steps);
-        const double fx = around(xb);
-        if (fx != fb) {
-            std::tie(xb, fb) = golden(around, steps);
+        // with qlim, the search without it, whose best point is then checked: where it keeps
+        // qlim, that is the result; else the search again with qlim (every point checked)
+        auto [xb, fb] = golden([&](double x) { return around(x, P_.qlim == nullptr); }, steps);
+        if (P_.qlim != nullptr && around(xb, true) != fb) {
+            std::tie(xb, fb) = golden([&](double x) { return around(x, true); }, steps);
         }
         if (fb < out_.time[i - 1] + out_.time[i]) {
             candidate(xb, trial_.data());
