@@ -9,7 +9,8 @@ Run with ``make bench`` (or ``.venv/bin/python benchmarks/scurve.py [--cases N]`
   checked, exact pieces, samples every 10 ms, jerk included); the core's own
   segment at zero accelerations (``jerk.hpp``) beside ruckig on the same
   states; and through waypoints: the core's search of the waypoint velocities
-  alone per segment, and the whole ``via_trajectory(W, "scurve")`` per segment.
+  alone per segment (the default search, none of each joint's own speed, and
+  two sweeps of it), and the whole ``via_trajectory(W, "scurve")`` per segment.
 * Audit on ``--cases`` random cases (10,000 by default), 1 to 7 joints:
   rest-to-rest durations against the hand-derived closed form
   (``tests/support/scurve_reference.py``; the slowest joint's time), and from
@@ -276,6 +277,7 @@ def speed() -> list[tuple[str, str, str]]:
     searches = {
         f"default {SWEEPS, GOLDEN_STEPS, JOINT_SWEEPS}": (SWEEPS, GOLDEN_STEPS, JOINT_SWEEPS),
         f"no joint sweeps {SWEEPS, GOLDEN_STEPS, 0}": (SWEEPS, GOLDEN_STEPS, 0),
+        f"two joint sweeps {SWEEPS, GOLDEN_STEPS, 2}": (SWEEPS, GOLDEN_STEPS, 2),
     }
     for k in (5, 10, 20):
         W = np.cumsum(rng.uniform(-0.6, 0.9, (k, n)), axis=0)

@@ -219,9 +219,10 @@ inline double solve_peak(const Frame& f, double base, bool upper, double rlo, do
 namespace detail {
 
 //! The frame of one joint's move in which D is at or above the direct ramp's (a tie: the one
-//! with the velocities' sum >= 0, whose upper branch rises from the direct ramp at once).
-inline Frame frame_of(double D, double v0, double v1, const Limits& L) {
-    const double direct = 0.5 * (v0 + v1) * ramp_time(v1 - v0, L);
+//! with the velocities' sum >= 0, whose upper branch rises from the direct ramp at once); t0
+//! the direct ramp's duration R(v1 - v0).
+inline Frame frame_of(double D, double v0, double v1, double t0) {
+    const double direct = 0.5 * (v0 + v1) * t0;
     const double sg = D > direct || (D == direct && v0 + v1 >= 0.0) ? 1.0 : -1.0;
     return Frame{sg * v0, sg * v1, sg * D};
 }
@@ -237,20 +238,62 @@ inline double trapezoid_guess(const Frame& f, const Limits& L) {
     return disc > 0.0 ? std::max(0.0, 0.5 * L.a * (std::sqrt(disc) - b)) : 0.0;
 }
 
-//! Newton's start on the upper branch: the excess if both ramps were triangular and started
-//! from the same velocity m (then the distance (2m + r²)·2r/√J is cubic in r = √e: Cardano),
-//! when that excess keeps both triangular; else trapezoid_guess.
-inline double peak_guess(const Frame& f, const Limits& L) {
-    const double m = std::max(f.w0, f.w1), c = std::fabs(f.w1 - f.w0);
-    // r³ + 2m r - d√J/2 = 0, one real root when m >= 0
-    const double p = 2.0 * m, q = -0.5 * f.d * std::sqrt(L.j);
-    const double disc = 0.25 * q * q + p * p * p / 27.0;
-    if (m >= 0.0 && disc >= 0.0) {
-        const double sq = std::sqrt(disc);
-        const double r = std::cbrt(-0.5 * q + sq) + std::cbrt(-0.5 * q - sq);
-        if (r > 0.0 && (c + r * r) * L.j <= L.a * L.a) return r * r;
+//! The peak's r = √e of the upper branch's shape without cruise whose distance is f.d (m
+//! the larger velocity, c the velocities' gap): one ramp changes the velocity by r², the
+//! other by c + r², and the distance is (2m + r²)/2 · R(r²) + (2m - c + r²)/2 · R(c + r²),
+//! below d at r = 0 (the direct ramp) and at or above it at rhi, and crossing d once
+//! between (it grows, or dips and then grows: convex in the duration). Safeguarded Newton
+//! (solve_peak's), each step one square root and the slope in closed form; duration: the
+//! shape's at the root, R(r²) + R(c + r²).
+inline double upper_peak(const Frame& f, double m, double c, const Limits& L, double start, double rhi,
+                         double& duration) {
+    const double sj = std::sqrt(L.j);
+    // R(dv) and dR/dr, where d dv/dr = 2r
+    const auto ramp = [&L, sj](double dv, double r, double& R, double& dR) {
+        if (dv * L.j <= L.a * L.a) {
+            R = 2.0 * std::sqrt(dv / L.j);
+            dR = R > 0.0 ? 4.0 * r / (R * L.j) : 2.0 / sj;
+        } else {
+            R = dv / L.a + L.a / L.j;
+            dR = 2.0 * r / L.a;
+        }
+    };
+    double good = rhi, bad = 0.0, t_good = std::numeric_limits<double>::quiet_NaN();
+    double x = start > 0.0 && start < rhi ? start : rhi;
+    for (int it = 0; it < MAX_ITERATIONS; ++it) {
+        const double e = x * x;
+        double R1, dR1, R2, dR2;
+        ramp(e, x, R1, dR1);
+        ramp(c + e, x, R2, dR2);
+        const double g = 0.5 * (2.0 * m + e) * R1 + 0.5 * (2.0 * m - c + e) * R2 - f.d;
+        if (g >= 0.0) {
+            good = x;
+            t_good = R1 + R2;
+        } else {
+            bad = x;
+        }
+        if (g == 0.0) break;
+        const double width = std::fabs(good - bad);
+        if (!(width > 4.0 * std::numeric_limits<double>::epsilon() * std::max(good, bad))) break;
+        const double slope = x * (R1 + R2) + 0.5 * (2.0 * m + e) * dR1 + 0.5 * (2.0 * m - c + e) * dR2;
+        const double step = g / slope;
+        // converged: the next step is within round-off of x (solve_peak)
+        if (std::fabs(step) <= 4.0 * std::numeric_limits<double>::epsilon() * x) {
+            duration = R1 + R2;
+            return x;
+        }
+        double next = x - step;
+        if (!(next > std::min(good, bad) && next < std::max(good, bad))) next = 0.5 * (good + bad);
+        x = next;
     }
-    return trapezoid_guess(f, L);
+    if (std::isnan(t_good)) {
+        double R1, R2, dR;
+        ramp(good * good, good, R1, dR);
+        ramp(c + good * good, good, R2, dR);
+        t_good = R1 + R2;
+    }
+    duration = t_good;
+    return good;
 }
 
 }  // namespace detail
@@ -262,7 +305,7 @@ inline double shortest(double D, double v0, double v1, const Limits& L) {
     using detail::shape_distance;
     using detail::shape_time;
     const double t0 = detail::ramp_time(v1 - v0, L);
-    const detail::Frame f = detail::frame_of(D, v0, v1, L);
+    const detail::Frame f = detail::frame_of(D, v0, v1, t0);
     const double m = std::max(f.w0, f.w1);
     const Shape top{L.v, 0.0};
     const double reach = shape_distance(top, f.w0, f.w1, L);
@@ -272,9 +315,9 @@ inline double shortest(double D, double v0, double v1, const Limits& L) {
     } else if (f.d <= 0.5 * (f.w0 + f.w1) * t0) {  // the direct ramp itself (a tie)
         t = t0;
     } else {
-        const double start = std::sqrt(detail::peak_guess(f, L));
-        const double r = detail::solve_peak(f, m, true, 0.0, std::sqrt(L.v - m), true, L, start);
-        t = shape_time(detail::branch_shape(f, m, true, r), f.w0, f.w1, L);
+        const double start = std::sqrt(detail::trapezoid_guess(f, L));
+        // the distance is below d at r = 0 (the direct ramp) and above it at the top speed
+        detail::upper_peak(f, m, std::fabs(f.w1 - f.w0), L, start, std::sqrt(L.v - m), t);
     }
     return std::max(t, t0);
 }
@@ -286,7 +329,9 @@ inline double shortest(double D, double v0, double v1, const Limits& L) {
 //! cover so little until it has time to turn back.
 inline double unblocked(double T, double D, double v0, double v1, const Limits& L) {
     using detail::shape_distance;
-    const detail::Frame f = detail::frame_of(D, v0, v1, L);
+    // a velocity at rest or the two opposed: mn <= 0 below, whatever the frame
+    if (!((v0 > 0.0 && v1 > 0.0) || (v0 < 0.0 && v1 < 0.0))) return T;
+    const detail::Frame f = detail::frame_of(D, v0, v1, detail::ramp_time(v1 - v0, L));
     const double mn = std::min(f.w0, f.w1);
     if (mn <= 0.0) return T;
     const Shape low = detail::extreme(T, f.w0, f.w1, false, L);
@@ -405,19 +450,37 @@ inline void profile(double T, double D, double v0, double v1, const Limits& L, P
 }
 
 //! The shortest duration every joint of a segment can take, given each joint's shortest
-//! t: the largest of them, moved past any interval of durations a joint cannot take.
+//! t: the largest of them, moved past any interval of durations a joint cannot take (the
+//! smallest T >= max t that no joint's interval holds). skip >= 0: that joint is left out.
+//! binding (n entries, or nullptr): set where leaving the joint out could shorten the result
+//! (its t alone is the largest, or it moved T); a joint that is not binding can take the
+//! result with any velocities whose t is no larger and whose interval does not hold it.
 inline double synchronised(int n, const double* p0, const double* v0, const double* p1, const double* v1,
-                           const Limits* L, const double* t) {
-    double T = 0.0;
-    for (int i = 0; i < n; ++i) T = std::max(T, t[i]);
+                           const Limits* L, const double* t, int skip = -1, unsigned char* binding = nullptr) {
+    double T = 0.0, second = 0.0;
+    int top = -1;
+    for (int i = 0; i < n; ++i) {
+        if (i == skip) continue;
+        if (top < 0 || t[i] > T) {
+            second = top < 0 ? 0.0 : T;
+            T = t[i];
+            top = i;
+        } else {
+            second = std::max(second, t[i]);
+        }
+    }
+    if (binding != nullptr) {
+        for (int i = 0; i < n; ++i) binding[i] = i == top && T > second ? 1 : 0;
+    }
     for (int pass = 0; pass <= n; ++pass) {
         bool moved = false;
         for (int i = 0; i < n; ++i) {
-            if (!(T > t[i])) continue;
+            if (i == skip || !(T > t[i])) continue;
             const double later = unblocked(T, p1[i] - p0[i], v0[i], v1[i], L[i]);
             if (later > T) {
                 T = later;
                 moved = true;
+                if (binding != nullptr) binding[i] = 1;
             }
         }
         if (!moved) break;

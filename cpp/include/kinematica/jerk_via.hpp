@@ -14,11 +14,24 @@
 //    long, so the search keeps only velocities whose segments stay inside.
 // A heuristic over one number per waypoint (and per joint), not a global optimum: its
 // duration is an upper bound of the best jerk-limited move through the same waypoints.
+//
+// What makes it cheap (the choices are those of searching on the durations themselves):
+// - A segment's duration is the smallest one its slowest joint can take that no joint's
+//   blocked durations hold (jerk.hpp), so only a *binding* joint (the slowest alone, or one
+//   that moved the duration past its blocked ones) can shorten it: the per-joint search
+//   skips every joint that binds neither segment next to its waypoint, and times the one
+//   it searches against the other joints' duration, kept once (one joint planned, not n).
+// - The joints whose velocity a candidate does not change keep their shortest durations.
+// - With position limits, each golden section runs on the durations without them (no
+//   profile built) and its best point is then checked; only where that leaves qlim is the
+//   section run again with every point checked.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "kinematica/jerk.hpp"
@@ -99,7 +112,17 @@ namespace detail {
 class ViaSearch {
 public:
     ViaSearch(const Via& P, ViaOutput& out)
-        : P_(P), out_(out), t_(P.n), shortest_((P.k - 1) * P.n), vhat_(P.k * P.n), trial_(P.n) {}
+        : P_(P),
+          out_(out),
+          t_(P.n),
+          shortest_((P.k - 1) * P.n),
+          vhat_(P.k * P.n),
+          trial_(P.n),
+          grid_t_((P.k - 1) * P.n),
+          b_(P.n),
+          binding_((P.k - 1) * P.n),
+          grid_b_((P.k - 1) * P.n),
+          changed_(P.k - 1, 0) {}
 
     void run(const ViaParams& prm) {
         const int k = P_.k, n = P_.n;
@@ -110,10 +133,14 @@ public:
             vel[j] = P_.v_start[j];
             vel[(k - 1) * n + j] = P_.v_end[j];
         }
+        // each total() keeps its segments' shortest durations and binding joints in
+        // grid_t_, grid_b_: the best's are the chosen segments'
         double best = total(vel, out_.stop);
         std::vector<double> trial_vel(vel, vel + k * n), trial_time(k - 1);
         for (int i = 0; i < k - 1; ++i) out_.time[i] = out_.stop[i];
         if (!std::isfinite(best)) return;  // the caller names the segment
+        shortest_.swap(grid_t_);
+        binding_.swap(grid_b_);
         for (const double x : VIA_GRID) {
             if (x == 0.0) continue;
             for (int i = 1; i < k - 1; ++i) {
@@ -124,9 +151,11 @@ public:
                 best = d;
                 std::copy(trial_vel.begin(), trial_vel.end(), vel);
                 std::copy(trial_time.begin(), trial_time.end(), out_.time);
+                shortest_.swap(grid_t_);
+                binding_.swap(grid_b_);
             }
         }
-        refresh();
+        kept_ = true;
         for (int s = 0; s < prm.sweeps; ++s) {
             for (int i = 1; i < k - 1; ++i) {
                 bool moving = false;
@@ -137,8 +166,13 @@ public:
                 });
             }
         }
+        // a waypoint whose two segments have not changed since its last search began would
+        // be searched to the same end: skipped
+        std::vector<long> searched(k, -1);
         for (int s = 0; s < prm.joint_sweeps; ++s) {
             for (int i = 1; i < k - 1; ++i) {
+                if (searched[i] >= std::max(changed_[i - 1], changed_[i])) continue;
+                searched[i] = accepted_;
                 for (int j = 0; j < n; ++j) {
                     // an onward joint in its direction; one that turns back may pass its
                     // waypoint moving either way (overshooting it on one side)
@@ -161,45 +195,63 @@ public:
 
 private:
     //! Duration of segment i (waypoint i to i+1) from velocity vi to vj; inf if it leaves
-    //! qlim. joint >= 0: only that joint's velocity differs from the chosen ones, whose
-    //! joints' shortest durations are kept (the others' are not computed again).
-    double time(int i, const double* vi, const double* vj, int joint = -1) {
+    //! qlim. Each joint's shortest duration is left in t_, the binding joints in b_.
+    double time(int i, const double* vi, const double* vj, bool qlim = true) {
         const int n = P_.n;
         const double* p0 = P_.w + i * n;
         const double* p1 = p0 + n;
         ++out_.evaluations;
+        const double* ci = out_.velocity + i * n;  // the chosen velocities, whose shortest are kept
+        for (int j = 0; j < n; ++j) {
+            t_[j] = kept_ && vi[j] == ci[j] && vj[j] == ci[n + j] ? shortest_[i * n + j]
+                                                                  : shortest(p1[j] - p0[j], vi[j], vj[j], P_.limits[j]);
+        }
+        const double T = synchronised(n, p0, vi, p1, vj, P_.limits, t_.data(), -1, b_.data());
+        return !qlim || within_qlim(i, T, vi, vj, -1) ? T : std::numeric_limits<double>::infinity();
+    }
+
+    //! time(i, vi, vj) when only `joint`'s velocities differ from the chosen ones. tw: the
+    //! segment's duration without that joint; bind: whether the joint binds the chosen
+    //! segment (else tw is its duration, whose other joints are known to keep qlim). The
+    //! other joints' shortest durations are the chosen segment's (not computed again).
+    double time_joint(int i, const double* vi, const double* vj, int joint, double tw, bool bind, bool qlim) {
+        const int n = P_.n;
+        const double* p0 = P_.w + i * n;
+        const double* p1 = p0 + n;
+        ++out_.evaluations;
+        const double d = p1[joint] - p0[joint];
+        const Limits& L = P_.limits[joint];
+        const double tj = shortest(d, vi[joint], vj[joint], L);
         double T;
-        if (joint < 0) {
-            T = segment_time(n, p0, vi, p1, vj, P_.limits, t_.data());
+        bool others_kept = !bind;
+        if (tj <= tw && unblocked(tw, d, vi[joint], vj[joint], L) == tw) {
+            T = tw;  // the other joints' duration, which this joint can take
         } else {
             std::copy(shortest_.begin() + i * n, shortest_.begin() + (i + 1) * n, t_.begin());
-            t_[joint] = shortest(p1[joint] - p0[joint], vi[joint], vj[joint], P_.limits[joint]);
+            t_[joint] = tj;
             T = synchronised(n, p0, vi, p1, vj, P_.limits, t_.data());
+            others_kept = false;
         }
-        return within_qlim(i, T, vi, vj) ? T : std::numeric_limits<double>::infinity();
+        if (!qlim) return T;
+        return within_qlim(i, T, vi, vj, others_kept ? joint : -1) ? T : std::numeric_limits<double>::infinity();
     }
 
-    //! The chosen velocities' segments: each joint's shortest duration, kept for time().
-    void refresh() {
+    //! t_ and b_ (of segment i at the chosen velocities) kept.
+    void keep(int i) {
         const int n = P_.n;
-        const double* vel = out_.velocity;
-        for (int i = 0; i < P_.k - 1; ++i) {
-            const double* p0 = P_.w + i * n;
-            for (int j = 0; j < n; ++j) {
-                shortest_[i * n + j] =
-                    shortest(p0[n + j] - p0[j], vel[i * n + j], vel[(i + 1) * n + j], P_.limits[j]);
-            }
-        }
+        std::copy(t_.begin(), t_.end(), shortest_.begin() + i * n);
+        std::copy(b_.begin(), b_.end(), binding_.begin() + i * n);
     }
 
-    //! Whether every joint of segment i, of duration T, stays within qlim.
-    bool within_qlim(int i, double T, const double* vi, const double* vj) const {
+    //! Whether every joint of segment i (only `joint` if >= 0), of duration T, stays within
+    //! qlim.
+    bool within_qlim(int i, double T, const double* vi, const double* vj, int joint) const {
         const int n = P_.n;
         const double* p0 = P_.w + i * n;
         const double* p1 = p0 + n;
         if (P_.qlim == nullptr || !std::isfinite(T)) return true;
         Profile prof;
-        for (int j = 0; j < n; ++j) {
+        for (int j = joint < 0 ? 0 : joint; j < (joint < 0 ? n : joint + 1); ++j) {
             profile(T, p1[j] - p0[j], vi[j], vj[j], P_.limits[j], prof);
             double lo, hi;
             extremes(p0[j], vi[j], prof, lo, hi);
@@ -208,50 +260,91 @@ private:
         return true;
     }
 
+    //! The move's duration at the velocities vel (k, n) (no kept values used), each segment's
+    //! in times; its joints' shortest durations and binding joints in grid_t_, grid_b_.
     double total(const double* vel, double* times) {
+        const int n = P_.n;
         double sum = 0.0;
         for (int i = 0; i < P_.k - 1; ++i) {
-            times[i] = time(i, vel + i * P_.n, vel + (i + 1) * P_.n);
+            times[i] = time(i, vel + i * n, vel + (i + 1) * n);
+            std::copy(t_.begin(), t_.end(), grid_t_.begin() + i * n);
+            std::copy(b_.begin(), b_.end(), grid_b_.begin() + i * n);
             sum += times[i];
         }
         return sum;
     }
 
-    //! Waypoint i's velocity: the best candidate(x, v), x in [0, 1], if it shortens the move.
-    //! joint >= 0: the candidates differ from the chosen velocity in that joint only.
-    template <class Candidate>
-    void improve(int i, int steps, int joint, const Candidate& candidate) {
-        const int n = P_.n;
-        double* vel = out_.velocity;
-        const auto around = [&](double x) {
-            candidate(x, trial_.data());
-            return time(i - 1, vel + (i - 1) * n, trial_.data(), joint) +
-                   time(i, trial_.data(), vel + (i + 1) * n, joint);
-        };
+    //! The best of `steps` evaluations of f on [0, 1] by golden section: (x, f(x)).
+    template <class F>
+    static std::pair<double, double> golden(const F& f, int steps) {
         double lo = 0.0, hi = 1.0;
         double x1 = hi - GOLD, x2 = lo + GOLD;
-        double f1 = around(x1), f2 = around(x2);
+        double f1 = f(x1), f2 = f(x2);
         double xb = f1 <= f2 ? x1 : x2, fb = std::min(f1, f2);
         for (int s = 2; s < steps; ++s) {
             if (f1 <= f2) {
                 hi = x2, x2 = x1, f2 = f1;
                 x1 = hi - GOLD * (hi - lo);
-                f1 = around(x1);
+                f1 = f(x1);
                 if (f1 < fb) fb = f1, xb = x1;
             } else {
                 lo = x1, x1 = x2, f1 = f2;
                 x2 = lo + GOLD * (hi - lo);
-                f2 = around(x2);
+                f2 = f(x2);
                 if (f2 < fb) fb = f2, xb = x2;
             }
         }
+        return {xb, fb};
+    }
+
+    //! Waypoint i's velocity: the best candidate(x, v), x in [0, 1], if it shortens the move.
+    //! joint >= 0: the candidates differ from the chosen velocity in that joint only, which
+    //! is searched only where it binds a segment next to the waypoint (elsewhere no velocity
+    //! of it shortens them).
+    template <class Candidate>
+    void improve(int i, int steps, int joint, const Candidate& candidate) {
+        const int n = P_.n;
+        double* vel = out_.velocity;
+        double tw[2] = {out_.time[i - 1], out_.time[i]};
+        bool bind[2] = {false, false};
+        if (joint >= 0) {
+            for (int s = 0; s < 2; ++s) {
+                const int seg = i - 1 + s;
+                bind[s] = binding_[seg * n + joint] != 0;
+                if (bind[s]) {
+                    const double* p0 = P_.w + seg * n;
+                    tw[s] = synchronised(n, p0, vel + seg * n, p0 + n, vel + (seg + 1) * n, P_.limits,
+                                         shortest_.data() + seg * n, joint);
+                }
+            }
+            if (!bind[0] && !bind[1]) return;
+        }
+        // the two segments' duration, with qlim or without (a lower bound: no profile built)
+        const auto around = [&](double x, bool qlim) {
+            candidate(x, trial_.data());
+            if (joint < 0) {
+                return time(i - 1, vel + (i - 1) * n, trial_.data(), qlim) +
+                       time(i, trial_.data(), vel + (i + 1) * n, qlim);
+            }
+            return time_joint(i - 1, vel + (i - 1) * n, trial_.data(), joint, tw[0], bind[0], qlim) +
+                   time_joint(i, trial_.data(), vel + (i + 1) * n, joint, tw[1], bind[1], qlim);
+        };
+        // with qlim, the search without it, whose best point is then checked: where it keeps
+        // qlim, that is the result; else the search again with qlim (every point checked)
+        auto [xb, fb] = golden([&](double x) { return around(x, P_.qlim == nullptr); }, steps);
+        if (P_.qlim != nullptr && around(xb, true) != fb) {
+            std::tie(xb, fb) = golden([&](double x) { return around(x, true); }, steps);
+        }
         if (fb < out_.time[i - 1] + out_.time[i]) {
             candidate(xb, trial_.data());
+            // timed before the velocities are changed: the joints whose velocity is the same
+            // keep their shortest durations (each segment's own, kept by keep())
+            out_.time[i - 1] = time(i - 1, vel + (i - 1) * n, trial_.data());
+            keep(i - 1);
+            out_.time[i] = time(i, trial_.data(), vel + (i + 1) * n);
+            keep(i);
             std::copy(trial_.begin(), trial_.end(), vel + i * n);
-            out_.time[i - 1] = time(i - 1, vel + (i - 1) * n, vel + i * n);
-            std::copy(t_.begin(), t_.end(), shortest_.begin() + (i - 1) * n);
-            out_.time[i] = time(i, vel + i * n, vel + (i + 1) * n);
-            std::copy(t_.begin(), t_.end(), shortest_.begin() + i * n);
+            changed_[i - 1] = changed_[i] = ++accepted_;
         }
     }
 
@@ -280,7 +373,11 @@ private:
 
     const Via& P_;
     ViaOutput& out_;
-    std::vector<double> t_, shortest_, vhat_, trial_;
+    std::vector<double> t_, shortest_, vhat_, trial_, grid_t_;
+    std::vector<unsigned char> b_, binding_, grid_b_;  //!< binding joints of a segment; of the chosen ones
+    std::vector<long> changed_;  //!< each segment's last change: the value of accepted_ then
+    long accepted_ = 0;          //!< velocities accepted so far
+    bool kept_ = false;                       //!< shortest_ and binding_ hold the chosen segments'
 };
 
 }  // namespace detail

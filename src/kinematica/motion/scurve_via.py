@@ -29,7 +29,13 @@ move short:
    for :data:`SWEEPS` sweeps; then each joint's own speed at each waypoint, for
    :data:`JOINT_SWEEPS` sweeps. A value is only accepted when it shortens the
    move, so the result is never longer than stopping at each waypoint; ``margin``
-   on the result says by how much it is shorter.
+   on the result says by how much it is shorter. A joint's own speed is searched
+   only where the joint binds one of the waypoint's two segments (the slowest
+   joint alone, or one whose blocked durations moved the segment's), since no
+   other joint's speed can shorten them, and it is timed against the other
+   joints' duration without planning them again; a candidate keeps the durations
+   of the joints it does not change. About 60 segments are planned for each
+   segment of the move.
 3. With position limits (``qlim``) a segment whose exact extremes (which include
    any overshoot of a waypoint) leave them counts as infinitely long, so the
    search only keeps waypoint velocities whose segments stay inside.

@@ -1,0 +1,101 @@
+"""The waypoint search of jerk-limited moves against a brute-force search and the limits.
+
+The search (``cpp/include/kinematica/jerk_via.hpp``) times its candidates on a lower
+bound of the segments' durations and searches only the joints that bind a segment; these
+tests catch a search that gets cheaper by getting worse: on small cases its duration is
+compared with the best of a dense grid of waypoint velocities (every combination, each
+segment planned by the core's own segment, ``jerk_segments``), its reported durations
+with the segments planned again at the velocities it chose, and its moves with every
+limit and ``qlim`` on a 1 ms resampling and at their exact extremes.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from support.scurve_reference import random_limits
+
+from kinematica.core.jerk import jerk_segments, jerk_via
+from kinematica.motion import JerkTrajectory, via_trajectory
+from kinematica.motion.scurve_via import GOLDEN_STEPS, JOINT_SWEEPS, POSITION_ATOL, SWEEPS
+from kinematica.motion.trajectory import LIMIT_RTOL
+
+#: How far (relative) the search's duration may be above the best of the brute-force grid
+#: on the small cases: a heuristic over one speed fraction per waypoint and then per joint,
+#: each golden section ending within 0.618^6 (about 6 %) of it; measured up to 4.2 % with
+#: the default search, 1.5 % with two joint sweeps.
+SEARCH_RTOL = 0.05
+
+
+def _grid_best(w: np.ndarray, lim: tuple[np.ndarray, ...], m: int) -> float:
+    """The shortest move over every combination of m velocities per inner waypoint and joint."""
+    k, n = w.shape
+    vmax = lim[0]
+    axes = [np.linspace(-vmax[j], vmax[j], m) for _ in range(k - 2) for j in range(n)]
+    mesh = np.stack(np.meshgrid(*axes, indexing="ij"), -1).reshape(-1, (k - 2) * n)
+    c = mesh.shape[0]
+    vel = np.zeros((c, k, n))
+    vel[:, 1:-1] = mesh.reshape(c, k - 2, n)
+    p0 = np.broadcast_to(w[:-1], (c, k - 1, n)).reshape(-1, n)
+    p1 = np.broadcast_to(w[1:], (c, k - 1, n)).reshape(-1, n)
+    seg = jerk_segments(p0, vel[:, :-1].reshape(-1, n), p1, vel[:, 1:].reshape(-1, n), lim)
+    return float(seg.duration.reshape(c, k - 1).sum(axis=1).min())
+
+
+def _cases() -> list[tuple[int, int, int]]:
+    """(joints, waypoints, grid points per velocity): about 10^4 combinations each."""
+    return [(1, 3, 4001), (2, 3, 101), (1, 4, 101), (3, 3, 21)]
+
+
+def _search_gaps(seed: int) -> tuple[list[float], list[float]]:
+    """The search's and a stop at each waypoint's excess over the grid's best, per case."""
+    rng = np.random.default_rng(seed)
+    search, stop = [], []
+    for n, k, m in _cases() * 3:
+        lim = random_limits(rng, n)
+        w = np.cumsum(rng.uniform(-0.5, 1.0, (k, n)), axis=0)
+        z = np.zeros(n)
+        choice = jerk_via(w, z, z, lim, None, 0.0, (SWEEPS, GOLDEN_STEPS, JOINT_SWEEPS))
+        # the reported durations are those of the segments at the chosen velocities
+        v = choice.velocity
+        again = jerk_segments(w[:-1], v[:-1], w[1:], v[1:], lim).duration
+        assert np.array_equal(again, choice.time)  # the same planner, the same inputs
+        best = _grid_best(w, lim, m)
+        search.append(float(choice.time.sum()) / best - 1.0)
+        stop.append(float(choice.stop.sum()) / best - 1.0)
+    return search, stop
+
+
+def test_the_search_is_within_search_rtol_of_a_brute_force_grid() -> None:
+    search, stop = _search_gaps(36)
+    assert max(search) <= SEARCH_RTOL
+    # the boundary: the search is not exact (a tolerance 1000x smaller fails), and stopping
+    # at every waypoint is beyond the tolerance (one 1000x larger would let it pass)
+    assert max(search) > SEARCH_RTOL / 1000
+    assert max(stop) > 5 * SEARCH_RTOL
+
+
+def test_random_moves_hold_every_limit_and_qlim_at_their_extremes() -> None:
+    rng = np.random.default_rng(37)
+    held_back = 0  # moves that leave qlim unless it is given
+    for _ in range(6):
+        n, k = int(rng.choice([6, 7])), int(rng.integers(5, 12))
+        vmax, amax, jmax = random_limits(rng, n)
+        w = np.cumsum(rng.uniform(-0.5, 1.0, (k, n)), axis=0)
+        w -= 0.5 * (w.max(axis=0) + w.min(axis=0))  # centred: qlim symmetric about 0
+        edge = np.abs(w).max(axis=0) + rng.uniform(0.0, 0.05, n)
+        qlim = np.stack([-edge, edge], axis=1)
+        lim = {"vmax": vmax, "amax": amax, "jmax": jmax, "dt": 0.02}
+        free = via_trajectory(w, "scurve", **lim)
+        held_back += bool(np.any(free.pieces.peak(0) > edge + POSITION_ATOL))
+        traj = via_trajectory(w, "scurve", **lim, qlim=qlim)
+        assert isinstance(traj, JerkTrajectory) and traj.waypoint_times is not None
+        p = traj.pieces
+        assert np.abs(p(traj.waypoint_times) - w).max() <= 1e-10
+        # position within qlim at the exact extremes of every piece
+        assert np.all(p.peak(0) <= edge + POSITION_ATOL)
+        t = np.union1d(np.arange(0.0, traj.duration, 1e-3), [traj.duration])
+        for order, lim in ((1, vmax), (2, amax), (3, jmax)):
+            assert np.all(np.abs(p(t, order)) <= lim * (1.0 + LIMIT_RTOL))
+            assert np.all(p.peak(order) <= lim * (1.0 + LIMIT_RTOL))
+        assert traj.margin is not None and traj.margin >= 0.0
+    assert held_back >= 2
