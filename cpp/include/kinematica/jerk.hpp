@@ -12,8 +12,12 @@
 // displacements reachable in time T form an interval [Dmin(T), Dmax(T)]. Dmax(T) is reached
 // by ramping up to the highest velocity vp the time allows, cruising there (only at vp = V)
 // and ramping down to v1: vp(T) solves R(vp - v0) + R(vp - v1) = T, in closed form. Its
-// derivative dDmax/dT is vp(T) (one more instant at the peak), which grows with T, so Dmax
-// is convex in T; Dmin, the mirror image, is concave. Hence, for a displacement D:
+// derivative dDmax/dT grows with T, so Dmax is convex in T; Dmin, the mirror image, is
+// concave. (The derivative is not vp(T) alone: a longer T also lengthens the ramps. From
+// rest to rest it is 1.5·vp while the ramps stay below the acceleration limit A and
+// vp + A²/2J once they reach it, equal at vp = A²/J; for other end velocities the growth
+// was checked numerically, and the durations agree with ruckig's on 10,000 random cases.)
+// Hence, for a displacement D:
 //   - the shortest duration is the first T >= R(v1 - v0) with Dmin(T) <= D <= Dmax(T): a
 //     root of Dmax(T) = D (D above the direct ramp's displacement) or of Dmin(T) = D;
 //   - the durations a joint can take are [t_min, ∞) less at most one open interval, where
