@@ -39,6 +39,7 @@ __all__ = [
     "check_options",
     "closed_form",
     "plan_of",
+    "rank_five_of",
     "structure_of",
     "why_numeric",
 ]
@@ -218,7 +219,7 @@ def _plan(chain: Chain, kind: TargetKind, request: IKRequest, parameter: str | N
         coaxial = coaxial_pair(chain)
     five = None
     if method != "numeric" and not masked and kind == "pose" and parameter is None:
-        five = _rank_five(chain, closed)
+        five = rank_five_of(chain, closed)
     if method == "analytic" and closed is None and coaxial is None and five is None:
         why = "a mask was given" if masked else f"structure: {structure_of(chain)[1]}"
         at_angle = not masked and closed_form(chain, kind, "arm_angle") is not None
@@ -251,7 +252,7 @@ def _plan(chain: Chain, kind: TargetKind, request: IKRequest, parameter: str | N
     )
 
 
-def _rank_five(chain: Chain, closed: ClosedForm | None) -> Any:
+def rank_five_of(chain: Chain, closed: ClosedForm | None) -> Any:
     """A 6R arm's rank-5 structure (exact or near) where no family's closed form answers it.
 
     None for the others: an arm with a closed form that is not the general 6R's last
