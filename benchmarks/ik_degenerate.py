@@ -10,6 +10,14 @@ a fold. It prints, per family and target kind, the targets and every false answe
 (a solution whose FK misses, "ok" without the generating configuration where the arm
 is not singular there, "unreachable", "not_found", "out_of_limits"), then the first
 failures with enough to reproduce them. No assertions.
+
+``--tables N`` runs instead the audit of random 6R DH tables
+(``tests/support/random_tables.py``: twists among 0, ±π/2, π and random, lengths 0 or
+random; N arms without a coaxial pair, ``--targets`` FK poses each): per class of arm
+(rank 5 everywhere, those arms perturbed by 1e-12..1e-3 split at σ6/σ1 = 1e-5, the
+others) the answers of ``method="auto"`` by the numeric search, the FK misses, the
+generating configurations missed, the continua answered ``singular`` and the false
+statuses.
 """
 
 from __future__ import annotations
@@ -24,17 +32,34 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
 from support.ik_audit import COUNTS, run
+from support.random_tables import COUNTS as TABLE_COUNTS
+from support.random_tables import run as run_tables
+
+
+def tables(count: int, targets: int, seed: int, show: bool) -> None:
+    """Print the random-table audit's counts per class of arm (with ``show``, its failures)."""
+    t0 = time.perf_counter()
+    counts = run_tables(count, targets, seed, show=show)
+    print(f"{'arms':<12} " + " ".join(f"{c:>12}" for c in TABLE_COUNTS) + "  ms/pose")
+    for key, c in sorted(counts.items()):
+        per = 1e-3 * c["us"] / max(c["targets"], 1)
+        print(f"{key:<12} " + " ".join(f"{c[k]:>12}" for k in TABLE_COUNTS) + f"  {per:7.2f}")
+    print(f"{time.perf_counter() - t0:.0f} s")
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--arms", type=int, default=160, help="arms per family and kind")
-    parser.add_argument("--targets", type=int, default=35, help="targets per arm")
+    parser.add_argument("--targets", type=int, default=None, help="targets per arm (35; 3)")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--show", type=int, default=10, help="failures to print")
+    parser.add_argument("--tables", type=int, default=0, help="random DH tables to audit")
     args = parser.parse_args()
+    if args.tables:
+        tables(args.tables, args.targets or 3, args.seed, args.show > 0)
+        return
     t0 = time.perf_counter()
-    counts, cases = run(args.arms, args.targets, args.seed, keep=args.show)
+    counts, cases = run(args.arms, args.targets or 35, args.seed, keep=args.show)
     names = COUNTS
     print(f"{'family':<24} {'kind':<9} " + " ".join(f"{c:>15}" for c in names))
     total = dict.fromkeys(names, 0)

@@ -54,7 +54,7 @@ def pose_choice(chain: Chain, names: Sequence[str] | None = None) -> SolverChoic
         chain: The arm.
         names: Its joints' display names (``q1..qn`` when None).
     """
-    from kinematica.ik.solvers import closed_form
+    from kinematica.ik.solvers import closed_form, rank_five_of
 
     if chain.dof == _POSE_DOF + 1:
         from kinematica.ik.arm_angle import ArmAngleParameter
@@ -70,6 +70,12 @@ def pose_choice(chain: Chain, names: Sequence[str] | None = None) -> SolverChoic
         if joint is not None and held is not None:
             return SolverChoice(held.method, joint.name, complete=_complete(chain, held))
     closed = closed_form(chain, "pose")
+    five = rank_five_of(chain, closed)
+    if five is not None:  # a continuum at every pose it reaches, or near one
+        from kinematica.ik.continuum_6r import METHOD as CONTINUUM
+        from kinematica.ik.near_rank_five import METHOD as NEAR
+
+        return SolverChoice(CONTINUUM if five.exact else NEAR, complete=False)
     if closed is not None:
         return SolverChoice(closed.method, complete=_complete(chain, closed))
     from kinematica.ik.coaxial import METHOD

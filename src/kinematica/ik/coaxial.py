@@ -61,7 +61,7 @@ import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.ik.coaxial_pair import CoaxialPair, coaxial_pair
 from kinematica.ik.result import IKBatchResult, IKResult
-from kinematica.ik.stack import pose_residuals
+from kinematica.ik.stack import pose_residuals, solve_each
 from kinematica.ik.status import IKStatus
 from kinematica.ik.structure import features
 
@@ -78,9 +78,11 @@ __all__ = [
     "aimed_line",
     "coaxial_answer",
     "coaxial_pair",
+    "frame_on",
     "solve_coaxial",
     "turn_axis",
     "virtual_arm",
+    "with_virtual_joint",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -131,7 +133,7 @@ def virtual_arm(chain: Chain, pair: CoaxialPair, line: int = 0) -> Chain:
     size = features(chain).size
     arms = list(made)
     for direction, point in VIRTUAL_LINES[len(made) : line + 1]:
-        W = _frame_on(np.array(direction), size * np.array(point))
+        W = frame_on(np.array(direction), size * np.array(point))
         arms.append(_with_virtual(chain, pair, W))
     _VIRTUAL[chain] = tuple(arms)
     return arms[line]
@@ -145,17 +147,33 @@ def _with_virtual(chain: Chain, pair: CoaxialPair, W: FloatArray) -> Chain:
     the virtual joint has none.
     """
     locked = _held(chain, pair)
+    limits = np.array(locked.own_limits, dtype=np.float64)
+    limits[pair.first] = _sum_limits(chain.own_limits, pair)
+    return with_virtual_joint(locked, W, limits)
+
+
+def with_virtual_joint(locked: Chain, W: FloatArray, limits: FloatArray) -> Chain:
+    """A 5R arm with a revolute joint added at its tool, about the z axis of ``W (4, 4)``.
+
+    Args:
+        locked: The 5R arm (revolute joints).
+        W: ``(4, 4)`` the frame (in the tool frame) whose z axis the virtual joint turns
+            about.
+        limits: ``(5, 2)`` the 5R arm's joints' limits (rad); the virtual joint has none.
+
+    Returns:
+        The 6R arm whose FK at ``(q, θ)`` is the 5R arm's at q times the turn by θ about
+        that line, at the tool.
+    """
     F = locked.fixed_parts
     between = np.concatenate([F[:4], (F[4] @ locked.tool @ W)[None]])
-    limits = np.vstack([locked.own_limits, [-math.inf, math.inf]])
-    limits[pair.first] = _sum_limits(chain.own_limits, pair)
     return Chain.from_transforms(
         locked.start,
         between,
         np.asarray(np.linalg.inv(W), dtype=np.float64),
         np.broadcast_to(np.eye(4), (6, 4, 4)).copy(),
         np.zeros(6, dtype=bool),
-        limits,
+        np.vstack([limits, [-math.inf, math.inf]]),
         np.eye(4),
     )
 
@@ -231,10 +249,10 @@ def turn_axis(E: FloatArray) -> FloatArray | None:
         return None
     # the axis' point: (I - R) c = t in the plane normal to z (least squares)
     c = np.linalg.lstsq(np.eye(3) - R, t - (z @ t) * z, rcond=None)[0]
-    return _frame_on(z, c - (z @ c) * z)
+    return frame_on(z, c - (z @ c) * z)
 
 
-def _frame_on(z: FloatArray, origin: FloatArray) -> FloatArray:
+def frame_on(z: FloatArray, origin: FloatArray) -> FloatArray:
     """``(4, 4)`` a frame whose z axis is the unit ``z`` and whose origin is ``origin``."""
     x = np.cross(z, (1.0, 0.0, 0.0) if abs(z[0]) < 0.9 else (0.0, 1.0, 0.0))
     x /= np.linalg.norm(x)
@@ -452,30 +470,4 @@ def solve_coaxial(
     chain: Chain, pair: CoaxialPair, targets: Targets, options: IKOptions, solve: Solve
 ) -> IKResult | IKBatchResult:
     """:func:`coaxial_answer` of each pose target (one, or a batch of any shape)."""
-    from kinematica.ik.stack import stack_results
-
-    if targets.single:
-        one = coaxial_answer(chain, pair, targets.poses[0], options, solve)
-        notes = targets.notes.get(0, ()) if targets.notes else ()
-        return dataclasses.replace(one, notes=(*notes, *one.notes)) if notes else one
-    q0 = options.q0
-    rows = (
-        None
-        if q0 is None
-        else np.broadcast_to(np.asarray(q0, dtype=float), (*targets.shape, 6)).reshape(-1, 6)
-    )
-    results: dict[int, IKResult] = {}
-    for i in range(targets.poses.shape[0]):
-        if i in targets.invalid:
-            continue
-        opts = options if rows is None else dataclasses.replace(options, q0=rows[i])
-        results[i] = coaxial_answer(chain, pair, targets.poses[i], opts, solve)
-    out = stack_results(results, targets, 6, None, None)
-    if targets.notes:
-        where = {tuple(int(v) for v in np.unravel_index(i, targets.shape)): n
-                 for i, n in targets.notes.items()}  # fmt: skip
-        merged = dict(out.notes)
-        for idx, n in where.items():
-            merged[idx] = (*n, *merged.get(idx, ()))
-        out = dataclasses.replace(out, notes=merged)
-    return out
+    return solve_each(lambda T, opts: coaxial_answer(chain, pair, T, opts, solve), targets, options)

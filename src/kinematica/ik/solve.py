@@ -144,7 +144,7 @@ def solve_ik(
         if plan is None:
             plan = plan_of(chain, kind, request, None if angle is None else "arm_angle")
         solver = plan.solver if angle is None else _at(chain, plan, float(angle))  # type: ignore[arg-type]
-        if plan.coaxial is None:
+        if plan.coaxial is None and plan.rank_five is None:
             try:
                 out = solver.ik_rigid(chain.core, pose, plan.options, ROUNDOFF_TOL, plan.labels)
             except ValueError:  # a view the core does not read (not C-contiguous): parsed
@@ -163,6 +163,13 @@ def solve_ik(
         from kinematica.ik.coaxial import solve_coaxial  # a 6R with a coaxial pair
 
         return solve_coaxial(chain, plan.coaxial, targets, request, solve_ik)
+    if plan.rank_five is not None and values is None:  # a 6R arm of rank 5, or near one
+        from kinematica.ik.continuum_6r import solve_continuum
+        from kinematica.ik.near_rank_five import solve_near
+
+        if plan.rank_five.exact:
+            return solve_continuum(chain, plan.rank_five, targets, request, solve_ik)
+        return solve_near(chain, plan.rank_five, plan.closed, targets, request, solve_ik)
     solver = plan.solver
     if values is not None:
         from kinematica.ik.at_values import AtValues

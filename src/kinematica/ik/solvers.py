@@ -12,7 +12,7 @@ with those settings finds it by one look-up.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -39,6 +39,7 @@ __all__ = [
     "check_options",
     "closed_form",
     "plan_of",
+    "rank_five_of",
     "structure_of",
     "why_numeric",
 ]
@@ -138,6 +139,9 @@ class Plan:
         notes: The notes of every answer (``auto``'s search: why no closed form applies).
         coaxial: A 6R arm's coaxial pair, whose answers :mod:`kinematica.ik.coaxial`
             gives; None.
+        rank_five: A 6R arm's rank-5 structure (:mod:`kinematica.ik.rank_five`), whose
+            answers :mod:`kinematica.ik.continuum_6r` (or, near one,
+            :mod:`kinematica.ik.near_rank_five`) gives; None.
     """
 
     closed: ClosedForm | None
@@ -151,6 +155,7 @@ class Plan:
     search: str | None
     notes: tuple[str, ...]
     coaxial: Any
+    rank_five: Any = None
 
 
 #: Plans a chain keeps (past it the oldest goes: a sweep over many tolerances).
@@ -212,7 +217,10 @@ def _plan(chain: Chain, kind: TargetKind, request: IKRequest, parameter: str | N
         from kinematica.ik.coaxial_pair import coaxial_pair  # arms without a closed form only
 
         coaxial = coaxial_pair(chain)
-    if method == "analytic" and closed is None and coaxial is None:
+    five = None
+    if method != "numeric" and not masked and kind == "pose" and parameter is None:
+        five = rank_five_of(chain, closed)
+    if method == "analytic" and closed is None and coaxial is None and five is None:
         why = "a mask was given" if masked else f"structure: {structure_of(chain)[1]}"
         at_angle = not masked and closed_form(chain, kind, "arm_angle") is not None
         raise KinematicaError(
@@ -239,4 +247,27 @@ def _plan(chain: Chain, kind: TargetKind, request: IKRequest, parameter: str | N
             search = PARTIAL_NOTE
     notes = why_numeric(chain, closed, kind, request.mask) if method == "auto" else ()
     options = check_options(tolerance, respect, complete, w, slack)
-    return Plan(closed, solver, labels, name, complete, options, w, slack, search, notes, coaxial)
+    return Plan(
+        closed, solver, labels, name, complete, options, w, slack, search, notes, coaxial, five
+    )
+
+
+def rank_five_of(chain: Chain, closed: ClosedForm | None) -> Any:
+    """A 6R arm's rank-5 structure (exact or near) where no family's closed form answers it.
+
+    None for the others: an arm with a closed form that is not the general 6R's last
+    resort (its ``search_note``), unless that closed form is a family's on a
+    near-degenerate arm (its slack): near a rank-5 arm, that family's candidates only
+    seed :mod:`kinematica.ik.near_rank_five`.
+    """
+    if chain.dof != 6:
+        return None
+    near_family = closed is not None and not closed.exact and features(chain).slack > 0.0
+    if closed is not None and not closed.search_note and not near_family:
+        return None
+    from kinematica.ik.rank_five import rank_five  # 6R arms without a family
+
+    five = rank_five(chain)
+    if five is not None and five.exact and near_family:
+        return replace(five, exact=False)  # its relations within tolerance only
+    return five

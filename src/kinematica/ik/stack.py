@@ -4,13 +4,14 @@ A locked arm's answer holds n - 1 joint values per solution: :func:`widen_result
 and :func:`widen_batch` insert the locked joint's value. :func:`stack_results` makes
 one batch of single answers (targets solved one by one, each its own arm), and
 :func:`replace_rows` puts another method's answers in some rows of a batch (the
-redundant arm's numeric search over every joint where the lock found nothing).
+redundant arm's numeric search over every joint where the lock found nothing), and
+:func:`solve_each` answers a batch target by target (the continua of 6R arms).
 """
 
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -23,12 +24,14 @@ from kinematica.ik.result import CheckOutput, IKBatchResult, IKResult, amended
 __all__ = [
     "pose_residuals",
     "replace_rows",
+    "solve_each",
     "stack_results",
     "widen_batch",
     "widen_result",
 ]
 
 if TYPE_CHECKING:
+    from kinematica.ik.options import IKOptions
     from kinematica.ik.targets import Targets
 
 FloatArray = NDArray[np.float64]
@@ -233,3 +236,38 @@ def replace_rows(
         notes=notes,
         parameter=parameter,
     )
+
+
+def solve_each(
+    answer: Callable[[FloatArray, IKOptions], IKResult], targets: Targets, options: IKOptions
+) -> IKResult | IKBatchResult:
+    """``answer(T, options)`` of each pose target (one, or a batch of any shape).
+
+    The targets' notes (how each was read) come first in each answer's; a batch's
+    ``q0`` rows are given to their targets.
+    """
+    if targets.single:
+        one = answer(targets.poses[0], options)
+        notes = targets.notes.get(0, ()) if targets.notes else ()
+        return dataclasses.replace(one, notes=(*notes, *one.notes)) if notes else one
+    q0 = options.q0
+    rows = (
+        None
+        if q0 is None
+        else np.broadcast_to(np.asarray(q0, dtype=float), (*targets.shape, 6)).reshape(-1, 6)
+    )
+    results: dict[int, IKResult] = {}
+    for i in range(targets.poses.shape[0]):
+        if i in targets.invalid:
+            continue
+        opts = options if rows is None else dataclasses.replace(options, q0=rows[i])
+        results[i] = answer(targets.poses[i], opts)
+    out = stack_results(results, targets, 6, None, None)
+    if targets.notes:
+        where = {tuple(int(v) for v in np.unravel_index(i, targets.shape)): n
+                 for i, n in targets.notes.items()}  # fmt: skip
+        merged = dict(out.notes)
+        for idx, n in where.items():
+            merged[idx] = (*n, *merged.get(idx, ()))
+        out = dataclasses.replace(out, notes=merged)
+    return out
