@@ -2,7 +2,9 @@
 // named tolerances of the check and the search.
 #include <nanobind/stl/array.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "casters.hpp"
@@ -72,6 +74,40 @@ nb::tuple defects_many(F64 T, int workers) {
     return nb::make_tuple(F, L, O, D);
 }
 
+//! Each row of Q (m, n) carried by the check's repair (check.hpp: Gauss-Newton steps
+//! damped by the residual, the best point kept) towards its own target T[i] (m, 4, 4),
+//! whatever its residual (the check repairs only candidates within POLISH_LIMIT): a
+//! configuration of a nearby arm, or near a solution, taken to this arm's solution.
+//! Returns (the rows reached (m, n), their position and rotation residuals (m, 2)); a row
+//! with a non-finite entry is left as it is, its residuals inf.
+nb::tuple repair_candidates(const km::Chain& chain, F64 Th, F64 Qh, const km::CheckOptions& opts) {
+    const int n = chain.dof();
+    const In Q = in_f64(Qh, "Q", 2, {-1, n});
+    const npy_intp m = Q.dim[0];
+    const In T = in_f64(Th, "T", 3, {m, 4, 4});
+    const km::ChainView ch = chain.view();
+    double *q, *res;
+    F64 Qa = new_f64({m, n}, q), Ra = new_f64({m, 2}, res);
+    std::copy(Q.data, Q.data + m * n, q);
+    km::CheckWork work(1, n);
+    for (npy_intp i = 0; i < m; ++i) {
+        double* qi = q + i * n;
+        double p_err = km::INF, r_err = km::INF;
+        bool finite = true;
+        for (int k = 0; k < n; ++k) finite = finite && std::isfinite(qi[k]);
+        if (finite) {
+            const km::Pose P = km::Pose::from_rows(T.data + 16 * i);
+            km::joint_trig(ch, qi, work.c1.data(), work.s1.data());
+            km::detail::residual(ch, qi, work.c1.data(), work.s1.data(), 1, P, opts.weights,
+                                 p_err, r_err);
+            km::detail::repair(ch, qi, P, opts, work, p_err, r_err);
+        }
+        res[2 * i] = p_err;
+        res[2 * i + 1] = r_err;
+    }
+    return nb::make_tuple(Qa, Ra);
+}
+
 }  // namespace
 
 void bind_ik(nb::module_& m) {
@@ -107,6 +143,10 @@ void bind_ik(nb::module_& m) {
                    "searched alone already)");
     add_ik_methods(numeric, [](const km::NumericSolver& s) -> const km::NumericSolver& { return s; });
 
+    m.def("repair_candidates", &repair_candidates, nb::arg("chain"), nb::arg("T"), nb::arg("Q"),
+          nb::arg("options"),
+          "Each row of Q (m, n) taken by the check's repair towards its target T[i] "
+          "(m, 4, 4): (the rows reached (m, n), their residuals (m, 2)).");
     m.def("pose_defects", &defects_one, nb::arg("T"),
           "(finite, max |last row - [0,0,0,1]|, max |RᵀR - I|, det R) of T (4, 4).");
     m.def("pose_defects_batch", &defects_many, nb::arg("T"), nb::arg("workers") = 1,

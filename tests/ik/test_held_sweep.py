@@ -64,20 +64,23 @@ def test_the_rm75_with_its_elbow_held() -> None:
         q = rng.uniform(-1.5, 1.5, 7)
         T = robot.fk(q)
         res = robot.ik(T, fixed={3: float(q[3])}, respect_limits=False)
-        assert res.method == "sweep:general-6R", res.message
+        assert res.method == "sweep:srs-neighbour", res.message
         # σ6/σ1 ≈ 1e-7: the rows are determined to about 1e-16 / 1e-7 rad
         _check(robot, res, q, T, 1e-6)
 
 
-@pytest.mark.parametrize("elbow", [0.0, 0.05])
-def test_rtb_data_s_iiwa_urdf_with_its_elbow_held(elbow: float) -> None:
+@pytest.mark.parametrize(("elbow", "near"), [(0.0, 1e-5), (0.05, 1e-6)])
+def test_rtb_data_s_iiwa_urdf_with_its_elbow_held(elbow: float, near: float) -> None:
     robot = km.load(str(DATA / "urdf" / "kuka_lbr_iiwa_14_r820.urdf"))
     rng = np.random.default_rng(1)
     q = rng.uniform(-1.5, 1.5, 7)
     q[3] = elbow
     T = robot.fk(q)
     res = robot.ik(T, fixed={3: elbow}, respect_limits=False)
-    _check(robot, res, q, T, 1e-6)
+    # at q4 = 0 axes 3 and 5 are parallel 0.44 mm apart: σ6/σ1 ≈ 2e-11 at the solutions,
+    # which are determined to about 1e-16 / 2e-11 rad (the configuration that made the
+    # pose, 2.5e-6 rad from its row, is as exact)
+    _check(robot, res, q, T, near)
 
 
 # ------------------------------------------------------------ the crossing logic

@@ -168,8 +168,8 @@ def _exact(
 
     A row whose held joint was off its value by up to HELD_MATCH_TOL misses the target
     by up to that times the arm's size once the joint is put there (1.7e-9 m was seen
-    on rtb-data's iiwa URDF with q4 held at 1e-6): such a row is taken by Newton's
-    method on the held arm back to the target (:func:`kinematica.ik.held_sweep.polished`),
+    on rtb-data's iiwa URDF with q4 held at 1e-6): such a row is taken by the core's repair
+    on the held arm back to the target (:func:`kinematica.ik.held_sweep.polished`),
     and dropped where it cannot be.
     """
     from kinematica.ik.held_sweep import polished

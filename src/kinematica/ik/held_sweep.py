@@ -18,9 +18,9 @@ solutions of adjacent samples are linked into branches (each to the nearest, wit
 the offsets' size on a near-continuum); a solution of the held arm is a t where
 q_k(t) equals the value held. Each sign change of q_k(t) - value between adjacent
 samples is narrowed by regula falsi (Illinois) on t, every step a closed-form
-solve, and the configuration found is taken to the held arm's solution by Newton's
-method on the full pose (a minimum-norm step, the near-continuum's direction left
-alone), kept when its forward kinematics meets the tolerance.
+solve, and the configuration found is taken to the held arm's solution by the core's
+repair (the check's damped Gauss-Newton, :func:`repaired`), kept when its forward
+kinematics meets the tolerance.
 
 This is a one-dimensional search with every sub-problem in closed form: a branch
 that touches the value without crossing it between two samples (a tangency), or
@@ -40,6 +40,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
+import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.stack import pose_residuals
@@ -47,11 +48,11 @@ from kinematica.ik.status import IKStatus
 
 if TYPE_CHECKING:
     from kinematica.ik.options import IKOptions
+    from kinematica.ik.tolerance import Tolerance
 
 __all__ = [
     "HUG_G",
     "MAX_CROSSINGS",
-    "POLISH_STEPS",
     "ROOT_STEPS",
     "ROUNDOFF_G",
     "SAME_TOL",
@@ -62,6 +63,7 @@ __all__ = [
     "crossings",
     "held_sweep",
     "polished",
+    "repaired",
     "sweep_joints",
     "sweep_result",
     "touches",
@@ -76,23 +78,21 @@ SWEEP_SAMPLES = 72
 #: :data:`kinematica.robot.self_motion.MAX_JUMP`'s value, for the same sampling.
 SWEEP_JUMP = 0.5
 #: A branch whose held joint is within this of the value at two adjacent samples (on
-#: either side) is taken to the held arm's solution by Newton's method from a sample,
+#: either side) is taken to the held arm's solution by the repair from a sample,
 #: without narrowing: the held arm is a continuum to within round-off over σ6 there
 #: (rad; rtb-data's iiwa URDF with q4 at 0: the branches stay within 1e-10 of it).
 HUG_G = 1e-9
 #: More crossings than this (the general 6R's most solutions) along a sweep are not
 #: isolated solutions but a continuum within round-off: none is narrowed, and the
-#: samples nearest the value are Newton's starts.
+#: samples nearest the value are the repair's starts.
 MAX_CROSSINGS = 16
 #: A branch's sample nearer the value than its neighbours (on the same side) and within
-#: this of it (rad) is Newton's start for a solution where the branch touches the value.
+#: this of it (rad) is the repair's start for a solution where the branch touches the value.
 TOUCH_G = 1e-3
 #: Regula falsi steps on the swept joint's value, at most.
 ROOT_STEPS = 16
 #: Joints tried as the sweep's (those moving most along the near-continuum), at most.
 SWEEP_TRIES = 2
-#: Newton steps on the held arm, at most.
-POLISH_STEPS = 12
 #: Two solutions whose joints all differ by less than this are one (rad).
 SAME_TOL = 1e-6
 #: A branch whose held joint is within this of the value at two adjacent samples keeps
@@ -230,7 +230,7 @@ def crossings(
                 return [x]
             if abs(gx) > 1.0 or abs(gy) > 1.0 or gx * gy > 0.0:
                 continue
-            if max(abs(gx), abs(gy)) <= HUG_G:  # the branch hugs the value: Newton's from x
+            if max(abs(gx), abs(gy)) <= HUG_G:  # the branch hugs the value: the repair's from x
                 seeds.append(x)
                 continue
             brackets.append((t0, t0 + step, x, y, gx, gy))
@@ -245,7 +245,7 @@ def touches(rows: list[FloatArray], joint: int, value: float) -> list[FloatArray
 
     A branch that touches the value between samples (the held arm's solutions there a
     double root) has no sign change to narrow: its sample nearest the value is
-    Newton's start, and Newton's method on the held arm decides whether a solution
+    the repair's start, and the repair on the held arm decides whether a solution
     is there.
     """
     seeds: list[FloatArray] = []
@@ -309,9 +309,31 @@ def _narrowed(
             if side == 1:
                 ga *= 0.5
             side = 1
-        if abs(g) <= ROUNDOFF_G:  # Newton's method on the held arm does the rest
+        if abs(g) <= ROUNDOFF_G:  # the repair on the held arm does the rest
             break
     return np.asarray(best)
+
+
+def repaired(
+    arm: Chain, T: FloatArray, Q: FloatArray, tol: Tolerance
+) -> tuple[FloatArray, NDArray[np.bool_]]:
+    """The rows of ``Q (m, n)`` taken by the core's repair to ``T``, and which meet ``tol``.
+
+    The check's repair (``cpp/include/kinematica/check.hpp``: Gauss-Newton steps damped
+    by the residual, the best point kept), for every row whatever its residual
+    (``_core.repair_candidates``). ``T``: ``(4, 4)``, or ``(m, 4, 4)`` one per row.
+
+    Returns:
+        ``(m, n)`` the rows reached, and ``(m,)`` True where forward kinematics there
+        meets the tolerance.
+    """
+    from kinematica.ik.solvers import POSE_WEIGHTS, check_options
+
+    opts = check_options(tol, False, False, POSE_WEIGHTS)
+    targets = np.ascontiguousarray(np.broadcast_to(T, (len(Q), 4, 4)))
+    rows = np.ascontiguousarray(np.reshape(Q, (len(Q), arm.dof)), dtype=float)
+    out, res = _core.repair_candidates(arm.core, targets, rows, opts)
+    return out, (res[:, 0] <= tol.position) & (res[:, 1] <= tol.rotation)
 
 
 def polished(
@@ -323,31 +345,24 @@ def polished(
     tol_position: float,
     tol_rotation: float,
 ) -> FloatArray:
-    """``(k, 7)`` the seeds taken by Newton to the held arm's solutions that meet the tolerance."""
-    from kinematica.spatial import rotation_angle, rotvec_from_matrix
+    """``(k, 7)`` the seeds (held joint put at its value) repaired on the held arm, distinct.
 
-    out: list[FloatArray] = []
-    for seed in seeds:
-        q = np.ascontiguousarray(np.delete(seed, joint))
-        for _ in range(POLISH_STEPS):
-            F = locked.fk(q)[0]
-            e = np.concatenate([T[:3, 3] - F[:3, 3], rotvec_from_matrix(T[:3, :3] @ F[:3, :3].T)])
-            if np.linalg.norm(e[:3]) <= 0.1 * tol_position and np.linalg.norm(e[3:]) <= (
-                0.1 * tol_rotation
-            ):
-                break
-            J = locked.jacobian(q)[0]
-            q = np.ascontiguousarray(q + np.linalg.lstsq(J, e, rcond=1e-15)[0])
-        F = locked.fk(q)[0]
-        if np.linalg.norm(F[:3, 3] - T[:3, 3]) > tol_position:
-            continue
-        if float(rotation_angle(F[:3, :3], T[:3, :3])) > tol_rotation:
-            continue
+    Each is taken to the held arm's solution by the core's repair (:func:`repaired`)
+    and kept when its forward kinematics meets the tolerance.
+    """
+    from kinematica.ik.tolerance import Tolerance
+
+    if not len(seeds):
+        return np.zeros((0, locked.dof + 1))
+    Q = np.delete(np.array(seeds, dtype=float).reshape(len(seeds), -1), joint, axis=1)
+    out, ok = repaired(locked, T, Q, Tolerance(tol_position, tol_rotation))
+    found: list[FloatArray] = []
+    for q in out[ok]:
         full = _wrap(np.insert(q, joint, value))
         full[joint] = value
-        if all(np.abs(_wrap(full - o)).max() > SAME_TOL for o in out):
-            out.append(full)
-    return np.array(out).reshape(-1, locked.dof + 1)
+        if all(np.abs(_wrap(full - o)).max() > SAME_TOL for o in found):
+            found.append(full)
+    return np.array(found).reshape(-1, locked.dof + 1)
 
 
 def _conditioning(locked: Chain, Q: FloatArray) -> float:

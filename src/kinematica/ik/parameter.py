@@ -28,6 +28,7 @@ from numpy.typing import ArrayLike, NDArray
 from kinematica.core import Chain
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.held_continuum import continuum_answer
+from kinematica.ik.held_near import near_continuum_answer
 from kinematica.ik.moved import end_arm, moved_targets, narrowed_tolerance
 from kinematica.ik.request import IKRequest
 from kinematica.ik.result import IKBatchResult, IKResult
@@ -257,6 +258,16 @@ class JointParameter:
                     out = widen_batch(out, k, v, self.name)
                     return self._exact_gaps(chain, targets, v, out, options)
             elif same and not (N > 1 and self._continua(chain, first, opts, targets)):
+                if N == 1 and self._continua(chain, first, opts, targets):
+                    if not parsed:  # nearly a continuum: a neighbour's sweep, before the search
+                        targets, parsed = parse_targets(target), True
+                    if targets.single:
+                        T = targets.poses[0]
+                        near = near_continuum_answer(
+                            chain, k, first, self.name, T, opts, locked_chain
+                        )
+                        if near is not None:
+                            return near
                 out = solve_ik(locked_chain(chain, k, first), target, opts)
                 if isinstance(out, IKResult) and self._continua(chain, first, opts, targets):
                     if not parsed:
@@ -367,10 +378,17 @@ class JointParameter:
                 continue
             T = targets.poses[i, :3, 3] if targets.position else targets.poses[i]
             q0 = None if opts.q0 is None else _q0_rows(opts.q0, targets.shape, i)
-            arm = locked_chain(chain, self.index, float(v[i]))
+            vi = float(v[i])
+            if self._continua(chain, vi, opts, targets):
+                near = near_continuum_answer(
+                    chain, self.index, vi, self.name, T, opts, locked_chain
+                )
+                if near is not None:
+                    results[i] = near
+                    continue
+            arm = locked_chain(chain, self.index, vi)
             one = solve_ik(arm, T, dataclasses.replace(opts, q0=q0))
             assert isinstance(one, IKResult)
-            vi = float(v[i])
             one = widen_result(one, self.index, vi, (self.name, vi))
             if self._continua(chain, vi, opts, targets):
                 one = self._held_answer(chain, vi, T, one, opts)
