@@ -127,6 +127,7 @@ bench: $(CORE_STAMP)
 	$(BIN)/python benchmarks/symbolic.py
 	$(BIN)/python benchmarks/ik_small.py
 	$(BIN)/python benchmarks/ik_redundant.py
+	$(BIN)/python benchmarks/ik_held.py
 	$(BIN)/python benchmarks/ik_srs.py
 	$(BIN)/python benchmarks/robustness.py
 	$(BIN)/python benchmarks/audit_ik.py --poses 300  # the full audit (10,000 a class) by hand
