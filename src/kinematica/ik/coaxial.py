@@ -81,6 +81,7 @@ __all__ = [
     "frame_on",
     "solve_coaxial",
     "turn_axis",
+    "virtual_answer",
     "virtual_arm",
     "with_virtual_joint",
 ]
@@ -318,7 +319,7 @@ def coaxial_answer(
     tol = parse_tolerance(options.tol)
     respect = bool(options.respect_limits)
     a, b = pair.first + 1, pair.second + 1
-    res = _virtual_answer(chain, pair, T, options, solve)
+    res = virtual_answer(chain, pair, T, options, solve)
     if res is None:
         return _answer(
             IKStatus.NOT_FOUND, chain, T, np.zeros((0, 6)), np.zeros((0, 6)), (), False, None,
@@ -382,7 +383,7 @@ def coaxial_answer(
     return _answer(IKStatus.UNREACHABLE, chain, T, Q, Q, (), True, gap, (note,), closest=closest)
 
 
-def _virtual_answer(
+def virtual_answer(
     chain: Chain, pair: CoaxialPair, T: FloatArray, options: IKOptions, solve: Solve
 ) -> IKResult | None:
     """The answer of the first virtual arm that gives a complete one (else the first's).

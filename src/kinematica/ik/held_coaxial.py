@@ -207,7 +207,7 @@ def near_coaxial_sweep(
         T: ``(4, 4)`` the target (base frame, m).
         options: The call's settings (``tol``).
     """
-    from kinematica.ik.coaxial import _virtual_answer
+    from kinematica.ik.coaxial import virtual_answer
     from kinematica.ik.held_sweep import SAME_TOL, repaired
     from kinematica.ik.solve import solve_ik
     from kinematica.ik.stack import pose_residuals
@@ -216,7 +216,7 @@ def near_coaxial_sweep(
 
     neighbour = coaxial_neighbour(chain, pair)
     opts = dataclasses.replace(options, respect_limits=False)
-    res = _virtual_answer(neighbour, pair, T, opts, solve_ik)
+    res = virtual_answer(neighbour, pair, T, opts, solve_ik)
     if res is None:
         return None
     virtual = np.concatenate([res.solutions, res.out_of_limits])
