@@ -1,6 +1,7 @@
 // SRS 7R arms (iiwa type) at a given arm angle: kinematica._core.srs.
 #include "common.hpp"
 #include "kinematica/solvers/srs.hpp"
+#include "kinematica/solvers/srs_build.hpp"
 #include "solver_binding.hpp"
 
 namespace kmpy {
@@ -78,6 +79,7 @@ void bind_srs(nb::module_& m) {
             nb::arg("options"), nb::arg("q0").none(), nb::arg("invalid").none(),
             nb::arg("workers"),
             "ik_batch of targets T (N, 4, 4), target i at the arm angle psi[i] (N,) (rad).");
+    sub.def("build", [](const km::Chain& c) { return km::srs::build(c); }, nb::arg("chain"));
     sub.attr("COLLINEAR_TOL") = km::srs::COLLINEAR_TOL;
     sub.attr("REFERENCE_TOL") = km::srs::REFERENCE_TOL;
 }
