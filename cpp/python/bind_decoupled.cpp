@@ -193,31 +193,22 @@ void bind_decoupled(nb::module_& m) {
         },
         nb::arg("q3"), "(u1, u2, H, L) at q3 (rad, or m for a slide).");
 
-    auto wrist = bind_closed_form<kd::SphericalWristParams>(
+    bind_family<kd::SphericalWristParams>(
         sub, "SphericalWristParams",
         "A 6R or RRP arm with a spherical wrist (spherical_wrist.hpp): 8 slots, 6 joints.",
-        "km::decoupled::SphericalWristParams", "kinematica/solvers/spherical_wrist.hpp");
-    wrist.def_rw("arm", &kd::SphericalWristParams::arm, "joints 1-3 placing the wrist centre")
-        .def_rw("c_tool", &kd::SphericalWristParams::c_tool, "wrist centre in the tool frame (m)")
-        .def_rw("lh", &kd::SphericalWristParams::lh, "R_M^T h6")
-        .def_rw("lx", &kd::SphericalWristParams::lx, "R_M^T x6")
-        .def_rw("h4", &kd::SphericalWristParams::h4, "axis 4 at q = 0")
-        .def_rw("h5", &kd::SphericalWristParams::h5, "axis 5 at q = 0")
-        .def_rw("x6", &kd::SphericalWristParams::x6, "a unit vector normal to h6")
-        .def_rw("y6", &kd::SphericalWristParams::y6, "h6 x x6")
-        .def_rw("ea", &kd::SphericalWristParams::ea, "unit part of h5 normal to h4")
-        .def_rw("eb", &kd::SphericalWristParams::eb, "h4 x ea")
-        .def_rw("k45", &kd::SphericalWristParams::k45, "h4 . h5")
-        .def_rw("s45", &kd::SphericalWristParams::s45, "|h4 x h5|")
-        .def_rw("k56", &kd::SphericalWristParams::k56, "h5 . h6")
-        .def_rw("n56", &kd::SphericalWristParams::n56, "h5 x h6 in the frame (h4, ea, eb)")
-        .def_rw("h6f", &kd::SphericalWristParams::h6f, "h6 in the frame (h4, ea, eb)")
-        .def_rw("flip", &kd::SphericalWristParams::flip, "sign of gamma on the no-flip branch")
-        .def_rw("q4_lo", &kd::SphericalWristParams::q4_lo, "lower limit of q4 (rad)")
-        .def_rw("q4_hi", &kd::SphericalWristParams::q4_hi, "upper limit of q4 (rad)")
-        .def_rw("q6_lo", &kd::SphericalWristParams::q6_lo, "lower limit of q6 (rad)")
-        .def_rw("q6_hi", &kd::SphericalWristParams::q6_hi, "upper limit of q6 (rad)")
-        .def_rw("twin", &kd::SphericalWristParams::twin, "the flip is (q4 + pi, -q5, q6 + pi)");
+        "kinematica/solvers/spherical_wrist_build.hpp", "km::decoupled::SphericalWristParams",
+        "km::decoupled::build", [](const km::Chain& c) { return kd::build(c); },
+        "build_spherical_wrist")
+        .def_ro("arm", &kd::SphericalWristParams::arm, "joints 1-3 placing the wrist centre");
+    bind_family<kd::SphericalShoulderParams>(
+        sub, "SphericalShoulderParams",
+        "A 6R or RRRPRR arm with a spherical shoulder (spherical_shoulder.hpp): the reversed "
+        "chain's spherical wrist, 8 slots, 6 joints.",
+        "kinematica/solvers/spherical_shoulder_build.hpp",
+        "km::decoupled::SphericalShoulderParams", "km::decoupled::build_shoulder",
+        [](const km::Chain& c) { return kd::build_shoulder(c); }, "build_spherical_shoulder")
+        .def_ro("wrist", &kd::SphericalShoulderParams::wrist,
+                "the reversed chain's SphericalWristParams (its joint j is -q_(7-j))");
 
     sub.def(
         "arm_geometry",
@@ -247,15 +238,6 @@ void bind_decoupled(nb::module_& m) {
         nb::make_tuple(kd::PLACE_PROBES[0][0], kd::PLACE_PROBES[0][1], kd::PLACE_PROBES[0][2]),
         nb::make_tuple(kd::PLACE_PROBES[1][0], kd::PLACE_PROBES[1][1], kd::PLACE_PROBES[1][2]),
         nb::make_tuple(kd::PLACE_PROBES[2][0], kd::PLACE_PROBES[2][1], kd::PLACE_PROBES[2][2]));
-    sub.def("build_spherical_wrist", [](const km::Chain& c) { return kd::build(c); }, nb::arg("chain"));
-    sub.def("build_spherical_shoulder", [](const km::Chain& c) { return kd::build_shoulder(c); }, nb::arg("chain"));
-    auto shoulder = bind_closed_form<kd::SphericalShoulderParams>(
-        sub, "SphericalShoulderParams",
-        "A 6R or RRRPRR arm with a spherical shoulder (spherical_shoulder.hpp): the reversed "
-        "chain's spherical wrist, 8 slots, 6 joints.",
-        "km::decoupled::SphericalShoulderParams", "kinematica/solvers/spherical_shoulder.hpp");
-    shoulder.def_rw("wrist", &kd::SphericalShoulderParams::wrist,
-                    "the reversed chain's SphericalWristParams (its joint j is -q_(7-j))");
 
     auto position = bind_closed_form<kd::ArmPositionParams>(
         sub, "ArmPositionParams",

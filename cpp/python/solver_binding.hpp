@@ -345,17 +345,18 @@ nb::class_<Params> bind_closed_form(nb::module_& m, const char* name, const char
 }
 
 //! A closed-form family built in C++, registered by one call: its opaque Params class
-//! (bind_params) and `build(chain) -> Params | None` in module m, where `build` is the
-//! family's builder (`std::optional<Params>(const km::Chain&)`, named cpp_build in C++:
+//! (bind_params) and `<build_name>(chain) -> Params | None` in module m, where `build` is
+//! the family's builder (`std::optional<Params>(const km::Chain&)`, named cpp_build in C++:
 //! the C++ export calls it).
 template <class Params, class Build>
 nb::class_<Params> bind_family(nb::module_& m, const char* name, const char* doc,
                                const char* cpp_header, const char* cpp_type,
-                               const char* cpp_build, Build build) {
+                               const char* cpp_build, Build build,
+                               const char* build_name = "build") {
     nb::class_<Params> cls = bind_params<Params>(m, name, doc, cpp_type, cpp_header);
     cls.attr("cpp_build") = cpp_build;
     m.def(
-        "build",
+        build_name,
         [build](const km::Chain& chain) -> std::optional<Params> { return build(chain); },
         nb::arg("chain"),
         "The family's closed form of a chain (the C++ builder its Params' cpp_build names), "

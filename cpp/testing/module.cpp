@@ -13,6 +13,7 @@
 namespace kmpy {
 void bind_testing(nb::module_& m);           // internals.cpp: kinematica._core_testing.internals
 void bind_parallel_testing(nb::module_& m);  // parallel.cpp: kinematica._core_testing.parallel
+void bind_decoupled_testing(nb::module_& m);  // decoupled.cpp: ..._core_testing.decoupled
 }  // namespace kmpy
 
 namespace {
@@ -28,4 +29,5 @@ NB_MODULE(_core_testing, m) {
     m.doc() = "kinematica's compiled core: its internals, for the tests (not the library's API).";
     kmpy::bind_testing(m);
     kmpy::bind_parallel_testing(m);
+    kmpy::bind_decoupled_testing(m);
 }

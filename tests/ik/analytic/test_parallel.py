@@ -225,7 +225,12 @@ def test_classification_and_declined_arms() -> None:
             "singular",
             pair,
         )
+    # the core's builder declines them itself, and any chain not of the family
+    wrist_along = Robot.from_dh([*rows[:3], Revolute(d=0.10915), *rows[4:]], convention="standard")
     puma = km.load("puma560")
+    for robot in (same_line, no_link, four, wrist_along, puma):
+        assert _core.parallel.build(robot.chain.core) is None
+    assert _core.parallel.build(UR5.chain.core) is not None
     assert classify(puma).kind != "three-parallel-6R"
     assert (
         classify(Robot.from_dh([Revolute(), Prismatic()], convention="standard")).kind

@@ -3,10 +3,10 @@
 As in the other tolerance tests, every case sits a factor 10 below or above
 the value the constant's documentation states, written here as a literal (a test
 that read the constant would move with it). The cases go to the family's internals
-(``kinematica._core_testing.parallel``, the test-only module: the roots of ``a cos θ + b sin θ = c``, the q5 of a
-meeting wrist, the elbow triangle, Newton on equations (1) and (2)) with inputs the
-test controls exactly; ``test_parallel_edges.py`` pins the same constants through
-``robot.ik`` on targets placed by construction.
+(``kinematica._core_testing.parallel``, the test-only module: the roots of
+``a cos θ + b sin θ = c``, the q5 of a meeting wrist, the elbow triangle, Newton on
+equations (1) and (2)) with inputs the test controls exactly; ``test_parallel_edges.py``
+pins the same constants through ``robot.ik`` on targets placed by construction.
 """
 
 from __future__ import annotations
