@@ -19,7 +19,7 @@ prints, on one core (``workers=1``):
   around it).
 
 Where the batched time goes: the search's own counts per target
-(``kinematica._core.internals.lm_stats``: configurations evaluated, attempts),
+(``kinematica._core_testing.internals.lm_stats``: configurations evaluated, attempts),
 their median, mean and tail, the share of targets that needed restarts and of
 the evaluations spent on them, and the batched time per evaluation.
 
@@ -44,7 +44,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _common import fmt_time, header, shortest_per_item, table, verdict
-from kinematica._core import internals
+from kinematica._core_testing import internals
 
 import kinematica as km
 from kinematica import _core

@@ -43,9 +43,8 @@ from support.ik_search import dls_solutions, found_tolerance, joint_distance
 from support.parallel_arms import UR5_ROWS, random_arm
 
 import kinematica as km
-from kinematica import _core
+from kinematica import _core, _core_testing
 from kinematica.ik import closed_form
-from kinematica.ik.analytic.parallel import pack
 from kinematica.ik.structure import features
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -64,9 +63,9 @@ def tilted(robot: km.Robot) -> km.Robot:
 
 
 def aligned_q5(robot: km.Robot) -> float:
-    P = pack(robot.chain, features(robot.chain))[0]  # type: ignore[index]
-    q5 = math.atan2(P.E1, P.D1)
-    return q5 if abs(math.hypot(P.D1, P.E1) + P.F1 - 1.0) < 1e-9 else q5 + PI
+    P = _core_testing.parallel.values(robot.chain.core)  # the built arm's values
+    q5 = math.atan2(P["E1"], P["D1"])
+    return q5 if abs(math.hypot(P["D1"], P["E1"]) + P["F1"] - 1.0) < 1e-9 else q5 + PI
 
 
 def completeness(arms: int, poses: int, seed: int) -> None:

@@ -13,6 +13,8 @@
 #include "kinematica/solvers/arm_quartic.hpp"
 #include "kinematica/solvers/spherical_shoulder.hpp"
 #include "kinematica/solvers/spherical_wrist.hpp"
+#include "kinematica/solvers/spherical_wrist_build.hpp"
+#include "kinematica/solvers/spherical_shoulder_build.hpp"
 #include "numpy_io.hpp"
 #include "solver_binding.hpp"
 
@@ -191,39 +193,51 @@ void bind_decoupled(nb::module_& m) {
         },
         nb::arg("q3"), "(u1, u2, H, L) at q3 (rad, or m for a slide).");
 
-    auto wrist = bind_closed_form<kd::SphericalWristParams>(
+    bind_family<kd::SphericalWristParams>(
         sub, "SphericalWristParams",
         "A 6R or RRP arm with a spherical wrist (spherical_wrist.hpp): 8 slots, 6 joints.",
-        "km::decoupled::SphericalWristParams", "kinematica/solvers/spherical_wrist.hpp");
-    wrist.def_rw("arm", &kd::SphericalWristParams::arm, "joints 1-3 placing the wrist centre")
-        .def_rw("c_tool", &kd::SphericalWristParams::c_tool, "wrist centre in the tool frame (m)")
-        .def_rw("lh", &kd::SphericalWristParams::lh, "R_M^T h6")
-        .def_rw("lx", &kd::SphericalWristParams::lx, "R_M^T x6")
-        .def_rw("h4", &kd::SphericalWristParams::h4, "axis 4 at q = 0")
-        .def_rw("h5", &kd::SphericalWristParams::h5, "axis 5 at q = 0")
-        .def_rw("x6", &kd::SphericalWristParams::x6, "a unit vector normal to h6")
-        .def_rw("y6", &kd::SphericalWristParams::y6, "h6 x x6")
-        .def_rw("ea", &kd::SphericalWristParams::ea, "unit part of h5 normal to h4")
-        .def_rw("eb", &kd::SphericalWristParams::eb, "h4 x ea")
-        .def_rw("k45", &kd::SphericalWristParams::k45, "h4 . h5")
-        .def_rw("s45", &kd::SphericalWristParams::s45, "|h4 x h5|")
-        .def_rw("k56", &kd::SphericalWristParams::k56, "h5 . h6")
-        .def_rw("n56", &kd::SphericalWristParams::n56, "h5 x h6 in the frame (h4, ea, eb)")
-        .def_rw("h6f", &kd::SphericalWristParams::h6f, "h6 in the frame (h4, ea, eb)")
-        .def_rw("flip", &kd::SphericalWristParams::flip, "sign of gamma on the no-flip branch")
-        .def_rw("q4_lo", &kd::SphericalWristParams::q4_lo, "lower limit of q4 (rad)")
-        .def_rw("q4_hi", &kd::SphericalWristParams::q4_hi, "upper limit of q4 (rad)")
-        .def_rw("q6_lo", &kd::SphericalWristParams::q6_lo, "lower limit of q6 (rad)")
-        .def_rw("q6_hi", &kd::SphericalWristParams::q6_hi, "upper limit of q6 (rad)")
-        .def_rw("twin", &kd::SphericalWristParams::twin, "the flip is (q4 + pi, -q5, q6 + pi)");
-
-    auto shoulder = bind_closed_form<kd::SphericalShoulderParams>(
+        "kinematica/solvers/spherical_wrist_build.hpp", "km::decoupled::SphericalWristParams",
+        "km::decoupled::build", [](const km::Chain& c) { return kd::build(c); },
+        "build_spherical_wrist")
+        .def_ro("arm", &kd::SphericalWristParams::arm, "joints 1-3 placing the wrist centre");
+    bind_family<kd::SphericalShoulderParams>(
         sub, "SphericalShoulderParams",
         "A 6R or RRRPRR arm with a spherical shoulder (spherical_shoulder.hpp): the reversed "
         "chain's spherical wrist, 8 slots, 6 joints.",
-        "km::decoupled::SphericalShoulderParams", "kinematica/solvers/spherical_shoulder.hpp");
-    shoulder.def_rw("wrist", &kd::SphericalShoulderParams::wrist,
-                    "the reversed chain's SphericalWristParams (its joint j is -q_(7-j))");
+        "kinematica/solvers/spherical_shoulder_build.hpp",
+        "km::decoupled::SphericalShoulderParams", "km::decoupled::build_shoulder",
+        [](const km::Chain& c) { return kd::build_shoulder(c); }, "build_spherical_shoulder")
+        .def_ro("wrist", &kd::SphericalShoulderParams::wrist,
+                "the reversed chain's SphericalWristParams (its joint j is -q_(7-j))");
+
+    sub.def(
+        "arm_geometry",
+        [](F64 h, F64 p, bool prismatic, const km::Vec3& c, double size) -> std::optional<kd::ArmPoint> {
+            const In hh = in_f64(h, "h", 2, {3, 3}), pp = in_f64(p, "p", 2, {3, 3});
+            km::Vec3 H[3], P[3];
+            for (int i = 0; i < 3; ++i) {
+                H[i] = {hh.data[3 * i], hh.data[3 * i + 1], hh.data[3 * i + 2]};
+                P[i] = {pp.data[3 * i], pp.data[3 * i + 1], pp.data[3 * i + 2]};
+            }
+            return kd::arm_geometry(H, P, prismatic, c, size);
+        },
+        nb::arg("h"), nb::arg("p"), nb::arg("prismatic"), nb::arg("c"), nb::arg("size"),
+        "The ArmPoint of joints 1-3 (axes h, p (3, 3) at q = 0, joint 3 a slide or not)\n"
+        "placing the point c (3,), or None (arm_point_build.hpp says when).");
+    sub.def(
+        "places_point",
+        [](const km::Chain& chain, const km::Vec3& c_tool) {
+            if (chain.dof() < 3) throw nb::value_error("joints 1-3 need a chain of 3 joints or more");
+            return kd::places_point(chain, c_tool);
+        },
+        nb::arg("chain"), nb::arg("c_tool"),
+        "True when joints 1-3 move the point c_tool (3,), fixed in the tool frame, in three\n"
+        "directions (at one of PLACE_PROBES, σmin / σmax above PLACE_RANK_TOL).");
+    sub.attr("PLACE_RANK_TOL") = kd::PLACE_RANK_TOL;
+    sub.attr("PLACE_PROBES") = nb::make_tuple(
+        nb::make_tuple(kd::PLACE_PROBES[0][0], kd::PLACE_PROBES[0][1], kd::PLACE_PROBES[0][2]),
+        nb::make_tuple(kd::PLACE_PROBES[1][0], kd::PLACE_PROBES[1][1], kd::PLACE_PROBES[1][2]),
+        nb::make_tuple(kd::PLACE_PROBES[2][0], kd::PLACE_PROBES[2][1], kd::PLACE_PROBES[2][2]));
 
     auto position = bind_closed_form<kd::ArmPositionParams>(
         sub, "ArmPositionParams",

@@ -12,6 +12,7 @@
 #include "kinematica/solvers/general_6r.hpp"
 #include "kinematica/solvers/general_6r_build.hpp"
 #include "kinematica/solvers/near_6r.hpp"
+#include "kinematica/solvers/near_6r_build.hpp"
 #include "numpy_io.hpp"
 #include "small_fields.hpp"
 #include "solver_binding.hpp"
@@ -461,17 +462,20 @@ void bind_general6r(nb::module_& m) {
             "(8, 14) Q's pseudo-inverse");
 
     using NearParallel = km::Near6RParams<km::ParallelParams>;
-    auto near = bind_closed_form<NearParallel>(
+    bind_params<NearParallel>(
         sub, "NearParallelParams",
         "A three-parallel 6R arm whose axes hold that structure only within the line "
         "geometry's tolerance: the family's candidates and the general 6R's, checked "
-        "together (solvers/near_6r.hpp).",
-        "km::Near6RParams<km::ParallelParams>", "kinematica/solvers/near_6r.hpp");
-    near.def_rw("family", &NearParallel::family, "the family's ParallelParams (the nearby arm)")
-        .def_rw("general", &NearParallel::general, "the General6RParams of this arm")
+        "together (solvers/near_6r.hpp; built by near_6r_build.hpp).",
+        "km::Near6RParams<km::ParallelParams>", "kinematica/solvers/near_6r_build.hpp")
         .def_rw("watch", &NearParallel::watch,
                 "the general 6R runs where the family's candidates lie within this of its "
-                "singular sets (rad; inf: everywhere)");
+                "singular sets (rad; inf: everywhere)")
+        .attr("cpp_build") = "km::build_near_parallel";
+    sub.def("near_parallel", [](const km::Chain& c) { return km::build_near_parallel(c); },
+            nb::arg("chain"),
+            "The solver of a three-parallel arm near-degenerate (slack > 0): the family's "
+            "closed form and the general 6R's, or None (an exact arm, or either declines).");
     sub.attr("WATCH_FACTOR") = km::WATCH_FACTOR;
     sub.attr("NEAR_GAP") = km::NEAR_GAP;
 }

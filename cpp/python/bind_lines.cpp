@@ -10,6 +10,7 @@
 
 #include "casters.hpp"
 #include "common.hpp"
+#include "kinematica/arm_axes.hpp"
 #include "kinematica/chain.hpp"
 #include "kinematica/lines.hpp"
 
@@ -19,19 +20,6 @@ namespace {
 
 namespace kl = km::lines;
 using km::Vec3;
-
-//! Records each joint's axis (direction, point) of a walk.
-struct AxesOf {
-    static constexpr bool frames = false;
-    static constexpr bool axes = true;
-    Vec3* h;
-    Vec3* p;
-    void frame(int, const km::Pose&) {}
-    void axis(int i, const Vec3& z, const Vec3& o) {
-        h[i] = z;
-        p[i] = o;
-    }
-};
 
 //! A new read-only float64 array of shape (rows, 3) holding v[0 .. rows).
 nb::object readonly_rows(const Vec3* v, npy_intp rows) {
@@ -68,26 +56,15 @@ nb::tuple pairs(const bool* flag, int count) {
 }
 
 nb::tuple features(const km::Chain& chain) {
-    const km::ChainView ch = chain.view();
-    const int n = ch.n;
-    const auto N = static_cast<size_t>(n);
-    std::vector<double> q(N, 0.0), c(N), s(N);
-    std::vector<Vec3> h(N), p(N);
-    km::joint_trig(ch, q.data(), c.data(), s.data());
-    km::walk(ch, q.data(), c.data(), s.data(), AxesOf{h.data(), p.data()});
-    std::string types(N, 'R');
-    // (arrays of bool, not vector<bool>: axis_features reads and writes through pointers)
-    const std::unique_ptr<bool[]> prismatic(new bool[N]), parallel(new bool[N]), meet(new bool[N]);
-    for (int i = 0; i < n; ++i) {
-        prismatic[static_cast<size_t>(i)] = ch.joint[i].prismatic;
-        if (ch.joint[i].prismatic) types[static_cast<size_t>(i)] = 'P';
+    const km::ArmAxes A = km::arm_axes(chain);
+    std::string types(static_cast<size_t>(A.n), 'R');
+    for (int i = 0; i < A.n; ++i) {
+        if (A.prismatic[i]) types[static_cast<size_t>(i)] = 'P';
     }
-    const double size = km::arm_size(chain);
-    const kl::AxisFeatures f =
-        kl::axis_features(h.data(), p.data(), prismatic.get(), n, size, parallel.get(), meet.get());
-    return nb::make_tuple(types, readonly_rows(h.data(), n), readonly_rows(p.data(), n),
-                          pairs(parallel.get(), n - 1), pairs(meet.get(), n - 1),
-                          centre_or_none(f.wrist), size, f.slack, centre_or_none(f.shoulder));
+    return nb::make_tuple(types, readonly_rows(A.h.data(), A.n), readonly_rows(A.p.data(), A.n),
+                          pairs(A.parallel.get(), A.n - 1), pairs(A.meet.get(), A.n - 1),
+                          centre_or_none(A.features.wrist), A.size, A.features.slack,
+                          centre_or_none(A.features.shoulder));
 }
 
 //! (k, 3) float64 arrays as Vec3 lines.

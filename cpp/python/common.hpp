@@ -25,7 +25,6 @@ constexpr int TARGET_BLOCK = 64;
 void bind_chain(nb::module_& m);
 void bind_ik(nb::module_& m);
 void bind_spatial(nb::module_& m);
-void bind_testing(nb::module_& m);
 void bind_solvers(nb::module_& m);
 void bind_lines(nb::module_& m);
 

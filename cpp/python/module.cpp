@@ -29,5 +29,4 @@ NB_MODULE(_core, m) {
     kmpy::bind_lines(m);
     kmpy::bind_topp(m);
     kmpy::bind_jerk(m);
-    kmpy::bind_testing(m);
 }

@@ -311,13 +311,13 @@ const Params& checked(const Params& p) {
     return p;
 }
 
-//! A closed form's Params class with its IK methods.
+//! A closed form's Params class with its IK methods, opaque to Python (no constructor, no
+//! fields): its values come from the core's builder.
 template <class Params>
-nb::class_<Params> bind_closed_form(nb::module_& m, const char* name, const char* doc,
-                                    const char* cpp_type, const char* cpp_header) {
+nb::class_<Params> bind_params(nb::module_& m, const char* name, const char* doc,
+                               const char* cpp_type, const char* cpp_header) {
     nb::class_<Params> cls(m, name, doc);
-    cls.def(nb::init<>());
-    // for code that fills the same struct in C++ (kinematica convert ROBOT --to cpp)
+    // for code that builds the same struct in C++ (kinematica convert ROBOT --to cpp)
     cls.attr("cpp_type") = cpp_type;
     cls.attr("cpp_header") = cpp_header;
     add_ik_methods(cls, [](const Params& p) { return km::ClosedForm<Params>{checked(p)}; });
@@ -331,6 +331,36 @@ nb::class_<Params> bind_closed_form(nb::module_& m, const char* name, const char
             },
             "What makes the fields no arm the solver can index safely, or None.");
     }
+    return cls;
+}
+
+//! A closed form's Params class whose fields Python fills (def_rw each, bound by the
+//! caller): bind_params with a constructor.
+template <class Params>
+nb::class_<Params> bind_closed_form(nb::module_& m, const char* name, const char* doc,
+                                    const char* cpp_type, const char* cpp_header) {
+    nb::class_<Params> cls = bind_params<Params>(m, name, doc, cpp_type, cpp_header);
+    cls.def(nb::init<>());
+    return cls;
+}
+
+//! A closed-form family built in C++, registered by one call: its opaque Params class
+//! (bind_params) and `<build_name>(chain) -> Params | None` in module m, where `build` is
+//! the family's builder (`std::optional<Params>(const km::Chain&)`, named cpp_build in C++:
+//! the C++ export calls it).
+template <class Params, class Build>
+nb::class_<Params> bind_family(nb::module_& m, const char* name, const char* doc,
+                               const char* cpp_header, const char* cpp_type,
+                               const char* cpp_build, Build build,
+                               const char* build_name = "build") {
+    nb::class_<Params> cls = bind_params<Params>(m, name, doc, cpp_type, cpp_header);
+    cls.attr("cpp_build") = cpp_build;
+    m.def(
+        build_name,
+        [build](const km::Chain& chain) -> std::optional<Params> { return build(chain); },
+        nb::arg("chain"),
+        "The family's closed form of a chain (the C++ builder its Params' cpp_build names), "
+        "or None where the family declines the arm.");
     return cls;
 }
 

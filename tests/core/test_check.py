@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 import pytest
-from kinematica._core import internals
+from kinematica._core_testing import internals
 from support.parallel_arms import random_arm
 
 import kinematica as km

@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 import pytest
-from kinematica._core import internals
+from kinematica._core_testing import internals
 from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 

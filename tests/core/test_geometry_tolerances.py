@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 import pytest
-from kinematica._core import internals
+from kinematica._core_testing import internals
 
 #: A case a factor 10 inside a tolerance, and one a factor 10 outside it.
 FACTORS = [(0.1, True), (10.0, False)]

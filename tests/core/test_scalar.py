@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 import pytest
-from kinematica._core import internals
+from kinematica._core_testing import internals
 
 import kinematica as km
 

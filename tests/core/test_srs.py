@@ -5,11 +5,13 @@ the iiwa 14 (against the lengths of its DH table), its raw candidate slots, and 
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
 import kinematica as km
+from kinematica import _core_testing
 from kinematica.ik import closed_form
 from kinematica.ik.analytic.srs import LABELS
 
@@ -25,7 +27,7 @@ def iiwa() -> km.Robot:
 def test_the_iiwa_as_the_builder_reads_it(iiwa: km.Robot) -> None:
     closed = closed_form(iiwa.chain, "pose", "arm_angle")
     assert closed is not None and closed.labels == LABELS and closed.slots == 8
-    p = closed.params
+    p = SimpleNamespace(**_core_testing.decoupled.srs_values(iiwa.chain.core))  # the built values
     np.testing.assert_allclose(p.s, [0.0, 0.0, D1], atol=1e-15)  # axes 1-3 meet at S
     np.testing.assert_allclose(p.se, [0.0, 0.0, UPPER], atol=1e-15)  # E on axis 4, above S
     np.testing.assert_allclose(p.ew, [0.0, 0.0, FORE], atol=1e-15)  # W above E

@@ -18,7 +18,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from kinematica._core import LAMBDA_MIN, LIMIT_TOL
-from kinematica._core.internals import lm_rows
+from kinematica._core_testing.internals import lm_rows
 from support.helpers import JointSpec, RobotSpec, transforms
 
 from kinematica.dh import Prismatic, Revolute

@@ -79,6 +79,21 @@ KM_HD inline double line_distance(const Vec3& ha, const Vec3& pa, const Vec3& hb
     return std::fabs(dot(pb - pa, n)) / s;
 }
 
+//! Where the common normal of the non-parallel lines pa + t ha, pb + s hb (unit directions)
+//! meets each: fa, fb. 1 - (ha·hb)² is written as |ha × hb|² (no cancellation for nearly
+//! parallel lines), as kinematica.dh.lines.normal_feet does.
+KM_HD inline void normal_feet(const Vec3& ha, const Vec3& pa, const Vec3& hb, const Vec3& pb,
+                              Vec3& fa, Vec3& fb) {
+    const Vec3 w = cross(ha, hb);
+    const double s2 = dot(w, w), r2 = std::sqrt(s2);
+    const Vec3 n{w.x / r2, w.y / r2, w.z / r2};
+    const Vec3 d = pb - pa;
+    const Vec3 r = d - dot(d, n) * n;
+    const double c = dot(ha, hb), ra = dot(r, ha), rb = dot(r, hb);
+    fa = pa + ((ra - c * rb) / s2) * ha;
+    fb = pb + ((c * ra - rb) / s2) * hb;
+}
+
 //! The eigenvalues of a symmetric 3x3 matrix a (row-major; only read), ascending.
 //!
 //! Cyclic Jacobi rotations (Rutishauser's formulas, as in Numerical Recipes 11.1), each

@@ -1,11 +1,13 @@
 """A robot's chain and its closed-form IK solver as C++: the core's headers, filled in.
 
-The closed forms are C++ structs (``cpp/include/kinematica/solvers/``) that the
-Python builders fill from the geometry of the joint axes. :func:`cpp_header`
-writes the same values out as a C++ header for one robot: a function building
-its :cpp:`km::Chain`, one filling its solver's ``Params`` field by field, and its
-branch labels, so that a C++ program (a ROS node, a controller) solves IK with
-the very code ``robot.ik`` runs. ``kinematica convert ROBOT --to cpp`` writes it.
+The closed forms are C++ structs (``cpp/include/kinematica/solvers/``) filled from
+the geometry of the joint axes: by the core's builder beside the solver (a family
+whose ``Params`` class names its ``cpp_build``), else by a Python builder.
+:func:`cpp_header` writes a C++ header for one robot: a function building its
+:cpp:`km::Chain`, one giving its solver's ``Params`` (the core's builder called on
+that chain, or the Python builder's values written field by field), and its branch
+labels, so that a C++ program (a ROS node, a controller) solves IK with the very code
+``robot.ik`` runs. ``kinematica convert ROBOT --to cpp`` writes it.
 """
 
 from __future__ import annotations
@@ -167,7 +169,11 @@ def cpp_header(robot: Robot, namespace: str | None = None) -> str:
     params = closed.params
     kind = type(params)
     ns = namespace or cpp_identifier(robot.name)
-    body = "\n    ".join(_assignments(params, "p"))
+    build = getattr(kind, "cpp_build", None)
+    if build is not None:  # the core builds it from the chain, as robot.ik does
+        body = f"return *{build}(chain());"
+    else:
+        body = "\n    ".join(["Solver p;", *_assignments(params, "p"), "return p;"])
     labels = ", ".join('"' + label.replace('"', "'") + '"' for label in closed.labels)
     psi_note = "\n// It solves at the arm angle psi (rad; 0 as written): set it first." * at_angle
     return f"""\
@@ -194,9 +200,7 @@ inline km::Chain chain() {{
 
 //! The closed-form solver, filled for this robot.
 inline Solver solver() {{
-    Solver p;
     {body}
-    return p;
 }}
 
 //! The branch name of each candidate slot.

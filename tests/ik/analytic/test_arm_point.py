@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 from support.wrist_arms import arm_with_point_near_axis_3, rank_ratio
 
-from kinematica import load
+from kinematica import _core_testing, load
 from kinematica.core import Chain
 from kinematica.dh import Revolute
 from kinematica.ik.analytic import arm_position, spherical_wrist
@@ -140,7 +140,7 @@ def puma_with_twisted_wrist(eps: float) -> Robot:
 def twin_flag(robot: Robot) -> bool:
     closed = closed_form(robot.chain, "pose")
     assert closed is not None and closed.name == "spherical-wrist"
-    return bool(closed.params.twin)
+    return bool(_core_testing.decoupled.wrist_twin(robot.chain.core))
 
 
 def test_twin_tol_value() -> None:
@@ -167,16 +167,14 @@ def test_the_twin_flip_is_the_solved_flip() -> None:
     for name in ("puma560", "irb120", "kr6", "stanford"):
         robot = load(name)
         closed = closed_form(robot.chain, "pose")
-        assert closed is not None and closed.params.twin
-        solved = spherical_wrist.build(robot.chain, features(robot.chain), "pose")
-        assert solved is not None
-        solved.params.twin = False
+        assert closed is not None and _core_testing.decoupled.wrist_twin(robot.chain.core)
+        solved = _core_testing.decoupled.wrist_solved_flip(robot.chain.core)
         rng = np.random.default_rng(5)
         lo = np.where(np.isfinite(robot.qlim[:, 0]), robot.qlim[:, 0], -1.0)
         hi = np.where(np.isfinite(robot.qlim[:, 1]), robot.qlim[:, 1], 1.0)
         for T in robot.fk(rng.uniform(lo, hi, (200, 6))):
             Q1, *info1 = closed.params.candidates(robot.chain.core, T)
-            Q2, *info2 = solved.params.candidates(robot.chain.core, T)
+            Q2, *info2 = solved.candidates(robot.chain.core, T)
             assert np.array_equal(np.isnan(Q1), np.isnan(Q2))
             d = np.abs(np.remainder(np.nan_to_num(Q1 - Q2) + PI, 2 * PI) - PI)
             assert d.max() < 1e-9, name
@@ -197,12 +195,27 @@ def test_fixed_arrays_check_their_shape_and_keep_their_values() -> None:
         arm.p1 = [1.0, 2.0]  # a Vec3 takes three numbers
     np.testing.assert_array_equal(arm.H, [1.0, 2.0, 3.0])  # a refused value changes nothing
     np.testing.assert_array_equal(arm.fourier, np.arange(25.0).reshape(5, 5))
-    wrist = D.SphericalWristParams()
-    wrist.arm = arm
-    wrist.arm.a = 0.25  # the member, not a copy
-    assert wrist.arm.a == 0.25 and wrist.slots == 8
+    with pytest.raises(TypeError):  # the core's builder alone fills a family's Params
+        D.SphericalWristParams()
     with pytest.raises(ValueError, match="n must be between 4 and 32, got 3"):
         D.ArmPositionParams().n = 3
+
+
+def test_core_builders_decline_other_structures() -> None:
+    """Each family's builder in the core reads the structure itself (a C++ program may
+    hand it any chain): a chain of another structure gets None."""
+    ur5, puma, iiwa = load("ur5"), load("puma560"), load("iiwa14")
+    assert D.build_spherical_wrist(ur5.chain.core) is None  # axes 4-6 do not meet
+    assert D.build_spherical_wrist(puma.chain.core) is not None
+    assert D.build_spherical_shoulder(ur5.chain.core) is None  # axes 1-3 do not meet
+    assert _core.srs.build(puma.chain.core) is None  # 6 joints
+    assert _core.srs.build(iiwa.chain.core) is not None
+    with pytest.raises(ValueError, match="h must be of size 3 along axis 0"):
+        D.arm_geometry(np.eye(3)[:2], np.zeros((3, 3)), False, np.ones(3), 1.0)
+    with pytest.raises(ValueError, match="3 joints or more"):
+        D.places_point(
+            Robot.from_dh([Revolute(a=0.3)] * 2, convention="standard").chain.core, np.zeros(3)
+        )
 
 
 def test_solvers_take_chains_of_their_size_only() -> None:

@@ -31,8 +31,9 @@ from support.parallel_arms import (
 )
 
 import kinematica as km
+from kinematica import _core
 from kinematica.dh import Prismatic, Revolute
-from kinematica.ik.analytic.parallel import DEGENERATE, GENERAL_LABELS, LABELS, SPEC, pack
+from kinematica.ik.analytic.parallel import DEGENERATE, GENERAL_LABELS, LABELS, SPEC
 from kinematica.ik.result import IKBatchResult
 from kinematica.ik.structure import features
 from kinematica.robot import Robot, classify
@@ -76,12 +77,12 @@ def test_builder_modes() -> None:
     """Axes 5 and 6 meeting, parallel or apart: the solver's mode and the labels."""
     for robot, mode, labels in ((UR5, 0, LABELS), (UR5_P56, 1, GENERAL_LABELS)):
         chain = robot.chain
-        packed = pack(chain, features(chain))
-        assert packed is not None and packed[1] == mode
+        params = _core.parallel.build(chain.core)
+        assert params is not None and params.mode == mode
         built = SPEC.build(chain, features(chain), "pose")
         assert built is not None and built.labels == labels
-    packed = pack(UR5_A5.chain, features(UR5_A5.chain))
-    assert packed is not None and packed[1] == 2
+    params = _core.parallel.build(UR5_A5.chain.core)
+    assert params is not None and params.mode == 2
     assert SPEC.build(UR5.chain, features(UR5.chain), "position") is None
 
 
@@ -224,7 +225,12 @@ def test_classification_and_declined_arms() -> None:
             "singular",
             pair,
         )
+    # the core's builder declines them itself, and any chain not of the family
+    wrist_along = Robot.from_dh([*rows[:3], Revolute(d=0.10915), *rows[4:]], convention="standard")
     puma = km.load("puma560")
+    for robot in (same_line, no_link, four, wrist_along, puma):
+        assert _core.parallel.build(robot.chain.core) is None
+    assert _core.parallel.build(UR5.chain.core) is not None
     assert classify(puma).kind != "three-parallel-6R"
     assert (
         classify(Robot.from_dh([Revolute(), Prismatic()], convention="standard")).kind

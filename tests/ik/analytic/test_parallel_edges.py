@@ -29,11 +29,10 @@ from support.parallel_arms import (
     random_arm,
 )
 
+from kinematica import _core_testing
 from kinematica.dh import Revolute
-from kinematica.ik.analytic.parallel import pack
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.solvers import closed_form
-from kinematica.ik.structure import features
 from kinematica.robot import Robot
 
 FloatArray = NDArray[np.float64]
@@ -79,9 +78,9 @@ def one(robot: Robot, T: FloatArray, **kw: object) -> IKResult:
 
 def size_of(robot: Robot) -> float:
     """The arm's size as the solver measures it (its reach bound, m)."""
-    packed = pack(robot.chain, features(robot.chain))
-    assert packed is not None
-    return float(packed[0].scale)
+    P = _core_testing.parallel.values(robot.chain.core)
+    assert P is not None
+    return float(P["scale"])
 
 
 # ------------------------------------------------------------ the aligned wrist
@@ -376,15 +375,14 @@ def test_quartic_vanishing_is_singular_with_q1_free() -> None:
             convention="standard",
         )
 
-    packed = pack(arm(0.0).chain, features(arm(0.0).chain))
-    assert packed is not None and packed[1] == 2  # axes 5 and 6 apart: the quartic
-    P = packed[0]
-    D1, E1, F1, D2, E2, F2 = P.D1, P.E1, P.F1, P.D2, P.E2, P.F2
+    P = _core_testing.parallel.values(arm(0.0).chain.core)
+    assert P is not None and P["mode"] == 2  # axes 5 and 6 apart: the quartic
+    D1, E1, F1, D2, E2, F2 = (P[name] for name in ("D1", "E1", "F1", "D2", "E2", "F2"))
     q5 = math.atan2(E1, D1) + math.acos(-F1 / math.hypot(D1, E1))  # k·R5 h6 = 0
     robot = arm(-(D2 * math.cos(q5) + E2 * math.sin(q5) + F2))
-    packed = pack(robot.chain, features(robot.chain))
-    assert packed is not None
-    M, h6, p6 = robot.fk(np.zeros(6)), robot.joint_axes()[0][5], packed[0].p6
+    P = _core_testing.parallel.values(robot.chain.core)
+    assert P is not None
+    M, h6, p6 = robot.fk(np.zeros(6)), robot.joint_axes()[0][5], P["p6"]
 
     def off_axis_1(v: FloatArray) -> FloatArray:  # axis 6 and p6 off the base z axis
         T = robot.fk(np.array([0.3, *v[:3], q5, v[3]]))

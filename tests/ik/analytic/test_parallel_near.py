@@ -26,10 +26,10 @@ from support.ik_pose_audit import check_complete
 from support.ik_search import dls_solutions, found_tolerance, joint_distance
 from support.parallel_arms import UR5_ROWS, assert_reaches, random_arm
 
-from kinematica import _core
+from kinematica import _core, _core_testing
 from kinematica.dh import Revolute
 from kinematica.ik import closed_form
-from kinematica.ik.analytic.parallel import LABELS, pack
+from kinematica.ik.analytic.parallel import LABELS
 from kinematica.ik.structure import features
 from kinematica.robot import Robot
 
@@ -66,11 +66,10 @@ def arms() -> list[Robot]:
 def aligned_q5(robot: Robot) -> float:
     """The q5 at which axis 6 is parallel to axes 2-4: k·R5 h6 = D1 cos q5 + E1 sin q5
     + F1 reaches ±1 (its extremum, for these arms' ±90° twists)."""
-    packed = pack(robot.chain, features(robot.chain))
-    assert packed is not None
-    P = packed[0]
-    q5 = math.atan2(P.E1, P.D1)
-    return q5 if abs(math.hypot(P.D1, P.E1) + P.F1 - 1.0) < 1e-9 else q5 + PI
+    P = _core_testing.parallel.values(robot.chain.core)
+    assert P is not None
+    q5 = math.atan2(P["E1"], P["D1"])
+    return q5 if abs(math.hypot(P["D1"], P["E1"]) + P["F1"] - 1.0) < 1e-9 else q5 + PI
 
 
 def near_aligned(robot: Robot, rng: np.random.Generator, beta: float, n: int) -> FloatArray:

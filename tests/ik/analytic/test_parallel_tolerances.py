@@ -3,10 +3,10 @@
 As in the other tolerance tests, every case sits a factor 10 below or above
 the value the constant's documentation states, written here as a literal (a test
 that read the constant would move with it). The cases go to the family's internals
-(``kinematica._core.parallel``: the roots of ``a cos θ + b sin θ = c``, the q5 of a
-meeting wrist, the elbow triangle, Newton on equations (1) and (2)) with inputs the
-test controls exactly; ``test_parallel_edges.py`` pins the same constants through
-``robot.ik`` on targets placed by construction.
+(``kinematica._core_testing.parallel``, the test-only module: the roots of
+``a cos θ + b sin θ = c``, the q5 of a meeting wrist, the elbow triangle, Newton on
+equations (1) and (2)) with inputs the test controls exactly; ``test_parallel_edges.py``
+pins the same constants through ``robot.ik`` on targets placed by construction.
 """
 
 from __future__ import annotations
@@ -18,13 +18,12 @@ import pytest
 from numpy.typing import NDArray
 from support import parallel_arms
 
-from kinematica import _core
+from kinematica import _core, _core_testing
 from kinematica.dh import Revolute
-from kinematica.ik.analytic.parallel import pack
-from kinematica.ik.structure import features
 from kinematica.robot import Robot
 
 parallel = _core.parallel
+hooks = _core_testing.parallel
 FloatArray = NDArray[np.float64]
 
 # The documented values, one per constant (cpp/include/kinematica/solvers/parallel_*.hpp).
@@ -64,7 +63,7 @@ def test_double_root_tol_merges_two_angles(factor: float, inside: bool) -> None:
     a, b = 3.0, 4.0
     r2 = a * a + b * b
     c = math.sqrt(r2 * (1.0 - factor * DOUBLE_ROOT_TOL))
-    found, rise, fall, near = parallel.roots(a, b, c, 5.0)
+    found, rise, fall, near = hooks.roots(a, b, c, 5.0)
     assert found and near is inside
     assert bool(rise == fall) is inside
     for theta in (rise, fall):
@@ -78,7 +77,7 @@ def test_near_tol_proposes_the_least_squares_angle(factor: float, inside: bool) 
     """
     a, b, size = 3.0, 4.0, 2.0
     c = 5.0 + factor * NEAR_TOL * size
-    found, rise, fall, near = parallel.roots(a, b, c, size)
+    found, rise, fall, near = hooks.roots(a, b, c, size)
     assert found is inside
     if inside:
         assert near
@@ -88,13 +87,10 @@ def test_near_tol_proposes_the_least_squares_angle(factor: float, inside: bool) 
 # --- parallel_pairs.hpp: q5 of a wrist whose axes 5 and 6 meet -------------------------
 
 
-def wrist_arm() -> parallel.ParallelParams:
-    """k·R5 h6 = 0.6 cos q5 + 0.2: it ranges over [-0.4, 0.8] (wlo, whi exact)."""
-    P = parallel.ParallelParams()
-    P.D1, P.E1, P.F1 = 0.6, 0.0, 0.2
-    P.wlo = 1.0 - 0.6 - 0.2  # 1 - |D1, E1| - F1
-    P.whi = 1.0 - 0.6 + 0.2  # 1 - |D1, E1| + F1
-    return P
+def wrist_arm() -> tuple[float, ...]:
+    """k·R5 h6 = 0.6 cos q5 + 0.2: it ranges over [-0.4, 0.8] (wlo, whi exact):
+    ``(D1, E1, F1, wlo, whi)``."""
+    return 0.6, 0.0, 0.2, 1.0 - 0.6 - 0.2, 1.0 - 0.6 + 0.2  # wlo, whi: 1 - |D1, E1| ∓ F1
 
 
 @pytest.mark.parametrize(
@@ -107,7 +103,7 @@ def test_wrist_beyond_its_range(miss: float, code: int) -> None:
     the wrist's two branches merge there); beyond it none.
     """
     d = 0.8 + miss
-    got, q5_no_flip, q5_flip = parallel.wrist(wrist_arm(), d, (1.0 - d) * (1.0 + d))
+    got, q5_no_flip, q5_flip = hooks.wrist(*wrist_arm(), d, (1.0 - d) * (1.0 + d))
     assert got == code
     if code >= 0:  # the extremum: q5 = 0 both times (or ±0.05 rad for miss = -1e-3)
         assert abs(q5_no_flip) < 0.1 and abs(q5_flip) < 0.1
@@ -118,7 +114,7 @@ def test_wrist_beyond_its_range(miss: float, code: int) -> None:
 
 def test_wrist_inside_its_range_has_two_roots() -> None:
     d = 0.5  # 0.6 cos q5 + 0.2 = 0.5: q5 = ±acos(0.5)
-    got, q5_no_flip, q5_flip = parallel.wrist(wrist_arm(), d, (1.0 - d) * (1.0 + d))
+    got, q5_no_flip, q5_flip = hooks.wrist(*wrist_arm(), d, (1.0 - d) * (1.0 + d))
     assert got == 1
     assert q5_no_flip == pytest.approx(math.acos(0.5), abs=1e-15)
     assert q5_flip == pytest.approx(-math.acos(0.5), abs=1e-15)
@@ -127,12 +123,10 @@ def test_wrist_inside_its_range_has_two_roots() -> None:
 # --- parallel.hpp: the elbow triangle -----------------------------------------------
 
 
-def triangle_arm(a: float, b: float) -> parallel.ParallelParams:
-    P = parallel.ParallelParams()
-    P.len_a, P.len_b, P.arg_a, P.arg_b = a, b, 0.0, 0.0
-    P.zup = [0.0, 1.0]
-    P.q2rep = 0.25
-    return P
+def triangle(a: float, b: float, u: float, slack: float = 0.0) -> tuple[float, ...]:
+    """The elbow triangle of links a, b along the plane's x axis, up along y, q2rep 0.25,
+    putting axis 4 at (u, 0)."""
+    return tuple(hooks.triangle(a, b, 0.0, 0.0, [0.0, 1.0], 0.25, slack, u, 0.0))
 
 
 @pytest.mark.parametrize(
@@ -145,9 +139,7 @@ def test_triangle_beyond_the_stretched_arm(miss: float, flags: int) -> None:
     two elbows merging there); none beyond.
     """
     a, b = 0.5, 0.4
-    got, q2_up, psi_up, q2_down, psi_down = parallel.triangle(
-        triangle_arm(a, b), (a + b) * (1.0 + miss), 0.0
-    )
+    got, q2_up, psi_up, q2_down, psi_down = triangle(a, b, (a + b) * (1.0 + miss))
     assert got == flags
     if flags == 2:  # stretched: q2 = 0, ψ = 0 for both elbows
         np.testing.assert_allclose([q2_up, psi_up, q2_down, psi_down], 0.0, atol=1e-4)
@@ -173,10 +165,8 @@ def test_triangle_straddles_the_fold_within_the_slack(
     edge = abs(a - b) if folded else a + b
     margin = slack * (2.0 * edge + slack) / (2.0 * a * b)  # |tx| at the fold
     n = math.sqrt(edge * edge + (1.0 if folded else -1.0) * factor * margin * 2.0 * a * b)
-    exact = parallel.triangle(triangle_arm(a, b), n, 0.0)
-    P = triangle_arm(a, b)
-    P.slack = slack
-    got = parallel.triangle(P, n, 0.0)
+    exact = triangle(a, b, n)
+    got = triangle(a, b, n, slack)
     assert got[0] == exact[0]  # the exact triangle's flags
     if not inside:
         assert got == exact
@@ -193,9 +183,7 @@ def test_continuum_tol_folds_equal_links(factor: float, inside: bool) -> None:
     the folded elbow (q2 free: its representative, then NaN); beyond it two elbows.
     """
     a = 0.4
-    got, q2_up, psi_up, q2_down, psi_down = parallel.triangle(
-        triangle_arm(a, a), factor * CONTINUUM_TOL * 2.0 * a, 0.0
-    )
+    got, q2_up, psi_up, q2_down, psi_down = triangle(a, a, factor * CONTINUUM_TOL * 2.0 * a)
     if inside:
         assert got == 1 and q2_up == 0.25 and psi_up == pytest.approx(math.pi)
         assert math.isnan(q2_down) and math.isnan(psi_down)
@@ -220,19 +208,19 @@ def test_newton_quiet_makes_a_small_step_the_last(factor: float, inside: bool) -
     ``x6 = R_G h6``, ``w6 = G(p6) - p1``, sides ``(k⊥·y, (h1 × k)·y, k∥·y)``.
     """
     robot = parallel_arms.UR5_A5
-    packed = pack(robot.chain, features(robot.chain))
-    assert packed is not None and packed[1] == parallel.Mode.general
-    P = packed[0]
+    P = hooks.values(robot.chain.core)  # the built arm's Params, as a dict
+    assert P is not None and P["mode"] == parallel.Mode.general
     T, M = robot.fk(np.array([0.4, -1.1, 1.3, 0.2, 0.9, -0.5])), robot.fk(np.zeros(6))
     RG = T[:3, :3] @ M[:3, :3].T
-    x6 = RG @ P.h6
-    w6 = RG @ P.p6 + T[:3, 3] - RG @ M[:3, 3] - P.p1
-    L1, L2 = (np.array([v @ y for v in (P.kperp, P.hk, P.kpar)]) for y in (x6, w6))
-    q1, q5, res, *_ = parallel.newton(P, x6, L1, L2, 0.4 + 1e-3, 0.9 - 1e-3)
+    x6 = RG @ P["h6"]
+    w6 = RG @ P["p6"] + T[:3, 3] - RG @ M[:3, 3] - P["p1"]
+    L1, L2 = (np.array([P[v] @ y for v in ("kperp", "hk", "kpar")]) for y in (x6, w6))
+    core = robot.chain.core
+    q1, q5, res, *_ = hooks.newton(core, x6, L1, L2, 0.4 + 1e-3, 0.9 - 1e-3)
     assert res < 1e-14
     assert abs(q1 - 0.4) < 1e-15 and abs(q5 - 0.9) < 1e-15  # the q that made T
-    a1, a5, _, evaluations, c1, s1, c5, s5 = parallel.newton(
-        P, x6, L1, L2, q1, q5 + factor * NEWTON_QUIET
+    a1, a5, _, evaluations, c1, s1, c5, s5 = hooks.newton(
+        core, x6, L1, L2, q1, q5 + factor * NEWTON_QUIET
     )
     assert evaluations == (1 if inside else 2)
     assert abs(a1 - 0.4) < 1e-15 and abs(a5 - 0.9) < 1e-15
@@ -251,13 +239,10 @@ def test_newton_stops_where_there_is_no_root() -> None:
     """Far from every root the steps stop shrinking: Newton gives up well before
     NEWTON_STEPS and says how far (1) and (2) are from holding."""
     robot = parallel_arms.UR5_A5
-    packed = pack(robot.chain, features(robot.chain))
-    assert packed is not None
-    P = packed[0]
     x6 = np.array([0.0, 0.0, 1.0])
     L1 = np.array([0.0, 0.0, 5.0])  # (1) misses by about 4: no root
     L2 = np.array([0.0, 0.0, 0.0])
-    *_, res, evaluations, _c1, _s1, _c5, _s5 = parallel.newton(P, x6, L1, L2, 0.3, 0.2)
+    *_, res, evaluations, _c1, _s1, _c5, _s5 = hooks.newton(robot.chain.core, x6, L1, L2, 0.3, 0.2)
     assert res > 1.0
     assert 1 <= evaluations < NEWTON_STEPS
 
@@ -281,14 +266,13 @@ NARROW_Q = np.array([0.4, -1.2, 1.5, -0.3, 0.8, -0.6])
 def arc_of_q1(robot: Robot, q: FloatArray) -> tuple[float, float]:
     """The arc of q1 about q[0] over which (2), k1·(G(p6) - p1) = D2 cos q5 + E2 sin q5 +
     F2, has a root q5 (the arm's equation (2): parallel_pairs.hpp), found on a fine grid."""
-    packed = pack(robot.chain, features(robot.chain))
-    assert packed is not None and packed[1] == parallel.Mode.parallel
-    P = packed[0]
-    G = robot.fk(q) @ np.linalg.inv(np.asarray(P.home))
-    w6 = G[:3, :3] @ np.asarray(P.p6) + G[:3, 3] - np.asarray(P.p1)
-    a, b, c = (float(np.asarray(v) @ w6) for v in (P.kperp, P.hk, P.kpar))
+    P = hooks.values(robot.chain.core)
+    assert P is not None and P["mode"] == parallel.Mode.parallel
+    G = robot.fk(q) @ np.linalg.inv(P["home"])
+    w6 = G[:3, :3] @ P["p6"] + G[:3, 3] - P["p1"]
+    a, b, c = (float(P[v] @ w6) for v in ("kperp", "hk", "kpar"))
     x = q[0] + np.linspace(-0.5, 0.5, 1_000_001)
-    ok = np.abs(a * np.cos(x) + b * np.sin(x) + c - P.F2) <= math.hypot(P.D2, P.E2)
+    ok = np.abs(a * np.cos(x) + b * np.sin(x) + c - P["F2"]) <= math.hypot(P["D2"], P["E2"])
     mid = len(x) // 2
     assert ok[mid]
     lo = mid - int(np.argmin(ok[mid::-1]))
@@ -324,15 +308,17 @@ def test_free_q1_samples_steps_over_an_arc_shorter_than_its_step(inside: bool) -
 
 def test_internals_reject_bad_input() -> None:
     with pytest.raises(ValueError, match="size"):
-        parallel.roots(3.0, 4.0, 5.0, 0.0)
+        hooks.roots(3.0, 4.0, 5.0, 0.0)
     with pytest.raises(ValueError, match="finite"):
-        parallel.roots(math.nan, 4.0, 5.0, 1.0)
-    P = parallel.ParallelParams()
+        hooks.roots(math.nan, 4.0, 5.0, 1.0)
+    core = parallel_arms.UR5_A5.chain.core
     with pytest.raises(ValueError, match="L1"):
-        parallel.newton(P, [0.0, 0.0, 1.0], [1.0, 2.0], [0.0, 0.0, 0.0], 0.0, 0.0)
-    with pytest.raises(ValueError, match="minv"):
-        P.minv = [1.0, 2.0, 3.0]
+        hooks.newton(core, [0.0, 0.0, 1.0], [1.0, 2.0], [0.0, 0.0, 0.0], 0.0, 0.0)
     with pytest.raises(ValueError, match="zup"):
-        P.zup = np.zeros(3)
-    P.minv = np.arange(4.0)
-    np.testing.assert_array_equal(P.minv, [0.0, 1.0, 2.0, 3.0])
+        hooks.triangle(0.5, 0.4, 0.0, 0.0, np.zeros(3), 0.0, 0.0, 0.5, 0.0)
+    planar = Robot.from_dh([Revolute(a=0.3)] * 6, convention="standard")  # declined
+    assert hooks.values(planar.chain.core) is None
+    with pytest.raises(ValueError, match="declines"):
+        hooks.newton(planar.chain.core, [0.0, 0.0, 1.0], [0.0] * 3, [0.0] * 3, 0.0, 0.0)
+    with pytest.raises(TypeError):  # the core's builder alone fills a family's Params
+        parallel.ParallelParams()

@@ -1,14 +1,13 @@
-"""Builder of the closed-form IK of 6R arms with axes 2, 3, 4 parallel (UR type).
+"""The closed-form IK of 6R arms with axes 2, 3, 4 parallel (UR type): its spec.
 
-Once per arm, from its joint axes at q = 0 (:class:`Features`) and its tool
-pose ``M = fk(0)``, this fills the parameters of the C++ closed form
-(``cpp/include/kinematica/solvers/parallel.hpp``, where the method is
-described; :class:`kinematica._core.parallel.ParallelParams` here): the vectors
-and constants of equations (1) and (2) in ``(q1, q5)``, the planar triangle
-axis 2 -> 3 -> 4, a proven reach bound, and the arm's mode: axes 5 and 6
-meeting (every UR and its clones), parallel, or apart (a5 != 0: the quartic).
-Up to 8 solutions, exact, for any link values, offsets, twists, base, tool and
-DH convention.
+The core solves (``cpp/include/kinematica/solvers/parallel.hpp``, where the method
+is described) and builds (``parallel_build.hpp``: once per arm, from its joint axes
+at q = 0 and its tool pose, the vectors and constants of equations (1) and (2) in
+``(q1, q5)``, the planar triangle axis 2 -> 3 -> 4, a proven reach bound, and the
+arm's mode: axes 5 and 6 meeting (every UR and its clones), parallel, or apart
+(a5 != 0: the quartic)). Up to 8 solutions, exact, for any link values, offsets,
+twists, base, tool and DH convention. This module names the family, its branches
+and the arms it declines, and draws its sample arms.
 
 Arms it declines (``None``: the numeric solver takes them): axis 1 or axis 5
 parallel to axes 2-4 (four parallel axes), axes 5 and 6 on one line, or a
@@ -39,12 +38,12 @@ from kinematica import _core
 from kinematica.core import Chain
 from kinematica.dh.convert import convert_table
 from kinematica.dh.joints import Convention, Revolute
-from kinematica.dh.lines import cross3, line_distance, lines_parallel, normal_feet
+from kinematica.ik.analytic import general_6r
 from kinematica.ik.analytic.sampling import random_transform
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
 
-__all__ = ["DEGENERATE", "GENERAL_LABELS", "LABELS", "SPEC", "build", "pack", "sample_arm"]
+__all__ = ["DEGENERATE", "GENERAL_LABELS", "LABELS", "SPEC", "build", "sample_arm"]
 
 FloatArray = NDArray[np.float64]
 
@@ -59,140 +58,30 @@ LABELS = tuple(
 GENERAL_LABELS = tuple(f"root {j}, elbow {e}" for j in range(1, 5) for e in ("up", "down"))
 
 
-def _unit(v: FloatArray) -> FloatArray:
-    return np.asarray(v / np.linalg.norm(v), dtype=float)
-
-
-def _project(x: FloatArray, h: FloatArray, p: FloatArray) -> FloatArray:
-    """The point of the line ``p + t h`` closest to ``x``."""
-    return np.asarray(p + ((x - p) @ h) * h, dtype=float)
-
-
-def _angle(u: FloatArray, v: FloatArray) -> float:
-    """Angle between unit vectors (accurate near 0 and π)."""
-    return math.atan2(float(np.linalg.norm(cross3(u, v))), float(u @ v))
-
-
-def _middle(lo: float, hi: float) -> float:
-    return 0.5 * (lo + hi) if math.isfinite(lo) and math.isfinite(hi) else 0.0
-
-
-def pack(
-    chain: Chain, features: Features
-) -> tuple[_core.parallel.ParallelParams, _core.parallel.Mode] | None:
-    """The closed form's parameters for an arm, and its mode; ``None`` if declined.
-
-    Args:
-        chain: A 6R chain whose axes 2, 3, 4 are parallel.
-        features: Its joint axes at q = 0 (base frame).
-
-    Returns:
-        ``(params, mode)`` with ``mode`` one of ``Mode.meet``, ``Mode.parallel``,
-        ``Mode.general``; ``None`` for the arms the module docstring lists.
-    """
-    h = np.array(features.directions, dtype=float)
-    p = np.array(features.points, dtype=float)
-    k = _unit(h[1])
-    h1, h5, h6 = h[0], h[4], h[5]
-    if lines_parallel(h1, k) or lines_parallel(h5, k):
-        return None
-    e1 = _unit(cross3(k, [1.0, 0.0, 0.0] if abs(k[0]) < 0.9 else [0.0, 1.0, 0.0]))
-    e2 = cross3(k, e1)
-
-    def plane(x: FloatArray) -> FloatArray:
-        return np.array([x @ e1, x @ e2])
-
-    zA, zB = (complex(*plane(x)) for x in (p[2] - p[1], p[3] - p[2]))
-    if min(abs(zA), abs(zB)) <= _core.parallel.CONTINUUM_TOL * (abs(zA) + abs(zB)):
-        return None
-    meet = features.length_tol
-    if lines_parallel(h5, h6):
-        if line_distance(h5, p[4], h6, p[5]) <= meet:
-            return None
-        mode, p5 = _core.parallel.Mode.parallel, p[4]
-        p6 = _project(p5, h6, p[5])
-    else:
-        p5, p6 = normal_feet(h5, p[4], h6, p[5])
-        mode = _core.parallel.Mode.general
-        if np.linalg.norm(p6 - p5) <= meet:
-            mode = _core.parallel.Mode.meet
-            p5 = p6 = 0.5 * (p5 + p6)
-    h6par = (h5 @ h6) * h5
-    z = p6 - p5
-    eq1 = np.array([k @ (h6 - h6par), k @ cross3(h5, h6), (k @ h5) * (h5 @ h6)])
-    eq2 = np.array(
-        [k @ (z - (h5 @ z) * h5), k @ cross3(h5, z), (k @ h5) * (h5 @ z) + k @ (p5 - p[0])]
-    )
-    minv = np.zeros(4)
-    if mode == _core.parallel.Mode.meet:
-        eq2[:2] = 0.0
-    elif mode == _core.parallel.Mode.parallel:
-        eq1 = np.array([0.0, 0.0, (k @ h5) * math.copysign(1.0, h5 @ h6)])
-    else:
-        minv = np.linalg.inv(np.array([eq1[:2], eq2[:2]])).ravel()
-    alpha, beta = _angle(k, h5), _angle(h6, h5)
-    # reach: |G(a6) - p1s| <= the length of the chain of feet p1s, a2, ..., a6
-    p1s, a = normal_feet(h1, p[0], k, p[1])
-    bound = float(np.linalg.norm(a - p1s))
-    for i in (2, 3, 4, 5):
-        nxt = _project(a, h[i], p[i])
-        bound += float(np.linalg.norm(nxt - a))
-        a = nxt
-    kpar = (h1 @ k) * h1
-    P = _core.parallel.ParallelParams()
-    P.k, P.h1, P.p1, P.kpar, P.kperp, P.hk = k, h1, p[0], kpar, k - kpar, cross3(h1, k)
-    P.h5, P.p5, P.h6, P.p6 = h5, p5, h6, p6
-    P.h6par, P.h6perp, P.h5xh6 = h6par, h6 - h6par, cross3(h5, h6)
-    P.p2, P.p4, P.e1, P.e2 = p[1], p[3], e1, e2
-    P.home = chain.fk(np.zeros(6))[0]
-    P.p1s, P.a6 = p1s, a
-    P.mode = mode
-    P.D1, P.E1, P.F1 = (float(v) for v in eq1)
-    P.D2, P.E2, P.F2 = (float(v) for v in eq2)
-    P.minv = minv
-    P.wlo = 2.0 * math.sin(0.5 * (alpha - beta)) ** 2
-    P.whi = 2.0 * math.cos(0.5 * (alpha + beta)) ** 2
-    P.len_a, P.len_b = (float(v) for v in np.abs([zA, zB]))
-    P.arg_a, P.arg_b = (float(v) for v in np.angle([zA, zB]))
-    P.zup = plane(cross3(h1, k))
-    P.sign3 = math.copysign(1.0, h[2] @ k)
-    P.sign4 = math.copysign(1.0, h[3] @ k)
-    P.bound = bound
-    P.lip = float(abs(h1 @ k) + float(np.linalg.norm(k - kpar)))
-    P.scale = bound
-    P.slack = features.slack  # 0 unless near-degenerate: the triangle straddles its fold
-    lims = chain.qlim
-    P.q1rep = _middle(*lims[0])
-    P.q2rep = _middle(*lims[1])
-    return P, mode
-
-
 def build(chain: Chain, features: Features, target: TargetKind) -> ClosedForm | None:
     """The closed-form solver of a UR-type arm for pose targets, or ``None``.
 
-    An arm whose axes have the structure only within the line geometry's tolerance
-    (``features.near_degenerate``) gets the general 6R's candidates too, when its
-    builder finds a labelling (``cpp/include/kinematica/solvers/near_6r.hpp``: near the
-    family's singular sets the real arm's solutions lie beyond the repair's reach of
-    the family's); their branch labels follow the family's.
+    The core builds it from the chain alone (``km::parallel::build``,
+    ``cpp/include/kinematica/solvers/parallel_build.hpp``) and declines the arms the
+    module docstring lists. An arm whose axes have the structure only within the line
+    geometry's tolerance (``features.near_degenerate``) gets the general 6R's candidates
+    too, when its builder finds a labelling (``km::build_near_parallel``,
+    ``solvers/near_6r_build.hpp``: near the family's singular sets the real arm's
+    solutions lie beyond the repair's reach of the family's); their branch labels follow
+    the family's.
     """
     if target != "pose":
         return None
-    packed = pack(chain, features)
-    if packed is None:
+    params = _core.parallel.build(chain.core)
+    if params is None:
         return None
-    params, mode = packed
-    labels = LABELS if mode == _core.parallel.Mode.meet else GENERAL_LABELS
+    labels = LABELS if params.mode == _core.parallel.Mode.meet else GENERAL_LABELS
     if features.near_degenerate:
-        from kinematica.ik.analytic import general_6r  # a near-degenerate arm's only
-
-        exact = general_6r.build(chain, features, target)
-        if exact is not None:
-            near = _core.general6r.NearParallelParams()
-            near.family = params
-            near.general = exact.params
-            near.watch = _core.general6r.WATCH_FACTOR * math.sqrt(features.slack / features.size)
-            return ClosedForm(name="three-parallel-6R", labels=labels + exact.labels, params=near)
+        near = _core.general6r.near_parallel(chain.core)
+        if near is not None:
+            return ClosedForm(
+                name="three-parallel-6R", labels=labels + general_6r.LABELS, params=near
+            )
     return ClosedForm(name="three-parallel-6R", labels=labels, params=params)
 
 

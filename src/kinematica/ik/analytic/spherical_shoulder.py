@@ -4,11 +4,11 @@ When the first three axes meet (at the shoulder centre), the arm read from the t
 back to the base is a spherical-wrist arm: ``T(q)⁻¹`` is the pose of the chain
 :meth:`kinematica.core.Chain.reversed` at ``q'_j = -q_(7-j)``, whose last three axes
 (this arm's 3, 2, 1) meet. This module builds that chain from the arm's own
-transforms, fills the spherical-wrist solver of it
-(:func:`kinematica.ik.analytic.spherical_wrist.wrist_solver`) and wraps it in the
-core's ``SphericalShoulderParams``
-(``cpp/include/kinematica/solvers/spherical_shoulder.hpp``), which inverts the target
-and reads the candidates back.
+transforms and builds the spherical-wrist solver of it, wrapped in its
+``SphericalShoulderParams`` (``km::decoupled::build_shoulder``,
+``cpp/include/kinematica/solvers/spherical_shoulder_build.hpp``; the solver,
+``spherical_shoulder.hpp``, inverts the target and reads the candidates back).
+This module names the family and its branches and draws its sample arms.
 
 Branch labels, base to tip (slot ``2 k + s``):
 
@@ -32,7 +32,6 @@ Branch labels, base to tip (slot ``2 k + s``):
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -40,10 +39,11 @@ from numpy.typing import NDArray
 import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.dh.joints import Prismatic, Revolute
+from kinematica.ik.analytic.arm_point import geometry_of
 from kinematica.ik.analytic.sampling import random_transform
-from kinematica.ik.analytic.spherical_wrist import sample_wrist_rows, wrist_solver
+from kinematica.ik.analytic.spherical_wrist import sample_wrist_rows
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
-from kinematica.ik.structure import Features, features
+from kinematica.ik.structure import Features
 from kinematica.spatial.transform import inv_transform
 
 __all__ = ["SPECS", "build", "reversed_arm", "shoulder_labels"]
@@ -84,25 +84,13 @@ def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
     """
     if target != "pose" or f.shoulder_center is None or f.dof != 6:
         return None
-    back = chain.reversed()
-    # The reversed chain's frame is this arm's tool frame at q = 0: its wrist centre is
-    # the shoulder centre seen from there. Taken from this arm, with this arm's size (the
-    # reversed chain counts other translations), so that the line geometry's tolerances
-    # decide once, on this arm.
-    M_inv = inv_transform(chain.fk(np.zeros(6))[0])
-    centre = M_inv[:3, :3] @ f.shoulder_center + M_inv[:3, 3]
-    fb = replace(features(back), wrist_center=centre, size=f.size)
-    # where q = 0 is singular, "no-flip" is the bend of q2 > 0, that is of q'5 < 0
-    solver = wrist_solver(back, fb, singular_side=-1.0)
-    if solver is None:
+    params = _core.decoupled.build_spherical_shoulder(chain.core)
+    if params is None:
         return None
-    wrist, positions = solver
-    params = _core.decoupled.SphericalShoulderParams()
-    params.wrist = wrist
     slide = f.joint_types[3] == "P"
     return ClosedForm(
         name="spherical-shoulder-prr" if slide else "spherical-shoulder",
-        labels=shoulder_labels(positions),
+        labels=shoulder_labels(geometry_of(params.wrist.arm).labels),
         params=params,
     )
 

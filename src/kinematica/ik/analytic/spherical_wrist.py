@@ -1,10 +1,13 @@
-"""Spherical-wrist arms (6R, and RRP of the Stanford type): the builder of their solver.
+"""Spherical-wrist arms (6R, and RRP of the Stanford type): their solver's spec.
 
 The core's solver (``cpp/include/kinematica/solvers/spherical_wrist.hpp``) places the
 wrist centre by joints 1-3 (any first three axes: meeting, parallel or skew
 shoulders; the last needs Pieper's quartic) and solves the wrist for the rotation
-left over; this module reads the geometry from the joint axes once per arm and
-fills its ``SphericalWristParams``.
+left over; the core builds it once per arm from the joint axes
+(``km::decoupled::build``, ``spherical_wrist_build.hpp``). It declines an arm whose
+joints 1-3 cannot move the wrist centre in three directions, or two of whose
+consecutive wrist axes coincide. This module names the family and its branches and
+draws its sample arms.
 """
 
 from __future__ import annotations
@@ -18,12 +21,7 @@ from numpy.typing import NDArray
 import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.dh.joints import Prismatic, Revolute
-from kinematica.dh.lines import AXIS_ANGLE_TOL, cross3, lines_parallel
-from kinematica.ik.analytic.arm_point import (
-    arm_geometry,
-    places_point,
-    unit_normal,
-)
+from kinematica.ik.analytic.arm_point import geometry_of
 from kinematica.ik.analytic.sampling import random_transform
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
@@ -34,112 +32,24 @@ __all__ = [
     "build",
     "random_wrist_rows",
     "sample_wrist_rows",
-    "wrist_params",
-    "wrist_solver",
 ]
 
 FloatArray = NDArray[np.float64]
 PI = math.pi
 
 
-def wrist_params(
-    params: Any,
-    h4: FloatArray,
-    h5: FloatArray,
-    h6: FloatArray,
-    R_home: FloatArray,
-    singular_side: float = 1.0,
-) -> bool:
-    """Fill the wrist's fields of ``params``; False for no 3-DOF wrist.
-
-    Args:
-        params: The solver's ``SphericalWristParams``.
-        h4: ``(3,)`` unit axis 4 at q = 0 (base frame); ``h5``, ``h6`` likewise.
-        h5: See ``h4``.
-        h6: See ``h4``.
-        R_home: ``(3, 3)`` the tool's rotation at q = 0.
-        singular_side: When the wrist is singular at q = 0, "no-flip" is the bend
-            of q5 > 0 (``1``) or of q5 < 0 (``-1``, the reversed chain of a
-            spherical shoulder, whose q2 is -q5).
-    """
-    k45 = float(h4 @ h5)
-    ea = h5 - k45 * h4
-    s45 = float(np.linalg.norm(ea))
-    if s45 <= AXIS_ANGLE_TOL or lines_parallel(h5, h6):
-        return False  # consecutive wrist axes coincide: no 3-DOF wrist
-    ea = ea / s45
-    eb = cross3(h4, ea)
-    F = np.stack([h4, ea, eb])  # rows: the frame (h4, ea, eb)
-    x6 = unit_normal(h6)
-    k56 = float(h5 @ h6)
-    # "no-flip" bends the wrist as at q = 0 (the sign of γ there), or as q5 > 0
-    # bends it from there when γ = 0 at q = 0 (h6 in the plane of h4 and h5,
-    # e.g. aligned with h4): (h4 × h5)ᵀ R5(ε) h6 ≈ ε (k45 k56 - h4ᵀh6)
-    home = float(cross3(h4, h5) @ h6)
-    bend = k45 * k56 - float(h4 @ h6)
-    params.lh = R_home.T @ h6
-    params.lx = R_home.T @ x6
-    params.h4 = h4
-    params.h5 = h5
-    params.x6 = x6
-    params.y6 = cross3(h6, x6)
-    params.ea = ea
-    params.eb = eb
-    params.n56 = F @ cross3(h5, h6)
-    params.h6f = F @ h6
-    params.k45 = k45
-    params.s45 = s45
-    params.k56 = k56
-    params.flip = math.copysign(1.0, home if abs(home) > AXIS_ANGLE_TOL else singular_side * bend)
-    twin = max(abs(k45), abs(k56), float(np.linalg.norm(cross3(h4, h6))))
-    params.twin = twin <= _core.decoupled.TWIN_TOL
-    return True
-
-
-def wrist_solver(
-    chain: Chain, f: Features, singular_side: float = 1.0
-) -> tuple[Any, tuple[str, ...]] | None:
-    """The filled ``SphericalWristParams`` of a 6R or RRP arm whose last three axes meet.
-
-    ``singular_side``: see :func:`wrist_params`.
-
-    Returns:
-        ``(params, position labels (4,))``, or None when joints 1-3 cannot move
-        the wrist centre in three directions or two consecutive wrist axes
-        coincide.
-    """
-    if f.wrist_center is None or f.dof != 6:
-        return None
-    h, p = f.directions, f.points
-    M = chain.fk(np.zeros(6))[0]
-    c = np.asarray(f.wrist_center, dtype=float)
-    c_tool = M[:3, :3].T @ (c - M[:3, 3])
-    prismatic = f.joint_types[2] == "P"
-    if not places_point(chain, c_tool):
-        return None
-    arm = arm_geometry(h[:3], p[:3], prismatic, c, f.size)
-    if arm is None:
-        return None
-    params = _core.decoupled.SphericalWristParams()
-    params.arm = arm.arm
-    params.c_tool = c_tool
-    if not wrist_params(params, h[3], h[4], h[5], M[:3, :3], singular_side):
-        return None
-    params.q4_lo, params.q4_hi = chain.qlim[3]
-    params.q6_lo, params.q6_hi = chain.qlim[5]
-    return params, arm.labels
-
-
 def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
     """The closed form of a 6R or RRP arm whose last three axes meet, or None.
 
     None for position targets (see :mod:`kinematica.ik.analytic.arm_position`)
-    and where :func:`wrist_solver` gives none.
+    and for the arms the core's builder declines (the module docstring says which).
     """
-    solver = wrist_solver(chain, f) if target == "pose" else None
-    if solver is None:
+    if target != "pose" or f.wrist_center is None or f.dof != 6:
         return None
-    params, positions = solver
+    params = _core.decoupled.build_spherical_wrist(chain.core)
+    if params is None:
+        return None
+    positions = geometry_of(params.arm).labels
     labels = tuple(f"{pos}, wrist {w}" for pos in positions for w in ("no-flip", "flip"))
     return ClosedForm(
         name="rrp-spherical-wrist" if params.arm.prismatic else "spherical-wrist",

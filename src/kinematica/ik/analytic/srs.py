@@ -48,11 +48,8 @@ from numpy.typing import ArrayLike, NDArray
 import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.dh.joints import Revolute
-from kinematica.dh.lines import cross3
 from kinematica.errors import KinematicaError
-from kinematica.ik.analytic.arm_point import unit_normal
 from kinematica.ik.analytic.sampling import random_transform
-from kinematica.ik.analytic.spherical_wrist import wrist_params
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features, features
 
@@ -95,54 +92,17 @@ def handles(f: Features) -> bool:
     return srs_points(f) is not None
 
 
-def _turn(h: FloatArray, angle: float, v: FloatArray) -> FloatArray:
-    """``v`` turned by ``angle`` about the unit axis ``h`` (Rodrigues)."""
-    c, s = math.cos(angle), math.sin(angle)
-    out: FloatArray = c * v + s * cross3(h, v) + (1.0 - c) * float(h @ v) * h
-    return out
-
-
 def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
-    """The closed form of an SRS 7R arm (pose targets), or None."""
-    points = srs_points(f)
-    if target != "pose" or points is None:
+    """The closed form of an SRS 7R arm (pose targets), or None.
+
+    The core builds it (``km::srs::build``, ``cpp/include/kinematica/solvers/
+    srs_build.hpp``) at the arm angle 0; it declines arms two of whose consecutive
+    shoulder or wrist axes coincide.
+    """
+    if target != "pose" or not handles(f):
         return None
-    S, E, W = points
-    h = f.directions
-    M = chain.fk(np.zeros(7))[0]
-    params = _core.srs.SRSParams()
-    shoulder = _core.decoupled.SphericalWristParams()
-    wrist = _core.decoupled.SphericalWristParams()
-    if not (
-        wrist_params(shoulder, h[0], h[1], h[2], np.eye(3))
-        and wrist_params(wrist, h[4], h[5], h[6], M[:3, :3])
-    ):
-        return None  # two consecutive axes of the shoulder or the wrist coincide
-    qlim = chain.qlim
-    shoulder.q4_lo, shoulder.q4_hi = qlim[0]
-    shoulder.q6_lo, shoulder.q6_hi = qlim[2]
-    wrist.q4_lo, wrist.q4_hi = qlim[4]
-    wrist.q6_lo, wrist.q6_hi = qlim[6]
-    se, ew, h4 = E - S, W - E, h[3]
-    # |se + R4(q4) ew|² = |se|² + |ew|² + 2 (C + A cos q4 + B sin q4): largest at atan2(B, A)
-    ew_across = ew - float(ew @ h4) * h4
-    se_across = se - float(se @ h4) * h4
-    stretched = math.atan2(float(h4 @ cross3(ew, se)), float(se_across @ ew_across))
-    params.shoulder = shoulder
-    params.wrist = wrist
-    params.s = S
-    params.w_tool = M[:3, :3].T @ (W - M[:3, 3])
-    params.se = se
-    params.ew = ew
-    params.h4 = h4
-    params.ref = h[0]
-    params.ref_alt = unit_normal(h[0])
-    params.stretched = stretched
-    # the extremes as norms of vectors (no cancellation in |se|² + |ew|² - 2r at a fold)
-    params.d_max = float(np.linalg.norm(se + _turn(h4, stretched, ew)))
-    params.d_min = float(np.linalg.norm(se + _turn(h4, stretched + PI, ew)))
-    params.scale = f.size
-    return ClosedForm(name="srs", labels=LABELS, params=params)
+    params = _core.srs.build(chain.core)
+    return None if params is None else ClosedForm(name="srs", labels=LABELS, params=params)
 
 
 def arm_angle(chain: Chain, q: ArrayLike) -> FloatArray:

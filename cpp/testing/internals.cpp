@@ -1,6 +1,6 @@
 // The core's scalar internals, bound one value at a time for the tests that pin them
 // (against the C library, their definitions, and each named tolerance from both sides).
-// Submodule kinematica._core.internals: not part of the library's API.
+// Submodule kinematica._core_testing.internals (the test-only module): not the library's API.
 #include <nanobind/stl/array.h>
 #include <nanobind/stl/complex.h>
 
