@@ -29,7 +29,8 @@ from typing import Any, Final
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica.dh import Prismatic, Revolute, values_checked
+from kinematica.dh import Prismatic, Revolute
+from kinematica.dh.joints import values_checked
 from kinematica.io.expr import Expression, is_joint_variable, parse_expression
 from kinematica.robot import Robot
 
@@ -74,7 +75,7 @@ def _to_si(value: Any, unit: str) -> Any:
 
 
 def _fold(expr: Expression, env: Mapping[str, Any]) -> Any:
-    """The expression's constant part with ``env``'s values (floats or arrays), joint variables 0."""
+    """The expression's constant part: ``env``'s values (floats or arrays), joint variables 0."""
 
     def name(n: str) -> Any:
         if is_joint_variable(n):
@@ -172,12 +173,19 @@ class CompiledTemplate:
             for joint, (theta, d, a, alpha) in zip(spec.joints, table.tolist(), strict=True):
                 if joint.kind == "R":
                     links.append(
-                        Revolute(d=d, a=a, alpha=alpha, offset=theta, qlim=joint.qlim, name=joint.name)
+                        Revolute(
+                            d=d, a=a, alpha=alpha, offset=theta, qlim=joint.qlim, name=joint.name
+                        )
                     )
                 else:
                     links.append(
                         Prismatic(
-                            theta=theta, a=a, alpha=alpha, offset=d, qlim=joint.qlim, name=joint.name
+                            theta=theta,
+                            a=a,
+                            alpha=alpha,
+                            offset=d,
+                            qlim=joint.qlim,
+                            name=joint.name,
                         )
                     )
         return Robot(

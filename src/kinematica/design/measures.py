@@ -203,9 +203,7 @@ class TaskMeasures:
         return out
 
 
-def measure_task(
-    robot: Robot, task: Task, needs: Collection[str] | None = None
-) -> TaskMeasures:
+def measure_task(robot: Robot, task: Task, needs: Collection[str] | None = None) -> TaskMeasures:
     """Solve IK for every target of ``task`` and measure each reached one.
 
     Args:
@@ -244,8 +242,8 @@ def measure_task(
         s = None
         if singular or not full_rank:
             s = robot.chain.singular_values(q, idx, group=group).reshape(n_targets, k_max, -1)
-        if full_rank:
-            w = robot.chain.volumes(q, idx, group=group).reshape(n_targets, k_max)
+        if full_rank:  # no twins looked for: comparing two Jacobians costs about an LU
+            w = robot.chain.volumes(q, idx).reshape(n_targets, k_max)
         else:
             assert s is not None
             w = np.prod(s[..., :rank], axis=-1)
@@ -254,10 +252,8 @@ def measure_task(
         manip = np.fmax.reduce(w, axis=1)
         manip[~reached] = np.nan
         if s is not None and cond is not None and clear is not None:
-            if rank > 0:
-                smallest = s[..., rank - 1]
-            else:
-                smallest = np.where(np.isnan(s[..., 0]), np.nan, 0.0)
+            # no motion the task sees (rank 0): every measure 0 (NaN rows kept NaN)
+            smallest = s[..., rank - 1] if rank > 0 else np.where(np.isnan(s[..., 0]), np.nan, 0.0)
             with np.errstate(divide="ignore", invalid="ignore"):
                 kappa = s[..., 0] / smallest
             kappa[smallest == 0.0] = np.inf

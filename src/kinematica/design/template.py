@@ -134,8 +134,10 @@ class DesignTemplate:
 
     @cached_property
     def compiled(self) -> CompiledTemplate:
-        """The template compiled once (:mod:`kinematica.design.compiled`): a candidate's
-        robot from its DH values without reading the file again."""
+        """The template compiled once (:mod:`kinematica.design.compiled`).
+
+        A candidate's robot from its DH values, without reading the file again.
+        """
         from kinematica.design.compiled import compile_template
 
         return compile_template(self)
