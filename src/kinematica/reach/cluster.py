@@ -1,7 +1,9 @@
 """A Dask client for ``scheduler=``: none, a local cluster, or an existing scheduler.
 
 ``scheduler=None`` runs in this process; ``"local"`` starts a
-``dask.distributed.LocalCluster`` of ``workers`` single-threaded processes;
+``dask.distributed.LocalCluster`` of ``workers`` single-threaded processes
+(without Dask's statistical profiler, :data:`WORKER_CONFIG`: on a busy core its
+sampling of the task's stack every 10 ms took a tenth of the worker's time);
 ``"tcp://host:port"`` connects to a scheduler already running (on this machine
 or on many); a ``distributed.Client`` is used as it is and left open.
 """
@@ -15,13 +17,22 @@ from typing import Any
 
 from kinematica.errors import ArgumentError, KinematicaError
 
-__all__ = ["CONNECT_TIMEOUT", "Scheduler", "check_workers", "dask_client", "default_workers"]
+__all__ = [
+    "CONNECT_TIMEOUT",
+    "WORKER_CONFIG",
+    "Scheduler",
+    "check_workers",
+    "dask_client",
+    "default_workers",
+]
 
 #: ``None`` (this process), ``"local"``, a scheduler address, or a ``distributed.Client``.
 Scheduler = Any
 
 #: How long to wait for an existing Dask scheduler to answer.
 CONNECT_TIMEOUT = "10s"
+#: Dask settings of the workers of a ``"local"`` cluster (the nanny hands them on).
+WORKER_CONFIG = {"distributed.worker.profile.enabled": False}
 
 _NEEDS_DASK = (
     "scheduler={!r} needs dask.distributed: pip install 'kinematica[dask]' "
@@ -83,18 +94,20 @@ def dask_client(scheduler: Scheduler, workers: int | None = None) -> Iterator[An
             f"or a dask.distributed Client; got {scheduler!r}"
         )
     try:
+        import dask
         from dask.distributed import Client, LocalCluster
     except ImportError as exc:
         raise KinematicaError(_NEEDS_DASK.format(scheduler)) from exc
     cluster = None
     if scheduler == "local":
         try:
-            cluster = LocalCluster(
-                n_workers=workers or default_workers(),
-                threads_per_worker=1,
-                processes=True,
-                dashboard_address=None,
-            )
+            with dask.config.set(WORKER_CONFIG):
+                cluster = LocalCluster(
+                    n_workers=workers or default_workers(),
+                    threads_per_worker=1,
+                    processes=True,
+                    dashboard_address=None,
+                )
         except Exception as exc:  # distributed raises bare RuntimeErrors here
             raise KinematicaError(
                 f"could not start a local Dask cluster ({type(exc).__name__}: {exc}); "
