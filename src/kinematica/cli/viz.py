@@ -157,7 +157,7 @@ def _hash_hint(robot: Robot) -> str:
 
 
 def view(args: argparse.Namespace) -> int:
-    """``kinematica view ROBOT [-o arm.html] [--serve] [--reach [MAP.npz]]``: the interactive page."""
+    """``kinematica view ROBOT [-o arm.html] [--serve] [--reach [MAP]]``: the interactive page."""
     from kinematica import viz
 
     robot = robot_from_args(args)

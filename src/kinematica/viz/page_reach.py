@@ -44,7 +44,7 @@ COARSE_ORIENTATIONS: Final = 16
 
 
 def coarse_map(robot: Robot) -> ReachabilityMap:
-    """A quick map for the page: :data:`COARSE_VOXELS` voxels across, :data:`COARSE_ORIENTATIONS` each.
+    """A quick map for the page: :data:`COARSE_VOXELS` across, :data:`COARSE_ORIENTATIONS` each.
 
     An arm of fewer than six joints (a planar arm: over its plane) is asked
     positions alone; a redundant arm too, with half as many voxels across (its
