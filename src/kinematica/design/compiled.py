@@ -32,7 +32,7 @@ from numpy.typing import ArrayLike, NDArray
 from kinematica.dh import Prismatic, Revolute
 from kinematica.dh.joints import values_checked
 from kinematica.io.expr import Expression, is_joint_variable, parse_expression
-from kinematica.robot import Robot
+from kinematica.robot import Robot, robot_from_spec
 
 __all__ = ["CompiledTemplate", "compile_template"]
 
@@ -117,6 +117,8 @@ class CompiledTemplate:
             as the reader converts it).
         base: ``(4, 4)`` the base (it does not depend on a design variable).
         tool: ``(4, 4)`` the tool (likewise).
+        links: The joints at the nominal values (those no variable reaches are
+            used as they are).
     """
 
     template: Any
@@ -126,6 +128,7 @@ class CompiledTemplate:
     cells: tuple[tuple[int, int, Expression, str], ...]
     base: FloatArray
     tool: FloatArray
+    links: tuple[Revolute | Prismatic, ...]
 
     def table(self, X: ArrayLike) -> FloatArray:
         """``(..., n, 4)`` the DH table (rad, m) at design variables ``X`` ``(..., p)``.
@@ -168,25 +171,18 @@ class CompiledTemplate:
             robot = tmpl.robot_at(xa)
             return robot
         spec = tmpl.spec
-        links: list[Revolute | Prismatic] = []
+        links: list[Revolute | Prismatic] = list(self.links)  # rows no variable reaches
         with values_checked():  # the file's reader warned about implausible values
-            for joint, (theta, d, a, alpha) in zip(spec.joints, table.tolist(), strict=True):
+            for row in sorted({row for row, _, _, _ in self.cells}):
+                joint = spec.joints[row]
+                theta, d, a, alpha = table[row].tolist()
                 if joint.kind == "R":
-                    links.append(
-                        Revolute(
-                            d=d, a=a, alpha=alpha, offset=theta, qlim=joint.qlim, name=joint.name
-                        )
+                    links[row] = Revolute(
+                        d=d, a=a, alpha=alpha, offset=theta, qlim=joint.qlim, name=joint.name
                     )
                 else:
-                    links.append(
-                        Prismatic(
-                            theta=theta,
-                            a=a,
-                            alpha=alpha,
-                            offset=d,
-                            qlim=joint.qlim,
-                            name=joint.name,
-                        )
+                    links[row] = Prismatic(
+                        theta=theta, a=a, alpha=alpha, offset=d, qlim=joint.qlim, name=joint.name
                     )
         return Robot(
             links=tuple(links),
@@ -216,7 +212,7 @@ def compile_template(template: Any) -> CompiledTemplate:
     tool = np.eye(4) if spec.tool is None else spec.tool.as_matrix()
 
     def empty(reason: str) -> CompiledTemplate:
-        return CompiledTemplate(template, reason, nominal, (), (), base, tool)
+        return CompiledTemplate(template, reason, nominal, (), (), base, tool, ())
 
     if spec.chain is not None:
         return empty("the file describes its own transforms (chain)")
@@ -246,4 +242,7 @@ def compile_template(template: Any) -> CompiledTemplate:
             expr = parse_expression(joint.expr[key])
             if expr.names & follows:
                 cells.append((row, col, expr, units[key]))
-    return CompiledTemplate(template, None, nominal, tuple(parameters), tuple(cells), base, tool)
+    links = robot_from_spec(spec).links
+    return CompiledTemplate(
+        template, None, nominal, tuple(parameters), tuple(cells), base, tool, links
+    )
