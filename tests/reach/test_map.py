@@ -219,3 +219,21 @@ def test_a_redundant_arm_says_which_parameter_its_map_holds(tmp_path: Path) -> N
     back = load_map(save_map(m, tmp_path / "iiwa.npz"))
     assert back.held == "arm angle"
     assert km.reachability(elbow_wrist(), resolution=0.4, orientations=2).held is None
+
+
+@pytest.mark.parametrize(
+    ("count", "per_block", "workers"), [(31_000, 256, 2), (7, 256, 2), (10**6, 256, 3)]
+)
+def test_dask_shares_are_dealt_evenly_and_bounded(count: int, per_block: int, workers: int) -> None:
+    places = compute.shares(count, per_block, True, workers)
+    taken = np.concatenate([np.arange(count)[p] for p in places])
+    assert np.array_equal(np.sort(taken), np.arange(count))  # each voxel once
+    sizes = [np.arange(count)[p].size for p in places]
+    assert max(sizes) - min(sizes) <= 1  # balanced to a voxel
+    assert len(places) >= min(count, workers * compute.TASKS_PER_WORKER)
+    assert max(sizes) <= compute.MAX_BLOCKS * per_block
+    # each task reaches across the whole ball: its voxels span the range
+    if count > 100:
+        assert all(np.arange(count)[p][-1] >= count - len(places) for p in places)
+    serial = compute.shares(count, per_block, False, workers)
+    assert [s.start for s in serial] == list(range(0, count, per_block))

@@ -35,7 +35,7 @@ from kinematica.robot.velocity import selected_rows
 if TYPE_CHECKING:
     from kinematica.robot import Robot
 
-__all__ = ["CHUNK_QUERIES", "Block", "solve_block", "solve_blocks"]
+__all__ = ["CHUNK_QUERIES", "Block", "shares", "solve_block", "solve_blocks"]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int32]
@@ -120,6 +120,27 @@ def solve_block(
     return Block(reached, solutions, best, complete, held)
 
 
+def shares(count: int, per_block: int, dealt: bool, workers: int) -> list[slice]:
+    """Where each call's voxels are among ``count``: runs of ``per_block``, or dealt.
+
+    Args:
+        count: Voxels to solve.
+        per_block: Voxels in one block (one IK call).
+        dealt: For Dask tasks: at least :data:`TASKS_PER_WORKER` a worker, each
+            of at most :data:`MAX_BLOCKS` blocks, task ``t`` of ``T`` taking
+            voxels ``t, t + T, ...`` (module docs); else consecutive blocks.
+        workers: Worker processes.
+
+    Returns:
+        One slice of the voxels per call, together taking each voxel once.
+    """
+    if not dealt:
+        return [slice(i, i + per_block) for i in range(0, count, per_block)]
+    tasks = max(workers * TASKS_PER_WORKER, math.ceil(count / (MAX_BLOCKS * per_block)))
+    tasks = max(1, min(tasks, count))
+    return [slice(t, None, tasks) for t in range(tasks)]
+
+
 def solve_blocks(
     robot: Robot,
     voxel_centres: Callable[[NDArray[np.intp]], FloatArray],
@@ -150,13 +171,7 @@ def solve_blocks(
         an empty :class:`Block` holding ``complete`` and ``held`` over them all.
     """
     n_orient = 1 if rotations is None else rotations.shape[0]
-    per_block = max(1, CHUNK_QUERIES // n_orient)
-    if client is None:
-        places = [slice(i, i + per_block) for i in range(0, voxels.size, per_block)]
-    else:  # fewer, bigger tasks, dealt (module docs): several blocks each, still bounded
-        tasks = max(workers * TASKS_PER_WORKER, math.ceil(voxels.size / (MAX_BLOCKS * per_block)))
-        tasks = max(1, min(tasks, voxels.size))
-        places = [slice(t, None, tasks) for t in range(tasks)]
+    places = shares(voxels.size, max(1, CHUNK_QUERIES // n_orient), client is not None, workers)
     parts = [voxels[p] for p in places]
     reached = np.zeros(voxels.size, dtype=np.int32)
     solutions = np.zeros(voxels.size, dtype=np.int32)
