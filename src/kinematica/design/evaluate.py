@@ -64,6 +64,7 @@ def evaluate_design(
     x: ArrayLike,
     reach: ReachSettings | None = None,
     needs: Collection[str] | None = None,
+    threads: int | None = None,
 ) -> Evaluation:
     """Measure the design ``x`` of ``template`` on ``task``.
 
@@ -76,6 +77,7 @@ def evaluate_design(
             (:mod:`kinematica.design.reachmeasures`) this way; None: not.
         needs: The measures the caller reads (names of
             :data:`~kinematica.design.objectives.MEASURES`); None: all.
+        threads: Core threads of its batches (None: the library default).
 
     Returns:
         The evaluation.
@@ -83,9 +85,9 @@ def evaluate_design(
     xa = np.asarray(x, dtype=float)
     params = template.params(xa)
     robot = template.compiled.robot(xa)
-    found = measure_task(robot, task, needs)
+    found = measure_task(robot, task, needs, threads)
     measures = found.summary()
     measures["total_length"] = total_length(robot)
     if reach is not None:
-        measures.update(reach_measures(robot, task, reach))
+        measures.update(reach_measures(robot, task, reach, threads))
     return Evaluation(params=params, measures=measures, violation=found.violation)

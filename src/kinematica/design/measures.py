@@ -203,7 +203,9 @@ class TaskMeasures:
         return out
 
 
-def measure_task(robot: Robot, task: Task, needs: Collection[str] | None = None) -> TaskMeasures:
+def measure_task(
+    robot: Robot, task: Task, needs: Collection[str] | None = None, threads: int | None = None
+) -> TaskMeasures:
     """Solve IK for every target of ``task`` and measure each reached one.
 
     Args:
@@ -212,6 +214,8 @@ def measure_task(robot: Robot, task: Task, needs: Collection[str] | None = None)
         needs: The measures asked (names of :data:`TASK_MEASURES`; others are
             ignored); None: all. The manipulability is always measured; the
             condition number and the clearance only when asked.
+        threads: Core threads of the batches (None: the library default; 1 on
+            a Dask worker, which has one core).
 
     Returns:
         The per-target measures (see the module docs).
@@ -220,7 +224,7 @@ def measure_task(robot: Robot, task: Task, needs: Collection[str] | None = None)
     n_targets = len(task)
     # positions as (N, 1, 3): three of them as (3, 3) would read as a rotation
     targets = task.targets[:, None, :] if rows == "position" else task.targets
-    result = robot.ik(targets, seed=IK_SEED)
+    result = robot.ik(targets, seed=IK_SEED, workers=threads)
     assert isinstance(result, IKBatchResult)
     solutions = result.solutions.reshape(n_targets, -1, robot.dof)  # (N, k, n), NaN-padded
     k_max = solutions.shape[1]
@@ -241,9 +245,9 @@ def measure_task(robot: Robot, task: Task, needs: Collection[str] | None = None)
         full_rank = rank == min(len(idx), robot.dof)
         s = None
         if singular or not full_rank:
-            s = robot.chain.singular_values(q, idx, group=group).reshape(n_targets, k_max, -1)
+            s = robot.chain.singular_values(q, idx, threads, group).reshape(n_targets, k_max, -1)
         if full_rank:  # no twins looked for: comparing two Jacobians costs about an LU
-            w = robot.chain.volumes(q, idx).reshape(n_targets, k_max)
+            w = robot.chain.volumes(q, idx, threads).reshape(n_targets, k_max)
         else:
             assert s is not None
             w = np.prod(s[..., :rank], axis=-1)

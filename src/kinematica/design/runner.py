@@ -268,5 +268,5 @@ def _evaluate_run(
     reach: ReachSettings | None,
     needs: Collection[str] | None,
 ) -> list[Evaluation]:
-    """Candidates ``X`` ``(s, p)`` one after the other: one Dask task."""
-    return [evaluate_design(template, task, x, reach, needs) for x in X]
+    """Candidates ``X`` ``(s, p)`` one after the other: one Dask task (one core thread)."""
+    return [evaluate_design(template, task, x, reach, needs, threads=1) for x in X]
