@@ -2,8 +2,8 @@
 
 ``scheduler=None`` runs in this process; ``"local"`` starts a
 ``dask.distributed.LocalCluster`` of ``workers`` single-threaded processes
-(without Dask's statistical profiler, :data:`WORKER_CONFIG`: on a busy core its
-sampling of the task's stack every 10 ms took a tenth of the worker's time);
+(without Dask's statistical profiler, :data:`WORKER_CONFIG`: it samples the
+running task's stack every 10 ms, a thread's work taken from the task's core);
 ``"tcp://host:port"`` connects to a scheduler already running (on this machine
 or on many); a ``distributed.Client`` is used as it is and left open.
 """
