@@ -31,6 +31,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from kinematica.dh import Prismatic, Revolute
 from kinematica.dh.joints import values_checked
+from kinematica.errors import KinematicaError
 from kinematica.io.expr import Expression, is_joint_variable, parse_expression
 from kinematica.robot import Robot, robot_from_spec
 
@@ -60,7 +61,7 @@ def _uses(raw: object, names: set[str]) -> bool:
         try:
             if parse_expression(text).names & names:
                 return True
-        except Exception:  # the reader has accepted the file: a text that is not an expression
+        except KinematicaError:  # a text that is no expression (a joint's name): no variable
             continue
     return False
 
