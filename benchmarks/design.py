@@ -140,7 +140,7 @@ def on_dask(path: Path, task: Task, budget: int, workers: int) -> None:
     import dask
     from dask.distributed import Client, LocalCluster
 
-    from kinematica.reach.cluster import WORKER_CONFIG
+    from kinematica.reach.cluster import worker_config
 
     print(f"\nsearch of {budget} evaluations, {len(task)} poses, {workers} Dask workers")
     load_before = _load()
@@ -149,7 +149,7 @@ def on_dask(path: Path, task: Task, budget: int, workers: int) -> None:
     t_serial, c_serial = time.perf_counter() - t0, time.process_time() - c0
     t0 = time.perf_counter()
     with (
-        dask.config.set(WORKER_CONFIG),  # as kinematica's own "local" cluster
+        dask.config.set(worker_config()),  # as kinematica's own "local" cluster
         LocalCluster(n_workers=workers, threads_per_worker=1, dashboard_address=None) as cluster,
         Client(cluster) as client,
     ):

@@ -207,7 +207,7 @@ def dask(poses: int, workers: int) -> None:
     import dask as dask_config
     from dask.distributed import Client, LocalCluster
 
-    from kinematica.reach.cluster import WORKER_CONFIG
+    from kinematica.reach.cluster import worker_config
 
     robot = km.load("ur5")
     h = _resolution_for(robot, poses)
@@ -218,7 +218,7 @@ def dask(poses: int, workers: int) -> None:
     t_serial, c_serial = time.perf_counter() - t0, time.process_time() - c0
     t0 = time.perf_counter()
     with (
-        dask_config.config.set(WORKER_CONFIG),  # as kinematica's own "local" cluster
+        dask_config.config.set(worker_config()),  # as kinematica's own "local" cluster
         LocalCluster(n_workers=workers, threads_per_worker=1, dashboard_address=None) as cluster,
         Client(cluster) as client,
     ):

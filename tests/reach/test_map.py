@@ -153,11 +153,17 @@ def test_own_orientations(robot: km.Robot) -> None:
 
 @pytest.fixture(scope="module")
 def cluster() -> Iterator[Any]:
+    import dask
     from dask.distributed import LocalCluster
 
-    with LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
-    ) as c:
+    from kinematica.reach.cluster import worker_config
+
+    with (
+        dask.config.set(worker_config()),  # as scheduler="local" starts one
+        LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+        ) as c,
+    ):
         yield c
 
 
@@ -173,6 +179,22 @@ def test_dask_map_is_the_serial_map_bit_for_bit(
     with distributed.Client(cluster) as client:
         by_client = km.reachability(robot, REGION, 0.1, orientations=16, scheduler=client)
         assert client.status == "running"
+        # the workers got worker_config's malloc thresholds (through the nanny) and no profiler
+        from kinematica.reach.cluster import MALLOC_MMAP_THRESHOLD, MALLOC_TRIM_THRESHOLD
+
+        def settings() -> tuple[str | None, str | None, bool]:  # sent by value, run there
+            import os
+
+            import dask
+
+            return (
+                os.environ.get("MALLOC_TRIM_THRESHOLD_"),
+                os.environ.get("MALLOC_MMAP_THRESHOLD_"),
+                bool(dask.config.get("distributed.worker.profile.enabled")),
+            )
+
+        expected = (str(MALLOC_TRIM_THRESHOLD), str(MALLOC_MMAP_THRESHOLD), False)
+        assert set(client.run(settings).values()) == {expected}
     assert_same_map(serial, by_client)
 
 

