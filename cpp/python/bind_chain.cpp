@@ -13,6 +13,7 @@
 #include "interrupt.hpp"
 #include "kinematica/point_rank.hpp"
 #include "kinematica/singular.hpp"
+#include "kinematica/volume.hpp"
 
 namespace kmpy {
 
@@ -272,13 +273,14 @@ struct Lanes {
 };
 
 //! Singular values of the Jacobians (the rows of `mask`) of rows [b0, b1) of Q, into S
-//! (min(m, n) a row), SV_LANES at a time. Rows come in groups of `group` (the solutions of
+//! (min(m, n) a row), SV_LANES at a time; with `volume`, their product alone (one a row,
+//! km::volume: a determinant, no SVD). Rows come in groups of `group` (the solutions of
 //! one target): a row whose Jacobian equals an earlier one's of its group up to column
 //! signs (a wrist flip) takes its values; a row holding NaN/inf gets NaN without a walk.
 KM_CLONES void singular_block(const ChainView& ch, const double* Q, long b0, long b1, const int* rows,
-                              int m, int group, double* S) {
+                              int m, int group, bool volume, double* S) {
     const int n = ch.n;
-    const int k = m < n ? m : n;
+    const int k = volume ? 1 : (m < n ? m : n);
     BlockTrig trig(n, b1 - b0);
     km::joint_trig_rows(ch, Q + b0 * n, static_cast<int>(b1 - b0), trig.angle(), trig.c(), trig.s());
     const size_t mn = static_cast<size_t>(m) * static_cast<size_t>(n);
@@ -310,10 +312,14 @@ KM_CLONES void singular_block(const ChainView& ch, const double* Q, long b0, lon
                 copies.emplace_back(b, twin);
                 continue;
             }
+            kept[static_cast<size_t>(n_kept++)] = b;
+            if (volume) {
+                out[0] = km::volume(Ab, m, n);
+                continue;
+            }
             double* lane = lanes.add(out);
             for (size_t e = 0; e < mn; ++e) lane[e] = Ab[e];
             if (lanes.full()) lanes.flush();
-            kept[static_cast<size_t>(n_kept++)] = b;
         }
     }
     lanes.flush();
@@ -322,12 +328,13 @@ KM_CLONES void singular_block(const ChainView& ch, const double* Q, long b0, lon
     }
 }
 
-F64 jacobian_singular_values(const Chain& chain, F64 Qh, int mask, int group, int workers) {
+F64 jacobian_singular_values(const Chain& chain, F64 Qh, int mask, int group, int workers,
+                             bool volume) {
     const In Q = check_batch(chain, Qh);
     const ChainView ch = chain.view();
     int rows[6];
     const int m = mask_rows(mask, rows);
-    const int k = m < ch.n ? m : ch.n;
+    const int k = volume ? 1 : (m < ch.n ? m : ch.n);
     const npy_intp B = Q.dim[0];
     if (group < 1 || group > km::MAX_SLOTS || B % group != 0) {
         throw nb::value_error("group must be 1-16 rows and divide the rows of Q");
@@ -336,7 +343,7 @@ F64 jacobian_singular_values(const Chain& chain, F64 Qh, int mask, int group, in
     F64 S = new_f64({B, k}, out);
     const long per_block = group * ((FK_BLOCK + group - 1) / group);  // whole groups
     run_rows(B, per_block, workers,
-             [&](long b0, long b1) { singular_block(ch, Q.data, b0, b1, rows, m, group, out); });
+             [&](long b0, long b1) { singular_block(ch, Q.data, b0, b1, rows, m, group, volume, out); });
     return S;
 }
 
@@ -504,11 +511,12 @@ void bind_chain(nb::module_& m) {
         .def("jacobian_batch", &jacobian_many, nb::arg("Q"), nb::arg("tool_frame"),
              nb::arg("workers"), "(J (B, 6, n), bad, turns) of Q (B, n), counted as for fk_batch.")
         .def("jacobian_singular_values", &jacobian_singular_values, nb::arg("Q"), nb::arg("rows"),
-             nb::arg("group") = 1, nb::arg("workers") = 1,
+             nb::arg("group") = 1, nb::arg("workers") = 1, nb::arg("volume") = false,
              "(B, min(m, n)): the singular values, largest first, of the m rows of the Jacobian\n"
              "(base frame) that the bit mask rows names (bit r: row r), at each row of Q (B, n);\n"
              "NaN for a row holding NaN/inf. Rows in groups of `group` (one target's solutions):\n"
-             "a Jacobian equal to an earlier one of its group up to column signs takes its values.")
+             "a Jacobian equal to an earlier one of its group up to column signs takes its values.\n"
+             "volume=True: (B, 1), their product alone (|det| or the Gram determinant's root).")
         .def("joint_axes", &joint_axes, nb::arg("Q"), nb::arg("workers") = 1,
              "(B, n, 6): each joint's axis direction, then a point on it (base frame).")
         .def("point_rank_ratios", &point_rank_ratios, nb::arg("Q"), nb::arg("c_tool"),

@@ -150,9 +150,17 @@ def test_checkpoint_cut_after_k_evaluations_resumes_to_the_same_end(
     assert_same_run(serial, resumed)
     assert resumed.reused == k and resumed.evaluated == full.evaluated - k
     assert len(_lines(ck)) == 1 + full.evaluated  # the cut line was dropped, none lost
-    # the same checkpoint serves a run with another objective: the first generation is shared
-    other = optimize(path, task, "singularity_clearance", budget=BUDGET, seed=SEED, checkpoint=ck)
+    # the same checkpoint serves a run with another objective that reads what was measured
+    # (the manipulability): the first generation is shared
+    other = optimize(path, task, "min_manipulability", budget=BUDGET, seed=SEED, checkpoint=ck)
     assert other.reused >= 10
+    # an objective reading a measure the run did not take (the singular values) computes
+    # those evaluations again, and the checkpoint then serves it too
+    clear = optimize(path, task, "singularity_clearance", budget=BUDGET, seed=SEED, checkpoint=ck)
+    assert clear.reused == 0 and clear.evaluated > 0
+    assert all("singularity_clearance" in ev.measures for ev in clear.history)
+    again = optimize(path, task, "singularity_clearance", budget=BUDGET, seed=SEED, checkpoint=ck)
+    assert again.evaluated == 0 and again.best_value == clear.best_value
 
 
 def test_killed_subprocess_resumes_on_a_cluster(

@@ -153,11 +153,17 @@ def test_own_orientations(robot: km.Robot) -> None:
 
 @pytest.fixture(scope="module")
 def cluster() -> Iterator[Any]:
+    import dask
     from dask.distributed import LocalCluster
 
-    with LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
-    ) as c:
+    from kinematica.reach.cluster import worker_config
+
+    with (
+        dask.config.set(worker_config()),  # as scheduler="local" starts one
+        LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+        ) as c,
+    ):
         yield c
 
 
@@ -173,6 +179,22 @@ def test_dask_map_is_the_serial_map_bit_for_bit(
     with distributed.Client(cluster) as client:
         by_client = km.reachability(robot, REGION, 0.1, orientations=16, scheduler=client)
         assert client.status == "running"
+        # the workers got worker_config's malloc thresholds (through the nanny) and no profiler
+        from kinematica.reach.cluster import MALLOC_MMAP_THRESHOLD, MALLOC_TRIM_THRESHOLD
+
+        def settings() -> tuple[str | None, str | None, bool]:  # sent by value, run there
+            import os
+
+            import dask
+
+            return (
+                os.environ.get("MALLOC_TRIM_THRESHOLD_"),
+                os.environ.get("MALLOC_MMAP_THRESHOLD_"),
+                bool(dask.config.get("distributed.worker.profile.enabled")),
+            )
+
+        expected = (str(MALLOC_TRIM_THRESHOLD), str(MALLOC_MMAP_THRESHOLD), False)
+        assert set(client.run(settings).values()) == {expected}
     assert_same_map(serial, by_client)
 
 
@@ -219,3 +241,21 @@ def test_a_redundant_arm_says_which_parameter_its_map_holds(tmp_path: Path) -> N
     back = load_map(save_map(m, tmp_path / "iiwa.npz"))
     assert back.held == "arm angle"
     assert km.reachability(elbow_wrist(), resolution=0.4, orientations=2).held is None
+
+
+@pytest.mark.parametrize(
+    ("count", "per_block", "workers"), [(31_000, 256, 2), (7, 256, 2), (10**6, 256, 3)]
+)
+def test_dask_shares_are_dealt_evenly_and_bounded(count: int, per_block: int, workers: int) -> None:
+    places = compute.shares(count, per_block, True, workers)
+    taken = np.concatenate([np.arange(count)[p] for p in places])
+    assert np.array_equal(np.sort(taken), np.arange(count))  # each voxel once
+    sizes = [np.arange(count)[p].size for p in places]
+    assert max(sizes) - min(sizes) <= 1  # balanced to a voxel
+    assert len(places) >= min(count, workers * compute.TASKS_PER_WORKER)
+    assert max(sizes) <= compute.MAX_BLOCKS * per_block
+    # each task reaches across the whole ball: its voxels span the range
+    if count > 100:
+        assert all(np.arange(count)[p][-1] >= count - len(places) for p in places)
+    serial = compute.shares(count, per_block, False, workers)
+    assert [s.start for s in serial] == list(range(0, count, per_block))

@@ -157,16 +157,19 @@ def _hash_hint(robot: Robot) -> str:
 
 
 def view(args: argparse.Namespace) -> int:
-    """``kinematica view ROBOT [-o arm.html] [--serve]``: the interactive page."""
+    """``kinematica view ROBOT [-o arm.html] [--serve] [--reach [MAP]]``: the interactive page."""
     from kinematica import viz
 
     robot = robot_from_args(args)
     units = viz.robot_units(robot)
     q = None if args.q is None else q_in(robot, args.q, args, "q")
+    reach = None
+    if args.reach is not None:  # a saved map, or (no file given) a coarse one computed now
+        reach = viz.page_map(robot, args.reach) if args.reach else viz.coarse_map(robot)
     written = None
     if args.output is not None or not args.serve:
         name = args.output or f"{Path(args.robot).stem or 'arm'}.html"
-        written = viz.write_page(robot, name, units=units, q=q, euler=args.euler)
+        written = viz.write_page(robot, name, units=units, q=q, euler=args.euler, reach=reach)
     if not args.serve:
         if args.json:
             dump({"robot": robot.name, "output": str(written), "units": units})
@@ -174,7 +177,14 @@ def view(args: argparse.Namespace) -> int:
             print(f"wrote {written}: open it in a browser ({_hash_hint(robot)})")
         return 0
     server = viz.serve(
-        robot, host=args.host, port=args.port, units=units, q=q, euler=args.euler, start=False
+        robot,
+        host=args.host,
+        port=args.port,
+        units=units,
+        q=q,
+        euler=args.euler,
+        start=False,
+        reach=reach,
     )
     if args.json:
         dump({"robot": robot.name, "url": server.url, "output": str(written) if written else None})
@@ -287,5 +297,13 @@ def register(sub: Any) -> None:
     p.add_argument("--host", default="127.0.0.1", help="address to serve on (default 127.0.0.1)")
     p.add_argument("--port", type=_port, default=0, help="port to serve on (default: a free one)")
     p.add_argument("--open", action="store_true", help="open the page in the web browser")
+    p.add_argument(
+        "--reach",
+        nargs="?",
+        const="",
+        metavar="MAP.npz",
+        help="show a reachability map: one saved by `kinematica reach ROBOT -o MAP.npz`, "
+        "or, with no file, a coarse one computed now",
+    )
     add_common(p)
     p.set_defaults(run=view)

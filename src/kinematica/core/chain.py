@@ -305,6 +305,30 @@ class Chain:
         S = self.core.jacobian_singular_values(flat, mask, group, resolve_workers(workers))
         return S.reshape(*q.shape[:-1], S.shape[-1])
 
+    def volumes(
+        self,
+        q: FloatArray,
+        rows: Sequence[int] = (0, 1, 2, 3, 4, 5),
+        workers: int | None = None,
+        group: int = 1,
+    ) -> FloatArray:
+        """The product of the singular values of the Jacobians' ``rows``, without them.
+
+        Yoshikawa's manipulability ``σ1···σk`` (``k = min(m, n)``) as ``|det J|``
+        for square rows, else the square root of the determinant of the Gram
+        matrix of the shorter side (``cpp/include/kinematica/volume.hpp``: an LU,
+        about a tenth of an SVD). Arguments as :meth:`singular_values`.
+
+        Returns:
+            ``(...)`` the products; NaN for a configuration holding NaN/inf.
+        """
+        mask = 0
+        for r in rows:
+            mask |= 1 << int(r)
+        flat = self._flat(q)
+        V = self.core.jacobian_singular_values(flat, mask, group, resolve_workers(workers), True)
+        return V.reshape(q.shape[:-1])
+
     def joint_axes(self, q: FloatArray) -> FloatArray:
         """Each joint's axis as a line: ``(..., n, 6)`` unit direction, then a point.
 

@@ -40,7 +40,7 @@ FORMAT: Final = "kinematica-design-checkpoint"
 #: Largest checkpoint read (256 MiB): about a million evaluations.
 MAX_BYTES = 256 * 2**20
 #: Bumped whenever what an evaluation holds, or how it is computed, changes.
-VERSION: Final = 2
+VERSION: Final = 3
 
 Key = tuple[float, ...]
 

@@ -18,11 +18,19 @@ measure zero):
 
 A target's value is that of its best solution (the arm may choose its branch):
 the largest ``w``, the smallest ``κ``, the largest ``σr``.
+
+Only what is asked is computed (``measure_task(..., needs=)``): the manipulability
+alone needs no singular value where ``r = min(m, n)``, since then ``w`` is
+``|det J|`` (square rows) or ``√det(J Jᵀ)`` (:meth:`Chain.volumes`: an LU, a tenth
+of an SVD); ``κ`` and ``σr`` need the singular values of every solution. ``w``
+is computed that way whatever else is asked, so a target's manipulability does
+not depend on the other measures asked with it.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Collection
 from dataclasses import dataclass
 from typing import Final, Literal
 
@@ -37,6 +45,7 @@ from kinematica.robot import Robot
 __all__ = [
     "IK_SEED",
     "RANK_TOL",
+    "TASK_MEASURES",
     "TaskMeasures",
     "generic_rank",
     "measure_task",
@@ -62,6 +71,14 @@ _FREE_STROKE: Final = 1.0
 
 
 _ROW_INDICES: Final = {"position": (0, 1, 2), "pose": (0, 1, 2, 3, 4, 5)}
+#: The task measures, and those that need every solution's singular values.
+TASK_MEASURES: Final = (
+    "min_manipulability",
+    "mean_manipulability",
+    "worst_condition",
+    "singularity_clearance",
+)
+_SINGULAR: Final = frozenset({"worst_condition", "singularity_clearance"})
 
 
 def _singular_values(robot: Robot, q: ArrayLike, rows: Rows) -> FloatArray:
@@ -136,8 +153,8 @@ class TaskMeasures:
     Attributes:
         reached: ``(N,)`` True where IK found a solution within the joint limits.
         manipulability: ``(N,)`` best manipulability over the target's solutions.
-        condition: ``(N,)`` best (smallest) condition number.
-        clearance: ``(N,)`` best (largest) smallest singular value.
+        condition: ``(N,)`` best (smallest) condition number; None if not asked.
+        clearance: ``(N,)`` best (largest) smallest singular value; None if not asked.
         gap: ``(N,)`` distance (m) outside the reach of an unreachable target
             when the solver knows it, else 0.
         rank: The generic rank ``r`` used.
@@ -145,8 +162,8 @@ class TaskMeasures:
 
     reached: NDArray[np.bool_]
     manipulability: FloatArray
-    condition: FloatArray
-    clearance: FloatArray
+    condition: FloatArray | None
+    clearance: FloatArray | None
     gap: FloatArray
     rank: int
 
@@ -159,34 +176,46 @@ class TaskMeasures:
         """The task-level values (over the reached targets; NaN if none).
 
         Returns:
-            ``min_manipulability``, ``mean_manipulability``, ``worst_condition``,
-            ``singularity_clearance``, and ``reached`` (share of targets).
+            ``min_manipulability``, ``mean_manipulability``, ``worst_condition``
+            and ``singularity_clearance`` (the last two only if measured), and
+            ``reached`` (share of targets).
         """
         ok = self.reached
         if not ok.any():
-            nan = math.nan
-            return {
-                "min_manipulability": nan,
-                "mean_manipulability": nan,
-                "worst_condition": nan,
-                "singularity_clearance": nan,
-                "reached": 0.0,
+            out = dict.fromkeys(TASK_MEASURES, math.nan)
+            out["reached"] = 0.0
+        else:
+            out = {
+                "min_manipulability": float(np.min(self.manipulability[ok])),
+                "mean_manipulability": float(np.mean(self.manipulability[ok])),
+                "worst_condition": math.nan
+                if self.condition is None
+                else float(np.max(self.condition[ok])),
+                "singularity_clearance": math.nan
+                if self.clearance is None
+                else float(np.min(self.clearance[ok])),
+                "reached": float(np.mean(ok)),
             }
-        return {
-            "min_manipulability": float(np.min(self.manipulability[ok])),
-            "mean_manipulability": float(np.mean(self.manipulability[ok])),
-            "worst_condition": float(np.max(self.condition[ok])),
-            "singularity_clearance": float(np.min(self.clearance[ok])),
-            "reached": float(np.mean(ok)),
-        }
+        if self.condition is None:
+            del out["worst_condition"]
+        if self.clearance is None:
+            del out["singularity_clearance"]
+        return out
 
 
-def measure_task(robot: Robot, task: Task) -> TaskMeasures:
+def measure_task(
+    robot: Robot, task: Task, needs: Collection[str] | None = None, threads: int | None = None
+) -> TaskMeasures:
     """Solve IK for every target of ``task`` and measure each reached one.
 
     Args:
         robot: The robot.
         task: Positions or poses in the robot's base frame.
+        needs: The measures asked (names of :data:`TASK_MEASURES`; others are
+            ignored); None: all. The manipulability is always measured; the
+            condition number and the clearance only when asked.
+        threads: Core threads of the batches (None: the library default; 1 on
+            a Dask worker, which has one core).
 
     Returns:
         The per-target measures (see the module docs).
@@ -195,39 +224,47 @@ def measure_task(robot: Robot, task: Task) -> TaskMeasures:
     n_targets = len(task)
     # positions as (N, 1, 3): three of them as (3, 3) would read as a rotation
     targets = task.targets[:, None, :] if rows == "position" else task.targets
-    result = robot.ik(targets, seed=IK_SEED)
+    result = robot.ik(targets, seed=IK_SEED, workers=threads)
     assert isinstance(result, IKBatchResult)
     solutions = result.solutions.reshape(n_targets, -1, robot.dof)  # (N, k, n), NaN-padded
     k_max = solutions.shape[1]
     rank = generic_rank(robot, rows)
     reached = result.count.reshape(n_targets) > 0
     shape = (n_targets,)
+    singular = needs is None or bool(_SINGULAR.intersection(needs))
     manip = np.full(shape, np.nan)
-    cond = np.full(shape, np.nan)
-    clear = np.full(shape, np.nan)
+    cond = np.full(shape, np.nan) if singular else None
+    clear = np.full(shape, np.nan) if singular else None
     if reached.any() and k_max > 0:
-        # (N·k, min(m, n)): one core call over the padded array, a target's solutions a
-        # group (a wrist flip's values are copied); NaN rows (no solution) stay NaN below,
-        # and the reductions over a target's solutions (fmax, fmin) skip them
+        # one core call over the padded (N·k, n) array, a target's solutions a group (a
+        # wrist flip's values are copied); NaN rows (no solution) stay NaN below, and the
+        # reductions over a target's solutions (fmax, fmin) skip them
         group = k_max if k_max <= MAX_GROUP else 1
-        flat = robot.chain.singular_values(
-            solutions.reshape(-1, robot.dof), _ROW_INDICES[rows], group=group
-        )
-        s = flat.reshape(n_targets, k_max, -1)
-        if rank > 0:
-            smallest = s[..., rank - 1]
+        q = solutions.reshape(-1, robot.dof)
+        idx = _ROW_INDICES[rows]
+        full_rank = rank == min(len(idx), robot.dof)
+        s = None
+        if singular or not full_rank:
+            s = robot.chain.singular_values(q, idx, threads, group).reshape(n_targets, k_max, -1)
+        if full_rank:  # no twins looked for: comparing two Jacobians costs about an LU
+            w = robot.chain.volumes(q, idx, threads).reshape(n_targets, k_max)
+        else:
+            assert s is not None
             w = np.prod(s[..., :rank], axis=-1)
-        else:  # no motion the task sees: every measure 0 (NaN rows kept NaN)
-            smallest = np.where(np.isnan(s[..., 0]), np.nan, 0.0)
-            w = smallest
-        with np.errstate(divide="ignore", invalid="ignore"):
-            kappa = s[..., 0] / smallest
-        kappa[smallest == 0.0] = np.inf
+            if rank == 0:  # no motion the task sees: every measure 0 (NaN rows kept NaN)
+                w = np.where(np.isnan(s[..., 0]), np.nan, 0.0)
         manip = np.fmax.reduce(w, axis=1)
-        cond = np.fmin.reduce(kappa, axis=1)
-        clear = np.fmax.reduce(smallest, axis=1)
-        for a in (manip, cond, clear):
-            a[~reached] = np.nan
+        manip[~reached] = np.nan
+        if s is not None and cond is not None and clear is not None:
+            # no motion the task sees (rank 0): every measure 0 (NaN rows kept NaN)
+            smallest = s[..., rank - 1] if rank > 0 else np.where(np.isnan(s[..., 0]), np.nan, 0.0)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                kappa = s[..., 0] / smallest
+            kappa[smallest == 0.0] = np.inf
+            cond[:] = np.fmin.reduce(kappa, axis=1)
+            clear[:] = np.fmax.reduce(smallest, axis=1)
+            cond[~reached] = np.nan
+            clear[~reached] = np.nan
     raw_gap = result.gap.reshape(n_targets)
     gap = np.where(reached | ~np.isfinite(raw_gap), 0.0, raw_gap)
     return TaskMeasures(reached, manip, cond, clear, np.maximum(gap, 0.0), rank)

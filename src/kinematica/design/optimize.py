@@ -27,8 +27,8 @@ from typing import Final
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from kinematica.design.evaluate import Evaluation
-from kinematica.design.objectives import Objective
+from kinematica.design.evaluate import Evaluation, evaluate_design
+from kinematica.design.objectives import MEASURES, Objective
 from kinematica.design.reachmeasures import REACH_MEASURES, ReachSettings, as_reach_settings
 from kinematica.design.result import DesignResult
 from kinematica.design.runner import Runner, Scheduler
@@ -295,6 +295,7 @@ def optimize(
         progress=progress,
         total=budget,
         reach=settings,
+        needs=obj.names,
     ) as runner:
         if obj.pareto:
             energy, front = _pareto(runner, tmpl, obj, budget, seed, front_size, history)
@@ -304,6 +305,9 @@ def optimize(
     best = _best(front or history, energy)
     if not best.feasible:
         best = min(history, key=lambda ev: ev.violation)
+    if any(name not in best.measures for name in MEASURES if name not in REACH_MEASURES):
+        # the search measured what the objective reads; the result holds every measure
+        best = evaluate_design(tmpl, tk, np.array(best.x), settings)
     value = energy(best) if obj.pareto else obj.value(best.measures)
     reached = best.measures.get("reached", 0.0)
     if best.feasible:

@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 
 from kinematica.design.evaluate import Evaluation, evaluate_design
-from kinematica.design.measures import TaskMeasures, measure_task
+from kinematica.design.measures import TASK_MEASURES, TaskMeasures, measure_task
 from kinematica.design.objectives import MEASURES
 from kinematica.design.result import DesignResult
 from kinematica.errors import KinematicaError
@@ -69,7 +69,7 @@ def write_log(result: DesignResult, path: str | os.PathLike[str]) -> Path:
 def _nominal(result: DesignResult) -> Evaluation:
     nominal = tuple(result.template.nominal.values())
     for ev in result.history:
-        if ev.x == nominal:
+        if ev.x == nominal and all(m in ev.measures for m in TASK_MEASURES):
             return ev
     return evaluate_design(result.template, result.task, np.array(nominal))
 

@@ -19,7 +19,7 @@ import hashlib
 import math
 import os
 import sys
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from contextlib import ExitStack
 from types import TracebackType
 from typing import Any
@@ -30,7 +30,8 @@ from numpy.typing import NDArray
 from kinematica.design.checkpoint import VERSION, Checkpoint
 from kinematica.design.evaluate import Evaluation, evaluate_design
 from kinematica.design.measures import IK_SEED
-from kinematica.design.reachmeasures import ReachSettings
+from kinematica.design.objectives import MEASURES
+from kinematica.design.reachmeasures import REACH_MEASURES, ReachSettings
 from kinematica.design.task import Task
 from kinematica.design.template import DesignTemplate
 from kinematica.errors import KinematicaError
@@ -91,6 +92,8 @@ class Runner:
         progress: Show a tqdm progress bar (``None``: when stderr is a terminal).
         total: The number of evaluations the bar counts to.
         reach: The reachability measures' settings (None: not measured).
+        needs: The measures the run reads (None: all); an evaluation (from the
+            checkpoint) lacking one of them is computed again.
     """
 
     def __init__(
@@ -104,8 +107,10 @@ class Runner:
         progress: bool | None = None,
         total: int = 0,
         reach: ReachSettings | None = None,
+        needs: Collection[str] | None = None,
     ) -> None:
         scheduler, workers = check_workers(workers, scheduler)
+        self.needs = None if needs is None else tuple(sorted(set(needs)))
         self.template = template
         self.task = task
         self.reach = reach
@@ -203,7 +208,7 @@ class Runner:
         keys = [tuple(float(v) for v in row) for row in inside]
         todo: list[Key] = []
         for key in keys:
-            if key in self.cache:
+            if key in self.cache and not self._lacks(self.cache[key]):
                 if key in self._from_checkpoint:
                     self._from_checkpoint.discard(key)
                     self.reused += 1
@@ -211,13 +216,24 @@ class Runner:
                 todo.append(key)
         if self._client is None:
             for key in todo:
-                ev = evaluate_design(self.template, self.task, np.array(key), self.reach)
+                ev = evaluate_design(
+                    self.template, self.task, np.array(key), self.reach, self.needs
+                )
                 self._done(key, ev)
                 self._tick(1)
         else:
             self._evaluate_remote(todo)
         self._tick(len(keys) - len(todo))
         return [self.cache[key] for key in keys]
+
+    def _lacks(self, ev: Evaluation) -> bool:
+        """Whether ``ev`` lacks a measure this run reads (one evaluated with fewer)."""
+        needs = MEASURES if self.needs is None else self.needs
+        return any(
+            name not in ev.measures
+            for name in needs
+            if name not in REACH_MEASURES or self.reach is not None
+        )
 
     def _evaluate_remote(self, todo: Sequence[Key]) -> None:
         if not todo:
@@ -229,7 +245,7 @@ class Runner:
         runs = balanced_runs(todo, self._workers)
         futures = [
             self._client.submit(
-                _evaluate_run, template, task, np.array(run), self.reach, pure=False
+                _evaluate_run, template, task, np.array(run), self.reach, self.needs, pure=False
             )
             for run in runs
         ]
@@ -246,7 +262,11 @@ class Runner:
 
 
 def _evaluate_run(
-    template: DesignTemplate, task: Task, X: FloatArray, reach: ReachSettings | None
+    template: DesignTemplate,
+    task: Task,
+    X: FloatArray,
+    reach: ReachSettings | None,
+    needs: Collection[str] | None,
 ) -> list[Evaluation]:
-    """Candidates ``X`` ``(s, p)`` one after the other: one Dask task."""
-    return [evaluate_design(template, task, x, reach) for x in X]
+    """Candidates ``X`` ``(s, p)`` one after the other: one Dask task (one core thread)."""
+    return [evaluate_design(template, task, x, reach, needs, threads=1) for x in X]

@@ -25,6 +25,8 @@ import json
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from functools import cached_property
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -32,6 +34,9 @@ from numpy.typing import ArrayLike, NDArray
 from kinematica.errors import KinematicaError, RobotFileError
 from kinematica.io import RobotSpec, read_robot_file, with_parameters
 from kinematica.robot import Robot, robot_from_spec
+
+if TYPE_CHECKING:
+    from kinematica.design.compiled import CompiledTemplate
 
 __all__ = ["DesignTemplate", "load_template"]
 
@@ -126,6 +131,21 @@ class DesignTemplate:
     def robot_at(self, params: Mapping[str, float] | ArrayLike) -> Robot:
         """The robot with other values of the design variables (see :meth:`spec_at`)."""
         return robot_from_spec(self.spec_at(params))
+
+    @cached_property
+    def compiled(self) -> CompiledTemplate:
+        """The template compiled once (:mod:`kinematica.design.compiled`).
+
+        A candidate's robot from its DH values, without reading the file again.
+        """
+        from kinematica.design.compiled import compile_template
+
+        return compile_template(self)
+
+    def __getstate__(self) -> dict[str, Any]:
+        state = dict(self.__dict__)
+        state.pop("compiled", None)  # compiled again where it is used (a Dask worker)
+        return state
 
     @property
     def fingerprint(self) -> str:

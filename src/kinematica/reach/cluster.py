@@ -1,7 +1,8 @@
 """A Dask client for ``scheduler=``: none, a local cluster, or an existing scheduler.
 
 ``scheduler=None`` runs in this process; ``"local"`` starts a
-``dask.distributed.LocalCluster`` of ``workers`` single-threaded processes;
+``dask.distributed.LocalCluster`` of ``workers`` single-threaded processes, set
+up for kinematica's tasks (:func:`worker_config`);
 ``"tcp://host:port"`` connects to a scheduler already running (on this machine
 or on many); a ``distributed.Client`` is used as it is and left open.
 """
@@ -15,13 +16,58 @@ from typing import Any
 
 from kinematica.errors import ArgumentError, KinematicaError
 
-__all__ = ["CONNECT_TIMEOUT", "Scheduler", "check_workers", "dask_client", "default_workers"]
+__all__ = [
+    "CONNECT_TIMEOUT",
+    "MALLOC_MMAP_THRESHOLD",
+    "MALLOC_TRIM_THRESHOLD",
+    "Scheduler",
+    "check_workers",
+    "dask_client",
+    "default_workers",
+    "worker_config",
+]
 
 #: ``None`` (this process), ``"local"``, a scheduler address, or a ``distributed.Client``.
 Scheduler = Any
 
 #: How long to wait for an existing Dask scheduler to answer.
 CONNECT_TIMEOUT = "10s"
+#: glibc's malloc settings of a ``"local"`` cluster's workers (bytes): memory freed
+#: stays with the process up to the trim threshold, and arrays below the mmap
+#: threshold come from its heap (see :func:`worker_config`).
+MALLOC_TRIM_THRESHOLD = 64 << 20
+MALLOC_MMAP_THRESHOLD = 32 << 20
+
+
+def worker_config() -> dict[str, Any]:
+    """Dask settings for the workers of a ``"local"`` cluster (the nanny hands them on).
+
+    * No statistical profiler: it samples the running task's stack every 10 ms,
+      a thread's work taken from the task's core.
+    * glibc's malloc thresholds (:data:`MALLOC_TRIM_THRESHOLD`,
+      :data:`MALLOC_MMAP_THRESHOLD`) in the environment the nanny starts a
+      worker with. Dask sets ``MALLOC_TRIM_THRESHOLD_=65536`` there, which
+      also freezes glibc's mmap threshold at 128 KiB: every array of a block
+      of IK (a few MB each) is then mapped afresh and faulted in page by page.
+      Measured on a 2-million-pose UR5 map: 410,000 page faults and 0.83 s of
+      system time in a worker against 181,000 and 0.43 s serially; with these
+      thresholds 3,800 and 0.02 s, and the worker's CPU time 11 % below the
+      serial run's instead of 16 % above it.
+
+    Returns:
+        The settings, for ``dask.config.set``.
+    """
+    import dask
+
+    environ = dict(dask.config.get("distributed.nanny.pre-spawn-environ", default={}) or {})
+    environ.update(
+        MALLOC_TRIM_THRESHOLD_=MALLOC_TRIM_THRESHOLD, MALLOC_MMAP_THRESHOLD_=MALLOC_MMAP_THRESHOLD
+    )
+    return {
+        "distributed.worker.profile.enabled": False,
+        "distributed.nanny.pre-spawn-environ": environ,
+    }
+
 
 _NEEDS_DASK = (
     "scheduler={!r} needs dask.distributed: pip install 'kinematica[dask]' "
@@ -83,18 +129,20 @@ def dask_client(scheduler: Scheduler, workers: int | None = None) -> Iterator[An
             f"or a dask.distributed Client; got {scheduler!r}"
         )
     try:
+        import dask
         from dask.distributed import Client, LocalCluster
     except ImportError as exc:
         raise KinematicaError(_NEEDS_DASK.format(scheduler)) from exc
     cluster = None
     if scheduler == "local":
         try:
-            cluster = LocalCluster(
-                n_workers=workers or default_workers(),
-                threads_per_worker=1,
-                processes=True,
-                dashboard_address=None,
-            )
+            with dask.config.set(worker_config()):
+                cluster = LocalCluster(
+                    n_workers=workers or default_workers(),
+                    threads_per_worker=1,
+                    processes=True,
+                    dashboard_address=None,
+                )
         except Exception as exc:  # distributed raises bare RuntimeErrors here
             raise KinematicaError(
                 f"could not start a local Dask cluster ({type(exc).__name__}: {exc}); "

@@ -20,6 +20,7 @@ from kinematica.viz.geometry import ArmPose, arm_pose, drawing_plane, robot_scal
 from kinematica.viz.limits import plot_limits, save_limits
 from kinematica.viz.notebook import PageView, page_view
 from kinematica.viz.page import page_data, page_html, robot_units, write_page
+from kinematica.viz.page_reach import coarse_map, page_map
 from kinematica.viz.plot import plot, save_figure, save_plot
 from kinematica.viz.server import PageServer, serve
 from kinematica.viz.solutions import plot_solutions, save_solutions
@@ -35,10 +36,12 @@ __all__ = [
     "VizError",
     "animate",
     "arm_pose",
+    "coarse_map",
     "drawing_plane",
     "mp4_available",
     "page_data",
     "page_html",
+    "page_map",
     "page_view",
     "plot",
     "plot_limits",

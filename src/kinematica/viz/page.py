@@ -7,7 +7,8 @@ and no Python. It has one slider per joint in the robot file's units, frames
 on/off, the live T (element ``id="T"``, four rows of numbers) and the pose;
 ``page.html#q=10,20,30,0,45,0`` (degrees, metres for prismatic joints) starts
 at that configuration. :func:`kinematica.viz.serve` adds a draggable target
-whose IK runs in Python.
+whose IK runs in Python. With ``reach=``, the page also shows a reachability
+map (:mod:`kinematica.viz.page_reach`), with a switch and a slice control.
 """
 
 from __future__ import annotations
@@ -29,10 +30,12 @@ from numpy.typing import ArrayLike
 from kinematica import __version__
 from kinematica.errors import DimensionError
 from kinematica.io.atomic import unchanged, write_text_atomic
+from kinematica.reach import ReachabilityMap
 from kinematica.robot import Robot, classify, load
 from kinematica.spatial import euler_from_matrix
 from kinematica.viz._mpl import VizError
 from kinematica.viz.geometry import ARROW, drawing_plane, robot_scale
+from kinematica.viz.page_reach import page_map, reach_data
 
 __all__ = ["EULER_SEQUENCES", "page_data", "page_html", "robot_units", "write_page"]
 
@@ -92,6 +95,7 @@ def page_data(
     euler: str = "ZYZ",
     serve: bool = False,
     token: str | None = None,
+    reach: ReachabilityMap | str | os.PathLike[str] | None = None,
 ) -> dict[str, Any]:
     """What the page embeds: the DH table (rad, m), limits, base, tool and view.
 
@@ -102,6 +106,9 @@ def page_data(
         euler: The Euler sequence shown first.
         serve: The page talks to :func:`kinematica.viz.serve` (the IK target).
         token: The server's secret for this run, sent back with every IK request.
+        reach: A reachability map to show (its voxels coloured by the index,
+            :mod:`kinematica.viz.page_reach`), or the path of one saved as ``.npz``;
+            None: none.
     """
     euler_from_matrix(np.eye(3), euler)  # raises EulerSequenceError on a bad name
     qlim = robot.qlim
@@ -155,6 +162,7 @@ def page_data(
         "radius": radius,
         "grid": _nice_step(radius / 4.0),
         "plane": list(plane) if plane is not None else None,
+        "reach": None if reach is None else reach_data(page_map(robot, reach)),
     }
 
 
@@ -204,15 +212,16 @@ def page_html(
     euler: str = "ZYZ",
     serve: bool = False,
     token: str | None = None,
+    reach: ReachabilityMap | str | os.PathLike[str] | None = None,
 ) -> str:
     """The page as one HTML text (arguments as :func:`page_data`)."""
-    data = page_data(robot, units=units, q=q, euler=euler, serve=serve, token=token)
+    data = page_data(robot, units=units, q=q, euler=euler, serve=serve, token=token, reach=reach)
     blob = _script_json(data)
     options = "".join(
         f'<option value="{s}"{" selected" if s == euler else ""}>{s}</option>'
         for s in EULER_SEQUENCES
     )
-    script = _asset("kinematics.js") + "\n" + _asset("view.js")
+    script = "\n".join(_asset(name) for name in ("kinematics.js", "reach.js", "view.js"))
     css = _asset("page.css")
     replacements = {
         "__CSP__": _policy(script, css),
@@ -239,12 +248,13 @@ def write_page(
     units: dict[str, str] | None = None,
     q: ArrayLike | None = None,
     euler: str = "ZYZ",
+    reach: ReachabilityMap | str | os.PathLike[str] | None = None,
 ) -> Path:
     """Write the self-contained page to ``path`` (arguments as :func:`page_data`)."""
     out = Path(path)
     if not out.parent.is_dir():
         raise VizError(f"{out}: the folder {out.parent} does not exist")
-    text = page_html(robot, units=units, q=q, euler=euler)
+    text = page_html(robot, units=units, q=q, euler=euler, reach=reach)
     try:
         write_text_atomic(out, text)
     except OSError as exc:

@@ -30,6 +30,7 @@ import contextlib
 import hmac
 import json
 import math
+import os
 import secrets
 import socket
 import threading
@@ -40,6 +41,7 @@ from typing import Any
 from numpy.typing import ArrayLike
 
 from kinematica.errors import ArgumentError, KinematicaError
+from kinematica.reach import ReachabilityMap
 from kinematica.robot import Robot
 from kinematica.viz.ik_request import solve_request
 from kinematica.viz.page import page_html
@@ -397,6 +399,7 @@ def serve(
     euler: str = "ZYZ",
     start: bool = True,
     read_timeout: float = READ_TIMEOUT,
+    reach: ReachabilityMap | str | os.PathLike[str] | None = None,
 ) -> PageServer:
     """Serve the page with a draggable IK target on ``http://host:port/``.
 
@@ -409,6 +412,7 @@ def serve(
         euler: Euler sequence shown first.
         start: Start serving in a background thread (else call ``serve_forever``).
         read_timeout: Seconds a client has to send a whole request.
+        reach: A reachability map the page shows, as :func:`kinematica.viz.page_html`.
 
     Returns:
         The :class:`PageServer`; ``close()`` it (or use it in a ``with`` block).
@@ -425,7 +429,7 @@ def serve(
             f"port must be an integer in 0..65535 (0: a free one), got {port!r}", arg="port"
         )
     token = secrets.token_urlsafe(32)
-    page = page_html(robot, units=units, q=q, euler=euler, serve=True, token=token)
+    page = page_html(robot, units=units, q=q, euler=euler, serve=True, token=token, reach=reach)
     try:
         server = PageServer(robot, host, port, page, token, read_timeout=read_timeout)
     except OSError as exc:

@@ -24,6 +24,7 @@
 
   const $ = function (id) { return document.getElementById(id); };
   const canvas = $("view");
+  const MAP = KM_REACH.create(ROBOT.reach); // null without a map
   const ctx = canvas.getContext("2d");
 
   // ------------------------------------------------------------------ sliders
@@ -223,6 +224,12 @@
       const a = project(along(o, z, -half), B), b = project(along(o, z, half), B);
       items.push({ z: (a.z + b.z) / 2 + 1e-4, kind: "joint", a: a, b: b, prismatic: isP[i], width: 2 * r * state.cam.zoom });
     }
+    if (MAP && $("reach-show").checked) {
+      const axis = Number($("reach-axis").value), layer = Number($("reach-layer").value);
+      MAP.items(items, function (p) { return project(p, B); }, state.cam.zoom, dpr, axis, layer);
+    } else if (MAP) {
+      MAP.drawn = 0;
+    }
     if ($("frames").checked) {
       const len = 0.12 * s;
       const groups = {};
@@ -303,6 +310,10 @@
     } else if (it.kind === "text") {
       ctx.fillStyle = "#111111"; ctx.font = 12 * dpr + "px sans-serif";
       ctx.fillText(it.text, it.at.x, it.at.y);
+    } else if (it.kind === "voxel") {
+      ctx.globalAlpha = it.alpha; ctx.fillStyle = it.color;
+      ctx.fillRect(it.a.x - it.size / 2, it.a.y - it.size / 2, it.size, it.size);
+      ctx.globalAlpha = 1;
     } else if (it.kind === "target") {
       ctx.strokeStyle = "#e377c2"; ctx.lineWidth = 3 * dpr;
       ctx.beginPath(); ctx.arc(it.a.x, it.a.y, 9 * dpr, 0, 2 * Math.PI); ctx.stroke();
@@ -425,6 +436,7 @@
   });
   window.addEventListener("resize", function () { draw(state.fk); });
   bindPointer();
+  KM_REACH.controls(MAP, function () { draw(state.fk); });
   if (ROBOT.serve) {
     $("serve").hidden = false;
     targetAtTool();
@@ -448,6 +460,16 @@
     },
     solutions: function () { return state.solutions.map(function (s) { return s.slice(); }); },
     euler: KM.euler,
+    // the map: voxels drawn in the last frame, and a slice (axis -1: none)
+    mapDrawn: function () { return MAP ? MAP.drawn : null; },
+    setSlice: function (axis, layer) {
+      $("reach-axis").value = String(axis);
+      $("reach-axis").dispatchEvent(new Event("change"));
+      if (axis >= 0) {
+        $("reach-layer").value = String(layer);
+        $("reach-layer").dispatchEvent(new Event("input"));
+      }
+    },
     ready: true,
   };
 })();
