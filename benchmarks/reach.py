@@ -279,7 +279,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--poses", type=int, default=1_000_000)
     parser.add_argument("--big", type=int, default=10_000_000)
-    parser.add_argument("--dask", type=int, default=2_000_000)
+    parser.add_argument("--dask", type=int, default=6_000_000)
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--skip-memory", action="store_true")
     parser.add_argument("--skip-dask", action="store_true")
