@@ -207,19 +207,25 @@ TRACE_CORRECT = 4
 #: representative on the configuration's arc is 2.2e-3 from its trace, those of the
 #: other arc over 2 rad: 1000 times smaller or larger and the test below fails.
 ON_TRACE_TOL = 0.01
+
+
 def _wrapped(d: FloatArray) -> FloatArray:
     return np.remainder(d + math.pi, 2 * math.pi) - math.pi  # type: ignore[no-any-return]
+
+
+def _pose_error(robot: Robot, q: FloatArray, T: FloatArray) -> FloatArray:
+    """``(6,)`` the twist (m, rad; base frame) that takes fk(q) to T, to first order."""
+    F = robot.fk(q)
+    Re = T[:3, :3] @ F[:3, :3].T
+    axis = np.array([Re[2, 1] - Re[1, 2], Re[0, 2] - Re[2, 0], Re[1, 0] - Re[0, 1]])
+    return np.concatenate([T[:3, 3] - F[:3, 3], 0.5 * axis])
 
 
 def _onto(robot: Robot, q: FloatArray, T: FloatArray) -> FloatArray:
     """q moved onto the pose T by TRACE_CORRECT Gauss-Newton steps (least-norm: across
     the continuum, not along it)."""
     for _ in range(TRACE_CORRECT):
-        F = robot.fk(q)
-        Re = T[:3, :3] @ F[:3, :3].T
-        axis = np.array([Re[2, 1] - Re[1, 2], Re[0, 2] - Re[2, 0], Re[1, 0] - Re[0, 1]])
-        e = np.concatenate([T[:3, 3] - F[:3, 3], 0.5 * axis])
-        q = q + np.linalg.lstsq(robot.jacobian(q), e, rcond=1e-9)[0]
+        q = q + np.linalg.lstsq(robot.jacobian(q), _pose_error(robot, q, T), rcond=1e-9)[0]
     return q
 
 
@@ -318,6 +324,15 @@ def test_a_pair_with_two_arcs_gets_a_representative_on_each() -> None:
     assert ON_TRACE_TOL < near[other].min() < 1000 * ON_TRACE_TOL
 
 
+def _onto_at_q1(robot: Robot, q: FloatArray, T: FloatArray) -> FloatArray:
+    """q's joints 2-6 fitted to T by least squares, q1 held."""
+    q = q.copy()
+    for _ in range(50):
+        e = _pose_error(robot, q, T)
+        q[1:] += np.linalg.lstsq(robot.jacobian(q)[:, 1:], e, rcond=1e-12)[0]
+    return q
+
+
 def test_the_arc_check_fails_on_wrong_representatives() -> None:
     """The check above, on answers made wrong: every row at the other arc's q1 (the
     answer before the fix); the row on q's arc with its q1 1e-3 rad off (the others
@@ -331,21 +346,9 @@ def test_the_arc_check_fails_on_wrong_representatives() -> None:
     assert any(f.startswith(f"row {on} misses T") for f in _arc_failures(robot, qa, T, shifted))
     arc = _q1_arc(_trace(robot, qa, T))
     past = sols.copy()
-    past[on, 0] = arc[0] - 1e-3  # outside the arc: no configuration reaches T there
+    past[on, 0] = arc[0] - 1e-3  # past the arc's end: the best fit there misses T
     past[on] = _onto_at_q1(robot, past[on], T)
     assert any(f.startswith(f"row {on} misses T") for f in _arc_failures(robot, qa, T, past))
-
-
-def _onto_at_q1(robot: Robot, q: FloatArray, T: FloatArray) -> FloatArray:
-    """q's joints 2-6 fitted to T by least squares, q1 held."""
-    q = q.copy()
-    for _ in range(50):
-        F = robot.fk(q)
-        Re = T[:3, :3] @ F[:3, :3].T
-        axis = np.array([Re[2, 1] - Re[1, 2], Re[0, 2] - Re[2, 0], Re[1, 0] - Re[0, 1]])
-        e = np.concatenate([T[:3, 3] - F[:3, 3], 0.5 * axis])
-        q[1:] += np.linalg.lstsq(robot.jacobian(q)[:, 1:], e, rcond=1e-12)[0]
-    return q
 
 
 def test_a_double_root_lost_to_round_off_marks_the_target_near() -> None:
