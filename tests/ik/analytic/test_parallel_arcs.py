@@ -26,7 +26,7 @@ from collections.abc import Callable
 import numpy as np
 import pytest
 from numpy.typing import NDArray
-from support.ik_singular_audit import conditioning, judge, reached_along
+from support.ik_singular_audit import TOL, conditioning, fk_error, judge
 
 from kinematica.dh import Revolute
 from kinematica.robot import Robot
@@ -196,24 +196,159 @@ def test_each_arc_of_q1_has_its_representative(build: Callable[[], Robot], q: li
     assert judge(robot, qa, T, res, float(conditioning(robot, qa[None])[0])) == []
 
 
-def test_a_pair_with_two_arcs_gets_a_representative_on_each() -> None:
-    """The first target: both pairs of the parallel wrist exist on two arcs of q1 each
-    (about -1.87 and 0.29 rad); before, all four branches were represented at the first
-    q1 found (4 rows), and the configuration, on the other arc, was 1.96 rad off. Now 8
-    rows at two values of q1, each a solution, and q reached along q1 from one of them."""
+#: Arclength step (rad, joint space) of the trace of a continuum of solutions, and
+#: the most steps it may take before it closes.
+TRACE_STEP = 0.01
+TRACE_STEPS = 5000
+#: Gauss-Newton corrections of each traced point back onto the pose.
+TRACE_CORRECT = 4
+#: A solution lies on a traced continuum when a traced point is this close (rad, max
+#: over the joints, modulo 2π): traced points are TRACE_STEP apart. The first target's
+#: representative on the configuration's arc is 2.2e-3 from its trace, those of the
+#: other arc over 2 rad: 1000 times smaller or larger and the test below fails.
+ON_TRACE_TOL = 0.01
+
+
+def _wrapped(d: FloatArray) -> FloatArray:
+    return np.remainder(d + math.pi, 2 * math.pi) - math.pi  # type: ignore[no-any-return]
+
+
+def _pose_error(robot: Robot, q: FloatArray, T: FloatArray) -> FloatArray:
+    """``(6,)`` the twist (m, rad; base frame) that takes fk(q) to T, to first order."""
+    F = robot.fk(q)
+    Re = T[:3, :3] @ F[:3, :3].T
+    axis = np.array([Re[2, 1] - Re[1, 2], Re[0, 2] - Re[2, 0], Re[1, 0] - Re[0, 1]])
+    return np.concatenate([T[:3, 3] - F[:3, 3], 0.5 * axis])
+
+
+def _onto(robot: Robot, q: FloatArray, T: FloatArray) -> FloatArray:
+    """q moved onto the pose T by TRACE_CORRECT Gauss-Newton steps (least-norm: across
+    the continuum, not along it)."""
+    for _ in range(TRACE_CORRECT):
+        q = q + np.linalg.lstsq(robot.jacobian(q), _pose_error(robot, q, T), rcond=1e-9)[0]
+    return q
+
+
+def _trace(robot: Robot, q0: FloatArray, T: FloatArray) -> FloatArray:
+    """``(n, 6)`` the closed curve of solutions of T through q0 (rad), TRACE_STEP apart.
+
+    Pseudo-arclength continuation: a step along the Jacobian's null vector (rank 5 on
+    the continuum), then back onto the pose across it. Arclength, not q1, parametrises
+    the curve, so it turns at the ends of an arc of q1 (the folds where a walk along q1
+    leaps between branches, whichever way round-off tips it) and comes back to q0.
+    """
+    q, prev, points = q0, np.zeros(6), [q0]
+    for k in range(TRACE_STEPS):
+        tangent = np.linalg.svd(robot.jacobian(q))[2][-1]
+        if tangent @ prev < 0 or (k == 0 and tangent[0] < 0):
+            tangent = -tangent
+        prev = tangent
+        q = _onto(robot, q + TRACE_STEP * tangent, T)
+        points.append(q)
+        if k > 5 and np.abs(_wrapped(q - q0)).max() < 0.6 * TRACE_STEP:
+            return np.array(points)
+    raise AssertionError(f"the continuum through {q0} did not close in {TRACE_STEPS} steps")
+
+
+def _q1_arc(curve: FloatArray) -> tuple[float, float]:
+    """``(start, length)`` of the arc of q1 a traced curve sweeps (rad)."""
+    q1 = np.unwrap(curve[:, 0])
+    return float(q1.min()), float(q1.max() - q1.min())
+
+
+def _distance(curve: FloatArray, q: FloatArray) -> float:
+    """How far q lies from the nearest point of a traced curve (rad, max over the joints)."""
+    return float(np.abs(_wrapped(curve - q)).max(axis=1).min())
+
+
+def _on_arc(q1: float, arc: tuple[float, float]) -> bool:
+    return float(np.remainder(q1 - arc[0], 2 * math.pi)) <= arc[1]
+
+
+def _arc_failures(robot: Robot, qa: FloatArray, T: FloatArray, sols: FloatArray) -> list[str]:
+    """What the representatives of a singular answer with q1 free get wrong about the
+    arcs, judged by the traced continua (no walk along q1): each must reach T; the
+    continuum through qa must hold one of them; one whose q1 lies off qa's arc of q1
+    must lie on another continuum, whose arc of q1 does not reach qa's q1."""
+    out = []
+    reach = np.array([float(fk_error(robot, s[None], T)[0]) for s in sols])
+    out += [f"row {i} misses T by {e:.1e}" for i, e in enumerate(reach) if e > TOL]
+    through_q = _trace(robot, qa, T)
+    arc = _q1_arc(through_q)
+    near = [_distance(through_q, s) for s in sols]
+    if min(near) > ON_TRACE_TOL:
+        out.append(f"no row on the continuum through q ({min(near):.1e} away)")
+    traced: list[FloatArray] = []  # the other continua (each traced once)
+    for i, s in enumerate(sols):
+        if _on_arc(float(s[0]), arc) or reach[i] > TOL:
+            continue
+        if near[i] <= ON_TRACE_TOL:
+            out.append(f"row {i} on the continuum through q, off its arc of q1 {arc}")
+        curve = next((c for c in traced if _distance(c, s) <= ON_TRACE_TOL), None)
+        if curve is None:
+            curve = _trace(robot, s, T)
+            traced.append(curve)
+        other = _q1_arc(curve)
+        if _on_arc(float(qa[0]), other):
+            out.append(f"row {i}: its arc of q1 {other} holds q1 = {qa[0]}")
+    return out
+
+
+def _first_target() -> tuple[Robot, FloatArray, FloatArray, FloatArray]:
     build, q = CASES[0]
     robot = build()
     qa = np.array(q)
     T = robot.fk(qa)
     res = robot.ik(T, respect_limits=False)
     assert res.status == "singular" and res.count == 8
-    q1s = np.unique(np.round(res.solutions[:, 0], 9))
+    return robot, qa, T, res.solutions
+
+
+def test_a_pair_with_two_arcs_gets_a_representative_on_each() -> None:
+    """The first target: both pairs of the parallel wrist exist on two arcs of q1 each
+    (about -1.87 and 0.29 rad); before, all four branches were represented at the first
+    q1 found (4 rows), and the configuration, on the other arc, was 1.96 rad off. Now 8
+    rows at two values of q1, each a solution; the continuum through q (traced: it
+    sweeps q1 from -1.9456 to -1.7506, q at its end) holds a row, and the rows at the
+    other q1 lie on continua whose arcs of q1 do not reach q's."""
+    robot, qa, T, sols = _first_target()
+    q1s = np.unique(np.round(sols[:, 0], 9))
     assert len(q1s) == 2 and abs(math.remainder(q1s[1] - q1s[0], 2 * math.pi)) > 1.0
-    reached = [reached_along(robot, r, qa, (0,), T) for r in res.solutions]
-    assert min(reached) < 1e-6
-    # from the representatives of the other arc the walk along q1 does not get there
-    other = np.abs(np.remainder(res.solutions[:, 0] - qa[0] + math.pi, 2 * math.pi) - math.pi)
-    assert all(d > 1e-3 for d, o in zip(reached, other, strict=True) if o > 1.0)
+    assert _arc_failures(robot, qa, T, sols) == []
+    # ON_TRACE_TOL's boundary: the row on q's continuum is within it, not a thousandth
+    # of it; the rows of the other arc are farther than it, not 1000 times farther
+    through_q = _trace(robot, qa, T)
+    near = np.array([_distance(through_q, s) for s in sols])
+    other = np.abs(_wrapped(sols[:, 0] - qa[0])) > 1.0
+    assert ON_TRACE_TOL / 1000 < near[~other].min() <= ON_TRACE_TOL
+    assert ON_TRACE_TOL < near[other].min() < 1000 * ON_TRACE_TOL
+
+
+def _onto_at_q1(robot: Robot, q: FloatArray, T: FloatArray) -> FloatArray:
+    """q's joints 2-6 fitted to T by least squares, q1 held."""
+    q = q.copy()
+    for _ in range(50):
+        e = _pose_error(robot, q, T)
+        q[1:] += np.linalg.lstsq(robot.jacobian(q)[:, 1:], e, rcond=1e-12)[0]
+    return q
+
+
+def test_the_arc_check_fails_on_wrong_representatives() -> None:
+    """The check above, on answers made wrong: every row at the other arc's q1 (the
+    answer before the fix); the row on q's arc with its q1 1e-3 rad off (the others
+    kept), or moved 1e-3 rad past the arc's end (the others fitted by least squares)."""
+    robot, qa, T, sols = _first_target()
+    on = int(np.argmin([np.abs(_wrapped(s - qa)).max() for s in sols]))
+    away = sols[np.abs(_wrapped(sols[:, 0] - qa[0])) > 1.0]
+    assert any("no row on the continuum" in f for f in _arc_failures(robot, qa, T, away))
+    shifted = sols.copy()
+    shifted[on, 0] += 1e-3
+    assert any(f.startswith(f"row {on} misses T") for f in _arc_failures(robot, qa, T, shifted))
+    arc = _q1_arc(_trace(robot, qa, T))
+    past = sols.copy()
+    past[on, 0] = arc[0] - 1e-3  # past the arc's end: the best fit there misses T
+    past[on] = _onto_at_q1(robot, past[on], T)
+    assert any(f.startswith(f"row {on} misses T") for f in _arc_failures(robot, qa, T, past))
 
 
 def test_a_double_root_lost_to_round_off_marks_the_target_near() -> None:
