@@ -144,14 +144,15 @@ def solve_ik(
             plan = plan_of(chain, kind, request, None if angle is None else "arm_angle")
         solver = plan.solver if angle is None else _at(chain, plan, float(angle))  # type: ignore[arg-type]
         if plan.direct:
+            rigid: CoreAnswer | None
             try:
-                out = solver.ik_rigid(chain.core, pose, plan.options, ROUNDOFF_TOL, plan.labels)
+                rigid = solver.ik_rigid(chain.core, pose, plan.options, ROUNDOFF_TOL, plan.labels)
             except ValueError:  # a view the core does not read (not C-contiguous): parsed
-                out = None
-            if out is not None:
-                if out[-1][0] in plan.final:  # the core's answer as it is (_one's first case)
-                    return result_of(*out, plan.method, plan.complete, plan.notes)
-                return _one(chain, plan, request, pose, kind, out, (), None)
+                rigid = None
+            if rigid is not None:
+                if rigid[-1][0] in plan.final:  # the core's answer as it is (_one's first case)
+                    return result_of(*rigid, plan.method, plan.complete, plan.notes)
+                return _one(chain, plan, request, pose, kind, rigid, (), None)
     targets = target if isinstance(target, Targets) else parse_targets(target)
     kind = "position" if targets.position else "pose"
     values = None
