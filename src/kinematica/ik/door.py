@@ -35,11 +35,7 @@ def solve(
         request: The call's settings (:meth:`IKRequest.parse`).
         names: The joints' display names (``result.parameter`` names a held joint so).
     """
-    if (
-        request.fixed is None
-        and request.arm_angle is None
-        and (chain.dof != REDUNDANT_DOF or request.method != "auto" or request.mask is not None)
-    ):
+    if not request.holds and (not request.may_hold or chain.dof != REDUNDANT_DOF):
         return solve_ik(chain, target, request)
     return (_solve_arm or _redundancy())(chain, target, request, names)
 

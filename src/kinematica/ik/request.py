@@ -41,6 +41,10 @@ _METHODS = ("auto", "analytic", "numeric")
 KEYS = 4096
 
 _requests: dict[tuple[object, ...], IKRequest] = {}
+#: Requests of the keywords method, tol and respect_limits alone (:meth:`IKRequest.parse`).
+_plain: dict[tuple[object, ...], IKRequest] = {}
+#: Requests of ``options=``, by the options' id: ``(options, request)``.
+_of: dict[int, tuple[IKOptions, IKRequest]] = {}
 _keys: dict[tuple[object, ...], int] = {}
 _next_key = 0
 #: The settings, in IKOptions' order.
@@ -58,10 +62,21 @@ class IKRequest(IKOptions):
             respect_limits, weights, seed``), as a whole number: equal settings, equal
             keys (:func:`settings_key`); None for a seed that is a Generator (drawn
             from on every call, so nothing built from it is kept).
+        given: ``q0``, ``fixed`` or ``arm_angle`` is given (their values are checked
+            against the arm's units: :func:`kinematica.robot.given.check_given`).
+        holds: ``fixed`` or ``arm_angle`` is given: a joint or a parameter is held.
+        may_hold: ``method="auto"`` without a mask: a 7-joint arm is solved with a
+            joint held (:func:`kinematica.ik.door.solve`).
+        bare: Neither ``q0`` nor ``arm_angle``: one target as the core reads it goes
+            to the core as it is (:func:`kinematica.ik.solve.solve_ik`).
     """
 
     tolerance: Tolerance = field(init=False, repr=False)
     key: int | None = field(init=False, repr=False)
+    given: bool = field(init=False, repr=False)
+    holds: bool = field(init=False, repr=False)
+    may_hold: bool = field(init=False, repr=False)
+    bare: bool = field(init=False, repr=False)
     _changed: dict[tuple[object, ...], IKRequest] = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -81,6 +96,11 @@ class IKRequest(IKOptions):
         put(self, "seed", seed)
         put(self, "tolerance", tolerance)
         put(self, "_changed", {})
+        # what each call asks of its settings, read once here
+        put(self, "holds", self.fixed is not None or self.arm_angle is not None)
+        put(self, "given", self.holds or self.q0 is not None)
+        put(self, "may_hold", self.method == "auto" and mask is None)
+        put(self, "bare", self.q0 is None and self.arm_angle is None)
         settings = (self.method, tolerance.position, tolerance.rotation, flag, weights, seed)
         put(self, "key", settings_key(settings) if kept else None)
 
@@ -107,10 +127,18 @@ class IKRequest(IKOptions):
         """``options`` checked (a request is returned as it is)."""
         if type(options) is IKRequest:
             return options
-        return _made(
+        found = _of.get(id(options))  # kept with the options: their id is theirs alone
+        if found is not None and found[0] is options:
+            return found[1]
+        request = _made(
             options.method, options.tol, options.respect_limits, options.q0, options.mask,
             options.seed, options.workers, options.precision, options.fixed, options.arm_angle,
         )  # fmt: skip
+        if _immutable(options) and request.key is not None:
+            if len(_of) >= MEMO:
+                _of.clear()
+            _of[id(options)] = (options, request)
+        return request
 
     @classmethod
     def parse(
@@ -134,6 +162,29 @@ class IKRequest(IKOptions):
                 ``options`` given with keywords, or not an ``IKOptions``.
         """
         if options is None:
+            if (
+                q0 is None
+                and mask is None
+                and seed is None
+                and workers is None
+                and precision is None
+                and fixed is None
+                and arm_angle is None
+            ):  # the common call: found by the three settings it gives (types too: True == 1)
+                try:
+                    plain = (method, method.__class__, respect_limits, respect_limits.__class__,
+                             tol, tol.__class__)  # fmt: skip
+                    found = _plain.get(plain)
+                except TypeError:  # unhashable: a list
+                    plain, found = None, None
+                if found is None:
+                    found = _made(method, tol, respect_limits, None, None, None, None, None,
+                                  None, None)  # fmt: skip
+                    if plain is not None and found.key is not None:
+                        if len(_plain) >= MEMO:
+                            _plain.clear()
+                        _plain[plain] = found
+                return found
             return _made(method, tol, respect_limits, q0, mask, seed, workers, precision,
                          fixed, arm_angle)  # fmt: skip
         if not isinstance(options, IKOptions):
@@ -226,3 +277,19 @@ def _frozen(fixed: object) -> object:
     if not isinstance(fixed, Mapping):
         return fixed
     raise TypeError("not a plain dict: not kept")
+
+
+def _immutable(options: IKOptions) -> bool:
+    """Whether ``options`` hold hashable values alone (none an array, a list or a dict).
+
+    Such options give the same request whenever they are given again (:meth:`IKRequest.of`).
+    """
+    if not (options.q0 is None and options.mask is None and options.precision is None
+            and options.fixed is None):  # fmt: skip
+        return False
+    try:
+        hash((options.method, options.tol, options.respect_limits, options.seed,
+              options.workers, options.arm_angle))  # fmt: skip
+    except TypeError:
+        return False
+    return True

@@ -128,8 +128,7 @@ def solve_ik(
     if (
         type(target) is np.ndarray
         and target.dtype is _FLOAT64
-        and request.q0 is None
-        and (angle is None or (type(angle) is float and math.isfinite(angle)))
+        and (request.bare or (request.q0 is None and type(angle) is float and math.isfinite(angle)))
     ):  # one target as the core reads it: not parsed
         if target.shape == (4, 4):
             pose, kind = target, "pose"
@@ -144,13 +143,16 @@ def solve_ik(
         if plan is None:
             plan = plan_of(chain, kind, request, None if angle is None else "arm_angle")
         solver = plan.solver if angle is None else _at(chain, plan, float(angle))  # type: ignore[arg-type]
-        if plan.coaxial is None and plan.rank_five is None:
+        if plan.direct:
+            rigid: CoreAnswer | None
             try:
-                out = solver.ik_rigid(chain.core, pose, plan.options, ROUNDOFF_TOL, plan.labels)
+                rigid = solver.ik_rigid(chain.core, pose, plan.options, ROUNDOFF_TOL, plan.labels)
             except ValueError:  # a view the core does not read (not C-contiguous): parsed
-                out = None
-            if out is not None:
-                return _one(chain, plan, request, pose, kind, out, (), None)
+                rigid = None
+            if rigid is not None:
+                if rigid[-1][0] in plan.final:  # the core's answer as it is (_one's first case)
+                    return result_of(*rigid, plan.method, plan.complete, plan.notes)
+                return _one(chain, plan, request, pose, kind, rigid, (), None)
     targets = target if isinstance(target, Targets) else parse_targets(target)
     kind = "position" if targets.position else "pose"
     values = None

@@ -12,7 +12,7 @@ with those settings finds it by one look-up.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -24,6 +24,7 @@ from kinematica.errors import KinematicaError
 from kinematica.ik.analytic import SOLVERS, solvers_at
 from kinematica.ik.fallback import FALLBACK_NOTE, PARTIAL_NOTE, searched_note
 from kinematica.ik.numeric import numeric_solver
+from kinematica.ik.reach import ANSWERED as _ANSWERED
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
 from kinematica.ik.structure import features
 
@@ -142,6 +143,11 @@ class Plan:
         rank_five: A 6R arm's rank-5 structure (:mod:`kinematica.ik.rank_five`), whose
             answers :mod:`kinematica.ik.continuum_6r` (or, near one,
             :mod:`kinematica.ik.near_rank_five`) gives; None.
+        direct: One target is one core call (``ik_rigid``): neither ``coaxial`` nor
+            ``rank_five``.
+        final: The status codes of the core's answers to one target that are final as
+            they are (no search, no limited reach, no note to add): read once per plan,
+            not on every call.
     """
 
     closed: ClosedForm | None
@@ -156,6 +162,17 @@ class Plan:
     notes: tuple[str, ...]
     coaxial: Any
     rank_five: Any = None
+    direct: bool = field(init=False)
+    final: frozenset[int] = field(init=False)
+
+    def __post_init__(self) -> None:
+        put = object.__setattr__
+        put(self, "direct", self.coaxial is None and self.rank_five is None)
+        final: frozenset[int] = frozenset()
+        if self.search is None and not self.slack:  # the core's answer is the answer...
+            # ...unless the limited reach may prove "unreachable" (limits respected)
+            final = _ANSWERED if self.options.respect_limits else frozenset(_core.STATUS.values())
+        put(self, "final", final)
 
 
 #: Plans a chain keeps (past it the oldest goes: a sweep over many tolerances).

@@ -63,6 +63,7 @@ class RobotDescription:
         init=False, repr=False, compare=False
     )
     _turn: FloatArray | None = field(init=False, repr=False, compare=False)
+    _own: NDArray[np.bool_] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         links = tuple(self.links)
@@ -101,6 +102,10 @@ class RobotDescription:
         free = np.array([isinstance(j, Revolute) and j.qlim is None for j in links], dtype=bool)
         turn = np.where(free, PLAUSIBLE_ANGLE, np.inf) if free.any() else None
         object.__setattr__(self, "_turn", turn)
+        # the joints with limits of their own (has_limits): read-only, made once
+        own = np.array([link.qlim is not None for link in links], dtype=bool)
+        own.flags.writeable = False
+        object.__setattr__(self, "_own", own)
 
     @classmethod
     def from_dh(
@@ -168,7 +173,7 @@ class RobotDescription:
     @property
     def has_limits(self) -> NDArray[np.bool_]:
         """``(n,)`` True where the joint has limits of its own (not the default)."""
-        return np.array([link.qlim is not None for link in self.links], dtype=bool)
+        return self._own.copy()
 
     def dh_table(self, q: ArrayLike | None = None) -> FloatArray:
         """The DH parameters ``theta, d, a, alpha`` of every row at ``q``.

@@ -53,7 +53,7 @@ def check_joint_values(
 
     j = _joint(robot, key)
     angle = isinstance(key, str) and key.strip().lower() in ARM_ANGLE_NAMES
-    if not angle and (j is None or robot.is_prismatic[j] or robot.has_limits[j]):
+    if not angle and (j is None or robot.chain.prismatic[j] or robot._own[j]):
         return  # a joint's own limits judge its values (the solver says so)
     try:
         a = np.asarray(values, dtype=float).ravel()
@@ -77,10 +77,10 @@ def check_given(
         except (TypeError, ValueError):
             qa = None  # not numbers: the solver's own check says so
         if qa is not None and qa.ndim and qa.shape[-1] == robot.dof:
-            own = robot.has_limits
+            own, qlim = robot._own, robot.chain.qlim  # read-only: not copied
             flat = qa.reshape(-1, robot.dof)
             with np.errstate(invalid="ignore"):
-                outside = own & ((flat < robot.qlim[:, 0]) | (flat > robot.qlim[:, 1]))
+                outside = own & ((flat < qlim[:, 0]) | (flat > qlim[:, 1]))
             count = int(np.sum(outside.any(axis=-1)))
             if count:
                 warning = robot._limits_message(qa, "q0", count)

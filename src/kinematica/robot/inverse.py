@@ -103,7 +103,7 @@ class RobotIK(RobotKinematics):
         parse, solve = _DOOR or _door()
         request = parse(method, tol, respect_limits, q0, mask, seed, workers, precision, fixed,
                         arm_angle, options)  # fmt: skip
-        if request.q0 is not None or request.fixed is not None or request.arm_angle is not None:
+        if request.given:
             from kinematica.robot.given import check_given  # degrees given for radians?
 
             check_given(self, request.q0, request.fixed, request.arm_angle)
