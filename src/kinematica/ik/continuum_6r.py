@@ -41,6 +41,7 @@ from numpy.typing import NDArray
 from kinematica.core import Chain
 from kinematica.ik.coaxial import VIRTUAL_LINES, frame_on, with_virtual_joint
 from kinematica.ik.rank_five import FREE_TOL, RankFive, free_motion, rank_five
+from kinematica.ik.rank_five_reach import invariant_miss
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.stack import pose_residuals, solve_each
 from kinematica.ik.status import IKStatus
@@ -160,6 +161,18 @@ def continuum_answer(
 
     tol = parse_tolerance(options.tol)
     why = f"{five.structure}: the arm has rank {five.rank} at every configuration"
+    miss = invariant_miss(chain, five, T, tol.position, tol.rotation)
+    if miss is not None:  # proved out of reach by what the structure keeps fixed
+        return IKResult(
+            solutions=np.zeros((0, 6)),
+            status=IKStatus.UNREACHABLE,
+            method=METHOD,
+            residuals=np.zeros((0, 2)),
+            branches=(),
+            out_of_limits=np.zeros((0, 6)),
+            out_of_limits_branches=(),
+            notes=(f"{why}: {miss.note()}: no configuration reaches this pose",),
+        )
     searched = solve(chain, T, dataclasses.replace(options, method="numeric"))
     assert isinstance(searched, IKResult)
     found = np.concatenate([searched.solutions, searched.out_of_limits])
@@ -197,7 +210,6 @@ def continuum_answer(
     err = pose_residuals(chain, Q, T)
     keep = (err[:, 0] <= tol.position) & (err[:, 1] <= tol.rotation)
     Q, err = Q[keep], err[keep]
-    joints = ", ".join(str(j + 1) for j in free)
     joints = ", ".join(str(j + 1) for j in free)
     how = (
         "the search's point, the one representative found (no arm with one of them held "

@@ -34,16 +34,26 @@ marked ``near_singular`` (the note gives the conditioning).
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Callable
+from dataclasses import astuple
 from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.core import Chain
-from kinematica.ik.continuum_6r import virtual_solutions
+from kinematica.ik.near_sweep import (
+    SWEEP_SAMPLES,
+    Brackets,
+    end_samples,
+    end_sweeps,
+    middle_samples,
+    moving_joints,
+    newton,
+    refine,
+    seeds_between,
+)
 from kinematica.ik.rank_five import (
     FREE_TOL,
     RankFive,
@@ -64,16 +74,10 @@ if TYPE_CHECKING:
 __all__ = [
     "CONTINUUM_RATIO",
     "METHOD",
-    "NEWTON_DONE",
-    "NEWTON_STEPS",
     "SAME_TOL",
-    "SWEEP_JOINTS",
-    "SWEEP_SAMPLES",
     "near_answer",
-    "newton",
-    "searched_from",
     "solve_near",
-    "sweep_seeds",
+    "sweep_guesses",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -81,12 +85,6 @@ Solve = Callable[[Chain, FloatArray, "IKOptions"], "IKResult | IKBatchResult"]
 
 #: What the answers' ``method`` says.
 METHOD = "analytic:near-rank-5"
-#: Values of a swept joint, evenly across its turn.
-SWEEP_SAMPLES = 24
-#: Joints swept, those that move most along the near-null direction at the search's
-#: point (the direction turns from one solution to another: one joint that moves much at
-#: one may barely move at the next).
-SWEEP_JOINTS = 2
 #: Two solutions are one when every joint agrees to this (rad, modulo 2π), or to the
 #: tolerance over σ6 at them where that is more: a solution of a near-continuum is
 #: determined only to that (1e-10 m / 2e-8 m/rad = 5e-3 rad on an arm moved by 1e-6 off
@@ -97,82 +95,6 @@ SAME_TOL = 1e-4
 #: by about σ6 δ: 1e-10 m over 0.1 rad at this ratio and an arm of a metre), and the
 #: answer is ``singular``, not isolated solutions.
 CONTINUUM_RATIO = 1e-9
-#: Newton steps from each guess (quadratic convergence: a guess within reach settles in
-#: 4-6).
-NEWTON_STEPS = 12
-#: Newton stops when every component of the pose error is below this (m, rad): a tenth
-#: of the default tolerance, round-off's reach.
-NEWTON_DONE = 1e-11
-
-
-def searched_from(chain: Chain, seeds: FloatArray, T: FloatArray, options: IKOptions) -> FloatArray:
-    """``(k, 6)`` the solutions the search reaches from each of ``seeds`` alone (no restarts)."""
-    from kinematica.ik.numeric import numeric_solver
-    from kinematica.ik.solvers import POSE_WEIGHTS, check_options
-    from kinematica.ik.tolerance import parse_tolerance
-
-    if not len(seeds):
-        return np.zeros((0, 6))
-    tol = parse_tolerance(options.tol)
-    setup = numeric_solver(chain, tol, False, 0, POSE_WEIGHTS)[0]
-    opts = check_options(tol, False, False, POSE_WEIGHTS)
-    poses = np.ascontiguousarray(np.broadcast_to(T, (len(seeds), 4, 4)))
-    raw = setup.quick.ik_batch(chain.core, poses, opts, np.ascontiguousarray(seeds), None, 1)
-    Q = np.asarray(raw["q"])[:, 0]
-    return Q[np.isfinite(Q).all(axis=1)]
-
-
-def newton(chain: Chain, seeds: FloatArray, T: FloatArray) -> FloatArray:
-    """``(k, 6)`` each of ``seeds (k, 6)`` after :data:`NEWTON_STEPS` Newton steps on the pose.
-
-    Full (undamped) steps, the pose error's position (m) and rotation vector (rad) against
-    the geometric Jacobian, solved by least squares: along the near-continuum the step is
-    Newton's on the virtual angle's zero, however small σ6.
-    """
-    from kinematica.spatial import rotvec_from_matrix
-
-    out = np.array(seeds, dtype=np.float64).reshape(-1, 6)
-    for q in out:
-        for _ in range(NEWTON_STEPS):
-            F = chain.fk(np.ascontiguousarray(q))[0]
-            e = np.concatenate([T[:3, 3] - F[:3, 3], rotvec_from_matrix(T[:3, :3] @ F[:3, :3].T)])
-            if not np.isfinite(e).all() or np.abs(e).max() < NEWTON_DONE:
-                break
-            J = chain.jacobian(np.ascontiguousarray(q))[0]
-            q += np.linalg.lstsq(J, e, rcond=None)[0]
-    return out
-
-
-def sweep_seeds(
-    chain: Chain, joint: int, T: FloatArray, options: IKOptions, solve: Solve
-) -> FloatArray:
-    """``(k, 6)`` guesses of the solutions from the sweep of ``joint`` (see the module).
-
-    Every configuration of every sample, and between two adjacent samples, for each of
-    the first's configurations and the one of the second nearest it (the held joint's
-    step and the others' change, wrapped), where their virtual angles θ change sign,
-    the configuration interpolated linearly at θ = 0.
-    """
-    step = 2.0 * math.pi / SWEEP_SAMPLES
-    samples: list[tuple[FloatArray, FloatArray]] = []
-    for t in -math.pi + step * np.arange(SWEEP_SAMPLES):
-        got = next(iter(virtual_solutions(chain, joint, float(t), T, options, solve)), None)
-        samples.append((np.zeros((0, 6)), np.zeros(0)) if got is None else (got[0], got[1]))
-    seeds = [Q for Q, _ in samples]
-    for k in range(SWEEP_SAMPLES):
-        (Qa, ta), (Qb, tb) = samples[k], samples[(k + 1) % SWEEP_SAMPLES]
-        if not len(Qa) or not len(Qb):
-            continue
-        for qa, th_a in zip(Qa, ta, strict=True):
-            d = np.remainder(Qb - qa + math.pi, 2.0 * math.pi) - math.pi
-            b = int(np.argmin(np.abs(d).max(axis=1)))
-            th_b = float(math.remainder(tb[b], 2.0 * math.pi))
-            th_a = float(math.remainder(th_a, 2.0 * math.pi))
-            if th_a * th_b > 0.0 or abs(th_a - th_b) > math.pi:
-                continue
-            w = th_a / (th_a - th_b)
-            seeds.append((qa + w * d[b])[None])
-    return np.concatenate(seeds) if seeds else np.zeros((0, 6))
 
 
 def _distinct(chain: Chain, Q: FloatArray, tol: float) -> FloatArray:
@@ -197,41 +119,82 @@ def _distinct(chain: Chain, Q: FloatArray, tol: float) -> FloatArray:
     return Q[kept]
 
 
-def near_answer(
+def sweep_guesses(
     chain: Chain,
     five: RankFive,
     closed: ClosedForm | None,
-    T: FloatArray,
+    poses: FloatArray,
     options: IKOptions,
     solve: Solve,
+) -> tuple[list[FloatArray], tuple[int, ...]]:
+    """Per target of ``poses (k, 4, 4)``, the guesses of its solutions, and the joints swept.
+
+    The end joints that move are swept for every target in one batch of the core
+    (:func:`~kinematica.ik.near_sweep.end_samples`); where neither moves, the joint in
+    the middle that moves most, target by target; the general 6R's candidates join where
+    it was built (a family's arm near rank 5).
+    """
+    from kinematica.ik.tolerance import parse_tolerance
+
+    tol = parse_tolerance(options.tol)
+    ends = end_sweeps(chain, five.rank)
+    per: list[list[FloatArray]] = [[] for _ in range(len(poses))]
+    for sweep in ends:
+        rows, zeros = [], []
+        for i, samples in enumerate(end_samples(chain, sweep, poses, tol)):
+            minima, brackets = seeds_between(samples)
+            per[i].append(minima)
+            rows.append(np.full(len(brackets.qa), i))
+            zeros.append(brackets)
+        if zeros:
+            at = np.concatenate(rows)
+            both = Brackets(
+                *(np.concatenate(c) for c in zip(*(astuple(z) for z in zeros), strict=True))
+            )
+            found = refine(chain, sweep, poses[at], both, tol)
+            for i in range(len(poses)):
+                per[i].append(found[at == i])
+    joints = tuple(e.joint for e in ends)
+    if not ends:
+        middle = [j for j in moving_joints(chain, five.rank) if j not in (0, 5)][:1]
+        for j in middle:
+            for i, T in enumerate(poses):
+                minima, brackets = seeds_between(middle_samples(chain, j, T, options, solve))
+                per[i].extend([minima, brackets.at_zero()])
+        joints = tuple(middle)
+    if closed is not None:
+        for i, T in enumerate(poses):
+            C = np.asarray(closed.params.candidates(chain.core, T, None)[0])
+            per[i].append(C[np.isfinite(C).all(axis=1)])
+    return [np.concatenate(g) if g else np.zeros((0, 6)) for g in per], joints
+
+
+def near_answer(
+    chain: Chain,
+    five: RankFive,
+    guesses: FloatArray,
+    taken: FloatArray,
+    joints: tuple[int, ...],
+    T: FloatArray,
+    options: IKOptions,
 ) -> IKResult:
     """Every solution the sweep along the near-continuum finds for the pose ``T (4, 4)``.
 
     Args:
         chain: The 6R arm, near one of rank 5 everywhere (:func:`rank_five`, not exact).
         five: Its structure.
-        closed: The general 6R's closed form of the arm, where it was built (its
-            candidates are guesses too); else None.
+        guesses: ``(g, 6)`` its guesses (:func:`sweep_guesses`).
+        taken: ``(g, 6)`` each after Newton's method on the arm
+            (:func:`~kinematica.ik.near_sweep.newton`).
+        joints: The joints swept (for the note).
         T: ``(4, 4)`` the target (base frame, m).
-        options: The call's settings (``tol``, ``respect_limits``, ``seed``; ``q0``
-            orders the solutions).
-        solve: ``solve_ik``.
+        options: The call's settings (``tol``, ``respect_limits``; ``q0`` orders the
+            solutions).
     """
     from kinematica.ik.tolerance import parse_tolerance
 
     tol = parse_tolerance(options.tol)
-    searched = solve(chain, T, dataclasses.replace(options, method="numeric", q0=None))
-    assert isinstance(searched, IKResult)
-    found = np.concatenate([searched.solutions, searched.out_of_limits])
-    start = found[0] if len(found) else np.random.default_rng(0).uniform(-math.pi, math.pi, 6)
-    n = free_motion(chain, start, five.rank)
-    joints = [int(j) for j in np.argsort(-n)[:SWEEP_JOINTS]]
-    seeds = [found, *(sweep_seeds(chain, j, T, options, solve) for j in joints)]
-    if closed is not None:
-        C = np.asarray(closed.params.candidates(chain.core, T, None)[0])
-        seeds.append(C[np.isfinite(C).all(axis=1)])
-    guesses = np.concatenate(seeds)
-    Q = np.concatenate([newton(chain, guesses, T), searched_from(chain, guesses, T, options)])
+    Q = taken
     if five.ratio <= CONTINUUM_RATIO:  # within round-off of a continuum: its points count too
         Q = np.concatenate([Q, guesses])
     Q = np.remainder(Q + math.pi, 2.0 * math.pi) - math.pi  # (wrapped first: then judged)
@@ -248,14 +211,15 @@ def near_answer(
         Q = Q[np.argsort(np.linalg.norm(Q - np.asarray(options.q0, dtype=float), axis=1))]
     ratio = float(np.max(relative_sigma(chain, Q))) if len(Q) else math.inf
     at_solutions = f", {ratio:.1e} at the solutions" if len(Q) else ""
+    swept = " and ".join(f"q{j + 1}" for j in joints) or "no joint"
     note = (
         f"the arm is near one of rank {five.rank} at every configuration ({five.structure}; "
         f"σ6/σ1 of its Jacobian at most {five.ratio:.1e} at every configuration sampled"
         f"{at_solutions}): its solutions are isolated but determined only "
         "to about the tolerance over σ6; they were found by sweeping "
-        f"{' and '.join(f'q{j + 1}' for j in joints)} over {SWEEP_SAMPLES} values each, every "
+        f"{swept} over {SWEEP_SAMPLES} values each, every "
         "one solved in closed form with a "
-        "virtual joint at the tool, and taken to the arm by a local search; more may exist"
+        "virtual joint at the tool, and taken to the arm by Newton's method; more may exist"
     )
     free: tuple[int, ...] = ()
     if len(Q) and ratio <= CONTINUUM_RATIO:  # within the tolerance, a continuum
@@ -266,7 +230,7 @@ def near_answer(
             f"({five.structure}; σ6/σ1 of its Jacobian at most {ratio:.1e} at the solutions): "
             "the pose is reached within the tolerance along arcs of a continuum (joints "
             f"{', '.join(str(j + 1) for j in free)} move together); the solutions given are "
-            f"points of them found by sweeping {' and '.join(f'q{j + 1}' for j in joints)} over "
+            f"points of them found by sweeping {swept} over "
             f"{SWEEP_SAMPLES} values each, every one solved in closed form with a virtual "
             "joint at the tool"
         )
@@ -302,5 +266,22 @@ def solve_near(
     options: IKOptions,
     solve: Solve,
 ) -> IKResult | IKBatchResult:
-    """:func:`near_answer` of each pose target (one, or a batch of any shape)."""
-    return solve_each(lambda T, o: near_answer(chain, five, closed, T, o, solve), targets, options)
+    """:func:`near_answer` of each pose target (one, or a batch of any shape).
+
+    The sweeps of every target are one batch of the core (:func:`sweep_guesses`), and
+    Newton's method takes every guess of every target at once.
+    """
+    valid = [i for i in range(targets.poses.shape[0]) if i not in targets.invalid]
+    poses = targets.poses[valid]
+    guesses, joints = sweep_guesses(chain, five, closed, poses, options, solve)
+    sizes = [len(g) for g in guesses]
+    rows = np.repeat(np.arange(len(poses)), sizes)
+    every = np.concatenate(guesses) if guesses else np.zeros((0, 6))
+    taken = np.split(newton(chain, every, poses[rows]), np.cumsum(sizes)[:-1])
+    ahead = iter(zip(guesses, taken, strict=True))  # solve_each asks in this order
+
+    def answer(T: FloatArray, opts: IKOptions) -> IKResult:
+        g, q = next(ahead)
+        return near_answer(chain, five, g, q, joints, T, opts)
+
+    return solve_each(answer, targets, options)
