@@ -78,7 +78,7 @@ def _kept(kind: str, robot: km.Robot, q: np.ndarray) -> tuple[float, np.ndarray,
         return float(h @ W), h, float(np.linalg.norm(W - tool[:3, 3]))
     S, h6 = F[1][:3, 3], tool[:3, 2]
     return (
-        float(h6 @ (tool[:3, :3].T @ (S - tool[:3, 3]))),
+        float(h6 @ (S - tool[:3, 3])),
         -h6,
         float(np.linalg.norm(S - tool[:3, 3])),
     )
