@@ -43,6 +43,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.core import Chain
+from kinematica.ik.near_manifold import SLOW_SEEDS, slow_rank, slow_search
 from kinematica.ik.near_sweep import (
     SWEEP_SAMPLES,
     Brackets,
@@ -70,6 +71,7 @@ if TYPE_CHECKING:
     from kinematica.ik.options import IKOptions
     from kinematica.ik.registry import ClosedForm
     from kinematica.ik.targets import Targets
+    from kinematica.ik.tolerance import Tolerance
 
 __all__ = [
     "CONTINUUM_RATIO",
@@ -174,7 +176,7 @@ def near_answer(
     five: RankFive,
     guesses: FloatArray,
     taken: FloatArray,
-    joints: tuple[int, ...],
+    how: str,
     T: FloatArray,
     options: IKOptions,
 ) -> IKResult:
@@ -186,7 +188,7 @@ def near_answer(
         guesses: ``(g, 6)`` its guesses (:func:`sweep_guesses`).
         taken: ``(g, 6)`` each after Newton's method on the arm
             (:func:`~kinematica.ik.near_sweep.newton`).
-        joints: The joints swept (for the note).
+        how: How the guesses were found, for the note (``"found by ..."``).
         T: ``(4, 4)`` the target (base frame, m).
         options: The call's settings (``tol``, ``respect_limits``; ``q0`` orders the
             solutions).
@@ -198,8 +200,7 @@ def near_answer(
     if five.ratio <= CONTINUUM_RATIO:  # within round-off of a continuum: its points count too
         Q = np.concatenate([Q, guesses])
     Q = np.remainder(Q + math.pi, 2.0 * math.pi) - math.pi  # (wrapped first: then judged)
-    err = pose_residuals(chain, Q, T)
-    Q = _distinct(chain, Q[(err[:, 0] <= tol.position) & (err[:, 1] <= tol.rotation)], tol.position)
+    Q = _distinct(chain, Q[_meets(chain, Q, T, tol)], tol.position)
     lim = chain.qlim
     inside = (
         ((lim[:, 0] <= Q) & (lim[:, 1] >= Q)).all(axis=1)
@@ -211,15 +212,11 @@ def near_answer(
         Q = Q[np.argsort(np.linalg.norm(Q - np.asarray(options.q0, dtype=float), axis=1))]
     ratio = float(np.max(relative_sigma(chain, Q))) if len(Q) else math.inf
     at_solutions = f", {ratio:.1e} at the solutions" if len(Q) else ""
-    swept = " and ".join(f"q{j + 1}" for j in joints) or "no joint"
     note = (
         f"the arm is near one of rank {five.rank} at every configuration ({five.structure}; "
         f"σ6/σ1 of its Jacobian at most {five.ratio:.1e} at every configuration sampled"
         f"{at_solutions}): its solutions are isolated but determined only "
-        "to about the tolerance over σ6; they were found by sweeping "
-        f"{swept} over {SWEEP_SAMPLES} values each, every "
-        "one solved in closed form with a "
-        "virtual joint at the tool, and taken to the arm by Newton's method; more may exist"
+        f"to about the tolerance over σ6; they were {how}; more may exist"
     )
     free: tuple[int, ...] = ()
     if len(Q) and ratio <= CONTINUUM_RATIO:  # within the tolerance, a continuum
@@ -230,9 +227,7 @@ def near_answer(
             f"({five.structure}; σ6/σ1 of its Jacobian at most {ratio:.1e} at the solutions): "
             "the pose is reached within the tolerance along arcs of a continuum (joints "
             f"{', '.join(str(j + 1) for j in free)} move together); the solutions given are "
-            f"points of them found by sweeping {swept} over "
-            f"{SWEEP_SAMPLES} values each, every one solved in closed form with a virtual "
-            "joint at the tool"
+            f"points of them {how}"
         )
     if free:
         status = IKStatus.SINGULAR
@@ -258,6 +253,20 @@ def near_answer(
     )
 
 
+def _newton_each(chain: Chain, guesses: list[FloatArray], poses: FloatArray) -> list[FloatArray]:
+    """Each target's guesses after Newton's method (every guess of every target at once)."""
+    sizes = [len(g) for g in guesses]
+    rows = np.repeat(np.arange(len(poses)), sizes)
+    every = np.concatenate(guesses) if guesses else np.zeros((0, 6))
+    return list(np.split(newton(chain, every, poses[rows]), np.cumsum(sizes)[:-1]))
+
+
+def _meets(chain: Chain, Q: FloatArray, T: FloatArray, tol: Tolerance) -> NDArray[np.bool_]:
+    """``(k,)`` True where a row of ``Q (k, 6)`` meets ``T`` within the tolerance."""
+    err = pose_residuals(chain, Q, T)
+    return np.asarray((err[:, 0] <= tol.position) & (err[:, 1] <= tol.rotation), dtype=np.bool_)
+
+
 def solve_near(
     chain: Chain,
     five: RankFive,
@@ -271,17 +280,41 @@ def solve_near(
     The sweeps of every target are one batch of the core (:func:`sweep_guesses`), and
     Newton's method takes every guess of every target at once.
     """
+    from kinematica.ik.tolerance import parse_tolerance
+
+    tol = parse_tolerance(options.tol)
     valid = [i for i in range(targets.poses.shape[0]) if i not in targets.invalid]
     poses = targets.poses[valid]
-    guesses, joints = sweep_guesses(chain, five, closed, poses, options, solve)
-    sizes = [len(g) for g in guesses]
-    rows = np.repeat(np.arange(len(poses)), sizes)
-    every = np.concatenate(guesses) if guesses else np.zeros((0, 6))
-    taken = np.split(newton(chain, every, poses[rows]), np.cumsum(sizes)[:-1])
-    ahead = iter(zip(guesses, taken, strict=True))  # solve_each asks in this order
+    rank = slow_rank(chain)
+    if rank < 5:  # continua of 2 dimensions and more: no sweep pierces them
+        guesses, joints = [np.zeros((0, 6)) for _ in poses], ()
+    else:
+        guesses, joints = sweep_guesses(chain, five, closed, poses, options, solve)
+    taken = _newton_each(chain, guesses, poses)
+    bare = [i for i, q in enumerate(taken) if not _meets(chain, q, poses[i], tol).any()]
+    swept = " and ".join(f"q{j + 1}" for j in joints)
+    hows = [
+        f"found by sweeping {swept} over {SWEEP_SAMPLES} values each, every one solved in "
+        "closed form with a virtual joint at the tool, and taken to the arm by Newton's method"
+    ] * len(poses)
+    slow = (
+        f"found by Newton's method in two scales from {SLOW_SEEDS} "
+        f"random guesses: its Jacobian has {6 - rank} small singular values"
+        + (
+            " (the nearby arm's continua have as many dimensions: no sweep of one joint "
+            "pierces them)"
+            if rank < 5
+            else ", and the sweep found no solution"
+        )
+    )
+    for i, q in zip(bare, slow_search(chain, poses[bare], rank), strict=True):
+        guesses[i] = np.concatenate([guesses[i], q])
+        taken[i] = np.concatenate([taken[i], newton(chain, q, poses[i])])
+        hows[i] = slow
+    ahead = iter(zip(guesses, taken, hows, strict=True))  # solve_each asks in this order
 
     def answer(T: FloatArray, opts: IKOptions) -> IKResult:
-        g, q = next(ahead)
-        return near_answer(chain, five, g, q, joints, T, opts)
+        g, q, how = next(ahead)
+        return near_answer(chain, five, g, q, how, T, opts)
 
     return solve_each(answer, targets, options)
