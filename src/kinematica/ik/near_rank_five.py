@@ -286,8 +286,9 @@ def solve_near(
     valid = [i for i in range(targets.poses.shape[0]) if i not in targets.invalid]
     poses = targets.poses[valid]
     rank = slow_rank(chain)
+    joints: tuple[int, ...] = ()
     if rank < 5:  # continua of 2 dimensions and more: no sweep pierces them
-        guesses, joints = [np.zeros((0, 6)) for _ in poses], ()
+        guesses = [np.zeros((0, 6)) for _ in poses]
     else:
         guesses, joints = sweep_guesses(chain, five, closed, poses, options, solve)
     taken = _newton_each(chain, guesses, poses)

@@ -191,7 +191,8 @@ def _virtual_arm(chain: Chain, joint: int, value: float) -> tuple[Chain, int] | 
 
 def held_values() -> FloatArray:
     """``(S,)`` the held values, :data:`SWEEP_SAMPLES` evenly across the turn (rad)."""
-    return -math.pi + (2.0 * math.pi / SWEEP_SAMPLES) * np.arange(SWEEP_SAMPLES)
+    step = 2.0 * math.pi / SWEEP_SAMPLES
+    return np.asarray(-math.pi + step * np.arange(SWEEP_SAMPLES), dtype=np.float64)
 
 
 def end_samples(

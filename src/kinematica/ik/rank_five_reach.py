@@ -122,9 +122,9 @@ def invariant(
             float(h @ (T[:3, :3] @ w + T[:3, 3])),
             position + float(np.linalg.norm(w)) * rotation + roundoff,
         )
-    S = f.shoulder_center
-    if S is None:
+    if f.shoulder_center is None:
         return None
+    S = f.shoulder_center
     h6 = F0[:3, :3].T @ f.directions[5]  # axis 6 in the tool frame
     s0 = F0[:3, :3].T @ (S - F0[:3, 3])
     s = T[:3, :3].T @ (S - T[:3, 3])
