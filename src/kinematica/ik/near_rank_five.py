@@ -285,9 +285,9 @@ def solve_near(
     tol = parse_tolerance(options.tol)
     valid = [i for i in range(targets.poses.shape[0]) if i not in targets.invalid]
     poses = targets.poses[valid]
-    rank = slow_rank(chain)
+    rank = slow_rank(chain) if five.rank < 5 else 5
     joints: tuple[int, ...] = ()
-    if rank < 5:  # continua of 2 dimensions and more: no sweep pierces them
+    if five.rank < 5:  # continua of 2 dimensions and more: no sweep pierces them
         guesses = [np.zeros((0, 6)) for _ in poses]
     else:
         guesses, joints = sweep_guesses(chain, five, closed, poses, options, solve)
