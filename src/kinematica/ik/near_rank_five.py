@@ -43,13 +43,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.core import Chain
+from kinematica.ik.near_cut import cut_sweep
 from kinematica.ik.near_manifold import SLOW_SEEDS, slow_rank, slow_search
 from kinematica.ik.near_sweep import (
     SWEEP_SAMPLES,
     Brackets,
     end_samples,
     end_sweeps,
-    middle_samples,
     moving_joints,
     newton,
     refine,
@@ -127,13 +127,13 @@ def sweep_guesses(
     closed: ClosedForm | None,
     poses: FloatArray,
     options: IKOptions,
-    solve: Solve,
 ) -> tuple[list[FloatArray], tuple[int, ...]]:
     """Per target of ``poses (k, 4, 4)``, the guesses of its solutions, and the joints swept.
 
     The end joints that move are swept for every target in one batch of the core
     (:func:`~kinematica.ik.near_sweep.end_samples`); where neither moves, the joint in
-    the middle that moves most, target by target; the general 6R's candidates join where
+    the middle that moves most, on the arm cut open at it (:mod:`kinematica.ik.near_cut`,
+    built per target); the general 6R's candidates join where
     it was built (a family's arm near rank 5).
     """
     from kinematica.ik.tolerance import parse_tolerance
@@ -157,13 +157,16 @@ def sweep_guesses(
             for i in range(len(poses)):
                 per[i].append(found[at == i])
     joints = tuple(e.joint for e in ends)
-    if not ends:
-        middle = [j for j in moving_joints(chain, five.rank) if j not in (0, 5)][:1]
-        for j in middle:
+    if not ends:  # a joint in the middle: the arm cut open at it, built per target
+        joints = tuple([j for j in moving_joints(chain, five.rank) if j not in (0, 5)][:1])
+        for j in joints:
             for i, T in enumerate(poses):
-                minima, brackets = seeds_between(middle_samples(chain, j, T, options, solve))
-                per[i].extend([minima, brackets.at_zero()])
-        joints = tuple(middle)
+                cut = cut_sweep(chain, j, T)
+                if cut is None:
+                    continue
+                minima, brackets = seeds_between(end_samples(chain, cut, T[None], tol)[0])
+                at = np.repeat(T[None], len(brackets.qa), axis=0)
+                per[i].extend([minima, refine(chain, cut, at, brackets, tol)])
     if closed is not None:
         for i, T in enumerate(poses):
             C = np.asarray(closed.params.candidates(chain.core, T, None)[0])
@@ -290,7 +293,7 @@ def solve_near(
     if five.rank < 5:  # continua of 2 dimensions and more: no sweep pierces them
         guesses = [np.zeros((0, 6)) for _ in poses]
     else:
-        guesses, joints = sweep_guesses(chain, five, closed, poses, options, solve)
+        guesses, joints = sweep_guesses(chain, five, closed, poses, options)
     taken = _newton_each(chain, guesses, poses)
     bare = [i for i, q in enumerate(taken) if not _meets(chain, q, poses[i], tol).any()]
     swept = " and ".join(f"q{j + 1}" for j in joints)

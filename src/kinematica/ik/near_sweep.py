@@ -16,10 +16,10 @@ FK(q', 0) H(t)`` with ``H(t) = FK(0)⁻¹ FK(t e6)``. The arm held at 0, with it
 joint, is therefore built once per chain (:func:`end_sweeps`, kept in the chain's
 ``memo``) and each sample is a target moved by ``G(t)⁻¹`` (or ``H(t)⁻¹``): every
 sample of every target is one batch of the core (``ik_batch``). A joint in the middle
-changes the geometry of the arm left with its value, so each of its samples builds the
-general 6R anew (about 13 ms each): it is swept only where neither end joint moves
-along the near-continuum (four parallel or concurrent axes 2-5), by
-:func:`middle_samples`.
+changes the geometry of the arm left with its value: it is swept only where neither end
+joint moves along the near-continuum (four parallel or concurrent axes 2-5), on the arm
+cut open at it (:mod:`kinematica.ik.near_cut`: one build per target, its samples moved
+targets too).
 
 Measured on 118 poses of 40 random arms near rank 5 (``benchmarks/ik_degenerate.py
 --tables``): holding a joint in the middle, the two moving most, 634 ms a pose (48
@@ -28,9 +28,8 @@ builds); holding the end joints, see :mod:`kinematica.ik.near_rank_five`.
 
 from __future__ import annotations
 
-import dataclasses
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -42,8 +41,7 @@ from kinematica.ik.rank_five import RANK_SAMPLES, RANK_SEED, free_motion, rank_f
 from kinematica.ik.structure import features
 
 if TYPE_CHECKING:
-    from kinematica.ik.options import IKOptions
-    from kinematica.ik.result import IKBatchResult, IKResult
+    from kinematica.ik.near_cut import CutSweep
     from kinematica.ik.tolerance import Tolerance
 
 __all__ = [
@@ -56,7 +54,6 @@ __all__ = [
     "EndSweep",
     "end_sweeps",
     "held_values",
-    "middle_samples",
     "moving_joints",
     "newton",
     "refine",
@@ -64,7 +61,6 @@ __all__ = [
 ]
 
 FloatArray = NDArray[np.float64]
-Solve = Callable[[Chain, FloatArray, "IKOptions"], "IKResult | IKBatchResult"]
 
 #: Values of a swept joint, evenly across its turn.
 SWEEP_SAMPLES = 24
@@ -196,7 +192,7 @@ def held_values() -> FloatArray:
 
 
 def end_samples(
-    chain: Chain, sweep: EndSweep, poses: FloatArray, tol: Tolerance
+    chain: Chain, sweep: EndSweep | CutSweep, poses: FloatArray, tol: Tolerance
 ) -> list[list[tuple[FloatArray, FloatArray]]]:
     """Per target of ``poses (k, 4, 4)``, per held value: ``((m, 6) configurations, (m,) θ)``.
 
@@ -211,31 +207,6 @@ def end_samples(
         [(real[r, : count[r]], theta[r, : count[r]]) for r in range(i * S, (i + 1) * S)]
         for i in range(len(poses))
     ]
-
-
-def middle_samples(
-    chain: Chain, joint: int, T: FloatArray, options: IKOptions, solve: Solve
-) -> list[tuple[FloatArray, FloatArray]]:
-    """Per held value of a joint in the middle: ``((m, 6) configurations, (m,) θ)``.
-
-    Each value builds its own arm (the geometry left changes with it): about 13 ms each.
-    """
-    from kinematica.ik.result import IKResult
-
-    opts = dataclasses.replace(
-        options, q0=None, fixed=None, arm_angle=None, mask=None, respect_limits=False
-    )
-    out = []
-    for t in held_values():
-        arm = _virtual_arm(chain, joint, float(t))
-        if arm is None:
-            out.append((np.zeros((0, 6)), np.zeros(0)))
-            continue
-        res = solve(arm[0], T, opts)
-        assert isinstance(res, IKResult)
-        found = np.concatenate([res.solutions, res.out_of_limits])
-        out.append((np.insert(found[:, :5], joint, t, axis=1), found[:, 5].copy()))
-    return out
 
 
 def _wrapped(x: FloatArray) -> FloatArray:
@@ -318,7 +289,7 @@ def seeds_between(
 
 def refine(
     chain: Chain,
-    sweep: EndSweep,
+    sweep: EndSweep | CutSweep,
     poses: FloatArray,
     brackets: Brackets,
     tol: Tolerance,
@@ -336,7 +307,8 @@ def refine(
 
     Args:
         chain: The 6R arm.
-        sweep: The held end joint's virtual arm.
+        sweep: The held joint's virtual arm (an end joint's, or one cut open at a joint in
+            the middle for these targets: :mod:`kinematica.ik.near_cut`).
         poses: ``(b, 4, 4)`` each bracket's target.
         brackets: The brackets (:func:`seeds_between`).
         tol: The call's tolerance (the closed form's check).
