@@ -16,6 +16,7 @@ import pytest
 
 import kinematica as km
 from kinematica.dh.joints import Revolute
+from kinematica.ik.near_cut import cut_arm
 from kinematica.ik.near_manifold import SLOW_GAP, slow_newton, slow_rank
 from kinematica.ik.near_rank_five import METHOD, SAME_TOL
 from kinematica.ik.near_sweep import MOVES_TOL, end_sweeps, moving_joints, newton
@@ -185,3 +186,45 @@ def test_slow_gap_at_its_boundary() -> None:
     r = s / s[:, :1]
     assert r[:, 3].max() <= SLOW_GAP * 1e-3
     assert r[:, 2].min() >= SLOW_GAP * 1e2
+
+
+def _parallel_2_5(eps: float) -> km.Robot:
+    """Axes 2-5 parallel (rank 5: joints 1 and 6 keep still along its continua), α2 = eps."""
+    R = Revolute
+    rows = [
+        R(d=0.3, a=0.0, alpha=PI / 2),
+        R(d=0.0, a=0.4, alpha=eps),
+        R(d=0.1, a=0.3, alpha=0.0),
+        R(d=0.0, a=0.2, alpha=0.0),
+        R(d=0.1, a=0.0, alpha=PI / 2),
+        R(d=0.1, a=0.0, alpha=0.0),
+    ]
+    return km.Robot.from_dh(rows, convention="standard")
+
+
+def test_the_arm_cut_open_at_a_middle_joint_reaches_the_turn_of_that_joint() -> None:
+    """FK of the cut arm at (q_(s+1..6), q_(1..s-1)) is Rz(-q_s), for the target FK(q)."""
+    robot = _parallel_2_5(1e-7)
+    q = np.random.default_rng(6).uniform(-PI, PI, 6)
+    T = robot.fk(q)
+    for s in range(1, 5):
+        F = np.asarray(cut_arm(robot.chain, s, T).fk(np.concatenate([q[s + 1 :], q[:s]]))[0])
+        c, n = math.cos(q[s]), math.sin(q[s])
+        turn = np.array([[c, n, 0, 0], [-n, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+        assert np.abs(F - turn).max() <= 1e-12
+
+
+def test_a_near_arm_whose_end_joints_keep_still_is_swept_in_the_middle() -> None:
+    robot = _parallel_2_5(1e-7)
+    five = rank_five(robot.chain)
+    assert five is not None and end_sweeps(robot.chain, five.rank) == ()
+    rng = np.random.default_rng(9)
+    for q in rng.uniform(-PI, PI, (2, 6)):
+        T = robot.fk(q)
+        res = robot.ik(T)
+        assert isinstance(res, IKResult)
+        assert res.method == METHOD and res.status in ("ok", "singular")
+        assert "sweeping q" in str(res.notes[-1])
+        _reaches(robot, res.solutions, T)
+        sigma = float(relative_sigma(robot.chain, q))
+        assert _wrapped(res.solutions - q).max(axis=1).min() <= 1e-6 + FK_TOL / sigma
