@@ -23,6 +23,12 @@ every arm of rank 5, whatever makes it so, whose accuracy is the closed form's. 
 not prove that every continuum passes through ``q_j = q*_j`` (a continuum along which
 joint j keeps within a narrower range may not), so the answer is marked incomplete.
 
+**Poses out of reach.** Where the structure keeps one quantity of the pose fixed (the
+distance between a spherical shoulder's and wrist's centres; the wrist centre's height
+along three parallel axes), a target whose value misses it by more than the tolerance
+carried to it is ``unreachable``, proved (:mod:`kinematica.ik.rank_five_reach`), before
+any search.
+
 **Which solutions are kept.** As for the coaxial pair: a solution of the virtual arm is
 put on the real arm with θ dropped and ``q_j`` put back, and kept when its forward
 kinematics meets the target within the call's tolerance.

@@ -10,26 +10,44 @@ ill-posed, and one numeric search finds one solution of several (it answered 81 
 210 poses of such arms, the generating configuration often missed).
 
 **The method.** A one-dimensional sweep along the near-continuum, every sub-problem in
-closed form: each of the :data:`SWEEP_JOINTS` joints s that move most along the
-near-null direction of the Jacobian (at the search's point, else at a random
-configuration) is held at
-:data:`SWEEP_SAMPLES` values across its turn, and each arm so left, with a virtual
-joint at the tool, is solved in closed form for every solution
-(:func:`kinematica.ik.continuum_6r.virtual_solutions`): configurations of the real arm
-with ``q_s`` at that value that miss the pose only by the virtual joint's angle θ.
-Along each branch θ varies smoothly with ``q_s`` and the real arm's solutions are its
-zeros; every configuration of every sample, those interpolated at the zeros between
-samples, the general 6R's candidates (where it was built) and the search's point are
-guesses, each taken by Newton's method and by the Levenberg-Marquardt search from that
-guess alone (no restarts) to the real arm's solution it leads to, and the distinct ones
-meeting the tolerance are kept. On an arm within round-off of the continuum (σ6 / σ1 at
-most :data:`CONTINUUM_RATIO`) the pose is met within the tolerance along arcs: the
-guesses that meet it are kept too, and the answer is ``singular``.
+closed form (:mod:`kinematica.ik.near_sweep`): a joint s that moves along it is held
+at :data:`~kinematica.ik.near_sweep.SWEEP_SAMPLES` values across its turn, and each arm
+so left, with a virtual joint at the tool, is solved in closed form for every solution:
+configurations of the real arm with ``q_s`` at that value that miss the pose only by
+the virtual joint's angle θ. Along each branch θ varies smoothly with ``q_s`` and the
+real arm's solutions are its zeros. Where θ changes sign between two samples, regula
+falsi on the branch (each step one more closed-form solve) finds the zero; that point,
+every sample where |θ| is at most its neighbours', and the general 6R's candidates
+(where it was built) are taken by Newton's method to the real arm, and the distinct
+ones meeting the tolerance are kept. On an arm within round-off of the continuum (σ6
+/ σ1 at most :data:`CONTINUUM_RATIO`) the pose is met within the tolerance along arcs:
+the guesses that meet it are kept too, and the answer is ``singular``.
 
-The sweep's samples are a grid: a branch whose zero lies between samples is reached
-by the local search from the samples on either side, but a zero too close to a fold
-of its branch can be missed, so the answer is never marked complete, and it is
-marked ``near_singular`` (the note gives the conditioning).
+**Which joint, and what it costs.** The end joints are swept where they move along the
+near-continuum (a spherical shoulder and wrist, three parallel axes and three
+concurrent, four axes from the first or to the last): the arm left is then the same
+for every value, built once per chain, and every sample and every step of every target
+is a moved target of one batch of the core. Where neither end joint moves (four
+parallel or concurrent axes 2-5), the joint in the middle that moves most is swept on
+the arm cut open at it (:mod:`kinematica.ik.near_cut`), built once per target. Near an
+arm of rank 4 or less no sweep of one joint pierces the continua, and Newton's method in
+two scales from random guesses answers (:mod:`kinematica.ik.near_manifold`); it is also
+tried on a target the sweep found nothing for. Measured against the previous method
+(two joints that move most, each value its own arm built: 48 builds a pose, then
+Newton and the local search from every sample) on the same 30 poses of 10 random arms
+near rank 5, in one run on a loaded machine: 354 ms a pose (median), 943 ms (mean),
+3.4 s (max) before; 19.5, 344 and 2,003 ms with a middle joint swept value by value,
+and 17.3, 43 and 155 ms with the cut arm and the two-scale Newton; the solutions found
+include every one of the previous method's at every pose, and more at 6 poses (and
+6-8 where it found none: arms near rank 4). Against a search from 200 random starts on
+84 poses of 28 arms near rank 5 (``benchmarks/ik_degenerate.py`` and the tests compare
+the same way): every solution it found is among ours at 83 poses; at one pose of an arm
+at σ6 / σ1 = 3e-9, just above :data:`CONTINUUM_RATIO`, one of its is 0.96 rad from
+ours (a branch whose θ touches zero within the tolerance without changing sign).
+
+The sweep's samples are a grid: a zero close to a fold of its branch, or one θ only
+touches, can be missed, so the answer is never marked complete, and it is marked
+``near_singular`` (the note gives the conditioning).
 """
 
 from __future__ import annotations

@@ -21,9 +21,8 @@ joint moves along the near-continuum (four parallel or concurrent axes 2-5), on 
 cut open at it (:mod:`kinematica.ik.near_cut`: one build per target, its samples moved
 targets too).
 
-Measured on 118 poses of 40 random arms near rank 5 (``benchmarks/ik_degenerate.py
---tables``): holding a joint in the middle, the two moving most, 634 ms a pose (48
-builds); holding the end joints, see :mod:`kinematica.ik.near_rank_five`.
+What this costs and finds against sweeping each value on its own arm:
+:mod:`kinematica.ik.near_rank_five`.
 """
 
 from __future__ import annotations
