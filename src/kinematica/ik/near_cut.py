@@ -13,7 +13,7 @@ the five joints s+1, ..., 6, 1, ..., s-1, in that order, make an arm (its links 
 and ``F_6 tool T⁻¹ start`` between joint 6 and joint 1) whose tool must reach the turn
 ``Rz(-t)``. That arm depends on the target but not on t: built once per target (with a
 virtual joint at its tool, as for an end joint, :mod:`kinematica.ik.near_sweep`), its
-samples and the regula falsi's steps are moved targets ``Rz(-t)`` of one batch each.
+samples are moved targets ``Rz(-t)``, one batch.
 """
 
 from __future__ import annotations

@@ -68,14 +68,17 @@ def _error(chain: Chain, q: FloatArray, T: FloatArray) -> tuple[FloatArray, Floa
     return e, np.asarray(chain.jacobian(Q)[0])
 
 
-def slow_newton(chain: Chain, seeds: FloatArray, T: FloatArray, rank: int) -> FloatArray:
-    """``(k, 6)`` each of ``seeds (k, 6)`` after :data:`SLOW_STEPS` two-scale steps.
+def slow_newton(
+    chain: Chain, seeds: FloatArray, T: FloatArray, rank: int, steps: int = SLOW_STEPS
+) -> FloatArray:
+    """``(k, 6)`` each of ``seeds (k, 6)`` after ``steps`` two-scale steps.
 
     Args:
         chain: The 6R arm.
         seeds: ``(k, 6)`` the guesses (rad).
         T: ``(4, 4)`` the target, or ``(k, 4, 4)`` one per guess (base frame, m).
         rank: The rank r of the nearby arm: r large singular directions, 6 - r small.
+        steps: Outer steps (:data:`SLOW_STEPS`).
 
     Returns:
         The configurations reached (rows whose error grew non-finite keep their last
@@ -83,7 +86,7 @@ def slow_newton(chain: Chain, seeds: FloatArray, T: FloatArray, rank: int) -> Fl
     """
     q = np.array(seeds, dtype=np.float64).reshape(-1, 6)
     T = np.ascontiguousarray(np.broadcast_to(T, (len(q), 4, 4)))
-    for _ in range(SLOW_STEPS):
+    for _ in range(steps):
         for _ in range(CORRECT_STEPS):  # onto the slow manifold: the large directions only
             e, J = _error(chain, q, T)
             U, s, Vt = np.linalg.svd(J)

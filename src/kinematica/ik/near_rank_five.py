@@ -15,10 +15,14 @@ at :data:`~kinematica.ik.near_sweep.SWEEP_SAMPLES` values across its turn, and e
 so left, with a virtual joint at the tool, is solved in closed form for every solution:
 configurations of the real arm with ``q_s`` at that value that miss the pose only by
 the virtual joint's angle θ. Along each branch θ varies smoothly with ``q_s`` and the
-real arm's solutions are its zeros. Where θ changes sign between two samples, regula
-falsi on the branch (each step one more closed-form solve) finds the zero; that point,
-every sample where |θ| is at most its neighbours', and the general 6R's candidates
-(where it was built) are taken by Newton's method to the real arm, and the distinct
+real arm's solutions are its zeros. Where θ changes sign between two samples, the
+configuration interpolated at θ = 0, and every sample where |θ| is at most its
+neighbours', are guesses: off the near-continuum by the interval's square, or along it
+up to half a step from the zero, each beyond the reach of Newton's method alone (its
+step along the near-null direction, error over σ6, overshoots): :data:`MINIMA_STEPS`
+steps of Newton's method in two scales (:func:`~kinematica.ik.near_manifold.slow_newton`:
+onto the near-continuum, then along it) take each within it, and Newton's method, with
+the general 6R's candidates (where it was built), to the real arm; the distinct
 ones meeting the tolerance are kept. On an arm within round-off of the continuum (σ6
 / σ1 at most :data:`CONTINUUM_RATIO`) the pose is met within the tolerance along arcs:
 the guesses that meet it are kept too, and the answer is ``singular``.
@@ -62,7 +66,7 @@ from numpy.typing import NDArray
 
 from kinematica.core import Chain
 from kinematica.ik.near_cut import cut_sweep
-from kinematica.ik.near_manifold import SLOW_SEEDS, slow_rank, slow_search
+from kinematica.ik.near_manifold import SLOW_SEEDS, slow_newton, slow_rank, slow_search
 from kinematica.ik.near_sweep import (
     SWEEP_SAMPLES,
     Brackets,
@@ -70,7 +74,6 @@ from kinematica.ik.near_sweep import (
     end_sweeps,
     moving_joints,
     newton,
-    refine,
     seeds_between,
 )
 from kinematica.ik.rank_five import (
@@ -115,6 +118,10 @@ SAME_TOL = 1e-4
 #: by about σ6 δ: 1e-10 m over 0.1 rad at this ratio and an arm of a metre), and the
 #: answer is ``singular``, not isolated solutions.
 CONTINUUM_RATIO = 1e-9
+#: Two-scale steps (:func:`~kinematica.ik.near_manifold.slow_newton`) from each minimum
+#: of |θ| before Newton's: a sample where |θ| is least lies on the near-continuum but up to half
+#: a sample's step from the zero, beyond the reach of Newton's method alone.
+MINIMA_STEPS = 3
 
 
 def _distinct(chain: Chain, Q: FloatArray, tol: float) -> FloatArray:
@@ -159,11 +166,12 @@ def sweep_guesses(
     tol = parse_tolerance(options.tol)
     ends = end_sweeps(chain, five.rank)
     per: list[list[FloatArray]] = [[] for _ in range(len(poses))]
+    least: list[list[FloatArray]] = [[] for _ in range(len(poses))]  # minima of |θ|
     for sweep in ends:
         rows, zeros = [], []
         for i, samples in enumerate(end_samples(chain, sweep, poses, tol)):
             minima, brackets = seeds_between(samples)
-            per[i].append(minima)
+            least[i].append(minima)
             rows.append(np.full(len(brackets.qa), i))
             zeros.append(brackets)
         if zeros:
@@ -171,9 +179,9 @@ def sweep_guesses(
             both = Brackets(
                 *(np.concatenate(c) for c in zip(*(astuple(z) for z in zeros), strict=True))
             )
-            found = refine(chain, sweep, poses[at], both, tol)
+            found = both.at_zero()
             for i in range(len(poses)):
-                per[i].append(found[at == i])
+                least[i].append(found[at == i])
     joints = tuple(e.joint for e in ends)
     if not ends:  # a joint in the middle: the arm cut open at it, built per target
         joints = tuple([j for j in moving_joints(chain, five.rank) if j not in (0, 5)][:1])
@@ -183,8 +191,13 @@ def sweep_guesses(
                 if cut is None:
                     continue
                 minima, brackets = seeds_between(end_samples(chain, cut, T[None], tol)[0])
-                at = np.repeat(T[None], len(brackets.qa), axis=0)
-                per[i].extend([minima, refine(chain, cut, at, brackets, tol)])
+                least[i].extend([minima, brackets.at_zero()])
+    minima = [np.concatenate(m) if m else np.zeros((0, 6)) for m in least]
+    rows = np.repeat(np.arange(len(poses)), [len(m) for m in minima])
+    if len(rows):  # onto the near-continuum, and along it towards the zero
+        onto = slow_newton(chain, np.concatenate(minima), poses[rows], 5, MINIMA_STEPS)
+        for i in range(len(poses)):
+            per[i].append(onto[rows == i])
     if closed is not None:
         for i, T in enumerate(poses):
             C = np.asarray(closed.params.candidates(chain.core, T, None)[0])

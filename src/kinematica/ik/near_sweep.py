@@ -47,7 +47,6 @@ __all__ = [
     "MOVES_TOL",
     "NEWTON_DONE",
     "NEWTON_STEPS",
-    "REFINE_STEPS",
     "SWEEP_SAMPLES",
     "Brackets",
     "EndSweep",
@@ -55,7 +54,6 @@ __all__ = [
     "held_values",
     "moving_joints",
     "newton",
-    "refine",
     "seeds_between",
 ]
 
@@ -69,8 +67,6 @@ SWEEP_SAMPLES = 24
 #: joints that move are 0.05 and more on the arms of the tests; those that do not (joints
 #: 1 and 6 beside four parallel axes 2-5), the arm's distance from rank 5 (1e-6 and less).
 MOVES_TOL = 1e-3
-#: Steps of regula falsi on each bracket of a sweep (:func:`refine`).
-REFINE_STEPS = 6
 #: Newton steps from each guess (quadratic convergence: a guess within reach settles in
 #: 4-6).
 NEWTON_STEPS = 12
@@ -284,59 +280,6 @@ def seeds_between(
     if not parts:
         return minima, Brackets(np.zeros((0, 6)), np.zeros((0, 6)), np.zeros(0), np.zeros(0))
     return minima, Brackets(*(np.concatenate(c) for c in zip(*parts, strict=True)))
-
-
-def refine(
-    chain: Chain,
-    sweep: EndSweep | CutSweep,
-    poses: FloatArray,
-    brackets: Brackets,
-    tol: Tolerance,
-) -> FloatArray:
-    """``(b, 6)`` each bracket's zero of θ, found on its branch by regula falsi.
-
-    Each step holds the joint at the value interpolated at θ = 0 and solves the virtual
-    arm there in closed form (every bracket of every target in one batch of the core),
-    takes the solution nearest the interpolated configuration, and keeps the half of the
-    bracket where θ still changes sign (the Illinois rule halves θ at an end kept twice).
-    The point stays on the branch, so Newton on the real arm starts within its basin,
-    about √(σ6) along the near-continuum from the zero: linear interpolation between
-    samples, off the branch by the interval's square, does not (it lost 14 of 43
-    solutions on 16 poses of random arms near rank 5). :data:`REFINE_STEPS` steps.
-
-    Args:
-        chain: The 6R arm.
-        sweep: The held joint's virtual arm (an end joint's, or one cut open at a joint in
-            the middle for these targets: :mod:`kinematica.ik.near_cut`).
-        poses: ``(b, 4, 4)`` each bracket's target.
-        brackets: The brackets (:func:`seeds_between`).
-        tol: The call's tolerance (the closed form's check).
-    """
-    j = sweep.joint
-    qa, qb = brackets.qa.copy(), brackets.qb.copy()
-    tha, thb = brackets.tha.copy(), brackets.thb.copy()
-    kept = np.zeros(len(qa), dtype=np.int8)  # +1: the a end kept last, -1: b
-    qc = brackets.at_zero()
-    for _ in range(REFINE_STEPS):
-        den = tha - thb
-        w = np.divide(tha, den, out=np.full_like(den, 0.5), where=den != 0.0)
-        lin = qa + w[:, None] * (qb - qa)
-        real, theta, count = sweep.solve(chain, poses, lin[:, j], tol)
-        slot = np.arange(real.shape[1])[None] < np.asarray(count)[:, None]
-        d = _wrapped(real - lin[:, None])
-        far = np.where(slot, np.abs(d).max(axis=2), np.inf)
-        pick = np.argmin(far, axis=1)
-        found = np.isfinite(far[np.arange(len(qa)), pick])
-        qc = np.where(found[:, None], lin + d[np.arange(len(qa)), pick], lin)
-        thc = np.where(found, _wrapped(theta[np.arange(len(qa)), pick]), 0.0)
-        same = (np.sign(thc) == np.sign(tha)) & found
-        other = ~same & found
-        thb = np.where(same & (kept == 1), 0.5 * thb, thb)  # Illinois
-        tha = np.where(other & (kept == -1), 0.5 * tha, tha)
-        qa, tha = np.where(same[:, None], qc, qa), np.where(same, thc, tha)
-        qb, thb = np.where(other[:, None], qc, qb), np.where(other, thc, thb)
-        kept = np.where(same, 1, np.where(other, -1, kept)).astype(np.int8)
-    return qc
 
 
 def newton(chain: Chain, seeds: FloatArray, T: FloatArray) -> FloatArray:
