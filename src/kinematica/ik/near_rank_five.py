@@ -58,7 +58,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import astuple
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -69,7 +68,6 @@ from kinematica.ik.near_cut import cut_sweep
 from kinematica.ik.near_manifold import SLOW_SEEDS, slow_newton, slow_rank, slow_search
 from kinematica.ik.near_sweep import (
     SWEEP_SAMPLES,
-    Brackets,
     end_samples,
     end_sweeps,
     moving_joints,
@@ -168,20 +166,9 @@ def sweep_guesses(
     per: list[list[FloatArray]] = [[] for _ in range(len(poses))]
     least: list[list[FloatArray]] = [[] for _ in range(len(poses))]  # minima of |θ|
     for sweep in ends:
-        rows, zeros = [], []
         for i, samples in enumerate(end_samples(chain, sweep, poses, tol)):
             minima, brackets = seeds_between(samples)
-            least[i].append(minima)
-            rows.append(np.full(len(brackets.qa), i))
-            zeros.append(brackets)
-        if zeros:
-            at = np.concatenate(rows)
-            both = Brackets(
-                *(np.concatenate(c) for c in zip(*(astuple(z) for z in zeros), strict=True))
-            )
-            found = both.at_zero()
-            for i in range(len(poses)):
-                least[i].append(found[at == i])
+            least[i].extend([minima, brackets.at_zero()])
     joints = tuple(e.joint for e in ends)
     if not ends:  # a joint in the middle: the arm cut open at it, built per target
         joints = tuple([j for j in moving_joints(chain, five.rank) if j not in (0, 5)][:1])
@@ -192,12 +179,12 @@ def sweep_guesses(
                     continue
                 minima, brackets = seeds_between(end_samples(chain, cut, T[None], tol)[0])
                 least[i].extend([minima, brackets.at_zero()])
-    minima = [np.concatenate(m) if m else np.zeros((0, 6)) for m in least]
-    rows = np.repeat(np.arange(len(poses)), [len(m) for m in minima])
-    if len(rows):  # onto the near-continuum, and along it towards the zero
-        onto = slow_newton(chain, np.concatenate(minima), poses[rows], 5, MINIMA_STEPS)
+    near = [np.concatenate(m) if m else np.zeros((0, 6)) for m in least]
+    at = np.repeat(np.arange(len(poses)), [len(m) for m in near])
+    if len(at):  # onto the near-continuum, and along it towards the zero
+        onto = slow_newton(chain, np.concatenate(near), poses[at], 5, MINIMA_STEPS)
         for i in range(len(poses)):
-            per[i].append(onto[rows == i])
+            per[i].append(onto[at == i])
     if closed is not None:
         for i, T in enumerate(poses):
             C = np.asarray(closed.params.candidates(chain.core, T, None)[0])
