@@ -49,7 +49,7 @@ class CutSweep:
     params: Any
 
     def solve(
-        self, chain: Chain, poses: FloatArray, t: FloatArray, tol: Tolerance
+        self, chain: Chain, poses: FloatArray, t: FloatArray, tol: Tolerance, workers: int = 1
     ) -> tuple[FloatArray, FloatArray, list[int]]:
         """Every solution with the joint at each of ``t (k,)`` (``poses``: its target, unused).
 
@@ -65,7 +65,7 @@ class CutSweep:
         turn[:, 0, 0], turn[:, 0, 1], turn[:, 1, 0], turn[:, 1, 1] = c, -s, s, c
         turn[:, 2, 2] = turn[:, 3, 3] = 1.0
         opts = check_options(tol, False, False, POSE_WEIGHTS)
-        raw = self.params.ik_batch(self.arm.core, turn, opts, None, None, 1)
+        raw = self.params.ik_batch(self.arm.core, turn, opts, None, None, workers)
         q = np.asarray(raw["q"])
         j = self.joint
         real = np.empty((*q.shape[:2], 6))

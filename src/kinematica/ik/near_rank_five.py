@@ -63,7 +63,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
-from kinematica.core import Chain
+from kinematica.core import Chain, resolve_workers
 from kinematica.ik.near_cut import cut_sweep
 from kinematica.ik.near_manifold import SLOW_SEEDS, slow_newton, slow_rank, slow_search
 from kinematica.ik.near_sweep import (
@@ -162,11 +162,12 @@ def sweep_guesses(
     from kinematica.ik.tolerance import parse_tolerance
 
     tol = parse_tolerance(options.tol)
+    threads = resolve_workers(options.workers) if len(poses) > 1 else 1
     ends = end_sweeps(chain, five.rank)
     per: list[list[FloatArray]] = [[] for _ in range(len(poses))]
     least: list[list[FloatArray]] = [[] for _ in range(len(poses))]  # minima of |θ|
     for sweep in ends:
-        for i, samples in enumerate(end_samples(chain, sweep, poses, tol)):
+        for i, samples in enumerate(end_samples(chain, sweep, poses, tol, threads)):
             minima, brackets = seeds_between(samples)
             least[i].extend([minima, brackets.at_zero()])
     joints = tuple(e.joint for e in ends)

@@ -50,6 +50,7 @@ __all__ = [
     "SWEEP_SAMPLES",
     "Brackets",
     "EndSweep",
+    "end_samples",
     "end_sweeps",
     "held_values",
     "moving_joints",
@@ -101,9 +102,11 @@ class EndSweep:
         return np.asarray(poses @ np.linalg.inv(F) @ self.start)  # T H(t)⁻¹, H = F(0)⁻¹ F(t)
 
     def solve(
-        self, chain: Chain, poses: FloatArray, t: FloatArray, tol: Tolerance
+        self, chain: Chain, poses: FloatArray, t: FloatArray, tol: Tolerance, workers: int = 1
     ) -> tuple[FloatArray, FloatArray, list[int]]:
         """Every solution of the virtual arm for each of ``poses (k, 4, 4)`` at ``t (k,)``.
+
+        ``workers``: the core's threads for the batch.
 
         Returns:
             ``((k, m, 6) configurations of the real arm, (k, m) θ, counts)``: row r's
@@ -113,7 +116,7 @@ class EndSweep:
 
         moved = np.ascontiguousarray(self.moved(chain, poses, t))
         opts = check_options(tol, False, False, POSE_WEIGHTS)
-        raw = self.params.ik_batch(self.arm.core, moved, opts, None, None, 1)
+        raw = self.params.ik_batch(self.arm.core, moved, opts, None, None, workers)
         q = np.asarray(raw["q"])
         held = np.broadcast_to(np.asarray(t, dtype=np.float64)[:, None], q.shape[:2])
         real = np.insert(q[..., :5], self.joint, held, axis=2)
@@ -187,16 +190,20 @@ def held_values() -> FloatArray:
 
 
 def end_samples(
-    chain: Chain, sweep: EndSweep | CutSweep, poses: FloatArray, tol: Tolerance
+    chain: Chain,
+    sweep: EndSweep | CutSweep,
+    poses: FloatArray,
+    tol: Tolerance,
+    workers: int = 1,
 ) -> list[list[tuple[FloatArray, FloatArray]]]:
     """Per target of ``poses (k, 4, 4)``, per held value: ``((m, 6) configurations, (m,) θ)``.
 
-    One batch of the core for every sample of every target.
+    One batch of the core for every sample of every target (``workers`` threads).
     """
     t = held_values()
     S = len(t)
     real, theta, count = sweep.solve(
-        chain, np.repeat(poses, S, axis=0), np.tile(t, len(poses)), tol
+        chain, np.repeat(poses, S, axis=0), np.tile(t, len(poses)), tol, workers
     )
     return [
         [(real[r, : count[r]], theta[r, : count[r]]) for r in range(i * S, (i + 1) * S)]
