@@ -39,15 +39,18 @@ two scales from random guesses answers (:mod:`kinematica.ik.near_manifold`); it 
 tried on a target the sweep found nothing for. Measured against the previous method
 (two joints that move most, each value its own arm built: 48 builds a pose, then
 Newton and the local search from every sample) on the same 30 poses of 10 random arms
-near rank 5, in one run on a loaded machine: 354 ms a pose (median), 943 ms (mean),
-3.4 s (max) before; 19.5, 344 and 2,003 ms with a middle joint swept value by value,
-and 17.3, 43 and 155 ms with the cut arm and the two-scale Newton; the solutions found
-include every one of the previous method's at every pose, and more at 6 poses (and
-6-8 where it found none: arms near rank 4). Against a search from 200 random starts on
-84 poses of 28 arms near rank 5 (``benchmarks/ik_degenerate.py`` and the tests compare
-the same way): every solution it found is among ours at 83 poses; at one pose of an arm
-at σ6 / σ1 = 3e-9, just above :data:`CONTINUUM_RATIO`, one of its is 0.96 rad from
-ours (a branch whose θ touches zero within the tolerance without changing sign).
+near rank 5, in one run on a loaded machine (2 cores, load 10): 546 ms a pose (median),
+1,424 ms (mean), 5.8 s (max) before; 22.8, 51.5 and 213 ms now, 2-25 ms on an arm's
+second and later poses near rank 5 (the first builds the end joints' arms, 40-150 ms),
+100-210 ms near rank 4 and 3 (the two-scale Newton from 64 guesses). The solutions found
+include every one of the previous method's at every pose, and more at 6 poses; near
+rank 4 and 3, 2-8 where it found none. ``benchmarks/ik_degenerate.py --tables 80``
+(same run conditions): arms near rank 5, 39 poses, 0 false statuses and 0 generating
+configurations missed, 93 ms a pose (mean, first poses included), against 2 false
+(``not_found``) and 3,079 ms before. Against a search from 200 random starts on 84 poses
+of 28 arms near rank 5: every solution it found is among ours at 83 poses; at one pose
+of an arm at σ6 / σ1 = 3e-9, just above :data:`CONTINUUM_RATIO`, one of its is 0.96 rad
+from ours (a branch whose θ touches zero within the tolerance without changing sign).
 
 The sweep's samples are a grid: a zero close to a fold of its branch, or one θ only
 touches, can be missed, so the answer is never marked complete, and it is marked
