@@ -30,7 +30,7 @@ the guesses that meet it are kept too, and the answer is ``singular``.
 **Which joint, and what it costs.** The end joints are swept where they move along the
 near-continuum (a spherical shoulder and wrist, three parallel axes and three
 concurrent, four axes from the first or to the last): the arm left is then the same
-for every value, built once per chain, and every sample and every step of every target
+for every value, built once per chain, and every sample of every target
 is a moved target of one batch of the core. Where neither end joint moves (four
 parallel or concurrent axes 2-5), the joint in the middle that moves most is swept on
 the arm cut open at it (:mod:`kinematica.ik.near_cut`), built once per target. Near an
@@ -48,9 +48,9 @@ rank 4 and 3, 2-8 where it found none. ``benchmarks/ik_degenerate.py --tables 80
 (same run conditions): arms near rank 5, 39 poses, 0 false statuses and 0 generating
 configurations missed, 93 ms a pose (mean, first poses included), against 2 false
 (``not_found``) and 3,079 ms before. Against a search from 200 random starts on 84 poses
-of 28 arms near rank 5: every solution it found is among ours at 83 poses; at one pose
-of an arm at σ6 / σ1 = 3e-9, just above :data:`CONTINUUM_RATIO`, one of its is 0.96 rad
-from ours (a branch whose θ touches zero within the tolerance without changing sign).
+of 28 arms near rank 5: every solution it found is among ours at 83 poses, and at the
+84th (σ6 / σ1 = 3e-9, just above :data:`CONTINUUM_RATIO`, both find 6) 2 of its 200
+answers lie beyond the matching tolerance of ours (1e-4 rad plus the tolerance over σ6).
 
 The sweep's samples are a grid: a zero close to a fold of its branch, or one θ only
 touches, can be missed, so the answer is never marked complete, and it is marked
