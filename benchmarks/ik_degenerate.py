@@ -18,6 +18,11 @@ random; N arms without a coaxial pair, ``--targets`` FK poses each): per class o
 others) the answers of ``method="auto"`` by the numeric search, the FK misses, the
 generating configurations missed, the continua answered ``singular`` and the false
 statuses.
+
+``--near N`` times instead the arms near rank 5 alone (N random tables, the rank-5 ones
+perturbed twice each, ``--targets`` FK poses each): ``robot.ik`` one pose at a time
+(ms/pose median, mean, max; the first pose of each arm, which builds its sweep's arms,
+apart) and the same poses as one batch per arm (ms/pose).
 """
 
 from __future__ import annotations
@@ -47,6 +52,44 @@ def tables(count: int, targets: int, seed: int, show: bool) -> None:
     print(f"{time.perf_counter() - t0:.0f} s")
 
 
+def near(count: int, targets: int, seed: int) -> None:
+    """Print the near-rank-5 path's time per pose, one at a time and batched."""
+    from support.random_tables import arms, perturbed
+
+    import kinematica as km
+    from kinematica.ik.rank_five import rank_five
+
+    rng = np.random.default_rng(seed + 1)
+    first: list[float] = []
+    single: list[float] = []
+    batched: list[float] = []
+    for rows, robot in arms(count, seed):
+        five = rank_five(robot.chain)
+        if five is None or not five.exact:
+            continue
+        for _ in range(2):
+            moved = km.Robot.from_dh(perturbed(rows, rng), convention="standard")
+            if rank_five(moved.chain) is None:
+                continue
+            T = moved.fk(rng.uniform(-np.pi, np.pi, (targets + 1, 6)))
+            t0 = time.perf_counter()
+            moved.ik(T[0])
+            first.append(time.perf_counter() - t0)
+            for t in T[1:]:
+                t0 = time.perf_counter()
+                moved.ik(t)
+                single.append(time.perf_counter() - t0)
+            t0 = time.perf_counter()
+            moved.ik(T[1:])
+            batched.append((time.perf_counter() - t0) / targets)
+    for name, v in (("first pose", first), ("one pose", single), ("batched", batched)):
+        ms = 1e3 * np.array(v)
+        print(
+            f"{name:<12} {len(ms):5d}  median {np.median(ms):7.2f}  mean {ms.mean():7.2f}  "
+            f"max {ms.max():7.2f} ms/pose"
+        )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--arms", type=int, default=160, help="arms per family and kind")
@@ -54,7 +97,11 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--show", type=int, default=10, help="failures to print")
     parser.add_argument("--tables", type=int, default=0, help="random DH tables to audit")
+    parser.add_argument("--near", type=int, default=0, help="random DH tables: near-rank-5 times")
     args = parser.parse_args()
+    if args.near:
+        near(args.near, args.targets or 5, args.seed)
+        return
     if args.tables:
         tables(args.tables, args.targets or 3, args.seed, args.show > 0)
         return

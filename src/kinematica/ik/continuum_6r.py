@@ -23,6 +23,12 @@ every arm of rank 5, whatever makes it so, whose accuracy is the closed form's. 
 not prove that every continuum passes through ``q_j = q*_j`` (a continuum along which
 joint j keeps within a narrower range may not), so the answer is marked incomplete.
 
+**Poses out of reach.** Where the structure keeps one quantity of the pose fixed (the
+distance between a spherical shoulder's and wrist's centres; the wrist centre's height
+along three parallel axes), a target whose value misses it by more than the tolerance
+carried to it is ``unreachable``, proved (:mod:`kinematica.ik.rank_five_reach`), before
+any search.
+
 **Which solutions are kept.** As for the coaxial pair: a solution of the virtual arm is
 put on the real arm with θ dropped and ``q_j`` put back, and kept when its forward
 kinematics meets the target within the call's tolerance.
@@ -41,6 +47,7 @@ from numpy.typing import NDArray
 from kinematica.core import Chain
 from kinematica.ik.coaxial import VIRTUAL_LINES, frame_on, with_virtual_joint
 from kinematica.ik.rank_five import FREE_TOL, RankFive, free_motion, rank_five
+from kinematica.ik.rank_five_reach import invariant_miss
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.stack import pose_residuals, solve_each
 from kinematica.ik.status import IKStatus
@@ -160,6 +167,18 @@ def continuum_answer(
 
     tol = parse_tolerance(options.tol)
     why = f"{five.structure}: the arm has rank {five.rank} at every configuration"
+    miss = invariant_miss(chain, five, T, tol.position, tol.rotation)
+    if miss is not None:  # proved out of reach by what the structure keeps fixed
+        return IKResult(
+            solutions=np.zeros((0, 6)),
+            status=IKStatus.UNREACHABLE,
+            method=METHOD,
+            residuals=np.zeros((0, 2)),
+            branches=(),
+            out_of_limits=np.zeros((0, 6)),
+            out_of_limits_branches=(),
+            notes=(f"{why}: {miss.note()}: no configuration reaches this pose",),
+        )
     searched = solve(chain, T, dataclasses.replace(options, method="numeric"))
     assert isinstance(searched, IKResult)
     found = np.concatenate([searched.solutions, searched.out_of_limits])
@@ -197,7 +216,6 @@ def continuum_answer(
     err = pose_residuals(chain, Q, T)
     keep = (err[:, 0] <= tol.position) & (err[:, 1] <= tol.rotation)
     Q, err = Q[keep], err[keep]
-    joints = ", ".join(str(j + 1) for j in free)
     joints = ", ".join(str(j + 1) for j in free)
     how = (
         "the search's point, the one representative found (no arm with one of them held "
