@@ -10,6 +10,7 @@
 #include "common.hpp"
 #include "kinematica/solvers/arm_point.hpp"
 #include "kinematica/solvers/arm_position.hpp"
+#include "kinematica/solvers/arm_position_build.hpp"
 #include "kinematica/solvers/arm_quartic.hpp"
 #include "kinematica/solvers/spherical_shoulder.hpp"
 #include "kinematica/solvers/spherical_wrist.hpp"
@@ -239,29 +240,13 @@ void bind_decoupled(nb::module_& m) {
         nb::make_tuple(kd::PLACE_PROBES[1][0], kd::PLACE_PROBES[1][1], kd::PLACE_PROBES[1][2]),
         nb::make_tuple(kd::PLACE_PROBES[2][0], kd::PLACE_PROBES[2][1], kd::PLACE_PROBES[2][2]));
 
-    auto position = bind_closed_form<kd::ArmPositionParams>(
+    bind_family<kd::ArmPositionParams>(
         sub, "ArmPositionParams",
         "Position targets of an arm of n > 3 joints (arm_position.hpp): 4 slots, n joints.",
-        "km::decoupled::ArmPositionParams", "kinematica/solvers/arm_position.hpp");
-    position.def_rw("arm", &kd::ArmPositionParams::arm, "joints 1-3 placing the tool origin")
-        .def_rw("reach", &kd::ArmPositionParams::reach,
-                "bound (m) on how far joints 4..n move the tool origin")
-        .def_rw("centre", &kd::ArmPositionParams::centre,
-                "joints 1-3 placing a point C on axis 4 (its shell bounds alone are read)")
-        .def_rw("centre_reach", &kd::ArmPositionParams::centre_reach,
-                "bound (m) on |tool origin - C| over every q (inf: none)")
-        .def_prop_rw(
-            "n", [](const kd::ArmPositionParams& p) { return p.n; },
-            [](kd::ArmPositionParams& p, int n) {
-                if (n < 4 || n > kd::MAX_POSITION_DOF) {
-                    throw nb::value_error(("n must be between 4 and " +
-                                           std::to_string(kd::MAX_POSITION_DOF) + ", got " +
-                                           std::to_string(n))
-                                              .c_str());
-                }
-                p.n = n;
-            },
-            "the chain's joints (4 .. MAX_POSITION_DOF)");
+        "kinematica/solvers/arm_position_build.hpp", "km::decoupled::ArmPositionParams",
+        "km::decoupled::build_position", [](const km::Chain& c) { return kd::build_position(c); },
+        "build_arm_position")
+        .def_ro("arm", &kd::ArmPositionParams::arm, "joints 1-3 placing the tool origin");
 
     sub.def(
         "clamped_root",

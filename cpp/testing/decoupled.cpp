@@ -8,6 +8,7 @@
 
 #include "casters.hpp"
 #include "common.hpp"
+#include "kinematica/solvers/arm_position_build.hpp"
 #include "kinematica/solvers/spherical_wrist_build.hpp"
 #include "kinematica/solvers/srs_build.hpp"
 
@@ -59,6 +60,23 @@ void bind_decoupled_testing(nb::module_& m) {
         "The chain's spherical-wrist solver with the twin identity off (the flip solved).");
     sub.def("srs_values", &srs_values, nb::arg("chain"),
             "The SRS builder's values (a dict), or None where it declines the chain.");
+    sub.def("reach_after_joint3", &kd::reach_after_joint3, nb::arg("chain"),
+            "The arm-position builder's bound (m) on how far joints 4..n move the tool origin.");
+    sub.def("nearest_foot", &kd::nearest_foot, nb::arg("p"), nb::arg("h"), nb::arg("q"),
+            nb::arg("g"), nb::arg("x"),
+            "The point of line (p, h) nearest line (q, g); of parallel lines, nearest x.");
+    sub.def(
+        "wrist_chain",
+        [](const km::Chain& chain) -> nb::object {
+            km::Vec3 C;
+            double R = 0.0;
+            if (!kd::wrist_chain(km::arm_axes(chain), C, R)) return nb::none();
+            return nb::make_tuple(C, R);
+        },
+        nb::arg("chain"),
+        "(C (3,), R): a point on axis 4 and the bound on the tool origin's distance from it, "
+        "or None (a joint after the third slides).");
+    sub.attr("PARALLEL_SIN2") = kd::PARALLEL_SIN2;
 }
 
 }  // namespace kmpy

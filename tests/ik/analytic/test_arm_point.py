@@ -197,8 +197,8 @@ def test_fixed_arrays_check_their_shape_and_keep_their_values() -> None:
     np.testing.assert_array_equal(arm.fourier, np.arange(25.0).reshape(5, 5))
     with pytest.raises(TypeError):  # the core's builder alone fills a family's Params
         D.SphericalWristParams()
-    with pytest.raises(ValueError, match="n must be between 4 and 32, got 3"):
-        D.ArmPositionParams().n = 3
+    with pytest.raises(TypeError):
+        D.ArmPositionParams()
 
 
 def test_core_builders_decline_other_structures() -> None:
@@ -210,6 +210,16 @@ def test_core_builders_decline_other_structures() -> None:
     assert D.build_spherical_shoulder(ur5.chain.core) is None  # axes 1-3 do not meet
     assert _core.srs.build(puma.chain.core) is None  # 6 joints
     assert _core.srs.build(iiwa.chain.core) is not None
+    assert D.build_arm_position(puma.chain.core) is not None
+    assert (
+        D.build_arm_position(Robot.from_dh([Revolute(a=0.3)] * 3, convention="standard").chain.core)
+        is None
+    )
+    planar = load("planar-3r").chain.core
+    assert _core.planar.build(planar) is not None and _core.elbow.build(planar) is None
+    elbow = load("anthropomorphic-3r").chain.core
+    assert _core.elbow.build(elbow) is not None and _core.planar.build(elbow) is None
+    assert _core.planar.build(puma.chain.core) is None and _core.elbow.build(ur5.chain.core) is None
     with pytest.raises(ValueError, match="h must be of size 3 along axis 0"):
         D.arm_geometry(np.eye(3)[:2], np.zeros((3, 3)), False, np.ones(3), 1.0)
     with pytest.raises(ValueError, match="3 joints or more"):
