@@ -211,29 +211,6 @@ void bind_decoupled(nb::module_& m) {
         .def_ro("wrist", &kd::SphericalShoulderParams::wrist,
                 "the reversed chain's SphericalWristParams (its joint j is -q_(7-j))");
 
-    sub.def(
-        "arm_geometry",
-        [](F64 h, F64 p, bool prismatic, const km::Vec3& c, double size) -> std::optional<kd::ArmPoint> {
-            const In hh = in_f64(h, "h", 2, {3, 3}), pp = in_f64(p, "p", 2, {3, 3});
-            km::Vec3 H[3], P[3];
-            for (int i = 0; i < 3; ++i) {
-                H[i] = {hh.data[3 * i], hh.data[3 * i + 1], hh.data[3 * i + 2]};
-                P[i] = {pp.data[3 * i], pp.data[3 * i + 1], pp.data[3 * i + 2]};
-            }
-            return kd::arm_geometry(H, P, prismatic, c, size);
-        },
-        nb::arg("h"), nb::arg("p"), nb::arg("prismatic"), nb::arg("c"), nb::arg("size"),
-        "The ArmPoint of joints 1-3 (axes h, p (3, 3) at q = 0, joint 3 a slide or not)\n"
-        "placing the point c (3,), or None (arm_point_build.hpp says when).");
-    sub.def(
-        "places_point",
-        [](const km::Chain& chain, const km::Vec3& c_tool) {
-            if (chain.dof() < 3) throw nb::value_error("joints 1-3 need a chain of 3 joints or more");
-            return kd::places_point(chain, c_tool);
-        },
-        nb::arg("chain"), nb::arg("c_tool"),
-        "True when joints 1-3 move the point c_tool (3,), fixed in the tool frame, in three\n"
-        "directions (at one of PLACE_PROBES, σmin / σmax above PLACE_RANK_TOL).");
     sub.attr("PLACE_RANK_TOL") = kd::PLACE_RANK_TOL;
     sub.attr("PLACE_PROBES") = nb::make_tuple(
         nb::make_tuple(kd::PLACE_PROBES[0][0], kd::PLACE_PROBES[0][1], kd::PLACE_PROBES[0][2]),

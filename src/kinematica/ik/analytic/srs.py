@@ -123,7 +123,7 @@ def arm_angle(chain: Chain, q: ArrayLike) -> FloatArray:
             "axis 4 through neither point)",
             arg="q",
         )
-    S, E0, W0 = (np.asarray(v, dtype=float) for v in points)
+    S, E0, W0 = np.asarray(points, dtype=float)  # (3, 3): the points as rows
     q = np.asarray(q, dtype=float)
     frames = chain.fk(q, all_frames=True)[0]
     zero = chain.fk(np.zeros(7), all_frames=True)[0]
