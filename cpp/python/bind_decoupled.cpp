@@ -10,6 +10,7 @@
 #include "common.hpp"
 #include "kinematica/solvers/arm_point.hpp"
 #include "kinematica/solvers/arm_position.hpp"
+#include "kinematica/solvers/arm_position_build.hpp"
 #include "kinematica/solvers/arm_quartic.hpp"
 #include "kinematica/solvers/spherical_shoulder.hpp"
 #include "kinematica/solvers/spherical_wrist.hpp"
@@ -210,58 +211,19 @@ void bind_decoupled(nb::module_& m) {
         .def_ro("wrist", &kd::SphericalShoulderParams::wrist,
                 "the reversed chain's SphericalWristParams (its joint j is -q_(7-j))");
 
-    sub.def(
-        "arm_geometry",
-        [](F64 h, F64 p, bool prismatic, const km::Vec3& c, double size) -> std::optional<kd::ArmPoint> {
-            const In hh = in_f64(h, "h", 2, {3, 3}), pp = in_f64(p, "p", 2, {3, 3});
-            km::Vec3 H[3], P[3];
-            for (int i = 0; i < 3; ++i) {
-                H[i] = {hh.data[3 * i], hh.data[3 * i + 1], hh.data[3 * i + 2]};
-                P[i] = {pp.data[3 * i], pp.data[3 * i + 1], pp.data[3 * i + 2]};
-            }
-            return kd::arm_geometry(H, P, prismatic, c, size);
-        },
-        nb::arg("h"), nb::arg("p"), nb::arg("prismatic"), nb::arg("c"), nb::arg("size"),
-        "The ArmPoint of joints 1-3 (axes h, p (3, 3) at q = 0, joint 3 a slide or not)\n"
-        "placing the point c (3,), or None (arm_point_build.hpp says when).");
-    sub.def(
-        "places_point",
-        [](const km::Chain& chain, const km::Vec3& c_tool) {
-            if (chain.dof() < 3) throw nb::value_error("joints 1-3 need a chain of 3 joints or more");
-            return kd::places_point(chain, c_tool);
-        },
-        nb::arg("chain"), nb::arg("c_tool"),
-        "True when joints 1-3 move the point c_tool (3,), fixed in the tool frame, in three\n"
-        "directions (at one of PLACE_PROBES, σmin / σmax above PLACE_RANK_TOL).");
     sub.attr("PLACE_RANK_TOL") = kd::PLACE_RANK_TOL;
     sub.attr("PLACE_PROBES") = nb::make_tuple(
         nb::make_tuple(kd::PLACE_PROBES[0][0], kd::PLACE_PROBES[0][1], kd::PLACE_PROBES[0][2]),
         nb::make_tuple(kd::PLACE_PROBES[1][0], kd::PLACE_PROBES[1][1], kd::PLACE_PROBES[1][2]),
         nb::make_tuple(kd::PLACE_PROBES[2][0], kd::PLACE_PROBES[2][1], kd::PLACE_PROBES[2][2]));
 
-    auto position = bind_closed_form<kd::ArmPositionParams>(
+    bind_family<kd::ArmPositionParams>(
         sub, "ArmPositionParams",
         "Position targets of an arm of n > 3 joints (arm_position.hpp): 4 slots, n joints.",
-        "km::decoupled::ArmPositionParams", "kinematica/solvers/arm_position.hpp");
-    position.def_rw("arm", &kd::ArmPositionParams::arm, "joints 1-3 placing the tool origin")
-        .def_rw("reach", &kd::ArmPositionParams::reach,
-                "bound (m) on how far joints 4..n move the tool origin")
-        .def_rw("centre", &kd::ArmPositionParams::centre,
-                "joints 1-3 placing a point C on axis 4 (its shell bounds alone are read)")
-        .def_rw("centre_reach", &kd::ArmPositionParams::centre_reach,
-                "bound (m) on |tool origin - C| over every q (inf: none)")
-        .def_prop_rw(
-            "n", [](const kd::ArmPositionParams& p) { return p.n; },
-            [](kd::ArmPositionParams& p, int n) {
-                if (n < 4 || n > kd::MAX_POSITION_DOF) {
-                    throw nb::value_error(("n must be between 4 and " +
-                                           std::to_string(kd::MAX_POSITION_DOF) + ", got " +
-                                           std::to_string(n))
-                                              .c_str());
-                }
-                p.n = n;
-            },
-            "the chain's joints (4 .. MAX_POSITION_DOF)");
+        "kinematica/solvers/arm_position_build.hpp", "km::decoupled::ArmPositionParams",
+        "km::decoupled::build_position", [](const km::Chain& c) { return kd::build_position(c); },
+        "build_arm_position")
+        .def_ro("arm", &kd::ArmPositionParams::arm, "joints 1-3 placing the tool origin");
 
     sub.def(
         "clamped_root",

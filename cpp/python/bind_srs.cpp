@@ -73,6 +73,16 @@ void bind_srs(nb::module_& m) {
             nb::arg("options"), nb::arg("q0").none(), nb::arg("invalid").none(),
             nb::arg("workers"),
             "ik_batch of targets T (N, 4, 4), target i at the arm angle psi[i] (N,) (rad).");
+    sub.def(
+        "points",
+        [](const km::Chain& chain) -> nb::object {
+            km::Vec3 S, E, W;
+            if (!km::srs::srs_points(km::arm_axes(chain), S, E, W)) return nb::none();
+            return nb::make_tuple(S, E, W);
+        },
+        nb::arg("chain"),
+        "(S, E0, W0): the shoulder centre, elbow point and wrist centre at q = 0 (m, base\n"
+        "frame) the builder reads (srs_build.hpp), or None for no SRS arm.");
     sub.attr("COLLINEAR_TOL") = km::srs::COLLINEAR_TOL;
     sub.attr("REFERENCE_TOL") = km::srs::REFERENCE_TOL;
 }

@@ -364,4 +364,15 @@ nb::class_<Params> bind_family(nb::module_& m, const char* name, const char* doc
     return cls;
 }
 
+//! `build_position(chain) -> Params | None` in module m: a family's builder for position
+//! targets of the tool origin (its Params class registered by bind_family).
+template <class Build>
+void bind_position_build(nb::module_& m, Build build) {
+    m.def(
+        "build_position", [build](const km::Chain& chain) { return build(chain); },
+        nb::arg("chain"),
+        "The family's closed form of a chain for position targets (the tool origin), or None "
+        "where the family declines the arm.");
+}
+
 }  // namespace kmpy

@@ -1,13 +1,17 @@
 // The decoupled families' built values the tests pin (kinematica._core_testing.decoupled):
 // the spherical wrist's twin identity (read, and a solver with it switched off, to compare
-// with the solved flip), the SRS arm's points and extremes as its builder reads them.
+// with the solved flip), the SRS arm's points and extremes as its builder reads them, and
+// what the arm-position builder reads: the bounds on joints 4..n, joints 1-3 placing a point.
 #include <nanobind/nanobind.h>
+#include <nanobind/stl/optional.h>
 
 #include <optional>
 #include <utility>
 
 #include "casters.hpp"
 #include "common.hpp"
+#include "numpy_io.hpp"
+#include "kinematica/solvers/arm_position_build.hpp"
 #include "kinematica/solvers/spherical_wrist_build.hpp"
 #include "kinematica/solvers/srs_build.hpp"
 
@@ -59,6 +63,47 @@ void bind_decoupled_testing(nb::module_& m) {
         "The chain's spherical-wrist solver with the twin identity off (the flip solved).");
     sub.def("srs_values", &srs_values, nb::arg("chain"),
             "The SRS builder's values (a dict), or None where it declines the chain.");
+    sub.def("reach_after_joint3", &kd::reach_after_joint3, nb::arg("chain"),
+            "The arm-position builder's bound (m) on how far joints 4..n move the tool origin.");
+    sub.def("nearest_foot", &kd::nearest_foot, nb::arg("p"), nb::arg("h"), nb::arg("q"),
+            nb::arg("g"), nb::arg("x"),
+            "The point of line (p, h) nearest line (q, g); of parallel lines, nearest x.");
+    sub.def(
+        "wrist_chain",
+        [](const km::Chain& chain) -> nb::object {
+            km::Vec3 C;
+            double R = 0.0;
+            if (!kd::wrist_chain(km::arm_axes(chain), C, R)) return nb::none();
+            return nb::make_tuple(C, R);
+        },
+        nb::arg("chain"),
+        "(C (3,), R): a point on axis 4 and the bound on the tool origin's distance from it, "
+        "or None (a joint after the third slides).");
+    sub.attr("PARALLEL_SIN2") = kd::PARALLEL_SIN2;
+    sub.def(
+        "arm_geometry",
+        [](F64 h, F64 p, bool prismatic, const km::Vec3& c,
+           double size) -> std::optional<kd::ArmPoint> {
+            const In hh = in_f64(h, "h", 2, {3, 3}), pp = in_f64(p, "p", 2, {3, 3});
+            km::Vec3 H[3], P[3];
+            for (int i = 0; i < 3; ++i) {
+                H[i] = {hh.data[3 * i], hh.data[3 * i + 1], hh.data[3 * i + 2]};
+                P[i] = {pp.data[3 * i], pp.data[3 * i + 1], pp.data[3 * i + 2]};
+            }
+            return kd::arm_geometry(H, P, prismatic, c, size);
+        },
+        nb::arg("h"), nb::arg("p"), nb::arg("prismatic"), nb::arg("c"), nb::arg("size"),
+        "The ArmPoint of joints 1-3 (axes h, p (3, 3) at q = 0, joint 3 a slide or not)\n"
+        "placing the point c (3,), or None (arm_point_build.hpp says when).");
+    sub.def(
+        "places_point",
+        [](const km::Chain& chain, const km::Vec3& c_tool) {
+            if (chain.dof() < 3) throw nb::value_error("joints 1-3 need a chain of 3 joints or more");
+            return kd::places_point(chain, c_tool);
+        },
+        nb::arg("chain"), nb::arg("c_tool"),
+        "True when joints 1-3 move the point c_tool (3,), fixed in the tool frame, in three\n"
+        "directions (at one of PLACE_PROBES, σmin / σmax above PLACE_RANK_TOL).");
 }
 
 }  // namespace kmpy

@@ -8,18 +8,27 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from kinematica import _core_testing
 from kinematica.dh import Revolute
 from kinematica.ik import ClosedForm, closed_form
-from kinematica.ik.analytic.arm_point import (
-    PROBES,
-    arm_geometry,
-)
+from kinematica.ik.analytic.arm_point import PROBES, ArmGeometry, geometry_of
 from kinematica.ik.analytic.spherical_wrist import random_wrist_rows
 from kinematica.ik.structure import features
 from kinematica.robot import Robot
 from support.helpers import transform_from
 
 FloatArray = NDArray[np.float64]
+
+
+def arm_geometry(
+    h: FloatArray, p: FloatArray, prismatic: bool, c: FloatArray, size: float
+) -> ArmGeometry | None:
+    """The builders' reading of joints 1-3 (axes h, p (3, 3) at q = 0) placing the point
+    c (3,) (``km::decoupled::arm_geometry``), or None where they cannot."""
+    arm = _core_testing.decoupled.arm_geometry(
+        np.asarray(h, float), np.asarray(p, float), bool(prismatic), c, float(size)
+    )
+    return None if arm is None else geometry_of(arm)
 
 
 @dataclass(frozen=True)

@@ -19,10 +19,7 @@ from kinematica import _core_testing, load
 from kinematica.core import Chain
 from kinematica.dh import Revolute
 from kinematica.ik.analytic import arm_position, spherical_wrist
-from kinematica.ik.analytic.arm_point import (
-    RANK_TOL,
-    places_point,
-)
+from kinematica.ik.analytic.arm_point import RANK_TOL
 from kinematica.ik.solve import closed_form
 from kinematica.ik.structure import features
 from kinematica.robot import Robot
@@ -119,7 +116,7 @@ def test_rank_tol(factor: float, usable: bool) -> None:
     eps = 1e-4 * factor * RANK_TOL / r1
     robot = arm_with_point_near_axis_3(eps)
     assert rank_ratio(robot) == pytest.approx(factor * RANK_TOL, rel=0.05)
-    assert places_point(robot.chain, np.zeros(3)) == usable
+    assert _core_testing.decoupled.places_point(robot.chain.core, np.zeros(3)) == usable
 
 
 # --- the flip as the no-flip's twin (q4 + π, -q5, q6 + π) -----------------------
@@ -197,8 +194,8 @@ def test_fixed_arrays_check_their_shape_and_keep_their_values() -> None:
     np.testing.assert_array_equal(arm.fourier, np.arange(25.0).reshape(5, 5))
     with pytest.raises(TypeError):  # the core's builder alone fills a family's Params
         D.SphericalWristParams()
-    with pytest.raises(ValueError, match="n must be between 4 and 32, got 3"):
-        D.ArmPositionParams().n = 3
+    with pytest.raises(TypeError):
+        D.ArmPositionParams()
 
 
 def test_core_builders_decline_other_structures() -> None:
@@ -210,10 +207,22 @@ def test_core_builders_decline_other_structures() -> None:
     assert D.build_spherical_shoulder(ur5.chain.core) is None  # axes 1-3 do not meet
     assert _core.srs.build(puma.chain.core) is None  # 6 joints
     assert _core.srs.build(iiwa.chain.core) is not None
+    assert D.build_arm_position(puma.chain.core) is not None
+    assert (
+        D.build_arm_position(Robot.from_dh([Revolute(a=0.3)] * 3, convention="standard").chain.core)
+        is None
+    )
+    planar = load("planar-3r").chain.core
+    assert _core.planar.build(planar) is not None and _core.elbow.build(planar) is None
+    elbow = load("anthropomorphic-3r").chain.core
+    assert _core.elbow.build(elbow) is not None and _core.planar.build(elbow) is None
+    assert _core.planar.build(puma.chain.core) is None and _core.elbow.build(ur5.chain.core) is None
     with pytest.raises(ValueError, match="h must be of size 3 along axis 0"):
-        D.arm_geometry(np.eye(3)[:2], np.zeros((3, 3)), False, np.ones(3), 1.0)
+        _core_testing.decoupled.arm_geometry(
+            np.eye(3)[:2], np.zeros((3, 3)), False, np.ones(3), 1.0
+        )
     with pytest.raises(ValueError, match="3 joints or more"):
-        D.places_point(
+        _core_testing.decoupled.places_point(
             Robot.from_dh([Revolute(a=0.3)] * 2, convention="standard").chain.core, np.zeros(3)
         )
 

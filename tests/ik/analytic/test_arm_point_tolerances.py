@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 
 import kinematica._core as _core
+import kinematica._core_testing as _core_testing
 import numpy as np
 import pytest
 from support import wrist_arms as wrist_edges
@@ -162,19 +163,13 @@ def test_wrist_singular_tol_is_the_sine_of_q5(factor: float, inside: bool) -> No
 )
 def test_max_position_dof_bounds_the_arm_position_solver(n: int, accepted: bool) -> None:
     """MAX_POSITION_DOF: an arm-position solver serves chains of at most this many
-    joints (its free joints are bits of a 32-bit mask); beyond, the Params refuse
-    the size and the builder gives no closed form (the numeric method answers).
+    joints (its free joints are bits of a 32-bit mask); beyond, the builder gives no
+    closed form (the numeric method answers).
     """
-    params = D.ArmPositionParams()
-    if accepted:
-        params.n = n
-        assert params.n == n
-    else:
-        with pytest.raises(ValueError, match="n must be between 4 and"):
-            params.n = n
     rows = [Revolute(d=0.4, alpha=math.pi / 2), Revolute(a=0.45), Revolute(alpha=math.pi / 2)]
     rows += [Revolute(d=0.01 * (i + 1), alpha=0.3) for i in range(n - 3)]
     robot = km.Robot.from_dh(rows, name=f"{n} joints", convention="standard")
+    assert (D.build_arm_position(robot.chain.core) is not None) is accepted
     q = np.zeros(n)
     q[:3] = 0.2  # joints 4..n at 0: a target the closed form's own configurations reach
     res = robot.ik(robot.fk(q)[:3, 3], seed=0)
@@ -211,7 +206,7 @@ def test_arm_rank_tol_needs_joints_1_to_3_to_place_the_point(factor: float, usab
     r1 = wrist_parts.rank_ratio(wrist_parts.arm_with_point_near_axis_3(1e-4))
     robot = wrist_parts.arm_with_point_near_axis_3(1e-4 * factor * ARM_RANK_TOL / r1)
     assert wrist_parts.rank_ratio(robot) == pytest.approx(factor * ARM_RANK_TOL, rel=0.05)
-    assert arm_point.places_point(robot.chain, np.zeros(3)) == usable
+    assert _core_testing.decoupled.places_point(robot.chain.core, np.zeros(3)) == usable
 
 
 @pytest.mark.parametrize("name", ["puma560", "stanford", "irb120"])

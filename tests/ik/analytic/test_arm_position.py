@@ -19,9 +19,9 @@ from support.helpers import transform_from
 from support.ik_search import joint_distance, random_q
 
 import kinematica as km
+from kinematica import _core_testing
 from kinematica.dh import Revolute
 from kinematica.ik import IKBatchResult, IKResult, closed_form
-from kinematica.ik.analytic.arm_position import reach_after_joint3
 from kinematica.ik.fallback import PARTIAL_NOTE
 from kinematica.robot import Robot
 
@@ -106,14 +106,14 @@ def test_puma_branches_are_the_seed_decoupling() -> None:
 def test_reach_after_joint_3_bounds_the_tool_origin() -> None:
     rng = np.random.default_rng(42)
     for robot in (km.load("arm6-dh"), km.load("ur5"), km.load("stanford"), seven_dof()):
-        bound = reach_after_joint3(robot.chain)
+        bound = _core_testing.decoupled.reach_after_joint3(robot.chain.core)
         q = random_q(robot, rng, 2000)
         moved = (
             robot.fk(q)[:, :3, 3] - robot.fk(np.where(np.arange(robot.dof) < 3, q, 0.0))[:, :3, 3]
         )
         assert np.linalg.norm(moved, axis=1).max() <= bound
     assert (
-        reach_after_joint3(km.load("puma560").chain) == 0.0
+        _core_testing.decoupled.reach_after_joint3(km.load("puma560").chain.core) == 0.0
     )  # the tool origin is the wrist centre
 
 
@@ -122,7 +122,7 @@ def test_unreachable_only_with_a_proof() -> None:
     res = puma.ik(np.array([3.0, 0.0, 0.0]))
     assert res.status == "unreachable" and res.gap is not None and res.gap > 2.0
     arm = km.load("arm6-dh")  # joint 6's flange sits 0.1 m beyond the wrist centre
-    reach = reach_after_joint3(arm.chain)
+    reach = _core_testing.decoupled.reach_after_joint3(arm.chain.core)
     far_arm = np.linalg.norm(arm.fk(np.zeros(6))[:3, 3] - np.array([0.0, 0.0, 0.5]))
     within = arm.ik(np.array([0.0, 0.0, 0.5 + far_arm + 0.5 * reach]))
     # The wrist-at-0 shell (0.9 m about the shoulder) less 2 x 0.1 m proves nothing here;

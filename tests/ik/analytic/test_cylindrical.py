@@ -128,14 +128,13 @@ def test_targets_at_1e300_give_finite_candidates_and_gaps() -> None:
     assert res.status == "unreachable" and res.gap == pytest.approx(0.149, abs=TOL)
 
 
-def test_malformed_params_are_refused_before_the_core() -> None:
-    p = _core.cylindrical.CylindricalParams()
-    p.n = 5
-    assert p.invalid() == "n must be 3 or 4"
-    p.n, p.turn, p.lift = 3, 0, 0
-    assert "turn and lift" in str(p.invalid())
-    p.lift, p.ss = 1, 0.0
-    assert "ss" in str(p.invalid())
+def test_the_core_builder_reads_the_structure_itself() -> None:
+    """The core's builder (a C++ program may hand it any chain) declines other arms, and
+    its Params come from it alone (no constructor, no fields to set wrong)."""
     chain = _offset_arm().chain
-    with pytest.raises(ValueError, match="ss must be positive"):
-        p.candidates(chain.core, np.eye(4))
+    assert _core.cylindrical.build(chain.core) is not None
+    assert _core.cylindrical.build_position(chain.core) is not None
+    assert _core.cylindrical.build(km.load("puma560").chain.core) is None
+    assert _core.cylindrical.build(km.load("scara").chain.core) is None
+    with pytest.raises(TypeError):
+        _core.cylindrical.CylindricalParams()

@@ -24,7 +24,6 @@ from numpy.typing import NDArray
 from support.ik_search import dls_solutions, found_tolerance, joint_distance
 
 import kinematica as km
-from kinematica.ik import closed_form
 from kinematica.ik.structure import features
 
 pytestmark = pytest.mark.filterwarnings("ignore::kinematica.KinematicaWarning")
@@ -90,10 +89,16 @@ def arm(name: str) -> km.Robot:
 
 def fold_of(robot: km.Robot, folded: bool) -> float:
     """q3 (rad) where the exact arm beside this one is stretched (or folded): links 2
-    and 3 in line in the plane of axes 2 and 3 (the closed form's a and b)."""
-    P = closed_form(robot.chain, "position").params
-    psi0 = math.atan2(P.a[0] * P.b[1] - P.a[1] * P.b[0], P.a[0] * P.b[0] + P.a[1] * P.b[1])
-    return float(P.s3 * (-psi0 + (PI if folded else 0.0)))
+    and 3 in line in the plane normal to axis 2 (axis 2 to axis 3, axis 3 to the tool)."""
+    f = features(robot.chain)
+    h, p = f.directions, f.points
+    k = h[1] / np.linalg.norm(h[1])
+    x = robot.fk(np.zeros(3))[:3, 3]
+    a, b = p[2] - p[1], x - p[2]
+    a, b = a - (a @ k) * k, b - (b @ k) * k  # in the plane normal to k
+    psi0 = math.atan2(float(k @ np.cross(a, b)), float(a @ b))
+    s3 = 1.0 if float(h[2] @ k) > 0.0 else -1.0
+    return s3 * (-psi0 + (PI if folded else 0.0))
 
 
 def configurations(fold: float) -> FloatArray:
@@ -159,11 +164,14 @@ def test_both_branches_beside_the_fold_are_found(name: str) -> None:
 def height_equation(robot: km.Robot, q: FloatArray) -> tuple[float, float, float]:
     """A, B, e of the exact arm's height equation A cos θ + B sin θ = e (θ = -q1) for the
     target fk(q) (``elbow.hpp``'s height())."""
-    P = closed_form(robot.chain, "position").params
-    k, h1 = np.asarray(P.k), np.asarray(P.h1)
-    v = robot.fk(q)[:3, 3] - np.asarray(P.p1)
+    f = features(robot.chain)
+    h1 = f.directions[0] / np.linalg.norm(f.directions[0])
+    k = f.directions[1] / np.linalg.norm(f.directions[1])
+    p1 = f.points[0]
+    height = float(k @ (robot.fk(np.zeros(3))[:3, 3] - p1))  # the tool's height over axis 1
+    v = robot.fk(q)[:3, 3] - p1
     kh, hv = float(k @ h1), float(h1 @ v)
-    return float(k @ v) - kh * hv, -float(np.asarray(P.hk) @ v), P.height - kh * hv
+    return float(k @ v) - kh * hv, -float(np.cross(h1, k) @ v), height - kh * hv
 
 
 def merge_margin(robot: km.Robot, q: FloatArray) -> float:

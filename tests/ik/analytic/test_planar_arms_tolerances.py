@@ -2,7 +2,7 @@
 
 A case a factor 10 inside a tolerance and one a factor 10 outside it (or as close as
 round-off allows), through the public API and through the subproblems the core exposes
-(``kinematica._core.planar.two_link``, ``slide_link``) and the raw candidates of a closed
+(``kinematica._core_testing.planar.two_link``, ``slide_link``) and the raw candidates of a closed
 form (``params.candidates``). The documented values are written out here: a change of
 one is a visible change of a test.
 """
@@ -16,7 +16,7 @@ import pytest
 from support import small_arms as ik_small
 
 import kinematica as km
-from kinematica import _core
+from kinematica import _core, _core_testing
 from kinematica.ik import closed_form
 
 TRIANGLE_SINGULAR_TOL = 1e-12  # triangle.hpp SINGULAR_TOL (relative to the reach)
@@ -44,12 +44,12 @@ def test_two_link_fold_within_singular_tol(factor: float, inside: bool) -> None:
     axis of a folded triangle whose links differ by at most as much; else two branches.
     """
     r = factor * TRIANGLE_SINGULAR_TOL * 1.0  # links 0.5 and 0.5: the reach is 1 m
-    code, out = _core.planar.two_link(0.5, 0.0, 0.5, 0.0, r, 0.0)
-    assert code == (_core.planar.FOLD if inside else _core.planar.NEAR)
+    code, out = _core_testing.planar.two_link(0.5, 0.0, 0.5, 0.0, r, 0.0)
+    assert code == (_core_testing.planar.FOLD if inside else _core_testing.planar.NEAR)
     assert np.isfinite(out).all()
     # unequal links by as much: the fold holds within the tolerance only
-    code, _ = _core.planar.two_link(0.5, 0.0, 0.5 + r, 0.0, 0.0, 0.0)
-    assert (code == _core.planar.FOLD) is inside
+    code, _ = _core_testing.planar.two_link(0.5, 0.0, 0.5 + r, 0.0, 0.0, 0.0)
+    assert (code == _core_testing.planar.FOLD) is inside
 
 
 @pytest.mark.parametrize(("factor", "inside"), FACTORS)
@@ -64,9 +64,9 @@ def test_two_link_near_within_merge_tol_of_folded(factor: float, inside: bool) -
     inner = abs(L1 - L2)
     merge = MERGE_TOL * MERGE_TOL * L1 * L2
     delta = factor * merge / (2.0 * inner)  # (r - inner)(r + inner) = factor * merge
-    code, out = _core.planar.two_link(L1, 0.0, L2, 0.0, inner + delta, 0.0)
-    assert (code == _core.planar.NEAR) is inside
-    assert code != _core.planar.FOLD
+    code, out = _core_testing.planar.two_link(L1, 0.0, L2, 0.0, inner + delta, 0.0)
+    assert (code == _core_testing.planar.NEAR) is inside
+    assert code != _core_testing.planar.FOLD
     psi = np.abs(out[:, 1])  # link 2's turn from q = 0 is ±ψ here
     assert (abs(psi - math.pi) < 1e-6).all()
 
@@ -75,8 +75,8 @@ def test_two_link_near_within_merge_tol_of_folded(factor: float, inside: bool) -
 def test_two_link_near_within_merge_tol_of_the_first_axis(factor: float, inside: bool) -> None:
     """two_link says NEAR for a target within MERGE_TOL (times the reach) of the first axis."""
     r = factor * MERGE_TOL * 1.0
-    code, _ = _core.planar.two_link(0.5, 0.0, 0.5, 0.0, 0.0, r)
-    assert (code == _core.planar.NEAR) is inside
+    code, _ = _core_testing.planar.two_link(0.5, 0.0, 0.5, 0.0, 0.0, r)
+    assert (code == _core_testing.planar.NEAR) is inside
 
 
 @pytest.mark.parametrize(
@@ -95,8 +95,8 @@ def test_two_link_straddles_the_fold_within_its_slack(
     edge = abs(L1 - L2) if folded else L1 + L2
     margin = slack * (2.0 * edge + slack)  # (2 r + slack) slack, r at the fold
     r = math.sqrt(edge * edge + (factor if folded else -factor) * margin)
-    _, plain = _core.planar.two_link(L1, 0.0, L2, 0.0, r, 0.0)
-    _, rows = _core.planar.two_link(L1, 0.0, L2, 0.0, r, 0.0, slack)
+    _, plain = _core_testing.planar.two_link(L1, 0.0, L2, 0.0, r, 0.0)
+    _, rows = _core_testing.planar.two_link(L1, 0.0, L2, 0.0, r, 0.0, slack)
     fold = math.pi if folded else 0.0
     psi = np.abs(np.angle(np.exp(1j * (rows[:, 1] - fold))))  # distance from the fold
     if not inside:
@@ -117,7 +117,7 @@ def test_slide_link_merges_within_merge_tol(factor: float, inside: bool) -> None
     e = factor * MERGE_TOL
     L = 0.5
     t = (0.2 + L * math.sin(e), L * math.cos(e))  # the link at e from across the slide (x)
-    merging, out = _core.planar.slide_link(1.0, 0.0, 0.0, L, *t)
+    merging, out = _core_testing.planar.slide_link(1.0, 0.0, 0.0, L, *t)
     assert merging is inside
     # s = along ∓ L sin e: the slide where the link is at ±e from across it
     np.testing.assert_allclose(out[:, 0], [0.2, 0.2 + 2 * L * math.sin(e)], atol=1e-8)
@@ -125,26 +125,11 @@ def test_slide_link_merges_within_merge_tol(factor: float, inside: bool) -> None
 
 def test_subproblem_inputs_are_validated() -> None:
     with pytest.raises(TypeError):
-        _core.planar.two_link(0.5, 0.0, 0.5, 0.0, "x", 0.0)  # type: ignore[arg-type]
-    p = _core.planar.PlanarParams()
-    with pytest.raises(ValueError, match="shape"):
-        p.axis = np.zeros((2, 2))
-    with pytest.raises(ValueError, match="shape"):
-        p.qlim = np.zeros(8)
-    with pytest.raises(ValueError):
-        p.rev = [0, 1, 7]
-    with pytest.raises(ValueError):
-        p.n = 5
-    robot = km.Robot.from_dh([km.Revolute(a=0.5), km.Revolute(a=0.3)], convention="standard")
-    with pytest.raises(ValueError, match="n must be"):  # a default Params is no arm
-        p.candidates(robot.chain.core, np.eye(4))
-    p.n, p.nrev, p.rev = 2, 2, [0, 1, 0]
-    p.lift = 1  # a lift on a revolute joint's column: three joints in two
-    with pytest.raises(ValueError, match="fit"):
-        p.candidates(robot.chain.core, np.eye(4))
-    e = _core.elbow.ElbowParams()
-    with pytest.raises(ValueError, match="shape"):
-        e.a = [1.0, 2.0, 3.0]
+        _core_testing.planar.two_link(0.5, 0.0, 0.5, 0.0, "x", 0.0)  # type: ignore[arg-type]
+    with pytest.raises(TypeError):  # the core's builder alone fills a family's Params
+        _core.planar.PlanarParams()
+    with pytest.raises(TypeError):
+        _core.elbow.ElbowParams()
 
 
 # --- through robot.ik -------------------------------------------------------------

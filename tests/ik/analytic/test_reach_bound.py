@@ -2,7 +2,7 @@
 
 Issue 35 item 11. The arm-position solver bounds the distance of a target to the
 reachable tool origins from the shell of a point C on axis 4 (the wrist centre of a
-spherical wrist) less a bound on |tool origin - C| (``wrist_chain``); before, from
+spherical wrist) less a bound on |tool origin - C| (``km::decoupled::wrist_chain``); before, from
 the shell of the tool origin at joints 4..n = 0 less twice a sum of link lengths.
 Checked here against an independent measure of the distance (a bounded numeric
 minimisation of |FK(q) - target| within the limits, from the best of dense samples),
@@ -18,6 +18,7 @@ import pytest
 from scipy.optimize import least_squares
 
 import kinematica as km
+from kinematica import _core_testing
 from kinematica.ik.analytic import arm_position
 from kinematica.ik.structure import features
 
@@ -64,7 +65,7 @@ def _old_gap(robot: km.Robot, target: np.ndarray) -> float:
     d = target - np.asarray(arm.p1)
     r, zeta = float(np.linalg.norm(d)), float(d @ np.asarray(arm.h1))
     shell = max(0.0, r - arm.r_hi, arm.r_lo - r, zeta - arm.z_hi, arm.z_lo - zeta)
-    return max(0.0, shell - arm_position.reach_after_joint3(chain))
+    return max(0.0, shell - _core_testing.decoupled.reach_after_joint3(chain.core))
 
 
 def _targets(robot: km.Robot, rng: np.random.Generator, n: int) -> np.ndarray:
@@ -136,7 +137,7 @@ PARALLEL_SIN2 = 1e-12
 
 
 def test_parallel_sin2_value() -> None:
-    assert arm_position.PARALLEL_SIN2 == PARALLEL_SIN2
+    assert _core_testing.decoupled.PARALLEL_SIN2 == PARALLEL_SIN2
 
 
 @pytest.mark.parametrize(("factor", "parallel"), [(0.1, True), (10.0, False)])
@@ -148,7 +149,7 @@ def test_parallel_sin2_boundary(factor: float, parallel: bool) -> None:
     Treated as parallel, the point of line 1 nearest x = (0, 0, 5) is x itself.
     """
     eps = math.sqrt(factor * PARALLEL_SIN2)
-    foot = arm_position._foot(
+    foot = _core_testing.decoupled.nearest_foot(
         np.zeros(3),
         np.array([0.0, 0.0, 1.0]),
         np.array([1.0, 0.0, 0.0]),

@@ -21,11 +21,10 @@ from scipy.spatial.transform import Rotation
 from support import DATA as TESTS_DATA
 from support.helpers import assert_transform_close
 from support.ik_search import dls_solutions, joint_distance, random_q
-from support.wrist_arms import Info, candidates, random_wrist_arm
+from support.wrist_arms import Info, arm_geometry, candidates, random_wrist_arm
 
 from kinematica.dh import Prismatic, Revolute
 from kinematica.ik import ClosedForm, IKBatchResult, IKResult, closed_form
-from kinematica.ik.analytic.arm_point import arm_geometry
 from kinematica.ik.analytic.spherical_wrist import GEOMETRIES
 from kinematica.robot import Robot, classify
 

@@ -42,7 +42,7 @@
 namespace km {
 
 //! A cylindrical arm (RPP or RPPR, the first two in either order), as its solver reads it.
-//! Filled once per arm by kinematica.ik.analytic.cylindrical.
+//! Filled once per arm by cylindrical::build (cylindrical_build.hpp).
 struct CylindricalParams {
     int n = 0;              //!< joints: 3 (turn, lift, reach) or 4 (and the roll)
     bool pose = false;      //!< true: pose targets; false: position targets (tool origin)

@@ -37,8 +37,8 @@
 
 namespace km {
 
-//! A 3R elbow arm, as its solver reads it. Filled once per arm by
-//! kinematica.ik.analytic.elbow_arms.
+//! A 3R elbow arm, as its solver reads it. Filled once per arm by elbow::build
+//! (elbow_build.hpp).
 struct ElbowParams {
     bool pose = false;  //!< true: pose targets; false: position targets (tool origin)
     Vec3 h1;  //!< axis 1 direction (unit, base frame)

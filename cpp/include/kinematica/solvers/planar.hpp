@@ -55,7 +55,7 @@ namespace km {
 //! A planar arm (2R, 3R, PR, PRR) or a SCARA, as its solver reads it.
 //!
 //! Plane coordinates are on e1, e2 = k × e1 relative to origin. Filled once per arm by
-//! kinematica.ik.analytic.planar_arms.
+//! planar::build (planar_build.hpp).
 struct PlanarParams {
     //! The most joints of these arms (the SCARA's four).
     static constexpr int MAX_JOINTS = 4;

@@ -2,13 +2,14 @@
 
 Joints 1 and 2 are revolute (lines ``(h1, p1)``, ``(h2, p2)`` at q = 0); joint 3
 is revolute or prismatic. A point ``c`` fixed after joint 3 (a wrist centre, or
-the tool origin with the later joints at 0) must reach a target. The core reads
-the geometry from the joint axes (``km::decoupled::arm_geometry``,
+the tool origin with the later joints at 0) must reach a target. The core's builders
+read the geometry from the joint axes (``km::decoupled::arm_geometry``,
 ``cpp/include/kinematica/solvers/arm_point_build.hpp``; the maths in
 ``arm_point.hpp``): which of three shoulders it is (axes 1 and 2 meet, are
 parallel, or are skew), the motion ``u(q3)`` of the point as seen from axis 2, its
-expression on a frame of axis 2, the bounds of the reachable shell. This module
-names the branches.
+expression on a frame of axis 2, the bounds of the reachable shell; whether joints
+1-3 place the point at all (``places_point``, at :data:`PROBES` against
+:data:`RANK_TOL`). This module names the branches of a built ``ArmPoint``.
 """
 
 from __future__ import annotations
@@ -20,17 +21,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 import kinematica._core as _core
-from kinematica.core import Chain
 
-__all__ = [
-    "ELBOW_BENDS",
-    "PROBES",
-    "RANK_TOL",
-    "ArmGeometry",
-    "arm_geometry",
-    "geometry_of",
-    "places_point",
-]
+__all__ = ["ELBOW_BENDS", "PROBES", "RANK_TOL", "ArmGeometry", "geometry_of"]
 
 FloatArray = NDArray[np.float64]
 _Shoulder = _core.decoupled.Shoulder
@@ -59,39 +51,6 @@ class ArmGeometry:
     labels: tuple[str, ...]
     kind: str
     parallel23: bool
-
-
-def places_point(chain: Chain, c_tool: FloatArray) -> bool:
-    """True when joints 1-3 move a point in three independent directions.
-
-    Args:
-        chain: The arm.
-        c_tool: ``(3,)`` the point in the tool frame when joints 4..n are at 0.
-    """
-    return bool(_core.decoupled.places_point(chain.core, c_tool))
-
-
-def arm_geometry(
-    h: FloatArray, p: FloatArray, prismatic: bool, c: FloatArray, size: float
-) -> ArmGeometry | None:
-    """The geometry of joints 1-3 placing ``c``, or None when they cannot.
-
-    Args:
-        h: ``(3, 3)`` unit directions of joints 1..3 at q = 0 (base frame).
-        p: ``(3, 3)`` a point on each axis.
-        prismatic: Joint 3 slides (joints 1 and 2 are revolute).
-        c: ``(3,)`` the point at q = 0.
-        size: The arm's size (m, :attr:`Features.size`): axes are parallel and
-            meet by :mod:`kinematica.dh.lines`' tolerances.
-
-    Returns:
-        None when axes 1 and 2 coincide, the point lies on axis 3, or three
-        parallel axes keep the point in a plane.
-    """
-    arm = _core.decoupled.arm_geometry(
-        np.asarray(h, float), np.asarray(p, float), bool(prismatic), c, float(size)
-    )
-    return None if arm is None else geometry_of(arm)
 
 
 def geometry_of(arm: Any) -> ArmGeometry:

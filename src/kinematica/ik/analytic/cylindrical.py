@@ -4,10 +4,9 @@ The lecture notes' 4-DOF example with two prismatic joints is one: ``x = (q3 + l
 cos q1``, ``y = (q3 + l4) sin q1``, ``z = l1 + q2``. The turn (revolute, axis ``k``)
 and the lift (a slide along ``k``) come first in either order (they commute), then
 a slide across ``k`` (the reach), then, for four joints, a revolute roll whose axis
-is not parallel to ``k``. Everything is read from the joint axes at q = 0 and
-``M = fk(0)``: any base, tool, offsets and DH convention. The solver is
-``cpp/include/kinematica/solvers/cylindrical.hpp``
-(:class:`kinematica._core.cylindrical.CylindricalParams`).
+is not parallel to ``k``. The solver is ``cpp/include/kinematica/solvers/cylindrical.hpp``
+(:class:`kinematica._core.cylindrical.CylindricalParams`), built in ``cylindrical_build.hpp``
+from the joint axes at q = 0 and ``M = fk(0)``: any base, tool, offsets and DH convention.
 
 Branch labels: ``"reach forward"``, the reach's direction (turned by q1) points
 toward the target, seen across ``k`` from the turn's axis; ``"reach backward"``,
@@ -28,8 +27,6 @@ from kinematica import _core
 from kinematica.core import Chain
 from kinematica.dh.convert import convert_table
 from kinematica.dh.joints import Convention, Joint, Prismatic, Revolute
-from kinematica.dh.lines import cross3
-from kinematica.ik.analytic.planar_arms import plane_basis
 from kinematica.ik.analytic.sampling import random_transform
 from kinematica.ik.analytic.small_samples import TINY
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
@@ -61,65 +58,22 @@ def _cylindrical(f: Features) -> bool:
 def build(chain: Chain, features: Features, target: TargetKind) -> ClosedForm | None:
     """The closed form of a cylindrical arm, or None for another arm.
 
+    The core builds it (``km::cylindrical::build``, ``cpp/include/kinematica/solvers/
+    cylindrical_build.hpp``), for pose or (``build_position``) position targets.
+
     Args:
         chain: The arm.
         features: Its joint axes at q = 0 (``cylindrical-RPP`` or ``-RPPR``).
         target: ``"pose"`` or ``"position"`` targets.
     """
-    if not _cylindrical(features):
+    core = _core.cylindrical.build if target == "pose" else _core.cylindrical.build_position
+    params = core(chain.core) if _cylindrical(features) else None
+    if params is None:
         return None
-    n = features.dof
-    h, p = features.directions, features.points
-    turn = features.joint_types.index("R")
-    lift = 1 - turn
-    M = chain.fk(np.zeros(n))[0]
-    R_M, tool = M[:3, :3], M[:3, 3]
-    k = h[turn] / np.linalg.norm(h[turn])
-    o = p[turn]
-    s = h[2] / np.linalg.norm(h[2])
-    sk = float(k @ s)
-    sp = s - sk * k
-    nrm = cross3(k, sp)
-    nrm /= np.linalg.norm(nrm)
-    if n == 4:
-        h4 = h[3] / np.linalg.norm(h[3])
-        c4 = p[3] + float((tool - p[3]) @ h4) * h4
-    else:
-        h4, c4 = k, tool
-    rho = float(np.linalg.norm(tool - c4))
-    w4 = plane_basis(h4)[0]
-    e1 = plane_basis(k)[0]
-    params = _core.cylindrical.CylindricalParams()
-    params.n = n
-    params.pose = target == "pose"
-    params.turn = turn
-    params.lift = lift
-    params.lift_sign = 1.0 if float(h[lift] @ k) > 0.0 else -1.0
-    params.k = k
-    params.o = o
-    params.s = s
-    params.sp = sp
-    params.sk = sk
-    params.ss = float(sp @ sp)
-    params.nrm = nrm
-    params.tool = tool
-    params.h4 = h4
-    params.c4 = c4
-    params.rho = rho
-    params.w4 = w4
-    params.rh4 = R_M.T @ h4
-    params.rw4 = R_M.T @ w4
-    params.e1 = e1
-    params.re1 = R_M.T @ e1
-    params.offset = abs(float(nrm @ (c4 - o)))
-    params.scale = features.size
-    # The lift parallel to k within the classification's tolerance only: a travel t along
-    # a direction tilted by δ moves the tool δ t across k (no limit: no bound).
-    tilt = float(np.linalg.norm(cross3(h[lift], k)))
-    travel = float(np.max(np.abs(chain.qlim[lift])))
-    params.slack = tilt * travel if tilt > 0.0 else 0.0
     position_only = target == "position"
-    return ClosedForm(name=_kind(n), labels=LABELS, params=params, position_only=position_only)
+    return ClosedForm(
+        name=_kind(features.dof), labels=LABELS, params=params, position_only=position_only
+    )
 
 
 def _kind(n: int) -> str:

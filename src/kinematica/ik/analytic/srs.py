@@ -53,7 +53,7 @@ from kinematica.ik.analytic.sampling import random_transform
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features, features
 
-__all__ = ["LABELS", "SPEC", "arm_angle", "build", "handles", "srs_points"]
+__all__ = ["LABELS", "SPEC", "arm_angle", "build", "handles"]
 
 FloatArray = NDArray[np.float64]
 PI = math.pi
@@ -67,37 +67,28 @@ LABELS: tuple[str, ...] = tuple(
 )
 
 
-def srs_points(f: Features) -> tuple[FloatArray, FloatArray, FloatArray] | None:
-    """``(S, E0, W0)``: shoulder centre, elbow point and wrist centre at q = 0, or None.
-
-    None unless the arm is 7R with axes 1-3 meeting at S, axes 5-7 at W, and axis
-    4 passing through neither (each within the line geometry's length tolerance).
-    E0 is the foot of the perpendicular from S onto axis 4 (base frame, m).
-    """
-    if f.joint_types != "RRRRRRR" or f.wrist_center is None or f.shoulder_center is None:
-        return None
-    h, p = f.directions, f.points
-    S = np.asarray(f.shoulder_center, dtype=float)
-    W = np.asarray(f.wrist_center, dtype=float)
-    E = p[3] + float((S - p[3]) @ h[3]) * h[3]
-    for point in (S, W):
-        r = point - p[3]
-        if np.linalg.norm(r - float(r @ h[3]) * h[3]) <= f.length_tol:
-            return None  # the elbow axis through S or W: |S - W| would not depend on q4
-    return S, E, W
-
-
 def handles(f: Features) -> bool:
-    """True for SRS 7R arms (see :func:`srs_points`)."""
-    return srs_points(f) is not None
+    """True for SRS 7R arms: axes 1-3 meeting at S, axes 5-7 at W, axis 4 through neither.
+
+    Axis 4 through S or W (within the line geometry's length tolerance) would leave
+    ``|S - W|`` independent of q4. The structure only: the points themselves are the
+    core's (``km::srs::srs_points``, ``srs_build.hpp``), which asks the same.
+    """
+    S, W = f.shoulder_center, f.wrist_center
+    if f.joint_types != "RRRRRRR" or S is None or W is None:
+        return False
+    h4, p4 = f.directions[3], f.points[3]
+    off = [r - float(r @ h4) * h4 for r in (S - p4, W - p4)]  # S, W across axis 4
+    return min(float(np.linalg.norm(v)) for v in off) > f.length_tol
 
 
 def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
     """The closed form of an SRS 7R arm (pose targets), or None.
 
     The core builds it (``km::srs::build``, ``cpp/include/kinematica/solvers/
-    srs_build.hpp``) at the arm angle 0; it declines arms two of whose consecutive
-    shoulder or wrist axes coincide.
+    srs_build.hpp``) at the arm angle 0; it declines arms whose axis 4 passes through
+    the shoulder or the wrist centre (|S - W| would not depend on q4), and arms two of
+    whose consecutive shoulder or wrist axes coincide.
     """
     if target != "pose" or not handles(f):
         return None
@@ -125,14 +116,14 @@ def arm_angle(chain: Chain, q: ArrayLike) -> FloatArray:
         KinematicaError: The chain is no SRS 7R arm.
     """
     f = features(chain)
-    points = srs_points(f)
+    points = _core.srs.points(chain.core) if handles(f) else None
     if points is None:
         raise KinematicaError(
             "the arm angle is defined for SRS 7R arms only (axes 1-3 and 5-7 meeting, "
             "axis 4 through neither point)",
             arg="q",
         )
-    S, E0, W0 = points
+    S, E0, W0 = np.asarray(points, dtype=float)  # (3, 3): the points as rows
     q = np.asarray(q, dtype=float)
     frames = chain.fk(q, all_frames=True)[0]
     zero = chain.fk(np.zeros(7), all_frames=True)[0]
