@@ -14,6 +14,7 @@ namespace kmpy {
 void bind_testing(nb::module_& m);           // internals.cpp: kinematica._core_testing.internals
 void bind_parallel_testing(nb::module_& m);  // parallel.cpp: kinematica._core_testing.parallel
 void bind_decoupled_testing(nb::module_& m);  // decoupled.cpp: ..._core_testing.decoupled
+void bind_general6r_testing(nb::module_& m);  // general6r.cpp: ..._core_testing.general6r
 }  // namespace kmpy
 
 namespace {
@@ -30,4 +31,5 @@ NB_MODULE(_core_testing, m) {
     kmpy::bind_testing(m);
     kmpy::bind_parallel_testing(m);
     kmpy::bind_decoupled_testing(m);
+    kmpy::bind_general6r_testing(m);
 }
