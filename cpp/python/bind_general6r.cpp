@@ -9,7 +9,6 @@
 // (through general_6r.hpp): compile time counts.
 #include <nanobind/nanobind.h>
 
-#include <algorithm>
 #include <cstdint>
 #include <optional>
 
@@ -55,13 +54,18 @@ nb::tuple free_joints(const General6RParams& p, const km::Pose& T_in, nb::handle
     const kg::SelfMotion sm = p.self_motion(L, T, a);
     if (sm.verdict != kg::Degeneracy::continuum) return nb::tuple();
     double moved[6];
-    int joints[6], count = 0;
+    bool free[6];
     for (int k = 0; k < 6; ++k) {
         moved[p.order[k]] = sm.moved[k];
-        if ((sm.free >> k) & 1U) joints[count++] = p.order[k];
+        free[p.order[k]] = ((sm.free >> k) & 1U) != 0;
     }
-    std::sort(joints, joints + count);
-    std::stable_sort(joints, joints + count, [&](int i, int j) { return moved[i] > moved[j]; });
+    int joints[6], count = 0;
+    for (int j = 0; j < 6; ++j) {  // by how far each moved, most first (ties: ascending)
+        if (!free[j]) continue;
+        int at = count++;
+        for (; at > 0 && moved[joints[at - 1]] < moved[j]; --at) joints[at] = joints[at - 1];
+        joints[at] = j;
+    }
     nb::object out = nb::steal(PyTuple_New(count));
     for (int i = 0; i < count; ++i) PyTuple_SET_ITEM(out.ptr(), i, PyLong_FromLong(joints[i]));
     return nb::borrow<nb::tuple>(out);

@@ -261,7 +261,6 @@ nb::tuple build_of(const km::Chain& chain) {
     return nb::make_tuple(params, t.chosen, t.scored, t.refined, t.probed);
 }
 
-
 //! The fields of a solver as a dict of arrays and numbers (the names general_6r.hpp gives).
 nb::dict fields_of(const General6RParams& p) {
     nb::dict d;
@@ -290,7 +289,7 @@ nb::dict fields_of(const General6RParams& p) {
 //! Sets the named fields of p in place (a hand-made case); each value checked for shape.
 void set_fields(General6RParams& p, const nb::kwargs& kw) {
     for (auto [key, value] : kw) {
-        const std::string name = nb::cast<std::string>(key);
+        const std::string name = nb::str(key).c_str();
         if (name == "t_link") p.t_link = nb::cast<int>(value);
         else if (name == "t_power") p.t_power = nb::cast<int>(value);
         else if (name == "sign") p.sign = nb::cast<double>(value);
