@@ -9,7 +9,7 @@ CORE_STAMP   := $(VENV)/.core-built
 # The development build turns compiler warnings into errors (-Wall -Wextra, clean).
 CORE_FLAGS   := --config-settings=cmake.define.KM_WERROR=ON
 
-.PHONY: demo test suite lint docs notebook bench sanitize clean
+.PHONY: demo test suite lint docs notebook bench sanitize clean ctest
 
 # --no-compile: pip would byte-compile every module of every dependency (about 9,000
 # files, 20-30 s of one core), most of which nothing here imports; the suite reads
@@ -60,8 +60,20 @@ lint: $(CORE_STAMP)
 # The checks (lint) and the test suite run side by side: mypy keeps one core busy for
 # about 20 s, which the suite's two workers would otherwise wait for. Either failing
 # fails `make test`.
-test: $(CORE_STAMP)
+test: $(CORE_STAMP) ctest
 	$(MAKE) --no-print-directory -j2 lint suite
+
+# The core's headers tested from C++ alone (tests/cpp: FK against a hand-worked 2R, one
+# closed form per family built in C++, the general 6R on a CRX-like arm), by ctest; Eigen
+# from the venv's cmeel-eigen (found as the core's build finds it).
+CPP_TESTS  := build/cpp-tests
+CMEEL_PATH := import pathlib, sys; \
+  print(";".join(str(p) for p in (pathlib.Path(e) / "cmeel.prefix" for e in sys.path if e) if p.is_dir()))
+ctest: $(STAMP)
+	cmake -S tests/cpp -B $(CPP_TESTS) -G Ninja -DCMAKE_BUILD_TYPE=Release \
+	  -DCMAKE_PREFIX_PATH="$$($(BIN)/python -c '$(CMEEL_PATH)')" > /dev/null
+	cmake --build $(CPP_TESTS)
+	ctest --test-dir $(CPP_TESTS) --output-on-failure
 
 # The tests build the docs site too (tests/test_docs.py), with --strict. The Python
 # processes they start (the console script, the examples, Dask's workers) read bytecode

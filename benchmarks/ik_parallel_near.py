@@ -75,7 +75,7 @@ def completeness(arms: int, poses: int, seed: int) -> None:
         robots.append(tilted(random_arm(rng, ("meet", "apart")[len(robots) % 2], square=True)))
     # watch in units of sqrt(slack / size): 0 (the general 6R only where the family says
     # near or singular or finds nothing), then 1, 10, WATCH_FACTOR (the default), inf
-    factor = _core.general6r.WATCH_FACTOR
+    factor = _core_testing.general6r.WATCH_FACTOR
     settings = {"0": 0.0, "1": 1.0, "10": 10.0, f"{factor:g}": factor, "inf": math.inf}
     counts = {k: [0, 0, 0] for k in settings}  # q missing, search's missed, general ran
     total = 0
@@ -95,7 +95,7 @@ def completeness(arms: int, poses: int, seed: int) -> None:
             total += 1
             ref = dls_solutions(robot, T[i], rng)
             for name, watch in settings.items():
-                closed.params.watch = watch * root
+                _core_testing.general6r.set_watch(closed.params, watch * root)
                 res = robot.ik(T[i], respect_limits=False)
                 raw = closed.params.candidates(robot.chain.core, T[i])[0]
                 near = joint_distance(robot, res.solutions, q[i]).min(initial=math.inf)
@@ -103,7 +103,7 @@ def completeness(arms: int, poses: int, seed: int) -> None:
                 c[0] += float(near) > found_tolerance(robot, q[i])
                 c[1] += bool(check_complete(robot, res.solutions, ref, f.size)[0])
                 c[2] += bool(np.isfinite(raw[8:, 0]).any())
-            closed.params.watch = default
+            _core_testing.general6r.set_watch(closed.params, default)
     print(
         f"{len(robots)} arms, {total} poses, q5 10^U(-12, -2) rad from aligned "
         f"({time.perf_counter() - t0:.0f} s)"
@@ -146,13 +146,15 @@ def speed(poses: int, seed: int) -> None:
             cases.append((", general 6R always", math.inf))
         for label, watch in cases:
             if watch is not None:
-                closed.params.watch = watch
+                _core_testing.general6r.set_watch(closed.params, watch)
             one, batch = per_pose(robot, T)
             name = f"{path.stem}{label}"
             ratio = batch / base
             print(f"{name:<40} {f.slack:>10.2g} {one:>9.1f} {batch:>10.1f} {ratio:>8.2f}")
         if hasattr(closed.params, "watch"):
-            closed.params.watch = _core.general6r.WATCH_FACTOR * math.sqrt(f.slack / f.size)
+            _core_testing.general6r.set_watch(
+                closed.params, _core_testing.general6r.WATCH_FACTOR * math.sqrt(f.slack / f.size)
+            )
 
 
 def main() -> None:

@@ -11,7 +11,6 @@
 #include "kinematica/chain.hpp"
 #include "kinematica/jacobian.hpp"
 #include "interrupt.hpp"
-#include "kinematica/point_rank.hpp"
 #include "kinematica/singular.hpp"
 #include "kinematica/volume.hpp"
 
@@ -392,25 +391,6 @@ F64 joint_axes(const Chain& chain, F64 Qh, int workers) {
     return A;
 }
 
-F64 point_rank_ratios(const Chain& chain, F64 Qh, const km::Vec3& c_tool, int workers) {
-    const In Q = check_batch(chain, Qh);
-    const ChainView ch = chain.view();
-    const int n = ch.n;
-    if (n < 3) throw nb::value_error("the point's Jacobian needs joints 1-3: a chain of 3 joints or more");
-    const npy_intp B = Q.dim[0];
-    double* out;
-    F64 R = new_f64({B}, out);
-    run_blocks(blocks_of(B, FK_BLOCK), workers, [&](int blk) {
-        const long b0 = static_cast<long>(blk) * FK_BLOCK;
-        const long b1 = b0 + FK_BLOCK < B ? b0 + FK_BLOCK : B;
-        std::vector<double> c(static_cast<size_t>(n)), s(c.size()), J(6 * c.size());
-        for (long b = b0; b < b1; ++b) {
-            out[b] = km::point_rank_ratio(ch, Q.data + b * n, c_tool, c.data(), s.data(), J.data());
-        }
-    });
-    return R;
-}
-
 Chain from_dh(Bools prismatic, F64 theta, F64 d, F64 a, F64 alpha,
               F64 lo, F64 hi, bool modified, const Pose& base, const Pose& tool) {
     const In th = in_f64(theta, "theta", 1);
@@ -518,11 +498,7 @@ void bind_chain(nb::module_& m) {
              "a Jacobian equal to an earlier one of its group up to column signs takes its values.\n"
              "volume=True: (B, 1), their product alone (|det| or the Gram determinant's root).")
         .def("joint_axes", &joint_axes, nb::arg("Q"), nb::arg("workers") = 1,
-             "(B, n, 6): each joint's axis direction, then a point on it (base frame).")
-        .def("point_rank_ratios", &point_rank_ratios, nb::arg("Q"), nb::arg("c_tool"),
-             nb::arg("workers") = 1,
-             "(B,): σmin / σmax of the Jacobian d(point)/d(q1, q2, q3) at each row of Q (B, n),\n"
-             "the point fixed in the tool frame at c_tool (3,).");
+             "(B, n, 6): each joint's axis direction, then a point on it (base frame).");
     m.def("singular_values", &singular_values_many, nb::arg("A"), nb::arg("workers") = 1,
           "(B, min(m, n)): the singular values, largest first, of A (B, m, n), min(m, n) <= 6\n"
           "(one-sided Jacobi, singular.hpp); NaN for a matrix holding NaN/inf.");

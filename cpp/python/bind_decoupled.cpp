@@ -1,7 +1,7 @@
 // The arms decoupled at joint 3: joints 1-3 placing a point (ArmPoint), the spherical
 // wrist's poses (and the spherical shoulder's, by the reversed chain) and the arm-position
-// solver's position targets, bound into the submodule kinematica._core.decoupled with the
-// family's tolerances and the scalar internals its tolerance tests call.
+// solver's position targets, bound into the submodule kinematica._core.decoupled (the
+// family's tolerances and scalar internals: kinematica._core_testing.decoupled).
 #include <cstddef>
 #include <initializer_list>
 #include <string>
@@ -97,26 +97,6 @@ nb::tuple place(const kd::ArmPoint& arm, const km::Vec3& ct) {
     Bools F = new_bools({3}, f);
     for (int i = 0; i < 3; ++i) f[i] = st.free[i];
     return nb::make_tuple(Q, F, st.near, st.gap, st.rho, st.azimuth);
-}
-
-//! (self_motion, q (4,), near): the real roots of the trigonometric polynomial F (5,).
-nb::tuple trig_roots(F64 Fh, double size) {
-    double F[5];
-    read_fixed(Fh, "F", {5}, F);
-    double q[4];
-    bool near = false;
-    const bool self_motion = kd::trig_roots(F, size, q, near);
-    return nb::make_tuple(self_motion, write_vector(4, q), near);
-}
-
-//! (q (4,), near): the real roots of the quartic k (5,), highest power first.
-nb::tuple slide_roots(F64 kh) {
-    double k[5];
-    read_fixed(kh, "k", {5}, k);
-    double q[4];
-    bool near = false;
-    kd::slide_roots(k, q, near);
-    return nb::make_tuple(write_vector(4, q), near);
 }
 
 }  // namespace
@@ -225,35 +205,6 @@ void bind_decoupled(nb::module_& m) {
         "build_arm_position")
         .def_ro("arm", &kd::ArmPositionParams::arm, "joints 1-3 placing the tool origin");
 
-    sub.def(
-        "clamped_root",
-        [](double diff, double size, double other, double scale) {
-            bool near = false;
-            const double root = kd::clamped_root(diff, size, other, scale, near);
-            return nb::make_tuple(root, near);
-        },
-        nb::arg("diff"), nb::arg("size"), nb::arg("other"), nb::arg("scale"),
-        "(sqrt(diff * other) clamped at a fold, near flag).");
-    sub.def("trig_roots", &trig_roots, nb::arg("F"), nb::arg("size"),
-            "(self_motion, q (4,), near): real roots of F0 + F1 cos q + F2 sin q + F3 cos 2q + "
-            "F4 sin 2q.");
-    sub.def("slide_roots", &slide_roots, nb::arg("k"),
-            "(q (4,), near): real roots of the quartic k (5,), highest power first.");
-    sub.def("bounded_step", &kd::bounded_step, nb::arg("f"), nb::arg("df"),
-            "The Newton step f / df, or 0 when longer than MAX_NEWTON_STEP.");
-
-    sub.attr("SINGULAR_TOL") = kd::SINGULAR_TOL;
-    sub.attr("NEAR_TOL") = kd::NEAR_TOL;
-    sub.attr("NEAR_SET_TOL") = kd::NEAR_SET_TOL;
-    sub.attr("DOUBLE_ROOT_TOL") = kd::DOUBLE_ROOT_TOL;
-    sub.attr("HUGE_REACH") = kd::HUGE_REACH;
-    sub.attr("IMAG_TOL") = kd::IMAG_TOL;
-    sub.attr("NEWTON_STEPS") = kd::NEWTON_STEPS;
-    sub.attr("MAX_NEWTON_STEP") = kd::MAX_NEWTON_STEP;
-    sub.attr("SELF_MOTION_TOL") = kd::SELF_MOTION_TOL;
-    sub.attr("TWIN_TOL") = kd::TWIN_TOL;
-    sub.attr("WRIST_SINGULAR_TOL") = kd::WRIST_SINGULAR_TOL;
-    sub.attr("NEAR_ALIGNED_TOL") = kd::NEAR_ALIGNED_TOL;
     sub.attr("MAX_POSITION_DOF") = kd::MAX_POSITION_DOF;
 }
 

@@ -1,11 +1,16 @@
-// The general 6R family: kinematica._core.general6r (and eigenvalues.hpp's hook).
+// The general 6R family: kinematica._core.general6r.
 //
-// General6RParams with a read-write attribute per field, the family's tolerances and the
-// internals their tolerance tests call. The only translation unit that includes Eigen
+// General6RParams registered by one bind_family line (its builder, general_6r_build.hpp,
+// fills it from the chain), the slot counts its branch labels are made of, and the one
+// question the package asks of a solution found by other means: the joints free along
+// the continuum through it. The near-6R three-parallel solver beside it. The family's
+// tolerances and internals are bound for the tests in kinematica._core_testing.general6r
+// (cpp/testing/general6r.cpp). The only product translation unit that includes Eigen
 // (through general_6r.hpp): compile time counts.
 #include <nanobind/nanobind.h>
 
-#include <utility>
+#include <cstdint>
+#include <optional>
 
 #include "casters.hpp"
 #include "common.hpp"
@@ -24,144 +29,17 @@ namespace {
 namespace kg = km::general6r;
 using kg::General6RParams;
 
-//! A (R, K) float field: a new array out, any array of exactly that shape in.
-template <int R, int K>
-F64 get_matrix(const double (&v)[R][K]) {
-    double* out;
-    F64 a = new_f64({R, K}, out);
-    for (int i = 0; i < R; ++i)
-        for (int j = 0; j < K; ++j) out[i * K + j] = v[i][j];
-    return a;
-}
+//! The labelling the continuum test of a bare chain uses: (start 5, not reversed), the
+//! target on the left side (no constant Q asked of the arm).
+constexpr int CONTINUUM_LABELLING = 9;
+static_assert(kg::LABELLING_START[CONTINUUM_LABELLING] == 5 &&
+              !kg::LABELLING_REVERSE[CONTINUUM_LABELLING]);
 
-template <int R, int K>
-void set_matrix(double (&v)[R][K], nb::handle src, const char* name) {
-    PyArrayObject* a = small::exact_array(src, name, NPY_DOUBLE, R, K);
-    const auto* d = static_cast<const double*>(PyArray_DATA(a));
-    for (int i = 0; i < R; ++i)
-        for (int j = 0; j < K; ++j) v[i][j] = d[i * K + j];
-    Py_DECREF(a);
-}
-
-//! A[0] = M (12, 12), A[1] = A[2] = 0: the quadratic M(x) whose value at x = 0 is M.
-void constant_quadratic(nb::handle M, kg::Matrix12 (&A)[3]) {
-    PyArrayObject* a = small::exact_array(M, "M", NPY_DOUBLE, kg::SIZE, kg::SIZE);
-    const auto* d = static_cast<const double*>(PyArray_DATA(a));
-    for (int i = 0; i < kg::SIZE; ++i)
-        for (int j = 0; j < kg::SIZE; ++j) A[0](i, j) = d[i * kg::SIZE + j];
-    Py_DECREF(a);
-    A[1].setZero();
-    A[2].setZero();
-}
-
-//! u (12,): the header's null vector of M (12, 12).
-F64 null_vector_of(nb::handle M) {
-    kg::Matrix12 A[3];
-    constant_quadratic(M, A);
-    const kg::Vector12 u = kg::General6RParams::null_vector(A, 0.0);  // M(0) = A0
-    double* out;
-    F64 ua = new_f64({kg::SIZE}, out);
-    for (int i = 0; i < kg::SIZE; ++i) out[i] = u(i);
-    return ua;
-}
-
-//! (k, 12): the header's monomial vectors of two solutions sharing a root, M (12, 12)
-//! its matrix there (null space two-dimensional).
-F64 null_pair_of(nb::handle M) {
-    kg::Matrix12 A[3];
-    constant_quadratic(M, A);
-    kg::Vector12 u[2];
-    const int count = kg::General6RParams::null_pair(A, 0.0, u);  // M(0) = A0
-    double* out;
-    F64 ua = new_f64({count, kg::SIZE}, out);
-    for (int k = 0; k < count; ++k)
-        for (int i = 0; i < kg::SIZE; ++i) out[k * kg::SIZE + i] = u[k](i);
-    return ua;
-}
-
-//! A2, A1, A0 of a matrix quadratic M(x) = A0 + A1 x + A2 x² (each (12, 12)).
-void read_quadratic(nb::handle A0, nb::handle A1, nb::handle A2, kg::Matrix12 (&A)[3]) {
-    const nb::handle src[3] = {A0, A1, A2};
-    const char* names[3] = {"A0", "A1", "A2"};
-    for (int k = 0; k < 3; ++k) {
-        PyArrayObject* a = small::exact_array(src[k], names[k], NPY_DOUBLE, kg::SIZE, kg::SIZE);
-        const auto* d = static_cast<const double*>(PyArray_DATA(a));
-        for (int i = 0; i < kg::SIZE; ++i)
-            for (int j = 0; j < kg::SIZE; ++j) A[k](i, j) = d[i * kg::SIZE + j];
-        Py_DECREF(a);
-    }
-}
-
-//! (roots (k,), deflated): the header's real roots of det M(x) (general_6r_roots.hpp).
-nb::tuple real_roots_of(nb::handle A0, nb::handle A1, nb::handle A2) {
-    kg::Matrix12 A[3];
-    read_quadratic(A0, A1, A2, A);
-    const Eigen::PartialPivLU<kg::Matrix12> lead(A[2]);
-    double roots[kg::ROOTS];
-    bool deflated = false;
-    const int found = kg::real_roots(A, lead, roots, &deflated);
-    if (found < 0) throw nb::value_error("the eigenvalue iteration did not converge");
-    double* out;
-    F64 r = new_f64({found}, out);
-    for (int i = 0; i < found; ++i) out[i] = roots[i];
-    return nb::make_tuple(r, deflated);
-}
-
-//! (deflated, 8th pivot / 1st, 9th pivot / 1st) of M(i)'s elimination.
-nb::tuple spurious_of(nb::handle A0, nb::handle A1, nb::handle A2) {
-    kg::Matrix12 A[3];
-    read_quadratic(A0, A1, A2, A);
-    Eigen::Matrix<double, kg::ROOTS, kg::SPURIOUS> Z;
-    double ratios[2] = {km::NaN, km::NaN};
-    const bool deflated = kg::spurious_subspace(A, Z, ratios);
-    return nb::make_tuple(deflated, ratios[0], ratios[1]);
-}
-
-//! (re (N,), im (N,)) of eigenvalues.hpp for a (N, N) matrix, N = 16 or 24.
-template <int N>
-nb::tuple eigenvalues_n(PyArrayObject* a) {
-    double M[N][N];
-    const auto* d = static_cast<const double*>(PyArray_DATA(a));
-    for (int i = 0; i < N; ++i)
-        for (int j = 0; j < N; ++j) M[i][j] = d[i * N + j];
-    double *re, *im;
-    F64 ra = new_f64({N}, re), ia = new_f64({N}, im);
-    if (!km::eigen::eigenvalues(M, re, im)) throw nb::value_error("the eigenvalue iteration did not converge");
-    return nb::make_tuple(ra, ia);
-}
-
-nb::tuple eigenvalues_of(nb::handle A) {
-    const bool big = nb::len(A) == kg::ROOTS;
-    const int n = big ? kg::ROOTS : kg::GENUINE;
-    PyArrayObject* a = small::exact_array(A, "A", NPY_DOUBLE, n, n);
-    nb::tuple out = big ? eigenvalues_n<kg::ROOTS>(a) : eigenvalues_n<kg::GENUINE>(a);
-    Py_DECREF(a);
-    return out;
-}
-
-//! (rcond, shift6, closure, near, deflated, qz) of one solve of the pose T: its Trace and flag.
-nb::tuple trace_of(const General6RParams& p, const km::Pose& T) {
-    double Q[kg::SLOTS * 6];
-    km::SolverInfo info;
-    kg::Trace t;
-    p.solve(T, Q, info, &t);
-    return nb::make_tuple(t.rcond, t.shift6, t.closure, info.near, t.deflated, t.qz);
-}
-
-//! (singular, near, free mask, rank, reclosure) of one solve of the pose T: the solver's
-//! info and the self-motion tests' smallest σ6/σ1 (NaN: none computed) and re-closure.
-nb::tuple degeneracy_of(const General6RParams& p, const km::Pose& T) {
-    double Q[kg::SLOTS * 6];
-    km::SolverInfo info;
-    kg::Trace t;
-    p.solve(T, Q, info, &t);
-    return nb::make_tuple(info.singular, info.near, info.free, t.rank, t.reclosure);
-}
-
-//! (verdict, rank, reclosure, moved (6,), free mask) of the self-motion test at the joint
-//! values q (6,) of a solution of the pose T; moved and the mask per joint (not per loop
-//! joint). Refused when q does not close the loop (CLOSURE_TOL): the test presumes it.
-nb::tuple self_motion_of(const General6RParams& p, const km::Pose& T_in, nb::handle qh) {
+//! The joints (0-based) free along the continuum of the pose T's solutions through q,
+//! the one that moved most first; () where q is regular, at a fold, or does not close
+//! the loop to CLOSURE_TOL.
+nb::tuple free_joints(const General6RParams& p, const km::Pose& T_in, nb::handle qh) {
+    if (const char* why = p.invalid()) throw nb::value_error(why);
     PyArrayObject* qa = small::exact_array(qh, "q", NPY_DOUBLE, 6, 0);
     double q[6];
     for (int k = 0; k < 6; ++k) q[k] = static_cast<const double*>(PyArray_DATA(qa))[k];
@@ -172,92 +50,35 @@ nb::tuple self_motion_of(const General6RParams& p, const km::Pose& T_in, nb::han
     for (int k = 0; k < 6; ++k) L[k] = p.link_of(k, T);
     double a[6];
     for (int k = 0; k < 6; ++k) a[k] = p.sign * q[p.order[k]];
-    if (!(p.miss(L, a, T) <= kg::CLOSURE_TOL)) {
-        throw nb::value_error("q does not close the loop for T (its miss is above CLOSURE_TOL)");
-    }
+    if (!(p.miss(L, a, T) <= kg::CLOSURE_TOL)) return nb::tuple();
     const kg::SelfMotion sm = p.self_motion(L, T, a);
-    double* out;
-    F64 moved = new_f64({6}, out);
-    std::uint32_t free = 0;
+    if (sm.verdict != kg::Degeneracy::continuum) return nb::tuple();
+    double moved[6];
+    bool free[6];
     for (int k = 0; k < 6; ++k) {
-        out[p.order[k]] = sm.moved[k];
-        if ((sm.free >> k) & 1U) free |= std::uint32_t{1} << p.order[k];
+        moved[p.order[k]] = sm.moved[k];
+        free[p.order[k]] = ((sm.free >> k) & 1U) != 0;
     }
-    return nb::make_tuple(static_cast<int>(sm.verdict), sm.rank, sm.reclosure, moved, free);
+    int joints[6], count = 0;
+    for (int j = 0; j < 6; ++j) {  // by how far each moved, most first (ties: ascending)
+        if (!free[j]) continue;
+        int at = count++;
+        for (; at > 0 && moved[joints[at - 1]] < moved[j]; --at) joints[at] = joints[at - 1];
+        joints[at] = j;
+    }
+    nb::object out = nb::steal(PyTuple_New(count));
+    for (int i = 0; i < count; ++i) PyTuple_SET_ITEM(out.ptr(), i, PyLong_FromLong(joints[i]));
+    return nb::borrow<nb::tuple>(out);
 }
 
-//! (roots (k,), split (k,)): the header's real roots of det M(x) by QZ.
-nb::tuple real_roots_qz_of(nb::handle A0, nb::handle A1, nb::handle A2) {
-    kg::Matrix12 A[3];
-    read_quadratic(A0, A1, A2, A);
-    double roots[kg::ROOTS];
-    bool split[kg::ROOTS];
-    const int found = kg::real_roots_qz(A, roots, split);
-    if (found < 0) throw nb::value_error("the QZ iteration did not converge");
-    double *out, *sp;
-    F64 r = new_f64({found}, out), s = new_f64({found}, sp);
-    for (int i = 0; i < found; ++i) out[i] = roots[i], sp[i] = split[i] ? 1.0 : 0.0;
-    return nb::make_tuple(r, s);
-}
-
-//! (c0 (14,), Q (14, 8)): the left side Rz(q'1) L1 Rz(q'2) L2 · z as c0 + Q S2.
-nb::tuple left_side_of(const km::Pose& L1, const km::Pose& L2) {
-    double *c0, *Q;
-    F64 ca = new_f64({kg::EQUATIONS}, c0), Qa = new_f64({kg::EQUATIONS, kg::PRODUCTS}, Q);
-    double q[kg::EQUATIONS][kg::PRODUCTS];
-    kg::left_side(L1, L2, c0, q);
-    for (int e = 0; e < kg::EQUATIONS; ++e)
-        for (int k = 0; k < kg::PRODUCTS; ++k) Q[e * kg::PRODUCTS + k] = q[e][k];
-    return nb::make_tuple(ca, Qa);
-}
-
-//! The params' own c0, N, Qp from their L1, L2 (t_link 2..5); σ8 / σ1 of Q.
-double eliminate_params(General6RParams& p) {
-    if (p.per_target()) throw nb::value_error("L1 or L2 holds the target: its constants are the target's");
-    kg::Elimination E;
-    const double ratio = kg::eliminate(p.link[0], p.link[1], E);
-    if (ratio > kg::RANK_TOL) static_cast<kg::Elimination&>(p) = E;
-    return ratio;
-}
-
-//! The Params of labelling `which` of a chain (or None: not 6R, or its left side
-//! rank-deficient), and σ8 / σ1 of its Q (NaN with the target on the left).
-nb::tuple labelling_of(const km::Chain& chain, int which) {
-    if (which < 0 || which >= kg::LABELLINGS) throw nb::value_error("which must be 0 ... 11");
+//! free_joints on the loop of a 6R chain (CONTINUUM_LABELLING); () for any other chain.
+nb::tuple free_joints_of_chain(const km::Chain& chain, const km::Pose& T, nb::handle q) {
     kg::Loop loop;
-    if (!kg::loop_of(chain, loop)) return nb::make_tuple(nb::none(), km::NaN);
     General6RParams p;
-    double ratio = km::NaN;
-    if (!kg::labelling(loop, which, p, &ratio)) return nb::make_tuple(nb::none(), ratio);
-    return nb::make_tuple(nb::cast(std::move(p)), ratio);
-}
-
-//! (PROBES,) the probe distances of a labelling's candidates (builder's probe()).
-F64 probe_of(const General6RParams& p, const km::Chain& chain, bool refine) {
-    if (chain.dof() != 6) throw nb::value_error("the chain must have 6 joints");
-    if (const char* why = p.invalid()) throw nb::value_error(why);
-    double* out;
-    F64 a = new_f64({kg::PROBES}, out);
-    kg::probe(p, chain.view(), refine, out);
-    return a;
-}
-
-//! (score, worst) of a labelling on the probes (builder's accuracy()).
-nb::tuple accuracy_of(const General6RParams& p, const km::Chain& chain) {
-    if (chain.dof() != 6) throw nb::value_error("the chain must have 6 joints");
-    if (const char* why = p.invalid()) throw nb::value_error(why);
-    double score, worst;
-    kg::accuracy(p, chain.view(), score, worst);
-    return nb::make_tuple(score, worst);
-}
-
-//! (params or None, chosen, scored, refined, probed): the builder's choice and what it did.
-nb::tuple build_of(const km::Chain& chain) {
-    General6RParams p;
-    kg::BuildTrace t;
-    const bool found = kg::build(chain, p, &t);
-    nb::object params = found ? nb::cast(std::move(p)) : nb::object(nb::none());
-    return nb::make_tuple(params, t.chosen, t.scored, t.refined, t.probed);
+    if (!kg::loop_of(chain, loop) || !kg::labelling(loop, CONTINUUM_LABELLING, p)) {
+        return nb::tuple();
+    }
+    return free_joints(p, T, q);
 }
 
 }  // namespace
@@ -267,199 +88,23 @@ void bind_general6r(nb::module_& m) {
         "general6r",
         "Any 6R arm: Raghavan-Roth elimination to a 12 x 12 quadratic eigenproblem "
         "(Manocha-Canny), computed numerically from the arm's loop.");
-    sub.attr("EQUATIONS") = kg::EQUATIONS;
-    sub.attr("PRODUCTS") = kg::PRODUCTS;
-    sub.attr("REDUCED") = kg::REDUCED;
     sub.attr("SLOTS") = kg::SLOTS;
     sub.attr("CLASSES") = kg::CLASSES;
     sub.attr("PER_CLASS") = kg::PER_CLASS;
     sub.attr("FURTHER") = kg::FURTHER;
-    sub.attr("REAL_ROOT_TOL") = kg::REAL_ROOT_TOL;
-    sub.attr("LEADING_RCOND_TOL") = kg::LEADING_RCOND_TOL;
-    sub.attr("CLOSURE_TOL") = kg::CLOSURE_TOL;
-    sub.attr("SECOND_SHIFT") = kg::SECOND_SHIFT;
-    sub.def("real_root", [](double re, double im) { return kg::real_root({re, im}); },
-            nb::arg("re"), nb::arg("im"), "True when the eigenvalue re + i im is taken as a real root.");
-    sub.def("null_vector", &null_vector_of, nb::arg("M"),
-            "u: M u = 0 from M's full-pivot LU (M (12, 12), its null space one-dimensional).");
-    sub.def("null_pair", &null_pair_of, nb::arg("M"),
-            "(k, 12), k <= 2: the monomial vectors (x4^i x5^j at 3i + j) of the solutions "
-            "whose two-dimensional null space M (12, 12) has.");
-    sub.attr("SPURIOUS_TOL") = kg::SPURIOUS_TOL;
-    sub.attr("SPLIT_ROOT_TOL") = kg::SPLIT_ROOT_TOL;
-    sub.attr("RANK_TOL") = kg::RANK_TOL;
-    sub.attr("PROBE_TOL") = kg::PROBE_TOL;
-    sub.attr("ACCURATE") = kg::ACCURATE;
-    sub.attr("PROBES") = kg::PROBES;
-    sub.attr("FOOT_PARALLEL_TOL") = kg::FOOT_PARALLEL_TOL;
-    sub.attr("FOOT_REACH") = kg::FOOT_REACH;
-    sub.def("foot",
-            [](const km::Vec3& hi, const km::Vec3& pi, const km::Vec3& hj, const km::Vec3& pj,
-               double size) {
-                const km::Vec3 h[2] = {hi, hj}, p[2] = {pi, pj};
-                return kg::detail::foot(h, p, 0, 1, size);
-            },
-            nb::arg("hi"), nb::arg("pi"), nb::arg("hj"), nb::arg("pj"), nb::arg("size"),
-            "The origin the builder gives axis i's frame: the foot of its common normal with "
-            "axis j, or its own point pi (parallel axes, or a foot beyond FOOT_REACH sizes).");
-    {
-        nb::list configs, labellings;
-        for (const auto& row : kg::PROBE_CONFIGS) {
-            configs.append(nb::make_tuple(row[0], row[1], row[2], row[3], row[4], row[5]));
-        }
-        for (int i = 0; i < kg::LABELLINGS; ++i) {
-            labellings.append(nb::make_tuple(kg::LABELLING_START[i], kg::LABELLING_REVERSE[i]));
-        }
-        sub.attr("PROBE_CONFIGS") = nb::tuple(configs);
-        sub.attr("LABELLINGS") = nb::tuple(labellings);
-        sub.attr("PHI") = nb::make_tuple(kg::PHI[0], kg::PHI[1], kg::PHI[2]);
-    }
-    sub.def("kept_at_once",
-            [](double score, double worst, bool passes) {
-                return kg::kept_at_once(score, worst, [passes] { return passes; });
-            },
-            nb::arg("score"), nb::arg("worst"), nb::arg("passes"),
-            "True when the builder keeps a labelling without scoring the others (score: "
-            "mean log10 of its probe distances; worst: the largest; passes: the refined "
-            "probes within PROBE_TOL).");
-    sub.def("labelling", &labelling_of, nb::arg("chain"), nb::arg("which"),
-            "(params or None, sigma8/sigma1 of Q): labelling `which` (an index of LABELLINGS) "
-            "of a 6R chain; None where its left side is rank-deficient (ratio NaN: the target "
-            "on the left, Q the target's).");
-    sub.def("probe", &probe_of, nb::arg("params"), nb::arg("chain"), nb::arg("refine"),
-            "(PROBES,) per probe pose, the distance (rad) of its configuration to the nearest "
-            "candidate (inf: none), with Newton's step or (refine False) without.");
-    sub.def("accuracy", &accuracy_of, nb::arg("params"), nb::arg("chain"),
-            "(score, worst): the mean log10 of the raw probe distances clipped to [1e-16, 1], "
-            "and the largest.");
-    sub.def("build", &build_of, nb::arg("chain"),
-            "(params or None, chosen, scored, refined, probed): the general 6R solver of a 6R "
-            "chain (general_6r_build.hpp), the labelling kept (an index of LABELLINGS, -1: "
-            "none), how many were scored, how many refined probe passes ran and how many raw "
-            "probe poses were solved.");
-    sub.def("left_side", &left_side_of, nb::arg("L1"), nb::arg("L2"),
-            "(c0 (14,), Q (14, 8)): the quantities of the line Rz(q'1) L1 Rz(q'2) L2 z as "
-            "c0 + Q S2, S2 = (c2, s2, c1, c1 c2, c1 s2, s1, s1 c2, s1 s2) of q'1, q'2.");
-    sub.attr("REFINE_LIMIT") = kg::REFINE_LIMIT;
-    sub.attr("RESOLVE_TOL") = kg::RESOLVE_TOL;
-    sub.attr("SAME_CANDIDATE_TOL") = kg::SAME_CANDIDATE_TOL;
-    sub.attr("PAIR_ROOT_TOL") = kg::PAIR_ROOT_TOL;
-    sub.def("close_roots", &kg::close_roots, nb::arg("x"), nb::arg("y"),
-            "True when the roots x and y of det M are taken as one double root.");
-    sub.def("resolves", &kg::resolves, nb::arg("miss"),
-            "True when a candidate that missed by `worst` (m or rad) before Newton's step is "
-            "looked for again as one of two solutions sharing its root.");
-    sub.def("resolved",
-            [](const General6RParams& p, const km::Pose& T) {
-                if (const char* why = p.invalid()) throw nb::value_error(why);
-                double Q[kg::SLOTS * 6];
-                km::SolverInfo info;
-                kg::Trace t;
-                p.solve(T, Q, info, &t);
-                return t.resolved;
-            },
-            nb::arg("params"), nb::arg("T"),
-            "True when the solve of the pose T took a root's null space as two-dimensional "
-            "(a candidate missed by over RESOLVE_TOL).");
-    sub.attr("SPLIT_CLOSURE_TOL") = kg::SPLIT_CLOSURE_TOL;
-    sub.def("split_closes", &kg::split_closes, nb::arg("closure"),
-            "True when a split pair's candidate Newton took to within closure (m or rad) of the "
-            "target is a solution.");
-    sub.attr("REFINE_STEPS") = kg::REFINE_STEPS;
-    sub.attr("SINGULAR_RANK_TOL") = kg::SINGULAR_RANK_TOL;
-    sub.attr("SELF_MOTION_STEP") = kg::SELF_MOTION_STEP;
-    sub.attr("SELF_MOTION_STEPS") = kg::SELF_MOTION_STEPS;
-    sub.attr("SELF_MOTION_TOL") = kg::SELF_MOTION_TOL;
-    sub.attr("FREE_JOINT_TOL") = kg::FREE_JOINT_TOL;
-    sub.def("moves", &kg::moves, nb::arg("d"),
-            "True when a joint that moved by d (rad) along a continuum is taken as free.");
-    sub.attr("DEGENERACY") = nb::make_tuple("regular", "fold", "continuum");
-    sub.def("degeneracy", &degeneracy_of, nb::arg("params"), nb::arg("T"),
-            "(singular, near, free, rank, reclosure) of one solve: the solver's flags and free "
-            "joint mask, the smallest sigma6/sigma1 of a closing candidate's loop Jacobian the "
-            "self-motion test computed (NaN: none; its screen proved every one regular) and "
-            "the smallest miss of its re-closures (inf: none).");
-    sub.def("self_motion", &self_motion_of, nb::arg("params"), nb::arg("T"), nb::arg("q"),
-            "(verdict, rank, reclosure, moved, free) of the self-motion test at the solution q "
-            "(6,) of the pose T: verdict an index of DEGENERACY, sigma6/sigma1 (NaN: the screen "
-            "proved it regular), the re-closure's miss, how far each joint moved on the "
-            "continuum (rad) and the free joints' mask.");
-    sub.attr("QR_STEPS") = km::eigen::QR_STEPS;
-    sub.def("real_roots", &real_roots_of, nb::arg("A0"), nb::arg("A1"), nb::arg("A2"),
-            "(roots, deflated): the real roots of det(A0 + A1 x + A2 x²), each A (12, 12); "
-            "deflated when its 8 roots at x = ±i were eliminated first.");
-    sub.def("real_roots_qz", &real_roots_qz_of, nb::arg("A0"), nb::arg("A1"), nb::arg("A2"),
-            "(roots, split): the real roots of det(A0 + A1 x + A2 x²) as generalized eigenvalues "
-            "by QZ (no inverse of A2; a root at x = inf as +-1e300), split 1.0 for the two "
-            "candidates of a nearly real pair.");
-    sub.def("spurious_pivots", &spurious_of, nb::arg("A0"), nb::arg("A1"), nb::arg("A2"),
-            "(deflated, r8, r9): whether M(i)'s null space is taken as the spurious roots', and "
-            "its elimination's 8th and 9th pivots over the first.");
-    sub.def("eigenvalues", &eigenvalues_of, nb::arg("A"),
-            "(re, im): the eigenvalues of A (16, 16) or (24, 24) by the core's Hessenberg QR.");
-    sub.def("trace", &trace_of, nb::arg("params"), nb::arg("T"),
-            "(rcond, shift6, closure, near, deflated, qz) of one solve: A2's rcond at the first "
-            "shift, the shift used, the smallest candidate closure (inf: none), the near flag, "
-            "whether the roots at x6 = ±i were eliminated before the eigenproblem, whether the "
-            "roots came from QZ (A2 ill-conditioned at both shifts).");
-
-    auto cls = bind_closed_form<General6RParams>(
+    bind_family<General6RParams>(
         sub, "General6RParams",
         "A 6R arm as the loop I = Rz(q'1) L1 ... Rz(q'6) L6 of one labelling of its joints, "
         "and the elimination's constants (general_6r.hpp).",
-        "km::general6r::General6RParams", "kinematica/solvers/general_6r.hpp");
-    cls.def_prop_rw(
-           "link",
-           [](const General6RParams& p) {
-               double* out;
-               F64 a = new_f64({6, 4, 4}, out);
-               for (int k = 0; k < 6; ++k) p.link[k].to_rows(out + 16 * k);
-               return a;
-           },
-           [](General6RParams& p, nb::handle h) {
-               PyArrayObject* a = small::exact_array(h, "link", NPY_DOUBLE, 6, 16);
-               const auto* d = static_cast<const double*>(PyArray_DATA(a));
-               for (int k = 0; k < 6; ++k) p.link[k] = km::Pose::from_rows(d + 16 * k);
-               Py_DECREF(a);
-           },
-           "(6, 16) L1 ... L6, each a row-major 4 x 4 (lengths scaled); (6, 4, 4) out")
-        .def("eliminate", &eliminate_params,
-             "c0, N and Qp from L1 and L2 (which hold no target): returns sigma8/sigma1 of Q; "
-             "the fields are left as they were when it is not above RANK_TOL.")
-        .def_prop_ro("per_target", &General6RParams::per_target,
-                     "True when L1 or L2 holds the target (t_link 0 or 1): the elimination's "
-                     "constants are computed for each target")
-        .def_rw("t_link", &General6RParams::t_link, "which L (0-based) holds the target")
-        .def_rw("t_power", &General6RParams::t_power, "+1 or -1: T or its inverse")
-        .def_rw("t_pre", &General6RParams::t_pre, "(4, 4) before T in that link")
-        .def_rw("t_post", &General6RParams::t_post, "(4, 4) after T in that link")
-        .def_rw("sign", &General6RParams::sign, "-1: the chain reversed (q' = -q)")
-        .def_rw("scale", &General6RParams::scale, "lengths times this (1 / m)")
-        .def_rw("centre", &General6RParams::centre, "(3,) the reach bound's centre (m, base frame)")
-        .def_rw("reach", &General6RParams::reach, "the tool origin stays within this of centre (m)")
-        .def_rw("refine_misses", &General6RParams::refine_misses,
-                "take candidates that miss by up to REFINE_LIMIT to the solution near "
-                "them by Newton's method (False: as the eigenproblem gives them)")
-        .def_prop_rw(
-            "order", [](const General6RParams& p) { return small::get_ints(p.order); },
-            [](General6RParams& p, nb::handle h) { small::set_ints(p.order, h, "order", 0, 5); },
-            "(6,) q'k = sign q[order[k]]")
-        .def_prop_rw(
-            "c0", [](const General6RParams& p) { return small::get_vec(p.c0); },
-            [](General6RParams& p, nb::handle h) { small::set_vec(p.c0, h, "c0"); },
-            "(14,) the left side's constant part")
-        .def_prop_rw(
-            "phi", [](const General6RParams& p) { return small::get_vec(p.phi); },
-            [](General6RParams& p, nb::handle h) { small::set_vec(p.phi, h, "phi"); },
-            "(3,) shifts of q'4, q'5, q'6 (rad)")
-        .def_prop_rw(
-            "N", [](const General6RParams& p) { return get_matrix(p.N); },
-            [](General6RParams& p, nb::handle h) { set_matrix(p.N, h, "N"); },
-            "(6, 14) left null space of Q")
-        .def_prop_rw(
-            "Qp", [](const General6RParams& p) { return get_matrix(p.Qp); },
-            [](General6RParams& p, nb::handle h) { set_matrix(p.Qp, h, "Qp"); },
-            "(8, 14) Q's pseudo-inverse");
+        "kinematica/solvers/general_6r_build.hpp", "km::general6r::General6RParams",
+        "km::general6r::build", [](const km::Chain& c) { return kg::build(c); });
+    const char* free_doc =
+        "The joints (0-based) free along the continuum of the pose T's (4, 4) solutions "
+        "through q (6,), the one that moved most first (the self-motion test of "
+        "general_6r.hpp); () where q is regular, at a fold or not a solution of T.";
+    sub.def("free_joints", &free_joints, nb::arg("params"), nb::arg("T"), nb::arg("q"), free_doc);
+    sub.def("free_joints", &free_joints_of_chain, nb::arg("chain"), nb::arg("T"), nb::arg("q"),
+            free_doc);
 
     using NearParallel = km::Near6RParams<km::ParallelParams>;
     bind_params<NearParallel>(
@@ -468,7 +113,7 @@ void bind_general6r(nb::module_& m) {
         "geometry's tolerance: the family's candidates and the general 6R's, checked "
         "together (solvers/near_6r.hpp; built by near_6r_build.hpp).",
         "km::Near6RParams<km::ParallelParams>", "kinematica/solvers/near_6r_build.hpp")
-        .def_rw("watch", &NearParallel::watch,
+        .def_ro("watch", &NearParallel::watch,
                 "the general 6R runs where the family's candidates lie within this of its "
                 "singular sets (rad; inf: everywhere)")
         .attr("cpp_build") = "km::build_near_parallel";
@@ -476,8 +121,6 @@ void bind_general6r(nb::module_& m) {
             nb::arg("chain"),
             "The solver of a three-parallel arm near-degenerate (slack > 0): the family's "
             "closed form and the general 6R's, or None (an exact arm, or either declines).");
-    sub.attr("WATCH_FACTOR") = km::WATCH_FACTOR;
-    sub.attr("NEAR_GAP") = km::NEAR_GAP;
 }
 
 }  // namespace kmpy

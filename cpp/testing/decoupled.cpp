@@ -1,7 +1,9 @@
-// The decoupled families' built values the tests pin (kinematica._core_testing.decoupled):
-// the spherical wrist's twin identity (read, and a solver with it switched off, to compare
-// with the solved flip), the SRS arm's points and extremes as its builder reads them, and
-// what the arm-position builder reads: the bounds on joints 4..n, joints 1-3 placing a point.
+// The decoupled families' built values and internals the tests pin
+// (kinematica._core_testing.decoupled): the spherical wrist's twin identity (read, and a
+// solver with it switched off, to compare with the solved flip), the SRS arm's points and
+// extremes as its builder reads them, what the arm-position builder reads (the bounds on
+// joints 4..n, joints 1-3 placing a point), the scalar root finders of joints 1-3 and the
+// family's tolerances.
 #include <nanobind/nanobind.h>
 #include <nanobind/stl/optional.h>
 
@@ -10,10 +12,13 @@
 
 #include "casters.hpp"
 #include "common.hpp"
-#include "numpy_io.hpp"
+#include "kinematica/solvers/arm_point.hpp"
 #include "kinematica/solvers/arm_position_build.hpp"
+#include "kinematica/solvers/arm_quartic.hpp"
 #include "kinematica/solvers/spherical_wrist_build.hpp"
 #include "kinematica/solvers/srs_build.hpp"
+#include "numpy_io.hpp"
+#include "small_fields.hpp"
 
 namespace kmpy {
 
@@ -43,6 +48,33 @@ nb::object srs_values(const km::Chain& chain) {
     d["d_min"] = P.d_min;
     d["scale"] = P.scale;
     return d;
+}
+
+//! The K numbers of h (any sequence) as float64.
+template <int K>
+void read_numbers(nb::handle h, const char* name, double (&out)[K]) {
+    PyArrayObject* a = small::exact_array(h, name, NPY_DOUBLE, K, 0);
+    const auto* d = static_cast<const double*>(PyArray_DATA(a));
+    for (int i = 0; i < K; ++i) out[i] = d[i];
+    Py_DECREF(a);
+}
+
+//! (self_motion, q (4,), near): the real roots of the trigonometric polynomial F (5,).
+nb::tuple trig_roots(nb::handle Fh, double size) {
+    double F[5], q[4];
+    read_numbers(Fh, "F", F);
+    bool near = false;
+    const bool self_motion = kd::trig_roots(F, size, q, near);
+    return nb::make_tuple(self_motion, small::get_vec(q), near);
+}
+
+//! (q (4,), near): the real roots of the quartic k (5,), highest power first.
+nb::tuple slide_roots(nb::handle kh) {
+    double k[5], q[4];
+    read_numbers(kh, "k", k);
+    bool near = false;
+    kd::slide_roots(k, q, near);
+    return nb::make_tuple(small::get_vec(q), near);
 }
 
 }  // namespace
@@ -104,6 +136,35 @@ void bind_decoupled_testing(nb::module_& m) {
         nb::arg("chain"), nb::arg("c_tool"),
         "True when joints 1-3 move the point c_tool (3,), fixed in the tool frame, in three\n"
         "directions (at one of PLACE_PROBES, σmin / σmax above PLACE_RANK_TOL).");
+    sub.def(
+        "clamped_root",
+        [](double diff, double size, double other, double scale) {
+            bool near = false;
+            const double root = kd::clamped_root(diff, size, other, scale, near);
+            return nb::make_tuple(root, near);
+        },
+        nb::arg("diff"), nb::arg("size"), nb::arg("other"), nb::arg("scale"),
+        "(sqrt(diff * other) clamped at a fold, near flag).");
+    sub.def("trig_roots", &trig_roots, nb::arg("F"), nb::arg("size"),
+            "(self_motion, q (4,), near): real roots of F0 + F1 cos q + F2 sin q + F3 cos 2q + "
+            "F4 sin 2q.");
+    sub.def("slide_roots", &slide_roots, nb::arg("k"),
+            "(q (4,), near): real roots of the quartic k (5,), highest power first.");
+    sub.def("bounded_step", &kd::bounded_step, nb::arg("f"), nb::arg("df"),
+            "The Newton step f / df, or 0 when longer than MAX_NEWTON_STEP.");
+
+    sub.attr("SINGULAR_TOL") = kd::SINGULAR_TOL;
+    sub.attr("NEAR_TOL") = kd::NEAR_TOL;
+    sub.attr("NEAR_SET_TOL") = kd::NEAR_SET_TOL;
+    sub.attr("DOUBLE_ROOT_TOL") = kd::DOUBLE_ROOT_TOL;
+    sub.attr("HUGE_REACH") = kd::HUGE_REACH;
+    sub.attr("IMAG_TOL") = kd::IMAG_TOL;
+    sub.attr("NEWTON_STEPS") = kd::NEWTON_STEPS;
+    sub.attr("MAX_NEWTON_STEP") = kd::MAX_NEWTON_STEP;
+    sub.attr("SELF_MOTION_TOL") = kd::SELF_MOTION_TOL;
+    sub.attr("TWIN_TOL") = kd::TWIN_TOL;
+    sub.attr("WRIST_SINGULAR_TOL") = kd::WRIST_SINGULAR_TOL;
+    sub.attr("NEAR_ALIGNED_TOL") = kd::NEAR_ALIGNED_TOL;
 }
 
 }  // namespace kmpy

@@ -17,6 +17,7 @@
 #include "kinematica/linalg.hpp"
 #include "kinematica/lm.hpp"
 #include "kinematica/numeric.hpp"
+#include "kinematica/point_rank.hpp"
 #include "kinematica/polynomial.hpp"
 #include "kinematica/so3.hpp"
 #include "kinematica/trig.hpp"
@@ -179,11 +180,33 @@ F64 repair_step_of(const km::Chain& chain, F64 Th, F64 qh, const km::CheckOption
     return Qa;
 }
 
+//! (B,): σmin / σmax of the Jacobian d(point)/d(q1, q2, q3) at each row of Q (B, n), the
+//! point fixed in the tool frame at c_tool (point_rank.hpp, which places_point tests).
+F64 point_rank_ratios(const km::Chain& chain, F64 Qh, const km::Vec3& c_tool, int workers) {
+    const int n = chain.dof();
+    if (n < 3) throw nb::value_error("the point's Jacobian needs joints 1-3: a chain of 3 joints or more");
+    const In Q = in_f64(Qh, "Q", 2, {-1, n});
+    const km::ChainView ch = chain.view();
+    double* out;
+    F64 R = new_f64({Q.dim[0]}, out);
+    run_rows(Q.dim[0], 256, workers, [&](long b0, long b1) {
+        std::vector<double> c(static_cast<size_t>(n)), s(c.size()), J(6 * c.size());
+        for (long b = b0; b < b1; ++b) {
+            out[b] = km::point_rank_ratio(ch, Q.data + b * n, c_tool, c.data(), s.data(), J.data());
+        }
+    });
+    return R;
+}
+
 }  // namespace
 
 void bind_testing(nb::module_& m) {
     nb::module_ t = m.def_submodule("internals", "The core's scalar internals, for tests.");
     t.def("sincos", &sincos_of, nb::arg("x"), "(sin x, cos x) as the core computes them.");
+    t.def("point_rank_ratios", &point_rank_ratios, nb::arg("chain"), nb::arg("Q"),
+          nb::arg("c_tool"), nb::arg("workers") = 1,
+          "(B,): sigma_min / sigma_max of d(point)/d(q1, q2, q3) at each row of Q (B, n), the "
+          "point fixed in the tool frame at c_tool (3,).");
     t.def("sincos_reduced", &sincos_reduced_of, nb::arg("x"), "The branch-free reduction alone.");
     t.def("sincos_block", &sincos_many, nb::arg("x"), "sincos of every angle of x (N,): (s, c).");
     t.def("wrap", [](double v) { return km::wrap(v); }, nb::arg("v"));

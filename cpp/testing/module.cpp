@@ -15,6 +15,7 @@ void bind_testing(nb::module_& m);           // internals.cpp: kinematica._core_
 void bind_parallel_testing(nb::module_& m);  // parallel.cpp: kinematica._core_testing.parallel
 void bind_decoupled_testing(nb::module_& m);  // decoupled.cpp: ..._core_testing.decoupled
 void bind_planar_testing(nb::module_& m);  // planar.cpp: kinematica._core_testing.planar
+void bind_general6r_testing(nb::module_& m);  // general6r.cpp: ..._core_testing.general6r
 }  // namespace kmpy
 
 namespace {
@@ -32,4 +33,5 @@ NB_MODULE(_core_testing, m) {
     kmpy::bind_parallel_testing(m);
     kmpy::bind_decoupled_testing(m);
     kmpy::bind_planar_testing(m);
+    kmpy::bind_general6r_testing(m);
 }

@@ -1,6 +1,6 @@
 """The core's eigenvalues of a small dense matrix (``eigenvalues.hpp``), against LAPACK's.
 
-Hooked through ``kinematica._core.general6r.eigenvalues`` (16 x 16 and 24 x 24, the
+Hooked through ``kinematica._core_testing.general6r.eigenvalues`` (16 x 16 and 24 x 24, the
 sizes the general 6R uses); numpy's ``eigvals`` (LAPACK's dgeev) is the independent
 reference. Each of the core's eigenvalues is matched to its nearest of LAPACK's, one
 to one, within a bound made of the matrix's norm and the eigenvalue's condition.
@@ -8,7 +8,7 @@ to one, within a bound made of the matrix's norm and the eigenvalue's condition.
 
 from __future__ import annotations
 
-import kinematica._core as _core
+import kinematica._core_testing as _core_testing
 import numpy as np
 import pytest
 
@@ -27,7 +27,7 @@ def _reference(A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _matched(A: np.ndarray) -> None:
-    re, im = _core.general6r.eigenvalues(A)
+    re, im = _core_testing.general6r.eigenvalues(A)
     ours = re + 1j * im
     ref, cond = _reference(A)
     left = list(range(len(ours)))
@@ -60,19 +60,19 @@ def test_badly_scaled_and_structured_matrices_match_lapack() -> None:
     C[1:, :-1] = np.eye(15)
     C[0] = -c
     _matched(C)
-    re, im = _core.general6r.eigenvalues(C)
+    re, im = _core_testing.general6r.eigenvalues(C)
     real = np.sort(re[im == 0.0])
     np.testing.assert_allclose(real, np.sort(roots), atol=1e-9)
     # already triangular, and the zero matrix: no step needed, no division by zero
     T = np.triu(rng.standard_normal((16, 16)))
-    re, im = _core.general6r.eigenvalues(T)
+    re, im = _core_testing.general6r.eigenvalues(T)
     np.testing.assert_array_equal(np.sort(re), np.sort(np.diag(T)))
     assert not im.any()
-    re, im = _core.general6r.eigenvalues(np.zeros((24, 24)))
+    re, im = _core_testing.general6r.eigenvalues(np.zeros((24, 24)))
     assert not re.any() and not im.any()
 
 
 def test_qr_steps_is_exported_and_a_bad_size_is_refused() -> None:
-    assert _core.general6r.QR_STEPS == 720  # LAPACK dlahqr's budget for 24 rows
+    assert _core_testing.general6r.QR_STEPS == 720  # LAPACK dlahqr's budget for 24 rows
     with pytest.raises(ValueError, match="A must have shape"):
-        _core.general6r.eigenvalues(np.zeros((16, 15)))
+        _core_testing.general6r.eigenvalues(np.zeros((16, 15)))

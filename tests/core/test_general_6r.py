@@ -15,6 +15,7 @@ from typing import Any
 import kinematica._core as _core
 import numpy as np
 import pytest
+from support.general6r import G, field, labelling
 
 import kinematica as km
 from kinematica.ik.analytic import general_6r as g6
@@ -26,22 +27,22 @@ def _chain() -> km.core.Chain:
 
 
 def test_params_fields_are_checked() -> None:
-    p = _core.general6r.General6RParams()
+    p = G.blank()
     T = np.eye(4)
     chain = _chain()
-    p.t_link = 6
+    G.set(p, t_link=6)
     with pytest.raises(ValueError, match="t_link"):
         p.candidates(chain.core, T)
-    p.t_link = 5
-    p.order = np.array([0, 0, 1, 2, 3, 4])
+    G.set(p, t_link=5)
+    G.set(p, order=np.array([0, 0, 1, 2, 3, 4]))
     with pytest.raises(ValueError, match="permutation"):
         p.candidates(chain.core, T)
     with pytest.raises(ValueError, match=r"N must have shape \(6, 14\)"):
-        p.N = np.zeros((14, 6))
+        G.set(p, N=np.zeros((14, 6)))
 
 
 def test_the_header_s_constants_are_exported() -> None:
-    g = _core.general6r
+    g = G
     assert g.SLOTS == g.CLASSES * g.PER_CLASS + g.FURTHER == len(g6.LABELS)
     assert (g.EQUATIONS, g.PRODUCTS, g.REDUCED) == (14, 8, 6)
     assert 0 < g.LEADING_RCOND_TOL < g.CLOSURE_TOL < 1
@@ -64,7 +65,7 @@ REFINE_STEPS = 8
 
 
 def test_the_documented_values_are_the_core_s() -> None:
-    g = _core.general6r
+    g = G
     assert g.REAL_ROOT_TOL == REAL_ROOT_TOL
     assert g.LEADING_RCOND_TOL == LEADING_RCOND_TOL
     assert g.SECOND_SHIFT == SECOND_SHIFT
@@ -81,13 +82,13 @@ def _robot_and_params(seed: int) -> tuple[km.Robot, Any]:
     them), of its first labelling (the builder's choice may change with its ranking)."""
     arm = g6.sample_arm(np.random.default_rng(seed), False)
     robot = km.Robot.from_dh(arm.links, convention=arm.convention, base=arm.base, tool=arm.tool)
-    built = g6.labelling(robot.chain, 0, False)
+    built = labelling(robot.chain, 0, False)
     assert built is not None
     return robot, built[0]
 
 
 def test_real_root_tol_bounds_the_imaginary_part_relative_to_1_plus_the_modulus() -> None:
-    g = _core.general6r
+    g = G
     for re in (0.0, 2.0, -50.0):
         for im_scale in (1.0, -1.0):
             # |Im x| = t (1 + |x|) solved for t's boundary: |x| depends on Im x itself
@@ -102,7 +103,7 @@ def test_real_root_tol_bounds_the_imaginary_part_relative_to_1_plus_the_modulus(
 def test_the_null_vector_spans_m_s_null_space() -> None:
     # M: a well-conditioned 10 x 10 block R, a pivot s and a zero one, rows and columns
     # permuted; full pivoting takes R's pivots first (largest |R_ij| first), then s, then 0
-    g = _core.general6r
+    g = G
     rng = np.random.default_rng(3)
     R = np.eye(10) + 0.1 * rng.standard_normal((10, 10))
     rows, cols = rng.permutation(12), rng.permutation(12)
@@ -121,19 +122,19 @@ def test_leading_rcond_tol_chooses_the_second_shift_just_below_it() -> None:
     # proportional to d (below d ~ 1e-4). Measured slope, then d for rcond at 3x and 1/3x
     # the tolerance: the first shift is kept above it, the second taken below; the loop
     # closes either way.
-    g = _core.general6r
+    g = G
     rng = np.random.default_rng(9)
     robot, params = _robot_and_params(9)
     q = rng.uniform(-math.pi, math.pi, 6)
-    j = int(params.order[5])
+    j = int(field(params, "order")[5])
 
     def trace(d: float) -> tuple[float, float, float, bool]:
-        q[j] = math.remainder(params.sign * (g6.PHI[2] + math.pi + d), 2 * math.pi)
+        q[j] = math.remainder(field(params, "sign") * (G.PHI[2] + math.pi + d), 2 * math.pi)
         return g.trace(params, robot.fk(q))[:4]
 
     slope = trace(1e-6)[0] / 1e-6
     assert trace(1e-7)[0] == pytest.approx(slope * 1e-7, rel=0.01)
-    for factor, shift in ((3.0, g6.PHI[2]), (1.0 / 3.0, g6.PHI[2] + SECOND_SHIFT)):
+    for factor, shift in ((3.0, G.PHI[2]), (1.0 / 3.0, G.PHI[2] + SECOND_SHIFT)):
         rcond, shift6, closure, near = trace(factor * LEADING_RCOND_TOL / slope)
         assert rcond == pytest.approx(factor * LEADING_RCOND_TOL, rel=0.01)
         assert shift6 == pytest.approx(shift, abs=1e-15)
@@ -146,18 +147,18 @@ def _opened(seed: int, refine: bool = False) -> tuple[km.Robot, Any, np.ndarray,
     smallest miss (the pose they make against the target, m or rad) proportional to eps.
     The pose is reachable (FK of a random q): Newton's method on the full pose from a
     candidate (``refine``) finds the solution the elimination missed."""
-    g = _core.general6r
+    g = G
     robot, params = _robot_and_params(seed)
-    params.refine_misses = refine
+    G.set(params, refine_misses=refine)
     T = robot.fk(np.random.default_rng(1).uniform(-math.pi, math.pi, 6))
     # the direction: the left null space's projection of a fixed vector (whatever basis
     # of that space the SVD gives N)
-    N = np.array(params.N)
+    N = np.array(field(params, "N"))
     row = N.T @ (N @ np.linspace(1.0, 2.0, 14))
-    c0, row = np.array(params.c0), row / np.linalg.norm(row)
+    c0, row = np.array(field(params, "c0")), row / np.linalg.norm(row)
 
     def miss(eps: float) -> tuple[float, bool]:
-        params.c0 = c0 + eps * row
+        G.set(params, c0=c0 + eps * row)
         _, _, c, near, _, _ = g.trace(params, T)
         return c, near
 
@@ -224,13 +225,13 @@ def _eps_for(miss: Any, target: float) -> float:
 def test_refine_limit_bounds_the_candidates_newton_takes_to_a_solution() -> None:
     # Without refinement the smallest miss is 1/2 or 2 times REFINE_LIMIT; with it, the
     # first is carried to the solution (the pose is reachable), the second left alone.
-    g = _core.general6r
+    g = G
     _, params, T, miss = _opened(9)
     for factor in (0.5, 2.0):
         eps = _eps_for(miss, factor * REFINE_LIMIT)
-        params.refine_misses = True
+        G.set(params, refine_misses=True)
         _, _, closure, near, _, _ = g.trace(params, T)
-        params.refine_misses = False
+        G.set(params, refine_misses=False)
         if factor < 1.0:
             assert closure <= 1e-12 and not near
         else:
@@ -241,14 +242,14 @@ def test_every_candidate_below_refine_limit_is_taken_to_round_off() -> None:
     # A smallest miss of 1e-13 or 1e-11 (the check would take either as it is: its
     # tolerance 1e-10; at σmin = 1e-5 that is 1e-8 or 1e-6 in the joints) is taken by
     # Newton's method to round-off (eps from a grid: near round-off the miss is not linear).
-    g = _core.general6r
+    g = G
     _, params, T, miss = _opened(9)
     for target in (1e-13, 1e-11):
         # (the search leaves c0 moved by the eps it stops at)
         next(e for e in np.geomspace(1e-15, 1e-8, 400) if target < miss(e)[0] < 5 * target)
-        params.refine_misses = True
+        G.set(params, refine_misses=True)
         closure = g.trace(params, T)[2]
-        params.refine_misses = False
+        G.set(params, refine_misses=False)
         assert closure < 2e-15 < target
 
 
@@ -258,11 +259,11 @@ def test_split_closure_tol_keeps_a_split_pair_s_candidate_newton_closes() -> Non
     # candidates on random poses), a fold's near miss split into a pair is about 1e-8 or
     # more off the target (|Im x| past REAL_ROOT_TOL = 1e-4 grows as the miss's square
     # root: the header's estimate, not measured here).
-    g = _core.general6r
+    g = G
     assert g.split_closes(SPLIT_CLOSURE_TOL * (1 - EDGE))
     assert not g.split_closes(SPLIT_CLOSURE_TOL * (1 + EDGE))
     robot, params = _robot_and_params(4)
-    params.refine_misses = True
+    G.set(params, refine_misses=True)
     q = np.random.default_rng(2).uniform(-math.pi, math.pi, (5, 6))
     closures = [g.trace(params, T)[2] for T in robot.fk(q)]
     assert max(closures) < 1e-2 * g.SPLIT_CLOSURE_TOL
@@ -276,7 +277,7 @@ def test_candidates_that_miss_beyond_the_polish_are_carried_to_the_solutions() -
     q = np.random.default_rng(1).uniform(-math.pi, math.pi, 6)
     plain = params.candidates(robot.chain.core, T)[0]
     eps = _eps_for(miss, 2e-5)
-    params.refine_misses = True
+    G.set(params, refine_misses=True)
     c, near = miss(eps)
     assert c <= 1e-12 and not near
     opts = _core.CheckOptions()

@@ -10,11 +10,10 @@ elimination's pivots are set by construction.
 
 from __future__ import annotations
 
-import kinematica._core as _core
 import numpy as np
 import pytest
+from support.general6r import G
 
-G = _core.general6r
 #: The documented value (general_6r_roots.hpp).
 SPURIOUS_TOL = 1e-9
 #: Just inside / just outside a boundary: the tolerance times (1 ∓ this).

@@ -13,6 +13,7 @@ import json
 import math
 
 import kinematica._core as _core
+import kinematica._core_testing as _core_testing
 import numpy as np
 import pytest
 from support.helpers import run_cli
@@ -40,7 +41,7 @@ NEAR_ALIGNED_TOL = 1e-7
 
 def test_the_constants_are_the_cores() -> None:
     assert _core.MERGE_SPAN == MERGE_SPAN
-    assert _core.decoupled.NEAR_ALIGNED_TOL == NEAR_ALIGNED_TOL
+    assert _core_testing.decoupled.NEAR_ALIGNED_TOL == NEAR_ALIGNED_TOL
 
 
 def test_no_check_fails_on_a_sample_of_every_family() -> None:

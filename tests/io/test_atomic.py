@@ -50,9 +50,10 @@ CHILD = textwrap.dedent(
     folder = Path(sys.argv[1])
     small = km.load("planar-pr")
     big = km.load("puma560")
-    general = km.Robot.from_dh(
+    general = km.Robot.from_dh(  # its long name makes its header the larger one
         [km.Revolute(d=0.1 * i, a=0.2, alpha=0.3 + 0.2 * i) for i in range(6)],
         convention="standard",
+        name="general 6R arm " * 60,
     )
     t3, t300 = np.linspace(0, 1, 3), np.linspace(0, 1, 300)
     q3, q300 = np.zeros((3, 6)), np.random.default_rng(1).uniform(-1, 1, (300, 6))
@@ -75,8 +76,8 @@ CHILD = textwrap.dedent(
         "viz.csv": lambda r, p: write_trajectory(p, *((t3, q3) if r is small else (t300, q300))),
         "picture.png": lambda r, p: save_plot(r, np.zeros(r.dof), p, size=(100, 80)
                                              if r is small else (800, 700)),
-        # (a general 6R arm: its solver's fields are written out one by one; the PUMA's
-        # header calls the core's builder, a line, shorter than the planar arm's)
+        # (a general 6R arm of a long name: every header built in C++ calls the core's
+        # builder, a line, and may be shorter than the planar arm's, its fields written out)
         "arm.hpp": lambda r, p: cpp(general if r is big else r, p),
     }
     infinite = resource.RLIM_INFINITY

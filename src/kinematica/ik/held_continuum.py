@@ -61,21 +61,7 @@ def _self_motion(locked: Chain, T: FloatArray, q: FloatArray) -> tuple[int, ...]
 
     Ordered by how far each moved along it in the test's step, most first.
     """
-    if locked.dof != 6 or bool(np.any(locked.prismatic)):
-        return ()
-    from kinematica.ik.analytic import general_6r as g6
-
-    built = g6.labelling(locked, 5, False)  # T on the left: no constant Q needed
-    if built is None:
-        return ()
-    try:
-        verdict, _, _, moved, mask = _core.general6r.self_motion(built[0], T, q)
-    except ValueError:  # q does not close the loop: no test
-        return ()
-    if _core.general6r.DEGENERACY[verdict] != "continuum":
-        return ()
-    free = [j for j in range(6) if (mask >> j) & 1]
-    return tuple(sorted(free, key=lambda j: -float(moved[j])))
+    return tuple(_core.general6r.free_joints(locked.core, T, q))
 
 
 def continuum_answer(

@@ -25,6 +25,7 @@ from kinematica.ik.structure import features
 from kinematica.robot import Robot
 
 D = _core.decoupled
+DT = _core_testing.decoupled
 PI = math.pi
 
 
@@ -33,8 +34,8 @@ PI = math.pi
 def test_double_root_tol(factor: float, double: bool) -> None:
     """A fold's signed distance within DOUBLE_ROOT_TOL of its size is round-off: one root."""
     size = 3.0
-    diff = factor * D.DOUBLE_ROOT_TOL * (size + 1.0)
-    root, near = D.clamped_root(diff, size, 2.0, 1.0)
+    diff = factor * DT.DOUBLE_ROOT_TOL * (size + 1.0)
+    root, near = DT.clamped_root(diff, size, 2.0, 1.0)
     assert (root == 0.0) == double
     assert near == double  # a double root is a fold
     if not double:
@@ -44,8 +45,8 @@ def test_double_root_tol(factor: float, double: bool) -> None:
 @pytest.mark.parametrize(("factor", "candidate"), [(0.5, True), (2.0, False)])
 def test_near_tol_keeps_mirrored_roots_just_past_a_fold(factor: float, candidate: bool) -> None:
     size = 3.0
-    diff = -factor * D.NEAR_TOL * size
-    root, near = D.clamped_root(diff, size, 2.0, 1.0)
+    diff = -factor * DT.NEAR_TOL * size
+    root, near = DT.clamped_root(diff, size, 2.0, 1.0)
     assert math.isfinite(root) == candidate
     assert near == candidate
     if candidate:
@@ -53,8 +54,8 @@ def test_near_tol_keeps_mirrored_roots_just_past_a_fold(factor: float, candidate
 
 
 def test_clamped_root_of_another_failed_factor_is_nan() -> None:
-    assert math.isnan(D.clamped_root(1.0, 2.0, -1.0, 1.0)[0])
-    assert D.clamped_root(4.0, 4.0, 4.0, 1.0) == (4.0, False)
+    assert math.isnan(DT.clamped_root(1.0, 2.0, -1.0, 1.0)[0])
+    assert DT.clamped_root(4.0, 4.0, 4.0, 1.0) == (4.0, False)
 
 
 # ----------------------------------------------------------------- quartics
@@ -62,7 +63,7 @@ def test_trig_roots_are_those_of_the_trigonometric_polynomial() -> None:
     rng = np.random.default_rng(51)
     for _ in range(200):
         F = rng.normal(size=5)
-        self_motion, q, _ = D.trig_roots(F, np.abs(F).sum())
+        self_motion, q, _ = DT.trig_roots(F, np.abs(F).sum())
         assert not self_motion
         real = q[~np.isnan(q)]
         grid = np.linspace(-PI, PI, 20001)
@@ -80,8 +81,8 @@ def test_trig_roots_are_those_of_the_trigonometric_polynomial() -> None:
 @pytest.mark.parametrize(("factor", "self_motion"), [(0.5, True), (2.0, False)])
 def test_self_motion_tol(factor: float, self_motion: bool) -> None:
     """F that is 0 to round-off of the terms it came from: every q3 is a root."""
-    F = np.array([factor * D.SELF_MOTION_TOL, 0.0, 0.0, 0.0, 0.0])
-    found, q, _ = D.trig_roots(F, 1.0)
+    F = np.array([factor * DT.SELF_MOTION_TOL, 0.0, 0.0, 0.0, 0.0])
+    found, q, _ = DT.trig_roots(F, 1.0)
     assert found == self_motion
     if self_motion:
         np.testing.assert_allclose(q, [-PI / 2, 0.0, PI / 2, PI])
@@ -92,9 +93,9 @@ def test_self_motion_tol(factor: float, self_motion: bool) -> None:
 @pytest.mark.parametrize(("factor", "real"), [(0.5, True), (2.0, False)])
 def test_imag_tol(factor: float, real: bool) -> None:
     """A complex pair this close to the real axis is a double root split by round-off."""
-    eps = factor * D.IMAG_TOL * (1.0 + 0.5)
+    eps = factor * DT.IMAG_TOL * (1.0 + 0.5)
     k = np.real(np.poly([0.5 + 1j * eps, 0.5 - 1j * eps, -2.0, 3.0]))
-    q, near = D.slide_roots(k)
+    q, near = DT.slide_roots(k)
     found = q[~np.isnan(q)]
     assert len(found) == (4 if real else 2)
     assert near != real  # dropped, yet near the real axis: near a fold
@@ -104,9 +105,9 @@ def test_imag_tol(factor: float, real: bool) -> None:
 @pytest.mark.parametrize(("factor", "taken"), [(0.5, True), (2.0, False)])
 def test_max_newton_step(factor: float, taken: bool) -> None:
     """Newton steps on F longer than MAX_NEWTON_STEP are round-off at a double root."""
-    step = factor * D.MAX_NEWTON_STEP
-    assert (D.bounded_step(step * 3.0, 3.0) == pytest.approx(step)) == taken
-    assert (D.bounded_step(step * 3.0, 3.0) == 0.0) != taken
+    step = factor * DT.MAX_NEWTON_STEP
+    assert (DT.bounded_step(step * 3.0, 3.0) == pytest.approx(step)) == taken
+    assert (DT.bounded_step(step * 3.0, 3.0) == 0.0) != taken
 
 
 @pytest.mark.parametrize(("factor", "usable"), [(0.5, False), (2.0, True)])
@@ -141,7 +142,7 @@ def twin_flag(robot: Robot) -> bool:
 
 
 def test_twin_tol_value() -> None:
-    assert D.TWIN_TOL == TWIN_TOL_VALUE
+    assert DT.TWIN_TOL == TWIN_TOL_VALUE
 
 
 @pytest.mark.parametrize(("factor", "twin"), [(0.1, True), (10.0, False)])

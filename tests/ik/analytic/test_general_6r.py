@@ -12,9 +12,9 @@ import math
 from collections.abc import Callable
 from pathlib import Path
 
-import kinematica._core as _core
 import numpy as np
 import pytest
+from support.general6r import G, elimination, field, labelling
 from support.ik_search import dls_solutions, joint_distance
 
 import kinematica as km
@@ -26,7 +26,6 @@ from kinematica.ik.structure import features
 
 pytestmark = pytest.mark.filterwarnings("ignore::kinematica.KinematicaWarning")
 
-G = _core.general6r
 
 #: Every solution's FK reaches its target to this (m, rad).
 FK_TOL = 1e-10
@@ -113,7 +112,7 @@ def test_the_calibrated_ur_has_the_ur5s_solutions() -> None:
 def test_a_pose_beyond_the_reach_sphere_is_unreachable_with_its_gap() -> None:
     robot = _robot(np.random.default_rng(5), False)
     params = closed_form(robot.chain, "pose").params
-    centre, reach = np.asarray(params.centre), params.reach
+    centre, reach = np.asarray(field(params, "centre")), field(params, "reach")
     T = robot.fk(np.zeros(6))
     direction = np.array([0.6, 0.0, 0.8])
     outside, inside = T.copy(), T.copy()
@@ -135,8 +134,8 @@ def test_a_root_at_infinity_is_solved_with_the_second_shift() -> None:
     params = closed_form(robot.chain, "pose").params
     for _ in range(3):
         q = rng.uniform(-math.pi, math.pi, 6)
-        j = int(params.order[5])
-        q[j] = math.remainder(params.sign * (g6.PHI[2] + math.pi), 2 * math.pi)
+        j = int(field(params, "order")[5])
+        q[j] = math.remainder(field(params, "sign") * (G.PHI[2] + math.pi), 2 * math.pi)
         res = robot.ik(robot.fk(q))
         assert joint_distance(robot, res.solutions, q).min() <= FOUND_TOL
 
@@ -150,7 +149,7 @@ def test_rank_tol_rejects_a_deficient_labelling_and_keeps_a_nearly_deficient_one
         r = rows[4]
         rows[4] = Revolute(d=r.d, a=r.a + eps, alpha=r.alpha, offset=r.offset)
         chain = km.Robot.from_dh(rows, convention=puma.convention).chain
-        params, ratio = G.labelling(chain.core, g6.LABELLINGS.index((0, True)))
+        params, ratio = G.labelling(chain.core, G.LABELLINGS.index((0, True)))
         return float(ratio), params
 
     tilts = {}
@@ -158,9 +157,9 @@ def test_rank_tol_rejects_a_deficient_labelling_and_keeps_a_nearly_deficient_one
         tilts[eps] = ratio_and_params(eps)[0]
     slope = tilts[1e-3] / 1e-3  # σ8/σ1 ∝ ε
     assert tilts[1e-5] == pytest.approx(slope * 1e-5, rel=0.1)
-    above, kept = ratio_and_params(10 * g6.RANK_TOL / slope)
-    below, dropped = ratio_and_params(0.1 * g6.RANK_TOL / slope)
-    assert above > g6.RANK_TOL > below
+    above, kept = ratio_and_params(10 * G.RANK_TOL / slope)
+    below, dropped = ratio_and_params(0.1 * G.RANK_TOL / slope)
+    assert above > G.RANK_TOL > below
     assert kept is not None and dropped is None
 
 
@@ -170,31 +169,31 @@ def test_the_core_s_rank_ratio_is_numpy_s() -> None:
     for which in range(8):
         params, ratio = G.labelling(chain.core, which)
         assert params is not None
-        L = np.array(params.link)
-        s = np.linalg.svd(g6.elimination(L[0], L[1])[1], compute_uv=False)
+        L = np.array(field(params, "link"))
+        s = np.linalg.svd(elimination(L[0], L[1])[1], compute_uv=False)
         assert ratio == pytest.approx(s[-1] / s[0], rel=1e-12)
 
 
 def test_the_probe_configurations_are_the_seeded_uniform_draw_they_say() -> None:
     # written out so that building the solver needs no random generator
-    drawn = np.random.default_rng(6).uniform(-np.pi, np.pi, (g6.PROBES, 6))
-    assert np.array_equal(np.array(g6.PROBE_CONFIGS), drawn)
+    drawn = np.random.default_rng(6).uniform(-np.pi, np.pi, (G.PROBES, 6))
+    assert np.array_equal(np.array(G.PROBE_CONFIGS), drawn)
 
 
 def test_probe_tol_separates_a_working_labelling_from_a_degenerate_one() -> None:
     robot = _robot(np.random.default_rng(4), False)
     params = closed_form(robot.chain, "pose").params
-    assert G.probe(params, robot.chain.core, True).max() <= 1e-3 * g6.PROBE_TOL
+    assert G.probe(params, robot.chain.core, True).max() <= 1e-3 * G.PROBE_TOL
     # the PUMA's forward labelling: Q of full rank, the pencil singular (spherical wrist)
     puma = km.load("puma560").chain
-    built = g6.labelling(puma, 0, False)
-    assert built is not None and G.probe(built[0], puma.core, True).max() >= 1e3 * g6.PROBE_TOL
+    built = labelling(puma, 0, False)
+    assert built is not None and G.probe(built[0], puma.core, True).max() >= 1e3 * G.PROBE_TOL
 
 
 def test_a_labelling_accurate_to_round_off_is_kept_without_scoring_the_others() -> None:
     # the rule at its boundaries: the score just inside / just outside ACCURATE, every
     # probe within PROBE_TOL before Newton's step or only after it
-    acc, tol = math.log10(g6.ACCURATE), g6.PROBE_TOL
+    acc, tol = math.log10(G.ACCURATE), G.PROBE_TOL
     assert G.kept_at_once(acc + math.log10(0.5), 0.0, False)
     assert not G.kept_at_once(acc + math.log10(2.0), 0.0, True)
     assert G.kept_at_once(-15.0, tol, False)
@@ -205,19 +204,19 @@ def test_a_labelling_accurate_to_round_off_is_kept_without_scoring_the_others() 
     rng = np.random.default_rng(0)
     while True:
         robot = _robot(rng, False)
-        first = g6.labelling(robot.chain, 0, False)
+        first = labelling(robot.chain, 0, False)
         if first is not None and G.accuracy(first[0], robot.chain.core)[0] <= acc - 1.0:
             break
-    params, chosen, scored, refined, probed = G.build(robot.chain.core)
-    assert params is not None and (chosen, scored, probed) == (0, 1, g6.PROBES) and refined <= 1
+    params, chosen, scored, refined, probed = G.build_trace(robot.chain.core)
+    assert params is not None and (chosen, scored, probed) == (0, 1, G.PROBES) and refined <= 1
     # an arm whose constant labellings are not accurate (a UR5, every twist 1e-3 off):
     # all twelve scored, the last (T on the left, reversed) accurate to round-off and kept
     rows = [Revolute(d=d, a=a, alpha=al + 1e-3) for d, a, al in g6._UR5]
-    params, chosen, scored, _, probed = G.build(
+    params, chosen, scored, _, probed = G.build_trace(
         km.Robot.from_dh(rows, convention="standard").chain.core
     )
-    assert params is not None and params.per_target and scored == chosen + 1 > 8
-    assert probed < scored * g6.PROBES  # the inaccurate ones given up on early
+    assert params is not None and field(params, "per_target") and scored == chosen + 1 > 8
+    assert probed < scored * G.PROBES  # the inaccurate ones given up on early
 
 
 def test_scoring_gives_up_only_where_the_probes_left_cannot_make_a_labelling_accurate() -> None:
@@ -226,9 +225,9 @@ def test_scoring_gives_up_only_where_the_probes_left_cannot_make_a_labelling_acc
     # prove its mean log10 distance above log10(ACCURATE) even were the rest at 1e-16,
     # and the twelfth (T on the left, reversed) kept: 11 x 3 + 8 raw probe solves, not 96.
     robot = km.load(Path(__file__).parents[2] / "data" / "makers" / "fanuc_crx10ia.urdf")
-    params, chosen, scored, refined, probed = G.build(robot.chain.core)
+    params, chosen, scored, refined, probed = G.build_trace(robot.chain.core)
     assert params is not None and (chosen, scored, refined) == (11, 12, 0)
-    assert probed == 11 * 3 + g6.PROBES
+    assert probed == 11 * 3 + G.PROBES
     # the labelling kept is the one full scoring ranks first (the reference: every
     # labelling scored on all probes)
     chain = robot.chain.core
@@ -237,7 +236,7 @@ def test_scoring_gives_up_only_where_the_probes_left_cannot_make_a_labelling_acc
         built = G.labelling(chain, which)
         if built is not None:
             scores.append((G.accuracy(built[0], chain)[0], which))
-    assert min(scores)[1] == chosen and min(scores)[0] <= math.log10(g6.ACCURATE)
+    assert min(scores)[1] == chosen and min(scores)[0] <= math.log10(G.ACCURATE)
 
 
 def test_labellings_within_probe_tol_on_every_probe_pass_the_refined_probes_too() -> None:
@@ -245,14 +244,14 @@ def test_labellings_within_probe_tol_on_every_probe_pass_the_refined_probes_too(
     rng, kept = np.random.default_rng(11), 0
     for _ in range(4):
         robot = _robot(rng, False)
-        for start, reverse in g6.LABELLINGS:
-            built = g6.labelling(robot.chain, start, reverse)
+        for start, reverse in G.LABELLINGS:
+            built = labelling(robot.chain, start, reverse)
             if built is not None:
                 raw = G.probe(built[0], robot.chain.core, False)
                 refined = G.probe(built[0], robot.chain.core, True)
-                if raw.max() <= g6.PROBE_TOL:
+                if raw.max() <= G.PROBE_TOL:
                     kept += 1
-                    assert refined.max() <= g6.ACCURATE  # round-off, wherever raw was
+                    assert refined.max() <= G.ACCURATE  # round-off, wherever raw was
     assert kept >= 36
 
 
@@ -388,7 +387,7 @@ def test_a_calibrated_ur_once_refused_is_solved_by_qz_and_its_spurious_roots_dro
     res = robot.ik(robot.fk(q))
     for i in range(len(q)):
         T = robot.fk(q[i])
-        assert _core.general6r.trace(params, T)[5]  # the roots by QZ
+        assert G.trace(params, T)[5]  # the roots by QZ
         raw = params.candidates(robot.chain.core, T)[0]
         raw = raw[np.isfinite(raw[:, 0])]
         F = robot.fk(raw)
@@ -453,7 +452,7 @@ def test_arms_whose_constant_eliminations_degenerate_are_solved_completely(
     res = robot.ik(robot.fk(q), respect_limits=False)
     assert res.method == "analytic:general-6R"
     if eps == 0.0:
-        assert closed_form(robot.chain, "pose").params.per_target
+        assert field(closed_form(robot.chain, "pose").params, "per_target")
     for i in range(len(q)):
         one = res[i]
         T = robot.fk(q[i])
@@ -472,7 +471,7 @@ def test_the_left_side_is_exact_at_any_angles() -> None:
     # c0 + Q S2 against the line Rz(q'1) L1 Rz(q'2) L2 z computed directly
     rng = np.random.default_rng(3)
     L1, L2 = random_transform(rng, 1.0), random_transform(rng, 1.0)
-    c0, Q = g6.elimination(L1, L2)
+    c0, Q = elimination(L1, L2)
     for a, b in rng.uniform(-math.pi, math.pi, (20, 2)):
         A = _rz(a) @ L1 @ _rz(b) @ L2
         p, z = A[:3, 3], A[:3, 2]

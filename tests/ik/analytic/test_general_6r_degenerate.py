@@ -14,9 +14,9 @@ from __future__ import annotations
 import math
 from typing import Any
 
-import kinematica._core as _core
 import numpy as np
 import pytest
+from support.general6r import G, labelling
 from support.ik_search import joint_distance
 
 import kinematica as km
@@ -24,7 +24,6 @@ from kinematica.ik.analytic import general_6r as g6
 
 pytestmark = pytest.mark.filterwarnings("ignore::kinematica.KinematicaWarning")
 
-G = _core.general6r
 #: Every solution's FK reaches its target to this (m, rad).
 FK_TOL = 1e-10
 #: Just inside / just outside a boundary: the tolerance times (1 ∓ this).
@@ -102,7 +101,7 @@ def _fold(robot: km.Robot, rng: np.random.Generator) -> np.ndarray:
 
 def _params(robot: km.Robot, start: int, reverse: bool) -> Any:
     """Params of one labelling (not the cached solver's: the builder's choice may change)."""
-    built = g6.labelling(robot.chain, start, reverse)
+    built = labelling(robot.chain, start, reverse)
     assert built is not None
     return built[0]
 

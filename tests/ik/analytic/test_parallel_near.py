@@ -175,7 +175,7 @@ def test_watch_factor_runs_the_general_6r_within_its_margin(factor: float, runs:
     closed = closed_form(robot.chain, "pose")
     assert closed is not None
     P = closed.params
-    assert _core.general6r.WATCH_FACTOR == WATCH_FACTOR
+    assert _core_testing.general6r.WATCH_FACTOR == WATCH_FACTOR
     assert P.watch == pytest.approx(WATCH_FACTOR * math.sqrt(f.slack / f.size), rel=1e-15)
     q = np.array([0.4, -1.1, 1.3, -0.7, aligned_q5(robot) + factor * P.watch, 0.9])
     T = robot.fk(q)

@@ -16,6 +16,7 @@ import math
 import warnings
 
 import kinematica._core as _core
+import kinematica._core_testing as _core_testing
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -34,12 +35,13 @@ from kinematica.robot import Robot
 FloatArray = NDArray[np.float64]
 PI = math.pi
 D = _core.decoupled
-DOUBLE_ROOT_TOL = D.DOUBLE_ROOT_TOL
-HUGE_REACH = D.HUGE_REACH
-NEAR_SET_TOL = D.NEAR_SET_TOL
-NEAR_TOL = D.NEAR_TOL
-SINGULAR_TOL = D.SINGULAR_TOL
-WRIST_SINGULAR_TOL = D.WRIST_SINGULAR_TOL
+DT = _core_testing.decoupled
+DOUBLE_ROOT_TOL = DT.DOUBLE_ROOT_TOL
+HUGE_REACH = DT.HUGE_REACH
+NEAR_SET_TOL = DT.NEAR_SET_TOL
+NEAR_TOL = DT.NEAR_TOL
+SINGULAR_TOL = DT.SINGULAR_TOL
+WRIST_SINGULAR_TOL = DT.WRIST_SINGULAR_TOL
 ARM6 = km.load("arm6-dh")
 PUMA = km.load("puma560")
 #: What the closed form takes for round-off in lengths (relative to the arm's

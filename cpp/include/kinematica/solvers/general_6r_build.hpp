@@ -25,6 +25,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "../chain.hpp"
 #include "general_6r.hpp"
@@ -317,6 +318,14 @@ inline bool build(const Chain& chain, General6RParams& out, BuildTrace* trace = 
         }
     }
     return false;
+}
+
+//! build's solver of a chain, or std::nullopt (the family's builder as a C++ program or
+//! the binding calls it: `km::general6r::build(chain)`).
+inline std::optional<General6RParams> build(const Chain& chain) {
+    General6RParams p;
+    if (!build(chain, p)) return std::nullopt;
+    return p;
 }
 
 }  // namespace km::general6r

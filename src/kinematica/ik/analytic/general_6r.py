@@ -30,47 +30,11 @@ from kinematica.ik.analytic.sampling import random_transform
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
 
-__all__ = [
-    "ACCURATE",
-    "LABELLINGS",
-    "LABELS",
-    "PHI",
-    "PROBES",
-    "PROBE_CONFIGS",
-    "PROBE_TOL",
-    "RANK_TOL",
-    "SEARCH_NOTE",
-    "SPEC",
-    "build",
-    "elimination",
-    "free_joints",
-    "labelling",
-    "mark_continua",
-]
+__all__ = ["LABELS", "SEARCH_NOTE", "SPEC", "build", "free_joints", "mark_continua"]
 
 FloatArray = NDArray[np.float64]
 PI = math.pi
 _G = _core.general6r
-
-#: Shifts (rad) of q'4, q'5, q'6 in the half-angle substitution (the core's).
-PHI: tuple[float, float, float] = _G.PHI
-#: A labelling is rank-deficient when σ8 / σ1 of its 14 x 8 matrix Q is below this (the
-#: core's: the same test decides, per target, for a labelling with T on the left side).
-RANK_TOL: float = _G.RANK_TOL
-#: A labelling passes a probe pose when the configuration that made it is among the raw
-#: candidates to this (rad; the core's).
-PROBE_TOL: float = _G.PROBE_TOL
-#: The configurations whose poses each labelling is probed on (the core's): uniform in
-#: (-π, π], ``np.random.default_rng(6).uniform(-π, π, (8, 6))`` written out.
-PROBE_CONFIGS: tuple[tuple[float, ...], ...] = _G.PROBE_CONFIGS
-#: Poses each labelling is probed on.
-PROBES: int = _G.PROBES
-#: The labellings (start, reversed) in the order the builder tries them (the core's): the
-#: eight whose elimination's constants are the arm's, then the four with the target's
-#: link at L1 or L2 (constants made for each target).
-LABELLINGS: tuple[tuple[int, bool], ...] = _G.LABELLINGS
-#: A labelling accurate to this on the probes (rad, geometric mean) is kept at once.
-ACCURATE: float = _G.ACCURATE
 
 #: Said of a target the elimination found nothing for (the core's not_found, its near
 #: flag raised: no candidate within the check's polish, no reach gap), answered by the
@@ -96,28 +60,6 @@ LABELS: tuple[str, ...] = tuple(
 
 
 # ---------------------------------------------------------------- the builder
-def labelling(chain: Chain, start: int, reverse: bool) -> tuple[Any, float] | None:
-    """The core's Params of one labelling of a 6R chain and its Q's σ8 / σ1, or None.
-
-    None where its left side is rank-deficient (or the chain is not 6R); the ratio is
-    NaN for a labelling with the target's link at L1 or L2 (its Q is the target's).
-    """
-    params, ratio = _G.labelling(chain.core, LABELLINGS.index((start, reverse)))
-    return None if params is None else (params, float(ratio))
-
-
-def elimination(L1: FloatArray, L2: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """``(c0 (14,), Q (14, 8))``: the left side ``Rz(q'1) L1 Rz(q'2) L2 · z`` as c0 + Q S2.
-
-    S2: the products of (1, cos q'1, sin q'1) ⊗ (1, cos q'2, sin q'2) but 1, in that
-    order (c2, s2, c1, c1 c2, c1 s2, s1, s1 c2, s1 s2). The quantities are trigonometric
-    polynomials of degree 1 in each angle (Raghavan-Roth): the core finds them exactly
-    from their values on a 3 x 3 grid (``general_6r.hpp``, ``left_side``).
-    """
-    c0, Q = _G.left_side(L1, L2)
-    return np.asarray(c0), np.asarray(Q)
-
-
 def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
     """The general 6R solver of a 6R arm, or None (position targets; no labelling works).
 
@@ -127,7 +69,7 @@ def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
     """
     if target != "pose" or f.joint_types != "RRRRRR":
         return None
-    params = _G.build(chain.core)[0]
+    params = _G.build(chain.core)
     return None if params is None else _closed_form(params)
 
 
@@ -159,13 +101,7 @@ def free_joints(params: Any, T: FloatArray, q: FloatArray) -> tuple[int, ...]:
         0-based indices of the free joints (ascending); ``()`` when q is regular, at a
         fold, or not a solution to within the loop's closure tolerance.
     """
-    try:
-        verdict, _, _, _, mask = _G.self_motion(params, T, q)
-    except ValueError:  # q does not close the loop: no test
-        return ()
-    if _G.DEGENERACY[verdict] != "continuum":
-        return ()
-    return tuple(j for j in range(6) if (mask >> j) & 1)
+    return tuple(sorted(_G.free_joints(params, T, q)))
 
 
 def mark_continua(params: Any, poses: FloatArray, q: FloatArray, status: Any, free: Any) -> None:
