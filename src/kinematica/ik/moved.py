@@ -19,7 +19,15 @@ from numpy.typing import NDArray
 from kinematica.core import Chain
 from kinematica.ik.tolerance import parse_tolerance
 
-__all__ = ["NARROWEST", "base_move", "end_arm", "moved_targets", "narrowed_tolerance"]
+__all__ = [
+    "NARROWEST",
+    "ON_AXIS_TOL",
+    "base_move",
+    "end_arm",
+    "moved_targets",
+    "narrowed_tolerance",
+    "on_axis",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -28,6 +36,10 @@ FloatArray = NDArray[np.float64]
 #: tolerances: the tool point moved by more than 0.5 m) the targets are solved on one
 #: locked arm per value instead.
 NARROWEST = 0.5
+#: How far from the last joint's axis the tool point may lie (m) for the last joint's
+#: value to move the target without moving the tool point (:func:`on_axis`): round-off
+#: of a tool transform read from a file.
+ON_AXIS_TOL = 1e-12
 
 
 def end_arm(chain: Chain, k: int) -> tuple[Chain, FloatArray, FloatArray]:
@@ -45,6 +57,22 @@ def end_arm(chain: Chain, k: int) -> tuple[Chain, FloatArray, FloatArray]:
         G_inv[:3, 3] = -G[:3, :3].T @ G[:3, 3]
         found = per[k] = (chain.locked(k, 0.0), np.array(G), G_inv)
     return found
+
+
+def on_axis(chain: Chain) -> bool:
+    """Whether the last joint turns about an axis through the tool point.
+
+    Then ``T G⁻¹ M(v)⁻¹ G`` keeps the target's position (``G``'s translation is on the
+    axis ``M`` turns about): a target moved past the last joint is the same problem,
+    checked against the same tolerance, whatever the value (:data:`ON_AXIS_TOL`).
+    """
+    found = chain.memo.get("tool on last axis")
+    if found is None:
+        G = chain.fixed_parts[-1] @ chain.tool
+        found = chain.memo["tool on last axis"] = not bool(chain.prismatic[-1]) and bool(
+            math.hypot(G[0, 3], G[1, 3]) <= ON_AXIS_TOL
+        )
+    return bool(found)
 
 
 def _inverse_motion(prismatic: bool, value: float) -> FloatArray:

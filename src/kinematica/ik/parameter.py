@@ -29,7 +29,7 @@ from kinematica.core import Chain
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.held_continuum import continuum_answer
 from kinematica.ik.held_near import near_continuum_answer
-from kinematica.ik.moved import end_arm, moved_targets, narrowed_tolerance
+from kinematica.ik.moved import end_arm, moved_targets, narrowed_tolerance, on_axis
 from kinematica.ik.request import IKRequest
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.solve import solve_ik
@@ -63,6 +63,8 @@ def locked_chain(chain: Chain, joint: int, value: float) -> Chain:
     per: OrderedDict[tuple[int, float], Chain]
     per = chain.memo.setdefault("locked arms", OrderedDict())  # type: ignore[assignment]
     key = (joint, float(value))
+    if value == 0.0 and joint in (0, chain.dof - 1):
+        return end_arm(chain, joint)[0]  # the first or last joint's: kept apart
     found = per.get(key)
     if found is None:
         found = per[key] = chain.locked(joint, value)
@@ -230,22 +232,22 @@ class JointParameter:
         first = float(v[0]) if N else self.default(chain)
         same = scalar or bool(np.all(v == first))
         # The first joint's value turns the base frame about its axis: the moved target
-        # is the same problem, distances and angles kept. The last joint's moves the tool
-        # point: worth it only for values that differ per target (one locked arm for a
-        # sweep), checked against a narrower tolerance (see narrowed_tolerance). A mask's
-        # components and an over-determined target's printed digits would not be the
-        # ones given: those targets are solved as they are.
-        moved = (
-            not targets.position
-            and options.mask is None
-            and n - 1 >= 6
-            and (k == 0 or (k == n - 1 and not same))
-        )
+        # is the same problem, distances and angles kept. So is the last joint's where the
+        # tool point is on its axis (on_axis): one locked arm serves every value. Else the
+        # last joint's moves the tool point: worth it only for values that differ per
+        # target (one locked arm for a sweep), checked against a narrower tolerance (see
+        # narrowed_tolerance). A mask's components and an over-determined target's printed
+        # digits would not be the ones given: those targets are solved as they are.
+        moved = not targets.position and options.mask is None and n - 1 >= 6
+        exact = moved and (k == 0 or (k == n - 1 and on_axis(chain)))
+        if exact and k and same:  # the held arm without a closed form: its neighbours'
+            exact = not self._continua(chain, 0.0, opts, targets)
+        moved = exact or (moved and k == n - 1 and not same)
         if moved:
             if not parsed:
                 targets = parse_targets(target)
             arm, G, G_inv = end_arm(chain, k)
-            if k == n - 1:
+            if not exact:
                 narrow = narrowed_tolerance(options.tol, chain.prismatic[k], k, G, G_inv, v)
                 moved = narrow is not None
                 if narrow is not None:
@@ -254,7 +256,7 @@ class JointParameter:
             if moved:  # one locked arm, moved targets
                 poses = moved_targets(chain.prismatic[k], k, G, G_inv, targets.poses, v)
                 out = solve_ik(arm, targets.replace(poses=poses), opts)
-                if k == n - 1 and isinstance(out, IKBatchResult):
+                if not exact and isinstance(out, IKBatchResult):
                     out = widen_batch(out, k, v, self.name)
                     return self._exact_gaps(chain, targets, v, out, options)
             elif same and not (N > 1 and self._continua(chain, first, opts, targets)):
