@@ -9,7 +9,17 @@ import pytest
 from support.helpers import assert_transform_close
 
 import kinematica as km
-from kinematica.ik.moved import NARROWEST, end_arm, moved_targets, narrowed_tolerance
+from kinematica.ik.moved import (
+    NARROWEST,
+    ON_AXIS_TOL,
+    end_arm,
+    moved_targets,
+    narrowed_tolerance,
+    on_axis,
+)
+from kinematica.ik.parameter import locked_chain
+from kinematica.ik import IKOptions
+from kinematica.ik.solve import solve_ik
 
 
 def arm(offset: float) -> km.Robot:
@@ -49,3 +59,30 @@ def test_a_target_moved_past_the_last_joint_keeps_at_least_half_the_tolerance(
         assert narrow == pytest.approx((1e-10 * (1.0 - shift), 1e-10), rel=1e-9)
     else:
         assert narrow is None
+
+
+@pytest.mark.parametrize(("offset", "exact"), [(0.5 * ON_AXIS_TOL, True), (2.0 * ON_AXIS_TOL, False)])
+def test_the_tool_point_is_on_the_last_axis_within_round_off(offset: float, exact: bool) -> None:
+    assert ON_AXIS_TOL == 1e-12
+    assert on_axis(arm(offset).chain) is exact
+
+
+def test_a_last_joint_held_at_a_new_value_each_call_moves_the_target_not_the_arm() -> None:
+    # the tool on the last axis: each value is the arm locked at 0 with the target moved,
+    # the same answer as the arm locked at that value (built here, apart) gives
+    robot = arm(0.0)
+    chain = robot.chain
+    Q = robot.random_q(6, seed=3)
+    T = robot.fk(Q)
+    values = [*Q[:3, 6].tolist(), 0.4, -2.5, 3.0]  # the generating values, then others
+    for i, v in enumerate(values):
+        res = robot.ik(T[i], fixed={6: v})
+        alone = solve_ik(chain.locked(6, v), T[i], IKOptions())
+        assert str(res.status) == str(alone.status) and res.count == alone.count
+        if i < 3:
+            assert res.count >= 1
+        np.testing.assert_array_equal(res.solutions[:, 6], v)
+        np.testing.assert_allclose(res.solutions[:, :6], alone.solutions, atol=1e-9)
+        assert res.branches == alone.branches
+    assert "locked arms" not in chain.memo  # no arm locked at any of those values
+    assert locked_chain(chain, 6, 0.0) is end_arm(chain, 6)[0]

@@ -60,11 +60,11 @@ LOCKED_CACHE = 16
 
 def locked_chain(chain: Chain, joint: int, value: float) -> Chain:
     """``chain.locked(joint, value)``, built once and kept (:data:`LOCKED_CACHE` per chain)."""
+    if value == 0.0 and joint in (0, chain.dof - 1):
+        return end_arm(chain, joint)[0]  # the first or last joint's: kept apart
     per: OrderedDict[tuple[int, float], Chain]
     per = chain.memo.setdefault("locked arms", OrderedDict())  # type: ignore[assignment]
     key = (joint, float(value))
-    if value == 0.0 and joint in (0, chain.dof - 1):
-        return end_arm(chain, joint)[0]  # the first or last joint's: kept apart
     found = per.get(key)
     if found is None:
         found = per[key] = chain.locked(joint, value)
