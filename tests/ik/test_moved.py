@@ -9,6 +9,7 @@ import pytest
 from support.helpers import assert_transform_close
 
 import kinematica as km
+from kinematica.ik import IKOptions
 from kinematica.ik.moved import (
     NARROWEST,
     ON_AXIS_TOL,
@@ -18,7 +19,6 @@ from kinematica.ik.moved import (
     on_axis,
 )
 from kinematica.ik.parameter import locked_chain
-from kinematica.ik import IKOptions
 from kinematica.ik.solve import solve_ik
 
 
@@ -61,7 +61,9 @@ def test_a_target_moved_past_the_last_joint_keeps_at_least_half_the_tolerance(
         assert narrow is None
 
 
-@pytest.mark.parametrize(("offset", "exact"), [(0.5 * ON_AXIS_TOL, True), (2.0 * ON_AXIS_TOL, False)])
+@pytest.mark.parametrize(
+    ("offset", "exact"), [(0.5 * ON_AXIS_TOL, True), (2.0 * ON_AXIS_TOL, False)]
+)
 def test_the_tool_point_is_on_the_last_axis_within_round_off(offset: float, exact: bool) -> None:
     assert ON_AXIS_TOL == 1e-12
     assert on_axis(arm(offset).chain) is exact

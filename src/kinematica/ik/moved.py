@@ -1,32 +1,42 @@
-"""The first or last joint held at a value: the targets moved, not the arm rebuilt.
+"""The arms a held joint leaves, kept by the chain; the first or last joint's, moved targets.
 
-The first joint's value only turns (or slides) the base, the last's only the
-tool: the arm locked at 0 serves every value, each target moved instead
-(``T' = G₀ M(v)⁻¹ G₀⁻¹ T`` for the first joint, ``T G⁻¹ M(v)⁻¹ G`` for the last,
-``G₀`` the chain's start, ``G`` its last fixed part times the tool). The first
-joint's move keeps distances and angles: the same problem. The last joint's
-moves the tool point, so the locked arm is checked against a narrower position
-tolerance (:func:`narrowed_tolerance`).
+A joint held at a value leaves a locked arm (:meth:`kinematica.core.Chain.locked`),
+built once per value and kept (:func:`locked_chain`). For the first and last joints
+one serves every value (:func:`end_arm`): the first joint's value only turns (or
+slides) the base, the last's only the tool, so the arm locked at 0 takes each target
+moved instead (``T' = G₀ M(v)⁻¹ G₀⁻¹ T`` for the first joint, ``T G⁻¹ M(v)⁻¹ G`` for
+the last, ``G₀`` the chain's start, ``G`` its last fixed part times the tool). The
+first joint's move keeps distances and angles: the same problem; so does the last
+joint's where the tool point is on its axis (:func:`on_axis`, the makers' 7R arms).
+Else the last joint's moves the tool point, and the locked arm is checked against a
+narrower position tolerance (:func:`narrowed_tolerance`).
 """
 
 from __future__ import annotations
 
 import math
+from collections import OrderedDict
 
 import numpy as np
 from numpy.typing import NDArray
 
+import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.ik.tolerance import parse_tolerance
+from kinematica.spatial import ROUNDOFF_TOL
 
 __all__ = [
+    "LOCKED_CACHE",
     "NARROWEST",
     "ON_AXIS_TOL",
     "base_move",
     "end_arm",
+    "locked_chain",
+    "moved_pose",
     "moved_targets",
     "narrowed_tolerance",
     "on_axis",
+    "rigid",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -40,6 +50,29 @@ NARROWEST = 0.5
 #: value to move the target without moving the tool point (:func:`on_axis`): round-off
 #: of a tool transform read from a file.
 ON_AXIS_TOL = 1e-12
+
+
+#: Locked arms kept per chain, least recently used first out (a sweep over a middle
+#: joint's values builds one per value; the first and last joints' are kept apart,
+#: :func:`end_arm`).
+LOCKED_CACHE = 16
+
+
+def locked_chain(chain: Chain, joint: int, value: float) -> Chain:
+    """``chain.locked(joint, value)``, built once and kept (:data:`LOCKED_CACHE` per chain)."""
+    if value == 0.0 and joint in (0, chain.dof - 1):
+        return end_arm(chain, joint)[0]  # the first or last joint's: kept apart
+    per: OrderedDict[tuple[int, float], Chain]
+    per = chain.memo.setdefault("locked arms", OrderedDict())  # type: ignore[assignment]
+    key = (joint, float(value))
+    found = per.get(key)
+    if found is None:
+        found = per[key] = chain.locked(joint, value)
+        if len(per) > LOCKED_CACHE:
+            per.popitem(last=False)
+    else:
+        per.move_to_end(key)
+    return found
 
 
 def end_arm(chain: Chain, k: int) -> tuple[Chain, FloatArray, FloatArray]:
@@ -97,14 +130,33 @@ def base_move(prismatic: bool, G: FloatArray, G_inv: FloatArray, value: float) -
     return G @ _inverse_motion(prismatic, value) @ G_inv
 
 
+def moved_pose(
+    prismatic: bool, k: int, G: FloatArray, G_inv: FloatArray, T: FloatArray, value: float
+) -> FloatArray:
+    """``(4, 4)`` the target of the arm locked at 0 that is ``T`` with joint k at ``value``."""
+    if k == 0:
+        return base_move(prismatic, G, G_inv, value) @ T
+    return T @ G_inv @ _inverse_motion(prismatic, value) @ G
+
+
+def rigid(T: FloatArray) -> bool:
+    """Whether ``T`` is one pose the core reads as it is, rigid to round-off.
+
+    ``(4, 4)`` C-contiguous floats passing the check of ``robot.ik``'s one-pose path
+    (``ROUNDOFF_TOL``). Such a pose moved by a rigid transform is one too: it is solved as one pose.
+    """
+    if not (T.shape == (4, 4) and T.dtype == np.float64 and T.flags.c_contiguous):
+        return False
+    finite, last_row, ortho, det = _core.pose_defects(T)
+    return bool(finite and last_row == 0.0 and ortho <= ROUNDOFF_TOL and det > 0.0)
+
+
 def moved_targets(
     prismatic: bool, k: int, G: FloatArray, G_inv: FloatArray, poses: FloatArray, v: FloatArray
 ) -> FloatArray:
     """``(N, 4, 4)`` targets of the arm locked at 0 that are ``poses`` with joint k at ``v``."""
     if v.size == 1:  # one target: 4x4 products
-        if k == 0:
-            return (base_move(prismatic, G, G_inv, float(v[0])) @ poses[0])[None]
-        return (poses[0] @ G_inv @ _inverse_motion(prismatic, float(v[0])) @ G)[None]
+        return moved_pose(prismatic, k, G, G_inv, poses[0], float(v[0]))[None]
     inverse = np.zeros((v.size, 4, 4))  # M(v)⁻¹ = M(-v), one per target
     inverse[:, 3, 3] = 1.0
     if prismatic:

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections import OrderedDict
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Protocol
@@ -29,7 +28,16 @@ from kinematica.core import Chain
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.held_continuum import continuum_answer
 from kinematica.ik.held_near import near_continuum_answer
-from kinematica.ik.moved import end_arm, moved_targets, narrowed_tolerance, on_axis
+from kinematica.ik.moved import (
+    LOCKED_CACHE,
+    end_arm,
+    locked_chain,
+    moved_pose,
+    moved_targets,
+    narrowed_tolerance,
+    on_axis,
+    rigid,
+)
 from kinematica.ik.request import IKRequest
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.solve import solve_ik
@@ -51,28 +59,6 @@ if TYPE_CHECKING:
     from kinematica.ik.options import IKOptions
 
 FloatArray = NDArray[np.float64]
-
-#: Locked arms kept per chain, least recently used first out (a sweep over a middle
-#: joint's values builds one per value; the first and last joints' are kept apart,
-#: :func:`kinematica.ik.moved.end_arm`).
-LOCKED_CACHE = 16
-
-
-def locked_chain(chain: Chain, joint: int, value: float) -> Chain:
-    """``chain.locked(joint, value)``, built once and kept (:data:`LOCKED_CACHE` per chain)."""
-    if value == 0.0 and joint in (0, chain.dof - 1):
-        return end_arm(chain, joint)[0]  # the first or last joint's: kept apart
-    per: OrderedDict[tuple[int, float], Chain]
-    per = chain.memo.setdefault("locked arms", OrderedDict())  # type: ignore[assignment]
-    key = (joint, float(value))
-    found = per.get(key)
-    if found is None:
-        found = per[key] = chain.locked(joint, value)
-        if len(per) > LOCKED_CACHE:
-            per.popitem(last=False)
-    else:
-        per.move_to_end(key)
-    return found
 
 
 class Parameter(Protocol):
@@ -244,8 +230,6 @@ class JointParameter:
             exact = not self._continua(chain, 0.0, opts, targets)
         moved = exact or (moved and k == n - 1 and not same)
         if moved:
-            if not parsed:
-                targets = parse_targets(target)
             arm, G, G_inv = end_arm(chain, k)
             if not exact:
                 narrow = narrowed_tolerance(options.tol, chain.prismatic[k], k, G, G_inv, v)
@@ -253,7 +237,13 @@ class JointParameter:
                 if narrow is not None:
                     opts = opts.but(tol=narrow)
         try:
-            if moved:  # one locked arm, moved targets
+            one = moved and not parsed and isinstance(target, np.ndarray) and rigid(target)
+            if one:  # one pose as the core reads it, moved as one
+                assert isinstance(target, np.ndarray)
+                pose = moved_pose(chain.prismatic[k], k, G, G_inv, target, first)
+                out = solve_ik(arm, pose, opts)
+            elif moved:  # one locked arm, moved targets
+                targets = targets if parsed else parse_targets(target)
                 poses = moved_targets(chain.prismatic[k], k, G, G_inv, targets.poses, v)
                 out = solve_ik(arm, targets.replace(poses=poses), opts)
                 if not exact and isinstance(out, IKBatchResult):
