@@ -322,10 +322,7 @@ def _nearest_with_solutions(
     poses = targets.poses[rows]
     request = IKRequest.of(options).but(q0=None, fixed=None)  # every value's, made once
     best = np.full(rows.size, -1)
-    # a few values in the first round where each costs an elimination or an arm, more where
-    # one costs a microsecond and a round tens of them
-    costly = _costly(chain, joint, request)
-    first, size, grow = 0, 2 if costly else 8, 2 if costly else 4
+    first, size = 0, 4
     while first < grid.size:
         todo = np.flatnonzero(best < 0)
         if not todo.size:
@@ -337,7 +334,7 @@ def _nearest_with_solutions(
         ).reshape(todo.size, width)
         hit = has.any(axis=1)
         best[todo[hit]] = ranks[hit, np.argmax(has[hit], axis=1)]
-        first, size = first + width, grow * size
+        first, size = first + width, 2 * size
     ok = best >= 0
     return rows[ok], grid[best[ok]]
 
@@ -368,20 +365,6 @@ def _has_solutions(
         assert isinstance(one, IKBatchResult)
         has[at] = np.asarray(one.raw.count) > 0
     return has
-
-
-def _costly(chain: Chain, joint: Parameter, request: IKRequest) -> bool:
-    """Whether each value :func:`_has_solutions` tries costs more than a closed form's call.
-
-    A middle joint's (an arm locked per value), or an end joint's whose locked arm's
-    closed form is an elimination (the general 6R's, completed by a search) or none.
-    """
-    if isinstance(joint, ArmAngleParameter):
-        return False
-    if not isinstance(joint, JointParameter) or joint.index not in (0, chain.dof - 1):
-        return True
-    closed = plan_of(end_arm(chain, joint.index)[0], "pose", request).closed
-    return closed is None or bool(closed.search_note)
 
 
 def screen(arm: Chain, poses: FloatArray, request: IKRequest) -> NDArray[np.bool_]:
