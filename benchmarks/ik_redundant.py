@@ -240,8 +240,8 @@ def held_and_auto(robots: list[tuple[str, km.Robot]], poses: int, seed: int) -> 
             lambda i, r=robot, T=T, v=values: r.ik(T[int(i)], fixed={6: v[int(i)]}),
             list(np.arange(poses)),
         )
-        arm, G, G_inv = end_arm(chain, 6)
-        moved = list(moved_targets(False, 6, G, G_inv, T, Q[:, 6]))
+        arm = end_arm(chain, 6)[0]
+        moved = list(moved_targets(chain, 6, T, Q[:, 6]))
         six = per_pose(lambda t, a=arm: solve_ik(a, t, IKOptions()), moved)
         family = solve_ik(arm, moved[0], IKOptions()).method
         auto = per_pose(lambda t, r=robot: r.ik(t), list(T))

@@ -22,25 +22,27 @@ from kinematica.ik.parameter import locked_chain
 from kinematica.ik.solve import solve_ik
 
 
-def arm(offset: float) -> km.Robot:
-    """A UR5 whose flange turns about a 7th joint; the tool ``offset`` m off that axis."""
+def arm(offset: float, slides: bool = False) -> km.Robot:
+    """A UR5 whose flange turns about (or slides along) a 7th joint; the tool ``offset`` m
+    off that axis."""
     ur5 = km.load("ur5")
-    rows = [*ur5.links, km.Revolute(d=0.04)]
+    last = km.Prismatic(theta=0.0, qlim=(-0.2, 0.2)) if slides else km.Revolute(d=0.04)
+    rows = [*ur5.links, last]
     return km.Robot.from_dh(
         rows, base=ur5.base, tool=np.array(km.transl(offset, 0.0, 0.08)), convention="standard"
     )
 
 
-@pytest.mark.parametrize("k", [0, 6])
-def test_a_moved_target_is_what_the_arm_locked_at_0_reaches(k: int) -> None:
-    robot = arm(0.2)
+@pytest.mark.parametrize(("k", "slides"), [(0, False), (6, False), (6, True)])
+def test_a_moved_target_is_what_the_arm_locked_at_0_reaches(k: int, slides: bool) -> None:
+    robot = arm(0.2, slides)
     chain = robot.chain
-    locked, G, G_inv = end_arm(chain, k)
+    locked = end_arm(chain, k)[0]
     assert end_arm(chain, k)[0] is locked  # built once per joint
     Q = robot.random_q(3, seed=1)
     T = robot.fk(Q)
-    moved = moved_targets(bool(chain.prismatic[k]), k, G, G_inv, T, Q[:, k])
-    one = moved_targets(bool(chain.prismatic[k]), k, G, G_inv, T[:1], Q[:1, k])
+    moved = moved_targets(chain, k, T, Q[:, k])
+    one = moved_targets(chain, k, T[:1], Q[:1, k])
     assert_transform_close(locked.fk(np.delete(Q, k, axis=1))[0], moved, atol=1e-13)
     assert_transform_close(one, moved[:1], atol=1e-15)
 
@@ -51,9 +53,8 @@ def test_a_target_moved_past_the_last_joint_keeps_at_least_half_the_tolerance(
 ) -> None:
     # the tool 0.3 m off the last axis: a turn by v moves it by 0.6 sin(v/2)
     chain = arm(0.3).chain
-    _, G, G_inv = end_arm(chain, 6)
     v = np.array([2.0 * math.asin(shift / 0.6)])
-    narrow = narrowed_tolerance(None, False, 6, G, G_inv, v)
+    narrow = narrowed_tolerance(None, chain, 6, v)
     assert NARROWEST == 0.5
     if narrowed:
         assert narrow == pytest.approx((1e-10 * (1.0 - shift), 1e-10), rel=1e-9)

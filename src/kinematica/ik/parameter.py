@@ -230,9 +230,9 @@ class JointParameter:
             exact = not self._continua(chain, 0.0, opts, targets)
         moved = exact or (moved and k == n - 1 and not same)
         if moved:
-            arm, G, G_inv = end_arm(chain, k)
+            arm = end_arm(chain, k)[0]
             if not exact:
-                narrow = narrowed_tolerance(options.tol, chain.prismatic[k], k, G, G_inv, v)
+                narrow = narrowed_tolerance(options.tol, chain, k, v)
                 moved = narrow is not None
                 if narrow is not None:
                     opts = opts.but(tol=narrow)
@@ -240,11 +240,10 @@ class JointParameter:
             one = moved and not parsed and isinstance(target, np.ndarray) and rigid(target)
             if one:  # one pose as the core reads it, moved as one
                 assert isinstance(target, np.ndarray)
-                pose = moved_pose(chain.prismatic[k], k, G, G_inv, target, first)
-                out = solve_ik(arm, pose, opts)
+                out = solve_ik(arm, moved_pose(chain, k, target, first), opts)
             elif moved:  # one locked arm, moved targets
                 targets = targets if parsed else parse_targets(target)
-                poses = moved_targets(chain.prismatic[k], k, G, G_inv, targets.poses, v)
+                poses = moved_targets(chain, k, targets.poses, v)
                 out = solve_ik(arm, targets.replace(poses=poses), opts)
                 if not exact and isinstance(out, IKBatchResult):
                     out = widen_batch(out, k, v, self.name)

@@ -351,9 +351,8 @@ def _has_solutions(
     batch) per value (``request``: without q0 or a held joint).
     """
     if isinstance(joint, JointParameter) and joint.index in (0, chain.dof - 1):
-        arm, G, G_inv = end_arm(chain, joint.index)
-        moved = moved_targets(joint.prismatic, joint.index, G, G_inv, poses, values)
-        return screen(arm, moved, request)
+        moved = moved_targets(chain, joint.index, poses, values)
+        return screen(end_arm(chain, joint.index)[0], moved, request)
     if isinstance(joint, ArmAngleParameter):
         out = joint.solve(chain, poses, values, request)
         assert isinstance(out, IKBatchResult)
