@@ -177,9 +177,10 @@ class JointParameter:
         A pose target of the first or last joint: the value only moves the base or
         the tool, so the arm locked at 0 is built once and the targets are moved
         instead (``T' = G₀ M(v)⁻¹ G₀⁻¹ T`` for the first, ``T G⁻¹ M(v)⁻¹ G`` for the
-        last, ``G₀`` the chain's start, ``G`` the last fixed part times the tool).
-        Otherwise (a middle joint, a position target, a mask, or fewer than 6
-        joints left) one locked arm per value.
+        last, ``G₀`` the chain's start, ``G`` the last fixed part times the tool;
+        the last joint's for one value only where the tool point is on its axis,
+        :func:`~kinematica.ik.moved.on_axis`). Otherwise (a middle joint, a position
+        target, a mask, or fewer than 6 joints left) one locked arm per value.
 
         Args:
             chain: The whole arm.
