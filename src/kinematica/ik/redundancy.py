@@ -352,7 +352,7 @@ def _has_solutions(
     """
     if isinstance(joint, JointParameter) and joint.index in (0, chain.dof - 1):
         moved = moved_targets(chain, joint.index, poses, values)
-        return screen(end_arm(chain, joint.index)[0], moved, request)
+        return _screen(end_arm(chain, joint.index)[0], moved, request)
     if isinstance(joint, ArmAngleParameter):
         out = joint.solve(chain, poses, values, request)
         assert isinstance(out, IKBatchResult)
@@ -366,7 +366,7 @@ def _has_solutions(
     return has
 
 
-def screen(arm: Chain, poses: FloatArray, request: IKRequest) -> NDArray[np.bool_]:
+def _screen(arm: Chain, poses: FloatArray, request: IKRequest) -> NDArray[np.bool_]:
     """``(M,)`` True where the arm's closed form has a solution of pose i (else its answer's).
 
     One core call of the closed form without the search that completes it: a screen
