@@ -18,6 +18,14 @@ prints, on one core (``workers=1``), for each way of solving:
 
 and, for reference, one pose of the PUMA 560 (a 6R arm, every default) in the same run.
 
+Then, for the built-in 7R arms and the makers' GEN72, Gen3 and RM75 (``tests/data/makers``),
+issue 33's budgets: ``fixed={6: v}`` with the pose's own new v on every call (one pose at a
+time) against one pose of the 6R arm its lock leaves (the arm locked at 0, its family's
+closed form, on the same poses moved: the 3x budget), and ``auto`` on random poses within
+the limits (per pose: each pose's shortest of 3 passes; median, mean and max over the
+poses; and batched per pose, CPU time), with the share of poses answered at the default
+value, at the nearest value of the sweep, and by the search over every joint.
+
 Columns: the method results name; µs per pose one pose at a time (median over
 ``--singles`` poses of each pose's shortest of 3 passes, wall time), and the same
 given as ``options=`` (``robot.ik(T, options=IKOptions(...))``: the same path as the
@@ -49,11 +57,14 @@ from _common import fmt_time, header, shortest_per_item, table
 
 import kinematica as km
 from kinematica.ik import IKBatchResult, IKOptions
+from kinematica.ik.moved import end_arm, moved_targets
 from kinematica.ik.parameter import JointParameter
 from kinematica.ik.redundancy import choose
+from kinematica.ik.solve import solve_ik
 from kinematica.ik.structure import features
 from kinematica.spatial import rotation_angle
 
+DATA = Path(__file__).resolve().parent.parent / "tests" / "data"
 #: A solution is exact when our FK puts the tool this close to the target (m and rad).
 TOL = 1e-10
 #: The joints locked per arm (0-based): the first and the last, both cheap to lock.
@@ -204,11 +215,65 @@ def run(name: str, poses: int, singles: int, seed: int) -> None:
     print(table(rows, head))
 
 
+def per_pose(fn: Any, items: list[np.ndarray], passes: int = 3) -> np.ndarray:
+    """Each item's shortest wall time (s) over ``passes`` passes."""
+    fn(items[0])
+    best = np.full(len(items), np.inf)
+    for _ in range(passes):
+        for i, item in enumerate(items):
+            t0 = time.perf_counter()
+            fn(item)
+            best[i] = min(best[i], time.perf_counter() - t0)
+    return best
+
+
+def held_and_auto(robots: list[tuple[str, km.Robot]], poses: int, seed: int) -> None:
+    """Issue 33's budgets: a last joint held at a new value per call, and ``auto``."""
+    rows = []
+    for name, robot in robots:
+        chain = robot.chain
+        rng = np.random.default_rng(seed)
+        Q = rng.uniform(*robot.qlim.T, size=(poses, robot.dof))
+        T = np.ascontiguousarray(robot.fk(Q))
+        values = Q[:, 6].tolist()  # the pose's own: a new value on every call
+        held = per_pose(
+            lambda i, r=robot, T=T, v=values: r.ik(T[int(i)], fixed={6: v[int(i)]}),
+            list(np.arange(poses)),
+        )
+        arm = end_arm(chain, 6)[0]
+        moved = list(moved_targets(chain, 6, T, Q[:, 6]))
+        six = per_pose(lambda t, a=arm: solve_ik(a, t, IKOptions()), moved)
+        family = solve_ik(arm, moved[0], IKOptions()).method
+        auto = per_pose(lambda t, r=robot: r.ik(t), list(T))
+        batch = cpu_best_of(lambda r=robot, T=T: r.ik(T, workers=1)) / poses
+        res = robot.ik(T, workers=1)
+        assert isinstance(res, IKBatchResult)
+        notes = [" ".join(res[i].notes) for i in range(poses)]
+        swept = np.mean(["the nearest of" in n for n in notes])
+        searched = np.mean([res[i].parameter is None for i in range(poses)])
+        rows.append(
+            [
+                name,
+                family,
+                fmt_time(float(np.median(six))),
+                f"{fmt_time(float(np.median(held)))} ({np.median(held) / np.median(six):.1f}x)",
+                f"{fmt_time(float(np.median(auto)))} / {fmt_time(float(auto.mean()))} / "
+                f"{fmt_time(float(auto.max()))}",
+                fmt_time(batch),
+                f"{1 - swept - searched:.0%} / {swept:.0%} / {searched:.0%}",
+            ]
+        )
+    head = ["arm", "its lock's family", "6R one pose", "fixed q7 new v (ratio)",
+            "auto median / mean / max", "auto batched", "default / swept / searched"]  # fmt: skip
+    print(table(rows, head))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--poses", type=int, default=2000)
     parser.add_argument("--singles", type=int, default=200)
     parser.add_argument("--seed", type=int, default=7)
+    parser.add_argument("--auto-poses", type=int, default=200)
     args = parser.parse_args()
     print(header("7R arms at a fixed joint (one core)"))
     for name in ("panda", "iiwa14"):
@@ -219,6 +284,14 @@ def main() -> None:
     Tp = list(puma.fk(rng.uniform(*puma.qlim.T, size=(args.singles, 6))))
     single = shortest_per_item(lambda t: puma.ik(t), Tp)
     print(f"\nreference: PUMA 560 robot.ik(T), one pose (6R, spherical wrist): {fmt_time(single)}")
+    print("\nq7 held at a new value each call; auto on random poses (one core)")
+    makers = DATA / "makers"
+    robots = [(n, km.load(n)) for n in ("panda", "iiwa14")] + [
+        (n, km.load(str(makers / f"{n}.urdf")))
+        for n in ("realman_gen72", "kinova_gen3", "realman_rm75")
+        if (makers / f"{n}.urdf").exists()
+    ]
+    held_and_auto(robots, args.auto_poses, args.seed)
 
 
 if __name__ == "__main__":

@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 import pytest
+from support import DATA
 from support.helpers import assert_same_result, assert_transform_close
 
 import kinematica as km
@@ -227,3 +228,32 @@ def test_an_empty_batch_of_a_redundant_arm_is_an_empty_result(name: str, held: d
         assert res.shape == shape and res.status.shape == shape and res.count.shape == shape
         assert res.solutions.shape[: len(shape)] == shape and res.solutions.shape[-1] == 7
         assert res.method == one.method
+
+
+def test_the_nearest_value_is_the_one_every_value_solved_in_full_would_give() -> None:
+    # GEN72: its last joint held leaves a general 6R, whose elimination the search completes;
+    # the screen tries values nearest first by the elimination alone, and must pick the value
+    # that solving the target in full at every value of the grid picks
+    robot = km.load(str(DATA / "makers" / "realman_gen72.urdf"))
+    joint = choose(robot.chain, robot.joint_names)
+    assert isinstance(joint, JointParameter) and joint.index == 6
+    value = joint.default(robot.chain)
+    lo, hi = robot.chain.qlim[joint.index]
+    grid = np.linspace(lo, hi, PARAMETER_SWEEP)
+    T = robot.fk(robot.random_q(12, seed=5))
+    at_default = robot.ik(T, fixed={joint.index: value})
+    assert isinstance(at_default, IKBatchResult)
+    aside = np.flatnonzero(at_default.count == 0)[:3]
+    assert aside.size == 3
+    moved = 0
+    for i in aside.tolist():
+        counts = np.array([robot.ik(T[i], fixed={6: float(v)}).count for v in grid])
+        distance = np.where(counts > 0, np.abs(grid - value), np.inf)
+        res = robot.ik(T[i])
+        if np.isfinite(distance).any():
+            assert res.parameter == (joint.name, grid[int(np.argmin(distance))])
+            assert res.count == counts[int(np.argmin(distance))]
+            moved += 1
+        else:
+            assert res.parameter is None
+    assert moved  # a target held at a value other than the default

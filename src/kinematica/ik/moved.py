@@ -1,25 +1,42 @@
-"""The first or last joint held at a value: the targets moved, not the arm rebuilt.
+"""The arms a held joint leaves, kept by the chain; the first or last joint's, moved targets.
 
-The first joint's value only turns (or slides) the base, the last's only the
-tool: the arm locked at 0 serves every value, each target moved instead
-(``T' = G₀ M(v)⁻¹ G₀⁻¹ T`` for the first joint, ``T G⁻¹ M(v)⁻¹ G`` for the last,
-``G₀`` the chain's start, ``G`` its last fixed part times the tool). The first
-joint's move keeps distances and angles: the same problem. The last joint's
-moves the tool point, so the locked arm is checked against a narrower position
-tolerance (:func:`narrowed_tolerance`).
+A joint held at a value leaves a locked arm (:meth:`kinematica.core.Chain.locked`),
+built once per value and kept (:func:`locked_chain`). For the first and last joints
+one serves every value (:func:`end_arm`): the first joint's value only turns (or
+slides) the base, the last's only the tool, so the arm locked at 0 takes each target
+moved instead (``T' = G₀ M(v)⁻¹ G₀⁻¹ T`` for the first joint, ``T G⁻¹ M(v)⁻¹ G`` for
+the last, ``G₀`` the chain's start, ``G`` its last fixed part times the tool). The
+first joint's move keeps distances and angles: the same problem; so does the last
+joint's where the tool point is on its axis (:func:`on_axis`, the makers' 7R arms).
+Else the last joint's moves the tool point, and the locked arm is checked against a
+narrower position tolerance (:func:`narrowed_tolerance`).
 """
 
 from __future__ import annotations
 
 import math
+from collections import OrderedDict
 
 import numpy as np
 from numpy.typing import NDArray
 
+import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.ik.tolerance import parse_tolerance
+from kinematica.spatial import ROUNDOFF_TOL
 
-__all__ = ["NARROWEST", "base_move", "end_arm", "moved_targets", "narrowed_tolerance"]
+__all__ = [
+    "LOCKED_CACHE",
+    "NARROWEST",
+    "ON_AXIS_TOL",
+    "end_arm",
+    "locked_chain",
+    "moved_pose",
+    "moved_targets",
+    "narrowed_tolerance",
+    "on_axis",
+    "rigid",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -28,6 +45,33 @@ FloatArray = NDArray[np.float64]
 #: tolerances: the tool point moved by more than 0.5 m) the targets are solved on one
 #: locked arm per value instead.
 NARROWEST = 0.5
+#: How far from the last joint's axis the tool point may lie (m) for the last joint's
+#: value to move the target without moving the tool point (:func:`on_axis`): round-off
+#: of a tool transform read from a file.
+ON_AXIS_TOL = 1e-12
+
+
+#: Locked arms kept per chain, least recently used first out (a sweep over a middle
+#: joint's values builds one per value; the first and last joints' are kept apart,
+#: :func:`end_arm`).
+LOCKED_CACHE = 16
+
+
+def locked_chain(chain: Chain, joint: int, value: float) -> Chain:
+    """``chain.locked(joint, value)``, built once and kept (:data:`LOCKED_CACHE` per chain)."""
+    if value == 0.0 and joint in (0, chain.dof - 1):
+        return end_arm(chain, joint)[0]  # the first or last joint's: kept apart
+    per: OrderedDict[tuple[int, float], Chain]
+    per = chain.memo.setdefault("locked arms", OrderedDict())  # type: ignore[assignment]
+    key = (joint, float(value))
+    found = per.get(key)
+    if found is None:
+        found = per[key] = chain.locked(joint, value)
+        if len(per) > LOCKED_CACHE:
+            per.popitem(last=False)
+    else:
+        per.move_to_end(key)
+    return found
 
 
 def end_arm(chain: Chain, k: int) -> tuple[Chain, FloatArray, FloatArray]:
@@ -35,65 +79,86 @@ def end_arm(chain: Chain, k: int) -> tuple[Chain, FloatArray, FloatArray]:
 
     ``G``: the chain's start (k = 0), or its last fixed part times the tool.
     """
-    per: dict[int, tuple[Chain, FloatArray, FloatArray]]
+    arm, G, G_inv, _ = _end(chain, k)
+    return arm, G, G_inv
+
+
+def _end(chain: Chain, k: int) -> tuple[Chain, FloatArray, FloatArray, FloatArray]:
+    """:func:`end_arm` and ``(3, 4, 4)`` the move's parts ``A``, made once per chain.
+
+    ``M(v)⁻¹ = E₀ + f₁(v) E₁ + f₂(v) E₂`` (``f = (cos v, sin v)`` for a turn about z,
+    ``(-v, 0)`` for a slide along it), so the move is ``A₀ + f₁ A₁ + f₂ A₂`` with
+    ``A_i = G E_i G⁻¹`` before the target (k = 0) or ``G⁻¹ E_i G`` after it.
+    """
+    per: dict[int, tuple[Chain, FloatArray, FloatArray, FloatArray]]
     per = chain.memo.setdefault("end arms", {})  # type: ignore[assignment]
     found = per.get(k)
     if found is None:
-        G = chain.start if k == 0 else chain.fixed_parts[-1] @ chain.tool
+        G = np.array(chain.start if k == 0 else chain.fixed_parts[-1] @ chain.tool)
         G_inv = np.eye(4)
         G_inv[:3, :3] = G[:3, :3].T
         G_inv[:3, 3] = -G[:3, :3].T @ G[:3, 3]
-        found = per[k] = (chain.locked(k, 0.0), np.array(G), G_inv)
+        E = np.zeros((3, 4, 4))
+        if chain.prismatic[k]:
+            E[0] = np.eye(4)
+            E[1, 2, 3] = 1.0
+        else:
+            E[0, 2, 2] = E[0, 3, 3] = E[1, 0, 0] = E[1, 1, 1] = E[2, 0, 1] = 1.0
+            E[2, 1, 0] = -1.0
+        A = G @ E @ G_inv if k == 0 else G_inv @ E @ G
+        found = per[k] = (chain.locked(k, 0.0), G, G_inv, A)
     return found
 
 
-def _inverse_motion(prismatic: bool, value: float) -> FloatArray:
-    """``(4, 4)`` ``M(value)⁻¹ = M(-value)``: a joint's motion undone (``Rz`` or ``Tz``)."""
-    M = np.eye(4)
-    if prismatic:
-        M[2, 3] = -value
-    else:
-        cos, sin = math.cos(value), math.sin(value)
-        M[0, 0] = M[1, 1] = cos
-        M[0, 1], M[1, 0] = sin, -sin
-    return M
+def on_axis(chain: Chain) -> bool:
+    """Whether the last joint turns about an axis through the tool point.
 
-
-def base_move(prismatic: bool, G: FloatArray, G_inv: FloatArray, value: float) -> FloatArray:
-    """``(4, 4)`` ``G₀ M(value)⁻¹ G₀⁻¹``: a target times it is the arm locked at 0's target.
-
-    What :func:`moved_targets` puts before one target when the first joint is held
-    at ``value`` (``G``: the chain's start, ``G_inv`` its inverse), for a caller
-    that moves many targets by one value.
+    Then ``T G⁻¹ M(v)⁻¹ G`` keeps the target's position (``G``'s translation is on the
+    axis ``M`` turns about): a target moved past the last joint is the same problem,
+    checked against the same tolerance, whatever the value (:data:`ON_AXIS_TOL`).
     """
-    return G @ _inverse_motion(prismatic, value) @ G_inv
+    found = chain.memo.get("tool on last axis")
+    if found is None:
+        G = chain.fixed_parts[-1] @ chain.tool
+        found = chain.memo["tool on last axis"] = not bool(chain.prismatic[-1]) and bool(
+            math.hypot(G[0, 3], G[1, 3]) <= ON_AXIS_TOL
+        )
+    return bool(found)
 
 
-def moved_targets(
-    prismatic: bool, k: int, G: FloatArray, G_inv: FloatArray, poses: FloatArray, v: FloatArray
-) -> FloatArray:
+def moved_pose(chain: Chain, k: int, T: FloatArray, value: float) -> FloatArray:
+    """``(4, 4)`` the target of the arm locked at 0 that is ``T`` with joint k at ``value``."""
+    A = _end(chain, k)[3]
+    f1, f2 = (-value, 0.0) if chain.prismatic[k] else (math.cos(value), math.sin(value))
+    move = A[0] + f1 * A[1] + f2 * A[2]
+    return np.dot(move, T) if k == 0 else np.dot(T, move)
+
+
+def rigid(T: FloatArray) -> bool:
+    """Whether ``T`` is one pose the core reads as it is, rigid to round-off.
+
+    ``(4, 4)`` C-contiguous floats passing the check of ``robot.ik``'s one-pose path
+    (``ROUNDOFF_TOL``). Such a pose moved by a rigid transform is one too: it is solved
+    as one pose.
+    """
+    if not (T.shape == (4, 4) and T.dtype == np.float64 and T.flags.c_contiguous):
+        return False
+    finite, last_row, ortho, det = _core.pose_defects(T)
+    return bool(finite and last_row == 0.0 and ortho <= ROUNDOFF_TOL and det > 0.0)
+
+
+def moved_targets(chain: Chain, k: int, poses: FloatArray, v: FloatArray) -> FloatArray:
     """``(N, 4, 4)`` targets of the arm locked at 0 that are ``poses`` with joint k at ``v``."""
     if v.size == 1:  # one target: 4x4 products
-        if k == 0:
-            return (base_move(prismatic, G, G_inv, float(v[0])) @ poses[0])[None]
-        return (poses[0] @ G_inv @ _inverse_motion(prismatic, float(v[0])) @ G)[None]
-    inverse = np.zeros((v.size, 4, 4))  # M(v)⁻¹ = M(-v), one per target
-    inverse[:, 3, 3] = 1.0
-    if prismatic:
-        inverse[:, 0, 0] = inverse[:, 1, 1] = inverse[:, 2, 2] = 1.0
-        inverse[:, 2, 3] = -v
-    else:
-        c, s = np.cos(v), np.sin(v)
-        inverse[:, 0, 0] = inverse[:, 1, 1] = c
-        inverse[:, 0, 1], inverse[:, 1, 0] = s, -s
-        inverse[:, 2, 2] = 1.0
-    if k == 0:
-        return np.ascontiguousarray(G @ (inverse @ (G_inv @ poses)))
-    return np.ascontiguousarray(((poses @ G_inv) @ inverse) @ G)
+        return moved_pose(chain, k, poses[0], float(v[0]))[None]
+    A = _end(chain, k)[3]
+    f1, f2 = (-v, np.zeros_like(v)) if chain.prismatic[k] else (np.cos(v), np.sin(v))
+    move = A[0] + f1[:, None, None] * A[1] + f2[:, None, None] * A[2]
+    return np.ascontiguousarray(move @ poses if k == 0 else poses @ move)
 
 
 def narrowed_tolerance(
-    tol: object, prismatic: bool, k: int, G: FloatArray, G_inv: FloatArray, v: FloatArray
+    tol: object, chain: Chain, k: int, v: FloatArray
 ) -> tuple[float, float] | None:
     """The position tolerance a target moved past the last joint is held to, or None.
 
@@ -105,17 +170,15 @@ def narrowed_tolerance(
 
     Args:
         tol: The tolerance as ``robot.ik`` takes it (None: the defaults).
-        prismatic: The last joint slides.
-        k: Its index.
-        G: ``(4, 4)`` its last fixed part times the tool; ``G_inv`` its inverse.
-        G_inv: See ``G``.
+        chain: The arm.
+        k: Its last joint's index.
         v: ``(N,)`` the values the targets are moved by.
 
     Returns:
         ``(position m, rotation rad)``, or None.
     """
     given = parse_tolerance(tol)  # type: ignore[arg-type]
-    Y = moved_targets(prismatic, k, G, G_inv, np.broadcast_to(np.eye(4), (v.size, 4, 4)), v)
+    Y = moved_targets(chain, k, np.broadcast_to(np.eye(4), (v.size, 4, 4)), v)
     shift = float(np.linalg.norm(Y[:, :3, 3], axis=1).max())
     position = given.position - given.rotation * shift
     return (position, given.rotation) if position >= NARROWEST * given.position else None

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections import OrderedDict
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Protocol
@@ -29,7 +28,16 @@ from kinematica.core import Chain
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.held_continuum import continuum_answer
 from kinematica.ik.held_near import near_continuum_answer
-from kinematica.ik.moved import end_arm, moved_targets, narrowed_tolerance
+from kinematica.ik.moved import (
+    LOCKED_CACHE,
+    end_arm,
+    locked_chain,
+    moved_pose,
+    moved_targets,
+    narrowed_tolerance,
+    on_axis,
+    rigid,
+)
 from kinematica.ik.request import IKRequest
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.solve import solve_ik
@@ -51,26 +59,6 @@ if TYPE_CHECKING:
     from kinematica.ik.options import IKOptions
 
 FloatArray = NDArray[np.float64]
-
-#: Locked arms kept per chain, least recently used first out (a sweep over a middle
-#: joint's values builds one per value; the first and last joints' are kept apart,
-#: :func:`kinematica.ik.moved.end_arm`).
-LOCKED_CACHE = 16
-
-
-def locked_chain(chain: Chain, joint: int, value: float) -> Chain:
-    """``chain.locked(joint, value)``, built once and kept (:data:`LOCKED_CACHE` per chain)."""
-    per: OrderedDict[tuple[int, float], Chain]
-    per = chain.memo.setdefault("locked arms", OrderedDict())  # type: ignore[assignment]
-    key = (joint, float(value))
-    found = per.get(key)
-    if found is None:
-        found = per[key] = chain.locked(joint, value)
-        if len(per) > LOCKED_CACHE:
-            per.popitem(last=False)
-    else:
-        per.move_to_end(key)
-    return found
 
 
 class Parameter(Protocol):
@@ -189,9 +177,10 @@ class JointParameter:
         A pose target of the first or last joint: the value only moves the base or
         the tool, so the arm locked at 0 is built once and the targets are moved
         instead (``T' = G₀ M(v)⁻¹ G₀⁻¹ T`` for the first, ``T G⁻¹ M(v)⁻¹ G`` for the
-        last, ``G₀`` the chain's start, ``G`` the last fixed part times the tool).
-        Otherwise (a middle joint, a position target, a mask, or fewer than 6
-        joints left) one locked arm per value.
+        last, ``G₀`` the chain's start, ``G`` the last fixed part times the tool;
+        the last joint's for one value only where the tool point is on its axis,
+        :func:`~kinematica.ik.moved.on_axis`). Otherwise (a middle joint, a position
+        target, a mask, or fewer than 6 joints left) one locked arm per value.
 
         Args:
             chain: The whole arm.
@@ -230,31 +219,34 @@ class JointParameter:
         first = float(v[0]) if N else self.default(chain)
         same = scalar or bool(np.all(v == first))
         # The first joint's value turns the base frame about its axis: the moved target
-        # is the same problem, distances and angles kept. The last joint's moves the tool
-        # point: worth it only for values that differ per target (one locked arm for a
-        # sweep), checked against a narrower tolerance (see narrowed_tolerance). A mask's
-        # components and an over-determined target's printed digits would not be the
-        # ones given: those targets are solved as they are.
-        moved = (
-            not targets.position
-            and options.mask is None
-            and n - 1 >= 6
-            and (k == 0 or (k == n - 1 and not same))
-        )
+        # is the same problem, distances and angles kept. So is the last joint's where the
+        # tool point is on its axis (on_axis): one locked arm serves every value. Else the
+        # last joint's moves the tool point: worth it only for values that differ per
+        # target (one locked arm for a sweep), checked against a narrower tolerance (see
+        # narrowed_tolerance). A mask's components and an over-determined target's printed
+        # digits would not be the ones given: those targets are solved as they are.
+        moved = not targets.position and options.mask is None and n - 1 >= 6
+        exact = moved and (k == 0 or (k == n - 1 and on_axis(chain)))
+        if exact and k and same:  # the held arm without a closed form: its neighbours'
+            exact = not self._continua(chain, 0.0, opts, targets)
+        moved = exact or (moved and k == n - 1 and not same)
         if moved:
-            if not parsed:
-                targets = parse_targets(target)
-            arm, G, G_inv = end_arm(chain, k)
-            if k == n - 1:
-                narrow = narrowed_tolerance(options.tol, chain.prismatic[k], k, G, G_inv, v)
+            arm = end_arm(chain, k)[0]
+            if not exact:
+                narrow = narrowed_tolerance(options.tol, chain, k, v)
                 moved = narrow is not None
                 if narrow is not None:
                     opts = opts.but(tol=narrow)
         try:
-            if moved:  # one locked arm, moved targets
-                poses = moved_targets(chain.prismatic[k], k, G, G_inv, targets.poses, v)
+            one = moved and not parsed and isinstance(target, np.ndarray) and rigid(target)
+            if one:  # one pose as the core reads it, moved as one
+                assert isinstance(target, np.ndarray)
+                out = solve_ik(arm, moved_pose(chain, k, target, first), opts)
+            elif moved:  # one locked arm, moved targets
+                targets = targets if parsed else parse_targets(target)
+                poses = moved_targets(chain, k, targets.poses, v)
                 out = solve_ik(arm, targets.replace(poses=poses), opts)
-                if k == n - 1 and isinstance(out, IKBatchResult):
+                if not exact and isinstance(out, IKBatchResult):
                     out = widen_batch(out, k, v, self.name)
                     return self._exact_gaps(chain, targets, v, out, options)
             elif same and not (N > 1 and self._continua(chain, first, opts, targets)):

@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 import kinematica._core as _core
-from kinematica.core import Chain
+from kinematica.core import Chain, resolve_workers
 from kinematica.errors import KinematicaError
 from kinematica.ik.arm_angle import ArmAngleParameter, arm_angle_parameter
 from kinematica.ik.local_search import LOCAL_SEARCH
@@ -37,7 +37,7 @@ from kinematica.ik.parameter import (
 from kinematica.ik.request import IKRequest
 from kinematica.ik.result import IKBatchResult, IKResult, amended
 from kinematica.ik.solve import REDUNDANT_DOF, solve_ik
-from kinematica.ik.solvers import closed_form
+from kinematica.ik.solvers import closed_form, plan_of
 from kinematica.ik.stack import replace_rows
 from kinematica.ik.targets import Targets, parse_q0, parse_targets
 
@@ -305,8 +305,10 @@ def _nearest_with_solutions(
 
     The parameter's candidates are :data:`PARAMETER_SWEEP` values evenly across its
     span; a target takes the nearest to its start value whose answer has a
-    solution (within the limits, when they are respected). The caller solves the
-    target again at that value, and keeps it only if that answer has one.
+    solution (within the limits, when they are respected; of two as near, the lower).
+    They are tried nearest first, a few more each round, and a target leaves the
+    rounds at its first value with one. The caller solves the target again at that
+    value, and keeps it only if that answer has one.
 
     Returns:
         The rows that have such a value, and the value of each.
@@ -315,41 +317,69 @@ def _nearest_with_solutions(
     if not (np.isfinite(lo) and np.isfinite(hi)) or not rows.size:
         return rows[:0], np.empty(0)
     grid = np.linspace(lo, hi, PARAMETER_SWEEP)
-    has = _has_solutions(chain, joint, targets.poses[rows], grid, options)
-    distance = np.where(has, np.abs(grid[None, :] - start[rows][:, None]), np.inf)
-    best = np.argmin(distance, axis=1)
-    ok = np.isfinite(distance[np.arange(rows.size), best])
+    # the grid in each target's order: nearest first, the lower of two as near first
+    order = np.argsort(np.abs(grid[None, :] - start[rows][:, None]), axis=1, kind="stable")
+    poses = targets.poses[rows]
+    request = IKRequest.of(options).but(q0=None, fixed=None)  # every value's, made once
+    best = np.full(rows.size, -1)
+    first, size = 0, 4
+    while first < grid.size:
+        todo = np.flatnonzero(best < 0)
+        if not todo.size:
+            break
+        ranks = order[todo, first : first + size]  # (t, r) grid indices to try
+        width = ranks.shape[1]
+        has = _has_solutions(
+            chain, joint, np.repeat(poses[todo], width, axis=0), grid[ranks.reshape(-1)], request
+        ).reshape(todo.size, width)
+        hit = has.any(axis=1)
+        best[todo[hit]] = ranks[hit, np.argmax(has[hit], axis=1)]
+        first, size = first + width, 2 * size
+    ok = best >= 0
     return rows[ok], grid[best[ok]]
 
 
 def _has_solutions(
-    chain: Chain, joint: Parameter, poses: FloatArray, grid: FloatArray, options: IKOptions
+    chain: Chain, joint: Parameter, poses: FloatArray, values: FloatArray, request: IKRequest
 ) -> NDArray[np.bool_]:
-    """``(M, S)`` True where pose i has a solution with the parameter at ``grid[j]``.
+    """``(M,)`` True where pose i has a solution with the parameter at ``values[i]``.
 
-    One batch of every pair: the first or last joint by the arm locked once with
-    the targets moved (:mod:`kinematica.ik.moved`), the arm angle by its solver at a
-    value per target; a middle joint one locked arm (one batch) per value.
+    The first or last joint by the arm locked once with the targets moved
+    (:mod:`kinematica.ik.moved`), its closed form alone (a target it finds nothing
+    for is not searched: this is a screen, its value confirmed by the caller); the arm
+    angle by its solver at a value per target; a middle joint one locked arm (one
+    batch) per value (``request``: without q0 or a held joint).
     """
-    M, S = poses.shape[0], grid.size
-    opts = dataclasses.replace(options, q0=None)
     if isinstance(joint, JointParameter) and joint.index in (0, chain.dof - 1):
-        arm, G, G_inv = end_arm(chain, joint.index)
-        moved = moved_targets(
-            joint.prismatic, joint.index, G, G_inv, np.repeat(poses, S, axis=0), np.tile(grid, M)
-        )
-        out = solve_ik(arm, moved, dataclasses.replace(opts, fixed=None))
-    elif isinstance(joint, ArmAngleParameter):
-        out = joint.solve(chain, np.repeat(poses, S, axis=0), np.tile(grid, M), opts)
-    else:
-        has = np.zeros((M, S), dtype=bool)
-        for j, v in enumerate(grid.tolist()):
-            one = joint.solve(chain, poses, v, opts)
-            assert isinstance(one, IKBatchResult)
-            has[:, j] = np.asarray(one.raw.count) > 0
-        return has
-    assert isinstance(out, IKBatchResult)
-    return np.asarray(out.raw.count).reshape(M, S) > 0
+        moved = moved_targets(chain, joint.index, poses, values)
+        return _screen(end_arm(chain, joint.index)[0], moved, request)
+    if isinstance(joint, ArmAngleParameter):
+        out = joint.solve(chain, poses, values, request)
+        assert isinstance(out, IKBatchResult)
+        return np.asarray(out.raw.count) > 0
+    has = np.zeros(values.size, dtype=bool)
+    for v in np.unique(values).tolist():
+        at = np.flatnonzero(values == v)
+        one = joint.solve(chain, np.ascontiguousarray(poses[at]), v, request)
+        assert isinstance(one, IKBatchResult)
+        has[at] = np.asarray(one.raw.count) > 0
+    return has
+
+
+def _screen(arm: Chain, poses: FloatArray, request: IKRequest) -> NDArray[np.bool_]:
+    """``(M,)`` True where the arm's closed form has a solution of pose i (else its answer's).
+
+    One core call of the closed form without the search that completes it: a screen
+    of candidate values, which the caller confirms by solving the target again.
+    """
+    plan = plan_of(arm, "pose", request)
+    if plan.closed is None or not plan.direct:
+        out = solve_ik(arm, poses, request)
+        assert isinstance(out, IKBatchResult)
+        return np.asarray(out.raw.count) > 0
+    workers = resolve_workers(request.workers)
+    raw = plan.solver.ik_batch(arm.core, poses, plan.options, None, None, workers)
+    return np.asarray(raw["count"]) > 0
 
 
 def default_value(chain: Chain, joint: Parameter) -> tuple[float, str]:
