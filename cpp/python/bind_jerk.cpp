@@ -172,7 +172,7 @@ nb::tuple jerk_via_move(F64 w, F64 v_start, F64 v_end, F64 vmax, F64 amax, F64 j
     out.velocity = vel;
     out.time = time;
     out.stop = stop;
-    kj::Pieces P;
+    thread_local kj::Pieces P;  // its memory kept from call to call (jerk_pieces.hpp)
     bool made = false;
     {
         nb::gil_scoped_release release;
@@ -227,6 +227,7 @@ void bind_jerk(nb::module_& m) {
           "jerk (m, n)); both None where a segment leaves qlim with stops, or duration/dt + k > "
           "max_samples.");
     m.attr("JERK_MAX_PHASES") = kj::MAX_PHASES;
+    m.attr("JERK_PIECE_RTOL") = kj::PIECE_RTOL;
 }
 
 }  // namespace kmpy

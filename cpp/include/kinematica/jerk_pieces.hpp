@@ -27,16 +27,6 @@ namespace km::jerk {
 //! leave a piece of 1e-17 s.
 constexpr double PIECE_RTOL = 1e-13;
 
-//! A move's exact pieces (cubic, lowest power first) and the largest |v|, |a|, |j| of each
-//! joint on them.
-struct Pieces {
-    int n = 0;                   //!< joints
-    std::vector<double> breaks;  //!< (p + 1) times (s)
-    std::vector<double> coef;    //!< (p, 4, n)
-    std::vector<double> knots;   //!< (k) the waypoints' times
-    std::vector<double> peak;    //!< (3, n) largest |velocity|, |acceleration|, |jerk|
-};
-
 namespace detail {
 
 //! A joint's profile: its phases' start times, states (p, v, a) and jerks.
@@ -45,6 +35,24 @@ struct Phases {
     double start[MAX_PHASES + 1];
     double p[MAX_PHASES], v[MAX_PHASES], a[MAX_PHASES], j[MAX_PHASES];
 };
+
+}  // namespace detail
+
+//! A move's exact pieces (cubic, lowest power first) and the largest |v|, |a|, |j| of each
+//! joint on them. Kept by a caller from move to move, its vectors keep their memory (a
+//! move's pieces fill some 100 kB: allocated afresh, the pages cost more than the move).
+struct Pieces {
+    int n = 0;                   //!< joints
+    std::vector<double> breaks;  //!< (p + 1) times (s)
+    std::vector<double> coef;    //!< (p, 4, n)
+    std::vector<double> knots;   //!< (k) the waypoints' times
+    std::vector<double> peak;    //!< (3, n) largest |velocity|, |acceleration|, |jerk|
+    // scratch of segment_pieces: each joint's phases, the switches, the segment's cuts
+    std::vector<detail::Phases> phases;
+    std::vector<double> cuts, local;
+};
+
+namespace detail {
 
 //! The phases of P from (p0, v0, 0), those of zero duration left out.
 inline void walk(double p0, double v0, const Profile& P, Phases& out) {
@@ -83,9 +91,11 @@ inline void piece_peaks(const double* c, int n, double h, double* peak) {
 //! ending at t1 = knots[i+1]) appended to out as pieces; out.breaks holds t0 already.
 inline void segment_pieces(int n, double t0, double t1, double T, const double* p0, const double* v0,
                            const double* p1, const double* v1, const Limits* L, Pieces& out) {
-    std::vector<detail::Phases> ph(static_cast<std::size_t>(n));
-    std::vector<double> cuts;
-    cuts.reserve(static_cast<std::size_t>(n) * MAX_PHASES);
+    std::vector<detail::Phases>& ph = out.phases;
+    std::vector<double>& cuts = out.cuts;
+    std::vector<double>& local = out.local;
+    ph.resize(static_cast<std::size_t>(n));
+    cuts.clear();
     Profile prof;
     for (int j = 0; j < n; ++j) {
         profile(T, p1[j] - p0[j], v0[j], v1[j], L[j], prof);
@@ -94,7 +104,7 @@ inline void segment_pieces(int n, double t0, double t1, double T, const double* 
     }
     std::sort(cuts.begin(), cuts.end());
     const double tol = PIECE_RTOL * std::max(T, 1.0);
-    std::vector<double> local{0.0};
+    local.assign(1, 0.0);
     for (const double c : cuts) {
         if (c - local.back() > tol && T - c > tol && t0 + c > t0 + local.back() && t0 + c < t1) local.push_back(c);
     }
