@@ -280,6 +280,7 @@ def speed() -> list[tuple[str, str, str]]:
         f"no joint sweeps {SWEEPS, GOLDEN_STEPS, 0}": (SWEEPS, GOLDEN_STEPS, 0),
         f"two joint sweeps {SWEEPS, GOLDEN_STEPS, 2}": (SWEEPS, GOLDEN_STEPS, 2),
     }
+    lim = {"vmax": V, "amax": A, "jmax": J, "dt": 0.01}
     for k in (5, 10, 20):
         W = np.cumsum(rng.uniform(-0.6, 0.9, (k, n)), axis=0)
         z = np.zeros(n)
@@ -306,24 +307,22 @@ def speed() -> list[tuple[str, str, str]]:
         qlim = np.stack([W.min(axis=0) - edge[0], W.max(axis=0) + edge[1]], axis=1)
         default = (SWEEPS, GOLDEN_STEPS, JOINT_SWEEPS)
         t_q = per_call(
-            lambda W=W, z=z, q=qlim: jerk_via(W, z, z, (V, A, J), q, POSITION_ATOL, default), 30
+            lambda W=W, z=z, q=qlim, s=default: jerk_via(W, z, z, (V, A, J), q, POSITION_ATOL, s),
+            30,
         )
         t_q /= k - 1
         for label, kw, t_alone in (("", {}, t_default), (" with qlim", {"qlim": qlim}, t_q)):
             if kw:
                 rows.append(
                     (
-                        f"  the search with qlim (default), per segment",
+                        "  the search with qlim (default), per segment",
                         fmt_time(t_q),
                         f"{t_q / t_rkz:.1f}x ruckig's segment",
                     )
                 )
-            per_seg = per_call(
-                lambda W=W, kw=kw: via_trajectory(W, "scurve", vmax=V, amax=A, jmax=J, dt=0.01, **kw),
-                10,
-            )
+            per_seg = per_call(lambda W=W, kw=kw: via_trajectory(W, "scurve", **lim, **kw), 10)
             per_seg /= k - 1
-            traj = via_trajectory(W, "scurve", vmax=V, amax=A, jmax=J, dt=0.01, **kw)
+            traj = via_trajectory(W, "scurve", **lim, **kw)
             assert isinstance(traj, JerkTrajectory) and traj.margin is not None
             rows.append(
                 (

@@ -11,11 +11,11 @@ each segment.
 
 from __future__ import annotations
 
+import kinematica._core as _core
 import numpy as np
 import pytest
 from support.scurve_reference import random_limits
 
-import kinematica._core as _core
 from kinematica.core.jerk import jerk_segments, jerk_via, jerk_via_move
 from kinematica.errors import ArgumentError
 from kinematica.motion import via_trajectory
@@ -24,15 +24,13 @@ from kinematica.motion.samples import MAX_SAMPLES
 from kinematica.motion.scurve_via import GOLDEN_STEPS, JOINT_SWEEPS, POSITION_ATOL, SWEEPS
 
 #: The core's merge of switches closer than this fraction of a segment's duration.
-PIECE_RTOL: float = getattr(_core, "JERK_PIECE_RTOL", 1e-13)
+PIECE_RTOL: float = _core.JERK_PIECE_RTOL
 #: The state from the pieces against the phases integrated in Python (rad, rad/s, ...).
 STATE_ATOL = 1e-11
 SEARCH = (SWEEPS, GOLDEN_STEPS, JOINT_SWEEPS)
 
 
-def _phase_state(
-    p0: float, v0: float, t: np.ndarray, j: np.ndarray, tau: np.ndarray
-) -> np.ndarray:
+def _phase_state(p0: float, v0: float, t: np.ndarray, j: np.ndarray, tau: np.ndarray) -> np.ndarray:
     """``(4, m)`` position, velocity, acceleration, jerk at local times ``tau`` of phases
     ``t, j`` from ``(p0, v0, 0)``: each phase's start state integrated, then the cubic."""
     starts = np.concatenate([[0.0], np.cumsum(t)])
@@ -140,7 +138,17 @@ def test_too_many_samples_and_unkept_limits_make_nothing() -> None:
     with pytest.raises(ArgumentError, match="samples"):
         via_trajectory(w, "scurve", vmax=1, amax=1, jmax=1, dt=1e-9)
     up = np.array([[0.99], [0.5], [0.0]])
-    move = jerk_via_move(up, np.array([0.9]), z, one, np.array([[-1.0, 1.0]]), POSITION_ATOL, SEARCH, 0.01, MAX_SAMPLES)
+    move = jerk_via_move(
+        up,
+        np.array([0.9]),
+        z,
+        one,
+        np.array([[-1.0, 1.0]]),
+        POSITION_ATOL,
+        SEARCH,
+        0.01,
+        MAX_SAMPLES,
+    )
     assert move.samples is None and not np.isfinite(move.choice.stop[0])
 
 

@@ -160,7 +160,13 @@ def jerk_via_move(
     """:func:`jerk_via`'s search, then the move's exact pieces and samples, in one call.
 
     Args:
-        w, v_start, v_end, limits, qlim, qlim_atol, search: As :func:`jerk_via`.
+        w: ``(k, n)`` waypoints, no two in a row equal.
+        v_start: ``(n,)`` the velocity at the first waypoint.
+        v_end: ``(n,)`` the velocity at the last waypoint.
+        limits: ``(vmax, amax, jmax)``, each ``(n,)``.
+        qlim: ``(n, 2)`` position limits every segment keeps, or ``None``.
+        qlim_atol: How far a segment's extreme may pass a position limit.
+        search: ``(sweeps, golden_steps, joint_sweeps)`` (``jerk_via.hpp``).
         dt: Largest sample spacing (s), > 0.
         max_samples: No pieces or samples are made where ``duration / dt + k`` exceeds it.
 
@@ -176,4 +182,5 @@ def jerk_via_move(
     choice = ViaChoice(velocity, time, stop, int(evaluations))
     if exact is None:
         return ViaMove(choice, None, None, None, None, None)
-    return ViaMove(choice, *exact, samples)
+    breaks, coef, knots, peak = exact
+    return ViaMove(choice, breaks, coef, knots, peak, samples)

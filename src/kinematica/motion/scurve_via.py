@@ -137,32 +137,24 @@ def scurve_via(
             segments leave ``qlim`` even with a stop at every waypoint.
     """
     k, n = w.shape
-    vm, am = limits_from(vmax, n, "vmax"), limits_from(amax, n, "amax")
-    jm = limits_from(jmax, n, "jmax")
+    limits = _limits((vmax, amax, jmax), n)
     lim = _qlim(qlim, w)
-    same = np.all(np.diff(w, axis=0) == 0.0, axis=1)
-    if same.any():
-        i = int(np.flatnonzero(same)[0])
-        raise KinematicaError(f"waypoints {i + 1} and {i + 2} are equal: drop one")
     v_start, v_end = state_from(qd0, n, "qd0"), state_from(qd1, n, "qd1")
     for name, x in (("qdd0", qdd0), ("qdd1", qdd1)):
-        if np.any(state_from(x, n, name) != 0.0):
+        if x is not None and np.any(state_from(x, n, name) != 0.0):
             raise KinematicaError(
                 f"through waypoints the acceleration is zero at every waypoint, the ends "
                 f"included: {name} must be 0; joint_trajectory(..., profile='scurve') "
                 "moves from or to an accelerating state",
                 arg=name,
             )
-    for name, x in (("qd0", v_start), ("qd1", v_end)):
-        over = np.abs(x) > vm
-        if over.any():
-            j = int(np.flatnonzero(over)[0])
-            raise KinematicaError(
-                f"{name} of joint {j + 1} is {x[j]:g}, beyond its vmax {vm[j]:g}", arg=name
-            )
-    limits = (vm, am, jm)
     search = (SWEEPS, GOLDEN_STEPS, JOINT_SWEEPS)
-    move = jerk_via_move(w, v_start, v_end, limits, lim, POSITION_ATOL, search, dt, MAX_SAMPLES)
+    lims = (limits[0], limits[1], limits[2])
+    try:  # the core checks the limits, the end velocities and the waypoints
+        move = jerk_via_move(w, v_start, v_end, lims, lim, POSITION_ATOL, search, dt, MAX_SAMPLES)
+    except ValueError:
+        _refused(w, limits, v_start, v_end)
+        raise
     choice = move.choice
     if not np.all(np.isfinite(choice.stop)):
         i = int(np.flatnonzero(~np.isfinite(choice.stop))[0])
@@ -177,7 +169,7 @@ def scurve_via(
     traj = JerkTrajectory(*move.samples[:4])
     traj.qddd = move.samples[4]
     traj.pieces = PiecewisePolynomial(move.breaks, move.coef, move.knots)  # type: ignore[arg-type]
-    traj.vmax, traj.amax, traj.jmax = limits
+    traj.vmax, traj.amax, traj.jmax = lims
     traj.waypoint_times = move.knots
     traj.waypoint_qd = choice.velocity
     traj.stop_duration = float(choice.stop.sum())
@@ -185,16 +177,61 @@ def scurve_via(
     return traj
 
 
-def _check_peaks(peak: FloatArray, limits: tuple[FloatArray, ...]) -> None:
+def _limits(given: tuple[ArrayLike | None, ...], n: int) -> FloatArray:
+    """``(3, n)`` vmax, amax, jmax as numbers (a number or ``(n,)`` each).
+
+    The core checks their values, and :func:`_refused` names a bad one.
+
+    Raises:
+        KinematicaError: A limit missing.
+        DimensionError: A limit of the wrong shape or not numbers.
+    """
+    out = np.empty((3, n))
+    for row, (x, name) in enumerate(zip(given, ("vmax", "amax", "jmax"), strict=True)):
+        if x is None:
+            limits_from(x, n, name)  # raises: the limit is needed
+        try:
+            out[row] = x
+        except (TypeError, ValueError):
+            limits_from(x, n, name)  # raises with the shape
+            raise
+    return out
+
+
+def _refused(w: FloatArray, limits: FloatArray, v_start: FloatArray, v_end: FloatArray) -> None:
+    """Name the input the core refused (it says only which argument).
+
+    Raises:
+        KinematicaError: A limit not positive (the joint named), two equal waypoints in
+            a row, an end velocity beyond vmax.
+        DimensionError: A limit NaN or inf.
+    """
+    n = w.shape[1]
+    for row, name in enumerate(("vmax", "amax", "jmax")):
+        limits_from(limits[row], n, name)
+    same = np.all(np.diff(w, axis=0) == 0.0, axis=1)
+    if same.any():
+        i = int(np.flatnonzero(same)[0])
+        raise KinematicaError(f"waypoints {i + 1} and {i + 2} are equal: drop one")
+    for name, x in (("qd0", v_start), ("qd1", v_end)):
+        over = np.abs(x) > limits[0]
+        if over.any():
+            j = int(np.flatnonzero(over)[0])
+            raise KinematicaError(
+                f"{name} of joint {j + 1} is {x[j]:g}, beyond its vmax {limits[0, j]:g}", arg=name
+            )
+
+
+def _check_peaks(peak: FloatArray, limits: FloatArray) -> None:
     """Raise when a joint's exact peak speed, acceleration or jerk exceeds its limit.
 
     The core's profiles hold the limits by construction; this check makes a broken
     promise an error instead of a trajectory that a drive refuses.
     """
-    over = peak > np.stack(limits) * (1.0 + LIMIT_RTOL)
+    over = peak > limits * (1.0 + LIMIT_RTOL)
     if over.any():
         order, j = (int(x[0]) for x in np.nonzero(over))
         name = ("vmax", "amax", "jmax")[order]
         raise KinematicaError(
-            f"joint {j + 1} would reach {peak[order, j]:.9g} > {name} {limits[order][j]:g}"
+            f"joint {j + 1} would reach {peak[order, j]:.9g} > {name} {limits[order, j]:g}"
         )
