@@ -165,7 +165,13 @@ def scurve_via(
     duration = float(choice.time.sum())
     check_size(duration / dt + k, MAX_SAMPLES, "dt", f"samples ({duration:g} s every {dt!r} s)")
     assert move.samples is not None and move.peak is not None and move.knots is not None
-    _check_peaks(move.peak, limits)
+    # the core's profiles hold the limits by construction: a broken promise is an error,
+    # not a trajectory a drive refuses
+    over = move.peak > limits * (1.0 + LIMIT_RTOL)
+    if over.any():
+        order, j = (int(x[0]) for x in np.nonzero(over))
+        name, peak = ("vmax", "amax", "jmax")[order], move.peak[order, j]
+        raise KinematicaError(f"joint {j + 1} would reach {peak:.9g} > {name} {limits[order, j]:g}")
     traj = JerkTrajectory(*move.samples[:4])
     traj.qddd = move.samples[4]
     traj.pieces = PiecewisePolynomial(move.breaks, move.coef, move.knots)  # type: ignore[arg-type]
@@ -220,18 +226,3 @@ def _refused(w: FloatArray, limits: FloatArray, v_start: FloatArray, v_end: Floa
             raise KinematicaError(
                 f"{name} of joint {j + 1} is {x[j]:g}, beyond its vmax {limits[0, j]:g}", arg=name
             )
-
-
-def _check_peaks(peak: FloatArray, limits: FloatArray) -> None:
-    """Raise when a joint's exact peak speed, acceleration or jerk exceeds its limit.
-
-    The core's profiles hold the limits by construction; this check makes a broken
-    promise an error instead of a trajectory that a drive refuses.
-    """
-    over = peak > limits * (1.0 + LIMIT_RTOL)
-    if over.any():
-        order, j = (int(x[0]) for x in np.nonzero(over))
-        name = ("vmax", "amax", "jmax")[order]
-        raise KinematicaError(
-            f"joint {j + 1} would reach {peak[order, j]:.9g} > {name} {limits[order, j]:g}"
-        )
