@@ -10,7 +10,9 @@ Run with ``make bench`` (or ``.venv/bin/python benchmarks/scurve.py [--cases N]`
   segment at zero accelerations (``jerk.hpp``) beside ruckig on the same
   states; and through waypoints: the core's search of the waypoint velocities
   alone per segment (the default search, none of each joint's own speed, and
-  two sweeps of it), and the whole ``via_trajectory(W, "scurve")`` per segment.
+  two sweeps of it), and the whole ``via_trajectory(W, "scurve")`` per segment
+  (search, exact pieces and samples every 10 ms, all in the core) against the
+  search alone; both again with position limits 0-2 cm outside the waypoints.
 * Audit on ``--cases`` random cases (10,000 by default), 1 to 7 joints:
   rest-to-rest durations against the hand-derived closed form
   (``tests/support/scurve_reference.py``; the slowest joint's time), and from
@@ -29,7 +31,6 @@ from __future__ import annotations
 
 import argparse
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -279,6 +280,7 @@ def speed() -> list[tuple[str, str, str]]:
         f"no joint sweeps {SWEEPS, GOLDEN_STEPS, 0}": (SWEEPS, GOLDEN_STEPS, 0),
         f"two joint sweeps {SWEEPS, GOLDEN_STEPS, 2}": (SWEEPS, GOLDEN_STEPS, 2),
     }
+    lim = {"vmax": V, "amax": A, "jmax": J, "dt": 0.01}
     for k in (5, 10, 20):
         W = np.cumsum(rng.uniform(-0.6, 0.9, (k, n)), axis=0)
         z = np.zeros(n)
@@ -298,20 +300,39 @@ def speed() -> list[tuple[str, str, str]]:
                     f"{saving:.1%} shorter than stopping",
                 )
             )
-        t0 = time.perf_counter()
-        reps = 5
-        for _ in range(reps):
-            traj = via_trajectory(W, "scurve", vmax=V, amax=A, jmax=J, dt=0.01)
-        per_seg = (time.perf_counter() - t0) / reps / (k - 1)
-        assert isinstance(traj, JerkTrajectory) and traj.margin is not None
-        rows.append(
-            (
-                "  via_trajectory(W, 'scurve') (default search), per segment",
-                fmt_time(per_seg),
-                f"{per_seg / t_rkz:.0f}x ruckig's segment (exact pieces, 10 ms samples); "
-                f"{traj.margin:.3f} s shorter than stopping",
-            )
+            if search == (SWEEPS, GOLDEN_STEPS, JOINT_SWEEPS):
+                t_default = t_search
+        # position limits 0-2 cm outside the waypoints' range: some segments must slow
+        edge = rng.uniform(0.0, 0.02, (2, n))
+        qlim = np.stack([W.min(axis=0) - edge[0], W.max(axis=0) + edge[1]], axis=1)
+        default = (SWEEPS, GOLDEN_STEPS, JOINT_SWEEPS)
+        t_q = per_call(
+            lambda W=W, z=z, q=qlim, s=default: jerk_via(W, z, z, (V, A, J), q, POSITION_ATOL, s),
+            30,
         )
+        t_q /= k - 1
+        for label, kw, t_alone in (("", {}, t_default), (" with qlim", {"qlim": qlim}, t_q)):
+            if kw:
+                rows.append(
+                    (
+                        "  the search with qlim (default), per segment",
+                        fmt_time(t_q),
+                        f"{t_q / t_rkz:.1f}x ruckig's segment",
+                    )
+                )
+            per_seg = per_call(lambda W=W, kw=kw: via_trajectory(W, "scurve", **lim, **kw), 10)
+            per_seg /= k - 1
+            traj = via_trajectory(W, "scurve", **lim, **kw)
+            assert isinstance(traj, JerkTrajectory) and traj.margin is not None
+            rows.append(
+                (
+                    f"  via_trajectory(W, 'scurve'){label}, per segment",
+                    fmt_time(per_seg),
+                    f"{per_seg / t_alone:.2f}x the search, {per_seg / t_rkz:.1f}x ruckig's segment "
+                    f"(exact pieces, {traj.t.size} samples at 10 ms); "
+                    f"{traj.margin:.3f} s shorter than stopping",
+                )
+            )
     return rows
 
 

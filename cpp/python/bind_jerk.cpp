@@ -1,12 +1,14 @@
 // Jerk-limited segments at zero acceleration and moves through waypoints (jerk.hpp,
 // jerk_via.hpp) for kinematica.motion.scurve_via: every array checked here before the core
 // sees it.
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "common.hpp"
 #include "kinematica/jerk.hpp"
+#include "kinematica/jerk_pieces.hpp"
 #include "kinematica/jerk_via.hpp"
 #include "numpy_io.hpp"
 
@@ -78,20 +80,31 @@ nb::tuple jerk_segments(F64 p0, F64 v0, F64 p1, F64 v1, F64 vmax, F64 amax, F64 
     return nb::make_tuple(To, to, jo, po);
 }
 
-nb::tuple jerk_via(F64 w, F64 v_start, F64 v_end, F64 vmax, F64 amax, F64 jmax, nb::object qlim, double qlim_atol,
-                   int sweeps, int golden_steps, int joint_sweeps) {
-    const In W = in_f64(w, "w", 2);
-    const npy_intp k = W.dim[0], n = W.dim[1];
+//! The checked problem of a move through waypoints: the arrays (held), the limits, the
+//! core's structs.
+struct ViaArgs {
+    In W, VS, VE, Q;
+    std::vector<kj::Limits> L;
+    kj::Via P;
+    kj::ViaParams prm;
+};
+
+void via_args(ViaArgs& A, F64 w, F64 v_start, F64 v_end, F64 vmax, F64 amax, F64 jmax, nb::object qlim,
+              double qlim_atol, int sweeps, int golden_steps, int joint_sweeps) {
+    A.W = in_f64(w, "w", 2);
+    const npy_intp k = A.W.dim[0], n = A.W.dim[1];
     if (k < 2 || n < 1) fail_value("w", "of at least 2 waypoints of at least one joint");
-    const In VS = in_f64(v_start, "v_start", 1, {n}), VE = in_f64(v_end, "v_end", 1, {n});
+    A.VS = in_f64(v_start, "v_start", 1, {n});
+    A.VE = in_f64(v_end, "v_end", 1, {n});
     const In VM = in_f64(vmax, "vmax", 1, {n}), AM = in_f64(amax, "amax", 1, {n}), JM = in_f64(jmax, "jmax", 1, {n});
-    const std::vector<kj::Limits> L = limits_of(VM, AM, JM);
-    check_states(W, "w", nullptr);
-    check_states(VS, "v_start", &L);
-    check_states(VE, "v_end", &L);
+    A.L = limits_of(VM, AM, JM);
+    check_states(A.W, "w", nullptr);
+    check_states(A.VS, "v_start", &A.L);
+    check_states(A.VE, "v_end", &A.L);
+    const double* W = A.W.data;
     for (npy_intp i = 0; i + 1 < k; ++i) {
         bool same = true;
-        for (npy_intp j = 0; j < n; ++j) same = same && W.data[i * n + j] == W.data[(i + 1) * n + j];
+        for (npy_intp j = 0; j < n; ++j) same = same && W[i * n + j] == W[(i + 1) * n + j];
         if (same) fail_value("w", "without two equal waypoints in a row");
     }
     if (!(qlim_atol >= 0.0 && std::isfinite(qlim_atol))) fail_value("qlim_atol", "finite and >= 0");
@@ -99,39 +112,96 @@ nb::tuple jerk_via(F64 w, F64 v_start, F64 v_end, F64 vmax, F64 amax, F64 jmax, 
         golden_steps > 100) {
         fail_value("sweeps, golden_steps, joint_sweeps", "0-100, 2-100, 0-100");
     }
-    In Q;
     if (!qlim.is_none()) {
-        Q = in_f64(qlim, "qlim", 2, {n, 2});
+        A.Q = in_f64(qlim, "qlim", 2, {n, 2});
         for (npy_intp j = 0; j < n; ++j) {
-            if (std::isnan(Q.data[2 * j]) || std::isnan(Q.data[2 * j + 1]) || Q.data[2 * j] > Q.data[2 * j + 1]) {
+            if (std::isnan(A.Q.data[2 * j]) || std::isnan(A.Q.data[2 * j + 1]) || A.Q.data[2 * j] > A.Q.data[2 * j + 1]) {
                 fail_value("qlim", "low <= high, not NaN");
             }
         }
     }
+    A.P.k = static_cast<int>(k);
+    A.P.n = static_cast<int>(n);
+    A.P.w = W;
+    A.P.v_start = A.VS.data;
+    A.P.v_end = A.VE.data;
+    A.P.limits = A.L.data();
+    A.P.qlim = qlim.is_none() ? nullptr : A.Q.data;
+    A.P.qlim_atol = qlim_atol;
+    A.prm.sweeps = sweeps;
+    A.prm.golden_steps = golden_steps;
+    A.prm.joint_sweeps = joint_sweeps;
+}
+
+nb::tuple jerk_via(F64 w, F64 v_start, F64 v_end, F64 vmax, F64 amax, F64 jmax, nb::object qlim, double qlim_atol,
+                   int sweeps, int golden_steps, int joint_sweeps) {
+    ViaArgs A;
+    via_args(A, w, v_start, v_end, vmax, amax, jmax, qlim, qlim_atol, sweeps, golden_steps, joint_sweeps);
+    const npy_intp k = A.P.k, n = A.P.n;
     double *vel, *time, *stop;
     nb::object Vo = new_f64({k, n}, vel), To = new_f64({k - 1}, time), So = new_f64({k - 1}, stop);
-    kj::Via P;
-    P.k = static_cast<int>(k);
-    P.n = static_cast<int>(n);
-    P.w = W.data;
-    P.v_start = VS.data;
-    P.v_end = VE.data;
-    P.limits = L.data();
-    P.qlim = qlim.is_none() ? nullptr : Q.data;
-    P.qlim_atol = qlim_atol;
-    kj::ViaParams prm;
-    prm.sweeps = sweeps;
-    prm.golden_steps = golden_steps;
-    prm.joint_sweeps = joint_sweeps;
     kj::ViaOutput out;
     out.velocity = vel;
     out.time = time;
     out.stop = stop;
     {
         nb::gil_scoped_release release;
-        kj::via(P, prm, out);
+        kj::via(A.P, A.prm, out);
     }
     return nb::make_tuple(Vo, To, So, out.evaluations);
+}
+
+//! A vector's values as a new array of the given shape.
+F64 array_of(const std::vector<double>& x, std::initializer_list<npy_intp> dims) {
+    double* d;
+    F64 o = new_f64(dims, d);
+    std::copy(x.begin(), x.end(), d);
+    return o;
+}
+
+nb::tuple jerk_via_move(F64 w, F64 v_start, F64 v_end, F64 vmax, F64 amax, F64 jmax, nb::object qlim,
+                        double qlim_atol, int sweeps, int golden_steps, int joint_sweeps, double dt,
+                        double max_samples) {
+    ViaArgs A;
+    via_args(A, w, v_start, v_end, vmax, amax, jmax, qlim, qlim_atol, sweeps, golden_steps, joint_sweeps);
+    if (!(dt > 0.0 && std::isfinite(dt))) fail_value("dt", "finite and positive");
+    const npy_intp k = A.P.k, n = A.P.n;
+    double *vel, *time, *stop;
+    nb::object Vo = new_f64({k, n}, vel), To = new_f64({k - 1}, time), So = new_f64({k - 1}, stop);
+    kj::ViaOutput out;
+    out.velocity = vel;
+    out.time = time;
+    out.stop = stop;
+    thread_local kj::Pieces P;  // its memory kept from call to call (jerk_pieces.hpp)
+    bool made = false;
+    {
+        nb::gil_scoped_release release;
+        kj::via(A.P, A.prm, out);
+        double duration = 0.0;
+        bool finite = true;
+        for (npy_intp i = 0; i + 1 < k; ++i) {
+            finite = finite && std::isfinite(stop[i]);
+            duration += time[i];
+        }
+        // a segment that leaves qlim even with stops, or too many samples: the caller says so
+        if (finite && duration / dt + static_cast<double>(k) <= max_samples) {
+            kj::move_pieces(A.P.k, A.P.n, A.P.w, vel, time, A.L.data(), P);
+            made = true;
+        }
+    }
+    if (!made) return nb::make_tuple(Vo, To, So, out.evaluations, nb::none(), nb::none());
+    const npy_intp pieces = static_cast<npy_intp>(P.breaks.size()) - 1;
+    const nb::tuple exact = nb::make_tuple(array_of(P.breaks, {pieces + 1}), array_of(P.coef, {pieces, 4, n}),
+                                           array_of(P.knots, {k}), array_of(P.peak, {3, n}));
+    const npy_intp m = kj::sample_count(P.knots, dt);
+    double *t, *q, *qd, *qdd, *qddd;
+    nb::object to = new_f64({m}, t), qo = new_f64({m, n}, q), qdo = new_f64({m, n}, qd);
+    nb::object qddo = new_f64({m, n}, qdd), qdddo = new_f64({m, n}, qddd);
+    {
+        nb::gil_scoped_release release;
+        kj::move_samples(P, dt, A.W.data + (k - 1) * n, A.VE.data, t, q, qd, qdd, qddd);
+    }
+    return nb::make_tuple(Vo, To, So, out.evaluations, exact, nb::make_tuple(to, qo, qdo, qddo, qdddo));
 }
 
 }  // namespace
@@ -148,7 +218,16 @@ void bind_jerk(nb::module_& m) {
           "Velocities at the waypoints w (k, n) of a jerk-limited move through them (zero acceleration at "
           "each), chosen to shorten it. Returns (velocity (k, n), time (k-1,), stop (k-1,), evaluations): "
           "the segments' durations, and with a stop at every waypoint (inf: leaves qlim).");
+    m.def("jerk_via_move", &jerk_via_move, nb::arg("w"), nb::arg("v_start"), nb::arg("v_end"), nb::arg("vmax"),
+          nb::arg("amax"), nb::arg("jmax"), nb::arg("qlim").none(), nb::arg("qlim_atol"), nb::arg("sweeps"),
+          nb::arg("golden_steps"), nb::arg("joint_sweeps"), nb::arg("dt"), nb::arg("max_samples"),
+          "jerk_via's search, then the move's exact pieces and samples every dt or closer (every knot a "
+          "sample). Returns (velocity, time, stop, evaluations, pieces, samples): pieces (breaks (p+1,), "
+          "coef (p, 4, n), knots (k,), peak (3, n): largest |v|, |a|, |j|), samples (t (m,), q, qd, qdd, "
+          "jerk (m, n)); both None where a segment leaves qlim with stops, or duration/dt + k > "
+          "max_samples.");
     m.attr("JERK_MAX_PHASES") = kj::MAX_PHASES;
+    m.attr("JERK_PIECE_RTOL") = kj::PIECE_RTOL;
 }
 
 }  // namespace kmpy

@@ -114,6 +114,10 @@ def test_ends_that_must_leave_the_limits_are_refused() -> None:
     [
         ({"jmax": -1.0}, KinematicaError, "jmax must be positive"),
         ({"jmax": None}, KinematicaError, "needs jmax"),
+        ({"vmax": [np.nan, 1.0]}, DimensionError, "vmax holds NaN"),
+        ({"amax": [1.0, 2.0, 3.0]}, DimensionError, "amax must be a number or 2 values"),
+        ({"amax": "fast"}, DimensionError, "amax must be"),
+        ({"qd1": [0.0, -1.5]}, KinematicaError, "qd1 of joint 2 is -1.5, beyond its vmax 1"),
         ({"times": [0, 1, 2]}, KinematicaError, "drop times"),
         ({"tacc": 0.1}, KinematicaError, "drop tacc"),
         ({"qlim": [[0.0, 1.0]]}, DimensionError, "qlim must be"),

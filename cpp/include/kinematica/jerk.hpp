@@ -380,25 +380,53 @@ inline int shape_phases(const Shape& s, double v0, double v1, const Limits& L, d
 namespace detail {
 
 //! The shape of duration T with one peak vp between lo.vp and hi.vp and a cruise there
-//! (tc = T less its two ramps) that covers D: bisection on vp, the distance D between the
-//! ends'. False when some shape on the way has no room for its ramps (tc < 0): the
-//! shapes of duration T are then not one connected family.
+//! (tc = T less its two ramps) that covers D. Its distance is vp·T - (vp - v0)/2·R(vp - v0)
+//! - (vp - v1)/2·R(vp - v1), whose slope in vp is tc plus a positive part: it rises from
+//! the lowest extreme's to the highest's while every shape between has room for its ramps
+//! (tc >= 0), and then one safeguarded Newton search (a few steps) finds vp. The ramps'
+//! sum R(vp - v0) + R(vp - v1) is largest between the ends' velocities (R is concave,
+//! growing from 0), at their midpoint by symmetry, where it is 2·R(|v1 - v0|/2): if that
+//! exceeds T, the shapes of duration T are not one connected family, and the answer is
+//! false (so it is where the ends' velocities lie far apart for T: the caller combines
+//! the extremes).
 inline bool cruise_shape(double T, double D, double v0, double v1, const Shape& lo, const Shape& hi,
                          double dlo, double dhi, const Limits& L, Shape& out) {
-    double a = lo.vp, b = hi.vp, da = dlo, db = dhi;
-    const double tol = 2.0 * std::numeric_limits<double>::epsilon() * L.v;  // vp's round-off at the limit
-    for (int it = 0; it < MAX_ITERATIONS && b - a > tol; ++it) {
-        const double vp = 0.5 * (a + b);
-        const double tc = T - ramp_time(vp - v0, L) - ramp_time(vp - v1, L);
-        if (!(tc >= 0.0)) return false;
-        const double d = shape_distance(Shape{vp, tc}, v0, v1, L);
-        if (d <= D) {
-            a = vp, da = d;
-        } else {
-            b = vp, db = d;
+    if (2.0 * ramp_time(0.5 * (v1 - v0), L) > T) return false;
+    const double sj = std::sqrt(L.j), full = L.a * L.a / L.j;
+    // x·R(|x|)/2 and its slope (R(|x|) + |x|·R'(|x|))/2
+    const auto half = [&](double x, double& slope) {
+        const double d = std::fabs(x);
+        if (d <= full) {
+            const double r = std::sqrt(d) / sj;  // √(d/J)
+            slope = 1.5 * r;
+            return x * r;
         }
+        slope = d / L.a + 0.5 * L.a / L.j;
+        return 0.5 * x * (d / L.a + L.a / L.j);
+    };
+    const auto g = [&](double vp, double& slope) {
+        double s0, s1;
+        const double out0 = half(vp - v0, s0), out1 = half(vp - v1, s1);
+        slope = T - s0 - s1;
+        return vp * T - out0 - out1 - D;
+    };
+    double a = lo.vp, b = hi.vp;  // g(a) <= 0 <= g(b)
+    const double tol = 2.0 * std::numeric_limits<double>::epsilon() * L.v;  // vp's round-off at the limit
+    double vp = a + (b - a) * ((D - dlo) / (dhi - dlo));
+    for (int it = 0; it < MAX_ITERATIONS; ++it) {
+        if (!(vp > a && vp < b)) vp = 0.5 * (a + b);
+        double slope;
+        const double gv = g(vp, slope);
+        if (gv == 0.0) break;
+        if (gv < 0.0) {
+            a = vp;
+        } else {
+            b = vp;
+        }
+        const double step = slope > 0.0 ? gv / slope : 0.0;
+        if (std::fabs(step) <= tol || b - a <= tol) break;
+        vp -= step;
     }
-    const double vp = D - da <= db - D ? a : b;
     const double tc = T - ramp_time(vp - v0, L) - ramp_time(vp - v1, L);
     if (!(tc >= 0.0)) return false;
     out = Shape{vp, tc};

@@ -106,6 +106,34 @@ inline void extremes(double p0, double v0, const Profile& P, double& lo, double&
     }
 }
 
+//! Whether every profile of duration T from (p0, v0, 0) to (p1, v1, 0) that profile() can
+//! return surely stays within [low, high], without building it (false: not known). Its
+//! velocity lies between the lowest and the highest peak of the extreme shapes of T (a
+//! shape with one cruise between them, or their convex combination), each at most vmax:
+//! from either end the position moves at most that fast. A bound, with room for the
+//! round-off of extremes(): where it says inside, extremes() does too.
+inline bool inside(double p0, double p1, double v0, double v1, double T, const Limits& L, double low,
+                   double high) {
+    // the highest of min(p0 + vh·t, p1 - vl·(T - t)) over t in [0, T]: at an end or where
+    // the two lines cross (and the lowest of the mirror image)
+    const auto reach = [T](double a, double b, double up, double down) {
+        double best = std::max(std::min(a, b - down * T), std::min(a + up * T, b));
+        if (up > down) {
+            const double t = (b - a - down * T) / (up - down);
+            if (t > 0.0 && t < T) best = std::max(best, a + up * t);
+        }
+        return best;
+    };
+    const auto fits = [&](double vh, double vl) {
+        const double guard = 1e-12 * (1.0 + std::fabs(p0) + std::fabs(p1) + (vh - vl) * T);
+        return reach(p0, p1, vh, vl) + guard <= high && -reach(-p0, -p1, -vl, -vh) - guard >= low;
+    };
+    if (fits(L.v, -L.v)) return true;
+    const double Tm = std::max(T, detail::ramp_time(v1 - v0, L));
+    const double vh = detail::extreme(Tm, v0, v1, true, L).vp, vl = detail::extreme(Tm, v0, v1, false, L).vp;
+    return fits(std::max({vh, v0, v1}), std::min({vl, v0, v1}));
+}
+
 namespace detail {
 
 //! The search's state: the problem, the chosen velocities and durations, scratch.
@@ -252,10 +280,12 @@ private:
         if (P_.qlim == nullptr || !std::isfinite(T)) return true;
         Profile prof;
         for (int j = joint < 0 ? 0 : joint; j < (joint < 0 ? n : joint + 1); ++j) {
+            const double low = P_.qlim[2 * j] - P_.qlim_atol, high = P_.qlim[2 * j + 1] + P_.qlim_atol;
+            if (inside(p0[j], p1[j], vi[j], vj[j], T, P_.limits[j], low, high)) continue;
             profile(T, p1[j] - p0[j], vi[j], vj[j], P_.limits[j], prof);
             double lo, hi;
             extremes(p0[j], vi[j], prof, lo, hi);
-            if (lo < P_.qlim[2 * j] - P_.qlim_atol || hi > P_.qlim[2 * j + 1] + P_.qlim_atol) return false;
+            if (lo < low || hi > high) return false;
         }
         return true;
     }

@@ -15,7 +15,15 @@ from numpy.typing import NDArray
 
 import kinematica._core as _core
 
-__all__ = ["MAX_PHASES", "Segments", "ViaChoice", "jerk_segments", "jerk_via"]
+__all__ = [
+    "MAX_PHASES",
+    "Segments",
+    "ViaChoice",
+    "ViaMove",
+    "jerk_segments",
+    "jerk_via",
+    "jerk_via_move",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -54,6 +62,31 @@ class ViaChoice(NamedTuple):
     time: FloatArray
     stop: FloatArray
     evaluations: int
+
+
+class ViaMove(NamedTuple):
+    """The waypoint search's choice and the move it makes (:func:`jerk_via_move`).
+
+    Attributes:
+        choice: The :class:`ViaChoice`.
+        breaks: ``(p + 1,)`` the exact pieces' breaks (s), every knot among them; ``None``
+            (and every field below) where a segment leaves qlim with a stop at each
+            waypoint, or the samples would be too many.
+        coef: ``(p, 4, n)`` each piece's cubic per joint in ``t - breaks[i]`` (lowest
+            power first).
+        knots: ``(k,)`` the waypoints' times (s).
+        peak: ``(3, n)`` each joint's largest ``|velocity|``, ``|acceleration|``,
+            ``|jerk|`` on the pieces (exact: at the pieces' ends and extremes).
+        samples: ``(t, q, qd, qdd, qddd)``: ``(m,)`` times (s), every knot among them,
+            spacing ``<= dt``; ``(m, n)`` each; the last is the end state exactly.
+    """
+
+    choice: ViaChoice
+    breaks: FloatArray | None
+    coef: FloatArray | None
+    knots: FloatArray | None
+    peak: FloatArray | None
+    samples: tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray] | None
 
 
 def _f(x: FloatArray) -> FloatArray:
@@ -111,3 +144,43 @@ def jerk_via(
     out = _core.jerk_via(_f(w), _f(v_start), _f(v_end), vm, am, jm, q, float(qlim_atol), *search)
     velocity, time, stop, evaluations = out
     return ViaChoice(velocity, time, stop, int(evaluations))
+
+
+def jerk_via_move(
+    w: FloatArray,
+    v_start: FloatArray,
+    v_end: FloatArray,
+    limits: tuple[FloatArray, FloatArray, FloatArray],
+    qlim: FloatArray | None,
+    qlim_atol: float,
+    search: tuple[int, int, int],
+    dt: float,
+    max_samples: float,
+) -> ViaMove:
+    """:func:`jerk_via`'s search, then the move's exact pieces and samples, in one call.
+
+    Args:
+        w: ``(k, n)`` waypoints, no two in a row equal.
+        v_start: ``(n,)`` the velocity at the first waypoint.
+        v_end: ``(n,)`` the velocity at the last waypoint.
+        limits: ``(vmax, amax, jmax)``, each ``(n,)``.
+        qlim: ``(n, 2)`` position limits every segment keeps, or ``None``.
+        qlim_atol: How far a segment's extreme may pass a position limit.
+        search: ``(sweeps, golden_steps, joint_sweeps)`` (``jerk_via.hpp``).
+        dt: Largest sample spacing (s), > 0.
+        max_samples: No pieces or samples are made where ``duration / dt + k`` exceeds it.
+
+    Returns:
+        The :class:`ViaMove`.
+    """
+    vm, am, jm = (_f(x) for x in limits)
+    q = None if qlim is None else _f(qlim)
+    out = _core.jerk_via_move(
+        _f(w), _f(v_start), _f(v_end), vm, am, jm, q, float(qlim_atol), *search, dt, max_samples
+    )
+    velocity, time, stop, evaluations, exact, samples = out
+    choice = ViaChoice(velocity, time, stop, int(evaluations))
+    if exact is None:
+        return ViaMove(choice, None, None, None, None, None)
+    breaks, coef, knots, peak = exact
+    return ViaMove(choice, breaks, coef, knots, peak, samples)

@@ -5,10 +5,11 @@ jerk-limited segment, time-optimal for its slowest joint and synchronised across
 the joints. The acceleration at every waypoint, the two ends included, is zero:
 then each segment is a move between two states of velocity only, whose
 time-optimal profile, the durations each joint can take and a profile of any of
-them have closed forms (one scalar root at most), so the whole search runs in the
-compiled core (``cpp/include/kinematica/jerk.hpp``, ``jerk_via.hpp``) at a few µs a
-segment planned, where a general state-to-state planner called from Python took
-20-30 µs a segment planned and the search 17-30 ms a segment. The price: the
+them have closed forms (one scalar root at most), so the whole move is made in the
+compiled core in one call (``cpp/include/kinematica/jerk.hpp``, ``jerk_via.hpp``,
+``jerk_pieces.hpp``): the search, at a fraction of a µs a segment planned, then the
+exact pieces (each segment's joints' profiles cut at their switches into cubics) and
+the samples. The price: the
 velocity a waypoint is passed at is searched, its acceleration is not (a move
 that passes a waypoint still accelerating could be shorter). A start or end
 acceleration is refused here: :func:`~kinematica.motion.trajectory.joint_trajectory`
@@ -51,18 +52,11 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.arguments import check_size
-from kinematica.core.jerk import jerk_segments, jerk_via
+from kinematica.core.jerk import jerk_via_move
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.motion.piecewise import PiecewisePolynomial
-from kinematica.motion.samples import MAX_SAMPLES
-from kinematica.motion.scurve import (
-    JerkTrajectory,
-    check_peaks,
-    jerk_samples,
-    limits_from,
-    phase_pieces,
-    state_from,
-)
+from kinematica.motion.samples import LIMIT_RTOL, MAX_SAMPLES
+from kinematica.motion.scurve import JerkTrajectory, limits_from, state_from
 
 __all__ = ["GOLDEN_STEPS", "JOINT_SWEEPS", "POSITION_ATOL", "SWEEPS", "scurve_via"]
 
@@ -100,21 +94,6 @@ def _qlim(qlim: ArrayLike | None, w: FloatArray) -> FloatArray | None:
             arg="qlim",
         )
     return lim
-
-
-def _phase_states(
-    p0: FloatArray, v0: FloatArray, t: FloatArray, j: FloatArray
-) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """``(n, P)`` position, velocity, acceleration at each phase's start from ``(p0, v0, 0)``."""
-    p, v, a = (np.empty_like(t) for _ in range(3))
-    pk, vk, ak = p0.copy(), v0.copy(), np.zeros_like(p0)
-    for k in range(t.shape[1]):
-        p[:, k], v[:, k], a[:, k] = pk, vk, ak
-        h, jk = t[:, k], j[:, k]
-        pk = pk + h * (vk + h * (ak / 2.0 + h * jk / 6.0))
-        vk = vk + h * (ak + h * jk / 2.0)
-        ak = ak + h * jk
-    return p, v, a
 
 
 def scurve_via(
@@ -158,61 +137,92 @@ def scurve_via(
             segments leave ``qlim`` even with a stop at every waypoint.
     """
     k, n = w.shape
-    vm, am = limits_from(vmax, n, "vmax"), limits_from(amax, n, "amax")
-    jm = limits_from(jmax, n, "jmax")
+    limits = _limits((vmax, amax, jmax), n)
     lim = _qlim(qlim, w)
-    same = np.all(np.diff(w, axis=0) == 0.0, axis=1)
-    if same.any():
-        i = int(np.flatnonzero(same)[0])
-        raise KinematicaError(f"waypoints {i + 1} and {i + 2} are equal: drop one")
     v_start, v_end = state_from(qd0, n, "qd0"), state_from(qd1, n, "qd1")
     for name, x in (("qdd0", qdd0), ("qdd1", qdd1)):
-        if np.any(state_from(x, n, name) != 0.0):
+        if x is not None and np.any(state_from(x, n, name) != 0.0):
             raise KinematicaError(
                 f"through waypoints the acceleration is zero at every waypoint, the ends "
                 f"included: {name} must be 0; joint_trajectory(..., profile='scurve') "
                 "moves from or to an accelerating state",
                 arg=name,
             )
-    for name, x in (("qd0", v_start), ("qd1", v_end)):
-        over = np.abs(x) > vm
-        if over.any():
-            j = int(np.flatnonzero(over)[0])
-            raise KinematicaError(
-                f"{name} of joint {j + 1} is {x[j]:g}, beyond its vmax {vm[j]:g}", arg=name
-            )
-    limits = (vm, am, jm)
-    choice = jerk_via(
-        w, v_start, v_end, limits, lim, POSITION_ATOL, (SWEEPS, GOLDEN_STEPS, JOINT_SWEEPS)
-    )
+    search = (SWEEPS, GOLDEN_STEPS, JOINT_SWEEPS)
+    lims = (limits[0], limits[1], limits[2])
+    try:  # the core checks the limits, the end velocities and the waypoints
+        move = jerk_via_move(w, v_start, v_end, lims, lim, POSITION_ATOL, search, dt, MAX_SAMPLES)
+    except ValueError:
+        _refused(w, limits, v_start, v_end)
+        raise
+    choice = move.choice
     if not np.all(np.isfinite(choice.stop)):
         i = int(np.flatnonzero(~np.isfinite(choice.stop))[0])
         raise KinematicaError(
             f"segment {i + 1} (waypoints {i + 1} to {i + 2}) leaves qlim even with a stop at "
             "each waypoint: its end velocity carries it over a limit"
         )
-    stop_duration = float(choice.stop.sum())
-    vel = choice.velocity
     duration = float(choice.time.sum())
     check_size(duration / dt + k, MAX_SAMPLES, "dt", f"samples ({duration:g} s every {dt!r} s)")
-    segs = jerk_segments(w[:-1], vel[:-1], w[1:], vel[1:], limits)
-    parts = []
-    for i in range(k - 1):
-        t, jerk = segs.t[i], segs.j[i]
-        p, v, a = _phase_states(w[i], vel[i], t, jerk)
-        parts.append(phase_pieces(float(segs.duration[i]), (t, jerk, p, v, a, w[i + 1]), limits))
-    knots = np.concatenate([[0.0], np.cumsum([p.duration for p in parts])])
-    shifted = (p.breaks[1:] + t0 for p, t0 in zip(parts, knots, strict=False))
-    breaks = np.concatenate([knots[:1], *shifted])
-    for t0 in knots[1:]:  # every waypoint's time exactly among the breaks
-        breaks[np.argmin(np.abs(breaks - t0))] = t0
-    deg = max(p.coef.shape[1] for p in parts)  # cubic, or quintic where settled
-    coef = [np.pad(p.coef, ((0, 0), (0, deg - p.coef.shape[1]), (0, 0))) for p in parts]
-    pieces = PiecewisePolynomial(breaks, np.concatenate(coef), knots)
-    check_peaks(pieces, limits)
-    traj = jerk_samples(pieces, dt, limits, (w[-1], v_end, np.zeros(n)))
-    traj.waypoint_times = knots
-    traj.waypoint_qd = vel
-    traj.stop_duration = stop_duration
-    traj.margin = stop_duration - float(knots[-1])
+    assert move.samples is not None and move.peak is not None and move.knots is not None
+    # the core's profiles hold the limits by construction: a broken promise is an error,
+    # not a trajectory a drive refuses
+    over = move.peak > limits * (1.0 + LIMIT_RTOL)
+    if over.any():
+        order, j = (int(x[0]) for x in np.nonzero(over))
+        name, peak = ("vmax", "amax", "jmax")[order], move.peak[order, j]
+        raise KinematicaError(f"joint {j + 1} would reach {peak:.9g} > {name} {limits[order, j]:g}")
+    traj = JerkTrajectory(*move.samples[:4])
+    traj.qddd = move.samples[4]
+    traj.pieces = PiecewisePolynomial(move.breaks, move.coef, move.knots)  # type: ignore[arg-type]
+    traj.vmax, traj.amax, traj.jmax = lims
+    traj.waypoint_times = move.knots
+    traj.waypoint_qd = choice.velocity
+    traj.stop_duration = float(choice.stop.sum())
+    traj.margin = traj.stop_duration - float(move.knots[-1])
     return traj
+
+
+def _limits(given: tuple[ArrayLike | None, ...], n: int) -> FloatArray:
+    """``(3, n)`` vmax, amax, jmax as numbers (a number or ``(n,)`` each).
+
+    The core checks their values, and :func:`_refused` names a bad one.
+
+    Raises:
+        KinematicaError: A limit missing.
+        DimensionError: A limit of the wrong shape or not numbers.
+    """
+    out = np.empty((3, n))
+    for row, (x, name) in enumerate(zip(given, ("vmax", "amax", "jmax"), strict=True)):
+        if x is None:
+            limits_from(x, n, name)  # raises: the limit is needed
+        try:
+            out[row] = x
+        except (TypeError, ValueError):
+            limits_from(x, n, name)  # raises with the shape
+            raise
+    return out
+
+
+def _refused(w: FloatArray, limits: FloatArray, v_start: FloatArray, v_end: FloatArray) -> None:
+    """Name the input the core refused (it says only which argument).
+
+    Raises:
+        KinematicaError: A limit not positive (the joint named), two equal waypoints in
+            a row, an end velocity beyond vmax.
+        DimensionError: A limit NaN or inf.
+    """
+    n = w.shape[1]
+    for row, name in enumerate(("vmax", "amax", "jmax")):
+        limits_from(limits[row], n, name)
+    same = np.all(np.diff(w, axis=0) == 0.0, axis=1)
+    if same.any():
+        i = int(np.flatnonzero(same)[0])
+        raise KinematicaError(f"waypoints {i + 1} and {i + 2} are equal: drop one")
+    for name, x in (("qd0", v_start), ("qd1", v_end)):
+        over = np.abs(x) > limits[0]
+        if over.any():
+            j = int(np.flatnonzero(over)[0])
+            raise KinematicaError(
+                f"{name} of joint {j + 1} is {x[j]:g}, beyond its vmax {limits[0, j]:g}", arg=name
+            )
