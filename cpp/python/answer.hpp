@@ -1,0 +1,143 @@
+// What the core's check answers, as Python reads it: typed, read-only objects.
+//
+// Answer        one target: solutions (count, n), residuals (count, 2), the solutions
+//               outside the limits (out, n), the branch label of each, and the check's
+//               report (status, gap, nearest miss, near, free joints), by name.
+// BatchAnswer   N targets: the check's arrays over the flat targets (q (N, m, n), slot,
+//               res, status, count, out_count, gap, nearest, near, free), by name.
+// Answer::result builds the ik layer's result object (kinematica.ik.IKResult) of one
+// target in one step: its fields are the answer's attributes, by the same names, and
+// the caller's (method, notes...). Every array is read-only.
+#pragma once
+
+#include <nanobind/nanobind.h>
+
+#include <cstdint>
+
+#include "kinematica/ik_types.hpp"
+#include "numpy_io.hpp"
+
+namespace kmpy {
+
+//! The array a made read-only (what it holds is the core's answer, not a buffer to fill).
+inline nb::object read_only(nb::object a) {
+    PyArray_CLEARFLAGS(reinterpret_cast<PyArrayObject*>(a.ptr()), NPY_ARRAY_WRITEABLE);
+    return a;
+}
+
+//! One target's answer.
+struct Answer {
+    nb::object solutions;               //!< (count, n) within the limits (all, limits ignored)
+    nb::object residuals;               //!< (count, 2) position (m), rotation (rad) errors
+    nb::object out_of_limits;           //!< (out, n) solutions outside the limits
+    nb::object branches;                //!< (count,) tuple of the branch labels
+    nb::object out_of_limits_branches;  //!< (out,) tuple
+    km::CheckReport report;
+    int n = 0;
+
+    //! The free joints (0-based), with the status singular only.
+    nb::tuple free_joints() const {
+        const bool singular = report.status == km::Status::singular;
+        int nfree = 0;
+        for (int j = 0; singular && j < n; ++j) nfree += static_cast<int>(km::free_bit(report.free, j));
+        nb::object t = nb::steal(PyTuple_New(nfree));
+        for (int j = 0, k = 0; singular && j < n; ++j) {
+            if (km::free_bit(report.free, j)) PyTuple_SET_ITEM(t.ptr(), k++, PyLong_FromLong(j));
+        }
+        return nb::borrow<nb::tuple>(t);
+    }
+    //! The proven gap (m) of an unreachable target, else None.
+    nb::object gap() const {
+        return report.gap == report.gap ? nb::object(nb::float_(report.gap)) : nb::none();
+    }
+    nb::tuple nearest_error() const {
+        return nb::make_tuple(report.nearest_position, report.nearest_rotation);
+    }
+};
+
+//! The (cls, fields, statuses) a result of one target is made with, checked once: cls a
+//! class whose instances have a __dict__, fields a dict, statuses a tuple of one object
+//! per status code.
+inline void check_result_maker(nb::handle cls, nb::handle fields, nb::handle statuses) {
+    if (!PyType_Check(cls.ptr()) ||
+        reinterpret_cast<PyTypeObject*>(cls.ptr())->tp_dictoffset == 0) {
+        throw nb::type_error("result must be a class whose instances have a __dict__");
+    }
+    if (!PyDict_Check(fields.ptr())) throw nb::type_error("fields must be a dict");
+    if (!PyTuple_Check(statuses.ptr()) ||
+        PyTuple_GET_SIZE(statuses.ptr()) <= static_cast<Py_ssize_t>(km::Status::invalid)) {
+        throw nb::type_error("statuses must be a tuple of one object per status code");
+    }
+}
+
+//! A new instance of cls (no __init__ run) whose __dict__ holds `fields` and the answer's
+//! attributes by their names, its status the object statuses[code]. The arguments are
+//! those check_result_maker accepts.
+inline nb::object make_result(const Answer& a, nb::handle cls, nb::handle fields,
+                              nb::handle statuses) {
+    auto* type = reinterpret_cast<PyTypeObject*>(cls.ptr());
+    nb::object obj = nb::steal(type->tp_alloc(type, 0));
+    if (!obj.is_valid()) throw nb::python_error();
+    nb::object dict = nb::steal(PyObject_GenericGetDict(obj.ptr(), nullptr));
+    if (!dict.is_valid() || PyDict_Update(dict.ptr(), fields.ptr()) != 0) throw nb::python_error();
+    nb::dict d = nb::borrow<nb::dict>(dict);
+    d["solutions"] = a.solutions;
+    d["status"] = nb::borrow(PyTuple_GET_ITEM(statuses.ptr(), static_cast<int>(a.report.status)));
+    d["residuals"] = a.residuals;
+    d["branches"] = a.branches;
+    d["out_of_limits"] = a.out_of_limits;
+    d["out_of_limits_branches"] = a.out_of_limits_branches;
+    d["free_joints"] = a.free_joints();
+    d["gap"] = a.gap();
+    d["nearest_error"] = a.nearest_error();
+    d["near_singular"] = nb::bool_(a.report.near);
+    return obj;
+}
+
+//! N targets' answers: the check's arrays over the flat targets.
+struct BatchAnswer {
+    nb::object q;          //!< (N, m, n) solutions within the limits, then outside, NaN after
+    nb::object slot;       //!< (N, m) int64 candidate slot (branch) of each row, -1 after
+    nb::object res;        //!< (N, m, 2) position, rotation residuals
+    nb::object status;     //!< (N,) int64 status codes
+    nb::object count;      //!< (N,) int64 solutions within the limits
+    nb::object out_count;  //!< (N,) int64 solutions outside them
+    nb::object gap;        //!< (N,) the proven gap of unreachable targets (m), else NaN
+    nb::object nearest;    //!< (N, 2) the closest miss (m, rad)
+    nb::object near;       //!< (N,) bool the near flag
+    nb::object free;       //!< (N, n) bool free joints
+};
+
+//! a as a read-only array of dtype `type` and rank `ndim` whose first axis is N (N < 0:
+//! any, then set), as BatchAnswer's constructor takes its arrays.
+inline nb::object batch_array(nb::handle a, const char* name, int type, int ndim, npy_intp& N) {
+    PyObject* o = a.ptr();
+    if (!PyArray_Check(o)) fail_type(name, "a numpy array");
+    auto* arr = reinterpret_cast<PyArrayObject*>(o);
+    if (PyArray_TYPE(arr) != type) fail_type(name, "of the dtype the core writes");
+    if (PyArray_NDIM(arr) != ndim) fail_value(name, "of rank " + std::to_string(ndim));
+    if (N < 0) N = PyArray_DIM(arr, 0);
+    if (PyArray_DIM(arr, 0) != N) fail_value(name, "of " + std::to_string(N) + " rows");
+    return read_only(nb::borrow(a));
+}
+
+//! A BatchAnswer of arrays made in Python (a batch merged or stacked), checked.
+inline BatchAnswer batch_answer(nb::handle q, nb::handle slot, nb::handle res, nb::handle status,
+                                nb::handle count, nb::handle out_count, nb::handle gap,
+                                nb::handle nearest, nb::handle near, nb::handle free) {
+    npy_intp N = -1;
+    BatchAnswer b;
+    b.q = batch_array(q, "q", NPY_DOUBLE, 3, N);
+    b.slot = batch_array(slot, "slot", NPY_INT64, 2, N);
+    b.res = batch_array(res, "res", NPY_DOUBLE, 3, N);
+    b.status = batch_array(status, "status", NPY_INT64, 1, N);
+    b.count = batch_array(count, "count", NPY_INT64, 1, N);
+    b.out_count = batch_array(out_count, "out_count", NPY_INT64, 1, N);
+    b.gap = batch_array(gap, "gap", NPY_DOUBLE, 1, N);
+    b.nearest = batch_array(nearest, "nearest", NPY_DOUBLE, 2, N);
+    b.near = batch_array(near, "near", NPY_BOOL, 1, N);
+    b.free = batch_array(free, "free", NPY_BOOL, 2, N);
+    return b;
+}
+
+}  // namespace kmpy
