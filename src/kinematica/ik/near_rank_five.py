@@ -118,7 +118,7 @@ def searched_from(chain: Chain, seeds: FloatArray, T: FloatArray, options: IKOpt
     opts = check_options(tol, False, False, POSE_WEIGHTS)
     poses = np.ascontiguousarray(np.broadcast_to(T, (len(seeds), 4, 4)))
     raw = setup.quick.ik_batch(chain.core, poses, opts, np.ascontiguousarray(seeds), None, 1)
-    Q = np.asarray(raw["q"])[:, 0]
+    Q = raw.q[:, 0]
     return Q[np.isfinite(Q).all(axis=1)]
 
 

@@ -26,6 +26,7 @@ from kinematica.ik.fallback import FALLBACK_NOTE, PARTIAL_NOTE, searched_note
 from kinematica.ik.numeric import numeric_solver
 from kinematica.ik.reach import ANSWERED as _ANSWERED
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
+from kinematica.ik.result import prepared
 from kinematica.ik.structure import features
 
 if TYPE_CHECKING:
@@ -112,8 +113,7 @@ def check_options(
 ) -> _core.CheckOptions:
     """The check's options for these settings (a plan keeps its own: :class:`Plan`)."""
     opts = _core.CheckOptions()
-    opts.tol_position = tolerance.position
-    opts.tol_rotation = tolerance.rotation
+    opts.tol = _core.Tolerance(tolerance.position, tolerance.rotation)
     opts.respect_limits = bool(respect_limits)
     opts.complete = complete
     opts.weights = weights
@@ -145,6 +145,9 @@ class Plan:
             :mod:`kinematica.ik.near_rank_five`) gives; None.
         direct: One target is one core call (``ik_rigid``): neither ``coaxial`` nor
             ``rank_five``.
+        prepared: The closed form made ready for one target of a direct plan at no
+            parameter (:func:`~kinematica.ik.result.prepared`: one core call gives the
+            result of a final answer); None.
         final: The status codes of the core's answers to one target that are final as
             they are (no search, no limited reach, no note to add): read once per plan,
             not on every call.
@@ -162,6 +165,7 @@ class Plan:
     notes: tuple[str, ...]
     coaxial: Any
     rank_five: Any = None
+    prepared: Any = None
     direct: bool = field(init=False)
     final: frozenset[int] = field(init=False)
 
@@ -264,9 +268,13 @@ def _plan(chain: Chain, kind: TargetKind, request: IKRequest, parameter: str | N
             search = PARTIAL_NOTE
     notes = why_numeric(chain, closed, kind, request.mask) if method == "auto" else ()
     options = check_options(tolerance, respect, complete, w, slack)
-    return Plan(
+    plan = Plan(
         closed, solver, labels, name, complete, options, w, slack, search, notes, coaxial, five
     )
+    if closed is None or not plan.direct or parameter is not None:
+        return plan
+    ready = prepared(solver, chain.core, options, labels, name, complete, notes, plan.final)
+    return replace(plan, prepared=ready)
 
 
 def rank_five_of(chain: Chain, closed: ClosedForm | None) -> Any:
