@@ -55,10 +55,26 @@ struct Answer {
     }
 };
 
-//! The (cls, fields, statuses) a result of one target is made with, checked once: cls a
-//! class whose instances have a __dict__, fields a dict, statuses a tuple of one object
-//! per status code.
-inline void check_result_maker(nb::handle cls, nb::handle fields, nb::handle statuses) {
+//! The names of the answer's attributes in a result's __dict__, interned once (the class's
+//! attribute names are interned too: a look-up compares pointers).
+enum Key { SOLUTIONS, STATUS, RESIDUALS, BRANCHES, OUT, OUT_BRANCHES, FREE, GAP, NEAREST, NEAR, KEYS };
+inline PyObject* key(Key k) {
+    static PyObject* const* keys = [] {
+        static PyObject* made[KEYS];
+        const char* names[KEYS] = {"solutions", "status", "residuals", "branches", "out_of_limits",
+                                   "out_of_limits_branches", "free_joints", "gap",
+                                   "nearest_error", "near_singular"};
+        for (int i = 0; i < KEYS; ++i) made[i] = PyUnicode_InternFromString(names[i]);
+        return made;
+    }();
+    return keys[k];
+}
+
+//! The (cls, fields, statuses) a result of one target is made with, checked: cls a class
+//! whose instances have a __dict__, fields a dict, statuses a tuple of one object per
+//! status code. Returns the fields with every attribute of an answer added (None), so
+//! that each result's __dict__ is a copy of them, its values replaced.
+inline nb::dict result_fields(nb::handle cls, nb::handle fields, nb::handle statuses) {
     if (!PyType_Check(cls.ptr()) ||
         reinterpret_cast<PyTypeObject*>(cls.ptr())->tp_dictoffset == 0) {
         throw nb::type_error("result must be a class whose instances have a __dict__");
@@ -68,29 +84,32 @@ inline void check_result_maker(nb::handle cls, nb::handle fields, nb::handle sta
         PyTuple_GET_SIZE(statuses.ptr()) <= static_cast<Py_ssize_t>(km::Status::invalid)) {
         throw nb::type_error("statuses must be a tuple of one object per status code");
     }
+    nb::dict all = nb::steal<nb::dict>(PyDict_Copy(fields.ptr()));
+    for (int k = 0; k < KEYS; ++k) PyDict_SetItem(all.ptr(), key(static_cast<Key>(k)), Py_None);
+    return all;
 }
 
-//! A new instance of cls (no __init__ run) whose __dict__ holds `fields` and the answer's
-//! attributes by their names, its status the object statuses[code]. The arguments are
-//! those check_result_maker accepts.
+//! A new instance of cls (no __init__ run) whose __dict__ is a copy of `fields` (made by
+//! result_fields) holding the answer's attributes by their names, its status the object
+//! statuses[code].
 inline nb::object make_result(const Answer& a, nb::handle cls, nb::handle fields,
                               nb::handle statuses) {
     auto* type = reinterpret_cast<PyTypeObject*>(cls.ptr());
     nb::object obj = nb::steal(type->tp_alloc(type, 0));
-    if (!obj.is_valid()) throw nb::python_error();
-    nb::object dict = nb::steal(PyObject_GenericGetDict(obj.ptr(), nullptr));
-    if (!dict.is_valid() || PyDict_Update(dict.ptr(), fields.ptr()) != 0) throw nb::python_error();
-    nb::dict d = nb::borrow<nb::dict>(dict);
-    d["solutions"] = a.solutions;
-    d["status"] = nb::borrow(PyTuple_GET_ITEM(statuses.ptr(), static_cast<int>(a.report.status)));
-    d["residuals"] = a.residuals;
-    d["branches"] = a.branches;
-    d["out_of_limits"] = a.out_of_limits;
-    d["out_of_limits_branches"] = a.out_of_limits_branches;
-    d["free_joints"] = a.free_joints();
-    d["gap"] = a.gap();
-    d["nearest_error"] = a.nearest_error();
-    d["near_singular"] = nb::bool_(a.report.near);
+    nb::object d = nb::steal(PyDict_Copy(fields.ptr()));
+    if (!obj.is_valid() || !d.is_valid()) throw nb::python_error();
+    const auto put = [&d](Key k, nb::handle v) { PyDict_SetItem(d.ptr(), key(k), v.ptr()); };
+    put(SOLUTIONS, a.solutions);
+    put(STATUS, PyTuple_GET_ITEM(statuses.ptr(), static_cast<int>(a.report.status)));
+    put(RESIDUALS, a.residuals);
+    put(BRANCHES, a.branches);
+    put(OUT, a.out_of_limits);
+    put(OUT_BRANCHES, a.out_of_limits_branches);
+    put(FREE, a.free_joints());
+    put(GAP, a.gap());
+    put(NEAREST, a.nearest_error());
+    put(NEAR, a.report.near ? Py_True : Py_False);
+    if (PyObject_GenericSetDict(obj.ptr(), d.ptr(), nullptr) != 0) throw nb::python_error();
     return obj;
 }
 

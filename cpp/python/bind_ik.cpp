@@ -126,8 +126,7 @@ void bind_answers(nb::module_& m) {
         .def(
             "result",
             [](const Answer& a, nb::handle cls, nb::handle fields, nb::handle statuses) {
-                check_result_maker(cls, fields, statuses);
-                return make_result(a, cls, fields, statuses);
+                return make_result(a, cls, result_fields(cls, fields, statuses), statuses);
             },
             nb::arg("cls"), nb::arg("fields"), nb::arg("statuses"),
             "A new cls (no __init__) whose __dict__ holds fields and these attributes, its\n"

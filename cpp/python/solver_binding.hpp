@@ -326,14 +326,13 @@ void add_ik_methods(nb::class_<Bound>& cls, Get get) {
             const km::Chain* c = &nb::cast<const km::Chain&>(chain);
             check_dims(get(*b), *c);
             checked_labels(labels, get(*b).slots());
-            check_result_maker(result, fields, statuses);
             Prepared p;
+            p.fields = result_fields(result, fields, statuses);
             p.solve = [get, b, c, o, labels](const km::Pose& P) {
                 return ik_pose(get(*b), *c, P, o, nullptr, labels);
             };
             p.keep = nb::make_tuple(self, chain, labels);
             p.result = nb::borrow(result);
-            p.fields = nb::borrow(fields);
             p.statuses = nb::borrow(statuses);
             p.roundoff = roundoff;
             p.final_codes = final_codes;
