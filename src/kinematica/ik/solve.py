@@ -38,19 +38,23 @@ from kinematica.ik.reach import ANSWERED, beyond_limited_reach
 from kinematica.ik.registry import ClosedForm, TargetKind
 from kinematica.ik.request import IKRequest
 from kinematica.ik.result import IKBatchResult, IKResult, amended, replaced, result_of
-from kinematica.ik.solvers import Plan, check_options, closed_form, plan_of, structure_of
+from kinematica.ik.solvers import (
+    POSE_DOF,
+    REDUNDANT_DOF,
+    Plan,
+    check_options,
+    closed_form,
+    plan_of,
+    structure_of,
+)
 from kinematica.ik.status import STATUS_NAMES, IKStatus
 from kinematica.ik.targets import Targets, parse_q0, parse_targets
 from kinematica.spatial import ROUNDOFF_TOL
 
-__all__ = ["AT_VALUES", "REDUNDANT_DOF", "closed_form", "solve_ik", "structure_of"]
+__all__ = ["AT_VALUES", "REDUNDANT_DOF", "answered", "closed_form", "solve_ik", "structure_of"]
 
 FloatArray = NDArray[np.float64]
 
-#: The arms ``auto`` solves at a parameter: 7 joints, one more than a pose needs.
-REDUNDANT_DOF = 7
-#: Joints a pose fixes: an arm of fewer reads a pose target as over-determined.
-_POSE_DOF = 6
 _UNREACHABLE = _core.STATUS["unreachable"]
 _OK = _core.STATUS["ok"]
 _NOT_FOUND = _core.STATUS["not_found"]
@@ -110,7 +114,7 @@ def solve_ik(
     ``options.fixed`` and a redundant arm's parameter are :func:`kinematica.ik.door.solve`'s.
     """
     request = options if type(options) is IKRequest else IKRequest.of(options)
-    if look and chain.dof < _POSE_DOF and request.mask is None:
+    if look and chain.dof < POSE_DOF and request.mask is None:
         first = solve_ik(chain, target, request, False)
         if isinstance(first, IKResult) and not isinstance(target, Targets):
             if np.shape(target) != (4, 4):
@@ -143,7 +147,7 @@ def solve_ik(
             if got.__class__ is IKResult:  # final as the core gives it (_one's first case)
                 return got  # type: ignore[no-any-return]
             if got is not None:
-                return _one(chain, plan, request, pose, kind, got, (), None)
+                return answered(chain, plan, request, pose, kind, got, (), None)
         elif plan.direct:
             solver = plan.solver if angle is None else _at(chain, plan, float(angle))  # type: ignore[arg-type]
             rigid: _core.Answer | None
@@ -152,7 +156,7 @@ def solve_ik(
             except ValueError:  # a view the core does not read (not C-contiguous): parsed
                 rigid = None
             if rigid is not None:
-                return _one(chain, plan, request, pose, kind, rigid, (), None)
+                return answered(chain, plan, request, pose, kind, rigid, (), None)
     targets = target if isinstance(target, Targets) else parse_targets(target)
     kind = "position" if targets.position else "pose"
     values = None
@@ -183,7 +187,7 @@ def solve_ik(
         q0 = None if q0s is None else q0s[0]
         out = solver.ik(chain.core, pose, plan.options, q0, plan.labels)
         notes = targets.notes.get(0, ()) if targets.notes else ()
-        return _one(chain, plan, request, pose, kind, out, notes, q0)
+        return answered(chain, plan, request, pose, kind, out, notes, q0)
     return _batch(chain, target, targets, request, plan, solver, q0s)
 
 
@@ -207,7 +211,7 @@ def _at(chain: Chain, plan: Plan, value: float) -> Any:
     return found
 
 
-def _one(
+def answered(
     chain: Chain,
     plan: Plan,
     request: IKRequest,
@@ -297,7 +301,7 @@ def _batch(
         if beyond.any():
             status = np.where(beyond, _UNREACHABLE, raw.status)
             raw = replaced(raw, status=status, gap=np.where(beyond, gaps, raw.gap))
-    over = chain.dof < _POSE_DOF and request.mask is None and not targets.position
+    over = chain.dof < POSE_DOF and request.mask is None and not targets.position
     if over and not isinstance(target, Targets):  # over-determined poses
         from kinematica.ik.printed import overdetermined_rows
 

@@ -35,8 +35,10 @@ if TYPE_CHECKING:
 
 __all__ = [
     "PLANS",
+    "POSE_DOF",
     "POSE_WEIGHTS",
     "POSITION_WEIGHTS",
+    "REDUNDANT_DOF",
     "Plan",
     "check_options",
     "closed_form",
@@ -47,6 +49,12 @@ __all__ = [
 ]
 
 FloatArray = NDArray[np.float64]
+
+#: Joints a pose fixes: an arm of fewer reads a pose target as over-determined...
+POSE_DOF = 6
+#: ... and the arms ``auto`` solves at a parameter: 7 joints, one more than a pose needs.
+#: Neither's plan is prepared for one pose (:attr:`Plan.prepared`): both read the answer.
+REDUNDANT_DOF = 7
 
 #: The weights of the error components x, y, z, rx, ry, rz of a pose target...
 POSE_WEIGHTS: tuple[float, ...] = (1.0, 1.0, 1.0, 1.0, 1.0, 1.0)
@@ -147,7 +155,7 @@ class Plan:
             ``rank_five``.
         prepared: The closed form made ready for one target of a direct plan at no
             parameter (:func:`~kinematica.ik.result.prepared`: one core call gives the
-            result of a final answer); None.
+            result of a final answer) of an arm of 6 joints or more but not 7; None.
         final: The status codes of the core's answers to one target that are final as
             they are (no search, no limited reach, no note to add): read once per plan,
             not on every call.
@@ -272,6 +280,8 @@ def _plan(chain: Chain, kind: TargetKind, request: IKRequest, parameter: str | N
         closed, solver, labels, name, complete, options, w, slack, search, notes, coaxial, five
     )
     if closed is None or not plan.direct or parameter is not None:
+        return plan
+    if chain.dof < POSE_DOF or chain.dof == REDUNDANT_DOF:
         return plan
     ready = prepared(solver, chain.core, options, labels, name, complete, notes, plan.final)
     return replace(plan, prepared=ready)
