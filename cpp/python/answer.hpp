@@ -11,8 +11,11 @@
 #pragma once
 
 #include <nanobind/nanobind.h>
+#include <nanobind/stl/optional.h>
 
 #include <cstdint>
+#include <optional>
+#include <string>
 
 #include "kinematica/ik_types.hpp"
 #include "numpy_io.hpp"
@@ -20,18 +23,19 @@
 namespace kmpy {
 
 //! The array a made read-only (what it holds is the core's answer, not a buffer to fill).
-inline nb::object read_only(nb::object a) {
+template <class A>
+A read_only(A a) {
     PyArray_CLEARFLAGS(reinterpret_cast<PyArrayObject*>(a.ptr()), NPY_ARRAY_WRITEABLE);
     return a;
 }
 
 //! One target's answer.
 struct Answer {
-    nb::object solutions;               //!< (count, n) within the limits (all, limits ignored)
-    nb::object residuals;               //!< (count, 2) position (m), rotation (rad) errors
-    nb::object out_of_limits;           //!< (out, n) solutions outside the limits
-    nb::object branches;                //!< (count,) tuple of the branch labels
-    nb::object out_of_limits_branches;  //!< (out,) tuple
+    F64 solutions;                     //!< (count, n) within the limits (all, limits ignored)
+    F64 residuals;                     //!< (count, 2) position (m), rotation (rad) errors
+    F64 out_of_limits;                 //!< (out, n) solutions outside the limits
+    nb::tuple branches;                //!< (count,) the branch labels
+    nb::tuple out_of_limits_branches;  //!< (out,)
     km::CheckReport report;
     int n = 0;
 
@@ -47,8 +51,8 @@ struct Answer {
         return nb::borrow<nb::tuple>(t);
     }
     //! The proven gap (m) of an unreachable target, else None.
-    nb::object gap() const {
-        return report.gap == report.gap ? nb::object(nb::float_(report.gap)) : nb::none();
+    std::optional<double> gap() const {
+        return report.gap == report.gap ? std::optional<double>(report.gap) : std::nullopt;
     }
     nb::tuple nearest_error() const {
         return nb::make_tuple(report.nearest_position, report.nearest_rotation);
@@ -106,7 +110,7 @@ inline nb::object make_result(const Answer& a, nb::handle cls, nb::handle fields
     put(OUT, a.out_of_limits);
     put(OUT_BRANCHES, a.out_of_limits_branches);
     put(FREE, a.free_joints());
-    put(GAP, a.gap());
+    put(GAP, nb::cast(a.gap()));
     put(NEAREST, a.nearest_error());
     put(NEAR, a.report.near ? Py_True : Py_False);
     if (PyObject_GenericSetDict(obj.ptr(), d.ptr(), nullptr) != 0) throw nb::python_error();
@@ -115,21 +119,22 @@ inline nb::object make_result(const Answer& a, nb::handle cls, nb::handle fields
 
 //! N targets' answers: the check's arrays over the flat targets.
 struct BatchAnswer {
-    nb::object q;          //!< (N, m, n) solutions within the limits, then outside, NaN after
-    nb::object slot;       //!< (N, m) int64 candidate slot (branch) of each row, -1 after
-    nb::object res;        //!< (N, m, 2) position, rotation residuals
-    nb::object status;     //!< (N,) int64 status codes
-    nb::object count;      //!< (N,) int64 solutions within the limits
-    nb::object out_count;  //!< (N,) int64 solutions outside them
-    nb::object gap;        //!< (N,) the proven gap of unreachable targets (m), else NaN
-    nb::object nearest;    //!< (N, 2) the closest miss (m, rad)
-    nb::object near;       //!< (N,) bool the near flag
-    nb::object free;       //!< (N, n) bool free joints
+    F64 q;          //!< (N, m, n) solutions within the limits, then outside, NaN after
+    I64 slot;       //!< (N, m) candidate slot (branch) of each row, -1 after
+    F64 res;        //!< (N, m, 2) position, rotation residuals
+    I64 status;     //!< (N,) status codes
+    I64 count;      //!< (N,) solutions within the limits
+    I64 out_count;  //!< (N,) solutions outside them
+    F64 gap;        //!< (N,) the proven gap of unreachable targets (m), else NaN
+    F64 nearest;    //!< (N, 2) the closest miss (m, rad)
+    Bools near;     //!< (N,) the near flag
+    Bools free;     //!< (N, n) free joints
 };
 
 //! a as a read-only array of dtype `type` and rank `ndim` whose first axis is N (N < 0:
 //! any, then set), as BatchAnswer's constructor takes its arrays.
-inline nb::object batch_array(nb::handle a, const char* name, int type, int ndim, npy_intp& N) {
+template <class A>
+A batch_array(nb::handle a, const char* name, int type, int ndim, npy_intp& N) {
     PyObject* o = a.ptr();
     if (!PyArray_Check(o)) fail_type(name, "a numpy array");
     auto* arr = reinterpret_cast<PyArrayObject*>(o);
@@ -137,7 +142,7 @@ inline nb::object batch_array(nb::handle a, const char* name, int type, int ndim
     if (PyArray_NDIM(arr) != ndim) fail_value(name, "of rank " + std::to_string(ndim));
     if (N < 0) N = PyArray_DIM(arr, 0);
     if (PyArray_DIM(arr, 0) != N) fail_value(name, "of " + std::to_string(N) + " rows");
-    return read_only(nb::borrow(a));
+    return read_only(nb::borrow<A>(a));
 }
 
 //! A BatchAnswer of arrays made in Python (a batch merged or stacked), checked.
@@ -146,16 +151,16 @@ inline BatchAnswer batch_answer(nb::handle q, nb::handle slot, nb::handle res, n
                                 nb::handle nearest, nb::handle near, nb::handle free) {
     npy_intp N = -1;
     BatchAnswer b;
-    b.q = batch_array(q, "q", NPY_DOUBLE, 3, N);
-    b.slot = batch_array(slot, "slot", NPY_INT64, 2, N);
-    b.res = batch_array(res, "res", NPY_DOUBLE, 3, N);
-    b.status = batch_array(status, "status", NPY_INT64, 1, N);
-    b.count = batch_array(count, "count", NPY_INT64, 1, N);
-    b.out_count = batch_array(out_count, "out_count", NPY_INT64, 1, N);
-    b.gap = batch_array(gap, "gap", NPY_DOUBLE, 1, N);
-    b.nearest = batch_array(nearest, "nearest", NPY_DOUBLE, 2, N);
-    b.near = batch_array(near, "near", NPY_BOOL, 1, N);
-    b.free = batch_array(free, "free", NPY_BOOL, 2, N);
+    b.q = batch_array<F64>(q, "q", NPY_DOUBLE, 3, N);
+    b.slot = batch_array<I64>(slot, "slot", NPY_INT64, 2, N);
+    b.res = batch_array<F64>(res, "res", NPY_DOUBLE, 3, N);
+    b.status = batch_array<I64>(status, "status", NPY_INT64, 1, N);
+    b.count = batch_array<I64>(count, "count", NPY_INT64, 1, N);
+    b.out_count = batch_array<I64>(out_count, "out_count", NPY_INT64, 1, N);
+    b.gap = batch_array<F64>(gap, "gap", NPY_DOUBLE, 1, N);
+    b.nearest = batch_array<F64>(nearest, "nearest", NPY_DOUBLE, 2, N);
+    b.near = batch_array<Bools>(near, "near", NPY_BOOL, 1, N);
+    b.free = batch_array<Bools>(free, "free", NPY_BOOL, 2, N);
     return b;
 }
 

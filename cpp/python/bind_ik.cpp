@@ -214,19 +214,11 @@ void bind_ik(nb::module_& m) {
     m.attr("STATUS") = status;
 
     m.attr("POLISH_LIMIT") = km::POLISH_LIMIT;
-    m.attr("POLISH_STEPS") = km::POLISH_STEPS;
-    m.attr("POLISH_DAMPING") = km::POLISH_DAMPING;
     m.attr("DEDUP_TOL") = km::DEDUP_TOL;
     m.attr("MERGE_SPAN") = km::MERGE_SPAN;
     m.attr("LIMIT_TOL") = km::LIMIT_TOL;
-    m.attr("LAMBDA_INIT") = km::LAMBDA_INIT;
-    m.attr("LAMBDA_DOWN") = km::LAMBDA_DOWN;
-    m.attr("LAMBDA_UP") = km::LAMBDA_UP;
     m.attr("LAMBDA_MIN") = km::LAMBDA_MIN;
-    m.attr("LAMBDA_MAX") = km::LAMBDA_MAX;
     m.attr("STALL_WINDOW") = km::STALL_WINDOW;
-    m.attr("STALL_FACTOR") = km::STALL_FACTOR;
-    m.attr("BOUND_SCALE") = km::BOUND_SCALE;
     m.attr("SCALE_FLOOR") = km::SCALE_FLOOR;
 }
 

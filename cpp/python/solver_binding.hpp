@@ -149,19 +149,6 @@ Answer ik_one(const Solver& s, const km::Chain& chain, F64 T,
     return ik_pose(s, chain, P, opts, q0in.data, labels);
 }
 
-//! ik_one for a target already rigid to round-off (finite, last row exact, |RᵀR - I| <=
-//! roundoff, det R > 0), else None: the caller's general path reads (and explains) it.
-template <class Solver>
-nb::object ik_rigid(const Solver& s, const km::Chain& chain, F64 T, const km::CheckOptions& opts,
-                    double roundoff, nb::handle labels) {
-    check_dims(s, chain);
-    checked_labels(labels, s.slots());
-    const In in = in_f64(T, "T", 2, {4, 4});
-    const km::PoseDefects d = km::pose_defects(in.data);
-    if (!(d.finite && d.last_row == 0.0 && d.ortho <= roundoff && d.det > 0.0)) return nb::none();
-    return nb::cast(ik_pose(s, chain, km::Pose::from_rows(in.data), opts, nullptr, labels));
-}
-
 //! A solver made ready for one kind of call: the chain, the check's options, the branch
 //! labels and what a final answer's result is made of (make_result), held; called with
 //! one target T (4, 4) alone. A target the core does not read in place or that is not
@@ -224,8 +211,8 @@ BatchAnswer ik_many_rows(const Solver& s, const km::Chain& chain, F64 Th, nb::ha
     out.out_count = new_i64({N}, out_count);
     out.gap = new_f64({N}, gap);
     out.nearest = new_f64({N, 2}, nearest);
-    out.near = new_array({N}, near, NPY_BOOL);
-    out.free = new_array({N, n}, freeb, NPY_BOOL);
+    out.near = new_bools({N}, near);
+    out.free = new_bools({N, n}, freeb);
     {
         const int blocks = static_cast<int>((N + TARGET_BLOCK - 1) / TARGET_BLOCK);
         run_blocks(blocks, workers, [&](int blk) {
@@ -255,9 +242,10 @@ BatchAnswer ik_many_rows(const Solver& s, const km::Chain& chain, F64 Th, nb::ha
             }
         });
     }
-    for (nb::object* a : {&out.q, &out.slot, &out.res, &out.status, &out.count, &out.out_count,
-                          &out.gap, &out.nearest, &out.near, &out.free}) {
-        read_only(*a);
+    for (nb::object* a : std::initializer_list<nb::object*>{
+             &out.q, &out.slot, &out.res, &out.status, &out.count, &out.out_count, &out.gap,
+             &out.nearest, &out.near, &out.free}) {
+        read_only(nb::handle(*a));
     }
     return out;
 }
@@ -301,14 +289,6 @@ void add_ik_methods(nb::class_<Bound>& cls, Get get) {
             nb::arg("chain"), nb::arg("T"), nb::arg("options"), nb::arg("q0").none(),
             nb::arg("labels"),
             "Every solution of one target T (4, 4): an Answer.");
-    cls.def("ik_rigid",
-            [get](const Bound& b, const km::Chain& chain, F64 T, const km::CheckOptions& o,
-                  double roundoff, nb::handle labels) {
-                return ik_rigid(get(b), chain, T, o, roundoff, labels);
-            },
-            nb::arg("chain"), nb::arg("T"), nb::arg("options"), nb::arg("roundoff"),
-            nb::arg("labels"),
-            "ik of a target rigid to round-off, without q0; None for any other target.");
     cls.def("ik_batch",
             [get](const Bound& b, const km::Chain& chain, F64 T, const km::CheckOptions& o,
                   nb::handle q0, nb::handle invalid, int workers) {
