@@ -22,7 +22,7 @@ prints:
   alone (``params.candidates``: the core's raw candidates of one pose, before
   the check; the core has no batched entry for them);
 * where the time of one ``robot.ik`` call goes: the core's check of the
-  target, solve and check (``params.ik_rigid``), building the result
+  target, solve and check (``plan.prepared``), building the result
   (``result_of``), and the rest (the keyword test, dispatch) by difference;
 * solutions per pose: mean and histogram of counts, within the limits
   (what ``robot.ik`` returns as ``solutions``) and in all (plus
@@ -77,7 +77,7 @@ from kinematica.ik.request import IKRequest
 from kinematica.ik.result import result_of
 from kinematica.ik.solvers import plan_of
 from kinematica.robot import Robot
-from kinematica.spatial import ROUNDOFF_TOL, inv_transform, rotation_angle, wrap_angle
+from kinematica.spatial import inv_transform, rotation_angle, wrap_angle
 
 #: A solution is exact when our FK puts the tool this close to the target (m and rad).
 TOL = 1e-10
@@ -185,7 +185,7 @@ def parts(closed: ClosedForm, robot: Robot, poses: np.ndarray) -> list[float]:
     core = robot.chain.core
     plan = plan_of(robot.chain, "pose", IKRequest.parse())  # what robot.ik(T) runs
     labels, method, opts = closed.labels, closed.method, plan.options
-    out = [closed.params.ik_rigid(core, t, opts, ROUNDOFF_TOL, labels) for t in poses]
+    out = [closed.params.ik(core, t, opts, None, labels) for t in poses]
     by_id = {id(t): o for t, o in zip(poses, out, strict=True)}
     times = [
         shortest_per_item(f, poses, SINGLE_PASSES)
@@ -193,7 +193,7 @@ def parts(closed: ClosedForm, robot: Robot, poses: np.ndarray) -> list[float]:
             robot.ik,
             plan.prepared,
             lambda t: closed.params.candidates(core, t),
-            lambda t: closed.params.ik_rigid(core, t, opts, ROUNDOFF_TOL, labels),
+            lambda t: closed.params.ik(core, t, opts, None, labels),
             lambda t: result_of(by_id[id(t)], method, True, ()),
         )
     ]
@@ -609,10 +609,10 @@ def main() -> None:
         "\n  where one robot.ik call's time goes (median over a quarter of the single poses): "
         "the plan's one core call\n  (plan.prepared: reading the target, solve, check and the "
         "result; of it the solver alone, params.candidates),\n  the same as two calls (the "
-        "core's Answer, params.ik_rigid, then result_of), the rest (settings, dispatch) by "
+        "core's Answer, params.ik, then result_of), the rest (settings, dispatch) by "
         "difference"
     )
-    head = ["", "robot.ik", "core call", "of it: solver", "ik_rigid", "result_of", "rest"]
+    head = ["", "robot.ik", "core call", "of it: solver", "params.ik", "result_of", "rest"]
     print(table([[r.arm, *(fmt_time(t) for t in r.parts)] for r in reports], head))
 
     print(

@@ -41,7 +41,7 @@ def solve(
     lean = request.lean  # one pose target as the core reads it: the plan's one call
     if lean is not None:
         plan: Plan | None = chain.memo.get(lean)  # type: ignore[assignment]
-        if plan is not None and plan.prepared is not None:
+        if plan is not None and plan.lean:
             got = plan.prepared(target)
             if got.__class__ is IKResult:
                 return got  # type: ignore[no-any-return]

@@ -122,19 +122,30 @@ class NumericSetup:
         out = self.quick.ik(core, T, options, q0, labels)
         return out if _settled(out) else self.solver.ik(core, T, options, q0, labels)
 
-    def ik_rigid(
+    def prepare(
         self,
         core: _core.Chain,
-        T: FloatArray,
         options: _core.CheckOptions,
         roundoff: float,
         labels: tuple[str, ...],
-    ) -> Any:
-        """:meth:`ik` of a target rigid to round-off, else None (see the core's ``ik_rigid``)."""
-        out = self.quick.ik_rigid(core, T, options, roundoff, labels)
-        if out is None or _settled(out):
-            return out
-        return self.solver.ik(core, T, options, None, labels)
+        *result: Any,
+    ) -> Callable[[Any], Any]:
+        """The search made ready for one target, as a closed form's ``prepare`` makes it.
+
+        The first guess alone; a target it does not settle goes to the restarts (their
+        answer is the caller's to complete). ``result``: ``(class, fields, statuses,
+        final codes)``, as the core's ``prepare`` takes them.
+        """
+        *made, final = result
+        quick = self.quick.prepare(core, options, roundoff, labels, *made, final & ~_UNSETTLED)
+
+        def call(T: Any) -> Any:
+            out = quick(T)
+            if out is None or out.__class__ is made[0] or _settled(out):
+                return out
+            return self.solver.ik(core, T, options, None, labels)
+
+        return call
 
     def ik_batch(
         self,
@@ -168,6 +179,7 @@ class NumericSetup:
 
 #: The core's code of a target the search did not find (it may need the restarts).
 _NOT_FOUND = _core.STATUS["not_found"]
+_UNSETTLED = 1 << _NOT_FOUND
 
 
 def _settled(out: _core.Answer) -> bool:

@@ -12,7 +12,7 @@ which judges every candidate by forward kinematics; the outcome is wrapped in an
 
 One target given as the core reads it (a C-contiguous float ``(4, 4)`` pose, or a
 ``(3,)`` position placed in the identity pose) is not parsed: the core checks that it
-is rigid to round-off in the same call (``ik_rigid``), and only a target it refuses is
+is rigid to round-off in the same call (``Plan.prepared``), and only a target it refuses is
 read by :func:`~kinematica.ik.targets.parse_targets` (projected onto SO(3) with a
 note, or explained). What an answer then needs is decided by the answer: the numeric
 search where a closed form that may miss a solution found none (:mod:`kinematica.ik.
@@ -37,7 +37,7 @@ from kinematica.ik.options import IKOptions
 from kinematica.ik.reach import ANSWERED, beyond_limited_reach
 from kinematica.ik.registry import ClosedForm, TargetKind
 from kinematica.ik.request import IKRequest
-from kinematica.ik.result import IKBatchResult, IKResult, amended, replaced, result_of
+from kinematica.ik.result import IKBatchResult, IKResult, amended, prepared, replaced, result_of
 from kinematica.ik.solvers import (
     POSE_DOF,
     REDUNDANT_DOF,
@@ -49,7 +49,6 @@ from kinematica.ik.solvers import (
 )
 from kinematica.ik.status import STATUS_NAMES, IKStatus
 from kinematica.ik.targets import Targets, parse_q0, parse_targets
-from kinematica.spatial import ROUNDOFF_TOL
 
 __all__ = ["AT_VALUES", "REDUNDANT_DOF", "answered", "closed_form", "solve_ik", "structure_of"]
 
@@ -142,21 +141,12 @@ def solve_ik(
             plan = chain.memo.get(4 * key + (kind == "position"))  # type: ignore[assignment]
         if plan is None:
             plan = plan_of(chain, kind, request, None if angle is None else "arm_angle")
-        if angle is None and plan.prepared is not None:  # one core call: the result
-            got = plan.prepared(pose)
-            if got.__class__ is IKResult:  # final as the core gives it (_one's first case)
-                return got  # type: ignore[no-any-return]
-            if got is not None:
-                return answered(chain, plan, request, pose, kind, got, (), None)
-        elif plan.direct:
-            solver = plan.solver if angle is None else _at(chain, plan, float(angle))  # type: ignore[arg-type]
-            rigid: _core.Answer | None
-            try:
-                rigid = solver.ik_rigid(chain.core, pose, plan.options, ROUNDOFF_TOL, plan.labels)
-            except ValueError:  # a view the core does not read (not C-contiguous): parsed
-                rigid = None
-            if rigid is not None:
-                return answered(chain, plan, request, pose, kind, rigid, (), None)
+        ready = plan.prepared if angle is None else _at(chain, plan, float(angle))  # type: ignore[arg-type]
+        got = None if ready is None else ready(pose)  # one core call: the result
+        if got.__class__ is IKResult:  # final as the core gives it (answered's first case)
+            return got  # type: ignore[no-any-return]
+        if got is not None:
+            return answered(chain, plan, request, pose, kind, got, (), None)
     targets = target if isinstance(target, Targets) else parse_targets(target)
     kind = "position" if targets.position else "pose"
     values = None
@@ -201,13 +191,19 @@ def _as_is(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IK
 
 
 def _at(chain: Chain, plan: Plan, value: float) -> Any:
-    """``plan``'s closed form at ``value`` of its parameter (made once per value, kept)."""
-    memo: dict[float, Any] = chain.memo.setdefault("at values", {})  # type: ignore[assignment]
-    found = memo.get(value)
+    """``plan``'s closed form at ``value`` of its parameter, prepared (once per value, kept)."""
+    memo: dict[tuple[Plan, float], Any]
+    memo = chain.memo.setdefault("at values", {})  # type: ignore[assignment]
+    found = memo.get((plan, value))
     if found is None:
         if len(memo) >= AT_VALUES:
             memo.clear()
-        found = memo[value] = plan.solver.at(value)
+        if not plan.direct:
+            return None
+        found = memo[plan, value] = prepared(
+            plan.solver.at(value), chain.core, plan.options, plan.labels, plan.method,
+            plan.complete, plan.notes, plan.final,
+        )  # fmt: skip
     return found
 
 

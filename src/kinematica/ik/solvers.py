@@ -53,7 +53,7 @@ FloatArray = NDArray[np.float64]
 #: Joints a pose fixes: an arm of fewer reads a pose target as over-determined...
 POSE_DOF = 6
 #: ... and the arms ``auto`` solves at a parameter: 7 joints, one more than a pose needs.
-#: Neither's plan is prepared for one pose (:attr:`Plan.prepared`): both read the answer.
+#: Neither's plan is lean (:attr:`Plan.lean`): their answers are read again.
 REDUNDANT_DOF = 7
 
 #: The weights of the error components x, y, z, rx, ry, rz of a pose target...
@@ -136,7 +136,7 @@ class Plan:
 
     Attributes:
         closed: The closed form, or None (the numeric search).
-        solver: Its ``Params`` (``ik``, ``ik_rigid``, ``ik_batch``), or the search's set-up.
+        solver: Its ``Params`` (``ik``, ``ik_batch``, ``prepare``), or the search's set-up.
         labels: The branch names of its slots.
         method: The method name results carry.
         complete: It gives every solution (an exact closed form).
@@ -151,11 +151,13 @@ class Plan:
         rank_five: A 6R arm's rank-5 structure (:mod:`kinematica.ik.rank_five`), whose
             answers :mod:`kinematica.ik.continuum_6r` (or, near one,
             :mod:`kinematica.ik.near_rank_five`) gives; None.
-        direct: One target is one core call (``ik_rigid``): neither ``coaxial`` nor
+        direct: One target is one core call (:attr:`prepared`): neither ``coaxial`` nor
             ``rank_five``.
-        prepared: The closed form made ready for one target of a direct plan at no
-            parameter (:func:`~kinematica.ik.result.prepared`: one core call gives the
-            result of a final answer) of an arm of 6 joints or more but not 7; None.
+        prepared: The solver made ready for one target of a direct plan at no parameter
+            (:func:`~kinematica.ik.result.prepared`: one core call gives the result of a
+            final answer, or the answer to complete); None.
+        lean: One pose target goes straight to :attr:`prepared`
+            (:func:`kinematica.ik.door.solve`): an arm of 6 joints or more, but not 7.
         final: The status codes of the core's answers to one target that are final as
             they are (no search, no limited reach, no note to add): read once per plan,
             not on every call.
@@ -174,6 +176,7 @@ class Plan:
     coaxial: Any
     rank_five: Any = None
     prepared: Any = None
+    lean: bool = False
     direct: bool = field(init=False)
     final: frozenset[int] = field(init=False)
 
@@ -279,12 +282,11 @@ def _plan(chain: Chain, kind: TargetKind, request: IKRequest, parameter: str | N
     plan = Plan(
         closed, solver, labels, name, complete, options, w, slack, search, notes, coaxial, five
     )
-    if closed is None or not plan.direct or parameter is not None:
-        return plan
-    if chain.dof < POSE_DOF or chain.dof == REDUNDANT_DOF:
+    if not plan.direct or parameter is not None:
         return plan
     ready = prepared(solver, chain.core, options, labels, name, complete, notes, plan.final)
-    return replace(plan, prepared=ready)
+    lean = POSE_DOF <= chain.dof != REDUNDANT_DOF
+    return replace(plan, prepared=ready, lean=lean)
 
 
 def rank_five_of(chain: Chain, closed: ClosedForm | None) -> Any:
