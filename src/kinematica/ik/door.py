@@ -44,7 +44,7 @@ def solve(
         if plan is not None and plan.lean:
             got = plan.prepared(target)
             if got.__class__ is IKResult:
-                return got  # type: ignore[no-any-return]
+                return got
             if got is not None:  # an answer to complete (a search, the limited reach)
                 return answered(chain, plan, request, target, "pose", got, (), None)  # type: ignore[arg-type]
     if not request.holds and (not request.may_hold or chain.dof != REDUNDANT_DOF):

@@ -136,12 +136,14 @@ class NumericSetup:
         answer is the caller's to complete). ``result``: ``(class, fields, statuses,
         final codes)``, as the core's ``prepare`` takes them.
         """
-        *made, final = result
-        quick = self.quick.prepare(core, options, roundoff, labels, *made, final & ~_UNSETTLED)
+        cls, fields, statuses, final = result
+        quick = self.quick.prepare(
+            core, options, roundoff, labels, cls, fields, statuses, final & ~_UNSETTLED
+        )
 
         def call(T: Any) -> Any:
-            out = quick(T)
-            if out is None or out.__class__ is made[0] or _settled(out):
+            out: Any = quick(T)
+            if out is None or out.__class__ is cls or _settled(out):
                 return out
             return self.solver.ik(core, T, options, None, labels)
 

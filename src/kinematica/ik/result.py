@@ -426,7 +426,8 @@ def result_of(
     straight into the new object's ``__dict__``.
     """
     fields = {"method": method, "complete": complete, "notes": notes, "parameter": parameter}
-    return answer.result(IKResult, fields, _STATUSES)  # type: ignore[no-any-return]
+    made: IKResult = answer.result(IKResult, fields, _STATUSES)  # type: ignore[assignment]
+    return made
 
 
 def prepared(

@@ -144,7 +144,7 @@ def solve_ik(
         ready = plan.prepared if angle is None else _at(chain, plan, float(angle))  # type: ignore[arg-type]
         got = None if ready is None else ready(pose)  # one core call: the result
         if got.__class__ is IKResult:  # final as the core gives it (answered's first case)
-            return got  # type: ignore[no-any-return]
+            return got
         if got is not None:
             return answered(chain, plan, request, pose, kind, got, (), None)
     targets = target if isinstance(target, Targets) else parse_targets(target)
