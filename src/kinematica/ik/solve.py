@@ -257,11 +257,14 @@ def _batch(
         invalid[list(targets.invalid)] = True
     raw = solver.ik_batch(chain.core, targets.poses, plan.options, q0s, invalid, threads)
     shape = targets.shape
-    # the batch index of each flat row, made at once (a row at a time cost 2 µs)
-    at: list[tuple[int, ...]] = [()]
-    if shape:
-        at = list(zip(*(a.ravel().tolist() for a in np.indices(shape)), strict=True))
-    where = at.__getitem__
+    at: list[tuple[int, ...]] = []  # the batch index of each flat row, made at once
+
+    def where(i: int) -> tuple[int, ...]:
+        if not at:  # (a row at a time cost 2 µs)
+            rows = zip(*(a.ravel().tolist() for a in np.indices(shape)), strict=True)
+            at.extend(rows if shape else [()])
+        return at[i]
+
     batch_notes = {where(i): note for i, note in targets.notes.items()}
     if plan.notes:  # auto's search: why no closed form applies
         for i in range(targets.poses.shape[0]):
