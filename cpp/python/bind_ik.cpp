@@ -149,7 +149,7 @@ void bind_answers(nb::module_& m) {
         .def_ro("free", &BatchAnswer::free, "(N, n) the free joints");
 
     nb::class_<Prepared>(m, "Prepared", "A solver made ready for one target (Params.prepare).")
-        .def("__call__", &Prepared::operator(), nb::arg("T"),
+        .def("__call__", &Prepared::operator(), nb::arg("T").none(),
              "The result (or Answer) of T (4, 4); None for a target to read otherwise.");
 }
 
