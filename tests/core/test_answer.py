@@ -93,7 +93,8 @@ def test_a_prepared_plan_declines_what_the_core_does_not_read_as_a_rigid_pose() 
     plan = plan_of(robot.chain, "pose", IKRequest.parse())
     bent = T[0].copy()
     bent[0, 0] += 1e-6  # not rigid to round-off: projected (with a note) by the parse
-    for wrong in (bent, T[0].astype(np.float32), T[0][:3], T[0].tolist(), np.full((4, 4), np.nan)):
+    nan = np.full((4, 4), np.nan)
+    for wrong in (bent, T[0].astype(np.float32), T[0][:3], T[0].tolist(), nan, None):
         assert plan.prepared(wrong) is None
     assert "projected" in robot.ik(bent).message
 

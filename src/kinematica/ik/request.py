@@ -169,22 +169,6 @@ class IKRequest(IKOptions):
         """
         if options is None:
             if (
-                tol is None
-                and respect_limits is True
-                and method.__class__ is str
-                and (
-                    method == "auto"
-                    and q0 is None
-                    and mask is None
-                    and seed is None
-                    and workers is None
-                    and precision is None
-                    and fixed is None
-                    and arm_angle is None
-                )
-            ):  # every default: the request made once
-                return _DEFAULT or _default()
-            if (
                 q0 is None
                 and mask is None
                 and seed is None
@@ -231,17 +215,6 @@ class IKRequest(IKOptions):
                 arg="options",
             )
         return cls.of(options)
-
-
-#: The request of every default (:func:`_default`).
-_DEFAULT: IKRequest | None = None
-
-
-def _default() -> IKRequest:
-    """The request of every default, made on the first call."""
-    global _DEFAULT
-    _DEFAULT = _made("auto", None, True, None, None, None, None, None, None, None)
-    return _DEFAULT
 
 
 def settings_key(settings: tuple[object, ...]) -> int:
