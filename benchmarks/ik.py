@@ -22,7 +22,7 @@ prints:
   alone (``params.candidates``: the core's raw candidates of one pose, before
   the check; the core has no batched entry for them);
 * where the time of one ``robot.ik`` call goes: the core's check of the
-  target, solve and check (``params.ik_rigid``), building the result
+  target, solve and check (``plan.prepared``), building the result
   (``result_of``), and the rest (the keyword test, dispatch) by difference;
 * solutions per pose: mean and histogram of counts, within the limits
   (what ``robot.ik`` returns as ``solutions``) and in all (plus
@@ -69,15 +69,15 @@ from _common import (
 )
 
 import kinematica as km
-from kinematica import _core
 from kinematica.dh import Revolute, link_matrix
 from kinematica.errors import KinematicaWarning
 from kinematica.ik import ClosedForm, IKBatchResult, IKOptions, closed_form
 from kinematica.ik.analytic.spherical_shoulder import reversed_arm
+from kinematica.ik.request import IKRequest
 from kinematica.ik.result import result_of
-from kinematica.ik.targets import parse_tolerance
+from kinematica.ik.solvers import plan_of
 from kinematica.robot import Robot
-from kinematica.spatial import ROUNDOFF_TOL, inv_transform, rotation_angle, wrap_angle
+from kinematica.spatial import inv_transform, rotation_angle, wrap_angle
 
 #: A solution is exact when our FK puts the tool this close to the target (m and rad).
 TOL = 1e-10
@@ -183,23 +183,21 @@ def raw(closed: ClosedForm, robot: Robot, T: np.ndarray) -> np.ndarray:
 def parts(closed: ClosedForm, robot: Robot, poses: np.ndarray) -> list[float]:
     """Seconds of one ``robot.ik`` call and of its parts (median over ``poses``)."""
     core = robot.chain.core
-    opts = _core.CheckOptions()  # what robot.ik passes for a pose target by default
-    tol = parse_tolerance(None)
-    opts.tol_position, opts.tol_rotation = tol.position, tol.rotation
-    opts.respect_limits, opts.complete, opts.weights = True, True, (1.0,) * 6
-    labels, method = closed.labels, closed.method
-    out = [closed.params.ik_rigid(core, t, opts, ROUNDOFF_TOL, labels) for t in poses]
+    plan = plan_of(robot.chain, "pose", IKRequest.parse())  # what robot.ik(T) runs
+    labels, method, opts = closed.labels, closed.method, plan.options
+    out = [closed.params.ik(core, t, opts, None, labels) for t in poses]
     by_id = {id(t): o for t, o in zip(poses, out, strict=True)}
     times = [
         shortest_per_item(f, poses, SINGLE_PASSES)
         for f in (
             robot.ik,
-            lambda t: closed.params.ik_rigid(core, t, opts, ROUNDOFF_TOL, labels),
+            plan.prepared,
             lambda t: closed.params.candidates(core, t),
-            lambda t: result_of(*by_id[id(t)], method, True, ()),
+            lambda t: closed.params.ik(core, t, opts, None, labels),
+            lambda t: result_of(by_id[id(t)], method, True, ()),
         )
     ]
-    return [*times, times[0] - times[1] - times[3]]
+    return [*times, times[0] - times[1]]
 
 
 # ---------------------------------------------------------------------- judging
@@ -609,11 +607,12 @@ def main() -> None:
 
     print(
         "\n  where one robot.ik call's time goes (median over a quarter of the single poses): "
-        "the core's reading of the\n  target, solve and check (params.ik_rigid, through the "
-        "binding; of it the solver alone, params.candidates),\n  building the result, the rest "
-        "(the keyword test, dispatch) by difference"
+        "the plan's one core call\n  (plan.prepared: reading the target, solve, check and the "
+        "result; of it the solver alone, params.candidates),\n  the same as two calls (the "
+        "core's Answer, params.ik, then result_of), the rest (settings, dispatch) by "
+        "difference"
     )
-    head = ["", "robot.ik", "core ik", "of it: solver", "result_of", "rest"]
+    head = ["", "robot.ik", "core call", "of it: solver", "params.ik", "result_of", "rest"]
     print(table([[r.arm, *(fmt_time(t) for t in r.parts)] for r in reports], head))
 
     print(

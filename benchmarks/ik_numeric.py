@@ -92,7 +92,7 @@ def core_call(robot: km.Robot) -> Any:
     assert default.method == "numeric:lm"
     setup = default_setup(robot)
     opts = _core.CheckOptions()
-    opts.tol_position, opts.tol_rotation = 1e-10, 1e-10
+    opts.tol = _core.Tolerance(1e-10, 1e-10)
     opts.respect_limits, opts.complete, opts.weights = True, False, (1.0,) * 6
     core = robot.chain.core
     return lambda T: setup.ik(core, T, opts, None, (LABEL,))

@@ -1,5 +1,5 @@
-// The shared check's options and statuses, the numeric solver, target defects, and the
-// named tolerances of the check and the search.
+// The shared check's tolerance, options and statuses, its typed answers (answer.hpp), the
+// numeric solver, target defects, and the named tolerances of the check and the search.
 #include <nanobind/stl/array.h>
 
 #include <algorithm>
@@ -20,8 +20,7 @@ namespace kmpy {
 
 namespace {
 
-km::NumericSolver make_numeric(F64 bounds, double tol_position, double tol_rotation,
-                               int max_steps, double reach, const km::Vec3& base,
+km::NumericSolver make_numeric(F64 bounds, const km::Tolerance& tol, int max_steps, double reach, const km::Vec3& base,
                                const std::array<double, 6>& weights, F64 samples,
                                F64 middle) {
     const In b = in_f64(bounds, "bounds", 2, {-1, 3});
@@ -35,8 +34,7 @@ km::NumericSolver make_numeric(F64 bounds, double tol_position, double tol_rotat
     for (npy_intp i = 0; i < n; ++i) {
         solver.bounds.push_back({b.data[3 * i], b.data[3 * i + 1], b.data[3 * i + 2]});
     }
-    solver.settings.tol_position = tol_position;
-    solver.settings.tol_rotation = tol_rotation;
+    solver.settings.tol = tol;
     solver.settings.max_steps = max_steps;
     solver.settings.reach = reach;
     solver.settings.base = base;
@@ -110,15 +108,70 @@ nb::tuple repair_candidates(const km::Chain& chain, F64 Th, F64 Qh, const km::Ch
 
 }  // namespace
 
+//! The answers' classes: read-only, each attribute by name.
+void bind_answers(nb::module_& m) {
+    nb::class_<Answer>(m, "Answer", "The check's answer to one target (read-only).")
+        .def_ro("solutions", &Answer::solutions, "(count, n) the solutions (within the limits)")
+        .def_ro("residuals", &Answer::residuals, "(count, 2) position (m), rotation (rad)")
+        .def_ro("out_of_limits", &Answer::out_of_limits, "(out, n) solutions outside the limits")
+        .def_ro("branches", &Answer::branches, "(count,) branch labels")
+        .def_ro("out_of_limits_branches", &Answer::out_of_limits_branches, "(out,) labels")
+        .def_prop_ro("status", [](const Answer& a) { return static_cast<int>(a.report.status); },
+                     "the status code (STATUS)")
+        .def_prop_ro("gap", &Answer::gap, "the proven gap of an unreachable target (m), or None")
+        .def_prop_ro("nearest_error", &Answer::nearest_error,
+                     "(position m, rotation rad) of the closest miss (NaN: none)")
+        .def_prop_ro("near_singular", [](const Answer& a) { return a.report.near; })
+        .def_prop_ro("free_joints", &Answer::free_joints, "free joints (status singular only)")
+        .def(
+            "result",
+            [](const Answer& a, nb::handle cls, nb::handle fields, nb::handle statuses) {
+                return make_result(a, cls, result_fields(cls, fields, statuses), statuses);
+            },
+            nb::arg("cls"), nb::arg("fields"), nb::arg("statuses"),
+            "A new cls (no __init__) whose __dict__ holds fields and these attributes, its\n"
+            "status statuses[code].");
+
+    nb::class_<BatchAnswer>(m, "BatchAnswer", "The check's answers to N targets (read-only).")
+        .def(nb::new_(&batch_answer), nb::arg("q"), nb::arg("slot"), nb::arg("res"),
+             nb::arg("status"), nb::arg("count"), nb::arg("out_count"), nb::arg("gap"),
+             nb::arg("nearest"), nb::arg("near"), nb::arg("free"),
+             "Arrays made elsewhere (a batch merged or stacked), checked and made read-only.")
+        .def_ro("q", &BatchAnswer::q, "(N, m, n) solutions, then those outside the limits")
+        .def_ro("slot", &BatchAnswer::slot, "(N, m) the slot (branch) of each row, -1 after")
+        .def_ro("res", &BatchAnswer::res, "(N, m, 2) position (m), rotation (rad) residuals")
+        .def_ro("status", &BatchAnswer::status, "(N,) status codes")
+        .def_ro("count", &BatchAnswer::count, "(N,) solutions within the limits")
+        .def_ro("out_count", &BatchAnswer::out_count, "(N,) solutions outside them")
+        .def_ro("gap", &BatchAnswer::gap, "(N,) the proven gap of unreachable targets, else NaN")
+        .def_ro("nearest", &BatchAnswer::nearest, "(N, 2) the closest miss (m, rad)")
+        .def_ro("near", &BatchAnswer::near, "(N,) the near flag")
+        .def_ro("free", &BatchAnswer::free, "(N, n) the free joints");
+
+    nb::class_<Prepared>(m, "Prepared", "A solver made ready for one target (Params.prepare).")
+        .def("__call__", &Prepared::operator(), nb::arg("T").none(),
+             "The result (or Answer) of T (4, 4); None for a target to read otherwise.");
+}
+
 void bind_ik(nb::module_& m) {
+    bind_answers(m);
+    const km::Tolerance defaults;  // the defaults, as ik_types.hpp writes them
+    nb::class_<km::Tolerance>(m, "Tolerance", "Acceptance tolerances of a solution.")
+        .def(
+            "__init__",
+            [](km::Tolerance* t, double position, double rotation) {
+                new (t) km::Tolerance{position, rotation};
+            },
+            nb::arg("position") = defaults.position, nb::arg("rotation") = defaults.rotation)
+        .def_rw("position", &km::Tolerance::position, "m")
+        .def_rw("rotation", &km::Tolerance::rotation, "rad");
     nb::class_<km::CheckOptions>(m, "CheckOptions", "How the shared check judges candidates.")
         .def(nb::init<>())
-        .def_rw("tol_position", &km::CheckOptions::tol_position, "m")
-        .def_rw("tol_rotation", &km::CheckOptions::tol_rotation, "rad")
+        .def_rw("tol", &km::CheckOptions::tol, "a solution is within it of the target")
         .def_rw("respect_limits", &km::CheckOptions::respect_limits)
         .def_rw("complete", &km::CheckOptions::complete, "the solver gives every solution")
         .def_rw("gap_slack", &km::CheckOptions::gap_slack,
-                "m: unreachable needs a proven gap beyond tol_position + this")
+                "m: unreachable needs a proven gap beyond tol.position + this")
         .def_rw("repair", &km::CheckOptions::repair,
                 "carry each candidate to this arm's solution (a nearby arm's closed form)")
         .def_prop_rw(
@@ -134,8 +187,7 @@ void bind_ik(nb::module_& m) {
 
     nb::class_<km::NumericSolver> numeric(m, "NumericSolver",
                                           "Levenberg-Marquardt with restarts (lm.hpp).");
-    numeric.def(nb::new_(&make_numeric), nb::arg("bounds"), nb::arg("tol_position"),
-                nb::arg("tol_rotation"), nb::arg("max_steps"), nb::arg("reach"), nb::arg("base"),
+    numeric.def(nb::new_(&make_numeric), nb::arg("bounds"), nb::arg("tol"), nb::arg("max_steps"), nb::arg("reach"), nb::arg("base"),
                 nb::arg("weights"), nb::arg("samples"), nb::arg("middle"));
     numeric.def_prop_ro("restarts", &km::NumericSolver::restarts);
     numeric.def_rw("skip_first", &km::NumericSolver::skip_first,
@@ -161,22 +213,12 @@ void bind_ik(nb::module_& m) {
     status["invalid"] = static_cast<int>(km::Status::invalid);
     m.attr("STATUS") = status;
 
-    m.attr("POSITION_TOL") = km::DEFAULT_TOL_POSITION;
-    m.attr("ROTATION_TOL") = km::DEFAULT_TOL_ROTATION;
     m.attr("POLISH_LIMIT") = km::POLISH_LIMIT;
-    m.attr("POLISH_STEPS") = km::POLISH_STEPS;
-    m.attr("POLISH_DAMPING") = km::POLISH_DAMPING;
     m.attr("DEDUP_TOL") = km::DEDUP_TOL;
     m.attr("MERGE_SPAN") = km::MERGE_SPAN;
     m.attr("LIMIT_TOL") = km::LIMIT_TOL;
-    m.attr("LAMBDA_INIT") = km::LAMBDA_INIT;
-    m.attr("LAMBDA_DOWN") = km::LAMBDA_DOWN;
-    m.attr("LAMBDA_UP") = km::LAMBDA_UP;
     m.attr("LAMBDA_MIN") = km::LAMBDA_MIN;
-    m.attr("LAMBDA_MAX") = km::LAMBDA_MAX;
     m.attr("STALL_WINDOW") = km::STALL_WINDOW;
-    m.attr("STALL_FACTOR") = km::STALL_FACTOR;
-    m.attr("BOUND_SCALE") = km::BOUND_SCALE;
     m.attr("SCALE_FLOOR") = km::SCALE_FLOOR;
 }
 

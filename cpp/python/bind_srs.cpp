@@ -26,7 +26,7 @@ struct AtAngle {
 };
 
 //! ik_batch with target i at the arm angle psi[i].
-nb::dict ik_batch_at(const SRSParams& p, const km::Chain& chain, F64 T, F64 psi,
+BatchAnswer ik_batch_at(const SRSParams& p, const km::Chain& chain, F64 T, F64 psi,
                      const km::CheckOptions& opts, nb::handle q0, nb::handle invalid,
                      int workers) {
     const npy_intp N = shape_f64(T, "T", 3, {-1, 4, 4}).dim[0];  // read by ik_many_rows

@@ -1,8 +1,10 @@
 // Binding an IK solver: single targets, batches, and its raw candidates (for tests).
 //
 // bind_solver<Solver>(cls) adds to a solver's nanobind class:
-//   ik(chain, T, options, q0, labels)           one target: (q, res, branches, report...)
-//   ik_batch(chain, T, options, q0, invalid, workers)   N targets: a dict of arrays
+//   ik(chain, T, options, q0, labels)           one target: an Answer (answer.hpp)
+//   ik_batch(chain, T, options, q0, invalid, workers)   N targets: a BatchAnswer
+//   prepare(chain, options, roundoff, labels, result, fields, statuses, final)
+//                                               a Prepared: one rigid target -> its result
 //   candidates(chain, T, q0)                    the solver's raw candidates and info
 // where Solver satisfies ik.hpp's solver interface (ClosedForm<Params> for closed forms).
 #pragma once
@@ -12,6 +14,8 @@
 #include <nanobind/stl/string.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -19,6 +23,7 @@
 #include <utility>
 #include <vector>
 
+#include "answer.hpp"
 #include "casters.hpp"
 #include "common.hpp"
 #include "interrupt.hpp"
@@ -38,23 +43,6 @@ km::IKWork<Solver>& thread_work(const Solver& s, int n) {
         work = std::make_unique<km::IKWork<Solver>>(s, n);
     }
     return *work;
-}
-
-//! The report of one target as a tuple: (status, gap or None, nearest position, nearest
-//! rotation, near, free joints (a tuple, given with the status singular only)).
-inline nb::tuple report_tuple(const km::CheckReport& r, int n) {
-    nb::object gap = r.gap == r.gap ? nb::object(nb::float_(r.gap)) : nb::none();
-    int nfree = 0;
-    const bool singular = r.status == km::Status::singular;
-    if (singular) {
-        for (int j = 0; j < n; ++j) nfree += static_cast<int>(km::free_bit(r.free, j));
-    }
-    nb::object free = nb::steal(PyTuple_New(nfree));
-    for (int j = 0, k = 0; singular && j < n; ++j) {
-        if (km::free_bit(r.free, j)) PyTuple_SET_ITEM(free.ptr(), k++, PyLong_FromLong(j));
-    }
-    return nb::make_tuple(static_cast<int>(r.status), gap, r.nearest_position,
-                          r.nearest_rotation, r.near, free);
 }
 
 //! The labels of slots[first, last) as a tuple of the label objects themselves.
@@ -121,12 +109,11 @@ struct OneOut {
     }
 };
 
-//! (solutions (count, n), their residuals (count, 2), solutions outside the limits
-//! (out_count, n), the branch label of each within, of each outside, report) for one
-//! target P (read by the caller); labels: the solver's branch names, one per slot.
+//! The Answer of one target P (read by the caller): its solutions, residuals, solutions
+//! outside the limits, the branch label of each (labels: one per slot) and the report.
 template <class Solver>
-nb::tuple ik_pose(const Solver& s, const km::Chain& chain, const km::Pose& P,
-                  const km::CheckOptions& opts, const double* q0p, nb::handle labels) {
+Answer ik_pose(const Solver& s, const km::Chain& chain, const km::Pose& P,
+               const km::CheckOptions& opts, const double* q0p, nb::handle labels) {
     const km::ChainView ch = chain.view();
     const int n = ch.n, m = s.slots();
     thread_local OneOut buf;
@@ -136,18 +123,24 @@ nb::tuple ik_pose(const Solver& s, const km::Chain& chain, const km::Pose& P,
         s, ch, P, opts, q0p, work, km::CheckOut{buf.q.data(), buf.slot.data(), buf.res.data()});
     const int count = rep.count, out = rep.out_count;
     double *q, *res, *qo;
-    F64 Qa = new_f64({count, n}, q), Ra = new_f64({count, 2}, res), Oa = new_f64({out, n}, qo);
+    Answer a;
+    a.solutions = read_only(new_f64({count, n}, q));
+    a.residuals = read_only(new_f64({count, 2}, res));
+    a.out_of_limits = read_only(new_f64({out, n}, qo));
     std::copy(buf.q.data(), buf.q.data() + count * n, q);
     std::copy(buf.res.data(), buf.res.data() + 2 * count, res);
     std::copy(buf.q.data() + count * n, buf.q.data() + (count + out) * n, qo);
     const int* slot = buf.slot.data();
-    return nb::make_tuple(Qa, Ra, Oa, branch_tuple(labels, slot, 0, count),
-                          branch_tuple(labels, slot, count, count + out), report_tuple(rep, n));
+    a.branches = branch_tuple(labels, slot, 0, count);
+    a.out_of_limits_branches = branch_tuple(labels, slot, count, count + out);
+    a.report = rep;
+    a.n = n;
+    return a;
 }
 
 //! ik_pose of one target T (4, 4), q0 (n,) or None.
 template <class Solver>
-nb::tuple ik_one(const Solver& s, const km::Chain& chain, F64 T,
+Answer ik_one(const Solver& s, const km::Chain& chain, F64 T,
                  const km::CheckOptions& opts, nb::handle q0, nb::handle labels) {
     check_dims(s, chain);
     checked_labels(labels, s.slots());
@@ -156,25 +149,47 @@ nb::tuple ik_one(const Solver& s, const km::Chain& chain, F64 T,
     return ik_pose(s, chain, P, opts, q0in.data, labels);
 }
 
-//! ik_one for a target already rigid to round-off (finite, last row exact, |RᵀR - I| <=
-//! roundoff, det R > 0), else None: the caller's general path reads (and explains) it.
-template <class Solver>
-nb::object ik_rigid(const Solver& s, const km::Chain& chain, F64 T, const km::CheckOptions& opts,
-                    double roundoff, nb::handle labels) {
-    check_dims(s, chain);
-    checked_labels(labels, s.slots());
-    const In in = in_f64(T, "T", 2, {4, 4});
-    const km::PoseDefects d = km::pose_defects(in.data);
-    if (!(d.finite && d.last_row == 0.0 && d.ortho <= roundoff && d.det > 0.0)) return nb::none();
-    return ik_pose(s, chain, km::Pose::from_rows(in.data), opts, nullptr, labels);
-}
+//! A solver made ready for one kind of call: the chain, the check's options, the branch
+//! labels and what a final answer's result is made of (make_result), held; called with
+//! one target T (4, 4) alone. A target the core does not read in place or that is not
+//! rigid to round-off gives None (the caller's general path reads and explains it); an
+//! answer whose status is final (bit `status` of final_codes) gives its result, any other
+//! its Answer (the caller completes it).
+struct Prepared {
+    std::function<Answer(const km::Pose&)> solve;
+    nb::object keep;  //!< the solver, the chain and the labels the solve reads
+    nb::object result, fields, statuses;
+    double roundoff = 0.0;
+    std::uint32_t final_codes = 0;
 
-//! A batch of N targets: a dict of arrays q (N, m, n), slot (N, m), res (N, m, 2),
-//! status (N,), count (N,), out_count (N,), gap (N,), nearest (N, 2), near (N,),
-//! free (N, n). Target i is solved and checked by solve_row(i, chain, P, q0 of i, work, out)
+    nb::object operator()(nb::handle T) const {
+        PyObject* o = T.ptr();
+        if (!PyArray_Check(o)) return nb::none();
+        auto* a = reinterpret_cast<PyArrayObject*>(o);
+        if (PyArray_TYPE(a) != NPY_DOUBLE || PyArray_NDIM(a) != 2 || PyArray_DIM(a, 0) != 4 ||
+            PyArray_DIM(a, 1) != 4 || !PyArray_IS_C_CONTIGUOUS(a) || !PyArray_ISALIGNED(a) ||
+            !PyArray_ISNOTSWAPPED(a)) {
+            return nb::none();
+        }
+        const double* t = static_cast<const double*>(PyArray_DATA(a));
+        const km::PoseDefects d = km::pose_defects(t);
+        if (!(d.finite && d.last_row == 0.0 && d.ortho <= roundoff && d.det > 0.0)) {
+            return nb::none();
+        }
+        const Answer ans = solve(km::Pose::from_rows(t));
+        if (((final_codes >> static_cast<unsigned>(ans.report.status)) & 1U) != 0U) {
+            return make_result(ans, result, fields, statuses);
+        }
+        return nb::cast(ans);
+    }
+};
+
+//! A batch of N targets: a BatchAnswer (answer.hpp) of arrays q (N, m, n), slot (N, m),
+//! res (N, m, 2), status (N,), count (N,), out_count (N,), gap (N,), nearest (N, 2),
+//! near (N,), free (N, n), written in place by the core. Target i is solved and checked by solve_row(i, chain, P, q0 of i, work, out)
 //! (a solver with a value per target); s gives the work arrays' dimensions.
 template <class Solver, class SolveRow>
-nb::dict ik_many_rows(const Solver& s, const km::Chain& chain, F64 Th, nb::handle q0h,
+BatchAnswer ik_many_rows(const Solver& s, const km::Chain& chain, F64 Th, nb::handle q0h,
                       nb::handle invalidh, int workers, const SolveRow& solve_row) {
     check_dims(s, chain);
     const km::ChainView ch = chain.view();
@@ -187,17 +202,17 @@ nb::dict ik_many_rows(const Solver& s, const km::Chain& chain, F64 Th, nb::handl
     double *q, *res, *gap, *nearest;
     npy_int64 *slot, *status, *count, *out_count;
     npy_bool *near, *freeb;
-    nb::dict out;
-    out["q"] = new_f64({N, m, n}, q);
-    out["slot"] = new_i64({N, m}, slot);
-    out["res"] = new_f64({N, m, 2}, res);
-    out["status"] = new_i64({N}, status);
-    out["count"] = new_i64({N}, count);
-    out["out_count"] = new_i64({N}, out_count);
-    out["gap"] = new_f64({N}, gap);
-    out["nearest"] = new_f64({N, 2}, nearest);
-    out["near"] = new_array({N}, near, NPY_BOOL);
-    out["free"] = new_array({N, n}, freeb, NPY_BOOL);
+    BatchAnswer out;
+    out.q = new_f64({N, m, n}, q);
+    out.slot = new_i64({N, m}, slot);
+    out.res = new_f64({N, m, 2}, res);
+    out.status = new_i64({N}, status);
+    out.count = new_i64({N}, count);
+    out.out_count = new_i64({N}, out_count);
+    out.gap = new_f64({N}, gap);
+    out.nearest = new_f64({N, 2}, nearest);
+    out.near = new_bools({N}, near);
+    out.free = new_bools({N, n}, freeb);
     {
         const int blocks = static_cast<int>((N + TARGET_BLOCK - 1) / TARGET_BLOCK);
         run_blocks(blocks, workers, [&](int blk) {
@@ -227,12 +242,17 @@ nb::dict ik_many_rows(const Solver& s, const km::Chain& chain, F64 Th, nb::handl
             }
         });
     }
+    for (nb::object* a : std::initializer_list<nb::object*>{
+             &out.q, &out.slot, &out.res, &out.status, &out.count, &out.out_count, &out.gap,
+             &out.nearest, &out.near, &out.free}) {
+        read_only(nb::handle(*a));
+    }
     return out;
 }
 
 //! ik_many_rows with one solver for every target.
 template <class Solver>
-nb::dict ik_many(const Solver& s, const km::Chain& chain, F64 Th,
+BatchAnswer ik_many(const Solver& s, const km::Chain& chain, F64 Th,
                  const km::CheckOptions& opts, nb::handle q0h, nb::handle invalidh, int workers) {
     return ik_many_rows(s, chain, Th, q0h, invalidh, workers,
                         [&s, &opts](npy_intp, const km::ChainView& ch, const km::Pose& P,
@@ -268,16 +288,7 @@ void add_ik_methods(nb::class_<Bound>& cls, Get get) {
                   nb::handle q0, nb::handle labels) { return ik_one(get(b), chain, T, o, q0, labels); },
             nb::arg("chain"), nb::arg("T"), nb::arg("options"), nb::arg("q0").none(),
             nb::arg("labels"),
-            "Every solution of one target T (4, 4): (q, res, q outside, branches, branches\n"
-            "outside, report (status, gap, nearest position, nearest rotation, near, free)).");
-    cls.def("ik_rigid",
-            [get](const Bound& b, const km::Chain& chain, F64 T, const km::CheckOptions& o,
-                  double roundoff, nb::handle labels) {
-                return ik_rigid(get(b), chain, T, o, roundoff, labels);
-            },
-            nb::arg("chain"), nb::arg("T"), nb::arg("options"), nb::arg("roundoff"),
-            nb::arg("labels"),
-            "ik of a target rigid to round-off, without q0; None for any other target.");
+            "Every solution of one target T (4, 4): an Answer.");
     cls.def("ik_batch",
             [get](const Bound& b, const km::Chain& chain, F64 T, const km::CheckOptions& o,
                   nb::handle q0, nb::handle invalid, int workers) {
@@ -285,7 +296,34 @@ void add_ik_methods(nb::class_<Bound>& cls, Get get) {
             },
             nb::arg("chain"), nb::arg("T"), nb::arg("options"), nb::arg("q0").none(),
             nb::arg("invalid").none(), nb::arg("workers"),
-            "Every solution of each target T (N, 4, 4): a dict of arrays.");
+            "Every solution of each target T (N, 4, 4): a BatchAnswer.");
+    cls.def(
+        "prepare",
+        [get](nb::handle_t<Bound> self, nb::handle_t<km::Chain> chain, const km::CheckOptions& o,
+              double roundoff, nb::handle labels, nb::handle result, nb::handle fields,
+              nb::handle statuses, std::uint32_t final_codes) {
+            const Bound* b = &nb::cast<const Bound&>(self);
+            const km::Chain* c = &nb::cast<const km::Chain&>(chain);
+            check_dims(get(*b), *c);
+            checked_labels(labels, get(*b).slots());
+            Prepared p;
+            p.fields = result_fields(result, fields, statuses);
+            p.solve = [get, b, c, o, labels](const km::Pose& P) {
+                return ik_pose(get(*b), *c, P, o, nullptr, labels);
+            };
+            p.keep = nb::make_tuple(self, chain, labels);
+            p.result = nb::borrow(result);
+            p.statuses = nb::borrow(statuses);
+            p.roundoff = roundoff;
+            p.final_codes = final_codes;
+            return p;
+        },
+        nb::arg("chain"), nb::arg("options"), nb::arg("roundoff"), nb::arg("labels"),
+        nb::arg("result"), nb::arg("fields"), nb::arg("statuses"), nb::arg("final_codes"),
+        "This solver made ready for one target at a time (a Prepared): the chain, options\n"
+        "and labels held; an answer whose status s has bit s of final_codes set is given as\n"
+        "`result` (a class) with `fields` (a dict) and the answer's attributes in its\n"
+        "__dict__, its status statuses[code].");
     cls.def("candidates",
             [get](const Bound& b, const km::Chain& chain, F64 T, nb::handle q0) {
                 return candidates(get(b), chain, T, q0);

@@ -46,7 +46,7 @@ def target_of(q: list[float]) -> np.ndarray:
 def check(robot: km.Robot, T: np.ndarray, Q: np.ndarray, respect_limits: bool = True):  # type: ignore[no-untyped-def]
     """The core's shared check of hand-made candidates Q (m, n) of a position target."""
     opts = _core.CheckOptions()
-    opts.tol_position = opts.tol_rotation = 1e-10
+    opts.tol = _core.Tolerance(1e-10, 1e-10)
     opts.respect_limits = respect_limits
     opts.complete = True
     opts.weights = POSITION.tolist()
@@ -117,7 +117,7 @@ def test_limit_tol_is_1e_12(beyond: float, inside: bool) -> None:
 def repair_options() -> _core.CheckOptions:
     """The check's options for a nearby arm's candidates (CheckOptions.repair)."""
     opts = _core.CheckOptions()
-    opts.tol_position = opts.tol_rotation = 1e-10
+    opts.tol = _core.Tolerance(1e-10, 1e-10)
     opts.weights = POSITION.tolist()
     opts.gap_slack = 1e-9
     opts.repair = True

@@ -203,8 +203,8 @@ def test_candidates_that_miss_beyond_the_polish_make_no_unreachable_without_a_ga
     assert 1.5e-5 < c < 3e-5 and near
     opts = _core.CheckOptions()
     opts.complete = True
-    *_, report = params.ik(robot.chain.core, T, opts, None, tuple(g6.LABELS))
-    assert report[0] == _core.STATUS["not_found"] and report[1] is None and report[4]
+    one = params.ik(robot.chain.core, T, opts, None, tuple(g6.LABELS))
+    assert one.status == _core.STATUS["not_found"] and one.gap is None and one.near_singular
 
 
 def _eps_for(miss: Any, target: float) -> float:
@@ -282,8 +282,9 @@ def test_candidates_that_miss_beyond_the_polish_are_carried_to_the_solutions() -
     assert c <= 1e-12 and not near
     opts = _core.CheckOptions()
     opts.complete = True
-    sols, *_, report = params.ik(robot.chain.core, T, opts, None, tuple(g6.LABELS))
-    assert report[0] == _core.STATUS["ok"]
+    one = params.ik(robot.chain.core, T, opts, None, tuple(g6.LABELS))
+    sols = one.solutions
+    assert one.status == _core.STATUS["ok"]
     assert len(sols) == np.isfinite(plain[:, 0]).sum()
     d = np.abs(np.remainder(sols - q + math.pi, 2 * math.pi) - math.pi).max(axis=1)
     assert d.min() <= 1e-9

@@ -213,7 +213,7 @@ KM_HD inline void repair(const ChainView& ch, double* q, const Pose& T,
     const double* w = opts.weights;
     double* qt = work.qt.data();
     const auto score = [&](double p, double r) {
-        return std::fmax(p / opts.tol_position, r / opts.tol_rotation);
+        return std::fmax(p / opts.tol.position, r / opts.tol.rotation);
     };
     double best = score(p_err, r_err);
     for (int j = 0; j < n; ++j) qt[j] = q[j];
@@ -265,7 +265,7 @@ KM_HD inline bool midpoint_solves(const ChainView& ch, const double* qa, const d
     joint_trig(ch, qt, work.c1.data(), work.s1.data());
     double p = INF, r = INF;
     residual(ch, qt, work.c1.data(), work.s1.data(), 1, T, opts.weights, p, r);
-    return p <= opts.tol_position && r <= opts.tol_rotation;
+    return p <= opts.tol.position && r <= opts.tol.rotation;
 }
 
 }  // namespace detail
@@ -276,7 +276,7 @@ KM_HD KM_INLINE CheckReport check(const ChainView& ch, const Pose& T, const doub
                                   const SolverInfo& info, const CheckOptions& opts,
                                   const double* q0, CheckWork& work, const CheckOut& out) {
     const int n = ch.n;
-    const double tol_p = opts.tol_position, tol_r = opts.tol_rotation;
+    const double tol_p = opts.tol.position, tol_r = opts.tol.rotation;
     double* qs = work.qs.data();
     double* res = work.res.data();
     double* key = work.key.data();

@@ -42,20 +42,21 @@ enum class Status : int {
     invalid = 5,        //!< a malformed target in a batch
 };
 
-//! The default acceptance tolerances of a solution, for the check and the numeric search
-//! alike (kinematica.ik.POSITION_TOL and ROTATION_TOL are these).
-constexpr double DEFAULT_TOL_POSITION = 1e-10;  //!< m
-constexpr double DEFAULT_TOL_ROTATION = 1e-10;  //!< rad
+//! The acceptance tolerances of a solution, for the check and the numeric search alike:
+//! their defaults are written here alone (kinematica.ik.Tolerance reads them).
+struct Tolerance {
+    double position = 1e-10;  //!< m
+    double rotation = 1e-10;  //!< rad
+};
 
 //! How candidates are judged.
 struct CheckOptions {
-    double tol_position = DEFAULT_TOL_POSITION;  //!< m
-    double tol_rotation = DEFAULT_TOL_ROTATION;  //!< rad
+    Tolerance tol;                //!< a solution is within it of the target
     bool respect_limits = true;   //!< solutions outside the limits are listed apart
     bool complete = false;        //!< the solver gives every solution (a closed form)
     //! m the solver's proven gap may be off the real arm's: a closed form built for an
     //! arm its family holds for only to within the line geometry's tolerance proves
-    //! "unreachable" only with a gap beyond tol_position + gap_slack
+    //! "unreachable" only with a gap beyond tol.position + gap_slack
     double gap_slack = 0.0;
     //! the candidates are a nearby arm's (a closed form of the family the arm belongs to
     //! only within the line geometry's tolerance): each is carried to this arm's solution

@@ -75,9 +75,8 @@ struct JointBound {
 
 //! How the search runs.
 struct LMSettings {
-    double tol_position = DEFAULT_TOL_POSITION;  //!< m
-    double tol_rotation = DEFAULT_TOL_ROTATION;  //!< rad
-    int max_steps = 60;                          //!< steps per attempt
+    Tolerance tol;                //!< the search stops within it of the target
+    int max_steps = 60;           //!< steps per attempt
     double reach = INF;           //!< bound on the distance of the tool origin from `base` (m)
     Vec3 base{};                  //!< the start frame's origin
 };
@@ -293,7 +292,7 @@ KM_HD inline int end_game(const ChainView& ch, const JointBound* b, const Pose& 
             ++evaluations;
             double pos, rot;
             norms(rows, err, pos, rot);
-            if (pos <= set.tol_position && rot <= set.tol_rotation) return evaluations;
+            if (pos <= set.tol.position && rot <= set.tol.rotation) return evaluations;
             const double E_new = energy(rows, err);
             if (E_new < E_low) {
                 for (int i = 0; i < n; ++i) work.q_best[i] = q[i];
@@ -321,7 +320,7 @@ KM_HD KM_INLINE LMStats lm_solve(const ChainView& ch, const JointBound* bounds, 
     using namespace lm;
     const int n = ch.n;
     LMStats stats;
-    const double tol_p = set.tol_position, tol_r = set.tol_rotation;
+    const double tol_p = set.tol.position, tol_r = set.tol.rotation;
     // A target beyond the reach bound is out of reach (leaving out components that do not
     // count only shortens a distance). A solution may miss by the tolerance in the
     // weighted norm, so the proof needs w_min · gap > tol_p.

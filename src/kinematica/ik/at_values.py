@@ -80,9 +80,9 @@ class AtValues:
 
     def ik_batch(
         self, chain: Any, T: FloatArray, options: Any, q0: Any, invalid: Any, workers: int
-    ) -> dict[str, Any]:
+    ) -> Any:
         """``Params.ik_batch`` at one value, else ``Params.ik_batch_at`` (one per target)."""
         values = self._values
         if values.size and np.all(values == values[0]):
-            return dict(self._first.ik_batch(chain, T, options, q0, invalid, workers))
-        return dict(self._params.ik_batch_at(chain, T, values, options, q0, invalid, workers))
+            return self._first.ik_batch(chain, T, options, q0, invalid, workers)
+        return self._params.ik_batch_at(chain, T, values, options, q0, invalid, workers)

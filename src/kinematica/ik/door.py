@@ -5,7 +5,9 @@
 redundant arm with a parameter to hold (``fixed=``, ``arm_angle=``, or ``auto`` on a
 7-joint arm) goes to :func:`kinematica.ik.redundancy.solve_arm`, which holds it and
 solves the arm the lock leaves; every other arm to :func:`kinematica.ik.solve.solve_ik`.
-Either way the targets are solved by ``solve_ik``'s one path.
+Either way the targets are solved by ``solve_ik``'s one path; one pose target as the
+core reads it, with nothing held and no ``q0``, goes straight to the plan's prepared
+call (:attr:`~kinematica.ik.solvers.Plan.prepared`), which gives its result.
 """
 
 from __future__ import annotations
@@ -17,7 +19,8 @@ from numpy.typing import ArrayLike
 from kinematica.core import Chain
 from kinematica.ik.request import IKRequest
 from kinematica.ik.result import IKBatchResult, IKResult
-from kinematica.ik.solve import REDUNDANT_DOF, solve_ik
+from kinematica.ik.solve import REDUNDANT_DOF, answered, solve_ik
+from kinematica.ik.solvers import Plan
 
 __all__ = ["solve"]
 
@@ -35,6 +38,15 @@ def solve(
         request: The call's settings (:meth:`IKRequest.parse`).
         names: The joints' display names (``result.parameter`` names a held joint so).
     """
+    lean = request.lean  # one pose target as the core reads it: the plan's one call
+    if lean is not None:
+        plan: Plan | None = chain.memo.get(lean)  # type: ignore[assignment]
+        if plan is not None and plan.lean:
+            got = plan.prepared(target)
+            if got.__class__ is IKResult:
+                return got
+            if got is not None:  # an answer to complete (a search, the limited reach)
+                return answered(chain, plan, request, target, "pose", got, (), None)  # type: ignore[arg-type]
     if not request.holds and (not request.may_hold or chain.dof != REDUNDANT_DOF):
         return solve_ik(chain, target, request)
     return (_solve_arm or _redundancy())(chain, target, request, names)

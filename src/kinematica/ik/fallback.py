@@ -100,34 +100,46 @@ def seeds(closed: ClosedForm, chain: Chain, poses: Any, position: bool, default:
     return out
 
 
-def merge_batch(raw: dict[str, Any], rows: Any, searched: dict[str, Any]) -> dict[str, Any]:
+def merge_batch(
+    raw: _core.BatchAnswer,
+    rows: Any,
+    searched: _core.BatchAnswer,
+    closed: ClosedForm | None,
+    poses: Any,
+) -> _core.BatchAnswer:
     """The closed form's batch ``raw`` with rows ``rows`` replaced by the search's answers.
 
     Args:
-        raw: The closed form's ``ik_batch`` output (arrays with ``m`` slots).
+        raw: The closed form's ``ik_batch`` answer (arrays with ``m`` slots).
         rows: ``(k,)`` indices of the targets the search answered.
-        searched: The numeric ``ik_batch`` output for those targets (1 slot).
+        searched: The numeric ``ik_batch`` answer for those targets (1 slot).
+        closed: The closed form, whose ``mark_searched`` (if any) says of the search's
+            answers what it says of its own.
+        poses: ``(k, 4, 4)`` those targets.
 
     Returns:
         The arrays with one more slot, ``m``, the search's; its label follows the
         closed form's labels.
     """
-    N, m, n = raw["q"].shape
+    N, m, n = raw.q.shape
+    found = {key: np.array(getattr(searched, key)) for key in ("status", "free")}
+    if closed is not None and closed.mark_searched is not None:
+        closed.mark_searched(poses, searched.q[:, 0], found["status"], found["free"])
     q = np.full((N, m + 1, n), np.nan)
-    q[:, :m] = raw["q"]
+    q[:, :m] = raw.q
     res = np.full((N, m + 1, 2), np.nan)
-    res[:, :m] = raw["res"]
+    res[:, :m] = raw.res
     slot = np.full((N, m + 1), -1, dtype=np.int64)
-    slot[:, :m] = raw["slot"]
+    slot[:, :m] = raw.slot
     q[rows] = np.nan
     res[rows] = np.nan
     slot[rows] = -1
-    q[rows, 0] = searched["q"][:, 0]
-    res[rows, 0] = searched["res"][:, 0]
-    slot[rows, 0] = np.where(searched["slot"][:, 0] >= 0, m, -1)
-    out = dict(raw, q=q, res=res, slot=slot)
+    q[rows, 0] = searched.q[:, 0]
+    res[rows, 0] = searched.res[:, 0]
+    slot[rows, 0] = np.where(searched.slot[:, 0] >= 0, m, -1)
+    out: dict[str, Any] = {"q": q, "res": res, "slot": slot}
     for key in ("status", "count", "out_count", "gap", "nearest", "near", "free"):
-        merged = np.array(raw[key], copy=True)
-        merged[rows] = searched[key]
+        merged = np.array(getattr(raw, key), copy=True)
+        merged[rows] = found.get(key, getattr(searched, key))
         out[key] = merged
-    return out
+    return _core.BatchAnswer(**out)

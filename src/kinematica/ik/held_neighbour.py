@@ -201,9 +201,9 @@ class _Sweep:
         aims = np.ascontiguousarray(np.broadcast_to(self.aim, (m, 4, 4)))
         raw = self.params.ik_batch_at(self.neighbour.core, aims, psi, self.check, None, None, 1)
         Q = np.full((m, self.slots, 7), np.nan)
-        slot = np.asarray(raw["slot"])
+        slot = raw.slot
         rows, cols = np.nonzero(slot >= 0)
-        Q[rows, slot[rows, cols]] = np.asarray(raw["q"])[rows, cols]
+        Q[rows, slot[rows, cols]] = raw.q[rows, cols]
         flat = Q.reshape(-1, 7)
         live = np.flatnonzero(np.isfinite(flat).all(axis=1))
         if live.size:

@@ -66,13 +66,13 @@ class CutSweep:
         turn[:, 2, 2] = turn[:, 3, 3] = 1.0
         opts = check_options(tol, False, False, POSE_WEIGHTS)
         raw = self.params.ik_batch(self.arm.core, turn, opts, None, None, workers)
-        q = np.asarray(raw["q"])
+        q = np.asarray(raw.q)
         j = self.joint
         real = np.empty((*q.shape[:2], 6))
         real[..., j + 1 :] = q[..., : 5 - j]
         real[..., :j] = q[..., 5 - j : 5]
         real[..., j] = t[:, None]
-        return real, q[..., 5], np.asarray(raw["count"]).tolist()
+        return real, q[..., 5], np.asarray(raw.count).tolist()
 
 
 def cut_arm(chain: Chain, joint: int, T: FloatArray) -> Chain:

@@ -117,10 +117,10 @@ class EndSweep:
         moved = np.ascontiguousarray(self.moved(chain, poses, t))
         opts = check_options(tol, False, False, POSE_WEIGHTS)
         raw = self.params.ik_batch(self.arm.core, moved, opts, None, None, workers)
-        q = np.asarray(raw["q"])
+        q = np.asarray(raw.q)
         held = np.broadcast_to(np.asarray(t, dtype=np.float64)[:, None], q.shape[:2])
         real = np.insert(q[..., :5], self.joint, held, axis=2)
-        return real, q[..., 5], np.asarray(raw["count"]).tolist()
+        return real, q[..., 5], np.asarray(raw.count).tolist()
 
 
 def moving_joints(chain: Chain, rank: int) -> tuple[int, ...]:

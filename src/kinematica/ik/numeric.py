@@ -22,6 +22,7 @@ from numpy.typing import NDArray
 import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.errors import ArgumentError
+from kinematica.ik.result import arrays_of
 
 __all__ = [
     "DEFAULT_MAX_ITERATIONS",
@@ -121,19 +122,32 @@ class NumericSetup:
         out = self.quick.ik(core, T, options, q0, labels)
         return out if _settled(out) else self.solver.ik(core, T, options, q0, labels)
 
-    def ik_rigid(
+    def prepare(
         self,
         core: _core.Chain,
-        T: FloatArray,
         options: _core.CheckOptions,
         roundoff: float,
         labels: tuple[str, ...],
-    ) -> Any:
-        """:meth:`ik` of a target rigid to round-off, else None (see the core's ``ik_rigid``)."""
-        out = self.quick.ik_rigid(core, T, options, roundoff, labels)
-        if out is None or _settled(out):
-            return out
-        return self.solver.ik(core, T, options, None, labels)
+        *result: Any,
+    ) -> Callable[[Any], Any]:
+        """The search made ready for one target, as a closed form's ``prepare`` makes it.
+
+        The first guess alone; a target it does not settle goes to the restarts (their
+        answer is the caller's to complete). ``result``: ``(class, fields, statuses,
+        final codes)``, as the core's ``prepare`` takes them.
+        """
+        cls, fields, statuses, final = result
+        quick = self.quick.prepare(
+            core, options, roundoff, labels, cls, fields, statuses, final & ~_UNSETTLED
+        )
+
+        def call(T: Any) -> Any:
+            out: Any = quick(T)
+            if out is None or out.__class__ is cls or _settled(out):
+                return out
+            return self.solver.ik(core, T, options, None, labels)
+
+        return call
 
     def ik_batch(
         self,
@@ -152,28 +166,27 @@ class NumericSetup:
         check completes it, while that search goes on to a restart that may converge
         elsewhere (single calls and a batch would then give different solutions).
         """
-        out = dict(self.quick.ik_batch(core, T, options, q0, invalid, workers))
-        status, gap = np.asarray(out["status"]), np.asarray(out["gap"], dtype=float)
-        rows = np.flatnonzero((status == _NOT_FOUND) & ~np.isfinite(gap))
+        out = self.quick.ik_batch(core, T, options, q0, invalid, workers)
+        rows = np.flatnonzero((out.status == _NOT_FOUND) & ~np.isfinite(out.gap))
         if rows.size:
             guess = None if q0 is None else np.ascontiguousarray(np.asarray(q0)[rows])
             poses = np.ascontiguousarray(T[rows])
             redo = self.solver.ik_batch(core, poses, options, guess, None, workers)
-            for key, value in redo.items():
-                merged = np.array(out[key])
-                merged[rows] = value
-                out[key] = merged
+            merged = arrays_of(out)
+            for key, value in merged.items():
+                value[rows] = getattr(redo, key)
+            out = _core.BatchAnswer(**merged)
         return out
 
 
 #: The core's code of a target the search did not find (it may need the restarts).
 _NOT_FOUND = _core.STATUS["not_found"]
+_UNSETTLED = 1 << _NOT_FOUND
 
 
-def _settled(out: Any) -> bool:
+def _settled(out: _core.Answer) -> bool:
     """True when a search without restarts has answered (the restarts are not tried)."""
-    report = out[-1]
-    return bool(report[0] != _NOT_FOUND or report[1] is not None)  # found, or a proven gap
+    return out.status != _NOT_FOUND or out.gap is not None  # found, or a proven gap
 
 
 _SETUPS_PER_CHAIN = 8
@@ -302,7 +315,8 @@ def _compile(
 
     def make(samples: FloatArray) -> _core.NumericSolver:
         return _core.NumericSolver(
-            bounds, tol_position, tol_rotation, max_iterations, reach, base, list(weights),
+            bounds, _core.Tolerance(tol_position, tol_rotation), max_iterations, reach, base,
+            list(weights),
             np.ascontiguousarray(samples), np.ascontiguousarray(middle),
         )  # fmt: skip
 

@@ -28,7 +28,6 @@ import dataclasses
 import math
 from collections.abc import Callable
 from decimal import Decimal
-from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -36,7 +35,7 @@ from numpy.typing import ArrayLike, NDArray
 import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.ik.options import IKOptions
-from kinematica.ik.result import IKBatchResult, IKResult
+from kinematica.ik.result import IKBatchResult, IKResult, arrays_of
 from kinematica.ik.status import IKStatus
 from kinematica.ik.tolerance import parse_tolerance
 
@@ -272,11 +271,11 @@ def overdetermined_rows(
     chain: Chain,
     target: ArrayLike,
     options: IKOptions,
-    raw: dict[str, Any],
+    raw: _core.BatchAnswer,
     labels: tuple[str, ...],
     q0s: FloatArray | None,
     solve_one: Solve,
-) -> tuple[dict[str, Any], dict[int, tuple[str, ...]]]:
+) -> tuple[_core.BatchAnswer, dict[int, tuple[str, ...]]]:
     """A batch's unanswered pose targets (``dof < 6``), each answered as one target.
 
     Args:
@@ -293,11 +292,11 @@ def overdetermined_rows(
         answer found solutions, and flat index -> its notes.
     """
     flat = np.asarray(target, dtype=float).reshape(-1, 4, 4)
-    rows = np.flatnonzero((raw["status"] == _NOT_FOUND) | (raw["status"] == _UNREACHABLE))
+    rows = np.flatnonzero((raw.status == _NOT_FOUND) | (raw.status == _UNREACHABLE))
     notes: dict[int, tuple[str, ...]] = {}
     if rows.size == 0:
         return raw, notes
-    out = {key: np.array(value, copy=True) for key, value in raw.items()}
+    out = arrays_of(raw)
     for i in rows.tolist():
         if options.precision is None and printed_precision(flat[i]) is None:
             continue  # computed numbers: the batch's answer stands
@@ -316,4 +315,4 @@ def overdetermined_rows(
         out["count"][i], out["out_count"][i] = one.count, one.out_of_limits.shape[0]
         out["gap"][i] = np.nan
         notes[i] = one.notes
-    return out, notes
+    return _core.BatchAnswer(**out), notes

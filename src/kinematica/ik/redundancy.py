@@ -379,7 +379,7 @@ def _screen(arm: Chain, poses: FloatArray, request: IKRequest) -> NDArray[np.boo
         return np.asarray(out.raw.count) > 0
     workers = resolve_workers(request.workers)
     raw = plan.solver.ik_batch(arm.core, poses, plan.options, None, None, workers)
-    return np.asarray(raw["count"]) > 0
+    return np.asarray(raw.count) > 0
 
 
 def default_value(chain: Chain, joint: Parameter) -> tuple[float, str]:

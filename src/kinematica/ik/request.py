@@ -69,6 +69,9 @@ class IKRequest(IKOptions):
             joint held (:func:`kinematica.ik.door.solve`).
         bare: Neither ``q0`` nor ``arm_angle``: one target as the core reads it goes
             to the core as it is (:func:`kinematica.ik.solve.solve_ik`).
+        lean: The key of the chain's plan for pose targets (:func:`~kinematica.ik.
+            solvers.plan_of`) where one such target goes straight to its prepared call
+            (:func:`kinematica.ik.door.solve`): nothing held, no ``q0``; else None.
     """
 
     tolerance: Tolerance = field(init=False, repr=False)
@@ -77,6 +80,7 @@ class IKRequest(IKOptions):
     holds: bool = field(init=False, repr=False)
     may_hold: bool = field(init=False, repr=False)
     bare: bool = field(init=False, repr=False)
+    lean: int | None = field(init=False, repr=False)
     _changed: dict[tuple[object, ...], IKRequest] = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -103,6 +107,8 @@ class IKRequest(IKOptions):
         put(self, "bare", self.q0 is None and self.arm_angle is None)
         settings = (self.method, tolerance.position, tolerance.rotation, flag, weights, seed)
         put(self, "key", settings_key(settings) if kept else None)
+        lean = self.key is not None and self.bare and self.fixed is None
+        put(self, "lean", 4 * self.key if lean else None)  # type: ignore[operator]
 
     def but(self, **changes: Any) -> IKRequest:
         """This request with some settings changed, checked (``dataclasses.replace``, kept).

@@ -11,16 +11,20 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+import kinematica._core as _core
 from kinematica.errors import UnreachableError
 from kinematica.ik.status import STATUS_NAMES, IKStatus, held, status_message
+from kinematica.spatial import ROUNDOFF_TOL
 
 __all__ = [
+    "BATCH_FIELDS",
     "NEAR_NOTE",
-    "CheckOutput",
-    "CoreAnswer",
     "IKBatchResult",
     "IKResult",
     "amended",
+    "arrays_of",
+    "prepared",
+    "replaced",
     "result_of",
 ]
 
@@ -199,7 +203,7 @@ class IKBatchResult:
             with every joint free; None when no joint was held.
     """
 
-    raw: CheckOutput = field(repr=False)
+    raw: _core.BatchAnswer = field(repr=False)
     method: str
     labels: tuple[str, ...] = field(repr=False)
     shape: tuple[int, ...]
@@ -346,10 +350,6 @@ class IKBatchResult:
         if code == _SINGULAR:
             free = tuple(j for j, v in enumerate(raw.free[flat].tolist()) if v)
         gap = float(raw.gap[flat])
-        report = (
-            code, None if gap != gap else gap,
-            float(raw.nearest[flat, 0]), float(raw.nearest[flat, 1]), bool(raw.near[flat]), free,
-        )  # fmt: skip
         labels = self.labels
         branches = tuple(labels[j] for j in raw.slot[flat, : count + out].tolist())
         q = raw.q[flat]
@@ -357,12 +357,18 @@ class IKBatchResult:
         if self.parameter is not None:
             value = float(np.asarray(self.parameter[1]).reshape(-1)[flat])
             parameter = None if value != value else (self.parameter[0], value)
-        return result_of(
-            q[:count], raw.res[flat, :count], q[count : count + out],
-            branches[:count], branches[count:], report,
-            self.methods.get(idx, self.method), self.complete and idx not in self.methods, notes,
-            parameter,
+        res = _new(IKResult)
+        res.__dict__.update(
+            solutions=q[:count], status=STATUS_NAMES[code], residuals=raw.res[flat, :count],
+            branches=branches[:count], out_of_limits=q[count : count + out],
+            out_of_limits_branches=branches[count:], free_joints=free,
+            gap=None if gap != gap else gap,
+            nearest_error=(float(raw.nearest[flat, 0]), float(raw.nearest[flat, 1])),
+            notes=notes, method=self.methods.get(idx, self.method),
+            complete=self.complete and idx not in self.methods,
+            near_singular=bool(raw.near[flat]), parameter=parameter,
         )  # fmt: skip
+        return res
 
     @cached_property
     def message(self) -> NDArray[np.str_]:
@@ -382,105 +388,79 @@ class IKBatchResult:
         return batch_html(self)
 
 
-@dataclass(frozen=True, slots=True, eq=False)
-class CheckOutput:
-    """What the core's check wrote for N targets (``ik_batch`` of a solver).
-
-    Attributes:
-        q: ``(N, m, n)`` solutions within the limits, then those outside, NaN after.
-        slot: ``(N, m)`` the candidate slot of each row (its branch), -1 after.
-        res: ``(N, m, 2)`` position and rotation residuals.
-        status: ``(N,)`` status codes (:data:`~kinematica.ik.status.STATUS_NAMES`).
-        count: ``(N,)`` solutions within the limits.
-        out_count: ``(N,)`` solutions outside them.
-        gap: ``(N,)`` the proven gap of unreachable targets (m), else NaN.
-        nearest: ``(N, 2)`` the closest miss among the candidates (m, rad).
-        near: ``(N,)`` the solver's near-singular flag.
-        free: ``(N, n)`` the solver's free joints.
-    """
-
-    q: FloatArray
-    slot: NDArray[np.int64]
-    res: FloatArray
-    status: NDArray[np.int64]
-    count: NDArray[np.int64]
-    out_count: NDArray[np.int64]
-    gap: FloatArray
-    nearest: FloatArray
-    near: NDArray[np.bool_]
-    free: NDArray[np.bool_]
-
+#: The arrays of a batch's answer (the core's ``BatchAnswer``), in its constructor's order:
+#: ``q (N, m, n)`` solutions within the limits then those outside, NaN after; ``slot
+#: (N, m)`` the candidate slot (branch) of each row, -1 after; ``res (N, m, 2)``
+#: residuals; ``status``, ``count``, ``out_count``, ``gap (N,)``; ``nearest (N, 2)``;
+#: ``near (N,)``; ``free (N, n)``.
+BATCH_FIELDS = ("q", "slot", "res", "status", "count", "out_count", "gap", "nearest", "near",
+                "free")  # fmt: skip
 
 #: A new object without its class's ``__init__`` (see :func:`result_of`).
 _new = object.__new__
 
 #: The core's code of the singular status.
 _SINGULAR = next(code for code, name in STATUS_NAMES.items() if name is IKStatus.SINGULAR)
-
-
-#: What the core's ``ik`` of one target gives: solutions, residuals, solutions outside
-#: the limits, the branch of each within and of each outside, the report (see
-#: :func:`result_of`).
-CoreAnswer = tuple[
-    FloatArray,
-    FloatArray,
-    FloatArray,
-    tuple[str, ...],
-    tuple[str, ...],
-    tuple[int, float | None, float, float, bool, tuple[int, ...]],
-]
+#: The status of each core code, by code.
+_STATUSES = tuple(STATUS_NAMES[code] for code in range(len(STATUS_NAMES)))
 
 
 def result_of(
-    solutions: FloatArray,
-    residuals: FloatArray,
-    outside: FloatArray,
-    branches: tuple[str, ...],
-    out_branches: tuple[str, ...],
-    report: tuple[int, float | None, float, float, bool, tuple[int, ...]],
+    answer: _core.Answer,
     method: str,
     complete: bool,
     notes: tuple[str, ...],
     parameter: tuple[str, float] | None = None,
 ) -> IKResult:
-    """The :class:`IKResult` of one target from what the core's check wrote for it.
+    """The :class:`IKResult` of one target from the core's answer to it.
 
     Args:
-        solutions: ``(count, n)`` the checked solutions within the limits.
-        residuals: ``(count, 2)`` their residuals.
-        outside: ``(out_count, n)`` the solutions outside the limits.
-        branches: The branch label of each solution.
-        out_branches: The branch label of each solution outside the limits.
-        report: ``(status code, gap (None unless unreachable), nearest position,
-            nearest rotation, near, free joints (with the status singular only))``
-            as the core gives it.
+        answer: The core's check of the target (its solutions, residuals, branches and
+            report, by the result's names).
         method: The method name.
         complete: The method gives every solution.
         notes: Remarks on the target.
         parameter: The joint held at a value, ``(name, value)``, or None.
 
-    Built without the frozen dataclass's ``__init__`` (a dozen guarded attribute
-    writes), its fields stored straight into the new object's ``__dict__``: the
-    one-target path of ``robot.ik`` runs through here.
+    Built by the core without the frozen dataclass's ``__init__``: its fields stored
+    straight into the new object's ``__dict__``.
     """
-    code, gap, near_p, near_r, near, free = report
-    res = _new(IKResult)
-    d = res.__dict__
-    d["solutions"] = solutions
-    d["status"] = STATUS_NAMES[code]
-    d["method"] = method
-    d["residuals"] = residuals
-    d["branches"] = branches
-    d["out_of_limits"] = outside
-    d["out_of_limits_branches"] = out_branches
-    d["free_joints"] = free
-    d["gap"] = gap
-    d["nearest_error"] = (near_p, near_r)
-    d["notes"] = notes
-    d["complete"] = complete
-    d["near_singular"] = near
-    d["parameter"] = parameter
-    return res
+    fields = {"method": method, "complete": complete, "notes": notes, "parameter": parameter}
+    made: IKResult = answer.result(IKResult, fields, _STATUSES)  # type: ignore[assignment]
+    return made
+
+
+def prepared(
+    solver: Any,
+    core: _core.Chain,
+    options: _core.CheckOptions,
+    labels: tuple[str, ...],
+    method: str,
+    complete: bool,
+    notes: tuple[str, ...],
+    final: frozenset[int],
+) -> _core.Prepared:
+    """A closed form's ``Params`` made ready for one target at a time (the core's ``prepare``).
+
+    Called with a ``(4, 4)`` float target, it gives None where the target is not rigid to
+    round-off as the core reads it; else the :class:`IKResult` (as :func:`result_of` makes
+    it) where the status is one of ``final``, the core's answer otherwise.
+    """
+    fields = {"method": method, "complete": complete, "notes": notes, "parameter": None}
+    bits = sum(1 << code for code in final)
+    return solver.prepare(core, options, ROUNDOFF_TOL, labels, IKResult, fields, _STATUSES, bits)
+
+
+def replaced(raw: _core.BatchAnswer, **changes: Any) -> _core.BatchAnswer:
+    """``raw`` with some of its arrays (:data:`BATCH_FIELDS`) changed."""
+    return _core.BatchAnswer(
+        **{name: changes.get(name, getattr(raw, name)) for name in BATCH_FIELDS}
+    )
+
+
+def arrays_of(raw: _core.BatchAnswer) -> dict[str, NDArray[Any]]:
+    """Writable copies of ``raw``'s arrays, by name (:data:`BATCH_FIELDS`)."""
+    return {name: np.array(getattr(raw, name)) for name in BATCH_FIELDS}
 
 
 def amended(res: IKResult, **fields: Any) -> IKResult:

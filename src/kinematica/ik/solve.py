@@ -12,7 +12,7 @@ which judges every candidate by forward kinematics; the outcome is wrapped in an
 
 One target given as the core reads it (a C-contiguous float ``(4, 4)`` pose, or a
 ``(3,)`` position placed in the identity pose) is not parsed: the core checks that it
-is rigid to round-off in the same call (``ik_rigid``), and only a target it refuses is
+is rigid to round-off in the same call (``Plan.prepared``), and only a target it refuses is
 read by :func:`~kinematica.ik.targets.parse_targets` (projected onto SO(3) with a
 note, or explained). What an answer then needs is decided by the answer: the numeric
 search where a closed form that may miss a solution found none (:mod:`kinematica.ik.
@@ -37,19 +37,23 @@ from kinematica.ik.options import IKOptions
 from kinematica.ik.reach import ANSWERED, beyond_limited_reach
 from kinematica.ik.registry import ClosedForm, TargetKind
 from kinematica.ik.request import IKRequest
-from kinematica.ik.result import CheckOutput, CoreAnswer, IKBatchResult, IKResult, result_of
-from kinematica.ik.solvers import Plan, check_options, closed_form, plan_of, structure_of
+from kinematica.ik.result import IKBatchResult, IKResult, amended, prepared, replaced, result_of
+from kinematica.ik.solvers import (
+    POSE_DOF,
+    REDUNDANT_DOF,
+    Plan,
+    check_options,
+    closed_form,
+    plan_of,
+    structure_of,
+)
+from kinematica.ik.status import STATUS_NAMES, IKStatus
 from kinematica.ik.targets import Targets, parse_q0, parse_targets
-from kinematica.spatial import ROUNDOFF_TOL
 
-__all__ = ["AT_VALUES", "REDUNDANT_DOF", "closed_form", "solve_ik", "structure_of"]
+__all__ = ["AT_VALUES", "REDUNDANT_DOF", "answered", "closed_form", "solve_ik", "structure_of"]
 
 FloatArray = NDArray[np.float64]
 
-#: The arms ``auto`` solves at a parameter: 7 joints, one more than a pose needs.
-REDUNDANT_DOF = 7
-#: Joints a pose fixes: an arm of fewer reads a pose target as over-determined.
-_POSE_DOF = 6
 _UNREACHABLE = _core.STATUS["unreachable"]
 _OK = _core.STATUS["ok"]
 _NOT_FOUND = _core.STATUS["not_found"]
@@ -58,41 +62,36 @@ _FLOAT64 = np.dtype(np.float64)
 _IDENTITY = np.eye(4)
 
 
-def _searched_one(closed: ClosedForm | None, T: FloatArray, out: CoreAnswer) -> CoreAnswer:
+def _searched_one(closed: ClosedForm | None, T: FloatArray, res: IKResult) -> IKResult:
     """The numeric search's answer for one target, as its closed form marks it.
 
     A closed form whose ``mark_searched`` is set (the general 6R: singular where the
     search's solution lies on a continuum) says of the search's answer what it says
     of its own; the batch path calls it on the searched rows.
     """
-    if closed is None or closed.mark_searched is None:
-        return out
-    sols, *rest, report = out
-    code, gap, near_p, near_r, near, _ = report
-    if code != _OK or len(sols) == 0:
-        return out
-    status = np.array([code])
-    free = np.zeros((1, sols.shape[1]), dtype=bool)
-    closed.mark_searched(T[None], sols[:1], status, free)
-    if int(status[0]) == code:
-        return out
+    if closed is None or closed.mark_searched is None or res.status != "ok" or not res.count:
+        return res
+    status = np.array([_OK])
+    free = np.zeros((1, res.solutions.shape[1]), dtype=bool)
+    closed.mark_searched(T[None], res.solutions[:1], status, free)
+    if int(status[0]) == _OK:
+        return res
     joints = tuple(int(j) for j in np.flatnonzero(free[0]))
-    return (sols, *rest, (int(status[0]), gap, near_p, near_r, near, joints))  # type: ignore[return-value]
+    return amended(res, status=STATUS_NAMES[int(status[0])], free_joints=joints)
 
 
-def _limited(chain: Chain, pose: FloatArray, out: CoreAnswer, plan: Plan, tol: float) -> CoreAnswer:
+def _limited(chain: Chain, pose: FloatArray, res: IKResult, plan: Plan, tol: float) -> IKResult:
     """One target's answer, "unreachable" with its gap where the limited reach proves it."""
-    code, gap = out[-1][0], out[-1][1]
+    code = _core.STATUS[res.status.value]
     if code in ANSWERED:
-        return out
+        return res
+    gap = np.nan if res.gap is None else res.gap
     beyond, gaps = beyond_limited_reach(
-        chain, pose[None], np.array([code]), np.array([np.nan if gap is None else gap]),
-        tol, plan.weights,
-    )  # fmt: skip
+        chain, pose[None], np.array([code]), np.array([gap]), tol, plan.weights
+    )
     if not beyond[0]:
-        return out
-    report = (_UNREACHABLE, float(gaps[0]), *out[-1][2:])
-    return (*out[:-1], report)
+        return res
+    return amended(res, status=IKStatus.UNREACHABLE, gap=float(gaps[0]))
 
 
 def _search(chain: Chain, plan: Plan, request: IKRequest) -> tuple[Any, _core.CheckOptions]:
@@ -114,7 +113,7 @@ def solve_ik(
     ``options.fixed`` and a redundant arm's parameter are :func:`kinematica.ik.door.solve`'s.
     """
     request = options if type(options) is IKRequest else IKRequest.of(options)
-    if look and chain.dof < _POSE_DOF and request.mask is None:
+    if look and chain.dof < POSE_DOF and request.mask is None:
         first = solve_ik(chain, target, request, False)
         if isinstance(first, IKResult) and not isinstance(target, Targets):
             if np.shape(target) != (4, 4):
@@ -142,17 +141,12 @@ def solve_ik(
             plan = chain.memo.get(4 * key + (kind == "position"))  # type: ignore[assignment]
         if plan is None:
             plan = plan_of(chain, kind, request, None if angle is None else "arm_angle")
-        solver = plan.solver if angle is None else _at(chain, plan, float(angle))  # type: ignore[arg-type]
-        if plan.direct:
-            rigid: CoreAnswer | None
-            try:
-                rigid = solver.ik_rigid(chain.core, pose, plan.options, ROUNDOFF_TOL, plan.labels)
-            except ValueError:  # a view the core does not read (not C-contiguous): parsed
-                rigid = None
-            if rigid is not None:
-                if rigid[-1][0] in plan.final:  # the core's answer as it is (_one's first case)
-                    return result_of(*rigid, plan.method, plan.complete, plan.notes)
-                return _one(chain, plan, request, pose, kind, rigid, (), None)
+        ready = plan.prepared if angle is None else _at(chain, plan, float(angle))  # type: ignore[arg-type]
+        got = None if ready is None else ready(pose)  # one core call: the result
+        if got.__class__ is IKResult:  # final as the core gives it (answered's first case)
+            return got
+        if got is not None:
+            return answered(chain, plan, request, pose, kind, got, (), None)
     targets = target if isinstance(target, Targets) else parse_targets(target)
     kind = "position" if targets.position else "pose"
     values = None
@@ -183,7 +177,7 @@ def solve_ik(
         q0 = None if q0s is None else q0s[0]
         out = solver.ik(chain.core, pose, plan.options, q0, plan.labels)
         notes = targets.notes.get(0, ()) if targets.notes else ()
-        return _one(chain, plan, request, pose, kind, out, notes, q0)
+        return answered(chain, plan, request, pose, kind, out, notes, q0)
     return _batch(chain, target, targets, request, plan, solver, q0s)
 
 
@@ -197,45 +191,51 @@ def _as_is(chain: Chain, target: ArrayLike, options: IKOptions) -> IKResult | IK
 
 
 def _at(chain: Chain, plan: Plan, value: float) -> Any:
-    """``plan``'s closed form at ``value`` of its parameter (made once per value, kept)."""
-    memo: dict[float, Any] = chain.memo.setdefault("at values", {})  # type: ignore[assignment]
-    found = memo.get(value)
+    """``plan``'s closed form at ``value`` of its parameter, prepared (once per value, kept)."""
+    memo: dict[tuple[Plan, float], Any]
+    memo = chain.memo.setdefault("at values", {})  # type: ignore[assignment]
+    found = memo.get((plan, value))
     if found is None:
         if len(memo) >= AT_VALUES:
             memo.clear()
-        found = memo[value] = plan.solver.at(value)
+        if not plan.direct:
+            return None
+        found = memo[plan, value] = prepared(
+            plan.solver.at(value), chain.core, plan.options, plan.labels, plan.method,
+            plan.complete, plan.notes, plan.final,
+        )  # fmt: skip
     return found
 
 
-def _one(
+def answered(
     chain: Chain,
     plan: Plan,
     request: IKRequest,
     pose: FloatArray,
     kind: TargetKind,
-    out: CoreAnswer,
+    out: _core.Answer,
     notes: tuple[str, ...],
     q0: FloatArray | None,
 ) -> IKResult:
     """The answer to one target from the core's ``out``, completed where it proves nothing."""
-    code = out[-1][0]
+    code = out.status
     if plan.search is not None and code == _NOT_FOUND:  # the closed form found nothing
         numeric, nopts = _search(chain, plan, request)
         if q0 is None:
             assert plan.closed is not None
             q0 = seeds(plan.closed, chain, pose[None], kind == "position", numeric.middle)[0]
-        out = numeric.ik(chain.core, pose, nopts, q0, (LABEL,))
-        out = _searched_one(plan.closed, pose, out)
+        res = result_of(numeric.ik(chain.core, pose, nopts, q0, (LABEL,)), METHOD, False,
+                        (*notes, plan.search))  # fmt: skip
+        res = _searched_one(plan.closed, pose, res)
         if request.respect_limits:
-            out = _limited(chain, pose, out, plan, request.tolerance.position)
-        return result_of(*out, METHOD, False, (*notes, plan.search))
+            res = _limited(chain, pose, res, plan, request.tolerance.position)
+        return res
     if plan.slack:
         notes = (*notes, INCOMPLETE_NOTE)
+    res = result_of(out, plan.method, plan.complete, (*notes, *plan.notes) if notes else plan.notes)
     if request.respect_limits and code not in ANSWERED:
-        out = _limited(chain, pose, out, plan, request.tolerance.position)
-    return result_of(
-        *out, plan.method, plan.complete, (*notes, *plan.notes) if notes else plan.notes
-    )
+        res = _limited(chain, pose, res, plan, request.tolerance.position)
+    return res
 
 
 def _batch(
@@ -257,9 +257,13 @@ def _batch(
         invalid[list(targets.invalid)] = True
     raw = solver.ik_batch(chain.core, targets.poses, plan.options, q0s, invalid, threads)
     shape = targets.shape
+    at: list[tuple[int, ...]] = []  # the batch index of each flat row, made at once
 
     def where(i: int) -> tuple[int, ...]:
-        return tuple(int(v) for v in np.unravel_index(i, shape))
+        if not at:  # (a row at a time cost 2 µs)
+            rows = zip(*(a.ravel().tolist() for a in np.indices(shape)), strict=True)
+            at.extend(rows if shape else [()])
+        return at[i]
 
     batch_notes = {where(i): note for i, note in targets.notes.items()}
     if plan.notes:  # auto's search: why no closed form applies
@@ -268,7 +272,7 @@ def _batch(
                 batch_notes[where(i)] = (*batch_notes.get(where(i), ()), *plan.notes)
     methods: dict[tuple[int, ...], str] = {}
     if plan.search is not None or slack:
-        rows = np.flatnonzero(needs_search(raw["status"]) & (plan.search is not None))
+        rows = np.flatnonzero(needs_search(raw.status) & (plan.search is not None))
         if rows.size:  # the closed form found nothing: the search answers
             numeric, nopts = _search(chain, plan, request)
             poses = np.ascontiguousarray(targets.poses[rows])
@@ -278,10 +282,7 @@ def _batch(
                 assert closed is not None
                 guess = seeds(closed, chain, poses, targets.position, numeric.middle)
             searched = numeric.ik_batch(chain.core, poses, nopts, guess, None, threads)
-            if closed is not None and closed.mark_searched is not None:
-                q = searched["q"][:, 0]
-                closed.mark_searched(poses, q, searched["status"], searched["free"])
-            raw = merge_batch(raw, rows, searched)
+            raw = merge_batch(raw, rows, searched, closed, poses)
             labels = (*labels, LABEL)
         searched_rows = set(rows.tolist())
         methods = {where(i): METHOD for i in searched_rows}
@@ -295,12 +296,12 @@ def _batch(
                 batch_notes[idx] = (*batch_notes.get(idx, ()), INCOMPLETE_NOTE)
     if respect_limits:
         beyond, gaps = beyond_limited_reach(
-            chain, targets.poses, raw["status"], raw["gap"], tolerance.position, w
+            chain, targets.poses, raw.status, raw.gap, tolerance.position, w
         )
         if beyond.any():
-            raw = dict(raw, status=np.where(beyond, _UNREACHABLE, raw["status"]))
-            raw["gap"] = np.where(beyond, gaps, raw["gap"])
-    over = chain.dof < _POSE_DOF and request.mask is None and not targets.position
+            status = np.where(beyond, _UNREACHABLE, raw.status)
+            raw = replaced(raw, status=status, gap=np.where(beyond, gaps, raw.gap))
+    over = chain.dof < POSE_DOF and request.mask is None and not targets.position
     if over and not isinstance(target, Targets):  # over-determined poses
         from kinematica.ik.printed import overdetermined_rows
 
@@ -308,7 +309,7 @@ def _batch(
         for i, extra in more.items():
             batch_notes[where(i)] = extra
     return IKBatchResult(
-        raw=CheckOutput(**raw),
+        raw=raw,
         method=name,
         labels=labels,
         shape=shape,

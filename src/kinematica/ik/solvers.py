@@ -26,6 +26,7 @@ from kinematica.ik.fallback import FALLBACK_NOTE, PARTIAL_NOTE, searched_note
 from kinematica.ik.numeric import numeric_solver
 from kinematica.ik.reach import ANSWERED as _ANSWERED
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
+from kinematica.ik.result import prepared
 from kinematica.ik.structure import features
 
 if TYPE_CHECKING:
@@ -34,8 +35,10 @@ if TYPE_CHECKING:
 
 __all__ = [
     "PLANS",
+    "POSE_DOF",
     "POSE_WEIGHTS",
     "POSITION_WEIGHTS",
+    "REDUNDANT_DOF",
     "Plan",
     "check_options",
     "closed_form",
@@ -46,6 +49,12 @@ __all__ = [
 ]
 
 FloatArray = NDArray[np.float64]
+
+#: Joints a pose fixes: an arm of fewer reads a pose target as over-determined...
+POSE_DOF = 6
+#: ... and the arms ``auto`` solves at a parameter: 7 joints, one more than a pose needs.
+#: Neither's plan is lean (:attr:`Plan.lean`): their answers are read again.
+REDUNDANT_DOF = 7
 
 #: The weights of the error components x, y, z, rx, ry, rz of a pose target...
 POSE_WEIGHTS: tuple[float, ...] = (1.0, 1.0, 1.0, 1.0, 1.0, 1.0)
@@ -112,8 +121,7 @@ def check_options(
 ) -> _core.CheckOptions:
     """The check's options for these settings (a plan keeps its own: :class:`Plan`)."""
     opts = _core.CheckOptions()
-    opts.tol_position = tolerance.position
-    opts.tol_rotation = tolerance.rotation
+    opts.tol = _core.Tolerance(tolerance.position, tolerance.rotation)
     opts.respect_limits = bool(respect_limits)
     opts.complete = complete
     opts.weights = weights
@@ -128,7 +136,7 @@ class Plan:
 
     Attributes:
         closed: The closed form, or None (the numeric search).
-        solver: Its ``Params`` (``ik``, ``ik_rigid``, ``ik_batch``), or the search's set-up.
+        solver: Its ``Params`` (``ik``, ``ik_batch``, ``prepare``), or the search's set-up.
         labels: The branch names of its slots.
         method: The method name results carry.
         complete: It gives every solution (an exact closed form).
@@ -143,8 +151,13 @@ class Plan:
         rank_five: A 6R arm's rank-5 structure (:mod:`kinematica.ik.rank_five`), whose
             answers :mod:`kinematica.ik.continuum_6r` (or, near one,
             :mod:`kinematica.ik.near_rank_five`) gives; None.
-        direct: One target is one core call (``ik_rigid``): neither ``coaxial`` nor
+        direct: One target is one core call (:attr:`prepared`): neither ``coaxial`` nor
             ``rank_five``.
+        prepared: The solver made ready for one target of a direct plan at no parameter
+            (:func:`~kinematica.ik.result.prepared`: one core call gives the result of a
+            final answer, or the answer to complete); None.
+        lean: One pose target goes straight to :attr:`prepared`
+            (:func:`kinematica.ik.door.solve`): an arm of 6 joints or more, but not 7.
         final: The status codes of the core's answers to one target that are final as
             they are (no search, no limited reach, no note to add): read once per plan,
             not on every call.
@@ -162,6 +175,8 @@ class Plan:
     notes: tuple[str, ...]
     coaxial: Any
     rank_five: Any = None
+    prepared: Any = None
+    lean: bool = False
     direct: bool = field(init=False)
     final: frozenset[int] = field(init=False)
 
@@ -264,9 +279,14 @@ def _plan(chain: Chain, kind: TargetKind, request: IKRequest, parameter: str | N
             search = PARTIAL_NOTE
     notes = why_numeric(chain, closed, kind, request.mask) if method == "auto" else ()
     options = check_options(tolerance, respect, complete, w, slack)
-    return Plan(
+    plan = Plan(
         closed, solver, labels, name, complete, options, w, slack, search, notes, coaxial, five
     )
+    if not plan.direct or parameter is not None:
+        return plan
+    ready = prepared(solver, chain.core, options, labels, name, complete, notes, plan.final)
+    lean = POSE_DOF <= chain.dof != REDUNDANT_DOF
+    return replace(plan, prepared=ready, lean=lean)
 
 
 def rank_five_of(chain: Chain, closed: ClosedForm | None) -> Any:

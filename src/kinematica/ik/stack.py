@@ -19,7 +19,7 @@ from numpy.typing import NDArray
 
 import kinematica._core as _core
 from kinematica.core import Chain
-from kinematica.ik.result import CheckOutput, IKBatchResult, IKResult, amended
+from kinematica.ik.result import IKBatchResult, IKResult, amended, replaced
 
 __all__ = [
     "pose_residuals",
@@ -101,9 +101,7 @@ def widen_batch(res: IKBatchResult, joint: int, values: FloatArray, name: str) -
     wide = np.concatenate([q[..., :joint], column, q[..., joint:]], axis=-1)
     free = np.insert(raw.free, joint, False, axis=1)
     parameter = (name, values.reshape(res.shape) if res.shape else values.reshape(()))
-    return dataclasses.replace(
-        res, raw=dataclasses.replace(raw, q=wide, free=free), parameter=parameter
-    )
+    return dataclasses.replace(res, raw=replaced(raw, q=wide, free=free), parameter=parameter)
 
 
 def _where(shape: tuple[int, ...], i: int) -> tuple[int, ...]:
@@ -165,7 +163,7 @@ def stack_results(
             methods[idx] = r.method
         if r.notes:
             notes[idx] = r.notes
-    raw = CheckOutput(q, slot, res, status, count, out_count, gap, nearest, near, free)
+    raw = _core.BatchAnswer(q, slot, res, status, count, out_count, gap, nearest, near, free)
     return IKBatchResult(
         raw=raw,
         method=method,
@@ -230,7 +228,7 @@ def replace_rows(
         parameter = (parameter[0], values.reshape(shape))
     return dataclasses.replace(
         batch,
-        raw=CheckOutput(**fields),
+        raw=_core.BatchAnswer(**fields),
         labels=(*batch.labels, *other.labels),
         methods=methods,
         notes=notes,

@@ -16,11 +16,11 @@ from kinematica.errors import KinematicaError
 
 __all__ = ["POSITION_TOL", "ROTATION_TOL", "Tolerance", "parse_tolerance"]
 
+_CORE = _core.Tolerance()  # the defaults, written once: km::Tolerance in ik_types.hpp
 #: A solution must put the tool within this distance of the target (metres, 1e-10)...
-POSITION_TOL: float = _core.POSITION_TOL
-#: ... and within this rotation angle of the target orientation (radians, 1e-10): the
-#: core's defaults (``DEFAULT_TOL_POSITION``, ``DEFAULT_TOL_ROTATION`` in ik_types.hpp).
-ROTATION_TOL: float = _core.ROTATION_TOL
+POSITION_TOL: float = _CORE.position
+#: ... and within this rotation angle of the target orientation (radians, 1e-10).
+ROTATION_TOL: float = _CORE.rotation
 
 
 @dataclass(frozen=True, slots=True)

@@ -479,20 +479,19 @@ def test_single_call_equals_the_batch(shoulder: str, joint3: str) -> None:
     Q, info = raw(robot, T)
     for i in range(len(T)):
         labels = tuple(str(j) for j in range(solver.params.slots))
-        q, res, outside, within, beyond, report = solver.params.ik(
-            robot.chain.core, T[i], opts, None, labels
-        )
+        one = solver.params.ik(robot.chain.core, T[i], opts, None, labels)
+        within, beyond = one.branches, one.out_of_limits_branches
         k, m = len(within), len(beyond)
-        np.testing.assert_array_equal(q, many["q"][i][:k])
-        np.testing.assert_array_equal(outside, many["q"][i][k : k + m])
-        assert np.isnan(many["q"][i][k + m :]).all()
-        np.testing.assert_array_equal(res, many["res"][i][:k])
-        assert [int(s) for s in within + beyond] == [s for s in many["slot"][i].tolist() if s >= 0]
-        assert report[0] == many["status"][i] and k == many["count"][i]
-        assert m == many["out_count"][i]
-        assert report[4] == many["near"][i] == info.near[i]
-        gap = np.nan if report[1] is None else report[1]
-        np.testing.assert_array_equal(gap, many["gap"][i])
+        np.testing.assert_array_equal(one.solutions, many.q[i][:k])
+        np.testing.assert_array_equal(one.out_of_limits, many.q[i][k : k + m])
+        assert np.isnan(many.q[i][k + m :]).all()
+        np.testing.assert_array_equal(one.residuals, many.res[i][:k])
+        assert [int(s) for s in within + beyond] == [s for s in many.slot[i].tolist() if s >= 0]
+        assert one.status == many.status[i] and k == many.count[i]
+        assert m == many.out_count[i]
+        assert one.near_singular == many.near[i] == info.near[i]
+        gap = np.nan if one.gap is None else one.gap
+        np.testing.assert_array_equal(gap, many.gap[i])
         Qi, *_ = solver.params.candidates(robot.chain.core, T[i])
         np.testing.assert_array_equal(Qi, Q[i])
 
