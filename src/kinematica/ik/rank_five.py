@@ -48,8 +48,8 @@ from kinematica.ik.structure import Features, features
 __all__ = [
     "FREE_TOL",
     "HELD_PROBES",
-    "RANK_FIVE_HELD",
     "RANK_EXACT_TOL",
+    "RANK_FIVE_HELD",
     "RANK_NEAR_TOL",
     "RANK_SAMPLES",
     "RANK_SEED",
@@ -216,19 +216,29 @@ def _structure(f: Features) -> tuple[str, str, tuple[tuple[int, int], ...]]:
         if f.all_parallel(range(i, i + 4)):
             return "four-parallel", f"axes {i + 1}-{i + 4} are parallel", ((i, i + 4),)
     if f.shoulder_center is not None and f.wrist_center is not None:
-        return "shoulder-wrist", (
-            "a spherical shoulder (axes 1-3 meet) and a spherical wrist (axes 4-6 meet) at a "
-            "fixed distance: the middle link turns freely about the line through both centres"
-        ), _HALVES
+        return (
+            "shoulder-wrist",
+            (
+                "a spherical shoulder (axes 1-3 meet) and a spherical wrist (axes 4-6 meet) at a "
+                "fixed distance: the middle link turns freely about the line through both centres"
+            ),
+            _HALVES,
+        )
     if f.all_parallel(range(3)) and f.wrist_center is not None:
-        return "parallel-concurrent", (
-            "axes 1-3 are parallel and axes 4-6 meet: the wrist centre moves in a plane"
-        ), _HALVES
+        return (
+            "parallel-concurrent",
+            ("axes 1-3 are parallel and axes 4-6 meet: the wrist centre moves in a plane"),
+            _HALVES,
+        )
     if f.shoulder_center is not None and f.all_parallel(range(3, 6)):
-        return "parallel-concurrent", (
-            "axes 1-3 meet and axes 4-6 are parallel: seen from the tool, the shoulder "
-            "centre moves in a plane"
-        ), _HALVES
+        return (
+            "parallel-concurrent",
+            (
+                "axes 1-3 meet and axes 4-6 are parallel: seen from the tool, the shoulder "
+                "centre moves in a plane"
+            ),
+            _HALVES,
+        )
     return "rank-5", "no structure named (the Jacobian's rank measured)", ()
 
 
