@@ -48,6 +48,7 @@ from kinematica.ik.status import IKStatus
 
 if TYPE_CHECKING:
     from kinematica.ik.options import IKOptions
+    from kinematica.ik.registry import ClosedForm
     from kinematica.ik.tolerance import Tolerance
 
 __all__ = [
@@ -161,7 +162,7 @@ def held_sweep(
         ``value``, forward kinematics within the tolerance), the closed form the sweep
         stood on, and what the answer says of it.
     """
-    from kinematica.ik.moved import end_arm
+    from kinematica.ik.moved import locked_chain
     from kinematica.ik.solvers import closed_form
     from kinematica.ik.tolerance import parse_tolerance
 
@@ -172,9 +173,12 @@ def held_sweep(
         options, q0=None, fixed=None, arm_angle=None, mask=None, respect_limits=False
     )
     locked = chain.locked(joint, value)
+    sweeps: dict[int, ClosedForm | None]
+    sweeps = chain.memo.setdefault("sweep closed forms", {})  # type: ignore[assignment]
     for s in sweep_joints(locked, joint, q):
-        arm = end_arm(chain, s)[0] if s in (0, chain.dof - 1) else chain.locked(s, 0.0)
-        closed = closed_form(arm, "pose")
+        if s not in sweeps:  # once per chain and joint (a locked arm's cache turns over)
+            sweeps[s] = closed_form(locked_chain(chain, s, 0.0), "pose")
+        closed = sweeps[s]
         if closed is None:
             continue
         grid = np.linspace(-math.pi, math.pi, SWEEP_SAMPLES, endpoint=False)

@@ -22,6 +22,7 @@ from numpy.typing import NDArray
 
 import kinematica._core as _core
 from kinematica.core import Chain
+from kinematica.ik.rank_five import RANK_FIVE_HELD, held_rank_five
 from kinematica.ik.tolerance import parse_tolerance
 from kinematica.spatial import ROUNDOFF_TOL
 
@@ -58,7 +59,11 @@ LOCKED_CACHE = 16
 
 
 def locked_chain(chain: Chain, joint: int, value: float) -> Chain:
-    """``chain.locked(joint, value)``, built once and kept (:data:`LOCKED_CACHE` per chain)."""
+    """``chain.locked(joint, value)``, built once and kept (:data:`LOCKED_CACHE` per chain).
+
+    An arm of rank 5 whatever the value (:func:`~kinematica.ik.rank_five.held_rank_five`)
+    is marked so (:data:`RANK_FIVE_HELD` in its memo).
+    """
     if value == 0.0 and joint in (0, chain.dof - 1):
         return end_arm(chain, joint)[0]  # the first or last joint's: kept apart
     per: OrderedDict[tuple[int, float], Chain]
@@ -67,6 +72,8 @@ def locked_chain(chain: Chain, joint: int, value: float) -> Chain:
     found = per.get(key)
     if found is None:
         found = per[key] = chain.locked(joint, value)
+        if held_rank_five(chain, joint) is not None:
+            found.memo[RANK_FIVE_HELD] = True
         if len(per) > LOCKED_CACHE:
             per.popitem(last=False)
     else:

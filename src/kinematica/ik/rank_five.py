@@ -47,12 +47,15 @@ from kinematica.ik.structure import Features, features
 
 __all__ = [
     "FREE_TOL",
+    "HELD_PROBES",
     "RANK_EXACT_TOL",
+    "RANK_FIVE_HELD",
     "RANK_NEAR_TOL",
     "RANK_SAMPLES",
     "RANK_SEED",
     "RankFive",
     "free_motion",
+    "held_rank_five",
     "rank_five",
     "relative_sigma",
     "scaled_jacobian",
@@ -76,6 +79,15 @@ RANK_NEAR_TOL = 1e-5
 #: A joint moves along the self-motion when its share of the Jacobian's null direction
 #: (unit) is above this.
 FREE_TOL = 1e-6
+#: The values a held joint is measured at (:func:`held_rank_five`), rad or m: generic
+#: (a straight elbow, 0, lines axes up).
+HELD_PROBES = (1.0, -2.0)
+#: The memo key marking an arm left by a held joint as of rank 5 at every configuration
+#: whatever the value held (:func:`held_rank_five`; set by
+#: :func:`kinematica.ik.moved.locked_chain`): no elimination of the general 6R applies to
+#: it (its builder declines every exact rank-5 arm: each pose it reaches, a continuum),
+#: and the builder is not tried.
+RANK_FIVE_HELD = "rank 5 at every value held"
 
 
 @dataclass(frozen=True, slots=True)
@@ -92,6 +104,9 @@ class RankFive:
         ratio: The largest σ6 / σ1 over the samples.
         rank: The rank at a generic configuration (5; 4 or less where more singular values
             than σ6 are below the tolerance at every sample, e.g. five parallel axes).
+        groups: The axes of the structure named, as ``(first, stop)`` index ranges
+            (0-based; ``((0, 3), (3, 6))`` for a spherical shoulder and wrist); ``()``
+            when none was named.
     """
 
     structure: str
@@ -99,6 +114,7 @@ class RankFive:
     exact: bool
     ratio: float
     rank: int = 5
+    groups: tuple[tuple[int, int], ...] = ()
 
 
 def scaled_jacobian(chain: Chain, q: FloatArray) -> FloatArray:
@@ -142,38 +158,89 @@ def rank_five(chain: Chain) -> RankFive | None:
         worst = np.max(s / s[:, :1], axis=0)  # each σ_i / σ1's largest over the samples
         ratio = float(worst[-1])
         if ratio <= RANK_NEAR_TOL:
-            kind, words = _structure(features(chain))
+            kind, words, groups = _structure(features(chain))
             exact = ratio <= RANK_EXACT_TOL
             rank = int(np.count_nonzero(worst > (RANK_EXACT_TOL if exact else RANK_NEAR_TOL)))
-            found = RankFive(words, kind, exact, ratio, rank)
+            found = RankFive(words, kind, exact, ratio, rank, groups)
     _FOUND[chain] = found
     return found
 
 
-def _structure(f: Features) -> tuple[str, str]:
-    """``(kind, words)``: which axes make the arm's rank 5 (the first structure matched)."""
+def held_rank_five(chain: Chain, joint: int) -> RankFive | None:
+    """The exact rank-5 structure of the 6R arm ``chain`` leaves with ``joint`` held at any value.
+
+    Holding a joint moves the axes after it rigidly (a turn about its axis, or a slide
+    along it) and keeps those before it: a relation among axes all on one side of it
+    (three or four through one point, four parallel) holds at every value. The arm
+    left at 0 is measured (:func:`rank_five`); when it is exactly of rank 5 and each
+    group of axes its named structure holds among lies on one side of the held joint,
+    that structure, hence rank 5 at every configuration, holds at every value held
+    (an SRS arm with its elbow held: a spherical shoulder and wrist). Read once per
+    chain and joint, at the values :data:`HELD_PROBES` (both must agree; a value where
+    more axes line up by accident, e.g. an elbow stretched straight, only says None).
+
+    Args:
+        chain: A 7R arm (other arms: None).
+        joint: The held joint (0-based).
+
+    Returns:
+        The arm left's structure at the first probe, or None (not of rank 5 there, near one only,
+        no structure named, or a group straddling the held joint).
+    """
+    per: dict[int, RankFive | None]
+    per = chain.memo.setdefault("held rank five", {})  # type: ignore[assignment]
+    if joint not in per:
+        found = None
+        if chain.dof == 7 and not bool(chain.prismatic.any()):
+            fives = [rank_five(chain.locked(joint, v)) for v in HELD_PROBES]
+            if all(f is not None and f.exact and f.groups for f in fives):
+                sides = [b <= joint or a >= joint for f in fives for a, b in f.groups]  # type: ignore[union-attr]
+                found = fives[0] if all(sides) else None
+        per[joint] = found
+    return per[joint]
+
+
+def _structure(f: Features) -> tuple[str, str, tuple[tuple[int, int], ...]]:
+    """``(kind, words, groups)``: which axes make the arm's rank 5 (the first structure matched).
+
+    ``groups``: the index ranges ``(first, stop)`` of the axes each relation holds among.
+    """
     h, p, size = f.directions, f.points, f.size
     for i in range(3):
         if (
             not f.all_parallel(range(i, i + 4))
             and common_point(h[i : i + 4], p[i : i + 4], size) is not None
         ):
-            return "four-concurrent", f"axes {i + 1}-{i + 4} meet at one point"
+            return "four-concurrent", f"axes {i + 1}-{i + 4} meet at one point", ((i, i + 4),)
     for i in range(3):
         if f.all_parallel(range(i, i + 4)):
-            return "four-parallel", f"axes {i + 1}-{i + 4} are parallel"
+            return "four-parallel", f"axes {i + 1}-{i + 4} are parallel", ((i, i + 4),)
     if f.shoulder_center is not None and f.wrist_center is not None:
-        return "shoulder-wrist", (
-            "a spherical shoulder (axes 1-3 meet) and a spherical wrist (axes 4-6 meet) at a "
-            "fixed distance: the middle link turns freely about the line through both centres"
+        return (
+            "shoulder-wrist",
+            (
+                "a spherical shoulder (axes 1-3 meet) and a spherical wrist (axes 4-6 meet) at a "
+                "fixed distance: the middle link turns freely about the line through both centres"
+            ),
+            _HALVES,
         )
     if f.all_parallel(range(3)) and f.wrist_center is not None:
-        return "parallel-concurrent", (
-            "axes 1-3 are parallel and axes 4-6 meet: the wrist centre moves in a plane"
+        return (
+            "parallel-concurrent",
+            ("axes 1-3 are parallel and axes 4-6 meet: the wrist centre moves in a plane"),
+            _HALVES,
         )
     if f.shoulder_center is not None and f.all_parallel(range(3, 6)):
-        return "parallel-concurrent", (
-            "axes 1-3 meet and axes 4-6 are parallel: seen from the tool, the shoulder "
-            "centre moves in a plane"
+        return (
+            "parallel-concurrent",
+            (
+                "axes 1-3 meet and axes 4-6 are parallel: seen from the tool, the shoulder "
+                "centre moves in a plane"
+            ),
+            _HALVES,
         )
-    return "rank-5", "no structure named (the Jacobian's rank measured)"
+    return "rank-5", "no structure named (the Jacobian's rank measured)", ()
+
+
+#: The two triples of axes a spherical shoulder and wrist (or a parallel triple) hold among.
+_HALVES = ((0, 3), (3, 6))

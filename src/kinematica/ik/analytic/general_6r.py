@@ -27,6 +27,7 @@ from kinematica.core import Chain
 from kinematica.dh.convert import convert_table
 from kinematica.dh.joints import Joint, Revolute
 from kinematica.ik.analytic.sampling import random_transform
+from kinematica.ik.rank_five import RANK_FIVE_HELD
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
 
@@ -65,9 +66,11 @@ def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
 
     The core's builder (``general_6r_build.hpp``): of the twelve labellings, the first
     accurate to round-off (ACCURATE) whose probes pass, else the most accurate of those
-    whose probes pass after Newton's step (PROBE_TOL).
+    whose probes pass after Newton's step (PROBE_TOL). None without trying on an arm a
+    held joint leaves of rank 5 whatever its value (``RANK_FIVE_HELD``): the builder
+    declines every exact rank-5 arm.
     """
-    if target != "pose" or f.joint_types != "RRRRRR":
+    if target != "pose" or f.joint_types != "RRRRRR" or chain.memo.get(RANK_FIVE_HELD):
         return None
     params = _G.build(chain.core)
     return None if params is None else _closed_form(params)
