@@ -305,13 +305,17 @@ private:
     }
 
     //! The best of `steps` evaluations of f on [0, 1] by golden section: (x, f(x)).
+    //! floor: a value no f(x) is below; once the best reaches it, the rest of the search
+    //! could not replace it (only a strictly lower value does), so it ends there.
     template <class F>
-    static std::pair<double, double> golden(const F& f, int steps) {
+    static std::pair<double, double> golden(const F& f, int steps, double floor) {
         double lo = 0.0, hi = 1.0;
         double x1 = hi - GOLD, x2 = lo + GOLD;
-        double f1 = f(x1), f2 = f(x2);
+        double f1 = f(x1);
+        if (f1 <= floor) return {x1, f1};
+        double f2 = f(x2);
         double xb = f1 <= f2 ? x1 : x2, fb = std::min(f1, f2);
-        for (int s = 2; s < steps; ++s) {
+        for (int s = 2; s < steps && fb > floor; ++s) {
             if (f1 <= f2) {
                 hi = x2, x2 = x1, f2 = f1;
                 x1 = hi - GOLD * (hi - lo);
@@ -337,6 +341,7 @@ private:
         double* vel = out_.velocity;
         double tw[2] = {out_.time[i - 1], out_.time[i]};
         bool bind[2] = {false, false};
+        double floor = -std::numeric_limits<double>::infinity();
         if (joint >= 0) {
             for (int s = 0; s < 2; ++s) {
                 const int seg = i - 1 + s;
@@ -348,6 +353,11 @@ private:
                 }
             }
             if (!bind[0] && !bind[1]) return;
+            // no velocity of the joint makes a segment shorter than the other joints allow
+            // (a joint added to a segment only lengthens it): tw[0] + tw[1] bounds the search
+            // from below, and where it is no shorter than today's, there is nothing to gain
+            floor = tw[0] + tw[1];
+            if (floor >= out_.time[i - 1] + out_.time[i]) return;
         }
         // the two segments' duration, with qlim or without (a lower bound: no profile built)
         const auto around = [&](double x, bool qlim) {
@@ -361,9 +371,9 @@ private:
         };
         // with qlim, the search without it, whose best point is then checked: where it keeps
         // qlim, that is the result; else the search again with qlim (every point checked)
-        auto [xb, fb] = golden([&](double x) { return around(x, P_.qlim == nullptr); }, steps);
+        auto [xb, fb] = golden([&](double x) { return around(x, P_.qlim == nullptr); }, steps, floor);
         if (P_.qlim != nullptr && around(xb, true) != fb) {
-            std::tie(xb, fb) = golden([&](double x) { return around(x, true); }, steps);
+            std::tie(xb, fb) = golden([&](double x) { return around(x, true); }, steps, floor);
         }
         if (fb < out_.time[i - 1] + out_.time[i]) {
             candidate(xb, trial_.data());
