@@ -99,3 +99,24 @@ def test_random_moves_hold_every_limit_and_qlim_at_their_extremes() -> None:
             assert np.all(p.peak(order) <= lim * (1.0 + LIMIT_RTOL))
         assert traj.margin is not None and traj.margin >= 0.0
     assert held_back >= 2
+
+
+def test_a_joint_added_to_a_segment_never_shortens_it() -> None:
+    # the bound the per-joint search stops and skips on: a segment's duration without one
+    # joint is no longer than with it (the search then ends where it reaches that bound)
+    rng = np.random.default_rng(38)
+    m, n = 2000, 7
+    vmax, amax, jmax = random_limits(rng, n)
+    p0 = rng.uniform(-1.0, 1.0, (m, n))
+    p1 = p0 + rng.uniform(-1.0, 1.0, (m, n)) * rng.choice([0.01, 1.0], (m, n))
+    v0, v1 = (rng.uniform(-1.0, 1.0, (m, n)) * vmax for _ in range(2))
+    full = jerk_segments(p0, v0, p1, v1, (vmax, amax, jmax)).duration
+    shorter = 0
+    for j in range(n):
+        keep = np.arange(n) != j
+        part = jerk_segments(
+            p0[:, keep], v0[:, keep], p1[:, keep], v1[:, keep], (vmax[keep], amax[keep], jmax[keep])
+        ).duration
+        assert np.all(part <= full)
+        shorter += int(np.sum(part < full))
+    assert shorter > m // 10  # the joint left out often binds: the check can fail

@@ -34,9 +34,11 @@ move short:
    only where the joint binds one of the waypoint's two segments (the slowest
    joint alone, or one whose blocked durations moved the segment's), since no
    other joint's speed can shorten them, and it is timed against the other
-   joints' duration without planning them again; a candidate keeps the durations
-   of the joints it does not change. About 60 segments are planned for each
-   segment of the move.
+   joints' duration without planning them again; that duration bounds the search
+   from below, so it is skipped where the bound is no shorter than the two
+   segments today and ends once a candidate reaches it; a candidate keeps the
+   durations of the joints it does not change. About 35-60 segments are planned
+   for each segment of the move (a joint timed against the others counts as one).
 3. With position limits (``qlim``) a segment whose exact extremes (which include
    any overshoot of a waypoint) leave them counts as infinitely long, so the
    search only keeps waypoint velocities whose segments stay inside.
