@@ -17,6 +17,7 @@ __all__ = ["singular_values"]
 
 FloatArray = NDArray[np.float64]
 
+
 def singular_values(A: FloatArray, workers: int | None = None) -> FloatArray:
     """The singular values of ``A (..., m, n)``, largest first, ``min(m, n) <= 6``.
 

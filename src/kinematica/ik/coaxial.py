@@ -349,7 +349,8 @@ def coaxial_answer(
             f"representatives with q{b} nearest 0 within the limits, every solution of the "
             f"arm with q{b} held (solved in closed form with a virtual joint at the tool)"
         )
-        verdict = _Verdict(status, note, complete, None, (pair.first, pair.second), res.near_singular)
+        free = (pair.first, pair.second)
+        verdict = _Verdict(status, note, complete, None, free, res.near_singular)
         return _answer(chain, T, verdict, found=(Q[inside], Q[~inside], err[inside]))
     closest = None
     if len(found):
@@ -444,10 +445,13 @@ def _answer(
     closest: FloatArray | None = None,
     found: tuple[FloatArray, FloatArray, FloatArray] | None = None,
 ) -> IKResult:
-    """The :class:`IKResult` of one target: ``found`` (solutions within the limits,
-    beyond them, the residuals of the first), none when not given."""
+    """The :class:`IKResult` of one target.
+
+    ``found``: its solutions within the limits, those beyond them, the residuals of
+    the first; none when not given.
+    """
     none = np.zeros((0, 6))
-    inside, outside, residuals = (none, none, pose_residuals(chain, none, T)) if found is None else found
+    inside, outside, residuals = found or (none, none, pose_residuals(chain, none, T))
     nearest = (math.nan, math.nan) if closest is None else (float(closest[0]), float(closest[1]))
     return IKResult(
         solutions=inside,
