@@ -8,9 +8,7 @@
 // (cpp/testing/general6r.cpp). The only product translation unit that includes Eigen
 // (through general_6r.hpp): compile time counts.
 #include <nanobind/nanobind.h>
-#include <nanobind/stl/array.h>
 
-#include <array>
 #include <cstdint>
 #include <optional>
 
@@ -39,8 +37,10 @@ static_assert(kg::LABELLING_START[CONTINUUM_LABELLING] == 5 &&
 //! The joints (0-based) free along the continuum of the pose T's solutions through q,
 //! the one that moved most first; () where q is regular, at a fold, or does not close
 //! the loop to CLOSURE_TOL.
-nb::tuple free_joints(const General6RParams& p, const km::Pose& T_in, const std::array<double, 6>& q) {
+nb::tuple free_joints(const General6RParams& p, const km::Pose& T_in, F64 qh) {
     if (const char* why = p.invalid()) throw nb::value_error(why);
+    const In qa = in_f64(qh, "q", 1, {6});  // held: it may own a copy
+    const double* q = qa.data;
     km::Pose T = T_in;
     T.p = p.scale * T.p;
     km::Pose L[6];
@@ -69,8 +69,7 @@ nb::tuple free_joints(const General6RParams& p, const km::Pose& T_in, const std:
 }
 
 //! free_joints on the loop of a 6R chain (CONTINUUM_LABELLING); () for any other chain.
-nb::tuple free_joints_of_chain(const km::Chain& chain, const km::Pose& T,
-                               const std::array<double, 6>& q) {
+nb::tuple free_joints_of_chain(const km::Chain& chain, const km::Pose& T, F64 q) {
     kg::Loop loop;
     General6RParams p;
     if (!kg::loop_of(chain, loop) || !kg::labelling(loop, CONTINUUM_LABELLING, p)) {
