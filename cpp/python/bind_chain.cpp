@@ -137,14 +137,9 @@ KM_CLONES void jacobian_block(const ChainView& ch, const double* Q, long b0, lon
     counts.turns += turns;
 }
 
-In check_q(const Chain& chain, F64 q) {
-    In in = in_f64(q, "q", 1, {chain.dof()});
-    return in;
-}
+In check_q(const Chain& chain, F64 q) { return in_f64(q, "q", 1, {chain.dof()}); }
 
 In check_batch(const Chain& chain, F64 Q) { return in_f64(Q, "Q", 2, {-1, chain.dof()}); }
-
-int blocks_of(long rows, long block) { return static_cast<int>((rows + block - 1) / block); }
 
 nb::tuple fk_one(const Chain& chain, F64 q) {
     const In in = check_q(chain, q);
@@ -193,11 +188,8 @@ nb::tuple fk_many(const Chain& chain, F64 Qh, bool all_frames, int workers) {
     nb::object F;
     if (all_frames) F = new_f64({B, n + 1, 4, 4}, frames);
     Counts counts;
-    run_blocks(blocks_of(B, FK_BLOCK), workers, [&](int blk) {
-        const long b0 = static_cast<long>(blk) * FK_BLOCK;
-        const long b1 = b0 + FK_BLOCK < B ? b0 + FK_BLOCK : B;
-        fk_block(ch, Q.data, b0, b1, poses, frames, counts);
-    });
+    run_rows(B, FK_BLOCK, workers,
+             [&](long b0, long b1) { fk_block(ch, Q.data, b0, b1, poses, frames, counts); });
     return nb::make_tuple(all_frames ? F : P, counts.bad.load(), counts.outside.load(),
                           counts.turns.load());
 }
@@ -224,11 +216,8 @@ nb::tuple jacobian_many(const Chain& chain, F64 Qh, bool tool_frame, int workers
     double* out;
     nb::object J = new_f64({B, 6, n}, out);
     Counts counts;
-    run_blocks(blocks_of(B, FK_BLOCK), workers, [&](int blk) {
-        const long b0 = static_cast<long>(blk) * FK_BLOCK;
-        const long b1 = b0 + FK_BLOCK < B ? b0 + FK_BLOCK : B;
-        jacobian_block(ch, Q.data, b0, b1, tool_frame, out, counts);
-    });
+    run_rows(B, FK_BLOCK, workers,
+             [&](long b0, long b1) { jacobian_block(ch, Q.data, b0, b1, tool_frame, out, counts); });
     return nb::make_tuple(J, counts.bad.load(), counts.turns.load());
 }
 
@@ -377,9 +366,7 @@ F64 joint_axes(const Chain& chain, F64 Qh, int workers) {
     const npy_intp B = Q.dim[0];
     double* out;
     F64 A = new_f64({B, n, 6}, out);
-    run_blocks(blocks_of(B, FK_BLOCK), workers, [&](int blk) {
-        const long b0 = static_cast<long>(blk) * FK_BLOCK;
-        const long b1 = b0 + FK_BLOCK < B ? b0 + FK_BLOCK : B;
+    run_rows(B, FK_BLOCK, workers, [&](long b0, long b1) {
         std::vector<double> c(static_cast<size_t>(n)), s(c.size());
         for (long b = b0; b < b1; ++b) {
             const double* q = Q.data + b * n;

@@ -19,7 +19,6 @@
 #include "kinematica/solvers/near_6r.hpp"
 #include "kinematica/solvers/near_6r_build.hpp"
 #include "numpy_io.hpp"
-#include "small_fields.hpp"
 #include "solver_binding.hpp"
 
 namespace kmpy {
@@ -38,12 +37,10 @@ static_assert(kg::LABELLING_START[CONTINUUM_LABELLING] == 5 &&
 //! The joints (0-based) free along the continuum of the pose T's solutions through q,
 //! the one that moved most first; () where q is regular, at a fold, or does not close
 //! the loop to CLOSURE_TOL.
-nb::tuple free_joints(const General6RParams& p, const km::Pose& T_in, nb::handle qh) {
+nb::tuple free_joints(const General6RParams& p, const km::Pose& T_in, F64 qh) {
     if (const char* why = p.invalid()) throw nb::value_error(why);
-    PyArrayObject* qa = small::exact_array(qh, "q", NPY_DOUBLE, 6, 0);
-    double q[6];
-    for (int k = 0; k < 6; ++k) q[k] = static_cast<const double*>(PyArray_DATA(qa))[k];
-    Py_DECREF(qa);
+    const In qa = in_f64(qh, "q", 1, {6});  // held: it may own a copy
+    const double* q = qa.data;
     km::Pose T = T_in;
     T.p = p.scale * T.p;
     km::Pose L[6];
@@ -72,7 +69,7 @@ nb::tuple free_joints(const General6RParams& p, const km::Pose& T_in, nb::handle
 }
 
 //! free_joints on the loop of a 6R chain (CONTINUUM_LABELLING); () for any other chain.
-nb::tuple free_joints_of_chain(const km::Chain& chain, const km::Pose& T, nb::handle q) {
+nb::tuple free_joints_of_chain(const km::Chain& chain, const km::Pose& T, F64 q) {
     kg::Loop loop;
     General6RParams p;
     if (!kg::loop_of(chain, loop) || !kg::labelling(loop, CONTINUUM_LABELLING, p)) {

@@ -372,16 +372,6 @@ nb::class_<Params> bind_params(nb::module_& m, const char* name, const char* doc
     return cls;
 }
 
-//! A closed form's Params class whose fields Python fills (def_rw each, bound by the
-//! caller): bind_params with a constructor.
-template <class Params>
-nb::class_<Params> bind_closed_form(nb::module_& m, const char* name, const char* doc,
-                                    const char* cpp_type, const char* cpp_header) {
-    nb::class_<Params> cls = bind_params<Params>(m, name, doc, cpp_type, cpp_header);
-    cls.def(nb::init<>());
-    return cls;
-}
-
 //! A closed-form family built in C++, registered by one call: its opaque Params class
 //! (bind_params) and `<build_name>(chain) -> Params | None` in module m, where `build` is
 //! the family's builder (`std::optional<Params>(const km::Chain&)`, named cpp_build in C++:

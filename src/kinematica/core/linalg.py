@@ -13,12 +13,9 @@ from numpy.typing import NDArray
 import kinematica._core as _core
 from kinematica.core.workers import resolve_workers
 
-__all__ = ["MAX_SINGULAR", "singular_values"]
+__all__ = ["singular_values"]
 
 FloatArray = NDArray[np.float64]
-
-#: Most rows (or columns) a matrix may have on its shorter side.
-MAX_SINGULAR = 6
 
 
 def singular_values(A: FloatArray, workers: int | None = None) -> FloatArray:

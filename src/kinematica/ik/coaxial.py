@@ -321,11 +321,11 @@ def coaxial_answer(
     a, b = pair.first + 1, pair.second + 1
     res = virtual_answer(chain, pair, T, options, solve)
     if res is None:
-        return _answer(
-            IKStatus.NOT_FOUND, chain, T, np.zeros((0, 6)), np.zeros((0, 6)), (), False, None,
-            (f"joints {a} and {b} turn about one line, and no arm with a virtual joint at the "
-             "tool has a closed form: nothing was proven",),
-        )  # fmt: skip
+        note = (
+            f"joints {a} and {b} turn about one line, and no arm with a virtual joint at the "
+            "tool has a closed form: nothing was proven"
+        )
+        return _answer(chain, T, _Verdict(IKStatus.NOT_FOUND, note, complete=False))
     found = np.concatenate([res.solutions, res.out_of_limits])
     Q = _real(chain, pair, found, respect)
     err = pose_residuals(chain, Q, T)
@@ -349,10 +349,9 @@ def coaxial_answer(
             f"representatives with q{b} nearest 0 within the limits, every solution of the "
             f"arm with q{b} held (solved in closed form with a virtual joint at the tool)"
         )
-        return _answer(
-            status, chain, T, Q[inside], Q[~inside], (pair.first, pair.second), complete,
-            None, (note,), err[inside], res.near_singular,
-        )  # fmt: skip
+        free = (pair.first, pair.second)
+        verdict = _Verdict(status, note, complete, None, free, res.near_singular)
+        return _answer(chain, T, verdict, found=(Q[inside], Q[~inside], err[inside]))
     closest = None
     if len(found):
         every = pose_residuals(chain, _real(chain, pair, found, respect), T)
@@ -364,23 +363,20 @@ def coaxial_answer(
         beyond, gaps = beyond_limited_reach(chain, T[None], code, np.array([np.nan]), tol.position)
         if beyond[0]:
             note = f"{why}, and the target lies beyond its reach within the joint limits"
-            return _answer(
-                IKStatus.UNREACHABLE, chain, T, Q, Q, (), True, float(gaps[0]), (note,),
-                closest=closest,
-            )  # fmt: skip
+            verdict = _Verdict(IKStatus.UNREACHABLE, note, complete=True, gap=float(gaps[0]))
+            return _answer(chain, T, verdict, closest)
     if not complete:
-        return _answer(
-            IKStatus.NOT_FOUND, chain, T, Q, Q, (), False, None,
-            (f"{why}; the arm with a virtual joint at the tool found no solution in "
-             "closed form: nothing was proven",),
-            closest=closest,
-        )  # fmt: skip
+        note = (
+            f"{why}; the arm with a virtual joint at the tool found no solution in "
+            "closed form: nothing was proven"
+        )
+        return _answer(chain, T, _Verdict(IKStatus.NOT_FOUND, note, complete=False), closest)
     gap = res.gap if str(res.status) == IKStatus.UNREACHABLE else None
     note = (
         f"{why}: it reaches only a 5-dimensional set of poses, and not this one (every "
         "solution of the arm with a virtual joint at the tool has that joint away from 0)"
     )
-    return _answer(IKStatus.UNREACHABLE, chain, T, Q, Q, (), True, gap, (note,), closest=closest)
+    return _answer(chain, T, _Verdict(IKStatus.UNREACHABLE, note, complete=True, gap=gap), closest)
 
 
 def virtual_answer(
@@ -430,27 +426,36 @@ def _decides(res: IKResult) -> bool:
     )
 
 
+@dataclasses.dataclass(frozen=True, slots=True)
+class _Verdict:
+    """What :func:`coaxial_answer` concludes of one target, beyond its solutions."""
+
+    status: IKStatus
+    note: str
+    complete: bool
+    gap: float | None = None
+    free: tuple[int, ...] = ()
+    near: bool = False
+
+
 def _answer(
-    status: IKStatus,
     chain: Chain,
     T: FloatArray,
-    inside: FloatArray,
-    outside: FloatArray,
-    free: tuple[int, ...],
-    complete: bool,
-    gap: float | None,
-    notes: tuple[str, ...],
-    residuals: FloatArray | None = None,
-    near: bool = False,
+    verdict: _Verdict,
     closest: FloatArray | None = None,
+    found: tuple[FloatArray, FloatArray, FloatArray] | None = None,
 ) -> IKResult:
-    """The :class:`IKResult` of one target."""
-    if residuals is None:
-        residuals = pose_residuals(chain, inside, T)
+    """The :class:`IKResult` of one target.
+
+    ``found``: its solutions within the limits, those beyond them, the residuals of
+    the first; none when not given.
+    """
+    none = np.zeros((0, 6))
+    inside, outside, residuals = found or (none, none, pose_residuals(chain, none, T))
     nearest = (math.nan, math.nan) if closest is None else (float(closest[0]), float(closest[1]))
     return IKResult(
         solutions=inside,
-        status=status,
+        status=verdict.status,
         method=METHOD,
         residuals=residuals,
         branches=tuple(f"representative #{k + 1}" for k in range(len(inside))),
@@ -458,12 +463,12 @@ def _answer(
         out_of_limits_branches=tuple(
             f"representative #{len(inside) + k + 1}" for k in range(len(outside))
         ),
-        free_joints=free,
-        gap=gap,
+        free_joints=verdict.free,
+        gap=verdict.gap,
         nearest_error=nearest,
-        notes=notes,
-        complete=complete,
-        near_singular=near,
+        notes=(verdict.note,),
+        complete=verdict.complete,
+        near_singular=verdict.near,
     )
 
 

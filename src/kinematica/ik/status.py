@@ -7,7 +7,7 @@ from enum import StrEnum
 
 import kinematica._core as _core
 
-__all__ = ["SOLVED", "STATUS_NAMES", "IKStatus", "held", "status_message"]
+__all__ = ["STATUS_NAMES", "IKStatus", "held", "status_message"]
 
 
 class IKStatus(StrEnum):
@@ -39,9 +39,6 @@ class IKStatus(StrEnum):
 
 #: Status of each of the core's status codes (``kinematica._core.STATUS``).
 STATUS_NAMES: dict[int, IKStatus] = {code: IKStatus(name) for name, code in _core.STATUS.items()}
-
-#: Statuses for which ``solutions`` is not empty.
-SOLVED: frozenset[str] = frozenset({IKStatus.OK, IKStatus.SINGULAR})
 
 
 def status_message(

@@ -1,4 +1,5 @@
-// Fixed-size array fields of the small arms' Params (bind_planar.cpp, bind_elbow.cpp):
+// Fixed-size array fields of the families' Params as the test hooks read and write them
+// (cpp/testing/):
 // read as a new numpy array, written from any array or nested sequence of exactly that
 // shape (a ValueError otherwise: a wrong size never reaches the core).
 #pragma once
