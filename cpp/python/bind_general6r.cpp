@@ -40,16 +40,9 @@ static_assert(kg::LABELLING_START[CONTINUUM_LABELLING] == 5 &&
 nb::tuple free_joints(const General6RParams& p, const km::Pose& T_in, F64 qh) {
     if (const char* why = p.invalid()) throw nb::value_error(why);
     const In qa = in_f64(qh, "q", 1, {6});  // held: it may own a copy
-    const double* q = qa.data;
-    km::Pose T = T_in;
-    T.p = p.scale * T.p;
-    km::Pose L[6];
-    for (int k = 0; k < 6; ++k) L[k] = p.link_of(k, T);
-    double a[6];
-    for (int k = 0; k < 6; ++k) a[k] = p.sign * q[p.order[k]];
-    if (!(p.miss(L, a, T) <= kg::CLOSURE_TOL)) return nb::tuple();
-    const kg::SelfMotion sm = p.self_motion(L, T, a);
-    if (sm.verdict != kg::Degeneracy::continuum) return nb::tuple();
+    const std::optional<kg::SelfMotion> at = p.self_motion_at(T_in, qa.data);
+    if (!at || at->verdict != kg::Degeneracy::continuum) return nb::tuple();
+    const kg::SelfMotion& sm = *at;
     double moved[6];
     bool free[6];
     for (int k = 0; k < 6; ++k) {

@@ -167,16 +167,9 @@ nb::tuple self_motion_of(const General6RParams& p, const km::Pose& T_in, nb::han
     double q[6];
     for (int k = 0; k < 6; ++k) q[k] = static_cast<const double*>(PyArray_DATA(qa))[k];
     Py_DECREF(qa);
-    km::Pose T = T_in;
-    T.p = p.scale * T.p;
-    km::Pose L[6];
-    for (int k = 0; k < 6; ++k) L[k] = p.link_of(k, T);
-    double a[6];
-    for (int k = 0; k < 6; ++k) a[k] = p.sign * q[p.order[k]];
-    if (!(p.miss(L, a, T) <= kg::CLOSURE_TOL)) {
-        throw nb::value_error("q does not close the loop for T (its miss is above CLOSURE_TOL)");
-    }
-    const kg::SelfMotion sm = p.self_motion(L, T, a);
+    const std::optional<kg::SelfMotion> at = p.self_motion_at(T_in, q);
+    if (!at) throw nb::value_error("q does not close the loop for T (its miss is above CLOSURE_TOL)");
+    const kg::SelfMotion& sm = *at;
     double* out;
     F64 moved = new_f64({6}, out);
     std::uint32_t free = 0;

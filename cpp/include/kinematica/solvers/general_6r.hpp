@@ -61,6 +61,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdint>
+#include <optional>
 
 #include "../check.hpp"
 #include "../config.hpp"
@@ -572,6 +573,21 @@ struct General6RParams : Elimination {
             for (int k = 0; k < 6; ++k) b[k] += db[k];
         }
         return best;
+    }
+
+    //! self_motion at the joint values q (6,), per joint (not per loop joint), of a
+    //! solution of the pose T (the arm's frame and units); nullopt where q does not close
+    //! the loop to CLOSURE_TOL (the test presumes it). moved and free stay per loop joint
+    //! (order maps them to the joints).
+    std::optional<SelfMotion> self_motion_at(const Pose& T_in, const double* q) const {
+        Pose T = T_in;
+        T.p = scale * T.p;
+        Pose L[6];
+        for (int k = 0; k < 6; ++k) L[k] = link_of(k, T);
+        double a[6];
+        for (int k = 0; k < 6; ++k) a[k] = sign * q[order[k]];
+        if (!(miss(L, a, T) <= CLOSURE_TOL)) return std::nullopt;
+        return self_motion(L, T, a);
     }
 
     //! The self-motion test at the loop angles a, which close the loop for T (scaled).
