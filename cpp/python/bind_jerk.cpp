@@ -199,9 +199,49 @@ nb::tuple jerk_via_move(F64 w, F64 v_start, F64 v_end, F64 vmax, F64 amax, F64 j
     nb::object qddo = new_f64({m, n}, qdd), qdddo = new_f64({m, n}, qddd);
     {
         nb::gil_scoped_release release;
-        kj::move_samples(P, dt, A.W.data + (k - 1) * n, A.VE.data, t, q, qd, qdd, qddd);
+        kj::move_samples(P, dt, A.W.data + (k - 1) * n, A.VE.data, nullptr, t, q, qd, qdd, qddd);
     }
     return nb::make_tuple(Vo, To, So, out.evaluations, exact, nb::make_tuple(to, qo, qdo, qddo, qdddo));
+}
+
+nb::tuple jerk_state_move(double T, F64 rows, F64 vmax, F64 amax, F64 jmax, F64 q1, F64 v1, F64 a1, double dt,
+                          double max_samples) {
+    const In R = in_f64(rows, "rows", 2);
+    const npy_intp n = R.dim[0];
+    if (n < 1 || R.dim[1] != kj::STATE_ROW) fail_value("rows", "(n, JERK_STATE_ROW) of at least one joint");
+    const In VM = in_f64(vmax, "vmax", 1, {n}), AM = in_f64(amax, "amax", 1, {n}), JM = in_f64(jmax, "jmax", 1, {n});
+    const In Q1 = in_f64(q1, "q1", 1, {n}), V1 = in_f64(v1, "v1", 1, {n}), A1 = in_f64(a1, "a1", 1, {n});
+    const std::vector<kj::Limits> L = limits_of(VM, AM, JM);
+    check_states(R, "rows", nullptr);
+    check_states(Q1, "q1", nullptr);
+    check_states(V1, "v1", nullptr);
+    check_states(A1, "a1", nullptr);
+    for (npy_intp i = 0; i < n; ++i) {
+        for (int k = 0; k < 9; ++k) {
+            if (R.data[i * kj::STATE_ROW + k] < 0.0) fail_value("rows", "of phase durations >= 0");
+        }
+    }
+    if (!(T >= 0.0 && std::isfinite(T))) fail_value("T", "finite and >= 0");
+    if (!(dt > 0.0 && std::isfinite(dt))) fail_value("dt", "finite and positive");
+    if (!(T / dt + 1.0 <= max_samples)) fail_value("T / dt", "at most max_samples - 1");
+    thread_local kj::Pieces P;  // its memory kept from call to call (jerk_pieces.hpp)
+    {
+        nb::gil_scoped_release release;
+        kj::state_pieces(static_cast<int>(n), T, R.data, L.data(), P);
+    }
+    const npy_intp pieces = static_cast<npy_intp>(P.breaks.size()) - 1;
+    const nb::tuple exact = nb::make_tuple(array_of(P.breaks, {pieces + 1}),
+                                           array_of(P.coef, {pieces, static_cast<npy_intp>(P.order), n}),
+                                           array_of(P.knots, {2}), array_of(P.peak, {3, n}));
+    const npy_intp m = kj::sample_count(P.knots, dt);
+    double *t, *q, *qd, *qdd, *qddd;
+    nb::object to = new_f64({m}, t), qo = new_f64({m, n}, q), qdo = new_f64({m, n}, qd);
+    nb::object qddo = new_f64({m, n}, qdd), qdddo = new_f64({m, n}, qddd);
+    {
+        nb::gil_scoped_release release;
+        kj::move_samples(P, dt, Q1.data, V1.data, A1.data, t, q, qd, qdd, qddd);
+    }
+    return nb::make_tuple(exact, nb::make_tuple(to, qo, qdo, qddo, qdddo));
 }
 
 }  // namespace
@@ -226,7 +266,16 @@ void bind_jerk(nb::module_& m) {
           "coef (p, 4, n), knots (k,), peak (3, n): largest |v|, |a|, |j|), samples (t (m,), q, qd, qdd, "
           "jerk (m, n)); both None where a segment leaves qlim with stops, or duration/dt + k > "
           "max_samples.");
+    m.def("jerk_state_move", &jerk_state_move, nb::arg("T"), nb::arg("rows"), nb::arg("vmax"), nb::arg("amax"),
+          nb::arg("jmax"), nb::arg("q1"), nb::arg("v1"), nb::arg("a1"), nb::arg("dt"), nb::arg("max_samples"),
+          "The exact pieces and samples of a state-to-state move of duration T from each joint's phases "
+          "(rows (n, JERK_STATE_ROW): ruckig's brake and profile, jerk_pieces.hpp), each joint's end settled "
+          "on its target. Returns (pieces, samples): pieces (breaks (p+1,), coef (p, 4 or 6, n), knots (2,), "
+          "peak (3, n)), samples (t (m,), q, qd, qdd, jerk (m, n)), every dt or closer, the last the end "
+          "state (q1, v1, a1).");
     m.attr("JERK_MAX_PHASES") = kj::MAX_PHASES;
+    m.attr("JERK_STATE_ROW") = kj::STATE_ROW;
+    m.attr("JERK_SETTLE_ULPS") = kj::SETTLE_ULPS;
     m.attr("JERK_PIECE_RTOL") = kj::PIECE_RTOL;
 }
 

@@ -16,10 +16,12 @@ from support.scurve_reference import (
     retimed_durations,
 )
 
+from kinematica.core.jerk import STATE_ROW, jerk_state_move
 from kinematica.errors import ArgumentError, DimensionError, KinematicaError
 from kinematica.motion import JointTrajectory, joint_trajectory, time_scaling
+from kinematica.motion.piecewise import PiecewisePolynomial
 from kinematica.motion.plot import MissingDependencyError
-from kinematica.motion.scurve import PIECE_RTOL, JerkTrajectory, scurve_pieces
+from kinematica.motion.scurve import PIECE_RTOL, JerkTrajectory, Segment, scurve_move, scurve_pieces
 from kinematica.motion.trajectory import LIMIT_RTOL
 
 #: Durations against the hand-derived rest-to-rest minimum time (s).
@@ -310,3 +312,45 @@ def test_without_ruckig_the_error_names_the_extra(monkeypatch: pytest.MonkeyPatc
     monkeypatch.setitem(sys.modules, "ruckig", None)  # import ruckig raises ImportError
     with pytest.raises(MissingDependencyError, match=r"kinematica\[trajectory\]"):
         joint_trajectory([0.0], [1.0], profile="scurve", vmax=1, amax=1, jmax=1)
+
+
+def test_the_cores_peaks_bound_the_exact_ones_within_the_limits() -> None:
+    # jerk_state_move's peaks: exact on cubic pieces, a bound where a step settled an end;
+    # against the pieces' own exact peaks (roots of the next derivative, piecewise.py)
+    rng = np.random.default_rng(5)
+    settled = 0
+    for _ in range(40):
+        n = int(rng.integers(1, 8))
+        V, A, J = random_limits(rng, n)
+        q0, q1 = rng.uniform(-2, 2, n), rng.uniform(-2, 2, n)
+        v0, a0 = random_state(rng, V, A, J)
+        seg = Segment(V, A, J)
+        T = seg.plan(q0, v0, a0, q1, np.zeros(n), np.zeros(n))
+        seg.plan(q0, v0, a0, q1, np.zeros(n), np.zeros(n), minimum=1.5 * T, validate=False)
+        move = scurve_move(seg, 0.01, (q1, np.zeros(n), np.zeros(n)))
+        pp = PiecewisePolynomial(move.breaks, move.coef, move.knots)
+        exact = np.stack([pp.peak(order) for order in (1, 2, 3)])
+        settled += move.coef.shape[1] == 6
+        assert np.all(move.peak >= exact * (1.0 - 1e-14))
+        assert np.all(move.peak <= np.stack([V, A, J]) * (1.0 + LIMIT_RTOL))
+        if move.coef.shape[1] == 4:
+            assert np.allclose(move.peak, exact, rtol=1e-14, atol=0.0)
+    assert settled > 0  # some ends were settled (re-timed joints end up to 1e-8 off)
+
+
+def test_the_core_refuses_bad_phase_data() -> None:
+    one, z = np.ones(1), np.zeros(1)
+    rows = np.zeros((1, STATE_ROW))
+    lim = (one, one, one)
+    with pytest.raises(ValueError, match="rows"):
+        jerk_state_move(0.0, np.zeros((1, STATE_ROW - 1)), lim, (z, z, z), 0.1, 10.0)
+    bad = rows.copy()
+    bad[0, 3] = -1.0  # a negative phase duration
+    with pytest.raises(ValueError, match="rows"):
+        jerk_state_move(0.0, bad, lim, (z, z, z), 0.1, 10.0)
+    with pytest.raises(ValueError, match="dt"):
+        jerk_state_move(0.0, rows, lim, (z, z, z), 0.0, 10.0)
+    with pytest.raises(ValueError, match="max_samples"):
+        jerk_state_move(100.0, rows, lim, (z, z, z), 0.1, 10.0)
+    still = jerk_state_move(0.0, rows, lim, (z, z, z), 0.1, 10.0)
+    assert still.samples[0].shape == (1,) and still.coef.shape == (1, 4, 1)

@@ -17,10 +17,15 @@ import kinematica._core as _core
 
 __all__ = [
     "MAX_PHASES",
+    "PIECE_RTOL",
+    "SETTLE_ULPS",
+    "STATE_ROW",
     "Segments",
+    "StateMove",
     "ViaChoice",
     "ViaMove",
     "jerk_segments",
+    "jerk_state_move",
     "jerk_via",
     "jerk_via_move",
 ]
@@ -29,6 +34,16 @@ FloatArray = NDArray[np.float64]
 
 #: Most phases of constant jerk in one joint's profile of one segment.
 MAX_PHASES: int = _core.JERK_MAX_PHASES
+#: Pieces of a move shorter than this fraction of its duration (or of 1 s) are merged into
+#: their neighbour: two joints' switches at the same time up to round-off would otherwise
+#: leave a piece of 1e-17 s.
+PIECE_RTOL: float = _core.JERK_PIECE_RTOL
+#: End-position errors of a state-to-state move up to this many units in the last place of
+#: the target are round-off of the pieces' own arithmetic, and left as they are; beyond,
+#: the end is settled on the target (``jerk_pieces.hpp``).
+SETTLE_ULPS: float = _core.JERK_SETTLE_ULPS
+#: Values in one joint's row of a state-to-state move's phases (:func:`jerk_state_move`).
+STATE_ROW: int = _core.JERK_STATE_ROW
 
 
 class Segments(NamedTuple):
@@ -87,6 +102,28 @@ class ViaMove(NamedTuple):
     knots: FloatArray | None
     peak: FloatArray | None
     samples: tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray] | None
+
+
+class StateMove(NamedTuple):
+    """The exact pieces and samples of a state-to-state move (:func:`jerk_state_move`).
+
+    Attributes:
+        breaks: ``(p + 1,)`` the pieces' breaks (s).
+        coef: ``(p, 4, n)`` each piece's cubic per joint in ``t - breaks[i]`` (lowest power
+            first), or ``(p, 6, n)`` quintic where a joint's end was settled on its target.
+        knots: ``(2,)`` ``0`` and the duration.
+        peak: ``(3, n)`` each joint's largest ``|velocity|``, ``|acceleration|``, ``|jerk|``
+            (exact on the cubics; where a step settled a joint's end, its phase's with the
+            step's peaks added: a bound).
+        samples: ``(t, q, qd, qdd, qddd)``: ``(m,)`` times (s), spacing ``<= dt``; ``(m, n)``
+            each; the last is the end state exactly.
+    """
+
+    breaks: FloatArray
+    coef: FloatArray
+    knots: FloatArray
+    peak: FloatArray
+    samples: tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]
 
 
 def _f(x: FloatArray) -> FloatArray:
@@ -184,3 +221,35 @@ def jerk_via_move(
         return ViaMove(choice, None, None, None, None, None)
     breaks, coef, knots, peak = exact
     return ViaMove(choice, breaks, coef, knots, peak, samples)
+
+
+def jerk_state_move(
+    T: float,
+    rows: FloatArray,
+    limits: tuple[FloatArray, FloatArray, FloatArray],
+    end: tuple[FloatArray, FloatArray, FloatArray],
+    dt: float,
+    max_samples: float,
+) -> StateMove:
+    """A state-to-state move's exact pieces and samples from its joints' phases, in one call.
+
+    Args:
+        T: Duration (s), >= 0.
+        rows: ``(n, STATE_ROW)`` each joint's phases as ruckig plans them
+            (``jerk_pieces.hpp``: the durations of a brake's 2 phases and the profile's 7,
+            their jerks, their start positions, velocities and accelerations, the target).
+        limits: ``(vmax, amax, jmax)``, each ``(n,)`` positive.
+        end: ``(q1, v1, a1)``, each ``(n,)``: the last sample.
+        dt: Largest sample spacing (s), > 0.
+        max_samples: Refused (``ValueError``) where ``T / dt + 1`` exceeds it.
+
+    Returns:
+        The :class:`StateMove`, each joint's end settled on its target position.
+    """
+    vm, am, jm = (_f(x) for x in limits)
+    q1, v1, a1 = (_f(x) for x in end)
+    exact, samples = _core.jerk_state_move(
+        float(T), _f(rows), vm, am, jm, q1, v1, a1, float(dt), float(max_samples)
+    )
+    breaks, coef, knots, peak = exact
+    return StateMove(breaks, coef, knots, peak, samples)

@@ -17,24 +17,25 @@ left out: matching ruckig's durations to 1e-6 s from arbitrary states needs
 its whole case analysis (a dozen profile families per direction, each with its
 own polynomial roots, plus the blocked intervals of the synchronisation), and
 a half-correct copy would be worse than the well-tested original. What ruckig
-does not do is ours: the validation, the exact pieces and samples (the
-profiles ruckig returns are turned into one
-:class:`~kinematica.motion.piecewise.PiecewisePolynomial` of cubic pieces,
-sampled exactly, jerk included), the limit checks on the result, waypoints
-with position limits (:mod:`kinematica.motion.scurve_via`) and the pictures.
+does not do is ours: the validation, the exact pieces and samples (the phases
+ruckig returns are turned into one
+:class:`~kinematica.motion.piecewise.PiecewisePolynomial` of cubic pieces, each
+joint's end settled on its target, and sampled exactly, jerk included, by one
+call of the compiled core: ``cpp/include/kinematica/jerk_pieces.hpp``), the
+limit checks on the result, waypoints with position limits
+(:mod:`kinematica.motion.scurve_via`) and the pictures.
 """
 
 from __future__ import annotations
 
-import math
 import re
 from typing import Any
 
 import numpy as np
-from numpy.polynomial import polynomial as npoly
 from numpy.typing import ArrayLike, NDArray
 
 from kinematica.arguments import check_size
+from kinematica.core.jerk import PIECE_RTOL, SETTLE_ULPS, STATE_ROW, StateMove, jerk_state_move
 from kinematica.errors import DimensionError, KinematicaError, MissingDependencyError
 from kinematica.motion.piecewise import PiecewisePolynomial
 from kinematica.motion.samples import DURATION_RTOL, LIMIT_RTOL, MAX_SAMPLES, JointTrajectory
@@ -44,20 +45,17 @@ __all__ = [
     "SETTLE_ULPS",
     "JerkTrajectory",
     "Segment",
+    "check_peak",
     "limits_from",
-    "phase_pieces",
     "require_ruckig",
+    "scurve_move",
     "scurve_pieces",
     "scurve_trajectory",
     "state_from",
+    "wrap",
 ]
 
 FloatArray = NDArray[np.float64]
-
-#: Pieces of the result shorter than this fraction of the duration are merged into
-#: their neighbour: two joints' phase boundaries that ruckig puts at the same time up to
-#: round-off would otherwise leave a piece of 1e-17 s.
-PIECE_RTOL = 1e-13
 
 
 class JerkTrajectory(JointTrajectory):
@@ -218,189 +216,67 @@ def _reason(message: str) -> str:
     return re.sub(r"DoF (\d+)", lambda m: f"joint {int(m.group(1)) + 1}", text)
 
 
-def _phases(seg: Segment) -> tuple[FloatArray, ...]:
-    """``(n, 9)`` durations, jerks and start states ``p, v, a`` of the joints' phases.
+def _rows(seg: Segment) -> FloatArray:
+    """``(n, STATE_ROW)`` the joints' phases of the last planned segment, as ruckig gives them.
 
-    The brake's two phases, then the profile's seven; last ``(n,)`` the targets.
+    Each row (``jerk_pieces.hpp``): the brake's 2 phase durations and the profile's 7, their
+    jerks, their start positions (the profile's 8 states), velocities and accelerations,
+    and the target position.
     """
-    profs = seg.out.profiles[0]
-    t = np.array([[*pr.brake.t, *pr.t] for pr in profs], dtype=float)
-    j = np.array([[*pr.brake.j, *pr.j] for pr in profs], dtype=float)
-    p = np.array([[*pr.brake.p, *pr.p[:7]] for pr in profs], dtype=float)
-    v = np.array([[*pr.brake.v, *pr.v[:7]] for pr in profs], dtype=float)
-    a = np.array([[*pr.brake.a, *pr.a[:7]] for pr in profs], dtype=float)
-    pf = np.array([pr.pf for pr in profs], dtype=float)
-    return t, j, p, v, a, pf
+    flat: list[float] = []
+    for pr in seg.out.profiles[0]:
+        br = pr.brake
+        flat += (*br.t, *pr.t, *br.j, *pr.j, *br.p, *pr.p, *br.v, *pr.v, *br.a, *pr.a, pr.pf)
+    return np.array(flat).reshape(seg.n, STATE_ROW)
+
+
+def scurve_move(
+    seg: Segment, dt: float, end: tuple[FloatArray, FloatArray, FloatArray]
+) -> StateMove:
+    """The last planned segment's exact pieces (knots: its two ends) and samples every ``dt``.
+
+    Built in the core from ruckig's phases (:func:`~kinematica.core.jerk.jerk_state_move`):
+    each joint's phases are cut at the union of every joint's switch times, each piece a
+    cubic per joint, and each joint's end is settled on its target (``jerk_pieces.hpp``).
+    ``end``: the last sample ``(q1, v1, a1)``.
+    """
+    T = float(seg.out.duration)
+    return jerk_state_move(T, _rows(seg), seg.limits, end, dt, MAX_SAMPLES)
 
 
 def scurve_pieces(seg: Segment) -> PiecewisePolynomial:
-    """The last planned segment as cubic pieces from ``t = 0`` (knots: its two ends).
+    """The last planned segment as pieces from ``t = 0`` (:func:`scurve_move`'s)."""
+    rows = _rows(seg)
+    z = np.zeros(seg.n)
+    move = scurve_move(seg, max(float(seg.out.duration), 1.0), (rows[:, -1], z, z))
+    return PiecewisePolynomial(move.breaks, move.coef, move.knots)
 
-    ruckig's phases (a brake first, if any, then seven) through :func:`phase_pieces`.
+
+def check_peak(peak: FloatArray, limits: tuple[FloatArray, ...]) -> None:
+    """Raise when a peak ``(3, n)`` of speed, acceleration or jerk exceeds its limit.
+
+    The profiles hold the limits by construction; this check makes a broken promise (a
+    new ruckig version, a start state just outside a limit) an error instead of a
+    trajectory that a drive refuses.
     """
-    return phase_pieces(float(seg.out.duration), _phases(seg), seg.limits)
+    lim = np.stack(limits)
+    over = peak > lim * (1.0 + LIMIT_RTOL)
+    if over.any():
+        order, j = (int(x[0]) for x in np.nonzero(over))
+        name = ("vmax", "amax", "jmax")[order]
+        raise KinematicaError(
+            f"joint {j + 1} would reach {peak[order, j]:.9g} > {name} {lim[order, j]:g}"
+        )
 
 
-def phase_pieces(
-    T: float, phases: tuple[FloatArray, ...], limits: tuple[FloatArray, ...]
-) -> PiecewisePolynomial:
-    """Joints' phases of constant jerk as cubic pieces from ``t = 0`` to ``T`` (knots: 0, T).
-
-    Args:
-        T: Duration (s).
-        phases: ``(t, j, p, v, a, pf)``: ``(n, P)`` each joint's phase durations and
-            jerks and its position, velocity and acceleration at each phase's start,
-            and ``(n,)`` its target position.
-        limits: ``(vmax, amax, jmax)``, each ``(n,)`` (for :func:`_settle`).
-
-    Each joint's phases are cut at the union of every joint's switch times; each
-    piece holds ``p, v, a/2, j/6`` of its joint at the piece's start, evaluated from
-    the phase that contains it. Then each joint's end is settled on its target
-    (:func:`_settle`).
-    """
-    t, j, p, v, a, pf = phases
-    n = t.shape[0]
-    used = t > 0.0
-    t0 = np.concatenate([np.zeros((n, 1)), np.cumsum(t, axis=1)[:, :-1]], axis=1)
-    cuts = np.unique(np.concatenate([t0[used], [0.0, T]]))
-    cuts = cuts[(cuts >= 0.0) & (cuts <= T)]
-    keep = np.concatenate([[True], np.diff(cuts) > PIECE_RTOL * max(T, 1.0)])
-    breaks = cuts[keep]
-    breaks[-1] = T
-    if breaks.size < 2:  # a move of zero duration: one empty piece holding the state
-        breaks = np.array([0.0, 0.0])
-    tb = breaks[:-1]
-    # the phase holding each piece's midpoint: a switch merged into a piece's start
-    # (PIECE_RTOL) may lie a hair after it, and its phase is the one the piece follows
-    mid = 0.5 * (tb + breaks[1:])
-    began = used[:, :, None] & (t0[:, :, None] <= mid[None, None, :])  # (n, P, pieces)
-    k = t.shape[1] - 1 - np.argmax(began[:, ::-1, :], axis=1)  # the last phase begun
-    tau = tb[None, :] - np.take_along_axis(t0, k, axis=1)
-    pk, vk, ak, jk = (np.take_along_axis(x, k, axis=1) for x in (p, v, a, j))
-    coef = np.stack(
-        [
-            pk + tau * (vk + tau * (ak / 2.0 + tau * jk / 6.0)),
-            vk + tau * (ak + tau * jk / 2.0),
-            (ak + tau * jk) / 2.0,
-            jk / 6.0,
-        ],
-        axis=1,
-    ).T  # (n, 4, pieces) -> (pieces, 4, n)
-    still = ~used.any(axis=1)  # a joint with no phase: at rest at its target
-    coef[:, :, still] = 0.0
-    coef[:, 0, still] = pf[still]
-    coef = _settle(limits, breaks, coef, (t0, t, v, a, j, pf), used)
-    return PiecewisePolynomial(breaks, coef, np.array([0.0, T]))
-
-
-#: End-position errors up to this many units in the last place of the target are
-#: round-off of the pieces' own arithmetic, and left as they are.
-SETTLE_ULPS = 16
-#: Peaks of the smoothstep ``10s³ - 15s⁴ + 6s⁵`` on [0, 1]: its first, second and third
-#: derivatives (15/8, 10/√3, 60).
-_STEP_PEAKS = (15.0 / 8.0, 10.0 / np.sqrt(3.0), 60.0)
-#: The smoothstep's derivatives 0..5, each a polynomial in s (lowest power first).
-_STEP = [
-    np.array([0.0, 0.0, 0.0, 10.0, -15.0, 6.0]),
-    np.array([0.0, 0.0, 30.0, -60.0, 30.0]),
-    np.array([0.0, 60.0, -180.0, 120.0]),
-    np.array([60.0, -360.0, 360.0]),
-    np.array([-360.0, 720.0]),
-    np.array([720.0]),
-]
-
-
-def _step_taylor(s0: FloatArray, scale: float) -> FloatArray:
-    """``(m, 6)`` coefficients in ``u`` of the smoothstep at ``s0 + scale·u``."""
-    out = np.empty((s0.size, 6))
-    for k, c in enumerate(_STEP):
-        out[:, k] = npoly.polyval(s0, c) * scale**k / math.factorial(k)
-    return out
-
-
-def _settle(
-    limits: tuple[FloatArray, ...],
-    breaks: FloatArray,
-    coef: FloatArray,
-    phases: tuple[FloatArray, ...],
-    used: NDArray[np.bool_],
-) -> FloatArray:
-    """Land each joint exactly on its target position (round-off instead of ruckig's 1e-8).
-
-    ruckig accepts a profile whose end position is within 1e-8 of the target
-    (measured here: up to 7.7e-9 for a joint re-timed to a long, slow cruise).
-    The error ``e`` is taken out inside one zero-jerk phase of that joint by
-    adding ``-e`` times the smoothstep ``10s³ - 15s⁴ + 6s⁵`` of the phase's
-    normalised time (zero velocity, acceleration and jerk change at both of
-    its ends) and ``-e`` after it: the longest such phase whose velocity,
-    acceleration and jerk stay within the limits with the step's peaks added
-    (:data:`_STEP_PEAKS` over the phase's duration). A joint without one keeps
-    ruckig's end. Pieces become quintic where a step is added.
-    """
-    t0s, durs, vs, accs, jerks, pf = phases
-    tb = breaks[:-1]
-    mid = 0.5 * (tb + breaks[1:])
-    vmax, amax, jmax = limits
-    h = breaks[-1] - tb[-1]
-    last = coef[-1]  # (4, n)
-    e_all = last[0] + h * (last[1] + h * (last[2] + h * last[3])) - pf
-    off = (np.abs(e_all) > SETTLE_ULPS * np.spacing(np.abs(pf))) & used.any(axis=1)
-    out = coef
-    for d in np.flatnonzero(off):
-        e = float(e_all[d])
-        t0, dur, v, a, j = (x[d, used[d]] for x in (t0s, durs, vs, accs, jerks))
-        for k in np.argsort(-dur):
-            tau = dur[k]
-            v_end = v[k] + a[k] * tau
-            room = (
-                max(abs(v[k]), abs(v_end)) + _STEP_PEAKS[0] * abs(e) / tau <= vmax[d],
-                abs(a[k]) + _STEP_PEAKS[1] * abs(e) / tau**2 <= amax[d],
-                _STEP_PEAKS[2] * abs(e) / tau**3 <= jmax[d],
-            )
-            if j[k] != 0.0 or not all(room):
-                continue
-            if out.shape[1] == 4:
-                out = np.concatenate([coef, np.zeros((coef.shape[0], 2, coef.shape[2]))], axis=1)
-            inside = (mid >= t0[k]) & (mid <= t0[k] + tau)
-            out[inside, :, d] -= e * _step_taylor((tb[inside] - t0[k]) / tau, 1.0 / tau)
-            out[mid > t0[k] + tau, 0, d] -= e
-            break
-    return out
-
-
-def check_peaks(pieces: PiecewisePolynomial, limits: tuple[FloatArray, ...]) -> None:
-    """Raise when the exact peaks of speed, acceleration or jerk exceed a limit.
-
-    ruckig holds the limits by construction; this check makes a broken
-    promise (a new ruckig version, a start state just outside a limit) an
-    error instead of a trajectory that a drive refuses.
-    """
-    for order, (lim, name) in enumerate(zip(limits, ("vmax", "amax", "jmax"), strict=True), 1):
-        peak = pieces.peak(order)
-        over = peak > lim * (1.0 + LIMIT_RTOL)
-        if over.any():
-            j = int(np.flatnonzero(over)[0])
-            raise KinematicaError(f"joint {j + 1} would reach {peak[j]:.9g} > {name} {lim[j]:g}")
-
-
-def jerk_samples(
+def wrap(
+    samples: tuple[FloatArray, ...],
     pieces: PiecewisePolynomial,
-    dt: float,
     limits: tuple[FloatArray, FloatArray, FloatArray],
-    end: tuple[FloatArray, FloatArray, FloatArray],
 ) -> JerkTrajectory:
-    """Sample ``pieces`` (every knot a sample) with the jerk; the last sample is ``end``."""
-    if pieces.duration == 0.0:
-        t = np.zeros(1)
-        q, qd, qdd = (pieces(t, order) for order in range(3))
-    else:
-        t, q, qd, qdd = pieces.sample(dt)
-    qddd = pieces(t, 3)
-    # the end state: exact by construction to round-off (tests hold it to 1e-10)
-    q[-1], qd[-1], qdd[-1] = end
-    qddd[-1] = pieces(t[-1:], 3, left=True)[0]
-    traj = JerkTrajectory(t, q, qd, qdd)
-    traj.qddd = qddd
+    """The :class:`JerkTrajectory` of the core's samples ``(t, q, qd, qdd, qddd)`` and pieces."""
+    traj = JerkTrajectory(*samples[:4])
+    traj.qddd = samples[4]
     traj.pieces = pieces
     traj.vmax, traj.amax, traj.jmax = limits
     traj.waypoint_times = traj.waypoint_qd = None
@@ -468,6 +344,6 @@ def scurve_trajectory(
                 arg="duration",
             )
         seg.plan(a, v0, acc0, b, v1, acc1, minimum=duration, validate=False)
-    pieces = scurve_pieces(seg)
-    check_peaks(pieces, limits)
-    return jerk_samples(pieces, dt, limits, (b, v1, acc1))
+    move = scurve_move(seg, dt, (b, v1, acc1))
+    check_peak(move.peak, limits)
+    return wrap(move.samples, PiecewisePolynomial(move.breaks, move.coef, move.knots), limits)

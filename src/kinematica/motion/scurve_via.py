@@ -57,8 +57,8 @@ from kinematica.arguments import check_size
 from kinematica.core.jerk import jerk_via_move
 from kinematica.errors import DimensionError, KinematicaError
 from kinematica.motion.piecewise import PiecewisePolynomial
-from kinematica.motion.samples import LIMIT_RTOL, MAX_SAMPLES
-from kinematica.motion.scurve import JerkTrajectory, limits_from, state_from
+from kinematica.motion.samples import MAX_SAMPLES
+from kinematica.motion.scurve import JerkTrajectory, check_peak, limits_from, state_from, wrap
 
 __all__ = ["GOLDEN_STEPS", "JOINT_SWEEPS", "POSITION_ATOL", "SWEEPS", "scurve_via"]
 
@@ -167,17 +167,9 @@ def scurve_via(
     duration = float(choice.time.sum())
     check_size(duration / dt + k, MAX_SAMPLES, "dt", f"samples ({duration:g} s every {dt!r} s)")
     assert move.samples is not None and move.peak is not None and move.knots is not None
-    # the core's profiles hold the limits by construction: a broken promise is an error,
-    # not a trajectory a drive refuses
-    over = move.peak > limits * (1.0 + LIMIT_RTOL)
-    if over.any():
-        order, j = (int(x[0]) for x in np.nonzero(over))
-        name, peak = ("vmax", "amax", "jmax")[order], move.peak[order, j]
-        raise KinematicaError(f"joint {j + 1} would reach {peak:.9g} > {name} {limits[order, j]:g}")
-    traj = JerkTrajectory(*move.samples[:4])
-    traj.qddd = move.samples[4]
-    traj.pieces = PiecewisePolynomial(move.breaks, move.coef, move.knots)  # type: ignore[arg-type]
-    traj.vmax, traj.amax, traj.jmax = lims
+    check_peak(move.peak, lims)
+    pieces = PiecewisePolynomial(move.breaks, move.coef, move.knots)  # type: ignore[arg-type]
+    traj = wrap(move.samples, pieces, lims)
     traj.waypoint_times = move.knots
     traj.waypoint_qd = choice.velocity
     traj.stop_duration = float(choice.stop.sum())
