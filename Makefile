@@ -106,7 +106,7 @@ SAN_ENV  := ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 \
             UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
             LD_PRELOAD="$$(gcc -print-file-name=libasan.so) $$(gcc -print-file-name=libubsan.so)"
 SAN_TESTS := tests/robot/test_robot.py tests/robot/test_robot_jacobian.py tests/dh/test_link.py tests/dh/test_lines.py \
-             tests/robot/test_makers_ik.py tests/motion/test_optimal.py tests/motion/test_scurve_via.py tests/motion/test_scurve_via_core.py \
+             tests/robot/test_makers_ik.py tests/motion/test_optimal.py tests/motion/test_scurve.py tests/motion/test_scurve_via.py tests/motion/test_scurve_via_core.py \
              tests/robot/test_urdf_exact.py tests/robot/test_self_motion.py \
              $(wildcard tests/core/test_*.py tests/ik/test_*.py tests/ik/analytic/test_*.py)
 

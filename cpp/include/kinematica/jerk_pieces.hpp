@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "kinematica/jerk.hpp"
@@ -44,8 +45,9 @@ struct Phases {
 }  // namespace detail
 
 //! A move's exact pieces (cubic, or quintic where a joint's end was settled; lowest power
-//! first) and the largest |v|, |a|, |j| of each joint on them. Kept by a caller from move to move, its vectors keep their memory (a
-//! move's pieces fill some 100 kB: allocated afresh, the pages cost more than the move).
+//! first) and the largest |v|, |a|, |j| of each joint on them. Kept by a caller from move to
+//! move, its vectors keep their memory (a move's pieces fill some 100 kB: allocated afresh,
+//! the pages cost more than the move).
 struct Pieces {
     int n = 0;                   //!< joints
     int order = 4;               //!< coefficients of a piece: 4 (cubic) or 6 (quintic)
@@ -53,7 +55,7 @@ struct Pieces {
     std::vector<double> coef;    //!< (p, order, n)
     std::vector<double> knots;   //!< (k) the waypoints' times
     std::vector<double> peak;    //!< (3, n) largest |velocity|, |acceleration|, |jerk|
-    // scratch of segment_pieces: each joint's phases, the switches, the segment's cuts
+    // scratch: each joint's phases, the switches, the segment's cuts, the still joints' state
     std::vector<detail::Phases> phases;
     std::vector<double> cuts, local, still;
 };
