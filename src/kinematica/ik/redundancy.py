@@ -34,6 +34,7 @@ from kinematica.ik.parameter import (
     locked_chain,
     solve_fixed,
 )
+from kinematica.ik.reach_bounds import may_reach, reach_bounds
 from kinematica.ik.request import IKRequest
 from kinematica.ik.result import IKBatchResult, IKResult, amended
 from kinematica.ik.solve import REDUNDANT_DOF, solve_ik
@@ -317,26 +318,52 @@ def _nearest_with_solutions(
     if not (np.isfinite(lo) and np.isfinite(hi)) or not rows.size:
         return rows[:0], np.empty(0)
     grid = np.linspace(lo, hi, PARAMETER_SWEEP)
-    # the grid in each target's order: nearest first, the lower of two as near first
-    order = np.argsort(np.abs(grid[None, :] - start[rows][:, None]), axis=1, kind="stable")
     poses = targets.poses[rows]
     request = IKRequest.of(options).but(q0=None, fixed=None)  # every value's, made once
+    near = np.abs(grid[None, :] - start[rows][:, None])
+    # values proved to have no solution (kinematica.ik.reach_bounds) are not tried: the
+    # first value with one in each target's order is the same without them
+    possible = _possible(chain, joint, poses, grid, request)
+    if possible is not None:
+        near = np.where(possible, near, np.inf)
+    # the grid in each target's order: nearest first, the lower of two as near first
+    order = np.argsort(near, axis=1, kind="stable")
+    count = np.isfinite(near).sum(axis=1)  # each target's values to try
     best = np.full(rows.size, -1)
     first, size = 0, 4
     while first < grid.size:
-        todo = np.flatnonzero(best < 0)
+        todo = np.flatnonzero((best < 0) & (count > first))
         if not todo.size:
             break
         ranks = order[todo, first : first + size]  # (t, r) grid indices to try
         width = ranks.shape[1]
-        has = _has_solutions(
-            chain, joint, np.repeat(poses[todo], width, axis=0), grid[ranks.reshape(-1)], request
-        ).reshape(todo.size, width)
+        i, r = np.nonzero(first + np.arange(width)[None, :] < count[todo][:, None])
+        has = np.zeros(ranks.shape, dtype=bool)
+        has[i, r] = _has_solutions(chain, joint, poses[todo[i]], grid[ranks[i, r]], request)
         hit = has.any(axis=1)
         best[todo[hit]] = ranks[hit, np.argmax(has[hit], axis=1)]
         first, size = first + width, 2 * size
     ok = best >= 0
     return rows[ok], grid[best[ok]]
+
+
+def _possible(
+    chain: Chain, joint: Parameter, poses: FloatArray, grid: FloatArray, request: IKRequest
+) -> NDArray[np.bool_] | None:
+    """``(t, G)`` False where pose i proves to have no solution at ``grid[j]``, or None.
+
+    The first or last joint of an arm whose 6 other joints turn: the targets moved
+    for the arm locked once (:mod:`kinematica.ik.moved`), checked against that arm's
+    :func:`~kinematica.ik.reach_bounds.reach_bounds` with the screen's tolerance.
+    """
+    if not (isinstance(joint, JointParameter) and joint.index in (0, chain.dof - 1)):
+        return None
+    bounds = reach_bounds(end_arm(chain, joint.index)[0])
+    if bounds is None:
+        return None
+    t, G = poses.shape[0], grid.size
+    moved = moved_targets(chain, joint.index, np.repeat(poses, G, axis=0), np.tile(grid, t))
+    return may_reach(bounds, moved, request.tolerance).reshape(t, G)
 
 
 def _has_solutions(
