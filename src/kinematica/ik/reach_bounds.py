@@ -30,18 +30,22 @@ from __future__ import annotations
 
 import itertools
 import math
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
+from kinematica import _core
 from kinematica.core import Chain
 from kinematica.ik.structure import features
 from kinematica.ik.tolerance import Tolerance
 
-__all__ = ["GRID", "ROUNDOFF_SLACK", "ReachBounds", "may_reach", "reach_bounds", "violation"]
+__all__ = ["GRID", "ROUNDOFF_SLACK", "may_reach", "reach_bounds", "violation"]
 
 FloatArray = NDArray[np.float64]
+
+_ZERO = np.zeros(1)
+_ZERO.flags.writeable = False
+_STILL = (np.eye(4), np.eye(4), True)
 
 #: Added to every slack (m): round-off of the moved targets, circles and ranges
 #: (products of unit vectors and lengths under 10 m: about 1e-15 relative).
@@ -50,114 +54,67 @@ ROUNDOFF_SLACK = 1e-9
 GRID = 256
 
 
-@dataclass(frozen=True, slots=True, eq=False)
-class ReachBounds:
-    """What a 6R arm's middle joints keep, and the points that show it (made once per arm).
+def reach_bounds(arm: Chain) -> FloatArray | None:
+    """The arm's bounds, made once and kept; None unless it has 6 revolute joints.
 
-    Attributes:
-        a6: ``(3,)`` axis 6's direction in the tool frame.
-        p6: ``(3,)`` a point on axis 6 in the tool frame.
-        x: ``(3,)`` the point on axis 5 at q6 = 0, in the tool frame.
-        shoulder: ``(3,)`` the point S on axis 1 (base frame).
-        a1: ``(3,)`` axis 1's direction (base frame).
-        reach: ``(2,)`` the range of ``|x - S|`` (m), margin included.
-        height: ``(2,)`` the range of ``(x - S)·a1`` (m).
-        x_radius: The farthest a point of x's circle is from the tool frame's origin (m).
-        circle: ``(3, 3)`` the circle of the point on axis 2 about axis 1: its centre and
-            two orthogonal radius vectors (base frame).
-        z: ``(3,)`` the point Z on axis 6 (tool frame).
-        reach2: ``(2,)`` the range of ``|y - Z|`` (m), y on axis 2.
-        height2: ``(2,)`` the range of ``(y - Z)·a6`` (m).
+    Returns:
+        ``(36,)`` read-only, laid out as ``km::reach::Slot`` says
+        (``cpp/include/kinematica/reach_bounds.hpp``): axis 6's direction, a point on it
+        and x at q6 = 0 (tool frame); S and axis 1's direction (base frame); the ranges
+        of ``|x - S|`` and ``(x - S)·a₁``; the farthest point of x's circle from the
+        tool frame's origin; the circle of y about axis 1 (centre, two radius vectors,
+        base frame); Z (tool frame); the ranges of ``|y - Z|`` and ``(y - Z)·a₆``.
     """
-
-    a6: FloatArray
-    p6: FloatArray
-    x: FloatArray
-    shoulder: FloatArray
-    a1: FloatArray
-    reach: FloatArray
-    height: FloatArray
-    x_radius: float
-    circle: FloatArray
-    z: FloatArray
-    reach2: FloatArray
-    height2: FloatArray
-
-
-def reach_bounds(arm: Chain) -> ReachBounds | None:
-    """The arm's :class:`ReachBounds`, made once and kept; None unless it has 6 revolute joints."""
     found = arm.memo.get("reach bounds", False)
     if found is False:
         found = arm.memo["reach bounds"] = _made(arm)
     return found  # type: ignore[return-value]
 
 
-def violation(bounds: ReachBounds, poses: FloatArray, tol: Tolerance) -> FloatArray:
-    """``(M,)`` how far (m) each target misses the conditions beyond the tolerance's slack.
+def violation(
+    bounds: FloatArray,
+    poses: FloatArray,
+    tol: Tolerance,
+    values: FloatArray = _ZERO,
+    move: tuple[FloatArray, FloatArray, bool] = _STILL,
+) -> FloatArray:
+    """``(t, G)`` how far (m) target i moved by ``values[j]`` misses the bounds beyond the slack.
 
-    Positive: no solution within ``tol`` reaches target i (by more than the round-off
+    Positive: no solution within ``tol`` reaches it (by more than the round-off
     :func:`may_reach` allows); NaN where a target is not finite.
 
     Args:
-        bounds: The arm's.
-        poses: ``(M, 4, 4)`` targets of the arm (its tool frame, base frame).
-        tol: The acceptance tolerance of its solutions.
+        bounds: The arm's (:func:`reach_bounds`).
+        poses: ``(t, 4, 4)`` targets.
+        tol: The acceptance tolerance of the arm's solutions.
+        values: ``(G,)`` the held joint's values (rad); by default one, 0.
+        move: ``(Gl, Gr, before)``: target i at value v is ``Gl Rz(-v) Gr T`` (before) or
+            ``T Gl Rz(-v) Gr`` (:mod:`kinematica.ik.moved`'s ``G``, ``G⁻¹`` for a first
+            joint, ``G⁻¹``, ``G`` for a last); by default none.
     """
-    R, t = poses[:, :3, :3], poses[:, :3, 3]
-    P, turn = tol.position, tol.rotation
-    a6 = R @ bounds.a6
-    # forward: x's circle about axis 6 against S on axis 1
-    p6 = R @ bounds.p6 + t
-    x = R @ bounds.x + t
-    c = p6 + ((x - p6) * a6).sum(-1)[:, None] * a6
-    u = x - c
-    v = np.cross(a6, u)
-    slack = P + turn * bounds.x_radius
-    out = _gaps(c - bounds.shoulder, u, v, bounds.reach, slack)
-    out = np.maximum(out, _heights(c - bounds.shoulder, u, v, bounds.a1, bounds.height, slack))
-    # reverse: y's circle about axis 1 against Z on axis 6
-    z = R @ bounds.z + t
-    centre, u2, v2 = bounds.circle
-    slack = P + turn * float(np.linalg.norm(bounds.z))
-    cz = centre - z
-    n = cz.shape[0]
-    U, V = np.broadcast_to(u2, (n, 3)), np.broadcast_to(v2, (n, 3))
-    out = np.maximum(out, _gaps(cz, U, V, bounds.reach2, slack))
-    lean = slack + turn * float(bounds.reach2[1])  # a6 turned by at most R
-    return np.maximum(out, _heights(cz, U, V, a6, bounds.height2, lean))
+    left, right, before = move
+    poses = np.ascontiguousarray(poses, dtype=float)
+    values = np.ascontiguousarray(values, dtype=float)
+    return _core.reach_violation(bounds, poses, values, left, right, before, tol.position,
+                                 tol.rotation)  # fmt: skip
 
 
-def may_reach(bounds: ReachBounds, poses: FloatArray, tol: Tolerance) -> NDArray[np.bool_]:
-    """``(M,)`` False only where target i is proved out of reach (:func:`violation`)."""
-    return ~(violation(bounds, poses, tol) > ROUNDOFF_SLACK)
+def may_reach(
+    bounds: FloatArray,
+    poses: FloatArray,
+    tol: Tolerance,
+    values: FloatArray = _ZERO,
+    move: tuple[FloatArray, FloatArray, bool] = _STILL,
+) -> NDArray[np.bool_]:
+    """``(t, G)`` False only where target i at ``values[j]`` is proved out of reach.
 
-
-def _gaps(
-    cs: FloatArray, u: FloatArray, v: FloatArray, span: FloatArray, slack: float
-) -> FloatArray:
-    """``(M,)`` how far the circles' distances from the origin miss ``span``, less ``slack``.
-
-    Circle i: ``cs_i + u_i cos θ + v_i sin θ``.
+    :func:`violation` above :data:`ROUNDOFF_SLACK`; its arguments.
     """
-    mid = (cs * cs).sum(-1) + (u * u).sum(-1)
-    swing = 2.0 * np.hypot((cs * u).sum(-1), (cs * v).sum(-1))
-    near = np.sqrt(np.maximum(mid - swing, 0.0))
-    far = np.sqrt(mid + swing)
-    return np.maximum(near - span[1], span[0] - far) - slack
-
-
-def _heights(
-    cs: FloatArray, u: FloatArray, v: FloatArray, axis: FloatArray, span: FloatArray, slack: float
-) -> FloatArray:
-    """``(M,)`` how far the heights along ``axis`` of the circles miss ``span``, less ``slack``."""
-    ax = np.broadcast_to(axis, cs.shape)
-    mid = (cs * ax).sum(-1)
-    swing = np.hypot((u * ax).sum(-1), (v * ax).sum(-1))
-    return np.maximum(mid - swing - span[1], span[0] - mid - swing) - slack
+    return ~(violation(bounds, poses, tol, values, move) > ROUNDOFF_SLACK)
 
 
 # ---------------------------------------------------------------- made once per arm
-def _made(arm: Chain) -> ReachBounds | None:
+def _made(arm: Chain) -> FloatArray | None:
     if arm.dof != 6 or bool(np.asarray(arm.prismatic).any()):
         return None
     f = features(arm)
@@ -176,8 +133,10 @@ def _made(arm: Chain) -> ReachBounds | None:
     u = y0 - centre
     circle = np.array([centre, u, np.cross(A[0], u)])
     x_radius = float(np.linalg.norm(c) + np.linalg.norm(x - c))
-    return ReachBounds(a6, p6, x, S, A[0].copy(), reach, height, x_radius, circle, tool(Z),
-                       reach2, height2)  # fmt: skip
+    flat = np.concatenate([a6, p6, x, S, A[0], reach, height, [x_radius], circle.reshape(-1),
+                           tool(Z), reach2, height2])  # fmt: skip
+    flat.flags.writeable = False
+    return flat
 
 
 def _foot(p1: FloatArray, a1: FloatArray, p2: FloatArray, a2: FloatArray) -> FloatArray:

@@ -26,7 +26,7 @@ from kinematica.core import Chain, resolve_workers
 from kinematica.errors import KinematicaError
 from kinematica.ik.arm_angle import ArmAngleParameter, arm_angle_parameter
 from kinematica.ik.local_search import LOCAL_SEARCH
-from kinematica.ik.moved import end_arm, moved_targets
+from kinematica.ik.moved import end_arm, moved_targets, on_axis
 from kinematica.ik.parameter import (
     JointParameter,
     Parameter,
@@ -41,6 +41,7 @@ from kinematica.ik.solve import REDUNDANT_DOF, solve_ik
 from kinematica.ik.solvers import closed_form, plan_of
 from kinematica.ik.stack import replace_rows
 from kinematica.ik.targets import Targets, parse_q0, parse_targets
+from kinematica.ik.tolerance import parse_tolerance
 
 if TYPE_CHECKING:
     from kinematica.ik.options import IKOptions
@@ -177,7 +178,14 @@ def _at_parameter(
         values = np.clip(np.where(undefined, default, at_q0), *joint.span(chain))
         why = "q0's value, within its limits"
     one = targets.single  # one target: its value as a number
-    res = joint.solve(chain, target, float(values[0]) if one else values, options)
+    # one target proved to have no solution at its value: not solved there (its answer
+    # is the nearest value's, or the search's, either way); the value moves the target
+    # exactly (the first joint, or the last about an axis through the tool point), so
+    # the moved target is held to the same tolerance
+    exact = isinstance(joint, JointParameter) and (joint.index == 0 or on_axis(chain))
+    aside = one and exact and not _possible(chain, joint, targets.poses, values, options)[0, 0]
+    at = float(values[0]) if one else values
+    res = None if aside else joint.solve(chain, target, at, options)
 
     def whence(undef: bool) -> str:
         if not undef:
@@ -209,9 +217,9 @@ def _at_parameter(
             f"another value, robot.self_motion for all of them"
         )
 
-    if isinstance(res, IKResult):
+    if res is None or isinstance(res, IKResult):
         value, undef = float(values[0]), bool(undefined[0])
-        if res.success:
+        if res is not None and res.success:
             return amended(res, notes=(*res.notes, note(value, undef)))
         first = np.array([0])
         found, moved = _nearest_with_solutions(chain, joint, targets, first, values, options)
@@ -323,9 +331,7 @@ def _nearest_with_solutions(
     near = np.abs(grid[None, :] - start[rows][:, None])
     # values proved to have no solution (kinematica.ik.reach_bounds) are not tried: the
     # first value with one in each target's order is the same without them
-    possible = _possible(chain, joint, poses, grid, request)
-    if possible is not None:
-        near = np.where(possible, near, np.inf)
+    near = np.where(_possible(chain, joint, poses, grid, request), near, np.inf)
     # the grid in each target's order: nearest first, the lower of two as near first
     order = np.argsort(near, axis=1, kind="stable")
     count = np.isfinite(near).sum(axis=1)  # each target's values to try
@@ -348,22 +354,27 @@ def _nearest_with_solutions(
 
 
 def _possible(
-    chain: Chain, joint: Parameter, poses: FloatArray, grid: FloatArray, request: IKRequest
-) -> NDArray[np.bool_] | None:
-    """``(t, G)`` False where pose i proves to have no solution at ``grid[j]``, or None.
+    chain: Chain,
+    joint: Parameter,
+    poses: FloatArray,
+    grid: FloatArray,
+    request: IKRequest | IKOptions,
+) -> NDArray[np.bool_]:
+    """``(t, G)`` False where pose i proves to have no solution at ``grid[j]``.
 
     The first or last joint of an arm whose 6 other joints turn: the targets moved
     for the arm locked once (:mod:`kinematica.ik.moved`), checked against that arm's
     :func:`~kinematica.ik.reach_bounds.reach_bounds` with the screen's tolerance.
     """
-    if not (isinstance(joint, JointParameter) and joint.index in (0, chain.dof - 1)):
-        return None
-    bounds = reach_bounds(end_arm(chain, joint.index)[0])
+    k = joint.index if isinstance(joint, JointParameter) else -1
+    if k not in (0, chain.dof - 1) or chain.prismatic[k]:
+        return np.ones((poses.shape[0], grid.size), dtype=bool)
+    arm, G, G_inv = end_arm(chain, k)
+    bounds = reach_bounds(arm)
     if bounds is None:
-        return None
-    t, G = poses.shape[0], grid.size
-    moved = moved_targets(chain, joint.index, np.repeat(poses, G, axis=0), np.tile(grid, t))
-    return may_reach(bounds, moved, request.tolerance).reshape(t, G)
+        return np.ones((poses.shape[0], grid.size), dtype=bool)
+    move = (G, G_inv, True) if k == 0 else (G_inv, G, False)
+    return may_reach(bounds, poses, parse_tolerance(request.tol), grid, move)
 
 
 def _has_solutions(
