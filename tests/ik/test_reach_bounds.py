@@ -127,6 +127,10 @@ def test_an_arm_with_a_slide_has_no_bounds() -> None:
     assert reach_bounds(robot.chain) is None
 
 
+def _fields(res: km.ik.IKResult) -> tuple:
+    return (str(res.status), res.count, res.method, res.notes, res.parameter)
+
+
 @pytest.mark.parametrize("name", ["kinova_gen3", "random 7R"])
 def test_auto_answers_as_it_would_without_the_bounds(
     name: str, monkeypatch: pytest.MonkeyPatch
@@ -140,11 +144,19 @@ def test_auto_answers_as_it_would_without_the_bounds(
         old_batch = robot.ik(T, workers=1)
         old = [robot.ik(t) for t in T]
     assert isinstance(new_batch, IKBatchResult) and isinstance(old_batch, IKBatchResult)
-    moved = 0
+    moved = mended = 0
     for i in range(len(T)):
-        for a, b in ((new[i], old[i]), (new_batch[i], old_batch[i])):
-            assert (a.status, a.count, a.method, a.notes, a.parameter) == (
-                b.status, b.count, b.method, b.notes, b.parameter)  # fmt: skip
-            np.testing.assert_array_equal(a.solutions, b.solutions)
+        assert _fields(new[i]) == _fields(old[i])
+        np.testing.assert_array_equal(new[i].solutions, old[i].solutions)
+        # a batch row as its single call, and as before where it was so; a target solved
+        # in vain at the default value kept that solve's method and note in a batch
+        # ("numeric:lm", the search answered): left unsolved there, it no longer does
+        if _fields(old_batch[i]) == _fields(old[i]):
+            assert _fields(new_batch[i]) == _fields(old_batch[i])
+        elif name == "kinova_gen3":  # every such target proved out of reach there
+            assert _fields(new_batch[i]) == _fields(new[i])
+            mended += 1
+        np.testing.assert_array_equal(new_batch[i].solutions, old_batch[i].solutions)
         moved += any("the nearest of" in n for n in new[i].notes)
     assert moved  # some targets held at another value than the default
+    assert mended or name != "kinova_gen3"

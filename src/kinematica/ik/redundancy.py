@@ -25,6 +25,7 @@ import kinematica._core as _core
 from kinematica.core import Chain, resolve_workers
 from kinematica.errors import KinematicaError
 from kinematica.ik.arm_angle import ArmAngleParameter, arm_angle_parameter
+from kinematica.ik.held_aside import solved_except
 from kinematica.ik.local_search import LOCAL_SEARCH
 from kinematica.ik.moved import end_arm, moved_targets, on_axis
 from kinematica.ik.parameter import (
@@ -183,9 +184,19 @@ def _at_parameter(
     # exactly (the first joint, or the last about an axis through the tool point), so
     # the moved target is held to the same tolerance
     exact = isinstance(joint, JointParameter) and (joint.index == 0 or on_axis(chain))
-    aside = one and exact and not _possible(chain, joint, targets.poses, values, options)[0, 0]
-    at = float(values[0]) if one else values
-    res = None if aside else joint.solve(chain, target, at, options)
+    # a batch likewise: its targets proved out of reach at the value are left unsolved
+    # there (every target at one value, each valid and read as given)
+    plain = N and not (targets.invalid or targets.notes) and bool(np.all(values == values[0]))
+    aside = np.zeros(N, dtype=bool)
+    if exact and (one or plain):
+        aside = ~_possible(chain, joint, targets.poses, values[:1], options)[:, 0]
+    res: IKResult | IKBatchResult | None
+    if one:
+        res = None if aside[0] else joint.solve(chain, target, float(values[0]), options)
+    elif aside.any():
+        res = solved_except(chain, joint, targets.poses, targets.shape, values, options, q0s, aside)
+    else:
+        res = joint.solve(chain, target, values, options)
 
     def whence(undef: bool) -> str:
         if not undef:
@@ -315,9 +326,11 @@ def _nearest_with_solutions(
     The parameter's candidates are :data:`PARAMETER_SWEEP` values evenly across its
     span; a target takes the nearest to its start value whose answer has a
     solution (within the limits, when they are respected; of two as near, the lower).
-    They are tried nearest first, a few more each round, and a target leaves the
-    rounds at its first value with one. The caller solves the target again at that
-    value, and keeps it only if that answer has one.
+    Values proved to have none (:mod:`kinematica.ik.reach_bounds`) are left out; the
+    others are tried nearest first, one, then twice as many each round (most of
+    them have one), and a target leaves the rounds at its first value with one. The
+    caller solves the target again at that value, and keeps it only if that answer
+    has one.
 
     Returns:
         The rows that have such a value, and the value of each.
@@ -336,7 +349,7 @@ def _nearest_with_solutions(
     order = np.argsort(near, axis=1, kind="stable")
     count = np.isfinite(near).sum(axis=1)  # each target's values to try
     best = np.full(rows.size, -1)
-    first, size = 0, 4
+    first, size = 0, 1
     while first < grid.size:
         todo = np.flatnonzero((best < 0) & (count > first))
         if not todo.size:
