@@ -9,7 +9,8 @@ namespace kmpy {
 namespace {
 
 //! (t, G): target i moved by values[j], checked against the bounds.
-F64 reach_violation(F64 bounds, F64 T, F64 values, F64 left, F64 right, bool before, double P, double R) {
+F64 reach_violation(F64 bounds, F64 T, F64 values, F64 left, F64 right, bool before, double P, double R,
+                    bool limits) {
     const In b = in_f64(bounds, "bounds", 1, {km::reach::SIZE});
     const In in = in_f64(T, "T", 3, {-1, 4, 4});
     const In v = in_f64(values, "values", 1);
@@ -22,7 +23,7 @@ F64 reach_violation(F64 bounds, F64 T, F64 values, F64 left, F64 right, bool bef
         const km::Pose Ti = km::Pose::from_rows(in.data + 16 * i);
         for (npy_intp j = 0; j < G; ++j) {
             const km::Pose moved = km::reach::moved(Ti, Gl, Gr, v.data[j], before);
-            out[i * G + j] = km::reach::violation(b.data, moved, P, R);
+            out[i * G + j] = km::reach::violation(b.data, moved, P, R, limits);
         }
     }
     return result;
@@ -32,12 +33,12 @@ F64 reach_violation(F64 bounds, F64 T, F64 values, F64 left, F64 right, bool bef
 
 void bind_reach(nb::module_& m) {
     m.def("reach_violation", &reach_violation, nb::arg("bounds"), nb::arg("T"), nb::arg("values"),
-          nb::arg("left"), nb::arg("right"), nb::arg("before"), nb::arg("position"), nb::arg("rotation"),
+          nb::arg("left"), nb::arg("right"), nb::arg("before"), nb::arg("position"), nb::arg("rotation"), nb::arg("limits"),
           "(t, G) how far (m) each target T[i] (t, 4, 4), moved by values[j] (G,) as a held first "
           "(before) or last joint moves it (left Rz(-v) right, before or after the target), misses "
           "a 6R arm's reach bounds (kinematica.ik.reach_bounds, its layout) beyond the slack of "
-          "the tolerance (position m, rotation rad): positive where no solution reaches it; NaN "
-          "for a target with a non-finite entry.");
+          "the tolerance (position m, rotation rad), q1 and q6 within their limits with `limits`: "
+          "positive where no solution reaches it; NaN for a target with a non-finite entry.");
 }
 
 }  // namespace kmpy

@@ -55,7 +55,7 @@ def _held(robot: km.Robot) -> tuple[int, km.core.Chain, np.ndarray, tuple]:
 
 
 @pytest.mark.parametrize(
-    ("name", "share"), [("kinova_gen3", 0.95), ("realman_gen72", 0.9), ("realman_rm75", 0.95),
+    ("name", "share"), [("kinova_gen3", 0.95), ("realman_gen72", 0.85), ("realman_rm75", 0.95),
                         ("random 7R", 0.5)]
 )  # fmt: skip
 def test_no_value_with_a_solution_is_dropped_and_most_without_are(name: str, share: float) -> None:
@@ -64,16 +64,23 @@ def test_no_value_with_a_solution_is_dropped_and_most_without_are(name: str, sha
     lo, hi = robot.chain.qlim[k]
     grid = np.linspace(lo, hi, PARAMETER_SWEEP)
     T = robot.fk(robot.random_q(12, seed=3))
-    kept = may_reach(bounds, T, Tolerance(), grid, move)  # (12, 73)
     moved = moved_targets(robot.chain, k, np.repeat(T, grid.size, axis=0), np.tile(grid, len(T)))
-    # the closed form, limits ignored: every value where it finds a solution is kept
-    found = solve_ik(arm, moved, IKOptions(workers=1, respect_limits=False))
-    assert isinstance(found, IKBatchResult)
-    has = (np.asarray(found.count) > 0).reshape(kept.shape)
-    assert has.any() and (~has).any()
-    assert not (has & ~kept).any()
-    # and most values without one are dropped (on 150 poses: 97-99.8 % on the makers' arms)
-    assert (~kept & ~has).sum() >= share * (~has).sum()
+    dropped = {}
+    for limits in (False, True):
+        kept = may_reach(bounds, T, Tolerance(), grid, move, limits)  # (12, 73)
+        # the closed form: every value where it finds a solution is kept
+        found = solve_ik(arm, moved, IKOptions(workers=1, respect_limits=limits))
+        assert isinstance(found, IKBatchResult)
+        has = (np.asarray(found.count) > 0).reshape(kept.shape)
+        assert has.any() and (~has).any()
+        assert not (has & ~kept).any()
+        dropped[limits] = ~kept
+    # and most values without one are dropped (on 12 poses: 90-100 % on the makers' arms);
+    # with the limits of q1 and q6, more, never fewer
+    assert (dropped[True] & ~has).sum() >= share * (~has).sum()
+    assert not (dropped[False] & ~dropped[True]).any()
+    if name == "realman_gen72":  # q6 within [-1.71, 1.78]: its arc drops more
+        assert (dropped[True] & ~dropped[False]).any()
 
 
 @pytest.mark.parametrize("name", [*MAKERS, "random 7R"])
@@ -87,10 +94,15 @@ def test_a_target_at_its_own_value_is_kept(name: str) -> None:
     with warnings.catch_warnings():  # beyond the joints' limits: the bounds ignore them
         warnings.simplefilter("ignore", km.KinematicaWarning)
         T = robot.fk(q)
-    own = np.array([violation(bounds, T[i : i + 1], Tolerance(), q[i, k : k + 1], move)[0, 0]
-                    for i in range(len(q))])  # fmt: skip
-    assert own.max() <= ROUNDOFF_SLACK
-    assert own.max() > -0.05  # some of them near the edge of a range (within 5 cm)
+    inside = robot.random_q(3000, seed=2)  # within the limits: the arcs of q1 and q6 too
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", km.KinematicaWarning)
+        T_in = robot.fk(inside)
+    for Q, poses, limits in ((q, T, False), (inside, T_in, True)):
+        own = np.array([violation(bounds, poses[i : i + 1], Tolerance(), Q[i, k : k + 1], move,
+                                  limits)[0, 0] for i in range(len(Q))])  # fmt: skip
+        assert own.max() <= ROUNDOFF_SLACK
+        assert own.max() > -0.05  # some of them near the edge of a range (within 5 cm)
 
 
 def test_the_roundoff_slack_is_the_boundary() -> None:

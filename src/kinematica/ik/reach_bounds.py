@@ -16,8 +16,10 @@ axis, checked here in a few flops a value:
 A target is dropped only where a circle's range of distance or height misses its range
 by more than the slack of the IK's acceptance tolerance (``P + R w``: an accepted
 solution moves a point ``w`` from the tool frame's origin by at most that) and
-:data:`ROUNDOFF_SLACK`. Joint limits are not used: the condition is necessary for a
-solution anywhere, so within the limits too.
+:data:`ROUNDOFF_SLACK`. Where solutions are held to the joint limits, the circles are
+arcs: x's over q6's limits, y's over q1's (each widened by the check's ``LIMIT_TOL``;
+the check takes an angle or its turn ±2π, and so do the arcs). The ranges ignore the
+limits of q2 to q5: wider, still necessary.
 
 The ranges over three joints: exact over the joint nearest ``S`` (a circle's range of
 distance from a point), sampled on a periodic ``GRID x GRID`` grid over the other two,
@@ -58,12 +60,13 @@ def reach_bounds(arm: Chain) -> FloatArray | None:
     """The arm's bounds, made once and kept; None unless it has 6 revolute joints.
 
     Returns:
-        ``(36,)`` read-only, laid out as ``km::reach::Slot`` says
-        (``cpp/include/kinematica/reach_bounds.hpp``): axis 6's direction, a point on it
-        and x at q6 = 0 (tool frame); S and axis 1's direction (base frame); the ranges
-        of ``|x - S|`` and ``(x - S)·a₁``; the farthest point of x's circle from the
-        tool frame's origin; the circle of y about axis 1 (centre, two radius vectors,
-        base frame); Z (tool frame); the ranges of ``|y - Z|`` and ``(y - Z)·a₆``.
+        ``(43,)`` read-only, laid out as ``km::reach::Slot`` says
+        (``cpp/include/kinematica/reach_bounds.hpp``): axis 6's direction (tool frame);
+        x's circle ``c + u cos q6 + v sin q6`` (tool frame); S and axis 1's direction
+        (base frame); the ranges of ``|x - S|`` and ``(x - S)·a₁``; the farthest point of
+        x's circle from the tool frame's origin; q6's limits; y's circle
+        ``c + u cos q1 + v sin q1`` (base frame); q1's limits; Z (tool frame); the
+        ranges of ``|y - Z|`` and ``(y - Z)·a₆``.
     """
     found = arm.memo.get("reach bounds", False)
     if found is False:
@@ -77,6 +80,7 @@ def violation(
     tol: Tolerance,
     values: FloatArray = _ZERO,
     move: tuple[FloatArray, FloatArray, bool] = _STILL,
+    limits: bool = True,
 ) -> FloatArray:
     """``(t, G)`` how far (m) target i moved by ``values[j]`` misses the bounds beyond the slack.
 
@@ -91,12 +95,13 @@ def violation(
         move: ``(Gl, Gr, before)``: target i at value v is ``Gl Rz(-v) Gr T`` (before) or
             ``T Gl Rz(-v) Gr`` (:mod:`kinematica.ik.moved`'s ``G``, ``G⁻¹`` for a first
             joint, ``G⁻¹``, ``G`` for a last); by default none.
+        limits: Whether solutions are held to the joint limits (q1's and q6's, here).
     """
     left, right, before = move
     poses = np.ascontiguousarray(poses, dtype=float)
     values = np.ascontiguousarray(values, dtype=float)
     return _core.reach_violation(bounds, poses, values, left, right, before, tol.position,
-                                 tol.rotation)  # fmt: skip
+                                 tol.rotation, limits)  # fmt: skip
 
 
 def may_reach(
@@ -105,12 +110,13 @@ def may_reach(
     tol: Tolerance,
     values: FloatArray = _ZERO,
     move: tuple[FloatArray, FloatArray, bool] = _STILL,
+    limits: bool = True,
 ) -> NDArray[np.bool_]:
     """``(t, G)`` False only where target i at ``values[j]`` is proved out of reach.
 
     :func:`violation` above :data:`ROUNDOFF_SLACK`; its arguments.
     """
-    return ~(violation(bounds, poses, tol, values, move) > ROUNDOFF_SLACK)
+    return ~(violation(bounds, poses, tol, values, move, limits) > ROUNDOFF_SLACK)
 
 
 # ---------------------------------------------------------------- made once per arm
@@ -127,14 +133,25 @@ def _made(arm: Chain) -> FloatArray | None:
 
     S, x0, reach, height = _ranges(P, A, 0, 4, (1, 2, 3))
     Z, y0, reach2, height2 = _ranges(P, A, 5, 1, (4, 3, 2))
-    a6, p6, x = Rt @ A[5], tool(P[5]), tool(x0)
-    c = p6 + ((x - p6) @ a6) * a6
-    centre = P[0] + ((y0 - P[0]) @ A[0]) * A[0]
-    u = y0 - centre
-    circle = np.array([centre, u, np.cross(A[0], u)])
-    x_radius = float(np.linalg.norm(c) + np.linalg.norm(x - c))
-    flat = np.concatenate([a6, p6, x, S, A[0], reach, height, [x_radius], circle.reshape(-1),
-                           tool(Z), reach2, height2])  # fmt: skip
+    # x (fixed to link 5) in the tool frame at q6 = 0 and π/2, the other joints at 0; y
+    # (fixed to link 1) at q1 = 0 and π/2: each circle as its joint turns it
+    turned = np.zeros((3, 6))
+    turned[1, 5] = turned[2, 0] = 0.5 * math.pi  # q6, then q1 turned
+    frames = np.asarray(arm.fk(turned, all_frames=True)[0], dtype=float)  # (3, 7, 4, 4)
+    tools = frames[:2, -1]
+    xs = np.einsum("kji,kj->ki", tools[:, :3, :3], x0 - tools[:, :3, 3])
+    a6, p6 = Rt @ A[5], tool(P[5])
+    xc = p6 + ((xs[0] - p6) @ a6) * a6
+    first = frames[0::2, 1]
+    y_local = first[0, :3, :3].T @ (y0 - first[0, :3, 3])
+    y_half = first[1, :3, :3] @ y_local + first[1, :3, 3]
+    yc = P[0] + ((y0 - P[0]) @ A[0]) * A[0]
+    lim = np.asarray(arm.qlim, dtype=float)
+    widen = np.array([-_core.LIMIT_TOL, _core.LIMIT_TOL])
+    x_radius = float(np.linalg.norm(xc) + np.linalg.norm(xs[0] - xc))
+    flat = np.concatenate([a6, xc, xs[0] - xc, xs[1] - xc, S, A[0], reach, height, [x_radius],
+                           lim[5] + widen, yc, y0 - yc, y_half - yc, lim[0] + widen, tool(Z),
+                           reach2, height2])  # fmt: skip
     flat.flags.writeable = False
     return flat
 

@@ -387,7 +387,8 @@ def _possible(
     if bounds is None:
         return np.ones((poses.shape[0], grid.size), dtype=bool)
     move = (G, G_inv, True) if k == 0 else (G_inv, G, False)
-    return may_reach(bounds, poses, parse_tolerance(request.tol), grid, move)
+    tol = parse_tolerance(request.tol)
+    return may_reach(bounds, poses, tol, grid, move, bool(request.respect_limits))
 
 
 def _has_solutions(
