@@ -44,12 +44,12 @@ def _arm(name: str) -> km.Robot:
     return km.load(str(DATA / "makers" / f"{name}.urdf"))
 
 
-def _held(robot: km.Robot) -> tuple[int, km.core.Chain, np.ndarray, tuple]:
+def _held(robot: km.Robot, limits: bool = True) -> tuple[int, km.core.Chain, np.ndarray, tuple]:
     joint = choose(robot.chain)
     assert isinstance(joint, JointParameter) and joint.index in (0, 6)
     k = joint.index
     arm, G, G_inv = end_arm(robot.chain, k)
-    bounds = reach_bounds(arm)
+    bounds = reach_bounds(arm, limits)
     assert bounds is not None
     return k, arm, bounds, ((G, G_inv, True) if k == 0 else (G_inv, G, False))
 
@@ -67,6 +67,7 @@ def test_no_value_with_a_solution_is_dropped_and_most_without_are(name: str, sha
     moved = moved_targets(robot.chain, k, np.repeat(T, grid.size, axis=0), np.tile(grid, len(T)))
     dropped = {}
     for limits in (False, True):
+        bounds = _held(robot, limits)[2]
         kept = may_reach(bounds, T, Tolerance(), grid, move, limits)  # (12, 73)
         # the closed form: every value where it finds a solution is kept
         found = solve_ik(arm, moved, IKOptions(workers=1, respect_limits=limits))
@@ -76,10 +77,10 @@ def test_no_value_with_a_solution_is_dropped_and_most_without_are(name: str, sha
         assert not (has & ~kept).any()
         dropped[limits] = ~kept
     # and most values without one are dropped (on 12 poses: 90-100 % on the makers' arms);
-    # with the limits of q1 and q6, more, never fewer
+    # with the limits, more, never fewer
     assert (dropped[True] & ~has).sum() >= share * (~has).sum()
     assert not (dropped[False] & ~dropped[True]).any()
-    if name == "realman_gen72":  # q6 within [-1.71, 1.78]: its arc drops more
+    if name == "realman_gen72":  # q2, q4 and q6 limited: the limits drop more
         assert (dropped[True] & ~dropped[False]).any()
 
 
@@ -99,6 +100,7 @@ def test_a_target_at_its_own_value_is_kept(name: str) -> None:
         warnings.simplefilter("ignore", km.KinematicaWarning)
         T_in = robot.fk(inside)
     for Q, poses, limits in ((q, T, False), (inside, T_in, True)):
+        bounds = _held(robot, limits)[2]
         own = np.array([violation(bounds, poses[i : i + 1], Tolerance(), Q[i, k : k + 1], move,
                                   limits)[0, 0] for i in range(len(Q))])  # fmt: skip
         assert own.max() <= ROUNDOFF_SLACK
@@ -136,7 +138,7 @@ def test_a_target_not_finite_is_never_dropped() -> None:
 def test_an_arm_with_a_slide_has_no_bounds() -> None:
     rows = [km.Revolute(d=0.3, alpha=math.pi / 2)] * 5 + [km.Prismatic(theta=0.0, alpha=0.0)]
     robot = km.Robot.from_dh(rows, convention="standard")
-    assert reach_bounds(robot.chain) is None
+    assert reach_bounds(robot.chain, False) is None
 
 
 def _fields(res: km.ik.IKResult) -> tuple:

@@ -56,8 +56,12 @@ ROUNDOFF_SLACK = 1e-9
 GRID = 256
 
 
-def reach_bounds(arm: Chain) -> FloatArray | None:
+def reach_bounds(arm: Chain, limits: bool = True) -> FloatArray | None:
     """The arm's bounds, made once and kept; None unless it has 6 revolute joints.
+
+    Args:
+        arm: The 6R arm.
+        limits: Bounds of solutions within the joint limits (else anywhere).
 
     Returns:
         ``(43,)`` read-only, laid out as ``km::reach::Slot`` says
@@ -68,9 +72,10 @@ def reach_bounds(arm: Chain) -> FloatArray | None:
         ``c + u cos q1 + v sin q1`` (base frame); q1's limits; Z (tool frame); the
         ranges of ``|y - Z|`` and ``(y - Z)·a₆``.
     """
-    found = arm.memo.get("reach bounds", False)
+    key = ("reach bounds", limits)
+    found = arm.memo.get(key, False)
     if found is False:
-        found = arm.memo["reach bounds"] = _made(arm)
+        found = arm.memo[key] = _made(arm, limits)
     return found  # type: ignore[return-value]
 
 
@@ -120,7 +125,7 @@ def may_reach(
 
 
 # ---------------------------------------------------------------- made once per arm
-def _made(arm: Chain) -> FloatArray | None:
+def _made(arm: Chain, limits: bool) -> FloatArray | None:
     if arm.dof != 6 or bool(np.asarray(arm.prismatic).any()):
         return None
     f = features(arm)
@@ -131,8 +136,22 @@ def _made(arm: Chain) -> FloatArray | None:
     def tool(point: FloatArray) -> FloatArray:  # a base-frame point at q = 0, in the tool frame
         return np.asarray(Rt @ (point - t))
 
-    S, x0, reach, height = _ranges(P, A, 0, 4, (1, 2, 3))
-    Z, y0, reach2, height2 = _ranges(P, A, 5, 1, (4, 3, 2))
+    # each joint's limits as angles t of the turns the ranges take (None: a whole turn)
+    boxes: list[tuple[float, float] | None] = [None] * 6
+    if limits:
+        wider = np.asarray(arm.qlim, dtype=float) + np.array([-_core.LIMIT_TOL, _core.LIMIT_TOL])
+        boxes = [None if hi - lo >= 2.0 * math.pi else (lo, hi) for lo, hi in wider.tolist()]
+    sign = _signs(arm, P, A)
+    if sign is None:
+        return None
+    # forward: x = exp(q2) exp(q3) exp(q4) x₀, turns by t = sign q; reverse: y seen from
+    # link 5, exp(-q5) exp(-q4) exp(-q3) y₀, turns by t = -sign q
+    S, x0, reach, height = _ranges(
+        P, A, 0, 4, (1, 2, 3), [_box(boxes[j], sign[j]) for j in (1, 2, 3)]
+    )
+    Z, y0, reach2, height2 = _ranges(
+        P, A, 5, 1, (4, 3, 2), [_box(boxes[j], -sign[j]) for j in (4, 3, 2)]
+    )
     # x (fixed to link 5) in the tool frame at q6 = 0 and π/2, the other joints at 0; y
     # (fixed to link 1) at q1 = 0 and π/2: each circle as its joint turns it
     turned = np.zeros((3, 6))
@@ -172,27 +191,89 @@ def _turn(a: FloatArray, t: FloatArray) -> FloatArray:
     return np.asarray(np.eye(3) + s * K + (1.0 - c) * (K @ K))
 
 
+def _signs(arm: Chain, P: FloatArray, A: FloatArray) -> FloatArray | None:
+    """``(6,)`` ±1: joint j turns its link about ``A[j]`` by ±q (from FK); None if neither."""
+    q = 0.3 * np.eye(6)
+    frames = np.asarray(arm.fk(np.vstack([np.zeros(6), q]), all_frames=True)[0], dtype=float)
+    out = np.ones(6)
+    for j in range(6):
+        e = np.cross(A[j], [1.0, 0.0, 0.0] if abs(A[j][0]) < 0.9 else [0.0, 1.0, 0.0])
+        p = P[j] + e / np.linalg.norm(e)  # a point of link j off its axis, at q = 0
+        F0, F = frames[0, j + 1], frames[j + 1, j + 1]
+        moved = F[:3, :3] @ (F0[:3, :3].T @ (p - F0[:3, 3])) + F[:3, 3]
+        turned = _turn(A[j], np.array([0.3, -0.3])) @ (p - P[j]) + P[j]
+        off = np.linalg.norm(turned - moved, axis=1)
+        if not off.min() < 1e-9:
+            return None
+        out[j] = 1.0 if off[0] < off[1] else -1.0
+    return out
+
+
+def _box(limits: tuple[float, float] | None, sign: float) -> tuple[float, float] | None:
+    """The turns ``t`` with ``sign t`` within ``limits`` (None: a whole turn)."""
+    if limits is None:
+        return None
+    lo, hi = sorted((sign * limits[0], sign * limits[1]))
+    return lo, hi
+
+
+def _arc(
+    A: FloatArray, B: FloatArray, C: FloatArray, box: tuple[float, float] | None
+) -> tuple[FloatArray, FloatArray]:
+    """The least and greatest of ``A + B cos t + C sin t`` over ``t`` in ``box`` (None: all)."""
+    rho = np.hypot(B, C)
+    least, most = A - rho, A + rho
+    if box is None:
+        return least, most
+    lo, hi = box
+    ends = [A + B * math.cos(t) + C * math.sin(t) for t in (lo, hi)]
+    top = np.arctan2(C, B)  # where the greatest is, the least half a turn on
+
+    def inside(t: FloatArray) -> NDArray[np.bool_]:
+        return np.mod(t - lo, 2.0 * math.pi) <= hi - lo
+
+    most = np.where(inside(top), most, np.maximum(*ends))
+    least = np.where(inside(top + math.pi), least, np.minimum(*ends))
+    return least, most
+
+
+def _grid(box: tuple[float, float] | None) -> tuple[FloatArray, float]:
+    """The grid's angles over ``box`` (ends included) or a whole turn, and its step."""
+    if box is None:
+        return np.linspace(-math.pi, math.pi, GRID, endpoint=False), 2.0 * math.pi / GRID
+    return np.linspace(box[0], box[1], GRID), (box[1] - box[0]) / (GRID - 1)
+
+
 def _ranges(
-    P: FloatArray, A: FloatArray, s: int, m: int, mids: tuple[int, int, int]
+    P: FloatArray,
+    A: FloatArray,
+    s: int,
+    m: int,
+    mids: tuple[int, int, int],
+    boxes: list[tuple[float, float] | None],
 ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
     """S on axis s, x on axis m, and the ranges of ``|x - S|`` and ``(x - S)·a_s``.
 
     Over the joints ``mids`` (nearest S first): x's position is
-    ``exp(j1) exp(j2) exp(j3) x₀``, the axes at q = 0 (``P``, ``A``: points, directions).
+    ``exp(t1) exp(t2) exp(t3) x₀``, turns about the axes at q = 0 (``P``, ``A``:
+    points, directions), each ``t`` within its box (None: a whole turn). The grid holds
+    the boxes' ends: an extremum at a box's face has a zero derivative along the
+    others (a box is a product of intervals), so the ``½ C |δ|²`` bound holds there too.
     """
     j1, j2, j3 = mids
     S = _foot(P[s], A[s], P[j1], A[j1])
     x0 = _foot(P[m], A[m], P[j3], A[j3])
-    t = np.linspace(-math.pi, math.pi, GRID, endpoint=False)
-    y = _turn(A[j3], t) @ (x0 - P[j3]) + P[j3]  # (G, 3)
-    y = np.einsum("aij,bj->abi", _turn(A[j2], t), y - P[j2]) + P[j2]  # (G, G, 3)
+    t2, h2 = _grid(boxes[1])
+    t3, h3 = _grid(boxes[2])
+    y = _turn(A[j3], t3) @ (x0 - P[j3]) + P[j3]  # (G, 3)
+    y = np.einsum("aij,bj->abi", _turn(A[j2], t2), y - P[j2]) + P[j2]  # (G, G, 3)
     c = P[j1] + ((y - P[j1]) @ A[j1])[..., None] * A[j1]  # circles about axis j1
     u = y - c
     v = np.cross(A[j1], u)
     cs = c - S
-    mid = (cs * cs).sum(-1) + (u * u).sum(-1)
-    swing = 2.0 * np.hypot((cs * u).sum(-1), (cs * v).sum(-1))
-    hmid, hswing = cs @ A[s], np.hypot(u @ A[s], v @ A[s])
+    g_lo, g_hi = _arc((cs * cs).sum(-1) + (u * u).sum(-1), 2.0 * (cs * u).sum(-1),
+                      2.0 * (cs * v).sum(-1), boxes[0])  # fmt: skip
+    h_lo, h_hi = _arc(cs @ A[s], u @ A[s], v @ A[s], boxes[0])
     # the distances of x from S and from the axes j1, j2, j3, bounded by triangle
     # inequalities along points each two of which are fixed in one link
     feet = [S, _foot(P[j1], A[j1], P[j2], A[j2]), _foot(P[j2], A[j2], P[j3], A[j3]),
@@ -203,10 +284,10 @@ def _ranges(
     C = 2.0 * math.sqrt(sum((rho[i] * rho[k] + D * max(rho[i], rho[k])) ** 2
                             for i in range(3) for k in range(3)))  # fmt: skip
     Ch = math.sqrt(sum(max(rho[i], rho[k]) ** 2 for i in range(3) for k in range(3)))
-    step = 2.0 * (math.pi / GRID) ** 2  # |δ|² at most, two coordinates half a step off
+    step = (0.5 * h2) ** 2 + (0.5 * h3) ** 2  # |δ|² at most: two coordinates half a step off
     wide = 0.5 * C * step
-    lo, hi = float((mid - swing).min()) - wide, float((mid + swing).max()) + wide
+    lo, hi = float(g_lo.min()) - wide, float(g_hi.max()) + wide
     reach = np.array([math.sqrt(max(lo, 0.0)), math.sqrt(hi)])
     hw = 0.5 * Ch * step
-    height = np.array([float((hmid - hswing).min()) - hw, float((hmid + hswing).max()) + hw])
+    height = np.array([float(h_lo.min()) - hw, float(h_hi.max()) + hw])
     return S, x0, reach, height

@@ -383,12 +383,12 @@ def _possible(
     if k not in (0, chain.dof - 1) or chain.prismatic[k]:
         return np.ones((poses.shape[0], grid.size), dtype=bool)
     arm, G, G_inv = end_arm(chain, k)
-    bounds = reach_bounds(arm)
+    limits = bool(request.respect_limits)
+    bounds = reach_bounds(arm, limits)
     if bounds is None:
         return np.ones((poses.shape[0], grid.size), dtype=bool)
     move = (G, G_inv, True) if k == 0 else (G_inv, G, False)
-    tol = parse_tolerance(request.tol)
-    return may_reach(bounds, poses, tol, grid, move, bool(request.respect_limits))
+    return may_reach(bounds, poses, parse_tolerance(request.tol), grid, move, limits)
 
 
 def _has_solutions(
