@@ -72,12 +72,12 @@ def solved_except(
         full(a.near, False), full(a.free, False),
     )  # fmt: skip
 
-    def moved(d: dict[tuple[int, ...], Any]) -> dict[tuple[int, ...], Any]:
+    def placed(d: dict[tuple[int, ...], Any]) -> dict[tuple[int, ...], Any]:
         at = [j for (j,) in d if j < keep.size]
         return {tuple(int(c) for c in np.unravel_index(int(keep[j]), shape)): d[(j,)] for j in at}
 
     held = None if sub.parameter is None else (sub.parameter[0], values.reshape(shape))
     return dataclasses.replace(
-        sub, raw=raw, shape=shape, errors=moved(dict(sub.errors)), notes=moved(dict(sub.notes)),
-        methods=moved(dict(sub.methods)), parameter=held,
+        sub, raw=raw, shape=shape, errors=placed(dict(sub.errors)), notes=placed(dict(sub.notes)),
+        methods=placed(dict(sub.methods)), parameter=held,
     )  # fmt: skip

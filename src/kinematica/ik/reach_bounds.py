@@ -17,15 +17,17 @@ A target is dropped only where a circle's range of distance or height misses its
 by more than the slack of the IK's acceptance tolerance (``P + R w``: an accepted
 solution moves a point ``w`` from the tool frame's origin by at most that) and
 :data:`ROUNDOFF_SLACK`. Where solutions are held to the joint limits, the circles are
-arcs: x's over q6's limits, y's over q1's (each widened by the check's ``LIMIT_TOL``;
-the check takes an angle or its turn ±2π, and so do the arcs). The ranges ignore the
-limits of q2 to q5: wider, still necessary.
+arcs: x's over q6's limits, y's over q1's, and the ranges are over the limits of q2 to
+q5 (each widened by the check's ``LIMIT_TOL``; the check takes an angle or its turn ±2π,
+and so does a limit spanning less than a turn here).
 
-The ranges over three joints: exact over the joint nearest ``S`` (a circle's range of
-distance from a point), sampled on a periodic ``GRID x GRID`` grid over the other two,
-widened by a bound of the error: an extremum over the torus is a critical point, so a
-grid point is within ``½ C |δ|²`` of it (``C`` bounds the Hessian, from the distances
-of the point from the axes bounded by triangle inequalities, ``|δ|² ≤ 2 (h/2)²``).
+The ranges over three joints: exact over the joint nearest ``S`` (a circle's or an arc's
+range of distance from a point), sampled on a ``GRID x GRID`` grid over the other two
+(a whole turn, or the limits with their ends), widened by a bound of the error: an
+extremum is a critical point along every joint not at a limit, so a grid point is within
+``½ C |δ|²`` of it (``C`` bounds the Hessian, from the distances of the point from the
+axes bounded by triangle inequalities; ``|δ|² ≤ (h₂/2)² + (h₃/2)²``, ``h`` the steps).
+Which way each joint turns its link is read from FK.
 """
 
 from __future__ import annotations
@@ -176,7 +178,10 @@ def _made(arm: Chain, limits: bool) -> FloatArray | None:
 
 
 def _foot(p1: FloatArray, a1: FloatArray, p2: FloatArray, a2: FloatArray) -> FloatArray:
-    """The point of line 1 nearest line 2 (of a parallel pair: p2 projected on line 1)."""
+    """The point of line 1 nearest line 2 (of a parallel pair: p2 projected on line 1).
+
+    Any point of the line keeps the bounds true; this one keeps them tight.
+    """
     w = p1 - p2
     b, d, e = a1 @ a2, a1 @ w, a2 @ w
     den = 1.0 - b * b
