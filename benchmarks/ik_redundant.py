@@ -24,7 +24,9 @@ time) against one pose of the 6R arm its lock leaves (the arm locked at 0, its f
 closed form, on the same poses moved: the 3x budget), and ``auto`` on random poses within
 the limits (per pose: each pose's shortest of 3 passes; median, mean and max over the
 poses; and batched per pose, CPU time), with the share of poses answered at the default
-value, at the nearest value of the sweep, and by the search over every joint.
+value, at the nearest value of the sweep, and by the search over every joint, and the share
+of the sweep's values the reach bounds prove out of reach (``kinematica.ik.reach_bounds``:
+not screened); the load average is printed beside them.
 
 Columns: the method results name; µs per pose one pose at a time (median over
 ``--singles`` poses of each pose's shortest of 3 passes, wall time), and the same
@@ -43,6 +45,7 @@ the same poses, one pose at a time and batched on one thread. No assertions.
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import time
 import warnings
@@ -59,9 +62,11 @@ import kinematica as km
 from kinematica.ik import IKBatchResult, IKOptions
 from kinematica.ik.moved import end_arm, moved_targets
 from kinematica.ik.parameter import JointParameter
-from kinematica.ik.redundancy import choose
+from kinematica.ik.reach_bounds import may_reach, reach_bounds
+from kinematica.ik.redundancy import PARAMETER_SWEEP, choose
 from kinematica.ik.solve import solve_ik
 from kinematica.ik.structure import features
+from kinematica.ik.tolerance import Tolerance
 from kinematica.spatial import rotation_angle
 
 DATA = Path(__file__).resolve().parent.parent / "tests" / "data"
@@ -251,6 +256,7 @@ def held_and_auto(robots: list[tuple[str, km.Robot]], poses: int, seed: int) -> 
         notes = [" ".join(res[i].notes) for i in range(poses)]
         swept = np.mean(["the nearest of" in n for n in notes])
         searched = np.mean([res[i].parameter is None for i in range(poses)])
+        dropped = bounds_drop(robot, T)
         rows.append(
             [
                 name,
@@ -261,11 +267,29 @@ def held_and_auto(robots: list[tuple[str, km.Robot]], poses: int, seed: int) -> 
                 f"{fmt_time(float(auto.max()))}",
                 fmt_time(batch),
                 f"{1 - swept - searched:.0%} / {swept:.0%} / {searched:.0%}",
+                dropped,
             ]
         )
     head = ["arm", "its lock's family", "6R one pose", "fixed q7 new v (ratio)",
-            "auto median / mean / max", "auto batched", "default / swept / searched"]  # fmt: skip
+            "auto median / mean / max", "auto batched", "default / swept / searched",
+            "sweep values proved out"]  # fmt: skip
+    print(f"load average (1 min) {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
     print(table(rows, head))
+
+
+def bounds_drop(robot: km.Robot, T: np.ndarray) -> str:
+    """The share of the sweep's values (per pose) the reach bounds prove out of reach."""
+    joint = choose(robot.chain)
+    if not isinstance(joint, JointParameter) or joint.index not in (0, robot.dof - 1):
+        return "-"
+    k = joint.index
+    arm, G, G_inv = end_arm(robot.chain, k)
+    bounds = reach_bounds(arm)
+    if bounds is None:
+        return "-"
+    grid = np.linspace(*joint.span(robot.chain), PARAMETER_SWEEP)
+    move = (G, G_inv, True) if k == 0 else (G_inv, G, False)
+    return f"{1 - may_reach(bounds, T, Tolerance(), grid, move).mean():.0%}"
 
 
 def main() -> None:

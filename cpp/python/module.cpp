@@ -9,6 +9,7 @@
 namespace kmpy {
 void bind_topp(nb::module_& m);  // bind_topp.cpp: the time-optimal timing of a path
 void bind_jerk(nb::module_& m);  // bind_jerk.cpp: jerk-limited segments and waypoints
+void bind_reach(nb::module_& m);  // bind_reach.cpp: a 6R arm's reach bounds, checked
 }  // namespace kmpy
 
 namespace {
@@ -29,4 +30,5 @@ NB_MODULE(_core, m) {
     kmpy::bind_lines(m);
     kmpy::bind_topp(m);
     kmpy::bind_jerk(m);
+    kmpy::bind_reach(m);
 }

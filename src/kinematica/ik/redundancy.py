@@ -25,8 +25,9 @@ import kinematica._core as _core
 from kinematica.core import Chain, resolve_workers
 from kinematica.errors import KinematicaError
 from kinematica.ik.arm_angle import ArmAngleParameter, arm_angle_parameter
+from kinematica.ik.held_aside import solved_except
 from kinematica.ik.local_search import LOCAL_SEARCH
-from kinematica.ik.moved import end_arm, moved_targets
+from kinematica.ik.moved import end_arm, moved_targets, on_axis
 from kinematica.ik.parameter import (
     JointParameter,
     Parameter,
@@ -34,12 +35,14 @@ from kinematica.ik.parameter import (
     locked_chain,
     solve_fixed,
 )
+from kinematica.ik.reach_bounds import may_reach, reach_bounds
 from kinematica.ik.request import IKRequest
 from kinematica.ik.result import IKBatchResult, IKResult, amended
 from kinematica.ik.solve import REDUNDANT_DOF, solve_ik
 from kinematica.ik.solvers import closed_form, plan_of
 from kinematica.ik.stack import replace_rows
 from kinematica.ik.targets import Targets, parse_q0, parse_targets
+from kinematica.ik.tolerance import parse_tolerance
 
 if TYPE_CHECKING:
     from kinematica.ik.options import IKOptions
@@ -176,7 +179,24 @@ def _at_parameter(
         values = np.clip(np.where(undefined, default, at_q0), *joint.span(chain))
         why = "q0's value, within its limits"
     one = targets.single  # one target: its value as a number
-    res = joint.solve(chain, target, float(values[0]) if one else values, options)
+    # one target proved to have no solution at its value: not solved there (its answer
+    # is the nearest value's, or the search's, either way); the value moves the target
+    # exactly (the first joint, or the last about an axis through the tool point), so
+    # the moved target is held to the same tolerance
+    exact = isinstance(joint, JointParameter) and (joint.index == 0 or on_axis(chain))
+    # a batch likewise: its targets proved out of reach at the value are left unsolved
+    # there (every target at one value, each valid and read as given)
+    plain = N and not (targets.invalid or targets.notes) and bool(np.all(values == values[0]))
+    aside = np.zeros(N, dtype=bool)
+    if exact and (one or plain):
+        aside = ~_possible(chain, joint, targets.poses, values[:1], options)[:, 0]
+    res: IKResult | IKBatchResult | None
+    if one:
+        res = None if aside[0] else joint.solve(chain, target, float(values[0]), options)
+    elif aside.any():
+        res = solved_except(chain, joint, targets.poses, targets.shape, values, options, q0s, aside)
+    else:
+        res = joint.solve(chain, target, values, options)
 
     def whence(undef: bool) -> str:
         if not undef:
@@ -208,9 +228,9 @@ def _at_parameter(
             f"another value, robot.self_motion for all of them"
         )
 
-    if isinstance(res, IKResult):
+    if res is None or isinstance(res, IKResult):
         value, undef = float(values[0]), bool(undefined[0])
-        if res.success:
+        if res is not None and res.success:
             return amended(res, notes=(*res.notes, note(value, undef)))
         first = np.array([0])
         found, moved = _nearest_with_solutions(chain, joint, targets, first, values, options)
@@ -306,9 +326,11 @@ def _nearest_with_solutions(
     The parameter's candidates are :data:`PARAMETER_SWEEP` values evenly across its
     span; a target takes the nearest to its start value whose answer has a
     solution (within the limits, when they are respected; of two as near, the lower).
-    They are tried nearest first, a few more each round, and a target leaves the
-    rounds at its first value with one. The caller solves the target again at that
-    value, and keeps it only if that answer has one.
+    Values proved to have none (:mod:`kinematica.ik.reach_bounds`) are left out; the
+    others are tried nearest first, one, then twice as many each round (most of
+    them have one), and a target leaves the rounds at its first value with one. The
+    caller solves the target again at that value, and keeps it only if that answer
+    has one.
 
     Returns:
         The rows that have such a value, and the value of each.
@@ -317,26 +339,56 @@ def _nearest_with_solutions(
     if not (np.isfinite(lo) and np.isfinite(hi)) or not rows.size:
         return rows[:0], np.empty(0)
     grid = np.linspace(lo, hi, PARAMETER_SWEEP)
-    # the grid in each target's order: nearest first, the lower of two as near first
-    order = np.argsort(np.abs(grid[None, :] - start[rows][:, None]), axis=1, kind="stable")
     poses = targets.poses[rows]
     request = IKRequest.of(options).but(q0=None, fixed=None)  # every value's, made once
+    near = np.abs(grid[None, :] - start[rows][:, None])
+    # values proved to have no solution (kinematica.ik.reach_bounds) are not tried: the
+    # first value with one in each target's order is the same without them
+    near = np.where(_possible(chain, joint, poses, grid, request), near, np.inf)
+    # the grid in each target's order: nearest first, the lower of two as near first
+    order = np.argsort(near, axis=1, kind="stable")
+    count = np.isfinite(near).sum(axis=1)  # each target's values to try
     best = np.full(rows.size, -1)
-    first, size = 0, 4
+    first, size = 0, 1
     while first < grid.size:
-        todo = np.flatnonzero(best < 0)
+        todo = np.flatnonzero((best < 0) & (count > first))
         if not todo.size:
             break
         ranks = order[todo, first : first + size]  # (t, r) grid indices to try
         width = ranks.shape[1]
-        has = _has_solutions(
-            chain, joint, np.repeat(poses[todo], width, axis=0), grid[ranks.reshape(-1)], request
-        ).reshape(todo.size, width)
+        i, r = np.nonzero(first + np.arange(width)[None, :] < count[todo][:, None])
+        has = np.zeros(ranks.shape, dtype=bool)
+        has[i, r] = _has_solutions(chain, joint, poses[todo[i]], grid[ranks[i, r]], request)
         hit = has.any(axis=1)
         best[todo[hit]] = ranks[hit, np.argmax(has[hit], axis=1)]
         first, size = first + width, 2 * size
     ok = best >= 0
     return rows[ok], grid[best[ok]]
+
+
+def _possible(
+    chain: Chain,
+    joint: Parameter,
+    poses: FloatArray,
+    grid: FloatArray,
+    request: IKRequest | IKOptions,
+) -> NDArray[np.bool_]:
+    """``(t, G)`` False where pose i proves to have no solution at ``grid[j]``.
+
+    The first or last joint of an arm whose 6 other joints turn: the targets moved
+    for the arm locked once (:mod:`kinematica.ik.moved`), checked against that arm's
+    :func:`~kinematica.ik.reach_bounds.reach_bounds` with the screen's tolerance.
+    """
+    k = joint.index if isinstance(joint, JointParameter) else -1
+    if k not in (0, chain.dof - 1) or chain.prismatic[k]:
+        return np.ones((poses.shape[0], grid.size), dtype=bool)
+    arm, G, G_inv = end_arm(chain, k)
+    limits = bool(request.respect_limits)
+    bounds = reach_bounds(arm, limits)
+    if bounds is None:
+        return np.ones((poses.shape[0], grid.size), dtype=bool)
+    move = (G, G_inv, True) if k == 0 else (G_inv, G, False)
+    return may_reach(bounds, poses, parse_tolerance(request.tol), grid, move, limits)
 
 
 def _has_solutions(
