@@ -150,7 +150,15 @@ void bind_answers(nb::module_& m) {
 
     nb::class_<Prepared>(m, "Prepared", "A solver made ready for one target (Params.prepare).")
         .def("__call__", &Prepared::operator(), nb::arg("T").none(),
-             "The result (or Answer) of T (4, 4); None for a target to read otherwise.");
+             "The result (or Answer) of T (4, 4); None for a target to read otherwise.")
+        .def("held", &Prepared::held, nb::arg("joint"), nb::arg("A"), nb::arg("after"),
+             nb::arg("slides"), nb::arg("name"),
+             "This Prepared of the arm locked at 0 at the whole arm's first or last joint\n"
+             "`joint` (its name `name`): A (3, 4, 4) the move's parts, after the target or\n"
+             "before it, the joint sliding or turning (kinematica.ik.moved).")
+        .def("at", &Prepared::at, nb::arg("T").none(), nb::arg("value"),
+             "The whole arm's result of T (4, 4) with the held joint at `value`; None for a\n"
+             "target to read otherwise or an answer to complete.");
 }
 
 void bind_ik(nb::module_& m) {
