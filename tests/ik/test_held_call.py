@@ -50,7 +50,8 @@ def test_a_held_end_joint_is_one_core_call_with_the_batch_paths_answer(name: str
         np.testing.assert_array_equal(one.solutions[:, k], v)
         F = robot.fk(one.solutions)
         assert np.abs(F[:, :3, 3] - t[:3, 3]).max() <= TOL
-        assert rotation_angle(F[:, :3, :3], np.broadcast_to(t[:3, :3], F[:, :3, :3].shape)).max() <= TOL
+        R = np.broadcast_to(t[:3, :3], F[:, :3, :3].shape)
+        assert rotation_angle(F[:, :3, :3], R).max() <= TOL
 
 
 def test_a_singular_answer_names_its_free_joints_in_the_whole_arm() -> None:
@@ -61,20 +62,33 @@ def test_a_singular_answer_names_its_free_joints_in_the_whole_arm() -> None:
     assert lean is not None and lean.status == "singular" and lean.free_joints == (4, 6)
 
 
-def test_what_the_core_does_not_answer_finally_goes_the_general_way() -> None:
+def test_an_answer_the_core_does_not_give_finally_is_completed_as_the_batch_completes_it() -> None:
     robot = km.load("panda")
     T = _poses(robot, 6, 0.3, 1)[0]
     names = robot.joint_names
     bent = T.copy()
-    bent[0, 0] += 1e-6  # not rigid to round-off: projected, with a note
+    bent[0, 0] += 1e-6  # not rigid to round-off: the general path projects it, with a note
     assert held_one(robot.chain, bent, IKRequest.parse(fixed={6: 0.3}), names) is None  # type: ignore[arg-type]
     assert "projected" in robot.ik(bent, fixed={6: 0.3}).message
     far = T.copy()
-    far[:3, 3] += 5.0  # out of reach: the limited reach's proof completes the answer
-    assert held_one(robot.chain, far, IKRequest.parse(fixed={6: 0.3}), names) is None  # type: ignore[arg-type]
-    res = robot.ik(far, fixed={6: 0.3})
-    assert res.status == "unreachable" and res.parameter == ("q7", 0.3)
-    assert res.status == robot.ik(far[None], fixed={6: 0.3})[0].status
+    far[:3, 3] += 5.0  # out of reach: the limited reach's proof completes the core's answer
+    lean = held_one(robot.chain, far, IKRequest.parse(fixed={6: 0.3}), names)  # type: ignore[arg-type]
+    row = robot.ik(far[None], fixed={6: 0.3})[0]
+    assert lean is not None and lean.status == row.status == "unreachable"
+    assert lean.parameter == row.parameter == ("q7", 0.3)
+    assert lean.gap == pytest.approx(row.gap, rel=1e-12) and lean.gap > 4.0
+    # the Panda's first joint held: the general 6R, whose answers the core leaves to complete
+    Q = robot.random_q(3, seed=2)
+    Q[:, 0] = 0.3
+    P = np.ascontiguousarray(robot.fk(Q))
+    many = robot.ik(P, fixed={0: 0.3})
+    for i, t in enumerate(P):
+        one = held_one(robot.chain, t, IKRequest.parse(fixed={0: 0.3}), names)  # type: ignore[arg-type]
+        assert one is not None and one.method == many[i].method == "analytic:general-6R"
+        assert one.status == many[i].status and one.count == many[i].count >= 1
+        assert one.notes == many[i].notes and one.branches == many[i].branches
+        np.testing.assert_allclose(one.solutions, many[i].solutions, atol=1e-9)
+        np.testing.assert_array_equal(one.solutions[:, 0], 0.3)
 
 
 def test_a_value_is_checked_as_before_and_a_number_passes_as_it_is() -> None:

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from kinematica.core import Chain
-from kinematica.ik.moved import LOCKED_CACHE
+from kinematica.ik.moved import LOCKED_CACHE, held_at
 from kinematica.ik.parameter import joint_parameter
 from kinematica.ik.request import HeldCall
 from kinematica.ik.result import IKResult
@@ -27,9 +27,10 @@ def held_one(
     """``robot.ik(T, fixed={joint: value})`` of one pose as one core call, or None.
 
     The joint is read once per chain, settings and key; its value is checked as
-    :func:`solve_fixed` checks it (a number within the limits passes as it is). None where
-    the joint's lock has no lean call (:meth:`JointParameter.lean`), the target is not one
-    pose as the core reads it, or its answer is not final: the general path answers.
+    :func:`~kinematica.ik.parameter.solve_fixed` checks it (a number within the limits
+    passes as it is). None where the joint's lock has no lean call
+    (:meth:`~kinematica.ik.parameter.JointParameter.lean`) or the target is not one pose
+    as the core reads it: the general path answers.
     """
     if chain.dof < 7 or target.__class__ is not np.ndarray:
         return None
@@ -52,4 +53,4 @@ def held_one(
     v = call.value
     if not (kept and v.__class__ is float and lo <= v <= hi):  # type: ignore[operator]
         v = joint.check(chain, v, bool(call.request.respect_limits))
-    return ready.at(target, v)  # type: ignore[no-any-return]
+    return held_at(chain, joint.index, joint.name, call.request, ready, target, v)

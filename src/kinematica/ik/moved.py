@@ -21,9 +21,13 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.ik.rank_five import RANK_FIVE_HELD, held_rank_five
+from kinematica.ik.result import IKResult
+from kinematica.ik.solve import answered
 from kinematica.ik.solvers import plan_of
+from kinematica.ik.stack import widen_result
 from kinematica.ik.tolerance import parse_tolerance
 
 if TYPE_CHECKING:
@@ -34,8 +38,9 @@ __all__ = [
     "NARROWEST",
     "ON_AXIS_TOL",
     "end_arm",
-    "locked_chain",
+    "held_at",
     "held_prepared",
+    "locked_chain",
     "moved_targets",
     "narrowed_tolerance",
     "on_axis",
@@ -138,9 +143,8 @@ def on_axis(chain: Chain) -> bool:
 def moved_targets(chain: Chain, k: int, poses: FloatArray, v: FloatArray) -> FloatArray:
     """``(N, 4, 4)`` targets of the arm locked at 0 that are ``poses`` with joint k at ``v``."""
     A = _end(chain, k)[3]
-    f1, f2 = (-v, np.zeros_like(v)) if chain.prismatic[k] else (np.cos(v), np.sin(v))
-    move = A[0] + f1[:, None, None] * A[1] + f2[:, None, None] * A[2]
-    return np.ascontiguousarray(move @ poses if k == 0 else poses @ move)
+    v = np.asarray(v, dtype=float)
+    return _core.moved_poses(A, poses, v, k != 0, bool(chain.prismatic[k]))  # type: ignore[no-any-return]
 
 
 def held_prepared(chain: Chain, k: int, request: IKRequest, name: str) -> Any:
@@ -150,9 +154,9 @@ def held_prepared(chain: Chain, k: int, request: IKRequest, name: str) -> Any:
     for ``request``'s settings) held at joint k (``Prepared.held``): called as
     ``at(T, value)``, the core moves the pose by the value, solves and checks it, and
     gives the whole arm's result (the joint's column put back, ``parameter`` ``(name,
-    value)``); None for a pose to read otherwise or an answer to complete. None where the
-    plan has no prepared call (a coaxial pair, rank 5). Made once per chain, settings,
-    joint and name.
+    value)``), else the locked arm's answer to complete (:func:`held_at`); None for a pose
+    to read otherwise. None where the plan has no prepared call (a coaxial pair, rank 5).
+    Made once per chain, settings, joint and name.
     """
     per: dict[tuple[int | None, int, str], Any]
     per = chain.memo.setdefault("held prepared", {})  # type: ignore[assignment]
@@ -166,6 +170,25 @@ def held_prepared(chain: Chain, k: int, request: IKRequest, name: str) -> Any:
         slides = bool(chain.prismatic[k])
         found = per[key] = None if ready is None else ready.held(k, A, k != 0, slides, name)
     return found
+
+
+def held_at(
+    chain: Chain, k: int, name: str, request: IKRequest, ready: Any, T: object, value: float
+) -> IKResult | None:
+    """One pose ``T`` with end joint k at ``value``: ``ready``'s (:func:`held_prepared`) call.
+
+    The core's final answer is the result; any other is completed as the arm locked at 0
+    completes its answers (:func:`~kinematica.ik.solve.answered`: the search where its
+    closed form found nothing, the limited reach), then widened. None where ``ready`` is
+    None or the core does not read ``T`` as one rigid pose.
+    """
+    got = None if ready is None else ready.at(T, value)
+    if got is None or got.__class__ is IKResult:
+        return got  # type: ignore[no-any-return]
+    arm = _end(chain, k)[0]
+    pose = moved_targets(chain, k, np.asarray(T)[None], np.array([value]))[0]
+    res = answered(arm, plan_of(arm, "pose", request), request, pose, "pose", got, (), None)
+    return widen_result(res, k, value, (name, value))
 
 
 def narrowed_tolerance(

@@ -31,6 +31,7 @@ from kinematica.ik.held_near import near_continuum_answer
 from kinematica.ik.moved import (
     LOCKED_CACHE,
     end_arm,
+    held_at,
     held_prepared,
     locked_chain,
     moved_targets,
@@ -231,9 +232,9 @@ class JointParameter:
                 moved = narrow is not None
                 if narrow is not None:
                     opts = opts.but(tol=narrow)
-        ready = self.lean(chain, opts) if moved and not parsed else None
-        if ready is not None and (got := ready.at(target, first)) is not None:
-            return got  # type: ignore[no-any-return]  # one pose as the core reads it
+        ready = None if parsed else self.lean(chain, opts)  # one pose: the core's one call
+        if (got := held_at(chain, k, self.name, opts, ready, target, first)) is not None:
+            return got
         try:
             if moved:  # one locked arm, moved targets
                 targets = targets if parsed else parse_targets(target)
@@ -279,10 +280,10 @@ class JointParameter:
         The first joint, or the last with the tool point on its axis, of an arm of 7
         joints or more, without ``q0``, a mask or a continuum (:meth:`_continua`); else None.
         """
-        k, n = self.index, chain.dof
+        k, n, one = self.index, chain.dof, _ONE_POSE
         if not (request.bare and request.key is not None and request.mask is None and n > 6):
             return None
-        if k and (k != n - 1 or not on_axis(chain) or self._continua(chain, 0.0, request, _ONE_POSE)):
+        if k and (k != n - 1 or not on_axis(chain) or self._continua(chain, 0, request, one)):
             return None
         try:
             return held_prepared(chain, k, request, self.name)
