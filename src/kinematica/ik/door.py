@@ -46,7 +46,7 @@ def solve(
     if type(request) is HeldCall:
         got = (_held_one or _redundancy()[1])(chain, target, request, names)
         if got is not None:
-            return got  # type: ignore[no-any-return]
+            return got
         request = request.full()
     assert type(request) is IKRequest
     lean = request.lean  # one pose target as the core reads it: the plan's one call

@@ -10,11 +10,13 @@ is not final, goes :func:`~kinematica.ik.parameter.solve_fixed`'s way.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from kinematica.core import Chain
 from kinematica.ik.moved import LOCKED_CACHE, held_at
-from kinematica.ik.parameter import joint_parameter
+from kinematica.ik.parameter import JointParameter, joint_parameter
 from kinematica.ik.request import HeldCall
 from kinematica.ik.result import IKResult
 
@@ -34,7 +36,8 @@ def held_one(
     """
     if chain.dof < 7 or target.__class__ is not np.ndarray:
         return None
-    memo = chain.memo.setdefault("held calls", {})
+    memo: dict[tuple[object, ...], tuple[JointParameter, Any, float, float, bool]]
+    memo = chain.memo.setdefault("held calls", {})  # type: ignore[assignment]
     key = (call.request.key, call.joint, call.joint.__class__, names)
     try:
         found = memo.get(key)
@@ -51,6 +54,6 @@ def held_one(
     if ready is None:
         return None
     v = call.value
-    if not (kept and v.__class__ is float and lo <= v <= hi):  # type: ignore[operator]
+    if not (kept and v.__class__ is float and lo <= v <= hi):
         v = joint.check(chain, v, bool(call.request.respect_limits))
     return held_at(chain, joint.index, joint.name, call.request, ready, target, v)

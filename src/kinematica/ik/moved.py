@@ -144,7 +144,7 @@ def moved_targets(chain: Chain, k: int, poses: FloatArray, v: FloatArray) -> Flo
     """``(N, 4, 4)`` targets of the arm locked at 0 that are ``poses`` with joint k at ``v``."""
     A = _end(chain, k)[3]
     v = np.asarray(v, dtype=float)
-    return _core.moved_poses(A, poses, v, k != 0, bool(chain.prismatic[k]))  # type: ignore[no-any-return]
+    return _core.moved_poses(A, poses, v, k != 0, bool(chain.prismatic[k]))
 
 
 def held_prepared(chain: Chain, k: int, request: IKRequest, name: str) -> Any:
@@ -184,7 +184,7 @@ def held_at(
     """
     got = None if ready is None else ready.at(T, value)
     if got is None or got.__class__ is IKResult:
-        return got  # type: ignore[no-any-return]
+        return got
     arm = _end(chain, k)[0]
     pose = moved_targets(chain, k, np.asarray(T)[None], np.array([value]))[0]
     res = answered(arm, plan_of(arm, "pose", request), request, pose, "pose", got, (), None)
