@@ -22,9 +22,10 @@ Then, for the built-in 7R arms and the makers' GEN72, Gen3 and RM75 (``tests/dat
 issue 33's budgets: ``fixed={6: v}`` (and ``fixed={0: v}``) with the pose's own new v on
 every call (one pose at a time) against one pose of the 6R arm its lock leaves (the arm
 locked at 0, its family's closed form, on the same poses moved: the 3x budget), and
-``auto`` on random poses within the limits (per pose: each pose's shortest of 3 passes; median, mean and max over the
-poses; and batched per pose, CPU time), with the share of poses answered at the default
-value, at the nearest value of the sweep, and by the search over every joint.
+``auto`` on random poses within the limits (per pose: each pose's shortest of 3 passes;
+median, mean and max over the poses; and batched per pose, CPU time), with the share of
+poses answered at the default value, at the nearest value of the sweep, and by the search
+over every joint.
 
 Columns: the method results name; µs per pose one pose at a time (median over
 ``--singles`` poses of each pose's shortest of 3 passes, wall time), and the same
