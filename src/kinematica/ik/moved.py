@@ -155,7 +155,8 @@ def held_prepared(chain: Chain, k: int, request: IKRequest, name: str) -> Any:
     ``at(T, value)``, the core moves the pose by the value, solves and checks it, and
     gives the whole arm's result (the joint's column put back, ``parameter`` ``(name,
     value)``), else the locked arm's answer to complete (:func:`held_at`); None for a pose
-    to read otherwise. None where the plan has no prepared call (a coaxial pair, rank 5).
+    to read otherwise. None where the plan has no core's prepared call (a coaxial pair,
+    rank 5, the numeric search).
     Made once per chain, settings, joint and name.
     """
     per: dict[tuple[int | None, int, str], Any]
@@ -166,9 +167,10 @@ def held_prepared(chain: Chain, k: int, request: IKRequest, name: str) -> Any:
         if len(per) >= LOCKED_CACHE:
             per.clear()
         arm, _, _, A = _end(chain, k)
-        ready = plan_of(arm, "pose", request).prepared
+        ready = plan_of(arm, "pose", request).prepared  # the search's is Python's: not held
         slides = bool(chain.prismatic[k])
-        found = per[key] = None if ready is None else ready.held(k, A, k != 0, slides, name)
+        held = type(ready) is _core.Prepared
+        found = per[key] = ready.held(k, A, k != 0, slides, name) if held else None
     return found
 
 

@@ -479,22 +479,6 @@ def solve_fixed(
             "fixed: an arm of one joint has no joint left to solve once it is locked", arg="fixed"
         )
     ((key, value),) = fixed.items()
-    respect = bool(options.respect_limits)
-    # the joint and its value, read once per (key, value): one pose at a time, often the same
-    memo: dict[tuple[object, ...], tuple[JointParameter, float]]
-    memo = chain.memo.setdefault("held values", {})  # type: ignore[assignment]
-    seen: tuple[object, ...] | None
-    seen = (type(key), key, type(value), value, respect, None if names is None else tuple(names))
-    try:
-        found = memo.get(seen)
-    except TypeError:  # unhashable: read (and refused) below
-        found, seen = None, None
-    if found is None:
-        joint = joint_parameter(chain, key, names)
-        found = (joint, joint.check(chain, value, respect))
-        if seen is not None:
-            if len(memo) >= LOCKED_CACHE:
-                memo.clear()
-            memo[seen] = found
-    joint, v = found
+    joint = joint_parameter(chain, key, names)
+    v = joint.check(chain, value, bool(options.respect_limits))
     return joint.solve(chain, target, v, options)
