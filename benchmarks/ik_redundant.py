@@ -19,14 +19,15 @@ prints, on one core (``workers=1``), for each way of solving:
 and, for reference, one pose of the PUMA 560 (a 6R arm, every default) in the same run.
 
 Then, for the built-in 7R arms and the makers' GEN72, Gen3 and RM75 (``tests/data/makers``),
-issue 33's budgets: ``fixed={6: v}`` with the pose's own new v on every call (one pose at a
-time) against one pose of the 6R arm its lock leaves (the arm locked at 0, its family's
-closed form, on the same poses moved: the 3x budget), and ``auto`` on random poses within
-the limits (per pose: each pose's shortest of 3 passes; median, mean and max over the
-poses; and batched per pose, CPU time), with the share of poses answered at the default
-value, at the nearest value of the sweep, and by the search over every joint, and the share
-of the sweep's values the reach bounds prove out of reach (``kinematica.ik.reach_bounds``:
-not screened); the load average is printed beside them.
+issue 33's budgets: ``fixed={6: v}`` (and ``fixed={0: v}``) with the pose's own new v on
+every call (one pose at a time) against one pose of the 6R arm its lock leaves (the arm
+locked at 0, its family's closed form, on the same poses moved: the 3x budget), and
+``auto`` on random poses within the limits (per pose: each pose's shortest of 3 passes;
+median, mean and max over the poses; and batched per pose, CPU time), with the share of
+poses answered at the default value, at the nearest value of the sweep, and by the search
+over every joint, and the share of the sweep's values the reach bounds prove out of
+reach (``kinematica.ik.reach_bounds``: not screened); the load average is printed beside
+them.
 
 Columns: the method results name; µs per pose one pose at a time (median over
 ``--singles`` poses of each pose's shortest of 3 passes, wall time), and the same
@@ -240,15 +241,20 @@ def held_and_auto(robots: list[tuple[str, km.Robot]], poses: int, seed: int) -> 
         rng = np.random.default_rng(seed)
         Q = rng.uniform(*robot.qlim.T, size=(poses, robot.dof))
         T = np.ascontiguousarray(robot.fk(Q))
-        values = Q[:, 6].tolist()  # the pose's own: a new value on every call
-        held = per_pose(
-            lambda i, r=robot, T=T, v=values: r.ik(T[int(i)], fixed={6: v[int(i)]}),
-            list(np.arange(poses)),
-        )
-        arm = end_arm(chain, 6)[0]
-        moved = list(moved_targets(chain, 6, T, Q[:, 6]))
-        six = per_pose(lambda t, a=arm: solve_ik(a, t, IKOptions()), moved)
-        family = solve_ik(arm, moved[0], IKOptions()).method
+        ends = []
+        for k in (6, 0):  # the last joint, then the first
+            values = Q[:, k].tolist()  # the pose's own: a new value on every call
+            held = per_pose(
+                lambda i, r=robot, T=T, v=values, k=k: r.ik(T[int(i)], fixed={k: v[int(i)]}),
+                list(np.arange(poses)),
+            )
+            arm = end_arm(chain, k)[0]
+            moved = list(moved_targets(chain, k, T, Q[:, k]))
+            six = per_pose(lambda t, a=arm: solve_ik(a, t, IKOptions()), moved)
+            family = solve_ik(arm, moved[0], IKOptions()).method
+            ratio = np.median(held) / np.median(six)
+            ends += [family, fmt_time(float(np.median(six))),
+                     f"{fmt_time(float(np.median(held)))} ({ratio:.1f}x)"]  # fmt: skip
         auto = per_pose(lambda t, r=robot: r.ik(t), list(T))
         batch = cpu_best_of(lambda r=robot, T=T: r.ik(T, workers=1)) / poses
         res = robot.ik(T, workers=1)
@@ -260,9 +266,7 @@ def held_and_auto(robots: list[tuple[str, km.Robot]], poses: int, seed: int) -> 
         rows.append(
             [
                 name,
-                family,
-                fmt_time(float(np.median(six))),
-                f"{fmt_time(float(np.median(held)))} ({np.median(held) / np.median(six):.1f}x)",
+                *ends,
                 f"{fmt_time(float(np.median(auto)))} / {fmt_time(float(auto.mean()))} / "
                 f"{fmt_time(float(auto.max()))}",
                 fmt_time(batch),
@@ -270,7 +274,8 @@ def held_and_auto(robots: list[tuple[str, km.Robot]], poses: int, seed: int) -> 
                 dropped,
             ]
         )
-    head = ["arm", "its lock's family", "6R one pose", "fixed q7 new v (ratio)",
+    head = ["arm", "q7 lock's family", "6R one pose", "fixed q7 new v (ratio)",
+            "q1 lock's family", "6R one pose", "fixed q1 new v (ratio)",
             "auto median / mean / max", "auto batched", "default / swept / searched",
             "sweep values proved out"]  # fmt: skip
     print(f"load average (1 min) {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")

@@ -93,11 +93,36 @@ inline nb::dict result_fields(nb::handle cls, nb::handle fields, nb::handle stat
     return all;
 }
 
+//! The answer of an arm locked at its joint `joint`, as the whole arm's: its solutions
+//! (count, n + 1) with that joint's column at `value` put back, its free joints shifted
+//! past it (kinematica.ik.stack.widen_result's, for one target).
+inline Answer widened(const Answer& a, int joint, double value) {
+    Answer w = a;
+    const int n = a.n, m = n + 1;
+    const auto widen = [&](const F64& from) {
+        auto* arr = reinterpret_cast<PyArrayObject*>(from.ptr());
+        const npy_intp rows = PyArray_DIM(arr, 0);
+        const double* src = static_cast<const double*>(PyArray_DATA(arr));
+        double* dst;
+        F64 out = new_f64({rows, m}, dst);
+        for (npy_intp r = 0; r < rows; ++r) {
+            for (int j = 0, s = 0; j < m; ++j) dst[r * m + j] = j == joint ? value : src[r * n + s++];
+        }
+        return read_only(out);
+    };
+    w.solutions = widen(a.solutions);
+    w.out_of_limits = widen(a.out_of_limits);
+    const std::uint32_t below = joint >= 32 ? ~std::uint32_t{0} : (std::uint32_t{1} << joint) - 1U;
+    w.report.free = (a.report.free & below) | ((a.report.free & ~below) << 1U);
+    w.n = m;
+    return w;
+}
+
 //! A new instance of cls (no __init__ run) whose __dict__ is a copy of `fields` (made by
 //! result_fields) holding the answer's attributes by their names, its status the object
-//! statuses[code].
+//! statuses[code]; `parameter`, when given, its parameter (a joint held: (name, value)).
 inline nb::object make_result(const Answer& a, nb::handle cls, nb::handle fields,
-                              nb::handle statuses) {
+                              nb::handle statuses, nb::handle parameter = nb::handle()) {
     auto* type = reinterpret_cast<PyTypeObject*>(cls.ptr());
     nb::object obj = nb::steal(type->tp_alloc(type, 0));
     nb::object d = nb::steal(PyDict_Copy(fields.ptr()));
@@ -113,6 +138,10 @@ inline nb::object make_result(const Answer& a, nb::handle cls, nb::handle fields
     put(GAP, nb::cast(a.gap()));
     put(NEAREST, a.nearest_error());
     put(NEAR, a.report.near ? Py_True : Py_False);
+    if (parameter.is_valid()) {
+        static PyObject* const name = PyUnicode_InternFromString("parameter");
+        PyDict_SetItem(d.ptr(), name, parameter.ptr());
+    }
     if (PyObject_GenericSetDict(obj.ptr(), d.ptr(), nullptr) != 0) throw nb::python_error();
     return obj;
 }

@@ -1,7 +1,8 @@
 // The arms decoupled at joint 3: joints 1-3 placing a point (ArmPoint), the spherical
 // wrist's poses (and the spherical shoulder's, by the reversed chain) and the arm-position
 // solver's position targets, bound into the submodule kinematica._core.decoupled (the
-// family's tolerances and scalar internals: kinematica._core_testing.decoupled).
+// family's tolerances, an ArmPoint's values and scalar internals:
+// kinematica._core_testing.decoupled).
 #include "casters.hpp"
 #include "common.hpp"
 #include "kinematica/solvers/arm_point.hpp"
@@ -25,38 +26,20 @@ void bind_decoupled(nb::module_& m) {
         "Arms decoupled at joint 3: spherical-wrist 6R and RRP arms, and position targets of "
         "longer arms (joints 1-3 place a point).");
 
-    nb::enum_<kd::Shoulder>(sub, "Shoulder", "The geometry of axes 1 and 2.")
-        .value("meet", kd::Shoulder::meet)
-        .value("parallel", kd::Shoulder::parallel)
-        .value("general", kd::Shoulder::general);
-
     nb::class_<kd::ArmPoint>(sub, "ArmPoint",
                              "Joints 1-3 placing a point fixed after joint 3 (arm_point.hpp), "
-                             "filled by the family's builder: its values, read-only.")
-        .def_ro("kind", &kd::ArmPoint::kind)
-        .def_ro("prismatic", &kd::ArmPoint::prismatic, "joint 3 slides")
-        .def_ro("parallel23", &kd::ArmPoint::parallel23, "axes 2 and 3 parallel")
-        .def_ro("p1", &kd::ArmPoint::p1, "foot point of axis 1 (m, base frame)")
-        .def_ro("h1", &kd::ArmPoint::h1, "axis 1 direction")
-        .def_ro("h2", &kd::ArmPoint::h2, "axis 2 direction")
-        .def_ro("h3", &kd::ArmPoint::h3, "axis 3 direction")
-        .def_ro("a1", &kd::ArmPoint::a1, "a unit vector normal to h1")
-        .def_ro("b1", &kd::ArmPoint::b1, "h1 x a1")
-        .def_ro("a", &kd::ArmPoint::a, "distance of axes 1 and 2 along e1 (m, signed)")
-        .def_ro("ca", &kd::ArmPoint::ca, "cos alpha = h1 . h2")
-        .def_ro("g", &kd::ArmPoint::g, "h1 . e2")
-        .def_ro("elbow", &kd::ArmPoint::elbow, "sign deciding elbow up (axes 2 and 3 parallel)")
-        .def_ro("scale", &kd::ArmPoint::scale, "a length of the arm's size (m)")
-        .def_ro("r_lo", &kd::ArmPoint::r_lo, "lower bound of |x - p1| (m)")
-        .def_ro("r_hi", &kd::ArmPoint::r_hi, "upper bound of |x - p1| (m)")
-        .def_ro("z_lo", &kd::ArmPoint::z_lo, "lower bound of h1 . (x - p1) (m)")
-        .def_ro("z_hi", &kd::ArmPoint::z_hi, "upper bound of h1 . (x - p1) (m)")
-        .def_ro("beta", &kd::ArmPoint::beta, "revolute joint 3: |u| is extreme at q3 = beta, beta + pi")
-        .def_ro("dmin", &kd::ArmPoint::dmin, "revolute joint 3: min |u(q3)| (m)")
-        .def_ro("dmax", &kd::ArmPoint::dmax, "revolute joint 3: max |u(q3)| (m)")
-        .def_ro("b3", &kd::ArmPoint::b3, "slide: U0 . h3 (m)")
-        .def_ro("m3", &kd::ArmPoint::m3, "slide: distance of axis 3 from p2 (m)")
-        .def_ro("refine", &kd::ArmPoint::refine, "a second pass for nearly meeting or parallel axes");
+                             "filled by the family's builder (opaque: arm_shape reads it).");
+    sub.def(
+        "arm_shape",
+        [](const kd::ArmPoint& arm) {
+            const char* kind = arm.kind == kd::Shoulder::meet       ? "meet"
+                               : arm.kind == kd::Shoulder::parallel ? "parallel"
+                                                                    : "general";
+            return nb::make_tuple(kind, arm.prismatic, arm.parallel23);
+        },
+        nb::arg("arm"),
+        "(kind, prismatic, parallel23): axes 1 and 2 \"meet\", \"parallel\" or \"general\"\n"
+        "(skew), joint 3 slides, axes 2 and 3 parallel: what names the arm's branches.");
 
     bind_family<kd::SphericalWristParams>(
         sub, "SphericalWristParams",

@@ -150,11 +150,38 @@ void bind_answers(nb::module_& m) {
 
     nb::class_<Prepared>(m, "Prepared", "A solver made ready for one target (Params.prepare).")
         .def("__call__", &Prepared::operator(), nb::arg("T").none(),
-             "The result (or Answer) of T (4, 4); None for a target to read otherwise.");
+             "The result (or Answer) of T (4, 4); None for a target to read otherwise.")
+        .def("held", &Prepared::held, nb::arg("joint"), nb::arg("A"), nb::arg("after"),
+             nb::arg("slides"), nb::arg("name"),
+             "This Prepared of the arm locked at 0 at the whole arm's first or last joint\n"
+             "`joint` (its name `name`): A (3, 4, 4) the move's parts, after the target or\n"
+             "before it, the joint sliding or turning (kinematica.ik.moved).")
+        .def("at", &Prepared::at, nb::arg("T").none(), nb::arg("value"),
+             "The whole arm's result of T (4, 4) with the held joint at `value`, or the locked\n"
+             "arm's Answer to complete; None for a target to read otherwise.");
 }
 
 void bind_ik(nb::module_& m) {
     bind_answers(m);
+    m.def(
+        "moved_poses",
+        [](nb::handle A, nb::handle T, nb::handle v, bool after, bool slides) {
+            const In parts = in_f64(A, "A", 3, {3, 4, 4});
+            const In poses = in_f64(T, "T", 3, {-1, 4, 4});
+            const npy_intp N = poses.dim[0];
+            const In values = in_f64(v, "v", 1, {N});
+            double* out;
+            F64 moved = new_f64({N, 4, 4}, out);
+            for (npy_intp i = 0; i < N; ++i) {
+                moved_pose(parts.data, values.data[i], after, slides, poses.data + 16 * i,
+                           out + 16 * i);
+            }
+            return moved;
+        },
+        nb::arg("A"), nb::arg("T"), nb::arg("v"), nb::arg("after"), nb::arg("slides"),
+        "(N, 4, 4) the poses T (N, 4, 4) of a whole arm as targets of the arm locked at 0 at\n"
+        "its first joint (after false) or last, the joint at v (N,): the move A (3, 4, 4)'s\n"
+        "parts (kinematica.ik.moved), as Prepared.at moves one pose.");
     const km::Tolerance defaults;  // the defaults, as ik_types.hpp writes them
     nb::class_<km::Tolerance>(m, "Tolerance", "Acceptance tolerances of a solution.")
         .def(

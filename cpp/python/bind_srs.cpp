@@ -54,13 +54,9 @@ void bind_srs(nb::module_& m) {
         "kinematica/solvers/srs_build.hpp", "km::srs::SRSParams", "km::srs::build",
         [](const km::Chain& c) { return km::srs::build(c); });
     cls.def_rw("psi", &SRSParams::psi, "the arm angle to solve at (rad)");
-    // The elbow's geometry, read by the held-joint neighbour (ik/held_neighbour.py), which
-    // aims a target along the shoulder-wrist line: read-only, as built.
-    cls.def_ro("s", &SRSParams::s, "the shoulder centre S (m), base frame");
-    cls.def_ro("w_tool", &SRSParams::w_tool, "the wrist centre in the tool frame (m)");
-    cls.def_ro("se", &SRSParams::se, "E0 - S: shoulder to elbow point at q = 0 (m)");
-    cls.def_ro("ew", &SRSParams::ew, "W0 - E0: elbow point to wrist centre at q = 0 (m)");
-    cls.def_ro("h4", &SRSParams::h4, "the elbow axis (unit)");
+    cls.def("aimed", &SRSParams::aimed, nb::arg("T"), nb::arg("q4"),
+            "(4, 4) T (4, 4) moved along the shoulder-wrist line until the wrist centre is as\n"
+            "far from the shoulder as q4 (rad) puts it (srs.hpp's aimed).");
     cls.def(
         "at",
         [](const SRSParams& p, double psi) {

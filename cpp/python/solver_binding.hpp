@@ -14,6 +14,7 @@
 #include <nanobind/stl/string.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -149,38 +150,102 @@ Answer ik_one(const Solver& s, const km::Chain& chain, F64 T,
     return ik_pose(s, chain, P, opts, q0in.data, labels);
 }
 
+//! `out` (16 values, rows): the pose T of a whole arm as the target of the arm locked at 0
+//! at its first joint (M(v) T, after false) or its last (T M(v)), M(v) = A0 + f1 A1 + f2 A2
+//! with f = (cos v, sin v), or (-v, 0) for a slide; A: 48 values (kinematica.ik.moved).
+inline void moved_pose(const double* A, double v, bool after, bool slides, const double* T,
+                       double* out) {
+    const double f1 = slides ? -v : std::cos(v);
+    const double f2 = slides ? 0.0 : std::sin(v);
+    double M[16];
+    for (int i = 0; i < 16; ++i) M[i] = A[i] + f1 * A[16 + i] + f2 * A[32 + i];
+    const double* left = after ? T : M;
+    const double* right = after ? M : T;
+    for (int r = 0; r < 4; ++r) {
+        for (int c = 0; c < 4; ++c) {
+            double sum = 0.0;
+            for (int k = 0; k < 4; ++k) sum += left[4 * r + k] * right[4 * k + c];
+            out[4 * r + c] = sum;
+        }
+    }
+}
+
 //! A solver made ready for one kind of call: the chain, the check's options, the branch
 //! labels and what a final answer's result is made of (make_result), held; called with
 //! one target T (4, 4) alone. A target the core does not read in place or that is not
 //! rigid to round-off gives None (the caller's general path reads and explains it); an
 //! answer whose status is final (bit `status` of final_codes) gives its result, any other
 //! its Answer (the caller completes it).
+//!
+//! Made for the arm an end joint's lock leaves (held()), it is called with the held value
+//! beside the target (at()): the target moved by the value (kinematica.ik.moved), solved,
+//! and the whole arm's result given, the joint's column put back and its parameter named.
 struct Prepared {
     std::function<Answer(const km::Pose&)> solve;
     nb::object keep;  //!< the solver, the chain and the labels the solve reads
     nb::object result, fields, statuses;
     double roundoff = 0.0;
     std::uint32_t final_codes = 0;
+    // the held end joint (held()): its index in the whole arm (-1: none), its name, the
+    // move's parts A0, A1, A2 (4x4 rows each) and whether it comes after the target
+    int held_joint = -1;
+    bool held_after = false, held_slides = false;
+    double held_move[48] = {};
+    nb::object held_name;
 
-    nb::object operator()(nb::handle T) const {
+    //! T's 16 values (rows) where the core reads T in place and it is rigid, else nullptr.
+    const double* rigid_rows(nb::handle T) const {
         PyObject* o = T.ptr();
-        if (!PyArray_Check(o)) return nb::none();
+        if (!PyArray_Check(o)) return nullptr;
         auto* a = reinterpret_cast<PyArrayObject*>(o);
         if (PyArray_TYPE(a) != NPY_DOUBLE || PyArray_NDIM(a) != 2 || PyArray_DIM(a, 0) != 4 ||
             PyArray_DIM(a, 1) != 4 || !PyArray_IS_C_CONTIGUOUS(a) || !PyArray_ISALIGNED(a) ||
             !PyArray_ISNOTSWAPPED(a)) {
-            return nb::none();
+            return nullptr;
         }
         const double* t = static_cast<const double*>(PyArray_DATA(a));
         const km::PoseDefects d = km::pose_defects(t);
-        if (!(d.finite && d.last_row == 0.0 && d.ortho <= roundoff && d.det > 0.0)) {
-            return nb::none();
-        }
+        return d.finite && d.last_row == 0.0 && d.ortho <= roundoff && d.det > 0.0 ? t : nullptr;
+    }
+    bool final(const Answer& ans) const {
+        return ((final_codes >> static_cast<unsigned>(ans.report.status)) & 1U) != 0U;
+    }
+
+    nb::object operator()(nb::handle T) const {
+        const double* t = rigid_rows(T);
+        if (t == nullptr) return nb::none();
         const Answer ans = solve(km::Pose::from_rows(t));
-        if (((final_codes >> static_cast<unsigned>(ans.report.status)) & 1U) != 0U) {
-            return make_result(ans, result, fields, statuses);
-        }
+        if (final(ans)) return make_result(ans, result, fields, statuses);
         return nb::cast(ans);
+    }
+
+    //! The whole arm's result of T with the held joint at `value` where the answer is
+    //! final, else the locked arm's Answer of the moved T (the caller completes it); None
+    //! where T is not read in place or not rigid (the caller's general path).
+    nb::object at(nb::handle T, double value) const {
+        if (held_joint < 0) throw nb::value_error("at(): this Prepared holds no joint (held())");
+        const double* t = rigid_rows(T);
+        if (t == nullptr) return nb::none();
+        double moved[16];
+        moved_pose(held_move, value, held_after, held_slides, t, moved);
+        const Answer ans = solve(km::Pose::from_rows(moved));
+        if (!final(ans)) return nb::cast(ans);
+        const nb::object parameter = nb::make_tuple(held_name, value);
+        return make_result(widened(ans, held_joint, value), result, fields, statuses, parameter);
+    }
+
+    //! This Prepared for the arm locked at 0 at joint `joint` of the whole arm (its first
+    //! or last), the move's parts A (3, 4, 4) before the target (first) or after (last).
+    Prepared held(int joint, nb::handle A, bool after, bool slides, nb::str name) const {
+        if (joint < 0 || joint >= km::FREE_JOINTS) throw nb::value_error("held(): joint out of range");
+        const In parts = in_f64(A, "A", 3, {3, 4, 4});
+        Prepared p = *this;
+        std::copy(parts.data, parts.data + 48, p.held_move);
+        p.held_joint = joint;
+        p.held_after = after;
+        p.held_slides = slides;
+        p.held_name = name;
+        return p;
     }
 };
 

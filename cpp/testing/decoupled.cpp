@@ -50,6 +50,25 @@ nb::object srs_values(const km::Chain& chain) {
     return d;
 }
 
+//! An ArmPoint's values (arm_point.hpp names them), by name.
+nb::dict arm_point_values(const kd::ArmPoint& a) {
+    nb::dict d;
+    const std::pair<const char*, km::Vec3> vectors[] = {{"p1", a.p1}, {"h1", a.h1}, {"h2", a.h2},
+                                                        {"h3", a.h3}, {"a1", a.a1}, {"b1", a.b1}};
+    for (const auto& [name, v] : vectors) d[name] = v;
+    const std::pair<const char*, double> numbers[] = {
+        {"a", a.a},         {"ca", a.ca},       {"g", a.g},         {"elbow", a.elbow},
+        {"scale", a.scale}, {"r_lo", a.r_lo},   {"r_hi", a.r_hi},   {"z_lo", a.z_lo},
+        {"z_hi", a.z_hi},   {"beta", a.beta},   {"dmin", a.dmin},   {"dmax", a.dmax},
+        {"b3", a.b3},       {"m3", a.m3}};
+    for (const auto& [name, v] : numbers) d[name] = v;
+    d["kind"] = static_cast<int>(a.kind);
+    d["prismatic"] = a.prismatic;
+    d["parallel23"] = a.parallel23;
+    d["refine"] = a.refine;
+    return d;
+}
+
 //! The K numbers of h (any sequence) as float64.
 template <int K>
 void read_numbers(nb::handle h, const char* name, double (&out)[K]) {
@@ -93,6 +112,8 @@ void bind_decoupled_testing(nb::module_& m) {
         },
         nb::arg("chain"),
         "The chain's spherical-wrist solver with the twin identity off (the flip solved).");
+    sub.def("arm_point_values", &arm_point_values, nb::arg("arm"),
+            "A built ArmPoint's values (a dict: kind 0 meet, 1 parallel, 2 general).");
     sub.def("srs_values", &srs_values, nb::arg("chain"),
             "The SRS builder's values (a dict), or None where it declines the chain.");
     sub.def("reach_after_joint3", &kd::reach_after_joint3, nb::arg("chain"),

@@ -59,3 +59,25 @@ def test_raw_slots_and_a_copy_at_another_angle(iiwa: km.Robot) -> None:
     far[:3, 3] *= 10.0
     Q, singular, near, gap, free = at.candidates(iiwa.chain.core, far)
     assert np.isnan(Q).all() and gap > 1.0
+
+
+def test_a_target_aimed_at_a_q4_puts_the_wrist_centre_where_that_q4_does(iiwa: km.Robot) -> None:
+    # the iiwa's wrist centre is FLANGE below its flange, its shoulder centre D1 above the base
+    p = closed_form(iiwa.chain, "pose", "arm_angle").params  # type: ignore[union-attr]
+    q = np.array([0.3, 0.7, -0.4, 1.2, 0.5, -0.8, 0.2])
+    T = iiwa.fk(q)
+    S = np.array([0.0, 0.0, D1])
+
+    def wrist(P: np.ndarray) -> np.ndarray:
+        return P[:3, :3] @ np.array([0.0, 0.0, -FLANGE]) + P[:3, 3]
+
+    np.testing.assert_allclose(p.aimed(T, q[3]), T, atol=1e-15)  # its own q4: as it is
+    for q4 in (0.3, -1.9, 2.0):
+        other = q.copy()
+        other[3] = q4
+        want = np.linalg.norm(wrist(iiwa.fk(other)) - S)  # our FK at that q4
+        A = p.aimed(T, q4)
+        assert np.linalg.norm(wrist(A) - S) == pytest.approx(want, rel=1e-12)
+        np.testing.assert_array_equal(A[:3, :3], T[:3, :3])  # moved, not turned
+        along = np.cross(wrist(A) - S, wrist(T) - S)  # along the shoulder-wrist line
+        assert np.linalg.norm(along) <= 1e-12

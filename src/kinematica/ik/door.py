@@ -17,7 +17,7 @@ from typing import Any
 from numpy.typing import ArrayLike
 
 from kinematica.core import Chain
-from kinematica.ik.request import IKRequest
+from kinematica.ik.request import HeldCall, IKRequest
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.solve import REDUNDANT_DOF, answered, solve_ik
 from kinematica.ik.solvers import Plan
@@ -26,7 +26,10 @@ __all__ = ["solve"]
 
 
 def solve(
-    chain: Chain, target: ArrayLike, request: IKRequest, names: tuple[str, ...] | None = None
+    chain: Chain,
+    target: ArrayLike,
+    request: IKRequest | HeldCall,
+    names: tuple[str, ...] | None = None,
 ) -> IKResult | IKBatchResult:
     """``robot.ik``: every inverse-kinematics solution of a target, or an honest status.
 
@@ -35,9 +38,17 @@ def solve(
     Args:
         chain: The arm.
         target: As ``robot.ik`` takes it.
-        request: The call's settings (:meth:`IKRequest.parse`).
+        request: The call's settings (:meth:`IKRequest.parse`); a :class:`HeldCall`: one
+            joint held at a value, tried as one core call first
+            (:func:`kinematica.ik.held_call.held_one`).
         names: The joints' display names (``result.parameter`` names a held joint so).
     """
+    if type(request) is HeldCall:
+        got = (_held_one or _redundancy()[1])(chain, target, request, names)
+        if got is not None:
+            return got
+        request = request.full()
+    assert type(request) is IKRequest
     lean = request.lean  # one pose target as the core reads it: the plan's one call
     if lean is not None:
         plan: Plan | None = chain.memo.get(lean)  # type: ignore[assignment]
@@ -49,17 +60,20 @@ def solve(
                 return answered(chain, plan, request, target, "pose", got, (), None)  # type: ignore[arg-type]
     if not request.holds and (not request.may_hold or chain.dof != REDUNDANT_DOF):
         return solve_ik(chain, target, request)
-    return (_solve_arm or _redundancy())(chain, target, request, names)
+    return (_solve_arm or _redundancy()[0])(chain, target, request, names)
 
 
-#: :func:`kinematica.ik.redundancy.solve_arm`, once loaded (:func:`_redundancy`).
+#: :func:`kinematica.ik.redundancy.solve_arm` and :func:`kinematica.ik.held_call.held_one`,
+#: once loaded (:func:`_redundancy`).
 _solve_arm: Any = None
+_held_one: Any = None
 
 
-def _redundancy() -> Any:
-    """The redundancy layer's door, loaded when a redundant arm is first solved."""
-    global _solve_arm
+def _redundancy() -> tuple[Any, Any]:
+    """The redundancy layer's doors, loaded when a redundant arm is first solved."""
+    global _solve_arm, _held_one
+    from kinematica.ik.held_call import held_one
     from kinematica.ik.redundancy import solve_arm
 
-    _solve_arm = solve_arm
-    return solve_arm
+    _solve_arm, _held_one = solve_arm, held_one
+    return solve_arm, held_one

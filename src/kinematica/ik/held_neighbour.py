@@ -33,7 +33,7 @@ one-dimensional search, so the answer is never marked complete.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
@@ -155,27 +155,6 @@ def _wrap(x: FloatArray | float) -> FloatArray:
     return np.remainder(np.asarray(x) + math.pi, 2.0 * math.pi) - math.pi
 
 
-def _aimed(params: Any, T: FloatArray, value: float) -> FloatArray:
-    """``(4, 4)`` T moved along the neighbour's shoulder-wrist line: its elbow at ``value`` there.
-
-    The neighbour's distance from shoulder to wrist centre depends on q4 alone; the real
-    arm's differs from it by about the offsets, so near the stretched elbow the neighbour
-    may not reach T at all. The target moved by that difference (at most a few offsets)
-    is reached by the neighbour along the whole circle with q4 at the value held, and
-    the repair carries each configuration to the real arm's self-motion at T.
-    """
-    S, se, ew, h4 = (np.asarray(v) for v in (params.s, params.se, params.ew, params.h4))
-    c, s = math.cos(value), math.sin(value)
-    turned = c * ew + s * np.cross(h4, ew) + (1.0 - c) * float(h4 @ ew) * h4
-    want = float(np.linalg.norm(se + turned))
-    W = T[:3, :3] @ np.asarray(params.w_tool) + T[:3, 3]
-    d = float(np.linalg.norm(W - S))
-    out = np.array(T, dtype=float)
-    if d > 0.0:
-        out[:3, 3] += (want - d) * (W - S) / d
-    return out
-
-
 class _Sweep:
     """The neighbour's configurations at arm angles, carried onto the real arm's self-motion."""
 
@@ -193,7 +172,10 @@ class _Sweep:
         self.tol = tol
         self.check = check_options(tol, False, True, POSE_WEIGHTS)
         self.chain = chain
-        self.aim = T if joint != 3 else _aimed(self.params, T, value)
+        # q4 held: T moved along the neighbour's shoulder-wrist line to the distance q4
+        # gives there (the real arm's differs by about the offsets; the repair carries each
+        # configuration to the real arm's self-motion at T)
+        self.aim = T if joint != 3 else self.params.aimed(T, value)
 
     def at(self, psi: FloatArray) -> FloatArray:
         """``(len(psi), slots, 7)`` the real arm's self-motion beside each branch (NaN: none)."""

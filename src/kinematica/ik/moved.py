@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 from collections import OrderedDict
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -23,20 +24,26 @@ from numpy.typing import NDArray
 import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.ik.rank_five import RANK_FIVE_HELD, held_rank_five
+from kinematica.ik.result import IKResult
+from kinematica.ik.solve import answered
+from kinematica.ik.solvers import plan_of
+from kinematica.ik.stack import widen_result
 from kinematica.ik.tolerance import parse_tolerance
-from kinematica.spatial import ROUNDOFF_TOL
+
+if TYPE_CHECKING:
+    from kinematica.ik.request import IKRequest
 
 __all__ = [
     "LOCKED_CACHE",
     "NARROWEST",
     "ON_AXIS_TOL",
     "end_arm",
+    "held_at",
+    "held_prepared",
     "locked_chain",
-    "moved_pose",
     "moved_targets",
     "narrowed_tolerance",
     "on_axis",
-    "rigid",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -133,35 +140,57 @@ def on_axis(chain: Chain) -> bool:
     return bool(found)
 
 
-def moved_pose(chain: Chain, k: int, T: FloatArray, value: float) -> FloatArray:
-    """``(4, 4)`` the target of the arm locked at 0 that is ``T`` with joint k at ``value``."""
-    A = _end(chain, k)[3]
-    f1, f2 = (-value, 0.0) if chain.prismatic[k] else (math.cos(value), math.sin(value))
-    move = A[0] + f1 * A[1] + f2 * A[2]
-    return np.dot(move, T) if k == 0 else np.dot(T, move)
-
-
-def rigid(T: FloatArray) -> bool:
-    """Whether ``T`` is one pose the core reads as it is, rigid to round-off.
-
-    ``(4, 4)`` C-contiguous floats passing the check of ``robot.ik``'s one-pose path
-    (``ROUNDOFF_TOL``). Such a pose moved by a rigid transform is one too: it is solved
-    as one pose.
-    """
-    if not (T.shape == (4, 4) and T.dtype == np.float64 and T.flags.c_contiguous):
-        return False
-    finite, last_row, ortho, det = _core.pose_defects(T)
-    return bool(finite and last_row == 0.0 and ortho <= ROUNDOFF_TOL and det > 0.0)
-
-
 def moved_targets(chain: Chain, k: int, poses: FloatArray, v: FloatArray) -> FloatArray:
     """``(N, 4, 4)`` targets of the arm locked at 0 that are ``poses`` with joint k at ``v``."""
-    if v.size == 1:  # one target: 4x4 products
-        return moved_pose(chain, k, poses[0], float(v[0]))[None]
     A = _end(chain, k)[3]
-    f1, f2 = (-v, np.zeros_like(v)) if chain.prismatic[k] else (np.cos(v), np.sin(v))
-    move = A[0] + f1[:, None, None] * A[1] + f2[:, None, None] * A[2]
-    return np.ascontiguousarray(move @ poses if k == 0 else poses @ move)
+    v = np.asarray(v, dtype=float)
+    return _core.moved_poses(A, poses, v, k != 0, bool(chain.prismatic[k]))
+
+
+def held_prepared(chain: Chain, k: int, request: IKRequest, name: str) -> Any:
+    """The arm locked at 0 at end joint k made ready for one pose at any value, or None.
+
+    The plan's prepared call of that arm (:attr:`~kinematica.ik.solvers.Plan.prepared`,
+    for ``request``'s settings) held at joint k (``Prepared.held``): called as
+    ``at(T, value)``, the core moves the pose by the value, solves and checks it, and
+    gives the whole arm's result (the joint's column put back, ``parameter`` ``(name,
+    value)``), else the locked arm's answer to complete (:func:`held_at`); None for a pose
+    to read otherwise. None where the plan has no core's prepared call (a coaxial pair,
+    rank 5, the numeric search).
+    Made once per chain, settings, joint and name.
+    """
+    per: dict[tuple[int | None, int, str], Any]
+    per = chain.memo.setdefault("held prepared", {})  # type: ignore[assignment]
+    key = (request.key, k, name)
+    found = per.get(key, per)
+    if found is per:
+        if len(per) >= LOCKED_CACHE:
+            per.clear()
+        arm, _, _, A = _end(chain, k)
+        ready = plan_of(arm, "pose", request).prepared  # the search's is Python's: not held
+        slides = bool(chain.prismatic[k])
+        held = type(ready) is _core.Prepared
+        found = per[key] = ready.held(k, A, k != 0, slides, name) if held else None
+    return found
+
+
+def held_at(
+    chain: Chain, k: int, name: str, request: IKRequest, ready: Any, T: object, value: float
+) -> IKResult | None:
+    """One pose ``T`` with end joint k at ``value``: ``ready``'s (:func:`held_prepared`) call.
+
+    The core's final answer is the result; any other is completed as the arm locked at 0
+    completes its answers (:func:`~kinematica.ik.solve.answered`: the search where its
+    closed form found nothing, the limited reach), then widened. None where ``ready`` is
+    None or the core does not read ``T`` as one rigid pose.
+    """
+    got = None if ready is None else ready.at(T, value)
+    if got is None or got.__class__ is IKResult:
+        return got
+    arm = _end(chain, k)[0]
+    pose = moved_targets(chain, k, np.asarray(T)[None], np.array([value]))[0]
+    res = answered(arm, plan_of(arm, "pose", request), request, pose, "pose", got, (), None)
+    return widen_result(res, k, value, (name, value))
 
 
 def narrowed_tolerance(

@@ -19,7 +19,7 @@ import dataclasses
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -31,12 +31,12 @@ from kinematica.ik.held_near import near_continuum_answer
 from kinematica.ik.moved import (
     LOCKED_CACHE,
     end_arm,
+    held_at,
+    held_prepared,
     locked_chain,
-    moved_pose,
     moved_targets,
     narrowed_tolerance,
     on_axis,
-    rigid,
 )
 from kinematica.ik.request import IKRequest
 from kinematica.ik.result import IKBatchResult, IKResult
@@ -202,10 +202,8 @@ class JointParameter:
             targets, parsed = parse_targets(target), True
         N = targets.poses.shape[0]
         scalar = isinstance(values, float | int)
-        if isinstance(values, float | int):
-            v = np.full(N, float(values))
-        else:
-            v = np.broadcast_to(np.asarray(values, dtype=float), (N,)).copy()
+        v = np.full(N, float(values)) if isinstance(values, float | int) else None
+        v = np.broadcast_to(np.asarray(values, dtype=float), (N,)).copy() if v is None else v
         q0 = options.q0
         if q0 is not None:
             q0 = np.asarray(q0, dtype=float)
@@ -218,13 +216,10 @@ class JointParameter:
         # no target (an empty batch): the arm locked at the default value answers, empty
         first = float(v[0]) if N else self.default(chain)
         same = scalar or bool(np.all(v == first))
-        # The first joint's value turns the base frame about its axis: the moved target
-        # is the same problem, distances and angles kept. So is the last joint's where the
-        # tool point is on its axis (on_axis): one locked arm serves every value. Else the
-        # last joint's moves the tool point: worth it only for values that differ per
-        # target (one locked arm for a sweep), checked against a narrower tolerance (see
-        # narrowed_tolerance). A mask's components and an over-determined target's printed
-        # digits would not be the ones given: those targets are solved as they are.
+        # The first joint's value, and the last's with the tool point on its axis, move the
+        # target to the same problem (one locked arm for every value); the last's otherwise
+        # only for values that differ per target, against a narrower tolerance (narrowed_
+        # tolerance). A mask's components, an over-determined target's digits: solved as given.
         moved = not targets.position and options.mask is None and n - 1 >= 6
         exact = moved and (k == 0 or (k == n - 1 and on_axis(chain)))
         if exact and k and same:  # the held arm without a closed form: its neighbours'
@@ -237,12 +232,11 @@ class JointParameter:
                 moved = narrow is not None
                 if narrow is not None:
                     opts = opts.but(tol=narrow)
+        ready = None if parsed else self.lean(chain, opts)  # one pose: the core's one call
+        if (got := held_at(chain, k, self.name, opts, ready, target, first)) is not None:
+            return got
         try:
-            one = moved and not parsed and isinstance(target, np.ndarray) and rigid(target)
-            if one:  # one pose as the core reads it, moved as one
-                assert isinstance(target, np.ndarray)
-                out = solve_ik(arm, moved_pose(chain, k, target, first), opts)
-            elif moved:  # one locked arm, moved targets
+            if moved:  # one locked arm, moved targets
                 targets = targets if parsed else parse_targets(target)
                 poses = moved_targets(chain, k, targets.poses, v)
                 out = solve_ik(arm, targets.replace(poses=poses), opts)
@@ -279,6 +273,22 @@ class JointParameter:
         if isinstance(out, IKResult):
             return widen_result(out, k, float(v[0]), (self.name, float(v[0])))
         return widen_batch(out, k, v, self.name)
+
+    def lean(self, chain: Chain, request: IKRequest) -> Any:
+        """One pose at any value in one core call (:func:`~kinematica.ik.moved.held_prepared`).
+
+        The first joint, or the last with the tool point on its axis, of an arm of 7
+        joints or more, without ``q0``, a mask or a continuum (:meth:`_continua`); else None.
+        """
+        k, n, one = self.index, chain.dof, _ONE_POSE
+        if not (request.bare and request.key is not None and request.mask is None and n > 6):
+            return None
+        if k and (k != n - 1 or not on_axis(chain) or self._continua(chain, 0, request, one)):
+            return None
+        try:
+            return held_prepared(chain, k, request, self.name)
+        except KinematicaError:  # no closed form: the general path says so
+            return None
 
     def _continua(self, chain: Chain, value: float, opts: IKOptions, targets: Targets) -> bool:
         """True when ``auto``'s pose answers on the arm locked at ``value`` may be continua.
@@ -469,22 +479,6 @@ def solve_fixed(
             "fixed: an arm of one joint has no joint left to solve once it is locked", arg="fixed"
         )
     ((key, value),) = fixed.items()
-    respect = bool(options.respect_limits)
-    # the joint and its value, read once per (key, value): one pose at a time, often the same
-    memo: dict[tuple[object, ...], tuple[JointParameter, float]]
-    memo = chain.memo.setdefault("held values", {})  # type: ignore[assignment]
-    seen: tuple[object, ...] | None
-    seen = (type(key), key, type(value), value, respect, None if names is None else tuple(names))
-    try:
-        found = memo.get(seen)
-    except TypeError:  # unhashable: read (and refused) below
-        found, seen = None, None
-    if found is None:
-        joint = joint_parameter(chain, key, names)
-        found = (joint, joint.check(chain, value, respect))
-        if seen is not None:
-            if len(memo) >= LOCKED_CACHE:
-                memo.clear()
-            memo[seen] = found
-    joint, v = found
+    joint = joint_parameter(chain, key, names)
+    v = joint.check(chain, value, bool(options.respect_limits))
     return joint.solve(chain, target, v, options)

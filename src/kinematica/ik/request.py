@@ -30,7 +30,7 @@ from kinematica.ik.options import IKOptions
 from kinematica.ik.targets import parse_mask
 from kinematica.ik.tolerance import Tolerance, parse_tolerance
 
-__all__ = ["KEYS", "MEMO", "IKRequest", "settings_key"]
+__all__ = ["KEYS", "MEMO", "HeldCall", "IKRequest", "settings_key"]
 
 #: Requests kept by their settings (past it the table is emptied and filled again).
 MEMO = 64
@@ -160,8 +160,11 @@ class IKRequest(IKOptions):
         fixed: Any = None,
         arm_angle: Any = None,
         options: object = None,
-    ) -> IKRequest:
+    ) -> IKRequest | HeldCall:
         """The request of ``robot.ik``'s keywords, or of its ``options=`` (not both).
+
+        A call that holds one joint (``fixed`` a dict of one entry) and gives no other
+        setting but ``method``, ``tol`` and ``respect_limits`` is a :class:`HeldCall`.
 
         Raises:
             KinematicaError: A setting that is not valid (its ``arg`` names it), or
@@ -174,7 +177,6 @@ class IKRequest(IKOptions):
                 and seed is None
                 and workers is None
                 and precision is None
-                and fixed is None
                 and arm_angle is None
             ):  # the common call: found by the three settings it gives (types too: True == 1)
                 try:
@@ -190,7 +192,11 @@ class IKRequest(IKOptions):
                         if len(_plain) >= MEMO:
                             _plain.clear()
                         _plain[plain] = found
-                return found
+                if fixed is None:
+                    return found
+                if fixed.__class__ is dict and len(fixed) == 1:  # one joint held: its value apart
+                    ((joint, value),) = fixed.items()
+                    return HeldCall(found, joint, value, fixed)
             return _made(method, tol, respect_limits, q0, mask, seed, workers, precision,
                          fixed, arm_angle)  # fmt: skip
         if not isinstance(options, IKOptions):
@@ -215,6 +221,35 @@ class IKRequest(IKOptions):
                 arg="options",
             )
         return cls.of(options)
+
+
+class HeldCall:
+    """One call holding one joint at a value, and nothing else but method, tol, respect_limits.
+
+    The request of those settings is kept and found by them (:meth:`IKRequest.parse`); the
+    joint and its value, a new one on every call, travel beside it as given and are checked
+    where they are solved (:func:`kinematica.ik.door.solve`), so that a new value makes no
+    new request. Read by ``robot.ik``'s check of units as a request is (``q0``, ``fixed``,
+    ``arm_angle``).
+
+    Attributes:
+        request: The request of the call's other settings (``fixed`` None).
+        joint: The joint as ``fixed`` names it (0-based index, name or ``"qN"``).
+        value: Its value as given (rad or m).
+        fixed: The ``fixed`` dict as given.
+    """
+
+    __slots__ = ("fixed", "joint", "request", "value")
+    given = True
+    q0 = None
+    arm_angle = None
+
+    def __init__(self, request: IKRequest, joint: object, value: object, fixed: dict[Any, Any]):
+        self.request, self.joint, self.value, self.fixed = request, joint, value, fixed
+
+    def full(self) -> IKRequest:
+        """The call's request, ``fixed`` in it (checked as every request is)."""
+        return self.request.but(fixed={self.joint: self.value})
 
 
 def settings_key(settings: tuple[object, ...]) -> int:

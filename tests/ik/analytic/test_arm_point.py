@@ -181,10 +181,13 @@ def test_the_twin_flip_is_the_solved_flip() -> None:
 
 # ------------------------------------------------------------- the binding
 def test_the_built_arm_is_read_only() -> None:
-    """The core's builder alone fills an ArmPoint: Python reads what it names, writes nothing."""
+    """The core's builder alone fills an ArmPoint: the product reads its shape (arm_shape),
+    the tests its values (the test extension), and nothing writes it."""
     arm = D.build_spherical_wrist(load("puma560").chain.core).arm
-    assert (arm.kind, arm.prismatic, arm.parallel23) == (D.Shoulder.meet, False, True)
-    assert arm.scale > 0.0
+    assert D.arm_shape(arm) == ("meet", False, True)
+    values = _core_testing.decoupled.arm_point_values(arm)
+    assert (values["kind"], values["prismatic"], values["parallel23"]) == (0, False, True)
+    assert values["scale"] > 0.0 and values["r_lo"] <= values["r_hi"]
     with pytest.raises(AttributeError):
         arm.scale = 1.0
     with pytest.raises(TypeError):

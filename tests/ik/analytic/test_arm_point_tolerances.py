@@ -122,7 +122,8 @@ def test_arm_singular_tol_frees_q1_on_axis_1(factor: float, inside: bool) -> Non
     """
     arm6 = km.load("arm6-dh")
     T = arm6.fk(ARM6_SINGULAR_Q)
-    scale = wrist_edges.solver(arm6).params.arm.scale
+    arm = wrist_edges.solver(arm6).params.arm
+    scale = _core_testing.decoupled.arm_point_values(arm)["scale"]
     res = arm6.ik(wrist_edges.moved_target(T, np.array([factor * ARM_SINGULAR_TOL * scale, 0, 0])))
     assert (res.status == "singular") == inside
     assert (0 in res.free_joints) == inside
@@ -135,7 +136,8 @@ def test_near_set_tol_flags_a_wrist_centre_near_axis_1(factor: float, inside: bo
     """
     arm6 = km.load("arm6-dh")
     T = arm6.fk(ARM6_SINGULAR_Q)
-    scale = wrist_edges.solver(arm6).params.arm.scale
+    arm = wrist_edges.solver(arm6).params.arm
+    scale = _core_testing.decoupled.arm_point_values(arm)["scale"]
     shifted = wrist_edges.moved_target(T, np.array([factor * NEAR_SET_TOL * scale, 0.0, 0.0]))
     assert wrist_edges.near_flags(arm6, shifted[None])[0] == inside
     assert arm6.ik(shifted).status == "ok"

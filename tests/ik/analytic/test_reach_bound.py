@@ -12,6 +12,7 @@ on five arms and hundreds of targets: never above it, never below the old bound.
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -61,7 +62,7 @@ def _old_gap(robot: km.Robot, target: np.ndarray) -> float:
     form = arm_position.build(chain, features(chain), "position")
     assert form is not None
     params = form.params
-    arm = params.arm
+    arm = SimpleNamespace(**_core_testing.decoupled.arm_point_values(params.arm))
     d = target - np.asarray(arm.p1)
     r, zeta = float(np.linalg.norm(d)), float(d @ np.asarray(arm.h1))
     shell = max(0.0, r - arm.r_hi, arm.r_lo - r, zeta - arm.z_hi, arm.z_lo - zeta)

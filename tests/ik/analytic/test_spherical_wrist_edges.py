@@ -400,7 +400,7 @@ def test_batch_equals_single_solution_by_solution_and_message_by_message() -> No
 def test_singular_tol_decides_when_q1_is_free(factor: float, free: bool) -> None:
     """A target translated off the README's singular pose by ``factor`` · SINGULAR_TOL · size."""
     T = ARM6.fk(np.radians([30, 20, -40, 10, 60, -20]))
-    scale = solver(ARM6).params.arm.scale
+    scale = _core_testing.decoupled.arm_point_values(solver(ARM6).params.arm)["scale"]
     res = ARM6.ik(moved_target(T, np.array([factor * SINGULAR_TOL * scale, 0.0, 0.0])))
     assert (res.status == "singular") == free and (0 in res.free_joints) == free
 
@@ -409,7 +409,7 @@ def test_singular_tol_decides_when_q1_is_free(factor: float, free: bool) -> None
 def test_near_set_tol_flags_targets_near_axis_1(factor: float, near: bool) -> None:
     """A target ``factor`` · NEAR_SET_TOL · size off axis 1 is flagged near it, or not."""
     T = ARM6.fk(np.radians([30, 20, -40, 10, 60, -20]))
-    scale = solver(ARM6).params.arm.scale
+    scale = _core_testing.decoupled.arm_point_values(solver(ARM6).params.arm)["scale"]
     shifted = moved_target(T, np.array([factor * NEAR_SET_TOL * scale, 0.0, 0.0]))
     assert near_flags(ARM6, shifted[None])[0] == near
     assert ARM6.ik(shifted).status == "ok"
@@ -420,9 +420,9 @@ def test_near_tol_keeps_a_double_root_just_past_the_stretched_arm(
     factor: float, candidate: bool
 ) -> None:
     """A radicand just below 0 (by NEAR_TOL at most) is a double root for the check to judge."""
-    arm = solver(PUMA).params.arm
-    beta, dmax = arm.beta, arm.dmax
-    p1 = arm.p1  # where axes 1 and 2 meet
+    arm = _core_testing.decoupled.arm_point_values(solver(PUMA).params.arm)
+    beta, dmax = arm["beta"], arm["dmax"]
+    p1 = arm["p1"]  # where axes 1 and 2 meet
     q = np.array([0.3, -0.6, beta, 0.5, 0.9, -0.4])  # stretched: |wrist centre - p1| = Dmax
     T = PUMA.fk(q)  # the PUMA's wrist centre is its flange origin
     assert np.linalg.norm(T[:3, 3] - p1) == pytest.approx(dmax, rel=1e-12)

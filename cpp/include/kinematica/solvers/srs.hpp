@@ -100,6 +100,21 @@ struct SRSParams {
         return r > tiny ? (1.0 / r) * v : fallback;
     }
 
+    //! T moved along the line from the shoulder centre S to its wrist centre W until |W - S|
+    //! is the elbow's at q4 = `q4`: a target this arm reaches with q4 there all along its
+    //! self-motion. kinematica.ik.held_neighbour aims a nearby arm's targets so (its
+    //! shoulder-wrist distance differs from this arm's by about its offsets).
+    Pose aimed(const Pose& T, double q4) const {
+        const double c = std::cos(q4), sn = std::sin(q4);
+        const Vec3 turned = c * ew + sn * cross(h4, ew) + ((1.0 - c) * dot(h4, ew)) * h4;
+        const double want = norm(se + turned);
+        const Vec3 sw = T.apply(w_tool) - s;
+        const double d = norm(sw);
+        Pose out = T;
+        if (d > 0.0) out.p = out.p + ((want - d) / d) * sw;
+        return out;
+    }
+
     //! (q4 of the elbow bent positive, of the elbow bent negative) for |W - S| = D; false
     //! beyond [d_min, d_max] (gap > 0 then). A fold (β = 0 or π) within round-off is a
     //! double root and raises `near`.

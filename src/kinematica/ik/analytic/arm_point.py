@@ -25,7 +25,6 @@ import kinematica._core as _core
 __all__ = ["ELBOW_BENDS", "PROBES", "RANK_TOL", "ArmGeometry", "geometry_of"]
 
 FloatArray = NDArray[np.float64]
-_Shoulder = _core.decoupled.Shoulder
 
 #: Joints 1-3 place the point when, at one of :data:`PROBES`, the smallest
 #: singular value of the point's 3 x 3 Jacobian exceeds this times the largest
@@ -45,19 +44,20 @@ class ArmGeometry:
         labels: ``(4,)`` names of the position branches (slots).
         kind: ``"meet"``, ``"parallel"`` or ``"general"`` (axes 1 and 2).
         parallel23: True when axes 2 and 3 are parallel (revolute joint 3).
+        prismatic: True when joint 3 slides.
     """
 
     arm: Any
     labels: tuple[str, ...]
     kind: str
     parallel23: bool
+    prismatic: bool
 
 
 def geometry_of(arm: Any) -> ArmGeometry:
-    """The :class:`ArmGeometry` of a built ``ArmPoint``: its labels and kind."""
-    kind, parallel23 = arm.kind, bool(arm.parallel23)
-    names = {_Shoulder.meet: "meet", _Shoulder.parallel: "parallel", _Shoulder.general: "general"}
-    return ArmGeometry(arm, _labels(kind, bool(arm.prismatic), parallel23), names[kind], parallel23)
+    """The :class:`ArmGeometry` of a built ``ArmPoint`` (the core's ``arm_shape``)."""
+    kind, prismatic, parallel23 = _core.decoupled.arm_shape(arm)
+    return ArmGeometry(arm, _labels(kind, prismatic, parallel23), kind, parallel23, prismatic)
 
 
 #: The two elbows of a meeting shoulder whose axes 2 and 3 are not parallel (the arm
@@ -68,22 +68,22 @@ def geometry_of(arm: Any) -> ArmGeometry:
 ELBOW_BENDS = ("elbow bent positive", "elbow bent negative")
 
 
-def _labels(kind: _core.decoupled.Shoulder, prismatic: bool, parallel23: bool) -> tuple[str, ...]:
-    if kind == _Shoulder.meet and parallel23:
+def _labels(kind: str, prismatic: bool, parallel23: bool) -> tuple[str, ...]:
+    if kind == "meet" and parallel23:
         return (
             "shoulder right, elbow up",
             "shoulder right, elbow down",
             "shoulder left, elbow up",
             "shoulder left, elbow down",
         )
-    if kind == _Shoulder.general and parallel23:
+    if kind == "general" and parallel23:
         return (
             "shoulder front, elbow up",
             "shoulder front, elbow down",
             "shoulder back, elbow up",
             "shoulder back, elbow down",
         )
-    if kind == _Shoulder.meet:
+    if kind == "meet":
         second = ("slide out", "slide in") if prismatic else ELBOW_BENDS
         return tuple(f"shoulder {s}, {e}" for s in ("right", "left") for e in second)
     return tuple(f"position {k}" for k in range(1, 5))

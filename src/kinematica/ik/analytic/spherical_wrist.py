@@ -49,10 +49,10 @@ def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
     params = _core.decoupled.build_spherical_wrist(chain.core)
     if params is None:
         return None
-    positions = geometry_of(params.arm).labels
-    labels = tuple(f"{pos}, wrist {w}" for pos in positions for w in ("no-flip", "flip"))
+    arm = geometry_of(params.arm)
+    labels = tuple(f"{pos}, wrist {w}" for pos in arm.labels for w in ("no-flip", "flip"))
     return ClosedForm(
-        name="rrp-spherical-wrist" if params.arm.prismatic else "spherical-wrist",
+        name="rrp-spherical-wrist" if arm.prismatic else "spherical-wrist",
         labels=labels,
         params=params,
     )
