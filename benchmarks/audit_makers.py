@@ -224,7 +224,6 @@ def exact_arm(
 
 def perturb(robot: km.Robot, rng: np.random.Generator) -> tuple[km.Robot, float]:
     """The robot's DH table with every d, a, α moved by ±ε, log10 ε in :data:`EPS_RANGE`."""
-    table = robot.to_dh().robot
     eps = float(10.0 ** rng.uniform(*EPS_RANGE))
 
     def moved(x: float) -> float:
@@ -232,6 +231,7 @@ def perturb(robot: km.Robot, rng: np.random.Generator) -> tuple[km.Robot, float]
 
     with warnings.catch_warnings():  # a near-parallel pair's common normal may be km away
         warnings.simplefilter("ignore", km.KinematicaWarning)
+        table = robot.to_dh().robot
         rows = [
             dataclasses.replace(j, d=moved(j.d), a=moved(j.a), alpha=moved(j.alpha))
             for j in table.links
@@ -286,9 +286,7 @@ def perturbed_arms(
     base = km.load(MAKERS / arm["urdf"])
     out: dict[str, collections.Counter[str]] = collections.defaultdict(collections.Counter)
     for k in range(m):
-        rng = np.random.default_rng(
-            [seed, 1 + k, int.from_bytes(arm["arm"].encode()[:6], "little")]
-        )
+        rng = np.random.default_rng([seed, 1 + k, _tag(arm)])
         robot, eps = perturb(base, rng)
         key = "ε<1e-9" if eps < EPS_SPLIT else "ε≥1e-9"
         c = out[key]
