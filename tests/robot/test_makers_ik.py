@@ -228,3 +228,27 @@ def test_loop_size_is_measured_along_the_axes_where_the_frames_wander():
         assert rank_size(robot.chain) == general6r.loop_size(robot.chain.core)
         assert rank_five(robot.chain) is None
     assert general6r.loop_size(load(SIX_R[0]).chain.core) == features(load(SIX_R[0]).chain).size
+
+
+def test_puma_560_moved_within_the_line_tolerance_is_solved_by_the_general_6r():
+    # The PUMA 560's DH table with every d, a, α moved by ±2.7e-9 (audit_makers.py,
+    # perturbed #7, seed 1): its wrist axes meet within the line geometry's tolerance
+    # (slack 5e-9), so the spherical wrist's family took it, but its candidates reached
+    # none of the poses and each was answered by the numeric search (one solution, the
+    # generating configuration missed on 18 of 20). The family's probes fail there: the
+    # general 6R answers, every solution.
+    e = 2.6997917502605395e-09
+    h = math.pi / 2
+    rows = [(-e, e, h + e), (-e, 0.4318 - e, e), (0.15005 + e, 0.0203 - e, -h - e),
+            (0.4318 - e, e, h + e), (e, -e, -h - e), (e, -e, -e)]  # fmt: skip
+    robot = km.Robot.from_dh([km.Revolute(d=d, a=a, alpha=al) for d, a, al in rows],
+                             convention="standard")  # fmt: skip
+    q = np.random.default_rng(7).uniform(-3.0, 3.0, (30, 6))
+    targets = robot.fk(q)
+    res = robot.ik(targets, respect_limits=False)
+    assert res.method == "analytic:general-6R" and not res.methods
+    sv = np.linalg.svd(robot.jacobian(q), compute_uv=False)
+    for i, T in enumerate(targets):
+        assert misses(robot, res[i].solutions, T).max() <= TOL
+        if sv[i, -1] >= SINGULAR_REL * sv[i, 0]:
+            assert among(q[i], res[i].solutions), i
