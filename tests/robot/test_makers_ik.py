@@ -12,7 +12,12 @@ reproduce T with every solution to 1e-10 m and rad; (c) hold every ssik solution
 that reaches T to 1e-9 by our FK, modulo 2 pi to 1e-6 rad; (d) hold ``q_gen``
 modulo 2 pi to 1e-6 rad unless the arm is singular there (σmin/σmax of our
 Jacobian below 1e-6). Every arm's URDF loads and its FK equals ssik's (``T_HOME``
-at q = 0; the stored T at q_gen).
+at q = 0; the stored T at q_gen). The DH tables of the two arms whose nearly parallel
+axes put their frames km away (``robot.to_dh()``) are solved as their URDFs, and the
+size the general 6R's loop is built in is measured along the axes there.
+
+The full audit (1,000 poses per arm, perturbed arms, ssik live) is
+``benchmarks/audit_makers.py``.
 """
 
 from __future__ import annotations
@@ -27,9 +32,12 @@ from typing import Any
 
 import numpy as np
 import pytest
+from kinematica._core import general6r
 
 import kinematica as km
 from kinematica.ik import IKResult
+from kinematica.ik.rank_five import rank_five, rank_size
+from kinematica.ik.structure import features
 
 MAKERS = Path(__file__).resolve().parents[1] / "data" / "makers"
 ARMS: list[dict[str, Any]] = json.loads((MAKERS / "ssik_reference.json").read_text())["arms"]
@@ -145,3 +153,102 @@ def test_generating_configuration_is_ours(arm):
         if regular[i] and not among(q, res.solutions)
     ]
     assert not lost, f"poses whose q_gen is not among our solutions: {lost} of {int(regular.sum())}"
+
+
+#: The arms whose URDF axes 2 and 3 are parallel but for a rounded rpy (Kinova Gen3 Lite:
+#: 7.3e-6 rad), so that their DH table (``robot.to_dh()``) puts frames at the foot of the
+#: common normal tens of km away (d2, d3 = -38 km; i2rt Big YAM: -26 km).
+FAR_FEET = ("kinova_gen3_lite", "i2rt_big_yam")
+#: A reference solution of a table whose FK is the file's to ``fk_error`` may lie this many
+#: times its miss over σmin of our Jacobian from ours (rad).
+DETERMINED = 10.0
+
+
+#: The km-long DH offsets are meant.
+FAR = pytest.mark.filterwarnings("ignore:.* is longer than 20 m")
+
+
+@FAR
+@pytest.mark.parametrize("name", FAR_FEET)
+def test_dh_table_with_far_feet_is_solved_as_its_urdf(name):
+    # The table's frames 38 km out and back made the arm's size 76 km: the rank test saw a
+    # Jacobian of rank 3 (near-rank-5 path: Newton from 64 guesses, 2 and 1 of ssik's
+    # solutions lost on these poses) and the general 6R's loop lost its lengths to
+    # round-off. Measured along the axes (loop_size), it is the general 6R's arm.
+    arm = next(a for a in SIX_R if a["arm"] == name)
+    table = load(arm).to_dh()
+    robot = table.robot
+    q_gen = np.array(arm["q_gen"])
+    targets = robot.fk(q_gen)
+    sv = np.linalg.svd(robot.jacobian(q_gen), compute_uv=False)
+    lost, missed = [], []
+    for i, T in enumerate(targets):
+        res = robot.ik(T, respect_limits=False)
+        assert res.method == "analytic:general-6R", (i, res.method)
+        assert misses(robot, res.solutions, T).max() <= TOL, i
+        if sv[i, -1] >= SINGULAR_REL * sv[i, 0] and not among(q_gen[i], res.solutions):
+            missed.append(i)
+        theirs = np.array(arm["ssik"][i] + arm["ssik_beyond_limits"][i]).reshape(-1, 6)
+        miss = misses(robot, theirs, T)
+        sigma = np.linalg.svd(robot.jacobian(theirs), compute_uv=False)[:, -1]
+        for q, e in zip(theirs[miss < SSIK_TOL], (DETERMINED * miss / sigma)[miss < SSIK_TOL],
+                        strict=True):  # fmt: skip
+            d = (res.solutions - q + math.pi) % (2.0 * math.pi) - math.pi
+            if np.abs(d).max(axis=1).min() > SAME + e:
+                lost.append((i, np.round(q, 6).tolist()))
+    assert not missed, f"q_gen not among ours at poses {missed}"
+    assert not lost, f"ssik solutions not among ours: {lost}"
+
+
+@FAR
+def test_loop_size_is_measured_along_the_axes_where_the_frames_wander():
+    # Axes 2 and 3 parallel (α2 = 0): d2 = +L, d3 = -L moves frame 2 along them, the same
+    # arm for every L. Its size along the axes is the loop's once arm_size (|d2| + |d3|
+    # counted) exceeds it 1 / WALK_SIZE_RATIO times, not before.
+    def arm(L: float) -> km.Robot:
+        rows = [km.Revolute(d=0.3, a=0.05, alpha=math.pi / 2),
+                km.Revolute(d=L, a=0.4, alpha=0.0),
+                km.Revolute(d=-L, a=0.05, alpha=math.pi / 2),
+                km.Revolute(d=0.35, a=0.0, alpha=-1.2),
+                km.Revolute(d=0.1, a=0.02, alpha=0.9),
+                km.Revolute(d=0.08, a=0.0, alpha=0.0)]  # fmt: skip
+        return km.Robot.from_dh(rows, convention="standard")
+
+    walked = general6r.loop_size(arm(1e4).chain.core)
+    assert walked < 2.0  # the geometry's, not the 20 km of frames
+    own = features(arm(0.0).chain).size  # arm_size without the excursion
+    ratio = general6r.WALK_SIZE_RATIO
+    for r, along in ((0.3 * ratio, True), (3.0 * ratio, False)):
+        L = (walked / r - own) / 2.0
+        assert L > 0.0
+        robot = arm(L)
+        size = features(robot.chain).size
+        assert size == pytest.approx(own + 2.0 * L)
+        assert general6r.loop_size(robot.chain.core) == pytest.approx(walked if along else size)
+        assert rank_size(robot.chain) == general6r.loop_size(robot.chain.core)
+        assert rank_five(robot.chain) is None
+    assert general6r.loop_size(load(SIX_R[0]).chain.core) == features(load(SIX_R[0]).chain).size
+
+
+def test_puma_560_moved_within_the_line_tolerance_is_solved_by_the_general_6r():
+    # The PUMA 560's DH table with every d, a, α moved by ±2.7e-9 (audit_makers.py,
+    # perturbed #7, seed 1): its wrist axes meet within the line geometry's tolerance
+    # (slack 5e-9), so the spherical wrist's family took it, but its candidates reached
+    # none of the poses and each was answered by the numeric search (one solution, the
+    # generating configuration missed on 18 of 20). The family's probes fail there: the
+    # general 6R answers, every solution.
+    e = 2.6997917502605395e-09
+    h = math.pi / 2
+    rows = [(-e, e, h + e), (-e, 0.4318 - e, e), (0.15005 + e, 0.0203 - e, -h - e),
+            (0.4318 - e, e, h + e), (e, -e, -h - e), (e, -e, -e)]  # fmt: skip
+    robot = km.Robot.from_dh([km.Revolute(d=d, a=a, alpha=al) for d, a, al in rows],
+                             convention="standard")  # fmt: skip
+    q = np.random.default_rng(7).uniform(-3.0, 3.0, (30, 6))
+    targets = robot.fk(q)
+    res = robot.ik(targets, respect_limits=False)
+    assert res.method == "analytic:general-6R" and not res.methods
+    sv = np.linalg.svd(robot.jacobian(q), compute_uv=False)
+    for i, T in enumerate(targets):
+        assert misses(robot, res[i].solutions, T).max() <= TOL
+        if sv[i, -1] >= SINGULAR_REL * sv[i, 0]:
+            assert among(q[i], res[i].solutions), i

@@ -81,13 +81,13 @@ from kinematica.ik.rank_five import (
     FREE_TOL,
     RankFive,
     free_motion,
+    rank_size,
     relative_sigma,
     scaled_jacobian,
 )
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.stack import pose_residuals, solve_each
 from kinematica.ik.status import IKStatus
-from kinematica.ik.structure import features
 
 if TYPE_CHECKING:
     from kinematica.ik.options import IKOptions
@@ -133,7 +133,7 @@ def _distinct(chain: Chain, Q: FloatArray, tol: float) -> FloatArray:
     """
     if not len(Q):
         return Q
-    size = max(features(chain).size, 1e-300)
+    size = max(rank_size(chain), 1e-300)
     sigma = np.linalg.svd(scaled_jacobian(chain, Q), compute_uv=False)[:, -1] * size
     spread = np.maximum(SAME_TOL, tol / np.maximum(sigma, 1e-300))
     kept: list[int] = []

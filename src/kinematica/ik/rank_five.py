@@ -18,7 +18,7 @@ the axes that make one:
   freedom), the wrist turns the tool about it (three).
 
 The test that decides is the Jacobian's rank at :data:`RANK_SAMPLES` random
-configurations (lengths in units of the arm's size): σ6 / σ1 at most
+configurations (lengths in units of the arm's size, :func:`rank_size`): σ6 / σ1 at most
 :data:`RANK_EXACT_TOL` at every one of them. The structure read from the axes only
 names the free motion for the answer's note; an arm of rank 5 whose axes match none of
 the above is still answered (its structure unnamed), and so is one of rank 4 or less
@@ -40,6 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.dh.lines import common_point
 from kinematica.ik.coaxial_pair import coaxial_pair
@@ -57,6 +58,7 @@ __all__ = [
     "free_motion",
     "held_rank_five",
     "rank_five",
+    "rank_size",
     "relative_sigma",
     "scaled_jacobian",
 ]
@@ -117,9 +119,29 @@ class RankFive:
     groups: tuple[tuple[int, int], ...] = ()
 
 
+def rank_size(chain: Chain) -> float:
+    """The arm's size (m) the rank is measured in: the general 6R loop's.
+
+    The core's (``general_6r_build.hpp``, ``loop_size``):
+    :func:`~kinematica.ik.structure.arm_size`, or where that is more than
+    1 / ``WALK_SIZE_RATIO`` times the size along the axes (each axis's point the one
+    nearest the previous axis's, the distances between them and the tool's from the
+    last summed), that. A DH table of nearly parallel axes puts frames at the foot of
+    their common normal (the Kinova Gen3 Lite's ``to_dh()``: 38 km off, an arm_size of
+    76 km for an arm of 0.85 m): in units of that size the arm's Jacobian is of rank 3
+    to 6e-7, in units of its own not. Other chains: their arm_size.
+    """
+    memo = chain.memo
+    if "rank size" not in memo:
+        size = _core.general6r.loop_size(chain.core)
+        memo["rank size"] = features(chain).size if size is None else float(size)
+    got: float = memo["rank size"]  # type: ignore[assignment]
+    return got
+
+
 def scaled_jacobian(chain: Chain, q: FloatArray) -> FloatArray:
-    """``(..., 6, 6)`` the Jacobian at ``q (..., 6)``, its lengths in units of the arm's size."""
-    size = max(features(chain).size, 1e-300)
+    """``(..., 6, 6)`` the Jacobian at ``q (..., 6)``, its lengths in units of :func:`rank_size`."""
+    size = max(rank_size(chain), 1e-300)
     J = np.array(chain.jacobian(np.ascontiguousarray(q, dtype=np.float64))[0])
     J[..., :3, :] /= size
     return J

@@ -90,11 +90,46 @@ def closed_form(
                 found = spec.build(chain, f, target)
                 if found is not None:
                     break
+        if found is not None and target == "pose" and parameter is None:
+            found = _near_family_or_general(chain, found)
         if found is None and target == "pose" and chain.dof < 6 and parameter is None:
             position = closed_form(chain, "position")
             found = position if position is not None and not position.partial else None
         per_chain[key] = found
     return per_chain[key]
+
+
+#: Configurations a family's closed form on a 6R arm near its structure is probed at.
+NEAR_PROBES = 4
+#: Their seed (the same verdict for the same arm, every call).
+NEAR_PROBE_SEED = 32
+
+
+def _near_family_or_general(chain: Chain, found: ClosedForm) -> ClosedForm:
+    """A 6R family's closed form on an arm near its structure, or the general 6R's.
+
+    Axes that have the family's structure only within the line geometry's tolerance
+    (``slack``) are solved by the family's candidates, repaired; farther from it, within
+    the tolerance still, the candidates reach no target (a PUMA 560 with every DH value
+    moved by 2.7e-9: slack 5e-9, every pose searched, one solution). The family is
+    probed on the poses of :data:`NEAR_PROBES` random configurations: where it solves
+    one of them not (a pose made by FK) and the general 6R builds, that answers.
+    """
+    f = features(chain)
+    if found.exact or f.slack <= 0.0 or f.joint_types != "RRRRRR" or found.name == "general-6R":
+        return found
+    from kinematica.ik.analytic.general_6r import build  # near arms only
+    from kinematica.ik.tolerance import Tolerance
+
+    rng = np.random.default_rng(NEAR_PROBE_SEED)
+    Q = rng.uniform(-np.pi, np.pi, (NEAR_PROBES, 6))
+    poses = np.ascontiguousarray(chain.fk(Q)[0])
+    opts = check_options(Tolerance(), False, False, POSE_WEIGHTS, f.slack)
+    raw = found.params.ik_batch(chain.core, poses, opts, None, None, 1)
+    if bool((np.asarray(raw.status) == _core.STATUS["ok"]).all()):
+        return found
+    general = build(chain, f, "pose")
+    return found if general is None else general
 
 
 def why_numeric(
