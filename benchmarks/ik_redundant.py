@@ -61,7 +61,7 @@ from _common import fmt_time, header, shortest_per_item, table
 
 import kinematica as km
 from kinematica.ik import IKBatchResult, IKOptions
-from kinematica.ik.moved import end_arm, moved_targets
+from kinematica.ik.moved import end_arm, move_parts, moved_targets
 from kinematica.ik.parameter import JointParameter
 from kinematica.ik.reach_bounds import may_reach, reach_bounds
 from kinematica.ik.redundancy import PARAMETER_SWEEP, choose
@@ -248,7 +248,7 @@ def held_and_auto(robots: list[tuple[str, km.Robot]], poses: int, seed: int) -> 
                 lambda i, r=robot, T=T, v=values, k=k: r.ik(T[int(i)], fixed={k: v[int(i)]}),
                 list(np.arange(poses)),
             )
-            arm = end_arm(chain, k)[0]
+            arm = end_arm(chain, k)
             moved = list(moved_targets(chain, k, T, Q[:, k]))
             six = per_pose(lambda t, a=arm: solve_ik(a, t, IKOptions()), moved)
             family = solve_ik(arm, moved[0], IKOptions()).method
@@ -288,12 +288,11 @@ def bounds_drop(robot: km.Robot, T: np.ndarray) -> str:
     if not isinstance(joint, JointParameter) or joint.index not in (0, robot.dof - 1):
         return "-"
     k = joint.index
-    arm, G, G_inv = end_arm(robot.chain, k)
-    bounds = reach_bounds(arm)
+    bounds = reach_bounds(end_arm(robot.chain, k))
     if bounds is None:
         return "-"
     grid = np.linspace(*joint.span(robot.chain), PARAMETER_SWEEP)
-    move = (G, G_inv, True) if k == 0 else (G_inv, G, False)
+    move = move_parts(robot.chain, k)
     return f"{1 - may_reach(bounds, T, Tolerance(), grid, move).mean():.0%}"
 
 

@@ -173,7 +173,7 @@ void bind_ik(nb::module_& m) {
             double* out;
             F64 moved = new_f64({N, 4, 4}, out);
             for (npy_intp i = 0; i < N; ++i) {
-                moved_pose(parts.data, values.data[i], after, slides, poses.data + 16 * i,
+                km::moved_pose(parts.data, values.data[i], after, slides, poses.data + 16 * i,
                            out + 16 * i);
             }
             return moved;

@@ -2,6 +2,7 @@
 // for kinematica.ik.reach_bounds.
 #include "common.hpp"
 #include "numpy_io.hpp"
+#include "kinematica/moved.hpp"
 #include "kinematica/reach_bounds.hpp"
 
 namespace kmpy {
@@ -9,21 +10,20 @@ namespace kmpy {
 namespace {
 
 //! (t, G): target i moved by values[j], checked against the bounds.
-F64 reach_violation(F64 bounds, F64 T, F64 values, F64 left, F64 right, bool before, double P, double R,
+F64 reach_violation(F64 bounds, F64 T, F64 values, F64 A, bool after, bool slides, double P, double R,
                     bool limits) {
     const In b = in_f64(bounds, "bounds", 1, {km::reach::SIZE});
     const In in = in_f64(T, "T", 3, {-1, 4, 4});
     const In v = in_f64(values, "values", 1);
-    const In gl = in_f64(left, "left", 2, {4, 4}), gr = in_f64(right, "right", 2, {4, 4});
-    const km::Pose Gl = km::Pose::from_rows(gl.data), Gr = km::Pose::from_rows(gr.data);
+    const In parts = in_f64(A, "A", 3, {3, 4, 4});
     const npy_intp t = in.dim[0], G = v.dim[0];
     double* out;
     F64 result = new_f64({t, G}, out);
     for (npy_intp i = 0; i < t; ++i) {
-        const km::Pose Ti = km::Pose::from_rows(in.data + 16 * i);
         for (npy_intp j = 0; j < G; ++j) {
-            const km::Pose moved = km::reach::moved(Ti, Gl, Gr, v.data[j], before);
-            out[i * G + j] = km::reach::violation(b.data, moved, P, R, limits);
+            double moved[16];
+            km::moved_pose(parts.data, v.data[j], after, slides, in.data + 16 * i, moved);
+            out[i * G + j] = km::reach::violation(b.data, km::Pose::from_rows(moved), P, R, limits);
         }
     }
     return result;
@@ -33,9 +33,9 @@ F64 reach_violation(F64 bounds, F64 T, F64 values, F64 left, F64 right, bool bef
 
 void bind_reach(nb::module_& m) {
     m.def("reach_violation", &reach_violation, nb::arg("bounds"), nb::arg("T"), nb::arg("values"),
-          nb::arg("left"), nb::arg("right"), nb::arg("before"), nb::arg("position"), nb::arg("rotation"), nb::arg("limits"),
+          nb::arg("A"), nb::arg("after"), nb::arg("slides"), nb::arg("position"), nb::arg("rotation"), nb::arg("limits"),
           "(t, G) how far (m) each target T[i] (t, 4, 4), moved by values[j] (G,) as a held first "
-          "(before) or last joint moves it (left Rz(-v) right, before or after the target), misses "
+          "or last (after) joint moves it (moved_poses: the move's parts A (3, 4, 4)), misses "
           "a 6R arm's reach bounds (kinematica.ik.reach_bounds, its layout) beyond the slack of "
           "the tolerance (position m, rotation rad), q1 and q6 within their limits with `limits`: "
           "positive where no solution reaches it; NaN for a target with a non-finite entry.");

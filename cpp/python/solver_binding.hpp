@@ -14,7 +14,6 @@
 #include <nanobind/stl/string.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -30,6 +29,7 @@
 #include "interrupt.hpp"
 #include "kinematica/chain.hpp"
 #include "kinematica/ik.hpp"
+#include "kinematica/moved.hpp"
 #include "kinematica/pose_check.hpp"
 #include "numpy_io.hpp"
 
@@ -150,26 +150,6 @@ Answer ik_one(const Solver& s, const km::Chain& chain, F64 T,
     return ik_pose(s, chain, P, opts, q0in.data, labels);
 }
 
-//! `out` (16 values, rows): the pose T of a whole arm as the target of the arm locked at 0
-//! at its first joint (M(v) T, after false) or its last (T M(v)), M(v) = A0 + f1 A1 + f2 A2
-//! with f = (cos v, sin v), or (-v, 0) for a slide; A: 48 values (kinematica.ik.moved).
-inline void moved_pose(const double* A, double v, bool after, bool slides, const double* T,
-                       double* out) {
-    const double f1 = slides ? -v : std::cos(v);
-    const double f2 = slides ? 0.0 : std::sin(v);
-    double M[16];
-    for (int i = 0; i < 16; ++i) M[i] = A[i] + f1 * A[16 + i] + f2 * A[32 + i];
-    const double* left = after ? T : M;
-    const double* right = after ? M : T;
-    for (int r = 0; r < 4; ++r) {
-        for (int c = 0; c < 4; ++c) {
-            double sum = 0.0;
-            for (int k = 0; k < 4; ++k) sum += left[4 * r + k] * right[4 * k + c];
-            out[4 * r + c] = sum;
-        }
-    }
-}
-
 //! A solver made ready for one kind of call: the chain, the check's options, the branch
 //! labels and what a final answer's result is made of (make_result), held; called with
 //! one target T (4, 4) alone. A target the core does not read in place or that is not
@@ -227,7 +207,7 @@ struct Prepared {
         const double* t = rigid_rows(T);
         if (t == nullptr) return nb::none();
         double moved[16];
-        moved_pose(held_move, value, held_after, held_slides, t, moved);
+        km::moved_pose(held_move, value, held_after, held_slides, t, moved);
         const Answer ans = solve(km::Pose::from_rows(moved));
         if (!final(ans)) return nb::cast(ans);
         const nb::object parameter = nb::make_tuple(held_name, value);

@@ -37,8 +37,8 @@ def arm(offset: float, slides: bool = False) -> km.Robot:
 def test_a_moved_target_is_what_the_arm_locked_at_0_reaches(k: int, slides: bool) -> None:
     robot = arm(0.2, slides)
     chain = robot.chain
-    locked = end_arm(chain, k)[0]
-    assert end_arm(chain, k)[0] is locked  # built once per joint
+    locked = end_arm(chain, k)
+    assert end_arm(chain, k) is locked  # built once per joint
     Q = robot.random_q(3, seed=1)
     T = robot.fk(Q)
     moved = moved_targets(chain, k, T, Q[:, k])
@@ -88,4 +88,4 @@ def test_a_last_joint_held_at_a_new_value_each_call_moves_the_target_not_the_arm
         np.testing.assert_allclose(res.solutions[:, :6], alone.solutions, atol=1e-9)
         assert res.branches == alone.branches
     assert "locked arms" not in chain.memo  # no arm locked at any of those values
-    assert locked_chain(chain, 6, 0.0) is end_arm(chain, 6)[0]
+    assert locked_chain(chain, 6, 0.0) is end_arm(chain, 6)

@@ -17,7 +17,7 @@ from support import DATA
 
 import kinematica as km
 from kinematica.ik import IKBatchResult, IKOptions, redundancy
-from kinematica.ik.moved import end_arm, moved_targets
+from kinematica.ik.moved import end_arm, move_parts, moved_targets
 from kinematica.ik.parameter import JointParameter
 from kinematica.ik.reach_bounds import ROUNDOFF_SLACK, may_reach, reach_bounds, violation
 from kinematica.ik.redundancy import PARAMETER_SWEEP, choose
@@ -48,10 +48,10 @@ def _held(robot: km.Robot, limits: bool = True) -> tuple[int, km.core.Chain, np.
     joint = choose(robot.chain)
     assert isinstance(joint, JointParameter) and joint.index in (0, 6)
     k = joint.index
-    arm, G, G_inv = end_arm(robot.chain, k)
+    arm = end_arm(robot.chain, k)
     bounds = reach_bounds(arm, limits)
     assert bounds is not None
-    return k, arm, bounds, ((G, G_inv, True) if k == 0 else (G_inv, G, False))
+    return k, arm, bounds, move_parts(robot.chain, k)
 
 
 @pytest.mark.parametrize(

@@ -104,18 +104,4 @@ inline double violation(const double* b, const Pose& T, double P, double R, bool
     return std::max(forward, reverse);
 }
 
-//! The target of the arm locked at 0 that is T with its first (before) or last joint at v:
-//! Gl Rz(-v) Gr T, or T Gl Rz(-v) Gr (kinematica.ik.moved: Gl, Gr = G, G⁻¹ for the first,
-//! G⁻¹, G for the last).
-inline Pose moved(const Pose& T, const Pose& Gl, const Pose& Gr, double v, bool before) {
-    const double c = std::cos(v), s = std::sin(v);
-    Pose M;
-    M.x = {c, -s, 0.0};
-    M.y = {s, c, 0.0};
-    M.z = {0.0, 0.0, 1.0};
-    M.p = {0.0, 0.0, 0.0};
-    const Pose move = Gl * M * Gr;
-    return before ? move * T : T * move;
-}
-
 }  // namespace km::reach

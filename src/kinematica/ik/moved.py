@@ -41,6 +41,7 @@ __all__ = [
     "held_at",
     "held_prepared",
     "locked_chain",
+    "move_parts",
     "moved_targets",
     "narrowed_tolerance",
     "on_axis",
@@ -72,7 +73,7 @@ def locked_chain(chain: Chain, joint: int, value: float) -> Chain:
     is marked so (:data:`RANK_FIVE_HELD` in its memo).
     """
     if value == 0.0 and joint in (0, chain.dof - 1):
-        return end_arm(chain, joint)[0]  # the first or last joint's: kept apart
+        return end_arm(chain, joint)  # the first or last joint's: kept apart
     per: OrderedDict[tuple[int, float], Chain]
     per = chain.memo.setdefault("locked arms", OrderedDict())  # type: ignore[assignment]
     key = (joint, float(value))
@@ -88,23 +89,30 @@ def locked_chain(chain: Chain, joint: int, value: float) -> Chain:
     return found
 
 
-def end_arm(chain: Chain, k: int) -> tuple[Chain, FloatArray, FloatArray]:
-    """The first (k = 0) or last joint locked at 0, once per chain, and ``(G, G⁻¹)``.
+def end_arm(chain: Chain, k: int) -> Chain:
+    """The arm with its first (k = 0) or last joint locked at 0, made once per chain."""
+    return _end(chain, k)[0]
 
-    ``G``: the chain's start (k = 0), or its last fixed part times the tool.
+
+def move_parts(chain: Chain, k: int) -> tuple[FloatArray, bool]:
+    """``(A, after)``: the parts ``(3, 4, 4)`` of the move of a held first (k = 0) or last joint.
+
+    A pose T of the whole arm, the joint at v, is the target ``M(v) T`` (first) or
+    ``T M(v)`` (last, ``after``) of :func:`end_arm`'s arm, ``M(v) = A₀ + f₁ A₁ + f₂ A₂``
+    (``km::moved_pose``, ``cpp/include/kinematica/moved.hpp``).
     """
-    arm, G, G_inv, _ = _end(chain, k)
-    return arm, G, G_inv
+    return _end(chain, k)[1], k != 0
 
 
-def _end(chain: Chain, k: int) -> tuple[Chain, FloatArray, FloatArray, FloatArray]:
+def _end(chain: Chain, k: int) -> tuple[Chain, FloatArray]:
     """:func:`end_arm` and ``(3, 4, 4)`` the move's parts ``A``, made once per chain.
 
     ``M(v)⁻¹ = E₀ + f₁(v) E₁ + f₂(v) E₂`` (``f = (cos v, sin v)`` for a turn about z,
     ``(-v, 0)`` for a slide along it), so the move is ``A₀ + f₁ A₁ + f₂ A₂`` with
-    ``A_i = G E_i G⁻¹`` before the target (k = 0) or ``G⁻¹ E_i G`` after it.
+    ``A_i = G E_i G⁻¹`` before the target (k = 0) or ``G⁻¹ E_i G`` after it; ``G`` the
+    chain's start (k = 0), or its last fixed part times the tool.
     """
-    per: dict[int, tuple[Chain, FloatArray, FloatArray, FloatArray]]
+    per: dict[int, tuple[Chain, FloatArray]]
     per = chain.memo.setdefault("end arms", {})  # type: ignore[assignment]
     found = per.get(k)
     if found is None:
@@ -120,7 +128,7 @@ def _end(chain: Chain, k: int) -> tuple[Chain, FloatArray, FloatArray, FloatArra
             E[0, 2, 2] = E[0, 3, 3] = E[1, 0, 0] = E[1, 1, 1] = E[2, 0, 1] = 1.0
             E[2, 1, 0] = -1.0
         A = G @ E @ G_inv if k == 0 else G_inv @ E @ G
-        found = per[k] = (chain.locked(k, 0.0), G, G_inv, A)
+        found = per[k] = (chain.locked(k, 0.0), A)
     return found
 
 
@@ -142,7 +150,7 @@ def on_axis(chain: Chain) -> bool:
 
 def moved_targets(chain: Chain, k: int, poses: FloatArray, v: FloatArray) -> FloatArray:
     """``(N, 4, 4)`` targets of the arm locked at 0 that are ``poses`` with joint k at ``v``."""
-    A = _end(chain, k)[3]
+    A = _end(chain, k)[1]
     v = np.asarray(v, dtype=float)
     return _core.moved_poses(A, poses, v, k != 0, bool(chain.prismatic[k]))
 
@@ -166,7 +174,7 @@ def held_prepared(chain: Chain, k: int, request: IKRequest, name: str) -> Any:
     if found is per:
         if len(per) >= LOCKED_CACHE:
             per.clear()
-        arm, _, _, A = _end(chain, k)
+        arm, A = _end(chain, k)
         ready = plan_of(arm, "pose", request).prepared  # the search's is Python's: not held
         slides = bool(chain.prismatic[k])
         held = type(ready) is _core.Prepared

@@ -226,7 +226,7 @@ class JointParameter:
             exact = not self._continua(chain, 0.0, opts, targets)
         moved = exact or (moved and k == n - 1 and not same)
         if moved:
-            arm = end_arm(chain, k)[0]
+            arm = end_arm(chain, k)
             if not exact:
                 narrow = narrowed_tolerance(options.tol, chain, k, v)
                 moved = narrow is not None

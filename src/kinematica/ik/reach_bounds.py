@@ -49,7 +49,8 @@ FloatArray = NDArray[np.float64]
 
 _ZERO = np.zeros(1)
 _ZERO.flags.writeable = False
-_STILL = (np.eye(4), np.eye(4), True)
+_STILL = (np.stack([np.eye(4), np.zeros((4, 4)), np.zeros((4, 4))]), False)  # M(v) = I
+_STILL[0].flags.writeable = False
 
 #: Added to every slack (m): round-off of the moved targets, circles and ranges
 #: (products of unit vectors and lengths under 10 m: about 1e-15 relative).
@@ -86,7 +87,7 @@ def violation(
     poses: FloatArray,
     tol: Tolerance,
     values: FloatArray = _ZERO,
-    move: tuple[FloatArray, FloatArray, bool] = _STILL,
+    move: tuple[FloatArray, bool] = _STILL,
     limits: bool = True,
 ) -> FloatArray:
     """``(t, G)`` how far (m) target i moved by ``values[j]`` misses the bounds beyond the slack.
@@ -99,15 +100,15 @@ def violation(
         poses: ``(t, 4, 4)`` targets.
         tol: The acceptance tolerance of the arm's solutions.
         values: ``(G,)`` the held joint's values (rad); by default one, 0.
-        move: ``(Gl, Gr, before)``: target i at value v is ``Gl Rz(-v) Gr T`` (before) or
-            ``T Gl Rz(-v) Gr`` (:mod:`kinematica.ik.moved`'s ``G``, ``G⁻¹`` for a first
-            joint, ``G⁻¹``, ``G`` for a last); by default none.
+        move: ``(A, after)``: the move of a held first or last (``after``) joint, its
+            parts ``A`` ``(3, 4, 4)`` (:func:`kinematica.ik.moved.move_parts`): target i at
+            value v is ``M(v) T``, or ``T M(v)`` after; by default none (``M = I``).
         limits: Whether solutions are held to the joint limits (q1's and q6's, here).
     """
-    left, right, before = move
+    parts, after = move
     poses = np.ascontiguousarray(poses, dtype=float)
     values = np.ascontiguousarray(values, dtype=float)
-    return _core.reach_violation(bounds, poses, values, left, right, before, tol.position,
+    return _core.reach_violation(bounds, poses, values, parts, after, False, tol.position,
                                  tol.rotation, limits)  # fmt: skip
 
 
@@ -116,7 +117,7 @@ def may_reach(
     poses: FloatArray,
     tol: Tolerance,
     values: FloatArray = _ZERO,
-    move: tuple[FloatArray, FloatArray, bool] = _STILL,
+    move: tuple[FloatArray, bool] = _STILL,
     limits: bool = True,
 ) -> NDArray[np.bool_]:
     """``(t, G)`` False only where target i at ``values[j]`` is proved out of reach.

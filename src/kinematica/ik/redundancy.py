@@ -27,7 +27,7 @@ from kinematica.errors import KinematicaError
 from kinematica.ik.arm_angle import ArmAngleParameter, arm_angle_parameter
 from kinematica.ik.held_aside import solved_except
 from kinematica.ik.local_search import LOCAL_SEARCH
-from kinematica.ik.moved import end_arm, moved_targets, on_axis
+from kinematica.ik.moved import end_arm, move_parts, moved_targets, on_axis
 from kinematica.ik.parameter import (
     JointParameter,
     Parameter,
@@ -382,12 +382,11 @@ def _possible(
     k = joint.index if isinstance(joint, JointParameter) else -1
     if k not in (0, chain.dof - 1) or chain.prismatic[k]:
         return np.ones((poses.shape[0], grid.size), dtype=bool)
-    arm, G, G_inv = end_arm(chain, k)
     limits = bool(request.respect_limits)
-    bounds = reach_bounds(arm, limits)
+    bounds = reach_bounds(end_arm(chain, k), limits)
     if bounds is None:
         return np.ones((poses.shape[0], grid.size), dtype=bool)
-    move = (G, G_inv, True) if k == 0 else (G_inv, G, False)
+    move = move_parts(chain, k)
     return may_reach(bounds, poses, parse_tolerance(request.tol), grid, move, limits)
 
 
@@ -404,7 +403,7 @@ def _has_solutions(
     """
     if isinstance(joint, JointParameter) and joint.index in (0, chain.dof - 1):
         moved = moved_targets(chain, joint.index, poses, values)
-        return _screen(end_arm(chain, joint.index)[0], moved, request)
+        return _screen(end_arm(chain, joint.index), moved, request)
     if isinstance(joint, ArmAngleParameter):
         out = joint.solve(chain, poses, values, request)
         assert isinstance(out, IKBatchResult)
