@@ -16,7 +16,7 @@ import pytest
 from support import DATA
 
 import kinematica as km
-from kinematica.ik import IKBatchResult, IKOptions, redundancy
+from kinematica.ik import IKBatchResult, IKOptions, nearest_value, redundancy
 from kinematica.ik.moved import end_arm, moved_targets
 from kinematica.ik.parameter import JointParameter
 from kinematica.ik.reach_bounds import ROUNDOFF_SLACK, may_reach, reach_bounds, violation
@@ -154,7 +154,9 @@ def test_auto_answers_as_it_would_without_the_bounds(
     new_batch = robot.ik(T, workers=1)
     new = [robot.ik(t) for t in T]
     with monkeypatch.context() as m:  # every value possible: the screen decides alone
-        m.setattr(redundancy, "_possible", lambda c, j, p, g, r: np.ones((len(p), g.size), bool))
+        every = lambda c, j, p, g, r: np.ones((len(p), g.size), bool)  # noqa: E731
+        m.setattr(redundancy, "possible", every)
+        m.setattr(nearest_value, "possible", every)
         old_batch = robot.ik(T, workers=1)
         old = [robot.ik(t) for t in T]
     assert isinstance(new_batch, IKBatchResult) and isinstance(old_batch, IKBatchResult)
