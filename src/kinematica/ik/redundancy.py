@@ -302,17 +302,19 @@ def _at_parameter(
             for i in rows.tolist():
                 where = tuple(int(c) for c in np.unravel_index(i, res.shape))
                 moved_note = nearer(v, float(values[i]), bool(undefined[i]))
-                notes[where] = (*notes.get(where, ()), moved_note)
+                read = targets.notes.get(i, ())  # how it was read: its answer's first notes
+                notes[where] = (*read, *notes.get(where, ()), moved_note)
             missed = np.setdiff1d(missed, rows)
         res = dataclasses.replace(
             res, notes=notes, parameter=(res.parameter[0], held_at.reshape(res.shape))
         )
     if missed.size:
+        read = [(j, targets.notes.get(i)) for j, i in enumerate(missed.tolist())]
         sub = targets.replace(
             poses=np.ascontiguousarray(targets.poses[missed]),
             shape=(int(missed.size),),
             invalid={},
-            notes={},
+            notes={j: n for j, n in read if n},  # how each was read, first in its notes
         )
         q0 = None if q0s is None else q0s[missed]
         full = solve_ik(chain, sub, IKRequest.of(options).but(method="numeric", q0=q0))

@@ -187,8 +187,10 @@ def replace_rows(
 
     With ``notes_of`` (one note per row, in the order of ``rows``) those rows are
     answered with every joint free: they lose the batch's parameter (NaN) and take
-    ``other``'s method and the note after their own. Without, they keep the parameter
-    (the same question answered again) and take ``other``'s method and notes alone.
+    ``other``'s method, its notes and the note. Without, they keep the parameter (the
+    same question answered again) and take ``other``'s method and notes. Either way
+    the replaced answer's method and notes are gone: ``other``'s rows hold any notes on
+    how their targets were read.
     """
     a, b = batch.raw, other.raw
     m = a.q.shape[1]
@@ -217,7 +219,7 @@ def replace_rows(
         mine = other[j]
         if notes_of is not None:
             methods[idx] = mine.method
-            notes[idx] = (*notes.get(idx, ()), notes_of[j])
+            notes[idx] = (*mine.notes, notes_of[j])
             continue
         # the row's answer is other's alone: none of the replaced answer's method or notes
         if mine.method != batch.method or not mine.complete:
