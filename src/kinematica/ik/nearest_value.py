@@ -137,6 +137,8 @@ def nearest_answer(
     """
     if type(target) is not np.ndarray or target.shape != (4, 4):
         return None
+    if not isinstance(joint, JointParameter):
+        return None
     lean = lean_call(chain, joint, options)
     if lean is None:
         return None
@@ -159,7 +161,7 @@ def lean_call(chain: Chain, joint: Parameter, options: IKOptions) -> tuple[Any, 
 
 def first_answer(
     chain: Chain,
-    joint: Parameter,
+    joint: JointParameter,
     lean: tuple[Any, IKRequest],
     T: FloatArray,
     candidates: FloatArray,

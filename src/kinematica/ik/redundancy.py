@@ -233,13 +233,15 @@ def _at_parameter(
         value, undef = float(values[0]), bool(undefined[0])
         if res is not None and res.success:
             return amended(res, notes=(*res.notes, note(value, undef)))
+        again: IKResult | IKBatchResult | None
         hit = nearest_answer(chain, joint, target, targets, values, options)
-        if hit is None:  # the screen, then the value found solved again
+        if hit is not None:  # the prepared call's answer at the first value with one
+            again, at = hit
+        else:  # the screen, then the value found solved again
             first = np.array([0])
             found, moved = nearest_with_solutions(chain, joint, targets, first, values, options)
             again = joint.solve(chain, target, float(moved[0]), options) if found.size else None
-            hit = (again, float(moved[0]) if found.size else value)
-        again, at = hit
+            at = float(moved[0]) if found.size else value
         if isinstance(again, IKResult) and again.success:
             moved_note = nearer(at, value, undef)
             return dataclasses.replace(again, notes=(*again.notes, moved_note))
@@ -270,11 +272,12 @@ def _at_parameter(
             assert sweep is not None
             grid, order, count = sweep
             T = np.ascontiguousarray(targets.poses[i])
-            one = first_answer(chain, joint, lean, T, grid[order[j, : int(count[j])]], 0.0)
-            if one is not None and one[0] is not None and one[0].success:
-                got[len(got)] = one[0]
-                values_at.append(one[1])
-                answered.append((np.array([i]), one[1]))
+            assert isinstance(joint, JointParameter)  # lean_call's
+            hit = first_answer(chain, joint, lean, T, grid[order[j, : int(count[j])]], 0.0)
+            if hit is not None and hit[0] is not None and hit[0].success:
+                got[len(got)] = hit[0]
+                values_at.append(hit[1])
+                answered.append((np.array([i]), hit[1]))
         if got:
             kept = np.array([rows[0] for rows, _ in answered])
             sub = targets.replace(poses=targets.poses[kept], shape=(kept.size,), invalid={})
@@ -309,12 +312,12 @@ def _at_parameter(
             res, notes=notes, parameter=(res.parameter[0], held_at.reshape(res.shape))
         )
     if missed.size:
-        read = [(j, targets.notes.get(i)) for j, i in enumerate(missed.tolist())]
+        how = [(j, targets.notes.get(i, ())) for j, i in enumerate(missed.tolist())]
         sub = targets.replace(
             poses=np.ascontiguousarray(targets.poses[missed]),
             shape=(int(missed.size),),
             invalid={},
-            notes={j: n for j, n in read if n},  # how each was read, first in its notes
+            notes={j: n for j, n in how if n},  # how each was read, first in its notes
         )
         q0 = None if q0s is None else q0s[missed]
         full = solve_ik(chain, sub, IKRequest.of(options).but(method="numeric", q0=q0))
