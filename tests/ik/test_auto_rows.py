@@ -73,12 +73,42 @@ def test_every_row_of_a_batch_is_its_own_single_call(name: str, count: int) -> N
     T = robot.fk(rng.uniform(lo, hi, size=(count, 7)))
     T[0, :3, 3] += 5.0  # beyond reach: the search over every joint answers
     moved = _rows_are_single_calls(robot, T, None)
-    assert robot.ik(T)[0].parameter is None  # the search answered the pose beyond reach
+    far = robot.ik(np.array(T[0]))
+    assert isinstance(far, IKResult) and far.parameter is None  # the search answered it
     if name.startswith("random"):
         assert moved  # rows answered at another value than the default
         # targets read with a note (a rotation given to 4 decimals), and rows with a q0:
         # the screen, then the value found solved again (not the prepared call)
         T4 = np.round(T, 4)
-        assert any(robot.ik(np.array(t)).notes[0].startswith("target rotation") for t in T4)
+        read = [robot.ik(np.array(t)).notes for t in T4]
+        assert any(str(n[0]).startswith("target rotation projected") for n in read if n)
         _rows_are_single_calls(robot, T4, None)
         _rows_are_single_calls(robot, T, np.zeros((count, 7)))
+
+
+def test_a_pose_held_elsewhere_is_not_solved_again_at_the_value_found(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # GEN72's last joint: the prepared call that screens a value of the sweep answers at
+    # the first with a solution; the held joint is solved once (at the default value)
+    from kinematica.ik.parameter import JointParameter
+
+    robot = km.load(str(DATA / "makers" / "realman_gen72.urdf"))
+    T = robot.fk(robot.random_q(12, seed=5))
+    answers = [robot.ik(t) for t in T]
+    moved = [i for i, a in enumerate(answers) if any("the nearest of" in n for n in a.notes)]
+    assert moved
+    calls: list[float] = []
+    solve = JointParameter.solve
+
+    def counted(self, chain, target, values, options):  # type: ignore[no-untyped-def]
+        calls.append(float(np.asarray(values).reshape(-1)[0]))
+        return solve(self, chain, target, values, options)
+
+    monkeypatch.setattr(JointParameter, "solve", counted)
+    for i in moved:
+        calls.clear()
+        assert_same_result(robot.ik(T[i]), answers[i])
+        found = answers[i].parameter
+        assert found is not None and found[1] != 0.0  # held elsewhere than the default
+        assert found[1] not in calls
