@@ -16,7 +16,7 @@ import pytest
 from support import DATA
 
 import kinematica as km
-from kinematica.ik import IKBatchResult, IKOptions, redundancy
+from kinematica.ik import IKBatchResult, IKOptions, nearest_value, redundancy
 from kinematica.ik.moved import end_arm, move_parts, moved_targets
 from kinematica.ik.parameter import JointParameter
 from kinematica.ik.reach_bounds import ROUNDOFF_SLACK, may_reach, reach_bounds, violation
@@ -154,26 +154,22 @@ def test_auto_answers_as_it_would_without_the_bounds(
     new_batch = robot.ik(T, workers=1)
     new = [robot.ik(t) for t in T]
     with monkeypatch.context() as m:  # every value possible: the screen decides alone
-        m.setattr(redundancy, "_possible", lambda c, j, p, g, r: np.ones((len(p), g.size), bool))
+        every = lambda c, j, p, g, r: np.ones((len(p), g.size), bool)  # noqa: E731
+        m.setattr(redundancy, "possible", every)
+        m.setattr(nearest_value, "possible", every)
         old_batch = robot.ik(T, workers=1)
         old = [robot.ik(t) for t in T]
     assert isinstance(new_batch, IKBatchResult) and isinstance(old_batch, IKBatchResult)
-    moved = mended = 0
+    moved = 0
     for i in range(len(T)):
         assert _fields(new[i]) == _fields(old[i])
         np.testing.assert_array_equal(new[i].solutions, old[i].solutions)
-        # a batch row as its single call, and as before where it was so; a target solved
-        # in vain at the default value kept that solve's method and note in a batch
-        # ("numeric:lm", the search answered): left unsolved there, it no longer does
-        if _fields(old_batch[i]) == _fields(old[i]):
-            assert _fields(new_batch[i]) == _fields(old_batch[i])
-        elif name == "kinova_gen3":  # every such target proved out of reach there
-            assert _fields(new_batch[i]) == _fields(new[i])
-            mended += 1
+        # a batch row as its single call, with the bounds and without
+        assert _fields(new_batch[i]) == _fields(new[i])
+        assert _fields(old_batch[i]) == _fields(old[i])
         np.testing.assert_array_equal(new_batch[i].solutions, old_batch[i].solutions)
         moved += any("the nearest of" in n for n in new[i].notes)
     assert moved  # some targets held at another value than the default
-    assert mended or name != "kinova_gen3"
 
 
 def test_a_batch_of_targets_all_out_of_reach_at_the_value_or_with_q0_is_its_single_calls() -> None:

@@ -15,7 +15,7 @@ from support import DATA
 from support.helpers import assert_same_result, assert_transform_close
 
 import kinematica as km
-from kinematica.ik import IKBatchResult, IKResult, closed_form, redundancy
+from kinematica.ik import IKBatchResult, IKResult, closed_form, nearest_value
 from kinematica.ik.arm_angle import ArmAngleParameter
 from kinematica.ik.parameter import JointParameter, locked_chain
 from kinematica.ik.redundancy import PARAMETER_SWEEP, REDUNDANT_DOF, choose, preference
@@ -116,7 +116,7 @@ def test_where_no_value_finds_one_the_search_over_every_joint_answers(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     # two values tried (the limits): most poses have no solution there
-    monkeypatch.setattr(redundancy, "PARAMETER_SWEEP", 2)
+    monkeypatch.setattr(nearest_value, "PARAMETER_SWEEP", 2)
     robot = km.load("panda")
     joint = choose(robot.chain)
     assert isinstance(joint, JointParameter)  # its last joint leaves a spherical shoulder

@@ -39,6 +39,7 @@ __all__ = [
     "ON_AXIS_TOL",
     "end_arm",
     "held_at",
+    "held_completed",
     "held_prepared",
     "locked_chain",
     "move_parts",
@@ -195,6 +196,13 @@ def held_at(
     got = None if ready is None else ready.at(T, value)
     if got is None or got.__class__ is IKResult:
         return got
+    return held_completed(chain, k, name, request, T, value, got)
+
+
+def held_completed(
+    chain: Chain, k: int, name: str, request: IKRequest, T: object, value: float, got: Any
+) -> IKResult:
+    """:func:`held_at`'s answer from the core's answer ``got`` to complete (not a result)."""
     arm = _end(chain, k)[0]
     pose = moved_targets(chain, k, np.asarray(T)[None], np.array([value]))[0]
     res = answered(arm, plan_of(arm, "pose", request), request, pose, "pose", got, (), None)

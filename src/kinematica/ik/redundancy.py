@@ -22,12 +22,21 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 import kinematica._core as _core
-from kinematica.core import Chain, resolve_workers
+from kinematica.core import Chain
 from kinematica.errors import KinematicaError
 from kinematica.ik.arm_angle import ArmAngleParameter, arm_angle_parameter
 from kinematica.ik.held_aside import solved_except
 from kinematica.ik.local_search import LOCAL_SEARCH
-from kinematica.ik.moved import end_arm, move_parts, moved_targets, on_axis
+from kinematica.ik.moved import on_axis
+from kinematica.ik.nearest_value import (
+    PARAMETER_SWEEP,
+    first_answer,
+    lean_call,
+    nearest_answer,
+    nearest_with_solutions,
+    possible,
+    sweep_order,
+)
 from kinematica.ik.parameter import (
     JointParameter,
     Parameter,
@@ -35,14 +44,12 @@ from kinematica.ik.parameter import (
     locked_chain,
     solve_fixed,
 )
-from kinematica.ik.reach_bounds import may_reach, reach_bounds
 from kinematica.ik.request import IKRequest
 from kinematica.ik.result import IKBatchResult, IKResult, amended
 from kinematica.ik.solve import REDUNDANT_DOF, solve_ik
-from kinematica.ik.solvers import closed_form, plan_of
-from kinematica.ik.stack import replace_rows
+from kinematica.ik.solvers import closed_form
+from kinematica.ik.stack import replace_rows, stack_results
 from kinematica.ik.targets import Targets, parse_q0, parse_targets
-from kinematica.ik.tolerance import parse_tolerance
 
 if TYPE_CHECKING:
     from kinematica.ik.options import IKOptions
@@ -58,12 +65,6 @@ __all__ = [
     "preference",
     "solve_arm",
 ]
-
-#: Values of the parameter tried, evenly across its span, when a target has no solution
-#: at q0's value or the default: the nearest one with a solution answers (every
-#: solution there), before the numeric search over every joint is asked. 73 values
-#: over a joint's ±166° are 4.6° apart.
-PARAMETER_SWEEP = 73
 
 #: Why a q0 has no value of the parameter (an SRS arm's arm angle), in its note.
 UNDEFINED_AT_Q0 = (
@@ -189,7 +190,7 @@ def _at_parameter(
     plain = N and not (targets.invalid or targets.notes) and bool(np.all(values == values[0]))
     aside = np.zeros(N, dtype=bool)
     if exact and (one or plain):
-        aside = ~_possible(chain, joint, targets.poses, values[:1], options)[:, 0]
+        aside = ~possible(chain, joint, targets.poses, values[:1], options)[:, 0]
     res: IKResult | IKBatchResult | None
     if one:
         res = None if aside[0] else joint.solve(chain, target, float(values[0]), options)
@@ -232,11 +233,17 @@ def _at_parameter(
         value, undef = float(values[0]), bool(undefined[0])
         if res is not None and res.success:
             return amended(res, notes=(*res.notes, note(value, undef)))
-        first = np.array([0])
-        found, moved = _nearest_with_solutions(chain, joint, targets, first, values, options)
-        again = joint.solve(chain, target, float(moved[0]), options) if found.size else None
+        again: IKResult | IKBatchResult | None
+        hit = nearest_answer(chain, joint, target, targets, values, options)
+        if hit is not None:  # the prepared call's answer at the first value with one
+            again, at = hit
+        else:  # the screen, then the value found solved again
+            first = np.array([0])
+            found, moved = nearest_with_solutions(chain, joint, targets, first, values, options)
+            again = joint.solve(chain, target, float(moved[0]), options) if found.size else None
+            at = float(moved[0]) if found.size else value
         if isinstance(again, IKResult) and again.success:
-            moved_note = nearer(float(moved[0]), value, undef)
+            moved_note = nearer(at, value, undef)
             return dataclasses.replace(again, notes=(*again.notes, moved_note))
         full = solve_ik(chain, target, IKRequest.of(options).but(method="numeric"))
         assert isinstance(full, IKResult)
@@ -255,11 +262,31 @@ def _at_parameter(
         old = notes.get(where)
         notes[where] = (text,) if old is None else (*old, text)
     res = dataclasses.replace(res, notes=notes)
-    if missed.size:  # the nearest value with a solution, where there is one
-        found, moved = _nearest_with_solutions(chain, joint, targets, missed, values, options)
+    answered: list[tuple[NDArray[np.intp], float]] = []
+    lean = None if targets.invalid or targets.notes else lean_call(chain, joint, options)
+    if missed.size and lean is not None:  # each target's single call's answer, as it is
+        sweep = sweep_order(chain, joint, targets.poses[missed], values[missed], lean[1])
+        got: dict[int, IKResult] = {}
+        values_at: list[float] = []
+        for j, i in enumerate(missed.tolist() if sweep is not None else ()):
+            assert sweep is not None
+            grid, order, count = sweep
+            T = np.ascontiguousarray(targets.poses[i])
+            assert isinstance(joint, JointParameter)  # lean_call's
+            hit = first_answer(chain, joint, lean, T, grid[order[j, : int(count[j])]], 0.0)
+            if hit is not None and hit[0] is not None and hit[0].success:
+                got[len(got)] = hit[0]
+                values_at.append(hit[1])
+                answered.append((np.array([i]), hit[1]))
+        if got:
+            kept = np.array([rows[0] for rows, _ in answered])
+            sub = targets.replace(poses=targets.poses[kept], shape=(kept.size,), invalid={})
+            again = stack_results(got, sub, n, joint.name, np.array(values_at))
+            res = replace_rows(res, kept, again, None)
+    elif missed.size:  # the nearest value with a solution, where there is one
+        found, moved = nearest_with_solutions(chain, joint, targets, missed, values, options)
         # one value at a time: the targets held at a value are solved as a single call
         # at that value would solve them (batch == single, to the bit)
-        answered: list[tuple[NDArray[np.intp], float]] = []
         for v in np.unique(moved).tolist():
             rows = found[moved == v]
             again = _solved_at(chain, joint, targets, rows, v, q0s, options)
@@ -269,26 +296,28 @@ def _at_parameter(
             if kept.size:
                 res = replace_rows(res, kept, again, None)
                 answered.append((kept, v))
-        if answered:
-            assert res.parameter is not None
-            held_at = np.array(res.parameter[1], dtype=float).reshape(-1)
-            notes = dict(res.notes)
-            for rows, v in answered:
-                held_at[rows] = v
-                for i in rows.tolist():
-                    where = tuple(int(c) for c in np.unravel_index(i, res.shape))
-                    moved_note = nearer(v, float(values[i]), bool(undefined[i]))
-                    notes[where] = (*notes.get(where, ()), moved_note)
-                missed = np.setdiff1d(missed, rows)
-            res = dataclasses.replace(
-                res, notes=notes, parameter=(res.parameter[0], held_at.reshape(res.shape))
-            )
+    if answered:
+        assert res.parameter is not None
+        held_at = np.array(res.parameter[1], dtype=float).reshape(-1)
+        notes = dict(res.notes)
+        for rows, v in answered:
+            held_at[rows] = v
+            for i in rows.tolist():
+                where = tuple(int(c) for c in np.unravel_index(i, res.shape))
+                moved_note = nearer(v, float(values[i]), bool(undefined[i]))
+                read = targets.notes.get(i, ())  # how it was read: its answer's first notes
+                notes[where] = (*read, *notes.get(where, ()), moved_note)
+            missed = np.setdiff1d(missed, rows)
+        res = dataclasses.replace(
+            res, notes=notes, parameter=(res.parameter[0], held_at.reshape(res.shape))
+        )
     if missed.size:
+        how = [(j, targets.notes.get(i, ())) for j, i in enumerate(missed.tolist())]
         sub = targets.replace(
             poses=np.ascontiguousarray(targets.poses[missed]),
             shape=(int(missed.size),),
             invalid={},
-            notes={},
+            notes={j: n for j, n in how if n},  # how each was read, first in its notes
         )
         q0 = None if q0s is None else q0s[missed]
         full = solve_ik(chain, sub, IKRequest.of(options).but(method="numeric", q0=q0))
@@ -311,126 +340,6 @@ def _solved_at(
     out = joint.solve(chain, np.ascontiguousarray(targets.poses[rows]), value, opts)
     assert isinstance(out, IKBatchResult)
     return out
-
-
-def _nearest_with_solutions(
-    chain: Chain,
-    joint: Parameter,
-    targets: Targets,
-    rows: NDArray[np.intp],
-    start: FloatArray,
-    options: IKOptions,
-) -> tuple[NDArray[np.intp], FloatArray]:
-    """For the targets ``rows`` (flat), the parameter value nearest ``start`` with a solution.
-
-    The parameter's candidates are :data:`PARAMETER_SWEEP` values evenly across its
-    span; a target takes the nearest to its start value whose answer has a
-    solution (within the limits, when they are respected; of two as near, the lower).
-    Values proved to have none (:mod:`kinematica.ik.reach_bounds`) are left out; the
-    others are tried nearest first, one, then twice as many each round (most of
-    them have one), and a target leaves the rounds at its first value with one. The
-    caller solves the target again at that value, and keeps it only if that answer
-    has one.
-
-    Returns:
-        The rows that have such a value, and the value of each.
-    """
-    lo, hi = joint.span(chain)
-    if not (np.isfinite(lo) and np.isfinite(hi)) or not rows.size:
-        return rows[:0], np.empty(0)
-    grid = np.linspace(lo, hi, PARAMETER_SWEEP)
-    poses = targets.poses[rows]
-    request = IKRequest.of(options).but(q0=None, fixed=None)  # every value's, made once
-    near = np.abs(grid[None, :] - start[rows][:, None])
-    # values proved to have no solution (kinematica.ik.reach_bounds) are not tried: the
-    # first value with one in each target's order is the same without them
-    near = np.where(_possible(chain, joint, poses, grid, request), near, np.inf)
-    # the grid in each target's order: nearest first, the lower of two as near first
-    order = np.argsort(near, axis=1, kind="stable")
-    count = np.isfinite(near).sum(axis=1)  # each target's values to try
-    best = np.full(rows.size, -1)
-    first, size = 0, 1
-    while first < grid.size:
-        todo = np.flatnonzero((best < 0) & (count > first))
-        if not todo.size:
-            break
-        ranks = order[todo, first : first + size]  # (t, r) grid indices to try
-        width = ranks.shape[1]
-        i, r = np.nonzero(first + np.arange(width)[None, :] < count[todo][:, None])
-        has = np.zeros(ranks.shape, dtype=bool)
-        has[i, r] = _has_solutions(chain, joint, poses[todo[i]], grid[ranks[i, r]], request)
-        hit = has.any(axis=1)
-        best[todo[hit]] = ranks[hit, np.argmax(has[hit], axis=1)]
-        first, size = first + width, 2 * size
-    ok = best >= 0
-    return rows[ok], grid[best[ok]]
-
-
-def _possible(
-    chain: Chain,
-    joint: Parameter,
-    poses: FloatArray,
-    grid: FloatArray,
-    request: IKRequest | IKOptions,
-) -> NDArray[np.bool_]:
-    """``(t, G)`` False where pose i proves to have no solution at ``grid[j]``.
-
-    The first or last joint of an arm whose 6 other joints turn: the targets moved
-    for the arm locked once (:mod:`kinematica.ik.moved`), checked against that arm's
-    :func:`~kinematica.ik.reach_bounds.reach_bounds` with the screen's tolerance.
-    """
-    k = joint.index if isinstance(joint, JointParameter) else -1
-    if k not in (0, chain.dof - 1) or chain.prismatic[k]:
-        return np.ones((poses.shape[0], grid.size), dtype=bool)
-    limits = bool(request.respect_limits)
-    bounds = reach_bounds(end_arm(chain, k), limits)
-    if bounds is None:
-        return np.ones((poses.shape[0], grid.size), dtype=bool)
-    move = move_parts(chain, k)
-    return may_reach(bounds, poses, parse_tolerance(request.tol), grid, move, limits)
-
-
-def _has_solutions(
-    chain: Chain, joint: Parameter, poses: FloatArray, values: FloatArray, request: IKRequest
-) -> NDArray[np.bool_]:
-    """``(M,)`` True where pose i has a solution with the parameter at ``values[i]``.
-
-    The first or last joint by the arm locked once with the targets moved
-    (:mod:`kinematica.ik.moved`), its closed form alone (a target it finds nothing
-    for is not searched: this is a screen, its value confirmed by the caller); the arm
-    angle by its solver at a value per target; a middle joint one locked arm (one
-    batch) per value (``request``: without q0 or a held joint).
-    """
-    if isinstance(joint, JointParameter) and joint.index in (0, chain.dof - 1):
-        moved = moved_targets(chain, joint.index, poses, values)
-        return _screen(end_arm(chain, joint.index), moved, request)
-    if isinstance(joint, ArmAngleParameter):
-        out = joint.solve(chain, poses, values, request)
-        assert isinstance(out, IKBatchResult)
-        return np.asarray(out.raw.count) > 0
-    has = np.zeros(values.size, dtype=bool)
-    for v in np.unique(values).tolist():
-        at = np.flatnonzero(values == v)
-        one = joint.solve(chain, np.ascontiguousarray(poses[at]), v, request)
-        assert isinstance(one, IKBatchResult)
-        has[at] = np.asarray(one.raw.count) > 0
-    return has
-
-
-def _screen(arm: Chain, poses: FloatArray, request: IKRequest) -> NDArray[np.bool_]:
-    """``(M,)`` True where the arm's closed form has a solution of pose i (else its answer's).
-
-    One core call of the closed form without the search that completes it: a screen
-    of candidate values, which the caller confirms by solving the target again.
-    """
-    plan = plan_of(arm, "pose", request)
-    if plan.closed is None or not plan.direct:
-        out = solve_ik(arm, poses, request)
-        assert isinstance(out, IKBatchResult)
-        return np.asarray(out.raw.count) > 0
-    workers = resolve_workers(request.workers)
-    raw = plan.solver.ik_batch(arm.core, poses, plan.options, None, None, workers)
-    return np.asarray(raw.count) > 0
 
 
 def default_value(chain: Chain, joint: Parameter) -> tuple[float, str]:

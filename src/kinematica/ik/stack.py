@@ -187,8 +187,10 @@ def replace_rows(
 
     With ``notes_of`` (one note per row, in the order of ``rows``) those rows are
     answered with every joint free: they lose the batch's parameter (NaN) and take
-    ``other``'s method and the note. Without, they keep the parameter (the same
-    question answered again), and ``other``'s method where it is another.
+    ``other``'s method, its notes and the note. Without, they keep the parameter (the
+    same question answered again) and take ``other``'s method and notes. Either way
+    the replaced answer's method and notes are gone: ``other``'s rows hold any notes on
+    how their targets were read.
     """
     a, b = batch.raw, other.raw
     m = a.q.shape[1]
@@ -215,12 +217,19 @@ def replace_rows(
     for j, i in enumerate(rows.tolist()):
         idx = _where(shape, i)
         mine = other[j]
-        if notes_of is not None or mine.method != batch.method:
-            methods[idx] = mine.method
         if notes_of is not None:
-            notes[idx] = (*notes.get(idx, ()), notes_of[j])
-        elif mine.notes:
+            methods[idx] = mine.method
+            notes[idx] = (*mine.notes, notes_of[j])
+            continue
+        # the row's answer is other's alone: none of the replaced answer's method or notes
+        if mine.method != batch.method or not mine.complete:
+            methods[idx] = mine.method
+        else:
+            methods.pop(idx, None)
+        if mine.notes:
             notes[idx] = mine.notes
+        else:
+            notes.pop(idx, None)
     parameter = batch.parameter
     if parameter is not None and notes_of is not None:
         values = np.array(parameter[1], dtype=float).reshape(-1)

@@ -1,0 +1,253 @@
+"""The held value nearest a start with a solution: a redundant arm's ``auto`` sweep.
+
+Where a 7R arm's ``auto`` (:mod:`kinematica.ik.redundancy`) finds no solution with its
+joint at the value asked, the nearest of :data:`PARAMETER_SWEEP` values across its span
+with one answers. Values the reach bounds prove out of reach are left out
+(:mod:`kinematica.ik.reach_bounds`); the others are tried nearest first. For one pose on
+an end joint with a prepared call, the call that screens a value is the one whose answer
+is kept (one elimination per value, :func:`nearest_answer`); else a screen by the closed
+form alone picks the value, and the caller solves the target there
+(:func:`nearest_with_solutions`).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from kinematica.core import Chain, resolve_workers
+from kinematica.ik.arm_angle import ArmAngleParameter
+from kinematica.ik.moved import end_arm, held_completed, move_parts, moved_targets
+from kinematica.ik.parameter import JointParameter, Parameter
+from kinematica.ik.reach_bounds import may_reach, reach_bounds
+from kinematica.ik.request import IKRequest
+from kinematica.ik.result import IKBatchResult, IKResult
+from kinematica.ik.solve import solve_ik
+from kinematica.ik.solvers import plan_of
+from kinematica.ik.targets import Targets
+from kinematica.ik.tolerance import parse_tolerance
+
+if TYPE_CHECKING:
+    from kinematica.ik.options import IKOptions
+
+FloatArray = NDArray[np.float64]
+
+__all__ = [
+    "PARAMETER_SWEEP",
+    "first_answer",
+    "has_solutions",
+    "lean_call",
+    "nearest_answer",
+    "nearest_with_solutions",
+    "possible",
+    "screen",
+    "sweep_order",
+]
+
+#: Values of the parameter tried, evenly across its span, when a target has no solution
+#: at q0's value or the default: the nearest one with a solution answers (every
+#: solution there), before the numeric search over every joint is asked. 73 values
+#: over a joint's ±166° are 4.6° apart.
+PARAMETER_SWEEP = 73
+
+
+def nearest_with_solutions(
+    chain: Chain,
+    joint: Parameter,
+    targets: Targets,
+    rows: NDArray[np.intp],
+    start: FloatArray,
+    options: IKOptions,
+) -> tuple[NDArray[np.intp], FloatArray]:
+    """For the targets ``rows`` (flat), the parameter value nearest ``start`` with a solution.
+
+    The parameter's candidates are :data:`PARAMETER_SWEEP` values evenly across its
+    span; a target takes the nearest to its start value whose answer has a
+    solution (within the limits, when they are respected; of two as near, the lower).
+    Values proved to have none (:mod:`kinematica.ik.reach_bounds`) are left out; the
+    others are tried nearest first, one, then twice as many each round (most of
+    them have one), and a target leaves the rounds at its first value with one. The
+    caller solves the target again at that value, and keeps it only if that answer
+    has one.
+
+    Returns:
+        The rows that have such a value, and the value of each.
+    """
+    poses = targets.poses[rows]
+    request = IKRequest.of(options).but(q0=None, fixed=None)  # every value's, made once
+    sweep = sweep_order(chain, joint, poses, start[rows], request)
+    if sweep is None:
+        return rows[:0], np.empty(0)
+    grid, order, count = sweep
+    best = np.full(rows.size, -1)
+    first, size = 0, 1
+    while first < grid.size:
+        todo = np.flatnonzero((best < 0) & (count > first))
+        if not todo.size:
+            break
+        ranks = order[todo, first : first + size]  # (t, r) grid indices to try
+        width = ranks.shape[1]
+        i, r = np.nonzero(first + np.arange(width)[None, :] < count[todo][:, None])
+        has = np.zeros(ranks.shape, dtype=bool)
+        has[i, r] = has_solutions(chain, joint, poses[todo[i]], grid[ranks[i, r]], request)
+        hit = has.any(axis=1)
+        best[todo[hit]] = ranks[hit, np.argmax(has[hit], axis=1)]
+        first, size = first + width, 2 * size
+    ok = best >= 0
+    return rows[ok], grid[best[ok]]
+
+
+def sweep_order(
+    chain: Chain, joint: Parameter, poses: FloatArray, start: FloatArray, request: IKRequest
+) -> tuple[FloatArray, NDArray[np.intp], NDArray[np.intp]] | None:
+    """The values to try for each pose, in order, or None (the parameter's span is unbounded).
+
+    Returns:
+        ``(G,)`` the grid (:data:`PARAMETER_SWEEP` values across the span), ``(t, G)``
+        each pose's grid indices nearest ``start`` first (of two as near, the lower first),
+        and ``(t,)`` how many of them to try (the values not proved out of reach).
+    """
+    lo, hi = joint.span(chain)
+    if not (np.isfinite(lo) and np.isfinite(hi)) or not poses.shape[0]:
+        return None
+    grid = np.linspace(lo, hi, PARAMETER_SWEEP)
+    near = np.abs(grid[None, :] - start[:, None])
+    # values proved to have no solution (kinematica.ik.reach_bounds) are not tried: the
+    # first value with one in each target's order is the same without them
+    near = np.where(possible(chain, joint, poses, grid, request), near, np.inf)
+    order = np.argsort(near, axis=1, kind="stable")
+    return grid, order, np.isfinite(near).sum(axis=1)
+
+
+def nearest_answer(
+    chain: Chain,
+    joint: Parameter,
+    target: ArrayLike,
+    targets: Targets,
+    values: FloatArray,
+    options: IKOptions,
+) -> tuple[IKResult | None, float] | None:
+    """One pose's answer at the nearest value of the sweep with a solution, and that value.
+
+    :func:`nearest_with_solutions` and the answer at the value found in one elimination
+    per value tried (:func:`first_answer`). ``(None, start)`` when no value has one;
+    None where the end joint's prepared call does not apply (the caller screens).
+    """
+    if type(target) is not np.ndarray or target.shape != (4, 4):
+        return None
+    if not isinstance(joint, JointParameter):
+        return None
+    lean = lean_call(chain, joint, options)
+    if lean is None:
+        return None
+    start = float(values[0])
+    sweep = sweep_order(chain, joint, targets.poses, values[:1], lean[1])
+    if sweep is None:
+        return None, start
+    grid, order, count = sweep
+    return first_answer(chain, joint, lean, target, grid[order[0, : int(count[0])]], start)
+
+
+def lean_call(chain: Chain, joint: Parameter, options: IKOptions) -> tuple[Any, IKRequest] | None:
+    """The end joint's prepared call (:meth:`JointParameter.lean`) and its settings, or None."""
+    if not isinstance(joint, JointParameter) or options.q0 is not None:
+        return None
+    request = IKRequest.of(options).but(q0=None, fixed=None, arm_angle=None)
+    ready = joint.lean(chain, request)
+    return None if ready is None else (ready, request)
+
+
+def first_answer(
+    chain: Chain,
+    joint: JointParameter,
+    lean: tuple[Any, IKRequest],
+    T: FloatArray,
+    candidates: FloatArray,
+    start: float,
+) -> tuple[IKResult | None, float] | None:
+    """``T``'s answer at the first of ``candidates`` with a solution, and that value.
+
+    The prepared call (:func:`~kinematica.ik.moved.held_at`) screens each value in turn,
+    and its answer at the first with a solution is the answer (completed as ``held_at``
+    completes it): the target is not solved again there. ``(None, start)`` when none
+    has one; None when the core does not read ``T`` as one rigid pose.
+    """
+    ready, request = lean
+    for v in candidates.tolist():
+        got = ready.at(T, v)
+        if got is None:
+            return None
+        if got.solutions.shape[0]:  # the screen: a solution within the limits
+            if got.__class__ is IKResult:
+                return got, v
+            return held_completed(chain, joint.index, joint.name, request, T, v, got), v
+    return None, start
+
+
+def possible(
+    chain: Chain,
+    joint: Parameter,
+    poses: FloatArray,
+    grid: FloatArray,
+    request: IKRequest | IKOptions,
+) -> NDArray[np.bool_]:
+    """``(t, G)`` False where pose i proves to have no solution at ``grid[j]``.
+
+    The first or last joint of an arm whose 6 other joints turn: the targets moved
+    for the arm locked once (:mod:`kinematica.ik.moved`), checked against that arm's
+    :func:`~kinematica.ik.reach_bounds.reach_bounds` with the screen's tolerance.
+    """
+    k = joint.index if isinstance(joint, JointParameter) else -1
+    if k not in (0, chain.dof - 1) or chain.prismatic[k]:
+        return np.ones((poses.shape[0], grid.size), dtype=bool)
+    limits = bool(request.respect_limits)
+    bounds = reach_bounds(end_arm(chain, k), limits)
+    if bounds is None:
+        return np.ones((poses.shape[0], grid.size), dtype=bool)
+    move = move_parts(chain, k)
+    return may_reach(bounds, poses, parse_tolerance(request.tol), grid, move, limits)
+
+
+def has_solutions(
+    chain: Chain, joint: Parameter, poses: FloatArray, values: FloatArray, request: IKRequest
+) -> NDArray[np.bool_]:
+    """``(M,)`` True where pose i has a solution with the parameter at ``values[i]``.
+
+    The first or last joint by the arm locked once with the targets moved
+    (:mod:`kinematica.ik.moved`), its closed form alone (a target it finds nothing
+    for is not searched: this is a screen, its value confirmed by the caller); the arm
+    angle by its solver at a value per target; a middle joint one locked arm (one
+    batch) per value (``request``: without q0 or a held joint).
+    """
+    if isinstance(joint, JointParameter) and joint.index in (0, chain.dof - 1):
+        moved = moved_targets(chain, joint.index, poses, values)
+        return screen(end_arm(chain, joint.index), moved, request)
+    if isinstance(joint, ArmAngleParameter):
+        out = joint.solve(chain, poses, values, request)
+        assert isinstance(out, IKBatchResult)
+        return np.asarray(out.raw.count) > 0
+    has = np.zeros(values.size, dtype=bool)
+    for v in np.unique(values).tolist():
+        at = np.flatnonzero(values == v)
+        one = joint.solve(chain, np.ascontiguousarray(poses[at]), v, request)
+        assert isinstance(one, IKBatchResult)
+        has[at] = np.asarray(one.raw.count) > 0
+    return has
+
+
+def screen(arm: Chain, poses: FloatArray, request: IKRequest) -> NDArray[np.bool_]:
+    """``(M,)`` True where the arm's closed form has a solution of pose i (else its answer's).
+
+    One core call of the closed form without the search that completes it: a screen
+    of candidate values, which the caller confirms by solving the target again.
+    """
+    plan = plan_of(arm, "pose", request)
+    if plan.closed is None or not plan.direct:
+        out = solve_ik(arm, poses, request)
+        assert isinstance(out, IKBatchResult)
+        return np.asarray(out.raw.count) > 0
+    workers = resolve_workers(request.workers)
+    raw = plan.solver.ik_batch(arm.core, poses, plan.options, None, None, workers)
+    return np.asarray(raw.count) > 0
