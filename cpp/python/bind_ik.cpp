@@ -158,7 +158,10 @@ void bind_answers(nb::module_& m) {
              "before it, the joint sliding or turning (kinematica.ik.moved).")
         .def("at", &Prepared::at, nb::arg("T").none(), nb::arg("value"),
              "The whole arm's result of T (4, 4) with the held joint at `value`, or the locked\n"
-             "arm's Answer to complete; None for a target to read otherwise.");
+             "arm's Answer to complete; None for a target to read otherwise.")
+        .def("first", &Prepared::first, nb::arg("T").none(), nb::arg("values"),
+             "(i, at(T, values[i])) for the first of the held values (k,) whose answer has a\n"
+             "solution; (-1, None) where none has; None for a target to read otherwise.");
 }
 
 void bind_ik(nb::module_& m) {

@@ -203,13 +203,41 @@ struct Prepared {
     //! final, else the locked arm's Answer of the moved T (the caller completes it); None
     //! where T is not read in place or not rigid (the caller's general path).
     nb::object at(nb::handle T, double value) const {
-        if (held_joint < 0) throw nb::value_error("at(): this Prepared holds no joint (held())");
-        const double* t = rigid_rows(T);
+        const double* t = held_rows(T, "at");
+        return t == nullptr ? nb::none() : given(solved_at(t, value), value);
+    }
+
+    //! (i, at(T, values[i])) for the first value whose answer has a solution (within the
+    //! limits where they are kept), trying them in turn; (-1, None) where none has; None
+    //! where T is not read in place or not rigid. One call for a sweep of held values.
+    nb::object first(nb::handle T, nb::handle values) const {
+        const double* t = held_rows(T, "first");
+        const In v = in_f64(values, "values", 1);
         if (t == nullptr) return nb::none();
+        for (npy_intp i = 0; i < v.dim[0]; ++i) {
+            Answer ans = solved_at(t, v.data[i]);
+            if (PyArray_DIM(reinterpret_cast<PyArrayObject*>(ans.solutions.ptr()), 0) > 0) {
+                return nb::make_tuple(i, given(std::move(ans), v.data[i]));
+            }
+        }
+        return nb::make_tuple(-1, nb::none());
+    }
+
+    //! T's rows (rigid_rows) for a Prepared that holds a joint; `what` names the caller.
+    const double* held_rows(nb::handle T, const char* what) const {
+        if (held_joint < 0) throw nb::value_error((std::string(what) + "(): this Prepared holds no joint (held())").c_str());
+        return rigid_rows(T);
+    }
+    //! The locked arm's answer of the target T (rows) moved by the held joint at `value`.
+    Answer solved_at(const double* T, double value) const {
         double moved[16];
-        km::moved_pose(held_move, value, held_after, held_slides, t, moved);
-        const Answer ans = solve(km::Pose::from_rows(moved));
-        if (!final(ans)) return nb::cast(ans);
+        km::moved_pose(held_move, value, held_after, held_slides, T, moved);
+        return solve(km::Pose::from_rows(moved));
+    }
+    //! The whole arm's result of a final answer, the joint at `value` put back and named;
+    //! else the locked arm's Answer (the caller completes it).
+    nb::object given(Answer ans, double value) const {
+        if (!final(ans)) return nb::cast(std::move(ans));
         const nb::object parameter = nb::make_tuple(held_name, value);
         return make_result(widened(ans, held_joint, value), result, fields, statuses, parameter);
     }

@@ -14,6 +14,7 @@ import pytest
 import kinematica as km
 from kinematica.ik import IKResult
 from kinematica.ik.held_call import held_one
+from kinematica.ik.parameter import joint_parameter
 from kinematica.ik.request import HeldCall, IKRequest
 from kinematica.ik.solvers import plan_of
 from kinematica.spatial import rotation_angle
@@ -123,3 +124,43 @@ def test_a_prepared_call_holds_a_joint_only_when_made_to() -> None:
     assert got.parameter == ("q7", 0.7) and got.count == alone.count
     np.testing.assert_array_equal(got.solutions[:, :6], alone.solutions)
     np.testing.assert_array_equal(got.solutions[:, 6], 0.7)
+
+
+def test_first_tries_the_held_values_in_turn_as_at_answers_each() -> None:
+    """``Prepared.first``: the first value whose answer has a solution, ``at``'s answer there."""
+    robot = km.load("puma560")
+    plan = plan_of(robot.chain, "pose", IKRequest.parse())  # type: ignore[arg-type]
+    T = robot.fk(np.full(6, 0.3))
+    far = T.copy()
+    far[:3, 3] *= 10.0  # out of reach at every value (the move A0 = I does not move it)
+    with pytest.raises(ValueError, match="holds no joint"):
+        plan.prepared.first(T, np.array([0.3]))
+    A = np.zeros((3, 4, 4))
+    A[0] = np.eye(4)
+    held = plan.prepared.held(6, A, True, False, "q7")
+    assert held.first(far, np.array([0.1, 0.2])) == (-1, None)
+    assert held.first(T, np.empty(0)) == (-1, None)
+    assert held.first(np.eye(3), np.array([0.1])) is None  # not a pose the core reads
+    with pytest.raises(ValueError, match="values"):
+        held.first(T, np.zeros((2, 2)))
+    # a held turn about z: the panda's last joint moves the pose; the first value with a
+    # solution within the limits is the one at() finds first, with at()'s answer
+    panda = km.load("panda")
+    parameter = joint_parameter(panda.chain, 6, None)
+    ready = parameter.lean(panda.chain, IKRequest.parse())  # type: ignore[arg-type]
+    rng = np.random.default_rng(3)
+    moved_on = 0
+    for pose in _poses(panda, 6, 0.4, 12):
+        values = rng.uniform(-2.9, 2.9, 6)
+        ats = [ready.at(pose, v) for v in values.tolist()]
+        has = [j for j, a in enumerate(ats) if a.solutions.shape[0]]
+        got = ready.first(pose, values)
+        if not has:
+            assert got == (-1, None)
+            continue
+        i, answer = got
+        assert i == has[0]
+        moved_on += i > 0
+        np.testing.assert_array_equal(answer.solutions, ats[i].solutions)
+        assert answer.parameter == ats[i].parameter == ("q7", float(values[i]))
+    assert moved_on  # some pose had no solution at its first values

@@ -175,15 +175,18 @@ def first_answer(
     has one; None when the core does not read ``T`` as one rigid pose.
     """
     ready, request = lean
-    for v in candidates.tolist():
-        got = ready.at(T, v)
-        if got is None:
-            return None
-        if got.solutions.shape[0]:  # the screen: a solution within the limits
-            if got.__class__ is IKResult:
-                return got, v
-            return held_completed(chain, joint.index, joint.name, request, T, v, got), v
-    return None, start
+    if not candidates.size:
+        return None, start
+    got = ready.first(T, candidates)  # the screen: a solution within the limits, in turn
+    if got is None:
+        return None
+    i, answer = got
+    if i < 0:
+        return None, start
+    v = float(candidates[i])
+    if answer.__class__ is IKResult:
+        return answer, v
+    return held_completed(chain, joint.index, joint.name, request, T, v, answer), v
 
 
 def possible(
