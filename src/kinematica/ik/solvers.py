@@ -21,17 +21,17 @@ from numpy.typing import NDArray
 import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.errors import KinematicaError
-from kinematica.ik.analytic import SOLVERS, solvers_at
+from kinematica.ik.analytic import SOLVERS, general_6r, solvers_at
 from kinematica.ik.fallback import FALLBACK_NOTE, PARTIAL_NOTE, searched_note
 from kinematica.ik.numeric import numeric_solver
 from kinematica.ik.reach import ANSWERED as _ANSWERED
 from kinematica.ik.registry import ClosedForm, TargetKind, describe
 from kinematica.ik.result import prepared
 from kinematica.ik.structure import features
+from kinematica.ik.tolerance import Tolerance
 
 if TYPE_CHECKING:
     from kinematica.ik.request import IKRequest
-    from kinematica.ik.tolerance import Tolerance
 
 __all__ = [
     "PLANS",
@@ -118,9 +118,6 @@ def _near_family_or_general(chain: Chain, found: ClosedForm) -> ClosedForm:
     f = features(chain)
     if found.exact or f.slack <= 0.0 or f.joint_types != "RRRRRR" or found.name == "general-6R":
         return found
-    from kinematica.ik.analytic.general_6r import build  # near arms only
-    from kinematica.ik.tolerance import Tolerance
-
     rng = np.random.default_rng(NEAR_PROBE_SEED)
     Q = rng.uniform(-np.pi, np.pi, (NEAR_PROBES, 6))
     poses = np.ascontiguousarray(chain.fk(Q)[0])
@@ -128,7 +125,7 @@ def _near_family_or_general(chain: Chain, found: ClosedForm) -> ClosedForm:
     raw = found.params.ik_batch(chain.core, poses, opts, None, None, 1)
     if bool((np.asarray(raw.status) == _core.STATUS["ok"]).all()):
         return found
-    general = build(chain, f, "pose")
+    general = general_6r.build(chain, f, "pose")
     return found if general is None else general
 
 
