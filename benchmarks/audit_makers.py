@@ -38,8 +38,6 @@ from __future__ import annotations
 import argparse
 import collections
 import dataclasses
-import importlib
-import json
 import math
 import sys
 import time
@@ -51,10 +49,13 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from ik_makers import MAKERS, six_r_arms, ssik_module
+
 import kinematica as km
 
 FloatArray = NDArray[np.float64]
-MAKERS = Path(__file__).resolve().parents[1] / "tests" / "data" / "makers"
 
 #: Our solutions reach their pose to this (m, rad).
 TOL = 1e-10
@@ -87,20 +88,6 @@ class Failure:
     status: str
     method: str
     detail: str = ""
-
-
-def six_r_arms(pattern: str) -> list[dict[str, Any]]:
-    """The reference's 6-joint arms whose names hold ``pattern``."""
-    arms = json.loads((MAKERS / "ssik_reference.json").read_text())["arms"]
-    return [a for a in arms if a["dof"] == 6 and pattern in a["arm"]]
-
-
-def ssik_module(arm: dict[str, Any]) -> ModuleType | None:
-    """ssik's module of the arm, or None when ssik does not import."""
-    try:
-        return importlib.import_module(arm["module"])
-    except ImportError:
-        return None
 
 
 def configurations(robot: km.Robot, n: int, rng: np.random.Generator) -> FloatArray:

@@ -13,33 +13,16 @@ import math
 import numpy as np
 import pytest
 from support import DATA
-from support.helpers import assert_same_result
+from support.helpers import assert_same_result, random_7r
 
 import kinematica as km
 from kinematica.ik import IKBatchResult, IKResult
 
 
-def _random_7r(seed: int, tool_off_axis: bool) -> km.Robot:
-    """A generic 7R arm (standard DH drawn at random), its tool off the last axis if asked."""
-    rng = np.random.default_rng(seed)
-    rows = [
-        km.Revolute(
-            d=float(rng.uniform(-0.4, 0.4)),
-            a=float(rng.uniform(-0.4, 0.4)),
-            alpha=float(rng.uniform(-math.pi, math.pi)),
-        )
-        for _ in range(7)
-    ]
-    tool = np.eye(4)
-    if tool_off_axis:
-        tool[:3, 3] = [0.05, -0.03, 0.1]
-    return km.Robot.from_dh(rows, name=f"random 7R ({seed})", convention="standard", tool=tool)
-
-
 def _robot(name: str) -> km.Robot:
     if name.startswith("random"):
         _, seed, off = name.split(":")
-        return _random_7r(int(seed), off == "off")
+        return random_7r(int(seed), off == "off")
     return km.load(str(DATA / "makers" / f"{name}.urdf"))
 
 

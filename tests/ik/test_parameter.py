@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 import pytest
-from support.helpers import assert_transform_close
+from support.helpers import assert_transform_close, random_7r
 
 import kinematica as km
 from kinematica.errors import KinematicaError
@@ -18,20 +18,6 @@ from kinematica.ik import IKBatchResult, IKOptions, IKResult
 from kinematica.ik.parameter import LOCKED_CACHE, joint_parameter, locked_chain
 
 TOL = 1e-10  # the default acceptance tolerance of robot.ik (m, rad)
-
-
-def random_7r(seed: int) -> km.Robot:
-    """A generic 7R arm, standard DH, lengths and twists drawn at random."""
-    rng = np.random.default_rng(seed)
-    rows = [
-        km.Revolute(
-            d=float(rng.uniform(-0.4, 0.4)),
-            a=float(rng.uniform(-0.4, 0.4)),
-            alpha=float(rng.uniform(-math.pi, math.pi)),
-        )
-        for _ in range(7)
-    ]
-    return km.Robot.from_dh(rows, name=f"random 7R ({seed})", convention="standard")
 
 
 def assert_locked(robot: km.Robot, res: IKResult, T: np.ndarray, k: int, value: float) -> None:

@@ -311,3 +311,25 @@ def table_cells(fragment: str) -> list[list[str]]:
     """The rows of an HTML table, each a list of its unescaped cell texts."""
     rows = re.findall(r"<tr>(.*?)</tr>", fragment, flags=re.S)
     return [[html.unescape(c) for c in re.findall(r"<t[dh]>(.*?)</t[dh]>", r)] for r in rows]
+
+
+def random_7r(seed: int, tool_off_axis: bool = False) -> Robot:
+    """A generic 7R arm: standard DH, lengths and twists drawn at random; no joint limits.
+
+    Args:
+        seed: The draw's seed.
+        tool_off_axis: Move the tool point off the last joint's axis (5-10 cm).
+    """
+    rng = np.random.default_rng(seed)
+    rows = [
+        Revolute(
+            d=float(rng.uniform(-0.4, 0.4)),
+            a=float(rng.uniform(-0.4, 0.4)),
+            alpha=float(rng.uniform(-math.pi, math.pi)),
+        )
+        for _ in range(7)
+    ]
+    tool = np.eye(4)
+    if tool_off_axis:
+        tool[:3, 3] = [0.05, -0.03, 0.1]
+    return Robot.from_dh(rows, name=f"random 7R ({seed})", convention="standard", tool=tool)
