@@ -133,30 +133,33 @@ void via_args(ViaArgs& A, F64 w, F64 v_start, F64 v_end, F64 vmax, F64 amax, F64
     A.prm.joint_sweeps = joint_sweeps;
 }
 
-nb::tuple jerk_via(F64 w, F64 v_start, F64 v_end, F64 vmax, F64 amax, F64 jmax, nb::object qlim, double qlim_atol,
-                   int sweeps, int golden_steps, int joint_sweeps) {
-    ViaArgs A;
-    via_args(A, w, v_start, v_end, vmax, amax, jmax, qlim, qlim_atol, sweeps, golden_steps, joint_sweeps);
-    const npy_intp k = A.P.k, n = A.P.n;
-    double *vel, *time, *stop;
-    nb::object Vo = new_f64({k, n}, vel), To = new_f64({k - 1}, time), So = new_f64({k - 1}, stop);
-    kj::ViaOutput out;
-    out.velocity = vel;
-    out.time = time;
-    out.stop = stop;
-    {
-        nb::gil_scoped_release release;
-        kj::via(A.P, A.prm, out);
-    }
-    return nb::make_tuple(Vo, To, So, out.evaluations);
-}
-
 //! A vector's values as a new array of the given shape.
 F64 array_of(const std::vector<double>& x, std::initializer_list<npy_intp> dims) {
     double* d;
     F64 o = new_f64(dims, d);
     std::copy(x.begin(), x.end(), d);
     return o;
+}
+
+//! (pieces, samples) of the made pieces P: pieces (breaks, coef (p, order, n), knots, peak
+//! (3, n)), samples every dt or closer (t, q, qd, qdd, jerk) ending on the state (q1, v1, a1;
+//! a1 null: zero).
+nb::tuple pieces_and_samples(const kj::Pieces& P, npy_intp n, double dt, const double* q1, const double* v1,
+                             const double* a1) {
+    const npy_intp pieces = static_cast<npy_intp>(P.breaks.size()) - 1;
+    const nb::tuple exact = nb::make_tuple(array_of(P.breaks, {pieces + 1}),
+                                           array_of(P.coef, {pieces, static_cast<npy_intp>(P.order), n}),
+                                           array_of(P.knots, {static_cast<npy_intp>(P.knots.size())}),
+                                           array_of(P.peak, {3, n}));
+    const npy_intp m = kj::sample_count(P.knots, dt);
+    double *t, *q, *qd, *qdd, *qddd;
+    nb::object to = new_f64({m}, t), qo = new_f64({m, n}, q), qdo = new_f64({m, n}, qd);
+    nb::object qddo = new_f64({m, n}, qdd), qdddo = new_f64({m, n}, qddd);
+    {
+        nb::gil_scoped_release release;
+        kj::move_samples(P, dt, q1, v1, a1, t, q, qd, qdd, qddd);
+    }
+    return nb::make_tuple(exact, nb::make_tuple(to, qo, qdo, qddo, qdddo));
 }
 
 nb::tuple jerk_via_move(F64 w, F64 v_start, F64 v_end, F64 vmax, F64 amax, F64 jmax, nb::object qlim,
@@ -190,18 +193,8 @@ nb::tuple jerk_via_move(F64 w, F64 v_start, F64 v_end, F64 vmax, F64 amax, F64 j
         }
     }
     if (!made) return nb::make_tuple(Vo, To, So, out.evaluations, nb::none(), nb::none());
-    const npy_intp pieces = static_cast<npy_intp>(P.breaks.size()) - 1;
-    const nb::tuple exact = nb::make_tuple(array_of(P.breaks, {pieces + 1}), array_of(P.coef, {pieces, 4, n}),
-                                           array_of(P.knots, {k}), array_of(P.peak, {3, n}));
-    const npy_intp m = kj::sample_count(P.knots, dt);
-    double *t, *q, *qd, *qdd, *qddd;
-    nb::object to = new_f64({m}, t), qo = new_f64({m, n}, q), qdo = new_f64({m, n}, qd);
-    nb::object qddo = new_f64({m, n}, qdd), qdddo = new_f64({m, n}, qddd);
-    {
-        nb::gil_scoped_release release;
-        kj::move_samples(P, dt, A.W.data + (k - 1) * n, A.VE.data, nullptr, t, q, qd, qdd, qddd);
-    }
-    return nb::make_tuple(Vo, To, So, out.evaluations, exact, nb::make_tuple(to, qo, qdo, qddo, qdddo));
+    const nb::tuple made_move = pieces_and_samples(P, n, dt, A.W.data + (k - 1) * n, A.VE.data, nullptr);
+    return nb::make_tuple(Vo, To, So, out.evaluations, made_move[0], made_move[1]);
 }
 
 nb::tuple jerk_state_move(double T, F64 rows, F64 vmax, F64 amax, F64 jmax, F64 q1, F64 v1, F64 a1, double dt,
@@ -229,19 +222,7 @@ nb::tuple jerk_state_move(double T, F64 rows, F64 vmax, F64 amax, F64 jmax, F64 
         nb::gil_scoped_release release;
         kj::state_pieces(static_cast<int>(n), T, R.data, L.data(), P);
     }
-    const npy_intp pieces = static_cast<npy_intp>(P.breaks.size()) - 1;
-    const nb::tuple exact = nb::make_tuple(array_of(P.breaks, {pieces + 1}),
-                                           array_of(P.coef, {pieces, static_cast<npy_intp>(P.order), n}),
-                                           array_of(P.knots, {2}), array_of(P.peak, {3, n}));
-    const npy_intp m = kj::sample_count(P.knots, dt);
-    double *t, *q, *qd, *qdd, *qddd;
-    nb::object to = new_f64({m}, t), qo = new_f64({m, n}, q), qdo = new_f64({m, n}, qd);
-    nb::object qddo = new_f64({m, n}, qdd), qdddo = new_f64({m, n}, qddd);
-    {
-        nb::gil_scoped_release release;
-        kj::move_samples(P, dt, Q1.data, V1.data, A1.data, t, q, qd, qdd, qddd);
-    }
-    return nb::make_tuple(exact, nb::make_tuple(to, qo, qdo, qddo, qdddo));
+    return pieces_and_samples(P, n, dt, Q1.data, V1.data, A1.data);
 }
 
 }  // namespace
@@ -252,16 +233,11 @@ void bind_jerk(nb::module_& m) {
           "Time-optimal synchronised jerk-limited segments from (p0, v0, 0) to (p1, v1, 0), each (m, n); "
           "limits (n,). Returns (T (m,), durations (m, n, P), jerks (m, n, P), phases (m, n)): each joint's "
           "phases of constant jerk, P = JERK_MAX_PHASES.");
-    m.def("jerk_via", &jerk_via, nb::arg("w"), nb::arg("v_start"), nb::arg("v_end"), nb::arg("vmax"),
-          nb::arg("amax"), nb::arg("jmax"), nb::arg("qlim").none(), nb::arg("qlim_atol"), nb::arg("sweeps"),
-          nb::arg("golden_steps"), nb::arg("joint_sweeps"),
-          "Velocities at the waypoints w (k, n) of a jerk-limited move through them (zero acceleration at "
-          "each), chosen to shorten it. Returns (velocity (k, n), time (k-1,), stop (k-1,), evaluations): "
-          "the segments' durations, and with a stop at every waypoint (inf: leaves qlim).");
     m.def("jerk_via_move", &jerk_via_move, nb::arg("w"), nb::arg("v_start"), nb::arg("v_end"), nb::arg("vmax"),
           nb::arg("amax"), nb::arg("jmax"), nb::arg("qlim").none(), nb::arg("qlim_atol"), nb::arg("sweeps"),
           nb::arg("golden_steps"), nb::arg("joint_sweeps"), nb::arg("dt"), nb::arg("max_samples"),
-          "jerk_via's search, then the move's exact pieces and samples every dt or closer (every knot a "
+          "Velocities at the waypoints w (k, n) of a jerk-limited move through them (zero acceleration at "
+          "each), chosen to shorten it, then the move's exact pieces and samples every dt or closer (every knot a "
           "sample). Returns (velocity, time, stop, evaluations, pieces, samples): pieces (breaks (p+1,), "
           "coef (p, 4, n), knots (k,), peak (3, n): largest |v|, |a|, |j|), samples (t (m,), q, qd, qdd, "
           "jerk (m, n)); both None where a segment leaves qlim with stops, or duration/dt + k > "

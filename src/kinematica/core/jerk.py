@@ -164,6 +164,8 @@ def jerk_via(
 ) -> ViaChoice:
     """The waypoints' velocities of a short jerk-limited move through ``w`` (k, n).
 
+    :func:`jerk_via_move`'s search alone (no pieces or samples made: ``max_samples`` 0).
+
     Args:
         w: ``(k, n)`` waypoints, no two in a row equal.
         v_start: ``(n,)`` the velocity at the first waypoint.
@@ -176,11 +178,7 @@ def jerk_via(
     Returns:
         The :class:`ViaChoice`.
     """
-    vm, am, jm = (_f(x) for x in limits)
-    q = None if qlim is None else _f(qlim)
-    out = _core.jerk_via(_f(w), _f(v_start), _f(v_end), vm, am, jm, q, float(qlim_atol), *search)
-    velocity, time, stop, evaluations = out
-    return ViaChoice(velocity, time, stop, int(evaluations))
+    return jerk_via_move(w, v_start, v_end, limits, qlim, qlim_atol, search, 1.0, 0.0).choice
 
 
 def jerk_via_move(
