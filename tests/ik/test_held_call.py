@@ -164,3 +164,19 @@ def test_first_tries_the_held_values_in_turn_as_at_answers_each() -> None:
         np.testing.assert_array_equal(answer.solutions, ats[i].solutions)
         assert answer.parameter == ats[i].parameter == ("q7", float(values[i]))
     assert moved_on  # some pose had no solution at its first values
+
+
+def test_options_holding_one_joint_take_the_keywords_path() -> None:
+    """``options=IKOptions(fixed={k: v})`` is read as ``fixed={k: v}``: one core call."""
+    robot = km.load("panda")
+    T = _poses(robot, 6, 0.3, 1)[0]
+    opts = km.ik.IKOptions(fixed={6: 0.3}, tol=1e-9)
+    assert type(IKRequest.parse(options=opts)) is HeldCall
+    with_q0 = km.ik.IKOptions(fixed={6: 0.3}, q0=np.zeros(7))
+    assert type(IKRequest.parse(options=with_q0)) is IKRequest
+    got, want = robot.ik(T, options=opts), robot.ik(T, fixed={6: 0.3}, tol=1e-9)
+    assert got.parameter == want.parameter == ("q7", 0.3)
+    assert got.method == want.method and got.notes == want.notes
+    np.testing.assert_array_equal(got.solutions, want.solutions)
+    with pytest.raises(km.KinematicaError, match="outside its limits"):
+        robot.ik(T, options=km.ik.IKOptions(fixed={6: 3.5}))

@@ -220,6 +220,17 @@ class IKRequest(IKOptions):
                 "give the IK settings either as options= or as keywords, not both",
                 arg="options",
             )
+        o = options
+        if (
+            o.fixed.__class__ is dict
+            and o.q0 is None
+            and o.mask is None
+            and o.seed is None
+            and o.workers is None
+            and o.precision is None
+            and o.arm_angle is None
+        ):  # one call holding joints: as its keywords are read (a HeldCall for one joint)
+            return cls.parse(o.method, o.tol, o.respect_limits, fixed=o.fixed)
         return cls.of(options)
 
 
