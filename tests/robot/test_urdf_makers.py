@@ -165,3 +165,22 @@ def test_parallel_axes_take_d_0_level_with_the_frame_before():
     ext = km.urdf_to_dh(UR5)
     assert "(d2 = 0)" in ext.rules[2].text and "(d3 = 0)" in ext.rules[3].text
     assert robot.links[3].d == pytest.approx(0.13585 - 0.1197 + 0.093, abs=1e-12)
+
+
+# ------------------------------- derived tables: no warnings meant for typed values
+def test_to_dh_of_nearly_parallel_axes_does_not_ask_about_millimetres():
+    # The Gen3 Lite's axes 2 and 3 are parallel but for a rounded rpy: their common
+    # normal's foot is 38 km away, so the extracted table has d2, d3 of -38 km. That
+    # length was derived, not typed: the "is it in millimetres?" UnitWarning is not for it.
+    from kinematica.io.plausible import PLAUSIBLE_LENGTH
+
+    path = URDF_DIR.parent / "makers" / "kinova_gen3_lite.urdf"
+    robot, _ = load_quietly(path)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ext = robot.to_dh()
+    assert max(abs(j.d) for j in ext.robot.links) > PLAUSIBLE_LENGTH  # the case is live
+    assert not [w for w in caught if issubclass(w.category, km.UnitWarning)]
+    assert ext.fk_error < 1e-9
+    with pytest.warns(km.UnitWarning, match="millimetres"):  # a typed one still warns
+        km.Revolute(d=ext.robot.links[1].d)

@@ -28,6 +28,7 @@ from kinematica.dh import (
     NamedFrame,
     extract_dh,
 )
+from kinematica.dh.joints import values_checked
 from kinematica.dh.lines import frame_from, perpendicular_hint
 from kinematica.errors import RobotFileError
 from kinematica.io import FrameSpec, UrdfChain, UrdfJoint, urdf_text
@@ -300,11 +301,13 @@ def to_dh(robot: R, convention: str = "standard") -> DHExtraction[R]:
         geometry_from_robot(robot), convention, make, robot.name, robot.description, None
     )
     out = ext.robot
-    named = make(
-        [  # the robot's own joint names, even repeated or missing ones
+    with values_checked():  # derived values: the plausibility warnings are for typed ones
+        links = [  # the robot's own joint names, even repeated or missing ones
             dataclasses.replace(new, name=old.name)
             for new, old in zip(out.links, robot.links, strict=True)
-        ],
+        ]
+    named = make(
+        links,
         convention=out.convention,
         name=out.name,
         base=out.base,
