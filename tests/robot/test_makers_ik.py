@@ -252,3 +252,19 @@ def test_puma_560_moved_within_the_line_tolerance_is_solved_by_the_general_6r():
         assert misses(robot, res[i].solutions, T).max() <= TOL
         if sv[i, -1] >= SINGULAR_REL * sv[i, 0]:
             assert among(q[i], res[i].solutions), i
+
+
+def test_a_probe_counts_its_configuration_found_within_near_probe_match():
+    # The near-family probe asks for the configuration that made each pose among the
+    # family's solutions (mod 2π), not only for some solution.
+    from kinematica.ik.solvers import NEAR_PROBE_MATCH, generating_found
+
+    made = np.array([[0.1, -0.2, 0.3, np.pi - 1e-9, 0.5, -0.6]])
+    other = made + 0.7  # another branch: the pose solved, its configuration missed
+    for step, found in ((0.5 * NEAR_PROBE_MATCH, True), (2.0 * NEAR_PROBE_MATCH, False)):
+        near = made + step * np.array([1, -1, 1, 1, -1, 1])  # joint 4 across ±π
+        near[0, 3] -= 2.0 * np.pi
+        sols = np.stack([other, near], axis=1)  # (1, 2, 6)
+        assert generating_found(sols, np.array([2]), made) is found
+        assert generating_found(sols, np.array([1]), made) is False  # the first row only
+    assert generating_found(np.zeros((1, 0, 6)), np.array([0]), made) is False

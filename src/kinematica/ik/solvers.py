@@ -42,6 +42,7 @@ __all__ = [
     "Plan",
     "check_options",
     "closed_form",
+    "generating_found",
     "plan_of",
     "rank_five_of",
     "structure_of",
@@ -103,6 +104,10 @@ def closed_form(
 NEAR_PROBES = 4
 #: Their seed (the same verdict for the same arm, every call).
 NEAR_PROBE_SEED = 32
+#: A probe's own configuration counts as found where a solution is within this of it
+#: (rad, every joint, mod 2π): solutions are exact to the pose tolerance, so a random
+#: (regular) configuration's joints to about that over the Jacobian's σmin.
+NEAR_PROBE_MATCH = 1e-6
 
 
 def _near_family_or_general(chain: Chain, found: ClosedForm) -> ClosedForm:
@@ -112,8 +117,9 @@ def _near_family_or_general(chain: Chain, found: ClosedForm) -> ClosedForm:
     (``slack``) are solved by the family's candidates, repaired; farther from it, within
     the tolerance still, the candidates reach no target (a PUMA 560 with every DH value
     moved by 2.7e-9: slack 5e-9, every pose searched, one solution). The family is
-    probed on the poses of :data:`NEAR_PROBES` random configurations: where it solves
-    one of them not (a pose made by FK) and the general 6R builds, that answers.
+    probed on the poses of :data:`NEAR_PROBES` random configurations: where it misses
+    the configuration that made one of them (:func:`generating_found`), the pose not
+    solved or solved by other branches only, and the general 6R builds, that answers.
     """
     f = features(chain)
     if found.exact or f.slack <= 0.0 or f.joint_types != "RRRRRR" or found.name == "general-6R":
@@ -123,10 +129,31 @@ def _near_family_or_general(chain: Chain, found: ClosedForm) -> ClosedForm:
     poses = np.ascontiguousarray(chain.fk(Q)[0])
     opts = check_options(Tolerance(), False, False, POSE_WEIGHTS, f.slack)
     raw = found.params.ik_batch(chain.core, poses, opts, None, None, 1)
-    if bool((np.asarray(raw.status) == _core.STATUS["ok"]).all()):
+    if generating_found(np.asarray(raw.q), np.asarray(raw.count), Q):
         return found
     general = general_6r.build(chain, f, "pose")
     return found if general is None else general
+
+
+def generating_found(
+    solutions: NDArray[np.float64],
+    count: NDArray[np.int64],
+    Q: NDArray[np.float64],
+    match: float = NEAR_PROBE_MATCH,
+) -> bool:
+    """Whether every pose's solutions hold the configuration that made it.
+
+    Args:
+        solutions: ``(N, S, n)`` each pose's solutions (rad), its first ``count`` rows.
+        count: ``(N,)`` how many solutions each pose has.
+        Q: ``(N, n)`` the configurations that made the poses (rad).
+        match: The largest joint difference (rad, mod 2π) of a solution found.
+    """
+    for q, k, made in zip(solutions, count.tolist(), Q, strict=True):
+        gap = np.abs((q[:k] - made + np.pi) % (2.0 * np.pi) - np.pi)
+        if not bool((gap.max(axis=-1, initial=0.0) <= match).any()):
+            return False
+    return True
 
 
 def why_numeric(
