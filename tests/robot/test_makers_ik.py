@@ -164,11 +164,6 @@ FAR_FEET = ("kinova_gen3_lite", "i2rt_big_yam")
 DETERMINED = 10.0
 
 
-#: The km-long DH offsets are meant.
-FAR = pytest.mark.filterwarnings("ignore:.* is longer than 20 m")
-
-
-@FAR
 @pytest.mark.parametrize("name", FAR_FEET)
 def test_dh_table_with_far_feet_is_solved_as_its_urdf(name):
     # The table's frames 38 km out and back made the arm's size 76 km: the rank test saw a
@@ -178,6 +173,7 @@ def test_dh_table_with_far_feet_is_solved_as_its_urdf(name):
     arm = next(a for a in SIX_R if a["arm"] == name)
     table = load(arm).to_dh()
     robot = table.robot
+    assert features(robot.chain).size < 2.0  # the arm's size along its axes, not 76 km
     q_gen = np.array(arm["q_gen"])
     targets = robot.fk(q_gen)
     sv = np.linalg.svd(robot.jacobian(q_gen), compute_uv=False)
@@ -200,32 +196,34 @@ def test_dh_table_with_far_feet_is_solved_as_its_urdf(name):
     assert not lost, f"ssik solutions not among ours: {lost}"
 
 
-@FAR
-def test_loop_size_is_measured_along_the_axes_where_the_frames_wander():
+def test_arm_size_is_measured_along_the_axes_where_the_frames_wander():
     # Axes 2 and 3 parallel (α2 = 0): d2 = +L, d3 = -L moves frame 2 along them, the same
-    # arm for every L. Its size along the axes is the loop's once arm_size (|d2| + |d3|
-    # counted) exceeds it 1 / WALK_SIZE_RATIO times, not before.
+    # arm for every L. Its size (the line tolerance's scale, the general 6R's loop) is
+    # the one along the axes once the frames' (|d2| + |d3| counted) exceed it
+    # 1 / WALK_SIZE_RATIO times, not before.
     def arm(L: float) -> km.Robot:
-        rows = [km.Revolute(d=0.3, a=0.05, alpha=math.pi / 2),
-                km.Revolute(d=L, a=0.4, alpha=0.0),
-                km.Revolute(d=-L, a=0.05, alpha=math.pi / 2),
-                km.Revolute(d=0.35, a=0.0, alpha=-1.2),
-                km.Revolute(d=0.1, a=0.02, alpha=0.9),
-                km.Revolute(d=0.08, a=0.0, alpha=0.0)]  # fmt: skip
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", km.UnitWarning)  # d of km, on purpose
+            rows = [km.Revolute(d=0.3, a=0.05, alpha=math.pi / 2),
+                    km.Revolute(d=L, a=0.4, alpha=0.0),
+                    km.Revolute(d=-L, a=0.05, alpha=math.pi / 2),
+                    km.Revolute(d=0.35, a=0.0, alpha=-1.2),
+                    km.Revolute(d=0.1, a=0.02, alpha=0.9),
+                    km.Revolute(d=0.08, a=0.0, alpha=0.0)]  # fmt: skip
         return km.Robot.from_dh(rows, convention="standard")
 
-    walked = general6r.loop_size(arm(1e4).chain.core)
+    walked = features(arm(1e4).chain).size
     assert walked < 2.0  # the geometry's, not the 20 km of frames
-    own = features(arm(0.0).chain).size  # arm_size without the excursion
+    own = features(arm(0.0).chain).size  # the frames' size without the excursion
     ratio = general6r.WALK_SIZE_RATIO
     for r, along in ((0.3 * ratio, True), (3.0 * ratio, False)):
         L = (walked / r - own) / 2.0
         assert L > 0.0
         robot = arm(L)
         size = features(robot.chain).size
-        assert size == pytest.approx(own + 2.0 * L)
-        assert general6r.loop_size(robot.chain.core) == pytest.approx(walked if along else size)
-        assert rank_size(robot.chain) == general6r.loop_size(robot.chain.core)
+        assert size == pytest.approx(walked if along else own + 2.0 * L)
+        assert general6r.loop_size(robot.chain.core) == pytest.approx(size)
+        assert rank_size(robot.chain) == size
         assert rank_five(robot.chain) is None
     assert general6r.loop_size(load(SIX_R[0]).chain.core) == features(load(SIX_R[0]).chain).size
 

@@ -37,23 +37,6 @@ struct ArmAxes {
     double length_tol() const { return lines::length_tol(size); }
 };
 
-namespace detail {
-
-//! Records each joint's axis (direction, point) of a walk.
-struct AxesRecord {
-    static constexpr bool frames = false;
-    static constexpr bool axes = true;
-    Vec3* h;
-    Vec3* p;
-    void frame(int, const Pose&) {}
-    void axis(int i, const Vec3& z, const Vec3& o) {
-        h[i] = z;
-        p[i] = o;
-    }
-};
-
-}  // namespace detail
-
 //! A chain's axes at q = 0 and their features (one walk, one axis_features call).
 inline ArmAxes arm_axes(const Chain& chain) {
     const ChainView ch = chain.view();

@@ -141,9 +141,33 @@ inline Chain Chain::from_transforms(int n, const Pose& start, const Pose* betwee
     return ch;
 }
 
-//! The arm's size (m): |tool offset| + Σ |fixed translations| of its joints (a slide's
-//! travel not counted): the scale of the line geometry's length tolerance (lines.hpp).
-inline double arm_size(const Chain& chain) {
+namespace detail {
+
+//! Records each joint's axis (direction, point) of a walk.
+struct AxesRecord {
+    static constexpr bool frames = false;
+    static constexpr bool axes = true;
+    Vec3* h;
+    Vec3* p;
+    void frame(int, const Pose&) {}
+    void axis(int i, const Vec3& z, const Vec3& o) {
+        h[i] = z;
+        p[i] = o;
+    }
+};
+
+}  // namespace detail
+
+//! The arm's size is measured along its axes (walked_size) where that is below this
+//! fraction of the size of its frames (frame_size): a DH table of nearly parallel axes
+//! puts its frames at the foot of their common normal (the Kinova Gen3 Lite's `to_dh()`:
+//! d2, d3 = -38 km, 76 km of frames for an arm of 0.85 m); a length tolerance in units of
+//! that would call axes 0.15 mm apart met, and a loop of that size loses its lengths to
+//! round-off.
+constexpr double WALK_SIZE_RATIO = 0.1;
+
+//! |tool offset| + Σ |fixed translations| of the joints (m; a slide's travel not counted).
+inline double frame_size(const Chain& chain) {
     double joints = 0.0;
     for (const Joint& J : chain.joints()) {
         joints += std::fabs(J.t.x);
@@ -151,6 +175,39 @@ inline double arm_size(const Chain& chain) {
         joints += std::fabs(J.t.z);
     }
     return norm(chain.view().tool.p) + joints;
+}
+
+//! The size of n axes (unit directions h, points p) measured along them (m): each
+//! axis's point replaced, in p, by the one nearest the previous axis's point (axis 1's
+//! own kept), |p[i] - p[i-1]| summed with the tool point's distance from the last. A
+//! joint turns the axes after it about its own, which keeps every distance from a point
+//! on it: for a revolute chain this is the same at every configuration, and a chain's
+//! representation cannot make it larger than the geometry.
+inline double walked_size(const Vec3* h, Vec3* p, int n, const Vec3& tool) {
+    double size = 0.0;
+    for (int i = 1; i < n; ++i) {
+        p[i] = p[i] + dot(p[i - 1] - p[i], h[i]) * h[i];
+        size += norm(p[i] - p[i - 1]);
+    }
+    return size + norm(tool - p[n - 1]);
+}
+
+//! The arm's size (m), the scale of the line geometry's length tolerance (lines.hpp):
+//! frame_size, or for a revolute chain whose size along its axes is below
+//! WALK_SIZE_RATIO of that, walked_size at q = 0.
+inline double arm_size(const Chain& chain) {
+    const double frames = frame_size(chain);
+    const ChainView ch = chain.view();
+    if (ch.n == 0) return frames;
+    for (int i = 0; i < ch.n; ++i)
+        if (ch.joint[i].prismatic) return frames;
+    const auto N = static_cast<size_t>(ch.n);
+    std::vector<double> q(N, 0.0), c(N), s(N);
+    std::vector<Vec3> h(N), p(N);
+    joint_trig(ch, q.data(), c.data(), s.data());
+    const Pose M = walk(ch, q.data(), c.data(), s.data(), detail::AxesRecord{h.data(), p.data()});
+    const double walked = walked_size(h.data(), p.data(), ch.n, M.p);
+    return walked < WALK_SIZE_RATIO * frames ? walked : frames;
 }
 
 inline Pose Chain::fixed_part(int i) const {

@@ -40,7 +40,6 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.dh.lines import common_point
 from kinematica.ik.coaxial_pair import coaxial_pair
@@ -120,23 +119,14 @@ class RankFive:
 
 
 def rank_size(chain: Chain) -> float:
-    """The arm's size (m) the rank is measured in: the general 6R loop's.
+    """The arm's size (m) the rank is measured in: :func:`~kinematica.ik.structure.arm_size`.
 
-    The core's (``general_6r_build.hpp``, ``loop_size``):
-    :func:`~kinematica.ik.structure.arm_size`, or where that is more than
-    1 / ``WALK_SIZE_RATIO`` times the size along the axes (each axis's point the one
-    nearest the previous axis's, the distances between them and the tool's from the
-    last summed), that. A DH table of nearly parallel axes puts frames at the foot of
-    their common normal (the Kinova Gen3 Lite's ``to_dh()``: 38 km off, an arm_size of
-    76 km for an arm of 0.85 m): in units of that size the arm's Jacobian is of rank 3
-    to 6e-7, in units of its own not. Other chains: their arm_size.
+    Measured along the axes where the frames wander far from them (a DH table of nearly
+    parallel axes puts frames at the foot of their common normal: the Kinova Gen3 Lite's
+    ``to_dh()``, 38 km off, 76 km of frames for an arm of 0.85 m): in units of the
+    frames' size the arm's Jacobian is of rank 3 to 6e-7, in units of its own not.
     """
-    memo = chain.memo
-    if "rank size" not in memo:
-        size = _core.general6r.loop_size(chain.core)
-        memo["rank size"] = features(chain).size if size is None else float(size)
-    got: float = memo["rank size"]  # type: ignore[assignment]
-    return got
+    return features(chain).size
 
 
 def scaled_jacobian(chain: Chain, q: FloatArray) -> FloatArray:

@@ -80,12 +80,9 @@ constexpr double FOOT_PARALLEL_TOL = 1e-18;
 //! loses their size times round-off (1.6e-9 m measured), and Newton's step then stalls
 //! there instead of closing the loop.
 constexpr double FOOT_REACH = 10.0;
-//! The chain's own points on the axes are replaced by the walk's nearest points
-//! (walked_size) when the arm's size measured along them is below this fraction of the
-//! chain's (arm_size): a DH table of nearly parallel axes puts its frames at the foot of
-//! their common normal (the Kinova Gen3 Lite's `to_dh()`: d2, d3 = -38 km, arm_size 76 km
-//! for an arm of 0.85 m), and a loop of that size loses its lengths to round-off.
-constexpr double WALK_SIZE_RATIO = 1.0 / FOOT_REACH;
+//! The chain's own points on the axes are replaced by the walk's nearest points where
+//! the arm's size is measured along them (arm_size, chain_build.hpp).
+using km::WALK_SIZE_RATIO;
 
 //! The arm as a loop: T(q) = G1 Rz(q1) K1 ... Rz(q6) K6 (base frame, m).
 struct Loop {
@@ -134,19 +131,6 @@ inline Vec3 foot(const Vec3* h, const Vec3* p, int i, int j, double size) {
     return p[i] + t * h[i];
 }
 
-//! The arm's size measured along its axes (m): each axis's point replaced by the one
-//! nearest the previous axis's (axis 1's own kept), |p'_{i+1} - p'_i| summed with the
-//! tool's distance from the last. A chain's representation cannot make it larger than
-//! the geometry, where arm_size counts every translation of its frames.
-inline double walked_size(const Vec3* h, Vec3* p, const Vec3& tool) {
-    double size = 0.0;
-    for (int i = 1; i < 6; ++i) {
-        p[i] = p[i] + dot(p[i - 1] - p[i], h[i]) * h[i];
-        size += norm(p[i] - p[i - 1]);
-    }
-    return size + norm(tool - p[5]);
-}
-
 //! A pose with its translation times `scale`.
 inline Pose scaled(Pose A, double scale) {
     A.p = scale * A.p;
@@ -165,10 +149,10 @@ inline bool loop_of(const Chain& chain, Loop& out) {
     joint_trig(ch, q, c, s);
     detail::Axes axes;
     const Pose M = walk(ch, q, c, s, axes);
-    out.size = std::fmax(arm_size(chain), 1e-9);
+    out.size = std::fmax(frame_size(chain), 1e-9);
     Vec3 near[6];
     std::copy(axes.p, axes.p + 6, near);
-    const double walked = detail::walked_size(axes.h, near, M.p);
+    const double walked = walked_size(axes.h, near, 6, M.p);
     if (walked < WALK_SIZE_RATIO * out.size) {
         std::copy(near, near + 6, axes.p);
         out.size = std::fmax(walked, 1e-9);
