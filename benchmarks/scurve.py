@@ -16,7 +16,9 @@ Run with ``make bench`` (or ``.venv/bin/python benchmarks/scurve.py [--cases N]`
   ``via_trajectory(W, "scurve")`` per segment (search, exact pieces and samples
   every 10 ms, all in the core) against the search alone; both again with
   position limits 0-2 cm outside the waypoints. Last, the cheaper settings
-  against the default on 300 random paths: each path's duration change.
+  against the default on 300 random paths: each path's duration change; and the
+  default against its durations before issue 36's speed-up (commit a2640cd, stored in
+  ``data/scurve_via_main.txt``).
 * Audit on ``--cases`` random cases (10,000 by default), 1 to 7 joints:
   rest-to-rest durations against the hand-derived closed form
   (``tests/support/scurve_reference.py``; the slowest joint's time), and from
@@ -362,7 +364,16 @@ def tradeoff(paths: int = 300) -> list[tuple[str, str, str]]:
         return np.array([jerk_via(W, z, z, lim, None, 0.0, search).time.sum() for W, lim in cases])
 
     base = durations((SWEEPS, GOLDEN_STEPS, JOINT_SWEEPS))
-    rows = []
+    # the default search before issue 36's speed-up (commit a2640cd), its durations stored
+    main = np.loadtxt(Path(__file__).parent / "data" / "scurve_via_main.txt")
+    r = base / main - 1.0
+    rows = [
+        (
+            f"default search against a2640cd's (stored), {paths} paths",
+            f"change min {r.min():+.1e}, median {np.median(r):+.1e}, max {r.max():+.1e}",
+            f"{int((r > 0.005).sum())} longer by > 0.5 %, {int((r != 0.0).sum())} changed",
+        )
+    ]
     for search in ((SWEEPS, 7, JOINT_SWEEPS), (SWEEPS, 6, JOINT_SWEEPS), (SWEEPS, GOLDEN_STEPS, 0)):
         r = durations(search) / base - 1.0
         rows.append(

@@ -6,7 +6,9 @@ tests catch a search that gets cheaper by getting worse: on small cases its dura
 compared with the best of a dense grid of waypoint velocities (every combination, each
 segment planned by the core's own segment, ``jerk_segments``), its reported durations
 with the segments planned again at the velocities it chose, and its moves with every
-limit and ``qlim`` on a 1 ms resampling and at their exact extremes.
+limit and ``qlim`` on a 1 ms resampling and at their exact extremes. The common-speed part
+of the search (no joint's own speed) is replayed in plain Python, every candidate timed in
+full by ``jerk_segments``: the core's bounds skip work, never change the outcome.
 """
 
 from __future__ import annotations
@@ -72,6 +74,97 @@ def test_the_search_is_within_search_rtol_of_a_brute_force_grid() -> None:
     # at every waypoint is beyond the tolerance (one 1000x larger would let it pass)
     assert max(search) > SEARCH_RTOL / 1000
     assert max(stop) > 5 * SEARCH_RTOL
+
+
+GOLD = (5**0.5 - 1) / 2
+
+
+def _replayed_search(
+    w: np.ndarray, lim: tuple[np.ndarray, ...], steps: int
+) -> tuple[np.ndarray, np.ndarray]:
+    """The search with one speed fraction per waypoint (``jerk_via.hpp``, steps 1 and 2,
+    one sweep, no joint's own speed), each candidate's two segments timed in full:
+    ``(velocity (k, n), time (k - 1,))``."""
+    k, n = w.shape
+    vmax = lim[0]
+    vhat = np.zeros((k, n))
+    for i in range(1, k - 1):
+        before, after = w[i] - w[i - 1], w[i + 1] - w[i]
+        same = (before != 0.0) & (after != 0.0) & ((before > 0.0) == (after > 0.0))
+        u = np.where(same, w[i + 1] - w[i - 1], 0.0)
+        if np.any(u != 0.0):
+            scale = min(vmax[j] / abs(u[j]) for j in range(n) if u[j] != 0.0)
+            vhat[i] = np.minimum(vmax, np.maximum(-vmax, u * scale))
+
+    def times(vel: np.ndarray, first: int = 0, last: int = k - 1) -> np.ndarray:
+        sl = slice(first, last)
+        p0, p1 = w[:-1][sl], w[1:][sl]
+        return jerk_segments(p0, vel[:-1][sl], p1, vel[1:][sl], lim).duration
+
+    def total(d: np.ndarray) -> float:  # in order, as the core adds (sum() compensates)
+        out = 0.0
+        for t in d.tolist():
+            out += t
+        return out
+
+    vel = np.zeros((k, n))
+    time = times(vel)
+    best = total(time)
+    for x in (0.5, 1.0):
+        trial = x * vhat
+        d = times(trial)
+        if total(d) < best:
+            vel, time, best = trial, d, total(d)
+    for i in range(1, k - 1):
+        if not np.any(vhat[i] != 0.0):
+            continue
+
+        def f(x: float, i: int = i, vel: np.ndarray = vel) -> float:
+            trial = vel.copy()
+            trial[i] = x * vhat[i]
+            d = times(trial, i - 1, i + 1)
+            return float(d[0]) + float(d[1])
+
+        lo, hi = 0.0, 1.0
+        x1, x2 = hi - GOLD, lo + GOLD
+        f1, f2 = f(x1), f(x2)
+        xb, fb = (x1, f1) if f1 <= f2 else (x2, f2)
+        for _ in range(2, steps):
+            if f1 <= f2:
+                hi, x2, f2 = x2, x1, f1
+                x1 = hi - GOLD * (hi - lo)
+                f1 = f(x1)
+                xb, fb = (x1, f1) if f1 < fb else (xb, fb)
+            else:
+                lo, x1, f1 = x1, x2, f2
+                x2 = lo + GOLD * (hi - lo)
+                f2 = f(x2)
+                xb, fb = (x2, f2) if f2 < fb else (xb, fb)
+        if fb < float(time[i - 1]) + float(time[i]):
+            vel = vel.copy()
+            vel[i] = xb * vhat[i]
+            time = time.copy()
+            time[i - 1 : i + 1] = times(vel, i - 1, i + 1)
+    return vel, time
+
+
+def test_the_common_speed_search_is_its_plain_replay_to_the_bit() -> None:
+    # the core drops a golden-section point once a lower bound of its two segments passes
+    # the point it keeps, keeps the best point's timing and stops timing a grid's common
+    # speed once past the best: each only skips work, so the outcome is the plain search's
+    rng = np.random.default_rng(39)
+    accepted = 0
+    for c in range(12):
+        n, k = 7, 3 + c % 4
+        lim = random_limits(rng, n)
+        w = np.cumsum(rng.uniform(-0.6, 0.9, (k, n)), axis=0)
+        z = np.zeros(n)
+        choice = jerk_via(w, z, z, lim, None, 0.0, (1, GOLDEN_STEPS, 0))
+        vel, time = _replayed_search(w, lim, GOLDEN_STEPS)
+        assert np.array_equal(choice.velocity, vel)
+        assert np.array_equal(choice.time, time)
+        accepted += int(np.any(vel[1:-1] != 0.0))
+    assert accepted >= 6  # the searches move off a stop: the replay checks their choices
 
 
 def test_random_moves_hold_every_limit_and_qlim_at_their_extremes() -> None:

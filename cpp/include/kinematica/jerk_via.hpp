@@ -26,6 +26,14 @@
 //   the two segments today, and ends once a candidate reaches it (no later candidate could
 //   replace it): the result is the full search's, to the bit, in 8 % fewer evaluations.
 // - The joints whose velocity a candidate does not change keep their shortest durations.
+// - A golden section compares each new point with the one it keeps, and drops the worse: a
+//   point whose lower bound is already above the kept one's value needs no more work. A
+//   segment lasts at least its slowest joint's shortest duration (the λ search times each
+//   segment's slowest joint of the chosen move first, then the others, and stops once the
+//   bound passes), and, in the per-joint search, at least the other joints' duration: the
+//   search goes as with every point timed in full, to the bit (a fifth of the λ search's
+//   points are dropped so). The best point's timing is kept, not timed again once chosen;
+//   a common λ on the grid stops timing its segments once their sum passes the best.
 // - With position limits, each golden section runs on the durations without them (no
 //   profile built) and its best point is then checked; only where that leaves qlim is the
 //   section run again with every point checked.
@@ -154,7 +162,11 @@ public:
           b_(P.n),
           binding_((P.k - 1) * P.n),
           grid_b_((P.k - 1) * P.n),
-          changed_(P.k - 1, 0) {}
+          changed_(P.k - 1, 0),
+          pair_t_(2 * P.n),
+          seen_t_(2 * P.n),
+          pair_b_(2 * P.n),
+          seen_b_(2 * P.n) {}
 
     void run(const ViaParams& prm) {
         const int k = P_.k, n = P_.n;
@@ -178,7 +190,7 @@ public:
             for (int i = 1; i < k - 1; ++i) {
                 for (int j = 0; j < n; ++j) trial_vel[i * n + j] = x * vhat_[i * n + j];
             }
-            const double d = total(trial_vel.data(), trial_time.data());
+            const double d = total(trial_vel.data(), trial_time.data(), best);
             if (d < best) {
                 best = d;
                 std::copy(trial_vel.begin(), trial_vel.end(), vel);
@@ -233,27 +245,71 @@ private:
         const double* p0 = P_.w + i * n;
         const double* p1 = p0 + n;
         ++out_.evaluations;
-        const double* ci = out_.velocity + i * n;  // the chosen velocities, whose shortest are kept
-        for (int j = 0; j < n; ++j) {
-            t_[j] = kept_ && vi[j] == ci[j] && vj[j] == ci[n + j] ? shortest_[i * n + j]
-                                                                  : shortest(p1[j] - p0[j], vi[j], vj[j], P_.limits[j]);
-        }
+        for (int j = 0; j < n; ++j) t_[j] = joint_time(i, vi, vj, j);
         const double T = synchronised(n, p0, vi, p1, vj, P_.limits, t_.data(), -1, b_.data());
         return !qlim || within_qlim(i, T, vi, vj, -1) ? T : std::numeric_limits<double>::infinity();
     }
 
+    //! Joint j's shortest duration in segment i from vi to vj: the chosen segment's where
+    //! its velocities are the chosen ones (kept).
+    double joint_time(int i, const double* vi, const double* vj, int j) const {
+        const int n = P_.n;
+        const double* ci = out_.velocity + i * n;
+        const double* p0 = P_.w + i * n;
+        return kept_ && vi[j] == ci[j] && vj[j] == ci[n + j] ? shortest_[i * n + j]
+                                                            : shortest(p0[n + j] - p0[j], vi[j], vj[j], P_.limits[j]);
+    }
+
+    //! The two segments next to waypoint i, its velocity v: their durations' sum (time()),
+    //! or, once the longest of each segment's joints' shortest durations timed so far (the
+    //! chosen segment's slowest joint first) sum above cutoff, that sum (a lower bound:
+    //! synchronised() only lengthens the longest). Timed in full, each segment's duration,
+    //! its joints' shortest durations and binding joints are left in pair_T_, pair_t_, pair_b_.
+    double pair(int i, const double* v, bool qlim, double cutoff) {
+        const int n = P_.n;
+        const double* vel = out_.velocity;
+        const double* from[2] = {vel + (i - 1) * n, v};
+        const double* to[2] = {v, vel + (i + 1) * n};
+        double top[2];
+        int first[2];
+        for (int s = 0; s < 2; ++s) {
+            const double* c = shortest_.data() + (i - 1 + s) * n;
+            first[s] = static_cast<int>(std::max_element(c, c + n) - c);
+            top[s] = pair_t_[s * n + first[s]] = joint_time(i - 1 + s, from[s], to[s], first[s]);
+        }
+        if (top[0] + top[1] > cutoff) return top[0] + top[1];
+        for (int s = 0; s < 2; ++s) {
+            for (int j = 0; j < n; ++j) {
+                if (j == first[s]) continue;
+                const double t = pair_t_[s * n + j] = joint_time(i - 1 + s, from[s], to[s], j);
+                top[s] = std::max(top[s], t);
+            }
+            if (top[0] + top[1] > cutoff) return top[0] + top[1];
+        }
+        for (int s = 0; s < 2; ++s) {
+            const int seg = i - 1 + s;
+            const double* p0 = P_.w + seg * n;
+            ++out_.evaluations;
+            const double T = synchronised(n, p0, from[s], p0 + n, to[s], P_.limits, pair_t_.data() + s * n, -1,
+                                          pair_b_.data() + s * n);
+            pair_T_[s] = !qlim || within_qlim(seg, T, from[s], to[s], -1) ? T : std::numeric_limits<double>::infinity();
+        }
+        return pair_T_[0] + pair_T_[1];
+    }
+
     //! time(i, vi, vj) when only `joint`'s velocities differ from the chosen ones. tw: the
     //! segment's duration without that joint; bind: whether the joint binds the chosen
-    //! segment (else tw is its duration, whose other joints are known to keep qlim). The
-    //! other joints' shortest durations are the chosen segment's (not computed again).
-    double time_joint(int i, const double* vi, const double* vj, int joint, double tw, bool bind, bool qlim) {
+    //! segment (else tw is its duration, whose other joints are known to keep qlim); tj: the
+    //! joint's shortest duration. The other joints' shortest durations are the chosen
+    //! segment's (not computed again).
+    double time_joint(int i, const double* vi, const double* vj, int joint, double tj, double tw, bool bind,
+                      bool qlim) {
         const int n = P_.n;
         const double* p0 = P_.w + i * n;
         const double* p1 = p0 + n;
         ++out_.evaluations;
         const double d = p1[joint] - p0[joint];
         const Limits& L = P_.limits[joint];
-        const double tj = shortest(d, vi[joint], vj[joint], L);
         double T;
         bool others_kept = !bind;
         if (tj <= tw && unblocked(tw, d, vi[joint], vj[joint], L) == tw) {
@@ -295,8 +351,9 @@ private:
     }
 
     //! The move's duration at the velocities vel (k, n) (no kept values used), each segment's
-    //! in times; its joints' shortest durations and binding joints in grid_t_, grid_b_.
-    double total(const double* vel, double* times) {
+    //! in times; its joints' shortest durations and binding joints in grid_t_, grid_b_. Once
+    //! the segments timed reach `above`, their sum (the rest left untimed).
+    double total(const double* vel, double* times, double above = std::numeric_limits<double>::infinity()) {
         const int n = P_.n;
         double sum = 0.0;
         for (int i = 0; i < P_.k - 1; ++i) {
@@ -304,6 +361,7 @@ private:
             std::copy(t_.begin(), t_.end(), grid_t_.begin() + i * n);
             std::copy(b_.begin(), b_.end(), grid_b_.begin() + i * n);
             sum += times[i];
+            if (sum >= above) break;
         }
         return sum;
     }
@@ -311,24 +369,28 @@ private:
     //! The best of `steps` evaluations of f on [0, 1] by golden section: (x, f(x)).
     //! floor: a value no f(x) is below; once the best reaches it, the rest of the search
     //! could not replace it (only a strictly lower value does), so it ends there.
+    //! f(x, cutoff) may return, instead of f(x), any lower bound of it above cutoff: each
+    //! new point is compared with the one the section keeps (its cutoff), and a point above
+    //! that one is dropped whatever its value, so the search goes as with every f(x) exact.
     template <class F>
     static std::pair<double, double> golden(const F& f, int steps, double floor) {
+        constexpr double all = std::numeric_limits<double>::infinity();
         double lo = 0.0, hi = 1.0;
         double x1 = hi - GOLD, x2 = lo + GOLD;
-        double f1 = f(x1);
+        double f1 = f(x1, all);
         if (f1 <= floor) return {x1, f1};
-        double f2 = f(x2);
+        double f2 = f(x2, f1);
         double xb = f1 <= f2 ? x1 : x2, fb = std::min(f1, f2);
         for (int s = 2; s < steps && fb > floor; ++s) {
             if (f1 <= f2) {
                 hi = x2, x2 = x1, f2 = f1;
                 x1 = hi - GOLD * (hi - lo);
-                f1 = f(x1);
+                f1 = f(x1, f2);
                 if (f1 < fb) fb = f1, xb = x1;
             } else {
                 lo = x1, x1 = x2, f1 = f2;
                 x2 = lo + GOLD * (hi - lo);
-                f2 = f(x2);
+                f2 = f(x2, f1);
                 if (f2 < fb) fb = f2, xb = x2;
             }
         }
@@ -363,30 +425,57 @@ private:
             floor = tw[0] + tw[1];
             if (floor >= out_.time[i - 1] + out_.time[i]) return;
         }
-        // the two segments' duration, with qlim or without (a lower bound: no profile built)
-        const auto around = [&](double x, bool qlim) {
+        // the two segments' duration, with qlim or without (a lower bound: no profile built),
+        // or a lower bound of it above cutoff (golden())
+        const auto around = [&](double x, bool qlim, double cutoff) {
             candidate(x, trial_.data());
-            if (joint < 0) {
-                return time(i - 1, vel + (i - 1) * n, trial_.data(), qlim) +
-                       time(i, trial_.data(), vel + (i + 1) * n, qlim);
+            if (joint < 0) return pair(i, trial_.data(), qlim, cutoff);
+            const Limits& lim = P_.limits[joint];
+            const double* p0 = P_.w + (i - 1) * n;
+            const double v = trial_[joint];
+            const double t0 = shortest(p0[n + joint] - p0[joint], vel[(i - 1) * n + joint], v, lim);
+            const double t1 = shortest(p0[2 * n + joint] - p0[n + joint], v, vel[(i + 1) * n + joint], lim);
+            // each segment lasts at least its joint's shortest and the other joints' duration
+            const double low = std::max(t0, tw[0]) + std::max(t1, tw[1]);
+            if (low > cutoff) return low;
+            return time_joint(i - 1, vel + (i - 1) * n, trial_.data(), joint, t0, tw[0], bind[0], qlim) +
+                   time_joint(i, trial_.data(), vel + (i + 1) * n, joint, t1, tw[1], bind[1], qlim);
+        };
+        // the λ search without qlim keeps its best point's timing (pair()'s), not timed again
+        double seen = std::numeric_limits<double>::infinity(), x_seen = -1.0;
+        const auto f = [&](double x, double cutoff) {
+            const double d = around(x, P_.qlim == nullptr, cutoff);
+            if (joint < 0 && P_.qlim == nullptr && d < seen) {
+                seen = d, x_seen = x;
+                std::copy(pair_t_.begin(), pair_t_.end(), seen_t_.begin());
+                std::copy(pair_b_.begin(), pair_b_.end(), seen_b_.begin());
+                seen_T_[0] = pair_T_[0], seen_T_[1] = pair_T_[1];
             }
-            return time_joint(i - 1, vel + (i - 1) * n, trial_.data(), joint, tw[0], bind[0], qlim) +
-                   time_joint(i, trial_.data(), vel + (i + 1) * n, joint, tw[1], bind[1], qlim);
+            return d;
         };
         // with qlim, the search without it, whose best point is then checked: where it keeps
         // qlim, that is the result; else the search again with qlim (every point checked)
-        auto [xb, fb] = golden([&](double x) { return around(x, P_.qlim == nullptr); }, steps, floor);
-        if (P_.qlim != nullptr && around(xb, true) != fb) {
-            std::tie(xb, fb) = golden([&](double x) { return around(x, true); }, steps, floor);
+        constexpr double all = std::numeric_limits<double>::infinity();
+        auto [xb, fb] = golden(f, steps, floor);
+        if (P_.qlim != nullptr && around(xb, true, all) != fb) {
+            std::tie(xb, fb) = golden([&](double x, double cutoff) { return around(x, true, cutoff); }, steps, floor);
         }
         if (fb < out_.time[i - 1] + out_.time[i]) {
             candidate(xb, trial_.data());
-            // timed before the velocities are changed: the joints whose velocity is the same
-            // keep their shortest durations (each segment's own, kept by keep())
-            out_.time[i - 1] = time(i - 1, vel + (i - 1) * n, trial_.data());
-            keep(i - 1);
-            out_.time[i] = time(i, trial_.data(), vel + (i + 1) * n);
-            keep(i);
+            if (joint < 0 && P_.qlim == nullptr && x_seen == xb) {
+                for (int s = 0; s < 2; ++s) {
+                    out_.time[i - 1 + s] = seen_T_[s];
+                    std::copy(seen_t_.begin() + s * n, seen_t_.begin() + (s + 1) * n, shortest_.begin() + (i - 1 + s) * n);
+                    std::copy(seen_b_.begin() + s * n, seen_b_.begin() + (s + 1) * n, binding_.begin() + (i - 1 + s) * n);
+                }
+            } else {
+                // timed before the velocities are changed: the joints whose velocity is the
+                // same keep their shortest durations (each segment's own, kept by keep())
+                out_.time[i - 1] = time(i - 1, vel + (i - 1) * n, trial_.data());
+                keep(i - 1);
+                out_.time[i] = time(i, trial_.data(), vel + (i + 1) * n);
+                keep(i);
+            }
             std::copy(trial_.begin(), trial_.end(), vel + i * n);
             changed_[i - 1] = changed_[i] = ++accepted_;
         }
@@ -421,6 +510,10 @@ private:
     std::vector<unsigned char> b_, binding_, grid_b_;  //!< binding joints of a segment; of the chosen ones
     std::vector<long> changed_;  //!< each segment's last change: the value of accepted_ then
     long accepted_ = 0;          //!< velocities accepted so far
+    // pair()'s timing of the two segments at a waypoint, and that of the best point seen
+    std::vector<double> pair_t_, seen_t_;
+    std::vector<unsigned char> pair_b_, seen_b_;
+    double pair_T_[2] = {}, seen_T_[2] = {};
     bool kept_ = false;                       //!< shortest_ and binding_ hold the chosen segments'
 };
 

@@ -37,8 +37,11 @@ move short:
    joints' duration without planning them again; that duration bounds the search
    from below, so it is skipped where the bound is no shorter than the two
    segments today and ends once a candidate reaches it; a candidate keeps the
-   durations of the joints it does not change. About 35-60 segments are planned
-   for each segment of the move (a joint timed against the others counts as one).
+   durations of the joints it does not change. A golden-section point whose lower
+   bound (its segments' slowest joints timed so far) already passes the point the
+   section keeps is dropped there, which changes nothing the section does. About
+   30-45 segments are timed in full for each segment of the move (a joint timed
+   against the others counts as one; ``docs/performance.md`` has the times).
 3. With position limits (``qlim``) a segment whose exact extremes (which include
    any overshoot of a waypoint) leave them counts as infinitely long, so the
    search only keeps waypoint velocities whose segments stay inside.
