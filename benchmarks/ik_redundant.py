@@ -69,8 +69,8 @@ from kinematica.ik.moved import end_arm, move_parts, moved_targets
 from kinematica.ik.nearest_value import screen
 from kinematica.ik.parameter import JointParameter
 from kinematica.ik.reach_bounds import may_reach, reach_bounds
-from kinematica.ik.request import IKRequest
 from kinematica.ik.redundancy import PARAMETER_SWEEP, choose
+from kinematica.ik.request import IKRequest
 from kinematica.ik.solve import solve_ik
 from kinematica.ik.structure import features
 from kinematica.ik.tolerance import Tolerance
@@ -354,13 +354,19 @@ def main() -> None:
     parser.add_argument("--singles", type=int, default=200)
     parser.add_argument("--seed", type=int, default=7)
     parser.add_argument("--auto-poses", type=int, default=200)
-    parser.add_argument("--bounds-poses", type=int, default=0,
-                        help="poses per arm of the reach bounds' check (bounds_pairs; 0: none)")
+    parser.add_argument(
+        "--bounds-poses",
+        type=int,
+        default=0,
+        help="poses per arm of the reach bounds' check (bounds_pairs; 0: none)",
+    )
     args = parser.parse_args()
     makers = DATA / "makers"
     if args.bounds_poses:
-        arms = [(n, km.load(str(makers / f"{n}.urdf")))
-                for n in ("realman_gen72", "kinova_gen3", "realman_rm75")]
+        arms = [
+            (n, km.load(str(makers / f"{n}.urdf")))
+            for n in ("realman_gen72", "kinova_gen3", "realman_rm75")
+        ]
         arms += [(f"random 7R ({s})", random_7r(s)) for s in range(7)]  # fmt: skip
         bounds_pairs(arms, args.bounds_poses, args.seed)
         return

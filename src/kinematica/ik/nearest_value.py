@@ -210,8 +210,9 @@ def swept(
     limits = bool(request.respect_limits)
     bounds = None if chain.prismatic[k] else reach_bounds(end_arm(chain, k), limits)
     tol = parse_tolerance(request.tol)
-    index, got = ready.sweep(poses, start, grid, skip, _NO_BOUNDS if bounds is None else bounds,
-                             tol.position, tol.rotation, limits, ROUNDOFF_SLACK, workers)  # fmt: skip
+    checked = _NO_BOUNDS if bounds is None else bounds
+    index, got = ready.sweep(poses, start, grid, skip, checked, tol.position, tol.rotation,
+                             limits, ROUNDOFF_SLACK, workers)  # fmt: skip
     answers: list[IKResult | None] = []
     for i, answer in enumerate(got):
         if answer is not None and answer.__class__ is not IKResult:  # the core's, to complete
