@@ -145,7 +145,8 @@ def nearest_answer(
         return None
     lean = lean_call(chain, joint, options)
     # the core reads the pose in place only as C-ordered native doubles: else the screen
-    if lean is None or not _in_place(target):
+    f, kind = target.flags, target.dtype
+    if lean is None or not (kind == np.float64 and kind.isnative and f.c_contiguous and f.aligned):
         return None
     start = float(values[0])
     hit = swept(chain, joint, lean, target[None], values[:1], np.array([skip]), 1)
@@ -153,12 +154,6 @@ def nearest_answer(
         return None, start
     index, grid, answers = hit
     return None if index[0] < 0 else (answers[0], float(grid[index[0]]))
-
-
-def _in_place(T: NDArray[Any]) -> bool:
-    """Whether the core reads ``T`` in place (C order, aligned native doubles)."""
-    f = T.flags
-    return T.dtype == np.float64 and T.dtype.isnative and f.c_contiguous and f.aligned
 
 
 def lean_call(chain: Chain, joint: Parameter, options: IKOptions) -> tuple[Any, IKRequest] | None:
@@ -187,20 +182,10 @@ def swept(
     prove out of reach (:func:`possible`'s), on up to ``workers`` threads; its answer at
     the first with a solution is the answer (completed as ``held_at`` completes it).
 
-    Args:
-        chain: The whole arm.
-        joint: Its held end joint.
-        lean: :func:`lean_call`'s.
-        poses: ``(N, 4, 4)`` targets of the whole arm.
-        start: ``(N,)`` the value each pose's order starts from.
-        skip: ``(N,)`` a value each pose leaves out (NaN: none).
-        workers: Threads.
-
-    Returns:
-        ``(index, grid, answers)``: ``(N,)`` the index in ``grid`` of the value answered
-        (-1: no value has a solution; -2: the pose is not one the core reads as rigid),
-        ``(G,)`` the sweep, and each pose's answer (None where index < 0); None where the
-        span is unbounded (no sweep).
+    ``poses`` ``(N, 4, 4)`` of the whole arm, ``start`` and ``skip`` ``(N,)`` (NaN: none).
+    Returns ``(index, grid, answers)``: ``(N,)`` the index in ``grid`` ``(G,)`` of the value
+    answered (-1: none has a solution; -2: a pose the core does not read as rigid) and each
+    pose's answer (None where index < 0); None where the span is unbounded (no sweep).
     """
     ready, request = lean
     grid = _grid(chain, joint)
@@ -210,7 +195,7 @@ def swept(
     limits = bool(request.respect_limits)
     bounds = None if chain.prismatic[k] else reach_bounds(end_arm(chain, k), limits)
     tol = parse_tolerance(request.tol)
-    checked = _NO_BOUNDS if bounds is None else bounds
+    checked = np.empty(0) if bounds is None else bounds
     index, got = ready.sweep(poses, start, grid, skip, checked, tol.position, tol.rotation,
                              limits, ROUNDOFF_SLACK, workers)  # fmt: skip
     answers: list[IKResult | None] = []
@@ -220,10 +205,6 @@ def swept(
             answer = held_completed(chain, k, joint.name, request, poses[i], v, answer)
         answers.append(answer)
     return index, grid, answers
-
-
-_NO_BOUNDS = np.empty(0)
-_NO_BOUNDS.flags.writeable = False
 
 
 def _grid(chain: Chain, joint: Parameter) -> FloatArray | None:
