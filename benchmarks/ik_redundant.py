@@ -38,6 +38,10 @@ machine may be shared); solutions per pose (mean); the share of poses
 whose every solution our own FK puts within 1e-10 m and 1e-10 rad of the target
 and holds the locked joint at its value exactly; the share with at least one.
 
+``--bounds-poses N`` runs the reach bounds' check instead (:func:`bounds_pairs`): N poses
+of the GEN72, Gen3, RM75 and 7 random 7R arms, every value of the sweep each, screened by
+the elimination with the limits kept and without; no pair with a solution may be dropped.
+
 When EAIK imports (``pip install eaik``), its joint-locked Panda (``HPRobot`` from the
 Panda's axes, q7 locked by its ``fixed_axes``; its FK checked against ours) is timed on
 the same poses, one pose at a time and batched on one thread. No assertions.
@@ -62,9 +66,11 @@ from _common import fmt_time, header, shortest_per_item, table
 import kinematica as km
 from kinematica.ik import IKBatchResult, IKOptions
 from kinematica.ik.moved import end_arm, move_parts, moved_targets
+from kinematica.ik.nearest_value import screen
 from kinematica.ik.parameter import JointParameter
 from kinematica.ik.reach_bounds import may_reach, reach_bounds
 from kinematica.ik.redundancy import PARAMETER_SWEEP, choose
+from kinematica.ik.request import IKRequest
 from kinematica.ik.solve import solve_ik
 from kinematica.ik.structure import features
 from kinematica.ik.tolerance import Tolerance
@@ -296,13 +302,74 @@ def bounds_drop(robot: km.Robot, T: np.ndarray) -> str:
     return f"{1 - may_reach(bounds, T, Tolerance(), grid, move).mean():.0%}"
 
 
+def random_7r(seed: int) -> km.Robot:
+    """A 7R arm of no maker: standard DH, lengths and twists drawn at random, no limits."""
+    rng = np.random.default_rng(seed)
+    rows = [km.Revolute(d=float(rng.uniform(-0.4, 0.4)), a=float(rng.uniform(-0.4, 0.4)),
+                        alpha=float(rng.uniform(-np.pi, np.pi))) for _ in range(7)]  # fmt: skip
+    return km.Robot.from_dh(rows, name=f"random 7R ({seed})", convention="standard")
+
+
+def bounds_pairs(robots: list[tuple[str, km.Robot]], poses: int, seed: int) -> None:
+    """The reach bounds against the elimination: no pair of pose and value with one dropped.
+
+    For each arm whose ``auto`` holds an end joint: ``poses`` random configurations (within
+    the limits), the :data:`PARAMETER_SWEEP` values of the held joint; each pair's target
+    moved onto the arm locked at 0 and screened by its closed form alone
+    (:func:`kinematica.ik.nearest_value.screen`, as the sweep tries a value), with the
+    limits kept and without. Prints the pairs, those with a solution (all kept, asserted),
+    and the share of those without that the bounds drop.
+    """
+    rows = []
+    for name, robot in robots:
+        joint = choose(robot.chain)
+        if not isinstance(joint, JointParameter) or joint.index not in (0, robot.dof - 1):
+            continue
+        k = joint.index
+        arm = end_arm(robot.chain, k)
+        lo, hi = np.nan_to_num(joint.span(robot.chain), posinf=np.pi, neginf=-np.pi)
+        grid = np.linspace(lo, hi, PARAMETER_SWEEP)
+        qlo, qhi = np.nan_to_num(robot.qlim, posinf=np.pi, neginf=-np.pi).T
+        Q = np.random.default_rng(seed).uniform(qlo, qhi, size=(poses, robot.dof))
+        T = np.ascontiguousarray(robot.fk(Q))
+        moved = moved_targets(robot.chain, k, np.repeat(T, grid.size, axis=0), np.tile(grid, poses))
+        for limits in (True, False):
+            bounds = reach_bounds(arm, limits)
+            if bounds is None:
+                continue
+            kept = may_reach(bounds, T, Tolerance(), grid, move_parts(robot.chain, k), limits)
+            request = IKRequest.parse(workers=1, respect_limits=limits)
+            has = screen(arm, moved, request).reshape(kept.shape)  # type: ignore[arg-type]
+            lost = int((has & ~kept).sum())
+            assert not lost, f"{name}: {lost} pairs with a solution dropped"
+            rows.append([name, "kept" if limits else "ignored", str(has.size), str(int(has.sum())),
+                         f"{(~kept).sum() / max((~has).sum(), 1):.1%}"])  # fmt: skip
+    print(table(rows, ["arm", "limits", "pairs", "with a solution (all kept)",
+                       "without one: dropped"]))  # fmt: skip
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--poses", type=int, default=2000)
     parser.add_argument("--singles", type=int, default=200)
     parser.add_argument("--seed", type=int, default=7)
     parser.add_argument("--auto-poses", type=int, default=200)
+    parser.add_argument(
+        "--bounds-poses",
+        type=int,
+        default=0,
+        help="poses per arm of the reach bounds' check (bounds_pairs; 0: none)",
+    )
     args = parser.parse_args()
+    makers = DATA / "makers"
+    if args.bounds_poses:
+        arms = [
+            (n, km.load(str(makers / f"{n}.urdf")))
+            for n in ("realman_gen72", "kinova_gen3", "realman_rm75")
+        ]
+        arms += [(f"random 7R ({s})", random_7r(s)) for s in range(7)]  # fmt: skip
+        bounds_pairs(arms, args.bounds_poses, args.seed)
+        return
     print(header("7R arms at a fixed joint (one core)"))
     for name in ("panda", "iiwa14"):
         run(name, args.poses, args.singles, args.seed)
@@ -313,7 +380,6 @@ def main() -> None:
     single = shortest_per_item(lambda t: puma.ik(t), Tp)
     print(f"\nreference: PUMA 560 robot.ik(T), one pose (6R, spherical wrist): {fmt_time(single)}")
     print("\nq7 held at a new value each call; auto on random poses (one core)")
-    makers = DATA / "makers"
     robots = [(n, km.load(n)) for n in ("panda", "iiwa14")] + [
         (n, km.load(str(makers / f"{n}.urdf")))
         for n in ("realman_gen72", "kinova_gen3", "realman_rm75")

@@ -159,9 +159,13 @@ void bind_answers(nb::module_& m) {
         .def("at", &Prepared::at, nb::arg("T").none(), nb::arg("value"),
              "The whole arm's result of T (4, 4) with the held joint at `value`, or the locked\n"
              "arm's Answer to complete; None for a target to read otherwise.")
-        .def("first", &Prepared::first, nb::arg("T").none(), nb::arg("values"),
-             "(i, at(T, values[i])) for the first of the held values (k,) whose answer has a\n"
-             "solution; (-1, None) where none has; None for a target to read otherwise.");
+        .def("sweep", &Prepared::sweep, nb::arg("T"), nb::arg("start"), nb::arg("grid"),
+             nb::arg("skip"), nb::arg("bounds"), nb::arg("position"), nb::arg("rotation"),
+             nb::arg("limits"), nb::arg("slack"), nb::arg("workers"),
+             "(index (N,), answers): each target T[i] (N, 4, 4) at the first value of grid\n"
+             "(G,), nearest start[i] first, not skip[i] nor proved out of reach by the reach\n"
+             "bounds (or (0,)), whose answer has a solution: at()'s answer there, its index\n"
+             "(-1: none has; -2: T[i] not rigid, None), on up to `workers` threads.");
 }
 
 void bind_ik(nb::module_& m) {

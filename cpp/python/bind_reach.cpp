@@ -2,10 +2,16 @@
 // for kinematica.ik.reach_bounds.
 #include "common.hpp"
 #include "numpy_io.hpp"
+#include "solver_binding.hpp"
 #include "kinematica/moved.hpp"
 #include "kinematica/reach_bounds.hpp"
 
 namespace kmpy {
+
+double reach_violation_of(const double* b, const km::Pose& T, double P, double R, bool limits) {
+    return km::reach::violation(b, T, P, R, limits);
+}
+const npy_intp REACH_SIZE = km::reach::SIZE;
 
 namespace {
 

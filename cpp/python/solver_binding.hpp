@@ -35,6 +35,11 @@
 
 namespace kmpy {
 
+//! km::reach::violation of the pose T against the bounds b (bind_reach.cpp: the header stays
+//! out of the bindings that include this one), and the bounds' size, km::reach::SIZE.
+double reach_violation_of(const double* b, const km::Pose& T, double P, double R, bool limits);
+extern const npy_intp REACH_SIZE;
+
 //! The work arrays of single calls with one solver type: made once per thread (and again
 //! only when an arm of other dimensions comes).
 template <class Solver>
@@ -110,18 +115,21 @@ struct OneOut {
     }
 };
 
-//! The Answer of one target P (read by the caller): its solutions, residuals, solutions
-//! outside the limits, the branch label of each (labels: one per slot) and the report.
+//! One target P solved and checked into buf (its rows: solutions, then those outside the
+//! limits), on this thread's work arrays: its report.
 template <class Solver>
-Answer ik_pose(const Solver& s, const km::Chain& chain, const km::Pose& P,
-               const km::CheckOptions& opts, const double* q0p, nb::handle labels) {
-    const km::ChainView ch = chain.view();
-    const int n = ch.n, m = s.slots();
-    thread_local OneOut buf;
-    buf.fit(m, n);
-    km::IKWork<Solver>& work = thread_work(s, n);
-    const km::CheckReport rep = solve_checked(
-        s, ch, P, opts, q0p, work, km::CheckOut{buf.q.data(), buf.slot.data(), buf.res.data()});
+km::CheckReport ik_rows(const Solver& s, const km::ChainView& ch, const km::Pose& P,
+                        const km::CheckOptions& opts, const double* q0p, OneOut& buf) {
+    buf.fit(s.slots(), ch.n);
+    km::IKWork<Solver>& work = thread_work(s, ch.n);
+    return solve_checked(s, ch, P, opts, q0p, work,
+                         km::CheckOut{buf.q.data(), buf.slot.data(), buf.res.data()});
+}
+
+//! The Answer of one target's rows in buf (ik_rows, its report rep; n joints): its
+//! solutions, residuals, solutions outside the limits, the branch label of each (labels:
+//! one per slot) and the report.
+inline Answer answer_of(const OneOut& buf, const km::CheckReport& rep, int n, nb::handle labels) {
     const int count = rep.count, out = rep.out_count;
     double *q, *res, *qo;
     Answer a;
@@ -137,6 +145,16 @@ Answer ik_pose(const Solver& s, const km::Chain& chain, const km::Pose& P,
     a.report = rep;
     a.n = n;
     return a;
+}
+
+//! The Answer of one target P (read by the caller): ik_rows, then answer_of.
+template <class Solver>
+Answer ik_pose(const Solver& s, const km::Chain& chain, const km::Pose& P,
+               const km::CheckOptions& opts, const double* q0p, nb::handle labels) {
+    const km::ChainView ch = chain.view();
+    thread_local OneOut buf;
+    const km::CheckReport rep = ik_rows(s, ch, P, opts, q0p, buf);
+    return answer_of(buf, rep, ch.n, labels);
 }
 
 //! ik_pose of one target T (4, 4), q0 (n,) or None.
@@ -162,7 +180,11 @@ Answer ik_one(const Solver& s, const km::Chain& chain, F64 T,
 //! and the whole arm's result given, the joint's column put back and its parameter named.
 struct Prepared {
     std::function<Answer(const km::Pose&)> solve;
+    //! solve's rows alone (ik_rows), no Python object made: callable without the GIL
+    std::function<km::CheckReport(const km::Pose&, OneOut&)> rows;
     nb::object keep;  //!< the solver, the chain and the labels the solve reads
+    nb::object labels;
+    int n = 0;  //!< the locked arm's joints
     nb::object result, fields, statuses;
     double roundoff = 0.0;
     std::uint32_t final_codes = 0;
@@ -184,8 +206,12 @@ struct Prepared {
             return nullptr;
         }
         const double* t = static_cast<const double*>(PyArray_DATA(a));
+        return rigid(t) ? t : nullptr;
+    }
+    //! Whether the 16 values (rows) t are a rigid pose to round-off, as the core reads one.
+    bool rigid(const double* t) const {
         const km::PoseDefects d = km::pose_defects(t);
-        return d.finite && d.last_row == 0.0 && d.ortho <= roundoff && d.det > 0.0 ? t : nullptr;
+        return d.finite && d.last_row == 0.0 && d.ortho <= roundoff && d.det > 0.0;
     }
     bool final(const Answer& ans) const {
         return ((final_codes >> static_cast<unsigned>(ans.report.status)) & 1U) != 0U;
@@ -207,20 +233,76 @@ struct Prepared {
         return t == nullptr ? nb::none() : given(solved_at(t, value), value);
     }
 
-    //! (i, at(T, values[i])) for the first value whose answer has a solution (within the
-    //! limits where they are kept), trying them in turn; (-1, None) where none has; None
-    //! where T is not read in place or not rigid. One call for a sweep of held values.
-    nb::object first(nb::handle T, nb::handle values) const {
-        const double* t = held_rows(T, "first");
-        const In v = in_f64(values, "values", 1);
-        if (t == nullptr) return nb::none();
-        for (npy_intp i = 0; i < v.dim[0]; ++i) {
-            Answer ans = solved_at(t, v.data[i]);
-            if (PyArray_DIM(reinterpret_cast<PyArrayObject*>(ans.solutions.ptr()), 0) > 0) {
-                return nb::make_tuple(i, given(std::move(ans), v.data[i]));
-            }
+    //! For each target T[i] (N, 4, 4), at(T[i], v) at the first value v of grid (G,) whose
+    //! answer has a solution (within the limits where they are kept), tried in its own order:
+    //! nearest start[i] first (of two as near, the lower), leaving out a value equal to
+    //! skip[i] (NaN: none) and the values the reach bounds prove out of reach (bounds
+    //! (km::reach::SIZE,) of the arm locked at 0, or (0,) for none: violation above `slack`
+    //! with the tolerance P m, R rad, q1 and q6 within their limits with `limits`). The rows
+    //! are solved on up to `workers` threads, the GIL released, and one Python object made
+    //! per row answered. Returns (index (N,) of the value answered in grid, -1 where none
+    //! has a solution, -2 where T[i] is not rigid; [at(T[i], grid[index[i]]) or None]).
+    nb::tuple sweep(F64 T, F64 start, F64 grid, F64 skip, F64 bounds, double P, double R,
+                    bool limits, double slack, int workers) const {
+        if (held_joint < 0) throw nb::value_error("sweep(): this Prepared holds no joint (held())");
+        const In in = in_f64(T, "T", 3, {-1, 4, 4});
+        const npy_intp N = in.dim[0];
+        const In s0 = in_f64(start, "start", 1, {N});
+        const In sk = in_f64(skip, "skip", 1, {N});
+        const In g = in_f64(grid, "grid", 1);
+        const In b = in_f64(bounds, "bounds", 1);
+        if (b.dim[0] != 0 && b.dim[0] != REACH_SIZE) {
+            throw nb::value_error("sweep(): bounds must hold km::reach::SIZE numbers, or none");
         }
-        return nb::make_tuple(-1, nb::none());
+        const npy_intp G = g.dim[0];
+        const double* bd = b.dim[0] != 0 ? b.data : nullptr;
+        std::vector<OneOut> bufs(static_cast<size_t>(N));
+        std::vector<km::CheckReport> reps(static_cast<size_t>(N));
+        npy_int64* index;
+        nb::object found = new_i64({N}, index);
+        run_rows(static_cast<long>(N), 1L, workers, [&](long begin, long end) {
+            std::vector<npy_intp> order(static_cast<size_t>(G));
+            std::vector<double> near(static_cast<size_t>(G));
+            for (long i = begin; i < end; ++i) {
+                const double* t = in.data + 16 * i;
+                index[i] = -1;
+                if (!rigid(t)) {
+                    index[i] = -2;
+                    continue;
+                }
+                for (npy_intp j = 0; j < G; ++j) {
+                    order[static_cast<size_t>(j)] = j;
+                    near[static_cast<size_t>(j)] = std::fabs(g.data[j] - s0.data[i]);
+                }
+                std::stable_sort(order.begin(), order.end(), [&](npy_intp a, npy_intp c) {
+                    return near[static_cast<size_t>(a)] < near[static_cast<size_t>(c)];
+                });
+                for (const npy_intp j : order) {
+                    const double v = g.data[j];
+                    if (v == sk.data[i]) continue;
+                    double moved[16];
+                    km::moved_pose(held_move, v, held_after, held_slides, t, moved);
+                    const km::Pose pose = km::Pose::from_rows(moved);
+                    if (bd != nullptr && reach_violation_of(bd, pose, P, R, limits) > slack) continue;
+                    const km::CheckReport rep = rows(pose, bufs[static_cast<size_t>(i)]);
+                    if (rep.count > 0) {
+                        reps[static_cast<size_t>(i)] = rep;
+                        index[i] = j;
+                        break;
+                    }
+                }
+            }
+        });
+        nb::list answers;
+        for (npy_intp i = 0; i < N; ++i) {
+            if (index[i] < 0) {
+                answers.append(nb::none());
+                continue;
+            }
+            const size_t r = static_cast<size_t>(i);
+            answers.append(given(answer_of(bufs[r], reps[r], n, labels), g.data[index[i]]));
+        }
+        return nb::make_tuple(read_only(found), answers);
     }
 
     //! T's rows (rigid_rows) for a Prepared that holds a joint; `what` names the caller.
@@ -384,6 +466,11 @@ void add_ik_methods(nb::class_<Bound>& cls, Get get) {
             p.solve = [get, b, c, o, labels](const km::Pose& P) {
                 return ik_pose(get(*b), *c, P, o, nullptr, labels);
             };
+            p.rows = [get, b, c, o](const km::Pose& P, OneOut& buf) {
+                return ik_rows(get(*b), c->view(), P, o, nullptr, buf);
+            };
+            p.labels = nb::borrow(labels);
+            p.n = c->dof();
             p.keep = nb::make_tuple(self, chain, labels);
             p.result = nb::borrow(result);
             p.statuses = nb::borrow(statuses);

@@ -3,7 +3,8 @@
 A batch row answered at another held value than the one asked (the nearest value of the
 sweep with a solution, :mod:`kinematica.ik.redundancy`) must say what that answer says:
 its method and notes, not those of the first answer at the value asked (a numeric search
-that found nothing there).
+that found nothing there). The rows held elsewhere are swept in one core call
+(``Prepared.sweep``) on one thread or several: the same rows either way.
 """
 
 from __future__ import annotations
@@ -28,13 +29,14 @@ def _robot(name: str) -> km.Robot:
 
 def _rows_are_single_calls(robot: km.Robot, T: np.ndarray, q0: np.ndarray | None) -> int:
     """Assert each row of ``robot.ik(T, q0=q0)`` is its single call; the rows held elsewhere."""
-    batch = robot.ik(T, q0=q0)
-    assert isinstance(batch, IKBatchResult)
+    batches = [robot.ik(T, q0=q0, workers=w) for w in (1, 2)]  # the rows on 1 or 2 threads
     moved = 0
     for i in range(T.shape[0]):
         one = robot.ik(np.array(T[i]), q0=None if q0 is None else q0[i])
         assert isinstance(one, IKResult)
-        assert_same_result(batch[i], one)
+        for batch in batches:
+            assert isinstance(batch, IKBatchResult)
+            assert_same_result(batch[i], one)
         moved += any("the nearest of" in n for n in one.notes)
     return moved
 

@@ -126,43 +126,74 @@ def test_a_prepared_call_holds_a_joint_only_when_made_to() -> None:
     np.testing.assert_array_equal(got.solutions[:, 6], 0.7)
 
 
-def test_first_tries_the_held_values_in_turn_as_at_answers_each() -> None:
-    """``Prepared.first``: the first value whose answer has a solution, ``at``'s answer there."""
+def _sweep(held, T, start, grid, skip=None, bounds=None, workers=1):  # type: ignore[no-untyped-def]
+    """``Prepared.sweep`` of poses T (N, 4, 4) with the default tolerance, limits kept."""
+    N = len(T)
+    skip = np.full(N, np.nan) if skip is None else skip
+    bounds = np.empty(0) if bounds is None else bounds
+    return held.sweep(T, np.asarray(start, float), grid, skip, bounds, 1e-10, 1e-10, True, 1e-9,
+                      workers)  # fmt: skip
+
+
+def test_sweep_tries_the_held_values_nearest_first_as_at_answers_each() -> None:
+    """``Prepared.sweep``: each pose's first value with a solution in its order, at()'s answer."""
+    from kinematica.ik.moved import end_arm, move_parts
+    from kinematica.ik.reach_bounds import may_reach, reach_bounds
+    from kinematica.ik.tolerance import Tolerance
+
     robot = km.load("puma560")
     plan = plan_of(robot.chain, "pose", IKRequest.parse())  # type: ignore[arg-type]
-    T = robot.fk(np.full(6, 0.3))
+    T = robot.fk(np.full(6, 0.3))[None]
     far = T.copy()
-    far[:3, 3] *= 10.0  # out of reach at every value (the move A0 = I does not move it)
+    far[0, :3, 3] *= 10.0  # out of reach at every value (the move A0 = I does not move it)
     with pytest.raises(ValueError, match="holds no joint"):
-        plan.prepared.first(T, np.array([0.3]))
+        _sweep(plan.prepared, T, [0.0], np.array([0.3]))
     A = np.zeros((3, 4, 4))
     A[0] = np.eye(4)
     held = plan.prepared.held(6, A, True, False, "q7")
-    assert held.first(far, np.array([0.1, 0.2])) == (-1, None)
-    assert held.first(T, np.empty(0)) == (-1, None)
-    assert held.first(np.eye(3), np.array([0.1])) is None  # not a pose the core reads
-    with pytest.raises(ValueError, match="values"):
-        held.first(T, np.zeros((2, 2)))
-    # a held turn about z: the panda's last joint moves the pose; the first value with a
-    # solution within the limits is the one at() finds first, with at()'s answer
+    index, answers = _sweep(held, far, [0.0], np.array([0.1, 0.2]))
+    assert index.tolist() == [-1] and answers == [None]
+    assert _sweep(held, T, [0.0], np.empty(0))[0].tolist() == [-1]
+    bent = T.copy()
+    bent[0, :3, :3] *= 1.01  # not a rigid pose: left to the general path
+    assert _sweep(held, bent, [0.0], np.array([0.1]))[0].tolist() == [-2]
+    with pytest.raises(ValueError, match="bounds"):
+        _sweep(held, T, [0.0], np.array([0.1]), bounds=np.zeros(5))
+    with pytest.raises(ValueError, match="start"):
+        _sweep(held, T, [0.0, 1.0], np.array([0.1]))
+    # a held turn about z: the panda's last joint moves the pose; each pose's first value
+    # with a solution within the limits, nearest its start first, is the one at() finds
+    # first in that order, with at()'s answer; the values the bounds prove out of reach are
+    # left out (none with a solution), and so is the value skipped
     panda = km.load("panda")
     parameter = joint_parameter(panda.chain, 6, None)
     ready = parameter.lean(panda.chain, IKRequest.parse())  # type: ignore[arg-type]
+    bounds = reach_bounds(end_arm(panda.chain, 6), True)
+    assert bounds is not None
     rng = np.random.default_rng(3)
+    poses = _poses(panda, 6, 0.4, 12)
+    grid = np.linspace(-2.9, 2.9, 9)
+    start = rng.uniform(-2.9, 2.9, len(poses))
+    skip = np.where(np.arange(len(poses)) % 3 == 0, grid[4], np.nan)
+    kept = may_reach(bounds, poses, Tolerance(), grid, move_parts(panda.chain, 6))
+    index, answers = _sweep(ready, poses, start, grid, skip, bounds)
+    again, _ = _sweep(ready, poses, start, grid, skip, bounds, workers=2)
+    plain, _ = _sweep(ready, poses, start, grid, skip)  # no bounds: the same values
+    np.testing.assert_array_equal(index, again)
+    np.testing.assert_array_equal(index, plain)
     moved_on = 0
-    for pose in _poses(panda, 6, 0.4, 12):
-        values = rng.uniform(-2.9, 2.9, 6)
-        ats = [ready.at(pose, v) for v in values.tolist()]
-        has = [j for j, a in enumerate(ats) if a.solutions.shape[0]]
-        got = ready.first(pose, values)
+    for i, pose in enumerate(poses):
+        order = np.argsort(np.abs(grid - start[i]), kind="stable")
+        ats = {int(j): ready.at(pose, float(grid[j])) for j in order if grid[j] != skip[i]}
+        has = [j for j in ats if ats[j].solutions.shape[0]]
+        assert all(kept[i, j] for j in has)
         if not has:
-            assert got == (-1, None)
+            assert index[i] == -1 and answers[i] is None
             continue
-        i, answer = got
-        assert i == has[0]
-        moved_on += i > 0
-        np.testing.assert_array_equal(answer.solutions, ats[i].solutions)
-        assert answer.parameter == ats[i].parameter == ("q7", float(values[i]))
+        assert index[i] == has[0]
+        moved_on += has[0] != order[0]
+        np.testing.assert_array_equal(answers[i].solutions, ats[has[0]].solutions)
+        assert answers[i].parameter == ats[has[0]].parameter == ("q7", float(grid[has[0]]))
     assert moved_on  # some pose had no solution at its first values
 
 

@@ -126,6 +126,42 @@ def test_the_roundoff_slack_is_the_boundary() -> None:
     assert may_reach(bounds, one, Tolerance(g - 2.0 * ROUNDOFF_SLACK, 1e-3), at, move)[0, 0]
 
 
+def test_distance_and_height_are_asked_of_one_q6_together() -> None:
+    # GEN72 (q7 held): targets whose x circle meets the distance range at some q6 and the
+    # height range at another, never both at one; the violation is the least widening of
+    # both that does, at most what a fine sampling of q6 over its arc finds (and close to it)
+    robot = _arm("realman_gen72")
+    k, _, bounds, move = _held(robot)
+    T = robot.fk(robot.random_q(40, seed=12))
+    grid = np.linspace(*robot.chain.qlim[k], PARAMETER_SWEEP)
+    gap = violation(bounds, T, Tolerance(0.0, 0.0), grid, move)
+    moved = moved_targets(robot.chain, k, np.repeat(T, grid.size, axis=0), np.tile(grid, len(T)))
+    moved = moved.reshape(len(T), grid.size, 4, 4)
+    q6 = np.linspace(bounds[23], bounds[24], 4001)  # its arc (layout: km::reach::Slot)
+    x = bounds[3:6] + np.outer(np.cos(q6), bounds[6:9]) + np.outer(np.sin(q6), bounds[9:12])
+    S, a1 = bounds[12:15], bounds[15:18]
+    together = []
+    for i, j in np.ndindex(gap.shape):
+        M = moved[i, j]
+        xs = x @ M[:3, :3].T + M[:3, 3]
+        d, h = np.linalg.norm(xs - S, axis=1), (xs - S) @ a1
+        far = np.maximum(bounds[18] - d, d - bounds[19])
+        high = np.maximum(bounds[20] - h, h - bounds[21])
+        sampled = float(np.maximum(far, high).min())  # how far, sampled: an upper bound
+        if far.min() > 0.0 or high.min() > 0.0 or sampled < 1e-3:
+            continue  # a range missed alone, or both met at one q6 (to the sampling's step)
+        assert gap[i, j] >= sampled - 1e-3  # the sampling's step: 0.9 mrad, 0.4 m from S
+        if gap[i, j] <= sampled:
+            together.append((float(gap[i, j]), i, j))
+    assert len(together) >= 3
+    # the round-off slack is its boundary too: a tolerance just under the gap drops the
+    # target, one just over keeps it
+    g, i, j = max(together)
+    one, at = T[i : i + 1], grid[j : j + 1]
+    assert may_reach(bounds, one, Tolerance(g - 0.5 * ROUNDOFF_SLACK, 0.0), at, move)[0, 0]
+    assert not may_reach(bounds, one, Tolerance(g - 2.0 * ROUNDOFF_SLACK, 0.0), at, move)[0, 0]
+
+
 def test_a_target_not_finite_is_never_dropped() -> None:
     robot = _arm("kinova_gen3")
     _, _, bounds, move = _held(robot)
@@ -157,6 +193,7 @@ def test_auto_answers_as_it_would_without_the_bounds(
         every = lambda c, j, p, g, r: np.ones((len(p), g.size), bool)  # noqa: E731
         m.setattr(redundancy, "possible", every)
         m.setattr(nearest_value, "possible", every)
+        m.setattr(nearest_value, "reach_bounds", lambda arm, limits: None)  # the core's sweep
         old_batch = robot.ik(T, workers=1)
         old = [robot.ik(t) for t in T]
     assert isinstance(new_batch, IKBatchResult) and isinstance(old_batch, IKBatchResult)

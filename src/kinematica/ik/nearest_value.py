@@ -5,13 +5,15 @@ joint at the value asked, the nearest of :data:`PARAMETER_SWEEP` values across i
 with one answers. Values the reach bounds prove out of reach are left out
 (:mod:`kinematica.ik.reach_bounds`); the others are tried nearest first. For one pose on
 an end joint with a prepared call, the call that screens a value is the one whose answer
-is kept (one elimination per value, :func:`nearest_answer`); else a screen by the closed
+is kept (one elimination per value, :func:`swept`: one core call for a batch's poses);
+else a screen by the closed
 form alone picks the value, and the caller solves the target there
 (:func:`nearest_with_solutions`).
 """
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -21,7 +23,7 @@ from kinematica.core import Chain, resolve_workers
 from kinematica.ik.arm_angle import ArmAngleParameter
 from kinematica.ik.moved import end_arm, held_completed, move_parts, moved_targets
 from kinematica.ik.parameter import JointParameter, Parameter
-from kinematica.ik.reach_bounds import may_reach, reach_bounds
+from kinematica.ik.reach_bounds import ROUNDOFF_SLACK, may_reach, reach_bounds
 from kinematica.ik.request import IKRequest
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.solve import solve_ik
@@ -36,7 +38,6 @@ FloatArray = NDArray[np.float64]
 
 __all__ = [
     "PARAMETER_SWEEP",
-    "first_answer",
     "has_solutions",
     "lean_call",
     "nearest_answer",
@@ -44,6 +45,7 @@ __all__ = [
     "possible",
     "screen",
     "sweep_order",
+    "swept",
 ]
 
 #: Values of the parameter tried, evenly across its span, when a target has no solution
@@ -109,10 +111,9 @@ def sweep_order(
         each pose's grid indices nearest ``start`` first (of two as near, the lower first),
         and ``(t,)`` how many of them to try (the values not proved out of reach).
     """
-    lo, hi = joint.span(chain)
-    if not (np.isfinite(lo) and np.isfinite(hi)) or not poses.shape[0]:
+    grid = _grid(chain, joint)
+    if grid is None or not poses.shape[0]:
         return None
-    grid = np.linspace(lo, hi, PARAMETER_SWEEP)
     near = np.abs(grid[None, :] - start[:, None])
     # values proved to have no solution (kinematica.ik.reach_bounds) are not tried: the
     # first value with one in each target's order is the same without them
@@ -128,26 +129,31 @@ def nearest_answer(
     targets: Targets,
     values: FloatArray,
     options: IKOptions,
+    skip: float = math.nan,
 ) -> tuple[IKResult | None, float] | None:
     """One pose's answer at the nearest value of the sweep with a solution, and that value.
 
-    :func:`nearest_with_solutions` and the answer at the value found in one elimination
-    per value tried (:func:`first_answer`). ``(None, start)`` when no value has one;
-    None where the end joint's prepared call does not apply (the caller screens).
+    The value :func:`nearest_with_solutions` finds, and the answer there, in one core
+    call (:func:`swept`): one elimination per value tried. ``(None, start)`` when no
+    value has one; None where the end joint's prepared call does not apply (the caller
+    screens). ``skip``: a value whose closed form is known to find nothing (the start's,
+    solved already).
     """
     if type(target) is not np.ndarray or target.shape != (4, 4):
         return None
     if not isinstance(joint, JointParameter):
         return None
     lean = lean_call(chain, joint, options)
-    if lean is None:
+    # the core reads the pose in place only as C-ordered native doubles: else the screen
+    f, kind = target.flags, target.dtype
+    if lean is None or not (kind == np.float64 and kind.isnative and f.c_contiguous and f.aligned):
         return None
     start = float(values[0])
-    sweep = sweep_order(chain, joint, targets.poses, values[:1], lean[1])
-    if sweep is None:
+    hit = swept(chain, joint, lean, target[None], values[:1], np.array([skip]), 1)
+    if hit is None or hit[0][0] == -1:
         return None, start
-    grid, order, count = sweep
-    return first_answer(chain, joint, lean, target, grid[order[0, : int(count[0])]], start)
+    index, grid, answers = hit
+    return None if index[0] < 0 else (answers[0], float(grid[index[0]]))
 
 
 def lean_call(chain: Chain, joint: Parameter, options: IKOptions) -> tuple[Any, IKRequest] | None:
@@ -159,34 +165,60 @@ def lean_call(chain: Chain, joint: Parameter, options: IKOptions) -> tuple[Any, 
     return None if ready is None else (ready, request)
 
 
-def first_answer(
+def swept(
     chain: Chain,
     joint: JointParameter,
     lean: tuple[Any, IKRequest],
-    T: FloatArray,
-    candidates: FloatArray,
-    start: float,
-) -> tuple[IKResult | None, float] | None:
-    """``T``'s answer at the first of ``candidates`` with a solution, and that value.
+    poses: FloatArray,
+    start: FloatArray,
+    skip: FloatArray,
+    workers: int,
+) -> tuple[NDArray[np.int64], FloatArray, list[IKResult | None]] | None:
+    """Each pose's answer at the first value of the sweep with a solution, in one core call.
 
-    The prepared call (:func:`~kinematica.ik.moved.held_at`) screens each value in turn,
-    and its answer at the first with a solution is the answer (completed as ``held_at``
-    completes it): the target is not solved again there. ``(None, start)`` when none
-    has one; None when the core does not read ``T`` as one rigid pose.
+    The prepared call (``Prepared.sweep``, :func:`~kinematica.ik.moved.held_prepared`)
+    tries the :data:`PARAMETER_SWEEP` values across the span nearest ``start[i]`` first
+    (of two as near, the lower), leaving out ``skip[i]`` and the values the reach bounds
+    prove out of reach (:func:`possible`'s), on up to ``workers`` threads; its answer at
+    the first with a solution is the answer (completed as ``held_at`` completes it).
+
+    ``poses`` ``(N, 4, 4)`` of the whole arm, ``start`` and ``skip`` ``(N,)`` (NaN: none).
+    Returns ``(index, grid, answers)``: ``(N,)`` the index in ``grid`` ``(G,)`` of the value
+    answered (-1: none has a solution; -2: a pose the core does not read as rigid) and each
+    pose's answer (None where index < 0); None where the span is unbounded (no sweep).
     """
     ready, request = lean
-    if not candidates.size:
-        return None, start
-    got = ready.first(T, candidates)  # the screen: a solution within the limits, in turn
-    if got is None:
+    grid = _grid(chain, joint)
+    if grid is None:
         return None
-    i, answer = got
-    if i < 0:
-        return None, start
-    v = float(candidates[i])
-    if answer.__class__ is IKResult:
-        return answer, v
-    return held_completed(chain, joint.index, joint.name, request, T, v, answer), v
+    k = joint.index
+    limits = bool(request.respect_limits)
+    bounds = None if chain.prismatic[k] else reach_bounds(end_arm(chain, k), limits)
+    tol = parse_tolerance(request.tol)
+    checked = np.empty(0) if bounds is None else bounds
+    index, got = ready.sweep(poses, start, grid, skip, checked, tol.position, tol.rotation,
+                             limits, ROUNDOFF_SLACK, workers)  # fmt: skip
+    answers: list[IKResult | None] = []
+    for i, answer in enumerate(got):
+        if answer is not None and answer.__class__ is not IKResult:  # the core's, to complete
+            v = float(grid[index[i]])
+            answer = held_completed(chain, k, joint.name, request, poses[i], v, answer)
+        answers.append(answer)
+    return index, grid, answers
+
+
+def _grid(chain: Chain, joint: Parameter) -> FloatArray | None:
+    """The sweep's :data:`PARAMETER_SWEEP` values across the span, kept; None if unbounded."""
+    key = ("sweep grid", joint.name, getattr(joint, "index", None))
+    found = chain.memo.get(key, False)
+    if found is False:
+        lo, hi = joint.span(chain)
+        found = None
+        if np.isfinite(lo) and np.isfinite(hi):
+            found = np.linspace(lo, hi, PARAMETER_SWEEP)
+            found.flags.writeable = False
+        chain.memo[key] = found
+    return found  # type: ignore[return-value]
 
 
 def possible(

@@ -13,6 +13,12 @@ axis, checked here in a few flops a value:
 * **reverse**: the same from the tool's side: a point on axis 2 (on a fixed circle
   about axis 1) and a point on axis 6 (fixed by the target), joints q3, q4, q5.
 
+The forward circle's distance and height are also asked together: the angles q6 of x's
+circle (within its arc) where the distance is in its range, and those where the height is
+in its range, are arcs (``A + B cos q6 + C sin q6`` within bounds); where each range is
+met alone but no q6 meets both, the target misses by the least widening of both ranges
+that makes one q6 meet them (bisected, its lower end kept: ``km::reach::together_gap``).
+
 A target is dropped only where a circle's range of distance or height misses its range
 by more than the slack of the IK's acceptance tolerance (``P + R w``: an accepted
 solution moves a point ``w`` from the tool frame's origin by at most that) and

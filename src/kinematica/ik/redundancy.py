@@ -15,6 +15,7 @@ over every joint answers, and says so.
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
@@ -22,7 +23,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 import kinematica._core as _core
-from kinematica.core import Chain
+from kinematica.core import Chain, resolve_workers
 from kinematica.errors import KinematicaError
 from kinematica.ik.arm_angle import ArmAngleParameter, arm_angle_parameter
 from kinematica.ik.held_aside import solved_except
@@ -30,12 +31,11 @@ from kinematica.ik.local_search import LOCAL_SEARCH
 from kinematica.ik.moved import on_axis
 from kinematica.ik.nearest_value import (
     PARAMETER_SWEEP,
-    first_answer,
     lean_call,
     nearest_answer,
     nearest_with_solutions,
     possible,
-    sweep_order,
+    swept,
 )
 from kinematica.ik.parameter import (
     JointParameter,
@@ -234,7 +234,10 @@ def _at_parameter(
         if res is not None and res.success:
             return amended(res, notes=(*res.notes, note(value, undef)))
         again: IKResult | IKBatchResult | None
-        hit = nearest_answer(chain, joint, target, targets, values, options)
+        # the value's closed form found nothing (or it is proved out): not tried again
+        tried = res is None or res.count == 0
+        hit = nearest_answer(chain, joint, target, targets, values, options,
+                             value if tried else math.nan)  # fmt: skip
         if hit is not None:  # the prepared call's answer at the first value with one
             again, at = hit
         else:  # the screen, then the value found solved again
@@ -265,19 +268,21 @@ def _at_parameter(
     answered: list[tuple[NDArray[np.intp], float]] = []
     lean = None if targets.invalid or targets.notes else lean_call(chain, joint, options)
     if missed.size and lean is not None:  # each target's single call's answer, as it is
-        sweep = sweep_order(chain, joint, targets.poses[missed], values[missed], lean[1])
+        assert isinstance(joint, JointParameter)  # lean_call's
+        # every row in one core call; its value at the start found nothing (or is proved out)
+        start = values[missed]
+        poses = np.ascontiguousarray(targets.poses[missed])
+        hits = swept(chain, joint, lean, poses, start, start, resolve_workers(options.workers))
         got: dict[int, IKResult] = {}
         values_at: list[float] = []
-        for j, i in enumerate(missed.tolist() if sweep is not None else ()):
-            assert sweep is not None
-            grid, order, count = sweep
-            T = np.ascontiguousarray(targets.poses[i])
-            assert isinstance(joint, JointParameter)  # lean_call's
-            hit = first_answer(chain, joint, lean, T, grid[order[j, : int(count[j])]], 0.0)
-            if hit is not None and hit[0] is not None and hit[0].success:
-                got[len(got)] = hit[0]
-                values_at.append(hit[1])
-                answered.append((np.array([i]), hit[1]))
+        for j, i in enumerate(missed.tolist() if hits is not None else ()):
+            assert hits is not None
+            index, grid, answers = hits
+            answer = answers[j]
+            if answer is not None and answer.success:
+                got[len(got)] = answer
+                values_at.append(float(grid[index[j]]))
+                answered.append((np.array([i]), values_at[-1]))
         if got:
             kept = np.array([rows[0] for rows, _ in answered])
             sub = targets.replace(poses=targets.poses[kept], shape=(kept.size,), invalid={})

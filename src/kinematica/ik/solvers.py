@@ -243,9 +243,12 @@ class Plan:
         put = object.__setattr__
         put(self, "direct", self.coaxial is None and self.rank_five is None)
         final: frozenset[int] = frozenset()
-        if self.search is None and not self.slack:  # the core's answer is the answer...
-            # ...unless the limited reach may prove "unreachable" (limits respected)
+        if not self.slack:  # the core's answer is the answer...
+            # ...unless the limited reach may prove "unreachable" (limits respected), or
+            # the closed form found nothing and the search completes it
             final = _ANSWERED if self.options.respect_limits else frozenset(_core.STATUS.values())
+            if self.search is not None:
+                final = final - {_core.STATUS["not_found"]}
         put(self, "final", final)
 
 
