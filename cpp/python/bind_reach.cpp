@@ -1,10 +1,12 @@
-// The reach bounds' check (reach_bounds.hpp) of targets moved by a held end joint's values,
-// for kinematica.ik.reach_bounds.
+// A 6R arm's reach bounds (reach_bounds_build.hpp) and their check (reach_bounds.hpp) of
+// targets moved by a held end joint's values, for kinematica.ik.reach_bounds.
+#include "answer.hpp"
 #include "common.hpp"
 #include "numpy_io.hpp"
 #include "solver_binding.hpp"
 #include "kinematica/moved.hpp"
 #include "kinematica/reach_bounds.hpp"
+#include "kinematica/reach_bounds_build.hpp"
 
 namespace kmpy {
 
@@ -14,6 +16,14 @@ double reach_violation_of(const double* b, const km::Pose& T, double P, double R
 const npy_intp REACH_SIZE = km::reach::SIZE;
 
 namespace {
+
+//! (SIZE,) read-only: the arm's bounds, or None for a chain that is not 6R.
+nb::object reach_bounds(const km::Chain& chain, bool limits) {
+    double* out;
+    F64 made = new_f64({km::reach::SIZE}, out);
+    if (!km::reach::build(chain, limits, out)) return nb::none();
+    return read_only(made);
+}
 
 //! (t, G): target i moved by values[j], checked against the bounds.
 F64 reach_violation(F64 bounds, F64 T, F64 values, F64 A, bool after, bool slides, double P, double R,
@@ -38,6 +48,9 @@ F64 reach_violation(F64 bounds, F64 T, F64 values, F64 A, bool after, bool slide
 }  // namespace
 
 void bind_reach(nb::module_& m) {
+    m.def("reach_bounds", &reach_bounds, nb::arg("chain"), nb::arg("limits"),
+          "(43,) a 6R arm's reach bounds (kinematica.ik.reach_bounds, its layout), of solutions "
+          "within the joint limits or anywhere; None for any other chain.");
     m.def("reach_violation", &reach_violation, nb::arg("bounds"), nb::arg("T"), nb::arg("values"),
           nb::arg("A"), nb::arg("after"), nb::arg("slides"), nb::arg("position"), nb::arg("rotation"), nb::arg("limits"),
           "(t, G) how far (m) each target T[i] (t, 4, 4), moved by values[j] (G,) as a held first "

@@ -39,26 +39,48 @@ enum Slot : int {
 
 inline Vec3 at(const double* b, int i) { return {b[i], b[i + 1], b[i + 2]}; }
 
-//! The least and greatest of A + B cos θ + C sin θ over θ in arc[0] .. arc[1] (every θ
+//! Angles arc[0] .. arc[1] with their ends' cosines and sines, or every angle (whole:
 //! without limits, or when the arc spans a turn).
-inline void arc_range(double A, double B, double C, const double* arc, bool limits, double& least,
-                      double& most) {
+struct Arc {
+    bool whole = true;
+    double lo = 0.0, span = 0.0, c0 = 1.0, s0 = 0.0, c1 = 1.0, s1 = 0.0;
+};
+
+inline Arc arc_of(const double* arc, bool limits) {
+    constexpr double TWO_PI = 6.283185307179586;
+    Arc a;
+    a.span = arc[1] - arc[0];
+    if (!limits || !(a.span < TWO_PI)) return a;
+    a.whole = false;
+    a.lo = arc[0];
+    a.c0 = std::cos(arc[0]), a.s0 = std::sin(arc[0]);
+    a.c1 = std::cos(arc[1]), a.s1 = std::sin(arc[1]);
+    return a;
+}
+
+//! The least and greatest of A + B cos θ + C sin θ over θ in the arc.
+inline void arc_range(double A, double B, double C, const Arc& arc, double& least, double& most) {
     constexpr double TWO_PI = 6.283185307179586;
     const double rho = std::hypot(B, C);
     least = A - rho;
     most = A + rho;
-    const double span = arc[1] - arc[0];
-    if (!limits || !(span < TWO_PI)) return;
-    const double f0 = A + B * std::cos(arc[0]) + C * std::sin(arc[0]);
-    const double f1 = A + B * std::cos(arc[1]) + C * std::sin(arc[1]);
+    if (arc.whole) return;
+    const double f0 = A + B * arc.c0 + C * arc.s0;
+    const double f1 = A + B * arc.c1 + C * arc.s1;
     const auto inside = [&](double t) {
-        double d = std::fmod(t - arc[0], TWO_PI);
+        double d = std::fmod(t - arc.lo, TWO_PI);
         if (d < 0.0) d += TWO_PI;
-        return d <= span;
+        return d <= arc.span;
     };
     const double top = std::atan2(C, B);  // where the greatest is; the least half a turn on
     if (!inside(top)) most = std::max(f0, f1);
     if (!inside(top + 0.5 * TWO_PI)) least = std::min(f0, f1);
+}
+
+//! arc_range over arc[0] .. arc[1] (every θ without limits, or when it spans a turn).
+inline void arc_range(double A, double B, double C, const double* arc, bool limits, double& least,
+                      double& most) {
+    arc_range(A, B, C, arc_of(arc, limits), least, most);
 }
 
 //! How far the distances from the origin of cs + u cos θ + v sin θ (u, v orthogonal and
