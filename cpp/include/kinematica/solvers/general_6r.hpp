@@ -62,6 +62,7 @@
 #include <complex>
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "../check.hpp"
 #include "../config.hpp"
@@ -192,6 +193,23 @@ constexpr double GRID_STEP = 2.0 * PI / 3.0;
 //! unusable, for the arm or, with T on the left, for that target) when σ8 / σ1 of its
 //! 14 x 8 matrix Q is below this.
 constexpr double RANK_TOL = 1e-9;
+//! Labellings kept beside the chosen one (general_6r_build.hpp: the next that pass the
+//! probes, the most accurate first), tried where the chosen one's elimination proves
+//! nothing at a target (no candidate closes the loop) or is ill-conditioned there
+//! (ILL_MISS).
+constexpr int ALTERNATES = 2;
+//! A target's elimination is ill-conditioned when a candidate that Newton's step took to
+//! a solution missed the target by more than this before it (m or rad): its root x6 good
+//! to about that only, so that roots near one another or near-real complex pairs may be
+//! lost. Round-off on a well-posed pencil (1e-15..1e-12 on random arms; up to ...
+//! on the makers' arms, measured below); an arm 2.7e-8 from one whose elimination
+//! degenerates (a Kawasaki RS007N perturbed, ALTERNATES' test) gives 1e-5 and more. There
+//! the alternates' candidates are added to the chosen one's.
+constexpr double ILL_MISS = 1e-6;
+
+//! True when a solution's candidate that missed by `miss` (m or rad) before Newton's
+//! step says the target's elimination is ill-conditioned (ILL_MISS).
+KM_HD inline bool ill_conditioned(double miss) { return miss > ILL_MISS; }
 
 //! What one solve decided, for the tests of its tolerances (solve fills it when given).
 struct Trace {
@@ -203,6 +221,9 @@ struct Trace {
     double rank = NaN;     //!< the smallest σ6/σ1 computed at a closing candidate (NaN: none)
     double reclosure = INF;  //!< the smallest miss of a self-motion test's re-closure
     bool resolved = false;   //!< a root's null space was taken as two-dimensional (RESOLVE_TOL)
+    double raw = 0.0;        //!< the largest miss before Newton's step of a candidate that closed
+    int answered = 0;        //!< the labelling whose candidates were kept: 0 this one, k alternate k
+    int tried = 0;           //!< alternates whose pass ran
 };
 
 //! What the self-motion test says of a candidate that closes the loop.
@@ -355,6 +376,11 @@ struct General6RParams : Elimination {
     //! Take candidates that miss by up to REFINE_LIMIT to the solution near them
     //! (false: as the eigenproblem gives them; for the tests of the other tolerances).
     bool refine_misses = true;
+    //! The next labellings that pass the builder's probes (at most ALTERNATES, the most
+    //! accurate first; their own alternates empty): where this one's candidates close no
+    //! loop for a target within reach, the first whose do answers; where a closing
+    //! candidate missed by more than ILL_MISS before Newton's step, theirs are added.
+    std::vector<General6RParams> alternates;
 
     int slots() const { return SLOTS; }
 
@@ -761,6 +787,7 @@ struct General6RParams : Elimination {
         int filled[CLASSES] = {};
         int further = 0;
         bool closes = false, fold = false;
+        double raw = 0.0;  //!< the largest miss before Newton's step of a closing candidate
     };
 
     //! True when q (6) is within SAME_CANDIDATE_TOL of a candidate already in Q.
@@ -778,7 +805,8 @@ struct General6RParams : Elimination {
     //! Q's slots (those of a root's two-dimensional null space only where no candidate is
     //! already there). False when the eigenvalue iteration failed.
     bool pass(const Elimination& E, const Pose* L, const Pose* Li, const Pose& T,
-              const double* ph, double* Q, Passes& st, SolverInfo& info, Trace* trace) const {
+              const double* ph, double* Q, Passes& st, SolverInfo& info, Trace* trace,
+              bool merge = false) const {
         // M(x6) for the shift ph6, or ph6 + SECOND_SHIFT when A2 is ill-conditioned there
         // (a root near x6 = ∞: q'6 near the shift + π, which the second shift moves to a
         // finite x6); both ill-conditioned: no leading term, not solved here
@@ -808,6 +836,7 @@ struct General6RParams : Elimination {
         auto add = [&](double* a, double closure, bool split_root, bool check_same) {
             double q[6], J[6 * 6];
             bool refined = false;
+            const double raw = closure;
             if (refine_misses && closure > 0.0 && closure < REFINE_LIMIT) {
                 closure = refine(L, T, a, closure, J);
                 refined = true;
@@ -819,6 +848,7 @@ struct General6RParams : Elimination {
             if (check_same && already(Q, q)) return;
             if (closure <= CLOSURE_TOL) {  // a solution: at a fold, or on a continuum?
                 st.closes = true;
+                st.raw = std::fmax(st.raw, raw);
                 const SelfMotion sm = self_motion(L, T, a, refined ? J : nullptr);
                 if (sm.verdict == Degeneracy::continuum) {
                     info.singular = true;
@@ -852,7 +882,7 @@ struct General6RParams : Elimination {
             double a[6];
             const Vector12 u = null_vector(A, roots[r]);
             const double closure = back_substitute(E, L, Li, T, ph, roots[r], shift6, u, a);
-            add(a, closure, split[r], false);
+            add(a, closure, split[r], merge);
             if (!(refine_misses && resolves(closure) && first_of_pair(roots, found, r))) continue;
             // perhaps two solutions share this root: each from M's two-dimensional null space
             if (trace != nullptr) trace->resolved = true;
@@ -867,8 +897,33 @@ struct General6RParams : Elimination {
         return true;
     }
 
+    //! This labelling's candidates for the target T (scaled) into Q's slots after those
+    //! st holds (merge: each checked against them); false when its elimination proves
+    //! nothing there (its left side rank-deficient for T, or the eigenvalue iteration
+    //! failed).
+    bool attempt(const Pose& T, double* Q, Passes& st, SolverInfo& info, Trace* trace,
+                 bool merge) const {
+        Pose L[6], Li[4];
+        for (int k = 0; k < 6; ++k) L[k] = link_of(k, T);
+        for (int k = 0; k < 4; ++k) Li[k] = inverse(L[k + 2]);
+        // the left side's constants: the arm's, or (T on the left) this target's
+        Elimination local;
+        const Elimination* E = this;
+        if (per_target()) {
+            if (!(eliminate(L[0], L[1], local) > RANK_TOL)) return false;
+            E = &local;
+        }
+        return pass(*E, L, Li, T, phi, Q, st, info, trace, merge);
+    }
+
     //! Candidates for one pose T (base frame) into Q (SLOTS x 6), NaN rows elsewhere;
     //! what it decided into `trace` when given.
+    //!
+    //! The chosen labelling first. Where none of its candidates closes the loop (the
+    //! target within reach: its elimination proves nothing), the alternates are tried in
+    //! turn and the first whose candidates close answers; where one closed only after
+    //! Newton's step took it by more than ILL_MISS (the eigenvalues inaccurate at this
+    //! target: others may be lost), the first alternate's candidates are added.
     void solve(const Pose& T_in, double* Q, SolverInfo& info, Trace* trace = nullptr) const {
         for (int i = 0; i < SLOTS * 6; ++i) Q[i] = NaN;
         const double far = norm(T_in.p - centre) - reach;
@@ -878,25 +933,37 @@ struct General6RParams : Elimination {
         }
         Pose T = T_in;
         T.p = scale * T.p;
-        Pose L[6], Li[4];
-        for (int k = 0; k < 6; ++k) L[k] = link_of(k, T);
-        for (int k = 0; k < 4; ++k) Li[k] = inverse(L[k + 2]);
-        // the left side's constants: the arm's, or (T on the left) this target's
-        Elimination local;
-        const Elimination* E = this;
-        if (per_target()) {
-            if (!(eliminate(L[0], L[1], local) > RANK_TOL)) {
-                info.near = true;  // rank-deficient for this target: nothing proven
-                return;
-            }
-            E = &local;
-        }
         Passes st;
-        if (!pass(*E, L, Li, T, phi, Q, st, info, trace)) {
-            info.near = true;  // the eigenvalue iteration failed: not proven unreachable
+        const bool done = attempt(T, Q, st, info, trace, false);
+        if (trace != nullptr) trace->raw = st.raw;
+        if (done && st.closes && !ill_conditioned(st.raw)) {
+            info.near = st.fold;
             return;
         }
-        info.near = !st.closes || st.fold;
+        if (done && st.closes) {  // ill-conditioned here: the first alternate's added
+            if (!alternates.empty()) {
+                if (trace != nullptr) trace->tried = 1;
+                alternates[0].attempt(T, Q, st, info, nullptr, true);
+            }
+            info.near = st.fold;
+            return;
+        }
+        // nothing closes: the alternates in turn, the first whose candidates close answers
+        double R[SLOTS * 6];
+        for (std::size_t k = 0; k < alternates.size(); ++k) {
+            for (int i = 0; i < SLOTS * 6; ++i) R[i] = NaN;
+            Passes other;
+            SolverInfo mine = info;
+            if (trace != nullptr) trace->tried = static_cast<int>(k) + 1;
+            if (!alternates[k].attempt(T, R, other, mine, nullptr, false) || !other.closes) continue;
+            for (int i = 0; i < SLOTS * 6; ++i) Q[i] = R[i];
+            info = mine;
+            info.near = other.fold;
+            if (trace != nullptr) trace->answered = static_cast<int>(k) + 1;
+            return;
+        }
+        // none closes: the elimination proves nothing (not found, the search is asked)
+        info.near = true;
     }
 };
 
