@@ -255,16 +255,15 @@ nb::tuple build_of(const km::Chain& chain) {
     return nb::make_tuple(params, t.chosen, t.scored, t.refined, t.probed);
 }
 
-//! (raw, answered, tried) of one solve of the pose T: the largest miss before Newton's
-//! step of a closing candidate of the chosen labelling, the labelling whose candidates
-//! were kept (0: the chosen one, k: alternate k) and how many alternates' passes ran.
+//! (answered, tried) of one solve of the pose T: the labelling whose candidates were
+//! kept (0: the chosen one, k: alternate k) and how many alternates' passes ran.
 nb::tuple attempts_of(const General6RParams& p, const km::Pose& T) {
     if (const char* why = p.invalid()) throw nb::value_error(why);
     double Q[kg::SLOTS * 6];
     km::SolverInfo info;
     kg::Trace t;
     p.solve(T, Q, info, &t);
-    return nb::make_tuple(t.raw, t.answered, t.tried);
+    return nb::make_tuple(t.answered, t.tried);
 }
 
 //! The fields of a solver as a dict of arrays and numbers (the names general_6r.hpp gives).
@@ -463,17 +462,12 @@ void bind_general6r_testing(nb::module_& m) {
             "roots came from QZ (A2 ill-conditioned at both shifts).");
 
     sub.attr("ALTERNATES") = kg::ALTERNATES;
-    sub.attr("ILL_MISS") = kg::ILL_MISS;
-    sub.def("ill_conditioned", &kg::ill_conditioned, nb::arg("miss"),
-            "True when a solution's candidate that missed by `miss` (m or rad) before Newton's "
-            "step says the target's elimination is ill-conditioned (ILL_MISS).");
     sub.def("may_alternate", &kg::may_alternate, nb::arg("score"),
             "True when a labelling whose mean log10 probe distance is `score` may be an "
             "alternate (its raw candidates within PROBE_TOL of the probes, geometric mean).");
     sub.def("attempts", &attempts_of, nb::arg("params"), nb::arg("T"),
-            "(raw, answered, tried) of one solve: the largest miss before Newton's step of a "
-            "closing candidate of the chosen labelling, the labelling whose candidates were "
-            "kept (0: the chosen one, k: alternate k), how many alternates' passes ran.");
+            "(answered, tried) of one solve: the labelling whose candidates were kept (0: the "
+            "chosen one, k: alternate k), how many alternates' passes ran.");
     sub.def("fields", &fields_of, nb::arg("params"),
             "The solver's fields (link (6, 4, 4), t_link, t_power, t_pre, t_post, order, sign, "
             "scale, phi, centre, reach, refine_misses, c0, N, Qp), per_target and alternates "

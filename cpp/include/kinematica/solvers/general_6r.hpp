@@ -34,6 +34,19 @@
 // x4, x5, then S2 = Q⁺(F - c0) gives q'1, q'2 and the loop's closure q'3. The shared
 // check polishes every candidate by Gauss-Newton on the full pose, dedupes and judges it.
 //
+// Alternates. The labelling is chosen on probe poses, and an arm near one whose elimination
+// degenerates can have a target where the chosen one proves nothing while others are
+// well posed: a Kawasaki RS007N with every DH value moved by 2.7e-8 (its spherical wrist
+// broken by that), the chosen labelling's pencil nearly singular for every x6 there (M's
+// second smallest singular value 1.5e-11 of its largest at the generating root), A2's
+// rcond 1.2e-8 (just above LEADING_RCOND_TOL, so the companion matrix is used, not QZ),
+// the eigenvalues near the generating root 5e-5 off: no candidate within REFINE_LIMIT
+// of a solution that Newton's step can take there, where another labelling's pencil
+// (A2's rcond 1.6e-4) gives all 8 to round-off. So the builder keeps the next labellings
+// that pass its probes (ALTERNATES, the most accurate first), and where none of the
+// chosen one's candidates closes the loop for a target within reach, they are tried in
+// turn: the first whose candidates close answers.
+//
 // Why Eigen: the LUs (A2's, with its condition estimate; M's null vector by full
 // pivoting) are Eigen's, well kept and tested. The eigenvalues are the core's own
 // (eigenvalues.hpp: twice as fast at this size). Only these headers and their binding
@@ -194,22 +207,13 @@ constexpr double GRID_STEP = 2.0 * PI / 3.0;
 //! 14 x 8 matrix Q is below this.
 constexpr double RANK_TOL = 1e-9;
 //! Labellings kept beside the chosen one (general_6r_build.hpp: the next that pass the
-//! probes, the most accurate first), tried where the chosen one's elimination proves
-//! nothing at a target (no candidate closes the loop) or is ill-conditioned there
-//! (ILL_MISS).
+//! probes, the most accurate first), tried in turn where none of the chosen one's
+//! candidates closes the loop for a target within reach (its elimination proves nothing
+//! there). Not where a closing candidate came from an inaccurate root (a miss before
+//! Newton's step of 1e-6..1e-1): on 5,400 poses of the makers' arms that have
+//! alternates, 1-4 % of an arm's poses had one, and adding the first alternate's
+//! candidates there changed no answer.
 constexpr int ALTERNATES = 2;
-//! A target's elimination is ill-conditioned when a candidate that Newton's step took to
-//! a solution missed the target by more than this before it (m or rad): its root x6 good
-//! to about that only, so that roots near one another or near-real complex pairs may be
-//! lost. Round-off on a well-posed pencil (1e-15..1e-12 on random arms; up to ...
-//! on the makers' arms, measured below); an arm 2.7e-8 from one whose elimination
-//! degenerates (a Kawasaki RS007N perturbed, ALTERNATES' test) gives 1e-5 and more. There
-//! the alternates' candidates are added to the chosen one's.
-constexpr double ILL_MISS = 1e-6;
-
-//! True when a solution's candidate that missed by `miss` (m or rad) before Newton's
-//! step says the target's elimination is ill-conditioned (ILL_MISS).
-KM_HD inline bool ill_conditioned(double miss) { return miss > ILL_MISS; }
 
 //! What one solve decided, for the tests of its tolerances (solve fills it when given).
 struct Trace {
@@ -221,7 +225,6 @@ struct Trace {
     double rank = NaN;     //!< the smallest σ6/σ1 computed at a closing candidate (NaN: none)
     double reclosure = INF;  //!< the smallest miss of a self-motion test's re-closure
     bool resolved = false;   //!< a root's null space was taken as two-dimensional (RESOLVE_TOL)
-    double raw = 0.0;        //!< the largest miss before Newton's step of a candidate that closed
     int answered = 0;        //!< the labelling whose candidates were kept: 0 this one, k alternate k
     int tried = 0;           //!< alternates whose pass ran
 };
@@ -378,8 +381,7 @@ struct General6RParams : Elimination {
     bool refine_misses = true;
     //! The next labellings that pass the builder's probes (at most ALTERNATES, the most
     //! accurate first; their own alternates empty): where this one's candidates close no
-    //! loop for a target within reach, the first whose do answers; where a closing
-    //! candidate missed by more than ILL_MISS before Newton's step, theirs are added.
+    //! loop for a target within reach, the first whose do answers.
     std::vector<General6RParams> alternates;
 
     int slots() const { return SLOTS; }
@@ -787,7 +789,6 @@ struct General6RParams : Elimination {
         int filled[CLASSES] = {};
         int further = 0;
         bool closes = false, fold = false;
-        double raw = 0.0;  //!< the largest miss before Newton's step of a closing candidate
     };
 
     //! True when q (6) is within SAME_CANDIDATE_TOL of a candidate already in Q.
@@ -805,8 +806,7 @@ struct General6RParams : Elimination {
     //! Q's slots (those of a root's two-dimensional null space only where no candidate is
     //! already there). False when the eigenvalue iteration failed.
     bool pass(const Elimination& E, const Pose* L, const Pose* Li, const Pose& T,
-              const double* ph, double* Q, Passes& st, SolverInfo& info, Trace* trace,
-              bool merge = false) const {
+              const double* ph, double* Q, Passes& st, SolverInfo& info, Trace* trace) const {
         // M(x6) for the shift ph6, or ph6 + SECOND_SHIFT when A2 is ill-conditioned there
         // (a root near x6 = ∞: q'6 near the shift + π, which the second shift moves to a
         // finite x6); both ill-conditioned: no leading term, not solved here
@@ -836,7 +836,6 @@ struct General6RParams : Elimination {
         auto add = [&](double* a, double closure, bool split_root, bool check_same) {
             double q[6], J[6 * 6];
             bool refined = false;
-            const double raw = closure;
             if (refine_misses && closure > 0.0 && closure < REFINE_LIMIT) {
                 closure = refine(L, T, a, closure, J);
                 refined = true;
@@ -848,7 +847,6 @@ struct General6RParams : Elimination {
             if (check_same && already(Q, q)) return;
             if (closure <= CLOSURE_TOL) {  // a solution: at a fold, or on a continuum?
                 st.closes = true;
-                st.raw = std::fmax(st.raw, raw);
                 const SelfMotion sm = self_motion(L, T, a, refined ? J : nullptr);
                 if (sm.verdict == Degeneracy::continuum) {
                     info.singular = true;
@@ -882,7 +880,7 @@ struct General6RParams : Elimination {
             double a[6];
             const Vector12 u = null_vector(A, roots[r]);
             const double closure = back_substitute(E, L, Li, T, ph, roots[r], shift6, u, a);
-            add(a, closure, split[r], merge);
+            add(a, closure, split[r], false);
             if (!(refine_misses && resolves(closure) && first_of_pair(roots, found, r))) continue;
             // perhaps two solutions share this root: each from M's two-dimensional null space
             if (trace != nullptr) trace->resolved = true;
@@ -897,12 +895,10 @@ struct General6RParams : Elimination {
         return true;
     }
 
-    //! This labelling's candidates for the target T (scaled) into Q's slots after those
-    //! st holds (merge: each checked against them); false when its elimination proves
-    //! nothing there (its left side rank-deficient for T, or the eigenvalue iteration
-    //! failed).
-    bool attempt(const Pose& T, double* Q, Passes& st, SolverInfo& info, Trace* trace,
-                 bool merge) const {
+    //! This labelling's candidates for the target T (scaled) into Q's slots (st: what
+    //! its passes filled and decided); false when its elimination proves nothing there
+    //! (its left side rank-deficient for T, or the eigenvalue iteration failed).
+    bool attempt(const Pose& T, double* Q, Passes& st, SolverInfo& info, Trace* trace) const {
         Pose L[6], Li[4];
         for (int k = 0; k < 6; ++k) L[k] = link_of(k, T);
         for (int k = 0; k < 4; ++k) Li[k] = inverse(L[k + 2]);
@@ -913,17 +909,14 @@ struct General6RParams : Elimination {
             if (!(eliminate(L[0], L[1], local) > RANK_TOL)) return false;
             E = &local;
         }
-        return pass(*E, L, Li, T, phi, Q, st, info, trace, merge);
+        return pass(*E, L, Li, T, phi, Q, st, info, trace);
     }
 
     //! Candidates for one pose T (base frame) into Q (SLOTS x 6), NaN rows elsewhere;
-    //! what it decided into `trace` when given.
-    //!
-    //! The chosen labelling first. Where none of its candidates closes the loop (the
-    //! target within reach: its elimination proves nothing), the alternates are tried in
-    //! turn and the first whose candidates close answers; where one closed only after
-    //! Newton's step took it by more than ILL_MISS (the eigenvalues inaccurate at this
-    //! target: others may be lost), the first alternate's candidates are added.
+    //! what it decided into `trace` when given (the chosen labelling's pass, and which
+    //! labelling answered). The chosen labelling first; where none of its candidates
+    //! closes the loop (the target within reach), the alternates in turn, the first whose
+    //! candidates close answering (its candidates and flags replace the chosen one's).
     void solve(const Pose& T_in, double* Q, SolverInfo& info, Trace* trace = nullptr) const {
         for (int i = 0; i < SLOTS * 6; ++i) Q[i] = NaN;
         const double far = norm(T_in.p - centre) - reach;
@@ -934,35 +927,24 @@ struct General6RParams : Elimination {
         Pose T = T_in;
         T.p = scale * T.p;
         Passes st;
-        const bool done = attempt(T, Q, st, info, trace, false);
-        if (trace != nullptr) trace->raw = st.raw;
-        if (done && st.closes && !ill_conditioned(st.raw)) {
+        if (attempt(T, Q, st, info, trace) && st.closes) {
             info.near = st.fold;
             return;
         }
-        if (done && st.closes) {  // ill-conditioned here: the first alternate's added
-            if (!alternates.empty()) {
-                if (trace != nullptr) trace->tried = 1;
-                alternates[0].attempt(T, Q, st, info, nullptr, true);
-            }
-            info.near = st.fold;
-            return;
-        }
-        // nothing closes: the alternates in turn, the first whose candidates close answers
         double R[SLOTS * 6];
         for (std::size_t k = 0; k < alternates.size(); ++k) {
             for (int i = 0; i < SLOTS * 6; ++i) R[i] = NaN;
             Passes other;
             SolverInfo mine = info;
             if (trace != nullptr) trace->tried = static_cast<int>(k) + 1;
-            if (!alternates[k].attempt(T, R, other, mine, nullptr, false) || !other.closes) continue;
+            if (!alternates[k].attempt(T, R, other, mine, nullptr) || !other.closes) continue;
             for (int i = 0; i < SLOTS * 6; ++i) Q[i] = R[i];
             info = mine;
             info.near = other.fold;
             if (trace != nullptr) trace->answered = static_cast<int>(k) + 1;
             return;
         }
-        // none closes: the elimination proves nothing (not found, the search is asked)
+        // none closes: the elimination proves nothing (not found: the search is asked)
         info.near = true;
     }
 };

@@ -21,6 +21,11 @@
 // differ by orders of magnitude, and the first that passes is often not the best (measured
 // on 30 calibrated UR5s, 200 poses each: 122 generating configurations missed with the
 // first that passes, 9 with the most accurate, 8 of them at singular poses).
+//
+// The alternates (general_6r.hpp: tried where the chosen labelling's candidates close no
+// loop): the next labellings in order that are kept at once too, else the others whose
+// raw probe score is within PROBE_TOL (may_alternate; a degenerate labelling, det M ≡ 0,
+// scores about 0 and is not probed again), by score, the first ALTERNATES that pass.
 #pragma once
 
 #include <algorithm>
