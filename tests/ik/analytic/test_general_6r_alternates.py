@@ -96,6 +96,11 @@ def test_a_pose_the_chosen_labelling_proves_nothing_for_is_answered_by_an_altern
     assert (str(res.status), res.method) == ("ok", "analytic:general-6R")
     assert _distance(q_gen, res.solutions) <= SAME
     assert _misses(robot, res.solutions, T).max() <= FK_TOL
+    # a batch goes through the same scalar solve: the same answer at each of its targets
+    batch = robot.ik(np.stack([T, T]), respect_limits=False, workers=1)
+    for i in range(2):
+        assert batch[i].method == res.method and batch[i].count == res.count
+        assert _distance(q_gen, batch[i].solutions) <= SAME
     # the same solutions as the exact arm's closed form (the spherical-wrist family), one
     # for one: the arms differ by 2.7e-8
     exact = km.load(MAKERS / "kawasaki_rs007n.urdf")
