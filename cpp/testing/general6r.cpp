@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "casters.hpp"
 #include "common.hpp"
@@ -254,6 +255,17 @@ nb::tuple build_of(const km::Chain& chain) {
     return nb::make_tuple(params, t.chosen, t.scored, t.refined, t.probed);
 }
 
+//! (answered, tried) of one solve of the pose T: the labelling whose candidates were
+//! kept (0: the chosen one, k: alternate k) and how many alternates' passes ran.
+nb::tuple attempts_of(const General6RParams& p, const km::Pose& T) {
+    if (const char* why = p.invalid()) throw nb::value_error(why);
+    double Q[kg::SLOTS * 6];
+    km::SolverInfo info;
+    kg::Trace t;
+    p.solve(T, Q, info, &t);
+    return nb::make_tuple(t.answered, t.tried);
+}
+
 //! The fields of a solver as a dict of arrays and numbers (the names general_6r.hpp gives).
 nb::dict fields_of(const General6RParams& p) {
     nb::dict d;
@@ -276,6 +288,9 @@ nb::dict fields_of(const General6RParams& p) {
     d["N"] = get_matrix(p.N);
     d["Qp"] = get_matrix(p.Qp);
     d["per_target"] = p.per_target();
+    nb::list alts;
+    for (const General6RParams& a : p.alternates) alts.append(nb::cast(a, nb::rv_policy::copy));
+    d["alternates"] = alts;
     return d;
 }
 
@@ -295,6 +310,13 @@ void set_fields(General6RParams& p, const nb::kwargs& kw) {
         else if (name == "c0") small::set_vec(p.c0, value, "c0");
         else if (name == "N") set_matrix(p.N, value, "N");
         else if (name == "Qp") set_matrix(p.Qp, value, "Qp");
+        else if (name == "alternates") {
+            std::vector<General6RParams> alts;
+            for (nb::handle a : nb::iter(value)) alts.push_back(nb::cast<const General6RParams&>(a));
+            for (const General6RParams& a : alts)
+                if (!a.alternates.empty()) throw nb::value_error("an alternate has no alternates");
+            p.alternates = std::move(alts);
+        }
         else throw nb::value_error(("no settable field " + name).c_str());
     }
 }
@@ -439,12 +461,21 @@ void bind_general6r_testing(nb::module_& m) {
             "whether the roots at x6 = ±i were eliminated before the eigenproblem, whether the "
             "roots came from QZ (A2 ill-conditioned at both shifts).");
 
+    sub.attr("ALTERNATES") = kg::ALTERNATES;
+    sub.def("may_alternate", &kg::may_alternate, nb::arg("score"),
+            "True when a labelling whose mean log10 probe distance is `score` may be an "
+            "alternate (its raw candidates within PROBE_TOL of the probes, geometric mean).");
+    sub.def("attempts", &attempts_of, nb::arg("params"), nb::arg("T"),
+            "(answered, tried) of one solve: the labelling whose candidates were kept (0: the "
+            "chosen one, k: alternate k), how many alternates' passes ran.");
     sub.def("fields", &fields_of, nb::arg("params"),
             "The solver's fields (link (6, 4, 4), t_link, t_power, t_pre, t_post, order, sign, "
-            "scale, phi, centre, reach, refine_misses, c0, N, Qp) and per_target, as a dict.");
+            "scale, phi, centre, reach, refine_misses, c0, N, Qp), per_target and alternates "
+            "(a list of General6RParams copies), as a dict.");
     sub.def("set", &set_fields, nb::arg("params"), nb::arg("fields"),
             "Sets the named fields of a General6RParams in place (t_link, t_power, sign, scale, "
-            "reach, refine_misses, centre, order, phi, c0, N, Qp), each checked for shape.");
+            "reach, refine_misses, centre, order, phi, c0, N, Qp, alternates: a sequence of "
+            "General6RParams without their own), each checked for shape.");
     sub.def("blank", [] { return General6RParams{}; },
             "A General6RParams as the header default-constructs it (no arm).");
     sub.def("eliminate", &eliminate_params, nb::arg("params"),

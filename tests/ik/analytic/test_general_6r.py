@@ -200,7 +200,8 @@ def test_a_labelling_accurate_to_round_off_is_kept_without_scoring_the_others() 
     assert not G.kept_at_once(-15.0, 2.0 * tol, False)
     assert G.kept_at_once(-15.0, 2.0 * tol, True)
     # a generic arm whose first labelling is accurate to round-off (well within ACCURATE:
-    # the first of seeds 0, 1, ...): kept, the others unscored
+    # the first of seeds 0, 1, ...): kept, the next ALTERNATES kept at once too as its
+    # alternates (the labellings after them unscored)
     rng = np.random.default_rng(0)
     while True:
         robot = _robot(rng, False)
@@ -208,7 +209,9 @@ def test_a_labelling_accurate_to_round_off_is_kept_without_scoring_the_others() 
         if first is not None and G.accuracy(first[0], robot.chain.core)[0] <= acc - 1.0:
             break
     params, chosen, scored, refined, probed = G.build_trace(robot.chain.core)
-    assert params is not None and (chosen, scored, probed) == (0, 1, G.PROBES) and refined <= 1
+    kept = 1 + G.ALTERNATES
+    assert params is not None and (chosen, scored, probed) == (0, kept, kept * G.PROBES)
+    assert refined <= kept and len(field(params, "alternates")) == G.ALTERNATES
     # an arm whose constant labellings are not accurate (a UR5, every twist 1e-3 off):
     # all twelve scored, the last (T on the left, reversed) accurate to round-off and kept
     rows = [Revolute(d=d, a=a, alpha=al + 1e-3) for d, a, al in g6._UR5]

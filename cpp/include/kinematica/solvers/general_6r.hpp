@@ -34,6 +34,19 @@
 // x4, x5, then S2 = Q⁺(F - c0) gives q'1, q'2 and the loop's closure q'3. The shared
 // check polishes every candidate by Gauss-Newton on the full pose, dedupes and judges it.
 //
+// Alternates. The labelling is chosen on probe poses, and an arm near one whose elimination
+// degenerates can have a target where the chosen one proves nothing while others are
+// well posed: a Kawasaki RS007N with every DH value moved by 2.7e-8 (its spherical wrist
+// broken by that), the chosen labelling's pencil nearly singular for every x6 there (M's
+// second smallest singular value 1.5e-11 of its largest at the generating root), A2's
+// rcond 1.2e-8 (just above LEADING_RCOND_TOL, so the companion matrix is used, not QZ),
+// the eigenvalues near the generating root 5e-5 off: no candidate within REFINE_LIMIT
+// of a solution that Newton's step can take there, where another labelling's pencil
+// (A2's rcond 1.6e-4) gives all 8 to round-off. So the builder keeps the next labellings
+// that pass its probes (ALTERNATES, the most accurate first), and where none of the
+// chosen one's candidates closes the loop for a target within reach, they are tried in
+// turn: the first whose candidates close answers.
+//
 // Why Eigen: the LUs (A2's, with its condition estimate; M's null vector by full
 // pivoting) are Eigen's, well kept and tested. The eigenvalues are the core's own
 // (eigenvalues.hpp: twice as fast at this size). Only these headers and their binding
@@ -62,6 +75,7 @@
 #include <complex>
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "../check.hpp"
 #include "../config.hpp"
@@ -192,6 +206,14 @@ constexpr double GRID_STEP = 2.0 * PI / 3.0;
 //! unusable, for the arm or, with T on the left, for that target) when σ8 / σ1 of its
 //! 14 x 8 matrix Q is below this.
 constexpr double RANK_TOL = 1e-9;
+//! Labellings kept beside the chosen one (general_6r_build.hpp: the next that pass the
+//! probes, the most accurate first), tried in turn where none of the chosen one's
+//! candidates closes the loop for a target within reach (its elimination proves nothing
+//! there). Not where a closing candidate came from an inaccurate root (a miss before
+//! Newton's step of 1e-6..1e-1): on 5,400 poses of the makers' arms that have
+//! alternates, 1-4 % of an arm's poses had one, and adding the first alternate's
+//! candidates there changed no answer.
+constexpr int ALTERNATES = 2;
 
 //! What one solve decided, for the tests of its tolerances (solve fills it when given).
 struct Trace {
@@ -203,6 +225,8 @@ struct Trace {
     double rank = NaN;     //!< the smallest σ6/σ1 computed at a closing candidate (NaN: none)
     double reclosure = INF;  //!< the smallest miss of a self-motion test's re-closure
     bool resolved = false;   //!< a root's null space was taken as two-dimensional (RESOLVE_TOL)
+    int answered = 0;        //!< the labelling whose candidates were kept: 0 this one, k alternate k
+    int tried = 0;           //!< alternates whose pass ran
 };
 
 //! What the self-motion test says of a candidate that closes the loop.
@@ -355,6 +379,10 @@ struct General6RParams : Elimination {
     //! Take candidates that miss by up to REFINE_LIMIT to the solution near them
     //! (false: as the eigenproblem gives them; for the tests of the other tolerances).
     bool refine_misses = true;
+    //! The next labellings that pass the builder's probes (at most ALTERNATES, the most
+    //! accurate first; their own alternates empty): where this one's candidates close no
+    //! loop for a target within reach, the first whose do answers.
+    std::vector<General6RParams> alternates;
 
     int slots() const { return SLOTS; }
 
@@ -867,8 +895,28 @@ struct General6RParams : Elimination {
         return true;
     }
 
+    //! This labelling's candidates for the target T (scaled) into Q's slots (st: what
+    //! its passes filled and decided); false when its elimination proves nothing there
+    //! (its left side rank-deficient for T, or the eigenvalue iteration failed).
+    bool attempt(const Pose& T, double* Q, Passes& st, SolverInfo& info, Trace* trace) const {
+        Pose L[6], Li[4];
+        for (int k = 0; k < 6; ++k) L[k] = link_of(k, T);
+        for (int k = 0; k < 4; ++k) Li[k] = inverse(L[k + 2]);
+        // the left side's constants: the arm's, or (T on the left) this target's
+        Elimination local;
+        const Elimination* E = this;
+        if (per_target()) {
+            if (!(eliminate(L[0], L[1], local) > RANK_TOL)) return false;
+            E = &local;
+        }
+        return pass(*E, L, Li, T, phi, Q, st, info, trace);
+    }
+
     //! Candidates for one pose T (base frame) into Q (SLOTS x 6), NaN rows elsewhere;
-    //! what it decided into `trace` when given.
+    //! what it decided into `trace` when given (the chosen labelling's pass, and which
+    //! labelling answered). The chosen labelling first; where none of its candidates
+    //! closes the loop (the target within reach), the alternates in turn, the first whose
+    //! candidates close answering (its candidates and flags replace the chosen one's).
     void solve(const Pose& T_in, double* Q, SolverInfo& info, Trace* trace = nullptr) const {
         for (int i = 0; i < SLOTS * 6; ++i) Q[i] = NaN;
         const double far = norm(T_in.p - centre) - reach;
@@ -878,25 +926,26 @@ struct General6RParams : Elimination {
         }
         Pose T = T_in;
         T.p = scale * T.p;
-        Pose L[6], Li[4];
-        for (int k = 0; k < 6; ++k) L[k] = link_of(k, T);
-        for (int k = 0; k < 4; ++k) Li[k] = inverse(L[k + 2]);
-        // the left side's constants: the arm's, or (T on the left) this target's
-        Elimination local;
-        const Elimination* E = this;
-        if (per_target()) {
-            if (!(eliminate(L[0], L[1], local) > RANK_TOL)) {
-                info.near = true;  // rank-deficient for this target: nothing proven
-                return;
-            }
-            E = &local;
-        }
         Passes st;
-        if (!pass(*E, L, Li, T, phi, Q, st, info, trace)) {
-            info.near = true;  // the eigenvalue iteration failed: not proven unreachable
+        if (attempt(T, Q, st, info, trace) && st.closes) {
+            info.near = st.fold;
             return;
         }
-        info.near = !st.closes || st.fold;
+        double R[SLOTS * 6];
+        for (std::size_t k = 0; k < alternates.size(); ++k) {
+            for (int i = 0; i < SLOTS * 6; ++i) R[i] = NaN;
+            Passes other;
+            SolverInfo mine = info;
+            if (trace != nullptr) trace->tried = static_cast<int>(k) + 1;
+            if (!alternates[k].attempt(T, R, other, mine, nullptr) || !other.closes) continue;
+            for (int i = 0; i < SLOTS * 6; ++i) Q[i] = R[i];
+            info = mine;
+            info.near = other.fold;
+            if (trace != nullptr) trace->answered = static_cast<int>(k) + 1;
+            return;
+        }
+        // none closes: the elimination proves nothing (not found: the search is asked)
+        info.near = true;
     }
 };
 

@@ -21,6 +21,11 @@
 // differ by orders of magnitude, and the first that passes is often not the best (measured
 // on 30 calibrated UR5s, 200 poses each: 122 generating configurations missed with the
 // first that passes, 9 with the most accurate, 8 of them at singular poses).
+//
+// The alternates (general_6r.hpp: tried where the chosen labelling's candidates close no
+// loop): the next labellings in order that are kept at once too, else the others whose
+// raw probe score is within PROBE_TOL (may_alternate; a degenerate labelling, det M ≡ 0,
+// scores about 0 and is not probed again), by score, the first ALTERNATES that pass.
 #pragma once
 
 #include <algorithm>
@@ -97,6 +102,7 @@ struct BuildTrace {
     int scored = 0;    //!< labellings whose probes were scored
     int refined = 0;   //!< refined probe passes run
     int probed = 0;    //!< raw probe poses solved in scoring
+    int alternates = 0;  //!< alternates kept (general_6r.hpp: ALTERNATES at most)
 };
 
 namespace detail {
@@ -254,9 +260,10 @@ inline void probe(const General6RParams& p, const ChainView& ch, bool refine, do
 
 //! (score, worst) of a labelling's raw candidates on the probes: the mean of log10 of the
 //! distances clipped to [1e-16, 1] (1: none found; lower is better), and the largest.
-//! With `give_up`, scoring stops (false) once the probes scored so far prove the score
-//! above log10(ACCURATE) whatever the others give (each at best -16): such a labelling
-//! cannot be kept at once, and is scored in full only if the ranking needs it. Degenerate
+//! With `give_up`, scoring stops (false, `score` the mean of the probes scored) once the
+//! probes scored so far prove the score above log10(ACCURATE) whatever the others give
+//! (each at best -16): such a labelling cannot be kept at once, and is scored in full only
+//! if the ranking needs it. Degenerate
 //! labellings (det M ≡ 0: eleven of a FANUC CRX's twelve) then cost 3 probes, not 8.
 inline bool accuracy(const General6RParams& p, const ChainView& ch, double& score, double& worst,
                      bool give_up = false, int* probed = nullptr) {
@@ -270,7 +277,7 @@ inline bool accuracy(const General6RParams& p, const ChainView& ch, double& scor
         sum += detail::score_term(d);
         worst = std::fmax(worst, d);
         if (give_up && sum - 16.0 * (PROBES - 1 - i) > PROBES * std::log10(ACCURATE)) {
-            score = NaN;
+            score = sum / (i + 1);  // the mean so far
             return false;
         }
     }
@@ -286,8 +293,15 @@ inline bool kept_at_once(double score, double worst, Passes&& passes) {
     return score <= std::log10(ACCURATE) && (worst <= PROBE_TOL || passes());
 }
 
+//! True when a labelling whose (mean log10) probe score is `score` may be an alternate: its
+//! raw candidates hold the probes' configurations to PROBE_TOL (geometric mean). The
+//! degenerate ones (det M ≡ 0: a score near 0) are not asked for their refined probes.
+inline bool may_alternate(double score) { return score <= std::log10(PROBE_TOL); }
+
 //! The general 6R solver of a chain of six revolute joints into out; false when no
-//! labelling holds the probes' configurations (or the chain is not 6R).
+//! labelling holds the probes' configurations (or the chain is not 6R). Its alternates
+//! (general_6r.hpp: ALTERNATES at most): the next labellings in order kept at once too,
+//! else those that may (may_alternate) by score, the first that pass the refined probes.
 inline bool build(const Chain& chain, General6RParams& out, BuildTrace* trace = nullptr) {
     BuildTrace local;
     BuildTrace& t = trace != nullptr ? *trace : local;
@@ -301,33 +315,47 @@ inline bool build(const Chain& chain, General6RParams& out, BuildTrace* trace = 
         return *std::max_element(d, d + PROBES) <= PROBE_TOL;
     };
     General6RParams built[LABELLINGS];
+    bool usable[LABELLINGS] = {}, full[LABELLINGS] = {}, taken[LABELLINGS] = {};
     double score[LABELLINGS];
-    int ranked[LABELLINGS], count = 0;
-    for (int which = 0; which < LABELLINGS; ++which) {
-        if (!labelling(loop, which, built[which])) continue;
+    int ranked[LABELLINGS], count = 0, chosen = -1, alternate[ALTERNATES], alternates = 0;
+    for (int which = 0; which < LABELLINGS && alternates < ALTERNATES; ++which) {
+        if (!(usable[which] = labelling(loop, which, built[which]))) continue;
         double worst;
-        const bool scored = accuracy(built[which], ch, score[which], worst, true, &t.probed);
+        full[which] = accuracy(built[which], ch, score[which], worst, true, &t.probed);
         ++t.scored;
-        if (scored && kept_at_once(score[which], worst, [&] { return passes(built[which]); })) {
-            out = built[which];
-            t.chosen = which;
-            return true;
+        if (!full[which] || !kept_at_once(score[which], worst, [&] { return passes(built[which]); }))
+            continue;
+        taken[which] = true;
+        if (chosen < 0) {
+            chosen = which;  // then the alternates: the next kept at once
+        } else {
+            alternate[alternates++] = which;
+        }
+    }
+    for (int which = 0; which < LABELLINGS; ++which) {
+        if (!usable[which] || taken[which]) continue;
+        if (chosen < 0 && !full[which]) {  // the ranking chooses: every labelling scored in full
+            double worst;
+            full[which] = accuracy(built[which], ch, score[which], worst, false, &t.probed);
         }
         ranked[count++] = which;
     }
-    for (int i = 0; i < count; ++i) {  // the labellings given up on, scored in full to rank
-        double worst;
-        if (std::isnan(score[ranked[i]])) accuracy(built[ranked[i]], ch, score[ranked[i]], worst, false, &t.probed);
-    }
     std::stable_sort(ranked, ranked + count, [&](int a, int b) { return score[a] < score[b]; });
-    for (int i = 0; i < count; ++i) {
-        if (passes(built[ranked[i]])) {
-            out = built[ranked[i]];
-            t.chosen = ranked[i];
-            return true;
+    for (int i = 0; i < count && alternates < ALTERNATES; ++i) {
+        if (chosen >= 0 && !may_alternate(score[ranked[i]])) break;  // the rest score worse
+        if (!passes(built[ranked[i]])) continue;
+        if (chosen < 0) {
+            chosen = ranked[i];
+        } else {
+            alternate[alternates++] = ranked[i];
         }
     }
-    return false;
+    if (chosen < 0) return false;
+    out = built[chosen];
+    for (int k = 0; k < alternates; ++k) out.alternates.push_back(built[alternate[k]]);
+    t.chosen = chosen;
+    t.alternates = alternates;
+    return true;
 }
 
 //! build's solver of a chain, or std::nullopt (the family's builder as a C++ program or

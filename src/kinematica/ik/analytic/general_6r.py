@@ -9,8 +9,9 @@ loop from the joint axes at q = 0 (product of exponentials: any base, tool, conv
 or URDF chain), and of its twelve labellings (the loop turned cyclically or reversed)
 the one for which the elimination is well posed: those on which probe poses are solved
 (the generating configuration found among the candidates), the first accurate to
-round-off, else the one whose eigenvalues are the most accurate there. This module
-names the family, its branches and notes, and draws its sample arms.
+round-off, else the one whose eigenvalues are the most accurate there, and up to two
+more that pass, tried where the chosen one's candidates close no loop for a target.
+This module names the family, its branches and notes, and draws its sample arms.
 """
 
 from __future__ import annotations
