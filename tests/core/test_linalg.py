@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from kinematica._core import SCALE_FLOOR
+from kinematica._core_testing.internals import SCALE_FLOOR
 from kinematica._core_testing import internals
 
 

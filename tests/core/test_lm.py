@@ -11,7 +11,7 @@ restart, and "converged" is exactly what the shared check then calls ``ok``.
 from __future__ import annotations
 
 import numpy as np
-from kinematica._core import STALL_WINDOW
+from kinematica._core_testing.internals import STALL_WINDOW
 from kinematica._core_testing import internals
 
 import kinematica as km
