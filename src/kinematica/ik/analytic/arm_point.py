@@ -23,7 +23,6 @@ import kinematica._core as _core
 __all__ = ["ELBOW_BENDS", "ArmGeometry", "geometry_of"]
 
 
-
 @dataclass(frozen=True, slots=True, eq=False)
 class ArmGeometry:
     """The core's arm part, and the names of its four slots.
