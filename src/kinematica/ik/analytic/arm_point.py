@@ -17,7 +17,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-
 import kinematica._core as _core
 
 __all__ = ["ELBOW_BENDS", "ArmGeometry", "geometry_of"]
