@@ -174,6 +174,11 @@ class FrameSpec:
         return T
 
 
+def frame_of(T: np.ndarray) -> FrameSpec:
+    """The :class:`FrameSpec` of a ``(4, 4)`` transform ``T``, written as its matrix (m)."""
+    return FrameSpec(matrix=tuple(tuple(float(v) for v in row) for row in T))
+
+
 @dataclass(frozen=True)
 class ChainSpec:
     """An arm's own transforms, when its DH table only describes it (a URDF's, a calibration's).
