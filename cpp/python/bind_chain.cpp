@@ -1,7 +1,5 @@
 // The chain: construction, forward kinematics, Jacobians and joint axes, one configuration
 // or a batch.
-#include <nanobind/stl/vector.h>
-
 #include <algorithm>
 #include <atomic>
 #include <utility>
@@ -409,12 +407,6 @@ void bind_chain(nb::module_& m) {
                     nb::arg("tool"), nb::arg("frame_offsets"), nb::arg("prismatic"),
                     nb::arg("lo"), nb::arg("hi"), nb::arg("base"),
                     "General transforms: T = start · Π_i [M_i(q_i) · between_i] · tool.")
-        .def_prop_ro("dof", &Chain::dof)
-        .def_prop_ro("prismatic", [](const Chain& c) {
-            std::vector<bool> v;
-            for (const auto& j : c.joints()) v.push_back(j.prismatic);
-            return v;
-        })
         .def_prop_ro("qlim", [](const Chain& c) {
             double* out;
             F64 a = new_f64({c.dof(), 2}, out);
@@ -445,7 +437,6 @@ void bind_chain(nb::module_& m) {
         .def("reversed", &Chain::reversed, "The chain of the inverse transform (chain.hpp).")
         .def_prop_ro("start", [](const Chain& c) { return c.view().start; })
         .def_prop_ro("tool", [](const Chain& c) { return c.view().tool; })
-        .def_prop_ro("base", [](const Chain& c) { return c.view().base; })
         .def("fk", &fk_one, nb::arg("q"), "(T (4, 4), state) of q (n,); state 1: NaN/inf, 2: outside own limits.")
         .def("fk_frames", &fk_frames_one, nb::arg("q"), "(frames (n + 1, 4, 4), state) of q (n,).")
         .def("fk_batch", &fk_many, nb::arg("Q"), nb::arg("all_frames"), nb::arg("workers"),
