@@ -22,13 +22,6 @@
 
 namespace kmpy {
 
-//! The array a made read-only (what it holds is the core's answer, not a buffer to fill).
-template <class A>
-A read_only(A a) {
-    PyArray_CLEARFLAGS(reinterpret_cast<PyArrayObject*>(a.ptr()), NPY_ARRAY_WRITEABLE);
-    return a;
-}
-
 //! One target's answer.
 struct Answer {
     F64 solutions;                     //!< (count, n) within the limits (all, limits ignored)

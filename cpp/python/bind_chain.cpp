@@ -1,7 +1,6 @@
 // The chain: construction, forward kinematics, Jacobians and joint axes, one configuration
 // or a batch.
-#include <nanobind/stl/vector.h>
-
+#include <algorithm>
 #include <atomic>
 #include <utility>
 #include <vector>
@@ -38,16 +37,10 @@ struct AxesInto {
     static constexpr bool axes = true;
     double* out;
     void frame(int, const Pose&) {}
-    void axis(int i, const km::Vec3& z, const km::Vec3& p) {
-        double* r = out + 6 * i;
-        r[0] = z.x; r[1] = z.y; r[2] = z.z;
-        r[3] = p.x; r[4] = p.y; r[5] = p.z;
-    }
+    void axis(int i, const km::Vec3& z, const km::Vec3& p) { put(p, put(z, out + 6 * i)); }
 };
 
-void fill_nan(double* p, npy_intp count) {
-    for (npy_intp i = 0; i < count; ++i) p[i] = km::NaN;
-}
+void fill_nan(double* p, npy_intp count) { std::fill_n(p, count, km::NaN); }
 
 //! What the blocks of a batch count: configurations holding NaN/inf, beyond their own
 //! limits, and with a joint beyond a full turn (km::beyond_turn), so that Python reads the
@@ -64,8 +57,9 @@ inline void count_state(const ChainView& ch, const double* q, QState st, long& b
     turns += st == QState::beyond_turn || km::beyond_turn(ch, q);
 }
 
-//! Scratch of one block's joint trigonometry: on the stack for the usual sizes.
-//! (Storage only: the trigonometry is computed in the multiversioned block functions.)
+//! Scratch of the joint trigonometry of a block of up to Rows configurations: on the stack
+//! for up to 8 joints. (Storage only: the trigonometry is computed by its users.)
+template <long Rows = FK_BLOCK>
 class BlockTrig {
 public:
     BlockTrig(int n, long m) : size_(static_cast<size_t>(m * n)) {
@@ -81,7 +75,7 @@ public:
 
 private:
     size_t size_;
-    double stack_[3 * FK_BLOCK * 8];
+    double stack_[3 * Rows * 8];
     std::vector<double> heap_;
     double* base_;
 };
@@ -90,7 +84,7 @@ private:
 KM_CLONES void fk_block(const ChainView& ch, const double* Q, long b0, long b1, double* poses,
                         double* frames, Counts& counts) {
     const int n = ch.n;
-    BlockTrig trig(n, b1 - b0);
+    BlockTrig<> trig(n, b1 - b0);
     km::joint_trig_rows(ch, Q + b0 * n, static_cast<int>(b1 - b0), trig.angle(), trig.c(), trig.s());
     long bad = 0, outside = 0, turns = 0;
     for (long b = b0; b < b1; ++b) {
@@ -121,7 +115,7 @@ KM_CLONES void fk_block(const ChainView& ch, const double* Q, long b0, long b1, 
 KM_CLONES void jacobian_block(const ChainView& ch, const double* Q, long b0, long b1,
                               bool tool_frame, double* J, Counts& counts) {
     const int n = ch.n;
-    BlockTrig trig(n, b1 - b0);
+    BlockTrig<> trig(n, b1 - b0);
     km::joint_trig_rows(ch, Q + b0 * n, static_cast<int>(b1 - b0), trig.angle(), trig.c(), trig.s());
     long bad = 0, outside = 0, turns = 0;
     for (long b = b0; b < b1; ++b) {
@@ -141,40 +135,34 @@ In check_q(const Chain& chain, F64 q) { return in_f64(q, "q", 1, {chain.dof()});
 
 In check_batch(const Chain& chain, F64 Q) { return in_f64(Q, "Q", 2, {-1, chain.dof()}); }
 
-nb::tuple fk_one(const Chain& chain, F64 q) {
+//! (f's values of q (n,) in a new array of shape `dims`, NaN where q holds NaN/inf; q's
+//! state): f(view, q, c, s, out) with the joint trigonometry's scratch c, s.
+template <class F>
+nb::tuple of_one(const Chain& chain, F64 q, std::initializer_list<npy_intp> dims, const F& f) {
     const In in = check_q(chain, q);
     const ChainView ch = chain.view();
-    const int n = ch.n;
-    double c[64], s[64];
-    std::vector<double> big_c, big_s;
-    double* cp = c;
-    double* sp = s;
-    if (n > 64) {
-        big_c.resize(static_cast<size_t>(n));
-        big_s.resize(static_cast<size_t>(n));
-        cp = big_c.data();
-        sp = big_s.data();
-    }
+    BlockTrig<1> trig(ch.n, 1);
     double* out;
-    nb::object T = new_f64({4, 4}, out);
+    nb::object A = new_f64(dims, out);
+    f(ch, in.data, trig.c(), trig.s(), out);
     const QState st = km::q_state(ch, in.data);
-    km::fk(ch, in.data, cp, sp).to_rows(out);
-    if (st == QState::not_finite) fill_nan(out, 16);
-    return nb::make_tuple(T, static_cast<int>(st));
+    if (st == QState::not_finite) fill_nan(out, PyArray_SIZE(reinterpret_cast<PyArrayObject*>(A.ptr())));
+    return nb::make_tuple(A, static_cast<int>(st));
+}
+
+nb::tuple fk_one(const Chain& chain, F64 q) {
+    return of_one(chain, q, {4, 4},
+                  [](const ChainView& ch, const double* qd, double* c, double* s, double* out) {
+                      km::fk(ch, qd, c, s).to_rows(out);
+                  });
 }
 
 nb::tuple fk_frames_one(const Chain& chain, F64 q) {
-    const In in = check_q(chain, q);
-    const ChainView ch = chain.view();
-    const int n = ch.n;
-    std::vector<double> c(static_cast<size_t>(n)), s(c.size());
-    double* out;
-    nb::object F = new_f64({n + 1, 4, 4}, out);
-    km::joint_trig(ch, in.data, c.data(), s.data());
-    km::walk(ch, in.data, c.data(), s.data(), FramesInto{out});
-    const QState st = km::q_state(ch, in.data);
-    if (st == QState::not_finite) fill_nan(out, 16 * (n + 1));
-    return nb::make_tuple(F, static_cast<int>(st));
+    return of_one(chain, q, {chain.dof() + 1, 4, 4},
+                  [](const ChainView& ch, const double* qd, double* c, double* s, double* out) {
+                      km::joint_trig(ch, qd, c, s);
+                      km::walk(ch, qd, c, s, FramesInto{out});
+                  });
 }
 
 nb::tuple fk_many(const Chain& chain, F64 Qh, bool all_frames, int workers) {
@@ -195,17 +183,11 @@ nb::tuple fk_many(const Chain& chain, F64 Qh, bool all_frames, int workers) {
 }
 
 nb::tuple jacobian_one(const Chain& chain, F64 q, bool tool_frame) {
-    const In in = check_q(chain, q);
-    const ChainView ch = chain.view();
-    const int n = ch.n;
-    std::vector<double> c(static_cast<size_t>(n)), s(c.size());
-    double* out;
-    nb::object J = new_f64({6, n}, out);
-    km::joint_trig(ch, in.data, c.data(), s.data());
-    km::jacobian(ch, in.data, c.data(), s.data(), tool_frame, out);
-    const QState st = km::q_state(ch, in.data);
-    if (st == QState::not_finite) fill_nan(out, 6 * n);
-    return nb::make_tuple(J, static_cast<int>(st));
+    return of_one(chain, q, {6, chain.dof()},
+                  [tool_frame](const ChainView& ch, const double* qd, double* c, double* s, double* out) {
+                      km::joint_trig(ch, qd, c, s);
+                      km::jacobian(ch, qd, c, s, tool_frame, out);
+                  });
 }
 
 nb::tuple jacobian_many(const Chain& chain, F64 Qh, bool tool_frame, int workers) {
@@ -269,7 +251,7 @@ KM_CLONES void singular_block(const ChainView& ch, const double* Q, long b0, lon
                               int m, int group, bool volume, double* S) {
     const int n = ch.n;
     const int k = volume ? 1 : (m < n ? m : n);
-    BlockTrig trig(n, b1 - b0);
+    BlockTrig<> trig(n, b1 - b0);
     km::joint_trig_rows(ch, Q + b0 * n, static_cast<int>(b1 - b0), trig.angle(), trig.c(), trig.s());
     const size_t mn = static_cast<size_t>(m) * static_cast<size_t>(n);
     std::vector<double> J(6 * static_cast<size_t>(n)), A(mn * static_cast<size_t>(group));
@@ -378,17 +360,23 @@ F64 joint_axes(const Chain& chain, F64 Qh, int workers) {
     return A;
 }
 
+//! prismatic as the core reads it: n flags (a bool vector of length n >= 1).
+std::vector<char> joint_flags(Bools prismatic, npy_intp n) {
+    if (n < 1) throw nb::value_error("a chain needs at least one joint");
+    const npy_bool* pr = in_flags(prismatic, "prismatic", n);
+    if (pr == nullptr) throw nb::type_error("prismatic must be a bool array");
+    std::vector<char> p(static_cast<size_t>(n));
+    for (npy_intp i = 0; i < n; ++i) p[static_cast<size_t>(i)] = pr[i] != 0;
+    return p;
+}
+
 Chain from_dh(Bools prismatic, F64 theta, F64 d, F64 a, F64 alpha,
               F64 lo, F64 hi, bool modified, const Pose& base, const Pose& tool) {
     const In th = in_f64(theta, "theta", 1);
     const npy_intp n = th.dim[0];
-    if (n < 1) throw nb::value_error("a chain needs at least one joint");
-    const npy_bool* pr = in_flags(prismatic, "prismatic", n);
-    if (pr == nullptr) throw nb::type_error("prismatic must be a bool array");
+    const std::vector<char> p = joint_flags(prismatic, n);
     const In dd = in_f64(d, "d", 1, {n}), aa = in_f64(a, "a", 1, {n}), al = in_f64(alpha, "alpha", 1, {n});
     const In l = in_f64(lo, "lo", 1, {n}), h = in_f64(hi, "hi", 1, {n});
-    std::vector<char> p(static_cast<size_t>(n));
-    for (npy_intp i = 0; i < n; ++i) p[static_cast<size_t>(i)] = pr[i] != 0;
     return Chain::from_dh(static_cast<int>(n), reinterpret_cast<const bool*>(p.data()), th.data,
                           dd.data, aa.data, al.data, l.data, h.data, modified, base, tool);
 }
@@ -397,16 +385,12 @@ Chain from_transforms(const Pose& start, F64 between, const Pose& tool, F64 offs
                       Bools prismatic, F64 lo, F64 hi, const Pose& base) {
     const In off = in_f64(offsets, "frame_offsets", 3, {-1, 4, 4});
     const npy_intp n = off.dim[0];
-    if (n < 1) throw nb::value_error("a chain needs at least one joint");
+    const std::vector<char> p = joint_flags(prismatic, n);
     const In btw = in_f64(between, "between", 3, {n - 1, 4, 4});
-    const npy_bool* pr = in_flags(prismatic, "prismatic", n);
-    if (pr == nullptr) throw nb::type_error("prismatic must be a bool array");
     const In l = in_f64(lo, "lo", 1, {n}), h = in_f64(hi, "hi", 1, {n});
     std::vector<Pose> B(static_cast<size_t>(n > 1 ? n - 1 : 0)), O(static_cast<size_t>(n));
     for (npy_intp i = 0; i + 1 < n; ++i) B[static_cast<size_t>(i)] = Pose::from_rows(btw.data + 16 * i);
     for (npy_intp i = 0; i < n; ++i) O[static_cast<size_t>(i)] = Pose::from_rows(off.data + 16 * i);
-    std::vector<char> p(static_cast<size_t>(n));
-    for (npy_intp i = 0; i < n; ++i) p[static_cast<size_t>(i)] = pr[i] != 0;
     return Chain::from_transforms(static_cast<int>(n), start, B.data(), tool, O.data(),
                                   reinterpret_cast<const bool*>(p.data()), l.data, h.data, base);
 }
@@ -423,30 +407,19 @@ void bind_chain(nb::module_& m) {
                     nb::arg("tool"), nb::arg("frame_offsets"), nb::arg("prismatic"),
                     nb::arg("lo"), nb::arg("hi"), nb::arg("base"),
                     "General transforms: T = start · Π_i [M_i(q_i) · between_i] · tool.")
-        .def_prop_ro("dof", &Chain::dof)
-        .def_prop_ro("prismatic", [](const Chain& c) {
-            std::vector<bool> v;
-            for (const auto& j : c.joints()) v.push_back(j.prismatic);
-            return v;
-        })
         .def_prop_ro("qlim", [](const Chain& c) {
             double* out;
             F64 a = new_f64({c.dof(), 2}, out);
-            for (int i = 0; i < c.dof(); ++i) {
-                out[2 * i] = c.joints()[static_cast<size_t>(i)].qlo;
-                out[2 * i + 1] = c.joints()[static_cast<size_t>(i)].qhi;
+            for (const km::Joint& j : c.joints()) {
+                *out++ = j.qlo;
+                *out++ = j.qhi;
             }
             return a;
         }, "(n, 2) the limits solutions are held to: own, else (-π, π) revolute, ±inf prismatic.")
         .def_prop_ro("translations", [](const Chain& c) {
             double* out;
             F64 a = new_f64({c.dof(), 3}, out);
-            for (int i = 0; i < c.dof(); ++i) {
-                const km::Vec3& t = c.joints()[static_cast<size_t>(i)].t;
-                out[3 * i] = t.x;
-                out[3 * i + 1] = t.y;
-                out[3 * i + 2] = t.z;
-            }
+            for (const km::Joint& j : c.joints()) out = put(j.t, out);
             return a;
         }, "(n, 3) the translation of each joint's fixed part, in its frame (m); a DH row's (a, 0, d).")
         .def_prop_ro("fixed_parts", [](const Chain& c) {
@@ -454,41 +427,29 @@ void bind_chain(nb::module_& m) {
             F64 a = new_f64({c.dof(), 4, 4}, out);
             for (int i = 0; i < c.dof(); ++i) c.fixed_part(i).to_rows(out + 16 * i);
             return a;
-        }, "(n, 4, 4) each joint's fixed part Rz(θ) Trans(t) Rx(α), after its motion:\n"
-           "T = start · Π_i [M_i(q_i) · fixed_i] · tool.")
+        }, "(n, 4, 4) each joint's fixed part Rz(θ) Trans(t) Rx(α), after its motion.")
         .def("locked", [](const Chain& c, int joint, double value) {
             if (c.dof() < 2) throw nb::value_error("a chain of one joint has no joint left once it is locked");
             if (joint < 0 || joint >= c.dof()) throw nb::index_error("joint out of range");
             if (!std::isfinite(value)) throw nb::value_error("the value of a locked joint must be finite");
             return c.locked(joint, value);
-        }, nb::arg("joint"), nb::arg("value"),
-           "The chain of the other joints, joint (0-based) held at value (see chain.hpp).")
-        .def("reversed", &Chain::reversed,
-             "The chain of the inverse transform: joints reversed, variables negated (chain.hpp).")
+        }, nb::arg("joint"), nb::arg("value"), "The chain of the other joints, joint held at value.")
+        .def("reversed", &Chain::reversed, "The chain of the inverse transform (chain.hpp).")
         .def_prop_ro("start", [](const Chain& c) { return c.view().start; })
         .def_prop_ro("tool", [](const Chain& c) { return c.view().tool; })
-        .def_prop_ro("base", [](const Chain& c) { return c.view().base; })
         .def("fk", &fk_one, nb::arg("q"), "(T (4, 4), state) of q (n,); state 1: NaN/inf, 2: outside own limits.")
         .def("fk_frames", &fk_frames_one, nb::arg("q"), "(frames (n + 1, 4, 4), state) of q (n,).")
         .def("fk_batch", &fk_many, nb::arg("Q"), nb::arg("all_frames"), nb::arg("workers"),
-             "(poses (B, 4, 4) or frames (B, n + 1, 4, 4), bad, outside, turns) of Q (B, n): how many\n"
-             "rows hold NaN/inf, lie beyond their own limits, have a joint beyond a full turn.")
-        .def("jacobian", &jacobian_one, nb::arg("q"), nb::arg("tool_frame"),
-             "(J (6, n), state) of q (n,).")
+             "(poses (B, 4, 4) or frames (B, n + 1, 4, 4), bad, outside, turns) of Q (B, n).")
+        .def("jacobian", &jacobian_one, nb::arg("q"), nb::arg("tool_frame"), "(J (6, n), state) of q (n,).")
         .def("jacobian_batch", &jacobian_many, nb::arg("Q"), nb::arg("tool_frame"),
              nb::arg("workers"), "(J (B, 6, n), bad, turns) of Q (B, n), counted as for fk_batch.")
         .def("jacobian_singular_values", &jacobian_singular_values, nb::arg("Q"), nb::arg("rows"),
              nb::arg("group") = 1, nb::arg("workers") = 1, nb::arg("volume") = false,
-             "(B, min(m, n)): the singular values, largest first, of the m rows of the Jacobian\n"
-             "(base frame) that the bit mask rows names (bit r: row r), at each row of Q (B, n);\n"
-             "NaN for a row holding NaN/inf. Rows in groups of `group` (one target's solutions):\n"
-             "a Jacobian equal to an earlier one of its group up to column signs takes its values.\n"
-             "volume=True: (B, 1), their product alone (|det| or the Gram determinant's root).")
-        .def("joint_axes", &joint_axes, nb::arg("Q"), nb::arg("workers") = 1,
-             "(B, n, 6): each joint's axis direction, then a point on it (base frame).");
+             "(B, min(m, n)) the singular values of the Jacobian rows the bit mask `rows` names.")
+        .def("joint_axes", &joint_axes, nb::arg("Q"), nb::arg("workers") = 1, "(B, n, 6) axes: direction, point.");
     m.def("singular_values", &singular_values_many, nb::arg("A"), nb::arg("workers") = 1,
-          "(B, min(m, n)): the singular values, largest first, of A (B, m, n), min(m, n) <= 6\n"
-          "(one-sided Jacobi, singular.hpp); NaN for a matrix holding NaN/inf.");
+          "(B, min(m, n)): the singular values, largest first, of A (B, m, n), min(m, n) <= 6.");
 }
 
 }  // namespace kmpy

@@ -1,8 +1,6 @@
-// The arms decoupled at joint 3: joints 1-3 placing a point (ArmPoint), the spherical
-// wrist's poses (and the spherical shoulder's, by the reversed chain) and the arm-position
-// solver's position targets, bound into the submodule kinematica._core.decoupled (the
-// family's tolerances, an ArmPoint's values and scalar internals:
-// kinematica._core_testing.decoupled).
+// The arms decoupled at joint 3 (joints 1-3 placing a point: ArmPoint), the spherical wrist,
+// the spherical shoulder and the arm-position solver: kinematica._core.decoupled (their
+// tolerances and internals: kinematica._core_testing.decoupled).
 #include "casters.hpp"
 #include "common.hpp"
 #include "kinematica/solvers/arm_point.hpp"
@@ -38,8 +36,7 @@ void bind_decoupled(nb::module_& m) {
             return nb::make_tuple(kind, arm.prismatic, arm.parallel23);
         },
         nb::arg("arm"),
-        "(kind, prismatic, parallel23): axes 1 and 2 \"meet\", \"parallel\" or \"general\"\n"
-        "(skew), joint 3 slides, axes 2 and 3 parallel: what names the arm's branches.");
+        "(kind, prismatic, parallel23): what names the arm's branches (ik.analytic.arm_point).");
 
     bind_family<kd::SphericalWristParams>(
         sub, "SphericalWristParams",
@@ -58,12 +55,6 @@ void bind_decoupled(nb::module_& m) {
         .def_ro("wrist", &kd::SphericalShoulderParams::wrist,
                 "the reversed chain's SphericalWristParams (its joint j is -q_(7-j))");
 
-    sub.attr("PLACE_RANK_TOL") = kd::PLACE_RANK_TOL;
-    sub.attr("PLACE_PROBES") = nb::make_tuple(
-        nb::make_tuple(kd::PLACE_PROBES[0][0], kd::PLACE_PROBES[0][1], kd::PLACE_PROBES[0][2]),
-        nb::make_tuple(kd::PLACE_PROBES[1][0], kd::PLACE_PROBES[1][1], kd::PLACE_PROBES[1][2]),
-        nb::make_tuple(kd::PLACE_PROBES[2][0], kd::PLACE_PROBES[2][1], kd::PLACE_PROBES[2][2]));
-
     bind_family<kd::ArmPositionParams>(
         sub, "ArmPositionParams",
         "Position targets of an arm of n > 3 joints (arm_position.hpp): 4 slots, n joints.",
@@ -71,8 +62,6 @@ void bind_decoupled(nb::module_& m) {
         "km::decoupled::build_position", [](const km::Chain& c) { return kd::build_position(c); },
         "build_arm_position")
         .def_ro("arm", &kd::ArmPositionParams::arm, "joints 1-3 placing the tool origin");
-
-    sub.attr("MAX_POSITION_DOF") = kd::MAX_POSITION_DOF;
 }
 
 }  // namespace kmpy

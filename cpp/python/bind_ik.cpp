@@ -57,11 +57,8 @@ nb::tuple defects_many(F64 T, int workers) {
     double *last, *ortho, *det;
     nb::object F = new_array({N}, finite, NPY_BOOL);
     nb::object L = new_f64({N}, last), O = new_f64({N}, ortho), D = new_f64({N}, det);
-    const int blocks = static_cast<int>((N + FK_BLOCK - 1) / FK_BLOCK);
-    run_blocks(blocks, workers, [&](int blk) {
-        const npy_intp i0 = static_cast<npy_intp>(blk) * FK_BLOCK;
-        const npy_intp i1 = i0 + FK_BLOCK < N ? i0 + FK_BLOCK : N;
-        for (npy_intp i = i0; i < i1; ++i) {
+    run_rows(N, FK_BLOCK, workers, [&](long i0, long i1) {
+        for (long i = i0; i < i1; ++i) {
             const km::PoseDefects d = km::pose_defects(in.data + 16 * i);
             finite[i] = d.finite;
             last[i] = d.last_row;
@@ -72,12 +69,9 @@ nb::tuple defects_many(F64 T, int workers) {
     return nb::make_tuple(F, L, O, D);
 }
 
-//! Each row of Q (m, n) carried by the check's repair (check.hpp: Gauss-Newton steps
-//! damped by the residual, the best point kept) towards its own target T[i] (m, 4, 4),
-//! whatever its residual (the check repairs only candidates within POLISH_LIMIT): a
-//! configuration of a nearby arm, or near a solution, taken to this arm's solution.
-//! Returns (the rows reached (m, n), their position and rotation residuals (m, 2)); a row
-//! with a non-finite entry is left as it is, its residuals inf.
+//! Each row of Q (m, n) carried by the check's repair (check.hpp) towards its own target
+//! T[i] (m, 4, 4), whatever its residual: (the rows reached (m, n), their residuals (m, 2));
+//! a row with a non-finite entry is left as it is, its residuals inf.
 nb::tuple repair_candidates(const km::Chain& chain, F64 Th, F64 Qh, const km::CheckOptions& opts) {
     const int n = chain.dof();
     const In Q = in_f64(Qh, "Q", 2, {-1, n});
@@ -116,11 +110,9 @@ void bind_answers(nb::module_& m) {
         .def_ro("out_of_limits", &Answer::out_of_limits, "(out, n) solutions outside the limits")
         .def_ro("branches", &Answer::branches, "(count,) branch labels")
         .def_ro("out_of_limits_branches", &Answer::out_of_limits_branches, "(out,) labels")
-        .def_prop_ro("status", [](const Answer& a) { return static_cast<int>(a.report.status); },
-                     "the status code (STATUS)")
+        .def_prop_ro("status", [](const Answer& a) { return static_cast<int>(a.report.status); })
         .def_prop_ro("gap", &Answer::gap, "the proven gap of an unreachable target (m), or None")
-        .def_prop_ro("nearest_error", &Answer::nearest_error,
-                     "(position m, rotation rad) of the closest miss (NaN: none)")
+        .def_prop_ro("nearest_error", &Answer::nearest_error, "(m, rad) of the closest miss")
         .def_prop_ro("near_singular", [](const Answer& a) { return a.report.near; })
         .def_prop_ro("free_joints", &Answer::free_joints, "free joints (status singular only)")
         .def(
@@ -129,8 +121,7 @@ void bind_answers(nb::module_& m) {
                 return make_result(a, cls, result_fields(cls, fields, statuses), statuses);
             },
             nb::arg("cls"), nb::arg("fields"), nb::arg("statuses"),
-            "A new cls (no __init__) whose __dict__ holds fields and these attributes, its\n"
-            "status statuses[code].");
+            "A new cls (no __init__) holding fields and these attributes (make_result).");
 
     nb::class_<BatchAnswer>(m, "BatchAnswer", "The check's answers to N targets (read-only).")
         .def(nb::new_(&batch_answer), nb::arg("q"), nb::arg("slot"), nb::arg("res"),
@@ -153,19 +144,14 @@ void bind_answers(nb::module_& m) {
              "The result (or Answer) of T (4, 4); None for a target to read otherwise.")
         .def("held", &Prepared::held, nb::arg("joint"), nb::arg("A"), nb::arg("after"),
              nb::arg("slides"), nb::arg("name"),
-             "This Prepared of the arm locked at 0 at the whole arm's first or last joint\n"
-             "`joint` (its name `name`): A (3, 4, 4) the move's parts, after the target or\n"
-             "before it, the joint sliding or turning (kinematica.ik.moved).")
+             "This Prepared of the arm locked at 0 at the whole arm's end joint `joint` (ik.moved).")
         .def("at", &Prepared::at, nb::arg("T").none(), nb::arg("value"),
-             "The whole arm's result of T (4, 4) with the held joint at `value`, or the locked\n"
-             "arm's Answer to complete; None for a target to read otherwise.")
+             "The whole arm's result of T (4, 4) with the held joint at `value` (or None).")
         .def("sweep", &Prepared::sweep, nb::arg("T"), nb::arg("start"), nb::arg("grid"),
              nb::arg("skip"), nb::arg("bounds"), nb::arg("position"), nb::arg("rotation"),
              nb::arg("limits"), nb::arg("slack"), nb::arg("workers"),
-             "(index (N,), answers): each target T[i] (N, 4, 4) at the first value of grid\n"
-             "(G,), nearest start[i] first, not skip[i] nor proved out of reach by the reach\n"
-             "bounds (or (0,)), whose answer has a solution: at()'s answer there, its index\n"
-             "(-1: none has; -2: T[i] not rigid, None), on up to `workers` threads.");
+             "(index (N,), answers): each T[i] at the first value of grid nearest start[i] with a "
+             "solution (nearest_value.swept).");
 }
 
 void bind_ik(nb::module_& m) {
@@ -186,17 +172,11 @@ void bind_ik(nb::module_& m) {
             return moved;
         },
         nb::arg("A"), nb::arg("T"), nb::arg("v"), nb::arg("after"), nb::arg("slides"),
-        "(N, 4, 4) the poses T (N, 4, 4) of a whole arm as targets of the arm locked at 0 at\n"
-        "its first joint (after false) or last, the joint at v (N,): the move A (3, 4, 4)'s\n"
-        "parts (kinematica.ik.moved), as Prepared.at moves one pose.");
+        "(N, 4, 4) the poses T of a whole arm as targets of the arm locked at 0 (ik.moved).");
     const km::Tolerance defaults;  // the defaults, as ik_types.hpp writes them
     nb::class_<km::Tolerance>(m, "Tolerance", "Acceptance tolerances of a solution.")
-        .def(
-            "__init__",
-            [](km::Tolerance* t, double position, double rotation) {
-                new (t) km::Tolerance{position, rotation};
-            },
-            nb::arg("position") = defaults.position, nb::arg("rotation") = defaults.rotation)
+        .def(nb::init<double, double>(), nb::arg("position") = defaults.position,
+             nb::arg("rotation") = defaults.rotation)
         .def_rw("position", &km::Tolerance::position, "m")
         .def_rw("rotation", &km::Tolerance::rotation, "rad");
     nb::class_<km::CheckOptions>(m, "CheckOptions", "How the shared check judges candidates.")
@@ -204,10 +184,8 @@ void bind_ik(nb::module_& m) {
         .def_rw("tol", &km::CheckOptions::tol, "a solution is within it of the target")
         .def_rw("respect_limits", &km::CheckOptions::respect_limits)
         .def_rw("complete", &km::CheckOptions::complete, "the solver gives every solution")
-        .def_rw("gap_slack", &km::CheckOptions::gap_slack,
-                "m: unreachable needs a proven gap beyond tol.position + this")
-        .def_rw("repair", &km::CheckOptions::repair,
-                "carry each candidate to this arm's solution (a nearby arm's closed form)")
+        .def_rw("gap_slack", &km::CheckOptions::gap_slack, "m: unreachable needs a gap beyond tol + this")
+        .def_rw("repair", &km::CheckOptions::repair, "carry each candidate to this arm's solution")
         .def_prop_rw(
             "weights",
             [](const km::CheckOptions& o) {
@@ -219,41 +197,27 @@ void bind_ik(nb::module_& m) {
             },
             "of x, y, z, rx, ry, rz (0: not counted)");
 
-    nb::class_<km::NumericSolver> numeric(m, "NumericSolver",
-                                          "Levenberg-Marquardt with restarts (lm.hpp).");
+    nb::class_<km::NumericSolver> numeric(m, "NumericSolver", "Levenberg-Marquardt with restarts (lm.hpp).");
     numeric.def(nb::new_(&make_numeric), nb::arg("bounds"), nb::arg("tol"), nb::arg("max_steps"), nb::arg("reach"), nb::arg("base"),
                 nb::arg("weights"), nb::arg("samples"), nb::arg("middle"));
     numeric.def_prop_ro("restarts", &km::NumericSolver::restarts);
     numeric.def_rw("skip_first", &km::NumericSolver::skip_first,
-                   "True: the attempts start at the first restart (the first guess was "
-                   "searched alone already)");
+                   "True: the attempts start at the first restart (the first guess searched)");
     add_ik_methods(numeric, [](const km::NumericSolver& s) -> const km::NumericSolver& { return s; });
 
     m.def("repair_candidates", &repair_candidates, nb::arg("chain"), nb::arg("T"), nb::arg("Q"),
-          nb::arg("options"),
-          "Each row of Q (m, n) taken by the check's repair towards its target T[i] "
-          "(m, 4, 4): (the rows reached (m, n), their residuals (m, 2)).");
+          nb::arg("options"), "Each row of Q (m, n) repaired towards its target T[i] (m, 4, 4).");
     m.def("pose_defects", &defects_one, nb::arg("T"),
           "(finite, max |last row - [0,0,0,1]|, max |RᵀR - I|, det R) of T (4, 4).");
-    m.def("pose_defects_batch", &defects_many, nb::arg("T"), nb::arg("workers") = 1,
-          "The defects of T (N, 4, 4), as four (N,) arrays.");
+    m.def("pose_defects_batch", &defects_many, nb::arg("T"), nb::arg("workers") = 1, "pose_defects, batched.");
 
-    nb::dict status;
-    status["ok"] = static_cast<int>(km::Status::ok);
-    status["singular"] = static_cast<int>(km::Status::singular);
-    status["out_of_limits"] = static_cast<int>(km::Status::out_of_limits);
-    status["unreachable"] = static_cast<int>(km::Status::unreachable);
-    status["not_found"] = static_cast<int>(km::Status::not_found);
-    status["invalid"] = static_cast<int>(km::Status::invalid);
+    nb::dict status;  // name: code, the codes 0, 1, ... of km::Status in order
+    const char* names[] = {"ok", "singular", "out_of_limits", "unreachable", "not_found", "invalid"};
+    static_assert(static_cast<int>(km::Status::invalid) == 5, "a name for each status");
+    for (int code = 0; code < 6; ++code) status[names[code]] = code;
     m.attr("STATUS") = status;
 
-    m.attr("POLISH_LIMIT") = km::POLISH_LIMIT;
-    m.attr("DEDUP_TOL") = km::DEDUP_TOL;
-    m.attr("MERGE_SPAN") = km::MERGE_SPAN;
     m.attr("LIMIT_TOL") = km::LIMIT_TOL;
-    m.attr("LAMBDA_MIN") = km::LAMBDA_MIN;
-    m.attr("STALL_WINDOW") = km::STALL_WINDOW;
-    m.attr("SCALE_FLOOR") = km::SCALE_FLOOR;
 }
 
 }  // namespace kmpy

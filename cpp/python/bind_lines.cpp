@@ -25,25 +25,13 @@ using km::Vec3;
 nb::object readonly_rows(const Vec3* v, npy_intp rows) {
     double* out;
     nb::object a = new_f64({rows, 3}, out);
-    for (npy_intp i = 0; i < rows; ++i) {
-        out[3 * i] = v[i].x;
-        out[3 * i + 1] = v[i].y;
-        out[3 * i + 2] = v[i].z;
-    }
-    PyArray_CLEARFLAGS(reinterpret_cast<PyArrayObject*>(a.ptr()), NPY_ARRAY_WRITEABLE);
-    return a;
+    for (npy_intp i = 0; i < rows; ++i) put(v[i], out + 3 * i);
+    return read_only(a);
 }
 
 //! A centre as a read-only (3,) array, or None.
 nb::object centre_or_none(const kl::Centre& c) {
-    if (!c.found) return nb::none();
-    double* out;
-    nb::object a = new_f64({3}, out);
-    out[0] = c.at.x;
-    out[1] = c.at.y;
-    out[2] = c.at.z;
-    PyArray_CLEARFLAGS(reinterpret_cast<PyArrayObject*>(a.ptr()), NPY_ARRAY_WRITEABLE);
-    return a;
+    return c.found ? read_only(nb::cast(c.at)) : nb::object(nb::none());
 }
 
 //! The pairs (i, i + 1) whose flag is set, as a tuple of tuples.
@@ -95,8 +83,7 @@ void bind_lines(nb::module_& m) {
     sub.attr("AXIS_ANGLE_TOL") = kl::AXIS_ANGLE_TOL;
     sub.attr("AXIS_LENGTH_TOL") = kl::AXIS_LENGTH_TOL;
     sub.attr("AXIS_EXACT_TOL") = kl::AXIS_EXACT_TOL;
-    sub.def("length_tol", &kl::length_tol, nb::arg("size"),
-            "The distance (m) below which lines meet, for an arm of this size (m).");
+    sub.def("length_tol", &kl::length_tol, nb::arg("size"), "The distance (m) below which lines meet.");
     sub.def("lines_parallel", &kl::lines_parallel, nb::arg("hA"), nb::arg("hB"),
             "True when unit directions hA, hB (3,) are parallel or anti-parallel.");
     sub.def("lines_perpendicular", &kl::lines_perpendicular, nb::arg("hA"), nb::arg("hB"),
@@ -104,13 +91,11 @@ void bind_lines(nb::module_& m) {
     sub.def("line_distance", &kl::line_distance, nb::arg("hA"), nb::arg("pA"), nb::arg("hB"),
             nb::arg("pB"), "Distance (m) between lines pA + t hA and pB + s hB (unit directions).");
     sub.def("common_point", &common_point, nb::arg("h"), nb::arg("p"), nb::arg("size"),
-            "(3,) the least-squares point of the lines p[i] + t h[i] ((k, 3) each), or None\n"
-            "(normal matrix of rank < 3, or a line farther than length_tol(size) from it).");
+            "(3,) the least-squares point of the lines p[i] + t h[i] ((k, 3) each), or None.");
     sub.def("arm_size", &km::arm_size, nb::arg("chain"),
             "The arm's size (m): |tool offset| + Σ |fixed translations| of its joints.");
     sub.def("features", &features, nb::arg("chain"),
-            "(joint_types, directions (n, 3), points (n, 3), parallel, intersecting, wrist,\n"
-            "size, slack, shoulder) of a chain's axes at q = 0: Features' fields in order.");
+            "Features' fields in order, of a chain's axes at q = 0 (kinematica.ik.structure).");
 }
 
 }  // namespace kmpy

@@ -1,10 +1,8 @@
 // The three-parallel family (UR type): kinematica._core.parallel.
 //
-// ParallelParams (built by the core: parallel_build.hpp) with its IK methods and mode, the
-// family's builder and its tolerances. The scalar internals the tolerance tests pin are
-// in the test-only module kinematica._core_testing (cpp/testing/).
-#include <nanobind/nanobind.h>
-
+// ParallelParams (built by the core: parallel_build.hpp) with its IK methods and mode, and
+// the family's builder. Its tolerances and the scalar internals the tests pin are in the
+// test-only module kinematica._core_testing (cpp/testing/).
 #include "common.hpp"
 #include "kinematica/solvers/parallel.hpp"
 #include "kinematica/solvers/parallel_build.hpp"
@@ -29,14 +27,6 @@ void bind_parallel(nb::module_& m) {
         [](const km::Chain& c) { return km::parallel::build(c); })
         .def_prop_ro("mode", [](const km::ParallelParams& p) { return p.mode; },
                      "How axes 5 and 6 lie (the branch labels follow it).");
-
-    sub.attr("SLOTS") = km::ParallelParams{}.slots();
-    sub.attr("CONTINUUM_TOL") = km::parallel::CONTINUUM_TOL;
-    sub.attr("NEAR_TOL") = km::parallel::NEAR_TOL;
-    sub.attr("DOUBLE_ROOT_TOL") = km::parallel::DOUBLE_ROOT_TOL;
-    sub.attr("NEWTON_STEPS") = km::parallel::NEWTON_STEPS;
-    sub.attr("NEWTON_QUIET") = km::parallel::NEWTON_QUIET;
-    sub.attr("FREE_Q1_SAMPLES") = km::parallel::FREE_Q1_SAMPLES;
 }
 
 }  // namespace kmpy

@@ -31,10 +31,7 @@ nb::tuple so3_log(F64 R) {
     run_rows(in.dim[0], FK_BLOCK, 1, [&](long i0, long i1) {
         for (long i = i0; i < i1; ++i) {
             const double* m = in.data + 9 * i;
-            const km::Vec3 w = km::rotvec(m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8], angle[i]);
-            v[3 * i] = w.x;
-            v[3 * i + 1] = w.y;
-            v[3 * i + 2] = w.z;
+            put(km::rotvec(m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8], angle[i]), v + 3 * i);
         }
     });
     return nb::make_tuple(V, A);
@@ -83,8 +80,6 @@ void bind_spatial(nb::module_& m) {
           "The angle (N,) of R_aᵀ R_b for R_a, R_b (N, 3, 3).");
     m.def("pose_errors", &pose_errors, nb::arg("T_current"), nb::arg("T_target"),
           "(N, 6): p_target − p_current, then the rotation vector of R_target R_currentᵀ.");
-    m.attr("SERIES_ANGLE") = km::SERIES_ANGLE;
-    m.attr("ATAN_LINEAR") = km::ATAN_LINEAR;
 }
 
 }  // namespace kmpy

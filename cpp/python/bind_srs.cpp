@@ -55,14 +55,12 @@ void bind_srs(nb::module_& m) {
         [](const km::Chain& c) { return km::srs::build(c); });
     cls.def_rw("psi", &SRSParams::psi, "the arm angle to solve at (rad)");
     cls.def("aimed", &SRSParams::aimed, nb::arg("T"), nb::arg("q4"),
-            "(4, 4) T (4, 4) moved along the shoulder-wrist line until the wrist centre is as\n"
-            "far from the shoulder as q4 (rad) puts it (srs.hpp's aimed).");
+            "(4, 4) T moved along the shoulder-wrist line to the wrist centre q4 puts (srs.hpp).");
     cls.def(
         "at",
-        [](const SRSParams& p, double psi) {
-            SRSParams out = p;
-            out.psi = psi;
-            return out;
+        [](SRSParams p, double psi) {
+            p.psi = psi;
+            return p;
         },
         nb::arg("psi"), "A copy solving at the arm angle psi (rad).");
     cls.def("ik_batch_at", &ik_batch_at, nb::arg("chain"), nb::arg("T"), nb::arg("psi"),
@@ -77,8 +75,7 @@ void bind_srs(nb::module_& m) {
             return nb::make_tuple(S, E, W);
         },
         nb::arg("chain"),
-        "(S, E0, W0): the shoulder centre, elbow point and wrist centre at q = 0 (m, base\n"
-        "frame) the builder reads (srs_build.hpp), or None for no SRS arm.");
+        "(S, E0, W0): the shoulder, elbow and wrist points at q = 0 (srs_build.hpp), or None.");
     sub.attr("COLLINEAR_TOL") = km::srs::COLLINEAR_TOL;
     sub.attr("REFERENCE_TOL") = km::srs::REFERENCE_TOL;
 }

@@ -49,30 +49,13 @@ nb::tuple time_optimal(F64 s, F64 coef, F64 vlo, F64 vhi, F64 alo, F64 ahi, F64 
     }
     if (!(x_max > 0.0 && std::isfinite(x_max))) fail_value("x_max", "a finite positive number");
 
-    kt::Problem P;
-    P.n = static_cast<int>(n);
-    P.N = static_cast<int>(N);
-    P.degree = degree;
-    P.s = S.data;
-    P.coef = C.data;
-    P.vlo = VL.data;
-    P.vhi = VH.data;
-    P.alo = AL.data;
-    P.ahi = AH.data;
-    P.cap = CP.data;
-    P.x_start = x_start;
-    P.x_end = x_end;
-    P.x_max = x_max;
-    double *x, *klo, *khi, *rlo, *rhi, *mvc;
-    nb::object X = new_f64({N + 1}, x), KL = new_f64({N + 1}, klo), KH = new_f64({N + 1}, khi);
-    nb::object RL = new_f64({N + 1}, rlo), RH = new_f64({N + 1}, rhi), M = new_f64({N + 1}, mvc);
-    kt::Output out;
-    out.x = x;
-    out.k_lo = klo;
-    out.k_hi = khi;
-    out.r_lo = rlo;
-    out.r_hi = rhi;
-    out.mvc = mvc;
+    // Problem's fields in their order: n, N, degree, the arrays s, coef, vlo, vhi, alo, ahi, cap
+    const kt::Problem P{static_cast<int>(n), static_cast<int>(N), degree, S.data, C.data, VL.data,
+                        VH.data, AL.data, AH.data, CP.data, x_start, x_end, x_max};
+    const npy_intp M = N + 1;
+    double* x;
+    F64 X = new_f64({6, M}, x);  // rows x, k_lo, k_hi, r_lo, r_hi, mvc: Output's arrays in order
+    kt::Output out{x, x + M, x + 2 * M, x + 3 * M, x + 4 * M, x + 5 * M};
     {
         nb::gil_scoped_release release;
         kt::Workspace ws;
@@ -80,8 +63,7 @@ nb::tuple time_optimal(F64 s, F64 coef, F64 vlo, F64 vhi, F64 alo, F64 ahi, F64 
         kt::time_optimal(P, out, ws, sets, std::ref(interrupted));
     }
     if (out.status == kt::Status::interrupted) throw nb::python_error();
-    return nb::make_tuple(static_cast<int>(out.status), out.stage, static_cast<int>(out.kind), out.joint, X,
-                          KL, KH, RL, RH, M);
+    return nb::make_tuple(static_cast<int>(out.status), out.stage, static_cast<int>(out.kind), out.joint, X);
 }
 
 }  // namespace
@@ -90,9 +72,8 @@ void bind_topp(nb::module_& m) {
     m.def("time_optimal", &time_optimal, nb::arg("s"), nb::arg("coef"), nb::arg("vlo"), nb::arg("vhi"),
           nb::arg("alo"), nb::arg("ahi"), nb::arg("cap"), nb::arg("x_start"), nb::arg("x_end"),
           nb::arg("x_max"), nb::arg("sets") = true,
-          "TOPP-RA on a grid s (N+1,) of a path with Taylor coefficients coef (N, d+1, n) at each s_i; "
-          "joint limits (n,) each, caps on ṡ² per interval (N,). Returns (status, stage, kind, joint, "
-          "x, k_lo, k_hi, r_lo, r_hi, mvc), the arrays (N+1,) of ṡ²; sets=False: no mvc, r_lo, r_hi (NaN).");
+          "TOPP-RA on a grid s (N+1,): (status, stage, kind, joint, rows x, k_lo, k_hi, r_lo, r_hi, "
+          "mvc (6, N+1)).");
     m.attr("TOPP_MAX_DEGREE") = kt::MAX_DEGREE;
 }
 

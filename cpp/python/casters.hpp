@@ -7,6 +7,18 @@
 #include "kinematica/types.hpp"
 #include "numpy_io.hpp"
 
+namespace kmpy {
+
+//! v into out[0 .. 3); returns out + 3.
+inline double* put(const km::Vec3& v, double* out) {
+    out[0] = v.x;
+    out[1] = v.y;
+    out[2] = v.z;
+    return out + 3;
+}
+
+}  // namespace kmpy
+
 namespace kmpy::detail {
 
 //! Fill out[count] from a sequence of numbers; false (no Python error set) otherwise.
@@ -48,10 +60,7 @@ struct type_caster<km::Vec3> {
         npy_intp d[1] = {3};
         PyObject* r = PyArray_SimpleNew(1, d, NPY_DOUBLE);
         if (r == nullptr) return handle();
-        auto* p = static_cast<double*>(PyArray_DATA(reinterpret_cast<PyArrayObject*>(r)));
-        p[0] = v.x;
-        p[1] = v.y;
-        p[2] = v.z;
+        kmpy::put(v, static_cast<double*>(PyArray_DATA(reinterpret_cast<PyArrayObject*>(r))));
         return r;
     }
 };

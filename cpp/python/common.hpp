@@ -27,5 +27,8 @@ void bind_ik(nb::module_& m);
 void bind_spatial(nb::module_& m);
 void bind_solvers(nb::module_& m);
 void bind_lines(nb::module_& m);
+void bind_topp(nb::module_& m);   // bind_topp.cpp: the time-optimal timing of a path
+void bind_jerk(nb::module_& m);   // bind_jerk.cpp: jerk-limited segments and waypoints
+void bind_reach(nb::module_& m);  // bind_reach.cpp: a 6R arm's reach bounds, checked
 
 }  // namespace kmpy

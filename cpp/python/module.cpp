@@ -6,12 +6,6 @@
 #include "common.hpp"
 #include "pool.hpp"
 
-namespace kmpy {
-void bind_topp(nb::module_& m);  // bind_topp.cpp: the time-optimal timing of a path
-void bind_jerk(nb::module_& m);  // bind_jerk.cpp: jerk-limited segments and waypoints
-void bind_reach(nb::module_& m);  // bind_reach.cpp: a 6R arm's reach bounds, checked
-}  // namespace kmpy
-
 namespace {
 int import_numpy() {
     import_array1(-1);

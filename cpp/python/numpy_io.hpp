@@ -115,6 +115,13 @@ inline const npy_bool* in_flags(nb::handle h, const char* name, npy_intp n) {
     return static_cast<const npy_bool*>(PyArray_DATA(a));
 }
 
+//! The array a made read-only (what it holds is the core's answer, not a buffer to fill).
+template <class A>
+A read_only(A a) {
+    PyArray_CLEARFLAGS(reinterpret_cast<PyArrayObject*>(a.ptr()), NPY_ARRAY_WRITEABLE);
+    return a;
+}
+
 //! A new array of the given dtype and shape (uninitialised), owned by the returned object.
 template <class T>
 inline nb::object new_array(std::initializer_list<npy_intp> dims, T*& data, int typenum) {

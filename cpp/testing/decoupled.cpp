@@ -100,6 +100,11 @@ nb::tuple slide_roots(nb::handle kh) {
 
 void bind_decoupled_testing(nb::module_& m) {
     nb::module_ sub = m.def_submodule("decoupled", "The decoupled families' built values.");
+    sub.attr("MAX_POSITION_DOF") = kd::MAX_POSITION_DOF;
+    sub.attr("PLACE_RANK_TOL") = kd::PLACE_RANK_TOL;
+    nb::list probes;  // (3, 3): the configurations of joints 1-3 places_point tries
+    for (const auto& p : kd::PLACE_PROBES) probes.append(nb::make_tuple(p[0], p[1], p[2]));
+    sub.attr("PLACE_PROBES") = probes;
     sub.def("wrist_twin", [](const km::Chain& chain) { return wrist_of(chain).twin; },
             nb::arg("chain"),
             "The built spherical-wrist solver's twin flag (its flip by the identity).");

@@ -240,6 +240,11 @@ void bind_testing(nb::module_& m) {
     t.attr("POLISH_LIMIT") = km::POLISH_LIMIT;
     t.attr("DEDUP_TOL") = km::DEDUP_TOL;
     t.attr("LIMIT_TOL") = km::LIMIT_TOL;
+    t.attr("MERGE_SPAN") = km::MERGE_SPAN;
+    t.attr("LAMBDA_MIN") = km::LAMBDA_MIN;
+    t.attr("STALL_WINDOW") = km::STALL_WINDOW;
+    t.attr("SCALE_FLOOR") = km::SCALE_FLOOR;
+    t.attr("ATAN_LINEAR") = km::ATAN_LINEAR;
     t.def("lm_rows", &lm_rows, nb::arg("chain"), nb::arg("weights"), nb::arg("q"), nb::arg("T"),
           "The search's model at q: (counted errors (r,), their weighted Jacobian rows (r, n)).");
     t.def("damped_least_squares", &dls, nb::arg("J"), nb::arg("e"), nb::arg("lam"));

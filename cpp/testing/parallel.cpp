@@ -120,6 +120,12 @@ nb::object values_of(const km::Chain& chain) {
 
 void bind_parallel_testing(nb::module_& m) {
     nb::module_ sub = m.def_submodule("parallel", "The three-parallel family's internals.");
+    sub.attr("CONTINUUM_TOL") = km::parallel::CONTINUUM_TOL;
+    sub.attr("NEAR_TOL") = km::parallel::NEAR_TOL;
+    sub.attr("DOUBLE_ROOT_TOL") = km::parallel::DOUBLE_ROOT_TOL;
+    sub.attr("NEWTON_STEPS") = km::parallel::NEWTON_STEPS;
+    sub.attr("NEWTON_QUIET") = km::parallel::NEWTON_QUIET;
+    sub.attr("FREE_Q1_SAMPLES") = km::parallel::FREE_Q1_SAMPLES;
     sub.def("roots", &roots_of, nb::arg("a"), nb::arg("b"), nb::arg("c"), nb::arg("size"),
             "(found, θ rising, θ falling, near) of a cos θ + b sin θ = c: a double root "
             "within DOUBLE_ROOT_TOL is one angle twice; a miss within NEAR_TOL · size the "

@@ -42,6 +42,9 @@ void bind_planar_testing(nb::module_& m) {
     sub.attr("REGULAR") = static_cast<int>(km::triangle::Code::regular);
     sub.attr("NEAR") = static_cast<int>(km::triangle::Code::near);
     sub.attr("FOLD") = static_cast<int>(km::triangle::Code::fold);
+    sub.attr("SINGULAR_TOL") = km::triangle::SINGULAR_TOL;
+    sub.attr("MERGE_TOL") = km::triangle::MERGE_TOL;
+    sub.attr("FREE_SAMPLES") = km::planar::FREE_SAMPLES;
     sub.def("turn", &km::triangle::turn, nb::arg("ax"), nb::arg("ay"), nb::arg("bx"),
             nb::arg("by"), "The rotation (rad) turning the direction of (ax, ay) onto (bx, by).");
     sub.def("two_link", &two_link, nb::arg("ax"), nb::arg("ay"), nb::arg("bx"), nb::arg("by"),

@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from kinematica._core import SCALE_FLOOR
 from kinematica._core_testing import internals
+from kinematica._core_testing.internals import SCALE_FLOOR
 
 
 def reference(J: np.ndarray, e: np.ndarray, lam: float) -> np.ndarray:

@@ -11,8 +11,8 @@ restart, and "converged" is exactly what the shared check then calls ``ok``.
 from __future__ import annotations
 
 import numpy as np
-from kinematica._core import STALL_WINDOW
 from kinematica._core_testing import internals
+from kinematica._core_testing.internals import STALL_WINDOW
 
 import kinematica as km
 from kinematica.ik.numeric import NumericSetup, numeric_setup

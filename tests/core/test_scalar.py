@@ -25,7 +25,7 @@ ATAN_LINEAR = 1e-8
 
 def test_documented_constants() -> None:
     assert internals.REDUCTION_LIMIT == REDUCTION_LIMIT
-    assert km._core.ATAN_LINEAR == ATAN_LINEAR
+    assert internals.ATAN_LINEAR == ATAN_LINEAR
 
 
 def _ulps(a: np.ndarray, b: np.ndarray) -> np.ndarray:

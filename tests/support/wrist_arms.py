@@ -11,7 +11,7 @@ from numpy.typing import NDArray
 from kinematica import _core_testing
 from kinematica.dh import Revolute
 from kinematica.ik import ClosedForm, closed_form
-from kinematica.ik.analytic.arm_point import PROBES, ArmGeometry, geometry_of
+from kinematica.ik.analytic.arm_point import ArmGeometry, geometry_of
 from kinematica.ik.analytic.spherical_wrist import random_wrist_rows
 from kinematica.ik.structure import features
 from kinematica.robot import Robot
@@ -112,7 +112,7 @@ def shoulder(alpha1: float, a1: float) -> str:
 def rank_ratio(robot: Robot) -> float:
     """Best σmin/σmax over the builder's probes of d(tool origin)/d(q1..q3), by differences."""
     best = 0.0
-    for probe in PROBES:
+    for probe in _core_testing.decoupled.PLACE_PROBES:
         q = np.zeros(robot.dof)
         q[:3] = probe
         cols = []

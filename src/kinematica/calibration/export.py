@@ -22,7 +22,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.errors import UnitWarning
-from kinematica.io import FrameSpec, UrdfChain, UrdfJoint, UrdfModel, urdf_text
+from kinematica.io import UrdfChain, UrdfJoint, UrdfModel, urdf_text
+from kinematica.io.spec import frame_of
 from kinematica.robot.urdf import urdf_to_dh
 
 if TYPE_CHECKING:
@@ -32,10 +33,6 @@ if TYPE_CHECKING:
 __all__ = ["calibrated_chain", "calibrated_extraction", "calibrated_urdf"]
 
 FloatArray = NDArray[np.float64]
-
-
-def _origin(T: FloatArray) -> FrameSpec:
-    return FrameSpec(matrix=tuple(tuple(float(v) for v in row) for row in T))
 
 
 def _names(robot: Robot) -> list[str]:
@@ -59,10 +56,10 @@ def calibrated_chain(robot: Robot, model: ErrorModel, delta: FloatArray) -> Urdf
         kind = "prismatic" if link.type == "P" else ("revolute" if link.qlim else "continuous")
         child = f"link{i + 1}"
         joints.append(
-            UrdfJoint(name, kind, parent, child, _origin(origins[i]), (0.0, 0.0, 1.0), link.qlim)
+            UrdfJoint(name, kind, parent, child, frame_of(origins[i]), (0.0, 0.0, 1.0), link.qlim)
         )
         parent = child
-    joints.append(UrdfJoint("tool0_joint", "fixed", parent, "tool0", _origin(end)))
+    joints.append(UrdfJoint("tool0_joint", "fixed", parent, "tool0", frame_of(end)))
     return UrdfChain(name=robot.name, base="world", tip="tool0", joints=tuple(joints))
 
 

@@ -22,13 +22,9 @@ __all__ = ["FORMATS", "convert", "register"]
 FORMATS = ("urdf", "dh-standard", "dh-modified", "yaml", "cpp")
 
 
-def _is_urdf(name: str) -> bool:
-    return Path(name).name.lower().endswith(URDF_SUFFIXES)
-
-
 def _extract(args: argparse.Namespace, convention: str) -> tuple[Robot, tuple[FrameRule, ...]]:
     """The robot's DH table by the rules, read from the URDF itself when it is one."""
-    if _is_urdf(args.robot):
+    if Path(args.robot).name.lower().endswith(URDF_SUFFIXES):
         from kinematica.robot.urdf import urdf_to_dh
 
         ext = urdf_to_dh(args.robot, base=args.base, tip=args.tip, convention=convention)

@@ -50,11 +50,6 @@ def _limit(robot: Robot, values: list[float] | None, args: argparse.Namespace, n
     return np.abs(q_in(robot, values, args, name))
 
 
-def _print_events(path: CartesianPath) -> None:
-    for e in path.events:
-        print(f"event: {e.kind}: {e.message}")
-
-
 #: Library argument names and the trajectory command's options for them.
 _TRAJECTORY_OPTIONS = {
     "tacc": "--tacc",
@@ -168,8 +163,9 @@ def trajectory(args: argparse.Namespace) -> int:
     elif through:
         if times is None and vmax is None and amax is None:
             times = np.linspace(0.0, float(duration), W.shape[0])
+        tacc = args.tacc[0] if args.tacc is not None and len(args.tacc) == 1 else args.tacc
         traj = via_trajectory(
-            W, args.profile, times, args.dt, vmax, amax, tacc=_tacc(args.tacc), ends=args.ends
+            W, args.profile, times, args.dt, vmax, amax, tacc=tacc, ends=args.ends
         )
         t, q, qd, qdd = traj
     else:
@@ -247,17 +243,13 @@ def trajectory(args: argparse.Namespace) -> int:
     if args.plot:
         print(f"figure written to {args.plot}")
     if path is not None:
-        _print_events(path)
+        for e in path.events:
+            print(f"event: {e.kind}: {e.message}")
         if path.ok:
             print(f"followed on one branch, largest joint step {fmt(path.max_step, 4)} (rad, m)")
     if out is not None:
         print(f"written to {out} (t in s, joints in rad and m)")
     return 1 if blocked else 0
-
-
-def _tacc(tacc: list[float] | None) -> float | list[float] | None:
-    """``--tacc``: one blend time for every segment, or one each."""
-    return tacc[0] if tacc is not None and len(tacc) == 1 else tacc
 
 
 def register(sub: Any) -> None:

@@ -99,5 +99,5 @@ def time_optimal_grid(
         float(x_max),
         bool(sets),
     )
-    status, stage, kind, joint, *arrays = out
-    return GridTiming(STATUSES[status], int(stage), KINDS[kind], int(joint), *arrays)
+    status, stage, kind, joint, rows = out  # rows (6, N + 1): x, k_lo, k_hi, r_lo, r_hi, mvc
+    return GridTiming(STATUSES[status], int(stage), KINDS[kind], int(joint), *rows)

@@ -35,11 +35,6 @@ class TaskError(KinematicaError, ValueError):
     """A task (file, array or region) is malformed; the message says where."""
 
 
-def _freeze(a: FloatArray) -> FloatArray:
-    a.flags.writeable = False
-    return a
-
-
 @dataclass(frozen=True, eq=False)
 class Task:
     """The targets a design must reach, in the base frame (metres).
@@ -75,7 +70,8 @@ class Task:
             )
         if t.shape[0] == 0:
             raise TaskError(f"task {self.name!r}: no targets")
-        object.__setattr__(self, "targets", _freeze(t))
+        t.flags.writeable = False
+        object.__setattr__(self, "targets", t)
         digest = hashlib.sha256(t.tobytes() + str(t.shape).encode()).hexdigest()
         object.__setattr__(self, "_digest", digest)
 

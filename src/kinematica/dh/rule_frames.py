@@ -147,7 +147,12 @@ def _reading(g: ChainGeometry) -> Convention | None:
         return None
     if len(g.joints) == 1:
         return "modified" if g.dh_frames == "modified" else "standard"
-    modified, standard = _own_modified_frames(g), _own_standard_frames(g)
+    # modified: every joint's own frame but the last has its x on the common normal to the
+    # next axis, meeting it (as a description written from a modified table, e.g. Franka's
+    # URDF, has them); standard: every one but the first is a standard DH frame
+    pairs = list(zip(g.joints[:-1], g.joints[1:], strict=True))
+    modified = all(_obeys_rules(a, b) for a, b in pairs)
+    standard = all(_obeys_rules(b, a) for a, b in pairs)
     if modified and standard and g.dh_frames == "modified":
         return "modified"
     return "modified" if modified and not standard else "standard"
@@ -212,20 +217,6 @@ def _standard_rules(g: ChainGeometry) -> tuple[list[FloatArray], list[FrameRule]
     frames.append(frame_from(x, h, tip_o))
     rules.append(FrameRule(n, "rule 9", f"origin at the tip, z{n} = z{n - 1}, {how}"))
     return frames, rules
-
-
-def _own_modified_frames(g: ChainGeometry) -> bool:
-    """True when every joint's own frame but the last is already a modified DH frame.
-
-    That is: each has its x on the common normal to the next axis, meeting it (as
-    a description written from a modified table, e.g. Franka's URDF, has them).
-    """
-    return all(_obeys_rules(a, b) for a, b in zip(g.joints[:-1], g.joints[1:], strict=True))
-
-
-def _own_standard_frames(g: ChainGeometry) -> bool:
-    """True when every joint's own frame but the first is already a standard DH frame."""
-    return all(_obeys_rules(b, a) for a, b in zip(g.joints[:-1], g.joints[1:], strict=True))
 
 
 def _paul_frames(

@@ -56,14 +56,6 @@ def holds_value(q: float, value: float, prismatic: bool) -> bool:
     return abs(d) <= HELD_MATCH_TOL
 
 
-def _self_motion(locked: Chain, T: FloatArray, q: FloatArray) -> tuple[int, ...]:
-    """The locked arm's joints free along a continuum through its solution q, or ``()``.
-
-    Ordered by how far each moved along it in the test's step, most first.
-    """
-    return tuple(_core.general6r.free_joints(locked.core, T, q))
-
-
 def continuum_answer(
     chain: Chain,
     joint: int,
@@ -98,7 +90,8 @@ def continuum_answer(
         return answer
     q = found[0]
     locked = lock(chain, joint, value)
-    free_locked = _self_motion(locked, T, np.delete(q, joint))
+    # the locked arm's joints free along a continuum through its solution, most moved first
+    free_locked = tuple(_core.general6r.free_joints(locked.core, T, np.delete(q, joint)))
     if not free_locked:
         return answer
     free = tuple(j if j < joint else j + 1 for j in free_locked)

@@ -70,14 +70,9 @@ def widen_result(
         res,
         solutions=_with_column(res.solutions, joint, value),
         out_of_limits=_with_column(res.out_of_limits, joint, value),
-        free_joints=_shifted(res.free_joints, joint),
+        free_joints=tuple(j + (j >= joint) for j in res.free_joints),  # the whole arm's indices
         parameter=parameter,
     )
-
-
-def _shifted(free: tuple[int, ...], joint: int) -> tuple[int, ...]:
-    """A locked arm's joint indices as the whole arm's (``joint`` put back)."""
-    return tuple(j + (j >= joint) for j in free) if free else free
 
 
 def _with_column(q: FloatArray, joint: int, value: float) -> FloatArray:

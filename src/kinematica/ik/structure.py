@@ -114,10 +114,5 @@ def features(chain: Chain) -> Features:
     memo = chain.memo
     found = memo.get("features")
     if found is None:
-        found = memo["features"] = _features(chain)
+        found = memo["features"] = Features(*_lines.features(chain.core))  # in Features' order
     return found  # type: ignore[return-value]
-
-
-def _features(chain: Chain) -> Features:
-    """The features, read by the core in one call (its fields in Features' order)."""
-    return Features(*_lines.features(chain.core))

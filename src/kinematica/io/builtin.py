@@ -24,10 +24,6 @@ _SUFFIX = ".toml"
 _MODELS = Path(__file__).resolve().parent / "models"
 
 
-def _normalize(name: str) -> str:
-    return name.strip().lower().replace("_", "-")
-
-
 def builtin_names() -> list[str]:
     """The names of the built-in robot models, sorted."""
     return sorted(
@@ -45,7 +41,7 @@ def builtin_path(name: str) -> Path:
             the available ones and suggests the closest.
     """
     names = builtin_names()
-    key = _normalize(name) if isinstance(name, str) else ""
+    key = name.strip().lower().replace("_", "-") if isinstance(name, str) else ""
     if key not in names:
         import difflib  # only for the message: a known name never needs it
 

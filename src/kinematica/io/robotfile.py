@@ -258,7 +258,11 @@ def load_robot_text(text: str, suffix: str, *, source: str | None = None) -> Rob
             path=source,
         )
     if len(text) > MAX_FILE_SIZE:
-        raise RobotFileError(_too_large(len(text), "characters"), path=source)
+        raise RobotFileError(
+            f"the file is {len(text):,} characters; robot files of at most "
+            f"{MAX_FILE_SIZE:,} bytes are read",
+            path=source,
+        )
     text = text.removeprefix(_BOM)
     try:
         data = loader(text)
@@ -310,10 +314,6 @@ def _path(path: object) -> Path:
     if not isinstance(path, str | os.PathLike):
         raise ArgumentError(f"expected a path (text or pathlib.Path), got {type(path).__name__}")
     return Path(path)
-
-
-def _too_large(size: int, what: str) -> str:
-    return f"the file is {size:,} {what}; robot files of at most {MAX_FILE_SIZE:,} bytes are read"
 
 
 def _read_bytes(p: Path) -> bytes:

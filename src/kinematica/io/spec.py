@@ -80,10 +80,6 @@ def missing_convention(path: str | None = None, *, stacklevel: int = 2) -> Conve
     return "standard"
 
 
-def _default_units() -> dict[str, str]:
-    return {"angle": "deg", "length": "m"}
-
-
 @dataclass(frozen=True)
 class JointSpec:
     """One row of a DH table, in radians and metres.
@@ -178,6 +174,11 @@ class FrameSpec:
         return T
 
 
+def frame_of(T: np.ndarray) -> FrameSpec:
+    """The :class:`FrameSpec` of a ``(4, 4)`` transform ``T``, written as its matrix (m)."""
+    return FrameSpec(matrix=tuple(tuple(float(v) for v in row) for row in T))
+
+
 @dataclass(frozen=True)
 class ChainSpec:
     """An arm's own transforms, when its DH table only describes it (a URDF's, a calibration's).
@@ -245,7 +246,9 @@ class RobotSpec:
     parameters: Mapping[str, float] = field(default_factory=dict, compare=False)
     source: str | None = field(default=None, compare=False)
     description: str | None = None
-    units: Mapping[str, str] = field(default_factory=_default_units, compare=False)
+    units: Mapping[str, str] = field(
+        default_factory=lambda: {"angle": "deg", "length": "m"}, compare=False
+    )
     reference: str | None = None
     parameter_texts: Mapping[str, str] = field(default_factory=dict, compare=False)
     parameter_bounds: Mapping[str, tuple[float, float]] = field(default_factory=dict, compare=False)

@@ -359,11 +359,6 @@ def _required(elem: Any, name: str, *, xacro_ns: bool = False) -> str:
     return str(value)
 
 
-def _strip_lines(root: Any) -> None:
-    for elem in root.iter():
-        elem.attrib.pop(LINE, None)
-
-
 def expand(
     path: str | os.PathLike[str],
     *,
@@ -422,5 +417,6 @@ def expand(
         raise RobotFileError("the xacro file nests too deeply: refused", path=source) from exc
     except OSError as exc:
         raise RobotFileError(f"cannot read a file: {os_reason(exc)}", path=source) from exc
-    _strip_lines(root)
+    for elem in root.iter():
+        elem.attrib.pop(LINE, None)
     return root

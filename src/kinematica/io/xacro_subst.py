@@ -76,7 +76,7 @@ class Substitutions:
             "xacro.load_yaml": self.load_yaml,
             "xacro.arg": self.arg,
             "xacro.fatal": self.fatal,
-            **{f"xacro.{name}": _silent for name in ("message", "warning", "error")},
+            **{f"xacro.{name}": (lambda *_: "") for name in ("message", "warning", "error")},
         }
 
     # --- files ----------------------------------------------------------------------
@@ -243,10 +243,6 @@ def _text(value: Any) -> str:
         return text_of(value)
     except ValueError as exc:
         raise XacroError(str(exc)) from exc
-
-
-def _silent(*_: Any) -> str:
-    return ""
 
 
 class MissingPackageError(XacroError):

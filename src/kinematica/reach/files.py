@@ -63,7 +63,7 @@ def vti_text(m: ReachabilityMap) -> str:
     lines = [
         '<?xml version="1.0"?>',
         '<VTKFile type="ImageData" version="1.0" byte_order="LittleEndian" header_type="UInt64">',
-        f"  <!-- kinematica reachability map of {_comment(m.robot)}: "
+        f"  <!-- kinematica reachability map of {m.robot.replace('--', '- -')}: "
         f"{m.count} orientations per voxel -->",
         f'  <ImageData WholeExtent="0 {nx} 0 {ny} 0 {nz}" '
         f'Origin="{ox!r} {oy!r} {oz!r}" '
@@ -80,10 +80,6 @@ def vti_text(m: ReachabilityMap) -> str:
         )
     lines += ["      </CellData>", "    </Piece>", "  </ImageData>", "</VTKFile>", ""]
     return "\n".join(lines)
-
-
-def _comment(text: str) -> str:
-    return text.replace("--", "- -")
 
 
 def save_map(m: ReachabilityMap, path: str | os.PathLike[str]) -> Path:

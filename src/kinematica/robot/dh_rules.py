@@ -31,8 +31,9 @@ from kinematica.dh import (
 from kinematica.dh.joints import values_checked
 from kinematica.dh.lines import frame_from, perpendicular_hint
 from kinematica.errors import RobotFileError
-from kinematica.io import FrameSpec, UrdfChain, UrdfJoint, urdf_text
+from kinematica.io import UrdfChain, UrdfJoint, urdf_text
 from kinematica.io.atomic import unchanged, write_text_atomic
+from kinematica.io.spec import frame_of
 
 if TYPE_CHECKING:
     from kinematica.robot.kinematics import RobotKinematics
@@ -235,10 +236,6 @@ def dh_from_chain(
     )
 
 
-def _frame(T: FloatArray) -> FrameSpec:
-    return FrameSpec(matrix=tuple(tuple(float(v) for v in row) for row in T))
-
-
 def _joint_names(robot: RobotKinematics) -> list[str]:
     names = [link.name for link in robot.links]
     if all(names) and len(set(names)) == len(names):
@@ -262,22 +259,22 @@ def chain_from_robot(robot: RobotKinematics) -> UrdfChain:
     joints: list[UrdfJoint] = []
     parent = "base_link"
     if not np.array_equal(robot.base, np.eye(4)):
-        joints.append(UrdfJoint("base_link-link0", "fixed", parent, "link0", _frame(robot.base)))
+        joints.append(UrdfJoint("base_link-link0", "fixed", parent, "link0", frame_of(robot.base)))
         parent = "link0"
     for i, link in enumerate(robot.links):
         origin = (np.eye(4) if i == 0 else A0[i - 1]) if standard else A0[i]
         jtype = "prismatic" if link.type == "P" else "revolute"
         child = f"link{i + 1}"
         joints.append(
-            UrdfJoint(names[i], jtype, parent, child, _frame(origin), (0.0, 0.0, 1.0), link.qlim)
+            UrdfJoint(names[i], jtype, parent, child, frame_of(origin), (0.0, 0.0, 1.0), link.qlim)
         )
         parent = child
     has_tool = not np.array_equal(robot.tool, np.eye(4))
     if standard and has_tool:
-        joints.append(UrdfJoint(f"{parent}-flange", "fixed", parent, "flange", _frame(A0[-1])))
+        joints.append(UrdfJoint(f"{parent}-flange", "fixed", parent, "flange", frame_of(A0[-1])))
         parent = "flange"
     last = robot.tool if has_tool or not standard else A0[-1]
-    joints.append(UrdfJoint(f"{parent}-tool0", "fixed", parent, "tool0", _frame(last)))
+    joints.append(UrdfJoint(f"{parent}-tool0", "fixed", parent, "tool0", frame_of(last)))
     return UrdfChain(
         name=robot.name,
         base="base_link",

@@ -64,13 +64,6 @@ EXP_SERIES_ANGLE = 0.1
 _FRAMES = ("base", "tool", "spatial")
 
 
-def _check_frame(frame: str) -> None:
-    if frame not in _FRAMES:
-        raise KinematicaError(
-            f"frame must be 'base', 'tool' or 'spatial', got {frame!r}", arg="frame"
-        )
-
-
 def _columns(J: FloatArray) -> tuple[FloatArray, FloatArray]:
     """``(v, ω)``, each ``(..., n, 3)``: the columns of ``J`` split in halves."""
     cols = np.swapaxes(J, -1, -2)
@@ -136,7 +129,10 @@ def hessian(robot: RobotKinematics, q: ArrayLike, frame: Frame = "base") -> Floa
     Returns:
         ``(..., 6, n, n)``, per rad or m of each of the two joints.
     """
-    _check_frame(frame)
+    if frame not in _FRAMES:
+        raise KinematicaError(
+            f"frame must be 'base', 'tool' or 'spatial', got {frame!r}", arg="frame"
+        )
     J = robot.jacobian(q)
     H = _hessian_base(J)
     if frame == "base":

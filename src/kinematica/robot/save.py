@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from kinematica.errors import ArgumentError
-from kinematica.io.spec import ChainSpec, FrameSpec, JointSpec, RobotSpec
+from kinematica.io.spec import ChainSpec, FrameSpec, JointSpec, RobotSpec, frame_of
 from kinematica.robot.frames import rigid_frame
 
 if TYPE_CHECKING:
@@ -47,11 +47,7 @@ def _frame(T: FloatArray, written: FrameSpec | None, T_written: FloatArray) -> F
         return None
     if np.array_equal(T[:3, :3], np.eye(3)):
         return FrameSpec(xyz=(float(T[0, 3]), float(T[1, 3]), float(T[2, 3])))
-    return FrameSpec(matrix=tuple(tuple(float(v) for v in row) for row in T))
-
-
-def _matrix(T: FloatArray) -> FrameSpec:
-    return FrameSpec(matrix=tuple(tuple(float(v) for v in row) for row in T))
+    return frame_of(T)
 
 
 def _chain(robot: RobotDescription) -> ChainSpec | None:
@@ -60,10 +56,10 @@ def _chain(robot: RobotDescription) -> ChainSpec | None:
     if t is None:
         return None
     return ChainSpec(
-        start=_matrix(t.start),
-        between=tuple(_matrix(T) for T in t.between),
-        end=_matrix(t.end),
-        frames=tuple(_matrix(T) for T in t.frame_offsets),
+        start=frame_of(t.start),
+        between=tuple(frame_of(T) for T in t.between),
+        end=frame_of(t.end),
+        frames=tuple(frame_of(T) for T in t.frame_offsets),
     )
 
 

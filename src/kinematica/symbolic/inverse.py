@@ -155,15 +155,11 @@ def _lin(expr: sp.Expr, q: sp.Symbol) -> Linear:
     return eq
 
 
-def _is_identity(M: sp.Matrix) -> bool:
-    return bool(sp.simplify(M - sp.eye(M.rows)) == sp.zeros(M.rows, M.cols))
-
-
 # ------------------------------------------------------------------ pieces
 def _frame1(ctx: _Ctx, p: sp.Matrix) -> sp.Matrix:
     """The target in the frame whose z is axis 1 (modified DH: after Rot(x)·Tras(x))."""
     J = _prod(ctx.chain[: ctx.rotz[1]])
-    if _is_identity(J):
+    if sp.simplify(J - sp.eye(J.rows)) == sp.zeros(J.rows, J.cols):
         return p
     Ji = tidy(J.inv())
     new = tidy(Ji[:3, :3] * p + Ji[:3, 3])

@@ -70,11 +70,6 @@ def q_text(robot: Robot, q: FloatArray, degrees: bool = True) -> str:
     return f"q = [{', '.join(values)}] ({', '.join(units)})"
 
 
-def _link_points(poses: ArmPose) -> FloatArray:
-    """``(k, m, 3)``: every frame origin and the tool point of each of ``k`` solutions."""
-    return np.concatenate([poses.frames[..., :3, 3], poses.tool[:, None, :3, 3]], axis=1)
-
-
 def same_links(robot: Robot, solutions: FloatArray) -> list[tuple[list[int], list[int]]]:
     """Groups of solutions whose links are in the same places, and the joints they differ in.
 
@@ -94,7 +89,8 @@ def same_links(robot: Robot, solutions: FloatArray) -> list[tuple[list[int], lis
     if sols.shape[0] < 2:
         return []
     scale = robot_scale(robot)
-    points = _link_points(arm_pose(robot, sols))
+    poses = arm_pose(robot, sols)  # every frame origin and the tool point: (k, m, 3)
+    points = np.concatenate([poses.frames[..., :3, 3], poses.tool[:, None, :3, 3]], axis=1)
     prismatic = robot.is_prismatic
     groups: list[list[int]] = []
     for i in range(sols.shape[0]):

@@ -19,7 +19,6 @@ from kinematica import _core_testing, load
 from kinematica.core import Chain
 from kinematica.dh import Revolute
 from kinematica.ik.analytic import arm_position, spherical_wrist
-from kinematica.ik.analytic.arm_point import RANK_TOL
 from kinematica.ik.solve import closed_form
 from kinematica.ik.structure import features
 from kinematica.robot import Robot
@@ -114,9 +113,9 @@ def test_max_newton_step(factor: float, taken: bool) -> None:
 def test_rank_tol(factor: float, usable: bool) -> None:
     # the ratio is linear in eps: aim it at factor · RANK_TOL
     r1 = rank_ratio(arm_with_point_near_axis_3(1e-4))
-    eps = 1e-4 * factor * RANK_TOL / r1
+    eps = 1e-4 * factor * DT.PLACE_RANK_TOL / r1
     robot = arm_with_point_near_axis_3(eps)
-    assert rank_ratio(robot) == pytest.approx(factor * RANK_TOL, rel=0.05)
+    assert rank_ratio(robot) == pytest.approx(factor * DT.PLACE_RANK_TOL, rel=0.05)
     assert _core_testing.decoupled.places_point(robot.chain.core, np.zeros(3)) == usable
 
 

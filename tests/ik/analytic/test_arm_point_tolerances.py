@@ -23,7 +23,6 @@ from support import wrist_arms as wrist_parts
 
 import kinematica as km
 from kinematica.dh import Revolute
-from kinematica.ik.analytic import arm_point
 
 D = _core.decoupled
 DT = _core_testing.decoupled
@@ -40,7 +39,7 @@ NEAR_SET_TOL = 1e-9  # arm_point.hpp
 WRIST_SINGULAR_TOL = 1e-12  # spherical_wrist.hpp
 AXIS_ANGLE_TOL = 1e-9  # dh/lines.py (the builder's line geometry)
 AXIS_LENGTH_TOL = 1e-9  # dh/lines.py, times 1 + the arm's size
-ARM_RANK_TOL = 1e-6  # ik/analytic/arm_point.py RANK_TOL
+ARM_RANK_TOL = 1e-6  # arm_point_build.hpp PLACE_RANK_TOL
 MAX_POSITION_DOF = 32  # arm_position.hpp
 #: The README's singular pose of arm6-dh: its wrist centre on axis 1.
 ARM6_SINGULAR_Q = np.radians([30, 20, -40, 10, 60, -20])
@@ -53,10 +52,10 @@ def test_the_documented_values_are_the_core_s() -> None:
     assert DT.SINGULAR_TOL == ARM_SINGULAR_TOL
     assert DT.NEAR_SET_TOL == NEAR_SET_TOL
     assert DT.WRIST_SINGULAR_TOL == WRIST_SINGULAR_TOL
-    assert D.MAX_POSITION_DOF == MAX_POSITION_DOF
+    assert DT.MAX_POSITION_DOF == MAX_POSITION_DOF
     assert km.dh.lines.AXIS_ANGLE_TOL == AXIS_ANGLE_TOL
     assert km.dh.lines.AXIS_LENGTH_TOL == AXIS_LENGTH_TOL
-    assert arm_point.RANK_TOL == ARM_RANK_TOL
+    assert DT.PLACE_RANK_TOL == ARM_RANK_TOL
 
 
 # --- arm_quartic.hpp ----------------------------------------------------------
@@ -200,7 +199,7 @@ def test_axis_length_tol_meeting_shoulder(factor: float, kind: str) -> None:
 
 @pytest.mark.parametrize(("factor", "usable"), [(0.5, False), (2.0, True)])
 def test_arm_rank_tol_needs_joints_1_to_3_to_place_the_point(factor: float, usable: bool) -> None:
-    """arm_point.RANK_TOL: joints 1-3 place the tool point when the best ratio
+    """PLACE_RANK_TOL: joints 1-3 place the tool point when the best ratio
     σmin/σmax of d(point)/d(q1..q3) over the builder's probes is above it.
 
     Joint 3 moves the point on a circle of radius eps: the ratio is linear in
@@ -217,7 +216,7 @@ def test_the_core_s_rank_ratio_is_that_of_the_point_s_jacobian_by_differences(na
     # places_point's ratio (the core's Gram matrix, Jacobi eigenvalues) against the SVD
     # of the tool origin's Jacobian taken by central differences (support/wrist_arms.py)
     robot = km.load(name)
-    q = np.zeros((len(arm_point.PROBES), robot.dof))
-    q[:, :3] = arm_point.PROBES
+    q = np.zeros((len(DT.PLACE_PROBES), robot.dof))
+    q[:, :3] = DT.PLACE_PROBES
     best = float(_core_testing.internals.point_rank_ratios(robot.chain.core, q, np.zeros(3)).max())
     assert best == pytest.approx(wrist_parts.rank_ratio(robot), rel=1e-6)

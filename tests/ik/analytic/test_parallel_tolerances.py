@@ -40,12 +40,12 @@ FACTORS = [(0.1, True), (10.0, False)]
 
 
 def test_the_binding_exposes_the_documented_values() -> None:
-    assert parallel.CONTINUUM_TOL == CONTINUUM_TOL
-    assert parallel.NEAR_TOL == NEAR_TOL
-    assert parallel.DOUBLE_ROOT_TOL == DOUBLE_ROOT_TOL
-    assert parallel.NEWTON_QUIET == NEWTON_QUIET
-    assert parallel.NEWTON_STEPS == NEWTON_STEPS
-    assert parallel.FREE_Q1_SAMPLES == FREE_Q1_SAMPLES
+    assert hooks.CONTINUUM_TOL == CONTINUUM_TOL
+    assert hooks.NEAR_TOL == NEAR_TOL
+    assert hooks.DOUBLE_ROOT_TOL == DOUBLE_ROOT_TOL
+    assert hooks.NEWTON_QUIET == NEWTON_QUIET
+    assert hooks.NEWTON_STEPS == NEWTON_STEPS
+    assert hooks.FREE_Q1_SAMPLES == FREE_Q1_SAMPLES
 
 
 # --- parallel_pairs.hpp: a cos θ + b sin θ = c (q1, or q5 of parallel axes 5 and 6) ---

@@ -23,7 +23,7 @@ from support.ik_search import dls_solutions, joint_distance, random_q
 from support.small_arms import A2, A3, D1, KINDS, reached, seed_anthropomorphic, seed_pr_arm
 
 import kinematica as km
-from kinematica import _core
+from kinematica import _core_testing
 from kinematica.dh import Prismatic, Revolute
 from kinematica.dh.lines import AXIS_LENGTH_TOL
 from kinematica.ik import IKBatchResult, IKResult, closed_form
@@ -31,8 +31,8 @@ from kinematica.robot import Robot, classify
 
 FloatArray = NDArray[np.float64]
 PI = math.pi
-SINGULAR_TOL: float = _core.planar.SINGULAR_TOL
-MERGE_TOL: float = _core.planar.MERGE_TOL
+SINGULAR_TOL: float = _core_testing.planar.SINGULAR_TOL
+MERGE_TOL: float = _core_testing.planar.MERGE_TOL
 
 #: A candidate is "exact" when forward kinematics reproduces the target to this.
 EXACT = 1e-12

@@ -29,9 +29,9 @@ FACTORS = [(0.1, True), (10.0, False)]
 
 
 def test_the_documented_values() -> None:
-    assert _core.planar.SINGULAR_TOL == _core.elbow.SINGULAR_TOL == TRIANGLE_SINGULAR_TOL
-    assert _core.planar.MERGE_TOL == _core.elbow.MERGE_TOL == MERGE_TOL
-    assert _core.planar.FREE_SAMPLES == FREE_SAMPLES
+    assert _core_testing.planar.SINGULAR_TOL == TRIANGLE_SINGULAR_TOL
+    assert _core_testing.planar.MERGE_TOL == MERGE_TOL
+    assert _core_testing.planar.FREE_SAMPLES == FREE_SAMPLES
     assert km.dh.lines.AXIS_LENGTH_TOL == AXIS_LENGTH_TOL
 
 

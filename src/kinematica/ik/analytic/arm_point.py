@@ -8,8 +8,8 @@ read the geometry from the joint axes (``km::decoupled::arm_geometry``,
 ``arm_point.hpp``): which of three shoulders it is (axes 1 and 2 meet, are
 parallel, or are skew), the motion ``u(q3)`` of the point as seen from axis 2, its
 expression on a frame of axis 2, the bounds of the reachable shell; whether joints
-1-3 place the point at all (``places_point``, at :data:`PROBES` against
-:data:`RANK_TOL`). This module names the branches of a built ``ArmPoint``.
+1-3 place the point at all (``places_point``, at ``PLACE_PROBES`` against
+``PLACE_RANK_TOL``). This module names the branches of a built ``ArmPoint``.
 """
 
 from __future__ import annotations
@@ -17,22 +17,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-import numpy as np
-from numpy.typing import NDArray
-
 import kinematica._core as _core
 
-__all__ = ["ELBOW_BENDS", "PROBES", "RANK_TOL", "ArmGeometry", "geometry_of"]
-
-FloatArray = NDArray[np.float64]
-
-#: Joints 1-3 place the point when, at one of :data:`PROBES`, the smallest
-#: singular value of the point's 3 x 3 Jacobian exceeds this times the largest
-#: (the core's ``km::decoupled::PLACE_RANK_TOL``).
-RANK_TOL: float = _core.decoupled.PLACE_RANK_TOL
-#: Configurations of joints 1-3 at which that rank is tested (fixed, so that
-#: the decision depends on the geometry alone; the core's ``PLACE_PROBES``).
-PROBES = np.array(_core.decoupled.PLACE_PROBES)
+__all__ = ["ELBOW_BENDS", "ArmGeometry", "geometry_of"]
 
 
 @dataclass(frozen=True, slots=True, eq=False)

@@ -39,6 +39,7 @@ from kinematica.core import Chain
 from kinematica.dh.convert import convert_table
 from kinematica.dh.joints import Convention, Revolute
 from kinematica.ik.analytic import general_6r
+from kinematica.ik.analytic.sampling import random_sign as _sign
 from kinematica.ik.analytic.sampling import random_transform
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
@@ -98,10 +99,6 @@ DEGENERATE = (
     "no offset along axis 2",
     "axes 4, 5, 6 meeting",
 )
-
-
-def _sign(rng: np.random.Generator) -> float:
-    return float(rng.choice([-1.0, 1.0]))
 
 
 def _twist(rng: np.random.Generator, square: bool) -> float:

@@ -5,9 +5,19 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["random_transform"]
+__all__ = ["random_sign", "random_transform", "random_twist"]
 
 FloatArray = NDArray[np.float64]
+
+
+def random_sign(rng: np.random.Generator) -> float:
+    """-1.0 or 1.0, evenly."""
+    return float(rng.choice([-1.0, 1.0]))
+
+
+def random_twist(rng: np.random.Generator) -> float:
+    """A twist well away from 0 and π, either sign (rad)."""
+    return float(rng.uniform(0.3, np.pi - 0.3) * rng.choice([-1.0, 1.0]))
 
 
 def random_transform(rng: np.random.Generator, reach: float | None) -> FloatArray:

@@ -22,7 +22,9 @@ import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.dh.joints import Prismatic, Revolute
 from kinematica.ik.analytic.arm_point import geometry_of
+from kinematica.ik.analytic.sampling import random_sign as _sign
 from kinematica.ik.analytic.sampling import random_transform
+from kinematica.ik.analytic.sampling import random_twist as _twist
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features
 
@@ -59,15 +61,6 @@ def build(chain: Chain, f: Features, target: TargetKind) -> ClosedForm | None:
 
 
 # ------------------------------------------------------------- sample arms
-def _twist(rng: np.random.Generator) -> float:
-    """A twist well away from 0 and π, either sign."""
-    return float(rng.uniform(0.3, PI - 0.3) * rng.choice([-1.0, 1.0]))
-
-
-def _sign(rng: np.random.Generator) -> float:
-    return float(rng.choice([-1.0, 1.0]))
-
-
 def _tiny(rng: np.random.Generator) -> float:
     """An offset of 1e-10 (m or rad), either sign: a zero of a DH table nudged."""
     return 1e-10 * _sign(rng)

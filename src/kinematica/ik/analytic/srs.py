@@ -50,6 +50,7 @@ from kinematica.core import Chain
 from kinematica.dh.joints import Revolute
 from kinematica.errors import KinematicaError
 from kinematica.ik.analytic.sampling import random_transform
+from kinematica.ik.analytic.sampling import random_twist as _twist
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
 from kinematica.ik.structure import Features, features
 
@@ -154,11 +155,6 @@ def arm_angle(chain: Chain, q: ArrayLike) -> FloatArray:
 
 
 # ------------------------------------------------------------- sample arms
-def _twist(rng: np.random.Generator) -> float:
-    """A twist well away from 0 and π, either sign."""
-    return float(rng.uniform(0.3, PI - 0.3) * rng.choice([-1.0, 1.0]))
-
-
 #: The family's edge geometries (``sample_arm(rng, True)``).
 EDGES: tuple[str, ...] = (
     "iiwa type",  # a = 0 everywhere, right-angle twists: the elbow stretches onto S-W
