@@ -93,18 +93,6 @@ void bind_general6r(nb::module_& m) {
         "through q (6,), the one that moved most first (the self-motion test of "
         "general_6r.hpp); () where q is regular, at a fold or not a solution of T.";
     sub.def("free_joints", &free_joints, nb::arg("params"), nb::arg("T"), nb::arg("q"), free_doc);
-    sub.def(
-        "loop_size",
-        [](const km::Chain& c) -> std::optional<double> {
-            kg::Loop loop;
-            if (!kg::loop_of(c, loop)) return std::nullopt;
-            return loop.size;
-        },
-        nb::arg("chain"),
-        "The size (m) the loop of a 6R chain is built in (general_6r_build.hpp: arm_size, or "
-        "the size along its axes where that is below WALK_SIZE_RATIO of it); None for any "
-        "other chain.");
-    sub.attr("WALK_SIZE_RATIO") = kg::WALK_SIZE_RATIO;
     sub.def("free_joints", &free_joints_of_chain, nb::arg("chain"), nb::arg("T"), nb::arg("q"),
             free_doc);
 

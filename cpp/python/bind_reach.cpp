@@ -10,11 +10,6 @@
 
 namespace kmpy {
 
-double reach_violation_of(const double* b, const km::Pose& T, double P, double R, bool limits) {
-    return km::reach::violation(b, T, P, R, limits);
-}
-const npy_intp REACH_SIZE = km::reach::SIZE;
-
 namespace {
 
 //! (SIZE,) read-only: the arm's bounds, or None for a chain that is not 6R.

@@ -29,16 +29,12 @@
 #include "interrupt.hpp"
 #include "kinematica/chain.hpp"
 #include "kinematica/ik.hpp"
+#include "kinematica/held_sweep.hpp"
 #include "kinematica/moved.hpp"
 #include "kinematica/pose_check.hpp"
 #include "numpy_io.hpp"
 
 namespace kmpy {
-
-//! km::reach::violation of the pose T against the bounds b (bind_reach.cpp: the header stays
-//! out of the bindings that include this one), and the bounds' size, km::reach::SIZE.
-double reach_violation_of(const double* b, const km::Pose& T, double P, double R, bool limits);
-extern const npy_intp REACH_SIZE;
 
 //! The work arrays of single calls with one solver type: made once per thread (and again
 //! only when an arm of other dimensions comes).
@@ -251,46 +247,31 @@ struct Prepared {
         const In sk = in_f64(skip, "skip", 1, {N});
         const In g = in_f64(grid, "grid", 1);
         const In b = in_f64(bounds, "bounds", 1);
-        if (b.dim[0] != 0 && b.dim[0] != REACH_SIZE) {
+        if (b.dim[0] != 0 && b.dim[0] != km::reach::SIZE) {
             throw nb::value_error("sweep(): bounds must hold km::reach::SIZE numbers, or none");
         }
         const npy_intp G = g.dim[0];
-        const double* bd = b.dim[0] != 0 ? b.data : nullptr;
         std::vector<OneOut> bufs(static_cast<size_t>(N));
         std::vector<km::CheckReport> reps(static_cast<size_t>(N));
         npy_int64* index;
         nb::object found = new_i64({N}, index);
+        const km::HeldMove move{held_move, held_after, held_slides};
+        const km::ReachScreen screen{b.dim[0] != 0 ? b.data : nullptr, P, R, slack, limits};
         run_rows(static_cast<long>(N), 1L, workers, [&](long begin, long end) {
-            std::vector<npy_intp> order(static_cast<size_t>(G));
-            std::vector<double> near(static_cast<size_t>(G));
+            std::vector<long> order;
             for (long i = begin; i < end; ++i) {
                 const double* t = in.data + 16 * i;
-                index[i] = -1;
                 if (!rigid(t)) {
                     index[i] = -2;
                     continue;
                 }
-                for (npy_intp j = 0; j < G; ++j) {
-                    order[static_cast<size_t>(j)] = j;
-                    near[static_cast<size_t>(j)] = std::fabs(g.data[j] - s0.data[i]);
-                }
-                std::stable_sort(order.begin(), order.end(), [&](npy_intp a, npy_intp c) {
-                    return near[static_cast<size_t>(a)] < near[static_cast<size_t>(c)];
-                });
-                for (const npy_intp j : order) {
-                    const double v = g.data[j];
-                    if (v == sk.data[i]) continue;
-                    double moved[16];
-                    km::moved_pose(held_move, v, held_after, held_slides, t, moved);
-                    const km::Pose pose = km::Pose::from_rows(moved);
-                    if (bd != nullptr && reach_violation_of(bd, pose, P, R, limits) > slack) continue;
-                    const km::CheckReport rep = rows(pose, bufs[static_cast<size_t>(i)]);
-                    if (rep.count > 0) {
-                        reps[static_cast<size_t>(i)] = rep;
-                        index[i] = j;
-                        break;
-                    }
-                }
+                OneOut& buf = bufs[static_cast<size_t>(i)];
+                km::CheckReport& rep = reps[static_cast<size_t>(i)];
+                index[i] = km::first_held_value(g.data, G, s0.data[i], sk.data[i], t, move, screen, order,
+                                                [&](const km::Pose& pose) {
+                                                    rep = rows(pose, buf);
+                                                    return rep.count > 0;
+                                                });
             }
         });
         nb::list answers;
@@ -519,16 +500,6 @@ nb::class_<Params> bind_params(nb::module_& m, const char* name, const char* doc
     cls.attr("cpp_type") = cpp_type;
     cls.attr("cpp_header") = cpp_header;
     add_ik_methods(cls, [](const Params& p) { return km::ClosedForm<Params>{checked(p)}; });
-    if constexpr (has_invalid<Params>::value) {
-        cls.def(
-            "invalid",
-            [](const Params& p) -> std::optional<std::string> {
-                const char* why = p.invalid();
-                if (why == nullptr) return std::nullopt;
-                return std::string(why);
-            },
-            "What makes the fields no arm the solver can index safely, or None.");
-    }
     return cls;
 }
 

@@ -4,8 +4,10 @@
 // name (hand-made cases), and the near-6R solver's watch. The product binding
 // (cpp/python/bind_general6r.cpp) registers the family by its builder alone.
 #include <nanobind/nanobind.h>
+#include <nanobind/stl/optional.h>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -380,6 +382,17 @@ void bind_general6r_testing(nb::module_& m) {
             "True when the builder keeps a labelling without scoring the others (score: "
             "mean log10 of its probe distances; worst: the largest; passes: the refined "
             "probes within PROBE_TOL).");
+    sub.def(
+        "loop_size",
+        [](const km::Chain& c) -> std::optional<double> {
+            kg::Loop loop;
+            if (!kg::loop_of(c, loop)) return std::nullopt;
+            return loop.size;
+        },
+        nb::arg("chain"),
+        "The size (m) the loop of a 6R chain is built in (general_6r_build.hpp): arm_size "
+        "(chain_build.hpp); None for any other chain.");
+    sub.attr("WALK_SIZE_RATIO") = km::WALK_SIZE_RATIO;
     sub.def("labelling", &labelling_of, nb::arg("chain"), nb::arg("which"),
             "(params or None, sigma8/sigma1 of Q): labelling `which` (an index of LABELLINGS) "
             "of a 6R chain; None where its left side is rank-deficient (ratio NaN: the target "

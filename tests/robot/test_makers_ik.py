@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 import pytest
-from kinematica._core import general6r
+from kinematica._core_testing import general6r
 
 import kinematica as km
 from kinematica.ik import IKResult
