@@ -93,7 +93,7 @@ void bind_lines(nb::module_& m) {
     sub.def("common_point", &common_point, nb::arg("h"), nb::arg("p"), nb::arg("size"),
             "(3,) the least-squares point of the lines p[i] + t h[i] ((k, 3) each), or None.");
     sub.def("arm_size", &km::arm_size, nb::arg("chain"),
-            "The arm's size (m): |tool offset| + Σ |fixed translations| of its joints.");
+            "The arm's size (m), the line tolerance's scale (chain_build.hpp: its frames' or along its axes).");
     sub.def("features", &features, nb::arg("chain"),
             "Features' fields in order, of a chain's axes at q = 0 (kinematica.ik.structure).");
 }

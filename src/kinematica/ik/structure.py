@@ -27,7 +27,10 @@ def arm_size(chain: Chain) -> float:
     """The arm's size (m): the sum of its joints' fixed translations and the tool's offset.
 
     The scale the line geometry's length tolerance is relative to
-    (:func:`kinematica.dh.lines.length_tol`); a slide's travel is not counted.
+    (:func:`kinematica.dh.lines.length_tol`); a slide's travel is not counted. Where a
+    revolute chain's size measured along its axes (each axis's point the one nearest the
+    previous axis's) is below a tenth of that, that one: a DH table of nearly parallel
+    axes puts its frames km away, at the foot of their common normal.
     """
     return _lines.arm_size(chain.core)
 
