@@ -475,6 +475,7 @@ void bind_general6r_testing(nb::module_& m) {
             "roots came from QZ (A2 ill-conditioned at both shifts).");
 
     sub.attr("ALTERNATES") = kg::ALTERNATES;
+    sub.attr("ALTERNATE_RCOND") = kg::ALTERNATE_RCOND;
     sub.def("may_alternate", &kg::may_alternate, nb::arg("score"),
             "True when a labelling whose mean log10 probe distance is `score` may be an "
             "alternate (its raw candidates within PROBE_TOL of the probes, geometric mean).");

@@ -2,7 +2,8 @@
 
 The builder keeps, beside the labelling it chooses, up to ALTERNATES others that pass
 its probes (general_6r_build.hpp); the solve tries them in turn where none of the
-chosen one's candidates closes the loop (general_6r.hpp). The case: the one failure of the
+chosen one's candidates closes the loop and its elimination was ill-conditioned there
+(ALTERNATE_RCOND; general_6r.hpp). The case: the one failure of the
 perturbed-arm audits (docs/ik-audit.md), a Kawasaki RS007N 2.7e-8 from its spherical
 wrist, where the chosen labelling's pencil is nearly singular for every x6 (M(x6)'s
 second smallest singular value 1.5e-11 of its largest), A2's reciprocal condition
@@ -64,6 +65,15 @@ Q_GEN = (
     1.6181778883127667,
 )
 
+#: A target of that arm no labelling reaches (an FK position, a random orientation): the
+#: chosen labelling's pencil there has A2's reciprocal condition 6.3e-4.
+UNREACHED = (
+    (0.1932430292812577, 0.12898802778309998, 0.9726351938537023, -0.26701614047858),
+    (0.69996244125036, -0.7127894032385291, -0.04454040266654119, 0.039937121647117296),
+    (0.6875388806991494, 0.689415227072544, -0.22802835834052093, -0.3685225533729993),
+    (0.0, 0.0, 0.0, 1.0),
+)
+
 
 def _perturbed() -> km.Robot:
     rows = [Revolute(d=d, a=a, alpha=al, offset=th) for d, a, al, th in ROWS]
@@ -118,6 +128,25 @@ def test_a_pose_the_chosen_labelling_proves_nothing_for_is_answered_by_an_altern
     _, _, closure, near, _, _ = G.trace(params, T)
     assert near and closure > G.CLOSURE_TOL
     assert G.attempts(params, T) == (0, 0)
+
+
+def test_alternates_run_only_where_the_chosen_elimination_is_ill_conditioned() -> None:
+    # ALTERNATE_RCOND on both sides, on the arm above: the audit's pose (A2's reciprocal
+    # condition 1.2e-8; a constant a thousand times smaller would leave it to the search)
+    # and a target no labelling reaches (6.3e-4; a constant a thousand times larger would
+    # run the alternates there, two more eliminations for nothing)
+    robot = _perturbed()
+    params = closed_form(robot.chain, "pose").params
+    inside = robot.fk(np.array(Q_GEN))
+    rcond = G.trace(params, inside)[0]
+    assert G.ALTERNATE_RCOND / 1e3 < rcond < G.ALTERNATE_RCOND
+    assert G.attempts(params, inside)[1] >= 1
+    outside = np.array(UNREACHED)
+    rcond, _, closure, near, _, _ = G.trace(params, outside)
+    assert G.ALTERNATE_RCOND < rcond < 1e3 * G.ALTERNATE_RCOND
+    assert near and closure > G.CLOSURE_TOL
+    assert G.attempts(params, outside) == (0, 0)
+    assert str(robot.ik(outside, respect_limits=False).status) == "not_found"
 
 
 def test_may_alternate_asks_the_probes_within_probe_tol() -> None:
