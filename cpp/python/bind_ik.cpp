@@ -148,7 +148,7 @@ void bind_answers(nb::module_& m) {
         .def("at", &Prepared::at, nb::arg("T").none(), nb::arg("value"),
              "The whole arm's result of T (4, 4) with the held joint at `value` (or None).")
         .def("sweep", &Prepared::sweep, nb::arg("T"), nb::arg("start"), nb::arg("grid"),
-             nb::arg("skip"), nb::arg("bounds"), nb::arg("position"), nb::arg("rotation"),
+             nb::arg("skip"), nb::arg("bounds").none(), nb::arg("position"), nb::arg("rotation"),
              nb::arg("limits"), nb::arg("slack"), nb::arg("workers"),
              "(index (N,), answers): each T[i] at the first value of grid nearest start[i] with a "
              "solution (nearest_value.swept).");

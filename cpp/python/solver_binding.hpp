@@ -232,13 +232,13 @@ struct Prepared {
     //! For each target T[i] (N, 4, 4), at(T[i], v) at the first value v of grid (G,) whose
     //! answer has a solution (within the limits where they are kept), tried in its own order:
     //! nearest start[i] first (of two as near, the lower), leaving out a value equal to
-    //! skip[i] (NaN: none) and the values the reach bounds prove out of reach (bounds
-    //! (km::reach::SIZE,) of the arm locked at 0, or (0,) for none: violation above `slack`
+    //! skip[i] (NaN: none) and the values the reach bounds prove out of reach (bounds: the
+    //! ReachBounds of the arm locked at 0, or None: violation above `slack`
     //! with the tolerance P m, R rad, q1 and q6 within their limits with `limits`). The rows
     //! are solved on up to `workers` threads, the GIL released, and one Python object made
     //! per row answered. Returns (index (N,) of the value answered in grid, -1 where none
     //! has a solution, -2 where T[i] is not rigid; [at(T[i], grid[index[i]]) or None]).
-    nb::tuple sweep(F64 T, F64 start, F64 grid, F64 skip, F64 bounds, double P, double R,
+    nb::tuple sweep(F64 T, F64 start, F64 grid, F64 skip, const km::reach::Bounds* bounds, double P, double R,
                     bool limits, double slack, int workers) const {
         if (held_joint < 0) throw nb::value_error("sweep(): this Prepared holds no joint (held())");
         const In in = in_f64(T, "T", 3, {-1, 4, 4});
@@ -246,17 +246,13 @@ struct Prepared {
         const In s0 = in_f64(start, "start", 1, {N});
         const In sk = in_f64(skip, "skip", 1, {N});
         const In g = in_f64(grid, "grid", 1);
-        const In b = in_f64(bounds, "bounds", 1);
-        if (b.dim[0] != 0 && b.dim[0] != km::reach::SIZE) {
-            throw nb::value_error("sweep(): bounds must hold km::reach::SIZE numbers, or none");
-        }
         const npy_intp G = g.dim[0];
         std::vector<OneOut> bufs(static_cast<size_t>(N));
         std::vector<km::CheckReport> reps(static_cast<size_t>(N));
         npy_int64* index;
         nb::object found = new_i64({N}, index);
         const km::HeldMove move{held_move, held_after, held_slides};
-        const km::ReachScreen screen{b.dim[0] != 0 ? b.data : nullptr, P, R, slack, limits};
+        const km::ReachScreen screen{bounds, P, R, slack, limits};
         run_rows(static_cast<long>(N), 1L, workers, [&](long begin, long end) {
             std::vector<long> order;
             for (long i = begin; i < end; ++i) {

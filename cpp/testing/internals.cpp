@@ -19,12 +19,27 @@
 #include "kinematica/numeric.hpp"
 #include "kinematica/point_rank.hpp"
 #include "kinematica/polynomial.hpp"
+#include "kinematica/reach_bounds.hpp"
 #include "kinematica/so3.hpp"
 #include "kinematica/trig.hpp"
 
 namespace kmpy {
 
 namespace {
+
+//! The fields of a 6R arm's reach bounds (reach_bounds.hpp's Bounds): vectors and ranges
+//! as tuples, circles as (c, u, v).
+nb::dict reach_fields(const km::reach::Bounds& b) {
+    const auto vec = [](const km::Vec3& v) { return nb::make_tuple(v.x, v.y, v.z); };
+    const auto pair = [](const double* r) { return nb::make_tuple(r[0], r[1]); };
+    const auto circle = [&](const km::reach::Circle& c) { return nb::make_tuple(vec(c.c), vec(c.u), vec(c.v)); };
+    nb::dict d;
+    d["a6"] = vec(b.a6), d["x"] = circle(b.x), d["shoulder"] = vec(b.shoulder), d["a1"] = vec(b.a1);
+    d["reach"] = pair(b.reach), d["height"] = pair(b.height), d["x_radius"] = b.x_radius;
+    d["arc6"] = pair(b.arc6), d["y"] = circle(b.y), d["arc1"] = pair(b.arc1), d["z"] = vec(b.z);
+    d["reach2"] = pair(b.reach2), d["height2"] = pair(b.height2);
+    return d;
+}
 
 nb::tuple sincos_of(double x) {
     double s, c;
@@ -202,6 +217,7 @@ F64 point_rank_ratios(const km::Chain& chain, F64 Qh, const km::Vec3& c_tool, in
 
 void bind_testing(nb::module_& m) {
     nb::module_ t = m.def_submodule("internals", "The core's scalar internals, for tests.");
+    t.def("reach_fields", &reach_fields, nb::arg("bounds"), "A ReachBounds' fields (reach_bounds.hpp).");
     t.def("sincos", &sincos_of, nb::arg("x"), "(sin x, cos x) as the core computes them.");
     t.def("point_rank_ratios", &point_rank_ratios, nb::arg("chain"), nb::arg("Q"),
           nb::arg("c_tool"), nb::arg("workers") = 1,

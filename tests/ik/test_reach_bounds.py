@@ -13,6 +13,7 @@ import warnings
 
 import numpy as np
 import pytest
+from kinematica._core_testing.internals import reach_fields
 from support import DATA
 
 import kinematica as km
@@ -137,16 +138,18 @@ def test_distance_and_height_are_asked_of_one_q6_together() -> None:
     gap = violation(bounds, T, Tolerance(0.0, 0.0), grid, move)
     moved = moved_targets(robot.chain, k, np.repeat(T, grid.size, axis=0), np.tile(grid, len(T)))
     moved = moved.reshape(len(T), grid.size, 4, 4)
-    q6 = np.linspace(bounds[23], bounds[24], 4001)  # its arc (layout: km::reach::Slot)
-    x = bounds[3:6] + np.outer(np.cos(q6), bounds[6:9]) + np.outer(np.sin(q6), bounds[9:12])
-    S, a1 = bounds[12:15], bounds[15:18]
+    b = {key: np.asarray(v, dtype=float) for key, v in reach_fields(bounds).items()}
+    q6 = np.linspace(*b["arc6"], 4001)  # its arc
+    c, u, v = (np.asarray(w) for w in reach_fields(bounds)["x"])
+    x = c + np.outer(np.cos(q6), u) + np.outer(np.sin(q6), v)
+    S, a1 = b["shoulder"], b["a1"]
     together = []
     for i, j in np.ndindex(gap.shape):
         M = moved[i, j]
         xs = x @ M[:3, :3].T + M[:3, 3]
         d, h = np.linalg.norm(xs - S, axis=1), (xs - S) @ a1
-        far = np.maximum(bounds[18] - d, d - bounds[19])
-        high = np.maximum(bounds[20] - h, h - bounds[21])
+        far = np.maximum(b["reach"][0] - d, d - b["reach"][1])
+        high = np.maximum(b["height"][0] - h, h - b["height"][1])
         sampled = float(np.maximum(far, high).min())  # how far, sampled: an upper bound
         if far.min() > 0.0 or high.min() > 0.0 or sampled < 1e-3:
             continue  # a range missed alone, or both met at one q6 (to the sampling's step)

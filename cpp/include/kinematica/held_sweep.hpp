@@ -24,7 +24,7 @@ struct HeldMove {
 //! The reach bounds' screen of a moved target: dropped where its violation of the bounds
 //! (nullptr: none) with the tolerance (position m, rotation rad) is above slack.
 struct ReachScreen {
-    const double* bounds;
+    const reach::Bounds* bounds;
     double position, rotation, slack;
     bool limits;  //!< q1 and q6 held within their limits
 };
@@ -48,7 +48,7 @@ long first_held_value(const double* grid, long G, double start, double skip, con
         moved_pose(move.parts, v, move.after, move.slides, t, moved);
         const Pose pose = Pose::from_rows(moved);
         if (screen.bounds != nullptr &&
-            reach::violation(screen.bounds, pose, screen.position, screen.rotation, screen.limits) >
+            reach::violation(*screen.bounds, pose, screen.position, screen.rotation, screen.limits) >
                 screen.slack) {
             continue;
         }

@@ -13,31 +13,27 @@
 
 namespace km::reach {
 
-//! Where each number of an arm's bounds is, in the flat array kinematica.ik.reach_bounds
-//! lays out: vectors (3 numbers), ranges (2: low, high) and arcs (2: the joint's limits,
-//! widened by the check's LIMIT_TOL).
-enum Slot : int {
-    A6 = 0,         //!< axis 6's direction, tool frame
-    XC = 3,         //!< x (on axis 5) is XC + XU cos q6 + XV sin q6, tool frame
-    XU = 6,
-    XV = 9,
-    SHOULDER = 12,  //!< the point S on axis 1, base frame
-    A1 = 15,        //!< axis 1's direction, base frame
-    REACH = 18,     //!< |x - S| (m)
-    HEIGHT = 20,    //!< (x - S)·a1 (m)
-    X_RADIUS = 22,  //!< the farthest a point of x's circle is from the tool frame's origin (m)
-    ARC6 = 23,      //!< q6's limits
-    YC = 25,        //!< y (on axis 2) is YC + YU cos q1 + YV sin q1, base frame
-    YU = 28,
-    YV = 31,
-    ARC1 = 34,      //!< q1's limits
-    Z = 36,         //!< the point Z on axis 6, tool frame
-    REACH2 = 39,    //!< |y - Z| (m)
-    HEIGHT2 = 41,   //!< (y - Z)·a6 (m)
-    SIZE = 43
+//! A circle c + u cos θ + v sin θ (u, v orthogonal and as long) as a joint turns a point.
+struct Circle {
+    Vec3 c, u, v;
 };
 
-inline Vec3 at(const double* b, int i) { return {b[i], b[i + 1], b[i + 2]}; }
+//! A 6R arm's bounds (reach_bounds_build.hpp makes them): ranges are (low, high), arcs a
+//! joint's limits widened by the check's LIMIT_TOL.
+struct Bounds {
+    Vec3 a6;                          //!< axis 6's direction, tool frame
+    Circle x;                         //!< x (on axis 5) as q6 turns it, tool frame
+    Vec3 shoulder, a1;                //!< S on axis 1 and axis 1's direction, base frame
+    double reach[2] = {0.0, 0.0};     //!< |x - S| (m)
+    double height[2] = {0.0, 0.0};    //!< (x - S)·a1 (m)
+    double x_radius = 0.0;            //!< the farthest a point of x's circle is from the tool origin (m)
+    double arc6[2] = {0.0, 0.0};      //!< q6's limits
+    Circle y;                         //!< y (on axis 2) as q1 turns it, base frame
+    double arc1[2] = {0.0, 0.0};      //!< q1's limits
+    Vec3 z;                           //!< the point Z on axis 6, tool frame
+    double reach2[2] = {0.0, 0.0};    //!< |y - Z| (m)
+    double height2[2] = {0.0, 0.0};   //!< (y - Z)·a6 (m)
+};
 
 //! Angles arc[0] .. arc[1] with their ends' cosines and sines, or every angle (whole:
 //! without limits, or when the arc spans a turn).
@@ -211,26 +207,26 @@ inline double together_gap(const Vec3& cs, const Vec3& u, const Vec3& v, const d
 //! beyond the slack of the acceptance tolerance (P m, R rad): positive where no solution
 //! within the tolerance (and q1, q6 within their limits, with `limits`) reaches T. NaN for
 //! a T with a non-finite entry.
-inline double violation(const double* b, const Pose& T, double P, double R, bool limits) {
+inline double violation(const Bounds& b, const Pose& T, double P, double R, bool limits) {
     const double entries[12] = {T.x.x, T.x.y, T.x.z, T.y.x, T.y.y, T.y.z, T.z.x, T.z.y, T.z.z, T.p.x, T.p.y, T.p.z};
     for (const double e : entries) {
         if (!std::isfinite(e)) return std::nan("");
     }
     // forward: x's circle about axis 6 (q6) against S on axis 1
-    const Vec3 cs = T.apply(at(b, XC)) - at(b, SHOULDER);
-    const Vec3 u = T.rotate(at(b, XU)), v = T.rotate(at(b, XV));
-    double slack = P + R * b[X_RADIUS];
-    double forward = std::max(circle_gap(cs, u, v, b + ARC6, limits, b + REACH, slack),
-                              height_gap(cs, u, v, b + ARC6, limits, at(b, A1), b + HEIGHT, slack));
+    const Vec3 cs = T.apply(b.x.c) - b.shoulder;
+    const Vec3 u = T.rotate(b.x.u), v = T.rotate(b.x.v);
+    double slack = P + R * b.x_radius;
+    double forward = std::max(circle_gap(cs, u, v, b.arc6, limits, b.reach, slack),
+                              height_gap(cs, u, v, b.arc6, limits, b.a1, b.height, slack));
     // reverse: y's circle about axis 1 (q1) against Z on axis 6 (a6 turned by at most R)
-    const Vec3 a6 = T.rotate(at(b, A6));
-    const Vec3 cz = at(b, YC) - T.apply(at(b, Z)), U = at(b, YU), V = at(b, YV);
-    const double slack2 = P + R * norm(at(b, Z));
-    const double lean = slack2 + R * b[REACH2 + 1];
-    const double reverse = std::max(circle_gap(cz, U, V, b + ARC1, limits, b + REACH2, slack2),
-                                    height_gap(cz, U, V, b + ARC1, limits, a6, b + HEIGHT2, lean));
+    const Vec3 a6 = T.rotate(b.a6);
+    const Vec3 cz = b.y.c - T.apply(b.z);
+    const double slack2 = P + R * norm(b.z);
+    const double lean = slack2 + R * b.reach2[1];
+    const double reverse = std::max(circle_gap(cz, b.y.u, b.y.v, b.arc1, limits, b.reach2, slack2),
+                                    height_gap(cz, b.y.u, b.y.v, b.arc1, limits, a6, b.height2, lean));
     if (forward <= 0.0 && reverse <= 0.0) {  // each range met alone: both at one q6?
-        forward = together_gap(cs, u, v, b + ARC6, limits, at(b, A1), b + REACH, b + HEIGHT, slack);
+        forward = together_gap(cs, u, v, b.arc6, limits, b.a1, b.reach, b.height, slack);
     }
     return std::max(forward, reverse);
 }

@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "arm_axes.hpp"
 #include "check.hpp"
@@ -184,27 +185,23 @@ inline bool signs(const ChainView& ch, const Vec3* P, const Vec3* A, double* sig
     return true;
 }
 
-inline void put(double* out, int slot, const Vec3& v) {
-    out[slot] = v.x, out[slot + 1] = v.y, out[slot + 2] = v.z;
-}
-
 }  // namespace detail
 
-//! The bounds of a chain of 6 revolute joints into out (SIZE numbers, laid out as Slot
-//! says), of solutions within the joint limits (`limits`) or anywhere. False (out
-//! untouched) for any other chain, or one whose joints' turns FK does not show.
-inline bool build(const Chain& chain, bool limits, double* out) {
+//! The bounds of a chain of 6 revolute joints, of solutions within the joint limits
+//! (`limits`) or anywhere; none for any other chain, or one whose joints' turns FK does
+//! not show.
+inline std::optional<Bounds> build(const Chain& chain, bool limits) {
     const ChainView ch = chain.view();
-    if (ch.n != 6) return false;
+    if (ch.n != 6) return std::nullopt;
     for (int i = 0; i < 6; ++i)
-        if (ch.joint[i].prismatic) return false;
+        if (ch.joint[i].prismatic) return std::nullopt;
     const ArmAxes AX = arm_axes(chain);
     const Vec3* P = AX.p.data();
     const Vec3* A = AX.h.data();
     const Pose& home = AX.home;  // the tool at q = 0
     const auto tool = [&](const Vec3& point) { return home.unrotate(point - home.p); };
     double sign[6];
-    if (!detail::signs(ch, P, A, sign)) return false;
+    if (!detail::signs(ch, P, A, sign)) return std::nullopt;
     // each joint's limits as angles of the turns the ranges take
     detail::Box boxes[6];
     for (int j = 0; j < 6; ++j) {
@@ -236,25 +233,21 @@ inline bool build(const Chain& chain, bool limits, double* out) {
     const Vec3 xc = p6 + dot(xs0 - p6, a6) * a6;
     const Vec3 y_half = F1[1].apply(F0[1].unrotate(y0 - F0[1].p));
     const Vec3 yc = P[0] + dot(y0 - P[0], A[0]) * A[0];
-    using detail::put;
-    put(out, A6, a6);
-    put(out, XC, xc);
-    put(out, XU, xs0 - xc);
-    put(out, XV, xs1 - xc);
-    put(out, SHOULDER, forward.S);
-    put(out, A1, A[0]);
-    std::copy(forward.reach, forward.reach + 2, out + REACH);
-    std::copy(forward.height, forward.height + 2, out + HEIGHT);
-    out[X_RADIUS] = norm(xc) + norm(xs0 - xc);
-    out[ARC6] = AX.qlo[5] - LIMIT_TOL, out[ARC6 + 1] = AX.qhi[5] + LIMIT_TOL;
-    put(out, YC, yc);
-    put(out, YU, y0 - yc);
-    put(out, YV, y_half - yc);
-    out[ARC1] = AX.qlo[0] - LIMIT_TOL, out[ARC1 + 1] = AX.qhi[0] + LIMIT_TOL;
-    put(out, Z, tool(reverse.S));
-    std::copy(reverse.reach, reverse.reach + 2, out + REACH2);
-    std::copy(reverse.height, reverse.height + 2, out + HEIGHT2);
-    return true;
+    Bounds b;
+    b.a6 = a6;
+    b.x = {xc, xs0 - xc, xs1 - xc};
+    b.shoulder = forward.S;
+    b.a1 = A[0];
+    std::copy(forward.reach, forward.reach + 2, b.reach);
+    std::copy(forward.height, forward.height + 2, b.height);
+    b.x_radius = norm(xc) + norm(xs0 - xc);
+    b.arc6[0] = AX.qlo[5] - LIMIT_TOL, b.arc6[1] = AX.qhi[5] + LIMIT_TOL;
+    b.y = {yc, y0 - yc, y_half - yc};
+    b.arc1[0] = AX.qlo[0] - LIMIT_TOL, b.arc1[1] = AX.qhi[0] + LIMIT_TOL;
+    b.z = tool(reverse.S);
+    std::copy(reverse.reach, reverse.reach + 2, b.reach2);
+    std::copy(reverse.height, reverse.height + 2, b.height2);
+    return b;
 }
 
 }  // namespace km::reach

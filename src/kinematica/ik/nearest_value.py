@@ -195,8 +195,7 @@ def swept(
     limits = bool(request.respect_limits)
     bounds = None if chain.prismatic[k] else reach_bounds(end_arm(chain, k), limits)
     tol = parse_tolerance(request.tol)
-    checked = np.empty(0) if bounds is None else bounds
-    index, got = ready.sweep(poses, start, grid, skip, checked, tol.position, tol.rotation,
+    index, got = ready.sweep(poses, start, grid, skip, bounds, tol.position, tol.rotation,
                              limits, ROUNDOFF_SLACK, workers)  # fmt: skip
     answers: list[IKResult | None] = []
     for i, answer in enumerate(got):

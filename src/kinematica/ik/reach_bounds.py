@@ -45,7 +45,7 @@ _STILL[0].flags.writeable = False
 ROUNDOFF_SLACK = 1e-9
 
 
-def reach_bounds(arm: Chain, limits: bool = True) -> FloatArray | None:
+def reach_bounds(arm: Chain, limits: bool = True) -> _core.ReachBounds | None:
     """The arm's bounds, made once and kept; None unless it has 6 revolute joints.
 
     Args:
@@ -53,13 +53,13 @@ def reach_bounds(arm: Chain, limits: bool = True) -> FloatArray | None:
         limits: Bounds of solutions within the joint limits (else anywhere).
 
     Returns:
-        ``(43,)`` read-only, laid out as ``km::reach::Slot`` says
-        (``cpp/include/kinematica/reach_bounds.hpp``): axis 6's direction (tool frame);
-        x's circle ``c + u cos q6 + v sin q6`` (tool frame); S and axis 1's direction
-        (base frame); the ranges of ``|x - S|`` and ``(x - S)·a₁``; the farthest point of
-        x's circle from the tool frame's origin; q6's limits; y's circle
-        ``c + u cos q1 + v sin q1`` (base frame); q1's limits; Z (tool frame); the
-        ranges of ``|y - Z|`` and ``(y - Z)·a₆``.
+        The core's ``ReachBounds`` (``km::reach::Bounds``,
+        ``cpp/include/kinematica/reach_bounds.hpp``): axis 6's direction (tool frame); x's
+        circle ``c + u cos q6 + v sin q6`` (tool frame); S and axis 1's direction (base
+        frame); the ranges of ``|x - S|`` and ``(x - S)·a₁``; the farthest point of x's
+        circle from the tool frame's origin; q6's limits; y's circle ``c + u cos q1 + v sin
+        q1`` (base frame); q1's limits; Z (tool frame); the ranges of ``|y - Z|`` and
+        ``(y - Z)·a₆``.
     """
     key = ("reach bounds", limits)
     found = arm.memo.get(key, False)
@@ -69,7 +69,7 @@ def reach_bounds(arm: Chain, limits: bool = True) -> FloatArray | None:
 
 
 def violation(
-    bounds: FloatArray,
+    bounds: _core.ReachBounds,
     poses: FloatArray,
     tol: Tolerance,
     values: FloatArray = _ZERO,
@@ -99,7 +99,7 @@ def violation(
 
 
 def may_reach(
-    bounds: FloatArray,
+    bounds: _core.ReachBounds,
     poses: FloatArray,
     tol: Tolerance,
     values: FloatArray = _ZERO,
