@@ -4,6 +4,7 @@
 // name (hand-made cases), and the near-6R solver's watch. The product binding
 // (cpp/python/bind_general6r.cpp) registers the family by its builder alone.
 #include <nanobind/nanobind.h>
+#include <nanobind/stl/complex.h>
 #include <nanobind/stl/optional.h>
 
 #include <cstdint>
@@ -109,6 +110,14 @@ nb::tuple real_roots_of(nb::handle A0, nb::handle A1, nb::handle A2) {
     F64 r = new_f64({found}, out);
     for (int i = 0; i < found; ++i) out[i] = roots[i];
     return nb::make_tuple(r, deflated);
+}
+
+//! (value, kappa, eta) of the eigenvalue x of det(A0 + A1 x + A2 x²): its RootMargin.
+nb::tuple real_axis_margin_of(nb::handle A0, nb::handle A1, nb::handle A2, std::complex<double> x) {
+    kg::Matrix12 A[3];
+    read_quadratic(A0, A1, A2, A);
+    const kg::RootMargin m = kg::real_axis_margin(A, x);
+    return nb::make_tuple(m.value, m.kappa, m.eta);
 }
 
 //! (deflated, 8th pivot / 1st, 9th pivot / 1st) of M(i)'s elimination.
@@ -474,6 +483,29 @@ void bind_general6r_testing(nb::module_& m) {
             "whether the roots at x6 = ±i were eliminated before the eigenproblem, whether the "
             "roots came from QZ (A2 ill-conditioned at both shifts).");
 
+    sub.def("real_axis_margin", &real_axis_margin_of, nb::arg("A0"), nb::arg("A1"), nb::arg("A2"),
+            nb::arg("x"),
+            "(value, kappa, eta) of the eigenvalue x of det(A0 + A1 x + A2 x²): its distance "
+            "from the real axis over its first-order error bound, its condition number and "
+            "backward error.");
+    sub.attr("PENCIL_EPS") = kg::PENCIL_EPS;
+    sub.attr("CERTIFY_MARGIN") = kg::CERTIFY_MARGIN;
+    sub.def("certifies", &kg::certifies, nb::arg("margin"),
+            "True when a spectrum's margin from the real axis proves det M has no real root.");
+    sub.def("margin",
+            [](const General6RParams& p, const km::Pose& T) {
+                if (const char* why = p.invalid()) throw nb::value_error(why);
+                double Q[kg::SLOTS * 6];
+                km::SolverInfo info;
+                kg::Trace t;
+                p.solve(T, Q, info, &t);
+                return nb::make_tuple(t.margin.value, t.margin.kappa, t.margin.eta);
+            },
+            nb::arg("params"), nb::arg("T"),
+            "(margin, kappa, eta) of the chosen labelling's spectrum for the pose T where none "
+            "of its candidates closed: the least of its eigenvalues' distances from the real "
+            "axis over their error bounds, that eigenvalue's condition number and backward "
+            "error (margin NaN: not computed).");
     sub.attr("ALTERNATES") = kg::ALTERNATES;
     sub.attr("ALTERNATE_RCOND") = kg::ALTERNATE_RCOND;
     sub.def("may_alternate", &kg::may_alternate, nb::arg("score"),

@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from support.general6r import G, field
+from support.kawasaki import Q_GEN, UNREACHED, perturbed
 
 import kinematica as km
 from kinematica.dh.joints import Revolute
@@ -40,44 +41,6 @@ NEARBY = 1e-3
 EDGE = 1e-3
 
 MAKERS = Path(__file__).parents[2] / "data" / "makers"
-
-#: The Kawasaki RS007N of tests/data/makers (kawasaki_rs007n.urdf) as ``robot.to_dh()``
-#: gives it (standard convention), every d, a and α moved by ±ε, ε = 2.6688060984301035e-08:
-#: perturbed arm #104 of seed 4 of ``benchmarks/audit_makers.py --arms kawasaki_rs007n
-#: --poses 0 --perturbed 105 --perturbed-poses 10 --numeric 0 --seed 4``; rows (d, a, α, θ0).
-ROWS = (
-    (2.6688060984301035e-08, -2.6688060984301035e-08, 1.5707963001068355, -1.5707963267948966),
-    (2.6688060984301035e-08, 0.35500002668806097, 3.141592626901732, -1.5707963267948966),
-    (-2.6688060984301035e-08, 2.6688060984301035e-08, 1.5707963001068355, 1.5707963267948966),
-    (0.375000026688061, 2.6688060984301035e-08, -1.5707963001068355, 0.0),
-    (2.6688060984301035e-08, 2.6688060984301035e-08, 1.5707963534829577, 0.0),
-    (0.07800002668806098, -2.6688060984301035e-08, 2.6688060984301035e-08, 1.5707963267948966),
-)
-#: Its base (the tool is the identity).
-BASE = ((1.0, 0.0, 0.0, 0.0), (0.0, -1.0, 0.0, 0.0), (0.0, 0.0, -1.0, 0.36), (0.0, 0.0, 0.0, 1.0))
-#: The audit's 5th pose of that arm: the configuration that made it (σmin/σmax 1.1e-4).
-Q_GEN = (
-    -2.6945290346991,
-    -2.3261842550000775,
-    1.5747727446732322,
-    0.32600734513149865,
-    2.0179896792214285,
-    1.6181778883127667,
-)
-
-#: A target of that arm no labelling reaches (an FK position, a random orientation): the
-#: chosen labelling's pencil there has A2's reciprocal condition 6.3e-4.
-UNREACHED = (
-    (0.1932430292812577, 0.12898802778309998, 0.9726351938537023, -0.26701614047858),
-    (0.69996244125036, -0.7127894032385291, -0.04454040266654119, 0.039937121647117296),
-    (0.6875388806991494, 0.689415227072544, -0.22802835834052093, -0.3685225533729993),
-    (0.0, 0.0, 0.0, 1.0),
-)
-
-
-def _perturbed() -> km.Robot:
-    rows = [Revolute(d=d, a=a, alpha=al, offset=th) for d, a, al, th in ROWS]
-    return km.Robot.from_dh(rows, convention="standard", base=np.array(BASE))
 
 
 def _distance(q: np.ndarray, solutions: np.ndarray) -> float:
@@ -99,7 +62,7 @@ def test_the_documented_value_is_the_core_s() -> None:
 
 
 def test_a_pose_the_chosen_labelling_proves_nothing_for_is_answered_by_an_alternate() -> None:
-    robot = _perturbed()
+    robot = perturbed()
     q_gen = np.array(Q_GEN)
     T = robot.fk(q_gen)
     res = robot.ik(T, respect_limits=False)
@@ -135,7 +98,7 @@ def test_alternates_run_only_where_the_chosen_elimination_is_ill_conditioned() -
     # condition 1.2e-8; a constant a thousand times smaller would leave it to the search)
     # and a target no labelling reaches (6.3e-4; a constant a thousand times larger would
     # run the alternates there, two more eliminations for nothing)
-    robot = _perturbed()
+    robot = perturbed()
     params = closed_form(robot.chain, "pose").params
     inside = robot.fk(np.array(Q_GEN))
     rcond = G.trace(params, inside)[0]

@@ -53,6 +53,18 @@
 // (eigenvalues.hpp: twice as fast at this size). Only these headers and their binding
 // include Eigen.
 //
+// Out of reach. Every solution makes a real root of det M(x6) (M(x6) u = 0 with u its
+// monomial vector, homogenized where q'4 or q'5 is at the shift + π), and a well-conditioned
+// A2 puts no root at x6 = ∞. So where no candidate closes, the 16 eigenvalues are checked
+// off the real axis: each one's distance |Im x| over κ(x) (η(x) + PENCIL_EPS), its
+// condition number times its backward error plus the pencil's own round-off, must reach
+// CERTIFY_MARGIN (general_6r_roots.hpp: real_axis_margin). Then no solution exists: the
+// answer is "unreachable". Random arms' targets beyond the workspace are proved so from
+// about 1e-7 m out (the margin grows as the distance: the pair nearest the axis splits as
+// its square root, its condition as its inverse square root); nearer, a candidate closes
+// or the margin falls short, and the numeric search is asked. Where the 8 roots at ±i were
+// not deflated, or QZ gave the roots, nothing is proved this way.
+//
 // Where the method degenerates. A candidate that closes the loop where the loop's Jacobian
 // loses rank (σ6/σ1 below SINGULAR_RANK_TOL) is at a double root (a fold: two branches
 // meet) or on a continuum (a self-motion: the pose held while joints turn). The two are
@@ -110,10 +122,12 @@ constexpr double SECOND_SHIFT = 1.1;
 //! A candidate "closes the loop" when the pose it makes is within this of the target (m
 //! or rad, the larger; measured as the shared check measures it): half the check's
 //! POLISH_LIMIT, so that a candidate that closes is one the check polishes (and calls the
-//! target "close"). Where none closes, near is raised: the elimination proves nothing
-//! (a root lost to round-off at a near-double root, or the target out of reach: it cannot
-//! tell), so the check says not_found and the numeric search is asked. "unreachable"
-//! comes from the reach bound alone, which is a proven gap.
+//! target "close"). Where none closes and the pencil has no real root, proven
+//! (certifies: every eigenvalue CERTIFY_MARGIN times its error bound from the real axis),
+//! the target is out of reach ("unreachable", without a gap). Otherwise near is raised: the
+//! elimination proves nothing (a root lost to round-off at a near-double root, a root
+//! no solution makes, or the target just out of reach: it cannot tell), so the check says
+//! not_found and the numeric search is asked.
 constexpr double CLOSURE_TOL = 0.5 * POLISH_LIMIT;
 //! A candidate whose pose misses the target by up to this (m or rad; by anything above
 //! 0: one that misses by 1e-13 is 1e-13 / σmin off in its joints, 1e-8 at the σmin of
@@ -237,6 +251,9 @@ struct Trace {
     bool resolved = false;   //!< a root's null space was taken as two-dimensional (RESOLVE_TOL)
     int answered = 0;        //!< the labelling whose candidates were kept: 0 this one, k alternate k
     int tried = 0;           //!< alternates whose pass ran
+    //! the chosen labelling's spectrum_margin where none of its candidates closed (value
+    //! NaN: not computed, one closed or its eigenvalues were not the deflated 16)
+    RootMargin margin{NaN};
 };
 
 //! What the self-motion test says of a candidate that closes the loop.
@@ -800,6 +817,9 @@ struct General6RParams : Elimination {
         int further = 0;
         bool closes = false, fold = false;
         double rcond = NaN;  //!< A2's reciprocal condition at the first shift
+        //! where none closes: the spectrum's margin from the real axis (spectrum_margin;
+        //! NaN: not computed, the roots not the deflated companion matrix's)
+        RootMargin margin{NaN};
     };
 
     //! True when q (6) is within SAME_CANDIDATE_TOL of a candidate already in Q.
@@ -840,9 +860,11 @@ struct General6RParams : Elimination {
         // the real roots x6 of det M(x6) (general_6r_roots.hpp)
         double roots[ROOTS];
         bool split[ROOTS];
-        const int found = qz ? real_roots_qz(A, roots, split)
-                             : real_roots(A, lead, roots,
-                                          trace != nullptr ? &trace->deflated : nullptr, split);
+        Spectrum spectrum;
+        const int found =
+            qz ? real_roots_qz(A, roots, split)
+               : real_roots(A, lead, roots, trace != nullptr ? &trace->deflated : nullptr, split,
+                            &spectrum);
         if (found < 0) return false;
         // candidates into their classes, each ordered by q1
         auto add = [&](double* a, double closure, bool split_root, bool check_same) {
@@ -904,6 +926,9 @@ struct General6RParams : Elimination {
                 add(b, c, split[r], true);
             }
         }
+        // nothing closes: is there no real root to lose?
+        if (!st.closes && spectrum.n > 0) st.margin = spectrum_margin(A, spectrum);
+        if (trace != nullptr) trace->margin = st.margin;
         return true;
     }
 
@@ -945,7 +970,13 @@ struct General6RParams : Elimination {
             info.near = st.fold;
             return;
         }
-        // a well-posed elimination that closes nothing has lost no root: not found
+        // no candidate closes and det M(x6) has no real root, proven: out of reach
+        if (posed && certifies(st.margin.value)) {
+            info.near = false;
+            return;
+        }
+        // a well-posed elimination that closes nothing has lost no root, but may have
+        // roots no solution makes: not found
         if (posed && !(st.rcond < ALTERNATE_RCOND)) {
             info.near = true;
             return;
@@ -956,7 +987,12 @@ struct General6RParams : Elimination {
             Passes other;
             SolverInfo mine = info;
             if (trace != nullptr) trace->tried = static_cast<int>(k) + 1;
-            if (!alternates[k].attempt(T, R, other, mine, nullptr) || !other.closes) continue;
+            if (!alternates[k].attempt(T, R, other, mine, nullptr)) continue;
+            if (!other.closes) {
+                if (!certifies(other.margin.value)) continue;
+                info.near = false;  // its det M(x6) has no real root: out of reach
+                return;
+            }
             for (int i = 0; i < SLOTS * 6; ++i) Q[i] = R[i];
             info = mine;
             info.near = other.fold;

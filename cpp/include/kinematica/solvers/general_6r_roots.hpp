@@ -30,6 +30,7 @@
 #include <Eigen/LU>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <utility>
 
 #include "../eigenvalues.hpp"
@@ -62,6 +63,94 @@ constexpr double SPURIOUS_TOL = 1e-9;
 
 using Matrix12 = Eigen::Matrix<double, SIZE, SIZE>;
 using Vector12 = Eigen::Matrix<double, SIZE, 1>;
+
+//! The computed pencil's coefficients A0, A1, A2 are taken to differ from the arm's exact
+//! ones by at most this times their norms: their entries are sums of products of the
+//! loop's lengths (scaled to about 1) and sines, made from grid values by fixed 3 x 3
+//! maps and projected on N's rows (orthonormal), each a few tens of roundings of numbers
+//! of the pencil's size; this allows 4,500 units of round-off.
+constexpr double PENCIL_EPS = 1e-12;
+//! det M(x) has no real root when every eigenvalue x of the pencil lies this many times
+//! its error bound from the real axis (certify_no_real_root): the bound is first order,
+//! κ(x) (η(x) + PENCIL_EPS), and a factor of 100 leaves room for its second-order term
+//! and for the estimate of κ.
+constexpr double CERTIFY_MARGIN = 100.0;
+
+//! The pencil's eigenvalues as the eigenproblem gave them (deflated: the 16 roots a
+//! configuration can make); n = 0 where they were not kept (the 24 x 24 problem or QZ).
+struct Spectrum {
+    int n = 0;
+    std::complex<double> x[GENUINE];
+};
+
+//! How far an eigenvalue x of M(x) = A0 + A1 x + A2 x² lies from the real axis, in units
+//! of its first-order error bound: value = |Im x| / (κ (η + PENCIL_EPS)), with
+//! η = ‖M(x) v‖ / (α ‖v‖) the backward error of x with its right null vector v,
+//! α = ‖A0‖ + |x| ‖A1‖ + |x|² ‖A2‖, and κ = α ‖v‖ ‖w‖ / |wᴴ M'(x) v| its condition number
+//! (w the left null vector; Tisseur, Linear Algebra Appl. 309, 2000: a simple eigenvalue
+//! moves by at most κ times the coefficients' relative change, to first order).
+struct RootMargin {
+    double value = std::numeric_limits<double>::infinity();
+    double kappa = 0.0;
+    double eta = 0.0;
+};
+
+//! The RootMargin of the eigenvalue x. v and w by one step of inverse iteration each from
+//! M(x)'s partial-pivot LU (M(x) is singular to about the eigenvalue's error, so
+//! M⁻¹ b and M⁻ᴴ b are its null vectors to about that over the next singular value, for
+//! any b not orthogonal to them: b = (1, ..., 1)); η is the backward error of x with the v
+//! found. value 0 for a real x, NaN where the LU breaks down (a pivot exactly 0).
+inline RootMargin real_axis_margin(const Matrix12* A, std::complex<double> x) {
+    using Complex = std::complex<double>;
+    using ComplexMatrix = Eigen::Matrix<Complex, SIZE, SIZE>;
+    using ComplexVector = Eigen::Matrix<Complex, SIZE, 1>;
+    if (!(x.imag() != 0.0)) return RootMargin{0.0};
+    ComplexMatrix M, slope_matrix;  // M(x) and M'(x) = A1 + 2 x A2
+    const Complex x2 = x * x, twice = 2.0 * x;
+    for (int c = 0; c < SIZE; ++c)
+        for (int r = 0; r < SIZE; ++r) {
+            M(r, c) = A[0](r, c) + x * A[1](r, c) + x2 * A[2](r, c);
+            slope_matrix(r, c) = A[1](r, c) + twice * A[2](r, c);
+        }
+    const Eigen::PartialPivLU<ComplexMatrix> lu(M);
+    const ComplexVector ones = ComplexVector::Ones();
+    ComplexVector v = lu.solve(ones);
+    ComplexVector w = lu.adjoint().solve(ones);  // wᴴ M ≈ 0
+    v /= v.norm();
+    w /= w.norm();
+    const double r = std::abs(x);
+    const double alpha = A[0].norm() + r * (A[1].norm() + r * A[2].norm());
+    const Complex slope = w.dot(slope_matrix * v);  // wᴴ M'(x) v
+    RootMargin out;
+    out.eta = (M * v).norm() / alpha;
+    out.kappa = alpha / std::abs(slope);
+    out.value = std::fabs(x.imag()) / (out.kappa * (out.eta + PENCIL_EPS));
+    return out;
+}
+
+//! The least RootMargin of the spectrum's eigenvalues (one of each conjugate pair); value
+//! 0 when one is real or the pairs do not match, NaN where one's is.
+inline RootMargin spectrum_margin(const Matrix12* A, const Spectrum& s) {
+    int upper = 0, lower = 0;
+    RootMargin least;
+    for (int k = 0; k < s.n; ++k) {
+        const double im = s.x[k].imag();
+        if (im < 0.0) {
+            ++lower;
+            continue;
+        }
+        if (!(im > 0.0)) return RootMargin{0.0};
+        ++upper;
+        const RootMargin m = real_axis_margin(A, s.x[k]);
+        if (!(m.value >= least.value)) least = m;  // (NaN kept)
+    }
+    if (upper != lower) least.value = 0.0;
+    return least;
+}
+
+//! True when the margin (spectrum_margin) proves det M(x) has no real root: every
+//! eigenvalue CERTIFY_MARGIN times its error bound from the real axis.
+inline bool certifies(double margin) { return margin >= CERTIFY_MARGIN; }
 
 //! An eigenvalue x of the companion matrix is taken as a real root: see REAL_ROOT_TOL.
 inline bool real_root(std::complex<double> x) {
@@ -203,9 +292,10 @@ inline void deflate(const double (&C)[ROOTS][ROOTS], Eigen::Matrix<double, ROOTS
 //! The real roots x of det M(x) (M = A0 + A1 x + A2 x², lead: A2's LU) into roots (at
 //! most 24), and the two candidates of each nearly real pair (SPLIT_ROOT_TOL: `split`
 //! true); their count, or -1 when the eigenvalue iteration failed. `deflated`: whether
-//! the spurious roots were eliminated first (else the 24 x 24 problem was solved).
+//! the spurious roots were eliminated first (else the 24 x 24 problem was solved);
+//! `spectrum`: the 16 eigenvalues where they were.
 inline int real_roots(const Matrix12* A, const Eigen::PartialPivLU<Matrix12>& lead, double* roots,
-                      bool* deflated = nullptr, bool* split = nullptr) {
+                      bool* deflated = nullptr, bool* split = nullptr, Spectrum* spectrum = nullptr) {
     double C[ROOTS][ROOTS] = {};
     const Matrix12 B0 = -lead.solve(A[0]), B1 = -lead.solve(A[1]);
     for (int i = 0; i < SIZE; ++i) {
@@ -225,6 +315,10 @@ inline int real_roots(const Matrix12* A, const Eigen::PartialPivLU<Matrix12>& le
         deflate(C, Z, D);
         if (!eigen::eigenvalues(D, re, im)) return -1;
         n = GENUINE;
+        if (spectrum != nullptr) {
+            spectrum->n = GENUINE;
+            for (int r = 0; r < GENUINE; ++r) spectrum->x[r] = {re[r], im[r]};
+        }
     } else if (!eigen::eigenvalues(C, re, im)) {
         return -1;
     }

@@ -11,6 +11,8 @@ the one for which the elimination is well posed: those on which probe poses are 
 (the generating configuration found among the candidates), the first accurate to
 round-off, else the one whose eigenvalues are the most accurate there, and up to two
 more that pass, tried where the chosen one's candidates close no loop for a target.
+Where no candidate closes and every eigenvalue of the pencil lies far from the real axis
+against its error bound, the core proves the target out of reach ("unreachable").
 This module names the family, its branches and notes, and draws its sample arms.
 """
 
@@ -38,9 +40,10 @@ FloatArray = NDArray[np.float64]
 PI = math.pi
 _G = _core.general6r
 
-#: Said of a target the elimination found nothing for (the core's not_found, its near
-#: flag raised: no candidate within the check's polish, no reach gap), answered by the
-#: numeric search.
+#: Said of a target the elimination found nothing for and proved nothing of (the core's
+#: not_found, its near flag raised: no candidate within the check's polish, no reach gap,
+#: a root of det M(x6) on or near the real axis), answered by the numeric search. Where
+#: det M(x6) has no real root, proven, the core's answer is unreachable.
 SEARCH_NOTE = (
     "the general 6R elimination gave no candidate closing the loop for this target "
     "(the target at the workspace boundary, or its eigenproblem degenerate there): "
