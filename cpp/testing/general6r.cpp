@@ -112,6 +112,34 @@ nb::tuple real_roots_of(nb::handle A0, nb::handle A1, nb::handle A2) {
     return nb::make_tuple(r, deflated);
 }
 
+//! (A0, A1, A2) of the chosen labelling's pencil M(x6) for the pose T at the first shift.
+nb::tuple pencil_of(const General6RParams& p, const km::Pose& T_in) {
+    if (const char* why = p.invalid()) throw nb::value_error(why);
+    km::Pose T = T_in;
+    T.p = p.scale * T.p;
+    km::Pose L[6], Li[4];
+    for (int k = 0; k < 6; ++k) L[k] = p.link_of(k, T);
+    for (int k = 0; k < 4; ++k) Li[k] = km::inverse(L[k + 2]);
+    kg::Elimination local;
+    const kg::Elimination* E = &p;
+    if (p.per_target()) {
+        if (!(kg::eliminate(L[0], L[1], local) > kg::RANK_TOL))
+            throw nb::value_error("the left side is rank-deficient for this target");
+        E = &local;
+    }
+    kg::Matrix12 A[3];
+    p.pencil(*E, Li, p.phi, p.phi[2], A);
+    nb::object out[3];
+    for (int k = 0; k < 3; ++k) {
+        double* d;
+        F64 a = new_f64({kg::SIZE, kg::SIZE}, d);
+        for (int i = 0; i < kg::SIZE; ++i)
+            for (int j = 0; j < kg::SIZE; ++j) d[i * kg::SIZE + j] = A[k](i, j);
+        out[k] = std::move(a);
+    }
+    return nb::make_tuple(out[0], out[1], out[2]);
+}
+
 //! (value, kappa, eta) of the eigenvalue x of det(A0 + A1 x + A2 x²): its RootMargin.
 nb::tuple real_axis_margin_of(nb::handle A0, nb::handle A1, nb::handle A2, std::complex<double> x) {
     kg::Matrix12 A[3];
@@ -120,14 +148,15 @@ nb::tuple real_axis_margin_of(nb::handle A0, nb::handle A1, nb::handle A2, std::
     return nb::make_tuple(m.value, m.kappa, m.eta);
 }
 
-//! (deflated, 8th pivot / 1st, 9th pivot / 1st) of M(i)'s elimination.
+//! (nullity, last pivot above SPURIOUS_TOL / 1st, first below / 1st) of M(i)'s elimination;
+//! nullity 0 where it is not deflated.
 nb::tuple spurious_of(nb::handle A0, nb::handle A1, nb::handle A2) {
     kg::Matrix12 A[3];
     read_quadratic(A0, A1, A2, A);
-    Eigen::Matrix<double, kg::ROOTS, kg::SPURIOUS> Z;
+    kg::SpuriousBasis Z;
     double ratios[2] = {km::NaN, km::NaN};
-    const bool deflated = kg::spurious_subspace(A, Z, ratios);
-    return nb::make_tuple(deflated, ratios[0], ratios[1]);
+    const int nullity = kg::spurious_subspace(A, Z, ratios);
+    return nb::make_tuple(nullity, ratios[0], ratios[1]);
 }
 
 //! (re (N,), im (N,)) of eigenvalues.hpp for a (N, N) matrix, N = 16 or 24.
@@ -473,8 +502,9 @@ void bind_general6r_testing(nb::module_& m) {
             "by QZ (no inverse of A2; a root at x = inf as +-1e300), split 1.0 for the two "
             "candidates of a nearly real pair.");
     sub.def("spurious_pivots", &spurious_of, nb::arg("A0"), nb::arg("A1"), nb::arg("A2"),
-            "(deflated, r8, r9): whether M(i)'s null space is taken as the spurious roots', and "
-            "its elimination's 8th and 9th pivots over the first.");
+            "(nullity, last, small): the dimension of M(i)'s null space deflated as the spurious "
+            "roots' (0: not deflated), and its elimination's last pivot above SPURIOUS_TOL and "
+            "first below it over the first.");
     sub.def("eigenvalues", &eigenvalues_of, nb::arg("A"),
             "(re, im): the eigenvalues of A (16, 16) or (24, 24) by the core's Hessenberg QR.");
     sub.def("trace", &trace_of, nb::arg("params"), nb::arg("T"),
@@ -483,12 +513,17 @@ void bind_general6r_testing(nb::module_& m) {
             "whether the roots at x6 = ±i were eliminated before the eigenproblem, whether the "
             "roots came from QZ (A2 ill-conditioned at both shifts).");
 
+    sub.def("pencil", &pencil_of, nb::arg("params"), nb::arg("T"),
+            "(A0, A1, A2), each (12, 12): the chosen labelling's M(x6) for the pose T at the "
+            "first shift.");
     sub.def("real_axis_margin", &real_axis_margin_of, nb::arg("A0"), nb::arg("A1"), nb::arg("A2"),
             nb::arg("x"),
             "(value, kappa, eta) of the eigenvalue x of det(A0 + A1 x + A2 x²): its distance "
             "from the real axis over its first-order error bound, its condition number and "
             "backward error.");
     sub.attr("PENCIL_EPS") = kg::PENCIL_EPS;
+    sub.attr("MAX_NULLITY") = kg::MAX_NULLITY;
+    sub.attr("EXTRA_NULL_TOL") = kg::EXTRA_NULL_TOL;
     sub.attr("CERTIFY_MARGIN") = kg::CERTIFY_MARGIN;
     sub.def("certifies", &kg::certifies, nb::arg("margin"),
             "True when a spectrum's margin from the real axis proves det M has no real root.");

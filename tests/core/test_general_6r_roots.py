@@ -2,7 +2,8 @@
 
 Against matrix polynomials built with known roots: M(x) = U diag(d_k(x)) V with U, V
 constant and well conditioned, so det M = det U det V Π d_k(x). Four d_k = 1 + x²
-give the structure of the elimination (8 roots at ±i, M(i) of nullity 4), the others
+give the structure of the elimination (8 roots at ±i, M(i) of nullity 4; up to
+MAX_NULLITY such factors are deflated), the others
 (x - a)(x - b) or a complex pair: the real roots are exactly the real a, b. The
 deflation's tolerance SPURIOUS_TOL is pinned from both sides on matrices whose
 elimination's pivots are set by construction.
@@ -81,17 +82,52 @@ def _pivots(r8: float, r9: float) -> list[np.ndarray]:
 
 @pytest.mark.parametrize("side", [1.0 - EDGE, 1.0 + EDGE])
 def test_spurious_tol_bounds_the_ninth_pivot(side: float) -> None:
-    deflated, r8, r9 = G.spurious_pivots(*_pivots(0.5, SPURIOUS_TOL * side))
-    assert r8 == pytest.approx(0.5) and r9 == pytest.approx(SPURIOUS_TOL * side, rel=1e-12)
-    assert deflated == (side < 1.0)
+    # the ninth pivot just below the tolerance: a null space of 4, deflated; just above
+    # it: 3 (the tenth is 0), the elimination's structure lost, not deflated
+    nullity, last, small = G.spurious_pivots(*_pivots(0.5, SPURIOUS_TOL * side))
+    if side < 1.0:
+        assert nullity == 4
+        assert last == pytest.approx(0.5) and small == pytest.approx(SPURIOUS_TOL * side, rel=1e-12)
+    else:
+        assert nullity == 0
+        assert last == pytest.approx(SPURIOUS_TOL * side, rel=1e-12) and small == 0.0
 
 
 @pytest.mark.parametrize("side", [1.0 - EDGE, 1.0 + EDGE])
 def test_spurious_tol_bounds_the_eighth_pivot_from_below(side: float) -> None:
-    # a fifth null direction (a genuine root at ±i, or a degenerate arm): not deflated
-    deflated, r8, _ = G.spurious_pivots(*_pivots(SPURIOUS_TOL * side, 0.0))
-    assert r8 == pytest.approx(SPURIOUS_TOL * side, rel=1e-12)
-    assert deflated == (side > 1.0)
+    # the eighth pivot just below the tolerance: a fifth null direction not at round-off
+    # (a near-degenerate arm), not deflated; just above it: the four, deflated
+    nullity, last, small = G.spurious_pivots(*_pivots(SPURIOUS_TOL * side, 0.0))
+    assert nullity == (0 if side < 1.0 else 4)
+    assert (small if side < 1.0 else last) == pytest.approx(SPURIOUS_TOL * side, rel=1e-12)
+
+
+@pytest.mark.parametrize("side", [1.0 - EDGE, 1.0 + EDGE])
+def test_extra_null_tol_bounds_a_fifth_null_direction(side: float) -> None:
+    # a fifth null direction at EXTRA_NULL_TOL: just below, deflated with the others
+    # (det M with (1 + x²)⁵); just above, not (a near-degenerate arm's)
+    assert G.EXTRA_NULL_TOL == 1e-13  # the documented value
+    nullity, _, small = G.spurious_pivots(*_pivots(G.EXTRA_NULL_TOL * side, 0.0))
+    assert small == pytest.approx(G.EXTRA_NULL_TOL * side, rel=1e-12)
+    assert nullity == (5 if side < 1.0 else 0)
+
+
+@pytest.mark.parametrize("extra", [1, 2, 3])
+def test_more_roots_at_plus_minus_i_are_deflated_up_to_max_nullity(extra: int) -> None:
+    # det M with (1 + x²)^(4 + extra) (an exact arm's special structure: a Franka Panda
+    # held at q1 has 6): deflated whole up to MAX_NULLITY, the 24 x 24 problem beyond;
+    # the real roots the same either way
+    assert G.MAX_NULLITY == 6  # the documented value
+    rng = np.random.default_rng(5 + extra)
+    real = [-2.0, -0.5, 0.25, 1.5]
+    pairs = [_real_pair(-2.0, -0.5), _real_pair(0.25, 1.5)]
+    pairs += [(1.0, 0.5, 1.0)] * (6 - extra)
+    A = _quadratic(rng, [SPURIOUS_FACTOR] * (4 + extra) + pairs)
+    nullity, _, _ = G.spurious_pivots(*A)
+    assert nullity == (4 + extra if 4 + extra <= G.MAX_NULLITY else 0)
+    roots, deflated = G.real_roots(*A)
+    assert deflated == (nullity > 0)
+    np.testing.assert_allclose(np.sort(roots), real, atol=ROOT_TOL)
 
 
 def _split_boundary(x0: float) -> float:

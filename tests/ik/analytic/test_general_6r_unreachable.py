@@ -170,3 +170,30 @@ def test_a_7r_arm_held_at_any_middle_value_is_never_left_to_the_search() -> None
             assert res.method == "analytic:general-6R", res.notes
             statuses.add(str(res.status))
     assert statuses == {"ok", "unreachable"}
+
+
+def test_a_panda_held_at_q1_is_proved_out_of_reach_beside_its_twelve_roots() -> None:
+    # the Panda held at q1 leaves a 6R arm whose det M has (1 + x²)⁶ (M(i) of nullity 6,
+    # MAX_NULLITY): deflated to 12 genuine roots, so a target none closes is proved out of
+    # reach; a 100-start search with q1 held finds none of those, and none is searched
+    robot = km.load("panda")
+    rng = np.random.default_rng(5)
+    proved = 0
+    for _ in range(16):
+        T = robot.fk(rng.uniform(robot.qlim[:, 0], robot.qlim[:, 1]))
+        q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+        T[:3, :3] = q * np.sign(np.linalg.det(q))
+        v = float(rng.uniform(robot.qlim[0, 0], robot.qlim[0, 1]))
+        res = robot.ik(T, fixed={0: v}, respect_limits=False)
+        assert res.method == "analytic:general-6R", res.notes
+        if str(res.status) == "unreachable":
+            proved += 1
+            Q0 = rng.uniform(-math.pi, math.pi, (100, 7))
+            Q0[:, 0] = v
+            many = np.repeat(T[None], 100, axis=0)
+            search = robot.ik(many, q0=Q0, method="numeric", fixed={0: v}, respect_limits=False)
+            assert set(map(str, search.status)) == {"not_found"}
+    assert proved >= 3
+    params = closed_form(robot.chain.locked(0, 0.3), "pose").params
+    A = G.pencil(params, T)
+    assert G.spurious_pivots(*A)[0] == 6

@@ -11,8 +11,10 @@
 // [[S, ·], [0, C22 - Z2 Z1⁻¹ C12]]) leaves a 16 x 16 matrix whose eigenvalues are the 16
 // roots a configuration can make: a third of the work of the 24 x 24 eigenproblem.
 //
-// Where M(i)'s null space is not 4 clean dimensions (SPURIOUS_TOL), the 24 x 24 problem
-// is solved as it is: its 8 roots at ±i are then no real root (REAL_ROOT_TOL).
+// Some exact arms' det M has (1 + x²)^m, m > 4 (M(i)'s null space of dimension m: a
+// Franka Panda held at q1, m = 6): the same deflation leaves 24 - 2m roots. Where M(i)'s
+// null space is below 4 dimensions or above MAX_NULLITY (SPURIOUS_TOL), the 24 x 24
+// problem is solved as it is: its roots at ±i are then no real root (REAL_ROOT_TOL).
 //
 // Where A2 is ill-conditioned (no companion matrix: an arm near one whose elimination
 // degenerates, det M(x) ≡ 0 for the exact UR5, so that M(x) is nearly singular for every
@@ -55,11 +57,24 @@ constexpr double REAL_ROOT_TOL = 1e-4;
 //! size s. Each candidate is taken to a solution near it or dropped by the Newton step
 //! and the check (general_6r.hpp).
 constexpr double SPLIT_ROOT_TOL = 1e-2;
-//! M(i)'s null space is deflated when its full-pivot LU has exactly 4 pivots at most this
-//! times the largest (the spurious roots' null space, at round-off: 1e-16 measured) and
-//! the fifth above it (1e-4 to 1e-3 measured on random arms). Else (a genuine root near
-//! x = ±i, or a degenerate arm) the 24 x 24 problem is solved whole.
+//! M(i)'s null space is the span of its full-pivot LU's last columns from the first pivot
+//! at most this times the largest (the spurious roots' null space, at round-off: 1e-16
+//! measured; the pivot before it 1e-4 to 1e-3 on random arms).
 constexpr double SPURIOUS_TOL = 1e-9;
+//! That null space is deflated when its dimension m is 4 (every arm's (1 + x²)⁴), or up to
+//! this where its first pivot is at round-off (EXTRA_NULL_TOL): some exact arms' det M has
+//! (1 + x²)^m (a Franka Panda held at q1: m = 6, 12 genuine roots). Else (nullity below
+//! 4: the elimination's structure lost; more, not at round-off: an arm near one whose
+//! pencil is singular, a UR5 tilted by 5e-10 rad) the 24 x 24 problem is solved whole.
+constexpr int MAX_NULLITY = 6;
+//! A null space of M(i) beyond 4 dimensions is deflated only where its first pivot is at
+//! most this times the largest: round-off (the Panda held at q1: 2e-16); a near-degenerate
+//! arm's extra directions lie at about its distance from degenerate (1e-10 and more), and
+//! are not an invariant subspace of the roots at ±i.
+constexpr double EXTRA_NULL_TOL = 1e-13;
+//! Z, the real basis of C's invariant subspace of the roots at ±i (2 columns per null
+//! direction of M(i)).
+using SpuriousBasis = Eigen::Matrix<double, ROOTS, 2 * MAX_NULLITY>;
 
 using Matrix12 = Eigen::Matrix<double, SIZE, SIZE>;
 using Vector12 = Eigen::Matrix<double, SIZE, 1>;
@@ -179,14 +194,15 @@ inline int take_root(std::complex<double> alpha, double beta, double* roots, boo
     return found;
 }
 
-//! Z (24 x 8), the real basis of C's invariant subspace of the roots x = ±i, from M(i)'s
+//! The real basis Z (24 x 2m) of C's invariant subspace of the roots x = ±i, from M(i)'s
 //! elimination with full pivoting (real and imaginary parts apart: std::complex's
-//! products check for infinities, at several times the cost); false (Z untouched) when
-//! that null space is not 4 clean dimensions (SPURIOUS_TOL). `ratios`, when given: the
-//! 8th and 9th pivots' moduli over the first's.
-inline bool spurious_subspace(const Matrix12* A, Eigen::Matrix<double, ROOTS, SPURIOUS>& Z,
-                              double* ratios = nullptr) {
-    constexpr int RANK = SIZE - SPURIOUS / 2;
+//! products check for infinities, at several times the cost); returns m, the dimension of
+//! M(i)'s null space (its pivots from the first at most SPURIOUS_TOL times the largest),
+//! or 0 (Z untouched) when that is below SPURIOUS / 2, above MAX_NULLITY, or above
+//! SPURIOUS / 2 with its first pivot above EXTRA_NULL_TOL. `ratios`, when
+//! given: the last pivot above the tolerance and the first below it (0 when none is),
+//! their moduli over the first's.
+inline int spurious_subspace(const Matrix12* A, SpuriousBasis& Z, double* ratios = nullptr) {
     double re[SIZE][SIZE], im[SIZE][SIZE];  // M(i) = A0 - A2 + i A1
     for (int r = 0; r < SIZE; ++r)
         for (int c = 0; c < SIZE; ++c) {
@@ -195,8 +211,9 @@ inline bool spurious_subspace(const Matrix12* A, Eigen::Matrix<double, ROOTS, SP
         }
     int col[SIZE];  // column k of the eliminated matrix is M(i)'s column col[k]
     for (int c = 0; c < SIZE; ++c) col[c] = c;
-    double first = 0.0, last = 0.0;  // squared moduli of the first and RANK-th pivots
-    for (int k = 0; k <= RANK; ++k) {
+    double first = 0.0, last = 0.0, small = 0.0;  // squared moduli of pivots
+    int rank = SIZE;
+    for (int k = 0; k < SIZE; ++k) {
         int pr = k, pc = k;
         double big = -1.0;
         for (int r = k; r < SIZE; ++r)
@@ -205,13 +222,12 @@ inline bool spurious_subspace(const Matrix12* A, Eigen::Matrix<double, ROOTS, SP
                 if (m > big) big = m, pr = r, pc = c;
             }
         if (k == 0) first = big;
-        if (k == RANK - 1) last = big;
-        if (k == RANK) {  // the (RANK+1)-th pivot: the null space's own size
-            if (ratios != nullptr) ratios[0] = std::sqrt(last / first), ratios[1] = std::sqrt(big / first);
-            const double tol2 = SPURIOUS_TOL * SPURIOUS_TOL * first;
-            if (!(big <= tol2 && last > tol2)) return false;
+        if (!(big > SPURIOUS_TOL * SPURIOUS_TOL * first)) {  // the null space begins here
+            rank = k;
+            small = big;
             break;
         }
+        last = big;
         for (int c = 0; c < SIZE; ++c) std::swap(re[k][c], re[pr][c]), std::swap(im[k][c], im[pr][c]);
         for (int r = 0; r < SIZE; ++r) std::swap(re[r][k], re[r][pc]), std::swap(im[r][k], im[r][pc]);
         std::swap(col[k], col[pc]);
@@ -225,13 +241,20 @@ inline bool spurious_subspace(const Matrix12* A, Eigen::Matrix<double, ROOTS, SP
             }
         }
     }
-    for (int f = 0; f < SPURIOUS / 2; ++f) {
-        // the null vector with free column RANK + f set to 1, the other free ones 0
+    if (ratios != nullptr) {
+        ratios[0] = first > 0.0 ? std::sqrt(last / first) : 0.0;
+        ratios[1] = first > 0.0 ? std::sqrt(small / first) : 0.0;
+    }
+    const int nullity = SIZE - rank;
+    if (nullity < SPURIOUS / 2 || nullity > MAX_NULLITY) return 0;
+    if (nullity > SPURIOUS / 2 && !(small <= EXTRA_NULL_TOL * EXTRA_NULL_TOL * first)) return 0;
+    for (int f = 0; f < nullity; ++f) {
+        // the null vector with free column rank + f set to 1, the other free ones 0
         double vr[SIZE] = {}, vi[SIZE] = {};
-        vr[RANK + f] = 1.0;
-        for (int i = RANK - 1; i >= 0; --i) {
-            double tr = -re[i][RANK + f], ti = -im[i][RANK + f];
-            for (int j = i + 1; j < RANK; ++j) {
+        vr[rank + f] = 1.0;
+        for (int i = rank - 1; i >= 0; --i) {
+            double tr = -re[i][rank + f], ti = -im[i][rank + f];
+            for (int j = i + 1; j < rank; ++j) {
                 tr -= re[i][j] * vr[j] - im[i][j] * vi[j];
                 ti -= re[i][j] * vi[j] + im[i][j] * vr[j];
             }
@@ -248,17 +271,20 @@ inline bool spurious_subspace(const Matrix12* A, Eigen::Matrix<double, ROOTS, SP
             Z(SIZE + j, 2 * f + 1) = vr[k];
         }
     }
-    return true;
+    return nullity;
 }
 
-//! C with its invariant subspace Z eliminated: D, the 16 x 16 matrix of C's other roots.
-//! Z = P [L1; L2] U by partial pivoting (rows `perm[0..7]` first); then W = L2 L1⁻¹
-//! (entries of L at most 1) and D = C22 - W C12 over the other rows and columns.
-inline void deflate(const double (&C)[ROOTS][ROOTS], Eigen::Matrix<double, ROOTS, SPURIOUS> Z,
-                    double (&D)[GENUINE][GENUINE]) {
+//! C with its invariant subspace Z (24 x K) eliminated: D, the (24 - K) x (24 - K) matrix
+//! of C's other roots. Z = P [L1; L2] U by partial pivoting (rows `perm[0..K-1]` first);
+//! then W = L2 L1⁻¹ (entries of L at most 1) and D = C22 - W C12 over the other rows and
+//! columns.
+template <int K>
+void deflate(const double (&C)[ROOTS][ROOTS], Eigen::Matrix<double, ROOTS, K> Z,
+             double (&D)[ROOTS - K][ROOTS - K]) {
+    constexpr int N = ROOTS - K;
     int perm[ROOTS];
     for (int i = 0; i < ROOTS; ++i) perm[i] = i;
-    for (int k = 0; k < SPURIOUS; ++k) {
+    for (int k = 0; k < K; ++k) {
         int p = k;
         for (int i = k + 1; i < ROOTS; ++i)
             if (std::fabs(Z(i, k)) > std::fabs(Z(p, k))) p = i;
@@ -269,24 +295,35 @@ inline void deflate(const double (&C)[ROOTS][ROOTS], Eigen::Matrix<double, ROOTS
         for (int i = k + 1; i < ROOTS; ++i) {
             const double l = Z(i, k) / Z(k, k);
             Z(i, k) = l;
-            for (int j = k + 1; j < SPURIOUS; ++j) Z(i, j) -= l * Z(k, j);
+            for (int j = k + 1; j < K; ++j) Z(i, j) -= l * Z(k, j);
         }
     }
-    // W (16 x 8) with W L1 = L2, L1 unit lower triangular: its columns from the last
-    double W[GENUINE][SPURIOUS];
-    for (int r = 0; r < GENUINE; ++r) {
-        for (int k = SPURIOUS - 1; k >= 0; --k) {
-            double t = Z(SPURIOUS + r, k);
-            for (int j = k + 1; j < SPURIOUS; ++j) t -= W[r][j] * Z(j, k);
+    // W (N x K) with W L1 = L2, L1 unit lower triangular: its columns from the last
+    double W[N][K];
+    for (int r = 0; r < N; ++r) {
+        for (int k = K - 1; k >= 0; --k) {
+            double t = Z(K + r, k);
+            for (int j = k + 1; j < K; ++j) t -= W[r][j] * Z(j, k);
             W[r][k] = t;
         }
     }
-    for (int r = 0; r < GENUINE; ++r)
-        for (int c = 0; c < GENUINE; ++c) {
-            double t = C[perm[SPURIOUS + r]][perm[SPURIOUS + c]];
-            for (int k = 0; k < SPURIOUS; ++k) t -= W[r][k] * C[perm[k]][perm[SPURIOUS + c]];
+    for (int r = 0; r < N; ++r)
+        for (int c = 0; c < N; ++c) {
+            double t = C[perm[K + r]][perm[K + c]];
+            for (int k = 0; k < K; ++k) t -= W[r][k] * C[perm[k]][perm[K + c]];
             D[r][c] = t;
         }
+}
+
+//! The eigenvalues of C with its roots at ±i (M(i)'s null space of dimension M, basis Z)
+//! deflated: 24 - 2M of them into re, im; false when the iteration failed.
+template <int M>
+bool deflated_eigenvalues(const double (&C)[ROOTS][ROOTS], const SpuriousBasis& Z, double* re,
+                          double* im) {
+    constexpr int N = ROOTS - 2 * M;
+    double D[N][N];
+    deflate<2 * M>(C, Z.template leftCols<2 * M>(), D);
+    return eigen::eigenvalues(D, re, im);
 }
 
 //! The real roots x of det M(x) (M = A0 + A1 x + A2 x², lead: A2's LU) into roots (at
@@ -305,22 +342,25 @@ inline int real_roots(const Matrix12* A, const Eigen::PartialPivLU<Matrix12>& le
             C[SIZE + i][SIZE + j] = B1(i, j);
         }
     }
-    Eigen::Matrix<double, ROOTS, SPURIOUS> Z;
-    const bool spurious = spurious_subspace(A, Z);
-    if (deflated != nullptr) *deflated = spurious;
+    SpuriousBasis Z;
+    const int nullity = spurious_subspace(A, Z);
+    if (deflated != nullptr) *deflated = nullity > 0;
     double re[ROOTS], im[ROOTS];
     int n = ROOTS;
-    if (spurious) {
-        double D[GENUINE][GENUINE];
-        deflate(C, Z, D);
-        if (!eigen::eigenvalues(D, re, im)) return -1;
-        n = GENUINE;
+    bool solved = false;
+    switch (nullity) {
+        case 4: solved = deflated_eigenvalues<4>(C, Z, re, im); break;
+        case 5: solved = deflated_eigenvalues<5>(C, Z, re, im); break;
+        case 6: solved = deflated_eigenvalues<6>(C, Z, re, im); break;
+        default: solved = eigen::eigenvalues(C, re, im); break;
+    }
+    if (!solved) return -1;
+    if (nullity > 0) {
+        n = ROOTS - 2 * nullity;
         if (spectrum != nullptr) {
-            spectrum->n = GENUINE;
-            for (int r = 0; r < GENUINE; ++r) spectrum->x[r] = {re[r], im[r]};
+            spectrum->n = n;
+            for (int r = 0; r < n; ++r) spectrum->x[r] = {re[r], im[r]};
         }
-    } else if (!eigen::eigenvalues(C, re, im)) {
-        return -1;
     }
     int found = 0;
     for (int r = 0; r < n; ++r) found = take_root({re[r], im[r]}, 1.0, roots, split, found);
