@@ -143,6 +143,7 @@ bench: $(CORE_STAMP)
 	$(BIN)/python benchmarks/ik_srs.py
 	$(BIN)/python benchmarks/robustness.py
 	$(BIN)/python benchmarks/audit_ik.py --poses 300  # the full audit (10,000 a class) by hand
+	$(BIN)/python benchmarks/audit_unreachable.py --arms 30 --edges 10
 
 clean:
 	rm -rf $(VENV) $(SAN_VENV) build dist site .pytest_cache .mypy_cache .ruff_cache
