@@ -815,6 +815,7 @@ struct General6RParams : Elimination {
     struct Passes {
         int filled[CLASSES] = {};
         int further = 0;
+        double further_closure[FURTHER] = {};  //!< the closure of each further slot's candidate
         bool closes = false, fold = false;
         double rcond = NaN;  //!< A2's reciprocal condition at the first shift
         //! where none closes: the spectrum's margin from the real axis (spectrum_margin;
@@ -904,9 +905,19 @@ struct General6RParams : Elimination {
                     --slot;
                 }
             } else if (st.further < FURTHER) {
-                slot = CLASSES * PER_CLASS + st.further++;
+                slot = CLASSES * PER_CLASS + st.further;
+                st.further_closure[st.further++] = closure;
             } else {
-                return;  // beyond 24 real roots: not possible (degree 24)
+                // every slot taken: the further slot of the worst closure yields to a better
+                // candidate (split pairs and extraneous roots leave candidates that close
+                // nothing: an Agilex Piper's 20 filled every slot before a root of its
+                // generating configuration came, 2 of 4 solutions lost)
+                int worst = 0;
+                for (int k = 1; k < FURTHER; ++k)
+                    if (st.further_closure[k] > st.further_closure[worst]) worst = k;
+                if (!(closure < st.further_closure[worst])) return;
+                st.further_closure[worst] = closure;
+                slot = CLASSES * PER_CLASS + worst;
             }
             for (int k = 0; k < 6; ++k) Q[slot * 6 + k] = q[k];
         };
