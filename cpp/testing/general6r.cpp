@@ -181,22 +181,28 @@ nb::tuple eigenvalues_of(nb::handle A) {
     return out;
 }
 
+//! The Trace of one solve of the pose T (the solver's info into `info` when given).
+kg::Trace traced(const General6RParams& p, const km::Pose& T, km::SolverInfo* info = nullptr) {
+    if (const char* why = p.invalid()) throw nb::value_error(why);
+    double Q[kg::SLOTS * 6];
+    km::SolverInfo local;
+    kg::Trace t;
+    p.solve(T, Q, info != nullptr ? *info : local, &t);
+    return t;
+}
+
 //! (rcond, shift6, closure, near, deflated, qz) of one solve of the pose T: its Trace and flag.
 nb::tuple trace_of(const General6RParams& p, const km::Pose& T) {
-    double Q[kg::SLOTS * 6];
     km::SolverInfo info;
-    kg::Trace t;
-    p.solve(T, Q, info, &t);
+    const kg::Trace t = traced(p, T, &info);
     return nb::make_tuple(t.rcond, t.shift6, t.closure, info.near, t.deflated, t.qz);
 }
 
 //! (singular, near, free mask, rank, reclosure) of one solve of the pose T: the solver's
 //! info and the self-motion tests' smallest σ6/σ1 (NaN: none computed) and re-closure.
 nb::tuple degeneracy_of(const General6RParams& p, const km::Pose& T) {
-    double Q[kg::SLOTS * 6];
     km::SolverInfo info;
-    kg::Trace t;
-    p.solve(T, Q, info, &t);
+    const kg::Trace t = traced(p, T, &info);
     return nb::make_tuple(info.singular, info.near, info.free, t.rank, t.reclosure);
 }
 
@@ -298,11 +304,7 @@ nb::tuple build_of(const km::Chain& chain) {
 //! (answered, tried) of one solve of the pose T: the labelling whose candidates were
 //! kept (0: the chosen one, k: alternate k) and how many alternates' passes ran.
 nb::tuple attempts_of(const General6RParams& p, const km::Pose& T) {
-    if (const char* why = p.invalid()) throw nb::value_error(why);
-    double Q[kg::SLOTS * 6];
-    km::SolverInfo info;
-    kg::Trace t;
-    p.solve(T, Q, info, &t);
+    const kg::Trace t = traced(p, T);
     return nb::make_tuple(t.answered, t.tried);
 }
 
@@ -459,14 +461,7 @@ void bind_general6r_testing(nb::module_& m) {
             "True when a candidate that missed by `worst` (m or rad) before Newton's step is "
             "looked for again as one of two solutions sharing its root.");
     sub.def("resolved",
-            [](const General6RParams& p, const km::Pose& T) {
-                if (const char* why = p.invalid()) throw nb::value_error(why);
-                double Q[kg::SLOTS * 6];
-                km::SolverInfo info;
-                kg::Trace t;
-                p.solve(T, Q, info, &t);
-                return t.resolved;
-            },
+            [](const General6RParams& p, const km::Pose& T) { return traced(p, T).resolved; },
             nb::arg("params"), nb::arg("T"),
             "True when the solve of the pose T took a root's null space as two-dimensional "
             "(a candidate missed by over RESOLVE_TOL).");
@@ -529,12 +524,8 @@ void bind_general6r_testing(nb::module_& m) {
             "True when a spectrum's margin from the real axis proves det M has no real root.");
     sub.def("margin",
             [](const General6RParams& p, const km::Pose& T) {
-                if (const char* why = p.invalid()) throw nb::value_error(why);
-                double Q[kg::SLOTS * 6];
-                km::SolverInfo info;
-                kg::Trace t;
-                p.solve(T, Q, info, &t);
-                return nb::make_tuple(t.margin.value, t.margin.kappa, t.margin.eta);
+                const kg::RootMargin m = traced(p, T).margin;
+                return nb::make_tuple(m.value, m.kappa, m.eta);
             },
             nb::arg("params"), nb::arg("T"),
             "(margin, kappa, eta) of the chosen labelling's spectrum for the pose T where none "
