@@ -55,8 +55,8 @@
 //
 // Out of reach. Every solution makes a real root of det M(x6) (M(x6) u = 0 with u its
 // monomial vector, homogenized where q'4 or q'5 is at the shift + π), and a well-conditioned
-// A2 puts no root at x6 = ∞. So where no candidate closes, the 16 eigenvalues are checked
-// off the real axis: each one's distance |Im x| over κ(x) (η(x) + PENCIL_EPS), its
+// A2 puts no root at x6 = ∞. So where no candidate closes, the deflated eigenvalues (16,
+// or 24 - 2m where M(i)'s null space has m > 4 dimensions) are checked off the real axis: each one's distance |Im x| over κ(x) (η(x) + PENCIL_EPS), its
 // condition number times its backward error plus the pencil's own round-off, must reach
 // CERTIFY_MARGIN (general_6r_roots.hpp: real_axis_margin). Then no solution exists: the
 // answer is "unreachable". Random arms' targets beyond the workspace are proved so from
@@ -252,7 +252,7 @@ struct Trace {
     int answered = 0;        //!< the labelling whose candidates were kept: 0 this one, k alternate k
     int tried = 0;           //!< alternates whose pass ran
     //! the chosen labelling's spectrum_margin where none of its candidates closed (value
-    //! NaN: not computed, one closed or its eigenvalues were not the deflated 16)
+    //! NaN: not computed, one closed or its eigenvalues were not deflated)
     RootMargin margin{NaN};
 };
 
@@ -910,8 +910,8 @@ struct General6RParams : Elimination {
             } else {
                 // every slot taken: the further slot of the worst closure yields to a better
                 // candidate (split pairs and extraneous roots leave candidates that close
-                // nothing: an Agilex Piper's 20 filled every slot before a root of its
-                // generating configuration came, 2 of 4 solutions lost)
+                // nothing: 18 of an Agilex Piper's filled every slot of a class before a
+                // root of its generating configuration came, 2 of 4 solutions lost)
                 int worst = 0;
                 for (int k = 1; k < FURTHER; ++k)
                     if (st.further_closure[k] > st.further_closure[worst]) worst = k;

@@ -86,13 +86,14 @@ using Vector12 = Eigen::Matrix<double, SIZE, 1>;
 //! of the pencil's size; this allows 4,500 units of round-off.
 constexpr double PENCIL_EPS = 1e-12;
 //! det M(x) has no real root when every eigenvalue x of the pencil lies this many times
-//! its error bound from the real axis (certify_no_real_root): the bound is first order,
+//! its error bound from the real axis (certifies): the bound is first order,
 //! κ(x) (η(x) + PENCIL_EPS), and a factor of 100 leaves room for its second-order term
 //! and for the estimate of κ.
 constexpr double CERTIFY_MARGIN = 100.0;
 
-//! The pencil's eigenvalues as the eigenproblem gave them (deflated: the 16 roots a
-//! configuration can make); n = 0 where they were not kept (the 24 x 24 problem or QZ).
+//! The pencil's eigenvalues as the eigenproblem gave them (deflated: the 24 - 2m roots a
+//! configuration can make, 16 for m = 4); n = 0 where they were not kept (the 24 x 24
+//! problem or QZ).
 struct Spectrum {
     int n = 0;
     std::complex<double> x[GENUINE];
