@@ -203,6 +203,21 @@ def test_random_splines_hit_and_join_whatever_the_spacing() -> None:
                     assert np.abs(jumps(p, r)).max(initial=0.0) <= tol * scale
 
 
+def test_a_natural_quintic_through_two_waypoints_is_the_line() -> None:
+    """Every quadratic through two points has no jerk: the least-jerk interpolant is not
+    unique there, and the line (of least acceleration, the natural cubic's) is taken, at
+    spacings whose singular system once gave NaN or an arbitrary quadratic."""
+    y = np.array([[0.88287423, -1.52937171], [0.00350815, -0.64995619]])
+    for T in (4.54834549, 0.137, 1.0, 7.3):
+        t = np.array([0.0, T])
+        p = via_polynomials(y, "quintic", t, ends="natural")
+        line = via_polynomials(y, "cubic", t, ends="natural")
+        s = np.linspace(0.0, T, 9)
+        assert np.all(np.isfinite(p(s)))
+        assert np.abs(p(s) - line(s)).max() <= 1e-12
+        assert np.abs(p(s) - (y[0] + np.outer(s / T, y[1] - y[0]))).max() <= 1e-12
+
+
 def test_a_sampling_too_fine_for_its_duration_is_refused_before_any_sample() -> None:
     from kinematica.motion.trajectory import MAX_SAMPLES
 

@@ -77,6 +77,13 @@ def spline_derivatives(
     w = m - 1
     basis, slots = _BASIS[m], _SLOTS[m]
     h = np.diff(t)
+    if ends == "natural" and k == 2 and m == 3:
+        # Through two knots every quadratic has no jerk and zero jerk and snap at both ends:
+        # the least-jerk interpolant is not unique (the system below is singular). The one
+        # of least acceleration among them is taken: the line, as the natural cubic's.
+        line = np.zeros((2, w, n))
+        line[:, 0] = (y[1] - y[0]) / h[0]
+        return line
     # Rows of knot i: L[i] x[i-1] + D[i] x[i] + U[i] x[i+1] = R[i], x[i] its w derivatives.
     L, D, U = np.zeros((k, w, w)), np.zeros((k, w, w)), np.zeros((k, w, w))
     R = np.zeros((k, w, n))
