@@ -78,7 +78,6 @@ void bind_general6r(nb::module_& m) {
         "general6r",
         "Any 6R arm: Raghavan-Roth elimination to a 12 x 12 quadratic eigenproblem "
         "(Manocha-Canny), computed numerically from the arm's loop.");
-    sub.attr("SLOTS") = kg::SLOTS;
     sub.attr("CLASSES") = kg::CLASSES;
     sub.attr("PER_CLASS") = kg::PER_CLASS;
     sub.attr("FURTHER") = kg::FURTHER;
@@ -103,9 +102,6 @@ void bind_general6r(nb::module_& m) {
         "geometry's tolerance: the family's candidates and the general 6R's, checked "
         "together (solvers/near_6r.hpp; built by near_6r_build.hpp).",
         "km::Near6RParams<km::ParallelParams>", "kinematica/solvers/near_6r_build.hpp")
-        .def_ro("watch", &NearParallel::watch,
-                "the general 6R runs where the family's candidates lie within this of its "
-                "singular sets (rad; inf: everywhere)")
         .attr("cpp_build") = "km::build_near_parallel";
     sub.def("near_parallel", [](const km::Chain& c) { return km::build_near_parallel(c); },
             nb::arg("chain"),

@@ -34,10 +34,7 @@ km::NumericSolver make_numeric(F64 bounds, const km::Tolerance& tol, int max_ste
     for (npy_intp i = 0; i < n; ++i) {
         solver.bounds.push_back({b.data[3 * i], b.data[3 * i + 1], b.data[3 * i + 2]});
     }
-    solver.settings.tol = tol;
-    solver.settings.max_steps = max_steps;
-    solver.settings.reach = reach;
-    solver.settings.base = base;
+    solver.settings = km::LMSettings{tol, max_steps, reach, base};
     for (int k = 0; k < 6; ++k) solver.weights[k] = weights[static_cast<size_t>(k)];
     solver.samples.assign(s.data, s.data + s.size());
     solver.middle.assign(mid.data, mid.data + n);
@@ -140,12 +137,12 @@ void bind_answers(nb::module_& m) {
         .def_ro("free", &BatchAnswer::free, "(N, n) the free joints");
 
     nb::class_<Prepared>(m, "Prepared", "A solver made ready for one target (Params.prepare).")
-        .def("__call__", &Prepared::operator(), nb::arg("T").none(),
-             "The result (or Answer) of T (4, 4); None for a target to read otherwise.")
+        .def("__call__", &Prepared::operator(), nb::arg("T").none(), nb::arg("q0").none() = nb::none(),
+             "The result (or Answer) of T (4, 4), sorted by q0 (n,); None for either to read otherwise.")
         .def("held", &Prepared::held, nb::arg("joint"), nb::arg("A"), nb::arg("after"),
              nb::arg("slides"), nb::arg("name"),
              "This Prepared of the arm locked at 0 at the whole arm's end joint `joint` (ik.moved).")
-        .def("at", &Prepared::at, nb::arg("T").none(), nb::arg("value"),
+        .def("at", &Prepared::at, nb::arg("T").none(), nb::arg("value"), nb::arg("q0").none() = nb::none(),
              "The whole arm's result of T (4, 4) with the held joint at `value` (or None).")
         .def("sweep", &Prepared::sweep, nb::arg("T"), nb::arg("start"), nb::arg("grid"),
              nb::arg("skip"), nb::arg("bounds").none(), nb::arg("position"), nb::arg("rotation"),
@@ -216,8 +213,6 @@ void bind_ik(nb::module_& m) {
     static_assert(static_cast<int>(km::Status::invalid) == 5, "a name for each status");
     for (int code = 0; code < 6; ++code) status[names[code]] = code;
     m.attr("STATUS") = status;
-
-    m.attr("LIMIT_TOL") = km::LIMIT_TOL;
 }
 
 }  // namespace kmpy

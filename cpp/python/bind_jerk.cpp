@@ -18,10 +18,11 @@ namespace {
 
 namespace kj = km::jerk;
 
-//! (n) limits, each finite and positive.
-std::vector<kj::Limits> limits_of(const In& V, const In& A, const In& J) {
-    std::vector<kj::Limits> L(static_cast<std::size_t>(V.dim[0]));
-    for (npy_intp i = 0; i < V.dim[0]; ++i) {
+//! The limits vmax, amax, jmax (n,) of n joints, each finite and positive.
+std::vector<kj::Limits> limits_of(F64 vmax, F64 amax, F64 jmax, npy_intp n) {
+    const In V = in_f64(vmax, "vmax", 1, {n}), A = in_f64(amax, "amax", 1, {n}), J = in_f64(jmax, "jmax", 1, {n});
+    std::vector<kj::Limits> L(static_cast<std::size_t>(n));
+    for (npy_intp i = 0; i < n; ++i) {
         const double v = V.data[i], a = A.data[i], j = J.data[i];
         if (!(v > 0.0 && a > 0.0 && j > 0.0 && std::isfinite(v) && std::isfinite(a) && std::isfinite(j))) {
             fail_value("vmax, amax and jmax", "finite and positive");
@@ -48,8 +49,7 @@ nb::tuple jerk_segments(F64 p0, F64 v0, F64 p1, F64 v1, F64 vmax, F64 amax, F64 
     const npy_intp m = P0.dim[0], n = P0.dim[1];
     if (n < 1) fail_value("p0", "of at least one joint");
     const In V0 = in_f64(v0, "v0", 2, {m, n}), P1 = in_f64(p1, "p1", 2, {m, n}), V1 = in_f64(v1, "v1", 2, {m, n});
-    const In VM = in_f64(vmax, "vmax", 1, {n}), AM = in_f64(amax, "amax", 1, {n}), JM = in_f64(jmax, "jmax", 1, {n});
-    const std::vector<kj::Limits> L = limits_of(VM, AM, JM);
+    const std::vector<kj::Limits> L = limits_of(vmax, amax, jmax, n);
     check_states(P0, "p0", nullptr);
     check_states(P1, "p1", nullptr);
     check_states(V0, "v0", &L);
@@ -96,8 +96,7 @@ void via_args(ViaArgs& A, F64 w, F64 v_start, F64 v_end, F64 vmax, F64 amax, F64
     if (k < 2 || n < 1) fail_value("w", "of at least 2 waypoints of at least one joint");
     A.VS = in_f64(v_start, "v_start", 1, {n});
     A.VE = in_f64(v_end, "v_end", 1, {n});
-    const In VM = in_f64(vmax, "vmax", 1, {n}), AM = in_f64(amax, "amax", 1, {n}), JM = in_f64(jmax, "jmax", 1, {n});
-    A.L = limits_of(VM, AM, JM);
+    A.L = limits_of(vmax, amax, jmax, n);
     check_states(A.W, "w", nullptr);
     check_states(A.VS, "v_start", &A.L);
     check_states(A.VE, "v_end", &A.L);
@@ -120,17 +119,9 @@ void via_args(ViaArgs& A, F64 w, F64 v_start, F64 v_end, F64 vmax, F64 amax, F64
             }
         }
     }
-    A.P.k = static_cast<int>(k);
-    A.P.n = static_cast<int>(n);
-    A.P.w = W;
-    A.P.v_start = A.VS.data;
-    A.P.v_end = A.VE.data;
-    A.P.limits = A.L.data();
-    A.P.qlim = qlim.is_none() ? nullptr : A.Q.data;
-    A.P.qlim_atol = qlim_atol;
-    A.prm.sweeps = sweeps;
-    A.prm.golden_steps = golden_steps;
-    A.prm.joint_sweeps = joint_sweeps;
+    A.P = kj::Via{static_cast<int>(k), static_cast<int>(n), W, A.VS.data, A.VE.data, A.L.data(),
+                  qlim.is_none() ? nullptr : A.Q.data, qlim_atol};
+    A.prm = kj::ViaParams{sweeps, golden_steps, joint_sweeps};
 }
 
 //! A vector's values as a new array of the given shape.
@@ -171,10 +162,7 @@ nb::tuple jerk_via_move(F64 w, F64 v_start, F64 v_end, F64 vmax, F64 amax, F64 j
     const npy_intp k = A.P.k, n = A.P.n;
     double *vel, *time, *stop;
     nb::object Vo = new_f64({k, n}, vel), To = new_f64({k - 1}, time), So = new_f64({k - 1}, stop);
-    kj::ViaOutput out;
-    out.velocity = vel;
-    out.time = time;
-    out.stop = stop;
+    kj::ViaOutput out{vel, time, stop, 0};
     thread_local kj::Pieces P;  // its memory kept from call to call (jerk_pieces.hpp)
     bool made = false;
     {
@@ -202,9 +190,8 @@ nb::tuple jerk_state_move(double T, F64 rows, F64 vmax, F64 amax, F64 jmax, F64 
     const In R = in_f64(rows, "rows", 2);
     const npy_intp n = R.dim[0];
     if (n < 1 || R.dim[1] != kj::STATE_ROW) fail_value("rows", "(n, JERK_STATE_ROW) of at least one joint");
-    const In VM = in_f64(vmax, "vmax", 1, {n}), AM = in_f64(amax, "amax", 1, {n}), JM = in_f64(jmax, "jmax", 1, {n});
     const In Q1 = in_f64(q1, "q1", 1, {n}), V1 = in_f64(v1, "v1", 1, {n}), A1 = in_f64(a1, "a1", 1, {n});
-    const std::vector<kj::Limits> L = limits_of(VM, AM, JM);
+    const std::vector<kj::Limits> L = limits_of(vmax, amax, jmax, n);
     check_states(R, "rows", nullptr);
     check_states(Q1, "q1", nullptr);
     check_states(V1, "v1", nullptr);

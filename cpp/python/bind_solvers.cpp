@@ -19,15 +19,15 @@ void bind_solvers(nb::module_& m) {
     bind_family<km::PlanarParams>(
         planar, "PlanarParams", "A planar arm or a SCARA as its closed form reads it (solvers/planar.hpp).",
         "kinematica/solvers/planar_build.hpp", "km::PlanarParams", "km::planar::build",
-        [](const km::Chain& c) { return km::planar::build(c); });
-    bind_position_build(planar, [](const km::Chain& c) { return km::planar::build(km::arm_axes(c), false); });
+        [](const km::Chain& c) { return km::planar::build(c); }, "build",
+        [](const km::Chain& c) { return km::planar::build(km::arm_axes(c), false); });
 
     nb::module_ elbow = m.def_submodule("elbow", "3R elbow arms, anthropomorphic or with a shoulder offset.");
     bind_family<km::ElbowParams>(
         elbow, "ElbowParams", "A 3R elbow arm as its closed form reads it (solvers/elbow.hpp).",
         "kinematica/solvers/elbow_build.hpp", "km::ElbowParams", "km::elbow::build",
-        [](const km::Chain& c) { return km::elbow::build(c); });
-    bind_position_build(elbow, [](const km::Chain& c) { return km::elbow::build(km::arm_axes(c), false); });
+        [](const km::Chain& c) { return km::elbow::build(c); }, "build",
+        [](const km::Chain& c) { return km::elbow::build(km::arm_axes(c), false); });
 
     nb::module_ cylindrical = m.def_submodule(
         "cylindrical", "Cylindrical arms: a turn, a lift along its axis, a reach across it, a roll.");
@@ -35,9 +35,8 @@ void bind_solvers(nb::module_& m) {
         cylindrical, "CylindricalParams",
         "A cylindrical arm (RPP or RPPR) as its closed form reads it (solvers/cylindrical.hpp).",
         "kinematica/solvers/cylindrical_build.hpp", "km::CylindricalParams", "km::cylindrical::build",
-        [](const km::Chain& c) { return km::cylindrical::build(c); });
-    bind_position_build(
-        cylindrical, [](const km::Chain& c) { return km::cylindrical::build(km::arm_axes(c), false); });
+        [](const km::Chain& c) { return km::cylindrical::build(c); }, "build",
+        [](const km::Chain& c) { return km::cylindrical::build(km::arm_axes(c), false); });
 
     bind_decoupled(m);
     bind_parallel(m);

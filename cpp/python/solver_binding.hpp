@@ -14,6 +14,7 @@
 #include <nanobind/stl/string.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -166,16 +167,16 @@ Answer ik_one(const Solver& s, const km::Chain& chain, F64 T,
 
 //! A solver made ready for one kind of call: the chain, the check's options, the branch
 //! labels and what a final answer's result is made of (make_result), held; called with
-//! one target T (4, 4) alone. A target the core does not read in place or that is not
-//! rigid to round-off gives None (the caller's general path reads and explains it); an
-//! answer whose status is final (bit `status` of final_codes) gives its result, any other
-//! its Answer (the caller completes it).
+//! one target T (4, 4) and q0 (n,) or None. A target the core does not read in place or
+//! that is not rigid to round-off, or a q0 not of n finite float64 values, gives None (the
+//! caller's general path reads and explains it); an answer whose status is final (bit
+//! `status` of final_codes) gives its result, any other its Answer (the caller completes it).
 //!
 //! Made for the arm an end joint's lock leaves (held()), it is called with the held value
 //! beside the target (at()): the target moved by the value (kinematica.ik.moved), solved,
 //! and the whole arm's result given, the joint's column put back and its parameter named.
 struct Prepared {
-    std::function<Answer(const km::Pose&)> solve;
+    std::function<Answer(const km::Pose&, const double* q0)> solve;
     //! solve's rows alone (ik_rows), no Python object made: callable without the GIL
     std::function<km::CheckReport(const km::Pose&, OneOut&)> rows;
     nb::object keep;  //!< the solver, the chain and the labels the solve reads
@@ -213,20 +214,37 @@ struct Prepared {
         return ((final_codes >> static_cast<unsigned>(ans.report.status)) & 1U) != 0U;
     }
 
-    nb::object operator()(nb::handle T) const {
+    //! q0 (None, or a float64 array of `size` values) into q, leaving out entry `skip` (-1:
+    //! none): false where a value is not finite (the caller's general path explains it).
+    static bool read_q0(nb::handle q0, int size, int skip, std::vector<double>& q) {
+        if (q0.is_none()) return true;
+        const In in = in_f64(q0, "q0", 1, {size});
+        for (int i = 0; i < size; ++i) {
+            if (!std::isfinite(in.data[i])) return false;
+            if (i != skip) q.push_back(in.data[i]);
+        }
+        return true;
+    }
+
+    nb::object operator()(nb::handle T, nb::handle q0) const {
         const double* t = rigid_rows(T);
-        if (t == nullptr) return nb::none();
-        const Answer ans = solve(km::Pose::from_rows(t));
+        std::vector<double> q;
+        if (t == nullptr || !read_q0(q0, n, -1, q)) return nb::none();
+        const Answer ans = solve(km::Pose::from_rows(t), q.empty() ? nullptr : q.data());
         if (final(ans)) return make_result(ans, result, fields, statuses);
         return nb::cast(ans);
     }
 
     //! The whole arm's result of T with the held joint at `value` where the answer is
     //! final, else the locked arm's Answer of the moved T (the caller completes it); None
-    //! where T is not read in place or not rigid (the caller's general path).
-    nb::object at(nb::handle T, double value) const {
-        const double* t = held_rows(T, "at");
-        return t == nullptr ? nb::none() : given(solved_at(t, value), value);
+    //! where T is not read in place or not rigid, or q0 (the whole arm's, or None) not
+    //! finite float64 values (the caller's general path).
+    nb::object at(nb::handle T, double value, nb::handle q0) const {
+        if (held_joint < 0) throw nb::value_error("at(): this Prepared holds no joint (held())");
+        const double* t = rigid_rows(T);
+        std::vector<double> q;
+        if (t == nullptr || !read_q0(q0, n + 1, held_joint, q)) return nb::none();
+        return given(solved_at(t, value, q.empty() ? nullptr : q.data()), value);
     }
 
     //! For each target T[i] (N, 4, 4), at(T[i], v) at the first value v of grid (G,) whose
@@ -282,16 +300,11 @@ struct Prepared {
         return nb::make_tuple(read_only(found), answers);
     }
 
-    //! T's rows (rigid_rows) for a Prepared that holds a joint; `what` names the caller.
-    const double* held_rows(nb::handle T, const char* what) const {
-        if (held_joint < 0) throw nb::value_error((std::string(what) + "(): this Prepared holds no joint (held())").c_str());
-        return rigid_rows(T);
-    }
     //! The locked arm's answer of the target T (rows) moved by the held joint at `value`.
-    Answer solved_at(const double* T, double value) const {
+    Answer solved_at(const double* T, double value, const double* q0) const {
         double moved[16];
         km::moved_pose(held_move, value, held_after, held_slides, T, moved);
-        return solve(km::Pose::from_rows(moved));
+        return solve(km::Pose::from_rows(moved), q0);
     }
     //! The whole arm's result of a final answer, the joint at `value` put back and named;
     //! else the locked arm's Answer (the caller completes it).
@@ -334,51 +347,37 @@ BatchAnswer ik_many_rows(const Solver& s, const km::Chain& chain, F64 Th, nb::ha
     double *q, *res, *gap, *nearest;
     npy_int64 *slot, *status, *count, *out_count;
     npy_bool *near, *freeb;
-    BatchAnswer out;
-    out.q = new_f64({N, m, n}, q);
-    out.slot = new_i64({N, m}, slot);
-    out.res = new_f64({N, m, 2}, res);
-    out.status = new_i64({N}, status);
-    out.count = new_i64({N}, count);
-    out.out_count = new_i64({N}, out_count);
-    out.gap = new_f64({N}, gap);
-    out.nearest = new_f64({N, 2}, nearest);
-    out.near = new_bools({N}, near);
-    out.free = new_bools({N, n}, freeb);
-    {
-        const int blocks = static_cast<int>((N + TARGET_BLOCK - 1) / TARGET_BLOCK);
-        run_blocks(blocks, workers, [&](int blk) {
-            km::IKWork<Solver> work(s, n);  // once per block
-            std::vector<int> slots(static_cast<size_t>(m));
-            const npy_intp i1 = (blk + 1) * static_cast<npy_intp>(TARGET_BLOCK) < N
-                                    ? (blk + 1) * static_cast<npy_intp>(TARGET_BLOCK)
-                                    : N;
-            for (npy_intp i = blk * static_cast<npy_intp>(TARGET_BLOCK); i < i1; ++i) {
-                const km::CheckOut o{q + i * m * n, slots.data(), res + i * m * 2};
-                km::CheckReport rep;
-                if (invalid != nullptr && invalid[i]) {
-                    rep = km::invalid_target(m, n, o);
-                } else {
-                    const km::Pose P = km::Pose::from_rows(T.data + 16 * i);
-                    rep = solve_row(i, ch, P, q0 != nullptr ? q0 + i * n : nullptr, work, o);
-                }
-                for (int r = 0; r < m; ++r) slot[i * m + r] = slots[static_cast<size_t>(r)];
-                status[i] = static_cast<npy_int64>(rep.status);
-                count[i] = rep.count;
-                out_count[i] = rep.out_count;
-                gap[i] = rep.gap;
-                nearest[2 * i] = rep.nearest_position;
-                nearest[2 * i + 1] = rep.nearest_rotation;
-                near[i] = rep.near;
-                for (int j = 0; j < n; ++j) freeb[i * n + j] = km::free_bit(rep.free, j);
+    // read-only to Python from the start: the core writes them through the pointers
+    BatchAnswer out{read_only(new_f64({N, m, n}, q)),  read_only(new_i64({N, m}, slot)),
+                    read_only(new_f64({N, m, 2}, res)), read_only(new_i64({N}, status)),
+                    read_only(new_i64({N}, count)),     read_only(new_i64({N}, out_count)),
+                    read_only(new_f64({N}, gap)),       read_only(new_f64({N, 2}, nearest)),
+                    read_only(new_bools({N}, near)),    read_only(new_bools({N, n}, freeb))};
+    const int blocks = static_cast<int>((N + TARGET_BLOCK - 1) / TARGET_BLOCK);
+    run_blocks(blocks, workers, [&](int blk) {
+        km::IKWork<Solver> work(s, n);  // once per block
+        std::vector<int> slots(static_cast<size_t>(m));
+        const npy_intp i1 = std::min<npy_intp>((blk + 1) * static_cast<npy_intp>(TARGET_BLOCK), N);
+        for (npy_intp i = blk * static_cast<npy_intp>(TARGET_BLOCK); i < i1; ++i) {
+            const km::CheckOut o{q + i * m * n, slots.data(), res + i * m * 2};
+            km::CheckReport rep;
+            if (invalid != nullptr && invalid[i]) {
+                rep = km::invalid_target(m, n, o);
+            } else {
+                const km::Pose P = km::Pose::from_rows(T.data + 16 * i);
+                rep = solve_row(i, ch, P, q0 != nullptr ? q0 + i * n : nullptr, work, o);
             }
-        });
-    }
-    for (nb::object* a : std::initializer_list<nb::object*>{
-             &out.q, &out.slot, &out.res, &out.status, &out.count, &out.out_count, &out.gap,
-             &out.nearest, &out.near, &out.free}) {
-        read_only(nb::handle(*a));
-    }
+            for (int r = 0; r < m; ++r) slot[i * m + r] = slots[static_cast<size_t>(r)];
+            status[i] = static_cast<npy_int64>(rep.status);
+            count[i] = rep.count;
+            out_count[i] = rep.out_count;
+            gap[i] = rep.gap;
+            nearest[2 * i] = rep.nearest_position;
+            nearest[2 * i + 1] = rep.nearest_rotation;
+            near[i] = rep.near;
+            for (int j = 0; j < n; ++j) freeb[i * n + j] = km::free_bit(rep.free, j);
+        }
+    });
     return out;
 }
 
@@ -440,8 +439,8 @@ void add_ik_methods(nb::class_<Bound>& cls, Get get) {
             checked_labels(labels, get(*b).slots());
             Prepared p;
             p.fields = result_fields(result, fields, statuses);
-            p.solve = [get, b, c, o, labels](const km::Pose& P) {
-                return ik_pose(get(*b), *c, P, o, nullptr, labels);
+            p.solve = [get, b, c, o, labels](const km::Pose& P, const double* q0) {
+                return ik_pose(get(*b), *c, P, o, q0, labels);
             };
             p.rows = [get, b, c, o](const km::Pose& P, OneOut& buf) {
                 return ik_rows(get(*b), c->view(), P, o, nullptr, buf);
@@ -502,12 +501,13 @@ nb::class_<Params> bind_params(nb::module_& m, const char* name, const char* doc
 //! A closed-form family built in C++, registered by one call: its opaque Params class
 //! (bind_params) and `<build_name>(chain) -> Params | None` in module m, where `build` is
 //! the family's builder (`std::optional<Params>(const km::Chain&)`, named cpp_build in C++:
-//! the C++ export calls it).
-template <class Params, class Build>
+//! the C++ export calls it); with `position`, its builder for position targets of the tool
+//! origin too, as `build_position(chain) -> Params | None`.
+template <class Params, class Build, class Position = std::nullptr_t>
 nb::class_<Params> bind_family(nb::module_& m, const char* name, const char* doc,
                                const char* cpp_header, const char* cpp_type,
                                const char* cpp_build, Build build,
-                               const char* build_name = "build") {
+                               const char* build_name = "build", Position position = nullptr) {
     nb::class_<Params> cls = bind_params<Params>(m, name, doc, cpp_type, cpp_header);
     cls.attr("cpp_build") = cpp_build;
     m.def(
@@ -516,18 +516,11 @@ nb::class_<Params> bind_family(nb::module_& m, const char* name, const char* doc
         nb::arg("chain"),
         "The family's closed form of a chain (the C++ builder its Params' cpp_build names), "
         "or None where the family declines the arm.");
+    if constexpr (!std::is_same_v<Position, std::nullptr_t>) {
+        m.def("build_position", [position](const km::Chain& chain) { return position(chain); },
+              nb::arg("chain"), "The same for position targets (the tool origin), or None.");
+    }
     return cls;
-}
-
-//! `build_position(chain) -> Params | None` in module m: a family's builder for position
-//! targets of the tool origin (its Params class registered by bind_family).
-template <class Build>
-void bind_position_build(nb::module_& m, Build build) {
-    m.def(
-        "build_position", [build](const km::Chain& chain) { return build(chain); },
-        nb::arg("chain"),
-        "The family's closed form of a chain for position targets (the tool origin), or None "
-        "where the family declines the arm.");
 }
 
 }  // namespace kmpy

@@ -558,6 +558,9 @@ void bind_general6r_testing(nb::module_& m) {
     sub.def("set_watch", [](NearParallel& p, double watch) { p.watch = watch; },
             nb::arg("params"), nb::arg("watch"),
             "Sets a near-6R solver's watch (rad; inf: the general 6R at every target).");
+    sub.def("watch", [](const NearParallel& p) { return p.watch; }, nb::arg("params"),
+            "A near-6R solver's watch: the general 6R runs where the family's candidates lie "
+            "within it of its singular sets (rad; inf: everywhere).");
     sub.attr("WATCH_FACTOR") = km::WATCH_FACTOR;
     sub.attr("NEAR_GAP") = km::NEAR_GAP;
 }

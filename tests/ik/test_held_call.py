@@ -202,8 +202,10 @@ def test_options_holding_one_joint_take_the_keywords_path() -> None:
     T = _poses(robot, 6, 0.3, 1)[0]
     opts = km.ik.IKOptions(fixed={6: 0.3}, tol=1e-9)
     assert type(IKRequest.parse(options=opts)) is HeldCall
-    with_q0 = km.ik.IKOptions(fixed={6: 0.3}, q0=np.zeros(7))
-    assert type(IKRequest.parse(options=with_q0)) is IKRequest
+    with_q0 = km.ik.IKOptions(fixed={6: 0.3}, q0=np.zeros(7))  # q0 rides beside (a vector)
+    assert type(IKRequest.parse(options=with_q0)) is HeldCall
+    listed = km.ik.IKOptions(fixed={6: 0.3}, q0=[0.0] * 7)  # anything else: the general path
+    assert type(IKRequest.parse(options=listed)) is IKRequest
     got, want = robot.ik(T, options=opts), robot.ik(T, fixed={6: 0.3}, tol=1e-9)
     assert got.parameter == want.parameter == ("q7", 0.3)
     assert got.method == want.method and got.notes == want.notes

@@ -17,8 +17,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from kinematica._core import LIMIT_TOL
-from kinematica._core_testing.internals import LAMBDA_MIN, lm_rows
+from kinematica._core_testing.internals import LAMBDA_MIN, LIMIT_TOL, lm_rows
 from support.helpers import JointSpec, RobotSpec, transforms
 
 from kinematica.dh import Prismatic, Revolute

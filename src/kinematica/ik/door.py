@@ -6,7 +6,7 @@ redundant arm with a parameter to hold (``fixed=``, ``arm_angle=``, or ``auto`` 
 7-joint arm) goes to :func:`kinematica.ik.redundancy.solve_arm`, which holds it and
 solves the arm the lock leaves; every other arm to :func:`kinematica.ik.solve.solve_ik`.
 Either way the targets are solved by ``solve_ik``'s one path; one pose target as the
-core reads it, with nothing held and no ``q0``, goes straight to the plan's prepared
+core reads it, with nothing held (``q0`` or not), goes straight to the plan's prepared
 call (:attr:`~kinematica.ik.solvers.Plan.prepared`), which gives its result.
 """
 
@@ -14,21 +14,24 @@ from __future__ import annotations
 
 from typing import Any
 
-from numpy.typing import ArrayLike
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from kinematica.core import Chain
-from kinematica.ik.request import HeldCall, IKRequest
+from kinematica.ik.request import HeldCall, IKRequest, Q0Call
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.solve import REDUNDANT_DOF, answered, solve_ik
 from kinematica.ik.solvers import Plan
 
 __all__ = ["solve"]
 
+FloatArray = NDArray[np.float64]
+
 
 def solve(
     chain: Chain,
     target: ArrayLike,
-    request: IKRequest | HeldCall,
+    request: IKRequest | HeldCall | Q0Call,
     names: tuple[str, ...] | None = None,
 ) -> IKResult | IKBatchResult:
     """``robot.ik``: every inverse-kinematics solution of a target, or an honest status.
@@ -40,7 +43,8 @@ def solve(
         target: As ``robot.ik`` takes it.
         request: The call's settings (:meth:`IKRequest.parse`); a :class:`HeldCall`: one
             joint held at a value, tried as one core call first
-            (:func:`kinematica.ik.held_call.held_one`).
+            (:func:`kinematica.ik.held_call.held_one`); a :class:`Q0Call`: ``q0`` beside
+            the request, tried as the plan's one call first.
         names: The joints' display names (``result.parameter`` names a held joint so).
     """
     if type(request) is HeldCall:
@@ -48,19 +52,41 @@ def solve(
         if got is not None:
             return got
         request = request.full()
-    assert type(request) is IKRequest
-    lean = request.lean  # one pose target as the core reads it: the plan's one call
-    if lean is not None:
-        plan: Plan | None = chain.memo.get(lean)  # type: ignore[assignment]
-        if plan is not None and plan.lean:
-            got = plan.prepared(target)
-            if got.__class__ is IKResult:
+    elif type(request) is Q0Call:
+        if request.q0.shape == (chain.dof,):  # else the general path explains it
+            got = _lean(chain, target, request.request, request.q0)
+            if got is not None:
                 return got
-            if got is not None:  # an answer to complete (a search, the limited reach)
-                return answered(chain, plan, request, target, "pose", got, (), None)  # type: ignore[arg-type]
+        request = request.full()
+    elif type(request) is IKRequest:
+        got = _lean(chain, target, request, None)
+        if got is not None:
+            return got
+    assert type(request) is IKRequest
     if not request.holds and (not request.may_hold or chain.dof != REDUNDANT_DOF):
         return solve_ik(chain, target, request)
     return (_solve_arm or _redundancy()[0])(chain, target, request, names)
+
+
+def _lean(
+    chain: Chain, target: ArrayLike, request: IKRequest, q0: FloatArray | None
+) -> IKResult | None:
+    """One pose target as the core reads it, by the plan's one call (q0 ``(n,)`` or None).
+
+    None where the request or the plan is not lean, or the core does not read the target
+    or q0 as they are: the general path answers.
+    """
+    lean = request.lean
+    if lean is None:
+        return None
+    plan: Plan | None = chain.memo.get(lean)  # type: ignore[assignment]
+    if plan is None or not plan.lean:
+        return None
+    got = plan.prepared(target, q0)
+    if got is None or got.__class__ is IKResult:
+        return got
+    # an answer to complete (a search, the limited reach)
+    return answered(chain, plan, request, target, "pose", got, (), q0)  # type: ignore[arg-type]
 
 
 #: :func:`kinematica.ik.redundancy.solve_arm` and :func:`kinematica.ik.held_call.held_one`,

@@ -34,7 +34,10 @@ def held_one(
     (:meth:`~kinematica.ik.parameter.JointParameter.lean`) or the target is not one pose
     as the core reads it: the general path answers.
     """
+    q0 = call.q0  # the whole arm's (n,), or None
     if chain.dof < 7 or target.__class__ is not np.ndarray:
+        return None
+    if q0 is not None and q0.shape != (chain.dof,):  # the general path explains it
         return None
     memo: dict[tuple[object, ...], tuple[JointParameter, Any, float, float, bool]]
     memo = chain.memo.setdefault("held calls", {})  # type: ignore[assignment]
@@ -56,4 +59,4 @@ def held_one(
     v = call.value
     if not (kept and v.__class__ is float and lo <= v <= hi):
         v = joint.check(chain, v, bool(call.request.respect_limits))
-    return held_at(chain, joint.index, joint.name, call.request, ready, target, v)
+    return held_at(chain, joint.index, joint.name, call.request, ready, target, v, q0)

@@ -184,28 +184,44 @@ def held_prepared(chain: Chain, k: int, request: IKRequest, name: str) -> Any:
 
 
 def held_at(
-    chain: Chain, k: int, name: str, request: IKRequest, ready: Any, T: object, value: float
+    chain: Chain,
+    k: int,
+    name: str,
+    request: IKRequest,
+    ready: Any,
+    T: object,
+    value: float,
+    q0: FloatArray | None = None,
 ) -> IKResult | None:
     """One pose ``T`` with end joint k at ``value``: ``ready``'s (:func:`held_prepared`) call.
 
     The core's final answer is the result; any other is completed as the arm locked at 0
     completes its answers (:func:`~kinematica.ik.solve.answered`: the search where its
-    closed form found nothing, the limited reach), then widened. None where ``ready`` is
-    None or the core does not read ``T`` as one rigid pose.
+    closed form found nothing, the limited reach), then widened. ``q0``: the whole arm's
+    ``(n,)`` (its solutions sorted nearest it), or None. None where ``ready`` is None or
+    the core does not read ``T`` as one rigid pose, or ``q0`` as finite values.
     """
-    got = None if ready is None else ready.at(T, value)
+    got = None if ready is None else ready.at(T, value, q0)
     if got is None or got.__class__ is IKResult:
         return got
-    return held_completed(chain, k, name, request, T, value, got)
+    return held_completed(chain, k, name, request, T, value, got, q0)
 
 
 def held_completed(
-    chain: Chain, k: int, name: str, request: IKRequest, T: object, value: float, got: Any
+    chain: Chain,
+    k: int,
+    name: str,
+    request: IKRequest,
+    T: object,
+    value: float,
+    got: Any,
+    q0: FloatArray | None = None,
 ) -> IKResult:
     """:func:`held_at`'s answer from the core's answer ``got`` to complete (not a result)."""
     arm = _end(chain, k)[0]
     pose = moved_targets(chain, k, np.asarray(T)[None], np.array([value]))[0]
-    res = answered(arm, plan_of(arm, "pose", request), request, pose, "pose", got, (), None)
+    locked = None if q0 is None else np.delete(q0, k)
+    res = answered(arm, plan_of(arm, "pose", request), request, pose, "pose", got, (), locked)
     return widen_result(res, k, value, (name, value))
 
 

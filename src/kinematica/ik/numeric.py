@@ -129,7 +129,7 @@ class NumericSetup:
         roundoff: float,
         labels: tuple[str, ...],
         *result: Any,
-    ) -> Callable[[Any], Any]:
+    ) -> Callable[..., Any]:
         """The search made ready for one target, as a closed form's ``prepare`` makes it.
 
         The first guess alone; a target it does not settle goes to the restarts (their
@@ -141,11 +141,11 @@ class NumericSetup:
             core, options, roundoff, labels, cls, fields, statuses, final & ~_UNSETTLED
         )
 
-        def call(T: Any) -> Any:
-            out: Any = quick(T)
+        def call(T: Any, q0: Any = None) -> Any:
+            out: Any = quick(T, q0)
             if out is None or out.__class__ is cls or _settled(out):
                 return out
-            return self.solver.ik(core, T, options, None, labels)
+            return self.solver.ik(core, T, options, q0, labels)
 
         return call
 

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from kinematica.arguments import check_choice, check_flag
 from kinematica.core import resolve_workers
@@ -30,7 +31,7 @@ from kinematica.ik.options import IKOptions
 from kinematica.ik.targets import parse_mask
 from kinematica.ik.tolerance import Tolerance, parse_tolerance
 
-__all__ = ["KEYS", "MEMO", "HeldCall", "IKRequest", "settings_key"]
+__all__ = ["KEYS", "MEMO", "HeldCall", "IKRequest", "Q0Call", "settings_key"]
 
 #: Requests kept by their settings (past it the table is emptied and filled again).
 MEMO = 64
@@ -71,7 +72,8 @@ class IKRequest(IKOptions):
             to the core as it is (:func:`kinematica.ik.solve.solve_ik`).
         lean: The key of the chain's plan for pose targets (:func:`~kinematica.ik.
             solvers.plan_of`) where one such target goes straight to its prepared call
-            (:func:`kinematica.ik.door.solve`): nothing held, no ``q0``; else None.
+            (:func:`kinematica.ik.door.solve`): nothing held, no ``q0`` in the request
+            (a :class:`Q0Call`'s travels beside it); else None.
     """
 
     tolerance: Tolerance = field(init=False, repr=False)
@@ -160,19 +162,22 @@ class IKRequest(IKOptions):
         fixed: Any = None,
         arm_angle: Any = None,
         options: object = None,
-    ) -> IKRequest | HeldCall:
+    ) -> IKRequest | HeldCall | Q0Call:
         """The request of ``robot.ik``'s keywords, or of its ``options=`` (not both).
 
         A call that holds one joint (``fixed`` a dict of one entry) and gives no other
-        setting but ``method``, ``tol`` and ``respect_limits`` is a :class:`HeldCall`.
+        setting but ``method``, ``tol``, ``respect_limits`` and ``q0`` is a
+        :class:`HeldCall`; one that holds nothing and gives ``q0`` (a float64 vector) and
+        no other setting but those three, a :class:`Q0Call`.
 
         Raises:
             KinematicaError: A setting that is not valid (its ``arg`` names it), or
                 ``options`` given with keywords, or not an ``IKOptions``.
         """
         if options is None:
+            vector = q0.__class__ is np.ndarray and q0.ndim == 1 and q0.dtype == np.float64
             if (
-                q0 is None
+                (q0 is None or vector)
                 and mask is None
                 and seed is None
                 and workers is None
@@ -193,10 +198,10 @@ class IKRequest(IKOptions):
                             _plain.clear()
                         _plain[plain] = found
                 if fixed is None:
-                    return found
+                    return found if q0 is None else Q0Call(found, q0)
                 if fixed.__class__ is dict and len(fixed) == 1:  # one joint held: its value apart
                     ((joint, value),) = fixed.items()
-                    return HeldCall(found, joint, value, fixed)
+                    return HeldCall(found, joint, value, fixed, q0)
             return _made(method, tol, respect_limits, q0, mask, seed, workers, precision,
                          fixed, arm_angle)  # fmt: skip
         if not isinstance(options, IKOptions):
@@ -222,45 +227,78 @@ class IKRequest(IKOptions):
             )
         o = options
         if (
-            o.fixed.__class__ is dict
-            and o.q0 is None
+            (o.fixed.__class__ is dict or (o.fixed is None and o.q0 is not None))
             and o.mask is None
             and o.seed is None
             and o.workers is None
             and o.precision is None
             and o.arm_angle is None
-        ):  # one call holding joints: as its keywords are read (a HeldCall for one joint)
-            return cls.parse(o.method, o.tol, o.respect_limits, fixed=o.fixed)
+        ):  # as its keywords are read (a HeldCall for one joint, a Q0Call for q0 alone)
+            return cls.parse(o.method, o.tol, o.respect_limits, o.q0, fixed=o.fixed)
         return cls.of(options)
 
 
 class HeldCall:
-    """One call holding one joint at a value, and nothing else but method, tol, respect_limits.
+    """One call holding one joint at a value: its settings but ``fixed`` and ``q0``, kept.
 
+    It gives no setting but ``fixed`` (one joint), ``q0``, ``method``, ``tol`` and
+    ``respect_limits``.
     The request of those settings is kept and found by them (:meth:`IKRequest.parse`); the
-    joint and its value, a new one on every call, travel beside it as given and are checked
-    where they are solved (:func:`kinematica.ik.door.solve`), so that a new value makes no
-    new request. Read by ``robot.ik``'s check of units as a request is (``q0``, ``fixed``,
-    ``arm_angle``).
+    joint and its value, a new one on every call, and ``q0`` travel beside it as given and
+    are checked where they are solved (:func:`kinematica.ik.door.solve`), so that a new
+    value makes no new request. Read by ``robot.ik``'s check of units as a request is
+    (``q0``, ``fixed``, ``arm_angle``).
 
     Attributes:
-        request: The request of the call's other settings (``fixed`` None).
+        request: The request of the call's other settings (``fixed`` and ``q0`` None).
         joint: The joint as ``fixed`` names it (0-based index, name or ``"qN"``).
         value: Its value as given (rad or m).
         fixed: The ``fixed`` dict as given.
+        q0: ``(n,)`` float64 as given (the whole arm's), or None.
     """
 
-    __slots__ = ("fixed", "joint", "request", "value")
+    __slots__ = ("fixed", "joint", "q0", "request", "value")
     given = True
-    q0 = None
     arm_angle = None
 
-    def __init__(self, request: IKRequest, joint: object, value: object, fixed: dict[Any, Any]):
-        self.request, self.joint, self.value, self.fixed = request, joint, value, fixed
+    def __init__(
+        self,
+        request: IKRequest,
+        joint: object,
+        value: object,
+        fixed: dict[Any, Any],
+        q0: NDArray[np.float64] | None = None,
+    ):
+        self.request, self.joint, self.value, self.fixed, self.q0 = request, joint, value, fixed, q0
 
     def full(self) -> IKRequest:
-        """The call's request, ``fixed`` in it (checked as every request is)."""
-        return self.request.but(fixed={self.joint: self.value})
+        """The call's request, ``fixed`` and ``q0`` in it (checked as every request is)."""
+        return self.request.but(fixed={self.joint: self.value}, q0=self.q0)
+
+
+class Q0Call:
+    """One call giving ``q0``, a float64 vector: its settings but ``q0``, kept.
+
+    It gives no setting but ``q0``, ``method``, ``tol`` and ``respect_limits``.
+    As :class:`HeldCall`: the request of those settings is kept and found by them, and
+    ``q0``, new on every call, travels beside it (:func:`kinematica.ik.door.solve`).
+
+    Attributes:
+        request: The request of the call's other settings (``q0`` None).
+        q0: ``(n,)`` float64 as given.
+    """
+
+    __slots__ = ("q0", "request")
+    given = True
+    fixed = None
+    arm_angle = None
+
+    def __init__(self, request: IKRequest, q0: NDArray[np.float64]):
+        self.request, self.q0 = request, q0
+
+    def full(self) -> IKRequest:
+        """The call's request, ``q0`` in it (checked as every request is)."""
+        return self.request.but(q0=self.q0)
 
 
 def settings_key(settings: tuple[object, ...]) -> int:

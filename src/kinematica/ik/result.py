@@ -442,9 +442,11 @@ def prepared(
 ) -> _core.Prepared:
     """A closed form's ``Params`` made ready for one target at a time (the core's ``prepare``).
 
-    Called with a ``(4, 4)`` float target, it gives None where the target is not rigid to
-    round-off as the core reads it; else the :class:`IKResult` (as :func:`result_of` makes
-    it) where the status is one of ``final``, the core's answer otherwise.
+    Called with a ``(4, 4)`` float target and ``q0``, ``(n,)`` float or None (the solutions
+    sorted nearest it), it gives None where the target is not rigid to round-off as the
+    core reads it, or ``q0`` holds NaN or inf; else the :class:`IKResult` (as
+    :func:`result_of` makes it) where the status is one of ``final``, the core's answer
+    otherwise.
     """
     fields = {"method": method, "complete": complete, "notes": notes, "parameter": None}
     bits = sum(1 << code for code in final)

@@ -71,6 +71,13 @@ def check_given(
     robot: RobotKinematics, q0: ArrayLike | None, fixed: Mapping[Any, float] | None, arm_angle: Any
 ) -> None:
     """Warn of ``q0``, ``fixed`` and ``arm_angle`` values as ``fk`` warns of ``q``."""
+    if (
+        type(q0) is np.ndarray
+        and q0.shape == (robot.dof,)
+        and q0.dtype == np.float64
+        and robot.chain.core.fk(q0)[1] == 0
+    ):
+        q0 = None  # finite, within its own limits, no free joint beyond a turn: nothing to say
     if q0 is not None:
         try:
             qa = np.asarray(q0, dtype=float)
@@ -86,7 +93,7 @@ def check_given(
                 warning = robot._limits_message(qa, "q0", count)
                 warnings.warn(warning, stacklevel=_STACK)
             robot._check_turns(qa, "q0")
-    if type(fixed) is dict or isinstance(fixed, Mapping):
+    if fixed is not None and (type(fixed) is dict or isinstance(fixed, Mapping)):
         for key, value in fixed.items():
             check_joint_values(robot, key, value, "fixed", _STACK + 1)
     if arm_angle is not None:

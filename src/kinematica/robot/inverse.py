@@ -14,7 +14,7 @@ from kinematica.robot.kinematics import RobotKinematics
 # (`kinematica fk`) never imports it.
 if TYPE_CHECKING:
     from kinematica.ik import IKBatchResult, IKOptions, IKResult, Tolerance
-    from kinematica.ik.request import HeldCall, IKRequest
+    from kinematica.ik.request import HeldCall, IKRequest, Q0Call
 
 __all__ = ["RobotIK"]
 
@@ -22,11 +22,13 @@ FloatArray = NDArray[np.float64]
 
 
 #: ``(IKRequest.parse, solve)``, once the IK layer is loaded (:func:`_door`).
-_DOOR: tuple[Callable[..., IKRequest | HeldCall], Callable[..., IKResult | IKBatchResult]] | None
-_DOOR = None
+_Door = tuple[
+    Callable[..., "IKRequest | HeldCall | Q0Call"], Callable[..., "IKResult | IKBatchResult"]
+]
+_DOOR: _Door | None = None
 
 
-def _door() -> tuple[Callable[..., IKRequest | HeldCall], Callable[..., IKResult | IKBatchResult]]:
+def _door() -> _Door:
     """The IK layer's door, loaded when a robot first solves IK (``kinematica fk`` never does)."""
     global _DOOR
     from kinematica.ik.door import solve

@@ -84,7 +84,7 @@ def test_a_near_degenerate_arm_gets_the_general_6r_candidates_too() -> None:
     assert closed is not None and closed.name == "three-parallel-6R"
     assert isinstance(closed.params, _core.general6r.NearParallelParams)
     assert closed.labels[: len(LABELS)] == LABELS
-    assert len(closed.labels) == closed.params.slots == 8 + _core.general6r.SLOTS
+    assert len(closed.labels) == closed.params.slots == 8 + _core_testing.general6r.SLOTS
     # an exact arm keeps the family's closed form alone
     exact = closed_form(Robot.from_dh(UR5_ROWS, convention="standard").chain, "pose")
     assert exact is not None and isinstance(exact.params, _core.parallel.ParallelParams)
@@ -176,8 +176,9 @@ def test_watch_factor_runs_the_general_6r_within_its_margin(factor: float, runs:
     assert closed is not None
     P = closed.params
     assert _core_testing.general6r.WATCH_FACTOR == WATCH_FACTOR
-    assert P.watch == pytest.approx(WATCH_FACTOR * math.sqrt(f.slack / f.size), rel=1e-15)
-    q = np.array([0.4, -1.1, 1.3, -0.7, aligned_q5(robot) + factor * P.watch, 0.9])
+    watch = _core_testing.general6r.watch(P)
+    assert watch == pytest.approx(WATCH_FACTOR * math.sqrt(f.slack / f.size), rel=1e-15)
+    q = np.array([0.4, -1.1, 1.3, -0.7, aligned_q5(robot) + factor * watch, 0.9])
     T = robot.fk(q)
     raw = np.asarray(P.candidates(robot.chain.core, T)[0])
     assert np.isfinite(raw[:8, 0]).sum() == 8  # the family's: every branch
