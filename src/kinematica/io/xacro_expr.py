@@ -265,7 +265,6 @@ class _Evaluator:
         lookup: Callable[[str], Any],
         functions: Mapping[str, Callable[..., Any]],
     ) -> None:
-        self.tree = tree
         self.fail = tree.fail
         self.lookup = lookup
         self.functions = functions

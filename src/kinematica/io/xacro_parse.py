@@ -44,6 +44,8 @@ _REFUSED: Final = {
     "Slice": "slices are not supported",
     "Starred": "* in calls is not supported",
 }
+_CONSTANTS: Final = (int, float, str, type(None))
+_NODES: Final = (ast.expr, ast.keyword)
 _TOKEN: Final = re.compile(r"\w+|\*\*|//|<<|>>|[=!<>]=|\S")
 
 
@@ -143,18 +145,18 @@ class Expression:
             if str(name).startswith("__") or str(getattr(node, "arg", "")).startswith("__"):
                 raise self.fail("names with a double underscore are refused", node)
             constant = getattr(node, "value", None) if isinstance(node, ast.Constant) else None
-            if not isinstance(constant, int | float | str | None):
+            if not isinstance(constant, _CONSTANTS):
                 raise self.fail(f"the constant {constant!r} is not supported", node)
             if isinstance(node, ast.keyword) and node.arg is None:
                 raise self.fail("** in calls is not supported", node)
             children = list(ast.iter_child_nodes(node))
-            for kind in {type(c).__name__ for c in children if not isinstance(c, ast.expr)}:
+            for kind in {type(c).__name__ for c in children if not isinstance(c, _NODES)}:
                 if kind not in OFFERED:
                     symbol = _TOKEN.match(self.text, self.position(node))
                     shown = f"unexpected character {symbol and symbol.group()!r} (not offered)"
                     raise self.fail(_REFUSED.get(kind, shown), node)
             for child in reversed(children):  # popped first to last, as written
-                if isinstance(child, ast.expr | ast.keyword):
+                if isinstance(child, _NODES):
                     same = isinstance(node, ast.BinOp) and child is node.left
                     todo.append((child, level if same else level + 1))
 
