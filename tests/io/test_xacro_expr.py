@@ -80,6 +80,12 @@ SAME_AS_PYTHON = [
     "(s + 'c').upper()",
     "dict(j1=0.5, j2=a)['j2']",
     "dict(dict(x=1), y=2)",
+    # read as Python (and xacro) reads them, the parser being Python's (issue 33)
+    "0x10 + 0b11 + 0o7 + 1_000",
+    "'\\x41\\u00e9'",
+    "'''a'b'''",
+    "1, a",
+    "a  # a comment",
 ]
 
 
@@ -218,6 +224,8 @@ def test_hostile_input_to_the_parser_is_refused(text: str, fragment: str) -> Non
         ("max(*L)", "* in calls is not supported"),
         ("a << 1", "unexpected character '<<'"),
         ("1j", "the constant 1j is not supported"),
+        ("01", "leading zeros"),  # as in Python and xacro
+        ("1 +\n 2", "unexpected"),  # a line break outside brackets, as in Python and xacro
     ],
 )
 def test_refused_before_anything_is_evaluated(text: str, fragment: str) -> None:
