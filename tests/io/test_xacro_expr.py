@@ -80,6 +80,12 @@ SAME_AS_PYTHON = [
     "(s + 'c').upper()",
     "dict(j1=0.5, j2=a)['j2']",
     "dict(dict(x=1), y=2)",
+    # read as Python (and xacro) reads them, the parser being Python's (issue 33)
+    "0x10 + 0b11 + 0o7 + 1_000",
+    "'\\x41\\u00e9'",
+    "'''a'b'''",
+    "1, a",
+    "a  # a comment",
 ]
 
 
@@ -184,4 +190,43 @@ def test_length_and_depth_are_bounded() -> None:
     ],
 )
 def test_what_is_refused_is_named(text: str, fragment: str) -> None:
+    refused(text, fragment)
+
+
+@pytest.mark.parametrize(
+    ("text", "fragment"),
+    [
+        ("-" * (MAX_LENGTH - 1) + "1", f"deeper than {MAX_DEPTH}"),  # the parser's recursion
+        ("(" * (MAX_LENGTH // 2) + "1" + ")" * (MAX_LENGTH // 2 - 1), "deeper than"),
+        ("not " * (MAX_LENGTH // 4 - 1) + "1", f"deeper than {MAX_DEPTH}"),
+        ("L" + "[0]" * (MAX_LENGTH // 3 - 1), f"deeper than {MAX_DEPTH}"),
+        ("abs(" * 799 + "1" + ")" * 799, "deeper than"),
+        ("1\x00", "null bytes"),
+        ("9**9**9**9", "larger than 2**1024"),
+    ],
+)
+def test_hostile_input_to_the_parser_is_refused(text: str, fragment: str) -> None:
+    assert len(text) <= MAX_LENGTH
+    refused(text, fragment)
+
+
+@pytest.mark.parametrize(
+    ("text", "fragment"),
+    [
+        ("0 and (lambda: 0)", "lambda functions are not allowed at column 8"),
+        ("1 if 1 else L.__len__()", "double underscore are refused at column 15"),
+        ("a if 1 else [x for x in L]", "comprehensions"),
+        ("'é' + 1", "at column 5"),  # columns count characters, not UTF-8 bytes
+        ("(1 +\n 'x')", "at column 4"),
+        ("r'x'", "string prefixes"),
+        ("{1: 2}", "Dict is not supported"),
+        ("L[0:1]", "slices are not supported"),
+        ("max(*L)", "* in calls is not supported"),
+        ("a << 1", "unexpected character '<<'"),
+        ("1j", "the constant 1j is not supported"),
+        ("01", "leading zeros"),  # as in Python and xacro
+        ("1 +\n 2", "unexpected"),  # a line break outside brackets, as in Python and xacro
+    ],
+)
+def test_refused_before_anything_is_evaluated(text: str, fragment: str) -> None:
     refused(text, fragment)

@@ -7,8 +7,9 @@ So kinematica expands xacro in one of two ways:
 
 - **By default, with its own expander** (:mod:`kinematica.io.xacro_expand`):
   properties, macros, includes, conditionals, arguments and ``load_yaml``, with
-  expressions evaluated by a parser of its own (arithmetic, comparisons, math
-  functions, strings, lists; no ``eval``, no attribute of a Python object). It
+  expressions parsed by Python's ``ast`` and evaluated by a whitelist walker of its
+  own (arithmetic, comparisons, math functions, strings, lists; no ``eval``, no
+  attribute of a Python object). It
   runs no code from the file, reads only files inside the file's folder and its
   packages' folders, and reads no environment variable unless ``env=True``.
   Anything else is refused with an error naming the file, the line and the

@@ -3,8 +3,10 @@
 xacro evaluates ``${...}`` with Python's ``eval`` behind a thin guard, which a
 file can get around (``python.vars(python.type(f))['__globals__']`` reaches
 ``os.system``). This module evaluates the part of Python that robot
-descriptions write, with a tokenizer, parser and evaluator of its own (no
-``eval``, no ``compile``, no attribute of any Python object is ever looked up):
+descriptions write: parsed by Python's :func:`ast.parse` (which runs nothing),
+checked against a whitelist (:mod:`kinematica.io.xacro_parse`) and evaluated by a
+walker of its own (no ``eval``, no ``compile``, no attribute of any Python object
+is ever looked up):
 
 - numbers, strings in quotes, ``True``/``False``/``None``, lists ``[a, b]`` and
   tuples ``(a, b)``, indexing ``x[i]``;
@@ -28,13 +30,15 @@ expression cannot ask for unbounded memory or time.
 
 from __future__ import annotations
 
+import ast
 import functools
 import math
+import operator
 from collections.abc import Callable, Mapping
 from typing import Any, Final
 
 from kinematica.errors import KinematicaError
-from kinematica.io.xacro_parse import MAX_DEPTH, Node, XacroExpressionError, parse
+from kinematica.io.xacro_parse import MAX_DEPTH, Expression, XacroExpressionError, parse
 
 __all__ = [
     "FUNCTIONS",
@@ -138,25 +142,25 @@ def _modulo(a: Any, b: Any) -> Any:
     return a % b
 
 
-_BINARY: Final[dict[str, Callable[[Any, Any], Any]]] = {
-    "+": lambda a, b: a + b,
-    "-": lambda a, b: a - b,
-    "*": _times,
-    "/": lambda a, b: a / b,
-    "//": lambda a, b: a // b,
-    "%": _modulo,
-    "**": _power,
+_BINARY: Final[dict[type[ast.AST], Callable[[Any, Any], Any]]] = {
+    ast.Add: operator.add,
+    ast.Sub: operator.sub,
+    ast.Mult: _times,
+    ast.Div: operator.truediv,
+    ast.FloorDiv: operator.floordiv,
+    ast.Mod: _modulo,
+    ast.Pow: _power,
 }
 
-_COMPARE: Final[dict[str, Callable[[Any, Any], bool]]] = {
-    "<": lambda a, b: a < b,
-    "<=": lambda a, b: a <= b,
-    ">": lambda a, b: a > b,
-    ">=": lambda a, b: a >= b,
-    "==": lambda a, b: a == b,
-    "!=": lambda a, b: a != b,
-    "in": lambda a, b: a in b,
-    "not in": lambda a, b: a not in b,
+_COMPARE: Final[dict[type[ast.AST], Callable[[Any, Any], bool]]] = {
+    ast.Lt: operator.lt,
+    ast.LtE: operator.le,
+    ast.Gt: operator.gt,
+    ast.GtE: operator.ge,
+    ast.Eq: operator.eq,
+    ast.NotEq: operator.ne,
+    ast.In: lambda a, b: a in b,
+    ast.NotIn: lambda a, b: a not in b,
 }
 
 
@@ -180,15 +184,8 @@ def _join(separator: str, items: Any) -> str:
 #: The methods of strings an expression may call (``xyz.split(' ')[0]``): these and no
 #: other attribute of any object, each a function of ours or of ``str`` itself.
 _STRING_METHODS: Final[Mapping[str, Callable[..., Any]]] = {
-    "split": str.split,
-    "rsplit": str.rsplit,
-    "strip": str.strip,
-    "lstrip": str.lstrip,
-    "rstrip": str.rstrip,
-    "lower": str.lower,
-    "upper": str.upper,
-    "startswith": str.startswith,
-    "endswith": str.endswith,
+    **{m: getattr(str, m) for m in ["split", "rsplit", "strip", "lstrip", "rstrip", "lower"]},
+    **{m: getattr(str, m) for m in ["upper", "startswith", "endswith"]},
     "replace": _replace,
     "join": _join,
 }
@@ -218,40 +215,12 @@ def _sequence(kind: type) -> Callable[..., Any]:
     return convert
 
 
-_MATH: Final = [
-    "sin",
-    "cos",
-    "tan",
-    "asin",
-    "acos",
-    "atan",
-    "atan2",
-    "sinh",
-    "cosh",
-    "tanh",
-    "asinh",
-    "acosh",
-    "atanh",
-    "sqrt",
-    "exp",
-    "log",
-    "log10",
-    "log2",
-    "pow",
-    "fabs",
-    "floor",
-    "ceil",
-    "trunc",
-    "radians",
-    "degrees",
-    "hypot",
-    "copysign",
-    "fmod",
-    "isclose",
-    "isfinite",
-    "isinf",
-    "isnan",
-]
+_MATH: Final = frozenset(
+    {"sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sinh", "cosh", "tanh", "asinh"}
+    | {"acosh", "atanh", "sqrt", "exp", "log", "log10", "log2", "pow", "fabs", "floor", "ceil"}
+    | {"trunc", "radians", "degrees", "hypot", "copysign", "fmod", "isclose", "isfinite"}
+    | {"isinf", "isnan"}
+)
 
 #: Functions an expression may call, by name (``math.NAME`` reaches the math ones too).
 FUNCTIONS: Final[Mapping[str, Callable[..., Any]]] = {
@@ -278,9 +247,6 @@ CONSTANTS: Final[Mapping[str, Any]] = {
     "tau": math.tau,
     "inf": math.inf,
     "nan": math.nan,
-    "True": True,
-    "False": False,
-    "None": None,
 }
 
 
@@ -294,16 +260,17 @@ class Namespace:
 
 class _Evaluator:
     def __init__(
-        self, text: str, lookup: Callable[[str], Any], functions: Mapping[str, Callable[..., Any]]
+        self,
+        tree: Expression,
+        lookup: Callable[[str], Any],
+        functions: Mapping[str, Callable[..., Any]],
     ) -> None:
-        self.text = text
+        self.fail = tree.fail
         self.lookup = lookup
         self.functions = functions
 
-    def fail(self, reason: str, pos: int | None) -> XacroExpressionError:
-        return XacroExpressionError(reason, self.text, pos)
-
-    def name(self, name: str, pos: int) -> Any:
+    def name(self, node: ast.Name) -> Any:
+        name = node.id
         try:
             return self.lookup(name)
         except KeyError:
@@ -318,118 +285,118 @@ class _Evaluator:
             members = {k[6:]: v for k, v in self.functions.items() if k.startswith("xacro.")}
             return Namespace("xacro", members)
         if name == "python":
-            raise self.fail("the 'python' namespace is refused", pos)
-        raise self.fail(f"unknown name {name!r}", pos)
+            raise self.fail("the 'python' namespace is refused", node)
+        raise self.fail(f"unknown name {name!r}", node)
 
-    def value(self, node: Node) -> Any:
-        kind, pos = node[0], node[1]
-        if kind == "const":
-            return node[2]
-        if kind == "name":
-            found = self.name(node[2], pos)
+    def owner(self, node: ast.expr) -> Any:
+        """What ``.name`` is taken of: a name may be a namespace, anything else a value."""
+        return self.name(node) if isinstance(node, ast.Name) else self.value(node)
+
+    def value(self, node: ast.expr) -> Any:
+        if isinstance(node, ast.Constant):
+            return node.value
+        if isinstance(node, ast.Name):
+            found = self.name(node)
             if isinstance(found, Namespace):
-                raise self.fail(f"{node[2]!r} is a namespace, not a value", pos)
+                raise self.fail(f"{node.id!r} is a namespace, not a value", node)
             if callable(found):
-                raise self.fail(f"{node[2]!r} is a function, not a value", pos)
+                raise self.fail(f"{node.id!r} is a function, not a value", node)
             return found
-        if kind == "attr":
+        if isinstance(node, ast.Attribute):
             return self.attribute(node)
+        if isinstance(node, ast.BinOp):
+            return self.binary(node)
+        return self.guarded(node, lambda: self.compute(node))
+
+    def guarded(self, node: ast.expr, compute: Callable[[], Any]) -> Any:
+        """``compute()`` within the bounds; Python's errors named at ``node``."""
         try:
-            return _check_size(self.compute(node))
+            return _check_size(compute())
         except (XacroExpressionError, KinematicaError):
             raise
         except (ArithmeticError, ValueError, TypeError, IndexError, KeyError) as exc:
             reason = str(exc).strip("'\"") or type(exc).__name__
-            raise self.fail(f"cannot evaluate: {reason}", pos) from exc
+            raise self.fail(f"cannot evaluate: {reason}", node) from exc
 
-    def compute(self, node: Node) -> Any:
-        kind, pos = node[0], node[1]
-        if kind == "bin":
-            return _BINARY[node[2]](self.value(node[3]), self.value(node[4]))
-        if kind == "chain":
-            result = self.value(node[2])
-            for op, where, operand in node[3]:
-                right = self.value(operand)
-                try:
-                    result = _check_size(_BINARY[op](result, right))
-                except (ArithmeticError, ValueError, TypeError) as exc:
-                    raise self.fail(f"cannot evaluate: {exc}", where) from exc
-            return result
-        if kind == "neg":
-            return -self.value(node[2])
-        if kind == "pos":
-            return +self.value(node[2])
-        if kind == "not":
-            return not self.value(node[2])
-        if kind == "and" or kind == "or":
+    def binary(self, node: ast.BinOp) -> Any:
+        # ``a + b - c + ...`` in a loop along the left operands: a long sum is not deep
+        chain = [node]
+        while isinstance(chain[-1].left, ast.BinOp):
+            chain.append(chain[-1].left)
+        result = self.value(chain[-1].left)
+        for step in reversed(chain):
+            right = self.value(step.right)
+            function = _BINARY[type(step.op)]
+            result = self.guarded(step, functools.partial(function, result, right))
+        return result
+
+    def compute(self, node: ast.expr) -> Any:
+        if isinstance(node, ast.UnaryOp):
+            operand = self.value(node.operand)
+            if isinstance(node.op, ast.Not):
+                return not operand
+            return -operand if isinstance(node.op, ast.USub) else +operand
+        if isinstance(node, ast.BoolOp):
             result = None
-            for item in node[2]:
+            for item in node.values:
                 result = self.value(item)
-                if bool(result) == (kind == "or"):
+                if bool(result) == isinstance(node.op, ast.Or):
                     break
             return result
-        if kind == "if":
-            return self.value(node[3] if self.value(node[2]) else node[4])
-        if kind == "cmp":
-            left = self.value(node[2])
-            for op, _, operand in node[3]:
+        if isinstance(node, ast.IfExp):
+            return self.value(node.body if self.value(node.test) else node.orelse)
+        if isinstance(node, ast.Compare):
+            left = self.value(node.left)
+            for op, operand in zip(node.ops, node.comparators, strict=True):
                 right = self.value(operand)
-                if not _COMPARE[op](left, right):
+                if not _COMPARE[type(op)](left, right):
                     return False
                 left = right
             return True
-        if kind == "list":
-            return [self.value(item) for item in node[2]]
-        if kind == "tuple":
-            return tuple(self.value(item) for item in node[2])
-        if kind == "index":
-            return self.index(self.value(node[2]), self.value(node[3]), pos)
-        if kind == "call":
+        if isinstance(node, ast.List):
+            return [self.value(item) for item in node.elts]
+        if isinstance(node, ast.Tuple):
+            return tuple(self.value(item) for item in node.elts)
+        if isinstance(node, ast.Subscript):
+            return self.index(self.value(node.value), self.value(node.slice), node)
+        if isinstance(node, ast.Call):
             return self.call(node)
-        raise self.fail("unsupported expression", pos)  # pragma: no cover - the parser makes none
+        raise self.fail("unsupported expression", node)  # pragma: no cover - parse() refuses it
 
-    def index(self, seq: Any, key: Any, pos: int) -> Any:
+    def index(self, seq: Any, key: Any, node: ast.expr) -> Any:
         if isinstance(seq, dict):
             return seq[key]
         if isinstance(seq, str | list | tuple) and isinstance(key, int):
             return seq[key]
-        raise self.fail(f"cannot index a {type(seq).__name__} with a {type(key).__name__}", pos)
+        raise self.fail(f"cannot index a {type(seq).__name__} with a {type(key).__name__}", node)
 
-    def attribute(self, node: Node) -> Any:
-        owner_node, name = node[2], node[3]
-        if owner_node[0] == "name":
-            owner = self.name(owner_node[2], owner_node[1])
-        else:
-            owner = self.value(owner_node)
+    def attribute(self, node: ast.Attribute) -> Any:
+        owner, name = self.owner(node.value), node.attr
         if isinstance(owner, Namespace):
             if name in owner.members:
                 member = owner.members[name]
                 if callable(member):
-                    raise self.fail(f"{owner.name}.{name} is a function, not a value", node[1])
+                    raise self.fail(f"{owner.name}.{name} is a function, not a value", node)
                 return member
-            raise self.fail(f"{owner.name}.{name} is not available", node[1])
+            raise self.fail(f"{owner.name}.{name} is not available", node)
         if isinstance(owner, YamlDict):
             if name not in owner:
-                raise self.fail(f"the YAML mapping has no key {name!r}", node[1])
+                raise self.fail(f"the YAML mapping has no key {name!r}", node)
             return owner[name]
-        raise self.fail(
-            f"attribute access (.{name}) is refused except on what load_yaml read", node[1]
-        )
+        refused = f"attribute access (.{name}) is refused except on what load_yaml read"
+        raise self.fail(refused, node)
 
-    def call(self, node: Node) -> Any:
-        callee, pos = node[2], node[1]
+    def call(self, node: ast.Call) -> Any:
+        callee = node.func
         function: Any = None
-        if callee[0] == "name":
-            function = self.name(callee[2], callee[1])
-            shown = callee[2]
-        elif callee[0] == "attr":
-            owner_node, method = callee[2], callee[3]
-            if owner_node[0] == "name":
-                owner = self.name(owner_node[2], owner_node[1])
-                shown = f"{owner_node[2]}.{method}"
-            else:
-                owner = self.value(owner_node)
-                shown = f"(...).{method}"
+        if isinstance(callee, ast.Name):
+            function = self.name(callee)
+            shown = callee.id
+        elif isinstance(callee, ast.Attribute):
+            owner, method = self.owner(callee.value), callee.attr
+            shown = f"(...).{method}"
+            if isinstance(callee.value, ast.Name):
+                shown = f"{callee.value.id}.{method}"
             if isinstance(owner, Namespace) and method in owner.members:
                 function = owner.members[method]
             elif isinstance(owner, str) and method in _STRING_METHODS:
@@ -437,14 +404,14 @@ class _Evaluator:
             elif isinstance(owner, YamlDict) and method == "get" and method not in owner:
                 function = owner.get
         else:
-            self.value(callee)  # refuses what it is made of first (python., __, ...)
+            self.value(callee)  # refuses what it is made of first (python., unknown names, ...)
             shown = "the result of an expression"
         if not callable(function) or isinstance(function, type):
-            raise self.fail(f"{shown} is not a function that may be called", pos)
-        args = [self.value(arg) for arg in node[3] if arg[0] != "keyword"]
-        keywords = {arg[2]: self.value(arg[3]) for arg in node[3] if arg[0] == "keyword"}
+            raise self.fail(f"{shown} is not a function that may be called", node)
+        args = [self.value(arg) for arg in node.args]
+        keywords = {str(k.arg): self.value(k.value) for k in node.keywords}
         if keywords and function is not _dict:
-            raise self.fail(f"{shown} takes no keyword arguments (only dict() does)", pos)
+            raise self.fail(f"{shown} takes no keyword arguments (only dict() does)", node)
         return function(*args, **keywords)
 
 
@@ -471,4 +438,4 @@ def evaluate(
             text[:100],
         )
     tree = parse(text.strip())
-    return _Evaluator(text.strip(), lookup, functions).value(tree)
+    return _Evaluator(tree, lookup, functions).value(tree.body)

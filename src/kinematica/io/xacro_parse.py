@@ -1,24 +1,52 @@
-"""The parser of xacro expressions: text into a syntax tree, refusing what is not offered.
+"""The parser of xacro expressions: Python's own, and a whitelist check of its tree.
 
-A tokenizer and a recursive-descent parser of our own (no ``compile``, no ``ast``):
-numbers, strings, names, ``+ - * / // % **``, comparisons, ``and``/``or``/``not``,
-``in``, ``a if c else b``, calls, indexing, ``.name``, lists and tuples. Names with
-a double underscore, ``lambda``, comprehensions, string prefixes and keyword
-arguments are refused here, with the column, before anything is evaluated
-(:mod:`kinematica.io.xacro_expr` evaluates the tree).
+xacro evaluates ``${...}`` with Python's ``eval``, so Python's grammar is the faithful
+one: the text is parsed by :func:`ast.parse` (which runs nothing), and its tree is
+checked, before anything is evaluated, to hold only what
+:mod:`kinematica.io.xacro_expr` evaluates (:data:`OFFERED`). Names with a double
+underscore, ``lambda``, comprehensions, string prefixes, slices, ``*`` arguments,
+other operators and nesting deeper than :data:`MAX_DEPTH` are refused with the column.
 """
 
 from __future__ import annotations
 
+import ast
+import io
 import re
-from collections.abc import Callable
-from dataclasses import dataclass
-from typing import Any, Final
+import tokenize
+import warnings
+from typing import Final
 
-__all__ = ["MAX_DEPTH", "Node", "XacroExpressionError", "parse"]
+__all__ = ["MAX_DEPTH", "OFFERED", "Expression", "XacroExpressionError", "parse"]
 
 #: Deepest nesting of brackets, operators and calls in one expression.
 MAX_DEPTH: Final = 64
+
+#: The kinds of node (:mod:`ast` class names) an expression may hold: constants,
+#: names, ``+ - * / // % **``, unary ``- + not``, ``and``/``or``, comparisons,
+#: ``a if c else b``, lists, tuples, indexing, calls (with keywords) and ``.name``.
+OFFERED: Final = frozenset(
+    {"Constant", "Name", "Load", "List", "Tuple", "Subscript", "Call", "keyword", "Attribute"}
+    | {"BinOp", "Add", "Sub", "Mult", "Div", "FloorDiv", "Mod", "Pow"}
+    | {"UnaryOp", "USub", "UAdd", "Not", "BoolOp", "And", "Or", "IfExp"}
+    | {"Compare", "Eq", "NotEq", "Lt", "LtE", "Gt", "GtE", "In", "NotIn"}
+)
+_COMPREHENSION: Final = "comprehensions are not allowed"
+_REFUSED: Final = {
+    "Lambda": "lambda functions are not allowed",
+    "ListComp": _COMPREHENSION,
+    "SetComp": _COMPREHENSION,
+    "DictComp": _COMPREHENSION,
+    "GeneratorExp": _COMPREHENSION,
+    "JoinedStr": "string prefixes (f'', r'', b'') are not supported",
+    "Is": "'is' is not supported (use ==)",
+    "IsNot": "'is' is not supported (use ==)",
+    "Slice": "slices are not supported",
+    "Starred": "* in calls is not supported",
+}
+_CONSTANTS: Final = (int, float, str, type(None))
+_NODES: Final = (ast.expr, ast.keyword)
+_TOKEN: Final = re.compile(r"\w+|\*\*|//|<<|>>|[=!<>]=|\S")
 
 
 class XacroExpressionError(Exception):
@@ -43,283 +71,135 @@ class XacroExpressionError(Exception):
         return f"{self.reason}{where} in the expression {shown!r}"
 
 
-_KEYWORDS: Final = frozenset({"and", "or", "not", "if", "else", "in", "True", "False", "None"})
-_REFUSED_WORDS: Final = {
-    "lambda": "lambda functions are not allowed",
-    "for": "comprehensions are not allowed",
-    "import": "import is not allowed",
-    "yield": "yield is not allowed",
-    "await": "await is not allowed",
-    "is": "'is' is not supported (use ==)",
-}
+class Expression:
+    """The tree of one expression, with the columns of its nodes.
 
-_TOKEN = re.compile(
-    r"""
-    (?P<space>\s+)
-  | (?P<number>(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)
-  | (?P<string>'[^'\\]*(?:\\.[^'\\]*)*'|"[^"\\]*(?:\\.[^"\\]*)*")
-  | (?P<name>[A-Za-z_][A-Za-z_0-9]*)
-  | (?P<op>\*\*|//|==|!=|<=|>=|[-+*/%<>()\[\],.=])
-    """,
-    re.VERBOSE | re.ASCII,
-)
-_ESCAPES: Final = {"n": "\n", "t": "\t", "\\": "\\", "'": "'", '"': '"'}
+    Attributes:
+        text: The expression.
+        body: The root of its tree (checked by :func:`parse`).
+    """
 
-
-@dataclass(frozen=True)
-class _Tok:
-    kind: str
-    text: str
-    pos: int
-
-
-def _unquote(text: str) -> str:
-    body = text[1:-1]
-    return re.sub(r"\\(.)", lambda m: _ESCAPES.get(m.group(1), "\\" + m.group(1)), body)
-
-
-def _tokenize(text: str) -> list[_Tok]:
-    tokens: list[_Tok] = []
-    pos = 0
-    while pos < len(text):
-        m = _TOKEN.match(text, pos)
-        if m is None:
-            if text[pos] in "'\"":
-                reason = "a string that is not closed (a '}' inside ${...} ends the expression)"
-                raise XacroExpressionError(reason, text, pos)
-            raise XacroExpressionError(f"unexpected character {text[pos]!r}", text, pos)
-        kind = m.lastgroup or ""
-        if kind == "name" and m.group().startswith("__"):
-            raise XacroExpressionError("names with a double underscore are refused", text, pos)
-        if kind == "name" and m.group() in _REFUSED_WORDS:
-            raise XacroExpressionError(_REFUSED_WORDS[m.group()], text, pos)
-        if (
-            kind == "string"
-            and tokens
-            and tokens[-1].kind == "name"
-            and tokens[-1].pos + len(tokens[-1].text) == pos
-        ):
-            raise XacroExpressionError(
-                "string prefixes (f'', r'', b'') are not supported", text, pos
-            )
-        if kind != "space":
-            tokens.append(_Tok(kind, m.group(), pos))
-        pos = m.end()
-    tokens.append(_Tok("end", "", len(text)))
-    return tokens
-
-
-#: The syntax tree: tuples (kind, position, ...), built here and walked by the evaluator.
-Node = tuple[Any, ...]
-
-
-class _Parser:
-    def __init__(self, text: str) -> None:
+    def __init__(self, text: str, body: ast.expr) -> None:
         self.text = text
-        self.toks = _tokenize(text)
-        self.i = 0
-        self.depth = 0
+        self.body = body
+        self._lines = [0] + [m.end() for m in re.finditer(r"\r\n?|\n", text)]
+        self._brackets: dict[int, int] = {}  # a token's start -> the brackets open around it
 
-    @property
-    def tok(self) -> _Tok:
-        return self.toks[self.i]
+    def index(self, line: int | None, column: int | None, *, chars: bool = False) -> int:
+        """The index in :attr:`text` of a line (from 1) and a column (in UTF-8 bytes)."""
+        start = self._lines[(line or 1) - 1]
+        if chars or self.text.isascii():
+            return start + (column or 0)
+        return start + len(self.text[start:].encode()[: column or 0].decode(errors="ignore"))
 
-    def take(self, text: str) -> bool:
-        if self.tok.text == text and self.tok.kind in ("op", "name"):
-            self.i += 1
-            return True
-        return False
+    def position(self, node: ast.expr | ast.keyword) -> int:
+        """The column of ``node``: its operator for ``a + b``, its name for ``a.name``."""
+        if isinstance(node, ast.BinOp):  # after the left operand, its brackets and spaces
+            after = self.text[self.end(node.left) :]
+            return len(self.text) - len(after.lstrip(" \t\r\n)"))
+        if isinstance(node, ast.Attribute):
+            return self.end(node) - len(node.attr)
+        return self.index(node.lineno, node.col_offset)
 
-    def expect(self, text: str) -> None:
-        if not self.take(text):
-            raise self.fail(f"expected {text!r}")
+    def end(self, node: ast.expr) -> int:
+        """The index just after ``node`` in :attr:`text`."""
+        return self.index(node.end_lineno, node.end_col_offset)
 
-    def fail(self, what: str = "") -> XacroExpressionError:
-        tok = self.tok
-        got = "the end of the expression" if tok.kind == "end" else repr(tok.text)
-        return XacroExpressionError(
-            f"unexpected {got}" + (f" ({what})" if what else ""), self.text, tok.pos
-        )
+    def fail(self, reason: str, node: ast.expr | ast.keyword | int | None) -> XacroExpressionError:
+        """The error ``reason`` at ``node`` (or at an index in the text)."""
+        where = node if isinstance(node, int | None) else self.position(node)
+        return XacroExpressionError(reason, self.text, where)
 
-    def nest(self) -> None:
-        self.depth += 1
-        if self.depth > MAX_DEPTH:
-            raise XacroExpressionError(
-                f"nested deeper than {MAX_DEPTH} levels", self.text, self.tok.pos
-            )
-
-    def parse(self) -> Node:
-        if self.tok.kind == "end":
-            raise XacroExpressionError("empty expression", self.text, None)
-        node = self.conditional()
-        if self.tok.kind != "end":
-            raise self.fail()
-        return node
-
-    def conditional(self) -> Node:
-        self.nest()
-        node = self.disjunction()
-        if self.tok.text == "if" and self.tok.kind == "name":
-            pos = self.tok.pos
-            self.i += 1
-            cond = self.disjunction()
-            self.expect("else")
-            node = ("if", pos, cond, node, self.conditional())
-        self.depth -= 1
-        return node
-
-    def disjunction(self) -> Node:
-        items = [self.conjunction()]
-        while self.take("or"):
-            items.append(self.conjunction())
-        return items[0] if len(items) == 1 else ("or", None, items)
-
-    def conjunction(self) -> Node:
-        items = [self.negation()]
-        while self.take("and"):
-            items.append(self.negation())
-        return items[0] if len(items) == 1 else ("and", None, items)
-
-    def negation(self) -> Node:
-        pos = self.tok.pos
-        if self.take("not"):
-            self.nest()
-            node = ("not", pos, self.negation())
-            self.depth -= 1
-            return node
-        return self.comparison()
-
-    def comparison(self) -> Node:
-        first = self.arith()
-        rest = []
-        while True:
-            tok = self.tok
-            if tok.kind == "op" and tok.text in ("<", "<=", ">", ">=", "==", "!="):
-                op = tok.text
-                self.i += 1
-            elif self.take("in"):
-                op = "in"
-            elif tok.text == "not" and self.toks[self.i + 1].text == "in":
-                self.i += 2
-                op = "not in"
-            else:
+    def scan(self) -> None:
+        """Refuse string prefixes, and count the brackets open around each token."""
+        depth = 0
+        for tok in tokenize.generate_tokens(io.StringIO(self.text, newline=None).readline):
+            if tok.start[0] > len(self._lines):  # the end marker
                 break
-            rest.append((op, tok.pos, self.arith()))
-        return first if not rest else ("cmp", None, first, rest)
+            at = self.index(*tok.start, chars=True)
+            if tok.type == tokenize.STRING and tok.string[0] not in "'\"":
+                raise self.fail(_REFUSED["JoinedStr"], at)
+            self._brackets[at] = depth
+            if tok.type == tokenize.OP and tok.string in "([{":
+                depth += 1
+            elif tok.type == tokenize.OP and tok.string in ")]}":
+                depth -= 1
 
-    def binary(self, ops: tuple[str, ...], operand: Callable[[], Node]) -> Node:
-        # one node for ``a + b - c + ...``: a long sum makes a wide tree, not a deep one
-        first = operand()
-        rest = []
-        while self.tok.kind == "op" and self.tok.text in ops:
-            tok = self.tok
-            self.i += 1
-            rest.append((tok.text, tok.pos, operand()))
-        return ("chain", None, first, rest) if rest else first
+    def check(self) -> None:
+        """Refuse what is not :data:`OFFERED`, and nesting deeper than :data:`MAX_DEPTH`.
 
-    def arith(self) -> Node:
-        return self.binary(("+", "-"), self.term)
-
-    def term(self) -> Node:
-        return self.binary(("*", "/", "//", "%"), self.unary)
-
-    def unary(self) -> Node:
-        tok = self.tok
-        if tok.kind == "op" and tok.text in ("+", "-"):
-            self.i += 1
-            self.nest()
-            node = ("neg" if tok.text == "-" else "pos", tok.pos, self.unary())
-            self.depth -= 1
-            return node
-        return self.power()
-
-    def power(self) -> Node:
-        node = self.postfix()
-        if self.tok.kind == "op" and self.tok.text == "**":
-            tok = self.tok
-            self.i += 1
-            self.nest()
-            node = ("bin", tok.pos, "**", node, self.unary())
-            self.depth -= 1
-        return node
-
-    def postfix(self) -> Node:
-        node = self.atom()
-        while self.tok.kind == "op" and self.tok.text in ("(", "[", "."):
-            tok = self.tok
-            self.i += 1
-            self.nest()
-            if tok.text == "(":
-                args = self.items(")", keywords=True)
-                node = ("call", tok.pos, node, args)
-            elif tok.text == "[":
-                index = self.conditional()
-                self.expect("]")
-                node = ("index", tok.pos, node, index)
-            else:
-                name = self.tok
-                if name.kind != "name":
-                    raise self.fail("expected a name after '.'")
-                self.i += 1
-                node = ("attr", name.pos, node, name.text)
-        return node
-
-    def items(self, close: str, *, keywords: bool = False) -> list[Node]:
-        items: list[Node] = []
-        while not self.take(close):
-            if items:
-                self.expect(",")
-                if self.take(close):
-                    break
-            if self.tok.kind == "name" and self.toks[self.i + 1].text == "=":
-                if not keywords:
-                    raise self.fail("keyword arguments are only for calls")
-                name = self.tok
-                self.i += 2
-                items.append(("keyword", name.pos, name.text, self.conditional()))
-                continue
-            items.append(self.conditional())
-        self.depth -= 1
-        return items
-
-    def atom(self) -> Node:
-        tok = self.tok
-        if tok.kind == "number":
-            self.i += 1
-            is_int = re.fullmatch(r"[0-9]+", tok.text) is not None
-            return ("const", tok.pos, int(tok.text) if is_int else float(tok.text))
-        if tok.kind == "string":
-            self.i += 1
-            value = _unquote(tok.text)
-            while self.tok.kind == "string":  # adjacent literals join, as in Python
-                value += _unquote(self.tok.text)
-                self.i += 1
-            return ("const", tok.pos, value)
-        if tok.kind == "name" and tok.text not in _KEYWORDS - {"True", "False", "None"}:
-            self.i += 1
-            return ("name", tok.pos, tok.text)
-        if tok.kind == "op" and tok.text in ("(", "["):
-            self.i += 1
-            self.nest()
-            if tok.text == "[":
-                return ("list", tok.pos, self.items("]"))
-            if self.take(")"):
-                self.depth -= 1
-                return ("tuple", tok.pos, [])
-            first = self.conditional()
-            if self.take(")"):
-                self.depth -= 1
-                return first
-            self.expect(",")
-            rest = self.items(")")
-            return ("tuple", tok.pos, [first, *rest])
-        raise self.fail("expected a number, a string, a name or '('")
+        A node's depth is the nodes above it plus the brackets around it; the left
+        operand of ``a + b`` stays at its parent's depth, so that a long sum
+        ``a + b - c + ...`` is wide, not deep (it is evaluated in a loop).
+        """
+        todo: list[tuple[ast.expr | ast.keyword, int]] = [(self.body, 1)]
+        while todo:
+            node, level = todo.pop()
+            where = self.index(node.lineno, node.col_offset)
+            if level + self._brackets.get(where, 0) > MAX_DEPTH:
+                raise self.fail(f"nested deeper than {MAX_DEPTH} levels", where)
+            kind = type(node).__name__
+            if kind not in OFFERED:
+                raise self.fail(_REFUSED.get(kind, f"{kind} is not supported"), node)
+            name = getattr(node, "id", None) or getattr(node, "attr", None) or ""
+            if str(name).startswith("__") or str(getattr(node, "arg", "")).startswith("__"):
+                raise self.fail("names with a double underscore are refused", node)
+            constant = getattr(node, "value", None) if isinstance(node, ast.Constant) else None
+            if not isinstance(constant, _CONSTANTS):
+                raise self.fail(f"the constant {constant!r} is not supported", node)
+            if isinstance(node, ast.keyword) and node.arg is None:
+                raise self.fail("** in calls is not supported", node)
+            children = list(ast.iter_child_nodes(node))
+            for kind in {type(c).__name__ for c in children if not isinstance(c, _NODES)}:
+                if kind not in OFFERED:
+                    symbol = _TOKEN.match(self.text, self.position(node))
+                    shown = f"unexpected character {symbol and symbol.group()!r} (not offered)"
+                    raise self.fail(_REFUSED.get(kind, shown), node)
+            for child in reversed(children):  # popped first to last, as written
+                if isinstance(child, _NODES):
+                    same = isinstance(node, ast.BinOp) and child is node.left
+                    todo.append((child, level if same else level + 1))
 
 
-def parse(text: str) -> Node:
-    """The syntax tree of expression ``text``: nested tuples ``(kind, position, ...)``.
+def _syntax_error(text: str, exc: SyntaxError) -> XacroExpressionError:
+    """Python's syntax error as ours: what is unexpected, and where."""
+    if exc.lineno is None:  # null bytes
+        return XacroExpressionError(exc.msg, text, None)
+    offset = exc.offset or 0
+    at = Expression(text, ast.Constant(None)).index(exc.lineno, offset - 1, chars=True)
+    at = min(at, len(text)) if offset > 0 else len(text)
+    found = _TOKEN.match(text, at)
+    got = repr(found.group()) if found else "the end of the expression"
+    hint = exc.msg.removeprefix("invalid syntax").strip(". ")
+    if exc.msg.startswith("unterminated"):
+        hint = "a string that is not closed (a '}' inside ${...} ends the expression)"
+        return XacroExpressionError(hint, text, at)
+    if "too many nested" in exc.msg:
+        hint = f"nested deeper than {MAX_DEPTH} levels"
+    elif "'='" in exc.msg:
+        at, got, hint = max(text.find("=", at), 0), "'='", "keyword arguments are only for calls"
+    return XacroExpressionError(f"unexpected {got}" + (f" ({hint})" if hint else ""), text, at)
+
+
+def parse(text: str) -> Expression:
+    """The checked tree of expression ``text``, parsed by Python's :func:`ast.parse`.
 
     Raises:
         XacroExpressionError: malformed, or using what is refused, with the column.
     """
-    return _Parser(text).parse()
+    if not text.strip():
+        raise XacroExpressionError("empty expression", text, None)
+    try:
+        with warnings.catch_warnings():  # '\d' stays as written, as in Python
+            warnings.simplefilter("ignore")
+            expression = Expression(text, ast.parse(text, mode="eval").body)
+        expression.scan()
+    except SyntaxError as exc:
+        raise _syntax_error(text, exc) from None
+    except (RecursionError, MemoryError) as exc:
+        reason = f"nested deeper than {MAX_DEPTH} levels ({type(exc).__name__} in the parser)"
+        raise XacroExpressionError(reason, text, None) from None
+    except (ValueError, tokenize.TokenError) as exc:
+        raise XacroExpressionError(f"malformed: {exc}", text, None) from None
+    expression.check()
+    return expression
