@@ -1,6 +1,5 @@
 // Time-optimal timing of a joint path (topp.hpp) for kinematica.motion.optimal: one path per
 // call, every array checked here before the core sees it.
-#include <cmath>
 #include <string>
 #include <vector>
 
@@ -30,28 +29,10 @@ nb::tuple time_optimal(F64 s, F64 coef, F64 vlo, F64 vhi, F64 alo, F64 ahi, F64 
     const In VL = in_f64(vlo, "vlo", 1, {n}), VH = in_f64(vhi, "vhi", 1, {n});
     const In AL = in_f64(alo, "alo", 1, {n}), AH = in_f64(ahi, "ahi", 1, {n});
     const In CP = in_f64(cap, "cap", 1, {N});
-    for (npy_intp i = 0; i < N; ++i) {
-        if (!(S.data[i + 1] > S.data[i]) || !std::isfinite(S.data[i + 1] - S.data[i])) {
-            fail_value("s", "finite and strictly increasing");
-        }
-        if (!(CP.data[i] >= 0.0)) fail_value("cap", ">= 0 (inf for none)");
-    }
-    for (npy_intp k = 0; k < C.size(); ++k) {
-        if (!std::isfinite(C.data[k])) fail_value("coef", "finite");
-    }
-    for (npy_intp j = 0; j < n; ++j) {
-        if (!(VL.data[j] <= 0.0 && VH.data[j] >= 0.0 && AL.data[j] <= 0.0 && AH.data[j] >= 0.0)) {
-            fail_value("limits", "lo <= 0 <= hi for every joint");
-        }
-    }
-    if (!(x_start >= 0.0 && x_end >= 0.0 && std::isfinite(x_start) && std::isfinite(x_end))) {
-        fail_value("x_start and x_end", "finite squared speeds >= 0");
-    }
-    if (!(x_max > 0.0 && std::isfinite(x_max))) fail_value("x_max", "a finite positive number");
-
     // Problem's fields in their order: n, N, degree, the arrays s, coef, vlo, vhi, alo, ahi, cap
     const kt::Problem P{static_cast<int>(n), static_cast<int>(N), degree, S.data, C.data, VL.data,
                         VH.data, AL.data, AH.data, CP.data, x_start, x_end, x_max};
+    if (const char* why = P.invalid()) throw nb::value_error(why);
     const npy_intp M = N + 1;
     double* x;
     F64 X = new_f64({6, M}, x);  // rows x, k_lo, k_hi, r_lo, r_hi, mvc: Output's arrays in order

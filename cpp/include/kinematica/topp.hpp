@@ -74,6 +74,31 @@ struct Problem {
     double x_start = 0.0;           //!< ṡ² at s_0
     double x_end = 0.0;             //!< ṡ² at s_N
     double x_max = 1e12;            //!< largest ṡ² anywhere (bounds a path that does not move)
+
+    //! Why these values are not a problem time_optimal takes (nullptr: they are one): the
+    //! grid finite and strictly increasing, the caps >= 0, the coefficients finite, each
+    //! limit's low <= 0 <= high, the end speeds finite and >= 0, x_max finite and > 0.
+    const char* invalid() const {
+        for (int i = 0; i < N; ++i) {
+            if (!(s[i + 1] > s[i]) || !std::isfinite(s[i + 1] - s[i])) {
+                return "s must be finite and strictly increasing";
+            }
+            if (!(cap[i] >= 0.0)) return "cap must be >= 0 (inf for none)";
+        }
+        for (long k = 0; k < static_cast<long>(N) * (degree + 1) * n; ++k) {
+            if (!std::isfinite(coef[k])) return "coef must be finite";
+        }
+        for (int j = 0; j < n; ++j) {
+            if (!(vlo[j] <= 0.0 && vhi[j] >= 0.0 && alo[j] <= 0.0 && ahi[j] >= 0.0)) {
+                return "limits must be lo <= 0 <= hi for every joint";
+            }
+        }
+        if (!(x_start >= 0.0 && x_end >= 0.0 && std::isfinite(x_start) && std::isfinite(x_end))) {
+            return "x_start and x_end must be finite squared speeds >= 0";
+        }
+        if (!(x_max > 0.0 && std::isfinite(x_max))) return "x_max must be a finite positive number";
+        return nullptr;
+    }
 };
 
 //! The outcome; the arrays (N + 1 each) are the caller's.
