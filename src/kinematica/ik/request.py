@@ -48,6 +48,7 @@ _plain: dict[tuple[object, ...], IKRequest] = {}
 _of: dict[int, tuple[IKOptions, IKRequest]] = {}
 _keys: dict[tuple[object, ...], int] = {}
 _next_key = 0
+_FLOAT64 = np.dtype(np.float64)
 #: The settings, in IKOptions' order.
 _FIELDS = ("method", "tol", "respect_limits", "q0", "mask", "seed", "workers", "precision",
            "fixed", "arm_angle")  # fmt: skip
@@ -175,7 +176,7 @@ class IKRequest(IKOptions):
                 ``options`` given with keywords, or not an ``IKOptions``.
         """
         if options is None:
-            vector = q0.__class__ is np.ndarray and q0.ndim == 1 and q0.dtype == np.float64
+            vector = q0.__class__ is np.ndarray and q0.dtype is _FLOAT64 and q0.ndim == 1
             if (
                 (q0 is None or vector)
                 and mask is None

@@ -25,6 +25,7 @@ if TYPE_CHECKING:
 __all__ = ["check_given", "check_joint_values"]
 
 _Q_NAME = re.compile(r"q([1-9][0-9]*)")
+_FLOAT64 = np.dtype(np.float64)
 #: Where a warning of check_given points: the caller of robot.ik (check_given, ik, caller).
 _STACK = 3
 
@@ -73,8 +74,8 @@ def check_given(
     """Warn of ``q0``, ``fixed`` and ``arm_angle`` values as ``fk`` warns of ``q``."""
     if (
         type(q0) is np.ndarray
-        and q0.shape == (robot.dof,)
-        and q0.dtype == np.float64
+        and q0.dtype is _FLOAT64
+        and q0.shape == robot._single
         and robot.chain.core.fk(q0)[1] == 0
     ):
         q0 = None  # finite, within its own limits, no free joint beyond a turn: nothing to say

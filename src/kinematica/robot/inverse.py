@@ -21,9 +21,11 @@ __all__ = ["RobotIK"]
 FloatArray = NDArray[np.float64]
 
 
-#: ``(IKRequest.parse, solve)``, once the IK layer is loaded (:func:`_door`).
+#: ``(IKRequest.parse, solve, check_given)``, once the IK layer is loaded (:func:`_door`).
 _Door = tuple[
-    Callable[..., "IKRequest | HeldCall | Q0Call"], Callable[..., "IKResult | IKBatchResult"]
+    Callable[..., "IKRequest | HeldCall | Q0Call"],
+    Callable[..., "IKResult | IKBatchResult"],
+    Callable[..., None],
 ]
 _DOOR: _Door | None = None
 
@@ -33,8 +35,9 @@ def _door() -> _Door:
     global _DOOR
     from kinematica.ik.door import solve
     from kinematica.ik.request import IKRequest
+    from kinematica.robot.given import check_given  # degrees given for radians?
 
-    _DOOR = (IKRequest.parse, solve)
+    _DOOR = (IKRequest.parse, solve, check_given)
     return _DOOR
 
 
@@ -103,12 +106,10 @@ class RobotIK(RobotKinematics):
             (arrays with the targets' batch shape) for a batch. In a batch, a
             malformed target gets the status ``"invalid"``; the others are solved.
         """
-        parse, solve = _DOOR or _door()
+        parse, solve, check_given = _DOOR or _door()
         request = parse(method, tol, respect_limits, q0, mask, seed, workers, precision, fixed,
                         arm_angle, options)  # fmt: skip
         if request.given:
-            from kinematica.robot.given import check_given  # degrees given for radians?
-
             check_given(self, request.q0, request.fixed, request.arm_angle)
         return solve(self.chain, target, request, self.joint_names)
 
