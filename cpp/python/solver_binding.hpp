@@ -219,6 +219,7 @@ struct Prepared {
     static bool read_q0(nb::handle q0, int size, int skip, std::vector<double>& q) {
         if (q0.is_none()) return true;
         const In in = in_f64(q0, "q0", 1, {size});
+        q.reserve(static_cast<size_t>(size));
         for (int i = 0; i < size; ++i) {
             if (!std::isfinite(in.data[i])) return false;
             if (i != skip) q.push_back(in.data[i]);
