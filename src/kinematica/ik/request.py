@@ -243,11 +243,11 @@ class HeldCall:
     """One call holding one joint at a value: its settings but ``fixed`` and ``q0``, kept.
 
     It gives no setting but ``fixed`` (one joint), ``q0``, ``method``, ``tol`` and
-    ``respect_limits``. The request of those settings is kept and found by them (:meth:`IKRequest.parse`); the
-    joint and its value, a new one on every call, and ``q0`` travel beside it as given and
-    are checked where they are solved (:func:`kinematica.ik.door.solve`), so that a new
-    value makes no new request. Read by ``robot.ik``'s check of units as a request is
-    (``q0``, ``fixed``, ``arm_angle``).
+    ``respect_limits``. The request of those settings is kept and found by them
+    (:meth:`IKRequest.parse`); the joint and its value, a new one on every call, and
+    ``q0`` travel beside it as given and are checked where they are solved
+    (:func:`kinematica.ik.door.solve`), so that a new value makes no new request. Read
+    by ``robot.ik``'s check of units as a request is (``q0``, ``fixed``, ``arm_angle``).
 
     Attributes:
         request: The request of the call's other settings (``fixed`` and ``q0`` None).
