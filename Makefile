@@ -57,11 +57,11 @@ lint: $(CORE_STAMP)
 	$(BIN)/mypy
 	$(BIN)/lint-imports
 
-# The checks (lint) and the test suite run side by side: mypy keeps one core busy for
-# about 20 s, which the suite's two workers would otherwise wait for. Either failing
-# fails `make test`.
-test: $(CORE_STAMP) ctest
-	$(MAKE) --no-print-directory -j2 lint suite
+# The C++ tests, the checks (lint) and the test suite run side by side: the C++ build
+# keeps one core busy for a minute with its general 6R and mypy for about 20 s, which the
+# suite's two workers would otherwise wait for. Any failing fails `make test`.
+test: $(CORE_STAMP)
+	$(MAKE) --no-print-directory -j3 ctest lint suite
 
 # The core's headers tested from C++ alone (tests/cpp: FK against a hand-worked 2R, one
 # closed form per family built in C++, the general 6R on a CRX-like arm), by ctest; Eigen
