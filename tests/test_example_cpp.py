@@ -38,9 +38,8 @@ WARNINGS = ["-Wall", "-Wextra", "-Werror"]
 # -O0: the program of every family is the suite's longest test, and the compiler's front
 # end takes most of it on the general 6R's Eigen decompositions (92 s in all on the 2-core
 # VM in December 2026, a program of one other family 2 s; -O1 adds the optimiser's time
-# on top); the answers are the same
-# bits: -ffp-contract=off, as the extension is built (CMakeLists.txt), so that no
-# optimisation level fuses a multiply-add.
+# on top); the answers are the same bits: -ffp-contract=off, as the extension is built
+# (CMakeLists.txt), so that no optimisation level fuses a multiply-add.
 FLAGS = [
     "-std=c++17",
     "-O0",
