@@ -176,6 +176,29 @@ def test_qz_finds_the_real_roots_and_the_one_at_infinity_where_a2_is_singular() 
     np.testing.assert_allclose(qz, np.sort([*real, -10.0]), atol=ROOT_TOL)
 
 
+@pytest.mark.parametrize("side", [1.0 - EDGE, 1.0 + EDGE])
+def test_qz_splits_a_nearly_real_pair_as_the_companion_matrix_does(side: float) -> None:
+    # A2 singular (QZ, no companion matrix) and a pair x0 ± i s of the real Schur form's
+    # 2 x 2 blocks: just inside SPLIT_ROOT_TOL it gives x0 - s and x0 + s, flagged split;
+    # just outside, nothing; the real roots and the one at x = ∞ come out either way
+    rng = np.random.default_rng(6)
+    x0 = -0.8
+    s = _split_boundary(x0) * side
+    real = [-2.0, -0.5, 0.25, 1.5, 3.0, 3.5]
+    pairs = [_real_pair(real[2 * k], real[2 * k + 1]) for k in range(3)]
+    factors = [SPURIOUS_FACTOR] * 4 + pairs + [(-0.7, 1.0, 0.0), (x0 * x0 + s * s, -2 * x0, 1.0)]
+    A = _quadratic(rng, factors + [(1.0, 0.5, 1.0)] * 3)
+    assert np.linalg.matrix_rank(A[2]) == 11
+    roots, split = G.real_roots_qz(*A)
+    expected = sorted([*real, 0.7] + ([x0 - s, x0 + s] if side < 1.0 else []))
+    finite = roots != 1e300
+    assert (~finite).sum() == 1
+    np.testing.assert_allclose(np.sort(roots[finite]), expected, atol=ROOT_TOL)
+    near = np.abs(roots[:, None] - np.array([x0 - s, x0 + s])[None]).min(axis=1) <= ROOT_TOL
+    assert list(split) == list(near)
+    assert near.sum() == (2 if side < 1.0 else 0)
+
+
 def test_qz_on_a_singular_pencil_keeps_the_regular_roots_among_spurious_ones() -> None:
     # a factor ≡ 0: det M ≡ 0 (the exact UR5's elimination); the regular part's real
     # roots are still found, with spurious ones of the singular part (anywhere: the
