@@ -29,6 +29,14 @@ from kinematica import _core, _core_testing
 #: less than half of what the batch takes uninterrupted (10 s idle, minutes sanitized).
 LATENCY = 4.0
 
+#: Each child's first lines. A shell's background job (``cmd &`` without job control)
+#: starts with SIGINT ignored, and Python then installs no KeyboardInterrupt handler, so
+#: a child of a suite run that way would never see the signal; it takes Python's own.
+SIGINT_HANDLED = """
+import signal
+signal.signal(signal.SIGINT, signal.default_int_handler)
+"""
+
 CHILD = r"""
 import sys, time
 import numpy as np
@@ -58,7 +66,7 @@ print("after", ok, err, one.status, flush=True)
 
 def test_sigint_stops_a_long_ik_batch_and_the_interpreter_goes_on() -> None:
     child = subprocess.Popen(
-        [sys.executable, "-c", CHILD],
+        [sys.executable, "-c", SIGINT_HANDLED + CHILD],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
@@ -185,7 +193,7 @@ def test_sigint_stops_a_spatial_batch_inside_the_call() -> None:
     finish first, its result assigned, and the KeyboardInterrupt raised after it.
     """
     child = subprocess.run(
-        [sys.executable, "-c", SPATIAL_CHILD],
+        [sys.executable, "-c", SIGINT_HANDLED + SPATIAL_CHILD],
         capture_output=True,
         text=True,
         timeout=60,
@@ -247,7 +255,10 @@ def test_sigint_stops_one_long_time_optimal_path_inside_the_call() -> None:
     core then times a small path exactly as before the interruption.
     """
     child = subprocess.run(
-        [sys.executable, "-c", TOPP_CHILD], capture_output=True, text=True, timeout=60
+        [sys.executable, "-c", SIGINT_HANDLED + TOPP_CHILD],
+        capture_output=True,
+        text=True,
+        timeout=60,
     )
     assert child.returncode == 0, child.stderr
     lines = [line.split() for line in child.stdout.splitlines()]
