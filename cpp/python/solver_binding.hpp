@@ -180,6 +180,7 @@ struct Prepared {
     //! solve's rows alone (ik_rows), no Python object made: callable without the GIL
     std::function<km::CheckReport(const km::Pose&, OneOut&)> rows;
     nb::object keep;  //!< the solver, the chain and the labels the solve reads
+    const km::Chain* chain = nullptr;  //!< the chain solved (kept alive by keep)
     nb::object labels;
     int n = 0;  //!< the locked arm's joints
     nb::object result, fields, statuses;
@@ -214,24 +215,31 @@ struct Prepared {
         return ((final_codes >> static_cast<unsigned>(ans.report.status)) & 1U) != 0U;
     }
 
-    //! q0 (None, or a float64 array of `size` values) into q, leaving out entry `skip` (-1:
-    //! none): false where a value is not finite (the caller's general path explains it).
-    static bool read_q0(nb::handle q0, int size, int skip, std::vector<double>& q) {
-        if (q0.is_none()) return true;
+    //! q0 (None, or a float64 array of `size` values, at most FREE_JOINTS) into q (room for
+    //! `size`), leaving out entry `skip` (-1: none): false where a value is not finite or
+    //! there are too many (the caller's general path explains it). with_q0: q0 is not None.
+    static bool read_q0(nb::handle q0, int size, int skip, double* q, bool& with_q0) {
+        with_q0 = !q0.is_none();
+        if (!with_q0) return true;
+        if (size > km::FREE_JOINTS) return false;
         const In in = in_f64(q0, "q0", 1, {size});
-        q.reserve(static_cast<size_t>(size));
-        for (int i = 0; i < size; ++i) {
+        for (int i = 0, k = 0; i < size; ++i) {
             if (!std::isfinite(in.data[i])) return false;
-            if (i != skip) q.push_back(in.data[i]);
+            if (i != skip) q[k++] = in.data[i];
         }
         return true;
     }
 
+    //! The result (or Answer) of T sorted by q0; None where T is not read in place or not
+    //! rigid, or q0 (n,) is not within the chain's own limits and a turn (q_state not ok:
+    //! the caller warns of it and its general path solves).
     nb::object operator()(nb::handle T, nb::handle q0) const {
         const double* t = rigid_rows(T);
-        std::vector<double> q;
-        if (t == nullptr || !read_q0(q0, n, -1, q)) return nb::none();
-        const Answer ans = solve(km::Pose::from_rows(t), q.empty() ? nullptr : q.data());
+        double q[km::FREE_JOINTS];
+        bool with_q0 = false;
+        if (t == nullptr || !read_q0(q0, n, -1, q, with_q0)) return nb::none();
+        if (with_q0 && (chain == nullptr || km::q_state(chain->view(), q) != km::QState::ok)) return nb::none();
+        const Answer ans = solve(km::Pose::from_rows(t), with_q0 ? q : nullptr);
         if (final(ans)) return make_result(ans, result, fields, statuses);
         return nb::cast(ans);
     }
@@ -243,9 +251,10 @@ struct Prepared {
     nb::object at(nb::handle T, double value, nb::handle q0) const {
         if (held_joint < 0) throw nb::value_error("at(): this Prepared holds no joint (held())");
         const double* t = rigid_rows(T);
-        std::vector<double> q;
-        if (t == nullptr || !read_q0(q0, n + 1, held_joint, q)) return nb::none();
-        return given(solved_at(t, value, q.empty() ? nullptr : q.data()), value);
+        double q[km::FREE_JOINTS];
+        bool with_q0 = false;
+        if (t == nullptr || !read_q0(q0, n + 1, held_joint, q, with_q0)) return nb::none();
+        return given(solved_at(t, value, with_q0 ? q : nullptr), value);
     }
 
     //! For each target T[i] (N, 4, 4), at(T[i], v) at the first value v of grid (G,) whose
@@ -448,6 +457,7 @@ void add_ik_methods(nb::class_<Bound>& cls, Get get) {
             };
             p.labels = nb::borrow(labels);
             p.n = c->dof();
+            p.chain = c;
             p.keep = nb::make_tuple(self, chain, labels);
             p.result = nb::borrow(result);
             p.statuses = nb::borrow(statuses);

@@ -4,10 +4,11 @@ A call giving ``q0`` as a float64 vector, and no other setting but ``method``, `
 ``respect_limits`` (and ``fixed`` of one joint), is read into a
 :class:`~kinematica.ik.request.Q0Call` or a :class:`~kinematica.ik.request.HeldCall`; the
 plan's prepared call sorts the solutions nearest ``q0`` in the core
-(``Prepared.__call__``/``Prepared.at`` with ``q0``). Its answers are held here against the
-general path, which a ``q0`` given as a list takes (a new request, parsed targets,
-``solver.ik``), field by field and bit for bit; and bad ``q0`` values against the same
-errors and warnings.
+(``Prepared.__call__``/``Prepared.at`` with ``q0``), where ``q0`` is within the joints'
+own limits and a turn (else ``robot.ik`` warns and the general path solves). Its
+answers are held here against the general path, which a ``q0`` given as a list takes (a
+new request, parsed targets, ``solver.ik``), field by field and bit for bit; and bad
+``q0`` values against the same errors and warnings.
 """
 
 from __future__ import annotations
@@ -98,8 +99,15 @@ def test_q0_outside_its_limits_or_beyond_a_turn_warns_as_before() -> None:
     T = puma.fk(np.full(6, 0.2))
     outside = np.full(6, 0.2)
     outside[1] = puma.chain.qlim[1, 1] + 0.5
-    with pytest.warns(LimitWarning, match="q0"):
-        puma.ik(T, q0=outside)
+    with pytest.warns(LimitWarning, match="q0") as caught:
+        warned = puma.ik(T, q0=outside)
+    assert len(caught) == 1  # once: the core's call declines such a q0, the check warns
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", LimitWarning)
+        _same(warned, puma.ik(T, q0=outside.tolist()))
+    plan = puma.chain.memo[IKRequest.parse().lean]
+    assert plan.prepared(T, outside) is None
+    assert plan.prepared(T, np.full(6, 0.2)).__class__ is IKResult
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # within its limits: no warning
         puma.ik(T, q0=np.full(6, 0.2))

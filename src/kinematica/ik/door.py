@@ -6,8 +6,9 @@ redundant arm with a parameter to hold (``fixed=``, ``arm_angle=``, or ``auto`` 
 7-joint arm) goes to :func:`kinematica.ik.redundancy.solve_arm`, which holds it and
 solves the arm the lock leaves; every other arm to :func:`kinematica.ik.solve.solve_ik`.
 Either way the targets are solved by ``solve_ik``'s one path; one pose target as the
-core reads it, with nothing held (``q0`` or not), goes straight to the plan's prepared
-call (:attr:`~kinematica.ik.solvers.Plan.prepared`), which gives its result.
+core reads it, with nothing held, goes straight to the plan's prepared call
+(:attr:`~kinematica.ik.solvers.Plan.prepared`), which gives its result; with ``q0``,
+``robot.ik`` tries that call first (:func:`lean_q0`).
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.solve import REDUNDANT_DOF, answered, solve_ik
 from kinematica.ik.solvers import Plan
 
-__all__ = ["solve"]
+__all__ = ["lean_q0", "solve"]
 
 FloatArray = NDArray[np.float64]
 
@@ -44,7 +45,7 @@ def solve(
         request: The call's settings (:meth:`IKRequest.parse`); a :class:`HeldCall`: one
             joint held at a value, tried as one core call first
             (:func:`kinematica.ik.held_call.held_one`); a :class:`Q0Call`: ``q0`` beside
-            the request, tried as the plan's one call first.
+            the request (its one call is :func:`lean_q0`'s, tried before this).
         names: The joints' display names (``result.parameter`` names a held joint so).
     """
     if type(request) is HeldCall:
@@ -52,11 +53,7 @@ def solve(
         if got is not None:
             return got
         request = request.full()
-    elif type(request) is Q0Call:
-        if request.q0.shape == (chain.dof,):  # else the general path explains it
-            got = _lean(chain, target, request.request, request.q0)
-            if got is not None:
-                return got
+    elif type(request) is Q0Call:  # its one core call: lean_q0, tried first by robot.ik
         request = request.full()
     elif type(request) is IKRequest:
         got = _lean(chain, target, request, None)
@@ -66,6 +63,19 @@ def solve(
     if not request.holds and (not request.may_hold or chain.dof != REDUNDANT_DOF):
         return solve_ik(chain, target, request)
     return (_solve_arm or _redundancy()[0])(chain, target, request, names)
+
+
+def lean_q0(chain: Chain, target: ArrayLike, call: Q0Call) -> IKResult | None:
+    """One pose target with ``q0`` by the plan's one call, or None for :func:`solve`.
+
+    The core answers where ``q0`` is ``(n,)`` finite values within the joints' own limits
+    and a turn (a ``q0`` of which ``robot.ik`` has nothing to say), the target a rigid
+    pose it reads in place and the call's other settings lean; else None, and
+    ``robot.ik`` warns of ``q0`` and hands the call to :func:`solve`.
+    """
+    if call.q0.shape != (chain.dof,):
+        return None
+    return _lean(chain, target, call.request, call.q0)
 
 
 def _lean(

@@ -21,11 +21,14 @@ __all__ = ["RobotIK"]
 FloatArray = NDArray[np.float64]
 
 
-#: ``(IKRequest.parse, solve, check_given)``, once the IK layer is loaded (:func:`_door`).
+#: ``(IKRequest.parse, solve, check_given, lean_q0, Q0Call)``, once the IK layer is loaded
+#: (:func:`_door`).
 _Door = tuple[
     Callable[..., "IKRequest | HeldCall | Q0Call"],
     Callable[..., "IKResult | IKBatchResult"],
     Callable[..., None],
+    Callable[..., "IKResult | None"],
+    type,
 ]
 _DOOR: _Door | None = None
 
@@ -33,11 +36,11 @@ _DOOR: _Door | None = None
 def _door() -> _Door:
     """The IK layer's door, loaded when a robot first solves IK (``kinematica fk`` never does)."""
     global _DOOR
-    from kinematica.ik.door import solve
-    from kinematica.ik.request import IKRequest
+    from kinematica.ik.door import lean_q0, solve
+    from kinematica.ik.request import IKRequest, Q0Call
     from kinematica.robot.given import check_given  # degrees given for radians?
 
-    _DOOR = (IKRequest.parse, solve, check_given)
+    _DOOR = (IKRequest.parse, solve, check_given, lean_q0, Q0Call)
     return _DOOR
 
 
@@ -106,9 +109,13 @@ class RobotIK(RobotKinematics):
             (arrays with the targets' batch shape) for a batch. In a batch, a
             malformed target gets the status ``"invalid"``; the others are solved.
         """
-        parse, solve, check_given = _DOOR or _door()
+        parse, solve, check_given, lean_q0, q0_call = _DOOR or _door()
         request = parse(method, tol, respect_limits, q0, mask, seed, workers, precision, fixed,
                         arm_angle, options)  # fmt: skip
+        if request.__class__ is q0_call:  # one core call where q0 needs no word of warning
+            got = lean_q0(self.chain, target, request)
+            if got is not None:
+                return got
         if request.given:
             check_given(self, request.q0, request.fixed, request.arm_angle)
         return solve(self.chain, target, request, self.joint_names)
