@@ -257,3 +257,43 @@ def test_the_nearest_value_is_the_one_every_value_solved_in_full_would_give() ->
         else:
             assert res.parameter is None
     assert moved  # a target held at a value other than the default
+
+
+def test_the_arm_angle_sweep_is_one_round_and_gives_the_nearest_value_with_solutions(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # the iiwa's arm angle: a value costs its closed form, far less than a round, so one
+    # target's sweep tries its first ArmAngleParameter.round_values values in one round,
+    # leaving out the default (solved already); the value it picks is the nearest the
+    # default with a solution, as arm_angle= at every value of the grid says
+    robot = km.load("iiwa14")
+    joint = choose(robot.chain)
+    assert isinstance(joint, ArmAngleParameter) and joint.round_values > 1
+    grid = np.linspace(-math.pi, math.pi, PARAMETER_SWEEP)
+    T = robot.fk(robot.random_q(300, seed=0))
+    at_default = robot.ik(T, arm_angle=0.0)
+    assert isinstance(at_default, IKBatchResult)
+    aside = np.flatnonzero(at_default.count == 0)[:3]
+    assert aside.size == 3
+    calls: list[np.ndarray] = []  # the values each round tries
+    screen = nearest_value.has_solutions
+
+    def counted(*args: object) -> np.ndarray:
+        calls.append(np.asarray(args[3]))
+        return screen(*args)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(nearest_value, "has_solutions", counted)
+    for i in aside.tolist():
+        counts = robot.ik(np.repeat(T[i][None], grid.size, axis=0), arm_angle=grid).count
+        distance = np.where(counts > 0, np.abs(grid), np.inf)
+        calls.clear()
+        res = robot.ik(T[i])
+        assert np.isfinite(distance).any()
+        assert res.parameter == (joint.name, grid[int(np.argmin(distance))])
+        assert res.count == counts[int(np.argmin(distance))]
+        assert counts[grid == 0.0].sum() == 0  # the default has none: left out of the sweep
+        order = [k for k in np.argsort(np.abs(grid), kind="stable").tolist() if grid[k] != 0.0]
+        rank = order.index(int(np.argmin(distance)))  # the values tried before the answer's
+        assert calls[0].size == min(joint.round_values, PARAMETER_SWEEP - 1)
+        assert len(calls) == (1 if rank < joint.round_values else 2)
+        assert not any((c == 0.0).any() for c in calls)

@@ -15,7 +15,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -48,6 +48,10 @@ class ArmAngleParameter:
 
     name: str = "arm angle"
     unit: str = "rad"
+    #: A value costs its closed form in a batch (about 2 µs) where a round costs about
+    #: 130 µs (a request, the targets read, the batch's result): one round of one target
+    #: tries every value of the sweep but the few past 64.
+    round_values: ClassVar[int] = 64
 
     def span(self, chain: Chain) -> tuple[float, float]:
         """``(-π, π)``: every elbow position on its circle, once."""

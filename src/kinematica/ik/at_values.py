@@ -38,9 +38,8 @@ def parameter_values(name: str, value: ArrayLike, shape: tuple[int, ...]) -> Flo
         DimensionError: An array whose shape is not the targets' batch shape.
     """
     n = math.prod(shape)
-    not_numbers = f"{name} must be a number (rad) or an array of them, got {value!r}"
     if isinstance(value, bool):
-        raise ArgumentError(not_numbers, arg=name)
+        raise ArgumentError(_not_numbers(name, value), arg=name)
     if isinstance(value, numbers.Real):  # one number: no array to build
         one = float(value)
         if not math.isfinite(one):
@@ -49,7 +48,7 @@ def parameter_values(name: str, value: ArrayLike, shape: tuple[int, ...]) -> Flo
     try:
         v = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        raise ArgumentError(not_numbers, arg=name) from None
+        raise ArgumentError(_not_numbers(name, value), arg=name) from None
     if not np.all(np.isfinite(v)):
         raise ArgumentError(f"{name} must be finite, got {value!r}", arg=name)
     if v.ndim and v.shape != shape:
@@ -58,6 +57,15 @@ def parameter_values(name: str, value: ArrayLike, shape: tuple[int, ...]) -> Flo
             arg=name,
         )
     return np.ascontiguousarray(np.broadcast_to(v, shape).reshape(n))
+
+
+def _not_numbers(name: str, value: object) -> str:
+    """The message of a value that is not numbers, made only when it is raised.
+
+    An array's repr costs more than the whole check: ``auto``'s arm-angle sweep spent
+    half its time on it.
+    """
+    return f"{name} must be a number (rad) or an array of them, got {value!r}"
 
 
 class AtValues:

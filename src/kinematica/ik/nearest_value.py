@@ -62,24 +62,27 @@ def nearest_with_solutions(
     rows: NDArray[np.intp],
     start: FloatArray,
     options: IKOptions,
+    start_tried: bool = False,
 ) -> tuple[NDArray[np.intp], FloatArray]:
     """For the targets ``rows`` (flat), the parameter value nearest ``start`` with a solution.
 
     The parameter's candidates are :data:`PARAMETER_SWEEP` values evenly across its
     span; a target takes the nearest to its start value whose answer has a
     solution (within the limits, when they are respected; of two as near, the lower).
-    Values proved to have none (:mod:`kinematica.ik.reach_bounds`) are left out; the
-    others are tried nearest first, one, then twice as many each round (most of
-    them have one), and a target leaves the rounds at its first value with one. The
-    caller solves the target again at that value, and keeps it only if that answer
-    has one.
+    Values proved to have none (:mod:`kinematica.ik.reach_bounds`) are left out, and with
+    ``start_tried`` a value equal to the target's start (the caller found none there);
+    the others are tried nearest first, in rounds of twice as many values as the last
+    (most targets have one among the first), at least the parameter's
+    :attr:`~kinematica.ik.parameter.Parameter.round_values` over a round's targets; a
+    target leaves the rounds at its first value with one. The caller solves the target
+    again at that value, and keeps it only if that answer has one.
 
     Returns:
         The rows that have such a value, and the value of each.
     """
     poses = targets.poses[rows]
     request = IKRequest.of(options).but(q0=None, fixed=None)  # every value's, made once
-    sweep = sweep_order(chain, joint, poses, start[rows], request)
+    sweep = sweep_order(chain, joint, poses, start[rows], request, start_tried)
     if sweep is None:
         return rows[:0], np.empty(0)
     grid, order, count = sweep
@@ -89,6 +92,7 @@ def nearest_with_solutions(
         todo = np.flatnonzero((best < 0) & (count > first))
         if not todo.size:
             break
+        size = max(size, -(-joint.round_values // todo.size))  # a round worth its cost
         ranks = order[todo, first : first + size]  # (t, r) grid indices to try
         width = ranks.shape[1]
         i, r = np.nonzero(first + np.arange(width)[None, :] < count[todo][:, None])
@@ -102,9 +106,17 @@ def nearest_with_solutions(
 
 
 def sweep_order(
-    chain: Chain, joint: Parameter, poses: FloatArray, start: FloatArray, request: IKRequest
+    chain: Chain,
+    joint: Parameter,
+    poses: FloatArray,
+    start: FloatArray,
+    request: IKRequest,
+    start_tried: bool = False,
 ) -> tuple[FloatArray, NDArray[np.intp], NDArray[np.intp]] | None:
     """The values to try for each pose, in order, or None (the parameter's span is unbounded).
+
+    With ``start_tried``, a value equal to the pose's start is not tried (as the core's
+    sweep leaves out its ``skip``).
 
     Returns:
         ``(G,)`` the grid (:data:`PARAMETER_SWEEP` values across the span), ``(t, G)``
@@ -118,6 +130,8 @@ def sweep_order(
     # values proved to have no solution (kinematica.ik.reach_bounds) are not tried: the
     # first value with one in each target's order is the same without them
     near = np.where(possible(chain, joint, poses, grid, request), near, np.inf)
+    if start_tried:
+        near[grid[None, :] == start[:, None]] = np.inf
     order = np.argsort(near, axis=1, kind="stable")
     return grid, order, np.isfinite(near).sum(axis=1)
 

@@ -19,7 +19,7 @@ import dataclasses
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Any, ClassVar, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -74,6 +74,15 @@ class Parameter(Protocol):
         """``"rad"`` or ``"m"``."""
         ...
 
+    @property
+    def round_values(self) -> int:
+        """Values of one target that cost about what a round of ``auto``'s sweep costs.
+
+        :func:`~kinematica.ik.nearest_value.nearest_with_solutions` tries at least this
+        many over a round's targets: 1 where one value costs as much as a round.
+        """
+        ...
+
     def span(self, chain: Chain) -> tuple[float, float]:
         """The values it takes (a joint: its limits)."""
         ...
@@ -117,6 +126,8 @@ class JointParameter:
     index: int
     name: str
     prismatic: bool = False
+    #: One: a value may cost a locked arm's general 6R (tens of µs), about a round.
+    round_values: ClassVar[int] = 1
 
     @property
     def unit(self) -> str:

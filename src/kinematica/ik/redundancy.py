@@ -242,7 +242,8 @@ def _at_parameter(
             again, at = hit
         else:  # the screen, then the value found solved again
             first = np.array([0])
-            found, moved = nearest_with_solutions(chain, joint, targets, first, values, options)
+            found, moved = nearest_with_solutions(chain, joint, targets, first, values, options,
+                                                  tried)  # fmt: skip
             again = joint.solve(chain, target, float(moved[0]), options) if found.size else None
             at = float(moved[0]) if found.size else value
         if isinstance(again, IKResult) and again.success:
@@ -289,7 +290,8 @@ def _at_parameter(
             again = stack_results(got, sub, n, joint.name, np.array(values_at))
             res = replace_rows(res, kept, again, None)
     elif missed.size:  # the nearest value with a solution, where there is one
-        found, moved = nearest_with_solutions(chain, joint, targets, missed, values, options)
+        found, moved = nearest_with_solutions(chain, joint, targets, missed, values, options,
+                                              True)  # fmt: skip
         # one value at a time: the targets held at a value are solved as a single call
         # at that value would solve them (batch == single, to the bit)
         for v in np.unique(moved).tolist():
