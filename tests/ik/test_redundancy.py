@@ -7,6 +7,7 @@ expected choice from the registry itself, then check what auto says and returns.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -297,3 +298,25 @@ def test_the_arm_angle_sweep_is_one_round_and_gives_the_nearest_value_with_solut
         assert calls[0].size == min(joint.round_values, PARAMETER_SWEEP - 1)
         assert len(calls) == (1 if rank < joint.round_values else 2)
         assert not any((c == 0.0).any() for c in calls)
+
+
+@pytest.mark.parametrize("name", ["panda", "realman_gen72"])
+def test_auto_at_the_default_value_is_the_held_calls_answer_with_its_note(name: str) -> None:
+    # one pose answered at the default value takes the held joint's one core call: the
+    # answer fixed= gives there, to the bit, with auto's note of why that value
+    robot = km.load(name if name == "panda" else str(DATA / "makers" / f"{name}.urdf"))
+    joint = choose(robot.chain, robot.joint_names)
+    assert isinstance(joint, JointParameter)
+    value = joint.default(robot.chain)
+    T = robot.fk(robot.random_q(30, seed=2))
+    at_default = 0
+    for t in T:
+        res = robot.ik(t)
+        assert isinstance(res, IKResult) and res.parameter is not None
+        if res.parameter[1] != value:
+            continue
+        at_default += 1
+        held = robot.ik(t, fixed={joint.index: value})
+        assert isinstance(held, IKResult) and "its redundancy parameter" in res.notes[-1]
+        assert_same_result(dataclasses.replace(res, notes=res.notes[:-1]), held)
+    assert at_default >= 5

@@ -28,7 +28,7 @@ from kinematica.errors import KinematicaError
 from kinematica.ik.arm_angle import ArmAngleParameter, arm_angle_parameter
 from kinematica.ik.held_aside import solved_except
 from kinematica.ik.local_search import LOCAL_SEARCH
-from kinematica.ik.moved import on_axis
+from kinematica.ik.moved import held_at, on_axis
 from kinematica.ik.nearest_value import (
     PARAMETER_SWEEP,
     lean_call,
@@ -149,20 +149,50 @@ def solve_arm(
     if options.method == "auto" and options.mask is None and chain.dof == REDUNDANT_DOF:
         joint = choose(chain, names)
         if joint is not None:
+            first = _at_default(chain, joint, target, options)
+            if first is not None and first.success:
+                value, why = default_value(chain, joint)
+                return amended(first, notes=(*first.notes, _default_note(chain, joint, value, why)))
             targets = parse_targets(target)
             if not targets.position:
-                return _at_parameter(chain, joint, target, targets, options)
+                return _at_parameter(chain, joint, target, targets, options, first)
     return solve_ik(chain, target, options)
 
 
+def _at_default(
+    chain: Chain, joint: Parameter, target: ArrayLike, options: IKOptions
+) -> IKResult | None:
+    """``auto``'s one pose at the default value by the held end joint's one core call.
+
+    One pose the core reads, no ``q0``, and a joint whose lock has a prepared call
+    (:meth:`~kinematica.ik.parameter.JointParameter.lean`): the answer
+    ``joint.solve`` gives at the default value (completed where the core leaves it to
+    complete), without the targets read, a new request or the value's bounds check;
+    else None.
+    """
+    if options.q0 is not None or target.__class__ is not np.ndarray:
+        return None
+    if not isinstance(joint, JointParameter):
+        return None
+    request = IKRequest.of(options)
+    ready = joint.lean(chain, request)
+    value = default_value(chain, joint)[0]
+    return held_at(chain, joint.index, joint.name, request, ready, target, value)
+
+
 def _at_parameter(
-    chain: Chain, joint: Parameter, target: ArrayLike, targets: Targets, options: IKOptions
+    chain: Chain,
+    joint: Parameter,
+    target: ArrayLike,
+    targets: Targets,
+    options: IKOptions,
+    first: IKResult | None = None,
 ) -> IKResult | IKBatchResult:
     """Every solution with ``joint`` at q0's value (or its default).
 
     A target with no solution there is answered at the nearest value that has one
     (:data:`PARAMETER_SWEEP`), and only where none has, by the numeric search over
-    every joint.
+    every joint. ``first``: one target's answer at the default already (:func:`_at_default`).
     """
     n = chain.dof
     q0s = _q0_rows(options.q0, targets.shape, n)
@@ -189,10 +219,12 @@ def _at_parameter(
     # there (every target at one value, each valid and read as given)
     plain = N and not (targets.invalid or targets.notes) and bool(np.all(values == values[0]))
     aside = np.zeros(N, dtype=bool)
-    if exact and (one or plain):
+    if exact and (one or plain) and first is None:
         aside = ~possible(chain, joint, targets.poses, values[:1], options)[:, 0]
     res: IKResult | IKBatchResult | None
-    if one:
+    if first is not None:
+        res = first
+    elif one:
         res = None if aside[0] else joint.solve(chain, target, float(values[0]), options)
     elif aside.any():
         res = solved_except(chain, joint, targets.poses, targets.shape, values, options, q0s, aside)
@@ -207,11 +239,7 @@ def _at_parameter(
     def note(value: float, undef: bool = False) -> str:
         if q0s is not None:
             return held_note(chain, joint, value, whence(undef))
-        key = ("held note", joint.name, value)  # the default value's: said once
-        text = chain.memo.get(key)
-        if text is None:
-            text = chain.memo[key] = held_note(chain, joint, value, why)
-        return text  # type: ignore[return-value]
+        return _default_note(chain, joint, value, why)
 
     def fallback(value: float) -> str:
         return (
@@ -305,10 +333,10 @@ def _at_parameter(
                 answered.append((kept, v))
     if answered:
         assert res.parameter is not None
-        held_at = np.array(res.parameter[1], dtype=float).reshape(-1)
+        held_values = np.array(res.parameter[1], dtype=float).reshape(-1)
         notes = dict(res.notes)
         for rows, v in answered:
-            held_at[rows] = v
+            held_values[rows] = v
             for i in rows.tolist():
                 where = tuple(int(c) for c in np.unravel_index(i, res.shape))
                 moved_note = nearer(v, float(values[i]), bool(undefined[i]))
@@ -316,7 +344,7 @@ def _at_parameter(
                 notes[where] = (*read, *notes.get(where, ()), moved_note)
             missed = np.setdiff1d(missed, rows)
         res = dataclasses.replace(
-            res, notes=notes, parameter=(res.parameter[0], held_at.reshape(res.shape))
+            res, notes=notes, parameter=(res.parameter[0], held_values.reshape(res.shape))
         )
     if missed.size:
         how = [(j, targets.notes.get(i, ())) for j, i in enumerate(missed.tolist())]
@@ -367,6 +395,15 @@ def _default_value(chain: Chain, joint: Parameter) -> tuple[float, str]:
         middle = np.isfinite(chain.own_limits[joint.index]).all()
         why = "the middle of its limits" if middle else "0: it has no limits"
     return joint.default(chain), why
+
+
+def _default_note(chain: Chain, joint: Parameter, value: float, why: str) -> str:
+    """:func:`held_note` of the default value, made once per chain."""
+    key = ("held note", joint.name, value)
+    text = chain.memo.get(key)
+    if text is None:
+        text = chain.memo[key] = held_note(chain, joint, value, why)
+    return text  # type: ignore[return-value]
 
 
 def held_note(chain: Chain, joint: Parameter, value: float, why: str) -> str:
