@@ -149,13 +149,13 @@ def solve_arm(
     if options.method == "auto" and options.mask is None and chain.dof == REDUNDANT_DOF:
         joint = choose(chain, names)
         if joint is not None:
-            first = _at_default(chain, joint, target, options)
-            if first is not None and first.success:
+            done = _at_default(chain, joint, target, options)
+            if done is not None and done.success:
                 value, why = default_value(chain, joint)
-                return amended(first, notes=(*first.notes, _default_note(chain, joint, value, why)))
+                return amended(done, notes=(*done.notes, _default_note(chain, joint, value, why)))
             targets = parse_targets(target)
             if not targets.position:
-                return _at_parameter(chain, joint, target, targets, options, first)
+                return _at_parameter(chain, joint, target, targets, options, done)
     return solve_ik(chain, target, options)
 
 
@@ -186,13 +186,13 @@ def _at_parameter(
     target: ArrayLike,
     targets: Targets,
     options: IKOptions,
-    first: IKResult | None = None,
+    done: IKResult | None = None,
 ) -> IKResult | IKBatchResult:
     """Every solution with ``joint`` at q0's value (or its default).
 
     A target with no solution there is answered at the nearest value that has one
     (:data:`PARAMETER_SWEEP`), and only where none has, by the numeric search over
-    every joint. ``first``: one target's answer at the default already (:func:`_at_default`).
+    every joint. ``done``: one target's answer at the default, made (:func:`_at_default`).
     """
     n = chain.dof
     q0s = _q0_rows(options.q0, targets.shape, n)
@@ -219,11 +219,11 @@ def _at_parameter(
     # there (every target at one value, each valid and read as given)
     plain = N and not (targets.invalid or targets.notes) and bool(np.all(values == values[0]))
     aside = np.zeros(N, dtype=bool)
-    if exact and (one or plain) and first is None:
+    if exact and (one or plain) and done is None:
         aside = ~possible(chain, joint, targets.poses, values[:1], options)[:, 0]
     res: IKResult | IKBatchResult | None
-    if first is not None:
-        res = first
+    if done is not None:
+        res = done
     elif one:
         res = None if aside[0] else joint.solve(chain, target, float(values[0]), options)
     elif aside.any():
