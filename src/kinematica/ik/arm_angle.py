@@ -83,6 +83,10 @@ class ArmAngleParameter:
             values: One angle, or ``(N,)`` one per target of a batch (C order).
             options: The IK settings (``fixed`` and ``arm_angle`` are replaced).
         """
+        if type(values) is float and type(target) is np.ndarray and target.shape == (4, 4):
+            one = solve_ik(chain, target, IKRequest.of(options).but(arm_angle=values, fixed=None))
+            assert isinstance(one, IKResult)  # one pose: read as the general path reads it
+            return amended(one, parameter=(self.name, values))
         targets = parse_targets(target)
         angle: ArrayLike = values
         if isinstance(values, np.ndarray) and values.ndim == 1:

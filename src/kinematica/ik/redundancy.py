@@ -162,21 +162,24 @@ def solve_arm(
 def _at_default(
     chain: Chain, joint: Parameter, target: ArrayLike, options: IKOptions
 ) -> IKResult | None:
-    """``auto``'s one pose at the default value by the held end joint's one core call.
+    """``auto``'s answer of one pose at the default value, as ``joint.solve`` gives it.
 
-    One pose the core reads, no ``q0``, and a joint whose lock has a prepared call
-    (:meth:`~kinematica.ik.parameter.JointParameter.lean`): the answer
-    ``joint.solve`` gives at the default value (completed where the core leaves it to
-    complete), without the targets read, a new request or the value's bounds check;
-    else None.
+    One ``(4, 4)`` array and no ``q0``: an SRS arm's arm angle by its closed form at the
+    value; an end joint whose lock has a prepared call
+    (:meth:`~kinematica.ik.parameter.JointParameter.lean`) by that one core call
+    (completed where the core leaves it to complete), without the targets read, a new
+    request or the value's bounds check. Else None.
     """
-    if options.q0 is not None or target.__class__ is not np.ndarray:
+    if options.q0 is not None or target.__class__ is not np.ndarray or target.shape != (4, 4):
         return None
+    value = default_value(chain, joint)[0]
+    if isinstance(joint, ArmAngleParameter):
+        res = joint.solve(chain, target, value, options)
+        return res if isinstance(res, IKResult) else None
     if not isinstance(joint, JointParameter):
         return None
     request = IKRequest.of(options)
     ready = joint.lean(chain, request)
-    value = default_value(chain, joint)[0]
     return held_at(chain, joint.index, joint.name, request, ready, target, value)
 
 
