@@ -28,7 +28,7 @@ from kinematica.errors import KinematicaError
 from kinematica.ik.arm_angle import ArmAngleParameter, arm_angle_parameter
 from kinematica.ik.held_aside import solved_except
 from kinematica.ik.local_search import LOCAL_SEARCH
-from kinematica.ik.moved import held_completed, on_axis
+from kinematica.ik.moved import end_arm, held_completed, on_axis
 from kinematica.ik.nearest_value import (
     PARAMETER_SWEEP,
     lean_call,
@@ -167,8 +167,8 @@ def _at_default(
     One ``(4, 4)`` array and no ``q0``: an SRS arm's arm angle by its closed form at the
     value; an end joint whose lock has a prepared call
     (:meth:`~kinematica.ik.parameter.JointParameter.lean`) by that one core call,
-    without the targets read or a new request; an answer the core leaves to complete (its
-    search) is completed only where the value's bounds do not prove it out of reach.
+    without the targets read or a new request, and where its lock's closed form may
+    hand a target to the search, only if the value's bounds do not prove it out of reach.
     Else None.
     """
     if options.q0 is not None or target.__class__ is not np.ndarray or target.shape != (4, 4):
@@ -181,13 +181,18 @@ def _at_default(
         return None
     request = IKRequest.of(options)
     ready = joint.lean(chain, request)
-    got = None if ready is None else ready.at(target, value, None)
+    if ready is None:
+        return None
+    # a lock whose closed form may hand a target to the search (the general 6R's
+    # elimination, tens of µs): not solved where the bounds prove the value out of reach
+    # (None: _at_parameter says so); a special family's answer costs less than the check
+    closed = closed_form(end_arm(chain, joint.index), "pose")
+    searched = closed is not None and bool(closed.search_note)
+    if searched and not possible(chain, joint, target[None], np.array([value]), request)[0, 0]:
+        return None
+    got = ready.at(target, value, None)
     if got is None or got.__class__ is IKResult:
         return got
-    # the core leaves it to complete (its search): not where the bounds prove the value out
-    # of reach (None: _at_parameter says so, without the search)
-    if not possible(chain, joint, target[None], np.array([value]), request)[0, 0]:
-        return None
     return held_completed(chain, joint.index, joint.name, request, target, value, got)
 
 
