@@ -52,6 +52,7 @@ class ArmAngleParameter:
     #: 130 µs (a request, the targets read, the batch's result): one round of one target
     #: tries every value of the sweep but the few past 64.
     round_values: ClassVar[int] = 64
+    keyword: ClassVar[str] = "arm_angle="
 
     def span(self, chain: Chain) -> tuple[float, float]:
         """``(-π, π)``: every elbow position on its circle, once."""
@@ -63,6 +64,10 @@ class ArmAngleParameter:
         On the iiwa, the plane of q3 = 0, elbow up.
         """
         return 0.0
+
+    def default_reason(self, chain: Chain) -> str:
+        """Where the elbow is at the default, 0."""
+        return "0: the elbow in the plane of axis 1 and the shoulder-wrist line"
 
     def value_of(self, chain: Chain, q: FloatArray) -> FloatArray:
         """``(N,)`` the arm angle of each configuration ``q (N, 7)``."""

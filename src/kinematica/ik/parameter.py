@@ -75,6 +75,15 @@ class Parameter(Protocol):
         ...
 
     @property
+    def keyword(self) -> str:
+        """The ``robot.ik`` keyword that holds it at another value (``"fixed="``)."""
+        ...
+
+    def default_reason(self, chain: Chain) -> str:
+        """Why :meth:`default` is the value ``auto`` holds without q0, for its note."""
+        ...
+
+    @property
     def round_values(self) -> int:
         """Values of one target that cost about what a round of ``auto``'s sweep costs.
 
@@ -128,6 +137,7 @@ class JointParameter:
     prismatic: bool = False
     #: One: a value may cost a locked arm's general 6R (tens of µs), about a round.
     round_values: ClassVar[int] = 1
+    keyword: ClassVar[str] = "fixed="
 
     @property
     def unit(self) -> str:
@@ -147,6 +157,11 @@ class JointParameter:
         """The value used when none is given: the middle of its own limits, 0 when it has none."""
         lo, hi = chain.own_limits[self.index]
         return float(0.5 * (lo + hi)) if math.isfinite(lo) and math.isfinite(hi) else 0.0
+
+    def default_reason(self, chain: Chain) -> str:
+        """``"the middle of its limits"``, or ``"0: it has no limits"``."""
+        middle = np.isfinite(chain.own_limits[self.index]).all()
+        return "the middle of its limits" if middle else "0: it has no limits"
 
     def value_of(self, chain: Chain, q: FloatArray) -> FloatArray:
         """``(N,)`` the joint's entry of each configuration ``q (N, n)``."""

@@ -264,12 +264,11 @@ def _at_parameter(
         )
 
     def nearer(value: float, start: float, undef: bool = False) -> str:
-        keyword = "fixed=" if isinstance(joint, JointParameter) else "arm_angle="
         return (
             f"{chain.dof}-joint arm: no solution with {joint.describe(start)} "
             f"({whence(undef)}); every "
             f"solution with {joint.describe(value)}, the nearest of {PARAMETER_SWEEP} values "
-            f"across its span with one, its redundancy parameter; give q0 or {keyword} for "
+            f"across its span with one, its redundancy parameter; give q0 or {joint.keyword} for "
             f"another value, robot.self_motion for all of them"
         )
 
@@ -398,19 +397,8 @@ def default_value(chain: Chain, joint: Parameter) -> tuple[float, str]:
     key = ("default", joint.name)
     found = chain.memo.get(key)
     if found is None:
-        found = chain.memo[key] = _default_value(chain, joint)
+        found = chain.memo[key] = (joint.default(chain), joint.default_reason(chain))
     return found  # type: ignore[return-value]
-
-
-def _default_value(chain: Chain, joint: Parameter) -> tuple[float, str]:
-    """:func:`default_value`, found."""
-    why = "its default value"
-    if isinstance(joint, ArmAngleParameter):
-        why = "0: the elbow in the plane of axis 1 and the shoulder-wrist line"
-    if isinstance(joint, JointParameter):
-        middle = np.isfinite(chain.own_limits[joint.index]).all()
-        why = "the middle of its limits" if middle else "0: it has no limits"
-    return joint.default(chain), why
 
 
 def _default_note(chain: Chain, joint: Parameter, value: float, why: str) -> str:
@@ -424,10 +412,9 @@ def _default_note(chain: Chain, joint: Parameter, value: float, why: str) -> str
 
 def held_note(chain: Chain, joint: Parameter, value: float, why: str) -> str:
     """The note of an ``auto`` answer with ``joint`` held at ``value`` (``why``: whence)."""
-    keyword = "fixed=" if isinstance(joint, JointParameter) else "arm_angle="
     return (
         f"{chain.dof}-joint arm: every solution with {joint.describe(value)} ({why}), "
-        f"its redundancy parameter; give q0 or {keyword} for another value, "
+        f"its redundancy parameter; give q0 or {joint.keyword} for another value, "
         f"robot.self_motion for all of them"
     )
 
