@@ -116,6 +116,48 @@ def arm_angle(chain: Chain, q: ArrayLike) -> FloatArray:
     Raises:
         KinematicaError: The chain is no SRS 7R arm.
     """
+    S, elbow, wrist, ref, tiny = _angle_geometry(chain)
+    q = np.asarray(q, dtype=float)
+    frames = chain.fk(q, all_frames=True)[0]
+    # the points fixed in frames 4 (W) and 3 (E), where those frames put them at q
+    sw = np.einsum("...ij,j->...i", frames[..., 4, :3, :3], wrist) + frames[..., 4, :3, 3] - S
+    se = np.einsum("...ij,j->...i", frames[..., 3, :3, :3], elbow) + frames[..., 3, :3, 3] - S
+    sw_norm = _norm(sw)
+    n = sw / sw_norm[..., None]
+    r = ref - (n @ ref)[..., None] * n
+    e = se - np.add.reduce(se * n, axis=-1)[..., None] * n
+    r0, r1, r2, e0, e1, e2 = r[..., 0], r[..., 1], r[..., 2], e[..., 0], e[..., 1], e[..., 2]
+    # n · (r × e), the cross product's components as numpy's cross forms them
+    y = n[..., 0] * (r1 * e2 - r2 * e1) + n[..., 1] * (r2 * e0 - r0 * e2)
+    y = y + n[..., 2] * (r0 * e1 - r1 * e0)
+    x = np.add.reduce(r * e, axis=-1)
+    psi = np.arctan2(y, x)
+    undefined = (_norm(r) <= _core.srs.REFERENCE_TOL) | (_norm(e) <= tiny)
+    undefined |= sw_norm <= tiny  # W on S: S-W has no direction
+    out: FloatArray = np.where(undefined, np.nan, psi)
+    return out
+
+
+def _norm(v: FloatArray) -> FloatArray:
+    """``(...)`` the lengths of vectors ``v (..., 3)``, as ``np.linalg.norm(v, axis=-1)``."""
+    return np.sqrt(np.add.reduce(v * v, axis=-1))
+
+
+def _angle_geometry(
+    chain: Chain,
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, float]:
+    """What :func:`arm_angle` reads of the arm, made once per chain.
+
+    ``(S, E, W, a1, tiny)``: the shoulder centre (base frame), the elbow point in frame 3
+    and the wrist centre in frame 4 (the core's points, placed at q = 0), axis 1's
+    direction, and the collinearity length (m).
+
+    Raises:
+        KinematicaError: The chain is no SRS 7R arm.
+    """
+    found = chain.memo.get("arm angle geometry")
+    if found is not None:
+        return found  # type: ignore[return-value]
     f = features(chain)
     points = _core.srs.points(chain.core) if handles(f) else None
     if points is None:
@@ -125,33 +167,12 @@ def arm_angle(chain: Chain, q: ArrayLike) -> FloatArray:
             arg="q",
         )
     S, E0, W0 = np.asarray(points, dtype=float)  # (3, 3): the points as rows
-    q = np.asarray(q, dtype=float)
-    frames = chain.fk(q, all_frames=True)[0]
     zero = chain.fk(np.zeros(7), all_frames=True)[0]
-
-    def placed(frame: int, point: FloatArray) -> FloatArray:
-        # the point fixed in frame `frame`, where that frame puts it at q
-        local = zero[frame, :3, :3].T @ (point - zero[frame, :3, 3])
-        return np.asarray(
-            np.einsum("...ij,j->...i", frames[..., frame, :3, :3], local)
-            + frames[..., frame, :3, 3]
-        )
-
-    sw = placed(4, W0) - S
-    se = placed(3, E0) - S
-    n = sw / np.linalg.norm(sw, axis=-1, keepdims=True)
-    ref = f.directions[0]
-    r = ref - (n @ ref)[..., None] * n
-    e = se - np.sum(se * n, axis=-1, keepdims=True) * n
-    y = np.sum(n * np.cross(r, e), axis=-1)
-    x = np.sum(r * e, axis=-1)
-    psi = np.arctan2(y, x)
-    rn, en = np.linalg.norm(r, axis=-1), np.linalg.norm(e, axis=-1)
+    elbow = zero[3, :3, :3].T @ (E0 - zero[3, :3, 3])
+    wrist = zero[4, :3, :3].T @ (W0 - zero[4, :3, 3])
     tiny = _core.srs.COLLINEAR_TOL * f.size
-    undefined = (rn <= _core.srs.REFERENCE_TOL) | (en <= tiny)
-    undefined |= np.linalg.norm(sw, axis=-1) <= tiny  # W on S: S-W has no direction
-    out: FloatArray = np.where(undefined, np.nan, psi)
-    return out
+    found = chain.memo["arm angle geometry"] = (S, elbow, wrist, f.directions[0], tiny)
+    return found
 
 
 # ------------------------------------------------------------- sample arms
