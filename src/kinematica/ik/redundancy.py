@@ -17,7 +17,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -149,37 +149,58 @@ def solve_arm(
     if options.method == "auto" and options.mask is None and chain.dof == REDUNDANT_DOF:
         joint = choose(chain, names)
         if joint is not None:
-            done = _at_default(chain, joint, target, options)
-            if done is not None and done.success:
-                value, why = default_value(chain, joint)
-                return amended(done, notes=(*done.notes, _default_note(chain, joint, value, why)))
+            start = _start_value(chain, joint, target, options)
+            pose = cast(FloatArray, target)  # one (4, 4) array where there is a start
+            done = None if start is None else _at_start(chain, joint, pose, options, start[0])
+            if start is not None and done is not None and done.success:
+                value, why = start
+                note = (_default_note(chain, joint, value, why) if options.q0 is None
+                        else held_note(chain, joint, value, why))  # fmt: skip
+                return amended(done, notes=(*done.notes, note))
             targets = parse_targets(target)
             if not targets.position:
                 return _at_parameter(chain, joint, target, targets, options, done)
     return solve_ik(chain, target, options)
 
 
-def _at_default(
+def _start_value(
     chain: Chain, joint: Parameter, target: ArrayLike, options: IKOptions
-) -> IKResult | None:
-    """``auto``'s answer of one pose at the default value, as ``joint.solve`` gives it.
+) -> tuple[float, str] | None:
+    """The value ``auto`` holds one pose at first, and why; None for any other call.
 
-    One ``(4, 4)`` array and no ``q0``: an SRS arm's arm angle by its closed form at the
-    value; an end joint whose lock has a prepared call
-    (:meth:`~kinematica.ik.parameter.JointParameter.lean`) by that one core call,
-    without the targets read or a new request, and where its lock's closed form may
-    hand a target to the search, only if the value's bounds do not prove it out of reach.
-    Else None.
+    q0's (a held joint's entry of a float64 ``(n,)`` q0, within its span), else the default.
     """
-    if options.q0 is not None or target.__class__ is not np.ndarray or target.shape != (4, 4):
+    if target.__class__ is not np.ndarray or target.shape != (4, 4):
         return None
-    value = default_value(chain, joint)[0]
+    q0 = options.q0
+    if q0 is None:
+        return default_value(chain, joint)
+    if not (isinstance(joint, JointParameter) and q0.__class__ is np.ndarray):
+        return None
+    if q0.dtype != np.float64 or q0.shape != (chain.dof,):
+        return None
+    lo, hi = joint.span(chain)
+    return min(max(float(q0[joint.index]), lo), hi), "q0's value, within its limits"
+
+
+def _at_start(
+    chain: Chain, joint: Parameter, target: FloatArray, options: IKOptions, value: float
+) -> IKResult | None:
+    """``auto``'s answer of one pose at its start value, as ``joint.solve`` gives it.
+
+    An SRS arm's arm angle by its closed form at the value; an end joint whose lock has
+    a prepared call (:meth:`~kinematica.ik.parameter.JointParameter.lean`) by that one
+    core call (``q0`` beside it), without the targets read or a new request, and where
+    its lock's closed form may hand a target to the search, only if the value's bounds
+    do not prove it out of reach. Else None.
+    """
     if isinstance(joint, ArmAngleParameter):
         res = joint.solve(chain, target, value, options)
         return res if isinstance(res, IKResult) else None
     if not isinstance(joint, JointParameter):
         return None
-    request = IKRequest.of(options)
+    q0 = cast("FloatArray | None", options.q0)  # None, or (n,) float64 (_start_value)
+    request = IKRequest.of(options) if q0 is None else IKRequest.of(options).but(q0=None)
     ready = joint.lean(chain, request)
     if ready is None:
         return None
@@ -190,10 +211,10 @@ def _at_default(
     searched = closed is not None and bool(closed.search_note)
     if searched and not possible(chain, joint, target[None], np.array([value]), request)[0, 0]:
         return None
-    got = ready.at(target, value, None)
+    got = ready.at(target, value, q0)
     if got is None or got.__class__ is IKResult:
         return got
-    return held_completed(chain, joint.index, joint.name, request, target, value, got)
+    return held_completed(chain, joint.index, joint.name, request, target, value, got, q0)
 
 
 def _at_parameter(
@@ -208,7 +229,7 @@ def _at_parameter(
 
     A target with no solution there is answered at the nearest value that has one
     (:data:`PARAMETER_SWEEP`), and only where none has, by the numeric search over
-    every joint. ``done``: one target's answer at the default, made (:func:`_at_default`).
+    every joint. ``done``: one target's answer at its start value, made (:func:`_at_start`).
     """
     n = chain.dof
     q0s = _q0_rows(options.q0, targets.shape, n)

@@ -17,7 +17,7 @@ keywords finds its request by one dictionary look-up.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 import numpy as np
@@ -116,8 +116,12 @@ class IKRequest(IKOptions):
     def but(self, **changes: Any) -> IKRequest:
         """This request with some settings changed, checked (``dataclasses.replace``, kept).
 
-        A change of hashable values is made once per request, then found by them.
+        A change of hashable values is made once per request, then found by them; a change
+        of ``q0`` alone keeps every other setting as checked (``q0`` is checked where it
+        is used) and is made without checking them again.
         """
+        if len(changes) == 1 and "q0" in changes:
+            return self._with_q0(changes["q0"])
         try:  # the values' types too: True == 1
             key = (*changes.items(), *map(type, changes.values()))
             found = self._changed.get(key)
@@ -129,6 +133,24 @@ class IKRequest(IKOptions):
             found = _made(**fields)
             if key is not None and len(self._changed) < MEMO:
                 self._changed[key] = found
+        return found
+
+    def _with_q0(self, q0: Any) -> IKRequest:
+        """This request with ``q0`` replaced, its other settings as checked.
+
+        What ``q0`` decides (``given``, ``bare``, ``lean``) is read again; the copy has a
+        memo of its own.
+        """
+        found = object.__new__(IKRequest)
+        put = object.__setattr__
+        for name in _SLOTS:
+            put(found, name, getattr(self, name))
+        put(found, "q0", q0)
+        put(found, "_changed", {})
+        put(found, "given", self.holds or q0 is not None)
+        put(found, "bare", q0 is None and self.arm_angle is None)
+        lean = self.key is not None and found.bare and self.fixed is None
+        put(found, "lean", 4 * self.key if lean else None)  # type: ignore[operator]
         return found
 
     @classmethod
@@ -237,6 +259,10 @@ class IKRequest(IKOptions):
         ):  # as its keywords are read (a HeldCall for one joint, a Q0Call for q0 alone)
             return cls.parse(o.method, o.tol, o.respect_limits, o.q0, fixed=o.fixed)
         return cls.of(options)
+
+
+#: Every field of a request, checked or read from the checked ones (:meth:`IKRequest._with_q0`).
+_SLOTS = tuple(f.name for f in fields(IKRequest))
 
 
 class HeldCall:
