@@ -139,14 +139,19 @@ class IKRequest(IKOptions):
         """This request with ``q0`` replaced, its other settings as checked.
 
         What ``q0`` decides (``given``, ``bare``, ``lean``) is read again; the copy has a
-        memo of its own.
+        memo of its own, in which a request without ``q0`` keeps itself: the copy's
+        ``q0`` replaced by None again is this request.
         """
+        if q0 is None:
+            back = self._changed.get(_NO_Q0)
+            if back is not None:
+                return back
         found = object.__new__(IKRequest)
         put = object.__setattr__
         for name in _SLOTS:
             put(found, name, getattr(self, name))
         put(found, "q0", q0)
-        put(found, "_changed", {})
+        put(found, "_changed", {_NO_Q0: self} if self.q0 is None else {})
         put(found, "given", self.holds or q0 is not None)
         put(found, "bare", q0 is None and self.arm_angle is None)
         lean = self.key is not None and found.bare and self.fixed is None
@@ -261,6 +266,8 @@ class IKRequest(IKOptions):
         return cls.of(options)
 
 
+#: The key of ``but(q0=None)`` in a request's memo (:meth:`IKRequest._with_q0`).
+_NO_Q0 = ("q0", None, type(None))
 #: Every field of a request, checked or read from the checked ones (:meth:`IKRequest._with_q0`).
 _SLOTS = tuple(f.name for f in fields(IKRequest))
 
