@@ -300,14 +300,15 @@ def test_the_arm_angle_sweep_is_one_round_and_gives_the_nearest_value_with_solut
         assert not any((c == 0.0).any() for c in calls)
 
 
-@pytest.mark.parametrize("name", ["panda", "realman_gen72"])
+@pytest.mark.parametrize("name", ["panda", "realman_gen72", "iiwa14"])
 def test_auto_at_the_default_value_is_the_held_calls_answer_with_its_note(name: str) -> None:
-    # one pose answered at the default value takes the held joint's one core call: the
-    # answer fixed= gives there, to the bit, with auto's note of why that value
-    robot = km.load(name if name == "panda" else str(DATA / "makers" / f"{name}.urdf"))
+    # one pose answered at the default value takes the held joint's one core call (the
+    # iiwa: its closed form at the arm angle): the answer fixed= (arm_angle=) gives there,
+    # to the bit, with auto's note of why that value
+    robot = km.load(str(DATA / "makers" / f"{name}.urdf") if name == "realman_gen72" else name)
     joint = choose(robot.chain, robot.joint_names)
-    assert isinstance(joint, JointParameter)
     value = joint.default(robot.chain)
+    hold = {"arm_angle": value} if isinstance(joint, ArmAngleParameter) else None
     T = robot.fk(robot.random_q(30, seed=2))
     at_default = 0
     for t in T:
@@ -316,7 +317,7 @@ def test_auto_at_the_default_value_is_the_held_calls_answer_with_its_note(name: 
         if res.parameter[1] != value:
             continue
         at_default += 1
-        held = robot.ik(t, fixed={joint.index: value})
+        held = robot.ik(t, **(hold or {"fixed": {joint.index: value}}))
         assert isinstance(held, IKResult) and "its redundancy parameter" in res.notes[-1]
         assert_same_result(dataclasses.replace(res, notes=res.notes[:-1]), held)
     assert at_default >= 5
@@ -332,6 +333,7 @@ def test_auto_at_q0s_value_is_the_held_calls_answer_with_q0_and_its_note(name: s
     Q = robot.random_q(20, seed=3)
     T = robot.fk(Q)
     rng = np.random.default_rng(3)
+    at_q0 = 0
     for t, q in zip(T, Q, strict=True):
         q0 = np.clip(q + rng.normal(scale=0.05, size=q.size), *robot.qlim.T)
         res = robot.ik(t, q0=q0)
@@ -339,7 +341,9 @@ def test_auto_at_q0s_value_is_the_held_calls_answer_with_q0_and_its_note(name: s
         held = robot.ik(t, fixed={joint.index: float(q0[joint.index])}, q0=q0)
         assert isinstance(held, IKResult)
         if res.parameter[1] == q0[joint.index]:
+            at_q0 += 1
             assert "q0's value, within its limits" in res.notes[-1]
             assert_same_result(dataclasses.replace(res, notes=res.notes[:-1]), held)
         else:  # no solution at q0's value: the sweep's nearest value
             assert held.count == 0
+    assert at_q0 >= 5
