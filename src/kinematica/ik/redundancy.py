@@ -179,8 +179,11 @@ def _start_value(
         return None
     if q0.dtype != np.float64 or q0.shape != (chain.dof,):
         return None
-    lo, hi = joint.span(chain)
-    return min(max(float(q0[joint.index]), lo), hi), "q0's value, within its limits"
+    value = float(q0[joint.index])
+    if not math.isfinite(value):  # the general path says what is wrong with q0
+        return None
+    lo, hi = joint.span(chain)  # as _at_parameter's np.clip of q0's values
+    return min(max(value, lo), hi), "q0's value, within its limits"
 
 
 def _at_start(

@@ -143,7 +143,7 @@ class IKRequest(IKOptions):
         ``q0`` replaced by None again is this request.
         """
         if q0 is None:
-            back = self._changed.get(_NO_Q0)
+            back = self if self.q0 is None else self._changed.get(_NO_Q0)
             if back is not None:
                 return back
         found = object.__new__(IKRequest)
