@@ -18,10 +18,11 @@ from support import DATA
 
 import kinematica as km
 from kinematica.ik import IKBatchResult, IKOptions, nearest_value, redundancy
-from kinematica.ik.moved import end_arm, move_parts, moved_targets
+from kinematica.ik.moved import end_arm, lever, move_parts, moved_targets, on_axis
 from kinematica.ik.parameter import JointParameter
 from kinematica.ik.reach_bounds import ROUNDOFF_SLACK, may_reach, reach_bounds, violation
 from kinematica.ik.redundancy import PARAMETER_SWEEP, choose
+from kinematica.ik.request import IKRequest
 from kinematica.ik.solve import solve_ik
 from kinematica.ik.tolerance import Tolerance
 
@@ -45,10 +46,14 @@ def _arm(name: str) -> km.Robot:
     return km.load(str(DATA / "makers" / f"{name}.urdf"))
 
 
-def _held(robot: km.Robot, limits: bool = True) -> tuple[int, km.core.Chain, np.ndarray, tuple]:
-    joint = choose(robot.chain)
-    assert isinstance(joint, JointParameter) and joint.index in (0, 6)
-    k = joint.index
+def _held(
+    robot: km.Robot, limits: bool = True, k: int | None = None
+) -> tuple[int, km.core.Chain, np.ndarray, tuple]:
+    """The end joint ``k`` (None: the one ``auto`` holds), its arm, bounds and move's parts."""
+    if k is None:
+        joint = choose(robot.chain)
+        assert isinstance(joint, JointParameter) and joint.index in (0, 6)
+        k = joint.index
     arm = end_arm(robot.chain, k)
     bounds = reach_bounds(arm, limits)
     assert bounds is not None
@@ -56,19 +61,22 @@ def _held(robot: km.Robot, limits: bool = True) -> tuple[int, km.core.Chain, np.
 
 
 @pytest.mark.parametrize(
-    ("name", "share"), [("kinova_gen3", 0.95), ("realman_gen72", 0.85), ("realman_rm75", 0.95),
-                        ("random 7R", 0.5)]
+    ("name", "k", "share"), [("kinova_gen3", 6, 0.95), ("realman_gen72", 6, 0.85),
+                             ("realman_gen72", 0, 0.7), ("realman_rm75", 6, 0.95),
+                             ("random 7R", None, 0.5)]
 )  # fmt: skip
-def test_no_value_with_a_solution_is_dropped_and_most_without_are(name: str, share: float) -> None:
+def test_no_value_with_a_solution_is_dropped_and_most_without_are(
+    name: str, k: int | None, share: float
+) -> None:
     robot = _arm(name)
-    k, arm, bounds, move = _held(robot)
+    k, arm, bounds, move = _held(robot, k=k)
     lo, hi = robot.chain.qlim[k]
     grid = np.linspace(lo, hi, PARAMETER_SWEEP)
     T = robot.fk(robot.random_q(12, seed=3))
     moved = moved_targets(robot.chain, k, np.repeat(T, grid.size, axis=0), np.tile(grid, len(T)))
     dropped = {}
     for limits in (False, True):
-        bounds = _held(robot, limits)[2]
+        bounds = _held(robot, limits, k)[2]
         kept = may_reach(bounds, T, Tolerance(), grid, move, limits)  # (12, 73)
         # the closed form: every value where it finds a solution is kept
         found = solve_ik(arm, moved, IKOptions(workers=1, respect_limits=limits))
@@ -81,7 +89,7 @@ def test_no_value_with_a_solution_is_dropped_and_most_without_are(name: str, sha
     # with the limits, more, never fewer
     assert (dropped[True] & ~has).sum() >= share * (~has).sum()
     assert not (dropped[False] & ~dropped[True]).any()
-    if name == "realman_gen72":  # q2, q4 and q6 limited: the limits drop more
+    if name == "realman_gen72" and k == 6:  # q2, q4 and q6 limited: the limits drop more
         assert (dropped[True] & ~dropped[False]).any()
 
 
@@ -132,7 +140,7 @@ def test_distance_and_height_are_asked_of_one_q6_together() -> None:
     # height range at another, never both at one; the violation is the least widening of
     # both that does, at most what a fine sampling of q6 over its arc finds (and close to it)
     robot = _arm("realman_gen72")
-    k, _, bounds, move = _held(robot)
+    k, _, bounds, move = _held(robot, k=6)
     T = robot.fk(robot.random_q(40, seed=12))
     grid = np.linspace(*robot.chain.qlim[k], PARAMETER_SWEEP)
     gap = violation(bounds, T, Tolerance(0.0, 0.0), grid, move)
@@ -163,6 +171,36 @@ def test_distance_and_height_are_asked_of_one_q6_together() -> None:
     one, at = T[i : i + 1], grid[j : j + 1]
     assert may_reach(bounds, one, Tolerance(g - 0.5 * ROUNDOFF_SLACK, 0.0), at, move)[0, 0]
     assert not may_reach(bounds, one, Tolerance(g - 2.0 * ROUNDOFF_SLACK, 0.0), at, move)[0, 0]
+
+
+def test_past_a_last_joint_whose_axis_misses_the_tool_point_the_move_widens_the_slack() -> None:
+    # the tool 0.2 m off the last axis: a pose within (P, R) of the target is within
+    # (P + R |t_Y|, R) of the target moved past the joint, so a value is proved out only
+    # where the moved target misses the bounds by more than that (the move's lever)
+    base = _arm("random 7R")
+    tool = np.eye(4)
+    tool[:3, 3] = [0.2, 0.0, 0.05]
+    robot = km.Robot.from_dh(base.links, convention="standard", tool=tool)
+    chain = robot.chain
+    assert not on_axis(chain)
+    joint = JointParameter(6, "q7", False)
+    _, _, bounds, move = _held(robot, k=6)
+    grid = np.linspace(*chain.qlim[6], PARAMETER_SWEEP)
+    reach = lever(chain, 6, grid)
+    G = chain.fixed_parts[-1] @ chain.tool  # the tool point in joint 7's frame
+    assert reach == pytest.approx(2.0 * math.hypot(G[0, 3], G[1, 3]), abs=1e-12)  # half a turn
+    T = robot.fk(robot.random_q(60, seed=8))
+    tol = Tolerance(1e-6, 1e-2)
+    request = IKRequest.parse(tol=(tol.position, tol.rotation), workers=1)
+    kept = nearest_value.possible(chain, joint, T, grid, request)
+    plain = violation(bounds, T, tol, grid, move) > ROUNDOFF_SLACK
+    wide = Tolerance(tol.position + tol.rotation * reach, tol.rotation)
+    widened = violation(bounds, T, wide, grid, move) > ROUNDOFF_SLACK
+    assert (plain & ~widened).sum() >= 5  # values the move's lever keeps
+    assert np.array_equal(kept, ~widened)
+    # the tool point on the axis: no lever, the tolerance as given
+    on = km.Robot.from_dh(base.links, convention="standard")
+    assert on_axis(on.chain) and lever(on.chain, 6, grid) < 1e-12
 
 
 def test_a_target_not_finite_is_never_dropped() -> None:

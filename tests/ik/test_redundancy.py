@@ -51,6 +51,32 @@ def test_auto_prefers_a_special_family_to_the_general_6r() -> None:
     np.testing.assert_allclose(res.solutions[0], q, atol=1e-9)
 
 
+@pytest.mark.parametrize(
+    ("name", "held"), [("realman_gen72", 0), ("kinova_gen3", 6), ("realman_rm75", 6)]
+)
+def test_of_two_general_6r_end_locks_auto_holds_the_one_that_answers_more(
+    name: str, held: int
+) -> None:
+    # each end joint's lock is the general 6R: the one at whose default more poses have a
+    # solution is held, measured here on other poses than the choice's own (another seed,
+    # the whole held call with its search)
+    robot = km.load(str(DATA / "makers" / f"{name}.urdf"))
+    joint = choose(robot.chain, robot.joint_names)
+    assert isinstance(joint, JointParameter) and joint.index == held
+    for k in (0, 6):
+        lock = locked_chain(robot.chain, k, JointParameter(k, "q", False).default(robot.chain))
+        assert closed_form(lock, "pose").search_note  # type: ignore[union-attr]
+    T = robot.fk(robot.random_q(100, seed=123))
+    answered = {}
+    for k in (0, 6):
+        value = JointParameter(k, "q", False).default(robot.chain)
+        res = robot.ik(T, fixed={k: value}, workers=1)
+        assert isinstance(res, IKBatchResult)
+        answered[k] = int((res.count > 0).sum())
+    other = 6 - held
+    assert answered[held] > answered[other], answered
+
+
 def test_auto_says_its_parameter_and_every_solution_holds_it() -> None:
     # the Panda's axes 1-3 meet: held at q7 (its last joint, first in the preference), the
     # arm left has a spherical shoulder; q7's limits are symmetric, so it is held at 0
@@ -232,12 +258,15 @@ def test_an_empty_batch_of_a_redundant_arm_is_an_empty_result(name: str, held: d
 
 
 def test_the_nearest_value_is_the_one_every_value_solved_in_full_would_give() -> None:
-    # GEN72: its last joint held leaves a general 6R, whose elimination the search completes;
+    # GEN72: its end joint held leaves a general 6R, whose elimination the search completes;
     # the screen tries values nearest first by the elimination alone, and must pick the value
     # that solving the target in full at every value of the grid picks
     robot = km.load(str(DATA / "makers" / "realman_gen72.urdf"))
     joint = choose(robot.chain, robot.joint_names)
-    assert isinstance(joint, JointParameter) and joint.index == 6
+    assert isinstance(joint, JointParameter) and joint.index in (0, 6)
+    assert robot.ik(robot.fk(robot.random_q(1, seed=1))[0], fixed={joint.index: 0.0}).method == (
+        "analytic:general-6R"
+    )
     value = joint.default(robot.chain)
     lo, hi = robot.chain.qlim[joint.index]
     grid = np.linspace(lo, hi, PARAMETER_SWEEP)
@@ -248,7 +277,7 @@ def test_the_nearest_value_is_the_one_every_value_solved_in_full_would_give() ->
     assert aside.size == 3
     moved = 0
     for i in aside.tolist():
-        counts = np.array([robot.ik(T[i], fixed={6: float(v)}).count for v in grid])
+        counts = np.array([robot.ik(T[i], fixed={joint.index: float(v)}).count for v in grid])
         distance = np.where(counts > 0, np.abs(grid - value), np.inf)
         res = robot.ik(T[i])
         if np.isfinite(distance).any():

@@ -41,6 +41,7 @@ __all__ = [
     "held_at",
     "held_completed",
     "held_prepared",
+    "lever",
     "locked_chain",
     "move_parts",
     "moved_targets",
@@ -246,7 +247,18 @@ def narrowed_tolerance(
         ``(position m, rotation rad)``, or None.
     """
     given = parse_tolerance(tol)  # type: ignore[arg-type]
-    Y = moved_targets(chain, k, np.broadcast_to(np.eye(4), (v.size, 4, 4)), v)
-    shift = float(np.linalg.norm(Y[:, :3, 3], axis=1).max())
-    position = given.position - given.rotation * shift
+    position = given.position - given.rotation * lever(chain, k, v)
     return (position, given.rotation) if position >= NARROWEST * given.position else None
+
+
+def lever(chain: Chain, k: int, v: FloatArray) -> float:
+    """``max |t_Y|`` (m) over the values ``v`` ``(N,)`` of the last joint (index ``k``).
+
+    A target moved past the last joint is ``T Y`` (:func:`moved_targets`); a pose within
+    ``(P, R)`` of ``T`` is within ``(P + R |t_Y|, R)`` of ``T Y`` (the error conjugated by
+    ``Y``: ``(I - R) t_Y`` is at most ``θ |t_Y|``). 0 with the tool point on the axis.
+    """
+    if not v.size:
+        return 0.0
+    Y = moved_targets(chain, k, np.broadcast_to(np.eye(4), (v.size, 4, 4)), v)
+    return float(np.linalg.norm(Y[:, :3, 3], axis=1).max())

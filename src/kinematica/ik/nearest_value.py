@@ -21,7 +21,14 @@ from numpy.typing import ArrayLike, NDArray
 
 from kinematica.core import Chain, resolve_workers
 from kinematica.ik.arm_angle import ArmAngleParameter
-from kinematica.ik.moved import end_arm, held_completed, move_parts, moved_targets
+from kinematica.ik.moved import (
+    end_arm,
+    held_completed,
+    lever,
+    move_parts,
+    moved_targets,
+    on_axis,
+)
 from kinematica.ik.parameter import JointParameter, Parameter
 from kinematica.ik.reach_bounds import ROUNDOFF_SLACK, may_reach, reach_bounds
 from kinematica.ik.request import IKRequest
@@ -29,7 +36,7 @@ from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.solve import solve_ik
 from kinematica.ik.solvers import plan_of
 from kinematica.ik.targets import Targets
-from kinematica.ik.tolerance import parse_tolerance
+from kinematica.ik.tolerance import Tolerance, parse_tolerance
 
 if TYPE_CHECKING:
     from kinematica.ik.options import IKOptions
@@ -245,7 +252,10 @@ def possible(
 
     The first or last joint of an arm whose 6 other joints turn: the targets moved
     for the arm locked once (:mod:`kinematica.ik.moved`), checked against that arm's
-    :func:`~kinematica.ik.reach_bounds.reach_bounds` with the screen's tolerance.
+    :func:`~kinematica.ik.reach_bounds.reach_bounds` with the request's tolerance; past
+    a last joint whose axis misses the tool point, its position widened by the rotation
+    times the move's :func:`~kinematica.ik.moved.lever` (a pose within the tolerance of
+    the target is within that of the moved target).
     """
     k = joint.index if isinstance(joint, JointParameter) else -1
     if k not in (0, chain.dof - 1) or chain.prismatic[k]:
@@ -255,7 +265,10 @@ def possible(
     if bounds is None:
         return np.ones((poses.shape[0], grid.size), dtype=bool)
     move = move_parts(chain, k)
-    return may_reach(bounds, poses, parse_tolerance(request.tol), grid, move, limits)
+    tol = parse_tolerance(request.tol)
+    if k and not on_axis(chain):
+        tol = Tolerance(tol.position + tol.rotation * lever(chain, k, grid), tol.rotation)
+    return may_reach(bounds, poses, tol, grid, move, limits)
 
 
 def has_solutions(
