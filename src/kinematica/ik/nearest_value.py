@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+import kinematica._core as _core
 from kinematica.core import Chain, resolve_workers
 from kinematica.ik.arm_angle import ArmAngleParameter
 from kinematica.ik.moved import (
@@ -30,7 +31,7 @@ from kinematica.ik.moved import (
     on_axis,
 )
 from kinematica.ik.parameter import JointParameter, Parameter
-from kinematica.ik.reach_bounds import ROUNDOFF_SLACK, may_reach, reach_bounds
+from kinematica.ik.reach_bounds import ROUNDOFF_SLACK, reach_bounds
 from kinematica.ik.request import IKRequest
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.solve import solve_ik
@@ -258,17 +259,30 @@ def possible(
     the target is within that of the moved target).
     """
     k = joint.index if isinstance(joint, JointParameter) else -1
-    if k not in (0, chain.dof - 1) or chain.prismatic[k]:
-        return np.ones((poses.shape[0], grid.size), dtype=bool)
     limits = bool(request.respect_limits)
-    bounds = reach_bounds(end_arm(chain, k), limits)
-    if bounds is None:
-        return np.ones((poses.shape[0], grid.size), dtype=bool)
-    move = move_parts(chain, k)
     tol = parse_tolerance(request.tol)
+    key = ("possible", k, limits)  # the parts of the check, made once
+    found: Any = chain.memo.get(key, False)
+    if found is False:
+        found = chain.memo[key] = _bounds_check(chain, k, limits)
+    if found is None:
+        return np.ones((poses.shape[0], grid.size), dtype=bool)
+    bounds, (parts, after) = found
     if k and not on_axis(chain):
         tol = Tolerance(tol.position + tol.rotation * lever(chain, k, grid), tol.rotation)
-    return may_reach(bounds, poses, tol, grid, move, limits)
+    if poses.dtype != np.float64 or grid.dtype != np.float64:  # the core reads float64 only
+        poses, grid = np.asarray(poses, dtype=float), np.asarray(grid, dtype=float)
+    gap = _core.reach_violation(bounds, poses, grid, parts, after, False, tol.position,
+                                tol.rotation, limits)  # fmt: skip
+    return ~(gap > ROUNDOFF_SLACK)
+
+
+def _bounds_check(chain: Chain, k: int, limits: bool) -> tuple[Any, tuple[FloatArray, bool]] | None:
+    """:func:`possible`'s bounds and move for joint ``k``; None: no bounds."""
+    if k not in (0, chain.dof - 1) or chain.prismatic[k]:
+        return None
+    bounds = reach_bounds(end_arm(chain, k), limits)
+    return None if bounds is None else (bounds, move_parts(chain, k))
 
 
 def has_solutions(
