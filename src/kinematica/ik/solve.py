@@ -57,6 +57,7 @@ FloatArray = NDArray[np.float64]
 _UNREACHABLE = _core.STATUS["unreachable"]
 _OK = _core.STATUS["ok"]
 _NOT_FOUND = _core.STATUS["not_found"]
+_UNPROVEN = min(_UNREACHABLE, _NOT_FOUND)  # the least status code of an answer without a proof
 _FLOAT64 = np.dtype(np.float64)
 #: Where a position target is placed (the orientation is free).
 _IDENTITY = np.eye(4)
@@ -286,15 +287,18 @@ def _batch(
             labels = (*labels, LABEL)
         searched_rows = set(rows.tolist())
         methods = {where(i): METHOD for i in searched_rows}
-        for i in range(targets.poses.shape[0]):
+        # each searched row's note, and with slack every other row's (a valid target's)
+        for i in range(targets.poses.shape[0]) if slack else sorted(searched_rows):
             if i in targets.invalid:
                 continue
             idx = where(i)
             if i in searched_rows:
                 batch_notes[idx] = (*batch_notes.get(idx, ()), str(plan.search))
-            elif slack:
+            else:
                 batch_notes[idx] = (*batch_notes.get(idx, ()), INCOMPLETE_NOTE)
-    if respect_limits:
+    # only a row that proved nothing ("not found", or "unreachable" without a gap) can be
+    # proved beyond the limited reach: none where every status is below both codes
+    if respect_limits and raw.status.size and int(raw.status.max()) >= _UNPROVEN:
         beyond, gaps = beyond_limited_reach(
             chain, targets.poses, raw.status, raw.gap, tolerance.position, w
         )
