@@ -205,19 +205,21 @@ def _start_value(
 ) -> tuple[float, str] | None:
     """The value ``auto`` holds one pose at first, and why; None for any other call.
 
-    q0's (a held joint's entry of a float64 ``(n,)`` q0, within its span), else the default.
+    q0's (a float64 ``(n,)`` q0's value of it, within its span), else the default.
     """
     if target.__class__ is not np.ndarray or target.shape != (4, 4):
         return None
     q0 = options.q0
     if q0 is None:
         return default_value(chain, joint)
-    if not (isinstance(joint, JointParameter) and q0.__class__ is np.ndarray):
+    if q0.__class__ is not np.ndarray or q0.dtype != np.float64 or q0.shape != (chain.dof,):
         return None
-    if q0.dtype != np.float64 or q0.shape != (chain.dof,):
-        return None
-    value = float(q0[joint.index])
-    if not math.isfinite(value):  # the general path says what is wrong with q0
+    if isinstance(joint, JointParameter):
+        value = float(q0[joint.index])
+    else:  # an arm angle: q0's own
+        value = float(joint.value_of(chain, q0[None])[0])
+    # the general path says what is wrong with q0, or that its arm angle is undefined
+    if not math.isfinite(value):
         return None
     lo, hi = joint.span(chain)  # as _at_parameter's np.clip of q0's values
     return min(max(value, lo), hi), "q0's value, within its limits"
