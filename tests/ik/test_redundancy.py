@@ -352,13 +352,13 @@ def test_auto_at_the_default_value_is_the_held_calls_answer_with_its_note(name: 
     assert at_default >= 5
 
 
-@pytest.mark.parametrize("name", ["panda", "realman_gen72"])
+@pytest.mark.parametrize("name", ["panda", "realman_gen72", "iiwa14"])
 def test_auto_at_q0s_value_is_the_held_calls_answer_with_q0_and_its_note(name: str) -> None:
-    # q0 (a float64 vector) holds the joint at its value: the held call's answer with q0
-    # beside it (one core call), to the bit, with the note saying whence the value
-    robot = km.load(name if name == "panda" else str(DATA / "makers" / f"{name}.urdf"))
+    # q0 (a float64 vector) holds the parameter at its value (a joint's, or the iiwa's arm
+    # angle): the held call's answer with q0 beside it, to the bit, with the note saying
+    # whence the value
+    robot = km.load(str(DATA / "makers" / f"{name}.urdf") if "_" in name else name)
     joint = choose(robot.chain, robot.joint_names)
-    assert isinstance(joint, JointParameter)
     Q = robot.random_q(20, seed=3)
     T = robot.fk(Q)
     rng = np.random.default_rng(3)
@@ -367,9 +367,15 @@ def test_auto_at_q0s_value_is_the_held_calls_answer_with_q0_and_its_note(name: s
         q0 = np.clip(q + rng.normal(scale=0.05, size=q.size), *robot.qlim.T)
         res = robot.ik(t, q0=q0)
         assert isinstance(res, IKResult) and res.parameter is not None
-        held = robot.ik(t, fixed={joint.index: float(q0[joint.index])}, q0=q0)
+        if isinstance(joint, JointParameter):
+            value = float(q0[joint.index])
+            held = robot.ik(t, fixed={joint.index: value}, q0=q0)
+        else:
+            assert isinstance(joint, ArmAngleParameter)
+            value = float(robot.arm_angle(q0))
+            held = robot.ik(t, arm_angle=value, q0=q0)
         assert isinstance(held, IKResult)
-        if res.parameter[1] == q0[joint.index]:
+        if res.parameter[1] == value:
             at_q0 += 1
             assert "q0's value, within its limits" in res.notes[-1]
             assert_same_result(dataclasses.replace(res, notes=res.notes[:-1]), held)
