@@ -118,10 +118,14 @@ class IKRequest(IKOptions):
 
         A change of hashable values is made once per request, then found by them; a change
         of ``q0`` alone keeps every other setting as checked (``q0`` is checked where it
-        is used) and is made without checking them again.
+        is used) and is made without checking them again; changes to the values the
+        request holds already (None, or numbers and words equal in value and type) are
+        this request.
         """
         if len(changes) == 1 and "q0" in changes:
             return self._with_q0(changes["q0"])
+        if all(_same(getattr(self, name), v) for name, v in changes.items()):
+            return self
         try:  # the values' types too: True == 1
             key = (*changes.items(), *map(type, changes.values()))
             found = self._changed.get(key)
@@ -348,6 +352,18 @@ def settings_key(settings: tuple[object, ...]) -> int:
         found = _keys[settings] = _next_key
         _next_key += 1
     return found
+
+
+def _same(held: object, value: object) -> bool:
+    """True where a setting ``held`` already is ``value``.
+
+    The same object, or a number or word equal in value and type (an array, a mapping
+    or NaN equal to another is never taken for it).
+    """
+    if held is value:
+        return True
+    kind = type(held)
+    return kind is type(value) and kind in (float, int, str, bool) and held == value
 
 
 def _made(

@@ -24,7 +24,7 @@ the over-determined reading of an arm of fewer than 6 joints
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -125,10 +125,14 @@ def solve_ik(
         return first
     kind: TargetKind | None = None
     angle = request.arm_angle  # one number (an SRS arm's arm angle) or None
+    q0 = request.q0  # beside one arm angle: a float64 (n,) vector the core reads as it is
+    one_q0 = q0 is None or (
+        type(q0) is np.ndarray and q0.dtype is _FLOAT64 and q0.shape == (chain.dof,)
+    )
     if (
         type(target) is np.ndarray
         and target.dtype is _FLOAT64
-        and (request.bare or (request.q0 is None and type(angle) is float and math.isfinite(angle)))
+        and (request.bare or (one_q0 and type(angle) is float and math.isfinite(angle)))
     ):  # one target as the core reads it: not parsed
         if target.shape == (4, 4):
             pose, kind = target, "pose"
@@ -143,11 +147,14 @@ def solve_ik(
         if plan is None:
             plan = plan_of(chain, kind, request, None if angle is None else "arm_angle")
         ready = plan.prepared if angle is None else _at(chain, plan, float(angle))  # type: ignore[arg-type]
-        got = None if ready is None else ready(pose)  # one core call: the result
+        # one core call: the result (None where the core does not read the pose, or q0,
+        # as it is: a q0 beyond the joints' limits or a turn is solved as a batch of one)
+        got = None if ready is None else ready(pose, q0)
         if got.__class__ is IKResult:  # final as the core gives it (answered's first case)
             return got
         if got is not None:
-            return answered(chain, plan, request, pose, kind, got, (), None)
+            q0_one = cast("FloatArray | None", q0)  # None, or (n,) float64 (one_q0)
+            return answered(chain, plan, request, pose, kind, got, (), q0_one)
     targets = target if isinstance(target, Targets) else parse_targets(target)
     kind = "position" if targets.position else "pose"
     values = None
