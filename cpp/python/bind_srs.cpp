@@ -1,7 +1,6 @@
 // SRS 7R arms (iiwa type) at a given arm angle: kinematica._core.srs.
 #include "common.hpp"
-#include "kinematica/solvers/srs.hpp"
-#include "kinematica/solvers/srs_build.hpp"
+#include "kinematica/solvers/srs_angle.hpp"  // srs.hpp, srs_build.hpp
 #include "solver_binding.hpp"
 
 namespace kmpy {
@@ -42,6 +41,18 @@ BatchAnswer ik_batch_at(const SRSParams& p, const km::Chain& chain, F64 T, F64 p
                         });
 }
 
+//! The arm angles (N,) of configurations q (N, 7) of an SRS arm; None for any other chain.
+nb::object arm_angles(const km::Chain& chain, F64 qh) {
+    const In q = in_f64(qh, "q", 2, {-1, 7});
+    const auto g = km::srs::angle_geometry(chain);  // srs_points: 7 revolute joints
+    if (!g) return nb::none();
+    double* out;
+    F64 result = new_f64({q.dim[0]}, out);
+    const km::ChainView ch = chain.view();
+    for (npy_intp i = 0; i < q.dim[0]; ++i) out[i] = km::srs::arm_angle(ch, *g, q.data + 7 * i);
+    return result;
+}
+
 }  // namespace
 
 void bind_srs(nb::module_& m) {
@@ -67,15 +78,8 @@ void bind_srs(nb::module_& m) {
             nb::arg("options"), nb::arg("q0").none(), nb::arg("invalid").none(),
             nb::arg("workers"),
             "ik_batch of targets T (N, 4, 4), target i at the arm angle psi[i] (N,) (rad).");
-    sub.def(
-        "points",
-        [](const km::Chain& chain) -> nb::object {
-            km::Vec3 S, E, W;
-            if (!km::srs::srs_points(km::arm_axes(chain), S, E, W)) return nb::none();
-            return nb::make_tuple(S, E, W);
-        },
-        nb::arg("chain"),
-        "(S, E0, W0): the shoulder, elbow and wrist points at q = 0 (srs_build.hpp), or None.");
+    sub.def("arm_angles", &arm_angles, nb::arg("chain"), nb::arg("q"),
+            "(N,) arm angles (rad) of q (N, 7), NaN where undefined; None for no SRS arm.");
     sub.attr("COLLINEAR_TOL") = km::srs::COLLINEAR_TOL;
     sub.attr("REFERENCE_TOL") = km::srs::REFERENCE_TOL;
 }

@@ -334,6 +334,28 @@ def test_aligned_shoulder_or_wrist_axes(iiwa: km.Robot, joint: int, free: set[in
     assert float(_wrapped(sums - (q[min(free)] + q[max(free)])).min()) <= FOUND
 
 
+def test_the_arm_angle_is_undefined_within_the_collinear_tolerance(iiwa: km.Robot) -> None:
+    # the elbow a distance d off the line S-W (q4 small: d grows as q4): undefined (NaN)
+    # for d at half of COLLINEAR_TOL times the arm's size, defined at twice it
+    tiny = _core.srs.COLLINEAR_TOL * classify(iiwa).features.size
+
+    def offset(q: FloatArray) -> float:  # the elbow's distance from S-W, from the DH origins
+        frames = iiwa.fk(q, all_frames=True)
+        S, E, W = frames[1, :3, 3], frames[3, :3, 3], frames[5, :3, 3]
+        n = (W - S) / np.linalg.norm(W - S)
+        return float(np.linalg.norm((E - S) - ((E - S) @ n) * n))
+
+    q = np.array([0.3, 0.5, -0.4, 1e-6, 0.6, 0.7, -0.2])
+    per_radian = offset(q) / q[3]
+    for share, defined in ((0.5, False), (2.0, True)):
+        q[3] = share * tiny / per_radian
+        assert math.isfinite(float(iiwa.arm_angle(q))) == defined, share
+    # q not finite: NaN; q of another length: an error naming q
+    assert np.isnan(iiwa.arm_angle(np.full(7, np.nan)))
+    with pytest.raises(DimensionError, match="7 joint angles"):
+        srs.arm_angle(iiwa.chain, np.zeros(6))
+
+
 def test_wrist_on_the_shoulder_of_equal_links() -> None:
     # an iiwa-type arm with upper arm = forearm folds W onto S: no line S-W at all
     rows = [

@@ -48,11 +48,11 @@ from numpy.typing import ArrayLike, NDArray
 import kinematica._core as _core
 from kinematica.core import Chain
 from kinematica.dh.joints import Revolute
-from kinematica.errors import KinematicaError
+from kinematica.errors import DimensionError, KinematicaError
 from kinematica.ik.analytic.sampling import random_transform
 from kinematica.ik.analytic.sampling import random_twist as _twist
 from kinematica.ik.registry import ArmSample, ClosedForm, SolverSpec, TargetKind
-from kinematica.ik.structure import Features, features
+from kinematica.ik.structure import Features
 
 __all__ = ["LABELS", "SPEC", "arm_angle", "build", "handles"]
 
@@ -102,9 +102,10 @@ def arm_angle(chain: Chain, q: ArrayLike) -> FloatArray:
 
     Measured as the module docstring defines it, from the joint frames' forward
     kinematics (S, the elbow point E and the wrist centre W placed by frames 0, 3
-    and 4). NaN where it is undefined: the elbow on the line S-W or W on S, or
-    S-W along axis 1 (within 1e-12 of the arm's size, resp. in sine: the
-    solver's ``COLLINEAR_TOL`` and ``REFERENCE_TOL``).
+    and 4), in the core (``km::srs::arm_angle``, ``cpp/include/kinematica/solvers/
+    srs_angle.hpp``). NaN where it is undefined: the elbow on the line S-W or W on S,
+    or S-W along axis 1 (within 1e-12 of the arm's size, resp. in sine: the
+    solver's ``COLLINEAR_TOL`` and ``REFERENCE_TOL``), and where q is not finite.
 
     Args:
         chain: An SRS 7R chain.
@@ -115,64 +116,22 @@ def arm_angle(chain: Chain, q: ArrayLike) -> FloatArray:
 
     Raises:
         KinematicaError: The chain is no SRS 7R arm.
+        DimensionError: ``q`` does not hold 7 joint angles a row.
     """
-    S, elbow, wrist, ref, tiny = _angle_geometry(chain)
     q = np.asarray(q, dtype=float)
-    frames = chain.fk(q, all_frames=True)[0]
-    # the points fixed in frames 4 (W) and 3 (E), where those frames put them at q
-    sw = np.einsum("...ij,j->...i", frames[..., 4, :3, :3], wrist) + frames[..., 4, :3, 3] - S
-    se = np.einsum("...ij,j->...i", frames[..., 3, :3, :3], elbow) + frames[..., 3, :3, 3] - S
-    sw_norm = _norm(sw)
-    n = sw / sw_norm[..., None]
-    r = ref - (n @ ref)[..., None] * n
-    e = se - np.add.reduce(se * n, axis=-1)[..., None] * n
-    r0, r1, r2, e0, e1, e2 = r[..., 0], r[..., 1], r[..., 2], e[..., 0], e[..., 1], e[..., 2]
-    # n · (r × e), the cross product's components as numpy's cross forms them
-    y = n[..., 0] * (r1 * e2 - r2 * e1) + n[..., 1] * (r2 * e0 - r0 * e2)
-    y = y + n[..., 2] * (r0 * e1 - r1 * e0)
-    x = np.add.reduce(r * e, axis=-1)
-    psi = np.arctan2(y, x)
-    undefined = (_norm(r) <= _core.srs.REFERENCE_TOL) | (_norm(e) <= tiny)
-    undefined |= sw_norm <= tiny  # W on S: S-W has no direction
-    out: FloatArray = np.where(undefined, np.nan, psi)
-    return out
-
-
-def _norm(v: FloatArray) -> FloatArray:
-    """``(...)`` the lengths of vectors ``v (..., 3)``, as ``np.linalg.norm(v, axis=-1)``."""
-    return np.sqrt(np.add.reduce(v * v, axis=-1))
-
-
-def _angle_geometry(
-    chain: Chain,
-) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, float]:
-    """What :func:`arm_angle` reads of the arm, made once per chain.
-
-    ``(S, E, W, a1, tiny)``: the shoulder centre (base frame), the elbow point in frame 3
-    and the wrist centre in frame 4 (the core's points, placed at q = 0), axis 1's
-    direction, and the collinearity length (m).
-
-    Raises:
-        KinematicaError: The chain is no SRS 7R arm.
-    """
-    found = chain.memo.get("arm angle geometry")
-    if found is not None:
-        return found  # type: ignore[return-value]
-    f = features(chain)
-    points = _core.srs.points(chain.core) if handles(f) else None
-    if points is None:
+    out = None
+    if chain.dof == 7:  # (the core says whether it is an SRS arm)
+        if q.ndim == 0 or q.shape[-1] != 7:
+            raise DimensionError(f"q must hold 7 joint angles, got shape {q.shape}", arg="q")
+        out = _core.srs.arm_angles(chain.core, np.ascontiguousarray(q.reshape(-1, 7)))
+    if out is None:
         raise KinematicaError(
             "the arm angle is defined for SRS 7R arms only (axes 1-3 and 5-7 meeting, "
             "axis 4 through neither point)",
             arg="q",
         )
-    S, E0, W0 = np.asarray(points, dtype=float)  # (3, 3): the points as rows
-    zero = chain.fk(np.zeros(7), all_frames=True)[0]
-    elbow = zero[3, :3, :3].T @ (E0 - zero[3, :3, 3])
-    wrist = zero[4, :3, :3].T @ (W0 - zero[4, :3, 3])
-    tiny = _core.srs.COLLINEAR_TOL * f.size
-    found = chain.memo["arm angle geometry"] = (S, elbow, wrist, f.directions[0], tiny)
-    return found
+    angles: FloatArray = np.asarray(out).reshape(q.shape[:-1])
+    return angles
 
 
 # ------------------------------------------------------------- sample arms
