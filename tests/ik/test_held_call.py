@@ -13,8 +13,8 @@ import pytest
 
 import kinematica as km
 from kinematica.ik import IKResult
+from kinematica.ik.fixed import joint_parameter
 from kinematica.ik.held_call import held_one
-from kinematica.ik.parameter import joint_parameter
 from kinematica.ik.request import HeldCall, IKRequest
 from kinematica.ik.solvers import plan_of
 from kinematica.spatial import rotation_angle

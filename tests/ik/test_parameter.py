@@ -15,7 +15,8 @@ from support.helpers import assert_transform_close, random_7r
 import kinematica as km
 from kinematica.errors import KinematicaError
 from kinematica.ik import IKBatchResult, IKOptions, IKResult
-from kinematica.ik.parameter import LOCKED_CACHE, joint_parameter, locked_chain
+from kinematica.ik.fixed import joint_parameter
+from kinematica.ik.parameter import LOCKED_CACHE, locked_chain
 
 TOL = 1e-10  # the default acceptance tolerance of robot.ik (m, rad)
 

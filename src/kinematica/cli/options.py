@@ -342,7 +342,7 @@ def joint_in(robot: Robot, key: str, option: str) -> int:
             + (f" or by its name ({', '.join(own)})" if own else "")
             + f", got {key!r}"
         )
-    from kinematica.ik.parameter import joint_parameter
+    from kinematica.ik.fixed import joint_parameter
 
     return joint_parameter(robot.chain, text, robot.joint_names, arg=option).index
 

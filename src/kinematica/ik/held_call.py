@@ -2,10 +2,10 @@
 
 ``robot.ik`` reads such a call into a :class:`~kinematica.ik.request.HeldCall` (the request
 of its other settings, kept, and the joint and value as given); :func:`held_one` reads the
-joint once per chain and checks the value as :func:`~kinematica.ik.parameter.solve_fixed`
+joint once per chain and checks the value as :func:`~kinematica.ik.fixed.solve_fixed`
 does, and the arm its lock leaves answers in one core call
 (:meth:`~kinematica.ik.parameter.JointParameter.lean`). Any other call, or an answer that
-is not final, goes :func:`~kinematica.ik.parameter.solve_fixed`'s way.
+is not final, goes :func:`~kinematica.ik.fixed.solve_fixed`'s way.
 """
 
 from __future__ import annotations
@@ -15,8 +15,9 @@ from typing import Any
 import numpy as np
 
 from kinematica.core import Chain
+from kinematica.ik.fixed import joint_parameter
 from kinematica.ik.moved import LOCKED_CACHE, held_at
-from kinematica.ik.parameter import JointParameter, joint_parameter
+from kinematica.ik.parameter import JointParameter
 from kinematica.ik.request import HeldCall
 from kinematica.ik.result import IKResult
 
@@ -29,7 +30,7 @@ def held_one(
     """``robot.ik(T, fixed={joint: value})`` of one pose as one core call, or None.
 
     The joint is read once per chain, settings and key; its value is checked as
-    :func:`~kinematica.ik.parameter.solve_fixed` checks it (a number within the limits
+    :func:`~kinematica.ik.fixed.solve_fixed` checks it (a number within the limits
     passes as it is). None where the joint's lock has no lean call
     (:meth:`~kinematica.ik.parameter.JointParameter.lean`) or the target is not one pose
     as the core reads it: the general path answers.

@@ -28,6 +28,7 @@ import kinematica._core as _core
 from kinematica.core import Chain, resolve_workers
 from kinematica.errors import KinematicaError
 from kinematica.ik.arm_angle import ArmAngleParameter, arm_angle_parameter
+from kinematica.ik.fixed import solve_fixed
 from kinematica.ik.held_aside import solved_except
 from kinematica.ik.local_search import LOCAL_SEARCH
 from kinematica.ik.moved import end_arm, held_completed, on_axis
@@ -40,13 +41,7 @@ from kinematica.ik.nearest_value import (
     possible,
     swept,
 )
-from kinematica.ik.parameter import (
-    JointParameter,
-    Parameter,
-    joint_names,
-    locked_chain,
-    solve_fixed,
-)
+from kinematica.ik.parameter import JointParameter, Parameter, joint_names, locked_chain
 from kinematica.ik.request import IKRequest
 from kinematica.ik.result import IKBatchResult, IKResult, amended
 from kinematica.ik.solve import REDUNDANT_DOF, solve_ik

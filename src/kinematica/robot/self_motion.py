@@ -33,7 +33,8 @@ from kinematica.arguments import check_count, check_size
 from kinematica.errors import KinematicaError
 from kinematica.ik import IKBatchResult, IKOptions, structure_of
 from kinematica.ik.arm_angle import ARM_ANGLE_NAMES, arm_angle_parameter
-from kinematica.ik.parameter import Parameter, joint_parameter
+from kinematica.ik.fixed import joint_parameter
+from kinematica.ik.parameter import Parameter
 from kinematica.ik.targets import parse_targets
 
 if TYPE_CHECKING:
