@@ -10,7 +10,7 @@ result's :attr:`~kinematica.ik.IKResult.parameter` and message say so.
 
 A parameter is an object with a ``name``, a ``unit``, a ``span`` and a ``solve``
 (:class:`Parameter`); a joint is one (:class:`JointParameter`), the arm angle of an
-SRS arm would be another.
+SRS arm another (:mod:`kinematica.ik.arm_angle`). ``fixed=`` read: :mod:`kinematica.ik.fixed`.
 """
 
 from __future__ import annotations
