@@ -86,7 +86,8 @@ inline std::optional<AngleGeometry> angle_geometry(const Chain& chain) {
     return g;
 }
 
-//! ψ (rad, in (-π, π]) of configuration q (7 joint angles, rad); NaN where undefined.
+//! ψ (rad, in (-π, π]) of configuration q (7 joint angles, rad) of the chain `ch` of 7
+//! joints whose AngleGeometry is g (angle_geometry's); NaN where undefined.
 inline double arm_angle(const ChainView& ch, const AngleGeometry& g, const double* q) {
     constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
     detail::ElbowWristFrames rec;
