@@ -295,15 +295,15 @@ def held_and_auto(robots: list[tuple[str, km.Robot]], poses: int, seed: int, pum
                 fmt_time(batch),
                 f"{1 - swept - searched:.0%} / {swept:.0%} / {searched:.0%}",
                 dropped,
-                verdict(auto.mean() <= BUDGET_AUTO_PUMAS * unit,
-                        f"{auto.mean() / unit:.0f} PUMA poses"),
+                f"{auto.mean() / unit:.1f}: "
+                + verdict(auto.mean() <= BUDGET_AUTO_PUMAS * unit),
             ]
         )  # fmt: skip
     head = ["arm", "q7 lock's family", "6R one pose", "fixed q7 new v (ratio)",
             "q1 lock's family", "6R one pose", "fixed q1 new v (ratio)",
             "auto median / mean / max", "auto batched", "default / swept / searched",
             "sweep values proved out",
-            f"auto mean <= {BUDGET_AUTO_PUMAS:.0f} PUMA poses"]  # fmt: skip
+            f"auto mean, PUMA poses: <= {BUDGET_AUTO_PUMAS:.1f}"]  # fmt: skip
     print(f"load average (1 min) {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
     print(table(rows, head))
 
