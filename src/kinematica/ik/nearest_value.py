@@ -19,7 +19,6 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-import kinematica._core as _core
 from kinematica.core import Chain, resolve_workers
 from kinematica.ik.arm_angle import ArmAngleParameter
 from kinematica.ik.moved import (
@@ -31,7 +30,7 @@ from kinematica.ik.moved import (
     on_axis,
 )
 from kinematica.ik.parameter import JointParameter, Parameter
-from kinematica.ik.reach_bounds import ROUNDOFF_SLACK, reach_bounds
+from kinematica.ik.reach_bounds import ROUNDOFF_SLACK, may_reach, reach_bounds
 from kinematica.ik.request import IKRequest
 from kinematica.ik.result import IKBatchResult, IKResult
 from kinematica.ik.solve import solve_ik
@@ -267,14 +266,10 @@ def possible(
         found = chain.memo[key] = _bounds_check(chain, k, limits)
     if found is None:
         return np.ones((poses.shape[0], grid.size), dtype=bool)
-    bounds, (parts, after) = found
+    bounds, move = found
     if k and not on_axis(chain):
         tol = Tolerance(tol.position + tol.rotation * lever(chain, k, grid), tol.rotation)
-    if poses.dtype != np.float64 or grid.dtype != np.float64:  # the core reads float64 only
-        poses, grid = np.asarray(poses, dtype=float), np.asarray(grid, dtype=float)
-    gap = _core.reach_violation(bounds, poses, grid, parts, after, False, tol.position,
-                                tol.rotation, limits)  # fmt: skip
-    return ~(gap > ROUNDOFF_SLACK)
+    return may_reach(bounds, poses, tol, grid, move, limits)
 
 
 def _bounds_check(chain: Chain, k: int, limits: bool) -> tuple[Any, tuple[FloatArray, bool]] | None:

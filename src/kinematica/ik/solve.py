@@ -126,13 +126,10 @@ def solve_ik(
     kind: TargetKind | None = None
     angle = request.arm_angle  # one number (an SRS arm's arm angle) or None
     q0 = request.q0  # beside one arm angle: a float64 (n,) vector the core reads as it is
-    one_q0 = q0 is None or (
-        type(q0) is np.ndarray and q0.dtype is _FLOAT64 and q0.shape == (chain.dof,)
-    )
     if (
         type(target) is np.ndarray
         and target.dtype is _FLOAT64
-        and (request.bare or (one_q0 and type(angle) is float and math.isfinite(angle)))
+        and (request.bare or (type(angle) is float and math.isfinite(angle) and _one_q0(chain, q0)))
     ):  # one target as the core reads it: not parsed
         if target.shape == (4, 4):
             pose, kind = target, "pose"
@@ -153,7 +150,7 @@ def solve_ik(
         if got.__class__ is IKResult:  # final as the core gives it (answered's first case)
             return got
         if got is not None:
-            q0_one = cast("FloatArray | None", q0)  # None, or (n,) float64 (one_q0)
+            q0_one = cast("FloatArray | None", q0)  # None, or (n,) float64 (_one_q0)
             return answered(chain, plan, request, pose, kind, got, (), q0_one)
     targets = target if isinstance(target, Targets) else parse_targets(target)
     kind = "position" if targets.position else "pose"
@@ -187,6 +184,13 @@ def solve_ik(
         notes = targets.notes.get(0, ()) if targets.notes else ()
         return answered(chain, plan, request, pose, kind, out, notes, q0)
     return _batch(chain, target, targets, request, plan, solver, q0s)
+
+
+def _one_q0(chain: Chain, q0: object) -> bool:
+    """True for no ``q0``, or one the core reads as it is: a float64 ``(n,)`` array."""
+    return q0 is None or (
+        type(q0) is np.ndarray and q0.dtype is _FLOAT64 and q0.shape == (chain.dof,)
+    )
 
 
 #: Closed forms at one value of their parameter a chain keeps (:func:`_at`).
